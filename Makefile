@@ -1,0 +1,40 @@
+# omnicam — top-level entry points. `make demo` and `make test` each do all set-up themselves.
+BUILD_DIR ?= build
+JOBS      ?= $(shell nproc)
+SUDO      := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+
+# Every Debian 12 package the project needs (build, tests, demo, benchmarks).
+DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev \
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
+  povray
+
+.PHONY: deps build test demo bench clean
+
+# Idempotent and non-interactive: apt runs only when a package is missing.
+deps:
+	@if dpkg-query -W -f='$${Status}\n' $(DEBIAN_PACKAGES) 2>/dev/null | grep -qv '^install ok installed$$' \
+	    || ! dpkg-query -W $(DEBIAN_PACKAGES) >/dev/null 2>&1; then \
+	  echo "make deps: installing Debian packages"; \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -q && \
+	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(DEBIAN_PACKAGES); \
+	else echo "make deps: all Debian packages present"; fi
+
+$(BUILD_DIR)/CMakeCache.txt:
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release
+
+build: deps $(BUILD_DIR)/CMakeCache.txt
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
+
+demo: build
+	$(BUILD_DIR)/bin/omnicam demo -o out/demo
+
+bench: build
+	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
+
+clean:
+	rm -rf $(BUILD_DIR) out

@@ -1,0 +1,13 @@
+#pragma once
+#include <vector>
+
+#include "geometry.h"
+#include "rig.h"
+
+namespace omnicam {
+
+// `frames` poses spaced evenly by arc length along a polyline of (x, y) waypoints, from the
+// first waypoint to the last, each heading along its segment (at a corner: the outgoing one).
+std::vector<RobotPose> sampleWaypointPath(const std::vector<Vec2>& waypoints, int frames);
+
+}  // namespace omnicam

@@ -1,0 +1,165 @@
+#include "json_fields.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "errors.h"
+
+namespace omnicam {
+
+using nlohmann::json;
+
+std::string jsonTypeName(const json& v) { return v.type_name(); }
+
+namespace {
+std::string show(double v) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+JsonFields::JsonFields(const json& object, std::string file, std::string where)
+    : object_(object), file_(std::move(file)), where_(std::move(where)) {
+  if (!object_.is_object())
+    throw InputError(file_ + ": " + (where_.empty() ? "(root)" : where_) +
+                     ": must be an object (got " + jsonTypeName(object_) + ")");
+}
+
+std::string JsonFields::path(const std::string& key) const {
+  return where_.empty() ? key : where_ + "." + key;
+}
+
+void JsonFields::fail(const std::string& key, const std::string& what) const {
+  throw InputError(file_ + ": " + path(key) + ": " + what);
+}
+
+bool JsonFields::has(const std::string& key) const { return object_.contains(key); }
+
+const json* JsonFields::find(const std::string& key) {
+  read_.insert(key);
+  auto it = object_.find(key);
+  return it == object_.end() ? nullptr : &*it;
+}
+
+const json& JsonFields::required(const std::string& key) {
+  const json* v = find(key);
+  if (!v) fail(key, "missing required field");
+  return *v;
+}
+
+const json& JsonFields::raw(const std::string& key) { return required(key); }
+
+double JsonFields::number(const std::string& key) {
+  const json& v = required(key);
+  if (!v.is_number()) fail(key, "must be a number (got " + jsonTypeName(v) + ")");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) fail(key, "must be finite");
+  return d;
+}
+
+double JsonFields::number(const std::string& key, double fallback) {
+  return has(key) ? number(key) : (read_.insert(key), fallback);
+}
+
+double JsonFields::positive(const std::string& key) {
+  const double d = number(key);
+  if (!(d > 0.0)) fail(key, "must be > 0 (got " + show(d) + ")");
+  return d;
+}
+
+double JsonFields::positive(const std::string& key, double fallback) {
+  return has(key) ? positive(key) : (read_.insert(key), fallback);
+}
+
+double JsonFields::nonNegative(const std::string& key, double fallback) {
+  const double d = number(key, fallback);
+  if (d < 0.0) fail(key, "must be >= 0 (got " + show(d) + ")");
+  return d;
+}
+
+int JsonFields::integer(const std::string& key, int fallback, int minimum, int maximum) {
+  if (!has(key)) {
+    read_.insert(key);
+    return fallback;
+  }
+  const json& v = required(key);
+  if (!v.is_number_integer()) fail(key, "must be an integer (got " + jsonTypeName(v) + ")");
+  const auto i = v.get<long long>();
+  if (i < minimum || i > maximum)
+    fail(key, "must be in [" + std::to_string(minimum) + ", " + std::to_string(maximum) +
+                  "] (got " + std::to_string(i) + ")");
+  return static_cast<int>(i);
+}
+
+bool JsonFields::boolean(const std::string& key, bool fallback) {
+  const json* v = find(key);
+  if (!v) return fallback;
+  if (!v->is_boolean()) fail(key, "must be true or false (got " + jsonTypeName(*v) + ")");
+  return v->get<bool>();
+}
+
+std::string JsonFields::string(const std::string& key) {
+  const json& v = required(key);
+  if (!v.is_string()) fail(key, "must be a string (got " + jsonTypeName(v) + ")");
+  return v.get<std::string>();
+}
+
+std::string JsonFields::string(const std::string& key, const std::string& fallback) {
+  return has(key) ? string(key) : (read_.insert(key), fallback);
+}
+
+Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
+  if (!v.is_array() || v.size() != 3)
+    throw InputError(file + ": " + path + ": must be an array of 3 numbers");
+  Vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
+      throw InputError(file + ": " + path + "[" + std::to_string(i) + "]: must be a finite number");
+    out[i] = v[i].get<double>();
+  }
+  return out;
+}
+
+Vec3 JsonFields::vec3(const std::string& key) { return jsonVec3(required(key), file_, path(key)); }
+
+Vec3 JsonFields::vec3(const std::string& key, const Vec3& fallback) {
+  return has(key) ? vec3(key) : (read_.insert(key), fallback);
+}
+
+Vec3f JsonFields::colour(const std::string& key, const Vec3f& fallback, double max) {
+  if (!has(key)) {
+    read_.insert(key);
+    return fallback;
+  }
+  const json& v = required(key);
+  Vec3 c;
+  if (v.is_number()) {
+    c = Vec3::Constant(v.get<double>());
+  } else {
+    c = jsonVec3(v, file_, path(key));
+  }
+  for (int i = 0; i < 3; ++i)
+    if (!(c[i] >= 0.0 && c[i] <= max))
+      fail(key, "components must be in [0, " + show(max) + "] (got " + show(c[i]) + ")");
+  return c.cast<float>();
+}
+
+JsonFields JsonFields::object(const std::string& key) { return JsonFields(required(key), file_, path(key)); }
+
+std::optional<JsonFields> JsonFields::optionalObject(const std::string& key) {
+  const json* v = find(key);
+  if (!v) return std::nullopt;
+  return JsonFields(*v, file_, path(key));
+}
+
+void JsonFields::finish() const {
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    // "comment" annotates any object (JSON has no comments); it is documentation only.
+    if (it.key() == "comment" || read_.count(it.key())) continue;
+    throw InputError(file_ + ": " + path(it.key()) + ": unknown field");
+  }
+}
+
+}  // namespace omnicam

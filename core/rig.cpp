@@ -1,0 +1,32 @@
+#include "rig.h"
+
+namespace omnicam {
+
+Rigid worldFromRobot(const RobotPose& pose) {
+  Rigid t = Rigid::Identity();
+  t.translate(Vec3(pose.x, pose.y, 0.0));
+  t.rotate(Eigen::AngleAxisd(radians(pose.yawDeg), Vec3::UnitZ()));
+  return t;
+}
+
+Rigid robotFromViewpoint(const RigSpec& rig) {
+  Rigid t = Rigid::Identity();
+  t.translate(Vec3(0.0, 0.0, rig.height));
+  return t;
+}
+
+Rigid cameraFromViewpoint() {
+  Rigid t = Rigid::Identity();
+  t.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  return t;
+}
+
+Rigid worldFromCamera(const RigSpec& rig, const RobotPose& pose) {
+  return worldFromRobot(pose) * robotFromViewpoint(rig) * cameraFromViewpoint().inverse();
+}
+
+Rigid cameraFromWorld(const RigSpec& rig, const RobotPose& pose) {
+  return worldFromCamera(rig, pose).inverse();
+}
+
+}  // namespace omnicam

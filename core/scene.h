@@ -1,0 +1,99 @@
+#pragma once
+// In-memory scene: what every engine renders. Loaded and validated by scene_loader.h; the JSON
+// format is documented in docs/scene-format.md.
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "geometry.h"
+#include "rig.h"
+#include "texture.h"
+
+namespace omnicam {
+
+struct Material {
+  std::string name;
+  Vec3f color{1.0f, 1.0f, 1.0f};  // linear RGB albedo
+  std::shared_ptr<const Texture> texture;  // multiplies color; null if none
+  std::string texturePath;                 // as given in the scene (relative to it)
+  Eigen::Vector2d textureScale{1.0, 1.0};  // UV repeats
+  float ambient = 0.2f;
+  float diffuse = 0.8f;
+};
+
+// Axis-aligned in its own frame, rotated by yaw about +Z around its centre.
+struct Box {
+  Vec3 center, size;
+  double yawDeg = 0.0;
+};
+// Finite cylinder from base to top (open or capped).
+struct Cylinder {
+  Vec3 base, top;
+  double radius;
+  bool caps = true;
+};
+struct Sphere {
+  Vec3 center;
+  double radius;
+};
+// Parallelogram origin + s·edgeU + t·edgeV, s, t ∈ [0, 1]; UV = (s, t).
+struct Quad {
+  Vec3 origin, edgeU, edgeV;
+};
+// Flat disc, optionally with a concentric hole (an annulus).
+struct Disc {
+  Vec3 center, normal;
+  double radius, innerRadius = 0.0;
+};
+struct Mesh {
+  std::vector<Vec3> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+  std::vector<Eigen::Vector2d> uvs;  // empty or one per vertex
+};
+
+using Shape = std::variant<Box, Cylinder, Sphere, Quad, Disc, Mesh>;
+
+struct SceneObject {
+  std::string name;
+  int material = 0;  // index into Scene::materials
+  Shape shape;
+};
+
+struct PointLight {
+  std::string name;
+  Vec3 position;
+  Vec3f intensity{1.0f, 1.0f, 1.0f};
+};
+
+// A known landmark (one colour band of a beacon, say): ground truth for detection.
+struct Landmark {
+  std::string name;
+  Vec3 position;  // centre
+  double diameter, height;
+  std::string colourClass;
+};
+
+struct CameraPath {
+  std::string name;
+  std::vector<RobotPose> poses;
+};
+
+struct Scene {
+  std::string path;    // file it was loaded from
+  std::string sha256;  // of that file's bytes
+  std::string name;
+  Vec3f background{0.0f, 0.0f, 0.0f};
+  RigSpec rig;
+  RobotPose startPose;
+  std::vector<Material> materials;
+  std::vector<SceneObject> objects;
+  std::vector<PointLight> lights;
+  std::vector<Landmark> landmarks;
+  std::vector<CameraPath> paths;
+
+  const CameraPath* findPath(const std::string& pathName) const;
+};
+
+}  // namespace omnicam

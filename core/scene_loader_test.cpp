@@ -1,0 +1,113 @@
+#include "scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SceneLoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("omnicam_scene_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& text) {
+    const fs::path p = dir_ / "scene.json";
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  // Loads a minimal valid scene with `patch` spliced into the root object.
+  std::string errorOf(const std::string& rootExtra, const std::string& objectExtra = "",
+                      const std::string& rig = "") {
+    const std::string text = R"({"format": "omnicam-scene/1", )" + rootExtra +
+                             (rig.empty() ? "" : R"("rig": )" + rig + ",") +
+                             R"("materials": {"m": {"color": [0.5, 0.5, 0.5]}},
+        "objects": [{"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1)" +
+                             objectExtra + "}]}";
+    try {
+      loadScene(write(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST_F(SceneLoaderTest, MinimalSceneLoadsWithDefaults) {
+  EXPECT_EQ(errorOf(""), "");
+  const Scene s = loadScene((dir_ / "scene.json").string());
+  EXPECT_DOUBLE_EQ(s.rig.k, 11.546);
+  EXPECT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.sha256.size(), 64u);
+}
+
+TEST_F(SceneLoaderTest, ErrorsNameFileAndField) {
+  const std::string file = (dir_ / "scene.json").string();
+  EXPECT_EQ(errorOf(R"("colour": 1,)"), file + ": colour: unknown field");
+  EXPECT_EQ(errorOf("", R"(, "radius2": 3)"), file + ": objects[0].radius2: unknown field");
+  EXPECT_EQ(errorOf("", "", R"({"mirror": {"k": 2}})"), file + ": rig.mirror.k: must be > 2 (got 2.000000)");
+  EXPECT_EQ(errorOf("", "", R"({"mirror": {"c": 0}})"), file + ": rig.mirror.c: must be > 0 (got 0)");
+  EXPECT_EQ(errorOf("", "", R"({"height": "tall"})"), file + ": rig.height: must be a number (got string)");
+  EXPECT_EQ(errorOf("", "", R"({"image": {"size": 12.5}})"),
+            file + ": rig.image.size: must be an integer (got number)");
+}
+
+TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
+  const std::string file = (dir_ / "scene.json").string();
+  auto load = [&](const std::string& text) -> std::string {
+    try {
+      loadScene(write(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string head = R"({"format": "omnicam-scene/1", "materials": {"m": {"color": 0.5}}, "objects": [)";
+  EXPECT_EQ(load(head + R"({"type": "box", "material": "m", "center": [0,0,0], "size": [1,-1,1]}]})"),
+            file + ": objects[0].size: all sizes must be > 0");
+  EXPECT_EQ(load(head + R"({"type": "cylinder", "material": "m", "base": [0,0,0], "top": [0,0,1], "radius": -0.1}]})"),
+            file + ": objects[0].radius: must be > 0 (got -0.1)");
+  EXPECT_EQ(load(head + R"({"type": "cone", "material": "m"}]})"),
+            file + ": objects[0].type: unknown object type \"cone\" (box, cylinder, sphere, quad, disc, mesh)");
+  EXPECT_EQ(load(head + R"({"type": "sphere", "material": "x", "center": [0,0,0], "radius": 1}]})"),
+            file + ": objects[0].material: no material named \"x\"");
+  EXPECT_EQ(load(head + R"({"type": "sphere", "material": "m", "center": [0,0], "radius": 1}]})"),
+            file + ": objects[0].center: must be an array of 3 numbers");
+  const std::string missingTexture =
+      R"({"format": "omnicam-scene/1", "materials": {"m": {"texture": {"file": "nope.png"}}}, "objects": []})";
+  EXPECT_NE(load(missingTexture).find(file + ": materials.m.texture.file: texture file not found"),
+            std::string::npos);
+  const std::string escaping =
+      R"({"format": "omnicam-scene/1", "materials": {"m": {"texture": {"file": "../../etc/passwd"}}}, "objects": []})";
+  EXPECT_NE(load(escaping).find("must stay inside the scene's folder"), std::string::npos);
+  EXPECT_NE(load("{not json").find(file + ": not valid JSON"), std::string::npos);
+  EXPECT_EQ(load(R"({"format": "other", "materials": {}, "objects": []})"),
+            file + ": format: must be \"omnicam-scene/1\"");
+}
+
+TEST_F(SceneLoaderTest, WaypointPathsAreSampled) {
+  const std::string text = R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [],
+    "paths": [{"name": "p", "waypoints": [[0, 0], [2, 0], [2, 2]], "frames": 5}]})";
+  const Scene s = loadScene(write(text));
+  const CameraPath* p = s.findPath("p");
+  ASSERT_NE(p, nullptr);
+  ASSERT_EQ(p->poses.size(), 5u);
+  EXPECT_DOUBLE_EQ(p->poses[1].x, 1.0);
+  EXPECT_DOUBLE_EQ(p->poses[1].yawDeg, 0.0);
+  EXPECT_DOUBLE_EQ(p->poses[3].y, 1.0);
+  EXPECT_DOUBLE_EQ(p->poses[3].yawDeg, 90.0);
+  EXPECT_EQ(s.findPath("q"), nullptr);
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -1,0 +1,28 @@
+#pragma once
+// The JSON sidecar written next to every image (spec §7): provenance and the intrinsics and
+// extrinsics needed to use the image with OpenCV's cv::omnidir.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "rig.h"
+
+namespace omnicam {
+
+struct RenderRecord {
+  std::string engine, engineVersion;
+  std::string scenePath, sceneSha256;
+  RobotPose pose;
+  RigSpec rig;
+  int spp = 1;
+  std::string shading, mode = "exact";
+  double seconds = 0.0;
+};
+
+nlohmann::json rigToJson(const RigSpec& rig);
+nlohmann::json intrinsicsToJson(const OmniCamera& camera);
+nlohmann::json sidecarJson(const RenderRecord& record);
+// Sidecar path of an image: OUT + ".json".
+std::string sidecarPath(const std::string& imagePath);
+void writeSidecarAtomic(const std::string& imagePath, const nlohmann::json& sidecar);
+
+}  // namespace omnicam

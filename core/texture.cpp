@@ -1,0 +1,42 @@
+#include "texture.h"
+
+#include <cmath>
+
+#include "image.h"
+
+namespace omnicam {
+
+std::shared_ptr<const Texture> Texture::load(const std::string& path) {
+  const ImageRGBA image = readImage(path);
+  std::vector<float> rgb(static_cast<size_t>(image.width) * image.height * 3);
+  for (size_t p = 0; p < static_cast<size_t>(image.width) * image.height; ++p) {
+    const float alpha = image.pixels[p * 4 + 3];
+    for (int c = 0; c < 3; ++c)  // textures are opaque albedo: undo association
+      rgb[p * 3 + c] = alpha > 0.0f ? image.pixels[p * 4 + c] / alpha : 0.0f;
+  }
+  return std::make_shared<Texture>(image.width, image.height, std::move(rgb));
+}
+
+Texture::Texture(int width, int height, std::vector<float> rgbLinear)
+    : width_(width), height_(height), rgb_(std::move(rgbLinear)) {}
+
+Vec3f Texture::texel(int i, int j) const {
+  i = ((i % width_) + width_) % width_;
+  j = ((j % height_) + height_) % height_;
+  const float* p = &rgb_[(static_cast<size_t>(j) * width_ + i) * 3];
+  return {p[0], p[1], p[2]};
+}
+
+Vec3f Texture::sample(double u, double v) const {
+  // Continuous texel coordinates with row 0 at the top of the image (v = 1).
+  const double x = u * width_ - 0.5;
+  const double y = (1.0 - v) * height_ - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y);
+  const float fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
+  const int i = static_cast<int>(x0), j = static_cast<int>(y0);
+  const Vec3f top = (1.0f - fx) * texel(i, j) + fx * texel(i + 1, j);
+  const Vec3f bottom = (1.0f - fx) * texel(i, j + 1) + fx * texel(i + 1, j + 1);
+  return (1.0f - fy) * top + fy * bottom;
+}
+
+}  // namespace omnicam
