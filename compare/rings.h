@@ -1,0 +1,37 @@
+#pragma once
+// Incidence-angle ring measurement (thesis Fig. 3.11/3.12) on any ring image: our renderer's,
+// POV-Ray's or Blender's. Rings are found in the image itself (no model used to locate them);
+// the exact model and Eq. 3.2 are only used to score the measured radii.
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "image.h"
+#include "omni_camera.h"
+
+namespace omnicam {
+
+struct RingMeasurement {
+  double thetaDeg;
+  double measuredPx;
+  double exactPx;   // r(θ) of the exact model (spec §2)
+  double eq32Px;    // thesis Eq. 3.2 with the measured h
+  int pixelsUsed;
+};
+
+struct RingReport {
+  std::vector<RingMeasurement> rings;
+  double rmsPxExact = 0.0;   // RMS of measured − exact
+  double maxAbsPxExact = 0.0;
+  double msePx2Eq32 = 0.0;   // thesis metric: MSE of measured against Eq. 3.2
+  double hPx = 0.0;          // measured radius of the 90° ring (Eq. 3.2's h)
+  double hPxExact = 0.0;     // the model's h = γ/ξ
+};
+
+std::vector<double> defaultRingThetasDeg();  // 5°, 10°, …, 135°
+
+// Throws InputError if the number of rings found differs from thetasDeg.size().
+RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg);
+
+nlohmann::json ringReportToJson(const RingReport& report);
+
+}  // namespace omnicam

@@ -1,0 +1,23 @@
+#pragma once
+// What every engine needs to know about one render besides the scene and the pose.
+#include <optional>
+#include <string>
+
+#include "rig.h"
+
+namespace omnicam {
+
+enum class Shading { Unlit, Lit };
+
+struct RenderSettings {
+  RigSpec rig;     // usually the scene's, with --size applied
+  int spp = 1;     // n² samples on an n×n regular grid per pixel (spec §3)
+  Shading shading = Shading::Unlit;
+};
+
+const char* shadingName(Shading shading);
+std::optional<Shading> parseShading(const std::string& name);
+// The n of spp = n², or nullopt if spp is not a positive perfect square.
+std::optional<int> samplesPerAxis(int spp);
+
+}  // namespace omnicam

@@ -1,0 +1,20 @@
+#pragma once
+// Planar shapes as triangles with UVs. Shared by the fast renderer and the exporters so that
+// every engine sees the same triangles.
+#include <vector>
+
+#include "scene.h"
+
+namespace omnicam {
+
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<Eigen::Vector2d> uvs;  // one per vertex
+  std::vector<Eigen::Vector3i> triangles;
+};
+
+TriangleMesh triangulate(const Box& box);
+TriangleMesh triangulate(const Quad& quad);
+TriangleMesh triangulate(const Mesh& mesh);
+
+}  // namespace omnicam

@@ -1,0 +1,130 @@
+#include "fast_renderer.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "errors.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+// A grey floor quad under the robot, one light straight above, black sky.
+Scene floorScene(double lightHeight) {
+  Scene s;
+  s.materials.push_back({"grey", {0.5f, 0.4f, 0.3f}, nullptr, "", {1, 1}, 0.25f, 0.75f});
+  s.objects.push_back({"floor", 0, Quad{{-50, -50, 0}, {100, 0, 0}, {0, 100, 0}}});
+  s.lights.push_back({"lamp", {0.3, -0.2, lightHeight}, {1.0f, 1.0f, 1.0f}});
+  return s;
+}
+
+TEST(FastRenderer, UnlitFloorIsTheAlbedoBelowTheHorizonAndSkyAbove) {
+  const Scene s = floorScene(3.0);
+  const FastRenderer renderer(s);
+  RenderSettings settings;
+  settings.spp = 4;
+  const ImageRGBA img = renderer.render({0, 0, 0}, settings);
+  const OmniCamera cam = settings.rig.camera();
+  const float* centre = img.at(180, 180);
+  EXPECT_FLOAT_EQ(centre[0], 0.5f);
+  EXPECT_FLOAT_EQ(centre[2], 0.3f);
+  EXPECT_FLOAT_EQ(centre[3], 1.0f);
+  // A pixel wholly between the horizon circle (h) and the rim sees the sky: black, opaque.
+  const int i = 180 + static_cast<int>(cam.horizonRadius() + 20.0);
+  EXPECT_FLOAT_EQ(img.at(i, 180)[0], 0.0f);
+  EXPECT_FLOAT_EQ(img.at(i, 180)[3], 1.0f);
+  // Corners lie outside the rim: RGB 0, alpha 0.
+  EXPECT_FLOAT_EQ(img.at(0, 0)[3], 0.0f);
+  EXPECT_FLOAT_EQ(img.at(0, 0)[1], 0.0f);
+}
+
+TEST(FastRenderer, RimPixelsCarryTheFractionOfSamplesInside) {
+  const Scene s = floorScene(3.0);
+  const FastRenderer renderer(s);
+  RenderSettings settings;
+  settings.spp = 16;
+  const ImageRGBA img = renderer.render({0, 0, 0}, settings);
+  const OmniCamera cam = settings.rig.camera();
+  int partial = 0;
+  for (int j = 0; j < img.height; ++j)
+    for (int i = 0; i < img.width; ++i) {
+      int inside = 0;
+      for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a) inside += cam.insideRim({i + (a + 0.5) / 4, j + (b + 0.5) / 4});
+      ASSERT_FLOAT_EQ(img.at(i, j)[3], inside / 16.0f);
+      partial += inside > 0 && inside < 16;
+    }
+  EXPECT_GT(partial, 500);
+}
+
+TEST(FastRenderer, LitShadingMatchesLambertInClosedForm) {
+  const double lightHeight = 2.5;
+  const Scene s = floorScene(lightHeight);
+  const FastRenderer renderer(s);
+  RenderSettings settings;
+  settings.shading = Shading::Lit;
+  const ImageRGBA img = renderer.render({0, 0, 0}, settings);
+  const OmniCamera cam = settings.rig.camera();
+  const Rigid wfc = worldFromCamera(settings.rig, {0, 0, 0});
+  for (int j = 100; j < 260; j += 13) {
+    for (int i = 100; i < 260; i += 11) {
+      const Vec3 d = wfc.linear() * cam.cameraFromRaster({i + 0.5, j + 0.5});
+      if (d.z() >= 0.0) continue;
+      const Vec3 p = wfc.translation() + (-wfc.translation().z() / d.z()) * d;
+      const Vec3 toLight = s.lights[0].position - p;
+      const double cosine = toLight.z() / toLight.norm();
+      const double expected = 0.5 * (0.25 + 0.75 * cosine);
+      EXPECT_NEAR(img.at(i, j)[0], expected, 1e-5) << i << "," << j;
+    }
+  }
+}
+
+TEST(FastRenderer, HardShadowsLeaveOnlyAmbient) {
+  Scene s = floorScene(3.0);
+  s.lights[0].position = {0.0, 0.0, 3.0};
+  // A ball between the lamp and the floor point straight below the robot... placed ahead of it.
+  s.objects.push_back({"ball", 0, Sphere{{1.0, 0.0, 1.5}, 0.3}});
+  s.lights[0].position = {2.0, 0.0, 3.0};
+  const FastRenderer renderer(s);
+  // Floor point on the line lamp → ball centre: (0, 0, 0).
+  const Vec3 origin(0.0, 0.0, 0.4);
+  const Vec3 toFloor = Vec3(0.0, 0.0, 0.0) - origin;
+  const Vec3f shadowed = renderer.radiance(origin, toFloor, Shading::Lit);
+  EXPECT_NEAR(shadowed[0], 0.5 * 0.25, 1e-6);
+  const Vec3f lit = renderer.radiance(origin, Vec3(-1.0, 0.0, -0.4), Shading::Lit);
+  EXPECT_GT(lit[0], 0.5 * 0.25 + 0.1);
+}
+
+TEST(FastRenderer, OutputIsBitIdenticalForAnyThreadCount) {
+  const Scene s = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  const FastRenderer renderer(s);
+  RenderSettings settings;
+  settings.rig = s.rig;
+  settings.spp = 4;
+  settings.shading = Shading::Lit;
+  ImageRGBA one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = renderer.render(s.startPose, settings);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = renderer.render(s.startPose, settings);
+  }
+  ASSERT_EQ(one.pixels.size(), two.pixels.size());
+  EXPECT_EQ(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+}
+
+TEST(FastRenderer, RejectsNonSquareSampleCounts) {
+  const Scene s = floorScene(3.0);
+  const FastRenderer renderer(s);
+  RenderSettings settings;
+  settings.spp = 5;
+  EXPECT_THROW(renderer.render({0, 0, 0}, settings), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -1,0 +1,50 @@
+#pragma once
+// The scene as an Embree 3 acceleration structure. Boxes, quads and meshes become triangles
+// (exact: they are planar); spheres, cylinders and discs are Embree user geometries with
+// closed-form intersections, so the fast renderer sees exactly the shapes POV-Ray sees.
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <vector>
+
+#include "geometry.h"
+#include "scene.h"
+
+namespace omnicam {
+
+struct SurfaceHit {
+  double t = 0.0;
+  Vec3 point;
+  Vec3 normal;  // unit geometric normal (not yet faced toward the viewer)
+  Eigen::Vector2d uv;
+  int object = -1;
+};
+
+class RayScene {
+ public:
+  explicit RayScene(const Scene& scene);
+  ~RayScene();
+  RayScene(const RayScene&) = delete;
+  RayScene& operator=(const RayScene&) = delete;
+
+  // Nearest hit along origin + t·direction, t ∈ (tNear, ∞). Thread-safe.
+  bool intersect(const Vec3& origin, const Vec3& direction, double tNear, SurfaceHit& hit) const;
+  // True if anything lies on the open segment (tNear, tFar). Thread-safe.
+  bool occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const;
+
+  // Per-geometry data, public for the callbacks in the implementation file.
+  struct Geometry {
+    int object = -1;
+    bool analytic = false;                     // user geometry: hit.u/v hold texture UVs
+    std::vector<Eigen::Vector2f> vertexUv;     // triangles: UV per vertex
+    std::vector<Eigen::Vector3i> triangles;    // triangles: vertex indices
+    const Shape* shape = nullptr;              // analytic: the primitive
+  };
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<std::unique_ptr<Geometry>> geometries_;  // indexed by Embree geomID
+};
+
+}  // namespace omnicam
