@@ -1,5 +1,6 @@
 #include "fast_renderer.h"
 
+#include <embree3/rtcore_config.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -13,6 +14,10 @@ namespace {
 // Shadow rays start this far off the surface (metres) to avoid self-intersection.
 constexpr double kShadowEpsilon = 1e-5;
 }  // namespace
+
+std::string fastRendererVersion() {
+  return std::string("omnicam ") + OMNICAM_VERSION + " exact (Embree " + RTC_VERSION_STRING + ")";
+}
 
 FastRenderer::FastRenderer(const Scene& scene) : scene_(scene), rays_(scene) {}
 

@@ -4,6 +4,7 @@
 // the scene, and shaded per spec §3. Pixels are box-filtered means of an n×n regular grid;
 // rows are rendered in parallel with TBB and the result does not depend on the thread count.
 #include <memory>
+#include <string>
 
 #include "image.h"
 #include "ray_scene.h"
@@ -11,6 +12,9 @@
 #include "scene.h"
 
 namespace omnicam {
+
+// "omnicam <version> exact (Embree <version>)", for sidecars.
+std::string fastRendererVersion();
 
 class FastRenderer {
  public:

@@ -1,0 +1,68 @@
+#include "cli_util.h"
+
+#include <unistd.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "errors.h"
+
+namespace omnicam::cli {
+
+Vec3 parseTriple(const std::string& text, const std::string& flag) {
+  Vec3 out;
+  size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const size_t end = k < 2 ? text.find(',', start) : text.size();
+    if (end == std::string::npos)
+      throw InputError(flag + ": expected three comma-separated numbers X,Y,Z (got \"" + text + "\")");
+    const char* first = text.data() + start;
+    const char* last = text.data() + end;
+    double v = 0.0;
+    auto [ptr, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc() || ptr != last || !std::isfinite(v))
+      throw InputError(flag + ": \"" + std::string(first, last) + "\" is not a number");
+    out[k] = v;
+    start = end + 1;
+  }
+  return out;
+}
+
+std::string scenesDir() {
+  if (const char* env = std::getenv("OMNICAM_SCENES")) return env;
+  return OMNICAM_SCENES_DIR;
+}
+
+void ensureDirectory(const std::string& dir, const std::string& flag) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(flag + ": " + dir + " exists and is not a folder");
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(flag + ": cannot create folder " + dir + " (" + ec.message() + ")");
+}
+
+Progress::Progress(std::string label, int total)
+    : label_(std::move(label)), total_(total), tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+
+void Progress::step() {
+  ++done_;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double rate = seconds > 0.0 ? done_ / seconds : 0.0;
+  const int width = 30, filled = total_ > 0 ? width * done_ / total_ : width;
+  if (tty_) {
+    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f frames/s", label_.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), done_, total_, rate);
+  } else if (done_ == total_ || (total_ >= 10 && done_ % (total_ / 10) == 0)) {
+    std::fprintf(stderr, "%s %d/%d  %.1f frames/s\n", label_.c_str(), done_, total_, rate);
+  }
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (tty_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace omnicam::cli

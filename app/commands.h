@@ -1,0 +1,13 @@
+#pragma once
+// CLI verbs (spec §7). Each registers its flags on the CLI11 app and runs as a thin wrapper
+// over library functions. Errors propagate as InputError (exit 2) / ExternalError (exit 3).
+#include <CLI/CLI.hpp>
+
+namespace omnicam::cli {
+
+void addRenderCommand(CLI::App& app);
+void addRingsCommand(CLI::App& app);
+void addProjectCommand(CLI::App& app);
+void addDemoCommand(CLI::App& app);
+
+}  // namespace omnicam::cli

@@ -1,0 +1,94 @@
+// omnicam render SCENE [--engine fast] [--pose X,Y,YAW | --path NAME [--frames N]] [--size N]
+//                      [--spp N] [--shading unlit|lit] [--mode exact] -o OUT
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "cli_util.h"
+#include "commands.h"
+#include "errors.h"
+#include "image.h"
+#include "render_output.h"
+#include "scene_loader.h"
+
+namespace omnicam::cli {
+
+namespace {
+
+struct RenderArgs {
+  std::string scene, engine = "fast", pose, path, size, shading = "unlit", mode = "exact", out, format = "png";
+  int frames = 0, spp = 1, imageSize = 0;
+};
+
+void runRender(const RenderArgs& a) {
+  // Validate everything before anything is written.
+  if (a.engine != "fast")
+    throw InputError("--engine: \"" + a.engine + "\" is not available in this build (available: fast)");
+  if (a.mode != "exact") throw InputError("--mode: \"" + a.mode + "\" is not available in this build (available: exact)");
+  const auto shading = parseShading(a.shading);
+  if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
+  if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
+  if (!a.pose.empty() && !a.path.empty()) throw InputError("--pose and --path: give one, not both");
+  if (a.path.empty() && a.frames) throw InputError("--frames: only with --path");
+  if (a.path.empty() && !isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
+  if (a.format != "png" && a.format != "exr") throw InputError("--format: must be png or exr");
+  const Scene scene = loadScene(a.scene);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  if (a.imageSize) settings.rig.imageSize = a.imageSize;
+  settings.spp = a.spp;
+  settings.shading = *shading;
+  const FastRenderer renderer(scene);
+
+  if (a.path.empty()) {
+    RobotPose pose = scene.startPose;
+    if (!a.pose.empty()) {
+      const Vec3 p = parseTriple(a.pose, "--pose");
+      pose = {p.x(), p.y(), p.z()};
+    }
+    const auto parent = std::filesystem::path(a.out).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw InputError("-o: folder " + parent.string() + " does not exist");
+    renderToFile(scene, renderer, pose, settings, a.out);
+    std::printf("wrote %s\n", a.out.c_str());
+    return;
+  }
+  const CameraPath* path = scene.findPath(a.path);
+  if (!path) throw InputError("--path: scene " + a.scene + " has no path \"" + a.path + "\"");
+  const int total = a.frames ? a.frames : static_cast<int>(path->poses.size());
+  if (total > static_cast<int>(path->poses.size()))
+    throw InputError("--frames: path \"" + a.path + "\" has only " + std::to_string(path->poses.size()) + " poses");
+  ensureDirectory(a.out, "-o");
+  Progress progress("render " + a.path, total);
+  for (int f = 0; f < total; ++f) {
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
+    renderToFile(scene, renderer, path->poses[f], settings, (std::filesystem::path(a.out) / name).string(),
+                 {{"path", {{"name", a.path}, {"frame", f}}}});
+    progress.step();
+  }
+  progress.finish();
+  std::printf("wrote %d frames to %s\n", total, a.out.c_str());
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene (single pose, or a camera path into a folder)");
+  cmd->add_option("scene", args->scene, "Scene JSON file")->required();
+  cmd->add_option("--engine", args->engine, "fast (povray, blender: later)");
+  cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");
+  cmd->add_option("--path", args->path, "Render the named camera path into folder OUT");
+  cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(CLI::PositiveNumber);
+  cmd->add_option("--size", args->imageSize, "Image size in pixels (square); default: the scene's rig")
+      ->check(CLI::Range(8, 16384));
+  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n on a regular grid");
+  cmd->add_option("--shading", args->shading, "unlit or lit");
+  cmd->add_option("--mode", args->mode, "exact");
+  cmd->add_option("--format", args->format, "With --path: png or exr frames");
+  cmd->add_option("-o,--output", args->out, "OUT.png / OUT.exr, or a folder with --path")->required();
+  cmd->callback([args] { runRender(*args); });
+}
+
+}  // namespace omnicam::cli

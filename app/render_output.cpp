@@ -1,0 +1,40 @@
+#include "render_output.h"
+
+#include <chrono>
+
+#include "sidecar.h"
+
+namespace omnicam::cli {
+
+RenderedFile renderPose(const Scene& scene, const FastRenderer& renderer, const RobotPose& pose,
+                        const RenderSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderedFile result{renderer.render(pose, settings), {}};
+  RenderRecord record;
+  record.engine = "fast";
+  record.engineVersion = fastRendererVersion();
+  record.scenePath = scene.path;
+  record.sceneSha256 = scene.sha256;
+  record.pose = pose;
+  record.rig = settings.rig;
+  record.spp = settings.spp;
+  record.shading = shadingName(settings.shading);
+  record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.sidecar = sidecarJson(record);
+  return result;
+}
+
+void writeRendered(const std::string& out, const RenderedFile& rendered) {
+  writeImageAtomic(out, rendered.image);
+  writeSidecarAtomic(out, rendered.sidecar);
+}
+
+RenderedFile renderToFile(const Scene& scene, const FastRenderer& renderer, const RobotPose& pose,
+                          const RenderSettings& settings, const std::string& out, const nlohmann::json& extra) {
+  RenderedFile rendered = renderPose(scene, renderer, pose, settings);
+  rendered.sidecar.update(extra);
+  writeRendered(out, rendered);
+  return rendered;
+}
+
+}  // namespace omnicam::cli
