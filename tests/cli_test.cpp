@@ -1,0 +1,193 @@
+// End-to-end tests of the omnicam binary: what a researcher types, what they get back.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "image.h"
+#include "scene_loader.h"
+#include "sha256.h"
+
+namespace omnicam {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
+
+struct CommandResult {
+  int code;
+  std::string out;
+};
+
+CommandResult run(const std::string& args) {
+  const std::string cmd = std::string(OMNICAM_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("omnicam_cli_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  bool dirEmpty() const { return fs::is_empty(dir_); }
+  fs::path dir_;
+};
+
+std::string poseArg(double x, double y, double yaw) {
+  std::ostringstream s;
+  s << "--pose=" << x << "," << y << "," << yaw;
+  return s.str();
+}
+
+TEST_F(CliTest, EachBeaconBandAppearsWhereProjectPutsIt) {
+  const Scene scene = loadScene(kScene);
+  std::map<std::string, Vec3f> colourOf;
+  for (const auto& m : scene.materials) colourOf[m.name] = m.color;
+  struct Pose {
+    double x, y, yaw;
+  };
+  const std::vector<Pose> poses{{2.7, -1.8, 180.0}, {0.0, -1.2, 0.0}, {1.0, -1.0, 137.0},
+                                {-2.0, 1.4, -63.0}, {0.5, 1.3, 90.0}};
+  int checked = 0;
+  for (const Pose& p : poses) {
+    const std::string image = path("frame.exr");
+    ASSERT_EQ(run("render " + kScene + " " + poseArg(p.x, p.y, p.yaw) + " --spp 4 -o " + image).code, 0);
+    const ImageRGBA img = readImage(image);
+    // One `project` call per pose: each band's centre and points 3 cm above and below it.
+    std::ostringstream args;
+    args << "project " << kScene << " " << poseArg(p.x, p.y, p.yaw);
+    for (const Landmark& lm : scene.landmarks)
+      for (double dz : {0.0, 0.03, -0.03})
+        args << " --point=" << lm.position.x() << "," << lm.position.y() << "," << lm.position.z() + dz;
+    const CommandResult r = run(args.str());
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::istringstream lines(r.out);
+    int checkedHere = 0;
+    for (const Landmark& lm : scene.landmarks) {
+      double u[3], v[3];
+      for (int k = 0; k < 3; ++k) {
+        std::string su, sv;
+        lines >> su >> sv;
+        u[k] = std::stod(su), v[k] = std::stod(sv);
+      }
+      // Only bands that span a few pixels can be checked at their centre pixel.
+      if (std::isnan(u[0]) || std::hypot(u[1] - u[2], v[1] - v[2]) < 2.0) continue;
+      const float* px = img.at(static_cast<int>(u[0]), static_cast<int>(v[0]));
+      const Vec3f expected = colourOf.at(lm.colourClass);
+      EXPECT_LT((Vec3f(px[0], px[1], px[2]) - expected).cwiseAbs().maxCoeff(), 0.02)
+          << lm.name << " at pose " << p.x << "," << p.y << "," << p.yaw << " pixel " << u[0] << "," << v[0];
+      ++checkedHere;
+    }
+    EXPECT_GE(checkedHere, 2) << "pose " << p.x << "," << p.y << "," << p.yaw;
+    checked += checkedHere;
+  }
+  EXPECT_GE(checked, 12);
+}
+
+TEST_F(CliTest, SidecarCarriesProvenanceAndOpenCvIntrinsics) {
+  const std::string image = path("start.png");
+  const CommandResult r = run("render " + kScene + " --shading lit --spp 4 -o " + image);
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_TRUE(fs::exists(image));
+  std::ifstream in(image + ".json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["engine"], "fast");
+  EXPECT_EQ(j["scene"]["sha256"], sha256OfFile(kScene));
+  EXPECT_EQ(j["shading"], "lit");
+  EXPECT_EQ(j["spp"], 4);
+  EXPECT_DOUBLE_EQ(j["pose"]["x"].get<double>(), 2.7);
+  EXPECT_EQ(j["intrinsics"]["model"], "mei_unified");
+  EXPECT_EQ(j["intrinsics"]["pixel_centre"], "integer");
+  EXPECT_NEAR(j["intrinsics"]["xi"].get<double>(), 0.995494, 1e-6);
+  EXPECT_NEAR(j["intrinsics"]["gamma_x"].get<double>(), 73.4114, 1e-4);
+  EXPECT_NEAR(j["intrinsics"]["gamma_y"].get<double>(), -73.4114, 1e-4);
+  EXPECT_DOUBLE_EQ(j["intrinsics"]["cx"].get<double>(), 179.5);
+  EXPECT_EQ(j["camera_from_world"].size(), 4u);
+  EXPECT_GE(j["seconds"].get<double>(), 0.0);
+}
+
+TEST_F(CliTest, PathSequenceWritesNumberedFramesWithSidecars) {
+  const std::string folder = path("seq");
+  const CommandResult r = run("render " + kScene + " --path thesis-loop --frames 3 --size 96 -o " + folder);
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (int f = 0; f < 3; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", f);
+    ASSERT_TRUE(fs::exists(fs::path(folder) / name)) << name;
+    std::ifstream in((fs::path(folder) / name).string() + ".json");
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["path"]["frame"], f);
+    EXPECT_EQ(j["rig"]["image"]["size"], 96);
+  }
+  EXPECT_FALSE(fs::exists(fs::path(folder) / "frame_0003.png"));
+}
+
+TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
+  const std::string out = path("x.png");
+  const std::string badScene = path("bad.json");
+  std::ofstream(badScene) << R"({"format": "omnicam-scene/1", "rig": {"mirror": {"k": 1.5}},
+    "materials": {"m": {}}, "objects": []})";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"render /nonexistent/scene.json -o " + out, "cannot open scene file"},
+      {"render " + badScene + " -o " + out, "rig.mirror.k: must be > 2"},
+      {"render " + kScene + " --spp 5 -o " + out, "--spp: must be a perfect square"},
+      {"render " + kScene + " --pose=1,2 -o " + out, "--pose: expected three comma-separated numbers"},
+      {"render " + kScene + " --pose=1,a,2 -o " + out, "--pose: \"a\" is not a number"},
+      {"render " + kScene + " --shading shiny -o " + out, "--shading: must be unlit or lit"},
+      {"render " + kScene + " -o " + path("x.jpg"), "must end in .png or .exr"},
+      {"render " + kScene + " --path nowhere -o " + path("seq"), "--path: scene"},
+      {"render " + kScene + " --path thesis-loop --frames 101 -o " + path("seq"), "--frames: path"},
+      {"render " + kScene + " --engine povray -o " + out, "--engine"},
+      {"render " + kScene + " --bogus -o " + out, "bogus"},
+      {"project " + kScene + " --pose=0,0,0 --point=1,2", "--point: expected three"},
+      {"rings --spp 3 -o " + out, "--spp: must be a perfect square"},
+  };
+  for (const auto& [args, message] : cases) {
+    const CommandResult r = run(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << "\n" << r.out;
+    fs::remove(badScene);
+    EXPECT_TRUE(dirEmpty()) << args;
+    std::ofstream(badScene) << R"({"format": "omnicam-scene/1", "rig": {"mirror": {"k": 1.5}},
+      "materials": {"m": {}}, "objects": []})";
+  }
+}
+
+TEST_F(CliTest, ProjectPrintsPixelCentresAtHalfAndNanBeyondTheRim) {
+  // A point straight below the viewpoint is the image centre (180, 180); one far above is unseen.
+  const CommandResult r = run("project " + kScene + " --pose=1,1,30 --point=1,1,0 --point=1,1.1,5");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(r.out, "180.000000 180.000000\nnan nan\n");
+}
+
+TEST_F(CliTest, RingsJsonReportsTheSummary) {
+  const CommandResult r = run("rings --json -o " + path("rings.png"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["rings"].size(), 27u);
+  EXPECT_LE(j["summary"]["rms_px_exact"].get<double>(), 0.05);
+  EXPECT_NEAR(j["summary"]["mse_px2_eq32"].get<double>(), 0.256, 0.02);
+  EXPECT_NEAR(j["summary"]["h_px"].get<double>(), 73.7437, 0.05);
+  EXPECT_TRUE(fs::exists(path("rings.png.json")));
+}
+
+}  // namespace
+}  // namespace omnicam
