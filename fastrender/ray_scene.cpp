@@ -85,7 +85,9 @@ RTCRay makeRay(const Vec3& o, const Vec3& d, double tNear, double tFar) {
 }  // namespace
 
 RayScene::RayScene(const Scene& scene) {
-  device_ = rtcNewDevice("threads=1");  // traversal only; parallelism is the renderer's (TBB)
+  // Default config: with a "threads=N" setting Embree installs a process-wide TBB limit that
+  // would also throttle the renderer's own parallel loops.
+  device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: cannot create device");
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
