@@ -4,6 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+
+#include "image.h"
 
 #include "errors.h"
 
@@ -93,6 +96,34 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
   EXPECT_NE(load("{not json").find(file + ": not valid JSON"), std::string::npos);
   EXPECT_EQ(load(R"({"format": "other", "materials": {}, "objects": []})"),
             file + ": format: must be \"omnicam-scene/1\"");
+}
+
+TEST_F(SceneLoaderTest, TheDocumentedExampleLoads) {
+  // docs/scene-format.md's annotated example, with its // comments stripped.
+  std::ifstream doc(OMNICAM_SOURCE_DIR "/docs/scene-format.md");
+  std::stringstream buffer;
+  buffer << doc.rdbuf();
+  const std::string text = buffer.str();
+  const size_t begin = text.find("```jsonc\n"), end = text.find("```", begin + 8);
+  ASSERT_NE(begin, std::string::npos);
+  std::istringstream lines(text.substr(begin + 9, end - begin - 9));
+  std::string json, line;
+  while (std::getline(lines, line)) {
+    const size_t comment = line.find("//");
+    json += (comment == std::string::npos ? line : line.substr(0, comment)) + "\n";
+  }
+  fs::create_directories(dir_ / "textures");
+  ImageRGBA tile(2, 2);
+  for (float& v : tile.pixels) v = 1.0f;
+  writeImageAtomic((dir_ / "textures" / "tiles.png").string(), tile);
+  const Scene s = loadScene(write(json));
+  EXPECT_EQ(s.objects.size(), 6u);
+  EXPECT_EQ(s.materials.size(), 2u);
+  EXPECT_TRUE(s.materials[0].texture != nullptr);
+  EXPECT_EQ(s.paths.size(), 2u);
+  EXPECT_EQ(s.paths[0].poses.size(), 50u);
+  EXPECT_EQ(s.landmarks.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.startPose.yawDeg, 90.0);
 }
 
 TEST_F(SceneLoaderTest, WaypointPathsAreSampled) {
