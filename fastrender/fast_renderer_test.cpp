@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include "errors.h"
 #include "scene_loader.h"
@@ -84,8 +85,7 @@ TEST(FastRenderer, LitShadingMatchesLambertInClosedForm) {
 
 TEST(FastRenderer, HardShadowsLeaveOnlyAmbient) {
   Scene s = floorScene(3.0);
-  s.lights[0].position = {0.0, 0.0, 3.0};
-  // A ball between the lamp and the floor point straight below the robot... placed ahead of it.
+  // A ball on the line from the lamp to the floor point straight below the viewpoint.
   s.objects.push_back({"ball", 0, Sphere{{1.0, 0.0, 1.5}, 0.3}});
   s.lights[0].position = {2.0, 0.0, 3.0};
   const FastRenderer renderer(s);
@@ -116,6 +116,47 @@ TEST(FastRenderer, OutputIsBitIdenticalForAnyThreadCount) {
   }
   ASSERT_EQ(one.pixels.size(), two.pixels.size());
   EXPECT_EQ(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+}
+
+TEST(FastRenderer, TexturedFloorShowsTheSrgbDecodedBilinearTexel) {
+  // A 4×4 PNG texture (sRGB on disk) on a 2 m floor quad: the pixel straight below the
+  // viewpoint must show the bilinear texel at the UV of that floor point, decoded to linear.
+  const auto dir = std::filesystem::temp_directory_path() / ("omnicam_tex_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  ImageRGBA tex(4, 4);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      float* p = tex.at(i, j);
+      p[0] = 0.05f + 0.3f * i;
+      p[1] = 0.05f + 0.2f * j;
+      p[2] = 0.5f;
+      p[3] = 1.0f;
+    }
+  const std::string texPath = (dir / "t.png").string();
+  writeImageAtomic(texPath, tex);
+  Scene s;
+  s.materials.push_back({"tex", {1.0f, 1.0f, 1.0f}, Texture::load(texPath), "t.png", {1, 1}, 0.2f, 0.8f});
+  s.objects.push_back({"floor", 0, Quad{{-1, -1, 0}, {2, 0, 0}, {0, 2, 0}}});
+  const FastRenderer renderer(s);
+  for (const Vec2& floor : {Vec2(0.0, 0.0), Vec2(0.3, -0.55), Vec2(-0.71, 0.2)}) {
+    const Vec3f got = renderer.radiance({floor.x(), floor.y(), 0.4}, {0, 0, -1}, Shading::Unlit);
+    // UV of the floor point: (s, t) along the quad's edges; v = 0 is the image's bottom row.
+    const double u = (floor.x() + 1.0) / 2.0, v = (floor.y() + 1.0) / 2.0;
+    const double x = u * 4 - 0.5, y = (1.0 - v) * 4 - 0.5;
+    const int i0 = static_cast<int>(std::floor(x)), j0 = static_cast<int>(std::floor(y));
+    const double fx = x - i0, fy = y - j0;
+    auto texel = [&](int i, int j, int c) {  // what the PNG stores, decoded
+      i = (i + 4) % 4, j = (j + 4) % 4;
+      const float stored = std::round(linearToSrgb(tex.at(i, j)[c]) * 255.0f) / 255.0f;
+      return static_cast<double>(srgbToLinear(stored));
+    };
+    for (int c = 0; c < 3; ++c) {
+      const double expected = (1 - fy) * ((1 - fx) * texel(i0, j0, c) + fx * texel(i0 + 1, j0, c)) +
+                              fy * ((1 - fx) * texel(i0, j0 + 1, c) + fx * texel(i0 + 1, j0 + 1, c));
+      EXPECT_NEAR(got[c], expected, 1e-5) << floor.transpose() << " channel " << c;
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(FastRenderer, RejectsNonSquareSampleCounts) {
