@@ -35,19 +35,19 @@ void runDemo(const DemoArgs& a) {
   RenderSettings settings;
   settings.rig = arena.rig;
   settings.spp = a.spp;
-  const FastRenderer arenaRenderer(arena);
+  const auto arenaRenderer = makeEngine("fast", arena);
   std::printf("demo: rendering robocup2006 at the thesis start pose (%.2f, %.2f, %.0f°), %d spp\n",
               arena.startPose.x, arena.startPose.y, arena.startPose.yawDeg, a.spp);
-  renderToFile(arena, arenaRenderer, arena.startPose, settings, a.out + "/robocup2006_unlit.png");
+  renderToFile(arena, *arenaRenderer, arena.startPose, settings, a.out + "/robocup2006_unlit.png");
   settings.shading = Shading::Lit;
-  renderToFile(arena, arenaRenderer, arena.startPose, settings, a.out + "/robocup2006_lit.png");
+  renderToFile(arena, *arenaRenderer, arena.startPose, settings, a.out + "/robocup2006_lit.png");
 
   std::printf("demo: rendering and measuring the incidence-angle rings\n");
   RenderSettings ringSettings;
   ringSettings.rig = ringScene.rig;
   ringSettings.spp = a.spp;
-  const FastRenderer ringRenderer(ringScene);
-  const auto rings = renderToFile(ringScene, ringRenderer, ringScene.startPose, ringSettings, a.out + "/rings.png");
+  const auto ringRenderer = makeEngine("fast", ringScene);
+  const auto rings = renderToFile(ringScene, *ringRenderer, ringScene.startPose, ringSettings, a.out + "/rings.png");
   const OmniCamera ringCamera = ringSettings.rig.camera();
   const RingReport report = measureRings(rings.image, ringCamera, defaultRingThetasDeg());
   writeTextAtomically(a.out + "/rings.json", ringReportToJson(report).dump(2) + "\n");

@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   omnicam::cli::addRingsCommand(app);
   omnicam::cli::addProjectCommand(app);
   omnicam::cli::addDemoCommand(app);
+  int exitCode = 0;
+  omnicam::cli::addCompareCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -32,5 +34,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "omnicam: internal error: %s\n", e.what());
     return 4;
   }
-  return 0;
+  return exitCode;
 }

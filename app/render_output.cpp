@@ -6,13 +6,13 @@
 
 namespace omnicam::cli {
 
-RenderedFile renderPose(const Scene& scene, const FastRenderer& renderer, const RobotPose& pose,
+RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
                         const RenderSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  RenderedFile result{renderer.render(pose, settings), {}};
+  RenderedFile result{engine.render(pose, settings), {}};
   RenderRecord record;
-  record.engine = "fast";
-  record.engineVersion = fastRendererVersion();
+  record.engine = engine.name();
+  record.engineVersion = engine.version();
   record.scenePath = scene.path;
   record.sceneSha256 = scene.sha256;
   record.pose = pose;
@@ -29,9 +29,9 @@ void writeRendered(const std::string& out, const RenderedFile& rendered) {
   writeSidecarAtomic(out, rendered.sidecar);
 }
 
-RenderedFile renderToFile(const Scene& scene, const FastRenderer& renderer, const RobotPose& pose,
+RenderedFile renderToFile(const Scene& scene, Engine& engine, const RobotPose& pose,
                           const RenderSettings& settings, const std::string& out, const nlohmann::json& extra) {
-  RenderedFile rendered = renderPose(scene, renderer, pose, settings);
+  RenderedFile rendered = renderPose(scene, engine, pose, settings);
   rendered.sidecar.update(extra);
   writeRendered(out, rendered);
   return rendered;

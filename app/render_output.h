@@ -2,7 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "fast_renderer.h"
+#include "engines.h"
 #include "image.h"
 #include "render_settings.h"
 #include "scene.h"
@@ -14,13 +14,13 @@ struct RenderedFile {
   nlohmann::json sidecar;
 };
 
-// Renders one pose with the fast renderer; the sidecar describes it.
-RenderedFile renderPose(const Scene& scene, const FastRenderer& renderer, const RobotPose& pose,
+// Renders one pose with `engine`; the sidecar describes it.
+RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
                         const RenderSettings& settings);
 // Writes OUT and OUT.json atomically.
 void writeRendered(const std::string& out, const RenderedFile& rendered);
 // Both, with `extra` merged into the sidecar.
-RenderedFile renderToFile(const Scene& scene, const FastRenderer& renderer, const RobotPose& pose,
+RenderedFile renderToFile(const Scene& scene, Engine& engine, const RobotPose& pose,
                           const RenderSettings& settings, const std::string& out,
                           const nlohmann::json& extra = nlohmann::json::object());
 

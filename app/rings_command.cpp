@@ -22,8 +22,6 @@ struct RingsArgs {
 };
 
 void runRings(const RingsArgs& a) {
-  if (a.engine != "fast")
-    throw InputError("--engine: \"" + a.engine + "\" is not available in this build (available: fast)");
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene);
@@ -31,8 +29,8 @@ void runRings(const RingsArgs& a) {
   settings.rig = scene.rig;
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
-  const FastRenderer renderer(scene);
-  RenderedFile rendered = renderPose(scene, renderer, scene.startPose, settings);
+  const auto engine = makeEngine(a.engine, scene);
+  RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   const RingReport report = measureRings(rendered.image, settings.rig.camera(), defaultRingThetasDeg());
   rendered.sidecar["rings"] = ringReportToJson(report);
   writeRendered(a.out, rendered);
@@ -50,7 +48,7 @@ void runRings(const RingsArgs& a) {
 void addRingsCommand(CLI::App& app) {
   auto args = std::make_shared<RingsArgs>();
   CLI::App* cmd = app.add_subcommand("rings", "Render and measure the incidence-angle rings (thesis Fig. 3.11/3.12)");
-  cmd->add_option("--engine", args->engine, "fast");
+  cmd->add_option("--engine", args->engine, "fast or povray");
   cmd->add_option("--scene", args->scene, "Ring scene (default: scenes/incidence-rings.json)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(32, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)");

@@ -16,6 +16,7 @@ class Texture {
   Vec3f sample(double u, double v) const;
   int width() const { return width_; }
   int height() const { return height_; }
+  const std::vector<float>& rgbLinear() const { return rgb_; }
 
  private:
   Vec3f texel(int i, int j) const;

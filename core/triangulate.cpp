@@ -44,4 +44,16 @@ TriangleMesh triangulate(const Mesh& mesh) {
   return m;
 }
 
+std::optional<TriangleMesh> triangulatePlanar(const Shape& shape) {
+  return std::visit(
+      [](const auto& s) -> std::optional<TriangleMesh> {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, Box> || std::is_same_v<T, Quad> || std::is_same_v<T, Mesh>)
+          return triangulate(s);
+        else
+          return std::nullopt;
+      },
+      shape);
+}
+
 }  // namespace omnicam

@@ -1,6 +1,7 @@
 #pragma once
 // Planar shapes as triangles with UVs. Shared by the fast renderer and the exporters so that
 // every engine sees the same triangles.
+#include <optional>
 #include <vector>
 
 #include "scene.h"
@@ -16,5 +17,8 @@ struct TriangleMesh {
 TriangleMesh triangulate(const Box& box);
 TriangleMesh triangulate(const Quad& quad);
 TriangleMesh triangulate(const Mesh& mesh);
+// The triangles of a planar shape (box, quad, mesh); nullopt for curved ones (sphere,
+// cylinder, disc), which every engine intersects exactly.
+std::optional<TriangleMesh> triangulatePlanar(const Shape& shape);
 
 }  // namespace omnicam

@@ -109,15 +109,7 @@ RayScene::RayScene(const Scene& scene) {
       rtcSetGeometryIntersectFunction(geom, intersectCallback);
       rtcSetGeometryOccludedFunction(geom, occludedCallback);
     } else {
-      const TriangleMesh mesh = std::visit(
-          [](const auto& s) -> TriangleMesh {
-            using T = std::decay_t<decltype(s)>;
-            if constexpr (std::is_same_v<T, Box> || std::is_same_v<T, Quad> || std::is_same_v<T, Mesh>)
-              return triangulate(s);
-            else
-              return {};
-          },
-          obj.shape);
+      const TriangleMesh mesh = *triangulatePlanar(obj.shape);
       geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                             3 * sizeof(float), mesh.vertices.size()));

@@ -1,0 +1,50 @@
+#include "engines.h"
+
+#include "errors.h"
+#include "fast_renderer.h"
+#include "povray_renderer.h"
+
+namespace omnicam::cli {
+
+namespace {
+
+class FastEngine : public Engine {
+ public:
+  explicit FastEngine(const Scene& scene) : renderer_(scene) {}
+  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
+    return renderer_.render(pose, settings);
+  }
+  std::string name() const override { return "fast"; }
+  std::string version() const override { return fastRendererVersion(); }
+
+ private:
+  FastRenderer renderer_;
+};
+
+class PovrayEngine : public Engine {
+ public:
+  PovrayEngine(const Scene& scene, double timeoutSeconds) : scene_(scene) { options_.timeoutSeconds = timeoutSeconds; }
+  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
+    return renderWithPovray(scene_, pose, settings, options_);
+  }
+  std::string name() const override { return "povray"; }
+  std::string version() const override {
+    if (version_.empty()) version_ = povrayVersion(options_.executable);
+    return version_;
+  }
+
+ private:
+  const Scene& scene_;
+  PovrayOptions options_;
+  mutable std::string version_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds) {
+  if (name == "fast") return std::make_unique<FastEngine>(scene);
+  if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds);
+  throw InputError("--engine: \"" + name + "\" is not available (fast, povray)");
+}
+
+}  // namespace omnicam::cli

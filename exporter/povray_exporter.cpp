@@ -1,0 +1,182 @@
+#include "povray_exporter.h"
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "errors.h"
+#include "number_format.h"
+#include "triangulate.h"
+
+namespace omnicam {
+
+namespace {
+
+std::string num(double v) { return roundTrip(v); }
+
+// A world point (metres, right-handed, Z up) as a POV-Ray vector (mm, left-handed, Y up).
+std::string pov(const Vec3& p) {
+  const Vec3 q = p * kPovrayUnitsPerMetre;
+  return "<" + num(q.x()) + ", " + num(q.z()) + ", " + num(q.y()) + ">";
+}
+// A direction: same axis swap, no unit scaling.
+std::string povDirection(const Vec3& d) { return "<" + num(d.x()) + ", " + num(d.z()) + ", " + num(d.y()) + ">"; }
+std::string rgb(const Vec3f& c) { return "rgb <" + num(c.x()) + ", " + num(c.y()) + ", " + num(c.z()) + ">"; }
+
+std::string finish(const Material& m, Shading shading) {
+  if (shading == Shading::Unlit) return "finish { ambient 1 diffuse 0 specular 0 phong 0 }";
+  return "finish { ambient " + num(m.ambient) + " diffuse " + num(m.diffuse) +
+         " brilliance 1 specular 0 phong 0 }";
+}
+
+class SdlWriter {
+ public:
+  SdlWriter(const Scene& scene, Shading shading, PovrayJob& job) : scene_(scene), shading_(shading), job_(job) {
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+      const Material& m = scene.materials[i];
+      if (!m.texture) continue;
+      PovrayTextureFile file{"tex_" + std::to_string(i) + ".exr", ImageRGBA(m.texture->width(), m.texture->height())};
+      const auto& src = m.texture->rgbLinear();
+      for (size_t p = 0; p < src.size() / 3; ++p) {
+        for (int c = 0; c < 3; ++c) file.image.pixels[p * 4 + c] = src[p * 3 + c] * m.color[c];
+        file.image.pixels[p * 4 + 3] = 1.0f;
+      }
+      textureOf_[i] = job.textures.size();
+      job.textures.push_back(std::move(file));
+    }
+  }
+
+  std::string texture(int materialIndex) const {
+    const Material& m = scene_.materials[materialIndex];
+    std::string pigment;
+    auto t = textureOf_.find(materialIndex);
+    if (t == textureOf_.end()) {
+      pigment = "pigment { " + rgb(m.color) + " }";
+    } else {
+      pigment = "pigment { uv_mapping image_map { exr \"" + job_.textures[t->second].name +
+                "\" interpolate 2 } scale <" + num(1.0 / m.textureScale.x()) + ", " +
+                num(1.0 / m.textureScale.y()) + ", 1> }";
+    }
+    return "texture { " + pigment + " " + finish(m, shading_) + " }";
+  }
+
+  bool textured(int materialIndex) const { return textureOf_.count(materialIndex) > 0; }
+
+ private:
+  const Scene& scene_;
+  Shading shading_;
+  PovrayJob& job_;
+  std::map<int, size_t> textureOf_;
+};
+
+void writeMesh(std::ostringstream& out, const TriangleMesh& mesh, bool withUv, const std::string& texture) {
+  out << "mesh2 {\n  vertex_vectors { " << mesh.vertices.size();
+  for (const Vec3& v : mesh.vertices) out << ",\n    " << pov(v);
+  out << " }\n";
+  if (withUv) {
+    out << "  uv_vectors { " << mesh.uvs.size();
+    for (const auto& uv : mesh.uvs) out << ",\n    <" << num(uv.x()) << ", " << num(uv.y()) << ">";
+    out << " }\n";
+  }
+  out << "  face_indices { " << mesh.triangles.size();
+  for (const auto& t : mesh.triangles) out << ",\n    <" << t[0] << ", " << t[1] << ", " << t[2] << ">";
+  out << " }\n  " << texture << "\n}\n";
+}
+
+}  // namespace
+
+PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings) {
+  const auto n = samplesPerAxis(settings.spp);
+  if (!n) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(settings.spp) + ")");
+  PovrayJob job;
+  job.samplesPerAxis = *n;
+  const OmniCamera camera = settings.rig.camera();
+  job.width = camera.width() * *n;
+  job.height = camera.height() * *n;
+  const HyperbolicMirror& mirror = camera.mirror();
+  const Rigid worldFromRobot_ = worldFromRobot(pose);
+  const Rigid worldFromViewpoint = worldFromRobot_ * robotFromViewpoint(settings.rig);
+  SdlWriter writer(scene, settings.shading, job);
+
+  std::ostringstream out;
+  out << "// omnicam POV-Ray export (generated). Units: mm; axes: <X, Z, Y> of omnicam's world.\n"
+         "#version 3.7;\n"
+         "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
+      << "background { " << rgb(scene.background) << " }\n\n";
+
+  // Physical pinhole at F, looking up (+Z world); image u along robot +x, v (down) along robot +y.
+  // POV-Ray's ray for screen (x0, y0) ∈ [−½, ½]² is direction + x0·right + y0·up, y0 upward.
+  const Vec3 pinhole = worldFromViewpoint * mirror.pinholeInViewpoint();
+  const Vec3 right = worldFromRobot_.linear() * Vec3::UnitX() * (camera.width() / static_cast<double>(camera.height()));
+  const Vec3 up = worldFromRobot_.linear() * -Vec3::UnitY();
+  const Vec3 direction = Vec3::UnitZ() * (camera.physicalFocalLength() / camera.height());
+  out << "camera { perspective\n  location " << pov(pinhole) << "\n  right " << povDirection(right)
+      << "\n  up " << povDirection(up) << "\n  direction " << povDirection(direction) << "\n}\n\n";
+
+  if (settings.shading == Shading::Lit)
+    for (const PointLight& l : scene.lights) out << "light_source { " << pov(l.position) << ", " << rgb(l.intensity) << " }\n";
+
+  // The mirror in its local frame (mm, POV axes, origin at F'): (y + c/2)²/a² − (x² + z²)/b² = 1,
+  // multiplied by a²: −(a²/b²)x² + y² − (a²/b²)z² + c·y + c²/4 − a² = 0.
+  const double u = kPovrayUnitsPerMetre;
+  const double a2 = mirror.a2() * u * u, b2 = mirror.b2() * u * u, c = mirror.c() * u;
+  const double vertexY = std::sqrt(a2) - c / 2.0;
+  const Vec3 rimDirection(std::sin(camera.rimTheta()), 0.0, -std::cos(camera.rimTheta()));
+  const auto rimPoint = mirror.pointAlong(rimDirection);
+  if (!rimPoint) throw InputError("rig.mirror.rim_elevation_deg: the rim direction misses the mirror");
+  const double rimY = rimPoint->z() * u, rimR = rimPoint->x() * u;
+  out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
+      << " m), upper sheet from its vertex to the rim.\n"
+      << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c) << ", 0>, "
+      << num(c * c / 4.0 - a2) << "\n"
+      << "  clipped_by { box { <" << num(-rimR - 1.0) << ", " << num(vertexY - 0.5) << ", " << num(-rimR - 1.0)
+      << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
+      << "  bounded_by { clipped_by }\n"
+      << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
+      << "  no_shadow\n  translate " << pov(worldFromViewpoint.translation()) << "\n}\n"
+      << "// Beyond the rim the camera sees black (spec §3); invisible to everything else.\n"
+      << "disc { <0, " << num(rimY) << ", 0>, y, " << num(rimR + 1000.0) << ", " << num(rimR) << "\n"
+      << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
+      << "  translate " << pov(worldFromViewpoint.translation()) << "\n}\n\n";
+
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    const std::string tex = writer.texture(o.material);
+    const bool textured = writer.textured(o.material);
+    out << "// object " << i << "\n";
+    if (auto s = std::get_if<Sphere>(&o.shape)) {
+      if (textured) throw InputError(scene.path + ": objects[" + std::to_string(i) + "]: textured spheres cannot be exported to POV-Ray yet");
+      out << "sphere { " << pov(s->center) << ", " << num(s->radius * u) << " " << tex << " }\n";
+    } else if (auto cyl = std::get_if<Cylinder>(&o.shape)) {
+      if (textured) throw InputError(scene.path + ": objects[" + std::to_string(i) + "]: textured cylinders cannot be exported to POV-Ray yet");
+      out << "cylinder { " << pov(cyl->base) << ", " << pov(cyl->top) << ", " << num(cyl->radius * u)
+          << (cyl->caps ? "" : " open") << " " << tex << " }\n";
+    } else if (auto d = std::get_if<Disc>(&o.shape)) {
+      if (textured) throw InputError(scene.path + ": objects[" + std::to_string(i) + "]: textured discs cannot be exported to POV-Ray yet");
+      out << "disc { " << pov(d->center) << ", " << povDirection(d->normal) << ", " << num(d->radius * u) << ", "
+          << num(d->innerRadius * u) << " " << tex << " }\n";
+    } else {
+      const TriangleMesh mesh = *triangulatePlanar(o.shape);
+      writeMesh(out, mesh, textured, tex);
+    }
+  }
+  job.sdl = out.str();
+  return job;
+}
+
+void writePovrayJob(const PovrayJob& job, const std::string& dir) {
+  namespace fs = std::filesystem;
+  writeTextAtomically((fs::path(dir) / "scene.pov").string(), job.sdl);
+  for (const auto& t : job.textures) writeImageAtomic((fs::path(dir) / t.name).string(), t.image);
+  std::ostringstream ini;
+  ini << "; omnicam POV-Ray job (generated): regular grid, no anti-aliasing, no jitter.\n"
+      << "Input_File_Name=scene.pov\nOutput_File_Name=render.exr\nOutput_File_Type=E\nOutput_Alpha=Off\n"
+      << "Width=" << job.width << "\nHeight=" << job.height << "\n"
+      << "Antialias=Off\nJitter=Off\nDisplay=Off\nPause_When_Done=Off\nVerbose=Off\nQuality=9\n"
+      << "Library_Path=.\n";
+  writeTextAtomically((fs::path(dir) / "render.ini").string(), ini.str());
+}
+
+}  // namespace omnicam

@@ -1,0 +1,31 @@
+#pragma once
+// omnicam render --engine povray: exports the job, runs `povray` headless in a private job folder
+// with a restrictive configuration (shell-outs forbidden, file I/O limited to the job folder),
+// renders n× larger without anti-aliasing or jitter and box-downsamples by n — exactly the
+// fast renderer's n×n regular sample grid (POV-Ray traces pixel centres).
+#include <string>
+
+#include "image.h"
+#include "render_settings.h"
+#include "scene.h"
+
+namespace omnicam {
+
+struct PovrayOptions {
+  double timeoutSeconds = 600.0;
+  std::string executable = "povray";
+  bool keepJobFolder = false;  // for debugging: leave scene.pov etc. behind
+};
+
+// Throws ExternalError (missing povray, failure, timeout: with the tail of its output) or
+// InputError (what the export cannot represent).
+ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
+                           const PovrayOptions& options = {});
+
+// "POV-Ray 3.7.0.10..." as printed by the executable, or "" if it cannot run.
+std::string povrayVersion(const std::string& executable = "povray");
+
+// Box-downsamples an n× image and sets alpha to the fraction of sub-samples inside the rim.
+ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const OmniCamera& camera);
+
+}  // namespace omnicam
