@@ -154,7 +154,7 @@ TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
       {"render " + kScene + " -o " + path("x.jpg"), "must end in .png or .exr"},
       {"render " + kScene + " --path nowhere -o " + path("seq"), "--path: scene"},
       {"render " + kScene + " --path thesis-loop --frames 101 -o " + path("seq"), "--frames: path"},
-      {"render " + kScene + " --engine povray -o " + out, "--engine"},
+      {"render " + kScene + " --engine mitsuba -o " + out, "--engine: \"mitsuba\" is not available"},
       {"render " + kScene + " --bogus -o " + out, "bogus"},
       {"project " + kScene + " --pose=0,0,0 --point=1,2", "--point: expected three"},
       {"rings --spp 3 -o " + out, "--spp: must be a perfect square"},
