@@ -1,5 +1,7 @@
 #include "engines.h"
 
+#include <cstdlib>
+
 #include "errors.h"
 #include "fast_renderer.h"
 #include "povray_renderer.h"
@@ -23,7 +25,11 @@ class FastEngine : public Engine {
 
 class PovrayEngine : public Engine {
  public:
-  PovrayEngine(const Scene& scene, double timeoutSeconds) : scene_(scene) { options_.timeoutSeconds = timeoutSeconds; }
+  PovrayEngine(const Scene& scene, double timeoutSeconds) : scene_(scene) {
+    options_.timeoutSeconds = timeoutSeconds;
+    // OMNICAM_POVRAY names another POV-Ray binary (tests use it to simulate failures).
+    if (const char* exe = std::getenv("OMNICAM_POVRAY")) options_.executable = exe;
+  }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     return renderWithPovray(scene_, pose, settings, options_);
   }

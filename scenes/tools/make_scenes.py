@@ -23,7 +23,8 @@ LINE = 0.025                         # white line width
 LINE_Z = 0.001                       # lines are painted 1 mm above the carpet (no coplanar faces)
 CENTRE_CIRCLE_D = 0.36               # centre circle diameter (to the line's centre)
 PENALTY_W, PENALTY_D = 1.3, 0.65     # penalty area: width along Y, depth along X
-GOAL_W, GOAL_H, GOAL_D = 0.8, 0.3, 0.3  # goal mouth width, height, depth behind the goal line
+GOAL_W, GOAL_H, GOAL_D = 0.8, 0.3, 0.25  # goal mouth width, height, depth behind the goal line
+# (0.25 m leaves a gap before the border wall: coplanar faces would make engines disagree)
 GOAL_WALL = 0.02                     # thickness of goal walls and crossbar
 BORDER_H, BORDER_T = 0.10, 0.05      # low white border wall around the carpet
 BEACON_D, BEACON_H = 0.10, 0.40      # beacon cylinder: white lower 0.20 m, two 0.10 m bands

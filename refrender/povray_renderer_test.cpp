@@ -1,0 +1,126 @@
+// Ground truth: POV-Ray traces the real optics (pinhole + exact quadric mirror); the fast
+// renderer must agree pixel by pixel (spec §8) and POV-Ray's rings must match the model.
+#include "povray_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "fast_renderer.h"
+#include "image_compare.h"
+#include "rings.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+struct PoseCase {
+  const char* label;
+  RobotPose pose;
+};
+
+class FastVsPovray : public ::testing::TestWithParam<std::tuple<PoseCase, Shading>> {};
+
+TEST_P(FastVsPovray, Robocup2006AtSixteenSamplesPerPixel) {
+  static const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  static const FastRenderer fast(scene);
+  const auto& [pose, shading] = GetParam();
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.spp = 16;
+  settings.shading = shading;
+  const ImageRGBA ours = fast.render(pose.pose, settings);
+  const ImageRGBA truth = renderWithPovray(scene, pose.pose, settings);
+  const CompareResult r = compareImages(ours, truth);
+  const double target = shading == Shading::Unlit ? 45.0 : 40.0;
+  std::printf("fast vs POV-Ray, %s, %s: PSNR %.2f dB, SSIM %.5f, max abs %.4f\n", pose.label, shadingName(shading),
+              r.psnrDb, r.ssim, r.maxAbs);
+  EXPECT_GE(r.psnrDb, target);
+  // Regression floor: both engines trace the same rays at the same sample positions, so they
+  // agree far beyond the spec's targets (measured 79–102 dB); a half-pixel or convention slip
+  // drops this below 60 dB.
+  EXPECT_GE(r.psnrDb, 70.0);
+  // Alpha is geometry: the same rim coverage in both.
+  for (size_t p = 3; p < ours.pixels.size(); p += 4) ASSERT_FLOAT_EQ(ours.pixels[p], truth.pixels[p]);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Poses, FastVsPovray,
+    ::testing::Combine(::testing::Values(PoseCase{"thesis start corner", {2.7, -1.8, 180.0}},
+                                         PoseCase{"centre circle", {0.1, 0.05, 0.0}},
+                                         PoseCase{"rotated 137 deg near a beacon", {1.0, -1.5, 137.0}},
+                                         PoseCase{"blue goal mouth", {-2.4, 0.2, -63.0}},
+                                         PoseCase{"north edge", {0.5, 1.7, 90.0}}),
+                       ::testing::Values(Shading::Unlit, Shading::Lit)),
+    [](const auto& param) {
+      return std::string("pose") + std::to_string(param.index / 2) + "_" + shadingName(std::get<1>(param.param));
+    });
+
+TEST(Povray, RingImageMatchesTheExactModel) {
+  const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.spp = 16;
+  const ImageRGBA image = renderWithPovray(scene, scene.startPose, settings);
+  const RingReport r = measureRings(image, settings.rig.camera(), defaultRingThetasDeg());
+  std::printf("POV-Ray rings: RMS %.4f px, max %.4f px, Eq. 3.2 MSE %.4f px^2\n", r.rmsPxExact, r.maxAbsPxExact,
+              r.msePx2Eq32);
+  EXPECT_LE(r.rmsPxExact, 0.05);
+  EXPECT_NEAR(r.msePx2Eq32, 0.256, 0.02);
+}
+
+// A scene with no symmetry (and a texture): a mirrored or rotated export cannot match.
+Scene asymmetricScene(const std::string& dir) {
+  ImageRGBA tex(8, 8);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) {
+      float* p = tex.at(i, j);
+      p[0] = 0.1f + 0.1f * i, p[1] = 0.1f + 0.1f * j, p[2] = ((i * 3 + j * 5) % 7) / 7.0f, p[3] = 1.0f;
+    }
+  writeImageAtomic(dir + "/asym.png", tex);
+  const std::string path = dir + "/asym.json";
+  FILE* f = std::fopen(path.c_str(), "w");
+  std::fputs(R"({"format": "omnicam-scene/1",
+    "materials": {"floor": {"texture": {"file": "asym.png", "scale": [3, 2]}},
+                  "red": {"color": [0.9, 0.1, 0.1]}, "green": {"color": [0.1, 0.8, 0.2]},
+                  "blue": {"color": [0.1, 0.2, 0.9]}},
+    "objects": [
+      {"type": "quad", "material": "floor", "origin": [-3, -2, 0], "edge_u": [6, 0, 0], "edge_v": [0, 4, 0]},
+      {"type": "box", "material": "red", "center": [1.2, 0, 0.2], "size": [0.2, 0.6, 0.4], "yaw_deg": 20},
+      {"type": "sphere", "material": "green", "center": [0, 1.0, 0.3], "radius": 0.25},
+      {"type": "cylinder", "material": "blue", "base": [-0.8, -0.9, 0], "top": [-0.8, -0.9, 0.9], "radius": 0.1},
+      {"type": "disc", "material": "red", "center": [-0.5, 0.6, 0.01], "normal": [0, 0, 1], "radius": 0.3, "inner_radius": 0.1},
+      {"type": "mesh", "material": "green", "vertices": [[0.5, -1.2, 0], [1.0, -1.0, 0.6], [0.3, -0.7, 0.3]],
+       "triangles": [[0, 1, 2]]}]})",
+             f);
+  std::fclose(f);
+  return loadScene(path);
+}
+
+TEST(Povray, AsymmetricTexturedSceneProvesAxesHandednessAndTextures) {
+  const auto dir = std::filesystem::temp_directory_path() / ("omnicam_asym_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const Scene scene = asymmetricScene(dir.string());
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.imageSize = 160;
+  settings.spp = 4;
+  const RobotPose pose{0.2, -0.1, 30.0};
+  const ImageRGBA ours = FastRenderer(scene).render(pose, settings);
+  const ImageRGBA truth = renderWithPovray(scene, pose, settings);
+  const CompareResult same = compareImages(ours, truth);
+  EXPECT_GE(same.psnrDb, 40.0);
+  // The same comparison against our image mirrored left–right must fail badly: the test can tell.
+  ImageRGBA mirrored = ours;
+  for (int j = 0; j < ours.height; ++j)
+    for (int i = 0; i < ours.width; ++i)
+      for (int c = 0; c < 4; ++c) mirrored.at(i, j)[c] = ours.at(ours.width - 1 - i, j)[c];
+  EXPECT_LT(compareImages(mirrored, truth).psnrDb, 25.0);
+  std::printf("asymmetric scene: PSNR %.2f dB (mirrored: %.2f dB)\n", same.psnrDb,
+              compareImages(mirrored, truth).psnrDb);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace omnicam
