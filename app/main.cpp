@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addRingsCommand(app);
   omnicam::cli::addProjectCommand(app);
   omnicam::cli::addDemoCommand(app);
+  omnicam::cli::addExportCommand(app);
   int exitCode = 0;
   omnicam::cli::addCompareCommand(app, exitCode);
   try {

@@ -1,0 +1,163 @@
+// The exported SDL is parsed back and the optics re-derived from it alone.
+#include "povray_exporter.h"
+
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <locale>
+#include <regex>
+
+#include "errors.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+const std::string kScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
+
+std::vector<double> numbersIn(const std::string& text) {
+  std::vector<double> out;
+  static const std::regex number(R"([-+]?[0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it) {
+    const std::string s = it->str();
+    double v = 0.0;
+    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    EXPECT_TRUE(ec == std::errc() && ptr == s.data() + s.size()) << s;
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::string block(const std::string& sdl, const std::string& start, const std::string& end) {
+  const size_t a = sdl.find(start);
+  EXPECT_NE(a, std::string::npos) << start;
+  return sdl.substr(a + start.size(), sdl.find(end, a) - a - start.size());
+}
+
+// POV-Ray vector (mm, <X, Z, Y>) → omnicam world (m).
+Vec3 worldOf(const std::vector<double>& v, size_t at, double scale = 1.0 / kPovrayUnitsPerMetre) {
+  return Vec3(v[at], v[at + 2], v[at + 1]) * scale;
+}
+
+TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
+  const Scene scene = loadScene(kScene);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  const RobotPose pose{1.1, -0.4, 57.0};
+  const std::string sdl = exportPovray(scene, pose, settings).sdl;
+
+  // Quadric: A x² + B y² + C z² + H y + J = 0 in the mirror's local frame, then translated.
+  const auto q = numbersIn(block(sdl, "quadric {", "clipped_by"));
+  ASSERT_EQ(q.size(), 10u);
+  const auto t = numbersIn(block(sdl, "no_shadow\n  translate", "\n"));
+  const Vec3 viewpointWorld = worldOf(t, 0);
+  EXPECT_NEAR((viewpointWorld - Vec3(1.1, -0.4, 0.4)).norm(), 0.0, 1e-12);
+
+  // Clip box: only the upper sheet between the vertex and the rim is the mirror.
+  const auto box = numbersIn(block(sdl, "clipped_by { box {", "} }"));
+  ASSERT_EQ(box.size(), 6u);
+  const double clipBottomZ = viewpointWorld.z() + box[1] / kPovrayUnitsPerMetre;
+  const auto c = numbersIn(block(sdl, "camera { perspective", "}"));
+  ASSERT_EQ(c.size(), 12u);
+  const Vec3 location = worldOf(c, 0);
+  const Vec3 right = worldOf(c, 3, 1.0), up = worldOf(c, 6, 1.0), direction = worldOf(c, 9, 1.0);
+
+  // Trace the parsed camera through the parsed quadric; the reflected ray, reversed, must be
+  // our model's ray for that pixel (world frame).
+  const OmniCamera cam = settings.rig.camera();
+  const Rigid wfc = worldFromCamera(settings.rig, pose);
+  auto implicit = [&](const Vec3& world) {  // in mm, local POV axes
+    const Vec3 l = (world - viewpointWorld) * kPovrayUnitsPerMetre;
+    const double x = l.x(), y = l.z(), z = l.y();
+    return q[0] * x * x + q[1] * y * y + q[2] * z * z + q[7] * y + q[9];
+  };
+  int checked = 0;
+  for (int j = 20; j < 340; j += 37)
+    for (int i = 20; i < 340; i += 41) {
+      const Vec2 p(i + 0.5, j + 0.5);
+      if (!cam.insideRim(p)) continue;
+      const Vec3 d = (direction + (p.x() / 360.0 - 0.5) * right + (0.5 - p.y() / 360.0) * up).normalized();
+      // Bisect the sign change of the implicit function inside the clip box (the lower sheet,
+      // between the pinhole and the box, is clipped away as in POV-Ray).
+      double lo = (clipBottomZ - location.z()) / d.z(), hi = lo + 0.05;
+      const double f0 = implicit(location + lo * d);
+      ASSERT_LT(f0, 0.0);
+      ASSERT_GT(implicit(location + hi * d), 0.0);
+      for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        if ((implicit(location + mid * d) > 0) == (f0 > 0)) lo = mid;
+        else hi = mid;
+      }
+      const Vec3 hit = location + hi * d;
+      const Vec3 model = wfc.linear() * cam.cameraFromRaster(p);
+      // The world ray seen at this pixel travels toward F' and meets the mirror at `hit`.
+      EXPECT_LT(((hit - viewpointWorld).normalized() - model).norm(), 1e-7) << i << "," << j;
+      ++checked;
+    }
+  EXPECT_GT(checked, 30);
+}
+
+TEST(PovrayExport, MeshesCarryTheSameTrianglesAndNumbersRoundTrip) {
+  const Scene scene = loadScene(kScene);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  const PovrayJob job = exportPovray(scene, scene.startPose, settings);
+  size_t meshes = 0, at = 0;
+  while ((at = job.sdl.find("mesh2 {", at)) != std::string::npos) ++meshes, ++at;
+  size_t planar = 0;
+  for (const auto& o : scene.objects) planar += !std::holds_alternative<Cylinder>(o.shape) && !std::holds_alternative<Disc>(o.shape) && !std::holds_alternative<Sphere>(o.shape);
+  EXPECT_EQ(meshes, planar);
+  // Every number in the file parses completely (no locale commas, no truncation).
+  EXPECT_GT(numbersIn(job.sdl).size(), 1000u);
+}
+
+TEST(PovrayExport, OutputDoesNotDependOnTheGlobalLocale) {
+  struct CommaDecimal : std::numpunct<char> {
+    char do_decimal_point() const override { return ','; }
+    char do_thousands_sep() const override { return '.'; }
+    std::string do_grouping() const override { return "\3"; }
+  };
+  const Scene scene = loadScene(kScene);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  const std::string before = exportPovray(scene, scene.startPose, settings).sdl;
+  const std::locale previous = std::locale::global(std::locale(std::locale::classic(), new CommaDecimal));
+  const std::string during = exportPovray(scene, scene.startPose, settings).sdl;
+  std::locale::global(previous);
+  EXPECT_EQ(before, during);
+}
+
+TEST(PovrayExport, UserStringsNeverReachTheSdl) {
+  const auto dir = std::filesystem::temp_directory_path() / ("omnicam_sdl_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  ImageRGBA tex(2, 2);
+  for (float& v : tex.pixels) v = 0.5f;
+  const std::string evilTexture = "we\"ird #system(rm).png";
+  writeImageAtomic((dir / evilTexture).string(), tex);
+  std::ofstream(dir / "s.json") << R"json({"format": "omnicam-scene/1", "name": "x\"\n#system(\"rm -rf /\")",
+    "materials": {"m\"#declare": {"texture": {"file": "we\"ird #system(rm).png"}}},
+    "objects": [{"name": "obj\"\n#system(\"id\")", "type": "quad", "material": "m\"#declare",
+                 "origin": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]}]})json";
+  const Scene scene = loadScene((dir / "s.json").string());
+  RenderSettings settings;
+  const PovrayJob job = exportPovray(scene, {}, settings);
+  EXPECT_EQ(job.sdl.find("#system"), std::string::npos);
+  EXPECT_EQ(job.sdl.find("weird"), std::string::npos);
+  EXPECT_EQ(job.sdl.find("#declare"), std::string::npos);
+  ASSERT_EQ(job.textures.size(), 1u);
+  EXPECT_EQ(job.textures[0].name, "tex_0.exr");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(PovrayExport, TexturedCurvedPrimitivesAreRefused) {
+  Scene scene;
+  scene.path = "s.json";
+  scene.materials.push_back({"t", {1, 1, 1}, std::make_shared<Texture>(1, 1, std::vector<float>{1, 1, 1}), "t.png", {1, 1}, 0.2f, 0.8f});
+  scene.objects.push_back({"ball", 0, Sphere{{0, 0, 1}, 0.5}});
+  EXPECT_THROW(exportPovray(scene, {}, RenderSettings{}), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam
