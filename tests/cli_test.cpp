@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -25,8 +26,9 @@ struct CommandResult {
   std::string out;
 };
 
-CommandResult run(const std::string& args) {
-  const std::string cmd = std::string(OMNICAM_BINARY) + " " + args + " 2>&1";
+// Runs the binary through the shell; `env` is prepended as VAR=value assignments.
+CommandResult run(const std::string& args, const std::string& env = "") {
+  const std::string cmd = env + (env.empty() ? "" : " ") + std::string(OMNICAM_BINARY) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf;
@@ -187,6 +189,67 @@ TEST_F(CliTest, RingsJsonReportsTheSummary) {
   EXPECT_NEAR(j["summary"]["mse_px2_eq32"].get<double>(), 0.256, 0.02);
   EXPECT_NEAR(j["summary"]["h_px"].get<double>(), 73.7437, 0.05);
   EXPECT_TRUE(fs::exists(path("rings.png.json")));
+}
+
+}  // namespace
+}  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+TEST_F(CliTest, PovrayFailuresExitThreeWithItsOutputAndWriteNothing) {
+  const std::string out = path("p.exr");
+  const std::string script = path("fake-povray");
+  std::ofstream(script) << "#!/bin/sh\necho 'Parse Error: something broke' >&2\nexit 1\n";
+  fs::permissions(script, fs::perms::owner_all);
+  const std::string slow = path("slow-povray");
+  std::ofstream(slow) << "#!/bin/sh\necho rendering\nsleep 30\n";
+  fs::permissions(slow, fs::perms::owner_all);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"OMNICAM_POVRAY=/nonexistent/povray", "povray: not found"},
+      {"OMNICAM_POVRAY=" + script, "Parse Error: something broke"},
+      {"OMNICAM_POVRAY=" + slow, "povray: timed out after 1 s"},
+  };
+  for (const auto& [env, message] : cases) {
+    const CommandResult r = run("render " + kScene + " --engine povray --timeout 1 -o " + out, env);
+    EXPECT_EQ(r.code, 3) << env << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << env << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(out)) << env;
+    EXPECT_FALSE(fs::exists(out + ".json")) << env;
+  }
+}
+
+TEST_F(CliTest, CompareGivesPassFailLinesExitCodesAndADiffImage) {
+  const std::string a = path("a.exr"), b = path("b.exr"), c = path("c.png");
+  ASSERT_EQ(run("render " + kScene + " --size 64 -o " + a).code, 0);
+  ASSERT_EQ(run("render " + kScene + " --size 64 --shading lit -o " + b).code, 0);
+  ASSERT_EQ(run("render " + kScene + " --size 32 -o " + c).code, 0);
+  CommandResult same = run("compare " + a + " " + a + " --fail-psnr 60");
+  EXPECT_EQ(same.code, 0) << same.out;
+  EXPECT_EQ(same.out.substr(same.out.rfind("PASS")), "PASS psnr_db=inf rmse=0 max_abs=0\n");
+  CommandResult differ = run("compare " + a + " " + b + " --fail-psnr 60 --diff " + path("d.png"));
+  EXPECT_EQ(differ.code, 1) << differ.out;
+  EXPECT_NE(differ.out.find("\nFAIL psnr_db="), std::string::npos) << differ.out;
+  EXPECT_TRUE(fs::exists(path("d.png")));
+  CommandResult json = run("compare " + a + " " + b + " --json --disc");
+  EXPECT_EQ(json.code, 0);
+  const auto j = nlohmann::json::parse(json.out.substr(0, json.out.rfind("PASS")));
+  for (const char* key : {"rmse", "psnr_db", "ssim", "max_abs", "frac_over_tol"}) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_LT(j["psnr_db"].get<double>(), 60.0);
+  EXPECT_EQ(run("compare " + a + " " + c).code, 2);
+  EXPECT_EQ(run("compare " + a + " " + path("missing.exr")).code, 2);
+}
+
+TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
+  const CommandResult r = run("export " + kScene + " --to povray --size 48 -o " + path("job"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(path("job/scene.pov")));
+  EXPECT_TRUE(fs::exists(path("job/render.ini")));
+  const std::string render = "cd " + path("job") + " && HOME=" + path("job") + " povray render.ini >/dev/null 2>&1";
+  ASSERT_EQ(std::system(render.c_str()), 0);
+  EXPECT_EQ(readImage(path("job/render.exr")).width, 48);
+  EXPECT_EQ(run("export " + kScene + " --to blender2 -o " + path("job2")).code, 2);
+  EXPECT_FALSE(fs::exists(path("job2")));
 }
 
 }  // namespace
