@@ -1,6 +1,7 @@
-// omnicam demo [-o out/demo]: the main job. Renders robocup2006 at the thesis start pose
-// (unlit and lit) and the incidence-ring image, measures the rings, and writes PNGs, a
-// Fig. 3.12-style plot and index.html.
+// omnicam demo [-o out/demo] [--spp N] [--no-povray]: the main job. Renders robocup2006 at the
+// thesis start pose (unlit and lit) with the fast renderer and with POV-Ray (the ground truth:
+// the physical camera and the exact mirror), compares them, renders and measures the
+// incidence-angle rings with both engines, and writes PNGs, plots and index.html.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "image_compare.h"
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
@@ -22,8 +24,51 @@ namespace {
 struct DemoArgs {
   std::string out = "out/demo";
   int spp = 16;
+  bool povray = true;
 };
 
+struct EngineRings {
+  std::string engine;
+  RingReport report;
+};
+
+const char* kColours[] = {"#2ca02c", "#9467bd", "#ff7f0e"};
+
+std::string format(const char* fmt, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, a, b, c, d);
+  return buf;
+}
+
+void writeRingPlots(const std::string& out, const OmniCamera& camera, const std::vector<EngineRings>& rings) {
+  const double h = rings.front().report.hPx;
+  PlotSpec radii{"Incidence-angle circle radii (thesis Fig. 3.12)", "incidence angle θ (degrees)", "radius r (pixels)",
+                 640, 400, {}};
+  PlotSpec residuals{"Difference from the exact model", "incidence angle θ (degrees)", "r − r_exact (pixels)", 640, 300,
+                     {}};
+  PlotSeries exact{"exact model (spec §2)", "#1f77b4", {}, {}, false};
+  PlotSeries eq32{"thesis Eq. 3.2 with measured h", "#d62728", {}, {}, false};
+  PlotSeries eq32Residual = eq32;
+  for (int deg = 0; deg <= 135; ++deg) {
+    const double t = radians(deg), e = camera.radiusOfTheta(t), q = h * std::sin(t) / (1.0 + std::cos(t));
+    exact.x.push_back(deg), exact.y.push_back(e);
+    eq32.x.push_back(deg), eq32.y.push_back(q);
+    eq32Residual.x.push_back(deg), eq32Residual.y.push_back(q - e);
+  }
+  radii.series = {exact, eq32};
+  residuals.series = {{"exact model", "#1f77b4", {0, 135}, {0, 0}, false}, eq32Residual};
+  for (size_t k = 0; k < rings.size(); ++k) {
+    PlotSeries measured{"measured, " + rings[k].engine, kColours[k % 3], {}, {}, true}, residual = measured;
+    for (const auto& m : rings[k].report.rings) {
+      measured.x.push_back(m.thetaDeg), measured.y.push_back(m.measuredPx);
+      residual.x.push_back(m.thetaDeg), residual.y.push_back(m.measuredPx - m.exactPx);
+    }
+    radii.series.push_back(measured);
+    residuals.series.push_back(residual);
+  }
+  writeTextAtomically(out + "/rings_plot.svg", svgPlot(radii));
+  writeTextAtomically(out + "/rings_residuals.svg", svgPlot(residuals));
+}
 
 void runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
@@ -31,90 +76,99 @@ void runDemo(const DemoArgs& a) {
   const std::string dir = scenesDir();
   const Scene arena = loadScene(dir + "/robocup2006.json");
   const Scene ringScene = loadScene(dir + "/incidence-rings.json");
+  std::vector<std::string> engines{"fast"};
+  if (a.povray) engines.push_back("povray");
 
-  RenderSettings settings;
-  settings.rig = arena.rig;
-  settings.spp = a.spp;
-  const auto arenaRenderer = makeEngine("fast", arena);
-  std::printf("demo: rendering robocup2006 at the thesis start pose (%.2f, %.2f, %.0f°), %d spp\n",
-              arena.startPose.x, arena.startPose.y, arena.startPose.yawDeg, a.spp);
-  renderToFile(arena, *arenaRenderer, arena.startPose, settings, a.out + "/robocup2006_unlit.png");
-  settings.shading = Shading::Lit;
-  renderToFile(arena, *arenaRenderer, arena.startPose, settings, a.out + "/robocup2006_lit.png");
+  std::ostringstream views;
+  for (Shading shading : {Shading::Unlit, Shading::Lit}) {
+    RenderSettings settings;
+    settings.rig = arena.rig;
+    settings.spp = a.spp;
+    settings.shading = shading;
+    const std::string s = shadingName(shading);
+    std::vector<ImageRGBA> images;
+    views << "<h3>" << s << "</h3>\n";
+    for (const auto& name : engines) {
+      std::printf("demo: robocup2006, thesis start pose, %s, %s, %d spp\n", s.c_str(), name.c_str(), a.spp);
+      auto engine = makeEngine(name, arena);
+      const auto rendered = renderToFile(arena, *engine, arena.startPose, settings,
+                                         a.out + "/robocup2006_" + s + "_" + name + ".png");
+      images.push_back(rendered.image);
+      views << "<figure><img src=\"robocup2006_" << s << "_" << name << ".png\" width=\"360\"><figcaption>" << name
+            << format(" (%.2f s)", rendered.sidecar["seconds"].get<double>()) << "</figcaption></figure>\n";
+    }
+    if (images.size() > 1) {
+      const CompareResult r = compareImages(images[0], images[1]);
+      writeImageAtomic(a.out + "/robocup2006_" + s + "_diff.png", differenceHeatmap(images[0], images[1], 0.01));
+      views << "<figure><img src=\"robocup2006_" << s << "_diff.png\" width=\"360\"><figcaption>|fast − POV-Ray| "
+            << "(white = 0.01)<br>"
+            << format("PSNR %.2f dB, RMSE %.2e, SSIM %.5f, max %.4f", r.psnrDb, r.rmse, r.ssim, r.maxAbs)
+            << "</figcaption></figure>\n";
+      std::printf("demo: %s fast vs POV-Ray: PSNR %.2f dB, SSIM %.5f\n", s.c_str(), r.psnrDb, r.ssim);
+    }
+  }
 
-  std::printf("demo: rendering and measuring the incidence-angle rings\n");
   RenderSettings ringSettings;
   ringSettings.rig = ringScene.rig;
   ringSettings.spp = a.spp;
-  const auto ringRenderer = makeEngine("fast", ringScene);
-  const auto rings = renderToFile(ringScene, *ringRenderer, ringScene.startPose, ringSettings, a.out + "/rings.png");
   const OmniCamera ringCamera = ringSettings.rig.camera();
-  const RingReport report = measureRings(rings.image, ringCamera, defaultRingThetasDeg());
-  writeTextAtomically(a.out + "/rings.json", ringReportToJson(report).dump(2) + "\n");
+  std::vector<EngineRings> rings;
+  std::ostringstream ringFigures, ringTable, ringSummary;
+  for (const auto& name : engines) {
+    std::printf("demo: incidence-angle rings, %s\n", name.c_str());
+    auto engine = makeEngine(name, ringScene);
+    const auto rendered = renderToFile(ringScene, *engine, ringScene.startPose, ringSettings,
+                                       a.out + "/rings_" + name + ".png");
+    rings.push_back({name, measureRings(rendered.image, ringCamera, defaultRingThetasDeg())});
+    const RingReport& r = rings.back().report;
+    writeTextAtomically(a.out + "/rings_" + name + ".json", ringReportToJson(r).dump(2) + "\n");
+    ringFigures << "<figure><img src=\"rings_" << name << ".png\" width=\"360\"><figcaption>" << name
+                << "</figcaption></figure>\n";
+    ringSummary << "<li>" << name
+                << format(": RMS against the exact model <b>%.4f px</b> (max %.4f px); Eq. 3.2 MSE <b>%.4f px²</b>; "
+                          "h = %.4f px",
+                          r.rmsPxExact, r.maxAbsPxExact, r.msePx2Eq32, r.hPx)
+                << "</li>\n";
+    std::printf("demo: rings %s: RMS %.4f px vs exact model, Eq. 3.2 MSE %.4f px^2\n", name.c_str(), r.rmsPxExact,
+                r.msePx2Eq32);
+  }
+  writeRingPlots(a.out, ringCamera, rings);
+  ringTable << "<tr><th>θ (°)</th><th>exact (px)</th><th>Eq. 3.2 (px)</th>";
+  for (const auto& e : rings) ringTable << "<th>" << e.engine << " (px)</th><th>" << e.engine << " − exact</th>";
+  ringTable << "</tr>\n";
+  for (size_t k = 0; k < rings[0].report.rings.size(); ++k) {
+    const auto& m = rings[0].report.rings[k];
+    ringTable << format("<tr><td>%.0f</td><td>%.4f</td><td>%.4f</td>", m.thetaDeg, m.exactPx, m.eq32Px);
+    for (const auto& e : rings)
+      ringTable << format("<td>%.4f</td><td>%+.4f</td>", e.report.rings[k].measuredPx,
+                          e.report.rings[k].measuredPx - e.report.rings[k].exactPx);
+    ringTable << "</tr>\n";
+  }
 
-  // Plot: radii with the exact curve, and the residuals that the radii plot cannot show.
-  PlotSpec radii{"Incidence-angle circle radii (thesis Fig. 3.12)", "incidence angle θ (degrees)", "radius r (pixels)",
-                 640, 400, {}};
-  PlotSpec residuals{"Difference from the exact model", "incidence angle θ (degrees)", "r − r_exact (pixels)", 640,
-                     300, {}};
-  PlotSeries exact{"exact model (spec §2)", "#1f77b4", {}, {}, false};
-  PlotSeries eq32{"thesis Eq. 3.2 with measured h", "#d62728", {}, {}, false};
-  PlotSeries measured{"measured, fast renderer", "#2ca02c", {}, {}, true};
-  PlotSeries eq32Residual = eq32, measuredResidual = measured, zero{"exact model", "#1f77b4", {0, 135}, {0, 0}, false};
-  for (int deg = 0; deg <= 135; ++deg) {
-    const double t = radians(deg);
-    const double e = ringCamera.radiusOfTheta(t), q = report.hPx * std::sin(t) / (1.0 + std::cos(t));
-    exact.x.push_back(deg), exact.y.push_back(e);
-    eq32.x.push_back(deg), eq32.y.push_back(q);
-    eq32Residual.x.push_back(deg), eq32Residual.y.push_back(q - e);
-  }
-  for (const auto& m : report.rings) {
-    measured.x.push_back(m.thetaDeg), measured.y.push_back(m.measuredPx);
-    measuredResidual.x.push_back(m.thetaDeg), measuredResidual.y.push_back(m.measuredPx - m.exactPx);
-  }
-  radii.series = {exact, eq32, measured};
-  residuals.series = {zero, eq32Residual, measuredResidual};
-  writeTextAtomically(a.out + "/rings_plot.svg", svgPlot(radii));
-  writeTextAtomically(a.out + "/rings_residuals.svg", svgPlot(residuals));
-
-  std::ostringstream rows;
-  for (const auto& m : report.rings) {
-    char line[256];
-    std::snprintf(line, sizeof line, "<tr><td>%.0f</td><td>%.4f</td><td>%.4f</td><td>%+.4f</td><td>%.4f</td></tr>\n",
-                  m.thetaDeg, m.measuredPx, m.exactPx, m.measuredPx - m.exactPx, m.eq32Px);
-    rows << line;
-  }
-  char summary[512];
-  std::snprintf(summary, sizeof summary,
-                "Ring RMS against the exact model: <b>%.4f px</b> (max %.4f px; target ≤ 0.05 px). "
-                "Thesis metric, MSE of the rings against Eq. 3.2: <b>%.4f px²</b> (spec: about 0.256). "
-                "Measured h = %.4f px (model γ/ξ = %.4f px).",
-                report.rmsPxExact, report.maxAbsPxExact, report.msePx2Eq32, report.hPx, report.hPxExact);
   std::ostringstream html;
   html << R"(<!doctype html><html><head><meta charset="utf-8"><title>omnicam demo</title>
-<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}
-figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top}figcaption{font-size:90%;color:#555}
-img{image-rendering:pixelated;background:#444}table{border-collapse:collapse;font-size:90%}
-td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}</style></head><body>
+<style>body{font-family:sans-serif;max-width:1150px;margin:2em auto;color:#222}
+figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top;max-width:380px}figcaption{font-size:90%;color:#555}
+img{image-rendering:pixelated;background:#444}table{border-collapse:collapse;font-size:85%}
+td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}</style></head><body>
 <h1>omnicam demo</h1>
-<p>RoboCup 2006 Four-Legged field seen by the simulated catadioptric camera (k = 11.546, c = 2.321 cm,
-rim 45° above the horizon, 360×360) from the thesis start pose, rendered by omnicam's fast renderer in exact
-mode (every pixel's ray comes from the closed-form model, no mirror tracing), )"
-       << a.spp << R"( samples per pixel.</p>
-<figure><img src="robocup2006_unlit.png" width="360"><figcaption>unlit (albedo)</figcaption></figure>
-<figure><img src="robocup2006_lit.png" width="360"><figcaption>lit (ambient + Lambert, hard shadows)</figcaption></figure>
-<h2>Incidence-angle rings (thesis Figs. 3.11–3.12)</h2>
-<p>)" << summary << R"(</p>
-<figure><img src="rings.png" width="360"><figcaption>rings every 5° from 5° to 135°; 90° in red</figcaption></figure>
-<figure><img src="rings_plot.svg" width="640"><br><img src="rings_residuals.svg" width="640">
+<p>The RoboCup 2006 Four-Legged field seen by the simulated catadioptric camera (k = 11.546, c = 2.321 cm, rim 45°
+above the horizon, 360×360) from the thesis start pose, )"
+       << a.spp << R"( samples per pixel on a regular grid. <b>fast</b>: omnicam's renderer, every ray straight from the
+closed-form model (no mirror). <b>POV-Ray</b>: the ground truth — a pinhole camera looking up into the exact
+hyperboloidal mirror (a quadric), traced by POV-Ray 3.7 at the same sample positions.</p>
+)" << views.str()
+       << R"(<h2>Incidence-angle rings (thesis Figs. 3.11–3.12)</h2><ul>)" << ringSummary.str()
+       << R"(</ul><p>Spec §2: Eq. 3.2 against the exact model has MSE 0.256 px² — the thesis' "below one pixel".</p>
+)" << ringFigures.str()
+       << R"(<figure style="max-width:660px"><img src="rings_plot.svg" width="640"><br><img src="rings_residuals.svg" width="640">
 <figcaption>measured radii against the exact model and the thesis' Eq. 3.2</figcaption></figure>
-<table><tr><th>θ (°)</th><th>measured (px)</th><th>exact (px)</th><th>measured − exact</th><th>Eq. 3.2 (px)</th></tr>
-)" << rows.str() << R"(</table>
-<p>Sidecars (<code>*.png.json</code>) hold the provenance and the OpenCV <code>cv::omnidir</code> intrinsics of every image.</p>
-</body></html>
+<table>)" << ringTable.str()
+       << R"(</table>
+<p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,
+and OpenCV <code>cv::omnidir</code> intrinsics.</p></body></html>
 )";
   writeTextAtomically(a.out + "/index.html", html.str());
-  std::printf("demo: ring RMS %.4f px vs exact model, Eq. 3.2 MSE %.4f px^2\n", report.rmsPxExact, report.msePx2Eq32);
   std::printf("demo: open %s\n", (fs::absolute(a.out) / "index.html").string().c_str());
 }
 
@@ -122,9 +176,10 @@ mode (every pixel's ray comes from the closed-form model, no mirror tracing), )"
 
 void addDemoCommand(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
-  CLI::App* cmd = app.add_subcommand("demo", "Main job: render the start pose and the rings, write an HTML report");
+  CLI::App* cmd = app.add_subcommand("demo", "Main job: fast vs POV-Ray renders and rings, with an HTML report");
   cmd->add_option("-o,--output", args->out, "Report folder (default out/demo)");
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)");
+  cmd->add_flag("!--no-povray", args->povray, "Skip the POV-Ray ground truth");
   cmd->callback([args] { runDemo(*args); });
 }
 

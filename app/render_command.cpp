@@ -2,6 +2,7 @@
 //                      [--spp N] [--shading unlit|lit] [--mode exact] -o OUT
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <memory>
 
 #include "cli_util.h"
@@ -59,13 +60,19 @@ void runRender(const RenderArgs& a) {
     throw InputError("--frames: path \"" + a.path + "\" has only " + std::to_string(path->poses.size()) + " poses");
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + a.engine + ")", total);
+  // Frame f is written while frame f + 1 renders; each file still appears atomically.
+  std::future<void> writing;
   for (int f = 0; f < total; ++f) {
     char name[64];
     std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
-    renderToFile(scene, *engine, path->poses[f], settings, (std::filesystem::path(a.out) / name).string(),
-                 {{"path", {{"name", a.path}, {"frame", f}}}});
+    RenderedFile rendered = renderPose(scene, *engine, path->poses[f], settings);
+    rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
+    if (writing.valid()) writing.get();
+    writing = std::async(std::launch::async, [file = (std::filesystem::path(a.out) / name).string(),
+                                              frame = std::move(rendered)] { writeRendered(file, frame); });
     progress.step();
   }
+  if (writing.valid()) writing.get();
   progress.finish();
   std::printf("wrote %d frames to %s\n", total, a.out.c_str());
 }

@@ -30,6 +30,36 @@ float linearToSrgb(float l) {
   return l <= 0.0031308f ? 12.92f * l : 1.055f * std::pow(l, 1.0f / 2.4f) - 0.055f;
 }
 
+namespace {
+
+// 8-bit sRGB encoding without pow per pixel, exactly where lround(linearToSrgb(l) * 255)
+// would round: the code is looked up in a 4096-bin table over linear [0, 1] and fixed up with
+// one comparison against the next rounding threshold. One step suffices because no bin holds
+// two thresholds (bin width 1/4096 < the smallest threshold gap, 1/(12.92·255)).
+class SrgbEncoder {
+ public:
+  SrgbEncoder() {
+    for (int k = 0; k < 255; ++k) thresholds_[k] = srgbToLinear((k + 0.5f) / 255.0f);
+    for (int i = 0; i <= kBins; ++i) codeAtBin_[i] = exact(static_cast<float>(i) / kBins);
+  }
+  unsigned char operator()(float linear) const {
+    linear = std::clamp(linear, 0.0f, 1.0f);
+    int k = codeAtBin_[static_cast<int>(linear * kBins)];
+    if (k < 255 && linear >= thresholds_[k]) ++k;
+    return static_cast<unsigned char>(k);
+  }
+
+ private:
+  static constexpr int kBins = 4096;
+  unsigned char exact(float linear) const {
+    return static_cast<unsigned char>(std::upper_bound(thresholds_, thresholds_ + 255, linear) - thresholds_);
+  }
+  float thresholds_[255];
+  unsigned char codeAtBin_[kBins + 1];
+};
+
+}  // namespace
+
 bool isSupportedImageOutput(const std::string& path) {
   const std::string ext = lowerExtension(path);
   return ext == ".png" || ext == ".exr";
@@ -81,19 +111,18 @@ void writeImageAtomic(const std::string& path, const ImageRGBA& image) {
         throw InputError(path + ": cannot write EXR (" + out->geterror() + ")");
       return;
     }
+    static const SrgbEncoder encode;
     std::vector<unsigned char> bytes(image.pixels.size());
     for (size_t p = 0; p < image.pixels.size() / 4; ++p) {
       const float* src = &image.pixels[p * 4];
       const float alpha = src[3];
-      for (int c = 0; c < 3; ++c) {
-        const float straight = alpha > 0.0f ? src[c] / alpha : 0.0f;
-        bytes[p * 4 + c] = static_cast<unsigned char>(std::lround(linearToSrgb(straight) * 255.0f));
-      }
+      for (int c = 0; c < 3; ++c) bytes[p * 4 + c] = encode(alpha > 0.0f ? src[c] / alpha : 0.0f);
       bytes[p * 4 + 3] = static_cast<unsigned char>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * 255.0f));
     }
     OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:UnassociatedAlpha", 1);
     spec.attribute("oiio:ColorSpace", "sRGB");
+    spec.attribute("png:compressionLevel", 1);  // sequences: speed over the last few percent of size
     if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
         !out->close())
       throw InputError(path + ": cannot write PNG (" + out->geterror() + ")");

@@ -4,6 +4,8 @@
 
 #include "image.h"
 
+#include <cmath>
+
 namespace omnicam {
 namespace {
 
@@ -28,6 +30,23 @@ TEST(Srgb, RoundTripsAndKnownValues) {
   EXPECT_NEAR(srgbToLinear(0.5f), 0.214041f, 1e-6);
   EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-6);
   for (float v = 0.0f; v <= 1.0f; v += 0.01f) EXPECT_NEAR(srgbToLinear(linearToSrgb(v)), v, 1e-5);
+}
+
+TEST(Srgb, PngWriterEncodesExactlyLikeTheFormula) {
+  // Every 8-bit code the writer picks equals lround(linearToSrgb(v) · 255), read back exactly.
+  ImageRGBA img(1024, 1);
+  for (int i = 0; i < 1024; ++i) {
+    float* p = img.at(i, 0);
+    p[0] = i / 1023.0f, p[1] = (i / 1023.0f) * (i / 1023.0f), p[2] = 0.5f * i / 1023.0f, p[3] = 1.0f;
+  }
+  const std::string path = ::testing::TempDir() + "/srgb_exact.png";
+  writeImageAtomic(path, img);
+  const ImageRGBA back = readImage(path);
+  for (int i = 0; i < 1024; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const long expected = std::lround(linearToSrgb(img.at(i, 0)[c]) * 255.0f);
+      ASSERT_EQ(std::lround(linearToSrgb(back.at(i, 0)[c]) * 255.0f), expected) << i << " " << c;
+    }
 }
 
 }  // namespace

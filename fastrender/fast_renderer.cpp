@@ -49,32 +49,53 @@ Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading 
   return shade(hit, direction, shading);
 }
 
+std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const RigSpec& rig, int n) const {
+  std::lock_guard<std::mutex> lock(tableMutex_);
+  const auto same = [&](const RigSpec& r) {
+    return r.k == rig.k && r.c == rig.c && r.rimElevationDeg == rig.rimElevationDeg && r.imageSize == rig.imageSize &&
+           r.framingElevationDeg == rig.framingElevationDeg;
+  };
+  if (table_ && table_->samplesPerAxis == n && same(table_->rig)) return table_;
+  auto table = std::make_shared<SampleTable>();
+  table->rig = rig;
+  table->samplesPerAxis = n;
+  const OmniCamera camera = rig.camera();
+  table->firstSample.reserve(static_cast<size_t>(camera.width()) * camera.height() + 1);
+  for (int j = 0; j < camera.height(); ++j)
+    for (int i = 0; i < camera.width(); ++i) {
+      table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
+      for (int b = 0; b < n; ++b)
+        for (int a = 0; a < n; ++a) {
+          const Vec2 raster(i + (a + 0.5) / n, j + (b + 0.5) / n);
+          if (camera.insideRim(raster)) table->directions.push_back(camera.cameraFromRaster(raster).cast<float>());
+        }
+    }
+  table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
+  table_ = table;
+  return table_;
+}
+
 ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings) const {
   const auto n = samplesPerAxis(settings.spp);
   if (!n) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(settings.spp) + ")");
-  const OmniCamera camera = settings.rig.camera();
+  const std::shared_ptr<const SampleTable> table = sampleTable(settings.rig, *n);
+  const int width = settings.rig.imageSize, height = settings.rig.imageSize;
   const Rigid worldFromCam = worldFromCamera(settings.rig, pose);
   const Vec3 origin = worldFromCam.translation();
   const Eigen::Matrix3d rotation = worldFromCam.linear();
-  ImageRGBA image(camera.width(), camera.height());
-  const int samplesAxis = *n;
-  const float weight = 1.0f / static_cast<float>(samplesAxis * samplesAxis);
-  tbb::parallel_for(tbb::blocked_range<int>(0, camera.height()), [&](const tbb::blocked_range<int>& rows) {
+  ImageRGBA image(width, height);
+  const float weight = 1.0f / static_cast<float>(*n * *n);
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
-      for (int i = 0; i < camera.width(); ++i) {
+      for (int i = 0; i < width; ++i) {
+        const size_t pixel = static_cast<size_t>(j) * width + i;
+        const uint32_t first = table->firstSample[pixel], last = table->firstSample[pixel + 1];
         Vec3f sum = Vec3f::Zero();
-        int inside = 0;
-        for (int b = 0; b < samplesAxis; ++b) {
-          for (int a = 0; a < samplesAxis; ++a) {
-            const Vec2 raster(i + (a + 0.5) / samplesAxis, j + (b + 0.5) / samplesAxis);
-            if (!camera.insideRim(raster)) continue;
-            ++inside;
-            sum += radiance(origin, rotation * camera.cameraFromRaster(raster), settings.shading);
-          }
-        }
+        for (uint32_t s = first; s < last; ++s)
+          sum += radiance(origin, rotation * table->directions[s].cast<double>(), settings.shading);
         float* px = image.at(i, j);
         for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
-        px[3] = static_cast<float>(inside) * weight;
+        px[3] = static_cast<float>(last - first) * weight;
       }
     }
   });

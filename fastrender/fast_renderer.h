@@ -4,7 +4,9 @@
 // the scene, and shaded per spec §3. Pixels are box-filtered means of an n×n regular grid;
 // rows are rendered in parallel with TBB and the result does not depend on the thread count.
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "image.h"
 #include "ray_scene.h"
@@ -28,9 +30,21 @@ class FastRenderer {
   Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading) const;
 
  private:
+  // Camera-frame directions of every sample inside the rim, per pixel: they depend only on the
+  // rig's image model and spp, so they are computed once and reused for every pose.
+  struct SampleTable {
+    RigSpec rig;
+    int samplesPerAxis = 0;
+    std::vector<Eigen::Vector3f> directions;  // inside-rim samples, pixel by pixel
+    std::vector<uint32_t> firstSample;        // per pixel, index into directions (+1 sentinel)
+  };
+  std::shared_ptr<const SampleTable> sampleTable(const RigSpec& rig, int samplesPerAxis) const;
+
   Vec3f shade(const SurfaceHit& hit, const Vec3& direction, Shading shading) const;
   const Scene& scene_;
   RayScene rays_;
+  mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable
+  mutable std::shared_ptr<const SampleTable> table_;
 };
 
 }  // namespace omnicam
