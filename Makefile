@@ -6,7 +6,7 @@ SUDO      := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # Every Debian 12 package the project needs (build, tests, demo, benchmarks).
 DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev \
-  libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev \
+  libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev bc \
   libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
   povray
 
@@ -33,8 +33,10 @@ test: build
 demo: build
 	$(BUILD_DIR)/bin/omnicam demo -o out/demo
 
+# Frames/s of the fast renderer, then fast vs POV-Ray per frame over the 100-frame thesis-loop.
 bench: build
 	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
+	bench/povray_ratio.sh 1 100
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -2,6 +2,7 @@
 // Renders the incidence-ring scene (thesis Fig. 3.11), measures every ring's radius in the
 // image and scores it against the exact model and the thesis' Eq. 3.2.
 #include <cstdio>
+#include <fstream>
 #include <memory>
 
 #include "cli_util.h"
@@ -10,18 +11,56 @@
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
+#include "sidecar.h"
 
 namespace omnicam::cli {
 
 namespace {
 
 struct RingsArgs {
-  std::string engine = "fast", scene, out;
+  std::string engine = "fast", scene, out, measure;
   int size = 0, spp = 16;
   bool json = false;
 };
 
+void printReport(const RingReport& report, const std::string& what, bool json) {
+  if (json) {
+    std::printf("%s\n", ringReportToJson(report).dump(2).c_str());
+    return;
+  }
+  std::printf("rings: %zu measured in %s\n", report.rings.size(), what.c_str());
+  std::printf("rms_px_exact %.4f  max_abs_px_exact %.4f  mse_px2_eq32 %.4f  h_px %.4f (model %.4f)\n",
+              report.rmsPxExact, report.maxAbsPxExact, report.msePx2Eq32, report.hPx, report.hPxExact);
+}
+
+// Measures an existing ring image; the model it is scored against comes from its sidecar when
+// there is one, else from the ring scene's rig at the image's size.
+void measureExisting(const RingsArgs& a) {
+  const ImageRGBA image = readImage(a.measure);
+  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene);
+  RigSpec rig = scene.rig;
+  std::ifstream sidecar(sidecarPath(a.measure));
+  if (sidecar) {
+    try {
+      const auto j = nlohmann::json::parse(sidecar)["rig"];
+      rig.k = j["mirror"]["k"], rig.c = j["mirror"]["c"], rig.rimElevationDeg = j["mirror"]["rim_elevation_deg"];
+      rig.framingElevationDeg = j["image"]["framing_elevation_deg"];
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(sidecarPath(a.measure) + ": rig: " + e.what());
+    }
+  }
+  if (image.width != image.height) throw InputError(a.measure + ": ring images must be square");
+  rig.imageSize = image.width;
+  printReport(measureRings(image, rig.camera(), defaultRingThetasDeg()), a.measure, a.json);
+}
+
 void runRings(const RingsArgs& a) {
+  if (!a.measure.empty()) {
+    if (!a.out.empty()) throw InputError("--measure and -o: give one, not both");
+    measureExisting(a);
+    return;
+  }
+  if (a.out.empty()) throw InputError("-o: required (or --measure FILE)");
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene);
@@ -34,13 +73,7 @@ void runRings(const RingsArgs& a) {
   const RingReport report = measureRings(rendered.image, settings.rig.camera(), defaultRingThetasDeg());
   rendered.sidecar["rings"] = ringReportToJson(report);
   writeRendered(a.out, rendered);
-  if (a.json) {
-    std::printf("%s\n", ringReportToJson(report).dump(2).c_str());
-    return;
-  }
-  std::printf("rings: %zu measured in %s\n", report.rings.size(), a.out.c_str());
-  std::printf("rms_px_exact %.4f  max_abs_px_exact %.4f  mse_px2_eq32 %.4f  h_px %.4f (model %.4f)\n",
-              report.rmsPxExact, report.maxAbsPxExact, report.msePx2Eq32, report.hPx, report.hPxExact);
+  printReport(report, a.out, a.json);
 }
 
 }  // namespace
@@ -52,7 +85,8 @@ void addRingsCommand(CLI::App& app) {
   cmd->add_option("--scene", args->scene, "Ring scene (default: scenes/incidence-rings.json)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(32, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)");
-  cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr")->required();
+  cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr");
+  cmd->add_option("--measure", args->measure, "Measure an existing ring image instead of rendering one");
   cmd->add_flag("--json", args->json, "Print per-ring radii and the summary as JSON");
   cmd->callback([args] { runRings(*args); });
 }

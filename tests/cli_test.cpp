@@ -189,6 +189,12 @@ TEST_F(CliTest, RingsJsonReportsTheSummary) {
   EXPECT_NEAR(j["summary"]["mse_px2_eq32"].get<double>(), 0.256, 0.02);
   EXPECT_NEAR(j["summary"]["h_px"].get<double>(), 73.7437, 0.05);
   EXPECT_TRUE(fs::exists(path("rings.png.json")));
+  // Measuring the written file again gives the same numbers (8-bit PNG, so within 0.01 px).
+  const CommandResult again = run("rings --json --measure " + path("rings.png"));
+  ASSERT_EQ(again.code, 0) << again.out;
+  const auto k = nlohmann::json::parse(again.out);
+  EXPECT_NEAR(k["summary"]["rms_px_exact"].get<double>(), j["summary"]["rms_px_exact"].get<double>(), 0.01);
+  EXPECT_EQ(run("rings --measure " + path("nothing.png")).code, 2);
 }
 
 }  // namespace
