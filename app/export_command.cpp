@@ -1,12 +1,14 @@
-// omnicam export SCENE --to povray -o DIR [--pose X,Y,YAW] [--size N] [--spp N] [--shading S]
-// Writes a self-contained POV-Ray job: scene.pov (exact mirror + physical camera), textures,
-// render.ini. Render it with `cd DIR && povray render.ini`.
+// omnicam export SCENE --to povray|gltf -o DIR [--pose X,Y,YAW] [--size N] [--spp N] [--shading S]
+// povray: a self-contained job — scene.pov (exact mirror + physical camera), textures,
+//         render.ini; render it with `cd DIR && povray render.ini`.
+// gltf:   DIR/scene.glb — the arena plus the rig (certified mirror mesh, camera) at the pose.
 #include <cstdio>
 #include <memory>
 
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
+#include "gltf_exporter.h"
 #include "povray_exporter.h"
 #include "scene_loader.h"
 
@@ -20,7 +22,8 @@ struct ExportArgs {
 };
 
 void runExport(const ExportArgs& a) {
-  if (a.to != "povray") throw InputError("--to: \"" + a.to + "\" is not available (povray; gltf and blender: later)");
+  if (a.to != "povray" && a.to != "gltf")
+    throw InputError("--to: \"" + a.to + "\" is not available (povray, gltf)");
   const auto shading = parseShading(a.shading);
   if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
@@ -35,6 +38,16 @@ void runExport(const ExportArgs& a) {
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
   settings.shading = *shading;
+  if (a.to == "gltf") {
+    ensureDirectory(a.out, "-o");
+    GltfExportOptions options;
+    options.pose = pose;
+    options.rig = settings.rig;
+    const std::string file = a.out + "/scene.glb";
+    exportGltf(scene, options, file);
+    std::printf("wrote %s\n", file.c_str());
+    return;
+  }
   const PovrayJob job = exportPovray(scene, pose, settings);  // validates before anything is written
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
@@ -48,7 +61,7 @@ void addExportCommand(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
   CLI::App* cmd = app.add_subcommand("export", "Export a scene with the exact mirror and physical camera");
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
-  cmd->add_option("--to", args->to, "povray")->required();
+  cmd->add_option("--to", args->to, "povray or gltf")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot (default: the scene's start_pose)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(8, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel n*n (the job renders n x larger)");

@@ -2,6 +2,7 @@
 // Shared vector types and angle helpers. Transforms are named xFromY: p_x = xFromY * p_y.
 #include <Eigen/Geometry>
 #include <numbers>
+#include <utility>
 
 namespace omnicam {
 
@@ -13,5 +14,16 @@ using Rigid = Eigen::Isometry3d;
 constexpr double kPi = std::numbers::pi;
 constexpr double radians(double degrees) { return degrees * kPi / 180.0; }
 constexpr double degrees(double radians_) { return radians_ * 180.0 / kPi; }
+
+// An orthonormal frame (e1, e2) perpendicular to `axis`; e1 is the projection of +X when
+// possible (so a vertical cylinder's u = 0 faces +X), else of +Y. Shared by every engine's
+// texture coordinates on cylinders and discs.
+inline std::pair<Vec3, Vec3> perpendicularFrame(const Vec3& axis) {
+  const Vec3 a = axis.normalized();
+  Vec3 e1 = Vec3::UnitX() - a.x() * a;
+  if (e1.norm() < 1e-6) e1 = Vec3::UnitY() - a.y() * a;
+  e1.normalize();
+  return {e1, a.cross(e1)};
+}
 
 }  // namespace omnicam

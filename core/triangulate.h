@@ -20,5 +20,10 @@ TriangleMesh triangulate(const Mesh& mesh);
 // The triangles of a planar shape (box, quad, mesh); nullopt for curved ones (sphere,
 // cylinder, disc), which every engine intersects exactly.
 std::optional<TriangleMesh> triangulatePlanar(const Shape& shape);
+// Any shape as triangles: planar ones exactly, curved ones with vertices on the surface and
+// chords within `chordTolerance` (metres) of it, UVs as the analytic intersections define them.
+TriangleMesh tessellate(const Shape& shape, double chordTolerance);
+// Segments a circle of `radius` needs so that its chords stay within `chordTolerance`.
+int segmentsForCircle(double radius, double chordTolerance);
 
 }  // namespace omnicam

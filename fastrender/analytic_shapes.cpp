@@ -25,14 +25,6 @@ double azimuthFraction(const Vec3& radial, const Vec3& e1, const Vec3& e2) {
 
 }  // namespace
 
-std::pair<Vec3, Vec3> perpendicularFrame(const Vec3& axis) {
-  const Vec3 a = axis.normalized();
-  Vec3 e1 = Vec3::UnitX() - a.x() * a;
-  if (e1.norm() < 1e-6) e1 = Vec3::UnitY() - a.y() * a;
-  e1.normalize();
-  return {e1, a.cross(e1)};
-}
-
 std::optional<ShapeHit> intersect(const Sphere& s, const Vec3& o, const Vec3& d, double tNear, double tFar) {
   const Vec3 oc = o - s.center;
   double t0, t1;

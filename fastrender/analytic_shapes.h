@@ -22,8 +22,4 @@ std::pair<Vec3, Vec3> bounds(const Sphere& s);
 std::pair<Vec3, Vec3> bounds(const Cylinder& c);
 std::pair<Vec3, Vec3> bounds(const Disc& d);
 
-// An orthonormal frame (e1, e2) perpendicular to `axis`; e1 is the projection of +X when
-// possible (so a vertical cylinder's u = 0 faces +X), else of +Y.
-std::pair<Vec3, Vec3> perpendicularFrame(const Vec3& axis);
-
 }  // namespace omnicam

@@ -1,0 +1,97 @@
+#include "mirror_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace omnicam {
+
+namespace {
+
+// Profile of the upper sheet: z(r) = a·sqrt(1 + r²/b²) − c/2.
+double profileZ(const HyperbolicMirror& m, double r) { return m.a() * std::sqrt(1.0 + r * r / m.b2()) - m.c() / 2.0; }
+
+Vec3 surfaceNormal(const HyperbolicMirror& m, const Vec3& p) { return m.normalAt(p); }
+
+}  // namespace
+
+MirrorMesh buildMirrorMesh(const HyperbolicMirror& m, double rimTheta, double maxDeviation) {
+  const Vec3 rimDirection(std::sin(rimTheta), 0.0, -std::cos(rimTheta));
+  const Vec3 rim = *m.pointAlong(rimDirection);
+  const double rimRadius = rim.x();
+  // Largest curvatures of the sheet up to the rim: the profile's is largest at the vertex
+  // (a/b²); the circles' is 1/r, but a circle's sagitta is bounded by its radius, so sectors
+  // are set by the rim circle. Each direction gets half of the bound.
+  const double half = 0.5 * maxDeviation;
+  const double profileCurvature = m.a() / m.b2();
+  const double maxProfileStep = std::sqrt(8.0 * half / profileCurvature);  // sagitta L²κ/8
+  // Profile arc length, measured numerically.
+  double arc = 0.0;
+  const int fine = 20000;
+  for (int k = 0; k < fine; ++k) {
+    const double r0 = rimRadius * k / fine, r1 = rimRadius * (k + 1) / fine;
+    arc += std::hypot(r1 - r0, profileZ(m, r1) - profileZ(m, r0));
+  }
+  MirrorMesh out;
+  out.requestedBound = maxDeviation;
+  out.rings = std::max(2, static_cast<int>(std::ceil(arc / maxProfileStep)));
+  out.sectors = std::max(8, static_cast<int>(std::ceil(kPi / std::acos(1.0 - half / rimRadius))));
+  // Rings evenly spaced in arc length along the profile.
+  std::vector<double> ringRadius{0.0};
+  {
+    double s = 0.0, target = arc / out.rings;
+    int next = 1;
+    for (int k = 0; k < fine && next < out.rings; ++k) {
+      const double r0 = rimRadius * k / fine, r1 = rimRadius * (k + 1) / fine;
+      const double ds = std::hypot(r1 - r0, profileZ(m, r1) - profileZ(m, r0));
+      while (next < out.rings && s + ds >= target * next) {
+        ringRadius.push_back(r0 + (r1 - r0) * (target * next - s) / ds);
+        ++next;
+      }
+      s += ds;
+    }
+    ringRadius.push_back(rimRadius);
+  }
+  TriangleMesh& mesh = out.mesh;
+  mesh.vertices.push_back({0.0, 0.0, profileZ(m, 0.0)});
+  mesh.uvs.push_back({0.5, 0.5});
+  for (size_t ring = 1; ring < ringRadius.size(); ++ring) {
+    const double r = ringRadius[ring], z = ring + 1 == ringRadius.size() ? rim.z() : profileZ(m, r);
+    for (int s = 0; s < out.sectors; ++s) {
+      const double phi = 2.0 * kPi * s / out.sectors;
+      mesh.vertices.push_back({r * std::cos(phi), r * std::sin(phi), z});
+      mesh.uvs.push_back({0.5 + 0.5 * std::cos(phi) * r / rimRadius, 0.5 + 0.5 * std::sin(phi) * r / rimRadius});
+    }
+  }
+  const int n = out.sectors;
+  auto index = [n](int ring, int s) { return 1 + (ring - 1) * n + ((s % n) + n) % n; };
+  // Faces are wound counter-clockwise seen from below (the camera side).
+  for (int s = 0; s < n; ++s) mesh.triangles.emplace_back(0, index(1, s + 1), index(1, s));
+  for (size_t ring = 1; ring + 1 < ringRadius.size(); ++ring)
+    for (int s = 0; s < n; ++s) {
+      const int r = static_cast<int>(ring);
+      mesh.triangles.emplace_back(index(r, s), index(r, s + 1), index(r + 1, s + 1));
+      mesh.triangles.emplace_back(index(r, s), index(r + 1, s + 1), index(r + 1, s));
+    }
+  for (const Vec3& v : mesh.vertices) out.normals.push_back(surfaceNormal(m, v));
+  return out;
+}
+
+double mirrorSurfaceDistance(const HyperbolicMirror& m, const Vec3& p) {
+  // In the (r, z) half-plane the sheet is the curve (r(t), z(t)) = (b sinh t, a cosh t − c/2),
+  // t ≥ 0. Minimise |(r(t), z(t)) − (ρ, ζ)|² by Newton's method on its derivative.
+  const double rho = std::hypot(p.x(), p.y()), zeta = p.z();
+  const double a = m.a(), b = std::sqrt(m.b2()), c2 = m.c() / 2.0;
+  double t = std::asinh(rho / b);  // start at the point with the same radius
+  for (int i = 0; i < 50; ++i) {
+    const double r = b * std::sinh(t), z = a * std::cosh(t) - c2;
+    const double dr = b * std::cosh(t), dz = a * std::sinh(t);
+    const double g = (r - rho) * dr + (z - zeta) * dz;              // ½ d/dt of the squared distance
+    const double h = dr * dr + dz * dz + (r - rho) * r + (z - zeta) * (z + c2);  // ½ d²/dt²
+    const double step = g / h;
+    t = std::max(0.0, t - step);
+    if (std::abs(step) < 1e-15) break;
+  }
+  return std::hypot(b * std::sinh(t) - rho, a * std::cosh(t) - c2 - zeta);
+}
+
+}  // namespace omnicam

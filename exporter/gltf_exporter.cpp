@@ -1,0 +1,318 @@
+#include "gltf_exporter.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "atomic_file.h"
+#include "errors.h"
+#include "image.h"
+#include "mirror_mesh.h"
+#include "sidecar.h"
+#include "triangulate.h"
+
+namespace omnicam {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Vec3f = Eigen::Vector3f;
+
+// omnicam (X, Y, Z) → glTF (X, Z, −Y).
+Vec3 toGltf(const Vec3& p) { return {p.x(), p.z(), -p.y()}; }
+Eigen::Matrix3d gltfFromOmnicam() {
+  Eigen::Matrix3d g;
+  g << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  return g;
+}
+
+tinygltf::Value toValue(const nlohmann::json& j) {
+  if (j.is_object()) {
+    tinygltf::Value::Object o;
+    for (auto it = j.begin(); it != j.end(); ++it) o[it.key()] = toValue(it.value());
+    return tinygltf::Value(o);
+  }
+  if (j.is_array()) {
+    tinygltf::Value::Array a;
+    for (const auto& v : j) a.push_back(toValue(v));
+    return tinygltf::Value(a);
+  }
+  if (j.is_boolean()) return tinygltf::Value(j.get<bool>());
+  if (j.is_number_integer()) return tinygltf::Value(j.get<int>());
+  if (j.is_number()) return tinygltf::Value(j.get<double>());
+  if (j.is_string()) return tinygltf::Value(j.get<std::string>());
+  return {};
+}
+
+class GltfBuilder {
+ public:
+  GltfBuilder() {
+    model_.asset.version = "2.0";
+    model_.asset.generator = "omnicam";
+    model_.buffers.emplace_back();
+    model_.scenes.emplace_back();
+    model_.defaultScene = 0;
+  }
+
+  int bufferView(const void* data, size_t bytes, int target) {
+    auto& buffer = model_.buffers[0].data;
+    while (buffer.size() % 4) buffer.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buffer.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* bytesIn = static_cast<const unsigned char*>(data);
+    buffer.insert(buffer.end(), bytesIn, bytesIn + bytes);
+    model_.bufferViews.push_back(view);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
+
+  int vec3Accessor(const std::vector<float>& xyz, bool withBounds) {
+    tinygltf::Accessor a;
+    a.bufferView = bufferView(xyz.data(), xyz.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = TINYGLTF_TYPE_VEC3;
+    a.count = xyz.size() / 3;
+    if (withBounds) {
+      a.minValues = {INFINITY, INFINITY, INFINITY};
+      a.maxValues = {-INFINITY, -INFINITY, -INFINITY};
+      for (size_t k = 0; k < xyz.size(); ++k) {
+        a.minValues[k % 3] = std::min(a.minValues[k % 3], static_cast<double>(xyz[k]));
+        a.maxValues[k % 3] = std::max(a.maxValues[k % 3], static_cast<double>(xyz[k]));
+      }
+    }
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  int vec2Accessor(const std::vector<float>& uv) {
+    tinygltf::Accessor a;
+    a.bufferView = bufferView(uv.data(), uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = TINYGLTF_TYPE_VEC2;
+    a.count = uv.size() / 2;
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  int indexAccessor(const std::vector<uint32_t>& indices) {
+    tinygltf::Accessor a;
+    a.bufferView = bufferView(indices.data(), indices.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    a.type = TINYGLTF_TYPE_SCALAR;
+    a.count = indices.size();
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+
+  // A mesh from triangles in omnicam coordinates (converted here); normals optional.
+  // `uvScale` null: no texture coordinates (the material has no texture).
+  int mesh(const std::string& name, const TriangleMesh& m, const std::vector<Vec3>* normals, int material,
+           const Eigen::Vector2d* uvScale) {
+    std::vector<float> xyz, nrm, uv;
+    for (const Vec3& v : m.vertices) {
+      const Vec3 g = toGltf(v);
+      xyz.insert(xyz.end(), {static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())});
+    }
+    if (normals)
+      for (const Vec3& n : *normals) {
+        const Vec3 g = toGltf(n);
+        nrm.insert(nrm.end(), {static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())});
+      }
+    // glTF's UV origin is the image's top-left; omnicam's (like POV-Ray's) the bottom-left.
+    if (uvScale)
+      for (const auto& t : m.uvs)
+        uv.insert(uv.end(), {static_cast<float>(t.x() * uvScale->x()), static_cast<float>(1.0 - t.y() * uvScale->y())});
+    std::vector<uint32_t> indices;
+    for (const auto& t : m.triangles)
+      indices.insert(indices.end(), {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]), static_cast<uint32_t>(t[2])});
+    tinygltf::Primitive p;
+    p.attributes["POSITION"] = vec3Accessor(xyz, true);
+    if (normals) p.attributes["NORMAL"] = vec3Accessor(nrm, false);
+    if (uvScale) p.attributes["TEXCOORD_0"] = vec2Accessor(uv);
+    p.indices = indexAccessor(indices);
+    p.material = material;
+    p.mode = TINYGLTF_MODE_TRIANGLES;
+    tinygltf::Mesh mesh;
+    mesh.name = name;
+    mesh.primitives.push_back(p);
+    model_.meshes.push_back(mesh);
+    return static_cast<int>(model_.meshes.size()) - 1;
+  }
+
+  int texture(const std::string& name, const std::vector<unsigned char>& png) {
+    tinygltf::Image image;
+    image.name = name;
+    image.mimeType = "image/png";
+    image.bufferView = bufferView(png.data(), png.size(), 0);
+    model_.images.push_back(image);
+    if (model_.samplers.empty()) {
+      tinygltf::Sampler s;  // bilinear, no mipmaps, repeat: what the other engines do
+      s.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      s.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      s.wrapS = s.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
+      model_.samplers.push_back(s);
+    }
+    tinygltf::Texture t;
+    t.sampler = 0;
+    t.source = static_cast<int>(model_.images.size()) - 1;
+    model_.textures.push_back(t);
+    return static_cast<int>(model_.textures.size()) - 1;
+  }
+
+  int material(const std::string& name, const Vec3f& colour, int texture, double metallic, double roughness,
+               const nlohmann::json& extras) {
+    tinygltf::Material m;
+    m.name = name;
+    m.pbrMetallicRoughness.baseColorFactor = {colour.x(), colour.y(), colour.z(), 1.0};
+    m.pbrMetallicRoughness.baseColorTexture.index = texture;
+    m.pbrMetallicRoughness.metallicFactor = metallic;
+    m.pbrMetallicRoughness.roughnessFactor = roughness;
+    m.doubleSided = true;
+    m.extras = toValue(extras);
+    model_.materials.push_back(m);
+    return static_cast<int>(model_.materials.size()) - 1;
+  }
+
+  // A node with a rigid transform given in omnicam coordinates.
+  int node(const std::string& name, const Rigid& parentFromNode, int mesh, const nlohmann::json& extras) {
+    tinygltf::Node n;
+    n.name = name;
+    n.mesh = mesh;
+    const Eigen::Matrix3d g = gltfFromOmnicam();
+    const Vec3 t = g * parentFromNode.translation();
+    const Eigen::Quaterniond q(g * parentFromNode.linear() * g.transpose());
+    if (t.norm() > 0.0) n.translation = {t.x(), t.y(), t.z()};
+    if (std::abs(q.w()) < 1.0 - 1e-15) n.rotation = {q.x(), q.y(), q.z(), q.w()};
+    if (!extras.is_null()) n.extras = toValue(extras);
+    model_.nodes.push_back(n);
+    return static_cast<int>(model_.nodes.size()) - 1;
+  }
+
+  void addChild(int parent, int child) { model_.nodes[parent].children.push_back(child); }
+  void addRoot(int node) { model_.scenes[0].nodes.push_back(node); }
+  tinygltf::Model& model() { return model_; }
+
+ private:
+  tinygltf::Model model_;
+};
+
+std::vector<unsigned char> pngBytes(const Texture& t) {
+  ImageRGBA image(t.width(), t.height());
+  const auto& rgb = t.rgbLinear();
+  for (size_t p = 0; p < rgb.size() / 3; ++p) {
+    for (int c = 0; c < 3; ++c) image.pixels[p * 4 + c] = rgb[p * 3 + c];
+    image.pixels[p * 4 + 3] = 1.0f;
+  }
+  const fs::path tmp = fs::temp_directory_path() / ("omnicam-texture-" + std::to_string(::getpid()) + ".png");
+  writeImageAtomic(tmp.string(), image);
+  std::ifstream in(tmp, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  fs::remove(tmp);
+  return bytes;
+}
+
+// An annulus in the viewpoint frame at the rim height: what the camera sees beyond the rim.
+TriangleMesh rimMask(double rimHeight, double innerRadius) {
+  return tessellate(Disc{{0.0, 0.0, rimHeight}, {0.0, 0.0, -1.0}, innerRadius + 1.0, innerRadius}, 1e-7 + innerRadius * 1e-4);
+}
+
+}  // namespace
+
+void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
+  GltfBuilder b;
+  std::vector<int> materials;
+  for (const Material& m : scene.materials) {
+    const int texture = m.texture ? b.texture(m.name, pngBytes(*m.texture)) : -1;
+    materials.push_back(b.material(m.name, m.color, texture, 0.0, 1.0,
+                                   {{"omnicam", {{"ambient", m.ambient}, {"diffuse", m.diffuse}}}}));
+  }
+  const int arena = b.node("arena", Rigid::Identity(), -1, {{"omnicam", {{"scene", scene.name}}}});
+  b.addRoot(arena);
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    const TriangleMesh mesh = tessellate(o.shape, options.chordTolerance);
+    const Material& material = scene.materials[o.material];
+    const int meshIndex = b.mesh(o.name, mesh, nullptr, materials[o.material], material.texture ? &material.textureScale : nullptr);
+    b.addChild(arena, b.node(o.name, Rigid::Identity(), meshIndex, nullptr));
+  }
+  for (const PointLight& l : scene.lights) {
+    tinygltf::Light light;
+    light.name = l.name;
+    light.type = "point";
+    const float peak = std::max(1e-6f, l.intensity.maxCoeff());
+    light.color = {l.intensity.x() / peak, l.intensity.y() / peak, l.intensity.z() / peak};
+    light.intensity = peak;  // omnicam lights have no fall-off: consumers scale as they see fit
+    b.model().lights.push_back(light);
+    Rigid at = Rigid::Identity();
+    at.translate(l.position);
+    const int node = b.node(l.name, at, -1, {{"omnicam", {{"light", "point, no distance fall-off"}}}});
+    tinygltf::Value::Object ext;
+    ext["light"] = tinygltf::Value(static_cast<int>(b.model().lights.size()) - 1);
+    b.model().nodes[node].extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+    b.addRoot(node);
+  }
+  if (!scene.lights.empty()) b.model().extensionsUsed.push_back("KHR_lights_punctual");
+  for (const Landmark& lm : scene.landmarks) {
+    Rigid at = Rigid::Identity();
+    at.translate(lm.position);
+    b.addRoot(b.node(lm.name, at, -1,
+                     {{"omnicam", {{"landmark", true}, {"colour_class", lm.colourClass}, {"diameter", lm.diameter},
+                                   {"height", lm.height}}}}));
+  }
+  if (options.includeRig) {
+    const OmniCamera camera = options.rig.camera();
+    const HyperbolicMirror mirror = options.rig.mirror();
+    const MirrorMesh mirrorMesh = buildMirrorMesh(mirror, camera.rimTheta(), options.mirrorDeviation);
+    const Rigid worldFromViewpoint = worldFromRobot(options.pose) * robotFromViewpoint(options.rig);
+    const int rig = b.node(kGltfRigNode, worldFromViewpoint, -1,
+                           {{"omnicam",
+                             {{"rig", rigToJson(options.rig)},
+                              {"pose", {{"x", options.pose.x}, {"y", options.pose.y}, {"yaw_deg", options.pose.yawDeg}}},
+                              {"intrinsics", intrinsicsToJson(camera)},
+                              {"frame", "viewpoint: origin at F', robot axes (x forward, y left, z up)"}}}});
+    b.addRoot(rig);
+    const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
+    b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
+                           b.mesh(kGltfMirrorNode, mirrorMesh.mesh, &mirrorMesh.normals, mirrorMaterial, nullptr),
+                           {{"omnicam",
+                             {{"certified_max_deviation_m", mirrorMesh.requestedBound},
+                              {"rings", mirrorMesh.rings},
+                              {"sectors", mirrorMesh.sectors}}}}));
+    const Vec3 rimPoint = mirrorMesh.mesh.vertices.back();
+    const int maskMaterial = b.material(kGltfRimMaskNode, Vec3f::Zero(), -1, 0.0, 1.0,
+                                        {{"omnicam", "black, seen only by the camera"}});
+    b.addChild(rig, b.node(kGltfRimMaskNode, Rigid::Identity(),
+                           b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
+                                  nullptr, maskMaterial, nullptr),
+                           nullptr));
+    // Physical pinhole at F looking up: glTF cameras look along −Z with +Y up; here local
+    // X = robot +x (image right), Y = robot −y (image up), Z = robot −z.
+    tinygltf::Camera cam;
+    cam.name = kGltfCameraNode;
+    cam.type = "perspective";
+    cam.perspective.aspectRatio = static_cast<double>(camera.width()) / camera.height();
+    cam.perspective.yfov = 2.0 * std::atan(0.5 * camera.height() / camera.physicalFocalLength());
+    cam.perspective.znear = 1e-4;
+    cam.perspective.zfar = 1e4;  // tinygltf would write 0, which the validator rejects
+    b.model().cameras.push_back(cam);
+    Rigid viewpointFromCamera = Rigid::Identity();
+    viewpointFromCamera.translate(mirror.pinholeInViewpoint());
+    viewpointFromCamera.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+    const int camNode = b.node(kGltfCameraNode, viewpointFromCamera, -1,
+                               {{"omnicam", {{"focal_length_px", camera.physicalFocalLength()}}}});
+    b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
+    b.addChild(rig, camNode);
+  }
+  writeAtomically(path, [&](const std::string& tmp) {
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToFile(&b.model(), tmp, true, true, false, true))
+      throw InputError(path + ": cannot write glTF");
+  });
+}
+
+}  // namespace omnicam
