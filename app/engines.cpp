@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "errors.h"
+#include "blender_renderer.h"
 #include "fast_renderer.h"
 #include "povray_renderer.h"
 
@@ -45,12 +46,35 @@ class PovrayEngine : public Engine {
   mutable std::string version_;
 };
 
+class BlenderEngine : public Engine {
+ public:
+  BlenderEngine(const Scene& scene, double timeoutSeconds) : scene_(scene) {
+    options_.timeoutSeconds = timeoutSeconds;
+    // OMNICAM_BLENDER names another Blender binary (tests use it to simulate failures).
+    if (const char* exe = std::getenv("OMNICAM_BLENDER")) options_.executable = exe;
+  }
+  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
+    return std::move(renderWithBlender(scene_, {pose}, settings, options_).front());
+  }
+  std::string name() const override { return "blender"; }
+  std::string version() const override {
+    if (version_.empty()) version_ = blenderVersion(options_.executable) + " Cycles (CPU)";
+    return version_;
+  }
+
+ private:
+  const Scene& scene_;
+  BlenderOptions options_;
+  mutable std::string version_;
+};
+
 }  // namespace
 
 std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds) {
   if (name == "fast") return std::make_unique<FastEngine>(scene);
   if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds);
-  throw InputError("--engine: \"" + name + "\" is not available (fast, povray)");
+  if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds);
+  throw InputError("--engine: \"" + name + "\" is not available (fast, povray, blender)");
 }
 
 }  // namespace omnicam::cli

@@ -67,6 +67,13 @@ Vec3 OmniCamera::cameraFromRaster(const Vec2& raster) const {
   return Vec3(eta * mx, eta * my, eta - xi_).normalized();
 }
 
+float OmniCamera::rimCoverage(int i, int j, int n) const {
+  int inside = 0;
+  for (int b = 0; b < n; ++b)
+    for (int a = 0; a < n; ++a) inside += insideRim({i + (a + 0.5) / n, j + (b + 0.5) / n});
+  return static_cast<float>(inside) / static_cast<float>(n * n);
+}
+
 OpenCvIntrinsics OmniCamera::openCvIntrinsics() const {
   return {xi_, gamma_, -gamma_, 0.5 * width_ - 0.5, 0.5 * height_ - 0.5};
 }

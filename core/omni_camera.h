@@ -54,6 +54,10 @@ class OmniCamera {
     return (raster - centre()).squaredNorm() <= rimRadius_ * rimRadius_;
   }
 
+  // Fraction of pixel (i, j)'s n×n regular sample grid that lies inside the rim: the alpha of
+  // every engine's image (spec §3).
+  float rimCoverage(int i, int j, int n) const;
+
   OpenCvIntrinsics openCvIntrinsics() const;
 
  private:

@@ -178,14 +178,18 @@ class GltfBuilder {
     return static_cast<int>(model_.materials.size()) - 1;
   }
 
-  // A node with a rigid transform given in omnicam coordinates.
-  int node(const std::string& name, const Rigid& parentFromNode, int mesh, const nlohmann::json& extras) {
+  // A node with a rigid transform given in omnicam coordinates. `cameraAxes`: the node's own
+  // axes are glTF camera axes (view −Z, up +Y), which no axis conversion applies to, so only
+  // the parent side is converted.
+  int node(const std::string& name, const Rigid& parentFromNode, int mesh, const nlohmann::json& extras,
+           bool cameraAxes = false) {
     tinygltf::Node n;
     n.name = name;
     n.mesh = mesh;
     const Eigen::Matrix3d g = gltfFromOmnicam();
     const Vec3 t = g * parentFromNode.translation();
-    const Eigen::Quaterniond q(g * parentFromNode.linear() * g.transpose());
+    const Eigen::Quaterniond q(cameraAxes ? Eigen::Matrix3d(g * parentFromNode.linear())
+                                          : Eigen::Matrix3d(g * parentFromNode.linear() * g.transpose()));
     if (t.norm() > 0.0) n.translation = {t.x(), t.y(), t.z()};
     if (std::abs(q.w()) < 1.0 - 1e-15) n.rotation = {q.x(), q.y(), q.z(), q.w()};
     if (!extras.is_null()) n.extras = toValue(extras);
@@ -290,8 +294,8 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                            b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
                                   nullptr, maskMaterial, nullptr),
                            nullptr));
-    // Physical pinhole at F looking up: glTF cameras look along −Z with +Y up; here local
-    // X = robot +x (image right), Y = robot −y (image up), Z = robot −z.
+    // Physical pinhole at F looking up: glTF cameras look along −Z with +Y up; in the rig's
+    // (viewpoint) frame the camera's X is robot +x (image right), Y robot −y (image up), Z robot −z.
     tinygltf::Camera cam;
     cam.name = kGltfCameraNode;
     cam.type = "perspective";
@@ -304,7 +308,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     viewpointFromCamera.translate(mirror.pinholeInViewpoint());
     viewpointFromCamera.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
     const int camNode = b.node(kGltfCameraNode, viewpointFromCamera, -1,
-                               {{"omnicam", {{"focal_length_px", camera.physicalFocalLength()}}}});
+                               {{"omnicam", {{"focal_length_px", camera.physicalFocalLength()}}}}, true);
     b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
     b.addChild(rig, camNode);
   }

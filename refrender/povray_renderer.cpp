@@ -6,6 +6,7 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "external_process.h"
+#include "job_folder.h"
 #include "povray_exporter.h"
 
 namespace omnicam {
@@ -13,20 +14,6 @@ namespace omnicam {
 namespace fs = std::filesystem;
 
 namespace {
-
-struct JobFolder {
-  explicit JobFolder(bool keep) : keep_(keep) {
-    std::string pattern = (fs::temp_directory_path() / "omnicam-povray-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw ExternalError("povray: cannot create a job folder in " + fs::temp_directory_path().string());
-    path = pattern;
-  }
-  ~JobFolder() {
-    std::error_code ignored;
-    if (!keep_) fs::remove_all(path, ignored);
-  }
-  std::string path;
-  bool keep_;
-};
 
 // POV-Ray reads $HOME/.povray/3.7/povray.conf; the job's HOME is the job folder.
 void writeRestrictiveConfig(const std::string& jobDir) {
@@ -40,11 +27,11 @@ void writeRestrictiveConfig(const std::string& jobDir) {
 }  // namespace
 
 std::string povrayVersion(const std::string& executable) {
-  JobFolder job(false);
-  writeRestrictiveConfig(job.path);
-  const ProcessResult r = runProcess({executable, "--version"}, job.path, job.path + "/version.log", 30.0);
+  JobFolder job("omnicam-povray", false);
+  writeRestrictiveConfig(job.path());
+  const ProcessResult r = runProcess({executable, "--version"}, job.path(), job.path() + "/version.log", 30.0);
   if (r.exitCode != 0) return "";
-  const std::string tail = tailOfFile(job.path + "/version.log", 200);
+  const std::string tail = tailOfFile(job.path() + "/version.log", 200);
   const size_t at = tail.find("POV-Ray ");
   return at == std::string::npos ? "povray" : tail.substr(at, tail.find('\n', at) - at);
 }
@@ -55,16 +42,14 @@ ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const OmniCamera
   for (int j = 0; j < image.height; ++j)
     for (int i = 0; i < image.width; ++i) {
       float sum[3] = {0, 0, 0};
-      int inside = 0;
       for (int b = 0; b < n; ++b)
         for (int a = 0; a < n; ++a) {
           const float* px = large.at(i * n + a, j * n + b);
           for (int c = 0; c < 3; ++c) sum[c] += px[c];
-          inside += camera.insideRim({i + (a + 0.5) / n, j + (b + 0.5) / n});
         }
       float* out = image.at(i, j);
       for (int c = 0; c < 3; ++c) out[c] = sum[c] * weight;
-      out[3] = static_cast<float>(inside) * weight;
+      out[3] = camera.rimCoverage(i, j, n);
     }
   return image;
 }
@@ -72,16 +57,16 @@ ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const OmniCamera
 ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
                            const PovrayOptions& options) {
   const PovrayJob job = exportPovray(scene, pose, settings);
-  JobFolder folder(options.keepJobFolder);
-  writePovrayJob(job, folder.path);
-  writeRestrictiveConfig(folder.path);
-  const std::string log = folder.path + "/povray.log";
-  const ProcessResult r = runProcess({options.executable, "render.ini"}, folder.path, log, options.timeoutSeconds);
+  JobFolder folder("omnicam-povray", options.keepJobFolder);
+  writePovrayJob(job, folder.path());
+  writeRestrictiveConfig(folder.path());
+  const std::string log = folder.path() + "/povray.log";
+  const ProcessResult r = runProcess({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
   if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + options.executable);
   if (r.timedOut)
     throw ExternalError("povray: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +
                         " s; last output:\n" + r.logTail);
-  const std::string output = folder.path + "/render.exr";
+  const std::string output = folder.path() + "/render.exr";
   if (r.exitCode != 0 || !fs::exists(output))
     throw ExternalError("povray: failed (exit " + std::to_string(r.exitCode) + "); last output:\n" + r.logTail);
   ImageRGBA large;

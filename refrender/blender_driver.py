@@ -1,0 +1,171 @@
+"""omnicam's Blender driver: renders omnicam jobs with Cycles. Fixed script; all data comes from
+the job JSON named after `--` (never Python built from scene strings):
+
+    blender -b --factory-startup -noaudio --python-exit-code 1 -P blender_driver.py -- job.json
+
+job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "width": int,
+           "height": int, "focal_length_px": float, "ambient": float,
+           "lights": [{"name": str, "watts": float}],
+           "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr}]}
+
+The .glb holds the arena and the rig (nodes omnicam_rig > omnicam_mirror, omnicam_rim_mask,
+omnicam_camera); the importer turns glTF's +Y-up into Blender's +Z-up, which is omnicam's world.
+"""
+import json
+import sys
+
+import bpy
+import numpy
+from mathutils import Matrix
+
+# Debian 12 pairs Blender 3.4, whose glTF importer still uses `numpy.bool`, with numpy 1.24,
+# which removed that alias. Restore it (it was exactly the builtin bool).
+if not hasattr(numpy, "bool"):
+    numpy.bool = bool
+
+
+def load_job():
+    argv = sys.argv[sys.argv.index("--") + 1:]
+    with open(argv[0], encoding="utf-8") as f:
+        return json.load(f)
+
+
+def node_tree_material(name):
+    material = bpy.data.materials.new(name)
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    output = nodes.new("ShaderNodeOutputMaterial")
+    return material, nodes, material.node_tree.links, output
+
+
+def perfect_mirror():
+    material, nodes, links, output = node_tree_material("omnicam_perfect_mirror")
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "SHARP"
+    glossy.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    glossy.inputs["Roughness"].default_value = 0.0
+    links.new(glossy.outputs["BSDF"], output.inputs["Surface"])
+    return material
+
+
+def black_emission():
+    material, nodes, links, output = node_tree_material("omnicam_black")
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    emission.inputs["Strength"].default_value = 0.0
+    links.new(emission.outputs["Emission"], output.inputs["Surface"])
+    return material
+
+
+def make_emission_only(material):
+    """unlit (spec §3): radiance = albedo. The albedo is whatever fed the imported Principled
+    BSDF's Base Color (factor × texture), now fed to an Emission of strength 1."""
+    tree = material.node_tree
+    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
+    if principled is None or output is None:
+        return
+    emission = tree.nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = 1.0
+    base = principled.inputs["Base Color"]
+    if base.is_linked:
+        tree.links.new(base.links[0].from_socket, emission.inputs["Color"])
+    else:
+        emission.inputs["Color"].default_value = base.default_value
+    tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
+
+
+def only_camera_sees(obj):
+    obj.visible_diffuse = False
+    obj.visible_glossy = False
+    obj.visible_transmission = False
+    obj.visible_volume_scatter = False
+    obj.visible_shadow = False
+
+
+def main():
+    job = load_job()
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.ops.import_scene.gltf(filepath=job["glb"])
+    scene = bpy.context.scene
+    objects = bpy.data.objects
+    rig, mirror, mask, camera = (objects["omnicam_rig"], objects["omnicam_mirror"], objects["omnicam_rim_mask"],
+                                 objects["omnicam_camera"])
+    unlit = job["shading"] == "unlit"
+
+    if unlit:
+        for material in bpy.data.materials:
+            if material.use_nodes and not material.name.startswith("omnicam_"):
+                make_emission_only(material)
+    mirror.data.materials.clear()
+    mirror.data.materials.append(perfect_mirror())
+    mirror.visible_shadow = False  # the mirror casts no shadow (spec §3)
+    mask.data.materials.clear()
+    mask.data.materials.append(black_emission())
+    only_camera_sees(mask)
+
+    world = bpy.data.worlds.new("omnicam_world")
+    world.use_nodes = True
+    background = world.node_tree.nodes["Background"]
+    ambient = 0.0 if unlit else job.get("ambient", 0.0)
+    background.inputs["Color"].default_value = (ambient, ambient, ambient, 1.0)
+    background.inputs["Strength"].default_value = 1.0
+    scene.world = world
+    for light in job.get("lights", []):
+        obj = objects.get(light["name"])
+        if obj is not None and obj.type == "LIGHT":
+            obj.data.energy = 0.0 if unlit else light["watts"]
+            obj.data.shadow_soft_size = 0.0  # hard shadows
+
+    cam = camera.data
+    cam.type = "PERSP"
+    cam.sensor_fit = "HORIZONTAL"
+    cam.sensor_width = 36.0
+    cam.lens = job["focal_length_px"] * 36.0 / job["width"]
+    cam.shift_x = cam.shift_y = 0.0
+    cam.clip_start = 1e-4
+    cam.clip_end = 1e4
+    scene.camera = camera
+
+    scene.render.engine = "CYCLES"
+    cycles = scene.cycles
+    cycles.device = "CPU"
+    cycles.samples = job["samples"]
+    cycles.use_adaptive_sampling = False
+    cycles.use_denoising = False
+    cycles.seed = job.get("seed", 0)
+    cycles.use_animated_seed = False
+    cycles.pixel_filter_type = "BOX"
+    cycles.filter_width = 1.0
+    cycles.max_bounces = 8
+    cycles.glossy_bounces = 4
+    cycles.diffuse_bounces = 0 if unlit else 2
+    cycles.transmission_bounces = 0
+    cycles.volume_bounces = 0
+    cycles.transparent_max_bounces = 0
+    cycles.sample_clamp_direct = 0.0
+    cycles.sample_clamp_indirect = 0.0
+    cycles.blur_glossy = 0.0
+    scene.render.resolution_x = job["width"]
+    scene.render.resolution_y = job["height"]
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = False
+    scene.render.threads_mode = "AUTO"
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    settings = scene.render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    settings.color_mode = "RGB"
+
+    for frame in job["frames"]:
+        rig.matrix_world = Matrix(frame["world_from_viewpoint"])
+        scene.render.filepath = frame["output"]
+        bpy.ops.render.render(write_still=True)
+        print("omnicam: wrote", frame["output"], flush=True)
+
+
+main()

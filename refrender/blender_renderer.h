@@ -1,0 +1,31 @@
+#pragma once
+// omnicam render --engine blender: exports the scene and the rig as glTF (certified mirror mesh),
+// runs the fixed driver (refrender/blender_driver.py) in headless Blender with Cycles on the
+// CPU — box pixel filter of width 1, fixed seed, no denoising, Standard view transform,
+// emission-only materials for `unlit` — and reads back linear OpenEXR. Cycles samples randomly
+// inside each pixel: results converge to the box-filtered mean as spp grows.
+#include <string>
+#include <vector>
+
+#include "image.h"
+#include "render_settings.h"
+#include "scene.h"
+
+namespace omnicam {
+
+struct BlenderOptions {
+  double timeoutSeconds = 1800.0;
+  std::string executable = "blender";
+  std::string driver;  // default: the repository's refrender/blender_driver.py
+  int seed = 0;
+  bool keepJobFolder = false;
+};
+
+// Renders every pose in one Blender session. Throws ExternalError (missing blender, failure,
+// timeout: with the tail of its output).
+std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
+                                         const RenderSettings& settings, const BlenderOptions& options = {});
+
+std::string blenderVersion(const std::string& executable = "blender");
+
+}  // namespace omnicam
