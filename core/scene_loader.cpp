@@ -7,6 +7,7 @@
 
 #include "camera_path.h"
 #include "errors.h"
+#include "gltf_import.h"
 #include "json_fields.h"
 #include "sha256.h"
 
@@ -38,6 +39,16 @@ const json& requireArray(JsonFields& fields, const std::string& key, bool allowM
   const json& v = fields.raw(key);
   if (!v.is_array()) fields.fail(key, "must be an array (got " + jsonTypeName(v) + ")");
   return v;
+}
+
+// A file named in the scene: relative to the scene's folder, which it must not leave (spec §9).
+fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::string& key, const std::string& name) {
+  const fs::path resolved = fs::weakly_canonical(ctx.folder / name);
+  const auto rel = resolved.lexically_relative(fs::weakly_canonical(ctx.folder));
+  if (rel.empty() || *rel.begin() == "..")
+    fields.fail(key, "must stay inside the scene's folder (got \"" + name + "\")");
+  if (!fs::is_regular_file(resolved)) fields.fail(key, "file not found: " + resolved.string());
+  return resolved;
 }
 
 RigSpec readRig(JsonFields rig) {
@@ -83,13 +94,7 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   mat.diffuse = static_cast<float>(m.nonNegative("diffuse", mat.diffuse));
   if (auto tex = m.optionalObject("texture")) {
     mat.texturePath = tex->string("file");
-    const fs::path resolved = fs::weakly_canonical(ctx.folder / mat.texturePath);
-    const fs::path folder = fs::weakly_canonical(ctx.folder);
-    const auto rel = resolved.lexically_relative(folder);
-    if (rel.empty() || *rel.begin() == "..")
-      tex->fail("file", "must stay inside the scene's folder (got \"" + mat.texturePath + "\")");
-    if (!fs::is_regular_file(resolved))
-      tex->fail("file", "texture file not found: " + resolved.string());
+    const fs::path resolved = resolveInside(ctx, *tex, "file", mat.texturePath);
     try {
       mat.texture = Texture::load(resolved.string());
     } catch (const InputError& e) {
@@ -234,7 +239,6 @@ Scene loadScene(const std::string& file) {
     scene.materials.push_back(readMaterial(it.key(), materials.object(it.key()), ctx));
   }
   materials.finish();
-  if (scene.materials.empty()) top.fail("materials", "must define at least one material");
 
   static const json empty = json::array();
   const json& objects = requireArray(top, "objects", false, empty);
@@ -243,6 +247,29 @@ Scene loadScene(const std::string& file) {
     JsonFields o(objects[i], file, indexed("objects", i));
     SceneObject obj;
     obj.name = o.string("name", indexed("object", i));
+    if (o.has("type") && o.raw("type") == "gltf") {
+      // An arena authored elsewhere: its meshes and materials join the scene.
+      o.string("type");
+      const std::string gltfFile = o.string("file");
+      GltfArena arena;
+      try {
+        arena = importGltf(resolveInside(ctx, o, "file", gltfFile).string());
+      } catch (const InputError& e) {
+        o.fail("file", e.what());
+      }
+      const int offset = static_cast<int>(scene.materials.size());
+      for (Material& m : arena.materials) {
+        m.name = obj.name + "/" + m.name;
+        scene.materials.push_back(std::move(m));
+      }
+      for (SceneObject& imported : arena.objects) {
+        imported.name = obj.name + "/" + imported.name;
+        imported.material += offset;
+        scene.objects.push_back(std::move(imported));
+      }
+      o.finish();
+      continue;
+    }
     const std::string materialName = o.string("material");
     auto m = ctx.materialIndex.find(materialName);
     if (m == ctx.materialIndex.end()) o.fail("material", "no material named \"" + materialName + "\"");
@@ -251,6 +278,8 @@ Scene loadScene(const std::string& file) {
     o.finish();
     scene.objects.push_back(std::move(obj));
   }
+
+  if (scene.materials.empty()) top.fail("materials", "must define at least one material");
 
   const json& lights = requireArray(top, "lights", true, empty);
   for (size_t i = 0; i < lights.size(); ++i) {

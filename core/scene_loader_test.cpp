@@ -88,7 +88,7 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
             file + ": objects[0].center: must be an array of 3 numbers");
   const std::string missingTexture =
       R"({"format": "omnicam-scene/1", "materials": {"m": {"texture": {"file": "nope.png"}}}, "objects": []})";
-  EXPECT_NE(load(missingTexture).find(file + ": materials.m.texture.file: texture file not found"),
+  EXPECT_NE(load(missingTexture).find(file + ": materials.m.texture.file: file not found"),
             std::string::npos);
   const std::string escaping =
       R"({"format": "omnicam-scene/1", "materials": {"m": {"texture": {"file": "../../etc/passwd"}}}, "objects": []})";
