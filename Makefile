@@ -20,6 +20,11 @@ deps:
 	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get update -q && \
 	  $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(DEBIAN_PACKAGES); \
 	else echo "make deps: all Debian packages present"; fi
+	@# The Khronos glTF validator (npm), pinned by tools/gltf-validator/package-lock.json.
+	@if [ ! -d tools/gltf-validator/node_modules/gltf-validator ]; then \
+	  command -v npm >/dev/null || $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q nodejs npm; \
+	  npm ci --prefix tools/gltf-validator --no-audit --no-fund; \
+	else echo "make deps: glTF validator present"; fi
 
 $(BUILD_DIR)/CMakeCache.txt:
 	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release

@@ -76,6 +76,29 @@ def make_emission_only(material):
     tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
 
 
+def ambient_world(ambient):
+    """The spec's ambient term as uniform light from the sky, for diffuse rays only: seen
+    directly or in the mirror the sky stays black, as in the other engines."""
+    world = bpy.data.worlds.new("omnicam_world")
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    lit = nodes["Background"]
+    lit.inputs["Color"].default_value = (ambient, ambient, ambient, 1.0)
+    black = nodes.new("ShaderNodeBackground")
+    black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    path = nodes.new("ShaderNodeLightPath")
+    seen = nodes.new("ShaderNodeMath")
+    seen.operation = "MAXIMUM"
+    links.new(path.outputs["Is Camera Ray"], seen.inputs[0])
+    links.new(path.outputs["Is Glossy Ray"], seen.inputs[1])
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(seen.outputs["Value"], mix.inputs["Fac"])
+    links.new(lit.outputs["Background"], mix.inputs[1])
+    links.new(black.outputs["Background"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], nodes["World Output"].inputs["Surface"])
+    return world
+
+
 def only_camera_sees(obj):
     obj.visible_diffuse = False
     obj.visible_glossy = False
@@ -105,13 +128,7 @@ def main():
     mask.data.materials.append(black_emission())
     only_camera_sees(mask)
 
-    world = bpy.data.worlds.new("omnicam_world")
-    world.use_nodes = True
-    background = world.node_tree.nodes["Background"]
-    ambient = 0.0 if unlit else job.get("ambient", 0.0)
-    background.inputs["Color"].default_value = (ambient, ambient, ambient, 1.0)
-    background.inputs["Strength"].default_value = 1.0
-    scene.world = world
+    scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0))
     for light in job.get("lights", []):
         obj = objects.get(light["name"])
         if obj is not None and obj.type == "LIGHT":

@@ -225,6 +225,21 @@ TEST_F(CliTest, PovrayFailuresExitThreeWithItsOutputAndWriteNothing) {
   }
 }
 
+TEST_F(CliTest, BlenderFailuresExitThreeWithItsOutputAndWriteNothing) {
+  const std::string out = path("b.exr");
+  const std::string script = path("fake-blender");
+  std::ofstream(script) << "#!/bin/sh\necho 'Error: Python: Traceback (most recent call last)' >&2\nexit 1\n";
+  fs::permissions(script, fs::perms::owner_all);
+  for (const auto& [env, message] : std::vector<std::pair<std::string, std::string>>{
+           {"OMNICAM_BLENDER=/nonexistent/blender", "blender: not found"},
+           {"OMNICAM_BLENDER=" + script, "Error: Python: Traceback"}}) {
+    const CommandResult r = run("render " + kScene + " --engine blender --size 32 -o " + out, env);
+    EXPECT_EQ(r.code, 3) << env << "\n" << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << env << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(out)) << env;
+  }
+}
+
 TEST_F(CliTest, CompareGivesPassFailLinesExitCodesAndADiffImage) {
   const std::string a = path("a.exr"), b = path("b.exr"), c = path("c.png");
   ASSERT_EQ(run("render " + kScene + " --size 64 -o " + a).code, 0);
