@@ -1,6 +1,7 @@
 #include "engines.h"
 
 #include <cstdlib>
+#include <optional>
 
 #include "errors.h"
 #include "blender_renderer.h"
@@ -13,15 +14,20 @@ namespace {
 
 class FastEngine : public Engine {
  public:
-  explicit FastEngine(const Scene& scene) : renderer_(scene) {}
+  FastEngine(const Scene& scene, const CubeMapOptions* mode) : renderer_(scene), cubemap_(renderer_) {
+    if (mode) mode_ = *mode;
+  }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
-    return renderer_.render(pose, settings);
+    if (!mode_) return renderer_.render(pose, settings);
+    return cubemap_.render(pose, settings, *mode_);
   }
   std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }
 
  private:
   FastRenderer renderer_;
+  CubeMapRenderer cubemap_;
+  std::optional<CubeMapOptions> mode_;
 };
 
 class PovrayEngine : public Engine {
@@ -70,8 +76,22 @@ class BlenderEngine : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds) {
-  if (name == "fast") return std::make_unique<FastEngine>(scene);
+std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons) {
+  if (mode == "exact") return nullptr;
+  auto options = std::make_unique<CubeMapOptions>();
+  options->faces = faces;
+  options->faceSize = faceSize;
+  options->polygons = polygons;
+  if (mode == "cubemap") options->mode = OmniMode::CubeMap;
+  else if (mode == "thesis-mesh") options->mode = OmniMode::ThesisMesh;
+  else throw InputError("--mode: must be exact, cubemap or thesis-mesh (got \"" + mode + "\")");
+  return options;
+}
+
+std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds,
+                                   const CubeMapOptions* mode) {
+  if (name == "fast") return std::make_unique<FastEngine>(scene, mode);
+  if (mode) throw InputError("--mode: only the fast engine has modes other than exact");
   if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds);
   if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds);
   throw InputError("--engine: \"" + name + "\" is not available (fast, povray, blender)");

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "cubemap_renderer.h"
 #include "image.h"
 #include "render_settings.h"
 #include "scene.h"
@@ -17,7 +18,11 @@ class Engine {
   virtual std::string version() const = 0;
 };
 
-// Throws InputError for an unknown engine name. `scene` must outlive the engine.
-std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds = 600.0);
+// Throws InputError for an unknown engine name, or a mode other than exact for an engine other
+// than fast. `scene` must outlive the engine.
+std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds = 600.0,
+                                   const CubeMapOptions* mode = nullptr);
+// "exact", "cubemap" or "thesis-mesh" → options (InputError otherwise); nullptr for exact.
+std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons);
 
 }  // namespace omnicam::cli

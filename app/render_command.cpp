@@ -18,13 +18,13 @@ namespace {
 
 struct RenderArgs {
   std::string scene, engine = "fast", pose, path, size, shading = "unlit", mode = "exact", out, format = "png";
-  int frames = 0, spp = 1, imageSize = 0;
+  int frames = 0, spp = 1, imageSize = 0, faces = 6, faceSize = 512, polygons = 1024;
   double timeout = 600.0;
 };
 
 void runRender(const RenderArgs& a) {
   // Validate everything before anything is written.
-  if (a.mode != "exact") throw InputError("--mode: \"" + a.mode + "\" is not available in this build (available: exact)");
+  const auto mode = parseMode(a.mode, a.faces, a.faceSize, a.polygons);
   const auto shading = parseShading(a.shading);
   if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
@@ -38,7 +38,7 @@ void runRender(const RenderArgs& a) {
   if (a.imageSize) settings.rig.imageSize = a.imageSize;
   settings.spp = a.spp;
   settings.shading = *shading;
-  const auto engine = makeEngine(a.engine, scene, a.timeout);
+  const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
 
   if (a.path.empty()) {
     RobotPose pose = scene.startPose;
@@ -93,7 +93,10 @@ void addRenderCommand(CLI::App& app) {
       ->check(CLI::Range(8, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n on a regular grid");
   cmd->add_option("--shading", args->shading, "unlit or lit");
-  cmd->add_option("--mode", args->mode, "exact");
+  cmd->add_option("--mode", args->mode, "exact, cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
+  cmd->add_option("--faces", args->faces, "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default 6)");
+  cmd->add_option("--face-size", args->faceSize, "cubemap/thesis-mesh: texels per face edge (default 512)");
+  cmd->add_option("--polygons", args->polygons, "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default 1024)");
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
   cmd->add_option("-o,--output", args->out, "OUT.png / OUT.exr, or a folder with --path")->required();
   cmd->callback([args] { runRender(*args); });

@@ -1,0 +1,277 @@
+#include "cubemap_renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <cmath>
+
+#include "errors.h"
+
+namespace omnicam {
+
+namespace {
+
+// Faces in the viewpoint frame (z up): forward, right, up; direction ∝ f + s·r + t·u.
+struct Face {
+  Vec3 f, r, u;
+};
+const std::array<Face, 6> kFaces = [] {
+  std::array<Face, 6> faces;
+  const Vec3 dirs[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), -Vec3::UnitZ(), Vec3::UnitZ()};
+  for (int k = 0; k < 6; ++k) {
+    const Vec3 up = k < 4 ? Vec3::UnitZ() : Vec3::UnitX();
+    faces[k] = {dirs[k], dirs[k].cross(up), up};
+  }
+  return faces;
+}();
+constexpr int kUpFace = 5;  // the face the thesis' five cameras lack
+
+int faceOf(const Vec3& d) {
+  const Vec3 a = d.cwiseAbs();
+  if (a.x() >= a.y() && a.x() >= a.z()) return d.x() > 0 ? 0 : 1;
+  if (a.y() >= a.z()) return d.y() > 0 ? 2 : 3;
+  return d.z() < 0 ? 4 : 5;
+}
+
+Eigen::Vector2d faceCoordinates(int face, const Vec3& d) {
+  const Face& F = kFaces[face];
+  const double w = d.dot(F.f);
+  return {d.dot(F.r) / w, d.dot(F.u) / w};
+}
+
+}  // namespace
+
+struct CubeMapRenderer::Lookup {
+  RigSpec rig;
+  int spp = 0;
+  CubeMapOptions options;
+  int padded = 0;  // faceSize + 2 (one border texel each side)
+  struct Sample {
+    uint32_t texel;  // top-left texel of the bilinear footprint in the face atlas; UINT32_MAX = black
+    float fx, fy;
+  };
+  std::vector<uint32_t> firstSample;  // per pixel (+1 sentinel)
+  std::vector<Sample> samples;
+  std::vector<uint32_t> usedTexels;   // atlas indices to render
+  long missed = 0;
+
+  Vec3 texelDirection(uint32_t texel) const {
+    const int face = static_cast<int>(texel / (padded * padded));
+    const int rest = static_cast<int>(texel % (padded * padded));
+    const int x = rest % padded, y = rest / padded;
+    const int n = options.faceSize;
+    const double s = ((x - 1) + 0.5) / n * 2.0 - 1.0, t = 1.0 - ((y - 1) + 0.5) / n * 2.0;
+    const Face& F = kFaces[face];
+    return (F.f + s * F.r + t * F.u).normalized();
+  }
+};
+
+bool thesisMeshLayout(int polygons, int& sectors, int& rings) {
+  for (int k = 0; k < 4; ++k)
+    if (polygons == 16 << (2 * k)) {
+      sectors = 8 << k;
+      rings = 2 << k;
+      return true;
+    }
+  return false;
+}
+
+namespace {
+
+// The thesis mesh: vertex (ring, sector) on the exact mirror at radius rimRadius·ring/rings.
+struct ThesisMesh {
+  int sectors = 0, rings = 0;
+  std::vector<Vec3> vertices;  // viewpoint frame; [0] = apex, then ring-major
+  Vec3 vertex(int ring, int sector) const {
+    if (ring == 0) return vertices[0];
+    return vertices[1 + (ring - 1) * sectors + ((sector % sectors) + sectors) % sectors];
+  }
+};
+
+ThesisMesh buildThesisMesh(const HyperbolicMirror& m, double rimTheta, int sectors, int rings) {
+  const Vec3 rim = *m.pointAlong(Vec3(std::sin(rimTheta), 0.0, -std::cos(rimTheta)));
+  ThesisMesh mesh{sectors, rings, {}};
+  auto z = [&](double r) { return m.a() * std::sqrt(1.0 + r * r / m.b2()) - m.c() / 2.0; };
+  mesh.vertices.push_back({0.0, 0.0, z(0.0)});
+  for (int ring = 1; ring <= rings; ++ring) {
+    const double r = rim.x() * ring / rings;
+    for (int s = 0; s < sectors; ++s) {
+      const double phi = 2.0 * kPi * s / sectors;
+      mesh.vertices.push_back({r * std::cos(phi), r * std::sin(phi), ring == rings ? rim.z() : z(r)});
+    }
+  }
+  return mesh;
+}
+
+// Möller–Trumbore: barycentrics (b1, b2) of the hit of o + t·d with triangle (a, b, c).
+bool hitTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double& b1, double& b2) {
+  const Vec3 e1 = b - a, e2 = c - a, p = d.cross(e2);
+  const double det = e1.dot(p);
+  if (std::abs(det) < 1e-30) return false;
+  const Vec3 s = o - a;
+  b1 = s.dot(p) / det;
+  const Vec3 q = s.cross(e1);
+  b2 = d.dot(q) / det;
+  const double eps = 1e-12;
+  return b1 >= -eps && b2 >= -eps && b1 + b2 <= 1.0 + eps && e2.dot(q) / det > 0.0;
+}
+
+}  // namespace
+
+std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,
+                                                                       const CubeMapOptions& o) const {
+  if (o.faces != 5 && o.faces != 6) throw InputError("--faces: must be 5 or 6 (got " + std::to_string(o.faces) + ")");
+  if (o.faceSize < 8 || o.faceSize > 8192) throw InputError("--face-size: must be in [8, 8192]");
+  int sectors = 0, rings = 0;
+  if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
+    throw InputError("--polygons: must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+  const auto n = samplesPerAxis(settings.spp);
+  if (!n) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(settings.spp) + ")");
+  std::lock_guard<std::mutex> lock(mutex_);
+  const RigSpec& r = settings.rig;
+  if (cached_ && cached_->spp == settings.spp && cached_->options.mode == o.mode && cached_->options.faces == o.faces &&
+      cached_->options.faceSize == o.faceSize && cached_->options.polygons == o.polygons && cached_->rig.k == r.k &&
+      cached_->rig.c == r.c && cached_->rig.rimElevationDeg == r.rimElevationDeg && cached_->rig.imageSize == r.imageSize &&
+      cached_->rig.framingElevationDeg == r.framingElevationDeg)
+    return cached_;
+
+  auto L = std::make_shared<Lookup>();
+  L->rig = r;
+  L->spp = settings.spp;
+  L->options = o;
+  L->padded = o.faceSize + 2;
+  const OmniCamera camera = r.camera();
+  const Rigid viewpointFromCamera = cameraFromViewpoint().inverse();
+  const HyperbolicMirror mirror = r.mirror();
+  ThesisMesh mesh;
+  if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(mirror, camera.rimTheta(), sectors, rings);
+  const Vec3 pinhole = mirror.pinholeInViewpoint();
+  const double f = camera.physicalFocalLength();
+  std::vector<char> used(static_cast<size_t>(6) * L->padded * L->padded, 0);
+
+  auto toSample = [&](int face, const Eigen::Vector2d& st) -> Lookup::Sample {
+    if (face == kUpFace && o.faces == 5) return {UINT32_MAX, 0.0f, 0.0f};
+    if (!std::isfinite(st.x()) || !std::isfinite(st.y())) return {UINT32_MAX, 0.0f, 0.0f};
+    const double s = std::clamp(st.x(), -1.0, 1.0), t = std::clamp(st.y(), -1.0, 1.0);
+    const double X = (s + 1.0) / 2.0 * o.faceSize - 0.5 + 1.0, Y = (1.0 - t) / 2.0 * o.faceSize - 0.5 + 1.0;
+    const int x0 = static_cast<int>(std::floor(X)), y0 = static_cast<int>(std::floor(Y));
+    const uint32_t texel = static_cast<uint32_t>(face * L->padded * L->padded + y0 * L->padded + x0);
+    for (uint32_t dy : {0u, static_cast<uint32_t>(L->padded)})
+      for (uint32_t dx : {0u, 1u}) used[texel + dy + dx] = 1;
+    return {texel, static_cast<float>(X - x0), static_cast<float>(Y - y0)};
+  };
+
+  for (int j = 0; j < camera.height(); ++j)
+    for (int i = 0; i < camera.width(); ++i) {
+      L->firstSample.push_back(static_cast<uint32_t>(L->samples.size()));
+      for (int b = 0; b < *n; ++b)
+        for (int a = 0; a < *n; ++a) {
+          const Vec2 raster(i + (a + 0.5) / *n, j + (b + 0.5) / *n);
+          if (!camera.insideRim(raster)) continue;
+          if (o.mode == OmniMode::CubeMap) {
+            const Vec3 d = viewpointFromCamera.linear() * camera.cameraFromRaster(raster);
+            const int face = faceOf(d);
+            L->missed += face == kUpFace && o.faces == 5;
+            L->samples.push_back(toSample(face, faceCoordinates(face, d)));
+            continue;
+          }
+          // thesis-mesh: the physical camera's ray hits a flat mesh triangle; UVs interpolate
+          // linearly across it, on the face of the interpolated direction.
+          const Vec3 ray((raster.x() - 0.5 * camera.width()) / f, (raster.y() - 0.5 * camera.height()) / f, 1.0);
+          double phi = std::atan2(ray.y(), ray.x());
+          if (phi < 0) phi += 2.0 * kPi;
+          const int sector = std::min(sectors - 1, static_cast<int>(phi / (2.0 * kPi) * sectors));
+          bool found = false;
+          for (int ring = 0; ring < rings && !found; ++ring) {
+            Vec3 tri[2][3];
+            int count = 0;
+            if (ring == 0) {
+              tri[count][0] = mesh.vertex(0, 0), tri[count][1] = mesh.vertex(1, sector), tri[count][2] = mesh.vertex(1, sector + 1);
+              ++count;
+            } else {
+              const Vec3 a0 = mesh.vertex(ring, sector), a1 = mesh.vertex(ring, sector + 1);
+              const Vec3 b0 = mesh.vertex(ring + 1, sector), b1 = mesh.vertex(ring + 1, sector + 1);
+              tri[0][0] = a0, tri[0][1] = b0, tri[0][2] = b1;
+              tri[1][0] = a0, tri[1][1] = b1, tri[1][2] = a1;
+              count = 2;
+            }
+            for (int k = 0; k < count && !found; ++k) {
+              double u1, u2;
+              if (!hitTriangle(pinhole, ray, tri[k][0], tri[k][1], tri[k][2], u1, u2)) continue;
+              found = true;
+              const double u0 = 1.0 - u1 - u2;
+              const Vec3 d = u0 * tri[k][0].normalized() + u1 * tri[k][1].normalized() + u2 * tri[k][2].normalized();
+              const int face = faceOf(d);
+              if (face == kUpFace && o.faces == 5) {
+                ++L->missed;
+                L->samples.push_back({UINT32_MAX, 0.0f, 0.0f});
+                break;
+              }
+              // A vertex behind this face's plane has no coordinates on it (the thesis split such
+              // polygons at face seams); there the sample takes its own direction's coordinates.
+              const Vec3& f0 = kFaces[face].f;
+              const bool allInFront = tri[k][0].dot(f0) > 0 && tri[k][1].dot(f0) > 0 && tri[k][2].dot(f0) > 0;
+              const Eigen::Vector2d st = allInFront ? Eigen::Vector2d(u0 * faceCoordinates(face, tri[k][0]) +
+                                                                      u1 * faceCoordinates(face, tri[k][1]) +
+                                                                      u2 * faceCoordinates(face, tri[k][2]))
+                                                    : faceCoordinates(face, d);
+              L->samples.push_back(toSample(face, st));
+            }
+          }
+          if (!found) L->samples.push_back({UINT32_MAX, 0.0f, 0.0f});  // between the polygon and the rim circle
+        }
+    }
+  L->firstSample.push_back(static_cast<uint32_t>(L->samples.size()));
+  for (uint32_t t = 0; t < used.size(); ++t)
+    if (used[t]) L->usedTexels.push_back(t);
+  cached_ = L;
+  return cached_;
+}
+
+CubeLookupStats CubeMapRenderer::stats(const RenderSettings& settings, const CubeMapOptions& options) const {
+  const auto L = lookup(settings, options);
+  return {static_cast<long>(L->samples.size()), L->missed, static_cast<long>(L->usedTexels.size())};
+}
+
+ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings,
+                                  const CubeMapOptions& options) const {
+  const std::shared_ptr<const Lookup> L = lookup(settings, options);
+  const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
+  const Vec3 origin = worldFromViewpoint.translation();
+  const Eigen::Matrix3d rotation = worldFromViewpoint.linear();
+  // 1. The referenced face texels, ray cast from F' like exact mode.
+  std::vector<Vec3f> atlas(static_cast<size_t>(6) * L->padded * L->padded, Vec3f::Zero());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, L->usedTexels.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const uint32_t texel = L->usedTexels[k];
+      atlas[texel] = renderer_.radiance(origin, rotation * L->texelDirection(texel), settings.shading);
+    }
+  });
+  // 2. Every omni sample from its precomputed bilinear footprint.
+  const int width = settings.rig.imageSize, height = width;
+  const int n = *samplesPerAxis(settings.spp);
+  const float weight = 1.0f / static_cast<float>(n * n);
+  const OmniCamera camera = settings.rig.camera();
+  ImageRGBA image(width, height);
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < width; ++i) {
+        const size_t pixel = static_cast<size_t>(j) * width + i;
+        Vec3f sum = Vec3f::Zero();
+        for (uint32_t s = L->firstSample[pixel]; s < L->firstSample[pixel + 1]; ++s) {
+          const Lookup::Sample& q = L->samples[s];
+          if (q.texel == UINT32_MAX) continue;
+          const Vec3f top = (1.0f - q.fx) * atlas[q.texel] + q.fx * atlas[q.texel + 1];
+          const Vec3f bottom = (1.0f - q.fx) * atlas[q.texel + L->padded] + q.fx * atlas[q.texel + L->padded + 1];
+          sum += (1.0f - q.fy) * top + q.fy * bottom;
+        }
+        float* px = image.at(i, j);
+        for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
+        px[3] = camera.rimCoverage(i, j, n);
+      }
+  });
+  return image;
+}
+
+}  // namespace omnicam

@@ -1,0 +1,58 @@
+#pragma once
+// The thesis' method as a mode of the fast renderer (thesis §3.1.3, spec §4):
+//
+//   cubemap      — render 90° cube faces from the effective viewpoint (five: four horizontal
+//                  plus down, as the thesis; or six), then fill every omni sample from a
+//                  precomputed lookup (exact direction → face texel, bilinear). Each face carries
+//                  a one-texel border rendered in its own directions, so bilinear filtering never
+//                  crosses a face edge and there are no seams. With five faces, directions whose
+//                  major axis is "up" are black, as in the thesis.
+//   thesis-mesh  — the thesis' mirror mesh (8·2^k sectors × 2·2^k rings = 16…1024 polygons,
+//                  vertices on the exact mirror) seen by the physical camera; each sample's
+//                  cube-face coordinates are interpolated *linearly* across the mesh triangle
+//                  it hits, as Unreal's UV mapping did — reproducing thesis Fig. 3.4's distortions.
+//
+// Both lookups depend only on the rig, spp and these options: they are built once and cached.
+// Only face texels that some lookup references are rendered (ray cast like exact mode).
+#include <memory>
+#include <mutex>
+
+#include "fast_renderer.h"
+
+namespace omnicam {
+
+enum class OmniMode { Exact, CubeMap, ThesisMesh };
+
+struct CubeMapOptions {
+  OmniMode mode = OmniMode::CubeMap;
+  int faces = 6;         // 5 (thesis) or 6
+  int faceSize = 512;    // texels per face edge
+  int polygons = 1024;   // thesis-mesh: 16, 64, 256 or 1024
+};
+
+struct CubeLookupStats {
+  long samples = 0;        // samples inside the rim
+  long missedSamples = 0;  // with five faces: samples looking above every face (black)
+  long texelsRendered = 0;
+};
+
+class CubeMapRenderer {
+ public:
+  explicit CubeMapRenderer(const FastRenderer& renderer) : renderer_(renderer) {}
+  // Throws InputError for bad options (faces, faceSize, polygons, spp).
+  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options) const;
+  CubeLookupStats stats(const RenderSettings& settings, const CubeMapOptions& options) const;
+
+  struct Lookup;
+
+ private:
+  std::shared_ptr<const Lookup> lookup(const RenderSettings& settings, const CubeMapOptions& options) const;
+  const FastRenderer& renderer_;
+  mutable std::mutex mutex_;  // guards the cached pointer; lookups are immutable
+  mutable std::shared_ptr<const Lookup> cached_;
+};
+
+// Polygon counts the thesis used and their sectors × rings.
+bool thesisMeshLayout(int polygons, int& sectors, int& rings);
+
+}  // namespace omnicam
