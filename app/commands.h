@@ -10,6 +10,7 @@ void addRingsCommand(CLI::App& app);
 void addProjectCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
+void addStudyCommand(CLI::App& app);
 // Sets exitCode to 1 when a threshold fails.
 void addCompareCommand(CLI::App& app, int& exitCode);
 

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addProjectCommand(app);
   omnicam::cli::addDemoCommand(app);
   omnicam::cli::addExportCommand(app);
+  omnicam::cli::addStudyCommand(app);
   int exitCode = 0;
   omnicam::cli::addCompareCommand(app, exitCode);
   try {

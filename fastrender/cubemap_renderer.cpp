@@ -202,20 +202,28 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
               found = true;
               const double u0 = 1.0 - u1 - u2;
               const Vec3 d = u0 * tri[k][0].normalized() + u1 * tri[k][1].normalized() + u2 * tri[k][2].normalized();
-              const int face = faceOf(d);
+              // The thesis split polygons at face seams, so each piece is mapped linearly within
+              // one face: use a face on which the linearly interpolated coordinates fall inside
+              // (the sample's own direction's face first, then those of the vertices).
+              int face = faceOf(d);
+              Eigen::Vector2d st = faceCoordinates(face, d);
+              for (int candidate : {faceOf(d), faceOf(tri[k][0]), faceOf(tri[k][1]), faceOf(tri[k][2])}) {
+                const Vec3& fc = kFaces[candidate].f;
+                if (tri[k][0].dot(fc) <= 0 || tri[k][1].dot(fc) <= 0 || tri[k][2].dot(fc) <= 0) continue;
+                const Eigen::Vector2d linear = u0 * faceCoordinates(candidate, tri[k][0]) +
+                                               u1 * faceCoordinates(candidate, tri[k][1]) +
+                                               u2 * faceCoordinates(candidate, tri[k][2]);
+                if (linear.cwiseAbs().maxCoeff() <= 1.0) {
+                  face = candidate;
+                  st = linear;
+                  break;
+                }
+              }
               if (face == kUpFace && o.faces == 5) {
                 ++L->missed;
                 L->samples.push_back({UINT32_MAX, 0.0f, 0.0f});
                 break;
               }
-              // A vertex behind this face's plane has no coordinates on it (the thesis split such
-              // polygons at face seams); there the sample takes its own direction's coordinates.
-              const Vec3& f0 = kFaces[face].f;
-              const bool allInFront = tri[k][0].dot(f0) > 0 && tri[k][1].dot(f0) > 0 && tri[k][2].dot(f0) > 0;
-              const Eigen::Vector2d st = allInFront ? Eigen::Vector2d(u0 * faceCoordinates(face, tri[k][0]) +
-                                                                      u1 * faceCoordinates(face, tri[k][1]) +
-                                                                      u2 * faceCoordinates(face, tri[k][2]))
-                                                    : faceCoordinates(face, d);
               L->samples.push_back(toSample(face, st));
             }
           }
