@@ -1,0 +1,124 @@
+#include "views.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+
+#include "errors.h"
+
+namespace omnicam {
+
+namespace {
+
+constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
+
+// Omni raster position of a robot-frame direction (x forward, y left, z up), or none.
+bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant variant, float& x, float& y) {
+  const double theta = std::acos(std::clamp(-d.z() / d.norm(), -1.0, 1.0));  // from straight down
+  if (theta > camera.rimTheta()) return false;
+  const double phi = std::atan2(d.y(), d.x());
+  // Eq. 3.4–3.5: ρ sinθ = h sinθ / (1 + cosθ); exact: r(θ) of spec §2.
+  const double r = variant == ViewVariant::Thesis ? camera.horizonRadius() * std::sin(theta) / (1.0 + std::cos(theta))
+                                                  : camera.radiusOfTheta(theta);
+  x = static_cast<float>(camera.centre().x() + r * std::cos(phi));  // u along robot +x
+  y = static_cast<float>(camera.centre().y() + r * std::sin(phi));  // v along robot +y
+  return true;
+}
+
+}  // namespace
+
+ViewKind parseViewKind(const std::string& name) {
+  if (name == "birdseye") return ViewKind::BirdsEye;
+  if (name == "panorama") return ViewKind::Panorama;
+  if (name == "perspective") return ViewKind::Perspective;
+  throw InputError("--as: must be birdseye, panorama or perspective (got \"" + name + "\")");
+}
+
+ViewVariant parseViewVariant(const std::string& name) {
+  if (name == "thesis") return ViewVariant::Thesis;
+  if (name == "exact") return ViewVariant::Exact;
+  throw InputError("--variant: must be thesis or exact (got \"" + name + "\")");
+}
+
+ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
+  ViewMap map;
+  const int defaultW = spec.kind == ViewKind::Panorama ? 1080 : 400;
+  const int defaultH = spec.kind == ViewKind::Panorama ? 300 : spec.kind == ViewKind::Perspective ? 300 : 400;
+  map.width = spec.width ? spec.width : defaultW;
+  map.height = spec.height ? spec.height : defaultH;
+  if (map.width < 1 || map.height < 1 || map.width > 16384 || map.height > 16384)
+    throw InputError("--size: view size must be in [1, 16384]");
+  if (spec.kind == ViewKind::BirdsEye && !(spec.groundDistance > 0.0)) throw InputError("--zw: must be > 0");
+  if (spec.kind == ViewKind::Perspective && !(spec.fovDeg > 0.0 && spec.fovDeg < 179.0))
+    throw InputError("--fov: must be in (0, 179) degrees");
+  map.sourceX.assign(static_cast<size_t>(map.width) * map.height, kNone);
+  map.sourceY = map.sourceX;
+  const double tanHalf = std::tan(radians(spec.fovDeg) / 2.0);
+  const Eigen::Matrix3d robotFromView =
+      (Eigen::AngleAxisd(radians(spec.yawDeg), Vec3::UnitZ()) * Eigen::AngleAxisd(-radians(spec.pitchDeg), Vec3::UnitY()))
+          .toRotationMatrix();
+  for (int j = 0; j < map.height; ++j)
+    for (int i = 0; i < map.width; ++i) {
+      const double u = i + 0.5, v = j + 0.5;
+      const size_t k = static_cast<size_t>(j) * map.width + i;
+      float x = kNone, y = kNone;
+      switch (spec.kind) {
+        case ViewKind::BirdsEye: {
+          // Eq. 3.3 with the ground point (x_w, y_w, z_w) in pixel units, z_w below F'.
+          const Vec3 d(u - 0.5 * map.width, 0.5 * map.height - v, -spec.groundDistance);
+          rasterOfDirection(camera, d, spec.variant, x, y);
+          break;
+        }
+        case ViewKind::Panorama: {
+          const double phi = kPi - 2.0 * kPi * u / map.width;
+          const double row = v / map.height;  // 0 at the top (rim), 1 at the bottom (centre)
+          double r;
+          if (spec.variant == ViewVariant::Thesis) {
+            r = camera.rimRadius() * (1.0 - row);  // Eqs. 3.6–3.7: linear in the radius
+          } else {
+            r = camera.radiusOfTheta(camera.rimTheta() * (1.0 - row));  // linear in θ
+          }
+          x = static_cast<float>(camera.centre().x() + r * std::cos(phi));
+          y = static_cast<float>(camera.centre().y() + r * std::sin(phi));
+          break;
+        }
+        case ViewKind::Perspective: {
+          // View frame: forward +x, left +y, up +z; image right = −y, image down = −z.
+          const double sx = (2.0 * u / map.width - 1.0) * tanHalf;
+          const double sy = (2.0 * v / map.height - 1.0) * tanHalf * map.height / map.width;
+          rasterOfDirection(camera, robotFromView * Vec3(1.0, -sx, -sy), ViewVariant::Exact, x, y);
+          break;
+        }
+      }
+      map.sourceX[k] = x;
+      map.sourceY[k] = y;
+    }
+  return map;
+}
+
+ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni) {
+  ImageRGBA out(map.width, map.height);
+  tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < map.width; ++i) {
+        const size_t k = static_cast<size_t>(j) * map.width + i;
+        const float sx = map.sourceX[k] - 0.5f, sy = map.sourceY[k] - 0.5f;
+        float* o = out.at(i, j);
+        if (std::isnan(sx)) continue;
+        const int x0 = static_cast<int>(std::floor(sx)), y0 = static_cast<int>(std::floor(sy));
+        const float fx = sx - x0, fy = sy - y0;
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dx = 0; dx < 2; ++dx) {
+            const int xi = std::clamp(x0 + dx, 0, omni.width - 1), yi = std::clamp(y0 + dy, 0, omni.height - 1);
+            const float w = (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy);
+            const float* p = omni.at(xi, yi);
+            for (int c = 0; c < 4; ++c) o[c] += w * p[c];
+          }
+      }
+  });
+  return out;
+}
+
+}  // namespace omnicam

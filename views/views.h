@@ -1,0 +1,46 @@
+#pragma once
+// Views derived from an omni image (thesis §3.2.1, spec §4), each a lookup table from output
+// pixels to continuous omni raster positions, computed once per camera and reused for frames.
+//
+// Orientation choices (the omni image itself is a mirror image: u = robot +x, v = robot +y):
+//   birdseye     a map seen from above, not mirrored: right = robot forward (+x), up = robot
+//                left (+y); ground plane z_w pixel units below the viewpoint (default 40).
+//   panorama     width runs along the azimuth, height along the radius (the thesis' x_pan/y_pan
+//                swapped so that it reads like a photo): centre column = forward, moving right
+//                turns right; top row = the rim (above the horizon), bottom row = straight down.
+//                thesis variant: radius linear in the row (Eqs. 3.6–3.7); exact variant:
+//                incidence angle linear in the row (rows are equal angle steps).
+//   perspective  a virtual pinhole at F' looking toward (yaw, pitch) in the robot frame.
+// Pixels whose source lies outside the mirror disc are black.
+#include <string>
+#include <vector>
+
+#include "image.h"
+#include "omni_camera.h"
+
+namespace omnicam {
+
+enum class ViewKind { BirdsEye, Panorama, Perspective };
+enum class ViewVariant { Thesis, Exact };
+
+struct ViewSpec {
+  ViewKind kind = ViewKind::BirdsEye;
+  ViewVariant variant = ViewVariant::Exact;
+  int width = 0, height = 0;      // 0: the default for the kind (400×400, 1080×300, 400×300)
+  double groundDistance = 40.0;   // birdseye: z_w in pixel units below the viewpoint
+  double yawDeg = 0.0, pitchDeg = -20.0, fovDeg = 90.0;  // perspective (pitch < 0 looks down)
+};
+
+struct ViewMap {
+  int width = 0, height = 0;
+  std::vector<float> sourceX, sourceY;  // omni raster position of each output pixel centre; NaN: none
+};
+
+ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
+// Bilinear lookup (pixel centres at +0.5); RGB from associated alpha inside the disc.
+ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
+
+ViewKind parseViewKind(const std::string& name);       // InputError naming --as
+ViewVariant parseViewVariant(const std::string& name);  // InputError naming --variant
+
+}  // namespace omnicam

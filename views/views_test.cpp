@@ -1,0 +1,104 @@
+#include "views.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "errors.h"
+#include "rig.h"
+
+namespace omnicam {
+namespace {
+
+const OmniCamera& camera() {
+  static const OmniCamera cam = RigSpec{}.camera();
+  return cam;
+}
+
+TEST(Views, BirdsEyeThesisVariantFollowsEquations33To35) {
+  ViewSpec spec;
+  spec.variant = ViewVariant::Thesis;
+  const ViewMap map = buildViewMap(spec, camera());
+  ASSERT_EQ(map.width, 400);
+  const double h = 73.7437, zw = 40.0;  // spec §2's h for the defaults; the thesis' z_w
+  for (int j = 3; j < 400; j += 37)
+    for (int i = 5; i < 400; i += 41) {
+      const double xw = i + 0.5 - 200.0, yw = 200.0 - (j + 0.5);  // map: right = forward, up = left
+      const double theta = std::acos(zw / std::sqrt(xw * xw + yw * yw + zw * zw));
+      const double phi = std::atan2(yw, xw);
+      const double rho = h / (1.0 + std::cos(theta));
+      const size_t k = static_cast<size_t>(j) * 400 + i;
+      EXPECT_NEAR(map.sourceX[k], 180.0 + rho * std::sin(theta) * std::cos(phi), 2e-3);
+      EXPECT_NEAR(map.sourceY[k], 180.0 + rho * std::sin(theta) * std::sin(phi), 2e-3);
+    }
+}
+
+TEST(Views, ExactBirdsEyeAgreesWithTheCameraProjection) {
+  const ViewMap map = buildViewMap(ViewSpec{}, camera());
+  for (int j = 0; j < 400; j += 23)
+    for (int i = 0; i < 400; i += 19) {
+      // The ground point of this map pixel, projected by the camera model (another code path).
+      const Vec3 viewpointDir(i + 0.5 - 200.0, 200.0 - (j + 0.5), -40.0);
+      const auto raster = camera().rasterFromCamera(cameraFromViewpoint().linear() * viewpointDir);
+      const size_t k = static_cast<size_t>(j) * 400 + i;
+      if (!raster) {
+        EXPECT_TRUE(std::isnan(map.sourceX[k]));
+        continue;
+      }
+      EXPECT_NEAR(map.sourceX[k], raster->x(), 2e-3);
+      EXPECT_NEAR(map.sourceY[k], raster->y(), 2e-3);
+    }
+}
+
+TEST(Views, PanoramaColumnsAreRadialAndRowsFollowTheVariant) {
+  for (ViewVariant variant : {ViewVariant::Thesis, ViewVariant::Exact}) {
+    ViewSpec spec;
+    spec.kind = ViewKind::Panorama;
+    spec.variant = variant;
+    const ViewMap map = buildViewMap(spec, camera());
+    ASSERT_EQ(map.width, 1080);
+    ASSERT_EQ(map.height, 300);
+    for (int i = 0; i < 1080; i += 97) {
+      const double phi = kPi - 2.0 * kPi * (i + 0.5) / 1080.0;  // independent: Eqs. 3.6–3.7's angle
+      for (int j = 0; j < 300; j += 31) {
+        const size_t k = static_cast<size_t>(j) * 1080 + i;
+        const double dx = map.sourceX[k] - 180.0, dy = map.sourceY[k] - 180.0;
+        const double r = std::hypot(dx, dy);
+        EXPECT_NEAR(dx, r * std::cos(phi), 2e-3);
+        EXPECT_NEAR(dy, r * std::sin(phi), 2e-3);
+        const double row = (j + 0.5) / 300.0;
+        const double expected = variant == ViewVariant::Thesis ? 180.0 * (1.0 - row)  // r_omn · x_pan/X_pan
+                                                               : camera().radiusOfTheta(radians(135.0) * (1.0 - row));
+        EXPECT_NEAR(r, expected, 2e-3);
+      }
+    }
+  }
+}
+
+TEST(Views, ApplyingAMapSamplesBilinearlyAtPixelCentres) {
+  // Source image whose red channel is its own u coordinate: a bilinear lookup reproduces it.
+  ImageRGBA omni(360, 360);
+  for (int j = 0; j < 360; ++j)
+    for (int i = 0; i < 360; ++i) {
+      float* p = omni.at(i, j);
+      p[0] = i + 0.5f, p[1] = j + 0.5f, p[2] = 0.0f, p[3] = 1.0f;
+    }
+  ViewSpec spec;
+  spec.kind = ViewKind::Perspective;
+  spec.pitchDeg = -40.0;
+  const ViewMap map = buildViewMap(spec, camera());
+  const ImageRGBA view = applyViewMap(map, omni);
+  int checked = 0;
+  for (size_t k = 0; k < map.sourceX.size(); k += 101) {
+    if (std::isnan(map.sourceX[k]) || map.sourceX[k] < 1 || map.sourceX[k] > 359 || map.sourceY[k] < 1 || map.sourceY[k] > 359) continue;
+    EXPECT_NEAR(view.pixels[k * 4], map.sourceX[k], 1e-3);
+    EXPECT_NEAR(view.pixels[k * 4 + 1], map.sourceY[k], 1e-3);
+    ++checked;
+  }
+  EXPECT_GT(checked, 100);
+  EXPECT_THROW(parseViewKind("fisheye"), InputError);
+  EXPECT_THROW(parseViewVariant("approx"), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam
