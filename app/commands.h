@@ -11,6 +11,7 @@ void addProjectCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 // Sets exitCode to 1 when a threshold fails.
 void addCompareCommand(CLI::App& app, int& exitCode);
 

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addDemoCommand(app);
   omnicam::cli::addExportCommand(app);
   omnicam::cli::addStudyCommand(app);
+  omnicam::cli::addViewCommand(app);
   int exitCode = 0;
   omnicam::cli::addCompareCommand(app, exitCode);
   try {
