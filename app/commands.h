@@ -12,6 +12,7 @@ void addDemoCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 // Sets exitCode to 1 when a threshold fails.
 void addCompareCommand(CLI::App& app, int& exitCode);
 

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addExportCommand(app);
   omnicam::cli::addStudyCommand(app);
   omnicam::cli::addViewCommand(app);
+  omnicam::cli::addBenchCommand(app);
   int exitCode = 0;
   omnicam::cli::addCompareCommand(app, exitCode);
   try {

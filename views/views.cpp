@@ -95,28 +95,38 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
       map.sourceX[k] = x;
       map.sourceY[k] = y;
     }
+  map.sourceWidth = camera.width();
+  map.sourceHeight = camera.height();
+  map.taps.resize(map.sourceX.size());
+  for (size_t k = 0; k < map.taps.size(); ++k) {
+    if (std::isnan(map.sourceX[k])) {
+      map.taps[k] = {UINT32_MAX, 0.0f, 0.0f};
+      continue;
+    }
+    // Index space (texel centres at integers), kept inside so that all four taps exist.
+    const float sx = std::clamp(map.sourceX[k] - 0.5f, 0.0f, map.sourceWidth - 1.001f);
+    const float sy = std::clamp(map.sourceY[k] - 0.5f, 0.0f, map.sourceHeight - 1.001f);
+    const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
+    map.taps[k] = {static_cast<uint32_t>(y0 * map.sourceWidth + x0), sx - x0, sy - y0};
+  }
   return map;
 }
 
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni) {
+  if (omni.width != map.sourceWidth || omni.height != map.sourceHeight)
+    throw InputError("view: the image is " + std::to_string(omni.width) + "x" + std::to_string(omni.height) +
+                     ", the view was built for " + std::to_string(map.sourceWidth) + "x" + std::to_string(map.sourceHeight));
   ImageRGBA out(map.width, map.height);
-  tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < map.width; ++i) {
-        const size_t k = static_cast<size_t>(j) * map.width + i;
-        const float sx = map.sourceX[k] - 0.5f, sy = map.sourceY[k] - 0.5f;
-        float* o = out.at(i, j);
-        if (std::isnan(sx)) continue;
-        const int x0 = static_cast<int>(std::floor(sx)), y0 = static_cast<int>(std::floor(sy));
-        const float fx = sx - x0, fy = sy - y0;
-        for (int dy = 0; dy < 2; ++dy)
-          for (int dx = 0; dx < 2; ++dx) {
-            const int xi = std::clamp(x0 + dx, 0, omni.width - 1), yi = std::clamp(y0 + dy, 0, omni.height - 1);
-            const float w = (dx ? fx : 1.0f - fx) * (dy ? fy : 1.0f - fy);
-            const float* p = omni.at(xi, yi);
-            for (int c = 0; c < 4; ++c) o[c] += w * p[c];
-          }
-      }
+  const size_t row = static_cast<size_t>(map.sourceWidth) * 4;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, map.taps.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const ViewMap::Tap& t = map.taps[k];
+      if (t.texel == UINT32_MAX) continue;
+      const float* p = &omni.pixels[static_cast<size_t>(t.texel) * 4];
+      const float w00 = (1 - t.fx) * (1 - t.fy), w10 = t.fx * (1 - t.fy), w01 = (1 - t.fx) * t.fy, w11 = t.fx * t.fy;
+      float* o = &out.pixels[k * 4];
+      for (int c = 0; c < 4; ++c) o[c] = w00 * p[c] + w10 * p[4 + c] + w01 * p[row + c] + w11 * p[row + 4 + c];
+    }
   });
   return out;
 }

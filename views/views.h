@@ -34,10 +34,18 @@ struct ViewSpec {
 struct ViewMap {
   int width = 0, height = 0;
   std::vector<float> sourceX, sourceY;  // omni raster position of each output pixel centre; NaN: none
+  // The bilinear footprint, precomputed so that applying the map is four gathers per pixel.
+  int sourceWidth = 0, sourceHeight = 0;
+  struct Tap {
+    uint32_t texel;  // top-left source texel (UINT32_MAX: black)
+    float fx, fy;
+  };
+  std::vector<Tap> taps;
 };
 
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
-// Bilinear lookup (pixel centres at +0.5); RGB from associated alpha inside the disc.
+// Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
+// camera the map was built for.
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
 
 ViewKind parseViewKind(const std::string& name);       // InputError naming --as

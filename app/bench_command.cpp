@@ -1,0 +1,81 @@
+// omnicam bench [--json] [--seconds S]: frames/s of every render mode and view on a 360×360
+// robocup2006 frame at 1 spp, unlit, on all cores (lookup tables built before timing).
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli_util.h"
+#include "commands.h"
+#include "cubemap_renderer.h"
+#include "scene_loader.h"
+#include "views.h"
+
+namespace omnicam::cli {
+
+namespace {
+
+struct BenchArgs {
+  bool json = false;
+  double seconds = 1.0;
+};
+
+double framesPerSecond(const std::function<void()>& frame, double seconds) {
+  frame();  // warm caches and lookup tables
+  int frames = 0;
+  const auto start = std::chrono::steady_clock::now();
+  double elapsed = 0.0;
+  while (elapsed < seconds || frames < 3) {
+    frame();
+    ++frames;
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  return frames / elapsed;
+}
+
+void runBench(const BenchArgs& a) {
+  const Scene scene = loadScene(scenesDir() + "/robocup2006.json");
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.imageSize = 360;
+  const FastRenderer fast(scene);
+  const CubeMapRenderer cube(fast);
+  CubeMapOptions cubemap, mesh;
+  mesh.mode = OmniMode::ThesisMesh;
+  const ImageRGBA omni = fast.render(scene.startPose, settings);
+  const OmniCamera camera = settings.rig.camera();
+  std::vector<std::pair<std::string, double>> results;
+  results.emplace_back("exact", framesPerSecond([&] { fast.render(scene.startPose, settings); }, a.seconds));
+  results.emplace_back("cubemap", framesPerSecond([&] { cube.render(scene.startPose, settings, cubemap); }, a.seconds));
+  results.emplace_back("thesis_mesh_1024", framesPerSecond([&] { cube.render(scene.startPose, settings, mesh); }, a.seconds));
+  for (const auto& [name, kind, variant] :
+       std::vector<std::tuple<std::string, ViewKind, ViewVariant>>{{"view_birdseye", ViewKind::BirdsEye, ViewVariant::Exact},
+                                                                   {"view_panorama", ViewKind::Panorama, ViewVariant::Exact},
+                                                                   {"view_perspective", ViewKind::Perspective, ViewVariant::Exact}}) {
+    ViewSpec spec;
+    spec.kind = kind;
+    spec.variant = variant;
+    const ViewMap map = buildViewMap(spec, camera);  // built once, reused for every frame
+    results.emplace_back(name, framesPerSecond([&] { applyViewMap(map, omni); }, a.seconds));
+  }
+  if (a.json) {
+    nlohmann::json j = {{"image", "robocup2006 360x360, 1 spp, unlit, thesis start pose"}};
+    for (const auto& [name, fps] : results) j["frames_per_second"][name] = fps;
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  for (const auto& [name, fps] : results) std::printf("%-18s %10.1f frames/s\n", name.c_str(), fps);
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand("bench", "Frames/s of each render mode and view (360x360, 1 spp)");
+  cmd->add_flag("--json", args->json, "Print JSON");
+  cmd->add_option("--seconds", args->seconds, "Seconds timed per item (default 1)")->check(CLI::PositiveNumber);
+  cmd->callback([args] { runBench(*args); });
+}
+
+}  // namespace omnicam::cli
