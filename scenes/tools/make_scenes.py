@@ -200,6 +200,57 @@ def incidence_rings():
     }
 
 
+# ---------------------------------------------------------------- tiled room (thesis Figs. 3.13c–3.15c)
+ROOM = 4.0            # square room, metres
+TILE = 0.5            # floor tiles: a checkerboard of 0.5 m squares
+WALL_H, STRIPE = 1.2, 0.2  # walls 1.2 m high with 0.2 m horizontal stripes
+DOOR_AT, DOOR_W = 1.0, 0.3  # a dark vertical strip on each wall: vertical edges for the panorama
+
+
+def tiled_room():
+    h = ROOM / 2
+    n = int(ROOM / TILE)
+    objects = []
+    for i in range(n):
+        for j in range(n):
+            objects.append(quad(f"tile_{i}_{j}", "tile_light" if (i + j) % 2 == 0 else "tile_dark",
+                                -h + i * TILE, -h + j * TILE, -h + (i + 1) * TILE, -h + (j + 1) * TILE, 0.0))
+    walls = [  # origin, edge along the wall (inner faces)
+        ("south", [-h, -h], [ROOM, 0]), ("east", [h, -h], [0, ROOM]),
+        ("north", [h, h], [-ROOM, 0]), ("west", [-h, h], [0, -ROOM]),
+    ]
+    for name, origin, edge in walls:
+        # A dark vertical door strip, 1 mm in front of the wall, 1.0–1.3 m along it.
+        inward = [-edge[1] / ROOM * 0.001, edge[0] / ROOM * 0.001]
+        start = [origin[0] + edge[0] / ROOM * DOOR_AT + inward[0], origin[1] + edge[1] / ROOM * DOOR_AT + inward[1]]
+        objects.append({"name": f"door_{name}", "type": "quad", "material": "door",
+                        "origin": [start[0], start[1], 0.0],
+                        "edge_u": [edge[0] / ROOM * DOOR_W, edge[1] / ROOM * DOOR_W, 0], "edge_v": [0, 0, WALL_H]})
+        for k in range(int(WALL_H / STRIPE)):
+            objects.append({"name": f"wall_{name}_{k}", "type": "quad",
+                            "material": "stripe_light" if k % 2 == 0 else "stripe_dark",
+                            "origin": [origin[0], origin[1], k * STRIPE], "edge_u": [edge[0], edge[1], 0],
+                            "edge_v": [0, 0, STRIPE]})
+    return {
+        "format": "omnicam-scene/1",
+        "name": "tiled-room",
+        "description": "A square room with a checkerboard floor and horizontally striped walls (spec §6, thesis "
+                       "Figs. 3.13(c)–3.15(c)): straight floor lines must stay straight in the bird's-eye view, "
+                       "vertical edges vertical in the panorama.",
+        "comment": {"room_m": ROOM, "tile_m": TILE, "wall_height_m": WALL_H, "stripe_m": STRIPE,
+                    "door_strip": "0.3 m wide, 1.0 m along each wall (counter-clockwise), 1 mm in front of it"},
+        "start_pose": [0.0, 0.0, 0.0],
+        "materials": {
+            "tile_light": {"color": [0.8, 0.8, 0.8]}, "tile_dark": {"color": [0.15, 0.15, 0.15]},
+            "stripe_light": {"color": [0.85, 0.6, 0.3]}, "stripe_dark": {"color": [0.2, 0.3, 0.6]},
+            "door": {"color": [0.02, 0.02, 0.02]},
+        },
+        "objects": objects,
+        "lights": [{"name": "ceiling", "position": [0.3, 0.2, 2.5], "intensity": 0.7}],
+    }
+
+
 if __name__ == "__main__":
     dump("robocup2006.json", robocup2006())
+    dump("tiled-room.json", tiled_room())
     dump("incidence-rings.json", incidence_rings())
