@@ -11,11 +11,13 @@
 #include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "cubemap_renderer.h"
 #include "image_compare.h"
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
 #include "svg_plot.h"
+#include "views.h"
 
 namespace omnicam::cli {
 
@@ -139,6 +141,46 @@ void runDemo(const DemoArgs& a) {
                 r.msePx2Eq32);
   }
   writeRingPlots(a.out, ringCamera, rings);
+
+  // The thesis' method (Fig. 3.4 with numbers) and the views of thesis §3.2.1.
+  std::ostringstream method, viewFigures;
+  {
+    RenderSettings settings;
+    settings.rig = arena.rig;
+    settings.spp = a.spp;
+    const FastRenderer fast(arena);
+    const CubeMapRenderer cube(fast);
+    const ImageRGBA exact = fast.render(arena.startPose, settings);
+    std::vector<std::pair<std::string, CubeMapOptions>> modes;
+    for (int polygons : {16, 64, 256, 1024}) {
+      CubeMapOptions o;
+      o.mode = OmniMode::ThesisMesh;
+      o.polygons = polygons;
+      modes.emplace_back(std::to_string(polygons) + " polygons", o);
+    }
+    modes.emplace_back("cube map, 6 faces", CubeMapOptions{});
+    for (size_t k = 0; k < modes.size(); ++k) {
+      std::printf("demo: thesis method, %s\n", modes[k].first.c_str());
+      const ImageRGBA image = cube.render(arena.startPose, settings, modes[k].second);
+      const std::string file = "method_" + std::to_string(k) + ".png";
+      writeImageAtomic(a.out + "/" + file, image);
+      method << "<figure><img src=\"" << file << "\" width=\"270\"><figcaption>" << modes[k].first
+             << format("<br>PSNR %.2f dB vs exact", compareImages(exact, image).psnrDb) << "</figcaption></figure>\n";
+    }
+    const OmniCamera camera = settings.rig.camera();
+    for (const auto& [kind, variant, name] :
+         std::vector<std::tuple<ViewKind, ViewVariant, std::string>>{{ViewKind::BirdsEye, ViewVariant::Exact, "birdseye_exact"},
+                                                                     {ViewKind::BirdsEye, ViewVariant::Thesis, "birdseye_thesis"},
+                                                                     {ViewKind::Panorama, ViewVariant::Exact, "panorama_exact"},
+                                                                     {ViewKind::Panorama, ViewVariant::Thesis, "panorama_thesis"}}) {
+      ViewSpec spec;
+      spec.kind = kind;
+      spec.variant = variant;
+      writeImageAtomic(a.out + "/" + name + ".png", applyViewMap(buildViewMap(spec, camera), exact));
+      viewFigures << "<figure style=\"max-width:" << (kind == ViewKind::Panorama ? 1100 : 420) << "px\"><img src=\""
+                  << name << ".png\"><figcaption>" << name << "</figcaption></figure>\n";
+    }
+  }
   ringTable << "<tr><th>θ (°)</th><th>exact (px)</th><th>Eq. 3.2 (px)</th>";
   for (const auto& e : rings) ringTable << "<th>" << e.engine << " (px)</th><th>" << e.engine << " − exact</th>";
   ringTable << "</tr>\n";
@@ -173,6 +215,16 @@ less than 0.5 µm from the quadric; it samples randomly inside each pixel, so it
 <figcaption>measured radii against the exact model and the thesis' Eq. 3.2</figcaption></figure>
 <table>)" << ringTable.str()
        << R"(</table>
+<h2>The thesis' method: cube faces mapped onto a mirror mesh (thesis Fig. 3.4, measured)</h2>
+<p>Texture coordinates interpolated linearly across each mirror polygon distort the image; the cube map with
+per-pixel lookups does not. See <code>docs/thesis-reproduction.md</code> (<code>omnicam study</code>).</p>
+)" << method.str()
+       << R"(<h2>Views (thesis §3.2.1): bird's-eye (Eqs. 3.3–3.5) and panorama (Eqs. 3.6–3.7)</h2>
+<p>Bird's-eye: a map seen from above (right = forward, up = robot's left), ground at z<sub>w</sub> = 40 pixel units.
+Panorama: centre = forward, top = rim. <i>thesis</i> uses the parabolic Eq. 3.4 / radius-linear rows; <i>exact</i>
+the model of spec §2.</p>
+)" << viewFigures.str()
+       << R"(
 <p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,
 and OpenCV <code>cv::omnidir</code> intrinsics.</p></body></html>
 )";
