@@ -19,6 +19,7 @@ namespace {
 struct BenchArgs {
   bool json = false;
   double seconds = 1.0;
+  int faceSize = CubeMapOptions{}.faceSize;
 };
 
 double framesPerSecond(const std::function<void()>& frame, double seconds) {
@@ -43,6 +44,7 @@ void runBench(const BenchArgs& a) {
   const CubeMapRenderer cube(fast);
   CubeMapOptions cubemap, mesh;
   mesh.mode = OmniMode::ThesisMesh;
+  cubemap.faceSize = mesh.faceSize = a.faceSize;
   const ImageRGBA omni = fast.render(scene.startPose, settings);
   const OmniCamera camera = settings.rig.camera();
   std::vector<std::pair<std::string, double>> results;
@@ -60,7 +62,7 @@ void runBench(const BenchArgs& a) {
     results.emplace_back(name, framesPerSecond([&] { applyViewMap(map, omni); }, a.seconds));
   }
   if (a.json) {
-    nlohmann::json j = {{"image", "robocup2006 360x360, 1 spp, unlit, thesis start pose"}};
+    nlohmann::json j = {{"image", "robocup2006 360x360, 1 spp, unlit, thesis start pose"}, {"face_size", a.faceSize}};
     for (const auto& [name, fps] : results) j["frames_per_second"][name] = fps;
     std::printf("%s\n", j.dump(2).c_str());
     return;
@@ -75,6 +77,7 @@ void addBenchCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("bench", "Frames/s of each render mode and view (360x360, 1 spp)");
   cmd->add_flag("--json", args->json, "Print JSON");
   cmd->add_option("--seconds", args->seconds, "Seconds timed per item (default 1)")->check(CLI::PositiveNumber);
+  cmd->add_option("--face-size", args->faceSize, "Cube-face size for the cube-map modes")->check(CLI::Range(8, 8192));
   cmd->callback([args] { runBench(*args); });
 }
 

@@ -67,6 +67,8 @@ struct CubeMapRenderer::Lookup {
   }
 };
 
+CubeMapRenderer::CubeMapRenderer(const FastRenderer& renderer) : renderer_(renderer), rasterizer_(renderer.scene()) {}
+
 bool thesisMeshLayout(int polygons, int& sectors, int& rings) {
   for (int k = 0; k < 4; ++k)
     if (polygons == 16 << (2 * k)) {
@@ -248,19 +250,30 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
   const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
   const Vec3 origin = worldFromViewpoint.translation();
   const Eigen::Matrix3d rotation = worldFromViewpoint.linear();
-  // 1. The referenced face texels, ray cast from F' like exact mode.
-  std::vector<Vec3f> atlas(static_cast<size_t>(6) * L->padded * L->padded, Vec3f::Zero());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, L->usedTexels.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) {
-      const uint32_t texel = L->usedTexels[k];
-      atlas[texel] = renderer_.radiance(origin, rotation * L->texelDirection(texel), settings.shading);
+  // 1. The faces: rasterised (unlit), or the referenced texels ray cast from F' like exact mode.
+  // Not initialised: every texel a lookup reads is written below (Eigen vectors default-construct
+  // without zeroing).
+  std::vector<Vec3f> atlas(static_cast<size_t>(6) * L->padded * L->padded);
+  if (options.rasterize && settings.shading == Shading::Unlit) {
+    std::vector<int> faces;
+    std::vector<std::array<Vec3, 3>> bases;
+    for (int face = 0; face < options.faces; ++face) {  // with five faces, the up face (5) is skipped
+      faces.push_back(face);
+      bases.push_back({rotation * kFaces[face].f, rotation * kFaces[face].r, rotation * kFaces[face].u});
     }
-  });
+    rasterizer_.render(origin, faces, bases, options.faceSize, atlas);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, L->usedTexels.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k != r.end(); ++k) {
+        const uint32_t texel = L->usedTexels[k];
+        atlas[texel] = renderer_.radiance(origin, rotation * L->texelDirection(texel), settings.shading);
+      }
+    });
+  }
   // 2. Every omni sample from its precomputed bilinear footprint.
   const int width = settings.rig.imageSize, height = width;
   const int n = *samplesPerAxis(settings.spp);
   const float weight = 1.0f / static_cast<float>(n * n);
-  const OmniCamera camera = settings.rig.camera();
   ImageRGBA image(width, height);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j)
@@ -276,7 +289,7 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
         }
         float* px = image.at(i, j);
         for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
-        px[3] = camera.rimCoverage(i, j, n);
+        px[3] = static_cast<float>(L->firstSample[pixel + 1] - L->firstSample[pixel]) * weight;  // rim coverage
       }
   });
   return image;

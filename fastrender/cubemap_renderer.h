@@ -17,6 +17,7 @@
 #include <memory>
 #include <mutex>
 
+#include "face_rasterizer.h"
 #include "fast_renderer.h"
 
 namespace omnicam {
@@ -28,6 +29,7 @@ struct CubeMapOptions {
   int faces = 6;         // 5 (thesis) or 6
   int faceSize = 512;    // texels per face edge
   int polygons = 1024;   // thesis-mesh: 16, 64, 256 or 1024
+  bool rasterize = true; // unlit faces by rasterisation (else, and for lit: one ray per used texel)
 };
 
 struct CubeLookupStats {
@@ -38,7 +40,7 @@ struct CubeLookupStats {
 
 class CubeMapRenderer {
  public:
-  explicit CubeMapRenderer(const FastRenderer& renderer) : renderer_(renderer) {}
+  explicit CubeMapRenderer(const FastRenderer& renderer);
   // Throws InputError for bad options (faces, faceSize, polygons, spp).
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options) const;
   CubeLookupStats stats(const RenderSettings& settings, const CubeMapOptions& options) const;
@@ -48,6 +50,7 @@ class CubeMapRenderer {
  private:
   std::shared_ptr<const Lookup> lookup(const RenderSettings& settings, const CubeMapOptions& options) const;
   const FastRenderer& renderer_;
+  FaceRasterizer rasterizer_;
   mutable std::mutex mutex_;  // guards the cached pointer; lookups are immutable
   mutable std::shared_ptr<const Lookup> cached_;
 };

@@ -35,6 +35,21 @@ TEST(CubeMap, SixFacesMatchExactModeAt16Spp) {
   EXPECT_GE(r.psnrDb, 40.0);
 }
 
+TEST(CubeMap, RasterisedFacesMatchRayCastFaces) {
+  // Two independent ways to fill the faces: one ray per texel centre, or rasterising the
+  // (tessellated) scene at texel centres. Only curved primitives' tessellation may differ.
+  const FastRenderer fast(arena());
+  const CubeMapRenderer cube(fast);
+  const RenderSettings settings = settingsFor(arena(), 4);
+  CubeMapOptions raster, rays;
+  rays.rasterize = false;
+  for (const RobotPose& pose : {arena().startPose, RobotPose{-0.4, 0.9, 250.0}}) {
+    const CompareResult r = compareImages(cube.render(pose, settings, rays), cube.render(pose, settings, raster));
+    std::printf("rasterised vs ray-cast faces: PSNR %.2f dB\n", r.psnrDb);
+    EXPECT_GE(r.psnrDb, 60.0);
+  }
+}
+
 TEST(CubeMap, ThesisMeshDistortionShrinksWithPolygonCount) {
   const FastRenderer fast(arena());
   const CubeMapRenderer cube(fast);

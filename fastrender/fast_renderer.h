@@ -26,6 +26,8 @@ class FastRenderer {
   // Throws InputError if settings.spp is not a perfect square.
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) const;
 
+  const Scene& scene() const { return scene_; }
+
   // Radiance along one ray from `origin` (exposed for tests).
   Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading) const;
 
