@@ -2,7 +2,6 @@
 // Renders the incidence-ring scene (thesis Fig. 3.11), measures every ring's radius in the
 // image and scores it against the exact model and the thesis' Eq. 3.2.
 #include <cstdio>
-#include <fstream>
 #include <memory>
 
 #include "cli_util.h"
@@ -38,17 +37,7 @@ void printReport(const RingReport& report, const std::string& what, bool json) {
 void measureExisting(const RingsArgs& a) {
   const ImageRGBA image = readImage(a.measure);
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene);
-  RigSpec rig = scene.rig;
-  std::ifstream sidecar(sidecarPath(a.measure));
-  if (sidecar) {
-    try {
-      const auto j = nlohmann::json::parse(sidecar)["rig"];
-      rig.k = j["mirror"]["k"], rig.c = j["mirror"]["c"], rig.rimElevationDeg = j["mirror"]["rim_elevation_deg"];
-      rig.framingElevationDeg = j["image"]["framing_elevation_deg"];
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(sidecarPath(a.measure) + ": rig: " + e.what());
-    }
-  }
+  RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   if (image.width != image.height) throw InputError(a.measure + ": ring images must be square");
   rig.imageSize = image.width;
   printReport(measureRings(image, rig.camera(), defaultRingThetasDeg()), a.measure, a.json);

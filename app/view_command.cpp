@@ -23,17 +23,7 @@ struct ViewArgs {
 };
 
 RigSpec rigOf(const std::string& image, const std::string& scenePath, int size) {
-  RigSpec rig = scenePath.empty() ? RigSpec{} : loadScene(scenePath).rig;
-  std::ifstream sidecar(sidecarPath(image));
-  if (sidecar && scenePath.empty()) {
-    try {
-      const auto j = nlohmann::json::parse(sidecar)["rig"];
-      rig.k = j["mirror"]["k"], rig.c = j["mirror"]["c"], rig.rimElevationDeg = j["mirror"]["rim_elevation_deg"];
-      rig.framingElevationDeg = j["image"]["framing_elevation_deg"];
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(sidecarPath(image) + ": rig: " + e.what());
-    }
-  }
+  RigSpec rig = scenePath.empty() ? rigFromSidecar(image, RigSpec{}) : loadScene(scenePath).rig;
   rig.imageSize = size;
   return rig;
 }

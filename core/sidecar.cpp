@@ -1,6 +1,9 @@
 #include "sidecar.h"
 
+#include <fstream>
+
 #include "atomic_file.h"
+#include "errors.h"
 
 namespace omnicam {
 
@@ -56,6 +59,21 @@ std::string sidecarPath(const std::string& imagePath) { return imagePath + ".jso
 
 void writeSidecarAtomic(const std::string& imagePath, const json& sidecar) {
   writeTextAtomically(sidecarPath(imagePath), sidecar.dump(2) + "\n");
+}
+
+RigSpec rigFromSidecar(const std::string& imagePath, RigSpec rig) {
+  std::ifstream in(sidecarPath(imagePath));
+  if (!in) return rig;
+  try {
+    const auto j = json::parse(in).at("rig");
+    rig.k = j.at("mirror").at("k"), rig.c = j.at("mirror").at("c");
+    rig.rimElevationDeg = j.at("mirror").at("rim_elevation_deg");
+    rig.framingElevationDeg = j.at("image").at("framing_elevation_deg");
+    rig.height = j.at("height");
+  } catch (const json::exception& e) {
+    throw InputError(sidecarPath(imagePath) + ": rig: " + e.what());
+  }
+  return rig;
 }
 
 }  // namespace omnicam

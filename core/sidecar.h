@@ -24,5 +24,8 @@ nlohmann::json sidecarJson(const RenderRecord& record);
 // Sidecar path of an image: OUT + ".json".
 std::string sidecarPath(const std::string& imagePath);
 void writeSidecarAtomic(const std::string& imagePath, const nlohmann::json& sidecar);
+// The rig an image was rendered with, from its sidecar: mirror and framing replace `fallback`'s;
+// `fallback` unchanged if there is no sidecar. Throws InputError for an unreadable one.
+RigSpec rigFromSidecar(const std::string& imagePath, RigSpec fallback);
 
 }  // namespace omnicam
