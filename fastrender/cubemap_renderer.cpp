@@ -13,6 +13,9 @@ namespace omnicam {
 namespace {
 
 // Faces in the viewpoint frame (z up): forward, right, up; direction ∝ f + s·r + t·u.
+// Faces are internal, so their in-plane axes are free: wherever a face allows, its rows run
+// along the omni image's rows (constant y), so the lookup reads face texels in memory order —
+// up = y for the ±x and ±z faces, z for the ±y faces.
 struct Face {
   Vec3 f, r, u;
 };
@@ -20,7 +23,7 @@ const std::array<Face, 6> kFaces = [] {
   std::array<Face, 6> faces;
   const Vec3 dirs[6] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), -Vec3::UnitZ(), Vec3::UnitZ()};
   for (int k = 0; k < 6; ++k) {
-    const Vec3 up = k < 4 ? Vec3::UnitZ() : Vec3::UnitX();
+    const Vec3 up = k == 2 || k == 3 ? Vec3::UnitZ() : Vec3::UnitY();
     faces[k] = {dirs[k], dirs[k].cross(up), up};
   }
   return faces;
@@ -48,12 +51,14 @@ struct CubeMapRenderer::Lookup {
   CubeMapOptions options;
   int padded = 0;  // faceSize + 2 (one border texel each side)
   struct Sample {
-    uint32_t texel;  // top-left texel of the bilinear footprint in the face atlas; UINT32_MAX = black
+    // Slots (FaceTexels) of the bilinear footprint's top-left texel and of the one below it;
+    // their right neighbours are the next slots. top = UINT32_MAX: black.
+    uint32_t top, bottom;
     float fx, fy;
   };
   std::vector<uint32_t> firstSample;  // per pixel (+1 sentinel)
   std::vector<Sample> samples;
-  std::vector<uint32_t> usedTexels;   // atlas indices to render
+  FaceTexels texels;  // the texels the samples read
   long missed = 0;
 
   Vec3 texelDirection(uint32_t texel) const {
@@ -152,16 +157,17 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   const double f = camera.physicalFocalLength();
   std::vector<char> used(static_cast<size_t>(6) * L->padded * L->padded, 0);
 
+  // Samples first hold atlas indices in `top`; they become slots once the texel set is known.
   auto toSample = [&](int face, const Eigen::Vector2d& st) -> Lookup::Sample {
-    if (face == kUpFace && o.faces == 5) return {UINT32_MAX, 0.0f, 0.0f};
-    if (!std::isfinite(st.x()) || !std::isfinite(st.y())) return {UINT32_MAX, 0.0f, 0.0f};
+    if (face == kUpFace && o.faces == 5) return {UINT32_MAX, 0, 0.0f, 0.0f};
+    if (!std::isfinite(st.x()) || !std::isfinite(st.y())) return {UINT32_MAX, 0, 0.0f, 0.0f};
     const double s = std::clamp(st.x(), -1.0, 1.0), t = std::clamp(st.y(), -1.0, 1.0);
     const double X = (s + 1.0) / 2.0 * o.faceSize - 0.5 + 1.0, Y = (1.0 - t) / 2.0 * o.faceSize - 0.5 + 1.0;
     const int x0 = static_cast<int>(std::floor(X)), y0 = static_cast<int>(std::floor(Y));
     const uint32_t texel = static_cast<uint32_t>(face * L->padded * L->padded + y0 * L->padded + x0);
     for (uint32_t dy : {0u, static_cast<uint32_t>(L->padded)})
       for (uint32_t dx : {0u, 1u}) used[texel + dy + dx] = 1;
-    return {texel, static_cast<float>(X - x0), static_cast<float>(Y - y0)};
+    return {texel, 0, static_cast<float>(X - x0), static_cast<float>(Y - y0)};
   };
 
   for (int j = 0; j < camera.height(); ++j)
@@ -223,25 +229,44 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
               }
               if (face == kUpFace && o.faces == 5) {
                 ++L->missed;
-                L->samples.push_back({UINT32_MAX, 0.0f, 0.0f});
+                L->samples.push_back({UINT32_MAX, 0, 0.0f, 0.0f});
                 break;
               }
               L->samples.push_back(toSample(face, st));
             }
           }
-          if (!found) L->samples.push_back({UINT32_MAX, 0.0f, 0.0f});  // between the polygon and the rim circle
+          if (!found) L->samples.push_back({UINT32_MAX, 0, 0.0f, 0.0f});  // between the polygon and the rim circle
         }
     }
   L->firstSample.push_back(static_cast<uint32_t>(L->samples.size()));
-  for (uint32_t t = 0; t < used.size(); ++t)
-    if (used[t]) L->usedTexels.push_back(t);
+  L->texels = FaceTexels::fromMask(o.faceSize, used);
+  for (Lookup::Sample& q : L->samples) {
+    if (q.top == UINT32_MAX) continue;
+    q.bottom = L->texels.slotOf(q.top + L->padded);
+    q.top = L->texels.slotOf(q.top);
+  }
   cached_ = L;
   return cached_;
 }
 
 CubeLookupStats CubeMapRenderer::stats(const RenderSettings& settings, const CubeMapOptions& options) const {
   const auto L = lookup(settings, options);
-  return {static_cast<long>(L->samples.size()), L->missed, static_cast<long>(L->usedTexels.size())};
+  return {static_cast<long>(L->samples.size()), L->missed, static_cast<long>(L->texels.size())};
+}
+
+CubeMapRenderer::BufferLease::BufferLease(const CubeMapRenderer& owner) : owner_(owner) {
+  std::lock_guard<std::mutex> lock(owner_.mutex_);
+  if (owner_.spareBuffers_.empty()) {
+    buffers_ = std::make_unique<FaceBuffers>();
+  } else {
+    buffers_ = std::move(owner_.spareBuffers_.back());
+    owner_.spareBuffers_.pop_back();
+  }
+}
+
+CubeMapRenderer::BufferLease::~BufferLease() {
+  std::lock_guard<std::mutex> lock(owner_.mutex_);
+  owner_.spareBuffers_.push_back(std::move(buffers_));
 }
 
 ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings,
@@ -250,10 +275,9 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
   const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
   const Vec3 origin = worldFromViewpoint.translation();
   const Eigen::Matrix3d rotation = worldFromViewpoint.linear();
-  // 1. The faces: rasterised (unlit), or the referenced texels ray cast from F' like exact mode.
-  // Not initialised: every texel a lookup reads is written below (Eigen vectors default-construct
-  // without zeroing).
-  std::vector<Vec3f> atlas(static_cast<size_t>(6) * L->padded * L->padded);
+  // 1. The texels the lookup reads: rasterised (unlit), or ray cast from F' like exact mode.
+  BufferLease lease(*this);
+  FaceTexelColours& texel = *lease.operator->();
   if (options.rasterize && settings.shading == Shading::Unlit) {
     std::vector<int> faces;
     std::vector<std::array<Vec3, 3>> bases;
@@ -261,13 +285,13 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
       faces.push_back(face);
       bases.push_back({rotation * kFaces[face].f, rotation * kFaces[face].r, rotation * kFaces[face].u});
     }
-    rasterizer_.render(origin, faces, bases, options.faceSize, atlas);
+    rasterizer_.render(origin, faces, bases, L->texels, texel);
   } else {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, L->usedTexels.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t k = r.begin(); k != r.end(); ++k) {
-        const uint32_t texel = L->usedTexels[k];
-        atlas[texel] = renderer_.radiance(origin, rotation * L->texelDirection(texel), settings.shading);
-      }
+    texel.paletteIndex.assign(L->texels.size(), FaceTexelColours::kOwnColour);
+    texel.colour.resize(L->texels.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, L->texels.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k != r.end(); ++k)
+        texel.colour[k] = renderer_.radiance(origin, rotation * L->texelDirection(L->texels.atlasIndex[k]), settings.shading);
     });
   }
   // 2. Every omni sample from its precomputed bilinear footprint.
@@ -282,9 +306,9 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
         Vec3f sum = Vec3f::Zero();
         for (uint32_t s = L->firstSample[pixel]; s < L->firstSample[pixel + 1]; ++s) {
           const Lookup::Sample& q = L->samples[s];
-          if (q.texel == UINT32_MAX) continue;
-          const Vec3f top = (1.0f - q.fx) * atlas[q.texel] + q.fx * atlas[q.texel + 1];
-          const Vec3f bottom = (1.0f - q.fx) * atlas[q.texel + L->padded] + q.fx * atlas[q.texel + L->padded + 1];
+          if (q.top == UINT32_MAX) continue;
+          const Vec3f top = (1.0f - q.fx) * texel.at(q.top) + q.fx * texel.at(q.top + 1);
+          const Vec3f bottom = (1.0f - q.fx) * texel.at(q.bottom) + q.fx * texel.at(q.bottom + 1);
           sum += (1.0f - q.fy) * top + q.fy * bottom;
         }
         float* px = image.at(i, j);

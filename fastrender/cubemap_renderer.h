@@ -13,7 +13,8 @@
 //                  it hits, as Unreal's UV mapping did — reproducing thesis Fig. 3.4's distortions.
 //
 // Both lookups depend only on the rig, spp and these options: they are built once and cached.
-// Only face texels that some lookup references are rendered (ray cast like exact mode).
+// Only face texels that some lookup references are rendered (rasterised, or ray cast like
+// exact mode), into buffers reused across frames.
 #include <memory>
 #include <mutex>
 
@@ -49,10 +50,27 @@ class CubeMapRenderer {
 
  private:
   std::shared_ptr<const Lookup> lookup(const RenderSettings& settings, const CubeMapOptions& options) const;
+
+  // Per-frame face texels, reused: a render leases one set for its own exclusive use.
+  using FaceBuffers = FaceTexelColours;
+  class BufferLease {
+   public:
+    explicit BufferLease(const CubeMapRenderer& owner);
+    ~BufferLease();
+    BufferLease(const BufferLease&) = delete;
+    BufferLease& operator=(const BufferLease&) = delete;
+    FaceBuffers* operator->() const { return buffers_.get(); }
+
+   private:
+    const CubeMapRenderer& owner_;
+    std::unique_ptr<FaceBuffers> buffers_;
+  };
+
   const FastRenderer& renderer_;
   FaceRasterizer rasterizer_;
-  mutable std::mutex mutex_;  // guards the cached pointer; lookups are immutable
-  mutable std::shared_ptr<const Lookup> cached_;
+  mutable std::mutex mutex_;  // guards the cached lookup pointer and the spare buffers
+  mutable std::shared_ptr<const Lookup> cached_;  // immutable once built
+  mutable std::vector<std::unique_ptr<FaceBuffers>> spareBuffers_;
 };
 
 // Polygon counts the thesis used and their sectors × rings.

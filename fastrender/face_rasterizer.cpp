@@ -4,13 +4,54 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "triangulate.h"
 
 namespace omnicam {
 
 namespace {
+
 constexpr double kNear = 1e-4;  // metres in front of the viewpoint
+constexpr int kBandRows = 32;   // rows per parallel task
+
+// A triangle projected onto one face, in padded texel units (texel centres at i + 0.5).
+// Barycentrics are affine in the texel centre (px, py): b_i = A_i·px + B_i·py + C_i.
+struct ScreenTriangle {
+  double A[3], B[3], C[3];
+  double inverseW[3];
+  Eigen::Vector2d uvOverW[3];
+  double xLo, xHi;
+  int y0, y1;
+  int material;
+};
+
+}  // namespace
+
+FaceTexels FaceTexels::fromMask(int faceSize, const std::vector<char>& used) {
+  FaceTexels t;
+  t.faceSize = faceSize;
+  const int padded = t.padded();
+  t.rowStart.reserve(static_cast<size_t>(6) * padded + 1);
+  for (size_t row = 0; row < static_cast<size_t>(6) * padded; ++row) {
+    if (t.column.size() >= UINT32_MAX) throw std::length_error("cube-map faces: too many texels");
+    t.rowStart.push_back(static_cast<uint32_t>(t.column.size()));
+    for (int x = 0; x < padded; ++x) {
+      const size_t atlas = row * padded + x;
+      if (!used[atlas]) continue;
+      t.column.push_back(static_cast<uint16_t>(x));
+      t.atlasIndex.push_back(static_cast<uint32_t>(atlas));
+    }
+  }
+  t.rowStart.push_back(static_cast<uint32_t>(t.column.size()));
+  return t;
+}
+
+uint32_t FaceTexels::slotOf(uint32_t atlasTexel) const {
+  const uint32_t row = atlasTexel / padded();
+  const uint16_t x = static_cast<uint16_t>(atlasTexel % padded());
+  const auto begin = column.begin() + rowStart[row], end = column.begin() + rowStart[row + 1];
+  return static_cast<uint32_t>(std::lower_bound(begin, end, x) - column.begin());
 }
 
 FaceRasterizer::FaceRasterizer(const Scene& scene) : scene_(scene) {
@@ -26,96 +67,144 @@ FaceRasterizer::FaceRasterizer(const Scene& scene) : scene_(scene) {
   }
 }
 
-void FaceRasterizer::render(const Vec3& origin, const std::vector<int>& faces,
-                            const std::vector<std::array<Vec3, 3>>& bases, int n, std::vector<Vec3f>& atlas) const {
+namespace {
+
+// Projects, near-clips and sets up every triangle that can touch the face.
+template <typename Triangles>
+std::vector<ScreenTriangle> setUpFace(const Triangles& triangles, const Vec3& origin, const std::array<Vec3, 3>& basis,
+                                      int n) {
   const int padded = n + 2;
-  tbb::parallel_for(size_t(0), faces.size(), [&](size_t fi) {
-    const int face = faces[fi];
-    const Vec3 &f = bases[fi][0], &r = bases[fi][1], &u = bases[fi][2];
-    std::vector<double> inverseDepth(static_cast<size_t>(padded) * padded, 0.0);  // 1/w; 0 = nothing yet
-    Vec3f* colour = &atlas[static_cast<size_t>(face) * padded * padded];
-    for (int k = 0; k < padded * padded; ++k) colour[k] = scene_.background;
-    // Camera space per vertex: (x, y, w) with the face plane at w = 1.
-    struct Clip {
-      double x, y, w;
-      Eigen::Vector2d uv;
-    };
-    for (const Triangle& tri : triangles_) {
-      Clip in[3];
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 q = tri.v[k].p - origin;
-        in[k] = {q.dot(r), q.dot(u), q.dot(f), tri.v[k].uv};
+  const Vec3 &f = basis[0], &r = basis[1], &u = basis[2];
+  struct Clip {  // camera space with the face plane at w = 1
+    double x, y, w;
+    Eigen::Vector2d uv;
+  };
+  std::vector<ScreenTriangle> out;
+  for (const auto& tri : triangles) {
+    Clip in[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 q = tri.v[k].p - origin;
+      in[k] = {q.dot(r), q.dot(u), q.dot(f), tri.v[k].uv};
+    }
+    // Quick reject: wholly behind, or wholly outside one side of the (padded) frustum.
+    const double m = 1.0 + 4.0 / n;
+    auto outside = [&](auto test) { return test(in[0]) && test(in[1]) && test(in[2]); };
+    if (outside([](const Clip& c) { return c.w <= kNear; }) || outside([&](const Clip& c) { return c.x > m * c.w; }) ||
+        outside([&](const Clip& c) { return c.x < -m * c.w; }) || outside([&](const Clip& c) { return c.y > m * c.w; }) ||
+        outside([&](const Clip& c) { return c.y < -m * c.w; }))
+      continue;
+    // Clip against the near plane (Sutherland–Hodgman), then fan into triangles.
+    Clip poly[4];
+    int count = 0;
+    for (int k = 0; k < 3; ++k) {
+      const Clip &a = in[k], &b = in[(k + 1) % 3];
+      if (a.w > kNear) poly[count++] = a;
+      if ((a.w > kNear) != (b.w > kNear)) {
+        const double t = (kNear - a.w) / (b.w - a.w);
+        poly[count++] = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), kNear, a.uv + t * (b.uv - a.uv)};
       }
-      // Quick reject: wholly behind, or wholly outside one side of the (padded) frustum.
-      const double m = 1.0 + 4.0 / n;
-      auto outside = [&](auto test) { return test(in[0]) && test(in[1]) && test(in[2]); };
-      if (outside([](const Clip& c) { return c.w <= kNear; }) || outside([&](const Clip& c) { return c.x > m * c.w; }) ||
-          outside([&](const Clip& c) { return c.x < -m * c.w; }) || outside([&](const Clip& c) { return c.y > m * c.w; }) ||
-          outside([&](const Clip& c) { return c.y < -m * c.w; }))
-        continue;
-      // Clip against the near plane (Sutherland–Hodgman), then fan into triangles.
-      Clip poly[4];
-      int count = 0;
-      for (int k = 0; k < 3; ++k) {
-        const Clip &a = in[k], &b = in[(k + 1) % 3];
-        if (a.w > kNear) poly[count++] = a;
-        if ((a.w > kNear) != (b.w > kNear)) {
-          const double t = (kNear - a.w) / (b.w - a.w);
-          poly[count++] = {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), kNear, a.uv + t * (b.uv - a.uv)};
-        }
+    }
+    for (int k = 1; k + 1 < count; ++k) {
+      const Clip* v[3] = {&poly[0], &poly[k], &poly[k + 1]};
+      ScreenTriangle s;
+      double X[3], Y[3];
+      for (int j = 0; j < 3; ++j) {
+        s.inverseW[j] = 1.0 / v[j]->w;
+        s.uvOverW[j] = v[j]->uv * s.inverseW[j];
+        X[j] = (v[j]->x * s.inverseW[j] + 1.0) * 0.5 * n + 1.0;
+        Y[j] = (1.0 - v[j]->y * s.inverseW[j]) * 0.5 * n + 1.0;
       }
-      const Material& material = scene_.materials[tri.material];
-      for (int k = 1; k + 1 < count; ++k) {
-        const Clip* v[3] = {&poly[0], &poly[k], &poly[k + 1]};
-        // Screen position in padded texel units: X = (s + 1)/2·n + 1, texel centres at i + 0.5.
-        double X[3], Y[3], iw[3];
+      const double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+      if (std::abs(area) < 1e-12) continue;
+      const double inv = 1.0 / area;
+      for (int j = 0; j < 3; ++j) {
+        const int a = (j + 1) % 3, b = (j + 2) % 3;
+        s.A[j] = (Y[a] - Y[b]) * inv;
+        s.B[j] = (X[b] - X[a]) * inv;
+        s.C[j] = (X[a] * Y[b] - X[b] * Y[a]) * inv;
+      }
+      s.y0 = std::max(0, static_cast<int>(std::floor(std::min({Y[0], Y[1], Y[2]}) - 0.5)));
+      s.y1 = std::min(padded - 1, static_cast<int>(std::ceil(std::max({Y[0], Y[1], Y[2]}) - 0.5)));
+      s.xLo = std::min({X[0], X[1], X[2]}) - 0.5;
+      s.xHi = std::max({X[0], X[1], X[2]}) - 0.5;
+      s.material = tri.material;
+      if (s.y0 <= s.y1) out.push_back(s);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void FaceRasterizer::render(const Vec3& origin, const std::vector<int>& faces,
+                            const std::vector<std::array<Vec3, 3>>& bases, const FaceTexels& texels,
+                            FaceTexelColours& out) const {
+  const int n = texels.faceSize, padded = texels.padded();
+  out.paletteIndex.resize(texels.size());
+  out.colour.resize(texels.size());
+  out.inverseDepth.resize(texels.size());
+  // Palette: untextured materials by index, then the background (when the indices fit).
+  const bool usePalette = scene_.materials.size() + 1 < FaceTexelColours::kOwnColour;
+  out.palette.clear();
+  for (const Material& m : scene_.materials) out.palette.push_back(m.color);
+  out.palette.push_back(scene_.background);
+  const uint16_t background = static_cast<uint16_t>(scene_.materials.size());
+  std::vector<std::vector<ScreenTriangle>> screen(faces.size());
+  tbb::parallel_for(size_t(0), faces.size(), [&](size_t fi) { screen[fi] = setUpFace(triangles_, origin, bases[fi], n); });
+
+  const int bands = (padded + kBandRows - 1) / kBandRows;
+  tbb::parallel_for(size_t(0), faces.size() * bands, [&](size_t task) {
+    const size_t fi = task / bands;
+    const int rowBegin = static_cast<int>(task % bands) * kBandRows, rowEnd = std::min(padded, rowBegin + kBandRows);
+    const uint32_t* rowStart = &texels.rowStart[static_cast<size_t>(faces[fi]) * padded];
+    const uint32_t first = rowStart[rowBegin], count = rowStart[rowEnd] - first;
+    std::fill_n(out.inverseDepth.begin() + first, count, 0.0f);  // 1/w; 0 = nothing yet
+    if (usePalette) {
+      std::fill_n(out.paletteIndex.begin() + first, count, background);
+    } else {
+      std::fill_n(out.paletteIndex.begin() + first, count, FaceTexelColours::kOwnColour);
+      std::fill_n(out.colour.begin() + first, count, scene_.background);
+    }
+    for (const ScreenTriangle& s : screen[fi]) {
+      if (s.y1 < rowBegin || s.y0 >= rowEnd) continue;
+      const Material& material = scene_.materials[s.material];
+      const bool ownColour = material.texture || !usePalette;
+      for (int y = std::max(s.y0, rowBegin); y <= std::min(s.y1, rowEnd - 1); ++y) {
+        if (rowStart[y] == rowStart[y + 1]) continue;
+        const double py = y + 0.5;
+        // The row's covered span: where every b_i ≥ 0 (each edge bounds px on one side).
+        double lo = std::clamp(std::floor(s.xLo), 0.0, padded - 1.0), hi = std::clamp(std::ceil(s.xHi), 0.0, padded - 1.0);
         for (int j = 0; j < 3; ++j) {
-          iw[j] = 1.0 / v[j]->w;
-          X[j] = (v[j]->x * iw[j] + 1.0) * 0.5 * n + 1.0;
-          Y[j] = (1.0 - v[j]->y * iw[j]) * 0.5 * n + 1.0;
+          const double rest = s.B[j] * py + s.C[j];
+          if (s.A[j] > 0) lo = std::max(lo, std::ceil(-rest / s.A[j] - 0.5 - 1e-9));
+          else if (s.A[j] < 0) hi = std::min(hi, std::floor(-rest / s.A[j] - 0.5 + 1e-9));
+          else if (rest < 0) hi = -1.0;
         }
-        const double area = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
-        if (std::abs(area) < 1e-12) continue;
-        // Barycentrics are affine in the texel centre (px, py): b_i = A_i·px + B_i·py + C_i.
-        const double inv = 1.0 / area;
-        double A[3], B[3], C[3];
-        for (int j = 0; j < 3; ++j) {
-          const int a = (j + 1) % 3, b = (j + 2) % 3;
-          A[j] = (Y[a] - Y[b]) * inv;
-          B[j] = (X[b] - X[a]) * inv;
-          C[j] = (X[a] * Y[b] - X[b] * Y[a]) * inv;
-        }
-        const int y0 = std::max(0, static_cast<int>(std::floor(std::min({Y[0], Y[1], Y[2]}) - 0.5)));
-        const int y1 = std::min(padded - 1, static_cast<int>(std::ceil(std::max({Y[0], Y[1], Y[2]}) - 0.5)));
-        const double xLo = std::min({X[0], X[1], X[2]}) - 0.5, xHi = std::max({X[0], X[1], X[2]}) - 0.5;
-        for (int y = y0; y <= y1; ++y) {
-          const double py = y + 0.5;
-          // The row's covered span: where every b_i ≥ 0 (each edge bounds px on one side).
-          double lo = std::clamp(std::floor(xLo), 0.0, padded - 1.0), hi = std::clamp(std::ceil(xHi), 0.0, padded - 1.0);
-          for (int j = 0; j < 3; ++j) {
-            const double rest = B[j] * py + C[j];
-            if (A[j] > 0) lo = std::max(lo, std::ceil(-rest / A[j] - 0.5 - 1e-9));
-            else if (A[j] < 0) hi = std::min(hi, std::floor(-rest / A[j] - 0.5 + 1e-9));
-            else if (rest < 0) hi = -1.0;
+        if (!(lo <= hi)) continue;  // empty (or NaN) span; both ends now lie in [0, padded − 1]
+        const uint16_t* columns = texels.column.data();
+        const uint16_t xLast = static_cast<uint16_t>(hi);
+        for (uint32_t k = static_cast<uint32_t>(std::lower_bound(columns + rowStart[y], columns + rowStart[y + 1],
+                                                                 static_cast<uint16_t>(lo)) - columns);
+             k < rowStart[y + 1] && columns[k] <= xLast; ++k) {
+          const double px = columns[k] + 0.5;
+          const double b0 = s.A[0] * px + s.B[0] * py + s.C[0], b1 = s.A[1] * px + s.B[1] * py + s.C[1];
+          const double b2 = 1.0 - b0 - b1;
+          if (b0 < 0 || b1 < 0 || b2 < 0) continue;  // rounding at the span ends
+          // Perspective-correct: interpolate 1/w and attributes/w.
+          const double invW = b0 * s.inverseW[0] + b1 * s.inverseW[1] + b2 * s.inverseW[2];
+          if (static_cast<float>(invW) <= out.inverseDepth[k]) continue;
+          out.inverseDepth[k] = static_cast<float>(invW);
+          if (!ownColour) {
+            out.paletteIndex[k] = static_cast<uint16_t>(s.material);
+            continue;
           }
-          if (!(lo <= hi)) continue;  // empty (or NaN) span; both ends now lie in [0, padded − 1]
-          for (int x = static_cast<int>(lo); x <= static_cast<int>(hi); ++x) {
-            const double px = x + 0.5;
-            const double b0 = A[0] * px + B[0] * py + C[0], b1 = A[1] * px + B[1] * py + C[1];
-            const double b2 = 1.0 - b0 - b1;
-            if (b0 < 0 || b1 < 0 || b2 < 0) continue;  // rounding at the span ends
-            // Perspective-correct: interpolate 1/w and attributes/w.
-            const double invW = b0 * iw[0] + b1 * iw[1] + b2 * iw[2];
-            const size_t texel = static_cast<size_t>(y) * padded + x;
-            if (invW <= inverseDepth[texel]) continue;
-            inverseDepth[texel] = invW;
-            Vec3f albedo = material.color;
-            if (material.texture) {
-              const Eigen::Vector2d uv = (b0 * iw[0] * v[0]->uv + b1 * iw[1] * v[1]->uv + b2 * iw[2] * v[2]->uv) / invW;
-              albedo = albedo.cwiseProduct(material.texture->sample(uv.x(), uv.y()));
-            }
-            colour[texel] = albedo;
+          Vec3f albedo = material.color;
+          if (material.texture) {
+            const Eigen::Vector2d uv = (b0 * s.uvOverW[0] + b1 * s.uvOverW[1] + b2 * s.uvOverW[2]) / invW;
+            albedo = albedo.cwiseProduct(material.texture->sample(uv.x(), uv.y()));
           }
+          out.paletteIndex[k] = FaceTexelColours::kOwnColour;
+          out.colour[k] = albedo;
         }
       }
     }
