@@ -28,7 +28,8 @@ const std::array<Face, 6> kFaces = [] {
   }
   return faces;
 }();
-constexpr int kUpFace = 5;  // the face the thesis' five cameras lack
+constexpr int kUpFace = 5;
+constexpr size_t kPrefetchAhead = 16;  // samples  // the face the thesis' five cameras lack
 
 int faceOf(const Vec3& d) {
   const Vec3 a = d.cwiseAbs();
@@ -254,6 +255,25 @@ CubeLookupStats CubeMapRenderer::stats(const RenderSettings& settings, const Cub
   return {static_cast<long>(L->samples.size()), L->missed, static_cast<long>(L->texels.size())};
 }
 
+namespace {
+
+// Adds one sample's bilinear footprint. Most footprints lie on one untextured surface: all four
+// texels share a palette colour, and the weights need not be applied.
+inline void addFootprint(const FaceTexelColours& texel, const CubeMapRenderer::Lookup::Sample& q, float sum[3]) {
+  const uint16_t* index = texel.paletteIndex.data();
+  const uint16_t p = index[q.top];
+  if (p != FaceTexelColours::kOwnColour && index[q.top + 1] == p && index[q.bottom] == p && index[q.bottom + 1] == p) {
+    const Vec3f& c = texel.palette[p];
+    for (int k = 0; k < 3; ++k) sum[k] += c[k];
+    return;
+  }
+  const Vec3f c00 = texel.at(q.top), c10 = texel.at(q.top + 1), c01 = texel.at(q.bottom), c11 = texel.at(q.bottom + 1);
+  const float w00 = (1.0f - q.fx) * (1.0f - q.fy), w10 = q.fx * (1.0f - q.fy), w01 = (1.0f - q.fx) * q.fy, w11 = q.fx * q.fy;
+  for (int k = 0; k < 3; ++k) sum[k] += w00 * c00[k] + w10 * c10[k] + w01 * c01[k] + w11 * c11[k];
+}
+
+}  // namespace
+
 CubeMapRenderer::BufferLease::BufferLease(const CubeMapRenderer& owner) : owner_(owner) {
   std::lock_guard<std::mutex> lock(owner_.mutex_);
   if (owner_.spareBuffers_.empty()) {
@@ -299,22 +319,20 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
   const int n = *samplesPerAxis(settings.spp);
   const float weight = 1.0f / static_cast<float>(n * n);
   ImageRGBA image(width, height);
+  const uint32_t* firstSample = L->firstSample.data();
+  const Lookup::Sample* samples = L->samples.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
-      for (int i = 0; i < width; ++i) {
-        const size_t pixel = static_cast<size_t>(j) * width + i;
-        Vec3f sum = Vec3f::Zero();
-        for (uint32_t s = L->firstSample[pixel]; s < L->firstSample[pixel + 1]; ++s) {
-          const Lookup::Sample& q = L->samples[s];
-          if (q.top == UINT32_MAX) continue;
-          const Vec3f top = (1.0f - q.fx) * texel.at(q.top) + q.fx * texel.at(q.top + 1);
-          const Vec3f bottom = (1.0f - q.fx) * texel.at(q.bottom) + q.fx * texel.at(q.bottom + 1);
-          sum += (1.0f - q.fy) * top + q.fy * bottom;
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      float* px = image.at(0, j);
+      for (size_t pixel = static_cast<size_t>(j) * width; pixel < static_cast<size_t>(j + 1) * width; ++pixel, px += 4) {
+        float sum[3] = {0.0f, 0.0f, 0.0f};
+        for (uint32_t s = firstSample[pixel]; s < firstSample[pixel + 1]; ++s) {
+          if (samples[s].top != UINT32_MAX) addFootprint(texel, samples[s], sum);
         }
-        float* px = image.at(i, j);
         for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
-        px[3] = static_cast<float>(L->firstSample[pixel + 1] - L->firstSample[pixel]) * weight;  // rim coverage
+        px[3] = static_cast<float>(firstSample[pixel + 1] - firstSample[pixel]) * weight;  // rim coverage
       }
+    }
   });
   return image;
 }
