@@ -28,8 +28,7 @@ const std::array<Face, 6> kFaces = [] {
   }
   return faces;
 }();
-constexpr int kUpFace = 5;
-constexpr size_t kPrefetchAhead = 16;  // samples  // the face the thesis' five cameras lack
+constexpr int kUpFace = 5;  // the face the thesis' five cameras lack
 
 int faceOf(const Vec3& d) {
   const Vec3 a = d.cwiseAbs();
