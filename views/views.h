@@ -37,8 +37,8 @@ struct ViewMap {
   // The bilinear footprint, precomputed so that applying the map is four gathers per pixel.
   int sourceWidth = 0, sourceHeight = 0;
   struct Tap {
-    uint32_t texel;  // top-left source texel (UINT32_MAX: black)
-    float fx, fy;
+    uint32_t texel;    // top-left source texel (UINT32_MAX: black)
+    uint16_t fx, fy;   // bilinear weights of the right / lower texels, in units of 1/65536
   };
   std::vector<Tap> taps;
 };
@@ -47,6 +47,8 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
 // Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
 // camera the map was built for.
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
+// The same into `out`, whose storage is reused from frame to frame (every pixel is written).
+void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 
 ViewKind parseViewKind(const std::string& name);       // InputError naming --as
 ViewVariant parseViewVariant(const std::string& name);  // InputError naming --variant
