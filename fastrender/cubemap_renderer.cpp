@@ -290,6 +290,13 @@ CubeMapRenderer::BufferLease::~BufferLease() {
 
 ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings,
                                   const CubeMapOptions& options) const {
+  ImageRGBA image;
+  render(pose, settings, options, image);
+  return image;
+}
+
+void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options,
+                             ImageRGBA& image) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
   const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
   const Vec3 origin = worldFromViewpoint.translation();
@@ -317,7 +324,9 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
   const int width = settings.rig.imageSize, height = width;
   const int n = *samplesPerAxis(settings.spp);
   const float weight = 1.0f / static_cast<float>(n * n);
-  ImageRGBA image(width, height);
+  image.width = width;
+  image.height = height;
+  image.pixels.resize(static_cast<size_t>(width) * height * 4);
   const uint32_t* firstSample = L->firstSample.data();
   const Lookup::Sample* samples = L->samples.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
@@ -333,7 +342,6 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
       }
     }
   });
-  return image;
 }
 
 }  // namespace omnicam

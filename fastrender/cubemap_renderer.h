@@ -44,6 +44,9 @@ class CubeMapRenderer {
   explicit CubeMapRenderer(const FastRenderer& renderer);
   // Throws InputError for bad options (faces, faceSize, polygons, spp).
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options) const;
+  // The same into `image`, whose storage is reused from frame to frame (every pixel is written).
+  void render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options,
+              ImageRGBA& image) const;
   CubeLookupStats stats(const RenderSettings& settings, const CubeMapOptions& options) const;
 
   struct Lookup;

@@ -19,12 +19,41 @@ constexpr int kBandRows = 32;   // rows per parallel task
 // Barycentrics are affine in the texel centre (px, py): b_i = A_i·px + B_i·py + C_i.
 struct ScreenTriangle {
   double A[3], B[3], C[3];
+  // Edge j crosses row py at px = slope_j·py + offset_j; it bounds the span from below where
+  // A_j > 0, from above where A_j < 0 (A_j = 0: the edge is horizontal, see B_j·py + C_j).
+  double slope[3], offset[3];
   double inverseW[3];
   Eigen::Vector2d uvOverW[3];
   double xLo, xHi;
   int y0, y1;
   int material;
 };
+
+// floor and ceil of a value clamped to [lo, hi] first (NaN gives lo), as ints.
+inline int floorClamped(double v, int lo, int hi) {
+  if (!(v > lo)) return lo;
+  if (v >= hi) return hi;
+  const int i = static_cast<int>(v);  // truncates toward zero; v > lo ≥ −1 here
+  return i - (i > v);
+}
+inline int ceilClamped(double v, int lo, int hi) {
+  if (!(v > lo)) return lo;
+  if (v >= hi) return hi;
+  const int i = static_cast<int>(v);
+  return i + (i < v);
+}
+
+// First of the sorted values [first, first + count) that is ≥ value (branch-free halving).
+inline uint32_t lowerBound(const uint16_t* values, uint32_t first, uint32_t count, uint16_t value) {
+  const uint16_t* base = values + first;
+  if (count == 0) return first;
+  while (count > 1) {
+    const uint32_t half = count / 2;
+    base = base[half] < value ? base + half : base;
+    count -= half;
+  }
+  return static_cast<uint32_t>(base - values) + (*base < value);
+}
 
 }  // namespace
 
@@ -122,6 +151,8 @@ std::vector<ScreenTriangle> setUpFace(const Triangles& triangles, const Vec3& or
         s.A[j] = (Y[a] - Y[b]) * inv;
         s.B[j] = (X[b] - X[a]) * inv;
         s.C[j] = (X[a] * Y[b] - X[b] * Y[a]) * inv;
+        s.slope[j] = s.A[j] != 0.0 ? -s.B[j] / s.A[j] : 0.0;
+        s.offset[j] = s.A[j] != 0.0 ? -s.C[j] / s.A[j] : 0.0;
       }
       s.y0 = std::max(0, static_cast<int>(std::floor(std::min({Y[0], Y[1], Y[2]}) - 0.5)));
       s.y1 = std::min(padded - 1, static_cast<int>(std::ceil(std::max({Y[0], Y[1], Y[2]}) - 0.5)));
@@ -172,19 +203,19 @@ void FaceRasterizer::render(const Vec3& origin, const std::vector<int>& faces,
       for (int y = std::max(s.y0, rowBegin); y <= std::min(s.y1, rowEnd - 1); ++y) {
         if (rowStart[y] == rowStart[y + 1]) continue;
         const double py = y + 0.5;
-        // The row's covered span: where every b_i ≥ 0 (each edge bounds px on one side).
-        double lo = std::clamp(std::floor(s.xLo), 0.0, padded - 1.0), hi = std::clamp(std::ceil(s.xHi), 0.0, padded - 1.0);
+        // The row's covered span: where every b_i ≥ 0 (each edge bounds px on one side); the
+        // slack widens it by rounding only, the per-texel test below decides.
+        int lo = ceilClamped(s.xLo - 1.0, 0, padded - 1), hi = floorClamped(s.xHi + 1.0, 0, padded - 1);
         for (int j = 0; j < 3; ++j) {
-          const double rest = s.B[j] * py + s.C[j];
-          if (s.A[j] > 0) lo = std::max(lo, std::ceil(-rest / s.A[j] - 0.5 - 1e-9));
-          else if (s.A[j] < 0) hi = std::min(hi, std::floor(-rest / s.A[j] - 0.5 + 1e-9));
-          else if (rest < 0) hi = -1.0;
+          const double edge = s.slope[j] * py + s.offset[j] - 0.5;
+          if (s.A[j] > 0) lo = std::max(lo, ceilClamped(edge - 1e-9, 0, padded));
+          else if (s.A[j] < 0) hi = std::min(hi, floorClamped(edge + 1e-9, -1, padded - 1));
+          else if (s.B[j] * py + s.C[j] < 0) hi = -1;
         }
-        if (!(lo <= hi)) continue;  // empty (or NaN) span; both ends now lie in [0, padded − 1]
+        if (lo > hi) continue;
         const uint16_t* columns = texels.column.data();
         const uint16_t xLast = static_cast<uint16_t>(hi);
-        for (uint32_t k = static_cast<uint32_t>(std::lower_bound(columns + rowStart[y], columns + rowStart[y + 1],
-                                                                 static_cast<uint16_t>(lo)) - columns);
+        for (uint32_t k = lowerBound(columns, rowStart[y], rowStart[y + 1] - rowStart[y], static_cast<uint16_t>(lo));
              k < rowStart[y + 1] && columns[k] <= xLast; ++k) {
           const double px = columns[k] + 0.5;
           const double b0 = s.A[0] * px + s.B[0] * py + s.C[0], b1 = s.A[1] * px + s.B[1] * py + s.C[1];
