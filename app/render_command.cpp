@@ -1,5 +1,6 @@
-// omnicam render SCENE [--engine fast] [--pose X,Y,YAW | --path NAME [--frames N]] [--size N]
-//                      [--spp N] [--shading unlit|lit] [--mode exact] -o OUT
+// omnicam render SCENE [--engine fast|povray|blender] [--pose X,Y,YAW | --path NAME [--frames N]]
+//                      [--size N] [--spp N] [--shading unlit|lit] [--mode exact|cubemap|thesis-mesh]
+//                      [--view birdseye|panorama|perspective ...] -o OUT
 #include <cstdio>
 #include <filesystem>
 #include <future>
@@ -11,6 +12,7 @@
 #include "image.h"
 #include "render_output.h"
 #include "scene_loader.h"
+#include "views.h"
 
 namespace omnicam::cli {
 
@@ -20,6 +22,31 @@ struct RenderArgs {
   std::string scene, engine = "fast", pose, path, size, shading = "unlit", mode = "exact", out, format = "png";
   int frames = 0, spp = 1, imageSize = 0, faces = 6, faceSize = 512, polygons = 1024;
   double timeout = 600.0;
+  std::vector<std::string> views;
+};
+
+// Views written next to each rendered image (OUT's stem + ".KIND" + its extension), from lookup
+// tables built once for the render's camera and reused for every frame.
+class FrameViews {
+ public:
+  FrameViews(const std::vector<std::string>& kinds, const OmniCamera& camera) {
+    for (const std::string& kind : kinds) {
+      ViewSpec spec;
+      spec.kind = parseViewKind(kind, "--view");
+      maps_.emplace_back(kind, buildViewMap(spec, camera));
+    }
+  }
+  void write(const std::string& imageFile, const ImageRGBA& omni) const {
+    const std::filesystem::path file(imageFile);
+    for (const auto& [kind, map] : maps_) {
+      std::filesystem::path viewFile = file;
+      viewFile.replace_filename(file.stem().string() + "." + kind + file.extension().string());
+      writeImageAtomic(viewFile.string(), applyViewMap(map, omni));
+    }
+  }
+
+ private:
+  std::vector<std::pair<std::string, ViewMap>> maps_;
 };
 
 void runRender(const RenderArgs& a) {
@@ -38,6 +65,7 @@ void runRender(const RenderArgs& a) {
   if (a.imageSize) settings.rig.imageSize = a.imageSize;
   settings.spp = a.spp;
   settings.shading = *shading;
+  const FrameViews views(a.views, settings.rig.camera());
   const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
 
   if (a.path.empty()) {
@@ -49,7 +77,8 @@ void runRender(const RenderArgs& a) {
     const auto parent = std::filesystem::path(a.out).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
       throw InputError("-o: folder " + parent.string() + " does not exist");
-    renderToFile(scene, *engine, pose, settings, a.out);
+    const RenderedFile rendered = renderToFile(scene, *engine, pose, settings, a.out);
+    views.write(a.out, rendered.image);
     std::printf("wrote %s\n", a.out.c_str());
     return;
   }
@@ -69,7 +98,10 @@ void runRender(const RenderArgs& a) {
     rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
     if (writing.valid()) writing.get();
     writing = std::async(std::launch::async, [file = (std::filesystem::path(a.out) / name).string(),
-                                              frame = std::move(rendered)] { writeRendered(file, frame); });
+                                              frame = std::move(rendered), &views] {
+      writeRendered(file, frame);
+      views.write(file, frame.image);
+    });
     progress.step();
   }
   if (writing.valid()) writing.get();
@@ -98,6 +130,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--face-size", args->faceSize, "cubemap/thesis-mesh: texels per face edge (default 512)");
   cmd->add_option("--polygons", args->polygons, "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default 1024)");
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
+  cmd->add_option("--view", args->views,
+                  "Also write this view of each image (birdseye, panorama or perspective; repeatable): "
+                  "OUT.KIND.png, frame_NNNN.KIND.png");
   cmd->add_option("-o,--output", args->out, "OUT.png / OUT.exr, or a folder with --path")->required();
   cmd->callback([args] { runRender(*args); });
 }

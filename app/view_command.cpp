@@ -46,6 +46,7 @@ void runView(const ViewArgs& a) {
     } catch (const std::exception&) {
       throw InputError("--size: must be WIDTHxHEIGHT, e.g. 400x400 (got \"" + a.size + "\")");
     }
+    if (spec.width < 1 || spec.height < 1) throw InputError("--size: width and height must be at least 1");
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");

@@ -141,6 +141,32 @@ TEST_F(CliTest, PathSequenceWritesNumberedFramesWithSidecars) {
   EXPECT_FALSE(fs::exists(fs::path(folder) / "frame_0003.png"));
 }
 
+TEST_F(CliTest, RenderWritesViewsThatTheViewVerbReproduces) {
+  // One pose: views next to the image; `omnicam view` on the written file (camera from its
+  // sidecar) gives the same view, up to the file's half-float storage.
+  const std::string image = path("a.exr");
+  CommandResult r = run("render " + kScene + " --size 180 --view panorama --view birdseye -o " + image);
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_TRUE(fs::exists(path("a.birdseye.exr")));
+  r = run("view " + image + " --as panorama -o " + path("p.exr"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const ImageRGBA fromRender = readImage(path("a.panorama.exr")), fromView = readImage(path("p.exr"));
+  ASSERT_EQ(fromRender.width, 1080);
+  ASSERT_EQ(fromView.pixels.size(), fromRender.pixels.size());
+  double maxDiff = 0.0, sum = 0.0;
+  for (size_t k = 0; k < fromView.pixels.size(); ++k) {
+    maxDiff = std::max(maxDiff, static_cast<double>(std::abs(fromView.pixels[k] - fromRender.pixels[k])));
+    sum += fromRender.pixels[k];
+  }
+  EXPECT_LT(maxDiff, 2e-3);
+  EXPECT_GT(sum / fromRender.pixels.size(), 0.05);  // not an empty image
+  // A path: one view per frame.
+  r = run("render " + kScene + " --path thesis-loop --frames 2 --size 96 --view perspective -o " + path("seq"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(fs::path(path("seq")) / "frame_0000.perspective.png"));
+  EXPECT_TRUE(fs::exists(fs::path(path("seq")) / "frame_0001.perspective.png"));
+}
+
 TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
   const std::string out = path("x.png");
   const std::string badScene = path("bad.json");
@@ -160,6 +186,10 @@ TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
       {"render " + kScene + " --bogus -o " + out, "bogus"},
       {"project " + kScene + " --pose=0,0,0 --point=1,2", "--point: expected three"},
       {"rings --spp 3 -o " + out, "--spp: must be a perfect square"},
+      {"render " + kScene + " --view pano -o " + out, "--view: must be birdseye, panorama or perspective"},
+      {"view " + path("none.png") + " --as panorama -o " + out, "cannot read image"},
+      {"view " + kScene + " --as bogus -o " + out, "--as: must be birdseye, panorama or perspective"},
+      {"view " + kScene + " --as panorama --size 0x3 -o " + out, "--size: width and height must be at least 1"},
   };
   for (const auto& [args, message] : cases) {
     const CommandResult r = run(args);

@@ -30,11 +30,11 @@ bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant vari
 
 }  // namespace
 
-ViewKind parseViewKind(const std::string& name) {
+ViewKind parseViewKind(const std::string& name, const std::string& option) {
   if (name == "birdseye") return ViewKind::BirdsEye;
   if (name == "panorama") return ViewKind::Panorama;
   if (name == "perspective") return ViewKind::Perspective;
-  throw InputError("--as: must be birdseye, panorama or perspective (got \"" + name + "\")");
+  throw InputError(option + ": must be birdseye, panorama or perspective (got \"" + name + "\")");
 }
 
 ViewVariant parseViewVariant(const std::string& name) {

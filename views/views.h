@@ -50,7 +50,7 @@ ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
 // The same into `out`, whose storage is reused from frame to frame (every pixel is written).
 void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 
-ViewKind parseViewKind(const std::string& name);       // InputError naming --as
+ViewKind parseViewKind(const std::string& name, const std::string& option = "--as");  // InputError naming option
 ViewVariant parseViewVariant(const std::string& name);  // InputError naming --variant
 
 }  // namespace omnicam
