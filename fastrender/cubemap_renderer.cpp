@@ -259,8 +259,8 @@ namespace {
 // Adds one sample's bilinear footprint. Most footprints lie on one untextured surface: all four
 // texels share a palette colour, and the weights need not be applied.
 inline void addFootprint(const FaceTexelColours& texel, const CubeMapRenderer::Lookup::Sample& q, float sum[3]) {
-  const uint16_t* index = texel.paletteIndex.data();
-  const uint16_t p = index[q.top];
+  const PaletteIndex* index = texel.paletteIndex.data();
+  const PaletteIndex p = index[q.top];
   if (p != FaceTexelColours::kOwnColour && index[q.top + 1] == p && index[q.bottom] == p && index[q.bottom + 1] == p) {
     const Vec3f& c = texel.palette[p];
     for (int k = 0; k < 3; ++k) sum[k] += c[k];

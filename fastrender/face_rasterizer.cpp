@@ -179,7 +179,7 @@ void FaceRasterizer::render(const Vec3& origin, const std::vector<int>& faces,
   out.palette.clear();
   for (const Material& m : scene_.materials) out.palette.push_back(m.color);
   out.palette.push_back(scene_.background);
-  const uint16_t background = static_cast<uint16_t>(scene_.materials.size());
+  const auto background = static_cast<PaletteIndex>(scene_.materials.size());
   std::vector<std::vector<ScreenTriangle>> screen(faces.size());
   tbb::parallel_for(size_t(0), faces.size(), [&](size_t fi) { screen[fi] = setUpFace(triangles_, origin, bases[fi], n); });
 
@@ -226,7 +226,7 @@ void FaceRasterizer::render(const Vec3& origin, const std::vector<int>& faces,
           if (static_cast<float>(invW) <= out.inverseDepth[k]) continue;
           out.inverseDepth[k] = static_cast<float>(invW);
           if (!ownColour) {
-            out.paletteIndex[k] = static_cast<uint16_t>(s.material);
+            out.paletteIndex[k] = static_cast<PaletteIndex>(s.material);
             continue;
           }
           Vec3f albedo = material.color;

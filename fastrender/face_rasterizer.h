@@ -34,17 +34,19 @@ struct FaceTexels {
 };
 
 // Colours of the texels in a FaceTexels set. Most texels show an untextured material or the
-// background, so a slot usually holds only a 2-byte palette index: the omni lookup's scattered
-// reads then touch a sixth of the memory that full colours would.
+// background, so a slot usually holds only a 1-byte palette index: the omni lookup's scattered
+// reads then touch a twelfth of the memory that full colours would (and stay in cache). Scenes
+// with more than 254 materials keep every colour in `colour`.
+using PaletteIndex = uint8_t;
 struct FaceTexelColours {
-  static constexpr uint16_t kOwnColour = 0xFFFF;  // the slot's colour is in `colour`
-  std::vector<uint16_t> paletteIndex;  // per slot
+  static constexpr PaletteIndex kOwnColour = 0xFF;  // the slot's colour is in `colour`
+  std::vector<PaletteIndex> paletteIndex;  // per slot
   std::vector<Vec3f> colour;           // per slot; read only where paletteIndex is kOwnColour
   std::vector<Vec3f> palette;
   std::vector<float> inverseDepth;     // the rasteriser's scratch space (1/w per slot)
 
   Vec3f at(uint32_t slot) const {
-    const uint16_t p = paletteIndex[slot];
+    const PaletteIndex p = paletteIndex[slot];
     return p == kOwnColour ? colour[slot] : palette[p];
   }
 };
