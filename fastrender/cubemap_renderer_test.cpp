@@ -172,6 +172,15 @@ TEST(CubeMap, OutputIsBitIdenticalForAnyThreadCountAndOptionsAreChecked) {
   }
   two = cube.render(arena().startPose, settings, options);
   EXPECT_EQ(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  // A reused output image (here holding another pose at another size) is wholly overwritten.
+  ImageRGBA reused;
+  RenderSettings small = settings;
+  small.rig.imageSize = 97;
+  cube.render({0.5, 0.5, 10.0}, small, options, reused);
+  cube.render(arena().startPose, settings, options, reused);
+  ASSERT_EQ(reused.pixels.size(), one.pixels.size());
+  EXPECT_EQ(reused.width, one.width);
+  EXPECT_EQ(std::memcmp(one.pixels.data(), reused.pixels.data(), one.pixels.size() * sizeof(float)), 0);
   options.faces = 4;
   EXPECT_THROW(cube.render(arena().startPose, settings, options), InputError);
   options.faces = 6;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "errors.h"
@@ -96,6 +97,18 @@ TEST(Views, ApplyingAMapSamplesBilinearlyAtPixelCentres) {
     ++checked;
   }
   EXPECT_GT(checked, 100);
+  // A reused output (holding a larger view of ones) is wholly overwritten, black included.
+  ViewSpec upward = spec;
+  upward.pitchDeg = 40.0;  // partly above the rim: black pixels
+  const ViewMap upMap = buildViewMap(upward, camera());
+  ImageRGBA reused(1080, 300);
+  std::fill(reused.pixels.begin(), reused.pixels.end(), 1.0f);
+  applyViewMap(upMap, omni, reused);
+  const ImageRGBA fresh = applyViewMap(upMap, omni);
+  ASSERT_EQ(reused.pixels.size(), fresh.pixels.size());
+  EXPECT_EQ(reused.width, fresh.width);
+  EXPECT_EQ(reused.pixels, fresh.pixels);
+  EXPECT_NE(std::count(fresh.pixels.begin(), fresh.pixels.end(), 0.0f), 0);
   EXPECT_THROW(parseViewKind("fisheye"), InputError);
   EXPECT_THROW(parseViewVariant("approx"), InputError);
 }
