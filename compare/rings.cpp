@@ -200,6 +200,63 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   return report;
 }
 
+RingProfileReport measureRingProfiles(const ImageRGBA& image, const OmniCamera& camera,
+                                      const std::vector<double>& thetasDeg, int sectors) {
+  if (thetasDeg.size() < 2) throw InputError("rings: need at least two rings");
+  std::vector<double> exact;
+  for (double t : thetasDeg) exact.push_back(camera.radiusOfTheta(radians(t)));
+  const size_t rings = exact.size();
+  std::vector<double> lo(rings), hi(rings);
+  for (size_t k = 0; k < rings; ++k) {
+    lo[k] = k > 0 ? 0.5 * (exact[k - 1] + exact[k]) : exact[0] - 0.5 * (exact[1] - exact[0]);
+    hi[k] = k + 1 < rings ? 0.5 * (exact[k] + exact[k + 1]) : exact[k] + 0.5 * (exact[k] - exact[k - 1]);
+  }
+  const Vec2 c(0.5 * image.width, 0.5 * image.height);
+  std::vector<double> values;
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i)
+      if (image.at(i, j)[3] >= 0.999f) values.push_back(brightness(image.at(i, j)));
+  if (values.empty()) throw InputError("rings: image has no opaque pixels");
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  const double background = values[values.size() / 2];
+
+  std::vector<double> sumW(rings * sectors, 0.0), sumWr(rings * sectors, 0.0);
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i) {
+      const float* px = image.at(i, j);
+      if (px[3] < 0.999f) continue;
+      const Vec2 d = Vec2(i + 0.5, j + 0.5) - c;
+      const double r = d.norm();
+      const auto k = static_cast<size_t>(std::upper_bound(lo.begin(), lo.end(), r) - lo.begin());
+      if (k == 0 || r > hi[k - 1]) continue;
+      const size_t ring = k - 1;
+      const Vec2 outer = c + (hi[ring] + 1.0) / std::max(r, 1e-9) * d;  // the window's far edge here
+      if (outer.x() < 0.0 || outer.y() < 0.0 || outer.x() > image.width || outer.y() > image.height) continue;
+      if (!camera.insideRim(outer)) continue;
+      double phi = std::atan2(d.y(), d.x());
+      if (phi < 0) phi += 2.0 * kPi;
+      const int sector = std::min(sectors - 1, static_cast<int>(phi / (2.0 * kPi) * sectors));
+      const double w = std::max(0.0, brightness(px) - background);
+      sumW[ring * sectors + sector] += w;
+      sumWr[ring * sectors + sector] += w * r;
+    }
+  RingProfileReport report;
+  report.sectorsTotal = static_cast<int>(rings) * sectors;
+  double sumSquares = 0.0;
+  for (size_t ring = 0; ring < rings; ++ring)
+    for (int sector = 0; sector < sectors; ++sector) {
+      const size_t cell = ring * sectors + sector;
+      if (sumW[cell] <= 1e-6) continue;
+      const double e = sumWr[cell] / sumW[cell] - exact[ring];
+      sumSquares += e * e;
+      report.maxAbsPx = std::max(report.maxAbsPx, std::abs(e));
+      ++report.sectorsMeasured;
+    }
+  if (report.sectorsMeasured == 0) throw InputError("rings: no ring sector has measurable light");
+  report.rmsPx = std::sqrt(sumSquares / report.sectorsMeasured);
+  return report;
+}
+
 nlohmann::json ringReportToJson(const RingReport& r) {
   nlohmann::json rings = nlohmann::json::array();
   for (const auto& m : r.rings)

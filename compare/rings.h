@@ -34,4 +34,18 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
 
 nlohmann::json ringReportToJson(const RingReport& report);
 
+// For rings that need not be circles (the thesis mesh bends them): each ring is looked for
+// between the midpoints to its neighbours' exact radii, in `sectors` equal azimuth sectors, and
+// its radius there is the background-subtracted brightness-weighted mean radius of the pixels.
+// Measured − exact over all (ring, sector) pairs gives the RMS; a sector with no light above the
+// background, or whose window leaves the image or the rim, is not measured.
+struct RingProfileReport {
+  double rmsPx = 0.0;
+  double maxAbsPx = 0.0;
+  int sectorsMeasured = 0;
+  int sectorsTotal = 0;
+};
+RingProfileReport measureRingProfiles(const ImageRGBA& image, const OmniCamera& camera,
+                                      const std::vector<double>& thetasDeg, int sectors = 36);
+
 }  // namespace omnicam

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "errors.h"
 #include "fast_renderer.h"
@@ -13,7 +14,8 @@ namespace {
 
 // A synthetic ring image drawn with exact area coverage (supersampled), independent of any
 // renderer: rings of known radius and width.
-ImageRGBA drawRings(const std::vector<double>& radii, double halfWidth, int size) {
+// `wobble` bends every ring: radius R + wobble·cos(3φ).
+ImageRGBA drawRings(const std::vector<double>& radii, double halfWidth, int size, double wobble = 0.0) {
   ImageRGBA img(size, size);
   const int n = 16;
   for (int j = 0; j < size; ++j)
@@ -21,8 +23,9 @@ ImageRGBA drawRings(const std::vector<double>& radii, double halfWidth, int size
       int hits = 0;
       for (int b = 0; b < n; ++b)
         for (int a = 0; a < n; ++a) {
-          const double r = std::hypot(i + (a + 0.5) / n - size / 2.0, j + (b + 0.5) / n - size / 2.0);
-          for (double R : radii) hits += std::abs(r - R) <= halfWidth;
+          const double x = i + (a + 0.5) / n - size / 2.0, y = j + (b + 0.5) / n - size / 2.0;
+          const double r = std::hypot(x, y), bend = wobble * std::cos(3.0 * std::atan2(y, x));
+          for (double R : radii) hits += std::abs(r - R - bend) <= halfWidth;
         }
       float* px = img.at(i, j);
       px[0] = px[1] = px[2] = static_cast<float>(hits) / (n * n);
@@ -39,6 +42,26 @@ TEST(Rings, MeasuresSyntheticRingsOfKnownRadius) {
   const RingReport r = measureRings(img, rig.camera(), {10, 20, 30, 40, 50, 60});
   ASSERT_EQ(r.rings.size(), radii.size());
   for (size_t k = 0; k < radii.size(); ++k) EXPECT_NEAR(r.rings[k].measuredPx, radii[k], 0.02) << radii[k];
+}
+
+TEST(Rings, ProfilesMeasureHowFarRingsBend) {
+  // Rings at the camera's exact radii, straight and bent by ±0.8 px: the per-sector RMS is
+  // ~0 and 0.8/√2 (less a 1 % sector-averaging loss: sin 15°/15° for 10° sectors and cos 3φ).
+  RigSpec rig;
+  rig.rimElevationDeg = 50.0;  // whole image inside the rim
+  rig.imageSize = 180;
+  const OmniCamera camera = rig.camera();
+  const std::vector<double> thetas{40, 60, 80, 100, 120};
+  std::vector<double> radii;
+  for (double t : thetas) radii.push_back(camera.radiusOfTheta(radians(t)));
+  const RingProfileReport straight = measureRingProfiles(drawRings(radii, 0.3, 180), camera, thetas);
+  std::printf("straight rings: per-sector RMS %.4f px; bent by 0.8 px: ", straight.rmsPx);
+  EXPECT_LT(straight.rmsPx, 0.08);  // the centroid's pixel-grid floor at this size
+  EXPECT_EQ(straight.sectorsMeasured, straight.sectorsTotal);
+  const RingProfileReport bent = measureRingProfiles(drawRings(radii, 0.3, 180, 0.8), camera, thetas);
+  std::printf("%.4f px (max %.4f)\n", bent.rmsPx, bent.maxAbsPx);
+  EXPECT_NEAR(bent.rmsPx, 0.8 / std::sqrt(2.0) * std::sin(radians(15.0)) / radians(15.0), 0.03);
+  EXPECT_GT(bent.maxAbsPx, 0.7);
 }
 
 TEST(Rings, WrongRingCountIsAnInputError) {

@@ -8,6 +8,7 @@
 
 #include "errors.h"
 #include "image_compare.h"
+#include "rings.h"
 #include "scene_loader.h"
 #include "texture.h"
 
@@ -119,6 +120,32 @@ TEST(CubeMap, ThesisMeshDistortionShrinksWithPolygonCount) {
     EXPECT_GT(psnr, previous + 1.0) << polygons;
     previous = psnr;
   }
+}
+
+TEST(CubeMap, ThesisMeshBendsIncidenceRingsLessWithMorePolygons) {
+  // Per-azimuth ring radii against the exact model: the cube map stays near the measurement's
+  // floor, the thesis mesh bends the rings, less with each doubling of its sectors and rings.
+  const Scene rings = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
+  const FastRenderer fast(rings);
+  const CubeMapRenderer cube(fast);
+  const RenderSettings settings = settingsFor(rings, 4);
+  const OmniCamera camera = settings.rig.camera();
+  const double cubeRms =
+      measureRingProfiles(cube.render(rings.startPose, settings, CubeMapOptions{}), camera, defaultRingThetasDeg()).rmsPx;
+  std::printf("incidence rings per azimuth: cube map %.3f px", cubeRms);
+  double previous = 1e9;
+  for (int polygons : {16, 64, 256, 1024}) {
+    CubeMapOptions options;
+    options.mode = OmniMode::ThesisMesh;
+    options.polygons = polygons;
+    const double rms = measureRingProfiles(cube.render(rings.startPose, settings, options), camera, defaultRingThetasDeg()).rmsPx;
+    std::printf(", %d polygons %.3f px", polygons, rms);
+    EXPECT_LT(rms, previous) << polygons;
+    EXPECT_GT(rms, 3.0 * cubeRms) << polygons;
+    previous = rms;
+  }
+  std::printf("\n");
+  EXPECT_LT(cubeRms, 0.2);
 }
 
 // A white sky all around: what five faces miss shows as black.
