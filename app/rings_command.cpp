@@ -1,6 +1,8 @@
-// omnicam rings [--engine fast] [--size N] [--spp N] -o OUT [--json]
+// omnicam rings [--engine fast] [--size N] [--spp N] -o OUT [--json] [--per-azimuth]
+// omnicam rings --measure IMAGE [--json] [--per-azimuth]
 // Renders the incidence-ring scene (thesis Fig. 3.11), measures every ring's radius in the
-// image and scores it against the exact model and the thesis' Eq. 3.2.
+// image and scores it against the exact model and the thesis' Eq. 3.2. --per-azimuth measures
+// rings that need not be circles (e.g. a --mode thesis-mesh render) sector by sector instead.
 #include <cstdio>
 #include <memory>
 
@@ -19,17 +21,41 @@ namespace {
 struct RingsArgs {
   std::string engine = "fast", scene, out, measure;
   int size = 0, spp = 16;
-  bool json = false;
+  bool json = false, perAzimuth = false;
 };
 
-void printReport(const RingReport& report, const std::string& what, bool json) {
-  if (json) {
-    std::printf("%s\n", ringReportToJson(report).dump(2).c_str());
-    return;
+// Measures `image` as asked, prints the result and returns it as JSON (for a sidecar).
+nlohmann::json measureAndPrint(const ImageRGBA& image, const OmniCamera& camera, const std::string& what,
+                               const RingsArgs& a) {
+  if (a.perAzimuth) {
+    const RingProfileReport p = measureRingProfiles(image, camera, defaultRingThetasDeg());
+    const nlohmann::json j = {{"per_azimuth", {{"rms_px_exact", p.rmsPx},
+                                               {"max_abs_px_exact", p.maxAbsPx},
+                                               {"sectors_measured", p.sectorsMeasured},
+                                               {"sectors_total", p.sectorsTotal}}}};
+    if (a.json) {
+      std::printf("%s\n", j.dump(2).c_str());
+    } else {
+      std::printf("rings per azimuth in %s: %d of %d sectors lit\n", what.c_str(), p.sectorsMeasured, p.sectorsTotal);
+      std::printf("rms_px_exact %.4f  max_abs_px_exact %.4f\n", p.rmsPx, p.maxAbsPx);
+    }
+    return j;
   }
-  std::printf("rings: %zu measured in %s\n", report.rings.size(), what.c_str());
-  std::printf("rms_px_exact %.4f  max_abs_px_exact %.4f  mse_px2_eq32 %.4f  h_px %.4f (model %.4f)\n",
-              report.rmsPxExact, report.maxAbsPxExact, report.msePx2Eq32, report.hPx, report.hPxExact);
+  RingReport report;
+  try {
+    report = measureRings(image, camera, defaultRingThetasDeg());
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + " (for rings that are not circles: --per-azimuth)");
+  }
+  const nlohmann::json j = ringReportToJson(report);
+  if (a.json) {
+    std::printf("%s\n", j.dump(2).c_str());
+  } else {
+    std::printf("rings: %zu measured in %s\n", report.rings.size(), what.c_str());
+    std::printf("rms_px_exact %.4f  max_abs_px_exact %.4f  mse_px2_eq32 %.4f  h_px %.4f (model %.4f)\n",
+                report.rmsPxExact, report.maxAbsPxExact, report.msePx2Eq32, report.hPx, report.hPxExact);
+  }
+  return j;
 }
 
 // Measures an existing ring image; the model it is scored against comes from its sidecar when
@@ -40,7 +66,7 @@ void measureExisting(const RingsArgs& a) {
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   if (image.width != image.height) throw InputError(a.measure + ": ring images must be square");
   rig.imageSize = image.width;
-  printReport(measureRings(image, rig.camera(), defaultRingThetasDeg()), a.measure, a.json);
+  measureAndPrint(image, rig.camera(), a.measure, a);
 }
 
 void runRings(const RingsArgs& a) {
@@ -59,10 +85,8 @@ void runRings(const RingsArgs& a) {
   settings.spp = a.spp;
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
-  const RingReport report = measureRings(rendered.image, settings.rig.camera(), defaultRingThetasDeg());
-  rendered.sidecar["rings"] = ringReportToJson(report);
+  rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig.camera(), a.out, a);
   writeRendered(a.out, rendered);
-  printReport(report, a.out, a.json);
 }
 
 }  // namespace
@@ -77,6 +101,8 @@ void addRingsCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr");
   cmd->add_option("--measure", args->measure, "Measure an existing ring image instead of rendering one");
   cmd->add_flag("--json", args->json, "Print per-ring radii and the summary as JSON");
+  cmd->add_flag("--per-azimuth", args->perAzimuth,
+                "Measure each ring in 36 azimuth sectors (for rings that are not circles, e.g. thesis-mesh renders)");
   cmd->callback([args] { runRings(*args); });
 }
 

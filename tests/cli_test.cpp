@@ -167,6 +167,25 @@ TEST_F(CliTest, RenderWritesViewsThatTheViewVerbReproduces) {
   EXPECT_TRUE(fs::exists(fs::path(path("seq")) / "frame_0001.perspective.png"));
 }
 
+TEST_F(CliTest, RingsPerAzimuthMeasuresBentRings) {
+  // A thesis-mesh ring image defeats the circle fit (exit 2, with a hint); per azimuth it is
+  // measured, well above what an exact render gives.
+  const std::string rings = OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json";
+  ASSERT_EQ(run("render " + rings + " --mode thesis-mesh --polygons 64 --spp 4 -o " + path("mesh.png")).code, 0);
+  ASSERT_EQ(run("render " + rings + " --spp 4 -o " + path("exact.png")).code, 0);
+  const CommandResult fit = run("rings --measure " + path("mesh.png"));
+  EXPECT_EQ(fit.code, 2) << fit.out;
+  EXPECT_NE(fit.out.find("--per-azimuth"), std::string::npos) << fit.out;
+  auto perAzimuth = [&](const std::string& image) {
+    const CommandResult r = run("rings --measure " + image + " --per-azimuth --json");
+    EXPECT_EQ(r.code, 0) << r.out;
+    return nlohmann::json::parse(r.out)["per_azimuth"]["rms_px_exact"].get<double>();
+  };
+  const double mesh = perAzimuth(path("mesh.png")), exact = perAzimuth(path("exact.png"));
+  EXPECT_GT(mesh, 1.0);
+  EXPECT_LT(exact, 0.2);
+}
+
 TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
   const std::string out = path("x.png");
   const std::string badScene = path("bad.json");
