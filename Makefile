@@ -41,6 +41,7 @@ demo: build
 # Frames/s of the fast renderer, then fast vs POV-Ray per frame over the 100-frame thesis-loop.
 bench: build
 	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
+	$(BUILD_DIR)/bin/omnicam bench --json
 	bench/povray_ratio.sh 1 100
 
 clean:
