@@ -276,7 +276,7 @@ inline void addFootprint(const FaceTexelColours& texel, const CubeMapRenderer::L
 CubeMapRenderer::BufferLease::BufferLease(const CubeMapRenderer& owner) : owner_(owner) {
   std::lock_guard<std::mutex> lock(owner_.mutex_);
   if (owner_.spareBuffers_.empty()) {
-    buffers_ = std::make_unique<FaceBuffers>();
+    buffers_ = std::make_unique<FaceTexelColours>();
   } else {
     buffers_ = std::move(owner_.spareBuffers_.back());
     owner_.spareBuffers_.pop_back();
@@ -303,7 +303,7 @@ void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settin
   const Eigen::Matrix3d rotation = worldFromViewpoint.linear();
   // 1. The texels the lookup reads: rasterised (unlit), or ray cast from F' like exact mode.
   BufferLease lease(*this);
-  FaceTexelColours& texel = *lease.operator->();
+  FaceTexelColours& texel = lease.buffers();
   if (options.rasterize && settings.shading == Shading::Unlit) {
     std::vector<int> faces;
     std::vector<std::array<Vec3, 3>> bases;

@@ -55,25 +55,24 @@ class CubeMapRenderer {
   std::shared_ptr<const Lookup> lookup(const RenderSettings& settings, const CubeMapOptions& options) const;
 
   // Per-frame face texels, reused: a render leases one set for its own exclusive use.
-  using FaceBuffers = FaceTexelColours;
   class BufferLease {
    public:
     explicit BufferLease(const CubeMapRenderer& owner);
     ~BufferLease();
     BufferLease(const BufferLease&) = delete;
     BufferLease& operator=(const BufferLease&) = delete;
-    FaceBuffers* operator->() const { return buffers_.get(); }
+    FaceTexelColours& buffers() const { return *buffers_; }
 
    private:
     const CubeMapRenderer& owner_;
-    std::unique_ptr<FaceBuffers> buffers_;
+    std::unique_ptr<FaceTexelColours> buffers_;
   };
 
   const FastRenderer& renderer_;
   FaceRasterizer rasterizer_;
   mutable std::mutex mutex_;  // guards the cached lookup pointer and the spare buffers
   mutable std::shared_ptr<const Lookup> cached_;  // immutable once built
-  mutable std::vector<std::unique_ptr<FaceBuffers>> spareBuffers_;
+  mutable std::vector<std::unique_ptr<FaceTexelColours>> spareBuffers_;
 };
 
 // Polygon counts the thesis used and their sectors × rings.

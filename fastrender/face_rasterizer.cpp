@@ -79,8 +79,7 @@ FaceTexels FaceTexels::fromMask(int faceSize, const std::vector<char>& used) {
 uint32_t FaceTexels::slotOf(uint32_t atlasTexel) const {
   const uint32_t row = atlasTexel / padded();
   const uint16_t x = static_cast<uint16_t>(atlasTexel % padded());
-  const auto begin = column.begin() + rowStart[row], end = column.begin() + rowStart[row + 1];
-  return static_cast<uint32_t>(std::lower_bound(begin, end, x) - column.begin());
+  return lowerBound(column.data(), rowStart[row], rowStart[row + 1] - rowStart[row], x);
 }
 
 FaceRasterizer::FaceRasterizer(const Scene& scene) : scene_(scene) {
