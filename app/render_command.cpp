@@ -115,7 +115,7 @@ void addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (single pose, or a camera path into a folder)");
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
-  cmd->add_option("--engine", args->engine, "fast or povray (ground truth; blender: later)");
+  cmd->add_option("--engine", args->engine, "fast (default), povray or blender (ground truth)");
   cmd->add_option("--timeout", args->timeout, "Seconds allowed per external render (default 600)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");

@@ -94,7 +94,7 @@ void runRings(const RingsArgs& a) {
 void addRingsCommand(CLI::App& app) {
   auto args = std::make_shared<RingsArgs>();
   CLI::App* cmd = app.add_subcommand("rings", "Render and measure the incidence-angle rings (thesis Fig. 3.11/3.12)");
-  cmd->add_option("--engine", args->engine, "fast or povray");
+  cmd->add_option("--engine", args->engine, "fast (default), povray or blender");
   cmd->add_option("--scene", args->scene, "Ring scene (default: scenes/incidence-rings.json)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(32, 16384));
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)");
