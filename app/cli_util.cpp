@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "errors.h"
+#include "render_settings.h"
 
 namespace omnicam::cli {
 
@@ -29,6 +30,22 @@ Vec3 parseTriple(const std::string& text, const std::string& flag) {
     start = end + 1;
   }
   return out;
+}
+
+RobotPose parsePose(const std::string& text, const std::string& flag) {
+  const Vec3 p = parseTriple(text, flag);
+  const RobotPose pose{p.x(), p.y(), p.z()};
+  checkPose(pose, flag);
+  return pose;
+}
+
+void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {
+  cmd.add_flag("--allow-outside-files", options.allowOutsideFolder,
+               "Let the scene pull in textures, glTF files, buffers and images from outside its own folder");
+}
+
+void refuseUnless(const CLI::App& cmd, const std::string& flag, bool allowed, const std::string& when) {
+  if (!allowed && cmd.count(flag) > 0) throw InputError(flag + ": only with " + when + " (it would do nothing here)");
 }
 
 std::string scenesDir() {

@@ -1,14 +1,25 @@
 #pragma once
 // Small helpers shared by the CLI verbs: strict number parsing, progress display, data paths.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <string>
 
 #include "geometry.h"
+#include "rig.h"
+#include "scene_loader.h"
 
 namespace omnicam::cli {
 
 // "X,Y,Z" → three finite doubles (locale-independent); throws InputError naming `flag`.
 Vec3 parseTriple(const std::string& text, const std::string& flag);
+// "X,Y,YAW" → a robot pose within the documented bounds; InputError naming `flag`.
+RobotPose parsePose(const std::string& text, const std::string& flag);
+// Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
+void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
+// InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do
+// nothing in the chosen mode are refused, not silently ignored.
+void refuseUnless(const CLI::App& cmd, const std::string& flag, bool allowed, const std::string& when);
+
 // Folder with the repository's scenes (compile-time default, OMNICAM_SCENES overrides).
 std::string scenesDir();
 // Creates `dir` (and parents) if missing; throws InputError if it exists as a non-folder.

@@ -23,6 +23,16 @@ class FastEngine : public Engine {
   }
   std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }
+  std::string mode() const override {
+    if (!mode_) return "exact";
+    return mode_->mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cubemap";
+  }
+  nlohmann::json modeOptions() const override {
+    if (!mode_) return nlohmann::json::object();
+    nlohmann::json options = {{"faces", mode_->faces}, {"face_size", mode_->faceSize}};
+    if (mode_->mode == OmniMode::ThesisMesh) options["polygons"] = mode_->polygons;
+    return options;
+  }
 
  private:
   FastRenderer renderer_;

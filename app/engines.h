@@ -1,6 +1,7 @@
 #pragma once
 // The render engines behind --engine: the fast renderer and POV-Ray (Blender follows).
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cubemap_renderer.h"
@@ -16,6 +17,9 @@ class Engine {
   virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) = 0;
   virtual std::string name() const = 0;
   virtual std::string version() const = 0;
+  // The rendering mode and its options, as the sidecar records them.
+  virtual std::string mode() const { return "exact"; }
+  virtual nlohmann::json modeOptions() const { return nlohmann::json::object(); }
 };
 
 // Throws InputError for an unknown engine name, or a mode other than exact for an engine other

@@ -3,7 +3,9 @@
 //         render.ini; render it with `cd DIR && povray render.ini`.
 // gltf:   DIR/scene.glb — the arena plus the rig (certified mirror mesh, camera) at the pose.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "cli_util.h"
 #include "commands.h"
@@ -19,25 +21,29 @@ namespace {
 struct ExportArgs {
   std::string scene, to, out, pose, shading = "unlit";
   int size = 0, spp = 1;
+  SceneLoadOptions load;
 };
 
-void runExport(const ExportArgs& a) {
+void runExport(const ExportArgs& a, const CLI::App& cmd) {
   if (a.to != "povray" && a.to != "gltf")
     throw InputError("--to: \"" + a.to + "\" is not available (povray, gltf)");
+  refuseUnless(cmd, "--spp", a.to == "povray", "--to povray (glTF holds no sampling)");
+  refuseUnless(cmd, "--shading", a.to == "povray", "--to povray (glTF holds no shading mode)");
   const auto shading = parseShading(a.shading);
   if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
-  const Scene scene = loadScene(a.scene);
-  RobotPose pose = scene.startPose;
-  if (!a.pose.empty()) {
-    const Vec3 p = parseTriple(a.pose, "--pose");
-    pose = {p.x(), p.y(), p.z()};
-  }
+  std::optional<RobotPose> requested;
+  if (!a.pose.empty()) requested = parsePose(a.pose, "--pose");
+  if (std::filesystem::exists(a.out) && !std::filesystem::is_directory(a.out))
+    throw InputError("-o: " + a.out + " exists and is not a folder");
+  const Scene scene = loadScene(a.scene, a.load);
+  const RobotPose pose = requested ? *requested : scene.startPose;
   RenderSettings settings;
   settings.rig = scene.rig;
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
   settings.shading = *shading;
+  checkRenderSettings(settings);
   if (a.to == "gltf") {
     ensureDirectory(a.out, "-o");
     GltfExportOptions options;
@@ -67,7 +73,8 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("--spp", args->spp, "Samples per pixel n*n (the job renders n x larger)");
   cmd->add_option("--shading", args->shading, "unlit or lit");
   cmd->add_option("-o,--output", args->out, "Output folder")->required();
-  cmd->callback([args] { runExport(*args); });
+  addSceneLoadFlags(*cmd, args->load);
+  cmd->callback([args, cmd] { runExport(*args, *cmd); });
 }
 
 }  // namespace omnicam::cli

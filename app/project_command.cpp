@@ -19,17 +19,18 @@ struct ProjectArgs {
   std::string scene, pose;
   std::vector<std::string> points;
   int size = 0;
+  SceneLoadOptions load;
 };
 
 void runProject(const ProjectArgs& a) {
-  const Vec3 p = parseTriple(a.pose, "--pose");
+  const RobotPose pose = parsePose(a.pose, "--pose");
   std::vector<Vec3> points;
   for (const auto& text : a.points) points.push_back(parseTriple(text, "--point"));
-  const Scene scene = loadScene(a.scene);
+  const Scene scene = loadScene(a.scene, a.load);
   RigSpec rig = scene.rig;
   if (a.size) rig.imageSize = a.size;
   const OmniCamera camera = rig.camera();
-  const Rigid cfw = cameraFromWorld(rig, {p.x(), p.y(), p.z()});
+  const Rigid cfw = cameraFromWorld(rig, pose);
   for (const Vec3& world : points) {
     const auto raster = camera.rasterFromCamera(cfw * world);
     if (raster) std::printf("%.6f %.6f\n", raster->x(), raster->y());
@@ -46,6 +47,7 @@ void addProjectCommand(CLI::App& app) {
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot")->required();
   cmd->add_option("--point", args->points, "X,Y,Z world point (repeatable)")->required();
   cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(8, 16384));
+  addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args] { runProject(*args); });
 }
 

@@ -5,12 +5,15 @@
 #include <filesystem>
 #include <future>
 #include <memory>
+#include <optional>
 
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
 #include "image.h"
 #include "render_output.h"
+#include "atomic_file.h"
+#include "sidecar.h"
 #include "scene_loader.h"
 #include "views.h"
 
@@ -23,70 +26,108 @@ struct RenderArgs {
   int frames = 0, spp = 1, imageSize = 0, faces = 6, faceSize = 512, polygons = 1024;
   double timeout = 600.0;
   std::vector<std::string> views;
+  SceneLoadOptions load;
 };
 
 // Views written next to each rendered image (OUT's stem + ".KIND" + its extension), from lookup
-// tables built once for the render's camera and reused for every frame.
+// tables built once for the render's camera and reused for every frame. Each gets a sidecar:
+// the omni image's, plus what the view is.
 class FrameViews {
  public:
   FrameViews(const std::vector<std::string>& kinds, const OmniCamera& camera) {
     for (const std::string& kind : kinds) {
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
-      maps_.emplace_back(kind, buildViewMap(spec, camera));
+      ViewMap map = buildViewMap(spec, camera);
+      nlohmann::json description = viewToJson(spec, map);
+      maps_.push_back({kind, std::move(map), std::move(description)});
     }
   }
-  void write(const std::string& imageFile, const ImageRGBA& omni) const {
+  std::vector<std::string> files(const std::string& imageFile) const {
+    std::vector<std::string> out;
     const std::filesystem::path file(imageFile);
-    for (const auto& [kind, map] : maps_) {
+    for (const auto& view : maps_) {
       std::filesystem::path viewFile = file;
-      viewFile.replace_filename(file.stem().string() + "." + kind + file.extension().string());
-      writeImageAtomic(viewFile.string(), applyViewMap(map, omni));
+      viewFile.replace_filename(file.stem().string() + "." + view.kind + file.extension().string());
+      out.push_back(viewFile.string());
+    }
+    return out;
+  }
+  void write(const std::string& imageFile, const RenderedFile& omni) const {
+    const std::vector<std::string> outputs = files(imageFile);
+    for (size_t k = 0; k < maps_.size(); ++k) {
+      nlohmann::json sidecar = omni.sidecar;
+      sidecar["view"] = maps_[k].description;
+      sidecar["source_image"] = std::filesystem::path(imageFile).filename().string();
+      writeImageAtomic(outputs[k], applyViewMap(maps_[k].map, omni.image));
+      writeSidecarAtomic(outputs[k], sidecar);
     }
   }
 
  private:
-  std::vector<std::pair<std::string, ViewMap>> maps_;
+  struct View {
+    std::string kind;
+    ViewMap map;
+    nlohmann::json description;
+  };
+  std::vector<View> maps_;
 };
 
-void runRender(const RenderArgs& a) {
+void runRender(const RenderArgs& a, const CLI::App& cmd) {
   // Validate everything before anything is written.
+  const bool fast = a.engine == "fast";
+  refuseUnless(cmd, "--mode", fast, "--engine fast");
+  refuseUnless(cmd, "--faces", a.mode != "exact", "--mode cubemap or thesis-mesh");
+  refuseUnless(cmd, "--face-size", a.mode != "exact", "--mode cubemap or thesis-mesh");
+  refuseUnless(cmd, "--polygons", a.mode == "thesis-mesh", "--mode thesis-mesh");
+  refuseUnless(cmd, "--timeout", !fast, "--engine povray or blender");
+  refuseUnless(cmd, "--format", !a.path.empty(), "--path (a single image's format comes from -o)");
   const auto mode = parseMode(a.mode, a.faces, a.faceSize, a.polygons);
   const auto shading = parseShading(a.shading);
   if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
-  if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
   if (!a.pose.empty() && !a.path.empty()) throw InputError("--pose and --path: give one, not both");
   if (a.path.empty() && a.frames) throw InputError("--frames: only with --path");
   if (a.path.empty() && !isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
   if (a.format != "png" && a.format != "exr") throw InputError("--format: must be png or exr");
-  const Scene scene = loadScene(a.scene);
+  std::optional<RobotPose> pose;
+  if (!a.pose.empty()) pose = parsePose(a.pose, "--pose");
   RenderSettings settings;
-  settings.rig = scene.rig;
-  if (a.imageSize) settings.rig.imageSize = a.imageSize;
   settings.spp = a.spp;
   settings.shading = *shading;
+  if (a.imageSize) settings.rig.imageSize = a.imageSize;
+  checkRenderSettings(settings);  // before the scene: a bad --spp needs no scene to be read
+  const Scene scene = loadScene(a.scene, a.load);
+  settings.rig = scene.rig;
+  if (a.imageSize) settings.rig.imageSize = a.imageSize;
+  checkRenderSettings(settings);
   const FrameViews views(a.views, settings.rig.camera());
-  const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
-
   if (a.path.empty()) {
-    RobotPose pose = scene.startPose;
-    if (!a.pose.empty()) {
-      const Vec3 p = parseTriple(a.pose, "--pose");
-      pose = {p.x(), p.y(), p.z()};
-    }
+    requireNotAFolder(a.out, "-o");
+    for (const std::string& file : views.files(a.out)) requireNotAFolder(file, "--view");
     const auto parent = std::filesystem::path(a.out).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
       throw InputError("-o: folder " + parent.string() + " does not exist");
-    const RenderedFile rendered = renderToFile(scene, *engine, pose, settings, a.out);
-    views.write(a.out, rendered.image);
+  }
+  const CameraPath* path = nullptr;
+  if (!a.path.empty()) {
+    path = scene.findPath(a.path);
+    if (!path) throw InputError("--path: scene " + a.scene + " has no path \"" + a.path + "\"");
+    if (a.frames > static_cast<int>(path->poses.size()))
+      throw InputError("--frames: path \"" + a.path + "\" has only " + std::to_string(path->poses.size()) + " poses");
+    if (std::filesystem::exists(a.out) && !std::filesystem::is_directory(a.out))
+      throw InputError("-o: " + a.out + " exists and is not a folder");
+  }
+  const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
+
+  if (!path) {
+    const RobotPose at = pose ? *pose : scene.startPose;
+    RenderedFile rendered = renderPose(scene, *engine, at, settings);
+    writeRendered(a.out, rendered);
+    views.write(a.out, rendered);
     std::printf("wrote %s\n", a.out.c_str());
     return;
   }
-  const CameraPath* path = scene.findPath(a.path);
-  if (!path) throw InputError("--path: scene " + a.scene + " has no path \"" + a.path + "\"");
   const int total = a.frames ? a.frames : static_cast<int>(path->poses.size());
-  if (total > static_cast<int>(path->poses.size()))
-    throw InputError("--frames: path \"" + a.path + "\" has only " + std::to_string(path->poses.size()) + " poses");
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + a.engine + ")", total);
   // Frame f is written while frame f + 1 renders; each file still appears atomically.
@@ -100,7 +141,7 @@ void runRender(const RenderArgs& a) {
     writing = std::async(std::launch::async, [file = (std::filesystem::path(a.out) / name).string(),
                                               frame = std::move(rendered), &views] {
       writeRendered(file, frame);
-      views.write(file, frame.image);
+      views.write(file, frame);
     });
     progress.step();
   }
@@ -134,7 +175,8 @@ void addRenderCommand(CLI::App& app) {
                   "Also write this view of each image (birdseye, panorama or perspective; repeatable): "
                   "OUT.KIND.png, frame_NNNN.KIND.png");
   cmd->add_option("-o,--output", args->out, "OUT.png / OUT.exr, or a folder with --path")->required();
-  cmd->callback([args] { runRender(*args); });
+  addSceneLoadFlags(*cmd, args->load);
+  cmd->callback([args, cmd] { runRender(*args, *cmd); });
 }
 
 }  // namespace omnicam::cli

@@ -19,6 +19,8 @@ RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pos
   record.rig = settings.rig;
   record.spp = settings.spp;
   record.shading = shadingName(settings.shading);
+  record.mode = engine.mode();
+  record.modeOptions = engine.modeOptions();
   record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.sidecar = sidecarJson(record);
   return result;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
@@ -22,6 +23,7 @@ struct RingsArgs {
   std::string engine = "fast", scene, out, measure;
   int size = 0, spp = 16;
   bool json = false, perAzimuth = false;
+  SceneLoadOptions load;
 };
 
 // Measures `image` as asked, prints the result and returns it as JSON (for a sidecar).
@@ -62,27 +64,30 @@ nlohmann::json measureAndPrint(const ImageRGBA& image, const OmniCamera& camera,
 // there is one, else from the ring scene's rig at the image's size.
 void measureExisting(const RingsArgs& a) {
   const ImageRGBA image = readImage(a.measure);
-  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene);
+  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   if (image.width != image.height) throw InputError(a.measure + ": ring images must be square");
   rig.imageSize = image.width;
   measureAndPrint(image, rig.camera(), a.measure, a);
 }
 
-void runRings(const RingsArgs& a) {
+void runRings(const RingsArgs& a, const CLI::App& cmd) {
+  for (const char* flag : {"--engine", "--size", "--spp"})
+    refuseUnless(cmd, flag, a.measure.empty(), "a render (not with --measure)");
   if (!a.measure.empty()) {
     if (!a.out.empty()) throw InputError("--measure and -o: give one, not both");
     measureExisting(a);
     return;
   }
   if (a.out.empty()) throw InputError("-o: required (or --measure FILE)");
-  if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
-  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene);
+  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RenderSettings settings;
   settings.rig = scene.rig;
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
+  checkRenderSettings(settings);
+  requireNotAFolder(a.out, "-o");
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig.camera(), a.out, a);
@@ -103,7 +108,8 @@ void addRingsCommand(CLI::App& app) {
   cmd->add_flag("--json", args->json, "Print per-ring radii and the summary as JSON");
   cmd->add_flag("--per-azimuth", args->perAzimuth,
                 "Measure each ring in 36 azimuth sectors (for rings that are not circles, e.g. thesis-mesh renders)");
-  cmd->callback([args] { runRings(*args); });
+  addSceneLoadFlags(*cmd, args->load);
+  cmd->callback([args, cmd] { runRings(*args, *cmd); });
 }
 
 }  // namespace omnicam::cli

@@ -1,11 +1,13 @@
 // omnicam view IN --as birdseye|panorama|perspective [--variant thesis|exact] [--size WxH]
-//              [--zw Z] [--yaw DEG] [--pitch DEG] [--fov DEG] -o OUT
-// Works on any omni image: the camera model comes from IN's sidecar when there is one, else
-// from the default rig at IN's size (a real camera's image: give its mirror with --scene).
+//              [--zw Z] [--yaw DEG] [--pitch DEG] [--fov DEG] [--scene SCENE | --rig RIG.json] -o OUT
+// Works on any omni image: the camera model comes from IN's sidecar; an image without one (a
+// real camera's, say) needs its mirror from --scene or --rig — assuming a default would give a
+// wrong view without a word.
 #include <cstdio>
-#include <fstream>
+#include <filesystem>
 #include <memory>
 
+#include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
@@ -18,22 +20,43 @@ namespace omnicam::cli {
 namespace {
 
 struct ViewArgs {
-  std::string in, as = "birdseye", variant = "exact", size, scene, out;
+  std::string in, as = "birdseye", variant = "exact", size, scene, rig, out;
   double zw = 40.0, yaw = 0.0, pitch = -20.0, fov = 90.0;
+  SceneLoadOptions load;
 };
 
-RigSpec rigOf(const std::string& image, const std::string& scenePath, int size) {
-  RigSpec rig = scenePath.empty() ? rigFromSidecar(image, RigSpec{}) : loadScene(scenePath).rig;
+// The rig and the sidecar the view's own sidecar starts from.
+std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
+  if (!a.scene.empty() && !a.rig.empty()) throw InputError("--scene and --rig: give one, not both");
+  RigSpec rig;
+  nlohmann::json sidecar = nlohmann::json::object();
+  if (!a.scene.empty()) {
+    rig = loadScene(a.scene, a.load).rig;
+    sidecar["rig_from"] = {{"scene", a.scene}};
+  } else if (!a.rig.empty()) {
+    rig = rigFromJson(readJsonFile(a.rig), a.rig, "rig");
+    sidecar["rig_from"] = {{"rig_file", a.rig}};
+  } else if (auto found = readSidecar(a.in)) {
+    rig = found->rig;
+    sidecar = found->json;
+  } else {
+    throw InputError(a.in + ": has no sidecar (" + sidecarPath(a.in) +
+                     "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
+  }
   rig.imageSize = size;
-  return rig;
+  sidecar["rig"] = rigToJson(rig);
+  return {rig, sidecar};
 }
 
-void runView(const ViewArgs& a) {
+void runView(const ViewArgs& a, const CLI::App& cmd) {
   ViewSpec spec;
   spec.kind = parseViewKind(a.as);
   spec.variant = parseViewVariant(a.variant);
   if (spec.kind == ViewKind::Perspective && spec.variant == ViewVariant::Thesis)
     throw InputError("--variant: perspective views use the exact model only");
+  refuseUnless(cmd, "--zw", spec.kind == ViewKind::BirdsEye, "--as birdseye");
+  for (const char* flag : {"--yaw", "--pitch", "--fov"}) refuseUnless(cmd, flag, spec.kind == ViewKind::Perspective, "--as perspective");
+  refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "--scene");
   if (!a.size.empty()) {
     const size_t x = a.size.find('x');
     try {
@@ -50,10 +73,15 @@ void runView(const ViewArgs& a) {
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
+  requireNotAFolder(a.out, "-o");
   const ImageRGBA omni = readImage(a.in);
   if (omni.width != omni.height) throw InputError(a.in + ": omni images must be square");
-  const ViewMap map = buildViewMap(spec, rigOf(a.in, a.scene, omni.width).camera());
+  auto [rig, sidecar] = rigOf(a, omni.width);
+  const ViewMap map = buildViewMap(spec, rig.camera());
+  sidecar["view"] = viewToJson(spec, map);
+  sidecar["source_image"] = a.in;
   writeImageAtomic(a.out, applyViewMap(map, omni));
+  writeSidecarAtomic(a.out, sidecar);
   std::printf("wrote %s (%dx%d %s, %s)\n", a.out.c_str(), map.width, map.height, a.as.c_str(), a.variant.c_str());
 }
 
@@ -62,7 +90,7 @@ void runView(const ViewArgs& a) {
 void addViewCommand(CLI::App& app) {
   auto args = std::make_shared<ViewArgs>();
   CLI::App* cmd = app.add_subcommand("view", "Bird's-eye, panorama or perspective view of an omni image");
-  cmd->add_option("in", args->in, "Omni image (PNG/EXR; its sidecar, if any, gives the camera)")->required();
+  cmd->add_option("in", args->in, "Omni image (PNG/EXR; its sidecar gives the camera)")->required();
   cmd->add_option("--as", args->as, "birdseye (default), panorama or perspective");
   cmd->add_option("--variant", args->variant, "exact (default) or thesis (Eq. 3.4 / Eqs. 3.6-3.7)");
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (defaults 400x400, 1080x300, 400x300)");
@@ -70,9 +98,11 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--yaw", args->yaw, "perspective: view direction, degrees CCW from forward");
   cmd->add_option("--pitch", args->pitch, "perspective: degrees above the horizon (default -20)");
   cmd->add_option("--fov", args->fov, "perspective: horizontal field of view, degrees (default 90)");
-  cmd->add_option("--scene", args->scene, "Take the camera rig from this scene instead");
+  cmd->add_option("--scene", args->scene, "Take the camera rig from this scene (images without a sidecar)");
+  cmd->add_option("--rig", args->rig, "Take the camera rig from this JSON file (a scene's \"rig\" object)");
+  addSceneLoadFlags(*cmd, args->load);
   cmd->add_option("-o,--output", args->out, "OUT.png or OUT.exr")->required();
-  cmd->callback([args] { runView(*args); });
+  cmd->callback([args, cmd] { runView(*args, *cmd); });
 }
 
 }  // namespace omnicam::cli

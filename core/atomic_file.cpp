@@ -1,10 +1,14 @@
 #include "atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
+#include <random>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <stdexcept>
 
 #include "errors.h"
 
@@ -12,28 +16,65 @@ namespace omnicam {
 
 namespace fs = std::filesystem;
 
-void writeAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
-  const fs::path target(path);
-  const fs::path tmp = target.parent_path() /
-                       ("." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) +
-                        target.extension().string());
-  try {
-    write(tmp.string());
-    fs::rename(tmp, target);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
+namespace {
+
+[[noreturn]] void failWrite(const std::string& path, const std::string& tmp, int error) {
+  if (!tmp.empty()) ::unlink(tmp.c_str());
+  throw OutputError(path + ": cannot write (" + std::strerror(error) + ")");
 }
 
-void writeTextAtomically(const std::string& path, const std::string& text) {
-  writeAtomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw InputError(path + ": cannot write file");
-  });
+std::string randomSuffix() {
+  static std::atomic<uint64_t> counter{0};
+  thread_local std::mt19937_64 random(std::random_device{}() ^ (static_cast<uint64_t>(::getpid()) << 32));
+  static const char kAlphabet[] = "abcdefghijklmnopqrstuvwxyz0123456789";
+  uint64_t bits = random() ^ (counter++ * 0x9E3779B97F4A7C15ull);
+  std::string suffix;
+  for (int i = 0; i < 10; ++i, bits /= 36) suffix += kAlphabet[bits % 36];
+  return suffix;
+}
+
+}  // namespace
+
+void writeBytesAtomically(const std::string& path, std::string_view bytes) {
+  const fs::path target(path);
+  if (fs::is_directory(target)) throw InputError(path + ": is an existing folder, not a file name");
+  // The temporary keeps the final extension and is created exclusively (O_EXCL) under an
+  // unpredictable name, as mkstemp does, but with the umask's permissions of a normal file.
+  std::string tmp;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt) {
+    tmp = (target.parent_path() / ("." + target.stem().string() + ".tmp-" + randomSuffix() + target.extension().string()))
+              .string();
+    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && (errno != EEXIST || attempt > 100)) failWrite(path, "", errno);
+  }
+  size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      failWrite(path, tmp, error);
+    }
+    written += static_cast<size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    failWrite(path, tmp, error);
+  }
+  if (::close(fd) != 0) failWrite(path, tmp, errno);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) failWrite(path, tmp, errno);
+}
+
+void requireNotAFolder(const std::string& path, const std::string& flag) {
+  if (fs::is_directory(path)) throw InputError(flag + ": " + path + " is an existing folder, not a file name");
+}
+
+bool isAtomicTemporaryName(const std::string& name) {
+  const size_t at = name.find(".tmp-");
+  return !name.empty() && name[0] == '.' && at != std::string::npos && name.size() >= at + 11;
 }
 
 }  // namespace omnicam

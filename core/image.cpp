@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <OpenImageIO/filesystem.h>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "input_limits.h"
 
 namespace omnicam {
 
@@ -17,6 +20,12 @@ std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
   return ext;
+}
+
+// OpenImageIO's messages can span lines; ours are one line.
+std::string firstLine(const std::string& text) {
+  const std::string line = text.substr(0, text.find('\n'));
+  return line.empty() ? "no details" : line;
 }
 
 }  // namespace
@@ -65,30 +74,71 @@ bool isSupportedImageOutput(const std::string& path) {
   return ext == ".png" || ext == ".exr";
 }
 
-ImageRGBA readImage(const std::string& path) {
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
-  auto input = OIIO::ImageInput::open(path, &config);
-  if (!input) throw InputError(path + ": cannot read image (" + OIIO::geterror() + ")");
-  const OIIO::ImageSpec& spec = input->spec();
+namespace {
+
+// How an image file's integer code values map to linear light: by the colour space the file
+// declares (OpenImageIO's oiio:ColorSpace), not by its bit depth. Float data is linear.
+struct Transfer {
+  enum Kind { Linear, Srgb, Gamma } kind = Srgb;
+  float gamma = 1.0f;
+  float operator()(float v) const {
+    switch (kind) {
+      case Linear: return v;
+      case Gamma: return v > 0.0f ? std::pow(v, gamma) : 0.0f;
+      default: return srgbToLinear(v);
+    }
+  }
+};
+
+Transfer transferOf(const OIIO::ImageSpec& spec) {
+  const auto base = spec.format.basetype;
+  if (base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE)
+    return {Transfer::Linear};
+  std::string cs = spec.get_string_attribute("oiio:ColorSpace");
+  std::transform(cs.begin(), cs.end(), cs.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (cs == "linear" || cs == "scene_linear" || cs == "lin_srgb" || cs == "lin_rec709") return {Transfer::Linear};
+  if (cs.rfind("gammacorrected", 0) == 0 || cs.rfind("gamma", 0) == 0) {
+    const size_t digits = cs.find_first_of("0123456789");
+    const float g = digits == std::string::npos ? 0.0f : std::strtof(cs.c_str() + digits, nullptr);
+    if (g > 0.1f && g < 10.0f) return {Transfer::Gamma, g};
+  }
+  return {Transfer::Srgb};  // integer images without a declaration: the web's and cameras' default
+}
+
+void checkHeader(const OIIO::ImageSpec& spec, const std::string& name) {
+  if (spec.width < 1 || spec.height < 1 || spec.depth > 1)
+    throw InputError(name + ": image has no pixels or is a volume (" + std::to_string(spec.width) + "x" +
+                     std::to_string(spec.height) + ")");
+  if (spec.width > limits::kMaxImageDimension || spec.height > limits::kMaxImageDimension ||
+      static_cast<int64_t>(spec.width) * spec.height > limits::kMaxImagePixels)
+    throw InputError(name + ": image is " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                     " pixels; the limit is " + std::to_string(limits::kMaxImageDimension) + " per side and " +
+                     std::to_string(limits::kMaxImagePixels) + " in all");
+  if (spec.nchannels < 1 || spec.nchannels > 16)
+    throw InputError(name + ": image has " + std::to_string(spec.nchannels) + " channels (1 to 16 are read)");
+}
+
+ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
+  const OIIO::ImageSpec& spec = input.spec();
+  checkHeader(spec, name);
   const int channels = spec.nchannels;
   std::vector<float> raw(static_cast<size_t>(spec.width) * spec.height * channels);
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-    throw InputError(path + ": cannot decode image (" + input->geterror() + ")");
-  const bool eightBit = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
-                        spec.format.basetype == OIIO::TypeDesc::INT8;
-  const bool linear = !eightBit;  // EXR/HDR/float TIFF are linear (spec §3)
-  const bool unassociated = eightBit || spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
+  if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
+    throw InputError(name + ": cannot decode image (" + firstLine(input.geterror()) + ")");
+  const Transfer transfer = transferOf(spec);
+  const bool unassociated = transfer.kind != Transfer::Linear || spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
+  const int alphaChannel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 || channels == 4 ? channels - 1 : -1);
   ImageRGBA image(spec.width, spec.height);
   for (size_t p = 0; p < static_cast<size_t>(spec.width) * spec.height; ++p) {
     const float* src = &raw[p * channels];
+    const int colourChannels = channels >= 3 ? 3 : 1;
     float rgb[3];
     for (int c = 0; c < 3; ++c) {
-      const float v = src[std::min(c, channels == 2 ? 0 : channels - 1)];
-      rgb[c] = linear ? v : srgbToLinear(v);
+      const float v = src[std::min(c, colourChannels - 1)];
+      rgb[c] = std::isfinite(v) ? transfer(v) : 0.0f;
     }
-    if (channels < 3) rgb[1] = rgb[2] = rgb[0];
-    const float alpha = (channels == 4 || channels == 2) ? src[channels - 1] : 1.0f;
+    float alpha = alphaChannel >= 0 ? src[alphaChannel] : 1.0f;
+    if (!std::isfinite(alpha)) alpha = 0.0f;
     float* dst = &image.pixels[p * 4];
     for (int c = 0; c < 3; ++c) dst[c] = unassociated ? rgb[c] * alpha : rgb[c];
     dst[3] = alpha;
@@ -96,37 +146,72 @@ ImageRGBA readImage(const std::string& path) {
   return image;
 }
 
-void writeImageAtomic(const std::string& path, const ImageRGBA& image) {
+}  // namespace
+
+ImageRGBA readImage(const std::string& path) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
+  auto input = OIIO::ImageInput::open(path, &config);
+  if (!input) throw InputError(path + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  return decode(*input, path);
+}
+
+ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
+  // The format comes from the bytes' signature, never from a name the data chose.
+  const char* format = nullptr;
+  if (size >= 8 && std::memcmp(data, "\x89PNG\r\n\x1a\n", 8) == 0) format = "memory.png";
+  else if (size >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF) format = "memory.jpg";
+  else if (size >= 4 && std::memcmp(data, "\x76\x2f\x31\x01", 4) == 0) format = "memory.exr";
+  if (!format) throw InputError(name + ": not a PNG, JPEG or EXR image");
+  OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(data), size);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  void* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto input = OIIO::ImageInput::open(format, &config);
+  if (!input) throw InputError(name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  return decode(*input, name);
+}
+
+std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image) {
   const std::string ext = lowerExtension(path);
-  if (ext != ".png" && ext != ".exr")
-    throw InputError(path + ": output must end in .png or .exr");
-  writeAtomically(path, [&](const std::string& tmp) {
-    auto out = OIIO::ImageOutput::create(tmp);
-    if (!out) throw InputError(path + ": no image writer (" + OIIO::geterror() + ")");
-    if (ext == ".exr") {
-      OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-      spec.attribute("compression", "zip");
-      if (!out->open(tmp, spec) ||
-          !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
-        throw InputError(path + ": cannot write EXR (" + out->geterror() + ")");
-      return;
-    }
-    static const SrgbEncoder encode;
-    std::vector<unsigned char> bytes(image.pixels.size());
-    for (size_t p = 0; p < image.pixels.size() / 4; ++p) {
-      const float* src = &image.pixels[p * 4];
-      const float alpha = src[3];
-      for (int c = 0; c < 3; ++c) bytes[p * 4 + c] = encode(alpha > 0.0f ? src[c] / alpha : 0.0f);
-      bytes[p * 4 + 3] = static_cast<unsigned char>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * 255.0f));
-    }
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    spec.attribute("png:compressionLevel", 1);  // sequences: speed over the last few percent of size
-    if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
-        !out->close())
-      throw InputError(path + ": cannot write PNG (" + out->geterror() + ")");
-  });
+  if (ext != ".png" && ext != ".exr") throw InputError(path + ": output must end in .png or .exr");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput sink(bytes);
+  void* proxy = &sink;
+  const std::string format = "memory" + ext;
+  auto out = OIIO::ImageOutput::create(format);
+  if (!out) throw OutputError(path + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
+  if (ext == ".exr") {
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "zip");
+    spec.attribute("DateTime", "");  // no timestamp: identical pixels give identical bytes
+    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    if (!out->open(format, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
+      throw OutputError(path + ": cannot encode EXR (" + firstLine(out->geterror()) + ")");
+    return bytes;
+  }
+  static const SrgbEncoder encode;
+  std::vector<unsigned char> codes(image.pixels.size());
+  for (size_t p = 0; p < image.pixels.size() / 4; ++p) {
+    const float* src = &image.pixels[p * 4];
+    const float alpha = src[3];
+    for (int c = 0; c < 3; ++c) codes[p * 4 + c] = encode(alpha > 0.0f ? src[c] / alpha : 0.0f);
+    codes[p * 4 + 3] = static_cast<unsigned char>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * 255.0f));
+  }
+  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  spec.attribute("png:compressionLevel", 1);  // sequences: speed over the last few percent of size
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  if (!out->open(format, spec) || !out->write_image(OIIO::TypeDesc::UINT8, codes.data()) || !out->close())
+    throw OutputError(path + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
+  return bytes;
+}
+
+void writeImageAtomic(const std::string& path, const ImageRGBA& image) {
+  const std::vector<unsigned char> bytes = encodeImage(path, image);
+  writeBytesAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace omnicam

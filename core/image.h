@@ -1,6 +1,7 @@
 #pragma once
 // Linear RGBA float images with associated (premultiplied) alpha, and their files.
 // PNG/JPEG are sRGB-encoded 8-bit on disk; EXR is linear half/float (spec §3).
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,11 +20,19 @@ struct ImageRGBA {
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);
 
-// Reads any OpenImageIO-supported file as linear premultiplied RGBA (8-bit files are
-// sRGB-decoded; missing alpha becomes 1). Throws InputError naming the file.
+// Reads any OpenImageIO-supported file as linear premultiplied RGBA; missing alpha becomes 1.
+// Integer images are decoded by the colour space they declare (sRGB unless tagged linear or
+// with a gamma), whatever their bit depth; float images are linear. The header is checked
+// against limits::kMaxImageDimension / kMaxImagePixels before any pixel is read. Throws
+// InputError naming the file.
 ImageRGBA readImage(const std::string& path);
-// Writes .png (sRGB 8-bit, straight alpha) or .exr (linear float, associated alpha) through a
-// temporary file and a rename. Throws InputError for an unsupported extension.
+// The same for an image held in memory (PNG, JPEG or EXR, told by its signature); `name` is
+// used in errors.
+ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name);
+// The bytes of .png (sRGB 8-bit, straight alpha) or .exr (linear float, associated alpha,
+// byte-identical for identical pixels). Throws InputError for another extension.
+std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image);
+// encodeImage, then writeBytesAtomically (atomic_file.h): OutputError if it cannot be written.
 void writeImageAtomic(const std::string& path, const ImageRGBA& image);
 bool isSupportedImageOutput(const std::string& path);
 

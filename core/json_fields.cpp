@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "errors.h"
+#include "input_limits.h"
 
 namespace omnicam {
 
@@ -118,6 +119,9 @@ Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
       throw InputError(file + ": " + path + "[" + std::to_string(i) + "]: must be a finite number");
     out[i] = v[i].get<double>();
+    if (std::abs(out[i]) > limits::kMaxWorldCoordinate)
+      throw InputError(file + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
+                       show(limits::kMaxWorldCoordinate) + " (got " + show(out[i]) + ")");
   }
   return out;
 }

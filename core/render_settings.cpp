@@ -1,6 +1,10 @@
 #include "render_settings.h"
 
 #include <cmath>
+#include <sstream>
+
+#include "errors.h"
+#include "input_limits.h"
 
 namespace omnicam {
 
@@ -17,6 +21,38 @@ std::optional<int> samplesPerAxis(int spp) {
   const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
   if (n * n != spp) return std::nullopt;
   return n;
+}
+
+namespace {
+std::string show(double v) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+void checkRenderSettings(const RenderSettings& settings) {
+  if (!samplesPerAxis(settings.spp) || settings.spp > limits::kMaxSpp)
+    throw InputError("--spp: must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
+                     std::to_string(settings.spp) + ")");
+  const int size = settings.rig.imageSize;
+  if (size < limits::kMinImageSize || size > limits::kMaxImageSize)
+    throw InputError("--size: must be in [" + std::to_string(limits::kMinImageSize) + ", " +
+                     std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
+  const int64_t samples = int64_t{size} * size * settings.spp;
+  if (samples > limits::kMaxSamplesPerFrame)
+    throw InputError("--spp: size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) + " = " +
+                     std::to_string(samples) + " samples per frame; the limit is " +
+                     std::to_string(limits::kMaxSamplesPerFrame));
+}
+
+void checkPose(const RobotPose& pose, const std::string& what) {
+  if (!(std::abs(pose.x) <= limits::kMaxWorldCoordinate && std::abs(pose.y) <= limits::kMaxWorldCoordinate))
+    throw InputError(what + ": x and y must be within ±" + show(limits::kMaxWorldCoordinate) + " m (got " + show(pose.x) +
+                     ", " + show(pose.y) + ")");
+  if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
+    throw InputError(what + ": yaw must be within ±" + show(limits::kMaxYawDeg) + " degrees (got " + show(pose.yawDeg) + ")");
 }
 
 }  // namespace omnicam

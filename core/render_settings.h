@@ -20,4 +20,10 @@ std::optional<Shading> parseShading(const std::string& name);
 // The n of spp = n², or nullopt if spp is not a positive perfect square.
 std::optional<int> samplesPerAxis(int spp);
 
+// Checks spp (a perfect square ≤ limits::kMaxSpp), the image size and size² × spp against the
+// documented limits; InputError naming --spp / --size otherwise. Every engine calls it first.
+void checkRenderSettings(const RenderSettings& settings);
+// Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.
+void checkPose(const RobotPose& pose, const std::string& what);
+
 }  // namespace omnicam

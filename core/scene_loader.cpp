@@ -2,12 +2,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <map>
 #include <set>
 
 #include "camera_path.h"
 #include "errors.h"
+#include "file_confinement.h"
 #include "gltf_import.h"
+#include "input_limits.h"
 #include "json_fields.h"
 #include "sha256.h"
 
@@ -23,6 +26,7 @@ constexpr const char* kFormat = "omnicam-scene/1";
 struct Context {
   std::string file;
   fs::path folder;  // textures resolve relative to, and must stay inside, this folder
+  SceneLoadOptions options;
   std::map<std::string, int> materialIndex;
 };
 
@@ -41,30 +45,45 @@ const json& requireArray(JsonFields& fields, const std::string& key, bool allowM
   return v;
 }
 
-// A file named in the scene: relative to the scene's folder, which it must not leave (spec §9).
+// A file named in the scene: relative to the scene's folder, which it must not leave.
 fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::string& key, const std::string& name) {
-  const fs::path resolved = fs::weakly_canonical(ctx.folder / name);
-  const auto rel = resolved.lexically_relative(fs::weakly_canonical(ctx.folder));
-  if (rel.empty() || *rel.begin() == "..")
-    fields.fail(key, "must stay inside the scene's folder (got \"" + name + "\")");
-  if (!fs::is_regular_file(resolved)) fields.fail(key, "file not found: " + resolved.string());
-  return resolved;
+  std::string why;
+  const auto resolved = resolveConfined(ctx.folder, name, ctx.options.allowOutsideFolder, why);
+  if (!resolved) fields.fail(key, why);
+  return *resolved;
+}
+
+std::string show(double v) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << v;
+  return s.str();
+}
+
+double inRange(JsonFields& fields, const std::string& key, double fallback, double lo, double hi, bool openLow,
+               const std::string& unit) {
+  const double d = fields.number(key, fallback);
+  if (!((openLow ? d > lo : d >= lo) && d <= hi))
+    fields.fail(key, "must be in " + std::string(openLow ? "(" : "[") + show(lo) + ", " + show(hi) + "]" + unit +
+                         " (got " + show(d) + ")");
+  return d;
 }
 
 RigSpec readRig(JsonFields rig) {
   RigSpec spec;
-  spec.height = rig.positive("height", spec.height);
+  spec.height = inRange(rig, "height", spec.height, limits::kMinRigHeight, limits::kMaxRigHeight, false, " m");
   if (auto mirror = rig.optionalObject("mirror")) {
-    spec.k = mirror->number("k", spec.k);
-    if (!(spec.k > 2.0)) mirror->fail("k", "must be > 2 (got " + std::to_string(spec.k) + ")");
-    spec.c = mirror->positive("c", spec.c);
+    spec.k = inRange(*mirror, "k", spec.k, limits::kMinMirrorK, limits::kMaxMirrorK, true, "");
+    spec.c = inRange(*mirror, "c", spec.c, limits::kMinMirrorC, limits::kMaxMirrorC, false, " m");
+    if (!(spec.c < spec.height))
+      mirror->fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
     spec.rimElevationDeg = mirror->number("rim_elevation_deg", spec.rimElevationDeg);
     if (!(spec.rimElevationDeg > -60.0 && spec.rimElevationDeg < 80.0))
       mirror->fail("rim_elevation_deg", "must be in (-60, 80) degrees");
     mirror->finish();
   }
   if (auto image = rig.optionalObject("image")) {
-    spec.imageSize = image->integer("size", spec.imageSize, 8, 16384);
+    spec.imageSize = image->integer("size", spec.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
     spec.framingElevationDeg = image->number("framing_elevation_deg", spec.rimElevationDeg);
     if (!(spec.framingElevationDeg > -60.0 && spec.framingElevationDeg <= spec.rimElevationDeg))
       image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees");
@@ -72,13 +91,23 @@ RigSpec readRig(JsonFields rig) {
   } else {
     spec.framingElevationDeg = spec.rimElevationDeg;
   }
+  if (!rig.has("mirror") && !(spec.c < spec.height))
+    rig.fail("height", "must be larger than the mirror's c = " + show(spec.c) + " m");
   rig.finish();
   try {
     (void)spec.camera();  // the mirror must be able to image the rim and framing
   } catch (const InputError& e) {
-    throw InputError(rig.file() + ": rig." + e.what());
+    throw InputError(rig.file() + ": " + rig.where() + "." + e.what());
   }
   return spec;
+}
+
+// Names reach glTF nodes and Blender objects: unique, printable, at most 63 bytes (Blender's
+// limit; longer ones it truncates silently).
+void checkName(JsonFields& fields, const std::string& key, const std::string& name) {
+  if (name.empty() || name.size() > 63) fields.fail(key, "must be 1 to 63 bytes long (got " + std::to_string(name.size()) + ")");
+  for (unsigned char ch : name)
+    if (ch < 0x20 || ch == 0x7F) fields.fail(key, "must not contain control characters");
 }
 
 RobotPose readPose(const json& v, const std::string& file, const std::string& path) {
@@ -88,6 +117,8 @@ RobotPose readPose(const json& v, const std::string& file, const std::string& pa
 
 Material readMaterial(const std::string& name, JsonFields m, const Context& ctx) {
   Material mat;
+  if (name.empty() || name.size() > 63)
+    throw InputError(ctx.file + ": " + m.where() + ": material names must be 1 to 63 bytes long");
   mat.name = name;
   mat.color = m.colour("color", mat.color, 1.0);
   mat.ambient = static_cast<float>(m.nonNegative("ambient", mat.ambient));
@@ -113,26 +144,35 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   return mat;
 }
 
+// A primitive's length: at least a micrometre, at most the world's extent.
+double length(JsonFields& o, const std::string& key) {
+  const double d = o.number(key);
+  if (!(d >= limits::kMinLength && d <= limits::kMaxLength))
+    o.fail(key, "must be in [" + show(limits::kMinLength) + ", " + show(limits::kMaxLength) + "] m (got " + show(d) + ")");
+  return d;
+}
+
 Shape readShape(const std::string& type, JsonFields& o) {
   if (type == "box") {
     Box b{o.vec3("center"), o.vec3("size"), o.number("yaw_deg", 0.0)};
     for (int i = 0; i < 3; ++i)
-      if (!(b.size[i] > 0.0)) o.fail("size", "all sizes must be > 0");
+      if (!(b.size[i] >= limits::kMinLength && b.size[i] <= limits::kMaxLength))
+        o.fail("size", "all sizes must be in [" + show(limits::kMinLength) + ", " + show(limits::kMaxLength) + "] m");
     return b;
   }
   if (type == "cylinder") {
-    Cylinder c{o.vec3("base"), o.vec3("top"), o.positive("radius"), o.boolean("caps", true)};
+    Cylinder c{o.vec3("base"), o.vec3("top"), length(o, "radius"), o.boolean("caps", true)};
     if ((c.top - c.base).norm() <= 0.0) o.fail("top", "must differ from base");
     return c;
   }
-  if (type == "sphere") return Sphere{o.vec3("center"), o.positive("radius")};
+  if (type == "sphere") return Sphere{o.vec3("center"), length(o, "radius")};
   if (type == "quad") {
     Quad q{o.vec3("origin"), o.vec3("edge_u"), o.vec3("edge_v")};
     if (q.edgeU.cross(q.edgeV).norm() <= 0.0) o.fail("edge_v", "edges must not be parallel or zero");
     return q;
   }
   if (type == "disc") {
-    Disc d{o.vec3("center"), o.vec3("normal", Vec3::UnitZ()), o.positive("radius"),
+    Disc d{o.vec3("center"), o.vec3("normal", Vec3::UnitZ()), length(o, "radius"),
            o.nonNegative("inner_radius", 0.0)};
     if (d.normal.norm() <= 0.0) o.fail("normal", "must not be zero");
     d.normal.normalize();
@@ -192,6 +232,8 @@ CameraPath readPath(JsonFields p, const std::string& file) {
       if (!w.is_array() || w.size() != 2 || !w[0].is_number() || !w[1].is_number())
         p.fail(indexed("waypoints", i), "must be [x, y]");
       points.emplace_back(w[0].get<double>(), w[1].get<double>());
+      if (!points.back().allFinite() || points.back().cwiseAbs().maxCoeff() > limits::kMaxWorldCoordinate)
+        p.fail(indexed("waypoints", i), "must lie within ±" + show(limits::kMaxWorldCoordinate) + " m");
       if (i > 0 && points[i] == points[i - 1]) p.fail(indexed("waypoints", i), "repeats the previous point");
     }
     const int frames = p.integer("frames", 100, 1, 1000000);
@@ -199,6 +241,23 @@ CameraPath readPath(JsonFields p, const std::string& file) {
   }
   p.finish();
   return path;
+}
+
+// `wanted`, or a variant of it that is not in `taken` and fits in 63 bytes; then marks it taken.
+std::string uniqueName(const std::string& wanted, std::set<std::string>& taken) {
+  const auto cut = [](std::string name, size_t bytes) {
+    if (name.size() <= bytes) return name;
+    name.resize(bytes);
+    while (!name.empty() && (static_cast<unsigned char>(name.back()) & 0xC0) == 0x80) name.pop_back();  // UTF-8
+    if (!name.empty() && static_cast<unsigned char>(name.back()) >= 0xC0) name.pop_back();
+    return name;
+  };
+  std::string name = cut(wanted, 63);
+  for (int k = 1; !taken.insert(name).second; ++k) {
+    const std::string suffix = "." + std::to_string(k);
+    name = cut(wanted, 63 - suffix.size()) + suffix;
+  }
+  return name;
 }
 
 }  // namespace
@@ -209,20 +268,49 @@ const CameraPath* Scene::findPath(const std::string& pathName) const {
   return nullptr;
 }
 
-Scene loadScene(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot open scene file");
-  json root;
+nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
+  // JSON objects with a repeated key parse silently to the last value: refuse them instead.
+  std::vector<std::set<std::string>> keysOfOpenObjects;
+  const json::parser_callback_t rejectDuplicateKeys = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keysOfOpenObjects.emplace_back();
+    else if (event == json::parse_event_t::object_end && !keysOfOpenObjects.empty()) keysOfOpenObjects.pop_back();
+    else if (event == json::parse_event_t::key && !keysOfOpenObjects.empty() &&
+             !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second)
+      throw InputError(file + ": duplicate key \"" + parsed.get<std::string>().substr(0, 63) + "\" in one object");
+    return true;
+  };
   try {
-    root = json::parse(in);
+    return json::parse(text, rejectDuplicateKeys);
   } catch (const json::parse_error& e) {
     throw InputError(file + ": not valid JSON (" + std::string(e.what()) + ")");
   }
-  Context ctx{file, fs::absolute(file).parent_path(), {}};
+}
+
+nlohmann::json readJsonFile(const std::string& file) {
+  std::string why;
+  const auto text = readWholeFile(file, why);
+  if (!text) throw InputError(file + ": " + why);
+  return parseJsonText(*text, file);
+}
+
+RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const std::string& where) {
+  return readRig(JsonFields(rig, file, where));
+}
+
+Scene loadScene(const std::string& file, const SceneLoadOptions& options) {
+  std::string why;
+  const auto text = readWholeFile(file, why);
+  if (!text) throw InputError(file + ": cannot open scene file (" + why + ")");
+  return loadSceneFromText(*text, file, options);
+}
+
+Scene loadSceneFromText(const std::string& text, const std::string& file, const SceneLoadOptions& options) {
+  const json root = parseJsonText(text, file);
+  Context ctx{file, fs::absolute(file).parent_path(), options, {}};
   JsonFields top(root, file, "");
   Scene scene;
   scene.path = file;
-  scene.sha256 = sha256OfFile(file);
+  scene.sha256 = sha256OfBytes(text);
   const std::string format = top.string("format");
   if (format != kFormat) top.fail("format", "must be \"" + std::string(kFormat) + "\"");
   scene.name = top.string("name", fs::path(file).stem().string());
@@ -239,31 +327,38 @@ Scene loadScene(const std::string& file) {
     scene.materials.push_back(readMaterial(it.key(), materials.object(it.key()), ctx));
   }
   materials.finish();
+  std::set<std::string> materialNames;
+  for (const Material& m : scene.materials) materialNames.insert(m.name);
 
   static const json empty = json::array();
   const json& objects = requireArray(top, "objects", false, empty);
+  // Objects and lights both become named nodes (glTF, Blender): one namespace.
   std::set<std::string> names;
   for (size_t i = 0; i < objects.size(); ++i) {
     JsonFields o(objects[i], file, indexed("objects", i));
     SceneObject obj;
-    obj.name = o.string("name", indexed("object", i));
+    obj.name = o.string("name", "object_" + std::to_string(i));
+    checkName(o, "name", obj.name);
+    if (!names.insert(obj.name).second) o.fail("name", "duplicate name \"" + obj.name + "\" (objects and lights share one namespace)");
     if (o.has("type") && o.raw("type") == "gltf") {
-      // An arena authored elsewhere: its meshes and materials join the scene.
+      // An arena authored elsewhere: its meshes and materials join the scene, their names made
+      // unique (glTF does not require that) and kept within Blender's 63 bytes.
       o.string("type");
       const std::string gltfFile = o.string("file");
       GltfArena arena;
       try {
-        arena = importGltf(resolveInside(ctx, o, "file", gltfFile).string());
+        arena = importGltf(resolveInside(ctx, o, "file", gltfFile).string(),
+                           {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder});
       } catch (const InputError& e) {
         o.fail("file", e.what());
       }
       const int offset = static_cast<int>(scene.materials.size());
       for (Material& m : arena.materials) {
-        m.name = obj.name + "/" + m.name;
+        m.name = uniqueName(obj.name + "/" + m.name, materialNames);
         scene.materials.push_back(std::move(m));
       }
       for (SceneObject& imported : arena.objects) {
-        imported.name = obj.name + "/" + imported.name;
+        imported.name = uniqueName(obj.name + "/" + imported.name, names);
         imported.material += offset;
         scene.objects.push_back(std::move(imported));
       }
@@ -284,17 +379,24 @@ Scene loadScene(const std::string& file) {
   const json& lights = requireArray(top, "lights", true, empty);
   for (size_t i = 0; i < lights.size(); ++i) {
     JsonFields l(lights[i], file, indexed("lights", i));
-    scene.lights.push_back({l.string("name", indexed("light", i)), l.vec3("position"),
-                            l.colour("intensity", Vec3f::Ones(), 1e6)});
+    PointLight light{l.string("name", "light_" + std::to_string(i)), l.vec3("position"),
+                     l.colour("intensity", Vec3f::Ones(), 1e6)};
+    checkName(l, "name", light.name);
+    if (!names.insert(light.name).second)
+      l.fail("name", "duplicate name \"" + light.name + "\" (objects and lights share one namespace)");
     l.finish();
+    scene.lights.push_back(std::move(light));
   }
 
+  // Landmarks name what they mark (often an object of the same name): their own namespace.
+  std::set<std::string> landmarkNames;
   const json& landmarks = requireArray(top, "landmarks", true, empty);
   for (size_t i = 0; i < landmarks.size(); ++i) {
     JsonFields l(landmarks[i], file, indexed("landmarks", i));
-    Landmark lm{l.string("name"), l.vec3("position"), l.positive("diameter"), l.positive("height"),
+    Landmark lm{l.string("name"), l.vec3("position"), length(l, "diameter"), length(l, "height"),
                 l.string("colour_class")};
-    if (!names.insert("landmark:" + lm.name).second) l.fail("name", "duplicate landmark name");
+    checkName(l, "name", lm.name);
+    if (!landmarkNames.insert(lm.name).second) l.fail("name", "duplicate landmark name \"" + lm.name + "\"");
     l.finish();
     scene.landmarks.push_back(std::move(lm));
   }

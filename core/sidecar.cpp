@@ -1,9 +1,12 @@
 #include "sidecar.h"
 
+#include <filesystem>
 #include <fstream>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "file_confinement.h"
+#include "scene_loader.h"
 
 namespace omnicam {
 
@@ -50,6 +53,7 @@ json sidecarJson(const RenderRecord& r) {
           {"spp", r.spp},
           {"shading", r.shading},
           {"mode", r.mode},
+          {"mode_options", r.modeOptions},
           {"seconds", r.seconds},
           {"intrinsics", intrinsicsToJson(r.rig.camera())},
           {"camera_from_world", matrix}};
@@ -61,18 +65,32 @@ void writeSidecarAtomic(const std::string& imagePath, const json& sidecar) {
   writeTextAtomically(sidecarPath(imagePath), sidecar.dump(2) + "\n");
 }
 
+SidecarInfo sidecarFromText(const std::string& text, const std::string& path) {
+  SidecarInfo info;
+  info.json = parseJsonText(text, path);
+  if (!info.json.is_object()) throw InputError(path + ": a sidecar must be a JSON object");
+  const auto rig = info.json.find("rig");
+  if (rig == info.json.end()) throw InputError(path + ": rig: missing required field");
+  info.rig = rigFromJson(*rig, path, "rig");
+  return info;
+}
+
+std::optional<SidecarInfo> readSidecar(const std::string& imagePath) {
+  const std::string path = sidecarPath(imagePath);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  std::string why;
+  const auto text = readWholeFile(path, why);
+  if (!text) throw InputError(path + ": cannot read sidecar (" + why + ")");
+  return sidecarFromText(*text, path);
+}
+
 RigSpec rigFromSidecar(const std::string& imagePath, RigSpec rig) {
-  std::ifstream in(sidecarPath(imagePath));
-  if (!in) return rig;
-  try {
-    const auto j = json::parse(in).at("rig");
-    rig.k = j.at("mirror").at("k"), rig.c = j.at("mirror").at("c");
-    rig.rimElevationDeg = j.at("mirror").at("rim_elevation_deg");
-    rig.framingElevationDeg = j.at("image").at("framing_elevation_deg");
-    rig.height = j.at("height");
-  } catch (const json::exception& e) {
-    throw InputError(sidecarPath(imagePath) + ": rig: " + e.what());
-  }
+  const auto sidecar = readSidecar(imagePath);
+  if (!sidecar) return rig;
+  const int size = rig.imageSize;
+  rig = sidecar->rig;
+  rig.imageSize = size;
   return rig;
 }
 

@@ -2,6 +2,7 @@
 // The JSON sidecar written next to every image (spec §7): provenance and the intrinsics and
 // extrinsics needed to use the image with OpenCV's cv::omnidir.
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "rig.h"
@@ -15,6 +16,7 @@ struct RenderRecord {
   RigSpec rig;
   int spp = 1;
   std::string shading, mode = "exact";
+  nlohmann::json modeOptions = nlohmann::json::object();  // e.g. {"faces": 6, "face_size": 512}
   double seconds = 0.0;
 };
 
@@ -24,6 +26,15 @@ nlohmann::json sidecarJson(const RenderRecord& record);
 // Sidecar path of an image: OUT + ".json".
 std::string sidecarPath(const std::string& imagePath);
 void writeSidecarAtomic(const std::string& imagePath, const nlohmann::json& sidecar);
+// A sidecar's text, read strictly: valid JSON, no duplicate keys, an object with a "rig" that
+// passes the same checks as a scene's rig. InputError naming `path` otherwise.
+struct SidecarInfo {
+  nlohmann::json json;
+  RigSpec rig;
+};
+SidecarInfo sidecarFromText(const std::string& text, const std::string& path);
+// The sidecar of an image, if it has one.
+std::optional<SidecarInfo> readSidecar(const std::string& imagePath);
 // The rig an image was rendered with, from its sidecar: mirror and framing replace `fallback`'s;
 // `fallback` unchanged if there is no sidecar. Throws InputError for an unreadable one.
 RigSpec rigFromSidecar(const std::string& imagePath, RigSpec fallback);

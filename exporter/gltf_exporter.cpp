@@ -4,7 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
@@ -205,6 +205,7 @@ class GltfBuilder {
   tinygltf::Model model_;
 };
 
+// Encoded in memory: no temporary file another user could predict or read.
 std::vector<unsigned char> pngBytes(const Texture& t) {
   ImageRGBA image(t.width(), t.height());
   const auto& rgb = t.rgbLinear();
@@ -212,12 +213,7 @@ std::vector<unsigned char> pngBytes(const Texture& t) {
     for (int c = 0; c < 3; ++c) image.pixels[p * 4 + c] = rgb[p * 3 + c];
     image.pixels[p * 4 + 3] = 1.0f;
   }
-  const fs::path tmp = fs::temp_directory_path() / ("omnicam-texture-" + std::to_string(::getpid()) + ".png");
-  writeImageAtomic(tmp.string(), image);
-  std::ifstream in(tmp, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  fs::remove(tmp);
-  return bytes;
+  return encodeImage("texture.png", image);
 }
 
 // An annulus in the viewpoint frame at the rim height: what the camera sees beyond the rim.
@@ -261,12 +257,14 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     b.addRoot(node);
   }
   if (!scene.lights.empty()) b.model().extensionsUsed.push_back("KHR_lights_punctual");
-  for (const Landmark& lm : scene.landmarks) {
+  for (size_t i = 0; i < scene.landmarks.size(); ++i) {
+    const Landmark& lm = scene.landmarks[i];
     Rigid at = Rigid::Identity();
     at.translate(lm.position);
-    b.addRoot(b.node(lm.name, at, -1,
-                     {{"omnicam", {{"landmark", true}, {"colour_class", lm.colourClass}, {"diameter", lm.diameter},
-                                   {"height", lm.height}}}}));
+    // Landmarks often share the name of the object they mark; their nodes get their own names.
+    b.addRoot(b.node("landmark_" + std::to_string(i), at, -1,
+                     {{"omnicam", {{"role", "landmark"}, {"name", lm.name}, {"colour_class", lm.colourClass},
+                                   {"diameter", lm.diameter}, {"height", lm.height}}}}));
   }
   if (options.includeRig) {
     const OmniCamera camera = options.rig.camera();
@@ -312,11 +310,10 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
     b.addChild(rig, camNode);
   }
-  writeAtomically(path, [&](const std::string& tmp) {
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToFile(&b.model(), tmp, true, true, false, true))
-      throw InputError(path + ": cannot write glTF");
-  });
+  std::ostringstream glb;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&b.model(), glb, false, true)) throw OutputError(path + ": cannot encode glTF");
+  writeBytesAtomically(path, glb.str());
 }
 
 }  // namespace omnicam

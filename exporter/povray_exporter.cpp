@@ -88,8 +88,9 @@ void writeMesh(std::ostringstream& out, const TriangleMesh& mesh, bool withUv, c
 }  // namespace
 
 PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings) {
+  checkRenderSettings(settings);
+  checkPose(pose, "--pose");
   const auto n = samplesPerAxis(settings.spp);
-  if (!n) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(settings.spp) + ")");
   PovrayJob job;
   job.samplesPerAxis = *n;
   const OmniCamera camera = settings.rig.camera();

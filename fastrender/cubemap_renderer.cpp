@@ -133,8 +133,8 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   int sectors = 0, rings = 0;
   if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
     throw InputError("--polygons: must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+  checkRenderSettings(settings);
   const auto n = samplesPerAxis(settings.spp);
-  if (!n) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(settings.spp) + ")");
   std::lock_guard<std::mutex> lock(mutex_);
   const RigSpec& r = settings.rig;
   if (cached_ && cached_->spp == settings.spp && cached_->options.mode == o.mode && cached_->options.faces == o.faces &&
@@ -298,6 +298,7 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
 void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options,
                              ImageRGBA& image) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
+  checkPose(pose, "--pose");
   const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
   const Vec3 origin = worldFromViewpoint.translation();
   const Eigen::Matrix3d rotation = worldFromViewpoint.linear();

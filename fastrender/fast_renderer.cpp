@@ -16,7 +16,7 @@ constexpr double kShadowEpsilon = 1e-5;
 }  // namespace
 
 std::string fastRendererVersion() {
-  return std::string("omnicam ") + OMNICAM_VERSION + " exact (Embree " + RTC_VERSION_STRING + ")";
+  return std::string("omnicam ") + OMNICAM_VERSION + " (Embree " + RTC_VERSION_STRING + ")";
 }
 
 FastRenderer::FastRenderer(const Scene& scene) : scene_(scene), rays_(scene) {}
@@ -76,8 +76,9 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
 }
 
 ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings) const {
+  checkRenderSettings(settings);
+  checkPose(pose, "--pose");
   const auto n = samplesPerAxis(settings.spp);
-  if (!n) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(settings.spp) + ")");
   const std::shared_ptr<const SampleTable> table = sampleTable(settings.rig, *n);
   const int width = settings.rig.imageSize, height = settings.rig.imageSize;
   const Rigid worldFromCam = worldFromCamera(settings.rig, pose);

@@ -15,7 +15,7 @@
 
 namespace omnicam {
 
-// "omnicam <version> exact (Embree <version>)", for sidecars.
+// "omnicam <version> (Embree <version>)", for sidecars (the mode is recorded on its own).
 std::string fastRendererVersion();
 
 class FastRenderer {

@@ -82,6 +82,13 @@ RTCRay makeRay(const Vec3& o, const Vec3& d, double tNear, double tFar) {
   return ray;
 }
 
+void recordEmbreeError(void* user, RTCError code, const char* message) {
+  auto* errors = static_cast<RayScene::Errors*>(user);
+  std::lock_guard<std::mutex> lock(errors->mutex);
+  if (errors->first.empty())
+    errors->first = "error " + std::to_string(static_cast<int>(code)) + " (" + (message ? message : "no message") + ")";
+}
+
 }  // namespace
 
 RayScene::RayScene(const Scene& scene) {
@@ -89,6 +96,8 @@ RayScene::RayScene(const Scene& scene) {
   // would also throttle the renderer's own parallel loops.
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: cannot create device");
+  // Embree reports errors through a callback; without one they are silently lost.
+  rtcSetDeviceErrorFunction(device_, recordEmbreeError, &errors_);
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -129,6 +138,12 @@ RayScene::RayScene(const Scene& scene) {
     geometries_.push_back(std::move(g));
   }
   rtcCommitScene(scene_);
+  throwIfEmbreeFailed();
+}
+
+void RayScene::throwIfEmbreeFailed() const {
+  std::lock_guard<std::mutex> lock(errors_.mutex);
+  if (!errors_.first.empty()) throw std::runtime_error("Embree: " + errors_.first);
 }
 
 RayScene::~RayScene() {

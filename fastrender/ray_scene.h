@@ -5,6 +5,8 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <mutex>
+#include <string>
 #include <vector>
 
 #include "geometry.h"
@@ -32,6 +34,12 @@ class RayScene {
   // True if anything lies on the open segment (tNear, tFar). Thread-safe.
   bool occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const;
 
+  // Errors Embree reported through its callback; the first one is kept.
+  struct Errors {
+    std::mutex mutex;
+    std::string first;
+  };
+
   // Per-geometry data, public for the callbacks in the implementation file.
   struct Geometry {
     int object = -1;
@@ -42,6 +50,8 @@ class RayScene {
   };
 
  private:
+  void throwIfEmbreeFailed() const;  // std::runtime_error (an internal error) if Embree reported one
+  mutable Errors errors_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::unique_ptr<Geometry>> geometries_;  // indexed by Embree geomID

@@ -40,6 +40,8 @@ std::string blenderVersion(const std::string& executable) {
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options) {
   if (poses.empty()) return {};
+  checkRenderSettings(settings);
+  for (const RobotPose& pose : poses) checkPose(pose, "--pose");
   const OmniCamera camera = settings.rig.camera();
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";

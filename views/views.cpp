@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "errors.h"
+#include "input_limits.h"
 
 namespace omnicam {
 
@@ -30,6 +31,24 @@ bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant vari
 
 }  // namespace
 
+const char* viewKindName(ViewKind kind) {
+  return kind == ViewKind::BirdsEye ? "birdseye" : kind == ViewKind::Panorama ? "panorama" : "perspective";
+}
+
+nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map) {
+  nlohmann::json j = {{"kind", viewKindName(spec.kind)},
+                      {"variant", spec.variant == ViewVariant::Thesis ? "thesis" : "exact"},
+                      {"width", map.width},
+                      {"height", map.height}};
+  if (spec.kind == ViewKind::BirdsEye) j["ground_distance_px"] = spec.groundDistance;
+  if (spec.kind == ViewKind::Perspective) {
+    j["yaw_deg"] = spec.yawDeg;
+    j["pitch_deg"] = spec.pitchDeg;
+    j["fov_deg"] = spec.fovDeg;
+  }
+  return j;
+}
+
 ViewKind parseViewKind(const std::string& name, const std::string& option) {
   if (name == "birdseye") return ViewKind::BirdsEye;
   if (name == "panorama") return ViewKind::Panorama;
@@ -49,9 +68,15 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
   const int defaultH = spec.kind == ViewKind::Panorama ? 300 : spec.kind == ViewKind::Perspective ? 300 : 400;
   map.width = spec.width ? spec.width : defaultW;
   map.height = spec.height ? spec.height : defaultH;
-  if (map.width < 1 || map.height < 1 || map.width > 16384 || map.height > 16384)
-    throw InputError("--size: view size must be in [1, 16384]");
-  if (spec.kind == ViewKind::BirdsEye && !(spec.groundDistance > 0.0)) throw InputError("--zw: must be > 0");
+  if (map.width < 1 || map.height < 1 || map.width > limits::kMaxImageDimension ||
+      map.height > limits::kMaxImageDimension ||
+      static_cast<int64_t>(map.width) * map.height > limits::kMaxImagePixels)
+    throw InputError("--size: each side must be in [1, " + std::to_string(limits::kMaxImageDimension) + "], and at most " +
+                     std::to_string(limits::kMaxImagePixels) + " pixels in all");
+  if (spec.kind == ViewKind::BirdsEye && !(spec.groundDistance > 0.0 && spec.groundDistance < 1e6))
+    throw InputError("--zw: must be in (0, 1e6)");
+  if (spec.kind == ViewKind::Perspective && !(std::isfinite(spec.yawDeg) && std::isfinite(spec.pitchDeg)))
+    throw InputError("--yaw/--pitch: must be finite");
   if (spec.kind == ViewKind::Perspective && !(spec.fovDeg > 0.0 && spec.fovDeg < 179.0))
     throw InputError("--fov: must be in (0, 179) degrees");
   map.sourceX.assign(static_cast<size_t>(map.width) * map.height, kNone);

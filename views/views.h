@@ -12,6 +12,7 @@
 //                incidence angle linear in the row (rows are equal angle steps).
 //   perspective  a virtual pinhole at F' looking toward (yaw, pitch) in the robot frame.
 // Pixels whose source lies outside the mirror disc are black.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,10 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
 // The same into `out`, whose storage is reused from frame to frame (every pixel is written).
 void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
+
+// What a view is, for its sidecar: kind, variant, size and the parameters that kind uses.
+nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map);
+const char* viewKindName(ViewKind kind);
 
 ViewKind parseViewKind(const std::string& name, const std::string& option = "--as");  // InputError naming option
 ViewVariant parseViewVariant(const std::string& name);  // InputError naming --variant

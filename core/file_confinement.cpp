@@ -1,0 +1,68 @@
+#include "file_confinement.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "input_limits.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+bool isInsideFolder(const fs::path& folder, const fs::path& path) {
+  std::error_code ec;
+  const fs::path root = fs::weakly_canonical(folder, ec);
+  if (ec) return false;
+  const fs::path resolved = fs::weakly_canonical(path, ec);
+  if (ec) return false;
+  const fs::path rel = resolved.lexically_relative(root);
+  return !rel.empty() && *rel.begin() != ".." && rel != ".";
+}
+
+std::optional<fs::path> resolveConfined(const fs::path& folder, const std::string& name, bool allowOutside,
+                                        std::string& why) {
+  if (name.empty() || name.find('\0') != std::string::npos) {
+    why = "file name is empty or holds a NUL byte";
+    return std::nullopt;
+  }
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(folder / name, ec);  // follows every symlink
+  if (ec) {
+    why = "cannot resolve \"" + name + "\" (" + ec.message() + ")";
+    return std::nullopt;
+  }
+  if (!allowOutside && !isInsideFolder(folder, resolved)) {
+    why = "\"" + name + "\" resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+    return std::nullopt;
+  }
+  if (!fs::is_regular_file(resolved, ec)) {
+    why = "file not found: " + name;
+    return std::nullopt;
+  }
+  return resolved;
+}
+
+std::optional<std::string> readWholeFile(const std::string& path, std::string& why) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    why = fs::exists(path, ec) ? "not a regular file" : "no such file";
+    return std::nullopt;
+  }
+  const auto size = fs::file_size(path, ec);
+  if (ec || size > static_cast<uintmax_t>(limits::kMaxInputFileBytes)) {
+    why = ec ? ec.message() : "larger than the " + std::to_string(limits::kMaxInputFileBytes >> 20) + " MiB limit";
+    return std::nullopt;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    why = std::strerror(errno);
+    return std::nullopt;
+  }
+  std::string bytes(static_cast<size_t>(size), '\0');
+  in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  bytes.resize(static_cast<size_t>(in.gcount()));
+  return bytes;
+}
+
+}  // namespace omnicam

@@ -1,0 +1,21 @@
+#pragma once
+// Where the files a scene pulls in may come from: inside the scene's folder, symlinks resolved
+// (docs/robustness.md). Used for textures, glTF files and the glTF's own buffers and images.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace omnicam {
+
+// `name` relative to `folder` (or absolute), resolved through every symlink. nullopt, with `why`
+// set to one line, if it does not exist, is not a regular file, or — unless `allowOutside` —
+// lies outside `folder` (itself resolved).
+std::optional<std::filesystem::path> resolveConfined(const std::filesystem::path& folder, const std::string& name,
+                                                     bool allowOutside, std::string& why);
+// True if the resolved `path` lies inside the resolved `folder`.
+bool isInsideFolder(const std::filesystem::path& folder, const std::filesystem::path& path);
+
+// A whole file, at most limits::kMaxInputFileBytes (checked before reading). nullopt with `why`.
+std::optional<std::string> readWholeFile(const std::string& path, std::string& why);
+
+}  // namespace omnicam

@@ -1,0 +1,40 @@
+#pragma once
+// The documented bounds on every input (docs/conventions.md, "Ranges and limits"). Checked
+// before any work starts, so a mistake gets exit 2 and one line, never an abort, a bad_alloc
+// or minutes of swapping.
+#include <cstdint>
+
+namespace omnicam::limits {
+
+// World coordinates of scene geometry, lights, landmarks and robot poses (metres). Embree
+// traces in float: beyond 10 km a millimetre is no longer resolved.
+inline constexpr double kMaxWorldCoordinate = 1e4;
+// Lengths (radii, sizes) of scene primitives (metres) — at least a micrometre, at most 20 km.
+inline constexpr double kMinLength = 1e-6;
+inline constexpr double kMaxLength = 2e4;
+// Robot yaw (degrees); any value in range is taken modulo 360.
+inline constexpr double kMaxYawDeg = 1e6;
+
+// Rig: ranges in which the mirror, the physical camera and POV-Ray's millimetre units are all
+// well conditioned (POV-Ray and the fast renderer agree across them; tested).
+inline constexpr double kMinRigHeight = 0.01, kMaxRigHeight = 100.0;  // F' above the floor (m)
+inline constexpr double kMinMirrorK = 2.0, kMaxMirrorK = 100.0;        // k in (2, 100]
+inline constexpr double kMinMirrorC = 1e-3, kMaxMirrorC = 1.0;         // focal distance (m)
+inline constexpr int kMinImageSize = 8, kMaxImageSize = 16384;         // rendered image (px)
+
+// Samples: spp = n² with n ≤ 32, and one frame's samples (size² × spp) fit well inside the
+// 32-bit offsets the renderers index them with.
+inline constexpr int kMaxSpp = 1024;
+inline constexpr int64_t kMaxSamplesPerFrame = int64_t{1} << 28;
+
+// Images read (textures, glTF images, images given to view/compare/rings): the header is
+// checked against these before any pixel is decoded.
+inline constexpr int kMaxImageDimension = 16384;
+inline constexpr int64_t kMaxImagePixels = int64_t{1} << 27;  // e.g. 16384 × 8192
+
+// Any file a scene pulls in (scene, glTF, buffer): read whole, so bounded.
+inline constexpr int64_t kMaxInputFileBytes = int64_t{1} << 30;
+// Objects, triangles and vertices per scene (glTF included).
+inline constexpr int64_t kMaxTriangles = int64_t{1} << 25;
+
+}  // namespace omnicam::limits
