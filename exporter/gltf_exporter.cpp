@@ -250,7 +250,10 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     b.model().lights.push_back(light);
     Rigid at = Rigid::Identity();
     at.translate(l.position);
-    const int node = b.node(l.name, at, -1, {{"omnicam", {{"light", "point, no distance fall-off"}}}});
+    // Consumers (the Blender driver) find lights by this index, never by name.
+    const int node = b.node(l.name, at, -1,
+                            {{"omnicam", {{"role", "light"}, {"light_index", b.model().lights.size() - 1},
+                                          {"light", "point, no distance fall-off"}}}});
     tinygltf::Value::Object ext;
     ext["light"] = tinygltf::Value(static_cast<int>(b.model().lights.size()) - 1);
     b.model().nodes[node].extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
@@ -273,7 +276,8 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     const Rigid worldFromViewpoint = worldFromRobot(options.pose) * robotFromViewpoint(options.rig);
     const int rig = b.node(kGltfRigNode, worldFromViewpoint, -1,
                            {{"omnicam",
-                             {{"rig", rigToJson(options.rig)},
+                             {{"role", "rig"},
+                              {"rig", rigToJson(options.rig)},
                               {"pose", {{"x", options.pose.x}, {"y", options.pose.y}, {"yaw_deg", options.pose.yawDeg}}},
                               {"intrinsics", intrinsicsToJson(camera)},
                               {"frame", "viewpoint: origin at F', robot axes (x forward, y left, z up)"}}}});
@@ -282,7 +286,8 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
                            b.mesh(kGltfMirrorNode, mirrorMesh.mesh, &mirrorMesh.normals, mirrorMaterial, nullptr),
                            {{"omnicam",
-                             {{"certified_max_deviation_m", mirrorMesh.requestedBound},
+                             {{"role", "mirror"},
+                              {"certified_max_deviation_m", mirrorMesh.requestedBound},
                               {"rings", mirrorMesh.rings},
                               {"sectors", mirrorMesh.sectors}}}}));
     const Vec3 rimPoint = mirrorMesh.mesh.vertices.back();
@@ -291,7 +296,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     b.addChild(rig, b.node(kGltfRimMaskNode, Rigid::Identity(),
                            b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
                                   nullptr, maskMaterial, nullptr),
-                           nullptr));
+                           {{"omnicam", {{"role", "rim_mask"}}}}));
     // Physical pinhole at F looking up: glTF cameras look along −Z with +Y up; in the rig's
     // (viewpoint) frame the camera's X is robot +x (image right), Y robot −y (image up), Z robot −z.
     tinygltf::Camera cam;
@@ -306,7 +311,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     viewpointFromCamera.translate(mirror.pinholeInViewpoint());
     viewpointFromCamera.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
     const int camNode = b.node(kGltfCameraNode, viewpointFromCamera, -1,
-                               {{"omnicam", {{"focal_length_px", camera.physicalFocalLength()}}}}, true);
+                               {{"omnicam", {{"role", "camera"}, {"focal_length_px", camera.physicalFocalLength()}}}}, true);
     b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
     b.addChild(rig, camNode);
   }

@@ -24,7 +24,9 @@ struct GltfExportOptions {
   bool includeRig = true;
 };
 
-// Node names the Blender driver and the importer rely on.
+// Node names of the rig, for people reading the file. Programs (the Blender driver, omnicam's
+// importer) find the rig's nodes by extras.omnicam.role, lights by extras.omnicam.light_index:
+// a user's object may have any name, "omnicam_rig" included.
 inline constexpr const char* kGltfRigNode = "omnicam_rig";
 inline constexpr const char* kGltfMirrorNode = "omnicam_mirror";
 inline constexpr const char* kGltfRimMaskNode = "omnicam_rim_mask";

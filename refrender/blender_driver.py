@@ -5,11 +5,14 @@ the job JSON named after `--` (never Python built from scene strings):
 
 job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "width": int,
            "height": int, "focal_length_px": float, "ambient": float,
-           "lights": [{"name": str, "watts": float}],
+           "lights": [{"watts": float}] (in the order of the glTF's light_index),
            "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr}]}
 
 The .glb holds the arena and the rig (nodes omnicam_rig > omnicam_mirror, omnicam_rim_mask,
 omnicam_camera); the importer turns glTF's +Y-up into Blender's +Z-up, which is omnicam's world.
+Objects are found by the node extras omnicam's exporter writes ("omnicam": {"role": ...,
+"light_index": ...}, custom properties after import), never by name: Blender renames objects
+whose names collide or exceed 63 bytes, and a user's object may be called anything.
 """
 import json
 import sys
@@ -107,19 +110,42 @@ def only_camera_sees(obj):
     obj.visible_shadow = False
 
 
+def omnicam_props(obj):
+    props = obj.get("omnicam")
+    return props if props is not None and hasattr(props, "get") else None
+
+
+def find_roles(objects):
+    roles, lights = {}, {}
+    for obj in objects:
+        props = omnicam_props(obj)
+        if props is None:
+            continue
+        role = props.get("role")
+        if role == "light" and obj.type == "LIGHT":
+            lights[int(props.get("light_index"))] = obj
+        elif role in ("rig", "mirror", "rim_mask", "camera"):
+            if role in roles:
+                raise RuntimeError("omnicam: two objects claim the role " + role)
+            roles[role] = obj
+    missing = [r for r in ("rig", "mirror", "rim_mask", "camera") if r not in roles]
+    if missing:
+        raise RuntimeError("omnicam: the glTF rig lacks " + ", ".join(missing))
+    return roles, lights
+
+
 def main():
     job = load_job()
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.import_scene.gltf(filepath=job["glb"])
     scene = bpy.context.scene
-    objects = bpy.data.objects
-    rig, mirror, mask, camera = (objects["omnicam_rig"], objects["omnicam_mirror"], objects["omnicam_rim_mask"],
-                                 objects["omnicam_camera"])
+    roles, lights_by_index = find_roles(bpy.data.objects)
+    rig, mirror, mask, camera = roles["rig"], roles["mirror"], roles["rim_mask"], roles["camera"]
     unlit = job["shading"] == "unlit"
 
-    if unlit:
+    if unlit:  # the rig's own materials are replaced below
         for material in bpy.data.materials:
-            if material.use_nodes and not material.name.startswith("omnicam_"):
+            if material.use_nodes:
                 make_emission_only(material)
     mirror.data.materials.clear()
     mirror.data.materials.append(perfect_mirror())
@@ -129,11 +155,12 @@ def main():
     only_camera_sees(mask)
 
     scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0))
-    for light in job.get("lights", []):
-        obj = objects.get(light["name"])
-        if obj is not None and obj.type == "LIGHT":
-            obj.data.energy = 0.0 if unlit else light["watts"]
-            obj.data.shadow_soft_size = 0.0  # hard shadows
+    for index, light in enumerate(job.get("lights", [])):
+        obj = lights_by_index.get(index)
+        if obj is None:
+            raise RuntimeError("omnicam: light %d is missing from the imported scene" % index)
+        obj.data.energy = 0.0 if unlit else light["watts"]
+        obj.data.shadow_soft_size = 0.0  # hard shadows
 
     cam = camera.data
     cam.type = "PERSP"

@@ -65,8 +65,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   for (const Material& m : scene.materials) ambient += m.ambient / scene.materials.size();
   nlohmann::json lights = nlohmann::json::array();
   for (const PointLight& l : scene.lights)
-    lights.push_back({{"name", l.name},
-                      {"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()}});
+    lights.push_back({{"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()}});
   const nlohmann::json job = {{"glb", glb},
                               {"shading", shadingName(settings.shading)},
                               {"samples", settings.spp},

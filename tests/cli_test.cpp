@@ -193,7 +193,7 @@ TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
     "materials": {"m": {}}, "objects": []})";
   const std::vector<std::pair<std::string, std::string>> cases{
       {"render /nonexistent/scene.json -o " + out, "cannot open scene file"},
-      {"render " + badScene + " -o " + out, "rig.mirror.k: must be > 2"},
+      {"render " + badScene + " -o " + out, "rig.mirror.k: must be in (2, 100]"},
       {"render " + kScene + " --spp 5 -o " + out, "--spp: must be a perfect square"},
       {"render " + kScene + " --pose=1,2 -o " + out, "--pose: expected three comma-separated numbers"},
       {"render " + kScene + " --pose=1,a,2 -o " + out, "--pose: \"a\" is not a number"},
