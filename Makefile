@@ -1,6 +1,8 @@
 # omnicam — top-level entry points. `make demo` and `make test` each do all set-up themselves.
 BUILD_DIR ?= build
+FUZZ_DIR  ?= $(BUILD_DIR)/fuzz-asan
 JOBS      ?= $(shell nproc)
+FUZZ_SECONDS ?= 60
 SUDO      := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 
 # Every Debian 12 package the project needs (build, tests, demo, benchmarks).
@@ -11,7 +13,7 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   povray blender python3-numpy libtinygltf-dev \
   clang libfuzzer-14-dev libclang-rt-14-dev
 
-.PHONY: deps build test demo bench clean
+.PHONY: deps build test demo bench clean fuzz-build fuzz
 
 # Idempotent and non-interactive: apt runs only when a package is missing.
 deps:
@@ -33,7 +35,19 @@ $(BUILD_DIR)/CMakeCache.txt:
 build: deps $(BUILD_DIR)/CMakeCache.txt
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-test: build
+# The libFuzzer targets (clang, ASan + UBSan) in their own build folder; make test runs each for
+# 30 s ("fuzz smoke"), make fuzz for FUZZ_SECONDS each.
+$(FUZZ_DIR)/CMakeCache.txt:
+	cmake -S . -B $(FUZZ_DIR) -DOMNICAM_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo
+
+fuzz-build: deps $(FUZZ_DIR)/CMakeCache.txt
+	cmake --build $(FUZZ_DIR) -j $(JOBS)
+
+fuzz: fuzz-build
+	@for t in scene_loader gltf_import sidecar; do \
+	  fuzz/run_fuzzer.sh $(FUZZ_DIR)/bin/fuzz_$$t $(FUZZ_SECONDS) $$t || exit 1; done
+
+test: build fuzz-build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
 
 demo: build

@@ -281,7 +281,7 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
   };
   try {
     return json::parse(text, rejectDuplicateKeys);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers such as 1e400 that overflow
     throw InputError(file + ": not valid JSON (" + std::string(e.what()) + ")");
   }
 }

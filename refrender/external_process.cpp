@@ -1,14 +1,19 @@
 #include "external_process.h"
 
 #include <fcntl.h>
+#include <spawn.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <deque>
 #include <fstream>
 #include <thread>
+
+extern char** environ;
 
 namespace omnicam {
 
@@ -28,29 +33,44 @@ std::string tailOfFile(const std::string& path, int lines) {
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
                          const std::string& logPath, double timeoutSeconds) {
   ProcessResult result;
+  // posix_spawn, not fork + exec: between fork and exec only async-signal-safe calls are allowed,
+  // and setenv/open are not while TBB's threads exist. Everything the child needs — its own
+  // process group (a timeout kills helpers too), working folder, HOME, log, stdin — is prepared
+  // here and applied by the spawn itself.
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    result.logTail = "fork failed";
+  std::vector<std::string> environment;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "HOME=", 5) != 0) environment.emplace_back(*e);
+  environment.push_back("HOME=" + workDir);
+  std::vector<char*> envp;
+  for (auto& e : environment) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attributes;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawnattr_init(&attributes);
+  posix_spawn_file_actions_addchdir_np(&actions, workDir.c_str());
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGXFSZ);  // omnicam ignores it; the renderer gets the usual behaviour
+  sigaddset(&defaults, SIGPIPE);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
+  pid_t pid = -1;
+  const int spawned = ::posix_spawnp(&pid, args[0], &actions, &attributes, args.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+  if (spawned != 0) {
+    result.notFound = spawned == ENOENT || spawned == EACCES;
+    result.logTail = std::string("cannot start: ") + std::strerror(spawned);
     return result;
-  }
-  if (pid == 0) {
-    // Child: own process group (so a timeout kills helpers too), isolated folder and HOME.
-    ::setpgid(0, 0);
-    if (::chdir(workDir.c_str()) != 0) ::_exit(126);
-    ::setenv("HOME", workDir.c_str(), 1);
-    const int log = ::open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (log >= 0) {
-      ::dup2(log, STDOUT_FILENO);
-      ::dup2(log, STDERR_FILENO);
-      ::close(log);
-    }
-    const int devnull = ::open("/dev/null", O_RDONLY);
-    if (devnull >= 0) ::dup2(devnull, STDIN_FILENO);
-    ::execvp(args[0], args.data());
-    ::_exit(127);
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
   int status = 0;
@@ -67,7 +87,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   if (!result.timedOut && WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
-  result.notFound = result.exitCode == 127;
+  result.notFound = result.exitCode == 127;  // glibc's posix_spawnp reports a missing binary so
   result.logTail = tailOfFile(logPath, 15);
   return result;
 }

@@ -1,9 +1,17 @@
 #pragma once
 // A private, freshly created folder for one external render job (under the system temp folder),
 // removed when done unless kept for debugging. External renderers get it as cwd and HOME.
+// It records its owner's pid (owner.pid), so folders of killed runs are recognised and removed
+// by the next run instead of piling up in /tmp.
+#include <optional>
 #include <string>
+#include <sys/types.h>
 
 namespace omnicam {
+
+// Removes <tmp>/<prefix>-XXXXXX folders of this user whose owner process has exited; returns
+// how many. Folders of running processes, of other users or without owner.pid are left alone.
+int removeStaleJobFolders(const std::string& prefix);
 
 class JobFolder {
  public:

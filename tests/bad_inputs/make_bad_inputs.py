@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""Writes the small hostile inputs of docs/robustness.md's bad-input table (and the fuzzers'
+seeds): run from anywhere, it regenerates tests/bad_inputs/ and fuzz/assets/ + fuzz/seeds/.
+
+Layout: tests/bad_inputs/scenes/ is "the scene's folder"; outside.* lie just outside it."""
+import base64
+import json
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+SCENES = os.path.join(HERE, "scenes")
+
+
+def png(width, height, bit_depth=8, pixels=None, idat=True):
+    """A PNG (RGB). pixels: rows of (r, g, b) ints; idat=False writes a header that claims the
+    size followed by one tiny IDAT (a single row's worth): a header that lies."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, 2, 0, 0, 0)
+    out = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr)
+    if idat:
+        raw = b""
+        for row in pixels:
+            raw += b"\x00"
+            for r, g, b in row:
+                raw += struct.pack(">HHH", r, g, b) if bit_depth == 16 else bytes((r, g, b))
+        out += chunk(b"IDAT", zlib.compress(raw))
+    else:
+        out += chunk(b"IDAT", zlib.compress(b"\x00" * 64))
+    return out + chunk(b"IEND", b"")
+
+
+TRIANGLE = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0)  # glTF: a triangle in the X-Y plane
+UV3 = struct.pack("<6f", 0, 0, 1, 0, 0, 1)
+
+
+def write(path, data):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    mode = "wb" if isinstance(data, bytes) else "w"
+    with open(path, mode) as f:
+        f.write(data)
+
+
+def symlink(target, path):
+    if os.path.lexists(path):
+        os.remove(path)
+    os.symlink(target, path)
+
+
+def data_uri(data):
+    return "data:application/octet-stream;base64," + base64.b64encode(data).decode()
+
+
+def gltf(buffer_uri=None, buffer=TRIANGLE + UV3, accessors=None, image_uri=None, nodes=None, extra=None):
+    """A one-triangle glTF; every argument bends one part of it."""
+    doc = {
+        "asset": {"version": "2.0"},
+        "scenes": [{"nodes": [0]}],
+        "nodes": nodes or [{"name": "tri", "mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+        "buffers": [{"byteLength": len(buffer), "uri": buffer_uri or data_uri(buffer)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+        "accessors": accessors or [
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}],
+        "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.2, 0.2, 1]}}],
+    }
+    if image_uri:
+        doc["images"] = [{"uri": image_uri}]
+        doc["textures"] = [{"source": 0}]
+        doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    if extra:
+        extra(doc)
+    return json.dumps(doc, indent=1) + "\n"
+
+
+def scene(objects, materials=None, **top):
+    doc = {"format": "omnicam-scene/1",
+           "materials": materials or {"grey": {"color": 0.5}},
+           "objects": objects}
+    doc.update(top)
+    return json.dumps(doc, indent=1) + "\n"
+
+
+FLOOR = {"type": "quad", "material": "grey", "origin": [-2, -2, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]}
+
+
+def main():
+    tex = png(2, 2, 8, [[(255, 0, 0), (0, 255, 0)], [(0, 0, 255), (255, 255, 255)]])
+    write(os.path.join(HERE, "outside.bin"), TRIANGLE + UV3)
+    write(os.path.join(HERE, "outside.png"), tex)
+    write(os.path.join(SCENES, "triangle.bin"), TRIANGLE + UV3)
+    write(os.path.join(SCENES, "tex.png"), tex)
+    write(os.path.join(SCENES, "huge_1e6.png"), png(1000000, 1000000, idat=False))
+    write(os.path.join(SCENES, "huge_30000.png"), png(30000, 30000, idat=False))
+    symlink("../outside.bin", os.path.join(SCENES, "link_outside.bin"))
+    symlink("../outside.png", os.path.join(SCENES, "link_outside.png"))
+
+    cases = {
+        "ok": gltf("triangle.bin"),
+        "buffer_outside": gltf("../outside.bin"),
+        "buffer_passwd": gltf("/etc/passwd"),
+        "buffer_symlink": gltf("link_outside.bin"),
+        "image_outside": gltf(image_uri="../outside.png"),
+        "image_huge": gltf(image_uri="huge_30000.png"),
+        "short_uv": gltf(accessors=[
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 2, "type": "VEC2"}]),
+        "no_bufferview": gltf(accessors=[
+            {"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]),
+        "byte_positions": gltf(accessors=[
+            {"bufferView": 0, "componentType": 5121, "count": 3, "type": "VEC3"},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]),
+        "uv_not_normalized": gltf(accessors=[
+            {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5121, "count": 3, "type": "VEC2"}]),
+        "count_past_view": gltf(accessors=[
+            {"bufferView": 0, "componentType": 5126, "count": 4000000000, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]),
+        "node_cycle": gltf(nodes=[{"name": "a", "mesh": 0, "children": [1]}, {"name": "b", "children": [0]}]),
+        "bad_texture_index": gltf(extra=lambda d: d["materials"][0]["pbrMetallicRoughness"].update(
+            {"baseColorTexture": {"index": 7}})),
+    }
+    for name, text in cases.items():
+        write(os.path.join(SCENES, "arena_" + name + ".gltf"), text)
+        write(os.path.join(SCENES, "gltf_" + name + ".json"),
+              scene([FLOOR, {"type": "gltf", "name": "arena", "file": "arena_" + name + ".gltf"}]))
+
+    def textured(file):
+        return scene([FLOOR], {"grey": {"color": 0.5, "texture": {"file": file}}})
+    write(os.path.join(SCENES, "texture_outside.json"), textured("../outside.png"))
+    write(os.path.join(SCENES, "texture_symlink.json"), textured("link_outside.png"))
+    write(os.path.join(SCENES, "texture_absolute.json"), textured("/etc/passwd"))
+    write(os.path.join(SCENES, "texture_huge_1e6.json"), textured("huge_1e6.png"))
+    write(os.path.join(SCENES, "texture_huge_30000.json"), textured("huge_30000.png"))
+
+    ball = {"type": "sphere", "material": "grey", "center": [1, 0, 0.2], "radius": 0.1}
+    write(os.path.join(SCENES, "radius_1e400.json"),
+          scene([FLOOR, dict(ball, radius=0.1)]).replace('"radius": 0.1', '"radius": 1e400'))
+    write(os.path.join(SCENES, "coordinate_1e20.json"), scene([FLOOR, dict(ball, center=[1e20, 0, 0])]))
+    write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
+    write(os.path.join(SCENES, "light_shares_name.json"),
+          scene([dict(FLOOR, name="lamp")], lights=[{"name": "lamp", "position": [0, 0, 2]}]))
+    write(os.path.join(SCENES, "duplicate_light.json"),
+          scene([FLOOR], lights=[{"name": "l", "position": [0, 0, 2]}, {"name": "l", "position": [1, 0, 2]}]))
+    write(os.path.join(SCENES, "long_name.json"), scene([dict(FLOOR, name="x" * 64)]))
+    write(os.path.join(SCENES, "duplicate_material_key.json"),
+          '{"format": "omnicam-scene/1", "materials": {"grey": {"color": 0.5}, "grey": {"color": 0.9}},\n'
+          ' "objects": [' + json.dumps(FLOOR) + ']}\n')
+    for name, rig in {"rig_c_tiny": {"mirror": {"c": 1e-12}}, "rig_c_huge": {"mirror": {"c": 1e6}},
+                      "rig_k_huge": {"mirror": {"k": 1e9}}, "rig_height_huge": {"height": 1e9}}.items():
+        write(os.path.join(SCENES, name + ".json"), scene([FLOOR], rig=rig))
+    # A user object whose name starts with omnicam_ must survive a glTF round trip.
+    write(os.path.join(SCENES, "omnicam_prefix.json"),
+          scene([FLOOR, dict(ball, name="omnicam_redbox")], start_pose=[0, 0, 0]))
+    # Sidecars: a good one (for `view --rig`) and a lying one.
+    write(os.path.join(HERE, "rig.json"), json.dumps({"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321}}) + "\n")
+
+    # Fuzzing: assets a fuzzed scene may name, and seeds.
+    assets = os.path.join(REPO, "fuzz", "assets")
+    write(os.path.join(assets, "tex.png"), tex)
+    write(os.path.join(assets, "triangle.bin"), TRIANGLE + UV3)
+    write(os.path.join(assets, "arena.gltf"), gltf("triangle.bin", image_uri="tex.png"))
+    seeds = os.path.join(REPO, "fuzz", "seeds")
+    write(os.path.join(seeds, "scene_loader", "textured_gltf.json"),
+          scene([FLOOR, {"type": "gltf", "name": "arena", "file": "arena.gltf"}],
+                {"grey": {"color": 0.5, "texture": {"file": "tex.png", "scale": [2, 2]}}},
+                rig={"height": 0.5, "mirror": {"k": 9, "c": 0.03, "rim_elevation_deg": 30}, "image": {"size": 64}},
+                lights=[{"name": "l", "position": [0, 0, 2]}],
+                landmarks=[{"name": "lm", "position": [1, 0, 0.3], "diameter": 0.1, "height": 0.1, "colour_class": "grey"}],
+                paths=[{"name": "p", "waypoints": [[0, 0], [1, 0], [1, 1]], "frames": 5}, {"name": "q", "poses": [[0, 0, 0]]}]))
+    write(os.path.join(seeds, "gltf_import", "textured.gltf"), gltf(image_uri="tex.png"))
+    sidecar = {"engine": "fast", "rig": {"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321, "rim_elevation_deg": 45},
+                                         "image": {"size": 360, "framing_elevation_deg": 45}}, "pose": {"x": 0, "y": 0, "yaw_deg": 0}}
+    write(os.path.join(seeds, "sidecar", "render.png.json"), json.dumps(sidecar, indent=1) + "\n")
+    write(os.path.join(seeds, "sidecar", "rig_only.json"), json.dumps({"rig": {"height": 1.0}}) + "\n")
+
+
+if __name__ == "__main__":
+    main()
