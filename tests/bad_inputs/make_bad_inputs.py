@@ -119,7 +119,7 @@ def main():
             {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
             {"bufferView": 1, "componentType": 5121, "count": 3, "type": "VEC2"}]),
         "count_past_view": gltf(accessors=[
-            {"bufferView": 0, "componentType": 5126, "count": 4000000000, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+            {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
             {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]),
         "node_cycle": gltf(nodes=[{"name": "a", "mesh": 0, "children": [1]}, {"name": "b", "children": [0]}]),
         "bad_texture_index": gltf(extra=lambda d: d["materials"][0]["pbrMetallicRoughness"].update(
@@ -157,8 +157,12 @@ def main():
     # A user object whose name starts with omnicam_ must survive a glTF round trip.
     write(os.path.join(SCENES, "omnicam_prefix.json"),
           scene([FLOOR, dict(ball, name="omnicam_redbox")], start_pose=[0, 0, 0]))
-    # Sidecars: a good one (for `view --rig`) and a lying one.
+    # A rig file (for `view --rig`), an image whose sidecar lies about its mirror, and a folder
+    # whose name looks like an output file.
     write(os.path.join(HERE, "rig.json"), json.dumps({"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321}}) + "\n")
+    write(os.path.join(HERE, "lying_sidecar.png"), tex)
+    write(os.path.join(HERE, "lying_sidecar.png.json"), json.dumps({"rig": {"mirror": {"k": 1.5}}}) + "\n")
+    write(os.path.join(HERE, "folder.png", "README"), "A folder named like an image: -o must refuse it.\n")
 
     # Fuzzing: assets a fuzzed scene may name, and seeds.
     assets = os.path.join(REPO, "fuzz", "assets")
