@@ -29,6 +29,13 @@ OmniCamera::OmniCamera(const HyperbolicMirror& mirror, int width, int height,
   rimTheta_ = radians(90.0 + rimElevationDeg);
   if (xi_ + std::cos(rimTheta_) <= 0.0)
     throw InputError("mirror.rim_elevation_deg: beyond what this mirror can image");
+  // Near the hyperboloid's asymptote (elevation atan(sqrt(2/(k−2))) above the horizon) the rim
+  // runs off to infinity: no physical mirror, and POV-Ray's and the model's images part ways.
+  // A rim within 5 c of F' keeps the mirror a compact sensor (the thesis mirror's: 0.43 c).
+  const auto rimPoint = mirror_.pointAlong(Vec3(std::sin(rimTheta_), 0.0, -std::cos(rimTheta_)));
+  if (!rimPoint || !(rimPoint->norm() <= 5.0 * mirror_.c()))
+    throw InputError("mirror.rim_elevation_deg: with k = " + std::to_string(mirror_.k()) +
+                     " the rim lies more than 5 c from F' (near the mirror's asymptote): use a larger k or a lower rim");
   const double borderRadius = 0.5 * std::min(width, height);
   gamma_ = borderRadius * (xi_ + std::cos(framingTheta)) / std::sin(framingTheta);
   rimRadius_ = radiusOfTheta(rimTheta_);

@@ -152,7 +152,8 @@ def main():
           '{"format": "omnicam-scene/1", "materials": {"grey": {"color": 0.5}, "grey": {"color": 0.9}},\n'
           ' "objects": [' + json.dumps(FLOOR) + ']}\n')
     for name, rig in {"rig_c_tiny": {"mirror": {"c": 1e-12}}, "rig_c_huge": {"mirror": {"c": 1e6}},
-                      "rig_k_huge": {"mirror": {"k": 1e9}}, "rig_height_huge": {"height": 1e9}}.items():
+                      "rig_k_huge": {"mirror": {"k": 1e9}}, "rig_height_huge": {"height": 1e9},
+                      "rig_k_asymptote": {"mirror": {"k": 4}}}.items():
         write(os.path.join(SCENES, name + ".json"), scene([FLOOR], rig=rig))
     # A user object whose name starts with omnicam_ must survive a glTF round trip.
     write(os.path.join(SCENES, "omnicam_prefix.json"),
