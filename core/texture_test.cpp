@@ -2,9 +2,16 @@
 
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
+#include "errors.h"
 #include "image.h"
 
+#include <chrono>
 #include <cmath>
+#include <thread>
+#include <string>
+#include <vector>
 
 namespace omnicam {
 namespace {
@@ -47,6 +54,62 @@ TEST(Srgb, PngWriterEncodesExactlyLikeTheFormula) {
       const long expected = std::lround(linearToSrgb(img.at(i, 0)[c]) * 255.0f);
       ASSERT_EQ(std::lround(linearToSrgb(back.at(i, 0)[c]) * 255.0f), expected) << i << " " << c;
     }
+}
+
+// Writes a 2×1 RGB image of `format` with the code value `code` (of 2^bits − 1) in every channel.
+std::string writeCoded(const std::string& name, OIIO::TypeDesc format, double fraction, const char* colourSpace) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  auto out = OIIO::ImageOutput::create(path);
+  OIIO::ImageSpec spec(2, 1, 3, format);
+  if (colourSpace) spec.attribute("oiio:ColorSpace", colourSpace);
+  std::vector<float> pixels(6, static_cast<float>(fraction));
+  EXPECT_TRUE(out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+  return path;
+}
+
+TEST(ImageColourSpace, SixteenBitImagesAreDecodedByColourSpaceNotBitDepth) {
+  // Code 0.5 of full scale: sRGB-decoded that is 0.214041, taken as linear it stays 0.5.
+  const double srgbHalf = srgbToLinear(0.5f);
+  struct Case {
+    const char* name;
+    OIIO::TypeDesc format;
+    const char* colourSpace;
+    double expected;
+  };
+  for (const Case& c : {Case{"png8.png", OIIO::TypeDesc::UINT8, nullptr, srgbHalf},
+                        Case{"png16.png", OIIO::TypeDesc::UINT16, nullptr, srgbHalf},
+                        Case{"tif16.tif", OIIO::TypeDesc::UINT16, nullptr, srgbHalf},
+                        Case{"png16_linear.png", OIIO::TypeDesc::UINT16, "Linear", 0.5},
+                        Case{"float.exr", OIIO::TypeDesc::HALF, nullptr, 0.5}}) {
+    const ImageRGBA image = readImage(writeCoded(c.name, c.format, 0.5, c.colourSpace));
+    // 8-bit codes round 127.5 to 128: allow half a code step there.
+    EXPECT_NEAR(image.at(1, 0)[1], c.expected, 2.5e-3) << c.name;
+    const auto texture = Texture::load(::testing::TempDir() + "/" + c.name);
+    EXPECT_NEAR(texture->sample(0.5, 0.5).y(), c.expected, 2.5e-3) << c.name;
+  }
+}
+
+TEST(ImageLimits, HeaderIsCheckedBeforeAnyPixelIsDecoded) {
+  // A PNG header that claims 30000×30000: refused at once, not after 10 GB of decoding.
+  const std::string huge = OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes/huge_30000.png";
+  try {
+    (void)readImage(huge);
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("image is 30000x30000 pixels; the limit is 16384 per side"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ImageOutput, ExrAndPngAreByteIdenticalForIdenticalPixels) {
+  ImageRGBA img(16, 8);
+  for (size_t k = 0; k < img.pixels.size(); ++k) img.pixels[k] = static_cast<float>(k % 7) / 7.0f;
+  for (const char* ext : {".exr", ".png"}) {
+    const auto a = encodeImage(std::string("a") + ext, img);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a timestamp would now differ
+    const auto b = encodeImage(std::string("b") + ext, img);
+    EXPECT_EQ(a, b) << ext << ": no timestamps or other varying header fields";
+  }
 }
 
 }  // namespace

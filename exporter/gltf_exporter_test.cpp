@@ -47,6 +47,24 @@ Scene texturedScene(const fs::path& dir) {
   return loadScene((dir / "s.json").string());
 }
 
+TEST_F(GltfTest, ObjectsNamedLikeTheRigSurviveARoundTrip) {
+  // The importer skips the exported rig by its extras role, not by an omnicam_ name prefix.
+  const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes/omnicam_prefix.json");
+  GltfExportOptions options;
+  options.rig = scene.rig;
+  const std::string glb = (dir_ / "arena.glb").string();
+  exportGltf(scene, options, glb);
+  const GltfArena back = importGltf(glb);
+  ASSERT_EQ(back.objects.size(), scene.objects.size());
+  EXPECT_EQ(back.objects[1].name, "omnicam_redbox");
+  // And through a scene that references the export: "<object>/<node>".
+  std::ofstream(dir_ / "wrap.json") << R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+    "objects": [{"type": "gltf", "name": "arena", "file": "arena.glb"}]})";
+  const Scene wrapped = loadScene((dir_ / "wrap.json").string());
+  ASSERT_EQ(wrapped.objects.size(), scene.objects.size());
+  EXPECT_EQ(wrapped.objects[1].name, "arena/omnicam_redbox");
+}
+
 TEST_F(GltfTest, RoundTripKeepsGeometryAndMaterials) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   GltfExportOptions options;

@@ -36,6 +36,38 @@ TEST(Blender, AgreesWithTheFastRendererUnlitAt64Spp) {
   }
 }
 
+TEST(Blender, ObjectsNamedLikeTheRigOrLightsDoNotConfuseTheDriver) {
+  // The driver finds the rig by extras roles and lights by index: user objects called
+  // "omnicam_rig" / "omnicam_camera" and a light whose name an object would take in Blender
+  // change nothing. Unlit: pixel-compared with the fast renderer; lit: every light is found
+  // (the driver fails loudly otherwise) and lights the scene.
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_names_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "s.json") << R"({"format": "omnicam-scene/1",
+    "materials": {"grey": {"color": 0.6}, "red": {"color": [0.8, 0.1, 0.1]}, "omnicam_perfect_mirror": {"color": [0.1, 0.1, 0.8]}},
+    "objects": [{"name": "omnicam_rig", "type": "quad", "material": "grey", "origin": [-3, -3, 0], "edge_u": [6, 0, 0], "edge_v": [0, 6, 0]},
+                {"name": "omnicam_camera", "type": "box", "material": "red", "center": [1, 0.3, 0.2], "size": [0.3, 0.3, 0.4]},
+                {"name": "omnicam_mirror", "type": "box", "material": "omnicam_perfect_mirror", "center": [-0.8, -0.6, 0.2], "size": [0.3, 0.3, 0.4]}],
+    "lights": [{"name": "lamp", "position": [0, 0, 2.5], "intensity": 0.8}, {"name": "lamp.001", "position": [2, 2, 2.5], "intensity": 0.4}],
+    "start_pose": [0, 0, 0]})";
+  const Scene scene = loadScene((dir / "s.json").string());
+  fs::remove_all(dir);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.imageSize = 96;
+  settings.spp = 64;
+  const ImageRGBA truth = renderWithBlender(scene, {scene.startPose}, settings).front();
+  const CompareResult r = compareImages(FastRenderer(scene).render(scene.startPose, settings), truth);
+  std::printf("fast vs Blender, objects named omnicam_*: PSNR %.2f dB\n", r.psnrDb);
+  EXPECT_GE(r.psnrDb, 35.0);
+  settings.shading = Shading::Lit;
+  settings.spp = 4;
+  const ImageRGBA lit = renderWithBlender(scene, {scene.startPose}, settings).front();
+  double mean = 0.0;
+  for (size_t p = 0; p < lit.pixels.size(); p += 4) mean += lit.pixels[p];
+  EXPECT_GT(mean / (lit.pixels.size() / 4), 0.02) << "the lights were not found";
+}
+
 TEST(Blender, RingImageMatchesTheExactModel) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
   RenderSettings settings;

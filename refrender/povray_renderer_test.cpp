@@ -6,9 +6,13 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "fast_renderer.h"
 #include "image_compare.h"
+#include "job_folder.h"
 #include "rings.h"
 #include "scene_loader.h"
 
@@ -155,6 +159,39 @@ TEST(Povray, RigRangeCornersRenderTheSameInBothEngines) {
                 corner.k, corner.c, corner.height, r.psnrDb, mean);
     EXPECT_GE(r.psnrDb, 45.0) << corner.label;
     EXPECT_GT(mean, 0.1) << corner.label << ": POV-Ray image is (nearly) black";
+  }
+}
+
+// Job folders of killed runs do not pile up: the next run removes those whose owner is gone.
+TEST(JobFolders, StaleFoldersOfDeadProcessesAreRemoved) {
+  namespace fs = std::filesystem;
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ::waitpid(dead, nullptr, 0);  // reaped: this pid now names no process
+  const auto make = [](const std::string& name, const std::string& owner) {
+    const fs::path folder = fs::temp_directory_path() / name;
+    fs::create_directories(folder);
+    if (!owner.empty()) std::ofstream(folder / "owner.pid") << owner << "\n";
+    std::ofstream(folder / "render.exr") << "partial";
+    return folder;
+  };
+  const fs::path stale = make("omnicam-testjob-stale1", std::to_string(dead));
+  const fs::path alive = make("omnicam-testjob-alive1", "1");           // init: alive
+  const fs::path unknown = make("omnicam-testjob-nopid1", "");          // not ours to judge
+  const fs::path other = make("omnicam-otherjob-stale", std::to_string(dead));  // another prefix
+  EXPECT_EQ(removeStaleJobFolders("omnicam-testjob"), 1);
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(alive));
+  EXPECT_TRUE(fs::exists(unknown));
+  EXPECT_TRUE(fs::exists(other));
+  for (const auto& f : {alive, unknown, other}) fs::remove_all(f);
+  {
+    const JobFolder job("omnicam-testjob", false);
+    std::ifstream in(fs::path(job.path()) / "owner.pid");
+    long pid = 0;
+    in >> pid;
+    EXPECT_EQ(pid, ::getpid());
   }
 }
 

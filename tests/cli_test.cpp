@@ -4,12 +4,14 @@
 
 #include <array>
 #include <cstdlib>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "image.h"
 #include "scene_loader.h"
@@ -26,9 +28,10 @@ struct CommandResult {
   std::string out;
 };
 
-// Runs the binary through the shell; `env` is prepended as VAR=value assignments.
-CommandResult run(const std::string& args, const std::string& env = "") {
-  const std::string cmd = env + (env.empty() ? "" : " ") + std::string(OMNICAM_BINARY) + " " + args + " 2>&1";
+// Runs the binary through the shell; `env` is prepended as VAR=value assignments. `stderrTo`:
+// where stderr goes ("&1": into the captured text).
+CommandResult run(const std::string& args, const std::string& env = "", const std::string& stderrTo = "&1") {
+  const std::string cmd = env + (env.empty() ? "" : " ") + std::string(OMNICAM_BINARY) + " " + args + " 2>" + stderrTo;
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf;
@@ -301,11 +304,24 @@ TEST_F(CliTest, CompareGivesPassFailLinesExitCodesAndADiffImage) {
   EXPECT_EQ(differ.code, 1) << differ.out;
   EXPECT_NE(differ.out.find("\nFAIL psnr_db="), std::string::npos) << differ.out;
   EXPECT_TRUE(fs::exists(path("d.png")));
-  CommandResult json = run("compare " + a + " " + b + " --json --disc");
+  // --json: stdout is JSON and nothing else; the verdict line goes to stderr.
+  const CommandResult json = run("compare " + a + " " + b + " --json --disc --fail-psnr 5", "", path("verdict.txt"));
   EXPECT_EQ(json.code, 0);
-  const auto j = nlohmann::json::parse(json.out.substr(0, json.out.rfind("PASS")));
+  const auto j = nlohmann::json::parse(json.out);
   for (const char* key : {"rmse", "psnr_db", "ssim", "max_abs", "frac_over_tol"}) EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_LT(j["psnr_db"].get<double>(), 60.0);
+  EXPECT_EQ(j["verdict"], "PASS");
+  std::ifstream verdict(path("verdict.txt"));
+  std::string line;
+  std::getline(verdict, line);
+  EXPECT_EQ(line.rfind("PASS psnr_db=", 0), 0u) << line;
+  fs::remove(path("verdict.txt"));
+  // No threshold, nothing checked: it says so, even for images 20 dB apart.
+  const CommandResult unchecked = run("compare " + a + " " + b);
+  EXPECT_EQ(unchecked.code, 0);
+  EXPECT_EQ(unchecked.out.find("PASS"), std::string::npos) << unchecked.out;
+  EXPECT_NE(unchecked.out.find("NOTHRESHOLD psnr_db="), std::string::npos) << unchecked.out;
+  EXPECT_NE(unchecked.out.find("nothing checked"), std::string::npos) << unchecked.out;
   EXPECT_EQ(run("compare " + a + " " + c).code, 2);
   EXPECT_EQ(run("compare " + a + " " + path("missing.exr")).code, 2);
 }
@@ -320,6 +336,75 @@ TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
   EXPECT_EQ(readImage(path("job/render.exr")).width, 48);
   EXPECT_EQ(run("export " + kScene + " --to blender2 -o " + path("job2")).code, 2);
   EXPECT_FALSE(fs::exists(path("job2")));
+}
+
+TEST_F(CliTest, SidecarsRecordTheRealModeAndItsOptions) {
+  const auto sidecar = [&](const std::string& image) {
+    std::ifstream in(image + ".json");
+    return nlohmann::json::parse(in);
+  };
+  ASSERT_EQ(run("render " + kScene + " --size 64 -o " + path("exact.png")).code, 0);
+  EXPECT_EQ(sidecar(path("exact.png"))["mode"], "exact");
+  EXPECT_TRUE(sidecar(path("exact.png"))["mode_options"].empty());
+  ASSERT_EQ(run("render " + kScene + " --size 64 --mode cubemap --faces 5 --face-size 128 -o " + path("cube.png")).code, 0);
+  const auto cube = sidecar(path("cube.png"));
+  EXPECT_EQ(cube["mode"], "cubemap");
+  EXPECT_EQ(cube["mode_options"]["faces"], 5);
+  EXPECT_EQ(cube["mode_options"]["face_size"], 128);
+  EXPECT_FALSE(cube["mode_options"].contains("polygons"));
+  ASSERT_EQ(run("render " + kScene + " --size 64 --mode thesis-mesh --polygons 16 -o " + path("mesh.png")).code, 0);
+  const auto mesh = sidecar(path("mesh.png"));
+  EXPECT_EQ(mesh["mode"], "thesis-mesh");
+  EXPECT_EQ(mesh["mode_options"]["polygons"], 16);
+  EXPECT_EQ(mesh["engine_version"].get<std::string>().find("exact"), std::string::npos);
+}
+
+TEST_F(CliTest, ViewsGetSidecarsAndImagesWithoutOneNeedARig) {
+  ASSERT_EQ(run("render " + kScene + " --size 96 --view birdseye -o " + path("a.png")).code, 0);
+  std::ifstream in(path("a.birdseye.png") + ".json");
+  const auto fromRender = nlohmann::json::parse(in);
+  EXPECT_EQ(fromRender["view"]["kind"], "birdseye");
+  EXPECT_EQ(fromRender["source_image"], "a.png");
+  EXPECT_EQ(fromRender["engine"], "fast");
+  // The view verb: from the sidecar; without one it refuses; with --rig it takes that rig.
+  ASSERT_EQ(run("view " + path("a.png") + " --as panorama -o " + path("p1.png")).code, 0);
+  std::ifstream in2(path("p1.png") + ".json");
+  const auto fromView = nlohmann::json::parse(in2);
+  EXPECT_EQ(fromView["view"]["kind"], "panorama");
+  EXPECT_EQ(fromView["view"]["width"], 1080);
+  fs::copy_file(path("a.png"), path("bare.png"));
+  const CommandResult refused = run("view " + path("bare.png") + " --as panorama -o " + path("p2.png"));
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("has no sidecar"), std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(path("p2.png")));
+  const CommandResult withRig =
+      run("view " + path("bare.png") + " --as panorama --rig " OMNICAM_SOURCE_DIR "/tests/bad_inputs/rig.json -o " + path("p2.png"));
+  ASSERT_EQ(withRig.code, 0) << withRig.out;
+  // rig.json holds the scene's own mirror, so both panoramas are the same image.
+  const ImageRGBA p1 = readImage(path("p1.png")), p2 = readImage(path("p2.png"));
+  EXPECT_EQ(p1.pixels, p2.pixels);
+  // A different mirror gives a different panorama: the rig is really used.
+  std::ofstream(path("rig6.json")) << R"({"mirror": {"k": 6}})";
+  ASSERT_EQ(run("view " + path("bare.png") + " --as panorama --rig " + path("rig6.json") + " -o " + path("p3.png")).code, 0);
+  EXPECT_NE(readImage(path("p3.png")).pixels, p1.pixels);
+}
+
+TEST_F(CliTest, OutputsAreByteIdenticalAcrossRunsSoSha256ProvesDeterminism) {
+  for (const char* ext : {"exr", "png"}) {
+    const std::string a = path(std::string("a.") + ext), b = path(std::string("b.") + ext);
+    ASSERT_EQ(run("render " + kScene + " --size 64 --shading lit -o " + a).code, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // a timestamp would differ now
+    ASSERT_EQ(run("render " + kScene + " --size 64 --shading lit -o " + b).code, 0);
+    EXPECT_EQ(sha256OfFile(a), sha256OfFile(b)) << ext;
+  }
+}
+
+TEST_F(CliTest, AllowOutsideFilesIsTheUsersExplicitChoice) {
+  const std::string scene = OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes/texture_outside.json";
+  EXPECT_EQ(run("render " + scene + " --size 32 -o " + path("x.png")).code, 2);
+  EXPECT_FALSE(fs::exists(path("x.png")));
+  const CommandResult allowed = run("render " + scene + " --size 32 --allow-outside-files -o " + path("x.png"));
+  EXPECT_EQ(allowed.code, 0) << allowed.out;
 }
 
 }  // namespace
