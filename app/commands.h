@@ -1,5 +1,5 @@
 #pragma once
-// CLI verbs (spec §7). Each registers its flags on the CLI11 app and runs as a thin wrapper
+// CLI verbs (docs/conventions.md §5). Each registers its flags on the CLI11 app and runs as a thin wrapper
 // over library functions. Errors propagate as InputError (exit 2) / ExternalError (exit 3).
 #include <CLI/CLI.hpp>
 

@@ -48,7 +48,7 @@ void writeRingPlots(const std::string& out, const OmniCamera& camera, const std:
                  640, 400, {}};
   PlotSpec residuals{"Difference from the exact model", "incidence angle θ (degrees)", "r − r_exact (pixels)", 640, 300,
                      {}};
-  PlotSeries exact{"exact model (spec §2)", "#1f77b4", {}, {}, false};
+  PlotSeries exact{"exact model (docs/conventions.md §1)", "#1f77b4", {}, {}, false};
   PlotSeries eq32{"thesis Eq. 3.2 with measured h", "#d62728", {}, {}, false};
   PlotSeries eq32Residual = eq32;
   for (int deg = 0; deg <= 135; ++deg) {
@@ -110,7 +110,7 @@ void runDemo(const DemoArgs& a) {
             << "| (white = 0.01)<br>"
             << format("PSNR %.2f dB, RMSE %.2e, SSIM %.5f, max %.4f", r.psnrDb, r.rmse, r.ssim, r.maxAbs)
             << (comparable ? "" : "<br>Blender lit is path traced (physical lights, indirect light): realism, not "
-                                  "a pixel comparison (spec §3)")
+                                  "a pixel comparison (docs/conventions.md §2)")
             << "</figcaption></figure>\n";
       std::printf("demo: %s fast vs %s: PSNR %.2f dB, SSIM %.5f\n", s.c_str(), name.c_str(), r.psnrDb, r.ssim);
     }
@@ -209,7 +209,7 @@ ground truth — Cycles (CPU, box filter, fixed seed, no denoising) looking into
 less than 0.5 µm from the quadric; it samples randomly inside each pixel, so it converges with spp.</p>
 )" << views.str()
        << R"(<h2>Incidence-angle rings (thesis Figs. 3.11–3.12)</h2><ul>)" << ringSummary.str()
-       << R"(</ul><p>Spec §2: Eq. 3.2 against the exact model has MSE 0.256 px² — the thesis' "below one pixel".</p>
+       << R"(</ul><p>docs/conventions.md §1: Eq. 3.2 against the exact model has MSE 0.256 px² — the thesis' "below one pixel".</p>
 )" << ringFigures.str()
        << R"(<figure style="max-width:660px"><img src="rings_plot.svg" width="640"><br><img src="rings_residuals.svg" width="640">
 <figcaption>measured radii against the exact model and the thesis' Eq. 3.2</figcaption></figure>
@@ -222,7 +222,7 @@ per-pixel lookups does not. See <code>docs/thesis-reproduction.md</code> (<code>
        << R"(<h2>Views (thesis §3.2.1): bird's-eye (Eqs. 3.3–3.5) and panorama (Eqs. 3.6–3.7)</h2>
 <p>Bird's-eye: a map seen from above (right = forward, up = robot's left), ground at z<sub>w</sub> = 40 pixel units.
 Panorama: centre = forward, top = rim. <i>thesis</i> uses the parabolic Eq. 3.4 / radius-linear rows; <i>exact</i>
-the model of spec §2.</p>
+the model of docs/conventions.md §1.</p>
 )" << viewFigures.str()
        << R"(
 <p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,

@@ -13,7 +13,7 @@ namespace omnicam {
 struct RingMeasurement {
   double thetaDeg;
   double measuredPx;
-  double exactPx;   // r(θ) of the exact model (spec §2)
+  double exactPx;   // r(θ) of the exact model (docs/conventions.md §1)
   double eq32Px;    // thesis Eq. 3.2 with the measured h
   int pixelsUsed;
 };

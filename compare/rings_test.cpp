@@ -81,7 +81,7 @@ TEST(Rings, FastRendererRingsMatchTheExactModel) {
   const RingReport r = measureRings(img, settings.rig.camera(), defaultRingThetasDeg());
   for (const auto& m : r.rings) EXPECT_NEAR(m.measuredPx, m.exactPx, 0.05) << m.thetaDeg;
   EXPECT_LE(r.rmsPxExact, 0.05);
-  // Thesis metric: the parabolic Eq. 3.2 against exact rings is off by about 0.256 px² (spec §2).
+  // Thesis metric: the parabolic Eq. 3.2 against exact rings is off by about 0.256 px² (docs/conventions.md §1).
   EXPECT_NEAR(r.msePx2Eq32, 0.256, 0.02);
   EXPECT_NEAR(r.hPx, 73.7437, 0.05);
   std::printf("ring RMS vs exact %.4f px, max %.4f px, Eq. 3.2 MSE %.4f px^2\n", r.rmsPxExact, r.maxAbsPxExact,

@@ -1,6 +1,6 @@
 #pragma once
 // Linear RGBA float images with associated (premultiplied) alpha, and their files.
-// PNG/JPEG are sRGB-encoded 8-bit on disk; EXR is linear half/float (spec §3).
+// PNG/JPEG are sRGB-encoded 8-bit on disk; EXR is linear half/float (docs/conventions.md §2).
 #include <cstddef>
 #include <string>
 #include <vector>

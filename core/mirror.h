@@ -1,5 +1,5 @@
 #pragma once
-// Baker–Nayar hyperboloidal mirror (thesis Eq. 2.1, spec §2) in the *viewpoint frame*:
+// Baker–Nayar hyperboloidal mirror (thesis Eq. 2.1, docs/conventions.md §1) in the *viewpoint frame*:
 // origin at the effective viewpoint F', z up. Surface ((z + c/2)^2)/a^2 − r^2/b^2 = 1 on the
 // sheet z + c/2 ≥ a; the physical pinhole F sits at (0, 0, −c).
 #include <optional>

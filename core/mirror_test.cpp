@@ -11,7 +11,7 @@ namespace {
 
 TEST(HyperbolicMirror, ThesisParametersGiveCorrectedA2AndB2) {
   const HyperbolicMirror m(11.546, 0.02321);
-  // Spec §2: a² = 1.11347 cm², b² = 0.23329 cm² (the thesis' printed 1.1357 is a slip).
+  // docs/conventions.md §1: a² = 1.11347 cm², b² = 0.23329 cm² (the thesis' printed 1.1357 is a slip).
   EXPECT_NEAR(m.a2() * 1e4, 1.11347, 1e-5);
   EXPECT_NEAR(m.b2() * 1e4, 0.23329, 1e-5);
   EXPECT_NEAR(m.xi(), 0.995494, 1e-6);

@@ -1,5 +1,5 @@
 #pragma once
-// Locale-independent, round-trip number text for generated files (spec §9).
+// Locale-independent, round-trip number text for generated files (docs/robustness.md).
 #include <string>
 
 namespace omnicam {

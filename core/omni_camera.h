@@ -1,5 +1,5 @@
 #pragma once
-// The exact catadioptric projection (spec §2): a pinhole at the outer focus of a hyperboloid is
+// The exact catadioptric projection (docs/conventions.md §1): a pinhole at the outer focus of a hyperboloid is
 // the unified (Geyer–Daniilidis / Mei) model with parameters ξ and γ.
 //
 // Frames:
@@ -55,7 +55,7 @@ class OmniCamera {
   }
 
   // Fraction of pixel (i, j)'s n×n regular sample grid that lies inside the rim: the alpha of
-  // every engine's image (spec §3).
+  // every engine's image (docs/conventions.md §2).
   float rimCoverage(int i, int j, int n) const;
 
   OpenCvIntrinsics openCvIntrinsics() const;

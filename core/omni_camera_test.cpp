@@ -23,7 +23,7 @@ TEST(OmniCamera, SpecReferenceNumbersAt360px) {
 }
 
 TEST(OmniCamera, Eq32ParabolicApproximationErrorMatchesSpec) {
-  // Spec §2: Eq. 3.2 vs the exact model over θ = 5°…135°: MSE 0.256 px², max 1.97 px.
+  // docs/conventions.md §1: Eq. 3.2 vs the exact model over θ = 5°…135°: MSE 0.256 px², max 1.97 px.
   const OmniCamera cam = defaultCamera();
   const double h = cam.horizonRadius();
   double sum = 0.0, worst = 0.0;
@@ -101,7 +101,7 @@ TEST(OmniCamera, MatchesAnIndependentTraceOfThePhysicalPinholeAndQuadricMirror) 
 }
 
 TEST(OmniCamera, ImageIsTheMirrorImageOfATopDownMap) {
-  // Spec §2: a point at bearing φ (robot frame) appears at image direction (cosφ, sinφ).
+  // docs/conventions.md §1: a point at bearing φ (robot frame) appears at image direction (cosφ, sinφ).
   RigSpec rig;
   const OmniCamera cam = rig.camera();
   const RobotPose pose{1.0, -2.0, 30.0};

@@ -11,7 +11,7 @@ enum class Shading { Unlit, Lit };
 
 struct RenderSettings {
   RigSpec rig;     // usually the scene's, with --size applied
-  int spp = 1;     // n² samples on an n×n regular grid per pixel (spec §3)
+  int spp = 1;     // n² samples on an n×n regular grid per pixel (docs/conventions.md §2)
   Shading shading = Shading::Unlit;
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The JSON sidecar written next to every image (spec §7): provenance and the intrinsics and
+// The JSON sidecar written next to every image (docs/conventions.md §5): provenance and the intrinsics and
 // extrinsics needed to use the image with OpenCV's cv::omnidir.
 #include <nlohmann/json.hpp>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// Bilinear texture lookup with texel centres at +0.5 and repeat wrapping (spec §3, the same
+// Bilinear texture lookup with texel centres at +0.5 and repeat wrapping (docs/conventions.md §2, the same
 // as POV-Ray's `interpolate 2`). UV (0, 0) is the image's bottom-left corner, as in POV-Ray.
 #include <memory>
 #include <string>

@@ -137,7 +137,7 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
       << "  bounded_by { clipped_by }\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
       << "  no_shadow\n  translate " << pov(worldFromViewpoint.translation()) << "\n}\n"
-      << "// Beyond the rim the camera sees black (spec §3); invisible to everything else.\n"
+      << "// Beyond the rim the camera sees black (docs/conventions.md §2); invisible to everything else.\n"
       << "disc { <0, " << num(rimY) << ", 0>, y, " << num(rimR + 1000.0) << ", " << num(rimR) << "\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
       << "  translate " << pov(worldFromViewpoint.translation()) << "\n}\n\n";

@@ -1,5 +1,5 @@
 #pragma once
-// Scene → POV-Ray 3.7 SDL with the *exact* mirror and the *physical* camera (spec §2, §3, §9).
+// Scene → POV-Ray 3.7 SDL with the *exact* mirror and the *physical* camera (docs/conventions.md §1, §3, §9).
 //
 // - Mirror: the hyperboloid as a `quadric`, clipped to the upper sheet between its vertex and the
 //   rim, perfect reflection, no_shadow. Camera: a pinhole at the outer focus F looking up, with

@@ -1,5 +1,5 @@
 #pragma once
-// The thesis' method as a mode of the fast renderer (thesis §3.1.3, spec §4):
+// The thesis' method as a mode of the fast renderer (thesis §3.1.3, docs/conventions.md §4):
 //
 //   cubemap      — render 90° cube faces from the effective viewpoint (five: four horizontal
 //                  plus down, as the thesis; or six), then fill every omni sample from a

@@ -1,7 +1,7 @@
 #pragma once
 // omnicam's own renderer, exact mode: every sample's ray comes straight from the effective
 // viewpoint F' through the closed-form pixel → ray map (no mirror tracing), is intersected with
-// the scene, and shaded per spec §3. Pixels are box-filtered means of an n×n regular grid;
+// the scene, and shaded per docs/conventions.md §2. Pixels are box-filtered means of an n×n regular grid;
 // rows are rendered in parallel with TBB and the result does not depend on the thread count.
 #include <memory>
 #include <mutex>

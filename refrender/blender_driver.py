@@ -62,7 +62,7 @@ def black_emission():
 
 
 def make_emission_only(material):
-    """unlit (spec §3): radiance = albedo. The albedo is whatever fed the imported Principled
+    """unlit (docs/conventions.md §2): radiance = albedo. The albedo is whatever fed the imported Principled
     BSDF's Base Color (factor × texture), now fed to an Emission of strength 1."""
     tree = material.node_tree
     principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
@@ -80,7 +80,7 @@ def make_emission_only(material):
 
 
 def ambient_world(ambient):
-    """The spec's ambient term as uniform light from the sky, for diffuse rays only: seen
+    """The ambient term of lit shading (docs/conventions.md §3) as uniform light from the sky, for diffuse rays only: seen
     directly or in the mirror the sky stays black, as in the other engines."""
     world = bpy.data.worlds.new("omnicam_world")
     world.use_nodes = True
@@ -149,7 +149,7 @@ def main():
                 make_emission_only(material)
     mirror.data.materials.clear()
     mirror.data.materials.append(perfect_mirror())
-    mirror.visible_shadow = False  # the mirror casts no shadow (spec §3)
+    mirror.visible_shadow = False  # the mirror casts no shadow (docs/conventions.md §2)
     mask.data.materials.clear()
     mask.data.materials.append(black_emission())
     only_camera_sees(mask)

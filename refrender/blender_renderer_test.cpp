@@ -1,4 +1,4 @@
-// Second ground truth: Blender Cycles looking into the certified mirror mesh (spec §8).
+// Second ground truth: Blender Cycles looking into the certified mirror mesh (docs/conventions.md §7).
 #include "blender_renderer.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // Ground truth: POV-Ray traces the real optics (pinhole + exact quadric mirror); the fast
-// renderer must agree pixel by pixel (spec §8) and POV-Ray's rings must match the model.
+// renderer must agree pixel by pixel (docs/conventions.md §7) and POV-Ray's rings must match the model.
 #include "povray_renderer.h"
 
 #include <gtest/gtest.h>

@@ -21,7 +21,7 @@ bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant vari
   const double theta = std::acos(std::clamp(-d.z() / d.norm(), -1.0, 1.0));  // from straight down
   if (theta > camera.rimTheta()) return false;
   const double phi = std::atan2(d.y(), d.x());
-  // Eq. 3.4–3.5: ρ sinθ = h sinθ / (1 + cosθ); exact: r(θ) of spec §2.
+  // Eq. 3.4–3.5: ρ sinθ = h sinθ / (1 + cosθ); exact: r(θ) of docs/conventions.md §1.
   const double r = variant == ViewVariant::Thesis ? camera.horizonRadius() * std::sin(theta) / (1.0 + std::cos(theta))
                                                   : camera.radiusOfTheta(theta);
   x = static_cast<float>(camera.centre().x() + r * std::cos(phi));  // u along robot +x

@@ -1,5 +1,5 @@
 #pragma once
-// Views derived from an omni image (thesis §3.2.1, spec §4), each a lookup table from output
+// Views derived from an omni image (thesis §3.2.1, docs/conventions.md §4), each a lookup table from output
 // pixels to continuous omni raster positions, computed once per camera and reused for frames.
 //
 // Orientation choices (the omni image itself is a mirror image: u = robot +x, v = robot +y):

@@ -21,7 +21,7 @@ TEST(Views, BirdsEyeThesisVariantFollowsEquations33To35) {
   spec.variant = ViewVariant::Thesis;
   const ViewMap map = buildViewMap(spec, camera());
   ASSERT_EQ(map.width, 400);
-  const double h = 73.7437, zw = 40.0;  // spec §2's h for the defaults; the thesis' z_w
+  const double h = 73.7437, zw = 40.0;  // docs/conventions.md §1's h for the defaults; the thesis' z_w
   for (int j = 3; j < 400; j += 37)
     for (int i = 5; i < 400; i += 41) {
       const double xw = i + 0.5 - 200.0, yw = 200.0 - (j + 0.5);  // map: right = forward, up = left

@@ -117,7 +117,7 @@ def robocup2006():
     return {
         "format": "omnicam-scene/1",
         "name": "robocup2006",
-        "description": "RoboCup 2006 Four-Legged League field (spec §6). Origin at the field centre, "
+        "description": "RoboCup 2006 Four-Legged League field (docs/scene-format.md). Origin at the field centre, "
                        "+X along the long axis toward the yellow goal, +Z up, floor at Z = 0, metres.",
         "comment": {
             "field_of_play_m": [FIELD_X, FIELD_Y], "carpet_margin_m": MARGIN, "line_width_m": LINE,
@@ -234,7 +234,7 @@ def tiled_room():
     return {
         "format": "omnicam-scene/1",
         "name": "tiled-room",
-        "description": "A square room with a checkerboard floor and horizontally striped walls (spec §6, thesis "
+        "description": "A square room with a checkerboard floor and horizontally striped walls (docs/scene-format.md, thesis "
                        "Figs. 3.13(c)–3.15(c)): straight floor lines must stay straight in the bird's-eye view, "
                        "vertical edges vertical in the panorama.",
         "comment": {"room_m": ROOM, "tile_m": TILE, "wall_height_m": WALL_H, "stripe_m": STRIPE,
