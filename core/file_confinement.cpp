@@ -43,15 +43,15 @@ std::optional<fs::path> resolveConfined(const fs::path& folder, const std::strin
   return resolved;
 }
 
-std::optional<std::string> readWholeFile(const std::string& path, std::string& why) {
+std::optional<std::string> readWholeFile(const std::string& path, std::string& why, int64_t maxBytes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
     why = fs::exists(path, ec) ? "not a regular file" : "no such file";
     return std::nullopt;
   }
   const auto size = fs::file_size(path, ec);
-  if (ec || size > static_cast<uintmax_t>(limits::kMaxInputFileBytes)) {
-    why = ec ? ec.message() : "larger than the " + std::to_string(limits::kMaxInputFileBytes >> 20) + " MiB limit";
+  if (ec || size > static_cast<uintmax_t>(maxBytes)) {
+    why = ec ? ec.message() : "larger than the " + std::to_string(maxBytes >> 20) + " MiB limit";
     return std::nullopt;
   }
   std::ifstream in(path, std::ios::binary);

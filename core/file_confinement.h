@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "input_limits.h"
+
 namespace omnicam {
 
 // `name` relative to `folder` (or absolute), resolved through every symlink. nullopt, with `why`
@@ -15,7 +17,8 @@ std::optional<std::filesystem::path> resolveConfined(const std::filesystem::path
 // True if the resolved `path` lies inside the resolved `folder`.
 bool isInsideFolder(const std::filesystem::path& folder, const std::filesystem::path& path);
 
-// A whole file, at most limits::kMaxInputFileBytes (checked before reading). nullopt with `why`.
-std::optional<std::string> readWholeFile(const std::string& path, std::string& why);
+// A whole file of at most `maxBytes` (checked before reading). nullopt with `why`.
+std::optional<std::string> readWholeFile(const std::string& path, std::string& why,
+                                         int64_t maxBytes = limits::kMaxInputFileBytes);
 
 }  // namespace omnicam

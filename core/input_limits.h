@@ -32,8 +32,10 @@ inline constexpr int64_t kMaxSamplesPerFrame = int64_t{1} << 28;
 inline constexpr int kMaxImageDimension = 16384;
 inline constexpr int64_t kMaxImagePixels = int64_t{1} << 27;  // e.g. 16384 × 8192
 
-// Any file a scene pulls in (scene, glTF, buffer): read whole, so bounded.
+// Any file a scene pulls in (glTF, buffer): read whole, so bounded. JSON files (scenes, sidecars,
+// rigs) are parsed into a tree about ten times their size: large meshes belong in glTF.
 inline constexpr int64_t kMaxInputFileBytes = int64_t{1} << 30;
+inline constexpr int64_t kMaxJsonFileBytes = int64_t{64} << 20;
 // Objects, triangles and vertices per scene (glTF included).
 inline constexpr int64_t kMaxTriangles = int64_t{1} << 25;
 

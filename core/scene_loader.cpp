@@ -288,7 +288,7 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
 
 nlohmann::json readJsonFile(const std::string& file) {
   std::string why;
-  const auto text = readWholeFile(file, why);
+  const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
   if (!text) throw InputError(file + ": " + why);
   return parseJsonText(*text, file);
 }
@@ -299,7 +299,7 @@ RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const st
 
 Scene loadScene(const std::string& file, const SceneLoadOptions& options) {
   std::string why;
-  const auto text = readWholeFile(file, why);
+  const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
   if (!text) throw InputError(file + ": cannot open scene file (" + why + ")");
   return loadSceneFromText(*text, file, options);
 }

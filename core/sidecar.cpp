@@ -80,7 +80,7 @@ std::optional<SidecarInfo> readSidecar(const std::string& imagePath) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return std::nullopt;
   std::string why;
-  const auto text = readWholeFile(path, why);
+  const auto text = readWholeFile(path, why, limits::kMaxJsonFileBytes);
   if (!text) throw InputError(path + ": cannot read sidecar (" + why + ")");
   return sidecarFromText(*text, path);
 }

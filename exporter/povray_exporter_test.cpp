@@ -138,7 +138,7 @@ TEST(PovrayExport, UserStringsNeverReachTheSdl) {
   writeImageAtomic((dir / evilTexture).string(), tex);
   std::ofstream(dir / "s.json") << R"json({"format": "omnicam-scene/1", "name": "x\"\n#system(\"rm -rf /\")",
     "materials": {"m\"#declare": {"texture": {"file": "we\"ird #system(rm).png"}}},
-    "objects": [{"name": "obj\"\n#system(\"id\")", "type": "quad", "material": "m\"#declare",
+    "objects": [{"name": "obj\" #system(\"id\")", "type": "quad", "material": "m\"#declare",
                  "origin": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]}]})json";
   const Scene scene = loadScene((dir / "s.json").string());
   RenderSettings settings;

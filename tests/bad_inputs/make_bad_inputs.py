@@ -184,6 +184,23 @@ def main():
     write(os.path.join(seeds, "sidecar", "render.png.json"), json.dumps(sidecar, indent=1) + "\n")
     write(os.path.join(seeds, "sidecar", "rig_only.json"), json.dumps({"rig": {"height": 1.0}}) + "\n")
 
+    # Inputs that crashed omnicam or ended in exit 4 (an internal error) before the readers were
+    # hardened: each must now be an orderly InputError (fuzz_regression_test).
+    regressions = os.path.join(REPO, "fuzz", "regressions")
+    for name in ("no_bufferview", "node_cycle", "bad_texture_index", "short_uv", "count_past_view", "byte_positions"):
+        write(os.path.join(regressions, "gltf_import", name + ".gltf"), cases[name])
+    write(os.path.join(regressions, "gltf_import", "base_color_factor_short.gltf"),
+          gltf(extra=lambda d: d["materials"][0]["pbrMetallicRoughness"].update({"baseColorFactor": [0.5]})))
+    write(os.path.join(regressions, "gltf_import", "mesh_index_out_of_range.gltf"),
+          gltf(nodes=[{"name": "tri", "mesh": 5}]))
+    write(os.path.join(regressions, "gltf_import", "material_out_of_range.gltf"),
+          gltf(extra=lambda d: d["meshes"][0]["primitives"][0].update({"material": 9})))
+    write(os.path.join(regressions, "scene_loader", "radius_1e400.json"),
+          scene([FLOOR, dict(ball, radius=0.1)]).replace('"radius": 0.1', '"radius": 1e400'))
+    write(os.path.join(regressions, "scene_loader", "pose_1e20.json"), scene([FLOOR], start_pose=[1e20, 0, 0]))
+    write(os.path.join(regressions, "sidecar", "rig_k_1e9.json"), json.dumps({"rig": {"mirror": {"k": 1e9}}}) + "\n")
+    write(os.path.join(regressions, "sidecar", "rig_wrong_type.json"), json.dumps({"rig": {"mirror": "k"}}) + "\n")
+
 
 if __name__ == "__main__":
     main()
