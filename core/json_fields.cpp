@@ -1,9 +1,9 @@
 #include "json_fields.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "errors.h"
+#include "number_format.h"
 #include "input_limits.h"
 
 namespace omnicam {
@@ -11,15 +11,6 @@ namespace omnicam {
 using nlohmann::json;
 
 std::string jsonTypeName(const json& v) { return v.type_name(); }
-
-namespace {
-std::string show(double v) {
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << v;
-  return s.str();
-}
-}  // namespace
 
 JsonFields::JsonFields(const json& object, std::string file, std::string where)
     : object_(object), file_(std::move(file)), where_(std::move(where)) {
@@ -66,7 +57,7 @@ double JsonFields::number(const std::string& key, double fallback) {
 
 double JsonFields::positive(const std::string& key) {
   const double d = number(key);
-  if (!(d > 0.0)) fail(key, "must be > 0 (got " + show(d) + ")");
+  if (!(d > 0.0)) fail(key, "must be > 0 (got " + shortNumber(d) + ")");
   return d;
 }
 
@@ -76,7 +67,7 @@ double JsonFields::positive(const std::string& key, double fallback) {
 
 double JsonFields::nonNegative(const std::string& key, double fallback) {
   const double d = number(key, fallback);
-  if (d < 0.0) fail(key, "must be >= 0 (got " + show(d) + ")");
+  if (d < 0.0) fail(key, "must be >= 0 (got " + shortNumber(d) + ")");
   return d;
 }
 
@@ -121,7 +112,7 @@ Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
     out[i] = v[i].get<double>();
     if (std::abs(out[i]) > limits::kMaxWorldCoordinate)
       throw InputError(file + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
-                       show(limits::kMaxWorldCoordinate) + " (got " + show(out[i]) + ")");
+                       shortNumber(limits::kMaxWorldCoordinate) + " (got " + shortNumber(out[i]) + ")");
   }
   return out;
 }
@@ -146,7 +137,7 @@ Vec3f JsonFields::colour(const std::string& key, const Vec3f& fallback, double m
   }
   for (int i = 0; i < 3; ++i)
     if (!(c[i] >= 0.0 && c[i] <= max))
-      fail(key, "components must be in [0, " + show(max) + "] (got " + show(c[i]) + ")");
+      fail(key, "components must be in [0, " + shortNumber(max) + "] (got " + shortNumber(c[i]) + ")");
   return c.cast<float>();
 }
 

@@ -5,4 +5,6 @@
 namespace omnicam {
 // Shortest text that parses back to exactly `value` ("0.1", "1e-07"); never uses the locale.
 std::string roundTrip(double value);
+// A number for messages: at most 6 significant digits ("0.001", "1e+06", "10000"), any locale.
+std::string shortNumber(double value);
 }  // namespace omnicam

@@ -1,9 +1,9 @@
 #include "render_settings.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "errors.h"
+#include "number_format.h"
 #include "input_limits.h"
 
 namespace omnicam {
@@ -23,15 +23,6 @@ std::optional<int> samplesPerAxis(int spp) {
   return n;
 }
 
-namespace {
-std::string show(double v) {
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 void checkRenderSettings(const RenderSettings& settings) {
   if (!samplesPerAxis(settings.spp) || settings.spp > limits::kMaxSpp)
     throw InputError("--spp: must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
@@ -49,10 +40,10 @@ void checkRenderSettings(const RenderSettings& settings) {
 
 void checkPose(const RobotPose& pose, const std::string& what) {
   if (!(std::abs(pose.x) <= limits::kMaxWorldCoordinate && std::abs(pose.y) <= limits::kMaxWorldCoordinate))
-    throw InputError(what + ": x and y must be within ±" + show(limits::kMaxWorldCoordinate) + " m (got " + show(pose.x) +
-                     ", " + show(pose.y) + ")");
+    throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + shortNumber(pose.x) +
+                     ", " + shortNumber(pose.y) + ")");
   if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
-    throw InputError(what + ": yaw must be within ±" + show(limits::kMaxYawDeg) + " degrees (got " + show(pose.yawDeg) + ")");
+    throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + shortNumber(pose.yawDeg) + ")");
 }
 
 }  // namespace omnicam

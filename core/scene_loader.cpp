@@ -2,12 +2,12 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <map>
 #include <set>
 
 #include "camera_path.h"
 #include "errors.h"
+#include "number_format.h"
 #include "file_confinement.h"
 #include "gltf_import.h"
 #include "input_limits.h"
@@ -53,19 +53,12 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   return *resolved;
 }
 
-std::string show(double v) {
-  std::ostringstream s;
-  s.imbue(std::locale::classic());
-  s << v;
-  return s.str();
-}
-
 double inRange(JsonFields& fields, const std::string& key, double fallback, double lo, double hi, bool openLow,
                const std::string& unit) {
   const double d = fields.number(key, fallback);
   if (!((openLow ? d > lo : d >= lo) && d <= hi))
-    fields.fail(key, "must be in " + std::string(openLow ? "(" : "[") + show(lo) + ", " + show(hi) + "]" + unit +
-                         " (got " + show(d) + ")");
+    fields.fail(key, "must be in " + std::string(openLow ? "(" : "[") + shortNumber(lo) + ", " + shortNumber(hi) + "]" + unit +
+                         " (got " + shortNumber(d) + ")");
   return d;
 }
 
@@ -92,7 +85,7 @@ RigSpec readRig(JsonFields rig) {
     spec.framingElevationDeg = spec.rimElevationDeg;
   }
   if (!rig.has("mirror") && !(spec.c < spec.height))
-    rig.fail("height", "must be larger than the mirror's c = " + show(spec.c) + " m");
+    rig.fail("height", "must be larger than the mirror's c = " + shortNumber(spec.c) + " m");
   rig.finish();
   try {
     (void)spec.camera();  // the mirror must be able to image the rim and framing
@@ -148,7 +141,7 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
 double length(JsonFields& o, const std::string& key) {
   const double d = o.number(key);
   if (!(d >= limits::kMinLength && d <= limits::kMaxLength))
-    o.fail(key, "must be in [" + show(limits::kMinLength) + ", " + show(limits::kMaxLength) + "] m (got " + show(d) + ")");
+    o.fail(key, "must be in [" + shortNumber(limits::kMinLength) + ", " + shortNumber(limits::kMaxLength) + "] m (got " + shortNumber(d) + ")");
   return d;
 }
 
@@ -157,7 +150,7 @@ Shape readShape(const std::string& type, JsonFields& o) {
     Box b{o.vec3("center"), o.vec3("size"), o.number("yaw_deg", 0.0)};
     for (int i = 0; i < 3; ++i)
       if (!(b.size[i] >= limits::kMinLength && b.size[i] <= limits::kMaxLength))
-        o.fail("size", "all sizes must be in [" + show(limits::kMinLength) + ", " + show(limits::kMaxLength) + "] m");
+        o.fail("size", "all sizes must be in [" + shortNumber(limits::kMinLength) + ", " + shortNumber(limits::kMaxLength) + "] m");
     return b;
   }
   if (type == "cylinder") {
@@ -233,7 +226,7 @@ CameraPath readPath(JsonFields p, const std::string& file) {
         p.fail(indexed("waypoints", i), "must be [x, y]");
       points.emplace_back(w[0].get<double>(), w[1].get<double>());
       if (!points.back().allFinite() || points.back().cwiseAbs().maxCoeff() > limits::kMaxWorldCoordinate)
-        p.fail(indexed("waypoints", i), "must lie within ±" + show(limits::kMaxWorldCoordinate) + " m");
+        p.fail(indexed("waypoints", i), "must lie within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m");
       if (i > 0 && points[i] == points[i - 1]) p.fail(indexed("waypoints", i), "repeats the previous point");
     }
     const int frames = p.integer("frames", 100, 1, 1000000);
