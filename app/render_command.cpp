@@ -76,7 +76,7 @@ class FrameViews {
 void runRender(const RenderArgs& a, const CLI::App& cmd) {
   // Validate everything before anything is written.
   const bool fast = a.engine == "fast";
-  refuseUnless(cmd, "--mode", fast, "--engine fast");
+  if (!fast && a.mode != "exact") throw InputError("--mode: only the fast engine has modes other than exact");
   refuseUnless(cmd, "--faces", a.mode != "exact", "--mode cubemap or thesis-mesh");
   refuseUnless(cmd, "--face-size", a.mode != "exact", "--mode cubemap or thesis-mesh");
   refuseUnless(cmd, "--polygons", a.mode == "thesis-mesh", "--mode thesis-mesh");
