@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "atomic_file.h"
 #include "errors.h"
 #include "render_settings.h"
 
@@ -55,8 +56,8 @@ std::string scenesDir() {
 
 void ensureDirectory(const std::string& dir, const std::string& flag) {
   namespace fs = std::filesystem;
+  checkOutputFolder(dir, flag);
   std::error_code ec;
-  if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(flag + ": " + dir + " exists and is not a folder");
   fs::create_directories(dir, ec);
   if (ec) throw InputError(flag + ": cannot create folder " + dir + " (" + ec.message() + ")");
 }

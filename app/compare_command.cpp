@@ -26,7 +26,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   refuseUnless(cmd, "--diff-scale", !args.diff.empty(), "--diff");
   if (!args.diff.empty()) {
     if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + args.diff + ": must end in .png or .exr");
-    requireNotAFolder(args.diff, "--diff");
+    checkOutputFile(args.diff, "--diff");
   }
   const ImageRGBA a = readImage(args.a), b = readImage(args.b);
   CompareOptions options;

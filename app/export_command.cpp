@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
@@ -34,8 +35,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
   std::optional<RobotPose> requested;
   if (!a.pose.empty()) requested = parsePose(a.pose, "--pose");
-  if (std::filesystem::exists(a.out) && !std::filesystem::is_directory(a.out))
-    throw InputError("-o: " + a.out + " exists and is not a folder");
+  checkOutputFolder(a.out, "-o");
   const Scene scene = loadScene(a.scene, a.load);
   const RobotPose pose = requested ? *requested : scene.startPose;
   RenderSettings settings;

@@ -102,11 +102,8 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   checkRenderSettings(settings);
   const FrameViews views(a.views, settings.rig.camera());
   if (a.path.empty()) {
-    requireNotAFolder(a.out, "-o");
-    for (const std::string& file : views.files(a.out)) requireNotAFolder(file, "--view");
-    const auto parent = std::filesystem::path(a.out).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
-      throw InputError("-o: folder " + parent.string() + " does not exist");
+    checkOutputFile(a.out, "-o");
+    for (const std::string& file : views.files(a.out)) checkOutputFile(file, "--view");
   }
   const CameraPath* path = nullptr;
   if (!a.path.empty()) {
@@ -114,8 +111,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     if (!path) throw InputError("--path: scene " + a.scene + " has no path \"" + a.path + "\"");
     if (a.frames > static_cast<int>(path->poses.size()))
       throw InputError("--frames: path \"" + a.path + "\" has only " + std::to_string(path->poses.size()) + " poses");
-    if (std::filesystem::exists(a.out) && !std::filesystem::is_directory(a.out))
-      throw InputError("-o: " + a.out + " exists and is not a folder");
+    checkOutputFolder(a.out, "-o");
   }
   const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
 

@@ -87,7 +87,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
   checkRenderSettings(settings);
-  requireNotAFolder(a.out, "-o");
+  checkOutputFile(a.out, "-o");
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig.camera(), a.out, a);

@@ -73,7 +73,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
-  requireNotAFolder(a.out, "-o");
+  checkOutputFile(a.out, "-o");
   const ImageRGBA omni = readImage(a.in);
   if (omni.width != omni.height) throw InputError(a.in + ": omni images must be square");
   auto [rig, sidecar] = rigOf(a, omni.width);

@@ -8,6 +8,7 @@
 #include <random>
 #include <cstdlib>
 #include <cstring>
+#include <climits>
 #include <filesystem>
 
 #include "errors.h"
@@ -37,7 +38,8 @@ std::string randomSuffix() {
 
 void writeBytesAtomically(const std::string& path, std::string_view bytes) {
   const fs::path target(path);
-  if (fs::is_directory(target)) throw InputError(path + ": is an existing folder, not a file name");
+  std::error_code ec;
+  if (fs::is_directory(target, ec)) throw InputError(path + ": is an existing folder, not a file name");
   // The temporary keeps the final extension and is created exclusively (O_EXCL) under an
   // unpredictable name, as mkstemp does, but with the umask's permissions of a normal file.
   std::string tmp;
@@ -68,8 +70,36 @@ void writeBytesAtomically(const std::string& path, std::string_view bytes) {
   if (::rename(tmp.c_str(), path.c_str()) != 0) failWrite(path, tmp, errno);
 }
 
-void requireNotAFolder(const std::string& path, const std::string& flag) {
-  if (fs::is_directory(path)) throw InputError(flag + ": " + path + " is an existing folder, not a file name");
+namespace {
+
+// Every component within NAME_MAX less what a temporary adds (".", ".tmp-" and 10 characters),
+// the whole within PATH_MAX: a name the file system would refuse is the user's mistake, found
+// before any work.
+void checkNameLengths(const std::string& path, const std::string& flag) {
+  constexpr size_t kTemporaryExtra = 16;
+  if (path.empty()) throw InputError(flag + ": empty path");
+  if (path.size() + kTemporaryExtra >= PATH_MAX) throw InputError(flag + ": path is longer than the file system allows");
+  for (const auto& part : fs::path(path))
+    if (part.string().size() + kTemporaryExtra > NAME_MAX)
+      throw InputError(flag + ": a name in the path is longer than " + std::to_string(NAME_MAX - kTemporaryExtra) +
+                       " bytes");
+}
+
+}  // namespace
+
+void checkOutputFile(const std::string& path, const std::string& flag) {
+  checkNameLengths(path, flag);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(flag + ": " + path + " is an existing folder, not a file name");
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec)) throw InputError(flag + ": folder " + parent.string() + " does not exist");
+}
+
+void checkOutputFolder(const std::string& path, const std::string& flag) {
+  checkNameLengths(path, flag);
+  std::error_code ec;
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec))
+    throw InputError(flag + ": " + path + " exists and is not a folder");
 }
 
 bool isAtomicTemporaryName(const std::string& name) {

@@ -13,9 +13,12 @@ inline void writeTextAtomically(const std::string& path, const std::string& text
   writeBytesAtomically(path, text);
 }
 
-// Throws InputError("<flag>: <path> is an existing folder") if `path` names a folder: an output
-// file must never be renamed onto one (checked before any work, so nothing is half-written).
-void requireNotAFolder(const std::string& path, const std::string& flag);
+// Checks, before any work, that `path` can become an output file: not an existing folder, in a
+// folder that exists, its name short enough for the file system with the temporary's suffix.
+// InputError("<flag>: <path> ...") otherwise.
+void checkOutputFile(const std::string& path, const std::string& flag);
+// The same for an output folder: a folder already, or a name that can be created.
+void checkOutputFolder(const std::string& path, const std::string& flag);
 
 // Temporary siblings left behind by killed runs match this (".<stem>.tmp-XXXXXX<ext>").
 bool isAtomicTemporaryName(const std::string& fileName);

@@ -40,7 +40,10 @@ TEST_F(AtomicFileTest, WritesTheBytesAndLeavesNoTemporary) {
 TEST_F(AtomicFileTest, AFolderIsRefusedAsInputAndAMissingFolderIsAnOutputError) {
   fs::create_directories(dir_ / "out.png");
   EXPECT_THROW(writeBytesAtomically((dir_ / "out.png").string(), "x"), InputError);
-  EXPECT_THROW(requireNotAFolder((dir_ / "out.png").string(), "-o"), InputError);
+  EXPECT_THROW(checkOutputFile((dir_ / "out.png").string(), "-o"), InputError);
+  EXPECT_THROW(checkOutputFile((dir_ / "missing" / "x.png").string(), "-o"), InputError);
+  EXPECT_THROW(checkOutputFile((dir_ / (std::string(250, 'a') + ".png")).string(), "-o"), InputError);
+  EXPECT_NO_THROW(checkOutputFile((dir_ / (std::string(200, 'a') + ".png")).string(), "-o"));
   EXPECT_THROW(writeBytesAtomically((dir_ / "no" / "such" / "x.png").string(), "x"), OutputError);
 }
 

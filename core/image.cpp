@@ -149,6 +149,11 @@ ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
 }  // namespace
 
 ImageRGBA readImage(const std::string& path) {
+  // Only regular files: a FIFO or a device (/dev/zero) would be read forever.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path + ": cannot read image (" +
+                     (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file") + ")");
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
   auto input = OIIO::ImageInput::open(path, &config);
