@@ -28,6 +28,10 @@ Vec3f Texture::texel(int i, int j) const {
 }
 
 Vec3f Texture::sample(double u, double v) const {
+  // Repeat wrapping first, so that any finite UV (a scale of 1e6, say) stays in int range.
+  if (!(std::isfinite(u) && std::isfinite(v))) u = v = 0.0;
+  u -= std::floor(u);
+  v -= std::floor(v);
   // Continuous texel coordinates with row 0 at the top of the image (v = 1).
   const double x = u * width_ - 0.5;
   const double y = (1.0 - v) * height_ - 0.5;

@@ -27,6 +27,13 @@ TEST(Texture, BilinearWithTexelCentresAtHalf) {
   EXPECT_FLOAT_EQ(t.sample(1.25, 0.5).x(), 0.0f);
 }
 
+TEST(Texture, AnyFiniteUvWrapsWithoutLeavingIntRange) {
+  const Texture t(2, 1, {0, 0, 0, 1, 1, 1});
+  EXPECT_FLOAT_EQ(t.sample(1e6 + 0.75, 0.5).x(), 1.0f);  // u·width would overflow int unwrapped
+  EXPECT_FLOAT_EQ(t.sample(-1e6 + 0.25, 0.5).x(), 0.0f);
+  EXPECT_TRUE(t.sample(1e300, -1e300).allFinite());
+}
+
 TEST(Texture, VZeroIsTheBottomRow) {
   const Texture t(1, 2, {1, 1, 1, 0, 0, 0});  // top row white, bottom row black
   EXPECT_FLOAT_EQ(t.sample(0.5, 0.25).x(), 0.0f);

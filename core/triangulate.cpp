@@ -59,9 +59,12 @@ std::optional<TriangleMesh> triangulatePlanar(const Shape& shape) {
       shape);
 }
 
+// At most 1024 segments: the tolerance holds up to radii of ~100 m (0.5 mm) and ~40 m (0.2 mm);
+// beyond, a kilometre-sized sphere would otherwise become 10⁸ triangles.
 int segmentsForCircle(double radius, double chordTolerance) {
   if (chordTolerance >= radius) return 8;
-  return std::max(8, static_cast<int>(std::ceil(kPi / std::acos(1.0 - chordTolerance / radius))));
+  const double segments = std::ceil(kPi / std::acos(1.0 - chordTolerance / radius));
+  return std::clamp(static_cast<int>(std::min(segments, 1024.0)), 8, 1024);
 }
 
 namespace {
