@@ -4,6 +4,7 @@
 #include "gltf_import.h"
 #include "scene_loader.h"
 #include "sidecar.h"
+#include "triangulate.h"
 
 namespace omnicam::fuzz {
 
@@ -13,6 +14,8 @@ void sceneLoader(const uint8_t* data, size_t size) {
   try {
     const Scene scene = loadSceneFromText(std::string(reinterpret_cast<const char*>(data), size), assetsDir() + "/scene.json");
     (void)scene.rig.camera();
+    // What every engine does next with a loaded scene: triangles (coarse, to stay fast).
+    for (const SceneObject& o : scene.objects) (void)tessellate(o.shape, 1e-2);
   } catch (const InputError&) {
   }
 }

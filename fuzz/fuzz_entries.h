@@ -9,7 +9,8 @@
 
 namespace omnicam::fuzz {
 
-// Scene text, loaded as fuzz/assets/scene.json (so it can name the assets' texture and glTF).
+// Scene text, loaded as fuzz/assets/scene.json (so it can name the assets' texture and glTF),
+// and its objects tessellated.
 void sceneLoader(const uint8_t* data, size_t size);
 // glTF (.glb bytes or .gltf JSON), confined to fuzz/assets.
 void gltfImport(const uint8_t* data, size_t size);
