@@ -4,7 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <filesystem>
 #include <OpenImageIO/filesystem.h>
 
@@ -21,6 +26,48 @@ std::string lowerExtension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::tolower(ch); });
   return ext;
 }
+
+// libpng (under OpenImageIO) prints "libpng error: ..." straight to stderr before OpenImageIO
+// reports the same error to us; our one-line messages carry it. While any image is being
+// decoded, stderr points at /dev/null (reference-counted, so concurrent decodes nest safely).
+class QuietStderr {
+ public:
+  QuietStderr() {
+    std::lock_guard<std::mutex> lock(mutex());
+    if (depth()++ > 0) return;
+    std::fflush(stderr);
+    saved() = ::dup(STDERR_FILENO);
+    const int devnull = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved() >= 0 && devnull >= 0) ::dup2(devnull, STDERR_FILENO);
+    if (devnull >= 0) ::close(devnull);
+  }
+  ~QuietStderr() {
+    std::lock_guard<std::mutex> lock(mutex());
+    if (--depth() > 0) return;
+    std::fflush(stderr);
+    if (saved() >= 0) {
+      ::dup2(saved(), STDERR_FILENO);
+      ::close(saved());
+      saved() = -1;
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int& depth() {
+    static int d = 0;
+    return d;
+  }
+  static int& saved() {
+    static int fd = -1;
+    return fd;
+  }
+};
 
 // OpenImageIO's messages can span lines; ours are one line.
 std::string firstLine(const std::string& text) {
@@ -156,6 +203,7 @@ ImageRGBA readImage(const std::string& path) {
                      (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file") + ")");
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
+  const QuietStderr quiet;
   auto input = OIIO::ImageInput::open(path, &config);
   if (!input) throw InputError(path + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
   return decode(*input, path);
@@ -173,6 +221,7 @@ ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std:
   config.attribute("oiio:UnassociatedAlpha", 1);
   void* proxy = &reader;
   config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const QuietStderr quiet;
   auto input = OIIO::ImageInput::open(format, &config);
   if (!input) throw InputError(name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
   return decode(*input, name);

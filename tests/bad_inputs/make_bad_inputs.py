@@ -96,6 +96,10 @@ def main():
     write(os.path.join(SCENES, "tex.png"), tex)
     write(os.path.join(SCENES, "huge_1e6.png"), png(1000000, 1000000, idat=False))
     write(os.path.join(SCENES, "huge_30000.png"), png(30000, 30000, idat=False))
+    write(os.path.join(SCENES, "truncated.png"), tex[:60])  # valid header, pixel data cut off
+    corrupt = bytearray(tex)
+    corrupt[45] ^= 0xFF  # inside the compressed pixel data
+    write(os.path.join(SCENES, "corrupt.png"), bytes(corrupt))
     symlink("../outside.bin", os.path.join(SCENES, "link_outside.bin"))
     symlink("../outside.png", os.path.join(SCENES, "link_outside.png"))
 
@@ -137,6 +141,7 @@ def main():
     write(os.path.join(SCENES, "texture_absolute.json"), textured("/etc/passwd"))
     write(os.path.join(SCENES, "texture_huge_1e6.json"), textured("huge_1e6.png"))
     write(os.path.join(SCENES, "texture_huge_30000.json"), textured("huge_30000.png"))
+    write(os.path.join(SCENES, "texture_corrupt.json"), textured("corrupt.png"))
 
     ball = {"type": "sphere", "material": "grey", "center": [1, 0, 0.2], "radius": 0.1}
     write(os.path.join(SCENES, "radius_1e400.json"),
