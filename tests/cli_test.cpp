@@ -189,41 +189,8 @@ TEST_F(CliTest, RingsPerAzimuthMeasuresBentRings) {
   EXPECT_LT(exact, 0.2);
 }
 
-TEST_F(CliTest, BadInputExitsTwoWithOneLineAndWritesNothing) {
-  const std::string out = path("x.png");
-  const std::string badScene = path("bad.json");
-  std::ofstream(badScene) << R"({"format": "omnicam-scene/1", "rig": {"mirror": {"k": 1.5}},
-    "materials": {"m": {}}, "objects": []})";
-  const std::vector<std::pair<std::string, std::string>> cases{
-      {"render /nonexistent/scene.json -o " + out, "cannot open scene file"},
-      {"render " + badScene + " -o " + out, "rig.mirror.k: must be in (2, 100]"},
-      {"render " + kScene + " --spp 5 -o " + out, "--spp: must be a perfect square"},
-      {"render " + kScene + " --pose=1,2 -o " + out, "--pose: expected three comma-separated numbers"},
-      {"render " + kScene + " --pose=1,a,2 -o " + out, "--pose: \"a\" is not a number"},
-      {"render " + kScene + " --shading shiny -o " + out, "--shading: must be unlit or lit"},
-      {"render " + kScene + " -o " + path("x.jpg"), "must end in .png or .exr"},
-      {"render " + kScene + " --path nowhere -o " + path("seq"), "--path: scene"},
-      {"render " + kScene + " --path thesis-loop --frames 101 -o " + path("seq"), "--frames: path"},
-      {"render " + kScene + " --engine mitsuba -o " + out, "--engine: \"mitsuba\" is not available"},
-      {"render " + kScene + " --bogus -o " + out, "bogus"},
-      {"project " + kScene + " --pose=0,0,0 --point=1,2", "--point: expected three"},
-      {"rings --spp 3 -o " + out, "--spp: must be a perfect square"},
-      {"render " + kScene + " --view pano -o " + out, "--view: must be birdseye, panorama or perspective"},
-      {"view " + path("none.png") + " --as panorama -o " + out, "cannot read image"},
-      {"view " + kScene + " --as bogus -o " + out, "--as: must be birdseye, panorama or perspective"},
-      {"view " + kScene + " --as panorama --size 0x3 -o " + out, "--size: width and height must be at least 1"},
-  };
-  for (const auto& [args, message] : cases) {
-    const CommandResult r = run(args);
-    EXPECT_EQ(r.code, 2) << args << "\n" << r.out;
-    EXPECT_NE(r.out.find(message), std::string::npos) << args << "\n" << r.out;
-    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << args << "\n" << r.out;
-    fs::remove(badScene);
-    EXPECT_TRUE(dirEmpty()) << args;
-    std::ofstream(badScene) << R"({"format": "omnicam-scene/1", "rig": {"mirror": {"k": 1.5}},
-      "materials": {"m": {}}, "objects": []})";
-  }
-}
+// Bad input (exit 2, one line, nothing written) is tested row by row from the table in
+// docs/robustness.md: tests/bad_input_table_test.cpp.
 
 TEST_F(CliTest, ProjectPrintsPixelCentresAtHalfAndNanBeyondTheRim) {
   // A point straight below the viewpoint is the image centre (180, 180); one far above is unseen.
