@@ -2,14 +2,14 @@
 // Every row must exit with its code, print exactly one line containing its fragment, and leave
 // the output folder empty (and no temporary file anywhere in the inputs).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+
+#include "shell_command.h"
 #include <string>
 #include <vector>
 
@@ -46,14 +46,9 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
   return text;
 }
 
-std::pair<int, std::string> shell(const std::string& command) {
-  const std::string wrapped = "sh -c '" + replaceAll(command, "'", "'\\''") + "' 2>&1";
-  FILE* pipe = popen(wrapped.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+// The row's command in its own shell (rows may set limits with ulimit), stderr captured too.
+testing::CommandResult shell(const std::string& command) {
+  return testing::runShell("sh -c '" + replaceAll(command, "'", "'\\''") + "' 2>&1");
 }
 
 std::vector<std::string> temporaries(const fs::path& folder) {

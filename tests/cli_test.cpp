@@ -1,8 +1,6 @@
 // End-to-end tests of the omnicam binary: what a researcher types, what they get back.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdlib>
 #include <chrono>
 #include <cmath>
@@ -16,6 +14,7 @@
 #include "image.h"
 #include "scene_loader.h"
 #include "sha256.h"
+#include "shell_command.h"
 
 namespace omnicam {
 namespace {
@@ -23,21 +22,12 @@ namespace {
 namespace fs = std::filesystem;
 const std::string kScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
 
-struct CommandResult {
-  int code;
-  std::string out;
-};
+using testing::CommandResult;
 
 // Runs the binary through the shell; `env` is prepended as VAR=value assignments. `stderrTo`:
 // where stderr goes ("&1": into the captured text).
 CommandResult run(const std::string& args, const std::string& env = "", const std::string& stderrTo = "&1") {
-  const std::string cmd = env + (env.empty() ? "" : " ") + std::string(OMNICAM_BINARY) + " " + args + " 2>" + stderrTo;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return testing::runShell(env + (env.empty() ? "" : " ") + std::string(OMNICAM_BINARY) + " " + args + " 2>" + stderrTo);
 }
 
 class CliTest : public ::testing::Test {
