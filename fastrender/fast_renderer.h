@@ -27,6 +27,7 @@ class FastRenderer {
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) const;
 
   const Scene& scene() const { return scene_; }
+  const RayScene& rays() const { return rays_; }
 
   // Radiance along one ray from `origin` (exposed for tests).
   Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading) const;

@@ -1,0 +1,104 @@
+// AOVs against closed-form geometry: a floor at a known height, a box whose top face is at a
+// known distance; every value belongs to the pixel centre's own viewing ray.
+#include "aov_renderer.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+namespace omnicam {
+namespace {
+
+Scene floorAndBox() {
+  Scene s;
+  s.materials.push_back({"grey", {0.5f, 0.5f, 0.5f}, nullptr, "", {1, 1}, 0.2f, 0.8f});
+  s.objects.push_back({"floor", 0, Quad{{-50, -50, 0}, {100, 0, 0}, {0, 100, 0}}});
+  s.objects.push_back({"box", 0, Box{{1.0, 0.5, 0.15}, {0.4, 0.4, 0.3}, 0.0}});
+  return s;
+}
+
+TEST(AovRenderer, DepthInstanceAndNormalAreTheGeometryAtEachPixelCentre) {
+  const Scene scene = floorAndBox();
+  const FastRenderer renderer(scene);
+  RenderSettings settings;
+  settings.rig.imageSize = 120;
+  const RobotPose pose{0.2, -0.1, 30.0};
+  const AovFrame aov = renderAovs(renderer, pose, settings);
+  const OmniCamera camera = settings.rig.camera();
+  const Rigid worldFromCam = worldFromCamera(settings.rig, pose), camFromWorld = worldFromCam.inverse();
+  int floorPixels = 0, boxPixels = 0, empty = 0;
+  for (int j = 0; j < aov.height; ++j)
+    for (int i = 0; i < aov.width; ++i) {
+      const size_t p = static_cast<size_t>(j) * aov.width + i;
+      const Vec2 centre(i + 0.5, j + 0.5);
+      if (aov.instance[p] == 0) {
+        EXPECT_EQ(aov.depth[p], 0.0f);
+        ++empty;
+        continue;
+      }
+      ASSERT_TRUE(camera.insideRim(centre));
+      const Vec3 direction = worldFromCam.linear() * camera.cameraFromRaster(centre);
+      const Vec3 point = worldFromCam.translation() + aov.depth[p] * direction;
+      // The AOV's ray is this pixel centre's viewing ray: its world point projects back onto it.
+      const auto back = camera.rasterFromCamera(camFromWorld * point);
+      ASSERT_TRUE(back);
+      EXPECT_LT((*back - centre).norm(), 1e-4) << i << "," << j;
+      const Vec3 n(aov.normal[3 * p], aov.normal[3 * p + 1], aov.normal[3 * p + 2]);
+      EXPECT_NEAR(n.norm(), 1.0, 1e-6);
+      EXPECT_LT(n.dot(direction), 0.0) << "faces F'";
+      if (aov.instance[p] == 1) {  // the floor: z = 0, normal up, depth = height / cos(incidence)
+        EXPECT_NEAR(point.z(), 0.0, 1e-5);
+        EXPECT_NEAR(n.z(), 1.0, 1e-6);
+        EXPECT_NEAR(aov.depth[p], settings.rig.height / -direction.z(), 1e-5 * aov.depth[p]);
+        ++floorPixels;
+      } else {
+        ASSERT_EQ(aov.instance[p], 2);
+        const Vec3 local = point - Vec3(1.0, 0.5, 0.15);  // on one of the box's faces
+        EXPECT_NEAR(local.cwiseAbs().cwiseQuotient(Vec3(0.2, 0.2, 0.15)).maxCoeff(), 1.0, 1e-4);
+        ++boxPixels;
+      }
+    }
+  EXPECT_GT(floorPixels, 1000);
+  EXPECT_GT(boxPixels, 20);
+  EXPECT_GT(empty, 1000);  // above the horizon and beyond the rim
+}
+
+TEST(AovRenderer, TheBoxTopIsAtItsClosedFormDistance) {
+  // Straight below F' nothing but the floor; from a pose whose pixel centre looks at the box
+  // top's centre the depth is the distance to it.
+  const Scene scene = floorAndBox();
+  const FastRenderer renderer(scene);
+  RenderSettings settings;
+  settings.rig.imageSize = 240;
+  const RobotPose pose{0.0, 0.0, 0.0};
+  const OmniCamera camera = settings.rig.camera();
+  const Vec3 top(1.0, 0.5, 0.3);
+  const auto raster = camera.rasterFromCamera(cameraFromWorld(settings.rig, pose) * top);
+  ASSERT_TRUE(raster);
+  const int i = static_cast<int>(raster->x()), j = static_cast<int>(raster->y());
+  const AovFrame aov = renderAovs(renderer, pose, settings);
+  const size_t p = static_cast<size_t>(j) * aov.width + i;
+  ASSERT_EQ(aov.instance[p], 2);
+  const Vec3 fPrime(0.0, 0.0, settings.rig.height);
+  const Vec3 direction = worldFromCamera(settings.rig, pose).linear() * camera.cameraFromRaster({i + 0.5, j + 0.5});
+  // The ray meets the plane z = 0.3 of the top face at t = (0.3 − 0.4) / d_z.
+  EXPECT_NEAR(aov.depth[p], (top.z() - fPrime.z()) / direction.z(), 1e-5);
+  EXPECT_NEAR(aov.normal[3 * p + 2], 1.0f, 1e-6f);
+}
+
+TEST(AovRenderer, IndependentOfTheThreadCount) {
+  const Scene scene = floorAndBox();
+  const FastRenderer renderer(scene);
+  RenderSettings settings;
+  settings.rig.imageSize = 96;
+  const AovFrame many = renderAovs(renderer, {0.3, 0.2, 45.0}, settings);
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const AovFrame single = renderAovs(renderer, {0.3, 0.2, 45.0}, settings);
+  EXPECT_EQ(many.depth, single.depth);
+  EXPECT_EQ(many.instance, single.instance);
+  EXPECT_EQ(many.normal, single.normal);
+}
+
+}  // namespace
+}  // namespace omnicam
