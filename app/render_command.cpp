@@ -3,6 +3,7 @@
 //                      [--view birdseye|panorama|perspective ...] -o OUT
 #include <cstdio>
 #include <filesystem>
+#include <chrono>
 #include <future>
 #include <memory>
 #include <optional>
@@ -126,12 +127,23 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   const int total = a.frames ? a.frames : static_cast<int>(path->poses.size());
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + a.engine + ")", total);
+  // A batching engine (Blender) renders every pose in one session: one start, one export.
+  std::vector<ImageRGBA> batch;
+  double batchSeconds = 0.0;
+  if (engine->batches()) {
+    const std::vector<RobotPose> poses(path->poses.begin(), path->poses.begin() + total);
+    const auto start = std::chrono::steady_clock::now();
+    batch = engine->renderMany(poses, settings);
+    batchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / total;
+  }
   // Frame f is written while frame f + 1 renders; each file still appears atomically.
   std::future<void> writing;
   for (int f = 0; f < total; ++f) {
     char name[64];
     std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
-    RenderedFile rendered = renderPose(scene, *engine, path->poses[f], settings);
+    RenderedFile rendered = batch.empty()
+        ? renderPose(scene, *engine, path->poses[f], settings)
+        : RenderedFile{std::move(batch[f]), renderSidecar(scene, *engine, path->poses[f], settings, batchSeconds)};
     rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
     if (writing.valid()) writing.get();
     writing = std::async(std::launch::async, [file = (std::filesystem::path(a.out) / name).string(),

@@ -6,10 +6,8 @@
 
 namespace omnicam::cli {
 
-RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
-                        const RenderSettings& settings) {
-  const auto start = std::chrono::steady_clock::now();
-  RenderedFile result{engine.render(pose, settings), {}};
+nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const RobotPose& pose,
+                             const RenderSettings& settings, double seconds) {
   RenderRecord record;
   record.engine = engine.name();
   record.engineVersion = engine.version();
@@ -21,8 +19,16 @@ RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pos
   record.shading = shadingName(settings.shading);
   record.mode = engine.mode();
   record.modeOptions = engine.modeOptions();
-  record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.sidecar = sidecarJson(record);
+  record.seconds = seconds;
+  return sidecarJson(record);
+}
+
+RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
+                        const RenderSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  RenderedFile result{engine.render(pose, settings), {}};
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.sidecar = renderSidecar(scene, engine, pose, settings, seconds);
   return result;
 }
 

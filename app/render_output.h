@@ -14,6 +14,9 @@ struct RenderedFile {
   nlohmann::json sidecar;
 };
 
+// The sidecar of a render of `pose` that took `seconds`.
+nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const RobotPose& pose,
+                             const RenderSettings& settings, double seconds);
 // Renders one pose with `engine`; the sidecar describes it.
 RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
                         const RenderSettings& settings);

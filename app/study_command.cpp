@@ -12,6 +12,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "cubemap_renderer.h"
+#include "engines.h"
 #include "errors.h"
 #include "image_compare.h"
 #include "rings.h"
@@ -64,34 +65,35 @@ void runStudy(const StudyArgs& a) {
     rows.emplace_back("thesis mesh, " + std::to_string(polygons) + " polygons", "mesh" + std::to_string(polygons), mesh);
   }
 
-  const FastRenderer arenaFast(arena), ringFast(ringScene);
-  const CubeMapRenderer arenaCube(arenaFast), ringCube(ringFast);
+  const FastRenderer arenaFast(arena);
+  const CubeMapRenderer arenaCube(arenaFast);  // for the cube map's own statistics only
   RenderSettings quality, ringSettings, timing;
   quality.rig = arena.rig, quality.spp = a.spp;
   ringSettings.rig = ringScene.rig, ringSettings.spp = a.spp;
   timing.rig = arena.rig, timing.spp = 1;
-  auto render = [&](const FastRenderer& fast, const CubeMapRenderer& cube, const Row& row, const RobotPose& pose,
-                    const RenderSettings& s) { return row.options ? cube.render(pose, s, *row.options) : fast.render(pose, s); };
 
   const ImageRGBA reference = arenaFast.render(arena.startPose, quality);
   for (Row& row : rows) {
     std::printf("study: %s\n", row.label.c_str());
-    const ImageRGBA image = render(arenaFast, arenaCube, row, arena.startPose, quality);
+    const CubeMapOptions* mode = row.options ? &*row.options : nullptr;
+    const auto arenaEngine = makeEngine("fast", arena, 0.0, mode);
+    const auto ringEngine = makeEngine("fast", ringScene, 0.0, mode);
+    const ImageRGBA image = arenaEngine->render(arena.startPose, quality);
     writeImageAtomic((figures / ("study_" + row.file + ".png")).string(), image);
     const CompareResult c = compareImages(reference, image);
     row.psnr = c.psnrDb, row.ssim = c.ssim;
     if (row.options) row.missed = static_cast<double>(arenaCube.stats(quality, *row.options).missedSamples) /
                                   arenaCube.stats(quality, *row.options).samples;
-    const ImageRGBA rings = render(ringFast, ringCube, row, ringScene.startPose, ringSettings);
+    const ImageRGBA rings = ringEngine->render(ringScene.startPose, ringSettings);
     try {
       row.ringRms = measureRings(rings, ringSettings.rig.camera(), defaultRingThetasDeg()).rmsPxExact;
     } catch (const InputError& e) {
       row.ringNote = e.what();
     }
     row.profile = measureRingProfiles(rings, ringSettings.rig.camera(), defaultRingThetasDeg());
-    render(arenaFast, arenaCube, row, arena.startPose, timing);  // warm the lookup cache
+    arenaEngine->render(arena.startPose, timing);  // warm the lookup cache
     const auto start = std::chrono::steady_clock::now();
-    for (int f = 0; f < a.timingFrames; ++f) render(arenaFast, arenaCube, row, arena.startPose, timing);
+    for (int f = 0; f < a.timingFrames; ++f) arenaEngine->render(arena.startPose, timing);
     row.fps = a.timingFrames / std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 

@@ -3,12 +3,23 @@
 #include <cstdlib>
 #include <optional>
 
-#include "errors.h"
 #include "blender_renderer.h"
+#include "errors.h"
 #include "fast_renderer.h"
 #include "povray_renderer.h"
 
-namespace omnicam::cli {
+namespace omnicam {
+
+std::vector<ImageRGBA> Engine::renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings) {
+  std::vector<ImageRGBA> images;
+  images.reserve(poses.size());
+  for (const RobotPose& pose : poses) images.push_back(render(pose, settings));
+  return images;
+}
+
+AovFrame Engine::renderAovs(const RobotPose&, const RenderSettings&) {
+  throw std::logic_error("engine " + name() + " has no AOVs");
+}
 
 namespace {
 
@@ -20,6 +31,11 @@ class FastEngine : public Engine {
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     if (!mode_) return renderer_.render(pose, settings);
     return cubemap_.render(pose, settings, *mode_);
+  }
+  bool hasAovs() const override { return true; }
+  // AOVs are geometric truth: always from the exact pixel → ray map, whatever the RGB mode.
+  AovFrame renderAovs(const RobotPose& pose, const RenderSettings& settings) override {
+    return omnicam::renderAovs(renderer_, pose, settings);
   }
   std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }
@@ -72,6 +88,11 @@ class BlenderEngine : public Engine {
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     return std::move(renderWithBlender(scene_, {pose}, settings, options_).front());
   }
+  std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings) override {
+    if (poses.empty()) return {};
+    return renderWithBlender(scene_, poses, settings, options_);
+  }
+  bool batches() const override { return true; }
   std::string name() const override { return "blender"; }
   std::string version() const override {
     if (version_.empty()) version_ = blenderVersion(options_.executable) + " Cycles (CPU)";
@@ -86,7 +107,8 @@ class BlenderEngine : public Engine {
 
 }  // namespace
 
-std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons) {
+std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons,
+                                          const std::string& flag) {
   if (mode == "exact") return nullptr;
   auto options = std::make_unique<CubeMapOptions>();
   options->faces = faces;
@@ -94,17 +116,18 @@ std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, in
   options->polygons = polygons;
   if (mode == "cubemap") options->mode = OmniMode::CubeMap;
   else if (mode == "thesis-mesh") options->mode = OmniMode::ThesisMesh;
-  else throw InputError("--mode: must be exact, cubemap or thesis-mesh (got \"" + mode + "\")");
+  else throw InputError(flag + ": must be exact, cubemap or thesis-mesh (got \"" + mode + "\")");
   return options;
 }
 
 std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds,
-                                   const CubeMapOptions* mode) {
+                                   const CubeMapOptions* mode, const std::string& flag) {
   if (name == "fast") return std::make_unique<FastEngine>(scene, mode);
-  if (mode) throw InputError("--mode: only the fast engine has modes other than exact");
+  if (mode) throw InputError((flag == "--engine" ? std::string("--mode") : flag + ": mode") +
+                             ": only the fast engine has modes other than exact");
   if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds);
   if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds);
-  throw InputError("--engine: \"" + name + "\" is not available (fast, povray, blender)");
+  throw InputError(flag + ": \"" + name + "\" is not available (fast, povray, blender)");
 }
 
-}  // namespace omnicam::cli
+}  // namespace omnicam

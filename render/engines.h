@@ -1,0 +1,46 @@
+#pragma once
+// The renderer interface behind --engine and every verb that renders (render, dataset, study,
+// demo): omnicam's fast renderer and the two ground truths, POV-Ray and Blender.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "aov_renderer.h"
+#include "cubemap_renderer.h"
+#include "image.h"
+#include "render_settings.h"
+#include "scene.h"
+
+namespace omnicam {
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) = 0;
+  // Every pose with the same settings. Engines with a costly start (Blender) render them all in
+  // one session; the default renders them one by one.
+  virtual std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings);
+  // Whether renderMany is cheaper than one render per pose (the caller then batches frames).
+  virtual bool batches() const { return false; }
+  // Per-pixel ground truth (depth, instances, normals). Only the fast engine has it; ground
+  // truths write RGB only.
+  virtual bool hasAovs() const { return false; }
+  virtual AovFrame renderAovs(const RobotPose& pose, const RenderSettings& settings);
+  virtual std::string name() const = 0;
+  virtual std::string version() const = 0;
+  // The rendering mode and its options, as sidecars and manifests record them.
+  virtual std::string mode() const { return "exact"; }
+  virtual nlohmann::json modeOptions() const { return nlohmann::json::object(); }
+};
+
+// Throws InputError for an unknown engine name, or a mode other than exact for an engine other
+// than fast. `scene` must outlive the engine. `flag` names the option in messages.
+std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds = 600.0,
+                                   const CubeMapOptions* mode = nullptr, const std::string& flag = "--engine");
+// "exact", "cubemap" or "thesis-mesh" → options (InputError naming `flag` otherwise); nullptr
+// for exact.
+std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons,
+                                          const std::string& flag = "--mode");
+
+}  // namespace omnicam
