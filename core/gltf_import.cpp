@@ -311,12 +311,12 @@ GltfArena convert(const tinygltf::Model& model, const std::string& path) {
         if (material < 0) {
           if (defaultMaterial < 0) {
             defaultMaterial = static_cast<int>(arena.materials.size());
-            arena.materials.push_back(Material{"default", {1.0f, 1.0f, 1.0f}, nullptr, "", {1, 1}, 0.2f, 0.8f});
+            arena.materials.push_back(Material{"default", {1.0f, 1.0f, 1.0f}, nullptr, "", {1, 1}, 0.2f, 0.8f, ""});
           }
           material = defaultMaterial;
         }
         const std::string name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh_" + std::to_string(node.mesh);
-        arena.objects.push_back({name, material, std::move(out)});
+        arena.objects.push_back({name, material, std::move(out), ""});
       }
     }
     for (int child : node.children) visit(child, world, depth + 1);

@@ -21,6 +21,7 @@ struct Material {
   Eigen::Vector2d textureScale{1.0, 1.0};  // UV repeats
   float ambient = 0.2f;
   float diffuse = 0.8f;
+  std::string semanticClass;  // "class" in the scene; empty = none
 };
 
 // Axis-aligned in its own frame, rotated by yaw about +Z around its centre.
@@ -59,6 +60,7 @@ struct SceneObject {
   std::string name;
   int material = 0;  // index into Scene::materials
   Shape shape;
+  std::string semanticClass;  // "class" in the scene; empty = the material's
 };
 
 struct PointLight {
@@ -95,5 +97,8 @@ struct Scene {
 
   const CameraPath* findPath(const std::string& pathName) const;
 };
+
+// An object's semantic class: its own, else its material's, else empty (none).
+const std::string& semanticClassOf(const Scene& scene, const SceneObject& object);
 
 }  // namespace omnicam

@@ -108,6 +108,14 @@ RobotPose readPose(const json& v, const std::string& file, const std::string& pa
   return {p.x(), p.y(), p.z()};
 }
 
+// A "class" (semantic label for datasets): a name like any other, optional.
+std::string readClass(JsonFields& fields) {
+  if (!fields.has("class")) return {};
+  const std::string cls = fields.string("class");
+  checkName(fields, "class", cls);
+  return cls;
+}
+
 Material readMaterial(const std::string& name, JsonFields m, const Context& ctx) {
   Material mat;
   if (name.empty() || name.size() > 63)
@@ -116,6 +124,7 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   mat.color = m.colour("color", mat.color, 1.0);
   mat.ambient = static_cast<float>(m.nonNegative("ambient", mat.ambient));
   mat.diffuse = static_cast<float>(m.nonNegative("diffuse", mat.diffuse));
+  mat.semanticClass = readClass(m);
   if (auto tex = m.optionalObject("texture")) {
     mat.texturePath = tex->string("file");
     const fs::path resolved = resolveInside(ctx, *tex, "file", mat.texturePath);
@@ -255,6 +264,11 @@ std::string uniqueName(const std::string& wanted, std::set<std::string>& taken) 
 
 }  // namespace
 
+const std::string& semanticClassOf(const Scene& scene, const SceneObject& object) {
+  if (!object.semanticClass.empty()) return object.semanticClass;
+  return scene.materials.at(static_cast<size_t>(object.material)).semanticClass;
+}
+
 const CameraPath* Scene::findPath(const std::string& pathName) const {
   for (const auto& p : paths)
     if (p.name == pathName) return &p;
@@ -338,6 +352,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
       // unique (glTF does not require that) and kept within Blender's 63 bytes.
       o.string("type");
       const std::string gltfFile = o.string("file");
+      const std::string gltfClass = readClass(o);
       GltfArena arena;
       try {
         arena = importGltf(resolveInside(ctx, o, "file", gltfFile).string(),
@@ -353,6 +368,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
       for (SceneObject& imported : arena.objects) {
         imported.name = uniqueName(obj.name + "/" + imported.name, names);
         imported.material += offset;
+        imported.semanticClass = gltfClass;
         scene.objects.push_back(std::move(imported));
       }
       o.finish();
@@ -362,6 +378,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
     auto m = ctx.materialIndex.find(materialName);
     if (m == ctx.materialIndex.end()) o.fail("material", "no material named \"" + materialName + "\"");
     obj.material = m->second;
+    obj.semanticClass = readClass(o);
     obj.shape = readShape(o.string("type"), o);
     o.finish();
     scene.objects.push_back(std::move(obj));

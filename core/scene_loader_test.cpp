@@ -140,5 +140,19 @@ TEST_F(SceneLoaderTest, WaypointPathsAreSampled) {
   EXPECT_EQ(s.findPath("q"), nullptr);
 }
 
+TEST_F(SceneLoaderTest, SemanticClassesComeFromObjectsOrTheirMaterials) {
+  const std::string file = write(R"({"format": "omnicam-scene/1",
+    "materials": {"wall": {"class": "wall"}, "plain": {}},
+    "objects": [{"type": "sphere", "material": "wall", "center": [0, 0, 0], "radius": 1},
+                {"type": "sphere", "material": "wall", "center": [3, 0, 0], "radius": 1, "class": "victim"},
+                {"type": "sphere", "material": "plain", "center": [6, 0, 0], "radius": 1}]})");
+  const Scene s = loadScene(file);
+  EXPECT_EQ(semanticClassOf(s, s.objects[0]), "wall");
+  EXPECT_EQ(semanticClassOf(s, s.objects[1]), "victim");
+  EXPECT_EQ(semanticClassOf(s, s.objects[2]), "");
+  EXPECT_EQ(errorOf("", R"(, "class": "")"), file + ": objects[0].class: must be 1 to 63 bytes long (got 0)");
+  EXPECT_EQ(errorOf("", R"(, "class": 3)"), file + ": objects[0].class: must be a string (got number)");
+}
+
 }  // namespace
 }  // namespace omnicam
