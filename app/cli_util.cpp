@@ -62,19 +62,23 @@ void ensureDirectory(const std::string& dir, const std::string& flag) {
   if (ec) throw InputError(flag + ": cannot create folder " + dir + " (" + ec.message() + ")");
 }
 
-Progress::Progress(std::string label, int total)
-    : label_(std::move(label)), total_(total), tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+Progress::Progress(std::string label, int total, int alreadyDone)
+    : label_(std::move(label)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
+      tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
 
 void Progress::step() {
   ++done_;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double rate = seconds > 0.0 ? done_ / seconds : 0.0;
+  const double rate = seconds > 0.0 ? (done_ - alreadyDone_) / seconds : 0.0;
   const int width = 30, filled = total_ > 0 ? width * done_ / total_ : width;
+  const double left = rate > 0.0 ? (total_ - done_) / rate : 0.0;
+  char eta[32];
+  std::snprintf(eta, sizeof eta, "ETA %d:%02d", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
   if (tty_) {
-    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f frames/s", label_.c_str(), std::string(filled, '#').c_str(),
-                 std::string(width - filled, ' ').c_str(), done_, total_, rate);
+    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f frames/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), done_, total_, rate, eta);
   } else if (done_ == total_ || (total_ >= 10 && done_ % (total_ / 10) == 0)) {
-    std::fprintf(stderr, "%s %d/%d  %.1f frames/s\n", label_.c_str(), done_, total_, rate);
+    std::fprintf(stderr, "%s %d/%d  %.1f frames/s  %s\n", label_.c_str(), done_, total_, rate, eta);
   }
   std::fflush(stderr);
 }

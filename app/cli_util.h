@@ -25,16 +25,17 @@ std::string scenesDir();
 // Creates `dir` (and parents) if missing; throws InputError if it exists as a non-folder.
 void ensureDirectory(const std::string& dir, const std::string& flag);
 
-// A one-line progress bar on stderr for long sequences.
+// A one-line progress bar on stderr for long sequences: frames/s and time left. `alreadyDone`
+// frames (kept from an earlier run) count toward the bar but not toward the rate.
 class Progress {
  public:
-  Progress(std::string label, int total);
+  Progress(std::string label, int total, int alreadyDone = 0);
   void step();
   void finish();
 
  private:
   std::string label_;
-  int total_, done_ = 0;
+  int total_, done_ = 0, alreadyDone_ = 0;
   bool tty_;
   std::chrono::steady_clock::time_point start_;
 };

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addBenchCommand(app);
   int exitCode = 0;
   omnicam::cli::addCompareCommand(app, exitCode);
+  omnicam::cli::addDatasetCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

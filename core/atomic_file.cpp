@@ -36,7 +36,7 @@ std::string randomSuffix() {
 
 }  // namespace
 
-void writeBytesAtomically(const std::string& path, std::string_view bytes) {
+void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
   const fs::path target(path);
   std::error_code ec;
   if (fs::is_directory(target, ec)) throw InputError(path + ": is an existing folder, not a file name");
@@ -61,7 +61,7 @@ void writeBytesAtomically(const std::string& path, std::string_view bytes) {
     }
     written += static_cast<size_t>(n);
   }
-  if (::fsync(fd) != 0) {
+  if (durability == Durability::Synced && ::fsync(fd) != 0) {
     const int error = errno;
     ::close(fd);
     failWrite(path, tmp, error);

@@ -8,7 +8,12 @@
 
 namespace omnicam {
 
-void writeBytesAtomically(const std::string& path, std::string_view bytes);
+// Synced: fsync before the rename, so the file survives a power cut, not only a killed process.
+// Unsynced: the rename alone (a killed process still never leaves a partial file); for files
+// whose hash is recorded elsewhere and checked on resume, like dataset frames.
+enum class Durability { Synced, Unsynced };
+void writeBytesAtomically(const std::string& path, std::string_view bytes,
+                          Durability durability = Durability::Synced);
 inline void writeTextAtomically(const std::string& path, const std::string& text) {
   writeBytesAtomically(path, text);
 }

@@ -268,4 +268,75 @@ void writeImageAtomic(const std::string& path, const ImageRGBA& image) {
   writeBytesAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
+std::vector<unsigned char> encodeDataExr(const std::string& path, const DataImage& image) {
+  if (image.channels != 1 && image.channels != 3) throw std::logic_error("encodeDataExr: 1 or 3 channels");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput sink(bytes);
+  void* proxy = &sink;
+  auto out = OIIO::ImageOutput::create("memory.exr");
+  if (!out) throw OutputError(path + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = image.channels == 1 ? std::vector<std::string>{"Z"} : std::vector<std::string>{"X", "Y", "Z"};
+  spec.alpha_channel = -1;
+  spec.attribute("compression", "zip");
+  spec.attribute("DateTime", "");
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  if (!out->open("memory.exr", spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.values.data()) || !out->close())
+    throw OutputError(path + ": cannot encode EXR (" + firstLine(out->geterror()) + ")");
+  return bytes;
+}
+
+std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,
+                                           const std::vector<uint16_t>& values) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput sink(bytes);
+  void* proxy = &sink;
+  auto out = OIIO::ImageOutput::create("memory.png");
+  if (!out) throw OutputError(path + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
+  OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT16);
+  spec.attribute("png:compressionLevel", 1);
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  if (!out->open("memory.png", spec) || !out->write_image(OIIO::TypeDesc::UINT16, values.data()) || !out->close())
+    throw OutputError(path + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
+  return bytes;
+}
+
+namespace {
+
+std::unique_ptr<OIIO::ImageInput> openDataImage(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot read image (no such file)");
+  const QuietStderr quiet;
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) throw InputError(path + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  checkHeader(input->spec(), path);
+  return input;
+}
+
+}  // namespace
+
+DataImage readDataExr(const std::string& path) {
+  auto input = openDataImage(path);
+  const OIIO::ImageSpec& spec = input->spec();
+  if (std::string(input->format_name()) != "openexr" || (spec.nchannels != 1 && spec.nchannels != 3))
+    throw InputError(path + ": not a 1- or 3-channel OpenEXR data image");
+  DataImage image{spec.width, spec.height, spec.nchannels, {}};
+  image.values.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
+    throw InputError(path + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+  return image;
+}
+
+std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height) {
+  auto input = openDataImage(path);
+  const OIIO::ImageSpec& spec = input->spec();
+  if (std::string(input->format_name()) != "png" || spec.nchannels != 1 || spec.format != OIIO::TypeDesc::UINT16)
+    throw InputError(path + ": not a 16-bit single-channel PNG");
+  width = spec.width, height = spec.height;
+  std::vector<uint16_t> values(static_cast<size_t>(width) * height);
+  if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, values.data()))
+    throw InputError(path + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+  return values;
+}
+
 }  // namespace omnicam

@@ -2,6 +2,7 @@
 // Linear RGBA float images with associated (premultiplied) alpha, and their files.
 // PNG/JPEG are sRGB-encoded 8-bit on disk; EXR is linear half/float (docs/conventions.md §2).
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,5 +36,21 @@ std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA&
 // encodeImage, then writeBytesAtomically (atomic_file.h): OutputError if it cannot be written.
 void writeImageAtomic(const std::string& path, const ImageRGBA& image);
 bool isSupportedImageOutput(const std::string& path);
+
+// Images whose pixels are data, not colour (depth, normals, ids): no colour space, no alpha,
+// values stored exactly.
+struct DataImage {
+  int width = 0, height = 0, channels = 1;
+  std::vector<float> values;  // row-major, `channels` per pixel
+};
+// A float32 OpenEXR (zip, no DateTime: identical values give identical bytes). Channel names:
+// "Z" for one channel, "X", "Y", "Z" for three.
+std::vector<unsigned char> encodeDataExr(const std::string& path, const DataImage& image);
+// A 16-bit single-channel PNG holding `values` exactly.
+std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,
+                                           const std::vector<uint16_t>& values);
+// Readers for the two; InputError naming the file for anything else (wrong channel count or type).
+DataImage readDataExr(const std::string& path);
+std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height);
 
 }  // namespace omnicam

@@ -1,0 +1,53 @@
+#pragma once
+// Renders a dataset spec into a folder (docs/dataset-format.md), resumably: finished frames are
+// listed in DIR/manifest.json with their files' SHA-256; a rerun of the same spec keeps every
+// frame whose files still hash right, redoes the rest and removes temporaries left by a killed
+// run. The result does not depend on where a run was interrupted.
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dataset_spec.h"
+
+namespace omnicam {
+
+struct DatasetRunOptions {
+  std::string dir;
+  bool overwrite = false;  // replace a dataset made from another spec
+  // Called once before rendering: frames kept from an earlier run, of `total`.
+  std::function<void(int kept, int total)> onStart;
+  // Called after every finished frame: frames done (kept + rendered) of `total`.
+  std::function<void(int done, int total)> onFrame;
+  // Checked between frames: set (e.g. by SIGINT) to stop after the frame in progress.
+  const std::atomic<bool>* stopRequested = nullptr;
+};
+
+struct DatasetRunResult {
+  int frames = 0;    // in the spec
+  int kept = 0;      // verified and kept from an earlier run
+  int rendered = 0;  // rendered by this run
+  bool stopped = false;
+  std::vector<std::string> notes;  // e.g. outputs a ground-truth engine does not write
+};
+
+// InputError for a bad spec or scene, or a folder holding another dataset (unless overwrite);
+// ExternalError from a ground-truth engine; OutputError if a file cannot be written.
+DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options);
+
+// Frames planned by the spec and how many the folder's manifest has finished (`dataset --status`).
+struct DatasetStatus {
+  int frames = 0, finished = 0;
+  bool complete = false;
+};
+DatasetStatus datasetStatus(const std::string& dir);
+
+struct DatasetVerifyResult {
+  int files = 0;  // checked
+  std::vector<std::string> problems;  // one line each: missing, changed, incomplete
+  bool ok() const { return problems.empty(); }
+};
+// Re-hashes every file the manifest lists. InputError if DIR has no readable manifest.
+DatasetVerifyResult verifyDataset(const std::string& dir);
+
+}  // namespace omnicam

@@ -1,0 +1,71 @@
+#include "frame_outputs.h"
+
+#include <cstdio>
+#include <tbb/parallel_for.h>
+
+#include "landmark_annotations.h"
+
+namespace omnicam {
+
+namespace {
+
+std::string asString(const std::vector<unsigned char>& bytes) { return {bytes.begin(), bytes.end()}; }
+
+const char* extensionOf(const std::string& kind, const FrameOutputPlan& plan) {
+  if (kind == "rgb") return plan.rgbFormat == "exr" ? "exr" : "png";
+  if (kind == "depth" || kind == "normal") return "exr";
+  if (kind == "landmarks") return "json";
+  return "png";
+}
+
+}  // namespace
+
+std::string frameFilePath(const std::string& camera, const std::string& kind, int index, const FrameOutputPlan& plan) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%06d.%s", index, extensionOf(kind, plan));
+  return camera + "/" + kind + "/" + name;
+}
+
+std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, Engine& engine, const RayScene* rays,
+                                            const RenderSettings& settings, const std::string& camera,
+                                            int index, const RobotPose& pose, const ImageRGBA& rgb,
+                                            const FrameOutputPlan& plan, const std::vector<uint16_t>& classOfInstance) {
+  std::vector<EncodedFile> files;
+  auto add = [&](const std::string& kind) -> EncodedFile& {
+    files.push_back({kind, frameFilePath(camera, kind, index, plan), {}});
+    return files.back();
+  };
+  add("rgb");
+  std::optional<AovFrame> aov;
+  if (plan.anyAov()) aov = engine.renderAovs(pose, settings);
+  if (plan.depth) add("depth");
+  if (plan.instance) add("instance");
+  if (plan.semantic) add("semantic");
+  if (plan.normal) add("normal");
+  if (plan.landmarks) add("landmarks");
+  // Each file is encoded on its own task: PNG and EXR compression dominate at 1 spp.
+  tbb::parallel_for(size_t{0}, files.size(), [&](size_t k) {
+    EncodedFile& file = files[k];
+    if (file.kind == "rgb") {
+      file.bytes = asString(encodeImage(file.relativePath, rgb));
+    } else if (file.kind == "depth") {
+      file.bytes = asString(encodeDataExr(file.relativePath, {aov->width, aov->height, 1, aov->depth}));
+    } else if (file.kind == "normal") {
+      file.bytes = asString(encodeDataExr(file.relativePath, {aov->width, aov->height, 3, aov->normal}));
+    } else if (file.kind == "instance") {
+      file.bytes = asString(encodeUint16Png(file.relativePath, aov->width, aov->height, aov->instance));
+    } else if (file.kind == "semantic") {
+      std::vector<uint16_t> semantic(aov->instance.size());
+      for (size_t p = 0; p < semantic.size(); ++p) semantic[p] = classOfInstance[aov->instance[p]];
+      file.bytes = asString(encodeUint16Png(file.relativePath, aov->width, aov->height, semantic));
+    } else if (file.kind == "landmarks") {
+      nlohmann::json doc = landmarksToJson(annotateLandmarks(scene, *rays, settings.rig, pose));
+      doc["frame"] = index;
+      doc["camera"] = camera;
+      file.bytes = doc.dump(1) + "\n";
+    }
+  });
+  return files;
+}
+
+}  // namespace omnicam

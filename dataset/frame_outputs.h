@@ -1,0 +1,38 @@
+#pragma once
+// One frame of one camera as the files the dataset layout asks for, encoded in memory:
+// rgb (PNG/EXR), depth (float EXR, metres along the ray from F'), instance and semantic ids
+// (16-bit PNG), normals (float EXR, world frame) and landmark annotations (JSON).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dataset_spec.h"
+#include "engines.h"
+#include "ray_scene.h"
+
+namespace omnicam {
+
+struct EncodedFile {
+  std::string kind;          // "rgb", "depth", "instance", "semantic", "normal", "landmarks"
+  std::string relativePath;  // "<camera>/<kind>/NNNNNN.<ext>"
+  std::string bytes;
+};
+
+struct FrameOutputPlan {
+  std::string rgbFormat = "png";
+  bool depth = false, instance = false, semantic = false, normal = false, landmarks = false;
+  bool anyAov() const { return depth || instance || semantic || normal; }
+};
+
+// "<camera>/<kind>/NNNNNN.<ext>" for frame `index`.
+std::string frameFilePath(const std::string& camera, const std::string& kind, int index, const FrameOutputPlan& plan);
+
+// Encodes the outputs of one camera's frame. `rgb` is the engine's render; AOVs come from
+// `engine` (the fast engine) and landmarks from `rays` (both only when the plan asks).
+// `classOfInstance[i]` is the semantic class id of instance id i.
+std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, Engine& engine, const RayScene* rays,
+                                            const RenderSettings& settings, const std::string& camera,
+                                            int index, const RobotPose& pose, const ImageRGBA& rgb,
+                                            const FrameOutputPlan& plan, const std::vector<uint16_t>& classOfInstance);
+
+}  // namespace omnicam

@@ -1,0 +1,22 @@
+#pragma once
+// The camera's intrinsics in the files other tools read: OpenCV's cv::omnidir (FileStorage YAML:
+// K, xi, D), Kalibr's camchain (camera_model omni) and camodocal's MEI model. All three describe
+// the same unified (Mei) model as the sidecar's "intrinsics", in OpenCV's pixel convention
+// (centres at integers: cx = W/2 − 0.5), with γ_y < 0: the catadioptric image is a mirror image,
+// so a right-handed camera frame (X forward, Y right, Z down at F') needs one axis flipped.
+#include <string>
+
+#include "omni_camera.h"
+
+namespace omnicam {
+
+// Writes DIR/opencv.yaml, DIR/kalibr.yaml and DIR/camodocal.yaml (each atomically) for a
+// camera called `name`.
+void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const OmniCamera& camera);
+
+// The files' texts, for writing and for tests.
+std::string openCvIntrinsicsYaml(const OmniCamera& camera);
+std::string kalibrIntrinsicsYaml(const std::string& name, const OmniCamera& camera);
+std::string camodocalIntrinsicsYaml(const std::string& name, const OmniCamera& camera);
+
+}  // namespace omnicam

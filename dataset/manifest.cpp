@@ -1,0 +1,140 @@
+#include "manifest.h"
+
+#include <filesystem>
+
+#include "atomic_file.h"
+#include "errors.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
+
+// Reading: every malformed piece is one InputError naming the manifest.
+struct Reader {
+  std::string file;
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw InputError(file + ": " + where + ": " + what);
+  }
+  const json& field(const json& object, const std::string& key, const std::string& where) const {
+    if (!object.is_object()) fail(where, "must be an object");
+    const auto it = object.find(key);
+    if (it == object.end()) fail(where + "." + key, "missing");
+    return *it;
+  }
+  double number(const json& object, const std::string& key, const std::string& where) const {
+    const json& v = field(object, key, where);
+    if (!v.is_number()) fail(where + "." + key, "must be a number");
+    return v.get<double>();
+  }
+  std::string string(const json& object, const std::string& key, const std::string& where) const {
+    const json& v = field(object, key, where);
+    if (!v.is_string()) fail(where + "." + key, "must be a string");
+    return v.get<std::string>();
+  }
+  RobotPose pose(const json& object, const std::string& key, const std::string& where) const {
+    const json& p = field(object, key, where);
+    const std::string at = where + "." + key;
+    return {number(p, "x", at), number(p, "y", at), number(p, "yaw_deg", at)};
+  }
+  FileRecord fileRecord(const json& value, const std::string& where) const {
+    FileRecord record{string(value, "path", where), string(value, "sha256", where)};
+    // A manifest names files inside its own folder only.
+    const fs::path p(record.path);
+    if (record.path.empty() || p.is_absolute() || record.path.find("..") != std::string::npos)
+      fail(where + ".path", "must be a relative path inside the dataset folder");
+    if (record.sha256.size() != 64) fail(where + ".sha256", "must be 64 hex digits");
+    return record;
+  }
+};
+
+}  // namespace
+
+json manifestToJson(const DatasetManifest& manifest) {
+  json root = manifest.header;
+  json frames = json::array();
+  for (const auto& [index, frame] : manifest.frames) {
+    json cameras = json::object();
+    for (const auto& [name, camera] : frame.cameras) {
+      json files = json::object();
+      for (const auto& [kind, file] : camera.files) files[kind] = {{"path", file.path}, {"sha256", file.sha256}};
+      cameras[name] = {{"pose", poseJson(camera.pose)}, {"files", files}};
+    }
+    frames.push_back({{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)},
+                      {"cameras", cameras}});
+  }
+  root["frames"] = frames;
+  return root;
+}
+
+DatasetManifest readManifest(const std::string& dir) {
+  const std::string file = (fs::path(dir) / kManifestName).string();
+  json root = readJsonFile(file);
+  const Reader r{file};
+  if (!root.is_object() || r.string(root, "format", "manifest") != kManifestFormat)
+    r.fail("format", std::string("must be \"") + kManifestFormat + "\"");
+  DatasetManifest manifest;
+  const json& frames = r.field(root, "frames", "manifest");
+  if (!frames.is_array()) r.fail("frames", "must be an array");
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const std::string where = "frames[" + std::to_string(i) + "]";
+    const json& f = frames[i];
+    FrameRecord frame;
+    const json& index = r.field(f, "index", where);
+    if (!index.is_number_integer() || index.get<long long>() < 0 || index.get<long long>() > 999999)
+      r.fail(where + ".index", "must be an integer in [0, 999999]");
+    frame.index = index.get<int>();
+    frame.timestamp = r.number(f, "timestamp", where);
+    frame.robot = r.pose(f, "pose", where);
+    const json& cameras = r.field(f, "cameras", where);
+    if (!cameras.is_object()) r.fail(where + ".cameras", "must be an object");
+    for (auto it = cameras.begin(); it != cameras.end(); ++it) {
+      const std::string at = where + ".cameras." + it.key();
+      CameraFrame camera;
+      camera.pose = r.pose(it.value(), "pose", at);
+      const json& files = r.field(it.value(), "files", at);
+      if (!files.is_object()) r.fail(at + ".files", "must be an object");
+      for (auto entry = files.begin(); entry != files.end(); ++entry)
+        camera.files[entry.key()] = r.fileRecord(entry.value(), at + ".files." + entry.key());
+      frame.cameras[it.key()] = std::move(camera);
+    }
+    if (!manifest.frames.emplace(frame.index, std::move(frame)).second)
+      r.fail(where + ".index", "frame listed twice");
+  }
+  root.erase("frames");
+  manifest.header = std::move(root);
+  // The static files' records are checked like the frames'.
+  const json& cameras = r.field(manifest.header, "cameras", "manifest");
+  if (!cameras.is_array()) r.fail("cameras", "must be an array");
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    const std::string where = "cameras[" + std::to_string(i) + "]";
+    r.string(cameras[i], "name", where);
+    const json& files = r.field(cameras[i], "files", where);
+    if (!files.is_object()) r.fail(where + ".files", "must be an object");
+    for (auto entry = files.begin(); entry != files.end(); ++entry)
+      r.fileRecord(entry.value(), where + ".files." + entry.key());
+  }
+  return manifest;
+}
+
+void writeManifest(const std::string& dir, const DatasetManifest& manifest) {
+  writeTextAtomically((fs::path(dir) / kManifestName).string(), manifestToJson(manifest).dump(1) + "\n");
+}
+
+std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest) {
+  std::vector<FileRecord> files;
+  for (const json& camera : manifest.header.at("cameras"))
+    for (const auto& file : camera.at("files").items())
+      files.push_back({file.value().at("path").get<std::string>(), file.value().at("sha256").get<std::string>()});
+  for (const auto& [index, frame] : manifest.frames)
+    for (const auto& [name, camera] : frame.cameras)
+      for (const auto& [kind, file] : camera.files) files.push_back(file);
+  return files;
+}
+
+}  // namespace omnicam

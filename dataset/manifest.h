@@ -1,0 +1,48 @@
+#pragma once
+// DIR/manifest.json (docs/dataset-format.md): what the dataset is (spec and its hash, tool, engine,
+// scene hash, cameras, class and instance tables) and every finished frame with its files and
+// their SHA-256. Frames appear only once all their files are written; the manifest is rewritten
+// atomically as frames complete, so a killed run always leaves a readable one.
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rig.h"
+
+namespace omnicam {
+
+inline constexpr const char* kManifestFormat = "omnicam-dataset-manifest/1";
+inline constexpr const char* kManifestName = "manifest.json";
+
+struct FileRecord {
+  std::string path;    // relative to the dataset folder, '/'-separated
+  std::string sha256;
+};
+
+struct CameraFrame {
+  RobotPose pose;  // the camera viewpoint's pose (mount applied)
+  std::map<std::string, FileRecord> files;  // "rgb", "depth", ... → file
+};
+
+struct FrameRecord {
+  int index = 0;
+  double timestamp = 0.0;
+  RobotPose robot;
+  std::map<std::string, CameraFrame> cameras;  // camera name → its files
+};
+
+struct DatasetManifest {
+  nlohmann::json header;              // everything but "frames" (see docs/dataset-format.md)
+  std::map<int, FrameRecord> frames;  // finished frames by index
+};
+
+nlohmann::json manifestToJson(const DatasetManifest& manifest);
+// Reads DIR/manifest.json strictly; InputError naming the file and field.
+DatasetManifest readManifest(const std::string& dir);
+void writeManifest(const std::string& dir, const DatasetManifest& manifest);
+
+// Every file the manifest lists (static files of each camera, then the frames'), for verifying.
+std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest);
+
+}  // namespace omnicam
