@@ -1,0 +1,119 @@
+#include "dataset_spec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "errors.h"
+#include "pose_sampler.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+const std::string kExample = OMNICAM_SOURCE_DIR "/docs/examples/dataset.json";
+
+std::string errorOf(const std::string& text) {
+  try {
+    datasetSpecFromText(text, "spec.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A valid spec with `extra` spliced into the root object.
+std::string spec(const std::string& extra, const std::string& poses = R"({"path": "thesis-loop"})") {
+  return R"({"format": "omnicam-dataset/1", "scene": "s.json", "poses": )" + poses + (extra.empty() ? "" : ", ") +
+         extra + "}";
+}
+
+TEST(DatasetSpec, TheDocumentedExampleLoadsAndItsPosesResolve) {
+  const DatasetSpec s = loadDatasetSpec(kExample);
+  ASSERT_EQ(s.cameras.size(), 2u);
+  EXPECT_EQ(s.cameras[1].name, "rear");
+  EXPECT_DOUBLE_EQ(s.cameras[1].mountYawDeg, 180.0);
+  EXPECT_EQ(s.spp, 4);
+  const Scene scene = loadScene(s.scene);
+  EXPECT_EQ(datasetPoses(s, scene, 0.4).size(), 10u);
+}
+
+TEST(DatasetSpec, ErrorsNameTheField) {
+  EXPECT_EQ(errorOf(spec("")), "");
+  EXPECT_EQ(errorOf(spec(R"("spp": 3)")), "spec.json: spp: must be a perfect square (1, 4, 9, 16, ...)");
+  EXPECT_EQ(errorOf(spec(R"("engine": "mitsuba")")), "spec.json: engine: must be fast, povray or blender (got \"mitsuba\")");
+  EXPECT_EQ(errorOf(spec(R"("colour": 1)")), "spec.json: colour: unknown field");
+  EXPECT_EQ(errorOf(spec(R"("outputs": {"depht": true})")), "spec.json: outputs.depht: unknown field");
+  EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "a"}])")),
+            "spec.json: cameras[1].name: duplicate camera name \"a\"");
+  EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "../x"}])")),
+            "spec.json: cameras[0].name: must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\")");
+  EXPECT_EQ(errorOf(spec("", R"({"path": "a", "list": [[0, 0, 0]]})")),
+            "spec.json: poses: give exactly one of \"path\", \"list\" or \"random\"");
+  EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 5, "seed": 1, "region": [1, 0, 0, 1]}})")),
+            "spec.json: poses.random.region: needs x_min < x_max and y_min < y_max");
+  EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "engine": "povray")")),
+            "spec.json: mode: only the fast engine has modes other than exact");
+  EXPECT_EQ(errorOf(spec(R"("timeout_s": 5)")), "spec.json: timeout_s: only for the povray and blender engines");
+}
+
+TEST(DatasetSpec, CameraMountsTurnWithTheRobot) {
+  const DatasetCamera camera{"c", std::nullopt, 0.2, 0.1, 30.0};
+  const RobotPose p = cameraPose(camera, {1.0, 2.0, 90.0});
+  EXPECT_NEAR(p.x, 1.0 - 0.1, 1e-12);  // robot +X is world +Y, robot +Y is world -X
+  EXPECT_NEAR(p.y, 2.0 + 0.2, 1e-12);
+  EXPECT_DOUBLE_EQ(p.yawDeg, 120.0);
+}
+
+// One 1 m box centred at the origin: footprint [-0.5, 0.5]², height 1 m.
+Scene boxScene() {
+  return loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+    "objects": [{"type": "quad", "material": "m", "origin": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]},
+                {"type": "box", "material": "m", "center": [0, 0, 0.5], "size": [1, 1, 1]},
+                {"type": "box", "material": "m", "center": [0, 0, 3], "size": [10, 10, 0.1]}]})",
+                           "box.json");
+}
+
+TEST(DatasetSpec, ObstacleFootprintsGiveClosedFormDistances) {
+  const Scene scene = boxScene();
+  const FloorObstacles obstacles(scene, 0.4);
+  EXPECT_EQ(obstacles.obstacleCount(), 1u);  // not the floor (flat), not the ceiling (above the cameras)
+  EXPECT_NEAR(obstacles.distance({2.0, 0.0}, 10.0), 1.5, 1e-12);
+  EXPECT_NEAR(obstacles.distance({1.5, 1.5}, 10.0), std::sqrt(2.0), 1e-12);
+  EXPECT_DOUBLE_EQ(obstacles.distance({0.2, -0.1}, 10.0), 0.0);
+  EXPECT_DOUBLE_EQ(obstacles.distance({4.0, 0.0}, 1.0), 1.0);  // nothing nearer than the limit
+}
+
+TEST(DatasetSpec, RandomPosesAreReproducibleAndKeepTheirClearance) {
+  const Scene scene = boxScene();
+  const DatasetSpec s = datasetSpecFromText(
+      spec("", R"({"random": {"count": 200, "seed": 7, "region": [-2, -2, 2, 2], "clearance": 0.8, "yaw_deg": [-90, 90]}})"),
+      "spec.json");
+  const std::vector<RobotPose> a = datasetPoses(s, scene, 0.4), b = datasetPoses(s, scene, 0.4);
+  ASSERT_EQ(a.size(), 200u);
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].x, b[i].x);
+    EXPECT_EQ(a[i].yawDeg, b[i].yawDeg);
+    // Outside the box grown by the clearance (closed form for an axis-aligned square).
+    const double dx = std::max(0.0, std::abs(a[i].x) - 0.5), dy = std::max(0.0, std::abs(a[i].y) - 0.5);
+    EXPECT_GE(std::hypot(dx, dy), 0.8);
+    EXPECT_GE(a[i].yawDeg, -90.0);
+    EXPECT_LE(a[i].yawDeg, 90.0);
+    EXPECT_LE(std::abs(a[i].x), 2.0);
+  }
+  const DatasetSpec other = datasetSpecFromText(
+      spec("", R"({"random": {"count": 200, "seed": 8, "region": [-2, -2, 2, 2], "clearance": 0.8}})"), "spec.json");
+  EXPECT_NE(datasetPoses(other, scene, 0.4)[0].x, a[0].x);
+  // A region the box fills entirely cannot give poses with clearance: a clear error.
+  const DatasetSpec crowded = datasetSpecFromText(
+      spec("", R"({"random": {"count": 3, "seed": 1, "region": [-0.4, -0.4, 0.4, 0.4], "clearance": 0.1}})"), "spec.json");
+  try {
+    datasetPoses(crowded, scene, 0.4);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("spec.json: poses.random: found only 0 of 3 poses"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace omnicam

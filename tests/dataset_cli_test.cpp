@@ -1,0 +1,309 @@
+// End-to-end tests of `omnicam dataset`: closed-form depth on a floor, OpenCV reading the
+// intrinsics and reproducing `omnicam project`, kill -9 and resume, Ctrl-C, refusing another
+// dataset's folder, --verify.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/ccalib/omnidir.hpp>
+#include <opencv2/core.hpp>
+#include <sstream>
+#include <thread>
+
+#include "image.h"
+#include "rig.h"
+#include "shell_command.h"
+
+extern char** environ;
+
+namespace omnicam {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+testing::CommandResult omnicam(const std::string& args) {
+  return testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");
+}
+
+class DatasetCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("omnicam_dataset_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return path(name);
+  }
+  // A spec over robocup2006 with `extra` fields.
+  std::string robocupSpec(const std::string& name, const std::string& extra) const {
+    return write(name, R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR R"(/scenes/robocup2006.json", )" +
+                           extra + "}");
+  }
+  fs::path dir_;
+};
+
+// Every regular file under `dir`, relative path → bytes.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) files[fs::relative(entry.path(), dir).string()] = readFile(entry.path());
+  return files;
+}
+
+// Starts omnicam with `args` in the background; its pid.
+pid_t spawnOmnicam(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<std::string> argv{OMNICAM_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> raw;
+  for (std::string& a : argv) raw.push_back(a.data());
+  raw.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = -1;
+  posix_spawn(&pid, raw[0], &actions, nullptr, raw.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+// Finished frames the manifest in `dir` lists (0 while there is none).
+size_t manifestFrames(const fs::path& dir) {
+  std::ifstream in(dir / "manifest.json");
+  if (!in) return 0;
+  const json manifest = json::parse(in, nullptr, false);
+  return manifest.is_discarded() ? 0 : manifest.at("frames").size();
+}
+
+// Waits until the manifest lists at least one frame, then sends `signal`; false if the run ended
+// first. The exit status goes to `status`.
+bool interruptAfterFirstFrames(pid_t pid, const fs::path& dir, int signal, int& status) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+    if (manifestFrames(dir) >= 1) {
+      ::kill(pid, signal);
+      ::waitpid(pid, &status, 0);
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, &status, 0);
+  return false;
+}
+
+TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
+  write("floor.json", R"({"format": "omnicam-scene/1", "rig": {"height": 0.5},
+    "materials": {"carpet": {"color": [0.2, 0.6, 0.2], "class": "floor"}},
+    "objects": [{"type": "quad", "name": "floor", "material": "carpet",
+                 "origin": [-50, -50, 0], "edge_u": [100, 0, 0], "edge_v": [0, 100, 0]}]})");
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 96,
+    "poses": {"list": [[0.3, -0.2, 40]]}})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  const json manifest = json::parse(readFile(dir_ / "ds/manifest.json"));
+  EXPECT_EQ(manifest["classes"][1]["name"], "floor");
+
+  RigSpec rig;
+  rig.height = 0.5;
+  rig.imageSize = 96;
+  const OmniCamera camera = rig.camera();
+  const Rigid worldFromCam = worldFromCamera(rig, {0.3, -0.2, 40});
+  const DataImage depth = readDataExr(path("ds/cam0/depth/000000.exr"));
+  const DataImage normal = readDataExr(path("ds/cam0/normal/000000.exr"));
+  int w = 0, h = 0;
+  const std::vector<uint16_t> instance = readUint16Png(path("ds/cam0/instance/000000.png"), w, h);
+  const std::vector<uint16_t> semantic = readUint16Png(path("ds/cam0/semantic/000000.png"), w, h);
+  ASSERT_EQ(depth.width, 96);
+  int floorPixels = 0, skyPixels = 0;
+  for (int j = 0; j < 96; ++j)
+    for (int i = 0; i < 96; ++i) {
+      const size_t p = static_cast<size_t>(j) * 96 + i;
+      const Vec2 centre(i + 0.5, j + 0.5);
+      const Vec3 d = worldFromCam.linear() * camera.cameraFromRaster(centre);
+      // From F' at 0.5 m down to the floor, along the ray; the floor ends 50 m out.
+      const double expected = d.z() < 0.0 ? 0.5 / -d.z() : 0.0;
+      const Vec3 onFloor = worldFromCam.translation() + expected * d;
+      const bool hitsFloor = d.z() < 0.0 && std::abs(onFloor.x()) < 49.9 && std::abs(onFloor.y()) < 49.9;
+      if (!camera.insideRim(centre) || (d.z() >= 0.0)) {
+        EXPECT_EQ(depth.values[p], 0.0f);
+        EXPECT_EQ(instance[p], 0);
+        skyPixels += camera.insideRim(centre);
+        continue;
+      }
+      if (!hitsFloor) continue;  // grazing rays that pass the floor's edge
+      ++floorPixels;
+      EXPECT_NEAR(depth.values[p], expected, 2e-6 * expected) << i << "," << j;
+      EXPECT_EQ(normal.values[3 * p + 2], 1.0f);
+      EXPECT_EQ(instance[p], 1);
+      EXPECT_EQ(semantic[p], 1);
+    }
+  EXPECT_GT(floorPixels, 1000);  // below the horizon: a disc of radius γ/ξ ≈ 19.6 px
+  EXPECT_GT(skyPixels, 100);  // the rim is 45° above the horizon: the sky is in view too
+}
+
+TEST_F(DatasetCliTest, OpenCvReadsTheIntrinsicsAndPosesAndReproducesProject) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 200, "outputs": {"depth": false, "normal": false},
+    "poses": {"list": [[0.4, 0.9, 160], [-1.0, 0.2, -35]]},
+    "cameras": [{"name": "left", "mount": {"x": 0.05, "y": 0.12, "yaw_deg": 90}}])");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  cv::FileStorage fs(path("ds/left/intrinsics/opencv.yaml"), cv::FileStorage::READ);
+  ASSERT_TRUE(fs.isOpened());
+  cv::Mat K, D;
+  double xi = 0;
+  fs["K"] >> K;
+  fs["D"] >> D;
+  fs["xi"] >> xi;
+  // poses.tum: world_from_camera per frame.
+  std::istringstream tum(readFile(dir_ / "ds/left/poses.tum"));
+  std::string line;
+  std::vector<std::array<double, 8>> rows;
+  while (std::getline(tum, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::array<double, 8> row;
+    for (double& v : row) fields >> v;
+    rows.push_back(row);
+  }
+  ASSERT_EQ(rows.size(), 2u);
+  const json manifest = json::parse(readFile(dir_ / "ds/manifest.json"));
+  for (size_t f = 0; f < rows.size(); ++f) {
+    EXPECT_DOUBLE_EQ(rows[f][0], manifest["frames"][f]["timestamp"].get<double>());
+    const Eigen::Quaterniond q(rows[f][7], rows[f][4], rows[f][5], rows[f][6]);
+    Rigid worldFromCam = Rigid::Identity();
+    worldFromCam.linear() = q.toRotationMatrix();
+    worldFromCam.translation() = Vec3(rows[f][1], rows[f][2], rows[f][3]);
+    const Rigid cfw = worldFromCam.inverse();
+    cv::Mat rotation(3, 3, CV_64F), rvec, tvec(3, 1, CV_64F);
+    for (int i = 0; i < 3; ++i) {
+      tvec.at<double>(i) = cfw.translation()[i];
+      for (int j = 0; j < 3; ++j) rotation.at<double>(i, j) = cfw.linear()(i, j);
+    }
+    cv::Rodrigues(rotation, rvec);
+    const std::vector<cv::Vec3d> points{{2.7, -1.8, 0.0}, {-1.35, 1.95, 0.35}, {0.0, 0.0, 0.0}};
+    std::vector<cv::Vec2d> projected;
+    cv::omnidir::projectPoints(points, projected, rvec, tvec, K, xi, D);
+    // The camera's own pose, as `omnicam project` takes it (the viewpoint's x, y, yaw).
+    const json& pose = manifest["frames"][f]["cameras"]["left"]["pose"];
+    std::ostringstream args;
+    args.precision(17);
+    args << "project " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 200 --pose=" << pose["x"].get<double>() << ","
+         << pose["y"].get<double>() << "," << pose["yaw_deg"].get<double>();
+    for (const auto& p : points) args << " --point=" << p[0] << "," << p[1] << "," << p[2];
+    const auto out = omnicam(args.str());
+    ASSERT_EQ(out.code, 0) << out.out;
+    std::istringstream uv(out.out);
+    for (const auto& p : projected) {
+      double u = 0, v = 0;
+      uv >> u >> v;
+      EXPECT_NEAR(p[0] + 0.5, u, 1e-5);  // `project` prints 6 decimals
+      EXPECT_NEAR(p[1] + 0.5, v, 1e-5);
+    }
+  }
+}
+
+TEST_F(DatasetCliTest, KillNineAndResumeGivesTheUninterruptedResult) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 360, "spp": 16, "shading": "lit",
+    "poses": {"path": "thesis-loop", "frames": 40})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole")).code, 0);
+
+  const pid_t pid = spawnOmnicam({"dataset", spec, "-o", path("killed")}, path("killed.log"));
+  int status = 0;
+  ASSERT_TRUE(interruptAfterFirstFrames(pid, dir_ / "killed", SIGKILL, status)) << "the run ended before it was killed";
+  ASSERT_TRUE(WIFSIGNALED(status));
+  const size_t finished = manifestFrames(dir_ / "killed");
+  ASSERT_GE(finished, 1u);
+  ASSERT_LT(finished, 40u);
+  // What a killed run can leave: a temporary file, and a frame whose file was changed since.
+  std::ofstream(dir_ / "killed/cam0/rgb/.000039.tmp-AbCdEfGhIj.png") << "partial";
+  std::ofstream(dir_ / "killed/cam0/depth/000000.exr", std::ios::trunc) << "damaged";
+
+  const auto resumed = omnicam("dataset " + spec + " -o " + path("killed"));
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("kept from an earlier run"), std::string::npos) << resumed.out;
+  EXPECT_EQ(resumed.out.find("(40 rendered, 0 kept"), std::string::npos) << "nothing was kept: " << resumed.out;
+  const auto whole = snapshot(dir_ / "whole"), killed = snapshot(dir_ / "killed");
+  ASSERT_EQ(whole.size(), killed.size());
+  for (const auto& [name, bytes] : whole) {
+    ASSERT_TRUE(killed.count(name)) << name;
+    EXPECT_TRUE(killed.at(name) == bytes) << name << " differs from the uninterrupted run";
+  }
+  EXPECT_EQ(omnicam("dataset --verify " + path("killed")).code, 0);
+}
+
+TEST_F(DatasetCliTest, CtrlCStopsCleanlyAndTheRunResumes) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 360, "spp": 16, "shading": "lit",
+    "poses": {"path": "thesis-loop", "frames": 40}, "outputs": {"normal": false})");
+  const pid_t pid = spawnOmnicam({"dataset", spec, "-o", path("ds")}, path("run.log"));
+  int status = 0;
+  ASSERT_TRUE(interruptAfterFirstFrames(pid, dir_ / "ds", SIGINT, status)) << "the run ended before Ctrl-C";
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_NE(readFile(path("run.log")).find("run the same command again to resume"), std::string::npos);
+  const auto statusOut = omnicam("dataset --status " + path("ds"));
+  EXPECT_EQ(statusOut.code, 1);
+  EXPECT_NE(statusOut.out.find("incomplete"), std::string::npos) << statusOut.out;
+  const auto verifyIncomplete = omnicam("dataset --verify " + path("ds"));
+  EXPECT_EQ(verifyIncomplete.code, 1);
+  EXPECT_NE(verifyIncomplete.out.find("incomplete"), std::string::npos);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  EXPECT_EQ(omnicam("dataset --status " + path("ds")).code, 0);
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+}
+
+TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
+  const std::string a = robocupSpec("a.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3})");
+  const std::string b = robocupSpec("b.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 4})");
+  ASSERT_EQ(omnicam("dataset " + a + " -o " + path("ds")).code, 0);
+  const auto refused = omnicam("dataset " + b + " -o " + path("ds"));
+  EXPECT_EQ(refused.code, 2);
+  EXPECT_NE(refused.out.find("holds a dataset made from a different spec"), std::string::npos) << refused.out;
+  EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 3);  // untouched
+  ASSERT_EQ(omnicam("dataset " + b + " -o " + path("ds") + " --overwrite").code, 0);
+  EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 4);
+  // A folder with other things in it and no manifest is not a dataset.
+  fs::create_directories(dir_ / "other");
+  std::ofstream(dir_ / "other/notes.txt") << "mine";
+  const auto notDataset = omnicam("dataset " + a + " -o " + path("other"));
+  EXPECT_EQ(notDataset.code, 2);
+  EXPECT_NE(notDataset.out.find("folder is not empty and has no manifest.json"), std::string::npos) << notDataset.out;
+}
+
+TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  const auto ok = omnicam("dataset --verify " + path("ds"));
+  EXPECT_EQ(ok.code, 0);
+  EXPECT_NE(ok.out.find("PASS: "), std::string::npos) << ok.out;
+  std::ofstream(dir_ / "ds/cam0/rgb/000001.png", std::ios::app) << "x";
+  fs::remove(dir_ / "ds/cam0/landmarks/000002.json");
+  const auto bad = omnicam("dataset --verify " + path("ds"));
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("cam0/rgb/000001.png: SHA-256"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("cam0/landmarks/000002.json: missing"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("FAIL: "), std::string::npos) << bad.out;
+}
+
+}  // namespace
+}  // namespace omnicam
