@@ -1,13 +1,18 @@
 // omnicam compare A B [--json] [--diff OUT.png] [--fail-psnr DB] [--fail-rmse X] [--fail-max X]
 //                     [--tol X] [--disc]
+// omnicam compare DIR_A DIR_B [--fail-psnr DB] [--report OUT.html] [--junit OUT.xml] [--json] [--tol X] [--disc]
 // Exit 0 pass, 1 over a threshold, 2 bad input. One verdict line: "PASS …" or "FAIL …", or
 // "NOTHRESHOLD …" when no --fail-* was given (nothing was checked, so nothing passed). With
 // --json, stdout holds only the JSON and the verdict line goes to stderr.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
-#include "commands.h"
 #include "atomic_file.h"
+#include "commands.h"
+#include "dataset_compare.h"
 #include "cli_util.h"
 #include "errors.h"
 #include "image_compare.h"
@@ -17,12 +22,65 @@ namespace omnicam::cli {
 namespace {
 
 struct CompareArgs {
-  std::string a, b, diff;
+  std::string a, b, diff, report, junit;
   bool json = false, disc = false;
   double failPsnr = -1.0, failRmse = -1.0, failMax = -1.0, tol = 1.0 / 255.0, diffScale = 0.05;
 };
 
+// Two dataset folders: every frame and camera, matched by manifest.
+int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
+  refuseUnless(cmd, "--diff", false, "two images (datasets: --report shows heat maps of the worst frames)");
+  refuseUnless(cmd, "--fail-rmse", false, "two images");
+  refuseUnless(cmd, "--fail-max", false, "two images");
+  refuseUnless(cmd, "--diff-scale", !args.report.empty(), "--report");
+  if (!args.report.empty()) checkOutputFile(args.report, "--report");
+  if (!args.junit.empty()) checkOutputFile(args.junit, "--junit");
+  DatasetCompareOptions options;
+  options.image.tolerance = args.tol;
+  options.image.discOnly = args.disc;
+  if (args.failPsnr >= 0.0) options.failPsnrDb = args.failPsnr;
+  options.diffScale = args.diffScale;
+  const DatasetCompareResult r = compareDatasets(args.a, args.b, options);
+  if (!args.report.empty()) writeDatasetCompareReport(args.report, args.a, args.b, r, options);
+  if (!args.junit.empty()) writeTextAtomically(args.junit, datasetCompareJUnit(args.a, args.b, r, options));
+  const bool checked = options.failPsnrDb.has_value();
+  const char* verdict = !checked ? "NOTHRESHOLD" : r.failures ? "FAIL" : "PASS";
+  if (args.json) {
+    nlohmann::json frames = nlohmann::json::array();
+    for (const FrameComparison& f : r.frames) {
+      nlohmann::json j = compareResultToJson(f.result);
+      j["frame"] = f.index;
+      j["camera"] = f.camera;
+      if (checked) j["pass"] = !f.failed;
+      frames.push_back(j);
+    }
+    nlohmann::json summary = {{"images", r.frames.size()}, {"failures", r.failures}, {"verdict", verdict},
+                              {"mean_psnr_db", std::isfinite(r.meanPsnrDb) ? nlohmann::json(r.meanPsnrDb) : nlohmann::json("inf")},
+                              {"min_psnr_db", std::isfinite(r.minPsnrDb) ? nlohmann::json(r.minPsnrDb) : nlohmann::json("inf")},
+                              {"mean_ssim", r.meanSsim}, {"max_abs", r.maxAbs}, {"frames", frames}};
+    std::printf("%s\n", summary.dump(2).c_str());
+  } else {
+    std::vector<const FrameComparison*> worst;
+    for (const FrameComparison& f : r.frames) worst.push_back(&f);
+    std::sort(worst.begin(), worst.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
+    std::printf("compared %zu images (frames x cameras)\n  mean PSNR %.2f dB  worst %.2f dB  mean SSIM %.5f  max abs %.6g\n",
+                r.frames.size(), r.meanPsnrDb, r.minPsnrDb, r.meanSsim, r.maxAbs);
+    for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
+      std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
+  }
+  std::fprintf(args.json ? stderr : stdout, "%s images=%zu failing=%d min_psnr_db=%.2f mean_psnr_db=%.2f%s\n", verdict,
+               r.frames.size(), r.failures, r.minPsnrDb, r.meanPsnrDb,
+               checked ? "" : " (no --fail-psnr given: nothing checked)");
+  return r.failures ? 1 : 0;
+}
+
 int runCompare(const CompareArgs& args, const CLI::App& cmd) {
+  std::error_code ec;
+  const bool folderA = std::filesystem::is_directory(args.a, ec), folderB = std::filesystem::is_directory(args.b, ec);
+  if (folderA != folderB) throw InputError("compare: give two images or two dataset folders (got one of each)");
+  if (folderA) return runDatasetCompare(args, cmd);
+  refuseUnless(cmd, "--report", false, "two dataset folders");
+  refuseUnless(cmd, "--junit", false, "two dataset folders");
   refuseUnless(cmd, "--diff-scale", !args.diff.empty(), "--diff");
   if (!args.diff.empty()) {
     if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + args.diff + ": must end in .png or .exr");
@@ -59,14 +117,16 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
 
 void addCompareCommand(CLI::App& app, int& exitCode) {
   auto args = std::make_shared<CompareArgs>();
-  CLI::App* cmd = app.add_subcommand("compare", "Compare two images pixel by pixel (PASS/FAIL, exit 0/1)");
-  cmd->add_option("a", args->a, "First image (EXR or PNG)")->required();
-  cmd->add_option("b", args->b, "Second image")->required();
+  CLI::App* cmd = app.add_subcommand("compare", "Compare two images, or two datasets frame by frame (PASS/FAIL, exit 0/1)");
+  cmd->add_option("a", args->a, "First image (EXR or PNG), or dataset folder")->required();
+  cmd->add_option("b", args->b, "Second image, or dataset folder (with a manifest, or in the dataset layout)")->required();
+  cmd->add_option("--report", args->report, "Datasets: write an HTML report (worst frames with heat maps)");
+  cmd->add_option("--junit", args->junit, "Datasets: write JUnit XML, one test case per frame and camera");
   cmd->add_flag("--json", args->json, "Print the metrics as JSON");
   cmd->add_option("--diff", args->diff, "Write a difference heat map (PNG/EXR)");
-  cmd->add_option("--diff-scale", args->diffScale, "Difference shown as white in the heat map (default 0.05)")
+  cmd->add_option("--diff-scale", args->diffScale, "Difference shown as white in heat maps (default 0.05)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--fail-psnr", args->failPsnr, "Fail below this PSNR (dB)");
+  cmd->add_option("--fail-psnr", args->failPsnr, "Fail below this PSNR (dB); datasets: any frame below");
   cmd->add_option("--fail-rmse", args->failRmse, "Fail above this RMSE");
   cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error");
   cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(CLI::NonNegativeNumber);

@@ -305,5 +305,59 @@ TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   EXPECT_NE(bad.out.find("FAIL: "), std::string::npos) << bad.out;
 }
 
+TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
+  const std::string poses = R"("size": 96, "spp": 4, "poses": {"list": [[0.5, 0.3, 20], [-1.2, 0.8, 200]]})";
+  const std::string fast = robocupSpec("fast.json", R"("engine": "fast", "outputs": {"rgb": "exr"}, )" + poses);
+  const std::string povray = robocupSpec("povray.json", R"("engine": "povray", "outputs": {"rgb": "exr"}, )" + poses);
+  const std::string lit = robocupSpec("lit.json", R"("shading": "lit", "outputs": {"rgb": "exr"}, )" + poses);
+  const std::string moved = robocupSpec("moved.json", R"("size": 96, "spp": 4, "poses": {"list": [[0.5, 0.3, 20], [-1.2, 0.8, 201]]})");
+  ASSERT_EQ(omnicam("dataset " + fast + " -o " + path("fast")).code, 0);
+  const auto gt = omnicam("dataset " + povray + " -o " + path("povray"));
+  ASSERT_EQ(gt.code, 0) << gt.out;
+  EXPECT_NE(gt.out.find("writes RGB only"), std::string::npos) << gt.out;
+  EXPECT_EQ(json::parse(readFile(dir_ / "povray/manifest.json"))["outputs"]["written"], json({"rgb", "landmarks"}));
+
+  // Fast against POV-Ray ground truth: every frame above 45 dB.
+  const auto pass = omnicam("compare " + path("fast") + " " + path("povray") + " --fail-psnr 45 --report " +
+                            path("report.html") + " --junit " + path("junit.xml"));
+  EXPECT_EQ(pass.code, 0) << pass.out;
+  EXPECT_NE(pass.out.find("PASS images=2 failing=0"), std::string::npos) << pass.out;
+  const std::string junit = readFile(dir_ / "junit.xml");
+  EXPECT_NE(junit.find("tests=\"2\" failures=\"0\""), std::string::npos) << junit;
+  EXPECT_NE(readFile(dir_ / "report.html").find("Worst frames"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "report_files/000000_cam0_diff.png"));
+
+  // Lit against unlit: same poses, different images — every frame fails, exit 1.
+  ASSERT_EQ(omnicam("dataset " + lit + " -o " + path("lit")).code, 0);
+  const auto fail = omnicam("compare " + path("fast") + " " + path("lit") + " --fail-psnr 45 --junit " + path("fail.xml"));
+  EXPECT_EQ(fail.code, 1) << fail.out;
+  EXPECT_NE(fail.out.find("FAIL images=2 failing=2"), std::string::npos) << fail.out;
+  EXPECT_NE(readFile(dir_ / "fail.xml").find("<failure message=\"PSNR"), std::string::npos);
+  // No threshold: nothing checked, said so.
+  const auto none = omnicam("compare " + path("fast") + " " + path("lit"));
+  EXPECT_EQ(none.code, 0);
+  EXPECT_NE(none.out.find("NOTHRESHOLD"), std::string::npos);
+
+  // Different poses: a clear error naming the frame, exit 2.
+  ASSERT_EQ(omnicam("dataset " + moved + " -o " + path("moved")).code, 0);
+  const auto mismatch = omnicam("compare " + path("fast") + " " + path("moved") + " --fail-psnr 45");
+  EXPECT_EQ(mismatch.code, 2);
+  EXPECT_NE(mismatch.out.find("frame 1 camera cam0: pose"), std::string::npos) << mismatch.out;
+
+  // A user's own frames in the dataset layout, without a manifest: matched by path.
+  fs::create_directories(dir_ / "mine/cam0/rgb");
+  for (const char* name : {"000000.exr", "000001.exr"})
+    fs::copy_file(dir_ / "povray/cam0/rgb" / name, dir_ / "mine/cam0/rgb" / name);
+  EXPECT_EQ(omnicam("compare " + path("fast") + " " + path("mine") + " --fail-psnr 45").code, 0);
+  fs::remove(dir_ / "mine/cam0/rgb/000001.exr");
+  const auto missing = omnicam("compare " + path("fast") + " " + path("mine") + " --fail-psnr 45");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.out.find("no image cam0/rgb/000001.png or .exr"), std::string::npos) << missing.out;
+
+  const auto mixed = omnicam("compare " + path("fast") + " " + path("povray/cam0/rgb/000000.exr"));
+  EXPECT_EQ(mixed.code, 2);
+  EXPECT_NE(mixed.out.find("give two images or two dataset folders"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace omnicam

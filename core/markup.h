@@ -1,0 +1,27 @@
+#pragma once
+// Text spliced into generated HTML reports and JUnit XML is escaped here: names come from users'
+// scenes and specs.
+#include <string>
+
+namespace omnicam {
+
+// &, <, >, " and ' as entities; control characters other than tab and newline dropped (XML 1.0
+// forbids them).
+inline std::string escapeMarkup(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (char ch : text) {
+    switch (ch) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&#39;"; break;
+      default:
+        if (static_cast<unsigned char>(ch) >= 0x20 || ch == '\t' || ch == '\n') out += ch;
+    }
+  }
+  return out;
+}
+
+}  // namespace omnicam

@@ -1,0 +1,202 @@
+#include "dataset_compare.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "errors.h"
+#include "manifest.h"
+#include "markup.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPoseTolerance = 1e-9;
+
+std::string poseText(const RobotPose& p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g°)", p.x, p.y, p.yawDeg);
+  return text;
+}
+
+bool samePose(const RobotPose& a, const RobotPose& b) {
+  return std::abs(a.x - b.x) <= kPoseTolerance && std::abs(a.y - b.y) <= kPoseTolerance &&
+         std::abs(a.yawDeg - b.yawDeg) <= kPoseTolerance;
+}
+
+// B's image for A's `relative` path when B has no manifest: the same path, .png or .exr.
+std::string layoutFile(const std::string& dirB, const std::string& relative) {
+  for (const char* ext : {".png", ".exr"}) {
+    const std::string candidate = fs::path(relative).replace_extension(ext).string();
+    std::error_code ec;
+    if (fs::is_regular_file(fs::path(dirB) / candidate, ec)) return candidate;
+  }
+  throw InputError(dirB + ": no image " + fs::path(relative).replace_extension("").string() +
+                   ".png or .exr for frame of " + relative + " (a folder without manifest.json must follow the dataset layout)");
+}
+
+std::string frameLabel(const FrameComparison& f) {
+  char text[96];
+  std::snprintf(text, sizeof text, "frame %06d %s", f.index, f.camera.c_str());
+  return text;
+}
+
+std::string psnrText(double psnr) {
+  if (std::isinf(psnr)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", psnr);
+  return text;
+}
+
+}  // namespace
+
+DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
+                                     const DatasetCompareOptions& options) {
+  const DatasetManifest a = readManifest(dirA);
+  std::error_code ec;
+  if (!fs::is_directory(dirB, ec)) throw InputError(dirB + ": not a folder");
+  std::optional<DatasetManifest> b;
+  if (fs::exists(fs::path(dirB) / kManifestName, ec)) b = readManifest(dirB);
+  DatasetCompareResult result;
+  if (b) {
+    std::vector<int> onlyA, onlyB;
+    for (const auto& [index, frame] : a.frames)
+      if (!b->frames.count(index)) onlyA.push_back(index);
+    for (const auto& [index, frame] : b->frames)
+      if (!a.frames.count(index)) onlyB.push_back(index);
+    if (!onlyA.empty() || !onlyB.empty())
+      throw InputError(dirB + ": frames do not match " + dirA + ": " + std::to_string(onlyA.size()) + " only in A (first " +
+                       (onlyA.empty() ? "-" : std::to_string(onlyA[0])) + "), " + std::to_string(onlyB.size()) +
+                       " only in B (first " + (onlyB.empty() ? "-" : std::to_string(onlyB[0])) + ")");
+  }
+  for (const auto& [index, frame] : a.frames) {
+    for (const auto& [camera, files] : frame.cameras) {
+      FrameComparison f;
+      f.index = index;
+      f.camera = camera;
+      const auto rgb = files.files.find("rgb");
+      if (rgb == files.files.end()) throw InputError(dirA + ": frame " + std::to_string(index) + " " + camera + ": no rgb file");
+      f.fileA = rgb->second.path;
+      if (b) {
+        const FrameRecord& other = b->frames.at(index);
+        const auto cam = other.cameras.find(camera);
+        if (cam == other.cameras.end())
+          throw InputError(dirB + ": frame " + std::to_string(index) + " has no camera \"" + camera + "\" (A has it)");
+        if (!samePose(cam->second.pose, files.pose))
+          throw InputError(dirB + ": frame " + std::to_string(index) + " camera " + camera + ": pose " +
+                           poseText(cam->second.pose) + " differs from A's " + poseText(files.pose));
+        const auto rgbB = cam->second.files.find("rgb");
+        if (rgbB == cam->second.files.end())
+          throw InputError(dirB + ": frame " + std::to_string(index) + " " + camera + ": no rgb file");
+        f.fileB = rgbB->second.path;
+      } else {
+        f.fileB = layoutFile(dirB, f.fileA);
+      }
+      result.frames.push_back(f);
+    }
+    if (b && b->frames.at(index).cameras.size() != frame.cameras.size())
+      throw InputError(dirB + ": frame " + std::to_string(index) + " has " + std::to_string(b->frames.at(index).cameras.size()) +
+                       " cameras, A has " + std::to_string(frame.cameras.size()));
+  }
+  if (result.frames.empty()) throw InputError(dirA + ": no finished frames to compare");
+  tbb::parallel_for(size_t{0}, result.frames.size(), [&](size_t k) {
+    FrameComparison& f = result.frames[k];
+    f.result = compareImages(readImage((fs::path(dirA) / f.fileA).string()), readImage((fs::path(dirB) / f.fileB).string()),
+                             options.image);
+    f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
+  });
+  result.minPsnrDb = std::numeric_limits<double>::infinity();
+  double finiteSum = 0.0;
+  int finite = 0;
+  for (const FrameComparison& f : result.frames) {
+    result.failures += f.failed;
+    result.minPsnrDb = std::min(result.minPsnrDb, f.result.psnrDb);
+    result.meanSsim += f.result.ssim / result.frames.size();
+    result.maxAbs = std::max(result.maxAbs, f.result.maxAbs);
+    if (std::isfinite(f.result.psnrDb)) finiteSum += f.result.psnrDb, ++finite;
+  }
+  result.meanPsnrDb = finite ? finiteSum / finite : std::numeric_limits<double>::infinity();
+  return result;
+}
+
+void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
+                               const DatasetCompareResult& result, const DatasetCompareOptions& options) {
+  const fs::path report(reportPath);
+  const std::string assetsName = report.stem().string() + "_files";
+  const fs::path assets = report.parent_path() / assetsName;
+  std::error_code ec;
+  fs::create_directories(assets, ec);
+  if (ec) throw OutputError("--report: " + assets.string() + ": cannot create folder (" + ec.message() + ")");
+  std::vector<const FrameComparison*> order;
+  for (const FrameComparison& f : result.frames) order.push_back(&f);
+  std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
+
+  std::ostringstream html;
+  html << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam dataset comparison</title><style>"
+          "body{font-family:sans-serif;margin:2em}td,th{padding:2px 8px;text-align:right}"
+          "td:first-child,th:first-child{text-align:left}.fail{color:#b00;font-weight:bold}"
+          "figure{display:inline-block;margin:4px}img{width:240px;image-rendering:pixelated}</style></head><body>"
+       << "<h1>Dataset comparison</h1><p>A: <code>" << escapeMarkup(dirA) << "</code><br>B: <code>" << escapeMarkup(dirB)
+       << "</code></p><p>" << result.frames.size() << " images compared; mean PSNR " << psnrText(result.meanPsnrDb)
+       << " dB, worst " << psnrText(result.minPsnrDb) << " dB, mean SSIM " << result.meanSsim << ", max abs "
+       << result.maxAbs;
+  if (options.failPsnrDb)
+    html << "; threshold " << *options.failPsnrDb << " dB: <span class=\"" << (result.failures ? "fail" : "") << "\">"
+         << result.failures << " failing</span>";
+  html << "</p><h2>Worst frames</h2><p>Heat map: |A − B| (max over channels), black 0 → white at " << options.diffScale
+       << ".</p>";
+  const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
+  for (size_t k = 0; k < worst; ++k) {
+    const FrameComparison& f = *order[k];
+    const ImageRGBA imageA = readImage((fs::path(dirA) / f.fileA).string());
+    const ImageRGBA imageB = readImage((fs::path(dirB) / f.fileB).string());
+    char stem[96];
+    std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
+    const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};
+    writeImageAtomic((assets / names[0]).string(), imageA);
+    writeImageAtomic((assets / names[1]).string(), imageB);
+    writeImageAtomic((assets / names[2]).string(), differenceHeatmap(imageA, imageB, options.diffScale));
+    html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
+    const char* captions[3] = {"A", "B", "|A − B|"};
+    for (int i = 0; i < 3; ++i)
+      html << "<figure><img src=\"" << escapeMarkup(assetsName + "/" + names[i]) << "\"><figcaption>" << captions[i]
+           << "</figcaption></figure>";
+  }
+  html << "<h2>All frames</h2><table><tr><th>frame</th><th>camera</th><th>PSNR (dB)</th><th>SSIM</th><th>RMSE</th>"
+          "<th>max abs</th></tr>";
+  for (const FrameComparison& f : result.frames)
+    html << "<tr" << (f.failed ? " class=\"fail\"" : "") << "><td>" << f.index << "</td><td>" << escapeMarkup(f.camera)
+         << "</td><td>" << psnrText(f.result.psnrDb) << "</td><td>" << f.result.ssim << "</td><td>" << f.result.rmse
+         << "</td><td>" << f.result.maxAbs << "</td></tr>";
+  html << "</table></body></html>\n";
+  writeTextAtomically(reportPath, html.str());
+}
+
+std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB, const DatasetCompareResult& result,
+                                const DatasetCompareOptions& options) {
+  std::ostringstream xml;
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n<testsuite name=\"omnicam compare "
+      << escapeMarkup(dirA) << " vs " << escapeMarkup(dirB) << "\" tests=\"" << result.frames.size() << "\" failures=\""
+      << result.failures << "\" errors=\"0\">\n";
+  for (const FrameComparison& f : result.frames) {
+    xml << "  <testcase classname=\"" << escapeMarkup(f.camera) << "\" name=\"" << escapeMarkup(frameLabel(f)) << "\">";
+    if (f.failed)
+      xml << "\n    <failure message=\"PSNR " << psnrText(f.result.psnrDb) << " dB below " << *options.failPsnrDb
+          << " dB\">" << escapeMarkup(f.fileA + " vs " + f.fileB) << "</failure>\n  ";
+    xml << "<system-out>psnr_db=" << psnrText(f.result.psnrDb) << " ssim=" << f.result.ssim << " rmse=" << f.result.rmse
+        << " max_abs=" << f.result.maxAbs << "</system-out></testcase>\n";
+  }
+  xml << "</testsuite>\n</testsuites>\n";
+  return xml.str();
+}
+
+}  // namespace omnicam

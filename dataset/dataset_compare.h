@@ -1,0 +1,46 @@
+#pragma once
+// Dataset against dataset, frame by frame (omnicam compare DIR_A DIR_B): the RGB of every frame
+// and camera of A against the same frame and camera of B. Frames are matched by manifest — the
+// same frame indices, cameras and poses, or an InputError saying what differs. B may also be a
+// folder without a manifest (a user's own simulator, rendered at the poses of A's poses.tum):
+// its images are then found at A's relative paths, as .png or .exr.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image_compare.h"
+
+namespace omnicam {
+
+struct DatasetCompareOptions {
+  CompareOptions image;
+  std::optional<double> failPsnrDb;  // a frame below fails
+  int worstFrames = 6;               // shown with heat maps in the report
+  double diffScale = 0.05;
+};
+
+struct FrameComparison {
+  int index = 0;
+  std::string camera, fileA, fileB;  // relative paths
+  CompareResult result;
+  bool failed = false;
+};
+
+struct DatasetCompareResult {
+  std::vector<FrameComparison> frames;  // in frame, then camera order
+  int failures = 0;
+  double meanPsnrDb = 0.0, minPsnrDb = 0.0, meanSsim = 0.0, maxAbs = 0.0;
+};
+
+DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
+                                     const DatasetCompareOptions& options);
+
+// An HTML page: summary, worst frames with A, B and the difference heat map, every frame's row.
+// Images go to "<report without .html>_files/".
+void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
+                               const DatasetCompareResult& result, const DatasetCompareOptions& options);
+// JUnit XML: one test case per frame and camera, failing below --fail-psnr.
+std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB, const DatasetCompareResult& result,
+                                const DatasetCompareOptions& options);
+
+}  // namespace omnicam
