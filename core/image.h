@@ -45,7 +45,9 @@ struct DataImage {
 };
 // A float32 OpenEXR (zip, no DateTime: identical values give identical bytes). Channel names:
 // "Z" for one channel, "X", "Y", "Z" for three.
-std::vector<unsigned char> encodeDataExr(const std::string& path, const DataImage& image);
+// `values`: width × height × channels floats, row-major (not copied).
+std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
+                                         const float* values);
 // A 16-bit single-channel PNG holding `values` exactly.
 std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,
                                            const std::vector<uint16_t>& values);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <tbb/parallel_for.h>
 
 #include "atomic_file.h"
 #include "errors.h"
@@ -31,6 +32,9 @@ namespace {
 constexpr double kManifestIntervalSeconds = 1.0;
 // Frames a batching engine (Blender) renders per session.
 constexpr int kBatchFrames = 50;
+// Frames the fast engine renders at once: enough to keep every core busy between the serial
+// parts (writing, the manifest), few enough that a stop request is honoured quickly.
+constexpr int kConcurrentFrames = 8;
 
 struct CameraSetup {
   const DatasetCamera* camera;
@@ -259,42 +263,56 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   if (options.onStart) options.onStart(result.kept, result.frames);
   auto lastManifest = std::chrono::steady_clock::now();
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
-  const size_t batch = engine->batches() ? kBatchFrames : 1;
+  // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
+  // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
+  const size_t batch = engine->batches() ? kBatchFrames : engine->concurrent() ? kConcurrentFrames : 1;
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);
-    // RGB for this batch, camera by camera (a batching engine renders a camera's poses in one session).
     std::vector<std::vector<ImageRGBA>> rgb(setups.size());
-    for (size_t c = 0; c < setups.size(); ++c) {
-      const RenderSettings settings{setups[c].rig, spec.spp, spec.shading};
-      std::vector<RobotPose> batchPoses;
-      for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*setups[c].camera, poses[todo[k]]));
-      rgb[c] = batch > 1 ? engine->renderMany(batchPoses, settings)
-                         : std::vector<ImageRGBA>{engine->render(batchPoses.front(), settings)};
+    if (engine->batches()) {
+      for (size_t c = 0; c < setups.size(); ++c) {
+        std::vector<RobotPose> batchPoses;
+        for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*setups[c].camera, poses[todo[k]]));
+        rgb[c] = engine->renderMany(batchPoses, {setups[c].rig, spec.spp, spec.shading});
+      }
     }
-    for (size_t k = start; k < end; ++k) {
-      const int index = todo[k];
-      FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, poses[index], {}};
+    // Frame k of the batch: every camera's files, encoded in memory, hashed and written.
+    std::vector<FrameRecord> records(end - start);
+    auto renderFrame = [&](size_t k) {
+      const int index = todo[start + k];
+      FrameRecord& record = records[k];
+      record = {index, static_cast<double>(index) * spec.frameIntervalSeconds, poses[index], {}};
       for (size_t c = 0; c < setups.size(); ++c) {
         const RenderSettings settings{setups[c].rig, spec.spp, spec.shading};
         const RobotPose pose = cameraPose(*setups[c].camera, poses[index]);
+        AovFrame aovs;
+        const ImageRGBA image = !rgb[c].empty() ? std::move(rgb[c][k])
+                                : plan.anyAov() ? engine->render(pose, settings, aovs)
+                                                : engine->render(pose, settings);
         CameraFrame cameraFrame{pose, {}};
-        for (EncodedFile& file : encodeFrameOutputs(scene, *engine, rays.get(), settings, setups[c].camera->name, index,
-                                                    pose, rgb[c][k - start], plan, classOfInstance)) {
+        for (EncodedFile& file : encodeFrameOutputs(scene, rays.get(), settings, setups[c].camera->name, index, pose,
+                                                    image, plan.anyAov() ? &aovs : nullptr, plan, classOfInstance)) {
           writeDatasetFile(dir, file.relativePath, file.bytes);
           cameraFrame.files[file.kind] = {file.relativePath, sha256OfBytes(file.bytes)};
         }
         record.cameras[setups[c].camera->name] = std::move(cameraFrame);
       }
-      manifest.frames[index] = std::move(record);
+    };
+    if (engine->concurrent()) {
+      tbb::parallel_for(size_t{0}, end - start, renderFrame);
+    } else {
+      for (size_t k = 0; k < end - start; ++k) renderFrame(k);
+    }
+    for (size_t k = 0; k < end - start; ++k) {
+      manifest.frames[records[k].index] = std::move(records[k]);
       ++result.rendered;
       ++done;
-      const auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
-        writeManifest(options.dir, manifest);
-        lastManifest = now;
-      }
       if (options.onFrame) options.onFrame(done, result.frames);
-      if (stop()) break;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
+      writeManifest(options.dir, manifest);
+      lastManifest = now;
     }
   }
   result.stopped = done < result.frames;

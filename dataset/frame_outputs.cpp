@@ -26,18 +26,17 @@ std::string frameFilePath(const std::string& camera, const std::string& kind, in
   return camera + "/" + kind + "/" + name;
 }
 
-std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, Engine& engine, const RayScene* rays,
-                                            const RenderSettings& settings, const std::string& camera,
-                                            int index, const RobotPose& pose, const ImageRGBA& rgb,
-                                            const FrameOutputPlan& plan, const std::vector<uint16_t>& classOfInstance) {
+std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* rays, const RenderSettings& settings,
+                                            const std::string& camera, int index, const RobotPose& pose,
+                                            const ImageRGBA& rgb, const AovFrame* aov, const FrameOutputPlan& plan,
+                                            const std::vector<uint16_t>& classOfInstance) {
   std::vector<EncodedFile> files;
   auto add = [&](const std::string& kind) -> EncodedFile& {
     files.push_back({kind, frameFilePath(camera, kind, index, plan), {}});
     return files.back();
   };
   add("rgb");
-  std::optional<AovFrame> aov;
-  if (plan.anyAov()) aov = engine.renderAovs(pose, settings);
+  if (plan.anyAov() && !aov) throw std::logic_error("encodeFrameOutputs: AOVs asked for but not rendered");
   if (plan.depth) add("depth");
   if (plan.instance) add("instance");
   if (plan.semantic) add("semantic");
@@ -49,9 +48,9 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, Engine& engine, 
     if (file.kind == "rgb") {
       file.bytes = asString(encodeImage(file.relativePath, rgb));
     } else if (file.kind == "depth") {
-      file.bytes = asString(encodeDataExr(file.relativePath, {aov->width, aov->height, 1, aov->depth}));
+      file.bytes = asString(encodeDataExr(file.relativePath, aov->width, aov->height, 1, aov->depth.data()));
     } else if (file.kind == "normal") {
-      file.bytes = asString(encodeDataExr(file.relativePath, {aov->width, aov->height, 3, aov->normal}));
+      file.bytes = asString(encodeDataExr(file.relativePath, aov->width, aov->height, 3, aov->normal.data()));
     } else if (file.kind == "instance") {
       file.bytes = asString(encodeUint16Png(file.relativePath, aov->width, aov->height, aov->instance));
     } else if (file.kind == "semantic") {

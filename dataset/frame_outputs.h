@@ -27,12 +27,12 @@ struct FrameOutputPlan {
 // "<camera>/<kind>/NNNNNN.<ext>" for frame `index`.
 std::string frameFilePath(const std::string& camera, const std::string& kind, int index, const FrameOutputPlan& plan);
 
-// Encodes the outputs of one camera's frame. `rgb` is the engine's render; AOVs come from
-// `engine` (the fast engine) and landmarks from `rays` (both only when the plan asks).
+// Encodes the outputs of one camera's frame: `rgb` and `aovs` as the engine rendered them (aovs
+// may be null when the plan asks for none); landmarks from `rays` when the plan asks.
 // `classOfInstance[i]` is the semantic class id of instance id i.
-std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, Engine& engine, const RayScene* rays,
-                                            const RenderSettings& settings, const std::string& camera,
-                                            int index, const RobotPose& pose, const ImageRGBA& rgb,
-                                            const FrameOutputPlan& plan, const std::vector<uint16_t>& classOfInstance);
+std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* rays, const RenderSettings& settings,
+                                            const std::string& camera, int index, const RobotPose& pose,
+                                            const ImageRGBA& rgb, const AovFrame* aovs, const FrameOutputPlan& plan,
+                                            const std::vector<uint16_t>& classOfInstance);
 
 }  // namespace omnicam

@@ -1,28 +1,14 @@
 #pragma once
-// Per-pixel ground truth beside the colour image ("arbitrary output variables"): what each pixel
-// centre's viewing ray hits. Point-sampled at the pixel centre (i + 0.5, j + 0.5), never
-// averaged, so no value is blended across a depth or object edge. Pixels whose centre lies
-// beyond the mirror rim, or whose ray hits nothing, hold 0 everywhere.
-#include <cstdint>
-#include <vector>
-
+// The AOVs of a pose on their own (FastRenderer::render(pose, settings, &aovs) gives them with
+// the colour image in one pass). See aov_frame.h for what they hold.
+#include "aov_frame.h"
 #include "fast_renderer.h"
 
 namespace omnicam {
 
-struct AovFrame {
-  int width = 0, height = 0;
-  std::vector<float> depth;        // metres from F' along the viewing ray (not a per-face z)
-  std::vector<uint16_t> instance;  // 1 + index into Scene::objects
-  std::vector<float> normal;       // world-frame unit geometric normal facing F', 3 per pixel
-};
-
-// The largest scene whose objects all get their own 16-bit instance id.
-inline constexpr size_t kMaxInstances = 65535;
-
 // Renders the AOVs of `pose` with the scene of `renderer`, whose settings' rig gives the camera.
-// Rows in parallel; the result does not depend on the thread count. Throws InputError for a
-// scene with more than kMaxInstances objects or bad settings.
+// Rows in parallel; the result does not depend on the thread count, nor on settings.spp. Throws
+// InputError for a scene with more than kMaxInstances objects or bad settings.
 AovFrame renderAovs(const FastRenderer& renderer, const RobotPose& pose, const RenderSettings& settings);
 
 }  // namespace omnicam

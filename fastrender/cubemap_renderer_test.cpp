@@ -60,16 +60,16 @@ Scene texturedRoom() {
   for (int k = 0; k < 8 * 8; ++k)  // a fixed pseudo-random 8×8 texture
     for (int c = 0; c < 3; ++c) rgb.push_back(static_cast<float>((k * 37 + c * 101) % 97) / 96.0f);
   const auto texture = std::make_shared<Texture>(8, 8, rgb);
-  s.materials.push_back({"floor", {1.0f, 0.9f, 0.8f}, texture, "t.png", {3, 2}, 0.2f, 0.8f});
-  s.materials.push_back({"wall", {0.2f, 0.5f, 0.9f}, nullptr, "", {1, 1}, 0.2f, 0.8f});
-  s.materials.push_back({"poster", {1.0f, 1.0f, 1.0f}, texture, "t.png", {1, 1}, 0.2f, 0.8f});
-  s.materials.push_back({"box", {0.9f, 0.3f, 0.1f}, nullptr, "", {1, 1}, 0.2f, 0.8f});
-  s.objects.push_back({"floor", 0, Quad{{-2, -2, 0}, {4, 0, 0}, {0, 4, 0}}});
-  s.objects.push_back({"north", 1, Quad{{-2, 2, 0}, {4, 0, 0}, {0, 0, 0.6}}});
-  s.objects.push_back({"south", 1, Quad{{-2, -2, 0}, {4, 0, 0}, {0, 0, 0.6}}});
-  s.objects.push_back({"west", 1, Quad{{-2, -2, 0}, {0, 4, 0}, {0, 0, 0.6}}});
-  s.objects.push_back({"east", 2, Quad{{2, -2, 0}, {0, 4, 0}, {0, 0, 0.6}}});
-  s.objects.push_back({"box", 3, Box{{0.8, 0.5, 0.15}, {0.3, 0.4, 0.3}, 20.0}});
+  s.materials.push_back({"floor", {1.0f, 0.9f, 0.8f}, texture, "t.png", {3, 2}, 0.2f, 0.8f, ""});
+  s.materials.push_back({"wall", {0.2f, 0.5f, 0.9f}, nullptr, "", {1, 1}, 0.2f, 0.8f, ""});
+  s.materials.push_back({"poster", {1.0f, 1.0f, 1.0f}, texture, "t.png", {1, 1}, 0.2f, 0.8f, ""});
+  s.materials.push_back({"box", {0.9f, 0.3f, 0.1f}, nullptr, "", {1, 1}, 0.2f, 0.8f, ""});
+  s.objects.push_back({"floor", 0, Quad{{-2, -2, 0}, {4, 0, 0}, {0, 4, 0}}, ""});
+  s.objects.push_back({"north", 1, Quad{{-2, 2, 0}, {4, 0, 0}, {0, 0, 0.6}}, ""});
+  s.objects.push_back({"south", 1, Quad{{-2, -2, 0}, {4, 0, 0}, {0, 0, 0.6}}, ""});
+  s.objects.push_back({"west", 1, Quad{{-2, -2, 0}, {0, 4, 0}, {0, 0, 0.6}}, ""});
+  s.objects.push_back({"east", 2, Quad{{2, -2, 0}, {0, 4, 0}, {0, 0, 0.6}}, ""});
+  s.objects.push_back({"box", 3, Box{{0.8, 0.5, 0.15}, {0.3, 0.4, 0.3}, 20.0}, ""});
   s.background = {0.3f, 0.3f, 0.3f};
   return s;
 }
@@ -99,7 +99,7 @@ TEST(CubeMap, RasterisedTexturedFacesMatchRayCastFaces) {
   std::printf("textured vs untextured: PSNR %.2f dB\n", plainPsnr);
   EXPECT_LT(plainPsnr, 25.0);
 
-  for (int k = 0; k < 300; ++k) room.materials.push_back({"unused", {0.5f, 0.5f, 0.5f}, nullptr, "", {1, 1}, 0.2f, 0.8f});
+  for (int k = 0; k < 300; ++k) room.materials.push_back({"unused", {0.5f, 0.5f, 0.5f}, nullptr, "", {1, 1}, 0.2f, 0.8f, ""});
   const FastRenderer manyFast(room);
   const CubeMapRenderer manyCube(manyFast);
   EXPECT_LT(compareImages(rasterised, manyCube.render(pose, settings, raster)).maxAbs, 1e-5);
@@ -151,8 +151,8 @@ TEST(CubeMap, ThesisMeshBendsIncidenceRingsLessWithMorePolygons) {
 // A white sky all around: what five faces miss shows as black.
 Scene skyScene() {
   Scene s;
-  s.materials.push_back({"sky", {1.0f, 1.0f, 1.0f}, nullptr, "", {1, 1}, 1.0f, 0.0f});
-  s.objects.push_back({"sky", 0, Sphere{{0, 0, 0.4}, 50.0}});
+  s.materials.push_back({"sky", {1.0f, 1.0f, 1.0f}, nullptr, "", {1, 1}, 1.0f, 0.0f, ""});
+  s.objects.push_back({"sky", 0, Sphere{{0, 0, 0.4}, 50.0}, ""});
   return s;
 }
 

@@ -60,15 +60,25 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
   table->rig = rig;
   table->samplesPerAxis = n;
   const OmniCamera camera = rig.camera();
-  table->firstSample.reserve(static_cast<size_t>(camera.width()) * camera.height() + 1);
+  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  table->firstSample.reserve(pixels + 1);
+  table->centreDirections.reserve(pixels);
+  table->centreSample.reserve(pixels);
   for (int j = 0; j < camera.height(); ++j)
     for (int i = 0; i < camera.width(); ++i) {
       table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
+      uint32_t centre = SampleTable::kNoSample;
       for (int b = 0; b < n; ++b)
         for (int a = 0; a < n; ++a) {
           const Vec2 raster(i + (a + 0.5) / n, j + (b + 0.5) / n);
-          if (camera.insideRim(raster)) table->directions.push_back(camera.cameraFromRaster(raster).cast<float>());
+          if (!camera.insideRim(raster)) continue;
+          if (2 * a + 1 == n && 2 * b + 1 == n) centre = static_cast<uint32_t>(table->directions.size());
+          table->directions.push_back(camera.cameraFromRaster(raster).cast<float>());
         }
+      const Vec2 middle(i + 0.5, j + 0.5);
+      table->centreDirections.push_back(camera.insideRim(middle) ? Eigen::Vector3f(camera.cameraFromRaster(middle).cast<float>())
+                                                                  : Eigen::Vector3f::Constant(NAN));
+      table->centreSample.push_back(centre);
     }
   table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
   table_ = table;
@@ -76,6 +86,60 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
 }
 
 ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings) const {
+  return renderPass(pose, settings, nullptr);
+}
+
+ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const {
+  prepareAovs(settings, aovs);
+  return renderPass(pose, settings, &aovs);
+}
+
+void FastRenderer::prepareAovs(const RenderSettings& settings, AovFrame& aovs) const {
+  if (scene_.objects.size() > kMaxInstances)
+    throw InputError(scene_.path + ": " + std::to_string(scene_.objects.size()) +
+                     " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
+  aovs.width = aovs.height = settings.rig.imageSize;
+  const size_t pixels = static_cast<size_t>(aovs.width) * aovs.height;
+  aovs.depth.assign(pixels, 0.0f);
+  aovs.instance.assign(pixels, 0);
+  aovs.normal.assign(3 * pixels, 0.0f);
+}
+
+namespace {
+
+void recordAov(AovFrame& aovs, size_t pixel, const SurfaceHit& hit, const Vec3& direction) {
+  aovs.depth[pixel] = static_cast<float>(hit.t);
+  aovs.instance[pixel] = static_cast<uint16_t>(hit.object + 1);
+  const Vec3 n = hit.normal.dot(direction) > 0.0 ? Vec3(-hit.normal) : hit.normal;  // two-sided
+  for (int c = 0; c < 3; ++c) aovs.normal[3 * pixel + c] = static_cast<float>(n[c]);
+}
+
+}  // namespace
+
+void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const {
+  RenderSettings centreOnly = settings;
+  centreOnly.spp = 1;
+  checkRenderSettings(centreOnly);
+  checkPose(pose, "--pose");
+  prepareAovs(settings, aovs);
+  const std::shared_ptr<const SampleTable> table = sampleTable(settings.rig, 1);
+  const Rigid worldFromCam = worldFromCamera(settings.rig, pose);
+  const Vec3 origin = worldFromCam.translation();
+  const Eigen::Matrix3d rotation = worldFromCam.linear();
+  tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < aovs.width; ++i) {
+        const size_t p = static_cast<size_t>(j) * aovs.width + i;
+        const Eigen::Vector3f& centre = table->centreDirections[p];
+        if (std::isnan(centre.x())) continue;
+        const Vec3 direction = rotation * centre.cast<double>();
+        SurfaceHit hit;
+        if (rays_.intersect(origin, direction, 0.0, hit)) recordAov(aovs, p, hit, direction);
+      }
+  });
+}
+
+ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const {
   checkRenderSettings(settings);
   checkPose(pose, "--pose");
   const auto n = samplesPerAxis(settings.spp);
@@ -92,8 +156,22 @@ ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& sett
         const size_t pixel = static_cast<size_t>(j) * width + i;
         const uint32_t first = table->firstSample[pixel], last = table->firstSample[pixel + 1];
         Vec3f sum = Vec3f::Zero();
-        for (uint32_t s = first; s < last; ++s)
-          sum += radiance(origin, rotation * table->directions[s].cast<double>(), settings.shading);
+        for (uint32_t s = first; s < last; ++s) {
+          const Vec3 direction = rotation * table->directions[s].cast<double>();
+          SurfaceHit hit;
+          if (!rays_.intersect(origin, direction, 0.0, hit)) {
+            sum += scene_.background;
+            continue;
+          }
+          sum += shade(hit, direction, settings.shading);
+          if (aovs && s == table->centreSample[pixel]) recordAov(*aovs, pixel, hit, direction);
+        }
+        if (aovs && table->centreSample[pixel] == SampleTable::kNoSample) {
+          const Eigen::Vector3f& centre = table->centreDirections[pixel];
+          SurfaceHit hit;
+          const Vec3 direction = rotation * centre.cast<double>();
+          if (!std::isnan(centre.x()) && rays_.intersect(origin, direction, 0.0, hit)) recordAov(*aovs, pixel, hit, direction);
+        }
         float* px = image.at(i, j);
         for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
         px[3] = static_cast<float>(last - first) * weight;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "aov_frame.h"
 #include "image.h"
 #include "ray_scene.h"
 #include "render_settings.h"
@@ -25,6 +26,12 @@ class FastRenderer {
 
   // Throws InputError if settings.spp is not a perfect square.
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) const;
+  // The same image and, in the same pass, its AOVs (aov_frame.h): at odd n the centre sample's
+  // hit is reused, at even n one more ray goes through the pixel centre. InputError also for a
+  // scene with more than kMaxInstances objects.
+  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const;
+  // Only the AOVs (settings.spp does not matter).
+  void renderAovsOnly(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const;
 
   const Scene& scene() const { return scene_; }
   const RayScene& rays() const { return rays_; }
@@ -36,11 +43,18 @@ class FastRenderer {
   // Camera-frame directions of every sample inside the rim, per pixel: they depend only on the
   // rig's image model and spp, so they are computed once and reused for every pose.
   struct SampleTable {
+    static constexpr uint32_t kNoSample = 0xffffffffu;
     RigSpec rig;
     int samplesPerAxis = 0;
     std::vector<Eigen::Vector3f> directions;  // inside-rim samples, pixel by pixel
     std::vector<uint32_t> firstSample;        // per pixel, index into directions (+1 sentinel)
+    // Per pixel: the centre's direction (NaN beyond the rim) and, at odd n, the index of the
+    // sample that is the centre (kNoSample otherwise).
+    std::vector<Eigen::Vector3f> centreDirections;
+    std::vector<uint32_t> centreSample;
   };
+  ImageRGBA renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const;
+  void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
   std::shared_ptr<const SampleTable> sampleTable(const RigSpec& rig, int samplesPerAxis) const;
 
   Vec3f shade(const SurfaceHit& hit, const Vec3& direction, Shading shading) const;

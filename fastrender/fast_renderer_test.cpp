@@ -16,8 +16,8 @@ namespace {
 // A grey floor quad under the robot, one light straight above, black sky.
 Scene floorScene(double lightHeight) {
   Scene s;
-  s.materials.push_back({"grey", {0.5f, 0.4f, 0.3f}, nullptr, "", {1, 1}, 0.25f, 0.75f});
-  s.objects.push_back({"floor", 0, Quad{{-50, -50, 0}, {100, 0, 0}, {0, 100, 0}}});
+  s.materials.push_back({"grey", {0.5f, 0.4f, 0.3f}, nullptr, "", {1, 1}, 0.25f, 0.75f, ""});
+  s.objects.push_back({"floor", 0, Quad{{-50, -50, 0}, {100, 0, 0}, {0, 100, 0}}, ""});
   s.lights.push_back({"lamp", {0.3, -0.2, lightHeight}, {1.0f, 1.0f, 1.0f}});
   return s;
 }
@@ -86,7 +86,7 @@ TEST(FastRenderer, LitShadingMatchesLambertInClosedForm) {
 TEST(FastRenderer, HardShadowsLeaveOnlyAmbient) {
   Scene s = floorScene(3.0);
   // A ball on the line from the lamp to the floor point straight below the viewpoint.
-  s.objects.push_back({"ball", 0, Sphere{{1.0, 0.0, 1.5}, 0.3}});
+  s.objects.push_back({"ball", 0, Sphere{{1.0, 0.0, 1.5}, 0.3}, ""});
   s.lights[0].position = {2.0, 0.0, 3.0};
   const FastRenderer renderer(s);
   // Floor point on the line lamp → ball centre: (0, 0, 0).
@@ -135,8 +135,8 @@ TEST(FastRenderer, TexturedFloorShowsTheSrgbDecodedBilinearTexel) {
   const std::string texPath = (dir / "t.png").string();
   writeImageAtomic(texPath, tex);
   Scene s;
-  s.materials.push_back({"tex", {1.0f, 1.0f, 1.0f}, Texture::load(texPath), "t.png", {1, 1}, 0.2f, 0.8f});
-  s.objects.push_back({"floor", 0, Quad{{-1, -1, 0}, {2, 0, 0}, {0, 2, 0}}});
+  s.materials.push_back({"tex", {1.0f, 1.0f, 1.0f}, Texture::load(texPath), "t.png", {1, 1}, 0.2f, 0.8f, ""});
+  s.objects.push_back({"floor", 0, Quad{{-1, -1, 0}, {2, 0, 0}, {0, 2, 0}}, ""});
   const FastRenderer renderer(s);
   for (const Vec2& floor : {Vec2(0.0, 0.0), Vec2(0.3, -0.55), Vec2(-0.71, 0.2)}) {
     const Vec3f got = renderer.radiance({floor.x(), floor.y(), 0.4}, {0, 0, -1}, Shading::Unlit);

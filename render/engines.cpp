@@ -17,7 +17,7 @@ std::vector<ImageRGBA> Engine::renderMany(const std::vector<RobotPose>& poses, c
   return images;
 }
 
-AovFrame Engine::renderAovs(const RobotPose&, const RenderSettings&) {
+ImageRGBA Engine::render(const RobotPose&, const RenderSettings&, AovFrame&) {
   throw std::logic_error("engine " + name() + " has no AOVs");
 }
 
@@ -33,9 +33,13 @@ class FastEngine : public Engine {
     return cubemap_.render(pose, settings, *mode_);
   }
   bool hasAovs() const override { return true; }
+  // Exact mode is a pure function of the pose; the cube-map modes keep per-render state.
+  bool concurrent() const override { return !mode_; }
   // AOVs are geometric truth: always from the exact pixel → ray map, whatever the RGB mode.
-  AovFrame renderAovs(const RobotPose& pose, const RenderSettings& settings) override {
-    return omnicam::renderAovs(renderer_, pose, settings);
+  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) override {
+    if (!mode_) return renderer_.render(pose, settings, aovs);
+    renderer_.renderAovsOnly(pose, settings, aovs);
+    return cubemap_.render(pose, settings, *mode_);
   }
   std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }

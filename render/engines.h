@@ -23,10 +23,12 @@ class Engine {
   virtual std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings);
   // Whether renderMany is cheaper than one render per pose (the caller then batches frames).
   virtual bool batches() const { return false; }
-  // Per-pixel ground truth (depth, instances, normals). Only the fast engine has it; ground
-  // truths write RGB only.
+  // Whether render and renderAovs may run for several poses at once (from different threads).
+  virtual bool concurrent() const { return false; }
+  // Per-pixel ground truth (depth, instances, normals) with the image, in one pass. Only the
+  // fast engine has it; ground truths write RGB only.
   virtual bool hasAovs() const { return false; }
-  virtual AovFrame renderAovs(const RobotPose& pose, const RenderSettings& settings);
+  virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs);
   virtual std::string name() const = 0;
   virtual std::string version() const = 0;
   // The rendering mode and its options, as sidecars and manifests record them.
