@@ -53,11 +53,14 @@ test: build fuzz-build
 demo: build
 	$(BUILD_DIR)/bin/omnicam demo -o out/demo
 
-# Frames/s of the fast renderer, then fast vs POV-Ray per frame over the 100-frame thesis-loop.
+# Frames/s of the fast renderer, fast vs POV-Ray per frame over the 100-frame thesis-loop, then
+# what a dataset frame costs and a 1000-frame dataset with all outputs against RGB only.
 bench: build
 	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
 	$(BUILD_DIR)/bin/omnicam bench --json
 	bench/povray_ratio.sh 1 100
+	$(BUILD_DIR)/bin/dataset_bench
+	bench/dataset_ratio.sh 1000
 
 clean:
 	rm -rf $(BUILD_DIR) out
