@@ -74,6 +74,8 @@ json manifestToJson(const DatasetManifest& manifest) {
 
 DatasetManifest readManifest(const std::string& dir) {
   const std::string file = (fs::path(dir) / kManifestName).string();
+  std::error_code ec;
+  if (!fs::exists(file, ec)) throw InputError(dir + ": not a dataset folder (no " + kManifestName + ")");
   json root = readJsonFile(file);
   const Reader r{file};
   if (!root.is_object() || r.string(root, "format", "manifest") != kManifestFormat)

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "errors.h"
+#include "number_format.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -97,7 +98,7 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
       }
       if (static_cast<int>(poses.size()) < r.count)
         throw InputError(spec.file + ": poses.random: found only " + std::to_string(poses.size()) + " of " +
-                         std::to_string(r.count) + " poses with " + std::to_string(r.clearance) +
+                         std::to_string(r.count) + " poses with " + shortNumber(r.clearance) +
                          " m clearance in the region after " + std::to_string(attempts) + " draws");
       return poses;
     }

@@ -206,6 +206,25 @@ def main():
     write(os.path.join(regressions, "sidecar", "rig_k_1e9.json"), json.dumps({"rig": {"mirror": {"k": 1e9}}}) + "\n")
     write(os.path.join(regressions, "sidecar", "rig_wrong_type.json"), json.dumps({"rig": {"mirror": "k"}}) + "\n")
 
+    # Dataset specs (docs/dataset-format.md) over a scene of this folder.
+    datasets = os.path.join(HERE, "datasets")
+    write(os.path.join(datasets, "box.json"),
+          scene([FLOOR, {"type": "box", "material": "grey", "center": [0, 0, 0.5], "size": [4, 4, 1]}],
+                paths=[{"name": "p", "poses": [[0, 0, 0]]}]))
+
+    def dataset_spec(name, **fields):
+        doc = {"format": "omnicam-dataset/1", "scene": "box.json", "poses": {"path": "p"}}
+        doc.update(fields)
+        write(os.path.join(datasets, name + ".json"), json.dumps(doc, indent=1) + "\n")
+    dataset_spec("spp_3", spp=3)
+    dataset_spec("camera_dotdot", cameras=[{"name": "../x"}])
+    dataset_spec("unknown_output", outputs={"depht": True})
+    dataset_spec("crowded", poses={"random": {"count": 5, "seed": 1, "region": [-1, -1, 1, 1], "clearance": 0.2}})
+    dataset_spec("no_scene", scene="missing.json")
+    dataset_spec("no_path", poses={"path": "nowhere"})
+    dataset_spec("povray_mode", engine="povray", mode="cubemap")
+    dataset_spec("camera_rig", cameras=[{"name": "c", "rig": {"height": -1}}])
+
 
 if __name__ == "__main__":
     main()
