@@ -266,6 +266,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
   const size_t batch = engine->batches() ? kBatchFrames : engine->concurrent() ? kConcurrentFrames : 1;
+  std::vector<AovFrame> aovSlots;
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);
     std::vector<std::vector<ImageRGBA>> rgb(setups.size());
@@ -276,6 +277,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
         rgb[c] = engine->renderMany(batchPoses, {setups[c].rig, spec.spp, spec.shading});
       }
     }
+    if (aovSlots.size() < end - start) aovSlots.resize(end - start);
     // Frame k of the batch: every camera's files, encoded in memory, hashed and written.
     std::vector<FrameRecord> records(end - start);
     auto renderFrame = [&](size_t k) {
@@ -285,7 +287,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
       for (size_t c = 0; c < setups.size(); ++c) {
         const RenderSettings settings{setups[c].rig, spec.spp, spec.shading};
         const RobotPose pose = cameraPose(*setups[c].camera, poses[index]);
-        AovFrame aovs;
+        AovFrame& aovs = aovSlots[k];  // the window's slot k: reused, so no fresh memory per frame
         const ImageRGBA image = !rgb[c].empty() ? std::move(rgb[c][k])
                                 : plan.anyAov() ? engine->render(pose, settings, aovs)
                                                 : engine->render(pose, settings);
