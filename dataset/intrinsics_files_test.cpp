@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <regex>
 
+#include "opencv_omnidir.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -21,12 +22,8 @@ TEST(IntrinsicsFiles, OpenCvReadsTheYamlAndReproducesOurProjection) {
   const OmniCamera camera = rig.camera();
   cv::FileStorage fs(openCvIntrinsicsYaml(camera), cv::FileStorage::READ | cv::FileStorage::MEMORY);
   ASSERT_TRUE(fs.isOpened());
-  cv::Mat K, D;
-  double xi = 0.0;
-  fs["K"] >> K;
-  fs["D"] >> D;
-  fs["xi"] >> xi;
-  EXPECT_LT(K.at<double>(1, 1), 0.0);
+  const OmnidirIntrinsics k = readOmnidirIntrinsics(fs);
+  EXPECT_LT(k.K.at<double>(1, 1), 0.0);
   EXPECT_EQ(static_cast<int>(fs["image_width"]), 300);
 
   const RobotPose pose{1.5, -0.7, 125.0};
@@ -39,14 +36,10 @@ TEST(IntrinsicsFiles, OpenCvReadsTheYamlAndReproducesOurProjection) {
     world.emplace_back(p.x(), p.y(), p.z());
     ours.push_back(*raster);
   }
-  cv::Mat rotation(3, 3, CV_64F), rvec, tvec(3, 1, CV_64F);
-  for (int i = 0; i < 3; ++i) {
-    tvec.at<double>(i) = cfw.translation()[i];
-    for (int j = 0; j < 3; ++j) rotation.at<double>(i, j) = cfw.linear()(i, j);
-  }
-  cv::Rodrigues(rotation, rvec);
+  cv::Mat rvec, tvec;
+  omnidirExtrinsics(cfw, rvec, tvec);
   std::vector<cv::Vec2d> projected;
-  cv::omnidir::projectPoints(world, projected, rvec, tvec, K, xi, D);
+  cv::omnidir::projectPoints(world, projected, rvec, tvec, k.K, k.xi, k.D);
   for (size_t i = 0; i < world.size(); ++i) {
     EXPECT_NEAR(projected[i][0] + 0.5, ours[i].x(), 1e-9);
     EXPECT_NEAR(projected[i][1] + 0.5, ours[i].y(), 1e-9);

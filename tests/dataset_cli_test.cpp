@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "image.h"
+#include "opencv_omnidir.h"
 #include "rig.h"
 #include "shell_command.h"
 
@@ -170,11 +171,7 @@ TEST_F(DatasetCliTest, OpenCvReadsTheIntrinsicsAndPosesAndReproducesProject) {
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
   cv::FileStorage fs(path("ds/left/intrinsics/opencv.yaml"), cv::FileStorage::READ);
   ASSERT_TRUE(fs.isOpened());
-  cv::Mat K, D;
-  double xi = 0;
-  fs["K"] >> K;
-  fs["D"] >> D;
-  fs["xi"] >> xi;
+  const OmnidirIntrinsics k = readOmnidirIntrinsics(fs);
   // poses.tum: world_from_camera per frame.
   std::istringstream tum(readFile(dir_ / "ds/left/poses.tum"));
   std::string line;
@@ -194,16 +191,11 @@ TEST_F(DatasetCliTest, OpenCvReadsTheIntrinsicsAndPosesAndReproducesProject) {
     Rigid worldFromCam = Rigid::Identity();
     worldFromCam.linear() = q.toRotationMatrix();
     worldFromCam.translation() = Vec3(rows[f][1], rows[f][2], rows[f][3]);
-    const Rigid cfw = worldFromCam.inverse();
-    cv::Mat rotation(3, 3, CV_64F), rvec, tvec(3, 1, CV_64F);
-    for (int i = 0; i < 3; ++i) {
-      tvec.at<double>(i) = cfw.translation()[i];
-      for (int j = 0; j < 3; ++j) rotation.at<double>(i, j) = cfw.linear()(i, j);
-    }
-    cv::Rodrigues(rotation, rvec);
+    cv::Mat rvec, tvec;
+    omnidirExtrinsics(worldFromCam.inverse(), rvec, tvec);
     const std::vector<cv::Vec3d> points{{2.7, -1.8, 0.0}, {-1.35, 1.95, 0.35}, {0.0, 0.0, 0.0}};
     std::vector<cv::Vec2d> projected;
-    cv::omnidir::projectPoints(points, projected, rvec, tvec, K, xi, D);
+    cv::omnidir::projectPoints(points, projected, rvec, tvec, k.K, k.xi, k.D);
     // The camera's own pose, as `omnicam project` takes it (the viewpoint's x, y, yaw).
     const json& pose = manifest["frames"][f]["cameras"]["left"]["pose"];
     std::ostringstream args;
