@@ -48,7 +48,7 @@ void BM_EncodeDepthExr(benchmark::State& state) {
 }
 void BM_EncodeNormalExr(benchmark::State& state) {
   const AovFrame& a = frame().aovs;
-  for (auto _ : state) benchmark::DoNotOptimize(encodeDataExr("normal.exr", a.width, a.height, 3, a.normal.data()));
+  for (auto _ : state) benchmark::DoNotOptimize(encodeDataExr("normal.exr", a.width, a.height, 3, a.normal.data(), ExrPrecision::Half));
 }
 void BM_EncodeInstancePng(benchmark::State& state) {
   const AovFrame& a = frame().aovs;

@@ -1,5 +1,6 @@
 #include "image.h"
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -302,7 +303,7 @@ class MemoryExrStream : public Imf::OStream {
 // Written with OpenEXR directly: its frame buffer reads our floats in place, on this thread
 // (dataset frames are encoded in parallel already), about 10× faster than through OIIO here.
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
-                                         const float* values) {
+                                         const float* values, ExrPrecision precision) {
   if (channels != 1 && channels != 3) throw std::logic_error("encodeDataExr: 1 or 3 channels");
   std::vector<unsigned char> bytes;
   try {
@@ -311,12 +312,18 @@ std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int
     header.zipCompressionLevel() = 1;
     const char* names[3] = {"X", "Y", "Z"};
     Imf::FrameBuffer frameBuffer;
-    const size_t pixelStride = sizeof(float) * channels;
+    // OpenEXR stores what the frame buffer holds: half values are converted here.
+    const bool half = precision == ExrPrecision::Half;
+    std::vector<Imath::half> halves;
+    if (half) halves.assign(values, values + static_cast<size_t>(width) * height * channels);
+    const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
+    const size_t pixelStride = (half ? sizeof(Imath::half) : sizeof(float)) * channels;
+    const char* base = half ? reinterpret_cast<const char*>(halves.data()) : reinterpret_cast<const char*>(values);
     for (int c = 0; c < channels; ++c) {
       const char* name = channels == 1 ? "Z" : names[c];
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      frameBuffer.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values + c)),
-                                          pixelStride, pixelStride * width));
+      header.channels().insert(name, Imf::Channel(type));
+      frameBuffer.insert(name, Imf::Slice(type, const_cast<char*>(base) + c * (pixelStride / channels), pixelStride,
+                                          pixelStride * width));
     }
     MemoryExrStream stream(bytes);
     Imf::OutputFile file(stream, header, 0);

@@ -45,9 +45,11 @@ struct DataImage {
 };
 // A float32 OpenEXR (zip, no DateTime: identical values give identical bytes). Channel names:
 // "Z" for one channel, "X", "Y", "Z" for three.
-// `values`: width × height × channels floats, row-major (not copied).
+// `values`: width × height × channels floats, row-major. Half stores 16-bit floats (relative
+// error ≤ 2⁻¹¹), float 32-bit ones exactly.
+enum class ExrPrecision { Float, Half };
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
-                                         const float* values);
+                                         const float* values, ExrPrecision precision = ExrPrecision::Float);
 // A 16-bit single-channel PNG holding `values` exactly.
 std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,
                                            const std::vector<uint16_t>& values);

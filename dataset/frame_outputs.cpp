@@ -50,7 +50,8 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
     } else if (file.kind == "depth") {
       file.bytes = asString(encodeDataExr(file.relativePath, aov->width, aov->height, 1, aov->depth.data()));
     } else if (file.kind == "normal") {
-      file.bytes = asString(encodeDataExr(file.relativePath, aov->width, aov->height, 3, aov->normal.data()));
+      file.bytes = asString(encodeDataExr(file.relativePath, aov->width, aov->height, 3, aov->normal.data(),
+                                              ExrPrecision::Half));
     } else if (file.kind == "instance") {
       file.bytes = asString(encodeUint16Png(file.relativePath, aov->width, aov->height, aov->instance));
     } else if (file.kind == "semantic") {
