@@ -123,5 +123,20 @@ TEST(AovRenderer, OnePassGivesTheSameImageAndAovs) {
   }
 }
 
+// A frame reused for another pose holds nothing of the earlier one (no clearing between uses).
+TEST(AovRenderer, AReusedFrameHoldsOnlyTheNewPose) {
+  const Scene scene = floorAndBox();
+  const FastRenderer renderer(scene);
+  RenderSettings settings;
+  settings.rig.imageSize = 64;
+  AovFrame reused, fresh;
+  renderer.render({1.0, 0.5, 0.0}, settings, reused);  // right next to the box: a different picture
+  renderer.render({-2.0, -1.0, 120.0}, settings, reused);
+  renderer.render({-2.0, -1.0, 120.0}, settings, fresh);
+  EXPECT_EQ(reused.depth, fresh.depth);
+  EXPECT_EQ(reused.instance, fresh.instance);
+  EXPECT_EQ(reused.normal, fresh.normal);
+}
+
 }  // namespace
 }  // namespace omnicam

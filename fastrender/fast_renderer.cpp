@@ -100,12 +100,20 @@ void FastRenderer::prepareAovs(const RenderSettings& settings, AovFrame& aovs) c
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
   aovs.width = aovs.height = settings.rig.imageSize;
   const size_t pixels = static_cast<size_t>(aovs.width) * aovs.height;
-  aovs.depth.assign(pixels, 0.0f);
-  aovs.instance.assign(pixels, 0);
-  aovs.normal.assign(3 * pixels, 0.0f);
+  // Sized only: every pixel is written by the pass (zeros where nothing is hit), so a reused
+  // frame costs no clearing.
+  aovs.depth.resize(pixels);
+  aovs.instance.resize(pixels);
+  aovs.normal.resize(3 * pixels);
 }
 
 namespace {
+
+void recordNoHit(AovFrame& aovs, size_t pixel) {
+  aovs.depth[pixel] = 0.0f;
+  aovs.instance[pixel] = 0;
+  for (int c = 0; c < 3; ++c) aovs.normal[3 * pixel + c] = 0.0f;
+}
 
 void recordAov(AovFrame& aovs, size_t pixel, const SurfaceHit& hit, const Vec3& direction) {
   aovs.depth[pixel] = static_cast<float>(hit.t);
@@ -131,10 +139,10 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
       for (int i = 0; i < aovs.width; ++i) {
         const size_t p = static_cast<size_t>(j) * aovs.width + i;
         const Eigen::Vector3f& centre = table->centreDirections[p];
-        if (std::isnan(centre.x())) continue;
         const Vec3 direction = rotation * centre.cast<double>();
         SurfaceHit hit;
-        if (rays_.intersect(origin, direction, 0.0, hit)) recordAov(aovs, p, hit, direction);
+        if (!std::isnan(centre.x()) && rays_.intersect(origin, direction, 0.0, hit)) recordAov(aovs, p, hit, direction);
+        else recordNoHit(aovs, p);
       }
   });
 }
@@ -156,6 +164,7 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
         const size_t pixel = static_cast<size_t>(j) * width + i;
         const uint32_t first = table->firstSample[pixel], last = table->firstSample[pixel + 1];
         Vec3f sum = Vec3f::Zero();
+        bool centreRecorded = false;
         for (uint32_t s = first; s < last; ++s) {
           const Vec3 direction = rotation * table->directions[s].cast<double>();
           SurfaceHit hit;
@@ -164,14 +173,21 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
             continue;
           }
           sum += shade(hit, direction, settings.shading);
-          if (aovs && s == table->centreSample[pixel]) recordAov(*aovs, pixel, hit, direction);
+          if (aovs && s == table->centreSample[pixel]) {
+            recordAov(*aovs, pixel, hit, direction);
+            centreRecorded = true;
+          }
         }
         if (aovs && table->centreSample[pixel] == SampleTable::kNoSample) {
           const Eigen::Vector3f& centre = table->centreDirections[pixel];
           SurfaceHit hit;
           const Vec3 direction = rotation * centre.cast<double>();
-          if (!std::isnan(centre.x()) && rays_.intersect(origin, direction, 0.0, hit)) recordAov(*aovs, pixel, hit, direction);
+          if (!std::isnan(centre.x()) && rays_.intersect(origin, direction, 0.0, hit)) {
+            recordAov(*aovs, pixel, hit, direction);
+            centreRecorded = true;
+          }
         }
+        if (aovs && !centreRecorded) recordNoHit(*aovs, pixel);
         float* px = image.at(i, j);
         for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
         px[3] = static_cast<float>(last - first) * weight;
