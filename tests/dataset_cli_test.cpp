@@ -351,5 +351,28 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   EXPECT_NE(mixed.out.find("give two images or two dataset folders"), std::string::npos);
 }
 
+// A Blender dataset renders every frame of a camera in one Blender session (Blender starts in
+// seconds, renders a small frame in a fraction of that), and its frames agree with fast.
+TEST_F(DatasetCliTest, BlenderRendersADatasetInOneSession) {
+  const std::string log = path("blender_starts.log");
+  const std::string wrapper = write("counting-blender", "#!/bin/sh\necho started >> '" + log + "'\nexec blender \"$@\"\n");
+  fs::permissions(wrapper, fs::perms::owner_all);
+  const std::string poses = R"("size": 64, "spp": 16, "poses": {"list": [[0.5, 0.3, 20], [-1.2, 0.8, 200], [1.0, -1.0, 90]]})";
+  const std::string blender = robocupSpec("blender.json", R"("engine": "blender", "outputs": {"rgb": "exr"}, )" + poses);
+  const std::string fast = robocupSpec("fast.json", R"("engine": "fast", "outputs": {"rgb": "exr"}, )" + poses);
+  const auto run = testing::runShell("OMNICAM_BLENDER=" + wrapper + " " + std::string(OMNICAM_BINARY) + " dataset " +
+                                     blender + " -o " + path("blender") + " 2>&1");
+  ASSERT_EQ(run.code, 0) << run.out;
+  std::istringstream starts(readFile(log));
+  std::string line;
+  int sessions = 0;
+  while (std::getline(starts, line)) sessions += line == "started";
+  EXPECT_EQ(sessions, 2) << "one `blender --version` for the manifest, one session for all three frames";
+  ASSERT_EQ(omnicam("dataset " + fast + " -o " + path("fast")).code, 0);
+  const auto cmp = omnicam("compare " + path("fast") + " " + path("blender") + " --fail-psnr 25");
+  EXPECT_EQ(cmp.code, 0) << cmp.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("blender")).code, 0);
+}
+
 }  // namespace
 }  // namespace omnicam
