@@ -16,20 +16,18 @@ spec() {  # spec with the given outputs switch (true: everything, false: RGB onl
  "outputs": {"rgb": "png", "depth": $2, "instance": $2, "semantic": $2, "normal": $2, "landmarks": $2}}
 JSON
 }
-seconds() {  # render a dataset, print its wall time in seconds
-  local start end
-  start=$(date +%s.%N)
-  "$bin" dataset "$work/$1.json" -o "$work/$1" >/dev/null 2>&1
-  end=$(date +%s.%N)
-  echo "$end - $start" | bc -l
+measure() {  # render a dataset; print "wall cpu" seconds (cpu = user + system of the process)
+  local TIMEFORMAT='%R %U %S' t
+  t=$( { time "$bin" dataset "$work/$1.json" -o "$work/$1" >/dev/null 2>&1; } 2>&1 )
+  awk '{ printf "%s %.3f\n", $1, $2 + $3 }' <<<"$t"
 }
 spec rgb false
 spec all true
-rgb=$(seconds rgb)
-all=$(seconds all)
-awk -v r="$rgb" -v a="$all" -v n="$frames" 'BEGIN {
-  printf "dataset of robocup2006, %d frames, 360x360, 1 spp, fast engine\n", n
-  printf "RGB only:          %6.2f s  %6.1f frames/s\n", r, n / r
-  printf "RGB + depth, instance, semantic, normal, landmarks: %6.2f s  %6.1f frames/s\n", a, n / a
-  printf "ratio: all outputs cost %.2fx RGB only\n", a / r
+read -r rgb rgbCpu <<<"$(measure rgb)"
+read -r all allCpu <<<"$(measure all)"
+awk -v r="$rgb" -v a="$all" -v rc="$rgbCpu" -v ac="$allCpu" -v n="$frames" 'BEGIN {
+  printf "dataset of robocup2006, %d frames, 360x360, 1 spp, fast engine (wall / CPU seconds)\n", n
+  printf "RGB only:                 %6.2f s wall  %6.2f s CPU  %6.1f frames/s\n", r, rc, n / r
+  printf "RGB + every output:       %6.2f s wall  %6.2f s CPU  %6.1f frames/s\n", a, ac, n / a
+  printf "ratio: every output costs %.2fx RGB only in wall time, %.2fx in CPU time\n", a / r, ac / rc
 }'
