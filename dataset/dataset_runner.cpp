@@ -197,8 +197,10 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
     // Only what a dataset owns: the manifest and the camera folders (old and new names).
     std::set<std::string> cameraFolders;
     for (const CameraSetup& s : setups) cameraFolders.insert(s.camera->name);
+    // An old manifest's names are only trusted as far as the spec's rule goes: never "../x".
     if (previous)
-      for (const json& c : previous->header.at("cameras")) cameraFolders.insert(c.at("name").get<std::string>());
+      for (const json& c : previous->header.at("cameras"))
+        if (const std::string name = c.at("name").get<std::string>(); isCameraFolderName(name)) cameraFolders.insert(name);
     for (const std::string& name : cameraFolders) fs::remove_all(dir / name, ec);
     fs::remove(dir / kManifestName, ec);
     previous.reset();

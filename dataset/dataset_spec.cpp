@@ -23,12 +23,16 @@ constexpr const char* kFormat = "omnicam-dataset/1";
 constexpr int kMaxFrames = 999999;
 constexpr int kMaxCameras = 16;
 
-bool isFolderName(const std::string& name) {
+}  // namespace
+
+bool isCameraFolderName(const std::string& name) {
   if (name.empty() || name.size() > 63 || name == "intrinsics") return false;
   for (char ch : name)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-') return false;
   return true;
 }
+
+namespace {
 
 RobotPose readPose(const json& value, const std::string& file, const std::string& where) {
   const Vec3 p = jsonVec3(value, file, where);
@@ -96,7 +100,7 @@ void readCameras(const json& cameras, DatasetSpec& spec) {
     JsonFields c(cameras[i], spec.file, "cameras[" + std::to_string(i) + "]");
     DatasetCamera camera;
     camera.name = c.string("name");
-    if (!isFolderName(camera.name))
+    if (!isCameraFolderName(camera.name))
       c.fail("name", "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\")");
     if (!names.insert(camera.name).second) c.fail("name", "duplicate camera name \"" + camera.name + "\"");
     if (c.has("rig")) {

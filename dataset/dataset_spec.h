@@ -61,6 +61,9 @@ struct DatasetSpec {
   DatasetOutputs outputs;
 };
 
+// A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics".
+bool isCameraFolderName(const std::string& name);
+
 DatasetSpec loadDatasetSpec(const std::string& file);
 DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file);
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "atomic_file.h"
+#include "dataset_spec.h"
 #include "errors.h"
 #include "scene_loader.h"
 
@@ -115,7 +116,8 @@ DatasetManifest readManifest(const std::string& dir) {
   if (!cameras.is_array()) r.fail("cameras", "must be an array");
   for (size_t i = 0; i < cameras.size(); ++i) {
     const std::string where = "cameras[" + std::to_string(i) + "]";
-    r.string(cameras[i], "name", where);
+    if (!isCameraFolderName(r.string(cameras[i], "name", where)))
+      r.fail(where + ".name", "must be a camera folder name (letters, digits, '_' or '-')");
     const json& files = r.field(cameras[i], "files", where);
     if (!files.is_object()) r.fail(where + ".files", "must be an object");
     for (auto entry = files.begin(); entry != files.end(); ++entry)

@@ -274,6 +274,17 @@ TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 3);  // untouched
   ASSERT_EQ(omnicam("dataset " + b + " -o " + path("ds") + " --overwrite").code, 0);
   EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 4);
+  // --overwrite removes only what a dataset owns, and never trusts a manifest's names to do so.
+  fs::create_directories(dir_ / "victim");
+  std::ofstream(dir_ / "victim/keep.txt") << "mine";
+  json tampered = json::parse(readFile(dir_ / "ds/manifest.json"));
+  tampered["cameras"][0]["name"] = "../victim";
+  std::ofstream(dir_ / "ds/manifest.json", std::ios::trunc) << tampered.dump();
+  const auto tamperedRun = omnicam("dataset " + a + " -o " + path("ds"));
+  EXPECT_EQ(tamperedRun.code, 2);
+  EXPECT_NE(tamperedRun.out.find("cameras[0].name: must be a camera folder name"), std::string::npos) << tamperedRun.out;
+  ASSERT_EQ(omnicam("dataset " + a + " -o " + path("ds") + " --overwrite").code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "victim/keep.txt"));
   // A folder with other things in it and no manifest is not a dataset.
   fs::create_directories(dir_ / "other");
   std::ofstream(dir_ / "other/notes.txt") << "mine";
