@@ -380,7 +380,7 @@ TEST_F(DatasetCliTest, BlenderRendersADatasetInOneSession) {
   while (std::getline(starts, line)) sessions += line == "started";
   EXPECT_EQ(sessions, 2) << "one `blender --version` for the manifest, one session for all three frames";
   ASSERT_EQ(omnicam("dataset " + fast + " -o " + path("fast")).code, 0);
-  const auto cmp = omnicam("compare " + path("fast") + " " + path("blender") + " --fail-psnr 25");
+  const auto cmp = omnicam("compare " + path("fast") + " " + path("blender") + " --fail-psnr 35");  // measured 38.3 dB
   EXPECT_EQ(cmp.code, 0) << cmp.out;
   EXPECT_EQ(omnicam("dataset --verify " + path("blender")).code, 0);
 }
