@@ -1,0 +1,62 @@
+// The classifier on inputs whose answer is known: hand-set histogram counts (Eqs. 3.8–3.10 by
+// hand), and synthetic images of a cyan disc on a noisy background.
+#include "colour_classifier.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace omnicam {
+namespace {
+
+TEST(ColourClassifier, LikelihoodRatioIsTheRatioOfNormalisedCounts) {
+  ColourHistogramClassifier c(4);  // codes 0–63 → bin 0, 64–127 → 1, ...
+  const Rgb8 a{10, 200, 250}, b{200, 10, 10}, unseen{100, 100, 100};
+  c.addPositive(a, 3);
+  c.addPositive(b, 1);
+  c.addNegative(a, 1);
+  c.addNegative(b, 3);
+  EXPECT_DOUBLE_EQ(c.likelihoodRatio(a), (3.0 / 4.0) / (1.0 / 4.0));
+  EXPECT_DOUBLE_EQ(c.likelihoodRatio(b), (1.0 / 4.0) / (3.0 / 4.0));
+  EXPECT_DOUBLE_EQ(c.likelihoodRatio(Rgb8{63, 255, 192}), c.likelihoodRatio(a));  // same bin as a
+  EXPECT_EQ(c.likelihoodRatio(unseen), 0.0);
+  EXPECT_TRUE(c.positive(a, 1.0));
+  EXPECT_FALSE(c.positive(b, 1.0));
+  EXPECT_TRUE(c.positive(b, 0.3));  // Θ trades detections for false positives
+  c.addPositive(unseen);
+  EXPECT_TRUE(std::isinf(c.likelihoodRatio(unseen)));
+}
+
+// A cyan disc on a grey, noisy background; `centre` moves it between images.
+ImageRGBA discImage(int size, double cx, double cy, std::mt19937_64& rng, std::vector<uint8_t>* labels) {
+  std::normal_distribution<float> noise(0.0f, 0.02f);
+  ImageRGBA image(size, size);
+  if (labels) labels->assign(static_cast<size_t>(size) * size, 0);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const bool inside = std::hypot(i + 0.5 - cx, j + 0.5 - cy) < 10.0;
+      const float base[3] = {inside ? 0.02f : 0.3f, inside ? 0.6f : 0.3f, inside ? 0.8f : 0.3f};
+      float* px = image.at(i, j);
+      for (int c = 0; c < 3; ++c) px[c] = std::clamp(base[c] + noise(rng), 0.0f, 1.0f);
+      px[3] = 1.0f;
+      if (labels && inside) (*labels)[static_cast<size_t>(j) * size + i] = 1;
+    }
+  return image;
+}
+
+TEST(ColourClassifier, LearnsACyanDiscAndFindsItElsewhere) {
+  std::mt19937_64 rng(5);
+  std::vector<uint8_t> labels, truth;
+  ColourHistogramClassifier c(32);
+  c.train(discImage(64, 20, 20, rng, &labels), labels);
+  EXPECT_GT(c.positiveTotal(), 250u);
+  const ImageRGBA test = discImage(64, 40, 44, rng, &truth);
+  const std::vector<uint8_t> mask = c.classify(test, 1.0);
+  int wrong = 0;
+  for (size_t p = 0; p < mask.size(); ++p) wrong += mask[p] != truth[p];
+  EXPECT_LT(wrong, 20) << "of " << mask.size() << " pixels";
+}
+
+}  // namespace
+}  // namespace omnicam
