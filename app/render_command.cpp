@@ -1,6 +1,7 @@
 // omnicam render SCENE [--engine fast|povray|blender] [--pose X,Y,YAW | --path NAME [--frames N]]
 //                      [--size N] [--spp N] [--shading unlit|lit] [--mode exact|cubemap|thesis-mesh]
 //                      [--view birdseye|panorama|perspective ...] -o OUT
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <chrono>
@@ -127,23 +128,25 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   const int total = a.frames ? a.frames : static_cast<int>(path->poses.size());
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + a.engine + ")", total);
-  // A batching engine (Blender) renders every pose in one session: one start, one export.
+  // A batching engine (Blender) renders kFramesPerBatch poses per session.
   std::vector<ImageRGBA> batch;
   double batchSeconds = 0.0;
-  if (engine->batches()) {
-    const std::vector<RobotPose> poses(path->poses.begin(), path->poses.begin() + total);
+  auto renderBatch = [&](int first) {
+    const int last = std::min(total, first + kFramesPerBatch);
+    const std::vector<RobotPose> poses(path->poses.begin() + first, path->poses.begin() + last);
     const auto start = std::chrono::steady_clock::now();
     batch = engine->renderMany(poses, settings);
-    batchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / total;
-  }
+    batchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / (last - first);
+  };
   // Frame f is written while frame f + 1 renders; each file still appears atomically.
   std::future<void> writing;
   for (int f = 0; f < total; ++f) {
     char name[64];
     std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
-    RenderedFile rendered = batch.empty()
+    if (engine->batches() && f % kFramesPerBatch == 0) renderBatch(f);
+    RenderedFile rendered = !engine->batches()
         ? renderPose(scene, *engine, path->poses[f], settings)
-        : RenderedFile{std::move(batch[f]), renderSidecar(scene, *engine, path->poses[f], settings, batchSeconds)};
+        : RenderedFile{std::move(batch[f % kFramesPerBatch]), renderSidecar(scene, *engine, path->poses[f], settings, batchSeconds)};
     rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
     if (writing.valid()) writing.get();
     writing = std::async(std::launch::async, [file = (std::filesystem::path(a.out) / name).string(),

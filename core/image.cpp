@@ -301,7 +301,8 @@ class MemoryExrStream : public Imf::OStream {
 }  // namespace
 
 // Written with OpenEXR directly: its frame buffer reads our floats in place, on this thread
-// (dataset frames are encoded in parallel already), about 10× faster than through OIIO here.
+// (dataset frames are encoded in parallel already; OIIO would hand them to OpenEXR's own thread
+// pool), with the zip level set to 1. Deflate dominates the cost (docs/performance.md).
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
                                          const float* values, ExrPrecision precision) {
   if (channels != 1 && channels != 3) throw std::logic_error("encodeDataExr: 1 or 3 channels");

@@ -30,8 +30,6 @@ namespace {
 
 // The manifest is rewritten at most this often while frames complete (and always at the end).
 constexpr double kManifestIntervalSeconds = 1.0;
-// Frames a batching engine (Blender) renders per session.
-constexpr int kBatchFrames = 50;
 // Frames the fast engine renders at once: enough to keep every core busy between the serial
 // parts (writing, the manifest), few enough that a stop request is honoured quickly.
 constexpr int kConcurrentFrames = 8;
@@ -267,7 +265,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  const size_t batch = engine->batches() ? kBatchFrames : engine->concurrent() ? kConcurrentFrames : 1;
+  const size_t batch = engine->batches() ? kFramesPerBatch : engine->concurrent() ? kConcurrentFrames : 1;
   std::vector<AovFrame> aovSlots;
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);

@@ -14,6 +14,10 @@
 
 namespace omnicam {
 
+// Poses a caller hands a batching engine at once: one Blender start and one export per batch,
+// a bounded number of images in memory.
+inline constexpr int kFramesPerBatch = 50;
+
 class Engine {
  public:
   virtual ~Engine() = default;
