@@ -13,6 +13,8 @@ void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+// experiment texture-realism and arena hall.
+void addExperimentCommands(CLI::App& app);
 // Sets exitCode: 1 when a verified dataset has problems or is incomplete, 130 when interrupted.
 void addDatasetCommand(CLI::App& app, int& exitCode);
 // Sets exitCode to 1 when a threshold fails.

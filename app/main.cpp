@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addStudyCommand(app);
   omnicam::cli::addViewCommand(app);
   omnicam::cli::addBenchCommand(app);
+  omnicam::cli::addExperimentCommands(app);
   int exitCode = 0;
   omnicam::cli::addCompareCommand(app, exitCode);
   omnicam::cli::addDatasetCommand(app, exitCode);

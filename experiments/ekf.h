@@ -42,6 +42,11 @@ class LandmarkEkf {
   // ρ of a measurement against the current estimate (Eq. 3.21, with S⁻¹).
   double mahalanobis(const RangeBearing& z, const Vec2& landmark) const;
 
+  // Noise that changes with the step (odometry noise grows with the distance driven; range
+  // noise with the range).
+  void setMotionNoise(const Eigen::Matrix2d& m) { motionNoise_ = m; }
+  void setMeasurementNoise(const Eigen::Matrix2d& q) { measurementNoise_ = q; }
+
   const Vec3& mean() const { return mean_; }
   const Eigen::Matrix3d& covariance() const { return covariance_; }
 

@@ -1,0 +1,63 @@
+#pragma once
+// Beacon detection as in the thesis (§3.4): one colour-histogram classifier per landmark colour
+// marks pixels, OpenCV turns each mask into blobs, and two blobs of different colours that sit
+// one above the other on the same beacon identify it by its two stacked bands. Which blob is the
+// upper band is decided by geometry, not by image direction: each assignment is inverted at its
+// band's known height (landmark_geometry.h) and the one whose ranges agree wins.
+//
+// Beacons come from the scene's landmarks named `<beacon>_upper` and `<beacon>_lower`.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "colour_classifier.h"
+#include "ekf.h"
+#include "rig.h"
+#include "scene.h"
+
+namespace omnicam {
+
+struct Beacon {
+  std::string name;
+  const Landmark* upper = nullptr;
+  const Landmark* lower = nullptr;
+  double boundaryHeight() const { return 0.5 * (upper->position.z() + lower->position.z()); }
+  Vec2 position() const { return upper->position.head<2>(); }
+};
+
+// Throws InputError if a `_upper` has no `_lower` (or the other way round) or no beacon exists.
+std::vector<Beacon> beaconsOf(const Scene& scene);
+
+struct ColourBlob {
+  std::string colour;
+  Vec2 centroid;  // raster (pixel centres at +0.5)
+  int area = 0;
+  std::vector<int> pixels;  // indices j·W + i
+};
+
+struct BeaconDetection {
+  const Beacon* beacon = nullptr;
+  Vec2 raster;                     // between the two bands' centroids: the band boundary
+  std::optional<RangeBearing> rangeBearing;  // from F' (metres, radians CCW from forward)
+  int upperBlob = -1, lowerBlob = -1;         // indices into DetectionResult::blobs
+};
+
+struct DetectionResult {
+  std::vector<ColourBlob> blobs;
+  std::vector<BeaconDetection> beacons;
+};
+
+struct DetectorOptions {
+  double theta = 1.0;     // likelihood-ratio threshold Θ (Eq. 3.10)
+  int minBlobArea = 3;    // pixels
+  double rangeAgreement = 0.35;  // |r_upper − r_lower| ≤ this × mean range (+ 5 cm)
+  double maxBearingGapDeg = 6.0;
+};
+
+// `classifiers` by colour name (e.g. "cyan"). Pixels with alpha < 0.5 (beyond the rim) are never
+// classified.
+DetectionResult detectBeacons(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
+                              const std::vector<Beacon>& beacons, const RigSpec& rig, const DetectorOptions& options);
+
+}  // namespace omnicam

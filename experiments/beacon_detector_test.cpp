@@ -1,0 +1,114 @@
+// Beacon detection on synthetic images with known answers: band-coloured discs drawn where a
+// beacon's bands project, classifiers trained on those exact colours.
+#include "beacon_detector.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "errors.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+const Scene& field() {
+  static const Scene scene = loadScene(std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json");
+  return scene;
+}
+
+const std::map<std::string, Vec3f> kColours = {
+    {"cyan", {0.02f, 0.65f, 0.85f}}, {"magenta", {0.85f, 0.02f, 0.55f}}, {"yellow", {0.9f, 0.8f, 0.02f}}};
+
+// Classifiers that know exactly the three colours and the grey background.
+std::map<std::string, ColourHistogramClassifier> exactClassifiers() {
+  std::map<std::string, ColourHistogramClassifier> classifiers;
+  for (const auto& [name, colour] : kColours) {
+    ColourHistogramClassifier c(32);
+    for (const auto& [other, otherColour] : kColours) {
+      const float rgba[4] = {otherColour[0], otherColour[1], otherColour[2], 1.0f};
+      if (other == name) c.addPositive(rgb8FromPixel(rgba), 100);
+      else c.addNegative(rgb8FromPixel(rgba), 100);
+    }
+    const float grey[4] = {0.3f, 0.3f, 0.3f, 1.0f};
+    c.addNegative(rgb8FromPixel(grey), 10000);
+    classifiers.emplace(name, c);
+  }
+  return classifiers;
+}
+
+ImageRGBA greyImage(int size) {
+  ImageRGBA image(size, size);
+  for (size_t p = 0; p < image.pixels.size(); p += 4) image.pixels[p] = image.pixels[p + 1] = image.pixels[p + 2] = 0.3f, image.pixels[p + 3] = 1.0f;
+  return image;
+}
+
+void disc(ImageRGBA& image, const Vec2& centre, double radius, const Vec3f& colour) {
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i)
+      if (std::hypot(i + 0.5 - centre.x(), j + 0.5 - centre.y()) <= radius) {
+        float* p = image.at(i, j);
+        p[0] = colour[0], p[1] = colour[1], p[2] = colour[2];
+      }
+}
+
+Vec2 projected(const RigSpec& rig, const RobotPose& pose, const Vec3& point) {
+  return *rig.camera().rasterFromCamera(cameraFromWorld(rig, pose) * point);
+}
+
+TEST(BeaconDetector, BeaconsComeFromUpperAndLowerLandmarks) {
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  ASSERT_EQ(beacons.size(), 4u);
+  for (const Beacon& b : beacons) {
+    EXPECT_NEAR(b.boundaryHeight(), 0.30, 1e-12) << b.name;
+    EXPECT_NE(b.upper->colourClass, b.lower->colourClass);
+  }
+}
+
+TEST(BeaconDetector, IdentifiesEachBeaconByItsTwoBandsAndInvertsItsPosition) {
+  RigSpec rig = field().rig;
+  rig.imageSize = 720;  // the farthest beacon's bands are 5 px apart
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const RobotPose pose{0.4, -0.2, 30.0};
+  for (const Beacon& beacon : beacons) {
+    ImageRGBA image = greyImage(rig.imageSize);
+    const Vec2 upper = projected(rig, pose, beacon.upper->position), lower = projected(rig, pose, beacon.lower->position);
+    // Discs as large as they can be without touching (far beacons' bands are a few pixels apart).
+    const double radius = 0.45 * (upper - lower).norm();
+    ASSERT_GT(radius, 2.0) << beacon.name;
+    disc(image, upper, radius, kColours.at(beacon.upper->colourClass));
+    disc(image, lower, radius, kColours.at(beacon.lower->colourClass));
+    const DetectionResult r = detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{});
+    ASSERT_EQ(r.blobs.size(), 2u) << beacon.name;
+    ASSERT_EQ(r.beacons.size(), 1u) << beacon.name;
+    EXPECT_EQ(r.beacons[0].beacon->name, beacon.name);
+    // Symmetric discs: the centroids are the drawn centres, up to the pixel grid (discs of 2-3 px
+    // radius, point-sampled, put their centroid up to ~0.2 px off).
+    EXPECT_LT((r.beacons[0].raster - 0.5 * (upper + lower)).norm(), 0.25);
+    ASSERT_TRUE(r.beacons[0].rangeBearing);
+    const double dx = beacon.position().x() - pose.x, dy = beacon.position().y() - pose.y;
+    EXPECT_NEAR((*r.beacons[0].rangeBearing)(0), std::hypot(dx, dy), 0.05 * std::hypot(dx, dy)) << beacon.name;
+    EXPECT_NEAR(wrapAngle((*r.beacons[0].rangeBearing)(1) - (std::atan2(dy, dx) - pose.yawDeg * M_PI / 180)), 0.0, 0.01);
+  }
+}
+
+TEST(BeaconDetector, BandsFarApartOrOfOneColourAreNoBeacon) {
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  ImageRGBA image = greyImage(rig.imageSize);
+  // Magenta and yellow, but on opposite sides of the image: their inversions disagree.
+  disc(image, {100, 180}, 2.6, kColours.at("magenta"));
+  disc(image, {260, 180}, 2.6, kColours.at("yellow"));
+  // A lone cyan blob, and one too small to count.
+  disc(image, {180, 100}, 2.6, kColours.at("cyan"));
+  disc(image, {180, 260}, 0.6, kColours.at("cyan"));
+  const DetectionResult r = detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{});
+  EXPECT_EQ(r.blobs.size(), 3u);
+  EXPECT_TRUE(r.beacons.empty());
+  // Beyond the rim (alpha 0) nothing is classified.
+  for (size_t p = 3; p < image.pixels.size(); p += 4) image.pixels[p] = 0.0f;
+  EXPECT_TRUE(detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{}).blobs.empty());
+}
+
+}  // namespace
+}  // namespace omnicam

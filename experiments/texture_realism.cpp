@@ -1,0 +1,396 @@
+#include "texture_realism.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "engines.h"
+#include "errors.h"
+#include "fast_renderer.h"
+#include "hall_arena.h"
+#include "landmark_annotations.h"
+#include "scene_loader.h"
+#include "texture_realism_report.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+TextureRealismOptions TextureRealismOptions::quick() {
+  TextureRealismOptions o;
+  o.size = 240;
+  o.spp = 4;
+  o.blenderSpp = 4;
+  o.testStride = 25;
+  o.trainFrames = 4;
+  o.randomHalls = 2;
+  return o;
+}
+
+namespace {
+
+
+// A rendered frame with what the experiment knows about it.
+struct Frame {
+  RobotPose pose;
+  ImageRGBA image;
+  std::vector<uint16_t> instance;  // 1 + object index, 0 = nothing
+};
+
+// Per object (instance − 1): the colour class of the landmark band it is, or "".
+std::vector<std::string> bandColourOfObjects(const Scene& scene) {
+  std::vector<std::string> colours(scene.objects.size());
+  for (size_t k = 0; k < scene.objects.size(); ++k)
+    for (const Landmark& landmark : scene.landmarks)
+      if (landmark.name == scene.objects[k].name) colours[k] = landmark.colourClass;
+  return colours;
+}
+
+RenderSettings settingsFor(const Scene& scene, int size, int spp) {
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.imageSize = size;
+  settings.spp = spp;
+  settings.shading = Shading::Lit;
+  return settings;
+}
+
+std::vector<Frame> renderFast(const Scene& scene, const std::vector<RobotPose>& poses, int size, int spp,
+                              const std::function<void()>& step) {
+  const FastRenderer renderer(scene);
+  const RenderSettings settings = settingsFor(scene, size, spp);
+  std::vector<Frame> frames;
+  for (const RobotPose& pose : poses) {
+    AovFrame aovs;
+    Frame frame{pose, renderer.render(pose, settings, aovs), std::move(aovs.instance)};
+    frames.push_back(std::move(frame));
+    step();
+  }
+  return frames;
+}
+
+std::vector<RobotPose> randomFieldPoses(int count, uint64_t seed) {
+  std::mt19937_64 random(seed);
+  auto unit = [&] { return static_cast<double>(random() >> 11) * 0x1.0p-53; };
+  std::vector<RobotPose> poses;
+  for (int k = 0; k < count; ++k) {
+    RobotPose pose;
+    pose.x = -2.4 + 4.8 * unit();
+    pose.y = -1.5 + 3.0 * unit();
+    pose.yawDeg = -180.0 + 360.0 * unit();
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
+void trainOn(std::map<std::string, ColourHistogramClassifier>& classifiers, const std::vector<Frame>& frames,
+             const std::vector<std::string>& bandColour) {
+  for (const Frame& frame : frames) {
+    const int w = frame.image.width, h = frame.image.height;
+    auto colourAt = [&](int i, int j) -> const std::string* {
+      const uint16_t id = frame.instance[static_cast<size_t>(j) * w + i];
+      return id == 0 ? nullptr : &bandColour[id - 1];
+    };
+    for (auto& [colour, classifier] : classifiers) {
+      std::vector<uint8_t> labels(static_cast<size_t>(w) * h, 255);
+      for (int j = 1; j + 1 < h; ++j)
+        for (int i = 1; i + 1 < w; ++i) {
+          if (frame.image.at(i, j)[3] < 0.999f) continue;  // the rim and beyond
+          const size_t p = static_cast<size_t>(j) * w + i;
+          const uint16_t id = frame.instance[p];
+          // Pixels on an object's outline mix colours (RGB has spp samples, the mask one).
+          if (frame.instance[p - 1] != id || frame.instance[p + 1] != id || frame.instance[p - w] != id ||
+              frame.instance[p + w] != id)
+            continue;
+          const std::string* band = colourAt(i, j);
+          labels[p] = band && *band == colour ? 1 : 0;
+        }
+      classifier.train(frame.image, labels);
+    }
+  }
+}
+
+struct GroundTruthBeacon {
+  const Beacon* beacon;
+  bool visible;
+  Vec2 raster;
+  double rangeM, bearingRad;
+};
+
+std::vector<GroundTruthBeacon> groundTruth(const Scene& scene, const RayScene& rays, const RigSpec& rig,
+                                           const RobotPose& pose, const std::vector<Beacon>& beacons) {
+  const std::vector<LandmarkAnnotation> annotations = annotateLandmarks(scene, rays, rig, pose);
+  auto visible = [&](const Landmark* landmark) {
+    for (const LandmarkAnnotation& a : annotations)
+      if (a.landmark == landmark) return a.visible();
+    return false;
+  };
+  const OmniCamera camera = rig.camera();
+  const Rigid cameraFromWorldT = cameraFromWorld(rig, pose);
+  std::vector<GroundTruthBeacon> truth;
+  for (const Beacon& beacon : beacons) {
+    const Vec3 boundary(beacon.position().x(), beacon.position().y(), beacon.boundaryHeight());
+    const auto raster = camera.rasterFromCamera(cameraFromWorldT * boundary);
+    const double dx = boundary.x() - pose.x, dy = boundary.y() - pose.y;
+    truth.push_back({&beacon, raster && visible(beacon.upper) && visible(beacon.lower), raster.value_or(Vec2(-1, -1)),
+                     std::hypot(dx, dy), wrapAngle(std::atan2(dy, dx) - pose.yawDeg * kPi / 180.0)});
+  }
+  return truth;
+}
+
+FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detected,
+                              const std::vector<GroundTruthBeacon>& truth, const std::vector<std::string>& bandColour,
+                              double matchRadiusPx) {
+  FrameEvaluation e;
+  e.visibleBeacons = static_cast<int>(std::count_if(truth.begin(), truth.end(), [](auto& t) { return t.visible; }));
+  for (const ColourBlob& blob : detected.blobs) {
+    int onBand = 0;
+    for (int p : blob.pixels) {
+      const uint16_t id = frame.instance[static_cast<size_t>(p)];
+      if (id != 0 && bandColour[id - 1] == blob.colour) ++onBand;
+    }
+    if (2 * onBand < blob.area) ++e.falsePositiveBlobs;
+  }
+  for (const BeaconDetection& d : detected.beacons) {
+    DrawnDetection drawn{d.raster, false};
+    const auto t = std::find_if(truth.begin(), truth.end(), [&](auto& g) { return g.beacon == d.beacon; });
+    const double error = (d.raster - t->raster).norm();
+    if (t->visible && error <= matchRadiusPx) {
+      ++e.truePositives;
+      drawn.correct = true;
+      e.localisationErrorsPx.push_back(error);
+      if (d.rangeBearing) {
+        e.rangeErrorsCm.push_back(100.0 * std::abs((*d.rangeBearing)(0) - t->rangeM));
+        e.bearingErrorsDeg.push_back(std::abs(wrapAngle((*d.rangeBearing)(1) - t->bearingRad)) * 180.0 / kPi);
+      }
+    } else {
+      ++e.falseIdentifications;
+    }
+    if (d.rangeBearing) e.measurements.push_back({d.beacon->position(), *d.rangeBearing});
+    e.drawn.push_back(drawn);
+  }
+  for (const GroundTruthBeacon& t : truth)
+    if (t.visible) e.truth.push_back(t.raster);
+  return e;
+}
+
+double mean(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+// Odometry between consecutive true poses, then noise drawn once for every condition.
+struct Drive {
+  std::vector<Vec3> truth;
+  std::vector<Odometry> noisyOdometry;  // [k] moves truth[k-1] → truth[k]; [0] unused
+  Eigen::Matrix2d motionNoiseFor(const Odometry& u) const {
+    Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
+    m(0, 0) = std::pow(kOdometryRangeFraction * std::abs(u.v) + 0.01, 2);
+    m(1, 1) = std::pow(kOdometryTurnSigmaRad, 2);
+    return m;
+  }
+  static constexpr double kOdometryRangeFraction = 0.12;
+  static constexpr double kOdometryTurnSigmaRad = 2.5 * kPi / 180.0;
+};
+
+Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed) {
+  Drive drive;
+  for (const RobotPose& p : poses) drive.truth.emplace_back(p.x, p.y, wrapAngle(p.yawDeg * kPi / 180.0));
+  std::mt19937_64 random(seed);
+  std::normal_distribution<double> gaussian(0.0, 1.0);
+  drive.noisyOdometry.resize(poses.size());
+  for (size_t k = 1; k < poses.size(); ++k) {
+    const Vec3& a = drive.truth[k - 1];
+    const Vec3& b = drive.truth[k];
+    const double omega = wrapAngle(b.z() - a.z());
+    const double distance = std::hypot(b.x() - a.x(), b.y() - a.y());
+    const double forward = std::cos(std::atan2(b.y() - a.y(), b.x() - a.x()) - b.z()) >= 0 ? 1.0 : -1.0;
+    Odometry noisy;
+    noisy.v = forward * distance * (1.0 + Drive::kOdometryRangeFraction * gaussian(random));
+    noisy.omega = omega + Drive::kOdometryTurnSigmaRad * gaussian(random);
+    drive.noisyOdometry[k] = noisy;
+  }
+  return drive;
+}
+
+EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames) {
+  EkfTrace trace;
+  const Eigen::Matrix3d initialCovariance = Eigen::Vector3d(1e-4, 1e-4, std::pow(kPi / 180.0, 2)).asDiagonal();
+  LandmarkEkf ekf(drive.truth[0], initialCovariance, Eigen::Matrix2d::Identity() * 1e-4, Eigen::Matrix2d::Identity());
+  Vec3 odometry = drive.truth[0];
+  for (size_t k = 0; k < drive.truth.size(); ++k) {
+    if (k > 0) {
+      const Odometry& u = drive.noisyOdometry[k];
+      odometry = motionModel(odometry, u);
+      ekf.setMotionNoise(drive.motionNoiseFor(u));
+      ekf.predict(u);
+    }
+    for (const Measurement& m : frames[k].measurements) {
+      Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
+      q(0, 0) = std::pow(0.05 + 0.1 * m.z(0), 2);  // range from an elevation angle worsens with distance
+      q(1, 1) = std::pow(3.0 * kPi / 180.0, 2);
+      ekf.setMeasurementNoise(q);
+      if (ekf.update(m.z, m.landmark)) ++trace.used;
+      else ++trace.gated;
+    }
+    trace.rows.push_back({drive.truth[k], odometry, ekf.mean(), ekf.covariance()});
+  }
+  return trace;
+}
+
+}  // namespace
+
+TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const std::string& plotScript,
+                                        const ExperimentProgress& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  if (o.size < 64 || o.spp < 1 || o.testStride < 1 || o.trainFrames < 1 || o.randomHalls < 1 ||
+      o.randomPhotos.empty() || o.labPhoto.empty())
+    throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
+  const fs::path out(o.outDir);
+  for (const char* sub : {"arenas", "data", "frames", "figures"}) fs::create_directories(out / sub);
+
+  // The arenas.
+  HallOptions hall;
+  hall.fieldScene = o.fieldScene;
+  writeHallArena(hall, (out / "arenas/hall-plain.json").string());
+  hall.photos = {o.labPhoto};
+  writeHallArena(hall, (out / "arenas/hall-textured.json").string());
+  hall.photos = o.randomPhotos;
+  hall.randomPhotos = true;
+  for (int k = 0; k < o.randomHalls; ++k) {
+    hall.seed = o.seed + 1000 + static_cast<uint64_t>(k);
+    writeHallArena(hall, (out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
+  }
+  const Scene plain = loadScene((out / "arenas/hall-plain.json").string());
+  const Scene textured = loadScene((out / "arenas/hall-textured.json").string());
+  const std::vector<Beacon> beacons = beaconsOf(plain);
+  const std::vector<std::string> bandColour = bandColourOfObjects(plain);
+  const CameraPath* loop = plain.findPath("thesis-loop");
+  if (!loop) throw InputError(o.fieldScene + ": paths: no \"thesis-loop\"");
+  std::vector<RobotPose> testPoses;
+  for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
+
+  const int trainTotal = 2 * o.trainFrames, testTotal = 3 * static_cast<int>(testPoses.size());
+  int done = 0;
+  auto step = [&] { progress("rendering", ++done, trainTotal + testTotal); };
+
+  // Train sets: labels from the fast renderer's instance masks.
+  std::map<std::string, std::map<std::string, ColourHistogramClassifier>> trained;
+  const std::vector<std::string> colours = {"cyan", "magenta", "yellow"};
+  for (const std::string& set : {std::string("plain"), std::string("random_textures")}) {
+    auto& classifiers = trained[set];
+    for (const std::string& colour : colours) classifiers.emplace(colour, ColourHistogramClassifier(o.bins));
+    const std::vector<RobotPose> poses = randomFieldPoses(o.trainFrames, o.seed + (set == "plain" ? 1 : 2));
+    if (set == "plain") {
+      trainOn(classifiers, renderFast(plain, poses, o.size, o.spp, step), bandColour);
+    } else {
+      for (int k = 0; k < o.randomHalls; ++k) {
+        std::vector<RobotPose> share;
+        for (size_t p = static_cast<size_t>(k); p < poses.size(); p += static_cast<size_t>(o.randomHalls)) share.push_back(poses[p]);
+        const Scene scene = loadScene((out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
+        trainOn(classifiers, renderFast(scene, share, o.size, o.spp, step), bandColour);
+      }
+    }
+  }
+
+  // Test sets along thesis-loop.
+  std::map<std::string, std::vector<Frame>> tests;
+  tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
+  tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
+  {
+    const std::unique_ptr<Engine> blender = makeEngine("blender", textured, o.blenderTimeoutSeconds);
+    RenderSettings settings = settingsFor(textured, o.size, o.blenderSpp);
+    std::vector<Frame>& realistic = tests["realistic"];
+    for (size_t first = 0; first < testPoses.size(); first += kFramesPerBatch) {
+      const std::vector<RobotPose> batch(testPoses.begin() + static_cast<long>(first),
+                                         testPoses.begin() + static_cast<long>(std::min(testPoses.size(), first + kFramesPerBatch)));
+      std::vector<ImageRGBA> images = blender->renderMany(batch, settings);
+      for (size_t k = 0; k < batch.size(); ++k) {
+        const size_t index = first + k;
+        // The geometry is the textured hall's: its instance masks hold for these frames too.
+        realistic.push_back({batch[k], recordFrame(o.recording, images[k], index), tests["textured"][index].instance});
+        step();
+      }
+    }
+  }
+
+  // Detection and evaluation.
+  const FastRenderer geometry(plain);
+  RigSpec rig = plain.rig;
+  rig.imageSize = o.size;
+  const double matchRadius = o.matchRadiusPx * o.size / 360.0;
+  std::vector<std::vector<GroundTruthBeacon>> truth;
+  for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
+  const std::vector<std::pair<std::string, std::string>> conditionList = {
+      {"plain", "plain"}, {"plain", "textured"}, {"plain", "realistic"}, {"random_textures", "realistic"}};
+  const Drive drive = makeDrive(testPoses, o.seed + 7);
+  ReportData report;
+  report.options = &o;
+  report.testPoses = testPoses;
+  for (const auto& [train, test] : conditionList) {
+    ConditionReport condition;
+    condition.outcome.train = train;
+    condition.outcome.test = test;
+    const std::vector<Frame>& frames = tests.at(test);
+    for (size_t k = 0; k < frames.size(); ++k) {
+      const DetectionResult detected = detectBeacons(frames[k].image, trained.at(train), beacons, rig, o.detector);
+      condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, matchRadius));
+      progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
+    }
+    ConditionOutcome& c = condition.outcome;
+    std::vector<double> pixels, ranges, bearings;
+    for (const FrameEvaluation& f : condition.frames) {
+      c.truePositives += f.truePositives;
+      c.falsePositiveBlobs += f.falsePositiveBlobs;
+      c.falsePositives += f.falsePositiveBlobs + f.falseIdentifications;
+      c.missed += f.visibleBeacons - f.truePositives;
+      pixels.insert(pixels.end(), f.localisationErrorsPx.begin(), f.localisationErrorsPx.end());
+      ranges.insert(ranges.end(), f.rangeErrorsCm.begin(), f.rangeErrorsCm.end());
+      bearings.insert(bearings.end(), f.bearingErrorsDeg.begin(), f.bearingErrorsDeg.end());
+    }
+    c.frames = static_cast<int>(frames.size());
+    c.meanLocalisationErrorPx = mean(pixels);
+    c.meanRangeErrorCm = mean(ranges);
+    c.meanBearingErrorDeg = mean(bearings);
+    condition.ekf = runEkf(drive, condition.frames);
+    // The example frame: the one with the most visible beacons, first of them.
+    size_t example = 0;
+    for (size_t k = 0; k < condition.frames.size(); ++k)
+      if (condition.frames[k].visibleBeacons > condition.frames[example].visibleBeacons) example = k;
+    condition.exampleFrame = example;
+    condition.exampleImage = frames[example].image;
+    report.conditions.push_back(std::move(condition));
+  }
+  for (const auto& [set, classifiers] : trained) report.classifiers[set] = &classifiers;
+
+  TextureRealismResults results;
+  for (const ConditionReport& c : report.conditions) {
+    results.conditions.push_back(c.outcome);
+    EkfOutcome e;
+    e.condition = c.outcome.key();
+    std::vector<double> odometryErrors, ekfErrors;
+    for (size_t k = 1; k < c.ekf.rows.size(); ++k) {
+      const EkfRow& row = c.ekf.rows[k];
+      odometryErrors.push_back(100.0 * (row.odometry.head<2>() - row.truth.head<2>()).norm());
+      ekfErrors.push_back(100.0 * (row.estimate.head<2>() - row.truth.head<2>()).norm());
+    }
+    e.meanErrorOdometryCm = mean(odometryErrors);
+    e.meanErrorEkfCm = mean(ekfErrors);
+    e.measurementsUsed = c.ekf.used;
+    e.measurementsGated = c.ekf.gated;
+    results.ekf.push_back(e);
+  }
+  results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  writeTextureRealismReport(report, results, plotScript);
+  return results;
+}
+
+}  // namespace omnicam

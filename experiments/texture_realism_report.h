@@ -1,0 +1,64 @@
+#pragma once
+// What the texture-realism experiment records per frame and condition, and how it is written:
+// results.json, data/ (CSV, JSON), frames/ with detections drawn, figures/ (matplotlib, from
+// data/), report.html and the Markdown that docs/texture-realism.md is made from.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "texture_realism.h"
+
+namespace omnicam {
+
+struct Measurement {
+  Vec2 landmark;  // the identified beacon's position
+  RangeBearing z;
+};
+
+struct DrawnDetection {
+  Vec2 raster;
+  bool correct;
+};
+
+struct FrameEvaluation {
+  int visibleBeacons = 0, truePositives = 0, falseIdentifications = 0, falsePositiveBlobs = 0;
+  std::vector<double> localisationErrorsPx, rangeErrorsCm, bearingErrorsDeg;
+  std::vector<Measurement> measurements;
+  std::vector<DrawnDetection> drawn;
+  std::vector<Vec2> truth;  // visible beacons' projected band boundaries
+};
+
+struct EkfRow {
+  Vec3 truth, odometry, estimate;
+  Eigen::Matrix3d covariance;
+};
+
+struct EkfTrace {
+  std::vector<EkfRow> rows;
+  int used = 0, gated = 0;
+};
+
+struct ConditionReport {
+  ConditionOutcome outcome;
+  std::vector<FrameEvaluation> frames;
+  EkfTrace ekf;
+  size_t exampleFrame = 0;
+  ImageRGBA exampleImage;
+};
+
+struct ReportData {
+  const TextureRealismOptions* options = nullptr;
+  std::vector<RobotPose> testPoses;
+  std::vector<ConditionReport> conditions;
+  std::map<std::string, const std::map<std::string, ColourHistogramClassifier>*> classifiers;
+};
+
+// Draws detections on a copy of `image`: visible beacons' true positions as green crosses,
+// correct detections as yellow circles, wrong ones as red circles.
+ImageRGBA drawDetections(const ImageRGBA& image, const FrameEvaluation& frame);
+
+void writeTextureRealismReport(const ReportData& data, const TextureRealismResults& results, const std::string& plotScript);
+
+nlohmann::json textureRealismResultsJson(const TextureRealismResults& results);
+
+}  // namespace omnicam
