@@ -288,9 +288,11 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
         const RenderSettings settings{setups[c].rig, spec.spp, spec.shading};
         const RobotPose pose = cameraPose(*setups[c].camera, poses[index]);
         AovFrame& aovs = aovSlots[k];  // the window's slot k: reused, so no fresh memory per frame
-        const ImageRGBA image = !rgb[c].empty() ? std::move(rgb[c][k])
-                                : plan.anyAov() ? engine->render(pose, settings, aovs)
-                                                : engine->render(pose, settings);
+        ImageRGBA image = !rgb[c].empty() ? std::move(rgb[c][k])
+                          : plan.anyAov() ? engine->render(pose, settings, aovs)
+                                          : engine->render(pose, settings);
+        // Seeded by frame and camera: a resumed run records the same noise.
+        if (spec.recording) image = recordFrame(*spec.recording, image, static_cast<uint64_t>(index) * setups.size() + c);
         CameraFrame cameraFrame{pose, {}};
         for (EncodedFile& file : encodeFrameOutputs(scene, rays.get(), settings, setups[c].camera->name, index, pose,
                                                     image, plan.anyAov() ? &aovs : nullptr, plan, classOfInstance)) {

@@ -192,6 +192,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     spec.cameras.push_back({"cam0", std::nullopt, 0.0, 0.0, 0.0});
   }
   if (auto outputs = top.optionalObject("outputs")) readOutputs(*outputs, spec);
+  if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file + ": recording");
   top.finish();
   return spec;
 }

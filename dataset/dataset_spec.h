@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "recording_camera.h"
 #include "render_settings.h"
 #include "rig.h"
 
@@ -59,6 +60,9 @@ struct DatasetSpec {
   RandomPoses random;
   std::vector<DatasetCamera> cameras;
   DatasetOutputs outputs;
+  // What a real camera would record (recording_camera.h), applied to every RGB frame; none: the
+  // renderer's image as it is.
+  std::optional<RecordingCamera> recording;
 };
 
 // A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics".

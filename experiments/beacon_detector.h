@@ -50,7 +50,7 @@ struct DetectionResult {
 
 struct DetectorOptions {
   double theta = 1.0;     // likelihood-ratio threshold Θ (Eq. 3.10)
-  int minBlobArea = 3;    // pixels
+  int minBlobArea = 2;    // pixels
   double rangeAgreement = 0.35;  // |r_upper − r_lower| ≤ this × mean range (+ 5 cm)
   double maxBearingGapDeg = 6.0;
 };

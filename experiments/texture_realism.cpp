@@ -24,11 +24,11 @@ namespace fs = std::filesystem;
 
 TextureRealismOptions TextureRealismOptions::quick() {
   TextureRealismOptions o;
-  o.size = 240;
+  o.size = 360;
   o.spp = 4;
   o.blenderSpp = 4;
   o.testStride = 25;
-  o.trainFrames = 4;
+  o.trainFrames = 6;
   o.randomHalls = 2;
   return o;
 }
@@ -104,12 +104,20 @@ void trainOn(std::map<std::string, ColourHistogramClassifier>& classifiers, cons
           if (frame.image.at(i, j)[3] < 0.999f) continue;  // the rim and beyond
           const size_t p = static_cast<size_t>(j) * w + i;
           const uint16_t id = frame.instance[p];
-          // Pixels on an object's outline mix colours (RGB has spp samples, the mask one).
-          if (frame.instance[p - 1] != id || frame.instance[p + 1] != id || frame.instance[p - w] != id ||
-              frame.instance[p + w] != id)
-            continue;
           const std::string* band = colourAt(i, j);
-          labels[p] = band && *band == colour ? 1 : 0;
+          // Bands are a few pixels tall, so their outline pixels are kept as positives when most
+          // neighbours agree; pixels next to a band are left out of the negatives (their RGB
+          // mixes in the band's colour: spp samples, the mask one).
+          int same = 0;
+          bool touchesBand = false;
+          for (const size_t q : {p - 1, p + 1, p - static_cast<size_t>(w), p + static_cast<size_t>(w)}) {
+            same += frame.instance[q] == id;
+            const uint16_t other = frame.instance[q];
+            touchesBand = touchesBand || (other != 0 && !bandColour[other - 1].empty());
+          }
+          const bool isBand = band && !band->empty();
+          if (isBand ? same < 2 : touchesBand) continue;
+          labels[p] = isBand && *band == colour ? 1 : 0;
         }
       classifier.train(frame.image, labels);
     }
@@ -197,8 +205,8 @@ struct Drive {
     m(1, 1) = std::pow(kOdometryTurnSigmaRad, 2);
     return m;
   }
-  static constexpr double kOdometryRangeFraction = 0.12;
-  static constexpr double kOdometryTurnSigmaRad = 2.5 * kPi / 180.0;
+  static constexpr double kOdometryRangeFraction = 0.08;
+  static constexpr double kOdometryTurnSigmaRad = 1.5 * kPi / 180.0;
 };
 
 Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed) {
@@ -221,7 +229,8 @@ Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed) {
   return drive;
 }
 
-EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames) {
+// Drives every pose of the path; the test frames (every `stride`-th pose) bring measurements.
+EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames, size_t stride) {
   EkfTrace trace;
   const Eigen::Matrix3d initialCovariance = Eigen::Vector3d(1e-4, 1e-4, std::pow(kPi / 180.0, 2)).asDiagonal();
   LandmarkEkf ekf(drive.truth[0], initialCovariance, Eigen::Matrix2d::Identity() * 1e-4, Eigen::Matrix2d::Identity());
@@ -233,7 +242,9 @@ EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames) 
       ekf.setMotionNoise(drive.motionNoiseFor(u));
       ekf.predict(u);
     }
-    for (const Measurement& m : frames[k].measurements) {
+    const std::vector<Measurement> none;
+    const bool tested = k % stride == 0 && k / stride < frames.size();
+    for (const Measurement& m : tested ? frames[k / stride].measurements : none) {
       Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
       q(0, 0) = std::pow(0.05 + 0.1 * m.z(0), 2);  // range from an elevation angle worsens with distance
       q(1, 1) = std::pow(3.0 * kPi / 180.0, 2);
@@ -331,7 +342,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
   const std::vector<std::pair<std::string, std::string>> conditionList = {
       {"plain", "plain"}, {"plain", "textured"}, {"plain", "realistic"}, {"random_textures", "realistic"}};
-  const Drive drive = makeDrive(testPoses, o.seed + 7);
+  const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;
   report.testPoses = testPoses;
@@ -360,7 +371,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     c.meanLocalisationErrorPx = mean(pixels);
     c.meanRangeErrorCm = mean(ranges);
     c.meanBearingErrorDeg = mean(bearings);
-    condition.ekf = runEkf(drive, condition.frames);
+    condition.ekf = runEkf(drive, condition.frames, static_cast<size_t>(o.testStride));
     // The example frame: the one with the most visible beacons, first of them.
     size_t example = 0;
     for (size_t k = 0; k < condition.frames.size(); ++k)
@@ -391,6 +402,41 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   writeTextureRealismReport(report, results, plotScript);
   return results;
+}
+
+DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const std::string& labPhoto,
+                                          const std::string& arenaDir, int size, int spp, int trainFrames) {
+  fs::create_directories(arenaDir);
+  HallOptions hall;
+  hall.fieldScene = fieldScene;
+  writeHallArena(hall, (fs::path(arenaDir) / "hall-plain.json").string());
+  hall.photos = {labPhoto};
+  writeHallArena(hall, (fs::path(arenaDir) / "hall-textured.json").string());
+  const Scene plain = loadScene((fs::path(arenaDir) / "hall-plain.json").string());
+  const Scene textured = loadScene((fs::path(arenaDir) / "hall-textured.json").string());
+  const std::vector<Beacon> beacons = beaconsOf(plain);
+  const std::vector<std::string> bandColour = bandColourOfObjects(plain);
+  std::map<std::string, ColourHistogramClassifier> classifiers;
+  for (const char* colour : {"cyan", "magenta", "yellow"}) classifiers.emplace(colour, ColourHistogramClassifier(32));
+  trainOn(classifiers, renderFast(plain, randomFieldPoses(trainFrames, 2009), size, spp, [] {}), bandColour);
+  const CameraPath* loop = plain.findPath("thesis-loop");
+  if (!loop) throw InputError(fieldScene + ": paths: no \"thesis-loop\"");
+  // Mid-way along the field's long edge: several beacons in view.
+  DetectionFrame result;
+  result.poseIndex = static_cast<int>(loop->poses.size() / 8);
+  const RobotPose pose = loop->poses[static_cast<size_t>(result.poseIndex)];
+  const Frame frame = std::move(renderFast(textured, {pose}, size, spp, [] {}).front());
+  RigSpec rig = plain.rig;
+  rig.imageSize = size;
+  const FastRenderer geometry(plain);
+  const FrameEvaluation e =
+      evaluateFrame(frame, detectBeacons(frame.image, classifiers, beacons, rig, DetectorOptions{}),
+                    groundTruth(plain, geometry.rays(), rig, pose, beacons), bandColour, 8.0 * size / 360.0);
+  result.drawn = drawDetections(frame.image, e);
+  result.visibleBeacons = e.visibleBeacons;
+  result.truePositives = e.truePositives;
+  result.falsePositives = e.falsePositiveBlobs + e.falseIdentifications;
+  return result;
 }
 
 }  // namespace omnicam

@@ -71,6 +71,17 @@ using ExperimentProgress = std::function<void(const std::string&, int, int)>;
 TextureRealismResults runTextureRealism(const TextureRealismOptions& options, const std::string& plotScript,
                                         const ExperimentProgress& progress);
 
+// One frame for the demo: classifiers trained on `trainFrames` plain-hall frames, then one
+// textured-hall frame (the lab photo's walls) along thesis-loop with its detections drawn (green
+// crosses: visible beacons; yellow circles: correct detections; red: wrong). Writes the hall
+// into `arenaDir`.
+struct DetectionFrame {
+  ImageRGBA drawn;
+  int poseIndex = 0, visibleBeacons = 0, truePositives = 0, falsePositives = 0;
+};
+DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const std::string& labPhoto,
+                                          const std::string& arenaDir, int size, int spp, int trainFrames);
+
 // The measured table beside the thesis' numbers, with which findings reproduce (Markdown).
 std::string textureRealismMarkdown(const TextureRealismResults& results, const TextureRealismOptions& options,
                                    const std::string& command);

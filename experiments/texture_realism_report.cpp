@@ -175,9 +175,12 @@ void writeTextureRealismReport(const ReportData& data, const TextureRealismResul
   writeTextAtomically((out / "results.json").string(), textureRealismResultsJson(results).dump(2) + "\n");
   bool figures = false;
   if (!plotScript.empty()) {
-    const ProcessResult plot =
-        runProcess({"python3", plotScript, out.string()}, out.string(), (out / "figures/plot.log").string(), 600.0);
-    if (plot.notFound) throw OutputError("python3: not found (make deps installs python3-matplotlib)");
+    // Debian's python3 (make deps installs python3-matplotlib for it), not whatever python3 comes
+    // first on PATH. Paths absolute: the process starts in the results folder.
+    const fs::path root = fs::absolute(out);
+    const ProcessResult plot = runProcess({"/usr/bin/python3", fs::absolute(plotScript).string(), root.string()}, root.string(),
+                                          (root / "figures/plot.log").string(), 600.0);
+    if (plot.notFound) throw OutputError("/usr/bin/python3: not found (make deps installs python3 and python3-matplotlib)");
     if (plot.exitCode != 0)
       throw OutputError(plotScript + ": the figures failed (exit " + std::to_string(plot.exitCode) + "): " + plot.logTail);
     figures = true;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
@@ -20,13 +21,23 @@ RecordingCamera RecordingCamera::webcam() {
   return camera;
 }
 
+namespace {
+
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+}  // namespace
+
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object()) throw InputError(where + ": must be an object");
   RecordingCamera camera;
   auto number = [&](const std::string& key, double lo, double hi) {
     const nlohmann::json& v = j.at(key);
     if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
-      throw InputError(where + "." + key + ": must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      throw InputError(where + "." + key + ": must be a number in [" + shortNumber(lo) + ", " + shortNumber(hi) + "]");
     return v.get<double>();
   };
   for (const auto& [key, value] : j.items()) {
