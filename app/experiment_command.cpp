@@ -27,6 +27,8 @@ std::string experimentsDir() {
 struct ExperimentArgs {
   std::string name, out, doc;
   bool quick = false, noFigures = false;
+  double theta = 1.0;
+  int bins = 32;
 };
 
 void runExperiment(const ExperimentArgs& a) {
@@ -35,6 +37,10 @@ void runExperiment(const ExperimentArgs& a) {
   ensureDirectory(a.out, "-o");
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
+  if (!(a.theta > 0.0 && a.theta < 1e6)) throw InputError("--theta: must be in (0, 1e6)");
+  if (a.bins < 2 || a.bins > 256) throw InputError("--bins: must be in [2, 256]");
+  options.detector.theta = a.theta;
+  options.bins = a.bins;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.labPhoto = std::string(kStudioLights) + kLabPhoto;
   for (const char* photo : kOtherPhotos) options.randomPhotos.push_back(std::string(kStudioLights) + photo);
@@ -60,8 +66,10 @@ void runExperiment(const ExperimentArgs& a) {
   for (const EkfOutcome& e : results.ekf)
     std::printf("EKF %-26s odometry %.1f cm  EKF %.1f cm  improvement %.1f cm\n", e.condition.c_str(),
                 e.meanErrorOdometryCm, e.meanErrorEkfCm, e.meanErrorOdometryCm - e.meanErrorEkfCm);
-  const std::string command = std::string("omnicam experiment texture-realism -o ") + "DIR" + (a.quick ? " --quick" : "") +
-                              (a.doc.empty() ? "" : " --doc " + a.doc);
+  std::string command = std::string("omnicam experiment texture-realism -o DIR") + (a.quick ? " --quick" : "");
+  if (a.theta != 1.0) command += " --theta " + std::to_string(a.theta);
+  if (a.bins != 32) command += " --bins " + std::to_string(a.bins);
+  if (!a.doc.empty()) command += " --doc " + a.doc;
   const std::string markdown = textureRealismMarkdown(results, options, command);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);
   if (!a.doc.empty()) writeTextAtomically(a.doc, markdown);
@@ -85,7 +93,7 @@ void runArena(const ArenaArgs& a) {
   options.randomPhotos = a.randomPhotos;
   options.seed = a.seed;
   const std::filesystem::path parent = std::filesystem::path(a.out).parent_path();
-  if (!parent.empty()) ensureDirectory(parent.string(), "-o");
+  if (!parent.empty()) checkOutputFolder(parent.string(), "-o");  // created once the photos have been read
   const std::vector<std::string> textures = writeHallArena(options, a.out);
   std::printf("wrote %s (%s walls, %zu textures)\n", a.out.c_str(), a.photos.empty() ? "plain" : "textured", textures.size());
 }
@@ -100,6 +108,8 @@ void addExperimentCommands(CLI::App& app) {
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");
   cmd->add_option("--doc", args->doc, "Also write the Markdown summary here (docs/texture-realism.md)");
   cmd->add_flag("--no-figures", args->noFigures, "Skip the matplotlib figures");
+  cmd->add_option("--theta", args->theta, "Likelihood-ratio threshold of the classifiers (Eq. 3.10; default 1)");
+  cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)");
   cmd->callback([args] { runExperiment(*args); });
 
   auto arena = std::make_shared<ArenaArgs>();

@@ -121,6 +121,7 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
 
   std::vector<std::string> written;
   const std::filesystem::path scenePath(sceneOut);
+  if (!scenePath.parent_path().empty()) std::filesystem::create_directories(scenePath.parent_path());
   const std::string textureFolder = scenePath.stem().string() + "_textures";
   if (textured) std::filesystem::create_directories(scenePath.parent_path() / textureFolder);
   std::mt19937_64 random(o.seed);

@@ -20,6 +20,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 
 def read_csv(path):
@@ -43,7 +44,9 @@ def detections_per_frame(data, figures):
         ax.step(x, visible, where="mid", color="black", linewidth=0.8, label="visible beacons")
         ax.set_title(f"{condition}: {sum(tp)} true, {sum(fp)} false positives", fontsize=9)
         ax.set_ylabel("count")
-        ax.set_yscale("symlog", linthresh=5)
+        if max(fp + tp + [0]) > 40:  # hundreds of false positives next to a few true ones
+            ax.set_yscale("symlog", linthresh=5)
+            ax.yaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
     axes[-1, 0].set_xlabel("thesis-loop frame")
     axes[0, 0].legend(fontsize=7, loc="upper right")
     fig.tight_layout()
@@ -73,7 +76,7 @@ def histograms(data, figures):
                 sizes = [4 + 60 * math.sqrt(b[3] / biggest) for b in bins]
                 rgb = [(b[0] / 255, b[1] / 255, b[2] / 255) for b in bins]
                 ax.scatter([b[0] for b in bins], [b[1] for b in bins], [b[2] for b in bins], s=sizes, c=rgb,
-                           marker=marker, alpha=0.9 if kind == "positive" else 0.15,
+                           marker=marker, alpha=0.9 if kind == "positive" else 0.35,
                            edgecolors="black" if kind == "positive" else "none", linewidths=0.3)
             ax.set_xlim(0, 255), ax.set_ylim(0, 255), ax.set_zlim(0, 255)
             ax.set_xlabel("R", fontsize=7), ax.set_ylabel("G", fontsize=7), ax.set_zlabel("B", fontsize=7)
@@ -87,7 +90,10 @@ def histograms(data, figures):
 def ekf(data, figures):
     files = sorted(f for f in os.listdir(data) if f.startswith("ekf_") and f.endswith(".csv"))
     conditions = [f[len("ekf_"):-len(".csv")] for f in files]
-    fig, axes = plt.subplots(1, len(files), figsize=(4.5 * len(files), 3.6), squeeze=False)
+    columns = 2 if len(files) > 2 else len(files)
+    rows = (len(files) + columns - 1) // columns
+    fig, grid = plt.subplots(rows, columns, figsize=(5.5 * columns, 4.0 * rows), squeeze=False)
+    axes = [list(grid.flatten())]
     fig2, axes2 = plt.subplots(1, 1, figsize=(8, 3.2))
     for ax, name, f in zip(axes[0], conditions, files):
         rows = read_csv(os.path.join(data, f))
@@ -100,8 +106,9 @@ def ekf(data, figures):
         ax.set_xlabel("x (m)")
         sigma = [100 * math.sqrt(max(0.0, (a + b) / 2)) for a, b in zip(get("p_xx"), get("p_yy"))]
         axes2.plot(range(len(sigma)), sigma, label=name)
-    axes[0, 0].set_ylabel("y (m)")
-    axes[0, 0].legend(fontsize=7)
+    for ax in axes[0]:
+        ax.set_ylabel("y (m)")
+    axes[0][0].legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(figures, "ekf_path.png"), dpi=110)
     axes2.set_xlabel("frame")

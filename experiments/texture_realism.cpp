@@ -52,6 +52,12 @@ std::vector<std::string> bandColourOfObjects(const Scene& scene) {
   return colours;
 }
 
+std::vector<std::string> objectNamesOf(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const SceneObject& object : scene.objects) names.push_back(object.name);
+  return names;
+}
+
 RenderSettings settingsFor(const Scene& scene, int size, int spp) {
   RenderSettings settings;
   settings.rig = scene.rig;
@@ -154,16 +160,22 @@ std::vector<GroundTruthBeacon> groundTruth(const Scene& scene, const RayScene& r
 
 FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detected,
                               const std::vector<GroundTruthBeacon>& truth, const std::vector<std::string>& bandColour,
-                              double matchRadiusPx) {
+                              const std::vector<std::string>& objectNames, double matchRadiusPx) {
   FrameEvaluation e;
   e.visibleBeacons = static_cast<int>(std::count_if(truth.begin(), truth.end(), [](auto& t) { return t.visible; }));
   for (const ColourBlob& blob : detected.blobs) {
     int onBand = 0;
+    std::map<uint16_t, int> shown;
     for (int p : blob.pixels) {
       const uint16_t id = frame.instance[static_cast<size_t>(p)];
       if (id != 0 && bandColour[id - 1] == blob.colour) ++onBand;
+      ++shown[id];
     }
-    if (2 * onBand < blob.area) ++e.falsePositiveBlobs;
+    if (2 * onBand >= blob.area) continue;
+    ++e.falsePositiveBlobs;
+    const auto most = std::max_element(shown.begin(), shown.end(), [](auto& a, auto& b) { return a.second < b.second; });
+    e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area,
+                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1]});
   }
   for (const BeaconDetection& d : detected.beacons) {
     DrawnDetection drawn{d.raster, false};
@@ -284,6 +296,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const Scene textured = loadScene((out / "arenas/hall-textured.json").string());
   const std::vector<Beacon> beacons = beaconsOf(plain);
   const std::vector<std::string> bandColour = bandColourOfObjects(plain);
+  const std::vector<std::string> objectNames = objectNamesOf(plain);
   const CameraPath* loop = plain.findPath("thesis-loop");
   if (!loop) throw InputError(o.fieldScene + ": paths: no \"thesis-loop\"");
   std::vector<RobotPose> testPoses;
@@ -353,7 +366,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     const std::vector<Frame>& frames = tests.at(test);
     for (size_t k = 0; k < frames.size(); ++k) {
       const DetectionResult detected = detectBeacons(frames[k].image, trained.at(train), beacons, rig, o.detector);
-      condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, matchRadius));
+      condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
     }
     ConditionOutcome& c = condition.outcome;
@@ -367,6 +380,16 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
       ranges.insert(ranges.end(), f.rangeErrorsCm.begin(), f.rangeErrorsCm.end());
       bearings.insert(bearings.end(), f.bearingErrorsDeg.begin(), f.bearingErrorsDeg.end());
     }
+    std::map<std::string, int> sources;
+    for (const FrameEvaluation& f : condition.frames)
+      for (const FalseBlob& b : f.falseBlobs) {
+        ++sources[b.object.empty() ? "(nothing)" : b.object];
+        c.falsePositiveBlobsOnHall += b.object.rfind("hall_", 0) == 0;
+      }
+    c.falsePositiveSources.assign(sources.begin(), sources.end());
+    std::sort(c.falsePositiveSources.begin(), c.falsePositiveSources.end(),
+              [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+    if (c.falsePositiveSources.size() > 5) c.falsePositiveSources.resize(5);
     c.frames = static_cast<int>(frames.size());
     c.meanLocalisationErrorPx = mean(pixels);
     c.meanRangeErrorCm = mean(ranges);
@@ -431,7 +454,8 @@ DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const s
   const FastRenderer geometry(plain);
   const FrameEvaluation e =
       evaluateFrame(frame, detectBeacons(frame.image, classifiers, beacons, rig, DetectorOptions{}),
-                    groundTruth(plain, geometry.rays(), rig, pose, beacons), bandColour, 8.0 * size / 360.0);
+                    groundTruth(plain, geometry.rays(), rig, pose, beacons), bandColour, objectNamesOf(plain),
+                    8.0 * size / 360.0);
   result.drawn = drawDetections(frame.image, e);
   result.visibleBeacons = e.visibleBeacons;
   result.truePositives = e.truePositives;

@@ -45,7 +45,10 @@ struct TextureRealismOptions {
 struct ConditionOutcome {
   std::string train, test;
   int frames = 0, truePositives = 0, falsePositives = 0, missed = 0, falsePositiveBlobs = 0;
+  int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
   double meanLocalisationErrorPx = 0.0, meanRangeErrorCm = 0.0, meanBearingErrorDeg = 0.0;
+  // The objects the false-positive blobs lie on, most frequent first (at most five).
+  std::vector<std::pair<std::string, int>> falsePositiveSources;
   std::string key() const { return train + "_to_" + test; }
 };
 

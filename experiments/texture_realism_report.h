@@ -20,12 +20,21 @@ struct DrawnDetection {
   bool correct;
 };
 
+// A colour blob that lies on no band of its colour, and what it lies on.
+struct FalseBlob {
+  std::string colour;
+  Vec2 centroid;
+  int area = 0;
+  std::string object;  // the scene object most of its pixels show ("" = nothing: beyond the hall)
+};
+
 struct FrameEvaluation {
   int visibleBeacons = 0, truePositives = 0, falseIdentifications = 0, falsePositiveBlobs = 0;
   std::vector<double> localisationErrorsPx, rangeErrorsCm, bearingErrorsDeg;
   std::vector<Measurement> measurements;
   std::vector<DrawnDetection> drawn;
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
+  std::vector<FalseBlob> falseBlobs;
 };
 
 struct EkfRow {

@@ -224,6 +224,7 @@ def main():
     dataset_spec("no_path", poses={"path": "nowhere"})
     dataset_spec("povray_mode", engine="povray", mode="cubemap")
     dataset_spec("camera_rig", cameras=[{"name": "c", "rig": {"height": -1}}])
+    dataset_spec("recording_jpeg", recording={"jpeg_quality": 150})
 
 
 if __name__ == "__main__":
