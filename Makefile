@@ -11,7 +11,8 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev bc \
   libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
   povray blender python3-numpy python3-matplotlib libtinygltf-dev \
-  clang libfuzzer-14-dev libclang-rt-14-dev
+  clang libfuzzer-14-dev libclang-rt-14-dev \
+  slurmctld slurmd slurm-client munge
 
 .PHONY: deps build test demo bench clean fuzz-build fuzz
 

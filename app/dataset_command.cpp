@@ -2,10 +2,14 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <tuple>
 
 #include "cli_util.h"
 #include "commands.h"
 #include "dataset_runner.h"
+#include "dataset_shards.h"
+#include "slurm_backend.h"
 #include "errors.h"
 
 namespace omnicam::cli {
@@ -16,13 +20,77 @@ std::atomic<bool> interruptRequested{false};
 extern "C" void onInterrupt(int) { interruptRequested.store(true); }
 
 struct DatasetArgs {
-  std::string spec, out, verify, status;
+  std::string spec, out, verify, status, merge, shard, backend = "local", slurmArgs;
   bool overwrite = false;
+  int shards = 0, maxParallel = 0;
 };
 
+// "I/N" → {I, N}; InputError naming --shard otherwise.
+std::pair<int, int> parseShard(const std::string& text) {
+  const auto slash = text.find('/');
+  try {
+    if (slash != std::string::npos && slash > 0 && text.size() - slash - 1 <= 6 && slash <= 6) {
+      size_t used = 0;
+      const int index = std::stoi(text.substr(0, slash), &used);
+      if (used == slash) {
+        const int count = std::stoi(text.substr(slash + 1), &used);
+        if (used == text.size() - slash - 1 && count >= 1 && index >= 0 && index < count) return {index, count};
+      }
+    }
+  } catch (const std::exception&) {
+  }
+  throw InputError("--shard: must be I/N with 0 <= I < N (got \"" + text + "\")");
+}
+
+void printShardStates(const std::string& dir, int count) {
+  for (const ShardState& s : shardStates(dir, count, false))
+    std::printf("  shard %d/%d: %s\n", s.index, count,
+                !s.started ? "not started"
+                           : (std::to_string(s.finished) + " of " + std::to_string(s.frames) + " frames" +
+                              (s.complete ? " (complete)" : "")).c_str());
+}
+
+void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
+  refuseUnless(cmd, "--shard", false, "the local backend");
+  refuseUnless(cmd, "--overwrite", false, "the local backend");
+  if (a.shards < 1) throw InputError("--shards: give the number of shards (array tasks) for --backend slurm");
+  loadDatasetSpec(a.spec);  // a bad spec fails here, not in every task
+  SlurmSubmitOptions options;
+  options.spec = a.spec;
+  options.dir = a.out;
+  options.shards = a.shards;
+  options.maxParallel = a.maxParallel;
+  options.sbatchArgs = parseSlurmArgs(a.slurmArgs);
+  options.omnicamBinary = std::filesystem::canonical("/proc/self/exe").string();
+  const SlurmSubmission s = submitDatasetToSlurm(options);
+  if (s.shards.empty()) {
+    std::printf("%s: every shard of %d is complete; merged the manifest (nothing submitted)\n", a.out.c_str(), a.shards);
+    return;
+  }
+  std::printf("submitted array job %s (shards %s of %d) and merge job %s (after it)\n", s.arrayJob.c_str(),
+              slurmArraySpec(s.shards, 0).c_str(), a.shards, s.mergeJob.c_str());
+  std::printf("follow: omnicam dataset --status %s; after failures submit the same command again\n", a.out.c_str());
+}
+
 void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
-  const int verbs = !a.spec.empty() + !a.verify.empty() + !a.status.empty();
-  if (verbs != 1) throw InputError("dataset: give a SPEC with -o DIR, or --verify DIR, or --status DIR");
+  const int verbs = !a.spec.empty() + !a.verify.empty() + !a.status.empty() + !a.merge.empty();
+  if (verbs != 1) throw InputError("dataset: give a SPEC with -o DIR, or --verify DIR, --status DIR or --merge DIR");
+  if (a.backend != "local" && a.backend != "slurm") throw InputError("--backend: must be local or slurm (got \"" + a.backend + "\")");
+  if (!a.merge.empty()) {
+    refuseUnless(cmd, "-o", false, "a SPEC");
+    int count = a.shards;
+    if (count == 0) {
+      const std::vector<int> counts = shardCountsIn(a.merge);
+      if (counts.size() != 1) throw InputError("--merge: " + a.merge + ": say how many shards with --shards N");
+      count = counts.front();
+    }
+    const MergeResult r = mergeDatasetShards(a.merge, count);
+    std::printf("%s: merged %d shards: %d of %d frames finished%s\n", a.merge.c_str(), count, r.finished, r.frames,
+                r.complete() ? " (complete)" : "");
+    if (!r.complete()) printShardStates(a.merge, count);
+    exitCode = r.complete() ? 0 : 1;
+    return;
+  }
   if (!a.verify.empty() || !a.status.empty()) {
     refuseUnless(cmd, "-o", false, "a SPEC");
     refuseUnless(cmd, "--overwrite", false, "a SPEC");
@@ -36,17 +104,35 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
     return;
   }
   if (!a.status.empty()) {
+    const std::vector<int> shardCounts = shardCountsIn(a.status);
+    if (!std::filesystem::exists(std::filesystem::path(a.status) / "manifest.json") && !shardCounts.empty()) {
+      // Shards rendering, not merged yet.
+      int finished = 0;
+      for (int count : shardCounts)
+        for (const ShardState& state : shardStates(a.status, count, false)) finished += state.finished;
+      std::printf("%s: shards not merged yet: %d frames finished in the shards that have started\n", a.status.c_str(), finished);
+      for (int count : shardCounts) printShardStates(a.status, count);
+      exitCode = 1;
+      return;
+    }
     const DatasetStatus s = datasetStatus(a.status);
     std::printf("%s: %d of %d frames finished%s\n", a.status.c_str(), s.finished, s.frames,
                 s.complete ? " (complete)" : " (incomplete: run the same command again to resume)");
+    if (!s.complete)
+      for (int count : shardCountsIn(a.status)) printShardStates(a.status, count);
     exitCode = s.complete ? 0 : 1;
     return;
   }
   if (a.out.empty()) throw InputError("-o: a dataset needs an output folder");
+  if (a.backend == "slurm") return runSlurm(a, cmd);
+  refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
+  refuseUnless(cmd, "--slurm-args", false, "--backend slurm");
+  refuseUnless(cmd, "--max-parallel", false, "--backend slurm");
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   DatasetRunOptions options;
   options.dir = a.out;
   options.overwrite = a.overwrite;
+  if (!a.shard.empty()) std::tie(options.shardIndex, options.shardCount) = parseShard(a.shard);
   options.stopRequested = &interruptRequested;
   std::unique_ptr<Progress> progress;
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };
@@ -78,6 +164,12 @@ void addDatasetCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--overwrite", args->overwrite, "Replace a dataset made from a different spec in the folder");
   cmd->add_option("--verify", args->verify, "Re-hash every file of dataset DIR against its manifest (exit 0 / 1)");
   cmd->add_option("--status", args->status, "Say how many frames of dataset DIR are finished (exit 0 complete / 1)");
+  cmd->add_option("--shard", args->shard, "Render only shard I of N (I/N) into the shared folder (docs/cluster.md)");
+  cmd->add_option("--backend", args->backend, "local (default) or slurm: submit the shards as a Slurm job array");
+  cmd->add_option("--shards", args->shards, "Shards (array tasks) for --backend slurm; for --merge when not obvious");
+  cmd->add_option("--slurm-args", args->slurmArgs, "Extra sbatch options for every job, e.g. \"--partition=gpu --time=2:00:00\"");
+  cmd->add_option("--max-parallel", args->maxParallel, "At most K shards running at once (Slurm's --array=...%K)");
+  cmd->add_option("--merge", args->merge, "Merge the shard manifests of DIR into its manifest.json (exit 0 complete / 1)");
   cmd->callback([args, cmd, &exitCode] { runDatasetVerb(*args, *cmd, exitCode); });
 }
 

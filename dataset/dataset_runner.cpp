@@ -110,7 +110,15 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   const auto engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), spec.file + ": engine");
 
   DatasetRunResult result;
-  result.frames = static_cast<int>(poses.size());
+  const int totalFrames = static_cast<int>(poses.size());
+  const bool sharded = options.shardCount > 1;
+  if (options.shardCount < 1 || options.shardIndex < 0 || options.shardIndex >= options.shardCount)
+    throw InputError("--shard: must be I/N with 0 <= I < N");
+  if (sharded && options.overwrite) throw InputError("--overwrite: not with --shard (remove the folder, then render the shards)");
+  const int firstFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / options.shardCount);
+  const int endFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / options.shardCount);
+  const std::string manifestName = sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
+  result.frames = endFrame - firstFrame;
   FrameOutputPlan plan;
   plan.rgbFormat = spec.outputs.rgb;
   plan.landmarks = spec.outputs.landmarks;  // geometry: any engine
@@ -172,23 +180,37 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   header["outputs"] = {{"written", written}, {"not_written", notWritten}};
   header["classes"] = classes;
   header["instances"] = instances;
-  header["frame_count"] = result.frames;
+  header["frame_count"] = totalFrames;
+  if (sharded)
+    header["shard"] = {{"index", options.shardIndex}, {"count", options.shardCount}, {"first_frame", firstFrame},
+                       {"end_frame", endFrame}};
   header["complete"] = false;
 
   // The folder: new, this dataset (resume), or something else (refused unless --overwrite).
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("-o: " + options.dir + ": exists and is not a folder");
   std::optional<DatasetManifest> previous;
-  if (fs::exists(dir / kManifestName, ec)) {
+  auto readPrevious = [&](const std::string& name) -> std::optional<DatasetManifest> {
+    if (!fs::exists(dir / name, ec)) return std::nullopt;
+    std::optional<DatasetManifest> found;
     try {
-      previous = readManifest(options.dir);
+      found = readManifest(options.dir, name);
     } catch (const InputError& e) {
       if (!options.overwrite) throw InputError(std::string(e.what()) + " (use --overwrite to start afresh)");
     }
-    if (previous && identityOf(previous->header) != identityOf(header) && !options.overwrite)
+    if (found && identityOf(found->header) != identityOf(header) && !options.overwrite)
       throw InputError("-o: " + options.dir + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
-                       previous->header.value("spec_sha256", std::string("?")) + "); use --overwrite to replace it");
-  } else if (fs::exists(dir, ec) && !folderIsEmpty(dir) && !options.overwrite) {
+                       found->header.value("spec_sha256", std::string("?")) + "); use --overwrite to replace it");
+    return found;
+  };
+  if (fs::exists(dir / kManifestName, ec)) {
+    previous = readPrevious(kManifestName);
+    // A shard of a merged dataset keeps what the merged manifest lists, unless its own says more.
+    if (sharded && fs::exists(dir / manifestName, ec)) previous = readPrevious(manifestName);
+  } else if (sharded && fs::exists(dir / manifestName, ec)) {
+    previous = readPrevious(manifestName);
+  } else if (fs::exists(dir, ec) && !folderIsEmpty(dir) && !options.overwrite &&
+             !(sharded && fs::is_directory(dir / "shards", ec))) {
     throw InputError("-o: " + options.dir + ": folder is not empty and has no " + kManifestName + "; use --overwrite");
   }
   if (options.overwrite && fs::exists(dir, ec)) {
@@ -203,9 +225,11 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
     fs::remove(dir / kManifestName, ec);
     previous.reset();
   }
-  fs::create_directories(dir, ec);
+  // Shards share the folder: "shards/" marks it as theirs before anything else is written, and a
+  // shard never removes temporaries (another shard may be writing them; the merge does).
+  fs::create_directories(sharded ? dir / "shards" : dir, ec);
   if (ec) throw OutputError("-o: " + options.dir + ": cannot create folder (" + ec.message() + ")");
-  removeStaleTemporaries(dir);
+  if (!sharded) removeStaleTemporaries(dir);
 
   // Static files per camera: intrinsics and poses.
   json cameras = json::array();
@@ -241,7 +265,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   // Keep the earlier run's frames whose files all still hash right and whose poses match.
   if (previous) {
     for (auto& [index, frame] : previous->frames) {
-      if (index >= result.frames || frame.cameras.size() != setups.size()) continue;
+      if (index < firstFrame || index >= endFrame || frame.cameras.size() != setups.size()) continue;
       const RobotPose& want = poses[index];
       if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg) continue;
       bool intact = true;
@@ -252,12 +276,12 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
     }
   }
   result.kept = static_cast<int>(manifest.frames.size());
-  writeManifest(options.dir, manifest);
+  writeManifest(options.dir, manifest, manifestName);
 
   std::unique_ptr<RayScene> rays;
   if (plan.landmarks) rays = std::make_unique<RayScene>(scene);
   std::vector<int> todo;
-  for (int f = 0; f < result.frames; ++f)
+  for (int f = firstFrame; f < endFrame; ++f)
     if (!manifest.frames.count(f)) todo.push_back(f);
   int done = result.kept;
   if (options.onStart) options.onStart(result.kept, result.frames);
@@ -315,13 +339,13 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
     }
     const auto now = std::chrono::steady_clock::now();
     if (std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
-      writeManifest(options.dir, manifest);
+      writeManifest(options.dir, manifest, manifestName);
       lastManifest = now;
     }
   }
   result.stopped = done < result.frames;
   header["complete"] = !result.stopped;
-  writeManifest(options.dir, manifest);
+  writeManifest(options.dir, manifest, manifestName);
   return result;
 }
 
@@ -334,8 +358,8 @@ DatasetStatus datasetStatus(const std::string& dir) {
   return status;
 }
 
-DatasetVerifyResult verifyDataset(const std::string& dir) {
-  const DatasetManifest manifest = readManifest(dir);
+DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName) {
+  const DatasetManifest manifest = readManifest(dir, manifestName);
   DatasetVerifyResult result;
   for (const FileRecord& file : manifestFiles(manifest)) {
     ++result.files;
@@ -348,10 +372,13 @@ DatasetVerifyResult verifyDataset(const std::string& dir) {
     const std::string actual = fileSha256(path);
     if (actual != file.sha256) result.problems.push_back(file.path + ": SHA-256 " + actual + " differs from the manifest's " + file.sha256);
   }
-  const int frames = manifest.header.value("frame_count", 0);
-  if (static_cast<int>(manifest.frames.size()) != frames || !manifest.header.value("complete", false))
-    result.problems.push_back(std::string(kManifestName) + ": incomplete: " + std::to_string(manifest.frames.size()) + " of " +
-                              std::to_string(frames) + " frames finished (run the same command again to resume)");
+  // A shard is complete with its own range of frames.
+  const json shard = manifest.header.value("shard", json());
+  const int wanted = shard.is_object() ? shard.at("end_frame").get<int>() - shard.at("first_frame").get<int>()
+                                       : manifest.header.value("frame_count", 0);
+  if (static_cast<int>(manifest.frames.size()) != wanted || !manifest.header.value("complete", false))
+    result.problems.push_back(manifestName + ": incomplete: " + std::to_string(manifest.frames.size()) + " of " +
+                              std::to_string(wanted) + " frames finished (run the same command again to resume)");
   return result;
 }
 

@@ -15,6 +15,10 @@ namespace omnicam {
 struct DatasetRunOptions {
   std::string dir;
   bool overwrite = false;  // replace a dataset made from another spec
+  // Shard `shardIndex` of `shardCount` (dataset_shards.h): frames [F·i/n, F·(i+1)/n) only, listed
+  // in DIR/shards/shard-i-of-n.json instead of DIR/manifest.json, so that shards on different
+  // machines can fill one shared folder at once. 1: the whole dataset.
+  int shardIndex = 0, shardCount = 1;
   // Called once before rendering: frames kept from an earlier run, of `total`.
   std::function<void(int kept, int total)> onStart;
   // Called after every finished frame: frames done (kept + rendered) of `total`.
@@ -24,7 +28,7 @@ struct DatasetRunOptions {
 };
 
 struct DatasetRunResult {
-  int frames = 0;    // in the spec
+  int frames = 0;    // in the spec (a shard's: in the shard)
   int kept = 0;      // verified and kept from an earlier run
   int rendered = 0;  // rendered by this run
   bool stopped = false;
@@ -47,7 +51,8 @@ struct DatasetVerifyResult {
   std::vector<std::string> problems;  // one line each: missing, changed, incomplete
   bool ok() const { return problems.empty(); }
 };
-// Re-hashes every file the manifest lists. InputError if DIR has no readable manifest.
-DatasetVerifyResult verifyDataset(const std::string& dir);
+// Re-hashes every file the manifest (or the shard manifest `manifestName`) lists. InputError if
+// DIR has no readable manifest.
+DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName = "manifest.json");
 
 }  // namespace omnicam

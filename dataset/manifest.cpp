@@ -73,10 +73,14 @@ json manifestToJson(const DatasetManifest& manifest) {
   return root;
 }
 
-DatasetManifest readManifest(const std::string& dir) {
-  const std::string file = (fs::path(dir) / kManifestName).string();
+std::string shardManifestName(int index, int count) {
+  return "shards/shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
+}
+
+DatasetManifest readManifest(const std::string& dir, const std::string& name) {
+  const std::string file = (fs::path(dir) / name).string();
   std::error_code ec;
-  if (!fs::exists(file, ec)) throw InputError(dir + ": not a dataset folder (no " + kManifestName + ")");
+  if (!fs::exists(file, ec)) throw InputError(dir + ": not a dataset folder (no " + name + ")");
   json root = readJsonFile(file);
   const Reader r{file};
   if (!root.is_object() || r.string(root, "format", "manifest") != kManifestFormat)
@@ -126,8 +130,8 @@ DatasetManifest readManifest(const std::string& dir) {
   return manifest;
 }
 
-void writeManifest(const std::string& dir, const DatasetManifest& manifest) {
-  writeTextAtomically((fs::path(dir) / kManifestName).string(), manifestToJson(manifest).dump(1) + "\n");
+void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name) {
+  writeTextAtomically((fs::path(dir) / name).string(), manifestToJson(manifest).dump(1) + "\n");
 }
 
 std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest) {

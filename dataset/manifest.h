@@ -38,9 +38,13 @@ struct DatasetManifest {
 };
 
 nlohmann::json manifestToJson(const DatasetManifest& manifest);
-// Reads DIR/manifest.json strictly; InputError naming the file and field.
-DatasetManifest readManifest(const std::string& dir);
-void writeManifest(const std::string& dir, const DatasetManifest& manifest);
+// Reads DIR/manifest.json (or DIR/`name`: a shard's manifest) strictly; InputError naming the
+// file and field.
+DatasetManifest readManifest(const std::string& dir, const std::string& name = kManifestName);
+void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name = kManifestName);
+
+// A shard's manifest, relative to the dataset folder: shards/shard-I-of-N.json.
+std::string shardManifestName(int index, int count);
 
 // Every file the manifest lists (static files of each camera, then the frames'), for verifying.
 std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest);

@@ -1,0 +1,108 @@
+#include "dataset_shards.h"
+
+#include <filesystem>
+#include <regex>
+#include <set>
+
+#include "atomic_file.h"
+#include "dataset_runner.h"
+#include "errors.h"
+#include "manifest.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json identityOf(const json& header) {
+  return {{"spec", header.at("spec")}, {"scene_sha256", header.at("scene").at("sha256")},
+          {"engine", header.at("engine")}};
+}
+
+}  // namespace
+
+std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles) {
+  std::vector<ShardState> states;
+  for (int i = 0; i < count; ++i) {
+    ShardState s;
+    s.index = i;
+    const std::string name = shardManifestName(i, count);
+    std::error_code ec;
+    if (fs::exists(fs::path(dir) / name, ec)) {
+      const DatasetManifest m = readManifest(dir, name);
+      s.started = true;
+      const json& shard = m.header.at("shard");
+      s.frames = shard.at("end_frame").get<int>() - shard.at("first_frame").get<int>();
+      s.finished = static_cast<int>(m.frames.size());
+      s.complete = m.header.value("complete", false) && s.finished == s.frames;
+      if (s.complete && checkFiles) {
+        s.problems = verifyDataset(dir, name).problems;
+        s.complete = s.problems.empty();
+      }
+    }
+    states.push_back(s);
+  }
+  return states;
+}
+
+std::vector<int> shardCountsIn(const std::string& dir) {
+  std::set<int> counts;
+  const std::regex name(R"(shard-\d+-of-(\d+)\.json)");
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(fs::path(dir) / "shards", ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+    std::smatch m;
+    const std::string file = it->path().filename().string();
+    if (std::regex_match(file, m, name) && m[1].length() < 7) counts.insert(std::stoi(m[1]));
+  }
+  return {counts.begin(), counts.end()};
+}
+
+MergeResult mergeDatasetShards(const std::string& dir, int count) {
+  if (count < 1) throw InputError("--merge-shards: must be at least 1");
+  std::optional<DatasetManifest> merged;
+  MergeResult result;
+  for (int i = 0; i < count; ++i) {
+    const std::string name = shardManifestName(i, count);
+    std::error_code ec;
+    if (!fs::exists(fs::path(dir) / name, ec)) {
+      result.incompleteShards.push_back(i);
+      continue;
+    }
+    const DatasetManifest shard = readManifest(dir, name);
+    if (!merged) {
+      merged = DatasetManifest{shard.header, {}};
+      merged->header.erase("shard");
+    } else if (identityOf(shard.header) != identityOf(merged->header)) {
+      throw InputError(dir + "/" + name + ": from a different spec, scene or engine than the other shards");
+    }
+    const json& range = shard.header.at("shard");
+    const int first = range.at("first_frame").get<int>(), end = range.at("end_frame").get<int>();
+    int finished = 0;
+    for (const auto& [index, frame] : shard.frames)
+      if (index >= first && index < end) merged->frames[index] = frame, ++finished;
+    if (!shard.header.value("complete", false) || finished != end - first) result.incompleteShards.push_back(i);
+  }
+  if (!merged) throw InputError(dir + ": no shard of " + std::to_string(count) + " has started (no shards/shard-*-of-" +
+                                std::to_string(count) + ".json)");
+  std::error_code ec;
+  if (fs::exists(fs::path(dir) / kManifestName, ec)) {
+    const DatasetManifest existing = readManifest(dir);
+    if (identityOf(existing.header) != identityOf(merged->header))
+      throw InputError(dir + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
+    // Frames an earlier merge (or an unsharded run) finished stay listed.
+    for (const auto& [index, frame] : existing.frames) merged->frames.emplace(index, frame);
+  }
+  result.frames = merged->header.value("frame_count", 0);
+  result.finished = static_cast<int>(merged->frames.size());
+  merged->header["complete"] = result.finished == result.frames;
+  if (result.finished == result.frames) result.incompleteShards.clear();
+  writeManifest(dir, *merged);
+  // Every shard has ended (the merge runs after them): what a killed one left behind goes.
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
+    if (it->is_regular_file(ec) && isAtomicTemporaryName(it->path().filename().string())) fs::remove(it->path(), ec);
+  return result;
+}
+
+}  // namespace omnicam

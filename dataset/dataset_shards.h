@@ -1,0 +1,38 @@
+#pragma once
+// A dataset rendered in shards (`omnicam dataset SPEC -o DIR --shard I/N`, by hand or as a Slurm
+// job array): shard I renders frames [F·I/N, F·(I+1)/N) into the shared DIR and lists them in
+// DIR/shards/shard-I-of-N.json; merging writes DIR/manifest.json from every shard's manifest.
+// A merged dataset is the same as one rendered in one go (fast engine: byte for byte).
+#include <string>
+#include <vector>
+
+namespace omnicam {
+
+struct ShardState {
+  int index = 0;
+  bool started = false;   // its manifest exists
+  int frames = 0;         // in its range
+  int finished = 0;       // listed in its manifest
+  bool complete = false;  // every frame finished, and (when checked) every file hashes right
+  std::vector<std::string> problems;  // from checking the files
+};
+
+// Every shard of `count`; `checkFiles` re-hashes each finished shard's files (what a resubmission
+// needs to know: a corrupt shard is rendered again).
+std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles);
+
+// The shard counts that have manifests in DIR/shards/ (normally one).
+std::vector<int> shardCountsIn(const std::string& dir);
+
+struct MergeResult {
+  int frames = 0, finished = 0;
+  std::vector<int> incompleteShards;
+  bool complete() const { return incompleteShards.empty() && finished == frames; }
+};
+
+// Writes DIR/manifest.json from the shard manifests (complete or not: what is finished is listed)
+// and removes temporaries killed shards left behind. InputError if no shard has started, or the
+// shards (or an existing manifest) come from different specs, scenes or engines.
+MergeResult mergeDatasetShards(const std::string& dir, int count);
+
+}  // namespace omnicam

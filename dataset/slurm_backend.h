@@ -1,0 +1,39 @@
+#pragma once
+// `omnicam dataset SPEC -o DIR --backend slurm --shards N`: a Slurm job array renders the shards
+// (dataset_shards.h) into the shared DIR, one task per shard, and a job that depends on the
+// array merges the manifest. Slurm does the scheduling; a retry is a resubmission, which renders
+// only the shards that are missing, unfinished or whose files no longer hash right.
+//
+// Files (in DIR/slurm/): render.sbatch, merge.sbatch, shard-<I>.log, merge.log, sbatch.log.
+#include <string>
+#include <vector>
+
+namespace omnicam {
+
+struct SlurmSubmitOptions {
+  std::string spec, dir;         // as given; made absolute in the scripts
+  std::string omnicamBinary;     // absolute path of the omnicam the tasks run
+  int shards = 1;
+  int maxParallel = 0;           // 0: no throttle; K: --array=...%K
+  std::vector<std::string> sbatchArgs;  // extra #SBATCH options, each one "--name[=value]"
+  std::string sbatch = "sbatch";        // the submit command (PATH lookup)
+};
+
+struct SlurmSubmission {
+  std::vector<int> shards;       // submitted (empty: all were done; then merged here)
+  std::string arrayJob, mergeJob;
+  std::string renderScript, mergeScript;
+};
+
+// Splits --slurm-args on whitespace; each word must start with '-' and hold no quote, newline or
+// backslash (they become #SBATCH lines). InputError otherwise.
+std::vector<std::string> parseSlurmArgs(const std::string& text);
+
+// A Slurm array spec for `indices`, compressed to ranges ("0-3,5,7-9"), with "%K" when K > 0.
+std::string slurmArraySpec(const std::vector<int>& indices, int maxParallel);
+
+// Writes the scripts and submits them. InputError for a folder holding something else;
+// ExternalError if sbatch is missing or refuses (with its message).
+SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& options);
+
+}  // namespace omnicam
