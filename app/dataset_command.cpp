@@ -128,11 +128,11 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
   refuseUnless(cmd, "--slurm-args", false, "--backend slurm");
   refuseUnless(cmd, "--max-parallel", false, "--backend slurm");
-  const DatasetSpec spec = loadDatasetSpec(a.spec);
   DatasetRunOptions options;
+  if (!a.shard.empty()) std::tie(options.shardIndex, options.shardCount) = parseShard(a.shard);
+  const DatasetSpec spec = loadDatasetSpec(a.spec);
   options.dir = a.out;
   options.overwrite = a.overwrite;
-  if (!a.shard.empty()) std::tie(options.shardIndex, options.shardCount) = parseShard(a.shard);
   options.stopRequested = &interruptRequested;
   std::unique_ptr<Progress> progress;
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };

@@ -293,6 +293,35 @@ TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   EXPECT_NE(notDataset.out.find("folder is not empty and has no manifest.json"), std::string::npos) << notDataset.out;
 }
 
+TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 96, "poses": {"path": "thesis-loop", "frames": 10})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole")).code, 0);
+  // Shards in any order; the merge lists what is missing and exits 1 until all are there.
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 2/3").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/3").code, 0);
+  auto r = omnicam("dataset --status " + path("parts"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("shard 1/3: not started"), std::string::npos) << r.out;
+  r = omnicam("dataset --merge " + path("parts"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  // Frames [10·I/3, 10·(I+1)/3): 0-2, 3-5, 6-9; shards 0 and 2 hold 3 + 4.
+  EXPECT_NE(r.out.find("7 of 10 frames finished"), std::string::npos) << r.out;
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/3").code, 0);
+  r = omnicam("dataset --merge " + path("parts"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
+  // The merged dataset is the one-go dataset: same manifest, same bytes in every file.
+  std::map<std::string, std::string> merged = snapshot(dir_ / "parts"), whole = snapshot(dir_ / "whole");
+  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  EXPECT_EQ(merged, whole);
+  // A shard of another spec in the same folder is refused.
+  const std::string other = robocupSpec("other.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 10})");
+  r = omnicam("dataset " + other + " -o " + path("parts") + " --shard 0/2");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("different spec"), std::string::npos) << r.out;
+  EXPECT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 3/3").code, 2);
+}
+
 TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   const std::string spec = robocupSpec("spec.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3})");
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
