@@ -62,6 +62,7 @@ bench: build
 	bench/povray_ratio.sh 1 100
 	$(BUILD_DIR)/bin/dataset_bench
 	bench/dataset_ratio.sh 1000
+	mkdir -p out && $(BUILD_DIR)/bin/scene_scaling --csv out/scaling.csv
 
 clean:
 	rm -rf $(BUILD_DIR) out
