@@ -1,5 +1,6 @@
 // omnicam experiment texture-realism -o DIR [--quick] [--doc PATH]
 // omnicam arena hall [--photo IMG]... [--random-photos] [--seed S] -o SCENE.json
+// omnicam arena mapping [--seed S] -o SCENE.json
 #include <cstdio>
 #include <filesystem>
 
@@ -8,6 +9,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "hall_arena.h"
+#include "mapping_arena.h"
 #include "texture_realism.h"
 
 namespace omnicam::cli {
@@ -83,9 +85,22 @@ struct ArenaArgs {
   uint64_t seed = 1;
 };
 
-void runArena(const ArenaArgs& a) {
-  if (a.kind != "hall") throw InputError("arena: unknown arena \"" + a.kind + "\" (hall)");
+void runArena(const ArenaArgs& a, const CLI::App& cmd) {
+  if (a.kind != "hall" && a.kind != "mapping") throw InputError("arena: unknown arena \"" + a.kind + "\" (hall, mapping)");
   if (a.out.empty() || std::filesystem::path(a.out).extension() != ".json") throw InputError("-o: give the scene file to write (.json)");
+  if (a.kind == "mapping") {
+    refuseUnless(cmd, "--photo", false, "arena hall");
+    refuseUnless(cmd, "--random-photos", false, "arena hall");
+    MappingOptions options;
+    options.seed = a.seed;
+    const MappingArena arena = generateMappingArena(options);
+    const std::filesystem::path parent = std::filesystem::path(a.out).parent_path();
+    if (!parent.empty()) ensureDirectory(parent.string(), "-o");
+    writeTextAtomically(a.out, arena.scene.dump(1) + "\n");
+    std::printf("wrote %s (mapping maze %dx%d cells, seed %llu: %zu objects, %d victims)\n", a.out.c_str(), options.cellsX,
+                options.cellsY, static_cast<unsigned long long>(a.seed), arena.scene["objects"].size(), options.victims);
+    return;
+  }
   if (a.randomPhotos && a.photos.empty()) throw InputError("--random-photos: give photos with --photo");
   HallOptions options;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -113,15 +128,16 @@ void addExperimentCommands(CLI::App& app) {
   cmd->callback([args] { runExperiment(*args); });
 
   auto arena = std::make_shared<ArenaArgs>();
-  CLI::App* arenaCmd = app.add_subcommand("arena", "Generate an arena scene: hall (robocup2006 inside walls and a ceiling)");
-  arenaCmd->add_option("kind", arena->kind, "hall")->required();
+  CLI::App* arenaCmd = app.add_subcommand("arena", "Generate an arena scene: hall (robocup2006 inside walls and a "
+                                                   "ceiling) or mapping (a seeded rescue maze with victims)");
+  arenaCmd->add_option("kind", arena->kind, "hall or mapping")->required();
   arenaCmd->add_option("-o,--output", arena->out, "Scene file to write; textures go beside it")->required();
   arenaCmd->add_option("--photo", arena->photos,
                        "360-degree photo for the walls (repeatable): an equirectangular image, or an omni image "
                        "unwrapped with `omnicam view IMG --as panorama` (its sidecar beside it)");
   arenaCmd->add_flag("--random-photos", arena->randomPhotos, "Each wall a photo and a turn drawn from --seed");
-  arenaCmd->add_option("--seed", arena->seed, "Seed for --random-photos");
-  arenaCmd->callback([arena] { runArena(*arena); });
+  arenaCmd->add_option("--seed", arena->seed, "Seed of the maze (mapping) or of --random-photos (hall)");
+  arenaCmd->callback([arena, arenaCmd] { runArena(*arena, *arenaCmd); });
 }
 
 }  // namespace omnicam::cli
