@@ -77,13 +77,6 @@ bool folderIsEmpty(const fs::path& dir) {
   return fs::is_empty(dir, ec);
 }
 
-// What makes two runs the same dataset: the spec's content (not its formatting), the scene's
-// bytes and the engine. Resuming across any difference would mix frames.
-json identityOf(const json& header) {
-  return {{"spec", header.at("spec")}, {"scene_sha256", header.at("scene").at("sha256")},
-          {"engine", header.at("engine")}};
-}
-
 void writeDatasetFile(const fs::path& dir, const std::string& relative, const std::string& bytes) {
   writeBytesAtomically((dir / relative).string(), bytes, Durability::Unsynced);
 }
@@ -198,7 +191,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
     } catch (const InputError& e) {
       if (!options.overwrite) throw InputError(std::string(e.what()) + " (use --overwrite to start afresh)");
     }
-    if (found && identityOf(found->header) != identityOf(header) && !options.overwrite)
+    if (found && datasetIdentity(found->header) != datasetIdentity(header) && !options.overwrite)
       throw InputError("-o: " + options.dir + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
                        found->header.value("spec_sha256", std::string("?")) + "); use --overwrite to replace it");
     return found;

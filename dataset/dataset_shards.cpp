@@ -14,15 +14,6 @@ namespace omnicam {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-json identityOf(const json& header) {
-  return {{"spec", header.at("spec")}, {"scene_sha256", header.at("scene").at("sha256")},
-          {"engine", header.at("engine")}};
-}
-
-}  // namespace
-
 std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles) {
   std::vector<ShardState> states;
   for (int i = 0; i < count; ++i) {
@@ -74,7 +65,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
     if (!merged) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
-    } else if (identityOf(shard.header) != identityOf(merged->header)) {
+    } else if (datasetIdentity(shard.header) != datasetIdentity(merged->header)) {
       throw InputError(dir + "/" + name + ": from a different spec, scene or engine than the other shards");
     }
     const json& range = shard.header.at("shard");
@@ -89,7 +80,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   std::error_code ec;
   if (fs::exists(fs::path(dir) / kManifestName, ec)) {
     const DatasetManifest existing = readManifest(dir);
-    if (identityOf(existing.header) != identityOf(merged->header))
+    if (datasetIdentity(existing.header) != datasetIdentity(merged->header))
       throw InputError(dir + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
     // Frames an earlier merge (or an unsharded run) finished stay listed.
     for (const auto& [index, frame] : existing.frames) merged->frames.emplace(index, frame);

@@ -73,6 +73,11 @@ json manifestToJson(const DatasetManifest& manifest) {
   return root;
 }
 
+json datasetIdentity(const json& header) {
+  return {{"spec", header.at("spec")}, {"scene_sha256", header.at("scene").at("sha256")},
+          {"engine", header.at("engine")}};
+}
+
 std::string shardManifestName(int index, int count) {
   return "shards/shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
 }

@@ -43,6 +43,10 @@ nlohmann::json manifestToJson(const DatasetManifest& manifest);
 DatasetManifest readManifest(const std::string& dir, const std::string& name = kManifestName);
 void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name = kManifestName);
 
+// What makes two runs the same dataset: the spec's content (not its formatting), the scene's
+// bytes and the engine. Resuming or merging across any difference would mix frames.
+nlohmann::json datasetIdentity(const nlohmann::json& header);
+
 // A shard's manifest, relative to the dataset folder: shards/shard-I-of-N.json.
 std::string shardManifestName(int index, int count);
 
