@@ -107,4 +107,12 @@ bool isAtomicTemporaryName(const std::string& name) {
   return !name.empty() && name[0] == '.' && at != std::string::npos && name.size() >= at + 11;
 }
 
+void removeAtomicTemporaries(const std::string& dir) {
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+    if (it->is_regular_file(ec) && isAtomicTemporaryName(it->path().filename().string()))
+      std::filesystem::remove(it->path(), ec);
+}
+
 }  // namespace omnicam

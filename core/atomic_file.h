@@ -27,5 +27,7 @@ void checkOutputFolder(const std::string& path, const std::string& flag);
 
 // Temporary siblings left behind by killed runs match this (".<stem>.tmp-XXXXXX<ext>").
 bool isAtomicTemporaryName(const std::string& fileName);
+// Removes every such temporary under `dir` (recursively); errors are ignored.
+void removeAtomicTemporaries(const std::string& dir);
 
 }  // namespace omnicam

@@ -66,12 +66,6 @@ std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup
   return out.str();
 }
 
-void removeStaleTemporaries(const fs::path& dir) {
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-    if (it->is_regular_file(ec) && isAtomicTemporaryName(it->path().filename().string())) fs::remove(it->path(), ec);
-}
-
 bool folderIsEmpty(const fs::path& dir) {
   std::error_code ec;
   return fs::is_empty(dir, ec);
@@ -222,7 +216,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   // shard never removes temporaries (another shard may be writing them; the merge does).
   fs::create_directories(sharded ? dir / "shards" : dir, ec);
   if (ec) throw OutputError("-o: " + options.dir + ": cannot create folder (" + ec.message() + ")");
-  if (!sharded) removeStaleTemporaries(dir);
+  if (!sharded) removeAtomicTemporaries(dir.string());
 
   // Static files per camera: intrinsics and poses.
   json cameras = json::array();

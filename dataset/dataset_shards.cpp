@@ -91,8 +91,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   if (result.finished == result.frames) result.incompleteShards.clear();
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec))
-    if (it->is_regular_file(ec) && isAtomicTemporaryName(it->path().filename().string())) fs::remove(it->path(), ec);
+  removeAtomicTemporaries(dir);
   return result;
 }
 

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "errors.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -20,16 +20,6 @@ RecordingCamera RecordingCamera::webcam() {
   camera.jpegQuality = 80;
   return camera;
 }
-
-namespace {
-
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
-}  // namespace
 
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object()) throw InputError(where + ": must be an object");
