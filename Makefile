@@ -12,7 +12,7 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
   povray blender python3-numpy python3-matplotlib libtinygltf-dev \
   clang libfuzzer-14-dev libclang-rt-14-dev \
-  slurmctld slurmd slurm-client munge
+  slurmctld slurmd slurm-client munge libcgal-dev
 
 .PHONY: deps build test demo bench clean fuzz-build fuzz
 

@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "errors.h"
@@ -21,32 +22,63 @@ std::string fastRendererVersion() {
 
 FastRenderer::FastRenderer(const Scene& scene) : scene_(scene), rays_(scene) {}
 
-Vec3f FastRenderer::shade(const SurfaceHit& hit, const Vec3& direction, Shading shading) const {
-  const Material& material = scene_.materials[scene_.objects[hit.object].material];
-  Vec3f albedo = material.color;
-  if (material.texture)
-    albedo = albedo.cwiseProduct(material.texture->sample(hit.uv.x() * material.textureScale.x(),
-                                                          hit.uv.y() * material.textureScale.y()));
-  if (shading == Shading::Unlit) return albedo;
-  // Two-sided surfaces: the normal faces the viewer.
-  const Vec3 n = hit.normal.dot(direction) > 0.0 ? Vec3(-hit.normal) : hit.normal;
-  Vec3f light = Vec3f::Constant(material.ambient);
-  for (const PointLight& lamp : scene_.lights) {
-    const Vec3 toLight = lamp.position - hit.point;
-    const double distance = toLight.norm();
-    const Vec3 l = toLight / distance;
-    const double cosine = n.dot(l);
-    if (cosine <= 0.0) continue;
-    if (rays_.occluded(hit.point + kShadowEpsilon * n, l, 0.0, distance - kShadowEpsilon)) continue;
-    light += static_cast<float>(material.diffuse * cosine) * lamp.intensity;
+void FastRenderer::shadePacket(const SurfaceHit* hits, const Vec3* directions, int count, uint32_t hitMask,
+                               Shading shading, Vec3f* colours) const {
+  Vec3 faced[RayScene::kPacketSize];  // two-sided surfaces: the normal faces the viewer
+  for (int k = 0; k < count; ++k) {
+    if (!((hitMask >> k) & 1u)) {
+      colours[k] = scene_.background;
+      continue;
+    }
+    const SurfaceHit& hit = hits[k];
+    const Material& material = scene_.materials[scene_.objects[hit.object].material];
+    Vec3f albedo = material.color;
+    if (material.texture)
+      albedo = albedo.cwiseProduct(material.texture->sample(hit.uv.x() * material.textureScale.x(),
+                                                            hit.uv.y() * material.textureScale.y()));
+    colours[k] = albedo;
+    faced[k] = hit.normal.dot(directions[k]) > 0.0 ? Vec3(-hit.normal) : hit.normal;
   }
-  return albedo.cwiseProduct(light);
+  if (shading == Shading::Unlit || hitMask == 0) return;
+  Vec3f light[RayScene::kPacketSize];
+  for (int k = 0; k < count; ++k)
+    light[k] = (hitMask >> k) & 1u
+                   ? Vec3f::Constant(scene_.materials[scene_.objects[hits[k].object].material].ambient)
+                   : Vec3f::Zero();
+  // One shadow packet per lamp: the hit points are neighbours, so their shadow rays are too.
+  Vec3 origins[RayScene::kPacketSize], toLamp[RayScene::kPacketSize];
+  double tNear[RayScene::kPacketSize], tFar[RayScene::kPacketSize], cosine[RayScene::kPacketSize];
+  for (const PointLight& lamp : scene_.lights) {
+    uint32_t facing = 0;
+    for (int k = 0; k < count; ++k) {
+      if (!((hitMask >> k) & 1u)) continue;
+      const Vec3 offset = lamp.position - hits[k].point;
+      const double distance = offset.norm();
+      toLamp[k] = offset / distance;
+      cosine[k] = faced[k].dot(toLamp[k]);
+      if (cosine[k] <= 0.0) continue;
+      origins[k] = hits[k].point + kShadowEpsilon * faced[k];
+      tNear[k] = 0.0;
+      tFar[k] = distance - kShadowEpsilon;
+      facing |= 1u << k;
+    }
+    const uint32_t blocked = rays_.occludedPacket(origins, toLamp, tNear, tFar, facing);
+    for (int k = 0; k < count; ++k) {
+      if (!((facing & ~blocked) >> k & 1u)) continue;
+      const Material& material = scene_.materials[scene_.objects[hits[k].object].material];
+      light[k] += static_cast<float>(material.diffuse * cosine[k]) * lamp.intensity;
+    }
+  }
+  for (int k = 0; k < count; ++k)
+    if ((hitMask >> k) & 1u) colours[k] = colours[k].cwiseProduct(light[k]);
 }
 
 Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading shading) const {
   SurfaceHit hit;
-  if (!rays_.intersect(origin, direction, 0.0, hit)) return scene_.background;
-  return shade(hit, direction, shading);
+  const uint32_t hitMask = rays_.intersect(origin, direction, 0.0, hit) ? 1u : 0u;
+  Vec3f colour;
+  shadePacket(&hit, &direction, 1, hitMask, shading, &colour);
+  return colour;
 }
 
 std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const RigSpec& rig, int n) const {
@@ -135,15 +167,33 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   const Vec3 origin = worldFromCam.translation();
   const Eigen::Matrix3d rotation = worldFromCam.linear();
   tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j != rows.end(); ++j)
+    // The same packets as a render pass traces for its centre rays, so both give the same AOVs.
+    constexpr int kPacket = RayScene::kPacketSize;
+    Vec3 directions[kPacket];
+    SurfaceHit hits[kPacket];
+    size_t pending[kPacket];
+    int count = 0;
+    const auto trace = [&] {
+      const uint32_t hitMask = rays_.intersectPacket(origin, directions, count, hits);
+      for (int k = 0; k < count; ++k)
+        if ((hitMask >> k) & 1u) recordAov(aovs, pending[k], hits[k], directions[k]);
+        else recordNoHit(aovs, pending[k]);
+      count = 0;
+    };
+    for (int j = rows.begin(); j != rows.end(); ++j) {
       for (int i = 0; i < aovs.width; ++i) {
         const size_t p = static_cast<size_t>(j) * aovs.width + i;
         const Eigen::Vector3f& centre = table->centreDirections[p];
-        const Vec3 direction = rotation * centre.cast<double>();
-        SurfaceHit hit;
-        if (!std::isnan(centre.x()) && rays_.intersect(origin, direction, 0.0, hit)) recordAov(aovs, p, hit, direction);
-        else recordNoHit(aovs, p);
+        if (std::isnan(centre.x())) {
+          recordNoHit(aovs, p);
+          continue;
+        }
+        pending[count] = p;
+        directions[count++] = rotation * centre.cast<double>();
+        if (count == kPacket) trace();
       }
+      if (count > 0) trace();  // packets stay within a row, as in a render pass
+    }
   });
 }
 
@@ -158,39 +208,65 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
   const Eigen::Matrix3d rotation = worldFromCam.linear();
   ImageRGBA image(width, height);
   const float weight = 1.0f / static_cast<float>(*n * *n);
+  constexpr int kPacket = RayScene::kPacketSize;
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<Vec3f> sums(width);
+    std::vector<uint8_t> centreRecorded(width);
+    Vec3 directions[kPacket];
+    SurfaceHit hits[kPacket];
+    Vec3f colours[kPacket];
     for (int j = rows.begin(); j != rows.end(); ++j) {
+      const size_t rowStart = static_cast<size_t>(j) * width;
+      std::fill(sums.begin(), sums.end(), Vec3f::Zero());
+      std::fill(centreRecorded.begin(), centreRecorded.end(), uint8_t{0});
+      // The row's samples are contiguous in the table; packets run across pixel borders, and
+      // each sample is added to its pixel's sum in the same order as one ray at a time.
+      const uint32_t rowEnd = table->firstSample[rowStart + width];
+      size_t pixel = rowStart;
+      for (uint32_t first = table->firstSample[rowStart]; first < rowEnd; first += kPacket) {
+        const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
+        for (int k = 0; k < count; ++k) directions[k] = rotation * table->directions[first + k].cast<double>();
+        const uint32_t hitMask = rays_.intersectPacket(origin, directions, count, hits);
+        shadePacket(hits, directions, count, hitMask, settings.shading, colours);
+        for (int k = 0; k < count; ++k) {
+          const uint32_t s = first + static_cast<uint32_t>(k);
+          while (table->firstSample[pixel + 1] <= s) ++pixel;
+          sums[pixel - rowStart] += colours[k];
+          if (aovs && s == table->centreSample[pixel] && ((hitMask >> k) & 1u)) {
+            recordAov(*aovs, pixel, hits[k], directions[k]);
+            centreRecorded[pixel - rowStart] = 1;
+          }
+        }
+      }
+      if (aovs) {
+        // At even n no sample is the centre: one more ray per pixel, again in packets.
+        int pending[kPacket];
+        int count = 0;
+        const auto traceCentres = [&] {
+          const uint32_t hitMask = rays_.intersectPacket(origin, directions, count, hits);
+          for (int k = 0; k < count; ++k)
+            if ((hitMask >> k) & 1u) {
+              recordAov(*aovs, rowStart + pending[k], hits[k], directions[k]);
+              centreRecorded[pending[k]] = 1;
+            }
+          count = 0;
+        };
+        for (int i = 0; i < width; ++i) {
+          const Eigen::Vector3f& centre = table->centreDirections[rowStart + i];
+          if (table->centreSample[rowStart + i] != SampleTable::kNoSample || std::isnan(centre.x())) continue;
+          pending[count] = i;
+          directions[count++] = rotation * centre.cast<double>();
+          if (count == kPacket) traceCentres();
+        }
+        if (count > 0) traceCentres();
+        for (int i = 0; i < width; ++i)
+          if (!centreRecorded[i]) recordNoHit(*aovs, rowStart + i);
+      }
       for (int i = 0; i < width; ++i) {
-        const size_t pixel = static_cast<size_t>(j) * width + i;
-        const uint32_t first = table->firstSample[pixel], last = table->firstSample[pixel + 1];
-        Vec3f sum = Vec3f::Zero();
-        bool centreRecorded = false;
-        for (uint32_t s = first; s < last; ++s) {
-          const Vec3 direction = rotation * table->directions[s].cast<double>();
-          SurfaceHit hit;
-          if (!rays_.intersect(origin, direction, 0.0, hit)) {
-            sum += scene_.background;
-            continue;
-          }
-          sum += shade(hit, direction, settings.shading);
-          if (aovs && s == table->centreSample[pixel]) {
-            recordAov(*aovs, pixel, hit, direction);
-            centreRecorded = true;
-          }
-        }
-        if (aovs && table->centreSample[pixel] == SampleTable::kNoSample) {
-          const Eigen::Vector3f& centre = table->centreDirections[pixel];
-          SurfaceHit hit;
-          const Vec3 direction = rotation * centre.cast<double>();
-          if (!std::isnan(centre.x()) && rays_.intersect(origin, direction, 0.0, hit)) {
-            recordAov(*aovs, pixel, hit, direction);
-            centreRecorded = true;
-          }
-        }
-        if (aovs && !centreRecorded) recordNoHit(*aovs, pixel);
+        const size_t p = rowStart + i;
         float* px = image.at(i, j);
-        for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
-        px[3] = static_cast<float>(last - first) * weight;
+        for (int c = 0; c < 3; ++c) px[c] = sums[i][c] * weight;
+        px[3] = static_cast<float>(table->firstSample[p + 1] - table->firstSample[p]) * weight;
       }
     }
   });

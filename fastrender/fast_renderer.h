@@ -57,7 +57,10 @@ class FastRenderer {
   void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
   std::shared_ptr<const SampleTable> sampleTable(const RigSpec& rig, int samplesPerAxis) const;
 
-  Vec3f shade(const SurfaceHit& hit, const Vec3& direction, Shading shading) const;
+  // Colours of a packet of rays (count ≤ RayScene::kPacketSize): the background where bit k of
+  // hitMask is clear, else the hit shaded per docs/conventions.md §2, shadow rays as packets.
+  void shadePacket(const SurfaceHit* hits, const Vec3* directions, int count, uint32_t hitMask, Shading shading,
+                   Vec3f* colours) const;
   const Scene& scene_;
   RayScene rays_;
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable

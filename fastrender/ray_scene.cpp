@@ -38,33 +38,42 @@ void boundsCallback(const RTCBoundsFunctionArguments* args) {
   out->upper_z = static_cast<float>(b.second.z() + pad);
 }
 
+// Embree calls these with N = 1 (rtcIntersect1) or N = 16 (packets); valid[i] != 0 marks the
+// live lanes. The N-wide layout with N = 1 is exactly RTCRayHit, so one loop serves both.
 void intersectCallback(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  // Only single rays (rtcIntersect1) are traced, so N == 1 and the packet is an RTCRayHit.
-  auto* rayhit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  RTCRay& ray = rayhit->ray;
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
-  const Vec3 o(ray.org_x, ray.org_y, ray.org_z), d(ray.dir_x, ray.dir_y, ray.dir_z);
-  const auto hit = intersectAnalytic(*g->shape, o, d, ray.tnear, ray.tfar);
-  if (!hit) return;
-  ray.tfar = static_cast<float>(hit->t);
-  rayhit->hit.Ng_x = static_cast<float>(hit->normal.x());
-  rayhit->hit.Ng_y = static_cast<float>(hit->normal.y());
-  rayhit->hit.Ng_z = static_cast<float>(hit->normal.z());
-  rayhit->hit.u = static_cast<float>(hit->uv.x());
-  rayhit->hit.v = static_cast<float>(hit->uv.y());
-  rayhit->hit.primID = args->primID;
-  rayhit->hit.geomID = args->geomID;
-  rayhit->hit.instID[0] = args->context->instID[0];
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i]) continue;
+    const Vec3 o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
+    const Vec3 d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
+    const auto hit = intersectAnalytic(*g->shape, o, d, RTCRayN_tnear(rays, N, i), RTCRayN_tfar(rays, N, i));
+    if (!hit) continue;
+    RTCRayN_tfar(rays, N, i) = static_cast<float>(hit->t);
+    RTCHitN_Ng_x(hits, N, i) = static_cast<float>(hit->normal.x());
+    RTCHitN_Ng_y(hits, N, i) = static_cast<float>(hit->normal.y());
+    RTCHitN_Ng_z(hits, N, i) = static_cast<float>(hit->normal.z());
+    RTCHitN_u(hits, N, i) = static_cast<float>(hit->uv.x());
+    RTCHitN_v(hits, N, i) = static_cast<float>(hit->uv.y());
+    RTCHitN_primID(hits, N, i) = args->primID;
+    RTCHitN_geomID(hits, N, i) = args->geomID;
+    RTCHitN_instID(hits, N, i, 0) = args->context->instID[0];
+  }
 }
 
 void occludedCallback(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+  RTCRayN* rays = args->ray;
   const auto* g = static_cast<const Geometry*>(args->geometryUserPtr);
-  const Vec3 o(ray->org_x, ray->org_y, ray->org_z), d(ray->dir_x, ray->dir_y, ray->dir_z);
-  if (intersectAnalytic(*g->shape, o, d, ray->tnear, ray->tfar))
-    ray->tfar = -std::numeric_limits<float>::infinity();
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (!args->valid[i]) continue;
+    const Vec3 o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
+    const Vec3 d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
+    if (intersectAnalytic(*g->shape, o, d, RTCRayN_tnear(rays, N, i), RTCRayN_tfar(rays, N, i)))
+      RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
+  }
 }
 
 RTCRay makeRay(const Vec3& o, const Vec3& d, double tNear, double tFar) {
@@ -151,6 +160,21 @@ RayScene::~RayScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+void RayScene::fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u,
+                       float v, const Vec3& ng, SurfaceHit& hit) const {
+  const Geometry& g = *geometries_[geomID];
+  hit.object = g.object;
+  hit.t = t;
+  hit.point = origin + hit.t * direction;
+  hit.normal = ng.normalized();
+  if (g.analytic) {
+    hit.uv = {u, v};
+  } else {
+    const Eigen::Vector3i& tri = g.triangles[primID];
+    hit.uv = ((1.0f - u - v) * g.vertexUv[tri[0]] + u * g.vertexUv[tri[1]] + v * g.vertexUv[tri[2]]).cast<double>();
+  }
+}
+
 bool RayScene::intersect(const Vec3& origin, const Vec3& direction, double tNear, SurfaceHit& hit) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -160,18 +184,8 @@ bool RayScene::intersect(const Vec3& origin, const Vec3& direction, double tNear
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rayhit);
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  const Geometry& g = *geometries_[rayhit.hit.geomID];
-  hit.object = g.object;
-  hit.t = rayhit.ray.tfar;
-  hit.point = origin + hit.t * direction;
-  hit.normal = Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z).normalized();
-  if (g.analytic) {
-    hit.uv = {rayhit.hit.u, rayhit.hit.v};
-  } else {
-    const Eigen::Vector3i& tri = g.triangles[rayhit.hit.primID];
-    const float u = rayhit.hit.u, v = rayhit.hit.v;
-    hit.uv = ((1.0f - u - v) * g.vertexUv[tri[0]] + u * g.vertexUv[tri[1]] + v * g.vertexUv[tri[2]]).cast<double>();
-  }
+  fillHit(origin, direction, rayhit.ray.tfar, rayhit.hit.geomID, rayhit.hit.primID, rayhit.hit.u, rayhit.hit.v,
+          Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z), hit);
   return true;
 }
 
@@ -181,6 +195,70 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear,
   RTCRay ray = makeRay(origin, direction, tNear, tFar);
   rtcOccluded1(scene_, &context, &ray);
   return ray.tfar < 0.0f;
+}
+
+namespace {
+static_assert(RayScene::kPacketSize == 16, "the packet calls below are rtcIntersect16/rtcOccluded16");
+
+void setPacketRay(RTCRay16& rays, int k, const Vec3& o, const Vec3& d, double tNear, double tFar) {
+  rays.org_x[k] = static_cast<float>(o.x());
+  rays.org_y[k] = static_cast<float>(o.y());
+  rays.org_z[k] = static_cast<float>(o.z());
+  rays.dir_x[k] = static_cast<float>(d.x());
+  rays.dir_y[k] = static_cast<float>(d.y());
+  rays.dir_z[k] = static_cast<float>(d.z());
+  rays.tnear[k] = static_cast<float>(tNear);
+  rays.tfar[k] = static_cast<float>(tFar);
+  rays.time[k] = 0.0f;
+  rays.mask[k] = 0xFFFFFFFFu;
+  rays.id[k] = static_cast<unsigned>(k);
+  rays.flags[k] = 0;
+}
+}  // namespace
+
+uint32_t RayScene::intersectPacket(const Vec3& origin, const Vec3* directions, int count, SurfaceHit* hits) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) int valid[kPacketSize];
+  alignas(64) RTCRayHit16 packet;
+  for (int k = 0; k < kPacketSize; ++k) {
+    valid[k] = k < count ? -1 : 0;
+    setPacketRay(packet.ray, k, origin, k < count ? directions[k] : Vec3(0, 0, 1), 0.0,
+                 std::numeric_limits<float>::infinity());
+    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, scene_, &context, &packet);
+  uint32_t mask = 0;
+  for (int k = 0; k < count; ++k) {
+    if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+    fillHit(origin, directions[k], packet.ray.tfar[k], packet.hit.geomID[k], packet.hit.primID[k], packet.hit.u[k],
+            packet.hit.v[k], Vec3(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]), hits[k]);
+    mask |= 1u << k;
+  }
+  return mask;
+}
+
+uint32_t RayScene::occludedPacket(const Vec3* origins, const Vec3* directions, const double* tNear, const double* tFar,
+                                  uint32_t active) const {
+  if (active == 0) return 0;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  alignas(64) int valid[kPacketSize];
+  alignas(64) RTCRay16 packet;
+  for (int k = 0; k < kPacketSize; ++k) {
+    const bool live = (active >> k) & 1u;
+    valid[k] = live ? -1 : 0;
+    if (live) setPacketRay(packet, k, origins[k], directions[k], tNear[k], tFar[k]);
+    else setPacketRay(packet, k, Vec3::Zero(), Vec3(0, 0, 1), 0.0, 0.0);
+  }
+  rtcOccluded16(valid, scene_, &context, &packet);
+  uint32_t blocked = 0;
+  for (int k = 0; k < kPacketSize; ++k)
+    if (((active >> k) & 1u) && packet.tfar[k] < 0.0f) blocked |= 1u << k;
+  return blocked;
 }
 
 }  // namespace omnicam

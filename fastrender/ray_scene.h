@@ -34,6 +34,18 @@ class RayScene {
   // True if anything lies on the open segment (tNear, tFar). Thread-safe.
   bool occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const;
 
+  // Packets: up to kPacketSize coherent rays in one Embree query (rtcIntersect16/rtcOccluded16),
+  // with the same answers as the single-ray calls. A pixel's samples, or neighbouring pixels'
+  // rays, all leave the one viewpoint F' in nearby directions, so they share most of their BVH
+  // traversal. Bit k of a mask stands for ray k.
+  static constexpr int kPacketSize = 16;
+  // Nearest hits of rays origin + t·directions[k], t ∈ (0, ∞), k < count; hits[k] is filled
+  // where the returned mask has bit k.
+  uint32_t intersectPacket(const Vec3& origin, const Vec3* directions, int count, SurfaceHit* hits) const;
+  // Bit k set: something lies on (tNear[k], tFar[k]) along ray k; only rays in `active` are traced.
+  uint32_t occludedPacket(const Vec3* origins, const Vec3* directions, const double* tNear, const double* tFar,
+                          uint32_t active) const;
+
   // Errors Embree reported through its callback; the first one is kept.
   struct Errors {
     std::mutex mutex;
@@ -50,7 +62,10 @@ class RayScene {
   };
 
  private:
-  void throwIfEmbreeFailed() const;  // std::runtime_error (an internal error) if Embree reported one
+  void throwIfEmbreeFailed() const;
+  // The SurfaceHit of a ray that hit geometry geomID, primitive primID, at (u, v) with normal ng.
+  void fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u, float v,
+               const Vec3& ng, SurfaceHit& hit) const;  // std::runtime_error (an internal error) if Embree reported one
   mutable Errors errors_;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
