@@ -96,6 +96,8 @@ TEST(DatasetSpec, ObstacleFootprintsGiveClosedFormDistances) {
   EXPECT_NEAR(obstacles.distance({1.5, 1.5}, 10.0), std::sqrt(2.0), 1e-12);
   EXPECT_DOUBLE_EQ(obstacles.distance({0.2, -0.1}, 10.0), 0.0);
   EXPECT_DOUBLE_EQ(obstacles.distance({4.0, 0.0}, 1.0), 1.0);  // nothing nearer than the limit
+  // On the line of a side face's footprint (a segment), beyond the box: not inside it.
+  EXPECT_NEAR(obstacles.distance({0.8, 0.5}, 10.0), 0.3, 1e-12);
 }
 
 TEST(DatasetSpec, RandomPosesAreReproducibleAndKeepTheirClearance) {
@@ -125,7 +127,9 @@ TEST(DatasetSpec, RandomPosesAreReproducibleAndKeepTheirClearance) {
     datasetPoses(crowded, scene, 0.4);
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("spec.json: poses.random: found only 0 of 3 poses"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("spec.json: poses.random: no free space with 0.1 m clearance in the region"),
+              std::string::npos)
+        << e.what();
   }
 }
 

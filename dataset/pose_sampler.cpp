@@ -4,6 +4,7 @@
 #include <random>
 
 #include "errors.h"
+#include "free_space.h"
 #include "number_format.h"
 #include "triangulate.h"
 
@@ -11,11 +12,7 @@ namespace omnicam {
 
 namespace {
 
-// Curved shapes are tessellated with chords this close to the surface; footprints shrink by at
-// most this much, which the clearance check adds back.
-constexpr double kChordTolerance = 1e-3;
-// Random draws allowed per requested pose before the region is declared too crowded.
-constexpr int kAttemptsPerPose = 1000;
+constexpr double kChordTolerance = FloorObstacles::kChordTolerance;
 
 double segmentDistance(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
@@ -29,7 +26,9 @@ double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(
 double triangleDistance(const Vec2& p, const std::array<Vec2, 3>& t) {
   const double d0 = cross(t[1] - t[0], p - t[0]), d1 = cross(t[2] - t[1], p - t[1]), d2 = cross(t[0] - t[2], p - t[2]);
   const bool hasNegative = d0 < 0 || d1 < 0 || d2 < 0, hasPositive = d0 > 0 || d1 > 0 || d2 > 0;
-  if (!(hasNegative && hasPositive)) return 0.0;  // inside (or on an edge; degenerate: on the segment)
+  // Inside or on an edge — unless the triangle is degenerate (a wall's side seen from above is a
+  // segment), where every point on its line has zero cross products and only the edges decide.
+  if (!(hasNegative && hasPositive) && cross(t[1] - t[0], t[2] - t[0]) != 0.0) return 0.0;
   return std::min({segmentDistance(p, t[0], t[1]), segmentDistance(p, t[1], t[2]), segmentDistance(p, t[2], t[0])});
 }
 
@@ -83,23 +82,26 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
     }
     case PoseSource::Random: {
       const RandomPoses& r = spec.random;
-      const FloorObstacles obstacles(scene, topHeight);
       std::mt19937_64 generator(r.seed);
       std::vector<RobotPose> poses;
-      const long long attempts = static_cast<long long>(r.count) * kAttemptsPerPose;
-      for (long long a = 0; a < attempts && static_cast<int>(poses.size()) < r.count; ++a) {
-        // Always three draws per attempt, so a rejection never shifts the later draws' meaning.
-        const double x = r.xMin + (r.xMax - r.xMin) * unitDraw(generator);
-        const double y = r.yMin + (r.yMax - r.yMin) * unitDraw(generator);
-        const double yaw = r.yawMinDeg + (r.yawMaxDeg - r.yawMinDeg) * unitDraw(generator);
-        const double needed = r.clearance + kChordTolerance;
-        if (r.clearance > 0.0 && obstacles.distance({x, y}, needed) < needed) continue;
-        poses.push_back({x, y, yaw});
+      if (r.clearance == 0.0) {
+        for (int k = 0; k < r.count; ++k) {
+          const double x = r.xMin + (r.xMax - r.xMin) * unitDraw(generator);
+          const double y = r.yMin + (r.yMax - r.yMin) * unitDraw(generator);
+          poses.push_back({x, y, r.yawMinDeg + (r.yawMaxDeg - r.yawMinDeg) * unitDraw(generator)});
+        }
+        return poses;
       }
-      if (static_cast<int>(poses.size()) < r.count)
-        throw InputError(spec.file + ": poses.random: found only " + std::to_string(poses.size()) + " of " +
-                         std::to_string(r.count) + " poses with " + shortNumber(r.clearance) +
-                         " m clearance in the region after " + std::to_string(attempts) + " draws");
+      const FreeSpace free(scene, topHeight, {r.xMin, r.xMax, r.yMin, r.yMax}, r.clearance);
+      if (free.empty())
+        throw InputError(spec.file + ": poses.random: no free space with " + shortNumber(r.clearance) +
+                         " m clearance in the region [" + shortNumber(r.xMin) + ", " + shortNumber(r.xMax) + "] x [" +
+                         shortNumber(r.yMin) + ", " + shortNumber(r.yMax) + "] m");
+      for (int k = 0; k < r.count; ++k) {
+        const double pick = unitDraw(generator), a = unitDraw(generator), b = unitDraw(generator);
+        const Vec2 p = free.pointFromDraws(pick, a, b);
+        poses.push_back({p.x(), p.y(), r.yawMinDeg + (r.yawMaxDeg - r.yawMinDeg) * unitDraw(generator)});
+      }
       return poses;
     }
   }
