@@ -22,62 +22,66 @@ std::string fastRendererVersion() {
 
 FastRenderer::FastRenderer(const Scene& scene) : scene_(scene), rays_(scene) {}
 
-void FastRenderer::shadePacket(const SurfaceHit* hits, const Vec3* directions, int count, uint32_t hitMask,
-                               Shading shading, Vec3f* colours) const {
-  Vec3 faced[RayScene::kPacketSize];  // two-sided surfaces: the normal faces the viewer
+void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours) const {
+  const int count = hits.count();
+  const Material* materials[kRayPacketSize];
   for (int k = 0; k < count; ++k) {
-    if (!((hitMask >> k) & 1u)) {
+    if (!hits.hit(k)) {
       colours[k] = scene_.background;
       continue;
     }
-    const SurfaceHit& hit = hits[k];
-    const Material& material = scene_.materials[scene_.objects[hit.object].material];
-    Vec3f albedo = material.color;
-    if (material.texture)
-      albedo = albedo.cwiseProduct(material.texture->sample(hit.uv.x() * material.textureScale.x(),
-                                                            hit.uv.y() * material.textureScale.y()));
-    colours[k] = albedo;
-    faced[k] = hit.normal.dot(directions[k]) > 0.0 ? Vec3(-hit.normal) : hit.normal;
+    const Material& material = scene_.materials[scene_.objects[hits.object(k)].material];
+    materials[k] = &material;
+    colours[k] = material.color;
+    if (material.texture) {
+      const Eigen::Vector2d uv = hits.uv(k);
+      colours[k] = colours[k].cwiseProduct(
+          material.texture->sample(uv.x() * material.textureScale.x(), uv.y() * material.textureScale.y()));
+    }
   }
-  if (shading == Shading::Unlit || hitMask == 0) return;
-  Vec3f light[RayScene::kPacketSize];
-  for (int k = 0; k < count; ++k)
-    light[k] = (hitMask >> k) & 1u
-                   ? Vec3f::Constant(scene_.materials[scene_.objects[hits[k].object].material].ambient)
-                   : Vec3f::Zero();
+  if (shading == Shading::Unlit || hits.mask() == 0) return;
+  SurfaceHit surfaces[kRayPacketSize];
+  Vec3 faced[kRayPacketSize];  // two-sided surfaces: the normal faces the viewer
+  Vec3f light[kRayPacketSize];
+  for (int k = 0; k < count; ++k) {
+    light[k] = Vec3f::Zero();
+    if (!hits.hit(k)) continue;
+    surfaces[k] = hits.surface(k);
+    faced[k] = surfaces[k].normal.dot(hits.direction(k)) > 0.0 ? Vec3(-surfaces[k].normal) : surfaces[k].normal;
+    light[k] = Vec3f::Constant(materials[k]->ambient);
+  }
   // One shadow packet per lamp: the hit points are neighbours, so their shadow rays are too.
-  Vec3 origins[RayScene::kPacketSize], toLamp[RayScene::kPacketSize];
-  double tNear[RayScene::kPacketSize], tFar[RayScene::kPacketSize], cosine[RayScene::kPacketSize];
+  Vec3 origins[kRayPacketSize], toLamp[kRayPacketSize];
+  double tNear[kRayPacketSize], tFar[kRayPacketSize], cosine[kRayPacketSize];
   for (const PointLight& lamp : scene_.lights) {
     uint32_t facing = 0;
     for (int k = 0; k < count; ++k) {
-      if (!((hitMask >> k) & 1u)) continue;
-      const Vec3 offset = lamp.position - hits[k].point;
+      if (!hits.hit(k)) continue;
+      const Vec3 offset = lamp.position - surfaces[k].point;
       const double distance = offset.norm();
       toLamp[k] = offset / distance;
       cosine[k] = faced[k].dot(toLamp[k]);
       if (cosine[k] <= 0.0) continue;
-      origins[k] = hits[k].point + kShadowEpsilon * faced[k];
+      origins[k] = surfaces[k].point + kShadowEpsilon * faced[k];
       tNear[k] = 0.0;
       tFar[k] = distance - kShadowEpsilon;
       facing |= 1u << k;
     }
-    const uint32_t blocked = rays_.occludedPacket(origins, toLamp, tNear, tFar, facing);
-    for (int k = 0; k < count; ++k) {
-      if (!((facing & ~blocked) >> k & 1u)) continue;
-      const Material& material = scene_.materials[scene_.objects[hits[k].object].material];
-      light[k] += static_cast<float>(material.diffuse * cosine[k]) * lamp.intensity;
-    }
+    const uint32_t lit = facing & ~rays_.occludedPacket(origins, toLamp, tNear, tFar, facing);
+    for (int k = 0; k < count; ++k)
+      if ((lit >> k) & 1u) light[k] += static_cast<float>(materials[k]->diffuse * cosine[k]) * lamp.intensity;
   }
   for (int k = 0; k < count; ++k)
-    if ((hitMask >> k) & 1u) colours[k] = colours[k].cwiseProduct(light[k]);
+    if (hits.hit(k)) colours[k] = colours[k].cwiseProduct(light[k]);
 }
 
 Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading shading) const {
-  SurfaceHit hit;
-  const uint32_t hitMask = rays_.intersect(origin, direction, 0.0, hit) ? 1u : 0u;
+  HitPacket hits;
+  hits.begin(origin, 1);
+  hits.setDirection(0, direction.cast<float>());
+  rays_.intersectPacket(hits);
   Vec3f colour;
-  shadePacket(&hit, &direction, 1, hitMask, shading, &colour);
+  shadePacket(hits, shading, &colour);
   return colour;
 }
 
@@ -165,18 +169,20 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   const std::shared_ptr<const SampleTable> table = sampleTable(settings.rig, 1);
   const Rigid worldFromCam = worldFromCamera(settings.rig, pose);
   const Vec3 origin = worldFromCam.translation();
-  const Eigen::Matrix3d rotation = worldFromCam.linear();
+  // Float, like the rays Embree traces: directions go straight from the table into the packet.
+  const Eigen::Matrix3f rotation = worldFromCam.linear().cast<float>();
   tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
     // The same packets as a render pass traces for its centre rays, so both give the same AOVs.
-    constexpr int kPacket = RayScene::kPacketSize;
-    Vec3 directions[kPacket];
-    SurfaceHit hits[kPacket];
+    constexpr int kPacket = kRayPacketSize;
+    HitPacket hits;
     size_t pending[kPacket];
     int count = 0;
     const auto trace = [&] {
-      const uint32_t hitMask = rays_.intersectPacket(origin, directions, count, hits);
+      hits.begin(origin, count);
+      for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table->centreDirections[pending[k]]);
+      rays_.intersectPacket(hits);
       for (int k = 0; k < count; ++k)
-        if ((hitMask >> k) & 1u) recordAov(aovs, pending[k], hits[k], directions[k]);
+        if (hits.hit(k)) recordAov(aovs, pending[k], hits.surface(k), hits.direction(k));
         else recordNoHit(aovs, pending[k]);
       count = 0;
     };
@@ -188,8 +194,7 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
           recordNoHit(aovs, p);
           continue;
         }
-        pending[count] = p;
-        directions[count++] = rotation * centre.cast<double>();
+        pending[count++] = p;
         if (count == kPacket) trace();
       }
       if (count > 0) trace();  // packets stay within a row, as in a render pass
@@ -205,48 +210,59 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
   const int width = settings.rig.imageSize, height = settings.rig.imageSize;
   const Rigid worldFromCam = worldFromCamera(settings.rig, pose);
   const Vec3 origin = worldFromCam.translation();
-  const Eigen::Matrix3d rotation = worldFromCam.linear();
+  // Float, like the rays Embree traces: directions go straight from the table into the packet.
+  const Eigen::Matrix3f rotation = worldFromCam.linear().cast<float>();
   ImageRGBA image(width, height);
   const float weight = 1.0f / static_cast<float>(*n * *n);
-  constexpr int kPacket = RayScene::kPacketSize;
+  constexpr int kPacket = kRayPacketSize;
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
     std::vector<uint8_t> centreRecorded(width);
-    Vec3 directions[kPacket];
-    SurfaceHit hits[kPacket];
+    HitPacket hits;
     Vec3f colours[kPacket];
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const size_t rowStart = static_cast<size_t>(j) * width;
-      std::fill(sums.begin(), sums.end(), Vec3f::Zero());
       std::fill(centreRecorded.begin(), centreRecorded.end(), uint8_t{0});
-      // The row's samples are contiguous in the table; packets run across pixel borders, and
-      // each sample is added to its pixel's sum in the same order as one ray at a time.
+      // The row's samples are contiguous in the table; packets run across pixel borders. Each
+      // pixel's sum is built in a register from zero in sample order (as one ray at a time
+      // would) and stored once its last sample is in.
       const uint32_t rowEnd = table->firstSample[rowStart + width];
       size_t pixel = rowStart;
+      uint32_t pixelEnd = table->firstSample[pixel + 1];
+      Vec3f sum = Vec3f::Zero();
+      const auto storePixel = [&] {
+        sums[pixel - rowStart] = sum;
+        sum = Vec3f::Zero();
+        if (++pixel < rowStart + width) pixelEnd = table->firstSample[pixel + 1];
+      };
       for (uint32_t first = table->firstSample[rowStart]; first < rowEnd; first += kPacket) {
         const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
-        for (int k = 0; k < count; ++k) directions[k] = rotation * table->directions[first + k].cast<double>();
-        const uint32_t hitMask = rays_.intersectPacket(origin, directions, count, hits);
-        shadePacket(hits, directions, count, hitMask, settings.shading, colours);
+        hits.begin(origin, count);
+        for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table->directions[first + k]);
+        rays_.intersectPacket(hits);
+        shadePacket(hits, settings.shading, colours);
         for (int k = 0; k < count; ++k) {
           const uint32_t s = first + static_cast<uint32_t>(k);
-          while (table->firstSample[pixel + 1] <= s) ++pixel;
-          sums[pixel - rowStart] += colours[k];
-          if (aovs && s == table->centreSample[pixel] && ((hitMask >> k) & 1u)) {
-            recordAov(*aovs, pixel, hits[k], directions[k]);
+          while (pixelEnd <= s) storePixel();
+          sum += colours[k];
+          if (aovs && s == table->centreSample[pixel] && hits.hit(k)) {
+            recordAov(*aovs, pixel, hits.surface(k), hits.direction(k));
             centreRecorded[pixel - rowStart] = 1;
           }
         }
       }
+      while (pixel < rowStart + width) storePixel();  // the last pixel, and any beyond the rim
       if (aovs) {
         // At even n no sample is the centre: one more ray per pixel, again in packets.
         int pending[kPacket];
         int count = 0;
         const auto traceCentres = [&] {
-          const uint32_t hitMask = rays_.intersectPacket(origin, directions, count, hits);
+          hits.begin(origin, count);
+          for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table->centreDirections[rowStart + pending[k]]);
+          rays_.intersectPacket(hits);
           for (int k = 0; k < count; ++k)
-            if ((hitMask >> k) & 1u) {
-              recordAov(*aovs, rowStart + pending[k], hits[k], directions[k]);
+            if (hits.hit(k)) {
+              recordAov(*aovs, rowStart + pending[k], hits.surface(k), hits.direction(k));
               centreRecorded[pending[k]] = 1;
             }
           count = 0;
@@ -254,8 +270,7 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
         for (int i = 0; i < width; ++i) {
           const Eigen::Vector3f& centre = table->centreDirections[rowStart + i];
           if (table->centreSample[rowStart + i] != SampleTable::kNoSample || std::isnan(centre.x())) continue;
-          pending[count] = i;
-          directions[count++] = rotation * centre.cast<double>();
+          pending[count++] = i;
           if (count == kPacket) traceCentres();
         }
         if (count > 0) traceCentres();

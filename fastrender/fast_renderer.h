@@ -57,10 +57,9 @@ class FastRenderer {
   void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
   std::shared_ptr<const SampleTable> sampleTable(const RigSpec& rig, int samplesPerAxis) const;
 
-  // Colours of a packet of rays (count ≤ RayScene::kPacketSize): the background where bit k of
-  // hitMask is clear, else the hit shaded per docs/conventions.md §2, shadow rays as packets.
-  void shadePacket(const SurfaceHit* hits, const Vec3* directions, int count, uint32_t hitMask, Shading shading,
-                   Vec3f* colours) const;
+  // Colours of a packet of rays: the background where a ray missed, else its hit shaded per
+  // docs/conventions.md §2, with the shadow rays traced as packets too.
+  void shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours) const;
   const Scene& scene_;
   RayScene rays_;
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable

@@ -160,19 +160,34 @@ RayScene::~RayScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+Eigen::Vector2d RayScene::uvOf(unsigned geomID, unsigned primID, float u, float v) const {
+  const Geometry& g = *geometries_[geomID];
+  if (g.analytic) return {u, v};
+  const Eigen::Vector3i& tri = g.triangles[primID];
+  return ((1.0f - u - v) * g.vertexUv[tri[0]] + u * g.vertexUv[tri[1]] + v * g.vertexUv[tri[2]]).cast<double>();
+}
+
 void RayScene::fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u,
                        float v, const Vec3& ng, SurfaceHit& hit) const {
-  const Geometry& g = *geometries_[geomID];
-  hit.object = g.object;
+  hit.object = geometries_[geomID]->object;
   hit.t = t;
   hit.point = origin + hit.t * direction;
   hit.normal = ng.normalized();
-  if (g.analytic) {
-    hit.uv = {u, v};
-  } else {
-    const Eigen::Vector3i& tri = g.triangles[primID];
-    hit.uv = ((1.0f - u - v) * g.vertexUv[tri[0]] + u * g.vertexUv[tri[1]] + v * g.vertexUv[tri[2]]).cast<double>();
-  }
+  hit.uv = uvOf(geomID, primID, u, v);
+}
+
+int HitPacket::object(int k) const { return scene_->geometries_[rayhit_.hit.geomID[k]]->object; }
+
+Eigen::Vector2d HitPacket::uv(int k) const {
+  return scene_->uvOf(rayhit_.hit.geomID[k], rayhit_.hit.primID[k], rayhit_.hit.u[k], rayhit_.hit.v[k]);
+}
+
+SurfaceHit HitPacket::surface(int k) const {
+  SurfaceHit hit;
+  const RTCHit16& h = rayhit_.hit;
+  scene_->fillHit(origin_, direction(k), rayhit_.ray.tfar[k], h.geomID[k], h.primID[k], h.u[k], h.v[k],
+                  Vec3(h.Ng_x[k], h.Ng_y[k], h.Ng_z[k]), hit);
+  return hit;
 }
 
 bool RayScene::intersect(const Vec3& origin, const Vec3& direction, double tNear, SurfaceHit& hit) const {
@@ -198,7 +213,7 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear,
 }
 
 namespace {
-static_assert(RayScene::kPacketSize == 16, "the packet calls below are rtcIntersect16/rtcOccluded16");
+static_assert(kRayPacketSize == 16, "the packet calls below are rtcIntersect16/rtcOccluded16");
 
 void setPacketRay(RTCRay16& rays, int k, const Vec3& o, const Vec3& d, double tNear, double tFar) {
   rays.org_x[k] = static_cast<float>(o.x());
@@ -216,39 +231,80 @@ void setPacketRay(RTCRay16& rays, int k, const Vec3& o, const Vec3& d, double tN
 }
 }  // namespace
 
-uint32_t RayScene::intersectPacket(const Vec3& origin, const Vec3* directions, int count, SurfaceHit* hits) const {
+HitPacket::HitPacket() {
+  RTCRay16& rays = rayhit_.ray;
+  for (int k = 0; k < kRayPacketSize; ++k) {
+    rays.tnear[k] = 0.0f;
+    rays.time[k] = 0.0f;
+    rays.mask[k] = 0xFFFFFFFFu;
+    rays.id[k] = static_cast<unsigned>(k);
+    rays.flags[k] = 0;
+    rays.dir_x[k] = rays.dir_y[k] = 0.0f;
+    rays.dir_z[k] = 1.0f;
+  }
+}
+
+void HitPacket::begin(const Vec3& origin, int count) {
+  origin_ = origin;
+  count_ = count;
+  mask_ = 0;
+  RTCRay16& rays = rayhit_.ray;
+  const float x = static_cast<float>(origin.x()), y = static_cast<float>(origin.y()), z = static_cast<float>(origin.z());
+  for (int k = 0; k < kRayPacketSize; ++k) {
+    rays.org_x[k] = x;
+    rays.org_y[k] = y;
+    rays.org_z[k] = z;
+    rays.tfar[k] = std::numeric_limits<float>::infinity();
+    rayhit_.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rayhit_.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+void RayScene::intersectPacket(HitPacket& packet) const {
+  packet.scene_ = this;
+  packet.mask_ = 0;
+  RTCRayHit16& rayhit = packet.rayhit_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  if (packet.count_ == 1) {  // a lone ray: the single-ray query, its answer copied into lane 0
+    RTCRayHit single;
+    single.ray = makeRay(packet.origin_, packet.direction(0), 0.0, std::numeric_limits<float>::infinity());
+    single.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    single.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &single);
+    if (single.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
+    rayhit.ray.tfar[0] = single.ray.tfar;
+    rayhit.hit.geomID[0] = single.hit.geomID;
+    rayhit.hit.primID[0] = single.hit.primID;
+    rayhit.hit.u[0] = single.hit.u;
+    rayhit.hit.v[0] = single.hit.v;
+    rayhit.hit.Ng_x[0] = single.hit.Ng_x;
+    rayhit.hit.Ng_y[0] = single.hit.Ng_y;
+    rayhit.hit.Ng_z[0] = single.hit.Ng_z;
+    packet.mask_ = 1u;
+    return;
+  }
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(64) int valid[kPacketSize];
-  alignas(64) RTCRayHit16 packet;
-  for (int k = 0; k < kPacketSize; ++k) {
-    valid[k] = k < count ? -1 : 0;
-    setPacketRay(packet.ray, k, origin, k < count ? directions[k] : Vec3(0, 0, 1), 0.0,
-                 std::numeric_limits<float>::infinity());
-    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-  }
-  rtcIntersect16(valid, scene_, &context, &packet);
-  uint32_t mask = 0;
-  for (int k = 0; k < count; ++k) {
-    if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
-    fillHit(origin, directions[k], packet.ray.tfar[k], packet.hit.geomID[k], packet.hit.primID[k], packet.hit.u[k],
-            packet.hit.v[k], Vec3(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]), hits[k]);
-    mask |= 1u << k;
-  }
-  return mask;
+  alignas(64) int valid[kRayPacketSize];
+  for (int k = 0; k < kRayPacketSize; ++k) valid[k] = k < packet.count_ ? -1 : 0;
+  rtcIntersect16(valid, scene_, &context, &rayhit);
+  for (int k = 0; k < packet.count_; ++k)
+    if (rayhit.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) packet.mask_ |= 1u << k;
 }
 
 uint32_t RayScene::occludedPacket(const Vec3* origins, const Vec3* directions, const double* tNear, const double* tFar,
                                   uint32_t active) const {
   if (active == 0) return 0;
+  if ((active & (active - 1)) == 0) {  // one ray: the single-ray query
+    const int k = __builtin_ctz(active);
+    return occluded(origins[k], directions[k], tNear[k], tFar[k]) ? active : 0u;
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  alignas(64) int valid[kPacketSize];
+  alignas(64) int valid[kRayPacketSize];
   alignas(64) RTCRay16 packet;
-  for (int k = 0; k < kPacketSize; ++k) {
+  for (int k = 0; k < kRayPacketSize; ++k) {
     const bool live = (active >> k) & 1u;
     valid[k] = live ? -1 : 0;
     if (live) setPacketRay(packet, k, origins[k], directions[k], tNear[k], tFar[k]);
@@ -256,7 +312,7 @@ uint32_t RayScene::occludedPacket(const Vec3* origins, const Vec3* directions, c
   }
   rtcOccluded16(valid, scene_, &context, &packet);
   uint32_t blocked = 0;
-  for (int k = 0; k < kPacketSize; ++k)
+  for (int k = 0; k < kRayPacketSize; ++k)
     if (((active >> k) & 1u) && packet.tfar[k] < 0.0f) blocked |= 1u << k;
   return blocked;
 }

@@ -22,6 +22,41 @@ struct SurfaceHit {
   int object = -1;
 };
 
+constexpr int kRayPacketSize = 16;
+class RayScene;
+
+// One packet's answers as Embree returned them. A hit's details (point, normal, UV) are worked
+// out only when asked for: unlit shading of a plain material needs nothing but the object.
+class HitPacket {
+ public:
+  HitPacket();
+  // The rays to trace next: `count` ≤ kRayPacketSize of them from `origin`, each given its
+  // direction by setDirection. Lanes keep their other fields between packets.
+  void begin(const Vec3& origin, int count);
+  void setDirection(int k, const Eigen::Vector3f& d) {
+    rayhit_.ray.dir_x[k] = d.x();
+    rayhit_.ray.dir_y[k] = d.y();
+    rayhit_.ray.dir_z[k] = d.z();
+  }
+
+  int count() const { return count_; }
+  uint32_t mask() const { return mask_; }  // bit k: ray k hit something
+  bool hit(int k) const { return (mask_ >> k) & 1u; }
+  Vec3 direction(int k) const { return {rayhit_.ray.dir_x[k], rayhit_.ray.dir_y[k], rayhit_.ray.dir_z[k]}; }
+  // Preconditions below: hit(k).
+  int object(int k) const;
+  Eigen::Vector2d uv(int k) const;
+  SurfaceHit surface(int k) const;
+
+ private:
+  friend class RayScene;
+  const RayScene* scene_ = nullptr;
+  Vec3 origin_;
+  int count_ = 0;
+  uint32_t mask_ = 0;
+  RTCRayHit16 rayhit_;  // lane k: Embree's answer for ray k
+};
+
 class RayScene {
  public:
   explicit RayScene(const Scene& scene);
@@ -34,14 +69,12 @@ class RayScene {
   // True if anything lies on the open segment (tNear, tFar). Thread-safe.
   bool occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const;
 
-  // Packets: up to kPacketSize coherent rays in one Embree query (rtcIntersect16/rtcOccluded16),
-  // with the same answers as the single-ray calls. A pixel's samples, or neighbouring pixels'
-  // rays, all leave the one viewpoint F' in nearby directions, so they share most of their BVH
-  // traversal. Bit k of a mask stands for ray k.
-  static constexpr int kPacketSize = 16;
-  // Nearest hits of rays origin + t·directions[k], t ∈ (0, ∞), k < count; hits[k] is filled
-  // where the returned mask has bit k.
-  uint32_t intersectPacket(const Vec3& origin, const Vec3* directions, int count, SurfaceHit* hits) const;
+  // Packets: up to kRayPacketSize coherent rays in one Embree query (rtcIntersect16 /
+  // rtcOccluded16). A pixel's samples, or neighbouring pixels' rays, all leave the one viewpoint
+  // F' in nearby directions, so they share most of their BVH traversal. Bit k of a mask stands
+  // for ray k. A packet of one ray is traced as a single ray.
+  // Nearest hits of the packet's rays origin + t·direction(k), t ∈ (0, ∞).
+  void intersectPacket(HitPacket& packet) const;
   // Bit k set: something lies on (tNear[k], tFar[k]) along ray k; only rays in `active` are traced.
   uint32_t occludedPacket(const Vec3* origins, const Vec3* directions, const double* tNear, const double* tFar,
                           uint32_t active) const;
@@ -63,6 +96,9 @@ class RayScene {
 
  private:
   void throwIfEmbreeFailed() const;
+  friend class HitPacket;
+  // Texture coordinates of a hit on geometry geomID, primitive primID, at Embree's (u, v).
+  Eigen::Vector2d uvOf(unsigned geomID, unsigned primID, float u, float v) const;
   // The SurfaceHit of a ray that hit geometry geomID, primitive primID, at (u, v) with normal ng.
   void fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u, float v,
                const Vec3& ng, SurfaceHit& hit) const;  // std::runtime_error (an internal error) if Embree reported one
