@@ -22,7 +22,7 @@ extern "C" void onInterrupt(int) { interruptRequested.store(true); }
 struct DatasetArgs {
   std::string spec, out, verify, status, merge, shard, backend = "local", slurmArgs;
   bool overwrite = false;
-  int shards = 0, maxParallel = 0;
+  int shards = 0, maxParallel = 0, threads = 0;
 };
 
 // "I/N" → {I, N}; InputError naming --shard otherwise.
@@ -60,6 +60,7 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   options.dir = a.out;
   options.shards = a.shards;
   options.maxParallel = a.maxParallel;
+  options.threads = a.threads;
   options.sbatchArgs = parseSlurmArgs(a.slurmArgs);
   options.omnicamBinary = std::filesystem::canonical("/proc/self/exe").string();
   const SlurmSubmission s = submitDatasetToSlurm(options);
@@ -133,6 +134,7 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   options.dir = a.out;
   options.overwrite = a.overwrite;
+  options.threads = a.threads;
   options.stopRequested = &interruptRequested;
   std::unique_ptr<Progress> progress;
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };
@@ -169,6 +171,9 @@ void addDatasetCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--shards", args->shards, "Shards (array tasks) for --backend slurm; for --merge when not obvious");
   cmd->add_option("--slurm-args", args->slurmArgs, "Extra sbatch options for every job, e.g. \"--partition=gpu --time=2:00:00\"");
   cmd->add_option("--max-parallel", args->maxParallel, "At most K shards running at once (Slurm's --array=...%K)");
+  cmd->add_option("--threads", args->threads, "Threads for rendering and encoding (POV-Ray's, Blender's too); 0: every "
+                  "core, under --backend slurm: the task's CPUs")
+      ->check(CLI::Range(0, 4096));
   cmd->add_option("--merge", args->merge, "Merge the shard manifests of DIR into its manifest.json (exit 0 complete / 1)");
   cmd->callback([args, cmd, &exitCode] { runDatasetVerb(*args, *cmd, exitCode); });
 }

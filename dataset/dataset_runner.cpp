@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include "atomic_file.h"
@@ -94,7 +95,11 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   for (const RobotPose& robot : poses)
     for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), spec.file + ": poses");
   const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, spec.file + ": mode");
-  const auto engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), spec.file + ": engine");
+  const auto engine =
+      makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), spec.file + ": engine", options.threads);
+  // The run's thread budget (TBB: frames, rows and encoders); released when the run ends.
+  std::optional<tbb::global_control> threadLimit;
+  if (options.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
 
   DatasetRunResult result;
   const int totalFrames = static_cast<int>(poses.size());

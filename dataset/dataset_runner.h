@@ -19,6 +19,9 @@ struct DatasetRunOptions {
   // in DIR/shards/shard-i-of-n.json instead of DIR/manifest.json, so that shards on different
   // machines can fill one shared folder at once. 1: the whole dataset.
   int shardIndex = 0, shardCount = 1;
+  // Threads for the whole run (TBB's, POV-Ray's Work_Threads, Blender's -t); 0: every core. Under
+  // Slurm, the cores the task was given (docs/cluster.md).
+  int threads = 0;
   // Called once before rendering: frames kept from an earlier run, of `total`.
   std::function<void(int kept, int total)> onStart;
   // Called after every finished frame: frames done (kept + rendered) of `total`.

@@ -105,7 +105,9 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
          << "#SBATCH --job-name=omnicam-dataset\n";
   for (const std::string& arg : o.sbatchArgs) render << "#SBATCH " << arg << "\n";
   render << "exec " << shellQuote(o.omnicamBinary) << " dataset " << shellQuote(spec.string()) << " -o "
-         << shellQuote(dir.string()) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.shards << "\"\n";
+         << shellQuote(dir.string()) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.shards << "\" --threads ";
+  if (o.threads > 0) render << o.threads << "\n";
+  else render << "\"${SLURM_CPUS_PER_TASK:-${SLURM_CPUS_ON_NODE:-0}}\"\n";
   std::ostringstream merge;
   merge << "#!/bin/bash\n"
         << "# Written by `omnicam dataset --backend slurm`: merges the shards' manifests once the array has ended.\n"

@@ -15,6 +15,9 @@ struct SlurmSubmitOptions {
   std::string omnicamBinary;     // absolute path of the omnicam the tasks run
   int shards = 1;
   int maxParallel = 0;           // 0: no throttle; K: --array=...%K
+  // Threads per task; 0: the CPUs Slurm gave the task (SLURM_CPUS_PER_TASK, else
+  // SLURM_CPUS_ON_NODE), so `--slurm-args "--cpus-per-task=C"` sizes every task.
+  int threads = 0;
   std::vector<std::string> sbatchArgs;  // extra #SBATCH options, each one "--name[=value]"
   std::string sbatch = "sbatch";        // the submit command (PATH lookup)
 };

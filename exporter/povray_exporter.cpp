@@ -167,7 +167,7 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   return job;
 }
 
-void writePovrayJob(const PovrayJob& job, const std::string& dir) {
+void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads) {
   namespace fs = std::filesystem;
   writeTextAtomically((fs::path(dir) / "scene.pov").string(), job.sdl);
   for (const auto& t : job.textures) writeImageAtomic((fs::path(dir) / t.name).string(), t.image);
@@ -177,6 +177,7 @@ void writePovrayJob(const PovrayJob& job, const std::string& dir) {
       << "Width=" << job.width << "\nHeight=" << job.height << "\n"
       << "Antialias=Off\nJitter=Off\nDisplay=Off\nPause_When_Done=Off\nVerbose=Off\nQuality=9\n"
       << "Library_Path=.\n";
+  if (threads > 0) ini << "Work_Threads=" << threads << "\n";
   writeTextAtomically((fs::path(dir) / "render.ini").string(), ini.str());
 }
 

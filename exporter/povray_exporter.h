@@ -38,6 +38,8 @@ constexpr double kPovrayUnitsPerMetre = 1000.0;
 PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings);
 
 // Writes scene.pov, the textures and render.ini into `dir` (which must exist).
-void writePovrayJob(const PovrayJob& job, const std::string& dir);
+// `threads` > 0 caps POV-Ray's render threads (Work_Threads); 0 leaves POV-Ray's default, one per
+// core.
+void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads = 0);
 
 }  // namespace omnicam

@@ -38,7 +38,7 @@ void boundsCallback(const RTCBoundsFunctionArguments* args) {
   out->upper_z = static_cast<float>(b.second.z() + pad);
 }
 
-// Embree calls these with N = 1 (rtcIntersect1) or N = 16 (packets); valid[i] != 0 marks the
+// Embree calls these with N = 1 (rtcIntersect1) or N = 8 (packets); valid[i] != 0 marks the
 // live lanes. The N-wide layout with N = 1 is exactly RTCRayHit, so one loop serves both.
 void intersectCallback(const RTCIntersectFunctionNArguments* args) {
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
@@ -184,7 +184,7 @@ Eigen::Vector2d HitPacket::uv(int k) const {
 
 SurfaceHit HitPacket::surface(int k) const {
   SurfaceHit hit;
-  const RTCHit16& h = rayhit_.hit;
+  const RTCHit8& h = rayhit_.hit;
   scene_->fillHit(origin_, direction(k), rayhit_.ray.tfar[k], h.geomID[k], h.primID[k], h.u[k], h.v[k],
                   Vec3(h.Ng_x[k], h.Ng_y[k], h.Ng_z[k]), hit);
   return hit;
@@ -213,9 +213,9 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear,
 }
 
 namespace {
-static_assert(kRayPacketSize == 16, "the packet calls below are rtcIntersect16/rtcOccluded16");
+static_assert(kRayPacketSize == 8, "the packet calls below are rtcIntersect8/rtcOccluded8");
 
-void setPacketRay(RTCRay16& rays, int k, const Vec3& o, const Vec3& d, double tNear, double tFar) {
+void setPacketRay(RTCRay8& rays, int k, const Vec3& o, const Vec3& d, double tNear, double tFar) {
   rays.org_x[k] = static_cast<float>(o.x());
   rays.org_y[k] = static_cast<float>(o.y());
   rays.org_z[k] = static_cast<float>(o.z());
@@ -232,7 +232,7 @@ void setPacketRay(RTCRay16& rays, int k, const Vec3& o, const Vec3& d, double tN
 }  // namespace
 
 HitPacket::HitPacket() {
-  RTCRay16& rays = rayhit_.ray;
+  RTCRay8& rays = rayhit_.ray;
   for (int k = 0; k < kRayPacketSize; ++k) {
     rays.tnear[k] = 0.0f;
     rays.time[k] = 0.0f;
@@ -248,7 +248,7 @@ void HitPacket::begin(const Vec3& origin, int count) {
   origin_ = origin;
   count_ = count;
   mask_ = 0;
-  RTCRay16& rays = rayhit_.ray;
+  RTCRay8& rays = rayhit_.ray;
   const float x = static_cast<float>(origin.x()), y = static_cast<float>(origin.y()), z = static_cast<float>(origin.z());
   for (int k = 0; k < kRayPacketSize; ++k) {
     rays.org_x[k] = x;
@@ -263,7 +263,7 @@ void HitPacket::begin(const Vec3& origin, int count) {
 void RayScene::intersectPacket(HitPacket& packet) const {
   packet.scene_ = this;
   packet.mask_ = 0;
-  RTCRayHit16& rayhit = packet.rayhit_;
+  RTCRayHit8& rayhit = packet.rayhit_;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   if (packet.count_ == 1) {  // a lone ray: the single-ray query, its answer copied into lane 0
@@ -287,7 +287,7 @@ void RayScene::intersectPacket(HitPacket& packet) const {
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) int valid[kRayPacketSize];
   for (int k = 0; k < kRayPacketSize; ++k) valid[k] = k < packet.count_ ? -1 : 0;
-  rtcIntersect16(valid, scene_, &context, &rayhit);
+  rtcIntersect8(valid, scene_, &context, &rayhit);
   for (int k = 0; k < packet.count_; ++k)
     if (rayhit.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) packet.mask_ |= 1u << k;
 }
@@ -303,14 +303,14 @@ uint32_t RayScene::occludedPacket(const Vec3* origins, const Vec3* directions, c
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) int valid[kRayPacketSize];
-  alignas(64) RTCRay16 packet;
+  alignas(64) RTCRay8 packet;
   for (int k = 0; k < kRayPacketSize; ++k) {
     const bool live = (active >> k) & 1u;
     valid[k] = live ? -1 : 0;
     if (live) setPacketRay(packet, k, origins[k], directions[k], tNear[k], tFar[k]);
     else setPacketRay(packet, k, Vec3::Zero(), Vec3(0, 0, 1), 0.0, 0.0);
   }
-  rtcOccluded16(valid, scene_, &context, &packet);
+  rtcOccluded8(valid, scene_, &context, &packet);
   uint32_t blocked = 0;
   for (int k = 0; k < kRayPacketSize; ++k)
     if (((active >> k) & 1u) && packet.tfar[k] < 0.0f) blocked |= 1u << k;

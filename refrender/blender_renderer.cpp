@@ -80,9 +80,10 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
 
   const std::string log = folder.path() + "/blender.log";
   const std::string driver = options.driver.empty() ? defaultDriver() : options.driver;
-  const ProcessResult r = runProcess({options.executable, "-b", "--factory-startup", "-noaudio", "--python-exit-code",
-                                      "1", "-P", driver, "--", folder.path() + "/job.json"},
-                                     folder.path(), log, options.timeoutSeconds);
+  std::vector<std::string> argv{options.executable, "-b", "--factory-startup", "-noaudio"};
+  if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
+  argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", folder.path() + "/job.json"});
+  const ProcessResult r = runProcess(argv, folder.path(), log, options.timeoutSeconds);
   if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + options.executable);
   if (r.timedOut)
     throw ExternalError("blender: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +

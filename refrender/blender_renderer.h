@@ -19,6 +19,7 @@ struct BlenderOptions {
   std::string driver;  // default: the repository's refrender/blender_driver.py
   int seed = 0;
   bool keepJobFolder = false;
+  int threads = 0;  // Blender's -t; 0: its default, all cores
 };
 
 // Renders every pose in one Blender session. Throws ExternalError (missing blender, failure,

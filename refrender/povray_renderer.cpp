@@ -58,7 +58,7 @@ ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const Rend
                            const PovrayOptions& options) {
   const PovrayJob job = exportPovray(scene, pose, settings);
   JobFolder folder("omnicam-povray", options.keepJobFolder);
-  writePovrayJob(job, folder.path());
+  writePovrayJob(job, folder.path(), options.threads);
   writeRestrictiveConfig(folder.path());
   const std::string log = folder.path() + "/povray.log";
   const ProcessResult r = runProcess({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);

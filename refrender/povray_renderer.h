@@ -15,6 +15,7 @@ struct PovrayOptions {
   double timeoutSeconds = 600.0;
   std::string executable = "povray";
   bool keepJobFolder = false;  // for debugging: leave scene.pov etc. behind
+  int threads = 0;             // render threads (Work_Threads); 0: POV-Ray's default, all cores
 };
 
 // Throws ExternalError (missing povray, failure, timeout: with the tail of its output) or

@@ -62,8 +62,9 @@ class FastEngine : public Engine {
 
 class PovrayEngine : public Engine {
  public:
-  PovrayEngine(const Scene& scene, double timeoutSeconds) : scene_(scene) {
+  PovrayEngine(const Scene& scene, double timeoutSeconds, int threads) : scene_(scene) {
     options_.timeoutSeconds = timeoutSeconds;
+    options_.threads = threads;
     // OMNICAM_POVRAY names another POV-Ray binary (tests use it to simulate failures).
     if (const char* exe = std::getenv("OMNICAM_POVRAY")) options_.executable = exe;
   }
@@ -84,8 +85,9 @@ class PovrayEngine : public Engine {
 
 class BlenderEngine : public Engine {
  public:
-  BlenderEngine(const Scene& scene, double timeoutSeconds) : scene_(scene) {
+  BlenderEngine(const Scene& scene, double timeoutSeconds, int threads) : scene_(scene) {
     options_.timeoutSeconds = timeoutSeconds;
+    options_.threads = threads;
     // OMNICAM_BLENDER names another Blender binary (tests use it to simulate failures).
     if (const char* exe = std::getenv("OMNICAM_BLENDER")) options_.executable = exe;
   }
@@ -125,12 +127,12 @@ std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, in
 }
 
 std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds,
-                                   const CubeMapOptions* mode, const std::string& flag) {
+                                   const CubeMapOptions* mode, const std::string& flag, int threads) {
   if (name == "fast") return std::make_unique<FastEngine>(scene, mode);
   if (mode) throw InputError((flag == "--engine" ? std::string("--mode") : flag + ": mode") +
                              ": only the fast engine has modes other than exact");
-  if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds);
-  if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds);
+  if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds, threads);
+  if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds, threads);
   throw InputError(flag + ": \"" + name + "\" is not available (fast, povray, blender)");
 }
 

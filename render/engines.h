@@ -41,9 +41,12 @@ class Engine {
 };
 
 // Throws InputError for an unknown engine name, or a mode other than exact for an engine other
-// than fast. `scene` must outlive the engine. `flag` names the option in messages.
+// than fast. `scene` must outlive the engine. `flag` names the option in messages. `threads` > 0
+// caps a ground-truth engine's render threads (the fast engine runs on TBB's threads, which the
+// caller limits with tbb::global_control).
 std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds = 600.0,
-                                   const CubeMapOptions* mode = nullptr, const std::string& flag = "--engine");
+                                   const CubeMapOptions* mode = nullptr, const std::string& flag = "--engine",
+                                   int threads = 0);
 // "exact", "cubemap" or "thesis-mesh" → options (InputError naming `flag` otherwise); nullptr
 // for exact.
 std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons,

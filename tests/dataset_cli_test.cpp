@@ -393,6 +393,35 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
 
 // A Blender dataset renders every frame of a camera in one Blender session (Blender starts in
 // seconds, renders a small frame in a fraction of that), and its frames agree with fast.
+TEST_F(DatasetCliTest, ThreadsCapEveryEngineAndChangeNoByte) {
+  // The fast engine on one TBB thread writes exactly the dataset it writes on every core.
+  const std::string spec = robocupSpec("spec.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 4})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("all")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("one") + " --threads 1").code, 0);
+  EXPECT_EQ(snapshot(dir_ / "one"), snapshot(dir_ / "all"));
+  // POV-Ray gets Work_Threads in its job, Blender -t on its command line (wrappers record them).
+  const std::string iniLog = path("povray_ini.log"), argvLog = path("blender_argv.log");
+  const std::string povray = write("recording-povray", "#!/bin/sh\ncat render.ini >> '" + iniLog + "'\nexec povray \"$@\"\n");
+  const std::string blender = write("recording-blender", "#!/bin/sh\necho \"$*\" >> '" + argvLog + "'\nexec blender \"$@\"\n");
+  fs::permissions(povray, fs::perms::owner_all);
+  fs::permissions(blender, fs::perms::owner_all);
+  const std::string one = R"("size": 32, "poses": {"list": [[0.5, 0.3, 20]]}, "outputs": {"rgb": "exr"})";
+  const std::string povraySpec = robocupSpec("povray.json", R"("engine": "povray", )" + one);
+  const std::string blenderSpec = robocupSpec("blender.json", R"("engine": "blender", )" + one);
+  auto run = testing::runShell("OMNICAM_POVRAY=" + povray + " " + std::string(OMNICAM_BINARY) + " dataset " + povraySpec +
+                               " -o " + path("povray") + " --threads 1 2>&1");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(readFile(iniLog).find("Work_Threads=1\n"), std::string::npos) << readFile(iniLog);
+  run = testing::runShell("OMNICAM_BLENDER=" + blender + " " + std::string(OMNICAM_BINARY) + " dataset " + blenderSpec +
+                          " -o " + path("blender") + " --threads 1 2>&1");
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(readFile(argvLog).find(" -t 1 "), std::string::npos) << readFile(argvLog);
+  // Without --threads, neither cap appears: each program's default (every core).
+  ASSERT_EQ(testing::runShell("OMNICAM_POVRAY=" + povray + " " + std::string(OMNICAM_BINARY) + " dataset " + povraySpec +
+                              " -o " + path("povray_all") + " 2>&1").code, 0);
+  EXPECT_EQ(readFile(iniLog).find("Work_Threads=", readFile(iniLog).find("Work_Threads=1\n") + 1), std::string::npos);
+}
+
 TEST_F(DatasetCliTest, BlenderRendersADatasetInOneSession) {
   const std::string log = path("blender_starts.log");
   const std::string wrapper = write("counting-blender", "#!/bin/sh\necho started >> '" + log + "'\nexec blender \"$@\"\n");
