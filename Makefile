@@ -54,15 +54,18 @@ test: build fuzz-build
 demo: build
 	$(BUILD_DIR)/bin/omnicam demo -o out/demo
 
-# Frames/s of the fast renderer, fast vs POV-Ray per frame over the 100-frame thesis-loop, then
-# what a dataset frame costs and a 1000-frame dataset with all outputs against RGB only.
+# Frames/s of the fast renderer, fast vs POV-Ray per frame over the 100-frame thesis-loop (1 and
+# 16 spp), what a dataset frame costs and a 1000-frame dataset with all outputs against RGB only,
+# frames/s against scene size, and a POV-Ray dataset on Slurm (2 tasks x 1 thread vs 1 x 2).
 bench: build
 	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
 	$(BUILD_DIR)/bin/omnicam bench --json
 	bench/povray_ratio.sh 1 100
+	bench/povray_ratio.sh 16 100
 	$(BUILD_DIR)/bin/dataset_bench
 	bench/dataset_ratio.sh 1000
 	mkdir -p out && $(BUILD_DIR)/bin/scene_scaling --csv out/scaling.csv
+	$(BUILD_DIR)/bin/slurm_speedup --csv out/slurm_speedup.csv
 
 clean:
 	rm -rf $(BUILD_DIR) out

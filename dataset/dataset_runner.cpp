@@ -103,12 +103,13 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
 
   DatasetRunResult result;
   const int totalFrames = static_cast<int>(poses.size());
-  const bool sharded = options.shardCount > 1;
-  if (options.shardCount < 1 || options.shardIndex < 0 || options.shardIndex >= options.shardCount)
+  const bool sharded = options.shardCount > 0;
+  const int shardCount = std::max(1, options.shardCount);
+  if (options.shardCount < 0 || options.shardIndex < 0 || options.shardIndex >= shardCount)
     throw InputError("--shard: must be I/N with 0 <= I < N");
   if (sharded && options.overwrite) throw InputError("--overwrite: not with --shard (remove the folder, then render the shards)");
-  const int firstFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / options.shardCount);
-  const int endFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / options.shardCount);
+  const int firstFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
+  const int endFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
   const std::string manifestName = sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
   result.frames = endFrame - firstFrame;
   FrameOutputPlan plan;

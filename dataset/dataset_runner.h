@@ -17,8 +17,9 @@ struct DatasetRunOptions {
   bool overwrite = false;  // replace a dataset made from another spec
   // Shard `shardIndex` of `shardCount` (dataset_shards.h): frames [F·i/n, F·(i+1)/n) only, listed
   // in DIR/shards/shard-i-of-n.json instead of DIR/manifest.json, so that shards on different
-  // machines can fill one shared folder at once. 1: the whole dataset.
-  int shardIndex = 0, shardCount = 1;
+  // machines can fill one shared folder at once (a Slurm array of one task is shard 0 of 1).
+  // shardCount 0: the whole dataset, listed in DIR/manifest.json.
+  int shardIndex = 0, shardCount = 0;
   // Threads for the whole run (TBB's, POV-Ray's Work_Threads, Blender's -t); 0: every core. Under
   // Slurm, the cores the task was given (docs/cluster.md).
   int threads = 0;

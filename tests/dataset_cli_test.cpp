@@ -314,6 +314,14 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   std::map<std::string, std::string> merged = snapshot(dir_ / "parts"), whole = snapshot(dir_ / "whole");
   for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
   EXPECT_EQ(merged, whole);
+  // One shard of one (a Slurm array of one task) is a shard too: listed apart, then merged.
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("single") + " --shard 0/1").code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "single/shards/shard-0-of-1.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "single/manifest.json"));
+  ASSERT_EQ(omnicam("dataset --merge " + path("single")).code, 0);
+  std::map<std::string, std::string> single = snapshot(dir_ / "single");
+  for (auto it = single.begin(); it != single.end();) it = it->first.rfind("shards/", 0) == 0 ? single.erase(it) : std::next(it);
+  EXPECT_EQ(single, whole);
   // A shard of another spec in the same folder is refused.
   const std::string other = robocupSpec("other.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 10})");
   r = omnicam("dataset " + other + " -o " + path("parts") + " --shard 0/2");

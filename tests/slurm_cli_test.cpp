@@ -5,158 +5,23 @@
 // stops exactly the daemons it started, by pid. It never skips: a cluster that cannot start is
 // a failure that says why.
 #include <gtest/gtest.h>
-#include <fcntl.h>
-#include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <functional>
-#include <map>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
-#include <sstream>
-#include <thread>
 
-#include "shell_command.h"
-
-extern char** environ;
+#include "slurm_cluster.h"
 
 namespace omnicam {
 namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A free TCP port on localhost (the kernel's pick; released again at once).
-int freePort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address);
-  socklen_t length = sizeof address;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
-}
-
-class SlurmCluster {
- public:
-  explicit SlurmCluster(const fs::path& root) : root_(root) {
-    for (const char* sub : {"state", "spool", "log"}) fs::create_directories(root_ / sub);
-    for (const char* binary : {"/usr/sbin/munged", "/usr/sbin/mungekey", "/usr/sbin/slurmctld", "/usr/sbin/slurmd",
-                               "/usr/bin/sbatch", "/usr/bin/sinfo", "/usr/bin/squeue", "/usr/bin/scancel"})
-      if (!fs::exists(binary)) problem_ += std::string(binary) + " is missing (make deps installs slurmctld slurmd slurm-client munge); ";
-    if (!problem_.empty()) return;
-    const std::string key = (root_ / "munge.key").string();
-    if (testing::runShell("/usr/sbin/mungekey -c -b 1024 -k " + key + " 2>&1").code != 0) {
-      problem_ = "mungekey could not create a key";
-      return;
-    }
-    const std::string socket = (root_ / "munge.sock").string();
-    start("munged", {"/usr/sbin/munged", "-F", "-f", "--key-file=" + key, "--socket=" + socket,
-                     "--pid-file=" + (root_ / "munged.pid").string(), "--log-file=" + (root_ / "log/munged.log").string(),
-                     "--seed-file=" + (root_ / "munged.seed").string()});
-    // munged must be up before the Slurm daemons authenticate through it.
-    waitFor([&] { return fs::exists(socket); }, 10.0);
-    const int controllerPort = freePort(), nodePort = freePort();
-    std::ofstream(root_ / "slurm.conf")
-        << "ClusterName=omnicamtest\nSlurmctldHost=localhost(127.0.0.1)\nSlurmctldPort=" << controllerPort
-        << "\nSlurmdPort=" << nodePort << "\nSlurmUser=root\nSlurmdUser=root\nAuthType=auth/munge\nAuthInfo=socket="
-        << socket << "\nCredType=cred/munge\nProctrackType=proctrack/linuxproc\nTaskPlugin=task/none\n"
-        << "JobAcctGatherType=jobacct_gather/none\nAccountingStorageType=accounting_storage/none\nMpiDefault=none\n"
-        << "SwitchType=switch/none\nSchedulerType=sched/builtin\nSelectType=select/cons_tres\nSelectTypeParameters=CR_CPU\n"
-        << "StateSaveLocation=" << (root_ / "state").string() << "\nSlurmdSpoolDir=" << (root_ / "spool").string()
-        << "\nSlurmctldPidFile=" << (root_ / "slurmctld.pid").string() << "\nSlurmdPidFile="
-        << (root_ / "slurmd.pid").string() << "\nSlurmctldLogFile=" << (root_ / "log/slurmctld.log").string()
-        << "\nSlurmdLogFile=" << (root_ / "log/slurmd.log").string()
-        << "\nReturnToService=2\nInactiveLimit=0\nKillWait=2\n"
-        << "NodeName=localhost NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN\n"
-        << "PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP\n";
-    conf_ = (root_ / "slurm.conf").string();
-    start("slurmctld", {"/usr/sbin/slurmctld", "-D", "-i", "-f", conf_});
-    start("slurmd", {"/usr/sbin/slurmd", "-D", "-f", conf_, "-N", "localhost"});
-    if (!waitFor([&] { return shell("/usr/bin/sinfo -h -o %t").out.find("idle") != std::string::npos; }, 60.0))
-      problem_ = "the node never became idle; sinfo: " + shell("/usr/bin/sinfo 2>&1").out + logs();
-  }
-
-  // Stops exactly what it started: SIGTERM, then SIGKILL after 10 s.
-  ~SlurmCluster() {
-    for (auto it = started_.rbegin(); it != started_.rend(); ++it) ::kill(it->second, SIGTERM);
-    for (auto it = started_.rbegin(); it != started_.rend(); ++it) {
-      const auto deadline = Clock::now() + std::chrono::seconds(10);
-      int status = 0;
-      while (::waitpid(it->second, &status, WNOHANG) == 0) {
-        if (Clock::now() > deadline) {
-          ::kill(it->second, SIGKILL);
-          ::waitpid(it->second, &status, 0);
-          break;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-    }
-  }
-
-  const std::string& problem() const { return problem_; }
-  testing::CommandResult shell(const std::string& command) const {
-    return testing::runShell("SLURM_CONF=" + conf_ + " " + command);
-  }
-  // Until none of `jobs` is queued or running.
-  bool waitUntilDone(const std::vector<std::string>& jobs, double seconds) const {
-    std::string list;
-    for (const std::string& j : jobs) list += (list.empty() ? "" : ",") + j;
-    return waitFor([&] { return shell("/usr/bin/squeue -h -j " + list + " 2>/dev/null").out.empty(); }, seconds);
-  }
-  std::string logs() const {
-    std::string out;
-    for (const char* log : {"log/slurmctld.log", "log/slurmd.log", "munged.out", "slurmctld.out", "slurmd.out"})
-      out += std::string("\n--- ") + log + ":\n" + readFile(root_ / log).substr(0, 3000);
-    return out;
-  }
-
-  static bool waitFor(const std::function<bool()>& ready, double seconds) {
-    const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
-    while (Clock::now() < deadline) {
-      if (ready()) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    return ready();
-  }
-
- private:
-  void start(const std::string& name, const std::vector<std::string>& argv) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    const std::string log = (root_ / (name + ".out")).string();
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    pid_t pid = 0;
-    if (::posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ) == 0) started_.emplace_back(name, pid);
-    else problem_ += "cannot start " + name + "; ";
-    posix_spawn_file_actions_destroy(&actions);
-  }
-
-  fs::path root_;
-  std::string conf_, problem_;
-  std::vector<std::pair<std::string, pid_t>> started_;
-};
+using testing::readFile;
+using testing::SlurmCluster;
 
 class SlurmCliTest : public ::testing::Test {
  protected:

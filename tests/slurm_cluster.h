@@ -1,0 +1,48 @@
+#pragma once
+// A single-node Slurm cluster of its own for tests and benchmarks: munged, slurmctld and slurmd
+// with a generated slurm.conf in a temporary folder, ports on localhost, 2 CPUs, no systemd
+// (ProctrackType=proctrack/linuxproc, TaskPlugin=task/none; the daemons run as root). It stops
+// exactly the daemons it started, by pid. A cluster that cannot start says why in problem().
+#include <sys/types.h>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shell_command.h"
+
+namespace omnicam::testing {
+
+class SlurmCluster {
+ public:
+  explicit SlurmCluster(const std::filesystem::path& root);
+  // Stops exactly what it started: SIGTERM, then SIGKILL after 10 s.
+  ~SlurmCluster();
+  SlurmCluster(const SlurmCluster&) = delete;
+  SlurmCluster& operator=(const SlurmCluster&) = delete;
+
+  // Empty when the node came up idle.
+  const std::string& problem() const { return problem_; }
+  // Runs a shell command against this cluster (SLURM_CONF set).
+  CommandResult shell(const std::string& command) const;
+  // Until none of `jobs` is queued or running, at most `seconds`.
+  bool waitUntilDone(const std::vector<std::string>& jobs, double seconds) const;
+  // The daemons' logs (their first 3000 characters each), for failure messages.
+  std::string logs() const;
+
+  static bool waitFor(const std::function<bool()>& ready, double seconds);
+
+ private:
+  void start(const std::string& name, const std::vector<std::string>& argv);
+
+  std::filesystem::path root_;
+  std::string conf_, problem_;
+  std::vector<std::pair<std::string, pid_t>> started_;
+};
+
+// The whole file as bytes ("" if it cannot be read).
+std::string readFile(const std::filesystem::path& path);
+
+}  // namespace omnicam::testing
