@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -20,7 +19,7 @@
 #include "slurm_cluster.h"
 
 namespace fs = std::filesystem;
-using omnicam::testing::readFile;
+using omnicam::testing::frameHashes;
 using omnicam::testing::SlurmCluster;
 
 namespace {
@@ -29,14 +28,6 @@ struct Config {
   const char* name;
   int shards, cpusPerTask;
 };
-
-// Frame index → the hashes of its files: equal maps mean the same dataset.
-std::map<int, std::string> frameHashes(const fs::path& dataset) {
-  const auto manifest = nlohmann::json::parse(readFile(dataset / "manifest.json"));
-  std::map<int, std::string> hashes;
-  for (const auto& frame : manifest.at("frames")) hashes[frame.at("index")] = frame.at("cameras").dump();
-  return hashes;
-}
 
 // Thrown, not exited: the cluster's destructor must stop the daemons.
 [[noreturn]] void fail(const std::string& what) { throw std::runtime_error(what); }

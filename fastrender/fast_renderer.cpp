@@ -160,6 +160,16 @@ void recordAov(AovFrame& aovs, size_t pixel, const SurfaceHit& hit, const Vec3& 
 
 }  // namespace
 
+uint32_t FastRenderer::recordCentreAovs(const Vec3& origin, const Eigen::Matrix3f& rotation, const SampleTable& table,
+                                        const size_t* pixels, int count, HitPacket& hits, AovFrame& aovs) const {
+  hits.begin(origin, count);
+  for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table.centreDirections[pixels[k]]);
+  rays_.intersectPacket(hits);
+  for (int k = 0; k < count; ++k)
+    if (hits.hit(k)) recordAov(aovs, pixels[k], hits.surface(k), hits.direction(k));
+  return hits.mask();
+}
+
 void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const {
   RenderSettings centreOnly = settings;
   centreOnly.spp = 1;
@@ -173,17 +183,13 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   const Eigen::Matrix3f rotation = worldFromCam.linear().cast<float>();
   tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
     // The same packets as a render pass traces for its centre rays, so both give the same AOVs.
-    constexpr int kPacket = kRayPacketSize;
     HitPacket hits;
-    size_t pending[kPacket];
+    size_t pending[kRayPacketSize];
     int count = 0;
     const auto trace = [&] {
-      hits.begin(origin, count);
-      for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table->centreDirections[pending[k]]);
-      rays_.intersectPacket(hits);
+      const uint32_t hit = recordCentreAovs(origin, rotation, *table, pending, count, hits, aovs);
       for (int k = 0; k < count; ++k)
-        if (hits.hit(k)) recordAov(aovs, pending[k], hits.surface(k), hits.direction(k));
-        else recordNoHit(aovs, pending[k]);
+        if (!((hit >> k) & 1u)) recordNoHit(aovs, pending[k]);
       count = 0;
     };
     for (int j = rows.begin(); j != rows.end(); ++j) {
@@ -195,7 +201,7 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
           continue;
         }
         pending[count++] = p;
-        if (count == kPacket) trace();
+        if (count == kRayPacketSize) trace();
       }
       if (count > 0) trace();  // packets stay within a row, as in a render pass
     }
@@ -254,23 +260,18 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
       while (pixel < rowStart + width) storePixel();  // the last pixel, and any beyond the rim
       if (aovs) {
         // At even n no sample is the centre: one more ray per pixel, again in packets.
-        int pending[kPacket];
+        size_t pending[kPacket];
         int count = 0;
         const auto traceCentres = [&] {
-          hits.begin(origin, count);
-          for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table->centreDirections[rowStart + pending[k]]);
-          rays_.intersectPacket(hits);
+          const uint32_t hit = recordCentreAovs(origin, rotation, *table, pending, count, hits, *aovs);
           for (int k = 0; k < count; ++k)
-            if (hits.hit(k)) {
-              recordAov(*aovs, rowStart + pending[k], hits.surface(k), hits.direction(k));
-              centreRecorded[pending[k]] = 1;
-            }
+            if ((hit >> k) & 1u) centreRecorded[pending[k] - rowStart] = 1;
           count = 0;
         };
         for (int i = 0; i < width; ++i) {
           const Eigen::Vector3f& centre = table->centreDirections[rowStart + i];
           if (table->centreSample[rowStart + i] != SampleTable::kNoSample || std::isnan(centre.x())) continue;
-          pending[count++] = i;
+          pending[count++] = rowStart + i;
           if (count == kPacket) traceCentres();
         }
         if (count > 0) traceCentres();

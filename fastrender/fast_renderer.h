@@ -56,6 +56,10 @@ class FastRenderer {
   ImageRGBA renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const;
   void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
   std::shared_ptr<const SampleTable> sampleTable(const RigSpec& rig, int samplesPerAxis) const;
+  // Traces the centre rays of `count` ≤ kRayPacketSize inside-rim pixels as one packet and
+  // records the AOVs of those that hit; returns the mask of hits (bit k: pixels[k]).
+  uint32_t recordCentreAovs(const Vec3& origin, const Eigen::Matrix3f& rotation, const SampleTable& table,
+                            const size_t* pixels, int count, HitPacket& hits, AovFrame& aovs) const;
 
   // Colours of a packet of rays: the background where a ray missed, else its hit shaded per
   // docs/conventions.md §2, with the shadow rays traced as packets too.

@@ -190,20 +190,6 @@ SurfaceHit HitPacket::surface(int k) const {
   return hit;
 }
 
-bool RayScene::intersect(const Vec3& origin, const Vec3& direction, double tNear, SurfaceHit& hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rayhit;
-  rayhit.ray = makeRay(origin, direction, tNear, std::numeric_limits<float>::infinity());
-  rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &context, &rayhit);
-  if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  fillHit(origin, direction, rayhit.ray.tfar, rayhit.hit.geomID, rayhit.hit.primID, rayhit.hit.u, rayhit.hit.v,
-          Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z), hit);
-  return true;
-}
-
 bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

@@ -64,8 +64,6 @@ class RayScene {
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
-  // Nearest hit along origin + t·direction, t ∈ (tNear, ∞). Thread-safe.
-  bool intersect(const Vec3& origin, const Vec3& direction, double tNear, SurfaceHit& hit) const;
   // True if anything lies on the open segment (tNear, tFar). Thread-safe.
   bool occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const;
 

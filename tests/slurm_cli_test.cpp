@@ -20,6 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using testing::frameHashes;
 using testing::readFile;
 using testing::SlurmCluster;
 
@@ -34,13 +35,6 @@ class SlurmCliTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// Every frame's files and hashes, by frame index: what "the same dataset" means.
-std::map<int, std::string> frameHashes(const fs::path& dataset) {
-  const json manifest = json::parse(readFile(dataset / "manifest.json"));
-  std::map<int, std::string> hashes;
-  for (const json& frame : manifest.at("frames")) hashes[frame.at("index")] = frame.at("cameras").dump();
-  return hashes;
-}
 
 TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOne) {
   if (::geteuid() != 0) FAIL() << "the Slurm test runs its daemons as root (SlurmUser=root); run make test as root";

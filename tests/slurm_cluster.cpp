@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
 
@@ -25,6 +26,13 @@ std::string readFile(const fs::path& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+std::map<int, std::string> frameHashes(const fs::path& dataset) {
+  const nlohmann::json manifest = nlohmann::json::parse(readFile(dataset / "manifest.json"));
+  std::map<int, std::string> hashes;
+  for (const nlohmann::json& frame : manifest.at("frames")) hashes[frame.at("index")] = frame.at("cameras").dump();
+  return hashes;
 }
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,5 +45,9 @@ class SlurmCluster {
 
 // The whole file as bytes ("" if it cannot be read).
 std::string readFile(const std::filesystem::path& path);
+
+// Every frame's files and hashes in DATASET/manifest.json, by frame index: equal maps mean the
+// same dataset.
+std::map<int, std::string> frameHashes(const std::filesystem::path& dataset);
 
 }  // namespace omnicam::testing
