@@ -10,6 +10,7 @@
 #include <sstream>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "atomic_file.h"
 #include "errors.h"
@@ -29,7 +30,8 @@ using nlohmann::json;
 
 namespace {
 
-// The manifest is rewritten at most this often while frames complete (and always at the end).
+// The manifest is rewritten at most this often while frames complete (and always after the
+// first window of frames and at the end).
 constexpr double kManifestIntervalSeconds = 1.0;
 // Frames the fast engine renders at once: enough to keep every core busy between the serial
 // parts (writing, the manifest), few enough that a stop request is honoured quickly.
@@ -78,7 +80,10 @@ void writeDatasetFile(const fs::path& dir, const std::string& relative, const st
 
 }  // namespace
 
-DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options) {
+namespace {
+
+// runDataset's work, on whatever threads the caller's arena gives it.
+DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions& options) {
   const fs::path dir(options.dir);
   const Scene scene = loadScene(spec.scene, {spec.allowOutsideFiles});
   std::vector<CameraSetup> setups;
@@ -93,13 +98,10 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   }
   const std::vector<RobotPose> poses = datasetPoses(spec, scene, topHeight);
   for (const RobotPose& robot : poses)
-    for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), spec.file + ": poses");
-  const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, spec.file + ": mode");
+    for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
+  const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
   const auto engine =
-      makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), spec.file + ": engine", options.threads);
-  // The run's thread budget (TBB: frames, rows and encoders); released when the run ends.
-  std::optional<tbb::global_control> threadLimit;
-  if (options.threads > 0) threadLimit.emplace(tbb::global_control::max_allowed_parallelism, options.threads);
+      makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
 
   DatasetRunResult result;
   const int totalFrames = static_cast<int>(poses.size());
@@ -128,7 +130,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
       result.notes.push_back("engine " + spec.engine + " writes RGB only: depth, instance, semantic and normal outputs are not written (see manifest outputs.not_written)");
   }
   if ((plan.instance || plan.semantic) && scene.objects.size() > kMaxInstances)
-    throw InputError(spec.file + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
+    throw InputError(showPath(spec.file) + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
 
   // Class ids: 1, 2, ... in name order; 0 = no class (or nothing hit).
@@ -181,7 +183,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
 
   // The folder: new, this dataset (resume), or something else (refused unless --overwrite).
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("-o: " + options.dir + ": exists and is not a folder");
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("-o: " + showPath(options.dir) + ": exists and is not a folder");
   std::optional<DatasetManifest> previous;
   auto readPrevious = [&](const std::string& name) -> std::optional<DatasetManifest> {
     if (!fs::exists(dir / name, ec)) return std::nullopt;
@@ -192,7 +194,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
       if (!options.overwrite) throw InputError(std::string(e.what()) + " (use --overwrite to start afresh)");
     }
     if (found && datasetIdentity(found->header) != datasetIdentity(header) && !options.overwrite)
-      throw InputError("-o: " + options.dir + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
+      throw InputError("-o: " + showPath(options.dir) + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
                        found->header.value("spec_sha256", std::string("?")) + "); use --overwrite to replace it");
     return found;
   };
@@ -204,7 +206,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
     previous = readPrevious(manifestName);
   } else if (fs::exists(dir, ec) && !folderIsEmpty(dir) && !options.overwrite &&
              !(sharded && fs::is_directory(dir / "shards", ec))) {
-    throw InputError("-o: " + options.dir + ": folder is not empty and has no " + kManifestName + "; use --overwrite");
+    throw InputError("-o: " + showPath(options.dir) + ": folder is not empty and has no " + kManifestName + "; use --overwrite");
   }
   if (options.overwrite && fs::exists(dir, ec)) {
     // Only what a dataset owns: the manifest and the camera folders (old and new names).
@@ -221,7 +223,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   // Shards share the folder: "shards/" marks it as theirs before anything else is written, and a
   // shard never removes temporaries (another shard may be writing them; the merge does).
   fs::create_directories(sharded ? dir / "shards" : dir, ec);
-  if (ec) throw OutputError("-o: " + options.dir + ": cannot create folder (" + ec.message() + ")");
+  if (ec) throw OutputError("-o: " + showPath(options.dir) + ": cannot create folder (" + ec.message() + ")");
   if (!sharded) removeAtomicTemporaries(dir.string());
 
   // Static files per camera: intrinsics and poses.
@@ -232,7 +234,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
       const bool wanted = std::string(kind) == "rgb" || std::string(kind) == "intrinsics" ||
                           std::find(written.begin(), written.end(), kind) != written.end();
       if (wanted) fs::create_directories(dir / name / kind, ec);
-      if (ec) throw OutputError("-o: " + (dir / name / kind).string() + ": cannot create folder (" + ec.message() + ")");
+      if (ec) throw OutputError("-o: " + showPath((dir / name / kind).string()) + ": cannot create folder (" + ec.message() + ")");
     }
     const OmniCamera omni = setup.rig.camera();
     const std::pair<std::string, std::string> statics[] = {
@@ -330,8 +332,10 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
       ++done;
       if (options.onFrame) options.onFrame(done, result.frames);
     }
+    // The first finished window is listed at once, so that a run stopped early, however fast
+    // the machine, leaves frames to resume from and a --status that shows them.
     const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
+    if (start == 0 || std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
       writeManifest(options.dir, manifest, manifestName);
       lastManifest = now;
     }
@@ -339,6 +343,20 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   result.stopped = done < result.frames;
   header["complete"] = !result.stopped;
   writeManifest(options.dir, manifest, manifestName);
+  return result;
+}
+
+}  // namespace
+
+DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options) {
+  if (options.threads <= 0) return runDatasetHere(spec, options);
+  // Exactly `threads` TBB threads (frames, rows and encoders), also beyond the cores this process
+  // may use: the limit raises TBB's worker pool, the arena asks for it (either alone caps at the
+  // core count). Both are released when the run ends.
+  const tbb::global_control threadLimit(tbb::global_control::max_allowed_parallelism, options.threads);
+  tbb::task_arena arena(options.threads);
+  DatasetRunResult result;
+  arena.execute([&] { result = runDatasetHere(spec, options); });
   return result;
 }
 
@@ -359,11 +377,11 @@ DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& man
     const fs::path path = fs::path(dir) / file.path;
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
-      result.problems.push_back(file.path + ": missing");
+      result.problems.push_back(showPath(file.path) + ": missing");
       continue;
     }
     const std::string actual = fileSha256(path);
-    if (actual != file.sha256) result.problems.push_back(file.path + ": SHA-256 " + actual + " differs from the manifest's " + file.sha256);
+    if (actual != file.sha256) result.problems.push_back(showPath(file.path) + ": SHA-256 " + actual + " differs from the manifest's " + file.sha256);
   }
   // A shard is complete with its own range of frames.
   const json shard = manifest.header.value("shard", json());

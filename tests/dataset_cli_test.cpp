@@ -18,6 +18,7 @@
 #include <sstream>
 #include <thread>
 
+#include "hold_point.h"
 #include "image.h"
 #include "opencv_omnidir.h"
 #include "rig.h"
@@ -72,19 +73,24 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
   return files;
 }
 
-// Starts omnicam with `args` in the background; its pid.
-pid_t spawnOmnicam(const std::vector<std::string>& args, const std::string& log) {
+// Starts omnicam with `args` in the background, its environment plus `extraEnvironment`; its pid.
+pid_t spawnOmnicam(const std::vector<std::string>& args, const std::string& log,
+                   const std::vector<std::string>& extraEnvironment) {
   std::vector<std::string> argv{OMNICAM_BINARY};
   argv.insert(argv.end(), args.begin(), args.end());
-  std::vector<char*> raw;
-  for (std::string& a : argv) raw.push_back(a.data());
-  raw.push_back(nullptr);
+  std::vector<char*> rawArgv, rawEnvironment;
+  for (std::string& a : argv) rawArgv.push_back(a.data());
+  rawArgv.push_back(nullptr);
+  std::vector<std::string> environment(extraEnvironment);
+  for (char** e = environ; *e; ++e) environment.push_back(*e);
+  for (std::string& e : environment) rawEnvironment.push_back(e.data());
+  rawEnvironment.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
   pid_t pid = -1;
-  posix_spawn(&pid, raw[0], &actions, nullptr, raw.data(), environ);
+  posix_spawn(&pid, rawArgv[0], &actions, nullptr, rawArgv.data(), rawEnvironment.data());
   posix_spawn_file_actions_destroy(&actions);
   return pid;
 }
@@ -97,22 +103,18 @@ size_t manifestFrames(const fs::path& dir) {
   return manifest.is_discarded() ? 0 : manifest.at("frames").size();
 }
 
-// Waits until the manifest lists at least one frame, then sends `signal`; false if the run ended
-// first. The exit status goes to `status`.
-bool interruptAfterFirstFrames(pid_t pid, const fs::path& dir, int signal, int& status) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (::waitpid(pid, &status, WNOHANG) == pid) return false;
-    if (manifestFrames(dir) >= 1) {
-      ::kill(pid, signal);
-      ::waitpid(pid, &status, 0);
-      return true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ::kill(pid, SIGKILL);
-  ::waitpid(pid, &status, 0);
-  return false;
+// Runs `omnicam dataset SPEC -o DIR`, holds it once its manifest lists finished frames (and is not
+// complete), sends `signal` and waits for its end (exit status to `status`). False if the run
+// ended without reaching the hold. Deterministic: the run is held, not caught, when signalled.
+bool interruptAfterFirstFrames(const std::string& spec, const fs::path& dir, int signal, int& status) {
+  testing::HoldPoint hold(dir.string() + "-hold", "manifest.json");
+  const pid_t pid = spawnOmnicam({"dataset", spec, "-o", dir.string()}, dir.string() + ".log", hold.environment());
+  bool ended = false;
+  const bool held = hold.waitUntilHeld([&] { return ended = ::waitpid(pid, &status, WNOHANG) == pid; }, 300.0);
+  if (!ended) ::kill(pid, held ? signal : SIGKILL);
+  if (signal != SIGKILL) hold.release();  // Ctrl-C takes effect when the held rename returns
+  if (!ended) ::waitpid(pid, &status, 0);
+  return held;
 }
 
 TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
@@ -216,25 +218,26 @@ TEST_F(DatasetCliTest, OpenCvReadsTheIntrinsicsAndPosesAndReproducesProject) {
 }
 
 TEST_F(DatasetCliTest, KillNineAndResumeGivesTheUninterruptedResult) {
-  const std::string spec = robocupSpec("spec.json", R"("size": 360, "spp": 16, "shading": "lit",
-    "poses": {"path": "thesis-loop", "frames": 40})");
+  // 20 frames: the first window of 8 is listed, then the run is held and killed.
+  const std::string spec = robocupSpec("spec.json", R"("size": 128, "spp": 4, "shading": "lit",
+    "poses": {"path": "thesis-loop", "frames": 20})");
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole")).code, 0);
 
-  const pid_t pid = spawnOmnicam({"dataset", spec, "-o", path("killed")}, path("killed.log"));
   int status = 0;
-  ASSERT_TRUE(interruptAfterFirstFrames(pid, dir_ / "killed", SIGKILL, status)) << "the run ended before it was killed";
+  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status))
+      << "the run never listed a frame while incomplete: " << readFile(path("killed.log"));
   ASSERT_TRUE(WIFSIGNALED(status));
   const size_t finished = manifestFrames(dir_ / "killed");
   ASSERT_GE(finished, 1u);
-  ASSERT_LT(finished, 40u);
+  ASSERT_LT(finished, 20u);
   // What a killed run can leave: a temporary file, and a frame whose file was changed since.
-  std::ofstream(dir_ / "killed/cam0/rgb/.000039.tmp-AbCdEfGhIj.png") << "partial";
+  std::ofstream(dir_ / "killed/cam0/rgb/.000019.tmp-AbCdEfGhIj.png") << "partial";
   std::ofstream(dir_ / "killed/cam0/depth/000000.exr", std::ios::trunc) << "damaged";
 
   const auto resumed = omnicam("dataset " + spec + " -o " + path("killed"));
   ASSERT_EQ(resumed.code, 0) << resumed.out;
   EXPECT_NE(resumed.out.find("kept from an earlier run"), std::string::npos) << resumed.out;
-  EXPECT_EQ(resumed.out.find("(40 rendered, 0 kept"), std::string::npos) << "nothing was kept: " << resumed.out;
+  EXPECT_EQ(resumed.out.find("(20 rendered, 0 kept"), std::string::npos) << "nothing was kept: " << resumed.out;
   const auto whole = snapshot(dir_ / "whole"), killed = snapshot(dir_ / "killed");
   ASSERT_EQ(whole.size(), killed.size());
   for (const auto& [name, bytes] : whole) {
@@ -245,14 +248,14 @@ TEST_F(DatasetCliTest, KillNineAndResumeGivesTheUninterruptedResult) {
 }
 
 TEST_F(DatasetCliTest, CtrlCStopsCleanlyAndTheRunResumes) {
-  const std::string spec = robocupSpec("spec.json", R"("size": 360, "spp": 16, "shading": "lit",
-    "poses": {"path": "thesis-loop", "frames": 40}, "outputs": {"normal": false})");
-  const pid_t pid = spawnOmnicam({"dataset", spec, "-o", path("ds")}, path("run.log"));
+  const std::string spec = robocupSpec("spec.json", R"("size": 128, "spp": 4, "shading": "lit",
+    "poses": {"path": "thesis-loop", "frames": 20}, "outputs": {"normal": false})");
   int status = 0;
-  ASSERT_TRUE(interruptAfterFirstFrames(pid, dir_ / "ds", SIGINT, status)) << "the run ended before Ctrl-C";
+  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "ds", SIGINT, status))
+      << "the run never listed a frame while incomplete: " << readFile(path("ds.log"));
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130);
-  EXPECT_NE(readFile(path("run.log")).find("run the same command again to resume"), std::string::npos);
+  EXPECT_NE(readFile(path("ds.log")).find("run the same command again to resume"), std::string::npos);
   const auto statusOut = omnicam("dataset --status " + path("ds"));
   EXPECT_EQ(statusOut.code, 1);
   EXPECT_NE(statusOut.out.find("incomplete"), std::string::npos) << statusOut.out;
@@ -402,11 +405,13 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
 // A Blender dataset renders every frame of a camera in one Blender session (Blender starts in
 // seconds, renders a small frame in a fraction of that), and its frames agree with fast.
 TEST_F(DatasetCliTest, ThreadsCapEveryEngineAndChangeNoByte) {
-  // The fast engine on one TBB thread writes exactly the dataset it writes on every core.
-  const std::string spec = robocupSpec("spec.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 4})");
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("all")).code, 0);
+  // The fast engine on one TBB thread writes exactly the dataset it writes on three (named
+  // explicitly: on a one-core runner the default would be one thread too).
+  const std::string spec = robocupSpec("spec.json", R"("size": 64, "spp": 4, "shading": "lit",
+    "poses": {"path": "thesis-loop", "frames": 4})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("three") + " --threads 3").code, 0);
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("one") + " --threads 1").code, 0);
-  EXPECT_EQ(snapshot(dir_ / "one"), snapshot(dir_ / "all"));
+  EXPECT_EQ(snapshot(dir_ / "one"), snapshot(dir_ / "three"));
   // POV-Ray gets Work_Threads in its job, Blender -t on its command line (wrappers record them).
   const std::string iniLog = path("povray_ini.log"), argvLog = path("blender_argv.log");
   const std::string povray = write("recording-povray", "#!/bin/sh\ncat render.ini >> '" + iniLog + "'\nexec povray \"$@\"\n");

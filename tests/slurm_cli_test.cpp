@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "hold_point.h"
 #include "slurm_cluster.h"
 
 namespace omnicam {
@@ -41,38 +42,34 @@ TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOn
   const SlurmCluster cluster(dir_ / "cluster");
   ASSERT_TRUE(cluster.problem().empty()) << "Slurm did not start: " << cluster.problem() << cluster.logs();
 
-  // 3 shards of 32 frames: a shard takes seconds and lists its frames in batches of 8, so one
-  // can be killed mid-run.
+  // 3 shards of 16 frames: a shard lists its first window of 8 frames, and shard 1 is held
+  // there (tests/hold_point.h) until Slurm kills it, however fast or slow the machine.
   const fs::path spec = dir_ / "spec.json";
   std::ofstream(spec) << R"({"format": "omnicam-dataset/1", "scene": ")" << OMNICAM_SOURCE_DIR
-                      << R"(/scenes/robocup2006.json", "spp": 36, "shading": "lit", "size": 160,
-                        "poses": {"path": "thesis-loop", "frames": 96},
+                      << R"(/scenes/robocup2006.json", "spp": 9, "shading": "lit", "size": 128,
+                        "poses": {"path": "thesis-loop", "frames": 48},
                         "outputs": {"rgb": "png", "depth": true, "instance": true, "semantic": true, "normal": true, "landmarks": true}})";
   const fs::path out = dir_ / "ds";
   const std::string submit = std::string(OMNICAM_BINARY) + " dataset " + spec.string() + " -o " + out.string() +
                              " --backend slurm --shards 3 --slurm-args \"--job-name=omnicam-test --cpus-per-task=1\" 2>&1";
-  auto r = cluster.shell(submit);
+  testing::HoldPoint hold(dir_ / "hold", "shard-1-of-3.json");
+  auto r = cluster.shell(hold.shellAssignments() + submit);  // sbatch passes the environment on
   ASSERT_EQ(r.code, 0) << r.out << cluster.logs();
   std::smatch ids;
   ASSERT_TRUE(std::regex_search(r.out, ids, std::regex(R"(array job (\d+) \(shards 0-2 of 3\) and merge job (\d+))"))) << r.out;
   const std::string arrayJob = ids[1], mergeJob = ids[2];
 
-  // Kill shard 1's task with SIGKILL once it has finished a frame and before it finishes all.
+  // Shard 1's task, held once it has listed finished frames, is killed by Slurm with SIGKILL.
   const fs::path shard1 = out / "shards/shard-1-of-3.json";
-  const bool midRun = SlurmCluster::waitFor(
-      [&] {
-        if (!fs::exists(shard1)) return false;
-        try {
-          const json m = json::parse(readFile(shard1));
-          return !m.at("frames").empty() && !m.at("complete").get<bool>();
-        } catch (const std::exception&) {
-          return false;  // read while being replaced: look again
-        }
-      },
-      120.0);
-  ASSERT_TRUE(midRun) << "shard 1 never was mid-run; its log:\n" << readFile(out / "slurm/shard-1.log")
-                      << readFile(out / "slurm/sbatch.log") << cluster.logs();
+  const bool held = hold.waitUntilHeld(
+      [&] { return cluster.shell("/usr/bin/squeue -h -j " + arrayJob + " 2>/dev/null").out.empty(); }, 300.0);
+  ASSERT_TRUE(held) << "shard 1 was never held mid-run; its log:\n" << readFile(out / "slurm/shard-1.log")
+                    << readFile(out / "slurm/sbatch.log") << cluster.logs();
+  const json midRun = json::parse(readFile(shard1));
+  ASSERT_EQ(midRun.at("frames").size(), 8u) << "the first window of frames is listed at once";
+  ASSERT_FALSE(midRun.at("complete").get<bool>());
   ASSERT_EQ(cluster.shell("/usr/bin/scancel --batch --signal=KILL " + arrayJob + "_1").code, 0);
+  // Still held until it is gone: the hold is released only when the test ends.
   ASSERT_TRUE(cluster.waitUntilDone({arrayJob, mergeJob}, 300.0)) << cluster.shell("/usr/bin/squeue").out << cluster.logs();
 
   // The merge ran after the array (afterany) and found shard 1 unfinished.
@@ -99,7 +96,7 @@ TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOn
   r = testing::runShell(std::string(OMNICAM_BINARY) + " dataset " + spec.string() + " -o " + (dir_ / "local").string() + " 2>&1");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(frameHashes(out), frameHashes(dir_ / "local"));
-  EXPECT_EQ(frameHashes(out).size(), 96u);
+  EXPECT_EQ(frameHashes(out).size(), 48u);
 }
 
 }  // namespace

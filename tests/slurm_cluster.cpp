@@ -68,7 +68,11 @@ SlurmCluster::SlurmCluster(const fs::path& root) : root_(root) {
                    "--pid-file=" + (root_ / "munged.pid").string(), "--log-file=" + (root_ / "log/munged.log").string(),
                    "--seed-file=" + (root_ / "munged.seed").string()});
   // munged must be up before the Slurm daemons authenticate through it.
-  waitFor([&] { return fs::exists(socket); }, 10.0);
+  // (The limits here and below only bound a failure; a loaded machine reaches them never.)
+  if (!waitFor([&] { return fs::exists(socket); }, 120.0)) {
+    problem_ = "munged never created its socket " + socket + logs();
+    return;
+  }
   const int controllerPort = freePort(), nodePort = freePort();
   std::ofstream(root_ / "slurm.conf")
       << "ClusterName=omnicamtest\nSlurmctldHost=localhost(127.0.0.1)\nSlurmctldPort=" << controllerPort
@@ -86,7 +90,7 @@ SlurmCluster::SlurmCluster(const fs::path& root) : root_(root) {
   conf_ = (root_ / "slurm.conf").string();
   start("slurmctld", {"/usr/sbin/slurmctld", "-D", "-i", "-f", conf_});
   start("slurmd", {"/usr/sbin/slurmd", "-D", "-f", conf_, "-N", "localhost"});
-  if (!waitFor([&] { return shell("/usr/bin/sinfo -h -o %t").out.find("idle") != std::string::npos; }, 60.0))
+  if (!waitFor([&] { return shell("/usr/bin/sinfo -h -o %t").out.find("idle") != std::string::npos; }, 180.0))
     problem_ = "the node never became idle; sinfo: " + shell("/usr/bin/sinfo 2>&1").out + logs();
 }
 
