@@ -20,13 +20,13 @@ Vec3 parseTriple(const std::string& text, const std::string& flag) {
   for (int k = 0; k < 3; ++k) {
     const size_t end = k < 2 ? text.find(',', start) : text.size();
     if (end == std::string::npos)
-      throw InputError(flag + ": expected three comma-separated numbers X,Y,Z (got \"" + text + "\")");
+      throw InputError(flag + ": expected three comma-separated numbers X,Y,Z (got " + quote(text) + ")");
     const char* first = text.data() + start;
     const char* last = text.data() + end;
     double v = 0.0;
     auto [ptr, ec] = std::from_chars(first, last, v);
     if (ec != std::errc() || ptr != last || !std::isfinite(v))
-      throw InputError(flag + ": \"" + std::string(first, last) + "\" is not a number");
+      throw InputError(flag + ": " + quote(std::string_view(first, static_cast<size_t>(last - first))) + " is not a number");
     out[k] = v;
     start = end + 1;
   }
@@ -59,7 +59,7 @@ void ensureDirectory(const std::string& dir, const std::string& flag) {
   checkOutputFolder(dir, flag);
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) throw InputError(flag + ": cannot create folder " + dir + " (" + ec.message() + ")");
+  if (ec) throw InputError(flag + ": cannot create folder " + showPath(dir) + " (" + ec.message() + ")");
 }
 
 Progress::Progress(std::string label, int total, int alreadyDone)

@@ -83,7 +83,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   refuseUnless(cmd, "--junit", false, "two dataset folders");
   refuseUnless(cmd, "--diff-scale", !args.diff.empty(), "--diff");
   if (!args.diff.empty()) {
-    if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + args.diff + ": must end in .png or .exr");
+    if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + showPath(args.diff) + ": must end in .png or .exr");
     checkOutputFile(args.diff, "--diff");
   }
   const ImageRGBA a = readImage(args.a), b = readImage(args.b);

@@ -39,7 +39,7 @@ std::pair<int, int> parseShard(const std::string& text) {
     }
   } catch (const std::exception&) {
   }
-  throw InputError("--shard: must be I/N with 0 <= I < N (got \"" + text + "\")");
+  throw InputError("--shard: must be I/N with 0 <= I < N (got " + quote(text) + ")");
 }
 
 void printShardStates(const std::string& dir, int count) {
@@ -76,13 +76,13 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
 void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   const int verbs = !a.spec.empty() + !a.verify.empty() + !a.status.empty() + !a.merge.empty();
   if (verbs != 1) throw InputError("dataset: give a SPEC with -o DIR, or --verify DIR, --status DIR or --merge DIR");
-  if (a.backend != "local" && a.backend != "slurm") throw InputError("--backend: must be local or slurm (got \"" + a.backend + "\")");
+  if (a.backend != "local" && a.backend != "slurm") throw InputError("--backend: must be local or slurm (got " + quote(a.backend) + ")");
   if (!a.merge.empty()) {
     refuseUnless(cmd, "-o", false, "a SPEC");
     int count = a.shards;
     if (count == 0) {
       const std::vector<int> counts = shardCountsIn(a.merge);
-      if (counts.size() != 1) throw InputError("--merge: " + a.merge + ": say how many shards with --shards N");
+      if (counts.size() != 1) throw InputError("--merge: " + showPath(a.merge) + ": say how many shards with --shards N");
       count = counts.front();
     }
     const MergeResult r = mergeDatasetShards(a.merge, count);
@@ -147,7 +147,7 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   for (const std::string& note : r.notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
   if (r.stopped) {
     std::fprintf(stderr, "omnicam: interrupted: %d of %d frames finished in %s; run the same command again to resume\n",
-                 r.kept + r.rendered, r.frames, a.out.c_str());
+                 r.kept + r.rendered, r.frames, showPath(a.out).c_str());
     exitCode = 130;
     return;
   }

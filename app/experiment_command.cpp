@@ -34,7 +34,7 @@ struct ExperimentArgs {
 };
 
 void runExperiment(const ExperimentArgs& a) {
-  if (a.name != "texture-realism") throw InputError("experiment: unknown experiment \"" + a.name + "\" (texture-realism)");
+  if (a.name != "texture-realism") throw InputError("experiment: unknown experiment " + quote(a.name) + " (texture-realism)");
   if (a.out.empty()) throw InputError("-o: give the folder for the results");
   ensureDirectory(a.out, "-o");
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
@@ -48,7 +48,7 @@ void runExperiment(const ExperimentArgs& a) {
   for (const char* photo : kOtherPhotos) options.randomPhotos.push_back(std::string(kStudioLights) + photo);
   for (const std::string& photo : options.randomPhotos)
     if (!std::filesystem::exists(photo))
-      throw InputError(photo + ": missing (Debian's blender-data ships it; run make deps)");
+      throw InputError(showPath(photo) + ": missing (Debian's blender-data ships it; run make deps)");
   std::string stage;
   std::unique_ptr<Progress> bar;
   const TextureRealismResults results = runTextureRealism(
@@ -86,7 +86,7 @@ struct ArenaArgs {
 };
 
 void runArena(const ArenaArgs& a, const CLI::App& cmd) {
-  if (a.kind != "hall" && a.kind != "mapping") throw InputError("arena: unknown arena \"" + a.kind + "\" (hall, mapping)");
+  if (a.kind != "hall" && a.kind != "mapping") throw InputError("arena: unknown arena " + quote(a.kind) + " (hall, mapping)");
   if (a.out.empty() || std::filesystem::path(a.out).extension() != ".json") throw InputError("-o: give the scene file to write (.json)");
   if (a.kind == "mapping") {
     refuseUnless(cmd, "--photo", false, "arena hall");

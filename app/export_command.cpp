@@ -27,11 +27,11 @@ struct ExportArgs {
 
 void runExport(const ExportArgs& a, const CLI::App& cmd) {
   if (a.to != "povray" && a.to != "gltf")
-    throw InputError("--to: \"" + a.to + "\" is not available (povray, gltf)");
+    throw InputError("--to: " + quote(a.to) + " is not available (povray, gltf)");
   refuseUnless(cmd, "--spp", a.to == "povray", "--to povray (glTF holds no sampling)");
   refuseUnless(cmd, "--shading", a.to == "povray", "--to povray (glTF holds no shading mode)");
   const auto shading = parseShading(a.shading);
-  if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
+  if (!shading) throw InputError("--shading: must be unlit or lit (got " + quote(a.shading) + ")");
   if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
   std::optional<RobotPose> requested;
   if (!a.pose.empty()) requested = parsePose(a.pose, "--pose");

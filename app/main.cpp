@@ -4,9 +4,21 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
 
 #include "commands.h"
 #include "errors.h"
+
+namespace {
+
+// Prints "omnicam: <message>" as one line, whatever the message holds: each echoed user string
+// was quoted where the message was made, this catches what slipped through (and CLI11's own).
+int reportError(const std::string& message, int exitCode) {
+  std::fprintf(stderr, "omnicam: %s\n", omnicam::oneLine(message).c_str());
+  return exitCode;
+}
+
+}  // namespace
 
 // Exit codes (docs/conventions.md): 0 ok, 1 comparison over threshold, 2 bad input or usage,
 // 3 an external renderer failed, 4 internal error (a bug: please report it), 5 an output could
@@ -36,23 +48,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "omnicam: %s\n", e.what());
-    return 2;
+    return reportError(e.what(), 2);
   } catch (const omnicam::InputError& e) {
-    std::fprintf(stderr, "omnicam: %s\n", e.what());
-    return 2;
+    return reportError(e.what(), 2);
   } catch (const omnicam::ExternalError& e) {
+    // Not one line on purpose: the renderer's last output follows on lines of its own.
     std::fprintf(stderr, "omnicam: %s\n", e.what());
     return 3;
   } catch (const omnicam::OutputError& e) {
-    std::fprintf(stderr, "omnicam: %s\n", e.what());
-    return 5;
+    return reportError(e.what(), 5);
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "omnicam: internal error: out of memory (inputs within the documented limits should not get here)\n");
-    return 4;
+    return reportError("internal error: out of memory (inputs within the documented limits should not get here)", 4);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "omnicam: internal error: %s\n", e.what());
-    return 4;
+    return reportError(std::string("internal error: ") + e.what(), 4);
   }
   return exitCode;
 }

@@ -86,10 +86,10 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--format", !a.path.empty(), "--path (a single image's format comes from -o)");
   const auto mode = parseMode(a.mode, a.faces, a.faceSize, a.polygons);
   const auto shading = parseShading(a.shading);
-  if (!shading) throw InputError("--shading: must be unlit or lit (got \"" + a.shading + "\")");
+  if (!shading) throw InputError("--shading: must be unlit or lit (got " + quote(a.shading) + ")");
   if (!a.pose.empty() && !a.path.empty()) throw InputError("--pose and --path: give one, not both");
   if (a.path.empty() && a.frames) throw InputError("--frames: only with --path");
-  if (a.path.empty() && !isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
+  if (a.path.empty() && !isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   if (a.format != "png" && a.format != "exr") throw InputError("--format: must be png or exr");
   std::optional<RobotPose> pose;
   if (!a.pose.empty()) pose = parsePose(a.pose, "--pose");
@@ -110,9 +110,9 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   const CameraPath* path = nullptr;
   if (!a.path.empty()) {
     path = scene.findPath(a.path);
-    if (!path) throw InputError("--path: scene " + a.scene + " has no path \"" + a.path + "\"");
+    if (!path) throw InputError("--path: scene " + showPath(a.scene) + " has no path " + quote(a.path));
     if (a.frames > static_cast<int>(path->poses.size()))
-      throw InputError("--frames: path \"" + a.path + "\" has only " + std::to_string(path->poses.size()) + " poses");
+      throw InputError("--frames: path " + quote(a.path) + " has only " + std::to_string(path->poses.size()) + " poses");
     checkOutputFolder(a.out, "-o");
   }
   const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());

@@ -66,7 +66,7 @@ void measureExisting(const RingsArgs& a) {
   const ImageRGBA image = readImage(a.measure);
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
-  if (image.width != image.height) throw InputError(a.measure + ": ring images must be square");
+  if (image.width != image.height) throw InputError(showPath(a.measure) + ": ring images must be square");
   rig.imageSize = image.width;
   measureAndPrint(image, rig.camera(), a.measure, a);
 }
@@ -80,7 +80,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
     return;
   }
   if (a.out.empty()) throw InputError("-o: required (or --measure FILE)");
-  if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
+  if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RenderSettings settings;
   settings.rig = scene.rig;

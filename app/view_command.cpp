@@ -40,7 +40,7 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
     rig = found->rig;
     sidecar = found->json;
   } else {
-    throw InputError(a.in + ": has no sidecar (" + sidecarPath(a.in) +
+    throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
                      "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
   }
   rig.imageSize = size;
@@ -67,15 +67,15 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
       spec.height = std::stoi(a.size.substr(x + 1), &used);
       if (used != a.size.size() - x - 1) throw std::invalid_argument("junk");
     } catch (const std::exception&) {
-      throw InputError("--size: must be WIDTHxHEIGHT, e.g. 400x400 (got \"" + a.size + "\")");
+      throw InputError("--size: must be WIDTHxHEIGHT, e.g. 400x400 (got " + quote(a.size) + ")");
     }
     if (spec.width < 1 || spec.height < 1) throw InputError("--size: width and height must be at least 1");
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
-  if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + a.out + ": must end in .png or .exr");
+  if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   checkOutputFile(a.out, "-o");
   const ImageRGBA omni = readImage(a.in);
-  if (omni.width != omni.height) throw InputError(a.in + ": omni images must be square");
+  if (omni.width != omni.height) throw InputError(showPath(a.in) + ": omni images must be square");
   auto [rig, sidecar] = rigOf(a, omni.width);
   const ViewMap map = buildViewMap(spec, rig.camera());
   sidecar["view"] = viewToJson(spec, map);

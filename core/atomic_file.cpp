@@ -21,7 +21,7 @@ namespace {
 
 [[noreturn]] void failWrite(const std::string& path, const std::string& tmp, int error) {
   if (!tmp.empty()) ::unlink(tmp.c_str());
-  throw OutputError(path + ": cannot write (" + std::strerror(error) + ")");
+  throw OutputError(showPath(path) + ": cannot write (" + std::strerror(error) + ")");
 }
 
 std::string randomSuffix() {
@@ -39,7 +39,7 @@ std::string randomSuffix() {
 void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
   const fs::path target(path);
   std::error_code ec;
-  if (fs::is_directory(target, ec)) throw InputError(path + ": is an existing folder, not a file name");
+  if (fs::is_directory(target, ec)) throw InputError(showPath(path) + ": is an existing folder, not a file name");
   // The temporary keeps the final extension and is created exclusively (O_EXCL) under an
   // unpredictable name, as mkstemp does, but with the umask's permissions of a normal file.
   std::string tmp;
@@ -90,16 +90,16 @@ void checkNameLengths(const std::string& path, const std::string& flag) {
 void checkOutputFile(const std::string& path, const std::string& flag) {
   checkNameLengths(path, flag);
   std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(flag + ": " + path + " is an existing folder, not a file name");
+  if (fs::is_directory(path, ec)) throw InputError(flag + ": " + showPath(path) + " is an existing folder, not a file name");
   const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent, ec)) throw InputError(flag + ": folder " + parent.string() + " does not exist");
+  if (!parent.empty() && !fs::is_directory(parent, ec)) throw InputError(flag + ": folder " + showPath(parent.string()) + " does not exist");
 }
 
 void checkOutputFolder(const std::string& path, const std::string& flag) {
   checkNameLengths(path, flag);
   std::error_code ec;
   if (fs::exists(path, ec) && !fs::is_directory(path, ec))
-    throw InputError(flag + ": " + path + " exists and is not a folder");
+    throw InputError(flag + ": " + showPath(path) + " exists and is not a folder");
 }
 
 bool isAtomicTemporaryName(const std::string& name) {

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "errors.h"
 #include "input_limits.h"
 
 namespace omnicam {
@@ -29,15 +30,15 @@ std::optional<fs::path> resolveConfined(const fs::path& folder, const std::strin
   std::error_code ec;
   const fs::path resolved = fs::weakly_canonical(folder / name, ec);  // follows every symlink
   if (ec) {
-    why = "cannot resolve \"" + name + "\" (" + ec.message() + ")";
+    why = "cannot resolve " + quote(name) + " (" + ec.message() + ")";
     return std::nullopt;
   }
   if (!allowOutside && !isInsideFolder(folder, resolved)) {
-    why = "\"" + name + "\" resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+    why = quote(name) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
     return std::nullopt;
   }
   if (!fs::is_regular_file(resolved, ec)) {
-    why = "file not found: " + name;
+    why = "file not found: " + showPath(name);
     return std::nullopt;
   }
   return resolved;

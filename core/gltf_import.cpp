@@ -41,8 +41,8 @@ bool readWholeFileConfined(std::vector<unsigned char>* out, std::string* err, co
   auto* ctx = static_cast<LoadContext*>(user);
   std::string why;
   if (!ctx->confineTo.empty() && !isInsideFolder(ctx->confineTo, path)) {
-    why = "\"" + fs::path(path).lexically_relative(ctx->base).string() +
-          "\" resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+    why = quote(fs::path(path).lexically_relative(ctx->base).string()) +
+          " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
   } else if (const auto bytes = readWholeFile(path, why)) {
     out->assign(bytes->begin(), bytes->end());
     return true;
@@ -221,10 +221,11 @@ float extraFactor(const tinygltf::Value& o, const char* key, float fallback, con
 }
 
 GltfArena convert(const tinygltf::Model& model, const std::string& path) {
+  const std::string file = showPath(path);  // prefixes every message
   GltfArena arena;
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const auto& m = model.materials[i];
-    const std::string where = path + ": materials[" + std::to_string(i) + "]";
+    const std::string where = file + ": materials[" + std::to_string(i) + "]";
     Material mat;
     mat.name = m.name.empty() ? "material_" + std::to_string(i) : m.name;
     const auto& f = m.pbrMetallicRoughness.baseColorFactor;
@@ -240,14 +241,14 @@ GltfArena convert(const tinygltf::Model& model, const std::string& path) {
     }
     arena.materials.push_back(mat);
   }
-  if (model.scenes.empty()) throw InputError(path + ": no scene in the glTF file");
+  if (model.scenes.empty()) throw InputError(file + ": no scene in the glTF file");
   const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-  if (sceneIndex >= static_cast<int>(model.scenes.size())) throw InputError(path + ": scene: out of range");
+  if (sceneIndex >= static_cast<int>(model.scenes.size())) throw InputError(file + ": scene: out of range");
   int defaultMaterial = -1;
   int64_t triangles = 0;
   std::set<int> visited;  // glTF node graphs are trees: a node reached twice is invalid
   std::function<void(int, const Eigen::Matrix4d&, int)> visit = [&](int nodeIndex, const Eigen::Matrix4d& parent, int depth) {
-    const std::string nodeWhere = path + ": nodes[" + std::to_string(nodeIndex) + "]";
+    const std::string nodeWhere = file + ": nodes[" + std::to_string(nodeIndex) + "]";
     if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model.nodes.size())) throw InputError(nodeWhere + ": out of range");
     if (!visited.insert(nodeIndex).second) throw InputError(nodeWhere + ": reached twice (node graphs must be trees)");
     if (depth > 256) throw InputError(nodeWhere + ": nested deeper than 256 levels");
@@ -259,7 +260,7 @@ GltfArena convert(const tinygltf::Model& model, const std::string& path) {
       const tinygltf::Mesh& mesh = model.meshes[node.mesh];
       for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
         const tinygltf::Primitive& prim = mesh.primitives[pi];
-        const std::string where = path + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
+        const std::string where = file + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
         if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
           throw InputError(where + ": only triangle primitives are supported");
         auto position = prim.attributes.find("POSITION");
@@ -305,7 +306,7 @@ GltfArena convert(const tinygltf::Model& model, const std::string& path) {
         }
         triangles += static_cast<int64_t>(out.triangles.size());
         if (triangles > limits::kMaxTriangles)
-          throw InputError(path + ": more than " + std::to_string(limits::kMaxTriangles) + " triangles");
+          throw InputError(file + ": more than " + std::to_string(limits::kMaxTriangles) + " triangles");
         int material = prim.material;
         if (material >= static_cast<int>(model.materials.size())) throw InputError(where + ".material: out of range");
         if (material < 0) {
@@ -339,7 +340,7 @@ GltfArena load(const std::string& path, const std::string* bytes, const GltfImpo
   if (!bytes) {
     std::string why;
     const auto read = readWholeFile(path, why);
-    if (!read) throw InputError(path + ": cannot load glTF (" + why + ")");
+    if (!read) throw InputError(showPath(path) + ": cannot load glTF (" + why + ")");
     owned = *read;
     bytes = &owned;
   }
@@ -351,12 +352,12 @@ GltfArena load(const std::string& path, const std::string* bytes, const GltfImpo
     ok = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, data, static_cast<unsigned>(bytes->size()), baseDir)
                 : loader.LoadASCIIFromString(&model, &error, &warning, bytes->data(), static_cast<unsigned>(bytes->size()), baseDir);
   } catch (const std::exception& e) {  // tinygltf's JSON parser throws on some malformed input
-    throw InputError(path + ": cannot load glTF (" + e.what() + ")");
+    throw InputError(showPath(path) + ": cannot load glTF (" + e.what() + ")");
   }
-  if (!ctx.problem.empty()) throw InputError(path + ": " + ctx.problem);
+  if (!ctx.problem.empty()) throw InputError(showPath(path) + ": " + ctx.problem);
   if (!ok) {
     std::string line = error.substr(0, error.find('\n'));
-    throw InputError(path + ": cannot load glTF (" + (line.empty() ? "invalid file" : line) + ")");
+    throw InputError(showPath(path) + ": cannot load glTF (" + (line.empty() ? "invalid file" : line) + ")");
   }
   return convert(model, path);
 }

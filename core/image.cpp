@@ -209,14 +209,14 @@ ImageRGBA readImage(const std::string& path) {
   // Only regular files: a FIFO or a device (/dev/zero) would be read forever.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(path + ": cannot read image (" +
+    throw InputError(showPath(path) + ": cannot read image (" +
                      (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file") + ")");
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
   const QuietStderr quiet;
   auto input = OIIO::ImageInput::open(path, &config);
-  if (!input) throw InputError(path + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
-  return decode(*input, path);
+  if (!input) throw InputError(showPath(path) + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  return decode(*input, showPath(path));  // decode names it in messages only
 }
 
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
@@ -239,20 +239,20 @@ ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std:
 
 std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image) {
   const std::string ext = lowerExtension(path);
-  if (ext != ".png" && ext != ".exr") throw InputError(path + ": output must end in .png or .exr");
+  if (ext != ".png" && ext != ".exr") throw InputError(showPath(path) + ": output must end in .png or .exr");
   std::vector<unsigned char> bytes;
   OIIO::Filesystem::IOVecOutput sink(bytes);
   void* proxy = &sink;
   const std::string format = "memory" + ext;
   auto out = OIIO::ImageOutput::create(format);
-  if (!out) throw OutputError(path + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
+  if (!out) throw OutputError(showPath(path) + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
   if (ext == ".exr") {
     OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
     spec.attribute("compression", "zip");
     spec.attribute("DateTime", "");  // no timestamp: identical pixels give identical bytes
     spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
     if (!out->open(format, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
-      throw OutputError(path + ": cannot encode EXR (" + firstLine(out->geterror()) + ")");
+      throw OutputError(showPath(path) + ": cannot encode EXR (" + firstLine(out->geterror()) + ")");
     return bytes;
   }
   static const SrgbEncoder encode;
@@ -270,7 +270,7 @@ std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA&
   spec.attribute("png:filter", kPngFilterSub);
   spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   if (!out->open(format, spec) || !out->write_image(OIIO::TypeDesc::UINT8, codes.data()) || !out->close())
-    throw OutputError(path + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
+    throw OutputError(showPath(path) + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
   return bytes;
 }
 
@@ -331,7 +331,7 @@ std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int
     file.setFrameBuffer(frameBuffer);
     file.writePixels(height);
   } catch (const std::exception& e) {
-    throw OutputError(path + ": cannot encode EXR (" + firstLine(e.what()) + ")");
+    throw OutputError(showPath(path) + ": cannot encode EXR (" + firstLine(e.what()) + ")");
   }
   return bytes;
 }
@@ -342,13 +342,13 @@ std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, i
   OIIO::Filesystem::IOVecOutput sink(bytes);
   void* proxy = &sink;
   auto out = OIIO::ImageOutput::create("memory.png");
-  if (!out) throw OutputError(path + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
+  if (!out) throw OutputError(showPath(path) + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
   OIIO::ImageSpec spec(width, height, 1, OIIO::TypeDesc::UINT16);
   spec.attribute("png:compressionLevel", 1);
   spec.attribute("png:filter", kPngFilterSub);
   spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   if (!out->open("memory.png", spec) || !out->write_image(OIIO::TypeDesc::UINT16, values.data()) || !out->close())
-    throw OutputError(path + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
+    throw OutputError(showPath(path) + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
   return bytes;
 }
 
@@ -356,10 +356,10 @@ namespace {
 
 std::unique_ptr<OIIO::ImageInput> openDataImage(const std::string& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": cannot read image (no such file)");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(showPath(path) + ": cannot read image (no such file)");
   const QuietStderr quiet;
   auto input = OIIO::ImageInput::open(path);
-  if (!input) throw InputError(path + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  if (!input) throw InputError(showPath(path) + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
   checkHeader(input->spec(), path);
   return input;
 }
@@ -370,11 +370,11 @@ DataImage readDataExr(const std::string& path) {
   auto input = openDataImage(path);
   const OIIO::ImageSpec& spec = input->spec();
   if (std::string(input->format_name()) != "openexr" || (spec.nchannels != 1 && spec.nchannels != 3))
-    throw InputError(path + ": not a 1- or 3-channel OpenEXR data image");
+    throw InputError(showPath(path) + ": not a 1- or 3-channel OpenEXR data image");
   DataImage image{spec.width, spec.height, spec.nchannels, {}};
   image.values.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
-    throw InputError(path + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+    throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
   return image;
 }
 
@@ -382,11 +382,11 @@ std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& he
   auto input = openDataImage(path);
   const OIIO::ImageSpec& spec = input->spec();
   if (std::string(input->format_name()) != "png" || spec.nchannels != 1 || spec.format != OIIO::TypeDesc::UINT16)
-    throw InputError(path + ": not a 16-bit single-channel PNG");
+    throw InputError(showPath(path) + ": not a 16-bit single-channel PNG");
   width = spec.width, height = spec.height;
   std::vector<uint16_t> values(static_cast<size_t>(width) * height);
   if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, values.data()))
-    throw InputError(path + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+    throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
   return values;
 }
 

@@ -15,16 +15,22 @@ std::string jsonTypeName(const json& v) { return v.type_name(); }
 JsonFields::JsonFields(const json& object, std::string file, std::string where)
     : object_(object), file_(std::move(file)), where_(std::move(where)) {
   if (!object_.is_object())
-    throw InputError(file_ + ": " + (where_.empty() ? "(root)" : where_) +
+    throw InputError(showPath(file_) + ": " + (where_.empty() ? "(root)" : where_) +
                      ": must be an object (got " + jsonTypeName(object_) + ")");
 }
 
+std::string keySegment(const std::string& key) {
+  static constexpr const char* kPlain = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.[]";
+  const bool plain = !key.empty() && key.size() <= kEchoedTextChars && key.find_first_not_of(kPlain) == std::string::npos;
+  return plain ? key : quote(key);
+}
+
 std::string JsonFields::path(const std::string& key) const {
-  return where_.empty() ? key : where_ + "." + key;
+  return where_.empty() ? keySegment(key) : where_ + "." + keySegment(key);
 }
 
 void JsonFields::fail(const std::string& key, const std::string& what) const {
-  throw InputError(file_ + ": " + path(key) + ": " + what);
+  throw InputError(showPath(file_) + ": " + path(key) + ": " + what);
 }
 
 bool JsonFields::has(const std::string& key) const { return object_.contains(key); }
@@ -104,14 +110,14 @@ std::string JsonFields::string(const std::string& key, const std::string& fallba
 
 Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
   if (!v.is_array() || v.size() != 3)
-    throw InputError(file + ": " + path + ": must be an array of 3 numbers");
+    throw InputError(showPath(file) + ": " + path + ": must be an array of 3 numbers");
   Vec3 out;
   for (int i = 0; i < 3; ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-      throw InputError(file + ": " + path + "[" + std::to_string(i) + "]: must be a finite number");
+      throw InputError(showPath(file) + ": " + path + "[" + std::to_string(i) + "]: must be a finite number");
     out[i] = v[i].get<double>();
     if (std::abs(out[i]) > limits::kMaxWorldCoordinate)
-      throw InputError(file + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
+      throw InputError(showPath(file) + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
                        shortNumber(limits::kMaxWorldCoordinate) + " (got " + shortNumber(out[i]) + ")");
   }
   return out;
@@ -153,7 +159,7 @@ void JsonFields::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
     // "comment" annotates any object (JSON has no comments); it is documentation only.
     if (it.key() == "comment" || read_.count(it.key())) continue;
-    throw InputError(file_ + ": " + path(it.key()) + ": unknown field");
+    throw InputError(showPath(file_) + ": " + path(it.key()) + ": unknown field");
   }
 }
 

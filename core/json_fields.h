@@ -12,10 +12,12 @@ namespace omnicam {
 
 class JsonFields {
  public:
-  // `where` is the field path of this object ("" for the root), `file` prefixes every error.
+  // `where` is the field path of this object as messages show it ("" for the root; user keys
+  // quoted, as path() does), `file` prefixes every error.
   JsonFields(const nlohmann::json& object, std::string file, std::string where);
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  // The field path of `key` for messages: "objects[2].radius", materials."a b".color.
   std::string path(const std::string& key) const;
   bool has(const std::string& key) const;
   const nlohmann::json& raw(const std::string& key);  // required, any type
@@ -49,7 +51,10 @@ class JsonFields {
   std::set<std::string> read_;
 };
 
-// Reads a JSON array of numbers of a fixed length; `path` is used for errors.
+// A JSON key as a segment of a field path in messages: as is when plain ("rim_elevation_deg", or
+// an element such as "poses[3]" that callers pass), quoted otherwise (a material named "x\ny").
+std::string keySegment(const std::string& key);
+// Reads a JSON array of numbers of a fixed length; `path` (as path() gives it) is used for errors.
 Vec3 jsonVec3(const nlohmann::json& value, const std::string& file, const std::string& path);
 std::string jsonTypeName(const nlohmann::json& value);
 

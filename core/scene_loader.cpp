@@ -90,17 +90,23 @@ RigSpec readRig(JsonFields rig) {
   try {
     (void)spec.camera();  // the mirror must be able to image the rim and framing
   } catch (const InputError& e) {
-    throw InputError(rig.file() + ": " + rig.where() + "." + e.what());
+    throw InputError(showPath(rig.file()) + ": " + rig.where() + "." + e.what());
   }
   return spec;
 }
 
 // Names reach glTF nodes and Blender objects: unique, printable, at most 63 bytes (Blender's
 // limit; longer ones it truncates silently).
-void checkName(JsonFields& fields, const std::string& key, const std::string& name) {
-  if (name.empty() || name.size() > 63) fields.fail(key, "must be 1 to 63 bytes long (got " + std::to_string(name.size()) + ")");
+// Returns what is wrong with `name`, or "" if nothing.
+std::string nameProblem(const std::string& name) {
+  if (name.empty() || name.size() > 63) return "must be 1 to 63 bytes long (got " + std::to_string(name.size()) + ")";
   for (unsigned char ch : name)
-    if (ch < 0x20 || ch == 0x7F) fields.fail(key, "must not contain control characters");
+    if (ch < 0x20 || ch == 0x7F) return "must not contain control characters (got " + quote(name) + ")";
+  return {};
+}
+
+void checkName(JsonFields& fields, const std::string& key, const std::string& name) {
+  if (const std::string problem = nameProblem(name); !problem.empty()) fields.fail(key, problem);
 }
 
 RobotPose readPose(const json& v, const std::string& file, const std::string& path) {
@@ -118,8 +124,9 @@ std::string readClass(JsonFields& fields) {
 
 Material readMaterial(const std::string& name, JsonFields m, const Context& ctx) {
   Material mat;
-  if (name.empty() || name.size() > 63)
-    throw InputError(ctx.file + ": " + m.where() + ": material names must be 1 to 63 bytes long");
+  // The name is the key, which m.where() already shows.
+  if (const std::string problem = nameProblem(name); !problem.empty())
+    throw InputError(showPath(ctx.file) + ": " + m.where() + ": material names " + problem);
   mat.name = name;
   mat.color = m.colour("color", mat.color, 1.0);
   mat.ambient = static_cast<float>(m.nonNegative("ambient", mat.ambient));
@@ -214,7 +221,7 @@ Shape readShape(const std::string& type, JsonFields& o) {
       o.fail("uvs", "must have one entry per vertex");
     return m;
   }
-  o.fail("type", "unknown object type \"" + type + "\" (box, cylinder, sphere, quad, disc, mesh)");
+  o.fail("type", "unknown object type " + quote(type) + " (box, cylinder, sphere, quad, disc, mesh)");
 }
 
 CameraPath readPath(JsonFields p, const std::string& file) {
@@ -262,6 +269,21 @@ std::string uniqueName(const std::string& wanted, std::set<std::string>& taken) 
   return name;
 }
 
+// nlohmann's messages quote the token they stopped at ("last read: 'tru'", "parsing '1e400'"),
+// and a token can be a whole megabyte-long string: it is echoed like any user text.
+std::string jsonErrorText(const std::string& what) {
+  for (const std::string_view marker : {"; last read: '", "parsing '"}) {
+    const size_t open = what.find(marker);
+    if (open == std::string::npos) continue;
+    const size_t begin = open + marker.size();
+    size_t end = what.rfind("'; expected ");  // nlohmann may name what it expected after the token
+    if (end == std::string::npos || end < begin) end = what.size() - 1;
+    if (end < begin || what[end] != '\'') return what;
+    return what.substr(0, begin - 1) + quote(what.substr(begin, end - begin)) + what.substr(end + 1);
+  }
+  return what;
+}
+
 }  // namespace
 
 const std::string& semanticClassOf(const Scene& scene, const SceneObject& object) {
@@ -283,20 +305,20 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
     else if (event == json::parse_event_t::object_end && !keysOfOpenObjects.empty()) keysOfOpenObjects.pop_back();
     else if (event == json::parse_event_t::key && !keysOfOpenObjects.empty() &&
              !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second)
-      throw InputError(file + ": duplicate key \"" + parsed.get<std::string>().substr(0, 63) + "\" in one object");
+      throw InputError(showPath(file) + ": duplicate key " + quote(parsed.get<std::string>()) + " in one object");
     return true;
   };
   try {
     return json::parse(text, rejectDuplicateKeys);
   } catch (const json::exception& e) {  // parse errors, and numbers such as 1e400 that overflow
-    throw InputError(file + ": not valid JSON (" + std::string(e.what()) + ")");
+    throw InputError(showPath(file) + ": not valid JSON (" + jsonErrorText(e.what()) + ")");
   }
 }
 
 nlohmann::json readJsonFile(const std::string& file) {
   std::string why;
   const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
-  if (!text) throw InputError(file + ": " + why);
+  if (!text) throw InputError(showPath(file) + ": " + why);
   return parseJsonText(*text, file);
 }
 
@@ -307,7 +329,7 @@ RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const st
 Scene loadScene(const std::string& file, const SceneLoadOptions& options) {
   std::string why;
   const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
-  if (!text) throw InputError(file + ": cannot open scene file (" + why + ")");
+  if (!text) throw InputError(showPath(file) + ": cannot open scene file (" + why + ")");
   return loadSceneFromText(*text, file, options);
 }
 
@@ -346,7 +368,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
     SceneObject obj;
     obj.name = o.string("name", "object_" + std::to_string(i));
     checkName(o, "name", obj.name);
-    if (!names.insert(obj.name).second) o.fail("name", "duplicate name \"" + obj.name + "\" (objects and lights share one namespace)");
+    if (!names.insert(obj.name).second) o.fail("name", "duplicate name " + quote(obj.name) + " (objects and lights share one namespace)");
     if (o.has("type") && o.raw("type") == "gltf") {
       // An arena authored elsewhere: its meshes and materials join the scene, their names made
       // unique (glTF does not require that) and kept within Blender's 63 bytes.
@@ -376,7 +398,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
     }
     const std::string materialName = o.string("material");
     auto m = ctx.materialIndex.find(materialName);
-    if (m == ctx.materialIndex.end()) o.fail("material", "no material named \"" + materialName + "\"");
+    if (m == ctx.materialIndex.end()) o.fail("material", "no material named " + quote(materialName));
     obj.material = m->second;
     obj.semanticClass = readClass(o);
     obj.shape = readShape(o.string("type"), o);
@@ -393,7 +415,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
                      l.colour("intensity", Vec3f::Ones(), 1e6)};
     checkName(l, "name", light.name);
     if (!names.insert(light.name).second)
-      l.fail("name", "duplicate name \"" + light.name + "\" (objects and lights share one namespace)");
+      l.fail("name", "duplicate name " + quote(light.name) + " (objects and lights share one namespace)");
     l.finish();
     scene.lights.push_back(std::move(light));
   }
@@ -406,7 +428,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
     Landmark lm{l.string("name"), l.vec3("position"), length(l, "diameter"), length(l, "height"),
                 l.string("colour_class")};
     checkName(l, "name", lm.name);
-    if (!landmarkNames.insert(lm.name).second) l.fail("name", "duplicate landmark name \"" + lm.name + "\"");
+    if (!landmarkNames.insert(lm.name).second) l.fail("name", "duplicate landmark name " + quote(lm.name));
     l.finish();
     scene.landmarks.push_back(std::move(lm));
   }
@@ -415,7 +437,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   for (size_t i = 0; i < paths.size(); ++i) {
     CameraPath p = readPath(JsonFields(paths[i], file, indexed("paths", i)), file);
     if (scene.findPath(p.name))
-      throw InputError(file + ": " + indexed("paths", i) + ".name: duplicate path \"" + p.name + "\"");
+      throw InputError(showPath(file) + ": " + indexed("paths", i) + ".name: duplicate path " + quote(p.name));
     scene.paths.push_back(std::move(p));
   }
   top.finish();

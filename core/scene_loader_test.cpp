@@ -98,6 +98,38 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
             file + ": format: must be \"omnicam-scene/1\"");
 }
 
+TEST_F(SceneLoaderTest, EchoedNamesKeysAndTokensAreEscapedAndShortened) {
+  const std::string file = (dir_ / "scene.json").string();
+  auto load = [&](const std::string& text) -> std::string {
+    try {
+      loadScene(write(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string head = R"({"format": "omnicam-scene/1", "materials": {"m": {"color": 0.5}}, "objects": [)";
+  // JSON escapes in the file become real control characters in the name.
+  EXPECT_EQ(load(head + R"({"name": "a\tb\u0001", "type": "sphere", "material": "m", "center": [0,0,0], "radius": 1}]})"),
+            file + R"(: objects[0].name: must not contain control characters (got "a\tb\x01"))");
+  EXPECT_EQ(load(head + R"({"type": "sphere", "material": "no\"pe\n", "center": [0,0,0], "radius": 1}]})"),
+            file + R"(: objects[0].material: no material named "no\"pe\n")");
+  EXPECT_EQ(load(head + R"({"type": "sphere", "material": "m", "center": [0,0,0], "radius": 1, "odd key\n": 1}]})"),
+            file + R"(: objects[0]."odd key\n": unknown field)");
+  // Decoded: "q", one backslash, 100 "x" — 102 bytes; shown: 60 columns, the backslash taking two.
+  const std::string longName = R"(q\\)" + std::string(100, 'x');
+  EXPECT_EQ(load(R"({"format": "omnicam-scene/1", "materials": {")" + longName + R"(": {"color": 0.5}}, "objects": []})"),
+            file + R"(: materials."q\\)" + std::string(57, 'x') +
+                R"(…" (102 bytes): material names must be 1 to 63 bytes long (got 102))");
+  EXPECT_EQ(load(R"({"format": "omnicam-scene/1", "materials": {"m\u007f": {"color": 0.5}}, "objects": []})"),
+            file + R"(: materials."m\x7F": material names must not contain control characters (got "m\x7F"))");
+  // nlohmann names the token it stopped at, which can be a whole long string.
+  const std::string badString = R"({"format": ")" + std::string(5000, 'y') + "\x01\"}";
+  const std::string message = load(badString);
+  EXPECT_NE(message.find(R"(last read: "\")" + std::string(58, 'y') + R"(…" ()"), std::string::npos) << message;
+  EXPECT_LT(message.size(), 600u);
+}
+
 TEST_F(SceneLoaderTest, TheDocumentedExampleLoads) {
   // docs/scene-format.md's annotated example, with its // comments stripped.
   std::ifstream doc(OMNICAM_SOURCE_DIR "/docs/scene-format.md");

@@ -31,7 +31,7 @@ std::string hexDigest(Digest& ctx) {
 
 std::string sha256OfFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open file");
+  if (!in) throw InputError(showPath(path) + ": cannot open file");
   Digest ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
   std::vector<char> buffer(1 << 16);

@@ -68,9 +68,9 @@ void writeSidecarAtomic(const std::string& imagePath, const json& sidecar) {
 SidecarInfo sidecarFromText(const std::string& text, const std::string& path) {
   SidecarInfo info;
   info.json = parseJsonText(text, path);
-  if (!info.json.is_object()) throw InputError(path + ": a sidecar must be a JSON object");
+  if (!info.json.is_object()) throw InputError(showPath(path) + ": a sidecar must be a JSON object");
   const auto rig = info.json.find("rig");
-  if (rig == info.json.end()) throw InputError(path + ": rig: missing required field");
+  if (rig == info.json.end()) throw InputError(showPath(path) + ": rig: missing required field");
   info.rig = rigFromJson(*rig, path, "rig");
   return info;
 }
@@ -81,7 +81,7 @@ std::optional<SidecarInfo> readSidecar(const std::string& imagePath) {
   if (!std::filesystem::exists(path, ec)) return std::nullopt;
   std::string why;
   const auto text = readWholeFile(path, why, limits::kMaxJsonFileBytes);
-  if (!text) throw InputError(path + ": cannot read sidecar (" + why + ")");
+  if (!text) throw InputError(showPath(path) + ": cannot read sidecar (" + why + ")");
   return sidecarFromText(*text, path);
 }
 

@@ -40,8 +40,8 @@ std::string layoutFile(const std::string& dirB, const std::string& relative) {
     std::error_code ec;
     if (fs::is_regular_file(fs::path(dirB) / candidate, ec)) return candidate;
   }
-  throw InputError(dirB + ": no image " + fs::path(relative).replace_extension("").string() +
-                   ".png or .exr for frame of " + relative + " (a folder without manifest.json must follow the dataset layout)");
+  throw InputError(showPath(dirB) + ": no image " + showPath(fs::path(relative).replace_extension("").string()) +
+                   ".png or .exr for frame of " + showPath(relative) + " (a folder without manifest.json must follow the dataset layout)");
 }
 
 std::string frameLabel(const FrameComparison& f) {
@@ -63,7 +63,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
                                      const DatasetCompareOptions& options) {
   const DatasetManifest a = readManifest(dirA);
   std::error_code ec;
-  if (!fs::is_directory(dirB, ec)) throw InputError(dirB + ": not a folder");
+  if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
   std::optional<DatasetManifest> b;
   if (fs::exists(fs::path(dirB) / kManifestName, ec)) b = readManifest(dirB);
   DatasetCompareResult result;
@@ -74,7 +74,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
     for (const auto& [index, frame] : b->frames)
       if (!a.frames.count(index)) onlyB.push_back(index);
     if (!onlyA.empty() || !onlyB.empty())
-      throw InputError(dirB + ": frames do not match " + dirA + ": " + std::to_string(onlyA.size()) + " only in A (first " +
+      throw InputError(showPath(dirB) + ": frames do not match " + showPath(dirA) + ": " + std::to_string(onlyA.size()) + " only in A (first " +
                        (onlyA.empty() ? "-" : std::to_string(onlyA[0])) + "), " + std::to_string(onlyB.size()) +
                        " only in B (first " + (onlyB.empty() ? "-" : std::to_string(onlyB[0])) + ")");
   }
@@ -84,19 +84,21 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
       f.index = index;
       f.camera = camera;
       const auto rgb = files.files.find("rgb");
-      if (rgb == files.files.end()) throw InputError(dirA + ": frame " + std::to_string(index) + " " + camera + ": no rgb file");
+      // A camera name is a folder of the dataset: messages show it as they show paths.
+      if (rgb == files.files.end())
+        throw InputError(showPath(dirA) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
       f.fileA = rgb->second.path;
       if (b) {
         const FrameRecord& other = b->frames.at(index);
         const auto cam = other.cameras.find(camera);
         if (cam == other.cameras.end())
-          throw InputError(dirB + ": frame " + std::to_string(index) + " has no camera \"" + camera + "\" (A has it)");
+          throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " has no camera " + quote(camera) + " (A has it)");
         if (!samePose(cam->second.pose, files.pose))
-          throw InputError(dirB + ": frame " + std::to_string(index) + " camera " + camera + ": pose " +
+          throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " camera " + showPath(camera) + ": pose " +
                            poseText(cam->second.pose) + " differs from A's " + poseText(files.pose));
         const auto rgbB = cam->second.files.find("rgb");
         if (rgbB == cam->second.files.end())
-          throw InputError(dirB + ": frame " + std::to_string(index) + " " + camera + ": no rgb file");
+          throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
         f.fileB = rgbB->second.path;
       } else {
         f.fileB = layoutFile(dirB, f.fileA);
@@ -104,10 +106,10 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
       result.frames.push_back(f);
     }
     if (b && b->frames.at(index).cameras.size() != frame.cameras.size())
-      throw InputError(dirB + ": frame " + std::to_string(index) + " has " + std::to_string(b->frames.at(index).cameras.size()) +
+      throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " has " + std::to_string(b->frames.at(index).cameras.size()) +
                        " cameras, A has " + std::to_string(frame.cameras.size()));
   }
-  if (result.frames.empty()) throw InputError(dirA + ": no finished frames to compare");
+  if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
   tbb::parallel_for(size_t{0}, result.frames.size(), [&](size_t k) {
     FrameComparison& f = result.frames[k];
     f.result = compareImages(readImage((fs::path(dirA) / f.fileA).string()), readImage((fs::path(dirB) / f.fileB).string()),
@@ -135,7 +137,7 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   const fs::path assets = report.parent_path() / assetsName;
   std::error_code ec;
   fs::create_directories(assets, ec);
-  if (ec) throw OutputError("--report: " + assets.string() + ": cannot create folder (" + ec.message() + ")");
+  if (ec) throw OutputError("--report: " + showPath(assets.string()) + ": cannot create folder (" + ec.message() + ")");
   std::vector<const FrameComparison*> order;
   for (const FrameComparison& f : result.frames) order.push_back(&f);
   std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });

@@ -66,7 +66,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
     } else if (datasetIdentity(shard.header) != datasetIdentity(merged->header)) {
-      throw InputError(dir + "/" + name + ": from a different spec, scene or engine than the other shards");
+      throw InputError(showPath(dir + "/" + name) + ": from a different spec, scene or engine than the other shards");
     }
     const json& range = shard.header.at("shard");
     const int first = range.at("first_frame").get<int>(), end = range.at("end_frame").get<int>();
@@ -75,13 +75,13 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
       if (index >= first && index < end) merged->frames[index] = frame, ++finished;
     if (!shard.header.value("complete", false) || finished != end - first) result.incompleteShards.push_back(i);
   }
-  if (!merged) throw InputError(dir + ": no shard of " + std::to_string(count) + " has started (no shards/shard-*-of-" +
+  if (!merged) throw InputError(showPath(dir) + ": no shard of " + std::to_string(count) + " has started (no shards/shard-*-of-" +
                                 std::to_string(count) + ".json)");
   std::error_code ec;
   if (fs::exists(fs::path(dir) / kManifestName, ec)) {
     const DatasetManifest existing = readManifest(dir);
     if (datasetIdentity(existing.header) != datasetIdentity(merged->header))
-      throw InputError(dir + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
+      throw InputError(showPath(dir) + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
     // Frames an earlier merge (or an unsharded run) finished stay listed.
     for (const auto& [index, frame] : existing.frames) merged->frames.emplace(index, frame);
   }

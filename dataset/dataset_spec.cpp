@@ -37,14 +37,14 @@ namespace {
 RobotPose readPose(const json& value, const std::string& file, const std::string& where) {
   const Vec3 p = jsonVec3(value, file, where);
   RobotPose pose{p.x(), p.y(), p.z()};
-  checkPose(pose, file + ": " + where);
+  checkPose(pose, showPath(file) + ": " + where);
   return pose;
 }
 
 void readPoses(JsonFields poses, DatasetSpec& spec) {
   const int sources = poses.has("path") + poses.has("list") + poses.has("random");
   if (sources != 1)
-    throw InputError(spec.file + ": poses: give exactly one of \"path\", \"list\" or \"random\"");
+    throw InputError(showPath(spec.file) + ": poses: give exactly one of \"path\", \"list\" or \"random\"");
   if (poses.has("path")) {
     spec.poseSource = PoseSource::Path;
     spec.pathName = poses.string("path");
@@ -92,17 +92,23 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
   poses.finish();
 }
 
+// The rule a camera name broke; the name itself too when it holds characters the user cannot
+// see in it (control characters, bytes that are not UTF-8), shown escaped.
+std::string cameraNameProblem(const std::string& name) {
+  const std::string rule = "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\"";
+  return rule + (oneLine(name) != name ? "; got " + quote(name) : "") + ")";
+}
+
 void readCameras(const json& cameras, DatasetSpec& spec) {
   if (!cameras.is_array() || cameras.empty() || cameras.size() > kMaxCameras)
-    throw InputError(spec.file + ": cameras: must be an array of 1 to " + std::to_string(kMaxCameras) + " cameras");
+    throw InputError(showPath(spec.file) + ": cameras: must be an array of 1 to " + std::to_string(kMaxCameras) + " cameras");
   std::set<std::string> names;
   for (size_t i = 0; i < cameras.size(); ++i) {
     JsonFields c(cameras[i], spec.file, "cameras[" + std::to_string(i) + "]");
     DatasetCamera camera;
     camera.name = c.string("name");
-    if (!isCameraFolderName(camera.name))
-      c.fail("name", "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\")");
-    if (!names.insert(camera.name).second) c.fail("name", "duplicate camera name \"" + camera.name + "\"");
+    if (!isCameraFolderName(camera.name)) c.fail("name", cameraNameProblem(camera.name));
+    if (!names.insert(camera.name).second) c.fail("name", "duplicate camera name " + quote(camera.name));
     if (c.has("rig")) {
       camera.rig = c.raw("rig");
       rigFromJson(*camera.rig, spec.file, c.path("rig"));  // validated now, applied with the scene
@@ -138,7 +144,7 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
 DatasetSpec loadDatasetSpec(const std::string& file) {
   std::string why;
   const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
-  if (!text) throw InputError(file + ": cannot open dataset spec (" + why + ")");
+  if (!text) throw InputError(showPath(file) + ": cannot open dataset spec (" + why + ")");
   return datasetSpecFromText(*text, file);
 }
 
@@ -159,10 +165,10 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   spec.allowOutsideFiles = top.boolean("allow_outside_files", false);
   spec.engine = top.string("engine", spec.engine);
   if (spec.engine != "fast" && spec.engine != "povray" && spec.engine != "blender")
-    top.fail("engine", "must be fast, povray or blender (got \"" + spec.engine + "\")");
+    top.fail("engine", "must be fast, povray or blender (got " + quote(spec.engine) + ")");
   spec.mode = top.string("mode", spec.mode);
   if (spec.mode != "exact" && spec.mode != "cubemap" && spec.mode != "thesis-mesh")
-    top.fail("mode", "must be exact, cubemap or thesis-mesh (got \"" + spec.mode + "\")");
+    top.fail("mode", "must be exact, cubemap or thesis-mesh (got " + quote(spec.mode) + ")");
   if (spec.mode != "exact" && spec.engine != "fast") top.fail("mode", "only the fast engine has modes other than exact");
   if (auto options = top.optionalObject("mode_options")) {
     if (spec.mode == "exact") top.fail("mode_options", "only with mode cubemap or thesis-mesh");
@@ -192,7 +198,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     spec.cameras.push_back({"cam0", std::nullopt, 0.0, 0.0, 0.0});
   }
   if (auto outputs = top.optionalObject("outputs")) readOutputs(*outputs, spec);
-  if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file + ": recording");
+  if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), showPath(file) + ": recording");
   top.finish();
   return spec;
 }

@@ -5,6 +5,7 @@
 #include "atomic_file.h"
 #include "dataset_spec.h"
 #include "errors.h"
+#include "json_fields.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -20,7 +21,7 @@ json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"y
 struct Reader {
   std::string file;
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw InputError(file + ": " + where + ": " + what);
+    throw InputError(showPath(file) + ": " + where + ": " + what);
   }
   const json& field(const json& object, const std::string& key, const std::string& where) const {
     if (!object.is_object()) fail(where, "must be an object");
@@ -49,7 +50,8 @@ struct Reader {
     const fs::path p(record.path);
     if (record.path.empty() || p.is_absolute() || record.path.find("..") != std::string::npos)
       fail(where + ".path", "must be a relative path inside the dataset folder");
-    if (record.sha256.size() != 64) fail(where + ".sha256", "must be 64 hex digits");
+    if (record.sha256.size() != 64 || record.sha256.find_first_not_of("0123456789abcdef") != std::string::npos)
+      fail(where + ".sha256", "must be 64 lowercase hex digits");
     return record;
   }
 };
@@ -85,7 +87,7 @@ std::string shardManifestName(int index, int count) {
 DatasetManifest readManifest(const std::string& dir, const std::string& name) {
   const std::string file = (fs::path(dir) / name).string();
   std::error_code ec;
-  if (!fs::exists(file, ec)) throw InputError(dir + ": not a dataset folder (no " + name + ")");
+  if (!fs::exists(file, ec)) throw InputError(showPath(dir) + ": not a dataset folder (no " + name + ")");
   json root = readJsonFile(file);
   const Reader r{file};
   if (!root.is_object() || r.string(root, "format", "manifest") != kManifestFormat)
@@ -106,13 +108,13 @@ DatasetManifest readManifest(const std::string& dir, const std::string& name) {
     const json& cameras = r.field(f, "cameras", where);
     if (!cameras.is_object()) r.fail(where + ".cameras", "must be an object");
     for (auto it = cameras.begin(); it != cameras.end(); ++it) {
-      const std::string at = where + ".cameras." + it.key();
+      const std::string at = where + ".cameras." + keySegment(it.key());
       CameraFrame camera;
       camera.pose = r.pose(it.value(), "pose", at);
       const json& files = r.field(it.value(), "files", at);
       if (!files.is_object()) r.fail(at + ".files", "must be an object");
       for (auto entry = files.begin(); entry != files.end(); ++entry)
-        camera.files[entry.key()] = r.fileRecord(entry.value(), at + ".files." + entry.key());
+        camera.files[entry.key()] = r.fileRecord(entry.value(), at + ".files." + keySegment(entry.key()));
       frame.cameras[it.key()] = std::move(camera);
     }
     if (!manifest.frames.emplace(frame.index, std::move(frame)).second)
@@ -130,7 +132,7 @@ DatasetManifest readManifest(const std::string& dir, const std::string& name) {
     const json& files = r.field(cameras[i], "files", where);
     if (!files.is_object()) r.fail(where + ".files", "must be an object");
     for (auto entry = files.begin(); entry != files.end(); ++entry)
-      r.fileRecord(entry.value(), where + ".files." + entry.key());
+      r.fileRecord(entry.value(), where + ".files." + keySegment(entry.key()));
   }
   return manifest;
 }

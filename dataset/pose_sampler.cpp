@@ -73,9 +73,10 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
       return spec.poseList;
     case PoseSource::Path: {
       const CameraPath* path = scene.findPath(spec.pathName);
-      if (!path) throw InputError(spec.file + ": poses.path: scene " + scene.path + " has no path \"" + spec.pathName + "\"");
+      if (!path)
+        throw InputError(showPath(spec.file) + ": poses.path: scene " + showPath(scene.path) + " has no path " + quote(spec.pathName));
       if (spec.pathFrames > static_cast<int>(path->poses.size()))
-        throw InputError(spec.file + ": poses.frames: path \"" + spec.pathName + "\" has only " +
+        throw InputError(showPath(spec.file) + ": poses.frames: path " + quote(spec.pathName) + " has only " +
                          std::to_string(path->poses.size()) + " poses");
       const size_t n = spec.pathFrames ? spec.pathFrames : path->poses.size();
       return {path->poses.begin(), path->poses.begin() + n};
@@ -94,7 +95,7 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
       }
       const FreeSpace free(scene, topHeight, {r.xMin, r.xMax, r.yMin, r.yMax}, r.clearance);
       if (free.empty())
-        throw InputError(spec.file + ": poses.random: no free space with " + shortNumber(r.clearance) +
+        throw InputError(showPath(spec.file) + ": poses.random: no free space with " + shortNumber(r.clearance) +
                          " m clearance in the region [" + shortNumber(r.xMin) + ", " + shortNumber(r.xMax) + "] x [" +
                          shortNumber(r.yMin) + ", " + shortNumber(r.yMax) + "] m");
       for (int k = 0; k < r.count; ++k) {

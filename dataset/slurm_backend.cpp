@@ -27,7 +27,7 @@ std::string shellQuote(const std::string& text) {
 std::string submit(const std::vector<std::string>& argv, const fs::path& slurmDir, const std::string& what) {
   const std::string log = (slurmDir / "sbatch.log").string();
   const ProcessResult r = runProcess(argv, slurmDir.string(), log, 120.0);
-  if (r.notFound) throw ExternalError(argv[0] + ": not found (make deps installs slurm-client; on a cluster, load its module)");
+  if (r.notFound) throw ExternalError(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.exitCode != 0) throw ExternalError("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
   std::istringstream lines(tailOfFile(log, 5));
   std::string line;
@@ -47,11 +47,11 @@ std::vector<std::string> parseSlurmArgs(const std::string& text) {
   std::string word;
   while (words >> word) {
     if (word[0] != '-' || word.find_first_of("'\"\\\n\r`$") != std::string::npos)
-      throw InputError("--slurm-args: \"" + word + "\": each word must be an sbatch option (starting with '-', "
+      throw InputError("--slurm-args: " + quote(word) + ": each word must be an sbatch option (starting with '-', "
                        "without quotes, backslashes, '$' or '`')");
     if (word.rfind("--array", 0) == 0 || word.rfind("-a", 0) == 0 || word.rfind("--output", 0) == 0 ||
         word.rfind("--dependency", 0) == 0)
-      throw InputError("--slurm-args: \"" + word + "\": omnicam sets --array (use --max-parallel for %K), --output "
+      throw InputError("--slurm-args: " + quote(word) + ": omnicam sets --array (use --max-parallel for %K), --output "
                        "and --dependency itself");
     args.push_back(word);
   }
@@ -78,16 +78,16 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   const fs::path spec = fs::absolute(o.spec).lexically_normal();
   // Slurm expands %-patterns in log paths: a folder name with '%' would be rewritten.
   if (dir.string().find('%') != std::string::npos)
-    throw InputError("-o: " + o.dir + ": a folder for Slurm must not contain '%' (Slurm expands it in log names)");
+    throw InputError("-o: " + showPath(o.dir) + ": a folder for Slurm must not contain '%' (Slurm expands it in log names)");
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir / kManifestName, ec) &&
       !fs::is_directory(dir / "shards", ec))
-    throw InputError("-o: " + o.dir + ": folder is not empty and holds no dataset (no " + std::string(kManifestName) +
+    throw InputError("-o: " + showPath(o.dir) + ": folder is not empty and holds no dataset (no " + std::string(kManifestName) +
                      ", no shards/)");
   const fs::path slurmDir = dir / "slurm";
   fs::create_directories(dir / "shards", ec);
   fs::create_directories(slurmDir, ec);
-  if (ec) throw OutputError("-o: " + o.dir + ": cannot create folder (" + ec.message() + ")");
+  if (ec) throw OutputError("-o: " + showPath(o.dir) + ": cannot create folder (" + ec.message() + ")");
 
   SlurmSubmission s;
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))

@@ -23,11 +23,11 @@ std::vector<Beacon> beaconsOf(const Scene& scene) {
   std::vector<Beacon> beacons;
   for (auto& [name, beacon] : byName) {
     if (!beacon.upper || !beacon.lower)
-      throw InputError(scene.path + ": landmarks: beacon \"" + name + "\" needs both " + name + "_upper and " + name +
-                       "_lower");
+      throw InputError(showPath(scene.path) + ": landmarks: beacon " + quote(name) + " needs both " + quote(name + "_upper") +
+                       " and " + quote(name + "_lower"));
     beacons.push_back(beacon);
   }
-  if (beacons.empty()) throw InputError(scene.path + ": landmarks: no beacons (<name>_upper and <name>_lower)");
+  if (beacons.empty()) throw InputError(showPath(scene.path) + ": landmarks: no beacons (<name>_upper and <name>_lower)");
   return beacons;
 }
 

@@ -43,18 +43,18 @@ PanoramaPhoto PanoramaPhoto::load(const std::string& path) {
     const nlohmann::json sidecar = readJsonFile(sidecarPath);
     const nlohmann::json* view = sidecar.contains("view") ? &sidecar["view"] : nullptr;
     if (!view || !view->is_object() || view->value("kind", "") != "panorama")
-      throw InputError(sidecarPath + ": view.kind: not a panorama (unwrap the omni image with --as panorama)");
+      throw InputError(showPath(sidecarPath) + ": view.kind: not a panorama (unwrap the omni image with --as panorama)");
     if (view->value("variant", "") != "exact")
-      throw InputError(sidecarPath + ": view.variant: must be exact (rows equal incidence-angle steps)");
+      throw InputError(showPath(sidecarPath) + ": view.variant: must be exact (rows equal incidence-angle steps)");
     const RigSpec rig = rigFromJson(sidecar.at("rig"), sidecarPath, "rig");
     const double rimTheta = rig.camera().rimTheta();  // from straight down
     photo.topElevation_ = rimTheta - kPi / 2;
     photo.bottomElevation_ = -kPi / 2;
   } else {
     if (photo.image_.width != 2 * photo.image_.height)
-      throw InputError(path + ": an equirectangular photo must be twice as wide as high (got " +
+      throw InputError(showPath(path) + ": an equirectangular photo must be twice as wide as high (got " +
                        std::to_string(photo.image_.width) + "x" + std::to_string(photo.image_.height) +
-                       "); an unwrapped omni image needs its sidecar " + sidecarPath);
+                       "); an unwrapped omni image needs its sidecar " + showPath(sidecarPath));
     photo.topElevation_ = kPi / 2;
     photo.bottomElevation_ = -kPi / 2;
   }

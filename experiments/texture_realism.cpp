@@ -298,7 +298,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const std::vector<std::string> bandColour = bandColourOfObjects(plain);
   const std::vector<std::string> objectNames = objectNamesOf(plain);
   const CameraPath* loop = plain.findPath("thesis-loop");
-  if (!loop) throw InputError(o.fieldScene + ": paths: no \"thesis-loop\"");
+  if (!loop) throw InputError(showPath(o.fieldScene) + ": paths: no \"thesis-loop\"");
   std::vector<RobotPose> testPoses;
   for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
 
@@ -443,7 +443,7 @@ DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const s
   for (const char* colour : {"cyan", "magenta", "yellow"}) classifiers.emplace(colour, ColourHistogramClassifier(32));
   trainOn(classifiers, renderFast(plain, randomFieldPoses(trainFrames, 2009), size, spp, [] {}), bandColour);
   const CameraPath* loop = plain.findPath("thesis-loop");
-  if (!loop) throw InputError(fieldScene + ": paths: no \"thesis-loop\"");
+  if (!loop) throw InputError(showPath(fieldScene) + ": paths: no \"thesis-loop\"");
   // Mid-way along the field's long edge: several beacons in view.
   DetectionFrame result;
   result.poseIndex = static_cast<int>(loop->poses.size() / 8);

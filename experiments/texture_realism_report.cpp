@@ -201,7 +201,7 @@ void writeTextureRealismReport(const ReportData& data, const TextureRealismResul
                                           (root / "figures/plot.log").string(), 600.0);
     if (plot.notFound) throw OutputError("/usr/bin/python3: not found (make deps installs python3 and python3-matplotlib)");
     if (plot.exitCode != 0)
-      throw OutputError(plotScript + ": the figures failed (exit " + std::to_string(plot.exitCode) + "): " + plot.logTail);
+      throw OutputError(showPath(plotScript) + ": the figures failed (exit " + std::to_string(plot.exitCode) + "): " + plot.logTail);
     figures = true;
   }
   writeHtml(data, results, out, figures);

@@ -317,7 +317,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
   }
   std::ostringstream glb;
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToStream(&b.model(), glb, false, true)) throw OutputError(path + ": cannot encode glTF");
+  if (!writer.WriteGltfSceneToStream(&b.model(), glb, false, true)) throw OutputError(showPath(path) + ": cannot encode glTF");
   writeBytesAtomically(path, glb.str());
 }
 

@@ -148,14 +148,14 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
     const bool textured = writer.textured(o.material);
     out << "// object " << i << "\n";
     if (auto s = std::get_if<Sphere>(&o.shape)) {
-      if (textured) throw InputError(scene.path + ": objects[" + std::to_string(i) + "]: textured spheres cannot be exported to POV-Ray yet");
+      if (textured) throw InputError(showPath(scene.path) + ": objects[" + std::to_string(i) + "]: textured spheres cannot be exported to POV-Ray yet");
       out << "sphere { " << pov(s->center) << ", " << num(s->radius * u) << " " << tex << " }\n";
     } else if (auto cyl = std::get_if<Cylinder>(&o.shape)) {
-      if (textured) throw InputError(scene.path + ": objects[" + std::to_string(i) + "]: textured cylinders cannot be exported to POV-Ray yet");
+      if (textured) throw InputError(showPath(scene.path) + ": objects[" + std::to_string(i) + "]: textured cylinders cannot be exported to POV-Ray yet");
       out << "cylinder { " << pov(cyl->base) << ", " << pov(cyl->top) << ", " << num(cyl->radius * u)
           << (cyl->caps ? "" : " open") << " " << tex << " }\n";
     } else if (auto d = std::get_if<Disc>(&o.shape)) {
-      if (textured) throw InputError(scene.path + ": objects[" + std::to_string(i) + "]: textured discs cannot be exported to POV-Ray yet");
+      if (textured) throw InputError(showPath(scene.path) + ": objects[" + std::to_string(i) + "]: textured discs cannot be exported to POV-Ray yet");
       out << "disc { " << pov(d->center) << ", " << povDirection(d->normal) << ", " << num(d->radius * u) << ", "
           << num(d->innerRadius * u) << " " << tex << " }\n";
     } else {

@@ -132,7 +132,7 @@ ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& sett
 
 void FastRenderer::prepareAovs(const RenderSettings& settings, AovFrame& aovs) const {
   if (scene_.objects.size() > kMaxInstances)
-    throw InputError(scene_.path + ": " + std::to_string(scene_.objects.size()) +
+    throw InputError(showPath(scene_.path) + ": " + std::to_string(scene_.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
   aovs.width = aovs.height = settings.rig.imageSize;
   const size_t pixels = static_cast<size_t>(aovs.width) * aovs.height;

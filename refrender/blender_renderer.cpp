@@ -84,7 +84,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
   argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", folder.path() + "/job.json"});
   const ProcessResult r = runProcess(argv, folder.path(), log, options.timeoutSeconds);
-  if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + options.executable);
+  if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
     throw ExternalError("blender: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +
                         " s; last output:\n" + r.logTail);
@@ -95,7 +95,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   std::vector<ImageRGBA> images;
   for (const auto& frame : frames) {
     const std::string output = frame["output"];
-    if (!fs::exists(output)) throw ExternalError("blender: no output " + output + "; last output:\n" + r.logTail);
+    if (!fs::exists(output)) throw ExternalError("blender: no output " + showPath(output) + "; last output:\n" + r.logTail);
     ImageRGBA image;
     try {
       image = readImage(output);

@@ -51,7 +51,7 @@ JobFolder::JobFolder(const std::string& prefix, bool keep) : keep_(keep) {
   removeStaleJobFolders(prefix);  // left by runs that were killed before they could clean up
   std::string pattern = (fs::temp_directory_path() / (prefix + "-XXXXXX")).string();
   if (!::mkdtemp(pattern.data()))
-    throw ExternalError(prefix + ": cannot create a job folder in " + fs::temp_directory_path().string());
+    throw ExternalError(prefix + ": cannot create a job folder in " + showPath(fs::temp_directory_path().string()));
   path_ = pattern;
   try {
     writeTextAtomically((fs::path(path_) / kOwnerFile).string(), std::to_string(::getpid()) + "\n");

@@ -62,7 +62,7 @@ ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const Rend
   writeRestrictiveConfig(folder.path());
   const std::string log = folder.path() + "/povray.log";
   const ProcessResult r = runProcess({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
-  if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + options.executable);
+  if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
     throw ExternalError("povray: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +
                         " s; last output:\n" + r.logTail);

@@ -122,7 +122,7 @@ std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, in
   options->polygons = polygons;
   if (mode == "cubemap") options->mode = OmniMode::CubeMap;
   else if (mode == "thesis-mesh") options->mode = OmniMode::ThesisMesh;
-  else throw InputError(flag + ": must be exact, cubemap or thesis-mesh (got \"" + mode + "\")");
+  else throw InputError(flag + ": must be exact, cubemap or thesis-mesh (got " + quote(mode) + ")");
   return options;
 }
 
@@ -133,7 +133,7 @@ std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, 
                              ": only the fast engine has modes other than exact");
   if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds, threads);
   if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds, threads);
-  throw InputError(flag + ": \"" + name + "\" is not available (fast, povray, blender)");
+  throw InputError(flag + ": " + quote(name) + " is not available (fast, povray, blender)");
 }
 
 }  // namespace omnicam

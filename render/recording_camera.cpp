@@ -6,6 +6,7 @@
 #include <random>
 
 #include "errors.h"
+#include "json_fields.h"
 #include "number_format.h"
 
 namespace omnicam {
@@ -50,7 +51,7 @@ RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::stri
       if (!value.is_number_unsigned()) throw InputError(where + ".seed: must be a non-negative integer");
       camera.seed = value.get<uint64_t>();
     } else
-      throw InputError(where + "." + key + ": unknown field (exposure_ev, white_balance, vignetting, "
+      throw InputError(where + "." + keySegment(key) + ": unknown field (exposure_ev, white_balance, vignetting, "
                        "full_well_electrons, read_noise, jpeg_quality, seed)");
   }
   return camera;

@@ -53,13 +53,13 @@ ViewKind parseViewKind(const std::string& name, const std::string& option) {
   if (name == "birdseye") return ViewKind::BirdsEye;
   if (name == "panorama") return ViewKind::Panorama;
   if (name == "perspective") return ViewKind::Perspective;
-  throw InputError(option + ": must be birdseye, panorama or perspective (got \"" + name + "\")");
+  throw InputError(option + ": must be birdseye, panorama or perspective (got " + quote(name) + ")");
 }
 
 ViewVariant parseViewVariant(const std::string& name) {
   if (name == "thesis") return ViewVariant::Thesis;
   if (name == "exact") return ViewVariant::Exact;
-  throw InputError("--variant: must be thesis or exact (got \"" + name + "\")");
+  throw InputError("--variant: must be thesis or exact (got " + quote(name) + ")");
 }
 
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {

@@ -153,6 +153,12 @@ def main():
     write(os.path.join(SCENES, "duplicate_light.json"),
           scene([FLOOR], lights=[{"name": "l", "position": [0, 0, 2]}, {"name": "l", "position": [1, 0, 2]}]))
     write(os.path.join(SCENES, "long_name.json"), scene([dict(FLOOR, name="x" * 64)]))
+    # Names that would break a one-line message if echoed raw: newlines, quotes, control bytes.
+    long_material = 'line1\n"quoted"\n'
+    long_material += "x" * (300 - len(long_material))
+    write(os.path.join(SCENES, "long_material_name.json"),
+          scene([FLOOR], {"grey": {"color": 0.5}, long_material: {"color": 0.2}}))
+    write(os.path.join(SCENES, "control_name.json"), scene([dict(FLOOR, name="bad\tname\x01")]))
     write(os.path.join(SCENES, "duplicate_material_key.json"),
           '{"format": "omnicam-scene/1", "materials": {"grey": {"color": 0.5}, "grey": {"color": 0.9}},\n'
           ' "objects": [' + json.dumps(FLOOR) + ']}\n')
@@ -218,6 +224,7 @@ def main():
         write(os.path.join(datasets, name + ".json"), json.dumps(doc, indent=1) + "\n")
     dataset_spec("spp_3", spp=3)
     dataset_spec("camera_dotdot", cameras=[{"name": "../x"}])
+    dataset_spec("camera_newline", cameras=[{"name": "cam\nzero"}])
     dataset_spec("unknown_output", outputs={"depht": True})
     dataset_spec("crowded", poses={"random": {"count": 5, "seed": 1, "region": [-1, -1, 1, 1], "clearance": 0.2}})
     dataset_spec("no_scene", scene="missing.json")
