@@ -1,16 +1,14 @@
 // omnicam bench [--json] [--seconds S]: frames/s of every render mode and view on a 360×360
 // robocup2006 frame at 1 spp, unlit, on all cores (lookup tables built before timing; the
 // median of ~20 ms batches).
-#include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli_util.h"
 #include "commands.h"
 #include "cubemap_renderer.h"
+#include "frame_rate.h"
 #include "scene_loader.h"
 #include "views.h"
 
@@ -23,25 +21,6 @@ struct BenchArgs {
   double seconds = 1.0;
   int faceSize = CubeMapOptions{}.faceSize;
 };
-
-// Frames are timed in batches of about 20 ms; the median batch rate is reported, so that a
-// neighbour on a shared machine stealing the CPU for a moment does not move the result.
-double framesPerSecond(const std::function<void()>& frame, double seconds) {
-  using Clock = std::chrono::steady_clock;
-  frame();  // warm caches and lookup tables
-  const auto start = Clock::now();
-  frame();
-  const double once = std::max(1e-6, std::chrono::duration<double>(Clock::now() - start).count());
-  const int batch = std::max(1, static_cast<int>(0.02 / once));
-  std::vector<double> rates;
-  while (rates.size() < 5 || std::chrono::duration<double>(Clock::now() - start).count() < seconds) {
-    const auto t0 = Clock::now();
-    for (int k = 0; k < batch; ++k) frame();
-    rates.push_back(batch / std::chrono::duration<double>(Clock::now() - t0).count());
-  }
-  std::nth_element(rates.begin(), rates.begin() + rates.size() / 2, rates.end());
-  return rates[rates.size() / 2];
-}
 
 void runBench(const BenchArgs& a) {
   const Scene scene = loadScene(scenesDir() + "/robocup2006.json");

@@ -1,11 +1,14 @@
-// omnicam demo [-o out/demo] [--spp N] [--no-povray]: the main job. Renders robocup2006 at the
-// thesis start pose (unlit and lit) with the fast renderer and with POV-Ray (the ground truth:
-// the physical camera and the exact mirror), compares them, renders and measures the
-// incidence-angle rings with both engines, renders a small two-camera dataset (depth, instance
-// and landmark overlays), and writes PNGs, plots and index.html.
+// omnicam demo [-o out/demo] [--spp N] [--no-povray] [--no-blender]: the main job. Opens with a
+// frame that fills the mirror (the field inside the thesis' hall, walls carrying a real photo) from
+// the fast renderer beside POV-Ray's ground truth and their agreement; then renders robocup2006 at
+// the thesis start pose (unlit and lit) with the fast renderer, POV-Ray (the physical camera and
+// the exact mirror) and Blender, compares them, renders and measures the incidence-angle rings
+// with every engine, renders a small two-camera dataset (depth, instance and landmark overlays),
+// and writes PNGs, plots and index.html.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -16,6 +19,7 @@
 #include "cubemap_renderer.h"
 #include "dataset_runner.h"
 #include "texture_realism.h"
+#include "hall_arena.h"
 #include "image_compare.h"
 #include "number_format.h"
 #include "render_output.h"
@@ -77,12 +81,103 @@ void writeRingPlots(const std::string& out, const OmniCamera& camera, const std:
   writeTextAtomically(out + "/rings_residuals.svg", svgPlot(residuals));
 }
 
+struct EngineFigures {
+  std::string html;                                          // the renders' figures, then the differences'
+  std::vector<std::pair<std::string, CompareResult>> vsFast;  // engine, fast vs engine
+  double fastSeconds = 0.0;
+};
+
+// Renders `scene` at `pose` with every engine (engines[0] is "fast"): `<stem>_<engine>.png`, then
+// for each ground truth `<stem>_diff_<engine>.png` (|fast − engine|, white = 0.01) and its
+// comparison with fast. `caveat(engine)`: HTML appended to that comparison's caption.
+EngineFigures renderAndCompare(const std::string& out, const std::string& stem, const std::string& label,
+                               const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
+                               const std::vector<std::string>& engines,
+                               const std::function<std::string(const std::string&)>& caveat) {
+  EngineFigures result;
+  std::ostringstream html;
+  std::vector<ImageRGBA> images;
+  for (const auto& name : engines) {
+    std::printf("demo: %s, %s, %d spp\n", label.c_str(), name.c_str(), settings.spp);
+    auto engine = makeEngine(name, scene);
+    const auto rendered = renderToFile(scene, *engine, pose, settings, out + "/" + stem + "_" + name + ".png");
+    images.push_back(rendered.image);
+    const double seconds = rendered.sidecar["seconds"].get<double>();
+    if (images.size() == 1) result.fastSeconds = seconds;
+    html << "<figure><img src=\"" << stem << "_" << name << ".png\" width=\"360\"><figcaption>" << name
+         << format(" (%.2f s)", seconds) << "</figcaption></figure>\n";
+  }
+  for (size_t k = 1; k < images.size(); ++k) {
+    const std::string& name = engines[k];
+    const CompareResult r = compareImages(images[0], images[k]);
+    const std::string diff = stem + "_diff_" + name + ".png";
+    writeImageAtomic(out + "/" + diff, differenceHeatmap(images[0], images[k], 0.01));
+    html << "<figure><img src=\"" << diff << "\" width=\"360\"><figcaption>|fast − " << name
+         << "| (white = 0.01)<br>"
+         << format("PSNR %.2f dB, RMSE %.2e, SSIM %.5f, max %.4f", r.psnrDb, r.rmse, r.ssim, r.maxAbs) << caveat(name)
+         << "</figcaption></figure>\n";
+    std::printf("demo: %s, fast vs %s: PSNR %.2f dB, SSIM %.5f\n", label.c_str(), name.c_str(), r.psnrDb, r.ssim);
+    result.vsFast.emplace_back(name, r);
+  }
+  result.html = html.str();
+  return result;
+}
+
+// A real 360° photo of an interior (CC0, shipped with Debian's blender) for the hall's walls.
+const char* kLabPhoto = "/usr/share/blender/datafiles/studiolights/world/interior.exr";
+
+// What the report opens with: a frame that fills the mirror — the field inside the thesis' hall,
+// walls carrying the real photo — from the fast renderer beside POV-Ray's ground truth. The pose
+// sees both goals, the centre circle and the beacons.
+const RobotPose kGlancePose{0.0, -0.7, 90.0};
+
+EngineFigures renderGlance(const std::string& out, const std::string& fieldScene, const DemoArgs& a) {
+  HallOptions hall;
+  hall.fieldScene = fieldScene;
+  hall.photos = {kLabPhoto};
+  std::filesystem::create_directories(out + "/hall");
+  const std::string scenePath = out + "/hall/hall-textured.json";  // the same file the hall section writes
+  writeHallArena(hall, scenePath);
+  const Scene scene = loadScene(scenePath);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.spp = a.spp;
+  settings.shading = Shading::Lit;
+  std::vector<std::string> engines{"fast"};
+  if (a.povray) engines.push_back("povray");  // the exact ground truth; Blender lit is not a pixel comparison
+  return renderAndCompare(out, "glance", "at a glance: robocup2006 in the textured hall, lit", scene, kGlancePose,
+                          settings, engines, [](const std::string&) { return std::string(); });
+}
+
+std::string glanceSection(const EngineFigures& glance, const std::vector<EngineRings>& rings, int spp) {
+  std::ostringstream html;
+  html << "<h2>At a glance</h2>\n<p>omnicam simulates a catadioptric omnidirectional camera — a camera looking up "
+          "into a hyperbolic mirror, as on soccer and rescue robots — and proves its images right against ground "
+          "truth. Here the RoboCup 2006 field inside the thesis' hall, its walls carrying a real 360&deg; photo "
+          "(<code>omnicam arena hall --photo</code>), seen from "
+       << format("(%.1f m, %.1f m, %.0f&deg;)", kGlancePose.x, kGlancePose.y, kGlancePose.yawDeg) << ", lit, " << spp
+       << " samples per pixel. <b>fast</b>: omnicam's renderer, every ray straight from the closed-form model"
+       << format(" (%.2f s)", glance.fastSeconds) << ". ";
+  for (const auto& [engine, r] : glance.vsFast)
+    html << "<b>" << engine << "</b>: the ground truth, a pinhole camera looking up into the exact mirror. They agree "
+         << format("at <b>PSNR %.1f dB</b> (SSIM %.5f, largest difference %.4f of full scale)", r.psnrDb, r.ssim,
+                   r.maxAbs)
+         << ". ";
+  if (glance.vsFast.empty()) html << "(No ground truth: <code>--no-povray</code>.) ";
+  html << "The incidence-angle rings below lie ";
+  for (size_t k = 0; k < rings.size(); ++k)
+    html << (k == 0 ? "" : k + 1 == rings.size() ? " and " : ", ")
+         << format("<b>%.4f px</b>", rings[k].report.rmsPxExact) << " RMS (" << rings[k].engine << ")";
+  html << " from the exact model.</p>\n" << glance.html;
+  return html.str();
+}
+
 // The texture-realism experiment in one frame: the hall with real-photo walls, beacons found by
 // classifiers trained on the plain hall (docs/experiments.md).
 std::string demoTexturedHall(const std::string& out, const std::string& scenePath) {
   std::printf("demo: textured hall, colour-histogram beacon detection\n");
   const DetectionFrame frame = texturedHallDetectionFrame(
-      scenePath, "/usr/share/blender/datafiles/studiolights/world/interior.exr", out + "/hall", 360, 4, 8);
+      scenePath, kLabPhoto, out + "/hall", 360, 4, 8);
   writeImageAtomic(out + "/hall_detections.png", frame.drawn);
   std::printf("demo: textured hall frame %d: %d of %d visible beacons found, %d false positives\n", frame.poseIndex,
               frame.truePositives, frame.visibleBeacons, frame.falsePositives);
@@ -169,6 +264,8 @@ void runDemo(const DemoArgs& a) {
   if (a.povray) engines.push_back("povray");
   if (a.blender) engines.push_back("blender");
 
+  const EngineFigures glance = renderGlance(a.out, dir + "/robocup2006.json", a);
+
   std::ostringstream views;
   for (Shading shading : {Shading::Unlit, Shading::Lit}) {
     RenderSettings settings;
@@ -176,31 +273,16 @@ void runDemo(const DemoArgs& a) {
     settings.spp = a.spp;
     settings.shading = shading;
     const std::string s = shadingName(shading);
-    std::vector<ImageRGBA> images;
-    views << "<h3>" << s << "</h3>\n";
-    for (const auto& name : engines) {
-      std::printf("demo: robocup2006, thesis start pose, %s, %s, %d spp\n", s.c_str(), name.c_str(), a.spp);
-      auto engine = makeEngine(name, arena);
-      const auto rendered = renderToFile(arena, *engine, arena.startPose, settings,
-                                         a.out + "/robocup2006_" + s + "_" + name + ".png");
-      images.push_back(rendered.image);
-      views << "<figure><img src=\"robocup2006_" << s << "_" << name << ".png\" width=\"360\"><figcaption>" << name
-            << format(" (%.2f s)", rendered.sidecar["seconds"].get<double>()) << "</figcaption></figure>\n";
-    }
-    for (size_t k = 1; k < images.size(); ++k) {
-      const std::string& name = engines[k];
-      const CompareResult r = compareImages(images[0], images[k]);
-      const std::string diff = "robocup2006_" + s + "_diff_" + name + ".png";
-      writeImageAtomic(a.out + "/" + diff, differenceHeatmap(images[0], images[k], 0.01));
-      const bool comparable = !(name == "blender" && shading == Shading::Lit);
-      views << "<figure><img src=\"" << diff << "\" width=\"360\"><figcaption>|fast − " << name
-            << "| (white = 0.01)<br>"
-            << format("PSNR %.2f dB, RMSE %.2e, SSIM %.5f, max %.4f", r.psnrDb, r.rmse, r.ssim, r.maxAbs)
-            << (comparable ? "" : "<br>Blender lit is path traced (physical lights, indirect light): realism, not "
-                                  "a pixel comparison (docs/conventions.md §2)")
-            << "</figcaption></figure>\n";
-      std::printf("demo: %s fast vs %s: PSNR %.2f dB, SSIM %.5f\n", s.c_str(), name.c_str(), r.psnrDb, r.ssim);
-    }
+    views << "<h3>" << s << "</h3>\n"
+          << renderAndCompare(a.out, "robocup2006_" + s, "robocup2006, thesis start pose, " + s, arena,
+                              arena.startPose, settings, engines,
+                              [&](const std::string& name) {
+                                return name == "blender" && shading == Shading::Lit
+                                           ? "<br>Blender lit is path traced (physical lights, indirect light): "
+                                             "realism, not a pixel comparison (docs/conventions.md §2)"
+                                           : "";
+                              })
+                 .html;
   }
 
   RenderSettings ringSettings;
@@ -289,6 +371,8 @@ figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top;max-width:380p
 img{image-rendering:pixelated;background:#444}table{border-collapse:collapse;font-size:85%}
 td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}</style></head><body>
 <h1>omnicam demo</h1>
+)" << glanceSection(glance, rings, a.spp)
+       << R"(<h2>The open field from the thesis' start pose</h2>
 <p>The RoboCup 2006 Four-Legged field seen by the simulated catadioptric camera (k = 11.546, c = 2.321 cm, rim 45°
 above the horizon, 360×360) from the thesis start pose, )"
        << a.spp << R"( samples per pixel on a regular grid. <b>fast</b>: omnicam's renderer, every ray straight from the
