@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geometry.h"
+#include "render_settings.h"
 #include "rig.h"
 #include "scene_loader.h"
 
@@ -14,6 +15,8 @@ namespace omnicam::cli {
 Vec3 parseTriple(const std::string& text, const std::string& flag);
 // "X,Y,YAW" → a robot pose within the documented bounds; InputError naming `flag`.
 RobotPose parsePose(const std::string& text, const std::string& flag);
+// Messages about render settings name the flags that set them.
+inline const SettingNames kSettingFlags{"--spp", "--size"};
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do

@@ -5,12 +5,15 @@
 #include <filesystem>
 #include <tuple>
 
+#include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "dataset_runner.h"
 #include "dataset_shards.h"
-#include "slurm_backend.h"
 #include "errors.h"
+#include "manifest.h"
+#include "safe_files.h"
+#include "slurm_backend.h"
 
 namespace omnicam::cli {
 
@@ -23,6 +26,7 @@ struct DatasetArgs {
   std::string spec, out, verify, status, merge, shard, backend = "local", slurmArgs;
   bool overwrite = false;
   int shards = 0, maxParallel = 0, threads = 0;
+  SceneLoadOptions load;  // the user's --allow-outside-files: a spec cannot set it
 };
 
 // "I/N" → {I, N}; InputError naming --shard otherwise.
@@ -34,12 +38,13 @@ std::pair<int, int> parseShard(const std::string& text) {
       const int index = std::stoi(text.substr(0, slash), &used);
       if (used == slash) {
         const int count = std::stoi(text.substr(slash + 1), &used);
-        if (used == text.size() - slash - 1 && count >= 1 && index >= 0 && index < count) return {index, count};
+        if (used == text.size() - slash - 1 && count >= 1 && count <= kMaxShards && index >= 0 && index < count)
+          return {index, count};
       }
     }
   } catch (const std::exception&) {
   }
-  throw InputError("--shard: must be I/N with 0 <= I < N (got " + quote(text) + ")");
+  throw InputError("--shard: must be I/N with 0 <= I < N (got " + quote(text) + "), N at most " + std::to_string(kMaxShards));
 }
 
 void printShardStates(const std::string& dir, int count) {
@@ -53,7 +58,9 @@ void printShardStates(const std::string& dir, int count) {
 void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--shard", false, "the local backend");
   refuseUnless(cmd, "--overwrite", false, "the local backend");
+  refuseUnless(cmd, "--allow-outside-files", false, "the local backend");
   if (a.shards < 1) throw InputError("--shards: give the number of shards (array tasks) for --backend slurm");
+  checkOutputFolder(a.out, "-o");
   loadDatasetSpec(a.spec);  // a bad spec fails here, not in every task
   SlurmSubmitOptions options;
   options.spec = a.spec;
@@ -77,6 +84,7 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   const int verbs = !a.spec.empty() + !a.verify.empty() + !a.status.empty() + !a.merge.empty();
   if (verbs != 1) throw InputError("dataset: give a SPEC with -o DIR, or --verify DIR, --status DIR or --merge DIR");
   if (a.backend != "local" && a.backend != "slurm") throw InputError("--backend: must be local or slurm (got " + quote(a.backend) + ")");
+  refuseUnless(cmd, "--allow-outside-files", !a.spec.empty(), "a SPEC");
   if (!a.merge.empty()) {
     refuseUnless(cmd, "-o", false, "a SPEC");
     int count = a.shards;
@@ -95,6 +103,7 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   if (!a.verify.empty() || !a.status.empty()) {
     refuseUnless(cmd, "-o", false, "a SPEC");
     refuseUnless(cmd, "--overwrite", false, "a SPEC");
+    refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
   }
   if (!a.verify.empty()) {
     const DatasetVerifyResult r = verifyDataset(a.verify);
@@ -106,7 +115,7 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   }
   if (!a.status.empty()) {
     const std::vector<int> shardCounts = shardCountsIn(a.status);
-    if (!std::filesystem::exists(std::filesystem::path(a.status) / "manifest.json") && !shardCounts.empty()) {
+    if (entryInside(a.status, kManifestName) == EntryKind::Missing && !shardCounts.empty()) {
       // Shards rendering, not merged yet.
       int finished = 0;
       for (int count : shardCounts)
@@ -129,9 +138,13 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
   refuseUnless(cmd, "--slurm-args", false, "--backend slurm");
   refuseUnless(cmd, "--max-parallel", false, "--backend slurm");
+  if (a.overwrite && !a.shard.empty())
+    throw InputError("--overwrite: not with --shard (shards share the folder: remove the old dataset, then render the shards)");
+  checkOutputFolder(a.out, "-o");
   DatasetRunOptions options;
   if (!a.shard.empty()) std::tie(options.shardIndex, options.shardCount) = parseShard(a.shard);
-  const DatasetSpec spec = loadDatasetSpec(a.spec);
+  DatasetSpec spec = loadDatasetSpec(a.spec);
+  spec.allowOutsideFiles = a.load.allowOutsideFolder;
   options.dir = a.out;
   options.overwrite = a.overwrite;
   options.threads = a.threads;
@@ -142,7 +155,13 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   // Ctrl-C finishes the frame in progress, writes the manifest and stops: the run resumes.
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
-  const DatasetRunResult r = runDataset(spec, options);
+  const DatasetRunResult r = [&] {
+    try {
+      return runDataset(spec, options);
+    } catch (const OtherDatasetError& e) {
+      throw InputError("-o: " + std::string(e.what()) + "; use --overwrite to replace it");
+    }
+  }();
   if (progress) progress->finish();
   for (const std::string& note : r.notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
   if (r.stopped) {
@@ -164,13 +183,16 @@ void addDatasetCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("spec", args->spec, "Dataset spec JSON (format omnicam-dataset/1)");
   cmd->add_option("-o,--output", args->out, "Dataset folder (created; an interrupted run resumes in it)");
   cmd->add_flag("--overwrite", args->overwrite, "Replace a dataset made from a different spec in the folder");
+  addSceneLoadFlags(*cmd, args->load);
   cmd->add_option("--verify", args->verify, "Re-hash every file of dataset DIR against its manifest (exit 0 / 1)");
   cmd->add_option("--status", args->status, "Say how many frames of dataset DIR are finished (exit 0 complete / 1)");
   cmd->add_option("--shard", args->shard, "Render only shard I of N (I/N) into the shared folder (docs/cluster.md)");
   cmd->add_option("--backend", args->backend, "local (default) or slurm: submit the shards as a Slurm job array");
-  cmd->add_option("--shards", args->shards, "Shards (array tasks) for --backend slurm; for --merge when not obvious");
+  cmd->add_option("--shards", args->shards, "Shards (array tasks) for --backend slurm; for --merge when not obvious")
+      ->check(CLI::Range(1, kMaxShards));
   cmd->add_option("--slurm-args", args->slurmArgs, "Extra sbatch options for every job, e.g. \"--partition=gpu --time=2:00:00\"");
-  cmd->add_option("--max-parallel", args->maxParallel, "At most K shards running at once (Slurm's --array=...%K)");
+  cmd->add_option("--max-parallel", args->maxParallel, "At most K shards running at once (Slurm's --array=...%K)")
+      ->check(CLI::Range(1, kMaxShards));
   cmd->add_option("--threads", args->threads, "Threads for rendering and encoding (POV-Ray's, Blender's too); 0: every "
                   "core, under --backend slurm: the task's CPUs")
       ->check(CLI::Range(0, 4096));

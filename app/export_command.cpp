@@ -43,7 +43,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
   settings.shading = *shading;
-  checkRenderSettings(settings);
+  checkRenderSettings(settings, kSettingFlags);
   if (a.to == "gltf") {
     ensureDirectory(a.out, "-o");
     GltfExportOptions options;

@@ -97,11 +97,11 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   settings.spp = a.spp;
   settings.shading = *shading;
   if (a.imageSize) settings.rig.imageSize = a.imageSize;
-  checkRenderSettings(settings);  // before the scene: a bad --spp needs no scene to be read
+  checkRenderSettings(settings, kSettingFlags);  // before the scene: a bad --spp needs no scene to be read
   const Scene scene = loadScene(a.scene, a.load);
   settings.rig = scene.rig;
   if (a.imageSize) settings.rig.imageSize = a.imageSize;
-  checkRenderSettings(settings);
+  checkRenderSettings(settings, kSettingFlags);
   const FrameViews views(a.views, settings.rig.camera());
   if (a.path.empty()) {
     checkOutputFile(a.out, "-o");
@@ -169,7 +169,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
   cmd->add_option("--engine", args->engine, "fast (default), povray or blender (ground truth)");
   cmd->add_option("--timeout", args->timeout, "Seconds allowed per external render (default 600)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1e-3, limits::kMaxTimeoutSeconds));
   cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");
   cmd->add_option("--path", args->path, "Render the named camera path into folder OUT");
   cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(CLI::PositiveNumber);

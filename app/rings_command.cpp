@@ -86,7 +86,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   settings.rig = scene.rig;
   if (a.size) settings.rig.imageSize = a.size;
   settings.spp = a.spp;
-  checkRenderSettings(settings);
+  checkRenderSettings(settings, kSettingFlags);
   checkOutputFile(a.out, "-o");
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);

@@ -1,6 +1,7 @@
 #include "atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -12,6 +13,7 @@
 #include <filesystem>
 
 #include "errors.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -19,9 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-[[noreturn]] void failWrite(const std::string& path, const std::string& tmp, int error) {
-  if (!tmp.empty()) ::unlink(tmp.c_str());
-  throw OutputError(showPath(path) + ": cannot write (" + std::strerror(error) + ")");
+[[noreturn]] void failWrite(const std::string& shownPath, int folderFd, const std::string& tmp, int error) {
+  if (!tmp.empty()) ::unlinkat(folderFd, tmp.c_str(), 0);
+  throw OutputError(shownPath + ": cannot write (" + std::strerror(error) + ")");
 }
 
 std::string randomSuffix() {
@@ -38,17 +40,27 @@ std::string randomSuffix() {
 
 void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
   const fs::path target(path);
-  std::error_code ec;
-  if (fs::is_directory(target, ec)) throw InputError(showPath(path) + ": is an existing folder, not a file name");
-  // The temporary keeps the final extension and is created exclusively (O_EXCL) under an
-  // unpredictable name, as mkstemp does, but with the umask's permissions of a normal file.
+  // The user's own path: links in it are followed, as the user meant.
+  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+  const FileDescriptor folderFd(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (folderFd.get() < 0) failWrite(showPath(path), AT_FDCWD, "", errno);
+  writeBytesAtomicallyAt(folderFd.get(), target.filename().string(), showPath(path), bytes, durability);
+}
+
+void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
+                            Durability durability) {
+  struct stat existing {};
+  if (::fstatat(folderFd, name.c_str(), &existing, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(existing.st_mode))
+    throw InputError(shownPath + ": is an existing folder, not a file name");
+  // The temporary keeps the final extension and is created exclusively (O_EXCL, which also
+  // refuses a planted link) under an unpredictable name, as mkstemp does, but with the umask's
+  // permissions of a normal file.
   std::string tmp;
   int fd = -1;
   for (int attempt = 0; fd < 0; ++attempt) {
-    tmp = (target.parent_path() / ("." + target.stem().string() + ".tmp-" + randomSuffix() + target.extension().string()))
-              .string();
-    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && (errno != EEXIST || attempt > 100)) failWrite(path, "", errno);
+    tmp = atomicTemporaryName(name);
+    fd = ::openat(folderFd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0 && (errno != EEXIST || attempt > 100)) failWrite(shownPath, folderFd, "", errno);
   }
   size_t written = 0;
   while (written < bytes.size()) {
@@ -57,17 +69,19 @@ void writeBytesAtomically(const std::string& path, std::string_view bytes, Durab
     if (n <= 0) {
       const int error = n < 0 ? errno : EIO;
       ::close(fd);
-      failWrite(path, tmp, error);
+      failWrite(shownPath, folderFd, tmp, error);
     }
     written += static_cast<size_t>(n);
   }
   if (durability == Durability::Synced && ::fsync(fd) != 0) {
     const int error = errno;
     ::close(fd);
-    failWrite(path, tmp, error);
+    failWrite(shownPath, folderFd, tmp, error);
   }
-  if (::close(fd) != 0) failWrite(path, tmp, errno);
-  if (::rename(tmp.c_str(), path.c_str()) != 0) failWrite(path, tmp, errno);
+  if (::close(fd) != 0) failWrite(shownPath, folderFd, tmp, errno);
+  // rename replaces whatever entry holds the name (a planted link included) and writes nothing
+  // through it.
+  if (::renameat(folderFd, tmp.c_str(), folderFd, name.c_str()) != 0) failWrite(shownPath, folderFd, tmp, errno);
 }
 
 namespace {
@@ -102,6 +116,11 @@ void checkOutputFolder(const std::string& path, const std::string& flag) {
     throw InputError(flag + ": " + showPath(path) + " exists and is not a folder");
 }
 
+std::string atomicTemporaryName(const std::string& name) {
+  const fs::path leaf(name);
+  return "." + leaf.stem().string() + ".tmp-" + randomSuffix() + leaf.extension().string();
+}
+
 bool isAtomicTemporaryName(const std::string& name) {
   const size_t at = name.find(".tmp-");
   return !name.empty() && name[0] == '.' && at != std::string::npos && name.size() >= at + 11;
@@ -111,7 +130,8 @@ void removeAtomicTemporaries(const std::string& dir) {
   std::error_code ec;
   for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
-    if (it->is_regular_file(ec) && isAtomicTemporaryName(it->path().filename().string()))
+    if (it->symlink_status(ec).type() == std::filesystem::file_type::regular &&
+        isAtomicTemporaryName(it->path().filename().string()))
       std::filesystem::remove(it->path(), ec);
 }
 

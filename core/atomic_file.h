@@ -14,6 +14,10 @@ namespace omnicam {
 enum class Durability { Synced, Unsynced };
 void writeBytesAtomically(const std::string& path, std::string_view bytes,
                           Durability durability = Durability::Synced);
+// The same for the file `name` (no '/') inside the open folder `folderFd`, which the caller
+// reached without following links (safe_files.h); `shownPath` names the file in errors.
+void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
+                            Durability durability);
 inline void writeTextAtomically(const std::string& path, const std::string& text) {
   writeBytesAtomically(path, text);
 }
@@ -25,9 +29,12 @@ void checkOutputFile(const std::string& path, const std::string& flag);
 // The same for an output folder: a folder already, or a name that can be created.
 void checkOutputFolder(const std::string& path, const std::string& flag);
 
+// A fresh unpredictable temporary name for the file `name`: ".<stem>.tmp-XXXXXXXXXX<ext>".
+std::string atomicTemporaryName(const std::string& name);
 // Temporary siblings left behind by killed runs match this (".<stem>.tmp-XXXXXX<ext>").
 bool isAtomicTemporaryName(const std::string& fileName);
-// Removes every such temporary under `dir` (recursively); errors are ignored.
+// Removes every such temporary under `dir` (recursively; regular files only, links inside are
+// neither followed nor removed); errors are ignored.
 void removeAtomicTemporaries(const std::string& dir);
 
 }  // namespace omnicam

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <set>
 
 #include "errors.h"
 #include "file_confinement.h"
 #include "image.h"
 #include "input_limits.h"
+#include "scene_loader.h"
 
 namespace omnicam {
 
@@ -326,6 +328,18 @@ GltfArena convert(const tinygltf::Model& model, const std::string& path) {
   return arena;
 }
 
+// The JSON of a glTF file: all of a .gltf, the JSON chunk of a well-formed .glb (tinygltf
+// reports what is wrong with any other).
+std::optional<std::string> gltfJson(const std::string& bytes, bool binary) {
+  if (!binary) return bytes;
+  if (bytes.size() < 20) return std::nullopt;
+  uint32_t length = 0, type = 0;  // little-endian, like the host
+  std::memcpy(&length, bytes.data() + 12, 4);
+  std::memcpy(&type, bytes.data() + 16, 4);
+  if (type != 0x4E4F534Au || length > bytes.size() - 20) return std::nullopt;
+  return bytes.substr(20, length);
+}
+
 GltfArena load(const std::string& path, const std::string* bytes, const GltfImportOptions& options) {
   LoadContext ctx;
   ctx.file = path;
@@ -345,6 +359,8 @@ GltfArena load(const std::string& path, const std::string* bytes, const GltfImpo
     bytes = &owned;
   }
   const bool binary = bytes->size() >= 4 && bytes->compare(0, 4, "glTF") == 0;
+  // Like every JSON input: bounded depth (tinygltf reads extras recursively), no duplicate keys.
+  if (const auto json = gltfJson(*bytes, binary)) checkJsonText(*json, path);
   const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());
   const std::string baseDir = ctx.base.string();
   bool ok = false;

@@ -27,6 +27,9 @@ inline constexpr int kMinImageSize = 8, kMaxImageSize = 16384;         // render
 inline constexpr int kMaxSpp = 1024;
 inline constexpr int64_t kMaxSamplesPerFrame = int64_t{1} << 28;
 
+// How long an external renderer (POV-Ray, Blender) may take for one render (s): a week.
+inline constexpr double kMaxTimeoutSeconds = 7 * 24 * 3600.0;
+
 // Images read (textures, glTF images, images given to view/compare/rings): the header is
 // checked against these before any pixel is decoded.
 inline constexpr int kMaxImageDimension = 16384;
@@ -36,6 +39,10 @@ inline constexpr int64_t kMaxImagePixels = int64_t{1} << 27;  // e.g. 16384 × 8
 // rigs) are parsed into a tree about ten times their size: large meshes belong in glTF.
 inline constexpr int64_t kMaxInputFileBytes = int64_t{1} << 30;
 inline constexpr int64_t kMaxJsonFileBytes = int64_t{64} << 20;
+// JSON nesting (objects and arrays, the root counts as 1) of every JSON input. omnicam's own
+// formats need fewer than 10 levels; the bound keeps every recursive walk of a parsed tree
+// (dump(), tinygltf's extras) far from the stack's end.
+inline constexpr int kMaxJsonDepth = 64;
 // Objects, triangles and vertices per scene (glTF included).
 inline constexpr int64_t kMaxTriangles = int64_t{1} << 25;
 

@@ -12,6 +12,8 @@ using nlohmann::json;
 
 std::string jsonTypeName(const json& v) { return v.type_name(); }
 
+std::string jsonValueText(const json& v) { return v.is_number() ? v.dump() : jsonTypeName(v); }
+
 JsonFields::JsonFields(const json& object, std::string file, std::string where)
     : object_(object), file_(std::move(file)), where_(std::move(where)) {
   if (!object_.is_object())
@@ -61,6 +63,18 @@ double JsonFields::number(const std::string& key, double fallback) {
   return has(key) ? number(key) : (read_.insert(key), fallback);
 }
 
+double JsonFields::number(const std::string& key, const Range& r) {
+  const double d = number(key);
+  if (!((r.openLow ? d > r.lo : d >= r.lo) && d <= r.hi))
+    fail(key, "must be in " + std::string(r.openLow ? "(" : "[") + shortNumber(r.lo) + ", " + shortNumber(r.hi) + "]" +
+                  (r.unit.empty() ? "" : " " + r.unit) + " (got " + shortNumber(d) + ")");
+  return d;
+}
+
+double JsonFields::number(const std::string& key, double fallback, const Range& range) {
+  return has(key) ? number(key, range) : (read_.insert(key), fallback);
+}
+
 double JsonFields::positive(const std::string& key) {
   const double d = number(key);
   if (!(d > 0.0)) fail(key, "must be > 0 (got " + shortNumber(d) + ")");
@@ -77,18 +91,33 @@ double JsonFields::nonNegative(const std::string& key, double fallback) {
   return d;
 }
 
+int64_t JsonFields::integer(const std::string& key, int64_t minimum, int64_t maximum) {
+  const json& v = required(key);
+  if (!v.is_number_integer()) fail(key, "must be an integer (got " + jsonValueText(v) + ")");
+  const auto i = integerInRange(v, minimum, maximum);
+  if (!i) fail(key, "must be in [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "] (got " + v.dump() + ")");
+  return *i;
+}
+
 int JsonFields::integer(const std::string& key, int fallback, int minimum, int maximum) {
   if (!has(key)) {
     read_.insert(key);
     return fallback;
   }
-  const json& v = required(key);
-  if (!v.is_number_integer()) fail(key, "must be an integer (got " + jsonTypeName(v) + ")");
-  const auto i = v.get<long long>();
-  if (i < minimum || i > maximum)
-    fail(key, "must be in [" + std::to_string(minimum) + ", " + std::to_string(maximum) +
-                  "] (got " + std::to_string(i) + ")");
-  return static_cast<int>(i);
+  return static_cast<int>(integer(key, int64_t{minimum}, int64_t{maximum}));
+}
+
+std::optional<int64_t> integerInRange(const json& value, int64_t minimum, int64_t maximum) {
+  // Non-negative integers parse as unsigned, negative ones as signed: compare each as it is.
+  if (value.is_number_unsigned()) {
+    const uint64_t u = value.get<uint64_t>();
+    if (maximum < 0 || u > static_cast<uint64_t>(maximum) || static_cast<int64_t>(u) < minimum) return std::nullopt;
+    return static_cast<int64_t>(u);
+  }
+  if (!value.is_number_integer()) return std::nullopt;
+  const int64_t i = value.get<int64_t>();
+  if (i < minimum || i > maximum) return std::nullopt;
+  return i;
 }
 
 bool JsonFields::boolean(const std::string& key, bool fallback) {

@@ -1,6 +1,7 @@
 #pragma once
 // Strict reading of one JSON object: every read names its field path for error messages, and
 // finish() rejects fields nobody read (Mitsuba-style: unknown parameters are errors).
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -22,12 +23,24 @@ class JsonFields {
   bool has(const std::string& key) const;
   const nlohmann::json& raw(const std::string& key);  // required, any type
 
+  // A finite number in [lo, hi] ((lo, hi] when openLow); `unit` follows the range in messages.
+  struct Range {
+    Range(double low, double high, bool openBelow = false, std::string unitText = "")
+        : lo(low), hi(high), openLow(openBelow), unit(std::move(unitText)) {}
+    double lo, hi;
+    bool openLow;
+    std::string unit;
+  };
   double number(const std::string& key);
   double number(const std::string& key, double fallback);
-  // Checks a number against an open/closed range; `rule` is the text of the requirement.
+  double number(const std::string& key, const Range& range);
+  double number(const std::string& key, double fallback, const Range& range);
   double positive(const std::string& key);
   double positive(const std::string& key, double fallback);
   double nonNegative(const std::string& key, double fallback);
+  // An integer (a JSON number without fraction or exponent) in [minimum, maximum]: required
+  // (first), or `fallback` when absent. Out of range is an error, never wrapped.
+  int64_t integer(const std::string& key, int64_t minimum, int64_t maximum);
   int integer(const std::string& key, int fallback, int minimum, int maximum);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key);
@@ -57,5 +70,10 @@ std::string keySegment(const std::string& key);
 // Reads a JSON array of numbers of a fixed length; `path` (as path() gives it) is used for errors.
 Vec3 jsonVec3(const nlohmann::json& value, const std::string& file, const std::string& path);
 std::string jsonTypeName(const nlohmann::json& value);
+// A value as messages echo it: a number as JSON writes it, anything else by its type.
+std::string jsonValueText(const nlohmann::json& value);
+// The value of an integer JSON number in [minimum, maximum]; nullopt for anything else (not a
+// number, a fraction, out of range: 4294967346 is never 50, 2^64 - 1 never -1).
+std::optional<int64_t> integerInRange(const nlohmann::json& value, int64_t minimum, int64_t maximum);
 
 }  // namespace omnicam

@@ -23,17 +23,17 @@ std::optional<int> samplesPerAxis(int spp) {
   return n;
 }
 
-void checkRenderSettings(const RenderSettings& settings) {
+void checkRenderSettings(const RenderSettings& settings, const SettingNames& names) {
   if (!samplesPerAxis(settings.spp) || settings.spp > limits::kMaxSpp)
-    throw InputError("--spp: must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
+    throw InputError(names.spp + ": must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
                      std::to_string(settings.spp) + ")");
   const int size = settings.rig.imageSize;
   if (size < limits::kMinImageSize || size > limits::kMaxImageSize)
-    throw InputError("--size: must be in [" + std::to_string(limits::kMinImageSize) + ", " +
+    throw InputError(names.size + ": must be in [" + std::to_string(limits::kMinImageSize) + ", " +
                      std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
   const int64_t samples = int64_t{size} * size * settings.spp;
   if (samples > limits::kMaxSamplesPerFrame)
-    throw InputError("--spp: size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) + " = " +
+    throw InputError(names.spp + ": size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) + " = " +
                      std::to_string(samples) + " samples per frame; the limit is " +
                      std::to_string(limits::kMaxSamplesPerFrame));
 }

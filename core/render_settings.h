@@ -20,9 +20,14 @@ std::optional<Shading> parseShading(const std::string& name);
 // The n of spp = n², or nullopt if spp is not a positive perfect square.
 std::optional<int> samplesPerAxis(int spp);
 
+// How messages name spp and the image size: the library's own words by default; the CLI passes
+// its flags ("--spp"), a dataset spec its fields ("spec.json: spp").
+struct SettingNames {
+  std::string spp = "spp", size = "image size";
+};
 // Checks spp (a perfect square ≤ limits::kMaxSpp), the image size and size² × spp against the
-// documented limits; InputError naming --spp / --size otherwise. Every engine calls it first.
-void checkRenderSettings(const RenderSettings& settings);
+// documented limits; InputError naming them as `names` says otherwise. Every engine calls it first.
+void checkRenderSettings(const RenderSettings& settings, const SettingNames& names = {});
 // Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.
 void checkPose(const RobotPose& pose, const std::string& what);
 

@@ -53,21 +53,12 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   return *resolved;
 }
 
-double inRange(JsonFields& fields, const std::string& key, double fallback, double lo, double hi, bool openLow,
-               const std::string& unit) {
-  const double d = fields.number(key, fallback);
-  if (!((openLow ? d > lo : d >= lo) && d <= hi))
-    fields.fail(key, "must be in " + std::string(openLow ? "(" : "[") + shortNumber(lo) + ", " + shortNumber(hi) + "]" + unit +
-                         " (got " + shortNumber(d) + ")");
-  return d;
-}
-
 RigSpec readRig(JsonFields rig) {
   RigSpec spec;
-  spec.height = inRange(rig, "height", spec.height, limits::kMinRigHeight, limits::kMaxRigHeight, false, " m");
+  spec.height = rig.number("height", spec.height, {limits::kMinRigHeight, limits::kMaxRigHeight, false, "m"});
   if (auto mirror = rig.optionalObject("mirror")) {
-    spec.k = inRange(*mirror, "k", spec.k, limits::kMinMirrorK, limits::kMaxMirrorK, true, "");
-    spec.c = inRange(*mirror, "c", spec.c, limits::kMinMirrorC, limits::kMaxMirrorC, false, " m");
+    spec.k = mirror->number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
+    spec.c = mirror->number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
     if (!(spec.c < spec.height))
       mirror->fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
     spec.rimElevationDeg = mirror->number("rim_elevation_deg", spec.rimElevationDeg);
@@ -154,12 +145,7 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
 }
 
 // A primitive's length: at least a micrometre, at most the world's extent.
-double length(JsonFields& o, const std::string& key) {
-  const double d = o.number(key);
-  if (!(d >= limits::kMinLength && d <= limits::kMaxLength))
-    o.fail(key, "must be in [" + shortNumber(limits::kMinLength) + ", " + shortNumber(limits::kMaxLength) + "] m (got " + shortNumber(d) + ")");
-  return d;
-}
+double length(JsonFields& o, const std::string& key) { return o.number(key, {limits::kMinLength, limits::kMaxLength, false, "m"}); }
 
 Shape readShape(const std::string& type, JsonFields& o) {
   if (type == "box") {
@@ -201,11 +187,9 @@ Shape readShape(const std::string& type, JsonFields& o) {
       if (!t.is_array() || t.size() != 3) o.fail(where, "must be [i, j, k]");
       Eigen::Vector3i tri;
       for (int k = 0; k < 3; ++k) {
-        if (!t[k].is_number_integer() || t[k].get<long long>() < 0 ||
-            t[k].get<long long>() >= static_cast<long long>(m.vertices.size()))
-          o.fail(where, "vertex indices must be integers in [0, " +
-                            std::to_string(m.vertices.size()) + ")");
-        tri[k] = t[k].get<int>();
+        const auto index = integerInRange(t[k], 0, static_cast<int64_t>(m.vertices.size()) - 1);
+        if (!index) o.fail(where, "vertex indices must be integers in [0, " + std::to_string(m.vertices.size()) + ")");
+        tri[k] = static_cast<int>(*index);
       }
       m.triangles.push_back(tri);
     }
@@ -297,29 +281,83 @@ const CameraPath* Scene::findPath(const std::string& pathName) const {
   return nullptr;
 }
 
-nlohmann::json parseJsonText(const std::string& text, const std::string& file) {
-  // JSON objects with a repeated key parse silently to the last value: refuse them instead.
-  std::vector<std::set<std::string>> keysOfOpenObjects;
-  const json::parser_callback_t rejectDuplicateKeys = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) keysOfOpenObjects.emplace_back();
-    else if (event == json::parse_event_t::object_end && !keysOfOpenObjects.empty()) keysOfOpenObjects.pop_back();
-    else if (event == json::parse_event_t::key && !keysOfOpenObjects.empty() &&
-             !keysOfOpenObjects.back().insert(parsed.get<std::string>()).second)
-      throw InputError(showPath(file) + ": duplicate key " + quote(parsed.get<std::string>()) + " in one object");
+namespace {
+
+// The checking pass over a JSON text (SAX: no tree is built, no work per sibling): syntax, no
+// key twice in one object, nesting at most `maxDepth`. nlohmann's own callback parser would do
+// the key check too, but it rescans the parent at every object's end: quadratic in siblings.
+class StrictJsonCheck : public json::json_sax_t {
+ public:
+  StrictJsonCheck(const std::string& file, int maxDepth) : file_(file), maxDepth_(maxDepth) {}
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override {
+    enter();
+    keysOfOpenObjects_.emplace_back();
     return true;
-  };
+  }
+  bool key(string_t& key) override {
+    if (!keysOfOpenObjects_.back().insert(key).second)
+      throw InputError(showPath(file_) + ": duplicate key " + quote(key) + " in one object");
+    return true;
+  }
+  bool end_object() override {
+    keysOfOpenObjects_.pop_back();
+    --depth_;
+    return true;
+  }
+  bool start_array(std::size_t) override {
+    enter();
+    return true;
+  }
+  bool end_array() override {
+    --depth_;
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const json::exception& e) override {
+    // Syntax errors, and numbers such as 1e400 that overflow.
+    throw InputError(showPath(file_) + ": not valid JSON (" + jsonErrorText(e.what()) + ")");
+  }
+
+ private:
+  void enter() {
+    if (++depth_ > maxDepth_)
+      throw InputError(showPath(file_) + ": JSON nested deeper than " + std::to_string(maxDepth_) +
+                       " levels of objects and arrays");
+  }
+  const std::string& file_;
+  const int maxDepth_;
+  int depth_ = 0;
+  std::vector<std::set<std::string>> keysOfOpenObjects_;
+};
+
+}  // namespace
+
+void checkJsonText(const std::string& text, const std::string& file, int maxDepth) {
+  StrictJsonCheck check(file, maxDepth);
+  json::sax_parse(text, &check);
+}
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& file, int maxDepth) {
+  checkJsonText(text, file, maxDepth);
+  // Checked: the plain parser (no callback, linear time) builds the tree.
   try {
-    return json::parse(text, rejectDuplicateKeys);
-  } catch (const json::exception& e) {  // parse errors, and numbers such as 1e400 that overflow
+    return json::parse(text);
+  } catch (const json::exception& e) {
     throw InputError(showPath(file) + ": not valid JSON (" + jsonErrorText(e.what()) + ")");
   }
 }
 
-nlohmann::json readJsonFile(const std::string& file) {
+nlohmann::json readJsonFile(const std::string& file, int64_t maxBytes, int maxDepth) {
   std::string why;
-  const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
+  const auto text = readWholeFile(file, why, maxBytes);
   if (!text) throw InputError(showPath(file) + ": " + why);
-  return parseJsonText(*text, file);
+  return parseJsonText(*text, file, maxDepth);
 }
 
 RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const std::string& where) {

@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "input_limits.h"
 #include "scene.h"
 
 namespace omnicam {
@@ -24,8 +25,13 @@ Scene loadSceneFromText(const std::string& text, const std::string& path, const 
 // documented ranges (input_limits.h). `where` is its field path for errors ("rig").
 RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const std::string& where);
 
-// Reads a whole JSON file strictly: at most limits::kMaxInputFileBytes, no duplicate keys.
-nlohmann::json readJsonFile(const std::string& path);
-nlohmann::json parseJsonText(const std::string& text, const std::string& path);
+// Every JSON input goes through these: linear time, no key twice in one object, nested at most
+// `maxDepth` levels (objects and arrays), else InputError naming `path`.
+// Reads a whole JSON file strictly: at most `maxBytes` (a regular file).
+nlohmann::json readJsonFile(const std::string& path, int64_t maxBytes = limits::kMaxJsonFileBytes,
+                            int maxDepth = limits::kMaxJsonDepth);
+nlohmann::json parseJsonText(const std::string& text, const std::string& path, int maxDepth = limits::kMaxJsonDepth);
+// The same checks without building the tree (for JSON another library parses: glTF).
+void checkJsonText(const std::string& text, const std::string& path, int maxDepth = limits::kMaxJsonDepth);
 
 }  // namespace omnicam

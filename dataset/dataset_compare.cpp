@@ -10,9 +10,11 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "dataset_runner.h"
 #include "errors.h"
 #include "manifest.h"
 #include "markup.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -33,15 +35,22 @@ bool samePose(const RobotPose& a, const RobotPose& b) {
          std::abs(a.yawDeg - b.yawDeg) <= kPoseTolerance;
 }
 
-// B's image for A's `relative` path when B has no manifest: the same path, .png or .exr.
+// B's image for A's `relative` path when B has no manifest: the same path, .png or .exr (a
+// link there is not followed: it is reported when the image is read).
 std::string layoutFile(const std::string& dirB, const std::string& relative) {
   for (const char* ext : {".png", ".exr"}) {
     const std::string candidate = fs::path(relative).replace_extension(ext).string();
-    std::error_code ec;
-    if (fs::is_regular_file(fs::path(dirB) / candidate, ec)) return candidate;
+    if (entryInside(dirB, candidate) != EntryKind::Missing) return candidate;
   }
   throw InputError(showPath(dirB) + ": no image " + showPath(fs::path(relative).replace_extension("").string()) +
                    ".png or .exr for frame of " + showPath(relative) + " (a folder without manifest.json must follow the dataset layout)");
+}
+
+// An image of a dataset folder: read without following links, a regular file of bounded size.
+ImageRGBA readDatasetImage(const std::string& dir, const std::string& relative) {
+  const std::string bytes = readFileInside(dir, relative, kMaxDatasetFileBytes);
+  return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
+                             showPath((fs::path(dir) / relative).string()));
 }
 
 std::string frameLabel(const FrameComparison& f) {
@@ -61,11 +70,11 @@ std::string psnrText(double psnr) {
 
 DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
                                      const DatasetCompareOptions& options) {
-  const DatasetManifest a = readManifest(dirA);
+  const DatasetManifest a = readDatasetManifest(dirA);
   std::error_code ec;
   if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
   std::optional<DatasetManifest> b;
-  if (fs::exists(fs::path(dirB) / kManifestName, ec)) b = readManifest(dirB);
+  if (entryInside(dirB, kManifestName) != EntryKind::Missing) b = readDatasetManifest(dirB);
   DatasetCompareResult result;
   if (b) {
     std::vector<int> onlyA, onlyB;
@@ -112,8 +121,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
   if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
   tbb::parallel_for(size_t{0}, result.frames.size(), [&](size_t k) {
     FrameComparison& f = result.frames[k];
-    f.result = compareImages(readImage((fs::path(dirA) / f.fileA).string()), readImage((fs::path(dirB) / f.fileB).string()),
-                             options.image);
+    f.result = compareImages(readDatasetImage(dirA, f.fileA), readDatasetImage(dirB, f.fileB), options.image);
     f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
   });
   result.minPsnrDb = std::numeric_limits<double>::infinity();
@@ -137,7 +145,7 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   const fs::path assets = report.parent_path() / assetsName;
   std::error_code ec;
   fs::create_directories(assets, ec);
-  if (ec) throw OutputError("--report: " + showPath(assets.string()) + ": cannot create folder (" + ec.message() + ")");
+  if (ec) throw OutputError(showPath(assets.string()) + ": cannot create folder (" + ec.message() + ")");
   std::vector<const FrameComparison*> order;
   for (const FrameComparison& f : result.frames) order.push_back(&f);
   std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
@@ -159,8 +167,8 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
   for (size_t k = 0; k < worst; ++k) {
     const FrameComparison& f = *order[k];
-    const ImageRGBA imageA = readImage((fs::path(dirA) / f.fileA).string());
-    const ImageRGBA imageB = readImage((fs::path(dirB) / f.fileB).string());
+    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA);
+    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB);
     char stem[96];
     std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
     const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};

@@ -3,22 +3,26 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "dataset_shards.h"
 #include "frame_outputs.h"
 #include "intrinsics_files.h"
 #include "manifest.h"
 #include "number_format.h"
 #include "pose_sampler.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 #include "sha256.h"
 #include "sidecar.h"
@@ -42,14 +46,8 @@ struct CameraSetup {
   RigSpec rig;
 };
 
-
-std::string fileSha256(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return sha256OfBytes(bytes.str());
-}
+// Folders of a camera the dataset layout has (docs/dataset-format.md).
+constexpr const char* kCameraFolders[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks", "intrinsics"};
 
 // TUM RGB-D trajectory format: "timestamp tx ty tz qx qy qz qw", the camera frame (X forward,
 // Y right, Z down at F'; the intrinsics files' frame) in the world.
@@ -69,22 +67,128 @@ std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup
   return out.str();
 }
 
-bool folderIsEmpty(const fs::path& dir) {
+// A camera's files that stay the same from frame to frame: intrinsics and poses.
+struct StaticFile {
+  std::string key, relative, text;
+};
+
+std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<RobotPose>& poses, double interval) {
+  const std::string& name = setup.camera->name;
+  const OmniCamera omni = setup.rig.camera();
+  return {{"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(omni)},
+          {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, omni)},
+          {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, omni)},
+          {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval)}};
+}
+
+// Whether `relative` is a file of the dataset layout for one of `cameras`: all that overwriting
+// may remove, whatever else a manifest lists.
+bool isLayoutFile(const std::string& relative, const std::set<std::string>& cameras) {
+  static const std::regex layout(
+      R"(([^/]+)/((rgb|depth|instance|semantic|normal|landmarks)/\d{6}\.(png|exr|json)|intrinsics/(opencv|kalibr|camodocal)\.yaml|poses\.tum))");
+  std::smatch m;
+  return std::regex_match(relative, m, layout) && cameras.count(m[1].str());
+}
+
+std::set<std::string> cameraNames(const DatasetManifest& manifest) {
+  std::set<std::string> names;
+  for (const json& camera : manifest.header.at("cameras")) names.insert(camera.at("name").get<std::string>());
+  return names;
+}
+
+// Overwriting: removes the files `old` lists in the dataset layout (regular files only), then
+// its camera folders that this leaves empty. Nothing else: a folder named like a camera may hold
+// the user's own files, and they stay.
+void removeDatasetFiles(const std::string& dir, const DatasetManifest& old) {
+  const std::set<std::string> cameras = cameraNames(old);
+  for (const FileRecord& file : manifestFiles(old))
+    if (isLayoutFile(file.path, cameras)) removeFileInside(dir, file.path);
+  for (const std::string& camera : cameras) {
+    for (const char* kind : kCameraFolders) removeEmptyFolderInside(dir, camera + "/" + kind);
+    removeEmptyFolderInside(dir, camera);
+  }
+}
+
+DatasetManifest readPreviousManifest(const std::string& dir, const std::string& name) {
+  try {
+    return readDatasetManifest(dir, name);
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) +
+                     " (omnicam resumes or replaces a dataset only by its readable manifest; move the folder away to start afresh)");
+  }
+}
+
+// What the folder holds before the run: nothing (new or empty: nullopt), this dataset (resumed:
+// its manifest), or something else — refused, except another dataset when overwriting, whose
+// files are then removed. A shard reads its own manifest, and the merged one if there is one.
+std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, const json& header,
+                                              const std::string& manifestName) {
+  const std::string& dir = options.dir;
   std::error_code ec;
-  return fs::is_empty(dir, ec);
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError(showPath(dir) + ": exists and is not a folder");
+  if (!fs::exists(dir, ec) || fs::is_empty(dir, ec)) return std::nullopt;
+  std::vector<std::string> names{kManifestName};
+  if (manifestName != kManifestName) names.push_back(manifestName);
+  std::optional<DatasetManifest> previous;
+  for (const std::string& name : names) {
+    if (entryInside(dir, name) == EntryKind::Missing) continue;
+    previous = readPreviousManifest(dir, name);
+    if (datasetIdentity(previous->header) != datasetIdentity(header) && !options.overwrite) {
+      const json sha = previous->header.value("spec_sha256", json());
+      throw OtherDatasetError(showPath(dir) + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
+                              (sha.is_string() ? quote(sha.get<std::string>()) : std::string("?")) + ")");
+    }
+  }
+  if (!previous) {
+    // Other shards of a dataset fill the folder ("shards/" marks it as theirs).
+    if (manifestName != kManifestName && entryInside(dir, "shards") == EntryKind::Folder) return std::nullopt;
+    throw InputError(showPath(dir) + ": folder is not empty and has no " + kManifestName +
+                     ": omnicam writes a dataset only into an empty folder or its own dataset's (and replaces only files a "
+                     "dataset's manifest lists)");
+  }
+  if (!options.overwrite) return previous;
+  removeDatasetFiles(dir, *previous);
+  return std::nullopt;
 }
 
-void writeDatasetFile(const fs::path& dir, const std::string& relative, const std::string& bytes) {
-  writeBytesAtomically((dir / relative).string(), bytes, Durability::Unsynced);
+// The earlier run's frames in [first, end) whose robot pose is the spec's and whose files are
+// exactly the ones this run writes, each still a regular file hashing to the manifest's SHA-256
+// (a link or anything else is not intact: the frame is rendered again, and the rename replaces
+// the entry without writing through it).
+std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetManifest& previous,
+                                        const std::vector<RobotPose>& poses, const std::vector<CameraSetup>& setups,
+                                        const FrameOutputPlan& plan, int first, int end) {
+  std::map<int, FrameRecord> kept;
+  const std::vector<std::string> kinds = frameFileKinds(plan);
+  for (const auto& [index, frame] : previous.frames) {
+    if (index < first || index >= end || frame.cameras.size() != setups.size()) continue;
+    const RobotPose& want = poses[index];
+    if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg) continue;
+    bool intact = true;
+    for (const CameraSetup& setup : setups) {
+      const auto camera = frame.cameras.find(setup.camera->name);
+      intact = intact && camera != frame.cameras.end() && camera->second.files.size() == kinds.size();
+      for (size_t k = 0; intact && k < kinds.size(); ++k) {
+        const auto file = camera->second.files.find(kinds[k]);
+        intact = file != camera->second.files.end() &&
+                 file->second.path == frameFilePath(setup.camera->name, kinds[k], index, plan) &&
+                 sha256Inside(dir, file->second.path, kMaxDatasetFileBytes).sha256 == file->second.sha256;
+      }
+    }
+    if (intact) kept[index] = frame;
+  }
+  return kept;
 }
 
-}  // namespace
-
-namespace {
+// Inside a cancelled parallel_for (a neighbouring frame's write failed) the engine's and the
+// encoders' nested loops end early without an error, so what this frame holds may be
+// incomplete: nothing of it is written. The neighbour's error ends the run.
+void stopIfCancelled() {
+  if (tbb::is_current_task_group_canceling()) throw std::runtime_error("frame cancelled");
+}
 
 // runDataset's work, on whatever threads the caller's arena gives it.
 DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions& options) {
-  const fs::path dir(options.dir);
   const Scene scene = loadScene(spec.scene, {spec.allowOutsideFiles});
   std::vector<CameraSetup> setups;
   double topHeight = 0.0;
@@ -92,7 +196,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig};
     if (spec.size) setup.rig.imageSize = *spec.size;
     RenderSettings check{setup.rig, spec.spp, spec.shading};
-    checkRenderSettings(check);
+    checkRenderSettings(check, settingNames(spec));
     topHeight = std::max(topHeight, setup.rig.height);
     setups.push_back(setup);
   }
@@ -107,9 +211,10 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   const int totalFrames = static_cast<int>(poses.size());
   const bool sharded = options.shardCount > 0;
   const int shardCount = std::max(1, options.shardCount);
-  if (options.shardCount < 0 || options.shardIndex < 0 || options.shardIndex >= shardCount)
-    throw InputError("--shard: must be I/N with 0 <= I < N");
-  if (sharded && options.overwrite) throw InputError("--overwrite: not with --shard (remove the folder, then render the shards)");
+  if (options.shardCount < 0 || options.shardCount > kMaxShards || options.shardIndex < 0 || options.shardIndex >= shardCount)
+    throw InputError("shard " + std::to_string(options.shardIndex) + " of " + std::to_string(options.shardCount) +
+                     ": must be shard I of N with 0 <= I < N <= " + std::to_string(kMaxShards));
+  if (sharded && options.overwrite) throw InputError(showPath(options.dir) + ": a shard never overwrites (shards share the folder)");
   const int firstFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
   const int endFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
   const std::string manifestName = sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
@@ -152,10 +257,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
                          {"class", c.empty() ? json(nullptr) : json(c)}, {"class_id", classOfInstance[i + 1]}});
   }
 
-  json written = json::array({"rgb"});
-  for (const auto& [kind, on] : {std::pair<const char*, bool>{"depth", plan.depth}, {"instance", plan.instance},
-                                 {"semantic", plan.semantic}, {"normal", plan.normal}, {"landmarks", plan.landmarks}})
-    if (on) written.push_back(kind);
+  const json written = frameFileKinds(plan);
 
   DatasetManifest manifest;
   json& header = manifest.header;
@@ -181,97 +283,44 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
                        {"end_frame", endFrame}};
   header["complete"] = false;
 
-  // The folder: new, this dataset (resume), or something else (refused unless --overwrite).
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("-o: " + showPath(options.dir) + ": exists and is not a folder");
-  std::optional<DatasetManifest> previous;
-  auto readPrevious = [&](const std::string& name) -> std::optional<DatasetManifest> {
-    if (!fs::exists(dir / name, ec)) return std::nullopt;
-    std::optional<DatasetManifest> found;
-    try {
-      found = readManifest(options.dir, name);
-    } catch (const InputError& e) {
-      if (!options.overwrite) throw InputError(std::string(e.what()) + " (use --overwrite to start afresh)");
-    }
-    if (found && datasetIdentity(found->header) != datasetIdentity(header) && !options.overwrite)
-      throw InputError("-o: " + showPath(options.dir) + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
-                       found->header.value("spec_sha256", std::string("?")) + "); use --overwrite to replace it");
-    return found;
-  };
-  if (fs::exists(dir / kManifestName, ec)) {
-    previous = readPrevious(kManifestName);
-    // A shard of a merged dataset keeps what the merged manifest lists, unless its own says more.
-    if (sharded && fs::exists(dir / manifestName, ec)) previous = readPrevious(manifestName);
-  } else if (sharded && fs::exists(dir / manifestName, ec)) {
-    previous = readPrevious(manifestName);
-  } else if (fs::exists(dir, ec) && !folderIsEmpty(dir) && !options.overwrite &&
-             !(sharded && fs::is_directory(dir / "shards", ec))) {
-    throw InputError("-o: " + showPath(options.dir) + ": folder is not empty and has no " + kManifestName + "; use --overwrite");
-  }
-  if (options.overwrite && fs::exists(dir, ec)) {
-    // Only what a dataset owns: the manifest and the camera folders (old and new names).
-    std::set<std::string> cameraFolders;
-    for (const CameraSetup& s : setups) cameraFolders.insert(s.camera->name);
-    // An old manifest's names are only trusted as far as the spec's rule goes: never "../x".
-    if (previous)
-      for (const json& c : previous->header.at("cameras"))
-        if (const std::string name = c.at("name").get<std::string>(); isCameraFolderName(name)) cameraFolders.insert(name);
-    for (const std::string& name : cameraFolders) fs::remove_all(dir / name, ec);
-    fs::remove(dir / kManifestName, ec);
-    previous.reset();
-  }
-  // Shards share the folder: "shards/" marks it as theirs before anything else is written, and a
-  // shard never removes temporaries (another shard may be writing them; the merge does).
-  fs::create_directories(sharded ? dir / "shards" : dir, ec);
-  if (ec) throw OutputError("-o: " + showPath(options.dir) + ": cannot create folder (" + ec.message() + ")");
-  if (!sharded) removeAtomicTemporaries(dir.string());
-
-  // Static files per camera: intrinsics and poses.
+  // Static files per camera (intrinsics and poses), listed in the header with their hashes.
+  std::vector<StaticFile> statics;
   json cameras = json::array();
   for (const CameraSetup& setup : setups) {
-    const std::string& name = setup.camera->name;
-    for (const char* kind : {"rgb", "depth", "instance", "semantic", "normal", "landmarks", "intrinsics"}) {
-      const bool wanted = std::string(kind) == "rgb" || std::string(kind) == "intrinsics" ||
-                          std::find(written.begin(), written.end(), kind) != written.end();
-      if (wanted) fs::create_directories(dir / name / kind, ec);
-      if (ec) throw OutputError("-o: " + showPath((dir / name / kind).string()) + ": cannot create folder (" + ec.message() + ")");
-    }
-    const OmniCamera omni = setup.rig.camera();
-    const std::pair<std::string, std::string> statics[] = {
-        {"intrinsics_opencv", openCvIntrinsicsYaml(omni)},
-        {"intrinsics_kalibr", kalibrIntrinsicsYaml(name, omni)},
-        {"intrinsics_camodocal", camodocalIntrinsicsYaml(name, omni)},
-        {"poses_tum", posesTum(poses, setup, spec.frameIntervalSeconds)}};
     json files = json::object();
-    for (const auto& [key, text] : statics) {
-      const std::string relative = key == "poses_tum" ? name + "/poses.tum"
-                                                      : name + "/intrinsics/" + key.substr(std::string("intrinsics_").size()) + ".yaml";
-      writeDatasetFile(dir, relative, text);
-      files[key] = {{"path", relative}, {"sha256", sha256OfBytes(text)}};
+    for (StaticFile& file : staticFiles(setup, poses, spec.frameIntervalSeconds)) {
+      files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
+      statics.push_back(std::move(file));
     }
-    cameras.push_back({{"name", name},
+    cameras.push_back({{"name", setup.camera->name},
                        {"rig", rigToJson(setup.rig)},
                        {"mount", {{"x", setup.camera->mountX}, {"y", setup.camera->mountY}, {"yaw_deg", setup.camera->mountYawDeg}}},
-                       {"intrinsics", intrinsicsToJson(omni)},
+                       {"intrinsics", intrinsicsToJson(setup.rig.camera())},
                        {"files", files}});
   }
   header["cameras"] = cameras;
+  checkManifestHeaderSize(header, spec.file);
 
-  // Keep the earlier run's frames whose files all still hash right and whose poses match.
-  if (previous) {
-    for (auto& [index, frame] : previous->frames) {
-      if (index < firstFrame || index >= endFrame || frame.cameras.size() != setups.size()) continue;
-      const RobotPose& want = poses[index];
-      if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg) continue;
-      bool intact = true;
-      for (const auto& [name, camera] : frame.cameras)
-        for (const auto& [kind, file] : camera.files)
-          if (intact && fileSha256(dir / file.path) != file.sha256) intact = false;
-      if (intact) manifest.frames[index] = frame;
-    }
-  }
+  // The folder: new, this dataset (resume), or something else (refused unless overwriting a
+  // dataset). Everything in it is checked before anything is written: a planted link or a file
+  // where a folder goes ends the run here.
+  std::vector<std::string> folders;
+  if (sharded) folders.push_back("shards");
+  for (const CameraSetup& setup : setups)
+    for (const char* kind : kCameraFolders)
+      if (std::string(kind) == "intrinsics" || std::find(written.begin(), written.end(), kind) != written.end())
+        folders.push_back(setup.camera->name + "/" + kind);
+  const std::optional<DatasetManifest> previous = takeOverFolder(options, header, manifestName);
+  for (const std::string& folder : folders) checkFoldersInside(options.dir, folder);
+  // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
+  // may be writing them; the merge does).
+  if (!sharded) removeAtomicTemporaries(options.dir);
+  if (previous) manifest.frames = intactFrames(options.dir, *previous, poses, setups, plan, firstFrame, endFrame);
   result.kept = static_cast<int>(manifest.frames.size());
+  // The manifest comes first: from its first file on, the folder is recognisably a dataset.
   writeManifest(options.dir, manifest, manifestName);
+  for (const std::string& folder : folders) makeFoldersInside(options.dir, folder);
+  for (const StaticFile& file : statics) writeFileInside(options.dir, file.relative, file.text, Durability::Unsynced);
 
   std::unique_ptr<RayScene> rays;
   if (plan.landmarks) rays = std::make_unique<RayScene>(scene);
@@ -312,10 +361,12 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
                                           : engine->render(pose, settings);
         // Seeded by frame and camera: a resumed run records the same noise.
         if (spec.recording) image = recordFrame(*spec.recording, image, static_cast<uint64_t>(index) * setups.size() + c);
+        std::vector<EncodedFile> files = encodeFrameOutputs(scene, rays.get(), settings, setups[c].camera->name, index,
+                                                            pose, image, plan.anyAov() ? &aovs : nullptr, plan, classOfInstance);
+        stopIfCancelled();
         CameraFrame cameraFrame{pose, {}};
-        for (EncodedFile& file : encodeFrameOutputs(scene, rays.get(), settings, setups[c].camera->name, index, pose,
-                                                    image, plan.anyAov() ? &aovs : nullptr, plan, classOfInstance)) {
-          writeDatasetFile(dir, file.relativePath, file.bytes);
+        for (EncodedFile& file : files) {
+          writeFileInside(options.dir, file.relativePath, file.bytes, Durability::Unsynced);
           cameraFrame.files[file.kind] = {file.relativePath, sha256OfBytes(file.bytes)};
         }
         record.cameras[setups[c].camera->name] = std::move(cameraFrame);
@@ -361,7 +412,7 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
 }
 
 DatasetStatus datasetStatus(const std::string& dir) {
-  const DatasetManifest manifest = readManifest(dir);
+  const DatasetManifest manifest = readDatasetManifest(dir);
   DatasetStatus status;
   status.frames = manifest.header.value("frame_count", 0);
   status.finished = static_cast<int>(manifest.frames.size());
@@ -369,19 +420,22 @@ DatasetStatus datasetStatus(const std::string& dir) {
   return status;
 }
 
+DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name) {
+  // A missing one is the reader's to report ("not a dataset folder"); how large: its limit.
+  if (entryInside(dir, name) != EntryKind::Missing) checkFileInside(dir, name, std::numeric_limits<int64_t>::max());
+  return readManifest(dir, name);
+}
+
 DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName) {
-  const DatasetManifest manifest = readManifest(dir, manifestName);
+  const DatasetManifest manifest = readDatasetManifest(dir, manifestName);
   DatasetVerifyResult result;
   for (const FileRecord& file : manifestFiles(manifest)) {
     ++result.files;
-    const fs::path path = fs::path(dir) / file.path;
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-      result.problems.push_back(showPath(file.path) + ": missing");
-      continue;
-    }
-    const std::string actual = fileSha256(path);
-    if (actual != file.sha256) result.problems.push_back(showPath(file.path) + ": SHA-256 " + actual + " differs from the manifest's " + file.sha256);
+    const FileDigest digest = sha256Inside(dir, file.path, kMaxDatasetFileBytes);
+    if (!digest.ok())
+      result.problems.push_back(showPath(file.path) + ": " + digest.problem);
+    else if (digest.sha256 != file.sha256)
+      result.problems.push_back(showPath(file.path) + ": SHA-256 " + digest.sha256 + " differs from the manifest's " + file.sha256);
   }
   // A shard is complete with its own range of frames.
   const json shard = manifest.header.value("shard", json());

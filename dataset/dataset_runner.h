@@ -9,12 +9,29 @@
 #include <vector>
 
 #include "dataset_spec.h"
+#include "errors.h"
+#include "manifest.h"
 
 namespace omnicam {
 
+// The largest file omnicam reads or hashes in a dataset folder: above the largest frame it
+// writes (a 16384² RGBA float EXR, 4 GiB uncompressed), so a planted multi-gigabyte file is
+// refused by its size instead of read.
+inline constexpr int64_t kMaxDatasetFileBytes = int64_t{5} << 30;
+
+// The folder holds a dataset made from another spec, scene or engine; overwriting
+// (DatasetRunOptions::overwrite) would replace it.
+class OtherDatasetError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 struct DatasetRunOptions {
   std::string dir;
-  bool overwrite = false;  // replace a dataset made from another spec
+  // Replace the dataset in the folder (another spec's, or this one's from scratch): only the
+  // files its manifest lists in the dataset layout are removed, and its camera folders if that
+  // leaves them empty. A folder without a readable manifest is never overwritten.
+  bool overwrite = false;
   // Shard `shardIndex` of `shardCount` (dataset_shards.h): frames [F·i/n, F·(i+1)/n) only, listed
   // in DIR/shards/shard-i-of-n.json instead of DIR/manifest.json, so that shards on different
   // machines can fill one shared folder at once (a Slurm array of one task is shard 0 of 1).
@@ -39,8 +56,10 @@ struct DatasetRunResult {
   std::vector<std::string> notes;  // e.g. outputs a ground-truth engine does not write
 };
 
-// InputError for a bad spec or scene, or a folder holding another dataset (unless overwrite);
-// ExternalError from a ground-truth engine; OutputError if a file cannot be written.
+// InputError for a bad spec or scene, a folder holding something else than this dataset
+// (OtherDatasetError: another dataset, unless overwrite), or a link, special file or file in the
+// way inside the folder (nothing inside is followed: docs/robustness.md); ExternalError from a
+// ground-truth engine; OutputError if a file cannot be written.
 DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options);
 
 // Frames planned by the spec and how many the folder's manifest has finished (`dataset --status`).
@@ -52,9 +71,15 @@ DatasetStatus datasetStatus(const std::string& dir);
 
 struct DatasetVerifyResult {
   int files = 0;  // checked
-  std::vector<std::string> problems;  // one line each: missing, changed, incomplete
+  // One line each: missing, changed, a link or not a regular file (never followed or read),
+  // incomplete.
+  std::vector<std::string> problems;
   bool ok() const { return problems.empty(); }
 };
+// readManifest (manifest.h), after checking that DIR/`name` is a regular file reached without
+// following a link.
+DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name = kManifestName);
+
 // Re-hashes every file the manifest (or the shard manifest `manifestName`) lists. InputError if
 // DIR has no readable manifest.
 DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName = "manifest.json");

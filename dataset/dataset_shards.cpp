@@ -8,21 +8,33 @@
 #include "dataset_runner.h"
 #include "errors.h"
 #include "manifest.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+namespace {
+
+void checkShardCount(int count) {
+  if (count < 1 || count > kMaxShards)
+    throw InputError("shard count " + std::to_string(count) + ": must be in [1, " + std::to_string(kMaxShards) + "]");
+}
+
+bool hasShardManifest(const std::string& dir, const std::string& name) { return entryInside(dir, name) != EntryKind::Missing; }
+
+}  // namespace
+
 std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles) {
+  checkShardCount(count);
   std::vector<ShardState> states;
   for (int i = 0; i < count; ++i) {
     ShardState s;
     s.index = i;
     const std::string name = shardManifestName(i, count);
-    std::error_code ec;
-    if (fs::exists(fs::path(dir) / name, ec)) {
-      const DatasetManifest m = readManifest(dir, name);
+    if (hasShardManifest(dir, name)) {
+      const DatasetManifest m = readDatasetManifest(dir, name);
       s.started = true;
       const json& shard = m.header.at("shard");
       s.frames = shard.at("end_frame").get<int>() - shard.at("first_frame").get<int>();
@@ -40,28 +52,28 @@ std::vector<ShardState> shardStates(const std::string& dir, int count, bool chec
 
 std::vector<int> shardCountsIn(const std::string& dir) {
   std::set<int> counts;
-  const std::regex name(R"(shard-\d+-of-(\d+)\.json)");
+  const std::regex name(R"(shard-\d+-of-([1-9]\d{0,5})\.json)");
+  if (entryInside(dir, "shards") != EntryKind::Folder) return {};  // never listed through a link
   std::error_code ec;
   for (auto it = fs::directory_iterator(fs::path(dir) / "shards", ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
     std::smatch m;
     const std::string file = it->path().filename().string();
-    if (std::regex_match(file, m, name) && m[1].length() < 7) counts.insert(std::stoi(m[1]));
+    if (std::regex_match(file, m, name) && std::stoi(m[1]) <= kMaxShards) counts.insert(std::stoi(m[1]));
   }
   return {counts.begin(), counts.end()};
 }
 
 MergeResult mergeDatasetShards(const std::string& dir, int count) {
-  if (count < 1) throw InputError("--merge-shards: must be at least 1");
+  checkShardCount(count);
   std::optional<DatasetManifest> merged;
   MergeResult result;
   for (int i = 0; i < count; ++i) {
     const std::string name = shardManifestName(i, count);
-    std::error_code ec;
-    if (!fs::exists(fs::path(dir) / name, ec)) {
+    if (!hasShardManifest(dir, name)) {
       result.incompleteShards.push_back(i);
       continue;
     }
-    const DatasetManifest shard = readManifest(dir, name);
+    const DatasetManifest shard = readDatasetManifest(dir, name);
     if (!merged) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
@@ -77,9 +89,8 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   }
   if (!merged) throw InputError(showPath(dir) + ": no shard of " + std::to_string(count) + " has started (no shards/shard-*-of-" +
                                 std::to_string(count) + ".json)");
-  std::error_code ec;
-  if (fs::exists(fs::path(dir) / kManifestName, ec)) {
-    const DatasetManifest existing = readManifest(dir);
+  if (entryInside(dir, kManifestName) != EntryKind::Missing) {
+    const DatasetManifest existing = readDatasetManifest(dir);
     if (datasetIdentity(existing.header) != datasetIdentity(merged->header))
       throw InputError(showPath(dir) + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
     // Frames an earlier merge (or an unsharded run) finished stay listed.

@@ -8,6 +8,10 @@
 
 namespace omnicam {
 
+// At most this many shards (Slurm array tasks) per dataset: a count sizes work (a file and a
+// task per shard) and is checked before any.
+inline constexpr int kMaxShards = 100000;
+
 struct ShardState {
   int index = 0;
   bool started = false;   // its manifest exists
@@ -17,11 +21,11 @@ struct ShardState {
   std::vector<std::string> problems;  // from checking the files
 };
 
-// Every shard of `count`; `checkFiles` re-hashes each finished shard's files (what a resubmission
+// Every shard of `count` (1 … kMaxShards, else InputError); `checkFiles` re-hashes each finished shard's files (what a resubmission
 // needs to know: a corrupt shard is rendered again).
 std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles);
 
-// The shard counts that have manifests in DIR/shards/ (normally one).
+// The shard counts (1 … kMaxShards) that have manifests in DIR/shards/ (normally one).
 std::vector<int> shardCountsIn(const std::string& dir);
 
 struct MergeResult {

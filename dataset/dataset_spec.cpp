@@ -8,6 +8,7 @@
 #include "file_confinement.h"
 #include "input_limits.h"
 #include "json_fields.h"
+#include "number_format.h"
 #include "scene_loader.h"
 #include "sha256.h"
 
@@ -19,9 +20,6 @@ using nlohmann::json;
 namespace {
 
 constexpr const char* kFormat = "omnicam-dataset/1";
-// More frames than anyone renders in one folder; keeps indices in six digits.
-constexpr int kMaxFrames = 999999;
-constexpr int kMaxCameras = 16;
 
 }  // namespace
 
@@ -32,6 +30,19 @@ bool isCameraFolderName(const std::string& name) {
   return true;
 }
 
+void checkFrameCount(const DatasetSpec& spec, size_t frames, const std::string& field) {
+  const std::string where = showPath(spec.file) + ": " + field + ": ";
+  if (frames > static_cast<size_t>(limits::kMaxDatasetFrames))
+    throw InputError(where + std::to_string(frames) + " frames; the limit is " + std::to_string(limits::kMaxDatasetFrames));
+  const size_t cameraFrames = frames * spec.cameras.size();
+  if (cameraFrames > static_cast<size_t>(limits::kMaxCameraFrames))
+    throw InputError(where + std::to_string(frames) + " frames x " + std::to_string(spec.cameras.size()) + " cameras = " +
+                     std::to_string(cameraFrames) + " camera-frames; the limit is " + std::to_string(limits::kMaxCameraFrames) +
+                     " (each is an entry of the manifest, which is read whole)");
+}
+
+SettingNames settingNames(const DatasetSpec& spec) { return {showPath(spec.file) + ": spp", showPath(spec.file) + ": size"}; }
+
 namespace {
 
 RobotPose readPose(const json& value, const std::string& file, const std::string& where) {
@@ -41,6 +52,39 @@ RobotPose readPose(const json& value, const std::string& file, const std::string
   return pose;
 }
 
+// [x_min, y_min, x_max, y_max] within the world's bounds, not empty.
+void readRegion(JsonFields& r, RandomPoses& rp) {
+  const json& region = r.raw("region");
+  const std::string rule = "must be [x_min, y_min, x_max, y_max] in metres";
+  if (!region.is_array() || region.size() != 4) r.fail("region", rule);
+  double v[4];
+  for (int i = 0; i < 4; ++i) {
+    if (!region[i].is_number()) r.fail("region", rule);
+    v[i] = region[i].get<double>();
+    if (!(std::abs(v[i]) <= limits::kMaxWorldCoordinate))
+      r.fail("region", "coordinates must lie within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + shortNumber(v[i]) + ")");
+  }
+  if (!(v[0] < v[2] && v[1] < v[3])) r.fail("region", "needs x_min < x_max and y_min < y_max");
+  rp.xMin = v[0], rp.yMin = v[1], rp.xMax = v[2], rp.yMax = v[3];
+}
+
+void readRandomPoses(JsonFields r, RandomPoses& rp) {
+  rp.count = static_cast<int>(r.integer("count", 1, limits::kMaxDatasetFrames));
+  rp.seed = static_cast<uint64_t>(r.integer("seed", 0, limits::kMaxSeed));
+  readRegion(r, rp);
+  rp.clearance = r.number("clearance", 0.0, {0.0, limits::kMaxClearance, false, "m"});
+  if (r.has("yaw_deg")) {
+    const json& yaw = r.raw("yaw_deg");
+    if (!yaw.is_array() || yaw.size() != 2 || !yaw[0].is_number() || !yaw[1].is_number())
+      r.fail("yaw_deg", "must be [min, max] in degrees");
+    rp.yawMinDeg = yaw[0].get<double>(), rp.yawMaxDeg = yaw[1].get<double>();
+    if (!(rp.yawMinDeg <= rp.yawMaxDeg) || std::abs(rp.yawMinDeg) > limits::kMaxYawDeg ||
+        std::abs(rp.yawMaxDeg) > limits::kMaxYawDeg)
+      r.fail("yaw_deg", "must be [min, max] with min <= max, both within ±" + shortNumber(limits::kMaxYawDeg));
+  }
+  r.finish();
+}
+
 void readPoses(JsonFields poses, DatasetSpec& spec) {
   const int sources = poses.has("path") + poses.has("list") + poses.has("random");
   if (sources != 1)
@@ -48,46 +92,19 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
   if (poses.has("path")) {
     spec.poseSource = PoseSource::Path;
     spec.pathName = poses.string("path");
-    spec.pathFrames = poses.integer("frames", 0, 1, kMaxFrames);
+    spec.pathFrames = poses.integer("frames", 0, 1, limits::kMaxDatasetFrames);
+    if (spec.pathFrames) checkFrameCount(spec, static_cast<size_t>(spec.pathFrames), poses.path("frames"));
   } else if (poses.has("list")) {
     spec.poseSource = PoseSource::List;
     const json& list = poses.raw("list");
-    if (!list.is_array() || list.empty() || list.size() > static_cast<size_t>(kMaxFrames))
-      poses.fail("list", "must be a non-empty array of [x, y, yaw_deg]");
+    if (!list.is_array() || list.empty()) poses.fail("list", "must be a non-empty array of [x, y, yaw_deg]");
+    checkFrameCount(spec, list.size(), poses.path("list"));
     for (size_t i = 0; i < list.size(); ++i)
       spec.poseList.push_back(readPose(list[i], spec.file, poses.path("list[" + std::to_string(i) + "]")));
   } else {
     spec.poseSource = PoseSource::Random;
-    JsonFields r = poses.object("random");
-    RandomPoses& rp = spec.random;
-    rp.count = r.integer("count", 0, 1, kMaxFrames);
-    if (!r.has("count")) r.fail("count", "missing required field");
-    const double seed = r.number("seed");
-    if (!(seed >= 0 && seed <= 9007199254740992.0) || std::floor(seed) != seed)
-      r.fail("seed", "must be an integer in [0, 2^53]");
-    rp.seed = static_cast<uint64_t>(seed);
-    const json& region = r.raw("region");
-    if (!region.is_array() || region.size() != 4)
-      r.fail("region", "must be [x_min, y_min, x_max, y_max] in metres");
-    double v[4];
-    for (int i = 0; i < 4; ++i) {
-      if (!region[i].is_number()) r.fail("region", "must be [x_min, y_min, x_max, y_max] in metres");
-      v[i] = region[i].get<double>();
-      if (!(std::abs(v[i]) <= limits::kMaxWorldCoordinate)) r.fail("region", "coordinates must lie within ±10 km");
-    }
-    if (!(v[0] < v[2] && v[1] < v[3])) r.fail("region", "needs x_min < x_max and y_min < y_max");
-    rp.xMin = v[0], rp.yMin = v[1], rp.xMax = v[2], rp.yMax = v[3];
-    rp.clearance = r.nonNegative("clearance", 0.0);
-    if (r.has("yaw_deg")) {
-      const json& yaw = r.raw("yaw_deg");
-      if (!yaw.is_array() || yaw.size() != 2 || !yaw[0].is_number() || !yaw[1].is_number())
-        r.fail("yaw_deg", "must be [min, max] in degrees");
-      rp.yawMinDeg = yaw[0].get<double>(), rp.yawMaxDeg = yaw[1].get<double>();
-      if (!(rp.yawMinDeg <= rp.yawMaxDeg) || std::abs(rp.yawMinDeg) > limits::kMaxYawDeg ||
-          std::abs(rp.yawMaxDeg) > limits::kMaxYawDeg)
-        r.fail("yaw_deg", "must be [min, max] with min <= max, both within ±" + std::to_string(static_cast<int>(limits::kMaxYawDeg)));
-    }
-    r.finish();
+    readRandomPoses(poses.object("random"), spec.random);
+    checkFrameCount(spec, static_cast<size_t>(spec.random.count), poses.path("random.count"));
   }
   poses.finish();
 }
@@ -99,9 +116,17 @@ std::string cameraNameProblem(const std::string& name) {
   return rule + (oneLine(name) != name ? "; got " + quote(name) : "") + ")";
 }
 
+void readMount(JsonFields mount, DatasetCamera& camera) {
+  const JsonFields::Range offset{-limits::kMaxMountOffset, limits::kMaxMountOffset, false, "m from the robot's centre"};
+  camera.mountX = mount.number("x", 0.0, offset);
+  camera.mountY = mount.number("y", 0.0, offset);
+  camera.mountYawDeg = mount.number("yaw_deg", 0.0, {-limits::kMaxMountYawDeg, limits::kMaxMountYawDeg, false, "degrees"});
+  mount.finish();
+}
+
 void readCameras(const json& cameras, DatasetSpec& spec) {
-  if (!cameras.is_array() || cameras.empty() || cameras.size() > kMaxCameras)
-    throw InputError(showPath(spec.file) + ": cameras: must be an array of 1 to " + std::to_string(kMaxCameras) + " cameras");
+  if (!cameras.is_array() || cameras.empty() || cameras.size() > static_cast<size_t>(limits::kMaxDatasetCameras))
+    throw InputError(showPath(spec.file) + ": cameras: must be an array of 1 to " + std::to_string(limits::kMaxDatasetCameras) + " cameras");
   std::set<std::string> names;
   for (size_t i = 0; i < cameras.size(); ++i) {
     JsonFields c(cameras[i], spec.file, "cameras[" + std::to_string(i) + "]");
@@ -113,15 +138,7 @@ void readCameras(const json& cameras, DatasetSpec& spec) {
       camera.rig = c.raw("rig");
       rigFromJson(*camera.rig, spec.file, c.path("rig"));  // validated now, applied with the scene
     }
-    if (auto mount = c.optionalObject("mount")) {
-      camera.mountX = mount->number("x", 0.0);
-      camera.mountY = mount->number("y", 0.0);
-      camera.mountYawDeg = mount->number("yaw_deg", 0.0);
-      if (std::abs(camera.mountX) > 100.0 || std::abs(camera.mountY) > 100.0)
-        mount->fail("x", "mount offsets must lie within ±100 m of the robot");
-      if (std::abs(camera.mountYawDeg) > 360.0) mount->fail("yaw_deg", "must lie within ±360");
-      mount->finish();
-    }
+    if (auto mount = c.optionalObject("mount")) readMount(*mount, camera);
     c.finish();
     spec.cameras.push_back(std::move(camera));
   }
@@ -137,6 +154,49 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
   out.normal = o.boolean("normal", out.normal);
   out.landmarks = o.boolean("landmarks", out.landmarks);
   o.finish();
+}
+
+void readEngine(JsonFields& top, DatasetSpec& spec) {
+  spec.engine = top.string("engine", spec.engine);
+  if (spec.engine != "fast" && spec.engine != "povray" && spec.engine != "blender")
+    top.fail("engine", "must be fast, povray or blender (got " + quote(spec.engine) + ")");
+  spec.mode = top.string("mode", spec.mode);
+  if (spec.mode != "exact" && spec.mode != "cubemap" && spec.mode != "thesis-mesh")
+    top.fail("mode", "must be exact, cubemap or thesis-mesh (got " + quote(spec.mode) + ")");
+  if (spec.mode != "exact" && spec.engine != "fast") top.fail("mode", "only the fast engine has modes other than exact");
+  if (auto options = top.optionalObject("mode_options")) {
+    if (spec.mode == "exact") top.fail("mode_options", "only with mode cubemap or thesis-mesh");
+    spec.faces = options->integer("faces", spec.faces, 5, 6);
+    spec.faceSize = options->integer("face_size", spec.faceSize, 8, 8192);
+    if (options->has("polygons")) {
+      if (spec.mode != "thesis-mesh") options->fail("polygons", "only with mode thesis-mesh");
+      spec.polygons = options->integer("polygons", spec.polygons, 16, 1024);
+      if (spec.polygons != 16 && spec.polygons != 64 && spec.polygons != 256 && spec.polygons != 1024)
+        options->fail("polygons", "must be 16, 64, 256 or 1024 (got " + std::to_string(spec.polygons) + ")");
+    }
+    options->finish();
+  }
+  if (top.has("timeout_s")) {
+    if (spec.engine == "fast") top.fail("timeout_s", "only for the povray and blender engines");
+    spec.timeoutSeconds = top.number("timeout_s", {0.0, limits::kMaxTimeoutSeconds, true, "s"});
+  }
+}
+
+void readSampling(JsonFields& top, DatasetSpec& spec) {
+  spec.spp = top.integer("spp", spec.spp, 1, limits::kMaxSpp);
+  if (!samplesPerAxis(spec.spp)) top.fail("spp", "must be a perfect square (1, 4, 9, 16, ...)");
+  const auto shading = parseShading(top.string("shading", "unlit"));
+  if (!shading) top.fail("shading", "must be unlit or lit");
+  spec.shading = *shading;
+  if (top.has("size")) {
+    spec.size = top.integer("size", 360, limits::kMinImageSize, limits::kMaxImageSize);
+    RenderSettings check;
+    check.rig.imageSize = *spec.size;
+    check.spp = spec.spp;
+    checkRenderSettings(check, settingNames(spec));  // size² × spp, before any scene is read
+  }
+  spec.frameIntervalSeconds =
+      top.number("frame_interval_s", spec.frameIntervalSeconds, {0.0, limits::kMaxFrameIntervalSeconds, true, "s"});
 }
 
 }  // namespace
@@ -162,43 +222,21 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   const fs::path scenePath(scene);
   spec.scene = scenePath.is_absolute() ? scene : (fs::path(file).parent_path() / scenePath).lexically_normal().string();
   if (spec.scene.empty()) spec.scene = scene;
-  spec.allowOutsideFiles = top.boolean("allow_outside_files", false);
-  spec.engine = top.string("engine", spec.engine);
-  if (spec.engine != "fast" && spec.engine != "povray" && spec.engine != "blender")
-    top.fail("engine", "must be fast, povray or blender (got " + quote(spec.engine) + ")");
-  spec.mode = top.string("mode", spec.mode);
-  if (spec.mode != "exact" && spec.mode != "cubemap" && spec.mode != "thesis-mesh")
-    top.fail("mode", "must be exact, cubemap or thesis-mesh (got " + quote(spec.mode) + ")");
-  if (spec.mode != "exact" && spec.engine != "fast") top.fail("mode", "only the fast engine has modes other than exact");
-  if (auto options = top.optionalObject("mode_options")) {
-    if (spec.mode == "exact") top.fail("mode_options", "only with mode cubemap or thesis-mesh");
-    spec.faces = options->integer("faces", spec.faces, 5, 6);
-    spec.faceSize = options->integer("face_size", spec.faceSize, 8, 8192);
-    if (options->has("polygons")) {
-      if (spec.mode != "thesis-mesh") options->fail("polygons", "only with mode thesis-mesh");
-      spec.polygons = options->integer("polygons", spec.polygons, 16, 1024);
-    }
-    options->finish();
-  }
-  spec.spp = top.integer("spp", spec.spp, 1, limits::kMaxSpp);
-  if (!samplesPerAxis(spec.spp)) top.fail("spp", "must be a perfect square (1, 4, 9, 16, ...)");
-  const auto shading = parseShading(top.string("shading", "unlit"));
-  if (!shading) top.fail("shading", "must be unlit or lit");
-  spec.shading = *shading;
-  if (top.has("size")) spec.size = top.integer("size", 360, 8, limits::kMaxImageSize);
-  if (top.has("timeout_s")) {
-    if (spec.engine == "fast") top.fail("timeout_s", "only for the povray and blender engines");
-    spec.timeoutSeconds = top.positive("timeout_s");
-  }
-  spec.frameIntervalSeconds = top.positive("frame_interval_s", spec.frameIntervalSeconds);
-  readPoses(top.object("poses"), spec);
+  // Confinement is the user's to lift, not a downloaded file's (docs/robustness.md, "Threat model").
+  if (top.boolean("allow_outside_files", false))
+    top.fail("allow_outside_files", "a spec cannot let its scene pull in files from outside the scene's folder; "
+                                    "pass --allow-outside-files to omnicam dataset if you mean it");
+  readEngine(top, spec);
+  readSampling(top, spec);
+  // Cameras before poses: the frame limit counts camera-frames.
   if (top.has("cameras")) {
     readCameras(top.raw("cameras"), spec);
   } else {
     spec.cameras.push_back({"cam0", std::nullopt, 0.0, 0.0, 0.0});
   }
+  readPoses(top.object("poses"), spec);
   if (auto outputs = top.optionalObject("outputs")) readOutputs(*outputs, spec);
-  if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), showPath(file) + ": recording");
+  if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
   top.finish();
   return spec;
 }

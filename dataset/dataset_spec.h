@@ -14,6 +14,23 @@
 
 namespace omnicam {
 
+namespace limits {
+// Frames of one dataset, and frames × cameras ("camera-frames"): each camera-frame is an entry of
+// the manifest, which omnicam reads whole (manifest.h derives its size limit from these).
+inline constexpr int kMaxDatasetFrames = 100000;
+inline constexpr int kMaxDatasetCameras = 16;
+inline constexpr int64_t kMaxCameraFrames = 100000;
+// Camera mounts: offsets from the robot's centre (m) and turn (degrees).
+inline constexpr double kMaxMountOffset = 100.0;
+inline constexpr double kMaxMountYawDeg = 360.0;
+// Random poses: the clearance (m) every pose keeps from every obstacle, and the seed (2^53:
+// exact in every JSON reader).
+inline constexpr double kMaxClearance = 100.0;
+inline constexpr int64_t kMaxSeed = int64_t{1} << 53;
+// Timestamp of frame i = i × interval (s).
+inline constexpr double kMaxFrameIntervalSeconds = 86400.0;
+}  // namespace limits
+
 // One omnicam on the robot. Its viewpoint F' sits at (mountX, mountY) in the robot frame, at the
 // rig's height above the floor, turned by mountYawDeg.
 struct DatasetCamera {
@@ -44,6 +61,8 @@ struct DatasetSpec {
   std::string sha256;     // of its bytes
   nlohmann::json json;    // as read
   std::string scene;      // resolved against the spec's folder
+  // Lifts the scene-folder rule (SceneLoadOptions): set only from the user's own
+  // --allow-outside-files, never by the spec file (docs/robustness.md, "Threat model").
   bool allowOutsideFiles = false;
   std::string engine = "fast";
   std::string mode = "exact";
@@ -67,6 +86,12 @@ struct DatasetSpec {
 
 // A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics".
 bool isCameraFolderName(const std::string& name);
+
+// InputError naming the spec's `field` unless `frames` frames of every camera stay within
+// limits::kMaxDatasetFrames and limits::kMaxCameraFrames.
+void checkFrameCount(const DatasetSpec& spec, size_t frames, const std::string& field);
+// How render-setting messages name the spec's fields ("spec.json: spp").
+SettingNames settingNames(const DatasetSpec& spec);
 
 DatasetSpec loadDatasetSpec(const std::string& file);
 DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file);

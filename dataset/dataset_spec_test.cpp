@@ -55,8 +55,73 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "engine": "povray")")),
             "spec.json: mode: only the fast engine has modes other than exact");
   EXPECT_EQ(errorOf(spec(R"("timeout_s": 5)")), "spec.json: timeout_s: only for the povray and blender engines");
-  EXPECT_EQ(errorOf(spec(R"("recording": {"vignetting": 2})")), "spec.json: recording.vignetting: must be a number in [0, 1]");
+  EXPECT_EQ(errorOf(spec(R"("recording": {"vignetting": 2})")), "spec.json: recording.vignetting: must be in [0, 1] (got 2)");
   EXPECT_EQ(errorOf(spec(R"("recording": {"iso": 100})")).rfind("spec.json: recording.iso: unknown field", 0), 0u);
+}
+
+// Integers are compared as the JSON wrote them: never wrapped into range, never rounded.
+TEST(DatasetSpec, IntegersOutOfRangeAreRefusedNeverWrapped) {
+  EXPECT_EQ(errorOf(spec(R"("spp": 4294967297)")), "spec.json: spp: must be in [1, 1024] (got 4294967297)");
+  EXPECT_EQ(errorOf(spec(R"("size": 18446744073709551615)")), "spec.json: size: must be in [8, 16384] (got 18446744073709551615)");
+  EXPECT_EQ(errorOf(spec(R"("size": -18446744073709551615)")), "spec.json: size: must be an integer (got -1.8446744073709552e+19)");
+  EXPECT_EQ(errorOf(spec(R"("spp": 4.0)")), "spec.json: spp: must be an integer (got 4.0)");
+  EXPECT_EQ(errorOf(spec(R"("recording": {"jpeg_quality": 4294967346})")),
+            "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (0: no JPEG) (got 4294967346)");
+  EXPECT_EQ(errorOf(spec(R"("recording": {"seed": -1})")), "spec.json: recording.seed: must be an integer in [0, 2^64 - 1] (got -1)");
+  EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 1, "seed": 9007199254740993, "region": [0, 0, 1, 1]}})")),
+            "spec.json: poses.random.seed: must be in [0, 9007199254740992] (got 9007199254740993)");
+  EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 1, "seed": 1.5, "region": [0, 0, 1, 1]}})")),
+            "spec.json: poses.random.seed: must be an integer (got 1.5)");
+  EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 4294967297, "seed": 1, "region": [0, 0, 1, 1]}})")),
+            "spec.json: poses.random.count: must be in [1, 100000] (got 4294967297)");
+}
+
+// Every number that sizes work has an upper bound, checked when the spec is read; messages name
+// the field that is wrong, in the spec's terms.
+TEST(DatasetSpec, NumbersThatSizeWorkAreBoundedAndNamed) {
+  EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "c", "mount": {"y": 1000}}])")),
+            "spec.json: cameras[0].mount.y: must be in [-100, 100] m from the robot's centre (got 1000)");
+  EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "c", "mount": {"yaw_deg": 1e9}}])")),
+            "spec.json: cameras[0].mount.yaw_deg: must be in [-360, 360] degrees (got 1e+09)");
+  EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 1, "seed": 1, "region": [0, 0, 1, 1], "clearance": 1e200}})")),
+            "spec.json: poses.random.clearance: must be in [0, 100] m (got 1e+200)");
+  EXPECT_EQ(errorOf(spec(R"("size": 16384, "spp": 16)")),
+            "spec.json: spp: size 16384^2 x spp 16 = 4294967296 samples per frame; the limit is 268435456");
+  EXPECT_EQ(errorOf(spec(R"("engine": "blender", "timeout_s": 1e300)")),
+            "spec.json: timeout_s: must be in (0, 604800] s (got 1e+300)");
+  EXPECT_EQ(errorOf(spec(R"("frame_interval_s": 0)")), "spec.json: frame_interval_s: must be in (0, 86400] s (got 0)");
+  EXPECT_EQ(errorOf(spec(R"("mode": "thesis-mesh", "mode_options": {"polygons": 100})")),
+            "spec.json: mode_options.polygons: must be 16, 64, 256 or 1024 (got 100)");
+  EXPECT_EQ(errorOf(spec("", R"({"path": "p", "frames": 100001})")), "spec.json: poses.frames: must be in [1, 100000] (got 100001)");
+  EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "b"}])", R"({"path": "p", "frames": 50001})")),
+            "spec.json: poses.frames: 50001 frames x 2 cameras = 100002 camera-frames; the limit is 100000 (each is an "
+            "entry of the manifest, which is read whole)");
+  std::string poses = R"({"list": [)";
+  for (int i = 0; i < 100001; ++i) poses += std::string(i ? "," : "") + "[0,0,0]";
+  EXPECT_EQ(errorOf(spec("", poses + "]}")), "spec.json: poses.list: 100001 frames; the limit is 100000");
+}
+
+// Only the user's --allow-outside-files lifts confinement; a spec asking for it is refused.
+TEST(DatasetSpec, ASpecCannotLiftTheSceneFolderRule) {
+  EXPECT_EQ(errorOf(spec(R"("allow_outside_files": true)")),
+            "spec.json: allow_outside_files: a spec cannot let its scene pull in files from outside the scene's folder; "
+            "pass --allow-outside-files to omnicam dataset if you mean it");
+  EXPECT_FALSE(datasetSpecFromText(spec(R"("allow_outside_files": false)"), "spec.json").allowOutsideFiles);
+}
+
+// A whole path is only counted once the scene is read: still before any work.
+TEST(DatasetSpec, AWholePathIsCountedAgainstTheFrameLimits) {
+  const Scene scene = loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [],
+    "paths": [{"name": "long", "waypoints": [[0, 0], [1, 0]], "frames": 60000}]})", "long.json");
+  const DatasetSpec s = datasetSpecFromText(spec(R"("cameras": [{"name": "a"}, {"name": "b"}])", R"({"path": "long"})"),
+                                            "spec.json");
+  try {
+    datasetPoses(s, scene, 0.4);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "spec.json: poses.path: 60000 frames x 2 cameras = 120000 camera-frames; the limit is "
+                                     "100000 (each is an entry of the manifest, which is read whole)");
+  }
 }
 
 TEST(DatasetSpec, ARecordingCameraIsReadWithItsParameters) {

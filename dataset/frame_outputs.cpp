@@ -1,6 +1,7 @@
 #include "frame_outputs.h"
 
 #include <cstdio>
+#include <stdexcept>
 #include <tbb/parallel_for.h>
 
 #include "landmark_annotations.h"
@@ -26,22 +27,21 @@ std::string frameFilePath(const std::string& camera, const std::string& kind, in
   return camera + "/" + kind + "/" + name;
 }
 
+std::vector<std::string> frameFileKinds(const FrameOutputPlan& plan) {
+  std::vector<std::string> kinds{"rgb"};
+  for (const auto& [kind, on] : {std::pair<const char*, bool>{"depth", plan.depth}, {"instance", plan.instance},
+                                 {"semantic", plan.semantic}, {"normal", plan.normal}, {"landmarks", plan.landmarks}})
+    if (on) kinds.push_back(kind);
+  return kinds;
+}
+
 std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* rays, const RenderSettings& settings,
                                             const std::string& camera, int index, const RobotPose& pose,
                                             const ImageRGBA& rgb, const AovFrame* aov, const FrameOutputPlan& plan,
                                             const std::vector<uint16_t>& classOfInstance) {
-  std::vector<EncodedFile> files;
-  auto add = [&](const std::string& kind) -> EncodedFile& {
-    files.push_back({kind, frameFilePath(camera, kind, index, plan), {}});
-    return files.back();
-  };
-  add("rgb");
   if (plan.anyAov() && !aov) throw std::logic_error("encodeFrameOutputs: AOVs asked for but not rendered");
-  if (plan.depth) add("depth");
-  if (plan.instance) add("instance");
-  if (plan.semantic) add("semantic");
-  if (plan.normal) add("normal");
-  if (plan.landmarks) add("landmarks");
+  std::vector<EncodedFile> files;
+  for (const std::string& kind : frameFileKinds(plan)) files.push_back({kind, frameFilePath(camera, kind, index, plan), {}});
   // Each file is encoded on its own task: PNG and EXR compression dominate at 1 spp.
   tbb::parallel_for(size_t{0}, files.size(), [&](size_t k) {
     EncodedFile& file = files[k];
@@ -65,6 +65,10 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
       file.bytes = doc.dump(1) + "\n";
     }
   });
+  // Inside a cancelled parallel_for (a neighbouring frame failed) the loop above ends early
+  // without an error: a file left unencoded must never reach a writer as an empty success.
+  for (const EncodedFile& file : files)
+    if (file.bytes.empty()) throw std::runtime_error(file.relativePath + ": encoding was cancelled");
   return files;
 }
 

@@ -24,6 +24,9 @@ struct FrameOutputPlan {
   bool anyAov() const { return depth || instance || semantic || normal; }
 };
 
+// The kinds of file each camera's frame has under `plan`: "rgb", then the AOVs and "landmarks"
+// it asks for, in this order.
+std::vector<std::string> frameFileKinds(const FrameOutputPlan& plan);
 // "<camera>/<kind>/NNNNNN.<ext>" for frame `index`.
 std::string frameFilePath(const std::string& camera, const std::string& kind, int index, const FrameOutputPlan& plan);
 

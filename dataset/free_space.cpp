@@ -12,6 +12,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "input_limits.h"
 #include "pose_sampler.h"
 
 namespace omnicam {
@@ -56,7 +57,9 @@ Vec2 toVec2(const Point& p) { return {CGAL::to_double(p.x()), CGAL::to_double(p.
 FreeSpace::FreeSpace(const Scene& scene, double topHeight, const FloorRegion& region, double clearance) {
   if (!(region.xMin < region.xMax && region.yMin < region.yMax))
     throw std::invalid_argument("FreeSpace: empty region");
-  if (!(clearance >= 0.0)) throw std::invalid_argument("FreeSpace: negative clearance");
+  // Bounded like every length: a clearance of 1e200 overflows the exact constructions.
+  if (!(clearance >= 0.0 && clearance <= limits::kMaxLength))
+    throw std::invalid_argument("FreeSpace: clearance outside [0, limits::kMaxLength]");
   // Curved footprints are chords inside the true outline; growing by their tolerance too keeps
   // the clearance exact for them.
   const std::vector<Vec2> disc = circumscribedDisc(clearance + FloorObstacles::kChordTolerance);

@@ -25,7 +25,7 @@ class FreeSpace {
  public:
   static constexpr int kDiscSides = 32;
   // `topHeight`: obstacles starting at or above it (a ceiling) do not block. Throws
-  // std::invalid_argument for an empty region or a negative clearance.
+  // std::invalid_argument for an empty region or a clearance outside [0, limits::kMaxLength].
   FreeSpace(const Scene& scene, double topHeight, const FloorRegion& region, double clearance);
 
   // Area of the free space in m².

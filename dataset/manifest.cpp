@@ -1,11 +1,17 @@
 #include "manifest.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <set>
 
 #include "atomic_file.h"
+#include "dataset_shards.h"
 #include "dataset_spec.h"
 #include "errors.h"
+#include "file_confinement.h"
 #include "json_fields.h"
+#include "render_settings.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -17,44 +23,123 @@ namespace {
 
 json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
 
-// Reading: every malformed piece is one InputError naming the manifest.
-struct Reader {
-  std::string file;
-  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-    throw InputError(showPath(file) + ": " + where + ": " + what);
+// Reading: every malformed piece is one InputError naming the manifest and the field.
+
+constexpr const char* kFrameFileKinds[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks"};
+
+bool isSha256(const std::string& text) {
+  return text.size() == 64 && text.find_first_not_of("0123456789abcdef") == std::string::npos;
+}
+
+// A file of camera folder `camera` as omnicam names them: "<camera>/<name>" or
+// "<camera>/<kind>/<name>", every name letters, digits, '_', '-' or '.' and not starting with
+// '.' (so no "..", no hidden file, no temporary). Anything else could point outside the dataset
+// or at a file of another camera.
+bool isCameraFilePath(const std::string& path, const std::string& camera) {
+  if (path.size() > 255 || path.compare(0, camera.size() + 1, camera + "/") != 0) return false;
+  size_t names = 0;
+  for (size_t begin = camera.size() + 1; begin <= path.size(); ++names) {
+    const size_t end = std::min(path.find('/', begin), path.size());
+    const std::string name = path.substr(begin, end - begin);
+    if (name.empty() || name[0] == '.' ||
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") != std::string::npos)
+      return false;
+    begin = end + 1;
   }
-  const json& field(const json& object, const std::string& key, const std::string& where) const {
-    if (!object.is_object()) fail(where, "must be an object");
-    const auto it = object.find(key);
-    if (it == object.end()) fail(where + "." + key, "missing");
-    return *it;
+  return names == 1 || names == 2;
+}
+
+FileRecord readFileRecord(JsonFields f, const std::string& camera) {
+  FileRecord record{f.string("path"), f.string("sha256")};
+  if (!isCameraFilePath(record.path, camera))
+    f.fail("path", "must be a file in the dataset's camera folder " + showPath(camera) + " (got " + quote(record.path) + ")");
+  if (!isSha256(record.sha256)) f.fail("sha256", "must be 64 lowercase hex digits");
+  f.finish();
+  return record;
+}
+
+// The "files" object of a camera → records, each inside `camera`; a frame's keys are the kinds
+// of frame files, a camera's static files may have any key.
+std::map<std::string, FileRecord> readFileRecords(JsonFields& parent, const std::string& camera, bool frameKinds) {
+  const json& raw = parent.raw("files");
+  JsonFields files = parent.object("files");
+  std::map<std::string, FileRecord> records;
+  for (auto it = raw.begin(); it != raw.end(); ++it) {
+    const bool known = std::find(std::begin(kFrameFileKinds), std::end(kFrameFileKinds), it.key()) != std::end(kFrameFileKinds);
+    if (frameKinds && !known) files.fail(it.key(), "unknown kind of frame file");
+    records[it.key()] = readFileRecord(files.object(it.key()), camera);
   }
-  double number(const json& object, const std::string& key, const std::string& where) const {
-    const json& v = field(object, key, where);
-    if (!v.is_number()) fail(where + "." + key, "must be a number");
-    return v.get<double>();
-  }
-  std::string string(const json& object, const std::string& key, const std::string& where) const {
-    const json& v = field(object, key, where);
-    if (!v.is_string()) fail(where + "." + key, "must be a string");
-    return v.get<std::string>();
-  }
-  RobotPose pose(const json& object, const std::string& key, const std::string& where) const {
-    const json& p = field(object, key, where);
-    const std::string at = where + "." + key;
-    return {number(p, "x", at), number(p, "y", at), number(p, "yaw_deg", at)};
-  }
-  FileRecord fileRecord(const json& value, const std::string& where) const {
-    FileRecord record{string(value, "path", where), string(value, "sha256", where)};
-    // A manifest names files inside its own folder only.
-    const fs::path p(record.path);
-    if (record.path.empty() || p.is_absolute() || record.path.find("..") != std::string::npos)
-      fail(where + ".path", "must be a relative path inside the dataset folder");
-    if (record.sha256.size() != 64 || record.sha256.find_first_not_of("0123456789abcdef") != std::string::npos)
-      fail(where + ".sha256", "must be 64 lowercase hex digits");
-    return record;
-  }
+  files.finish();
+  return records;
+}
+
+RobotPose readManifestPose(JsonFields p) {
+  const RobotPose pose{p.number("x"), p.number("y"), p.number("yaw_deg")};
+  checkPose(pose, showPath(p.file()) + ": " + p.where());
+  p.finish();
+  return pose;
+}
+
+void requireHash(JsonFields& f, const std::string& key) {
+  if (!isSha256(f.string(key))) f.fail(key, "must be 64 lowercase hex digits");
+}
+
+// What frames are checked against: the header's cameras and frame count.
+struct HeaderFacts {
+  std::set<std::string> cameras;
+  int64_t frameCount = 0;
 };
+
+// The header's fields that omnicam reads back (the rest it only carries along).
+HeaderFacts checkHeader(JsonFields& top) {
+  if (top.string("format") != kManifestFormat) top.fail("format", std::string("must be \"") + kManifestFormat + "\"");
+  top.object("spec");
+  top.object("engine");
+  requireHash(top, "spec_sha256");
+  JsonFields scene = top.object("scene");
+  requireHash(scene, "sha256");
+  const int64_t frameCount = top.integer("frame_count", 0, limits::kMaxDatasetFrames);
+  if (!top.raw("complete").is_boolean()) top.fail("complete", "must be true or false");
+  if (auto shard = top.optionalObject("shard")) {
+    const int64_t count = shard->integer("count", 1, kMaxShards);
+    shard->integer("index", 0, count - 1);
+    const int64_t first = shard->integer("first_frame", 0, frameCount);
+    shard->integer("end_frame", first, frameCount);
+    shard->finish();
+  }
+  const json& cameras = top.raw("cameras");
+  if (!cameras.is_array() || cameras.empty() || cameras.size() > static_cast<size_t>(limits::kMaxDatasetCameras))
+    top.fail("cameras", "must be an array of 1 to " + std::to_string(limits::kMaxDatasetCameras) + " cameras");
+  HeaderFacts facts{{}, frameCount};
+  for (size_t i = 0; i < cameras.size(); ++i) {
+    JsonFields c(cameras[i], top.file(), "cameras[" + std::to_string(i) + "]");
+    const std::string name = c.string("name");
+    if (!isCameraFolderName(name)) c.fail("name", "must be a camera folder name (letters, digits, '_' or '-')");
+    if (!facts.cameras.insert(name).second) c.fail("name", "duplicate camera name " + quote(name));
+    readFileRecords(c, name, false);
+  }
+  return facts;
+}
+
+FrameRecord readFrame(JsonFields f, const HeaderFacts& header) {
+  FrameRecord frame;
+  if (header.frameCount == 0) f.fail("index", "the manifest's frame_count is 0");
+  frame.index = static_cast<int>(f.integer("index", 0, header.frameCount - 1));
+  frame.timestamp = f.number("timestamp");
+  frame.robot = readManifestPose(f.object("pose"));
+  const json& raw = f.raw("cameras");
+  JsonFields cameras = f.object("cameras");
+  for (auto it = raw.begin(); it != raw.end(); ++it) {
+    if (!header.cameras.count(it.key())) cameras.fail(it.key(), "not a camera of the manifest's cameras");
+    JsonFields camera = cameras.object(it.key());
+    CameraFrame cameraFrame{readManifestPose(camera.object("pose")), readFileRecords(camera, it.key(), true)};
+    camera.finish();
+    frame.cameras[it.key()] = std::move(cameraFrame);
+  }
+  cameras.finish();
+  f.finish();
+  return frame;
+}
 
 }  // namespace
 
@@ -84,61 +169,47 @@ std::string shardManifestName(int index, int count) {
   return "shards/shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
 }
 
+DatasetManifest manifestFromText(const std::string& text, const std::string& file) {
+  // A manifest holds its spec one level down.
+  json root = parseJsonText(text, file, limits::kMaxJsonDepth + 1);
+  JsonFields top(root, file, "");
+  const HeaderFacts header = checkHeader(top);
+  const json& frames = top.raw("frames");
+  if (!frames.is_array()) top.fail("frames", "must be an array");
+  DatasetManifest manifest;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    const std::string where = "frames[" + std::to_string(i) + "]";
+    FrameRecord frame = readFrame(JsonFields(frames[i], file, where), header);
+    const int index = frame.index;
+    if (!manifest.frames.emplace(index, std::move(frame)).second)
+      throw InputError(showPath(file) + ": " + where + ".index: frame " + std::to_string(index) + " listed twice");
+  }
+  root.erase("frames");
+  manifest.header = std::move(root);
+  return manifest;
+}
+
 DatasetManifest readManifest(const std::string& dir, const std::string& name) {
   const std::string file = (fs::path(dir) / name).string();
   std::error_code ec;
   if (!fs::exists(file, ec)) throw InputError(showPath(dir) + ": not a dataset folder (no " + name + ")");
-  json root = readJsonFile(file);
-  const Reader r{file};
-  if (!root.is_object() || r.string(root, "format", "manifest") != kManifestFormat)
-    r.fail("format", std::string("must be \"") + kManifestFormat + "\"");
-  DatasetManifest manifest;
-  const json& frames = r.field(root, "frames", "manifest");
-  if (!frames.is_array()) r.fail("frames", "must be an array");
-  for (size_t i = 0; i < frames.size(); ++i) {
-    const std::string where = "frames[" + std::to_string(i) + "]";
-    const json& f = frames[i];
-    FrameRecord frame;
-    const json& index = r.field(f, "index", where);
-    if (!index.is_number_integer() || index.get<long long>() < 0 || index.get<long long>() > 999999)
-      r.fail(where + ".index", "must be an integer in [0, 999999]");
-    frame.index = index.get<int>();
-    frame.timestamp = r.number(f, "timestamp", where);
-    frame.robot = r.pose(f, "pose", where);
-    const json& cameras = r.field(f, "cameras", where);
-    if (!cameras.is_object()) r.fail(where + ".cameras", "must be an object");
-    for (auto it = cameras.begin(); it != cameras.end(); ++it) {
-      const std::string at = where + ".cameras." + keySegment(it.key());
-      CameraFrame camera;
-      camera.pose = r.pose(it.value(), "pose", at);
-      const json& files = r.field(it.value(), "files", at);
-      if (!files.is_object()) r.fail(at + ".files", "must be an object");
-      for (auto entry = files.begin(); entry != files.end(); ++entry)
-        camera.files[entry.key()] = r.fileRecord(entry.value(), at + ".files." + keySegment(entry.key()));
-      frame.cameras[it.key()] = std::move(camera);
-    }
-    if (!manifest.frames.emplace(frame.index, std::move(frame)).second)
-      r.fail(where + ".index", "frame listed twice");
-  }
-  root.erase("frames");
-  manifest.header = std::move(root);
-  // The static files' records are checked like the frames'.
-  const json& cameras = r.field(manifest.header, "cameras", "manifest");
-  if (!cameras.is_array()) r.fail("cameras", "must be an array");
-  for (size_t i = 0; i < cameras.size(); ++i) {
-    const std::string where = "cameras[" + std::to_string(i) + "]";
-    if (!isCameraFolderName(r.string(cameras[i], "name", where)))
-      r.fail(where + ".name", "must be a camera folder name (letters, digits, '_' or '-')");
-    const json& files = r.field(cameras[i], "files", where);
-    if (!files.is_object()) r.fail(where + ".files", "must be an object");
-    for (auto entry = files.begin(); entry != files.end(); ++entry)
-      r.fileRecord(entry.value(), where + ".files." + keySegment(entry.key()));
-  }
-  return manifest;
+  std::string why;
+  const auto text = readWholeFile(file, why, kMaxManifestBytes);
+  if (!text) throw InputError(showPath(file) + ": " + why);
+  return manifestFromText(*text, file);
+}
+
+void checkManifestHeaderSize(const nlohmann::json& header, const std::string& specFile) {
+  const size_t bytes = header.dump(1).size();
+  if (bytes > static_cast<size_t>(kMaxManifestHeaderBytes))
+    throw InputError(showPath(specFile) + ": the dataset's manifest would start with " + std::to_string(bytes) +
+                     " bytes (the spec as read, cameras, classes, instances); the limit is " +
+                     std::to_string(kMaxManifestHeaderBytes));
 }
 
 void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name) {
-  writeTextAtomically((fs::path(dir) / name).string(), manifestToJson(manifest).dump(1) + "\n");
+  // Written without following links inside the dataset folder (safe_files.h).
+  writeFileInside(dir, name, manifestToJson(manifest).dump(1) + "\n", Durability::Synced);
 }
 
 std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest) {

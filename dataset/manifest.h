@@ -8,12 +8,22 @@
 #include <string>
 #include <vector>
 
+#include "dataset_spec.h"
 #include "rig.h"
 
 namespace omnicam {
 
 inline constexpr const char* kManifestFormat = "omnicam-dataset-manifest/1";
 inline constexpr const char* kManifestName = "manifest.json";
+
+// Manifests are read whole, so bounded — by what the dataset limits let omnicam write
+// (dataset_spec.h): a header (the spec as read, cameras, class and instance tables) of at most
+// kMaxManifestHeaderBytes, checked before a run starts, and limits::kMaxCameraFrames entries of
+// at most kMaxManifestBytesPerCameraFrame each (longest names and numbers: tested).
+inline constexpr int64_t kMaxManifestHeaderBytes = int64_t{128} << 20;
+inline constexpr int64_t kMaxManifestBytesPerCameraFrame = 2048;
+inline constexpr int64_t kMaxManifestBytes =
+    kMaxManifestHeaderBytes + limits::kMaxCameraFrames * kMaxManifestBytesPerCameraFrame;
 
 struct FileRecord {
   std::string path;    // relative to the dataset folder, '/'-separated
@@ -41,6 +51,12 @@ nlohmann::json manifestToJson(const DatasetManifest& manifest);
 // Reads DIR/manifest.json (or DIR/`name`: a shard's manifest) strictly; InputError naming the
 // file and field.
 DatasetManifest readManifest(const std::string& dir, const std::string& name = kManifestName);
+// The same from a manifest's text; `file` names it in messages. Every file record must name a
+// file inside its camera's folder, every number lie in its range (forged manifests: exit 2).
+DatasetManifest manifestFromText(const std::string& text, const std::string& file);
+// InputError naming the spec unless a manifest with this header stays within
+// kMaxManifestHeaderBytes: called before a run writes anything.
+void checkManifestHeaderSize(const nlohmann::json& header, const std::string& specFile);
 void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name = kManifestName);
 
 // What makes two runs the same dataset: the spec's content (not its formatting), the scene's

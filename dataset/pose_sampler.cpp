@@ -79,6 +79,7 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
         throw InputError(showPath(spec.file) + ": poses.frames: path " + quote(spec.pathName) + " has only " +
                          std::to_string(path->poses.size()) + " poses");
       const size_t n = spec.pathFrames ? spec.pathFrames : path->poses.size();
+      checkFrameCount(spec, n, "poses.path");  // a whole path is only counted now
       return {path->poses.begin(), path->poses.begin() + n};
     }
     case PoseSource::Random: {

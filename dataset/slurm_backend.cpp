@@ -9,6 +9,7 @@
 #include "errors.h"
 #include "external_process.h"
 #include "manifest.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -23,13 +24,42 @@ std::string shellQuote(const std::string& text) {
   return out + "'";
 }
 
-// sbatch --parsable prints "<jobid>" or "<jobid>;<cluster>".
-std::string submit(const std::vector<std::string>& argv, const fs::path& slurmDir, const std::string& what) {
-  const std::string log = (slurmDir / "sbatch.log").string();
-  const ProcessResult r = runProcess(argv, slurmDir.string(), log, 120.0);
+// Paths go into the scripts single-quoted (shellQuote) and into sbatch's log options, where
+// Slurm expands '%'. A line break would end a comment or the quoted word's line, so every path
+// must be one printable line: control characters are refused, and '%' in the dataset folder.
+void checkScriptPath(const std::string& path, bool holdsLogs) {
+  for (const unsigned char ch : path)
+    if (ch < 0x20 || ch == 0x7f)
+      throw InputError(showPath(path) + ": contains a control character; a path in a Slurm script must be one printable line");
+  if (holdsLogs && path.find('%') != std::string::npos)
+    throw InputError(showPath(path) + ": a dataset folder for Slurm must not contain '%' (Slurm expands it in log names)");
+}
+
+// Slurm opens the logs itself when the jobs start, following links: a link or a special file
+// planted where a log goes is refused before anything is submitted.
+void checkLogName(const fs::path& dir, const std::string& relative) {
+  const EntryKind kind = entryInside(dir.string(), relative);
+  if (kind != EntryKind::Missing && kind != EntryKind::File)
+    throw InputError(showPath((dir / relative).string()) + ": " +
+                     (kind == EntryKind::Link ? "is a symbolic link" : "is not a regular file") +
+                     "; Slurm would write its log through it");
+}
+
+// sbatch --parsable prints "<jobid>" or "<jobid>;<cluster>". Its output goes to a temporary
+// created exclusively in DIR/slurm, then becomes sbatch.log by an atomic write: whatever was
+// planted as sbatch.log is replaced, never written through.
+std::string submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
+  const fs::path slurmDir = dir / "slurm";
+  const std::string tmpName = "slurm/" + atomicTemporaryName("sbatch.log");
+  writeFileInside(dir.string(), tmpName, "", Durability::Unsynced);
+  const std::string tmp = (dir / tmpName).string();
+  const ProcessResult r = runProcess(argv, slurmDir.string(), tmp, 120.0);
+  const std::string output = tailOfFile(tmp, 5);
+  writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
+  removeFileInside(dir.string(), tmpName);
   if (r.notFound) throw ExternalError(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.exitCode != 0) throw ExternalError("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
-  std::istringstream lines(tailOfFile(log, 5));
+  std::istringstream lines(output);
   std::string line;
   const std::regex jobId(R"((\d+)(;.*)?)");
   while (std::getline(lines, line)) {
@@ -41,18 +71,52 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& slurmDi
 
 }  // namespace
 
+namespace {
+
+// The sbatch options omnicam sets itself (--array, --output, --dependency) or that would take the
+// job's log or script away from it (--error, --wrap).
+constexpr const char* kReservedSbatchOptions[] = {"array", "output", "dependency", "error", "wrap"};
+
+// The reserved option `word` sets for sbatch (getopt_long), or "" if none: a long option by any
+// prefix of its name (getopt_long takes unambiguous prefixes: --arr=, --out=), a short one
+// anywhere in a cluster of flags ("-Ho x.log" is -H -o; -dafterok:1 is -d afterok:1).
+std::string reservedSbatchOption(const std::string& word) {
+  if (word.rfind("--", 0) == 0) {
+    const std::string name = word.substr(2, word.find('=') - 2);
+    for (const char* reserved : kReservedSbatchOptions)
+      if (!name.empty() && std::string(reserved).rfind(name, 0) == 0) return reserved;
+    return "";
+  }
+  // sbatch's short options that take a value: the rest of the word is that value.
+  const std::string withValue = "AbBcCDFGiJkLmMnNpqStwx";
+  for (size_t k = 1; k < word.size(); ++k) {
+    switch (word[k]) {
+      case 'a': return "array";
+      case 'o': return "output";
+      case 'd': return "dependency";
+      case 'e': return "error";
+      default:
+        if (withValue.find(word[k]) != std::string::npos) return "";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
 std::vector<std::string> parseSlurmArgs(const std::string& text) {
   std::vector<std::string> args;
   std::istringstream words(text);
   std::string word;
   while (words >> word) {
-    if (word[0] != '-' || word.find_first_of("'\"\\\n\r`$") != std::string::npos)
+    if (word.size() < 2 || word[0] != '-' || word == "--" || word.rfind("--=", 0) == 0 ||
+        word.find_first_of("'\"\\\n\r`$") != std::string::npos)
       throw InputError("--slurm-args: " + quote(word) + ": each word must be an sbatch option (starting with '-', "
                        "without quotes, backslashes, '$' or '`')");
-    if (word.rfind("--array", 0) == 0 || word.rfind("-a", 0) == 0 || word.rfind("--output", 0) == 0 ||
-        word.rfind("--dependency", 0) == 0)
-      throw InputError("--slurm-args: " + quote(word) + ": omnicam sets --array (use --max-parallel for %K), --output "
-                       "and --dependency itself");
+    if (const std::string reserved = reservedSbatchOption(word); !reserved.empty())
+      throw InputError("--slurm-args: " + quote(word) + ": sbatch reads it as --" + reserved +
+                       "; omnicam sets --array (use --max-parallel for %K), --output and --dependency itself, and "
+                       "keeps --error and --wrap (the job's log and script) its own");
     args.push_back(word);
   }
   return args;
@@ -72,22 +136,20 @@ std::string slurmArraySpec(const std::vector<int>& indices, int maxParallel) {
 }
 
 SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
-  if (o.shards < 1 || o.shards > 100000) throw InputError("--shards: must be in [1, 100000]");
-  if (o.maxParallel < 0) throw InputError("--max-parallel: must be at least 1");
+  if (o.shards < 1 || o.shards > kMaxShards)
+    throw InputError("shard count " + std::to_string(o.shards) + ": must be in [1, " + std::to_string(kMaxShards) + "]");
+  if (o.maxParallel < 0) throw InputError("shards at once: " + std::to_string(o.maxParallel) + ": must be at least 1 (0: no limit)");
   const fs::path dir = fs::absolute(o.dir).lexically_normal();
   const fs::path spec = fs::absolute(o.spec).lexically_normal();
-  // Slurm expands %-patterns in log paths: a folder name with '%' would be rewritten.
-  if (dir.string().find('%') != std::string::npos)
-    throw InputError("-o: " + showPath(o.dir) + ": a folder for Slurm must not contain '%' (Slurm expands it in log names)");
+  checkScriptPath(dir.string(), true);
+  checkScriptPath(spec.string(), false);
+  checkScriptPath(o.omnicamBinary, false);
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_empty(dir, ec) && !fs::exists(dir / kManifestName, ec) &&
-      !fs::is_directory(dir / "shards", ec))
-    throw InputError("-o: " + showPath(o.dir) + ": folder is not empty and holds no dataset (no " + std::string(kManifestName) +
+  if (fs::exists(dir, ec) && !fs::is_empty(dir, ec) && entryInside(dir.string(), kManifestName) != EntryKind::File &&
+      entryInside(dir.string(), "shards") != EntryKind::Folder)
+    throw InputError(showPath(dir.string()) + ": folder is not empty and holds no dataset (no " + std::string(kManifestName) +
                      ", no shards/)");
-  const fs::path slurmDir = dir / "slurm";
-  fs::create_directories(dir / "shards", ec);
-  fs::create_directories(slurmDir, ec);
-  if (ec) throw OutputError("-o: " + showPath(o.dir) + ": cannot create folder (" + ec.message() + ")");
+  for (const char* folder : {"shards", "slurm"}) checkFoldersInside(dir.string(), folder);
 
   SlurmSubmission s;
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))
@@ -96,12 +158,16 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
     mergeDatasetShards(dir.string(), o.shards);
     return s;
   }
+  for (const int shard : s.shards) checkLogName(dir, "slurm/shard-" + std::to_string(shard) + ".log");
+  checkLogName(dir, "slurm/merge.log");
+  for (const char* folder : {"shards", "slurm"}) makeFoldersInside(dir.string(), folder);
+  const fs::path slurmDir = dir / "slurm";
 
   std::ostringstream render;
   render << "#!/bin/bash\n"
          << "# Written by `omnicam dataset --backend slurm`: one array task per dataset shard (docs/cluster.md).\n"
          << "# Submitted as: sbatch --array=" << slurmArraySpec(s.shards, o.maxParallel)
-         << " --output=" << (slurmDir / "shard-%a.log").string() << " render.sbatch\n"
+         << " --output=" << shellQuote((slurmDir / "shard-%a.log").string()) << " render.sbatch\n"
          << "#SBATCH --job-name=omnicam-dataset\n";
   for (const std::string& arg : o.sbatchArgs) render << "#SBATCH " << arg << "\n";
   render << "exec " << shellQuote(o.omnicamBinary) << " dataset " << shellQuote(spec.string()) << " -o "
@@ -117,16 +183,16 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
         << o.shards << "\n";
   s.renderScript = (slurmDir / "render.sbatch").string();
   s.mergeScript = (slurmDir / "merge.sbatch").string();
-  writeTextAtomically(s.renderScript, render.str());
-  writeTextAtomically(s.mergeScript, merge.str());
+  writeFileInside(dir.string(), "slurm/render.sbatch", render.str(), Durability::Synced);
+  writeFileInside(dir.string(), "slurm/merge.sbatch", merge.str(), Durability::Synced);
 
   s.arrayJob = submit({o.sbatch, "--parsable", "--array=" + slurmArraySpec(s.shards, o.maxParallel),
                        "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
-                      slurmDir, "array job");
+                      dir, "array job");
   // afterany: the merge also runs when a task failed, and lists what is missing.
   s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
                        "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
-                      slurmDir, "merge job");
+                      dir, "merge job");
   return s;
 }
 

@@ -26,5 +26,16 @@ TEST(SlurmBackend, SbatchOptionsAreWordsStartingWithADashAndNothingToExpand) {
     EXPECT_THROW(parseSlurmArgs(bad), InputError) << bad;
 }
 
+TEST(SlurmBackend, ReservedOptionsAreRefusedUnderEverySpellingSbatchAccepts) {
+  // Unambiguous prefixes of long options; short options with attached values, also after flags.
+  for (const char* bad : {"--arr=0-3", "--a=1", "--out=x.log", "--outp=x", "--dep=afterok:1", "--er=e.log", "--wr=id",
+                          "-a0-3", "-ox.log", "-o", "-dafterok:1", "-ee.log", "-Hox.log", "-vQa1", "--", "-", "--=x"})
+    EXPECT_THROW(parseSlurmArgs(bad), InputError) << bad;
+  // A value attached to another option is a value: "d" in "-pdebug" is not --dependency.
+  for (const char* good : {"-pdebug", "-Jomnicam-data", "--partition=dev-a", "--export=ALL", "--open-mode=append",
+                           "--exclusive", "-H", "-vv", "--account=array"})
+    EXPECT_NO_THROW(parseSlurmArgs(good)) << good;
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -54,7 +54,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   posix_spawnattr_init(&attributes);
   posix_spawn_file_actions_addchdir_np(&actions, workDir.c_str());
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  // O_NOFOLLOW: a link planted where the log goes is never written through.
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   posix_spawnattr_setpgroup(&attributes, 0);
   sigset_t defaults;

@@ -22,38 +22,31 @@ RecordingCamera RecordingCamera::webcam() {
   return camera;
 }
 
-RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& where) {
-  if (!j.is_object()) throw InputError(where + ": must be an object");
+RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
+  JsonFields f(j, file, where);
   RecordingCamera camera;
-  auto number = [&](const std::string& key, double lo, double hi) {
-    const nlohmann::json& v = j.at(key);
-    if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
-      throw InputError(where + "." + key + ": must be a number in [" + shortNumber(lo) + ", " + shortNumber(hi) + "]");
-    return v.get<double>();
-  };
-  for (const auto& [key, value] : j.items()) {
-    if (key == "exposure_ev") camera.exposureEv = number(key, -10, 10);
-    else if (key == "white_balance") {
-      if (!value.is_array() || value.size() != 3) throw InputError(where + ".white_balance: must be [r, g, b]");
-      for (int c = 0; c < 3; ++c) {
-        if (!value[c].is_number() || !(value[c].get<double>() > 0 && value[c].get<double>() <= 10))
-          throw InputError(where + ".white_balance: gains must be in (0, 10]");
-        camera.whiteBalance[c] = value[c].get<double>();
-      }
-    } else if (key == "vignetting") camera.vignetting = number(key, 0, 1);
-    else if (key == "full_well_electrons") camera.fullWellElectrons = number(key, 0, 1e7);
-    else if (key == "read_noise") camera.readNoise = number(key, 0, 1);
-    else if (key == "jpeg_quality") {
-      if (!value.is_number_integer() || value.get<int>() < 0 || value.get<int>() > 100)
-        throw InputError(where + ".jpeg_quality: must be an integer in [0, 100] (0: no JPEG)");
-      camera.jpegQuality = value.get<int>();
-    } else if (key == "seed") {
-      if (!value.is_number_unsigned()) throw InputError(where + ".seed: must be a non-negative integer");
-      camera.seed = value.get<uint64_t>();
-    } else
-      throw InputError(where + "." + keySegment(key) + ": unknown field (exposure_ev, white_balance, vignetting, "
-                       "full_well_electrons, read_noise, jpeg_quality, seed)");
+  camera.exposureEv = f.number("exposure_ev", camera.exposureEv, {-10, 10});
+  if (f.has("white_balance")) {
+    const Vec3 gains = f.vec3("white_balance");
+    for (int c = 0; c < 3; ++c) {
+      if (!(gains[c] > 0 && gains[c] <= 10)) f.fail("white_balance", "gains must be in (0, 10] (got " + shortNumber(gains[c]) + ")");
+      camera.whiteBalance[c] = gains[c];
+    }
   }
+  camera.vignetting = f.number("vignetting", camera.vignetting, {0, 1});
+  camera.fullWellElectrons = f.number("full_well_electrons", camera.fullWellElectrons, {0, 1e7});
+  camera.readNoise = f.number("read_noise", camera.readNoise, {0, 1});
+  if (f.has("jpeg_quality")) {
+    const auto quality = integerInRange(f.raw("jpeg_quality"), 0, 100);
+    if (!quality) f.fail("jpeg_quality", "must be an integer in [0, 100] (0: no JPEG) (got " + jsonValueText(f.raw("jpeg_quality")) + ")");
+    camera.jpegQuality = static_cast<int>(*quality);
+  }
+  if (f.has("seed")) {  // any unsigned 64-bit integer, read exactly
+    const nlohmann::json& seed = f.raw("seed");
+    if (!seed.is_number_unsigned()) f.fail("seed", "must be an integer in [0, 2^64 - 1] (got " + jsonValueText(seed) + ")");
+    camera.seed = seed.get<uint64_t>();
+  }
+  f.finish();
   return camera;
 }
 

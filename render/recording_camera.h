@@ -32,8 +32,10 @@ struct RecordingCamera {
   static RecordingCamera webcam();
 };
 
-// Throws InputError naming `where` and the field for an unknown field or a value out of range.
-RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& where);
+// Throws InputError naming `file`, the field path `where` and the field for an unknown field, a
+// wrong type or a value out of range.
+RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file,
+                                        const std::string& where = "recording");
 nlohmann::json recordingCameraToJson(const RecordingCamera& camera);
 
 // The frame as `camera` records it. `frameIndex` is mixed into the seed, so every frame has its

@@ -1,7 +1,8 @@
 // LD_PRELOAD library for tests: holds an omnicam process at a point the test chooses, so that a
 // test can kill or interrupt it mid-run on any machine, fast or slow (tests/hold_point.h).
 //
-// It wraps rename(2), which every atomic write ends with (core/atomic_file.cpp). After a rename
+// It wraps rename(2) and renameat(2), with which every atomic write ends (core/atomic_file.cpp;
+// files inside a dataset folder are renamed relative to their open folder). After a rename
 // onto a file named $OMNICAM_HOLD_MANIFEST whose content lists at least one frame and is not
 // complete, it creates $OMNICAM_HOLD_DIR/held (once: a second process sharing the folder never
 // holds) and blocks reading the FIFO $OMNICAM_HOLD_DIR/release until the test closes it or kills
@@ -19,6 +20,7 @@
 namespace {
 
 using RenameFunction = int (*)(const char*, const char*);
+using RenameAtFunction = int (*)(int, const char*, int, const char*);
 
 bool endsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -66,7 +68,28 @@ void holdIfChosen(const char* renamedTo) {
   ::close(fd);
 }
 
+// The path `name` names relative to the open folder `folder` (or the working folder).
+std::string pathAt(int folder, const char* name) {
+  if (name[0] == '/') return name;
+  const std::string link = folder == AT_FDCWD ? "/proc/self/cwd" : "/proc/self/fd/" + std::to_string(folder);
+  char target[4096];
+  const ssize_t n = ::readlink(link.c_str(), target, sizeof target);
+  if (n <= 0 || static_cast<size_t>(n) == sizeof target) return name;
+  return std::string(target, static_cast<size_t>(n)) + "/" + name;
+}
+
 }  // namespace
+
+extern "C" int renameat(int fromFolder, const char* from, int toFolder, const char* to) {
+  static const auto real = reinterpret_cast<RenameAtFunction>(::dlsym(RTLD_NEXT, "renameat"));
+  const int result = real(fromFolder, from, toFolder, to);
+  if (result == 0) {
+    const int savedErrno = errno;
+    holdIfChosen(pathAt(toFolder, to).c_str());
+    errno = savedErrno;
+  }
+  return result;
+}
 
 extern "C" int rename(const char* from, const char* to) {
   static const auto real = reinterpret_cast<RenameFunction>(::dlsym(RTLD_NEXT, "rename"));

@@ -128,6 +128,9 @@ def main():
         "node_cycle": gltf(nodes=[{"name": "a", "mesh": 0, "children": [1]}, {"name": "b", "children": [0]}]),
         "bad_texture_index": gltf(extra=lambda d: d["materials"][0]["pbrMetallicRoughness"].update(
             {"baseColorTexture": {"index": 7}})),
+        # Every JSON input: bounded depth (tinygltf walks extras recursively), no key twice.
+        "deep_extras": gltf().rstrip()[:-1] + ', "extras": ' + "[" * 1000 + "]" * 1000 + "}\n",
+        "duplicate_key": gltf().replace('"asset": {', '"asset": {"version": "2.0"}, "asset": {', 1),
     }
     for name, text in cases.items():
         write(os.path.join(SCENES, "arena_" + name + ".gltf"), text)
@@ -232,6 +235,45 @@ def main():
     dataset_spec("povray_mode", engine="povray", mode="cubemap")
     dataset_spec("camera_rig", cameras=[{"name": "c", "rig": {"height": -1}}])
     dataset_spec("recording_jpeg", recording={"jpeg_quality": 150})
+
+    # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
+    random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}
+    dataset_spec("allow_outside", allow_outside_files=True)
+    dataset_spec("clearance_1e200", poses={"random": dict(random, clearance=1e200)})
+    dataset_spec("jpeg_4294967346", recording={"jpeg_quality": 4294967346})
+    dataset_spec("mount_y", cameras=[{"name": "c", "mount": {"y": 1000}}])
+    dataset_spec("samples_huge", size=16384, spp=16)
+    dataset_spec("camera_frames", cameras=[{"name": "a"}, {"name": "b"}], poses={"random": dict(random, count=60000)})
+    dataset_spec("seed_inexact", poses={"random": dict(random, seed=2 ** 53 + 1)})
+    dataset_spec("timeout_1e300", engine="povray", timeout_s=1e300)
+    dataset_spec("polygons_17", mode="thesis-mesh", mode_options={"polygons": 17})
+    # 100,000 levels deep: a stack overflow once (the spec is copied into the manifest).
+    write(os.path.join(datasets, "deep_comment.json"),
+          '{"format": "omnicam-dataset/1", "scene": "box.json", "poses": {"path": "p"}, "comment": ' +
+          "[" * 100000 + "]" * 100000 + "}\n")
+
+    # Forged manifests: DIR/manifest.json of a one-frame dataset with one thing wrong.
+    sha = "0" * 64
+    def manifest(name, edit=None, text=None):
+        pose = {"x": 0, "y": 0, "yaw_deg": 0}
+        doc = {"format": "omnicam-dataset-manifest/1", "spec": {}, "spec_sha256": sha, "engine": {},
+               "scene": {"sha256": sha}, "frame_count": 1, "complete": True,
+               "cameras": [{"name": "cam0", "files": {"poses_tum": {"path": "cam0/poses.tum", "sha256": sha}}}],
+               "frames": [{"index": 0, "timestamp": 0, "pose": pose, "cameras": {"cam0": {
+                   "pose": pose, "files": {"rgb": {"path": "cam0/rgb/000000.png", "sha256": sha}}}}}]}
+        if edit:
+            edit(doc)
+        body = json.dumps(doc, indent=1) + "\n"
+        write(os.path.join(HERE, "manifests", name, "manifest.json"), text(body) if text else body)
+    def rgb(doc, path):
+        doc["frames"][0]["cameras"]["cam0"]["files"]["rgb"]["path"] = path
+    manifest("path_dotdot", lambda d: rgb(d, "../secret.txt"))
+    manifest("path_absolute", lambda d: rgb(d, "/etc/passwd"))
+    manifest("index_negative", lambda d: d["frames"][0].update(index=-1))
+    manifest("index_twice", lambda d: d["frames"].append(d["frames"][0]))
+    manifest("count_string", lambda d: d.update(frame_count="1"))
+    manifest("pose_missing", lambda d: d["frames"][0].pop("pose"))
+    manifest("truncated", text=lambda body: body[:len(body) // 2])
 
 
 if __name__ == "__main__":

@@ -1,0 +1,114 @@
+// The manifest reader against what the writer can produce: every manifest a dataset within the
+// limits makes stays readable (its size bound is derived from those limits), and what no writer
+// produces — a file outside a camera's folder, numbers out of range — is refused.
+#include "manifest.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kHash = "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef";
+
+json smallHeader(const std::vector<std::string>& cameras, int frameCount) {
+  json cams = json::array();
+  for (const std::string& name : cameras)
+    cams.push_back({{"name", name}, {"files", {{"poses_tum", {{"path", name + "/poses.tum"}, {"sha256", kHash}}}}}});
+  return {{"format", kManifestFormat}, {"spec", json::object()}, {"spec_sha256", kHash}, {"engine", json::object()},
+          {"scene", {{"sha256", kHash}}}, {"frame_count", frameCount}, {"complete", false}, {"cameras", cams}};
+}
+
+// A frame as long as any the writer makes: the longest camera names, six-digit indices, every
+// kind of file, and numbers that take the most characters (17 significant digits, an exponent).
+FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
+  const double longest = -1.2345678901234567e-300;
+  FrameRecord frame{index, longest, {longest, longest, longest}, {}};
+  for (const std::string& name : cameras) {
+    CameraFrame& camera = frame.cameras[name];
+    camera.pose = frame.robot;
+    for (const char* kind : {"rgb", "depth", "instance", "semantic", "normal", "landmarks"})
+      camera.files[kind] = {name + "/" + kind + "/" + std::to_string(index) + ".json", kHash};
+  }
+  return frame;
+}
+
+TEST(Manifest, EveryCameraFrameTakesAtMostTheBytesItsSizeLimitAllows) {
+  for (const int cameraCount : {1, static_cast<int>(limits::kMaxDatasetCameras)}) {
+    std::vector<std::string> cameras;
+    for (int c = 0; c < cameraCount; ++c) cameras.push_back(std::string(62, 'c') + static_cast<char>('a' + c));
+    DatasetManifest manifest{smallHeader(cameras, 1000000), {}};
+    const size_t headerOnly = manifestToJson(manifest).dump(1).size();
+    const int frames = 20;
+    for (int i = 999999; i > 999999 - frames; --i) manifest.frames[i] = longestFrame(i, cameras);
+    const size_t perCameraFrame = (manifestToJson(manifest).dump(1).size() - headerOnly) / (frames * cameraCount);
+    EXPECT_LE(perCameraFrame, static_cast<size_t>(kMaxManifestBytesPerCameraFrame)) << cameraCount << " cameras";
+  }
+}
+
+class ManifestFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("omnicam_manifest_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// The old reader refused its own manifests past 64 MiB (about 58,000 camera-frames).
+TEST_F(ManifestFileTest, ManifestsLargerThanOtherJsonInputsAreRead) {
+  DatasetManifest manifest{smallHeader({"cam0"}, 1), {}};
+  manifest.frames[0] = longestFrame(0, {"cam0"});
+  std::string text = manifestToJson(manifest).dump(1);
+  text.insert(text.size() - 1, std::string(size_t{80} << 20, ' '));  // 80 MiB: over the JSON files' 64 MiB
+  std::ofstream(dir_ / kManifestName, std::ios::binary) << text;
+  EXPECT_EQ(readManifest(dir_.string()).frames.size(), 1u);
+  // Past the manifest's own bound: refused by its size, before a byte is read (a sparse file).
+  fs::resize_file(dir_ / kManifestName, static_cast<uintmax_t>(kMaxManifestBytes) + 1);
+  EXPECT_THROW(readManifest(dir_.string()), InputError);
+}
+
+std::string errorOf(const json& manifest) {
+  try {
+    manifestFromText(manifest.dump(), "manifest.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
+  DatasetManifest manifest{smallHeader({"cam0", "cam1"}, 1), {}};
+  manifest.frames[0] = longestFrame(0, {"cam0", "cam1"});
+  const json good = manifestToJson(manifest);
+  EXPECT_EQ(errorOf(good), "");
+  for (const std::string bad : {"../x", "/etc/passwd", "cam0/../x", "cam0/./x", "cam0//x", "cam0/rgb/.x.tmp-1.png",
+                                "cam1/rgb/0.png", "cam0/a/b/c", "cam0", "cam0/", "cam0/rgb/x\ny"}) {
+    json m = good;
+    m["frames"][0]["cameras"]["cam0"]["files"]["rgb"]["path"] = bad;
+    EXPECT_EQ(errorOf(m).rfind("manifest.json: frames[0].cameras.cam0.files.rgb.path: must be a file in the dataset's "
+                               "camera folder cam0 (got ", 0),
+              0u)
+        << bad << ": " << errorOf(m);
+  }
+  json m = good;
+  m["cameras"][1]["name"] = "cam0";
+  EXPECT_EQ(errorOf(m), "manifest.json: cameras[1].name: duplicate camera name \"cam0\"");
+  m = good;
+  m["frames"][0]["cameras"]["cam0"]["files"]["secret"] = m["frames"][0]["cameras"]["cam0"]["files"]["rgb"];
+  EXPECT_EQ(errorOf(m), "manifest.json: frames[0].cameras.cam0.files.secret: unknown kind of frame file");
+}
+
+}  // namespace
+}  // namespace omnicam

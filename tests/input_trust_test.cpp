@@ -1,0 +1,245 @@
+// Untrusted inputs of `omnicam dataset` and friends (docs/robustness.md, "Threat model"): JSON of
+// any shape, a spec from someone else, numbers that size work, manifests that were forged or cut
+// short, and sbatch options under other spellings. Each case: exit 2, exactly one line naming
+// the file and field, and nothing written.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "shell_command.h"
+
+namespace omnicam {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Exactly one line: one newline, at the end, and no other control character.
+bool isOneLine(const std::string& out) {
+  if (out.empty() || out.back() != '\n') return false;
+  return std::none_of(out.begin(), out.end() - 1, [](char ch) {
+    const auto byte = static_cast<unsigned char>(ch);
+    return byte < 0x20 || byte == 0x7F;
+  });
+}
+
+// Every entry under `dir` (links not followed) with its bytes: what "nothing written" compares.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> entries;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    entries[fs::relative(entry.path(), dir).string()] = entry.is_regular_file() ? readFile(entry.path()) : "";
+  return entries;
+}
+
+class InputTrustTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("omnicam_input_trust_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/datasets/box.json", dir_ / "box.json");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return path(name);
+  }
+  // A spec over box.json (one pose on path "p") with the root's fields replaced by `fields`.
+  std::string spec(const json& fields, const std::string& name = "spec.json") const {
+    json s = {{"format", "omnicam-dataset/1"}, {"scene", "box.json"}, {"poses", {{"path", "p"}}}, {"size", 16}};
+    for (const auto& [key, value] : fields.items()) s[key] = value;
+    return write(name, s.dump());
+  }
+  testing::CommandResult omnicam(const std::string& args) const {
+    return testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");
+  }
+  // The command ends with exit 2 and one line holding `fragment`, and the folder is as it was.
+  void expectRefused(const std::string& args, const std::string& fragment) const {
+    const auto before = snapshot(dir_);
+    const auto [code, out] = omnicam(args);
+    SCOPED_TRACE(args + "\n" + out);
+    EXPECT_EQ(code, 2);
+    EXPECT_TRUE(isOneLine(out)) << "one line, no control characters";
+    EXPECT_NE(out.find(fragment), std::string::npos) << "expected: " << fragment;
+    EXPECT_TRUE(snapshot(dir_) == before) << "wrote something";
+  }
+  void expectSpecRefused(const json& fields, const std::string& fragment) const {
+    expectRefused("dataset " + spec(fields) + " -o " + path("ds"), fragment);
+  }
+  // A finished one-frame dataset in ds/ and its manifest, to forge.
+  json renderDataset() const {
+    const auto [code, out] = omnicam("dataset " + spec({{"outputs", {{"depth", false}, {"normal", false}}}}) + " -o " + path("ds"));
+    EXPECT_EQ(code, 0) << out;
+    return json::parse(readFile(dir_ / "ds" / "manifest.json"));
+  }
+  void expectForgedManifestRefused(const json& manifest, const std::string& fragment) const {
+    write("ds/manifest.json", manifest.dump(1));
+    expectRefused("dataset --verify " + path("ds"), "manifest.json: " + fragment);
+  }
+  fs::path dir_;
+};
+
+// JSON nested 100,000 levels deep used to overflow the stack (the spec is copied into the
+// manifest by a recursive dump) after frames were written; every JSON input is refused at
+// limits::kMaxJsonDepth before anything is done with it.
+TEST_F(InputTrustTest, DeeplyNestedJsonIsRefusedBeforeAnyWork) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const std::string head = R"({"format": "omnicam-dataset/1", "scene": "box.json", "poses": {"path": "p"}, "comment": )";
+  expectRefused("dataset " + write("deep.json", head + deep + "}") + " -o " + path("ds"),
+                "deep.json: JSON nested deeper than 64 levels of objects and arrays");
+  const std::string scene = R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [], "comment": )";
+  expectRefused("render " + write("deep_scene.json", scene + deep + "}") + " -o " + path("x.png"),
+                "deep_scene.json: JSON nested deeper than 64 levels");
+  // A glTF arena: tinygltf would walk deep "extras" recursively.
+  write("deep.gltf", R"({"asset": {"version": "2.0"}, "extras": )" + deep + "}");
+  const std::string gltfScene =
+      R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [{"type": "gltf", "file": "deep.gltf"}]})";
+  expectRefused("render " + write("gltf_scene.json", gltfScene) + " -o " + path("x.png"),
+                "deep.gltf: JSON nested deeper than 64 levels");
+  write("dup.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scene": 1})");
+  expectRefused("render " + write("dup_scene.json", R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+      "objects": [{"type": "gltf", "file": "dup.gltf"}]})") + " -o " + path("x.png"),
+                "dup.gltf: duplicate key \"scene\" in one object");
+}
+
+// Only the user's own flag lifts the scene-folder rule; a spec that asks is refused.
+TEST_F(InputTrustTest, ASpecCannotLiftConfinementOnlyTheUsersFlagCan) {
+  expectSpecRefused({{"allow_outside_files", true}},
+                    "spec.json: allow_outside_files: a spec cannot let its scene pull in files from outside the scene's "
+                    "folder; pass --allow-outside-files to omnicam dataset if you mean it");
+  fs::create_directories(dir_ / "scene");
+  fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes/texture_outside.json", dir_ / "scene" / "scene.json");
+  fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/outside.png", dir_ / "outside.png");
+  const std::string outside = spec({{"scene", "scene/scene.json"}, {"poses", {{"list", {{0, 0, 0}}}}}});
+  expectRefused("dataset " + outside + " -o " + path("ds"), "\"../outside.png\" resolves outside the scene's folder");
+  expectRefused("dataset " + outside + " -o " + path("ds") + " --allow-outside-files --backend slurm --shards 2",
+                "--allow-outside-files: only with the local backend");
+  expectRefused("dataset --verify " + path("ds") + " --allow-outside-files", "--allow-outside-files: only with a SPEC");
+  const auto [code, out] = omnicam("dataset " + outside + " -o " + path("ds") + " --allow-outside-files");
+  EXPECT_EQ(code, 0) << out;
+}
+
+// Every number that sizes work is checked against its documented range before work starts,
+// integers are never wrapped, and messages name the field that is wrong (not a CLI flag).
+TEST_F(InputTrustTest, NumbersAreCheckedAgainstTheirRangesAndNamedRight) {
+  const json random = {{"count", 5}, {"seed", 1}, {"region", {-1, -1, 1, 1}}};
+  json huge = random;
+  huge["clearance"] = 1e200;  // was a SIGSEGV in the free-space sweep
+  expectSpecRefused({{"poses", {{"random", huge}}}}, "spec.json: poses.random.clearance: must be in [0, 100] m (got 1e+200)");
+  expectSpecRefused({{"recording", {{"jpeg_quality", 4294967346u}}}},  // was taken as 50
+                    "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (0: no JPEG) (got 4294967346)");
+  expectSpecRefused({{"cameras", {{{"name", "c"}, {"mount", {{"y", 1000}}}}}}},  // was named mount.x
+                    "spec.json: cameras[0].mount.y: must be in [-100, 100] m from the robot's centre (got 1000)");
+  expectSpecRefused({{"size", 16384}, {"spp", 16}},  // was told about --spp
+                    "spec.json: spp: size 16384^2 x spp 16 = 4294967296 samples per frame; the limit is 268435456");
+  json seed = random;
+  seed["seed"] = 9007199254740993u;  // 2^53 + 1 was read as a double: 2^53
+  expectSpecRefused({{"poses", {{"random", seed}}}}, "spec.json: poses.random.seed: must be in [0, 9007199254740992]");
+  json many = random;
+  many["count"] = 60000;
+  expectSpecRefused({{"poses", {{"random", many}}}, {"cameras", {{{"name", "a"}}, {{"name", "b"}}}}},
+                    "spec.json: poses.random.count: 60000 frames x 2 cameras = 120000 camera-frames; the limit is 100000");
+  expectSpecRefused({{"poses", {{"path", "p"}, {"frames", 4294967297u}}}}, "spec.json: poses.frames: must be in [1, 100000]");
+  expectSpecRefused({{"engine", "povray"}, {"timeout_s", 1e300}}, "spec.json: timeout_s: must be in (0, 604800] s (got 1e+300)");
+  expectSpecRefused({{"frame_interval_s", 1e300}}, "spec.json: frame_interval_s: must be in (0, 86400] s");
+  expectSpecRefused({{"mode", "thesis-mesh"}, {"mode_options", {{"polygons", 17}}}},
+                    "spec.json: mode_options.polygons: must be 16, 64, 256 or 1024 (got 17)");
+  // The scene's rig gives the size: the check happens once the scene is read, still before
+  // anything is written, and still names the spec's field.
+  json scene = json::parse(readFile(dir_ / "box.json"));
+  scene["rig"] = {{"image", {{"size", 16384}}}};
+  write("big_rig.json", scene.dump());
+  json bigRig = {{"format", "omnicam-dataset/1"}, {"scene", "big_rig.json"}, {"poses", {{"path", "p"}}}, {"spp", 16}};
+  expectRefused("dataset " + write("big_rig_spec.json", bigRig.dump()) + " -o " + path("ds"),
+                "big_rig_spec.json: spp: size 16384^2 x spp 16 = 4294967296 samples per frame");
+  expectRefused("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --engine povray --timeout 1e300 -o " + path("x.png"),
+                "--timeout");
+}
+
+// A manifest is another user's file like any other: forged or cut short, it ends in exit 2 with
+// one line naming the field, never an internal error (exit 4), and it names no file outside its
+// cameras' folders.
+TEST_F(InputTrustTest, ForgedAndTruncatedManifestsAreRefusedNamingTheField) {
+  const json good = renderDataset();
+  ASSERT_FALSE(good["frames"].empty());
+  const std::string manifest = good.dump(1);
+  write("ds/manifest.json", manifest.substr(0, manifest.size() / 2));
+  expectRefused("dataset --verify " + path("ds"), "manifest.json: not valid JSON");
+  const auto forged = [&](const std::string& pointer, const json& value) {
+    json m = good;
+    m[json::json_pointer(pointer)] = value;
+    return m;
+  };
+  expectForgedManifestRefused(forged("/frame_count", "1"), "frame_count: must be an integer (got string)");
+  expectForgedManifestRefused(forged("/frame_count", 1e300), "frame_count: must be an integer (got 1e+300)");
+  expectForgedManifestRefused(forged("/complete", 1), "complete: must be true or false");
+  expectForgedManifestRefused(forged("/spec_sha256", 7), "spec_sha256: must be a string (got number)");
+  expectForgedManifestRefused(forged("/frames/0/index", -1), "frames[0].index: must be in [0, 0] (got -1)");
+  expectForgedManifestRefused(forged("/frames/0/index", 18446744073709551615u), "frames[0].index: must be in [0, 0]");
+  expectForgedManifestRefused(forged("/frames/0/pose/x", 1e300), "frames[0].pose: x and y must be within ±10000 m");
+  expectForgedManifestRefused(forged("/frames/0/cameras/cam0/files/rgb/path", "../x"),
+                              "frames[0].cameras.cam0.files.rgb.path: must be a file in the dataset's camera folder cam0");
+  expectForgedManifestRefused(forged("/frames/0/cameras/cam0/files/rgb/path", "/etc/passwd"),
+                              "frames[0].cameras.cam0.files.rgb.path: must be a file in the dataset's camera folder");
+  expectForgedManifestRefused(forged("/frames/0/cameras/cam0/files/rgb/path", "cam0/rgb/../../../x"),
+                              "frames[0].cameras.cam0.files.rgb.path: must be a file in the dataset's camera folder");
+  expectForgedManifestRefused(forged("/cameras/0/files/poses_tum/path", "cam0/../manifest.json"),
+                              "cameras[0].files.poses_tum.path: must be a file in the dataset's camera folder");
+  expectForgedManifestRefused(forged("/frames/0/cameras/cam0/files/rgb/sha256", "x"),
+                              "frames[0].cameras.cam0.files.rgb.sha256: must be 64 lowercase hex digits");
+  expectForgedManifestRefused(forged("/frames/0/cameras/other", good["frames"][0]["cameras"]["cam0"]),
+                              "frames[0].cameras.other: not a camera of the manifest's cameras");
+  expectForgedManifestRefused(forged("/shard", {{"index", 0}, {"count", 1}, {"first_frame", 0}, {"end_frame", 5}}),
+                              "shard.end_frame: must be in [0, 1] (got 5)");
+  json missing = good;
+  missing["frames"][0].erase("pose");
+  expectForgedManifestRefused(missing, "frames[0].pose: missing required field");
+  json twice = good;
+  twice["frames"].push_back(good["frames"][0]);
+  expectForgedManifestRefused(twice, "frames[1].index: frame 0 listed twice");
+  json wrongType = good;
+  wrongType["frames"] = json::object();
+  expectForgedManifestRefused(wrongType, "frames: must be an array");
+  // The same reader serves --status and resuming.
+  write("ds/manifest.json", forged("/frames/0/cameras/cam0/files/rgb/path", "../x").dump());
+  expectRefused("dataset --status " + path("ds"), "frames[0].cameras.cam0.files.rgb.path");
+}
+
+// sbatch takes unambiguous prefixes of long options and short options with their value attached
+// (also after other flags): every spelling of the options omnicam sets itself is refused.
+TEST_F(InputTrustTest, ReservedSbatchOptionsAreRefusedUnderEverySpelling) {
+  const std::string base = "dataset " + spec({}) + " -o " + path("ds") + " --backend slurm --shards 2 --slurm-args=";
+  for (const auto& [words, option] : std::map<std::string, std::string>{{"--out=x.log", "--output"},
+                                                                          {"--o=x.log", "--output"},
+                                                                          {"-ox.log", "--output"},
+                                                                          {"-o", "--output"},
+                                                                          {"-Hox.log", "--output"},
+                                                                          {"-dafterok:1", "--dependency"},
+                                                                          {"--dep=afterok:1", "--dependency"},
+                                                                          {"--arr=0-9", "--array"},
+                                                                          {"-a0-9", "--array"},
+                                                                          {"--er=e.log", "--error"},
+                                                                          {"-vee.log", "--error"},
+                                                                          {"--wr=id", "--wrap"}})
+    expectRefused(base + "'--partition=cpu " + words + "'", "sbatch reads it as " + option + "; omnicam sets --array");
+}
+
+}  // namespace
+}  // namespace omnicam
