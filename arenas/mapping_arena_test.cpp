@@ -92,7 +92,7 @@ TEST(MappingArena, FastAndPovrayAgreeUnlitAt16Spp) {
     const CompareResult r = compareImages(fast->render(pose, settings), povray->render(pose, settings));
     std::printf("mapping, fast vs POV-Ray, pose (%.2f, %.2f, %.0f), unlit, 16 spp: PSNR %.2f dB\n", pose.x, pose.y,
                 pose.yawDeg, r.psnrDb);
-    EXPECT_GE(r.psnrDb, 45.0);
+    EXPECT_GE(r.psnrDb, 78.0);  // measured 81.0 and 81.4 dB (target 45 dB): a regression shows
   }
 }
 
@@ -106,7 +106,9 @@ TEST(MappingArena, BlenderRendersItToo) {
   const CompareResult r = compareImages(makeEngine("fast", scene)->render(pose, settings),
                                         makeEngine("blender", scene)->render(pose, settings));
   std::printf("mapping, fast vs Blender, 64 px, unlit, 16 spp: PSNR %.2f dB\n", r.psnrDb);
-  EXPECT_GE(r.psnrDb, 35.0);  // Cycles samples randomly within the pixel (docs/blender.md)
+  // Measured 42.0 dB (Cycles samples randomly within the pixel, docs/blender.md, with a fixed
+  // seed): a floor 3 dB under it.
+  EXPECT_GE(r.psnrDb, 39.0);
 }
 
 TEST(MappingArena, ParametersOutOfRangeAreRefused) {

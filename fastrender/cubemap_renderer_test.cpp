@@ -1,7 +1,6 @@
 #include "cubemap_renderer.h"
 
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <cmath>
 #include <cstring>
@@ -11,6 +10,7 @@
 #include "rings.h"
 #include "scene_loader.h"
 #include "texture.h"
+#include "thread_count_testing.h"
 
 namespace omnicam {
 namespace {
@@ -34,7 +34,7 @@ TEST(CubeMap, SixFacesMatchExactModeAt16Spp) {
   CubeMapOptions options;
   const CompareResult r = compareImages(fast.render(arena().startPose, settings), cube.render(arena().startPose, settings, options));
   std::printf("cube map (6 faces, 512) vs exact, 16 spp: PSNR %.2f dB\n", r.psnrDb);
-  EXPECT_GE(r.psnrDb, 40.0);
+  EXPECT_GE(r.psnrDb, 43.0);  // measured 45.9 dB: a floor 3 dB under it
 }
 
 TEST(CubeMap, RasterisedFacesMatchRayCastFaces) {
@@ -48,7 +48,7 @@ TEST(CubeMap, RasterisedFacesMatchRayCastFaces) {
   for (const RobotPose& pose : {arena().startPose, RobotPose{-0.4, 0.9, 250.0}}) {
     const CompareResult r = compareImages(cube.render(pose, settings, rays), cube.render(pose, settings, raster));
     std::printf("rasterised vs ray-cast faces: PSNR %.2f dB\n", r.psnrDb);
-    EXPECT_GE(r.psnrDb, 60.0);
+    EXPECT_GE(r.psnrDb, 62.5);  // measured 77.1 and 65.6 dB: a floor 3 dB under the lower
   }
 }
 
@@ -89,7 +89,7 @@ TEST(CubeMap, RasterisedTexturedFacesMatchRayCastFaces) {
   const ImageRGBA rasterised = cube.render(pose, settings, raster);
   const CompareResult r = compareImages(cube.render(pose, settings, rays), rasterised);
   std::printf("textured room, rasterised vs ray-cast faces: PSNR %.2f dB\n", r.psnrDb);
-  EXPECT_GE(r.psnrDb, 60.0);
+  EXPECT_GE(r.psnrDb, 120.0);  // measured 146 dB: no curved primitives, the same image to float rounding
   // The textures show: untextured, the same view differs clearly.
   Scene plain = texturedRoom();
   for (Material& m : plain.materials) m.texture = nullptr;
@@ -192,13 +192,15 @@ TEST(CubeMap, OutputIsBitIdenticalForAnyThreadCountAndOptionsAreChecked) {
   const CubeMapRenderer cube(fast);
   const RenderSettings settings = settingsFor(arena(), 1);
   CubeMapOptions options;
-  ImageRGBA one, two;
-  {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    one = cube.render(arena().startPose, settings, options);
-  }
-  two = cube.render(arena().startPose, settings, options);
-  EXPECT_EQ(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  // One thread against four (more than this machine may have cores; all four in the arena when
+  // the render starts), each with its own renderers, so that their lookups are built there too.
+  const FastRenderer fastOne(arena()), fastFour(arena());
+  const CubeMapRenderer cubeOne(fastOne), cubeFour(fastFour);
+  ImageRGBA one, four;
+  EXPECT_EQ(runOnThreads(1, [&] { one = cubeOne.render(arena().startPose, settings, options); }), 1);
+  EXPECT_EQ(runOnThreads(4, [&] { four = cubeFour.render(arena().startPose, settings, options); }), 4);
+  ASSERT_EQ(one.pixels.size(), four.pixels.size());
+  EXPECT_EQ(std::memcmp(one.pixels.data(), four.pixels.data(), one.pixels.size() * sizeof(float)), 0);
   // A reused output image (here holding another pose at another size) is wholly overwritten.
   ImageRGBA reused;
   RenderSettings small = settings;

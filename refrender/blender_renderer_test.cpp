@@ -32,7 +32,9 @@ TEST(Blender, AgreesWithTheFastRendererUnlitAt64Spp) {
     const CompareResult r = compareImages(fast.render(poses[k], settings), truth[k]);
     std::printf("fast vs Blender, pose (%.2f, %.2f, %.0f), unlit, 64 spp: PSNR %.2f dB, SSIM %.5f\n", poses[k].x,
                 poses[k].y, poses[k].yawDeg, r.psnrDb, r.ssim);
-    EXPECT_GE(r.psnrDb, 35.0);
+    // Measured 55.9 and 54.7 dB (Cycles' seed is fixed): a floor 3 dB under them, well above
+    // the 35 dB target of docs/conventions.md §7, so that a regression shows.
+    EXPECT_GE(r.psnrDb, 52.0);
   }
 }
 
@@ -59,7 +61,7 @@ TEST(Blender, ObjectsNamedLikeTheRigOrLightsDoNotConfuseTheDriver) {
   const ImageRGBA truth = renderWithBlender(scene, {scene.startPose}, settings).front();
   const CompareResult r = compareImages(FastRenderer(scene).render(scene.startPose, settings), truth);
   std::printf("fast vs Blender, objects named omnicam_*: PSNR %.2f dB\n", r.psnrDb);
-  EXPECT_GE(r.psnrDb, 35.0);
+  EXPECT_GE(r.psnrDb, 53.0);  // measured 56.1 dB
   settings.shading = Shading::Lit;
   settings.spp = 4;
   const ImageRGBA lit = renderWithBlender(scene, {scene.startPose}, settings).front();
@@ -77,7 +79,10 @@ TEST(Blender, RingImageMatchesTheExactModel) {
   const RingReport r = measureRings(image, settings.rig.camera(), defaultRingThetasDeg());
   std::printf("Blender rings: RMS %.4f px, max %.4f px, Eq. 3.2 MSE %.4f px^2\n", r.rmsPxExact, r.maxAbsPxExact,
               r.msePx2Eq32);
-  EXPECT_LE(r.rmsPxExact, 0.1);
+  // Measured RMS 0.0104 px, max 0.0235 px: bounds about twice that, under the 0.1 px target of
+  // docs/conventions.md §7, so that a regression shows.
+  EXPECT_LE(r.rmsPxExact, 0.02);
+  EXPECT_LE(r.maxAbsPxExact, 0.05);
 }
 
 TEST(Blender, AGltfArenaIsRenderedAlikeByAllThreeEngines) {
@@ -110,8 +115,8 @@ TEST(Blender, AGltfArenaIsRenderedAlikeByAllThreeEngines) {
   const CompareResult povray = compareImages(fast, renderWithPovray(scene, pose, settings));
   const CompareResult blender = compareImages(fast, renderWithBlender(scene, {pose}, settings).front());
   std::printf("glTF arena: fast vs POV-Ray %.2f dB, fast vs Blender (16 spp) %.2f dB\n", povray.psnrDb, blender.psnrDb);
-  EXPECT_GE(povray.psnrDb, 45.0);
-  EXPECT_GE(blender.psnrDb, 30.0);
+  EXPECT_GE(povray.psnrDb, 87.0);   // measured 90.8 dB (target 45 dB)
+  EXPECT_GE(blender.psnrDb, 31.5);  // measured 34.7 dB: 16 spp of random samples in the pixel
   fs::remove_all(dir);
 }
 

@@ -42,8 +42,8 @@ TEST_P(FastVsPovray, Robocup2006AtSixteenSamplesPerPixel) {
               r.psnrDb, r.ssim, r.maxAbs);
   EXPECT_GE(r.psnrDb, target);
   // Regression floor: both engines trace the same rays at the same sample positions, so they
-  // agree far beyond the spec's targets (measured 79–102 dB); a half-pixel or convention slip
-  // drops this below 60 dB.
+  // agree far beyond the spec's targets (measured 73.2 dB at the thesis start corner, lit, to
+  // 102 dB); a half-pixel or convention slip drops this below 60 dB.
   EXPECT_GE(r.psnrDb, 70.0);
   // Alpha is geometry: the same rim coverage in both.
   for (size_t p = 3; p < ours.pixels.size(); p += 4) ASSERT_FLOAT_EQ(ours.pixels[p], truth.pixels[p]);
@@ -70,7 +70,10 @@ TEST(Povray, RingImageMatchesTheExactModel) {
   const RingReport r = measureRings(image, settings.rig.camera(), defaultRingThetasDeg());
   std::printf("POV-Ray rings: RMS %.4f px, max %.4f px, Eq. 3.2 MSE %.4f px^2\n", r.rmsPxExact, r.maxAbsPxExact,
               r.msePx2Eq32);
-  EXPECT_LE(r.rmsPxExact, 0.05);
+  // Measured RMS 0.0128 px, max 0.0435 px: bounds about twice that, under the 0.05 px target of
+  // docs/conventions.md §7, so that a regression shows.
+  EXPECT_LE(r.rmsPxExact, 0.025);
+  EXPECT_LE(r.maxAbsPxExact, 0.09);
   EXPECT_NEAR(r.msePx2Eq32, 0.256, 0.02);
 }
 
@@ -114,7 +117,7 @@ TEST(Povray, AsymmetricTexturedSceneProvesAxesHandednessAndTextures) {
   const ImageRGBA ours = FastRenderer(scene).render(pose, settings);
   const ImageRGBA truth = renderWithPovray(scene, pose, settings);
   const CompareResult same = compareImages(ours, truth);
-  EXPECT_GE(same.psnrDb, 40.0);
+  EXPECT_GE(same.psnrDb, 87.0);  // measured 90.7 dB: a floor 3 dB under it
   // The same comparison against our image mirrored left–right must fail badly: the test can tell.
   ImageRGBA mirrored = ours;
   for (int j = 0; j < ours.height; ++j)
@@ -157,7 +160,7 @@ TEST(Povray, RigRangeCornersRenderTheSameInBothEngines) {
     mean /= truth.pixels.size() / 4.0;
     std::printf("rig corner (%s): k %g c %g m height %g m: PSNR %.2f dB, POV-Ray mean blue %.3f\n", corner.label,
                 corner.k, corner.c, corner.height, r.psnrDb, mean);
-    EXPECT_GE(r.psnrDb, 45.0) << corner.label;
+    EXPECT_GE(r.psnrDb, 81.0) << corner.label;  // measured 84.3–84.6 dB: a floor 3 dB under them
     EXPECT_GT(mean, 0.1) << corner.label << ": POV-Ray image is (nearly) black";
   }
 }

@@ -3,12 +3,17 @@
 // from an omni image unwrapped with `omnicam view --as panorama`.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
 #include <sstream>
 
 #include "image.h"
+#include "scene_loader.h"
 #include "shell_command.h"
 
 namespace omnicam {
@@ -20,6 +25,39 @@ using nlohmann::json;
 testing::CommandResult omnicam(const std::string& args) {
   return testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");
 }
+
+// A CSV file (RFC 4180 quoting) as rows of named fields; the header must be `header`.
+std::vector<std::map<std::string, std::string>> readCsv(const std::string& file, const std::vector<std::string>& header) {
+  std::ifstream in(file);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (size_t k = 0; k < line.size(); ++k) {
+      const char ch = line[k];
+      if (quoted && ch == '"' && k + 1 < line.size() && line[k + 1] == '"') fields.back() += '"', ++k;
+      else if (ch == '"') quoted = !quoted;
+      else if (ch == ',' && !quoted) fields.emplace_back();
+      else fields.back() += ch;
+    }
+    rows.push_back(fields);
+  }
+  std::vector<std::map<std::string, std::string>> named;
+  EXPECT_FALSE(rows.empty()) << file;
+  if (rows.empty()) return named;
+  EXPECT_EQ(rows.front(), header) << file;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    EXPECT_EQ(rows[r].size(), header.size()) << file << " row " << r;
+    std::map<std::string, std::string> row;
+    for (size_t c = 0; c < header.size() && c < rows[r].size(); ++c) row[header[c]] = rows[r][c];
+    named.push_back(row);
+  }
+  return named;
+}
+
+int integer(const std::map<std::string, std::string>& row, const std::string& key) { return std::stoi(row.at(key)); }
+double number(const std::map<std::string, std::string>& row, const std::string& key) { return std::stod(row.at(key)); }
 
 class ExperimentCliTest : public ::testing::Test {
  protected:
@@ -56,19 +94,222 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_LT(plain["mean_localisation_error_px"].get<double>(), 1.5);
   EXPECT_LT(results["ekf"]["plain_to_plain"]["mean_error_ekf_cm"].get<double>(),
             results["ekf"]["plain_to_plain"]["mean_error_odometry_cm"].get<double>());
-  for (const char* figure : {"detections_per_frame", "histograms", "ekf_path", "ekf_covariance"}) {
-    const ImageRGBA png = readImage(path(std::string("run/figures/") + figure + ".png"));
-    EXPECT_GT(png.width, 300) << figure;
+  EXPECT_GT(results["seconds"].get<double>(), 0.0);
+  ASSERT_EQ(results["conditions"].size(), 4u);
+  ASSERT_EQ(results["ekf"].size(), 4u);
+
+  // --quick: every 25th of the 100 thesis-loop poses (4 test frames), 360 px, 6 training frames.
+  const Scene field = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  ASSERT_TRUE(field.findPath("thesis-loop"));
+  const std::vector<RobotPose> loop = field.findPath("thesis-loop")->poses;
+  ASSERT_EQ(loop.size(), 100u);
+  const std::set<std::string> colours = {"cyan", "magenta", "yellow"};
+
+  // Per frame (data/detections.csv): the frames requested, in order, and totals that are
+  // results.json's; the same four beacons (robocup2006 has four) visible in every condition.
+  const auto detections = readCsv(path("run/data/detections.csv"),
+                                  {"condition", "frame", "pose_index", "visible_beacons", "true_positives",
+                                   "false_identifications", "false_positive_blobs", "mean_error_px"});
+  ASSERT_EQ(detections.size(), 16u);
+  const auto blobs = readCsv(path("run/data/false_positive_blobs.csv"),
+                             {"condition", "frame", "colour", "area_px", "u", "v", "object"});
+  std::map<int, int> visibleAt;  // frame → visible beacons, from the first condition
+  for (const auto& [key, c] : results["conditions"].items()) {
+    SCOPED_TRACE(key);
+    EXPECT_EQ(c["frames"], 4);
+    int frames = 0, tp = 0, identifications = 0, blobCount = 0, missed = 0;
+    double weightedError = 0.0;
+    for (const auto& row : detections) {
+      if (row.at("condition") != key) continue;
+      EXPECT_EQ(integer(row, "frame"), frames);
+      EXPECT_EQ(integer(row, "pose_index"), 25 * frames);
+      const int visible = integer(row, "visible_beacons"), rowTp = integer(row, "true_positives");
+      EXPECT_GE(visible, 0);
+      EXPECT_LE(visible, 4);
+      if (!visibleAt.count(frames)) visibleAt[frames] = visible;
+      EXPECT_EQ(visible, visibleAt[frames]) << "frame " << frames;
+      EXPECT_GE(rowTp, 0);
+      EXPECT_LE(rowTp, visible);
+      const double error = number(row, "mean_error_px");
+      EXPECT_GE(error, 0.0);
+      EXPECT_LE(error, 8.0);  // a true positive lies within 8 px (at 360 px) of its beacon
+      if (rowTp == 0) {
+        EXPECT_EQ(error, 0.0);
+      }
+      tp += rowTp, missed += visible - rowTp, weightedError += rowTp * error;
+      identifications += integer(row, "false_identifications");
+      blobCount += integer(row, "false_positive_blobs");
+      ++frames;
+    }
+    EXPECT_EQ(frames, 4);
+    EXPECT_EQ(c["true_positives"], tp);
+    EXPECT_EQ(c["missed"], missed);
+    EXPECT_EQ(c["false_identifications"], identifications);
+    EXPECT_EQ(c["false_positive_blobs"], blobCount);
+    EXPECT_EQ(c["false_positives"], identifications + blobCount);
+    const double meanError = c["mean_localisation_error_px"].get<double>();
+    EXPECT_NEAR(meanError, tp ? weightedError / tp : 0.0, 1e-5);  // the CSV holds 6 digits
+    const double bearing = c["mean_bearing_error_deg"].get<double>(), range = c["mean_range_error_cm"].get<double>();
+    EXPECT_GE(bearing, 0.0);
+    EXPECT_LE(bearing, 180.0);
+    EXPECT_GE(range, 0.0);
+    if (tp == 0) {
+      EXPECT_EQ(bearing + range, 0.0);
+    }
+
+    // Every false-positive blob listed once (data/false_positive_blobs.csv), on the objects
+    // results.json names, most frequent first.
+    std::map<std::string, int> onObject;
+    int listed = 0, onHall = 0;
+    for (const auto& row : blobs) {
+      if (row.at("condition") != key) continue;
+      ++listed;
+      EXPECT_TRUE(colours.count(row.at("colour"))) << row.at("colour");
+      EXPECT_GT(integer(row, "area_px"), 0);
+      EXPECT_GE(integer(row, "frame"), 0);
+      EXPECT_LT(integer(row, "frame"), 4);
+      for (const char* axis : {"u", "v"}) {
+        EXPECT_GE(number(row, axis), 0.0);
+        EXPECT_LE(number(row, axis), 360.0);
+      }
+      ++onObject[row.at("object")];
+      onHall += row.at("object").rfind("hall_", 0) == 0;
+    }
+    EXPECT_EQ(listed, blobCount);
+    EXPECT_EQ(c["false_positive_blobs_on_hall"], onHall);
+    const json& sources = c["false_positive_sources"];
+    EXPECT_LE(sources.size(), 5u);
+    EXPECT_EQ(sources.size(), std::min<size_t>(5, onObject.size()));
+    for (size_t k = 0; k < sources.size(); ++k) {
+      EXPECT_EQ(sources[k][1].get<int>(), onObject[sources[k][0].get<std::string>()]) << sources[k];
+      if (k > 0) {
+        EXPECT_GE(sources[k - 1][1].get<int>(), sources[k][1].get<int>());
+      }
+    }
+
+    // The EKF trace (data/ekf_<condition>.csv): every one of the 100 poses driven, the truth
+    // is thesis-loop's, the odometry the same noisy drive in every condition, the covariance a
+    // covariance, and results.json's mean errors are the trace's.
+    const auto ekf = readCsv(path("run/data/ekf_" + key + ".csv"),
+                             {"frame", "true_x", "true_y", "true_theta", "odometry_x", "odometry_y", "ekf_x", "ekf_y",
+                              "ekf_theta", "p_xx", "p_xy", "p_yy", "p_thth"});
+    ASSERT_EQ(ekf.size(), loop.size());
+    double odometryError = 0.0, ekfError = 0.0;
+    for (size_t k = 0; k < ekf.size(); ++k) {
+      const auto& row = ekf[k];
+      EXPECT_EQ(integer(row, "frame"), static_cast<int>(k));
+      EXPECT_NEAR(number(row, "true_x"), loop[k].x, 1e-7);
+      EXPECT_NEAR(number(row, "true_y"), loop[k].y, 1e-7);
+      EXPECT_NEAR(std::remainder(number(row, "true_theta") - loop[k].yawDeg * kPi / 180.0, 2.0 * kPi), 0.0, 1e-7);
+      const double pxx = number(row, "p_xx"), pyy = number(row, "p_yy"), pxy = number(row, "p_xy");
+      EXPECT_GT(pxx, 0.0);
+      EXPECT_GT(pyy, 0.0);
+      EXPECT_GT(number(row, "p_thth"), 0.0);
+      EXPECT_LE(pxy * pxy, pxx * pyy * (1 + 1e-6));
+      if (k == 0) {
+        EXPECT_EQ(row.at("odometry_x"), row.at("true_x"));
+        EXPECT_EQ(row.at("odometry_y"), row.at("true_y"));
+        continue;
+      }
+      odometryError += 100.0 * std::hypot(number(row, "odometry_x") - loop[k].x, number(row, "odometry_y") - loop[k].y);
+      ekfError += 100.0 * std::hypot(number(row, "ekf_x") - loop[k].x, number(row, "ekf_y") - loop[k].y);
+    }
+    const json& e = results["ekf"][key];
+    EXPECT_NEAR(e["mean_error_odometry_cm"].get<double>(), odometryError / 99.0, 1e-4);
+    EXPECT_NEAR(e["mean_error_ekf_cm"].get<double>(), ekfError / 99.0, 1e-4);
+    EXPECT_EQ(e["mean_error_odometry_cm"], results["ekf"]["plain_to_plain"]["mean_error_odometry_cm"]);
+    // A measurement is a detection with range and bearing: at most one per identification.
+    const int used = e["measurements_used"].get<int>(), gated = e["measurements_gated"].get<int>();
+    EXPECT_GE(used, 0);
+    EXPECT_GE(gated, 0);
+    EXPECT_LE(used + gated, tp + identifications);
+    if (used == 0) {
+      EXPECT_EQ(e["mean_error_ekf_cm"], e["mean_error_odometry_cm"]);  // nothing but odometry
+    }
+
+    // The report's tables hold these numbers.
+    std::stringstream html;
+    html << std::ifstream(path("run/report.html")).rdbuf();
+    EXPECT_NE(html.str().find("<tr><td>" + key + "</td><td>4</td><td>" + std::to_string(tp) + "</td><td>" +
+                              std::to_string(identifications + blobCount) + "</td><td>" + std::to_string(blobCount) +
+                              "</td>"),
+              std::string::npos);
+    EXPECT_NE(html.str().find("</td><td>" + std::to_string(used) + " / " + std::to_string(gated) + "</td></tr>"),
+              std::string::npos);
   }
+  EXPECT_GT(results["ekf"]["plain_to_plain"]["measurements_used"].get<int>(), 0);
+
+  // The trained histograms (data/histograms.json): both training sets, one classifier per
+  // colour, 32 bins, totals that are the sums of their bins; every classifier of a set saw the
+  // same labelled pixels, at most those inside the rim of 6 frames (radius 180 px).
+  std::ifstream histogramFile(path("run/data/histograms.json"));
+  const json histograms = json::parse(histogramFile);
+  ASSERT_EQ(histograms.size(), 2u);
+  for (const char* set : {"plain", "random_textures"}) {
+    SCOPED_TRACE(set);
+    ASSERT_TRUE(histograms.contains(set));
+    ASSERT_EQ(histograms[set].size(), 3u);
+    uint64_t labelled = 0;
+    for (const std::string& colour : colours) {
+      const json& h = histograms[set][colour];
+      EXPECT_EQ(h["bins_per_channel"], 32);
+      for (const char* kind : {"positive", "negative"}) {
+        uint64_t sum = 0;
+        for (const json& bin : h[kind]) {
+          ASSERT_EQ(bin.size(), 4u);
+          for (int c = 0; c < 3; ++c) EXPECT_LE(bin[c].get<int>(), 255);
+          EXPECT_GT(bin[3].get<uint64_t>(), 0u);
+          sum += bin[3].get<uint64_t>();
+        }
+        EXPECT_EQ(h[std::string(kind) + "_total"].get<uint64_t>(), sum) << colour << " " << kind;
+      }
+      EXPECT_GT(h["positive_total"].get<uint64_t>(), 0u) << colour;
+      const uint64_t total = h["positive_total"].get<uint64_t>() + h["negative_total"].get<uint64_t>();
+      if (labelled == 0) labelled = total;
+      EXPECT_EQ(total, labelled) << colour;
+    }
+    EXPECT_LE(static_cast<double>(labelled), 6 * kPi * 180.0 * 180.0);
+    EXPECT_GT(static_cast<double>(labelled), 0.9 * 6 * kPi * 180.0 * 180.0);
+  }
+
+  // Every image the report shows exists: the four figures, and a 360 px frame per condition.
   std::stringstream html;
   html << std::ifstream(path("run/report.html")).rdbuf();
-  EXPECT_NE(html.str().find("figures/ekf_path.png"), std::string::npos);
-  EXPECT_NE(html.str().find("frames/plain_to_realistic.png"), std::string::npos);
-  EXPECT_TRUE(fs::exists(path("run/frames/plain_to_textured.png")));
+  std::set<std::string> shown;
+  const std::string text = html.str();
+  const std::regex image("<img src=\"([^\"]+)\"");
+  for (std::sregex_iterator m(text.begin(), text.end(), image), end; m != end; ++m)
+    shown.insert((*m)[1]);
+  for (const char* figure : {"detections_per_frame", "histograms", "ekf_path", "ekf_covariance"}) {
+    const std::string file = std::string("figures/") + figure + ".png";
+    EXPECT_TRUE(shown.count(file)) << file;
+    EXPECT_GT(readImage(path("run/" + file)).width, 300) << figure;
+  }
+  for (const auto& [key, c] : results["conditions"].items()) {
+    const std::string file = "frames/" + key + ".png";
+    EXPECT_TRUE(shown.count(file)) << file;
+    const ImageRGBA frame = readImage(path("run/" + file));
+    EXPECT_EQ(frame.width, 360) << file;
+    EXPECT_EQ(frame.height, 360) << file;
+  }
+  EXPECT_EQ(shown.size(), 8u);
+  for (const std::string& file : shown) EXPECT_TRUE(fs::exists(path("run/" + file))) << file;
+
+  // The Markdown summary: the thesis' row beside the measured one.
   std::stringstream doc;
   doc << std::ifstream(path("doc.md")).rdbuf();
-  EXPECT_NE(doc.str().find("| plain_to_plain | USARSim, plain walls | 94 | 2 |"), std::string::npos) << doc.str();
+  const json& pp = results["conditions"]["plain_to_plain"];
+  const std::string measured = "| plain_to_plain | USARSim, plain walls | 94 | 2 | 1.3 | 47.0 | " +
+                               std::to_string(pp["true_positives"].get<int>()) + " | " +
+                               std::to_string(pp["false_positives"].get<int>()) + " | " +
+                               std::to_string(pp["false_identifications"].get<int>()) + " | " +
+                               std::to_string(pp["false_positive_blobs_on_hall"].get<int>()) + " | " +
+                               std::to_string(pp["missed"].get<int>()) + " | ";
+  EXPECT_NE(doc.str().find(measured), std::string::npos) << measured << "\n" << doc.str();
   EXPECT_NE(doc.str().find("Which findings reproduce"), std::string::npos);
+  std::stringstream copy;
+  copy << std::ifstream(path("run/texture-realism.md")).rdbuf();
+  EXPECT_EQ(copy.str(), doc.str());
 }
 
 TEST_F(ExperimentCliTest, ArenaHallFromARealPhotoAndFromAnUnwrappedOmniImage) {

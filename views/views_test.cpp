@@ -76,6 +76,48 @@ TEST(Views, PanoramaColumnsAreRadialAndRowsFollowTheVariant) {
   }
 }
 
+TEST(Views, PerspectiveViewIsAPinholeAtTheViewpoint) {
+  // A pinhole at F' looking toward (yaw, pitch), square pixels, horizontal field of view fov:
+  // pixel (u, v) sees forward + (u − W/2)/f · right − (v − H/2)/f · up, f = (W/2) / tan(fov/2).
+  // That direction lands where the unified model, written out here from k, c and the framing
+  // (docs/conventions.md §1), puts it. A swapped axis, a sign or a wrong focal length shows.
+  const RigSpec rig;
+  const double eps = std::sqrt(rig.k / (rig.k - 2.0)), xi = 2.0 * eps / (1.0 + eps * eps);
+  const double framing = radians(90.0 + rig.framingElevationDeg), rim = radians(90.0 + rig.rimElevationDeg);
+  const double gamma = 0.5 * rig.imageSize * (xi + std::cos(framing)) / std::sin(framing);
+  int imaged = 0, beyond = 0;
+  for (const auto& [yawDeg, pitchDeg] : {std::pair{60.0, -25.0}, std::pair{-120.0, 20.0}}) {
+    ViewSpec spec;
+    spec.kind = ViewKind::Perspective;
+    spec.yawDeg = yawDeg, spec.pitchDeg = pitchDeg, spec.fovDeg = 80.0;
+    const ViewMap map = buildViewMap(spec, camera());
+    ASSERT_EQ(map.width, 400);
+    ASSERT_EQ(map.height, 300);
+    const double yaw = radians(yawDeg), pitch = radians(pitchDeg);
+    const Vec3 forward(std::cos(pitch) * std::cos(yaw), std::cos(pitch) * std::sin(yaw), std::sin(pitch));
+    const Vec3 right(std::sin(yaw), -std::cos(yaw), 0.0);
+    const Vec3 up = right.cross(forward);
+    const double f = 200.0 / std::tan(radians(spec.fovDeg) / 2.0);
+    for (int j = 0; j < 300; j += 13)
+      for (int i = 0; i < 400; i += 17) {
+        const Vec3 d = forward + (i + 0.5 - 200.0) / f * right - (j + 0.5 - 150.0) / f * up;  // robot frame
+        const double theta = std::acos(-d.z() / d.norm()), phi = std::atan2(d.y(), d.x());
+        const size_t k = static_cast<size_t>(j) * 400 + i;
+        if (theta > rim) {  // above the rim (45° up): black
+          EXPECT_TRUE(std::isnan(map.sourceX[k])) << yawDeg << ": " << i << "," << j;
+          ++beyond;
+          continue;
+        }
+        const double r = gamma * std::sin(theta) / (xi + std::cos(theta));
+        EXPECT_NEAR(map.sourceX[k], 180.0 + r * std::cos(phi), 2e-3) << yawDeg << ": " << i << "," << j;
+        EXPECT_NEAR(map.sourceY[k], 180.0 + r * std::sin(phi), 2e-3) << yawDeg << ": " << i << "," << j;
+        ++imaged;
+      }
+  }
+  EXPECT_GT(imaged, 500);
+  EXPECT_GT(beyond, 10);  // looking up 20°, the top rows reach 52° above the horizon
+}
+
 TEST(Views, ApplyingAMapSamplesBilinearlyAtPixelCentres) {
   // Source image whose red channel is its own u coordinate: a bilinear lookup reproduces it.
   ImageRGBA omni(360, 360);
