@@ -80,7 +80,9 @@ TEST(Rings, FastRendererRingsMatchTheExactModel) {
   const ImageRGBA img = renderer.render(s.startPose, settings);
   const RingReport r = measureRings(img, settings.rig.camera(), defaultRingThetasDeg());
   for (const auto& m : r.rings) EXPECT_NEAR(m.measuredPx, m.exactPx, 0.05) << m.thetaDeg;
-  EXPECT_LE(r.rmsPxExact, 0.05);
+  // Measured RMS 0.0128 px (max 0.0435 px): a bound about twice that, under the 0.05 px target
+  // of docs/conventions.md §7, so that a regression shows.
+  EXPECT_LE(r.rmsPxExact, 0.025);
   // Thesis metric: the parabolic Eq. 3.2 against exact rings is off by about 0.256 px² (docs/conventions.md §1).
   EXPECT_NEAR(r.msePx2Eq32, 0.256, 0.02);
   EXPECT_NEAR(r.hPx, 73.7437, 0.05);
