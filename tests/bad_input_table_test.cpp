@@ -18,6 +18,7 @@ namespace omnicam {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::isOneLine;
 
 struct Row {
   int number;
@@ -50,16 +51,6 @@ std::string replaceAll(std::string text, const std::string& from, const std::str
 // The row's command in its own shell (rows may set limits with ulimit), stderr captured too.
 testing::CommandResult shell(const std::string& command) {
   return testing::runShell("sh -c '" + replaceAll(command, "'", "'\\''") + "' 2>&1");
-}
-
-// Exactly one line: one newline, at the end, and no other control character (a \r or a terminal
-// escape sequence echoed from the input garbles the line as surely as a newline splits it).
-bool isOneLine(const std::string& out) {
-  if (out.empty() || out.back() != '\n') return false;
-  return std::none_of(out.begin(), out.end() - 1, [](char ch) {
-    const auto byte = static_cast<unsigned char>(ch);
-    return byte < 0x20 || byte == 0x7F;
-  });
 }
 
 std::vector<std::string> temporaries(const fs::path& folder) {

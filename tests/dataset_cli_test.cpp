@@ -30,14 +30,8 @@ namespace omnicam {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::readFile;
 using nlohmann::json;
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 testing::CommandResult omnicam(const std::string& args) {
   return testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");

@@ -19,23 +19,9 @@ namespace omnicam {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::isOneLine;
+using testing::readFile;
 using nlohmann::json;
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Exactly one line: one newline, at the end, and no other control character.
-bool isOneLine(const std::string& out) {
-  if (out.empty() || out.back() != '\n') return false;
-  return std::none_of(out.begin(), out.end() - 1, [](char ch) {
-    const auto byte = static_cast<unsigned char>(ch);
-    return byte < 0x20 || byte == 0x7F;
-  });
-}
 
 // Every entry under `dir` (links not followed) with its bytes: what "nothing written" compares.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {

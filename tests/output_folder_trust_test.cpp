@@ -22,14 +22,9 @@ namespace omnicam {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::isOneLine;
+using testing::readFile;
 using nlohmann::json;
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 void writeFile(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
@@ -38,12 +33,6 @@ std::string sh(const std::string& text) {
   std::string out = "'";
   for (char ch : text) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
   return out + "'";
-}
-
-// Exactly one line: one newline, at the end, no other control character.
-bool isOneLine(const std::string& text) {
-  return !text.empty() && text.back() == '\n' &&
-         std::none_of(text.begin(), text.end() - 1, [](char ch) { return static_cast<unsigned char>(ch) < 0x20; });
 }
 
 bool isLink(const fs::path& path) { return fs::is_symlink(fs::symlink_status(path)); }

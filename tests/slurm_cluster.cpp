@@ -21,13 +21,6 @@ namespace omnicam::testing {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::map<int, std::string> frameHashes(const fs::path& dataset) {
   const nlohmann::json manifest = nlohmann::json::parse(readFile(dataset / "manifest.json"));
   std::map<int, std::string> hashes;

@@ -43,9 +43,6 @@ class SlurmCluster {
   std::vector<std::pair<std::string, pid_t>> started_;
 };
 
-// The whole file as bytes ("" if it cannot be read).
-std::string readFile(const std::filesystem::path& path);
-
 // Every frame's files and hashes in DATASET/manifest.json, by frame index: equal maps mean the
 // same dataset.
 std::map<int, std::string> frameHashes(const std::filesystem::path& dataset);
