@@ -187,43 +187,48 @@ void stopIfCancelled() {
   if (tbb::is_current_task_group_canceling()) throw std::runtime_error("frame cancelled");
 }
 
-// runDataset's work, on whatever threads the caller's arena gives it.
-DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions& options) {
-  const Scene scene = loadScene(spec.scene, {spec.allowOutsideFiles});
+// The cameras of the spec with their rigs (the spec's size applied), each checked.
+std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scene) {
   std::vector<CameraSetup> setups;
-  double topHeight = 0.0;
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig};
     if (spec.size) setup.rig.imageSize = *spec.size;
-    RenderSettings check{setup.rig, spec.spp, spec.shading};
-    checkRenderSettings(check, settingNames(spec));
-    topHeight = std::max(topHeight, setup.rig.height);
+    checkRenderSettings({setup.rig, spec.spp, spec.shading}, settingNames(spec));
     setups.push_back(setup);
   }
-  const std::vector<RobotPose> poses = datasetPoses(spec, scene, topHeight);
-  for (const RobotPose& robot : poses)
-    for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
-  const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
-  const auto engine =
-      makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
+  return setups;
+}
 
-  DatasetRunResult result;
-  const int totalFrames = static_cast<int>(poses.size());
-  const bool sharded = options.shardCount > 0;
+// The frames [first, end) one run renders, listed in manifestName.
+struct FrameRange {
+  bool sharded = false;
+  int first = 0, end = 0;
+  std::string manifestName;
+};
+
+FrameRange frameRange(const DatasetRunOptions& options, int totalFrames) {
+  FrameRange range;
+  range.sharded = options.shardCount > 0;
   const int shardCount = std::max(1, options.shardCount);
   if (options.shardCount < 0 || options.shardCount > kMaxShards || options.shardIndex < 0 || options.shardIndex >= shardCount)
     throw InputError("shard " + std::to_string(options.shardIndex) + " of " + std::to_string(options.shardCount) +
                      ": must be shard I of N with 0 <= I < N <= " + std::to_string(kMaxShards));
-  if (sharded && options.overwrite) throw InputError(showPath(options.dir) + ": a shard never overwrites (shards share the folder)");
-  const int firstFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
-  const int endFrame = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
-  const std::string manifestName = sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
-  result.frames = endFrame - firstFrame;
+  if (range.sharded && options.overwrite) throw InputError(showPath(options.dir) + ": a shard never overwrites (shards share the folder)");
+  range.first = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
+  range.end = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
+  range.manifestName = range.sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
+  return range;
+}
+
+// Which files each frame gets: AOVs only from an engine that renders them; the others are listed
+// in `notWritten` with the reason, and in `notes` for the user.
+FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const Scene& scene, json& notWritten,
+                           std::vector<std::string>& notes) {
   FrameOutputPlan plan;
   plan.rgbFormat = spec.outputs.rgb;
   plan.landmarks = spec.outputs.landmarks;  // geometry: any engine
-  json notWritten = json::object();
-  if (engine->hasAovs()) {
+  notWritten = json::object();
+  if (engine.hasAovs()) {
     plan.depth = spec.outputs.depth, plan.instance = spec.outputs.instance;
     plan.semantic = spec.outputs.semantic, plan.normal = spec.outputs.normal;
   } else {
@@ -232,63 +237,79 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
     for (const auto& [kind, wanted] : aovs)
       if (wanted) notWritten[kind] = "the " + spec.engine + " engine renders RGB only; render the same spec with engine fast for AOVs";
     if (!notWritten.empty())
-      result.notes.push_back("engine " + spec.engine + " writes RGB only: depth, instance, semantic and normal outputs are not written (see manifest outputs.not_written)");
+      notes.push_back("engine " + spec.engine + " writes RGB only: depth, instance, semantic and normal outputs are not written (see manifest outputs.not_written)");
   }
   if ((plan.instance || plan.semantic) && scene.objects.size() > kMaxInstances)
     throw InputError(showPath(spec.file) + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
+  return plan;
+}
 
-  // Class ids: 1, 2, ... in name order; 0 = no class (or nothing hit).
+// Instance ids 1, 2, ... in scene order and class ids 1, 2, ... in name order; 0 = none.
+struct IdTables {
+  json classes, instances;
+  std::vector<uint16_t> classOfInstance;
+};
+
+IdTables idTables(const Scene& scene) {
   std::map<std::string, uint16_t> classIds;
   for (const SceneObject& object : scene.objects)
     if (const std::string& c = semanticClassOf(scene, object); !c.empty()) classIds[c] = 0;
+  IdTables ids;
   uint16_t nextClass = 1;
-  json classes = json::array({{{"id", 0}, {"name", nullptr}}});
+  ids.classes = json::array({{{"id", 0}, {"name", nullptr}}});
   for (auto& [name, id] : classIds) {
     id = nextClass++;
-    classes.push_back({{"id", id}, {"name", name}});
+    ids.classes.push_back({{"id", id}, {"name", name}});
   }
-  std::vector<uint16_t> classOfInstance(scene.objects.size() + 1, 0);
-  json instances = json::array({{{"id", 0}, {"name", nullptr}, {"class_id", 0}}});
+  ids.classOfInstance.assign(scene.objects.size() + 1, 0);
+  ids.instances = json::array({{{"id", 0}, {"name", nullptr}, {"class_id", 0}}});
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const std::string& c = semanticClassOf(scene, scene.objects[i]);
-    classOfInstance[i + 1] = c.empty() ? 0 : classIds.at(c);
-    instances.push_back({{"id", i + 1}, {"name", scene.objects[i].name},
-                         {"class", c.empty() ? json(nullptr) : json(c)}, {"class_id", classOfInstance[i + 1]}});
+    ids.classOfInstance[i + 1] = c.empty() ? 0 : classIds.at(c);
+    ids.instances.push_back({{"id", i + 1}, {"name", scene.objects[i].name},
+                             {"class", c.empty() ? json(nullptr) : json(c)}, {"class_id", ids.classOfInstance[i + 1]}});
   }
+  return ids;
+}
 
-  const json written = frameFileKinds(plan);
-
-  DatasetManifest manifest;
-  json& header = manifest.header;
+// The manifest's header (docs/dataset-format.md) but for its cameras.
+json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& engine, const FrameOutputPlan& plan,
+                    const json& notWritten, const IdTables& ids, int totalFrames, const DatasetRunOptions& options,
+                    const FrameRange& range) {
+  json header;
   header["format"] = kManifestFormat;
   header["spec"] = spec.json;
   header["spec_file"] = spec.file;
   header["spec_sha256"] = spec.sha256;
   header["tool"] = {{"name", "omnicam"}, {"version", fastRendererVersion()}};
-  header["engine"] = {{"name", engine->name()}, {"version", engine->version()}, {"mode", engine->mode()},
-                      {"mode_options", engine->modeOptions()}};
+  header["engine"] = {{"name", engine.name()}, {"version", engine.version()}, {"mode", engine.mode()},
+                      {"mode_options", engine.modeOptions()}};
   header["scene"] = {{"path", scene.path}, {"name", scene.name}, {"sha256", scene.sha256}};
   header["settings"] = {{"spp", spec.spp}, {"shading", shadingName(spec.shading)},
                         {"frame_interval_s", spec.frameIntervalSeconds},
                         {"aov_sampling", "point-sampled at pixel centres (i + 0.5, j + 0.5)"},
                         {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
-  header["outputs"] = {{"written", written}, {"not_written", notWritten}};
-  header["classes"] = classes;
-  header["instances"] = instances;
+  header["outputs"] = {{"written", frameFileKinds(plan)}, {"not_written", notWritten}};
+  header["classes"] = ids.classes;
+  header["instances"] = ids.instances;
   header["frame_count"] = totalFrames;
-  if (sharded)
-    header["shard"] = {{"index", options.shardIndex}, {"count", options.shardCount}, {"first_frame", firstFrame},
-                       {"end_frame", endFrame}};
+  if (range.sharded)
+    header["shard"] = {{"index", options.shardIndex}, {"count", options.shardCount}, {"first_frame", range.first},
+                       {"end_frame", range.end}};
   header["complete"] = false;
+  return header;
+}
 
-  // Static files per camera (intrinsics and poses), listed in the header with their hashes.
-  std::vector<StaticFile> statics;
+// The header's cameras, each with its static files (intrinsics and poses) and their hashes; the
+// files themselves go to `statics`.
+json manifestCameras(const std::vector<CameraSetup>& setups, const std::vector<RobotPose>& poses, double interval,
+                     std::vector<StaticFile>& statics) {
   json cameras = json::array();
   for (const CameraSetup& setup : setups) {
     json files = json::object();
-    for (StaticFile& file : staticFiles(setup, poses, spec.frameIntervalSeconds)) {
+    for (StaticFile& file : staticFiles(setup, poses, interval)) {
       files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
       statics.push_back(std::move(file));
     }
@@ -298,90 +319,99 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
                        {"intrinsics", intrinsicsToJson(setup.rig.camera())},
                        {"files", files}});
   }
-  header["cameras"] = cameras;
-  checkManifestHeaderSize(header, spec.file);
+  return cameras;
+}
 
-  // The folder: new, this dataset (resume), or something else (refused unless overwriting a
-  // dataset). Everything in it is checked before anything is written: a planted link or a file
-  // where a folder goes ends the run here.
+// The folders a run writes into: shards/ for a shard, and each camera's folder of every kind.
+std::vector<std::string> datasetFolders(const std::vector<CameraSetup>& setups, const FrameOutputPlan& plan, bool sharded) {
+  const std::vector<std::string> written = frameFileKinds(plan);
   std::vector<std::string> folders;
   if (sharded) folders.push_back("shards");
   for (const CameraSetup& setup : setups)
     for (const char* kind : kCameraFolders)
       if (std::string(kind) == "intrinsics" || std::find(written.begin(), written.end(), kind) != written.end())
         folders.push_back(setup.camera->name + "/" + kind);
-  const std::optional<DatasetManifest> previous = takeOverFolder(options, header, manifestName);
-  for (const std::string& folder : folders) checkFoldersInside(options.dir, folder);
-  // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
-  // may be writing them; the merge does).
-  if (!sharded) removeAtomicTemporaries(options.dir);
-  if (previous) manifest.frames = intactFrames(options.dir, *previous, poses, setups, plan, firstFrame, endFrame);
-  result.kept = static_cast<int>(manifest.frames.size());
-  // The manifest comes first: from its first file on, the folder is recognisably a dataset.
-  writeManifest(options.dir, manifest, manifestName);
-  for (const std::string& folder : folders) makeFoldersInside(options.dir, folder);
-  for (const StaticFile& file : statics) writeFileInside(options.dir, file.relative, file.text, Durability::Unsynced);
+  return folders;
+}
 
-  std::unique_ptr<RayScene> rays;
-  if (plan.landmarks) rays = std::make_unique<RayScene>(scene);
-  std::vector<int> todo;
-  for (int f = firstFrame; f < endFrame; ++f)
-    if (!manifest.frames.count(f)) todo.push_back(f);
-  int done = result.kept;
-  if (options.onStart) options.onStart(result.kept, result.frames);
-  auto lastManifest = std::chrono::steady_clock::now();
+// What rendering frames needs, fixed for the run.
+struct FrameJob {
+  const DatasetSpec& spec;
+  const DatasetRunOptions& options;
+  const Scene& scene;
+  const std::vector<CameraSetup>& setups;
+  const std::vector<RobotPose>& poses;
+  Engine& engine;
+  const FrameOutputPlan& plan;
+  const std::vector<uint16_t>& classOfInstance;
+  const RayScene* rays;
+};
+
+// Frame `index`: every camera's files, encoded in memory, hashed and written. `rgb[c]`, if not
+// empty, holds camera c's image already rendered (a batching engine); `aovs` is reused memory.
+FrameRecord renderFrame(const FrameJob& job, int index, std::vector<ImageRGBA*> rgb, AovFrame& aovs) {
+  const DatasetSpec& spec = job.spec;
+  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, job.poses[index], {}};
+  for (size_t c = 0; c < job.setups.size(); ++c) {
+    const CameraSetup& setup = job.setups[c];
+    const RenderSettings settings{setup.rig, spec.spp, spec.shading};
+    const RobotPose pose = cameraPose(*setup.camera, job.poses[index]);
+    ImageRGBA image = rgb[c] ? std::move(*rgb[c])
+                      : job.plan.anyAov() ? job.engine.render(pose, settings, aovs)
+                                          : job.engine.render(pose, settings);
+    // Seeded by frame and camera: a resumed run records the same noise.
+    if (spec.recording) image = recordFrame(*spec.recording, image, static_cast<uint64_t>(index) * job.setups.size() + c);
+    std::vector<EncodedFile> files = encodeFrameOutputs(job.scene, job.rays, settings, setup.camera->name, index, pose, image,
+                                                        job.plan.anyAov() ? &aovs : nullptr, job.plan, job.classOfInstance);
+    stopIfCancelled();
+    CameraFrame cameraFrame{pose, {}};
+    for (EncodedFile& file : files) {
+      writeFileInside(job.options.dir, file.relativePath, file.bytes, Durability::Unsynced);
+      cameraFrame.files[file.kind] = {file.relativePath, sha256OfBytes(file.bytes)};
+    }
+    record.cameras[setup.camera->name] = std::move(cameraFrame);
+  }
+  return record;
+}
+
+// Renders the frames `todo` window by window, listing each window's frames in the manifest (the
+// first at once, then at most once a second) until done or stopped. Frames rendered: the count.
+int renderFrames(const FrameJob& job, const std::vector<int>& todo, DatasetManifest& manifest,
+                 const std::string& manifestName, int done, int total) {
+  const DatasetRunOptions& options = job.options;
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  const size_t batch = engine->batches() ? kFramesPerBatch : engine->concurrent() ? kConcurrentFrames : 1;
-  std::vector<AovFrame> aovSlots;
+  const size_t batch = job.engine.batches() ? kFramesPerBatch : job.engine.concurrent() ? kConcurrentFrames : 1;
+  std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
+  auto lastManifest = std::chrono::steady_clock::now();
+  int rendered = 0;
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);
-    std::vector<std::vector<ImageRGBA>> rgb(setups.size());
-    if (engine->batches()) {
-      for (size_t c = 0; c < setups.size(); ++c) {
+    std::vector<std::vector<ImageRGBA>> rgb(job.setups.size());
+    if (job.engine.batches()) {
+      for (size_t c = 0; c < job.setups.size(); ++c) {
         std::vector<RobotPose> batchPoses;
-        for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*setups[c].camera, poses[todo[k]]));
-        rgb[c] = engine->renderMany(batchPoses, {setups[c].rig, spec.spp, spec.shading});
+        for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*job.setups[c].camera, job.poses[todo[k]]));
+        rgb[c] = job.engine.renderMany(batchPoses, {job.setups[c].rig, job.spec.spp, job.spec.shading});
       }
     }
-    if (aovSlots.size() < end - start) aovSlots.resize(end - start);
-    // Frame k of the batch: every camera's files, encoded in memory, hashed and written.
     std::vector<FrameRecord> records(end - start);
-    auto renderFrame = [&](size_t k) {
-      const int index = todo[start + k];
-      FrameRecord& record = records[k];
-      record = {index, static_cast<double>(index) * spec.frameIntervalSeconds, poses[index], {}};
-      for (size_t c = 0; c < setups.size(); ++c) {
-        const RenderSettings settings{setups[c].rig, spec.spp, spec.shading};
-        const RobotPose pose = cameraPose(*setups[c].camera, poses[index]);
-        AovFrame& aovs = aovSlots[k];  // the window's slot k: reused, so no fresh memory per frame
-        ImageRGBA image = !rgb[c].empty() ? std::move(rgb[c][k])
-                          : plan.anyAov() ? engine->render(pose, settings, aovs)
-                                          : engine->render(pose, settings);
-        // Seeded by frame and camera: a resumed run records the same noise.
-        if (spec.recording) image = recordFrame(*spec.recording, image, static_cast<uint64_t>(index) * setups.size() + c);
-        std::vector<EncodedFile> files = encodeFrameOutputs(scene, rays.get(), settings, setups[c].camera->name, index,
-                                                            pose, image, plan.anyAov() ? &aovs : nullptr, plan, classOfInstance);
-        stopIfCancelled();
-        CameraFrame cameraFrame{pose, {}};
-        for (EncodedFile& file : files) {
-          writeFileInside(options.dir, file.relativePath, file.bytes, Durability::Unsynced);
-          cameraFrame.files[file.kind] = {file.relativePath, sha256OfBytes(file.bytes)};
-        }
-        record.cameras[setups[c].camera->name] = std::move(cameraFrame);
-      }
+    auto renderOne = [&](size_t k) {
+      std::vector<ImageRGBA*> given(job.setups.size(), nullptr);
+      for (size_t c = 0; c < job.setups.size(); ++c)
+        if (!rgb[c].empty()) given[c] = &rgb[c][k];
+      records[k] = renderFrame(job, todo[start + k], given, aovSlots[k]);
     };
-    if (engine->concurrent()) {
-      tbb::parallel_for(size_t{0}, end - start, renderFrame);
+    if (job.engine.concurrent()) {
+      tbb::parallel_for(size_t{0}, end - start, renderOne);
     } else {
-      for (size_t k = 0; k < end - start; ++k) renderFrame(k);
+      for (size_t k = 0; k < end - start; ++k) renderOne(k);
     }
-    for (size_t k = 0; k < end - start; ++k) {
-      manifest.frames[records[k].index] = std::move(records[k]);
-      ++result.rendered;
-      ++done;
-      if (options.onFrame) options.onFrame(done, result.frames);
+    for (FrameRecord& record : records) {
+      manifest.frames[record.index] = std::move(record);
+      ++rendered;
+      if (options.onFrame) options.onFrame(done + rendered, total);
     }
     // The first finished window is listed at once, so that a run stopped early, however fast
     // the machine, leaves frames to resume from and a --status that shows them.
@@ -391,9 +421,62 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
       lastManifest = now;
     }
   }
-  result.stopped = done < result.frames;
-  header["complete"] = !result.stopped;
-  writeManifest(options.dir, manifest, manifestName);
+  return rendered;
+}
+
+// runDataset's work, on whatever threads the caller's arena gives it.
+DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions& options) {
+  const Scene scene = loadScene(spec.scene, {spec.allowOutsideFiles});
+  const std::vector<CameraSetup> setups = cameraSetups(spec, scene);
+  double topHeight = 0.0;
+  for (const CameraSetup& setup : setups) topHeight = std::max(topHeight, setup.rig.height);
+  const std::vector<RobotPose> poses = datasetPoses(spec, scene, topHeight);
+  for (const RobotPose& robot : poses)
+    for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
+  const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
+  const auto engine =
+      makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
+
+  DatasetRunResult result;
+  const int totalFrames = static_cast<int>(poses.size());
+  const FrameRange range = frameRange(options, totalFrames);
+  result.frames = range.end - range.first;
+  json notWritten;
+  const FrameOutputPlan plan = outputPlan(spec, *engine, scene, notWritten, result.notes);
+  const IdTables ids = idTables(scene);
+  DatasetManifest manifest;
+  manifest.header = manifestHeader(spec, scene, *engine, plan, notWritten, ids, totalFrames, options, range);
+  std::vector<StaticFile> statics;
+  manifest.header["cameras"] = manifestCameras(setups, poses, spec.frameIntervalSeconds, statics);
+  checkManifestHeaderSize(manifest.header, spec.file);
+
+  // The folder: new, this dataset (resume), or something else (refused unless overwriting a
+  // dataset). Everything in it is checked before anything is written: a planted link or a file
+  // where a folder goes ends the run here.
+  const std::vector<std::string> folders = datasetFolders(setups, plan, range.sharded);
+  const std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, range.manifestName);
+  for (const std::string& folder : folders) checkFoldersInside(options.dir, folder);
+  // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
+  // may be writing them; the merge does).
+  if (!range.sharded) removeAtomicTemporaries(options.dir);
+  if (previous) manifest.frames = intactFrames(options.dir, *previous, poses, setups, plan, range.first, range.end);
+  result.kept = static_cast<int>(manifest.frames.size());
+  // The manifest comes first: from its first file on, the folder is recognisably a dataset.
+  writeManifest(options.dir, manifest, range.manifestName);
+  for (const std::string& folder : folders) makeFoldersInside(options.dir, folder);
+  for (const StaticFile& file : statics) writeFileInside(options.dir, file.relative, file.text, Durability::Unsynced);
+
+  std::unique_ptr<RayScene> rays;
+  if (plan.landmarks) rays = std::make_unique<RayScene>(scene);
+  std::vector<int> todo;
+  for (int f = range.first; f < range.end; ++f)
+    if (!manifest.frames.count(f)) todo.push_back(f);
+  if (options.onStart) options.onStart(result.kept, result.frames);
+  const FrameJob job{spec, options, scene, setups, poses, *engine, plan, ids.classOfInstance, rays.get()};
+  result.rendered = renderFrames(job, todo, manifest, range.manifestName, result.kept, result.frames);
+  result.stopped = result.kept + result.rendered < result.frames;
+  manifest.header["complete"] = !result.stopped;
+  writeManifest(options.dir, manifest, range.manifestName);
   return result;
 }
 
