@@ -8,16 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "dataset_folder.h"
 #include "dataset_spec.h"
 #include "errors.h"
 #include "manifest.h"
 
 namespace omnicam {
-
-// The largest file omnicam reads or hashes in a dataset folder: above the largest frame it
-// writes (a 16384² RGBA float EXR, 4 GiB uncompressed), so a planted multi-gigabyte file is
-// refused by its size instead of read.
-inline constexpr int64_t kMaxDatasetFileBytes = int64_t{5} << 30;
 
 // The folder holds a dataset made from another spec, scene or engine; overwriting
 // (DatasetRunOptions::overwrite) would replace it.
@@ -61,27 +57,5 @@ struct DatasetRunResult {
 // way inside the folder (nothing inside is followed: docs/robustness.md); ExternalError from a
 // ground-truth engine; OutputError if a file cannot be written.
 DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options);
-
-// Frames planned by the spec and how many the folder's manifest has finished (`dataset --status`).
-struct DatasetStatus {
-  int frames = 0, finished = 0;
-  bool complete = false;
-};
-DatasetStatus datasetStatus(const std::string& dir);
-
-struct DatasetVerifyResult {
-  int files = 0;  // checked
-  // One line each: missing, changed, a link or not a regular file (never followed or read),
-  // incomplete.
-  std::vector<std::string> problems;
-  bool ok() const { return problems.empty(); }
-};
-// readManifest (manifest.h), after checking that DIR/`name` is a regular file reached without
-// following a link.
-DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name = kManifestName);
-
-// Re-hashes every file the manifest (or the shard manifest `manifestName`) lists. InputError if
-// DIR has no readable manifest.
-DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName = "manifest.json");
 
 }  // namespace omnicam

@@ -5,7 +5,7 @@
 #include <set>
 
 #include "atomic_file.h"
-#include "dataset_runner.h"
+#include "dataset_folder.h"
 #include "errors.h"
 #include "manifest.h"
 #include "safe_files.h"
@@ -24,6 +24,26 @@ void checkShardCount(int count) {
 
 bool hasShardManifest(const std::string& dir, const std::string& name) { return entryInside(dir, name) != EntryKind::Missing; }
 
+// Shard `index` of `count`'s manifest, and its frame range: the manifest reader checked the
+// range's fields; this checks that the file is the shard its name says (a plain manifest or
+// another shard's copied there is not).
+struct ShardManifest {
+  DatasetManifest manifest;
+  int first = 0, end = 0;
+};
+
+ShardManifest readShardManifest(const std::string& dir, int index, int count) {
+  const std::string name = shardManifestName(index, count);
+  ShardManifest shard{readDatasetManifest(dir, name)};
+  const json range = shard.manifest.header.value("shard", json());
+  if (!range.is_object() || range.at("index") != index || range.at("count") != count)
+    throw InputError(showPath(dir + "/" + name) + ": shard: must say shard " + std::to_string(index) + " of " +
+                     std::to_string(count) + " (the file is not that shard's manifest)");
+  shard.first = range.at("first_frame").get<int>();
+  shard.end = range.at("end_frame").get<int>();
+  return shard;
+}
+
 }  // namespace
 
 std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles) {
@@ -34,10 +54,10 @@ std::vector<ShardState> shardStates(const std::string& dir, int count, bool chec
     s.index = i;
     const std::string name = shardManifestName(i, count);
     if (hasShardManifest(dir, name)) {
-      const DatasetManifest m = readDatasetManifest(dir, name);
+      const ShardManifest shard = readShardManifest(dir, i, count);
+      const DatasetManifest& m = shard.manifest;
       s.started = true;
-      const json& shard = m.header.at("shard");
-      s.frames = shard.at("end_frame").get<int>() - shard.at("first_frame").get<int>();
+      s.frames = shard.end - shard.first;
       s.finished = static_cast<int>(m.frames.size());
       s.complete = m.header.value("complete", false) && s.finished == s.frames;
       if (s.complete && checkFiles) {
@@ -73,15 +93,15 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
       result.incompleteShards.push_back(i);
       continue;
     }
-    const DatasetManifest shard = readDatasetManifest(dir, name);
+    const ShardManifest read = readShardManifest(dir, i, count);
+    const DatasetManifest& shard = read.manifest;
     if (!merged) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
     } else if (datasetIdentity(shard.header) != datasetIdentity(merged->header)) {
       throw InputError(showPath(dir + "/" + name) + ": from a different spec, scene or engine than the other shards");
     }
-    const json& range = shard.header.at("shard");
-    const int first = range.at("first_frame").get<int>(), end = range.at("end_frame").get<int>();
+    const int first = read.first, end = read.end;
     int finished = 0;
     for (const auto& [index, frame] : shard.frames)
       if (index >= first && index < end) merged->frames[index] = frame, ++finished;

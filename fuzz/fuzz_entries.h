@@ -1,5 +1,6 @@
 #pragma once
-// One entry point per reader of untrusted input, shared by the libFuzzer targets and the
+// One entry point per reader of untrusted input (fuzz_entries.cpp; the dataset's:
+// fuzz_dataset_entries.cpp), shared by the libFuzzer targets and the
 // regression test. Each returns normally for any input: valid (read) or invalid (InputError,
 // which is the reader's way of saying no). Anything else — a crash, a sanitizer report, another
 // exception type (exit 4 at the CLI) — is a bug.
@@ -16,6 +17,17 @@ void sceneLoader(const uint8_t* data, size_t size);
 void gltfImport(const uint8_t* data, size_t size);
 // A sidecar's text, and the camera its rig describes.
 void sidecar(const uint8_t* data, size_t size);
+
+// A dataset spec's text (as fuzz/assets/spec.json), then what a run checks before it reads the
+// scene: every camera's rig and render settings, the listed poses with each camera's mount, the
+// manifest header's size. A `recording` must read back from what omnicam writes of it.
+void datasetSpec(const uint8_t* data, size_t size);
+// A manifest's text; what omnicam writes of one it read (manifestToJson) must read back.
+void manifest(const uint8_t* data, size_t size);
+// A shard manifest's text, then the same bytes planted in a scratch dataset folder as
+// shards/shard-I-of-N.json (I and N from its "shard" header, else 0 of 1) and read as --status,
+// --status --verify and --merge do (dataset_shards.h); the merged manifest must read back.
+void shardManifest(const uint8_t* data, size_t size);
 
 // The folder with the assets above.
 std::string assetsDir();

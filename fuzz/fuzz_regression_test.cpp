@@ -41,5 +41,17 @@ TEST(FuzzRegression, SidecarSurvivesEverySavedInput) {
   EXPECT_GT(feedAll(kFuzz + "/regressions/sidecar", sidecar) + feedAll(kFuzz + "/seeds/sidecar", sidecar), 0);
 }
 
+TEST(FuzzRegression, DatasetSpecSurvivesEverySavedInput) {
+  EXPECT_GT(feedAll(kFuzz + "/regressions/dataset_spec", datasetSpec) + feedAll(kFuzz + "/seeds/dataset_spec", datasetSpec), 0);
+}
+
+TEST(FuzzRegression, ManifestSurvivesEverySavedInput) {
+  EXPECT_GT(feedAll(kFuzz + "/regressions/manifest", manifest) + feedAll(kFuzz + "/seeds/manifest", manifest), 0);
+}
+
+TEST(FuzzRegression, ShardManifestSurvivesEverySavedInput) {
+  EXPECT_GT(feedAll(kFuzz + "/regressions/shard_manifest", shardManifest) + feedAll(kFuzz + "/seeds/shard_manifest", shardManifest), 0);
+}
+
 }  // namespace
 }  // namespace omnicam::fuzz

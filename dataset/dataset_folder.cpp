@@ -1,0 +1,48 @@
+#include "dataset_folder.h"
+
+#include <limits>
+
+#include "errors.h"
+#include "safe_files.h"
+
+namespace omnicam {
+
+using nlohmann::json;
+
+DatasetStatus datasetStatus(const std::string& dir) {
+  const DatasetManifest manifest = readDatasetManifest(dir);
+  DatasetStatus status;
+  status.frames = manifest.header.value("frame_count", 0);
+  status.finished = static_cast<int>(manifest.frames.size());
+  status.complete = manifest.header.value("complete", false) && status.finished == status.frames;
+  return status;
+}
+
+DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name) {
+  // A missing one is the reader's to report ("not a dataset folder"); how large: its limit.
+  if (entryInside(dir, name) != EntryKind::Missing) checkFileInside(dir, name, std::numeric_limits<int64_t>::max());
+  return readManifest(dir, name);
+}
+
+DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName) {
+  const DatasetManifest manifest = readDatasetManifest(dir, manifestName);
+  DatasetVerifyResult result;
+  for (const FileRecord& file : manifestFiles(manifest)) {
+    ++result.files;
+    const FileDigest digest = sha256Inside(dir, file.path, kMaxDatasetFileBytes);
+    if (!digest.ok())
+      result.problems.push_back(showPath(file.path) + ": " + digest.problem);
+    else if (digest.sha256 != file.sha256)
+      result.problems.push_back(showPath(file.path) + ": SHA-256 " + digest.sha256 + " differs from the manifest's " + file.sha256);
+  }
+  // A shard is complete with its own range of frames.
+  const json shard = manifest.header.value("shard", json());
+  const int wanted = shard.is_object() ? shard.at("end_frame").get<int>() - shard.at("first_frame").get<int>()
+                                       : manifest.header.value("frame_count", 0);
+  if (static_cast<int>(manifest.frames.size()) != wanted || !manifest.header.value("complete", false))
+    result.problems.push_back(manifestName + ": incomplete: " + std::to_string(manifest.frames.size()) + " of " +
+                              std::to_string(wanted) + " frames finished (run the same command again to resume)");
+  return result;
+}
+
+}  // namespace omnicam

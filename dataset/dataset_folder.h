@@ -1,0 +1,40 @@
+#pragma once
+// Reading a dataset folder someone else may have written: its manifest (reached without
+// following a link), its status and a full re-hash (`dataset --status`, `--verify`). Nothing
+// here renders, so the fuzz build links it as it is (fuzz/CMakeLists.txt).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "manifest.h"
+
+namespace omnicam {
+
+// The largest file omnicam reads or hashes in a dataset folder: above the largest frame it
+// writes (a 16384² RGBA float EXR, 4 GiB uncompressed), so a planted multi-gigabyte file is
+// refused by its size instead of read.
+inline constexpr int64_t kMaxDatasetFileBytes = int64_t{5} << 30;
+
+// Frames planned by the spec and how many the folder's manifest has finished (`dataset --status`).
+struct DatasetStatus {
+  int frames = 0, finished = 0;
+  bool complete = false;
+};
+DatasetStatus datasetStatus(const std::string& dir);
+
+struct DatasetVerifyResult {
+  int files = 0;  // checked
+  // One line each: missing, changed, a link or not a regular file (never followed or read),
+  // incomplete.
+  std::vector<std::string> problems;
+  bool ok() const { return problems.empty(); }
+};
+// readManifest (manifest.h), after checking that DIR/`name` is a regular file reached without
+// following a link.
+DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name = kManifestName);
+
+// Re-hashes every file the manifest (or the shard manifest `manifestName`) lists. InputError if
+// DIR has no readable manifest.
+DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName = "manifest.json");
+
+}  // namespace omnicam
