@@ -7,6 +7,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -123,7 +124,8 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
   const std::filesystem::path scenePath(sceneOut);
   if (!scenePath.parent_path().empty()) std::filesystem::create_directories(scenePath.parent_path());
   const std::string textureFolder = scenePath.stem().string() + "_textures";
-  if (textured) std::filesystem::create_directories(scenePath.parent_path() / textureFolder);
+  // The texture folder beside the scene, not through a link planted under its name.
+  if (textured) makeFoldersInside(scenePath.parent_path().empty() ? "." : scenePath.parent_path().string(), textureFolder);
   std::mt19937_64 random(o.seed);
   const Vec3 centre(0, 0, o.projectionHeight);
   for (const Wall& wall : hallWalls(o)) {

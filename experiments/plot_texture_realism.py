@@ -15,12 +15,26 @@ import json
 import math
 import os
 import sys
+import tempfile
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+
+
+def save(fig, figures, name, dpi):
+    """Writes FIGURES/NAME through a fresh temporary file renamed over it: a link or file planted
+    under the name is replaced, never written through."""
+    fd, temporary = tempfile.mkstemp(dir=figures, prefix="." + name + ".tmp-", suffix=".png")
+    os.close(fd)
+    try:
+        fig.savefig(temporary, dpi=dpi)
+        os.replace(temporary, os.path.join(figures, name))
+    except BaseException:
+        os.unlink(temporary)
+        raise
 
 
 def read_csv(path):
@@ -50,7 +64,7 @@ def detections_per_frame(data, figures):
     axes[-1, 0].set_xlabel("thesis-loop frame")
     axes[0, 0].legend(fontsize=7, loc="upper right")
     fig.tight_layout()
-    fig.savefig(os.path.join(figures, "detections_per_frame.png"), dpi=110)
+    save(fig, figures, "detections_per_frame.png", 110)
     plt.close(fig)
 
 
@@ -83,7 +97,7 @@ def histograms(data, figures):
             ax.tick_params(labelsize=6)
             ax.set_title(f"{name}: {colour} (rings positive, dots negative)", fontsize=8)
     fig.tight_layout()
-    fig.savefig(os.path.join(figures, "histograms.png"), dpi=100)
+    save(fig, figures, "histograms.png", 100)
     plt.close(fig)
 
 
@@ -110,12 +124,12 @@ def ekf(data, figures):
         ax.set_ylabel("y (m)")
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(figures, "ekf_path.png"), dpi=110)
+    save(fig, figures, "ekf_path.png", 110)
     axes2.set_xlabel("frame")
     axes2.set_ylabel("position σ (cm), sqrt of mean(P_xx, P_yy)")
     axes2.legend(fontsize=7)
     fig2.tight_layout()
-    fig2.savefig(os.path.join(figures, "ekf_covariance.png"), dpi=110)
+    save(fig2, figures, "ekf_covariance.png", 110)
     plt.close(fig)
     plt.close(fig2)
 

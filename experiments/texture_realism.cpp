@@ -15,6 +15,7 @@
 #include "fast_renderer.h"
 #include "hall_arena.h"
 #include "landmark_annotations.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 #include "texture_realism_report.h"
 
@@ -278,7 +279,10 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
       o.randomPhotos.empty() || o.labPhoto.empty())
     throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
   const fs::path out(o.outDir);
-  for (const char* sub : {"arenas", "data", "frames", "figures"}) fs::create_directories(out / sub);
+  // Its folders are made without following a link planted there: what it writes stays inside.
+  const char* const folders[] = {"arenas", "data", "frames", "figures"};
+  for (const char* sub : folders) checkFoldersInside(o.outDir, sub);  // all checked, then made
+  for (const char* sub : folders) makeFoldersInside(o.outDir, sub);
 
   // The arenas.
   HallOptions hall;

@@ -251,6 +251,25 @@ TEST_F(OutputFolderTrust, PlantedLinksAreNeverFollowed) {
   EXPECT_EQ(readFile(dir_ / "victim.txt"), victim);
 }
 
+// The other verbs that fill a folder: `experiment` makes its subfolders and `arena hall` its
+// texture folder without following a link planted under their names, before writing anything.
+TEST_F(OutputFolderTrust, ExperimentAndArenaFoldersAreNotFollowedThroughLinks) {
+  fs::create_directories(dir_ / "elsewhere");
+  writeFile(dir_ / "elsewhere/keep.txt", "mine");
+  const std::map<std::string, std::string> untouched{{"keep.txt", "mine"}};
+  fs::create_directories(dir_ / "run");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "run/data");
+  EXPECT_REFUSED(omnicam("experiment texture-realism --quick -o " + sh(at("run"))), "run/data: is a symbolic link");
+  EXPECT_EQ(snapshot(dir_ / "elsewhere"), untouched);
+  EXPECT_FALSE(fs::exists(dir_ / "run/arenas")) << "a folder was made before the check";
+  fs::create_directories(dir_ / "lab");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "lab/hall_textures");
+  EXPECT_REFUSED(omnicam("arena hall --photo /usr/share/blender/datafiles/studiolights/world/interior.exr -o " + sh(at("lab/hall.json"))),
+                 "hall_textures: is a symbolic link");
+  EXPECT_EQ(snapshot(dir_ / "elsewhere"), untouched);
+  EXPECT_FALSE(fs::exists(dir_ / "lab/hall.json"));
+}
+
 TEST_F(OutputFolderTrust, PlantedLinksInTheSlurmFolderAreReplacedOrRefused) {
   const std::string specPath = spec("spec.json", 2);
   const std::string victim = readFile(dir_ / "victim.txt");
