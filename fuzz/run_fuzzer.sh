@@ -34,7 +34,9 @@ ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
   "$binary" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -max_len=65536 -print_final_stats=1 \
   "${dict[@]}" ${FUZZ_EXTRA_ARGS:-} -artifact_prefix="$work/crashes/" "$work/corpus" "${existing[@]}" >"$log" 2>&1
 status=$?
-runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
+runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+# -fork: no final stats; the last status line "#N: cov: ..." counts every job's executions.
+[ -n "$runs" ] || runs=$(grep -o '^#[0-9]*: cov:' "$log" | tail -n 1 | grep -o '[0-9]*')
 if [ $status -ne 0 ] || [ -n "$(ls -A "$work/crashes")" ]; then
   mkdir -p "$repo/out/fuzz-crashes/$target"
   cp "$work"/crashes/* "$repo/out/fuzz-crashes/$target/" 2>/dev/null
