@@ -104,7 +104,10 @@ FileDescriptor openFolderAt(int parent, const std::string& name, const std::stri
         if (::mkdirat(parent, name.c_str(), 0777) != 0 && errno != EEXIST)
           throw Problem{where, errorText("cannot create folder", errno), EntryKind::Missing, true};
         break;  // created (or by someone else meanwhile): open it
-      case EntryKind::Folder: throw Problem{where, errorText("cannot open folder", error), EntryKind::Other};
+      case EntryKind::Folder:
+        // Made by another process (a shard) between our open and our look: open it again.
+        if (error == ENOENT) break;
+        throw Problem{where, errorText("cannot open folder", error), EntryKind::Other};
       default: throw Problem{where, "is not a folder", EntryKind::Other};
     }
   }
