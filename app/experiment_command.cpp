@@ -3,6 +3,7 @@
 // omnicam arena mapping [--seed S] -o SCENE.json
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "atomic_file.h"
 #include "cli_util.h"
@@ -10,6 +11,9 @@
 #include "errors.h"
 #include "hall_arena.h"
 #include "mapping_arena.h"
+#include "realistic_convergence.h"
+#include "safe_files.h"
+#include "scene_loader.h"
 #include "texture_realism.h"
 
 namespace omnicam::cli {
@@ -27,15 +31,83 @@ std::string experimentsDir() {
 }
 
 struct ExperimentArgs {
-  std::string name, out, doc;
+  std::string name, out, doc, convergence;
   bool quick = false, noFigures = false;
   double theta = 1.0;
   int bins = 32;
 };
 
-void runExperiment(const ExperimentArgs& a) {
-  if (a.name != "texture-realism") throw InputError("experiment: unknown experiment " + quote(a.name) + " (texture-realism)");
+// Progress bars, one per stage.
+struct StageProgress {
+  std::string stage;
+  std::unique_ptr<Progress> bar;
+  // `done` counts from the first stage on when the stages share one total (the study's renders).
+  void operator()(const std::string& s, int done, int total, bool sharedTotal) {
+    if (s != stage) {
+      if (bar) bar->finish();
+      stage = s;
+      bar = std::make_unique<Progress>(s, total, sharedTotal ? done - 1 : 0);
+    }
+    bar->step();
+  }
+  void finish() {
+    if (bar) bar->finish();
+    bar.reset();
+  }
+  ~StageProgress() { finish(); }
+};
+
+void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
+  for (const char* flag : {"--doc", "--convergence", "--theta", "--bins"})
+    refuseUnless(cmd, flag, false, "experiment texture-realism");
+  ensureDirectory(a.out, "-o");
+  ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
+  options.outDir = a.out;
+  options.fieldScene = scenesDir() + "/robocup2006.json";
+  options.labPhoto = std::string(kStudioLights) + kLabPhoto;
+  if (!std::filesystem::exists(options.labPhoto))
+    throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
+  StageProgress progress;
+  const ConvergenceResults r = runRealisticConvergence(
+      options, a.noFigures ? "" : experimentsDir() + "/plot_convergence.py",
+      [&](const std::string& stage, int done, int total) { progress(stage, done, total, true); });
+  progress.finish();
+  std::printf("%s", convergenceMarkdown(r, a.noFigures ? "" : "figures/convergence.svg").c_str());
+  std::printf("wrote %s/convergence.json (%.0f s)\n", a.out.c_str(), r.seconds);
+}
+
+// The study's results, read before anything is written (an output folder is untrusted input).
+ConvergenceResults readConvergence(const std::string& folder) {
+  const std::string text = readFileInside(folder, "convergence.json", 64 << 20);
+  const std::string file = folder + "/convergence.json";
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(showPath(file) + ": not JSON: " + oneLine(e.what()));
+  }
+  return convergenceFromJson(json, file);
+}
+
+// The study's section for the document; with a document, the study's figure is copied beside it.
+std::string convergenceSection(const ConvergenceResults& r, const std::string& folder, const std::string& doc) {
+  if (doc.empty() || entryInside(folder, "figures/convergence.svg") != EntryKind::File) return convergenceMarkdown(r, "");
+  const std::string svg = readFileInside(folder, "figures/convergence.svg", 4 << 20);
+  if (svg.find("<svg") == std::string::npos)
+    throw InputError(showPath(folder + "/figures/convergence.svg") + ": not the study's SVG figure");
+  const std::filesystem::path docFolder = std::filesystem::path(doc).parent_path();
+  makeFoldersInside(docFolder.empty() ? "." : docFolder.string(), "figures");
+  writeTextAtomically((docFolder / "figures/realistic_convergence.svg").string(), svg);
+  return convergenceMarkdown(r, "figures/realistic_convergence.svg");
+}
+
+void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
+  if (a.name != "texture-realism" && a.name != "realistic-convergence")
+    throw InputError("experiment: unknown experiment " + quote(a.name) + " (texture-realism, realistic-convergence)");
   if (a.out.empty()) throw InputError("-o: give the folder for the results");
+  if (a.name == "realistic-convergence") return runConvergence(a, cmd);
+  std::optional<ConvergenceResults> convergence;
+  if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
   ensureDirectory(a.out, "-o");
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
@@ -49,19 +121,11 @@ void runExperiment(const ExperimentArgs& a) {
   for (const std::string& photo : options.randomPhotos)
     if (!std::filesystem::exists(photo))
       throw InputError(showPath(photo) + ": missing (Debian's blender-data ships it; run make deps)");
-  std::string stage;
-  std::unique_ptr<Progress> bar;
+  StageProgress progress;
   const TextureRealismResults results = runTextureRealism(
       options, a.noFigures ? "" : experimentsDir() + "/plot_texture_realism.py",
-      [&](const std::string& s, int /*done*/, int total) {
-        if (s != stage) {
-          if (bar) bar->finish();
-          stage = s;
-          bar = std::make_unique<Progress>(s, total);
-        }
-        bar->step();
-      });
-  if (bar) bar->finish();
+      [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
+  progress.finish();
   for (const ConditionOutcome& c : results.conditions)
     std::printf("%-30s %3d frames  TP %4d  FP %5d  missed %3d  error %.2f px\n", c.key().c_str(), c.frames,
                 c.truePositives, c.falsePositives, c.missed, c.meanLocalisationErrorPx);
@@ -72,7 +136,9 @@ void runExperiment(const ExperimentArgs& a) {
   if (a.theta != 1.0) command += " --theta " + std::to_string(a.theta);
   if (a.bins != 32) command += " --bins " + std::to_string(a.bins);
   if (!a.doc.empty()) command += " --doc " + a.doc;
-  const std::string markdown = textureRealismMarkdown(results, options, command);
+  if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
+  const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.doc) : "";
+  const std::string markdown = textureRealismMarkdown(results, options, command, section);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);
   if (!a.doc.empty()) writeTextAtomically(a.doc, markdown);
   std::printf("wrote %s/results.json, %s/report.html (%.0f s)\n", a.out.c_str(), a.out.c_str(), results.seconds);
@@ -118,14 +184,16 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
 void addExperimentCommands(CLI::App& app) {
   auto args = std::make_shared<ExperimentArgs>();
   CLI::App* cmd = app.add_subcommand("experiment", "Run one of the thesis' experiments (docs/texture-realism.md)");
-  cmd->add_option("name", args->name, "texture-realism")->required();
+  cmd->add_option("name", args->name, "texture-realism, or realistic-convergence (how converged its Blender frames are)")->required();
   cmd->add_option("-o,--output", args->out, "Folder for results.json, report.html, figures/ and data/")->required();
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");
   cmd->add_option("--doc", args->doc, "Also write the Markdown summary here (docs/texture-realism.md)");
   cmd->add_flag("--no-figures", args->noFigures, "Skip the matplotlib figures");
   cmd->add_option("--theta", args->theta, "Likelihood-ratio threshold of the classifiers (Eq. 3.10; default 1)");
   cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)");
-  cmd->callback([args] { runExperiment(*args); });
+  cmd->add_option("--convergence", args->convergence,
+                  "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR");
+  cmd->callback([args, cmd] { runExperiment(*args, *cmd); });
 
   auto arena = std::make_shared<ArenaArgs>();
   CLI::App* arenaCmd = app.add_subcommand("arena", "Generate an arena scene: hall (robocup2006 inside walls and a "

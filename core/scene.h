@@ -67,6 +67,10 @@ struct PointLight {
   std::string name;
   Vec3 position;
   Vec3f intensity{1.0f, 1.0f, 1.0f};
+  // 0: a point. > 0: a luminaire of real size, a disc of this diameter (metres) at `position`
+  // facing straight down with the point's power. Only the path tracer (Blender) renders the disc;
+  // the fast renderer and POV-Ray light from its centre (docs/conventions.md §3).
+  double diameter = 0.0;
 };
 
 // A known landmark (one colour band of a beacon, say): ground truth for detection.

@@ -450,7 +450,8 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   for (size_t i = 0; i < lights.size(); ++i) {
     JsonFields l(lights[i], file, indexed("lights", i));
     PointLight light{l.string("name", "light_" + std::to_string(i)), l.vec3("position"),
-                     l.colour("intensity", Vec3f::Ones(), 1e6)};
+                     l.colour("intensity", Vec3f::Ones(), 1e6),
+                     l.number("diameter", 0.0, JsonFields::Range(0.0, 100.0, false, "m"))};
     checkName(l, "name", light.name);
     if (!names.insert(light.name).second)
       l.fail("name", "duplicate name " + quote(light.name) + " (objects and lights share one namespace)");

@@ -27,6 +27,10 @@ struct HallOptions {
   double height = 3.2;                  // walls and ceiling
   double projectionHeight = 1.6;        // the photo's viewpoint above the hall's middle
   int texelsPerMetre = 96;
+  // The field's lamps hang in the hall as luminaires of real size: discs of this diameter facing
+  // down (high-bay lamps), with the points' power. Points 0.2 m under a ceiling would light it
+  // with inverse-square hot spots a path tracer samples badly (docs/texture-realism.md).
+  double lampDiameter = 0.5;
 };
 
 // A photo as a function of direction. Throws InputError naming the file.

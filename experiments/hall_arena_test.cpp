@@ -98,6 +98,14 @@ TEST_F(HallArenaTest, TheHallFillsTheMirrorWhereTheOpenFieldIsBlack) {
   };
   EXPECT_GT(missFraction(field), 0.5);
   EXPECT_EQ(missFraction(hall), 0.0);
+  // The field's lamps hang in the hall as luminaires of real size, where they were, with their power.
+  ASSERT_EQ(hall.lights.size(), field.lights.size());
+  for (size_t k = 0; k < hall.lights.size(); ++k) {
+    EXPECT_EQ(field.lights[k].diameter, 0.0);
+    EXPECT_EQ(hall.lights[k].diameter, 0.5);
+    EXPECT_EQ(hall.lights[k].position, field.lights[k].position);
+    EXPECT_EQ(hall.lights[k].intensity, field.lights[k].intensity);
+  }
 }
 
 TEST_F(HallArenaTest, AnUnwrappedOmniImageNeedsTheExactPanoramaSidecar) {

@@ -27,7 +27,7 @@ TextureRealismOptions TextureRealismOptions::quick() {
   TextureRealismOptions o;
   o.size = 360;
   o.spp = 4;
-  o.blenderSpp = 4;
+  o.realistic.spp = 4;
   o.testStride = 25;
   o.trainFrames = 6;
   o.randomHalls = 2;
@@ -275,7 +275,7 @@ EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames, 
 TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const std::string& plotScript,
                                         const ExperimentProgress& progress) {
   const auto started = std::chrono::steady_clock::now();
-  if (o.size < 64 || o.spp < 1 || o.testStride < 1 || o.trainFrames < 1 || o.randomHalls < 1 ||
+  if (o.size < 64 || o.spp < 1 || o.realistic.spp < 1 || o.testStride < 1 || o.trainFrames < 1 || o.randomHalls < 1 ||
       o.randomPhotos.empty() || o.labPhoto.empty())
     throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
   const fs::path out(o.outDir);
@@ -287,6 +287,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   // The arenas.
   HallOptions hall;
   hall.fieldScene = o.fieldScene;
+  hall.lampDiameter = o.realistic.lampDiameter;
   writeHallArena(hall, (out / "arenas/hall-plain.json").string());
   hall.photos = {o.labPhoto};
   writeHallArena(hall, (out / "arenas/hall-textured.json").string());
@@ -333,20 +334,17 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::map<std::string, std::vector<Frame>> tests;
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
-  {
-    const std::unique_ptr<Engine> blender = makeEngine("blender", textured, o.blenderTimeoutSeconds);
-    RenderSettings settings = settingsFor(textured, o.size, o.blenderSpp);
-    std::vector<Frame>& realistic = tests["realistic"];
-    for (size_t first = 0; first < testPoses.size(); first += kFramesPerBatch) {
-      const std::vector<RobotPose> batch(testPoses.begin() + static_cast<long>(first),
-                                         testPoses.begin() + static_cast<long>(std::min(testPoses.size(), first + kFramesPerBatch)));
-      std::vector<ImageRGBA> images = blender->renderMany(batch, settings);
-      for (size_t k = 0; k < batch.size(); ++k) {
-        const size_t index = first + k;
-        // The geometry is the textured hall's: its instance masks hold for these frames too.
-        realistic.push_back({batch[k], recordFrame(o.recording, images[k], index), tests["textured"][index].instance});
-        step();
-      }
+  // Realistic: one Blender session per batch of poses.
+  std::vector<Frame>& realistic = tests["realistic"];
+  for (size_t first = 0; first < testPoses.size(); first += kFramesPerBatch) {
+    const std::vector<RobotPose> batch(testPoses.begin() + static_cast<long>(first),
+                                       testPoses.begin() + static_cast<long>(std::min(testPoses.size(), first + kFramesPerBatch)));
+    std::vector<ImageRGBA> images = renderRealistic(textured, batch, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
+    for (size_t k = 0; k < batch.size(); ++k) {
+      const size_t index = first + k;
+      // The geometry is the textured hall's: its instance masks hold for these frames too.
+      realistic.push_back({batch[k], recordFrame(o.recording, images[k], index), tests["textured"][index].instance});
+      step();
     }
   }
 

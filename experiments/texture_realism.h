@@ -8,8 +8,10 @@
 //   test sets   plain           fast lit renders of the plain hall along thesis-loop
 //               textured        the same in the hall textured with the "lab" photo
 //               realistic       Blender Cycles (path traced, lit) renders of the textured hall
-//                               through the recording-camera model (recording_camera.h) — our
-//                               stand-in for the thesis' real ISLA images, which we do not have
+//                               (realistic_rendering.h: lamps of real size, converged to the
+//                               measured ≥ 35 dB) through the recording-camera model
+//                               (recording_camera.h) — our stand-in for the thesis' real ISLA
+//                               images, which we do not have
 //   conditions  plain_to_plain, plain_to_textured, plain_to_realistic (the thesis' three) and
 //               random_textures_to_realistic (the question its result begs)
 #include <functional>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "beacon_detector.h"
+#include "realistic_rendering.h"
 #include "recording_camera.h"
 
 namespace omnicam {
@@ -28,7 +31,7 @@ struct TextureRealismOptions {
   std::vector<std::string> randomPhotos;   // the random_textures training walls
   int size = 360;
   int spp = 16;                // fast renders
-  int blenderSpp = 16;         // realistic renders
+  RealisticRendering realistic = realisticRendering();
   int testStride = 1;          // every k-th of the 100 thesis-loop poses
   int trainFrames = 24;        // per train set
   int randomHalls = 6;         // random_textures: frames spread over this many halls
@@ -85,8 +88,10 @@ struct DetectionFrame {
 DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const std::string& labPhoto,
                                           const std::string& arenaDir, int size, int spp, int trainFrames);
 
-// The measured table beside the thesis' numbers, with which findings reproduce (Markdown).
+// The measured table beside the thesis' numbers, with which findings reproduce (Markdown);
+// `convergence`, when given, is the realistic-convergence study's section (its figure at
+// `convergenceFigure`, relative to the document).
 std::string textureRealismMarkdown(const TextureRealismResults& results, const TextureRealismOptions& options,
-                                   const std::string& command);
+                                   const std::string& command, const std::string& convergence = "");
 
 }  // namespace omnicam

@@ -5,7 +5,10 @@ the job JSON named after `--` (never Python built from scene strings):
 
 job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "width": int,
            "height": int, "focal_length_px": float, "ambient": float,
-           "lights": [{"watts": float}] (in the order of the glTF's light_index),
+           "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
+                      diameter 0: a point, > 0: a disc luminaire facing straight down),
+           "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
+                            "mirror_seen_by_indirect_rays": bool} (lit; all optional),
            "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr}]}
 
 The .glb holds the arena and the rig (nodes omnicam_rig > omnicam_mirror, omnicam_rim_mask,
@@ -20,6 +23,10 @@ import sys
 import bpy
 import numpy
 from mathutils import Matrix
+
+# Lit path tracing unless the job says otherwise (docs/blender.md).
+PATH_TRACING_DEFAULTS = {"diffuse_bounces": 2, "glossy_bounces": 4, "clamp_indirect": 0.0,
+                         "mirror_seen_by_indirect_rays": False}
 
 # Debian 12 pairs Blender 3.4, whose glTF importer still uses `numpy.bool`, with numpy 1.24,
 # which removed that alias. Restore it (it was exactly the builtin bool).
@@ -110,6 +117,26 @@ def only_camera_sees(obj):
     obj.visible_shadow = False
 
 
+def make_luminaire(obj, diameter):
+    """A lamp of real size: a disc of `diameter` metres at the light's position facing straight
+    down (an area light emits along its local -Z), with the point light's power."""
+    position = obj.matrix_world.translation.copy()
+    obj.data.type = "AREA"
+    obj.data.shape = "DISK"
+    obj.data.size = diameter
+    obj.matrix_world = Matrix.Translation(position)
+
+
+def path_tracing(job):
+    settings = dict(PATH_TRACING_DEFAULTS)
+    given = job.get("path_tracing", {})
+    unknown = sorted(set(given) - set(settings))
+    if unknown:
+        raise RuntimeError("omnicam: unknown path_tracing settings " + ", ".join(unknown))
+    settings.update(given)
+    return settings
+
+
 def omnicam_props(obj):
     props = obj.get("omnicam")
     return props if props is not None and hasattr(props, "get") else None
@@ -142,6 +169,7 @@ def main():
     roles, lights_by_index = find_roles(bpy.data.objects)
     rig, mirror, mask, camera = roles["rig"], roles["mirror"], roles["rim_mask"], roles["camera"]
     unlit = job["shading"] == "unlit"
+    tracing = path_tracing(job)
 
     if unlit:  # the rig's own materials are replaced below
         for material in bpy.data.materials:
@@ -149,7 +177,12 @@ def main():
                 make_emission_only(material)
     mirror.data.materials.clear()
     mirror.data.materials.append(perfect_mirror())
-    mirror.visible_shadow = False  # the mirror casts no shadow (docs/conventions.md §2)
+    # The mirror is part of the camera (docs/conventions.md §3): camera rays see it, bounces pass
+    # through it and it casts no shadow, as in the fast renderer and POV-Ray.
+    if tracing["mirror_seen_by_indirect_rays"]:
+        mirror.visible_shadow = False
+    else:
+        only_camera_sees(mirror)
     mask.data.materials.clear()
     mask.data.materials.append(black_emission())
     only_camera_sees(mask)
@@ -159,8 +192,11 @@ def main():
         obj = lights_by_index.get(index)
         if obj is None:
             raise RuntimeError("omnicam: light %d is missing from the imported scene" % index)
+        if light.get("diameter", 0.0) > 0.0:
+            make_luminaire(obj, light["diameter"])
+        else:
+            obj.data.shadow_soft_size = 0.0  # a point: hard shadows
         obj.data.energy = 0.0 if unlit else light["watts"]
-        obj.data.shadow_soft_size = 0.0  # hard shadows
 
     cam = camera.data
     cam.type = "PERSP"
@@ -183,13 +219,13 @@ def main():
     cycles.pixel_filter_type = "BOX"
     cycles.filter_width = 1.0
     cycles.max_bounces = 8
-    cycles.glossy_bounces = 4
-    cycles.diffuse_bounces = 0 if unlit else 2
+    cycles.glossy_bounces = max(1, tracing["glossy_bounces"])  # the mirror's reflection is one
+    cycles.diffuse_bounces = 0 if unlit else tracing["diffuse_bounces"]
     cycles.transmission_bounces = 0
     cycles.volume_bounces = 0
     cycles.transparent_max_bounces = 0
     cycles.sample_clamp_direct = 0.0
-    cycles.sample_clamp_indirect = 0.0
+    cycles.sample_clamp_indirect = 0.0 if unlit else tracing["clamp_indirect"]
     cycles.blur_glossy = 0.0
     scene.render.resolution_x = job["width"]
     scene.render.resolution_y = job["height"]

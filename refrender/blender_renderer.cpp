@@ -28,6 +28,13 @@ constexpr double kLightMatchDistance = 3.0;
 
 }  // namespace
 
+nlohmann::json PathTracing::toJson() const {
+  return {{"diffuse_bounces", diffuseBounces},
+          {"glossy_bounces", glossyBounces},
+          {"clamp_indirect", clampIndirect},
+          {"mirror_seen_by_indirect_rays", mirrorSeenByIndirectRays}};
+}
+
 std::string blenderVersion(const std::string& executable) {
   JobFolder job("omnicam-blender", false);
   const ProcessResult r = runProcess({executable, "--version"}, job.path(), job.path() + "/version.log", 60.0);
@@ -41,6 +48,10 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                                          const RenderSettings& settings, const BlenderOptions& options) {
   if (poses.empty()) return {};
   checkRenderSettings(settings);
+  const PathTracing& tracing = options.pathTracing;
+  if (tracing.diffuseBounces < 0 || tracing.diffuseBounces > 16 || tracing.glossyBounces < 1 ||
+      tracing.glossyBounces > 16 || !(tracing.clampIndirect >= 0.0 && tracing.clampIndirect < 1e6))
+    throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
   for (const RobotPose& pose : poses) checkPose(pose, "--pose");
   const OmniCamera camera = settings.rig.camera();
   JobFolder folder("omnicam-blender", options.keepJobFolder);
@@ -65,7 +76,8 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   for (const Material& m : scene.materials) ambient += m.ambient / scene.materials.size();
   nlohmann::json lights = nlohmann::json::array();
   for (const PointLight& l : scene.lights)
-    lights.push_back({{"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()}});
+    lights.push_back({{"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()},
+                      {"diameter", l.diameter}});
   const nlohmann::json job = {{"glb", glb},
                               {"shading", shadingName(settings.shading)},
                               {"samples", settings.spp},
@@ -75,6 +87,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                               {"focal_length_px", camera.physicalFocalLength()},
                               {"ambient", ambient},
                               {"lights", lights},
+                              {"path_tracing", options.pathTracing.toJson()},
                               {"frames", frames}};
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
 

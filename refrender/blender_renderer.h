@@ -4,6 +4,7 @@
 // CPU — box pixel filter of width 1, fixed seed, no denoising, Standard view transform,
 // emission-only materials for `unlit` — and reads back linear OpenEXR. Cycles samples randomly
 // inside each pixel: results converge to the box-filtered mean as spp grows.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,17 @@
 
 namespace omnicam {
 
+// How Cycles path traces `lit` frames (unlit frames trace no bounce). The defaults are
+// blender_driver.py's; docs/texture-realism.md measures what each costs and changes.
+struct PathTracing {
+  int diffuseBounces = 2;
+  int glossyBounces = 4;       // at least 1: the mirror's reflection is a glossy bounce
+  double clampIndirect = 0.0;  // 0: off; else the most radiance one indirect sample may bring (a bias)
+  bool mirrorSeenByIndirectRays = false;  // true only to measure what hiding it changes
+  nlohmann::json toJson() const;
+  bool operator==(const PathTracing&) const = default;
+};
+
 struct BlenderOptions {
   double timeoutSeconds = 1800.0;
   std::string executable = "blender";
@@ -20,6 +32,7 @@ struct BlenderOptions {
   int seed = 0;
   bool keepJobFolder = false;
   int threads = 0;  // Blender's -t; 0: its default, all cores
+  PathTracing pathTracing;
 };
 
 // Renders every pose in one Blender session. Throws ExternalError (missing blender, failure,

@@ -72,8 +72,43 @@ class ExperimentCliTest : public ::testing::Test {
   fs::path dir_;
 };
 
+// The realistic-convergence study (--quick: 32 px, 4 and 16 spp against 64, one pose), then the
+// texture-realism experiment that embeds it in its document.
+void expectQuickConvergenceStudy(const std::string& folder, const std::string& printed) {
+  std::ifstream in(folder + "/convergence.json");
+  const json c = json::parse(in);
+  EXPECT_EQ(c["format"], "omnicam-realistic-convergence-1");
+  std::map<std::string, std::map<int, double>> psnr;  // setup → spp → dB
+  for (const json& point : c["ladder"]) {
+    EXPECT_EQ(point["pose"], 0);
+    const double db = point["psnr_db"].get<double>();
+    EXPECT_GT(db, 5.0);
+    EXPECT_LT(db, 99.0);
+    psnr[point["setup"].get<std::string>()][point["spp"].get<int>()] = db;
+    EXPECT_GE(point["outlier_share"].get<double>(), 0.0);
+  }
+  ASSERT_EQ(psnr.size(), 2u);
+  ASSERT_TRUE(psnr.count("before") && psnr.count("today"));
+  // Four times the samples: today's frames come about 6 dB closer to their reference (before's
+  // 64-spp reference is itself mostly speckle); today's lamps are cleaner at the same spp.
+  EXPECT_GT(psnr["today"][16], psnr["today"][4] + 2.0);
+  EXPECT_GT(psnr["today"][16], psnr["before"][16] + 3.0);
+  // The clamp darkens (Cycles counts everything seen in the mirror as indirect light).
+  EXPECT_LT(c["clamp_bias"]["luminance_percent"].get<double>(), 0.0);
+  EXPECT_EQ(c["experiment_check"]["size"], 64);
+  EXPECT_EQ(c["experiment_check"]["pair_psnr_db"].size(), 1u);
+  EXPECT_EQ(c["paths"].size(), 2u);
+  EXPECT_GT(readImage(folder + "/frames/today_16spp.png").width, 0);
+  EXPECT_TRUE(fs::exists(folder + "/figures/convergence.svg"));
+  EXPECT_NE(printed.find("## Are the realistic frames converged?"), std::string::npos) << printed;
+}
+
 TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
-  const auto r = omnicam("experiment texture-realism --quick -o " + path("run") + " --doc " + path("doc.md"));
+  const auto study = omnicam("experiment realistic-convergence --quick -o " + path("convergence"));
+  ASSERT_EQ(study.code, 0) << study.out;
+  expectQuickConvergenceStudy(path("convergence"), study.out);
+  const auto r = omnicam("experiment texture-realism --quick -o " + path("run") + " --doc " + path("doc.md") +
+                         " --convergence " + path("convergence"));
   ASSERT_EQ(r.code, 0) << r.out;
   std::ifstream in(path("run/results.json"));
   const json results = json::parse(in);
@@ -307,9 +342,34 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                                std::to_string(pp["missed"].get<int>()) + " | ";
   EXPECT_NE(doc.str().find(measured), std::string::npos) << measured << "\n" << doc.str();
   EXPECT_NE(doc.str().find("Which findings reproduce"), std::string::npos);
+  // The study's section and its figure beside the document.
+  EXPECT_NE(doc.str().find("## Are the realistic frames converged?"), std::string::npos);
+  EXPECT_NE(doc.str().find("](figures/realistic_convergence.svg)"), std::string::npos);
+  EXPECT_TRUE(fs::exists(path("figures/realistic_convergence.svg")));
+  EXPECT_NE(doc.str().find("## What changed since the realistic frames converged"), std::string::npos);
   std::stringstream copy;
   copy << std::ifstream(path("run/texture-realism.md")).rdbuf();
   EXPECT_EQ(copy.str(), doc.str());
+}
+
+TEST_F(ExperimentCliTest, ConvergenceOptionsAreCheckedBeforeAnythingRuns) {
+  // A folder without the study's results: one line, exit 2, nothing written.
+  fs::create_directories(path("empty"));
+  auto r = omnicam("experiment texture-realism --quick -o " + path("run") + " --convergence " + path("empty"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+  EXPECT_NE(r.out.find("convergence.json"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(path("run/results.json")));
+  // A results file that is not the study's.
+  std::ofstream(path("empty/convergence.json")) << R"({"format": "something else"})";
+  r = omnicam("experiment texture-realism --quick -o " + path("run") + " --convergence " + path("empty"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+  // The study takes no texture-realism options.
+  r = omnicam("experiment realistic-convergence --quick -o " + path("conv") + " --doc " + path("doc.md"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+  EXPECT_FALSE(fs::exists(path("doc.md")));
 }
 
 TEST_F(ExperimentCliTest, ArenaHallFromARealPhotoAndFromAnUnwrappedOmniImage) {

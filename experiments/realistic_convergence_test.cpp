@@ -1,0 +1,75 @@
+// realistic_convergence: its results file round-trips, is read as untrusted input, and its
+// Markdown shows the means and worst cases computed by hand.
+#include "realistic_convergence.h"
+
+#include <gtest/gtest.h>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+ConvergenceResults sample() {
+  ConvergenceResults r;
+  r.setups = {"before", "today"};
+  r.setupDescriptions = {"point lamps", "lamps of real size"};
+  auto point = [](const std::string& setup, int pose, int spp, double db, double outliers) {
+    ConvergencePoint p{setup, pose, spp, {}};
+    p.noise.psnrDb = db;
+    p.noise.outlierShare = outliers;
+    p.noise.pixels = 3000;
+    return p;
+  };
+  r.ladder = {point("before", 0, 16, 20.0, 0.07), point("before", 33, 16, 22.0, 0.05),
+              point("today", 0, 16, 27.0, 0.01), point("today", 33, 16, 29.0, 0.03)};
+  r.paths = {{"before", "point lamps, everything traced", 18.0, 18.0 + 3.0103, 0.07},
+             {"today", "lamps of real size", 28.0, 28.0 + 3.0103, 0.009}};
+  r.clampIndirect = 1.0;
+  r.clampBiasPsnrDb = 29.5;
+  r.clampBiasLuminancePercent = -2.5;
+  r.experimentSize = 360;
+  r.experimentSpp = 100;
+  r.experimentPairPsnrDb = {29.3, 30.2};
+  r.size = 64;
+  r.referenceSpp = 8192;
+  r.seconds = 600;
+  return r;
+}
+
+TEST(RealisticConvergence, ResultsRoundTripThroughJson) {
+  const ConvergenceResults r = sample();
+  const ConvergenceResults back = convergenceFromJson(convergenceJson(r), "c.json");
+  EXPECT_EQ(convergenceJson(back), convergenceJson(r));
+  EXPECT_EQ(convergenceMarkdown(back, "f.svg"), convergenceMarkdown(r, "f.svg"));
+}
+
+TEST(RealisticConvergence, MarkdownShowsMeansWorstCasesAndTheTargetVerdict) {
+  const std::string md = convergenceMarkdown(sample(), "figures/c.svg");
+  // spp 16: before mean 21.0 (worst 20.0), outliers 6.00 %; today 28.0 (27.0), 2.00 %.
+  EXPECT_NE(md.find("| 16 | 21.0 (20.0) | 6.00 | 28.0 (27.0) | 2.00 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("poses 0 and 33 of thesis-loop"), std::string::npos) << md;
+  EXPECT_NE(md.find("](figures/c.svg)"), std::string::npos);
+  // Worst experiment pair 29.3 dB → 32.3 dB against converged: short of 35 dB.
+  EXPECT_NE(md.find("about 32.3 dB or better"), std::string::npos) << md;
+  EXPECT_NE(md.find("short of the 35 dB target"), std::string::npos);
+  ConvergenceResults better = sample();
+  better.experimentPairPsnrDb = {32.5};
+  EXPECT_NE(convergenceMarkdown(better, "").find("the 35 dB target is met"), std::string::npos);
+  EXPECT_NE(md.find("-2.5 %"), std::string::npos);
+}
+
+TEST(RealisticConvergence, AResultsFileIsUntrustedInput) {
+  nlohmann::json j = convergenceJson(sample());
+  j["setups"][0]["description"] = "<script>alert(1)</script>";
+  EXPECT_THROW(convergenceFromJson(j, "c.json"), InputError);
+  j = convergenceJson(sample());
+  j["ladder"][0]["psnr_db"] = "high";
+  EXPECT_THROW(convergenceFromJson(j, "c.json"), InputError);
+  j = convergenceJson(sample());
+  j["format"] = "other";
+  EXPECT_THROW(convergenceFromJson(j, "c.json"), InputError);
+  EXPECT_THROW(convergenceFromJson(nlohmann::json::array(), "c.json"), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam

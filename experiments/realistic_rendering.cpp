@@ -1,0 +1,86 @@
+#include "realistic_rendering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "errors.h"
+#include "render_settings.h"
+
+namespace omnicam {
+
+namespace {
+
+// Cycles' samples per session: independent sessions are averaged above it (and spp stays a
+// perfect square, as every engine's sample grid needs).
+constexpr int kSamplesPerSession = 1024;
+
+}  // namespace
+
+std::string RealisticRendering::describe() const {
+  char clamp[64] = "no clamp";
+  if (tracing.clampIndirect > 0.0) std::snprintf(clamp, sizeof clamp, "indirect samples clamped at %.2g", tracing.clampIndirect);
+  const std::string lamps =
+      lampDiameter > 0.0 ? "lamps: discs of " + std::to_string(std::lround(lampDiameter * 100.0)) + " cm facing down"
+                         : std::string("point lamps");
+  return lamps + ", mirror " + (tracing.mirrorSeenByIndirectRays ? "seen by bounces" : "seen by camera rays only") + ", " +
+         std::to_string(tracing.diffuseBounces) + " diffuse and " + std::to_string(tracing.glossyBounces) +
+         " glossy bounces, " + clamp;
+}
+
+RealisticRendering realisticRenderingBefore() {
+  RealisticRendering r;
+  r.name = "before";
+  r.lampDiameter = 0.0;
+  r.tracing.mirrorSeenByIndirectRays = true;
+  r.spp = 16;
+  return r;
+}
+
+RealisticRendering realisticRendering() {
+  RealisticRendering r;
+  r.name = "today";
+  r.lampDiameter = 0.5;
+  r.spp = 100;
+  return r;
+}
+
+std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<RobotPose>& poses,
+                                       const RealisticRendering& setup, int size, int spp, int seed,
+                                       double timeoutSeconds) {
+  if (spp < 1) throw InputError("realistic rendering: spp must be at least 1");
+  Scene scene = hall;
+  for (PointLight& lamp : scene.lights) lamp.diameter = setup.lampDiameter;
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.imageSize = size;
+  settings.shading = Shading::Lit;
+  BlenderOptions options;
+  options.timeoutSeconds = timeoutSeconds;
+  options.pathTracing = setup.tracing;
+  if (const char* exe = std::getenv("OMNICAM_BLENDER")) options.executable = exe;
+  const int sessions = std::max(1, (spp + kSamplesPerSession - 1) / kSamplesPerSession);
+  if (sessions > 1 && spp % kSamplesPerSession != 0)
+    throw InputError("realistic rendering: above " + std::to_string(kSamplesPerSession) + " spp, a multiple of it");
+  settings.spp = sessions > 1 ? kSamplesPerSession : spp;
+  std::vector<ImageRGBA> sum;
+  for (int k = 0; k < sessions; ++k) {
+    options.seed = seed + k;
+    std::vector<ImageRGBA> images = renderWithBlender(scene, poses, settings, options);
+    if (sum.empty()) {
+      sum = std::move(images);
+      continue;
+    }
+    for (size_t f = 0; f < sum.size(); ++f)
+      for (size_t p = 0; p < sum[f].pixels.size(); p += 4)
+        for (size_t c = 0; c < 3; ++c) sum[f].pixels[p + c] += images[f].pixels[p + c];
+  }
+  if (sessions > 1)
+    for (ImageRGBA& image : sum)
+      for (size_t p = 0; p < image.pixels.size(); p += 4)
+        for (size_t c = 0; c < 3; ++c) image.pixels[p + c] /= static_cast<float>(sessions);
+  return sum;
+}
+
+}  // namespace omnicam
