@@ -177,11 +177,9 @@ ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const st
     study.poses.push_back(loop->poses[static_cast<size_t>(index)]);
   }
   const std::vector<RealisticRendering> setups = {realisticRenderingBefore(), realisticRendering()};
-  auto sessions = [](int spp) { return std::max(1, spp / 1024); };
-  int perSetup = sessions(o.referenceSpp);
-  for (int spp : o.ladder) perSetup += sessions(spp);
+  const int perSetup = 1 + static_cast<int>(o.ladder.size());  // the reference, then each rung
   const int variants = o.everyPath ? 8 + static_cast<int>(hall.lights.size()) : 2;
-  study.total = static_cast<int>(setups.size()) * perSetup + sessions(o.referenceSpp) + 2 * variants + 2;
+  study.total = static_cast<int>(setups.size()) * perSetup + 1 + 2 * variants + 2;
 
   ConvergenceResults r;
   r.size = o.size;
@@ -262,7 +260,7 @@ std::string plainText(const nlohmann::json& value, const std::string& file, cons
   const std::string text = value.get<std::string>();
   if (text.empty() || text.size() > 200 ||
       std::any_of(text.begin(), text.end(), [](char c) {
-        return static_cast<unsigned char>(c) < 0x20 || std::string("<>|`[]\\*_&").find(c) != std::string::npos;
+        return static_cast<unsigned char>(c) < 0x20 || std::string("<>|`[]\\*&").find(c) != std::string::npos;
       }))
     throw InputError(showPath(file) + ": " + field + ": not plain text: " + quote(text));
   return text;

@@ -23,7 +23,7 @@ ConvergenceResults sample() {
   r.ladder = {point("before", 0, 16, 20.0, 0.07), point("before", 33, 16, 22.0, 0.05),
               point("today", 0, 16, 27.0, 0.01), point("today", 33, 16, 29.0, 0.03)};
   r.paths = {{"before", "point lamps, everything traced", 18.0, 18.0 + 3.0103, 0.07},
-             {"today", "lamps of real size", 28.0, 28.0 + 3.0103, 0.009}};
+             {"today_direct", "lamps of real size, only \"ceiling_0\" on", 28.0, 28.0 + 3.0103, 0.009}};
   r.clampIndirect = 1.0;
   r.clampBiasPsnrDb = 29.5;
   r.clampBiasLuminancePercent = -2.5;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 #include "errors.h"
 #include "render_settings.h"
@@ -59,7 +58,6 @@ std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<Robo
   BlenderOptions options;
   options.timeoutSeconds = timeoutSeconds;
   options.pathTracing = setup.tracing;
-  if (const char* exe = std::getenv("OMNICAM_BLENDER")) options.executable = exe;
   const int sessions = std::max(1, (spp + kSamplesPerSession - 1) / kSamplesPerSession);
   if (sessions > 1 && spp % kSamplesPerSession != 0)
     throw InputError("realistic rendering: above " + std::to_string(kSamplesPerSession) + " spp, a multiple of it");

@@ -279,7 +279,7 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
      << "- plain / textured: the fast renderer, lit, " << o.spp << " spp. Textured walls: planar projections of "
         "a CC0 360° photo (`interior.exr` from Debian's blender-data) seen from the hall's middle.\n"
      << "- realistic: Blender Cycles, lit and path traced, " << o.realistic.spp << " spp, of the textured hall ("
-     << o.realistic.describe() << "; converged to ≥ 35 dB, see below), "
+     << o.realistic.describe() << "; how converged: see below), "
         "through the recording-camera model (exposure +0.3 EV, warm white balance, vignetting 0.35, shot noise "
         "at 2500 e⁻, read noise 0.8 %, JPEG 80). **We have no ISLA images; these frames stand in for them.**\n"
      << "- Classifiers: " << o.bins << "³-bin RGB histograms per colour (cyan, magenta, yellow), Θ = "

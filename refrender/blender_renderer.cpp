@@ -28,6 +28,11 @@ constexpr double kLightMatchDistance = 3.0;
 
 }  // namespace
 
+std::string blenderExecutable() {
+  const char* exe = std::getenv("OMNICAM_BLENDER");
+  return exe ? exe : "blender";
+}
+
 nlohmann::json PathTracing::toJson() const {
   return {{"diffuse_bounces", diffuseBounces},
           {"glossy_bounces", glossyBounces},

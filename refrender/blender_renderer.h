@@ -14,6 +14,9 @@
 
 namespace omnicam {
 
+// "blender", or the binary $OMNICAM_BLENDER names (tests use it to simulate failures).
+std::string blenderExecutable();
+
 // How Cycles path traces `lit` frames (unlit frames trace no bounce). The defaults are
 // blender_driver.py's; docs/texture-realism.md measures what each costs and changes.
 struct PathTracing {
@@ -27,7 +30,7 @@ struct PathTracing {
 
 struct BlenderOptions {
   double timeoutSeconds = 1800.0;
-  std::string executable = "blender";
+  std::string executable = blenderExecutable();
   std::string driver;  // default: the repository's refrender/blender_driver.py
   int seed = 0;
   bool keepJobFolder = false;

@@ -88,8 +88,6 @@ class BlenderEngine : public Engine {
   BlenderEngine(const Scene& scene, double timeoutSeconds, int threads) : scene_(scene) {
     options_.timeoutSeconds = timeoutSeconds;
     options_.threads = threads;
-    // OMNICAM_BLENDER names another Blender binary (tests use it to simulate failures).
-    if (const char* exe = std::getenv("OMNICAM_BLENDER")) options_.executable = exe;
   }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     return std::move(renderWithBlender(scene_, {pose}, settings, options_).front());
