@@ -351,7 +351,7 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
           "realistic result from "
        << pr->truePositives << " TP, " << pr->falsePositives << " FP (TP/FP " << ratioText(trueOverFalse(*pr)) << ") to "
        << rr->truePositives << " TP, " << rr->falsePositives << " FP (TP/FP " << ratioText(trueOverFalse(*rr)) << ").\n";
-  md << "\n## What changed since the realistic frames converged\n\n"
+  md << "\n## What changed with the new realistic frames\n\n"
         "Until issue #20 the realistic frames were Cycles renders at 16 spp with point lamps 0.2 m under the ceiling: "
         "mostly render noise (about 21 dB against a converged frame, white speckle over the whole mirror disc). "
         "That run's numbers beside this one's:\n\n"
@@ -369,8 +369,8 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
           "realistic frames the classifiers trained on plain simulation keep "
        << pr->truePositives << " of " << pp->truePositives << " true positives (before: 10 of 287) with "
        << pr->falsePositives << " false positives (before: 7064)"
-       << (pr->truePositives * 2 < pp->truePositives ? ": the collapse of finding 2 still holds, now on frames that are not noise."
-                                                      : ": the collapse of finding 2 was the render noise; it does not hold on converged frames.")
+       << (pr->truePositives * 2 < pp->truePositives ? ": the collapse of finding 2 still holds, now on frames that are not mostly noise."
+                                                      : ": the collapse of finding 2 was the render noise; it does not hold on the new frames.")
        << "\n";
   if (!convergence.empty()) md << "\n" << convergence;
   md << "\nWhere the numbers differ from the thesis: its counts come from hand labels on its own arena and ISLA's "

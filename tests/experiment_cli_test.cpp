@@ -346,7 +346,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_NE(doc.str().find("## Are the realistic frames converged?"), std::string::npos);
   EXPECT_NE(doc.str().find("](figures/realistic_convergence.svg)"), std::string::npos);
   EXPECT_TRUE(fs::exists(path("figures/realistic_convergence.svg")));
-  EXPECT_NE(doc.str().find("## What changed since the realistic frames converged"), std::string::npos);
+  EXPECT_NE(doc.str().find("## What changed with the new realistic frames"), std::string::npos);
   std::stringstream copy;
   copy << std::ifstream(path("run/texture-realism.md")).rdbuf();
   EXPECT_EQ(copy.str(), doc.str());
