@@ -3,7 +3,8 @@
 // converged?"): Blender renders of the textured hall at 16…4096 spp against a converged reference
 // for three poses of thesis-loop, per rendering setup; which paths carry the noise (per lamp, per
 // bounce, with and without the mirror seen by bounces); the bias of the clamp; and a check at the
-// experiment's own image size and sample count.
+// experiment's own image size and sample count. A filtered setup is measured against its unfiltered
+// converged reference, so the filter's bias counts against it.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,7 +21,8 @@ struct ConvergenceOptions {
   std::vector<int> ladder = {16, 64, 256, 1024, 4096};  // above 1024: independent 1024-spp renders averaged
   int referenceSpp = 8192;
   int diagnosisSpp = 64;
-  int experimentSize = 360;                     // the seed-pair check at the experiment's size
+  int experimentSize = 360;                     // the check at the experiment's size and spp ...
+  int experimentReferenceSpp = 1024;            // ... against an unfiltered reference of this many spp
   std::vector<int> poseIndices = {0, 33, 66};  // of thesis-loop
   bool everyPath = true;                        // false: of the path variants only "before" and "today"
   double blenderTimeoutSeconds = 3600.0;
@@ -47,9 +49,10 @@ struct ConvergenceResults {
   // Clamping indirect samples at `clampIndirect`: its bias (today's converged frames clamped,
   // against unclamped; its noise at the diagnosis spp is in `paths`).
   double clampIndirect = 0.0, clampBiasPsnrDb = 0.0, clampBiasLuminancePercent = 0.0;
-  // At the experiment's size and spp, per pose: the seed pair and what it implies.
-  int experimentSize = 0, experimentSpp = 0;
-  std::vector<double> experimentPairPsnrDb;
+  // At the experiment's size and spp, per pose: the experiment's frame against an unfiltered
+  // reference of experimentReferenceSpp (a lower bound: the reference's own noise counts too).
+  int experimentSize = 0, experimentSpp = 0, experimentReferenceSpp = 0;
+  std::vector<double> experimentPsnrDb;
   int size = 0, referenceSpp = 0;
   double seconds = 0.0;
 };

@@ -11,8 +11,8 @@ namespace {
 
 ConvergenceResults sample() {
   ConvergenceResults r;
-  r.setups = {"before", "today"};
-  r.setupDescriptions = {"point lamps", "lamps of real size"};
+  r.setups = {"before", "physical", "today"};
+  r.setupDescriptions = {"point lamps", "lamps of real size", "lamps of real size, indirect light filtered"};
   auto point = [](const std::string& setup, int pose, int spp, double db, double outliers) {
     ConvergencePoint p{setup, pose, spp, {}};
     p.noise.psnrDb = db;
@@ -21,15 +21,19 @@ ConvergenceResults sample() {
     return p;
   };
   r.ladder = {point("before", 0, 16, 20.0, 0.07), point("before", 33, 16, 22.0, 0.05),
-              point("today", 0, 16, 27.0, 0.01), point("today", 33, 16, 29.0, 0.03)};
+              point("physical", 0, 16, 25.0, 0.02), point("physical", 33, 16, 26.0, 0.02),
+              point("today", 0, 16, 27.0, 0.01), point("today", 33, 16, 29.0, 0.03),
+              point("physical", 0, 64, 31.0, 0.0), point("physical", 33, 64, 33.0, 0.0),
+              point("today", 0, 64, 38.0, 0.0), point("today", 33, 64, 41.0, 0.0)};
   r.paths = {{"before", "point lamps, everything traced", 18.0, 18.0 + 3.0103, 0.07},
              {"today_direct", "lamps of real size, only \"ceiling_0\" on", 28.0, 28.0 + 3.0103, 0.009}};
   r.clampIndirect = 1.0;
   r.clampBiasPsnrDb = 29.5;
   r.clampBiasLuminancePercent = -2.5;
   r.experimentSize = 360;
-  r.experimentSpp = 100;
-  r.experimentPairPsnrDb = {29.3, 30.2};
+  r.experimentSpp = 36;
+  r.experimentReferenceSpp = 1024;
+  r.experimentPsnrDb = {34.3, 36.2};
   r.size = 64;
   r.referenceSpp = 8192;
   r.seconds = 600;
@@ -45,15 +49,19 @@ TEST(RealisticConvergence, ResultsRoundTripThroughJson) {
 
 TEST(RealisticConvergence, MarkdownShowsMeansWorstCasesAndTheTargetVerdict) {
   const std::string md = convergenceMarkdown(sample(), "figures/c.svg");
-  // spp 16: before mean 21.0 (worst 20.0), outliers 6.00 %; today 28.0 (27.0), 2.00 %.
-  EXPECT_NE(md.find("| 16 | 21.0 (20.0) | 6.00 | 28.0 (27.0) | 2.00 |"), std::string::npos) << md;
+  // spp 16: before mean 21.0 (worst 20.0), outliers 6.00 %; physical 25.5 (25.0), 2.00 %; today 28.0 (27.0), 2.00 %.
+  EXPECT_NE(md.find("| 16 | 21.0 (20.0) | 6.00 | 25.5 (25.0) | 2.00 | 28.0 (27.0) | 2.00 |"), std::string::npos) << md;
+  // The filter's bias is read at the top rung, 64 spp: today 39.5 (38.0), physical 32.0.
+  EXPECT_NE(md.find("at 64 spp, where little noise is left, filtered frames are 39.5 dB (worst 38.0)"), std::string::npos) << md;
+  EXPECT_NE(md.find("unfiltered ones 32.0 dB, at 64 px, where a pixel spans 5.6×"), std::string::npos) << md;
   EXPECT_NE(md.find("poses 0 and 33 of thesis-loop"), std::string::npos) << md;
   EXPECT_NE(md.find("](figures/c.svg)"), std::string::npos);
-  // Worst experiment pair 29.3 dB → 32.3 dB against converged: short of 35 dB.
-  EXPECT_NE(md.find("about 32.3 dB or better"), std::string::npos) << md;
+  // Worst experiment frame 34.3 dB against its reference: short of 35 dB.
+  EXPECT_NE(md.find("At the experiment's own 360 px and 36 spp"), std::string::npos) << md;
+  EXPECT_NE(md.find("unfiltered 1024-spp references: worst 34.3 dB"), std::string::npos) << md;
   EXPECT_NE(md.find("short of the 35 dB target"), std::string::npos);
   ConvergenceResults better = sample();
-  better.experimentPairPsnrDb = {32.5};
+  better.experimentPsnrDb = {35.0, 40.0};
   EXPECT_NE(convergenceMarkdown(better, "").find("the 35 dB target is met"), std::string::npos);
   EXPECT_NE(md.find("-2.5 %"), std::string::npos);
 }

@@ -19,8 +19,11 @@ struct RealisticRendering {
   int spp = 16;               // Cycles samples per pixel, 1…1024
   std::string describe() const;  // everything but spp, in words
 };
-RealisticRendering realisticRenderingBefore();  // until issue #20: point lamps, mirror seen by bounces, 16 spp
-RealisticRendering realisticRendering();        // today's: lamps of real size, mirror camera-only, 100 spp
+RealisticRendering realisticRenderingBefore();    // until issue #20: point lamps, mirror seen by bounces, 16 spp
+RealisticRendering realisticRenderingPhysical();  // lamps of real size, mirror camera-only, unfiltered, 100 spp
+RealisticRendering realisticRendering();          // today's: the physical setup, indirect light filtered, 36 spp
+// What a setup's frames converge to without a filter's bias: the same setup, unfiltered.
+RealisticRendering convergedReferenceOf(RealisticRendering setup);
 
 // The frames of `poses` in one Blender session per 1024 samples: above 1024 spp, independent
 // renders of 1024 (seeds seed, seed + 1, …) averaged, which is a render of their sum. `hall`'s

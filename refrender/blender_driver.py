@@ -8,8 +8,13 @@ job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
                       diameter 0: a point, > 0: a disc luminaire facing straight down),
            "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
-                            "mirror_seen_by_indirect_rays": bool} (lit; all optional),
-           "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr}]}
+                            "mirror_seen_by_indirect_rays": bool, "direct_pass": bool} (lit; all optional),
+           "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr,
+                       "direct_output": path.exr (with direct_pass)}]}
+
+direct_pass: `output` becomes a multilayer OpenEXR (ViewLayer.Combined and Cycles' Denoising
+Albedo, Normal and Depth passes), and the frame is rendered a second time with the same seed and
+no bounce after the first surface seen in the mirror (direct light only) into `direct_output`.
 
 The .glb holds the arena and the rig (nodes omnicam_rig > omnicam_mirror, omnicam_rim_mask,
 omnicam_camera); the importer turns glTF's +Y-up into Blender's +Z-up, which is omnicam's world.
@@ -26,7 +31,7 @@ from mathutils import Matrix
 
 # Lit path tracing unless the job says otherwise (docs/blender.md).
 PATH_TRACING_DEFAULTS = {"diffuse_bounces": 2, "glossy_bounces": 4, "clamp_indirect": 0.0,
-                         "mirror_seen_by_indirect_rays": False}
+                         "mirror_seen_by_indirect_rays": False, "direct_pass": False}
 
 # Debian 12 pairs Blender 3.4, whose glTF importer still uses `numpy.bool`, with numpy 1.24,
 # which removed that alias. Restore it (it was exactly the builtin bool).
@@ -241,11 +246,34 @@ def main():
     settings.color_depth = "32"
     settings.color_mode = "RGB"
 
+    direct_pass = tracing["direct_pass"] and not unlit
     for frame in job["frames"]:
         rig.matrix_world = Matrix(frame["world_from_viewpoint"])
-        scene.render.filepath = frame["output"]
-        bpy.ops.render.render(write_still=True)
-        print("omnicam: wrote", frame["output"], flush=True)
+        if direct_pass:
+            render_with_direct_twin(scene, frame)
+        else:
+            render_to(scene, frame["output"])
+
+
+def render_to(scene, path):
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    print("omnicam: wrote", path, flush=True)
+
+
+def render_with_direct_twin(scene, frame):
+    """Every path with the guide passes, then the same samples (same seed) ending at the first
+    surface seen in the mirror: its direct light only (indirect_filter.h)."""
+    cycles, layer, settings = scene.cycles, bpy.context.view_layer, scene.render.image_settings
+    bounces = (cycles.diffuse_bounces, cycles.glossy_bounces)
+    layer.cycles.denoising_store_passes = True
+    settings.file_format = "OPEN_EXR_MULTILAYER"
+    render_to(scene, frame["output"])
+    layer.cycles.denoising_store_passes = False
+    settings.file_format = "OPEN_EXR"
+    cycles.diffuse_bounces, cycles.glossy_bounces = 0, 1  # the mirror's reflection is the one glossy bounce
+    render_to(scene, frame["direct_output"])
+    cycles.diffuse_bounces, cycles.glossy_bounces = bounces
 
 
 main()

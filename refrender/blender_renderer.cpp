@@ -9,7 +9,10 @@
 #include "errors.h"
 #include "external_process.h"
 #include "gltf_exporter.h"
+#include "indirect_filter.h"
 #include "job_folder.h"
+
+#include <OpenImageIO/imageio.h>
 
 namespace omnicam {
 
@@ -26,6 +29,49 @@ std::string defaultDriver() {
 // Lambertian surface at distance d the radiance ρ·P/(4π²d²): match I at a typical distance.
 constexpr double kLightMatchDistance = 3.0;
 
+// The named channels of an OpenEXR Cycles wrote, interleaved per pixel; ExternalError when one is missing.
+std::vector<float> readChannels(const std::string& path, const std::vector<std::string>& names, int width, int height) {
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) throw ExternalError("blender: unreadable output " + showPath(path));
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width != width || spec.height != height) throw ExternalError("blender: output has the wrong size: " + showPath(path));
+  std::vector<float> all(static_cast<size_t>(width) * height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
+    throw ExternalError("blender: unreadable output " + showPath(path));
+  std::vector<float> out(static_cast<size_t>(width) * height * names.size());
+  for (size_t c = 0; c < names.size(); ++c) {
+    const int index = spec.channelindex(names[c]);
+    if (index < 0) throw ExternalError("blender: output " + showPath(path) + " lacks the channel " + quote(names[c]));
+    for (size_t k = 0; k < static_cast<size_t>(width) * height; ++k)
+      out[k * names.size() + c] = all[k * spec.nchannels + static_cast<size_t>(index)];
+  }
+  return out;
+}
+
+ImageRGBA rgbaFrom(const std::vector<float>& rgb, int width, int height) {
+  ImageRGBA image(width, height);
+  for (size_t k = 0; k < static_cast<size_t>(width) * height; ++k)
+    for (size_t c = 0; c < 3; ++c) image.pixels[4 * k + c] = rgb[3 * k + c];
+  return image;
+}
+
+// A frame rendered with its direct-light twin and guide passes (blender_driver.py), indirect light filtered.
+ImageRGBA readFilteredFrame(const std::string& full, const std::string& direct, int width, int height) {
+  const std::string layer = "ViewLayer.";
+  auto names = [&](const std::string& pass, const char* components) {
+    std::vector<std::string> n;
+    for (const char* c = components; *c; ++c) n.push_back(layer + pass + "." + std::string(1, *c));
+    return n;
+  };
+  IndirectFilterInputs in;
+  in.full = rgbaFrom(readChannels(full, names("Combined", "RGB"), width, height), width, height);
+  in.direct = rgbaFrom(readChannels(direct, {"R", "G", "B"}, width, height), width, height);
+  in.albedo = readChannels(full, names("Denoising Albedo", "RGB"), width, height);
+  in.normal = readChannels(full, names("Denoising Normal", "XYZ"), width, height);
+  in.depth = readChannels(full, names("Denoising Depth", "Z"), width, height);
+  return filterIndirectLight(in);
+}
+
 }  // namespace
 
 std::string blenderExecutable() {
@@ -37,7 +83,8 @@ nlohmann::json PathTracing::toJson() const {
   return {{"diffuse_bounces", diffuseBounces},
           {"glossy_bounces", glossyBounces},
           {"clamp_indirect", clampIndirect},
-          {"mirror_seen_by_indirect_rays", mirrorSeenByIndirectRays}};
+          {"mirror_seen_by_indirect_rays", mirrorSeenByIndirectRays},
+          {"direct_pass", filterIndirect}};
 }
 
 std::string blenderVersion(const std::string& executable) {
@@ -59,6 +106,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
   for (const RobotPose& pose : poses) checkPose(pose, "--pose");
   const OmniCamera camera = settings.rig.camera();
+  const bool filtered = tracing.filterIndirect && settings.shading == Shading::Lit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";
   GltfExportOptions exportOptions;
@@ -75,10 +123,14 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
       for (int j = 0; j < 4; ++j) row.push_back(worldFromViewpoint.matrix()(i, j));
       rows.push_back(row);
     }
-    frames.push_back({{"world_from_viewpoint", rows}, {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}});
+    nlohmann::json frame = {{"world_from_viewpoint", rows}, {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}};
+    if (filtered) frame["direct_output"] = folder.path() + "/frame_" + std::to_string(f) + "_direct.exr";
+    frames.push_back(frame);
   }
   double ambient = 0.0;
   for (const Material& m : scene.materials) ambient += m.ambient / scene.materials.size();
+  nlohmann::json pathTracing = tracing.toJson();
+  pathTracing["direct_pass"] = filtered;
   nlohmann::json lights = nlohmann::json::array();
   for (const PointLight& l : scene.lights)
     lights.push_back({{"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()},
@@ -92,7 +144,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                               {"focal_length_px", camera.physicalFocalLength()},
                               {"ambient", ambient},
                               {"lights", lights},
-                              {"path_tracing", options.pathTracing.toJson()},
+                              {"path_tracing", pathTracing},
                               {"frames", frames}};
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
 
@@ -116,7 +168,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     if (!fs::exists(output)) throw ExternalError("blender: no output " + showPath(output) + "; last output:\n" + r.logTail);
     ImageRGBA image;
     try {
-      image = readImage(output);
+      image = filtered ? readFilteredFrame(output, frame["direct_output"], camera.width(), camera.height()) : readImage(output);
     } catch (const InputError& e) {
       throw ExternalError(std::string("blender: unreadable output: ") + e.what());
     }

@@ -1,0 +1,156 @@
+// The indirect-light filter on synthetic passes with known answers: what it must keep exactly
+// (direct light, textures, straddling pixels, pixels without a surface), what it must not mix
+// (surfaces facing elsewhere or at another depth), and how much white noise it removes.
+#include "indirect_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+constexpr int kSize = 48;
+
+// A plane facing +z at depth 2 with a checker albedo, lit directly by a ramp and indirectly by
+// `indirect(i, j)` (irradiance, before the albedo).
+template <typename Indirect>
+IndirectFilterInputs plane(Indirect indirect) {
+  IndirectFilterInputs in;
+  in.full = ImageRGBA(kSize, kSize);
+  in.direct = ImageRGBA(kSize, kSize);
+  in.albedo.assign(3 * kSize * kSize, 0.0f);
+  in.normal.assign(3 * kSize * kSize, 0.0f);
+  in.depth.assign(kSize * kSize, 2.0f);
+  for (int j = 0; j < kSize; ++j)
+    for (int i = 0; i < kSize; ++i) {
+      const size_t k = static_cast<size_t>(j) * kSize + i;
+      const float checker = ((i / 3 + j / 3) % 2) ? 0.8f : 0.2f;
+      in.normal[3 * k + 2] = 1.0f;
+      for (size_t c = 0; c < 3; ++c) {
+        const float albedo = checker * (0.5f + 0.25f * static_cast<float>(c));
+        in.albedo[3 * k + c] = albedo;
+        const float direct = albedo * (0.3f + 0.01f * static_cast<float>(i));
+        in.direct.pixels[4 * k + c] = direct;
+        in.full.pixels[4 * k + c] = direct + albedo * static_cast<float>(indirect(i, j, c));
+      }
+      in.full.pixels[4 * k + 3] = in.direct.pixels[4 * k + 3] = 1.0f;
+    }
+  return in;
+}
+
+float maxDifference(const ImageRGBA& a, const ImageRGBA& b) {
+  float worst = 0.0f;
+  for (size_t k = 0; k < a.pixels.size(); ++k) worst = std::max(worst, std::abs(a.pixels[k] - b.pixels[k]));
+  return worst;
+}
+
+TEST(IndirectFilter, SmoothIndirectLightOnATexturedPlaneIsKeptAndTheTextureStays) {
+  // Constant and linear irradiance: a symmetric window reproduces them wherever it is whole, and a
+  // constant everywhere; the checker albedo multiplies back exactly.
+  const IndirectFilterInputs constant = plane([](int, int, size_t c) { return 0.1 + 0.05 * c; });
+  EXPECT_LT(maxDifference(filterIndirectLight(constant), constant.full), 1e-6f);
+  const IndirectFilterInputs ramp = plane([](int i, int j, size_t) { return 0.05 + 0.004 * i + 0.002 * j; });
+  const ImageRGBA out = filterIndirectLight(ramp);
+  const int r = IndirectFilterParameters{}.radius;
+  for (int j = r; j < kSize - r; ++j)
+    for (int i = r; i < kSize - r; ++i)
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(out.at(i, j)[c], ramp.full.at(i, j)[c], 1e-6f) << i << "," << j;
+}
+
+TEST(IndirectFilter, WithoutIndirectLightTheFrameIsTheDirectLight) {
+  const IndirectFilterInputs none = plane([](int, int, size_t) { return 0.0; });
+  EXPECT_EQ(filterIndirectLight(none).pixels, none.direct.pixels);
+}
+
+TEST(IndirectFilter, WhiteNoiseShrinksByTheWindowsEffectiveSize) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::vector<double> field(3 * kSize * kSize);
+  for (double& v : field) v = noise(random);
+  const IndirectFilterInputs noisy = plane([&](int i, int j, size_t c) { return 0.2 + field[3 * (j * kSize + i) + c]; });
+  const ImageRGBA out = filterIndirectLight(noisy);
+  // Interior pixels: the filtered irradiance's variance is σ² Σw² / (Σw)² (weights all spatial here).
+  const IndirectFilterParameters p;
+  double sum = 0.0, sumSquares = 0.0;
+  for (int dy = -p.radius; dy <= p.radius; ++dy)
+    for (int dx = -p.radius; dx <= p.radius; ++dx) {
+      const double w = std::exp(-(dx * dx + dy * dy) / (2.0 * p.spatialSigmaPx * p.spatialSigmaPx));
+      sum += w;
+      sumSquares += w * w;
+    }
+  const double expectedSigma = 0.05 * std::sqrt(sumSquares) / sum;  // 0.05 / 10.4 for radius 5, σ 3
+  double error = 0.0;
+  long n = 0;
+  for (int j = p.radius; j < kSize - p.radius; ++j)
+    for (int i = p.radius; i < kSize - p.radius; ++i)
+      for (size_t c = 0; c < 3; ++c) {
+        const size_t k = static_cast<size_t>(j) * kSize + i;
+        const double irradiance = (out.pixels[4 * k + c] - noisy.direct.pixels[4 * k + c]) / noisy.albedo[3 * k + c];
+        error += (irradiance - 0.2) * (irradiance - 0.2);
+        ++n;
+      }
+  const double sigma = std::sqrt(error / n);
+  EXPECT_NEAR(sigma, expectedSigma, 0.2 * expectedSigma) << "expected σ " << expectedSigma;
+  EXPECT_LT(sigma, 0.05 / 8.0);
+}
+
+TEST(IndirectFilter, SurfacesFacingElsewhereOrFartherAwayAreNotMixedIn) {
+  // Left half: the plane; right half: a wall facing +x (bright indirect light), then the same
+  // facing but 3x farther (darker). Neither leaks into the other.
+  IndirectFilterInputs in = plane([](int i, int, size_t) { return i < kSize / 2 ? 0.1 : 0.6; });
+  for (int j = 0; j < kSize; ++j)
+    for (int i = kSize / 2; i < kSize; ++i) {
+      const size_t k = static_cast<size_t>(j) * kSize + i;
+      in.normal[3 * k] = 1.0f;
+      in.normal[3 * k + 2] = 0.0f;
+    }
+  ImageRGBA out = filterIndirectLight(in);
+  const float* beside = out.at(kSize / 2 - 1, kSize / 2);
+  const size_t k = static_cast<size_t>(kSize / 2) * kSize + kSize / 2 - 1;
+  EXPECT_NEAR((beside[0] - in.direct.pixels[4 * k]) / in.albedo[3 * k], 0.1, 1e-6);
+
+  in = plane([](int i, int, size_t) { return i < kSize / 2 ? 0.1 : 0.6; });
+  for (int j = 0; j < kSize; ++j)
+    for (int i = kSize / 2; i < kSize; ++i) in.depth[static_cast<size_t>(j) * kSize + i] = 6.0f;
+  out = filterIndirectLight(in);
+  // exp(-|6 - 2| / (0.05 · 2)) = e^-40: nothing of the far surface arrives.
+  EXPECT_NEAR((out.at(kSize / 2 - 1, kSize / 2)[0] - in.direct.pixels[4 * k]) / in.albedo[3 * k], 0.1, 1e-6);
+}
+
+TEST(IndirectFilter, StraddlingPixelsAndPixelsWithoutASurfaceKeepTheirTracedValue) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> noise(0.0, 0.4);
+  IndirectFilterInputs in = plane([&](int, int, size_t) { return noise(random); });
+  const size_t crease = static_cast<size_t>(10) * kSize + 10, rim = static_cast<size_t>(20) * kSize + 30;
+  in.normal[3 * crease] = 0.5f;  // the mean of two unit normals: |n| = 0.87
+  in.normal[3 * crease + 2] = 0.7f;
+  for (size_t c = 0; c < 3; ++c) in.albedo[3 * rim + c] = 0.0f;  // the rim mask, a lamp
+  const ImageRGBA out = filterIndirectLight(in);
+  for (size_t c = 0; c < 4; ++c) {
+    EXPECT_EQ(out.pixels[4 * crease + c], in.full.pixels[4 * crease + c]);
+    EXPECT_EQ(out.pixels[4 * rim + c], in.full.pixels[4 * rim + c]);
+  }
+  // ... and neither is used by its neighbours: a huge value there changes nothing next door.
+  IndirectFilterInputs loud = in;
+  for (size_t c = 0; c < 3; ++c) loud.full.pixels[4 * crease + c] = loud.full.pixels[4 * rim + c] = 1e6f;
+  const ImageRGBA louder = filterIndirectLight(loud);
+  EXPECT_EQ(louder.at(11, 10)[0], out.at(11, 10)[0]);
+  EXPECT_EQ(louder.at(31, 20)[0], out.at(31, 20)[0]);
+}
+
+TEST(IndirectFilter, MismatchedPassesAndBadParametersAreRefused) {
+  IndirectFilterInputs in = plane([](int, int, size_t) { return 0.1; });
+  in.depth.pop_back();
+  EXPECT_THROW(filterIndirectLight(in), InputError);
+  in = plane([](int, int, size_t) { return 0.1; });
+  IndirectFilterParameters p;
+  p.spatialSigmaPx = 0.0;
+  EXPECT_THROW(filterIndirectLight(in, p), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam
