@@ -12,6 +12,7 @@
 #include "errors.h"
 #include "external_process.h"
 #include "hall_arena.h"
+#include "indirect_filter.h"
 #include "safe_files.h"
 #include "scene_loader.h"
 
@@ -99,12 +100,16 @@ RealisticRendering withTracing(RealisticRendering setup, int diffuse, int glossy
   return setup;
 }
 
+bool convergesLike(const RealisticRendering& a, const RealisticRendering& b) {
+  return a.lampDiameter == b.lampDiameter && a.tracing == b.tracing;
+}
+
 // Converged references, rendered once per setup that differs in what it converges to.
 class ReferenceCache {
  public:
   const std::vector<ImageRGBA>& get(Study& study, const RealisticRendering& setup, int size, int spp) {
     for (const auto& [known, images] : cached_)
-      if (known.lampDiameter == setup.lampDiameter && known.tracing == setup.tracing) return images;
+      if (convergesLike(known, setup)) return images;
     cached_.emplace_back(setup, study.render(setup, size, spp, kReferenceSeed, setup.name));
     return cached_.back().second;
   }
@@ -196,7 +201,13 @@ ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const st
     study.poses.push_back(loop->poses[static_cast<size_t>(index)]);
   }
   const std::vector<RealisticRendering> setups = {realisticRenderingBefore(), realisticRenderingPhysical(), realisticRendering()};
-  const int references = 2;  // the filtered setup shares the physical setup's reference
+  int references = 0;  // distinct converged references: a filtered setup shares its unfiltered twin's
+  for (size_t k = 0; k < setups.size(); ++k) {
+    const RealisticRendering reference = convergedReferenceOf(setups[k]);
+    bool seen = false;
+    for (size_t e = 0; e < k; ++e) seen = seen || convergesLike(convergedReferenceOf(setups[e]), reference);
+    references += seen ? 0 : 1;
+  }
   const int variants = o.everyPath ? 8 + static_cast<int>(hall.lights.size()) : 2;
   study.total = references + static_cast<int>(setups.size() * o.ladder.size()) + 1 + 2 * variants + 2;
 
@@ -369,14 +380,18 @@ std::string filterMarkdown(const ConvergenceResults& r) {
   int top = 0;
   for (const ConvergencePoint& p : r.ladder) top = std::max(top, p.spp);
   const RungSummary filtered = summarise(r, "today", top), unfiltered = summarise(r, "physical", top);
+  const IndirectFilterParameters f;
   md << "\nFiltering the indirect light (`today`, refrender/indirect_filter.h): Cycles renders each frame twice with the same "
         "seed, once with every path and once ending at the first surface seen in the mirror (its direct light), with its "
         "albedo, normal and depth passes, which pass through the sharp mirror. The difference, the indirect light, is "
-        "divided by the albedo, averaged over an 11×11 window of pixels that see the same surface (Gaussian of 3 px, "
-        "normals within a few degrees, depth within 5 %) and multiplied back; direct light and textures stay as traced, "
-        "and so do pixels that straddle two surfaces. Each sample costs about 1.8× an unfiltered one.";
+        "divided by the albedo, averaged over the "
+     << f.window() << "×" << f.window() << " window of pixels that see the same surface (Gaussian of " << fixed(f.spatialSigmaPx, 0)
+     << " px, weighted by the agreement of normals to the power " << fixed(f.normalExponent, 0) << " and of depths within "
+     << fixed(100.0 * f.relativeDepthSigma, 0)
+     << " %) and multiplied back; direct light and textures stay as traced, and so do pixels that straddle two surfaces. "
+        "Each sample costs about 1.8× an unfiltered one.";
   if (filtered.poses && unfiltered.poses)
-    md << " Its bias: at " << top << " spp, where little noise is left, filtered frames are " << fixed(filtered.meanPsnr, 1)
+    md << " Its bias: at " << top << " spp, the ladder's top, filtered frames are " << fixed(filtered.meanPsnr, 1)
        << " dB (worst " << fixed(filtered.minPsnr, 1) << ") from the unfiltered converged reference, unfiltered ones "
        << fixed(unfiltered.meanPsnr, 1) << " dB, at " << r.size << " px, where a pixel spans " << fixed(360.0 / r.size, 1)
        << "× more of the hall than at 360 px (the window with it).";

@@ -24,7 +24,7 @@ struct ConvergenceOptions {
   int experimentSize = 360;                     // the check at the experiment's size and spp ...
   int experimentReferenceSpp = 1024;            // ... against an unfiltered reference of this many spp
   std::vector<int> poseIndices = {0, 33, 66};  // of thesis-loop
-  bool everyPath = true;                        // false: of the path variants only "before" and "today"
+  bool everyPath = true;                        // false: of the path variants only "before" and "physical"
   double blenderTimeoutSeconds = 3600.0;
   static ConvergenceOptions quick();            // tiny images, short ladder: for tests
 };
@@ -46,7 +46,7 @@ struct ConvergenceResults {
   std::vector<std::string> setupDescriptions;
   std::vector<ConvergencePoint> ladder;
   std::vector<PathVariant> paths;
-  // Clamping indirect samples at `clampIndirect`: its bias (today's converged frames clamped,
+  // Clamping indirect samples at `clampIndirect`: its bias (the physical setup's converged frames clamped,
   // against unclamped; its noise at the diagnosis spp is in `paths`).
   double clampIndirect = 0.0, clampBiasPsnrDb = 0.0, clampBiasLuminancePercent = 0.0;
   // At the experiment's size and spp, per pose: the experiment's frame against an unfiltered

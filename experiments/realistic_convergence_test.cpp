@@ -52,7 +52,7 @@ TEST(RealisticConvergence, MarkdownShowsMeansWorstCasesAndTheTargetVerdict) {
   // spp 16: before mean 21.0 (worst 20.0), outliers 6.00 %; physical 25.5 (25.0), 2.00 %; today 28.0 (27.0), 2.00 %.
   EXPECT_NE(md.find("| 16 | 21.0 (20.0) | 6.00 | 25.5 (25.0) | 2.00 | 28.0 (27.0) | 2.00 |"), std::string::npos) << md;
   // The filter's bias is read at the top rung, 64 spp: today 39.5 (38.0), physical 32.0.
-  EXPECT_NE(md.find("at 64 spp, where little noise is left, filtered frames are 39.5 dB (worst 38.0)"), std::string::npos) << md;
+  EXPECT_NE(md.find("at 64 spp, the ladder's top, filtered frames are 39.5 dB (worst 38.0)"), std::string::npos) << md;
   EXPECT_NE(md.find("unfiltered ones 32.0 dB, at 64 px, where a pixel spans 5.6×"), std::string::npos) << md;
   EXPECT_NE(md.find("poses 0 and 33 of thesis-loop"), std::string::npos) << md;
   EXPECT_NE(md.find("](figures/c.svg)"), std::string::npos);

@@ -372,11 +372,14 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
        << c->falsePositives << " | " << fixed(row.ekfErrorCm, 1) << " | " << fixed(row.ekfErrorCmUnfiltered, 1) << " | "
        << fixed(e->meanErrorEkfCm, 1) << " |\n";
   }
+  const BeforeRow& earlier = kBeforeConvergence[2];  // plain_to_realistic
   if (pp && pr)
     md << "\nThe plain and textured conditions are rendered by the fast renderer and did not change. On converged "
           "realistic frames the classifiers trained on plain simulation keep "
-       << pr->truePositives << " of " << pp->truePositives << " true positives (before: 10 of 287; at 100 spp: 3) with "
-       << pr->falsePositives << " false positives (before: 7064; at 100 spp: 5705)"
+       << pr->truePositives << " of " << pp->truePositives << " true positives (before: " << earlier.truePositives << " of "
+       << kBeforeConvergence[0].truePositives << "; at 100 spp: " << earlier.truePositivesUnfiltered << ") with "
+       << pr->falsePositives << " false positives (before: " << earlier.falsePositives << "; at 100 spp: "
+       << earlier.falsePositivesUnfiltered << ")"
        << (pr->truePositives * 2 < pp->truePositives ? ": the collapse of finding 2 still holds, now on frames that are not mostly noise."
                                                       : ": the collapse of finding 2 was the render noise; it does not hold on the new frames.")
        << "\n";

@@ -263,17 +263,18 @@ def render_to(scene, path):
 
 def render_with_direct_twin(scene, frame):
     """Every path with the guide passes, then the same samples (same seed) ending at the first
-    surface seen in the mirror: its direct light only (indirect_filter.h)."""
+    surface seen in the mirror: its direct light only (indirect_filter.h). Leaves the settings as
+    it found them."""
     cycles, layer, settings = scene.cycles, bpy.context.view_layer, scene.render.image_settings
-    bounces = (cycles.diffuse_bounces, cycles.glossy_bounces)
+    kept = (cycles.diffuse_bounces, cycles.glossy_bounces, layer.cycles.denoising_store_passes, settings.file_format)
     layer.cycles.denoising_store_passes = True
     settings.file_format = "OPEN_EXR_MULTILAYER"
     render_to(scene, frame["output"])
-    layer.cycles.denoising_store_passes = False
-    settings.file_format = "OPEN_EXR"
+    layer.cycles.denoising_store_passes = kept[2]
+    settings.file_format = kept[3]
     cycles.diffuse_bounces, cycles.glossy_bounces = 0, 1  # the mirror's reflection is the one glossy bounce
     render_to(scene, frame["direct_output"])
-    cycles.diffuse_bounces, cycles.glossy_bounces = bounces
+    cycles.diffuse_bounces, cycles.glossy_bounces = kept[0], kept[1]
 
 
 main()

@@ -29,21 +29,43 @@ std::string defaultDriver() {
 // Lambertian surface at distance d the radiance ρ·P/(4π²d²): match I at a typical distance.
 constexpr double kLightMatchDistance = 3.0;
 
-// The named channels of an OpenEXR Cycles wrote, interleaved per pixel; ExternalError when one is missing.
-std::vector<float> readChannels(const std::string& path, const std::vector<std::string>& names, int width, int height) {
+// An OpenEXR Cycles wrote (into omnicam's own job folder), every channel read once.
+struct ExrChannels {
+  std::vector<std::string> names;
+  std::vector<float> data;  // interleaved per pixel
+};
+
+constexpr int kMaxPassChannels = 64;
+
+ExrChannels readExr(const std::string& path, int width, int height) {
   auto input = OIIO::ImageInput::open(path);
-  if (!input) throw ExternalError("blender: unreadable output " + showPath(path));
+  if (!input) throw ExternalError("blender: unreadable output " + showPath(path) + ": " + oneLine(OIIO::geterror()));
   const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width != width || spec.height != height) throw ExternalError("blender: output has the wrong size: " + showPath(path));
-  std::vector<float> all(static_cast<size_t>(width) * height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-    throw ExternalError("blender: unreadable output " + showPath(path));
-  std::vector<float> out(static_cast<size_t>(width) * height * names.size());
-  for (size_t c = 0; c < names.size(); ++c) {
-    const int index = spec.channelindex(names[c]);
-    if (index < 0) throw ExternalError("blender: output " + showPath(path) + " lacks the channel " + quote(names[c]));
-    for (size_t k = 0; k < static_cast<size_t>(width) * height; ++k)
-      out[k * names.size() + c] = all[k * spec.nchannels + static_cast<size_t>(index)];
+  if (spec.width != width || spec.height != height || spec.nchannels < 1 || spec.nchannels > kMaxPassChannels)
+    throw ExternalError("blender: output " + showPath(path) + " is not " + std::to_string(width) + "×" +
+                        std::to_string(height) + " px with 1-" + std::to_string(kMaxPassChannels) + " channels");
+  ExrChannels exr{spec.channelnames, std::vector<float>(static_cast<size_t>(width) * height * spec.nchannels)};
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, exr.data.data()))
+    throw ExternalError("blender: unreadable output " + showPath(path) + ": " + oneLine(input->geterror()));
+  return exr;
+}
+
+// The channels named `suffixes` ("Combined.R": any view layer's), interleaved per pixel.
+std::vector<float> channels(const ExrChannels& exr, const std::vector<std::string>& suffixes, const std::string& path) {
+  const size_t count = exr.names.size(), pixels = exr.data.size() / count;
+  std::vector<float> out(pixels * suffixes.size());
+  for (size_t c = 0; c < suffixes.size(); ++c) {
+    std::vector<size_t> matches;
+    for (size_t k = 0; k < count; ++k) {
+      const std::string& name = exr.names[k];
+      if (name == suffixes[c] || (name.size() > suffixes[c].size() && name.compare(name.size() - suffixes[c].size() - 1,
+                                                                                    std::string::npos, "." + suffixes[c]) == 0))
+        matches.push_back(k);
+    }
+    if (matches.size() != 1)
+      throw ExternalError("blender: output " + showPath(path) + " has " + std::to_string(matches.size()) + " channels named " +
+                          quote(suffixes[c]) + ", not one");
+    for (size_t p = 0; p < pixels; ++p) out[p * suffixes.size() + c] = exr.data[p * count + matches.front()];
   }
   return out;
 }
@@ -55,24 +77,18 @@ ImageRGBA rgbaFrom(const std::vector<float>& rgb, int width, int height) {
   return image;
 }
 
-// A frame rendered with its direct-light twin and guide passes (blender_driver.py), indirect light filtered.
-ImageRGBA readFilteredFrame(const std::string& full, const std::string& direct, int width, int height) {
-  const std::string layer = "ViewLayer.";
-  auto names = [&](const std::string& pass, const char* components) {
-    std::vector<std::string> n;
-    for (const char* c = components; *c; ++c) n.push_back(layer + pass + "." + std::string(1, *c));
-    return n;
-  };
+}  // namespace
+
+ImageRGBA readFilteredBlenderFrame(const std::string& full, const std::string& direct, int width, int height) {
+  const ExrChannels passes = readExr(full, width, height), twin = readExr(direct, width, height);
   IndirectFilterInputs in;
-  in.full = rgbaFrom(readChannels(full, names("Combined", "RGB"), width, height), width, height);
-  in.direct = rgbaFrom(readChannels(direct, {"R", "G", "B"}, width, height), width, height);
-  in.albedo = readChannels(full, names("Denoising Albedo", "RGB"), width, height);
-  in.normal = readChannels(full, names("Denoising Normal", "XYZ"), width, height);
-  in.depth = readChannels(full, names("Denoising Depth", "Z"), width, height);
+  in.full = rgbaFrom(channels(passes, {"Combined.R", "Combined.G", "Combined.B"}, full), width, height);
+  in.direct = rgbaFrom(channels(twin, {"R", "G", "B"}, direct), width, height);
+  in.albedo = channels(passes, {"Denoising Albedo.R", "Denoising Albedo.G", "Denoising Albedo.B"}, full);
+  in.normal = channels(passes, {"Denoising Normal.X", "Denoising Normal.Y", "Denoising Normal.Z"}, full);
+  in.depth = channels(passes, {"Denoising Depth.Z"}, full);
   return filterIndirectLight(in);
 }
-
-}  // namespace
 
 std::string blenderExecutable() {
   const char* exe = std::getenv("OMNICAM_BLENDER");
@@ -165,10 +181,12 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   std::vector<ImageRGBA> images;
   for (const auto& frame : frames) {
     const std::string output = frame["output"];
-    if (!fs::exists(output)) throw ExternalError("blender: no output " + showPath(output) + "; last output:\n" + r.logTail);
+    for (const char* key : {"output", "direct_output"})
+      if (frame.contains(key) && !fs::exists(frame[key].get<std::string>()))
+        throw ExternalError("blender: no output " + showPath(frame[key].get<std::string>()) + "; last output:\n" + r.logTail);
     ImageRGBA image;
     try {
-      image = filtered ? readFilteredFrame(output, frame["direct_output"], camera.width(), camera.height()) : readImage(output);
+      image = filtered ? readFilteredBlenderFrame(output, frame["direct_output"], camera.width(), camera.height()) : readImage(output);
     } catch (const InputError& e) {
       throw ExternalError(std::string("blender: unreadable output: ") + e.what());
     }

@@ -47,6 +47,12 @@ struct BlenderOptions {
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 
+// A frame blender_driver.py rendered with `direct_pass`: the multilayer OpenEXR `full` (Combined and
+// the Denoising Albedo, Normal and Depth passes of any view layer) and its direct-light twin, with
+// the indirect light filtered (indirect_filter.h). ExternalError when a file or channel is missing
+// or the size is not width × height.
+ImageRGBA readFilteredBlenderFrame(const std::string& full, const std::string& direct, int width, int height);
+
 std::string blenderVersion(const std::string& executable = "blender");
 
 }  // namespace omnicam

@@ -7,8 +7,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include <OpenImageIO/imageio.h>
+
+#include "errors.h"
 #include "fast_renderer.h"
 #include "gltf_exporter.h"
+#include "indirect_filter.h"
 #include "image_compare.h"
 #include "povray_renderer.h"
 #include "rings.h"
@@ -36,6 +40,71 @@ TEST(Blender, AgreesWithTheFastRendererUnlitAt64Spp) {
     // the 35 dB target of docs/conventions.md §7, so that a regression shows.
     EXPECT_GE(r.psnrDb, 52.0);
   }
+}
+
+// With no bounce after the first surface, the full render and its direct-light twin are the same
+// samples (same seed): the filtered frame is the unfiltered one, bit for bit. Were the twin's samples
+// other ones, the two would differ by render noise.
+TEST(Blender, TheDirectTwinTracesTheSameSamples) {
+  const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.imageSize = 48;
+  settings.spp = 4;
+  settings.shading = Shading::Lit;
+  BlenderOptions options;
+  options.pathTracing.diffuseBounces = 0;
+  options.pathTracing.glossyBounces = 1;
+  const ImageRGBA traced = renderWithBlender(scene, {scene.startPose}, settings, options).front();
+  options.pathTracing.filterIndirect = true;
+  const ImageRGBA filtered = renderWithBlender(scene, {scene.startPose}, settings, options).front();
+  double mean = 0.0;
+  for (size_t p = 0; p < traced.pixels.size(); p += 4) mean += traced.pixels[p];
+  EXPECT_GT(mean, 1.0) << "nothing was lit";
+  EXPECT_EQ(filtered.pixels, traced.pixels);
+}
+
+// What blender_driver.py writes with direct_pass, made here: a multilayer OpenEXR named as Cycles
+// names it (the view layer's name may be any) and a plain RGB twin.
+void writeExr(const std::string& path, const std::vector<std::string>& channels, int size, float base) {
+  OIIO::ImageSpec spec(size, size, static_cast<int>(channels.size()), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channels;
+  std::vector<float> data(static_cast<size_t>(size) * size * channels.size());
+  for (size_t k = 0; k < data.size(); ++k) data[k] = base + 0.001f * static_cast<float>(k % 97);
+  auto out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, data.data()) && out->close());
+}
+
+TEST(Blender, TheDirectPassFramesAreReadByChannelName) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "direct_pass_read";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string full = (dir / "full.exr").string(), direct = (dir / "direct.exr").string();
+  const std::vector<std::string> passes = {"Hall.Combined.R", "Hall.Combined.G", "Hall.Combined.B", "Hall.Combined.A",
+                                           "Hall.Denoising Albedo.R", "Hall.Denoising Albedo.G", "Hall.Denoising Albedo.B",
+                                           "Hall.Denoising Depth.Z", "Hall.Denoising Normal.X", "Hall.Denoising Normal.Y",
+                                           "Hall.Denoising Normal.Z"};
+  writeExr(full, passes, 16, 0.5f);
+  writeExr(direct, {"R", "G", "B"}, 16, 0.2f);
+  // The same inputs, assembled by hand from the values writeExr put in each channel.
+  IndirectFilterInputs in;
+  in.full = ImageRGBA(16, 16);
+  in.direct = ImageRGBA(16, 16);
+  for (size_t p = 0; p < 256; ++p) {
+    auto value = [&](size_t channel, size_t count, float base) { return base + 0.001f * static_cast<float>((p * count + channel) % 97); };
+    for (size_t c = 0; c < 3; ++c) {
+      in.full.pixels[4 * p + c] = value(c, passes.size(), 0.5f);
+      in.direct.pixels[4 * p + c] = value(c, 3, 0.2f);
+      in.albedo.push_back(value(4 + c, passes.size(), 0.5f));
+    }
+    in.depth.push_back(value(7, passes.size(), 0.5f));
+    for (size_t c = 0; c < 3; ++c) in.normal.push_back(value(8 + c, passes.size(), 0.5f));
+  }
+  EXPECT_EQ(readFilteredBlenderFrame(full, direct, 16, 16).pixels, filterIndirectLight(in).pixels);
+  EXPECT_THROW(readFilteredBlenderFrame(full, direct, 32, 32), ExternalError);           // another size
+  EXPECT_THROW(readFilteredBlenderFrame(direct, direct, 16, 16), ExternalError);         // no passes
+  EXPECT_THROW(readFilteredBlenderFrame(full, (dir / "none.exr").string(), 16, 16), ExternalError);
+  fs::remove_all(dir);
 }
 
 TEST(Blender, ObjectsNamedLikeTheRigOrLightsDoNotConfuseTheDriver) {

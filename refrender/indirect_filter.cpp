@@ -23,26 +23,42 @@ void checkInputs(const IndirectFilterInputs& in, const IndirectFilterParameters&
     throw InputError("indirect filter: radius 0-32, positive sigmas and albedo floor, normal exponent >= 0, edge length in [0, 1]");
 }
 
-// Per pixel: the indirect light divided by the albedo (an irradiance), or nothing to filter.
+bool finite(const float* values, size_t count) {
+  for (size_t k = 0; k < count; ++k)
+    if (!std::isfinite(values[k])) return false;
+  return true;
+}
+
+// Per pixel: the indirect light divided by the albedo (an irradiance), per channel where the
+// albedo is above the floor, and whether the pixel sees one surface whole.
 struct Demodulated {
   std::vector<float> irradiance;  // 3 per pixel
   std::vector<float> unitNormal;  // 3 per pixel
   std::vector<char> filtered;     // 1: a surface seen whole by the pixel
+  std::vector<char> channel;      // 3 per pixel, 1: that channel's albedo is above the floor
 };
 
 Demodulated demodulate(const IndirectFilterInputs& in, const IndirectFilterParameters& p) {
   const size_t pixels = in.depth.size();
-  Demodulated d{std::vector<float>(3 * pixels, 0.0f), std::vector<float>(3 * pixels, 0.0f), std::vector<char>(pixels, 0)};
+  Demodulated d{std::vector<float>(3 * pixels, 0.0f), std::vector<float>(3 * pixels, 0.0f), std::vector<char>(pixels, 0),
+                std::vector<char>(3 * pixels, 0)};
   for (size_t k = 0; k < pixels; ++k) {
     const float* a = &in.albedo[3 * k];
     const float* n = &in.normal[3 * k];
+    const float* full = &in.full.pixels[4 * k];
+    const float* direct = &in.direct.pixels[4 * k];
+    // A NaN anywhere would spread over the whole window: such a pixel is kept as traced.
+    if (!finite(a, 3) || !finite(n, 3) || !finite(full, 3) || !finite(direct, 3) || !std::isfinite(in.depth[k])) continue;
     const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
     const bool surface = a[0] >= p.minAlbedo || a[1] >= p.minAlbedo || a[2] >= p.minAlbedo;
     if (!surface || length < p.edgeNormalLength || !(in.depth[k] > 0.0f)) continue;
     d.filtered[k] = 1;
-    for (size_t c = 0; c < 3; ++c) d.unitNormal[3 * k + c] = static_cast<float>(n[c] / length);
-    for (size_t c = 0; c < 3; ++c)
-      d.irradiance[3 * k + c] = (in.full.pixels[4 * k + c] - in.direct.pixels[4 * k + c]) / std::max(a[c], p.minAlbedo);
+    for (size_t c = 0; c < 3; ++c) {
+      d.unitNormal[3 * k + c] = static_cast<float>(n[c] / length);
+      if (a[c] < p.minAlbedo) continue;  // a black channel says nothing of the irradiance
+      d.channel[3 * k + c] = 1;
+      d.irradiance[3 * k + c] = (full[c] - direct[c]) / a[c];
+    }
   }
   return d;
 }
@@ -68,7 +84,7 @@ ImageRGBA filterIndirectLight(const IndirectFilterInputs& in, const IndirectFilt
         if (!d.filtered[k]) continue;
         const float* n = &d.unitNormal[3 * k];
         const double z = in.depth[k];
-        double sum[3] = {0.0, 0.0, 0.0}, weights = 0.0;
+        double sum[3] = {0.0, 0.0, 0.0}, weights[3] = {0.0, 0.0, 0.0};
         for (int y = std::max(0, j - r); y <= std::min(h - 1, j + r); ++y)
           for (int x = std::max(0, i - r); x <= std::min(w - 1, i + r); ++x) {
             const size_t q = static_cast<size_t>(y) * w + x;
@@ -78,13 +94,15 @@ ImageRGBA filterIndirectLight(const IndirectFilterInputs& in, const IndirectFilt
             const double weight = spatial[static_cast<size_t>((y - j + r) * (2 * r + 1) + x - i + r)] *
                                   std::pow(agreement, p.normalExponent) *
                                   std::exp(-std::abs(in.depth[q] - z) / (p.relativeDepthSigma * z));
-            for (size_t c = 0; c < 3; ++c) sum[c] += weight * d.irradiance[3 * q + c];
-            weights += weight;
+            for (size_t c = 0; c < 3; ++c)
+              if (d.channel[3 * q + c]) {
+                sum[c] += weight * d.irradiance[3 * q + c];
+                weights[c] += weight;
+              }
           }
-        for (size_t c = 0; c < 3; ++c) {
-          const float albedo = std::max(in.albedo[3 * k + c], p.minAlbedo);
-          out.pixels[4 * k + c] = in.direct.pixels[4 * k + c] + albedo * static_cast<float>(sum[c] / weights);
-        }
+        for (size_t c = 0; c < 3; ++c)
+          if (d.channel[3 * k + c])  // the pixel itself is in its sum: weights[c] > 0
+            out.pixels[4 * k + c] = in.direct.pixels[4 * k + c] + in.albedo[3 * k + c] * static_cast<float>(sum[c] / weights[c]);
       }
   });
   return out;

@@ -9,14 +9,16 @@
 //   full    — every path (Cycles' Combined)
 //   direct  — the same samples with no bounce after the first surface seen in the mirror
 //   albedo  — that surface's albedo (Cycles' Denoising Albedo: it passes through the sharp mirror)
-//   normal  — its world normal (Denoising Normal); the mean of unit normals, so shorter than 1
-//             where the pixel straddles a crease or a silhouette
-//   depth   — its distance along the ray (Denoising Depth)
+//   normal  — its normal (Denoising Normal, in camera axes: only agreement between pixels
+//             matters); the mean of unit normals, so shorter than 1 where the pixel straddles a
+//             crease or a silhouette
+//   depth   — the length of the path to it, camera to mirror to surface (Denoising Depth)
 // Output = direct + albedo · F[(full − direct) / albedo], F a cross-bilateral filter: spatial
 // Gaussian, times the neighbour's normal agreement, times its relative depth agreement. Pixels
-// that straddle surfaces (|normal| < edgeNormalLength) and pixels without a surface (albedo
-// ≈ 0: the rim mask, lamps seen in the mirror) keep their traced value. A bias: its size is
-// measured against converged renders by the realistic-convergence study.
+// that straddle surfaces (|normal| < edgeNormalLength), pixels without a surface (albedo
+// ≈ 0: the rim mask, lamps seen in the mirror), channels whose albedo is ≈ 0 and pixels with a
+// non-finite value keep their traced value and lend nothing to their neighbours. A bias: its
+// size is measured against converged renders by the realistic-convergence study.
 #include <vector>
 
 #include "image.h"
@@ -30,7 +32,8 @@ struct IndirectFilterParameters {
   double normalExponent = 64.0;      // weight × max(0, n·n')^exponent
   double relativeDepthSigma = 0.05;  // weight × exp(−|z − z'| / (sigma · z))
   double edgeNormalLength = 0.99;    // |normal| below: the pixel straddles surfaces, kept as traced
-  float minAlbedo = 1e-3f;           // below (in every channel): no surface to demodulate, kept as traced
+  float minAlbedo = 1e-3f;           // a channel's albedo below: nothing to demodulate, kept as traced
+  int window() const { return 2 * radius + 1; }
 };
 
 struct IndirectFilterInputs {

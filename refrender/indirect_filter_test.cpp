@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "errors.h"
 
@@ -98,27 +100,55 @@ TEST(IndirectFilter, WhiteNoiseShrinksByTheWindowsEffectiveSize) {
   EXPECT_LT(sigma, 0.05 / 8.0);
 }
 
-TEST(IndirectFilter, SurfacesFacingElsewhereOrFartherAwayAreNotMixedIn) {
-  // Left half: the plane; right half: a wall facing +x (bright indirect light), then the same
-  // facing but 3x farther (darker). Neither leaks into the other.
-  IndirectFilterInputs in = plane([](int i, int, size_t) { return i < kSize / 2 ? 0.1 : 0.6; });
-  for (int j = 0; j < kSize; ++j)
-    for (int i = kSize / 2; i < kSize; ++i) {
+// The mean and standard deviation of the filtered irradiance over columns [from, to) of the rows
+// at least `margin` from the top and bottom.
+std::pair<double, double> irradianceStats(const ImageRGBA& out, const IndirectFilterInputs& in, int from, int to, int margin) {
+  double sum = 0.0, squares = 0.0;
+  long n = 0;
+  for (int j = margin; j < kSize - margin; ++j)
+    for (int i = from; i < to; ++i) {
       const size_t k = static_cast<size_t>(j) * kSize + i;
-      in.normal[3 * k] = 1.0f;
-      in.normal[3 * k + 2] = 0.0f;
+      const double e = (out.pixels[4 * k] - in.direct.pixels[4 * k]) / in.albedo[3 * k];
+      sum += e;
+      squares += e * e;
+      ++n;
     }
-  ImageRGBA out = filterIndirectLight(in);
-  const float* beside = out.at(kSize / 2 - 1, kSize / 2);
-  const size_t k = static_cast<size_t>(kSize / 2) * kSize + kSize / 2 - 1;
-  EXPECT_NEAR((beside[0] - in.direct.pixels[4 * k]) / in.albedo[3 * k], 0.1, 1e-6);
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, squares / n - mean * mean))};
+}
 
-  in = plane([](int i, int, size_t) { return i < kSize / 2 ? 0.1 : 0.6; });
-  for (int j = 0; j < kSize; ++j)
-    for (int i = kSize / 2; i < kSize; ++i) in.depth[static_cast<size_t>(j) * kSize + i] = 6.0f;
-  out = filterIndirectLight(in);
-  // exp(-|6 - 2| / (0.05 · 2)) = e^-40: nothing of the far surface arrives.
-  EXPECT_NEAR((out.at(kSize / 2 - 1, kSize / 2)[0] - in.direct.pixels[4 * k]) / in.albedo[3 * k], 0.1, 1e-6);
+TEST(IndirectFilter, SurfacesFacingElsewhereOrFartherAwayAreNotMixedIn) {
+  // Left half: the plane, noisy indirect light around 0.1; right half: a wall facing +x, then (second
+  // case) a surface facing the same way 3x farther, with indirect light 0.6. The left half's noise
+  // shrinks, and nothing of the right half arrives: the left column next to it stays at 0.1.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> noise(-0.05, 0.05);
+  std::vector<double> field(kSize * kSize);
+  for (double& v : field) v = noise(random);
+  const auto indirect = [&](int i, int j, size_t) { return i < kSize / 2 ? 0.1 + field[j * kSize + i] : 0.6; };
+  const int r = IndirectFilterParameters{}.radius;
+  for (int facingOrFarther = 0; facingOrFarther < 2; ++facingOrFarther) {
+    IndirectFilterInputs in = plane(indirect);
+    for (int j = 0; j < kSize; ++j)
+      for (int i = kSize / 2; i < kSize; ++i) {
+        const size_t k = static_cast<size_t>(j) * kSize + i;
+        if (facingOrFarther == 0) {
+          in.normal[3 * k] = 1.0f;
+          in.normal[3 * k + 2] = 0.0f;
+        } else {
+          in.depth[k] = 6.0f;  // exp(-|6 - 2| / (0.05 · 2)) = e^-40
+        }
+      }
+    const ImageRGBA out = filterIndirectLight(in);
+    const auto [tracedMean, tracedSigma] = irradianceStats(in.full, in, r, kSize / 2, r);
+    const auto [besideMean, besideSigma] = irradianceStats(out, in, kSize / 2 - 1, kSize / 2, r);
+    const auto [innerMean, innerSigma] = irradianceStats(out, in, r, kSize / 2 - r, r);
+    EXPECT_NEAR(tracedSigma, 0.1 / std::sqrt(12.0), 0.005) << facingOrFarther;  // uniform noise as made
+    EXPECT_NEAR(besideMean, 0.1, 0.01) << facingOrFarther;  // 0.6 leaking in by 1 % would show as 0.105
+    EXPECT_NEAR(innerMean, 0.1, 0.005) << facingOrFarther;
+    EXPECT_LT(innerSigma, tracedSigma / 5.0) << facingOrFarther;
+    EXPECT_LT(besideSigma, tracedSigma / 3.0) << facingOrFarther;  // half a window: still averaged
+  }
 }
 
 TEST(IndirectFilter, StraddlingPixelsAndPixelsWithoutASurfaceKeepTheirTracedValue) {
@@ -134,12 +164,33 @@ TEST(IndirectFilter, StraddlingPixelsAndPixelsWithoutASurfaceKeepTheirTracedValu
     EXPECT_EQ(out.pixels[4 * crease + c], in.full.pixels[4 * crease + c]);
     EXPECT_EQ(out.pixels[4 * rim + c], in.full.pixels[4 * rim + c]);
   }
-  // ... and neither is used by its neighbours: a huge value there changes nothing next door.
+  // ... and neither is used by its neighbours: a huge value there changes nothing next door, nor
+  // does a NaN in any pass.
   IndirectFilterInputs loud = in;
   for (size_t c = 0; c < 3; ++c) loud.full.pixels[4 * crease + c] = loud.full.pixels[4 * rim + c] = 1e6f;
+  const size_t broken = static_cast<size_t>(30) * kSize + 30;
+  loud.normal[3 * broken] = std::nanf("");
   const ImageRGBA louder = filterIndirectLight(loud);
   EXPECT_EQ(louder.at(11, 10)[0], out.at(11, 10)[0]);
   EXPECT_EQ(louder.at(31, 20)[0], out.at(31, 20)[0]);
+  EXPECT_TRUE(std::isfinite(louder.at(31, 30)[0]));
+  EXPECT_EQ(louder.at(30, 30)[0], loud.full.at(30, 30)[0]);
+}
+
+TEST(IndirectFilter, ABlackChannelLendsNothingToItsNeighbours) {
+  // A yellow patch (no blue albedo) on the plane: its blue channel has no irradiance to tell, so the
+  // blue irradiance next to it stays what it is (0.3), not pulled towards 0.
+  IndirectFilterInputs in = plane([](int, int, size_t) { return 0.3; });
+  for (int j = 20; j < 28; ++j)
+    for (int i = 20; i < 28; ++i) {
+      const size_t k = static_cast<size_t>(j) * kSize + i;
+      in.albedo[3 * k + 2] = 0.0f;
+      in.direct.pixels[4 * k + 2] = in.full.pixels[4 * k + 2] = 0.0f;
+    }
+  const ImageRGBA out = filterIndirectLight(in);
+  const size_t beside = static_cast<size_t>(24) * kSize + 28;
+  EXPECT_NEAR((out.pixels[4 * beside + 2] - in.direct.pixels[4 * beside + 2]) / in.albedo[3 * beside + 2], 0.3, 1e-6);
+  EXPECT_EQ(out.at(24, 24)[2], 0.0f);
 }
 
 TEST(IndirectFilter, MismatchedPassesAndBadParametersAreRefused) {
