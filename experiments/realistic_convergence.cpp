@@ -373,8 +373,8 @@ const PathVariant* findVariant(const ConvergenceResults& r, const std::string& n
   return nullptr;
 }
 
-// The filter of the experiment's setup: what it is, its bias (the ladder's top rung, where little
-// noise is left) and the check at the experiment's own size.
+// The filter of the experiment's setup: what it is, its bias (read at the ladder's top rung) and
+// the check at the experiment's own size.
 std::string filterMarkdown(const ConvergenceResults& r) {
   std::ostringstream md;
   int top = 0;

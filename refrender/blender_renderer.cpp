@@ -145,8 +145,6 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   }
   double ambient = 0.0;
   for (const Material& m : scene.materials) ambient += m.ambient / scene.materials.size();
-  nlohmann::json pathTracing = tracing.toJson();
-  pathTracing["direct_pass"] = filtered;
   nlohmann::json lights = nlohmann::json::array();
   for (const PointLight& l : scene.lights)
     lights.push_back({{"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()},
@@ -160,7 +158,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                               {"focal_length_px", camera.physicalFocalLength()},
                               {"ambient", ambient},
                               {"lights", lights},
-                              {"path_tracing", pathTracing},
+                              {"path_tracing", tracing.toJson()},  // the driver ignores direct_pass when unlit, as `filtered` does
                               {"frames", frames}};
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
 
