@@ -1,6 +1,7 @@
 // omnicam project SCENE --pose X,Y,YAW --point X,Y,Z [--point ...] [--size N]
 // Prints "u v" per point: continuous pixel coordinates, pixel centres at +0.5. A point the
-// mirror does not show (beyond the rim) prints "nan nan".
+// mirror does not show (beyond the rim) prints "nan nan". Any rig: a physical one's reflection
+// point is solved for (physical_camera.h).
 #include <cstdio>
 #include <memory>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
+#include "make_camera.h"
 #include "rig.h"
 #include "scene_loader.h"
 
@@ -29,10 +31,10 @@ void runProject(const ProjectArgs& a) {
   const Scene scene = loadScene(a.scene, a.load);
   RigSpec rig = scene.rig;
   if (a.size) rig.imageSize = a.size;
-  const OmniCamera camera = rig.camera();
-  const Rigid cfw = cameraFromWorld(rig, pose);
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  const Rigid viewpointFromWorld = worldFromViewpoint(rig, pose).inverse();
   for (const Vec3& world : points) {
-    const auto raster = camera.rasterFromCamera(cfw * world);
+    const auto raster = camera->project(viewpointFromWorld * world);
     if (raster) std::printf("%.6f %.6f\n", raster->x(), raster->y());
     else std::printf("nan nan\n");
   }

@@ -36,8 +36,9 @@ struct RenderArgs {
 // the omni image's, plus what the view is.
 class FrameViews {
  public:
-  FrameViews(const std::vector<std::string>& kinds, const OmniCamera& camera) {
+  FrameViews(const std::vector<std::string>& kinds, const RigSpec& rig) {
     for (const std::string& kind : kinds) {
+      const OmniCamera camera = rig.camera();  // views are of the central model's image
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
       ViewMap map = buildViewMap(spec, camera);
@@ -102,7 +103,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   settings.rig = scene.rig;
   if (a.imageSize) settings.rig.imageSize = a.imageSize;
   checkRenderSettings(settings, kSettingFlags);
-  const FrameViews views(a.views, settings.rig.camera());
+  const FrameViews views(a.views, settings.rig);
   if (a.path.empty()) {
     checkOutputFile(a.out, "-o");
     for (const std::string& file : views.files(a.out)) checkOutputFile(file, "--view");

@@ -21,6 +21,13 @@ inline constexpr double kMinRigHeight = 0.01, kMaxRigHeight = 100.0;  // F' abov
 inline constexpr double kMinMirrorK = 2.0, kMaxMirrorK = 100.0;        // k in (2, 100]
 inline constexpr double kMinMirrorC = 1e-3, kMaxMirrorC = 1.0;         // focal distance (m)
 inline constexpr int kMinImageSize = 8, kMaxImageSize = 16384;         // rendered image (px)
+// The physical camera's mount (rig.camera): how far it may sit from its ideal pose. Generous for
+// a misaligned rig, small enough that the mirror still fills a useful part of the image.
+inline constexpr double kMaxCameraOffsetMm = 100.0;           // each axis
+inline constexpr double kMaxCameraRotationDeg = 30.0;         // each axis
+inline constexpr double kMaxDistortion = 10.0;                // |k1|, |k2|, |k3|
+inline constexpr double kMaxTangentialDistortion = 1.0;       // |p1|, |p2|
+inline constexpr double kMaxPrincipalPointOffsetPx = 4096.0;  // each axis
 
 // Samples: spp = n² with n ≤ 32, and one frame's samples (size² × spp) fit well inside the
 // 32-bit offsets the renderers index them with.

@@ -152,6 +152,29 @@ Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
   return out;
 }
 
+std::vector<double> JsonFields::numbers(const std::string& key, const std::vector<double>& fallback,
+                                       const Range& range) {
+  if (!has(key)) {
+    read_.insert(key);
+    return fallback;
+  }
+  const json& v = required(key);
+  if (!v.is_array() || v.size() != fallback.size())
+    fail(key, "must be an array of " + std::to_string(fallback.size()) + " numbers");
+  std::vector<double> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const std::string element = key + "[" + std::to_string(i) + "]";
+    if (!v[i].is_number() || !std::isfinite(v[i].get<double>())) fail(element, "must be a finite number");
+    const double x = v[i].get<double>();
+    if (!(range.openLow ? x > range.lo : x >= range.lo) || !(x <= range.hi))
+      fail(element, std::string("must be in ") + (range.openLow ? "(" : "[") + shortNumber(range.lo) + ", " +
+                        shortNumber(range.hi) + "]" + (range.unit.empty() ? "" : " " + range.unit) + " (got " +
+                        shortNumber(x) + ")");
+    out.push_back(x);
+  }
+  return out;
+}
+
 Vec3 JsonFields::vec3(const std::string& key) { return jsonVec3(required(key), file_, path(key)); }
 
 Vec3 JsonFields::vec3(const std::string& key, const Vec3& fallback) {

@@ -6,6 +6,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "geometry.h"
 
@@ -46,6 +47,8 @@ class JsonFields {
   std::string string(const std::string& key);
   std::string string(const std::string& key, const std::string& fallback);
   Vec3 vec3(const std::string& key);
+  // An optional array of exactly `count` numbers, each in `range`; `fallback` when absent.
+  std::vector<double> numbers(const std::string& key, const std::vector<double>& fallback, const Range& range);
   Vec3 vec3(const std::string& key, const Vec3& fallback);
   // A colour: [r, g, b] in [0, max] or a single number for grey.
   Vec3f colour(const std::string& key, const Vec3f& fallback, double max);

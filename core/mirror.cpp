@@ -67,6 +67,15 @@ std::optional<Vec3> HyperbolicMirror::pointFromPinhole(const Vec3& direction) co
   return firstHit(pinholeInViewpoint(), direction);
 }
 
+double HyperbolicMirror::heightAt(double x, double y) const {
+  return -c_ / 2.0 + a() * std::sqrt(1.0 + (x * x + y * y) / b2_);
+}
+
+Vec2 HyperbolicMirror::slopeAt(double x, double y) const {
+  const double s = a() / (b2_ * std::sqrt(1.0 + (x * x + y * y) / b2_));
+  return {s * x, s * y};
+}
+
 Vec3 HyperbolicMirror::normalAt(const Vec3& p) const {
   // Gradient of the implicit function points away from the sheet's interior (toward F').
   const Vec3 gradient(-2.0 * p.x() / b2_, -2.0 * p.y() / b2_, 2.0 * (p.z() + c_ / 2.0) / a2_);

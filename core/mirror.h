@@ -31,9 +31,13 @@ class HyperbolicMirror {
   Vec3 normalAt(const Vec3& surfacePoint) const;
   // Implicit function value (0 on the surface); used by tests and exporters.
   double implicit(const Vec3& p) const;
+  // The first point of the upper sheet hit by the ray origin + t·direction, t > 0.
+  std::optional<Vec3> firstHit(const Vec3& origin, const Vec3& direction) const;
+  // The upper sheet as a height field: z(x, y) and its gradient (∂z/∂x, ∂z/∂y).
+  double heightAt(double x, double y) const;
+  Vec2 slopeAt(double x, double y) const;
 
  private:
-  std::optional<Vec3> firstHit(const Vec3& origin, const Vec3& direction) const;
   double k_, c_, a2_, b2_;
 };
 

@@ -36,6 +36,7 @@ OmniCamera::OmniCamera(const HyperbolicMirror& mirror, int width, int height,
   if (!rimPoint || !(rimPoint->norm() <= 5.0 * mirror_.c()))
     throw InputError("mirror.rim_elevation_deg: with k = " + std::to_string(mirror_.k()) +
                      " the rim lies more than 5 c from F' (near the mirror's asymptote): use a larger k or a lower rim");
+  rimPoint_ = *rimPoint;
   const double borderRadius = 0.5 * std::min(width, height);
   gamma_ = borderRadius * (xi_ + std::cos(framingTheta)) / std::sin(framingTheta);
   rimRadius_ = radiusOfTheta(rimTheta_);
@@ -72,13 +73,6 @@ Vec3 OmniCamera::cameraFromRaster(const Vec2& raster) const {
   const double s = mx * mx + my * my;
   const double eta = (xi_ + std::sqrt(1.0 + (1.0 - xi_ * xi_) * s)) / (1.0 + s);
   return Vec3(eta * mx, eta * my, eta - xi_).normalized();
-}
-
-float OmniCamera::rimCoverage(int i, int j, int n) const {
-  int inside = 0;
-  for (int b = 0; b < n; ++b)
-    for (int a = 0; a < n; ++a) inside += insideRim({i + (a + 0.5) / n, j + (b + 0.5) / n});
-  return static_cast<float>(inside) / static_cast<float>(n * n);
 }
 
 OpenCvIntrinsics OmniCamera::openCvIntrinsics() const {

@@ -37,6 +37,8 @@ class OmniCamera {
   double horizonRadius() const { return gamma_ / xi_; }
   double rimTheta() const { return rimTheta_; }
   double rimRadius() const { return rimRadius_; }
+  // The mirror's rim circle: its point in the viewpoint frame's x–z half-plane (x > 0).
+  const Vec3& rimPoint() const { return rimPoint_; }
   // Focal length (pixels) of the physical pinhole at F that produces this image.
   double physicalFocalLength() const { return physicalFocal_; }
   const HyperbolicMirror& mirror() const { return mirror_; }
@@ -54,16 +56,13 @@ class OmniCamera {
     return (raster - centre()).squaredNorm() <= rimRadius_ * rimRadius_;
   }
 
-  // Fraction of pixel (i, j)'s n×n regular sample grid that lies inside the rim: the alpha of
-  // every engine's image (docs/conventions.md §2).
-  float rimCoverage(int i, int j, int n) const;
-
   OpenCvIntrinsics openCvIntrinsics() const;
 
  private:
   HyperbolicMirror mirror_;
   int width_, height_;
   double xi_, gamma_, rimTheta_, rimRadius_, physicalFocal_;
+  Vec3 rimPoint_;
 };
 
 // Incidence angle θ of a camera-frame direction (0 = straight down).

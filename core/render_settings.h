@@ -13,6 +13,9 @@ struct RenderSettings {
   RigSpec rig;     // usually the scene's, with --size applied
   int spp = 1;     // n² samples on an n×n regular grid per pixel (docs/conventions.md §2)
   Shading shading = Shading::Unlit;
+  // The fast renderer traces the physical camera through the mirror even for the ideal rig,
+  // whose closed form it otherwise uses (the check that both agree). Other engines always trace.
+  bool traced = false;
 };
 
 const char* shadingName(Shading shading);

@@ -1,6 +1,16 @@
 #include "rig.h"
 
+#include "errors.h"
+
 namespace omnicam {
+
+OmniCamera RigSpec::camera() const {
+  if (!ideal())
+    throw InputError(
+        "rig.camera: this needs the central (Mei) model, which describes only the ideal camera "
+        "(zero offset, rotation, distortion and principal point offset)");
+  return idealCamera();
+}
 
 Rigid worldFromRobot(const RobotPose& pose) {
   Rigid t = Rigid::Identity();
@@ -15,6 +25,10 @@ Rigid robotFromViewpoint(const RigSpec& rig) {
   return t;
 }
 
+Rigid worldFromViewpoint(const RigSpec& rig, const RobotPose& pose) {
+  return worldFromRobot(pose) * robotFromViewpoint(rig);
+}
+
 Rigid cameraFromViewpoint() {
   Rigid t = Rigid::Identity();
   t.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
@@ -22,7 +36,7 @@ Rigid cameraFromViewpoint() {
 }
 
 Rigid worldFromCamera(const RigSpec& rig, const RobotPose& pose) {
-  return worldFromRobot(pose) * robotFromViewpoint(rig) * cameraFromViewpoint().inverse();
+  return worldFromViewpoint(rig, pose) * cameraFromViewpoint().inverse();
 }
 
 Rigid cameraFromWorld(const RigSpec& rig, const RobotPose& pose) {

@@ -3,6 +3,11 @@
 //   robot:     origin on the floor below F', x forward, y left, z up (yaw CCW from world +X).
 //   viewpoint: origin at F' = robot origin + (0, 0, height), robot axes.
 //   camera:    unified-model frame at F' (see omni_camera.h).
+//   pinhole:   the physical camera below the mirror (physical_camera.h): origin at its pinhole,
+//              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
+//              axes along robot x, y, z.
+#include <array>
+
 #include "geometry.h"
 #include "omni_camera.h"
 
@@ -12,22 +17,61 @@ struct RobotPose {
   double x = 0.0, y = 0.0, yawDeg = 0.0;
 };
 
+// OpenCV's radial-tangential lens distortion, applied to the pinhole's normalised image
+// coordinates (x, y) = (X/Z, Y/Z): x' = x(1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x y + p2 (r² + 2x²), etc.
+struct LensDistortion {
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;
+  bool none() const { return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0 && k3 == 0.0; }
+  bool operator==(const LensDistortion&) const = default;
+};
+
+// The physical camera below the mirror, as built rather than as designed. All zero: the ideal
+// pinhole at the mirror's outer focus F, looking straight up, distortion-free.
+struct CameraMount {
+  std::array<double, 3> offsetMm{0.0, 0.0, 0.0};     // pinhole minus its ideal position, robot axes
+  std::array<double, 3> rotationDeg{0.0, 0.0, 0.0};  // about the pinhole: axes = Rx·Ry·Rz · ideal axes
+  LensDistortion distortion;
+  std::array<double, 2> principalPointOffsetPx{0.0, 0.0};
+  bool ideal() const { return *this == CameraMount{}; }
+  bool operator==(const CameraMount&) const = default;
+};
+
 struct RigSpec {
   double height = 0.40;            // F' above the floor, metres
   double k = 11.546;               // Baker–Nayar mirror parameter, > 2
   double c = 0.02321;              // focal distance between F and F', metres
   double rimElevationDeg = 45.0;   // mirror rim, degrees above the horizon
+  CameraMount mount;               // the physical camera's misalignment and lens
   int imageSize = 360;             // square image, pixels
   double framingElevationDeg = 45.0;  // direction that touches the image border
 
+  // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
+  // field can never leave a stale table behind.
+  bool operator==(const RigSpec&) const = default;
+
+  // True when the camera sits exactly where the mirror was designed for: the image is then the
+  // central (Mei) model's, in closed form.
+  bool ideal() const { return mount.ideal(); }
+  // This rig with its camera put back where it belongs.
+  RigSpec idealized() const {
+    RigSpec r = *this;
+    r.mount = {};
+    return r;
+  }
+
   HyperbolicMirror mirror() const { return {k, c}; }
-  OmniCamera camera() const {
+  // The ideal rig's central model: what the mirror and framing give, whatever the mount says.
+  OmniCamera idealCamera() const {
     return {mirror(), imageSize, imageSize, rimElevationDeg, framingElevationDeg};
   }
+  // The central model of this rig; InputError for a rig whose camera is not ideal, which no
+  // central model describes exactly (make_camera.h gives the camera of any rig).
+  OmniCamera camera() const;
 };
 
 Rigid worldFromRobot(const RobotPose& pose);
 Rigid robotFromViewpoint(const RigSpec& rig);
+Rigid worldFromViewpoint(const RigSpec& rig, const RobotPose& pose);
 // Fixed axis change viewpoint → camera: X = x, Y = −y, Z = −z (a proper rotation).
 Rigid cameraFromViewpoint();
 Rigid cameraFromWorld(const RigSpec& rig, const RobotPose& pose);

@@ -1,5 +1,7 @@
 #include "scene_loader.h"
 
+#include "make_camera.h"
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,6 +14,7 @@
 #include "gltf_import.h"
 #include "input_limits.h"
 #include "json_fields.h"
+#include "make_camera.h"
 #include "sha256.h"
 
 namespace omnicam {
@@ -53,10 +56,39 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   return *resolved;
 }
 
+// The physical camera block (rig.h: CameraMount); absent or all zero is the ideal camera.
+CameraMount readCameraMount(JsonFields camera) {
+  CameraMount mount;
+  const auto triple = [&](const char* key, const JsonFields::Range& range) {
+    const std::vector<double> v = camera.numbers(key, {0.0, 0.0, 0.0}, range);
+    return std::array<double, 3>{v[0], v[1], v[2]};
+  };
+  mount.offsetMm = triple("offset_mm", {-limits::kMaxCameraOffsetMm, limits::kMaxCameraOffsetMm, false, "mm"});
+  mount.rotationDeg = triple("rotation_deg", {-limits::kMaxCameraRotationDeg, limits::kMaxCameraRotationDeg, false, "degrees"});
+  if (auto lens = camera.optionalObject("distortion")) {
+    const JsonFields::Range radial{-limits::kMaxDistortion, limits::kMaxDistortion};
+    const JsonFields::Range tangential{-limits::kMaxTangentialDistortion, limits::kMaxTangentialDistortion};
+    mount.distortion.k1 = lens->number("k1", 0.0, radial);
+    mount.distortion.k2 = lens->number("k2", 0.0, radial);
+    mount.distortion.p1 = lens->number("p1", 0.0, tangential);
+    mount.distortion.p2 = lens->number("p2", 0.0, tangential);
+    mount.distortion.k3 = lens->number("k3", 0.0, radial);
+    lens->finish();
+  }
+  const std::vector<double> pp = camera.numbers(
+      "principal_point_offset_px", {0.0, 0.0},
+      {-limits::kMaxPrincipalPointOffsetPx, limits::kMaxPrincipalPointOffsetPx, false, "pixels"});
+  mount.principalPointOffsetPx = {pp[0], pp[1]};
+  camera.finish();
+  return mount;
+}
+
 RigSpec readRig(JsonFields rig) {
   RigSpec spec;
   spec.height = rig.number("height", spec.height, {limits::kMinRigHeight, limits::kMaxRigHeight, false, "m"});
   if (auto mirror = rig.optionalObject("mirror")) {
+    const std::string shape = mirror->string("shape", "hyperboloid");
+    if (shape != "hyperboloid") mirror->fail("shape", quote(shape) + " is not a mirror shape omnicam models (hyperboloid)");
     spec.k = mirror->number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
     spec.c = mirror->number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
     if (!(spec.c < spec.height))
@@ -66,6 +98,7 @@ RigSpec readRig(JsonFields rig) {
       mirror->fail("rim_elevation_deg", "must be in (-60, 80) degrees");
     mirror->finish();
   }
+  if (auto camera = rig.optionalObject("camera")) spec.mount = readCameraMount(*camera);
   if (auto image = rig.optionalObject("image")) {
     spec.imageSize = image->integer("size", spec.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
     spec.framingElevationDeg = image->number("framing_elevation_deg", spec.rimElevationDeg);
@@ -79,7 +112,8 @@ RigSpec readRig(JsonFields rig) {
     rig.fail("height", "must be larger than the mirror's c = " + shortNumber(spec.c) + " m");
   rig.finish();
   try {
-    (void)spec.camera();  // the mirror must be able to image the rim and framing
+    (void)spec.idealCamera();  // the mirror must be able to image the rim and framing
+    (void)makeCamera(spec);    // and the camera must sit below the mirror
   } catch (const InputError& e) {
     throw InputError(showPath(rig.file()) + ": " + rig.where() + "." + e.what());
   }

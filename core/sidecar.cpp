@@ -4,8 +4,10 @@
 #include <fstream>
 
 #include "atomic_file.h"
+#include "central_camera.h"
 #include "errors.h"
 #include "file_confinement.h"
+#include "make_camera.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -13,29 +15,21 @@ namespace omnicam {
 using nlohmann::json;
 
 json rigToJson(const RigSpec& rig) {
-  return {{"height", rig.height},
-          {"mirror", {{"k", rig.k}, {"c", rig.c}, {"rim_elevation_deg", rig.rimElevationDeg}}},
-          {"image", {{"size", rig.imageSize}, {"framing_elevation_deg", rig.framingElevationDeg}}}};
+  json out = {{"height", rig.height},
+              {"mirror", {{"shape", "hyperboloid"}, {"k", rig.k}, {"c", rig.c}, {"rim_elevation_deg", rig.rimElevationDeg}}},
+              {"image", {{"size", rig.imageSize}, {"framing_elevation_deg", rig.framingElevationDeg}}}};
+  if (!rig.ideal()) {  // the ideal camera is the default: its rigs read as they always did
+    const CameraMount& m = rig.mount;
+    const LensDistortion& l = m.distortion;
+    out["camera"] = {{"offset_mm", m.offsetMm},
+                     {"rotation_deg", m.rotationDeg},
+                     {"distortion", {{"k1", l.k1}, {"k2", l.k2}, {"p1", l.p1}, {"p2", l.p2}, {"k3", l.k3}}},
+                     {"principal_point_offset_px", m.principalPointOffsetPx}};
+  }
+  return out;
 }
 
-json intrinsicsToJson(const OmniCamera& camera) {
-  const OpenCvIntrinsics k = camera.openCvIntrinsics();
-  return {{"model", "mei_unified"},
-          {"xi", k.xi},
-          {"gamma_x", k.gamma_x},
-          {"gamma_y", k.gamma_y},
-          {"cx", k.cx},
-          {"cy", k.cy},
-          {"pixel_centre", "integer"},
-          {"distortion", {0.0, 0.0, 0.0, 0.0}},
-          {"width", camera.width()},
-          {"height", camera.height()},
-          {"rim_radius_px", camera.rimRadius()},
-          {"horizon_radius_px", camera.horizonRadius()},
-          {"note",
-           "camera frame at the effective viewpoint: X forward, Y right (-robot y), Z down; "
-           "gamma_y < 0 because the catadioptric image is a mirror image of a top-down map"}};
-}
+json intrinsicsToJson(const OmniCamera& camera) { return unifiedIntrinsicsJson(camera); }
 
 json sidecarJson(const RenderRecord& r) {
   const Rigid cfw = cameraFromWorld(r.rig, r.pose);
@@ -55,7 +49,7 @@ json sidecarJson(const RenderRecord& r) {
           {"mode", r.mode},
           {"mode_options", r.modeOptions},
           {"seconds", r.seconds},
-          {"intrinsics", intrinsicsToJson(r.rig.camera())},
+          {"intrinsics", makeCamera(r.rig)->describe()},
           {"camera_from_world", matrix}};
 }
 

@@ -8,6 +8,7 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "number_format.h"
+#include "physical_camera.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -93,12 +94,15 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;
   job.samplesPerAxis = *n;
-  const OmniCamera camera = settings.rig.camera();
+  // The physical camera as built (physical_camera.h), and the ideal rig's image it is framed for.
+  const OmniCamera camera = settings.rig.idealCamera();
+  const Pinhole pinhole = pinholeOf(settings.rig);
+  if (!pinhole.distortion.none())
+    throw InputError("rig.camera.distortion: POV-Ray has no lens distortion; render it with the fast renderer");
   job.width = camera.width() * *n;
   job.height = camera.height() * *n;
   const HyperbolicMirror& mirror = camera.mirror();
-  const Rigid worldFromRobot_ = worldFromRobot(pose);
-  const Rigid worldFromViewpoint = worldFromRobot_ * robotFromViewpoint(settings.rig);
+  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
   SdlWriter writer(scene, settings.shading, job);
 
   std::ostringstream out;
@@ -107,13 +111,18 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
          "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
       << "background { " << rgb(scene.background) << " }\n\n";
 
-  // Physical pinhole at F, looking up (+Z world); image u along robot +x, v (down) along robot +y.
-  // POV-Ray's ray for screen (x0, y0) ∈ [−½, ½]² is direction + x0·right + y0·up, y0 upward.
-  const Vec3 pinhole = worldFromViewpoint * mirror.pinholeInViewpoint();
-  const Vec3 right = worldFromRobot_.linear() * Vec3::UnitX() * (camera.width() / static_cast<double>(camera.height()));
-  const Vec3 up = worldFromRobot_.linear() * -Vec3::UnitY();
-  const Vec3 direction = Vec3::UnitZ() * (camera.physicalFocalLength() / camera.height());
-  out << "camera { perspective\n  location " << pov(pinhole) << "\n  right " << povDirection(right)
+  // The physical pinhole. POV-Ray's ray for screen (x0, y0) ∈ [−½, ½]² is direction + x0·right +
+  // y0·up, y0 upward; raster u = (x0 + ½)·W and v = (½ − y0)·H reach the pinhole frame's
+  // ((u − ppx)/f, (v − ppy)/f, 1) (times f/H) with these three vectors; a principal point off
+  // the image centre tilts `direction`, which POV-Ray allows.
+  const double w = camera.width(), h = camera.height(), f = pinhole.focalPx;
+  const Vec2& pp = pinhole.principalPoint;
+  const Eigen::Matrix3d worldFromPinhole = worldFromView.linear() * pinhole.viewpointFromPinhole;
+  const Vec3 location = worldFromView * pinhole.position;
+  const Vec3 right = worldFromPinhole * Vec3(w / h, 0.0, 0.0);
+  const Vec3 up = worldFromPinhole * Vec3(0.0, -1.0, 0.0);
+  const Vec3 direction = worldFromPinhole * Vec3((0.5 * w - pp.x()) / h, (0.5 * h - pp.y()) / h, f / h);
+  out << "camera { perspective\n  location " << pov(location) << "\n  right " << povDirection(right)
       << "\n  up " << povDirection(up) << "\n  direction " << povDirection(direction) << "\n}\n\n";
 
   if (settings.shading == Shading::Lit)
@@ -124,10 +133,7 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   const double u = kPovrayUnitsPerMetre;
   const double a2 = mirror.a2() * u * u, b2 = mirror.b2() * u * u, c = mirror.c() * u;
   const double vertexY = std::sqrt(a2) - c / 2.0;
-  const Vec3 rimDirection(std::sin(camera.rimTheta()), 0.0, -std::cos(camera.rimTheta()));
-  const auto rimPoint = mirror.pointAlong(rimDirection);
-  if (!rimPoint) throw InputError("rig.mirror.rim_elevation_deg: the rim direction misses the mirror");
-  const double rimY = rimPoint->z() * u, rimR = rimPoint->x() * u;
+  const double rimY = camera.rimPoint().z() * u, rimR = camera.rimPoint().x() * u;
   out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
       << " m), upper sheet from its vertex to the rim.\n"
       << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c) << ", 0>, "
@@ -136,11 +142,11 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
       << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
       << "  bounded_by { clipped_by }\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
-      << "  no_shadow\n  translate " << pov(worldFromViewpoint.translation()) << "\n}\n"
+      << "  no_shadow\n  translate " << pov(worldFromView.translation()) << "\n}\n"
       << "// Beyond the rim the camera sees black (docs/conventions.md §2); invisible to everything else.\n"
       << "disc { <0, " << num(rimY) << ", 0>, y, " << num(rimR + 1000.0) << ", " << num(rimR) << "\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
-      << "  translate " << pov(worldFromViewpoint.translation()) << "\n}\n\n";
+      << "  translate " << pov(worldFromView.translation()) << "\n}\n\n";
 
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];

@@ -134,13 +134,15 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
     throw InputError("--polygons: must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
   checkRenderSettings(settings);
+  if (!settings.rig.ideal())
+    throw InputError(std::string(o.mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cube-map") +
+                     " mode is central by construction and renders the ideal rig only; this rig's camera "
+                     "(rig.camera) is moved, turned or distorted: render it in exact mode");
   const auto n = samplesPerAxis(settings.spp);
   std::lock_guard<std::mutex> lock(mutex_);
   const RigSpec& r = settings.rig;
   if (cached_ && cached_->spp == settings.spp && cached_->options.mode == o.mode && cached_->options.faces == o.faces &&
-      cached_->options.faceSize == o.faceSize && cached_->options.polygons == o.polygons && cached_->rig.k == r.k &&
-      cached_->rig.c == r.c && cached_->rig.rimElevationDeg == r.rimElevationDeg && cached_->rig.imageSize == r.imageSize &&
-      cached_->rig.framingElevationDeg == r.framingElevationDeg)
+      cached_->options.faceSize == o.faceSize && cached_->options.polygons == o.polygons && cached_->rig == r)
     return cached_;
 
   auto L = std::make_shared<Lookup>();

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "errors.h"
+#include "make_camera.h"
 
 namespace omnicam {
 
@@ -85,40 +86,77 @@ Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading 
   return colour;
 }
 
-std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const RigSpec& rig, int n) const {
+std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const RenderSettings& settings,
+                                                                          int n) const {
+  const std::shared_ptr<const Camera> camera = makeCamera(settings.rig, settings.traced);
   std::lock_guard<std::mutex> lock(tableMutex_);
-  const auto same = [&](const RigSpec& r) {
-    return r.k == rig.k && r.c == rig.c && r.rimElevationDeg == rig.rimElevationDeg && r.imageSize == rig.imageSize &&
-           r.framingElevationDeg == rig.framingElevationDeg;
-  };
-  if (table_ && table_->samplesPerAxis == n && same(table_->rig)) return table_;
+  if (table_ && table_->samplesPerAxis == n && *table_->camera == *camera) return table_;
   auto table = std::make_shared<SampleTable>();
-  table->rig = rig;
+  table->camera = camera;
   table->samplesPerAxis = n;
-  const OmniCamera camera = rig.camera();
-  const size_t pixels = static_cast<size_t>(camera.width()) * camera.height();
+  const bool central = camera->central();
+  const size_t pixels = static_cast<size_t>(camera->width()) * camera->height();
   table->firstSample.reserve(pixels + 1);
   table->centreDirections.reserve(pixels);
   table->centreSample.reserve(pixels);
-  for (int j = 0; j < camera.height(); ++j)
-    for (int i = 0; i < camera.width(); ++i) {
+  const auto record = [&](const CameraRay& ray, std::vector<Eigen::Vector3f>& directions,
+                          std::vector<Eigen::Vector3f>& origins, std::vector<float>& starts) {
+    directions.push_back(ray.direction.cast<float>());
+    if (central) return;
+    const double start = std::max(0.0, ray.origin.dot(ray.direction));
+    origins.push_back((ray.origin - start * ray.direction).cast<float>());
+    starts.push_back(static_cast<float>(start));
+  };
+  for (int j = 0; j < camera->height(); ++j)
+    for (int i = 0; i < camera->width(); ++i) {
       table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
       uint32_t centre = SampleTable::kNoSample;
       for (int b = 0; b < n; ++b)
         for (int a = 0; a < n; ++a) {
-          const Vec2 raster(i + (a + 0.5) / n, j + (b + 0.5) / n);
-          if (!camera.insideRim(raster)) continue;
+          const auto ray = camera->generateRay({gridSample(i, j, a, b, n)});
+          if (!ray) continue;
           if (2 * a + 1 == n && 2 * b + 1 == n) centre = static_cast<uint32_t>(table->directions.size());
-          table->directions.push_back(camera.cameraFromRaster(raster).cast<float>());
+          record(*ray, table->directions, table->origins, table->starts);
         }
-      const Vec2 middle(i + 0.5, j + 0.5);
-      table->centreDirections.push_back(camera.insideRim(middle) ? Eigen::Vector3f(camera.cameraFromRaster(middle).cast<float>())
-                                                                  : Eigen::Vector3f::Constant(NAN));
+      const auto middle = camera->generateRay({gridSample(i, j, 0, 0, 1)});
+      if (middle) {
+        record(*middle, table->centreDirections, table->centreOrigins, table->centreStarts);
+      } else {
+        table->centreDirections.push_back(Eigen::Vector3f::Constant(NAN));
+        if (!central) {
+          table->centreOrigins.push_back(Eigen::Vector3f::Zero());
+          table->centreStarts.push_back(0.0f);
+        }
+      }
       table->centreSample.push_back(centre);
     }
   table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
   table_ = table;
   return table_;
+}
+
+FastRenderer::Placement FastRenderer::placement(const RenderSettings& settings, const RobotPose& pose) {
+  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
+  return {worldFromView.translation(), worldFromView.linear(), worldFromView.linear().cast<float>()};
+}
+
+void FastRenderer::loadSamples(HitPacket& hits, const Placement& at, const SampleTable& table, uint32_t first,
+                               int count) {
+  hits.begin(at.origin, count);
+  for (int k = 0; k < count; ++k) hits.setDirection(k, at.rotationF * table.directions[first + k]);
+  if (table.origins.empty()) return;
+  for (int k = 0; k < count; ++k)
+    hits.setOrigin(k, at.origin + at.rotation * table.origins[first + k].cast<double>(), table.starts[first + k]);
+}
+
+void FastRenderer::loadCentres(HitPacket& hits, const Placement& at, const SampleTable& table, const size_t* pixels,
+                               int count) {
+  hits.begin(at.origin, count);
+  for (int k = 0; k < count; ++k) hits.setDirection(k, at.rotationF * table.centreDirections[pixels[k]]);
+  if (table.centreOrigins.empty()) return;
+  for (int k = 0; k < count; ++k)
+    hits.setOrigin(k, at.origin + at.rotation * table.centreOrigins[pixels[k]].cast<double>(),
+                  table.centreStarts[pixels[k]]);
 }
 
 ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings) const {
@@ -160,10 +198,9 @@ void recordAov(AovFrame& aovs, size_t pixel, const SurfaceHit& hit, const Vec3& 
 
 }  // namespace
 
-uint32_t FastRenderer::recordCentreAovs(const Vec3& origin, const Eigen::Matrix3f& rotation, const SampleTable& table,
-                                        const size_t* pixels, int count, HitPacket& hits, AovFrame& aovs) const {
-  hits.begin(origin, count);
-  for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table.centreDirections[pixels[k]]);
+uint32_t FastRenderer::recordCentreAovs(const Placement& at, const SampleTable& table, const size_t* pixels,
+                                        int count, HitPacket& hits, AovFrame& aovs) const {
+  loadCentres(hits, at, table, pixels, count);
   rays_.intersectPacket(hits);
   for (int k = 0; k < count; ++k)
     if (hits.hit(k)) recordAov(aovs, pixels[k], hits.surface(k), hits.direction(k));
@@ -176,18 +213,15 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   checkRenderSettings(centreOnly);
   checkPose(pose, "--pose");
   prepareAovs(settings, aovs);
-  const std::shared_ptr<const SampleTable> table = sampleTable(settings.rig, 1);
-  const Rigid worldFromCam = worldFromCamera(settings.rig, pose);
-  const Vec3 origin = worldFromCam.translation();
-  // Float, like the rays Embree traces: directions go straight from the table into the packet.
-  const Eigen::Matrix3f rotation = worldFromCam.linear().cast<float>();
+  const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);
+  const Placement at = placement(settings, pose);
   tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
     // The same packets as a render pass traces for its centre rays, so both give the same AOVs.
     HitPacket hits;
     size_t pending[kRayPacketSize];
     int count = 0;
     const auto trace = [&] {
-      const uint32_t hit = recordCentreAovs(origin, rotation, *table, pending, count, hits, aovs);
+      const uint32_t hit = recordCentreAovs(at, *table, pending, count, hits, aovs);
       for (int k = 0; k < count; ++k)
         if (!((hit >> k) & 1u)) recordNoHit(aovs, pending[k]);
       count = 0;
@@ -212,12 +246,9 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
   checkRenderSettings(settings);
   checkPose(pose, "--pose");
   const auto n = samplesPerAxis(settings.spp);
-  const std::shared_ptr<const SampleTable> table = sampleTable(settings.rig, *n);
+  const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);
   const int width = settings.rig.imageSize, height = settings.rig.imageSize;
-  const Rigid worldFromCam = worldFromCamera(settings.rig, pose);
-  const Vec3 origin = worldFromCam.translation();
-  // Float, like the rays Embree traces: directions go straight from the table into the packet.
-  const Eigen::Matrix3f rotation = worldFromCam.linear().cast<float>();
+  const Placement at = placement(settings, pose);
   ImageRGBA image(width, height);
   const float weight = 1.0f / static_cast<float>(*n * *n);
   constexpr int kPacket = kRayPacketSize;
@@ -243,8 +274,7 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
       };
       for (uint32_t first = table->firstSample[rowStart]; first < rowEnd; first += kPacket) {
         const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
-        hits.begin(origin, count);
-        for (int k = 0; k < count; ++k) hits.setDirection(k, rotation * table->directions[first + k]);
+        loadSamples(hits, at, *table, first, count);
         rays_.intersectPacket(hits);
         shadePacket(hits, settings.shading, colours);
         for (int k = 0; k < count; ++k) {
@@ -263,7 +293,7 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
         size_t pending[kPacket];
         int count = 0;
         const auto traceCentres = [&] {
-          const uint32_t hit = recordCentreAovs(origin, rotation, *table, pending, count, hits, *aovs);
+          const uint32_t hit = recordCentreAovs(at, *table, pending, count, hits, *aovs);
           for (int k = 0; k < count; ++k)
             if ((hit >> k) & 1u) centreRecorded[pending[k] - rowStart] = 1;
           count = 0;

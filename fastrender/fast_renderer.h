@@ -1,7 +1,8 @@
 #pragma once
-// omnicam's own renderer, exact mode: every sample's ray comes straight from the effective
-// viewpoint F' through the closed-form pixel → ray map (no mirror tracing), is intersected with
-// the scene, and shaded per docs/conventions.md §2. Pixels are box-filtered means of an n×n regular grid;
+// omnicam's own renderer, exact mode: every sample's ray comes from the rig's camera (camera.h):
+// for the ideal rig straight from the effective viewpoint F' through the closed-form pixel → ray
+// map (no mirror tracing), for a physical rig traced through the exact mirror from its own
+// mirror point. It is intersected with the scene and shaded per docs/conventions.md §2. Pixels are box-filtered means of an n×n regular grid;
 // rows are rendered in parallel with TBB and the result does not depend on the thread count.
 #include <memory>
 #include <mutex>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "aov_frame.h"
+#include "camera.h"
 #include "image.h"
 #include "ray_scene.h"
 #include "render_settings.h"
@@ -40,26 +42,45 @@ class FastRenderer {
   Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading) const;
 
  private:
-  // Camera-frame directions of every sample inside the rim, per pixel: they depend only on the
-  // rig's image model and spp, so they are computed once and reused for every pose.
+  // The rays of every imaged sample, per pixel, in the viewpoint frame: they depend only on the
+  // camera and spp, so they are computed once and reused for every pose.
   struct SampleTable {
     static constexpr uint32_t kNoSample = 0xffffffffu;
-    RigSpec rig;
+    std::shared_ptr<const Camera> camera;
     int samplesPerAxis = 0;
-    std::vector<Eigen::Vector3f> directions;  // inside-rim samples, pixel by pixel
+    std::vector<Eigen::Vector3f> directions;  // imaged samples, pixel by pixel
+    // Non-central cameras: each sample's ray leaves its mirror point, stored as the point of its
+    // line nearest F' (F' = 0) and the distance on to the mirror point, where tracing starts.
+    // Rays are thus given as precisely as the central model's (all from F'), and the ideal rig
+    // traced gives the closed form's image.
+    std::vector<Eigen::Vector3f> origins;
+    std::vector<float> starts;
     std::vector<uint32_t> firstSample;        // per pixel, index into directions (+1 sentinel)
-    // Per pixel: the centre's direction (NaN beyond the rim) and, at odd n, the index of the
-    // sample that is the centre (kNoSample otherwise).
+    // Per pixel: the centre's ray (direction NaN where not imaged) and, at odd n, the index of
+    // the sample that is the centre (kNoSample otherwise).
     std::vector<Eigen::Vector3f> centreDirections;
+    std::vector<Eigen::Vector3f> centreOrigins;  // non-central cameras only
+    std::vector<float> centreStarts;
     std::vector<uint32_t> centreSample;
+  };
+  // Where this frame's rays go: F' in the world and the world's rotation of viewpoint vectors.
+  struct Placement {
+    Vec3 origin;
+    Eigen::Matrix3d rotation;
+    Eigen::Matrix3f rotationF;  // float, like the rays Embree traces
   };
   ImageRGBA renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const;
   void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
-  std::shared_ptr<const SampleTable> sampleTable(const RigSpec& rig, int samplesPerAxis) const;
-  // Traces the centre rays of `count` ≤ kRayPacketSize inside-rim pixels as one packet and
-  // records the AOVs of those that hit; returns the mask of hits (bit k: pixels[k]).
-  uint32_t recordCentreAovs(const Vec3& origin, const Eigen::Matrix3f& rotation, const SampleTable& table,
-                            const size_t* pixels, int count, HitPacket& hits, AovFrame& aovs) const;
+  std::shared_ptr<const SampleTable> sampleTable(const RenderSettings& settings, int samplesPerAxis) const;
+  static Placement placement(const RenderSettings& settings, const RobotPose& pose);
+  // Loads `count` rays of one table (first.., or the listed entries) into a packet.
+  static void loadSamples(HitPacket& hits, const Placement& at, const SampleTable& table, uint32_t first, int count);
+  static void loadCentres(HitPacket& hits, const Placement& at, const SampleTable& table, const size_t* pixels,
+                          int count);
+  // Traces the centre rays of `count` ≤ kRayPacketSize imaged pixels as one packet and records
+  // the AOVs of those that hit; returns the mask of hits (bit k: pixels[k]).
+  uint32_t recordCentreAovs(const Placement& at, const SampleTable& table, const size_t* pixels, int count,
+                            HitPacket& hits, AovFrame& aovs) const;
 
   // Colours of a packet of rays: the background where a ray missed, else its hit shaded per
   // docs/conventions.md §2, with the shadow rays traced as packets too.

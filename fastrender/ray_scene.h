@@ -30,9 +30,18 @@ class RayScene;
 class HitPacket {
  public:
   HitPacket();
-  // The rays to trace next: `count` ≤ kRayPacketSize of them from `origin`, each given its
-  // direction by setDirection. Lanes keep their other fields between packets.
+  // The rays to trace next: `count` ≤ kRayPacketSize of them from `origin` (or each from its own,
+  // given by setOrigin), each given its direction by setDirection. Lanes keep their other fields
+  // between packets.
   void begin(const Vec3& origin, int count);
+  // Ray k starts at o + tStart·direction; surface(k).t is measured from there.
+  void setOrigin(int k, const Vec3& o, float tStart) {
+    origins_[k] = o;
+    rayhit_.ray.org_x[k] = static_cast<float>(o.x());
+    rayhit_.ray.org_y[k] = static_cast<float>(o.y());
+    rayhit_.ray.org_z[k] = static_cast<float>(o.z());
+    rayhit_.ray.tnear[k] = tStart;
+  }
   void setDirection(int k, const Eigen::Vector3f& d) {
     rayhit_.ray.dir_x[k] = d.x();
     rayhit_.ray.dir_y[k] = d.y();
@@ -42,6 +51,7 @@ class HitPacket {
   int count() const { return count_; }
   uint32_t mask() const { return mask_; }  // bit k: ray k hit something
   bool hit(int k) const { return (mask_ >> k) & 1u; }
+  const Vec3& origin(int k) const { return origins_[k]; }
   Vec3 direction(int k) const { return {rayhit_.ray.dir_x[k], rayhit_.ray.dir_y[k], rayhit_.ray.dir_z[k]}; }
   // Preconditions below: hit(k).
   int object(int k) const;
@@ -51,7 +61,7 @@ class HitPacket {
  private:
   friend class RayScene;
   const RayScene* scene_ = nullptr;
-  Vec3 origin_;
+  Vec3 origins_[kRayPacketSize];
   int count_ = 0;
   uint32_t mask_ = 0;
   RTCRayHit8 rayhit_;  // lane k: Embree's answer for ray k

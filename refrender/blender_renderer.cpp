@@ -7,6 +7,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "make_camera.h"
 #include "external_process.h"
 #include "gltf_exporter.h"
 #include "indirect_filter.h"
@@ -121,7 +122,10 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
       tracing.glossyBounces > 16 || !(tracing.clampIndirect >= 0.0 && tracing.clampIndirect < 1e6))
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
   for (const RobotPose& pose : poses) checkPose(pose, "--pose");
+  if (!settings.rig.ideal())
+    throw InputError("Blender renders the ideal rig only: a moved, turned or distorted camera (rig.camera) is not exported to it yet");
   const OmniCamera camera = settings.rig.camera();
+  const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = tracing.filterIndirect && settings.shading == Shading::Lit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";
@@ -191,7 +195,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     if (image.width != camera.width() || image.height != camera.height())
       throw ExternalError("blender: output has the wrong size");
     for (int j = 0; j < image.height; ++j)
-      for (int i = 0; i < image.width; ++i) image.at(i, j)[3] = camera.rimCoverage(i, j, n);
+      for (int i = 0; i < image.width; ++i) image.at(i, j)[3] = imaging->coverage(i, j, n);
     images.push_back(std::move(image));
   }
   return images;

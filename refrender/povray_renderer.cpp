@@ -5,6 +5,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "make_camera.h"
 #include "external_process.h"
 #include "job_folder.h"
 #include "povray_exporter.h"
@@ -36,7 +37,7 @@ std::string povrayVersion(const std::string& executable) {
   return at == std::string::npos ? "povray" : tail.substr(at, tail.find('\n', at) - at);
 }
 
-ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const OmniCamera& camera) {
+ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const Camera& camera) {
   ImageRGBA image(camera.width(), camera.height());
   const float weight = 1.0f / static_cast<float>(n * n);
   for (int j = 0; j < image.height; ++j)
@@ -49,7 +50,7 @@ ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const OmniCamera
         }
       float* out = image.at(i, j);
       for (int c = 0; c < 3; ++c) out[c] = sum[c] * weight;
-      out[3] = camera.rimCoverage(i, j, n);
+      out[3] = camera.coverage(i, j, n);
     }
   return image;
 }
@@ -77,7 +78,7 @@ ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const Rend
   }
   if (large.width != job.width || large.height != job.height)
     throw ExternalError("povray: output has the wrong size");
-  return downsampleWithRimAlpha(large, job.samplesPerAxis, settings.rig.camera());
+  return downsampleWithRimAlpha(large, job.samplesPerAxis, *makeCamera(settings.rig));
 }
 
 }  // namespace omnicam

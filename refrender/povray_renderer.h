@@ -5,6 +5,7 @@
 // fast renderer's n×n regular sample grid (POV-Ray traces pixel centres).
 #include <string>
 
+#include "camera.h"
 #include "image.h"
 #include "render_settings.h"
 #include "scene.h"
@@ -26,7 +27,7 @@ ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const Rend
 // "POV-Ray 3.7.0.10..." as printed by the executable, or "" if it cannot run.
 std::string povrayVersion(const std::string& executable = "povray");
 
-// Box-downsamples an n× image and sets alpha to the fraction of sub-samples inside the rim.
-ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const OmniCamera& camera);
+// Box-downsamples an n× image and sets alpha to the fraction of sub-samples the camera images.
+ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const Camera& camera);
 
 }  // namespace omnicam

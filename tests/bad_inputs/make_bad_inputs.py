@@ -150,6 +150,16 @@ def main():
     write(os.path.join(SCENES, "radius_1e400.json"),
           scene([FLOOR, dict(ball, radius=0.1)]).replace('"radius": 0.1', '"radius": 1e400'))
     write(os.path.join(SCENES, "coordinate_1e20.json"), scene([FLOOR, dict(ball, center=[1e20, 0, 0])]))
+    # The physical camera block (rig.camera): strict, bounded, and the pinhole stays below the mirror.
+    write(os.path.join(SCENES, "camera_unknown_key.json"), scene([FLOOR], rig={"camera": {"tilt_deg": 1}}))
+    write(os.path.join(SCENES, "camera_offset_two.json"), scene([FLOOR], rig={"camera": {"offset_mm": [1, 2]}}))
+    write(os.path.join(SCENES, "camera_rotation_huge.json"), scene([FLOOR], rig={"camera": {"rotation_deg": [0, 45, 0]}}))
+    write(os.path.join(SCENES, "camera_inside_mirror.json"), scene([FLOOR], rig={"camera": {"offset_mm": [0, 0, 40]}}))
+    write(os.path.join(SCENES, "camera_distortion_nan.json"),
+          scene([FLOOR], rig={"camera": {"distortion": {"k1": "x"}}}))
+    write(os.path.join(SCENES, "mirror_shape_unknown.json"), scene([FLOOR], rig={"mirror": {"shape": "ellipsoid\n"}}))
+    write(os.path.join(SCENES, "camera_misaligned.json"),
+          scene([FLOOR], rig={"camera": {"offset_mm": [2, 0, 0], "distortion": {"k1": -0.05}}}))
     write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
     write(os.path.join(SCENES, "light_shares_name.json"),
           scene([dict(FLOOR, name="lamp")], lights=[{"name": "lamp", "position": [0, 0, 2]}]))

@@ -1,0 +1,75 @@
+#pragma once
+// The camera interface (pbrt-v4 style: interface here, implementations beside it). A camera maps
+// raster samples to rays and world points back to the raster. Rays and points are in the rig's
+// viewpoint frame (rig.h: origin at F', robot axes); rig.h's worldFromViewpoint places them.
+//
+// Implementations: CentralCamera (central_camera.h; the closed-form unified model of the ideal
+// rig, every ray from F') and PhysicalCamera (physical_camera.h; the pinhole as mounted, traced
+// through the exact mirror; rays leave the mirror, each from its own point). makeCamera
+// (make_camera.h) picks the one a rig needs.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string_view>
+
+#include "geometry.h"
+#include "rig.h"
+
+namespace omnicam {
+
+// Where on the raster a ray is wanted, and when. Raster coordinates are continuous: pixel (i, j)
+// covers [i, i+1) × [j, j+1), its centre is (i + ½, j + ½). The time is reserved for moving
+// cameras (seconds from the exposure start); today's cameras do not move.
+struct CameraSample {
+  Vec2 raster;
+  double time = 0.0;
+};
+
+struct CameraRay {
+  Vec3 origin;     // viewpoint frame, metres
+  Vec3 direction;  // viewpoint frame, unit
+};
+
+// The raster point of sample (a, b) of pixel (i, j)'s n×n regular grid (docs/conventions.md §2):
+// the one definition of the sample grid every engine uses.
+inline Vec2 gridSample(int i, int j, int a, int b, int n) { return {i + (a + 0.5) / n, j + (b + 0.5) / n}; }
+
+class Camera {
+ public:
+  virtual ~Camera() = default;
+
+  const RigSpec& rig() const { return rig_; }
+  int width() const { return rig_.imageSize; }
+  int height() const { return rig_.imageSize; }
+  // The model's name in sidecars: "mei_unified" (central, closed form) or "physical" (traced).
+  virtual const char* model() const = 0;
+  // True when every ray leaves one point (F'), as the unified model's do.
+  virtual bool central() const = 0;
+
+  // The ray seen through a raster sample, or nullopt where the camera images nothing (beyond the
+  // mirror's rim): exactly where images() is false.
+  virtual std::optional<CameraRay> generateRay(const CameraSample& sample) const = 0;
+  // The raster point at which a viewpoint-frame point is imaged, or nullopt if it is not imaged
+  // (behind the model, or seen beyond the rim). Not clipped to the image rectangle.
+  virtual std::optional<Vec2> project(const Vec3& pointViewpoint) const = 0;
+  // True where the raster point sees the scene through the mirror (inside the rim).
+  virtual bool images(const Vec2& raster) const = 0;
+  // Fraction of pixel (i, j)'s n×n sample grid that images(): the alpha of every engine's image.
+  float coverage(int i, int j, int n) const;
+
+  // The camera model for sidecars and intrinsics files.
+  virtual nlohmann::json describe() const = 0;
+
+  // Equal cameras generate the same rays: the same model of the same rig.
+  bool operator==(const Camera& other) const {
+    return std::string_view(model()) == other.model() && rig_ == other.rig_;
+  }
+
+ protected:
+  explicit Camera(const RigSpec& rig) : rig_(rig) {}
+
+ private:
+  RigSpec rig_;
+};
+
+}  // namespace omnicam

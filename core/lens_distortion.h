@@ -1,0 +1,21 @@
+#pragma once
+// OpenCV's radial-tangential lens model (rig.h's LensDistortion) on normalised pinhole image
+// coordinates, forward in closed form and inverted exactly (Newton's method to machine
+// precision, not OpenCV's fixed five iterations of undistortPoints).
+#include <optional>
+
+#include "geometry.h"
+#include "rig.h"
+
+namespace omnicam {
+
+// Distorted normalised coordinates of undistorted ones (cv::projectPoints' formula).
+Vec2 distort(const LensDistortion& lens, const Vec2& undistorted);
+// ∂distort/∂undistorted at a point.
+Eigen::Matrix2d distortJacobian(const LensDistortion& lens, const Vec2& undistorted);
+// The undistorted point that distorts to `distorted`, found by Newton's method from the
+// distorted point itself; nullopt where the lens folds (Jacobian not positive) or the iteration
+// does not reach a root to within 1e-14 of the coordinates' size — a pixel the lens never images.
+std::optional<Vec2> undistort(const LensDistortion& lens, const Vec2& distorted);
+
+}  // namespace omnicam
