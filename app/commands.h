@@ -8,6 +8,7 @@ namespace omnicam::cli {
 void addRenderCommand(CLI::App& app);
 void addRingsCommand(CLI::App& app);
 void addProjectCommand(CLI::App& app);
+void addCameraRaysCommand(CLI::App& app);
 void addDemoCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);

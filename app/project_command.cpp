@@ -1,17 +1,22 @@
 // omnicam project SCENE --pose X,Y,YAW --point X,Y,Z [--point ...] [--size N]
+// omnicam camera-rays SCENE -o RAYS.exr [--size N]: the exact ray of every pixel centre.
 // Prints "u v" per point: continuous pixel coordinates, pixel centres at +0.5. A point the
 // mirror does not show (beyond the rim) prints "nan nan". Any rig: a physical one's reflection
 // point is solved for (physical_camera.h).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
+#include "atomic_file.h"
+#include "camera_rays.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
 #include "make_camera.h"
 #include "rig.h"
 #include "scene_loader.h"
+#include "sidecar.h"
 
 namespace omnicam::cli {
 
@@ -40,7 +45,39 @@ void runProject(const ProjectArgs& a) {
   }
 }
 
+struct CameraRaysArgs {
+  std::string scene, out;
+  int size = 0;
+  SceneLoadOptions load;
+};
+
+void runCameraRays(const CameraRaysArgs& a) {
+  checkOutputFile(a.out, "-o");
+  if (std::filesystem::path(a.out).extension() != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
+  const Scene scene = loadScene(a.scene, a.load);
+  RigSpec rig = scene.rig;
+  if (a.size) rig.imageSize = a.size;
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  writeCameraRayTable(a.out, cameraRayTable(*camera));
+  writeSidecarAtomic(a.out, {{"rig", rigToJson(rig)},
+                             {"intrinsics", camera->describe()},
+                             {"channels", kCameraRayChannels},
+                             {"frame", "viewpoint: origin F', robot axes (x forward, y left, z up); metres"},
+                             {"pixels", "each pixel centre's ray; NaN where the camera images nothing"}});
+  std::printf("wrote %s\n", a.out.c_str());
+}
+
 }  // namespace
+
+void addCameraRaysCommand(CLI::App& app) {
+  auto args = std::make_shared<CameraRaysArgs>();
+  CLI::App* cmd = app.add_subcommand("camera-rays", "Write the exact ray of every pixel centre (OpenEXR)");
+  cmd->add_option("scene", args->scene, "Scene JSON file (for its rig)")->required();
+  cmd->add_option("-o", args->out, "Output .exr (a .json sidecar is written beside it)")->required();
+  cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(8, 16384));
+  addSceneLoadFlags(*cmd, args->load);
+  cmd->callback([args] { runCameraRays(*args); });
+}
 
 void addProjectCommand(CLI::App& app) {
   auto args = std::make_shared<ProjectArgs>();

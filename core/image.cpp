@@ -305,13 +305,20 @@ class MemoryExrStream : public Imf::OStream {
 // pool), with the zip level set to 1. Deflate dominates the cost (docs/performance.md).
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
                                          const float* values, ExrPrecision precision) {
-  if (channels != 1 && channels != 3) throw std::logic_error("encodeDataExr: 1 or 3 channels");
+  if (channels == 1) return encodeDataExr(path, width, height, std::vector<std::string>{"Z"}, values, precision);
+  if (channels == 3) return encodeDataExr(path, width, height, {"X", "Y", "Z"}, values, precision);
+  throw std::logic_error("encodeDataExr: 1 or 3 channels");
+}
+
+std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height,
+                                         const std::vector<std::string>& names, const float* values,
+                                         ExrPrecision precision) {
+  const int channels = static_cast<int>(names.size());
   std::vector<unsigned char> bytes;
   try {
     Imf::Header header(width, height);
     header.compression() = Imf::ZIP_COMPRESSION;
     header.zipCompressionLevel() = 1;
-    const char* names[3] = {"X", "Y", "Z"};
     Imf::FrameBuffer frameBuffer;
     // OpenEXR stores what the frame buffer holds: half values are converted here.
     const bool half = precision == ExrPrecision::Half;
@@ -321,7 +328,7 @@ std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int
     const size_t pixelStride = (half ? sizeof(Imath::half) : sizeof(float)) * channels;
     const char* base = half ? reinterpret_cast<const char*>(halves.data()) : reinterpret_cast<const char*>(values);
     for (int c = 0; c < channels; ++c) {
-      const char* name = channels == 1 ? "Z" : names[c];
+      const char* name = names[c].c_str();
       header.channels().insert(name, Imf::Channel(type));
       frameBuffer.insert(name, Imf::Slice(type, const_cast<char*>(base) + c * (pixelStride / channels), pixelStride,
                                           pixelStride * width));
@@ -375,6 +382,26 @@ DataImage readDataExr(const std::string& path) {
   image.values.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
   if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
     throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+  return image;
+}
+
+DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names) {
+  auto input = openDataImage(path);
+  const OIIO::ImageSpec& spec = input->spec();
+  if (std::string(input->format_name()) != "openexr") throw InputError(showPath(path) + ": not an OpenEXR image");
+  std::vector<int> index;
+  for (const std::string& name : names) {
+    const auto at = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+    if (at == spec.channelnames.end()) throw InputError(showPath(path) + ": no channel " + quote(name));
+    index.push_back(static_cast<int>(at - spec.channelnames.begin()));
+  }
+  std::vector<float> all(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
+    throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+  const int channels = static_cast<int>(names.size());
+  DataImage image{spec.width, spec.height, channels, std::vector<float>(static_cast<size_t>(spec.width) * spec.height * channels)};
+  for (size_t p = 0; p < static_cast<size_t>(spec.width) * spec.height; ++p)
+    for (int c = 0; c < channels; ++c) image.values[p * channels + c] = all[p * spec.nchannels + index[c]];
   return image;
 }
 

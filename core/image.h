@@ -50,11 +50,17 @@ struct DataImage {
 enum class ExrPrecision { Float, Half };
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
                                          const float* values, ExrPrecision precision = ExrPrecision::Float);
+// The same with the channels named (OpenEXR's "layer.channel" names allowed), one per value.
+std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height,
+                                         const std::vector<std::string>& channelNames, const float* values,
+                                         ExrPrecision precision = ExrPrecision::Float);
 // A 16-bit single-channel PNG holding `values` exactly.
 std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,
                                            const std::vector<uint16_t>& values);
 // Readers for the two; InputError naming the file for anything else (wrong channel count or type).
 DataImage readDataExr(const std::string& path);
+// The named channels of any OpenEXR, in the order asked for (OpenEXR stores them sorted by name).
+DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names);
 std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height);
 
 }  // namespace omnicam

@@ -193,6 +193,10 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig};
     if (spec.size) setup.rig.imageSize = *spec.size;
+    // Intrinsics files, poses and annotations of a dataset are the central model's so far.
+    if (!setup.rig.ideal())
+      throw InputError(showPath(spec.file) + ": camera " + quote(camera.name) +
+                       ": a moved, turned or distorted camera (rig.camera) cannot be recorded in a dataset yet");
     checkRenderSettings({setup.rig, spec.spp, spec.shading}, settingNames(spec));
     setups.push_back(setup);
   }

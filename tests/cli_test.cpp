@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "image.h"
+#include "mirror.h"
 #include "scene_loader.h"
 #include "sha256.h"
 #include "shell_command.h"
@@ -365,6 +366,62 @@ TEST_F(CliTest, AllowOutsideFilesIsTheUsersExplicitChoice) {
   EXPECT_FALSE(fs::exists(path("x.png")));
   const CommandResult allowed = run("render " + scene + " --size 32 --allow-outside-files -o " + path("x.png"));
   EXPECT_EQ(allowed.code, 0) << allowed.out;
+}
+
+}  // namespace
+}  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+// The ray table of a misaligned rig, read back as a user would (OpenImageIO), checked against
+// the physics it claims: each origin on the mirror, each ray the pinhole's reflected by the
+// mirror's normal, and `project` of a point on it landing back on its pixel.
+TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {
+  const std::string scene = path("misaligned.json");
+  std::ofstream(scene) << R"({"format": "omnicam-scene/1", "materials": {"grey": {"color": 0.5}},
+    "objects": [{"type": "quad", "material": "grey", "origin": [-2, -2, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]}],
+    "rig": {"camera": {"offset_mm": [2, -1, 1], "rotation_deg": [1, 0.5, -0.5], "distortion": {"k1": -0.05, "p1": 0.001}}}})";
+  const std::string out = path("rays.exr");
+  const CommandResult r = run("camera-rays " + scene + " --size 48 -o " + out);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json sidecar = nlohmann::json::parse(std::ifstream(out + ".json"));
+  ASSERT_EQ(sidecar["intrinsics"]["model"], "physical");
+  EXPECT_TRUE(sidecar["intrinsics"]["non_central"].get<bool>());
+  const auto& p = sidecar["intrinsics"]["pinhole"]["position_m"];
+  const Vec3 pinhole(p[0], p[1], p[2]);
+  const DataImage table = readDataExrChannels(out, {"origin.X", "origin.Y", "origin.Z", "direction.X", "direction.Y", "direction.Z"});
+  ASSERT_EQ(table.width, 48);
+  const HyperbolicMirror mirror(11.546, 0.02321);
+  int imaged = 0, blank = 0;
+  for (int j = 0; j < 48; ++j)
+    for (int i = 0; i < 48; ++i) {
+      const float* v = &table.values[(static_cast<size_t>(j) * 48 + i) * 6];
+      if (std::isnan(v[0])) {
+        for (int c = 0; c < 6; ++c) ASSERT_TRUE(std::isnan(v[c]));
+        ++blank;
+        continue;
+      }
+      ++imaged;
+      const Vec3 origin(v[0], v[1], v[2]), direction(v[3], v[4], v[5]);
+      ASSERT_NEAR(direction.norm(), 1.0, 1e-6);
+      ASSERT_NEAR(mirror.implicit(origin), 0.0, 1e-4);  // float origins, metres
+      const Vec3 n = mirror.normalAt(origin.cast<double>());
+      const Vec3 incoming = (origin - pinhole).normalized();
+      ASSERT_LE((incoming - 2.0 * incoming.dot(n) * n - direction).norm(), 1e-5) << i << ", " << j;
+      if ((i * 7 + j * 3) % 97 == 0) {  // a sample through the CLI
+        const Vec3 point = origin + 1.5 * direction;
+        const CommandResult projected =
+            run("project " + scene + " --size 48 --pose=0,0,0 --point " + std::to_string(point.x()) + "," +
+                std::to_string(point.y()) + "," + std::to_string(point.z() + 0.4));
+        double u = 0, v2 = 0;
+        ASSERT_EQ(std::sscanf(projected.out.c_str(), "%lf %lf", &u, &v2), 2) << projected.out;
+        EXPECT_NEAR(u, i + 0.5, 2e-3);
+        EXPECT_NEAR(v2, j + 0.5, 2e-3);
+      }
+    }
+  EXPECT_GT(imaged, 1000);
+  EXPECT_GT(blank, 100);  // the corners beyond the rim
 }
 
 }  // namespace
