@@ -179,9 +179,12 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n on a regular grid");
   cmd->add_option("--shading", args->shading, "unlit or lit");
   cmd->add_option("--mode", args->mode, "exact, cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
-  cmd->add_option("--faces", args->faces, "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default 6)");
-  cmd->add_option("--face-size", args->faceSize, "cubemap/thesis-mesh: texels per face edge (default 512)");
-  cmd->add_option("--polygons", args->polygons, "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default 1024)");
+  cmd->add_option("--faces", args->faces, "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default 6)")
+      ->check(CLI::IsMember({5, 6}));
+  cmd->add_option("--face-size", args->faceSize, "cubemap/thesis-mesh: texels per face edge (default 512)")
+      ->check(CLI::Range(8, 8192));
+  cmd->add_option("--polygons", args->polygons, "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default 1024)")
+      ->check(CLI::IsMember({16, 64, 256, 1024}));
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
   cmd->add_option("--view", args->views,
                   "Also write this view of each image (birdseye, panorama or perspective; repeatable): "

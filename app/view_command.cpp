@@ -50,10 +50,8 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
 
 void runView(const ViewArgs& a, const CLI::App& cmd) {
   ViewSpec spec;
-  spec.kind = parseViewKind(a.as);
-  spec.variant = parseViewVariant(a.variant);
-  if (spec.kind == ViewKind::Perspective && spec.variant == ViewVariant::Thesis)
-    throw InputError("--variant: perspective views use the exact model only");
+  spec.kind = parseViewKind(a.as, "--as");
+  spec.variant = parseViewVariant(a.variant, "--variant");
   refuseUnless(cmd, "--zw", spec.kind == ViewKind::BirdsEye, "--as birdseye");
   for (const char* flag : {"--yaw", "--pitch", "--fov"}) refuseUnless(cmd, flag, spec.kind == ViewKind::Perspective, "--as perspective");
   refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "--scene");
@@ -72,6 +70,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
     if (spec.width < 1 || spec.height < 1) throw InputError("--size: width and height must be at least 1");
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
+  checkViewSpec(spec, {"--variant", "--size", "--zw", "--yaw/--pitch", "--fov"});
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   checkOutputFile(a.out, "-o");
   const ImageRGBA omni = readImage(a.in);

@@ -10,4 +10,24 @@ std::shared_ptr<const Camera> makeCamera(const RigSpec& rig, bool traced) {
   return std::make_shared<PhysicalCamera>(rig);
 }
 
+CentralModel centralModelOf(const Camera& camera) {
+  CentralModel model;
+  if (const auto* central = dynamic_cast<const CentralCamera*>(&camera)) {
+    const OpenCvIntrinsics k = central->unified().openCvIntrinsics();
+    model.intrinsics.xi = k.xi, model.intrinsics.gammaX = k.gamma_x, model.intrinsics.gammaY = k.gamma_y;
+    model.intrinsics.cx = k.cx, model.intrinsics.cy = k.cy;
+    model.rimRadiusPx = central->unified().rimRadius();
+    return model;
+  }
+  const auto& physical = dynamic_cast<const PhysicalCamera&>(camera);
+  if (const auto mei = physical.meiEquivalent()) {
+    model.intrinsics = *mei;
+    if (physical.pinhole().distortion.none()) model.rimRadiusPx = camera.rig().idealCamera().rimRadius();
+    return model;
+  }
+  model.approximation = physical.centralApproximation();
+  model.intrinsics = model.approximation->intrinsics;
+  return model;
+}
+
 }  // namespace omnicam

@@ -5,9 +5,20 @@
 #include <memory>
 
 #include "camera.h"
+#include "central_fit.h"
 
 namespace omnicam {
 
 std::shared_ptr<const Camera> makeCamera(const RigSpec& rig, bool traced = false);
+
+// The unified (Mei) model to give tools that assume one (cv::omnidir, Kalibr, camodocal): exact
+// for the ideal rig and for the aligned pinhole with a k3-free lens; otherwise the best fit.
+struct CentralModel {
+  MeiIntrinsics intrinsics;
+  // Set when the model is not exact: the fit, its camera frame and its residuals (central_fit.h).
+  std::optional<CentralApproximation> approximation;
+  std::optional<double> rimRadiusPx;  // the rim's circle about (cx, cy), where the rim is one
+};
+CentralModel centralModelOf(const Camera& camera);
 
 }  // namespace omnicam

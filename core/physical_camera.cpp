@@ -110,6 +110,31 @@ std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
   return pinhole_.raster(m);
 }
 
+std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
+  const CameraMount& mount = rig().mount;
+  if (mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} || mount.rotationDeg != std::array<double, 3>{0.0, 0.0, 0.0} ||
+      mount.distortion.k3 != 0.0)
+    return std::nullopt;
+  // The aligned pinhole's normalised coordinates are the unified model's scaled by s = γ/f with
+  // v's sign flipped (γ_y = −γ), so its lens is Mei's distortion with rescaled coefficients;
+  // cv::omnidir has no k3.
+  const OmniCamera ideal = rig().idealCamera();
+  const OpenCvIntrinsics k = ideal.openCvIntrinsics();
+  const double s = ideal.gamma() / pinhole_.focalPx;
+  const LensDistortion& l = mount.distortion;
+  MeiIntrinsics mei;
+  mei.xi = k.xi, mei.gammaX = k.gamma_x, mei.gammaY = k.gamma_y;
+  mei.cx = pinhole_.principalPoint.x() - 0.5;
+  mei.cy = pinhole_.principalPoint.y() - 0.5;
+  mei.lens = {l.k1 * s * s, l.k2 * s * s * s * s, -l.p1 * s, l.p2 * s, 0.0};
+  return mei;
+}
+
+const CentralApproximation& PhysicalCamera::centralApproximation() const {
+  std::call_once(fitOnce_, [this] { fit_ = std::make_unique<CentralApproximation>(fitCentralApproximation(*this)); });
+  return *fit_;
+}
+
 nlohmann::json PhysicalCamera::describe() const {
   const CameraMount& mount = rig().mount;
   const LensDistortion& l = mount.distortion;
@@ -132,17 +157,15 @@ nlohmann::json PhysicalCamera::describe() const {
        "each pixel's ray leaves the mirror from its own point; positions in the viewpoint frame (origin "
        "F', robot axes: x forward, y left, z up); pinhole axes x = image u, y = image v, z = optical "
        "axis; raster coordinates continuous (pixel centres at +0.5)"}};
-  if (atFocus && mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0} && l.k3 == 0.0) {
-    // The aligned pinhole's normalised coordinates are the unified model's scaled by s = γ/f with
-    // v's sign flipped (γ_y = −γ), so its lens is Mei's distortion with rescaled coefficients
-    // (docs/physical-camera.md); cv::omnidir has no k3.
-    const OmniCamera ideal = rig().idealCamera();
-    const double s = ideal.gamma() / pinhole_.focalPx;
-    nlohmann::json mei = unifiedIntrinsicsJson(ideal);
-    mei["cx"] = pinhole_.principalPoint.x() - 0.5;
-    mei["cy"] = pinhole_.principalPoint.y() - 0.5;
-    mei["distortion"] = {l.k1 * s * s, l.k2 * s * s * s * s, -l.p1 * s, l.p2 * s};
-    out["mei_equivalent"] = mei;
+  if (const auto mei = meiEquivalent()) {
+    nlohmann::json exact = unifiedIntrinsicsJson(rig().idealCamera());
+    exact["cx"] = mei->cx;
+    exact["cy"] = mei->cy;
+    exact["distortion"] = {mei->lens.k1, mei->lens.k2, mei->lens.p1, mei->lens.p2};
+    out["mei_equivalent"] = exact;
+  } else {
+    // No central model is exact here; say how close the best one comes.
+    out["central_approximation"] = toJson(centralApproximation());
   }
   return out;
 }

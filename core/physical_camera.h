@@ -8,7 +8,11 @@
 // u, y = image v, z = optical axis). The ideal pinhole is at F = (0, 0, −c) with its axes along
 // robot x, y, z; its focal length and principal point are those of the ideal rig's image, so a
 // zero mount reproduces the ideal image.
+#include <memory>
+#include <mutex>
+
 #include "camera.h"
+#include "central_fit.h"
 #include "omni_camera.h"
 
 namespace omnicam {
@@ -43,6 +47,12 @@ class PhysicalCamera final : public Camera {
   bool images(const Vec2& raster) const override { return generateRay({raster}).has_value(); }
   nlohmann::json describe() const override;
 
+  // The exact Mei model of this camera when it has one: the pinhole at F, unturned, with k3 = 0
+  // (its lens is then Mei's distortion with rescaled coefficients; docs/physical-camera.md).
+  std::optional<MeiIntrinsics> meiEquivalent() const;
+  // The best-fit central model and its residuals (central_fit.h); fitted once, on first use.
+  const CentralApproximation& centralApproximation() const;
+
   const Pinhole& pinhole() const { return pinhole_; }
   const HyperbolicMirror& mirror() const { return mirror_; }
 
@@ -52,6 +62,8 @@ class PhysicalCamera final : public Camera {
   HyperbolicMirror mirror_;
   Pinhole pinhole_;
   double rimZ_;  // the mirror ends at the rim plane z = rimZ_ (viewpoint frame)
+  mutable std::once_flag fitOnce_;
+  mutable std::unique_ptr<CentralApproximation> fit_;
 };
 
 }  // namespace omnicam

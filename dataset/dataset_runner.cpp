@@ -18,7 +18,10 @@
 #include "errors.h"
 #include "dataset_shards.h"
 #include "frame_outputs.h"
+#include "camera_rays.h"
+#include "image.h"
 #include "intrinsics_files.h"
+#include "make_camera.h"
 #include "manifest.h"
 #include "number_format.h"
 #include "pose_sampler.h"
@@ -44,6 +47,7 @@ constexpr int kConcurrentFrames = 8;
 struct CameraSetup {
   const DatasetCamera* camera;
   RigSpec rig;
+  std::shared_ptr<const Camera> model;  // the rig's camera (make_camera.h), built once per run
 };
 
 // Folders of a camera the dataset layout has (docs/dataset-format.md).
@@ -74,18 +78,26 @@ struct StaticFile {
 
 std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<RobotPose>& poses, double interval) {
   const std::string& name = setup.camera->name;
-  const OmniCamera omni = setup.rig.camera();
-  return {{"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(omni)},
-          {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, omni)},
-          {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, omni)},
-          {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval)}};
+  const Camera& camera = *setup.model;
+  std::vector<StaticFile> files = {
+      {"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(camera)},
+      {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, camera)},
+      {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, camera)},
+      {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval)}};
+  // A physical rig's exact rays, which no central model in the files above states exactly.
+  if (!setup.rig.ideal()) {
+    const CameraRayTable table = cameraRayTable(camera);
+    const std::vector<unsigned char> exr = encodeDataExr("rays.exr", table.width, table.height, kCameraRayChannels, table.values.data());
+    files.push_back({"rays", name + "/intrinsics/rays.exr", std::string(exr.begin(), exr.end())});
+  }
+  return files;
 }
 
 // Whether `relative` is a file of the dataset layout for one of `cameras`: all that overwriting
 // may remove, whatever else a manifest lists.
 bool isLayoutFile(const std::string& relative, const std::set<std::string>& cameras) {
   static const std::regex layout(
-      R"(([^/]+)/((rgb|depth|instance|semantic|normal|landmarks)/\d{6}\.(png|exr|json)|intrinsics/(opencv|kalibr|camodocal)\.yaml|poses\.tum))");
+      R"(([^/]+)/((rgb|depth|instance|semantic|normal|landmarks)/\d{6}\.(png|exr|json)|intrinsics/((opencv|kalibr|camodocal)\.yaml|rays\.exr)|poses\.tum))");
   std::smatch m;
   return std::regex_match(relative, m, layout) && cameras.count(m[1].str());
 }
@@ -191,13 +203,10 @@ void stopIfCancelled() {
 std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scene) {
   std::vector<CameraSetup> setups;
   for (const DatasetCamera& camera : spec.cameras) {
-    CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig};
+    CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
     if (spec.size) setup.rig.imageSize = *spec.size;
-    // Intrinsics files, poses and annotations of a dataset are the central model's so far.
-    if (!setup.rig.ideal())
-      throw InputError(showPath(spec.file) + ": camera " + quote(camera.name) +
-                       ": a moved, turned or distorted camera (rig.camera) cannot be recorded in a dataset yet");
     checkRenderSettings({setup.rig, spec.spp, spec.shading}, settingNames(spec));
+    setup.model = makeCamera(setup.rig);
     setups.push_back(setup);
   }
   return setups;
@@ -320,7 +329,7 @@ json manifestCameras(const std::vector<CameraSetup>& setups, const std::vector<R
     cameras.push_back({{"name", setup.camera->name},
                        {"rig", rigToJson(setup.rig)},
                        {"mount", {{"x", setup.camera->mountX}, {"y", setup.camera->mountY}, {"yaw_deg", setup.camera->mountYawDeg}}},
-                       {"intrinsics", intrinsicsToJson(setup.rig.camera())},
+                       {"intrinsics", setup.model->describe()},
                        {"files", files}});
   }
   return cameras;
@@ -440,6 +449,13 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
   const auto engine =
       makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
+  for (const CameraSetup& setup : setups) {
+    try {
+      engine->checkCamera(setup.rig);
+    } catch (const InputError& e) {
+      throw InputError(showPath(spec.file) + ": camera " + quote(setup.camera->name) + ": " + e.what());
+    }
+  }
 
   DatasetRunResult result;
   const int totalFrames = static_cast<int>(poses.size());

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "make_camera.h"
 #include "number_format.h"
 
 namespace omnicam {
@@ -24,55 +25,93 @@ std::string fileStorageText(const std::function<void(cv::FileStorage&)>& write) 
   return fs.releaseAndGetString();
 }
 
+// What the files say of a model that is not exact (one line; empty for an exact model).
+std::string approximationNote(const CentralModel& model) {
+  if (!model.approximation) return "";
+  std::ostringstream out;
+  out << "APPROXIMATE: this rig is non-central (rig.camera); this is its best-fit central model, not an "
+         "exact one. Reprojection rms / max px:";
+  for (const auto& r : model.approximation->residuals)
+    out << " " << (r.distanceM == 0.0 ? std::string("infinity") : roundTrip(r.distanceM) + " m") << " "
+        << roundTrip(r.rmsPx) << " / " << roundTrip(r.maxPx) << ";";
+  out << " the exact ray of every pixel is in rays.exr.";
+  return out.str();
+}
+
+std::string distortionText(const LensDistortion& l) {
+  return "[" + roundTrip(l.k1) + ", " + roundTrip(l.k2) + ", " + roundTrip(l.p1) + ", " + roundTrip(l.p2) + "]";
+}
+
 }  // namespace
 
-std::string openCvIntrinsicsYaml(const OmniCamera& camera) {
-  const OpenCvIntrinsics k = camera.openCvIntrinsics();
+std::string openCvIntrinsicsYaml(const Camera& camera) {
+  const CentralModel model = centralModelOf(camera);
+  const MeiIntrinsics& k = model.intrinsics;
   return fileStorageText([&](cv::FileStorage& fs) {
     fs.writeComment("cv::omnidir (Mei unified model) intrinsics written by omnicam: load with cv::FileStorage, "
                     "use with cv::omnidir::projectPoints / undistortImage.");
     fs.writeComment(kSignNote);
+    if (model.approximation)
+      fs.writeComment(approximationNote(model) +
+                      " The fitted camera frame: camera_from_rig_R, camera_from_rig_t map a point of the rig's "
+                      "camera frame (poses.tum) into it.");
     fs << "camera_model" << "omnidir";
+    fs << "exact" << static_cast<int>(!model.approximation);
     fs << "image_width" << camera.width() << "image_height" << camera.height();
-    fs << "K" << (cv::Mat_<double>(3, 3) << k.gamma_x, 0.0, k.cx, 0.0, k.gamma_y, k.cy, 0.0, 0.0, 1.0);
+    fs << "K" << (cv::Mat_<double>(3, 3) << k.gammaX, 0.0, k.cx, 0.0, k.gammaY, k.cy, 0.0, 0.0, 1.0);
     fs << "xi" << k.xi;
-    fs << "D" << cv::Mat_<double>(1, 4, 0.0);
-    fs << "rim_radius_px" << camera.rimRadius();
+    fs << "D" << (cv::Mat_<double>(1, 4) << k.lens.k1, k.lens.k2, k.lens.p1, k.lens.p2);
+    if (model.rimRadiusPx) fs << "rim_radius_px" << *model.rimRadiusPx;
+    if (model.approximation) {
+      // The rig's camera frame is cameraFromViewpoint() applied to the viewpoint frame.
+      const Rigid fromRig = model.approximation->cameraFromViewpoint * cameraFromViewpoint().inverse();
+      cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F);
+      for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 3; ++col) r.at<double>(row, col) = fromRig.linear()(row, col);
+        t.at<double>(row) = fromRig.translation()[row];
+      }
+      fs << "camera_from_rig_R" << r << "camera_from_rig_t" << t;
+    }
   });
 }
 
-std::string camodocalIntrinsicsYaml(const std::string& name, const OmniCamera& camera) {
-  const OpenCvIntrinsics k = camera.openCvIntrinsics();
+std::string camodocalIntrinsicsYaml(const std::string& name, const Camera& camera) {
+  const CentralModel model = centralModelOf(camera);
+  const MeiIntrinsics& k = model.intrinsics;
   return fileStorageText([&](cv::FileStorage& fs) {
     fs.writeComment("camodocal MEI camera written by omnicam (CameraFactory::generateCameraFromYamlFile).");
     fs.writeComment(kSignNote);
+    if (model.approximation) fs.writeComment(approximationNote(model));
     fs << "model_type" << "MEI" << "camera_name" << name;
     fs << "image_width" << camera.width() << "image_height" << camera.height();
     fs << "mirror_parameters" << "{" << "xi" << k.xi << "}";
-    fs << "distortion_parameters" << "{" << "k1" << 0.0 << "k2" << 0.0 << "p1" << 0.0 << "p2" << 0.0 << "}";
-    fs << "projection_parameters" << "{" << "gamma1" << k.gamma_x << "gamma2" << k.gamma_y << "u0" << k.cx
+    fs << "distortion_parameters" << "{" << "k1" << k.lens.k1 << "k2" << k.lens.k2 << "p1" << k.lens.p1 << "p2"
+       << k.lens.p2 << "}";
+    fs << "projection_parameters" << "{" << "gamma1" << k.gammaX << "gamma2" << k.gammaY << "u0" << k.cx
        << "v0" << k.cy << "}";
   });
 }
 
-std::string kalibrIntrinsicsYaml(const std::string& name, const OmniCamera& camera) {
-  const OpenCvIntrinsics k = camera.openCvIntrinsics();
+std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera) {
+  const CentralModel model = centralModelOf(camera);
+  const MeiIntrinsics& k = model.intrinsics;
   std::ostringstream out;
   out << "# Kalibr camchain entry written by omnicam: camera_model omni (Mei unified model),\n"
-      << "# intrinsics [xi, fu, fv, pu, pv], radtan distortion (none).\n"
-      << "# " << kSignNote << "\n"
-      << "cam0:\n"
+      << "# intrinsics [xi, fu, fv, pu, pv], radtan distortion [k1, k2, p1, p2].\n"
+      << "# " << kSignNote << "\n";
+  if (model.approximation) out << "# " << approximationNote(model) << "\n";
+  out << "cam0:\n"
       << "  camera_model: omni\n"
-      << "  intrinsics: [" << roundTrip(k.xi) << ", " << roundTrip(k.gamma_x) << ", " << roundTrip(k.gamma_y) << ", "
+      << "  intrinsics: [" << roundTrip(k.xi) << ", " << roundTrip(k.gammaX) << ", " << roundTrip(k.gammaY) << ", "
       << roundTrip(k.cx) << ", " << roundTrip(k.cy) << "]\n"
       << "  distortion_model: radtan\n"
-      << "  distortion_coeffs: [0.0, 0.0, 0.0, 0.0]\n"
+      << "  distortion_coeffs: " << distortionText(k.lens) << "\n"
       << "  resolution: [" << camera.width() << ", " << camera.height() << "]\n"
       << "  rostopic: /omnicam/" << name << "/image_raw\n";
   return out.str();
 }
 
-void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const OmniCamera& camera) {
+void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const Camera& camera) {
   const std::filesystem::path folder(dir);
   writeTextAtomically((folder / "opencv.yaml").string(), openCvIntrinsicsYaml(camera));
   writeTextAtomically((folder / "kalibr.yaml").string(), kalibrIntrinsicsYaml(name, camera));

@@ -4,19 +4,24 @@
 // the same unified (Mei) model as the sidecar's "intrinsics", in OpenCV's pixel convention
 // (centres at integers: cx = W/2 − 0.5), with γ_y < 0: the catadioptric image is a mirror image,
 // so a right-handed camera frame (X forward, Y right, Z down at F') needs one axis flipped.
+//
+// A physical rig's files hold the exact Mei model where it has one (make_camera.h's
+// centralModelOf); a non-central rig's hold the best-fit central model, marked approximate in a
+// comment with its residuals, and its fitted camera frame (OpenCV's file only: there is no field
+// for it in the other two). The exact rays are in the camera's rays.exr.
 #include <string>
 
-#include "omni_camera.h"
+#include "camera.h"
 
 namespace omnicam {
 
 // Writes DIR/opencv.yaml, DIR/kalibr.yaml and DIR/camodocal.yaml (each atomically) for a
 // camera called `name`.
-void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const OmniCamera& camera);
+void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const Camera& camera);
 
 // The files' texts, for writing and for tests.
-std::string openCvIntrinsicsYaml(const OmniCamera& camera);
-std::string kalibrIntrinsicsYaml(const std::string& name, const OmniCamera& camera);
-std::string camodocalIntrinsicsYaml(const std::string& name, const OmniCamera& camera);
+std::string openCvIntrinsicsYaml(const Camera& camera);
+std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera);
+std::string camodocalIntrinsicsYaml(const std::string& name, const Camera& camera);
 
 }  // namespace omnicam

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "make_camera.h"
+
 namespace omnicam {
 
 namespace {
@@ -16,15 +18,25 @@ const double kFacingHeights[] = {-0.4, 0.0, 0.4};  // × the band's height, abou
 
 std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayScene& rays, const RigSpec& rig,
                                                   const RobotPose& pose) {
-  const OmniCamera camera = rig.camera();
-  const Rigid cameraFromWorld_ = cameraFromWorld(rig, pose);
-  const Vec3 viewpoint = worldFromCamera(rig, pose).translation();
-  // Is world point p imaged with nothing in front of it?
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  const Rigid worldFromView = worldFromViewpoint(rig, pose);
+  const Rigid viewpointFromWorld = worldFromView.inverse();
+  const Vec3 viewpoint = worldFromView.translation();
+  auto rasterOf = [&](const Vec3& p) { return camera->project(viewpointFromWorld * p); };
+  // Is world point p imaged with nothing in front of it? Seen from where its ray leaves the mirror:
+  // F' for the central model, its own mirror point for a non-central rig.
   auto seen = [&](const Vec3& p) {
-    if (!camera.rasterFromCamera(cameraFromWorld_ * p)) return false;
-    const Vec3 toPoint = p - viewpoint;
+    const auto raster = rasterOf(p);
+    if (!raster) return false;
+    Vec3 from = viewpoint;
+    if (!camera->central()) {
+      const auto ray = camera->generateRay({*raster});
+      if (!ray) return false;
+      from = worldFromView * ray->origin;
+    }
+    const Vec3 toPoint = p - from;
     const double distance = toPoint.norm();
-    return distance <= kSurfaceGap || !rays.occluded(viewpoint, toPoint / distance, 0.0, distance - kSurfaceGap);
+    return distance <= kSurfaceGap || !rays.occluded(from, toPoint / distance, 0.0, distance - kSurfaceGap);
   };
   std::vector<LandmarkAnnotation> result;
   for (const Landmark& lm : scene.landmarks) {
@@ -36,7 +48,7 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
     toCamera = a.rangeM > 1e-9 ? Vec2(toCamera / a.rangeM) : Vec2(1.0, 0.0);
     const double bearingWorld = std::atan2(lm.position.y() - viewpoint.y(), lm.position.x() - viewpoint.x());
     a.bearingDeg = std::remainder(degrees(bearingWorld) - pose.yawDeg, 360.0);
-    a.centre = camera.rasterFromCamera(cameraFromWorld_ * lm.position);
+    a.centre = rasterOf(lm.position);
 
     int seenCount = 0, total = 0;
     for (double angleDeg : kFacingAnglesDeg)
@@ -58,12 +70,12 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
         const double angle = 2.0 * kPi * k / kOutlinePoints;
         const Vec3 p = lm.position + Vec3(radius * std::cos(angle), radius * std::sin(angle),
                                           (ring == 0 ? -0.5 : 0.5) * lm.height);
-        if (const auto raster = camera.rasterFromCamera(cameraFromWorld_ * p)) box.extend(*raster);
+        if (const auto raster = rasterOf(p)) box.extend(*raster);
       }
     if (!box.isEmpty()) {
       a.bbox = std::array<double, 4>{std::max(0.0, box.min().x()), std::max(0.0, box.min().y()),
-                                     std::min<double>(camera.width(), box.max().x()),
-                                     std::min<double>(camera.height(), box.max().y())};
+                                     std::min<double>(camera->width(), box.max().x()),
+                                     std::min<double>(camera->height(), box.max().y())};
     }
     result.push_back(a);
   }

@@ -88,17 +88,21 @@ void writeMesh(std::ostringstream& out, const TriangleMesh& mesh, bool withUv, c
 
 }  // namespace
 
+void checkPovrayCamera(const RigSpec& rig) {
+  if (!rig.mount.distortion.none())
+    throw InputError("rig.camera.distortion: POV-Ray has no lens distortion; render it with the fast renderer");
+}
+
 PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings) {
   checkRenderSettings(settings);
-  checkPose(pose, "--pose");
+  checkPose(pose, "pose");
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;
   job.samplesPerAxis = *n;
   // The physical camera as built (physical_camera.h), and the ideal rig's image it is framed for.
   const OmniCamera camera = settings.rig.idealCamera();
+  checkPovrayCamera(settings.rig);
   const Pinhole pinhole = pinholeOf(settings.rig);
-  if (!pinhole.distortion.none())
-    throw InputError("rig.camera.distortion: POV-Ray has no lens distortion; render it with the fast renderer");
   job.width = camera.width() * *n;
   job.height = camera.height() * *n;
   const HyperbolicMirror& mirror = camera.mirror();

@@ -36,6 +36,8 @@ constexpr double kPovrayUnitsPerMetre = 1000.0;
 
 // Throws InputError for what the export cannot represent (e.g. a texture on a sphere).
 PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings);
+// InputError unless POV-Ray can render the rig's camera (it has no lens distortion).
+void checkPovrayCamera(const RigSpec& rig);
 
 // Writes scene.pov, the textures and render.ini into `dir` (which must exist).
 // `threads` > 0 caps POV-Ray's render threads (Work_Threads); 0 leaves POV-Ray's default, one per

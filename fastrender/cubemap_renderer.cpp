@@ -126,18 +126,22 @@ bool hitTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, con
 
 }  // namespace
 
-std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,
-                                                                       const CubeMapOptions& o) const {
-  if (o.faces != 5 && o.faces != 6) throw InputError("--faces: must be 5 or 6 (got " + std::to_string(o.faces) + ")");
-  if (o.faceSize < 8 || o.faceSize > 8192) throw InputError("--face-size: must be in [8, 8192]");
-  int sectors = 0, rings = 0;
-  if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
-    throw InputError("--polygons: must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
-  checkRenderSettings(settings);
-  if (!settings.rig.ideal())
+void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& o) {
+  if (!rig.ideal())
     throw InputError(std::string(o.mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cube-map") +
                      " mode is central by construction and renders the ideal rig only; this rig's camera "
                      "(rig.camera) is moved, turned or distorted: render it in exact mode");
+}
+
+std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,
+                                                                       const CubeMapOptions& o) const {
+  if (o.faces != 5 && o.faces != 6) throw InputError("cube map: faces must be 5 or 6 (got " + std::to_string(o.faces) + ")");
+  if (o.faceSize < 8 || o.faceSize > 8192) throw InputError("cube map: face size must be in [8, 8192] texels");
+  int sectors = 0, rings = 0;
+  if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
+    throw InputError("thesis mesh: polygons must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+  checkRenderSettings(settings);
+  checkCubeMapCamera(settings.rig, o);
   const auto n = samplesPerAxis(settings.spp);
   std::lock_guard<std::mutex> lock(mutex_);
   const RigSpec& r = settings.rig;
@@ -300,7 +304,7 @@ ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& s
 void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options,
                              ImageRGBA& image) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
-  checkPose(pose, "--pose");
+  checkPose(pose, "pose");
   const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
   const Vec3 origin = worldFromViewpoint.translation();
   const Eigen::Matrix3d rotation = worldFromViewpoint.linear();

@@ -39,6 +39,10 @@ struct CubeLookupStats {
   long texelsRendered = 0;
 };
 
+// InputError unless the cube-map / thesis-mesh mode can render the rig's camera: they are
+// central by construction, so the ideal rig only.
+void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& options);
+
 class CubeMapRenderer {
  public:
   explicit CubeMapRenderer(const FastRenderer& renderer);

@@ -211,7 +211,7 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   RenderSettings centreOnly = settings;
   centreOnly.spp = 1;
   checkRenderSettings(centreOnly);
-  checkPose(pose, "--pose");
+  checkPose(pose, "pose");
   prepareAovs(settings, aovs);
   const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);
   const Placement at = placement(settings, pose);
@@ -244,7 +244,7 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
 
 ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const {
   checkRenderSettings(settings);
-  checkPose(pose, "--pose");
+  checkPose(pose, "pose");
   const auto n = samplesPerAxis(settings.spp);
   const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);
   const int width = settings.rig.imageSize, height = settings.rig.imageSize;

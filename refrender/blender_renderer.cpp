@@ -113,6 +113,11 @@ std::string blenderVersion(const std::string& executable) {
   return at == std::string::npos ? "blender" : tail.substr(at, tail.find('\n', at) - at);
 }
 
+void checkBlenderCamera(const RigSpec& rig) {
+  if (!rig.ideal())
+    throw InputError("Blender renders the ideal rig only: a moved, turned or distorted camera (rig.camera) is not exported to it yet");
+}
+
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options) {
   if (poses.empty()) return {};
@@ -121,9 +126,8 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   if (tracing.diffuseBounces < 0 || tracing.diffuseBounces > 16 || tracing.glossyBounces < 1 ||
       tracing.glossyBounces > 16 || !(tracing.clampIndirect >= 0.0 && tracing.clampIndirect < 1e6))
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
-  for (const RobotPose& pose : poses) checkPose(pose, "--pose");
-  if (!settings.rig.ideal())
-    throw InputError("Blender renders the ideal rig only: a moved, turned or distorted camera (rig.camera) is not exported to it yet");
+  for (const RobotPose& pose : poses) checkPose(pose, "pose");
+  checkBlenderCamera(settings.rig);
   const OmniCamera camera = settings.rig.camera();
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = tracing.filterIndirect && settings.shading == Shading::Lit;

@@ -44,6 +44,8 @@ struct BlenderOptions {
 
 // Renders every pose in one Blender session. Throws ExternalError (missing blender, failure,
 // timeout: with the tail of its output).
+// InputError unless the Blender export can render the rig's camera (the ideal rig only, so far).
+void checkBlenderCamera(const RigSpec& rig);
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 

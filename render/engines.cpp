@@ -6,6 +6,7 @@
 #include "blender_renderer.h"
 #include "errors.h"
 #include "fast_renderer.h"
+#include "povray_exporter.h"
 #include "povray_renderer.h"
 
 namespace omnicam {
@@ -41,6 +42,9 @@ class FastEngine : public Engine {
     renderer_.renderAovsOnly(pose, settings, aovs);
     return cubemap_.render(pose, settings, *mode_);
   }
+  void checkCamera(const RigSpec& rig) const override {
+    if (mode_) checkCubeMapCamera(rig, *mode_);
+  }
   std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }
   std::string mode() const override {
@@ -71,6 +75,7 @@ class PovrayEngine : public Engine {
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     return renderWithPovray(scene_, pose, settings, options_);
   }
+  void checkCamera(const RigSpec& rig) const override { checkPovrayCamera(rig); }
   std::string name() const override { return "povray"; }
   std::string version() const override {
     if (version_.empty()) version_ = povrayVersion(options_.executable);
@@ -97,6 +102,7 @@ class BlenderEngine : public Engine {
     return renderWithBlender(scene_, poses, settings, options_);
   }
   bool batches() const override { return true; }
+  void checkCamera(const RigSpec& rig) const override { checkBlenderCamera(rig); }
   std::string name() const override { return "blender"; }
   std::string version() const override {
     if (version_.empty()) version_ = blenderVersion(options_.executable) + " Cycles (CPU)";

@@ -33,6 +33,10 @@ class Engine {
   // fast engine has it; ground truths write RGB only.
   virtual bool hasAovs() const { return false; }
   virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs);
+  // InputError unless this engine renders the rig's camera (a moved, turned or distorted one
+  // needs an engine that models it; docs/physical-camera.md's table). Every render checks it too;
+  // callers that write files first (datasets) ask before.
+  virtual void checkCamera(const RigSpec& rig) const = 0;
   virtual std::string name() const = 0;
   virtual std::string version() const = 0;
   // The rendering mode and its options, as sidecars and manifests record them.

@@ -19,7 +19,9 @@
 #include <thread>
 
 #include "hold_point.h"
+#include "camera_rays.h"
 #include "image.h"
+#include "mirror.h"
 #include "opencv_omnidir.h"
 #include "rig.h"
 #include "shell_command.h"
@@ -158,6 +160,67 @@ TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
     }
   EXPECT_GT(floorPixels, 1000);  // below the horizon: a disc of radius γ/ξ ≈ 19.6 px
   EXPECT_GT(skyPixels, 100);  // the rim is 45° above the horizon: the sky is in view too
+}
+
+// A physical rig (pinhole 2 mm off F and turned 1°) in a dataset: its rays.exr holds rays that
+// leave the mirror surface by the reflection law from the pinhole the manifest states, and its
+// depth is the closed-form distance from that mirror point to the floor along the ray. The
+// intrinsics files give the best-fit central model, marked approximate.
+TEST_F(DatasetCliTest, APhysicalRigsRaysAndDepthAreExact) {
+  write("floor.json", R"({"format": "omnicam-scene/1", "rig": {"height": 0.5},
+    "materials": {"carpet": {"color": [0.2, 0.6, 0.2], "class": "floor"}},
+    "objects": [{"type": "quad", "name": "floor", "material": "carpet",
+                 "origin": [-50, -50, 0], "edge_u": [100, 0, 0], "edge_v": [0, 100, 0]}]})");
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 96,
+    "poses": {"list": [[0.3, -0.2, 40]]}, "outputs": {"normal": false},
+    "cameras": [{"name": "bent", "rig": {"height": 0.5, "camera": {"offset_mm": [2, -1, 1], "rotation_deg": [1, -0.5, 0.5]}}}]})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json manifest = json::parse(readFile(dir_ / "ds/manifest.json"));
+  const json& intrinsics = manifest["cameras"][0]["intrinsics"];
+  ASSERT_EQ(intrinsics["model"], "physical");
+  EXPECT_TRUE(intrinsics["non_central"].get<bool>());
+  EXPECT_EQ(intrinsics["central_approximation"]["residual_px"].size(), 5u);
+  EXPECT_TRUE(manifest["cameras"][0]["files"].contains("rays"));
+  cv::FileStorage fs(path("ds/bent/intrinsics/opencv.yaml"), cv::FileStorage::READ);
+  ASSERT_TRUE(fs.isOpened());
+  EXPECT_EQ(static_cast<int>(fs["exact"]), 0);
+
+  const DataImage rays = readDataExrChannels(path("ds/bent/intrinsics/rays.exr"), kCameraRayChannels);
+  const DataImage depth = readDataExr(path("ds/bent/depth/000000.exr"));
+  ASSERT_EQ(rays.width, 96);
+  ASSERT_EQ(depth.width, 96);
+  const json& p = intrinsics["pinhole"]["position_m"];
+  const Vec3 pinhole(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
+  RigSpec rig;
+  rig.height = 0.5;
+  const HyperbolicMirror mirror = rig.mirror();
+  const Rigid worldFromView = worldFromViewpoint(rig, {0.3, -0.2, 40});
+  int floorPixels = 0, imaged = 0;
+  double worstSurface = 0.0, worstReflection = 0.0;
+  for (size_t i = 0; i < static_cast<size_t>(96 * 96); ++i) {
+    const float* r = &rays.values[6 * i];
+    if (std::isnan(r[0])) {
+      EXPECT_EQ(depth.values[i], 0.0f);
+      continue;
+    }
+    ++imaged;
+    const Vec3 origin(r[0], r[1], r[2]), direction(r[3], r[4], r[5]);
+    worstSurface = std::max(worstSurface, std::abs(mirror.implicit(origin)));
+    // The law of reflection at the mirror point, from the stated pinhole.
+    const Vec3 in = (origin - pinhole).normalized();
+    const Vec3 n = mirror.normalAt(origin);
+    worstReflection = std::max(worstReflection, (in - 2.0 * in.dot(n) * n - direction).norm());
+    const Vec3 o = worldFromView * origin, d = worldFromView.linear() * direction;
+    if (!(d.z() < -0.05)) continue;  // rays that meet the floor well inside its 50 m
+    ++floorPixels;
+    const double expected = o.z() / -d.z();
+    EXPECT_NEAR(depth.values[i], expected, 1e-5 * expected) << i;
+  }
+  EXPECT_GT(imaged, 5000);
+  EXPECT_GT(floorPixels, 300);
+  EXPECT_LE(worstSurface, 1e-6);     // float32 coordinates of a surface a few cm across
+  EXPECT_LE(worstReflection, 1e-6);  // float32 unit vectors
 }
 
 TEST_F(DatasetCliTest, OpenCvReadsTheIntrinsicsAndPosesAndReproducesProject) {

@@ -49,36 +49,43 @@ nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map) {
   return j;
 }
 
-ViewKind parseViewKind(const std::string& name, const std::string& option) {
+ViewKind parseViewKind(const std::string& name, const std::string& what) {
   if (name == "birdseye") return ViewKind::BirdsEye;
   if (name == "panorama") return ViewKind::Panorama;
   if (name == "perspective") return ViewKind::Perspective;
-  throw InputError(option + ": must be birdseye, panorama or perspective (got " + quote(name) + ")");
+  throw InputError(what + ": must be birdseye, panorama or perspective (got " + quote(name) + ")");
 }
 
-ViewVariant parseViewVariant(const std::string& name) {
+ViewVariant parseViewVariant(const std::string& name, const std::string& what) {
   if (name == "thesis") return ViewVariant::Thesis;
   if (name == "exact") return ViewVariant::Exact;
-  throw InputError("--variant: must be thesis or exact (got " + quote(name) + ")");
+  throw InputError(what + ": must be thesis or exact (got " + quote(name) + ")");
+}
+
+void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names) {
+  if (spec.kind == ViewKind::Perspective && spec.variant == ViewVariant::Thesis)
+    throw InputError(names.variant + ": perspective views use the exact model only");
+  const auto tooBig = [](int64_t w, int64_t h) {
+    return w < 0 || h < 0 || w > limits::kMaxImageDimension || h > limits::kMaxImageDimension || w * h > limits::kMaxImagePixels;
+  };
+  if (tooBig(spec.width, spec.height))
+    throw InputError(names.size + ": each side must be in [1, " + std::to_string(limits::kMaxImageDimension) +
+                     "], and at most " + std::to_string(limits::kMaxImagePixels) + " pixels in all");
+  if (spec.kind == ViewKind::BirdsEye && !(spec.groundDistance > 0.0 && spec.groundDistance < 1e6))
+    throw InputError(names.groundDistance + ": must be in (0, 1e6)");
+  if (spec.kind == ViewKind::Perspective && !(std::isfinite(spec.yawDeg) && std::isfinite(spec.pitchDeg)))
+    throw InputError(names.angles + ": must be finite");
+  if (spec.kind == ViewKind::Perspective && !(spec.fovDeg > 0.0 && spec.fovDeg < 179.0))
+    throw InputError(names.fov + ": must be in (0, 179) degrees");
 }
 
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
+  checkViewSpec(spec);
   ViewMap map;
   const int defaultW = spec.kind == ViewKind::Panorama ? 1080 : 400;
   const int defaultH = spec.kind == ViewKind::Panorama ? 300 : spec.kind == ViewKind::Perspective ? 300 : 400;
   map.width = spec.width ? spec.width : defaultW;
   map.height = spec.height ? spec.height : defaultH;
-  if (map.width < 1 || map.height < 1 || map.width > limits::kMaxImageDimension ||
-      map.height > limits::kMaxImageDimension ||
-      static_cast<int64_t>(map.width) * map.height > limits::kMaxImagePixels)
-    throw InputError("--size: each side must be in [1, " + std::to_string(limits::kMaxImageDimension) + "], and at most " +
-                     std::to_string(limits::kMaxImagePixels) + " pixels in all");
-  if (spec.kind == ViewKind::BirdsEye && !(spec.groundDistance > 0.0 && spec.groundDistance < 1e6))
-    throw InputError("--zw: must be in (0, 1e6)");
-  if (spec.kind == ViewKind::Perspective && !(std::isfinite(spec.yawDeg) && std::isfinite(spec.pitchDeg)))
-    throw InputError("--yaw/--pitch: must be finite");
-  if (spec.kind == ViewKind::Perspective && !(spec.fovDeg > 0.0 && spec.fovDeg < 179.0))
-    throw InputError("--fov: must be in (0, 179) degrees");
   map.sourceX.assign(static_cast<size_t>(map.width) * map.height, kNone);
   map.sourceY = map.sourceX;
   const double tanHalf = std::tan(radians(spec.fovDeg) / 2.0);

@@ -44,6 +44,15 @@ struct ViewMap {
   std::vector<Tap> taps;
 };
 
+// How messages name a view's parameters: the library's own words by default; the CLI passes its
+// flags (as render_settings.h's SettingNames does for spp and the image size).
+struct ViewSpecNames {
+  std::string variant = "view variant", size = "view size", groundDistance = "view ground distance z_w",
+              angles = "view yaw and pitch", fov = "view field of view";
+};
+// InputError (naming the parameter as `names` says) unless the view is well defined and within
+// the documented size limits. buildViewMap calls it first.
+void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names = {});
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
 // Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
 // camera the map was built for.
@@ -55,7 +64,8 @@ void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map);
 const char* viewKindName(ViewKind kind);
 
-ViewKind parseViewKind(const std::string& name, const std::string& option = "--as");  // InputError naming option
-ViewVariant parseViewVariant(const std::string& name);  // InputError naming --variant
+// InputError naming `what` for a name that is none of the kinds / variants.
+ViewKind parseViewKind(const std::string& name, const std::string& what = "view kind");
+ViewVariant parseViewVariant(const std::string& name, const std::string& what = "view variant");
 
 }  // namespace omnicam

@@ -1,0 +1,177 @@
+#include "central_fit.h"
+
+#include <unsupported/Eigen/NonLinearOptimization>
+#include <unsupported/Eigen/NumericalDiff>
+#include <cmath>
+#include <stdexcept>
+
+#include "lens_distortion.h"
+
+namespace omnicam {
+
+std::optional<Vec2> MeiIntrinsics::raster(const Vec3& pointCamera) const {
+  const double n = pointCamera.norm();
+  if (!(n > 0.0)) return std::nullopt;
+  const Vec3 s = pointCamera / n;
+  const double denom = s.z() + xi;
+  if (!(denom > 0.0)) return std::nullopt;
+  const Vec2 d = distort(lens, Vec2(s.x() / denom, s.y() / denom));
+  return Vec2(gammaX * d.x() + cx + 0.5, gammaY * d.y() + cy + 0.5);
+}
+
+namespace {
+
+struct GridRay {
+  Vec2 raster;
+  CameraRay ray;
+};
+
+std::vector<GridRay> gridRays(const Camera& camera, int gridSize) {
+  const int strideX = std::max(1, camera.width() / gridSize), strideY = std::max(1, camera.height() / gridSize);
+  std::vector<GridRay> rays;
+  for (int j = strideY / 2; j < camera.height(); j += strideY)
+    for (int i = strideX / 2; i < camera.width(); i += strideX) {
+      const Vec2 centre(i + 0.5, j + 0.5);
+      if (const auto ray = camera.generateRay({centre})) rays.push_back({centre, *ray});
+    }
+  return rays;
+}
+
+// The point nearest all rays: argmin Σ |(I − d dᵀ)(x − o)|², a 3×3 linear system.
+Vec3 nearestPointToRays(const std::vector<GridRay>& rays) {
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Vec3 b = Vec3::Zero();
+  for (const GridRay& g : rays) {
+    const Eigen::Matrix3d p = Eigen::Matrix3d::Identity() - g.ray.direction * g.ray.direction.transpose();
+    a += p;
+    b += p * g.ray.origin;
+  }
+  return a.ldlt().solve(b);
+}
+
+// Parameters: ξ, γx, γy, cx, cy, k1, k2, p1, p2, rotation vector (3).
+constexpr int kParameters = 12;
+
+MeiIntrinsics intrinsicsOf(const Eigen::VectorXd& x) {
+  MeiIntrinsics k;
+  k.xi = x[0], k.gammaX = x[1], k.gammaY = x[2], k.cx = x[3], k.cy = x[4];
+  k.lens.k1 = x[5], k.lens.k2 = x[6], k.lens.p1 = x[7], k.lens.p2 = x[8];
+  return k;
+}
+
+Eigen::Matrix3d rotationOf(const Vec3& rotationVector) {
+  const double angle = rotationVector.norm();
+  if (angle == 0.0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, rotationVector / angle).toRotationMatrix();
+}
+
+// Reprojection residuals of every ray's direction (a point at infinity) for Eigen's
+// Levenberg–Marquardt. A direction behind the model costs a fixed large residual.
+struct DirectionResiduals {
+  using Scalar = double;
+  using InputType = Eigen::VectorXd;
+  using ValueType = Eigen::VectorXd;
+  using JacobianType = Eigen::MatrixXd;
+  enum { InputsAtCompileTime = Eigen::Dynamic, ValuesAtCompileTime = Eigen::Dynamic };
+
+  const std::vector<GridRay>* rays = nullptr;
+  Eigen::Matrix3d idealCameraFromViewpoint;
+
+  int inputs() const { return kParameters; }
+  int values() const { return 2 * static_cast<int>(rays->size()); }
+  int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& residual) const {
+    const MeiIntrinsics k = intrinsicsOf(x);
+    const Eigen::Matrix3d r = rotationOf(x.segment<3>(9)) * idealCameraFromViewpoint;
+    for (size_t n = 0; n < rays->size(); ++n) {
+      const GridRay& g = (*rays)[n];
+      const auto p = k.raster(r * g.ray.direction);
+      residual.segment<2>(2 * static_cast<Eigen::Index>(n)) = p ? Vec2(*p - g.raster) : Vec2(1e3, 1e3);
+    }
+    return 0;
+  }
+};
+
+CentralApproximation::Residual residualAt(const CentralApproximation& fit, const std::vector<GridRay>& rays, double distance) {
+  CentralApproximation::Residual r;
+  r.distanceM = distance;
+  double sumSquares = 0.0;
+  for (const GridRay& g : rays) {
+    // The point of the ray at `distance` from the fitted viewpoint (the ray starts within it).
+    const Vec3 fromViewpoint = g.ray.origin - fit.viewpoint;
+    const double b = g.ray.direction.dot(fromViewpoint);
+    const double t = -b + std::sqrt(std::max(0.0, b * b - (fromViewpoint.squaredNorm() - distance * distance)));
+    const auto p = fit.raster(g.ray.origin + t * g.ray.direction);
+    const double error = p ? (*p - g.raster).norm() : std::numeric_limits<double>::infinity();
+    sumSquares += error * error;
+    r.maxPx = std::max(r.maxPx, error);
+  }
+  r.rmsPx = std::sqrt(sumSquares / static_cast<double>(rays.size()));
+  return r;
+}
+
+}  // namespace
+
+CentralApproximation fitCentralApproximation(const Camera& camera, const std::vector<double>& distancesM, int gridSize) {
+  const std::vector<GridRay> rays = gridRays(camera, gridSize);
+  if (rays.empty()) throw std::runtime_error("central fit: the camera images no pixel of the grid");
+  CentralApproximation fit;
+  fit.rays = static_cast<int>(rays.size());
+  fit.viewpoint = nearestPointToRays(rays);
+
+  // Start from the ideal rig's unified model, which the fit refines.
+  const OpenCvIntrinsics ideal = camera.rig().idealCamera().openCvIntrinsics();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(kParameters);
+  x[0] = ideal.xi, x[1] = ideal.gamma_x, x[2] = ideal.gamma_y, x[3] = ideal.cx, x[4] = ideal.cy;
+  DirectionResiduals residuals;
+  residuals.rays = &rays;
+  residuals.idealCameraFromViewpoint = omnicam::cameraFromViewpoint().linear();
+  Eigen::NumericalDiff<DirectionResiduals, Eigen::Central> differentiated(residuals);
+  Eigen::LevenbergMarquardt<Eigen::NumericalDiff<DirectionResiduals, Eigen::Central>> solver(differentiated);
+  solver.parameters.maxfev = 2000;
+  solver.parameters.xtol = 1e-15;
+  solver.parameters.ftol = 1e-15;
+  solver.minimize(x);
+
+  fit.intrinsics = intrinsicsOf(x);
+  fit.rotationVector = x.segment<3>(9);
+  const Eigen::Matrix3d cameraFromViewpointRotation = rotationOf(fit.rotationVector) * residuals.idealCameraFromViewpoint;
+  fit.cameraFromViewpoint.linear() = cameraFromViewpointRotation;
+  fit.cameraFromViewpoint.translation() = -(cameraFromViewpointRotation * fit.viewpoint);
+
+  // At infinity the model sees directions from anywhere: measure the fit itself.
+  CentralApproximation atInfinity = fit;
+  atInfinity.cameraFromViewpoint.translation().setZero();
+  CentralApproximation::Residual r = residualAt(atInfinity, rays, 1e12);
+  r.distanceM = 0.0;
+  fit.residuals.push_back(r);
+  for (double d : distancesM) fit.residuals.push_back(residualAt(fit, rays, d));
+  return fit;
+}
+
+nlohmann::json toJson(const CentralApproximation& fit) {
+  const MeiIntrinsics& k = fit.intrinsics;
+  nlohmann::json residuals = nlohmann::json::array();
+  for (const auto& r : fit.residuals)
+    residuals.push_back({{"distance_m", r.distanceM == 0.0 ? nlohmann::json("infinity") : nlohmann::json(r.distanceM)},
+                         {"rms_px", r.rmsPx},
+                         {"max_px", r.maxPx}});
+  return {{"model", "mei_unified"},
+          {"xi", k.xi},
+          {"gamma_x", k.gammaX},
+          {"gamma_y", k.gammaY},
+          {"cx", k.cx},
+          {"cy", k.cy},
+          {"pixel_centre", "integer"},
+          {"distortion", {k.lens.k1, k.lens.k2, k.lens.p1, k.lens.p2}},
+          {"viewpoint_m", {fit.viewpoint.x(), fit.viewpoint.y(), fit.viewpoint.z()}},
+          {"rotation_vector", {fit.rotationVector.x(), fit.rotationVector.y(), fit.rotationVector.z()}},
+          {"rays", fit.rays},
+          {"residual_px", residuals},
+          {"note",
+           "best-fit central model, not exact: viewpoint = the point nearest all rays (viewpoint frame); camera "
+           "frame = the unified model's (X forward, Y right, Z down) turned by rotation_vector; intrinsics "
+           "fitted to the rays' directions (points at infinity); residual_px: its reprojection error for "
+           "points at each distance from the viewpoint along the true rays"}};
+}
+
+}  // namespace omnicam

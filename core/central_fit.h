@@ -1,0 +1,57 @@
+#pragma once
+// The best-fit central (Mei unified) model of any camera: what a calibration toolbox that assumes
+// a single viewpoint would at best recover from a non-central rig, and how far off it is.
+//
+// Fit (docs/physical-camera.md, "Best-fit central model"): the viewpoint is the point nearest all
+// of the camera's rays in the least-squares sense (closed form); the Mei intrinsics (ξ, γx, γy,
+// cx, cy, k1, k2, p1, p2) and a rotation of the camera frame are fitted by Levenberg–Marquardt so
+// that every ray's direction — a point at infinity — projects to the pixel it came from. The
+// residual of that model is then measured for points at finite distances along the same rays:
+// a central model's error grows as points come closer.
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "camera.h"
+
+namespace omnicam {
+
+// The Mei model with OpenCV's radial-tangential distortion, in cv::omnidir's conventions
+// (pixel centres at integers; k3 is always 0 since cv::omnidir has none).
+struct MeiIntrinsics {
+  double xi = 0.0, gammaX = 0.0, gammaY = 0.0, cx = 0.0, cy = 0.0;
+  LensDistortion lens;
+
+  // The continuous raster point (pixel centres at +0.5) of a camera-frame point; nullopt where
+  // the unit-sphere point is behind the model (z_s + ξ ≤ 0).
+  std::optional<Vec2> raster(const Vec3& pointCamera) const;
+};
+
+struct CentralApproximation {
+  MeiIntrinsics intrinsics;
+  // The fitted camera frame: origin at the fitted viewpoint, axes those of the unified model's
+  // camera frame (rig.h: cameraFromViewpoint) turned by the fitted rotation.
+  Rigid cameraFromViewpoint = Rigid::Identity();
+  Vec3 viewpoint = Vec3::Zero();  // the fitted viewpoint in the rig's viewpoint frame
+  Vec3 rotationVector = Vec3::Zero();  // the fitted turn of the camera frame (axis × angle, radians)
+  int rays = 0;                        // rays (pixel centres on a regular grid) fitted and measured
+  struct Residual {
+    double distanceM = 0.0;  // distance of the points from the fitted viewpoint; 0 = infinity
+    double rmsPx = 0.0, maxPx = 0.0;
+  };
+  std::vector<Residual> residuals;  // infinity (the fit itself), then each distance asked for
+
+  std::optional<Vec2> raster(const Vec3& pointViewpoint) const {
+    return intrinsics.raster(cameraFromViewpoint * pointViewpoint);
+  }
+};
+
+// Fits the central model to `camera`'s rays through the pixel centres of a grid of about
+// gridSize × gridSize pixels, and measures its residual at `distancesM`. Throws std::runtime_error
+// if the camera images no pixel of the grid.
+CentralApproximation fitCentralApproximation(const Camera& camera, const std::vector<double>& distancesM = {0.2, 0.5, 1.0, 5.0},
+                                             int gridSize = 64);
+
+// For sidecars and intrinsics files (cv::omnidir names).
+nlohmann::json toJson(const CentralApproximation& fit);
+
+}  // namespace omnicam
