@@ -40,7 +40,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   const RobotPose pose = requested ? *requested : scene.startPose;
   RenderSettings settings;
   settings.rig = scene.rig;
-  if (a.size) settings.rig.imageSize = a.size;
+  if (a.size) settings.rig = settings.rig.resized(a.size);
   settings.spp = a.spp;
   settings.shading = *shading;
   checkRenderSettings(settings, kSettingFlags);

@@ -97,11 +97,11 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   RenderSettings settings;
   settings.spp = a.spp;
   settings.shading = *shading;
-  if (a.imageSize) settings.rig.imageSize = a.imageSize;
+  if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize);
   checkRenderSettings(settings, kSettingFlags);  // before the scene: a bad --spp needs no scene to be read
   const Scene scene = loadScene(a.scene, a.load);
   settings.rig = scene.rig;
-  if (a.imageSize) settings.rig.imageSize = a.imageSize;
+  if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize);
   checkRenderSettings(settings, kSettingFlags);
   const FrameViews views(a.views, settings.rig);
   if (a.path.empty()) {

@@ -84,13 +84,14 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RenderSettings settings;
   settings.rig = scene.rig;
-  if (a.size) settings.rig.imageSize = a.size;
+  if (a.size) settings.rig = settings.rig.resized(a.size);
   settings.spp = a.spp;
   checkRenderSettings(settings, kSettingFlags);
   checkOutputFile(a.out, "-o");
+  const OmniCamera camera = settings.rig.camera();  // rings are measured with the central model: before rendering
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
-  rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig.camera(), a.out, a);
+  rendered.sidecar["rings"] = measureAndPrint(rendered.image, camera, a.out, a);
   writeRendered(a.out, rendered);
 }
 

@@ -43,7 +43,7 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
     throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
                      "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
   }
-  rig.imageSize = size;
+  rig = rig.resized(size);
   sidecar["rig"] = rigToJson(rig);
   return {rig, sidecar};
 }

@@ -73,13 +73,13 @@ CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const Compar
   return r;
 }
 
-ImageRGBA differenceHeatmap(const ImageRGBA& a, const ImageRGBA& b, double scale) {
-  ImageRGBA out(a.width, a.height);
-  for (int j = 0; j < a.height; ++j)
-    for (int i = 0; i < a.width; ++i) {
-      double d = 0.0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(static_cast<double>(a.at(i, j)[c]) - b.at(i, j)[c]));
-      const float t = static_cast<float>(std::clamp(d / scale, 0.0, 1.0));
+ImageRGBA scalarHeatmap(const std::vector<float>& values, int width, int height, double scale) {
+  ImageRGBA out(width, height);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const float v = values[static_cast<size_t>(j) * width + i];
+      if (std::isnan(v)) continue;
+      const float t = static_cast<float>(std::clamp(v / scale, 0.0, 1.0));
       float* p = out.at(i, j);
       p[0] = std::min(1.0f, 3.0f * t);
       p[1] = std::clamp(3.0f * t - 1.0f, 0.0f, 1.0f);
@@ -87,6 +87,17 @@ ImageRGBA differenceHeatmap(const ImageRGBA& a, const ImageRGBA& b, double scale
       p[3] = 1.0f;
     }
   return out;
+}
+
+ImageRGBA differenceHeatmap(const ImageRGBA& a, const ImageRGBA& b, double scale) {
+  std::vector<float> difference(static_cast<size_t>(a.width) * a.height);
+  for (int j = 0; j < a.height; ++j)
+    for (int i = 0; i < a.width; ++i) {
+      double d = 0.0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(static_cast<double>(a.at(i, j)[c]) - b.at(i, j)[c]));
+      difference[static_cast<size_t>(j) * a.width + i] = static_cast<float>(d);
+    }
+  return scalarHeatmap(difference, a.width, a.height, scale);
 }
 
 nlohmann::json compareResultToJson(const CompareResult& r) {

@@ -24,6 +24,9 @@ struct CompareResult {
 CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const CompareOptions& options = {});
 // |a − b| (max over channels) as a heat map: black 0 → red → yellow → white at `scale`.
 ImageRGBA differenceHeatmap(const ImageRGBA& a, const ImageRGBA& b, double scale);
+// A scalar field as the same heat ramp (black 0 → red → yellow → white at `scale`); NaN is
+// drawn transparent black.
+ImageRGBA scalarHeatmap(const std::vector<float>& values, int width, int height, double scale);
 nlohmann::json compareResultToJson(const CompareResult& r);
 
 }  // namespace omnicam

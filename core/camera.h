@@ -43,7 +43,9 @@ class Camera {
   int height() const { return rig_.imageSize; }
   // The model's name in sidecars: "mei_unified" (central, closed form) or "physical" (traced).
   virtual const char* model() const = 0;
-  // True when every ray leaves one point (F'), as the unified model's do.
+  // True when every ray's origin is F', as the unified model's are. A physical camera's rays start
+  // on the mirror even when their lines all meet in F' (the pinhole at F, turned or with a lens):
+  // describe()'s "non_central" says whether the lines meet.
   virtual bool central() const = 0;
 
   // The ray seen through a raster sample, or nullopt where the camera images nothing (beyond the

@@ -2,7 +2,9 @@
 
 #include <unsupported/Eigen/NonLinearOptimization>
 #include <unsupported/Eigen/NumericalDiff>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "lens_distortion.h"
@@ -91,17 +93,27 @@ struct DirectionResiduals {
   }
 };
 
+// The fit's reprojection error for the point of `g`'s ray at `distance` from the fitted viewpoint
+// (the ray starts within it); 0 = infinity, where the model sees the ray's direction.
+double reprojectionError(const CentralApproximation& fit, const GridRay& g, double distance) {
+  std::optional<Vec2> p;
+  if (distance == 0.0) {
+    p = fit.intrinsics.raster(fit.cameraFromViewpoint.linear() * g.ray.direction);
+  } else {
+    const Vec3 fromViewpoint = g.ray.origin - fit.viewpoint;
+    const double b = g.ray.direction.dot(fromViewpoint);
+    const double t = -b + std::sqrt(std::max(0.0, b * b - (fromViewpoint.squaredNorm() - distance * distance)));
+    p = fit.raster(g.ray.origin + t * g.ray.direction);
+  }
+  return p ? (*p - g.raster).norm() : std::numeric_limits<double>::infinity();
+}
+
 CentralApproximation::Residual residualAt(const CentralApproximation& fit, const std::vector<GridRay>& rays, double distance) {
   CentralApproximation::Residual r;
   r.distanceM = distance;
   double sumSquares = 0.0;
   for (const GridRay& g : rays) {
-    // The point of the ray at `distance` from the fitted viewpoint (the ray starts within it).
-    const Vec3 fromViewpoint = g.ray.origin - fit.viewpoint;
-    const double b = g.ray.direction.dot(fromViewpoint);
-    const double t = -b + std::sqrt(std::max(0.0, b * b - (fromViewpoint.squaredNorm() - distance * distance)));
-    const auto p = fit.raster(g.ray.origin + t * g.ray.direction);
-    const double error = p ? (*p - g.raster).norm() : std::numeric_limits<double>::infinity();
+    const double error = reprojectionError(fit, g, distance);
     sumSquares += error * error;
     r.maxPx = std::max(r.maxPx, error);
   }
@@ -138,14 +150,20 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
   fit.cameraFromViewpoint.linear() = cameraFromViewpointRotation;
   fit.cameraFromViewpoint.translation() = -(cameraFromViewpointRotation * fit.viewpoint);
 
-  // At infinity the model sees directions from anywhere: measure the fit itself.
-  CentralApproximation atInfinity = fit;
-  atInfinity.cameraFromViewpoint.translation().setZero();
-  CentralApproximation::Residual r = residualAt(atInfinity, rays, 1e12);
-  r.distanceM = 0.0;
-  fit.residuals.push_back(r);
+  fit.residuals.push_back(residualAt(fit, rays, 0.0));  // at infinity: the fit itself
   for (double d : distancesM) fit.residuals.push_back(residualAt(fit, rays, d));
   return fit;
+}
+
+std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
+  std::vector<float> map(static_cast<size_t>(camera.width()) * camera.height(), std::numeric_limits<float>::quiet_NaN());
+  for (int j = 0; j < camera.height(); ++j)
+    for (int i = 0; i < camera.width(); ++i) {
+      const Vec2 centre(i + 0.5, j + 0.5);
+      if (const auto ray = camera.generateRay({centre}))
+        map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(reprojectionError(fit, {centre, *ray}, distanceM));
+    }
+  return map;
 }
 
 nlohmann::json toJson(const CentralApproximation& fit) {

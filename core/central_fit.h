@@ -51,6 +51,11 @@ struct CentralApproximation {
 CentralApproximation fitCentralApproximation(const Camera& camera, const std::vector<double>& distancesM = {0.2, 0.5, 1.0, 5.0},
                                              int gridSize = 64);
 
+// The fit's reprojection error (pixels) at every pixel centre, for points `distanceM` from the
+// fitted viewpoint along the camera's true rays (0: at infinity); NaN where the camera images
+// nothing. Row-major, camera.width() × camera.height().
+std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM);
+
 // For sidecars and intrinsics files (cv::omnidir names).
 nlohmann::json toJson(const CentralApproximation& fit);
 

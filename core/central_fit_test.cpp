@@ -98,6 +98,16 @@ TEST(CentralFit, AMovedPinholesParallaxFallsWithDistance) {
   for (size_t i = 2; i < fit.residuals.size(); ++i) EXPECT_LT(parallax(i), parallax(i - 1)) << "at " << fit.residuals[i].distanceM;
   EXPECT_LT(parallax(4), parallax(1) / 10.0);  // 5 m against 0.2 m: 1/25 for a pure 1/d
   EXPECT_GT(parallax(1), 1e-3);
+  // The per-pixel map holds every pixel, the grid's among them.
+  const std::vector<float> map = centralResidualMap(camera, fit, 1.0);
+  ASSERT_EQ(map.size(), static_cast<size_t>(rig.imageSize * rig.imageSize));
+  float worst = 0.0f;
+  int imaged = 0;
+  for (float v : map)
+    if (!std::isnan(v)) worst = std::max(worst, v), ++imaged;
+  EXPECT_GT(imaged, fit.rays);
+  EXPECT_GE(worst, fit.residuals[3].maxPx - 1e-4);
+  EXPECT_LE(worst, 2.0 * fit.residuals[3].maxPx);
   const nlohmann::json described = camera.describe();
   EXPECT_TRUE(described["non_central"].get<bool>());
   EXPECT_FALSE(described.contains("mei_equivalent"));

@@ -17,7 +17,15 @@ std::optional<Vec3> Pinhole::direction(const Vec2& rasterPoint) const {
 std::optional<Vec2> Pinhole::raster(const Vec3& pointViewpoint) const {
   const Vec3 q = viewpointFromPinhole.transpose() * (pointViewpoint - position);
   if (!(q.z() > 0.0)) return std::nullopt;
-  return principalPoint + focalPx * distort(distortion, Vec2(q.x() / q.z(), q.y() / q.z()));
+  const Vec2 undistorted(q.x() / q.z(), q.y() / q.z());
+  const Vec2 distorted = distort(distortion, undistorted);
+  // Beyond the lens' fold the raster point's own ray is another one: such a point is not imaged
+  // (direction() refuses the same raster points).
+  if (!distortion.none()) {
+    const auto back = undistort(distortion, distorted);
+    if (!back || (*back - undistorted).norm() > 1e-9 * (1.0 + undistorted.norm())) return std::nullopt;
+  }
+  return principalPoint + focalPx * distorted;
 }
 
 Pinhole pinholeOf(const RigSpec& rig) {
@@ -37,10 +45,29 @@ Pinhole pinholeOf(const RigSpec& rig) {
 
 PhysicalCamera::PhysicalCamera(const RigSpec& rig)
     : Camera(rig), mirror_(rig.mirror()), pinhole_(pinholeOf(rig)), rimZ_(rig.idealCamera().rimPoint().z()) {
-  const Vec3& o = pinhole_.position;
-  const bool insideMirror = o.z() + 0.5 * mirror_.c() > 0.0 && mirror_.implicit(o) > 0.0;
-  if (insideMirror || !(o.z() < mirror_.heightAt(0.0, 0.0)))
+  // Below the vertex the pinhole is outside the (upper sheet's) mirror.
+  if (!(pinhole_.position.z() < mirror_.heightAt(0.0, 0.0)))
     throw InputError("camera.offset_mm: puts the pinhole on or above the mirror; it must stay below its vertex");
+  checkMirrorInView();
+}
+
+void PhysicalCamera::checkMirrorInView() const {
+  // A camera turned or moved away from the mirror, or a lens that folds early, renders a black
+  // frame: refuse it instead. Compared on a coarse grid with the ideal camera's footprint.
+  constexpr int kGrid = 24;
+  const RigSpec& r = rig();
+  const OmniCamera ideal = r.idealCamera();
+  int seen = 0, idealSeen = 0;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const Vec2 raster((i + 0.5) * r.imageSize / kGrid, (j + 0.5) * r.imageSize / kGrid);
+      seen += generateRay({raster}).has_value();
+      idealSeen += ideal.insideRim(raster);
+    }
+  if (4 * seen < idealSeen)
+    throw InputError("camera: the mirror fills " + std::to_string(100 * seen / std::max(idealSeen, 1)) +
+                     " % of what the ideal camera sees of it (at least 25 % needed): the camera is moved or turned "
+                     "away from the mirror, or its lens folds inside the image");
 }
 
 std::optional<Vec3> PhysicalCamera::mirrorPointSeen(const Vec3& direction) const {
@@ -95,7 +122,8 @@ std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
     if (delta.norm() > 0.1 * scale) delta *= 0.1 * scale / delta.norm();
     xy -= delta;
     if (!xy.allFinite()) return std::nullopt;
-    converged = delta.norm() <= 1e-15 * scale;
+    // Quadratic convergence: once a step is this small the next would be below rounding.
+    converged = delta.norm() <= 1e-13 * scale;
   }
   if (!converged) return std::nullopt;
   const Vec3 m(xy.x(), xy.y(), mirror_.heightAt(xy.x(), xy.y()));
@@ -155,10 +183,16 @@ nlohmann::json PhysicalCamera::describe() const {
       {"mirror", {{"shape", "hyperboloid"}, {"k", mirror_.k()}, {"c", mirror_.c()}, {"rim_z_m", rimZ_}}},
       {"note",
        "each pixel's ray leaves the mirror from its own point; positions in the viewpoint frame (origin "
-       "F', robot axes: x forward, y left, z up); pinhole axes x = image u, y = image v, z = optical "
+       "F', robot axes: x forward, y left, z up; the sidecar's camera_from_world frame is it turned by "
+       "diag(1, -1, -1)); non_central: false when all reflected rays' lines meet in F'; pinhole axes x = image u, y = image v, z = optical "
        "axis; raster coordinates continuous (pixel centres at +0.5)"}};
   if (const auto mei = meiEquivalent()) {
     nlohmann::json exact = unifiedIntrinsicsJson(rig().idealCamera());
+    if (!pinhole_.distortion.none()) {
+      // The lens bends the rim and horizon circles: no radius describes them.
+      exact.erase("rim_radius_px");
+      exact.erase("horizon_radius_px");
+    }
     exact["cx"] = mei->cx;
     exact["cy"] = mei->cy;
     exact["distortion"] = {mei->lens.k1, mei->lens.k2, mei->lens.p1, mei->lens.p2};

@@ -57,6 +57,8 @@ class PhysicalCamera final : public Camera {
   const HyperbolicMirror& mirror() const { return mirror_; }
 
  private:
+  // InputError (naming rig.camera) if the camera sees far less of the mirror than the ideal one.
+  void checkMirrorInView() const;
   // The mirror point the pinhole sees along a viewpoint-frame direction, inside the rim.
   std::optional<Vec3> mirrorPointSeen(const Vec3& direction) const;
   HyperbolicMirror mirror_;

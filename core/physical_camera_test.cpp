@@ -78,7 +78,7 @@ TEST(PhysicalCamera, AMovedTurnedDistortedCameraObeysTheReflectionLaw) {
     const Vec3 n = camera.mirror().normalAt(m);
     // Angle of incidence equals angle of reflection, in the plane of the normal.
     EXPECT_NEAR(incoming.dot(n), -ray->direction.dot(n), 1e-12);
-    EXPECT_LE(incoming.cross(n).dot(ray->direction), 1e-12);
+    EXPECT_LE(std::abs(incoming.cross(n).dot(ray->direction)), 1e-12);
     // The incoming ray is the pinhole's ray through that pixel, lens included.
     const auto back = pinhole.raster(m);
     ASSERT_TRUE(back);
@@ -136,11 +136,72 @@ TEST(PhysicalCamera, RoundTripsOfAMisalignedDistortedHyperboloid) {
   expectRoundTrips(distorted(misaligned(2.0, 1.0)), 100000, 1e-6);
 }
 
+// Near the widest rim the scene format allows, the mirror point is ~5 c from the axis: Newton's
+// stopping test must still be reachable in floating point there.
+TEST(PhysicalCamera, RoundTripsNearAWideRim) {
+  RigSpec rig = misaligned(2.0, 1.0);
+  rig.k = 6.0;
+  rig.rimElevationDeg = 51.0;  // 4.2 c from F'; at 52° this mirror has no rim
+  rig.framingElevationDeg = 51.0;
+  const double rimDistance = rig.idealCamera().rimPoint().norm();
+  std::printf("rim %.2f c from F'\n", rimDistance / rig.c);
+  EXPECT_GT(rimDistance, 3.0 * rig.c);
+  expectRoundTrips(rig, 20000, 1e-6);
+}
+
+// --size renders the same camera with other pixels: the principal point's offset scales too.
+TEST(PhysicalCamera, ResizingKeepsTheCamerasGeometry) {
+  const RigSpec rig = distorted(misaligned(2.0, 1.0));
+  const PhysicalCamera small(rig), large(rig.resized(2 * rig.imageSize));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  int checked = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec2 p(coord(rng), coord(rng));
+    const auto a = small.generateRay({p}), b = large.generateRay({2.0 * p});
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (!a) continue;
+    ++checked;
+    EXPECT_LE((a->origin - b->origin).norm(), 1e-13);
+    EXPECT_LE((a->direction - b->direction).norm(), 1e-12);
+  }
+  EXPECT_GT(checked, 1000);
+}
+
+// A lens that folds inside the image: points beyond the fold are not projected onto pixels whose
+// ray is another one.
+TEST(PhysicalCamera, ProjectRespectsTheLensFold) {
+  RigSpec rig;
+  rig.mount.distortion = {-4.0, 0.0, 0.0, 0.0, 0.0};  // folds at r = 1/sqrt(12) ≈ 0.29, inside the corners
+  const PhysicalCamera camera(rig);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(0.0, rig.imageSize), logDepth(std::log(0.1), std::log(100.0));
+  int projected = 0;
+  for (int i = 0; i < 20000; ++i) {
+    // Random scene points around the rig, seen or not.
+    const Vec3 p = std::exp(logDepth(rng)) * Vec3(coord(rng) - 180.0, coord(rng) - 180.0, coord(rng) - 250.0).normalized();
+    const auto raster = camera.project(p);
+    if (!raster) continue;
+    ++projected;
+    ASSERT_TRUE(camera.images(*raster)) << raster->transpose();
+  }
+  EXPECT_GT(projected, 1000);
+}
+
 TEST(PhysicalCamera, PointsItCannotSeeAreNotProjected) {
   const PhysicalCamera camera(misaligned(2.0, 1.0));
   EXPECT_FALSE(camera.project(Vec3(0.0, 0.0, 5.0)));    // straight above the mirror
   EXPECT_FALSE(camera.project(Vec3(3.0, 0.0, 3.5)));    // above the rim
   EXPECT_TRUE(camera.project(Vec3(3.0, 0.5, -0.4)));    // on the floor ahead
+}
+
+TEST(PhysicalCamera, ACameraThatMissesTheMirrorIsRefused) {
+  RigSpec rig;
+  rig.mount.offsetMm = {100.0, 0.0, 0.0};
+  EXPECT_THROW(PhysicalCamera{rig}, InputError);
+  rig.mount.offsetMm = {0.0, 0.0, 0.0};
+  rig.mount.rotationDeg = {30.0, 0.0, 0.0};
+  EXPECT_THROW(PhysicalCamera{rig}, InputError);
 }
 
 TEST(PhysicalCamera, APinholeInsideTheMirrorIsRefused) {
@@ -212,7 +273,7 @@ TEST(PhysicalCamera, AlignedDistortionIsMeiWithRescaledCoefficients) {
   for (size_t i = 0; i < ours.size(); ++i)
     worst = std::max(worst, (Vec2(projected[i].x + 0.5, projected[i].y + 0.5) - ours[i]).norm());
   std::printf("cv::omnidir with rescaled D vs omnicam: worst %.3g px\n", worst);
-  EXPECT_LE(worst, 0.01);
+  EXPECT_LE(worst, 1e-9);  // the issue asks for 0.01 px; the relation is exact
 }
 
 TEST(Camera, EqualityIsTheRigsAndTheModels) {

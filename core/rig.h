@@ -52,6 +52,15 @@ struct RigSpec {
   // True when the camera sits exactly where the mirror was designed for: the image is then the
   // central (Mei) model's, in closed form.
   bool ideal() const { return mount.ideal(); }
+  // The same camera imaging at another size: the focal length scales with the image, and so does
+  // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
+  RigSpec resized(int size) const {
+    RigSpec r = *this;
+    const double scale = static_cast<double>(size) / imageSize;
+    r.imageSize = size;
+    for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
+    return r;
+  }
   // This rig with its camera put back where it belongs.
   RigSpec idealized() const {
     RigSpec r = *this;

@@ -82,10 +82,7 @@ std::optional<SidecarInfo> readSidecar(const std::string& imagePath) {
 RigSpec rigFromSidecar(const std::string& imagePath, RigSpec rig) {
   const auto sidecar = readSidecar(imagePath);
   if (!sidecar) return rig;
-  const int size = rig.imageSize;
-  rig = sidecar->rig;
-  rig.imageSize = size;
-  return rig;
+  return sidecar->rig.resized(rig.imageSize);
 }
 
 }  // namespace omnicam

@@ -204,7 +204,7 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
   std::vector<CameraSetup> setups;
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
-    if (spec.size) setup.rig.imageSize = *spec.size;
+    if (spec.size) setup.rig = setup.rig.resized(*spec.size);
     checkRenderSettings({setup.rig, spec.spp, spec.shading}, settingNames(spec));
     setup.model = makeCamera(setup.rig);
     setups.push_back(setup);

@@ -191,7 +191,7 @@ void readSampling(JsonFields& top, DatasetSpec& spec) {
   if (top.has("size")) {
     spec.size = top.integer("size", 360, limits::kMinImageSize, limits::kMaxImageSize);
     RenderSettings check;
-    check.rig.imageSize = *spec.size;
+    check.rig = check.rig.resized(*spec.size);
     check.spp = spec.spp;
     checkRenderSettings(check, settingNames(spec));  // size² × spp, before any scene is read
   }

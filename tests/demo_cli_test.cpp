@@ -80,8 +80,21 @@ TEST(DemoCliTest, TheReportOpensWithAFilledMirrorBesideItsGroundTruthAndKeepsThe
   ASSERT_TRUE(std::regex_search(html, m, std::regex("rings below lie <b>([0-9.]+) px</b> RMS \\(fast\\)")));
   EXPECT_LE(std::stod(m[1]), 0.05);
 
+  // The physical camera: the misaligned rig's frame agrees with POV-Ray's truth of the same pinhole
+  // (≥ 60 dB, issue #21), differs from the ideal rig's visibly, and its best-fit central model's
+  // residual is stated.
+  ASSERT_TRUE(std::regex_search(html, m, std::regex("fast vs POV-Ray: PSNR ([0-9.]+) dB"))) << "physical section";
+  EXPECT_GE(std::stod(m[1]), 60.0);
+  ASSERT_TRUE(std::regex_search(html, m, std::regex("PSNR ([0-9.]+) dB: the misalignment is not a detail")));
+  EXPECT_LT(std::stod(m[1]), 35.0);
+  ASSERT_TRUE(std::regex_search(html, m, std::regex("<tr><td>1 m</td><td>([0-9.]+)</td>")));
+  EXPECT_GT(std::stod(m[1]), 0.1);
+  for (const char* image : {"physical_ideal.png", "physical_misaligned.png", "physical_difference.png",
+                            "physical_povray.png", "physical_central_residual.png"})
+    EXPECT_NE(std::find(images.begin(), images.end(), image), images.end()) << image;
+
   // The rest of the report is kept, and every image it shows was written.
-  for (const char* section : {"The open field from the thesis' start pose", "Incidence-angle rings",
+  for (const char* section : {"The physical camera", "The open field from the thesis' start pose", "Incidence-angle rings",
                               "The thesis' method", "Views (thesis §3.2.1)", "A reference dataset", "Texture realism"})
     EXPECT_NE(html.find(section), std::string::npos) << section;
   for (const char* image : {"robocup2006_unlit_povray.png", "robocup2006_lit_diff_povray.png", "rings_povray.png",

@@ -158,6 +158,7 @@ def main():
     write(os.path.join(SCENES, "camera_distortion_nan.json"),
           scene([FLOOR], rig={"camera": {"distortion": {"k1": "x"}}}))
     write(os.path.join(SCENES, "mirror_shape_unknown.json"), scene([FLOOR], rig={"mirror": {"shape": "ellipsoid\n"}}))
+    write(os.path.join(SCENES, "camera_away.json"), scene([FLOOR], rig={"camera": {"offset_mm": [100, 0, 0]}}))
     write(os.path.join(SCENES, "camera_misaligned.json"),
           scene([FLOOR], rig={"camera": {"offset_mm": [2, 0, 0], "distortion": {"k1": -0.05}}}))
     write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
