@@ -10,7 +10,9 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "image.h"
+#include "make_camera.h"
 #include "mirror_mesh.h"
+#include "physical_camera.h"
 #include "sidecar.h"
 #include "triangulate.h"
 
@@ -223,6 +225,12 @@ TriangleMesh rimMask(double rimHeight, double innerRadius) {
 
 }  // namespace
 
+void checkGltfCamera(const RigSpec& rig) {
+  if (!rig.mount.distortion.none())
+    throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "
+                     "the fast renderer");
+}
+
 void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
   GltfBuilder b;
   std::vector<int> materials;
@@ -270,16 +278,19 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                                    {"diameter", lm.diameter}, {"height", lm.height}}}}));
   }
   if (options.includeRig) {
-    const OmniCamera camera = options.rig.camera();
+    checkGltfCamera(options.rig);
+    // The mirror and its rim are the ideal rig's whatever the camera; the camera is the physical
+    // pinhole as mounted (physical_camera.h), modelled once for every exporter.
+    const OmniCamera framing = options.rig.idealCamera();
+    const Pinhole pinhole = pinholeOf(options.rig);
     const HyperbolicMirror mirror = options.rig.mirror();
-    const MirrorMesh mirrorMesh = buildMirrorMesh(mirror, camera.rimTheta(), options.mirrorDeviation);
-    const Rigid worldFromViewpoint = worldFromRobot(options.pose) * robotFromViewpoint(options.rig);
-    const int rig = b.node(kGltfRigNode, worldFromViewpoint, -1,
+    const MirrorMesh mirrorMesh = buildMirrorMesh(mirror, framing.rimTheta(), options.mirrorDeviation);
+    const int rig = b.node(kGltfRigNode, worldFromViewpoint(options.rig, options.pose), -1,
                            {{"omnicam",
                              {{"role", "rig"},
                               {"rig", rigToJson(options.rig)},
                               {"pose", {{"x", options.pose.x}, {"y", options.pose.y}, {"yaw_deg", options.pose.yawDeg}}},
-                              {"intrinsics", intrinsicsToJson(camera)},
+                              {"intrinsics", makeCamera(options.rig)->describe()},
                               {"frame", "viewpoint: origin at F', robot axes (x forward, y left, z up)"}}}});
     b.addRoot(rig);
     const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
@@ -297,21 +308,26 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                            b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
                                   nullptr, maskMaterial, nullptr),
                            {{"omnicam", {{"role", "rim_mask"}}}}));
-    // Physical pinhole at F looking up: glTF cameras look along −Z with +Y up; in the rig's
-    // (viewpoint) frame the camera's X is robot +x (image right), Y robot −y (image up), Z robot −z.
+    // The pinhole looking up: glTF cameras look along −Z with +Y up, so their axes are the
+    // pinhole's (x = image right, y = image down, z = optical axis) with y and z flipped. glTF has
+    // no principal point: it travels in the node's extras (Blender's job shifts the lens by it).
     tinygltf::Camera cam;
     cam.name = kGltfCameraNode;
     cam.type = "perspective";
-    cam.perspective.aspectRatio = static_cast<double>(camera.width()) / camera.height();
-    cam.perspective.yfov = 2.0 * std::atan(0.5 * camera.height() / camera.physicalFocalLength());
+    cam.perspective.aspectRatio = static_cast<double>(framing.width()) / framing.height();
+    cam.perspective.yfov = 2.0 * std::atan(0.5 * framing.height() / pinhole.focalPx);
     cam.perspective.znear = 1e-4;
     cam.perspective.zfar = 1e4;  // tinygltf would write 0, which the validator rejects
     b.model().cameras.push_back(cam);
-    Rigid viewpointFromCamera = Rigid::Identity();
-    viewpointFromCamera.translate(mirror.pinholeInViewpoint());
-    viewpointFromCamera.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-    const int camNode = b.node(kGltfCameraNode, viewpointFromCamera, -1,
-                               {{"omnicam", {{"role", "camera"}, {"focal_length_px", camera.physicalFocalLength()}}}}, true);
+    Rigid viewpointFromGltfCamera = Rigid::Identity();
+    viewpointFromGltfCamera.translate(pinhole.position);
+    viewpointFromGltfCamera.linear() = pinhole.viewpointFromPinhole * Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+    const int camNode = b.node(kGltfCameraNode, viewpointFromGltfCamera, -1,
+                               {{"omnicam",
+                                 {{"role", "camera"},
+                                  {"focal_length_px", pinhole.focalPx},
+                                  {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}}}},
+                               true);
     b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
     b.addChild(rig, camNode);
   }

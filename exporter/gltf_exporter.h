@@ -34,5 +34,8 @@ inline constexpr const char* kGltfCameraNode = "omnicam_camera";
 
 // Writes `path` (.glb) atomically. Throws InputError if a texture cannot be embedded.
 void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path);
+// InputError unless a glTF camera can be the rig's: moved and turned pinholes and principal points
+// are exported; lens distortion is not (glTF has none).
+void checkGltfCamera(const RigSpec& rig);
 
 }  // namespace omnicam

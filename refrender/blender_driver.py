@@ -4,7 +4,8 @@ the job JSON named after `--` (never Python built from scene strings):
     blender -b --factory-startup -noaudio --python-exit-code 1 -P blender_driver.py -- job.json
 
 job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "width": int,
-           "height": int, "focal_length_px": float, "ambient": float,
+           "height": int, "focal_length_px": float, "principal_point_px": [u, v] (raster, v down;
+           default the image centre), "ambient": float,
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
                       diameter 0: a point, > 0: a disc luminaire facing straight down),
            "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
@@ -208,7 +209,11 @@ def main():
     cam.sensor_fit = "HORIZONTAL"
     cam.sensor_width = 36.0
     cam.lens = job["focal_length_px"] * 36.0 / job["width"]
-    cam.shift_x = cam.shift_y = 0.0
+    # The principal point (raster, v down) as a lens shift, in units of the image width: a shift
+    # to the right puts the optical axis left of the centre, one upward puts it below.
+    principal = job.get("principal_point_px", [0.5 * job["width"], 0.5 * job["height"]])
+    cam.shift_x = (0.5 * job["width"] - principal[0]) / job["width"]
+    cam.shift_y = (principal[1] - 0.5 * job["height"]) / job["width"]
     cam.clip_start = 1e-4
     cam.clip_end = 1e4
     scene.camera = camera

@@ -10,6 +10,7 @@
 #include "make_camera.h"
 #include "external_process.h"
 #include "gltf_exporter.h"
+#include "physical_camera.h"
 #include "indirect_filter.h"
 #include "job_folder.h"
 
@@ -113,10 +114,7 @@ std::string blenderVersion(const std::string& executable) {
   return at == std::string::npos ? "blender" : tail.substr(at, tail.find('\n', at) - at);
 }
 
-void checkBlenderCamera(const RigSpec& rig) {
-  if (!rig.ideal())
-    throw InputError("Blender renders the ideal rig only: a moved, turned or distorted camera (rig.camera) is not exported to it yet");
-}
+void checkBlenderCamera(const RigSpec& rig) { checkGltfCamera(rig); }
 
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options) {
@@ -128,7 +126,8 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
   for (const RobotPose& pose : poses) checkPose(pose, "pose");
   checkBlenderCamera(settings.rig);
-  const OmniCamera camera = settings.rig.camera();
+  const OmniCamera camera = settings.rig.idealCamera();  // the image's size and framing
+  const Pinhole pinhole = pinholeOf(settings.rig);
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = tracing.filterIndirect && settings.shading == Shading::Lit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
@@ -140,11 +139,11 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
 
   nlohmann::json frames = nlohmann::json::array();
   for (size_t f = 0; f < poses.size(); ++f) {
-    const Rigid worldFromViewpoint = worldFromRobot(poses[f]) * robotFromViewpoint(settings.rig);
+    const Rigid worldFromView = worldFromViewpoint(settings.rig, poses[f]);
     nlohmann::json rows = nlohmann::json::array();
     for (int i = 0; i < 4; ++i) {
       nlohmann::json row = nlohmann::json::array();
-      for (int j = 0; j < 4; ++j) row.push_back(worldFromViewpoint.matrix()(i, j));
+      for (int j = 0; j < 4; ++j) row.push_back(worldFromView.matrix()(i, j));
       rows.push_back(row);
     }
     nlohmann::json frame = {{"world_from_viewpoint", rows}, {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}};
@@ -163,7 +162,8 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                               {"seed", options.seed},
                               {"width", camera.width()},
                               {"height", camera.height()},
-                              {"focal_length_px", camera.physicalFocalLength()},
+                              {"focal_length_px", pinhole.focalPx},
+                              {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}},
                               {"ambient", ambient},
                               {"lights", lights},
                               {"path_tracing", tracing.toJson()},  // the driver ignores direct_pass when unlit, as `filtered` does

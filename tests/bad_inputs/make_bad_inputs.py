@@ -245,7 +245,7 @@ def main():
     dataset_spec("no_path", poses={"path": "nowhere"})
     dataset_spec("povray_mode", engine="povray", mode="cubemap")
     dataset_spec("camera_rig", cameras=[{"name": "c", "rig": {"height": -1}}])
-    dataset_spec("camera_misaligned", engine="blender", cameras=[{"name": "c", "rig": {"camera": {"offset_mm": [1, 0, 0]}}}])
+    dataset_spec("camera_misaligned", mode="cubemap", cameras=[{"name": "c", "rig": {"camera": {"offset_mm": [1, 0, 0]}}}])
     dataset_spec("recording_jpeg", recording={"jpeg_quality": 150})
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
