@@ -121,6 +121,32 @@ CentralApproximation::Residual residualAt(const CentralApproximation& fit, const
   return r;
 }
 
+// Where the fit starts: the hyperboloid's own unified model; for the other shapes the parabolic
+// one (ξ = 1) centred in the image, its γx, γy by linear least squares on the rays.
+Eigen::VectorXd initialGuess(const Camera& camera, const std::vector<GridRay>& rays, const Eigen::Matrix3d& cameraFromViewpoint) {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(kParameters);
+  if (camera.rig().shape.shape == MirrorShape::Hyperboloid) {
+    const OpenCvIntrinsics ideal = camera.rig().idealCamera().openCvIntrinsics();
+    x[0] = ideal.xi, x[1] = ideal.gamma_x, x[2] = ideal.gamma_y, x[3] = ideal.cx, x[4] = ideal.cy;
+    return x;
+  }
+  x[0] = 1.0;
+  x[3] = 0.5 * camera.width() - 0.5;
+  x[4] = 0.5 * camera.height() - 0.5;
+  Vec2 um = Vec2::Zero(), mm = Vec2::Zero();
+  for (const GridRay& g : rays) {
+    const Vec3 s = (cameraFromViewpoint * g.ray.direction).normalized();
+    if (s.z() + 1.0 < 1e-3) continue;
+    const Vec2 m(s.x() / (s.z() + 1.0), s.y() / (s.z() + 1.0));
+    const Vec2 u(g.raster.x() - 0.5 - x[3], g.raster.y() - 0.5 - x[4]);
+    um += u.cwiseProduct(m);
+    mm += m.cwiseProduct(m);
+  }
+  x[1] = mm.x() > 0.0 ? um.x() / mm.x() : 1.0;
+  x[2] = mm.y() > 0.0 ? um.y() / mm.y() : -1.0;
+  return x;
+}
+
 }  // namespace
 
 CentralApproximation fitCentralApproximation(const Camera& camera, const std::vector<double>& distancesM, int gridSize) {
@@ -130,13 +156,11 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
   fit.rays = static_cast<int>(rays.size());
   fit.viewpoint = nearestPointToRays(rays);
 
-  // Start from the ideal rig's unified model, which the fit refines.
-  const OpenCvIntrinsics ideal = camera.rig().idealCamera().openCvIntrinsics();
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(kParameters);
-  x[0] = ideal.xi, x[1] = ideal.gamma_x, x[2] = ideal.gamma_y, x[3] = ideal.cx, x[4] = ideal.cy;
   DirectionResiduals residuals;
   residuals.rays = &rays;
   residuals.idealCameraFromViewpoint = omnicam::cameraFromViewpoint().linear();
+  const Eigen::VectorXd x0 = initialGuess(camera, rays, residuals.idealCameraFromViewpoint);
+  Eigen::VectorXd x = x0;
   Eigen::NumericalDiff<DirectionResiduals, Eigen::Central> differentiated(residuals);
   Eigen::LevenbergMarquardt<Eigen::NumericalDiff<DirectionResiduals, Eigen::Central>> solver(differentiated);
   solver.parameters.maxfev = 2000;

@@ -21,6 +21,10 @@ inline constexpr double kMinRigHeight = 0.01, kMaxRigHeight = 100.0;  // F' abov
 inline constexpr double kMinMirrorK = 2.0, kMaxMirrorK = 100.0;        // k in (2, 100]
 inline constexpr double kMinMirrorC = 1e-3, kMaxMirrorC = 1.0;         // focal distance (m)
 inline constexpr int kMinImageSize = 8, kMaxImageSize = 16384;         // rendered image (px)
+// The other mirror shapes (rig.mirror.shape): sizes (paraboloid h, sphere radius, cone rim
+// radius) and the camera's distance below the design point, metres.
+inline constexpr double kMinMirrorSize = 1e-3, kMaxMirrorSize = 1.0;
+inline constexpr double kMaxCameraDistance = 10.0;
 // The physical camera's mount (rig.camera): how far it may sit from its ideal pose. Generous for
 // a misaligned rig, small enough that the mirror still fills a useful part of the image.
 inline constexpr double kMaxCameraOffsetMm = 100.0;           // each axis

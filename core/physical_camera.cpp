@@ -8,19 +8,23 @@
 
 namespace omnicam {
 
-std::optional<Vec3> Pinhole::direction(const Vec2& rasterPoint) const {
-  const auto normalised = undistort(distortion, (rasterPoint - principalPoint) / focalPx);
-  if (!normalised) return std::nullopt;
-  return (viewpointFromPinhole * Vec3(normalised->x(), normalised->y(), 1.0)).normalized();
+std::optional<CameraRay> Pinhole::ray(const Vec2& rasterPoint) const {
+  const Vec2 normalised = (rasterPoint - principalPoint) / focalPx;
+  if (orthographic)
+    return CameraRay{position + viewpointFromPinhole * Vec3(normalised.x(), normalised.y(), 0.0), viewpointFromPinhole.col(2)};
+  const auto undistorted = undistort(distortion, normalised);
+  if (!undistorted) return std::nullopt;
+  return CameraRay{position, (viewpointFromPinhole * Vec3(undistorted->x(), undistorted->y(), 1.0)).normalized()};
 }
 
 std::optional<Vec2> Pinhole::raster(const Vec3& pointViewpoint) const {
   const Vec3 q = viewpointFromPinhole.transpose() * (pointViewpoint - position);
   if (!(q.z() > 0.0)) return std::nullopt;
+  if (orthographic) return principalPoint + focalPx * q.head<2>();
   const Vec2 undistorted(q.x() / q.z(), q.y() / q.z());
   const Vec2 distorted = distort(distortion, undistorted);
   // Beyond the lens' fold the raster point's own ray is another one: such a point is not imaged
-  // (direction() refuses the same raster points).
+  // (ray() refuses the same raster points).
   if (!distortion.none()) {
     const auto back = undistort(distortion, distorted);
     if (!back || (*back - undistorted).norm() > 1e-9 * (1.0 + undistorted.norm())) return std::nullopt;
@@ -28,97 +32,120 @@ std::optional<Vec2> Pinhole::raster(const Vec3& pointViewpoint) const {
   return principalPoint + focalPx * distorted;
 }
 
+CameraRay Pinhole::rayTo(const Vec3& pointViewpoint) const {
+  if (!orthographic) return {position, (pointViewpoint - position).normalized()};
+  const Vec3 q = viewpointFromPinhole.transpose() * (pointViewpoint - position);
+  return {position + viewpointFromPinhole * Vec3(q.x(), q.y(), 0.0), viewpointFromPinhole.col(2)};
+}
+
 Pinhole pinholeOf(const RigSpec& rig) {
-  const OmniCamera ideal = rig.idealCamera();
   const CameraMount& m = rig.mount;
   Pinhole p;
-  p.position = ideal.mirror().pinholeInViewpoint() + 1e-3 * Vec3(m.offsetMm[0], m.offsetMm[1], m.offsetMm[2]);
+  const double half = 0.5 * rig.imageSize;
+  Vec3 idealPosition;
+  if (rig.shape.shape == MirrorShape::Hyperboloid) {
+    const OmniCamera ideal = rig.idealCamera();
+    idealPosition = ideal.mirror().pinholeInViewpoint();
+    p.focalPx = ideal.physicalFocalLength();
+  } else {
+    const auto mirror = mirrorSurfaceOf(rig);
+    const double d = rig.shape.cameraDistance;
+    p.orthographic = d == 0.0;
+    if (p.orthographic) {
+      // The image plane well below the vertex: where it sits along the axis changes nothing.
+      idealPosition = Vec3(0.0, 0.0, mirror->heightAt(0.0, 0.0) - mirror->rimRadius());
+      p.focalPx = half / mirror->rimRadius();
+    } else {
+      idealPosition = Vec3(0.0, 0.0, -d);
+      p.focalPx = half * (mirror->rimZ() + d) / mirror->rimRadius();
+    }
+  }
+  p.position = idealPosition + 1e-3 * Vec3(m.offsetMm[0], m.offsetMm[1], m.offsetMm[2]);
   p.viewpointFromPinhole = (Eigen::AngleAxisd(radians(m.rotationDeg[0]), Vec3::UnitX()) *
                             Eigen::AngleAxisd(radians(m.rotationDeg[1]), Vec3::UnitY()) *
                             Eigen::AngleAxisd(radians(m.rotationDeg[2]), Vec3::UnitZ()))
                                .toRotationMatrix();
-  p.focalPx = ideal.physicalFocalLength();
-  p.principalPoint = ideal.centre() + Vec2(m.principalPointOffsetPx[0], m.principalPointOffsetPx[1]);
+  p.principalPoint = Vec2(half, half) + Vec2(m.principalPointOffsetPx[0], m.principalPointOffsetPx[1]);
   p.distortion = m.distortion;
   return p;
 }
 
-PhysicalCamera::PhysicalCamera(const RigSpec& rig)
-    : Camera(rig), mirror_(rig.mirror()), pinhole_(pinholeOf(rig)), rimZ_(rig.idealCamera().rimPoint().z()) {
-  // Below the vertex the pinhole is outside the (upper sheet's) mirror.
-  if (!(pinhole_.position.z() < mirror_.heightAt(0.0, 0.0)))
+PhysicalCamera::PhysicalCamera(const RigSpec& rig) : Camera(rig), mirror_(mirrorSurfaceOf(rig)), pinhole_(pinholeOf(rig)) {
+  if (pinhole_.orthographic && !pinhole_.distortion.none())
+    throw InputError("camera.distortion: the paraboloid's orthographic camera has no lens model here; give "
+                     "mirror.camera_distance_m for a perspective camera");
+  // Below the vertex the camera is outside the mirror.
+  if (!(pinhole_.position.z() < mirror_->heightAt(0.0, 0.0)))
     throw InputError("camera.offset_mm: puts the pinhole on or above the mirror; it must stay below its vertex");
   checkMirrorInView();
 }
 
 void PhysicalCamera::checkMirrorInView() const {
   // A camera turned or moved away from the mirror, or a lens that folds early, renders a black
-  // frame: refuse it instead. Compared on a coarse grid with the ideal camera's footprint.
+  // frame: refuse it instead. Compared on a coarse grid with the disc inscribed in the image,
+  // which the ideal camera of every shape fills (its rim touches the border).
   constexpr int kGrid = 24;
-  const RigSpec& r = rig();
-  const OmniCamera ideal = r.idealCamera();
-  int seen = 0, idealSeen = 0;
+  const double size = rig().imageSize;
+  int seen = 0, disc = 0;
   for (int j = 0; j < kGrid; ++j)
     for (int i = 0; i < kGrid; ++i) {
-      const Vec2 raster((i + 0.5) * r.imageSize / kGrid, (j + 0.5) * r.imageSize / kGrid);
+      const Vec2 raster((i + 0.5) * size / kGrid, (j + 0.5) * size / kGrid);
       seen += generateRay({raster}).has_value();
-      idealSeen += ideal.insideRim(raster);
+      disc += (raster - Vec2(0.5 * size, 0.5 * size)).norm() <= 0.5 * size;
     }
-  if (4 * seen < idealSeen)
-    throw InputError("camera: the mirror fills " + std::to_string(100 * seen / std::max(idealSeen, 1)) +
-                     " % of what the ideal camera sees of it (at least 25 % needed): the camera is moved or turned "
+  if (4 * seen < disc)
+    throw InputError("camera: the mirror fills " + std::to_string(100 * seen / std::max(disc, 1)) +
+                     " % of the image's disc (at least 25 % needed): the camera is moved or turned "
                      "away from the mirror, or its lens folds inside the image");
 }
 
-std::optional<Vec3> PhysicalCamera::mirrorPointSeen(const Vec3& direction) const {
-  const auto point = mirror_.firstHit(pinhole_.position, direction);
-  if (!point || point->z() > rimZ_) return std::nullopt;
+std::optional<Vec3> PhysicalCamera::mirrorPointSeen(const CameraRay& ray) const {
+  const auto point = mirror_->firstHit(ray.origin, ray.direction);
+  if (!point || !mirror_->insideRim(*point)) return std::nullopt;
   return point;
 }
 
 std::optional<CameraRay> PhysicalCamera::generateRay(const CameraSample& sample) const {
-  const auto d = pinhole_.direction(sample.raster);
-  if (!d) return std::nullopt;
-  const auto m = mirrorPointSeen(*d);
+  const auto ray = pinhole_.ray(sample.raster);
+  if (!ray) return std::nullopt;
+  const auto m = mirrorPointSeen(*ray);
   if (!m) return std::nullopt;
-  const Vec3 n = mirror_.normalAt(*m);
-  return CameraRay{*m, (*d - 2.0 * d->dot(n) * n).normalized()};
+  const Vec3 n = mirror_->normalAt(*m);
+  const Vec3& d = ray->direction;
+  return CameraRay{*m, (d - 2.0 * d.dot(n) * n).normalized()};
 }
 
 namespace {
 
-// Fermat: the reflection point is where the path pinhole → mirror → point is stationary. On the
-// sheet as a height field M(x, y) = (x, y, z(x, y)), its gradient is −(û_O + û_P)·∂M, with û the
-// unit vectors from M to the pinhole O and to the point P; this returns (û_O + û_P)·∂M/∂x, ·∂M/∂y.
-Vec2 reflectionResidual(const HyperbolicMirror& mirror, const Vec3& o, const Vec3& p, const Vec2& xy) {
+// Fermat: the reflection point is where the path camera → mirror → point is stationary. On the
+// mirror as a height field M(x, y) = (x, y, z(x, y)), its gradient is −(û_C + û_P)·∂M, with û the
+// unit vectors from M toward the camera and toward the point P; this returns (û_C + û_P)·∂M/∂x,
+// ·∂M/∂y. Toward the camera: to the pinhole, or against the axis of an orthographic camera.
+Vec2 reflectionResidual(const MirrorSurface& mirror, const Pinhole& camera, const Vec3& p, const Vec2& xy) {
   const Vec3 m(xy.x(), xy.y(), mirror.heightAt(xy.x(), xy.y()));
-  const Vec3 s = (o - m).normalized() + (p - m).normalized();
+  const Vec3 s = -camera.rayTo(m).direction + (p - m).normalized();
   const Vec2 slope = mirror.slopeAt(xy.x(), xy.y());
   return {s.x() + s.z() * slope.x(), s.y() + s.z() * slope.y()};
 }
 
 }  // namespace
 
-std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
-  const Vec3& o = pinhole_.position;
-  // Start where the central model sees the point: exact for the ideal rig, close otherwise.
-  const auto start = mirror_.pointAlong(p);
-  if (!start) return std::nullopt;
-  Vec2 xy = start->head<2>();
-  const double scale = mirror_.c();
+std::optional<Vec3> PhysicalCamera::reflectionPoint(const Vec3& p, Vec2 xy) const {
+  const MirrorSurface& mirror = *mirror_;
+  const double scale = mirror.rimRadius();
   const double h = 1e-7 * scale;  // central differences: truncation h², rounding ε/h, both far below a step
   bool converged = false;
-  for (int iteration = 0; iteration < 60 && !converged; ++iteration) {
-    const Vec2 f = reflectionResidual(mirror_, o, p, xy);
+  for (int iteration = 0; iteration < 100 && !converged; ++iteration) {
+    const Vec2 f = reflectionResidual(mirror, pinhole_, p, xy);
     Eigen::Matrix2d j;
     for (int axis = 0; axis < 2; ++axis) {
       Vec2 step = Vec2::Zero();
       step[axis] = h;
-      j.col(axis) = (reflectionResidual(mirror_, o, p, xy + step) - reflectionResidual(mirror_, o, p, xy - step)) / (2 * h);
+      j.col(axis) = (reflectionResidual(mirror, pinhole_, p, xy + step) - reflectionResidual(mirror, pinhole_, p, xy - step)) / (2 * h);
     }
     if (!(std::abs(j.determinant()) > 0.0)) return std::nullopt;
     Vec2 delta = j.inverse() * f;
-    // Damped: never a step longer than a tenth of c, so the iterate stays on the mirror's scale.
+    // Damped: never a step longer than a tenth of the rim radius, so the iterate stays on the mirror.
     if (delta.norm() > 0.1 * scale) delta *= 0.1 * scale / delta.norm();
     xy -= delta;
     if (!xy.allFinite()) return std::nullopt;
@@ -126,22 +153,28 @@ std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
     converged = delta.norm() <= 1e-13 * scale;
   }
   if (!converged) return std::nullopt;
-  const Vec3 m(xy.x(), xy.y(), mirror_.heightAt(xy.x(), xy.y()));
-  if (m.z() > rimZ_) return std::nullopt;
-  // The physical root: pinhole and point both on the mirror's outer side, and the mirror point
-  // the first thing the pinhole sees in that direction.
-  const Vec3 n = mirror_.normalAt(m);
-  const Vec3 toPinhole = (o - m).normalized(), toPoint = (p - m).normalized();
-  if (!(n.dot(toPinhole) * n.dot(toPoint) > 0.0)) return std::nullopt;
-  const auto seen = mirrorPointSeen(m - o);
+  const Vec3 m(xy.x(), xy.y(), mirror.heightAt(xy.x(), xy.y()));
+  if (!mirror.insideRim(m)) return std::nullopt;
+  // The physical root: camera and point both on the mirror's outer side, and the mirror point
+  // the first thing the camera sees along its ray to it.
+  const Vec3 n = mirror.normalAt(m);
+  const CameraRay toM = pinhole_.rayTo(m);
+  if (!(n.dot(-toM.direction) * n.dot((p - m).normalized()) > 0.0)) return std::nullopt;
+  const auto seen = mirrorPointSeen(toM);
   if (!seen || (*seen - m).norm() > 1e-9 * scale) return std::nullopt;
-  return pinhole_.raster(m);
+  return m;
+}
+
+std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
+  for (const Vec2& start : mirror_->projectionStarts(p, pinhole_.position))
+    if (const auto m = reflectionPoint(p, start)) return pinhole_.raster(*m);
+  return std::nullopt;
 }
 
 std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
   const CameraMount& mount = rig().mount;
-  if (mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} || mount.rotationDeg != std::array<double, 3>{0.0, 0.0, 0.0} ||
-      mount.distortion.k3 != 0.0)
+  if (rig().shape.shape != MirrorShape::Hyperboloid || mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} ||
+      mount.rotationDeg != std::array<double, 3>{0.0, 0.0, 0.0} || mount.distortion.k3 != 0.0)
     return std::nullopt;
   // The aligned pinhole's normalised coordinates are the unified model's scaled by s = γ/f with
   // v's sign flipped (γ_y = −γ), so its lens is Mei's distortion with rescaled coefficients;
@@ -163,29 +196,45 @@ const CentralApproximation& PhysicalCamera::centralApproximation() const {
   return *fit_;
 }
 
+namespace {
+
+// Whether the reflected rays' lines all meet in one point: the hyperboloid's pinhole at F, or
+// the paraboloid's orthographic camera looking along its axis (wherever it is moved sideways).
+bool singleViewpoint(const RigSpec& rig, const Pinhole& camera) {
+  const CameraMount& mount = rig.mount;
+  switch (rig.shape.shape) {
+    case MirrorShape::Hyperboloid: return mount.offsetMm == std::array<double, 3>{0.0, 0.0, 0.0};
+    case MirrorShape::Paraboloid: return camera.orthographic && mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0};
+    default: return false;
+  }
+}
+
+}  // namespace
+
 nlohmann::json PhysicalCamera::describe() const {
   const CameraMount& mount = rig().mount;
   const LensDistortion& l = mount.distortion;
-  const bool atFocus = mount.offsetMm == std::array<double, 3>{0.0, 0.0, 0.0};
   nlohmann::json out = {
       {"model", "physical"},
-      // A pinhole at F keeps the single viewpoint whatever its rotation or lens.
-      {"non_central", !atFocus},
+      {"non_central", !singleViewpoint(rig(), pinhole_)},
       {"width", width()},
       {"height", height()},
       {"pixel_centre", "half-integer"},
       {"pinhole",
-       {{"position_m", {pinhole_.position.x(), pinhole_.position.y(), pinhole_.position.z()}},
+       {{"projection", pinhole_.orthographic ? "orthographic" : "perspective"},
+        {"position_m", {pinhole_.position.x(), pinhole_.position.y(), pinhole_.position.z()}},
         {"rotation_deg", mount.rotationDeg},
-        {"focal_px", pinhole_.focalPx},
+        {pinhole_.orthographic ? "px_per_m" : "focal_px", pinhole_.focalPx},
         {"principal_point_px", {pinhole_.principalPoint.x(), pinhole_.principalPoint.y()}},
         {"distortion", {{"k1", l.k1}, {"k2", l.k2}, {"p1", l.p1}, {"p2", l.p2}, {"k3", l.k3}}}}},
-      {"mirror", {{"shape", "hyperboloid"}, {"k", mirror_.k()}, {"c", mirror_.c()}, {"rim_z_m", rimZ_}}},
+      {"mirror", mirror_->toJson()},
       {"note",
-       "each pixel's ray leaves the mirror from its own point; positions in the viewpoint frame (origin "
-       "F', robot axes: x forward, y left, z up; the sidecar's camera_from_world frame is it turned by "
-       "diag(1, -1, -1)); non_central: false when all reflected rays' lines meet in F'; pinhole axes x = image u, y = image v, z = optical "
-       "axis; raster coordinates continuous (pixel centres at +0.5)"}};
+       "each pixel's ray leaves the mirror from its own point; positions in the viewpoint frame (origin at "
+       "the mirror's design point: the hyperboloid's F', the paraboloid's focus, the sphere's centre, the "
+       "cone's apex; robot axes: x forward, y left, z up; the sidecar's camera_from_world frame is it "
+       "turned by diag(1, -1, -1)); non_central: false when all reflected rays' lines meet in one point; "
+       "pinhole axes x = image u, y = image v, z = optical axis; raster coordinates continuous (pixel "
+       "centres at +0.5)"}};
   if (const auto mei = meiEquivalent()) {
     nlohmann::json exact = unifiedIntrinsicsJson(rig().idealCamera());
     if (!pinhole_.distortion.none()) {

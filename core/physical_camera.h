@@ -13,25 +13,36 @@
 
 #include "camera.h"
 #include "central_fit.h"
+#include "mirror_surface.h"
 #include "omni_camera.h"
 
 namespace omnicam {
 
-// The physical pinhole camera, modelled once for every engine and exporter.
+// The physical camera below the mirror, modelled once for every engine and exporter: a pinhole,
+// or for the paraboloid's orthographic build a telecentric camera whose rays all run along its
+// optical axis (then `position` is the centre of its image plane and focalPx is pixels per metre).
 struct Pinhole {
   Vec3 position;                          // viewpoint frame, metres
   Eigen::Matrix3d viewpointFromPinhole;   // columns: image u axis, image v axis, optical axis
   double focalPx = 0.0;
   Vec2 principalPoint;                    // raster coordinates (continuous; W/2 + offset)
-  LensDistortion distortion;
+  LensDistortion distortion;              // perspective cameras only
+  bool orthographic = false;
 
-  // Unit viewpoint-frame direction through a raster point; nullopt where the lens images nothing.
-  std::optional<Vec3> direction(const Vec2& raster) const;
-  // Raster point of a viewpoint-frame point in front of the camera (nullopt behind it).
+  // The viewpoint-frame ray (unit direction) through a raster point; nullopt where the lens
+  // images nothing.
+  std::optional<CameraRay> ray(const Vec2& raster) const;
+  // Raster point of a viewpoint-frame point in front of the camera (nullopt behind it, or beyond
+  // the lens' fold).
   std::optional<Vec2> raster(const Vec3& pointViewpoint) const;
+  // The camera's ray that reaches a point: from the pinhole toward it, or along the axis.
+  CameraRay rayTo(const Vec3& pointViewpoint) const;
 };
 
-// The pinhole of a rig: the ideal one moved by rig.mount.
+// The camera of a rig: the ideal one moved by rig.mount. The ideal one: for the hyperboloid at F,
+// framed as the ideal rig's image; for the other shapes on the axis at rig.shape.cameraDistance
+// below the design point (the paraboloid with 0: orthographic), framed so that the rim touches
+// the image border.
 Pinhole pinholeOf(const RigSpec& rig);
 
 class PhysicalCamera final : public Camera {
@@ -54,16 +65,18 @@ class PhysicalCamera final : public Camera {
   const CentralApproximation& centralApproximation() const;
 
   const Pinhole& pinhole() const { return pinhole_; }
-  const HyperbolicMirror& mirror() const { return mirror_; }
+  const MirrorSurface& mirror() const { return *mirror_; }
 
  private:
   // InputError (naming rig.camera) if the camera sees far less of the mirror than the ideal one.
   void checkMirrorInView() const;
-  // The mirror point the pinhole sees along a viewpoint-frame direction, inside the rim.
-  std::optional<Vec3> mirrorPointSeen(const Vec3& direction) const;
-  HyperbolicMirror mirror_;
+  // Newton's method on the reflection law from the mirror point above `start`; the physical
+  // reflection point of p, or nullopt if it does not converge to one.
+  std::optional<Vec3> reflectionPoint(const Vec3& p, Vec2 start) const;
+  // The mirror point a camera ray sees, inside the rim.
+  std::optional<Vec3> mirrorPointSeen(const CameraRay& ray) const;
+  std::shared_ptr<const MirrorSurface> mirror_;
   Pinhole pinhole_;
-  double rimZ_;  // the mirror ends at the rim plane z = rimZ_ (viewpoint frame)
   mutable std::once_flag fitOnce_;
   mutable std::unique_ptr<CentralApproximation> fit_;
 };

@@ -136,6 +136,51 @@ TEST(PhysicalCamera, RoundTripsOfAMisalignedDistortedHyperboloid) {
   expectRoundTrips(distorted(misaligned(2.0, 1.0)), 100000, 1e-6);
 }
 
+// The other mirror shapes, each with the 2 mm / 1° misalignment of misaligned().
+RigSpec shaped(MirrorShape shape, double cameraDistance) {
+  RigSpec rig = misaligned(2.0, 1.0);
+  rig.shape.shape = shape;
+  rig.shape.cameraDistance = cameraDistance;
+  rig.shape.parabolaH = 0.02;
+  rig.rimElevationDeg = shape == MirrorShape::Paraboloid ? 30.0 : rig.rimElevationDeg;
+  rig.shape.sphereRadius = 0.03;
+  rig.shape.capAngleDeg = 60.0;
+  rig.shape.coneHalfAngleDeg = 60.0;  // > 45°: the axial ray reflects below the horizon
+  rig.shape.coneRimRadius = 0.03;
+  return rig;
+}
+
+TEST(PhysicalCamera, RoundTripsOfAnOrthographicParaboloid) { expectRoundTrips(shaped(MirrorShape::Paraboloid, 0.0), 100000, 1e-6); }
+TEST(PhysicalCamera, RoundTripsOfAPerspectiveParaboloid) { expectRoundTrips(shaped(MirrorShape::Paraboloid, 0.15), 100000, 1e-6); }
+TEST(PhysicalCamera, RoundTripsOfASphere) { expectRoundTrips(shaped(MirrorShape::Sphere, 0.12), 100000, 1e-6); }
+TEST(PhysicalCamera, RoundTripsOfACone) { expectRoundTrips(shaped(MirrorShape::Cone, 0.05), 100000, 1e-6); }
+
+// Every shape's rays obey the reflection law at their own mirror point, from the camera as built.
+TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
+  for (const RigSpec& rig : {shaped(MirrorShape::Paraboloid, 0.0), shaped(MirrorShape::Paraboloid, 0.15),
+                             shaped(MirrorShape::Sphere, 0.12), shaped(MirrorShape::Cone, 0.05)}) {
+    const PhysicalCamera camera(rig);
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+    int checked = 0;
+    for (int i = 0; i < 3000; ++i) {
+      const Vec2 p(coord(rng), coord(rng));
+      const auto ray = camera.generateRay({p});
+      if (!ray) continue;
+      ++checked;
+      const Vec3 m = ray->origin;
+      ASSERT_NEAR(camera.mirror().implicit(m), 0.0, 1e-9) << mirrorShapeName(rig.shape.shape);
+      const Vec3 incoming = camera.pinhole().rayTo(m).direction;
+      const Vec3 n = camera.mirror().normalAt(m);
+      EXPECT_NEAR(incoming.dot(n), -ray->direction.dot(n), 1e-12);
+      EXPECT_LE(std::abs(incoming.cross(n).dot(ray->direction)), 1e-12);
+      EXPECT_LE(m.z(), camera.mirror().rimZ() + 1e-15);
+    }
+    // The rim touches the image border: the mirror fills most of the inscribed disc.
+    EXPECT_GT(checked, 3000 * 0.6) << mirrorShapeName(rig.shape.shape);
+  }
+}
+
 // Near the widest rim the scene format allows, the mirror point is ~5 c from the axis: Newton's
 // stopping test must still be reachable in floating point there.
 TEST(PhysicalCamera, RoundTripsNearAWideRim) {

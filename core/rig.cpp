@@ -4,7 +4,20 @@
 
 namespace omnicam {
 
+const char* mirrorShapeName(MirrorShape shape) {
+  switch (shape) {
+    case MirrorShape::Hyperboloid: return "hyperboloid";
+    case MirrorShape::Paraboloid: return "paraboloid";
+    case MirrorShape::Sphere: return "sphere";
+    case MirrorShape::Cone: return "cone";
+  }
+  return "?";
+}
+
 OmniCamera RigSpec::camera() const {
+  if (shape.shape != MirrorShape::Hyperboloid)
+    throw InputError(std::string("rig.mirror.shape: this needs the central (Mei) model of the hyperboloid; a ") +
+                     mirrorShapeName(shape.shape) + " mirror is traced physically only");
   if (!ideal())
     throw InputError(
         "rig.camera: this needs the central (Mei) model, which describes only the ideal camera "

@@ -36,11 +36,32 @@ struct CameraMount {
   bool operator==(const CameraMount&) const = default;
 };
 
+// The mirror's shape. The hyperboloid (k, c, rim_elevation_deg of RigSpec) is the designed
+// single-viewpoint mirror; the others are cheaper builds (docs/physical-camera.md, "Mirror
+// shapes"). Each sits level on the robot with its design point at `height`: the paraboloid's
+// focus, the sphere's centre, the cone's apex.
+enum class MirrorShape { Hyperboloid, Paraboloid, Sphere, Cone };
+const char* mirrorShapeName(MirrorShape shape);
+
+struct MirrorShapeSpec {
+  MirrorShape shape = MirrorShape::Hyperboloid;
+  double parabolaH = 0.0;       // paraboloid: z = (r² − h²)/(2h) about its focus, metres
+  double sphereRadius = 0.0;    // sphere, metres
+  double capAngleDeg = 0.0;     // sphere: the cap from its lowest point up to this polar angle
+  double coneHalfAngleDeg = 0.0;  // cone: apex half-angle
+  double coneRimRadius = 0.0;   // cone: radius of its rim, metres
+  // The ideal pinhole's distance below the design point, on the axis (paraboloid, sphere, cone;
+  // a paraboloid with 0 is seen by an orthographic camera looking straight up).
+  double cameraDistance = 0.0;
+  bool operator==(const MirrorShapeSpec&) const = default;
+};
+
 struct RigSpec {
   double height = 0.40;            // F' above the floor, metres
   double k = 11.546;               // Baker–Nayar mirror parameter, > 2
   double c = 0.02321;              // focal distance between F and F', metres
-  double rimElevationDeg = 45.0;   // mirror rim, degrees above the horizon
+  double rimElevationDeg = 45.0;   // mirror rim, degrees above the horizon (hyperboloid, paraboloid)
+  MirrorShapeSpec shape;           // hyperboloid unless it says otherwise
   CameraMount mount;               // the physical camera's misalignment and lens
   int imageSize = 360;             // square image, pixels
   double framingElevationDeg = 45.0;  // direction that touches the image border
@@ -51,7 +72,7 @@ struct RigSpec {
 
   // True when the camera sits exactly where the mirror was designed for: the image is then the
   // central (Mei) model's, in closed form.
-  bool ideal() const { return mount.ideal(); }
+  bool ideal() const { return shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
   // The same camera imaging at another size: the focal length scales with the image, and so does
   // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
   RigSpec resized(int size) const {

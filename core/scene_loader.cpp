@@ -83,24 +83,66 @@ CameraMount readCameraMount(JsonFields camera) {
   return mount;
 }
 
+// rig.mirror: the shape and its parameters (docs/scene-format.md); each shape takes only its own.
+void readMirror(JsonFields& mirror, RigSpec& spec) {
+  const std::string shape = mirror.string("shape", "hyperboloid");
+  MirrorShapeSpec& s = spec.shape;
+  const JsonFields::Range size{limits::kMinMirrorSize, limits::kMaxMirrorSize, false, "m"};
+  const auto rimElevation = [&] {
+    spec.rimElevationDeg = mirror.number("rim_elevation_deg", spec.rimElevationDeg);
+    if (!(spec.rimElevationDeg > -60.0 && spec.rimElevationDeg < 80.0))
+      mirror.fail("rim_elevation_deg", "must be in (-60, 80) degrees");
+  };
+  // The ideal camera's distance below the design point: above the floor, below the mirror.
+  const auto cameraDistance = [&](double fallback, double below) {
+    s.cameraDistance = mirror.number("camera_distance_m", fallback, {0.0, limits::kMaxCameraDistance, false, "m"});
+    if (s.cameraDistance != 0.0 && !(s.cameraDistance > below))
+      mirror.fail("camera_distance_m", "puts the camera on or above the mirror (it must exceed " + shortNumber(below) + " m)");
+    if (!(s.cameraDistance < spec.height))
+      mirror.fail("camera_distance_m", "must be smaller than rig.height (the camera sits above the floor)");
+  };
+  if (shape == "hyperboloid") {
+    spec.k = mirror.number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
+    spec.c = mirror.number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
+    if (!(spec.c < spec.height))
+      mirror.fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
+    rimElevation();
+  } else if (shape == "paraboloid") {
+    s.shape = MirrorShape::Paraboloid;
+    s.parabolaH = mirror.number("h", size);
+    rimElevation();
+    if (!(spec.rimElevationDeg < 60.0)) mirror.fail("rim_elevation_deg", "must be below 60 degrees for a paraboloid");
+    cameraDistance(0.0, 0.5 * s.parabolaH);
+  } else if (shape == "sphere") {
+    s.shape = MirrorShape::Sphere;
+    s.sphereRadius = mirror.number("radius", size);
+    s.capAngleDeg = mirror.number("cap_angle_deg", 60.0, {10.0, 90.0, false, "degrees"});
+    cameraDistance(mirror.number("camera_distance_m"), s.sphereRadius);
+  } else if (shape == "cone") {
+    s.shape = MirrorShape::Cone;
+    s.coneHalfAngleDeg = mirror.number("half_angle_deg", 60.0, {10.0, 80.0, false, "degrees"});
+    s.coneRimRadius = mirror.number("rim_radius", size);
+    cameraDistance(mirror.number("camera_distance_m"), 0.0);
+  } else {
+    mirror.fail("shape", quote(shape) + " is not a mirror shape omnicam models (hyperboloid, paraboloid, sphere, cone)");
+  }
+  if (s.shape == MirrorShape::Sphere || s.shape == MirrorShape::Cone) {
+    if (s.cameraDistance == 0.0) mirror.fail("camera_distance_m", "must be positive: a perspective camera below the mirror");
+  }
+}
+
 RigSpec readRig(JsonFields rig) {
   RigSpec spec;
   spec.height = rig.number("height", spec.height, {limits::kMinRigHeight, limits::kMaxRigHeight, false, "m"});
   if (auto mirror = rig.optionalObject("mirror")) {
-    const std::string shape = mirror->string("shape", "hyperboloid");
-    if (shape != "hyperboloid") mirror->fail("shape", quote(shape) + " is not a mirror shape omnicam models (hyperboloid)");
-    spec.k = mirror->number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
-    spec.c = mirror->number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
-    if (!(spec.c < spec.height))
-      mirror->fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
-    spec.rimElevationDeg = mirror->number("rim_elevation_deg", spec.rimElevationDeg);
-    if (!(spec.rimElevationDeg > -60.0 && spec.rimElevationDeg < 80.0))
-      mirror->fail("rim_elevation_deg", "must be in (-60, 80) degrees");
+    readMirror(*mirror, spec);
     mirror->finish();
   }
   if (auto camera = rig.optionalObject("camera")) spec.mount = readCameraMount(*camera);
   if (auto image = rig.optionalObject("image")) {
     spec.imageSize = image->integer("size", spec.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
+    if (spec.shape.shape != MirrorShape::Hyperboloid && image->has("framing_elevation_deg"))
+      image->fail("framing_elevation_deg", "only for the hyperboloid: the other shapes' images frame their rim");
     spec.framingElevationDeg = image->number("framing_elevation_deg", spec.rimElevationDeg);
     if (!(spec.framingElevationDeg > -60.0 && spec.framingElevationDeg <= spec.rimElevationDeg))
       image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees");
@@ -112,7 +154,7 @@ RigSpec readRig(JsonFields rig) {
     rig.fail("height", "must be larger than the mirror's c = " + shortNumber(spec.c) + " m");
   rig.finish();
   try {
-    (void)spec.idealCamera();  // the mirror must be able to image the rim and framing
+    if (spec.shape.shape == MirrorShape::Hyperboloid) (void)spec.idealCamera();  // it must image the rim and framing
     (void)makeCamera(spec);    // and the camera must sit below the mirror
   } catch (const InputError& e) {
     throw InputError(showPath(rig.file()) + ": " + rig.where() + "." + e.what());

@@ -15,10 +15,26 @@ namespace omnicam {
 using nlohmann::json;
 
 json rigToJson(const RigSpec& rig) {
-  json out = {{"height", rig.height},
-              {"mirror", {{"shape", "hyperboloid"}, {"k", rig.k}, {"c", rig.c}, {"rim_elevation_deg", rig.rimElevationDeg}}},
-              {"image", {{"size", rig.imageSize}, {"framing_elevation_deg", rig.framingElevationDeg}}}};
-  if (!rig.ideal()) {  // the ideal camera is the default: its rigs read as they always did
+  const MirrorShapeSpec& s = rig.shape;
+  json mirror = {{"shape", mirrorShapeName(s.shape)}};
+  json image = {{"size", rig.imageSize}};
+  switch (s.shape) {
+    case MirrorShape::Hyperboloid:
+      mirror.update({{"k", rig.k}, {"c", rig.c}, {"rim_elevation_deg", rig.rimElevationDeg}});
+      image["framing_elevation_deg"] = rig.framingElevationDeg;
+      break;
+    case MirrorShape::Paraboloid:
+      mirror.update({{"h", s.parabolaH}, {"rim_elevation_deg", rig.rimElevationDeg}, {"camera_distance_m", s.cameraDistance}});
+      break;
+    case MirrorShape::Sphere:
+      mirror.update({{"radius", s.sphereRadius}, {"cap_angle_deg", s.capAngleDeg}, {"camera_distance_m", s.cameraDistance}});
+      break;
+    case MirrorShape::Cone:
+      mirror.update({{"half_angle_deg", s.coneHalfAngleDeg}, {"rim_radius", s.coneRimRadius}, {"camera_distance_m", s.cameraDistance}});
+      break;
+  }
+  json out = {{"height", rig.height}, {"mirror", mirror}, {"image", image}};
+  if (!rig.mount.ideal()) {  // the ideal camera is the default: its rigs read as they always did
     const CameraMount& m = rig.mount;
     const LensDistortion& l = m.distortion;
     out["camera"] = {{"offset_mm", m.offsetMm},

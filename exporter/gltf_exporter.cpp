@@ -226,6 +226,10 @@ TriangleMesh rimMask(double rimHeight, double innerRadius) {
 }  // namespace
 
 void checkGltfCamera(const RigSpec& rig) {
+  if (rig.shape.shape != MirrorShape::Hyperboloid)
+    throw InputError(std::string("rig.mirror.shape: the glTF export (and Blender) has certified meshes of the "
+                                 "hyperboloid only, not of a ") + mirrorShapeName(rig.shape.shape) +
+                     "; render it with the fast renderer or POV-Ray");
   if (!rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "
                      "the fast renderer");

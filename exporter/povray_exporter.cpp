@@ -8,6 +8,8 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "number_format.h"
+#include "mirror.h"
+#include "mirror_surface.h"
 #include "physical_camera.h"
 #include "triangulate.h"
 
@@ -88,6 +90,76 @@ void writeMesh(std::ostringstream& out, const TriangleMesh& mesh, bool withUv, c
 
 }  // namespace
 
+namespace {
+
+// The physical camera. POV-Ray's ray for screen (x0, y0) ∈ [−½, ½]² is direction + x0·right +
+// y0·up (perspective) or starts at location + x0·right + y0·up along direction (orthographic),
+// y0 upward; raster u = (x0 + ½)·W and v = (½ − y0)·H reach the pinhole frame's
+// ((u − ppx)/f, (v − ppy)/f, 1) (times f/H) with these vectors; a principal point off the image
+// centre tilts `direction` (perspective) or moves `location` (orthographic).
+std::string cameraSdl(const Pinhole& pinhole, int size, const Rigid& worldFromView) {
+  const double w = size, h = size, f = pinhole.focalPx;
+  const Vec2& pp = pinhole.principalPoint;
+  const Eigen::Matrix3d worldFromPinhole = worldFromView.linear() * pinhole.viewpointFromPinhole;
+  std::ostringstream out;
+  if (pinhole.orthographic) {
+    // f is pixels per metre: the view is W/f × H/f metres, centred on the image centre's ray.
+    const Vec3 centre = pinhole.position + pinhole.viewpointFromPinhole * Vec3((0.5 * w - pp.x()) / f, (0.5 * h - pp.y()) / f, 0.0);
+    const Vec3 right = worldFromPinhole * Vec3(w / f, 0.0, 0.0) * kPovrayUnitsPerMetre;
+    const Vec3 up = worldFromPinhole * Vec3(0.0, -h / f, 0.0) * kPovrayUnitsPerMetre;
+    out << "camera { orthographic\n  location " << pov(worldFromView * centre) << "\n  right " << povDirection(right)
+        << "\n  up " << povDirection(up) << "\n  direction " << povDirection(worldFromPinhole * Vec3::UnitZ()) << "\n}\n";
+    return out.str();
+  }
+  const Vec3 location = worldFromView * pinhole.position;
+  const Vec3 right = worldFromPinhole * Vec3(w / h, 0.0, 0.0);
+  const Vec3 up = worldFromPinhole * Vec3(0.0, -1.0, 0.0);
+  const Vec3 direction = worldFromPinhole * Vec3((0.5 * w - pp.x()) / h, (0.5 * h - pp.y()) / h, f / h);
+  out << "camera { perspective\n  location " << pov(location) << "\n  right " << povDirection(right)
+      << "\n  up " << povDirection(up) << "\n  direction " << povDirection(direction) << "\n}\n";
+  return out.str();
+}
+
+// The exact mirror in its local frame (mm, POV axes: POV y = omnicam z, origin at the design
+// point), an open object the caller clips at the rim and closes.
+std::string mirrorSurfaceSdl(const RigSpec& rig) {
+  const double u = kPovrayUnitsPerMetre;
+  const MirrorShapeSpec& s = rig.shape;
+  std::ostringstream out;
+  switch (s.shape) {
+    case MirrorShape::Hyperboloid: {
+      // (y + c/2)²/a² − (x² + z²)/b² = 1, times a²: −(a²/b²)x² + y² − (a²/b²)z² + c·y + c²/4 − a² = 0.
+      const HyperbolicMirror mirror = rig.mirror();
+      const double a2 = mirror.a2() * u * u, b2 = mirror.b2() * u * u, c = mirror.c() * u;
+      out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
+          << " m), upper sheet from its vertex to the rim.\n"
+          << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c) << ", 0>, "
+          << num(c * c / 4.0 - a2) << "\n";
+      break;
+    }
+    case MirrorShape::Paraboloid: {
+      // x² + z² − 2h·y − h² = 0 about the focus.
+      const double h = s.parabolaH * u;
+      out << "// Mirror: exact paraboloid (h = " << num(s.parabolaH) << " m) about its focus.\n"
+          << "quadric { <1, 0, 1>, <0, 0, 0>, <0, " << num(-2.0 * h) << ", 0>, " << num(-h * h) << "\n";
+      break;
+    }
+    case MirrorShape::Sphere:
+      out << "// Mirror: sphere (radius " << num(s.sphereRadius) << " m) about its centre, its lower cap.\n"
+          << "sphere { <0, 0, 0>, " << num(s.sphereRadius * u) << "\n";
+      break;
+    case MirrorShape::Cone: {
+      const double rimR = s.coneRimRadius * u, rimY = rimR / std::tan(radians(s.coneHalfAngleDeg));
+      out << "// Mirror: cone (half-angle " << num(s.coneHalfAngleDeg) << " deg), apex down at the origin.\n"
+          << "cone { <0, 0, 0>, 0, <0, " << num(rimY) << ", 0>, " << num(rimR) << " open\n";
+      break;
+    }
+  }
+  return out.str();
+}
+
+}  // namespace
+
 void checkPovrayCamera(const RigSpec& rig) {
   if (!rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: POV-Ray has no lens distortion; render it with the fast renderer");
@@ -99,13 +171,12 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;
   job.samplesPerAxis = *n;
-  // The physical camera as built (physical_camera.h), and the ideal rig's image it is framed for.
-  const OmniCamera camera = settings.rig.idealCamera();
+  // The physical camera as built (physical_camera.h) and the mirror it looks into.
   checkPovrayCamera(settings.rig);
   const Pinhole pinhole = pinholeOf(settings.rig);
-  job.width = camera.width() * *n;
-  job.height = camera.height() * *n;
-  const HyperbolicMirror& mirror = camera.mirror();
+  const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(settings.rig);
+  job.width = settings.rig.imageSize * *n;
+  job.height = settings.rig.imageSize * *n;
   const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
   SdlWriter writer(scene, settings.shading, job);
 
@@ -113,36 +184,17 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   out << "// omnicam POV-Ray export (generated). Units: mm; axes: <X, Z, Y> of omnicam's world.\n"
          "#version 3.7;\n"
          "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
-      << "background { " << rgb(scene.background) << " }\n\n";
-
-  // The physical pinhole. POV-Ray's ray for screen (x0, y0) ∈ [−½, ½]² is direction + x0·right +
-  // y0·up, y0 upward; raster u = (x0 + ½)·W and v = (½ − y0)·H reach the pinhole frame's
-  // ((u − ppx)/f, (v − ppy)/f, 1) (times f/H) with these three vectors; a principal point off
-  // the image centre tilts `direction`, which POV-Ray allows.
-  const double w = camera.width(), h = camera.height(), f = pinhole.focalPx;
-  const Vec2& pp = pinhole.principalPoint;
-  const Eigen::Matrix3d worldFromPinhole = worldFromView.linear() * pinhole.viewpointFromPinhole;
-  const Vec3 location = worldFromView * pinhole.position;
-  const Vec3 right = worldFromPinhole * Vec3(w / h, 0.0, 0.0);
-  const Vec3 up = worldFromPinhole * Vec3(0.0, -1.0, 0.0);
-  const Vec3 direction = worldFromPinhole * Vec3((0.5 * w - pp.x()) / h, (0.5 * h - pp.y()) / h, f / h);
-  out << "camera { perspective\n  location " << pov(location) << "\n  right " << povDirection(right)
-      << "\n  up " << povDirection(up) << "\n  direction " << povDirection(direction) << "\n}\n\n";
+      << "background { " << rgb(scene.background) << " }\n\n"
+      << cameraSdl(pinhole, settings.rig.imageSize, worldFromView) << "\n";
 
   if (settings.shading == Shading::Lit)
     for (const PointLight& l : scene.lights) out << "light_source { " << pov(l.position) << ", " << rgb(l.intensity) << " }\n";
 
-  // The mirror in its local frame (mm, POV axes, origin at F'): (y + c/2)²/a² − (x² + z²)/b² = 1,
-  // multiplied by a²: −(a²/b²)x² + y² − (a²/b²)z² + c·y + c²/4 − a² = 0.
   const double u = kPovrayUnitsPerMetre;
-  const double a2 = mirror.a2() * u * u, b2 = mirror.b2() * u * u, c = mirror.c() * u;
-  const double vertexY = std::sqrt(a2) - c / 2.0;
-  const double rimY = camera.rimPoint().z() * u, rimR = camera.rimPoint().x() * u;
-  out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
-      << " m), upper sheet from its vertex to the rim.\n"
-      << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c) << ", 0>, "
-      << num(c * c / 4.0 - a2) << "\n"
-      << "  clipped_by { box { <" << num(-rimR - 1.0) << ", " << num(vertexY - 0.5) << ", " << num(-rimR - 1.0)
+  const double rimY = surface->rimZ() * u, rimR = surface->rimRadius() * u;
+  const double bottomY = surface->heightAt(0.0, 0.0) * u - 0.5;
+  out << mirrorSurfaceSdl(settings.rig)
+      << "  clipped_by { box { <" << num(-rimR - 1.0) << ", " << num(bottomY) << ", " << num(-rimR - 1.0)
       << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
       << "  bounded_by { clipped_by }\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"

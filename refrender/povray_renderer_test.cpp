@@ -98,6 +98,59 @@ INSTANTIATE_TEST_SUITE_P(
         MountCase{"-3 mm along the axis, 2 deg about it", {{-1.0, 2.5, -3.0}, {-0.5, 1.0, -2.0}, {}, {0.0, 0.0}}, {1.0, -1.5, 137.0}}),
     [](const auto& param) { return "mount" + std::to_string(param.index); });
 
+// The other mirror shapes, each with its camera moved (2, −1, 1) mm and turned (1, −0.5, 0.5)°:
+// POV-Ray traces the exact surface (quadric, sphere, cone) from the same camera — orthographic
+// for the paraboloid's central build.
+struct ShapeCase {
+  const char* label;
+  MirrorShapeSpec shape;
+  double rimElevationDeg;
+};
+
+class FastVsPovrayShapes : public ::testing::TestWithParam<ShapeCase> {};
+
+TEST_P(FastVsPovrayShapes, UnlitAtSixteenSamplesPerPixel) {
+  static const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  static const FastRenderer fast(scene);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.shape = GetParam().shape;
+  settings.rig.rimElevationDeg = GetParam().rimElevationDeg;
+  settings.rig.mount.offsetMm = {2.0, -1.0, 1.0};
+  settings.rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  settings.spp = 16;
+  const RobotPose pose{2.7, -1.8, 180.0};
+  const ImageRGBA ours = fast.render(pose, settings);
+  const ImageRGBA truth = renderWithPovray(scene, pose, settings);
+  const CompareResult r = compareImages(ours, truth);
+  settings.rig.mount = {};
+  const double aligned = compareImages(fast.render(pose, settings), truth).psnrDb;
+  std::printf("fast vs POV-Ray, %s, moved 2 mm / turned 1 deg: PSNR %.2f dB, SSIM %.5f, max abs %.4f (the aligned "
+              "camera's image: %.2f dB)\n", GetParam().label, r.psnrDb, r.ssim, r.maxAbs, aligned);
+  EXPECT_GE(r.psnrDb, 60.0);
+  EXPECT_LT(aligned, 40.0);  // the misalignment shows
+}
+
+MirrorShapeSpec shapeSpec(MirrorShape shape, double cameraDistance) {
+  MirrorShapeSpec s;
+  s.shape = shape;
+  s.cameraDistance = cameraDistance;
+  s.parabolaH = 0.02;
+  s.sphereRadius = 0.03;
+  s.capAngleDeg = 60.0;
+  s.coneHalfAngleDeg = 60.0;
+  s.coneRimRadius = 0.03;
+  return s;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Shapes, FastVsPovrayShapes,
+    ::testing::Values(ShapeCase{"paraboloid, orthographic camera", shapeSpec(MirrorShape::Paraboloid, 0.0), 30.0},
+                      ShapeCase{"paraboloid, perspective camera 0.15 m below", shapeSpec(MirrorShape::Paraboloid, 0.15), 30.0},
+                      ShapeCase{"sphere r 3 cm, cap 60 deg, camera 0.12 m below", shapeSpec(MirrorShape::Sphere, 0.12), 45.0},
+                      ShapeCase{"cone 60 deg, rim 3 cm, camera 0.05 m below", shapeSpec(MirrorShape::Cone, 0.05), 45.0}),
+    [](const auto& param) { return std::string(mirrorShapeName(param.param.shape.shape)) + std::to_string(param.index); });
+
 TEST(Povray, LensDistortionIsRefusedNotIgnored) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
