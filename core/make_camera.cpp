@@ -22,7 +22,8 @@ CentralModel centralModelOf(const Camera& camera) {
   const auto& physical = dynamic_cast<const PhysicalCamera&>(camera);
   if (const auto mei = physical.meiEquivalent()) {
     model.intrinsics = *mei;
-    if (physical.pinhole().distortion.none()) model.rimRadiusPx = camera.rig().idealCamera().rimRadius();
+    if (camera.rig().shape.shape == MirrorShape::Hyperboloid && physical.pinhole().distortion.none())
+      model.rimRadiusPx = camera.rig().idealCamera().rimRadius();
     return model;
   }
   model.approximation = physical.centralApproximation();

@@ -173,6 +173,19 @@ std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
 
 std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
   const CameraMount& mount = rig().mount;
+  if (rig().shape.shape == MirrorShape::Paraboloid && pinhole_.orthographic &&
+      mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0}) {
+    // The orthographic paraboloid is the unified model with ξ = 1 (Geyer and Daniilidis): a
+    // mirror point at radius r = h·tan(θ/2) seen f px per metre gives γ = h·f. Moving the camera
+    // sideways moves the mirror's image by −f·offset; along the axis, nothing.
+    const double gamma = rig().shape.parabolaH * pinhole_.focalPx;
+    const Vec2 centre = pinhole_.principalPoint - pinhole_.focalPx * pinhole_.position.head<2>();
+    MeiIntrinsics mei;
+    mei.xi = 1.0, mei.gammaX = gamma, mei.gammaY = -gamma;
+    mei.cx = centre.x() - 0.5;
+    mei.cy = centre.y() - 0.5;
+    return mei;
+  }
   if (rig().shape.shape != MirrorShape::Hyperboloid || mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} ||
       mount.rotationDeg != std::array<double, 3>{0.0, 0.0, 0.0} || mount.distortion.k3 != 0.0)
     return std::nullopt;
@@ -236,7 +249,10 @@ nlohmann::json PhysicalCamera::describe() const {
        "pinhole axes x = image u, y = image v, z = optical axis; raster coordinates continuous (pixel "
        "centres at +0.5)"}};
   if (const auto mei = meiEquivalent()) {
-    nlohmann::json exact = unifiedIntrinsicsJson(rig().idealCamera());
+    nlohmann::json exact = {{"model", "mei_unified"},      {"xi", mei->xi},           {"gamma_x", mei->gammaX},
+                            {"gamma_y", mei->gammaY},      {"pixel_centre", "integer"}, {"width", width()},
+                            {"height", height()}};
+    if (rig().shape.shape == MirrorShape::Hyperboloid) exact = unifiedIntrinsicsJson(rig().idealCamera());
     if (!pinhole_.distortion.none()) {
       // The lens bends the rim and horizon circles: no radius describes them.
       exact.erase("rim_radius_px");

@@ -1,4 +1,5 @@
 #include "scene_loader.h"
+#include "sidecar.h"
 
 #include <gtest/gtest.h>
 
@@ -199,6 +200,23 @@ std::string nested(int depth) { return std::string(depth, '[') + std::string(dep
 
 // Every JSON input goes through parseJsonText: bounded depth (a deep tree would overflow the
 // stack of any recursive walk, dump() included), no key twice in one object at any depth.
+// Every mirror shape reads back from what sidecars write: one rig, equal after the round trip.
+TEST(RigJson, EveryMirrorShapeRoundTripsThroughTheSidecarForm) {
+  for (const char* mirror :
+       {R"({"shape": "hyperboloid", "k": 9.5, "c": 0.03, "rim_elevation_deg": 40})",
+        R"({"shape": "paraboloid", "h": 0.021, "rim_elevation_deg": 35})",
+        R"({"shape": "paraboloid", "h": 0.021, "camera_distance_m": 0.2})",
+        R"({"shape": "sphere", "radius": 0.025, "cap_angle_deg": 70, "camera_distance_m": 0.1})",
+        R"({"shape": "cone", "half_angle_deg": 55, "rim_radius": 0.02, "camera_distance_m": 0.06})"}) {
+    const nlohmann::json rig = {{"height", 0.45}, {"mirror", nlohmann::json::parse(mirror)},
+                                {"camera", {{"offset_mm", {1.0, -0.5, 0.25}}, {"rotation_deg", {0.5, 0.0, -0.25}}}}};
+    const RigSpec read = rigFromJson(rig, "scene.json", "rig");
+    const RigSpec again = rigFromJson(rigToJson(read), "sidecar.json", "rig");
+    EXPECT_TRUE(read == again) << mirror << " -> " << rigToJson(read).dump();
+    EXPECT_FALSE(read.ideal());
+  }
+}
+
 TEST(JsonInput, DepthIsBoundedAndDuplicateKeysRefusedAtAnyDepth) {
   EXPECT_EQ(jsonError(nested(limits::kMaxJsonDepth)), "");
   EXPECT_EQ(jsonError(nested(limits::kMaxJsonDepth + 1)), "in.json: JSON nested deeper than 64 levels of objects and arrays");

@@ -158,6 +158,15 @@ def main():
     write(os.path.join(SCENES, "camera_distortion_nan.json"),
           scene([FLOOR], rig={"camera": {"distortion": {"k1": "x"}}}))
     write(os.path.join(SCENES, "mirror_shape_unknown.json"), scene([FLOOR], rig={"mirror": {"shape": "ellipsoid\n"}}))
+    sphere = {"shape": "sphere", "radius": 0.03, "camera_distance_m": 0.12}
+    write(os.path.join(SCENES, "sphere_with_k.json"), scene([FLOOR], rig={"mirror": dict(sphere, k=11)}))
+    write(os.path.join(SCENES, "sphere_no_camera.json"),
+          scene([FLOOR], rig={"mirror": {"shape": "sphere", "radius": 0.03}}))
+    write(os.path.join(SCENES, "sphere_camera_inside.json"),
+          scene([FLOOR], rig={"mirror": dict(sphere, camera_distance_m=0.02)}))
+    write(os.path.join(SCENES, "paraboloid_framing.json"),
+          scene([FLOOR], rig={"mirror": {"shape": "paraboloid", "h": 0.02}, "image": {"framing_elevation_deg": 30}}))
+    write(os.path.join(SCENES, "sphere.json"), scene([FLOOR], rig={"mirror": sphere}))
     write(os.path.join(SCENES, "camera_away.json"), scene([FLOOR], rig={"camera": {"offset_mm": [100, 0, 0]}}))
     write(os.path.join(SCENES, "camera_misaligned.json"),
           scene([FLOOR], rig={"camera": {"offset_mm": [2, 0, 0], "distortion": {"k1": -0.05}}}))
