@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "image.h"
+#include "make_camera.h"
 #include "render_output.h"
 #include "atomic_file.h"
 #include "sidecar.h"
@@ -37,11 +38,11 @@ struct RenderArgs {
 class FrameViews {
  public:
   FrameViews(const std::vector<std::string>& kinds, const RigSpec& rig) {
+    const std::shared_ptr<const Camera> camera = makeCamera(rig);
     for (const std::string& kind : kinds) {
-      const OmniCamera camera = rig.camera();  // views are of the central model's image
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
-      ViewMap map = buildViewMap(spec, camera);
+      ViewMap map = buildViewMap(spec, *camera);
       nlohmann::json description = viewToJson(spec, map);
       maps_.push_back({kind, std::move(map), std::move(description)});
     }

@@ -11,6 +11,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
+#include "make_camera.h"
 #include "scene_loader.h"
 #include "sidecar.h"
 #include "views.h"
@@ -76,7 +77,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   const ImageRGBA omni = readImage(a.in);
   if (omni.width != omni.height) throw InputError(showPath(a.in) + ": omni images must be square");
   auto [rig, sidecar] = rigOf(a, omni.width);
-  const ViewMap map = buildViewMap(spec, rig.camera());
+  const ViewMap map = buildViewMap(spec, *makeCamera(rig));
   sidecar["view"] = viewToJson(spec, map);
   sidecar["source_image"] = a.in;
   writeImageAtomic(a.out, applyViewMap(map, omni));

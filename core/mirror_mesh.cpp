@@ -2,47 +2,47 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace omnicam {
 
 namespace {
 
-// Profile of the upper sheet: z(r) = a·sqrt(1 + r²/b²) − c/2.
-double profileZ(const HyperbolicMirror& m, double r) { return m.a() * std::sqrt(1.0 + r * r / m.b2()) - m.c() / 2.0; }
+// A mirror of revolution as the mesh builder sees it: its profile z(r) from the axis to the rim,
+// the largest curvature of that profile, and the surface normal.
+struct Profile {
+  std::function<double(double)> z;
+  double maxCurvature;
+  double rimRadius, rimZ;
+  std::function<Vec3(const Vec3&)> normal;
+};
 
-Vec3 surfaceNormal(const HyperbolicMirror& m, const Vec3& p) { return m.normalAt(p); }
-
-}  // namespace
-
-MirrorMesh buildMirrorMesh(const HyperbolicMirror& m, double rimTheta, double maxDeviation) {
-  const Vec3 rimDirection(std::sin(rimTheta), 0.0, -std::cos(rimTheta));
-  const Vec3 rim = *m.pointAlong(rimDirection);
-  const double rimRadius = rim.x();
-  // Largest curvatures of the sheet up to the rim: the profile's is largest at the vertex
-  // (a/b²); the circles' is 1/r, but a circle's sagitta is bounded by its radius, so sectors
-  // are set by the rim circle. Each direction gets half of the bound.
+// Rings of constant height evenly spaced in arc length, sectors set by the rim circle; the chord
+// sagitta of every edge below half the bound in each direction.
+MirrorMesh buildRevolutionMesh(const Profile& profile, double maxDeviation) {
+  const double rimRadius = profile.rimRadius;
+  // The profile's sagitta over a step L is L²κ/8; a circle's is bounded by its radius, so
+  // sectors are set by the rim circle. Each direction gets half of the bound.
   const double half = 0.5 * maxDeviation;
-  const double profileCurvature = m.a() / m.b2();
-  const double maxProfileStep = std::sqrt(8.0 * half / profileCurvature);  // sagitta L²κ/8
+  const double maxProfileStep = std::sqrt(8.0 * half / profile.maxCurvature);
   // Profile arc length, measured numerically.
   double arc = 0.0;
   const int fine = 20000;
   for (int k = 0; k < fine; ++k) {
     const double r0 = rimRadius * k / fine, r1 = rimRadius * (k + 1) / fine;
-    arc += std::hypot(r1 - r0, profileZ(m, r1) - profileZ(m, r0));
+    arc += std::hypot(r1 - r0, profile.z(r1) - profile.z(r0));
   }
   MirrorMesh out;
   out.requestedBound = maxDeviation;
   out.rings = std::max(2, static_cast<int>(std::ceil(arc / maxProfileStep)));
   out.sectors = std::max(8, static_cast<int>(std::ceil(kPi / std::acos(1.0 - half / rimRadius))));
-  // Rings evenly spaced in arc length along the profile.
   std::vector<double> ringRadius{0.0};
   {
     double s = 0.0, target = arc / out.rings;
     int next = 1;
     for (int k = 0; k < fine && next < out.rings; ++k) {
       const double r0 = rimRadius * k / fine, r1 = rimRadius * (k + 1) / fine;
-      const double ds = std::hypot(r1 - r0, profileZ(m, r1) - profileZ(m, r0));
+      const double ds = std::hypot(r1 - r0, profile.z(r1) - profile.z(r0));
       while (next < out.rings && s + ds >= target * next) {
         ringRadius.push_back(r0 + (r1 - r0) * (target * next - s) / ds);
         ++next;
@@ -52,10 +52,10 @@ MirrorMesh buildMirrorMesh(const HyperbolicMirror& m, double rimTheta, double ma
     ringRadius.push_back(rimRadius);
   }
   TriangleMesh& mesh = out.mesh;
-  mesh.vertices.push_back({0.0, 0.0, profileZ(m, 0.0)});
+  mesh.vertices.push_back({0.0, 0.0, profile.z(0.0)});
   mesh.uvs.push_back({0.5, 0.5});
   for (size_t ring = 1; ring < ringRadius.size(); ++ring) {
-    const double r = ringRadius[ring], z = ring + 1 == ringRadius.size() ? rim.z() : profileZ(m, r);
+    const double r = ringRadius[ring], z = ring + 1 == ringRadius.size() ? profile.rimZ : profile.z(r);
     for (int s = 0; s < out.sectors; ++s) {
       const double phi = 2.0 * kPi * s / out.sectors;
       mesh.vertices.push_back({r * std::cos(phi), r * std::sin(phi), z});
@@ -72,8 +72,26 @@ MirrorMesh buildMirrorMesh(const HyperbolicMirror& m, double rimTheta, double ma
       mesh.triangles.emplace_back(index(r, s), index(r, s + 1), index(r + 1, s + 1));
       mesh.triangles.emplace_back(index(r, s), index(r + 1, s + 1), index(r + 1, s));
     }
-  for (const Vec3& v : mesh.vertices) out.normals.push_back(surfaceNormal(m, v));
+  for (const Vec3& v : mesh.vertices) out.normals.push_back(profile.normal(v));
   return out;
+}
+
+}  // namespace
+
+MirrorMesh buildMirrorMesh(const HyperbolicMirror& m, double rimTheta, double maxDeviation) {
+  const Vec3 rim = *m.pointAlong(Vec3(std::sin(rimTheta), 0.0, -std::cos(rimTheta)));
+  // The profile z(r) = a·sqrt(1 + r²/b²) − c/2 is most curved at the vertex (a/b²).
+  const Profile profile{[&m](double r) { return m.a() * std::sqrt(1.0 + r * r / m.b2()) - m.c() / 2.0; },
+                        m.a() / m.b2(), rim.x(), rim.z(), [&m](const Vec3& p) { return m.normalAt(p); }};
+  return buildRevolutionMesh(profile, maxDeviation);
+}
+
+MirrorMesh buildSphereMirrorMesh(double radius, double capAngleDeg, double maxDeviation) {
+  const double cap = radians(capAngleDeg);
+  // Normals face outward, toward the camera below.
+  const Profile profile{[radius](double r) { return -std::sqrt(std::max(0.0, radius * radius - r * r)); }, 1.0 / radius,
+                        radius * std::sin(cap), -radius * std::cos(cap), [](const Vec3& p) { return Vec3(p.normalized()); }};
+  return buildRevolutionMesh(profile, maxDeviation);
 }
 
 double mirrorSurfaceDistance(const HyperbolicMirror& m, const Vec3& p) {

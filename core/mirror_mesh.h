@@ -1,5 +1,5 @@
 #pragma once
-// The hyperboloidal mirror as a triangle mesh whose every point lies within a stated distance of
+// A mirror of revolution (the hyperboloid; the sphere) as a triangle mesh whose every point lies within a stated distance of
 // the exact surface, with analytic per-vertex normals — what mesh-only renderers (Blender) get.
 //
 // Construction (viewpoint frame, metres): vertices on the surface on `rings` circles of constant
@@ -24,6 +24,9 @@ struct MirrorMesh {
 };
 
 MirrorMesh buildMirrorMesh(const HyperbolicMirror& mirror, double rimTheta, double maxDeviation);
+// The sphere's lower cap (rig.h's MirrorShape::Sphere, centre at the origin) the same way; its
+// distance to a point is | |p| − R |.
+MirrorMesh buildSphereMirrorMesh(double radius, double capAngleDeg, double maxDeviation);
 
 // Exact Euclidean distance from a point (viewpoint frame) to the mirror's upper sheet, by
 // Newton iteration on the closest point of the profile hyperbola (a surface of revolution

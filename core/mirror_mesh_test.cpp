@@ -21,12 +21,10 @@ TEST(MirrorSurfaceDistance, ExactOnAndOffTheSurface) {
   }
 }
 
-TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
-  const RigSpec rig;
-  const HyperbolicMirror m = rig.mirror();
-  const double bound = 0.5e-6;  // 0.5 µm
-  const MirrorMesh mesh = buildMirrorMesh(m, rig.camera().rimTheta(), bound);
-  // Independent measurement: exact distances at a dense barycentric grid on every triangle.
+// Independent measurement: the largest exact distance to the surface at a dense barycentric grid
+// on every triangle.
+template <typename Distance>
+double measuredDeviation(const MirrorMesh& mesh, Distance distance) {
   double worst = 0.0;
   const int n = 6;
   for (const auto& t : mesh.mesh.triangles) {
@@ -34,9 +32,18 @@ TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
     for (int i = 0; i <= n; ++i)
       for (int j = 0; i + j <= n; ++j) {
         const double u = static_cast<double>(i) / n, v = static_cast<double>(j) / n;
-        worst = std::max(worst, mirrorSurfaceDistance(m, (1 - u - v) * A + u * B + v * C));
+        worst = std::max(worst, distance((1 - u - v) * A + u * B + v * C));
       }
   }
+  return worst;
+}
+
+TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
+  const RigSpec rig;
+  const HyperbolicMirror m = rig.mirror();
+  const double bound = 0.5e-6;  // 0.5 µm
+  const MirrorMesh mesh = buildMirrorMesh(m, rig.camera().rimTheta(), bound);
+  const double worst = measuredDeviation(mesh, [&m](const Vec3& p) { return mirrorSurfaceDistance(m, p); });
   std::printf("mirror mesh: %zu triangles (%d rings x %d sectors), measured max deviation %.4f um (bound %.2f um)\n",
               mesh.mesh.triangles.size(), mesh.rings, mesh.sectors, worst * 1e6, bound * 1e6);
   EXPECT_LT(worst, bound);
@@ -53,6 +60,25 @@ TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
   // The rim ring lies exactly at the rim direction.
   const Vec3 rimVertex = mesh.mesh.vertices.back();
   EXPECT_NEAR(incidenceAngle(cameraFromViewpoint().linear() * rimVertex), rig.camera().rimTheta(), 1e-12);
+}
+
+// The sphere's cap: its exact distance is | |p| − R |, independent of the builder.
+TEST(MirrorMesh, TheSpheresCapIsCertifiedToo) {
+  const double radius = 0.03, bound = 0.5e-6;
+  const MirrorMesh mesh = buildSphereMirrorMesh(radius, 60.0, bound);
+  const double worst = measuredDeviation(mesh, [radius](const Vec3& p) { return std::abs(p.norm() - radius); });
+  std::printf("sphere mesh: %zu triangles (%d rings x %d sectors), measured max deviation %.4f um (bound %.2f um)\n",
+              mesh.mesh.triangles.size(), mesh.rings, mesh.sectors, worst * 1e6, bound * 1e6);
+  EXPECT_LT(worst, bound);
+  EXPECT_GT(worst, 0.1 * bound);
+  for (size_t k = 0; k < mesh.normals.size(); ++k) {
+    EXPECT_LT(std::abs(mesh.mesh.vertices[k].norm() - radius), 1e-15);
+    EXPECT_LT(mesh.normals[k].z(), 0.0);
+  }
+  const auto& t = mesh.mesh.triangles[mesh.mesh.triangles.size() / 2];
+  const Vec3 face = (mesh.mesh.vertices[t[1]] - mesh.mesh.vertices[t[0]]).cross(mesh.mesh.vertices[t[2]] - mesh.mesh.vertices[t[0]]);
+  EXPECT_GT(face.dot(mesh.normals[t[0]]), 0.0);
+  EXPECT_NEAR(mesh.mesh.vertices.back().z(), -radius * std::cos(radians(60.0)), 1e-15);
 }
 
 }  // namespace

@@ -226,9 +226,9 @@ TriangleMesh rimMask(double rimHeight, double innerRadius) {
 }  // namespace
 
 void checkGltfCamera(const RigSpec& rig) {
-  if (rig.shape.shape != MirrorShape::Hyperboloid)
+  if (rig.shape.shape != MirrorShape::Hyperboloid && rig.shape.shape != MirrorShape::Sphere)
     throw InputError(std::string("rig.mirror.shape: the glTF export (and Blender) has certified meshes of the "
-                                 "hyperboloid only, not of a ") + mirrorShapeName(rig.shape.shape) +
+                                 "hyperboloid and the sphere only, not of a ") + mirrorShapeName(rig.shape.shape) +
                      "; render it with the fast renderer or POV-Ray");
   if (!rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "
@@ -285,10 +285,12 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     checkGltfCamera(options.rig);
     // The mirror and its rim are the ideal rig's whatever the camera; the camera is the physical
     // pinhole as mounted (physical_camera.h), modelled once for every exporter.
-    const OmniCamera framing = options.rig.idealCamera();
     const Pinhole pinhole = pinholeOf(options.rig);
-    const HyperbolicMirror mirror = options.rig.mirror();
-    const MirrorMesh mirrorMesh = buildMirrorMesh(mirror, framing.rimTheta(), options.mirrorDeviation);
+    const MirrorShapeSpec& shape = options.rig.shape;
+    const MirrorMesh mirrorMesh =
+        shape.shape == MirrorShape::Sphere
+            ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
+            : buildMirrorMesh(options.rig.mirror(), options.rig.idealCamera().rimTheta(), options.mirrorDeviation);
     const int rig = b.node(kGltfRigNode, worldFromViewpoint(options.rig, options.pose), -1,
                            {{"omnicam",
                              {{"role", "rig"},
@@ -318,8 +320,8 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     tinygltf::Camera cam;
     cam.name = kGltfCameraNode;
     cam.type = "perspective";
-    cam.perspective.aspectRatio = static_cast<double>(framing.width()) / framing.height();
-    cam.perspective.yfov = 2.0 * std::atan(0.5 * framing.height() / pinhole.focalPx);
+    cam.perspective.aspectRatio = 1.0;  // square images
+    cam.perspective.yfov = 2.0 * std::atan(0.5 * options.rig.imageSize / pinhole.focalPx);
     cam.perspective.znear = 1e-4;
     cam.perspective.zfar = 1e4;  // tinygltf would write 0, which the validator rejects
     b.model().cameras.push_back(cam);

@@ -126,7 +126,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
   for (const RobotPose& pose : poses) checkPose(pose, "pose");
   checkBlenderCamera(settings.rig);
-  const OmniCamera camera = settings.rig.idealCamera();  // the image's size and framing
+  const int size = settings.rig.imageSize;
   const Pinhole pinhole = pinholeOf(settings.rig);
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = tracing.filterIndirect && settings.shading == Shading::Lit;
@@ -160,8 +160,8 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                               {"shading", shadingName(settings.shading)},
                               {"samples", settings.spp},
                               {"seed", options.seed},
-                              {"width", camera.width()},
-                              {"height", camera.height()},
+                              {"width", size},
+                              {"height", size},
                               {"focal_length_px", pinhole.focalPx},
                               {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}},
                               {"ambient", ambient},
@@ -192,11 +192,11 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
         throw ExternalError("blender: no output " + showPath(frame[key].get<std::string>()) + "; last output:\n" + r.logTail);
     ImageRGBA image;
     try {
-      image = filtered ? readFilteredBlenderFrame(output, frame["direct_output"], camera.width(), camera.height()) : readImage(output);
+      image = filtered ? readFilteredBlenderFrame(output, frame["direct_output"], size, size) : readImage(output);
     } catch (const InputError& e) {
       throw ExternalError(std::string("blender: unreadable output: ") + e.what());
     }
-    if (image.width != camera.width() || image.height != camera.height())
+    if (image.width != size || image.height != size)
       throw ExternalError("blender: output has the wrong size");
     for (int j = 0; j < image.height; ++j)
       for (int i = 0; i < image.width; ++i) image.at(i, j)[3] = imaging->coverage(i, j, n);

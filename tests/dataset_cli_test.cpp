@@ -58,6 +58,13 @@ class DatasetCliTest : public ::testing::Test {
     return write(name, R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR R"(/scenes/robocup2006.json", )" +
                            extra + "}");
   }
+  // floor.json: a 100 m × 100 m floor (class "floor") under a rig 0.5 m high.
+  void writeFloorScene() const {
+    write("floor.json", R"({"format": "omnicam-scene/1", "rig": {"height": 0.5},
+      "materials": {"carpet": {"color": [0.2, 0.6, 0.2], "class": "floor"}},
+      "objects": [{"type": "quad", "name": "floor", "material": "carpet",
+                   "origin": [-50, -50, 0], "edge_u": [100, 0, 0], "edge_v": [0, 100, 0]}]})");
+  }
   fs::path dir_;
 };
 
@@ -114,10 +121,7 @@ bool interruptAfterFirstFrames(const std::string& spec, const fs::path& dir, int
 }
 
 TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
-  write("floor.json", R"({"format": "omnicam-scene/1", "rig": {"height": 0.5},
-    "materials": {"carpet": {"color": [0.2, 0.6, 0.2], "class": "floor"}},
-    "objects": [{"type": "quad", "name": "floor", "material": "carpet",
-                 "origin": [-50, -50, 0], "edge_u": [100, 0, 0], "edge_v": [0, 100, 0]}]})");
+  writeFloorScene();
   const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 96,
     "poses": {"list": [[0.3, -0.2, 40]]}})");
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
@@ -167,10 +171,7 @@ TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
 // depth is the closed-form distance from that mirror point to the floor along the ray. The
 // intrinsics files give the best-fit central model, marked approximate.
 TEST_F(DatasetCliTest, APhysicalRigsRaysAndDepthAreExact) {
-  write("floor.json", R"({"format": "omnicam-scene/1", "rig": {"height": 0.5},
-    "materials": {"carpet": {"color": [0.2, 0.6, 0.2], "class": "floor"}},
-    "objects": [{"type": "quad", "name": "floor", "material": "carpet",
-                 "origin": [-50, -50, 0], "edge_u": [100, 0, 0], "edge_v": [0, 100, 0]}]})");
+  writeFloorScene();
   const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 96,
     "poses": {"list": [[0.3, -0.2, 40]]}, "outputs": {"normal": false},
     "cameras": [{"name": "bent", "rig": {"height": 0.5, "camera": {"offset_mm": [2, -1, 1], "rotation_deg": [1, -0.5, 0.5]}}}]})");

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "central_camera.h"
 #include "errors.h"
 #include "input_limits.h"
 
@@ -27,6 +28,63 @@ bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant vari
   x = static_cast<float>(camera.centre().x() + r * std::cos(phi));  // u along robot +x
   y = static_cast<float>(camera.centre().y() + r * std::sin(phi));  // v along robot +y
   return true;
+}
+
+// A view of `spec`'s size with no source yet.
+ViewMap emptyViewMap(const ViewSpec& spec) {
+  ViewMap map;
+  const int defaultW = spec.kind == ViewKind::Panorama ? 1080 : 400;
+  const int defaultH = spec.kind == ViewKind::Panorama ? 300 : spec.kind == ViewKind::Perspective ? 300 : 400;
+  map.width = spec.width ? spec.width : defaultW;
+  map.height = spec.height ? spec.height : defaultH;
+  map.sourceX.assign(static_cast<size_t>(map.width) * map.height, kNone);
+  map.sourceY = map.sourceX;
+  return map;
+}
+
+// The perspective view's frame in the robot's: forward +x, left +y, up +z.
+Eigen::Matrix3d perspectiveRobotFromView(const ViewSpec& spec) {
+  return (Eigen::AngleAxisd(radians(spec.yawDeg), Vec3::UnitZ()) * Eigen::AngleAxisd(-radians(spec.pitchDeg), Vec3::UnitY()))
+      .toRotationMatrix();
+}
+
+// The perspective view's direction through (u, v) in its frame: image right = −y, image down = −z.
+Vec3 perspectiveDirection(const ViewSpec& spec, const ViewMap& map, double u, double v) {
+  const double tanHalf = std::tan(radians(spec.fovDeg) / 2.0);
+  const double sx = (2.0 * u / map.width - 1.0) * tanHalf;
+  const double sy = (2.0 * v / map.height - 1.0) * tanHalf * map.height / map.width;
+  return {1.0, -sx, -sy};
+}
+
+// The widest angle from straight down at which the camera sees, over a grid of its pixels: the
+// panorama's top row for a camera with no closed-form rim.
+double widestIncidence(const Camera& camera) {
+  double widest = 0.0;
+  constexpr int kGrid = 128;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i)
+      if (const auto ray = camera.generateRay({Vec2((i + 0.5) * camera.width() / kGrid, (j + 0.5) * camera.height() / kGrid)}))
+        widest = std::max(widest, std::acos(std::clamp(-ray->direction.z(), -1.0, 1.0)));
+  return widest;
+}
+
+// The bilinear taps of every source position (index space: texel centres at integers), kept
+// inside so that all four taps exist.
+void finishViewMap(ViewMap& map, int sourceWidth, int sourceHeight) {
+  map.sourceWidth = sourceWidth;
+  map.sourceHeight = sourceHeight;
+  map.taps.resize(map.sourceX.size());
+  for (size_t k = 0; k < map.taps.size(); ++k) {
+    if (std::isnan(map.sourceX[k])) {
+      map.taps[k] = {UINT32_MAX, 0, 0};
+      continue;
+    }
+    const float sx = std::clamp(map.sourceX[k] - 0.5f, 0.0f, map.sourceWidth - 1.001f);
+    const float sy = std::clamp(map.sourceY[k] - 0.5f, 0.0f, map.sourceHeight - 1.001f);
+    const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
+    auto fixedPoint = [](float f) { return static_cast<uint16_t>(std::lround(std::clamp(f, 0.0f, 1.0f) * 65535.0f)); };
+    map.taps[k] = {static_cast<uint32_t>(y0 * map.sourceWidth + x0), fixedPoint(sx - x0), fixedPoint(sy - y0)};
+  }
 }
 
 }  // namespace
@@ -81,17 +139,8 @@ void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names) {
 
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
   checkViewSpec(spec);
-  ViewMap map;
-  const int defaultW = spec.kind == ViewKind::Panorama ? 1080 : 400;
-  const int defaultH = spec.kind == ViewKind::Panorama ? 300 : spec.kind == ViewKind::Perspective ? 300 : 400;
-  map.width = spec.width ? spec.width : defaultW;
-  map.height = spec.height ? spec.height : defaultH;
-  map.sourceX.assign(static_cast<size_t>(map.width) * map.height, kNone);
-  map.sourceY = map.sourceX;
-  const double tanHalf = std::tan(radians(spec.fovDeg) / 2.0);
-  const Eigen::Matrix3d robotFromView =
-      (Eigen::AngleAxisd(radians(spec.yawDeg), Vec3::UnitZ()) * Eigen::AngleAxisd(-radians(spec.pitchDeg), Vec3::UnitY()))
-          .toRotationMatrix();
+  ViewMap map = emptyViewMap(spec);
+  const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
   for (int j = 0; j < map.height; ++j)
     for (int i = 0; i < map.width; ++i) {
       const double u = i + 0.5, v = j + 0.5;
@@ -117,32 +166,52 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
           y = static_cast<float>(camera.centre().y() + r * std::sin(phi));
           break;
         }
-        case ViewKind::Perspective: {
-          // View frame: forward +x, left +y, up +z; image right = −y, image down = −z.
-          const double sx = (2.0 * u / map.width - 1.0) * tanHalf;
-          const double sy = (2.0 * v / map.height - 1.0) * tanHalf * map.height / map.width;
-          rasterOfDirection(camera, robotFromView * Vec3(1.0, -sx, -sy), ViewVariant::Exact, x, y);
+        case ViewKind::Perspective:
+          rasterOfDirection(camera, robotFromView * perspectiveDirection(spec, map, u, v), ViewVariant::Exact, x, y);
           break;
-        }
       }
       map.sourceX[k] = x;
       map.sourceY[k] = y;
     }
-  map.sourceWidth = camera.width();
-  map.sourceHeight = camera.height();
-  map.taps.resize(map.sourceX.size());
-  for (size_t k = 0; k < map.taps.size(); ++k) {
-    if (std::isnan(map.sourceX[k])) {
-      map.taps[k] = {UINT32_MAX, 0, 0};
-      continue;
-    }
-    // Index space (texel centres at integers), kept inside so that all four taps exist.
-    const float sx = std::clamp(map.sourceX[k] - 0.5f, 0.0f, map.sourceWidth - 1.001f);
-    const float sy = std::clamp(map.sourceY[k] - 0.5f, 0.0f, map.sourceHeight - 1.001f);
-    const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
-    auto fixedPoint = [](float f) { return static_cast<uint16_t>(std::lround(std::clamp(f, 0.0f, 1.0f) * 65535.0f)); };
-    map.taps[k] = {static_cast<uint32_t>(y0 * map.sourceWidth + x0), fixedPoint(sx - x0), fixedPoint(sy - y0)};
-  }
+  finishViewMap(map, camera.width(), camera.height());
+  return map;
+}
+
+ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera) {
+  if (const auto* central = dynamic_cast<const CentralCamera*>(&camera)) return buildViewMap(spec, central->unified());
+  checkViewSpec(spec);
+  if (spec.variant == ViewVariant::Thesis)
+    throw InputError("view variant: the thesis' equations are the central model's; a physical rig (rig.camera, "
+                     "rig.mirror.shape) has exact views only");
+  ViewMap map = emptyViewMap(spec);
+  const double thetaMax = widestIncidence(camera);
+  const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
+  // A non-central camera has no pixel for a direction, only for a point: each view pixel shows
+  // the point 1 km along its direction from the viewpoint (parallax there: ~10⁻⁶ rad per mm of
+  // the camera's offset).
+  constexpr double kFar = 1000.0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, map.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j)
+      for (int i = 0; i < map.width; ++i) {
+        const double u = i + 0.5, v = j + 0.5;
+        Vec3 d = Vec3::Zero();
+        switch (spec.kind) {
+          case ViewKind::BirdsEye: d = Vec3(u - 0.5 * map.width, 0.5 * map.height - v, -spec.groundDistance); break;
+          case ViewKind::Panorama: {
+            const double phi = kPi - 2.0 * kPi * u / map.width, theta = thetaMax * (1.0 - v / map.height);
+            d = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+            break;
+          }
+          case ViewKind::Perspective: d = robotFromView * perspectiveDirection(spec, map, u, v); break;
+        }
+        if (const auto raster = camera.project(kFar * d.normalized())) {
+          const size_t k = static_cast<size_t>(j) * map.width + i;
+          map.sourceX[k] = static_cast<float>(raster->x());
+          map.sourceY[k] = static_cast<float>(raster->y());
+        }
+      }
+  });
+  finishViewMap(map, camera.width(), camera.height());
   return map;
 }
 

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "camera.h"
 #include "image.h"
 #include "omni_camera.h"
 
@@ -54,6 +55,10 @@ struct ViewSpecNames {
 // the documented size limits. buildViewMap calls it first.
 void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names = {});
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
+// The same for any camera: the central model's closed form above, or for a physical rig (exact
+// variant only) the points 1 km along each view direction projected by the camera
+// (docs/physical-camera.md); the panorama's top row is then the widest angle the camera sees.
+ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera);
 // Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
 // camera the map was built for.
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "central_camera.h"
 #include "errors.h"
+#include "physical_camera.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -153,6 +155,64 @@ TEST(Views, ApplyingAMapSamplesBilinearlyAtPixelCentres) {
   EXPECT_NE(std::count(fresh.pixels.begin(), fresh.pixels.end(), 0.0f), 0);
   EXPECT_THROW(parseViewKind("fisheye"), InputError);
   EXPECT_THROW(parseViewVariant("approx"), InputError);
+}
+
+// Through the camera interface the ideal rig's views are the closed form's, bit for bit.
+TEST(Views, TheCentralCameraGivesTheClosedFormsViews) {
+  for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
+    ViewSpec spec;
+    spec.kind = kind;
+    const ViewMap a = buildViewMap(spec, camera()), b = buildViewMap(spec, CentralCamera(RigSpec{}));
+    for (size_t k = 0; k < a.sourceX.size(); ++k) {
+      ASSERT_TRUE((std::isnan(a.sourceX[k]) && std::isnan(b.sourceX[k])) || a.sourceX[k] == b.sourceX[k]);
+      ASSERT_TRUE((std::isnan(a.sourceY[k]) && std::isnan(b.sourceY[k])) || a.sourceY[k] == b.sourceY[k]);
+    }
+  }
+}
+
+// A physical rig's views: every view pixel's source is the pixel whose true ray looks along the
+// view's direction (to within the parallax of a point 1 km away: the ray leaves its mirror point,
+// centimetres from the viewpoint).
+TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
+  RigSpec rig;
+  rig.mount.offsetMm = {2.0, -1.0, 1.0};
+  rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  const PhysicalCamera physical(rig);
+  ViewSpec thesis;
+  thesis.variant = ViewVariant::Thesis;
+  EXPECT_THROW(buildViewMap(thesis, physical), InputError);
+  for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
+    ViewSpec spec;
+    spec.kind = kind;
+    spec.width = 120;
+    spec.height = 90;
+    const ViewMap map = buildViewMap(spec, physical);
+    int sourced = 0;
+    double worst = 0.0;
+    for (int j = 0; j < map.height; ++j)
+      for (int i = 0; i < map.width; ++i) {
+        const size_t k = static_cast<size_t>(j) * map.width + i;
+        if (std::isnan(map.sourceX[k])) continue;
+        ++sourced;
+        const auto ray = physical.generateRay({Vec2(map.sourceX[k], map.sourceY[k])});
+        ASSERT_TRUE(ray);
+        // The view's direction, rebuilt here from the definitions in views.h.
+        const double u = i + 0.5, v = j + 0.5;
+        Vec3 d = Vec3::Zero();
+        if (kind == ViewKind::BirdsEye) {
+          d = Vec3(u - 0.5 * map.width, 0.5 * map.height - v, -spec.groundDistance);
+        } else if (kind == ViewKind::Perspective) {
+          const double t = std::tan(radians(spec.fovDeg) / 2.0);
+          const Vec3 view(1.0, -(2.0 * u / map.width - 1.0) * t, -(2.0 * v / map.height - 1.0) * t * map.height / map.width);
+          d = Eigen::AngleAxisd(radians(spec.pitchDeg), -Vec3::UnitY()) * view;  // yaw 0
+        } else {
+          continue;  // the panorama's rows depend on the widest angle seen; checked below
+        }
+        worst = std::max(worst, ray->direction.cross(d.normalized()).norm());
+      }
+    EXPECT_GT(sourced, map.width * map.height / 4) << viewKindName(kind);
+    EXPECT_LE(worst, 1e-4) << viewKindName(kind);
+  }
 }
 
 }  // namespace

@@ -166,7 +166,8 @@ def main():
           scene([FLOOR], rig={"mirror": dict(sphere, camera_distance_m=0.02)}))
     write(os.path.join(SCENES, "paraboloid_framing.json"),
           scene([FLOOR], rig={"mirror": {"shape": "paraboloid", "h": 0.02}, "image": {"framing_elevation_deg": 30}}))
-    write(os.path.join(SCENES, "sphere.json"), scene([FLOOR], rig={"mirror": sphere}))
+    write(os.path.join(SCENES, "cone.json"),
+          scene([FLOOR], rig={"mirror": {"shape": "cone", "rim_radius": 0.03, "camera_distance_m": 0.05}}))
     write(os.path.join(SCENES, "camera_away.json"), scene([FLOOR], rig={"camera": {"offset_mm": [100, 0, 0]}}))
     write(os.path.join(SCENES, "camera_misaligned.json"),
           scene([FLOOR], rig={"camera": {"offset_mm": [2, 0, 0], "distortion": {"k1": -0.05}}}))
