@@ -17,6 +17,7 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "dataset_shards.h"
+#include "fast_renderer.h"
 #include "frame_outputs.h"
 #include "camera_rays.h"
 #include "image.h"

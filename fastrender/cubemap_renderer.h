@@ -20,18 +20,9 @@
 
 #include "face_rasterizer.h"
 #include "fast_renderer.h"
+#include "omni_mode.h"
 
 namespace omnicam {
-
-enum class OmniMode { Exact, CubeMap, ThesisMesh };
-
-struct CubeMapOptions {
-  OmniMode mode = OmniMode::CubeMap;
-  int faces = 6;         // 5 (thesis) or 6
-  int faceSize = 512;    // texels per face edge
-  int polygons = 1024;   // thesis-mesh: 16, 64, 256 or 1024
-  bool rasterize = true; // unlit faces by rasterisation (else, and for lit: one ray per used texel)
-};
 
 struct CubeLookupStats {
   long samples = 0;        // samples inside the rim

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "blender_renderer.h"
+#include "cubemap_renderer.h"
 #include "errors.h"
 #include "fast_renderer.h"
 #include "povray_exporter.h"

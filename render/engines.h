@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "aov_renderer.h"
-#include "cubemap_renderer.h"
+#include "aov_frame.h"
 #include "image.h"
+#include "omni_mode.h"
 #include "render_settings.h"
 #include "scene.h"
 

@@ -1,0 +1,17 @@
+#pragma once
+// The fast renderer's modes and their options, apart from the renderer (fastrender/
+// cubemap_renderer.h implements them) so that the engine interface (render/engines.h) can name
+// them without including a renderer.
+namespace omnicam {
+
+enum class OmniMode { Exact, CubeMap, ThesisMesh };
+
+struct CubeMapOptions {
+  OmniMode mode = OmniMode::CubeMap;
+  int faces = 6;         // 5 (thesis) or 6
+  int faceSize = 512;    // texels per face edge
+  int polygons = 1024;   // thesis-mesh: 16, 64, 256 or 1024
+  bool rasterize = true; // unlit faces by rasterisation (else, and for lit: one ray per used texel)
+};
+
+}  // namespace omnicam
