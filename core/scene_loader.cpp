@@ -14,7 +14,6 @@
 #include "gltf_import.h"
 #include "input_limits.h"
 #include "json_fields.h"
-#include "make_camera.h"
 #include "sha256.h"
 
 namespace omnicam {

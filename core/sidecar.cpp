@@ -45,7 +45,6 @@ json rigToJson(const RigSpec& rig) {
   return out;
 }
 
-json intrinsicsToJson(const OmniCamera& camera) { return unifiedIntrinsicsJson(camera); }
 
 json sidecarJson(const RenderRecord& r) {
   const Rigid cfw = cameraFromWorld(r.rig, r.pose);

@@ -21,7 +21,6 @@ struct RenderRecord {
 };
 
 nlohmann::json rigToJson(const RigSpec& rig);
-nlohmann::json intrinsicsToJson(const OmniCamera& camera);
 nlohmann::json sidecarJson(const RenderRecord& record);
 // Sidecar path of an image: OUT + ".json".
 std::string sidecarPath(const std::string& imagePath);

@@ -305,9 +305,9 @@ void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settin
                              ImageRGBA& image) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
   checkPose(pose, "pose");
-  const Rigid worldFromViewpoint = worldFromRobot(pose) * robotFromViewpoint(settings.rig);
-  const Vec3 origin = worldFromViewpoint.translation();
-  const Eigen::Matrix3d rotation = worldFromViewpoint.linear();
+  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
+  const Vec3 origin = worldFromView.translation();
+  const Eigen::Matrix3d rotation = worldFromView.linear();
   // 1. The texels the lookup reads: rasterised (unlit), or ray cast from F' like exact mode.
   BufferLease lease(*this);
   FaceTexelColours& texel = lease.buffers();
