@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "errors.h"
+#include "physical_camera.h"
 
 namespace omnicam {
 
@@ -159,8 +160,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   const HyperbolicMirror mirror = r.mirror();
   ThesisMesh mesh;
   if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(mirror, camera.rimTheta(), sectors, rings);
-  const Vec3 pinhole = mirror.pinholeInViewpoint();
-  const double f = camera.physicalFocalLength();
+  const Pinhole pinhole = pinholeOf(r);  // the physical camera, modelled once (physical_camera.h)
   std::vector<char> used(static_cast<size_t>(6) * L->padded * L->padded, 0);
 
   // Samples first hold atlas indices in `top`; they become slots once the texel set is known.
@@ -181,7 +181,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
       L->firstSample.push_back(static_cast<uint32_t>(L->samples.size()));
       for (int b = 0; b < *n; ++b)
         for (int a = 0; a < *n; ++a) {
-          const Vec2 raster(i + (a + 0.5) / *n, j + (b + 0.5) / *n);
+          const Vec2 raster = gridSample(i, j, a, b, *n);
           if (!camera.insideRim(raster)) continue;
           if (o.mode == OmniMode::CubeMap) {
             const Vec3 d = viewpointFromCamera.linear() * camera.cameraFromRaster(raster);
@@ -192,7 +192,9 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
           }
           // thesis-mesh: the physical camera's ray hits a flat mesh triangle; UVs interpolate
           // linearly across it, on the face of the interpolated direction.
-          const Vec3 ray((raster.x() - 0.5 * camera.width()) / f, (raster.y() - 0.5 * camera.height()) / f, 1.0);
+          const auto cameraRay = pinhole.ray(raster);
+          if (!cameraRay) continue;
+          const Vec3& ray = cameraRay->direction;
           double phi = std::atan2(ray.y(), ray.x());
           if (phi < 0) phi += 2.0 * kPi;
           const int sector = std::min(sectors - 1, static_cast<int>(phi / (2.0 * kPi) * sectors));
@@ -212,7 +214,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
             }
             for (int k = 0; k < count && !found; ++k) {
               double u1, u2;
-              if (!hitTriangle(pinhole, ray, tri[k][0], tri[k][1], tri[k][2], u1, u2)) continue;
+              if (!hitTriangle(cameraRay->origin, ray, tri[k][0], tri[k][1], tri[k][2], u1, u2)) continue;
               found = true;
               const double u0 = 1.0 - u1 - u2;
               const Vec3 d = u0 * tri[k][0].normalized() + u1 * tri[k][1].normalized() + u2 * tri[k][2].normalized();
