@@ -1,5 +1,8 @@
 #include "make_camera.h"
 
+#include <deque>
+#include <mutex>
+
 #include "central_camera.h"
 #include "physical_camera.h"
 
@@ -8,6 +11,19 @@ namespace omnicam {
 std::shared_ptr<const Camera> makeCamera(const RigSpec& rig, bool traced) {
   if (rig.ideal() && !traced) return std::make_shared<CentralCamera>(rig);
   return std::make_shared<PhysicalCamera>(rig);
+}
+
+nlohmann::json describeCamera(const RigSpec& rig) {
+  static std::mutex mutex;
+  static std::deque<std::pair<RigSpec, nlohmann::json>> recent;  // guarded by mutex
+  constexpr size_t kRemembered = 8;
+  const std::lock_guard<std::mutex> lock(mutex);
+  for (const auto& [known, description] : recent)
+    if (known == rig) return description;
+  nlohmann::json description = makeCamera(rig)->describe();
+  recent.emplace_front(rig, description);
+  if (recent.size() > kRemembered) recent.pop_back();
+  return description;
 }
 
 CentralModel centralModelOf(const Camera& camera) {

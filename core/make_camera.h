@@ -11,6 +11,11 @@ namespace omnicam {
 
 std::shared_ptr<const Camera> makeCamera(const RigSpec& rig, bool traced = false);
 
+// makeCamera(rig)->describe(), remembered for the last few rigs: a non-central rig's description
+// holds its best-fit central model (tens of milliseconds to fit), and a rendered path writes one
+// sidecar per frame of the same rig. Thread-safe.
+nlohmann::json describeCamera(const RigSpec& rig);
+
 // The unified (Mei) model to give tools that assume one (cv::omnidir, Kalibr, camodocal): exact
 // for the ideal rig and for the aligned pinhole with a k3-free lens; otherwise the best fit.
 struct CentralModel {

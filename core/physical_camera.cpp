@@ -61,6 +61,9 @@ Pinhole pinholeOf(const RigSpec& rig) {
     }
   }
   p.position = idealPosition + 1e-3 * Vec3(m.offsetMm[0], m.offsetMm[1], m.offsetMm[2]);
+  // An orthographic camera's image does not depend on where along its axis it sits: keep its
+  // image plane below the mirror whatever offset_mm's z says.
+  if (p.orthographic) p.position.z() = idealPosition.z();
   p.viewpointFromPinhole = (Eigen::AngleAxisd(radians(m.rotationDeg[0]), Vec3::UnitX()) *
                             Eigen::AngleAxisd(radians(m.rotationDeg[1]), Vec3::UnitY()) *
                             Eigen::AngleAxisd(radians(m.rotationDeg[2]), Vec3::UnitZ()))
@@ -73,7 +76,7 @@ Pinhole pinholeOf(const RigSpec& rig) {
 PhysicalCamera::PhysicalCamera(const RigSpec& rig) : Camera(rig), mirror_(mirrorSurfaceOf(rig)), pinhole_(pinholeOf(rig)) {
   if (pinhole_.orthographic && !pinhole_.distortion.none())
     throw InputError("camera.distortion: the paraboloid's orthographic camera has no lens model here; give "
-                     "mirror.camera_distance_m for a perspective camera");
+                     "rig.mirror.camera_distance_m for a perspective camera");
   // Below the vertex the camera is outside the mirror.
   if (!(pinhole_.position.z() < mirror_->heightAt(0.0, 0.0)))
     throw InputError("camera.offset_mm: puts the pinhole on or above the mirror; it must stay below its vertex");
@@ -148,7 +151,8 @@ std::optional<Vec3> PhysicalCamera::reflectionPoint(const Vec3& p, Vec2 xy) cons
     // Damped: never a step longer than a tenth of the rim radius, so the iterate stays on the mirror.
     if (delta.norm() > 0.1 * scale) delta *= 0.1 * scale / delta.norm();
     xy -= delta;
-    if (!xy.allFinite()) return std::nullopt;
+    // Off the mirror (no reflection point out there): give up early, not after every iteration.
+    if (!xy.allFinite() || xy.norm() > 2.0 * scale) return std::nullopt;
     // Quadratic convergence: once a step is this small the next would be below rounding.
     converged = delta.norm() <= 1e-13 * scale;
   }

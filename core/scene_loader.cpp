@@ -1,6 +1,7 @@
 #include "scene_loader.h"
 
 #include "make_camera.h"
+#include "mirror_surface.h"
 
 #include <filesystem>
 #include <fstream>
@@ -127,6 +128,16 @@ void readMirror(JsonFields& mirror, RigSpec& spec) {
   }
   if (s.shape == MirrorShape::Sphere || s.shape == MirrorShape::Cone) {
     if (s.cameraDistance == 0.0) mirror.fail("camera_distance_m", "must be positive: a perspective camera below the mirror");
+  }
+  // The image is framed on the rim: the ideal camera must see it, not the mirror's edge in front
+  // of it (a sphere's cap beyond its tangent circle, a paraboloid seen from too close).
+  if (s.shape != MirrorShape::Hyperboloid && s.cameraDistance > 0.0) {
+    const auto surface = mirrorSurfaceOf(spec);
+    const Vec3 camera(0.0, 0.0, -s.cameraDistance), rim(surface->rimRadius(), 0.0, surface->rimZ());
+    const auto seen = surface->firstHit(camera, rim - camera);
+    if (!seen || (*seen - rim).norm() > 1e-9 * surface->rimRadius())
+      mirror.fail("camera_distance_m", "hides the rim behind the mirror's edge (the image is framed on the rim): "
+                                       "move the camera further away, or make the mirror's rim lower");
   }
 }
 

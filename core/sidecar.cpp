@@ -64,7 +64,7 @@ json sidecarJson(const RenderRecord& r) {
           {"mode", r.mode},
           {"mode_options", r.modeOptions},
           {"seconds", r.seconds},
-          {"intrinsics", makeCamera(r.rig)->describe()},
+          {"intrinsics", describeCamera(r.rig)},
           {"camera_from_world", matrix}};
 }
 

@@ -29,8 +29,8 @@ std::string fileStorageText(const std::function<void(cv::FileStorage&)>& write) 
 std::string approximationNote(const CentralModel& model) {
   if (!model.approximation) return "";
   std::ostringstream out;
-  out << "APPROXIMATE: this rig is non-central (rig.camera); this is its best-fit central model, not an "
-         "exact one. Reprojection rms / max px:";
+  out << "APPROXIMATE: no unified (Mei) model describes this rig exactly (its mirror shape or camera, "
+         "rig.mirror / rig.camera); this is its best-fit central model. Reprojection rms / max px:";
   for (const auto& r : model.approximation->residuals)
     out << " " << (r.distanceM == 0.0 ? std::string("infinity") : roundTrip(r.distanceM) + " m") << " "
         << roundTrip(r.rmsPx) << " / " << roundTrip(r.maxPx) << ";";

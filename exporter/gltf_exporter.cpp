@@ -297,7 +297,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                               {"rig", rigToJson(options.rig)},
                               {"pose", {{"x", options.pose.x}, {"y", options.pose.y}, {"yaw_deg", options.pose.yawDeg}}},
                               {"intrinsics", makeCamera(options.rig)->describe()},
-                              {"frame", "viewpoint: origin at F', robot axes (x forward, y left, z up)"}}}});
+                              {"frame", "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)"}}}});
     b.addRoot(rig);
     const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
     b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),

@@ -130,8 +130,9 @@ bool hitTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, con
 void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& o) {
   if (!rig.ideal())
     throw InputError(std::string(o.mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cube-map") +
-                     " mode is central by construction and renders the ideal rig only; this rig's camera "
-                     "(rig.camera) is moved, turned or distorted: render it in exact mode");
+                     " mode is central by construction and renders the ideal rig only (the hyperboloid with "
+                     "its camera at F); this rig's mirror shape or camera (rig.mirror, rig.camera) differs: "
+                     "render it in exact mode");
 }
 
 std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,

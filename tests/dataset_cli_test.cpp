@@ -191,10 +191,12 @@ TEST_F(DatasetCliTest, APhysicalRigsRaysAndDepthAreExact) {
   const DataImage depth = readDataExr(path("ds/bent/depth/000000.exr"));
   ASSERT_EQ(rays.width, 96);
   ASSERT_EQ(depth.width, 96);
-  const json& p = intrinsics["pinhole"]["position_m"];
-  const Vec3 pinhole(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
   RigSpec rig;
   rig.height = 0.5;
+  // The pinhole as the spec mounts it: F = (0, 0, −c) moved by offset_mm (the manifest must say so).
+  const Vec3 pinhole = Vec3(0.0, 0.0, -rig.c) + 1e-3 * Vec3(2.0, -1.0, 1.0);
+  const json& stated = intrinsics["pinhole"]["position_m"];
+  for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(stated[axis].get<double>(), pinhole[axis], 1e-15);
   const HyperbolicMirror mirror = rig.mirror();
   const Rigid worldFromView = worldFromViewpoint(rig, {0.3, -0.2, 40});
   int floorPixels = 0, imaged = 0;

@@ -181,6 +181,12 @@ TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
   ViewSpec thesis;
   thesis.variant = ViewVariant::Thesis;
   EXPECT_THROW(buildViewMap(thesis, physical), InputError);
+  // The widest angle from straight down the camera sees, over the same 128 × 128 grid views.h scans.
+  double widest = 0.0;
+  for (int b = 0; b < 128; ++b)
+    for (int a = 0; a < 128; ++a)
+      if (const auto r = physical.generateRay({Vec2((a + 0.5) * rig.imageSize / 128.0, (b + 0.5) * rig.imageSize / 128.0)}))
+        widest = std::max(widest, std::acos(std::clamp(-r->direction.z(), -1.0, 1.0)));
   for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
     ViewSpec spec;
     spec.kind = kind;
@@ -206,8 +212,12 @@ TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
           const Vec3 view(1.0, -(2.0 * u / map.width - 1.0) * t, -(2.0 * v / map.height - 1.0) * t * map.height / map.width);
           d = Eigen::AngleAxisd(radians(spec.pitchDeg), -Vec3::UnitY()) * view;  // yaw 0
         } else {
-          continue;  // the panorama's rows depend on the widest angle seen; checked below
+          // Rows linear in the angle from straight down, from the widest the camera sees (top)
+          // to straight down (bottom); columns: azimuth π at the left edge.
+          const double phi = kPi - 2.0 * kPi * u / map.width, theta = widest * (1.0 - v / map.height);
+          d = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
         }
+        EXPECT_GT(ray->direction.dot(d), 0.0);
         worst = std::max(worst, ray->direction.cross(d.normalized()).norm());
       }
     EXPECT_GT(sourced, map.width * map.height / 4) << viewKindName(kind);
