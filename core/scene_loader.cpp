@@ -101,6 +101,15 @@ void readMirror(JsonFields& mirror, RigSpec& spec) {
     if (!(s.cameraDistance < spec.height))
       mirror.fail("camera_distance_m", "must be smaller than rig.height (the camera sits above the floor)");
   };
+  // Another shape's field is a likely slip (a forgotten or misspelt "shape"): say so.
+  const std::pair<const char*, const char*> owners[] = {
+      {"k", "hyperboloid"}, {"c", "hyperboloid"}, {"h", "paraboloid"}, {"radius", "sphere"}, {"cap_angle_deg", "sphere"},
+      {"half_angle_deg", "cone"}, {"rim_radius", "cone"}, {"camera_distance_m", "paraboloid, sphere and cone"}};
+  const bool known = shape == "hyperboloid" || shape == "paraboloid" || shape == "sphere" || shape == "cone";
+  for (const auto& [key, owner] : owners)
+    if (known && mirror.has(key) && std::string(owner).find(shape) == std::string::npos)
+      mirror.fail(key, std::string("belongs to the ") + owner + " shape, not to " + quote(shape) +
+                           (mirror.has("shape") ? "" : " (the default; give \"shape\")"));
   if (shape == "hyperboloid") {
     spec.k = mirror.number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
     spec.c = mirror.number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});

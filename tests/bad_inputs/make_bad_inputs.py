@@ -164,6 +164,8 @@ def main():
           scene([FLOOR], rig={"mirror": {"shape": "sphere", "radius": 0.03}}))
     write(os.path.join(SCENES, "sphere_camera_inside.json"),
           scene([FLOOR], rig={"mirror": dict(sphere, camera_distance_m=0.02)}))
+    write(os.path.join(SCENES, "sphere_without_shape.json"),
+          scene([FLOOR], rig={"mirror": {"radius": 0.03, "camera_distance_m": 0.12}}))
     write(os.path.join(SCENES, "sphere_rim_hidden.json"),
           scene([FLOOR], rig={"mirror": dict(sphere, cap_angle_deg=90)}))
     write(os.path.join(SCENES, "paraboloid_framing.json"),
