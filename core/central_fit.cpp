@@ -159,8 +159,7 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
   DirectionResiduals residuals;
   residuals.rays = &rays;
   residuals.idealCameraFromViewpoint = omnicam::cameraFromViewpoint().linear();
-  const Eigen::VectorXd x0 = initialGuess(camera, rays, residuals.idealCameraFromViewpoint);
-  Eigen::VectorXd x = x0;
+  Eigen::VectorXd x = initialGuess(camera, rays, residuals.idealCameraFromViewpoint);
   Eigen::NumericalDiff<DirectionResiduals, Eigen::Central> differentiated(residuals);
   Eigen::LevenbergMarquardt<Eigen::NumericalDiff<DirectionResiduals, Eigen::Central>> solver(differentiated);
   solver.parameters.maxfev = 2000;

@@ -67,11 +67,10 @@ class ParaboloidSurface final : public MirrorSurface {
  public:
   // The rim where the focus sees `rimElevationDeg`: ρ = h / (1 − sin e) from the focus.
   ParaboloidSurface(double h, double rimElevationDeg)
-      : MirrorSurface(rimPoint(h, rimElevationDeg).y(), rimPoint(h, rimElevationDeg).x()), h_(h) {}
-  static Vec2 rimPoint(double h, double elevationDeg) {
-    const double e = radians(elevationDeg), rho = h / (1.0 - std::sin(e));
-    return {rho * std::cos(e), rho * std::sin(e)};
-  }
+      : MirrorSurface(rimDistance(h, rimElevationDeg) * std::sin(radians(rimElevationDeg)),
+                      rimDistance(h, rimElevationDeg) * std::cos(radians(rimElevationDeg))),
+        h_(h) {}
+  static double rimDistance(double h, double elevationDeg) { return h / (1.0 - std::sin(radians(elevationDeg))); }
   std::optional<Vec3> firstHit(const Vec3& o, const Vec3& direction) const override {
     const Vec3 d = direction.normalized();
     const double a = d.x() * d.x() + d.y() * d.y();
