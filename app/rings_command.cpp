@@ -10,6 +10,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
+#include "make_camera.h"
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
@@ -26,11 +27,15 @@ struct RingsArgs {
   SceneLoadOptions load;
 };
 
-// Measures `image` as asked, prints the result and returns it as JSON (for a sidecar).
-nlohmann::json measureAndPrint(const ImageRGBA& image, const OmniCamera& camera, const std::string& what,
+// Measures `image` as asked, prints the result and returns it as JSON (for a sidecar). A camera
+// other than the ideal one images the rings as curves, not circles: they are measured per azimuth
+// against its own projection.
+nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const std::string& what,
                                const RingsArgs& a) {
-  if (a.perAzimuth) {
-    const RingProfileReport p = measureRingProfiles(image, camera, defaultRingThetasDeg());
+  if (a.perAzimuth || !rig.ideal()) {
+    if (!a.perAzimuth && !a.json)
+      std::printf("rings: the camera is not the ideal one, so its rings are not circles: measured per azimuth\n");
+    const RingProfileReport p = measureRingProfiles(image, *makeCamera(rig), defaultRingThetasDeg());
     const nlohmann::json j = {{"per_azimuth", {{"rms_px_exact", p.rmsPx},
                                                {"max_abs_px_exact", p.maxAbsPx},
                                                {"sectors_measured", p.sectorsMeasured},
@@ -45,7 +50,7 @@ nlohmann::json measureAndPrint(const ImageRGBA& image, const OmniCamera& camera,
   }
   RingReport report;
   try {
-    report = measureRings(image, camera, defaultRingThetasDeg());
+    report = measureRings(image, rig.camera(), defaultRingThetasDeg());
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) + " (for rings that are not circles: --per-azimuth)");
   }
@@ -68,7 +73,7 @@ void measureExisting(const RingsArgs& a) {
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   if (image.width != image.height) throw InputError(showPath(a.measure) + ": ring images must be square");
   rig.imageSize = image.width;
-  measureAndPrint(image, rig.camera(), a.measure, a);
+  measureAndPrint(image, rig, a.measure, a);
 }
 
 void runRings(const RingsArgs& a, const CLI::App& cmd) {
@@ -88,10 +93,9 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   settings.spp = a.spp;
   checkRenderSettings(settings, kSettingFlags);
   checkOutputFile(a.out, "-o");
-  const OmniCamera camera = settings.rig.camera();  // rings are measured with the central model: before rendering
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
-  rendered.sidecar["rings"] = measureAndPrint(rendered.image, camera, a.out, a);
+  rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig, a.out, a);
   writeRendered(a.out, rendered);
 }
 

@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "cubemap_renderer.h"
 #include "engines.h"
+#include "central_camera.h"
 #include "errors.h"
 #include "frame_rate.h"
 #include "image_compare.h"
@@ -92,7 +93,7 @@ void runStudy(const StudyArgs& a) {
     } catch (const InputError& e) {
       row.ringNote = e.what();
     }
-    row.profile = measureRingProfiles(rings, ringSettings.rig.camera(), defaultRingThetasDeg());
+    row.profile = measureRingProfiles(rings, CentralCamera(ringSettings.rig), defaultRingThetasDeg());
     row.fps = framesPerSecond([&] { arenaEngine->render(arena.startPose, timing); }, a.timingSeconds);
   }
 
@@ -140,7 +141,7 @@ void runStudy(const StudyArgs& a) {
      << "for each ring halfway to its neighbours' exact radii in 36 azimuth sectors and takes the brightness-weighted\n"
      << "mean radius there, so it also measures rings the mesh bends out of round (its floor, from pixel sampling, is\n"
      << "the exact row; a ring bent by more than half the ring spacing is credited to its neighbour, so large values\n"
-     << "are lower bounds).\n\n"
+     << "are lower bounds; sectors where a ring's arc is under 2 px, a pixel or two, are not measured).\n\n"
      << "*frames/s*: each mode through the renderer interface, a new image per frame as `omnicam render` makes them\n"
      << "(the median rate of ~20 ms batches over " << fmt("%g", a.timingSeconds) << " s, as `omnicam bench` measures). "
      << "Absolute rates on a shared\nmachine vary by about ±15 % from run to run; compare modes within one run. "

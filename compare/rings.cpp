@@ -200,18 +200,64 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   return report;
 }
 
-RingProfileReport measureRingProfiles(const ImageRGBA& image, const OmniCamera& camera,
+namespace {
+
+// Where each ring is expected: its radius about `centre` in each of `bins` fine azimuth bins,
+// interpolated linearly along the camera's projection of the ring; NaN where it is not imaged.
+class RingCurves {
+ public:
+  RingCurves(const Camera& camera, const Vec2& centre, const std::vector<double>& thetasDeg, int bins)
+      : bins_(bins), radius_(thetasDeg.size() * bins, std::nan("")) {
+    for (size_t ring = 0; ring < thetasDeg.size(); ++ring) {
+      const double z = -kRingRadiusM / std::tan(radians(thetasDeg[ring]));
+      std::optional<Vec2> previous;
+      for (int k = 0; k <= bins; ++k) {  // one more: the curve closes
+        const double phi = 2.0 * kPi * k / bins;
+        const auto q = camera.project(Vec3(kRingRadiusM * std::cos(phi), kRingRadiusM * std::sin(phi), z));
+        const std::optional<Vec2> polar = q ? std::optional<Vec2>(Vec2(azimuthOf(*q - centre), (*q - centre).norm())) : std::nullopt;
+        if (previous && polar) fill(ring, *previous, *polar);
+        previous = polar;
+      }
+    }
+  }
+  int bins() const { return bins_; }
+  int binOf(const Vec2& fromCentre) const { return std::min(bins_ - 1, static_cast<int>(azimuthOf(fromCentre) / (2.0 * kPi) * bins_)); }
+  double radius(size_t ring, int bin) const { return radius_[ring * bins_ + bin]; }
+
+ private:
+  static double azimuthOf(const Vec2& d) {
+    const double a = std::atan2(d.y(), d.x());
+    return a < 0.0 ? a + 2.0 * kPi : a;
+  }
+  // The bins whose centres lie between two consecutive projected points (azimuth, radius).
+  void fill(size_t ring, const Vec2& a, const Vec2& b) {
+    double span = b.x() - a.x();
+    if (span > kPi) span -= 2.0 * kPi;
+    if (span < -kPi) span += 2.0 * kPi;
+    const double width = 2.0 * kPi / bins_;
+    const double from = std::min(a.x(), a.x() + span), to = std::max(a.x(), a.x() + span);
+    for (int k = static_cast<int>(std::ceil(from / width - 0.5)); k + 0.5 <= to / width; ++k) {
+      const double t = span != 0.0 ? ((k + 0.5) * width - a.x()) / span : 0.0;
+      radius_[ring * bins_ + ((k % bins_) + bins_) % bins_] = a.y() + t * (b.y() - a.y());
+    }
+  }
+  int bins_;
+  std::vector<double> radius_;
+};
+
+}  // namespace
+
+RingProfileReport measureRingProfiles(const ImageRGBA& image, const Camera& camera,
                                       const std::vector<double>& thetasDeg, int sectors) {
   if (thetasDeg.size() < 2) throw InputError("rings: need at least two rings");
-  std::vector<double> exact;
-  for (double t : thetasDeg) exact.push_back(camera.radiusOfTheta(radians(t)));
-  const size_t rings = exact.size();
-  std::vector<double> lo(rings), hi(rings);
-  for (size_t k = 0; k < rings; ++k) {
-    lo[k] = k > 0 ? 0.5 * (exact[k - 1] + exact[k]) : exact[0] - 0.5 * (exact[1] - exact[0]);
-    hi[k] = k + 1 < rings ? 0.5 * (exact[k] + exact[k + 1]) : exact[k] + 0.5 * (exact[k] - exact[k - 1]);
-  }
-  const Vec2 c(0.5 * image.width, 0.5 * image.height);
+  // The rings circle the image of the nadir (θ = 0): the image centre for the ideal camera, tens
+  // of pixels off it for a moved one, where rings smaller than that shift would not surround the
+  // image centre.
+  const Vec2 c = camera.project(Vec3(0.0, 0.0, -1e3 * kRingRadiusM)).value_or(Vec2(0.5 * image.width, 0.5 * image.height));
+  const size_t rings = thetasDeg.size();
+  constexpr int kBinsPerSector = 64;
+  constexpr double kMinimumArcPx = 2.0;
+  const RingCurves curves(camera, c, thetasDeg, kBinsPerSector * sectors);
   std::vector<double> values;
   for (int j = 0; j < image.height; ++j)
     for (int i = 0; i < image.width; ++i)
@@ -220,38 +266,48 @@ RingProfileReport measureRingProfiles(const ImageRGBA& image, const OmniCamera& 
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
   const double background = values[values.size() / 2];
 
-  std::vector<double> sumW(rings * sectors, 0.0), sumWr(rings * sectors, 0.0);
+  // Per (ring, sector): the brightness-weighted mean of each pixel's radius minus the ring's
+  // expected radius at the pixel's own azimuth (a sector of a curve that is not a circle about
+  // the centre spans many radii).
+  std::vector<double> sumW(rings * sectors, 0.0), sumWe(rings * sectors, 0.0);
   for (int j = 0; j < image.height; ++j)
     for (int i = 0; i < image.width; ++i) {
       const float* px = image.at(i, j);
       if (px[3] < 0.999f) continue;
       const Vec2 d = Vec2(i + 0.5, j + 0.5) - c;
       const double r = d.norm();
-      const auto k = static_cast<size_t>(std::upper_bound(lo.begin(), lo.end(), r) - lo.begin());
-      if (k == 0 || r > hi[k - 1]) continue;
-      const size_t ring = k - 1;
-      const Vec2 outer = c + (hi[ring] + 1.0) / std::max(r, 1e-9) * d;  // the window's far edge here
-      if (outer.x() < 0.0 || outer.y() < 0.0 || outer.x() > image.width || outer.y() > image.height) continue;
-      if (!camera.insideRim(outer)) continue;
-      double phi = std::atan2(d.y(), d.x());
-      if (phi < 0) phi += 2.0 * kPi;
-      const int sector = std::min(sectors - 1, static_cast<int>(phi / (2.0 * kPi) * sectors));
-      const double w = std::max(0.0, brightness(px) - background);
-      sumW[ring * sectors + sector] += w;
-      sumWr[ring * sectors + sector] += w * r;
+      const int bin = curves.binOf(d);
+      for (size_t ring = 0; ring < rings; ++ring) {
+        // The ring's window here: between the midpoints to its neighbours' expected radii (a NaN
+        // window, the ring or a neighbour not imaged here, holds no pixel).
+        const double at = curves.radius(ring, bin);
+        const double below = ring > 0 ? curves.radius(ring - 1, bin) : 2.0 * at - curves.radius(ring + 1, bin);
+        const double above = ring + 1 < rings ? curves.radius(ring + 1, bin) : 2.0 * at - curves.radius(ring - 1, bin);
+        const double lo = 0.5 * (below + at), hi = 0.5 * (at + above);
+        if (!(r >= lo && r < hi)) continue;
+        // A sector's arc of a ring under 2 px holds a pixel or two: its centroid measures the
+        // pixel grid, not the ring.
+        if (at * 2.0 * kPi / sectors < kMinimumArcPx) break;
+        const Vec2 outer = c + (hi + 1.0) / std::max(r, 1e-9) * d;  // the window's far edge here
+        if (outer.x() < 0.0 || outer.y() < 0.0 || outer.x() > image.width || outer.y() > image.height) break;
+        if (!camera.images(outer)) break;
+        const double w = std::max(0.0, brightness(px) - background);
+        const size_t cell = ring * sectors + bin / kBinsPerSector;
+        sumW[cell] += w;
+        sumWe[cell] += w * (r - at);
+        break;
+      }
     }
   RingProfileReport report;
   report.sectorsTotal = static_cast<int>(rings) * sectors;
   double sumSquares = 0.0;
-  for (size_t ring = 0; ring < rings; ++ring)
-    for (int sector = 0; sector < sectors; ++sector) {
-      const size_t cell = ring * sectors + sector;
-      if (sumW[cell] <= 1e-6) continue;
-      const double e = sumWr[cell] / sumW[cell] - exact[ring];
-      sumSquares += e * e;
-      report.maxAbsPx = std::max(report.maxAbsPx, std::abs(e));
-      ++report.sectorsMeasured;
-    }
+  for (size_t cell = 0; cell < rings * static_cast<size_t>(sectors); ++cell) {
+    if (sumW[cell] <= 1e-6) continue;
+    const double e = sumWe[cell] / sumW[cell];
+    sumSquares += e * e;
+    report.maxAbsPx = std::max(report.maxAbsPx, std::abs(e));
+    ++report.sectorsMeasured;
+  }
   if (report.sectorsMeasured == 0) throw InputError("rings: no ring sector has measurable light");
   report.rmsPx = std::sqrt(sumSquares / report.sectorsMeasured);
   return report;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "camera.h"
 #include "image.h"
 #include "omni_camera.h"
 
@@ -34,18 +35,26 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
 
 nlohmann::json ringReportToJson(const RingReport& report);
 
-// For rings that need not be circles (the thesis mesh bends them): each ring is looked for
-// between the midpoints to its neighbours' exact radii, in `sectors` equal azimuth sectors, and
-// its radius there is the background-subtracted brightness-weighted mean radius of the pixels.
-// Measured − exact over all (ring, sector) pairs gives the RMS; a sector with no light above the
-// background, or whose window leaves the image or the rim, is not measured.
+// For rings that need not be circles (the thesis mesh bends them; a moved or turned camera, or
+// another mirror shape, images them as other curves). Ring θ is the circle of viewpoint-frame
+// points (cos φ, sin φ, −cot θ)·kRingRadiusM (scenes/incidence-rings.json); it is expected where
+// the camera projects it. The image is cut into `sectors` equal azimuth sectors about the image
+// of the nadir (θ = 0; the image centre for the ideal camera). Each pixel belongs to the ring
+// whose window holds it: between the midpoints to the neighbours' expected radii at the pixel's
+// azimuth. A ring's offset in a sector is the background-subtracted, brightness-weighted mean of
+// its pixels' radii minus the expected radius at their own azimuths (a sector of a curve that is
+// not a circle about the centre spans many radii). The RMS is over all (ring, sector) offsets.
+// Not measured: a sector the ring is not projected into, where its arc is under 2 px (a pixel or
+// two: the centroid would measure the pixel grid), with no light above the background, or whose
+// window leaves the image or the rim.
+constexpr double kRingRadiusM = 1.0;
 struct RingProfileReport {
   double rmsPx = 0.0;
   double maxAbsPx = 0.0;
   int sectorsMeasured = 0;
   int sectorsTotal = 0;
 };
-RingProfileReport measureRingProfiles(const ImageRGBA& image, const OmniCamera& camera,
+RingProfileReport measureRingProfiles(const ImageRGBA& image, const Camera& camera,
                                       const std::vector<double>& thetasDeg, int sectors = 36);
 
 }  // namespace omnicam

@@ -4,6 +4,7 @@
 
 #include "central_camera.h"
 #include "errors.h"
+#include "fermat_path.h"
 #include "lens_distortion.h"
 
 namespace omnicam {
@@ -172,7 +173,19 @@ std::optional<Vec3> PhysicalCamera::reflectionPoint(const Vec3& p, Vec2 xy) cons
 std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
   for (const Vec2& start : mirror_->projectionStarts(p, pinhole_.position))
     if (const auto m = reflectionPoint(p, start)) return pinhole_.raster(*m);
-  return std::nullopt;
+  // The shape's starts are quick and almost always enough; the convex search always converges.
+  return projectFromFermatMinimum(p);
+}
+
+std::optional<Vec2> PhysicalCamera::projectFromFermatMinimum(const Vec3& p) const {
+  const FermatMinimum minimum = minimiseFermatPath(*mirror_, pinhole_, p);
+  // On the rim plane or inside the body, the reflection law has no solution at all
+  // (fermat_path.h). On the mirror, or at its edge, Newton's method polishes the point and the
+  // checks tell whether it reflects.
+  if (minimum.on == FermatMinimum::On::Inside || minimum.on == FermatMinimum::On::RimPlane) return std::nullopt;
+  const auto m = reflectionPoint(p, minimum.point.head<2>());
+  if (!m) return std::nullopt;
+  return pinhole_.raster(*m);
 }
 
 std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {

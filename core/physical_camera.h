@@ -55,6 +55,10 @@ class PhysicalCamera final : public Camera {
   // Solves for the mirror point whose reflection sees the point (Newton's method on the
   // reflection law, from the central model's mirror point; see docs/physical-camera.md).
   std::optional<Vec2> project(const Vec3& pointViewpoint) const override;
+  // project's guaranteed route alone: Newton's method from the minimum of the path length over
+  // the mirror's body (fermat_path.h), found by a search that always converges. project takes it
+  // when the shape's quick starts fail.
+  std::optional<Vec2> projectFromFermatMinimum(const Vec3& pointViewpoint) const;
   bool images(const Vec2& raster) const override { return generateRay({raster}).has_value(); }
   nlohmann::json describe() const override;
 

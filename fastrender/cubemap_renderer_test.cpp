@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "central_camera.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -129,7 +131,7 @@ TEST(CubeMap, ThesisMeshBendsIncidenceRingsLessWithMorePolygons) {
   const FastRenderer fast(rings);
   const CubeMapRenderer cube(fast);
   const RenderSettings settings = settingsFor(rings, 4);
-  const OmniCamera camera = settings.rig.camera();
+  const CentralCamera camera(settings.rig);
   const double cubeRms =
       measureRingProfiles(cube.render(rings.startPose, settings, CubeMapOptions{}), camera, defaultRingThetasDeg()).rmsPx;
   std::printf("incidence rings per azimuth: cube map %.3f px", cubeRms);
