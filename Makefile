@@ -11,6 +11,7 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev bc \
   libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
   povray blender python3-numpy python3-matplotlib libtinygltf-dev \
+  pybind11-dev python3-dev python3-pytest \
   clang libfuzzer-14-dev libclang-rt-14-dev \
   slurmctld slurmd slurm-client munge libcgal-dev
 
@@ -56,7 +57,8 @@ demo: build
 
 # Frames/s of the fast renderer, fast vs POV-Ray per frame over the 100-frame thesis-loop (1 and
 # 16 spp), what a dataset frame costs and a 1000-frame dataset with all outputs against RGB only,
-# frames/s against scene size, and a POV-Ray dataset on Slurm (2 tasks x 1 thread vs 1 x 2).
+# frames/s against scene size, a POV-Ray dataset on Slurm (2 tasks x 1 thread vs 1 x 2), and the
+# Python bindings (a Python render loop against the same loop in C++; project of 10^6 points).
 bench: build
 	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
 	$(BUILD_DIR)/bin/omnicam bench --json
@@ -66,6 +68,7 @@ bench: build
 	bench/dataset_ratio.sh 1000
 	mkdir -p out && $(BUILD_DIR)/bin/scene_scaling --csv out/scaling.csv
 	$(BUILD_DIR)/bin/slurm_speedup --csv out/slurm_speedup.csv
+	PYTHONPATH=$(BUILD_DIR)/python /usr/bin/python3 bench/python_bench.py
 
 clean:
 	rm -rf $(BUILD_DIR) out

@@ -20,6 +20,11 @@ class SliceMinimum {
     if (slope(x, y, high) <= 0.0) return {Vec3(x, y, high), FermatMinimum::On::RimPlane};
     return {Vec3(x, y, std::clamp(stationaryZ(x, y), low, high)), FermatMinimum::On::Inside};
   }
+  // The straight path's length, camera to p: no path by the body is shorter, and only paths
+  // along it are as short.
+  double straightLength() const {
+    return camera_.orthographic ? (p_ - camera_.position).dot(axis_) : (p_ - camera_.position).norm();
+  }
   double length(const Vec3& x) const {
     const double toCamera = camera_.orthographic ? (x - camera_.position).dot(axis_) : (x - camera_.position).norm();
     return toCamera + (x - p_).norm();
@@ -75,9 +80,9 @@ double goldenSectionMinimum(double lo, double hi, int steps, const F& f) {
 FermatMinimum minimiseFermatPath(const MirrorSurface& mirror, const Pinhole& camera, const Vec3& p) {
   const SliceMinimum slice(mirror, camera, p);
   const double r = mirror.rimRadius();
-  // 0.618^45 ≈ 4e-10 of the bracket; near a minimum, rounding limits any comparison of lengths to
-  // about √ε of the scale anyway.
-  constexpr int kSteps = 45;
+  // 0.618^30 ≈ 5e-7 of the bracket: below what rounding lets any comparison of lengths resolve
+  // near a minimum (about 10⁻⁵ of the rim radius).
+  constexpr int kSteps = 30;
   const auto halfChord = [r](double x) { return std::sqrt(std::max(0.0, r * r - x * x)); };
   const auto bestY = [&](double x) {
     const double w = halfChord(x);
@@ -86,10 +91,17 @@ FermatMinimum minimiseFermatPath(const MirrorSurface& mirror, const Pinhole& cam
   // min over y of a jointly convex function is convex in x.
   const double best = goldenSectionMinimum(-r, r, kSteps, [&](double x) { return slice.length(slice.at(x, bestY(x)).point); });
   FermatMinimum minimum = slice.at(best, bestY(best));
-  // The body's corner, where mirror and rim plane meet, is a minimum of either kind's limit: the
-  // search cannot tell it from a mirror point a rounding error inside.
-  if (minimum.on != FermatMinimum::On::Inside && minimum.point.head<2>().norm() > (1.0 - 1e-4) * r)
-    minimum.on = FermatMinimum::On::RimEdge;
+  // As short as the straight path (to rounding): it runs through the body.
+  const double straight = slice.straightLength();
+  if (slice.length(minimum.point) <= straight + 1e-9 * std::abs(straight)) {
+    minimum.on = FermatMinimum::On::Inside;
+    return minimum;
+  }
+  // The body's corners, where the surface has no tangent plane: the search cannot tell them from
+  // a mirror point a rounding error away.
+  const double fromAxis = minimum.point.head<2>().norm();
+  if (minimum.on != FermatMinimum::On::Inside && (fromAxis > (1.0 - 1e-4) * r || (mirror.hasApex() && fromAxis < 1e-4 * r)))
+    minimum.on = FermatMinimum::On::Corner;
   return minimum;
 }
 

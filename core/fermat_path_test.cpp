@@ -67,16 +67,16 @@ TEST(FermatPath, ItsMinimumIsTheMirrorPointTheTraceReflectsFrom) {
       if (!ray) continue;
       ++done;
       const FermatMinimum minimum = minimiseFermatPath(camera.mirror(), camera.pinhole(), ray->origin + std::exp(logDepth(rng)) * ray->direction);
-      if (minimum.on == FermatMinimum::On::RimEdge) {
+      if (minimum.on == FermatMinimum::On::Corner) {
         ++atTheEdge;
         continue;
       }
       ASSERT_EQ(minimum.on, FermatMinimum::On::Mirror) << nameOf(rig);
       worst = std::max(worst, (minimum.point - ray->origin).norm() / r);
     }
-    std::printf("%s: minimum within %.3g rim radii of the traced mirror point; %d of 2000 at the rim's edge\n",
+    std::printf("%s: minimum within %.3g rim radii of the traced mirror point; %d of 2000 at a corner\n",
                 nameOf(rig), worst, atTheEdge);
-    EXPECT_LE(atTheEdge, 20) << nameOf(rig);  // the outer 10⁻⁴ of the rim radius
+    EXPECT_LE(atTheEdge, 20) << nameOf(rig);  // within 10⁻⁴ rim radii of the rim (or the cone's apex)
     // Golden-section searches locate a smooth minimum only to where rounding hides the rise of
     // the path length (~10⁻⁵ rim radii here): a start for Newton's method, which polishes it.
     EXPECT_LE(worst, 1e-4) << nameOf(rig);
@@ -88,21 +88,28 @@ TEST(FermatPath, PointsNoMirrorPointReflectsHaveTheirMinimumOffTheMirror) {
     const PhysicalCamera camera(rig);
     const MirrorSurface& mirror = camera.mirror();
     const double r = mirror.rimRadius();
-    std::vector<Vec3> unseen{
-        Vec3(0.001, 0.002, 0.5),  // straight above: the straight path runs through the mirror
-        Vec3(0.1 * r, -0.05 * r, 0.5 * (mirror.heightAt(0.1 * r, -0.05 * r) + mirror.rimZ())),  // inside its body
-    };
-    // Above every shape's rim horizon (at most 45° here), all round.
+    // The straight path runs through the mirror's body: straight above it, or inside it.
+    for (const Vec3& p : {Vec3(0.001, 0.002, 0.5),
+                          Vec3(0.1 * r, -0.05 * r, 0.5 * (mirror.heightAt(0.1 * r, -0.05 * r) + mirror.rimZ()))}) {
+      EXPECT_EQ(minimiseFermatPath(mirror, camera.pinhole(), p).on, FermatMinimum::On::Inside) << nameOf(rig) << " " << p.transpose();
+      EXPECT_FALSE(camera.project(p)) << nameOf(rig) << " " << p.transpose();
+    }
+    // Above every shape's rim horizon (at most 45° here), all round; and for the cone, straight
+    // below (its apex hides the nadir).
+    std::vector<Vec3> unseen;
     for (double elevation : {70.0, 80.0})
       for (int k = 0; k < 8; ++k) {
         const double e = radians(elevation), a = kPi * k / 4.0;
         unseen.push_back(5.0 * Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)));
       }
+    if (rig.shape.shape == MirrorShape::Cone) {
+      unseen.push_back(Vec3(0.001, 0.002, -5.0));
+      EXPECT_EQ(minimiseFermatPath(mirror, camera.pinhole(), unseen.back()).on, FermatMinimum::On::Corner);
+    }
     for (const Vec3& p : unseen) {
       EXPECT_NE(minimiseFermatPath(mirror, camera.pinhole(), p).on, FermatMinimum::On::Mirror) << nameOf(rig) << " " << p.transpose();
       EXPECT_FALSE(camera.project(p)) << nameOf(rig) << " " << p.transpose();
     }
-    EXPECT_EQ(minimiseFermatPath(mirror, camera.pinhole(), unseen[0]).on, FermatMinimum::On::Inside) << nameOf(rig);
   }
 }
 

@@ -171,6 +171,7 @@ class ConeSurface final : public MirrorSurface {
       }
     return starts;
   }
+  bool hasApex() const override { return true; }
   nlohmann::json toJson() const override {
     return {{"shape", "cone"}, {"half_angle_deg", degrees(std::atan(tan_))}, {"rim_z_m", rimZ()}, {"rim_radius_m", rimRadius()}};
   }

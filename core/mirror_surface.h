@@ -36,6 +36,8 @@ class MirrorSurface {
   // (x, y) of a mirror point near the reflection point, then fallbacks tried in order if the
   // solver does not reach the physical root from it.
   virtual std::vector<Vec2> projectionStarts(const Vec3& p, const Vec3& pinhole) const = 0;
+  // Whether the surface has an apex on its axis, a point without a tangent plane (the cone's).
+  virtual bool hasApex() const { return false; }
   // The shape and its parameters, for sidecars.
   virtual nlohmann::json toJson() const = 0;
 

@@ -180,8 +180,8 @@ std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
 std::optional<Vec2> PhysicalCamera::projectFromFermatMinimum(const Vec3& p) const {
   const FermatMinimum minimum = minimiseFermatPath(*mirror_, pinhole_, p);
   // On the rim plane or inside the body, the reflection law has no solution at all
-  // (fermat_path.h). On the mirror, or at its edge, Newton's method polishes the point and the
-  // checks tell whether it reflects.
+  // (fermat_path.h). On the mirror, or at one of its corners, Newton's method polishes the point
+  // and the checks tell whether it reflects.
   if (minimum.on == FermatMinimum::On::Inside || minimum.on == FermatMinimum::On::RimPlane) return std::nullopt;
   const auto m = reflectionPoint(p, minimum.point.head<2>());
   if (!m) return std::nullopt;

@@ -1,0 +1,84 @@
+// omnicam.run_dataset and the readers the Python Dataset class (omnicam/dataset.py) builds on.
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <functional>
+
+#include "bindings.h"
+#include "dataset_runner.h"
+#include "dataset_spec.h"
+#include "image.h"
+
+namespace omnicam::python {
+
+namespace {
+
+// Runs a dataset spec with the GIL released; `progress(done, total)` is called with the GIL after
+// every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run after the frame
+// in progress and is raised again once the run has stopped.
+py::dict runDatasetFromPython(const std::string& specPath, const std::string& out, bool overwrite, int threads,
+                              const std::optional<py::function>& progress) {
+  const DatasetSpec spec = loadDatasetSpec(specPath);
+  DatasetRunOptions options;
+  options.dir = out;
+  options.overwrite = overwrite;
+  options.threads = threads;
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> raised;
+  options.stopRequested = &stop;
+  const auto report = [&](int done, int total) {
+    py::gil_scoped_acquire acquire;
+    if (raised) return;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (progress) (*progress)(done, total);
+    } catch (py::error_already_set& e) {
+      raised.emplace(std::move(e));
+      stop = true;
+    }
+  };
+  options.onStart = [&](int kept, int total) { report(kept, total); };
+  options.onFrame = report;
+  DatasetRunResult result;
+  {
+    py::gil_scoped_release release;
+    result = runDataset(spec, options);
+  }
+  if (raised) throw std::move(*raised);
+  py::dict d;
+  d["frames"] = result.frames;
+  d["kept"] = result.kept;
+  d["rendered"] = result.rendered;
+  d["stopped"] = result.stopped;
+  d["notes"] = result.notes;
+  return d;
+}
+
+}  // namespace
+
+void bindDataset(py::module_& m) {
+  m.def("run_dataset", &runDatasetFromPython, py::arg("spec"), py::arg("out"), py::kw_only(), py::arg("overwrite") = false,
+        py::arg("threads") = 0, py::arg("progress") = py::none(),
+        R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does
+(docs/dataset-format.md): resumes a partial run, keeps verified frames. progress(done, total) is
+called after every frame. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
+
+  m.def("read_image", [](const std::string& path) {
+    ImageRGBA image = readImage(path);
+    const py::ssize_t h = image.height, w = image.width;
+    return arrayTakingOver(std::move(image.pixels), {h, w, 4});
+  }, py::arg("path"), "Any image file as linear, premultiplied RGBA float32 (H, W, 4).");
+  m.def("read_exr_channels", [](const std::string& path, const std::vector<std::string>& channels) {
+    DataImage image = readDataExrChannels(path, channels);
+    const py::ssize_t h = image.height, w = image.width, c = image.channels;
+    return arrayTakingOver(std::move(image.values), {h, w, c});
+  }, py::arg("path"), py::arg("channels"), "The named channels of an OpenEXR as float32 (H, W, len(channels)), exactly.");
+  m.def("read_uint16_png", [](const std::string& path) {
+    int w = 0, h = 0;
+    std::vector<uint16_t> values = readUint16Png(path, w, h);
+    return arrayTakingOver(std::move(values), {h, w});
+  }, py::arg("path"), "A 16-bit single-channel PNG (instance and class ids) as uint16 (H, W).");
+}
+
+}  // namespace omnicam::python

@@ -1,0 +1,158 @@
+// omnicam.Renderer and omnicam.render: images and AOVs as numpy arrays.
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <set>
+
+#include "bindings.h"
+#include "engines.h"
+#include "errors.h"
+#include "scene_ids.h"
+
+namespace omnicam::python {
+
+namespace {
+
+const std::set<std::string> kOutputs{"rgba", "rgb", "depth", "instance", "class", "normal"};
+
+// One engine for one scene, reused render after render (the fast engine builds its ray-tracing
+// scene once). Renders of engines that may run concurrently run so, the GIL released; the others
+// take turns.
+class PyRenderer {
+ public:
+  PyRenderer(std::shared_ptr<const Scene> scene, const std::string& engine, const std::string& mode, int faces,
+             int faceSize, int polygons, double timeoutSeconds, int threads)
+      : scene_(std::move(scene)), ids_(idTables(*scene_)) {
+    const auto options = parseMode(mode, faces, faceSize, polygons, "mode");
+    engine_ = makeEngine(engine, *scene_, timeoutSeconds, options.get(), "engine", threads);
+  }
+
+  py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, int size, int spp, const std::string& shading,
+                  bool traced, const std::vector<std::string>& outputs) {
+    RenderSettings settings;
+    settings.rig = rig.value_or(scene_->rig);
+    if (size) settings.rig = settings.rig.resized(size);
+    settings.spp = spp;
+    const auto parsedShading = parseShading(shading);
+    if (!parsedShading) throw InputError("shading: " + quote(shading) + " is not unlit or lit");
+    settings.shading = *parsedShading;
+    settings.traced = traced;
+    checkRenderSettings(settings);
+    const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
+    bool aovs = false;
+    for (const std::string& o : outputs) {
+      if (!kOutputs.count(o)) throw InputError("outputs: " + quote(o) + " is not one of rgba, rgb, depth, instance, class, normal");
+      aovs = aovs || (o != "rgba" && o != "rgb");
+    }
+    if (aovs && !engine_->hasAovs())
+      throw InputError("outputs: the " + engine_->name() + " engine renders colour only (rgba, rgb)");
+    ImageRGBA image;
+    AovFrame frame;
+    {
+      py::gil_scoped_release release;
+      std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
+      if (!engine_->concurrent()) turn.lock();
+      image = aovs ? engine_->render(robot, settings, frame) : engine_->render(robot, settings);
+    }
+    return arrays(std::move(image), std::move(frame), outputs);
+  }
+
+  // The benchmark's reference (bench/python_bench.py): `frames` renders of one pose in a C++ loop,
+  // nothing handed to Python; seconds taken.
+  double renderRepeatedly(const py::object& pose, int frames, int size, int spp) {
+    RenderSettings settings;
+    settings.rig = size ? scene_->rig.resized(size) : scene_->rig;
+    settings.spp = spp;
+    checkRenderSettings(settings);
+    const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
+    py::gil_scoped_release release;
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < frames; ++k) engine_->render(robot, settings);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  const Engine& engine() const { return *engine_; }
+  const std::shared_ptr<const Scene>& scene() const { return scene_; }
+
+ private:
+  py::dict arrays(ImageRGBA&& image, AovFrame&& frame, const std::vector<std::string>& outputs) const {
+    const py::ssize_t h = image.height, w = image.width;
+    py::dict out;
+    const std::set<std::string> wanted(outputs.begin(), outputs.end());
+    if (wanted.count("class")) {
+      std::vector<uint16_t> classes(frame.instance.size());
+      for (size_t p = 0; p < classes.size(); ++p) classes[p] = ids_.classOfInstance[frame.instance[p]];
+      out["class"] = arrayTakingOver(std::move(classes), {h, w});
+    }
+    if (wanted.count("depth")) out["depth"] = arrayTakingOver(std::move(frame.depth), {h, w});
+    if (wanted.count("normal")) out["normal"] = arrayTakingOver(std::move(frame.normal), {h, w, 3});
+    if (wanted.count("instance")) out["instance"] = arrayTakingOver(std::move(frame.instance), {h, w});
+    if (wanted.count("rgba") || wanted.count("rgb")) {
+      py::array_t<float> rgba = arrayTakingOver(std::move(image.pixels), {h, w, 4});
+      if (wanted.count("rgba")) out["rgba"] = rgba;
+      // A view of the same pixels: no copy.
+      if (wanted.count("rgb")) out["rgb"] = rgba[py::make_tuple(py::ellipsis(), py::slice(0, 3, 1))];
+    }
+    return out;
+  }
+
+  std::shared_ptr<const Scene> scene_;
+  IdTables ids_;
+  std::unique_ptr<Engine> engine_;
+  std::mutex mutex_;
+};
+
+constexpr const char* kRenderDoc = R"(Renders the scene from a robot pose (x, y, yaw_deg; default the scene's start pose).
+
+rig: another rig (default the scene's); size: the image size (default the rig's); spp: samples
+per pixel, a perfect square; shading: "unlit" or "lit"; traced: trace the physical camera even
+for the ideal rig. outputs: any of "rgba" (H, W, 4) float32 linear, premultiplied alpha; "rgb"
+(H, W, 3) a view of the same pixels; "depth" (H, W) float32 metres along the viewing ray;
+"instance" and "class" (H, W) uint16 ids (Scene.ids); "normal" (H, W, 3) float32 world-frame.
+AOVs (all but rgba and rgb) are point-sampled at pixel centres, fast engine only. Returns a dict
+of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.)";
+
+const std::string kOneRenderDoc =
+    std::string("One render with a new Renderer (a loop over poses should keep one Renderer instead).\n\n") + kRenderDoc;
+
+}  // namespace
+
+void bindRender(py::module_& m) {
+  py::class_<PyRenderer>(m, "Renderer", R"(A renderer of one scene, reused across renders (docs/python.md).
+
+engine: "fast" (default), "povray" or "blender" (ground truths: colour only); mode: "exact",
+"cubemap" or "thesis-mesh" (fast engine only) with faces, face_size and polygons; timeout: seconds
+per ground-truth frame; threads: 0 for every core.)")
+      .def(py::init([](std::shared_ptr<Scene> scene, const std::string& engine, const std::string& mode, int faces,
+                       int faceSize, int polygons, double timeout, int threads) {
+             // The renderer keeps its own copy: changing the Python scene later does not change it.
+             return std::make_unique<PyRenderer>(std::make_shared<const Scene>(*scene), engine, mode, faces, faceSize,
+                                                 polygons, timeout, threads);
+           }),
+           py::arg("scene"), py::arg("engine") = "fast", py::arg("mode") = "exact", py::arg("faces") = 6,
+           py::arg("face_size") = 512, py::arg("polygons") = 1024, py::arg("timeout") = 600.0, py::arg("threads") = 0)
+      .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
+           py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
+           py::arg("outputs") = std::vector<std::string>{"rgba"}, kRenderDoc)
+      .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
+           py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
+      .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
+      .def_property_readonly("concurrent", [](const PyRenderer& r) { return r.engine().concurrent(); },
+                             "Whether renders from several threads run at once.");
+
+  m.def(
+      "render",
+      [](std::shared_ptr<Scene> scene, const py::object& pose, const std::string& engine, const std::optional<RigSpec>& rig,
+         int size, int spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs) {
+        PyRenderer renderer(std::make_shared<const Scene>(*scene), engine, "exact", 6, 512, 1024, 600.0, 0);
+        return renderer.render(pose, rig, size, spp, shading, traced, outputs);
+      },
+      py::arg("scene"), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = "fast", py::arg("rig") = py::none(),
+      py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
+      py::arg("outputs") = std::vector<std::string>{"rgba"},
+      kOneRenderDoc.c_str());
+}
+
+}  // namespace omnicam::python

@@ -1,0 +1,117 @@
+// omnicam.load_scene, omnicam.Scene and omnicam.Rig.
+#include <pybind11/operators.h>
+#include <pybind11/stl.h>
+
+#include <functional>
+#include <memory>
+
+#include "bindings.h"
+#include "scene_ids.h"
+#include "scene_loader.h"
+#include "sidecar.h"
+
+namespace omnicam::python {
+
+namespace {
+
+using json = nlohmann::json;
+
+// Every change to a rig goes through the scene format's own reader: the same checks and the same
+// one-line messages as a scene file ("omnicam.Rig: rig.camera.offset_mm: …").
+RigSpec rigFromDict(const json& j) { return rigFromJson(j, "omnicam.Rig", "rig"); }
+
+RigSpec edited(const RigSpec& rig, const std::function<void(json&)>& edit) {
+  json j = rigToJson(rig);
+  edit(j);
+  // Another mirror shape frames its image by its rim: the hyperboloid's framing goes with it.
+  const json& mirror = j["mirror"];
+  if (mirror.is_object() && mirror.contains("shape") && mirror["shape"] != "hyperboloid" && j["image"].is_object())
+    j["image"].erase("framing_elevation_deg");
+  return rigFromDict(j);
+}
+
+// A read/write property of the rig at a JSON path of the scene format's "rig" block.
+void rigProperty(py::class_<RigSpec>& rig, const char* name, std::vector<std::string> path, const char* doc) {
+  rig.def_property(
+      name,
+      [path](const RigSpec& r) {
+        json j = rigToJson(r);
+        for (const std::string& key : path) {
+          if (!j.contains(key)) return toPython(json());
+          j = j[key];
+        }
+        return toPython(j);
+      },
+      [path](RigSpec& r, const py::object& value) {
+        const json v = fromPython(value, "omnicam.Rig: " + path.back());
+        r = edited(r, [&](json& j) {
+          json* at = &j;
+          for (const std::string& key : path) at = &(*at)[key];
+          *at = v;
+        });
+      },
+      doc);
+}
+
+}  // namespace
+
+void bindScene(py::module_& m) {
+  py::class_<RigSpec> rig(m, "Rig", R"(The camera rig: mirror, camera as mounted, image (docs/scene-format.md, "rig").
+
+Rig() is the ideal rig; Rig(dict) reads the scene format's "rig" block strictly. Every property
+set is checked the same way: a bad value raises omnicam.InputError and leaves the rig unchanged.)");
+  rig.def(py::init<>())
+      .def(py::init([](const py::dict& d) { return rigFromDict(fromPython(d, "omnicam.Rig")); }), py::arg("rig"))
+      .def("to_dict", [](const RigSpec& r) { return toPython(rigToJson(r)); }, "The rig as the scene format's \"rig\" block.")
+      .def("resized", &RigSpec::resized, py::arg("size"), "The same rig imaging size × size pixels.")
+      .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")
+      .def_property_readonly("shape", [](const RigSpec& r) { return std::string(mirrorShapeName(r.shape.shape)); },
+                             "The mirror shape: hyperboloid, paraboloid, sphere or cone.")
+      .def(py::self == py::self)
+      .def("__repr__", [](const RigSpec& r) { return "omnicam.Rig(" + rigToJson(r).dump() + ")"; });
+  rigProperty(rig, "height", {"height"}, "The design point's height above the floor, metres.");
+  rigProperty(rig, "image_size", {"image", "size"}, "Image width and height, pixels.");
+  rigProperty(rig, "mirror", {"mirror"}, "The mirror block: shape and its parameters (dict).");
+  rigProperty(rig, "camera_offset_mm", {"camera", "offset_mm"}, "The pinhole minus its ideal position, robot axes, mm.");
+  rigProperty(rig, "camera_rotation_deg", {"camera", "rotation_deg"}, "The camera turned about its pinhole, degrees.");
+  rigProperty(rig, "distortion", {"camera", "distortion"}, "OpenCV radial-tangential lens distortion {k1, k2, p1, p2, k3}.");
+  rigProperty(rig, "principal_point_offset_px", {"camera", "principal_point_offset_px"}, "Principal point offset, pixels.");
+
+  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A loaded scene file (docs/scene-format.md).")
+      .def_property_readonly("path", [](const Scene& s) { return s.path; })
+      .def_property_readonly("name", [](const Scene& s) { return s.name; })
+      .def_property_readonly("sha256", [](const Scene& s) { return s.sha256; })
+      .def_property("rig", [](const Scene& s) { return s.rig; }, [](Scene& s, const RigSpec& r) { s.rig = r; },
+                    "The scene's rig (a copy: change it and assign it back, or pass it to a render).")
+      .def_property_readonly("start_pose", [](const Scene& s) { return py::make_tuple(s.startPose.x, s.startPose.y, s.startPose.yawDeg); })
+      .def_property_readonly("objects", [](const Scene& s) {
+        std::vector<std::string> names;
+        for (const SceneObject& o : s.objects) names.push_back(o.name);
+        return names;
+      }, "Object names; object i has instance id i + 1.")
+      .def_property_readonly("ids", [](const Scene& s) {
+        const IdTables ids = idTables(s);
+        return toPython({{"classes", ids.classes}, {"instances", ids.instances}});
+      }, "The instance and class ids of the AOVs: {\"classes\": [{id, name}], \"instances\": [{id, name, class, class_id}]}.")
+      .def_property_readonly("paths", [](const Scene& s) {
+        py::dict paths;
+        for (const CameraPath& p : s.paths) {
+          py::list poses;
+          for (const RobotPose& q : p.poses) poses.append(py::make_tuple(q.x, q.y, q.yawDeg));
+          paths[py::str(p.name)] = poses;
+        }
+        return paths;
+      }, "The scene's named camera paths: {name: [(x, y, yaw_deg), …]}.")
+      .def("__repr__", [](const Scene& s) { return "<omnicam.Scene " + json(s.name).dump() + " from " + json(s.path).dump() + ">"; });
+
+  m.def("load_scene", [](const std::string& path, bool allowOutsideFiles) {
+    SceneLoadOptions options;
+    options.allowOutsideFolder = allowOutsideFiles;
+    return std::make_shared<Scene>(loadScene(path, options));
+  }, py::arg("path"), py::arg("allow_outside_files") = false,
+        R"(Loads and checks a scene file. Anything wrong raises omnicam.InputError with one line
+"<file>: <field>: <what is wrong>". Files the scene pulls in must lie inside its folder unless
+allow_outside_files.)");
+}
+
+}  // namespace omnicam::python

@@ -1,0 +1,51 @@
+// `import omnicam`: the library's own objects in Python (docs/python.md).
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+
+#include "errors.h"
+#include "render_settings.h"
+
+namespace omnicam::python {
+
+py::object toPython(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+nlohmann::json fromPython(const py::handle& object, const std::string& what) {
+  std::string text;
+  try {
+    text = py::module_::import("json").attr("dumps")(object).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    throw InputError(what + ": not JSON-like (dicts, lists, numbers, strings, booleans, None)");
+  }
+  return nlohmann::json::parse(text);
+}
+
+RobotPose poseFrom(const py::handle& pose, const std::string& what) {
+  std::vector<double> v;
+  try {
+    v = pose.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw InputError(what + ": must be (x, y, yaw_deg)");
+  }
+  if (v.size() != 3) throw InputError(what + ": must be (x, y, yaw_deg), 3 numbers");
+  const RobotPose p{v[0], v[1], v[2]};
+  checkPose(p, what);
+  return p;
+}
+
+}  // namespace omnicam::python
+
+PYBIND11_MODULE(_omnicam, m) {
+  namespace py = pybind11;
+  using namespace omnicam;
+  m.doc() = "omnicam: catadioptric omnidirectional camera simulation with exact ground truth (docs/python.md)";
+  // The library's errors keep their one-line messages. Bad input is a ValueError, a file that
+  // cannot be written an OSError, a failing external tool (POV-Ray, Blender) a RuntimeError.
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
+  py::register_exception<ExternalError>(m, "ExternalError", PyExc_RuntimeError);
+  python::bindScene(m);
+  python::bindCamera(m);
+  python::bindRender(m);
+  python::bindDataset(m);
+}

@@ -1,0 +1,74 @@
+"""The camera interface, vectorised: closed-form cases, round trips and the CLI's `project`."""
+
+import numpy as np
+import pytest
+
+import omnicam
+from conftest import SOURCE, run_cli
+
+
+def test_the_point_below_the_viewpoint_is_the_image_centre_and_the_sky_is_nan(robocup):
+    camera = omnicam.Camera(robocup.rig)
+    assert camera.model == "mei_unified" and camera.central
+    # The CLI's own closed-form case (tests/cli_test.cpp): straight below is pixel (180, 180).
+    pixels = camera.project(np.array([[1.0, 1.0, 0.0], [1.0, 1.1, 5.0]]), pose=(1.0, 1.0, 30.0))
+    np.testing.assert_allclose(pixels[0], [180.0, 180.0], atol=1e-9)
+    assert np.isnan(pixels[1]).all()
+
+
+def test_world_points_project_as_the_cli_projects_them(robocup):
+    rng = np.random.default_rng(3)
+    points = np.column_stack([rng.uniform(0, 8, 20), rng.uniform(0, 6, 20), rng.uniform(0, 0.5, 20)])
+    pose = (3.5, 2.0, 40.0)
+    ours = omnicam.Camera(robocup.rig).project(points, pose=pose)
+    args = ["project", SOURCE / "scenes" / "robocup2006.json", "--pose=%g,%g,%g" % pose]
+    args += ["--point=%.17g,%.17g,%.17g" % tuple(p) for p in points]
+    code, out, err = run_cli(*args)
+    assert code == 0, err
+    cli = np.array([[float(v) for v in line.split()] for line in out.splitlines()])
+    np.testing.assert_allclose(ours, cli, atol=1e-5, equal_nan=True)  # the CLI prints 6 decimals
+    assert np.isfinite(ours).sum() > 5
+
+
+@pytest.mark.parametrize("offset", [None, [2.0, -1.4, 1.0]])
+def test_rays_and_project_round_trip(robocup, offset):
+    rig = robocup.rig
+    if offset:
+        rig.camera_offset_mm = offset
+        rig.camera_rotation_deg = [1.0, -0.6, 0.8]
+    camera = omnicam.Camera(rig)
+    assert camera.model == ("physical" if offset else "mei_unified")
+    rng = np.random.default_rng(7)
+    pixels = rng.uniform(0, 360, (20000, 2))
+    origins, directions = camera.rays(pixels)
+    seen = camera.images(pixels)
+    np.testing.assert_array_equal(np.isfinite(origins[:, 0]), seen)
+    np.testing.assert_allclose(np.linalg.norm(directions[seen], axis=1), 1.0, atol=1e-12)
+    depths = np.exp(rng.uniform(np.log(0.1), np.log(100.0), seen.sum()))
+    back = camera.project(origins[seen] + depths[:, None] * directions[seen])
+    assert np.isfinite(back).all()
+    assert np.abs(back - pixels[seen]).max() <= 1e-6
+
+
+def test_world_frame_rays_pass_through_the_points_they_image(robocup):
+    camera = omnicam.Camera(robocup.rig)
+    pose = (2.0, 3.0, -60.0)
+    pixels = np.array([[100.5, 200.5], [180.5, 40.5], [300.25, 170.75]])
+    origins, directions = camera.rays(pixels, pose=pose)
+    points = origins + 1.7 * directions
+    np.testing.assert_allclose(camera.project(points, pose=pose), pixels, atol=1e-8)
+
+
+def test_bad_arrays_are_input_errors(robocup):
+    camera = omnicam.Camera(robocup.rig)
+    with pytest.raises(omnicam.InputError, match=r"points: must be an array of shape \(N, 3\)"):
+        camera.project(np.zeros((4, 2)))
+    with pytest.raises(omnicam.InputError, match="pose"):
+        camera.project(np.zeros((1, 3)), pose=(1.0, 2.0))
+    with pytest.raises(omnicam.InputError):
+        camera.rays(np.zeros(5))
+
+
+def test_describe_states_the_model(robocup):
+    description = omnicam.Camera(robocup.rig).describe()
+    assert description["model"] == "mei_unified"

@@ -1,0 +1,116 @@
+"""Rendering from Python: the CLI's pixels, AOVs against closed-form geometry, arrays that own
+the rendered buffers, one renderer across threads, and datasets with progress."""
+
+import concurrent.futures
+import json
+
+import numpy as np
+import pytest
+
+import omnicam
+from conftest import SOURCE, run_cli
+
+POSE = (2.5, 1.8, 35.0)
+
+
+def test_the_pixels_are_the_clis_exactly(robocup, tmp_path):
+    frame = omnicam.Renderer(robocup).render(POSE, spp=4, shading="lit")
+    code, _, err = run_cli("render", SOURCE / "scenes" / "robocup2006.json", "--pose=%g,%g,%g" % POSE,
+                           "--spp", 4, "--shading", "lit", "-o", tmp_path / "cli.exr")
+    assert code == 0, err
+    cli = omnicam.read_image(str(tmp_path / "cli.exr"))
+    assert frame["rgba"].dtype == np.float32 and frame["rgba"].shape == (360, 360, 4)
+    np.testing.assert_array_equal(frame["rgba"], cli)
+
+
+def test_depth_of_the_floor_is_the_distance_along_the_ray(robocup):
+    """Every floor pixel's depth is where its pixel-centre ray meets the plane z = 0."""
+    frame = omnicam.Renderer(robocup).render(POSE, outputs=["depth", "class", "instance"])
+    floor_id = next(c["id"] for c in robocup.ids["classes"] if c["name"] == "floor")
+    rows, cols = np.nonzero(frame["class"] == floor_id)
+    assert rows.size > 5000
+    centres = np.column_stack([cols + 0.5, rows + 0.5])
+    origins, directions = omnicam.Camera(robocup.rig).rays(centres, pose=POSE)
+    along = -origins[:, 2] / directions[:, 2]
+    np.testing.assert_allclose(frame["depth"][rows, cols], along, rtol=1e-5)
+
+
+def test_class_ids_follow_the_scenes_instance_table(robocup):
+    frame = omnicam.Renderer(robocup).render(POSE, outputs=["instance", "class", "normal", "depth"])
+    class_of = np.array([i["class_id"] for i in robocup.ids["instances"]], dtype=np.uint16)
+    np.testing.assert_array_equal(frame["class"], class_of[frame["instance"]])
+    hit = frame["instance"] > 0
+    # The field below the horizon (its radius is 73.7 px of 180) and the low walls: the rest of
+    # the mirror sees the sky, which holds nothing.
+    assert 0.05 < hit.mean() < 0.2
+    np.testing.assert_array_equal(hit, frame["depth"] > 0)
+    np.testing.assert_allclose(np.linalg.norm(frame["normal"][hit], axis=1), 1.0, atol=1e-5)
+    assert (frame["normal"][~hit] == 0).all()
+
+
+def test_arrays_own_the_rendered_buffers(robocup):
+    frame = omnicam.Renderer(robocup).render(POSE, outputs=["rgba", "rgb", "depth"])
+    assert frame["rgba"].flags.owndata is False and frame["rgba"].base is not None  # the C++ buffer itself
+    assert np.shares_memory(frame["rgb"], frame["rgba"])
+    np.testing.assert_array_equal(frame["rgb"], frame["rgba"][..., :3])
+    assert frame["depth"].shape == (360, 360) and frame["depth"].dtype == np.float32
+
+
+def test_one_renderer_serves_threads_and_poses(robocup):
+    renderer = omnicam.Renderer(robocup)
+    assert renderer.concurrent
+    poses = [(1.0 + 0.5 * k, 2.0, 20.0 * k) for k in range(6)]
+    alone = [renderer.render(p, size=120)["rgba"] for p in poses]
+    with concurrent.futures.ThreadPoolExecutor(3) as pool:
+        together = list(pool.map(lambda p: renderer.render(p, size=120)["rgba"], poses))
+    for a, b in zip(alone, together):
+        np.testing.assert_array_equal(a, b)
+    assert not np.array_equal(alone[0], alone[1])
+
+
+def test_a_physical_rig_renders(robocup):
+    rig = robocup.rig
+    rig.camera_offset_mm = [2.0, 0.0, 0.0]
+    moved = omnicam.render(robocup, POSE, rig=rig, size=120)["rgba"]
+    ideal = omnicam.render(robocup, POSE, size=120)["rgba"]
+    assert moved.shape == ideal.shape and not np.array_equal(moved, ideal)
+
+
+def test_bad_render_arguments_raise_one_line(robocup):
+    renderer = omnicam.Renderer(robocup)
+    with pytest.raises(omnicam.InputError, match="outputs: \"colour\" is not one of"):
+        renderer.render(outputs=["colour"])
+    with pytest.raises(omnicam.InputError, match="spp"):
+        renderer.render(spp=3)
+    with pytest.raises(omnicam.InputError, match="shading"):
+        renderer.render(shading="glossy")
+    with pytest.raises(omnicam.InputError, match="engine"):
+        omnicam.Renderer(robocup, engine="mitsuba")
+    with pytest.raises(omnicam.InputError, match="the povray engine renders colour only"):
+        omnicam.Renderer(robocup, engine="povray").render(outputs=["depth"])
+
+
+def test_a_dataset_runs_with_progress_and_stops_on_an_exception(tmp_path):
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(SOURCE / "scenes" / "robocup2006.json"),
+        "size": 64, "poses": {"path": "thesis-loop", "frames": 4},
+        "outputs": {"rgb": "png", "depth": True}}))
+    seen = []
+    result = omnicam.run_dataset(str(spec), str(tmp_path / "ds"), progress=lambda done, total: seen.append((done, total)))
+    assert result["frames"] == 4 and result["rendered"] == 4 and not result["stopped"]
+    assert seen[0] == (0, 4) and seen[-1] == (4, 4) and len(seen) == 5
+    assert (tmp_path / "ds" / "manifest.json").exists()
+
+    class Enough(Exception):
+        pass
+
+    def stop_after_the_first(done, total):
+        if done >= 1:
+            raise Enough()
+
+    with pytest.raises(Enough):
+        omnicam.run_dataset(str(spec), str(tmp_path / "ds2"), progress=stop_after_the_first)
+    # Resuming finishes it and keeps what the stopped run rendered.
+    again = omnicam.run_dataset(str(spec), str(tmp_path / "ds2"))
+    assert again["frames"] == 4 and again["kept"] >= 1 and again["kept"] + again["rendered"] == 4

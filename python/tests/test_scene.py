@@ -1,0 +1,69 @@
+"""Scenes and rigs from Python: the same strict checks and one-line messages as the CLI."""
+
+import json
+
+import pytest
+
+import omnicam
+from conftest import SOURCE, run_cli
+
+
+def test_a_scene_loads_with_its_rig_objects_ids_and_paths(robocup):
+    assert robocup.name == "robocup2006"
+    assert robocup.rig.ideal and robocup.rig.shape == "hyperboloid"
+    assert robocup.rig.image_size == 360
+    assert len(robocup.objects) > 10
+    ids = robocup.ids
+    assert ids["instances"][0]["id"] == 0 and ids["classes"][0]["id"] == 0
+    assert [i["name"] for i in ids["instances"][1:]] == robocup.objects
+    assert "thesis-loop" in robocup.paths and len(robocup.paths["thesis-loop"][0]) == 3
+
+
+def test_a_bad_scene_raises_the_clis_one_line_message(tmp_path):
+    scene = json.loads((SOURCE / "scenes" / "robocup2006.json").read_text())
+    scene["rig"]["mirror"]["k"] = -3
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(scene))
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.load_scene(str(bad))
+    code, _, stderr = run_cli("render", bad, "-o", tmp_path / "x.png")
+    assert code == 2
+    message = str(raised.value)
+    assert "\n" not in message and message.startswith(str(bad))
+    assert message in stderr  # the CLI prints the same line (after its "omnicam: " prefix)
+    assert isinstance(raised.value, ValueError)
+
+
+def test_a_missing_scene_file_is_an_input_error(tmp_path):
+    with pytest.raises(omnicam.InputError):
+        omnicam.load_scene(str(tmp_path / "nothing.json"))
+
+
+def test_rig_properties_go_through_the_scene_formats_checks(robocup):
+    rig = robocup.rig
+    rig.camera_offset_mm = [2.0, -1.0, 0.5]
+    rig.camera_rotation_deg = [1.0, 0.0, 0.0]
+    assert rig.camera_offset_mm == [2.0, -1.0, 0.5]
+    assert not rig.ideal
+    before = rig.to_dict()
+    with pytest.raises(omnicam.InputError) as raised:
+        rig.camera_offset_mm = [1e6, 0.0, 0.0]
+    assert "rig.camera.offset_mm" in str(raised.value)
+    assert rig.to_dict() == before  # unchanged
+    with pytest.raises(omnicam.InputError):
+        rig.image_size = 3  # below the smallest image
+    # The scene keeps its own rig until one is assigned back.
+    assert robocup.rig.ideal
+    robocup.rig = rig
+    assert robocup.rig == rig
+
+
+def test_a_rig_round_trips_through_its_dict():
+    rig = omnicam.Rig()
+    rig.mirror = {"shape": "sphere", "radius": 0.03, "cap_angle_deg": 60, "camera_distance_m": 0.12}
+    again = omnicam.Rig(rig.to_dict())
+    assert again == rig and again.shape == "sphere"
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.Rig({"mirror": {"shape": "sphere", "radius": 0.03, "k": 11}})
+    assert "belongs to the hyperboloid shape" in str(raised.value)
+    assert omnicam.Rig().resized(180).image_size == 180
