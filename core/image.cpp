@@ -361,43 +361,55 @@ std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, i
 
 namespace {
 
-std::unique_ptr<OIIO::ImageInput> openDataImage(const std::string& path) {
+// A data image opened from a file or from bytes in memory (which must outlive it); `name` is what
+// messages call it.
+struct DataInput {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
+  std::unique_ptr<OIIO::ImageInput> input;
+  std::string name;
+};
+
+DataInput openDataImage(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(showPath(path) + ": cannot read image (no such file)");
   const QuietStderr quiet;
-  auto input = OIIO::ImageInput::open(path);
-  if (!input) throw InputError(showPath(path) + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
-  checkHeader(input->spec(), path);
-  return input;
+  DataInput in{nullptr, OIIO::ImageInput::open(path), showPath(path)};
+  if (!in.input) throw InputError(in.name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  checkHeader(in.input->spec(), path);
+  return in;
 }
 
-}  // namespace
-
-DataImage readDataExr(const std::string& path) {
-  auto input = openDataImage(path);
-  const OIIO::ImageSpec& spec = input->spec();
-  if (std::string(input->format_name()) != "openexr" || (spec.nchannels != 1 && spec.nchannels != 3))
-    throw InputError(showPath(path) + ": not a 1- or 3-channel OpenEXR data image");
-  DataImage image{spec.width, spec.height, spec.nchannels, {}};
-  image.values.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
-    throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
-  return image;
+DataInput openDataImage(std::string_view bytes, const std::string& name) {
+  // The format comes from the bytes' signature, never from a name the data chose.
+  const char* format = nullptr;
+  if (bytes.size() >= 8 && bytes.substr(0, 8) == std::string_view("\x89PNG\r\n\x1a\n", 8)) format = "memory.png";
+  else if (bytes.size() >= 4 && bytes.substr(0, 4) == std::string_view("\x76\x2f\x31\x01", 4)) format = "memory.exr";
+  if (!format) throw InputError(name + ": not a PNG or EXR image");
+  DataInput in;
+  in.name = name;
+  in.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(const_cast<char*>(bytes.data()), bytes.size());
+  OIIO::ImageSpec config;
+  void* proxy = in.memory.get();
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const QuietStderr quiet;
+  in.input = OIIO::ImageInput::open(format, &config);
+  if (!in.input) throw InputError(name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  checkHeader(in.input->spec(), name);
+  return in;
 }
 
-DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names) {
-  auto input = openDataImage(path);
-  const OIIO::ImageSpec& spec = input->spec();
-  if (std::string(input->format_name()) != "openexr") throw InputError(showPath(path) + ": not an OpenEXR image");
+DataImage readExrChannels(DataInput in, const std::vector<std::string>& names) {
+  const OIIO::ImageSpec& spec = in.input->spec();
+  if (std::string(in.input->format_name()) != "openexr") throw InputError(in.name + ": not an OpenEXR image");
   std::vector<int> index;
   for (const std::string& name : names) {
     const auto at = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-    if (at == spec.channelnames.end()) throw InputError(showPath(path) + ": no channel " + quote(name));
+    if (at == spec.channelnames.end()) throw InputError(in.name + ": no channel " + quote(name));
     index.push_back(static_cast<int>(at - spec.channelnames.begin()));
   }
   std::vector<float> all(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-    throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+  if (!in.input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
+    throw InputError(in.name + ": cannot decode image (" + firstLine(in.input->geterror()) + ")");
   const int channels = static_cast<int>(names.size());
   DataImage image{spec.width, spec.height, channels, std::vector<float>(static_cast<size_t>(spec.width) * spec.height * channels)};
   for (size_t p = 0; p < static_cast<size_t>(spec.width) * spec.height; ++p)
@@ -405,16 +417,45 @@ DataImage readDataExrChannels(const std::string& path, const std::vector<std::st
   return image;
 }
 
-std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height) {
-  auto input = openDataImage(path);
-  const OIIO::ImageSpec& spec = input->spec();
-  if (std::string(input->format_name()) != "png" || spec.nchannels != 1 || spec.format != OIIO::TypeDesc::UINT16)
-    throw InputError(showPath(path) + ": not a 16-bit single-channel PNG");
+std::vector<uint16_t> readUint16(DataInput in, int& width, int& height) {
+  const OIIO::ImageSpec& spec = in.input->spec();
+  if (std::string(in.input->format_name()) != "png" || spec.nchannels != 1 || spec.format != OIIO::TypeDesc::UINT16)
+    throw InputError(in.name + ": not a 16-bit single-channel PNG");
   width = spec.width, height = spec.height;
   std::vector<uint16_t> values(static_cast<size_t>(width) * height);
-  if (!input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, values.data()))
-    throw InputError(showPath(path) + ": cannot decode image (" + firstLine(input->geterror()) + ")");
+  if (!in.input->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, values.data()))
+    throw InputError(in.name + ": cannot decode image (" + firstLine(in.input->geterror()) + ")");
   return values;
+}
+
+}  // namespace
+
+DataImage readDataExr(const std::string& path) {
+  DataInput in = openDataImage(path);
+  const OIIO::ImageSpec& spec = in.input->spec();
+  if (std::string(in.input->format_name()) != "openexr" || (spec.nchannels != 1 && spec.nchannels != 3))
+    throw InputError(in.name + ": not a 1- or 3-channel OpenEXR data image");
+  DataImage image{spec.width, spec.height, spec.nchannels, {}};
+  image.values.resize(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in.input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.values.data()))
+    throw InputError(in.name + ": cannot decode image (" + firstLine(in.input->geterror()) + ")");
+  return image;
+}
+
+DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names) {
+  return readExrChannels(openDataImage(path), names);
+}
+
+DataImage readDataExrChannelsFromMemory(std::string_view bytes, const std::vector<std::string>& names, const std::string& name) {
+  return readExrChannels(openDataImage(bytes, name), names);
+}
+
+std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height) {
+  return readUint16(openDataImage(path), width, height);
+}
+
+std::vector<uint16_t> readUint16PngFromMemory(std::string_view bytes, int& width, int& height, const std::string& name) {
+  return readUint16(openDataImage(bytes, name), width, height);
 }
 
 }  // namespace omnicam

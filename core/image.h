@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace omnicam {
@@ -62,5 +63,8 @@ DataImage readDataExr(const std::string& path);
 // The named channels of any OpenEXR, in the order asked for (OpenEXR stores them sorted by name).
 DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names);
 std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height);
+// The same from bytes in memory (told by their signature, never by a name); `name` is used in errors.
+DataImage readDataExrChannelsFromMemory(std::string_view bytes, const std::vector<std::string>& names, const std::string& name);
+std::vector<uint16_t> readUint16PngFromMemory(std::string_view bytes, int& width, int& height, const std::string& name);
 
 }  // namespace omnicam

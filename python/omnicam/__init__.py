@@ -24,7 +24,9 @@ from ._omnicam import (  # noqa: F401  (the public interface)
     read_uint16_png,
     render,
     run_dataset,
+    verify_dataset,
 )
+from .dataset import Dataset  # noqa: F401
 
 # Name the compiled classes as users import them (omnicam.Rig, not omnicam._omnicam.Rig).
 for _name in ("Camera", "ExternalError", "InputError", "OutputError", "Renderer", "Rig", "Scene"):
@@ -33,6 +35,7 @@ del _name
 
 __all__ = [
     "Camera",
+    "Dataset",
     "ExternalError",
     "InputError",
     "OutputError",
@@ -45,4 +48,5 @@ __all__ = [
     "read_uint16_png",
     "render",
     "run_dataset",
+    "verify_dataset",
 ]

@@ -6,6 +6,8 @@
 #include <functional>
 
 #include "bindings.h"
+#include "dataset_folder.h"
+#include "dataset_reader.h"
 #include "dataset_runner.h"
 #include "dataset_spec.h"
 #include "image.h"
@@ -55,9 +57,65 @@ py::dict runDatasetFromPython(const std::string& specPath, const std::string& ou
   return d;
 }
 
+py::object poseTuple(const RobotPose& p) { return py::make_tuple(p.x, p.y, p.yawDeg); }
+
+// A decoded frame file as numpy (rgb (H, W, 4) float32, depth (H, W) float32, normal (H, W, 3)
+// float32, instance/semantic (H, W) uint16) or a dict (landmarks); the arrays take over the
+// decoded buffers.
+py::object outputToPython(DecodedOutput&& out) {
+  const py::ssize_t h = out.height, w = out.width;
+  if (out.image) return arrayTakingOver(std::move(out.image->pixels), {h, w, 4});
+  if (out.data) {
+    if (out.data->channels == 1) return arrayTakingOver(std::move(out.data->values), {h, w});
+    return arrayTakingOver(std::move(out.data->values), {h, w, static_cast<py::ssize_t>(out.data->channels)});
+  }
+  if (!out.json.is_null()) return toPython(out.json);
+  return arrayTakingOver(std::move(out.ids), {h, w});
+}
+
+void bindDatasetReader(py::module_& m) {
+  py::class_<DatasetReader>(m, "_DatasetReader", "The C++ reader behind omnicam.Dataset (dataset/dataset_reader.h).")
+      .def(py::init<std::string>(), py::arg("path"))
+      .def_property_readonly("header", [](const DatasetReader& r) { return toPython(r.manifest().header); })
+      .def_property_readonly("cameras", &DatasetReader::cameras)
+      .def_property_readonly("frames", &DatasetReader::frames)
+      .def("frame", [](const DatasetReader& r, int index) {
+        const FrameRecord& f = r.frame(index);
+        py::dict cameras;
+        for (const auto& [name, camera] : f.cameras) {
+          py::dict files;
+          for (const auto& [kind, file] : camera.files) files[py::str(kind)] = file.path;
+          cameras[py::str(name)] = py::dict(py::arg("pose") = poseTuple(camera.pose), py::arg("files") = files);
+        }
+        return py::dict(py::arg("index") = f.index, py::arg("timestamp") = f.timestamp,
+                        py::arg("robot_pose") = poseTuple(f.robot), py::arg("cameras") = cameras);
+      }, py::arg("index"))
+      .def("read", [](const DatasetReader& r, int index, const std::string& camera, const std::string& kind, bool checkHash) {
+        DecodedOutput out;
+        {
+          py::gil_scoped_release release;
+          out = r.readOutput(index, camera, kind, checkHash);
+        }
+        return outputToPython(std::move(out));
+      }, py::arg("index"), py::arg("camera"), py::arg("kind"), py::arg("check_hash") = false)
+      .def("camera_file", [](const DatasetReader& r, const std::string& camera, const std::string& kind, bool checkHash) {
+        return py::bytes(r.fileBytes(std::nullopt, camera, kind, checkHash));
+      }, py::arg("camera"), py::arg("kind"), py::arg("check_hash") = false);
+
+  m.def("verify_dataset", [](const std::string& path) {
+    DatasetVerifyResult result;
+    {
+      py::gil_scoped_release release;
+      result = verifyDataset(path);
+    }
+    return py::dict(py::arg("files") = result.files, py::arg("problems") = result.problems, py::arg("ok") = result.ok());
+  }, py::arg("path"), "Re-hashes every file the dataset's manifest lists: {\"files\", \"problems\", \"ok\"}.");
+}
+
 }  // namespace
 
 void bindDataset(py::module_& m) {
+  bindDatasetReader(m);
   m.def("run_dataset", &runDatasetFromPython, py::arg("spec"), py::arg("out"), py::kw_only(), py::arg("overwrite") = false,
         py::arg("threads") = 0, py::arg("progress") = py::none(),
         R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does

@@ -1,0 +1,50 @@
+#pragma once
+// Reading a dataset folder (docs/dataset-format.md) for use, as untrusted input: the manifest
+// strictly (readDatasetManifest), files only inside the folder with no link followed, hashes
+// checked on request, and each output decoded from the bytes that were checked.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "image.h"
+#include "manifest.h"
+
+namespace omnicam {
+
+// One decoded frame file: an image (rgb), data (depth: 1 channel; normal: 3), ids (instance,
+// semantic) or JSON (landmarks).
+struct DecodedOutput {
+  std::optional<ImageRGBA> image;
+  std::optional<DataImage> data;
+  std::vector<uint16_t> ids;
+  int width = 0, height = 0;
+  nlohmann::json json;
+};
+
+class DatasetReader {
+ public:
+  // InputError naming the file and field for a missing, linked or malformed manifest.
+  explicit DatasetReader(std::string dir);
+
+  const std::string& dir() const { return dir_; }
+  const DatasetManifest& manifest() const { return manifest_; }
+  std::vector<std::string> cameras() const;
+  // Finished frames' indices, ascending.
+  const std::vector<int>& frames() const { return frames_; }
+  const FrameRecord& frame(int index) const;
+
+  // The bytes of frame `index`'s file `kind` of `camera`, or of the camera's own file `kind`
+  // (intrinsics_opencv, poses_tum, …) when index is nullopt. With checkHash, InputError unless
+  // they hash to the manifest's SHA-256.
+  std::string fileBytes(std::optional<int> index, const std::string& camera, const std::string& kind, bool checkHash) const;
+  // fileBytes of a frame file, decoded by its kind.
+  DecodedOutput readOutput(int index, const std::string& camera, const std::string& kind, bool checkHash) const;
+
+ private:
+  FileRecord record(std::optional<int> index, const std::string& camera, const std::string& kind) const;
+  std::string dir_;
+  DatasetManifest manifest_;
+  std::vector<int> frames_;
+};
+
+}  // namespace omnicam

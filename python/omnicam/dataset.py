@@ -1,0 +1,123 @@
+"""omnicam.Dataset: a dataset folder (docs/dataset-format.md) as a map-style dataset.
+
+It needs nothing but omnicam, so a torch.utils.data.DataLoader takes it as it is. The folder is
+read as untrusted input: the manifest strictly, files only inside the folder, links never
+followed, hashes checked on request.
+"""
+
+import os
+
+from ._omnicam import _DatasetReader, verify_dataset
+
+#: The frame outputs a dataset may hold, in the manifest's words.
+OUTPUTS = ("rgb", "depth", "instance", "semantic", "normal", "landmarks")
+
+
+class Dataset:
+    """The frames of one camera of a dataset folder.
+
+    ``len(dataset)`` is the number of finished frames. ``dataset[i]`` is the i-th of them (in
+    frame order; negative indices count from the end). ``dataset[i, "rear"]`` gives another
+    camera's view of the same frame. Each item is a dict:
+
+    - ``index``, ``timestamp`` (seconds), ``robot_pose`` and ``pose`` (the camera's), each pose
+      as (x, y, yaw_deg);
+    - ``camera`` and ``intrinsics`` (the manifest's entry for the camera: the model and its
+      parameters);
+    - one entry per output the dataset holds, or per output asked for in ``outputs``:
+      - ``rgb``: (H, W, 4) float32, linear, premultiplied alpha;
+      - ``depth``: (H, W) float32 metres;
+      - ``normal``: (H, W, 3) float32;
+      - ``instance`` and ``semantic``: (H, W) uint16;
+      - ``landmarks``: a dict.
+
+    Files are opened when an item is read, not before. Pickling keeps only the folder and the
+    options, so each DataLoader worker process opens the folder again itself.
+    ``check_hashes=True`` re-hashes every file read against the manifest. ``verify()`` re-hashes
+    them all.
+    """
+
+    def __init__(self, path, camera=None, outputs=None, check_hashes=False):
+        self.path = os.fspath(path)
+        self.check_hashes = bool(check_hashes)
+        self._reader = _DatasetReader(self.path)  # reads and checks the manifest now: errors here
+        cameras = self._reader.cameras
+        self.camera = cameras[0] if camera is None else camera
+        if self.camera not in cameras:
+            raise KeyError(f"camera {self.camera!r} is not in {self.path} (cameras: {', '.join(cameras)})")
+        written = self._reader.header["outputs"]["written"]
+        self.outputs = tuple(written if outputs is None else outputs)
+        for output in self.outputs:
+            if output not in written:
+                raise KeyError(f"output {output!r} is not in {self.path} (written: {', '.join(written)})")
+
+    # The reader holds the whole manifest and open state: workers open their own.
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        state["_reader"] = None
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+
+    @property
+    def reader(self):
+        if self._reader is None:
+            self._reader = _DatasetReader(self.path)
+        return self._reader
+
+    @property
+    def cameras(self):
+        """The dataset's camera names."""
+        return self.reader.cameras
+
+    @property
+    def header(self):
+        """The manifest without its frames: spec, engine, scene, settings, cameras, ids."""
+        return self.reader.header
+
+    @property
+    def classes(self):
+        """[{"id", "name"}]: the semantic ids (0: none)."""
+        return self.header["classes"]
+
+    @property
+    def instances(self):
+        """[{"id", "name", "class", "class_id"}]: the instance ids (0: none)."""
+        return self.header["instances"]
+
+    def intrinsics(self, camera=None):
+        """The manifest's intrinsics of a camera (default this dataset's camera)."""
+        camera = self.camera if camera is None else camera
+        return next(c["intrinsics"] for c in self.header["cameras"] if c["name"] == camera)
+
+    def __len__(self):
+        return len(self.reader.frames)
+
+    def __getitem__(self, key):
+        position, camera = key if isinstance(key, tuple) else (key, self.camera)
+        frames = self.reader.frames
+        if not -len(frames) <= position < len(frames):
+            raise IndexError(f"frame {position} of {len(frames)}")
+        index = frames[position]
+        frame = self.reader.frame(index)
+        if camera not in frame["cameras"]:
+            raise KeyError(f"camera {camera!r} is not in frame {index}")
+        item = {
+            "index": index,
+            "timestamp": frame["timestamp"],
+            "robot_pose": frame["robot_pose"],
+            "pose": frame["cameras"][camera]["pose"],
+            "camera": camera,
+            "intrinsics": self.intrinsics(camera),
+        }
+        for output in self.outputs:
+            item[output] = self.reader.read(index, camera, output, self.check_hashes)
+        return item
+
+    def verify(self):
+        """Re-hashes every file the manifest lists: {"files", "problems", "ok"}."""
+        return verify_dataset(self.path)
+
+    def __repr__(self):
+        return f"<omnicam.Dataset {self.path!r} camera {self.camera!r}, {len(self)} frames>"

@@ -1,0 +1,103 @@
+"""omnicam.Dataset: a dataset folder read back as numpy, checked against the files read on their
+own, against a fresh render of the same pose, and as untrusted input."""
+
+import json
+import multiprocessing
+import os
+import pickle
+
+import numpy as np
+import pytest
+
+import omnicam
+from conftest import SOURCE
+
+SIZE = 64
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    root = tmp_path_factory.mktemp("dataset")
+    spec = root / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(SOURCE / "scenes" / "robocup2006.json"),
+        "size": SIZE, "poses": {"path": "thesis-loop", "frames": 3},
+        "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0.0, "yaw_deg": 0}},
+                    {"name": "rear", "mount": {"x": -0.1, "y": 0.0, "yaw_deg": 180}}],
+        "outputs": {"rgb": "exr", "depth": True, "instance": True, "semantic": True, "normal": True,
+                    "landmarks": True}}))
+    omnicam.run_dataset(str(spec), str(root / "ds"))
+    return root / "ds"
+
+
+def test_items_hold_every_output_as_the_files_hold_them(folder):
+    dataset = omnicam.Dataset(folder)
+    assert len(dataset) == 3 and dataset.cameras == ["front", "rear"] and dataset.camera == "front"
+    item = dataset[1]
+    manifest = json.loads((folder / "manifest.json").read_text())
+    record = manifest["frames"][1]
+    assert item["index"] == record["index"] and item["timestamp"] == record["timestamp"]
+    assert item["pose"] == pytest.approx(tuple(record["cameras"]["front"]["pose"][k] for k in ("x", "y", "yaw_deg")))
+    files = {kind: str(folder / f["path"]) for kind, f in record["cameras"]["front"]["files"].items()}
+    np.testing.assert_array_equal(item["rgb"], omnicam.read_image(files["rgb"]))
+    np.testing.assert_array_equal(item["depth"], omnicam.read_exr_channels(files["depth"], ["Z"])[..., 0])
+    np.testing.assert_array_equal(item["normal"], omnicam.read_exr_channels(files["normal"], ["X", "Y", "Z"]))
+    np.testing.assert_array_equal(item["instance"], omnicam.read_uint16_png(files["instance"]))
+    np.testing.assert_array_equal(item["semantic"], omnicam.read_uint16_png(files["semantic"]))
+    assert item["landmarks"] == json.loads(open(files["landmarks"]).read())
+    assert item["intrinsics"]["model"] == "mei_unified" and item["intrinsics"]["width"] == SIZE
+    rear = dataset[1, "rear"]
+    assert rear["camera"] == "rear" and not np.array_equal(rear["depth"], item["depth"])
+    assert dataset[-1]["index"] == manifest["frames"][-1]["index"]
+    with pytest.raises(IndexError):
+        dataset[3]
+
+
+def test_a_frame_is_what_the_renderer_draws_at_its_pose(folder, robocup):
+    item = omnicam.Dataset(folder, outputs=["depth", "instance"])[2]
+    fresh = omnicam.Renderer(robocup).render(item["pose"], size=SIZE, outputs=["depth", "instance"])
+    np.testing.assert_array_equal(item["depth"], fresh["depth"])
+    np.testing.assert_array_equal(item["instance"], fresh["instance"])
+    assert set(item) >= {"depth", "instance"} and "rgb" not in item
+
+
+def _first_depth_sum(dataset):
+    return float(dataset[0]["depth"].sum())
+
+
+def test_it_pickles_into_worker_processes(folder):
+    dataset = omnicam.Dataset(folder, outputs=["depth"])
+    again = pickle.loads(pickle.dumps(dataset))
+    np.testing.assert_array_equal(again[0]["depth"], dataset[0]["depth"])
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        sums = pool.map(_first_depth_sum, [dataset, dataset])
+    assert sums == [float(dataset[0]["depth"].sum())] * 2
+
+
+def test_a_changed_file_fails_its_hash_check_and_a_link_is_never_followed(folder, tmp_path):
+    import shutil
+
+    copy = tmp_path / "copy"
+    shutil.copytree(folder, copy, symlinks=True)
+    depth = copy / "front" / "depth" / "000000.exr"
+    data = bytearray(depth.read_bytes())
+    data[-1] ^= 0x01
+    depth.write_bytes(bytes(data))
+    with pytest.raises(omnicam.InputError, match="changed since it was written"):
+        omnicam.Dataset(copy, outputs=["depth"], check_hashes=True)[0]
+    assert not omnicam.Dataset(copy).verify()["ok"]
+    instance = copy / "front" / "instance" / "000000.png"
+    instance.unlink()
+    os.symlink(folder / "front" / "instance" / "000000.png", instance)
+    with pytest.raises(omnicam.InputError, match="link"):
+        omnicam.Dataset(copy, outputs=["instance"])[0]
+
+
+def test_unknown_cameras_outputs_and_folders_are_refused(folder, tmp_path):
+    with pytest.raises(KeyError, match="camera 'side'"):
+        omnicam.Dataset(folder, camera="side")
+    with pytest.raises(KeyError, match="output 'flow'"):
+        omnicam.Dataset(folder, outputs=["flow"])
+    with pytest.raises(omnicam.InputError):
+        omnicam.Dataset(tmp_path / "nothing")
+    assert omnicam.Dataset(folder).verify()["ok"]
