@@ -4,13 +4,16 @@
 
 #include <atomic>
 #include <functional>
+#include <set>
 
 #include "bindings.h"
+#include "coco.h"
 #include "dataset_folder.h"
 #include "dataset_reader.h"
 #include "dataset_runner.h"
 #include "dataset_spec.h"
 #include "image.h"
+#include "scene_ids.h"
 
 namespace omnicam::python {
 
@@ -116,6 +119,18 @@ void bindDatasetReader(py::module_& m) {
 
 void bindDataset(py::module_& m) {
   bindDatasetReader(m);
+  m.def("coco_annotations", [](const py::array_t<uint16_t, py::array::c_style | py::array::forcecast>& instance,
+                               const Scene& scene, const std::optional<std::vector<uint16_t>>& classes) {
+    if (instance.ndim() != 2) throw InputError("instance: must be an array of shape (H, W)");
+    const int h = static_cast<int>(instance.shape(0)), w = static_cast<int>(instance.shape(1));
+    const std::vector<uint16_t> ids(instance.data(), instance.data() + instance.size());
+    const IdTables tables = idTables(scene);
+    const std::set<uint16_t> chosen = classes ? std::set<uint16_t>(classes->begin(), classes->end()) : defaultCocoClasses(tables);
+    return toPython(cocoInstanceAnnotations(ids, w, h, tables, chosen));
+  }, py::arg("instance"), py::arg("scene"), py::arg("classes") = py::none(),
+  R"(COCO annotations of one frame's instance ids (H, W) uint16 of `scene`: one per visible instance of
+the chosen class ids (default: every class but floor, wall, ceiling and line) with "instance_id",
+"category_id", "bbox" [x, y, w, h], "area", "segmentation" (COCO compressed RLE) and "iscrowd".)");
   m.def("run_dataset", &runDatasetFromPython, py::arg("spec"), py::arg("out"), py::kw_only(), py::arg("overwrite") = false,
         py::arg("threads") = 0, py::arg("progress") = py::none(),
         R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does

@@ -1,0 +1,41 @@
+#pragma once
+// COCO "instances" annotations (https://cocodataset.org/#format-data) of one rendered frame, from
+// its instance AOV: per visible instance of a chosen class its bbox, area and segmentation as
+// COCO's compressed RLE, and the landmarks as one keypoint annotation. Wiring them into datasets
+// (one COCO file per camera) is issue #22's next step; this is the encoding, tested exactly.
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "landmark_annotations.h"
+#include "scene_ids.h"
+
+namespace omnicam {
+
+// COCO's run-length encoding of a binary mask: run lengths of 0s, 1s, 0s, … over the pixels in
+// column-major order (the first run may be empty), as pycocotools' compressed string (each run
+// minus the one two before, 5 bits per character from '0', 0x20 marking more to come).
+std::string cocoRleCounts(const std::vector<uint32_t>& runs);
+// The run lengths back from the string; InputError (naming `what`) for a malformed string.
+std::vector<uint32_t> cocoRunsFromCounts(const std::string& counts, const std::string& what);
+// Runs of the mask `instance == id` of a row-major width × height id image.
+std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int width, int height, uint16_t id);
+
+// The classes annotated by default: every class but floor, wall, ceiling and line.
+std::set<uint16_t> defaultCocoClasses(const IdTables& ids);
+
+// One frame's annotations, one per instance with a chosen class that covers a pixel, in instance
+// order: {"instance_id", "category_id", "bbox": [x, y, w, h] (pixels, x right, y down, the
+// covered pixels' bounds), "area" (pixels), "segmentation": {"size": [h, w], "counts"},
+// "iscrowd": 0}. Image and annotation ids are left to whoever gathers frames.
+nlohmann::json cocoInstanceAnnotations(const std::vector<uint16_t>& instance, int width, int height,
+                                       const IdTables& ids, const std::set<uint16_t>& classes);
+
+// The scene's landmarks as one keypoint annotation: "keypoints" [x, y, v] per landmark in scene
+// order (v = 2 visible, 1 in the image but occluded, 0 not imaged or outside the image, then
+// x = y = 0), "num_keypoints" (v > 0), and "bbox" around the labelled ones.
+nlohmann::json cocoLandmarkKeypoints(const std::vector<LandmarkAnnotation>& landmarks, int width, int height);
+
+}  // namespace omnicam
