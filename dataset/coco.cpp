@@ -70,17 +70,35 @@ std::set<uint16_t> defaultCocoClasses(const IdTables& ids) {
   return classes;
 }
 
+std::set<uint16_t> cocoClassIds(const IdTables& ids, const std::optional<std::vector<std::string>>& names,
+                                const std::string& what) {
+  if (!names) return defaultCocoClasses(ids);
+  std::set<uint16_t> chosen;
+  for (const std::string& name : *names) {
+    bool found = false;
+    for (const auto& c : ids.classes)
+      if (c["name"].is_string() && c["name"] == name) chosen.insert(c["id"].get<uint16_t>()), found = true;
+    if (!found) {
+      std::string known;
+      for (const auto& c : ids.classes)
+        if (c["name"].is_string()) known += (known.empty() ? "" : ", ") + c["name"].get<std::string>();
+      throw InputError(what + ": " + quote(name) + " is not a class of the scene (its classes: " + quote(known, 400) + ")");
+    }
+  }
+  return chosen;
+}
+
 nlohmann::json cocoInstanceAnnotations(const std::vector<uint16_t>& instance, int width, int height,
-                                       const IdTables& ids, const std::set<uint16_t>& classes) {
+                                       const std::vector<uint16_t>& classOfInstance, const std::set<uint16_t>& classes) {
   struct Bounds {
     int x0 = std::numeric_limits<int>::max(), y0 = std::numeric_limits<int>::max(), x1 = -1, y1 = -1;
     int64_t area = 0;
   };
-  std::vector<Bounds> bounds(ids.classOfInstance.size());
+  std::vector<Bounds> bounds(classOfInstance.size());
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) {
       const uint16_t id = instance[static_cast<size_t>(j) * width + i];
-      if (id == 0 || id >= bounds.size() || !classes.count(ids.classOfInstance[id])) continue;
+      if (id == 0 || id >= bounds.size() || !classes.count(classOfInstance[id])) continue;
       Bounds& b = bounds[id];
       b.x0 = std::min(b.x0, i), b.y0 = std::min(b.y0, j), b.x1 = std::max(b.x1, i), b.y1 = std::max(b.y1, j);
       ++b.area;
@@ -91,7 +109,7 @@ nlohmann::json cocoInstanceAnnotations(const std::vector<uint16_t>& instance, in
     if (b.area == 0) continue;
     annotations.push_back(
         {{"instance_id", id},
-         {"category_id", ids.classOfInstance[id]},
+         {"category_id", classOfInstance[id]},
          {"bbox", {b.x0, b.y0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1}},
          {"area", b.area},
          {"segmentation",

@@ -2,9 +2,10 @@
 // COCO "instances" annotations (https://cocodataset.org/#format-data) of one rendered frame, from
 // its instance AOV: per visible instance of a chosen class its bbox, area and segmentation as
 // COCO's compressed RLE, and the landmarks as one keypoint annotation. Wiring them into datasets
-// (one COCO file per camera) is issue #22's next step; this is the encoding, tested exactly.
+// (one COCO file per camera, gathered from per-frame parts) is dataset_runner's.
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -25,13 +26,18 @@ std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int wi
 
 // The classes annotated by default: every class but floor, wall, ceiling and line.
 std::set<uint16_t> defaultCocoClasses(const IdTables& ids);
+// The ids of the classes named (defaultCocoClasses without names); InputError naming `what` for a
+// name the scene has no class of.
+std::set<uint16_t> cocoClassIds(const IdTables& ids, const std::optional<std::vector<std::string>>& names,
+                                const std::string& what);
 
 // One frame's annotations, one per instance with a chosen class that covers a pixel, in instance
 // order: {"instance_id", "category_id", "bbox": [x, y, w, h] (pixels, x right, y down, the
 // covered pixels' bounds), "area" (pixels), "segmentation": {"size": [h, w], "counts"},
 // "iscrowd": 0}. Image and annotation ids are left to whoever gathers frames.
+// `classOfInstance[i]` is instance id i's class id (IdTables).
 nlohmann::json cocoInstanceAnnotations(const std::vector<uint16_t>& instance, int width, int height,
-                                       const IdTables& ids, const std::set<uint16_t>& classes);
+                                       const std::vector<uint16_t>& classOfInstance, const std::set<uint16_t>& classes);
 
 // The scene's landmarks as one keypoint annotation: "keypoints" [x, y, v] per landmark in scene
 // order (v = 2 visible, 1 in the image but occluded, 0 not imaged or outside the image, then

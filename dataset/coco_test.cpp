@@ -58,7 +58,7 @@ TEST(Coco, AnnotationsHoldEachChosenInstancesBoundsAreaAndMask) {
   image[0] = 1;   // a floor pixel: not annotated by default
   image[23] = 2;  // one pixel of victim 2, bottom right
   EXPECT_EQ(defaultCocoClasses(ids), (std::set<uint16_t>{2}));
-  const auto annotations = cocoInstanceAnnotations(image, 6, 4, ids, defaultCocoClasses(ids));
+  const auto annotations = cocoInstanceAnnotations(image, 6, 4, ids.classOfInstance, defaultCocoClasses(ids));
   ASSERT_EQ(annotations.size(), 2u);
   EXPECT_EQ(annotations[0]["instance_id"], 2);
   EXPECT_EQ(annotations[0]["bbox"], nlohmann::json({5, 3, 1, 1}));
@@ -71,7 +71,7 @@ TEST(Coco, AnnotationsHoldEachChosenInstancesBoundsAreaAndMask) {
   EXPECT_EQ(annotations[1]["segmentation"]["size"], nlohmann::json({4, 6}));
   EXPECT_EQ(cocoRunsFromCounts(annotations[1]["segmentation"]["counts"], "test"), (std::vector<uint32_t>{9, 2, 2, 2, 2, 2, 5}));
   // Asking for the floor too annotates it.
-  EXPECT_EQ(cocoInstanceAnnotations(image, 6, 4, ids, {1, 2}).size(), 3u);
+  EXPECT_EQ(cocoInstanceAnnotations(image, 6, 4, ids.classOfInstance, {1, 2}).size(), 3u);
 }
 
 TEST(Coco, LandmarkKeypointsSayVisibleOccludedOrNot) {

@@ -65,7 +65,7 @@ DecodedOutput DatasetReader::readOutput(int index, const std::string& camera, co
     out.width = out.data->width, out.height = out.data->height;
   } else if (kind == "instance" || kind == "semantic") {
     out.ids = readUint16PngFromMemory(bytes, out.width, out.height, name);
-  } else if (kind == "landmarks") {
+  } else if (kind == "landmarks" || kind == "coco") {
     out.json = parseJsonText(bytes, name);
   } else {
     throw InputError(name + ": no decoder for outputs of kind " + quote(kind));

@@ -12,7 +12,7 @@
 namespace omnicam {
 
 // One decoded frame file: an image (rgb), data (depth: 1 channel; normal: 3), ids (instance,
-// semantic) or JSON (landmarks).
+// semantic) or JSON (landmarks, coco).
 struct DecodedOutput {
   std::optional<ImageRGBA> image;
   std::optional<DataImage> data;

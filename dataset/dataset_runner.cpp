@@ -20,6 +20,8 @@
 #include "fast_renderer.h"
 #include "frame_outputs.h"
 #include "camera_rays.h"
+#include "coco.h"
+#include "coco_files.h"
 #include "image.h"
 #include "intrinsics_files.h"
 #include "make_camera.h"
@@ -53,7 +55,7 @@ struct CameraSetup {
 };
 
 // Folders of a camera the dataset layout has (docs/dataset-format.md).
-constexpr const char* kCameraFolders[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks", "intrinsics"};
+constexpr const char* kCameraFolders[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks", "coco", "intrinsics"};
 
 // TUM RGB-D trajectory format: "timestamp tx ty tz qx qy qz qw", the camera frame (X forward,
 // Y right, Z down at F'; the intrinsics files' frame) in the world.
@@ -254,7 +256,16 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
     if (!notWritten.empty())
       notes.push_back("engine " + spec.engine + " writes RGB only: depth, instance, semantic and normal outputs are not written (see manifest outputs.not_written)");
   }
-  if ((plan.instance || plan.semantic) && scene.objects.size() > kMaxInstances)
+  if (spec.outputs.coco) {
+    if (!engine.hasAovs()) {
+      notWritten["coco"] = "the " + spec.engine + " engine renders RGB only (COCO annotations come from the instance AOV); render the same spec with engine fast";
+      notes.push_back("engine " + spec.engine + " writes RGB only: the coco output is not written");
+    } else {
+      plan.coco = true;
+      plan.cocoClasses = cocoClassIds(idTables(scene), spec.outputs.cocoClasses, showPath(spec.file) + ": outputs.coco.classes");
+    }
+  }
+  if ((plan.instance || plan.semantic || plan.coco) && scene.objects.size() > kMaxInstances)
     throw InputError(showPath(spec.file) + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
   return plan;
@@ -280,6 +291,12 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
                         {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
   header["outputs"] = {{"written", frameFileKinds(plan)}, {"not_written", notWritten}};
+  if (plan.coco) {
+    header["outputs"]["coco_classes"] = plan.cocoClasses;
+    json landmarks = json::array();
+    for (const Landmark& l : scene.landmarks) landmarks.push_back(l.name);
+    header["outputs"]["coco_keypoints"] = landmarks;
+  }
   header["classes"] = ids.classes;
   header["instances"] = ids.instances;
   header["frame_count"] = totalFrames;
@@ -462,7 +479,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   for (const StaticFile& file : statics) writeFileInside(options.dir, file.relative, file.text, Durability::Unsynced);
 
   std::unique_ptr<RayScene> rays;
-  if (plan.landmarks) rays = std::make_unique<RayScene>(scene);
+  if (plan.landmarks || (plan.coco && !scene.landmarks.empty())) rays = std::make_unique<RayScene>(scene);
   std::vector<int> todo;
   for (int f = range.first; f < range.end; ++f)
     if (!manifest.frames.count(f)) todo.push_back(f);
@@ -471,6 +488,8 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   result.rendered = renderFrames(job, todo, manifest, range.manifestName, result.kept, result.frames);
   result.stopped = result.kept + result.rendered < result.frames;
   manifest.header["complete"] = !result.stopped;
+  // The whole dataset's COCO files, once every frame is there (a shard's: by the merge).
+  if (!result.stopped && !range.sharded) writeCocoFiles(options.dir, manifest);
   writeManifest(options.dir, manifest, range.manifestName);
   return result;
 }

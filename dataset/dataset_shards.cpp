@@ -5,6 +5,7 @@
 #include <set>
 
 #include "atomic_file.h"
+#include "coco_files.h"
 #include "dataset_folder.h"
 #include "errors.h"
 #include "manifest.h"
@@ -119,7 +120,10 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   result.frames = merged->header.value("frame_count", 0);
   result.finished = static_cast<int>(merged->frames.size());
   merged->header["complete"] = result.finished == result.frames;
-  if (result.finished == result.frames) result.incompleteShards.clear();
+  if (result.finished == result.frames) {
+    result.incompleteShards.clear();
+    writeCocoFiles(dir, *merged);
+  }
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.
   removeAtomicTemporaries(dir);

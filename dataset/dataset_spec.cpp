@@ -153,6 +153,24 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
   out.semantic = o.boolean("semantic", out.semantic);
   out.normal = o.boolean("normal", out.normal);
   out.landmarks = o.boolean("landmarks", out.landmarks);
+  if (o.has("coco")) {
+    if (o.raw("coco").is_object()) {
+      auto coco = o.optionalObject("coco");
+      out.coco = true;
+      const nlohmann::json& names = coco->raw("classes");
+      if (!names.is_array() || names.empty() || names.size() > 1000)
+        coco->fail("classes", "must be a list of 1 to 1000 class names");
+      std::vector<std::string> classes;
+      for (const auto& name : names) {
+        if (!name.is_string()) coco->fail("classes", "must be a list of class names (strings)");
+        classes.push_back(name.get<std::string>());
+      }
+      out.cocoClasses = classes;
+      coco->finish();
+    } else {
+      out.coco = o.boolean("coco", false);
+    }
+  }
   o.finish();
 }
 

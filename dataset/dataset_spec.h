@@ -52,6 +52,10 @@ struct RandomPoses {
 struct DatasetOutputs {
   std::string rgb = "png";  // "png" or "exr"
   bool depth = true, instance = true, semantic = true, normal = true, landmarks = true;
+  // COCO instances annotations, one file per camera (docs/dataset-format.md): `true`, or
+  // {"classes": [names]} (default: every class but floor, wall, ceiling and line).
+  bool coco = false;
+  std::optional<std::vector<std::string>> cocoClasses;
 };
 
 enum class PoseSource { Path, List, Random };

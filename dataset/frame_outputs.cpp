@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <tbb/parallel_for.h>
 
+#include "coco.h"
 #include "landmark_annotations.h"
 
 namespace omnicam {
@@ -15,7 +16,7 @@ std::string asString(const std::vector<unsigned char>& bytes) { return {bytes.be
 const char* extensionOf(const std::string& kind, const FrameOutputPlan& plan) {
   if (kind == "rgb") return plan.rgbFormat == "exr" ? "exr" : "png";
   if (kind == "depth" || kind == "normal") return "exr";
-  if (kind == "landmarks") return "json";
+  if (kind == "landmarks" || kind == "coco") return "json";
   return "png";
 }
 
@@ -30,7 +31,8 @@ std::string frameFilePath(const std::string& camera, const std::string& kind, in
 std::vector<std::string> frameFileKinds(const FrameOutputPlan& plan) {
   std::vector<std::string> kinds{"rgb"};
   for (const auto& [kind, on] : {std::pair<const char*, bool>{"depth", plan.depth}, {"instance", plan.instance},
-                                 {"semantic", plan.semantic}, {"normal", plan.normal}, {"landmarks", plan.landmarks}})
+                                 {"semantic", plan.semantic}, {"normal", plan.normal}, {"landmarks", plan.landmarks},
+                                 {"coco", plan.coco}})
     if (on) kinds.push_back(kind);
   return kinds;
 }
@@ -63,6 +65,13 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
       doc["frame"] = index;
       doc["camera"] = camera;
       file.bytes = doc.dump(1) + "\n";
+    } else if (file.kind == "coco") {
+      nlohmann::json doc = {{"frame", index}, {"camera", camera}, {"width", aov->width}, {"height", aov->height},
+                            {"annotations", cocoInstanceAnnotations(aov->instance, aov->width, aov->height, classOfInstance,
+                                                                    plan.cocoClasses)}};
+      if (!scene.landmarks.empty())
+        doc["landmarks"] = cocoLandmarkKeypoints(annotateLandmarks(scene, *rays, settings.rig, pose), aov->width, aov->height);
+      file.bytes = doc.dump() + "\n";
     }
   });
   // Inside a cancelled parallel_for (a neighbouring frame failed) the loop above ends early

@@ -1,8 +1,10 @@
 #pragma once
 // One frame of one camera as the files the dataset layout asks for, encoded in memory:
 // rgb (PNG/EXR), depth (float EXR, metres along the ray from F'), instance and semantic ids
-// (16-bit PNG), normals (float EXR, world frame) and landmark annotations (JSON).
+// (16-bit PNG), normals (float EXR, world frame), landmark annotations (JSON) and the frame's
+// part of the camera's COCO file (JSON: coco.h's annotations; gathered by gatherCocoFile).
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -13,15 +15,16 @@
 namespace omnicam {
 
 struct EncodedFile {
-  std::string kind;          // "rgb", "depth", "instance", "semantic", "normal", "landmarks"
+  std::string kind;          // "rgb", "depth", "instance", "semantic", "normal", "landmarks", "coco"
   std::string relativePath;  // "<camera>/<kind>/NNNNNN.<ext>"
   std::string bytes;
 };
 
 struct FrameOutputPlan {
   std::string rgbFormat = "png";
-  bool depth = false, instance = false, semantic = false, normal = false, landmarks = false;
-  bool anyAov() const { return depth || instance || semantic || normal; }
+  bool depth = false, instance = false, semantic = false, normal = false, landmarks = false, coco = false;
+  std::set<uint16_t> cocoClasses;  // class ids the COCO annotations cover
+  bool anyAov() const { return depth || instance || semantic || normal || coco; }
 };
 
 // The kinds of file each camera's frame has under `plan`: "rgb", then the AOVs and "landmarks"

@@ -25,7 +25,7 @@ json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"y
 
 // Reading: every malformed piece is one InputError naming the manifest and the field.
 
-constexpr const char* kFrameFileKinds[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks"};
+constexpr const char* kFrameFileKinds[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks", "coco"};
 
 bool isSha256(const std::string& text) {
   return text.size() == 64 && text.find_first_not_of("0123456789abcdef") == std::string::npos;

@@ -10,7 +10,7 @@ import os
 from ._omnicam import _DatasetReader, verify_dataset
 
 #: The frame outputs a dataset may hold, in the manifest's words.
-OUTPUTS = ("rgb", "depth", "instance", "semantic", "normal", "landmarks")
+OUTPUTS = ("rgb", "depth", "instance", "semantic", "normal", "landmarks", "coco")
 
 
 class Dataset:
@@ -29,7 +29,9 @@ class Dataset:
       - ``depth``: (H, W) float32 metres;
       - ``normal``: (H, W, 3) float32;
       - ``instance`` and ``semantic``: (H, W) uint16;
-      - ``landmarks``: a dict.
+      - ``landmarks``: a dict;
+      - ``coco``: the frame's COCO annotations (a dict; the camera's whole COCO file is
+        ``<camera>/coco.json``).
 
     Files are opened when an item is read, not before. Pickling keeps only the folder and the
     options, so each DataLoader worker process opens the folder again itself.

@@ -126,7 +126,7 @@ void bindDataset(py::module_& m) {
     const std::vector<uint16_t> ids(instance.data(), instance.data() + instance.size());
     const IdTables tables = idTables(scene);
     const std::set<uint16_t> chosen = classes ? std::set<uint16_t>(classes->begin(), classes->end()) : defaultCocoClasses(tables);
-    return toPython(cocoInstanceAnnotations(ids, w, h, tables, chosen));
+    return toPython(cocoInstanceAnnotations(ids, w, h, tables.classOfInstance, chosen));
   }, py::arg("instance"), py::arg("scene"), py::arg("classes") = py::none(),
   R"(COCO annotations of one frame's instance ids (H, W) uint16 of `scene`: one per visible instance of
 the chosen class ids (default: every class but floor, wall, ceiling and line) with "instance_id",

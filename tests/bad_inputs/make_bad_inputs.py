@@ -261,6 +261,8 @@ def main():
     dataset_spec("camera_rig", cameras=[{"name": "c", "rig": {"height": -1}}])
     dataset_spec("camera_misaligned", mode="cubemap", cameras=[{"name": "c", "rig": {"camera": {"offset_mm": [1, 0, 0]}}}])
     dataset_spec("recording_jpeg", recording={"jpeg_quality": 150})
+    dataset_spec("coco_unknown_class", outputs={"coco": {"classes": ["victim"]}})
+    dataset_spec("coco_classes_text", outputs={"coco": {"classes": "victim"}})
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
     random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}
