@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "bindings.h"
+#include "mapping_arena.h"
 #include "scene_ids.h"
 #include "scene_loader.h"
 #include "sidecar.h"
@@ -103,6 +104,14 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
         return paths;
       }, "The scene's named camera paths: {name: [(x, y, yaw_deg), …]}.")
       .def("__repr__", [](const Scene& s) { return "<omnicam.Scene " + json(s.name).dump() + " from " + json(s.path).dump() + ">"; });
+
+  m.def("mapping_arena", [](uint64_t seed, int victims, int debris) {
+    MappingOptions options;
+    options.seed = seed, options.victims = victims, options.debris = debris;
+    return toPython(generateMappingArena(options).scene);
+  }, py::arg("seed") = 1, py::arg("victims") = 4, py::arg("debris") = 14,
+  R"(The rescue maze of `omnicam arena mapping` (RoboCup Rescue's mapping arena: walls, ramps,
+debris, victims as landmarks) as a scene file's content (dict): write it with json.dump and load it.)");
 
   m.def("load_scene", [](const std::string& path, bool allowOutsideFiles) {
     SceneLoadOptions options;
