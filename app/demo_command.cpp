@@ -268,12 +268,13 @@ std::string demoDataset(const std::string& out, const std::string& scenePath) {
       {"poses", {{"path", "thesis-loop"}, {"frames", 6}}},
       {"cameras", {{{"name", "front"}, {"mount", {{"x", 0.1}, {"y", 0.0}, {"yaw_deg", 0.0}}}},
                    {{"name", "rear"}, {"mount", {{"x", -0.1}, {"y", 0.0}, {"yaw_deg", 180.0}}},
-                    {"rig", {{"height", 0.3}}}}}}};
+                    {"rig", {{"height", 0.3}}}}}},
+      {"outputs", {{"coco", true}}}};
   writeTextAtomically(specPath, spec.dump(2) + "\n");
   DatasetRunOptions options;
   options.dir = out + "/dataset";
   options.overwrite = true;  // the demo's own folder, remade each run
-  std::printf("demo: dataset of 6 frames x 2 cameras (rgb, depth, instance, semantic, normal, landmarks)\n");
+  std::printf("demo: dataset of 6 frames x 2 cameras (rgb, depth, instance, semantic, normal, landmarks, coco)\n");
   const DatasetRunResult result = runDataset(loadDatasetSpec(specPath), options);
   const DatasetVerifyResult verified = verifyDataset(options.dir);
   std::ostringstream html;
@@ -285,7 +286,9 @@ std::string demoDataset(const std::string& out, const std::string& scenePath) {
        << " files), OpenCV / Kalibr / camodocal intrinsics and <code>poses.tum</code> per camera. Spec: "
           "<code>dataset_spec.json</code>. Depth: metres along each pixel centre's ray from F' (yellow near, blue 6 m); "
           "instances and classes: one colour per id; landmarks: projected ground truth, green = visible, red = "
-          "occluded (never labelled by hand).</p>\n";
+          "occluded (never labelled by hand); COCO: each camera's <code>coco.json</code> (the goals and beacons as "
+          "masks in COCO's RLE and boxes, the landmarks as keypoints), drawn here from the file alone.</p>\n";
+  const nlohmann::json frontCoco = readJsonFile(options.dir + "/front/coco.json");
   for (const std::string camera : {"front", "rear"}) {
     for (int frame : {0, 3}) {
       char stem[64];
@@ -304,8 +307,10 @@ std::string demoDataset(const std::string& out, const std::string& scenePath) {
       writeImageAtomic(out + "/" + prefix + "_semantic.png", idPreview(semantic, w, h));
       writeImageAtomic(out + "/" + prefix + "_landmarks.png",
                        drawLandmarkAnnotations(readImage(file("rgb", ".png")), readJsonFile(file("landmarks", ".json"))));
+      const nlohmann::json coco = camera == "front" ? frontCoco : readJsonFile(options.dir + "/rear/coco.json");
+      writeImageAtomic(out + "/" + prefix + "_coco.png", drawCocoAnnotations(readImage(file("rgb", ".png")), coco, frame + 1));
       html << "<div><b>" << camera << ", frame " << frame << "</b><br>";
-      for (const char* kind : {"landmarks", "depth", "instance", "semantic"})
+      for (const char* kind : {"landmarks", "coco", "depth", "instance", "semantic"})
         html << "<figure style=\"max-width:260px\"><img src=\"" << prefix << "_" << kind << ".png\" width=\"256\"><figcaption>"
              << kind << "</figcaption></figure>";
       html << "</div>\n";

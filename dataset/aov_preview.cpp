@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coco.h"
+#include "errors.h"
 #include "geometry.h"
 
 namespace omnicam {
@@ -70,6 +72,37 @@ ImageRGBA drawLandmarkAnnotations(const ImageRGBA& image, const nlohmann::json& 
     const int ci = static_cast<int>(std::floor(lm.at("centre")[0].get<double>()));
     const int cj = static_cast<int>(std::floor(lm.at("centre")[1].get<double>()));
     for (int d = -2; d <= 2; ++d) setPixel(out, ci + d, cj, colour), setPixel(out, ci, cj + d, colour);
+  }
+  return out;
+}
+
+ImageRGBA drawCocoAnnotations(const ImageRGBA& image, const nlohmann::json& coco, int imageId) {
+  ImageRGBA out = image;
+  for (const auto& a : coco.at("annotations")) {
+    if (a.at("image_id") != imageId || !a.contains("segmentation")) continue;  // the landmarks: keypoints only
+    const uint16_t category = a.at("category_id").get<uint16_t>();
+    const ImageRGBA swatch = idPreview({category}, 1, 1);  // the category's colour, as the semantic preview has it
+    const Vec3f colour(swatch.at(0, 0)[0], swatch.at(0, 0)[1], swatch.at(0, 0)[2]);
+    const auto& size = a.at("segmentation").at("size");
+    const int h = size.at(0).get<int>(), w = size.at(1).get<int>();
+    if (w != out.width || h != out.height) throw InputError("coco: annotation " + a.at("id").dump() + ": size is not the image's");
+    // Runs over the pixels in column-major order, 0s first.
+    int64_t pixel = 0;
+    bool on = false;
+    for (const uint32_t run : cocoRunsFromCounts(a.at("segmentation").at("counts").get<std::string>(), "coco")) {
+      for (uint32_t k = 0; on && k < run; ++k) {
+        const int64_t p = pixel + k;
+        if (p >= int64_t{w} * h) break;
+        float* px = out.at(static_cast<int>(p / h), static_cast<int>(p % h));
+        for (int c = 0; c < 3; ++c) px[c] = 0.45f * px[c] + 0.55f * colour[c] * px[3];
+      }
+      pixel += run;
+      on = !on;
+    }
+    const auto& b = a.at("bbox");
+    const int i0 = b[0].get<int>(), j0 = b[1].get<int>(), i1 = i0 + b[2].get<int>() - 1, j1 = j0 + b[3].get<int>() - 1;
+    for (int i = i0; i <= i1; ++i) setPixel(out, i, j0, colour), setPixel(out, i, j1, colour);
+    for (int j = j0; j <= j1; ++j) setPixel(out, i0, j, colour), setPixel(out, i1, j, colour);
   }
   return out;
 }
