@@ -11,37 +11,15 @@
 #include <random>
 
 #include "physical_camera.h"
+#include "test_rigs.h"
 
 namespace omnicam {
 namespace {
 
 // Every shape and build, its camera moved 2 mm and turned 1°; the hyperboloid 3 mm and 2°.
 std::vector<RigSpec> everyShape() {
-  std::vector<RigSpec> rigs;
-  const auto mount = [](double mm, double deg) {
-    CameraMount m;
-    m.offsetMm = {mm, -0.7 * mm, 0.5 * mm};
-    m.rotationDeg = {deg, -0.6 * deg, 0.8 * deg};
-    return m;
-  };
-  RigSpec hyperboloid;
-  hyperboloid.mount = mount(3.0, 2.0);
-  rigs.push_back(hyperboloid);
-  for (const auto& [shape, distance] : std::vector<std::pair<MirrorShape, double>>{
-           {MirrorShape::Paraboloid, 0.0}, {MirrorShape::Paraboloid, 0.15}, {MirrorShape::Sphere, 0.12}, {MirrorShape::Cone, 0.05}}) {
-    RigSpec rig;
-    rig.mount = mount(2.0, 1.0);
-    rig.shape.shape = shape;
-    rig.shape.cameraDistance = distance;
-    rig.shape.parabolaH = 0.02;
-    rig.rimElevationDeg = shape == MirrorShape::Paraboloid ? 30.0 : rig.rimElevationDeg;
-    rig.shape.sphereRadius = 0.03;
-    rig.shape.capAngleDeg = 60.0;
-    rig.shape.coneHalfAngleDeg = 60.0;
-    rig.shape.coneRimRadius = 0.03;
-    rigs.push_back(rig);
-  }
-  return rigs;
+  return {test::misaligned(3.0, 2.0), test::shaped(MirrorShape::Paraboloid, 0.0), test::shaped(MirrorShape::Paraboloid, 0.15),
+          test::shaped(MirrorShape::Sphere, 0.12), test::shaped(MirrorShape::Cone, 0.05)};
 }
 
 const char* nameOf(const RigSpec& rig) {

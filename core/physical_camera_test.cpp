@@ -14,16 +14,13 @@
 #include "errors.h"
 #include "lens_distortion.h"
 #include "make_camera.h"
+#include "test_rigs.h"
 
 namespace omnicam {
 namespace {
 
-RigSpec misaligned(double offsetMm, double rotationDeg) {
-  RigSpec rig;
-  rig.mount.offsetMm = {offsetMm, -0.7 * offsetMm, 0.5 * offsetMm};
-  rig.mount.rotationDeg = {rotationDeg, -0.6 * rotationDeg, 0.8 * rotationDeg};
-  return rig;
-}
+using test::misaligned;
+using test::shaped;
 
 RigSpec distorted(RigSpec rig) {
   rig.mount.distortion = {-0.12, 0.03, 0.0015, -0.001, 0.0};
@@ -134,20 +131,6 @@ TEST(PhysicalCamera, RoundTripsOfAMisalignedHyperboloid) { expectRoundTrips(misa
 
 TEST(PhysicalCamera, RoundTripsOfAMisalignedDistortedHyperboloid) {
   expectRoundTrips(distorted(misaligned(2.0, 1.0)), 100000, 1e-6);
-}
-
-// The other mirror shapes, each with the 2 mm / 1° misalignment of misaligned().
-RigSpec shaped(MirrorShape shape, double cameraDistance) {
-  RigSpec rig = misaligned(2.0, 1.0);
-  rig.shape.shape = shape;
-  rig.shape.cameraDistance = cameraDistance;
-  rig.shape.parabolaH = 0.02;
-  rig.rimElevationDeg = shape == MirrorShape::Paraboloid ? 30.0 : rig.rimElevationDeg;
-  rig.shape.sphereRadius = 0.03;
-  rig.shape.capAngleDeg = 60.0;
-  rig.shape.coneHalfAngleDeg = 60.0;  // > 45°: the axial ray reflects below the horizon
-  rig.shape.coneRimRadius = 0.03;
-  return rig;
 }
 
 TEST(PhysicalCamera, RoundTripsOfAnOrthographicParaboloid) { expectRoundTrips(shaped(MirrorShape::Paraboloid, 0.0), 100000, 1e-6); }
