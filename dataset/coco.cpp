@@ -30,7 +30,8 @@ std::vector<uint32_t> cocoRunsFromCounts(const std::string& counts, const std::s
     int64_t x = 0;
     int k = 0;
     for (bool more = true; more; ++p, ++k) {
-      if (p >= counts.size() || k > 12) throw InputError(what + ": RLE counts end inside a number");
+      // 7 characters hold 35 bits, more than any run of a 32-bit pixel count: pycocotools writes no more.
+      if (p >= counts.size() || k >= 7) throw InputError(what + ": RLE counts end inside a number, or hold one too long");
       const int c = static_cast<unsigned char>(counts[p]) - 48;
       if (c < 0 || c > 63) throw InputError(what + ": RLE counts hold a character outside '0'…'o'");
       x |= static_cast<int64_t>(c & 0x1f) << (5 * k);

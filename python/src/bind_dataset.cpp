@@ -20,8 +20,9 @@ namespace omnicam::python {
 namespace {
 
 // Runs a dataset spec with the GIL released; `progress(done, total)` is called with the GIL after
-// every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run after the frame
-// in progress and is raised again once the run has stopped.
+// every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run once the frames
+// in progress are written (the fast engine renders a window of 8 at once, Blender a batch) and is
+// raised again once the run has stopped.
 py::dict runDatasetFromPython(const std::string& specPath, const std::string& out, bool overwrite, int threads,
                               const std::optional<py::function>& progress) {
   const DatasetSpec spec = loadDatasetSpec(specPath);
@@ -46,9 +47,12 @@ py::dict runDatasetFromPython(const std::string& specPath, const std::string& ou
   options.onStart = [&](int kept, int total) { report(kept, total); };
   options.onFrame = report;
   DatasetRunResult result;
-  {
+  try {
     py::gil_scoped_release release;
     result = runDataset(spec, options);
+  } catch (...) {
+    if (raised) throw std::move(*raised);  // the callback's exception first: it caused the stop
+    throw;
   }
   if (raised) throw std::move(*raised);
   py::dict d;
@@ -135,7 +139,8 @@ the chosen class ids (default: every class but floor, wall, ceiling and line) wi
         py::arg("threads") = 0, py::arg("progress") = py::none(),
         R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does
 (docs/dataset-format.md): resumes a partial run, keeps verified frames. progress(done, total) is
-called after every frame. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
+called after every frame; an exception in it stops the run once the frames in progress (up to 8
+at once) are written, and is raised again. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
 
   m.def("read_image", [](const std::string& path) {
     ImageRGBA image = readImage(path);

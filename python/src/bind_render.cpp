@@ -68,6 +68,8 @@ class PyRenderer {
     checkRenderSettings(settings);
     const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
     py::gil_scoped_release release;
+    std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
+    if (!engine_->concurrent()) turn.lock();
     const auto start = std::chrono::steady_clock::now();
     for (int k = 0; k < frames; ++k) engine_->render(robot, settings);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -131,7 +133,7 @@ per ground-truth frame; threads: 0 for every core.)")
              return std::make_unique<PyRenderer>(std::make_shared<const Scene>(*scene), engine, mode, faces, faceSize,
                                                  polygons, timeout, threads);
            }),
-           py::arg("scene"), py::arg("engine") = "fast", py::arg("mode") = "exact", py::arg("faces") = 6,
+           py::arg("scene").none(false), py::arg("engine") = "fast", py::arg("mode") = "exact", py::arg("faces") = 6,
            py::arg("face_size") = 512, py::arg("polygons") = 1024, py::arg("timeout") = 600.0, py::arg("threads") = 0)
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
@@ -149,7 +151,7 @@ per ground-truth frame; threads: 0 for every core.)")
         PyRenderer renderer(std::make_shared<const Scene>(*scene), engine, "exact", 6, 512, 1024, 600.0, 0);
         return renderer.render(pose, rig, size, spp, shading, traced, outputs);
       },
-      py::arg("scene"), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = "fast", py::arg("rig") = py::none(),
+      py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = "fast", py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgba"},
       kOneRenderDoc.c_str());

@@ -62,7 +62,7 @@ void bindScene(py::module_& m) {
 Rig() is the ideal rig; Rig(dict) reads the scene format's "rig" block strictly. Every property
 set is checked the same way: a bad value raises omnicam.InputError and leaves the rig unchanged.)");
   rig.def(py::init<>())
-      .def(py::init([](const py::dict& d) { return rigFromDict(fromPython(d, "omnicam.Rig")); }), py::arg("rig"))
+      .def(py::init([](const py::dict& d) { return rigFromDict(fromPython(d, "omnicam.Rig")); }), py::arg("rig").none(false))
       .def("to_dict", [](const RigSpec& r) { return toPython(rigToJson(r)); }, "The rig as the scene format's \"rig\" block.")
       .def("resized", &RigSpec::resized, py::arg("size"), "The same rig imaging size × size pixels.")
       .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")

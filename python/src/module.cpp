@@ -17,7 +17,10 @@ nlohmann::json fromPython(const py::handle& object, const std::string& what) {
   } catch (const py::error_already_set&) {
     throw InputError(what + ": not JSON-like (dicts, lists, numbers, strings, booleans, None)");
   }
-  return nlohmann::json::parse(text);
+  // Python's json writes NaN and Infinity, which JSON (and the scene format) has not.
+  const nlohmann::json parsed = nlohmann::json::parse(text, nullptr, false);
+  if (parsed.is_discarded()) throw InputError(what + ": not a finite number, or not JSON-like");
+  return parsed;
 }
 
 RobotPose poseFrom(const py::handle& pose, const std::string& what) {
