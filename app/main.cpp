@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "errors.h"
+#include "malloc_tuning.h"
 
 namespace {
 
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   // Past a file-size limit, write() must fail with EFBIG (exit 5, nothing left under the final
   // name) instead of the signal killing the process mid-file.
   std::signal(SIGXFSZ, SIG_IGN);
+  omnicam::keepFreedMemoryInTheHeap();
   CLI::App app{"omnicam: exact catadioptric omnidirectional camera simulation"};
   app.require_subcommand(1);
   omnicam::cli::addRenderCommand(app);

@@ -5,8 +5,10 @@
 #include <benchmark/benchmark.h>
 #include <cstdlib>
 
+#include "exr_channels.h"
 #include "fast_renderer.h"
 #include "image.h"
+#include "malloc_tuning.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -54,6 +56,30 @@ void BM_EncodeInstancePng(benchmark::State& state) {
   const AovFrame& a = frame().aovs;
   for (auto _ : state) benchmark::DoNotOptimize(encodeUint16Png("instance.png", a.width, a.height, a.instance));
 }
+// One multilayer frame file: colour (half) alone, or with depth (float32), normals (half) and
+// instance and class ids (uint32), by compression (state.range(0): ExrCompression), colour as
+// half or float32 (state.range(2)).
+void BM_EncodeMultilayer(benchmark::State& state) {
+  const Frame& f = frame();
+  const AovFrame& a = f.aovs;
+  const bool everything = state.range(1) != 0;
+  std::vector<uint32_t> instance(a.instance.begin(), a.instance.end()), semantic = instance;
+  std::vector<ExrChannelSource> channels;
+  const ExrSampleType colour = state.range(2) ? ExrSampleType::Float : ExrSampleType::Half;
+  for (int c = 0; c < 4; ++c) channels.push_back({std::string(1, "RGBA"[c]), colour, f.rgb.pixels.data() + c, nullptr, 4});
+  if (everything) {
+    channels.push_back({"depth.Z", ExrSampleType::Float, a.depth.data(), nullptr, 1});
+    for (int c = 0; c < 3; ++c) channels.push_back({std::string("normal.") + "XYZ"[c], ExrSampleType::Half, a.normal.data() + c, nullptr, 3});
+    channels.push_back({"instance.I", ExrSampleType::Uint, nullptr, instance.data(), 1});
+    channels.push_back({"semantic.I", ExrSampleType::Uint, nullptr, semantic.data(), 1});
+  }
+  ExrWriteOptions options;
+  options.compression = static_cast<ExrCompression>(state.range(0));
+  size_t size = 0;
+  for (auto _ : state) size = encodeExrChannels("frame.exr", a.width, a.height, channels, options).size();
+  state.counters["MB"] = static_cast<double>(size) / 1e6;
+}
+BENCHMARK(BM_EncodeMultilayer)->ArgsProduct({{0, 1, 3}, {0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderRgb)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_RenderRgbAndAovs)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_EncodeRgbPng)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -65,6 +91,7 @@ BENCHMARK(BM_EncodeInstancePng)->Unit(benchmark::kMillisecond)->UseRealTime();
 }  // namespace omnicam
 
 int main(int argc, char** argv) {
+  omnicam::keepFreedMemoryInTheHeap();  // as the CLI does
   if (const char* t = std::getenv("EXR_THREADS")) OIIO::attribute("exr_threads", std::atoi(t));
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

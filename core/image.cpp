@@ -1,11 +1,5 @@
 #include "image.h"
 
-#include <Imath/half.h>
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfFrameBuffer.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfIO.h>
-#include <OpenEXR/ImfOutputFile.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -20,6 +14,7 @@
 #include <OpenImageIO/filesystem.h>
 
 #include "atomic_file.h"
+#include "exr_channels.h"
 #include "errors.h"
 #include "input_limits.h"
 
@@ -279,30 +274,6 @@ void writeImageAtomic(const std::string& path, const ImageRGBA& image) {
   writeBytesAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-namespace {
-
-// An OpenEXR output stream into memory.
-class MemoryExrStream : public Imf::OStream {
- public:
-  explicit MemoryExrStream(std::vector<unsigned char>& bytes) : Imf::OStream("memory.exr"), bytes_(bytes) {}
-  void write(const char c[], int n) override {
-    if (position_ + static_cast<uint64_t>(n) > bytes_.size()) bytes_.resize(position_ + n);
-    std::memcpy(bytes_.data() + position_, c, static_cast<size_t>(n));
-    position_ += static_cast<uint64_t>(n);
-  }
-  uint64_t tellp() override { return position_; }
-  void seekp(uint64_t pos) override { position_ = pos; }
-
- private:
-  std::vector<unsigned char>& bytes_;
-  uint64_t position_ = 0;
-};
-
-}  // namespace
-
-// Written with OpenEXR directly: its frame buffer reads our floats in place, on this thread
-// (dataset frames are encoded in parallel already; OIIO would hand them to OpenEXR's own thread
-// pool), with the zip level set to 1. Deflate dominates the cost (docs/performance.md).
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
                                          const float* values, ExrPrecision precision) {
   if (channels == 1) return encodeDataExr(path, width, height, std::vector<std::string>{"Z"}, values, precision);
@@ -313,34 +284,11 @@ std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height,
                                          const std::vector<std::string>& names, const float* values,
                                          ExrPrecision precision) {
-  const int channels = static_cast<int>(names.size());
-  std::vector<unsigned char> bytes;
-  try {
-    Imf::Header header(width, height);
-    header.compression() = Imf::ZIP_COMPRESSION;
-    header.zipCompressionLevel() = 1;
-    Imf::FrameBuffer frameBuffer;
-    // OpenEXR stores what the frame buffer holds: half values are converted here.
-    const bool half = precision == ExrPrecision::Half;
-    std::vector<Imath::half> halves;
-    if (half) halves.assign(values, values + static_cast<size_t>(width) * height * channels);
-    const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
-    const size_t pixelStride = (half ? sizeof(Imath::half) : sizeof(float)) * channels;
-    const char* base = half ? reinterpret_cast<const char*>(halves.data()) : reinterpret_cast<const char*>(values);
-    for (int c = 0; c < channels; ++c) {
-      const char* name = names[c].c_str();
-      header.channels().insert(name, Imf::Channel(type));
-      frameBuffer.insert(name, Imf::Slice(type, const_cast<char*>(base) + c * (pixelStride / channels), pixelStride,
-                                          pixelStride * width));
-    }
-    MemoryExrStream stream(bytes);
-    Imf::OutputFile file(stream, header, 0);
-    file.setFrameBuffer(frameBuffer);
-    file.writePixels(height);
-  } catch (const std::exception& e) {
-    throw OutputError(showPath(path) + ": cannot encode EXR (" + firstLine(e.what()) + ")");
-  }
-  return bytes;
+  std::vector<ExrChannelSource> channels;
+  for (size_t c = 0; c < names.size(); ++c)
+    channels.push_back({names[c], precision == ExrPrecision::Half ? ExrSampleType::Half : ExrSampleType::Float, values + c,
+                        nullptr, names.size()});
+  return encodeExrChannels(path, width, height, channels, {});
 }
 
 std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,

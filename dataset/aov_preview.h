@@ -17,7 +17,7 @@ ImageRGBA idPreview(const std::vector<uint16_t>& ids, int width, int height);
 // Landmark annotations (landmarks/NNNNNN.json) over `image`: each visible landmark's bounding
 // box in green and its centre as a cross, occluded ones in red, those beyond the rim not at all.
 ImageRGBA drawLandmarkAnnotations(const ImageRGBA& image, const nlohmann::json& annotations);
-// `image` with the object annotations of COCO image `imageId` of a COCO file (coco_files.h)
+// `image` with the object annotations of COCO image `imageId` of a COCO file (annotation_files.h)
 // drawn from the file alone: each mask (decoded from its RLE) tinted in its category's colour,
 // its bbox outlined. InputError for a malformed RLE.
 ImageRGBA drawCocoAnnotations(const ImageRGBA& image, const nlohmann::json& coco, int imageId);

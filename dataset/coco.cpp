@@ -45,22 +45,35 @@ std::vector<uint32_t> cocoRunsFromCounts(const std::string& counts, const std::s
   return runs;
 }
 
-std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int width, int height, uint16_t id) {
+std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int width, int height, uint16_t id,
+                                   const CocoBox& box) {
   std::vector<uint32_t> runs;
   bool inside = false;  // runs start with the 0s
   uint32_t run = 0;
-  for (int i = 0; i < width; ++i)
-    for (int j = 0; j < height; ++j) {
-      const bool on = instance[static_cast<size_t>(j) * width + i] == id;
-      if (on != inside) {
-        runs.push_back(run);
-        run = 0;
-        inside = on;
-      }
-      ++run;
+  auto extend = [&](bool on, uint32_t count) {
+    if (count == 0) return;
+    if (on != inside) {
+      runs.push_back(run);
+      run = 0;
+      inside = on;
     }
+    run += count;
+  };
+  const auto rows = static_cast<uint32_t>(height);
+  // Column-major like COCO; only the box is looked at, everything around it is 0.
+  extend(false, static_cast<uint32_t>(box.x0) * rows);
+  for (int i = box.x0; i <= box.x1; ++i) {
+    extend(false, static_cast<uint32_t>(box.y0));
+    for (int j = box.y0; j <= box.y1; ++j) extend(instance[static_cast<size_t>(j) * width + i] == id, 1);
+    extend(false, static_cast<uint32_t>(height - 1 - box.y1));
+  }
+  extend(false, static_cast<uint32_t>(width - 1 - box.x1) * rows);
   runs.push_back(run);
   return runs;
+}
+
+std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int width, int height, uint16_t id) {
+  return cocoMaskRuns(instance, width, height, id, CocoBox{0, 0, width - 1, height - 1});
 }
 
 std::set<uint16_t> defaultCocoClasses(const IdTables& ids) {
@@ -92,7 +105,7 @@ std::set<uint16_t> cocoClassIds(const IdTables& ids, const std::optional<std::ve
 nlohmann::json cocoInstanceAnnotations(const std::vector<uint16_t>& instance, int width, int height,
                                        const std::vector<uint16_t>& classOfInstance, const std::set<uint16_t>& classes) {
   struct Bounds {
-    int x0 = std::numeric_limits<int>::max(), y0 = std::numeric_limits<int>::max(), x1 = -1, y1 = -1;
+    CocoBox box{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(), -1, -1};
     int64_t area = 0;
   };
   std::vector<Bounds> bounds(classOfInstance.size());
@@ -101,20 +114,22 @@ nlohmann::json cocoInstanceAnnotations(const std::vector<uint16_t>& instance, in
       const uint16_t id = instance[static_cast<size_t>(j) * width + i];
       if (id == 0 || id >= bounds.size() || !classes.count(classOfInstance[id])) continue;
       Bounds& b = bounds[id];
-      b.x0 = std::min(b.x0, i), b.y0 = std::min(b.y0, j), b.x1 = std::max(b.x1, i), b.y1 = std::max(b.y1, j);
+      b.box.x0 = std::min(b.box.x0, i), b.box.y0 = std::min(b.box.y0, j);
+      b.box.x1 = std::max(b.box.x1, i), b.box.y1 = std::max(b.box.y1, j);
       ++b.area;
     }
   nlohmann::json annotations = nlohmann::json::array();
   for (size_t id = 1; id < bounds.size(); ++id) {
     const Bounds& b = bounds[id];
     if (b.area == 0) continue;
+    const CocoBox& box = b.box;
     annotations.push_back(
         {{"instance_id", id},
          {"category_id", classOfInstance[id]},
-         {"bbox", {b.x0, b.y0, b.x1 - b.x0 + 1, b.y1 - b.y0 + 1}},
+         {"bbox", {box.x0, box.y0, box.x1 - box.x0 + 1, box.y1 - box.y0 + 1}},
          {"area", b.area},
          {"segmentation",
-          {{"size", {height, width}}, {"counts", cocoRleCounts(cocoMaskRuns(instance, width, height, static_cast<uint16_t>(id)))}}},
+          {{"size", {height, width}}, {"counts", cocoRleCounts(cocoMaskRuns(instance, width, height, static_cast<uint16_t>(id), box))}}},
          {"iscrowd", 0}});
   }
   return annotations;

@@ -23,6 +23,13 @@ std::string cocoRleCounts(const std::vector<uint32_t>& runs);
 std::vector<uint32_t> cocoRunsFromCounts(const std::string& counts, const std::string& what);
 // Runs of the mask `instance == id` of a row-major width × height id image.
 std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int width, int height, uint16_t id);
+// The same looking only inside `box` (inclusive pixel bounds holding every pixel of `id`): what
+// the annotations use, O(box) instead of O(image) per instance.
+struct CocoBox {
+  int x0, y0, x1, y1;
+};
+std::vector<uint32_t> cocoMaskRuns(const std::vector<uint16_t>& instance, int width, int height, uint16_t id,
+                                   const CocoBox& box);
 
 // The classes annotated by default: every class but floor, wall, ceiling and line.
 std::set<uint16_t> defaultCocoClasses(const IdTables& ids);

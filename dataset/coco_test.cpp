@@ -30,6 +30,34 @@ TEST(Coco, RunsAreColumnMajorAndStartWithZeros) {
   EXPECT_EQ(cocoMaskRuns(corner, 6, 4, 7), (std::vector<uint32_t>{0, 1, 23}));
 }
 
+TEST(Coco, RunsInsideTheBoxAreTheWholeImagesRuns) {
+  // The closed form above through the box path, then random blobs against a pixel-by-pixel walk.
+  EXPECT_EQ(cocoMaskRuns(rectangle(3), 6, 4, 3, CocoBox{2, 1, 4, 2}), (std::vector<uint32_t>{9, 2, 2, 2, 2, 2, 5}));
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int w = 1 + static_cast<int>(rng() % 40), h = 1 + static_cast<int>(rng() % 40);
+    std::vector<uint16_t> image(static_cast<size_t>(w) * h);
+    for (uint16_t& v : image) v = static_cast<uint16_t>(rng() % 4);
+    for (uint16_t id = 1; id < 4; ++id) {
+      CocoBox box{w, h, -1, -1};
+      for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i)
+          if (image[static_cast<size_t>(j) * w + i] == id)
+            box = {std::min(box.x0, i), std::min(box.y0, j), std::max(box.x1, i), std::max(box.y1, j)};
+      if (box.x1 < 0) continue;
+      std::vector<uint32_t> walked{0};  // column by column, a new run at every change
+      bool on = false;
+      for (int i = 0; i < w; ++i)
+        for (int j = 0; j < h; ++j) {
+          const bool here = image[static_cast<size_t>(j) * w + i] == id;
+          if (here != on) walked.push_back(0), on = here;
+          ++walked.back();
+        }
+      EXPECT_EQ(cocoMaskRuns(image, w, h, id, box), walked) << "trial " << trial << " id " << id;
+    }
+  }
+}
+
 TEST(Coco, CompressedCountsRoundTripEveryRunSequence) {
   // Small and large runs, deltas of both signs (the encoding stores each run minus the one two
   // before it), up to a 4096² image's pixel count.

@@ -14,6 +14,7 @@
 #include "errors.h"
 #include "manifest.h"
 #include "markup.h"
+#include "output_kinds.h"
 #include "safe_files.h"
 
 namespace omnicam {
@@ -44,6 +45,14 @@ std::string layoutFile(const std::string& dirB, const std::string& relative) {
   }
   throw InputError(showPath(dirB) + ": no image " + showPath(fs::path(relative).replace_extension("").string()) +
                    ".png or .exr for frame of " + showPath(relative) + " (a folder without manifest.json must follow the dataset layout)");
+}
+
+// The file holding a camera frame's colour: its rgb image (files layout) or its frame OpenEXR
+// (multilayer layout, whose R, G, B, A channels image readers take as the colour).
+const FileRecord* colourFile(const CameraFrame& frame) {
+  for (OutputKind kind : {OutputKind::Rgb, OutputKind::Multilayer})
+    if (const auto file = frame.files.find(outputName(kind)); file != frame.files.end()) return &file->second;
+  return nullptr;
 }
 
 // An image of a dataset folder: read without following links, a regular file of bounded size.
@@ -92,11 +101,10 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
       FrameComparison f;
       f.index = index;
       f.camera = camera;
-      const auto rgb = files.files.find("rgb");
+      const FileRecord* rgb = colourFile(files);
       // A camera name is a folder of the dataset: messages show it as they show paths.
-      if (rgb == files.files.end())
-        throw InputError(showPath(dirA) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
-      f.fileA = rgb->second.path;
+      if (!rgb) throw InputError(showPath(dirA) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
+      f.fileA = rgb->path;
       if (b) {
         const FrameRecord& other = b->frames.at(index);
         const auto cam = other.cameras.find(camera);
@@ -105,10 +113,9 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
         if (!samePose(cam->second.pose, files.pose))
           throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " camera " + showPath(camera) + ": pose " +
                            poseText(cam->second.pose) + " differs from A's " + poseText(files.pose));
-        const auto rgbB = cam->second.files.find("rgb");
-        if (rgbB == cam->second.files.end())
-          throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
-        f.fileB = rgbB->second.path;
+        const FileRecord* rgbB = colourFile(cam->second);
+        if (!rgbB) throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
+        f.fileB = rgbB->path;
       } else {
         f.fileB = layoutFile(dirB, f.fileA);
       }

@@ -2,6 +2,8 @@
 
 #include "dataset_folder.h"
 #include "errors.h"
+#include "exr_channels.h"
+#include "multilayer_frame.h"
 #include "safe_files.h"
 #include "scene_loader.h"
 #include "sha256.h"
@@ -53,24 +55,97 @@ std::string DatasetReader::fileBytes(std::optional<int> index, const std::string
   return bytes;
 }
 
-DecodedOutput DatasetReader::readOutput(int index, const std::string& camera, const std::string& kind, bool checkHash) const {
-  const std::string bytes = fileBytes(index, camera, kind, checkHash);
-  const std::string name = showPath(dir_) + ": " + quote(record(index, camera, kind).path);
+namespace {
+
+// An output from its own file (files layout).
+DecodedOutput decodeOutputFile(const std::string& bytes, OutputKind kind, const std::string& name) {
   DecodedOutput out;
-  if (kind == "rgb") {
-    out.image = readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
-    out.width = out.image->width, out.height = out.image->height;
-  } else if (kind == "depth" || kind == "normal") {
-    out.data = readDataExrChannelsFromMemory(bytes, kind == "depth" ? std::vector<std::string>{"Z"} : std::vector<std::string>{"X", "Y", "Z"}, name);
-    out.width = out.data->width, out.height = out.data->height;
-  } else if (kind == "instance" || kind == "semantic") {
-    out.ids = readUint16PngFromMemory(bytes, out.width, out.height, name);
-  } else if (kind == "landmarks" || kind == "coco") {
-    out.json = parseJsonText(bytes, name);
+  switch (kind) {
+    case OutputKind::Rgb:
+      out.image = readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
+      out.width = out.image->width, out.height = out.image->height;
+      return out;
+    case OutputKind::Depth:
+    case OutputKind::Normal:
+      out.data = readDataExrChannelsFromMemory(bytes, kind == OutputKind::Depth ? std::vector<std::string>{"Z"}
+                                                                                : std::vector<std::string>{"X", "Y", "Z"}, name);
+      out.width = out.data->width, out.height = out.data->height;
+      return out;
+    case OutputKind::Instance:
+    case OutputKind::Semantic: out.ids = readUint16PngFromMemory(bytes, out.width, out.height, name); return out;
+    case OutputKind::Landmarks:
+    case OutputKind::Coco: out.json = parseJsonText(bytes, name); return out;
+    case OutputKind::Multilayer: break;
+  }
+  throw InputError(name + ": no decoder for outputs of kind " + quote(outputName(kind)));
+}
+
+// An output from its frame's decoded OpenEXR (multilayer layout, multilayer_frame.h).
+DecodedOutput outputOfFrame(const ExrChannels& frame, OutputKind kind, const std::string& name) {
+  DecodedOutput out;
+  out.width = frame.width, out.height = frame.height;
+  const size_t pixels = static_cast<size_t>(frame.width) * static_cast<size_t>(frame.height);
+  if (isAnnotation(kind)) {
+    const auto text = frame.text.find(multilayerAttribute(kind));
+    if (text == frame.text.end()) throw InputError(name + ": no attribute " + quote(multilayerAttribute(kind)));
+    out.json = parseJsonText(text->second, name + ": " + multilayerAttribute(kind));
+    return out;
+  }
+  const std::vector<std::string>& channels = multilayerChannels(kind);
+  const bool ids = kind == OutputKind::Instance || kind == OutputKind::Semantic;
+  for (const std::string& channel : channels)
+    if (!(ids ? frame.uints.count(channel) : frame.floats.count(channel)))
+      throw InputError(name + ": no " + (ids ? "uint" : "half or float") + " channel " + quote(channel));
+  if (ids) {
+    const std::vector<uint32_t>& values = frame.uints.at(channels[0]);
+    out.ids.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) {
+      if (values[p] > 0xffff) throw InputError(name + ": " + channels[0] + ": id " + std::to_string(values[p]) + " is not 16-bit");
+      out.ids[p] = static_cast<uint16_t>(values[p]);
+    }
+    return out;
+  }
+  std::vector<float> interleaved(pixels * channels.size());
+  for (size_t c = 0; c < channels.size(); ++c) {
+    const std::vector<float>& plane = frame.floats.at(channels[c]);
+    for (size_t p = 0; p < pixels; ++p) interleaved[p * channels.size() + c] = plane[p];
+  }
+  if (kind == OutputKind::Rgb) {
+    out.image = ImageRGBA(frame.width, frame.height);
+    out.image->pixels = std::move(interleaved);
   } else {
-    throw InputError(name + ": no decoder for outputs of kind " + quote(kind));
+    out.data = DataImage{frame.width, frame.height, static_cast<int>(channels.size()), std::move(interleaved)};
   }
   return out;
+}
+
+}  // namespace
+
+std::map<OutputKind, DecodedOutput> DatasetReader::readOutputs(int index, const std::string& camera,
+                                                               const std::vector<OutputKind>& kinds, bool checkHash) const {
+  std::map<OutputKind, DecodedOutput> outputs;
+  const std::string multilayer = outputName(OutputKind::Multilayer);
+  const FrameRecord& f = frame(index);
+  const auto c = f.cameras.find(camera);
+  const bool layered = c != f.cameras.end() && c->second.files.count(multilayer);
+  if (!layered) {
+    for (OutputKind kind : kinds) {
+      const std::string name = showPath(dir_) + ": " + quote(record(index, camera, outputName(kind)).path);
+      outputs[kind] = decodeOutputFile(fileBytes(index, camera, outputName(kind), checkHash), kind, name);
+    }
+    return outputs;
+  }
+  const std::string name = showPath(dir_) + ": " + quote(record(index, camera, multilayer).path);
+  const ExrChannels decoded = decodeExrChannels(fileBytes(index, camera, multilayer, checkHash), name);
+  for (OutputKind kind : kinds) {
+    if (kind == OutputKind::Multilayer) throw InputError(name + ": the frame file itself is not an output");
+    outputs[kind] = outputOfFrame(decoded, kind, name);
+  }
+  return outputs;
+}
+
+DecodedOutput DatasetReader::readOutput(int index, const std::string& camera, OutputKind kind, bool checkHash) const {
+  return std::move(readOutputs(index, camera, {kind}, checkHash).at(kind));
 }
 
 }  // namespace omnicam

@@ -2,17 +2,19 @@
 // Reading a dataset folder (docs/dataset-format.md) for use, as untrusted input: the manifest
 // strictly (readDatasetManifest), files only inside the folder with no link followed, hashes
 // checked on request, and each output decoded from the bytes that were checked.
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "image.h"
 #include "manifest.h"
+#include "output_kinds.h"
 
 namespace omnicam {
 
-// One decoded frame file: an image (rgb), data (depth: 1 channel; normal: 3), ids (instance,
-// semantic) or JSON (landmarks, coco).
+// One decoded output of a frame: an image (rgb), data (depth: 1 channel; normal: 3), ids
+// (instance, semantic) or JSON (landmarks, coco), from its own file or its frame's OpenEXR.
 struct DecodedOutput {
   std::optional<ImageRGBA> image;
   std::optional<DataImage> data;
@@ -37,8 +39,11 @@ class DatasetReader {
   // (intrinsics_opencv, poses_tum, …) when index is nullopt. With checkHash, InputError unless
   // they hash to the manifest's SHA-256.
   std::string fileBytes(std::optional<int> index, const std::string& camera, const std::string& kind, bool checkHash) const;
-  // fileBytes of a frame file, decoded by its kind.
-  DecodedOutput readOutput(int index, const std::string& camera, const std::string& kind, bool checkHash) const;
+  // Frame `index`'s outputs `kinds` of `camera`, whichever the layout: each file read (and
+  // checked) once. InputError naming the file for an output the frame lacks or cannot decode.
+  std::map<OutputKind, DecodedOutput> readOutputs(int index, const std::string& camera, const std::vector<OutputKind>& kinds,
+                                                  bool checkHash) const;
+  DecodedOutput readOutput(int index, const std::string& camera, OutputKind kind, bool checkHash) const;
 
  private:
   FileRecord record(std::optional<int> index, const std::string& camera, const std::string& kind) const;

@@ -3,12 +3,11 @@
 // listed in DIR/manifest.json with their files' SHA-256; a rerun of the same spec keeps every
 // frame whose files still hash right, redoes the rest and removes temporaries left by a killed
 // run. The result does not depend on where a run was interrupted.
-#include <atomic>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include "dataset_folder.h"
+#include "dataset_options.h"
 #include "dataset_spec.h"
 #include "errors.h"
 #include "manifest.h"
@@ -20,28 +19,6 @@ namespace omnicam {
 class OtherDatasetError : public InputError {
  public:
   using InputError::InputError;
-};
-
-struct DatasetRunOptions {
-  std::string dir;
-  // Replace the dataset in the folder (another spec's, or this one's from scratch): only the
-  // files its manifest lists in the dataset layout are removed, and its camera folders if that
-  // leaves them empty. A folder without a readable manifest is never overwritten.
-  bool overwrite = false;
-  // Shard `shardIndex` of `shardCount` (dataset_shards.h): frames [F·i/n, F·(i+1)/n) only, listed
-  // in DIR/shards/shard-i-of-n.json instead of DIR/manifest.json, so that shards on different
-  // machines can fill one shared folder at once (a Slurm array of one task is shard 0 of 1).
-  // shardCount 0: the whole dataset, listed in DIR/manifest.json.
-  int shardIndex = 0, shardCount = 0;
-  // Threads for the whole run (TBB's, POV-Ray's Work_Threads, Blender's -t); 0: every core. Under
-  // Slurm, the cores the task was given (docs/cluster.md).
-  int threads = 0;
-  // Called once before rendering: frames kept from an earlier run, of `total`.
-  std::function<void(int kept, int total)> onStart;
-  // Called after every finished frame: frames done (kept + rendered) of `total`.
-  std::function<void(int done, int total)> onFrame;
-  // Checked between frames: set (e.g. by SIGINT) to stop after the frame in progress.
-  const std::atomic<bool>* stopRequested = nullptr;
 };
 
 struct DatasetRunResult {

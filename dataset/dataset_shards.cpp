@@ -5,7 +5,7 @@
 #include <set>
 
 #include "atomic_file.h"
-#include "coco_files.h"
+#include "annotation_files.h"
 #include "dataset_folder.h"
 #include "errors.h"
 #include "manifest.h"
@@ -122,7 +122,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   merged->header["complete"] = result.finished == result.frames;
   if (result.finished == result.frames) {
     result.incompleteShards.clear();
-    writeCocoFiles(dir, *merged);
+    writeAnnotationFiles(dir, *merged);
   }
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.

@@ -146,6 +146,8 @@ void readCameras(const json& cameras, DatasetSpec& spec) {
 
 void readOutputs(JsonFields o, DatasetSpec& spec) {
   DatasetOutputs& out = spec.outputs;
+  if (spec.layout == DatasetLayout::Multilayer && o.has("rgb"))
+    o.fail("rgb", "the multilayer layout keeps the colour in each frame's OpenEXR (half, linear); leave rgb out");
   out.rgb = o.string("rgb", out.rgb);
   if (out.rgb != "png" && out.rgb != "exr") o.fail("rgb", "must be \"png\" or \"exr\"");
   out.depth = o.boolean("depth", out.depth);
@@ -253,6 +255,9 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     spec.cameras.push_back({"cam0", std::nullopt, 0.0, 0.0, 0.0});
   }
   readPoses(top.object("poses"), spec);
+  const auto layout = layoutNamed(top.string("layout", layoutName(spec.layout)));
+  if (!layout) top.fail("layout", "must be \"files\" or \"multilayer\"");
+  spec.layout = *layout;
   if (auto outputs = top.optionalObject("outputs")) readOutputs(*outputs, spec);
   if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
   top.finish();

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "output_kinds.h"
 #include "recording_camera.h"
 #include "render_settings.h"
 #include "rig.h"
@@ -50,7 +51,7 @@ struct RandomPoses {
 };
 
 struct DatasetOutputs {
-  std::string rgb = "png";  // "png" or "exr"
+  std::string rgb = "png";  // "png" or "exr" (files layout; multilayer: colour is in the frame EXR)
   bool depth = true, instance = true, semantic = true, normal = true, landmarks = true;
   // COCO instances annotations, one file per camera (docs/dataset-format.md): `true`, or
   // {"classes": [names]} (default: every class but floor, wall, ceiling and line).
@@ -82,6 +83,9 @@ struct DatasetSpec {
   std::vector<RobotPose> poseList;
   RandomPoses random;
   std::vector<DatasetCamera> cameras;
+  // files: one file per output and frame; multilayer: one OpenEXR per frame and camera
+  // (output_kinds.h).
+  DatasetLayout layout = DatasetLayout::Files;
   DatasetOutputs outputs;
   // What a real camera would record (recording_camera.h), applied to every RGB frame; none: the
   // renderer's image as it is.

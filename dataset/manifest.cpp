@@ -10,6 +10,7 @@
 #include "errors.h"
 #include "file_confinement.h"
 #include "json_fields.h"
+#include "output_kinds.h"
 #include "render_settings.h"
 #include "safe_files.h"
 #include "scene_loader.h"
@@ -24,8 +25,6 @@ namespace {
 json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
 
 // Reading: every malformed piece is one InputError naming the manifest and the field.
-
-constexpr const char* kFrameFileKinds[] = {"rgb", "depth", "instance", "semantic", "normal", "landmarks", "coco"};
 
 bool isSha256(const std::string& text) {
   return text.size() == 64 && text.find_first_not_of("0123456789abcdef") == std::string::npos;
@@ -65,8 +64,7 @@ std::map<std::string, FileRecord> readFileRecords(JsonFields& parent, const std:
   JsonFields files = parent.object("files");
   std::map<std::string, FileRecord> records;
   for (auto it = raw.begin(); it != raw.end(); ++it) {
-    const bool known = std::find(std::begin(kFrameFileKinds), std::end(kFrameFileKinds), it.key()) != std::end(kFrameFileKinds);
-    if (frameKinds && !known) files.fail(it.key(), "unknown kind of frame file");
+    if (frameKinds && !outputNamed(it.key())) files.fail(it.key(), "unknown kind of frame file");
     records[it.key()] = readFileRecord(files.object(it.key()), camera);
   }
   files.finish();
@@ -90,6 +88,30 @@ struct HeaderFacts {
   int64_t frameCount = 0;
 };
 
+// The outputs' fields that gathering annotations reads back: the layout, the outputs written and
+// the COCO classes.
+void checkOutputs(JsonFields outputs) {
+  if (outputs.has("layout") && !layoutNamed(outputs.string("layout"))) outputs.fail("layout", "must be \"files\" or \"multilayer\"");
+  const json& written = outputs.has("written") ? outputs.raw("written") : json::array();
+  if (!written.is_array()) outputs.fail("written", "must be a list of output names");
+  for (const json& name : written)
+    if (!name.is_string() || !outputNamed(name.get<std::string>()) || name == outputName(OutputKind::Multilayer))
+      outputs.fail("written", "must be a list of output names (got " + quote(name.dump()) + ")");
+  if (outputs.has("coco_classes")) {
+    const json& classes = outputs.raw("coco_classes");
+    if (!classes.is_array()) outputs.fail("coco_classes", "must be a list of class ids");
+    for (const json& id : classes)
+      if (!id.is_number_integer() || id.get<int64_t>() < 1 || id.get<int64_t>() > 65535)
+        outputs.fail("coco_classes", "must be a list of class ids (1 to 65535)");
+  }
+  if (outputs.has("coco_keypoints")) {
+    const json& keypoints = outputs.raw("coco_keypoints");
+    if (!keypoints.is_array()) outputs.fail("coco_keypoints", "must be a list of landmark names");
+    for (const json& name : keypoints)
+      if (!name.is_string()) outputs.fail("coco_keypoints", "must be a list of landmark names");
+  }
+}
+
 // The header's fields that omnicam reads back (the rest it only carries along).
 HeaderFacts checkHeader(JsonFields& top) {
   if (top.string("format") != kManifestFormat) top.fail("format", std::string("must be \"") + kManifestFormat + "\"");
@@ -106,6 +128,15 @@ HeaderFacts checkHeader(JsonFields& top) {
     const int64_t first = shard->integer("first_frame", 0, frameCount);
     shard->integer("end_frame", first, frameCount);
     shard->finish();
+  }
+  if (auto outputs = top.optionalObject("outputs")) checkOutputs(*outputs);
+  if (top.has("classes")) {
+    const json& classes = top.raw("classes");
+    if (!classes.is_array()) top.fail("classes", "must be a list of {\"id\", \"name\"}");
+    for (const json& c : classes)
+      if (!c.is_object() || !c.contains("id") || !c.at("id").is_number_integer() || !c.contains("name") ||
+          !(c.at("name").is_string() || c.at("name").is_null()))
+        top.fail("classes", "must be a list of {\"id\", \"name\"} (integer id, string or null name)");
   }
   const json& cameras = top.raw("cameras");
   if (!cameras.is_array() || cameras.empty() || cameras.size() > static_cast<size_t>(limits::kMaxDatasetCameras))

@@ -20,6 +20,7 @@
 
 #include "hold_point.h"
 #include "camera_rays.h"
+#include "dataset_reader.h"
 #include "image.h"
 #include "mirror.h"
 #include "opencv_omnidir.h"
@@ -515,6 +516,155 @@ TEST_F(DatasetCliTest, BlenderRendersADatasetInOneSession) {
   const auto cmp = omnicam("compare " + path("fast") + " " + path("blender") + " --fail-psnr 35");  // measured 38.3 dB
   EXPECT_EQ(cmp.code, 0) << cmp.out;
   EXPECT_EQ(omnicam("dataset --verify " + path("blender")).code, 0);
+}
+
+// The multilayer layout (docs/dataset-format.md): one OpenEXR per frame and camera.
+
+// A spec over robocup2006 writing every output, in `layout`.
+std::string everyOutput(const std::string& layout) {
+  return R"("layout": ")" + layout + R"(", "outputs": {)" + (layout == "files" ? R"("rgb": "exr", )" : "") +
+         R"("depth": true, "instance": true, "semantic": true, "normal": true, "landmarks": true, "coco": true})";
+}
+
+// Every frame file a manifest lists, path → SHA-256, and the camera's gathered files.
+std::map<std::string, std::string> listedFiles(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  const json manifest = json::parse(readFile(dir / "manifest.json"));
+  for (const json& camera : manifest.at("cameras"))
+    for (const auto& [key, file] : camera.at("files").items()) files[file.at("path")] = file.at("sha256");
+  for (const json& frame : manifest.at("frames"))
+    for (const auto& [name, camera] : frame.at("cameras").items())
+      for (const auto& [kind, file] : camera.at("files").items()) files[file.at("path")] = file.at("sha256");
+  return files;
+}
+
+TEST_F(DatasetCliTest, MultilayerFramesHoldWhatTheFilesLayoutHolds) {
+  const std::string poses = R"("size": 64, "spp": 4, "poses": {"path": "thesis-loop", "frames": 4}, )";
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("files.json", poses + everyOutput("files")) + " -o " + path("files")).code, 0);
+  const auto run = omnicam("dataset " + robocupSpec("layers.json", poses + everyOutput("multilayer")) + " -o " + path("layers"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  // One file per frame and camera, the annotations gathered per camera.
+  EXPECT_TRUE(fs::exists(dir_ / "layers/cam0/multilayer/000003.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "layers/cam0/rgb"));
+  EXPECT_FALSE(fs::exists(dir_ / "layers/cam0/landmarks"));
+  const json header = json::parse(readFile(dir_ / "layers/manifest.json"));
+  EXPECT_EQ(header["outputs"]["layout"], "multilayer");
+  EXPECT_EQ(header["outputs"]["channels"]["normal"], json({"normal.X", "normal.Y", "normal.Z"}));
+  EXPECT_EQ(header["frames"][0]["cameras"]["cam0"]["files"].size(), 1u);
+
+  // Every output the same as the files layout's: data exactly, colour to half precision.
+  const DatasetReader files(path("files")), layers(path("layers"));
+  const std::vector<OutputKind> kinds{OutputKind::Rgb,    OutputKind::Depth,     OutputKind::Instance, OutputKind::Semantic,
+                                      OutputKind::Normal, OutputKind::Landmarks, OutputKind::Coco};
+  for (int frame = 0; frame < 4; ++frame) {
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    auto a = files.readOutputs(frame, "cam0", kinds, true), b = layers.readOutputs(frame, "cam0", kinds, true);
+    EXPECT_EQ(a[OutputKind::Depth].data->values, b[OutputKind::Depth].data->values);
+    EXPECT_EQ(a[OutputKind::Normal].data->values, b[OutputKind::Normal].data->values);
+    EXPECT_EQ(a[OutputKind::Instance].ids, b[OutputKind::Instance].ids);
+    EXPECT_EQ(a[OutputKind::Semantic].ids, b[OutputKind::Semantic].ids);
+    EXPECT_GT(*std::max_element(b[OutputKind::Instance].ids.begin(), b[OutputKind::Instance].ids.end()), 0);
+    EXPECT_EQ(a[OutputKind::Landmarks].json, b[OutputKind::Landmarks].json);
+    EXPECT_EQ(a[OutputKind::Coco].json, b[OutputKind::Coco].json);
+    const std::vector<float>& exact = a[OutputKind::Rgb].image->pixels;
+    const std::vector<float>& half = b[OutputKind::Rgb].image->pixels;
+    ASSERT_EQ(exact.size(), half.size());
+    for (size_t k = 0; k < exact.size(); ++k)  // round to nearest of 11 significant bits
+      ASSERT_LE(std::abs(exact[k] - half[k]), std::ldexp(std::abs(exact[k]), -11) + 1e-7f) << "value " << k;
+  }
+  // The gathered files: the landmarks of every frame, and the files layout's COCO file but for
+  // the image each annotation names.
+  const json landmarks = json::parse(readFile(dir_ / "layers/cam0/landmarks.json"));
+  ASSERT_EQ(landmarks["frames"].size(), 4u);
+  EXPECT_EQ(landmarks["frames"][2], json::parse(readFile(dir_ / "files/cam0/landmarks/000002.json")));
+  json cocoFiles = json::parse(readFile(dir_ / "files/cam0/coco.json")), cocoLayers = json::parse(readFile(dir_ / "layers/cam0/coco.json"));
+  EXPECT_EQ(cocoLayers["images"][1]["file_name"], "multilayer/000001.exr");
+  for (json* coco : {&cocoFiles, &cocoLayers})
+    for (json& image : (*coco)["images"]) image.erase("file_name");
+  cocoFiles["info"].erase("description"), cocoLayers["info"].erase("description");
+  EXPECT_EQ(cocoFiles, cocoLayers);
+  EXPECT_GT(cocoLayers["annotations"].size(), 4u);
+
+  // OpenImageIO reads it: every documented channel with its type, the annotations as attributes.
+  const auto info = testing::runShell("oiiotool --info -v " + path("layers/cam0/multilayer/000000.exr") + " 2>&1");
+  ASSERT_EQ(info.code, 0) << info.out;
+  EXPECT_NE(info.out.find("channel list: R (half), G (half), B (half), A (half), depth.Z (float), instance.I (uint), "
+                          "normal.X (half), normal.Y (half), normal.Z (half), semantic.I (uint)"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("omnicam:coco: \"{"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("omnicam:landmarks: \"{"), std::string::npos) << info.out;
+
+  // compare: colour against colour, whichever layout holds it.
+  const auto cmp = omnicam("compare " + path("files") + " " + path("layers") + " --fail-psnr 60");
+  EXPECT_EQ(cmp.code, 0) << cmp.out;
+  EXPECT_NE(cmp.out.find("PASS images=4 failing=0"), std::string::npos) << cmp.out;
+  const auto self = omnicam("compare " + path("layers") + " " + path("layers") + " --fail-psnr 200");
+  EXPECT_EQ(self.code, 0) << self.out;
+  // --verify: every frame file and gathered file hashed.
+  EXPECT_EQ(omnicam("dataset --verify " + path("layers")).code, 0);
+  std::ofstream(dir_ / "layers/cam0/multilayer/000002.exr", std::ios::app) << "x";
+  const auto bad = omnicam("dataset --verify " + path("layers"));
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.out.find("cam0/multilayer/000002.exr: SHA-256"), std::string::npos) << bad.out;
+}
+
+TEST_F(DatasetCliTest, MultilayerDatasetsResumeAfterKillNineAndMergeShardsByteForByte) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 96, "spp": 4, "poses": {"path": "thesis-loop", "frames": 20}, )" +
+                                                        everyOutput("multilayer"));
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole")).code, 0);
+  const auto whole = snapshot(dir_ / "whole");
+
+  int status = 0;
+  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
+  ASSERT_TRUE(WIFSIGNALED(status));
+  ASSERT_LT(manifestFrames(dir_ / "killed"), 20u);
+  EXPECT_FALSE(fs::exists(dir_ / "killed/cam0/coco.json")) << "gathered only once every frame is there";
+  std::ofstream(dir_ / "killed/cam0/multilayer/000000.exr", std::ios::trunc) << "damaged";
+  const auto resumed = omnicam("dataset " + spec + " -o " + path("killed"));
+  ASSERT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("kept from an earlier run"), std::string::npos) << resumed.out;
+  EXPECT_EQ(resumed.out.find(" 0 kept"), std::string::npos) << resumed.out;
+  EXPECT_TRUE(snapshot(dir_ / "killed") == whole) << "the resumed dataset differs from the uninterrupted one";
+
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+  std::map<std::string, std::string> merged = snapshot(dir_ / "parts");
+  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  EXPECT_TRUE(merged == whole) << "the merged shards differ from the one-go dataset";
+  EXPECT_EQ(listedFiles(dir_ / "parts").size(), 20u + 6u) << "20 frames, 3 intrinsics, poses and 2 gathered files";
+  EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
+}
+
+TEST_F(DatasetCliTest, BlenderReadsEveryLayerOfAMultilayerFrame) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 48, "poses": {"list": [[0.5, 0.3, 20]]}, )" + everyOutput("multilayer"));
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  fs::create_directories(dir_ / "blender");
+  const auto run = testing::runShell("blender -b --factory-startup --python " OMNICAM_SOURCE_DIR "/tests/blender_read_multilayer.py -- " +
+                                     path("ds/cam0/multilayer/000000.exr") + " " + path("blender") + " 48 2>&1");
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json read = json::parse(readFile(dir_ / "blender/passes.json"));
+  EXPECT_EQ(read["image_type"], "MULTILAYER");
+  EXPECT_EQ(read["passes"], json({"Combined", "Alpha", "depth", "instance", "normal", "semantic"}));
+
+  const auto ours = DatasetReader(path("ds")).readOutputs(
+      0, "cam0", {OutputKind::Rgb, OutputKind::Depth, OutputKind::Instance, OutputKind::Semantic, OutputKind::Normal}, true);
+  // Blender's value of pass `name`, channel c (R, G, B, A) at pixel p, as it wrote it back.
+  auto blender = [&](const std::string& name) { return readDataExrChannels(path("blender/" + name + ".exr"), {"R", "G", "B", "A"}); };
+  const DataImage combined = blender("Combined"), alpha = blender("Alpha"), depth = blender("depth"), normal = blender("normal"),
+                  instance = blender("instance"), semantic = blender("semantic");
+  const size_t pixels = 48 * 48;
+  ASSERT_EQ(depth.values.size(), pixels * 4);
+  for (size_t p = 0; p < pixels; ++p) {
+    for (int c = 0; c < 4; ++c)
+      ASSERT_EQ(combined.values[p * 4 + c], ours.at(OutputKind::Rgb).image->pixels[p * 4 + c]) << "Combined, pixel " << p;
+    ASSERT_EQ(alpha.values[p * 4], ours.at(OutputKind::Rgb).image->pixels[p * 4 + 3]) << "Alpha, pixel " << p;
+    ASSERT_EQ(depth.values[p * 4], ours.at(OutputKind::Depth).data->values[p]) << "depth, pixel " << p;
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(normal.values[p * 4 + c], ours.at(OutputKind::Normal).data->values[p * 3 + c]) << "normal, pixel " << p;
+    ASSERT_EQ(instance.values[p * 4], ours.at(OutputKind::Instance).ids[p]) << "instance, pixel " << p;
+    ASSERT_EQ(semantic.values[p * 4], ours.at(OutputKind::Semantic).ids[p]) << "semantic, pixel " << p;
+  }
 }
 
 }  // namespace

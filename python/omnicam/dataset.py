@@ -33,7 +33,8 @@ class Dataset:
       - ``coco``: the frame's COCO annotations (a dict; the camera's whole COCO file is
         ``<camera>/coco.json``).
 
-    Files are opened when an item is read, not before. Pickling keeps only the folder and the
+    Both layouts read the same: one file per output, or one OpenEXR per frame (``"layout":
+    "multilayer"``), decoded once per item. Files are opened when an item is read, not before. Pickling keeps only the folder and the
     options, so each DataLoader worker process opens the folder again itself.
     ``check_hashes=True`` re-hashes every file read against the manifest. ``verify()`` re-hashes
     them all.
@@ -113,8 +114,7 @@ class Dataset:
             "camera": camera,
             "intrinsics": self.intrinsics(camera),
         }
-        for output in self.outputs:
-            item[output] = self.reader.read(index, camera, output, self.check_hashes)
+        item.update(self.reader.read(index, camera, list(self.outputs), self.check_hashes))
         return item
 
     def verify(self):

@@ -97,14 +97,24 @@ void bindDatasetReader(py::module_& m) {
         return py::dict(py::arg("index") = f.index, py::arg("timestamp") = f.timestamp,
                         py::arg("robot_pose") = poseTuple(f.robot), py::arg("cameras") = cameras);
       }, py::arg("index"))
-      .def("read", [](const DatasetReader& r, int index, const std::string& camera, const std::string& kind, bool checkHash) {
-        DecodedOutput out;
+      .def("read", [](const DatasetReader& r, int index, const std::string& camera, const std::vector<std::string>& names,
+                      bool checkHash) {
+        std::vector<OutputKind> kinds;
+        for (const std::string& name : names) {
+          const auto kind = outputNamed(name);
+          if (!kind || *kind == OutputKind::Multilayer) throw InputError("no output " + quote(name));
+          kinds.push_back(*kind);
+        }
+        std::map<OutputKind, DecodedOutput> outputs;
         {
           py::gil_scoped_release release;
-          out = r.readOutput(index, camera, kind, checkHash);
+          outputs = r.readOutputs(index, camera, kinds, checkHash);
         }
-        return outputToPython(std::move(out));
-      }, py::arg("index"), py::arg("camera"), py::arg("kind"), py::arg("check_hash") = false)
+        py::dict out;
+        for (auto& [kind, decoded] : outputs) out[py::str(outputName(kind))] = outputToPython(std::move(decoded));
+        return out;
+      }, py::arg("index"), py::arg("camera"), py::arg("outputs"), py::arg("check_hash") = false,
+      "Frame `index`'s outputs of `camera` by name, each file read once whatever the layout.")
       .def("camera_file", [](const DatasetReader& r, const std::string& camera, const std::string& kind, bool checkHash) {
         return py::bytes(r.fileBytes(std::nullopt, camera, kind, checkHash));
       }, py::arg("camera"), py::arg("kind"), py::arg("check_hash") = false);

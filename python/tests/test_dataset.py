@@ -101,3 +101,36 @@ def test_unknown_cameras_outputs_and_folders_are_refused(folder, tmp_path):
     with pytest.raises(omnicam.InputError):
         omnicam.Dataset(tmp_path / "nothing")
     assert omnicam.Dataset(folder).verify()["ok"]
+
+
+@pytest.fixture(scope="module")
+def layered(tmp_path_factory, folder):
+    """The same frames as `folder`, one OpenEXR per frame and camera."""
+    root = tmp_path_factory.mktemp("layered")
+    spec = json.loads((folder / "manifest.json").read_text())["spec"]
+    spec["layout"] = "multilayer"
+    del spec["outputs"]["rgb"]
+    spec["outputs"]["coco"] = True
+    (root / "spec.json").write_text(json.dumps(spec))
+    omnicam.run_dataset(str(root / "spec.json"), str(root / "ds"))
+    return root / "ds"
+
+
+def test_a_multilayer_dataset_reads_as_the_files_layout_reads(folder, layered):
+    files, layers = omnicam.Dataset(folder, camera="rear"), omnicam.Dataset(layered, camera="rear", check_hashes=True)
+    assert layers.header["outputs"]["layout"] == "multilayer" and "coco" in layers.outputs
+    for index in range(3):
+        a, b = files[index], layers[index]
+        for output in ("depth", "normal", "instance", "semantic"):
+            assert b[output].dtype == a[output].dtype and b[output].shape == a[output].shape
+            np.testing.assert_array_equal(b[output], a[output], err_msg=output)
+        # Colour: float32 in the files layout's EXR, half in the frame's.
+        np.testing.assert_allclose(b["rgb"], a["rgb"], rtol=2.0 ** -11, atol=1e-7)
+        assert b["landmarks"] == a["landmarks"]
+        assert b["coco"]["frame"] == a["index"] and b["coco"]["camera"] == "rear"
+    # The camera's COCO file gathers every frame's part.
+    coco = json.loads((layered / "rear" / "coco.json").read_text())
+    assert [image["file_name"] for image in coco["images"]] == [f"multilayer/00000{i}.exr" for i in range(3)]
+    assert len(coco["annotations"]) == sum(len(layers[i]["coco"]["annotations"]) + 1 for i in range(3))
+    assert omnicam.read_exr_channels(str(layered / "rear" / "multilayer" / "000001.exr"), ["depth.Z"])[..., 0].tolist() == \
+        files[1]["depth"].tolist()

@@ -1,0 +1,54 @@
+#pragma once
+// OpenEXR images in memory whose channels each keep their own sample type (half, float32, uint32)
+// and whose header carries text attributes: what one dataset frame's colour and AOVs need in
+// one file (docs/dataset-format.md, "multilayer"), and what the single-purpose data EXRs are.
+// Written and read with OpenEXR directly, on the calling thread (frames are encoded in parallel
+// already).
+#include <cstdint>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace omnicam {
+
+enum class ExrSampleType { Half, Float, Uint };
+enum class ExrCompression { None, Rle, Zips, Zip, Piz };
+
+// One channel to write, read in place: value of pixel p at base[p · pixelStride] (floats, stored
+// as half or float32) or uints[p · pixelStride] (stored as uint32).
+struct ExrChannelSource {
+  std::string name;  // OpenEXR "layer.channel" names group channels into layers
+  ExrSampleType stored = ExrSampleType::Float;
+  const float* floats = nullptr;
+  const uint32_t* uints = nullptr;
+  size_t pixelStride = 1;
+};
+
+struct ExrWriteOptions {
+  ExrCompression compression = ExrCompression::Zip;
+  int zipLevel = 1;  // deflate level of Zip and Zips (1: speed over the last percent of size)
+  std::map<std::string, std::string> text;  // string attributes of the header
+};
+
+// The file's bytes; OutputError naming `path` if OpenEXR refuses. No DateTime is written:
+// identical values give identical bytes.
+std::vector<unsigned char> encodeExrChannels(const std::string& path, int width, int height,
+                                             const std::vector<ExrChannelSource>& channels, const ExrWriteOptions& options);
+
+// A decoded image: every channel by name, float channels (half or float32 in the file) as floats,
+// uint32 ones as uints; the header's string attributes.
+struct ExrChannels {
+  int width = 0, height = 0;
+  std::map<std::string, ExrSampleType> types;
+  std::map<std::string, std::vector<float>> floats;
+  std::map<std::string, std::vector<uint32_t>> uints;
+  std::map<std::string, std::string> text;
+};
+
+// Decodes `bytes` (an untrusted file: InputError naming `name` for anything but a readable
+// single-part scanline or tiled OpenEXR within the image size limits). headerOnly: types, size
+// and text only, no pixels.
+ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly = false);
+
+}  // namespace omnicam

@@ -1,0 +1,83 @@
+// OpenEXR channels of their own types: half conversion against Imath's own (software) rounding,
+// float and uint values exact from strided sources, text attributes, and untrusted bytes refused.
+#include "exr_channels.h"
+
+#include <gtest/gtest.h>
+#include <Imath/half.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+TEST(ExrChannels, HalvesRoundAsImathDoesAndDataIsExact) {
+  const int width = 37, height = 11;
+  const size_t pixels = static_cast<size_t>(width) * height;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  // Interleaved colour (stride 4) with the hard cases first: ties between halves, subnormals,
+  // overflow, signed zero.
+  std::vector<float> rgba(pixels * 4);
+  for (float& v : rgba) v = unit(rng) * std::pow(2.0f, static_cast<float>(rng() % 40) - 20.0f);
+  const float hard[] = {1.0f + std::ldexp(1.0f, -11), 1.0f + 3 * std::ldexp(1.0f, -11), std::ldexp(1.0f, -20), -std::ldexp(1.0f, -24),
+                        65504.0f, 65520.0f, 1e9f, -0.0f, 0.0f, std::ldexp(1.0f, -25), 0.333333f};
+  std::copy(std::begin(hard), std::end(hard), rgba.begin());
+  std::vector<float> depth(pixels);
+  for (float& v : depth) v = unit(rng) * 100.0f;
+  std::vector<uint32_t> ids(pixels * 2);
+  for (uint32_t& v : ids) v = static_cast<uint32_t>(rng());
+  std::vector<ExrChannelSource> channels;
+  for (int c = 0; c < 4; ++c) channels.push_back({std::string(1, "RGBA"[c]), ExrSampleType::Half, rgba.data() + c, nullptr, 4});
+  channels.push_back({"depth.Z", ExrSampleType::Float, depth.data(), nullptr, 1});
+  channels.push_back({"ids.I", ExrSampleType::Uint, nullptr, ids.data() + 1, 2});
+  ExrWriteOptions options;
+  options.text = {{"omnicam:note", "{\"a\": [1, 2]}\n"}};
+  const std::vector<unsigned char> bytes = encodeExrChannels("t.exr", width, height, channels, options);
+
+  const ExrChannels decoded = decodeExrChannels({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, "t.exr");
+  EXPECT_EQ(decoded.width, width);
+  EXPECT_EQ(decoded.height, height);
+  EXPECT_EQ(decoded.types.at("R"), ExrSampleType::Half);
+  EXPECT_EQ(decoded.types.at("depth.Z"), ExrSampleType::Float);
+  EXPECT_EQ(decoded.types.at("ids.I"), ExrSampleType::Uint);
+  EXPECT_EQ(decoded.text.at("omnicam:note"), "{\"a\": [1, 2]}\n");
+  for (size_t p = 0; p < pixels; ++p) {
+    for (int c = 0; c < 4; ++c) {
+      const float want = static_cast<float>(Imath::half(rgba[p * 4 + c]));
+      const float got = decoded.floats.at(std::string(1, "RGBA"[c]))[p];
+      ASSERT_EQ(std::signbit(got), std::signbit(want)) << rgba[p * 4 + c];
+      ASSERT_EQ(got, want) << "half of " << rgba[p * 4 + c];
+    }
+    ASSERT_EQ(decoded.floats.at("depth.Z")[p], depth[p]);
+    ASSERT_EQ(decoded.uints.at("ids.I")[p], ids[p * 2 + 1]);
+  }
+  EXPECT_EQ(decoded.floats.at("R")[0], 1.0f) << "a tie rounds to the even half";
+  EXPECT_EQ(decoded.floats.at("G")[0], 1.0f + std::ldexp(1.0f, -9)) << "a tie rounds to the even half";
+  EXPECT_EQ(decoded.floats.at("R")[1], 65504.0f) << "the largest half";
+  EXPECT_EQ(decoded.floats.at("G")[1], std::numeric_limits<float>::infinity()) << "65520 rounds up, past the largest half";
+
+  const ExrChannels header = decodeExrChannels({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, "t.exr", true);
+  EXPECT_TRUE(header.floats.empty() && header.uints.empty());
+  EXPECT_EQ(header.types.size(), 6u);
+}
+
+TEST(ExrChannels, DamagedBytesAreAnInputErrorNamingTheFile) {
+  const std::vector<float> values(64, 0.5f);
+  const std::vector<unsigned char> bytes = encodeExrChannels("t.exr", 8, 8, {{"Z", ExrSampleType::Float, values.data(), nullptr, 1}}, {});
+  const std::string whole(bytes.begin(), bytes.end());
+  for (const std::string& damaged : {std::string("not an exr"), whole.substr(0, whole.size() / 2), whole.substr(0, 40)}) {
+    try {
+      decodeExrChannels(damaged, "cam0/multilayer/000000.exr");
+      ADD_FAILURE() << "decoded " << damaged.size() << " damaged bytes";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("cam0/multilayer/000000.exr: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -1,0 +1,32 @@
+#pragma once
+// How one run of a dataset spec goes: the folder, overwriting, the shard, threads, progress and
+// stopping (dataset_runner.h).
+#include <atomic>
+#include <functional>
+#include <string>
+
+namespace omnicam {
+
+struct DatasetRunOptions {
+  std::string dir;
+  // Replace the dataset in the folder (another spec's, or this one's from scratch): only the
+  // files its manifest lists in the dataset layout are removed, and its camera folders if that
+  // leaves them empty. A folder without a readable manifest is never overwritten.
+  bool overwrite = false;
+  // Shard `shardIndex` of `shardCount` (dataset_shards.h): frames [F·i/n, F·(i+1)/n) only, listed
+  // in DIR/shards/shard-i-of-n.json instead of DIR/manifest.json, so that shards on different
+  // machines can fill one shared folder at once (a Slurm array of one task is shard 0 of 1).
+  // shardCount 0: the whole dataset, listed in DIR/manifest.json.
+  int shardIndex = 0, shardCount = 0;
+  // Threads for the whole run (TBB's, POV-Ray's Work_Threads, Blender's -t); 0: every core. Under
+  // Slurm, the cores the task was given (docs/cluster.md).
+  int threads = 0;
+  // Called once before rendering: frames kept from an earlier run, of `total`.
+  std::function<void(int kept, int total)> onStart;
+  // Called after every finished frame: frames done (kept + rendered) of `total`.
+  std::function<void(int done, int total)> onFrame;
+  // Checked between frames: set (e.g. by SIGINT) to stop after the frame in progress.
+  const std::atomic<bool>* stopRequested = nullptr;
+};
+
+}  // namespace omnicam

@@ -1,0 +1,232 @@
+#include "dataset_plan.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "camera_rays.h"
+#include "coco.h"
+#include "dataset_shards.h"
+#include "errors.h"
+#include "fast_renderer.h"
+#include "image.h"
+#include "intrinsics_files.h"
+#include "make_camera.h"
+#include "manifest.h"
+#include "multilayer_frame.h"
+#include "number_format.h"
+#include "pose_sampler.h"
+#include "scene_loader.h"
+#include "sha256.h"
+#include "sidecar.h"
+
+namespace omnicam {
+
+using nlohmann::json;
+
+namespace {
+
+// TUM RGB-D trajectory format: "timestamp tx ty tz qx qy qz qw", the camera frame (X forward,
+// Y right, Z down at F'; the intrinsics files' frame) in the world.
+std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup& setup, double interval) {
+  std::ostringstream out;
+  out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n"
+      << "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
+      << "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
+  for (size_t i = 0; i < robotPoses.size(); ++i) {
+    const Rigid worldFromCam = worldFromCamera(setup.rig, cameraPose(*setup.camera, robotPoses[i]));
+    const Eigen::Quaterniond q(worldFromCam.linear());
+    const Vec3 t = worldFromCam.translation();
+    out << roundTrip(static_cast<double>(i) * interval) << ' ' << roundTrip(t.x()) << ' ' << roundTrip(t.y()) << ' '
+        << roundTrip(t.z()) << ' ' << roundTrip(q.x()) << ' ' << roundTrip(q.y()) << ' ' << roundTrip(q.z()) << ' '
+        << roundTrip(q.w()) << '\n';
+  }
+  return out.str();
+}
+
+// A camera's files that stay the same from frame to frame: intrinsics and poses.
+std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<RobotPose>& poses, double interval) {
+  const std::string& name = setup.camera->name;
+  const Camera& camera = *setup.model;
+  std::vector<StaticFile> files = {
+      {"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(camera)},
+      {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, camera)},
+      {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, camera)},
+      {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval)}};
+  // A physical rig's exact rays, which no central model in the files above states exactly.
+  if (!setup.rig.ideal()) {
+    const CameraRayTable table = cameraRayTable(camera);
+    const std::vector<unsigned char> exr = encodeDataExr("rays.exr", table.width, table.height, kCameraRayChannels, table.values.data());
+    files.push_back({"rays", name + "/intrinsics/rays.exr", std::string(exr.begin(), exr.end())});
+  }
+  return files;
+}
+
+// The cameras of the spec with their rigs (the spec's size applied), each checked.
+std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scene) {
+  std::vector<CameraSetup> setups;
+  for (const DatasetCamera& camera : spec.cameras) {
+    CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
+    if (spec.size) setup.rig = setup.rig.resized(*spec.size);
+    checkRenderSettings({setup.rig, spec.spp, spec.shading}, settingNames(spec));
+    setup.model = makeCamera(setup.rig);
+    setups.push_back(setup);
+  }
+  return setups;
+}
+
+FrameRange frameRange(const DatasetRunOptions& options, int totalFrames) {
+  FrameRange range;
+  range.sharded = options.shardCount > 0;
+  const int shardCount = std::max(1, options.shardCount);
+  if (options.shardCount < 0 || options.shardCount > kMaxShards || options.shardIndex < 0 || options.shardIndex >= shardCount)
+    throw InputError("shard " + std::to_string(options.shardIndex) + " of " + std::to_string(options.shardCount) +
+                     ": must be shard I of N with 0 <= I < N <= " + std::to_string(kMaxShards));
+  if (range.sharded && options.overwrite) throw InputError(showPath(options.dir) + ": a shard never overwrites (shards share the folder)");
+  range.first = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
+  range.end = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
+  range.manifestName = range.sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
+  return range;
+}
+
+// Which outputs each frame gets: AOVs only from an engine that renders them; the others are
+// listed in `notWritten` with the reason, and in `notes` for the user.
+FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const Scene& scene, json& notWritten,
+                           std::vector<std::string>& notes) {
+  FrameOutputPlan plan;
+  plan.layout = spec.layout;
+  plan.rgbFormat = spec.layout == DatasetLayout::Multilayer ? "exr" : spec.outputs.rgb;
+  const DatasetOutputs& o = spec.outputs;
+  const std::pair<OutputKind, bool> wanted[] = {{OutputKind::Depth, o.depth},         {OutputKind::Instance, o.instance},
+                                                {OutputKind::Semantic, o.semantic},   {OutputKind::Normal, o.normal},
+                                                {OutputKind::Landmarks, o.landmarks}, {OutputKind::Coco, o.coco}};
+  notWritten = json::object();
+  for (const auto& [kind, on] : wanted) {
+    if (!on) continue;
+    if (!needsAovs(kind) || engine.hasAovs()) {
+      plan.outputs.insert(kind);
+    } else {
+      notWritten[outputName(kind)] = kind == OutputKind::Coco
+          ? "the " + spec.engine + " engine renders RGB only (COCO annotations come from the instance AOV); render the same spec with engine fast"
+          : "the " + spec.engine + " engine renders RGB only; render the same spec with engine fast for AOVs";
+    }
+  }
+  if (!notWritten.empty()) {
+    std::string kinds;
+    for (auto it = notWritten.begin(); it != notWritten.end(); ++it) kinds += (kinds.empty() ? "" : ", ") + it.key();
+    notes.push_back("engine " + spec.engine + " writes RGB only: " + kinds + " not written (see manifest outputs.not_written)");
+  }
+  if (plan.wants(OutputKind::Coco))
+    plan.cocoClasses = cocoClassIds(idTables(scene), spec.outputs.cocoClasses, showPath(spec.file) + ": outputs.coco.classes");
+  if ((plan.wants(OutputKind::Instance) || plan.wants(OutputKind::Semantic) || plan.wants(OutputKind::Coco)) &&
+      scene.objects.size() > kMaxInstances)
+    throw InputError(showPath(spec.file) + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
+                     " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
+  return plan;
+}
+
+// Instance ids 1, 2, ... in scene order and class ids 1, 2, ... in name order; 0 = none.
+// The manifest's header (docs/dataset-format.md) but for its cameras.
+json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& engine, const FrameOutputPlan& plan,
+                    const json& notWritten, const IdTables& ids, int totalFrames, const DatasetRunOptions& options,
+                    const FrameRange& range) {
+  json header;
+  header["format"] = kManifestFormat;
+  header["spec"] = spec.json;
+  header["spec_file"] = spec.file;
+  header["spec_sha256"] = spec.sha256;
+  header["tool"] = {{"name", "omnicam"}, {"version", fastRendererVersion()}};
+  header["engine"] = {{"name", engine.name()}, {"version", engine.version()}, {"mode", engine.mode()},
+                      {"mode_options", engine.modeOptions()}};
+  header["scene"] = {{"path", scene.path}, {"name", scene.name}, {"sha256", scene.sha256}};
+  header["settings"] = {{"spp", spec.spp}, {"shading", shadingName(spec.shading)},
+                        {"frame_interval_s", spec.frameIntervalSeconds},
+                        {"aov_sampling", "point-sampled at pixel centres (i + 0.5, j + 0.5)"},
+                        {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
+                        {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
+  json written = json::array(), channels = json::object();
+  for (OutputKind kind : plan.outputList()) {
+    written.push_back(outputName(kind));
+    if (plan.layout == DatasetLayout::Multilayer && !isAnnotation(kind)) channels[outputName(kind)] = multilayerChannels(kind);
+  }
+  header["outputs"] = {{"layout", layoutName(plan.layout)}, {"written", written}, {"not_written", notWritten}};
+  if (plan.layout == DatasetLayout::Multilayer) header["outputs"]["channels"] = channels;
+  if (plan.wants(OutputKind::Coco)) {
+    header["outputs"]["coco_classes"] = plan.cocoClasses;
+    json landmarks = json::array();
+    for (const Landmark& l : scene.landmarks) landmarks.push_back(l.name);
+    header["outputs"]["coco_keypoints"] = landmarks;
+  }
+  header["classes"] = ids.classes;
+  header["instances"] = ids.instances;
+  header["frame_count"] = totalFrames;
+  if (range.sharded)
+    header["shard"] = {{"index", options.shardIndex}, {"count", options.shardCount}, {"first_frame", range.first},
+                       {"end_frame", range.end}};
+  header["complete"] = false;
+  return header;
+}
+
+// The header's cameras, each with its static files (intrinsics and poses) and their hashes; the
+// files themselves go to `statics`.
+json manifestCameras(const std::vector<CameraSetup>& setups, const std::vector<RobotPose>& poses, double interval,
+                     std::vector<StaticFile>& statics) {
+  json cameras = json::array();
+  for (const CameraSetup& setup : setups) {
+    json files = json::object();
+    for (StaticFile& file : staticFiles(setup, poses, interval)) {
+      files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
+      statics.push_back(std::move(file));
+    }
+    cameras.push_back({{"name", setup.camera->name},
+                       {"rig", rigToJson(setup.rig)},
+                       {"mount", {{"x", setup.camera->mountX}, {"y", setup.camera->mountY}, {"yaw_deg", setup.camera->mountYawDeg}}},
+                       {"intrinsics", setup.model->describe()},
+                       {"files", files}});
+  }
+  return cameras;
+}
+
+// The folders a run writes into: shards/ for a shard, and each camera's folder of every kind.
+std::vector<std::string> datasetFolders(const std::vector<CameraSetup>& setups, const FrameOutputPlan& plan, bool sharded) {
+  std::vector<std::string> folders;
+  if (sharded) folders.push_back("shards");
+  for (const CameraSetup& setup : setups) {
+    for (OutputKind kind : plan.fileKinds()) folders.push_back(setup.camera->name + "/" + outputName(kind));
+    folders.push_back(setup.camera->name + "/intrinsics");
+  }
+  return folders;
+}
+
+}  // namespace
+
+DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& options)
+    : spec(spec_), scene(loadScene(spec.scene, {spec.allowOutsideFiles})) {
+  setups = cameraSetups(spec, scene);
+  double topHeight = 0.0;
+  for (const CameraSetup& setup : setups) topHeight = std::max(topHeight, setup.rig.height);
+  poses = datasetPoses(spec, scene, topHeight);
+  for (const RobotPose& robot : poses)
+    for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
+  const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
+  engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
+  for (const CameraSetup& setup : setups) {
+    try {
+      engine->checkCamera(setup.rig);
+    } catch (const InputError& e) {
+      throw InputError(showPath(spec.file) + ": camera " + quote(setup.camera->name) + ": " + e.what());
+    }
+  }
+  const int totalFrames = static_cast<int>(poses.size());
+  range = frameRange(options, totalFrames);
+  json notWritten;
+  outputs = outputPlan(spec, *engine, scene, notWritten, notes);
+  ids = idTables(scene);
+  header = manifestHeader(spec, scene, *engine, outputs, notWritten, ids, totalFrames, options, range);
+  header["cameras"] = manifestCameras(setups, poses, spec.frameIntervalSeconds, statics);
+  checkManifestHeaderSize(header, spec.file);
+  folders = datasetFolders(setups, outputs, range.sharded);
+  if (outputs.wants(OutputKind::Landmarks) || (outputs.wants(OutputKind::Coco) && !scene.landmarks.empty()))
+    rays = std::make_unique<RayScene>(scene);
+}
+
+}  // namespace omnicam

@@ -1,0 +1,64 @@
+#pragma once
+// What one run of a dataset spec will write, decided before anything is written: the scene, the
+// cameras with their rigs and models, the robot poses, the engine, the frames of this run (all,
+// or a shard's), each frame's outputs and layout, the manifest's header, each camera's static
+// files (intrinsics, poses) and the folders. frame_scheduler.h renders it; dataset_runner.h
+// decides what the folder keeps.
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "dataset_options.h"
+#include "dataset_spec.h"
+#include "engines.h"
+#include "output_kinds.h"
+#include "ray_scene.h"
+#include "scene_ids.h"
+
+namespace omnicam {
+
+struct CameraSetup {
+  const DatasetCamera* camera;
+  RigSpec rig;
+  std::shared_ptr<const Camera> model;  // the rig's camera (make_camera.h), built once per run
+};
+
+// The frames [first, end) one run renders, listed in manifestName.
+struct FrameRange {
+  bool sharded = false;
+  int first = 0, end = 0;
+  std::string manifestName;
+};
+
+// A camera's file that stays the same from frame to frame (intrinsics, poses): its key in the
+// manifest, its path and its text.
+struct StaticFile {
+  std::string key, relative, text;
+};
+
+// Built in place and never moved: the engine and the landmark rays refer to the scene.
+class DatasetPlan {
+ public:
+  // InputError for a bad spec or scene, a pose or camera the engine refuses, or a bad shard.
+  DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& options);
+  DatasetPlan(const DatasetPlan&) = delete;
+  DatasetPlan& operator=(const DatasetPlan&) = delete;
+
+  const DatasetSpec& spec;
+  Scene scene;
+  std::vector<CameraSetup> setups;
+  std::vector<RobotPose> poses;  // every frame's robot pose (the whole dataset's)
+  std::unique_ptr<Engine> engine;
+  FrameRange range;
+  FrameOutputPlan outputs;
+  IdTables ids;
+  nlohmann::json header;            // the manifest's header (docs/dataset-format.md)
+  std::vector<StaticFile> statics;  // every camera's
+  std::vector<std::string> folders; // relative to the dataset folder, made before frames are written
+  std::vector<std::string> notes;   // for the user: outputs the engine does not write
+  std::unique_ptr<RayScene> rays;   // for landmark annotations, when the outputs have any
+};
+
+}  // namespace omnicam

@@ -1,0 +1,113 @@
+#include "frame_scheduler.h"
+
+#include <algorithm>
+#include <chrono>
+#include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
+
+#include "frame_outputs.h"
+#include "safe_files.h"
+#include "sha256.h"
+
+namespace omnicam {
+
+namespace {
+
+// The manifest is rewritten at most this often while frames complete (and always after the
+// first window of frames and at the end).
+constexpr double kManifestIntervalSeconds = 1.0;
+// Frames the fast engine renders at once: enough to keep every core busy between the serial
+// parts (writing, the manifest), few enough that a stop request is honoured quickly.
+constexpr int kConcurrentFrames = 8;
+
+// Inside a cancelled parallel_for (a neighbouring frame's write failed) the engine's and the
+// encoders' nested loops end early without an error, so what this frame holds may be
+// incomplete: nothing of it is written. The neighbour's error ends the run.
+void stopIfCancelled() {
+  if (tbb::is_current_task_group_canceling()) throw std::runtime_error("frame cancelled");
+}
+
+// Frame `index`: every camera's files, encoded in memory, hashed and written. `rgb[c]`, if not
+// null, holds camera c's image already rendered (a batching engine); `aovs` is reused memory.
+FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int index, std::vector<ImageRGBA*> rgb,
+                        AovFrame& aovs) {
+  const DatasetSpec& spec = plan.spec;
+  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], {}};
+  for (size_t c = 0; c < plan.setups.size(); ++c) {
+    const CameraSetup& setup = plan.setups[c];
+    const RenderSettings settings{setup.rig, spec.spp, spec.shading};
+    const RobotPose pose = cameraPose(*setup.camera, plan.poses[index]);
+    ImageRGBA image = rgb[c] ? std::move(*rgb[c])
+                      : plan.outputs.anyAov() ? plan.engine->render(pose, settings, aovs)
+                                              : plan.engine->render(pose, settings);
+    // Seeded by frame and camera: a resumed run records the same noise.
+    if (spec.recording) image = recordFrame(*spec.recording, image, static_cast<uint64_t>(index) * plan.setups.size() + c);
+    std::vector<EncodedFile> files = encodeFrameOutputs(plan.scene, plan.rays.get(), settings, setup.camera->name, index, pose, image,
+                                                        plan.outputs.anyAov() ? &aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
+    stopIfCancelled();
+    CameraFrame cameraFrame{pose, {}};
+    for (EncodedFile& file : files) {
+      writeFileInside(dir, file.relativePath, file.bytes, Durability::Unsynced);
+      cameraFrame.files[outputName(file.kind)] = {file.relativePath, sha256OfBytes(file.bytes)};
+    }
+    record.cameras[setup.camera->name] = std::move(cameraFrame);
+  }
+  return record;
+}
+
+// A batching engine's images of frames todo[start, end), per camera.
+std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const std::vector<int>& todo, size_t start, size_t end) {
+  std::vector<std::vector<ImageRGBA>> rgb(plan.setups.size());
+  for (size_t c = 0; c < plan.setups.size(); ++c) {
+    std::vector<RobotPose> batchPoses;
+    for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*plan.setups[c].camera, plan.poses[todo[k]]));
+    rgb[c] = plan.engine->renderMany(batchPoses, {plan.setups[c].rig, plan.spec.spp, plan.spec.shading});
+  }
+  return rgb;
+}
+
+}  // namespace
+
+int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, const std::vector<int>& todo,
+                 DatasetManifest& manifest, int done, int total) {
+  const Engine& engine = *plan.engine;
+  auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
+  // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
+  // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
+  const size_t batch = engine.batches() ? kFramesPerBatch : engine.concurrent() ? kConcurrentFrames : 1;
+  std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
+  auto lastManifest = std::chrono::steady_clock::now();
+  int rendered = 0;
+  for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
+    const size_t end = std::min(todo.size(), start + batch);
+    std::vector<std::vector<ImageRGBA>> rgb = engine.batches() ? renderBatch(plan, todo, start, end)
+                                                               : std::vector<std::vector<ImageRGBA>>(plan.setups.size());
+    std::vector<FrameRecord> records(end - start);
+    auto renderOne = [&](size_t k) {
+      std::vector<ImageRGBA*> given(plan.setups.size(), nullptr);
+      for (size_t c = 0; c < plan.setups.size(); ++c)
+        if (!rgb[c].empty()) given[c] = &rgb[c][k];
+      records[k] = renderFrame(plan, options.dir, todo[start + k], given, aovSlots[k]);
+    };
+    if (engine.concurrent()) {
+      tbb::parallel_for(size_t{0}, end - start, renderOne);
+    } else {
+      for (size_t k = 0; k < end - start; ++k) renderOne(k);
+    }
+    for (FrameRecord& record : records) {
+      manifest.frames[record.index] = std::move(record);
+      ++rendered;
+      if (options.onFrame) options.onFrame(done + rendered, total);
+    }
+    // The first finished window is listed at once, so that a run stopped early, however fast
+    // the machine, leaves frames to resume from and a --status that shows them.
+    const auto now = std::chrono::steady_clock::now();
+    if (start == 0 || std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
+      writeManifest(options.dir, manifest, plan.range.manifestName);
+      lastManifest = now;
+    }
+  }
+  return rendered;
+}
+
+}  // namespace omnicam

@@ -1,0 +1,118 @@
+#include "output_kinds.h"
+
+#include <cstdio>
+#include <regex>
+
+namespace omnicam {
+
+namespace {
+
+struct KindRow {
+  OutputKind kind;
+  const char* name;
+  bool aovs;        // from the engine's AOVs
+  bool annotation;  // JSON
+};
+
+// Frame order. The one table of output kinds.
+constexpr KindRow kKinds[] = {
+    {OutputKind::Rgb, "rgb", false, false},
+    {OutputKind::Depth, "depth", true, false},
+    {OutputKind::Instance, "instance", true, false},
+    {OutputKind::Semantic, "semantic", true, false},
+    {OutputKind::Normal, "normal", true, false},
+    {OutputKind::Landmarks, "landmarks", false, true},
+    {OutputKind::Coco, "coco", true, true},
+    {OutputKind::Multilayer, "multilayer", false, false},
+};
+
+const KindRow& row(OutputKind kind) {
+  for (const KindRow& r : kKinds)
+    if (r.kind == kind) return r;
+  return kKinds[0];
+}
+
+}  // namespace
+
+const char* outputName(OutputKind kind) { return row(kind).name; }
+
+std::optional<OutputKind> outputNamed(std::string_view name) {
+  for (const KindRow& r : kKinds)
+    if (name == r.name) return r.kind;
+  return std::nullopt;
+}
+
+const std::vector<OutputKind>& allOutputKinds() {
+  static const std::vector<OutputKind> kinds = [] {
+    std::vector<OutputKind> all;
+    for (const KindRow& r : kKinds) all.push_back(r.kind);
+    return all;
+  }();
+  return kinds;
+}
+
+bool needsAovs(OutputKind kind) { return row(kind).aovs; }
+bool isAnnotation(OutputKind kind) { return row(kind).annotation; }
+
+const char* layoutName(DatasetLayout layout) { return layout == DatasetLayout::Multilayer ? "multilayer" : "files"; }
+
+std::optional<DatasetLayout> layoutNamed(std::string_view name) {
+  if (name == "files") return DatasetLayout::Files;
+  if (name == "multilayer") return DatasetLayout::Multilayer;
+  return std::nullopt;
+}
+
+bool FrameOutputPlan::anyAov() const {
+  for (OutputKind kind : outputs)
+    if (needsAovs(kind)) return true;
+  return false;
+}
+
+std::vector<OutputKind> FrameOutputPlan::outputList() const { return {outputs.begin(), outputs.end()}; }
+
+std::vector<OutputKind> FrameOutputPlan::fileKinds() const {
+  if (layout == DatasetLayout::Multilayer) return {OutputKind::Multilayer};
+  return outputList();
+}
+
+std::vector<OutputKind> FrameOutputPlan::gatheredKinds() const {
+  std::vector<OutputKind> kinds;
+  for (OutputKind kind : outputs)
+    if (kind == OutputKind::Coco || (layout == DatasetLayout::Multilayer && isAnnotation(kind))) kinds.push_back(kind);
+  return kinds;
+}
+
+std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kind, int index) const {
+  const char* extension = isAnnotation(kind) ? "json"
+                          : kind == OutputKind::Rgb ? (rgbFormat == "exr" ? "exr" : "png")
+                          : kind == OutputKind::Instance || kind == OutputKind::Semantic ? "png"
+                                                                                         : "exr";
+  char name[32];
+  std::snprintf(name, sizeof name, "%06d.%s", index, extension);
+  return camera + "/" + outputName(kind) + "/" + name;
+}
+
+std::string gatheredPath(const std::string& camera, OutputKind kind) { return camera + "/" + outputName(kind) + ".json"; }
+
+std::vector<std::string> cameraFolderNames() {
+  std::vector<std::string> names;
+  for (const KindRow& r : kKinds) names.push_back(r.name);
+  names.push_back("intrinsics");
+  return names;
+}
+
+bool isLayoutFile(const std::string& relative, const std::set<std::string>& cameras) {
+  static const std::regex layout = [] {
+    std::string kinds, annotations;
+    for (const KindRow& r : kKinds) {
+      kinds += (kinds.empty() ? "" : "|") + std::string(r.name);
+      if (r.annotation) annotations += (annotations.empty() ? "" : "|") + std::string(r.name);
+    }
+    return std::regex("([^/]+)/((" + kinds + R"()/\d{6}\.(png|exr|json)|()" + annotations +
+                      R"()\.json|intrinsics/((opencv|kalibr|camodocal)\.yaml|rays\.exr)|poses\.tum))");
+  }();
+  std::smatch m;
+  return std::regex_match(relative, m, layout) && cameras.count(m[1].str());
+}
+
+}  // namespace omnicam

@@ -1,0 +1,64 @@
+#pragma once
+// The outputs a dataset frame can have, and the two layouts that store them
+// (docs/dataset-format.md): every place that names, files, checks or decodes an output asks
+// here, so a new output is one new row of the table in output_kinds.cpp.
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace omnicam {
+
+// What one camera's frame records. Multilayer is that layout's one file per frame holding the others.
+enum class OutputKind { Rgb, Depth, Instance, Semantic, Normal, Landmarks, Coco, Multilayer };
+
+// files: one file per output and frame (<camera>/<kind>/NNNNNN.<ext>); multilayer: one OpenEXR per
+// frame holding colour and every AOV as named channels, its annotations in the file's header and
+// gathered into one file per camera (<camera>/<kind>.json) when the dataset is complete.
+enum class DatasetLayout { Files, Multilayer };
+
+// The kind's name: the manifest's key for its files and the folder they are in.
+const char* outputName(OutputKind kind);
+std::optional<OutputKind> outputNamed(std::string_view name);
+// Every kind, in the order frames list them.
+const std::vector<OutputKind>& allOutputKinds();
+// Rendered by the engine beside the colour (its AOVs), or derived from them.
+bool needsAovs(OutputKind kind);
+// Annotations (JSON): in the multilayer layout, gathered per camera instead of stored per frame.
+bool isAnnotation(OutputKind kind);
+
+const char* layoutName(DatasetLayout layout);
+std::optional<DatasetLayout> layoutNamed(std::string_view name);
+
+// What each camera's frames record, and how.
+struct FrameOutputPlan {
+  DatasetLayout layout = DatasetLayout::Files;
+  std::string rgbFormat = "png";      // the files layout's colour file: "png" or "exr"
+  std::set<OutputKind> outputs{OutputKind::Rgb};  // never Multilayer
+  std::set<uint16_t> cocoClasses;     // class ids the COCO annotations cover
+
+  bool wants(OutputKind kind) const { return outputs.count(kind) > 0; }
+  bool anyAov() const;
+  // The outputs, in frame order.
+  std::vector<OutputKind> outputList() const;
+  // The files each camera's frame has: each output (files), or Multilayer.
+  std::vector<OutputKind> fileKinds() const;
+  // The annotation files gathered per camera once the dataset is complete: coco (both layouts),
+  // landmarks (multilayer).
+  std::vector<OutputKind> gatheredKinds() const;
+  // "<camera>/<kind>/NNNNNN.<ext>": frame `index`'s file of `kind` (one of fileKinds()).
+  std::string framePath(const std::string& camera, OutputKind kind, int index) const;
+};
+
+// "<camera>/<kind>.json": a camera's gathered annotation file.
+std::string gatheredPath(const std::string& camera, OutputKind kind);
+
+// The folders a camera may have: one per kind of frame file, and "intrinsics".
+std::vector<std::string> cameraFolderNames();
+
+// Whether `relative` is a file some plan's dataset layout has for one of `cameras` (frame files,
+// gathered annotations, intrinsics and poses): all that replacing a dataset may remove.
+bool isLayoutFile(const std::string& relative, const std::set<std::string>& cameras);
+
+}  // namespace omnicam
