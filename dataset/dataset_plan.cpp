@@ -95,13 +95,8 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
   FrameOutputPlan plan;
   plan.layout = spec.layout;
   plan.rgbFormat = spec.layout == DatasetLayout::Multilayer ? "exr" : spec.outputs.rgb;
-  const DatasetOutputs& o = spec.outputs;
-  const std::pair<OutputKind, bool> wanted[] = {{OutputKind::Depth, o.depth},         {OutputKind::Instance, o.instance},
-                                                {OutputKind::Semantic, o.semantic},   {OutputKind::Normal, o.normal},
-                                                {OutputKind::Landmarks, o.landmarks}, {OutputKind::Coco, o.coco}};
   notWritten = json::object();
-  for (const auto& [kind, on] : wanted) {
-    if (!on) continue;
+  for (OutputKind kind : spec.outputs.wanted) {
     if (!needsAovs(kind) || engine.hasAovs()) {
       plan.outputs.insert(kind);
     } else {

@@ -150,28 +150,27 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
     o.fail("rgb", "the multilayer layout keeps the colour in each frame's OpenEXR (half, linear); leave rgb out");
   out.rgb = o.string("rgb", out.rgb);
   if (out.rgb != "png" && out.rgb != "exr") o.fail("rgb", "must be \"png\" or \"exr\"");
-  out.depth = o.boolean("depth", out.depth);
-  out.instance = o.boolean("instance", out.instance);
-  out.semantic = o.boolean("semantic", out.semantic);
-  out.normal = o.boolean("normal", out.normal);
-  out.landmarks = o.boolean("landmarks", out.landmarks);
-  if (o.has("coco")) {
-    if (o.raw("coco").is_object()) {
-      auto coco = o.optionalObject("coco");
-      out.coco = true;
+  for (OutputKind kind : switchableOutputs()) {
+    const std::string name = outputName(kind);
+    bool on = out.wanted.count(kind) > 0;
+    if (kind == OutputKind::Coco && o.has(name) && o.raw(name).is_object()) {
+      auto coco = o.optionalObject(name);
+      on = true;
       const nlohmann::json& names = coco->raw("classes");
       if (!names.is_array() || names.empty() || names.size() > 1000)
         coco->fail("classes", "must be a list of 1 to 1000 class names");
       std::vector<std::string> classes;
-      for (const auto& name : names) {
-        if (!name.is_string()) coco->fail("classes", "must be a list of class names (strings)");
-        classes.push_back(name.get<std::string>());
+      for (const auto& className : names) {
+        if (!className.is_string()) coco->fail("classes", "must be a list of class names (strings)");
+        classes.push_back(className.get<std::string>());
       }
       out.cocoClasses = classes;
       coco->finish();
     } else {
-      out.coco = o.boolean("coco", false);
+      on = o.boolean(name, on);
     }
+    if (on) out.wanted.insert(kind);
+    else out.wanted.erase(kind);
   }
   o.finish();
 }

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,10 +53,10 @@ struct RandomPoses {
 
 struct DatasetOutputs {
   std::string rgb = "png";  // "png" or "exr" (files layout; multilayer: colour is in the frame EXR)
-  bool depth = true, instance = true, semantic = true, normal = true, landmarks = true;
-  // COCO instances annotations, one file per camera (docs/dataset-format.md): `true`, or
-  // {"classes": [names]} (default: every class but floor, wall, ceiling and line).
-  bool coco = false;
+  // Besides the colour (output_kinds.h: each by its name, a boolean). COCO instances
+  // annotations, one file per camera (docs/dataset-format.md): `true`, or {"classes": [names]}
+  // (default: every class but floor, wall, ceiling and line).
+  std::set<OutputKind> wanted = defaultOutputs();
   std::optional<std::vector<std::string>> cocoClasses;
 };
 

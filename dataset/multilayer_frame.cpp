@@ -21,8 +21,11 @@ const std::vector<std::string>& multilayerChannels(OutputKind kind) {
     case OutputKind::Normal: return normal;
     case OutputKind::Instance: return instance;
     case OutputKind::Semantic: return semantic;
-    default: return none;
+    case OutputKind::Landmarks:
+    case OutputKind::Coco:
+    case OutputKind::Multilayer: return none;  // in the header, or the file itself
   }
+  return none;
 }
 
 std::string multilayerAttribute(OutputKind kind) { return std::string("omnicam:") + outputName(kind); }

@@ -7,23 +7,27 @@ namespace omnicam {
 
 namespace {
 
+// Whether a spec's `outputs` switches the kind on and off, and its default there.
+enum class InSpec { Always, On, Off, Never };
+
 struct KindRow {
   OutputKind kind;
   const char* name;
   bool aovs;        // from the engine's AOVs
   bool annotation;  // JSON
+  InSpec spec;
 };
 
 // Frame order. The one table of output kinds.
 constexpr KindRow kKinds[] = {
-    {OutputKind::Rgb, "rgb", false, false},
-    {OutputKind::Depth, "depth", true, false},
-    {OutputKind::Instance, "instance", true, false},
-    {OutputKind::Semantic, "semantic", true, false},
-    {OutputKind::Normal, "normal", true, false},
-    {OutputKind::Landmarks, "landmarks", false, true},
-    {OutputKind::Coco, "coco", true, true},
-    {OutputKind::Multilayer, "multilayer", false, false},
+    {OutputKind::Rgb, "rgb", false, false, InSpec::Always},
+    {OutputKind::Depth, "depth", true, false, InSpec::On},
+    {OutputKind::Instance, "instance", true, false, InSpec::On},
+    {OutputKind::Semantic, "semantic", true, false, InSpec::On},
+    {OutputKind::Normal, "normal", true, false, InSpec::On},
+    {OutputKind::Landmarks, "landmarks", false, true, InSpec::On},
+    {OutputKind::Coco, "coco", true, true, InSpec::Off},
+    {OutputKind::Multilayer, "multilayer", false, false, InSpec::Never},
 };
 
 const KindRow& row(OutputKind kind) {
@@ -52,6 +56,20 @@ const std::vector<OutputKind>& allOutputKinds() {
 }
 
 bool needsAovs(OutputKind kind) { return row(kind).aovs; }
+
+std::vector<OutputKind> switchableOutputs() {
+  std::vector<OutputKind> kinds;
+  for (const KindRow& r : kKinds)
+    if (r.spec == InSpec::On || r.spec == InSpec::Off) kinds.push_back(r.kind);
+  return kinds;
+}
+
+std::set<OutputKind> defaultOutputs() {
+  std::set<OutputKind> kinds;
+  for (const KindRow& r : kKinds)
+    if (r.spec == InSpec::On) kinds.insert(r.kind);
+  return kinds;
+}
 bool isAnnotation(OutputKind kind) { return row(kind).annotation; }
 
 const char* layoutName(DatasetLayout layout) { return layout == DatasetLayout::Multilayer ? "multilayer" : "files"; }

@@ -27,6 +27,10 @@ const std::vector<OutputKind>& allOutputKinds();
 bool needsAovs(OutputKind kind);
 // Annotations (JSON): in the multilayer layout, gathered per camera instead of stored per frame.
 bool isAnnotation(OutputKind kind);
+// The outputs a spec switches on or off by name (`"depth": true`; colour is always written), and
+// those on unless switched off.
+std::vector<OutputKind> switchableOutputs();
+std::set<OutputKind> defaultOutputs();
 
 const char* layoutName(DatasetLayout layout);
 std::optional<DatasetLayout> layoutNamed(std::string_view name);

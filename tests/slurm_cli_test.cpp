@@ -97,6 +97,26 @@ TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOn
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(frameHashes(out), frameHashes(dir_ / "local"));
   EXPECT_EQ(frameHashes(out).size(), 48u);
+
+  // The multilayer layout through the same array and merge: the one-go dataset's frame files and
+  // its annotations gathered per camera by the merge job.
+  const fs::path layered = dir_ / "layered.json";
+  std::ofstream(layered) << R"({"format": "omnicam-dataset/1", "scene": ")" << OMNICAM_SOURCE_DIR
+                         << R"(/scenes/robocup2006.json", "size": 64, "layout": "multilayer",
+                           "poses": {"path": "thesis-loop", "frames": 6}, "outputs": {"coco": true}})";
+  r = cluster.shell(std::string(OMNICAM_BINARY) + " dataset " + layered.string() + " -o " + (dir_ / "layered").string() +
+                    " --backend slurm --shards 2 --slurm-args \"--job-name=omnicam-test --cpus-per-task=1\" 2>&1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  ASSERT_TRUE(std::regex_search(r.out, ids, std::regex(R"(array job (\d+) \(shards 0-1 of 2\) and merge job (\d+))"))) << r.out;
+  ASSERT_TRUE(cluster.waitUntilDone({ids[1], ids[2]}, 300.0)) << cluster.logs();
+  r = testing::runShell(std::string(OMNICAM_BINARY) + " dataset " + layered.string() + " -o " + (dir_ / "layered-local").string() + " 2>&1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(frameHashes(dir_ / "layered"), frameHashes(dir_ / "layered-local"));
+  EXPECT_EQ(frameHashes(dir_ / "layered").size(), 6u);
+  for (const char* gathered : {"cam0/coco.json", "cam0/landmarks.json"})
+    EXPECT_EQ(readFile(dir_ / "layered" / gathered), readFile(dir_ / "layered-local" / gathered)) << gathered;
+  r = testing::runShell(std::string(OMNICAM_BINARY) + " dataset --verify " + (dir_ / "layered").string() + " 2>&1");
+  EXPECT_EQ(r.code, 0) << r.out;
 }
 
 }  // namespace

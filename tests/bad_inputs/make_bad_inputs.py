@@ -263,6 +263,8 @@ def main():
     dataset_spec("recording_jpeg", recording={"jpeg_quality": 150})
     dataset_spec("coco_unknown_class", outputs={"coco": {"classes": ["victim"]}})
     dataset_spec("coco_classes_text", outputs={"coco": {"classes": "victim"}})
+    dataset_spec("layout_unknown", layout="layers")
+    dataset_spec("multilayer_png", layout="multilayer", outputs={"rgb": "png"})
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
     random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}
