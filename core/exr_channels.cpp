@@ -8,13 +8,16 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/openexr.h>
 
+#include <algorithm>
 #include <cstring>
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
 
 #include "errors.h"
+#include "exr_chunks.h"
 #include "input_limits.h"
 
 namespace omnicam {
@@ -24,20 +27,10 @@ namespace {
 // Channels a decoded file may have: far more than a dataset frame's dozen.
 constexpr size_t kMaxExrChannels = 64;
 
-class MemoryExrOutput : public Imf::OStream {
- public:
-  explicit MemoryExrOutput(std::vector<unsigned char>& bytes) : Imf::OStream("memory.exr"), bytes_(bytes) {}
-  void write(const char c[], int n) override {
-    if (position_ + static_cast<uint64_t>(n) > bytes_.size()) bytes_.resize(position_ + n);
-    std::memcpy(bytes_.data() + position_, c, static_cast<size_t>(n));
-    position_ += static_cast<uint64_t>(n);
-  }
-  uint64_t tellp() override { return position_; }
-  void seekp(uint64_t pos) override { position_ = pos; }
-
- private:
-  std::vector<unsigned char>& bytes_;
-  uint64_t position_ = 0;
+// An OpenEXR file written into memory by the core API, and its last message.
+struct MemoryExrFile {
+  std::vector<unsigned char> bytes;
+  std::string message;
 };
 
 class MemoryExrInput : public Imf::IStream {
@@ -61,82 +54,154 @@ class MemoryExrInput : public Imf::IStream {
 // F16C instruction where it has one (the same rounding as Imath's software conversion, which
 // costs as much as the compression of the rest).
 #if defined(__x86_64__)
-__attribute__((target("f16c"))) void toHalvesF16c(const float* values, size_t stride, size_t n, Imath::half* out) {
-  for (size_t p = 0; p < n; ++p)
-    out[p].setBits(_cvtss_sh(values[p * stride], _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+__attribute__((target("avx,f16c"))) void toHalvesF16c(const float* values, size_t stride, size_t n, Imath::half* out) {
+  size_t p = 0;
+  for (; p + 8 <= n; p += 8) {
+    const float* v = values + p * stride;
+    const __m256 eight = stride == 1 ? _mm256_loadu_ps(v)
+                                     : _mm256_setr_ps(v[0], v[stride], v[2 * stride], v[3 * stride], v[4 * stride],
+                                                      v[5 * stride], v[6 * stride], v[7 * stride]);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + p), _mm256_cvtps_ph(eight, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+  }
+  for (; p < n; ++p) out[p].setBits(_cvtss_sh(values[p * stride], _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
 }
 #endif
 
 void toHalves(const float* values, size_t stride, size_t n, Imath::half* out) {
 #if defined(__x86_64__)
-  static const bool f16c = __builtin_cpu_supports("f16c");
+  static const bool f16c = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
   if (f16c) return toHalvesF16c(values, stride, n, out);
 #endif
   for (size_t p = 0; p < n; ++p) out[p] = Imath::half(values[p * stride]);
 }
 
-Imf::PixelType pixelType(ExrSampleType type) {
-  switch (type) {
-    case ExrSampleType::Half: return Imf::HALF;
-    case ExrSampleType::Float: return Imf::FLOAT;
-    case ExrSampleType::Uint: return Imf::UINT;
-  }
-  return Imf::FLOAT;
+}  // namespace
+
+namespace {
+
+// The core API's messages, collected for the one line an error becomes.
+void keepMessage(exr_const_context_t ctxt, exr_result_t, const char* message) {
+  void* user = nullptr;
+  if (exr_get_user_data(ctxt, &user) == EXR_ERR_SUCCESS && user)
+    static_cast<MemoryExrFile*>(user)->message = message ? message : "";
 }
 
-Imf::Compression compressionOf(ExrCompression compression) {
+int64_t writeToMemory(exr_const_context_t, void* user, const void* buffer, uint64_t size, uint64_t offset,
+                      exr_stream_error_func_ptr_t) {
+  std::vector<unsigned char>& bytes = static_cast<MemoryExrFile*>(user)->bytes;
+  if (offset + size > bytes.size()) bytes.resize(offset + size);
+  std::memcpy(bytes.data() + offset, buffer, size);
+  return static_cast<int64_t>(size);
+}
+
+void check(exr_result_t result, const MemoryExrFile& file, const char* step) {
+  if (result != EXR_ERR_SUCCESS)
+    throw std::runtime_error(std::string(step) + ": " + (file.message.empty() ? exr_get_default_error_message(result) : file.message));
+}
+
+struct ChunkFormat {
+  exr_compression_t file;
+  ExrChunkCompression chunk;
+  int lines;  // scanlines per chunk
+};
+
+ChunkFormat chunkFormat(ExrCompression compression) {
   switch (compression) {
-    case ExrCompression::None: return Imf::NO_COMPRESSION;
-    case ExrCompression::Rle: return Imf::RLE_COMPRESSION;
-    case ExrCompression::Zips: return Imf::ZIPS_COMPRESSION;
-    case ExrCompression::Zip: return Imf::ZIP_COMPRESSION;
-    case ExrCompression::Piz: return Imf::PIZ_COMPRESSION;
+    case ExrCompression::None: return {EXR_COMPRESSION_NONE, ExrChunkCompression::None, 1};
+    case ExrCompression::Rle: return {EXR_COMPRESSION_RLE, ExrChunkCompression::Rle, 1};
+    case ExrCompression::Zips: return {EXR_COMPRESSION_ZIPS, ExrChunkCompression::Zip, 1};
+    case ExrCompression::Zip: return {EXR_COMPRESSION_ZIP, ExrChunkCompression::Zip, 16};
   }
-  return Imf::ZIP_COMPRESSION;
+  return {EXR_COMPRESSION_ZIP, ExrChunkCompression::Zip, 16};
+}
+
+// One channel's values as the file stores them: half planes converted here, float and uint
+// values read in place (4 bytes each, little-endian like the file).
+struct PackedChannel {
+  const ExrChannelSource* source;
+  std::vector<Imath::half> halves;
+  size_t bytes() const { return source->stored == ExrSampleType::Half ? 2 : 4; }
+};
+
+// Scanlines [y0, y1) of every channel, in the file's order: line by line, channel by channel.
+void packLines(const std::vector<PackedChannel>& channels, int width, int y0, int y1, std::vector<unsigned char>& packed) {
+  packed.clear();
+  for (int y = y0; y < y1; ++y) {
+    const size_t row = static_cast<size_t>(y) * width;
+    for (const PackedChannel& c : channels) {
+      const size_t at = packed.size();
+      packed.resize(at + c.bytes() * width);
+      unsigned char* out = packed.data() + at;
+      const ExrChannelSource& s = *c.source;
+      if (s.stored == ExrSampleType::Half) {
+        std::memcpy(out, c.halves.data() + row, 2 * static_cast<size_t>(width));
+      } else if (s.pixelStride == 1) {
+        std::memcpy(out, s.stored == ExrSampleType::Uint ? static_cast<const void*>(s.uints + row) : s.floats + row,
+                    4 * static_cast<size_t>(width));
+      } else {
+        for (int x = 0; x < width; ++x) {
+          const size_t p = (row + x) * s.pixelStride;
+          std::memcpy(out + 4 * static_cast<size_t>(x),
+                      s.stored == ExrSampleType::Uint ? static_cast<const void*>(s.uints + p) : s.floats + p, 4);
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
 
 std::vector<unsigned char> encodeExrChannels(const std::string& path, int width, int height,
                                              const std::vector<ExrChannelSource>& channels, const ExrWriteOptions& options) {
-  std::vector<unsigned char> bytes;
-  try {
-    Imf::Header header(width, height);
-    header.compression() = compressionOf(options.compression);
-    header.zipCompressionLevel() = options.zipLevel;
-    for (const auto& [key, value] : options.text) header.insert(key, Imf::StringAttribute(value));
-    // OpenEXR writes each channel from a buffer of its stored type: half channels are converted
-    // here (planar), float and uint ones are read in place.
-    std::vector<std::vector<Imath::half>> halves;
-    halves.reserve(channels.size());
-    Imf::FrameBuffer frameBuffer;
-    const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-    for (const ExrChannelSource& channel : channels) {
-      header.channels().insert(channel.name, Imf::Channel(pixelType(channel.stored)));
-      const bool uint = channel.stored == ExrSampleType::Uint;
-      if (uint ? !channel.uints : !channel.floats) throw std::logic_error("encodeExrChannels: " + channel.name + " has no values");
-      if (channel.stored == ExrSampleType::Half) {
-        std::vector<Imath::half>& plane = halves.emplace_back(pixels);
-        toHalves(channel.floats, channel.pixelStride, pixels, plane.data());
-        frameBuffer.insert(channel.name, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(plane.data()), sizeof(Imath::half),
-                                                    sizeof(Imath::half) * static_cast<size_t>(width)));
-        continue;
-      }
-      const size_t stride = 4 * channel.pixelStride;  // float and uint32 alike
-      char* base = uint ? reinterpret_cast<char*>(const_cast<uint32_t*>(channel.uints))
-                        : reinterpret_cast<char*>(const_cast<float*>(channel.floats));
-      frameBuffer.insert(channel.name, Imf::Slice(pixelType(channel.stored), base, stride, stride * static_cast<size_t>(width)));
+  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "OpenEXR files are little-endian, like this machine's memory");
+  const ChunkFormat format = chunkFormat(options.compression);
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  // The file orders channels by name (byte order); each is converted once.
+  std::vector<PackedChannel> packedChannels;
+  for (const ExrChannelSource& channel : channels) {
+    if (channel.stored == ExrSampleType::Uint ? !channel.uints : !channel.floats)
+      throw std::logic_error("encodeExrChannels: " + channel.name + " has no values");
+    PackedChannel& c = packedChannels.emplace_back(PackedChannel{&channel, {}});
+    if (channel.stored == ExrSampleType::Half) {
+      c.halves.resize(pixels);
+      toHalves(channel.floats, channel.pixelStride, pixels, c.halves.data());
     }
-    MemoryExrOutput stream(bytes);
-    Imf::OutputFile file(stream, header, 0);
-    file.setFrameBuffer(frameBuffer);
-    file.writePixels(height);
-  } catch (const std::logic_error&) {
-    throw;
+  }
+  std::sort(packedChannels.begin(), packedChannels.end(),
+            [](const PackedChannel& a, const PackedChannel& b) { return a.source->name < b.source->name; });
+
+  MemoryExrFile file;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.user_data = &file;
+  init.write_fn = &writeToMemory;
+  init.error_handler_fn = &keepMessage;
+  exr_context_t context = nullptr;
+  try {
+    check(exr_start_write(&context, path.c_str(), EXR_WRITE_FILE_DIRECTLY, &init), file, "start");
+    int part = 0;
+    check(exr_add_part(context, nullptr, EXR_STORAGE_SCANLINE, &part), file, "part");
+    check(exr_initialize_required_attr_simple(context, part, width, height, format.file), file, "header");
+    for (const PackedChannel& c : packedChannels) {
+      const exr_pixel_type_t type = c.source->stored == ExrSampleType::Half    ? EXR_PIXEL_HALF
+                                    : c.source->stored == ExrSampleType::Float ? EXR_PIXEL_FLOAT
+                                                                               : EXR_PIXEL_UINT;
+      check(exr_add_channel(context, part, c.source->name.c_str(), type, EXR_PERCEPTUALLY_LINEAR, 1, 1), file, "channel");
+    }
+    for (const auto& [key, value] : options.text) check(exr_attr_set_string(context, part, key.c_str(), value.c_str()), file, "attribute");
+    check(exr_write_header(context), file, "header");
+    std::vector<unsigned char> packed, scratch, compressed;
+    for (int y = 0; y < height; y += format.lines) {
+      packLines(packedChannels, width, y, std::min(height, y + format.lines), packed);
+      const bool smaller = compressExrChunk(format.chunk, packed.data(), packed.size(), options.zipLevel, scratch, compressed);
+      const std::vector<unsigned char>& chunk = smaller ? compressed : packed;
+      check(exr_write_scanline_chunk(context, part, y, chunk.data(), chunk.size()), file, "chunk");
+    }
+    check(exr_finish(&context), file, "finish");
   } catch (const std::exception& e) {
+    if (context) exr_finish(&context);
     throw OutputError(showPath(path) + ": cannot encode EXR (" + oneLine(e.what()) + ")");
   }
-  return bytes;
+  return std::move(file.bytes);
 }
 
 ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly) {

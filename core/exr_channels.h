@@ -2,8 +2,8 @@
 // OpenEXR images in memory whose channels each keep their own sample type (half, float32, uint32)
 // and whose header carries text attributes: what one dataset frame's colour and AOVs need in
 // one file (docs/dataset-format.md, "multilayer"), and what the single-purpose data EXRs are.
-// Written and read with OpenEXR directly, on the calling thread (frames are encoded in parallel
-// already).
+// Written with OpenEXR's core API and compressed here (exr_chunks.h), read with OpenEXR's C++
+// API, on the calling thread (frames are encoded in parallel already).
 #include <cstdint>
 #include <map>
 #include <string>
@@ -13,7 +13,7 @@
 namespace omnicam {
 
 enum class ExrSampleType { Half, Float, Uint };
-enum class ExrCompression { None, Rle, Zips, Zip, Piz };
+enum class ExrCompression { None, Rle, Zips, Zip };
 
 // One channel to write, read in place: value of pixel p at base[p · pixelStride] (floats, stored
 // as half or float32) or uints[p · pixelStride] (stored as uint32).

@@ -94,6 +94,7 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
                            std::vector<std::string>& notes) {
   FrameOutputPlan plan;
   plan.layout = spec.layout;
+  plan.compression = spec.multilayerCompression;
   plan.rgbFormat = spec.layout == DatasetLayout::Multilayer ? "exr" : spec.outputs.rgb;
   notWritten = json::object();
   for (OutputKind kind : spec.outputs.wanted) {
@@ -144,7 +145,10 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
     if (plan.layout == DatasetLayout::Multilayer && !isAnnotation(kind)) channels[outputName(kind)] = multilayerChannels(kind);
   }
   header["outputs"] = {{"layout", layoutName(plan.layout)}, {"written", written}, {"not_written", notWritten}};
-  if (plan.layout == DatasetLayout::Multilayer) header["outputs"]["channels"] = channels;
+  if (plan.layout == DatasetLayout::Multilayer) {
+    header["outputs"]["channels"] = channels;
+    header["outputs"]["compression"] = compressionName(plan.compression);
+  }
   if (plan.wants(OutputKind::Coco)) {
     header["outputs"]["coco_classes"] = plan.cocoClasses;
     json landmarks = json::array();

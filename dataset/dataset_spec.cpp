@@ -257,6 +257,12 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   const auto layout = layoutNamed(top.string("layout", layoutName(spec.layout)));
   if (!layout) top.fail("layout", "must be \"files\" or \"multilayer\"");
   spec.layout = *layout;
+  if (top.has("multilayer_compression")) {
+    if (spec.layout != DatasetLayout::Multilayer) top.fail("multilayer_compression", "only with \"layout\": \"multilayer\"");
+    const auto compression = compressionNamed(top.string("multilayer_compression"));
+    if (!compression) top.fail("multilayer_compression", "must be \"rle\" or \"zip\"");
+    spec.multilayerCompression = *compression;
+  }
   if (auto outputs = top.optionalObject("outputs")) readOutputs(*outputs, spec);
   if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
   top.finish();

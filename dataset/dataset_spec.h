@@ -87,6 +87,9 @@ struct DatasetSpec {
   // files: one file per output and frame; multilayer: one OpenEXR per frame and camera
   // (output_kinds.h).
   DatasetLayout layout = DatasetLayout::Files;
+  // multilayer only: "rle" (fast, larger) or "zip" (deflate level 1: half the size, slower);
+  // docs/performance.md, "Datasets".
+  FrameCompression multilayerCompression = FrameCompression::Rle;
   DatasetOutputs outputs;
   // What a real camera would record (recording_camera.h), applied to every RGB frame; none: the
   // renderer's image as it is.

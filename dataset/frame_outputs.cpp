@@ -26,6 +26,7 @@ struct FrameToEncode {
   const AovFrame* aov;
   const FrameOutputPlan& plan;
   const std::vector<uint16_t>& classOfInstance;
+  const std::vector<LandmarkAnnotation>& landmarks;  // for either annotation, found once
 };
 
 // An annotation's JSON text: the same document in both layouts, a file indented for reading
@@ -33,7 +34,7 @@ struct FrameToEncode {
 std::string annotationText(const FrameToEncode& f, OutputKind kind) {
   const bool indented = f.plan.layout == DatasetLayout::Files;
   if (kind == OutputKind::Landmarks) {
-    nlohmann::json doc = landmarksToJson(annotateLandmarks(f.scene, *f.rays, f.settings.rig, f.pose));
+    nlohmann::json doc = landmarksToJson(f.landmarks);
     doc["frame"] = f.index;
     doc["camera"] = f.camera;
     return doc.dump(indented ? 1 : -1) + "\n";
@@ -43,7 +44,7 @@ std::string annotationText(const FrameToEncode& f, OutputKind kind) {
                         {"annotations", cocoInstanceAnnotations(aov.instance, aov.width, aov.height, f.classOfInstance,
                                                                 f.plan.cocoClasses)}};
   if (!f.scene.landmarks.empty())
-    doc["landmarks"] = cocoLandmarkKeypoints(annotateLandmarks(f.scene, *f.rays, f.settings.rig, f.pose), aov.width, aov.height);
+    doc["landmarks"] = cocoLandmarkKeypoints(f.landmarks, aov.width, aov.height);
   return doc.dump() + "\n";
 }
 
@@ -73,7 +74,7 @@ std::string encodeMultilayerFile(const FrameToEncode& f, const std::string& path
   std::map<OutputKind, std::string> annotations;
   for (OutputKind kind : f.plan.outputs)
     if (isAnnotation(kind)) annotations[kind] = annotationText(f, kind);
-  return asString(encodeMultilayerFrame(path, f.rgb, f.aov, f.plan.outputs, f.classOfInstance, annotations));
+  return asString(encodeMultilayerFrame(path, f.rgb, f.aov, f.plan.outputs, f.classOfInstance, annotations, f.plan.compression));
 }
 
 }  // namespace
@@ -83,7 +84,10 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
                                             const ImageRGBA& rgb, const AovFrame* aov, const FrameOutputPlan& plan,
                                             const std::vector<uint16_t>& classOfInstance) {
   if (plan.anyAov() && !aov) throw std::logic_error("encodeFrameOutputs: AOVs asked for but not rendered");
-  const FrameToEncode frame{scene, rays, settings, camera, index, pose, rgb, aov, plan, classOfInstance};
+  const bool landmarksUsed = plan.wants(OutputKind::Landmarks) || (plan.wants(OutputKind::Coco) && !scene.landmarks.empty());
+  const std::vector<LandmarkAnnotation> landmarks =
+      landmarksUsed ? annotateLandmarks(scene, *rays, settings.rig, pose) : std::vector<LandmarkAnnotation>{};
+  const FrameToEncode frame{scene, rays, settings, camera, index, pose, rgb, aov, plan, classOfInstance, landmarks};
   std::vector<EncodedFile> files;
   for (OutputKind kind : plan.fileKinds()) files.push_back({kind, plan.framePath(camera, kind, index), {}});
   // Each file is encoded on its own task: PNG and EXR compression dominate at 1 spp.

@@ -4,14 +4,6 @@
 
 namespace omnicam {
 
-namespace {
-
-// Deflate at level 1 over 16 scanlines: the smallest files per encoding second of the
-// compressions measured (docs/performance.md, "Datasets").
-constexpr ExrCompression kCompression = ExrCompression::Zip;
-
-}  // namespace
-
 const std::vector<std::string>& multilayerChannels(OutputKind kind) {
   static const std::vector<std::string> rgb{"R", "G", "B", "A"}, depth{"depth.Z"}, normal{"normal.X", "normal.Y", "normal.Z"},
       instance{"instance.I"}, semantic{"semantic.I"}, none;
@@ -33,7 +25,8 @@ std::string multilayerAttribute(OutputKind kind) { return std::string("omnicam:"
 std::vector<unsigned char> encodeMultilayerFrame(const std::string& path, const ImageRGBA& rgb, const AovFrame* aovs,
                                                  const std::set<OutputKind>& outputs,
                                                  const std::vector<uint16_t>& classOfInstance,
-                                                 const std::map<OutputKind, std::string>& annotations) {
+                                                 const std::map<OutputKind, std::string>& annotations,
+                                                 FrameCompression compression) {
   std::vector<ExrChannelSource> channels;
   auto add = [&](OutputKind kind, ExrSampleType type, const float* values) {
     const std::vector<std::string>& names = multilayerChannels(kind);
@@ -57,7 +50,8 @@ std::vector<unsigned char> encodeMultilayerFrame(const std::string& path, const 
     }
   }
   ExrWriteOptions options;
-  options.compression = kCompression;
+  // RLE: one scanline per chunk; zip: deflate level 1 over 16 scanlines.
+  options.compression = compression == FrameCompression::Zip ? ExrCompression::Zip : ExrCompression::Rle;
   for (const auto& [kind, text] : annotations) options.text[multilayerAttribute(kind)] = text;
   return encodeExrChannels(path, rgb.width, rgb.height, channels, options);
 }

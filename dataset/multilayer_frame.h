@@ -26,10 +26,12 @@ const std::vector<std::string>& multilayerChannels(OutputKind kind);
 std::string multilayerAttribute(OutputKind kind);
 
 // The frame file of `outputs`' images (colour always; AOVs from `aovs` when asked for, semantic
-// ids through `classOfInstance`) with `annotations` (JSON text by kind) in its header.
+// ids through `classOfInstance`) with `annotations` (JSON text by kind) in its header, compressed
+// losslessly as asked.
 std::vector<unsigned char> encodeMultilayerFrame(const std::string& path, const ImageRGBA& rgb, const AovFrame* aovs,
                                                  const std::set<OutputKind>& outputs,
                                                  const std::vector<uint16_t>& classOfInstance,
-                                                 const std::map<OutputKind, std::string>& annotations);
+                                                 const std::map<OutputKind, std::string>& annotations,
+                                                 FrameCompression compression);
 
 }  // namespace omnicam

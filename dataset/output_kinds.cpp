@@ -80,6 +80,14 @@ std::optional<DatasetLayout> layoutNamed(std::string_view name) {
   return std::nullopt;
 }
 
+const char* compressionName(FrameCompression compression) { return compression == FrameCompression::Zip ? "zip" : "rle"; }
+
+std::optional<FrameCompression> compressionNamed(std::string_view name) {
+  if (name == "rle") return FrameCompression::Rle;
+  if (name == "zip") return FrameCompression::Zip;
+  return std::nullopt;
+}
+
 bool FrameOutputPlan::anyAov() const {
   for (OutputKind kind : outputs)
     if (needsAovs(kind)) return true;

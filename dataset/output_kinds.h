@@ -17,6 +17,8 @@ enum class OutputKind { Rgb, Depth, Instance, Semantic, Normal, Landmarks, Coco,
 // frame holding colour and every AOV as named channels, its annotations in the file's header and
 // gathered into one file per camera (<camera>/<kind>.json) when the dataset is complete.
 enum class DatasetLayout { Files, Multilayer };
+// How the multilayer layout's frame files are compressed (both lossless).
+enum class FrameCompression { Rle, Zip };
 
 // The kind's name: the manifest's key for its files and the folder they are in.
 const char* outputName(OutputKind kind);
@@ -34,10 +36,13 @@ std::set<OutputKind> defaultOutputs();
 
 const char* layoutName(DatasetLayout layout);
 std::optional<DatasetLayout> layoutNamed(std::string_view name);
+const char* compressionName(FrameCompression compression);
+std::optional<FrameCompression> compressionNamed(std::string_view name);
 
 // What each camera's frames record, and how.
 struct FrameOutputPlan {
   DatasetLayout layout = DatasetLayout::Files;
+  FrameCompression compression = FrameCompression::Rle;  // multilayer frame files
   std::string rgbFormat = "png";      // the files layout's colour file: "png" or "exr"
   std::set<OutputKind> outputs{OutputKind::Rgb};  // never Multilayer
   std::set<uint16_t> cocoClasses;     // class ids the COCO annotations cover

@@ -265,6 +265,7 @@ def main():
     dataset_spec("coco_classes_text", outputs={"coco": {"classes": "victim"}})
     dataset_spec("layout_unknown", layout="layers")
     dataset_spec("multilayer_png", layout="multilayer", outputs={"rgb": "png"})
+    dataset_spec("files_compression", multilayer_compression="zip")
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
     random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}
