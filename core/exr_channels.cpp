@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstring>
 #if defined(__x86_64__)
+#include <cpuid.h>
 #include <immintrin.h>
 #endif
 
@@ -63,13 +64,21 @@ __attribute__((target("avx,f16c"))) void toHalvesF16c(const float* values, size_
                                                       v[5 * stride], v[6 * stride], v[7 * stride]);
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out + p), _mm256_cvtps_ph(eight, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
   }
-  for (; p < n; ++p) out[p].setBits(_cvtss_sh(values[p * stride], _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+  for (; p < n; ++p) {
+    const __m128i one = _mm_cvtps_ph(_mm_set_ss(values[p * stride]), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+    out[p].setBits(static_cast<uint16_t>(_mm_cvtsi128_si32(one) & 0xffff));
+  }
+}
+
+bool hasF16c() {
+  unsigned a = 0, b = 0, c = 0, d = 0;
+  return __builtin_cpu_supports("avx") && __get_cpuid(1, &a, &b, &c, &d) && (c & bit_F16C);
 }
 #endif
 
 void toHalves(const float* values, size_t stride, size_t n, Imath::half* out) {
 #if defined(__x86_64__)
-  static const bool f16c = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+  static const bool f16c = hasF16c();
   if (f16c) return toHalvesF16c(values, stride, n, out);
 #endif
   for (size_t p = 0; p < n; ++p) out[p] = Imath::half(values[p * stride]);

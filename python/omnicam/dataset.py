@@ -7,10 +7,7 @@ followed, hashes checked on request.
 
 import os
 
-from ._omnicam import _DatasetReader, verify_dataset
-
-#: The frame outputs a dataset may hold, in the manifest's words.
-OUTPUTS = ("rgb", "depth", "instance", "semantic", "normal", "landmarks", "coco")
+from ._omnicam import OUTPUTS, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
 
 
 class Dataset:

@@ -81,6 +81,11 @@ py::object outputToPython(DecodedOutput&& out) {
 }
 
 void bindDatasetReader(py::module_& m) {
+  // The outputs a frame may hold, from the one table of output kinds (dataset/output_kinds.h).
+  py::list outputNames;
+  for (OutputKind kind : allOutputKinds())
+    if (kind != OutputKind::Multilayer) outputNames.append(outputName(kind));
+  m.attr("OUTPUTS") = py::tuple(outputNames);
   py::class_<DatasetReader>(m, "_DatasetReader", "The C++ reader behind omnicam.Dataset (dataset/dataset_reader.h).")
       .def(py::init<std::string>(), py::arg("path"))
       .def_property_readonly("header", [](const DatasetReader& r) { return toPython(r.manifest().header); })

@@ -119,6 +119,7 @@ def layered(tmp_path_factory, folder):
 def test_a_multilayer_dataset_reads_as_the_files_layout_reads(folder, layered):
     files, layers = omnicam.Dataset(folder, camera="rear"), omnicam.Dataset(layered, camera="rear", check_hashes=True)
     assert layers.header["outputs"]["layout"] == "multilayer" and "coco" in layers.outputs
+    assert set(layers.outputs) <= set(omnicam.dataset.OUTPUTS) and "multilayer" not in omnicam.dataset.OUTPUTS
     for index in range(3):
         a, b = files[index], layers[index]
         for output in ("depth", "normal", "instance", "semantic"):
