@@ -89,16 +89,24 @@ void toHalves(const float* values, size_t stride, size_t n, Imath::half* out) {
 namespace {
 
 // The core API's messages, collected for the one line an error becomes.
-void keepMessage(exr_const_context_t ctxt, exr_result_t, const char* message) {
+// Both are called from OpenEXR's C code: nothing may be thrown through it.
+void keepMessage(exr_const_context_t ctxt, exr_result_t, const char* message) noexcept {
   void* user = nullptr;
-  if (exr_get_user_data(ctxt, &user) == EXR_ERR_SUCCESS && user)
+  if (exr_get_user_data(ctxt, &user) != EXR_ERR_SUCCESS || !user) return;
+  try {
     static_cast<MemoryExrFile*>(user)->message = message ? message : "";
+  } catch (...) {
+  }
 }
 
 int64_t writeToMemory(exr_const_context_t, void* user, const void* buffer, uint64_t size, uint64_t offset,
-                      exr_stream_error_func_ptr_t) {
+                      exr_stream_error_func_ptr_t) noexcept {
   std::vector<unsigned char>& bytes = static_cast<MemoryExrFile*>(user)->bytes;
-  if (offset + size > bytes.size()) bytes.resize(offset + size);
+  try {
+    if (offset + size > bytes.size()) bytes.resize(offset + size);
+  } catch (...) {
+    return -1;  // OpenEXR reports a failed write
+  }
   std::memcpy(bytes.data() + offset, buffer, size);
   return static_cast<int64_t>(size);
 }
@@ -213,7 +221,8 @@ std::vector<unsigned char> encodeExrChannels(const std::string& path, int width,
   return std::move(file.bytes);
 }
 
-ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly) {
+ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly,
+                              const std::set<std::string>* channels) {
   ExrChannels out;
   try {
     MemoryExrInput stream(bytes);
@@ -238,7 +247,11 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
         throw InputError(name + ": channel " + quote(it.name()) + " is subsampled");
       const bool uint = it.channel().type == Imf::UINT;
       out.types[it.name()] = uint ? ExrSampleType::Uint : it.channel().type == Imf::HALF ? ExrSampleType::Half : ExrSampleType::Float;
-      if (headerOnly) continue;
+      if (headerOnly || (channels && !channels->count(it.name()))) continue;
+      if (static_cast<int64_t>(out.floats.size() + out.uints.size() + 1) * width * height > kMaxDecodedExrSamples)
+        throw InputError(name + ": " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
+                         std::to_string(out.floats.size() + out.uints.size() + 1) + " channels are more than " +
+                         std::to_string(kMaxDecodedExrSamples) + " values to decode");
       char* base;
       if (uint) base = reinterpret_cast<char*>(out.uints[it.name()].assign(pixels, 0), out.uints[it.name()].data());
       else base = reinterpret_cast<char*>(out.floats[it.name()].assign(pixels, 0.0f), out.floats[it.name()].data());

@@ -6,6 +6,7 @@
 // API, on the calling thread (frames are encoded in parallel already).
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,8 +48,11 @@ struct ExrChannels {
 };
 
 // Decodes `bytes` (an untrusted file: InputError naming `name` for anything but a readable
-// single-part scanline or tiled OpenEXR within the image size limits). headerOnly: types, size
-// and text only, no pixels.
-ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly = false);
+// single-part scanline or tiled OpenEXR within the image size limits, whose decoded channels
+// hold at most kMaxDecodedExrSamples values). `channels`: only these are decoded (none: every
+// channel); headerOnly: types, size and text only, no pixels.
+inline constexpr int64_t kMaxDecodedExrSamples = int64_t{1} << 29;  // 2 GiB of 4-byte values
+ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly = false,
+                              const std::set<std::string>* channels = nullptr);
 
 }  // namespace omnicam

@@ -29,4 +29,10 @@ IdTables idTables(const Scene& scene) {
   return ids;
 }
 
+std::vector<uint16_t> classIdsOf(const std::vector<uint16_t>& instance, const std::vector<uint16_t>& classOfInstance) {
+  std::vector<uint16_t> classes(instance.size());
+  for (size_t p = 0; p < classes.size(); ++p) classes[p] = classOfInstance[instance[p]];
+  return classes;
+}
+
 }  // namespace omnicam

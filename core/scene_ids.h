@@ -17,5 +17,7 @@ struct IdTables {
 };
 
 IdTables idTables(const Scene& scene);
+// The class id image of an instance id image (classOfInstance indexed by instance id).
+std::vector<uint16_t> classIdsOf(const std::vector<uint16_t>& instance, const std::vector<uint16_t>& classOfInstance);
 
 }  // namespace omnicam

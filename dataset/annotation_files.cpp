@@ -42,21 +42,29 @@ std::string checkedBytes(const std::string& dir, const FileRecord& file) {
   return bytes;
 }
 
-// One camera's frame: its parts of the gathered kinds (kinds it lacks are left out) and the
-// image file the COCO file names.
+// One camera's frame: its part of each gathered kind, the image file the COCO file names, and
+// what messages call the frame.
 struct FrameParts {
   std::map<OutputKind, json> parts;
-  std::string image;
+  std::string image, name;
 };
 
-FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const Gathering& gathering) {
+// The record of `kind` every frame of a complete dataset has: InputError when a (forged) manifest
+// lacks it.
+const FileRecord& requiredRecord(const std::string& dir, const CameraFrame& frame, OutputKind kind, const std::string& where) {
+  const auto file = frame.files.find(outputName(kind));
+  if (file == frame.files.end()) throw InputError(showPath(dir) + ": " + where + " has no " + quote(outputName(kind)) + " file");
+  return file->second;
+}
+
+FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const Gathering& gathering, const std::string& where) {
   FrameParts out;
   if (gathering.layout == DatasetLayout::Multilayer) {
-    const auto file = frame.files.find(outputName(OutputKind::Multilayer));
-    if (file == frame.files.end()) return out;
-    out.image = file->second.path;
-    const std::string name = showPath(dir) + "/" + file->second.path;
-    const ExrChannels header = decodeExrChannels(checkedBytes(dir, file->second), name, /*headerOnly=*/true);
+    const FileRecord& file = requiredRecord(dir, frame, OutputKind::Multilayer, where);
+    out.image = file.path;
+    out.name = showPath(dir) + "/" + file.path;
+    const std::string& name = out.name;
+    const ExrChannels header = decodeExrChannels(checkedBytes(dir, file), name, /*headerOnly=*/true);
     for (OutputKind kind : gathering.kinds) {
       const auto text = header.text.find(multilayerAttribute(kind));
       if (text == header.text.end()) throw InputError(name + ": no attribute " + quote(multilayerAttribute(kind)));
@@ -64,11 +72,11 @@ FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const 
     }
     return out;
   }
-  if (const auto rgb = frame.files.find(outputName(OutputKind::Rgb)); rgb != frame.files.end()) out.image = rgb->second.path;
+  out.image = requiredRecord(dir, frame, OutputKind::Rgb, where).path;
   for (OutputKind kind : gathering.kinds) {
-    const auto file = frame.files.find(outputName(kind));
-    if (file != frame.files.end())
-      out.parts[kind] = parseJsonText(checkedBytes(dir, file->second), showPath(dir) + "/" + file->second.path);
+    const FileRecord& file = requiredRecord(dir, frame, kind, where);
+    out.name = showPath(dir) + "/" + file.path;
+    out.parts[kind] = parseJsonText(checkedBytes(dir, file), out.name);
   }
   return out;
 }
@@ -113,7 +121,7 @@ class CocoFile {
   }
 
   json document() const {
-    return {{"info", {{"description", "omnicam dataset " + header_.value("spec_file", std::string("?")) + ", camera " + camera_},
+    return {{"info", {{"description", "omnicam dataset " + (header_.contains("spec_file") && header_["spec_file"].is_string() ? header_["spec_file"].get<std::string>() : std::string("?")) + ", camera " + camera_},
                       {"version", "1"}}},
             {"licenses", json::array()},
             {"categories", cocoCategories(header_, landmarkCategory_)},
@@ -137,13 +145,18 @@ void writeCameraFiles(const std::string& dir, DatasetManifest& manifest, json& c
   CocoFile coco(manifest.header, name);
   json landmarkFrames = json::array();
   for (const auto& [index, frame] : manifest.frames) {
+    const std::string where = "frame " + std::to_string(index) + " camera " + quote(name);
     const auto c = frame.cameras.find(name);
-    if (c == frame.cameras.end()) continue;
-    const FrameParts parts = framePartsOf(dir, c->second, gathering);
-    if (const auto part = parts.parts.find(OutputKind::Coco); part != parts.parts.end())
-      coco.add(index, frame, parts.image, part->second);
-    if (const auto part = parts.parts.find(OutputKind::Landmarks); part != parts.parts.end())
-      landmarkFrames.push_back(part->second);
+    if (c == frame.cameras.end()) throw InputError(showPath(dir) + ": " + where + " is not in the manifest");
+    const FrameParts parts = framePartsOf(dir, c->second, gathering, where);
+    try {  // a part's fields are untrusted: a missing or mistyped one is the part's fault
+      if (const auto part = parts.parts.find(OutputKind::Coco); part != parts.parts.end())
+        coco.add(index, frame, parts.image, part->second);
+      if (const auto part = parts.parts.find(OutputKind::Landmarks); part != parts.parts.end())
+        landmarkFrames.push_back(part->second);
+    } catch (const json::exception& e) {
+      throw InputError(parts.name + ": not an annotation part omnicam wrote (" + oneLine(e.what()) + ")");
+    }
   }
   for (OutputKind kind : gathering.kinds) {
     const std::string text = (kind == OutputKind::Coco ? coco.document() : landmarksFile(name, landmarkFrames)).dump() + "\n";

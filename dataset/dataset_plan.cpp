@@ -224,8 +224,7 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   header["cameras"] = manifestCameras(setups, poses, spec.frameIntervalSeconds, statics);
   checkManifestHeaderSize(header, spec.file);
   folders = datasetFolders(setups, outputs, range.sharded);
-  if (outputs.wants(OutputKind::Landmarks) || (outputs.wants(OutputKind::Coco) && !scene.landmarks.empty()))
-    rays = std::make_unique<RayScene>(scene);
+  if (outputs.needsLandmarkAnnotations(!scene.landmarks.empty())) rays = std::make_unique<RayScene>(scene);
 }
 
 }  // namespace omnicam

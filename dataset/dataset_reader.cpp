@@ -1,5 +1,7 @@
 #include "dataset_reader.h"
 
+#include <set>
+
 #include "dataset_folder.h"
 #include "errors.h"
 #include "exr_channels.h"
@@ -136,7 +138,9 @@ std::map<OutputKind, DecodedOutput> DatasetReader::readOutputs(int index, const 
     return outputs;
   }
   const std::string name = showPath(dir_) + ": " + quote(record(index, camera, multilayer).path);
-  const ExrChannels decoded = decodeExrChannels(fileBytes(index, camera, multilayer, checkHash), name);
+  std::set<std::string> channels;  // only what was asked for is decoded
+  for (OutputKind kind : kinds) channels.insert(multilayerChannels(kind).begin(), multilayerChannels(kind).end());
+  const ExrChannels decoded = decodeExrChannels(fileBytes(index, camera, multilayer, checkHash), name, channels.empty(), &channels);
   for (OutputKind kind : kinds) {
     if (kind == OutputKind::Multilayer) throw InputError(name + ": the frame file itself is not an output");
     outputs[kind] = outputOfFrame(decoded, kind, name);

@@ -7,6 +7,7 @@
 #include "coco.h"
 #include "landmark_annotations.h"
 #include "multilayer_frame.h"
+#include "scene_ids.h"
 
 namespace omnicam {
 
@@ -57,11 +58,8 @@ std::string encodeOutputFile(const FrameToEncode& f, OutputKind kind, const std:
     case OutputKind::Normal:
       return asString(encodeDataExr(path, aov->width, aov->height, 3, aov->normal.data(), ExrPrecision::Half));
     case OutputKind::Instance: return asString(encodeUint16Png(path, aov->width, aov->height, aov->instance));
-    case OutputKind::Semantic: {
-      std::vector<uint16_t> semantic(aov->instance.size());
-      for (size_t p = 0; p < semantic.size(); ++p) semantic[p] = f.classOfInstance[aov->instance[p]];
-      return asString(encodeUint16Png(path, aov->width, aov->height, semantic));
-    }
+    case OutputKind::Semantic:
+      return asString(encodeUint16Png(path, aov->width, aov->height, classIdsOf(aov->instance, f.classOfInstance)));
     case OutputKind::Landmarks:
     case OutputKind::Coco: return annotationText(f, kind);
     case OutputKind::Multilayer: break;
@@ -84,7 +82,7 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
                                             const ImageRGBA& rgb, const AovFrame* aov, const FrameOutputPlan& plan,
                                             const std::vector<uint16_t>& classOfInstance) {
   if (plan.anyAov() && !aov) throw std::logic_error("encodeFrameOutputs: AOVs asked for but not rendered");
-  const bool landmarksUsed = plan.wants(OutputKind::Landmarks) || (plan.wants(OutputKind::Coco) && !scene.landmarks.empty());
+  const bool landmarksUsed = plan.needsLandmarkAnnotations(!scene.landmarks.empty());
   const std::vector<LandmarkAnnotation> landmarks =
       landmarksUsed ? annotateLandmarks(scene, *rays, settings.rig, pose) : std::vector<LandmarkAnnotation>{};
   const FrameToEncode frame{scene, rays, settings, camera, index, pose, rgb, aov, plan, classOfInstance, landmarks};

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "scene_ids.h"
+
 namespace omnicam {
 
 const std::vector<std::string>& multilayerChannels(OutputKind kind) {
@@ -44,8 +46,8 @@ std::vector<unsigned char> encodeMultilayerFrame(const std::string& path, const 
       channels.push_back({multilayerChannels(kind)[0], ExrSampleType::Uint, nullptr, instance.data(), 1});
     }
     if (kind == OutputKind::Semantic) {
-      semantic.resize(aovs->instance.size());
-      for (size_t p = 0; p < semantic.size(); ++p) semantic[p] = classOfInstance[aovs->instance[p]];
+      const std::vector<uint16_t> classes = classIdsOf(aovs->instance, classOfInstance);
+      semantic.assign(classes.begin(), classes.end());
       channels.push_back({multilayerChannels(kind)[0], ExrSampleType::Uint, nullptr, semantic.data(), 1});
     }
   }

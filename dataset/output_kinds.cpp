@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <regex>
+#include <stdexcept>
+#include <string>
 
 namespace omnicam {
 
@@ -33,7 +35,7 @@ constexpr KindRow kKinds[] = {
 const KindRow& row(OutputKind kind) {
   for (const KindRow& r : kKinds)
     if (r.kind == kind) return r;
-  return kKinds[0];
+  throw std::logic_error("output kind " + std::to_string(static_cast<int>(kind)) + " has no row");
 }
 
 }  // namespace

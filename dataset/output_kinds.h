@@ -49,8 +49,13 @@ struct FrameOutputPlan {
 
   bool wants(OutputKind kind) const { return outputs.count(kind) > 0; }
   bool anyAov() const;
+  // Whether frames need their landmarks annotated: for the landmarks output, or COCO's keypoints
+  // when the scene has landmarks.
+  bool needsLandmarkAnnotations(bool sceneHasLandmarks) const {
+    return wants(OutputKind::Landmarks) || (wants(OutputKind::Coco) && sceneHasLandmarks);
+  }
   // The outputs, in frame order.
-  std::vector<OutputKind> outputList() const;
+  std::vector<OutputKind> outputList() const;  // the enum is declared in frame order
   // The files each camera's frame has: each output (files), or Multilayer.
   std::vector<OutputKind> fileKinds() const;
   // The annotation files gathered per camera once the dataset is complete: coco (both layouts),

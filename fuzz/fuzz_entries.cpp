@@ -1,6 +1,7 @@
 #include "fuzz_entries.h"
 
 #include "errors.h"
+#include "exr_channels.h"
 #include "gltf_import.h"
 #include "scene_loader.h"
 #include "sidecar.h"
@@ -33,6 +34,18 @@ void sidecar(const uint8_t* data, size_t size) {
   try {
     const SidecarInfo info = sidecarFromText(std::string(reinterpret_cast<const char*>(data), size), "fuzz.png.json");
     (void)info.rig.camera();
+  } catch (const InputError&) {
+  }
+}
+
+void exrFrame(const uint8_t* data, size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    const ExrChannels header = decodeExrChannels(bytes, "fuzz.exr", /*headerOnly=*/true);
+    if (static_cast<int64_t>(header.types.size()) * header.width * header.height <= (int64_t{1} << 22))
+      (void)decodeExrChannels(bytes, "fuzz.exr");
+    for (const auto& [key, value] : header.text)
+      if (key.rfind("omnicam:", 0) == 0) (void)parseJsonText(value, "fuzz.exr: " + key);
   } catch (const InputError&) {
   }
 }

@@ -29,6 +29,11 @@ void manifest(const uint8_t* data, size_t size);
 // --status --verify and --merge do (dataset_shards.h); the merged manifest must read back.
 void shardManifest(const uint8_t* data, size_t size);
 
+// An OpenEXR frame file of the multilayer layout (or any OpenEXR): its header, its pixels when
+// they stay under 2²² values (the reader's own bound, 2²⁹, is the fuzzer's memory limit), and
+// each omnicam:* text attribute parsed as the annotation JSON the gathering reads.
+void exrFrame(const uint8_t* data, size_t size);
+
 // The folder with the assets above.
 std::string assetsDir();
 

@@ -53,5 +53,9 @@ TEST(FuzzRegression, ShardManifestSurvivesEverySavedInput) {
   EXPECT_GT(feedAll(kFuzz + "/regressions/shard_manifest", shardManifest) + feedAll(kFuzz + "/seeds/shard_manifest", shardManifest), 0);
 }
 
+TEST(FuzzRegression, ExrFrameSurvivesEverySavedInput) {
+  EXPECT_GT(feedAll(kFuzz + "/regressions/exr_frame", exrFrame) + feedAll(kFuzz + "/seeds/exr_frame", exrFrame), 0);
+}
+
 }  // namespace
 }  // namespace omnicam::fuzz

@@ -25,6 +25,7 @@
 #include "mirror.h"
 #include "opencv_omnidir.h"
 #include "rig.h"
+#include "sha256.h"
 #include "shell_command.h"
 
 extern char** environ;
@@ -649,6 +650,26 @@ TEST_F(DatasetCliTest, MultilayerDatasetsResumeAfterKillNineAndMergeShardsByteFo
   EXPECT_TRUE(merged == whole) << "the merged shards differ from the one-go dataset";
   EXPECT_EQ(listedFiles(dir_ / "parts").size(), 20u + 6u) << "20 frames, 3 intrinsics, poses and 2 gathered files";
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
+}
+
+TEST_F(DatasetCliTest, AForgedAnnotationInAFrameFileIsRefusedByTheMerge) {
+  // A shard whose frame file carries a COCO part of the wrong shape, its hash forged to match:
+  // the merge refuses it in one line (exit 2) and writes no coco.json.
+  const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 2}, )" +
+                                                        everyOutput("multilayer"));
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds") + " --shard 0/1").code, 0);
+  const std::string frame = path("ds/cam0/multilayer/000001.exr");
+  const auto forged = testing::runShell("oiiotool " + frame + " --attrib omnicam:coco '[5]' -o " + path("forged.exr") + " 2>&1");
+  ASSERT_EQ(forged.code, 0) << forged.out;
+  fs::rename(path("forged.exr"), frame);
+  json shard = json::parse(readFile(dir_ / "ds/shards/shard-0-of-1.json"));
+  shard["frames"][1]["cameras"]["cam0"]["files"]["multilayer"]["sha256"] = sha256OfBytes(readFile(frame));
+  std::ofstream(dir_ / "ds/shards/shard-0-of-1.json", std::ios::trunc) << shard.dump();
+  const auto merge = omnicam("dataset --merge " + path("ds"));
+  EXPECT_EQ(merge.code, 2) << merge.out;
+  EXPECT_NE(merge.out.find("multilayer/000001.exr: not an annotation part omnicam wrote"), std::string::npos) << merge.out;
+  EXPECT_EQ(std::count(merge.out.begin(), merge.out.end(), '\n'), 1) << merge.out;
+  EXPECT_FALSE(fs::exists(dir_ / "ds/cam0/coco.json"));
 }
 
 TEST_F(DatasetCliTest, BlenderReadsEveryLayerOfAMultilayerFrame) {
