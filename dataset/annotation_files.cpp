@@ -52,9 +52,9 @@ struct FrameParts {
 // The record of `kind` every frame of a complete dataset has: InputError when a (forged) manifest
 // lacks it.
 const FileRecord& requiredRecord(const std::string& dir, const CameraFrame& frame, OutputKind kind, const std::string& where) {
-  const auto file = frame.files.find(outputName(kind));
-  if (file == frame.files.end()) throw InputError(showPath(dir) + ": " + where + " has no " + quote(outputName(kind)) + " file");
-  return file->second;
+  const FileRecord* file = frame.file(kind);
+  if (!file) throw InputError(showPath(dir) + ": " + where + " has no " + quote(outputName(kind)) + " file");
+  return *file;
 }
 
 FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const Gathering& gathering, const std::string& where) {

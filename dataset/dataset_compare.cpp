@@ -50,9 +50,8 @@ std::string layoutFile(const std::string& dirB, const std::string& relative) {
 // The file holding a camera frame's colour: its rgb image (files layout) or its frame OpenEXR
 // (multilayer layout, whose R, G, B, A channels image readers take as the colour).
 const FileRecord* colourFile(const CameraFrame& frame) {
-  for (OutputKind kind : {OutputKind::Rgb, OutputKind::Multilayer})
-    if (const auto file = frame.files.find(outputName(kind)); file != frame.files.end()) return &file->second;
-  return nullptr;
+  const FileRecord* rgb = frame.file(OutputKind::Rgb);
+  return rgb ? rgb : frame.file(OutputKind::Multilayer);
 }
 
 // An image of a dataset folder: read without following links, a regular file of bounded size.

@@ -95,7 +95,7 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
   FrameOutputPlan plan;
   plan.layout = spec.layout;
   plan.compression = spec.multilayerCompression;
-  plan.rgbFormat = spec.layout == DatasetLayout::Multilayer ? "exr" : spec.outputs.rgb;
+  plan.rgbFormat = spec.outputs.rgb;  // the files layout's; multilayer colour is in the frame file
   notWritten = json::object();
   for (OutputKind kind : spec.outputs.wanted) {
     if (!needsAovs(kind) || engine.hasAovs()) {

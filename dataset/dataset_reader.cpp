@@ -129,7 +129,7 @@ std::map<OutputKind, DecodedOutput> DatasetReader::readOutputs(int index, const 
   const std::string multilayer = outputName(OutputKind::Multilayer);
   const FrameRecord& f = frame(index);
   const auto c = f.cameras.find(camera);
-  const bool layered = c != f.cameras.end() && c->second.files.count(multilayer);
+  const bool layered = c != f.cameras.end() && c->second.file(OutputKind::Multilayer);
   if (!layered) {
     for (OutputKind kind : kinds) {
       const std::string name = showPath(dir_) + ": " + quote(record(index, camera, outputName(kind)).path);

@@ -103,10 +103,9 @@ std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetMan
       const auto camera = frame.cameras.find(setup.camera->name);
       intact = intact && camera != frame.cameras.end() && camera->second.files.size() == kinds.size();
       for (size_t k = 0; intact && k < kinds.size(); ++k) {
-        const auto file = camera->second.files.find(outputName(kinds[k]));
-        intact = file != camera->second.files.end() &&
-                 file->second.path == plan.outputs.framePath(setup.camera->name, kinds[k], index) &&
-                 sha256Inside(dir, file->second.path, kMaxDatasetFileBytes).sha256 == file->second.sha256;
+        const FileRecord* file = camera->second.file(kinds[k]);
+        intact = file && file->path == plan.outputs.framePath(setup.camera->name, kinds[k], index) &&
+                 sha256Inside(dir, file->path, kMaxDatasetFileBytes).sha256 == file->sha256;
       }
     }
     if (intact) kept[index] = frame;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "dataset_spec.h"
+#include "output_kinds.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -32,7 +33,13 @@ struct FileRecord {
 
 struct CameraFrame {
   RobotPose pose;  // the camera viewpoint's pose (mount applied)
-  std::map<std::string, FileRecord> files;  // "rgb", "depth", ... → file
+  std::map<std::string, FileRecord> files;  // outputName(kind) → file
+
+  // The file of `kind`, or null when the frame has none.
+  const FileRecord* file(OutputKind kind) const {
+    const auto at = files.find(outputName(kind));
+    return at == files.end() ? nullptr : &at->second;
+  }
 };
 
 struct FrameRecord {
