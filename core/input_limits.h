@@ -36,6 +36,13 @@ inline constexpr double kMaxPrincipalPointOffsetPx = 4096.0;  // each axis
 // Samples: spp = n² with n ≤ 32, and one frame's samples (size² × spp) fit well inside the
 // 32-bit offsets the renderers index them with.
 inline constexpr int kMaxSpp = 1024;
+// Motion (docs/motion.md): the robot's speed and turn rate, a shutter's exposure, line time and
+// fixed instants.
+inline constexpr double kMaxSpeed = 100.0;                 // m/s
+inline constexpr double kMaxYawRateDegPerS = 36000.0;      // 100 turns a second
+inline constexpr double kMaxExposureS = 10.0;
+inline constexpr double kMaxLineTimeUs = 1e5;
+inline constexpr int kMaxTimeSamples = 256;
 inline constexpr int64_t kMaxSamplesPerFrame = int64_t{1} << 28;
 
 // How long an external renderer (POV-Ray, Blender) may take for one render (s): a week.

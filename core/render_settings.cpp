@@ -1,5 +1,6 @@
 #include "render_settings.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "errors.h"
@@ -23,6 +24,10 @@ std::optional<int> samplesPerAxis(int spp) {
   return n;
 }
 
+bool moving(const RenderSettings& settings) {
+  return !settings.velocity.still() && !settings.rig.shutter.instantaneous();
+}
+
 void checkRenderSettings(const RenderSettings& settings, const SettingNames& names) {
   if (!samplesPerAxis(settings.spp) || settings.spp > limits::kMaxSpp)
     throw InputError(names.spp + ": must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
@@ -31,11 +36,18 @@ void checkRenderSettings(const RenderSettings& settings, const SettingNames& nam
   if (size < limits::kMinImageSize || size > limits::kMaxImageSize)
     throw InputError(names.size + ": must be in [" + std::to_string(limits::kMinImageSize) + ", " +
                      std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
-  const int64_t samples = int64_t{size} * size * settings.spp;
+  const int passes = std::max(1, settings.rig.shutter.timeSamples);
+  const int64_t samples = int64_t{size} * size * settings.spp * passes;
   if (samples > limits::kMaxSamplesPerFrame)
-    throw InputError(names.spp + ": size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) + " = " +
+    throw InputError(names.spp + ": size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) +
+                     (passes > 1 ? " x time samples " + std::to_string(passes) : std::string()) + " = " +
                      std::to_string(samples) + " samples per frame; the limit is " +
                      std::to_string(limits::kMaxSamplesPerFrame));
+  const BodyVelocity& v = settings.velocity;
+  if (!(std::hypot(v.vx, v.vy) <= limits::kMaxSpeed && std::abs(v.yawRateDegPerS) <= limits::kMaxYawRateDegPerS))
+    throw InputError(names.velocity + ": speed must be at most " + shortNumber(limits::kMaxSpeed) + " m/s and yaw rate at most " +
+                     shortNumber(limits::kMaxYawRateDegPerS) + " degrees/s (got " + shortNumber(std::hypot(v.vx, v.vy)) +
+                     " m/s, " + shortNumber(v.yawRateDegPerS) + " degrees/s)");
 }
 
 void checkPose(const RobotPose& pose, const std::string& what) {

@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "motion.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -16,7 +17,14 @@ struct RenderSettings {
   // The fast renderer traces the physical camera through the mirror even for the ideal rig,
   // whose closed form it otherwise uses (the check that both agree). Other engines always trace.
   bool traced = false;
+  // The robot's body velocity while this frame's shutter (rig.shutter) is open; the pose given
+  // with the settings is the one at the exposure start (docs/motion.md).
+  BodyVelocity velocity = {};
 };
+
+// True when the frame's samples see the robot in more than one place: it moves while a shutter
+// is open, or a rolling shutter reads its lines at different times.
+bool moving(const RenderSettings& settings);
 
 const char* shadingName(Shading shading);
 std::optional<Shading> parseShading(const std::string& name);
@@ -26,10 +34,10 @@ std::optional<int> samplesPerAxis(int spp);
 // How messages name spp and the image size: the library's own words by default; the CLI passes
 // its flags ("--spp"), a dataset spec its fields ("spec.json: spp").
 struct SettingNames {
-  std::string spp = "spp", size = "image size";
+  std::string spp = "spp", size = "image size", velocity = "velocity";
 };
-// Checks spp (a perfect square ≤ limits::kMaxSpp), the image size and size² × spp against the
-// documented limits; InputError naming them as `names` says otherwise. Every engine calls it first.
+// Checks spp (a perfect square ≤ limits::kMaxSpp), the image size, size² × spp × time samples and
+// the velocity against the documented limits; InputError naming them as `names` says otherwise. Every engine calls it first.
 void checkRenderSettings(const RenderSettings& settings, const SettingNames& names = {});
 // Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.
 void checkPose(const RobotPose& pose, const std::string& what);

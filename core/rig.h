@@ -10,6 +10,7 @@
 
 #include "geometry.h"
 #include "omni_camera.h"
+#include "shutter.h"
 
 namespace omnicam {
 
@@ -65,6 +66,7 @@ struct RigSpec {
   CameraMount mount;               // the physical camera's misalignment and lens
   int imageSize = 360;             // square image, pixels
   double framingElevationDeg = 45.0;  // direction that touches the image border
+  Shutter shutter;                 // an instant unless it says otherwise (docs/motion.md)
 
   // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
   // field can never leave a stale table behind.

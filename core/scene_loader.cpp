@@ -83,6 +83,25 @@ CameraMount readCameraMount(JsonFields camera) {
   return mount;
 }
 
+// rig.shutter (shutter.h): absent is an instant.
+Shutter readShutter(JsonFields fields) {
+  Shutter shutter;
+  shutter.exposureS = fields.number("exposure_s", 0.0, {0.0, limits::kMaxExposureS, false, "s"});
+  if (auto rolling = fields.optionalObject("rolling")) {
+    RollingShutter r;
+    r.lineTimeUs = rolling->number("line_time_us", {0.0, limits::kMaxLineTimeUs, true, "microseconds"});
+    const std::string readout = rolling->string("readout", readoutName(r.readout));
+    const auto named = readoutNamed(readout);
+    if (!named) rolling->fail("readout", "must be top-to-bottom, bottom-to-top, left-to-right or right-to-left (got " + quote(readout) + ")");
+    r.readout = *named;
+    rolling->finish();
+    shutter.rolling = r;
+  }
+  shutter.timeSamples = fields.integer("time_samples", 0, 0, limits::kMaxTimeSamples);
+  fields.finish();
+  return shutter;
+}
+
 // rig.mirror: the shape and its parameters (docs/scene-format.md); each shape takes only its own.
 void readMirror(JsonFields& mirror, RigSpec& spec) {
   const std::string shape = mirror.string("shape", "hyperboloid");
@@ -158,6 +177,7 @@ RigSpec readRig(JsonFields rig) {
     mirror->finish();
   }
   if (auto camera = rig.optionalObject("camera")) spec.mount = readCameraMount(*camera);
+  if (auto shutter = rig.optionalObject("shutter")) spec.shutter = readShutter(*shutter);
   if (auto image = rig.optionalObject("image")) {
     spec.imageSize = image->integer("size", spec.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
     if (spec.shape.shape != MirrorShape::Hyperboloid && image->has("framing_elevation_deg"))

@@ -117,6 +117,7 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
           if (!ray) continue;
           if (2 * a + 1 == n && 2 * b + 1 == n) centre = static_cast<uint32_t>(table->directions.size());
           record(*ray, table->directions, table->origins, table->starts);
+          table->gridIndex.push_back(static_cast<uint16_t>(b * n + a));
         }
       const auto middle = camera->generateRay({gridSample(i, j, 0, 0, 1)});
       if (middle) {
@@ -149,14 +150,49 @@ void FastRenderer::loadSamples(HitPacket& hits, const Placement& at, const Sampl
     hits.setOrigin(k, at.origin + at.rotation * table.origins[first + k].cast<double>(), table.starts[first + k]);
 }
 
-void FastRenderer::loadCentres(HitPacket& hits, const Placement& at, const SampleTable& table, const size_t* pixels,
+FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettings& settings, const RobotPose& pose,
+                                                              int samplesPerAxis) {
+  MovingPlacements out;
+  out.shutter = settings.rig.shutter;
+  out.width = out.height = settings.rig.imageSize;
+  out.n = samplesPerAxis;
+  out.instants = pixelInstants(out.shutter, samplesPerAxis);
+  const int lines = lineCount(out.shutter, out.width, out.height);
+  out.samples.reserve(static_cast<size_t>(lines) * out.instants.count);
+  out.centres.reserve(lines);
+  const auto at = [&](double seconds) { return placement(settings, poseAfter(pose, settings.velocity, seconds)); };
+  for (int line = 0; line < lines; ++line) {
+    const double start = lineStart(out.shutter, line);
+    for (int m = 0; m < out.instants.count; ++m) out.samples.push_back(at(start + instantTime(out.shutter, m, out.instants.count)));
+    out.centres.push_back(at(start + 0.5 * out.shutter.exposureS));
+  }
+  return out;
+}
+
+void FastRenderer::loadMovingSamples(HitPacket& hits, const MovingPlacements& at, const SampleTable& table, int j,
+                                     const uint16_t* columns, uint32_t first, int count, int pass) {
+  hits.begin(Vec3::Zero(), count);
+  const bool central = table.origins.empty();
+  for (int k = 0; k < count; ++k) {
+    const uint32_t s = first + static_cast<uint32_t>(k);
+    const Placement& p = at.sample(columns[k], j, table.gridIndex[s], pass);
+    hits.setDirection(k, p.rotationF * table.directions[s]);
+    if (central) hits.setOrigin(k, p.origin, 0.0f);
+    else hits.setOrigin(k, p.origin + p.rotation * table.origins[s].cast<double>(), table.starts[s]);
+  }
+}
+
+template <typename PlacementOfPixel>
+void FastRenderer::loadCentres(HitPacket& hits, const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels,
                                int count) {
-  hits.begin(at.origin, count);
-  for (int k = 0; k < count; ++k) hits.setDirection(k, at.rotationF * table.centreDirections[pixels[k]]);
-  if (table.centreOrigins.empty()) return;
-  for (int k = 0; k < count; ++k)
-    hits.setOrigin(k, at.origin + at.rotation * table.centreOrigins[pixels[k]].cast<double>(),
-                  table.centreStarts[pixels[k]]);
+  hits.begin(Vec3::Zero(), count);
+  const bool central = table.centreOrigins.empty();
+  for (int k = 0; k < count; ++k) {
+    const Placement& p = at(pixels[k]);
+    hits.setDirection(k, p.rotationF * table.centreDirections[pixels[k]]);
+    if (central) hits.setOrigin(k, p.origin, 0.0f);
+    else hits.setOrigin(k, p.origin + p.rotation * table.centreOrigins[pixels[k]].cast<double>(), table.centreStarts[pixels[k]]);
+  }
 }
 
 ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings) const {
@@ -198,7 +234,8 @@ void recordAov(AovFrame& aovs, size_t pixel, const SurfaceHit& hit, const Vec3& 
 
 }  // namespace
 
-uint32_t FastRenderer::recordCentreAovs(const Placement& at, const SampleTable& table, const size_t* pixels,
+template <typename PlacementOfPixel>
+uint32_t FastRenderer::recordCentreAovs(const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels,
                                         int count, HitPacket& hits, AovFrame& aovs) const {
   loadCentres(hits, at, table, pixels, count);
   rays_.intersectPacket(hits);
@@ -214,7 +251,12 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   checkPose(pose, "pose");
   prepareAovs(settings, aovs);
   const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);
-  const Placement at = placement(settings, pose);
+  const Placement still = placement(settings, pose);
+  const bool moves = moving(settings);
+  const MovingPlacements motion = moves ? movingPlacements(settings, pose, 1) : MovingPlacements{};
+  const auto at = [&](size_t p) -> const Placement& {
+    return moves ? motion.centre(static_cast<int>(p % aovs.width), static_cast<int>(p / aovs.width)) : still;
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
     // The same packets as a render pass traces for its centre rays, so both give the same AOVs.
     HitPacket hits;
@@ -249,58 +291,79 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
   const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);
   const int width = settings.rig.imageSize, height = settings.rig.imageSize;
   const Placement at = placement(settings, pose);
+  // A moving frame places each ray by its line and instant (the still one's path is unchanged,
+  // so a still robot's frame is the static frame bit for bit, whatever the shutter).
+  const bool moves = moving(settings);
+  const MovingPlacements motion = moves ? movingPlacements(settings, pose, *n) : MovingPlacements{};
+  const int passes = moves ? motion.instants.passes : 1;
+  const auto centreAt = [&](size_t p) -> const Placement& {
+    return moves ? motion.centre(static_cast<int>(p % width), static_cast<int>(p / width)) : at;
+  };
   ImageRGBA image(width, height);
-  const float weight = 1.0f / static_cast<float>(*n * *n);
+  const float weight = 1.0f / static_cast<float>(*n * *n * passes), coverageWeight = 1.0f / static_cast<float>(*n * *n);
   constexpr int kPacket = kRayPacketSize;
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
     std::vector<uint8_t> centreRecorded(width);
+    std::vector<uint16_t> columns;  // a moving frame's: each sample's column in the row
     HitPacket hits;
     Vec3f colours[kPacket];
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const size_t rowStart = static_cast<size_t>(j) * width;
       std::fill(centreRecorded.begin(), centreRecorded.end(), uint8_t{0});
+      std::fill(sums.begin(), sums.end(), Vec3f::Zero());
       // The row's samples are contiguous in the table; packets run across pixel borders. Each
       // pixel's sum is built in a register from zero in sample order (as one ray at a time
       // would) and stored once its last sample is in.
-      const uint32_t rowEnd = table->firstSample[rowStart + width];
-      size_t pixel = rowStart;
-      uint32_t pixelEnd = table->firstSample[pixel + 1];
-      Vec3f sum = Vec3f::Zero();
-      const auto storePixel = [&] {
-        sums[pixel - rowStart] = sum;
-        sum = Vec3f::Zero();
-        if (++pixel < rowStart + width) pixelEnd = table->firstSample[pixel + 1];
-      };
-      for (uint32_t first = table->firstSample[rowStart]; first < rowEnd; first += kPacket) {
-        const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
-        loadSamples(hits, at, *table, first, count);
-        rays_.intersectPacket(hits);
-        shadePacket(hits, settings.shading, colours);
-        for (int k = 0; k < count; ++k) {
-          const uint32_t s = first + static_cast<uint32_t>(k);
-          while (pixelEnd <= s) storePixel();
-          sum += colours[k];
-          if (aovs && s == table->centreSample[pixel] && hits.hit(k)) {
-            recordAov(*aovs, pixel, hits.surface(k), hits.direction(k));
-            centreRecorded[pixel - rowStart] = 1;
+      const uint32_t rowFirst = table->firstSample[rowStart], rowEnd = table->firstSample[rowStart + width];
+      if (moves) {
+        columns.resize(rowEnd - rowFirst);
+        for (int i = 0; i < width; ++i)
+          std::fill(columns.begin() + (table->firstSample[rowStart + i] - rowFirst),
+                    columns.begin() + (table->firstSample[rowStart + i + 1] - rowFirst), static_cast<uint16_t>(i));
+      }
+      // A moving frame with fixed instants traces the row once per instant; the sums add up.
+      for (int pass = 0; pass < passes; ++pass) {
+        size_t pixel = rowStart;
+        uint32_t pixelEnd = table->firstSample[pixel + 1];
+        Vec3f sum = Vec3f::Zero();
+        const auto storePixel = [&] {
+          sums[pixel - rowStart] += sum;
+          sum = Vec3f::Zero();
+          if (++pixel < rowStart + width) pixelEnd = table->firstSample[pixel + 1];
+        };
+        for (uint32_t first = rowFirst; first < rowEnd; first += kPacket) {
+          const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
+          if (moves) loadMovingSamples(hits, motion, *table, j, columns.data() + (first - rowFirst), first, count, pass);
+          else loadSamples(hits, at, *table, first, count);
+          rays_.intersectPacket(hits);
+          shadePacket(hits, settings.shading, colours);
+          for (int k = 0; k < count; ++k) {
+            const uint32_t s = first + static_cast<uint32_t>(k);
+            while (pixelEnd <= s) storePixel();
+            sum += colours[k];
+            if (aovs && !moves && s == table->centreSample[pixel] && hits.hit(k)) {
+              recordAov(*aovs, pixel, hits.surface(k), hits.direction(k));
+              centreRecorded[pixel - rowStart] = 1;
+            }
           }
         }
+        while (pixel < rowStart + width) storePixel();  // the last pixel, and any beyond the rim
       }
-      while (pixel < rowStart + width) storePixel();  // the last pixel, and any beyond the rim
       if (aovs) {
-        // At even n no sample is the centre: one more ray per pixel, again in packets.
+        // At even n no sample is the centre, and a moving frame's AOVs are taken at the pixel's
+        // own time: one more ray per pixel, again in packets.
         size_t pending[kPacket];
         int count = 0;
         const auto traceCentres = [&] {
-          const uint32_t hit = recordCentreAovs(at, *table, pending, count, hits, *aovs);
+          const uint32_t hit = recordCentreAovs(centreAt, *table, pending, count, hits, *aovs);
           for (int k = 0; k < count; ++k)
             if ((hit >> k) & 1u) centreRecorded[pending[k] - rowStart] = 1;
           count = 0;
         };
         for (int i = 0; i < width; ++i) {
           const Eigen::Vector3f& centre = table->centreDirections[rowStart + i];
-          if (table->centreSample[rowStart + i] != SampleTable::kNoSample || std::isnan(centre.x())) continue;
+          if ((!moves && table->centreSample[rowStart + i] != SampleTable::kNoSample) || std::isnan(centre.x())) continue;
           pending[count++] = rowStart + i;
           if (count == kPacket) traceCentres();
         }
@@ -312,7 +375,7 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
         const size_t p = rowStart + i;
         float* px = image.at(i, j);
         for (int c = 0; c < 3; ++c) px[c] = sums[i][c] * weight;
-        px[3] = static_cast<float>(table->firstSample[p + 1] - table->firstSample[p]) * weight;
+        px[3] = static_cast<float>(table->firstSample[p + 1] - table->firstSample[p]) * coverageWeight;
       }
     }
   });

@@ -56,6 +56,7 @@ class FastRenderer {
     std::vector<Eigen::Vector3f> origins;
     std::vector<float> starts;
     std::vector<uint32_t> firstSample;        // per pixel, index into directions (+1 sentinel)
+    std::vector<uint16_t> gridIndex;          // per sample: b·n + a of its pixel's n×n grid
     // Per pixel: the centre's ray (direction NaN where not imaged) and, at odd n, the index of
     // the sample that is the centre (kNoSample otherwise).
     std::vector<Eigen::Vector3f> centreDirections;
@@ -69,17 +70,39 @@ class FastRenderer {
     Eigen::Matrix3d rotation;
     Eigen::Matrix3f rotationF;  // float, like the rays Embree traces
   };
+  // Where a frame's rays go when its samples see the robot at different times (docs/motion.md):
+  // one placement per readout line and instant, and per line the one its AOVs are taken at.
+  struct MovingPlacements {
+    Shutter shutter;
+    int width = 0, height = 0, n = 1;
+    PixelInstants instants;
+    std::vector<Placement> samples;  // [line · instants.count + instant]
+    std::vector<Placement> centres;  // [line]: mid-exposure
+    const Placement& sample(int i, int j, uint16_t gridIndex, int pass) const {
+      const int line = lineOf(shutter, i, j, width, height);
+      return samples[static_cast<size_t>(line) * instants.count + instantOf(shutter, gridIndex % n, gridIndex / n, n, pass)];
+    }
+    const Placement& centre(int i, int j) const { return centres[lineOf(shutter, i, j, width, height)]; }
+  };
+  static MovingPlacements movingPlacements(const RenderSettings& settings, const RobotPose& pose, int samplesPerAxis);
   ImageRGBA renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const;
   void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
   std::shared_ptr<const SampleTable> sampleTable(const RenderSettings& settings, int samplesPerAxis) const;
   static Placement placement(const RenderSettings& settings, const RobotPose& pose);
   // Loads `count` rays of one table (first.., or the listed entries) into a packet.
   static void loadSamples(HitPacket& hits, const Placement& at, const SampleTable& table, uint32_t first, int count);
-  static void loadCentres(HitPacket& hits, const Placement& at, const SampleTable& table, const size_t* pixels,
+  // The same for a moving frame: sample first + k of row j lies in column columns[k], and is traced
+  // in pass `pass`.
+  static void loadMovingSamples(HitPacket& hits, const MovingPlacements& at, const SampleTable& table, int j,
+                                const uint16_t* columns, uint32_t first, int count, int pass);
+  // Centre rays of listed pixels, each placed by at(pixel).
+  template <typename PlacementOfPixel>
+  static void loadCentres(HitPacket& hits, const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels,
                           int count);
   // Traces the centre rays of `count` ≤ kRayPacketSize imaged pixels as one packet and records
   // the AOVs of those that hit; returns the mask of hits (bit k: pixels[k]).
-  uint32_t recordCentreAovs(const Placement& at, const SampleTable& table, const size_t* pixels, int count,
+  template <typename PlacementOfPixel>
+  uint32_t recordCentreAovs(const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels, int count,
                             HitPacket& hits, AovFrame& aovs) const;
 
   // Colours of a packet of rays: the background where a ray missed, else its hit shaded per

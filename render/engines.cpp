@@ -19,6 +19,15 @@ std::vector<ImageRGBA> Engine::renderMany(const std::vector<RobotPose>& poses, c
   return images;
 }
 
+namespace {
+// Engines that have no model of time refuse a moving frame rather than render it still.
+void refuseMotion(const RenderSettings& settings, const std::string& engine) {
+  if (moving(settings))
+    throw InputError("the " + engine + " engine does not render motion yet: a moving robot needs an instantaneous global shutter "
+                     "there (rig.shutter; docs/motion.md lists what each engine renders)");
+}
+}  // namespace
+
 ImageRGBA Engine::render(const RobotPose&, const RenderSettings&, AovFrame&) {
   throw std::logic_error("engine " + name() + " has no AOVs");
 }
@@ -32,6 +41,7 @@ class FastEngine : public Engine {
   }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     if (!mode_) return renderer_.render(pose, settings);
+    refuseMotion(settings, "fast engine's " + mode());
     return cubemap_.render(pose, settings, *mode_);
   }
   bool hasAovs() const override { return true; }
@@ -40,6 +50,7 @@ class FastEngine : public Engine {
   // AOVs are geometric truth: always from the exact pixel → ray map, whatever the RGB mode.
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) override {
     if (!mode_) return renderer_.render(pose, settings, aovs);
+    refuseMotion(settings, "fast engine's " + mode());
     renderer_.renderAovsOnly(pose, settings, aovs);
     return cubemap_.render(pose, settings, *mode_);
   }
@@ -96,9 +107,11 @@ class BlenderEngine : public Engine {
     options_.threads = threads;
   }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
+    refuseMotion(settings, "blender");
     return std::move(renderWithBlender(scene_, {pose}, settings, options_).front());
   }
   std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings) override {
+    refuseMotion(settings, "blender");
     if (poses.empty()) return {};
     return renderWithBlender(scene_, poses, settings, options_);
   }
