@@ -229,7 +229,7 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   return job;
 }
 
-void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads) {
+void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads, const std::optional<PovrayRegion>& region) {
   namespace fs = std::filesystem;
   writeTextAtomically((fs::path(dir) / "scene.pov").string(), job.sdl);
   for (const auto& t : job.textures) writeImageAtomic((fs::path(dir) / t.name).string(), t.image);
@@ -240,6 +240,9 @@ void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads) {
       << "Antialias=Off\nJitter=Off\nDisplay=Off\nPause_When_Done=Off\nVerbose=Off\nQuality=9\n"
       << "Library_Path=.\n";
   if (threads > 0) ini << "Work_Threads=" << threads << "\n";
+  if (region)  // POV-Ray counts rows and columns from 1, both ends included
+    ini << "Start_Row=" << region->firstRow + 1 << "\nEnd_Row=" << region->endRow << "\nStart_Column=" << region->firstColumn + 1
+        << "\nEnd_Column=" << region->endColumn << "\n";
   writeTextAtomically((fs::path(dir) / "render.ini").string(), ini.str());
 }
 

@@ -11,6 +11,7 @@
 //   tolerances are absolute and sized for scenes of about unit scale).
 // - Safety: no user string reaches the SDL. Textures are written by us as tex_<n>.exr (linear,
 //   premultiplied by the material colour); object names are not emitted.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,16 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
 // InputError unless POV-Ray can render the rig's camera (it has no lens distortion).
 void checkPovrayCamera(const RigSpec& rig);
 
+// Part of a job's render: rows [firstRow, endRow) and columns [firstColumn, endColumn) of the
+// n×-larger image, from 0. POV-Ray traces only these; the rest of its output is black.
+struct PovrayRegion {
+  int firstRow = 0, endRow = 0, firstColumn = 0, endColumn = 0;
+};
+
 // Writes scene.pov, the textures and render.ini into `dir` (which must exist).
 // `threads` > 0 caps POV-Ray's render threads (Work_Threads); 0 leaves POV-Ray's default, one per
-// core.
-void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads = 0);
+// core. A region limits the render to it.
+void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads = 0,
+                    const std::optional<PovrayRegion>& region = std::nullopt);
 
 }  // namespace omnicam

@@ -6,11 +6,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <fstream>
+#include <mutex>
 #include <thread>
 
 extern char** environ;
@@ -91,6 +94,29 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   result.notFound = result.exitCode == 127;  // glibc's posix_spawnp reports a missing binary so
   result.logTail = tailOfFile(logPath, 15);
   return result;
+}
+
+void runConcurrently(size_t count, int workers, const std::function<void(size_t)>& task) {
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr first;
+  std::mutex mutex;
+  const auto work = [&] {
+    for (size_t k = next++; k < count && !failed; k = next++) {
+      try {
+        task(k);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (!first) first = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int w = 1; w < workers && static_cast<size_t>(w) < count; ++w) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+  if (first) std::rethrow_exception(first);
 }
 
 }  // namespace omnicam

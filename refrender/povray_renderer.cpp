@@ -2,11 +2,13 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "atomic_file.h"
 #include "errors.h"
 #include "make_camera.h"
 #include "external_process.h"
+#include "motion.h"
 #include "job_folder.h"
 #include "povray_exporter.h"
 
@@ -55,11 +57,16 @@ ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const Camera& ca
   return image;
 }
 
-ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
-                           const PovrayOptions& options) {
-  const PovrayJob job = exportPovray(scene, pose, settings);
+namespace {
+
+// POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting.
+constexpr int kConcurrentPovrayJobs = 8;
+
+// Renders one exported job (a region of it, if given) in a private job folder: the n×-larger image.
+ImageRGBA runPovrayJob(const PovrayJob& job, const PovrayOptions& options, int threads,
+                       const std::optional<PovrayRegion>& region = std::nullopt) {
   JobFolder folder("omnicam-povray", options.keepJobFolder);
-  writePovrayJob(job, folder.path(), options.threads);
+  writePovrayJob(job, folder.path(), threads, region);
   writeRestrictiveConfig(folder.path());
   const std::string log = folder.path() + "/povray.log";
   const ProcessResult r = runProcess({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
@@ -78,7 +85,83 @@ ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const Rend
   }
   if (large.width != job.width || large.height != job.height)
     throw ExternalError("povray: output has the wrong size");
-  return downsampleWithRimAlpha(large, job.samplesPerAxis, *makeCamera(settings.rig));
+  return large;
+}
+
+// One POV-Ray render of a moving frame: one readout line (all of them for a global shutter) at
+// one of its instants.
+struct InstantJob {
+  int line = 0, instant = 0;
+};
+
+// The region of the n×-larger image that holds a line's samples.
+PovrayRegion regionOfLine(const Shutter& shutter, int line, int size, int n) {
+  const int large = size * n;
+  if (!shutter.rolling) return {0, large, 0, large};
+  int first = line;  // the line's row or column in the image
+  if (shutter.rolling->readout == Readout::BottomToTop || shutter.rolling->readout == Readout::RightToLeft)
+    first = size - 1 - line;
+  const bool rows = shutter.rolling->readout == Readout::TopToBottom || shutter.rolling->readout == Readout::BottomToTop;
+  return rows ? PovrayRegion{first * n, (first + 1) * n, 0, large} : PovrayRegion{0, large, first * n, (first + 1) * n};
+}
+
+// A moving frame as the mean of still POV-Ray renders (docs/motion.md): one per line and instant,
+// with the robot and mirror where they are then; each render gives exactly the samples the fast
+// renderer traces at that line and instant. POV-Ray spends most of a short job waiting, so several
+// run at once.
+ImageRGBA renderMovingWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
+                                 const PovrayOptions& options) {
+  const Shutter& shutter = settings.rig.shutter;
+  const int n = *samplesPerAxis(settings.spp), size = settings.rig.imageSize;
+  const PixelInstants instants = pixelInstants(shutter, n);
+  std::vector<InstantJob> jobs;
+  for (int line = 0; line < lineCount(shutter, size, size); ++line)
+    for (int m = 0; m < instants.count; ++m) jobs.push_back({line, m});
+  std::vector<ImageRGBA> renders(jobs.size());
+  RenderSettings still = settings;
+  still.velocity = {};
+  still.rig.shutter = {};
+  runConcurrently(jobs.size(), kConcurrentPovrayJobs, [&](size_t k) {
+    const InstantJob& job = jobs[k];
+    const double seconds = lineStart(shutter, job.line) + instantTime(shutter, job.instant, instants.count);
+    renders[k] = runPovrayJob(exportPovray(scene, poseAfter(pose, settings.velocity, seconds), still), options,
+                              options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, size, n));
+  });
+  // Each sample from the render of its line and instant, summed in a fixed order.
+  std::vector<float> sums(static_cast<size_t>(size) * size * 3, 0.0f);
+  for (size_t k = 0; k < jobs.size(); ++k)
+    for (int j = 0; j < size; ++j)
+      for (int i = 0; i < size; ++i) {
+        if (lineOf(shutter, i, j, size, size) != jobs[k].line) continue;
+        float* sum = &sums[(static_cast<size_t>(j) * size + i) * 3];
+        for (int pass = 0; pass < instants.passes; ++pass)
+          for (int b = 0; b < n; ++b)
+            for (int a = 0; a < n; ++a)
+              if (instantOf(shutter, a, b, n, pass) == jobs[k].instant)
+                for (int c = 0; c < 3; ++c) sum[c] += renders[k].at(i * n + a, j * n + b)[c];
+      }
+  const auto camera = makeCamera(settings.rig);
+  ImageRGBA image(size, size);
+  const float weight = 1.0f / static_cast<float>(n * n * instants.passes);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      for (int c = 0; c < 3; ++c) image.at(i, j)[c] = sums[(static_cast<size_t>(j) * size + i) * 3 + c] * weight;
+      image.at(i, j)[3] = camera->coverage(i, j, n);
+    }
+  return image;
+}
+
+}  // namespace
+
+ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
+                           const PovrayOptions& options) {
+  if (moving(settings)) {
+    checkRenderSettings(settings);
+    checkPose(pose, "pose");
+    return renderMovingWithPovray(scene, pose, settings, options);
+  }
+  const PovrayJob job = exportPovray(scene, pose, settings);
+  return downsampleWithRimAlpha(runPovrayJob(job, options, options.threads), job.samplesPerAxis, *makeCamera(settings.rig));
 }
 
 }  // namespace omnicam
