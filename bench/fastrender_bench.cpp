@@ -1,7 +1,8 @@
 // make bench: frames/s of the fast renderer (exact mode) on a 360×360 robocup2006 frame at the
 // thesis start pose, 1 and 16 spp, unlit and lit: the ideal rig in closed form, and a physical
 // rig (2 mm / 1° misaligned, distorting lens) traced through the mirror (docs/physical-camera.md:
-// target ≥ 50 % of the closed form's frames/s). Uses every core TBB finds.
+// target ≥ 50 % of the closed form's frames/s); and moving frames (docs/motion.md). Uses every
+// core TBB finds.
 #include <benchmark/benchmark.h>
 
 #include "fast_renderer.h"
@@ -15,13 +16,15 @@ const Scene& arena() {
   return scene;
 }
 
-void renderFrames(benchmark::State& state, const FastRenderer& renderer, const RigSpec& rig) {
+void renderFrames(benchmark::State& state, const FastRenderer& renderer, const RigSpec& rig,
+                  const BodyVelocity& velocity = {}) {
   const Scene& scene = arena();
   RenderSettings settings;
   settings.rig = rig;
   settings.rig.imageSize = 360;
   settings.spp = static_cast<int>(state.range(0));
   settings.shading = state.range(1) ? Shading::Lit : Shading::Unlit;
+  settings.velocity = velocity;
   // Sample tables are built once per camera and spp, then serve every frame: build them first,
   // so that frames/s is the rate of frames.
   benchmark::DoNotOptimize(renderer.render(scene.startPose, settings));
@@ -44,6 +47,23 @@ void BM_PhysicalRigRobocup2006(benchmark::State& state) {
   renderFrames(state, renderer, rig);
 }
 
+// docs/motion.md: a frame at 1 m/s and 90°/s, its samples stratified over a 1/30 s exposure
+// (global) or read line by line (rolling, 30 µs lines), against the still frame above (target:
+// ≤ 1.25× its time at 16 spp).
+void BM_MotionBlurRobocup2006(benchmark::State& state) {
+  static const FastRenderer renderer(arena());
+  RigSpec rig = arena().rig;
+  rig.shutter = {1.0 / 30.0, std::nullopt, 0};
+  renderFrames(state, renderer, rig, {1.0, 0.0, 90.0});
+}
+
+void BM_RollingShutterRobocup2006(benchmark::State& state) {
+  static const FastRenderer renderer(arena());
+  RigSpec rig = arena().rig;
+  rig.shutter = {1.0 / 30.0, RollingShutter{30.0, Readout::TopToBottom}, 0};
+  renderFrames(state, renderer, rig, {1.0, 0.0, 90.0});
+}
+
 // 1 and 16 spp, unlit and lit, for either rig.
 void frameArgs(benchmark::internal::Benchmark* b) {
   b->ArgNames({"spp", "lit"})->Args({1, 0})->Args({1, 1})->Args({16, 0})->Args({16, 1});
@@ -51,6 +71,8 @@ void frameArgs(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_ExactRobocup2006)->Apply(frameArgs);
 BENCHMARK(BM_PhysicalRigRobocup2006)->Apply(frameArgs);
+BENCHMARK(BM_MotionBlurRobocup2006)->Apply(frameArgs);
+BENCHMARK(BM_RollingShutterRobocup2006)->Apply(frameArgs);
 
 }  // namespace
 }  // namespace omnicam

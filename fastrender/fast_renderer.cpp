@@ -169,16 +169,56 @@ FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettin
   return out;
 }
 
-void FastRenderer::loadMovingSamples(HitPacket& hits, const MovingPlacements& at, const SampleTable& table, int j,
-                                     const uint16_t* columns, uint32_t first, int count, int pass) {
-  hits.begin(Vec3::Zero(), count);
+void FastRenderer::RowPlacements::prepare(const MovingPlacements& at, int j, int pass) {
+  lineBase.resize(at.width);
+  for (int i = 0; i < at.width; ++i) lineBase[i] = lineOf(at.shutter, i, j, at.width, at.height) * at.instants.count;
+  instantOfGrid.resize(static_cast<size_t>(at.n) * at.n);
+  for (int g = 0; g < at.n * at.n; ++g) instantOfGrid[g] = instantOf(at.shutter, g % at.n, g / at.n, at.n, pass);
+}
+
+void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading,
+                                  MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums) const {
+  const size_t rowStart = static_cast<size_t>(j) * at.width;
+  const uint32_t rowFirst = table.firstSample[rowStart], rowEnd = table.firstSample[rowStart + at.width];
+  const uint32_t samples = rowEnd - rowFirst;
+  std::fill(sums, sums + at.width, Vec3f::Zero());
+  scratch.columns.resize(samples);
+  for (int i = 0; i < at.width; ++i)
+    std::fill(scratch.columns.begin() + (table.firstSample[rowStart + i] - rowFirst),
+              scratch.columns.begin() + (table.firstSample[rowStart + i + 1] - rowFirst), static_cast<uint16_t>(i));
   const bool central = table.origins.empty();
-  for (int k = 0; k < count; ++k) {
-    const uint32_t s = first + static_cast<uint32_t>(k);
-    const Placement& p = at.sample(columns[k], j, table.gridIndex[s], pass);
-    hits.setDirection(k, p.rotationF * table.directions[s]);
-    if (central) hits.setOrigin(k, p.origin, 0.0f);
-    else hits.setOrigin(k, p.origin + p.rotation * table.origins[s].cast<double>(), table.starts[s]);
+  Vec3f colours[kRayPacketSize];
+  // With fixed instants the row is traced once per instant, and the sums add up.
+  for (int pass = 0; pass < at.instants.passes; ++pass) {
+    scratch.row.prepare(at, j, pass);
+    // In table order: a packet holds neighbouring samples of a pixel or two, each at its own
+    // instant (measured faster than packets of one instant across eight pixels).
+    uint16_t current = 0;
+    Vec3f sum = Vec3f::Zero();
+    for (uint32_t first = 0; first < samples; first += kRayPacketSize) {
+      const int count = static_cast<int>(std::min<uint32_t>(kRayPacketSize, samples - first));
+      hits.begin(Vec3::Zero(), count);
+      for (int k = 0; k < count; ++k) {
+        const uint32_t r = first + static_cast<uint32_t>(k), s = rowFirst + r;
+        const Placement& p = at.samples[scratch.row.lineBase[scratch.columns[r]] + scratch.row.instantOfGrid[table.gridIndex[s]]];
+        hits.setDirection(k, p.rotationF * table.directions[s]);
+        if (central) hits.setOrigin(k, p.origin, 0.0f);
+        else hits.setOrigin(k, p.origin + p.rotation * table.origins[s].cast<double>(), table.starts[s]);
+      }
+      rays_.intersectPacket(hits);
+      shadePacket(hits, shading, colours);
+      // A pixel's samples are consecutive: summed in a register, stored when the pixel changes.
+      for (int k = 0; k < count; ++k) {
+        const uint16_t column = scratch.columns[first + k];
+        if (column != current) {
+          sums[current] += sum;
+          sum = Vec3f::Zero();
+          current = column;
+        }
+        sum += colours[k];
+      }
+    }
+    sums[current] += sum;
   }
 }
 
@@ -305,44 +345,37 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
     std::vector<uint8_t> centreRecorded(width);
-    std::vector<uint16_t> columns;  // a moving frame's: each sample's column in the row
+    MovingRowScratch scratch;
     HitPacket hits;
     Vec3f colours[kPacket];
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const size_t rowStart = static_cast<size_t>(j) * width;
       std::fill(centreRecorded.begin(), centreRecorded.end(), uint8_t{0});
-      std::fill(sums.begin(), sums.end(), Vec3f::Zero());
-      // The row's samples are contiguous in the table; packets run across pixel borders. Each
-      // pixel's sum is built in a register from zero in sample order (as one ray at a time
-      // would) and stored once its last sample is in.
-      const uint32_t rowFirst = table->firstSample[rowStart], rowEnd = table->firstSample[rowStart + width];
+      // A still frame's row: its samples are contiguous in the table; packets run across pixel
+      // borders. Each pixel's sum is built in a register from zero in sample order (as one ray at
+      // a time would) and stored once its last sample is in.
       if (moves) {
-        columns.resize(rowEnd - rowFirst);
-        for (int i = 0; i < width; ++i)
-          std::fill(columns.begin() + (table->firstSample[rowStart + i] - rowFirst),
-                    columns.begin() + (table->firstSample[rowStart + i + 1] - rowFirst), static_cast<uint16_t>(i));
-      }
-      // A moving frame with fixed instants traces the row once per instant; the sums add up.
-      for (int pass = 0; pass < passes; ++pass) {
+        traceMovingRow(motion, *table, j, settings.shading, scratch, hits, sums.data());
+      } else {
+        const uint32_t rowEnd = table->firstSample[rowStart + width];
         size_t pixel = rowStart;
         uint32_t pixelEnd = table->firstSample[pixel + 1];
         Vec3f sum = Vec3f::Zero();
         const auto storePixel = [&] {
-          sums[pixel - rowStart] += sum;
+          sums[pixel - rowStart] = sum;
           sum = Vec3f::Zero();
           if (++pixel < rowStart + width) pixelEnd = table->firstSample[pixel + 1];
         };
-        for (uint32_t first = rowFirst; first < rowEnd; first += kPacket) {
+        for (uint32_t first = table->firstSample[rowStart]; first < rowEnd; first += kPacket) {
           const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
-          if (moves) loadMovingSamples(hits, motion, *table, j, columns.data() + (first - rowFirst), first, count, pass);
-          else loadSamples(hits, at, *table, first, count);
+          loadSamples(hits, at, *table, first, count);
           rays_.intersectPacket(hits);
           shadePacket(hits, settings.shading, colours);
           for (int k = 0; k < count; ++k) {
             const uint32_t s = first + static_cast<uint32_t>(k);
             while (pixelEnd <= s) storePixel();
             sum += colours[k];
-            if (aovs && !moves && s == table->centreSample[pixel] && hits.hit(k)) {
+            if (aovs && s == table->centreSample[pixel] && hits.hit(k)) {
               recordAov(*aovs, pixel, hits.surface(k), hits.direction(k));
               centreRecorded[pixel - rowStart] = 1;
             }

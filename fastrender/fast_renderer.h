@@ -77,12 +77,14 @@ class FastRenderer {
     int width = 0, height = 0, n = 1;
     PixelInstants instants;
     std::vector<Placement> samples;  // [line · instants.count + instant]
-    std::vector<Placement> centres;  // [line]: mid-exposure
-    const Placement& sample(int i, int j, uint16_t gridIndex, int pass) const {
-      const int line = lineOf(shutter, i, j, width, height);
-      return samples[static_cast<size_t>(line) * instants.count + instantOf(shutter, gridIndex % n, gridIndex / n, n, pass)];
-    }
+    std::vector<Placement> centres;  // [line]
     const Placement& centre(int i, int j) const { return centres[lineOf(shutter, i, j, width, height)]; }
+  };
+  // A row's lookup of each sample's placement in one pass: samples[lineBase[column] + instantOfGrid[grid index]].
+  struct RowPlacements {
+    std::vector<int> lineBase;       // per column
+    std::vector<int> instantOfGrid;  // per grid index b·n + a
+    void prepare(const MovingPlacements& at, int j, int pass);
   };
   static MovingPlacements movingPlacements(const RenderSettings& settings, const RobotPose& pose, int samplesPerAxis);
   ImageRGBA renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const;
@@ -91,10 +93,15 @@ class FastRenderer {
   static Placement placement(const RenderSettings& settings, const RobotPose& pose);
   // Loads `count` rays of one table (first.., or the listed entries) into a packet.
   static void loadSamples(HitPacket& hits, const Placement& at, const SampleTable& table, uint32_t first, int count);
-  // The same for a moving frame: sample first + k of row j lies in column columns[k], and is traced
-  // in pass `pass`.
-  static void loadMovingSamples(HitPacket& hits, const MovingPlacements& at, const SampleTable& table, int j,
-                                const uint16_t* columns, uint32_t first, int count, int pass);
+  // Reused memory of a thread's moving rows.
+  struct MovingRowScratch {
+    RowPlacements row;
+    std::vector<uint16_t> columns;  // per sample of the row
+  };
+  // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
+  // sums[0, width).
+  void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading,
+                      MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums) const;
   // Centre rays of listed pixels, each placed by at(pixel).
   template <typename PlacementOfPixel>
   static void loadCentres(HitPacket& hits, const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels,
