@@ -16,7 +16,7 @@ Vec3 parseTriple(const std::string& text, const std::string& flag);
 // "X,Y,YAW" → a robot pose within the documented bounds; InputError naming `flag`.
 RobotPose parsePose(const std::string& text, const std::string& flag);
 // Messages about render settings name the flags that set them.
-inline const SettingNames kSettingFlags{"--spp", "--size"};
+inline const SettingNames kSettingFlags{"--spp", "--size", "--velocity"};
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do

@@ -25,7 +25,7 @@ namespace omnicam::cli {
 namespace {
 
 struct RenderArgs {
-  std::string scene, engine = "fast", pose, path, size, shading = "unlit", mode = "exact", out, format = "png";
+  std::string scene, engine = "fast", pose, velocity, path, size, shading = "unlit", mode = "exact", out, format = "png";
   int frames = 0, spp = 1, imageSize = 0, faces = 6, faceSize = 512, polygons = 1024;
   double timeout = 600.0;
   std::vector<std::string> views;
@@ -98,6 +98,10 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   RenderSettings settings;
   settings.spp = a.spp;
   settings.shading = *shading;
+  if (!a.velocity.empty()) {
+    const Vec3 v = parseTriple(a.velocity, "--velocity");
+    settings.velocity = {v.x(), v.y(), v.z()};
+  }
   if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize);
   checkRenderSettings(settings, kSettingFlags);  // before the scene: a bad --spp needs no scene to be read
   const Scene scene = loadScene(a.scene, a.load);
@@ -173,6 +177,9 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--timeout", args->timeout, "Seconds allowed per external render (default 600)")
       ->check(CLI::Range(1e-3, limits::kMaxTimeoutSeconds));
   cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");
+  cmd->add_option("--velocity", args->velocity,
+                  "VX,VY,YAW_RATE: the robot's body velocity while the shutter is open (m/s forward, m/s left, "
+                  "degrees/s CCW; docs/motion.md); the pose is the exposure start's. Default: still");
   cmd->add_option("--path", args->path, "Render the named camera path into folder OUT");
   cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(CLI::PositiveNumber);
   cmd->add_option("--size", args->imageSize, "Image size in pixels (square); default: the scene's rig")

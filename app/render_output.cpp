@@ -14,6 +14,7 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Rob
   record.scenePath = scene.path;
   record.sceneSha256 = scene.sha256;
   record.pose = pose;
+  record.velocity = settings.velocity;
   record.rig = settings.rig;
   record.spp = settings.spp;
   record.shading = shadingName(settings.shading);

@@ -42,6 +42,13 @@ json rigToJson(const RigSpec& rig) {
                      {"distortion", {{"k1", l.k1}, {"k2", l.k2}, {"p1", l.p1}, {"p2", l.p2}, {"k3", l.k3}}},
                      {"principal_point_offset_px", m.principalPointOffsetPx}};
   }
+  if (!(rig.shutter == Shutter{})) {  // likewise an instant
+    const Shutter& open = rig.shutter;
+    json shutter = {{"exposure_s", open.exposureS}};
+    if (open.rolling) shutter["rolling"] = {{"line_time_us", open.rolling->lineTimeUs}, {"readout", readoutName(open.rolling->readout)}};
+    if (open.timeSamples > 0) shutter["time_samples"] = open.timeSamples;
+    out["shutter"] = shutter;
+  }
   return out;
 }
 
@@ -54,7 +61,7 @@ json sidecarJson(const RenderRecord& r) {
     for (int j = 0; j < 4; ++j) row.push_back(cfw.matrix()(i, j));
     matrix.push_back(row);
   }
-  return {{"engine", r.engine},
+  json sidecar = {{"engine", r.engine},
           {"engine_version", r.engineVersion},
           {"scene", {{"path", r.scenePath}, {"sha256", r.sceneSha256}}},
           {"pose", {{"x", r.pose.x}, {"y", r.pose.y}, {"yaw_deg", r.pose.yawDeg}}},
@@ -66,6 +73,9 @@ json sidecarJson(const RenderRecord& r) {
           {"seconds", r.seconds},
           {"intrinsics", describeCamera(r.rig)},
           {"camera_from_world", matrix}};
+  if (!r.velocity.still())  // the pose and camera_from_world are then the exposure start's
+    sidecar["velocity"] = {{"vx", r.velocity.vx}, {"vy", r.velocity.vy}, {"yaw_rate_deg_per_s", r.velocity.yawRateDegPerS}};
+  return sidecar;
 }
 
 std::string sidecarPath(const std::string& imagePath) { return imagePath + ".json"; }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "motion.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -12,7 +13,8 @@ namespace omnicam {
 struct RenderRecord {
   std::string engine, engineVersion;
   std::string scenePath, sceneSha256;
-  RobotPose pose;
+  RobotPose pose;  // at the exposure start
+  BodyVelocity velocity;  // over the exposure (docs/motion.md)
   RigSpec rig;
   int spp = 1;
   std::string shading, mode = "exact";
