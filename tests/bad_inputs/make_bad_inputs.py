@@ -175,6 +175,14 @@ def main():
     write(os.path.join(SCENES, "camera_away.json"), scene([FLOOR], rig={"camera": {"offset_mm": [100, 0, 0]}}))
     write(os.path.join(SCENES, "camera_misaligned.json"),
           scene([FLOOR], rig={"camera": {"offset_mm": [2, 0, 0], "distortion": {"k1": -0.05}}}))
+    # The shutter (rig.shutter, docs/motion.md): strict and bounded.
+    write(os.path.join(SCENES, "shutter_readout.json"),
+          scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30, "readout": "diagonal"}}}))
+    write(os.path.join(SCENES, "shutter_negative.json"), scene([FLOOR], rig={"shutter": {"exposure_s": -0.01}}))
+    write(os.path.join(SCENES, "shutter_no_line_time.json"), scene([FLOOR], rig={"shutter": {"rolling": {}}}))
+    write(os.path.join(SCENES, "shutter_time_samples.json"), scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "time_samples": 1000}}))
+    write(os.path.join(SCENES, "shutter_global.json"), scene([FLOOR], rig={"shutter": {"exposure_s": 0.03}}))
+    write(os.path.join(SCENES, "shutter_unknown_key.json"), scene([FLOOR], rig={"shutter": {"iso": 100}}))
     write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
     write(os.path.join(SCENES, "light_shares_name.json"),
           scene([dict(FLOOR, name="lamp")], lights=[{"name": "lamp", "position": [0, 0, 2]}]))
