@@ -196,6 +196,37 @@ std::vector<std::string> datasetFolders(const std::vector<CameraSetup>& setups, 
   return folders;
 }
 
+// Each frame's robot velocity: still, the spec's, or the one that drives the frame's pose to the
+// next one's in the frame interval (the last frame keeps the one before it).
+std::vector<BodyVelocity> frameVelocities(const DatasetSpec& spec, const std::vector<RobotPose>& poses) {
+  std::vector<BodyVelocity> out(poses.size(), spec.motion == MotionSource::Constant ? spec.velocity : BodyVelocity{});
+  if (spec.motion != MotionSource::BetweenPoses) return out;
+  for (size_t i = 0; i + 1 < poses.size(); ++i) {
+    out[i] = velocityBetween(poses[i], poses[i + 1], spec.frameIntervalSeconds);
+    RenderSettings check;
+    check.velocity = out[i];
+    checkRenderSettings(check, {"spp", "size", showPath(spec.file) + ": motion.between_poses: frame " + std::to_string(i)});
+  }
+  if (poses.size() > 1) out.back() = out[poses.size() - 2];
+  return out;
+}
+
+// InputError when frames move while a camera's shutter is open and the engine cannot render it.
+void checkMotion(const DatasetSpec& spec, const std::vector<CameraSetup>& setups, const std::vector<BodyVelocity>& velocities,
+                 const Engine& engine) {
+  if (engine.rendersMotion() || spec.motion == MotionSource::Still) return;
+  for (const CameraSetup& setup : setups) {
+    RenderSettings settings{setup.rig, spec.spp, spec.shading};
+    for (const BodyVelocity& v : velocities) {
+      settings.velocity = v;
+      if (moving(settings))
+        throw InputError(showPath(spec.file) + ": motion: the " + engine.name() + " engine (mode " + engine.mode() +
+                         ") does not render motion; camera " + quote(setup.camera->name) +
+                         " has a shutter open while the robot moves (docs/motion.md lists what each engine renders)");
+    }
+  }
+}
+
 }  // namespace
 
 DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& options)
@@ -206,8 +237,10 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   poses = datasetPoses(spec, scene, topHeight);
   for (const RobotPose& robot : poses)
     for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
+  velocities = frameVelocities(spec, poses);
   const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
   engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
+  checkMotion(spec, setups, velocities, *engine);
   for (const CameraSetup& setup : setups) {
     try {
       engine->checkCamera(setup.rig);

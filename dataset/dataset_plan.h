@@ -49,7 +49,8 @@ class DatasetPlan {
   const DatasetSpec& spec;
   Scene scene;
   std::vector<CameraSetup> setups;
-  std::vector<RobotPose> poses;  // every frame's robot pose (the whole dataset's)
+  std::vector<RobotPose> poses;  // every frame's robot pose (the whole dataset's), at its exposure start
+  std::vector<BodyVelocity> velocities;  // every frame's robot velocity over its exposure
   std::unique_ptr<Engine> engine;
   FrameRange range;
   FrameOutputPlan outputs;

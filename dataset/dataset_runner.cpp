@@ -97,7 +97,9 @@ std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetMan
   for (const auto& [index, frame] : previous.frames) {
     if (index < plan.range.first || index >= plan.range.end || frame.cameras.size() != setups.size()) continue;
     const RobotPose& want = plan.poses[index];
-    if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg) continue;
+    if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg ||
+        !(frame.velocity == plan.velocities[index]))
+      continue;
     bool intact = true;
     for (const CameraSetup& setup : setups) {
       const auto camera = frame.cameras.find(setup.camera->name);

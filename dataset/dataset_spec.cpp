@@ -109,6 +109,26 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
   poses.finish();
 }
 
+// "motion": {"velocity": [vx, vy, yaw_rate_deg_per_s]} or {"between_poses": true}.
+void readMotion(JsonFields motion, DatasetSpec& spec) {
+  if (motion.has("velocity") == motion.has("between_poses"))
+    throw InputError(showPath(spec.file) + ": motion: give exactly one of \"velocity\" or \"between_poses\"");
+  if (motion.has("velocity")) {
+    const std::vector<double> v = motion.numbers("velocity", {0.0, 0.0, 0.0},
+                                                 {-limits::kMaxYawRateDegPerS, limits::kMaxYawRateDegPerS, false, ""});
+    spec.motion = MotionSource::Constant;
+    spec.velocity = {v[0], v[1], v[2]};
+    if (!(std::hypot(v[0], v[1]) <= limits::kMaxSpeed))
+      motion.fail("velocity", "speed must be at most " + shortNumber(limits::kMaxSpeed) + " m/s");
+  } else {
+    if (!motion.boolean("between_poses", false)) motion.fail("between_poses", "must be true (or leave motion out)");
+    if (spec.poseSource == PoseSource::Random)
+      motion.fail("between_poses", "needs poses in an order (a path or a list), not random ones");
+    spec.motion = MotionSource::BetweenPoses;
+  }
+  motion.finish();
+}
+
 // The rule a camera name broke; the name itself too when it holds characters the user cannot
 // see in it (control characters, bytes that are not UTF-8), shown escaped.
 std::string cameraNameProblem(const std::string& name) {
@@ -254,6 +274,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     spec.cameras.push_back({"cam0", std::nullopt, 0.0, 0.0, 0.0});
   }
   readPoses(top.object("poses"), spec);
+  if (auto motion = top.optionalObject("motion")) readMotion(*motion, spec);
   const auto layout = layoutNamed(top.string("layout", layoutName(spec.layout)));
   if (!layout) top.fail("layout", "must be \"files\" or \"multilayer\"");
   spec.layout = *layout;
@@ -274,6 +295,13 @@ RobotPose cameraPose(const DatasetCamera& camera, const RobotPose& robot) {
   return {robot.x + std::cos(yaw) * camera.mountX - std::sin(yaw) * camera.mountY,
           robot.y + std::sin(yaw) * camera.mountX + std::cos(yaw) * camera.mountY,
           robot.yawDeg + camera.mountYawDeg};
+}
+
+BodyVelocity cameraVelocity(const DatasetCamera& camera, const BodyVelocity& robot) {
+  const double omega = radians(robot.yawRateDegPerS);
+  const double vx = robot.vx - omega * camera.mountY, vy = robot.vy + omega * camera.mountX;
+  const double yaw = radians(camera.mountYawDeg), c = std::cos(yaw), s = std::sin(yaw);
+  return {c * vx + s * vy, -s * vx + c * vy, robot.yawRateDegPerS};
 }
 
 }  // namespace omnicam

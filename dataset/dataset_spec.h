@@ -62,6 +62,8 @@ struct DatasetOutputs {
 
 enum class PoseSource { Path, List, Random };
 
+enum class MotionSource { Still, Constant, BetweenPoses };
+
 struct DatasetSpec {
   std::string file;       // the spec file
   std::string sha256;     // of its bytes
@@ -84,6 +86,10 @@ struct DatasetSpec {
   std::vector<RobotPose> poseList;
   RandomPoses random;
   std::vector<DatasetCamera> cameras;
+  // The robot's body velocity over each frame's exposure (docs/motion.md): none (still), the
+  // same for every frame, or the one that drives each pose to the next in frame_interval_s.
+  MotionSource motion = MotionSource::Still;
+  BodyVelocity velocity;
   // files: one file per output and frame; multilayer: one OpenEXR per frame and camera
   // (output_kinds.h).
   DatasetLayout layout = DatasetLayout::Files;
@@ -110,5 +116,8 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
 
 // The world pose of a camera's viewpoint for a robot pose (the mount applied).
 RobotPose cameraPose(const DatasetCamera& camera, const RobotPose& robot);
+// The body velocity of a camera mounted on a robot that moves with `robot` (the same turn rate;
+// the mount's offset adds ω × offset, seen in the mount's axes).
+BodyVelocity cameraVelocity(const DatasetCamera& camera, const BodyVelocity& robot);
 
 }  // namespace omnicam

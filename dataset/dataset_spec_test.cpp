@@ -198,5 +198,49 @@ TEST(DatasetSpec, RandomPosesAreReproducibleAndKeepTheirClearance) {
   }
 }
 
+TEST(DatasetMotion, AMountedCameraMovesWithTheRobot) {
+  // Turning on the spot at 90°/s, a camera 0.2 m ahead facing left drives forward at 0.2·π/2 m/s.
+  const DatasetCamera side{"side", std::nullopt, 0.2, 0.0, 90.0};
+  const BodyVelocity turning = cameraVelocity(side, {0.0, 0.0, 90.0});
+  EXPECT_NEAR(turning.vx, 0.1 * kPi, 1e-12);
+  EXPECT_NEAR(turning.vy, 0.0, 1e-12);
+  EXPECT_EQ(turning.yawRateDegPerS, 90.0);
+  // In general: the camera's pose over time is the mounted pose of the robot's.
+  const DatasetCamera mounted{"m", std::nullopt, 0.15, -0.3, -40.0};
+  const RobotPose robot{1.0, -2.0, 25.0};
+  const BodyVelocity v{0.8, -0.3, 120.0};
+  for (double t : {0.01, 0.1, 0.7}) {
+    const RobotPose expected = cameraPose(mounted, poseAfter(robot, v, t));
+    const RobotPose got = poseAfter(cameraPose(mounted, robot), cameraVelocity(mounted, v), t);
+    EXPECT_NEAR(got.x, expected.x, 1e-12) << t;
+    EXPECT_NEAR(got.y, expected.y, 1e-12) << t;
+    EXPECT_NEAR(got.yawDeg, expected.yawDeg, 1e-9) << t;
+  }
+}
+
+TEST(DatasetMotion, MotionIsStrict) {
+  const auto spec = [](const std::string& poses, const std::string& motion) {
+    return datasetSpecFromText(R"({"format": "omnicam-dataset/1", "scene": "s.json", "poses": )" + poses +
+                                   R"(, "motion": )" + motion + "}",
+                               "spec.json");
+  };
+  EXPECT_EQ(spec(R"({"path": "p"})", R"({"velocity": [1, 0, 90]})").velocity, (BodyVelocity{1.0, 0.0, 90.0}));
+  EXPECT_EQ(spec(R"({"path": "p"})", R"({"between_poses": true})").motion, MotionSource::BetweenPoses);
+  const auto refuses = [&](const std::string& poses, const std::string& motion, const std::string& fragment) {
+    try {
+      spec(poses, motion);
+      ADD_FAILURE() << motion << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  refuses(R"({"path": "p"})", R"({})", "motion: give exactly one of \"velocity\" or \"between_poses\"");
+  refuses(R"({"path": "p"})", R"({"velocity": [1, 0]})", "motion.velocity");
+  refuses(R"({"path": "p"})", R"({"velocity": [300, 0, 0]})", "motion.velocity: speed must be at most 100 m/s");
+  refuses(R"({"list": [[0, 0, 0]]})", R"({"between_poses": 1})", "motion.between_poses");
+  refuses(R"({"random": {"count": 3, "seed": 1, "region": [0, 0, 1, 1]}})", R"({"between_poses": true})", "needs poses in an order");
+  refuses(R"({"path": "p"})", R"({"between_poses": true, "jitter": 1})", "motion.jitter: unknown field");
+}
+
 }  // namespace
 }  // namespace omnicam

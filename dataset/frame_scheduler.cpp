@@ -32,10 +32,11 @@ void stopIfCancelled() {
 FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int index, std::vector<ImageRGBA*> rgb,
                         AovFrame& aovs) {
   const DatasetSpec& spec = plan.spec;
-  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], {}};
+  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], plan.velocities[index], {}};
   for (size_t c = 0; c < plan.setups.size(); ++c) {
     const CameraSetup& setup = plan.setups[c];
-    const RenderSettings settings{setup.rig, spec.spp, spec.shading};
+    RenderSettings settings{setup.rig, spec.spp, spec.shading};
+    settings.velocity = cameraVelocity(*setup.camera, plan.velocities[index]);
     const RobotPose pose = cameraPose(*setup.camera, plan.poses[index]);
     ImageRGBA image = rgb[c] ? std::move(*rgb[c])
                       : plan.outputs.anyAov() ? plan.engine->render(pose, settings, aovs)

@@ -158,6 +158,14 @@ FrameRecord readFrame(JsonFields f, const HeaderFacts& header) {
   frame.index = static_cast<int>(f.integer("index", 0, header.frameCount - 1));
   frame.timestamp = f.number("timestamp");
   frame.robot = readManifestPose(f.object("pose"));
+  if (auto velocity = f.optionalObject("velocity")) {
+    const JsonFields::Range speed{-limits::kMaxSpeed, limits::kMaxSpeed, false, "m/s"};
+    frame.velocity.vx = velocity->number("vx", speed);
+    frame.velocity.vy = velocity->number("vy", speed);
+    frame.velocity.yawRateDegPerS =
+        velocity->number("yaw_rate_deg_per_s", {-limits::kMaxYawRateDegPerS, limits::kMaxYawRateDegPerS, false, "degrees/s"});
+    velocity->finish();
+  }
   const json& raw = f.raw("cameras");
   JsonFields cameras = f.object("cameras");
   for (auto it = raw.begin(); it != raw.end(); ++it) {
@@ -184,8 +192,10 @@ json manifestToJson(const DatasetManifest& manifest) {
       for (const auto& [kind, file] : camera.files) files[kind] = {{"path", file.path}, {"sha256", file.sha256}};
       cameras[name] = {{"pose", poseJson(camera.pose)}, {"files", files}};
     }
-    frames.push_back({{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)},
-                      {"cameras", cameras}});
+    json entry = {{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)}, {"cameras", cameras}};
+    if (!frame.velocity.still())  // the pose is then the exposure start's (docs/motion.md)
+      entry["velocity"] = {{"vx", frame.velocity.vx}, {"vy", frame.velocity.vy}, {"yaw_rate_deg_per_s", frame.velocity.yawRateDegPerS}};
+    frames.push_back(std::move(entry));
   }
   root["frames"] = frames;
   return root;

@@ -45,7 +45,8 @@ struct CameraFrame {
 struct FrameRecord {
   int index = 0;
   double timestamp = 0.0;
-  RobotPose robot;
+  RobotPose robot;        // at the exposure start (the timestamp)
+  BodyVelocity velocity;  // the robot's, over the exposure (docs/motion.md)
   std::map<std::string, CameraFrame> cameras;  // camera name → its files
 };
 

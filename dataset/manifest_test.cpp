@@ -31,7 +31,7 @@ json smallHeader(const std::vector<std::string>& cameras, int frameCount) {
 // kind of file, and numbers that take the most characters (17 significant digits, an exponent).
 FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
   const double longest = -1.2345678901234567e-300;
-  FrameRecord frame{index, longest, {longest, longest, longest}, {}};
+  FrameRecord frame{index, longest, {longest, longest, longest}, {}, {}};
   for (const std::string& name : cameras) {
     CameraFrame& camera = frame.cameras[name];
     camera.pose = frame.robot;

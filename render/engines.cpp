@@ -45,6 +45,7 @@ class FastEngine : public Engine {
     return cubemap_.render(pose, settings, *mode_);
   }
   bool hasAovs() const override { return true; }
+  bool rendersMotion() const override { return !mode_; }
   // Exact mode is a pure function of the pose; the cube-map modes keep per-render state.
   bool concurrent() const override { return !mode_; }
   // AOVs are geometric truth: always from the exact pixel → ray map, whatever the RGB mode.
@@ -88,6 +89,7 @@ class PovrayEngine : public Engine {
     return renderWithPovray(scene_, pose, settings, options_);
   }
   void checkCamera(const RigSpec& rig) const override { checkPovrayCamera(rig); }
+  bool rendersMotion() const override { return true; }
   std::string name() const override { return "povray"; }
   std::string version() const override {
     if (version_.empty()) version_ = povrayVersion(options_.executable);

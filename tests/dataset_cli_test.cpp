@@ -672,6 +672,58 @@ TEST_F(DatasetCliTest, AForgedAnnotationInAFrameFileIsRefusedByTheMerge) {
   EXPECT_FALSE(fs::exists(dir_ / "ds/cam0/coco.json"));
 }
 
+TEST_F(DatasetCliTest, MovingFramesCarryTheirVelocityAndRenderAsTheRenderVerbDoes) {
+  // robocup2006 with a rolling shutter; poses 0.1 s apart: a straight step of 0.1 m (1 m/s), then
+  // an arc of 9° on a 0.5 m radius (0.5 · π/20 m in 0.1 s = 0.785 m/s, 90°/s).
+  json scene = json::parse(readFile(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json"));
+  scene["rig"]["shutter"] = {{"exposure_s", 0.02}, {"rolling", {{"line_time_us", 200}, {"readout", "top-to-bottom"}}}};
+  write("moving.json", scene.dump());
+  const double arc = radians(9.0);
+  const std::string list = "[[0, 0, 0], [0.1, 0, 0], [" + std::to_string(0.1 + 0.5 * std::sin(arc)) + ", " +
+                           std::to_string(0.5 * (1.0 - std::cos(arc))) + ", 9]]";
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": "moving.json", "size": 64, "spp": 4,
+    "frame_interval_s": 0.1, "outputs": {"rgb": "exr"}, "poses": {"list": )" + list + R"(}, "motion": {"between_poses": true}})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json manifest = json::parse(readFile(path("ds/manifest.json")));
+  const json& frames = manifest.at("frames");
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_NEAR(frames[0].at("velocity").at("vx").get<double>(), 1.0, 1e-9);
+  EXPECT_NEAR(frames[0].at("velocity").at("vy").get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(frames[0].at("velocity").at("yaw_rate_deg_per_s").get<double>(), 0.0, 1e-9);
+  // std::to_string's six decimals: the arc's end is known to 5e-7 m.
+  EXPECT_NEAR(frames[1].at("velocity").at("vx").get<double>(), 0.5 * arc / 0.1, 1e-4);
+  EXPECT_NEAR(frames[1].at("velocity").at("vy").get<double>(), 0.0, 1e-4);
+  EXPECT_NEAR(frames[1].at("velocity").at("yaw_rate_deg_per_s").get<double>(), 90.0, 1e-9);
+  EXPECT_EQ(frames[2].at("velocity"), frames[1].at("velocity"));  // the last frame keeps the one before
+
+  // Frame 1 is what `render` gives at its pose and velocity.
+  const json& v = frames[1].at("velocity");
+  char velocity[128];
+  std::snprintf(velocity, sizeof velocity, "%.17g,%.17g,%.17g", v.at("vx").get<double>(), v.at("vy").get<double>(),
+                v.at("yaw_rate_deg_per_s").get<double>());
+  const auto single = omnicam("render " + path("moving.json") + " --size 64 --spp 4 --pose 0.1,0,0 --velocity " + velocity +
+                              " -o " + path("single.exr"));
+  ASSERT_EQ(single.code, 0) << single.out;
+  const ImageRGBA fromDataset = readImage(path("ds/cam0/rgb/000001.exr")), fromRender = readImage(path("single.exr"));
+  ASSERT_EQ(fromDataset.pixels.size(), fromRender.pixels.size());
+  EXPECT_TRUE(fromDataset.pixels == fromRender.pixels);
+  const ImageRGBA frame0 = readImage(path("ds/cam0/rgb/000000.exr"));
+  EXPECT_FALSE(frame0.pixels == fromDataset.pixels);
+  // A rerun keeps every frame: the velocities read back equal the spec's.
+  const auto again = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("(0 rendered, 3 kept"), std::string::npos) << again.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+  // An engine without time refuses the spec before writing anything.
+  const std::string blender = write("blender.json", R"({"format": "omnicam-dataset/1", "scene": "moving.json", "engine": "blender",
+    "poses": {"list": )" + list + R"(}, "motion": {"velocity": [1, 0, 90]}})");
+  const auto refused = omnicam("dataset " + blender + " -o " + path("refused"));
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("motion: the blender engine (mode exact) does not render motion"), std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(path("refused")));
+}
+
 TEST_F(DatasetCliTest, BlenderReadsEveryLayerOfAMultilayerFrame) {
   const std::string spec = robocupSpec("spec.json", R"("size": 48, "poses": {"list": [[0.5, 0.3, 20]]}, )" + everyOutput("multilayer"));
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
