@@ -84,7 +84,7 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
   if (plan.anyAov() && !aov) throw std::logic_error("encodeFrameOutputs: AOVs asked for but not rendered");
   const bool landmarksUsed = plan.needsLandmarkAnnotations(!scene.landmarks.empty());
   const std::vector<LandmarkAnnotation> landmarks =
-      landmarksUsed ? annotateLandmarks(scene, *rays, settings.rig, pose) : std::vector<LandmarkAnnotation>{};
+      landmarksUsed ? annotateLandmarks(scene, *rays, settings.rig, pose, settings.velocity) : std::vector<LandmarkAnnotation>{};
   const FrameToEncode frame{scene, rays, settings, camera, index, pose, rgb, aov, plan, classOfInstance, landmarks};
   std::vector<EncodedFile> files;
   for (OutputKind kind : plan.fileKinds()) files.push_back({kind, plan.framePath(camera, kind, index), {}});

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "make_camera.h"
+#include "timed_projection.h"
 
 namespace omnicam {
 
@@ -17,20 +18,22 @@ const double kFacingHeights[] = {-0.4, 0.0, 0.4};  // × the band's height, abou
 }  // namespace
 
 std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayScene& rays, const RigSpec& rig,
-                                                  const RobotPose& pose) {
+                                                  const RobotPose& start, const BodyVelocity& velocity) {
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
-  const Rigid worldFromView = worldFromViewpoint(rig, pose);
-  const Rigid viewpointFromWorld = worldFromView.inverse();
-  const Vec3 viewpoint = worldFromView.translation();
-  auto rasterOf = [&](const Vec3& p) { return camera->project(viewpointFromWorld * p); };
-  // Is world point p imaged with nothing in front of it? Seen from where its ray leaves the mirror:
-  // F' for the central model, its own mirror point for a non-central rig.
+  auto imaged = [&](const Vec3& p) { return projectAtReadout(*camera, start, velocity, p); };
+  auto rasterOf = [&](const Vec3& p) -> std::optional<Vec2> {
+    const auto at = imaged(p);
+    return at ? std::optional<Vec2>(at->raster) : std::nullopt;
+  };
+  // Is world point p imaged with nothing in front of it? Seen from where its ray leaves the mirror
+  // when its line sees it: F' for the central model, its own mirror point for a non-central rig.
   auto seen = [&](const Vec3& p) {
-    const auto raster = rasterOf(p);
-    if (!raster) return false;
-    Vec3 from = viewpoint;
+    const auto at = imaged(p);
+    if (!at) return false;
+    const Rigid worldFromView = worldFromViewpoint(rig, at->pose);
+    Vec3 from = worldFromView.translation();
     if (!camera->central()) {
-      const auto ray = camera->generateRay({*raster});
+      const auto ray = camera->generateRay({at->raster});
       if (!ray) return false;
       from = worldFromView * ray->origin;
     }
@@ -42,13 +45,19 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
   for (const Landmark& lm : scene.landmarks) {
     LandmarkAnnotation a;
     a.landmark = &lm;
+    const auto centre = imaged(lm.position);
+    // Range and bearing when the centre is imaged (mid-exposure of the middle line if it is not).
+    const RobotPose pose = centre ? centre->pose
+                                  : poseAfter(start, velocity, pixelTime(rig.shutter, rig.imageSize / 2, rig.imageSize / 2,
+                                                                         rig.imageSize, rig.imageSize));
+    const Vec3 viewpoint = worldFromViewpoint(rig, pose).translation();
     const double radius = 0.5 * lm.diameter;
     Vec2 toCamera = (viewpoint - lm.position).head<2>();
     a.rangeM = toCamera.norm();
     toCamera = a.rangeM > 1e-9 ? Vec2(toCamera / a.rangeM) : Vec2(1.0, 0.0);
     const double bearingWorld = std::atan2(lm.position.y() - viewpoint.y(), lm.position.x() - viewpoint.x());
     a.bearingDeg = std::remainder(degrees(bearingWorld) - pose.yawDeg, 360.0);
-    a.centre = rasterOf(lm.position);
+    if (centre) a.centre = centre->raster;
 
     int seenCount = 0, total = 0;
     for (double angleDeg : kFacingAnglesDeg)

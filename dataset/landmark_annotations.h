@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "motion.h"
 #include "ray_scene.h"
 #include "rig.h"
 #include "scene.h"
@@ -36,10 +37,11 @@ struct LandmarkAnnotation {
   bool visible() const { return inView() && !occluded; }
 };
 
-// Every landmark of `scene` for a camera with `rig` at `pose`. `rays` must be built from the
-// same scene.
+// Every landmark of `scene` for a camera with `rig` at `pose` (the exposure start), moving with
+// `velocity`: each point at the time its own line sees it (timed_projection.h); range and bearing
+// at the centre's time. `rays` must be built from the same scene.
 std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayScene& rays, const RigSpec& rig,
-                                                  const RobotPose& pose);
+                                                  const RobotPose& pose, const BodyVelocity& velocity = {});
 nlohmann::json landmarksToJson(const std::vector<LandmarkAnnotation>& annotations);
 
 }  // namespace omnicam
