@@ -20,6 +20,7 @@
 #include "commands.h"
 #include "cubemap_renderer.h"
 #include "dataset_runner.h"
+#include "demo_motion.h"
 #include "texture_realism.h"
 #include "hall_arena.h"
 #include "image_compare.h"
@@ -378,6 +379,7 @@ void runDemo(const DemoArgs& a) {
   const std::string dataset = demoDataset(a.out, dir + "/robocup2006.json");
   const std::string hall = demoTexturedHall(a.out, dir + "/robocup2006.json");
   const std::string physical = demoPhysicalCamera(a.out, arena, a.spp, a.povray);
+  const std::string motion = demoMotion(a.out, arena, a.spp);
 
   // The thesis' method (Fig. 3.4 with numbers) and the views of thesis §3.2.1.
   std::ostringstream method, viewFigures;
@@ -463,7 +465,7 @@ per-pixel lookups does not. See <code>docs/thesis-reproduction.md</code> (<code>
 Panorama: centre = forward, top = rim. <i>thesis</i> uses the parabolic Eq. 3.4 / radius-linear rows; <i>exact</i>
 the model of docs/conventions.md §1.</p>
 )" << viewFigures.str()
-       << physical << dataset << hall << R"(
+       << physical << motion << dataset << hall << R"(
 <p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,
 and OpenCV <code>cv::omnidir</code> intrinsics.</p></body></html>
 )";

@@ -32,6 +32,8 @@ inline constexpr double kMaxCameraRotationDeg = 30.0;         // each axis
 inline constexpr double kMaxDistortion = 10.0;                // |k1|, |k2|, |k3|
 inline constexpr double kMaxTangentialDistortion = 1.0;       // |p1|, |p2|
 inline constexpr double kMaxPrincipalPointOffsetPx = 4096.0;  // each axis
+// The rig's tilt on the robot (rig.tilt_deg: roll, pitch), degrees each.
+inline constexpr double kMaxRigTiltDeg = 30.0;
 
 // Samples: spp = n² with n ≤ 32, and one frame's samples (size² × spp) fit well inside the
 // 32-bit offsets the renderers index them with.

@@ -34,6 +34,8 @@ Rigid worldFromRobot(const RobotPose& pose) {
 
 Rigid robotFromViewpoint(const RigSpec& rig) {
   Rigid t = Rigid::Identity();
+  t.rotate(Eigen::AngleAxisd(radians(rig.tiltDeg[0]), Vec3::UnitX()));
+  t.rotate(Eigen::AngleAxisd(radians(rig.tiltDeg[1]), Vec3::UnitY()));
   t.translate(Vec3(0.0, 0.0, rig.height));
   return t;
 }

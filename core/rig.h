@@ -67,6 +67,10 @@ struct RigSpec {
   int imageSize = 360;             // square image, pixels
   double framingElevationDeg = 45.0;  // direction that touches the image border
   Shutter shutter;                 // an instant unless it says otherwise (docs/motion.md)
+  // The whole rig (mirror and camera) tilted on the robot, as a robot rocking on its wheels
+  // tilts it: roll about the robot's x axis, then pitch about its y axis, about the robot's
+  // origin on the floor (robotFromViewpoint). Level unless it says otherwise.
+  std::array<double, 2> tiltDeg{0.0, 0.0};
 
   // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
   // field can never leave a stale table behind.

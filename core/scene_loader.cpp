@@ -178,6 +178,8 @@ RigSpec readRig(JsonFields rig) {
   }
   if (auto camera = rig.optionalObject("camera")) spec.mount = readCameraMount(*camera);
   if (auto shutter = rig.optionalObject("shutter")) spec.shutter = readShutter(*shutter);
+  const std::vector<double> tilt = rig.numbers("tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg, limits::kMaxRigTiltDeg, false, "degrees"});
+  spec.tiltDeg = {tilt[0], tilt[1]};
   if (auto image = rig.optionalObject("image")) {
     spec.imageSize = image->integer("size", spec.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
     if (spec.shape.shape != MirrorShape::Hyperboloid && image->has("framing_elevation_deg"))

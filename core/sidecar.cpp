@@ -42,6 +42,7 @@ json rigToJson(const RigSpec& rig) {
                      {"distortion", {{"k1", l.k1}, {"k2", l.k2}, {"p1", l.p1}, {"p2", l.p2}, {"k3", l.k3}}},
                      {"principal_point_offset_px", m.principalPointOffsetPx}};
   }
+  if (rig.tiltDeg != std::array<double, 2>{0.0, 0.0}) out["tilt_deg"] = rig.tiltDeg;  // level is the default
   if (!(rig.shutter == Shutter{})) {  // likewise an instant
     const Shutter& open = rig.shutter;
     json shutter = {{"exposure_s", open.exposureS}};

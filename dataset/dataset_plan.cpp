@@ -1,11 +1,14 @@
 #include "dataset_plan.h"
 
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "camera_rays.h"
 #include "coco.h"
 #include "dataset_shards.h"
+#include "euroc_files.h"
 #include "errors.h"
 #include "fast_renderer.h"
 #include "image.h"
@@ -18,6 +21,7 @@
 #include "scene_loader.h"
 #include "sha256.h"
 #include "sidecar.h"
+#include "trajectory.h"
 
 namespace omnicam {
 
@@ -27,13 +31,14 @@ namespace {
 
 // TUM RGB-D trajectory format: "timestamp tx ty tz qx qy qz qw", the camera frame (X forward,
 // Y right, Z down at F'; the intrinsics files' frame) in the world.
-std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup& setup, double interval) {
+std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup& setup, double interval,
+                     const std::function<RigSpec(int)>& rigOfFrame) {
   std::ostringstream out;
   out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n"
       << "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
       << "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
   for (size_t i = 0; i < robotPoses.size(); ++i) {
-    const Rigid worldFromCam = worldFromCamera(setup.rig, cameraPose(*setup.camera, robotPoses[i]));
+    const Rigid worldFromCam = worldFromCamera(rigOfFrame(static_cast<int>(i)), cameraPose(*setup.camera, robotPoses[i]));
     const Eigen::Quaterniond q(worldFromCam.linear());
     const Vec3 t = worldFromCam.translation();
     out << roundTrip(static_cast<double>(i) * interval) << ' ' << roundTrip(t.x()) << ' ' << roundTrip(t.y()) << ' '
@@ -44,14 +49,19 @@ std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup
 }
 
 // A camera's files that stay the same from frame to frame: intrinsics and poses.
-std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<RobotPose>& poses, double interval) {
+std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<RobotPose>& poses, double interval,
+                                    const std::function<RigSpec(int)>& rigOfFrame, bool euroc) {
   const std::string& name = setup.camera->name;
   const Camera& camera = *setup.model;
   std::vector<StaticFile> files = {
       {"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(camera)},
       {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, camera)},
       {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, camera)},
-      {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval)}};
+      {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval, rigOfFrame)}};
+  if (euroc) {
+    files.push_back({"euroc_data_csv", name + "/data.csv", eurocDataCsv(static_cast<int>(poses.size()), interval)});
+    files.push_back({"euroc_sensor_yaml", name + "/sensor.yaml", eurocSensorYaml(*setup.camera, setup.rig, camera, interval)});
+  }
   // A physical rig's exact rays, which no central model in the files above states exactly.
   if (!setup.rig.ideal()) {
     const CameraRayTable table = cameraRayTable(camera);
@@ -96,6 +106,7 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
   plan.layout = spec.layout;
   plan.compression = spec.multilayerCompression;
   plan.rgbFormat = spec.outputs.rgb;  // the files layout's; multilayer colour is in the frame file
+  if (spec.euroc) plan.eurocIntervalS = spec.frameIntervalSeconds;
   notWritten = json::object();
   for (OutputKind kind : spec.outputs.wanted) {
     if (!needsAovs(kind) || engine.hasAovs()) {
@@ -167,12 +178,13 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
 
 // The header's cameras, each with its static files (intrinsics and poses) and their hashes; the
 // files themselves go to `statics`.
-json manifestCameras(const std::vector<CameraSetup>& setups, const std::vector<RobotPose>& poses, double interval,
-                     std::vector<StaticFile>& statics) {
+json manifestCameras(const DatasetPlan& plan, std::vector<StaticFile>& statics) {
   json cameras = json::array();
-  for (const CameraSetup& setup : setups) {
+  for (size_t c = 0; c < plan.setups.size(); ++c) {
+    const CameraSetup& setup = plan.setups[c];
     json files = json::object();
-    for (StaticFile& file : staticFiles(setup, poses, interval)) {
+    const auto rigOfFrame = [&](int frame) { return plan.frameRig(frame, c); };
+    for (StaticFile& file : staticFiles(setup, plan.poses, plan.spec.frameIntervalSeconds, rigOfFrame, plan.spec.euroc)) {
       files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
       statics.push_back(std::move(file));
     }
@@ -190,7 +202,7 @@ std::vector<std::string> datasetFolders(const std::vector<CameraSetup>& setups, 
   std::vector<std::string> folders;
   if (sharded) folders.push_back("shards");
   for (const CameraSetup& setup : setups) {
-    for (OutputKind kind : plan.fileKinds()) folders.push_back(setup.camera->name + "/" + outputName(kind));
+    for (OutputKind kind : plan.fileKinds()) folders.push_back(plan.frameFolder(setup.camera->name, kind));
     folders.push_back(setup.camera->name + "/intrinsics");
   }
   return folders;
@@ -211,33 +223,84 @@ std::vector<BodyVelocity> frameVelocities(const DatasetSpec& spec, const std::ve
   return out;
 }
 
+// Frames every frame_interval_s along timed waypoints (trajectory.h), from the first waypoint's
+// time on: each frame's pose and the velocity it is driven at.
+void sampleTimedWaypoints(const DatasetSpec& spec, const std::vector<RobotPose>& waypoints, std::vector<RobotPose>& poses,
+                          std::vector<BodyVelocity>& velocities) {
+  const PathTiming& timing = spec.timing;
+  if (timing.kind == PathTiming::Kind::Timestamps && timing.timestamps.size() != waypoints.size())
+    throw InputError(showPath(spec.file) + ": poses.timestamps_s: has " + std::to_string(timing.timestamps.size()) +
+                     " timestamps for the " + std::to_string(waypoints.size()) + " waypoints of path " + quote(spec.pathName));
+  const Trajectory trajectory = timing.kind == PathTiming::Kind::Speed
+                                    ? Trajectory::atSpeed(waypoints, timing.speed, timing.yawRateDegPerS)
+                                    : Trajectory(waypoints, timing.timestamps);
+  // A frame exactly at the last waypoint counts, whatever the rounding of the division.
+  const double span = (trajectory.end() - trajectory.start()) / spec.frameIntervalSeconds;
+  const double count = std::floor(span * (1.0 + 1e-12)) + 1.0;
+  const double capped = spec.pathFrames ? std::min<double>(count, spec.pathFrames) : count;
+  checkFrameCount(spec, static_cast<size_t>(std::min(capped, 1e15)), "poses (timed waypoints, one frame every frame_interval_s)");
+  for (int i = 0; i < static_cast<int>(capped); ++i) {
+    const double t = trajectory.start() + i * spec.frameIntervalSeconds;
+    poses.push_back(trajectory.poseAt(t));
+    velocities.push_back(trajectory.velocityAt(t));
+    RenderSettings check;
+    check.velocity = velocities.back();
+    checkRenderSettings(check, {"spp", "size", showPath(spec.file) + ": poses.timestamps_s: frame " + std::to_string(i)});
+  }
+}
+
 // InputError when frames move while a camera's shutter is open and the engine cannot render it.
 void checkMotion(const DatasetSpec& spec, const std::vector<CameraSetup>& setups, const std::vector<BodyVelocity>& velocities,
                  const Engine& engine) {
-  if (engine.rendersMotion() || spec.motion == MotionSource::Still) return;
   for (const CameraSetup& setup : setups) {
     RenderSettings settings{setup.rig, spec.spp, spec.shading};
     for (const BodyVelocity& v : velocities) {
-      settings.velocity = v;
-      if (moving(settings))
-        throw InputError(showPath(spec.file) + ": motion: the " + engine.name() + " engine (mode " + engine.mode() +
-                         ") does not render motion; camera " + quote(setup.camera->name) +
-                         " has a shutter open while the robot moves (docs/motion.md lists what each engine renders)");
+      settings.velocity = cameraVelocity(*setup.camera, v);
+      try {
+        engine.checkMotion(settings);
+      } catch (const InputError& e) {
+        throw InputError(showPath(spec.file) + ": motion: camera " + quote(setup.camera->name) + ": " + e.what());
+      }
     }
   }
 }
 
+// InputError unless every frame's shaken rig is one the scene format accepts (the manifest
+// records it in that format) and the engine renders.
+void checkVibratedRigs(const DatasetPlan& plan) {
+  for (int frame = 0; frame < static_cast<int>(plan.poses.size()); ++frame)
+    for (size_t c = 0; c < plan.setups.size(); ++c) {
+      const RigSpec rig = plan.frameRig(frame, c);
+      try {
+        (void)rigFromJson(rigToJson(rig), "", "rig");
+        plan.engine->checkCamera(rig);
+      } catch (const InputError& e) {
+        throw InputError(showPath(plan.spec.file) + ": vibration: frame " + std::to_string(frame) + ", camera " +
+                         quote(plan.setups[c].camera->name) + ": the shaken rig is refused (" + e.what() +
+                         "); lower the amplitudes or move the camera's nominal pose");
+      }
+    }
+}
+
 }  // namespace
+
+RigSpec DatasetPlan::frameRig(int frame, size_t camera) const {
+  return vibratedRig(setups[camera].rig, spec.vibration, static_cast<uint64_t>(frame), camera);
+}
 
 DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& options)
     : spec(spec_), scene(loadScene(spec.scene, {spec.allowOutsideFiles})) {
   setups = cameraSetups(spec, scene);
   double topHeight = 0.0;
   for (const CameraSetup& setup : setups) topHeight = std::max(topHeight, setup.rig.height);
-  poses = datasetPoses(spec, scene, topHeight);
+  if (spec.timing.kind == PathTiming::Kind::None) {
+    poses = datasetPoses(spec, scene, topHeight);
+    velocities = frameVelocities(spec, poses);
+  } else {
+    sampleTimedWaypoints(spec, datasetPoses(spec, scene, topHeight), poses, velocities);
+  }
   for (const RobotPose& robot : poses)
     for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
-  velocities = frameVelocities(spec, poses);
   const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
   engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
   checkMotion(spec, setups, velocities, *engine);
@@ -248,13 +311,14 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
       throw InputError(showPath(spec.file) + ": camera " + quote(setup.camera->name) + ": " + e.what());
     }
   }
+  if (vibrates()) checkVibratedRigs(*this);
   const int totalFrames = static_cast<int>(poses.size());
   range = frameRange(options, totalFrames);
   json notWritten;
   outputs = outputPlan(spec, *engine, scene, notWritten, notes);
   ids = idTables(scene);
   header = manifestHeader(spec, scene, *engine, outputs, notWritten, ids, totalFrames, options, range);
-  header["cameras"] = manifestCameras(setups, poses, spec.frameIntervalSeconds, statics);
+  header["cameras"] = manifestCameras(*this, statics);
   checkManifestHeaderSize(header, spec.file);
   folders = datasetFolders(setups, outputs, range.sharded);
   if (outputs.needsLandmarkAnnotations(!scene.landmarks.empty())) rays = std::make_unique<RayScene>(scene);

@@ -60,6 +60,10 @@ class DatasetPlan {
   std::vector<std::string> folders; // relative to the dataset folder, made before frames are written
   std::vector<std::string> notes;   // for the user: outputs the engine does not write
   std::unique_ptr<RayScene> rays;   // for landmark annotations, when the outputs have any
+
+  // Camera `camera`'s rig during frame `frame`: its setup's, shaken by the spec's vibration.
+  RigSpec frameRig(int frame, size_t camera) const;
+  bool vibrates() const { return !spec.vibration.none(); }
 };
 
 }  // namespace omnicam

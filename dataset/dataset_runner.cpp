@@ -101,9 +101,11 @@ std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetMan
         !(frame.velocity == plan.velocities[index]))
       continue;
     bool intact = true;
-    for (const CameraSetup& setup : setups) {
+    for (size_t c = 0; c < setups.size(); ++c) {
+      const CameraSetup& setup = setups[c];
       const auto camera = frame.cameras.find(setup.camera->name);
-      intact = intact && camera != frame.cameras.end() && camera->second.files.size() == kinds.size();
+      intact = intact && camera != frame.cameras.end() && camera->second.files.size() == kinds.size() &&
+               camera->second.rig == (plan.vibrates() ? std::optional<RigSpec>(plan.frameRig(index, c)) : std::nullopt);
       for (size_t k = 0; intact && k < kinds.size(); ++k) {
         const FileRecord* file = camera->second.file(kinds[k]);
         intact = file && file->path == plan.outputs.framePath(setup.camera->name, kinds[k], index) &&

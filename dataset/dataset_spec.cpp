@@ -85,6 +85,37 @@ void readRandomPoses(JsonFields r, RandomPoses& rp) {
   r.finish();
 }
 
+// A path's or list's poses as waypoints driven in time (trajectory.h): "speed_m_s" with
+// "yaw_rate_deg_per_s", or "timestamps_s" (one per waypoint, strictly increasing).
+void readTiming(JsonFields& poses, DatasetSpec& spec) {
+  const bool speed = poses.has("speed_m_s") || poses.has("yaw_rate_deg_per_s"), stamps = poses.has("timestamps_s");
+  if (!speed && !stamps) return;
+  if (spec.poseSource == PoseSource::Random)
+    poses.fail(stamps ? "timestamps_s" : "speed_m_s", "times a path or a list of waypoints, not random poses");
+  if (speed && stamps) poses.fail("timestamps_s", "give either timestamps_s or speed_m_s with yaw_rate_deg_per_s, not both");
+  PathTiming& timing = spec.timing;
+  if (speed) {
+    timing.kind = PathTiming::Kind::Speed;
+    timing.speed = poses.number("speed_m_s", {0.0, limits::kMaxSpeed, true, "m/s"});
+    timing.yawRateDegPerS = poses.number("yaw_rate_deg_per_s", {0.0, limits::kMaxYawRateDegPerS, true, "degrees/s"});
+    return;
+  }
+  timing.kind = PathTiming::Kind::Timestamps;
+  const json& list = poses.raw("timestamps_s");
+  if (!list.is_array() || list.empty()) poses.fail("timestamps_s", "must be a non-empty array of seconds, one per waypoint");
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (!list[i].is_number() || !std::isfinite(list[i].get<double>()) || std::abs(list[i].get<double>()) > limits::kMaxTimestampSeconds)
+      poses.fail("timestamps_s", "[" + std::to_string(i) + "] must be a number of seconds within ±" + shortNumber(limits::kMaxTimestampSeconds));
+    const double t = list[i].get<double>();
+    if (!timing.timestamps.empty() && !(t > timing.timestamps.back()))
+      poses.fail("timestamps_s", "[" + std::to_string(i) + "] must be later than the one before it");
+    timing.timestamps.push_back(t);
+  }
+  if (spec.poseSource == PoseSource::List && timing.timestamps.size() != spec.poseList.size())
+    poses.fail("timestamps_s", "has " + std::to_string(timing.timestamps.size()) + " timestamps for " +
+                                   std::to_string(spec.poseList.size()) + " waypoints");
+}
+
 void readPoses(JsonFields poses, DatasetSpec& spec) {
   const int sources = poses.has("path") + poses.has("list") + poses.has("random");
   if (sources != 1)
@@ -105,6 +136,11 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
     spec.poseSource = PoseSource::Random;
     readRandomPoses(poses.object("random"), spec.random);
     checkFrameCount(spec, static_cast<size_t>(spec.random.count), poses.path("random.count"));
+  }
+  readTiming(poses, spec);
+  if (spec.timing.kind != PathTiming::Kind::None) {
+    // Frames every frame_interval_s along the timed waypoints; "frames" caps how many.
+    spec.pathFrames = poses.integer("frames", 0, 1, limits::kMaxDatasetFrames);
   }
   poses.finish();
 }
@@ -127,6 +163,24 @@ void readMotion(JsonFields motion, DatasetSpec& spec) {
     spec.motion = MotionSource::BetweenPoses;
   }
   motion.finish();
+}
+
+// "vibration": {"seed": N, "camera_offset_mm": [x, y, z], "camera_rotation_deg": [x, y, z],
+// "rig_tilt_deg": [roll, pitch]}: amplitudes, each absent one 0.
+void readVibration(JsonFields fields, DatasetSpec& spec) {
+  Vibration& v = spec.vibration;
+  v.seed = static_cast<uint64_t>(fields.integer("seed", 0, limits::kMaxSeed));
+  const auto amplitudes = [&](const char* key, size_t count, double maximum, const char* unit) {
+    return fields.numbers(key, std::vector<double>(count, 0.0), {0.0, maximum, false, unit});
+  };
+  const std::vector<double> offset = amplitudes("camera_offset_mm", 3, limits::kMaxVibrationOffsetMm, "mm");
+  const std::vector<double> rotation = amplitudes("camera_rotation_deg", 3, limits::kMaxVibrationRotationDeg, "degrees");
+  const std::vector<double> tilt = amplitudes("rig_tilt_deg", 2, limits::kMaxVibrationTiltDeg, "degrees");
+  v.cameraOffsetMm = {offset[0], offset[1], offset[2]};
+  v.cameraRotationDeg = {rotation[0], rotation[1], rotation[2]};
+  v.rigTiltDeg = {tilt[0], tilt[1]};
+  if (v.none()) throw InputError(showPath(spec.file) + ": vibration: needs an amplitude above 0 (or leave vibration out)");
+  fields.finish();
 }
 
 // The rule a camera name broke; the name itself too when it holds characters the user cannot
@@ -274,7 +328,13 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     spec.cameras.push_back({"cam0", std::nullopt, 0.0, 0.0, 0.0});
   }
   readPoses(top.object("poses"), spec);
-  if (auto motion = top.optionalObject("motion")) readMotion(*motion, spec);
+  if (auto motion = top.optionalObject("motion")) {
+    if (spec.timing.kind != PathTiming::Kind::None)
+      throw InputError(showPath(spec.file) + ": motion: timed waypoints (poses.speed_m_s or poses.timestamps_s) already give "
+                       "every frame its velocity; leave motion out");
+    readMotion(*motion, spec);
+  }
+  if (auto vibration = top.optionalObject("vibration")) readVibration(*vibration, spec);
   const auto layout = layoutNamed(top.string("layout", layoutName(spec.layout)));
   if (!layout) top.fail("layout", "must be \"files\" or \"multilayer\"");
   spec.layout = *layout;
@@ -285,6 +345,13 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     spec.multilayerCompression = *compression;
   }
   if (auto outputs = top.optionalObject("outputs")) readOutputs(*outputs, spec);
+  spec.euroc = top.boolean("euroc", false);
+  if (spec.euroc) {
+    if (spec.layout != DatasetLayout::Files) top.fail("euroc", "needs the files layout (EuRoC keeps one PNG per frame)");
+    if (spec.outputs.rgb != "png") top.fail("euroc", "needs outputs.rgb \"png\" (EuRoC's images are PNG)");
+    if (!(spec.frameIntervalSeconds * 1e9 >= 1.0))
+      top.fail("euroc", "needs frame_interval_s of at least 1 ns (EuRoC names each image by its timestamp in ns)");
+  }
   if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
   top.finish();
   return spec;

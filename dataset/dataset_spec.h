@@ -13,6 +13,7 @@
 #include "recording_camera.h"
 #include "render_settings.h"
 #include "rig.h"
+#include "vibration.h"
 
 namespace omnicam {
 
@@ -31,6 +32,12 @@ inline constexpr double kMaxClearance = 100.0;
 inline constexpr int64_t kMaxSeed = int64_t{1} << 53;
 // Timestamp of frame i = i × interval (s).
 inline constexpr double kMaxFrameIntervalSeconds = 86400.0;
+// Waypoint timestamps (poses.timestamps_s), seconds either side of 0: a year.
+inline constexpr double kMaxTimestampSeconds = 3.2e7;
+// Vibration amplitudes (docs/motion.md): a shaking robot, not a broken one.
+inline constexpr double kMaxVibrationOffsetMm = 10.0;
+inline constexpr double kMaxVibrationRotationDeg = 5.0;
+inline constexpr double kMaxVibrationTiltDeg = 10.0;
 }  // namespace limits
 
 // One omnicam on the robot. Its viewpoint F' sits at (mountX, mountY) in the robot frame, at the
@@ -64,6 +71,15 @@ enum class PoseSource { Path, List, Random };
 
 enum class MotionSource { Still, Constant, BetweenPoses };
 
+// A path's or list's poses as waypoints driven in time (trajectory.h, docs/motion.md): frames are
+// then taken every frame_interval_s along them, each with the velocity it is driven at.
+struct PathTiming {
+  enum class Kind { None, Speed, Timestamps };
+  Kind kind = Kind::None;
+  double speed = 0.0, yawRateDegPerS = 0.0;  // Speed
+  std::vector<double> timestamps;            // Timestamps: one per waypoint, strictly increasing
+};
+
 struct DatasetSpec {
   std::string file;       // the spec file
   std::string sha256;     // of its bytes
@@ -84,12 +100,15 @@ struct DatasetSpec {
   std::string pathName;
   int pathFrames = 0;  // 0: the whole path
   std::vector<RobotPose> poseList;
+  PathTiming timing;  // none: each pose is a frame
   RandomPoses random;
   std::vector<DatasetCamera> cameras;
   // The robot's body velocity over each frame's exposure (docs/motion.md): none (still), the
   // same for every frame, or the one that drives each pose to the next in frame_interval_s.
   MotionSource motion = MotionSource::Still;
   BodyVelocity velocity;
+  // Every frame's rig shaken within these amplitudes (vibration.h); none: the rigs as given.
+  Vibration vibration;
   // files: one file per output and frame; multilayer: one OpenEXR per frame and camera
   // (output_kinds.h).
   DatasetLayout layout = DatasetLayout::Files;
@@ -97,6 +116,9 @@ struct DatasetSpec {
   // docs/performance.md, "Datasets".
   FrameCompression multilayerCompression = FrameCompression::Rle;
   DatasetOutputs outputs;
+  // Each camera's colour frames also in the EuRoC/ASL layout (euroc_files.h): <camera>/data/<t_ns>.png
+  // instead of <camera>/rgb/NNNNNN.png, with <camera>/data.csv and <camera>/sensor.yaml.
+  bool euroc = false;
   // What a real camera would record (recording_camera.h), applied to every RGB frame; none: the
   // renderer's image as it is.
   std::optional<RecordingCamera> recording;

@@ -242,5 +242,48 @@ TEST(DatasetMotion, MotionIsStrict) {
   refuses(R"({"path": "p"})", R"({"between_poses": true, "jitter": 1})", "motion.jitter: unknown field");
 }
 
+TEST(DatasetMotion, TimedWaypointsVibrationAndEurocAreStrict) {
+  const auto spec = [](const std::string& rest) {
+    return datasetSpecFromText(R"({"format": "omnicam-dataset/1", "scene": "s.json", )" + rest + "}", "spec.json");
+  };
+  const DatasetSpec timed = spec(R"("poses": {"path": "p", "speed_m_s": 1.5, "yaw_rate_deg_per_s": 60, "frames": 7})");
+  EXPECT_EQ(timed.timing.kind, PathTiming::Kind::Speed);
+  EXPECT_EQ(timed.timing.speed, 1.5);
+  EXPECT_EQ(timed.timing.yawRateDegPerS, 60.0);
+  EXPECT_EQ(timed.pathFrames, 7);
+  EXPECT_EQ(spec(R"("poses": {"list": [[0, 0, 0], [1, 0, 0]], "timestamps_s": [0.5, 1]})").timing.timestamps,
+            (std::vector<double>{0.5, 1.0}));
+  const DatasetSpec shaking = spec(R"("poses": {"path": "p"}, "vibration": {"seed": 3, "rig_tilt_deg": [1, 0.5]})");
+  EXPECT_EQ(shaking.vibration.seed, 3u);
+  EXPECT_EQ(shaking.vibration.rigTiltDeg, (std::array<double, 2>{1.0, 0.5}));
+  EXPECT_EQ(shaking.vibration.cameraOffsetMm, (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_TRUE(spec(R"("poses": {"path": "p"}, "euroc": true)").euroc);
+
+  const auto refuses = [&](const std::string& rest, const std::string& fragment) {
+    try {
+      spec(rest);
+      ADD_FAILURE() << rest << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  refuses(R"("poses": {"path": "p", "speed_m_s": 1})", "poses.yaw_rate_deg_per_s");
+  refuses(R"("poses": {"path": "p", "speed_m_s": 0, "yaw_rate_deg_per_s": 90})", "poses.speed_m_s");
+  refuses(R"("poses": {"path": "p", "speed_m_s": 1, "yaw_rate_deg_per_s": 90, "timestamps_s": [0]})", "not both");
+  refuses(R"("poses": {"list": [[0, 0, 0], [1, 0, 0]], "timestamps_s": [1, 1]})", "[1] must be later than the one before it");
+  refuses(R"("poses": {"list": [[0, 0, 0], [1, 0, 0]], "timestamps_s": [0, 1, 2]})", "has 3 timestamps for 2 waypoints");
+  refuses(R"("poses": {"random": {"count": 3, "seed": 1, "region": [0, 0, 1, 1]}, "speed_m_s": 1, "yaw_rate_deg_per_s": 9})",
+          "not random poses");
+  refuses(R"("poses": {"list": [[0, 0, 0]], "timestamps_s": [0]}, "motion": {"velocity": [1, 0, 0]})", "leave motion out");
+  refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 3})", "vibration: needs an amplitude above 0");
+  refuses(R"("poses": {"path": "p"}, "vibration": {"rig_tilt_deg": [1, 0]})", "vibration.seed: missing required field");
+  refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 1, "rig_tilt_deg": [11, 0]})", "vibration.rig_tilt_deg");
+  refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 1, "camera_offset_mm": [-1, 0, 0]})", "vibration.camera_offset_mm");
+  refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 1, "camera_offset_mm": [1, 0, 0], "shake": 1})",
+          "vibration.shake: unknown field");
+  refuses(R"("poses": {"path": "p"}, "euroc": true, "outputs": {"rgb": "exr"})", "euroc: needs outputs.rgb \"png\"");
+  refuses(R"("poses": {"path": "p"}, "euroc": true, "layout": "multilayer")", "euroc: needs the files layout");
+}
+
 }  // namespace
 }  // namespace omnicam

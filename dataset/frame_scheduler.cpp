@@ -35,7 +35,7 @@ FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int ind
   FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], plan.velocities[index], {}};
   for (size_t c = 0; c < plan.setups.size(); ++c) {
     const CameraSetup& setup = plan.setups[c];
-    RenderSettings settings{setup.rig, spec.spp, spec.shading};
+    RenderSettings settings{plan.frameRig(index, c), spec.spp, spec.shading};
     settings.velocity = cameraVelocity(*setup.camera, plan.velocities[index]);
     const RobotPose pose = cameraPose(*setup.camera, plan.poses[index]);
     ImageRGBA image = rgb[c] ? std::move(*rgb[c])
@@ -46,7 +46,8 @@ FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int ind
     std::vector<EncodedFile> files = encodeFrameOutputs(plan.scene, plan.rays.get(), settings, setup.camera->name, index, pose, image,
                                                         plan.outputs.anyAov() ? &aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
     stopIfCancelled();
-    CameraFrame cameraFrame{pose, {}};
+    CameraFrame cameraFrame{pose, {}, std::nullopt};
+    if (plan.vibrates()) cameraFrame.rig = settings.rig;
     for (EncodedFile& file : files) {
       writeFileInside(dir, file.relativePath, file.bytes, Durability::Unsynced);
       cameraFrame.files[outputName(file.kind)] = {file.relativePath, sha256OfBytes(file.bytes)};
@@ -62,7 +63,8 @@ std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const s
   for (size_t c = 0; c < plan.setups.size(); ++c) {
     std::vector<RobotPose> batchPoses;
     for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*plan.setups[c].camera, plan.poses[todo[k]]));
-    rgb[c] = plan.engine->renderMany(batchPoses, {plan.setups[c].rig, plan.spec.spp, plan.spec.shading});
+    // One rig for the batch: a vibrating plan's batches hold one frame (renderFrames).
+    rgb[c] = plan.engine->renderMany(batchPoses, {plan.frameRig(todo[start], c), plan.spec.spp, plan.spec.shading});
   }
   return rgb;
 }
@@ -75,7 +77,8 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  const size_t batch = engine.batches() ? kFramesPerBatch : engine.concurrent() ? kConcurrentFrames : 1;
+  // A vibrating robot's frames each have their own rig, so a batching engine renders them one by one.
+  const size_t batch = engine.batches() ? (plan.vibrates() ? 1 : kFramesPerBatch) : engine.concurrent() ? kConcurrentFrames : 1;
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
   auto lastManifest = std::chrono::steady_clock::now();
   int rendered = 0;

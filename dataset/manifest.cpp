@@ -14,6 +14,7 @@
 #include "render_settings.h"
 #include "safe_files.h"
 #include "scene_loader.h"
+#include "sidecar.h"
 
 namespace omnicam {
 
@@ -171,7 +172,8 @@ FrameRecord readFrame(JsonFields f, const HeaderFacts& header) {
   for (auto it = raw.begin(); it != raw.end(); ++it) {
     if (!header.cameras.count(it.key())) cameras.fail(it.key(), "not a camera of the manifest's cameras");
     JsonFields camera = cameras.object(it.key());
-    CameraFrame cameraFrame{readManifestPose(camera.object("pose")), readFileRecords(camera, it.key(), true)};
+    CameraFrame cameraFrame{readManifestPose(camera.object("pose")), readFileRecords(camera, it.key(), true), std::nullopt};
+    if (camera.has("rig")) cameraFrame.rig = rigFromJson(camera.raw("rig"), f.file(), camera.path("rig"));
     camera.finish();
     frame.cameras[it.key()] = std::move(cameraFrame);
   }
@@ -191,6 +193,7 @@ json manifestToJson(const DatasetManifest& manifest) {
       json files = json::object();
       for (const auto& [kind, file] : camera.files) files[kind] = {{"path", file.path}, {"sha256", file.sha256}};
       cameras[name] = {{"pose", poseJson(camera.pose)}, {"files", files}};
+      if (camera.rig) cameras[name]["rig"] = rigToJson(*camera.rig);
     }
     json entry = {{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)}, {"cameras", cameras}};
     if (!frame.velocity.still())  // the pose is then the exposure start's (docs/motion.md)

@@ -5,6 +5,7 @@
 // atomically as frames complete, so a killed run always leaves a readable one.
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,7 @@ inline constexpr const char* kManifestName = "manifest.json";
 // kMaxManifestHeaderBytes, checked before a run starts, and limits::kMaxCameraFrames entries of
 // at most kMaxManifestBytesPerCameraFrame each (longest names and numbers: tested).
 inline constexpr int64_t kMaxManifestHeaderBytes = int64_t{128} << 20;
-inline constexpr int64_t kMaxManifestBytesPerCameraFrame = 2048;
+inline constexpr int64_t kMaxManifestBytesPerCameraFrame = 4096;
 inline constexpr int64_t kMaxManifestBytes =
     kMaxManifestHeaderBytes + limits::kMaxCameraFrames * kMaxManifestBytesPerCameraFrame;
 
@@ -34,6 +35,9 @@ struct FileRecord {
 struct CameraFrame {
   RobotPose pose;  // the camera viewpoint's pose (mount applied)
   std::map<std::string, FileRecord> files;  // outputName(kind) → file
+  // The rig this frame was rendered with, when it is not the camera's rig of the header: a
+  // vibrating robot's (vibration.h).
+  std::optional<RigSpec> rig;
 
   // The file of `kind`, or null when the frame has none.
   const FileRecord* file(OutputKind kind) const {

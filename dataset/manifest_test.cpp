@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -28,13 +29,30 @@ json smallHeader(const std::vector<std::string>& cameras, int frameCount) {
 }
 
 // A frame as long as any the writer makes: the longest camera names, six-digit indices, every
-// kind of file, and numbers that take the most characters (17 significant digits, an exponent).
+// kind of file, a velocity, a vibrating robot's rig with every field written, and numbers that
+// take the most characters (17 significant digits, an exponent).
 FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
   const double longest = -1.2345678901234567e-300;
-  FrameRecord frame{index, longest, {longest, longest, longest}, {}, {}};
+  FrameRecord frame{index, longest, {longest, longest, longest}, {longest, longest, longest}, {}};
+  // The rig is read back by the scene format's reader: every value valid, each as long as it can
+  // be (17 digits; an exponent where the range allows one).
+  const double tiny = 1.2345678901234567e-300, negativeTiny = -tiny;
+  RigSpec rig;
+  rig.height = std::nextafter(0.4, 1.0);
+  rig.k = std::nextafter(11.546, 100.0);
+  rig.c = std::nextafter(0.02321, 1.0);
+  rig.rimElevationDeg = rig.framingElevationDeg = std::nextafter(45.0, 80.0);
+  rig.imageSize = 16384;
+  rig.mount = {{negativeTiny, negativeTiny, negativeTiny},
+               {negativeTiny, negativeTiny, negativeTiny},
+               {negativeTiny, negativeTiny, negativeTiny, negativeTiny, negativeTiny},
+               {negativeTiny, negativeTiny}};
+  rig.shutter = {tiny, RollingShutter{tiny, Readout::BottomToTop}, 256};
+  rig.tiltDeg = {negativeTiny, negativeTiny};
   for (const std::string& name : cameras) {
     CameraFrame& camera = frame.cameras[name];
     camera.pose = frame.robot;
+    camera.rig = rig;
     for (const char* kind : {"rgb", "depth", "instance", "semantic", "normal", "landmarks"})
       camera.files[kind] = {name + "/" + kind + "/" + std::to_string(index) + ".json", kHash};
   }

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "euroc_files.h"
+
 namespace omnicam {
 
 namespace {
@@ -110,14 +112,19 @@ std::vector<OutputKind> FrameOutputPlan::gatheredKinds() const {
   return kinds;
 }
 
+std::string FrameOutputPlan::frameFolder(const std::string& camera, OutputKind kind) const {
+  return camera + "/" + (kind == OutputKind::Rgb && eurocIntervalS ? "data" : outputName(kind));
+}
+
 std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kind, int index) const {
+  if (kind == OutputKind::Rgb && eurocIntervalS) return frameFolder(camera, kind) + "/" + eurocImageName(index, *eurocIntervalS);
   const char* extension = isAnnotation(kind) ? "json"
                           : kind == OutputKind::Rgb ? (rgbFormat == "exr" ? "exr" : "png")
                           : kind == OutputKind::Instance || kind == OutputKind::Semantic ? "png"
                                                                                          : "exr";
   char name[32];
   std::snprintf(name, sizeof name, "%06d.%s", index, extension);
-  return camera + "/" + outputName(kind) + "/" + name;
+  return frameFolder(camera, kind) + "/" + name;
 }
 
 std::string gatheredPath(const std::string& camera, OutputKind kind) { return camera + "/" + outputName(kind) + ".json"; }
@@ -126,6 +133,7 @@ std::vector<std::string> cameraFolderNames() {
   std::vector<std::string> names;
   for (const KindRow& r : kKinds) names.push_back(r.name);
   names.push_back("intrinsics");
+  names.push_back("data");  // EuRoC/ASL
   return names;
 }
 
@@ -137,7 +145,7 @@ bool isLayoutFile(const std::string& relative, const std::set<std::string>& came
       if (r.annotation) annotations += (annotations.empty() ? "" : "|") + std::string(r.name);
     }
     return std::regex("([^/]+)/((" + kinds + R"()/\d{6}\.(png|exr|json)|()" + annotations +
-                      R"()\.json|intrinsics/((opencv|kalibr|camodocal)\.yaml|rays\.exr)|poses\.tum))");
+                      R"()\.json|intrinsics/((opencv|kalibr|camodocal)\.yaml|rays\.exr)|poses\.tum|data/\d{1,19}\.png|data\.csv|sensor\.yaml))");
   }();
   std::smatch m;
   return std::regex_match(relative, m, layout) && cameras.count(m[1].str());

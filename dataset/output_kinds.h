@@ -46,6 +46,9 @@ struct FrameOutputPlan {
   std::string rgbFormat = "png";      // the files layout's colour file: "png" or "exr"
   std::set<OutputKind> outputs{OutputKind::Rgb};  // never Multilayer
   std::set<uint16_t> cocoClasses;     // class ids the COCO annotations cover
+  // The EuRoC/ASL layout's frame interval (euroc_files.h): colour frames are then
+  // <camera>/data/<t_ns>.png. Absent: <camera>/rgb/NNNNNN.png.
+  std::optional<double> eurocIntervalS;
 
   bool wants(OutputKind kind) const { return outputs.count(kind) > 0; }
   bool anyAov() const;
@@ -63,6 +66,8 @@ struct FrameOutputPlan {
   std::vector<OutputKind> gatheredKinds() const;
   // "<camera>/<kind>/NNNNNN.<ext>": frame `index`'s file of `kind` (one of fileKinds()).
   std::string framePath(const std::string& camera, OutputKind kind, int index) const;
+  // "<camera>/<folder>": the folder of every frame's file of `kind`.
+  std::string frameFolder(const std::string& camera, OutputKind kind) const;
 };
 
 // "<camera>/<kind>.json": a camera's gathered annotation file.

@@ -26,6 +26,17 @@ std::string pov(const Vec3& p) {
 }
 // A direction: same axis swap, no unit scaling.
 std::string povDirection(const Vec3& d) { return "<" + num(d.x()) + ", " + num(d.z()) + ", " + num(d.y()) + ">"; }
+// A rigid placement of an object modelled in its local frame (POV axes, mm) as a POV-Ray
+// `matrix`: row k is the image of POV's local axis k (POV x, y, z = omnicam x, z, y), then the
+// translation.
+std::string povPlacement(const Rigid& worldFromLocal) {
+  const Eigen::Matrix3d& r = worldFromLocal.linear();
+  const Vec3 axes[3] = {r.col(0), r.col(2), r.col(1)};
+  const Vec3 t = worldFromLocal.translation() * kPovrayUnitsPerMetre;
+  std::string out = "matrix <";
+  for (const Vec3& a : axes) out += num(a.x()) + ", " + num(a.z()) + ", " + num(a.y()) + ", ";
+  return out + num(t.x()) + ", " + num(t.z()) + ", " + num(t.y()) + ">";
+}
 std::string rgb(const Vec3f& c) { return "rgb <" + num(c.x()) + ", " + num(c.y()) + ", " + num(c.z()) + ">"; }
 
 std::string finish(const Material& m, Shading shading) {
@@ -198,11 +209,11 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
       << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
       << "  bounded_by { clipped_by }\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
-      << "  no_shadow\n  translate " << pov(worldFromView.translation()) << "\n}\n"
+      << "  no_shadow\n  " << povPlacement(worldFromView) << "\n}\n"
       << "// Beyond the rim the camera sees black (docs/conventions.md §2); invisible to everything else.\n"
       << "disc { <0, " << num(rimY) << ", 0>, y, " << num(rimR + 1000.0) << ", " << num(rimR) << "\n"
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
-      << "  translate " << pov(worldFromView.translation()) << "\n}\n\n";
+      << "  " << povPlacement(worldFromView) << "\n}\n\n";
 
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];

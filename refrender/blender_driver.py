@@ -11,7 +11,14 @@ job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "
            "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
                             "mirror_seen_by_indirect_rays": bool, "direct_pass": bool} (lit; all optional),
            "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr,
-                       "direct_output": path.exr (with direct_pass)}]}
+                       "direct_output": path.exr (with direct_pass),
+                       "motion": {"exposure_s": float, "motion_steps": int,
+                                  "world_from_viewpoint": [4x4 rows, ...]} (a moving frame)}]}
+
+motion: the rig's exact placements at 2^(motion_steps - 1) + 1 evenly spaced instants of a
+global shutter's exposure, from the frame's pose on. They are keyed on the rig at those instants
+(linear between keys) and Cycles' motion blur samples the rig, mirror and camera at exactly
+those instants (its motion steps); each camera ray gets its own random time in the exposure.
 
 direct_pass: `output` becomes a multilayer OpenEXR (ViewLayer.Combined and Cycles' Denoising
 Albedo, Normal and Depth passes), and the frame is rendered a second time with the same seed and
@@ -253,11 +260,44 @@ def main():
 
     direct_pass = tracing["direct_pass"] and not unlit
     for frame in job["frames"]:
-        rig.matrix_world = Matrix(frame["world_from_viewpoint"])
+        place_rig(scene, rig, (rig, mirror, mask, camera), frame)
         if direct_pass:
             render_with_direct_twin(scene, frame)
         else:
             render_to(scene, frame["output"])
+
+
+def place_rig(scene, rig, rig_objects, frame):
+    """The rig still at the frame's placement, or keyed over a moving frame's exposure."""
+    rig.animation_data_clear()
+    motion = frame.get("motion")
+    scene.render.use_motion_blur = motion is not None
+    if motion is None:
+        rig.matrix_world = Matrix(frame["world_from_viewpoint"])
+        return
+    # One frame is one second, so the shutter (in frames) is the exposure in seconds; it opens
+    # at frame 1, the frame's pose.
+    scene.render.fps, scene.render.fps_base = 1, 1.0
+    scene.cycles.motion_blur_position = "START"
+    scene.render.motion_blur_shutter = motion["exposure_s"]
+    scene.cycles.rolling_shutter_type = "NONE"
+    rig.rotation_mode = "QUATERNION"
+    placements = motion["world_from_viewpoint"]
+    intervals = len(placements) - 1
+    if intervals != 2 ** (motion["motion_steps"] - 1):
+        raise RuntimeError("omnicam: a moving frame needs 2^(motion_steps - 1) + 1 placements")
+    for k, rows in enumerate(placements):
+        rig.matrix_world = Matrix(rows)
+        at = 1.0 + motion["exposure_s"] * k / intervals
+        rig.keyframe_insert("location", frame=at)
+        rig.keyframe_insert("rotation_quaternion", frame=at)
+    for fcurve in rig.animation_data.action.fcurves:
+        for key in fcurve.keyframe_points:
+            key.interpolation = "LINEAR"
+    for obj in rig_objects:
+        obj.cycles.use_motion_blur = True
+        obj.cycles.motion_steps = motion["motion_steps"]
+    scene.frame_set(1)
 
 
 def render_to(scene, path):

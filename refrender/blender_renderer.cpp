@@ -13,6 +13,7 @@
 #include "physical_camera.h"
 #include "indirect_filter.h"
 #include "job_folder.h"
+#include "motion.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -116,6 +117,50 @@ std::string blenderVersion(const std::string& executable) {
 
 void checkBlenderCamera(const RigSpec& rig) { checkGltfCamera(rig); }
 
+void checkBlenderMotion(const RenderSettings& settings) {
+  if (!moving(settings)) return;
+  const Shutter& shutter = settings.rig.shutter;
+  if (shutter.rolling)
+    throw InputError("the blender engine renders motion blur through a global shutter only (Cycles' rolling shutter is "
+                     "approximate): render a rolling shutter with the fast engine or POV-Ray (docs/motion.md)");
+  if (shutter.timeSamples > 0)
+    throw InputError("the blender engine samples time continuously over the exposure: rig.shutter.time_samples needs the "
+                     "fast engine or POV-Ray (docs/motion.md)");
+}
+
+namespace {
+
+// Cycles' motion steps for the moving rig: 2^6 intervals over the exposure.
+constexpr int kBlenderMotionSteps = 7;
+
+// A rigid transform as the job's 4×4 rows.
+nlohmann::json matrixRows(const Rigid& transform) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int i = 0; i < 4; ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int j = 0; j < 4; ++j) row.push_back(transform.matrix()(i, j));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The rig's placements over a moving frame's exposure, for Cycles' transform motion blur: the
+// exact arc at 2^(steps − 1) + 1 evenly spaced instants, the instants at which Cycles samples
+// an object's motion with `steps` motion steps, so that its interpolation runs between exact
+// poses (docs/motion.md, "How the ground truth is built").
+nlohmann::json blenderMotion(const RenderSettings& settings, const RobotPose& pose) {
+  const int intervals = 1 << (kBlenderMotionSteps - 1);
+  nlohmann::json placements = nlohmann::json::array();
+  for (int k = 0; k <= intervals; ++k) {
+    const double t = settings.rig.shutter.exposureS * k / intervals;
+    placements.push_back(matrixRows(worldFromViewpoint(settings.rig, poseAfter(pose, settings.velocity, t))));
+  }
+  return {{"exposure_s", settings.rig.shutter.exposureS}, {"motion_steps", kBlenderMotionSteps},
+          {"world_from_viewpoint", placements}};
+}
+
+}  // namespace
+
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options) {
   if (poses.empty()) return {};
@@ -126,6 +171,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
   for (const RobotPose& pose : poses) checkPose(pose, "pose");
   checkBlenderCamera(settings.rig);
+  checkBlenderMotion(settings);
   const int size = settings.rig.imageSize;
   const Pinhole pinhole = pinholeOf(settings.rig);
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
@@ -139,14 +185,9 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
 
   nlohmann::json frames = nlohmann::json::array();
   for (size_t f = 0; f < poses.size(); ++f) {
-    const Rigid worldFromView = worldFromViewpoint(settings.rig, poses[f]);
-    nlohmann::json rows = nlohmann::json::array();
-    for (int i = 0; i < 4; ++i) {
-      nlohmann::json row = nlohmann::json::array();
-      for (int j = 0; j < 4; ++j) row.push_back(worldFromView.matrix()(i, j));
-      rows.push_back(row);
-    }
-    nlohmann::json frame = {{"world_from_viewpoint", rows}, {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}};
+    nlohmann::json frame = {{"world_from_viewpoint", matrixRows(worldFromViewpoint(settings.rig, poses[f]))},
+                            {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}};
+    if (moving(settings)) frame["motion"] = blenderMotion(settings, poses[f]);
     if (filtered) frame["direct_output"] = folder.path() + "/frame_" + std::to_string(f) + "_direct.exr";
     frames.push_back(frame);
   }

@@ -46,6 +46,9 @@ struct BlenderOptions {
 // timeout: with the tail of its output).
 // InputError unless the Blender export can render the rig's camera (the ideal rig only, so far).
 void checkBlenderCamera(const RigSpec& rig);
+// InputError unless Blender renders this frame's motion: a still frame, or a global shutter
+// with stratified instants (Cycles samples time continuously; its rolling shutter is approximate).
+void checkBlenderMotion(const RenderSettings& settings);
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 

@@ -28,6 +28,8 @@ void refuseMotion(const RenderSettings& settings, const std::string& engine) {
 }
 }  // namespace
 
+void Engine::checkMotion(const RenderSettings& settings) const { refuseMotion(settings, name()); }
+
 ImageRGBA Engine::render(const RobotPose&, const RenderSettings&, AovFrame&) {
   throw std::logic_error("engine " + name() + " has no AOVs");
 }
@@ -41,17 +43,19 @@ class FastEngine : public Engine {
   }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
     if (!mode_) return renderer_.render(pose, settings);
-    refuseMotion(settings, "fast engine's " + mode());
+    checkMotion(settings);
     return cubemap_.render(pose, settings, *mode_);
   }
   bool hasAovs() const override { return true; }
-  bool rendersMotion() const override { return !mode_; }
+  void checkMotion(const RenderSettings& settings) const override {
+    if (mode_) refuseMotion(settings, "fast engine's " + mode());
+  }
   // Exact mode is a pure function of the pose; the cube-map modes keep per-render state.
   bool concurrent() const override { return !mode_; }
   // AOVs are geometric truth: always from the exact pixel → ray map, whatever the RGB mode.
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) override {
     if (!mode_) return renderer_.render(pose, settings, aovs);
-    refuseMotion(settings, "fast engine's " + mode());
+    checkMotion(settings);
     renderer_.renderAovsOnly(pose, settings, aovs);
     return cubemap_.render(pose, settings, *mode_);
   }
@@ -89,7 +93,7 @@ class PovrayEngine : public Engine {
     return renderWithPovray(scene_, pose, settings, options_);
   }
   void checkCamera(const RigSpec& rig) const override { checkPovrayCamera(rig); }
-  bool rendersMotion() const override { return true; }
+  void checkMotion(const RenderSettings&) const override {}  // every shutter (docs/motion.md)
   std::string name() const override { return "povray"; }
   std::string version() const override {
     if (version_.empty()) version_ = povrayVersion(options_.executable);
@@ -109,16 +113,15 @@ class BlenderEngine : public Engine {
     options_.threads = threads;
   }
   ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
-    refuseMotion(settings, "blender");
     return std::move(renderWithBlender(scene_, {pose}, settings, options_).front());
   }
   std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings) override {
-    refuseMotion(settings, "blender");
     if (poses.empty()) return {};
     return renderWithBlender(scene_, poses, settings, options_);
   }
   bool batches() const override { return true; }
   void checkCamera(const RigSpec& rig) const override { checkBlenderCamera(rig); }
+  void checkMotion(const RenderSettings& settings) const override { checkBlenderMotion(settings); }
   std::string name() const override { return "blender"; }
   std::string version() const override {
     if (version_.empty()) version_ = blenderVersion(options_.executable) + " Cycles (CPU)";

@@ -32,9 +32,10 @@ class Engine {
   // Per-pixel ground truth (depth, instances, normals) with the image, in one pass. Only the
   // fast engine has it; ground truths write RGB only.
   virtual bool hasAovs() const { return false; }
-  // Whether frames whose robot moves while a shutter is open are rendered as such (docs/motion.md);
-  // the others refuse them.
-  virtual bool rendersMotion() const { return false; }
+  // InputError unless this engine renders a frame whose robot moves while the shutter is open as
+  // `settings` ask (docs/motion.md, "What each engine renders"); a still frame always passes.
+  // Every render checks it too; callers that write files first (datasets) ask before.
+  virtual void checkMotion(const RenderSettings& settings) const;
   virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs);
   // InputError unless this engine renders the rig's camera (a moved, turned or distorted one
   // needs an engine that models it; docs/physical-camera.md's table). Every render checks it too;

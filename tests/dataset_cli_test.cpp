@@ -715,12 +715,135 @@ TEST_F(DatasetCliTest, MovingFramesCarryTheirVelocityAndRenderAsTheRenderVerbDoe
   ASSERT_EQ(again.code, 0) << again.out;
   EXPECT_NE(again.out.find("(0 rendered, 3 kept"), std::string::npos) << again.out;
   EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
-  // An engine without time refuses the spec before writing anything.
+  // An engine that cannot render this shutter (Blender: global only) refuses before writing anything.
   const std::string blender = write("blender.json", R"({"format": "omnicam-dataset/1", "scene": "moving.json", "engine": "blender",
     "poses": {"list": )" + list + R"(}, "motion": {"velocity": [1, 0, 90]}})");
   const auto refused = omnicam("dataset " + blender + " -o " + path("refused"));
   EXPECT_EQ(refused.code, 2) << refused.out;
-  EXPECT_NE(refused.out.find("motion: the blender engine (mode exact) does not render motion"), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("motion: camera \"cam0\": the blender engine renders motion blur through a global shutter only"),
+            std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(path("refused")));
+}
+
+TEST_F(DatasetCliTest, AVibratingRobotsFramesEachRecordTheRigTheyWereRenderedWith) {
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                 R"(/scenes/robocup2006.json", "size": 64, "outputs": {"rgb": "exr"},
+    "poses": {"list": [[0, 0, 0], [0.5, 0.2, 30], [-1, 0.4, 200]]},
+    "vibration": {"seed": 5, "camera_offset_mm": [1, 1, 0.5], "camera_rotation_deg": [0.5, 0.5, 0.2], "rig_tilt_deg": [2, 2]}})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json manifest = json::parse(readFile(path("ds/manifest.json")));
+  const json& frames = manifest.at("frames");
+  ASSERT_EQ(frames.size(), 3u);
+  const json nominal = manifest.at("cameras")[0].at("rig");
+  EXPECT_FALSE(nominal.contains("tilt_deg"));  // the header states the camera's rig as specified
+  std::vector<json> rigs;
+  const double offsetAmplitude[] = {1.0, 1.0, 0.5}, rotationAmplitude[] = {0.5, 0.5, 0.2};
+  for (const json& frame : frames) {
+    const json& rig = frame.at("cameras").at("cam0").at("rig");
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LE(std::abs(rig.at("camera").at("offset_mm")[k].get<double>()), offsetAmplitude[k]);
+      EXPECT_LE(std::abs(rig.at("camera").at("rotation_deg")[k].get<double>()), rotationAmplitude[k]);
+    }
+    for (int k = 0; k < 2; ++k) EXPECT_LE(std::abs(rig.at("tilt_deg")[k].get<double>()), 2.0);
+    EXPECT_EQ(rig.at("mirror"), nominal.at("mirror"));
+    rigs.push_back(rig);
+  }
+  EXPECT_NE(rigs[0], rigs[1]);
+  EXPECT_NE(rigs[1], rigs[2]);
+
+  // Frame 2 is what `render` gives with the scene's rig replaced by the one the manifest records.
+  json scene = json::parse(readFile(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json"));
+  scene["rig"] = rigs[2];
+  write("shaken.json", scene.dump());
+  const auto single = omnicam("render " + path("shaken.json") + " --pose=-1,0.4,200 -o " + path("single.exr"));
+  ASSERT_EQ(single.code, 0) << single.out;
+  const ImageRGBA fromDataset = readImage(path("ds/cam0/rgb/000002.exr")), fromRender = readImage(path("single.exr"));
+  ASSERT_EQ(fromDataset.pixels.size(), fromRender.pixels.size());
+  EXPECT_TRUE(fromDataset.pixels == fromRender.pixels);
+
+  // poses.tum gives the tilted viewpoint: F' = robot + Rz(yaw)·Rx(roll)·Ry(pitch)·(0, 0, h).
+  std::istringstream tum(readFile(path("ds/cam0/poses.tum")));
+  std::string line;
+  int row = 0;
+  while (std::getline(tum, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    double t, x, y, z;
+    fields >> t >> x >> y >> z;
+    const double roll = radians(rigs[row].at("tilt_deg")[0].get<double>()), pitch = radians(rigs[row].at("tilt_deg")[1].get<double>());
+    const double yaw = radians(frames[row].at("pose").at("yaw_deg").get<double>()), h = nominal.at("height").get<double>();
+    const double lx = h * std::sin(pitch), ly = -h * std::sin(roll) * std::cos(pitch);
+    EXPECT_NEAR(x, frames[row].at("pose").at("x").get<double>() + std::cos(yaw) * lx - std::sin(yaw) * ly, 1e-12) << row;
+    EXPECT_NEAR(y, frames[row].at("pose").at("y").get<double>() + std::sin(yaw) * lx + std::cos(yaw) * ly, 1e-12) << row;
+    EXPECT_NEAR(z, h * std::cos(roll) * std::cos(pitch), 1e-12) << row;
+    ++row;
+  }
+  EXPECT_EQ(row, 3);
+
+  // A rerun keeps every frame (each recorded rig is the one the seed gives); verify passes.
+  const auto again = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("(0 rendered, 3 kept"), std::string::npos) << again.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+
+  // Shaking a camera beyond what the scene format allows is refused before anything is written.
+  json leaning = json::parse(readFile(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json"));
+  leaning["rig"]["tilt_deg"] = {29.9, 29.9};
+  write("leaning.json", leaning.dump());
+  const std::string tooMuch = write("too_much.json", R"({"format": "omnicam-dataset/1", "scene": "leaning.json", "size": 32,
+    "poses": {"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0], [0.3, 0, 0]]}, "vibration": {"seed": 1, "rig_tilt_deg": [5, 5]}})");
+  const auto refused = omnicam("dataset " + tooMuch + " -o " + path("refused"));
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("vibration: frame "), std::string::npos) << refused.out;
+  EXPECT_NE(refused.out.find("the shaken rig is refused"), std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(path("refused")));
+}
+
+TEST_F(DatasetCliTest, TimedWaypointsGiveAFrameEveryIntervalWithTheVelocityItIsDrivenAt) {
+  // 1 m at 0.5 m/s, then a 90° turn on the spot at 45°/s: 2 s each, a frame every 0.5 s.
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                 R"(/scenes/robocup2006.json", "size": 32, "frame_interval_s": 0.5,
+    "poses": {"list": [[0, 0, 0], [1, 0, 0], [1, 0, 90]], "speed_m_s": 0.5, "yaw_rate_deg_per_s": 45}})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json frames = json::parse(readFile(path("ds/manifest.json"))).at("frames");
+  ASSERT_EQ(frames.size(), 9u);
+  const auto expectFrame = [&](int i, double x, double y, double yaw, double vx, double w) {
+    const json& f = frames[i];
+    EXPECT_NEAR(f.at("timestamp").get<double>(), 0.5 * i, 1e-12) << i;
+    EXPECT_NEAR(f.at("pose").at("x").get<double>(), x, 1e-12) << i;
+    EXPECT_NEAR(f.at("pose").at("y").get<double>(), y, 1e-12) << i;
+    EXPECT_NEAR(f.at("pose").at("yaw_deg").get<double>(), yaw, 1e-9) << i;
+    EXPECT_NEAR(f.at("velocity").at("vx").get<double>(), vx, 1e-12) << i;
+    EXPECT_NEAR(f.at("velocity").at("yaw_rate_deg_per_s").get<double>(), w, 1e-12) << i;
+  };
+  expectFrame(2, 0.5, 0.0, 0.0, 0.5, 0.0);
+  expectFrame(6, 1.0, 0.0, 45.0, 0.0, 45.0);
+  expectFrame(8, 1.0, 0.0, 90.0, 0.0, 45.0);  // the last frame keeps the last segment's velocity
+
+  // Timestamps per waypoint: a quarter circle of radius 1 in 2 s, "frames" capping the count.
+  const std::string stamped = write("stamped.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                    R"(/scenes/robocup2006.json", "size": 32, "frame_interval_s": 0.5,
+    "poses": {"list": [[0, 0, 0], [1, 1, 90]], "timestamps_s": [3, 5], "frames": 3}})");
+  ASSERT_EQ(omnicam("dataset " + stamped + " -o " + path("stamped")).code, 0);
+  const json arc = json::parse(readFile(path("stamped/manifest.json"))).at("frames");
+  ASSERT_EQ(arc.size(), 3u);
+  EXPECT_NEAR(arc[2].at("pose").at("x").get<double>(), std::sin(kPi / 4), 1e-12);
+  EXPECT_NEAR(arc[2].at("pose").at("y").get<double>(), 1.0 - std::cos(kPi / 4), 1e-12);
+  EXPECT_NEAR(arc[2].at("velocity").at("vx").get<double>(), kPi / 4, 1e-12);
+
+  // A timestamp per waypoint, and the motion is the waypoints': both checked before writing.
+  const std::string miscounted = write("miscounted.json", R"({"format": "omnicam-dataset/1", "scene": "s.json",
+    "poses": {"list": [[0, 0, 0], [1, 1, 90]], "timestamps_s": [3]}})");
+  const auto refused = omnicam("dataset " + miscounted + " -o " + path("refused"));
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("poses.timestamps_s: has 1 timestamps for 2 waypoints"), std::string::npos) << refused.out;
+  const std::string doubled = write("doubled.json", R"({"format": "omnicam-dataset/1", "scene": "s.json",
+    "poses": {"list": [[0, 0, 0], [1, 1, 90]], "speed_m_s": 1, "yaw_rate_deg_per_s": 90}, "motion": {"velocity": [1, 0, 0]}})");
+  const auto twice = omnicam("dataset " + doubled + " -o " + path("refused"));
+  EXPECT_EQ(twice.code, 2) << twice.out;
+  EXPECT_NE(twice.out.find("leave motion out"), std::string::npos) << twice.out;
   EXPECT_FALSE(fs::exists(path("refused")));
 }
 

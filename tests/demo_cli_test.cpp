@@ -93,6 +93,15 @@ TEST(DemoCliTest, TheReportOpensWithAFilledMirrorBesideItsGroundTruthAndKeepsThe
                             "physical_povray.png", "physical_central_residual.png"})
     EXPECT_NE(std::find(images.begin(), images.end(), image), images.end()) << image;
 
+  // Time in the camera: at speed the global shutter blurs and the rolling one skews (issue #23).
+  ASSERT_TRUE(std::regex_search(html, m, std::regex("still vs global: PSNR ([0-9.]+) dB; global vs rolling: PSNR ([0-9.]+) dB")))
+      << "motion section";
+  EXPECT_LT(std::stod(m[1]), 40.0);
+  EXPECT_LT(std::stod(m[2]), 40.0);
+  for (const char* image : {"motion_global.png", "motion_rolling.png", "motion_difference.png", "motion_vibration.svg",
+                            "motion_vibration_difference.png"})
+    EXPECT_NE(std::find(images.begin(), images.end(), image), images.end()) << image;
+
   // The rest of the report is kept, and every image it shows was written.
   for (const char* section : {"The physical camera", "The open field from the thesis' start pose", "Incidence-angle rings",
                               "The thesis' method", "Views (thesis §3.2.1)", "A reference dataset", "Texture realism"})

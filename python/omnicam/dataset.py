@@ -7,7 +7,7 @@ followed, hashes checked on request.
 
 import os
 
-from ._omnicam import OUTPUTS, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
+from ._omnicam import OUTPUTS, Rig, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
 
 
 class Dataset:
@@ -17,8 +17,11 @@ class Dataset:
     frame order; negative indices count from the end). ``dataset[i, "rear"]`` gives another
     camera's view of the same frame. Each item is a dict:
 
-    - ``index``, ``timestamp`` (seconds), ``robot_pose`` and ``pose`` (the camera's), each pose
-      as (x, y, yaw_deg);
+    - ``index``, ``timestamp`` (seconds, the exposure start), ``robot_pose`` and ``pose`` (the
+      camera's), each pose as (x, y, yaw_deg) at the timestamp;
+    - ``velocity``: the robot's (vx, vy, yaw_rate_deg_per_s) over the exposure (docs/motion.md);
+    - ``rig``: the omnicam.Rig the frame was rendered with (a vibrating robot's frame rig, else
+      the camera's rig);
     - ``camera`` and ``intrinsics`` (the manifest's entry for the camera: the model and its
       parameters);
     - one entry per output the dataset holds, or per output asked for in ``outputs``:
@@ -91,6 +94,11 @@ class Dataset:
         camera = self.camera if camera is None else camera
         return next(c["intrinsics"] for c in self.header["cameras"] if c["name"] == camera)
 
+    def rig(self, camera=None):
+        """The camera's rig as the manifest states it (default this dataset's camera): an omnicam.Rig."""
+        camera = self.camera if camera is None else camera
+        return Rig(next(c["rig"] for c in self.header["cameras"] if c["name"] == camera))
+
     def __len__(self):
         return len(self.reader.frames)
 
@@ -108,6 +116,8 @@ class Dataset:
             "timestamp": frame["timestamp"],
             "robot_pose": frame["robot_pose"],
             "pose": frame["cameras"][camera]["pose"],
+            "velocity": frame["velocity"],
+            "rig": frame["cameras"][camera].get("rig") or self.rig(camera),
             "camera": camera,
             "intrinsics": self.intrinsics(camera),
         }

@@ -97,10 +97,14 @@ void bindDatasetReader(py::module_& m) {
         for (const auto& [name, camera] : f.cameras) {
           py::dict files;
           for (const auto& [kind, file] : camera.files) files[py::str(kind)] = file.path;
-          cameras[py::str(name)] = py::dict(py::arg("pose") = poseTuple(camera.pose), py::arg("files") = files);
+          py::dict entry(py::arg("pose") = poseTuple(camera.pose), py::arg("files") = files);
+          if (camera.rig) entry["rig"] = py::cast(*camera.rig);  // a vibrating robot's frame rig
+          cameras[py::str(name)] = entry;
         }
+        const BodyVelocity& v = f.velocity;
         return py::dict(py::arg("index") = f.index, py::arg("timestamp") = f.timestamp,
-                        py::arg("robot_pose") = poseTuple(f.robot), py::arg("cameras") = cameras);
+                        py::arg("robot_pose") = poseTuple(f.robot), py::arg("cameras") = cameras,
+                        py::arg("velocity") = py::make_tuple(v.vx, v.vy, v.yawRateDegPerS));
       }, py::arg("index"))
       .def("read", [](const DatasetReader& r, int index, const std::string& camera, const std::vector<std::string>& names,
                       bool checkHash) {

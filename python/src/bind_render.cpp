@@ -30,7 +30,7 @@ class PyRenderer {
   }
 
   py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, int size, int spp, const std::string& shading,
-                  bool traced, const std::vector<std::string>& outputs) {
+                  bool traced, const std::vector<std::string>& outputs, const py::object& velocity) {
     RenderSettings settings;
     settings.rig = rig.value_or(scene_->rig);
     if (size) settings.rig = settings.rig.resized(size);
@@ -39,7 +39,11 @@ class PyRenderer {
     if (!parsedShading) throw InputError("shading: " + quote(shading) + " is not unlit or lit");
     settings.shading = *parsedShading;
     settings.traced = traced;
-    checkRenderSettings(settings);
+    if (!velocity.is_none()) {
+      const RobotPose v = poseFrom(velocity, "velocity");  // three numbers, like a pose
+      settings.velocity = {v.x, v.y, v.yawDeg};
+    }
+    checkRenderSettings(settings, {"spp", "size", "velocity"});
     const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
     bool aovs = false;
     for (const std::string& o : outputs) {
@@ -110,7 +114,8 @@ constexpr const char* kRenderDoc = R"(Renders the scene from a robot pose (x, y,
 
 rig: another rig (default the scene's); size: the image size (default the rig's); spp: samples
 per pixel, a perfect square; shading: "unlit" or "lit"; traced: trace the physical camera even
-for the ideal rig. outputs: any of "rgba" (H, W, 4) float32 linear, premultiplied alpha; "rgb"
+for the ideal rig; velocity: (vx, vy, yaw_rate_deg_per_s), the robot's body velocity over the
+rig's shutter (docs/motion.md; the pose is the exposure start's). outputs: any of "rgba" (H, W, 4) float32 linear, premultiplied alpha; "rgb"
 (H, W, 3) a view of the same pixels; "depth" (H, W) float32 metres along the viewing ray;
 "instance" and "class" (H, W) uint16 ids (Scene.ids); "normal" (H, W, 3) float32 world-frame.
 AOVs (all but rgba and rgb) are point-sampled at pixel centres, fast engine only. Returns a dict
@@ -137,7 +142,7 @@ per ground-truth frame; threads: 0 for every core.)")
            py::arg("face_size") = 512, py::arg("polygons") = 1024, py::arg("timeout") = 600.0, py::arg("threads") = 0)
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
-           py::arg("outputs") = std::vector<std::string>{"rgba"}, kRenderDoc)
+           py::arg("outputs") = std::vector<std::string>{"rgba"}, py::arg("velocity") = py::none(), kRenderDoc)
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -147,13 +152,14 @@ per ground-truth frame; threads: 0 for every core.)")
   m.def(
       "render",
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::string& engine, const std::optional<RigSpec>& rig,
-         int size, int spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs) {
+         int size, int spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs,
+         const py::object& velocity) {
         PyRenderer renderer(std::make_shared<const Scene>(*scene), engine, "exact", 6, 512, 1024, 600.0, 0);
-        return renderer.render(pose, rig, size, spp, shading, traced, outputs);
+        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity);
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = "fast", py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
-      py::arg("outputs") = std::vector<std::string>{"rgba"},
+      py::arg("outputs") = std::vector<std::string>{"rgba"}, py::arg("velocity") = py::none(),
       kOneRenderDoc.c_str());
 }
 

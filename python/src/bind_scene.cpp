@@ -44,11 +44,16 @@ void rigProperty(py::class_<RigSpec>& rig, const char* name, std::vector<std::st
         return toPython(j);
       },
       [path](RigSpec& r, const py::object& value) {
-        const json v = fromPython(value, "omnicam.Rig: " + path.back());
+        // None puts the default back: the field is left out of the block.
+        const json v = value.is_none() ? json() : fromPython(value, "omnicam.Rig: " + path.back());
         r = edited(r, [&](json& j) {
           json* at = &j;
-          for (const std::string& key : path) at = &(*at)[key];
-          *at = v;
+          for (size_t k = 0; k + 1 < path.size(); ++k) at = &(*at)[path[k]];
+          if (v.is_null()) {
+            if (at->is_object()) at->erase(path.back());
+          } else {
+            (*at)[path.back()] = v;
+          }
         });
       },
       doc);
@@ -77,6 +82,9 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
   rigProperty(rig, "camera_rotation_deg", {"camera", "rotation_deg"}, "The camera turned about its pinhole, degrees.");
   rigProperty(rig, "distortion", {"camera", "distortion"}, "OpenCV radial-tangential lens distortion {k1, k2, p1, p2, k3}.");
   rigProperty(rig, "principal_point_offset_px", {"camera", "principal_point_offset_px"}, "Principal point offset, pixels.");
+  rigProperty(rig, "tilt_deg", {"tilt_deg"}, "The whole rig tilted on the robot: [roll, pitch], degrees (None: level).");
+  rigProperty(rig, "shutter", {"shutter"},
+              "The shutter (docs/motion.md): {exposure_s, rolling: {line_time_us, readout}, time_samples} (None: an instant).");
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A loaded scene file (docs/scene-format.md).")
       .def_property_readonly("path", [](const Scene& s) { return s.path; })

@@ -181,8 +181,10 @@ def main():
     write(os.path.join(SCENES, "shutter_negative.json"), scene([FLOOR], rig={"shutter": {"exposure_s": -0.01}}))
     write(os.path.join(SCENES, "shutter_no_line_time.json"), scene([FLOOR], rig={"shutter": {"rolling": {}}}))
     write(os.path.join(SCENES, "shutter_time_samples.json"), scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "time_samples": 1000}}))
-    write(os.path.join(SCENES, "shutter_global.json"), scene([FLOOR], rig={"shutter": {"exposure_s": 0.03}}))
+    write(os.path.join(SCENES, "shutter_rolling.json"),
+          scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}))
     write(os.path.join(SCENES, "shutter_unknown_key.json"), scene([FLOOR], rig={"shutter": {"iso": 100}}))
+    write(os.path.join(SCENES, "tilt_too_far.json"), scene([FLOOR], rig={"tilt_deg": [40, 0]}))
     write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
     write(os.path.join(SCENES, "light_shares_name.json"),
           scene([dict(FLOOR, name="lamp")], lights=[{"name": "lamp", "position": [0, 0, 2]}]))
@@ -274,6 +276,13 @@ def main():
     dataset_spec("layout_unknown", layout="layers")
     dataset_spec("multilayer_png", layout="multilayer", outputs={"rgb": "png"})
     dataset_spec("files_compression", multilayer_compression="zip")
+    # Time and shaking (docs/motion.md): timed waypoints, vibration, the EuRoC layout.
+    dataset_spec("vibration_tilt", vibration={"seed": 1, "rig_tilt_deg": [20, 0]})
+    dataset_spec("vibration_pushed", cameras=[{"name": "c", "rig": {"tilt_deg": [29.9, 29.9]}}],
+                 poses={"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0], [0.3, 0, 0]]}, vibration={"seed": 1, "rig_tilt_deg": [5, 5]})
+    dataset_spec("timestamps_backwards", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [1, 0.5]})
+    dataset_spec("speed_no_turn_rate", poses={"path": "p", "speed_m_s": 1})
+    dataset_spec("euroc_exr", euroc=True, outputs={"rgb": "exr"})
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
     random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}

@@ -1,0 +1,81 @@
+#include "euroc_files.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "make_camera.h"
+#include "number_format.h"
+
+namespace omnicam {
+
+namespace {
+
+// A number YAML 1.1 loaders (PyYAML) read as a float: its exponent form needs a '.' ("1.0e-05",
+// not "1e-05", which they read as a string).
+std::string yamlNumber(double v) {
+  std::string text = roundTrip(v);
+  const size_t e = text.find('e');
+  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
+  return text;
+}
+
+}  // namespace
+
+int64_t eurocTimestampNs(int frame, double intervalS) {
+  return std::llround(static_cast<double>(frame) * intervalS * 1e9);
+}
+
+std::string eurocImageName(int frame, double intervalS) { return std::to_string(eurocTimestampNs(frame, intervalS)) + ".png"; }
+
+std::string eurocDataCsv(int frames, double intervalS) {
+  std::ostringstream out;
+  out << "#timestamp [ns],filename\n";
+  for (int i = 0; i < frames; ++i) out << eurocTimestampNs(i, intervalS) << ',' << eurocImageName(i, intervalS) << '\n';
+  return out.str();
+}
+
+std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const Camera& camera, double intervalS) {
+  const CentralModel model = centralModelOf(camera);
+  const MeiIntrinsics& k = model.intrinsics;
+  Rigid robotFromMount = Rigid::Identity();
+  robotFromMount.translate(Vec3(mount.mountX, mount.mountY, 0.0));
+  robotFromMount.rotate(Eigen::AngleAxisd(radians(mount.mountYawDeg), Vec3::UnitZ()));
+  // The rig's camera frame, or the frame of its best-fit central model.
+  Rigid viewpointFromSensor = cameraFromViewpoint().inverse();
+  if (model.approximation) viewpointFromSensor = model.approximation->cameraFromViewpoint.inverse();
+  const Rigid bodyFromSensor = robotFromMount * robotFromViewpoint(rig) * viewpointFromSensor;
+
+  std::ostringstream out;
+  out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"
+      << "# Body frame: the robot's (origin on the floor, x forward, y left, z up). Sensor frame: X forward,\n"
+      << "# Y right, Z down at the mirror's effective viewpoint F' (intrinsics/*.yaml). Timestamps: exposure start.\n"
+      << "# camera_model omni: the unified (Mei) model, intrinsics [xi, fu, fv, pu, pv]; fv is negative on\n"
+      << "# purpose (the catadioptric image is a mirror image). Pixel centres are integers.\n";
+  if (model.approximation)
+    out << "# APPROXIMATE: this rig has no exact central model; these are its best-fit model's intrinsics and\n"
+        << "# frame (intrinsics/opencv.yaml states the residuals; intrinsics/rays.exr the exact rays).\n";
+  out << "sensor_type: camera\n"
+      << "comment: omnicam catadioptric camera " << mount.name << "\n"
+      << "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out << yamlNumber(bodyFromSensor.matrix()(r, c)) << (r == 3 && c == 3 ? "]\n" : ", ");
+  out << "rate_hz: " << yamlNumber(1.0 / intervalS) << "\n"
+      << "resolution: [" << camera.width() << ", " << camera.height() << "]\n"
+      << "camera_model: omni\n"
+      << "intrinsics: [" << yamlNumber(k.xi) << ", " << yamlNumber(k.gammaX) << ", " << yamlNumber(k.gammaY) << ", "
+      << yamlNumber(k.cx) << ", " << yamlNumber(k.cy) << "]\n"
+      << "distortion_model: radial-tangential\n"
+      << "distortion_coefficients: [" << yamlNumber(k.lens.k1) << ", " << yamlNumber(k.lens.k2) << ", "
+      << yamlNumber(k.lens.p1) << ", " << yamlNumber(k.lens.p2) << "]\n"
+      << "exposure_s: " << yamlNumber(rig.shutter.exposureS) << "\n";
+  if (rig.shutter.rolling) {
+    out << "shutter: rolling\n"
+        << "line_time_s: " << yamlNumber(rig.shutter.rolling->lineTimeUs * 1e-6) << "\n"
+        << "readout: " << readoutName(rig.shutter.rolling->readout) << "\n";
+  } else {
+    out << "shutter: global\n";
+  }
+  return out.str();
+}
+
+}  // namespace omnicam

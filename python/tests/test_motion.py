@@ -1,0 +1,76 @@
+"""Time in the camera from Python (docs/motion.md): a shutter on the rig, a velocity per render,
+each frame's velocity and vibrating rig read back from a dataset."""
+
+import json
+
+import numpy as np
+import pytest
+
+import omnicam
+from conftest import run_cli
+
+ROLLING = {"exposure_s": 0.02, "rolling": {"line_time_us": 150, "readout": "left-to-right"}}
+
+
+def test_the_shutter_and_tilt_are_rig_properties_read_strictly(robocup):
+    rig = robocup.rig
+    assert rig.shutter is None and rig.tilt_deg is None
+    rig.shutter = ROLLING
+    rig.tilt_deg = [1.5, -0.5]
+    assert rig.shutter["rolling"] == ROLLING["rolling"]
+    assert rig.tilt_deg == [1.5, -0.5]
+    with pytest.raises(omnicam.InputError, match="readout"):
+        rig.shutter = {"exposure_s": 0.01, "rolling": {"line_time_us": 10, "readout": "sideways"}}
+    with pytest.raises(omnicam.InputError, match="tilt_deg"):
+        rig.tilt_deg = [45, 0]
+
+
+def test_a_moving_render_is_the_cli_s_bit_for_bit(robocup, tmp_path):
+    rig = robocup.rig.resized(48)
+    rig.shutter = ROLLING
+    scene_file = tmp_path / "rolling.json"
+    scene = json.loads(open(robocup.path).read())
+    scene["rig"] = rig.to_dict()
+    scene_file.write_text(json.dumps(scene))
+    pose, velocity = (0.3, -0.2, 40.0), (1.0, 0.2, 90.0)
+    ours = omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgba"]
+    code, out, err = run_cli("render", scene_file, "--spp", "4", "--pose=0.3,-0.2,40", "--velocity", "1,0.2,90",
+                             "-o", tmp_path / "cli.exr")
+    assert code == 0, out + err
+    assert np.array_equal(ours, omnicam.read_image(str(tmp_path / "cli.exr")))
+    still = omnicam.render(robocup, pose, rig=rig, spp=4)["rgba"]
+    assert not np.array_equal(ours, still)
+    # With the shutter an instant, a velocity changes nothing.
+    rig.shutter = None
+    assert np.array_equal(omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgba"],
+                          omnicam.render(robocup, pose, rig=rig, spp=4)["rgba"])
+
+
+def test_a_bad_velocity_or_a_shutter_the_engine_cannot_render_is_an_input_error(robocup):
+    rig = robocup.rig.resized(32)
+    rig.shutter = {"exposure_s": 0.01}
+    with pytest.raises(omnicam.InputError, match="velocity"):
+        omnicam.render(robocup, rig=rig, velocity=(500.0, 0.0, 0.0))
+    rig.shutter = ROLLING
+    with pytest.raises(omnicam.InputError, match="global shutter only"):
+        omnicam.render(robocup, rig=rig, velocity=(1.0, 0.0, 0.0), engine="blender")
+
+
+def test_a_dataset_item_carries_its_velocity_and_its_vibrating_rig(source, tmp_path, robocup):
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(source / "scenes" / "robocup2006.json"), "size": 40,
+        "outputs": {"rgb": "exr"}, "poses": {"list": [[0, 0, 0], [0.4, 0.1, 15]]},
+        "motion": {"velocity": [0.5, 0.0, 30.0]},
+        "vibration": {"seed": 3, "rig_tilt_deg": [1.0, 1.0], "camera_offset_mm": [0.5, 0.5, 0.5]}}))
+    omnicam.run_dataset(str(spec), str(tmp_path / "ds"))
+    dataset = omnicam.Dataset(tmp_path / "ds")
+    assert dataset.rig() == robocup.rig.resized(40)
+    first, second = dataset[0], dataset[1]
+    assert first["velocity"] == (0.5, 0.0, 30.0)
+    assert first["rig"] != second["rig"] and first["rig"] != dataset.rig()
+    assert all(abs(t) <= 1.0 for t in second["rig"].tilt_deg)
+    # The item's rig renders the item's image again (the scene's shutter is an instant: the
+    # velocity changes nothing here, and the frame is the still render of its rig).
+    again = omnicam.render(robocup, second["pose"], rig=second["rig"], velocity=second["velocity"])["rgba"]
+    assert np.array_equal(again, second["rgb"])
