@@ -1,5 +1,6 @@
 #include "demo_motion.h"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -14,11 +15,12 @@ namespace omnicam::cli {
 
 namespace {
 
-// The drive: the thesis loop at 3 m/s, turning at up to 180°/s; the frame is taken 0.8 s in.
-constexpr double kSpeed = 3.0, kYawRate = 180.0, kFrameTime = 0.8;
-// Both shutters expose each line for 4 ms; the rolling one starts a line every 30 µs, top to
+// The drive: the thesis loop at 3 m/s, turning at up to 180°/s; the frame is the first one
+// taken while the robot turns fastest (sampled every 10 ms), where the two shutters differ most.
+constexpr double kSpeed = 3.0, kYawRate = 180.0, kTimeStep = 0.01;
+// Both shutters expose each line for 8 ms; the rolling one starts a line every 30 µs, top to
 // bottom.
-constexpr double kExposureS = 0.004, kLineTimeUs = 30.0;
+constexpr double kExposureS = 0.008, kLineTimeUs = 30.0;
 constexpr int kVibrationFrames = 100;
 
 std::string figure(const std::string& file, const std::string& caption) {
@@ -49,11 +51,14 @@ std::string demoMotion(const std::string& out, const Scene& arena, int spp) {
   const CameraPath* loop = arena.findPath("thesis-loop");
   if (!loop) return "";
   const Trajectory drive = Trajectory::atSpeed(loop->poses, kSpeed, kYawRate);
-  const RobotPose pose = drive.poseAt(kFrameTime);
+  double frameTime = drive.start();
+  for (double t = drive.start(); t < drive.end(); t += kTimeStep)
+    if (std::abs(drive.velocityAt(t).yawRateDegPerS) > std::abs(drive.velocityAt(frameTime).yawRateDegPerS)) frameTime = t;
+  const RobotPose pose = drive.poseAt(frameTime);
   RenderSettings global;
   global.rig = arena.rig;
   global.spp = spp;
-  global.velocity = drive.velocityAt(kFrameTime);
+  global.velocity = drive.velocityAt(frameTime);
   global.rig.shutter.exposureS = kExposureS;
   RenderSettings rolling = global;
   rolling.rig.shutter.rolling = RollingShutter{kLineTimeUs, Readout::TopToBottom};
@@ -85,7 +90,7 @@ std::string demoMotion(const std::string& out, const Scene& arena, int spp) {
   std::snprintf(numbers, sizeof numbers, "still vs global: PSNR %.1f dB; global vs rolling: PSNR %.1f dB", blur, skew);
   std::ostringstream html;
   html << "<h2>Time in the camera (docs/motion.md)</h2><p>The thesis loop driven at " << kSpeed
-       << " m/s (turning at up to " << kYawRate << "°/s), the frame " << kFrameTime << " s in, the robot at " << speed
+       << " m/s (turning at up to " << kYawRate << "°/s), the frame " << frameTime << " s in, the robot at " << speed
        << ". Each line is exposed for " << kExposureS * 1000
        << " ms. The global shutter exposes every line at once; the rolling shutter starts line l at l × " << kLineTimeUs
        << " µs, so the last line is read " << kLineTimeUs * 1e-3 * (global.rig.imageSize - 1)

@@ -148,6 +148,9 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
   header["settings"] = {{"spp", spec.spp}, {"shading", shadingName(spec.shading)},
                         {"frame_interval_s", spec.frameIntervalSeconds},
                         {"aov_sampling", "point-sampled at pixel centres (i + 0.5, j + 0.5)"},
+                        {"time", "timestamps and poses are each frame's exposure start; with a velocity, AOVs and landmark "
+                                 "annotations are taken at each pixel centre's own time (global shutter: mid-exposure; rolling: "
+                                 "its line's mid-exposure; docs/motion.md)"},
                         {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
   json written = json::array(), channels = json::object();

@@ -21,12 +21,6 @@ std::string yamlNumber(double v) {
 
 }  // namespace
 
-int64_t eurocTimestampNs(int frame, double intervalS) {
-  return std::llround(static_cast<double>(frame) * intervalS * 1e9);
-}
-
-std::string eurocImageName(int frame, double intervalS) { return std::to_string(eurocTimestampNs(frame, intervalS)) + ".png"; }
-
 std::string eurocDataCsv(int frames, double intervalS) {
   std::ostringstream out;
   out << "#timestamp [ns],filename\n";

@@ -9,13 +9,11 @@
 
 #include "camera.h"
 #include "dataset_spec.h"
+#include "output_kinds.h"
 
 namespace omnicam {
 
-// Frame `frame`'s timestamp in nanoseconds: round(frame · interval · 10⁹).
-int64_t eurocTimestampNs(int frame, double intervalS);
-// "<t_ns>.png", the name of the frame's image in <camera>/data/.
-std::string eurocImageName(int frame, double intervalS);
+// The frames' names (eurocTimestampNs, eurocImageName) are the layout's: output_kinds.h.
 // The text of <camera>/data.csv for frames [0, frames).
 std::string eurocDataCsv(int frames, double intervalS);
 // The text of <camera>/sensor.yaml: T_BS maps the sensor frame (the intrinsics files' camera

@@ -1,11 +1,10 @@
 #include "output_kinds.h"
 
+#include <cmath>
 #include <cstdio>
 #include <regex>
 #include <stdexcept>
 #include <string>
-
-#include "euroc_files.h"
 
 namespace omnicam {
 
@@ -126,6 +125,12 @@ std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kin
   std::snprintf(name, sizeof name, "%06d.%s", index, extension);
   return frameFolder(camera, kind) + "/" + name;
 }
+
+int64_t eurocTimestampNs(int frame, double intervalS) {
+  return std::llround(static_cast<double>(frame) * intervalS * 1e9);
+}
+
+std::string eurocImageName(int frame, double intervalS) { return std::to_string(eurocTimestampNs(frame, intervalS)) + ".png"; }
 
 std::string gatheredPath(const std::string& camera, OutputKind kind) { return camera + "/" + outputName(kind) + ".json"; }
 

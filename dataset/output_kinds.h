@@ -2,6 +2,7 @@
 // The outputs a dataset frame can have, and the two layouts that store them
 // (docs/dataset-format.md): every place that names, files, checks or decodes an output asks
 // here, so a new output is one new row of the table in output_kinds.cpp.
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <string>
@@ -69,6 +70,11 @@ struct FrameOutputPlan {
   // "<camera>/<folder>": the folder of every frame's file of `kind`.
   std::string frameFolder(const std::string& camera, OutputKind kind) const;
 };
+
+// The EuRoC/ASL layout's names (euroc_files.h): frame `frame`'s timestamp in nanoseconds,
+// round(frame · interval · 10⁹), and "<t_ns>.png", its image's name in <camera>/data/.
+int64_t eurocTimestampNs(int frame, double intervalS);
+std::string eurocImageName(int frame, double intervalS);
 
 // "<camera>/<kind>.json": a camera's gathered annotation file.
 std::string gatheredPath(const std::string& camera, OutputKind kind);

@@ -51,9 +51,17 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   // Quadric: A x² + B y² + C z² + H y + J = 0 in the mirror's local frame, then translated.
   const auto q = numbersIn(block(sdl, "quadric {", "clipped_by"));
   ASSERT_EQ(q.size(), 10u);
-  const auto t = numbersIn(block(sdl, "no_shadow\n  translate", "\n"));
-  const Vec3 viewpointWorld = worldOf(t, 0);
+  // Placed by a matrix: rows are POV's local axes in the world (POV axes), then the translation.
+  const auto placement = numbersIn(block(sdl, "no_shadow\n  matrix <", ">"));
+  ASSERT_EQ(placement.size(), 12u);
+  const Vec3 viewpointWorld = worldOf(placement, 9);
   EXPECT_NEAR((viewpointWorld - Vec3(1.1, -0.4, 0.4)).norm(), 0.0, 1e-12);
+  // A level rig turns its mirror about the vertical only, by the robot's yaw.
+  const double yaw = radians(57.0);
+  EXPECT_NEAR((Vec3(placement[0], placement[1], placement[2]) - Vec3(std::cos(yaw), 0.0, std::sin(yaw))).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((Vec3(placement[3], placement[4], placement[5]) - Vec3(0.0, 1.0, 0.0)).norm(), 0.0, 1e-15);
+  const Vec3 localAxes[3] = {Vec3(placement[0], placement[1], placement[2]), Vec3(placement[3], placement[4], placement[5]),
+                             Vec3(placement[6], placement[7], placement[8])};
 
   // Clip box: only the upper sheet between the vertex and the rim is the mirror.
   const auto box = numbersIn(block(sdl, "clipped_by { box {", "} }"));
@@ -70,7 +78,8 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   const Rigid wfc = worldFromCamera(settings.rig, pose);
   auto implicit = [&](const Vec3& world) {  // in mm, local POV axes
     const Vec3 l = (world - viewpointWorld) * kPovrayUnitsPerMetre;
-    const double x = l.x(), y = l.z(), z = l.y();
+    const Vec3 pov(l.x(), l.z(), l.y());
+    const double x = pov.dot(localAxes[0]), y = pov.dot(localAxes[1]), z = pov.dot(localAxes[2]);
     return q[0] * x * x + q[1] * y * y + q[2] * z * z + q[7] * y + q[9];
   };
   int checked = 0;
