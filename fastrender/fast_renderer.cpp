@@ -158,14 +158,17 @@ FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettin
   out.n = samplesPerAxis;
   out.instants = pixelInstants(out.shutter, samplesPerAxis);
   const int lines = lineCount(out.shutter, out.width, out.height);
-  out.samples.reserve(static_cast<size_t>(lines) * out.instants.count);
-  out.centres.reserve(lines);
+  out.samples.resize(static_cast<size_t>(lines) * out.instants.count);
+  out.centres.resize(lines);
   const auto at = [&](double seconds) { return placement(settings, poseAfter(pose, settings.velocity, seconds)); };
-  for (int line = 0; line < lines; ++line) {
+  // A rolling shutter has thousands of placements (lines × instants): worked out on every core,
+  // each written to its own slot.
+  tbb::parallel_for(0, lines, [&](int line) {
     const double start = lineStart(out.shutter, line);
-    for (int m = 0; m < out.instants.count; ++m) out.samples.push_back(at(start + instantTime(out.shutter, m, out.instants.count)));
-    out.centres.push_back(at(start + 0.5 * out.shutter.exposureS));
-  }
+    for (int m = 0; m < out.instants.count; ++m)
+      out.samples[static_cast<size_t>(line) * out.instants.count + m] = at(start + instantTime(out.shutter, m, out.instants.count));
+    out.centres[line] = at(start + 0.5 * out.shutter.exposureS);
+  });
   return out;
 }
 
@@ -197,7 +200,7 @@ void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable&
     Vec3f sum = Vec3f::Zero();
     for (uint32_t first = 0; first < samples; first += kRayPacketSize) {
       const int count = static_cast<int>(std::min<uint32_t>(kRayPacketSize, samples - first));
-      hits.begin(Vec3::Zero(), count);
+      hits.beginEach(count);
       for (int k = 0; k < count; ++k) {
         const uint32_t r = first + static_cast<uint32_t>(k), s = rowFirst + r;
         const Placement& p = at.samples[scratch.row.lineBase[scratch.columns[r]] + scratch.row.instantOfGrid[table.gridIndex[s]]];

@@ -248,6 +248,17 @@ void HitPacket::begin(const Vec3& origin, int count) {
   }
 }
 
+void HitPacket::beginEach(int count) {
+  count_ = count;
+  mask_ = 0;
+  RTCRay8& rays = rayhit_.ray;
+  for (int k = 0; k < kRayPacketSize; ++k) {
+    rays.tfar[k] = std::numeric_limits<float>::infinity();
+    rayhit_.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rayhit_.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
 void RayScene::intersectPacket(HitPacket& packet) const {
   packet.scene_ = this;
   packet.mask_ = 0;

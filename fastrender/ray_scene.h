@@ -34,6 +34,8 @@ class HitPacket {
   // given by setOrigin), each given its direction by setDirection. Lanes keep their other fields
   // between packets.
   void begin(const Vec3& origin, int count);
+  // The same for rays that each get their own origin (setOrigin, every one of the `count`).
+  void beginEach(int count);
   // Ray k starts at o + tStart·direction; surface(k).t is measured from there.
   void setOrigin(int k, const Vec3& o, float tStart) {
     origins_[k] = o;
