@@ -62,9 +62,10 @@ class Camera {
   // The camera model for sidecars and intrinsics files.
   virtual nlohmann::json describe() const = 0;
 
-  // Equal cameras generate the same rays: the same model of the same rig.
+  // Equal cameras generate the same rays: the same model of the same rig (its shutter and tilt
+  // on the robot aside, which change neither).
   bool operator==(const Camera& other) const {
-    return std::string_view(model()) == other.model() && rig_ == other.rig_;
+    return std::string_view(model()) == other.model() && rig_.imaging() == other.rig_.imaging();
   }
 
  protected:

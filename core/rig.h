@@ -67,9 +67,10 @@ struct RigSpec {
   int imageSize = 360;             // square image, pixels
   double framingElevationDeg = 45.0;  // direction that touches the image border
   Shutter shutter;                 // an instant unless it says otherwise (docs/motion.md)
-  // The whole rig (mirror and camera) tilted on the robot, as a robot rocking on its wheels
-  // tilts it: roll about the robot's x axis, then pitch about its y axis, about the robot's
-  // origin on the floor (robotFromViewpoint). Level unless it says otherwise.
+  // The whole rig (mirror and camera) tilted on its mount, as a robot rocking on its wheels
+  // tilts it, about the point on the floor below F': robotFromViewpoint = Rx(roll)·Ry(pitch)·
+  // T(0, 0, height), i.e. roll about the mount's x axis, then pitch about the rolled y axis.
+  // Level unless it says otherwise.
   std::array<double, 2> tiltDeg{0.0, 0.0};
 
   // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
@@ -86,6 +87,14 @@ struct RigSpec {
     const double scale = static_cast<double>(size) / imageSize;
     r.imageSize = size;
     for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
+    return r;
+  }
+  // What shapes the camera's rays in the viewpoint frame: this rig without its shutter (when
+  // rays are taken) and its tilt (where the viewpoint frame sits on the robot).
+  RigSpec imaging() const {
+    RigSpec r = *this;
+    r.shutter = {};
+    r.tiltDeg = {0.0, 0.0};
     return r;
   }
   // This rig with its camera put back where it belongs.

@@ -275,7 +275,7 @@ void checkVibratedRigs(const DatasetPlan& plan) {
     for (size_t c = 0; c < plan.setups.size(); ++c) {
       const RigSpec rig = plan.frameRig(frame, c);
       try {
-        (void)rigFromJson(rigToJson(rig), "", "rig");
+        (void)rigFromJson(rigToJson(rig), plan.spec.file, "rig");
         plan.engine->checkCamera(rig);
       } catch (const InputError& e) {
         throw InputError(showPath(plan.spec.file) + ": vibration: frame " + std::to_string(frame) + ", camera " +

@@ -63,8 +63,11 @@ std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const s
   for (size_t c = 0; c < plan.setups.size(); ++c) {
     std::vector<RobotPose> batchPoses;
     for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*plan.setups[c].camera, plan.poses[todo[k]]));
-    // One rig for the batch: a vibrating plan's batches hold one frame (renderFrames).
-    rgb[c] = plan.engine->renderMany(batchPoses, {plan.frameRig(todo[start], c), plan.spec.spp, plan.spec.shading});
+    // One rig and velocity for the batch: batches of a vibrating or moving plan hold one frame
+    // (renderFrames).
+    RenderSettings settings{plan.frameRig(todo[start], c), plan.spec.spp, plan.spec.shading};
+    settings.velocity = cameraVelocity(*plan.setups[c].camera, plan.velocities[todo[start]]);
+    rgb[c] = plan.engine->renderMany(batchPoses, settings);
   }
   return rgb;
 }
@@ -77,8 +80,10 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  // A vibrating robot's frames each have their own rig, so a batching engine renders them one by one.
-  const size_t batch = engine.batches() ? (plan.vibrates() ? 1 : kFramesPerBatch) : engine.concurrent() ? kConcurrentFrames : 1;
+  // A vibrating or moving robot's frames each have their own rig or velocity, so a batching
+  // engine renders them one by one.
+  const bool ownSettings = plan.vibrates() || plan.spec.motion != MotionSource::Still || plan.spec.timing.kind != PathTiming::Kind::None;
+  const size_t batch = engine.batches() ? (ownSettings ? 1 : kFramesPerBatch) : engine.concurrent() ? kConcurrentFrames : 1;
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
   auto lastManifest = std::chrono::steady_clock::now();
   int rendered = 0;

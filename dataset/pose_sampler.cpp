@@ -75,11 +75,11 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
       const CameraPath* path = scene.findPath(spec.pathName);
       if (!path)
         throw InputError(showPath(spec.file) + ": poses.path: scene " + showPath(scene.path) + " has no path " + quote(spec.pathName));
+      // Timed waypoints are all kept: "frames" then caps the frames taken along them.
+      if (spec.timing.kind != PathTiming::Kind::None) return path->poses;
       if (spec.pathFrames > static_cast<int>(path->poses.size()))
         throw InputError(showPath(spec.file) + ": poses.frames: path " + quote(spec.pathName) + " has only " +
                          std::to_string(path->poses.size()) + " poses");
-      // Timed waypoints are all kept: "frames" then caps the frames taken along them.
-      if (spec.timing.kind != PathTiming::Kind::None) return path->poses;
       const size_t n = spec.pathFrames ? spec.pathFrames : path->poses.size();
       checkFrameCount(spec, n, "poses.path");  // a whole path is only counted now
       return {path->poses.begin(), path->poses.begin() + n};

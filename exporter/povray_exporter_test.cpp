@@ -108,6 +108,29 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   EXPECT_GT(checked, 30);
 }
 
+// A tilted rig's mirror is turned with it: the matrix rows are the rig's axes Rz(yaw)·Rx(roll)·
+// Ry(pitch) (worked out by hand here), in POV's <x, z, y>, and the translation is F' in mm.
+TEST(PovrayExport, ATiltedRigTurnsItsMirrorWithIt) {
+  const Scene scene = loadScene(kScene);
+  RenderSettings settings;
+  settings.rig = scene.rig;
+  settings.rig.tiltDeg = {4.0, -3.0};
+  const RobotPose pose{0.3, 0.2, -70.0};
+  const auto m = numbersIn(block(exportPovray(scene, pose, settings).sdl, "no_shadow\n  matrix <", ">"));
+  ASSERT_EQ(m.size(), 12u);
+  const double cr = std::cos(radians(4.0)), sr = std::sin(radians(4.0)), cp = std::cos(radians(-3.0)),
+               sp = std::sin(radians(-3.0)), cy = std::cos(radians(-70.0)), sy = std::sin(radians(-70.0));
+  // Rx·Ry columns: x̂ → (cp, sr·sp, −cr·sp), ŷ → (0, cr, sr), ẑ → (sp, −sr·cp, cr·cp); then Rz.
+  const auto turned = [&](const Vec3& v) { return Vec3(cy * v.x() - sy * v.y(), sy * v.x() + cy * v.y(), v.z()); };
+  const Vec3 x = turned({cp, sr * sp, -cr * sp}), y = turned({0.0, cr, sr}), z = turned({sp, -sr * cp, cr * cp});
+  const auto pov = [](const Vec3& v) { return Vec3(v.x(), v.z(), v.y()); };
+  const Vec3 rows[3] = {pov(x), pov(z), pov(y)};  // POV's local x, y, z = omnicam's x, z, y
+  for (int r = 0; r < 3; ++r)
+    EXPECT_NEAR((Vec3(m[3 * r], m[3 * r + 1], m[3 * r + 2]) - rows[r]).norm(), 0.0, 1e-15) << "row " << r;
+  const Vec3 viewpoint = Vec3(0.3, 0.2, 0.0) + settings.rig.height * z;
+  EXPECT_NEAR((worldOf(m, 9) - viewpoint).norm(), 0.0, 1e-12);
+}
+
 TEST(PovrayExport, MeshesCarryTheSameTrianglesAndNumbersRoundTrip) {
   const Scene scene = loadScene(kScene);
   RenderSettings settings;

@@ -89,8 +89,11 @@ Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading 
 std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const RenderSettings& settings,
                                                                           int n) const {
   const std::shared_ptr<const Camera> camera = makeCamera(settings.rig, settings.traced);
-  std::lock_guard<std::mutex> lock(tableMutex_);
-  if (table_ && table_->samplesPerAxis == n && *table_->camera == *camera) return table_;
+  {
+    std::lock_guard<std::mutex> lock(tableMutex_);
+    if (table_ && table_->samplesPerAxis == n && *table_->camera == *camera) return table_;
+  }
+  // Built outside the lock: frames of other rigs (a vibrating robot's) build theirs meanwhile.
   auto table = std::make_shared<SampleTable>();
   table->camera = camera;
   table->samplesPerAxis = n;
@@ -132,8 +135,9 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
       table->centreSample.push_back(centre);
     }
   table->firstSample.push_back(static_cast<uint32_t>(table->directions.size()));
+  std::lock_guard<std::mutex> lock(tableMutex_);
   table_ = table;
-  return table_;
+  return table;
 }
 
 FastRenderer::Placement FastRenderer::placement(const RenderSettings& settings, const RobotPose& pose) {

@@ -286,8 +286,14 @@ def place_rig(scene, rig, rig_objects, frame):
     intervals = len(placements) - 1
     if intervals != 2 ** (motion["motion_steps"] - 1):
         raise RuntimeError("omnicam: a moving frame needs 2^(motion_steps - 1) + 1 placements")
+    previous = None
     for k, rows in enumerate(placements):
         rig.matrix_world = Matrix(rows)
+        rotation = rig.rotation_quaternion.copy()
+        if previous is not None:
+            rotation.make_compatible(previous)  # q and -q are one rotation: keys must not flip between them
+        rig.rotation_quaternion = rotation
+        previous = rotation
         at = 1.0 + motion["exposure_s"] * k / intervals
         rig.keyframe_insert("location", frame=at)
         rig.keyframe_insert("rotation_quaternion", frame=at)

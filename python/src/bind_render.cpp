@@ -39,10 +39,7 @@ class PyRenderer {
     if (!parsedShading) throw InputError("shading: " + quote(shading) + " is not unlit or lit");
     settings.shading = *parsedShading;
     settings.traced = traced;
-    if (!velocity.is_none()) {
-      const RobotPose v = poseFrom(velocity, "velocity");  // three numbers, like a pose
-      settings.velocity = {v.x, v.y, v.yawDeg};
-    }
+    if (!velocity.is_none()) settings.velocity = velocityFrom(velocity, "velocity");
     checkRenderSettings(settings, {"spp", "size", "velocity"});
     const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
     bool aovs = false;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "motion.h"
 #include "rig.h"
 
 namespace omnicam::python {
@@ -33,5 +34,7 @@ nlohmann::json fromPython(const py::handle& object, const std::string& what);
 
 // A pose given as (x, y, yaw_deg); InputError naming `what` otherwise or out of range.
 RobotPose poseFrom(const py::handle& pose, const std::string& what);
+// (vx, vy, yaw_rate_deg_per_s) from a sequence of 3 numbers; InputError naming `what`.
+BodyVelocity velocityFrom(const py::handle& velocity, const std::string& what);
 
 }  // namespace omnicam::python

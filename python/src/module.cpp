@@ -36,6 +36,17 @@ RobotPose poseFrom(const py::handle& pose, const std::string& what) {
   return p;
 }
 
+BodyVelocity velocityFrom(const py::handle& velocity, const std::string& what) {
+  std::vector<double> v;
+  try {
+    v = velocity.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw InputError(what + ": must be (vx, vy, yaw_rate_deg_per_s)");
+  }
+  if (v.size() != 3) throw InputError(what + ": must be (vx, vy, yaw_rate_deg_per_s), 3 numbers");
+  return {v[0], v[1], v[2]};  // ranges: checkRenderSettings, with the CLI's message
+}
+
 }  // namespace omnicam::python
 
 PYBIND11_MODULE(_omnicam, m) {
