@@ -4,6 +4,7 @@
 // or a shard's), each frame's outputs and layout, the manifest's header, each camera's static
 // files (intrinsics, poses) and the folders. frame_scheduler.h renders it; dataset_runner.h
 // decides what the folder keeps.
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -64,6 +65,11 @@ class DatasetPlan {
   // Camera `camera`'s rig during frame `frame`: its setup's, shaken by the spec's vibration.
   RigSpec frameRig(int frame, size_t camera) const;
   bool vibrates() const { return !spec.vibration.none(); }
+  // Whether frames differ in more than their pose (a shaken rig, a velocity), so that an engine
+  // rendering many poses with one setting (Blender's batches) must take them one at a time.
+  bool framesHaveOwnSettings() const {
+    return vibrates() || std::any_of(velocities.begin(), velocities.end(), [](const BodyVelocity& v) { return !v.still(); });
+  }
 };
 
 }  // namespace omnicam

@@ -31,9 +31,8 @@ std::string eurocDataCsv(int frames, double intervalS) {
 std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const Camera& camera, double intervalS) {
   const CentralModel model = centralModelOf(camera);
   const MeiIntrinsics& k = model.intrinsics;
-  Rigid robotFromMount = Rigid::Identity();
-  robotFromMount.translate(Vec3(mount.mountX, mount.mountY, 0.0));
-  robotFromMount.rotate(Eigen::AngleAxisd(radians(mount.mountYawDeg), Vec3::UnitZ()));
+  // The mount places the camera on the robot as a robot pose places the robot in the world.
+  const Rigid robotFromMount = worldFromRobot({mount.mountX, mount.mountY, mount.mountYawDeg});
   // The rig's camera frame, or the frame of its best-fit central model.
   Rigid viewpointFromSensor = cameraFromViewpoint().inverse();
   if (model.approximation) viewpointFromSensor = model.approximation->cameraFromViewpoint.inverse();

@@ -80,10 +80,8 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  // A vibrating or moving robot's frames each have their own rig or velocity, so a batching
-  // engine renders them one by one.
-  const bool ownSettings = plan.vibrates() || plan.spec.motion != MotionSource::Still || plan.spec.timing.kind != PathTiming::Kind::None;
-  const size_t batch = engine.batches() ? (ownSettings ? 1 : kFramesPerBatch) : engine.concurrent() ? kConcurrentFrames : 1;
+  const size_t batch = engine.batches() ? (plan.framesHaveOwnSettings() ? 1 : kFramesPerBatch)
+                                        : engine.concurrent() ? kConcurrentFrames : 1;
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
   auto lastManifest = std::chrono::steady_clock::now();
   int rendered = 0;
