@@ -65,8 +65,8 @@ void addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* cmd = app.add_subcommand("bench", "Frames/s of each render mode and view (360x360, 1 spp)");
   cmd->add_flag("--json", args->json, "Print JSON");
-  cmd->add_option("--seconds", args->seconds, "Seconds timed per item (default 1)")->check(CLI::PositiveNumber);
-  cmd->add_option("--face-size", args->faceSize, "Cube-face size for the cube-map modes")->check(CLI::Range(8, 8192));
+  cmd->add_option("--seconds", args->seconds, "Seconds timed per item (default 1)")->check(numberIn(0, 3600, true));
+  cmd->add_option("--face-size", args->faceSize, "Cube-face size for the cube-map modes")->check(integerIn(8, 8192));
   cmd->callback([args] { runBench(*args); });
 }
 

@@ -10,6 +10,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "number_format.h"
 #include "render_settings.h"
 
 namespace omnicam::cli {
@@ -38,6 +39,67 @@ RobotPose parsePose(const std::string& text, const std::string& flag) {
   const RobotPose pose{p.x(), p.y(), p.z()};
   checkPose(pose, flag);
   return pose;
+}
+
+namespace {
+
+// Digits only after an optional '-', no leading zero: what CLI11's own conversion then reads
+// exactly (it takes "0x10" as hex, "010" as octal 8, and wraps "-1" into an unsigned flag).
+bool plainInteger(std::string_view text) {
+  const size_t digits = !text.empty() && text[0] == '-' ? 1 : 0;
+  if (text.size() == digits) return false;
+  if (text[digits] == '0' && text.size() > digits + 1) return false;
+  for (size_t k = digits; k < text.size(); ++k)
+    if (text[k] < '0' || text[k] > '9') return false;
+  return true;
+}
+
+std::string rangeText(const std::string& lo, const std::string& hi, bool openLow) {
+  return std::string(openLow ? "(" : "[") + lo + ", " + hi + "]";
+}
+
+}  // namespace
+
+CLI::Validator integerIn(int64_t lo, uint64_t hi) {
+  const std::string range = rangeText(std::to_string(lo), std::to_string(hi), false);
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        bool ok = plainInteger(text);
+        if (ok && text[0] == '-') {
+          int64_t v = 0;
+          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+          ok = ec == std::errc() && end == text.data() + text.size() && v >= lo;
+        } else if (ok) {
+          uint64_t v = 0;
+          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+          ok = ec == std::errc() && end == text.data() + text.size() && v <= hi && (lo <= 0 || v >= static_cast<uint64_t>(lo));
+        }
+        return ok ? std::string() : "must be an integer in " + range + " (got " + quote(text) + ")";
+      },
+      "INT in " + range);
+}
+
+CLI::Validator numberIn(double lo, double hi, bool openLow) {
+  const std::string range = rangeText(shortNumber(lo), shortNumber(hi), openLow);
+  return CLI::Validator(
+      [lo, hi, openLow, range](std::string& text) -> std::string {
+        double v = 0.0;
+        const char* first = text.data();
+        const char* last = first + text.size();
+        const auto [end, ec] = std::from_chars(first, last, v, std::chars_format::general);
+        const bool ok = !text.empty() && text[0] != '+' && ec == std::errc() && end == last && std::isfinite(v) &&
+                        (openLow ? v > lo : v >= lo) && v <= hi;
+        return ok ? std::string() : "must be a number in " + range + " (got " + quote(text) + ")";
+      },
+      "NUMBER in " + range);
+}
+
+std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t hi) {
+  if (!plainInteger(text)) return std::nullopt;
+  int64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v < lo || v > hi) return std::nullopt;
+  return v;
 }
 
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {

@@ -2,9 +2,13 @@
 // Small helpers shared by the CLI verbs: strict number parsing, progress display, data paths.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string_view>
 #include <string>
 
 #include "geometry.h"
+#include "input_limits.h"
 #include "render_settings.h"
 #include "rig.h"
 #include "scene_loader.h"
@@ -17,6 +21,15 @@ Vec3 parseTriple(const std::string& text, const std::string& flag);
 RobotPose parsePose(const std::string& text, const std::string& flag);
 // Messages about render settings name the flags that set them.
 inline const SettingNames kSettingFlags{"--spp", "--size", "--velocity"};
+// Validators for numeric flags, read exactly as the spec reader reads JSON numbers: a decimal
+// integer (an optional '-', then digits without a leading zero: no '+', blanks, hex, octal or
+// exponent) in [lo, hi], or
+// a finite decimal number in [lo, hi] (`openLow`: lo itself excluded). Anything else is
+// "<flag>: must be an integer in [lo, hi] (got "text")": never wrapped, clamped or rounded.
+CLI::Validator integerIn(int64_t lo, uint64_t hi);
+CLI::Validator numberIn(double lo, double hi, bool openLow = false);
+// "<text>" as an integer in [lo, hi], or nullopt (the rule integerIn checks).
+std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t hi);
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do

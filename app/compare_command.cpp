@@ -33,7 +33,10 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   refuseUnless(cmd, "--fail-rmse", false, "two images");
   refuseUnless(cmd, "--fail-max", false, "two images");
   refuseUnless(cmd, "--diff-scale", !args.report.empty(), "--report");
-  if (!args.report.empty()) checkOutputFile(args.report, "--report");
+  if (!args.report.empty()) {
+    checkOutputFile(args.report, "--report");
+    checkOutputFolder(reportAssetsFolder(args.report), "--report (its images)");
+  }
   if (!args.junit.empty()) checkOutputFile(args.junit, "--junit");
   DatasetCompareOptions options;
   options.image.tolerance = args.tol;
@@ -125,11 +128,12 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--json", args->json, "Print the metrics as JSON");
   cmd->add_option("--diff", args->diff, "Write a difference heat map (PNG/EXR)");
   cmd->add_option("--diff-scale", args->diffScale, "Difference shown as white in heat maps (default 0.05)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--fail-psnr", args->failPsnr, "Fail below this PSNR (dB); datasets: any frame below");
-  cmd->add_option("--fail-rmse", args->failRmse, "Fail above this RMSE");
-  cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error");
-  cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(CLI::NonNegativeNumber);
+      ->check(numberIn(0, 1e6, true));
+  cmd->add_option("--fail-psnr", args->failPsnr, "Fail below this PSNR (dB); datasets: any frame below")
+      ->check(numberIn(-1e6, 1e6));
+  cmd->add_option("--fail-rmse", args->failRmse, "Fail above this RMSE")->check(numberIn(0, 1e6));
+  cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error")->check(numberIn(0, 1e6));
+  cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(numberIn(0, 1e6));
   cmd->add_flag("--disc", args->disc, "Only pixels wholly inside the mirror disc in both images");
   cmd->callback([args, cmd, &exitCode] { exitCode = runCompare(*args, *cmd); });
 }

@@ -31,18 +31,12 @@ struct DatasetArgs {
 
 // "I/N" → {I, N}; InputError naming --shard otherwise.
 std::pair<int, int> parseShard(const std::string& text) {
-  const auto slash = text.find('/');
-  try {
-    if (slash != std::string::npos && slash > 0 && text.size() - slash - 1 <= 6 && slash <= 6) {
-      size_t used = 0;
-      const int index = std::stoi(text.substr(0, slash), &used);
-      if (used == slash) {
-        const int count = std::stoi(text.substr(slash + 1), &used);
-        if (used == text.size() - slash - 1 && count >= 1 && count <= kMaxShards && index >= 0 && index < count)
-          return {index, count};
-      }
-    }
-  } catch (const std::exception&) {
+  const std::string_view whole(text);
+  const auto slash = whole.find('/');
+  if (slash != std::string_view::npos) {
+    const auto index = parseIntegerIn(whole.substr(0, slash), 0, kMaxShards - 1);
+    const auto count = parseIntegerIn(whole.substr(slash + 1), 1, kMaxShards);
+    if (index && count && *index < *count) return {static_cast<int>(*index), static_cast<int>(*count)};
   }
   throw InputError("--shard: must be I/N with 0 <= I < N (got " + quote(text) + "), N at most " + std::to_string(kMaxShards));
 }
@@ -189,13 +183,13 @@ void addDatasetCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--shard", args->shard, "Render only shard I of N (I/N) into the shared folder (docs/cluster.md)");
   cmd->add_option("--backend", args->backend, "local (default) or slurm: submit the shards as a Slurm job array");
   cmd->add_option("--shards", args->shards, "Shards (array tasks) for --backend slurm; for --merge when not obvious")
-      ->check(CLI::Range(1, kMaxShards));
+      ->check(integerIn(1, kMaxShards));
   cmd->add_option("--slurm-args", args->slurmArgs, "Extra sbatch options for every job, e.g. \"--partition=gpu --time=2:00:00\"");
   cmd->add_option("--max-parallel", args->maxParallel, "At most K shards running at once (Slurm's --array=...%K)")
-      ->check(CLI::Range(1, kMaxShards));
+      ->check(integerIn(1, kMaxShards));
   cmd->add_option("--threads", args->threads, "Threads for rendering and encoding (POV-Ray's, Blender's too); 0: every "
                   "core, under --backend slurm: the task's CPUs")
-      ->check(CLI::Range(0, 4096));
+      ->check(integerIn(0, limits::kMaxThreads));
   cmd->add_option("--merge", args->merge, "Merge the shard manifests of DIR into its manifest.json (exit 0 complete / 1)");
   cmd->callback([args, cmd, &exitCode] { runDatasetVerb(*args, *cmd, exitCode); });
 }

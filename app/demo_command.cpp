@@ -322,6 +322,9 @@ std::string demoDataset(const std::string& out, const std::string& scenePath) {
 
 void runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
+  RenderSettings checked;
+  checked.spp = a.spp;
+  checkRenderSettings(checked, kSettingFlags);  // before the report folder is made
   ensureDirectory(a.out, "-o");
   const std::string dir = scenesDir();
   const Scene arena = loadScene(dir + "/robocup2006.json");
@@ -479,7 +482,7 @@ void addDemoCommand(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
   CLI::App* cmd = app.add_subcommand("demo", "Main job: fast vs POV-Ray renders and rings, with an HTML report");
   cmd->add_option("-o,--output", args->out, "Report folder (default out/demo)");
-  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)");
+  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)")->check(integerIn(1, INT32_MAX));
   cmd->add_flag("!--no-povray", args->povray, "Skip the POV-Ray ground truth");
   cmd->add_flag("!--no-blender", args->blender, "Skip the Blender ground truth");
   cmd->callback([args] { runDemo(*args); });

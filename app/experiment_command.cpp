@@ -60,13 +60,14 @@ struct StageProgress {
 void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   for (const char* flag : {"--doc", "--convergence", "--theta", "--bins"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
-  ensureDirectory(a.out, "-o");
+  checkOutputFolder(a.out, "-o");
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.labPhoto = std::string(kStudioLights) + kLabPhoto;
   if (!std::filesystem::exists(options.labPhoto))
     throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
+  ensureDirectory(a.out, "-o");
   StageProgress progress;
   const ConvergenceResults r = runRealisticConvergence(
       options, a.noFigures ? "" : experimentsDir() + "/plot_convergence.py",
@@ -108,11 +109,10 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (a.name == "realistic-convergence") return runConvergence(a, cmd);
   std::optional<ConvergenceResults> convergence;
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
-  ensureDirectory(a.out, "-o");
+  if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
+  checkOutputFolder(a.out, "-o");
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
-  if (!(a.theta > 0.0 && a.theta < 1e6)) throw InputError("--theta: must be in (0, 1e6)");
-  if (a.bins < 2 || a.bins > 256) throw InputError("--bins: must be in [2, 256]");
   options.detector.theta = a.theta;
   options.bins = a.bins;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -121,6 +121,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   for (const std::string& photo : options.randomPhotos)
     if (!std::filesystem::exists(photo))
       throw InputError(showPath(photo) + ": missing (Debian's blender-data ships it; run make deps)");
+  ensureDirectory(a.out, "-o");  // every option checked: only now is anything created
   StageProgress progress;
   const TextureRealismResults results = runTextureRealism(
       options, a.noFigures ? "" : experimentsDir() + "/plot_texture_realism.py",
@@ -189,8 +190,9 @@ void addExperimentCommands(CLI::App& app) {
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");
   cmd->add_option("--doc", args->doc, "Also write the Markdown summary here (docs/texture-realism.md)");
   cmd->add_flag("--no-figures", args->noFigures, "Skip the matplotlib figures");
-  cmd->add_option("--theta", args->theta, "Likelihood-ratio threshold of the classifiers (Eq. 3.10; default 1)");
-  cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)");
+  cmd->add_option("--theta", args->theta, "Likelihood-ratio threshold of the classifiers (Eq. 3.10; default 1)")
+      ->check(numberIn(0, 1e6, true));
+  cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)")->check(integerIn(2, 256));
   cmd->add_option("--convergence", args->convergence,
                   "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR");
   cmd->callback([args, cmd] { runExperiment(*args, *cmd); });
@@ -204,7 +206,8 @@ void addExperimentCommands(CLI::App& app) {
                        "360-degree photo for the walls (repeatable): an equirectangular image, or an omni image "
                        "unwrapped with `omnicam view IMG --as panorama` (its sidecar beside it)");
   arenaCmd->add_flag("--random-photos", arena->randomPhotos, "Each wall a photo and a turn drawn from --seed");
-  arenaCmd->add_option("--seed", arena->seed, "Seed of the maze (mapping) or of --random-photos (hall)");
+  arenaCmd->add_option("--seed", arena->seed, "Seed of the maze (mapping) or of --random-photos (hall)")
+      ->check(integerIn(0, UINT64_MAX));
   arenaCmd->callback([arena, arenaCmd] { runArena(*arena, *arenaCmd); });
 }
 

@@ -45,12 +45,19 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   settings.shading = *shading;
   checkRenderSettings(settings, kSettingFlags);
   if (a.to == "gltf") {
-    ensureDirectory(a.out, "-o");
     GltfExportOptions options;
     options.pose = pose;
     options.rig = settings.rig;
     const std::string file = a.out + "/scene.glb";
-    exportGltf(scene, options, file);
+    std::error_code ec;
+    const bool created = !std::filesystem::exists(a.out, ec);
+    ensureDirectory(a.out, "-o");
+    try {
+      exportGltf(scene, options, file);
+    } catch (...) {
+      if (created) std::filesystem::remove(a.out, ec);  // the folder it made, empty: nothing written
+      throw;
+    }
     std::printf("wrote %s\n", file.c_str());
     return;
   }
@@ -69,8 +76,8 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
   cmd->add_option("--to", args->to, "povray or gltf")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot (default: the scene's start_pose)");
-  cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(8, 16384));
-  cmd->add_option("--spp", args->spp, "Samples per pixel n*n (the job renders n x larger)");
+  cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
+  cmd->add_option("--spp", args->spp, "Samples per pixel n*n (the job renders n x larger)")->check(integerIn(1, INT32_MAX));
   cmd->add_option("--shading", args->shading, "unlit or lit");
   cmd->add_option("-o,--output", args->out, "Output folder")->required();
   addSceneLoadFlags(*cmd, args->load);

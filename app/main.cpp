@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "malloc_tuning.h"
+#include "memory_budget.h"
 
 namespace {
 
@@ -23,7 +24,8 @@ int reportError(const std::string& message, int exitCode) {
 
 // Exit codes (docs/conventions.md): 0 ok, 1 comparison over threshold, 2 bad input or usage,
 // 3 an external renderer failed, 4 internal error (a bug: please report it), 5 an output could
-// not be written (disk full, file-size limit, permissions).
+// not be written (disk full, file-size limit, permissions) or the machine lacks the memory the
+// work needs (memory_budget.h).
 int main(int argc, char** argv) {
   // Past a file-size limit, write() must fail with EFBIG (exit 5, nothing left under the final
   // name) instead of the signal killing the process mid-file.
@@ -59,6 +61,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "omnicam: %s\n", e.what());
     return 3;
   } catch (const omnicam::OutputError& e) {
+    return reportError(e.what(), 5);
+  } catch (const omnicam::MemoryShortage& e) {
     return reportError(e.what(), 5);
   } catch (const std::bad_alloc&) {
     return reportError("internal error: out of memory (inputs within the documented limits should not get here)", 4);

@@ -52,7 +52,7 @@ struct CameraRaysArgs {
 };
 
 void runCameraRays(const CameraRaysArgs& a) {
-  checkOutputFile(a.out, "-o");
+  checkImageOutput(a.out, "-o");
   if (std::filesystem::path(a.out).extension() != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
   const Scene scene = loadScene(a.scene, a.load);
   RigSpec rig = scene.rig;
@@ -74,7 +74,7 @@ void addCameraRaysCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("camera-rays", "Write the exact ray of every pixel centre (OpenEXR)");
   cmd->add_option("scene", args->scene, "Scene JSON file (for its rig)")->required();
   cmd->add_option("-o", args->out, "Output .exr (a .json sidecar is written beside it)")->required();
-  cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(8, 16384));
+  cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args] { runCameraRays(*args); });
 }
@@ -85,7 +85,7 @@ void addProjectCommand(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene JSON file (for its rig)")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot")->required();
   cmd->add_option("--point", args->points, "X,Y,Z world point (repeatable)")->required();
-  cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(8, 16384));
+  cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args] { runProject(*args); });
 }

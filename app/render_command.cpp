@@ -110,8 +110,8 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   checkRenderSettings(settings, kSettingFlags);
   const FrameViews views(a.views, settings.rig);
   if (a.path.empty()) {
-    checkOutputFile(a.out, "-o");
-    for (const std::string& file : views.files(a.out)) checkOutputFile(file, "--view");
+    checkImageOutput(a.out, "-o");
+    for (const std::string& file : views.files(a.out)) checkImageOutput(file, "--view");
   }
   const CameraPath* path = nullptr;
   if (!a.path.empty()) {
@@ -132,6 +132,18 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     return;
   }
   const int total = a.frames ? a.frames : static_cast<int>(path->poses.size());
+  const auto frameFile = [&](int f) {
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
+    return (std::filesystem::path(a.out) / name).string();
+  };
+  // An existing folder may already hold a folder under a frame's name: refused before any frame.
+  std::error_code ec;
+  if (std::filesystem::is_directory(a.out, ec))
+    for (int f = 0; f < total; ++f) {
+      checkImageOutput(frameFile(f), "-o");
+      for (const std::string& file : views.files(frameFile(f))) checkImageOutput(file, "--view");
+    }
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + a.engine + ")", total);
   // A batching engine (Blender) renders kFramesPerBatch poses per session.
@@ -147,15 +159,13 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   // Frame f is written while frame f + 1 renders; each file still appears atomically.
   std::future<void> writing;
   for (int f = 0; f < total; ++f) {
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
     if (engine->batches() && f % kFramesPerBatch == 0) renderBatch(f);
     RenderedFile rendered = !engine->batches()
         ? renderPose(scene, *engine, path->poses[f], settings)
         : RenderedFile{std::move(batch[f % kFramesPerBatch]), renderSidecar(scene, *engine, path->poses[f], settings, batchSeconds)};
     rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
     if (writing.valid()) writing.get();
-    writing = std::async(std::launch::async, [file = (std::filesystem::path(a.out) / name).string(),
+    writing = std::async(std::launch::async, [file = frameFile(f),
                                               frame = std::move(rendered), &views] {
       writeRendered(file, frame);
       views.write(file, frame);
@@ -175,23 +185,24 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
   cmd->add_option("--engine", args->engine, "fast (default), povray or blender (ground truth)");
   cmd->add_option("--timeout", args->timeout, "Seconds allowed per external render (default 600)")
-      ->check(CLI::Range(1e-3, limits::kMaxTimeoutSeconds));
+      ->check(numberIn(0, limits::kMaxTimeoutSeconds, true));
   cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");
   cmd->add_option("--velocity", args->velocity,
                   "VX,VY,YAW_RATE: the robot's body velocity while the shutter is open (m/s forward, m/s left, "
                   "degrees/s CCW; docs/motion.md); the pose is the exposure start's. Default: still");
   cmd->add_option("--path", args->path, "Render the named camera path into folder OUT");
-  cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(integerIn(1, INT32_MAX));
   cmd->add_option("--size", args->imageSize, "Image size in pixels (square); default: the scene's rig")
-      ->check(CLI::Range(8, 16384));
-  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n on a regular grid");
+      ->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
+  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n on a regular grid")->check(integerIn(1, INT32_MAX));
   cmd->add_option("--shading", args->shading, "unlit or lit");
   cmd->add_option("--mode", args->mode, "exact, cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
   cmd->add_option("--faces", args->faces, "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default 6)")
-      ->check(CLI::IsMember({5, 6}));
+      ->check(integerIn(5, 6));
   cmd->add_option("--face-size", args->faceSize, "cubemap/thesis-mesh: texels per face edge (default 512)")
-      ->check(CLI::Range(8, 8192));
+      ->check(integerIn(8, 8192));
   cmd->add_option("--polygons", args->polygons, "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default 1024)")
+      ->check(integerIn(16, 1024))
       ->check(CLI::IsMember({16, 64, 256, 1024}));
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
   cmd->add_option("--view", args->views,

@@ -92,7 +92,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   if (a.size) settings.rig = settings.rig.resized(a.size);
   settings.spp = a.spp;
   checkRenderSettings(settings, kSettingFlags);
-  checkOutputFile(a.out, "-o");
+  checkImageOutput(a.out, "-o");
   const auto engine = makeEngine(a.engine, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig, a.out, a);
@@ -106,8 +106,8 @@ void addRingsCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("rings", "Render and measure the incidence-angle rings (thesis Fig. 3.11/3.12)");
   cmd->add_option("--engine", args->engine, "fast (default), povray or blender");
   cmd->add_option("--scene", args->scene, "Ring scene (default: scenes/incidence-rings.json)");
-  cmd->add_option("--size", args->size, "Image size in pixels")->check(CLI::Range(32, 16384));
-  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)");
+  cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(32, limits::kMaxImageSize));
+  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)")->check(integerIn(1, INT32_MAX));
   cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr");
   cmd->add_option("--measure", args->measure, "Measure an existing ring image instead of rendering one");
   cmd->add_flag("--json", args->json, "Print per-ring radii and the summary as JSON");

@@ -54,6 +54,8 @@ void runStudy(const StudyArgs& a) {
   const Scene ringScene = loadScene(dir + "/incidence-rings.json");
   const fs::path outPath(a.out);
   const fs::path figures = outPath.parent_path() / "figures";
+  if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n from 1 to 1024 (got " + std::to_string(a.spp) + ")");
+  checkOutputFile(a.out, "-o");
   ensureDirectory(figures.string(), "-o");
 
   std::vector<Row> rows{Row("exact (reference)", "exact", std::nullopt)};
@@ -167,8 +169,8 @@ void addStudyCommand(CLI::App& app) {
   auto args = std::make_shared<StudyArgs>();
   CLI::App* cmd = app.add_subcommand("study", "Measure the thesis' cube-map/mirror-mesh method (writes Markdown + figures)");
   cmd->add_option("-o,--output", args->out, "Markdown file (figures go to a figures/ folder beside it)");
-  cmd->add_option("--spp", args->spp, "Samples per pixel for the quality columns (default 16)");
-  cmd->add_option("--timing-seconds", args->timingSeconds, "Seconds timed per mode (default 1)")->check(CLI::PositiveNumber);
+  cmd->add_option("--spp", args->spp, "Samples per pixel for the quality columns (default 16)")->check(integerIn(1, INT32_MAX));
+  cmd->add_option("--timing-seconds", args->timingSeconds, "Seconds timed per mode (default 1)")->check(numberIn(0, 3600, true));
   cmd->callback([args] { runStudy(*args); });
 }
 

@@ -58,22 +58,19 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "--scene");
   if (!a.size.empty()) {
     const size_t x = a.size.find('x');
-    try {
-      if (x == std::string::npos) throw std::invalid_argument("no x");
-      size_t used = 0;
-      spec.width = std::stoi(a.size.substr(0, x), &used);
-      if (used != x) throw std::invalid_argument("junk");
-      spec.height = std::stoi(a.size.substr(x + 1), &used);
-      if (used != a.size.size() - x - 1) throw std::invalid_argument("junk");
-    } catch (const std::exception&) {
-      throw InputError("--size: must be WIDTHxHEIGHT, e.g. 400x400 (got " + quote(a.size) + ")");
-    }
+    const std::string_view text(a.size);
+    const auto width = x == std::string::npos ? std::nullopt : parseIntegerIn(text.substr(0, x), 0, limits::kMaxImageDimension);
+    const auto height = x == std::string::npos ? std::nullopt : parseIntegerIn(text.substr(x + 1), 0, limits::kMaxImageDimension);
+    if (!width || !height)
+      throw InputError("--size: must be WIDTHxHEIGHT, each an integer in [1, " + std::to_string(limits::kMaxImageDimension) +
+                       "], e.g. 400x400 (got " + quote(a.size) + ")");
+    spec.width = static_cast<int>(*width), spec.height = static_cast<int>(*height);
     if (spec.width < 1 || spec.height < 1) throw InputError("--size: width and height must be at least 1");
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
   checkViewSpec(spec, {"--variant", "--size", "--zw", "--yaw/--pitch", "--fov"});
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
-  checkOutputFile(a.out, "-o");
+  checkImageOutput(a.out, "-o");
   const ImageRGBA omni = readImage(a.in);
   if (omni.width != omni.height) throw InputError(showPath(a.in) + ": omni images must be square");
   auto [rig, sidecar] = rigOf(a, omni.width);

@@ -5,10 +5,18 @@
 
 #include "atomic_file.h"
 #include "image.h"
+#include "memory_budget.h"
 
 namespace omnicam {
 
+int64_t cameraRayTableBytes(int width, int height) {
+  // The table's float32 values, and the OpenEXR encoded from them (at most as large, plus chunks).
+  return int64_t{width} * height * static_cast<int64_t>(kCameraRayChannels.size() * sizeof(float)) * 2;
+}
+
 CameraRayTable cameraRayTable(const Camera& camera) {
+  requireMemory(cameraRayTableBytes(camera.width(), camera.height()),
+                "the ray table of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
   CameraRayTable table{camera.width(), camera.height(), {}};
   const size_t channels = kCameraRayChannels.size();
   table.values.assign(static_cast<size_t>(table.width) * table.height * channels, NAN);

@@ -19,6 +19,7 @@
 #include "errors.h"
 #include "exr_chunks.h"
 #include "input_limits.h"
+#include "memory_budget.h"
 
 namespace omnicam {
 
@@ -165,6 +166,84 @@ void packLines(const std::vector<PackedChannel>& channels, int width, int y0, in
   }
 }
 
+// The smallest packed size a chunk of `unpacked` bytes can have under `compression`: RLE codes a
+// run of up to 128 equal bytes in 2, deflate at best about 1:1032; the others are not bounded here.
+uint64_t smallestPackedSize(uint8_t compression, uint64_t unpacked) {
+  switch (compression) {
+    case EXR_COMPRESSION_NONE: return unpacked;
+    case EXR_COMPRESSION_RLE: return unpacked / 64;
+    case EXR_COMPRESSION_ZIPS:
+    case EXR_COMPRESSION_ZIP: return unpacked / 1100;
+    default: return unpacked > 0 ? 1 : 0;
+  }
+}
+
+struct MemoryExrSource {
+  std::string_view bytes;
+};
+
+int64_t readFromMemory(exr_const_context_t, void* user, void* buffer, uint64_t size, uint64_t offset,
+                       exr_stream_error_func_ptr_t) noexcept {
+  const std::string_view bytes = static_cast<MemoryExrSource*>(user)->bytes;
+  if (offset >= bytes.size()) return 0;
+  const uint64_t n = std::min<uint64_t>(size, bytes.size() - offset);
+  std::memcpy(buffer, bytes.data() + offset, n);
+  return static_cast<int64_t>(n);
+}
+
+int64_t sizeOfMemory(exr_const_context_t, void* user) noexcept {
+  return static_cast<int64_t>(static_cast<MemoryExrSource*>(user)->bytes.size());
+}
+
+void ignoreMessage(exr_const_context_t, exr_result_t, const char*) noexcept {}
+
+// Whether the file can hold the pixels its header claims, from its offset table and chunk leaders
+// alone, before a pixel is allocated: every chunk lies within the file and is large enough to
+// unpack to its lines. A forged header claiming 16384 x 8192 pixels in 64 KB is refused here
+// in microseconds, not after gigabytes are allocated. InputError naming `name` otherwise.
+void checkChunksPresent(std::string_view bytes, const std::string& name) {
+  MemoryExrSource source{bytes};
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.user_data = &source;
+  init.read_fn = &readFromMemory;
+  init.size_fn = &sizeOfMemory;
+  init.error_handler_fn = &ignoreMessage;
+  exr_context_t context = nullptr;
+  if (exr_start_read(&context, "memory.exr", &init) != EXR_ERR_SUCCESS) {
+    if (context) exr_finish(&context);
+    throw InputError(name + ": cannot read OpenEXR (a header OpenEXR's reader refuses)");
+  }
+  std::string problem;
+  exr_storage_t storage = EXR_STORAGE_LAST_TYPE;
+  int32_t chunks = 0;
+  if (exr_get_storage(context, 0, &storage) != EXR_ERR_SUCCESS || exr_get_chunk_count(context, 0, &chunks) != EXR_ERR_SUCCESS ||
+      chunks < 0)
+    problem = "no chunk table";
+  else if (uint64_t{8} * static_cast<uint64_t>(chunks) * 2 > bytes.size())
+    problem = "its " + std::to_string(chunks) + " chunks cannot fit in " + std::to_string(bytes.size()) + " bytes";
+  if (problem.empty() && storage == EXR_STORAGE_SCANLINE) {
+    exr_attr_box2i_t window{};
+    int32_t lines = 0;
+    if (exr_get_data_window(context, 0, &window) != EXR_ERR_SUCCESS || exr_get_scanlines_per_chunk(context, 0, &lines) != EXR_ERR_SUCCESS ||
+        lines < 1)
+      problem = "no data window";
+    for (int64_t y = window.min.y; problem.empty() && y <= window.max.y; y += lines) {
+      exr_chunk_info_t chunk{};
+      if (exr_read_scanline_chunk_info(context, 0, static_cast<int>(y), &chunk) != EXR_ERR_SUCCESS)
+        problem = "the chunk of line " + std::to_string(y) + " is missing or damaged";
+      else if (chunk.data_offset > bytes.size() || chunk.packed_size > bytes.size() - chunk.data_offset)
+        problem = "the chunk of line " + std::to_string(y) + " runs past the end of the file";
+      else if (chunk.packed_size < smallestPackedSize(chunk.compression, chunk.unpacked_size))
+        problem = "the chunk of line " + std::to_string(y) + " holds " + std::to_string(chunk.packed_size) +
+                  " bytes, too few for its " + std::to_string(chunk.unpacked_size) + " unpacked bytes";
+    }
+  } else if (problem.empty() && storage != EXR_STORAGE_TILED) {
+    problem = "not a single-part scanline or tiled image";
+  }
+  exr_finish(&context);
+  if (!problem.empty()) throw InputError(name + ": cannot read OpenEXR (" + problem + ": the file cannot hold the pixels its header claims)");
+}
+
 }  // namespace
 
 std::vector<unsigned char> encodeExrChannels(const std::string& path, int width, int height,
@@ -235,6 +314,7 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
                        std::to_string(limits::kMaxImageDimension) + " per side and " + std::to_string(limits::kMaxImagePixels) +
                        " in all");
     out.width = static_cast<int>(width), out.height = static_cast<int>(height);
+    if (!headerOnly) checkChunksPresent(bytes, name);
     for (auto it = file.header().begin(); it != file.header().end(); ++it)
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out.text[it.name()] = text->value();
     Imf::FrameBuffer frameBuffer;
@@ -251,6 +331,9 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
         throw InputError(name + ": " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
                          std::to_string(out.floats.size() + out.uints.size() + 1) + " channels are more than " +
                          std::to_string(kMaxDecodedExrSamples) + " values to decode");
+      // Each channel's plane, sized against what is left before it is allocated.
+      requireMemory(width * height * 4, name + ": decoding channel " + quote(it.name()) + " of " + std::to_string(width) +
+                                            "x" + std::to_string(height) + " pixels");
       char* base;
       if (uint) base = reinterpret_cast<char*>(out.uints[it.name()].assign(pixels, 0), out.uints[it.name()].data());
       else base = reinterpret_cast<char*>(out.floats[it.name()].assign(pixels, 0.0f), out.floats[it.name()].data());

@@ -2,7 +2,11 @@
 // float and uint values exact from strided sources, text attributes, and untrusted bytes refused.
 #include "exr_channels.h"
 
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+
+#include <cstring>
 #include <Imath/half.h>
 
 #include <cmath>
@@ -10,6 +14,7 @@
 #include <random>
 
 #include "errors.h"
+#include "image.h"
 
 namespace omnicam {
 namespace {
@@ -131,6 +136,70 @@ TEST(ExrChannels, DamagedBytesAreAnInputErrorNamingTheFile) {
     } catch (const InputError& e) {
       EXPECT_EQ(std::string(e.what()).rfind("cam0/multilayer/000000.exr: ", 0), 0u) << e.what();
     }
+  }
+}
+
+// The header's data window patched from `height` lines to `claimed` lines: a forged frame whose
+// header claims far more pixels than its bytes hold.
+std::string claimMoreLines(std::string bytes, int claimed) {
+  for (const char* attribute : {"dataWindow", "displayWindow"}) {
+    const std::string key = std::string(attribute) + '\0' + "box2i" + '\0';
+    const size_t at = bytes.find(key);
+    if (at == std::string::npos) throw std::runtime_error("no " + std::string(attribute));
+    const int32_t maxY = claimed - 1;
+    std::memcpy(&bytes[at + key.size() + 4 + 12], &maxY, 4);  // size, then xMin yMin xMax yMax
+  }
+  return bytes;
+}
+
+// A 70 KB frame claiming 16384 x 8192 RGBA used to make the readers allocate 2 GiB and spend
+// seconds before refusing it; its offset table shows at once that the file cannot hold them.
+TEST(ExrChannels, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefusedBeforeDecoding) {
+  const int width = 16384, height = 8;
+  const std::vector<float> values(static_cast<size_t>(width) * height * 4, 0.25f);
+  std::vector<ExrChannelSource> channels;
+  for (int c = 0; c < 4; ++c) channels.push_back({std::string(1, "RGBA"[c]), ExrSampleType::Half, values.data() + c, nullptr, 4});
+  ExrWriteOptions options;
+  options.compression = ExrCompression::Rle;
+  const std::vector<unsigned char> real = encodeExrChannels("t.exr", width, height, channels, options);
+  EXPECT_EQ(decodeExrChannels(std::string(real.begin(), real.end()), "real.exr").height, height);
+  // Long enough for the 8192 offsets the forged header implies (one RLE line a chunk), as the
+  // 64 KB file of the report was: OpenEXR's reader accepts the table, then rebuilds it from the
+  // chunks that are not there.
+  std::string forged = claimMoreLines(std::string(real.begin(), real.end()), 8192);
+  forged.append(8192 * 8, '\0');
+  ASSERT_LT(forged.size(), 100000u);
+  try {
+    decodeExrChannels(forged, "forged.exr");
+    ADD_FAILURE() << "decoded a forged frame";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("forged.exr: cannot read OpenEXR ("), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the file cannot hold the pixels its header claims"), std::string::npos) << e.what();
+  }
+  // The header alone is still readable (what --verify and the reader's headerOnly use).
+  EXPECT_EQ(decodeExrChannels(forged, "forged.exr", true).height, 8192);
+}
+
+// One rule in both readers of a frame (the multilayer decoder here, OpenImageIO's for images):
+// pixels start at (0, 0).
+TEST(ExrChannels, BothReadersRefuseADataWindowOffTheOrigin) {
+  OIIO::ImageSpec spec(4, 4, 4, OIIO::TypeDesc::HALF);
+  spec.x = -1, spec.y = -1;
+  spec.full_x = -1, spec.full_y = -1;
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput sink(bytes);
+  void* proxy = &sink;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const std::vector<float> pixels(64, 0.5f);
+  auto out = OIIO::ImageOutput::create("memory.exr");
+  ASSERT_TRUE(out && out->open("memory.exr", spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+  const std::string file(bytes.begin(), bytes.end());
+  EXPECT_THROW(decodeExrChannels(file, "frame.exr"), InputError);
+  try {
+    readImageFromMemory(bytes.data(), bytes.size(), "image.exr");
+    ADD_FAILURE() << "OpenImageIO's reader took a data window at (-1, -1)";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("image.exr: the image's data window does not start at pixel (0, 0)"), std::string::npos) << e.what();
   }
 }
 

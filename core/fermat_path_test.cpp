@@ -116,5 +116,54 @@ TEST(FermatPath, TheConvexRouteAloneRoundTripsEveryShape) {
   }
 }
 
+// The cone seen from a pinhole on its axis is a plane problem (mirror_surface.h's
+// axialReflection): its closed form is project's whole answer there, "not seen" included. It must
+// agree with the convex search — which never uses it — on every point: seen or not, and where.
+TEST(FermatPath, TheConesClosedFormAgreesWithTheConvexSearch) {
+  RigSpec centred = test::shaped(MirrorShape::Cone, 0.05);
+  centred.mount = CameraMount{};
+  RigSpec movedAlongAxisAndTurned = centred;
+  movedAlongAxisAndTurned.mount.offsetMm = {0.0, 0.0, -4.0};
+  movedAlongAxisAndTurned.mount.rotationDeg = {1.0, -0.6, 0.8};
+  for (const RigSpec& rig : {centred, movedAlongAxisAndTurned}) {
+    const PhysicalCamera camera(rig);
+    ASSERT_EQ(camera.pinhole().position.head<2>().norm(), 0.0);
+    std::mt19937 rng(5);
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> logDistance(std::log(0.05), std::log(1000.0));
+    int seen = 0, disagree = 0;
+    double worst = 0.0;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec3 p = std::exp(logDistance(rng)) * Vec3(normal(rng), normal(rng), normal(rng)).normalized();
+      const auto closed = camera.project(p);
+      const auto searched = camera.projectFromFermatMinimum(p);
+      if (closed.has_value() != searched.has_value()) {
+        ++disagree;
+        continue;
+      }
+      if (!closed) continue;
+      ++seen;
+      worst = std::max(worst, (*closed - *searched).norm());
+    }
+    std::printf("cone on its axis: 4000 points, %d seen, %d disagree on whether, worst %.3g px\n", seen, disagree, worst);
+    EXPECT_GT(seen, 400);
+    EXPECT_EQ(disagree, 0);
+    EXPECT_LE(worst, 1e-6);
+    // And pixel → ray → point → pixel through the closed form.
+    std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+    double worstTrip = 0.0;
+    for (int done = 0; done < 2000;) {
+      const Vec2 pixel(coord(rng), coord(rng));
+      const auto ray = camera.generateRay({pixel});
+      if (!ray) continue;
+      ++done;
+      const auto back = camera.project(ray->origin + std::exp(logDistance(rng)) * ray->direction);
+      ASSERT_TRUE(back.has_value()) << "pixel " << pixel.transpose();
+      worstTrip = std::max(worstTrip, (*back - pixel).norm());
+    }
+    EXPECT_LE(worstTrip, 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -17,6 +17,7 @@
 #include "exr_channels.h"
 #include "errors.h"
 #include "input_limits.h"
+#include "memory_budget.h"
 
 namespace omnicam {
 
@@ -168,6 +169,11 @@ void checkHeader(const OIIO::ImageSpec& spec, const std::string& name) {
                      std::to_string(limits::kMaxImagePixels) + " in all");
   if (spec.nchannels < 1 || spec.nchannels > 16)
     throw InputError(name + ": image has " + std::to_string(spec.nchannels) + " channels (1 to 16 are read)");
+  // One rule with the frame-file reader (exr_channels.h): pixels start at (0, 0).
+  if (spec.x != 0 || spec.y != 0) throw InputError(name + ": the image's data window does not start at pixel (0, 0)");
+  // The decoded channels as floats, then the RGBA image.
+  requireMemory(static_cast<int64_t>(spec.width) * spec.height * (4 * spec.nchannels + 16),
+                name + ": decoding " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels");
 }
 
 ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {

@@ -47,6 +47,9 @@ inline constexpr double kMaxLineTimeUs = 1e5;
 inline constexpr int kMaxTimeSamples = 256;
 inline constexpr int64_t kMaxSamplesPerFrame = int64_t{1} << 28;
 
+// Threads a render or a dataset run may be given (0: every core).
+inline constexpr int kMaxThreads = 4096;
+
 // How long an external renderer (POV-Ray, Blender) may take for one render (s): a week.
 inline constexpr double kMaxTimeoutSeconds = 7 * 24 * 3600.0;
 

@@ -171,6 +171,32 @@ class ConeSurface final : public MirrorSurface {
       }
     return starts;
   }
+  std::optional<std::optional<Vec3>> axialReflection(const Vec3& p, double pinholeZ) const override {
+    const double rhoP = p.head<2>().norm();
+    if (!(rhoP > 0.0) || !(pinholeZ < 0.0)) return std::optional<Vec3>();  // on the axis: only the apex, no tangent plane
+    const Vec2 towardP = p.head<2>() / rhoP;
+    const double sinA = std::sin(std::atan(tan_)), cosA = std::cos(std::atan(tan_));
+    const Vec2 camera(0.0, pinholeZ), point(rhoP, p.z());  // (ρ, z) in p's meridian plane
+    // Each generator: its direction g and outer normal n (away from the body). Both the camera and
+    // the point must lie on its outer side; the convex body then has one reflection point at most.
+    for (const double side : {1.0, -1.0}) {
+      const Vec2 g(side * sinA, cosA), n(side * cosA, -sinA);
+      if (!(n.dot(camera) > 0.0 && n.dot(point) > 0.0)) continue;
+      const Vec2 image = 2.0 * camera.dot(g) * g - camera;  // the camera mirrored across the generator
+      const Vec2 d = point - image;
+      // image + t·d on the generator's line: its component along n vanishes.
+      const double across = n.dot(d);
+      if (!(std::abs(across) > 0.0)) continue;
+      const double t = -n.dot(image) / across;
+      if (!(t > 0.0 && t < 1.0)) continue;
+      const Vec2 m = image + t * d;
+      const double along = m.dot(g);
+      if (!(along > 0.0) || m.y() > rimZ()) return std::optional<Vec3>();  // the apex, or past the rim
+      const Vec2 xy = m.x() * towardP;  // m.x(): the signed distance from the axis toward p
+      return std::optional<Vec3>(Vec3(xy.x(), xy.y(), m.y()));
+    }
+    return std::optional<Vec3>();
+  }
   bool hasApex() const override { return true; }
   nlohmann::json toJson() const override {
     return {{"shape", "cone"}, {"half_angle_deg", degrees(std::atan(tan_))}, {"rim_z_m", rimZ()}, {"rim_radius_m", rimRadius()}};

@@ -36,6 +36,13 @@ class MirrorSurface {
   // (x, y) of a mirror point near the reflection point, then fallbacks tried in order if the
   // solver does not reach the physical root from it.
   virtual std::vector<Vec2> projectionStarts(const Vec3& p, const Vec3& pinhole) const = 0;
+  // The reflection point of p seen from a perspective pinhole on the axis at height pinholeZ, in
+  // closed form where the shape has one (the cone: in p's meridian plane its generators are
+  // straight lines, so the camera's mirror image across one, joined to p, crosses it there).
+  // nullopt: no closed form for this shape; an empty inner value: no mirror point reflects p.
+  virtual std::optional<std::optional<Vec3>> axialReflection(const Vec3& /*p*/, double /*pinholeZ*/) const {
+    return std::nullopt;
+  }
   // Whether the surface has an apex on its axis, a point without a tangent plane (the cone's).
   virtual bool hasApex() const { return false; }
   // The shape and its parameters, for sidecars.

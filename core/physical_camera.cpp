@@ -159,18 +159,32 @@ std::optional<Vec3> PhysicalCamera::reflectionPoint(const Vec3& p, Vec2 xy) cons
   }
   if (!converged) return std::nullopt;
   const Vec3 m(xy.x(), xy.y(), mirror.heightAt(xy.x(), xy.y()));
-  if (!mirror.insideRim(m)) return std::nullopt;
+  return physicalReflection(p, m) ? std::optional<Vec3>(m) : std::nullopt;
+}
+
+bool PhysicalCamera::physicalReflection(const Vec3& p, const Vec3& m) const {
+  if (!mirror_->insideRim(m)) return false;
   // The physical root: camera and point both on the mirror's outer side, and the mirror point
   // the first thing the camera sees along its ray to it.
-  const Vec3 n = mirror.normalAt(m);
+  const Vec3 n = mirror_->normalAt(m);
   const CameraRay toM = pinhole_.rayTo(m);
-  if (!(n.dot(-toM.direction) * n.dot((p - m).normalized()) > 0.0)) return std::nullopt;
+  if (!(n.dot(-toM.direction) * n.dot((p - m).normalized()) > 0.0)) return false;
   const auto seen = mirrorPointSeen(toM);
-  if (!seen || (*seen - m).norm() > 1e-9 * scale) return std::nullopt;
-  return m;
+  return seen && (*seen - m).norm() <= 1e-9 * mirror_->rimRadius();
 }
 
 std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
+  // A perspective pinhole on the axis of a shape with a closed form (the cone) needs no search:
+  // the closed form is the answer, "not seen" included. Off the axis it is where Newton starts.
+  const bool onAxis = !pinhole_.orthographic && pinhole_.position.head<2>().squaredNorm() == 0.0;
+  if (const auto axial = mirror_->axialReflection(p, pinhole_.position.z())) {
+    if (onAxis) {
+      if (!*axial || !physicalReflection(p, **axial)) return std::nullopt;
+      return pinhole_.raster(**axial);
+    }
+    if (*axial)
+      if (const auto m = reflectionPoint(p, (*axial)->head<2>())) return pinhole_.raster(*m);
+  }
   for (const Vec2& start : mirror_->projectionStarts(p, pinhole_.position))
     if (const auto m = reflectionPoint(p, start)) return pinhole_.raster(*m);
   // The shape's starts are quick and almost always enough; the convex search always converges.

@@ -77,6 +77,9 @@ class PhysicalCamera final : public Camera {
   // Newton's method on the reflection law from the mirror point above `start`; the physical
   // reflection point of p, or nullopt if it does not converge to one.
   std::optional<Vec3> reflectionPoint(const Vec3& p, Vec2 start) const;
+  // Whether mirror point m physically reflects p to the camera: inside the rim, camera and p on
+  // the mirror's outer side, and m the first thing the camera sees along its ray to it.
+  bool physicalReflection(const Vec3& p, const Vec3& m) const;
   // The mirror point a camera ray sees, inside the rim.
   std::optional<Vec3> mirrorPointSeen(const CameraRay& ray) const;
   std::shared_ptr<const MirrorSurface> mirror_;

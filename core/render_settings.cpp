@@ -33,9 +33,7 @@ void checkRenderSettings(const RenderSettings& settings, const SettingNames& nam
     throw InputError(names.spp + ": must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
                      std::to_string(settings.spp) + ")");
   const int size = settings.rig.imageSize;
-  if (size < limits::kMinImageSize || size > limits::kMaxImageSize)
-    throw InputError(names.size + ": must be in [" + std::to_string(limits::kMinImageSize) + ", " +
-                     std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
+  checkImageSize(size, names.size);
   const int passes = std::max(1, settings.rig.shutter.timeSamples);
   const int64_t samples = int64_t{size} * size * settings.spp * passes;
   if (samples > limits::kMaxSamplesPerFrame)
@@ -56,6 +54,12 @@ void checkPose(const RobotPose& pose, const std::string& what) {
                      ", " + shortNumber(pose.y) + ")");
   if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
     throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + shortNumber(pose.yawDeg) + ")");
+}
+
+void checkThreads(int threads, const std::string& what) {
+  if (threads < 0 || threads > limits::kMaxThreads)
+    throw InputError(what + ": must be an integer in [0, " + std::to_string(limits::kMaxThreads) + "] (0: every core; got " +
+                     std::to_string(threads) + ")");
 }
 
 }  // namespace omnicam

@@ -39,6 +39,8 @@ struct SettingNames {
 // Checks spp (a perfect square ≤ limits::kMaxSpp), the image size, size² × spp × time samples and
 // the velocity against the documented limits; InputError naming them as `names` says otherwise. Every engine calls it first.
 void checkRenderSettings(const RenderSettings& settings, const SettingNames& names = {});
+// Checks a thread count: 0 (every core) to limits::kMaxThreads; InputError naming `what`.
+void checkThreads(int threads, const std::string& what);
 // Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.
 void checkPose(const RobotPose& pose, const std::string& what);
 

@@ -1,8 +1,15 @@
 #include "rig.h"
 
 #include "errors.h"
+#include "input_limits.h"
 
 namespace omnicam {
+
+void checkImageSize(int size, const std::string& what) {
+  if (size < limits::kMinImageSize || size > limits::kMaxImageSize)
+    throw InputError(what + ": must be in [" + std::to_string(limits::kMinImageSize) + ", " +
+                     std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
+}
 
 const char* mirrorShapeName(MirrorShape shape) {
   switch (shape) {

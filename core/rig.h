@@ -7,6 +7,7 @@
 //              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
 //              axes along robot x, y, z.
 #include <array>
+#include <string>
 
 #include "geometry.h"
 #include "omni_camera.h"
@@ -57,6 +58,9 @@ struct MirrorShapeSpec {
   bool operator==(const MirrorShapeSpec&) const = default;
 };
 
+// InputError("<what>: must be in [8, 16384] (got N)") for an image size outside the limits.
+void checkImageSize(int size, const std::string& what);
+
 struct RigSpec {
   double height = 0.40;            // F' above the floor, metres
   double k = 11.546;               // Baker–Nayar mirror parameter, > 2
@@ -82,7 +86,9 @@ struct RigSpec {
   bool ideal() const { return shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
   // The same camera imaging at another size: the focal length scales with the image, and so does
   // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
+  // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize.
   RigSpec resized(int size) const {
+    checkImageSize(size, "image size");
     RigSpec r = *this;
     const double scale = static_cast<double>(size) / imageSize;
     r.imageSize = size;

@@ -85,6 +85,11 @@ void writeSidecarAtomic(const std::string& imagePath, const json& sidecar) {
   writeTextAtomically(sidecarPath(imagePath), sidecar.dump(2) + "\n");
 }
 
+void checkImageOutput(const std::string& imagePath, const std::string& flag) {
+  checkOutputFile(imagePath, flag);
+  checkOutputFile(sidecarPath(imagePath), flag + " (its sidecar)");
+}
+
 SidecarInfo sidecarFromText(const std::string& text, const std::string& path) {
   SidecarInfo info;
   info.json = parseJsonText(text, path);

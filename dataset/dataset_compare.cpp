@@ -1,6 +1,7 @@
 #include "dataset_compare.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +11,12 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "dataset_reader.h"
 #include "dataset_runner.h"
 #include "errors.h"
 #include "manifest.h"
 #include "markup.h"
+#include "memory_budget.h"
 #include "output_kinds.h"
 #include "safe_files.h"
 
@@ -54,11 +57,19 @@ const FileRecord* colourFile(const CameraFrame& frame) {
   return rgb ? rgb : frame.file(OutputKind::Multilayer);
 }
 
-// An image of a dataset folder: read without following links, a regular file of bounded size.
-ImageRGBA readDatasetImage(const std::string& dir, const std::string& relative) {
+// An image of a dataset folder: read without following links, a regular file of bounded size; a
+// multilayer frame by the dataset reader's own decoder.
+ImageRGBA readDatasetImage(const std::string& dir, const std::string& relative, bool layered) {
   const std::string bytes = readFileInside(dir, relative, kMaxDatasetFileBytes);
-  return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(),
-                             showPath((fs::path(dir) / relative).string()));
+  const std::string name = showPath((fs::path(dir) / relative).string());
+  if (layered) return multilayerFrameColour(bytes, name);
+  return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
+}
+
+// Memory one comparison holds: both images as floats, and their decoding (the larger of the
+// multilayer reader's planes plus interleaved copy and OpenImageIO's raw channels).
+int64_t comparisonBytes(const ImageRGBA& a, const ImageRGBA& b) {
+  return (static_cast<int64_t>(a.width) * a.height + static_cast<int64_t>(b.width) * b.height) * 16 * 3;
 }
 
 std::string frameLabel(const FrameComparison& f) {
@@ -104,6 +115,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
       // A camera name is a folder of the dataset: messages show it as they show paths.
       if (!rgb) throw InputError(showPath(dirA) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
       f.fileA = rgb->path;
+      f.layeredA = rgb == files.file(OutputKind::Multilayer);
       if (b) {
         const FrameRecord& other = b->frames.at(index);
         const auto cam = other.cameras.find(camera);
@@ -115,6 +127,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
         const FileRecord* rgbB = colourFile(cam->second);
         if (!rgbB) throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " " + showPath(camera) + ": no rgb file");
         f.fileB = rgbB->path;
+        f.layeredB = rgbB == cam->second.file(OutputKind::Multilayer);
       } else {
         f.fileB = layoutFile(dirB, f.fileA);
       }
@@ -125,11 +138,21 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
                        " cameras, A has " + std::to_string(frame.cameras.size()));
   }
   if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
-  tbb::parallel_for(size_t{0}, result.frames.size(), [&](size_t k) {
+  // The first pair alone sizes the rest: as many comparisons run at once as memory holds (a
+  // dataset's frames share a size per camera; each decode checks its own need again).
+  int64_t bytesEach = 0;
+  const auto compareFrame = [&](size_t k) {
     FrameComparison& f = result.frames[k];
-    f.result = compareImages(readDatasetImage(dirA, f.fileA), readDatasetImage(dirB, f.fileB), options.image);
+    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
+    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
+    if (k == 0) bytesEach = comparisonBytes(imageA, imageB);
+    f.result = compareImages(imageA, imageB, options.image);
     f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
-  });
+  };
+  compareFrame(0);
+  const int concurrency = concurrencyWithin(bytesEach, tbb::this_task_arena::max_concurrency(), "comparing two frames");
+  tbb::task_arena arena(concurrency);
+  arena.execute([&] { tbb::parallel_for(size_t{1}, result.frames.size(), compareFrame); });
   result.minPsnrDb = std::numeric_limits<double>::infinity();
   double finiteSum = 0.0;
   int finite = 0;
@@ -144,11 +167,16 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
   return result;
 }
 
+std::string reportAssetsFolder(const std::string& reportPath) {
+  const fs::path report(reportPath);
+  return (report.parent_path() / (report.stem().string() + "_files")).string();
+}
+
 void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
                                const DatasetCompareResult& result, const DatasetCompareOptions& options) {
   const fs::path report(reportPath);
-  const std::string assetsName = report.stem().string() + "_files";
-  const fs::path assets = report.parent_path() / assetsName;
+  const fs::path assets = reportAssetsFolder(reportPath);
+  const std::string assetsName = assets.filename().string();
   std::error_code ec;
   fs::create_directories(assets, ec);
   if (ec) throw OutputError(showPath(assets.string()) + ": cannot create folder (" + ec.message() + ")");
@@ -173,8 +201,8 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
   for (size_t k = 0; k < worst; ++k) {
     const FrameComparison& f = *order[k];
-    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA);
-    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB);
+    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
+    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
     char stem[96];
     std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
     const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};

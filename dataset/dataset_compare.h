@@ -22,6 +22,7 @@ struct DatasetCompareOptions {
 struct FrameComparison {
   int index = 0;
   std::string camera, fileA, fileB;  // relative paths
+  bool layeredA = false, layeredB = false;  // the file is a multilayer frame (its R, G, B, A compared)
   CompareResult result;
   bool failed = false;
 };
@@ -35,8 +36,10 @@ struct DatasetCompareResult {
 DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
                                      const DatasetCompareOptions& options);
 
+// The folder beside an HTML report that holds its images ("<stem>_files").
+std::string reportAssetsFolder(const std::string& reportPath);
 // An HTML page: summary, worst frames with A, B and the difference heat map, every frame's row.
-// Images go to "<report without .html>_files/".
+// Images go to reportAssetsFolder(reportPath).
 void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
                                const DatasetCompareResult& result, const DatasetCompareOptions& options);
 // JUnit XML: one test case per frame and camera, failing below --fail-psnr.

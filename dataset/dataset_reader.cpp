@@ -123,6 +123,12 @@ DecodedOutput outputOfFrame(const ExrChannels& frame, OutputKind kind, const std
 
 }  // namespace
 
+ImageRGBA multilayerFrameColour(std::string_view bytes, const std::string& name) {
+  const std::vector<std::string>& names = multilayerChannels(OutputKind::Rgb);
+  const std::set<std::string> channels(names.begin(), names.end());
+  return std::move(*outputOfFrame(decodeExrChannels(bytes, name, false, &channels), OutputKind::Rgb, name).image);
+}
+
 std::map<OutputKind, DecodedOutput> DatasetReader::readOutputs(int index, const std::string& camera,
                                                                const std::vector<OutputKind>& kinds, bool checkHash) const {
   std::map<OutputKind, DecodedOutput> outputs;

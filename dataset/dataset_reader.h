@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "image.h"
@@ -22,6 +23,10 @@ struct DecodedOutput {
   int width = 0, height = 0;
   nlohmann::json json;
 };
+
+// The colour of a multilayer frame file (its R, G, B, A channels), decoded by the reader every
+// consumer of a dataset uses (this one, `omnicam compare`, Python): one reader, one rule.
+ImageRGBA multilayerFrameColour(std::string_view bytes, const std::string& name);
 
 class DatasetReader {
  public:

@@ -1,5 +1,7 @@
 #include "dataset_runner.h"
 
+#include "render_settings.h"
+
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -157,6 +159,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
 }  // namespace
 
 DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options) {
+  checkThreads(options.threads, "threads");
   if (options.threads <= 0) return runDatasetHere(spec, options);
   // Exactly `threads` TBB threads (frames, rows and encoders), also beyond the cores this process
   // may use: the limit raises TBB's worker pool, the arena asks for it (either alone caps at the

@@ -63,7 +63,7 @@ std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, cons
       << "exposure_s: " << yamlNumber(rig.shutter.exposureS) << "\n";
   if (rig.shutter.rolling) {
     out << "shutter: rolling\n"
-        << "line_time_s: " << yamlNumber(rig.shutter.rolling->lineTimeUs * 1e-6) << "\n"
+        << "line_time_s: " << yamlNumber(rig.shutter.rolling->lineTimeUs / 1e6) << "\n"
         << "readout: " << readoutName(rig.shutter.rolling->readout) << "\n";
   } else {
     out << "shutter: global\n";

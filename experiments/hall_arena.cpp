@@ -123,12 +123,11 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
   objects.push_back({{"name", "hall_ceiling"}, {"type", "quad"}, {"material", "hall_ceiling"},
                      {"origin", {-L, -W, o.height}}, {"edge_u", {2 * L, 0, 0}}, {"edge_v", {0, 2 * W, 0}}});
 
-  std::vector<std::string> written;
+  // Every texture is made in memory and every output name checked before the first byte is
+  // written: a refused name leaves nothing behind.
+  std::vector<std::pair<std::string, ImageRGBA>> textures;
   const std::filesystem::path scenePath(sceneOut);
-  if (!scenePath.parent_path().empty()) std::filesystem::create_directories(scenePath.parent_path());
   const std::string textureFolder = scenePath.stem().string() + "_textures";
-  // The texture folder beside the scene, not through a link planted under its name.
-  if (textured) makeFoldersInside(scenePath.parent_path().empty() ? "." : scenePath.parent_path().string(), textureFolder);
   std::mt19937_64 random(o.seed);
   const Vec3 centre(0, 0, o.projectionHeight);
   for (const Wall& wall : hallWalls(o)) {
@@ -155,15 +154,33 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
           p[0] = colour[0], p[1] = colour[1], p[2] = colour[2], p[3] = 1.0f;
         }
       const std::string relative = textureFolder + "/" + name + ".png";
-      const std::string file = (scenePath.parent_path() / relative).string();
-      writeImageAtomic(file, texture);
-      written.push_back(file);
+      textures.emplace_back((scenePath.parent_path() / relative).string(), std::move(texture));
       material = name;
       materials[material] = {{"color", 1.0}, {"texture", {{"file", relative}}}, {"ambient", 0.3}, {"diffuse", 0.7},
                              {"class", "wall"}};
     }
     objects.push_back({{"name", name}, {"type", "quad"}, {"material", material}, {"origin", vec(wall.origin)},
                        {"edge_u", vec(wall.edgeU)}, {"edge_v", vec(wall.edgeV)}});
+  }
+  const std::string sceneFolder = scenePath.parent_path().empty() ? "." : scenePath.parent_path().string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(sceneFolder, ec)) {
+    checkOutputFile(sceneOut, "hall arena");
+    // The texture folder beside the scene, not through a link planted under its name.
+    if (textured && entryInside(sceneFolder, textureFolder) != EntryKind::Missing) {
+      checkFoldersInside(sceneFolder, textureFolder);
+      for (const auto& [file, image] : textures) checkOutputFile(file, "hall arena");
+    }
+  } else {
+    checkOutputFolder(sceneFolder, "hall arena");
+    std::filesystem::create_directories(sceneFolder, ec);
+    if (ec) throw OutputError(showPath(sceneFolder) + ": cannot create folder (" + ec.message() + ")");
+  }
+  if (textured) makeFoldersInside(sceneFolder, textureFolder);
+  std::vector<std::string> written;
+  for (const auto& [file, image] : textures) {
+    writeImageAtomic(file, image);
+    written.push_back(file);
   }
   writeTextAtomically(sceneOut, scene.dump(1) + "\n");
   return written;

@@ -1,5 +1,8 @@
 #include "engines.h"
 
+#include "input_limits.h"
+#include "number_format.h"
+
 #include <cstdlib>
 #include <optional>
 
@@ -151,6 +154,9 @@ std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, in
 
 std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds,
                                    const CubeMapOptions* mode, const std::string& flag, int threads) {
+  checkThreads(threads, "threads");
+  if (!(timeoutSeconds > 0.0 && timeoutSeconds <= limits::kMaxTimeoutSeconds))
+    throw InputError("timeout: must be in (0, " + shortNumber(limits::kMaxTimeoutSeconds) + "] s (got " + shortNumber(timeoutSeconds) + ")");
   if (name == "fast") return std::make_unique<FastEngine>(scene, mode);
   if (mode) throw InputError((flag == "--engine" ? std::string("--mode") : flag + ": mode") +
                              ": only the fast engine has modes other than exact");

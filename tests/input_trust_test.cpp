@@ -227,5 +227,72 @@ TEST_F(InputTrustTest, ReservedSbatchOptionsAreRefusedUnderEverySpelling) {
     expectRefused(base + "'--partition=cpu " + words + "'", "sbatch reads it as " + option + "; omnicam sets --array");
 }
 
+// Every output name a verb writes — the image's sidecar, every texture of an arena, a report's
+// image folder — and every option is checked before the first byte is written: a refusal leaves
+// the folder as it was (docs/robustness.md, "One line, exit 2, nothing written").
+TEST_F(InputTrustTest, OutputNamesAndOptionsAreCheckedBeforeTheFirstByte) {
+  fs::create_directories(dir_ / "r.exr.json");
+  expectRefused("camera-rays " + path("box.json") + " -o " + path("r.exr") + " --size 8", "-o (its sidecar): ");
+  fs::create_directories(dir_ / "x.png.json");
+  expectRefused("render " + path("box.json") + " --size 8 -o " + path("x.png"), "-o (its sidecar): ");
+  fs::create_directories(dir_ / "z.panorama.png.json");
+  expectRefused("render " + path("box.json") + " --size 8 --view panorama -o " + path("z.png"), "--view (its sidecar): ");
+  // A later texture's name taken by a folder: no texture and no scene written.
+  const std::string photo = "/usr/share/blender/datafiles/studiolights/world/interior.exr";
+  ASSERT_TRUE(fs::exists(photo)) << photo << " is missing: make deps installs blender-data";
+  fs::create_directories(dir_ / "hall_textures" / "hall_wall_east.png");
+  expectRefused("arena hall --photo " + photo + " -o " + path("hall.json"), "hall_wall_east.png is an existing folder");
+  // Options of an experiment before its folder.
+  expectRefused("experiment texture-realism --quick --bins 1 -o " + path("ex"), "--bins: must be an integer in [2, 256] (got \"1\")");
+  EXPECT_FALSE(fs::exists(dir_ / "ex"));
+  expectRefused("experiment realistic-convergence --quick --theta 2 -o " + path("ex"), "--theta: only with");
+  EXPECT_FALSE(fs::exists(dir_ / "ex"));
+  expectRefused("demo --spp 5 -o " + path("demo"), "--spp: must be a perfect square");
+  EXPECT_FALSE(fs::exists(dir_ / "demo"));
+}
+
+// Integer flags are read as written, like the spec reader's JSON integers: never wrapped
+// (2^64 → 0, −1 → 2^64 − 1), clamped, or read as octal or hex.
+TEST_F(InputTrustTest, IntegerFlagsAreReadExactly) {
+  for (const std::string seed : {"18446744073709551616", "99999999999999999999999", "-1", "0x10", "010", "+5", "1e3", "' 5'", "''"})
+    expectRefused("arena mapping --seed " + seed + " -o " + path("m.json"), "--seed: must be an integer in [0, 18446744073709551615]");
+  expectRefused("render " + path("box.json") + " --size 010 -o " + path("x.png"), "--size: must be an integer in [8, 16384] (got \"010\")");
+  expectRefused("render " + path("box.json") + " --size 4294967304 -o " + path("x.png"), "--size: must be an integer in [8, 16384]");
+  expectRefused("render " + path("box.json") + " --mode cubemap --faces 0x5 -o " + path("x.png"), "--faces: must be an integer in [5, 6]");
+  expectRefused("dataset " + spec({}) + " -o " + path("ds") + " --threads 4097", "--threads: must be an integer in [0, 4096] (got \"4097\")");
+  expectRefused("dataset " + spec({}) + " -o " + path("ds") + " --shard 01/2", "--shard: must be I/N");
+  expectRefused("dataset " + spec({}) + " -o " + path("ds") + " --shard ' 1/2'", "--shard: must be I/N");
+  expectRefused("view " + path("box.json") + " --as panorama --size 0400x300 -o " + path("v.png"), "--size: must be WIDTHxHEIGHT");
+  expectRefused("bench --seconds nan", "--seconds: must be a number in (0, 3600] (got \"nan\")");
+  expectRefused("compare " + path("box.json") + " " + path("box.json") + " --tol inf", "--tol: must be a number in [0, 1e+06] (got \"inf\")");
+  // The largest seed is a seed.
+  const auto [code, out] = omnicam("arena mapping --seed 18446744073709551615 -o " + path("m.json"));
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("seed 18446744073709551615"), std::string::npos) << out;
+}
+
+// Work whose size the input sets, within the documented limits, but more than this machine (here:
+// a 4 GiB address space) can hold, is refused before it is allocated: exit 5, one line saying
+// what it needs, nothing written — never "internal error: out of memory".
+TEST_F(InputTrustTest, WorkBeyondTheMachinesMemoryIsRefusedBeforeItIsAllocated) {
+  const auto refusedForMemory = [&](const std::string& command) {
+    const auto before = snapshot(dir_);
+    const auto [code, out] = testing::runShell("ulimit -v 4194304; " + std::string(OMNICAM_BINARY) + " " + command + " 2>&1");
+    SCOPED_TRACE(command + "\n" + out);
+    EXPECT_EQ(code, 5);
+    EXPECT_TRUE(isOneLine(out));
+    EXPECT_NE(out.find("of memory; "), std::string::npos);
+    EXPECT_NE(out.find("limited by the address-space limit (ulimit -v)"), std::string::npos);
+    EXPECT_TRUE(snapshot(dir_) == before) << "wrote something";
+  };
+  refusedForMemory("camera-rays " + path("box.json") + " -o " + path("rays.exr") + " --size 16384");
+  // Two 16384 x 8192 images (a few hundred KB each as PNG): 2 GiB each as floats.
+  for (const char* name : {"a.png", "b.png"}) {
+    const auto [code, out] = testing::runShell("oiiotool --create 16384x8192 4 -o " + path(name) + " 2>&1");
+    ASSERT_EQ(code, 0) << "oiiotool (openimageio-tools, make deps): " << out;
+  }
+  refusedForMemory("compare " + path("a.png") + " " + path("b.png"));
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -404,7 +404,7 @@ TEST_F(OutputFolderTrust, BadOptionsAreRefusedBeforeAnyFolderIsCreated) {
 
 TEST_F(OutputFolderTrust, ShardCountsAreBoundedBeforeAnyWork) {
   fs::create_directories(dir_ / "ds/shards");
-  EXPECT_REFUSED(omnicam("dataset --merge " + sh(at("ds")) + " --shards 2000000000"), "--shards: Value 2000000000 not in range");
+  EXPECT_REFUSED(omnicam("dataset --merge " + sh(at("ds")) + " --shards 2000000000"), "--shards: must be an integer in [1, 100000] (got \"2000000000\")");
   EXPECT_REFUSED(omnicam("dataset --status " + sh(at("ds")) + " --shards 2"), "--shards: only with");
   EXPECT_REFUSED(omnicam("dataset --verify " + sh(at("ds")) + " --shards 2"), "--shards: only with");
   EXPECT_REFUSED(omnicam("dataset --merge " + sh(at("ds")) + " --shards 100000"), "no shard of 100000 has started");

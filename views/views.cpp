@@ -10,6 +10,7 @@
 #include "central_camera.h"
 #include "errors.h"
 #include "input_limits.h"
+#include "memory_budget.h"
 
 namespace omnicam {
 
@@ -37,6 +38,9 @@ ViewMap emptyViewMap(const ViewSpec& spec) {
   const int defaultH = spec.kind == ViewKind::Panorama ? 300 : spec.kind == ViewKind::Perspective ? 300 : 400;
   map.width = spec.width ? spec.width : defaultW;
   map.height = spec.height ? spec.height : defaultH;
+  // The map (two float planes, one tap a pixel) and the view it makes (RGBA floats): 32 B a pixel.
+  requireMemory(int64_t{map.width} * map.height * 32,
+                "a " + std::to_string(map.width) + "x" + std::to_string(map.height) + " view");
   map.sourceX.assign(static_cast<size_t>(map.width) * map.height, kNone);
   map.sourceY = map.sourceX;
   return map;

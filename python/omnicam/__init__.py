@@ -14,6 +14,7 @@ from ._omnicam import (  # noqa: F401  (the public interface)
     Camera,
     ExternalError,
     InputError,
+    MemoryShortage,
     OutputError,
     Renderer,
     Rig,
@@ -31,7 +32,7 @@ from ._omnicam import (  # noqa: F401  (the public interface)
 from .dataset import Dataset  # noqa: F401
 
 # Name the compiled classes as users import them (omnicam.Rig, not omnicam._omnicam.Rig).
-for _name in ("Camera", "ExternalError", "InputError", "OutputError", "Renderer", "Rig", "Scene"):
+for _name in ("Camera", "ExternalError", "InputError", "MemoryShortage", "OutputError", "Renderer", "Rig", "Scene"):
     globals()[_name].__module__ = __name__
 del _name
 
@@ -40,6 +41,7 @@ __all__ = [
     "Dataset",
     "ExternalError",
     "InputError",
+    "MemoryShortage",
     "OutputError",
     "Renderer",
     "Rig",

@@ -4,6 +4,7 @@
 #include "bindings.h"
 
 #include "errors.h"
+#include "memory_budget.h"
 #include "render_settings.h"
 
 namespace omnicam::python {
@@ -57,6 +58,7 @@ PYBIND11_MODULE(_omnicam, m) {
   // cannot be written an OSError, a failing external tool (POV-Ray, Blender) a RuntimeError.
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
+  py::register_exception<MemoryShortage>(m, "MemoryShortage", PyExc_MemoryError);
   py::register_exception<ExternalError>(m, "ExternalError", PyExc_RuntimeError);
   python::bindScene(m);
   python::bindCamera(m);

@@ -66,7 +66,9 @@ def test_a_loader_reads_every_camera_s_frames_timestamps_and_calibration(source,
         assert sensor["resolution"] == [64, 64]
         assert sensor["rate_hz"] == 1 / INTERVAL
         assert sensor["exposure_s"] == 0.01 and sensor["shutter"] == "rolling"
-        assert sensor["line_time_s"] == pytest.approx(25e-6, rel=1e-15) and sensor["readout"] == "bottom-to-top"
+        # The spec's 25 µs, written in the shortest form that reads back exactly.
+        assert sensor["line_time_s"] == 25e-6 and sensor["readout"] == "bottom-to-top"
+        assert "line_time_s: 2.5e-05\n" in (folder / "sensor.yaml").read_text()
         assert np.allclose(t_bs[3], [0, 0, 0, 1]) and np.allclose(t_bs[:3, :3] @ t_bs[:3, :3].T, np.eye(3), atol=1e-15)
         assert sensor["distortion_coefficients"] == [0, 0, 0, 0]
 

@@ -1,0 +1,51 @@
+"""Every Python entry point checks its arguments by the CLI's and the scene reader's rules: what
+`omnicam` refuses with exit 2, Python refuses with omnicam.InputError (a ValueError), before
+any work (docs/python.md, "Errors")."""
+
+import json
+
+import pytest
+
+import omnicam
+from conftest import SOURCE
+
+
+@pytest.mark.parametrize("threads", [-1, 4097, 10**6])
+def test_renderer_threads_are_in_the_clis_range(robocup, threads):
+    with pytest.raises(omnicam.InputError, match=r"threads: must be an integer in \[0, 4096\]"):
+        omnicam.Renderer(robocup, threads=threads)
+
+
+@pytest.mark.parametrize("timeout", [0.0, -1.0, float("nan"), float("inf"), 1e300])
+def test_renderer_timeouts_are_in_the_clis_range(robocup, timeout):
+    with pytest.raises(omnicam.InputError, match=r"timeout: must be in \(0, 604800\] s"):
+        omnicam.Renderer(robocup, engine="povray", timeout=timeout)
+
+
+@pytest.mark.parametrize("size", [-5, 0, 7, 16385, 10**6, 2**31 - 1])
+def test_a_rig_resizes_only_within_the_image_size_limits(size):
+    with pytest.raises(omnicam.InputError, match=r"image size: must be in \[8, 16384\]"):
+        omnicam.Rig().resized(size)
+
+
+def test_a_physical_rig_resized_past_the_limit_is_refused_not_described_for_minutes():
+    rig = omnicam.Rig({"camera": {"offset_mm": [1, 0, 0]}})
+    with pytest.raises(omnicam.InputError, match="image size"):
+        omnicam.Camera(rig.resized(2**31 - 1)).describe()
+    assert omnicam.Rig().resized(16384).to_dict()["image"]["size"] == 16384
+
+
+@pytest.mark.parametrize("size", [-5, 7, 16385])
+def test_render_sizes_are_in_range(robocup, size):
+    with pytest.raises(omnicam.InputError, match=r"must be in \[8, 16384\]"):
+        omnicam.render(robocup, size=size)
+
+
+@pytest.mark.parametrize("threads", [-1, 4097])
+def test_dataset_threads_are_in_range(tmp_path, threads):
+    (tmp_path / "box.json").write_bytes((SOURCE / "tests" / "bad_inputs" / "datasets" / "box.json").read_bytes())
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({"format": "omnicam-dataset/1", "scene": "box.json", "poses": {"path": "p"}, "size": 16}))
+    with pytest.raises(omnicam.InputError, match=r"threads: must be an integer in \[0, 4096\]"):
+        omnicam.run_dataset(str(spec), str(tmp_path / "ds"), threads=threads)
+    assert not (tmp_path / "ds").exists()
