@@ -56,23 +56,58 @@ class SliceMinimum {
   Vec3 axis_;
 };
 
-// Golden-section search for the minimum of a convex function on [lo, hi]: the bracket shrinks by
-// 0.618 each step whatever the function, so `steps` fixes the accuracy.
+// Brent's minimisation of a convex function on [lo, hi] to within `tolerance`: golden-section
+// steps, which shrink the bracket by 0.618 whatever the function, mixed with parabolic steps
+// through the last three points where they fall well inside it. On the smooth parts of the path
+// length the parabolas converge superlinearly (about 10 evaluations instead of the golden
+// section's 30 for the same bracket); at a kink the golden steps keep the guarantee.
 template <class F>
-double goldenSectionMinimum(double lo, double hi, int steps, const F& f) {
-  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = hi - ratio * (hi - lo), b = lo + ratio * (hi - lo);
-  double fa = f(a), fb = f(b);
-  for (int step = 0; step < steps; ++step) {
-    if (fa <= fb) {
-      hi = b, b = a, fb = fa;
-      a = hi - ratio * (hi - lo), fa = f(a);
+double brentMinimum(double lo, double hi, double tolerance, const F& f) {
+  const double golden = 0.5 * (3.0 - std::sqrt(5.0));
+  double x = lo + golden * (hi - lo), w = x, v = x;
+  double fx = f(x), fw = fx, fv = fx;
+  double step = 0.0, previousStep = 0.0;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const double middle = 0.5 * (lo + hi);
+    const double tol1 = tolerance, tol2 = 2.0 * tol1;
+    if (std::abs(x - middle) <= tol2 - 0.5 * (hi - lo)) break;
+    bool parabolic = false;
+    if (std::abs(previousStep) > tol1) {
+      // The parabola through (v, fv), (w, fw), (x, fx): its vertex, if it is a step worth taking.
+      double r = (x - w) * (fx - fv), q = (x - v) * (fx - fw), p = (x - v) * q - (x - w) * r;
+      q = 2.0 * (q - r);
+      if (q > 0.0) p = -p;
+      q = std::abs(q);
+      const double before = previousStep;
+      previousStep = step;
+      if (std::abs(p) < std::abs(0.5 * q * before) && p > q * (lo - x) && p < q * (hi - x)) {
+        step = p / q;
+        const double u = x + step;
+        if (u - lo < tol2 || hi - u < tol2) step = middle > x ? tol1 : -tol1;
+        parabolic = true;
+      }
+    }
+    if (!parabolic) {
+      previousStep = x >= middle ? lo - x : hi - x;
+      step = golden * previousStep;
+    }
+    const double u = std::abs(step) >= tol1 ? x + step : x + (step > 0.0 ? tol1 : -tol1);
+    const double fu = f(u);
+    if (fu <= fx) {
+      if (u >= x) lo = x;
+      else hi = x;
+      v = w, fv = fw, w = x, fw = fx, x = u, fx = fu;
     } else {
-      lo = a, a = b, fa = fb;
-      b = lo + ratio * (hi - lo), fb = f(b);
+      if (u < x) lo = u;
+      else hi = u;
+      if (fu <= fw || w == x) {
+        v = w, fv = fw, w = u, fw = fu;
+      } else if (fu <= fv || v == x || v == w) {
+        v = u, fv = fu;
+      }
     }
   }
-  return 0.5 * (lo + hi);
+  return x;
 }
 
 }  // namespace
@@ -80,16 +115,16 @@ double goldenSectionMinimum(double lo, double hi, int steps, const F& f) {
 FermatMinimum minimiseFermatPath(const MirrorSurface& mirror, const Pinhole& camera, const Vec3& p) {
   const SliceMinimum slice(mirror, camera, p);
   const double r = mirror.rimRadius();
-  // 0.618^30 ≈ 5e-7 of the bracket: below what rounding lets any comparison of lengths resolve
-  // near a minimum (about 10⁻⁵ of the rim radius).
-  constexpr int kSteps = 30;
+  // 5e-7 of the rim radius: below what rounding lets any comparison of lengths resolve near a
+  // minimum (about 10⁻⁵ of the rim radius).
+  const double tolerance = 5e-7 * r;
   const auto halfChord = [r](double x) { return std::sqrt(std::max(0.0, r * r - x * x)); };
   const auto bestY = [&](double x) {
     const double w = halfChord(x);
-    return goldenSectionMinimum(-w, w, kSteps, [&](double y) { return slice.length(slice.at(x, y).point); });
+    return brentMinimum(-w, w, tolerance, [&](double y) { return slice.length(slice.at(x, y).point); });
   };
   // min over y of a jointly convex function is convex in x.
-  const double best = goldenSectionMinimum(-r, r, kSteps, [&](double x) { return slice.length(slice.at(x, bestY(x)).point); });
+  const double best = brentMinimum(-r, r, tolerance, [&](double x) { return slice.length(slice.at(x, bestY(x)).point); });
   FermatMinimum minimum = slice.at(best, bestY(best));
   // As short as the straight path (to rounding): it runs through the body.
   const double straight = slice.straightLength();

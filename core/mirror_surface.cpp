@@ -153,23 +153,12 @@ class ConeSurface final : public MirrorSurface {
     if (!(r > 0.0)) return Vec2::Zero();
     return {x / (r * tan_), y / (r * tan_)};
   }
-  // Up the generator in the point's azimuth (the reflection point of a pinhole on the axis lies
-  // in the plane of the axis and the point): halfway, then ever closer to the apex, where the
-  // surface has no tangent plane and Newton's steps from afar overshoot it.
+  // The closed form for a pinhole on the axis at the same height: exact for a pinhole on the axis,
+  // close for one moved off it. Where it finds nothing, the convex search decides.
   std::vector<Vec2> projectionStarts(const Vec3& p, const Vec3& pinhole) const override {
-    Vec2 away = p.head<2>() - pinhole.head<2>();
-    away = away.norm() > 0.0 ? Vec2(away / away.norm()) : Vec2(1.0, 0.0);
-    std::vector<Vec2> starts;
-    for (double fraction : {0.5, 0.05, 5e-3}) starts.push_back(fraction * rimRadius() * away);
-    // Within a fraction of a millimetre of the apex a moved pinhole turns the reflection point's
-    // azimuth away from the point's: a fan of azimuths.
-    for (double fraction : {5e-4, 5e-5, 5e-6})
-      for (int k = 0; k < 6; ++k) {
-        const double a = kPi * k / 3.0;
-        starts.push_back(fraction * rimRadius() * Vec2(std::cos(a) * away.x() - std::sin(a) * away.y(),
-                                                       std::sin(a) * away.x() + std::cos(a) * away.y()));
-      }
-    return starts;
+    const auto m = *axialReflection(p, pinhole.z());
+    if (!m) return {};
+    return {Vec2(m->head<2>())};
   }
   std::optional<std::optional<Vec3>> axialReflection(const Vec3& p, double pinholeZ) const override {
     const double rhoP = p.head<2>().norm();

@@ -175,20 +175,91 @@ bool PhysicalCamera::physicalReflection(const Vec3& p, const Vec3& m) const {
 
 std::optional<Vec2> PhysicalCamera::project(const Vec3& p) const {
   // A perspective pinhole on the axis of a shape with a closed form (the cone) needs no search:
-  // the closed form is the answer, "not seen" included. Off the axis it is where Newton starts.
-  const bool onAxis = !pinhole_.orthographic && pinhole_.position.head<2>().squaredNorm() == 0.0;
-  if (const auto axial = mirror_->axialReflection(p, pinhole_.position.z())) {
-    if (onAxis) {
+  // the closed form is the answer, "not seen" included.
+  if (!pinhole_.orthographic && pinhole_.position.head<2>().squaredNorm() == 0.0)
+    if (const auto axial = mirror_->axialReflection(p, pinhole_.position.z())) {
       if (!*axial || !physicalReflection(p, **axial)) return std::nullopt;
       return pinhole_.raster(**axial);
     }
-    if (*axial)
-      if (const auto m = reflectionPoint(p, (*axial)->head<2>())) return pinhole_.raster(*m);
-  }
   for (const Vec2& start : mirror_->projectionStarts(p, pinhole_.position))
     if (const auto m = reflectionPoint(p, start)) return pinhole_.raster(*m);
+  // The straight path from the camera to p through the mirror's body: no mirror point reflects p
+  // (fermat_path.h), and the search need not say so.
+  if (straightPathMeetsBody(p)) return std::nullopt;
+  // The minimum at a corner of the body, proven on the spot: nothing reflects p either.
+  if (minimumAtACorner(p)) return std::nullopt;
   // The shape's starts are quick and almost always enough; the convex search always converges.
   return projectFromFermatMinimum(p);
+}
+
+namespace {
+
+// −∇L at x: the unit vectors from x toward the camera and toward p, added.
+Vec3 descent(const Vec3& x, const Vec3& camera, const Vec3& p) { return (camera - x).normalized() + (p - x).normalized(); }
+
+}  // namespace
+
+bool PhysicalCamera::minimumAtACorner(const Vec3& p) const {
+  // L(X) = |X − camera| + |X − p| is convex, so a point of the body where −∇L lies in the body's
+  // normal cone is where L is least over the body (the optimality condition of a convex problem
+  // is also sufficient). When the straight path misses the body that minimum is unique, and a
+  // reflection point would be one (fermat_path.h): a minimum at a corner — strictly inside its
+  // normal cone, not on the mirror's own normal — means no mirror point reflects p. Margins of
+  // 10⁻⁴ leave every doubtful case to the search.
+  if (pinhole_.orthographic) return false;
+  const Vec3& c = pinhole_.position;
+  const MirrorSurface& mirror = *mirror_;
+  constexpr double kMargin = 1e-4;
+  if (mirror.hasApex()) {
+    // The apex (the origin): its normal cone is {v : v_z ≤ −|v_xy| / slope}, the slope of the
+    // generators (∂z/∂r) around it.
+    const Vec3 w = descent(Vec3::Zero(), c, p);
+    const double slope = mirror.slopeAt(1e-9 * mirror.rimRadius(), 0.0).norm();
+    if (w.z() < -w.head<2>().norm() / slope - kMargin * w.norm()) return true;
+  }
+  // The rim's edge: where L is least along the rim circle on p's side of the axis, dL/dθ = −r·(w·t)
+  // vanishes (w = −∇L, t the circle's tangent); bisected on w·t itself, which, unlike L a
+  // kilometre long, rounding does not flatten. Then the condition there: −∇L = a·(∇h, −1) + b·e_z
+  // with a, b > 0 (∇h the mirror's slope, radial at the rim).
+  const double r = mirror.rimRadius(), top = mirror.rimZ();
+  const auto rimPoint = [&](double theta) { return Vec3(r * std::cos(theta), r * std::sin(theta), top); };
+  const auto tangential = [&](double theta) {
+    return descent(rimPoint(theta), c, p).dot(Vec3(-std::sin(theta), std::cos(theta), 0.0));
+  };
+  const Vec2 side = p.head<2>() - c.head<2>();
+  const double towardP = side.squaredNorm() > 0.0 ? std::atan2(side.y(), side.x()) : 0.0;
+  double lo = towardP - 0.5 * kPi, hi = towardP + 0.5 * kPi;
+  if (!(tangential(lo) > 0.0 && tangential(hi) < 0.0)) return false;  // no minimum bracketed
+  for (int step = 0; step < 60 && hi - lo > 1e-15; ++step) {
+    const double middle = 0.5 * (lo + hi);
+    (tangential(middle) > 0.0 ? lo : hi) = middle;
+  }
+  const double theta = 0.5 * (lo + hi);
+  const Vec3 x = rimPoint(theta);
+  const Vec3 w = descent(x, c, p);
+  const Vec2 slope = mirror.slopeAt(x.x(), x.y());
+  if (!(std::abs(tangential(theta)) <= 1e-9 * w.norm()) || !(slope.squaredNorm() > 0.0)) return false;
+  const double onMirror = w.head<2>().dot(slope) / slope.squaredNorm();  // a
+  const double onTop = w.z() + onMirror;                                 // b
+  return onMirror > kMargin * w.norm() && onTop > kMargin * w.norm();
+}
+
+bool PhysicalCamera::straightPathMeetsBody(const Vec3& p) const {
+  if (pinhole_.orthographic) return false;  // its paths run along the axis: left to the search
+  const Vec3& c = pinhole_.position;
+  const Vec3 toP = p - c;
+  const double length = toP.norm();
+  if (!(length > 0.0)) return true;
+  const Vec3 direction = toP / length;
+  // In through the mirror (the camera is below it, outside the body), within the rim ...
+  if (const auto hit = mirror_->firstHit(c, direction))
+    if (mirror_->insideRim(*hit) && (*hit - c).norm() <= length) return true;
+  // ... or through the rim's disc.
+  if (direction.z() != 0.0) {
+    const double t = (mirror_->rimZ() - c.z()) / direction.z();
+    if (t > 0.0 && t <= length && (c + t * direction).head<2>().norm() <= mirror_->rimRadius()) return true;
+  }
+  return false;
 }
 
 std::optional<Vec2> PhysicalCamera::projectFromFermatMinimum(const Vec3& p) const {

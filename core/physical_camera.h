@@ -80,6 +80,12 @@ class PhysicalCamera final : public Camera {
   // Whether mirror point m physically reflects p to the camera: inside the rim, camera and p on
   // the mirror's outer side, and m the first thing the camera sees along its ray to it.
   bool physicalReflection(const Vec3& p, const Vec3& m) const;
+  // Whether the straight segment from a perspective pinhole to p meets the mirror's body (p lies
+  // behind the mirror, or inside it): then no mirror point reflects p (fermat_path.h).
+  bool straightPathMeetsBody(const Vec3& p) const;
+  // Whether the path length's minimum over the mirror's body provably lies at a corner (the rim's
+  // edge, the cone's apex) where nothing reflects: then p is not seen (a perspective pinhole).
+  bool minimumAtACorner(const Vec3& p) const;
   // The mirror point a camera ray sees, inside the rim.
   std::optional<Vec3> mirrorPointSeen(const CameraRay& ray) const;
   std::shared_ptr<const MirrorSurface> mirror_;

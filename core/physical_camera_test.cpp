@@ -138,6 +138,13 @@ TEST(PhysicalCamera, RoundTripsOfAPerspectiveParaboloid) { expectRoundTrips(shap
 TEST(PhysicalCamera, RoundTripsOfASphere) { expectRoundTrips(shaped(MirrorShape::Sphere, 0.12), 100000, 1e-6); }
 TEST(PhysicalCamera, RoundTripsOfACone) { expectRoundTrips(shaped(MirrorShape::Cone, 0.05), 100000, 1e-6); }
 
+// A pinhole on the cone's axis: project is the closed form alone (mirror_surface.h).
+TEST(PhysicalCamera, RoundTripsOfAConeFromItsAxis) {
+  RigSpec rig = shaped(MirrorShape::Cone, 0.05);
+  rig.mount.offsetMm = {0.0, 0.0, -4.0};
+  expectRoundTrips(rig, 100000, 1e-6);
+}
+
 // Every shape's rays obey the reflection law at their own mirror point, from the camera as built.
 TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
   for (const RigSpec& rig : {shaped(MirrorShape::Paraboloid, 0.0), shaped(MirrorShape::Paraboloid, 0.15),

@@ -1,5 +1,7 @@
 #include "fast_renderer.h"
 
+#include "memory_budget.h"
+
 #include <embree3/rtcore_config.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -99,6 +101,12 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
   table->samplesPerAxis = n;
   const bool central = camera->central();
   const size_t pixels = static_cast<size_t>(camera->width()) * camera->height();
+  // At most every sample imaged: its direction and grid index (14 B), a non-central ray's origin
+  // and start too (30 B), in vectors that may hold twice that while they grow; per pixel, the
+  // centre's ray and indices (20 B, non-central 36 B).
+  requireMemory(static_cast<int64_t>(pixels) * (n * n * (central ? 14 : 30) * 2 + (central ? 20 : 36)),
+                "the sample table of " + std::to_string(camera->width()) + "x" + std::to_string(camera->height()) +
+                    " pixels at " + std::to_string(n * n) + " spp");
   table->firstSample.reserve(pixels + 1);
   table->centreDirections.reserve(pixels);
   table->centreSample.reserve(pixels);
