@@ -49,6 +49,8 @@ void BM_ProjectHyperboloidIdeal(benchmark::State& s) { projectFar(s, RigSpec{}, 
 void BM_ProjectHyperboloidTraced(benchmark::State& s) { projectFar(s, RigSpec{}, true); }
 void BM_ProjectHyperboloidMisaligned(benchmark::State& s) { projectFar(s, test::misaligned(2.0, 1.0), false); }
 void BM_ProjectParaboloid(benchmark::State& s) { projectFar(s, aligned(MirrorShape::Paraboloid, 0.05), false); }
+void BM_ProjectParaboloidOrthographic(benchmark::State& s) { projectFar(s, aligned(MirrorShape::Paraboloid, 0.0), false); }
+void BM_ProjectParaboloidOrthographicMoved(benchmark::State& s) { projectFar(s, test::shaped(MirrorShape::Paraboloid, 0.0), false); }
 void BM_ProjectSphere(benchmark::State& s) { projectFar(s, aligned(MirrorShape::Sphere, 0.05), false); }
 void BM_ProjectCone(benchmark::State& s) { projectFar(s, aligned(MirrorShape::Cone, 0.05), false); }
 void BM_ProjectSphereMisaligned(benchmark::State& s) { projectFar(s, test::shaped(MirrorShape::Sphere, 0.05), false); }
@@ -58,6 +60,8 @@ BENCHMARK(BM_ProjectHyperboloidIdeal)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ProjectHyperboloidTraced)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ProjectHyperboloidMisaligned)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ProjectParaboloid)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ProjectParaboloidOrthographic)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ProjectParaboloidOrthographicMoved)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ProjectSphere)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ProjectCone)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ProjectSphereMisaligned)->Unit(benchmark::kMillisecond);

@@ -292,6 +292,11 @@ TEST_F(InputTrustTest, WorkBeyondTheMachinesMemoryIsRefusedBeforeItIsAllocated) 
     ASSERT_EQ(code, 0) << "oiiotool (openimageio-tools, make deps): " << out;
   }
   refusedForMemory("compare " + path("a.png") + " " + path("b.png"));
+  // Datasets: B (a folder in the dataset layout) holds such a frame where A's 16-pixel one is.
+  renderDataset();
+  fs::create_directories(dir_ / "b" / "cam0" / "rgb");
+  fs::copy_file(dir_ / "a.png", dir_ / "b" / "cam0" / "rgb" / "000000.png");
+  refusedForMemory("compare " + path("ds") + " " + path("b"));
 }
 
 }  // namespace
