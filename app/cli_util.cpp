@@ -116,12 +116,21 @@ std::string scenesDir() {
   return OMNICAM_SCENES_DIR;
 }
 
-void ensureDirectory(const std::string& dir, const std::string& flag) {
+std::vector<std::string> ensureDirectory(const std::string& dir, const std::string& flag) {
   namespace fs = std::filesystem;
   checkOutputFolder(dir, flag);
   std::error_code ec;
+  std::vector<std::string> made;
+  for (fs::path at = dir; !at.empty() && !fs::exists(at, ec) && at != at.parent_path(); at = at.parent_path())
+    made.push_back(at.string());
   fs::create_directories(dir, ec);
   if (ec) throw InputError(flag + ": cannot create folder " + showPath(dir) + " (" + ec.message() + ")");
+  return made;
+}
+
+void removeMadeFolders(const std::vector<std::string>& made) {
+  std::error_code ec;
+  for (const std::string& folder : made) std::filesystem::remove(folder, ec);  // an empty folder only
 }
 
 Progress::Progress(std::string label, int total, int alreadyDone)

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 #include <string>
 
 #include "geometry.h"
@@ -39,7 +40,11 @@ void refuseUnless(const CLI::App& cmd, const std::string& flag, bool allowed, co
 // Folder with the repository's scenes (compile-time default, OMNICAM_SCENES overrides).
 std::string scenesDir();
 // Creates `dir` (and parents) if missing; throws InputError if it exists as a non-folder.
-void ensureDirectory(const std::string& dir, const std::string& flag);
+// Returns the folders it made, deepest first.
+std::vector<std::string> ensureDirectory(const std::string& dir, const std::string& flag);
+// Removes folders ensureDirectory made, if they are still empty: a refusal after them leaves
+// nothing behind, and nothing else is touched.
+void removeMadeFolders(const std::vector<std::string>& made);
 
 // A one-line progress bar on stderr for long sequences: frames/s and time left. `alreadyDone`
 // frames (kept from an earlier run) count toward the bar but not toward the rate.

@@ -16,6 +16,7 @@
 #include "cli_util.h"
 #include "errors.h"
 #include "image_compare.h"
+#include "memory_budget.h"
 
 namespace omnicam::cli {
 
@@ -89,6 +90,9 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + showPath(args.diff) + ": must end in .png or .exr");
     checkOutputFile(args.diff, "--diff");
   }
+  // Both images and the heat map, sized from the headers before either is decoded.
+  const int64_t bytesA = imageDecodeBytes(args.a), bytesB = imageDecodeBytes(args.b);
+  requireMemory(bytesA + bytesB + (args.diff.empty() ? 0 : bytesA), "comparing the two images");
   const ImageRGBA a = readImage(args.a), b = readImage(args.b);
   CompareOptions options;
   options.tolerance = args.tol;

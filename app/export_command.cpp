@@ -49,13 +49,11 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     options.pose = pose;
     options.rig = settings.rig;
     const std::string file = a.out + "/scene.glb";
-    std::error_code ec;
-    const bool created = !std::filesystem::exists(a.out, ec);
-    ensureDirectory(a.out, "-o");
+    const std::vector<std::string> made = ensureDirectory(a.out, "-o");
     try {
       exportGltf(scene, options, file);
     } catch (...) {
-      if (created) std::filesystem::remove(a.out, ec);  // the folder it made, empty: nothing written
+      removeMadeFolders(made);  // the folders it made, empty: nothing written
       throw;
     }
     std::printf("wrote %s\n", file.c_str());

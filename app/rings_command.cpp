@@ -72,6 +72,7 @@ void measureExisting(const RingsArgs& a) {
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   if (image.width != image.height) throw InputError(showPath(a.measure) + ": ring images must be square");
+  checkImageSize(image.width, showPath(a.measure) + ": its size");
   rig = rig.resized(image.width);  // scales a principal point offset with the image
   measureAndPrint(image, rig, a.measure, a);
 }

@@ -44,6 +44,7 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
     throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
                      "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
   }
+  checkImageSize(size, showPath(a.in) + ": its size");
   rig = rig.resized(size);
   sidecar["rig"] = rigToJson(rig);
   return {rig, sidecar};
@@ -91,10 +92,11 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--as", args->as, "birdseye (default), panorama or perspective");
   cmd->add_option("--variant", args->variant, "exact (default) or thesis (Eq. 3.4 / Eqs. 3.6-3.7)");
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (defaults 400x400, 1080x300, 400x300)");
-  cmd->add_option("--zw", args->zw, "birdseye: ground plane, pixel units below the viewpoint (default 40)");
-  cmd->add_option("--yaw", args->yaw, "perspective: view direction, degrees CCW from forward");
-  cmd->add_option("--pitch", args->pitch, "perspective: degrees above the horizon (default -20)");
-  cmd->add_option("--fov", args->fov, "perspective: horizontal field of view, degrees (default 90)");
+  cmd->add_option("--zw", args->zw, "birdseye: ground plane, pixel units below the viewpoint (default 40)")
+      ->check(numberIn(0, 1e6, true));
+  cmd->add_option("--yaw", args->yaw, "perspective: view direction, degrees CCW from forward")->check(numberIn(-1e6, 1e6));
+  cmd->add_option("--pitch", args->pitch, "perspective: degrees above the horizon (default -20)")->check(numberIn(-1e6, 1e6));
+  cmd->add_option("--fov", args->fov, "perspective: horizontal field of view, degrees (default 90)")->check(numberIn(0, 179, true));
   cmd->add_option("--scene", args->scene, "Take the camera rig from this scene (images without a sidecar)");
   cmd->add_option("--rig", args->rig, "Take the camera rig from this JSON file (a scene's \"rig\" object)");
   addSceneLoadFlags(*cmd, args->load);

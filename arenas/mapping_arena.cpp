@@ -40,8 +40,8 @@ MappingArena generateMappingArena(const MappingOptions& o) {
         o.wallThickness < 0.3 && o.extraOpenings >= 0.0 && o.extraOpenings <= 1.0))
     throw InputError("arena mapping: cell 0.8-5 m, walls 0.1-5 m high and 5-300 mm thick, extra openings 0-1");
   const int cells = o.cellsX * o.cellsY;
-  if (o.victims < 0 || o.debris < 0 || o.victims + 2 > cells)
-    throw InputError("arena mapping: at most cells - 2 victims, and no negative counts");
+  if (o.victims < 0 || o.debris < 0 || o.victims + 2 > cells || o.debris > 10 * cells)
+    throw InputError("arena mapping: at most cells - 2 victims and 10 debris a cell, and no negative counts");
 
   Random random(o.seed);
   MappingArena arena;

@@ -112,8 +112,16 @@ void checkOutputFile(const std::string& path, const std::string& flag) {
 void checkOutputFolder(const std::string& path, const std::string& flag) {
   checkNameLengths(path, flag);
   std::error_code ec;
-  if (fs::exists(path, ec) && !fs::is_directory(path, ec))
-    throw InputError(flag + ": " + showPath(path) + " exists and is not a folder");
+  // The folder, or the nearest of its parents that exists, must be a folder: creating it would
+  // fail otherwise, after other work.
+  for (fs::path at = path; !at.empty(); at = at.parent_path()) {
+    if (!fs::exists(at, ec) && !fs::is_symlink(at, ec)) {
+      if (at == at.parent_path()) break;
+      continue;
+    }
+    if (!fs::is_directory(at, ec)) throw InputError(flag + ": " + showPath(at.string()) + " exists and is not a folder");
+    break;
+  }
 }
 
 std::string atomicTemporaryName(const std::string& name) {

@@ -174,7 +174,7 @@ uint64_t smallestPackedSize(uint8_t compression, uint64_t unpacked) {
     case EXR_COMPRESSION_RLE: return unpacked / 64;
     case EXR_COMPRESSION_ZIPS:
     case EXR_COMPRESSION_ZIP: return unpacked / 1100;
-    default: return unpacked > 0 ? 1 : 0;
+    default: return unpacked / 4096;  // PIZ, PXR24, B44, DWA: none packs 4096 bytes into 1
   }
 }
 
@@ -237,7 +237,27 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
         problem = "the chunk of line " + std::to_string(y) + " holds " + std::to_string(chunk.packed_size) +
                   " bytes, too few for its " + std::to_string(chunk.unpacked_size) + " unpacked bytes";
     }
-  } else if (problem.empty() && storage != EXR_STORAGE_TILED) {
+  } else if (problem.empty() && storage == EXR_STORAGE_TILED) {
+    // The level the reader decodes (0, 0), tile by tile, as above.
+    int32_t tileW = 0, tileH = 0, levelW = 0, levelH = 0;
+    if (exr_get_tile_sizes(context, 0, 0, 0, &tileW, &tileH) != EXR_ERR_SUCCESS ||
+        exr_get_level_sizes(context, 0, 0, 0, &levelW, &levelH) != EXR_ERR_SUCCESS || tileW < 1 || tileH < 1)
+      problem = "no tiles";
+    const int32_t tilesX = tileW > 0 ? static_cast<int32_t>((int64_t{levelW} + tileW - 1) / tileW) : 0;
+    const int32_t tilesY = tileH > 0 ? static_cast<int32_t>((int64_t{levelH} + tileH - 1) / tileH) : 0;
+    for (int32_t ty = 0; problem.empty() && ty < tilesY; ++ty)
+      for (int32_t tx = 0; problem.empty() && tx < tilesX; ++tx) {
+        exr_chunk_info_t chunk{};
+        const std::string which = "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")";
+        if (exr_read_tile_chunk_info(context, 0, tx, ty, 0, 0, &chunk) != EXR_ERR_SUCCESS)
+          problem = "the chunk of " + which + " is missing or damaged";
+        else if (chunk.data_offset > bytes.size() || chunk.packed_size > bytes.size() - chunk.data_offset)
+          problem = "the chunk of " + which + " runs past the end of the file";
+        else if (chunk.packed_size < smallestPackedSize(chunk.compression, chunk.unpacked_size))
+          problem = "the chunk of " + which + " holds " + std::to_string(chunk.packed_size) + " bytes, too few for its " +
+                    std::to_string(chunk.unpacked_size) + " unpacked bytes";
+      }
+  } else if (problem.empty()) {
     problem = "not a single-part scanline or tiled image";
   }
   exr_finish(&context);
@@ -345,6 +365,11 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
     }
   } catch (const InputError&) {
     throw;
+  } catch (const MemoryShortage&) {
+    throw;  // the machine's, not the file's: exit 5
+  } catch (const std::bad_alloc&) {
+    throw MemoryShortage(name + ": decoding " + std::to_string(out.width) + "x" + std::to_string(out.height) +
+                         " pixels ran out of memory");
   } catch (const std::exception& e) {
     throw InputError(name + ": cannot read OpenEXR (" + oneLine(e.what()) + ")");
   }

@@ -139,16 +139,21 @@ TEST(ExrChannels, DamagedBytesAreAnInputErrorNamingTheFile) {
   }
 }
 
-// The header's data window patched from `height` lines to `claimed` lines: a forged frame whose
-// header claims far more pixels than its bytes hold.
-std::string claimMoreLines(std::string bytes, int claimed) {
-  for (const char* attribute : {"dataWindow", "displayWindow"}) {
-    const std::string key = std::string(attribute) + '\0' + "box2i" + '\0';
+// The header's data and display windows patched to claim `width` x `height` pixels (and, for a
+// tiled file, tiles that large): a forged frame whose header claims far more than its bytes hold.
+std::string claimSize(std::string bytes, int32_t width, int32_t height) {
+  const auto patch = [&](const std::string& key, size_t offset, int32_t value) {
     const size_t at = bytes.find(key);
-    if (at == std::string::npos) throw std::runtime_error("no " + std::string(attribute));
-    const int32_t maxY = claimed - 1;
-    std::memcpy(&bytes[at + key.size() + 4 + 12], &maxY, 4);  // size, then xMin yMin xMax yMax
+    if (at == std::string::npos) throw std::runtime_error("no " + key);
+    std::memcpy(&bytes[at + key.size() + 4 + offset], &value, 4);  // after the attribute's size
+  };
+  for (const char* window : {"dataWindow", "displayWindow"}) {
+    const std::string key = std::string(window) + '\0' + "box2i" + '\0';
+    patch(key, 8, width - 1);  // xMin yMin xMax yMax
+    patch(key, 12, height - 1);
   }
+  const std::string tiles = std::string("tiles") + '\0' + "tiledesc" + '\0';
+  if (bytes.find(tiles) != std::string::npos) patch(tiles, 0, width), patch(tiles, 4, height);
   return bytes;
 }
 
@@ -166,7 +171,7 @@ TEST(ExrChannels, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefusedBeforeDecodi
   // Long enough for the 8192 offsets the forged header implies (one RLE line a chunk), as the
   // 64 KB file of the report was: OpenEXR's reader accepts the table, then rebuilds it from the
   // chunks that are not there.
-  std::string forged = claimMoreLines(std::string(real.begin(), real.end()), 8192);
+  std::string forged = claimSize(std::string(real.begin(), real.end()), width, 8192);
   forged.append(8192 * 8, '\0');
   ASSERT_LT(forged.size(), 100000u);
   try {
@@ -178,6 +183,28 @@ TEST(ExrChannels, AHeaderClaimingMorePixelsThanTheFileHoldsIsRefusedBeforeDecodi
   }
   // The header alone is still readable (what --verify and the reader's headerOnly use).
   EXPECT_EQ(decodeExrChannels(forged, "forged.exr", true).height, 8192);
+}
+
+// The same for a tiled file: 1 KB whose one tile claims 16384 x 8192 RGBA.
+TEST(ExrChannels, ATiledHeaderClaimingMorePixelsThanTheFileHoldsIsRefusedBeforeDecoding) {
+  OIIO::ImageSpec spec(64, 64, 4, OIIO::TypeDesc::HALF);
+  spec.tile_width = 64, spec.tile_height = 64;
+  spec.attribute("compression", "zip");
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput sink(bytes);
+  void* proxy = &sink;
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const std::vector<float> pixels(64 * 64 * 4, 0.5f);
+  auto out = OIIO::ImageOutput::create("memory.exr");
+  ASSERT_TRUE(out && out->open("memory.exr", spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+  EXPECT_EQ(decodeExrChannels(std::string(bytes.begin(), bytes.end()), "tiled.exr").width, 64);
+  const std::string forged = claimSize(std::string(bytes.begin(), bytes.end()), 16384, 8192);
+  try {
+    decodeExrChannels(forged, "forged.exr");
+    ADD_FAILURE() << "decoded a forged tiled frame";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the file cannot hold the pixels its header claims"), std::string::npos) << e.what();
+  }
 }
 
 // One rule in both readers of a frame (the multilayer decoder here, OpenImageIO's for images):

@@ -171,14 +171,31 @@ void checkHeader(const OIIO::ImageSpec& spec, const std::string& name) {
     throw InputError(name + ": image has " + std::to_string(spec.nchannels) + " channels (1 to 16 are read)");
   // One rule with the frame-file reader (exr_channels.h): pixels start at (0, 0).
   if (spec.x != 0 || spec.y != 0) throw InputError(name + ": the image's data window does not start at pixel (0, 0)");
-  // The decoded channels as floats, then the RGBA image.
-  requireMemory(static_cast<int64_t>(spec.width) * spec.height * (4 * spec.nchannels + 16),
-                name + ": decoding " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels");
+}
+
+// The decoded channels as floats, then the RGBA image.
+int64_t decodeBytes(const OIIO::ImageSpec& spec) {
+  return static_cast<int64_t>(spec.width) * spec.height * (4 * spec.nchannels + 16);
+}
+
+std::unique_ptr<OIIO::ImageInput> openImageFile(const std::string& path) {
+  // Only regular files: a FIFO or a device (/dev/zero) would be read forever.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(showPath(path) + ": cannot read image (" +
+                     (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file") + ")");
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
+  const QuietStderr quiet;
+  auto input = OIIO::ImageInput::open(path, &config);
+  if (!input) throw InputError(showPath(path) + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  return input;
 }
 
 ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
   const OIIO::ImageSpec& spec = input.spec();
   checkHeader(spec, name);
+  requireMemory(decodeBytes(spec), name + ": decoding " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels");
   const int channels = spec.nchannels;
   std::vector<float> raw(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
@@ -207,17 +224,15 @@ ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
 }  // namespace
 
 ImageRGBA readImage(const std::string& path) {
-  // Only regular files: a FIFO or a device (/dev/zero) would be read forever.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(showPath(path) + ": cannot read image (" +
-                     (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file") + ")");
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
+  const auto input = openImageFile(path);
   const QuietStderr quiet;
-  auto input = OIIO::ImageInput::open(path, &config);
-  if (!input) throw InputError(showPath(path) + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
   return decode(*input, showPath(path));  // decode names it in messages only
+}
+
+int64_t imageDecodeBytes(const std::string& path) {
+  const auto input = openImageFile(path);
+  checkHeader(input->spec(), showPath(path));
+  return decodeBytes(input->spec());
 }
 
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {

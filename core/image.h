@@ -28,6 +28,8 @@ float linearToSrgb(float linear);
 // against limits::kMaxImageDimension / kMaxImagePixels before any pixel is read. Throws
 // InputError naming the file.
 ImageRGBA readImage(const std::string& path);
+// What readImage needs to decode `path`, from its header alone (checked as readImage checks it).
+int64_t imageDecodeBytes(const std::string& path);
 // The same for an image held in memory (PNG, JPEG or EXR, told by its signature); `name` is
 // used in errors.
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name);

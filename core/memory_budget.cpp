@@ -66,8 +66,8 @@ std::string byteSizeText(int64_t bytes) {
 void requireMemory(int64_t bytes, const std::string& what) {
   const MemoryAvailable available = availableMemory();
   if (bytes + kMarginBytes > available.bytes)
-    throw MemoryShortage(what + " needs " + byteSizeText(bytes) + " of memory; " + byteSizeText(available.bytes) +
-                         " are available (limited by " + available.limitedBy + ")");
+    throw MemoryShortage(what + " needs " + byteSizeText(bytes) + " of memory, and the program " + byteSizeText(kMarginBytes) +
+                         " more; " + byteSizeText(available.bytes) + " are available (limited by " + available.limitedBy + ")");
 }
 
 int concurrencyWithin(int64_t bytesEach, int wanted, const std::string& what) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -138,21 +139,28 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
                        " cameras, A has " + std::to_string(frame.cameras.size()));
   }
   if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
-  // The first pair alone sizes the rest: as many comparisons run at once as memory holds (a
-  // dataset's frames share a size per camera; each decode checks its own need again).
-  int64_t bytesEach = 0;
+  // Each camera's first pair, one at a time, sizes the rest: as many comparisons run at once as
+  // memory holds for the largest (a dataset's frames share a size per camera; each decode checks
+  // its own need again).
+  std::vector<int64_t> bytes(result.frames.size(), 0);
   const auto compareFrame = [&](size_t k) {
     FrameComparison& f = result.frames[k];
     const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
     const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
-    if (k == 0) bytesEach = comparisonBytes(imageA, imageB);
+    bytes[k] = comparisonBytes(imageA, imageB);
     f.result = compareImages(imageA, imageB, options.image);
     f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
   };
-  compareFrame(0);
+  std::set<std::string> sized;
+  std::vector<size_t> rest;
+  for (size_t k = 0; k < result.frames.size(); ++k) {
+    if (sized.insert(result.frames[k].camera).second) compareFrame(k);
+    else rest.push_back(k);
+  }
+  const int64_t bytesEach = *std::max_element(bytes.begin(), bytes.end());
   const int concurrency = concurrencyWithin(bytesEach, tbb::this_task_arena::max_concurrency(), "comparing two frames");
   tbb::task_arena arena(concurrency);
-  arena.execute([&] { tbb::parallel_for(size_t{1}, result.frames.size(), compareFrame); });
+  arena.execute([&] { tbb::parallel_for(size_t{0}, rest.size(), [&](size_t r) { compareFrame(rest[r]); }); });
   result.minPsnrDb = std::numeric_limits<double>::infinity();
   double finiteSum = 0.0;
   int finite = 0;

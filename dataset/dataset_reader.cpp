@@ -5,6 +5,7 @@
 #include "dataset_folder.h"
 #include "errors.h"
 #include "exr_channels.h"
+#include "memory_budget.h"
 #include "multilayer_frame.h"
 #include "safe_files.h"
 #include "scene_loader.h"
@@ -107,6 +108,8 @@ DecodedOutput outputOfFrame(const ExrChannels& frame, OutputKind kind, const std
     }
     return out;
   }
+  requireMemory(static_cast<int64_t>(pixels * channels.size() * sizeof(float)),
+                name + ": " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + " pixels of " + outputName(kind));
   std::vector<float> interleaved(pixels * channels.size());
   for (size_t c = 0; c < channels.size(); ++c) {
     const std::vector<float>& plane = frame.floats.at(channels[c]);

@@ -1,5 +1,6 @@
 #include "dataset_runner.h"
 
+#include "memory_budget.h"
 #include "render_settings.h"
 
 #include <filesystem>
@@ -122,6 +123,8 @@ std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetMan
 // runDataset's work, on whatever threads the caller's arena gives it.
 DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions& options) {
   const DatasetPlan plan(spec, options);
+  // At least one frame must fit, before the folder is touched.
+  requireMemory(plan.frameBytes(), "one frame of this dataset");
   DatasetRunResult result;
   result.frames = plan.range.end - plan.range.first;
   result.notes = plan.notes;

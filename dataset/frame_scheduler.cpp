@@ -1,5 +1,7 @@
 #include "frame_scheduler.h"
 
+#include "memory_budget.h"
+
 #include <algorithm>
 #include <chrono>
 #include <tbb/parallel_for.h>
@@ -80,8 +82,10 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  const size_t batch = engine.batches() ? (plan.framesHaveOwnSettings() ? 1 : kFramesPerBatch)
-                                        : engine.concurrent() ? kConcurrentFrames : 1;
+  const size_t batch = engine.batches()      ? (plan.framesHaveOwnSettings() ? 1 : kFramesPerBatch)
+                       : engine.concurrent() ? static_cast<size_t>(concurrencyWithin(plan.frameBytes(), kConcurrentFrames,
+                                                                                     "one frame of this dataset"))
+                                             : 1;
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
   auto lastManifest = std::chrono::steady_clock::now();
   int rendered = 0;

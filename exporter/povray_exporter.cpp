@@ -240,8 +240,18 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   return job;
 }
 
+std::vector<std::string> povrayJobFiles(const PovrayJob& job) {
+  std::vector<std::string> names{"scene.pov", "render.ini"};
+  for (const auto& t : job.textures) names.push_back(t.name);
+  return names;
+}
+
 void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads, const std::optional<PovrayRegion>& region) {
   namespace fs = std::filesystem;
+  // Every name first: a folder in the way of the last file leaves none written.
+  std::error_code ec;
+  if (fs::is_directory(dir, ec))
+    for (const std::string& name : povrayJobFiles(job)) checkOutputFile((fs::path(dir) / name).string(), "POV-Ray job");
   writeTextAtomically((fs::path(dir) / "scene.pov").string(), job.sdl);
   for (const auto& t : job.textures) writeImageAtomic((fs::path(dir) / t.name).string(), t.image);
   std::ostringstream ini;

@@ -1,5 +1,7 @@
 #include "cubemap_renderer.h"
 
+#include "memory_budget.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -127,6 +129,15 @@ bool hitTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, con
 
 }  // namespace
 
+void checkCubeMapOptions(const CubeMapOptions& o) {
+  if (o.faces != 5 && o.faces != 6) throw InputError("cube map: faces must be 5 or 6 (got " + std::to_string(o.faces) + ")");
+  if (o.faceSize < 8 || o.faceSize > 8192)
+    throw InputError("cube map: face size must be in [8, 8192] texels (got " + std::to_string(o.faceSize) + ")");
+  int sectors = 0, rings = 0;
+  if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
+    throw InputError("thesis mesh: polygons must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+}
+
 void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& o) {
   if (!rig.ideal())
     throw InputError(std::string(o.mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cube-map") +
@@ -137,14 +148,18 @@ void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& o) {
 
 std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,
                                                                        const CubeMapOptions& o) const {
-  if (o.faces != 5 && o.faces != 6) throw InputError("cube map: faces must be 5 or 6 (got " + std::to_string(o.faces) + ")");
-  if (o.faceSize < 8 || o.faceSize > 8192) throw InputError("cube map: face size must be in [8, 8192] texels");
+  checkCubeMapOptions(o);
   int sectors = 0, rings = 0;
-  if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
-    throw InputError("thesis mesh: polygons must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+  if (o.mode == OmniMode::ThesisMesh) thesisMeshLayout(o.polygons, sectors, rings);
   checkRenderSettings(settings);
   checkCubeMapCamera(settings.rig, o);
   const auto n = samplesPerAxis(settings.spp);
+  // The faces' texels (colour and slot, bordered), every sample's footprint (16 B) and the frame
+  // with its encoding (48 B a pixel), before any of it is allocated.
+  const int64_t pixels = int64_t{settings.rig.imageSize} * settings.rig.imageSize;
+  requireMemory(int64_t{o.faces} * (o.faceSize + 2) * (o.faceSize + 2) * 24 + pixels * (int64_t{settings.spp} * 16 + 48),
+                std::string(o.mode == OmniMode::ThesisMesh ? "the thesis mesh's" : "the cube map's") + " lookup of " +
+                    std::to_string(settings.rig.imageSize) + "x" + std::to_string(settings.rig.imageSize) + " pixels");
   std::lock_guard<std::mutex> lock(mutex_);
   const RigSpec& r = settings.rig;
   if (cached_ && cached_->spp == settings.spp && cached_->options.mode == o.mode && cached_->options.faces == o.faces &&

@@ -30,6 +30,9 @@ struct CubeLookupStats {
   long texelsRendered = 0;
 };
 
+// InputError for options no cube map has (faces 5 or 6, face size 8 … 8192, polygons 16, 64,
+// 256 or 1024), naming them in the library's words.
+void checkCubeMapOptions(const CubeMapOptions& options);
 // InputError unless the cube-map / thesis-mesh mode can render the rig's camera: they are
 // central by construction, so the ideal rig only.
 void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& options);

@@ -103,10 +103,11 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
   const size_t pixels = static_cast<size_t>(camera->width()) * camera->height();
   // At most every sample imaged: its direction and grid index (14 B), a non-central ray's origin
   // and start too (30 B), in vectors that may hold twice that while they grow; per pixel, the
-  // centre's ray and indices (20 B, non-central 36 B).
-  requireMemory(static_cast<int64_t>(pixels) * (n * n * (central ? 14 : 30) * 2 + (central ? 20 : 36)),
-                "the sample table of " + std::to_string(camera->width()) + "x" + std::to_string(camera->height()) +
-                    " pixels at " + std::to_string(n * n) + " spp");
+  // centre's ray and indices (20 B, non-central 36 B), and the frame it renders with every AOV and
+  // its encoding (84 B).
+  requireMemory(static_cast<int64_t>(pixels) * (n * n * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84),
+                "a " + std::to_string(camera->width()) + "x" + std::to_string(camera->height()) + " frame at " +
+                    std::to_string(n * n) + " spp (its sample table, the frame and its files)");
   table->firstSample.reserve(pixels + 1);
   table->centreDirections.reserve(pixels);
   table->centreSample.reserve(pixels);

@@ -149,6 +149,7 @@ std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, in
   if (mode == "cubemap") options->mode = OmniMode::CubeMap;
   else if (mode == "thesis-mesh") options->mode = OmniMode::ThesisMesh;
   else throw InputError(flag + ": must be exact, cubemap or thesis-mesh (got " + quote(mode) + ")");
+  checkCubeMapOptions(*options);  // when the engine is made, not at its first frame
   return options;
 }
 

@@ -249,6 +249,20 @@ TEST_F(InputTrustTest, OutputNamesAndOptionsAreCheckedBeforeTheFirstByte) {
   EXPECT_FALSE(fs::exists(dir_ / "ex"));
   expectRefused("demo --spp 5 -o " + path("demo"), "--spp: must be a perfect square");
   EXPECT_FALSE(fs::exists(dir_ / "demo"));
+  // A POV-Ray job's last file name taken: not even scene.pov is written.
+  fs::create_directories(dir_ / "job" / "render.ini");
+  expectRefused("export " + path("box.json") + " --to povray --size 8 -o " + path("job"), "render.ini is an existing folder");
+  // A folder path through a file: refused as input, before any work.
+  write("afile", "x");
+  expectRefused("arena hall -o " + path("afile/sub/hall.json"), "afile exists and is not a folder");
+  expectRefused("export " + path("box.json") + " --to gltf -o " + path("afile/sub"), "afile exists and is not a folder");
+  // A write that fails after the folders were made removes the folders it made, empty.
+  const auto before = snapshot(dir_);
+  const auto [code, out] = testing::runShell("ulimit -f 1; " + std::string(OMNICAM_BINARY) + " export " + path("box.json") +
+                                             " --to gltf -o " + path("g1/g2/g3") + " 2>&1");
+  EXPECT_EQ(code, 5) << out;
+  EXPECT_FALSE(fs::exists(dir_ / "g1")) << out;
+  EXPECT_TRUE(snapshot(dir_) == before);
 }
 
 // Integer flags are read as written, like the spec reader's JSON integers: never wrapped
@@ -265,6 +279,8 @@ TEST_F(InputTrustTest, IntegerFlagsAreReadExactly) {
   expectRefused("view " + path("box.json") + " --as panorama --size 0400x300 -o " + path("v.png"), "--size: must be WIDTHxHEIGHT");
   expectRefused("bench --seconds nan", "--seconds: must be a number in (0, 3600] (got \"nan\")");
   expectRefused("compare " + path("box.json") + " " + path("box.json") + " --tol inf", "--tol: must be a number in [0, 1e+06] (got \"inf\")");
+  expectRefused("view " + path("box.json") + " --zw 0x10 -o " + path("v.png"), "--zw: must be a number in (0, 1e+06] (got \"0x10\")");
+  expectRefused("view " + path("box.json") + " --as perspective --pitch ' 5' -o " + path("v.png"), "--pitch: must be a number");
   // The largest seed is a seed.
   const auto [code, out] = omnicam("arena mapping --seed 18446744073709551615 -o " + path("m.json"));
   EXPECT_EQ(code, 0) << out;
@@ -281,7 +297,7 @@ TEST_F(InputTrustTest, WorkBeyondTheMachinesMemoryIsRefusedBeforeItIsAllocated) 
     SCOPED_TRACE(command + "\n" + out);
     EXPECT_EQ(code, 5);
     EXPECT_TRUE(isOneLine(out));
-    EXPECT_NE(out.find("of memory; "), std::string::npos);
+    EXPECT_NE(out.find(" of memory, and the program 256 MiB more; "), std::string::npos);
     EXPECT_NE(out.find("limited by the address-space limit (ulimit -v)"), std::string::npos);
     EXPECT_TRUE(snapshot(dir_) == before) << "wrote something";
   };
@@ -297,6 +313,16 @@ TEST_F(InputTrustTest, WorkBeyondTheMachinesMemoryIsRefusedBeforeItIsAllocated) 
   fs::create_directories(dir_ / "b" / "cam0" / "rgb");
   fs::copy_file(dir_ / "a.png", dir_ / "b" / "cam0" / "rgb" / "000000.png");
   refusedForMemory("compare " + path("ds") + " " + path("b"));
+  // Multilayer: B's frame file a valid 16384 x 8192 OpenEXR (half RGBA, a few hundred KB): the
+  // frame reader sizes it per channel, and a shortage stays a shortage (exit 5), not bad input.
+  const auto [made, madeOut] = omnicam("dataset " + spec({{"layout", "multilayer"}, {"outputs", json::object()}}, "ml.json") +
+                                       " -o " + path("ml"));
+  ASSERT_EQ(made, 0) << madeOut;
+  fs::copy(dir_ / "ml", dir_ / "mlb", fs::copy_options::recursive);
+  const auto [created, createdOut] = testing::runShell("oiiotool --create 16384x8192 4 -d half --compression zip -o " +
+                                                       path("mlb/cam0/multilayer/000000.exr") + " 2>&1");
+  ASSERT_EQ(created, 0) << createdOut;
+  refusedForMemory("compare " + path("ml") + " " + path("mlb"));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "bindings.h"
+#include "input_limits.h"
 #include "coco.h"
 #include "dataset_folder.h"
 #include "dataset_reader.h"
@@ -23,8 +24,9 @@ namespace {
 // every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run once the frames
 // in progress are written (the fast engine renders a window of 8 at once, Blender a batch) and is
 // raised again once the run has stopped.
-py::dict runDatasetFromPython(const std::string& specPath, const std::string& out, bool overwrite, int threads,
+py::dict runDatasetFromPython(const std::string& specPath, const std::string& out, bool overwrite, const PyInteger& threadsArg,
                               const std::optional<py::function>& progress) {
+  const int threads = narrowed(threadsArg, "threads", 0, limits::kMaxThreads);
   const DatasetSpec spec = loadDatasetSpec(specPath);
   DatasetRunOptions options;
   options.dir = out;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "bindings.h"
+#include "input_limits.h"
 #include "engines.h"
 #include "errors.h"
 #include "scene_ids.h"
@@ -15,6 +16,11 @@ namespace omnicam::python {
 
 namespace {
 
+// size=: 0 for the rig's own, else an image size in [8, 16384].
+int optionalSize(const PyInteger& size) {
+  return size.fitsInt64 && size.value == 0 ? 0 : narrowed(size, "size", limits::kMinImageSize, limits::kMaxImageSize);
+}
+
 const std::set<std::string> kOutputs{"rgba", "rgb", "depth", "instance", "class", "normal"};
 
 // One engine for one scene, reused render after render (the fast engine builds its ray-tracing
@@ -22,15 +28,18 @@ const std::set<std::string> kOutputs{"rgba", "rgb", "depth", "instance", "class"
 // take turns.
 class PyRenderer {
  public:
-  PyRenderer(std::shared_ptr<const Scene> scene, const std::string& engine, const std::string& mode, int faces,
-             int faceSize, int polygons, double timeoutSeconds, int threads)
+  PyRenderer(std::shared_ptr<const Scene> scene, const std::string& engine, const std::string& mode, const PyInteger& faces,
+             const PyInteger& faceSize, const PyInteger& polygons, double timeoutSeconds, const PyInteger& threads)
       : scene_(std::move(scene)), ids_(idTables(*scene_)) {
-    const auto options = parseMode(mode, faces, faceSize, polygons, "mode");
-    engine_ = makeEngine(engine, *scene_, timeoutSeconds, options.get(), "engine", threads);
+    const auto options = parseMode(mode, narrowed(faces, "faces", 5, 6), narrowed(faceSize, "face_size", 8, 8192),
+                                   narrowed(polygons, "polygons", 16, 1024), "mode");
+    engine_ = makeEngine(engine, *scene_, timeoutSeconds, options.get(), "engine",
+                         narrowed(threads, "threads", 0, limits::kMaxThreads));
   }
 
-  py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, int size, int spp, const std::string& shading,
-                  bool traced, const std::vector<std::string>& outputs, const py::object& velocity) {
+  py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg, const PyInteger& sppArg,
+                  const std::string& shading, bool traced, const std::vector<std::string>& outputs, const py::object& velocity) {
+    const int size = optionalSize(sizeArg), spp = narrowed(sppArg, "spp", 1, limits::kMaxSpp);
     RenderSettings settings;
     settings.rig = rig.value_or(scene_->rig);
     if (size) settings.rig = settings.rig.resized(size);
@@ -62,7 +71,9 @@ class PyRenderer {
 
   // The benchmark's reference (bench/python_bench.py): `frames` renders of one pose in a C++ loop,
   // nothing handed to Python; seconds taken.
-  double renderRepeatedly(const py::object& pose, int frames, int size, int spp) {
+  double renderRepeatedly(const py::object& pose, const PyInteger& framesArg, const PyInteger& sizeArg, const PyInteger& sppArg) {
+    const int frames = narrowed(framesArg, "frames", 0, 1000000), size = optionalSize(sizeArg),
+              spp = narrowed(sppArg, "spp", 1, limits::kMaxSpp);
     RenderSettings settings;
     settings.rig = size ? scene_->rig.resized(size) : scene_->rig;
     settings.spp = spp;
@@ -129,8 +140,8 @@ void bindRender(py::module_& m) {
 engine: "fast" (default), "povray" or "blender" (ground truths: colour only); mode: "exact",
 "cubemap" or "thesis-mesh" (fast engine only) with faces, face_size and polygons; timeout: seconds
 per ground-truth frame; threads: 0 for every core.)")
-      .def(py::init([](std::shared_ptr<Scene> scene, const std::string& engine, const std::string& mode, int faces,
-                       int faceSize, int polygons, double timeout, int threads) {
+      .def(py::init([](std::shared_ptr<Scene> scene, const std::string& engine, const std::string& mode, const PyInteger& faces,
+                       const PyInteger& faceSize, const PyInteger& polygons, double timeout, const PyInteger& threads) {
              // The renderer keeps its own copy: changing the Python scene later does not change it.
              return std::make_unique<PyRenderer>(std::make_shared<const Scene>(*scene), engine, mode, faces, faceSize,
                                                  polygons, timeout, threads);
@@ -149,9 +160,10 @@ per ground-truth frame; threads: 0 for every core.)")
   m.def(
       "render",
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::string& engine, const std::optional<RigSpec>& rig,
-         int size, int spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs,
+         const PyInteger& size, const PyInteger& spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs,
          const py::object& velocity) {
-        PyRenderer renderer(std::make_shared<const Scene>(*scene), engine, "exact", 6, 512, 1024, 600.0, 0);
+        PyRenderer renderer(std::make_shared<const Scene>(*scene), engine, "exact", PyInteger{true, true, 6, 6, "6"},
+                            PyInteger{true, true, 512, 512, "512"}, PyInteger{true, true, 1024, 1024, "1024"}, 600.0, PyInteger{});
         return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity);
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = "fast", py::arg("rig") = py::none(),

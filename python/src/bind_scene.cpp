@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "bindings.h"
+#include "input_limits.h"
 #include "mapping_arena.h"
 #include "scene_ids.h"
 #include "scene_loader.h"
@@ -69,7 +70,9 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
   rig.def(py::init<>())
       .def(py::init([](const py::dict& d) { return rigFromDict(fromPython(d, "omnicam.Rig")); }), py::arg("rig").none(false))
       .def("to_dict", [](const RigSpec& r) { return toPython(rigToJson(r)); }, "The rig as the scene format's \"rig\" block.")
-      .def("resized", &RigSpec::resized, py::arg("size"), "The same rig imaging size × size pixels.")
+      .def("resized", [](const RigSpec& r, const PyInteger& size) {
+             return r.resized(narrowed(size, "image size", limits::kMinImageSize, limits::kMaxImageSize));
+           }, py::arg("size"), "The same rig imaging size × size pixels.")
       .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")
       .def_property_readonly("shape", [](const RigSpec& r) { return std::string(mirrorShapeName(r.shape.shape)); },
                              "The mirror shape: hyperboloid, paraboloid, sphere or cone.")
@@ -113,9 +116,11 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
       }, "The scene's named camera paths: {name: [(x, y, yaw_deg), …]}.")
       .def("__repr__", [](const Scene& s) { return "<omnicam.Scene " + json(s.name).dump() + " from " + json(s.path).dump() + ">"; });
 
-  m.def("mapping_arena", [](uint64_t seed, int victims, int debris) {
+  m.def("mapping_arena", [](const PyInteger& seed, const PyInteger& victims, const PyInteger& debris) {
     MappingOptions options;
-    options.seed = seed, options.victims = victims, options.debris = debris;
+    options.seed = narrowedSeed(seed, "seed");
+    options.victims = narrowed(victims, "victims", 0, 1598);
+    options.debris = narrowed(debris, "debris", 0, 16000);
     return toPython(generateMappingArena(options).scene);
   }, py::arg("seed") = 1, py::arg("victims") = 4, py::arg("debris") = 14,
   R"(The rescue maze of `omnicam arena mapping` (RoboCup Rescue's mapping arena: walls, ramps,

@@ -15,6 +15,20 @@ namespace omnicam::python {
 
 namespace py = pybind11;
 
+// An integer argument exactly as Python gave it, of any size: pybind's own int conversion raises
+// TypeError for one beyond the C++ type, where the CLI and the scene reader say what range it
+// must be in. Read by narrowed() below, with the library's words.
+struct PyInteger {
+  bool fitsInt64 = true, fitsUint64 = true;
+  int64_t value = 0;           // when it fits int64
+  uint64_t unsignedValue = 0;  // when it is ≥ 0 and fits 64 bits
+  std::string text;            // as Python writes it, for messages
+};
+// `value` as an int when it lies in [lo, hi]; InputError("<name>: must be an integer in [lo, hi]
+// (got …)") otherwise.
+int narrowed(const PyInteger& value, const std::string& name, int64_t lo, int64_t hi);
+uint64_t narrowedSeed(const PyInteger& value, const std::string& name);
+
 void bindScene(py::module_& m);
 void bindCamera(py::module_& m);
 void bindRender(py::module_& m);
@@ -38,3 +52,30 @@ RobotPose poseFrom(const py::handle& pose, const std::string& what);
 BodyVelocity velocityFrom(const py::handle& velocity, const std::string& what);
 
 }  // namespace omnicam::python
+
+namespace pybind11::detail {
+template <>
+struct type_caster<omnicam::python::PyInteger> {
+  PYBIND11_TYPE_CASTER(omnicam::python::PyInteger, const_name("int"));
+  bool load(handle source, bool) {
+    if (!source || !PyLong_Check(source.ptr()) || PyBool_Check(source.ptr())) return false;
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(source.ptr(), &overflow);
+    if (v == -1 && PyErr_Occurred()) return PyErr_Clear(), false;
+    value.fitsInt64 = overflow == 0;
+    value.value = overflow == 0 ? v : 0;
+    value.fitsUint64 = overflow == 0 ? v >= 0 : overflow > 0;
+    if (overflow == 0 && v >= 0) value.unsignedValue = static_cast<unsigned long long>(v);
+    if (overflow > 0) {
+      const unsigned long long u = PyLong_AsUnsignedLongLong(source.ptr());
+      if (PyErr_Occurred()) PyErr_Clear(), value.fitsUint64 = false;
+      else value.unsignedValue = u;
+    }
+    value.text = str(source).cast<std::string>();
+    return true;
+  }
+  static handle cast(const omnicam::python::PyInteger& v, return_value_policy, handle) {
+    return PyLong_FromLongLong(v.value);
+  }
+};
+}  // namespace pybind11::detail

@@ -24,6 +24,19 @@ nlohmann::json fromPython(const py::handle& object, const std::string& what) {
   return parsed;
 }
 
+int narrowed(const PyInteger& value, const std::string& name, int64_t lo, int64_t hi) {
+  if (!value.fitsInt64 || value.value < lo || value.value > hi)
+    throw InputError(name + ": must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+                     quote(value.text) + ")");
+  return static_cast<int>(value.value);
+}
+
+uint64_t narrowedSeed(const PyInteger& value, const std::string& name) {
+  if (!value.fitsUint64)
+    throw InputError(name + ": must be an integer in [0, 18446744073709551615] (got " + quote(value.text) + ")");
+  return value.unsignedValue;
+}
+
 RobotPose poseFrom(const py::handle& pose, const std::string& what) {
   std::vector<double> v;
   try {

@@ -22,9 +22,9 @@ def test_renderer_timeouts_are_in_the_clis_range(robocup, timeout):
         omnicam.Renderer(robocup, engine="povray", timeout=timeout)
 
 
-@pytest.mark.parametrize("size", [-5, 0, 7, 16385, 10**6, 2**31 - 1])
+@pytest.mark.parametrize("size", [-5, 0, 7, 16385, 10**6, 2**31 - 1, 2**32 + 64, 2**64, -2**70])
 def test_a_rig_resizes_only_within_the_image_size_limits(size):
-    with pytest.raises(omnicam.InputError, match=r"image size: must be in \[8, 16384\]"):
+    with pytest.raises(omnicam.InputError, match=r"image size: must be an integer in \[8, 16384\]"):
         omnicam.Rig().resized(size)
 
 
@@ -35,10 +35,35 @@ def test_a_physical_rig_resized_past_the_limit_is_refused_not_described_for_minu
     assert omnicam.Rig().resized(16384).to_dict()["image"]["size"] == 16384
 
 
-@pytest.mark.parametrize("size", [-5, 7, 16385])
+@pytest.mark.parametrize("size", [-5, 7, 16385, 2**40])
 def test_render_sizes_are_in_range(robocup, size):
-    with pytest.raises(omnicam.InputError, match=r"must be in \[8, 16384\]"):
+    with pytest.raises(omnicam.InputError, match=r"size: must be an integer in \[8, 16384\]"):
         omnicam.render(robocup, size=size)
+
+
+@pytest.mark.parametrize("threads", [2**64, -2**64])
+def test_integers_beyond_64_bits_are_refused_in_the_libraries_words(robocup, threads):
+    """Not pybind's TypeError: the same InputError as for any number out of range."""
+    with pytest.raises(omnicam.InputError, match=r"threads: must be an integer in \[0, 4096\]"):
+        omnicam.Renderer(robocup, threads=threads)
+    with pytest.raises(omnicam.InputError, match=r"spp: must be an integer in \[1, 1024\]"):
+        omnicam.render(robocup, spp=2**32 + 1)
+
+
+def test_mapping_arena_counts_and_seed_are_bounded():
+    with pytest.raises(omnicam.InputError, match=r"debris: must be an integer in \[0, 16000\]"):
+        omnicam.mapping_arena(debris=10**9)
+    with pytest.raises(omnicam.InputError, match="at most cells - 2 victims and 10 debris a cell"):
+        omnicam.mapping_arena(debris=15000)
+    with pytest.raises(omnicam.InputError, match=r"seed: must be an integer in \[0, 18446744073709551615\]"):
+        omnicam.mapping_arena(seed=-1)
+    assert omnicam.mapping_arena(seed=2**64 - 1)["objects"]
+
+
+@pytest.mark.parametrize("options", [{"faces": 7}, {"face_size": -1}, {"polygons": 17}])
+def test_cube_map_options_are_checked_when_the_renderer_is_made(robocup, options):
+    with pytest.raises(omnicam.InputError):
+        omnicam.Renderer(robocup, mode="thesis-mesh", **options)
 
 
 @pytest.mark.parametrize("threads", [-1, 4097])
