@@ -54,8 +54,13 @@ void runStudy(const StudyArgs& a) {
   const Scene ringScene = loadScene(dir + "/incidence-rings.json");
   const fs::path outPath(a.out);
   const fs::path figures = outPath.parent_path() / "figures";
-  if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n from 1 to 1024 (got " + std::to_string(a.spp) + ")");
-  checkOutputFile(a.out, "-o");
+  RenderSettings checked;
+  checked.spp = a.spp;
+  checkRenderSettings(checked, kSettingFlags);  // before the figures' folder is made
+  // The report's folder may be new (made with its figures/); an existing one must not hold a
+  // folder under the report's name.
+  std::error_code ec;
+  if (fs::is_directory(figures.parent_path().empty() ? fs::path(".") : figures.parent_path(), ec)) checkOutputFile(a.out, "-o");
   ensureDirectory(figures.string(), "-o");
 
   std::vector<Row> rows{Row("exact (reference)", "exact", std::nullopt)};
