@@ -52,7 +52,9 @@ fuzz: fuzz-build
 test: build fuzz-build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
 
-demo: build
+# The demo needs the omnicam binary only: not the test programs, benchmarks or the Python module.
+demo: deps $(BUILD_DIR)/CMakeCache.txt
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target omnicam
 	$(BUILD_DIR)/bin/omnicam demo -o out/demo
 
 # Frames/s of the fast renderer, fast vs POV-Ray per frame over the 100-frame thesis-loop (1 and
