@@ -320,21 +320,8 @@ std::string demoDataset(const std::string& out, const std::string& scenePath) {
   return html.str();
 }
 
-void runDemo(const DemoArgs& a) {
-  namespace fs = std::filesystem;
-  RenderSettings checked;
-  checked.spp = a.spp;
-  checkRenderSettings(checked, kSettingFlags);  // before the report folder is made
-  ensureDirectory(a.out, "-o");
-  const std::string dir = scenesDir();
-  const Scene arena = loadScene(dir + "/robocup2006.json");
-  const Scene ringScene = loadScene(dir + "/incidence-rings.json");
-  std::vector<std::string> engines{"fast"};
-  if (a.povray) engines.push_back("povray");
-  if (a.blender) engines.push_back("blender");
-
-  const EngineFigures glance = renderGlance(a.out, dir + "/robocup2006.json", a);
-
+// The open field from the thesis' start pose, unlit and lit, by every engine.
+std::string openFieldSection(const DemoArgs& a, const Scene& arena, const std::vector<std::string>& engines) {
   std::ostringstream views;
   for (Shading shading : {Shading::Unlit, Shading::Lit}) {
     RenderSettings settings;
@@ -353,20 +340,29 @@ void runDemo(const DemoArgs& a) {
                               })
                  .html;
   }
+  return views.str();
+}
 
+// The incidence-angle rings of every engine (thesis Figs. 3.11-3.12): images, reports, plots.
+struct RingSection {
+  std::vector<EngineRings> rings;
+  std::string figures, summary, table;
+};
+
+RingSection ringSection(const DemoArgs& a, const Scene& ringScene, const std::vector<std::string>& engines) {
   RenderSettings ringSettings;
   ringSettings.rig = ringScene.rig;
   ringSettings.spp = a.spp;
   const OmniCamera ringCamera = ringSettings.rig.camera();
-  std::vector<EngineRings> rings;
+  RingSection out;
   std::ostringstream ringFigures, ringTable, ringSummary;
   for (const auto& name : engines) {
     std::printf("demo: incidence-angle rings, %s\n", name.c_str());
     auto engine = makeEngine(name, ringScene);
     const auto rendered = renderToFile(ringScene, *engine, ringScene.startPose, ringSettings,
                                        a.out + "/rings_" + name + ".png");
-    rings.push_back({name, measureRings(rendered.image, ringCamera, defaultRingThetasDeg())});
-    const RingReport& r = rings.back().report;
+    out.rings.push_back({name, measureRings(rendered.image, ringCamera, defaultRingThetasDeg())});
+    const RingReport& r = out.rings.back().report;
     writeTextAtomically(a.out + "/rings_" + name + ".json", ringReportToJson(r).dump(2) + "\n");
     ringFigures << "<figure><img src=\"rings_" << name << ".png\" width=\"360\"><figcaption>" << name
                 << "</figcaption></figure>\n";
@@ -378,62 +374,88 @@ void runDemo(const DemoArgs& a) {
     std::printf("demo: rings %s: RMS %.4f px vs exact model, Eq. 3.2 MSE %.4f px^2\n", name.c_str(), r.rmsPxExact,
                 r.msePx2Eq32);
   }
-  writeRingPlots(a.out, ringCamera, rings);
-  const std::string dataset = demoDataset(a.out, dir + "/robocup2006.json");
-  const std::string hall = demoTexturedHall(a.out, dir + "/robocup2006.json");
-  const std::string physical = demoPhysicalCamera(a.out, arena, a.spp, a.povray);
-  const std::string motion = demoMotion(a.out, arena, a.spp);
-
-  // The thesis' method (Fig. 3.4 with numbers) and the views of thesis §3.2.1.
-  std::ostringstream method, viewFigures;
-  {
-    RenderSettings settings;
-    settings.rig = arena.rig;
-    settings.spp = a.spp;
-    const FastRenderer fast(arena);
-    const CubeMapRenderer cube(fast);
-    const ImageRGBA exact = fast.render(arena.startPose, settings);
-    std::vector<std::pair<std::string, CubeMapOptions>> modes;
-    for (int polygons : {16, 64, 256, 1024}) {
-      CubeMapOptions o;
-      o.mode = OmniMode::ThesisMesh;
-      o.polygons = polygons;
-      modes.emplace_back(std::to_string(polygons) + " polygons", o);
-    }
-    modes.emplace_back("cube map, 6 faces", CubeMapOptions{});
-    for (size_t k = 0; k < modes.size(); ++k) {
-      std::printf("demo: thesis method, %s\n", modes[k].first.c_str());
-      const ImageRGBA image = cube.render(arena.startPose, settings, modes[k].second);
-      const std::string file = "method_" + std::to_string(k) + ".png";
-      writeImageAtomic(a.out + "/" + file, image);
-      method << "<figure><img src=\"" << file << "\" width=\"270\"><figcaption>" << modes[k].first
-             << format("<br>PSNR %.2f dB vs exact", compareImages(exact, image).psnrDb) << "</figcaption></figure>\n";
-    }
-    const OmniCamera camera = settings.rig.camera();
-    for (const auto& [kind, variant, name] :
-         std::vector<std::tuple<ViewKind, ViewVariant, std::string>>{{ViewKind::BirdsEye, ViewVariant::Exact, "birdseye_exact"},
-                                                                     {ViewKind::BirdsEye, ViewVariant::Thesis, "birdseye_thesis"},
-                                                                     {ViewKind::Panorama, ViewVariant::Exact, "panorama_exact"},
-                                                                     {ViewKind::Panorama, ViewVariant::Thesis, "panorama_thesis"}}) {
-      ViewSpec spec;
-      spec.kind = kind;
-      spec.variant = variant;
-      writeImageAtomic(a.out + "/" + name + ".png", applyViewMap(buildViewMap(spec, camera), exact));
-      viewFigures << "<figure style=\"max-width:" << (kind == ViewKind::Panorama ? 1100 : 420) << "px\"><img src=\""
-                  << name << ".png\"><figcaption>" << name << "</figcaption></figure>\n";
-    }
-  }
+  writeRingPlots(a.out, ringCamera, out.rings);
   ringTable << "<tr><th>θ (°)</th><th>exact (px)</th><th>Eq. 3.2 (px)</th>";
-  for (const auto& e : rings) ringTable << "<th>" << e.engine << " (px)</th><th>" << e.engine << " − exact</th>";
+  for (const auto& e : out.rings) ringTable << "<th>" << e.engine << " (px)</th><th>" << e.engine << " − exact</th>";
   ringTable << "</tr>\n";
-  for (size_t k = 0; k < rings[0].report.rings.size(); ++k) {
-    const auto& m = rings[0].report.rings[k];
+  for (size_t k = 0; k < out.rings[0].report.rings.size(); ++k) {
+    const auto& m = out.rings[0].report.rings[k];
     ringTable << format("<tr><td>%.0f</td><td>%.4f</td><td>%.4f</td>", m.thetaDeg, m.exactPx, m.eq32Px);
-    for (const auto& e : rings)
+    for (const auto& e : out.rings)
       ringTable << format("<td>%.4f</td><td>%+.4f</td>", e.report.rings[k].measuredPx,
                           e.report.rings[k].measuredPx - e.report.rings[k].exactPx);
     ringTable << "</tr>\n";
   }
+  out.figures = ringFigures.str(), out.summary = ringSummary.str(), out.table = ringTable.str();
+  return out;
+}
+
+// The thesis' method (Fig. 3.4 with numbers) and the views of thesis §3.2.1.
+struct MethodSection {
+  std::string method, views;
+};
+
+MethodSection methodSection(const DemoArgs& a, const Scene& arena) {
+  std::ostringstream method, viewFigures;
+  RenderSettings settings;
+  settings.rig = arena.rig;
+  settings.spp = a.spp;
+  const FastRenderer fast(arena);
+  const CubeMapRenderer cube(fast);
+  const ImageRGBA exact = fast.render(arena.startPose, settings);
+  std::vector<std::pair<std::string, CubeMapOptions>> modes;
+  for (int polygons : {16, 64, 256, 1024}) {
+    CubeMapOptions o;
+    o.mode = OmniMode::ThesisMesh;
+    o.polygons = polygons;
+    modes.emplace_back(std::to_string(polygons) + " polygons", o);
+  }
+  modes.emplace_back("cube map, 6 faces", CubeMapOptions{});
+  for (size_t k = 0; k < modes.size(); ++k) {
+    std::printf("demo: thesis method, %s\n", modes[k].first.c_str());
+    const ImageRGBA image = cube.render(arena.startPose, settings, modes[k].second);
+    const std::string file = "method_" + std::to_string(k) + ".png";
+    writeImageAtomic(a.out + "/" + file, image);
+    method << "<figure><img src=\"" << file << "\" width=\"270\"><figcaption>" << modes[k].first
+           << format("<br>PSNR %.2f dB vs exact", compareImages(exact, image).psnrDb) << "</figcaption></figure>\n";
+  }
+  const OmniCamera camera = settings.rig.camera();
+  for (const auto& [kind, variant, name] :
+       std::vector<std::tuple<ViewKind, ViewVariant, std::string>>{{ViewKind::BirdsEye, ViewVariant::Exact, "birdseye_exact"},
+                                                                   {ViewKind::BirdsEye, ViewVariant::Thesis, "birdseye_thesis"},
+                                                                   {ViewKind::Panorama, ViewVariant::Exact, "panorama_exact"},
+                                                                   {ViewKind::Panorama, ViewVariant::Thesis, "panorama_thesis"}}) {
+    ViewSpec spec;
+    spec.kind = kind;
+    spec.variant = variant;
+    writeImageAtomic(a.out + "/" + name + ".png", applyViewMap(buildViewMap(spec, camera), exact));
+    viewFigures << "<figure style=\"max-width:" << (kind == ViewKind::Panorama ? 1100 : 420) << "px\"><img src=\""
+                << name << ".png\"><figcaption>" << name << "</figcaption></figure>\n";
+  }
+  return {method.str(), viewFigures.str()};
+}
+
+void runDemo(const DemoArgs& a) {
+  namespace fs = std::filesystem;
+  RenderSettings checked;
+  checked.spp = a.spp;
+  checkRenderSettings(checked, kSettingFlags);  // before the report folder is made
+  ensureDirectory(a.out, "-o");
+  const std::string dir = scenesDir();
+  const Scene arena = loadScene(dir + "/robocup2006.json");
+  const Scene ringScene = loadScene(dir + "/incidence-rings.json");
+  std::vector<std::string> engines{"fast"};
+  if (a.povray) engines.push_back("povray");
+  if (a.blender) engines.push_back("blender");
+
+  const EngineFigures glance = renderGlance(a.out, dir + "/robocup2006.json", a);
+  const std::string views = openFieldSection(a, arena, engines);
+  const RingSection rings = ringSection(a, ringScene, engines);
+  const std::string dataset = demoDataset(a.out, dir + "/robocup2006.json");
+  const std::string hall = demoTexturedHall(a.out, dir + "/robocup2006.json");
+  const std::string physical = demoPhysicalCamera(a.out, arena, a.spp, a.povray);
+  const std::string motion = demoMotion(a.out, arena, a.spp);
+  const MethodSection method = methodSection(a, arena);
 
   std::ostringstream html;
   html << R"(<!doctype html><html><head><meta charset="utf-8"><title>omnicam demo</title>
@@ -442,7 +464,7 @@ figure{display:inline-block;margin:0 1em 1em 0;vertical-align:top;max-width:380p
 img{image-rendering:pixelated;background:#444}table{border-collapse:collapse;font-size:85%}
 td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}</style></head><body>
 <h1>omnicam demo</h1>
-)" << glanceSection(glance, rings, a.spp)
+)" << glanceSection(glance, rings.rings, a.spp)
        << R"(<h2>The open field from the thesis' start pose</h2>
 <p>The RoboCup 2006 Four-Legged field seen by the simulated catadioptric camera (k = 11.546, c = 2.321 cm, rim 45°
 above the horizon, 360×360) from the thesis start pose, )"
@@ -451,23 +473,23 @@ closed-form model (no mirror). <b>povray</b>: the ground truth — a pinhole cam
 hyperboloidal mirror (a quadric), traced by POV-Ray 3.7 at the same sample positions. <b>blender</b>: the second
 ground truth — Cycles (CPU, box filter, fixed seed, no denoising) looking into a mirror mesh certified to deviate
 less than 0.5 µm from the quadric; it samples randomly inside each pixel, so it converges with spp.</p>
-)" << views.str()
-       << R"(<h2>Incidence-angle rings (thesis Figs. 3.11–3.12)</h2><ul>)" << ringSummary.str()
+)" << views
+       << R"(<h2>Incidence-angle rings (thesis Figs. 3.11–3.12)</h2><ul>)" << rings.summary
        << R"(</ul><p>docs/conventions.md §1: Eq. 3.2 against the exact model has MSE 0.256 px² — the thesis' "below one pixel".</p>
-)" << ringFigures.str()
+)" << rings.figures
        << R"(<figure style="max-width:660px"><img src="rings_plot.svg" width="640"><br><img src="rings_residuals.svg" width="640">
 <figcaption>measured radii against the exact model and the thesis' Eq. 3.2</figcaption></figure>
-<table>)" << ringTable.str()
+<table>)" << rings.table
        << R"(</table>
 <h2>The thesis' method: cube faces mapped onto a mirror mesh (thesis Fig. 3.4, measured)</h2>
 <p>Texture coordinates interpolated linearly across each mirror polygon distort the image; the cube map with
 per-pixel lookups does not. See <code>docs/thesis-reproduction.md</code> (<code>omnicam study</code>).</p>
-)" << method.str()
+)" << method.method
        << R"(<h2>Views (thesis §3.2.1): bird's-eye (Eqs. 3.3–3.5) and panorama (Eqs. 3.6–3.7)</h2>
 <p>Bird's-eye: a map seen from above (right = forward, up = robot's left), ground at z<sub>w</sub> = 40 pixel units.
 Panorama: centre = forward, top = rim. <i>thesis</i> uses the parabolic Eq. 3.4 / radius-linear rows; <i>exact</i>
 the model of docs/conventions.md §1.</p>
-)" << viewFigures.str()
+)" << method.views
        << physical << motion << dataset << hall << R"(
 <p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,
 and OpenCV <code>cv::omnidir</code> intrinsics.</p></body></html>

@@ -1,8 +1,5 @@
 #include "dataset_runner.h"
 
-#include "memory_budget.h"
-#include "render_settings.h"
-
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -16,6 +13,8 @@
 #include "errors.h"
 #include "frame_scheduler.h"
 #include "manifest.h"
+#include "memory_budget.h"
+#include "render_settings.h"
 #include "safe_files.h"
 #include "scene_loader.h"
 #include "sha256.h"

@@ -1,13 +1,12 @@
 #include "frame_scheduler.h"
 
-#include "memory_budget.h"
-
 #include <algorithm>
 #include <chrono>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
 #include "frame_outputs.h"
+#include "memory_budget.h"
 #include "safe_files.h"
 #include "sha256.h"
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <sstream>
@@ -270,21 +271,8 @@ EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames, 
   return trace;
 }
 
-}  // namespace
-
-TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const std::string& plotScript,
-                                        const ExperimentProgress& progress) {
-  const auto started = std::chrono::steady_clock::now();
-  if (o.size < 64 || o.spp < 1 || o.realistic.spp < 1 || o.testStride < 1 || o.trainFrames < 1 || o.randomHalls < 1 ||
-      o.randomPhotos.empty() || o.labPhoto.empty())
-    throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
-  const fs::path out(o.outDir);
-  // Its folders are made without following a link planted there: what it writes stays inside.
-  const char* const folders[] = {"arenas", "data", "frames", "figures"};
-  for (const char* sub : folders) checkFoldersInside(o.outDir, sub);  // all checked, then made
-  for (const char* sub : folders) makeFoldersInside(o.outDir, sub);
-
-  // The arenas.
+// The plain, textured and random-photo halls of the run, in its arenas/ folder.
+void writeArenas(const TextureRealismOptions& o, const fs::path& out) {
   HallOptions hall;
   hall.fieldScene = o.fieldScene;
   hall.lampDiameter = o.realistic.lampDiameter;
@@ -297,22 +285,15 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     hall.seed = o.seed + 1000 + static_cast<uint64_t>(k);
     writeHallArena(hall, (out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
   }
-  const Scene plain = loadScene((out / "arenas/hall-plain.json").string());
-  const Scene textured = loadScene((out / "arenas/hall-textured.json").string());
-  const std::vector<Beacon> beacons = beaconsOf(plain);
-  const std::vector<std::string> bandColour = bandColourOfObjects(plain);
-  const std::vector<std::string> objectNames = objectNamesOf(plain);
-  const CameraPath* loop = plain.findPath("thesis-loop");
-  if (!loop) throw InputError(showPath(o.fieldScene) + ": paths: no \"thesis-loop\"");
-  std::vector<RobotPose> testPoses;
-  for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
+}
 
-  const int trainTotal = 2 * o.trainFrames, testTotal = 3 * static_cast<int>(testPoses.size());
-  int done = 0;
-  auto step = [&] { progress("rendering", ++done, trainTotal + testTotal); };
+using Classifiers = std::map<std::string, std::map<std::string, ColourHistogramClassifier>>;
 
-  // Train sets: labels from the fast renderer's instance masks.
-  std::map<std::string, std::map<std::string, ColourHistogramClassifier>> trained;
+// Train sets (plain; random_textures, spread over the random halls): labels from the fast
+// renderer's instance masks.
+Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain,
+                             const std::vector<std::string>& bandColour, const std::function<void()>& step) {
+  Classifiers trained;
   const std::vector<std::string> colours = {"cyan", "magenta", "yellow"};
   for (const std::string& set : {std::string("plain"), std::string("random_textures")}) {
     auto& classifiers = trained[set];
@@ -329,12 +310,17 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
       }
     }
   }
+  return trained;
+}
 
-  // Test sets along thesis-loop.
+// Test sets along thesis-loop: plain and textured by the fast renderer, realistic by Blender (one
+// session per batch of poses) on the textured hall, whose instance masks hold for them too.
+std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const Scene& plain, const Scene& textured,
+                                                         const std::vector<RobotPose>& testPoses,
+                                                         const std::function<void()>& step) {
   std::map<std::string, std::vector<Frame>> tests;
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
-  // Realistic: one Blender session per batch of poses.
   std::vector<Frame>& realistic = tests["realistic"];
   for (size_t first = 0; first < testPoses.size(); first += kFramesPerBatch) {
     const std::vector<RobotPose> batch(testPoses.begin() + static_cast<long>(first),
@@ -342,11 +328,96 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     std::vector<ImageRGBA> images = renderRealistic(textured, batch, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
     for (size_t k = 0; k < batch.size(); ++k) {
       const size_t index = first + k;
-      // The geometry is the textured hall's: its instance masks hold for these frames too.
       realistic.push_back({batch[k], recordFrame(o.recording, images[k], index), tests["textured"][index].instance});
       step();
     }
   }
+  return tests;
+}
+
+// A condition's totals, its most frequent false-positive sources, its EKF run and its example
+// frame (the one with the most visible beacons, first of them), from its frames' evaluations.
+void summariseCondition(ConditionReport& condition, const std::vector<Frame>& frames, const Drive& drive, int testStride) {
+  ConditionOutcome& c = condition.outcome;
+  std::vector<double> pixels, ranges, bearings;
+  for (const FrameEvaluation& f : condition.frames) {
+    c.truePositives += f.truePositives;
+    c.falsePositiveBlobs += f.falsePositiveBlobs;
+    c.falsePositives += f.falsePositiveBlobs + f.falseIdentifications;
+    c.missed += f.visibleBeacons - f.truePositives;
+    pixels.insert(pixels.end(), f.localisationErrorsPx.begin(), f.localisationErrorsPx.end());
+    ranges.insert(ranges.end(), f.rangeErrorsCm.begin(), f.rangeErrorsCm.end());
+    bearings.insert(bearings.end(), f.bearingErrorsDeg.begin(), f.bearingErrorsDeg.end());
+  }
+  std::map<std::string, int> sources;
+  for (const FrameEvaluation& f : condition.frames)
+    for (const FalseBlob& b : f.falseBlobs) {
+      ++sources[b.object.empty() ? "(nothing)" : b.object];
+      c.falsePositiveBlobsOnHall += b.object.rfind("hall_", 0) == 0;
+    }
+  c.falsePositiveSources.assign(sources.begin(), sources.end());
+  std::sort(c.falsePositiveSources.begin(), c.falsePositiveSources.end(),
+            [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+  if (c.falsePositiveSources.size() > 5) c.falsePositiveSources.resize(5);
+  c.frames = static_cast<int>(frames.size());
+  c.meanLocalisationErrorPx = mean(pixels);
+  c.meanRangeErrorCm = mean(ranges);
+  c.meanBearingErrorDeg = mean(bearings);
+  condition.ekf = runEkf(drive, condition.frames, static_cast<size_t>(testStride));
+  size_t example = 0;
+  for (size_t k = 0; k < condition.frames.size(); ++k)
+    if (condition.frames[k].visibleBeacons > condition.frames[example].visibleBeacons) example = k;
+  condition.exampleFrame = example;
+  condition.exampleImage = frames[example].image;
+}
+
+// The EKF's mean position errors along the loop, odometry alone and filtered (cm).
+EkfOutcome ekfOutcome(const ConditionReport& c) {
+  EkfOutcome e;
+  e.condition = c.outcome.key();
+  std::vector<double> odometryErrors, ekfErrors;
+  for (size_t k = 1; k < c.ekf.rows.size(); ++k) {
+    const EkfRow& row = c.ekf.rows[k];
+    odometryErrors.push_back(100.0 * (row.odometry.head<2>() - row.truth.head<2>()).norm());
+    ekfErrors.push_back(100.0 * (row.estimate.head<2>() - row.truth.head<2>()).norm());
+  }
+  e.meanErrorOdometryCm = mean(odometryErrors);
+  e.meanErrorEkfCm = mean(ekfErrors);
+  e.measurementsUsed = c.ekf.used;
+  e.measurementsGated = c.ekf.gated;
+  return e;
+}
+
+}  // namespace
+
+TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const std::string& plotScript,
+                                        const ExperimentProgress& progress) {
+  const auto started = std::chrono::steady_clock::now();
+  if (o.size < 64 || o.spp < 1 || o.realistic.spp < 1 || o.testStride < 1 || o.trainFrames < 1 || o.randomHalls < 1 ||
+      o.randomPhotos.empty() || o.labPhoto.empty())
+    throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
+  const fs::path out(o.outDir);
+  // Its folders are made without following a link planted there: what it writes stays inside.
+  const char* const folders[] = {"arenas", "data", "frames", "figures"};
+  for (const char* sub : folders) checkFoldersInside(o.outDir, sub);  // all checked, then made
+  for (const char* sub : folders) makeFoldersInside(o.outDir, sub);
+
+  writeArenas(o, out);
+  const Scene plain = loadScene((out / "arenas/hall-plain.json").string());
+  const Scene textured = loadScene((out / "arenas/hall-textured.json").string());
+  const std::vector<Beacon> beacons = beaconsOf(plain);
+  const std::vector<std::string> bandColour = bandColourOfObjects(plain);
+  const std::vector<std::string> objectNames = objectNamesOf(plain);
+  const CameraPath* loop = plain.findPath("thesis-loop");
+  if (!loop) throw InputError(showPath(o.fieldScene) + ": paths: no \"thesis-loop\"");
+  std::vector<RobotPose> testPoses;
+  for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
+
+  const int trainTotal = 2 * o.trainFrames, testTotal = 3 * static_cast<int>(testPoses.size());
+  int done = 0;
+  const std::function<void()> step = [&] { progress("rendering", ++done, trainTotal + testTotal); };
+  const Classifiers trained = trainClassifiers(o, out, plain, bandColour, step);
+  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step);
 
   // Detection and evaluation.
   const FastRenderer geometry(plain);
@@ -371,38 +442,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
     }
-    ConditionOutcome& c = condition.outcome;
-    std::vector<double> pixels, ranges, bearings;
-    for (const FrameEvaluation& f : condition.frames) {
-      c.truePositives += f.truePositives;
-      c.falsePositiveBlobs += f.falsePositiveBlobs;
-      c.falsePositives += f.falsePositiveBlobs + f.falseIdentifications;
-      c.missed += f.visibleBeacons - f.truePositives;
-      pixels.insert(pixels.end(), f.localisationErrorsPx.begin(), f.localisationErrorsPx.end());
-      ranges.insert(ranges.end(), f.rangeErrorsCm.begin(), f.rangeErrorsCm.end());
-      bearings.insert(bearings.end(), f.bearingErrorsDeg.begin(), f.bearingErrorsDeg.end());
-    }
-    std::map<std::string, int> sources;
-    for (const FrameEvaluation& f : condition.frames)
-      for (const FalseBlob& b : f.falseBlobs) {
-        ++sources[b.object.empty() ? "(nothing)" : b.object];
-        c.falsePositiveBlobsOnHall += b.object.rfind("hall_", 0) == 0;
-      }
-    c.falsePositiveSources.assign(sources.begin(), sources.end());
-    std::sort(c.falsePositiveSources.begin(), c.falsePositiveSources.end(),
-              [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
-    if (c.falsePositiveSources.size() > 5) c.falsePositiveSources.resize(5);
-    c.frames = static_cast<int>(frames.size());
-    c.meanLocalisationErrorPx = mean(pixels);
-    c.meanRangeErrorCm = mean(ranges);
-    c.meanBearingErrorDeg = mean(bearings);
-    condition.ekf = runEkf(drive, condition.frames, static_cast<size_t>(o.testStride));
-    // The example frame: the one with the most visible beacons, first of them.
-    size_t example = 0;
-    for (size_t k = 0; k < condition.frames.size(); ++k)
-      if (condition.frames[k].visibleBeacons > condition.frames[example].visibleBeacons) example = k;
-    condition.exampleFrame = example;
-    condition.exampleImage = frames[example].image;
+    summariseCondition(condition, frames, drive, o.testStride);
     report.conditions.push_back(std::move(condition));
   }
   for (const auto& [set, classifiers] : trained) report.classifiers[set] = &classifiers;
@@ -410,19 +450,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   TextureRealismResults results;
   for (const ConditionReport& c : report.conditions) {
     results.conditions.push_back(c.outcome);
-    EkfOutcome e;
-    e.condition = c.outcome.key();
-    std::vector<double> odometryErrors, ekfErrors;
-    for (size_t k = 1; k < c.ekf.rows.size(); ++k) {
-      const EkfRow& row = c.ekf.rows[k];
-      odometryErrors.push_back(100.0 * (row.odometry.head<2>() - row.truth.head<2>()).norm());
-      ekfErrors.push_back(100.0 * (row.estimate.head<2>() - row.truth.head<2>()).norm());
-    }
-    e.meanErrorOdometryCm = mean(odometryErrors);
-    e.meanErrorEkfCm = mean(ekfErrors);
-    e.measurementsUsed = c.ekf.used;
-    e.measurementsGated = c.ekf.gated;
-    results.ekf.push_back(e);
+    results.ekf.push_back(ekfOutcome(c));
   }
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   writeTextureRealismReport(report, results, plotScript);

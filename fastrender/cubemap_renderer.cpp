@@ -1,14 +1,16 @@
 #include "cubemap_renderer.h"
 
-#include "memory_budget.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "errors.h"
+#include "memory_budget.h"
 #include "physical_camera.h"
 
 namespace omnicam {
@@ -127,6 +129,55 @@ bool hitTriangle(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, con
   return b1 >= -eps && b2 >= -eps && b1 + b2 <= 1.0 + eps && e2.dot(q) / det > 0.0;
 }
 
+// Where a thesis-mesh sample reads the cube: the physical camera's ray meets a flat triangle of
+// the mesh, whose UVs interpolate linearly across it — the face and its coordinates, or nullopt
+// between the polygon and the rim circle.
+std::optional<std::pair<int, Eigen::Vector2d>> thesisMeshTexel(const ThesisMesh& mesh, int sectors, int rings,
+                                                               const CameraRay& cameraRay) {
+  const Vec3& ray = cameraRay.direction;
+  double phi = std::atan2(ray.y(), ray.x());
+  if (phi < 0) phi += 2.0 * kPi;
+  const int sector = std::min(sectors - 1, static_cast<int>(phi / (2.0 * kPi) * sectors));
+  for (int ring = 0; ring < rings; ++ring) {
+    Vec3 tri[2][3];
+    int count = 0;
+    if (ring == 0) {
+      tri[count][0] = mesh.vertex(0, 0), tri[count][1] = mesh.vertex(1, sector), tri[count][2] = mesh.vertex(1, sector + 1);
+      ++count;
+    } else {
+      const Vec3 a0 = mesh.vertex(ring, sector), a1 = mesh.vertex(ring, sector + 1);
+      const Vec3 b0 = mesh.vertex(ring + 1, sector), b1 = mesh.vertex(ring + 1, sector + 1);
+      tri[0][0] = a0, tri[0][1] = b0, tri[0][2] = b1;
+      tri[1][0] = a0, tri[1][1] = b1, tri[1][2] = a1;
+      count = 2;
+    }
+    for (int k = 0; k < count; ++k) {
+      double u1, u2;
+      if (!hitTriangle(cameraRay.origin, ray, tri[k][0], tri[k][1], tri[k][2], u1, u2)) continue;
+      const double u0 = 1.0 - u1 - u2;
+      const Vec3 d = u0 * tri[k][0].normalized() + u1 * tri[k][1].normalized() + u2 * tri[k][2].normalized();
+      // The thesis split polygons at face seams, so each piece is mapped linearly within one
+      // face: use a face on which the linearly interpolated coordinates fall inside (the
+      // sample's own direction's face first, then those of the vertices).
+      int face = faceOf(d);
+      Eigen::Vector2d st = faceCoordinates(face, d);
+      for (int candidate : {faceOf(d), faceOf(tri[k][0]), faceOf(tri[k][1]), faceOf(tri[k][2])}) {
+        const Vec3& fc = kFaces[candidate].f;
+        if (tri[k][0].dot(fc) <= 0 || tri[k][1].dot(fc) <= 0 || tri[k][2].dot(fc) <= 0) continue;
+        const Eigen::Vector2d linear = u0 * faceCoordinates(candidate, tri[k][0]) + u1 * faceCoordinates(candidate, tri[k][1]) +
+                                       u2 * faceCoordinates(candidate, tri[k][2]);
+        if (linear.cwiseAbs().maxCoeff() <= 1.0) {
+          face = candidate;
+          st = linear;
+          break;
+        }
+      }
+      return std::make_pair(face, st);
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 void checkCubeMapOptions(const CubeMapOptions& o) {
@@ -206,60 +257,14 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
             L->samples.push_back(toSample(face, faceCoordinates(face, d)));
             continue;
           }
-          // thesis-mesh: the physical camera's ray hits a flat mesh triangle; UVs interpolate
-          // linearly across it, on the face of the interpolated direction.
+          // thesis-mesh: the physical camera's ray hits a flat mesh triangle.
           const auto cameraRay = pinhole.ray(raster);
           if (!cameraRay) continue;
-          const Vec3& ray = cameraRay->direction;
-          double phi = std::atan2(ray.y(), ray.x());
-          if (phi < 0) phi += 2.0 * kPi;
-          const int sector = std::min(sectors - 1, static_cast<int>(phi / (2.0 * kPi) * sectors));
-          bool found = false;
-          for (int ring = 0; ring < rings && !found; ++ring) {
-            Vec3 tri[2][3];
-            int count = 0;
-            if (ring == 0) {
-              tri[count][0] = mesh.vertex(0, 0), tri[count][1] = mesh.vertex(1, sector), tri[count][2] = mesh.vertex(1, sector + 1);
-              ++count;
-            } else {
-              const Vec3 a0 = mesh.vertex(ring, sector), a1 = mesh.vertex(ring, sector + 1);
-              const Vec3 b0 = mesh.vertex(ring + 1, sector), b1 = mesh.vertex(ring + 1, sector + 1);
-              tri[0][0] = a0, tri[0][1] = b0, tri[0][2] = b1;
-              tri[1][0] = a0, tri[1][1] = b1, tri[1][2] = a1;
-              count = 2;
-            }
-            for (int k = 0; k < count && !found; ++k) {
-              double u1, u2;
-              if (!hitTriangle(cameraRay->origin, ray, tri[k][0], tri[k][1], tri[k][2], u1, u2)) continue;
-              found = true;
-              const double u0 = 1.0 - u1 - u2;
-              const Vec3 d = u0 * tri[k][0].normalized() + u1 * tri[k][1].normalized() + u2 * tri[k][2].normalized();
-              // The thesis split polygons at face seams, so each piece is mapped linearly within
-              // one face: use a face on which the linearly interpolated coordinates fall inside
-              // (the sample's own direction's face first, then those of the vertices).
-              int face = faceOf(d);
-              Eigen::Vector2d st = faceCoordinates(face, d);
-              for (int candidate : {faceOf(d), faceOf(tri[k][0]), faceOf(tri[k][1]), faceOf(tri[k][2])}) {
-                const Vec3& fc = kFaces[candidate].f;
-                if (tri[k][0].dot(fc) <= 0 || tri[k][1].dot(fc) <= 0 || tri[k][2].dot(fc) <= 0) continue;
-                const Eigen::Vector2d linear = u0 * faceCoordinates(candidate, tri[k][0]) +
-                                               u1 * faceCoordinates(candidate, tri[k][1]) +
-                                               u2 * faceCoordinates(candidate, tri[k][2]);
-                if (linear.cwiseAbs().maxCoeff() <= 1.0) {
-                  face = candidate;
-                  st = linear;
-                  break;
-                }
-              }
-              if (face == kUpFace && o.faces == 5) {
-                ++L->missed;
-                L->samples.push_back({UINT32_MAX, 0, 0.0f, 0.0f});
-                break;
-              }
-              L->samples.push_back(toSample(face, st));
-            }
-          }
-          if (!found) L->samples.push_back({UINT32_MAX, 0, 0.0f, 0.0f});  // between the polygon and the rim circle
+          const auto hit = thesisMeshTexel(mesh, sectors, rings, *cameraRay);
+          const bool up = hit && hit->first == kUpFace && o.faces == 5;
+          L->missed += up;
+          // Black between the polygon and the rim circle, and on the thesis' missing up face.
+          L->samples.push_back(hit && !up ? toSample(hit->first, hit->second) : Lookup::Sample{UINT32_MAX, 0, 0.0f, 0.0f});
         }
     }
   L->firstSample.push_back(static_cast<uint32_t>(L->samples.size()));

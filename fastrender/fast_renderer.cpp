@@ -1,7 +1,5 @@
 #include "fast_renderer.h"
 
-#include "memory_budget.h"
-
 #include <embree3/rtcore_config.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -11,6 +9,7 @@
 
 #include "errors.h"
 #include "make_camera.h"
+#include "memory_budget.h"
 
 namespace omnicam {
 
