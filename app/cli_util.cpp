@@ -102,6 +102,12 @@ std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t
   return v;
 }
 
+void checkSppFlag(int spp) {
+  RenderSettings settings;
+  settings.spp = spp;
+  checkRenderSettings(settings, kSettingFlags);
+}
+
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {
   cmd.add_flag("--allow-outside-files", options.allowOutsideFolder,
                "Let the scene pull in textures, glTF files, buffers and images from outside its own folder");

@@ -31,6 +31,8 @@ CLI::Validator integerIn(int64_t lo, uint64_t hi);
 CLI::Validator numberIn(double lo, double hi, bool openLow = false);
 // "<text>" as an integer in [lo, hi], or nullopt (the rule integerIn checks).
 std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t hi);
+// --spp alone, by the render settings' rule (checkRenderSettings), naming the flag.
+void checkSppFlag(int spp);
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do

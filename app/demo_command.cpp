@@ -437,9 +437,7 @@ MethodSection methodSection(const DemoArgs& a, const Scene& arena) {
 
 void runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
-  RenderSettings checked;
-  checked.spp = a.spp;
-  checkRenderSettings(checked, kSettingFlags);  // before the report folder is made
+  checkSppFlag(a.spp);  // before any folder is made
   ensureDirectory(a.out, "-o");
   const std::string dir = scenesDir();
   const Scene arena = loadScene(dir + "/robocup2006.json");

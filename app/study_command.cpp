@@ -54,9 +54,7 @@ void runStudy(const StudyArgs& a) {
   const Scene ringScene = loadScene(dir + "/incidence-rings.json");
   const fs::path outPath(a.out);
   const fs::path figures = outPath.parent_path() / "figures";
-  RenderSettings checked;
-  checked.spp = a.spp;
-  checkRenderSettings(checked, kSettingFlags);  // before the figures' folder is made
+  checkSppFlag(a.spp);  // before any folder is made
   // The report's folder may be new (made with its figures/); an existing one must not hold a
   // folder under the report's name.
   std::error_code ec;
