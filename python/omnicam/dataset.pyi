@@ -1,6 +1,6 @@
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
-from ._omnicam import Rig
+from ._omnicam import Rig, _DatasetReader
 
 OUTPUTS: Tuple[str, ...]
 
@@ -11,6 +11,8 @@ class Dataset:
     check_hashes: bool
     def __init__(self, path: Any, camera: Optional[str] = ..., outputs: Optional[Sequence[str]] = ...,
                  check_hashes: bool = ...) -> None: ...
+    @property
+    def reader(self) -> _DatasetReader: ...
     @property
     def cameras(self) -> List[str]: ...
     @property
