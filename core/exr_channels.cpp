@@ -178,6 +178,18 @@ uint64_t smallestPackedSize(uint8_t compression, uint64_t unpacked) {
   }
 }
 
+// What is wrong with one chunk as its leader states it ("" if nothing): missing, past the file's
+// end, or too small for the lines it unpacks to.
+std::string chunkProblem(bool read, const exr_chunk_info_t& chunk, uint64_t fileSize, const std::string& which) {
+  if (!read) return "the chunk of " + which + " is missing or damaged";
+  if (chunk.data_offset > fileSize || chunk.packed_size > fileSize - chunk.data_offset)
+    return "the chunk of " + which + " runs past the end of the file";
+  if (chunk.packed_size < smallestPackedSize(chunk.compression, chunk.unpacked_size))
+    return "the chunk of " + which + " holds " + std::to_string(chunk.packed_size) + " bytes, too few for its " +
+           std::to_string(chunk.unpacked_size) + " unpacked bytes";
+  return "";
+}
+
 struct MemoryExrSource {
   std::string_view bytes;
 };
@@ -229,13 +241,8 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
       problem = "no data window";
     for (int64_t y = window.min.y; problem.empty() && y <= window.max.y; y += lines) {
       exr_chunk_info_t chunk{};
-      if (exr_read_scanline_chunk_info(context, 0, static_cast<int>(y), &chunk) != EXR_ERR_SUCCESS)
-        problem = "the chunk of line " + std::to_string(y) + " is missing or damaged";
-      else if (chunk.data_offset > bytes.size() || chunk.packed_size > bytes.size() - chunk.data_offset)
-        problem = "the chunk of line " + std::to_string(y) + " runs past the end of the file";
-      else if (chunk.packed_size < smallestPackedSize(chunk.compression, chunk.unpacked_size))
-        problem = "the chunk of line " + std::to_string(y) + " holds " + std::to_string(chunk.packed_size) +
-                  " bytes, too few for its " + std::to_string(chunk.unpacked_size) + " unpacked bytes";
+      const bool read = exr_read_scanline_chunk_info(context, 0, static_cast<int>(y), &chunk) == EXR_ERR_SUCCESS;
+      problem = chunkProblem(read, chunk, bytes.size(), "line " + std::to_string(y));
     }
   } else if (problem.empty() && storage == EXR_STORAGE_TILED) {
     // The level the reader decodes (0, 0), tile by tile, as above.
@@ -248,14 +255,8 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
     for (int32_t ty = 0; problem.empty() && ty < tilesY; ++ty)
       for (int32_t tx = 0; problem.empty() && tx < tilesX; ++tx) {
         exr_chunk_info_t chunk{};
-        const std::string which = "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")";
-        if (exr_read_tile_chunk_info(context, 0, tx, ty, 0, 0, &chunk) != EXR_ERR_SUCCESS)
-          problem = "the chunk of " + which + " is missing or damaged";
-        else if (chunk.data_offset > bytes.size() || chunk.packed_size > bytes.size() - chunk.data_offset)
-          problem = "the chunk of " + which + " runs past the end of the file";
-        else if (chunk.packed_size < smallestPackedSize(chunk.compression, chunk.unpacked_size))
-          problem = "the chunk of " + which + " holds " + std::to_string(chunk.packed_size) + " bytes, too few for its " +
-                    std::to_string(chunk.unpacked_size) + " unpacked bytes";
+        const bool read = exr_read_tile_chunk_info(context, 0, tx, ty, 0, 0, &chunk) == EXR_ERR_SUCCESS;
+        problem = chunkProblem(read, chunk, bytes.size(), "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")");
       }
   } else if (problem.empty()) {
     problem = "not a single-part scanline or tiled image";
@@ -339,6 +340,13 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out.text[it.name()] = text->value();
     Imf::FrameBuffer frameBuffer;
     const size_t pixels = static_cast<size_t>(width * height);
+    // Every plane to decode, sized before any is allocated.
+    int64_t decoded = 0;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+      decoded += !headerOnly && (!channels || channels->count(it.name()));
+    if (decoded > 0)
+      requireMemory(decoded * width * height * 4, name + ": decoding " + std::to_string(decoded) + " channels of " +
+                                                      std::to_string(width) + "x" + std::to_string(height) + " pixels");
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
       if (out.types.size() == kMaxExrChannels)
         throw InputError(name + ": more than " + std::to_string(kMaxExrChannels) + " channels");
@@ -351,9 +359,6 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
         throw InputError(name + ": " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
                          std::to_string(out.floats.size() + out.uints.size() + 1) + " channels are more than " +
                          std::to_string(kMaxDecodedExrSamples) + " values to decode");
-      // Each channel's plane, sized against what is left before it is allocated.
-      requireMemory(width * height * 4, name + ": decoding channel " + quote(it.name()) + " of " + std::to_string(width) +
-                                            "x" + std::to_string(height) + " pixels");
       char* base;
       if (uint) base = reinterpret_cast<char*>(out.uints[it.name()].assign(pixels, 0), out.uints[it.name()].data());
       else base = reinterpret_cast<char*>(out.floats[it.name()].assign(pixels, 0.0f), out.floats[it.name()].data());

@@ -63,16 +63,21 @@ std::string byteSizeText(int64_t bytes) {
   return text;
 }
 
-void requireMemory(int64_t bytes, const std::string& what) {
-  const MemoryAvailable available = availableMemory();
+namespace {
+
+void requireWithin(int64_t bytes, const MemoryAvailable& available, const std::string& what) {
   if (bytes + kMarginBytes > available.bytes)
     throw MemoryShortage(what + " needs " + byteSizeText(bytes) + " of memory, and the program " + byteSizeText(kMarginBytes) +
                          " more; " + byteSizeText(available.bytes) + " are available (limited by " + available.limitedBy + ")");
 }
 
+}  // namespace
+
+void requireMemory(int64_t bytes, const std::string& what) { requireWithin(bytes, availableMemory(), what); }
+
 int concurrencyWithin(int64_t bytesEach, int wanted, const std::string& what) {
-  requireMemory(bytesEach, what);
   const MemoryAvailable available = availableMemory();
+  requireWithin(bytesEach, available, what);
   const int64_t fit = (available.bytes - kMarginBytes) / std::max<int64_t>(1, bytesEach);
   return static_cast<int>(std::clamp<int64_t>(fit, 1, std::max(1, wanted)));
 }

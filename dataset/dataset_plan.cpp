@@ -328,13 +328,10 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
 }
 
 int64_t DatasetPlan::frameBytes() const {
-  int64_t frame = 0, largestTable = 0;
-  for (const CameraSetup& setup : setups) {
-    const int64_t pixels = int64_t{setup.rig.imageSize} * setup.rig.imageSize;
-    frame += pixels * 84;
-    largestTable = std::max(largestTable, pixels * spec.spp * (setup.model->central() ? 14 : 30) * 2);
-  }
-  return frame + largestTable;
+  int64_t bytes = 0;
+  for (const CameraSetup& setup : setups)
+    bytes += FastRenderer::frameBytes(setup.rig.imageSize, setup.rig.imageSize, spec.spp, setup.model->central());
+  return bytes;
 }
 
 }  // namespace omnicam

@@ -62,9 +62,9 @@ class DatasetPlan {
   std::vector<std::string> notes;   // for the user: outputs the engine does not write
   std::unique_ptr<RayScene> rays;   // for landmark annotations, when the outputs have any
 
-  // What one frame holds while it is rendered and encoded: every camera's colour, AOVs and
-  // encoded files (84 B a pixel), and the largest camera's sample table (docs/robustness.md,
-  // "Memory"). The scheduler renders as many frames at once as memory holds.
+  // What one frame holds while it is rendered and encoded: every camera's frame, AOVs, files and
+  // sample table (FastRenderer::frameBytes; docs/robustness.md, "Memory"). The scheduler renders
+  // as many frames at once as memory holds.
   int64_t frameBytes() const;
   // Camera `camera`'s rig during frame `frame`: its setup's, shaken by the spec's vibration.
   RigSpec frameRig(int frame, size_t camera) const;

@@ -100,11 +100,7 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
   table->samplesPerAxis = n;
   const bool central = camera->central();
   const size_t pixels = static_cast<size_t>(camera->width()) * camera->height();
-  // At most every sample imaged: its direction and grid index (14 B), a non-central ray's origin
-  // and start too (30 B), in vectors that may hold twice that while they grow; per pixel, the
-  // centre's ray and indices (20 B, non-central 36 B), and the frame it renders with every AOV and
-  // its encoding (84 B).
-  requireMemory(static_cast<int64_t>(pixels) * (n * n * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84),
+  requireMemory(frameBytes(camera->width(), camera->height(), n * n, central),
                 "a " + std::to_string(camera->width()) + "x" + std::to_string(camera->height()) + " frame at " +
                     std::to_string(n * n) + " spp (its sample table, the frame and its files)");
   table->firstSample.reserve(pixels + 1);
@@ -146,6 +142,14 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
   std::lock_guard<std::mutex> lock(tableMutex_);
   table_ = table;
   return table;
+}
+
+int64_t FastRenderer::frameBytes(int width, int height, int spp, bool central) {
+  // At most every sample imaged: its direction and grid index (14 B), a non-central ray's origin
+  // and start too (30 B), in vectors that may hold twice that while they grow; per pixel, the
+  // centre's ray and indices (20 B, non-central 36 B), and the frame with every AOV and its
+  // encoding (84 B).
+  return int64_t{width} * height * (int64_t{spp} * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84);
 }
 
 FastRenderer::Placement FastRenderer::placement(const RenderSettings& settings, const RobotPose& pose) {

@@ -35,6 +35,11 @@ class FastRenderer {
   // Only the AOVs (settings.spp does not matter).
   void renderAovsOnly(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const;
 
+  // The memory one width × height frame at `spp` takes (its sample table, a central or a traced
+  // camera's, and the frame with every AOV and its files): checked before a table is built, and
+  // the size of a dataset's frame in flight.
+  static int64_t frameBytes(int width, int height, int spp, bool central);
+
   const Scene& scene() const { return scene_; }
   const RayScene& rays() const { return rays_; }
 
