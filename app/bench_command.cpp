@@ -36,7 +36,7 @@ void runBench(const BenchArgs& a) {
   const OmniCamera camera = settings.rig.camera();
   std::vector<std::pair<std::string, double>> results;
   results.emplace_back("exact", framesPerSecond([&] { fast.render(scene.startPose, settings); }, a.seconds));
-  ImageRGBA frame;  // reused from frame to frame, as a video would
+  Film frame = filmFor(settings);  // reused from frame to frame, as a video would
   results.emplace_back("cubemap", framesPerSecond([&] { cube.render(scene.startPose, settings, cubemap, frame); }, a.seconds));
   results.emplace_back("thesis_mesh_1024", framesPerSecond([&] { cube.render(scene.startPose, settings, mesh, frame); }, a.seconds));
   for (const auto& [name, kind, variant] :

@@ -58,16 +58,15 @@ std::string demoMotion(const std::string& out, const Scene& arena, int spp) {
   RenderSettings global;
   global.rig = arena.rig;
   global.spp = spp;
-  global.velocity = drive.velocityAt(frameTime);
+  const CameraPlacement driving(pose, drive.velocityAt(frameTime));
   global.rig.shutter.exposureS = kExposureS;
   RenderSettings rolling = global;
   rolling.rig.shutter.rolling = RollingShutter{kLineTimeUs, Readout::TopToBottom};
   RenderSettings still = global;
-  still.velocity = {};
   std::printf("demo: time in the camera, %.1f m/s on the thesis loop, global and rolling shutter, %d spp\n", kSpeed, spp);
   const FastRenderer fast(arena);
-  const ImageRGBA stillImage = fast.render(pose, still), globalImage = fast.render(pose, global),
-                  rollingImage = fast.render(pose, rolling);
+  const ImageRGBA stillImage = fast.render(pose, still), globalImage = fast.render(driving, global),
+                  rollingImage = fast.render(driving, rolling);
   writeImageAtomic(out + "/motion_global.png", globalImage);
   writeImageAtomic(out + "/motion_rolling.png", rollingImage);
   writeImageAtomic(out + "/motion_difference.png", differenceHeatmap(globalImage, rollingImage, 0.5));
@@ -82,7 +81,7 @@ std::string demoMotion(const std::string& out, const Scene& arena, int spp) {
   writeImageAtomic(out + "/motion_vibration_difference.png", differenceHeatmap(stillImage, fast.render(pose, shaken), 0.5));
   writeTextAtomically(out + "/motion_vibration.svg", vibrationPlot(still.rig, vibration));
 
-  const BodyVelocity& v = global.velocity;
+  const BodyVelocity& v = driving.velocity();
   char speed[200];
   std::snprintf(speed, sizeof speed, "(%.2f, %.2f) m/s, turning at %.0f°/s", v.vx, v.vy, v.yawRateDegPerS);
   const double blur = compareImages(stillImage, globalImage).psnrDb, skew = compareImages(globalImage, rollingImage).psnrDb;

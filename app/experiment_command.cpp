@@ -15,6 +15,7 @@
 #include "safe_files.h"
 #include "scene_loader.h"
 #include "texture_realism.h"
+#include "texture_realism_report.h"
 
 namespace omnicam::cli {
 

@@ -46,7 +46,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   checkRenderSettings(settings, kSettingFlags);
   if (a.to == "gltf") {
     GltfExportOptions options;
-    options.pose = pose;
+    options.placement = pose;
     options.rig = settings.rig;
     const std::string file = a.out + "/scene.glb";
     const std::vector<std::string> made = ensureDirectory(a.out, "-o");

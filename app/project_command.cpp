@@ -37,7 +37,7 @@ void runProject(const ProjectArgs& a) {
   RigSpec rig = scene.rig;
   if (a.size) rig = rig.resized(a.size);
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
-  const Rigid viewpointFromWorld = worldFromViewpoint(rig, pose).inverse();
+  const Rigid viewpointFromWorld = CameraPlacement(pose).worldFromViewpoint(rig).inverse();
   for (const Vec3& world : points) {
     const auto raster = camera->project(viewpointFromWorld * world);
     if (raster) std::printf("%.6f %.6f\n", raster->x(), raster->y());

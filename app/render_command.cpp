@@ -98,10 +98,12 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   RenderSettings settings;
   settings.spp = a.spp;
   settings.shading = *shading;
+  BodyVelocity velocity;
   if (!a.velocity.empty()) {
     const Vec3 v = parseTriple(a.velocity, "--velocity");
-    settings.velocity = {v.x(), v.y(), v.z()};
+    velocity = {v.x(), v.y(), v.z()};
   }
+  checkPlacement(CameraPlacement(pose.value_or(RobotPose{}), velocity), kSettingFlags);
   if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize);
   checkRenderSettings(settings, kSettingFlags);  // before the scene: a bad --spp needs no scene to be read
   const Scene scene = loadScene(a.scene, a.load);
@@ -124,7 +126,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
 
   if (!path) {
-    const RobotPose at = pose ? *pose : scene.startPose;
+    const CameraPlacement at(pose ? *pose : scene.startPose, velocity);
     RenderedFile rendered = renderPose(scene, *engine, at, settings);
     writeRendered(a.out, rendered);
     views.write(a.out, rendered);
@@ -151,18 +153,21 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   double batchSeconds = 0.0;
   auto renderBatch = [&](int first) {
     const int last = std::min(total, first + kFramesPerBatch);
-    const std::vector<RobotPose> poses(path->poses.begin() + first, path->poses.begin() + last);
+    std::vector<CameraPlacement> placements;
+    for (int f = first; f < last; ++f) placements.emplace_back(path->poses[f], velocity);
     const auto start = std::chrono::steady_clock::now();
-    batch = engine->renderMany(poses, settings);
+    batch = engine->renderMany(placements, settings);
     batchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / (last - first);
   };
   // Frame f is written while frame f + 1 renders; each file still appears atomically.
   std::future<void> writing;
   for (int f = 0; f < total; ++f) {
-    if (engine->batches() && f % kFramesPerBatch == 0) renderBatch(f);
-    RenderedFile rendered = !engine->batches()
-        ? renderPose(scene, *engine, path->poses[f], settings)
-        : RenderedFile{std::move(batch[f % kFramesPerBatch]), renderSidecar(scene, *engine, path->poses[f], settings, batchSeconds)};
+    const bool batches = engine->capabilities().batches;
+    const CameraPlacement placement(path->poses[f], velocity);
+    if (batches && f % kFramesPerBatch == 0) renderBatch(f);
+    RenderedFile rendered = !batches ? renderPose(scene, *engine, placement, settings)
+                                     : RenderedFile{std::move(batch[f % kFramesPerBatch]),
+                                                    renderSidecar(scene, *engine, placement, settings, batchSeconds)};
     rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
     if (writing.valid()) writing.get();
     writing = std::async(std::launch::async, [file = frameFile(f),

@@ -6,15 +6,14 @@
 
 namespace omnicam::cli {
 
-nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const RobotPose& pose,
+nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const CameraPlacement& placement,
                              const RenderSettings& settings, double seconds) {
   RenderRecord record;
   record.engine = engine.name();
   record.engineVersion = engine.version();
   record.scenePath = scene.path;
   record.sceneSha256 = scene.sha256;
-  record.pose = pose;
-  record.velocity = settings.velocity;
+  record.placement = placement;
   record.rig = settings.rig;
   record.spp = settings.spp;
   record.shading = shadingName(settings.shading);
@@ -24,12 +23,12 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Rob
   return sidecarJson(record);
 }
 
-RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
+RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                         const RenderSettings& settings) {
   const auto start = std::chrono::steady_clock::now();
-  RenderedFile result{engine.render(pose, settings), {}};
+  RenderedFile result{engine.render(placement, settings), {}};
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.sidecar = renderSidecar(scene, engine, pose, settings, seconds);
+  result.sidecar = renderSidecar(scene, engine, placement, settings, seconds);
   return result;
 }
 
@@ -38,9 +37,9 @@ void writeRendered(const std::string& out, const RenderedFile& rendered) {
   writeSidecarAtomic(out, rendered.sidecar);
 }
 
-RenderedFile renderToFile(const Scene& scene, Engine& engine, const RobotPose& pose,
+RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                           const RenderSettings& settings, const std::string& out, const nlohmann::json& extra) {
-  RenderedFile rendered = renderPose(scene, engine, pose, settings);
+  RenderedFile rendered = renderPose(scene, engine, placement, settings);
   rendered.sidecar.update(extra);
   writeRendered(out, rendered);
   return rendered;

@@ -14,16 +14,16 @@ struct RenderedFile {
   nlohmann::json sidecar;
 };
 
-// The sidecar of a render of `pose` that took `seconds`.
-nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const RobotPose& pose,
+// The sidecar of a render at `placement` that took `seconds`.
+nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const CameraPlacement& placement,
                              const RenderSettings& settings, double seconds);
-// Renders one pose with `engine`; the sidecar describes it.
-RenderedFile renderPose(const Scene& scene, Engine& engine, const RobotPose& pose,
+// Renders one placement with `engine`; the sidecar describes it.
+RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                         const RenderSettings& settings);
 // Writes OUT and OUT.json atomically.
 void writeRendered(const std::string& out, const RenderedFile& rendered);
 // Both, with `extra` merged into the sidecar.
-RenderedFile renderToFile(const Scene& scene, Engine& engine, const RobotPose& pose,
+RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                           const RenderSettings& settings, const std::string& out,
                           const nlohmann::json& extra = nlohmann::json::object());
 

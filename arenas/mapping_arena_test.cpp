@@ -13,6 +13,7 @@
 #include "errors.h"
 #include "image_compare.h"
 #include "pose_sampler.h"
+#include "floor_obstacles.h"
 #include "scene_loader.h"
 
 namespace omnicam {

@@ -24,11 +24,11 @@ void renderFrames(benchmark::State& state, const FastRenderer& renderer, const R
   settings.rig.imageSize = 360;
   settings.spp = static_cast<int>(state.range(0));
   settings.shading = state.range(1) ? Shading::Lit : Shading::Unlit;
-  settings.velocity = velocity;
   // Sample tables are built once per camera and spp, then serve every frame: build them first,
   // so that frames/s is the rate of frames.
-  benchmark::DoNotOptimize(renderer.render(scene.startPose, settings));
-  for (auto _ : state) benchmark::DoNotOptimize(renderer.render(scene.startPose, settings));
+  const CameraPlacement placement(scene.startPose, velocity);
+  benchmark::DoNotOptimize(renderer.render(placement, settings));
+  for (auto _ : state) benchmark::DoNotOptimize(renderer.render(placement, settings));
   state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.SetLabel(std::string(shadingName(settings.shading)) + ", spp " + std::to_string(settings.spp));
 }

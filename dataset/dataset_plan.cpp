@@ -31,14 +31,15 @@ namespace {
 
 // TUM RGB-D trajectory format: "timestamp tx ty tz qx qy qz qw", the camera frame (X forward,
 // Y right, Z down at F'; the intrinsics files' frame) in the world.
-std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup& setup, double interval,
-                     const std::function<RigSpec(int)>& rigOfFrame) {
+std::string posesTum(size_t frames, const CameraSetup& setup, double interval, const std::function<RigSpec(int)>& rigOfFrame,
+                     const std::function<CameraPlacement(int)>& placementOfFrame) {
   std::ostringstream out;
   out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n"
       << "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
       << "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
-  for (size_t i = 0; i < robotPoses.size(); ++i) {
-    const Rigid worldFromCam = worldFromCamera(rigOfFrame(static_cast<int>(i)), cameraPose(*setup.camera, robotPoses[i]));
+  for (size_t i = 0; i < frames; ++i) {
+    const int frame = static_cast<int>(i);
+    const Rigid worldFromCam = placementOfFrame(frame).worldFromCamera(rigOfFrame(frame));
     const Eigen::Quaterniond q(worldFromCam.linear());
     const Vec3 t = worldFromCam.translation();
     out << roundTrip(static_cast<double>(i) * interval) << ' ' << roundTrip(t.x()) << ' ' << roundTrip(t.y()) << ' '
@@ -50,14 +51,15 @@ std::string posesTum(const std::vector<RobotPose>& robotPoses, const CameraSetup
 
 // A camera's files that stay the same from frame to frame: intrinsics and poses.
 std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<RobotPose>& poses, double interval,
-                                    const std::function<RigSpec(int)>& rigOfFrame, bool euroc) {
+                                    const std::function<RigSpec(int)>& rigOfFrame,
+                                    const std::function<CameraPlacement(int)>& placementOfFrame, bool euroc) {
   const std::string& name = setup.camera->name;
   const Camera& camera = *setup.model;
   std::vector<StaticFile> files = {
       {"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(camera)},
       {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, camera)},
       {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, camera)},
-      {"poses_tum", name + "/poses.tum", posesTum(poses, setup, interval, rigOfFrame)}};
+      {"poses_tum", name + "/poses.tum", posesTum(poses.size(), setup, interval, rigOfFrame, placementOfFrame)}};
   if (euroc) {
     files.push_back({"euroc_data_csv", name + "/data.csv", eurocDataCsv(static_cast<int>(poses.size()), interval)});
     files.push_back({"euroc_sensor_yaml", name + "/sensor.yaml", eurocSensorYaml(*setup.camera, setup.rig, camera, interval)});
@@ -109,7 +111,7 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
   if (spec.euroc) plan.eurocIntervalS = spec.frameIntervalSeconds;
   notWritten = json::object();
   for (OutputKind kind : spec.outputs.wanted) {
-    if (!needsAovs(kind) || engine.hasAovs()) {
+    if (!needsAovs(kind) || engine.capabilities().aovs) {
       plan.outputs.insert(kind);
     } else {
       notWritten[outputName(kind)] = kind == OutputKind::Coco
@@ -187,13 +189,15 @@ json manifestCameras(const DatasetPlan& plan, std::vector<StaticFile>& statics) 
     const CameraSetup& setup = plan.setups[c];
     json files = json::object();
     const auto rigOfFrame = [&](int frame) { return plan.frameRig(frame, c); };
-    for (StaticFile& file : staticFiles(setup, plan.poses, plan.spec.frameIntervalSeconds, rigOfFrame, plan.spec.euroc)) {
+    const auto placementOfFrame = [&](int frame) { return plan.placement(frame, c); };
+    for (StaticFile& file :
+         staticFiles(setup, plan.poses, plan.spec.frameIntervalSeconds, rigOfFrame, placementOfFrame, plan.spec.euroc)) {
       files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
       statics.push_back(std::move(file));
     }
     cameras.push_back({{"name", setup.camera->name},
                        {"rig", rigToJson(setup.rig)},
-                       {"mount", {{"x", setup.camera->mountX}, {"y", setup.camera->mountY}, {"yaw_deg", setup.camera->mountYawDeg}}},
+                       {"mount", {{"x", setup.camera->mount.x}, {"y", setup.camera->mount.y}, {"yaw_deg", setup.camera->mount.yawDeg}}},
                        {"intrinsics", setup.model->describe()},
                        {"files", files}});
   }
@@ -218,9 +222,9 @@ std::vector<BodyVelocity> frameVelocities(const DatasetSpec& spec, const std::ve
   if (spec.motion != MotionSource::BetweenPoses) return out;
   for (size_t i = 0; i + 1 < poses.size(); ++i) {
     out[i] = velocityBetween(poses[i], poses[i + 1], spec.frameIntervalSeconds);
-    RenderSettings check;
-    check.velocity = out[i];
-    checkRenderSettings(check, {"spp", "size", showPath(spec.file) + ": motion.between_poses: frame " + std::to_string(i)});
+    SettingNames names;
+    names.velocity = showPath(spec.file) + ": motion.between_poses: frame " + std::to_string(i);
+    checkPlacement(CameraPlacement(poses[i], out[i]), names);
   }
   if (poses.size() > 1) out.back() = out[poses.size() - 2];
   return out;
@@ -246,26 +250,32 @@ void sampleTimedWaypoints(const DatasetSpec& spec, const std::vector<RobotPose>&
     const double t = trajectory.start() + i * spec.frameIntervalSeconds;
     poses.push_back(trajectory.poseAt(t));
     velocities.push_back(trajectory.velocityAt(t));
-    RenderSettings check;
-    check.velocity = velocities.back();
-    checkRenderSettings(check, {"spp", "size", showPath(spec.file) + ": poses.timestamps_s: frame " + std::to_string(i)});
+    SettingNames names;
+    names.velocity = showPath(spec.file) + ": poses.timestamps_s: frame " + std::to_string(i);
+    checkPlacement(CameraPlacement(poses.back(), velocities.back()), names);
   }
 }
 
-// InputError when frames move while a camera's shutter is open and the engine cannot render it.
-void checkMotion(const DatasetSpec& spec, const std::vector<CameraSetup>& setups, const std::vector<BodyVelocity>& velocities,
-                 const Engine& engine) {
-  for (const CameraSetup& setup : setups) {
-    RenderSettings settings{setup.rig, spec.spp, spec.shading};
-    for (const BodyVelocity& v : velocities) {
-      settings.velocity = cameraVelocity(*setup.camera, v);
-      try {
-        engine.checkMotion(settings);
-      } catch (const InputError& e) {
-        throw InputError(showPath(spec.file) + ": motion: camera " + quote(setup.camera->name) + ": " + e.what());
-      }
+// InputError unless the engine renders every camera (its rig, "camera NAME: …") and every
+// frame's motion ("motion: camera NAME: …"), by its capabilities (engine_capabilities.h).
+void checkEngineRendersPlan(const DatasetPlan& plan) {
+  const std::string file = showPath(plan.spec.file);
+  const EngineKind engine = plan.engine->kind();
+  for (const CameraSetup& setup : plan.setups) {
+    try {
+      checkEngineRenders(engine, setup.rig, CameraPlacement{});
+    } catch (const InputError& e) {
+      throw InputError(file + ": camera " + quote(setup.camera->name) + ": " + e.what());
     }
   }
+  for (size_t c = 0; c < plan.setups.size(); ++c)
+    for (int frame = 0; frame < static_cast<int>(plan.poses.size()); ++frame) {
+      try {
+        checkEngineRenders(engine, plan.setups[c].rig, plan.placement(frame, c));
+      } catch (const InputError& e) {
+        throw InputError(file + ": motion: camera " + quote(plan.setups[c].camera->name) + ": " + e.what());
+      }
+    }
 }
 
 // InputError unless every frame's shaken rig is one the scene format accepts (the manifest
@@ -276,7 +286,7 @@ void checkVibratedRigs(const DatasetPlan& plan) {
       const RigSpec rig = plan.frameRig(frame, c);
       try {
         (void)rigFromJson(rigToJson(rig), plan.spec.file, "rig");
-        plan.engine->checkCamera(rig);
+        checkEngineRenders(plan.engine->kind(), rig, CameraPlacement{});
       } catch (const InputError& e) {
         throw InputError(showPath(plan.spec.file) + ": vibration: frame " + std::to_string(frame) + ", camera " +
                          quote(plan.setups[c].camera->name) + ": the shaken rig is refused (" + e.what() +
@@ -291,6 +301,14 @@ RigSpec DatasetPlan::frameRig(int frame, size_t camera) const {
   return vibratedRig(setups[camera].rig, spec.vibration, static_cast<uint64_t>(frame), camera);
 }
 
+RobotTilt DatasetPlan::robotTilt(int frame) const {
+  return vibratedRobotTilt(spec.robotTiltDeg, spec.vibration, static_cast<uint64_t>(frame));
+}
+
+CameraPlacement DatasetPlan::placement(int frame, size_t camera) const {
+  return {poses[static_cast<size_t>(frame)], velocities[static_cast<size_t>(frame)], setups[camera].camera->mount, robotTilt(frame)};
+}
+
 DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& options)
     : spec(spec_), scene(loadScene(spec.scene, {spec.allowOutsideFiles})) {
   setups = cameraSetups(spec, scene);
@@ -302,18 +320,13 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   } else {
     sampleTimedWaypoints(spec, datasetPoses(spec, scene, topHeight), poses, velocities);
   }
-  for (const RobotPose& robot : poses)
-    for (const CameraSetup& setup : setups) checkPose(cameraPose(*setup.camera, robot), showPath(spec.file) + ": poses");
+  SettingNames names;
+  names.pose = showPath(spec.file) + ": poses";
+  for (int frame = 0; frame < static_cast<int>(poses.size()); ++frame)
+    for (size_t c = 0; c < setups.size(); ++c) checkPlacement(placement(frame, c), names);
   const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
   engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
-  checkMotion(spec, setups, velocities, *engine);
-  for (const CameraSetup& setup : setups) {
-    try {
-      engine->checkCamera(setup.rig);
-    } catch (const InputError& e) {
-      throw InputError(showPath(spec.file) + ": camera " + quote(setup.camera->name) + ": " + e.what());
-    }
-  }
+  checkEngineRendersPlan(*this);
   if (vibrates()) checkVibratedRigs(*this);
   const int totalFrames = static_cast<int>(poses.size());
   range = frameRange(options, totalFrames);

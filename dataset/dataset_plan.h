@@ -68,7 +68,13 @@ class DatasetPlan {
   int64_t frameBytes() const;
   // Camera `camera`'s rig during frame `frame`: its setup's, shaken by the spec's vibration.
   RigSpec frameRig(int frame, size_t camera) const;
-  bool vibrates() const { return !spec.vibration.none(); }
+  // The robot's tilt during frame `frame`: the spec's, rocked by its vibration.
+  RobotTilt robotTilt(int frame) const;
+  // Camera `camera`'s placement during frame `frame` (placement.h): the robot's pose and
+  // velocity, the camera's mount, the robot's tilt.
+  CameraPlacement placement(int frame, size_t camera) const;
+  // Whether frames shake each camera's rig (the manifest then records every frame's rig).
+  bool vibrates() const { return spec.vibration.shakesRigs(); }
   // Whether frames differ in more than their pose (a shaken rig, a velocity), so that an engine
   // rendering many poses with one setting (Blender's batches) must take them one at a time.
   bool framesHaveOwnSettings() const {

@@ -100,7 +100,7 @@ std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetMan
     if (index < plan.range.first || index >= plan.range.end || frame.cameras.size() != setups.size()) continue;
     const RobotPose& want = plan.poses[index];
     if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg ||
-        !(frame.velocity == plan.velocities[index]))
+        !(frame.velocity == plan.velocities[index]) || frame.robotTiltDeg != plan.robotTilt(index))
       continue;
     bool intact = true;
     for (size_t c = 0; c < setups.size(); ++c) {

@@ -6,11 +6,9 @@
 #include <string>
 #include <vector>
 
-namespace omnicam {
+#include "manifest.h"
 
-// At most this many shards (Slurm array tasks) per dataset: a count sizes work (a file and a
-// task per shard) and is checked before any.
-inline constexpr int kMaxShards = 100000;
+namespace omnicam {
 
 struct ShardState {
   int index = 0;

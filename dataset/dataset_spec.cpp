@@ -176,9 +176,11 @@ void readVibration(JsonFields fields, DatasetSpec& spec) {
   const std::vector<double> offset = amplitudes("camera_offset_mm", 3, limits::kMaxVibrationOffsetMm, "mm");
   const std::vector<double> rotation = amplitudes("camera_rotation_deg", 3, limits::kMaxVibrationRotationDeg, "degrees");
   const std::vector<double> tilt = amplitudes("rig_tilt_deg", 2, limits::kMaxVibrationTiltDeg, "degrees");
+  const std::vector<double> robotTilt = amplitudes("robot_tilt_deg", 2, limits::kMaxVibrationTiltDeg, "degrees");
   v.cameraOffsetMm = {offset[0], offset[1], offset[2]};
   v.cameraRotationDeg = {rotation[0], rotation[1], rotation[2]};
   v.rigTiltDeg = {tilt[0], tilt[1]};
+  v.robotTiltDeg = {robotTilt[0], robotTilt[1]};
   if (v.none()) throw InputError(showPath(spec.file) + ": vibration: needs an amplitude above 0 (or leave vibration out)");
   fields.finish();
 }
@@ -192,9 +194,9 @@ std::string cameraNameProblem(const std::string& name) {
 
 void readMount(JsonFields mount, DatasetCamera& camera) {
   const JsonFields::Range offset{-limits::kMaxMountOffset, limits::kMaxMountOffset, false, "m from the robot's centre"};
-  camera.mountX = mount.number("x", 0.0, offset);
-  camera.mountY = mount.number("y", 0.0, offset);
-  camera.mountYawDeg = mount.number("yaw_deg", 0.0, {-limits::kMaxMountYawDeg, limits::kMaxMountYawDeg, false, "degrees"});
+  camera.mount.x = mount.number("x", 0.0, offset);
+  camera.mount.y = mount.number("y", 0.0, offset);
+  camera.mount.yawDeg = mount.number("yaw_deg", 0.0, {-limits::kMaxMountYawDeg, limits::kMaxMountYawDeg, false, "degrees"});
   mount.finish();
 }
 
@@ -335,6 +337,12 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     readMotion(*motion, spec);
   }
   if (auto vibration = top.optionalObject("vibration")) readVibration(*vibration, spec);
+  if (auto robot = top.optionalObject("robot")) {
+    const std::vector<double> tilt =
+        robot->numbers("tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg, limits::kMaxRigTiltDeg, false, "degrees"});
+    spec.robotTiltDeg = {tilt[0], tilt[1]};
+    robot->finish();
+  }
   const auto layout = layoutNamed(top.string("layout", layoutName(spec.layout)));
   if (!layout) top.fail("layout", "must be \"files\" or \"multilayer\"");
   spec.layout = *layout;
@@ -355,20 +363,6 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
   top.finish();
   return spec;
-}
-
-RobotPose cameraPose(const DatasetCamera& camera, const RobotPose& robot) {
-  const double yaw = radians(robot.yawDeg);
-  return {robot.x + std::cos(yaw) * camera.mountX - std::sin(yaw) * camera.mountY,
-          robot.y + std::sin(yaw) * camera.mountX + std::cos(yaw) * camera.mountY,
-          robot.yawDeg + camera.mountYawDeg};
-}
-
-BodyVelocity cameraVelocity(const DatasetCamera& camera, const BodyVelocity& robot) {
-  const double omega = radians(robot.yawRateDegPerS);
-  const double vx = robot.vx - omega * camera.mountY, vy = robot.vy + omega * camera.mountX;
-  const double yaw = radians(camera.mountYawDeg), c = std::cos(yaw), s = std::sin(yaw);
-  return {c * vx + s * vy, -s * vx + c * vy, robot.yawRateDegPerS};
 }
 
 }  // namespace omnicam

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "output_kinds.h"
+#include "placement.h"
 #include "recording_camera.h"
 #include "render_settings.h"
 #include "rig.h"
@@ -40,12 +41,12 @@ inline constexpr double kMaxVibrationRotationDeg = 5.0;
 inline constexpr double kMaxVibrationTiltDeg = 10.0;
 }  // namespace limits
 
-// One omnicam on the robot. Its viewpoint F' sits at (mountX, mountY) in the robot frame, at the
-// rig's height above the floor, turned by mountYawDeg.
+// One omnicam on the robot, standing on it where its mount says (placement.h): its viewpoint F'
+// at the rig's height above the mount's point.
 struct DatasetCamera {
   std::string name;                 // folder name: [A-Za-z0-9_-], 1–63 bytes
   std::optional<nlohmann::json> rig;  // the scene's rig format; absent: the scene's rig
-  double mountX = 0.0, mountY = 0.0, mountYawDeg = 0.0;
+  RobotMount mount;
 };
 
 // Robot poses drawn uniformly from a floor rectangle, kept only where F' is at least
@@ -109,6 +110,9 @@ struct DatasetSpec {
   BodyVelocity velocity;
   // Every frame's rig shaken within these amplitudes (vibration.h); none: the rigs as given.
   Vibration vibration;
+  // The robot's own tilt (roll, pitch; degrees): every camera on it tilted alike, about the
+  // robot's origin on the floor (placement.h). Each rig's tilt_deg tilts that camera alone.
+  RobotTilt robotTiltDeg{0.0, 0.0};
   // files: one file per output and frame; multilayer: one OpenEXR per frame and camera
   // (output_kinds.h).
   DatasetLayout layout = DatasetLayout::Files;
@@ -136,10 +140,5 @@ SettingNames settingNames(const DatasetSpec& spec);
 DatasetSpec loadDatasetSpec(const std::string& file);
 DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file);
 
-// The world pose of a camera's viewpoint for a robot pose (the mount applied).
-RobotPose cameraPose(const DatasetCamera& camera, const RobotPose& robot);
-// The body velocity of a camera mounted on a robot that moves with `robot` (the same turn rate;
-// the mount's offset adds ω × offset, seen in the mount's axes).
-BodyVelocity cameraVelocity(const DatasetCamera& camera, const BodyVelocity& robot);
 
 }  // namespace omnicam

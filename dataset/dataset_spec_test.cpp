@@ -6,6 +6,7 @@
 
 #include "errors.h"
 #include "pose_sampler.h"
+#include "floor_obstacles.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -32,7 +33,7 @@ TEST(DatasetSpec, TheDocumentedExampleLoadsAndItsPosesResolve) {
   const DatasetSpec s = loadDatasetSpec(kExample);
   ASSERT_EQ(s.cameras.size(), 2u);
   EXPECT_EQ(s.cameras[1].name, "rear");
-  EXPECT_DOUBLE_EQ(s.cameras[1].mountYawDeg, 180.0);
+  EXPECT_DOUBLE_EQ(s.cameras[1].mount.yawDeg, 180.0);
   EXPECT_EQ(s.spp, 4);
   const Scene scene = loadScene(s.scene);
   EXPECT_EQ(datasetPoses(s, scene, 0.4).size(), 10u);
@@ -136,12 +137,22 @@ TEST(DatasetSpec, ARecordingCameraIsReadWithItsParameters) {
   EXPECT_FALSE(datasetSpecFromText(spec(""), "spec.json").recording);
 }
 
-TEST(DatasetSpec, CameraMountsTurnWithTheRobot) {
-  const DatasetCamera camera{"c", std::nullopt, 0.2, 0.1, 30.0};
-  const RobotPose p = cameraPose(camera, {1.0, 2.0, 90.0});
-  EXPECT_NEAR(p.x, 1.0 - 0.1, 1e-12);  // robot +X is world +Y, robot +Y is world -X
-  EXPECT_NEAR(p.y, 2.0 + 0.2, 1e-12);
-  EXPECT_DOUBLE_EQ(p.yawDeg, 120.0);
+TEST(DatasetSpec, TheRobotTiltsEveryCameraAndItsVibrationRocksItPerFrame) {
+  const DatasetSpec s = datasetSpecFromText(
+      spec(R"("robot": {"tilt_deg": [1.5, -2]}, "vibration": {"seed": 3, "robot_tilt_deg": [0.5, 0.25]})"), "spec.json");
+  EXPECT_EQ(s.robotTiltDeg, (RobotTilt{1.5, -2.0}));
+  EXPECT_EQ(s.vibration.robotTiltDeg, (std::array<double, 2>{0.5, 0.25}));
+  // Drawn once per frame, within the amplitude, the same for every camera; the rig's own
+  // perturbations are left alone.
+  for (uint64_t frame = 0; frame < 50; ++frame) {
+    const RobotTilt rocked = vibratedRobotTilt(s.robotTiltDeg, s.vibration, frame);
+    EXPECT_LE(std::abs(rocked[0] - 1.5), 0.5);
+    EXPECT_LE(std::abs(rocked[1] + 2.0), 0.25);
+    EXPECT_EQ(vibratedRig(RigSpec{}, s.vibration, frame, 0), RigSpec{});
+  }
+  EXPECT_NE(vibratedRobotTilt(s.robotTiltDeg, s.vibration, 0), vibratedRobotTilt(s.robotTiltDeg, s.vibration, 1));
+  EXPECT_EQ(errorOf(spec(R"("robot": {"tilt_deg": [45, 0]})")), "spec.json: robot.tilt_deg[0]: must be in [-30, 30] degrees (got 45)");
+  EXPECT_EQ(errorOf(spec(R"("robot": {"tilt": [1, 0]})")), "spec.json: robot.tilt: unknown field");
 }
 
 // One 1 m box centred at the origin: footprint [-0.5, 0.5]², height 1 m.
@@ -195,26 +206,6 @@ TEST(DatasetSpec, RandomPosesAreReproducibleAndKeepTheirClearance) {
     EXPECT_NE(std::string(e.what()).find("spec.json: poses.random: no free space with 0.1 m clearance in the region"),
               std::string::npos)
         << e.what();
-  }
-}
-
-TEST(DatasetMotion, AMountedCameraMovesWithTheRobot) {
-  // Turning on the spot at 90°/s, a camera 0.2 m ahead facing left drives forward at 0.2·π/2 m/s.
-  const DatasetCamera side{"side", std::nullopt, 0.2, 0.0, 90.0};
-  const BodyVelocity turning = cameraVelocity(side, {0.0, 0.0, 90.0});
-  EXPECT_NEAR(turning.vx, 0.1 * kPi, 1e-12);
-  EXPECT_NEAR(turning.vy, 0.0, 1e-12);
-  EXPECT_EQ(turning.yawRateDegPerS, 90.0);
-  // In general: the camera's pose over time is the mounted pose of the robot's.
-  const DatasetCamera mounted{"m", std::nullopt, 0.15, -0.3, -40.0};
-  const RobotPose robot{1.0, -2.0, 25.0};
-  const BodyVelocity v{0.8, -0.3, 120.0};
-  for (double t : {0.01, 0.1, 0.7}) {
-    const RobotPose expected = cameraPose(mounted, poseAfter(robot, v, t));
-    const RobotPose got = poseAfter(cameraPose(mounted, robot), cameraVelocity(mounted, v), t);
-    EXPECT_NEAR(got.x, expected.x, 1e-12) << t;
-    EXPECT_NEAR(got.y, expected.y, 1e-12) << t;
-    EXPECT_NEAR(got.yawDeg, expected.yawDeg, 1e-9) << t;
   }
 }
 

@@ -31,12 +31,11 @@ std::string eurocDataCsv(int frames, double intervalS) {
 std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const Camera& camera, double intervalS) {
   const CentralModel model = centralModelOf(camera);
   const MeiIntrinsics& k = model.intrinsics;
-  // The mount places the camera on the robot as a robot pose places the robot in the world.
-  const Rigid robotFromMount = worldFromRobot({mount.mountX, mount.mountY, mount.mountYawDeg});
   // The rig's camera frame, or the frame of its best-fit central model.
   Rigid viewpointFromSensor = cameraFromViewpoint().inverse();
   if (model.approximation) viewpointFromSensor = model.approximation->cameraFromViewpoint.inverse();
-  const Rigid bodyFromSensor = robotFromMount * robotFromViewpoint(rig) * viewpointFromSensor;
+  // The camera's place on a level robot standing at the origin: the body frame is the robot's.
+  const Rigid bodyFromSensor = CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromViewpoint(rig) * viewpointFromSensor;
 
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"

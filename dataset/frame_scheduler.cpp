@@ -32,22 +32,26 @@ void stopIfCancelled() {
 // null, holds camera c's image already rendered (a batching engine); `aovs` is reused memory.
 FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int index, std::vector<ImageRGBA*> rgb,
                         AovFrame& aovs) {
+  const bool wantsAovs = plan.outputs.anyAov();
   const DatasetSpec& spec = plan.spec;
-  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], plan.velocities[index], {}};
+  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], plan.velocities[index], {},
+                     plan.robotTilt(index)};
   for (size_t c = 0; c < plan.setups.size(); ++c) {
     const CameraSetup& setup = plan.setups[c];
-    RenderSettings settings{plan.frameRig(index, c), spec.spp, spec.shading};
-    settings.velocity = cameraVelocity(*setup.camera, plan.velocities[index]);
-    const RobotPose pose = cameraPose(*setup.camera, plan.poses[index]);
-    ImageRGBA image = rgb[c] ? std::move(*rgb[c])
-                      : plan.outputs.anyAov() ? plan.engine->render(pose, settings, aovs)
-                                              : plan.engine->render(pose, settings);
+    const RenderSettings settings{plan.frameRig(index, c), spec.spp, spec.shading};
+    const CameraPlacement placement = plan.placement(index, c);
+    Film film = filmFor(settings, wantsAovs);
+    if (wantsAovs) film.aovs = std::move(aovs);  // its planes' memory reused
+    if (rgb[c]) film.image = std::move(*rgb[c]);
+    else plan.engine->render(placement, settings, film);
     // Seeded by frame and camera: a resumed run records the same noise.
-    if (spec.recording) image = recordFrame(*spec.recording, image, static_cast<uint64_t>(index) * plan.setups.size() + c);
-    std::vector<EncodedFile> files = encodeFrameOutputs(plan.scene, plan.rays.get(), settings, setup.camera->name, index, pose, image,
-                                                        plan.outputs.anyAov() ? &aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
+    if (spec.recording) film.image = recordFrame(*spec.recording, film.image, static_cast<uint64_t>(index) * plan.setups.size() + c);
+    std::vector<EncodedFile> files =
+        encodeFrameOutputs(plan.scene, plan.rays.get(), settings, setup.camera->name, index, placement, film.image,
+                           film.aovs ? &*film.aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
+    if (film.aovs) aovs = std::move(*film.aovs);
     stopIfCancelled();
-    CameraFrame cameraFrame{pose, {}, std::nullopt};
+    CameraFrame cameraFrame{placement.footAt(0.0), {}, std::nullopt};
     if (plan.vibrates()) cameraFrame.rig = settings.rig;
     for (EncodedFile& file : files) {
       writeFileInside(dir, file.relativePath, file.bytes, Durability::Unsynced);
@@ -62,13 +66,11 @@ FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int ind
 std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const std::vector<int>& todo, size_t start, size_t end) {
   std::vector<std::vector<ImageRGBA>> rgb(plan.setups.size());
   for (size_t c = 0; c < plan.setups.size(); ++c) {
-    std::vector<RobotPose> batchPoses;
-    for (size_t k = start; k < end; ++k) batchPoses.push_back(cameraPose(*plan.setups[c].camera, plan.poses[todo[k]]));
-    // One rig and velocity for the batch: batches of a vibrating or moving plan hold one frame
-    // (renderFrames).
-    RenderSettings settings{plan.frameRig(todo[start], c), plan.spec.spp, plan.spec.shading};
-    settings.velocity = cameraVelocity(*plan.setups[c].camera, plan.velocities[todo[start]]);
-    rgb[c] = plan.engine->renderMany(batchPoses, settings);
+    std::vector<CameraPlacement> placements;
+    for (size_t k = start; k < end; ++k) placements.push_back(plan.placement(todo[k], c));
+    // One rig for the batch: batches of a vibrating or moving plan hold one frame (renderFrames).
+    const RenderSettings settings{plan.frameRig(todo[start], c), plan.spec.spp, plan.spec.shading};
+    rgb[c] = plan.engine->renderMany(placements, settings);
   }
   return rgb;
 }
@@ -81,8 +83,9 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
-  const size_t batch = engine.batches()      ? (plan.framesHaveOwnSettings() ? 1 : kFramesPerBatch)
-                       : engine.concurrent() ? static_cast<size_t>(concurrencyWithin(plan.frameBytes(), kConcurrentFrames,
+  const EngineCapabilities& can = engine.capabilities();
+  const size_t batch = can.batches      ? (plan.framesHaveOwnSettings() ? 1 : kFramesPerBatch)
+                       : can.concurrent ? static_cast<size_t>(concurrencyWithin(plan.frameBytes(), kConcurrentFrames,
                                                                                      "one frame of this dataset"))
                                              : 1;
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
@@ -90,7 +93,7 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
   int rendered = 0;
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);
-    std::vector<std::vector<ImageRGBA>> rgb = engine.batches() ? renderBatch(plan, todo, start, end)
+    std::vector<std::vector<ImageRGBA>> rgb = can.batches ? renderBatch(plan, todo, start, end)
                                                                : std::vector<std::vector<ImageRGBA>>(plan.setups.size());
     std::vector<FrameRecord> records(end - start);
     auto renderOne = [&](size_t k) {
@@ -99,7 +102,7 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
         if (!rgb[c].empty()) given[c] = &rgb[c][k];
       records[k] = renderFrame(plan, options.dir, todo[start + k], given, aovSlots[k]);
     };
-    if (engine.concurrent()) {
+    if (can.concurrent) {
       tbb::parallel_for(size_t{0}, end - start, renderOne);
     } else {
       for (size_t k = 0; k < end - start; ++k) renderOne(k);

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "input_limits.h"
-#include "pose_sampler.h"
+#include "floor_obstacles.h"
 
 namespace omnicam {
 

@@ -2,6 +2,7 @@
 // disc polygon), the clearance of every triangle corner and sampled point checked by the
 // independent brute-force distance of FloorObstacles, and uniform sampling by area.
 #include "free_space.h"
+#include "floor_obstacles.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,6 @@
 #include <set>
 
 #include "atomic_file.h"
-#include "dataset_shards.h"
 #include "dataset_spec.h"
 #include "errors.h"
 #include "file_confinement.h"
@@ -167,6 +166,12 @@ FrameRecord readFrame(JsonFields f, const HeaderFacts& header) {
         velocity->number("yaw_rate_deg_per_s", {-limits::kMaxYawRateDegPerS, limits::kMaxYawRateDegPerS, false, "degrees/s"});
     velocity->finish();
   }
+  if (f.has("robot_tilt_deg")) {
+    const std::vector<double> tilt =
+        f.numbers("robot_tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg - limits::kMaxVibrationTiltDeg,
+                                                 limits::kMaxRigTiltDeg + limits::kMaxVibrationTiltDeg, false, "degrees"});
+    frame.robotTiltDeg = {tilt[0], tilt[1]};
+  }
   const json& raw = f.raw("cameras");
   JsonFields cameras = f.object("cameras");
   for (auto it = raw.begin(); it != raw.end(); ++it) {
@@ -198,6 +203,7 @@ json manifestToJson(const DatasetManifest& manifest) {
     json entry = {{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)}, {"cameras", cameras}};
     if (!frame.velocity.still())  // the pose is then the exposure start's (docs/motion.md)
       entry["velocity"] = {{"vx", frame.velocity.vx}, {"vy", frame.velocity.vy}, {"yaw_rate_deg_per_s", frame.velocity.yawRateDegPerS}};
+    if (frame.robotTiltDeg != RobotTilt{0.0, 0.0}) entry["robot_tilt_deg"] = frame.robotTiltDeg;
     frames.push_back(std::move(entry));
   }
   root["frames"] = frames;

@@ -52,6 +52,7 @@ struct FrameRecord {
   RobotPose robot;        // at the exposure start (the timestamp)
   BodyVelocity velocity;  // the robot's, over the exposure (docs/motion.md)
   std::map<std::string, CameraFrame> cameras;  // camera name → its files
+  RobotTilt robotTiltDeg{0.0, 0.0};            // the robot's tilt (placement.h); level unless it says
 };
 
 struct DatasetManifest {
@@ -75,6 +76,9 @@ void writeManifest(const std::string& dir, const DatasetManifest& manifest, cons
 // bytes and the engine. Resuming or merging across any difference would mix frames.
 nlohmann::json datasetIdentity(const nlohmann::json& header);
 
+// At most this many shards (Slurm array tasks) per dataset: a count sizes work (a file and a
+// task per shard) and is checked before any.
+inline constexpr int kMaxShards = 100000;
 // A shard's manifest, relative to the dataset folder: shards/shard-I-of-N.json.
 std::string shardManifestName(int index, int count);
 

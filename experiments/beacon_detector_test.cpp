@@ -8,6 +8,7 @@
 
 #include "errors.h"
 #include "scene_loader.h"
+#include "placement.h"
 
 namespace omnicam {
 namespace {
@@ -53,7 +54,7 @@ void disc(ImageRGBA& image, const Vec2& centre, double radius, const Vec3f& colo
 }
 
 Vec2 projected(const RigSpec& rig, const RobotPose& pose, const Vec3& point) {
-  return *rig.camera().rasterFromCamera(cameraFromWorld(rig, pose) * point);
+  return *rig.camera().rasterFromCamera(CameraPlacement(pose).worldFromCamera(rig).inverse() * point);
 }
 
 TEST(BeaconDetector, BeaconsComeFromUpperAndLowerLandmarks) {

@@ -1,6 +1,7 @@
 // Projecting a point and inverting its pixel at the point's known height gives back its range
 // and bearing (closed form: the horizontal distance and angle from F').
 #include "landmark_geometry.h"
+#include "placement.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@ TEST(LandmarkGeometry, InvertingTheProjectionAtTheKnownHeightRecoversRangeAndBea
   const RobotPose pose{0.3, -0.4, 35.0};
   const OmniCamera camera = rig.camera();
   for (const Vec3& point : {Vec3(1.35, -1.95, 0.35), Vec3(-1.35, 1.95, 0.25), Vec3(2.0, 0.5, 0.0), Vec3(0.0, 0.4, 0.1)}) {
-    const auto raster = camera.rasterFromCamera(cameraFromWorld(rig, pose) * point);
+    const auto raster = camera.rasterFromCamera(CameraPlacement(pose).worldFromCamera(rig).inverse() * point);
     ASSERT_TRUE(raster);
     const auto rb = rangeBearingFromRaster(rig, *raster, point.z());
     ASSERT_TRUE(rb);

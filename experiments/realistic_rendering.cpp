@@ -81,7 +81,7 @@ std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<Robo
   std::vector<ImageRGBA> sum;
   for (int k = 0; k < sessions; ++k) {
     options.seed = seed + k;
-    std::vector<ImageRGBA> images = renderWithBlender(scene, poses, settings, options);
+    std::vector<ImageRGBA> images = renderWithBlender(scene, std::vector<CameraPlacement>(poses.begin(), poses.end()), settings, options);
     if (sum.empty()) {
       sum = std::move(images);
       continue;

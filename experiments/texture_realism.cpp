@@ -148,7 +148,7 @@ std::vector<GroundTruthBeacon> groundTruth(const Scene& scene, const RayScene& r
     return false;
   };
   const OmniCamera camera = rig.camera();
-  const Rigid cameraFromWorldT = cameraFromWorld(rig, pose);
+  const Rigid cameraFromWorldT = CameraPlacement(pose).worldFromCamera(rig).inverse();
   std::vector<GroundTruthBeacon> truth;
   for (const Beacon& beacon : beacons) {
     const Vec3 boundary(beacon.position().x(), beacon.position().y(), beacon.boundaryHeight());

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "texture_realism.h"
+#include "texture_realism_results.h"
 
 namespace omnicam {
 
@@ -69,5 +69,11 @@ ImageRGBA drawDetections(const ImageRGBA& image, const FrameEvaluation& frame);
 void writeTextureRealismReport(const ReportData& data, const TextureRealismResults& results, const std::string& plotScript);
 
 nlohmann::json textureRealismResultsJson(const TextureRealismResults& results);
+
+// The measured table beside the thesis' numbers, with which findings reproduce (Markdown);
+// `convergence`, when given, is the realistic-convergence study's section (its figure at
+// `convergenceFigure`, relative to the document).
+std::string textureRealismMarkdown(const TextureRealismResults& results, const TextureRealismOptions& options,
+                                   const std::string& command, const std::string& convergence = "");
 
 }  // namespace omnicam

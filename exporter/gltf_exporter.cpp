@@ -1,5 +1,8 @@
 #include "gltf_exporter.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include <tiny_gltf.h>
 
 #include <cmath>
@@ -225,8 +228,14 @@ TriangleMesh rimMask(double rimHeight, double innerRadius) {
 
 }  // namespace
 
+namespace {
+
+nlohmann::json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
+
+}  // namespace
+
 void checkGltfCamera(const RigSpec& rig) {
-  if (rig.shape.shape != MirrorShape::Hyperboloid && rig.shape.shape != MirrorShape::Sphere)
+  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes))
     throw InputError(std::string("rig.mirror.shape: the glTF export (and Blender) has certified meshes of the "
                                  "hyperboloid and the sphere only, not of a ") + mirrorShapeName(rig.shape.shape) +
                      "; render it with the fast renderer or POV-Ray");
@@ -291,11 +300,11 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
         shape.shape == MirrorShape::Sphere
             ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
             : buildMirrorMesh(options.rig.mirror(), options.rig.idealCamera().rimTheta(), options.mirrorDeviation);
-    const int rig = b.node(kGltfRigNode, worldFromViewpoint(options.rig, options.pose), -1,
+    const int rig = b.node(kGltfRigNode, options.placement.worldFromViewpoint(options.rig), -1,
                            {{"omnicam",
                              {{"role", "rig"},
                               {"rig", rigToJson(options.rig)},
-                              {"pose", {{"x", options.pose.x}, {"y", options.pose.y}, {"yaw_deg", options.pose.yawDeg}}},
+                              {"pose", poseJson(options.placement.footAt(0.0))},
                               {"intrinsics", makeCamera(options.rig)->describe()},
                               {"frame", "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)"}}}});
     b.addRoot(rig);

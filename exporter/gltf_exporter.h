@@ -12,12 +12,13 @@
 #include <vector>
 
 #include "render_settings.h"
+#include "placement.h"
 #include "scene.h"
 
 namespace omnicam {
 
 struct GltfExportOptions {
-  RobotPose pose;                     // where the rig node stands
+  CameraPlacement placement;          // where the rig node stands (at its exposure start)
   RigSpec rig;                        // mirror and image of the rig node
   double chordTolerance = 0.2e-3;     // curved primitives (m)
   double mirrorDeviation = 0.5e-6;    // certified bound of the mirror mesh (m)

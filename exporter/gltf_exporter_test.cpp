@@ -69,7 +69,7 @@ TEST_F(GltfTest, RoundTripKeepsGeometryAndMaterials) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   GltfExportOptions options;
   options.rig = scene.rig;
-  options.pose = scene.startPose;
+  options.placement = scene.startPose;
   const std::string glb = (dir_ / "arena.glb").string();
   exportGltf(scene, options, glb);
   const GltfArena back = importGltf(glb);

@@ -176,9 +176,9 @@ void checkPovrayCamera(const RigSpec& rig) {
     throw InputError("rig.camera.distortion: POV-Ray has no lens distortion; render it with the fast renderer");
 }
 
-PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings) {
+PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings) {
   checkRenderSettings(settings);
-  checkPose(pose, "pose");
+  checkPlacement(placement);
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;
   job.samplesPerAxis = *n;
@@ -188,7 +188,9 @@ PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSe
   const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(settings.rig);
   job.width = settings.rig.imageSize * *n;
   job.height = settings.rig.imageSize * *n;
-  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
+  // POV-Ray renders one instant: the exposure start (povray_renderer.h freezes a moving
+  // placement at each instant it renders).
+  const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);
   SdlWriter writer(scene, settings.shading, job);
 
   std::ostringstream out;

@@ -36,7 +36,7 @@ struct PovrayJob {
 constexpr double kPovrayUnitsPerMetre = 1000.0;
 
 // Throws InputError for what the export cannot represent (e.g. a texture on a sphere).
-PovrayJob exportPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings);
+PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings);
 // InputError unless POV-Ray can render the rig's camera (it has no lens distortion).
 void checkPovrayCamera(const RigSpec& rig);
 

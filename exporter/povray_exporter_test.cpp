@@ -11,6 +11,7 @@
 
 #include "errors.h"
 #include "scene_loader.h"
+#include "placement.h"
 
 namespace omnicam {
 namespace {
@@ -75,7 +76,7 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   // Trace the parsed camera through the parsed quadric; the reflected ray, reversed, must be
   // our model's ray for that pixel (world frame).
   const OmniCamera cam = settings.rig.camera();
-  const Rigid wfc = worldFromCamera(settings.rig, pose);
+  const Rigid wfc = CameraPlacement(pose).worldFromCamera(settings.rig);
   auto implicit = [&](const Vec3& world) {  // in mm, local POV axes
     const Vec3 l = (world - viewpointWorld) * kPovrayUnitsPerMetre;
     const Vec3 pov(l.x(), l.z(), l.y());

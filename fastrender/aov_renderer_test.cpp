@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "thread_count_testing.h"
+#include "placement.h"
 
 namespace omnicam {
 namespace {
@@ -28,7 +29,7 @@ TEST(AovRenderer, DepthInstanceAndNormalAreTheGeometryAtEachPixelCentre) {
   const RobotPose pose{0.2, -0.1, 30.0};
   const AovFrame aov = renderAovs(renderer, pose, settings);
   const OmniCamera camera = settings.rig.camera();
-  const Rigid worldFromCam = worldFromCamera(settings.rig, pose), camFromWorld = worldFromCam.inverse();
+  const Rigid worldFromCam = CameraPlacement(pose).worldFromCamera(settings.rig), camFromWorld = worldFromCam.inverse();
   int floorPixels = 0, boxPixels = 0, empty = 0;
   for (int j = 0; j < aov.height; ++j)
     for (int i = 0; i < aov.width; ++i) {
@@ -76,14 +77,14 @@ TEST(AovRenderer, TheBoxTopIsAtItsClosedFormDistance) {
   const RobotPose pose{0.0, 0.0, 0.0};
   const OmniCamera camera = settings.rig.camera();
   const Vec3 top(1.0, 0.5, 0.3);
-  const auto raster = camera.rasterFromCamera(cameraFromWorld(settings.rig, pose) * top);
+  const auto raster = camera.rasterFromCamera(CameraPlacement(pose).worldFromCamera(settings.rig).inverse() * top);
   ASSERT_TRUE(raster);
   const int i = static_cast<int>(raster->x()), j = static_cast<int>(raster->y());
   const AovFrame aov = renderAovs(renderer, pose, settings);
   const size_t p = static_cast<size_t>(j) * aov.width + i;
   ASSERT_EQ(aov.instance[p], 2);
   const Vec3 fPrime(0.0, 0.0, settings.rig.height);
-  const Vec3 direction = worldFromCamera(settings.rig, pose).linear() * camera.cameraFromRaster({i + 0.5, j + 0.5});
+  const Vec3 direction = CameraPlacement(pose).worldFromCamera(settings.rig).linear() * camera.cameraFromRaster({i + 0.5, j + 0.5});
   // The ray meets the plane z = 0.3 of the top face at t = (0.3 − 0.4) / d_z.
   EXPECT_NEAR(aov.depth[p], (top.z() - fPrime.z()) / direction.z(), 1e-5);
   EXPECT_NEAR(aov.normal[3 * p + 2], 1.0f, 1e-6f);
@@ -134,9 +135,9 @@ TEST(AovRenderer, AReusedFrameHoldsOnlyTheNewPose) {
   RenderSettings settings;
   settings.rig.imageSize = 64;
   AovFrame reused, fresh;
-  renderer.render({1.0, 0.5, 0.0}, settings, reused);  // right next to the box: a different picture
-  renderer.render({-2.0, -1.0, 120.0}, settings, reused);
-  renderer.render({-2.0, -1.0, 120.0}, settings, fresh);
+  renderer.render(RobotPose{1.0, 0.5, 0.0}, settings, reused);  // right next to the box: a different picture
+  renderer.render(RobotPose{-2.0, -1.0, 120.0}, settings, reused);
+  renderer.render(RobotPose{-2.0, -1.0, 120.0}, settings, fresh);
   EXPECT_EQ(reused.depth, fresh.depth);
   EXPECT_EQ(reused.instance, fresh.instance);
   EXPECT_EQ(reused.normal, fresh.normal);

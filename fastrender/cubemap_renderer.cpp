@@ -1,5 +1,7 @@
 #include "cubemap_renderer.h"
 
+#include "engine_capabilities.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -189,21 +191,14 @@ void checkCubeMapOptions(const CubeMapOptions& o) {
     throw InputError("thesis mesh: polygons must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
 }
 
-void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& o) {
-  if (!rig.ideal())
-    throw InputError(std::string(o.mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cube-map") +
-                     " mode is central by construction and renders the ideal rig only (the hyperboloid with "
-                     "its camera at F); this rig's mirror shape or camera (rig.mirror, rig.camera) differs: "
-                     "render it in exact mode");
-}
-
 std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,
                                                                        const CubeMapOptions& o) const {
   checkCubeMapOptions(o);
   int sectors = 0, rings = 0;
   if (o.mode == OmniMode::ThesisMesh) thesisMeshLayout(o.polygons, sectors, rings);
   checkRenderSettings(settings);
-  checkCubeMapCamera(settings.rig, o);
+  checkEngineRenders(o.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap, settings.rig,
+                     CameraPlacement{});
   const auto n = samplesPerAxis(settings.spp);
   // The faces' texels (colour and slot, bordered), every sample's footprint (16 B) and the frame
   // with its encoding (48 B a pixel), before any of it is allocated.
@@ -248,7 +243,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
       L->firstSample.push_back(static_cast<uint32_t>(L->samples.size()));
       for (int b = 0; b < *n; ++b)
         for (int a = 0; a < *n; ++a) {
-          const Vec2 raster = gridSample(i, j, a, b, *n);
+          const Vec2 raster = Film::sample(i, j, a, b, *n);
           if (!camera.insideRim(raster)) continue;
           if (o.mode == OmniMode::CubeMap) {
             const Vec3 d = viewpointFromCamera.linear() * camera.cameraFromRaster(raster);
@@ -317,18 +312,21 @@ CubeMapRenderer::BufferLease::~BufferLease() {
   owner_.spareBuffers_.push_back(std::move(buffers_));
 }
 
-ImageRGBA CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings,
+ImageRGBA CubeMapRenderer::render(const CameraPlacement& placement, const RenderSettings& settings,
                                   const CubeMapOptions& options) const {
-  ImageRGBA image;
-  render(pose, settings, options, image);
-  return image;
+  Film film = filmFor(settings);
+  render(placement, settings, options, film);
+  return std::move(film.image);
 }
 
-void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options,
-                             ImageRGBA& image) const {
+void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSettings& settings, const CubeMapOptions& options,
+                             Film& film) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
-  checkPose(pose, "pose");
-  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
+  checkPlacement(placement);
+  if (film.width() != settings.rig.imageSize || film.samplesPerAxis() != *samplesPerAxis(settings.spp))
+    throw std::invalid_argument("CubeMapRenderer::render: the film does not match the settings");
+  film.allocate();  // the lookup above checked that the frame fits in memory
+  const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);
   const Vec3 origin = worldFromView.translation();
   const Eigen::Matrix3d rotation = worldFromView.linear();
   // 1. The texels the lookup reads: rasterised (unlit), or ray cast from F' like exact mode.
@@ -352,23 +350,18 @@ void CubeMapRenderer::render(const RobotPose& pose, const RenderSettings& settin
   }
   // 2. Every omni sample from its precomputed bilinear footprint.
   const int width = settings.rig.imageSize, height = width;
-  const int n = *samplesPerAxis(settings.spp);
-  const float weight = 1.0f / static_cast<float>(n * n);
-  image.width = width;
-  image.height = height;
-  image.pixels.resize(static_cast<size_t>(width) * height * 4);
+  const float weight = film.weight();
   const uint32_t* firstSample = L->firstSample.data();
   const Lookup::Sample* samples = L->samples.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
-      float* px = image.at(0, j);
-      for (size_t pixel = static_cast<size_t>(j) * width; pixel < static_cast<size_t>(j + 1) * width; ++pixel, px += 4) {
+      for (int i = 0; i < width; ++i) {
+        const size_t pixel = static_cast<size_t>(j) * width + i;
         float sum[3] = {0.0f, 0.0f, 0.0f};
         for (uint32_t s = firstSample[pixel]; s < firstSample[pixel + 1]; ++s) {
           if (samples[s].top != UINT32_MAX) addFootprint(texel, samples[s], sum);
         }
-        for (int c = 0; c < 3; ++c) px[c] = sum[c] * weight;
-        px[3] = static_cast<float>(firstSample[pixel + 1] - firstSample[pixel]) * weight;  // rim coverage
+        film.setPixel(i, j, sum, weight, static_cast<int>(firstSample[pixel + 1] - firstSample[pixel]));
       }
     }
   });

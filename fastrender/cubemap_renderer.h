@@ -33,18 +33,15 @@ struct CubeLookupStats {
 // InputError for options no cube map has (faces 5 or 6, face size 8 … 8192, polygons 16, 64,
 // 256 or 1024), naming them in the library's words.
 void checkCubeMapOptions(const CubeMapOptions& options);
-// InputError unless the cube-map / thesis-mesh mode can render the rig's camera: they are
-// central by construction, so the ideal rig only.
-void checkCubeMapCamera(const RigSpec& rig, const CubeMapOptions& options);
 
 class CubeMapRenderer {
  public:
   explicit CubeMapRenderer(const FastRenderer& renderer);
   // Throws InputError for bad options (faces, faceSize, polygons, spp).
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options) const;
-  // The same into `image`, whose storage is reused from frame to frame (every pixel is written).
-  void render(const RobotPose& pose, const RenderSettings& settings, const CubeMapOptions& options,
-              ImageRGBA& image) const;
+  ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings, const CubeMapOptions& options) const;
+  // The same into `film`'s colour (filmFor(settings)), whose storage is reused from frame to frame.
+  void render(const CameraPlacement& placement, const RenderSettings& settings, const CubeMapOptions& options,
+              Film& film) const;
   CubeLookupStats stats(const RenderSettings& settings, const CubeMapOptions& options) const;
 
   struct Lookup;

@@ -166,7 +166,7 @@ TEST(CubeMap, FiveFacesMissTheCornersOfA45DegreeRim) {
   settings.spp = 4;
   CubeMapOptions five;
   five.faces = 5;
-  const ImageRGBA image = cube.render({0, 0, 0}, settings, five);
+  const ImageRGBA image = cube.render(RobotPose{0, 0, 0}, settings, five);
   const CubeLookupStats stats = cube.stats(settings, five);
   // The image's black samples are exactly the lookup's missed ones.
   double black = 0.0, inside = 0.0;
@@ -204,14 +204,16 @@ TEST(CubeMap, OutputIsBitIdenticalForAnyThreadCountAndOptionsAreChecked) {
   ASSERT_EQ(one.pixels.size(), four.pixels.size());
   EXPECT_EQ(std::memcmp(one.pixels.data(), four.pixels.data(), one.pixels.size() * sizeof(float)), 0);
   // A reused output image (here holding another pose at another size) is wholly overwritten.
-  ImageRGBA reused;
+  Film reused = filmFor(settings);
+  cube.render(RobotPose{0.5, 0.5, 10.0}, settings, options, reused);
+  cube.render(arena().startPose, settings, options, reused);
+  ASSERT_EQ(reused.image.pixels.size(), one.pixels.size());
+  EXPECT_EQ(reused.image.width, one.width);
+  EXPECT_EQ(std::memcmp(one.pixels.data(), reused.image.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  // A film of another size is refused, not resized behind the caller's back.
   RenderSettings small = settings;
   small.rig.imageSize = 97;
-  cube.render({0.5, 0.5, 10.0}, small, options, reused);
-  cube.render(arena().startPose, settings, options, reused);
-  ASSERT_EQ(reused.pixels.size(), one.pixels.size());
-  EXPECT_EQ(reused.width, one.width);
-  EXPECT_EQ(std::memcmp(one.pixels.data(), reused.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  EXPECT_THROW(cube.render(arena().startPose, small, options, reused), std::invalid_argument);
   options.faces = 4;
   EXPECT_THROW(cube.render(arena().startPose, settings, options), InputError);
   options.faces = 6;

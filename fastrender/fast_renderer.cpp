@@ -120,13 +120,13 @@ std::shared_ptr<const FastRenderer::SampleTable> FastRenderer::sampleTable(const
       uint32_t centre = SampleTable::kNoSample;
       for (int b = 0; b < n; ++b)
         for (int a = 0; a < n; ++a) {
-          const auto ray = camera->generateRay({gridSample(i, j, a, b, n)});
+          const auto ray = camera->generateRay({Film::sample(i, j, a, b, n)});
           if (!ray) continue;
           if (2 * a + 1 == n && 2 * b + 1 == n) centre = static_cast<uint32_t>(table->directions.size());
           record(*ray, table->directions, table->origins, table->starts);
           table->gridIndex.push_back(static_cast<uint16_t>(b * n + a));
         }
-      const auto middle = camera->generateRay({gridSample(i, j, 0, 0, 1)});
+      const auto middle = camera->generateRay({pixelCentre(i, j)});
       if (middle) {
         record(*middle, table->centreDirections, table->centreOrigins, table->centreStarts);
       } else {
@@ -152,8 +152,9 @@ int64_t FastRenderer::frameBytes(int width, int height, int spp, bool central) {
   return int64_t{width} * height * (int64_t{spp} * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84);
 }
 
-FastRenderer::Placement FastRenderer::placement(const RenderSettings& settings, const RobotPose& pose) {
-  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
+FastRenderer::Placement FastRenderer::placement(const RenderSettings& settings, const CameraPlacement& camera,
+                                                double seconds) {
+  const Rigid worldFromView = camera.worldFromViewpoint(settings.rig, seconds);
   return {worldFromView.translation(), worldFromView.linear(), worldFromView.linear().cast<float>()};
 }
 
@@ -166,7 +167,7 @@ void FastRenderer::loadSamples(HitPacket& hits, const Placement& at, const Sampl
     hits.setOrigin(k, at.origin + at.rotation * table.origins[first + k].cast<double>(), table.starts[first + k]);
 }
 
-FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettings& settings, const RobotPose& pose,
+FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettings& settings, const CameraPlacement& camera,
                                                               int samplesPerAxis) {
   MovingPlacements out;
   out.shutter = settings.rig.shutter;
@@ -176,7 +177,7 @@ FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettin
   const int lines = lineCount(out.shutter, out.width, out.height);
   out.samples.resize(static_cast<size_t>(lines) * out.instants.count);
   out.centres.resize(lines);
-  const auto at = [&](double seconds) { return placement(settings, poseAfter(pose, settings.velocity, seconds)); };
+  const auto at = [&](double seconds) { return placement(settings, camera, seconds); };
   // A rolling shutter has thousands of placements (lines × instants): worked out on every core,
   // each written to its own slot.
   tbb::parallel_for(0, lines, [&](int line) {
@@ -254,13 +255,27 @@ void FastRenderer::loadCentres(HitPacket& hits, const PlacementOfPixel& at, cons
   }
 }
 
-ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings) const {
-  return renderPass(pose, settings, nullptr);
+void FastRenderer::render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) const {
+  checkRenderSettings(settings);
+  checkPlacement(placement);
+  if (film.width() != settings.rig.imageSize || film.height() != settings.rig.imageSize ||
+      film.samplesPerAxis() != *samplesPerAxis(settings.spp))
+    throw std::invalid_argument("FastRenderer::render: the film does not match the settings");
+  renderPass(placement, settings, film);
 }
 
-ImageRGBA FastRenderer::render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const {
-  prepareAovs(settings, aovs);
-  return renderPass(pose, settings, &aovs);
+ImageRGBA FastRenderer::render(const CameraPlacement& placement, const RenderSettings& settings) const {
+  Film film = filmFor(settings);
+  render(placement, settings, film);
+  return std::move(film.image);
+}
+
+ImageRGBA FastRenderer::render(const CameraPlacement& placement, const RenderSettings& settings, AovFrame& aovs) const {
+  Film film = filmFor(settings);
+  film.aovs = std::move(aovs);  // its planes' memory reused
+  render(placement, settings, film);
+  aovs = std::move(*film.aovs);
+  return std::move(film.image);
 }
 
 void FastRenderer::prepareAovs(const RenderSettings& settings, AovFrame& aovs) const {
@@ -303,16 +318,16 @@ uint32_t FastRenderer::recordCentreAovs(const PlacementOfPixel& at, const Sample
   return hits.mask();
 }
 
-void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const {
+void FastRenderer::renderAovsOnly(const CameraPlacement& camera, const RenderSettings& settings, AovFrame& aovs) const {
   RenderSettings centreOnly = settings;
   centreOnly.spp = 1;
   checkRenderSettings(centreOnly);
-  checkPose(pose, "pose");
+  checkPlacement(camera);
   prepareAovs(settings, aovs);
   const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);
-  const Placement still = placement(settings, pose);
-  const bool moves = moving(settings);
-  const MovingPlacements motion = moves ? movingPlacements(settings, pose, 1) : MovingPlacements{};
+  const Placement still = placement(settings, camera);
+  const bool moves = moving(camera, settings.rig);
+  const MovingPlacements motion = moves ? movingPlacements(settings, camera, 1) : MovingPlacements{};
   const auto at = [&](size_t p) -> const Placement& {
     return moves ? motion.centre(static_cast<int>(p % aovs.width), static_cast<int>(p / aovs.width)) : still;
   };
@@ -343,23 +358,23 @@ void FastRenderer::renderAovsOnly(const RobotPose& pose, const RenderSettings& s
   });
 }
 
-ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const {
-  checkRenderSettings(settings);
-  checkPose(pose, "pose");
+void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const {
+  AovFrame* aovs = film.aovs ? &*film.aovs : nullptr;
   const auto n = samplesPerAxis(settings.spp);
-  const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);
+  const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);  // checks the frame fits in memory
+  film.allocate();
+  if (aovs) prepareAovs(settings, *aovs);
   const int width = settings.rig.imageSize, height = settings.rig.imageSize;
-  const Placement at = placement(settings, pose);
+  const Placement at = placement(settings, camera);
   // A moving frame places each ray by its line and instant (the still one's path is unchanged,
   // so a still robot's frame is the static frame bit for bit, whatever the shutter).
-  const bool moves = moving(settings);
-  const MovingPlacements motion = moves ? movingPlacements(settings, pose, *n) : MovingPlacements{};
+  const bool moves = moving(camera, settings.rig);
+  const MovingPlacements motion = moves ? movingPlacements(settings, camera, *n) : MovingPlacements{};
   const int passes = moves ? motion.instants.passes : 1;
   const auto centreAt = [&](size_t p) -> const Placement& {
     return moves ? motion.centre(static_cast<int>(p % width), static_cast<int>(p / width)) : at;
   };
-  ImageRGBA image(width, height);
-  const float weight = 1.0f / static_cast<float>(*n * *n * passes), coverageWeight = 1.0f / static_cast<float>(*n * *n);
+  const float weight = film.weight(passes);
   constexpr int kPacket = kRayPacketSize;
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
@@ -425,13 +440,10 @@ ImageRGBA FastRenderer::renderPass(const RobotPose& pose, const RenderSettings& 
       }
       for (int i = 0; i < width; ++i) {
         const size_t p = rowStart + i;
-        float* px = image.at(i, j);
-        for (int c = 0; c < 3; ++c) px[c] = sums[i][c] * weight;
-        px[3] = static_cast<float>(table->firstSample[p + 1] - table->firstSample[p]) * coverageWeight;
+        film.setPixel(i, j, sums[i].data(), weight, static_cast<int>(table->firstSample[p + 1] - table->firstSample[p]));
       }
     }
   });
-  return image;
 }
 
 }  // namespace omnicam

@@ -11,6 +11,7 @@
 
 #include "aov_frame.h"
 #include "camera.h"
+#include "film.h"
 #include "image.h"
 #include "ray_scene.h"
 #include "render_settings.h"
@@ -26,14 +27,16 @@ class FastRenderer {
   // Keeps a reference to `scene`, which must outlive the renderer.
   explicit FastRenderer(const Scene& scene);
 
-  // Throws InputError if settings.spp is not a perfect square.
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) const;
-  // The same image and, in the same pass, its AOVs (aov_frame.h): at odd n the centre sample's
-  // hit is reused, at even n one more ray goes through the pixel centre. InputError also for a
-  // scene with more than kMaxInstances objects.
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const;
+  // Exposes `film` (filmFor(settings, …)) to the camera at `placement`: its colour and, in the
+  // same pass when it wants them, its AOVs (aov_frame.h): at odd n the centre sample's hit is
+  // reused, at even n one more ray goes through the pixel centre. InputError for settings out of
+  // range, and for AOVs of a scene with more than kMaxInstances objects.
+  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) const;
+  // The colour alone; the colour and the AOVs.
+  ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings) const;
+  ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings, AovFrame& aovs) const;
   // Only the AOVs (settings.spp does not matter).
-  void renderAovsOnly(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) const;
+  void renderAovsOnly(const CameraPlacement& placement, const RenderSettings& settings, AovFrame& aovs) const;
 
   // The memory one width × height frame at `spp` takes (its sample table, a central or a traced
   // camera's, and the frame with every AOV and its files): checked before a table is built, and
@@ -91,11 +94,11 @@ class FastRenderer {
     std::vector<int> instantOfGrid;  // per grid index b·n + a
     void prepare(const MovingPlacements& at, int j, int pass);
   };
-  static MovingPlacements movingPlacements(const RenderSettings& settings, const RobotPose& pose, int samplesPerAxis);
-  ImageRGBA renderPass(const RobotPose& pose, const RenderSettings& settings, AovFrame* aovs) const;
+  static MovingPlacements movingPlacements(const RenderSettings& settings, const CameraPlacement& camera, int samplesPerAxis);
+  void renderPass(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const;
   void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
   std::shared_ptr<const SampleTable> sampleTable(const RenderSettings& settings, int samplesPerAxis) const;
-  static Placement placement(const RenderSettings& settings, const RobotPose& pose);
+  static Placement placement(const RenderSettings& settings, const CameraPlacement& camera, double seconds = 0.0);
   // Loads `count` rays of one table (first.., or the listed entries) into a packet.
   static void loadSamples(HitPacket& hits, const Placement& at, const SampleTable& table, uint32_t first, int count);
   // Reused memory of a thread's moving rows.

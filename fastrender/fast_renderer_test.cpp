@@ -9,6 +9,7 @@
 #include "errors.h"
 #include "scene_loader.h"
 #include "thread_count_testing.h"
+#include "placement.h"
 
 namespace omnicam {
 namespace {
@@ -27,7 +28,7 @@ TEST(FastRenderer, UnlitFloorIsTheAlbedoBelowTheHorizonAndSkyAbove) {
   const FastRenderer renderer(s);
   RenderSettings settings;
   settings.spp = 4;
-  const ImageRGBA img = renderer.render({0, 0, 0}, settings);
+  const ImageRGBA img = renderer.render(RobotPose{0, 0, 0}, settings);
   const OmniCamera cam = settings.rig.camera();
   const float* centre = img.at(180, 180);
   EXPECT_FLOAT_EQ(centre[0], 0.5f);
@@ -47,7 +48,7 @@ TEST(FastRenderer, RimPixelsCarryTheFractionOfSamplesInside) {
   const FastRenderer renderer(s);
   RenderSettings settings;
   settings.spp = 16;
-  const ImageRGBA img = renderer.render({0, 0, 0}, settings);
+  const ImageRGBA img = renderer.render(RobotPose{0, 0, 0}, settings);
   const OmniCamera cam = settings.rig.camera();
   int partial = 0;
   for (int j = 0; j < img.height; ++j)
@@ -67,9 +68,9 @@ TEST(FastRenderer, LitShadingMatchesLambertInClosedForm) {
   const FastRenderer renderer(s);
   RenderSettings settings;
   settings.shading = Shading::Lit;
-  const ImageRGBA img = renderer.render({0, 0, 0}, settings);
+  const ImageRGBA img = renderer.render(RobotPose{0, 0, 0}, settings);
   const OmniCamera cam = settings.rig.camera();
-  const Rigid wfc = worldFromCamera(settings.rig, {0, 0, 0});
+  const Rigid wfc = CameraPlacement({0, 0, 0}).worldFromCamera(settings.rig);
   for (int j = 100; j < 260; j += 13) {
     for (int i = 100; i < 260; i += 11) {
       const Vec3 d = wfc.linear() * cam.cameraFromRaster({i + 0.5, j + 0.5});
@@ -160,7 +161,7 @@ TEST(FastRenderer, RejectsNonSquareSampleCounts) {
   const FastRenderer renderer(s);
   RenderSettings settings;
   settings.spp = 5;
-  EXPECT_THROW(renderer.render({0, 0, 0}, settings), InputError);
+  EXPECT_THROW(renderer.render(RobotPose{0, 0, 0}, settings), InputError);
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include "make_camera.h"
 #include "scene_loader.h"
 #include "thread_count_testing.h"
+#include "placement.h"
+#include "film.h"
 
 namespace omnicam {
 namespace {
@@ -21,14 +23,14 @@ const Scene& robocup() {
 // 1 m/s forward while turning at 90°/s: the thesis loop's pace.
 constexpr BodyVelocity kDriving{1.0, 0.0, 90.0};
 const RobotPose kStart{0.4, -0.3, 20.0};
+const CameraPlacement kDrivingFromStart(kStart, kDriving);
 
-RenderSettings settingsOf(int size, int spp, const Shutter& shutter, const BodyVelocity& velocity, bool physical = false) {
+RenderSettings settingsOf(int size, int spp, const Shutter& shutter, bool physical = false) {
   RenderSettings settings;
   settings.rig = robocup().rig.resized(size);
   if (physical) settings.rig.mount.offsetMm = {1.5, -1.0, 2.0};
   settings.rig.shutter = shutter;
   settings.spp = spp;
-  settings.velocity = velocity;
   return settings;
 }
 
@@ -44,35 +46,35 @@ double maxAbsDifference(const ImageRGBA& a, const ImageRGBA& b) {
 
 TEST(MotionRender, AStillRobotGivesTheStaticImageBitForBitWhateverTheShutter) {
   const FastRenderer renderer(robocup());
-  const RenderSettings still = settingsOf(96, 4, Shutter{}, BodyVelocity{});
+  const RenderSettings still = settingsOf(96, 4, Shutter{});
   AovFrame staticAovs;
   const ImageRGBA staticImage = renderer.render(kStart, still, staticAovs);
   for (const Shutter& shutter : {Shutter{0.02, std::nullopt, 0}, Shutter{0.02, std::nullopt, 3},
                                  Shutter{0.01, RollingShutter{40.0, Readout::LeftToRight}, 0}}) {
     AovFrame aovs;
-    const ImageRGBA image = renderer.render(kStart, settingsOf(96, 4, shutter, BodyVelocity{}), aovs);
+    const ImageRGBA image = renderer.render(kStart, settingsOf(96, 4, shutter), aovs);
     EXPECT_TRUE(bitIdentical(image.pixels, staticImage.pixels));
     EXPECT_EQ(aovs.depth, staticAovs.depth);
     EXPECT_EQ(aovs.instance, staticAovs.instance);
   }
   // And a moving robot with an instantaneous global shutter is the static image at its pose.
-  EXPECT_TRUE(bitIdentical(renderer.render(kStart, settingsOf(96, 4, Shutter{}, kDriving)).pixels, staticImage.pixels));
+  EXPECT_TRUE(bitIdentical(renderer.render(kDrivingFromStart, settingsOf(96, 4, Shutter{})).pixels, staticImage.pixels));
 }
 
 TEST(MotionRender, AFrameOfFixedInstantsIsTheMeanOfStaticFramesAtThem) {
   const FastRenderer renderer(robocup());
   for (bool physical : {false, true}) {
     const Shutter shutter{0.04, std::nullopt, 4};
-    const ImageRGBA blurred = renderer.render(kStart, settingsOf(96, 4, shutter, kDriving, physical));
+    const ImageRGBA blurred = renderer.render(kDrivingFromStart, settingsOf(96, 4, shutter, physical));
     ImageRGBA mean(96, 96);
     for (int m = 0; m < 4; ++m) {
       const RobotPose pose = poseAfter(kStart, kDriving, instantTime(shutter, m, 4));
-      const ImageRGBA frame = renderer.render(pose, settingsOf(96, 4, Shutter{}, BodyVelocity{}, physical));
+      const ImageRGBA frame = renderer.render(pose, settingsOf(96, 4, Shutter{}, physical));
       for (size_t k = 0; k < mean.pixels.size(); ++k) mean.pixels[k] += frame.pixels[k] / 4.0f;
     }
     EXPECT_LT(maxAbsDifference(blurred, mean), 2e-6) << (physical ? "physical" : "ideal");
     // The blur is there: the frame differs from the static one at its start by far more.
-    EXPECT_GT(maxAbsDifference(blurred, renderer.render(kStart, settingsOf(96, 4, Shutter{}, BodyVelocity{}, physical))), 0.1);
+    EXPECT_GT(maxAbsDifference(blurred, renderer.render(kStart, settingsOf(96, 4, Shutter{}, physical))), 0.1);
   }
 }
 
@@ -82,11 +84,11 @@ TEST(MotionRender, ARollingShutterReadsEachLineAtItsOwnPose) {
   const FastRenderer renderer(robocup());
   for (Readout readout : {Readout::TopToBottom, Readout::BottomToTop, Readout::LeftToRight, Readout::RightToLeft}) {
     const Shutter shutter{0.0, RollingShutter{250.0, readout}, 0};
-    const RenderSettings settings = settingsOf(48, 4, shutter, kDriving);
-    const ImageRGBA rolled = renderer.render(kStart, settings);
+    const RenderSettings settings = settingsOf(48, 4, shutter);
+    const ImageRGBA rolled = renderer.render(kDrivingFromStart, settings);
     bool allEqual = true;
     for (int line = 0; line < 48; ++line) {
-      const ImageRGBA at = renderer.render(poseAfter(kStart, kDriving, lineStart(shutter, line)), settingsOf(48, 4, Shutter{}, BodyVelocity{}));
+      const ImageRGBA at = renderer.render(poseAfter(kStart, kDriving, lineStart(shutter, line)), settingsOf(48, 4, Shutter{}));
       for (int j = 0; j < 48; ++j)
         for (int i = 0; i < 48; ++i)
           if (lineOf(shutter, i, j, 48, 48) == line)
@@ -111,11 +113,11 @@ ImageRGBA perSampleReference(const FastRenderer& renderer, const RenderSettings&
       for (int pass = 0; pass < instants.passes; ++pass)
         for (int b = 0; b < n; ++b)
           for (int a = 0; a < n; ++a) {
-            const auto ray = camera->generateRay({gridSample(i, j, a, b, n)});
+            const auto ray = camera->generateRay({Film::sample(i, j, a, b, n)});
             if (!ray) continue;
             const double t = lineStart(shutter, lineOf(shutter, i, j, size, size)) +
                              instantTime(shutter, instantOf(shutter, a, b, n, pass), instants.count);
-            const Rigid worldFromView = worldFromViewpoint(settings.rig, poseAfter(kStart, settings.velocity, t));
+            const Rigid worldFromView = CameraPlacement(poseAfter(kStart, kDriving, t)).worldFromViewpoint(settings.rig);
             sum += renderer.radiance(worldFromView * ray->origin, worldFromView.linear() * ray->direction, settings.shading);
             inside += pass == 0;
           }
@@ -131,8 +133,8 @@ TEST(MotionRender, StratifiedAndRollingFramesMatchAPerSampleRenderer) {
                               {0.01, RollingShutter{300.0, Readout::RightToLeft}, 2}};
   for (const Shutter& shutter : shutters)
     for (bool physical : {false, true}) {
-      const RenderSettings settings = settingsOf(40, 9, shutter, kDriving, physical);
-      const ImageRGBA fast = renderer.render(kStart, settings);
+      const RenderSettings settings = settingsOf(40, 9, shutter, physical);
+      const ImageRGBA fast = renderer.render(kDrivingFromStart, settings);
       EXPECT_LT(maxAbsDifference(fast, perSampleReference(renderer, settings)), 1e-4)
           << shutter.exposureS << (shutter.rolling ? " rolling" : " global") << (physical ? " physical" : " ideal");
     }
@@ -143,34 +145,34 @@ TEST(MotionRender, AovsArePointSamplesAtEachPixelsOwnTime) {
   // Global: every pixel at mid-exposure, so the AOVs are the static AOVs there.
   const Shutter global{0.04, std::nullopt, 0};
   AovFrame moving, atMiddle;
-  renderer.render(kStart, settingsOf(64, 4, global, kDriving), moving);
-  renderer.renderAovsOnly(poseAfter(kStart, kDriving, 0.02), settingsOf(64, 1, Shutter{}, BodyVelocity{}), atMiddle);
+  renderer.render(kDrivingFromStart, settingsOf(64, 4, global), moving);
+  renderer.renderAovsOnly(poseAfter(kStart, kDriving, 0.02), settingsOf(64, 1, Shutter{}), atMiddle);
   EXPECT_EQ(moving.depth, atMiddle.depth);
   EXPECT_EQ(moving.instance, atMiddle.instance);
   EXPECT_EQ(moving.normal, atMiddle.normal);
   // Rolling: row j at its own line's mid-exposure.
   const Shutter rolling{0.002, RollingShutter{500.0, Readout::TopToBottom}, 0};
   AovFrame rolled;
-  renderer.render(kStart, settingsOf(64, 9, rolling, kDriving), rolled);
+  renderer.render(kDrivingFromStart, settingsOf(64, 9, rolling), rolled);
   bool rowsMatch = true;
   for (int j = 0; j < 64; j += 9) {
     AovFrame row;
     renderer.renderAovsOnly(poseAfter(kStart, kDriving, pixelTime(rolling, 0, j, 64, 64)),
-                            settingsOf(64, 1, Shutter{}, BodyVelocity{}), row);
+                            settingsOf(64, 1, Shutter{}), row);
     for (int i = 0; i < 64; ++i) rowsMatch = rowsMatch && row.depth[j * 64 + i] == rolled.depth[j * 64 + i];
   }
   EXPECT_TRUE(rowsMatch);
   AovFrame only;
-  renderer.renderAovsOnly(kStart, settingsOf(64, 9, rolling, kDriving), only);
+  renderer.renderAovsOnly(kDrivingFromStart, settingsOf(64, 9, rolling), only);
   EXPECT_EQ(only.depth, rolled.depth);
 }
 
 TEST(MotionRender, MovingFramesAreBitIdenticalForAnyThreadCount) {
   const FastRenderer one(robocup()), four(robocup());
-  const RenderSettings settings = settingsOf(160, 4, Shutter{0.02, RollingShutter{50.0, Readout::BottomToTop}, 0}, kDriving);
+  const RenderSettings settings = settingsOf(160, 4, Shutter{0.02, RollingShutter{50.0, Readout::BottomToTop}, 0});
   ImageRGBA a, b;
-  EXPECT_EQ(runOnThreads(1, [&] { a = one.render(kStart, settings); }), 1);
-  EXPECT_EQ(runOnThreads(4, [&] { b = four.render(kStart, settings); }), 4);
+  EXPECT_EQ(runOnThreads(1, [&] { a = one.render(kDrivingFromStart, settings); }), 1);
+  EXPECT_EQ(runOnThreads(4, [&] { b = four.render(kDrivingFromStart, settings); }), 4);
   EXPECT_TRUE(bitIdentical(a.pixels, b.pixels));
 }
 

@@ -11,6 +11,8 @@
 #include "make_camera.h"
 #include "scene_loader.h"
 #include "thread_count_testing.h"
+#include "placement.h"
+#include "film.h"
 
 namespace omnicam {
 namespace {
@@ -65,11 +67,11 @@ TEST(PhysicalRender, DepthOfANonCentralRayRunsFromItsMirrorPoint) {
   renderer.renderAovsOnly(pose, settings, aovs);
   const auto camera = makeCamera(settings.rig);
   ASSERT_FALSE(camera->central());
-  const Rigid worldFromView = worldFromViewpoint(settings.rig, pose);
+  const Rigid worldFromView = CameraPlacement(pose).worldFromViewpoint(settings.rig);
   int floorPixels = 0;
   for (int j = 0; j < 96; ++j)
     for (int i = 0; i < 96; ++i) {
-      const auto ray = camera->generateRay({gridSample(i, j, 0, 0, 1)});
+      const auto ray = camera->generateRay({Film::sample(i, j, 0, 0, 1)});
       const float depth = aovs.depth[static_cast<size_t>(j) * 96 + i];
       if (!ray || ray->direction.z() >= -1e-3) continue;
       // The floor z = 0 along the reflected ray, from the mirror point, in closed form.

@@ -85,7 +85,9 @@ void datasetSpec(const uint8_t* data, size_t size) {
       if (spec.size) rig.imageSize = *spec.size;
       checkRenderSettings(RenderSettings{rig, spec.spp, spec.shading}, settingNames(spec));
       (void)rig.camera();
-      for (const RobotPose& robot : spec.poseList) checkPose(cameraPose(camera, robot), showPath(spec.file) + ": poses");
+      SettingNames names;
+      names.pose = showPath(spec.file) + ": poses";
+      for (const RobotPose& robot : spec.poseList) checkPlacement(CameraPlacement(robot, {}, camera.mount), names);
     }
   } catch (const InputError&) {
     return;

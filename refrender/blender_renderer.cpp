@@ -1,5 +1,8 @@
 #include "blender_renderer.h"
 
+#include "engine_capabilities.h"
+#include "film.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -115,19 +118,6 @@ std::string blenderVersion(const std::string& executable) {
   return at == std::string::npos ? "blender" : tail.substr(at, tail.find('\n', at) - at);
 }
 
-void checkBlenderCamera(const RigSpec& rig) { checkGltfCamera(rig); }
-
-void checkBlenderMotion(const RenderSettings& settings) {
-  if (!moving(settings)) return;
-  const Shutter& shutter = settings.rig.shutter;
-  if (shutter.rolling)
-    throw InputError("the blender engine renders motion blur through a global shutter only (Cycles' rolling shutter is "
-                     "approximate): render a rolling shutter with the fast engine or POV-Ray (docs/motion.md)");
-  if (shutter.timeSamples > 0)
-    throw InputError("the blender engine samples time continuously over the exposure: rig.shutter.time_samples needs the "
-                     "fast engine or POV-Ray (docs/motion.md)");
-}
-
 namespace {
 
 // Cycles' motion steps for the moving rig: 2^6 intervals over the exposure.
@@ -148,12 +138,12 @@ nlohmann::json matrixRows(const Rigid& transform) {
 // exact arc at 2^(steps − 1) + 1 evenly spaced instants, the instants at which Cycles samples
 // an object's motion with `steps` motion steps, so that its interpolation runs between exact
 // poses (docs/motion.md, "How the ground truth is built").
-nlohmann::json blenderMotion(const RenderSettings& settings, const RobotPose& pose) {
+nlohmann::json blenderMotion(const RenderSettings& settings, const CameraPlacement& placement) {
   const int intervals = 1 << (kBlenderMotionSteps - 1);
   nlohmann::json placements = nlohmann::json::array();
   for (int k = 0; k <= intervals; ++k) {
     const double t = settings.rig.shutter.exposureS * k / intervals;
-    placements.push_back(matrixRows(worldFromViewpoint(settings.rig, poseAfter(pose, settings.velocity, t))));
+    placements.push_back(matrixRows(placement.worldFromViewpoint(settings.rig, t)));
   }
   return {{"exposure_s", settings.rig.shutter.exposureS}, {"motion_steps", kBlenderMotionSteps},
           {"world_from_viewpoint", placements}};
@@ -161,17 +151,18 @@ nlohmann::json blenderMotion(const RenderSettings& settings, const RobotPose& po
 
 }  // namespace
 
-std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
+std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options) {
-  if (poses.empty()) return {};
+  if (placements.empty()) return {};
   checkRenderSettings(settings);
   const PathTracing& tracing = options.pathTracing;
   if (tracing.diffuseBounces < 0 || tracing.diffuseBounces > 16 || tracing.glossyBounces < 1 ||
       tracing.glossyBounces > 16 || !(tracing.clampIndirect >= 0.0 && tracing.clampIndirect < 1e6))
     throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
-  for (const RobotPose& pose : poses) checkPose(pose, "pose");
-  checkBlenderCamera(settings.rig);
-  checkBlenderMotion(settings);
+  for (const CameraPlacement& placement : placements) {
+    checkPlacement(placement);
+    checkEngineRenders(EngineKind::Blender, settings.rig, placement);
+  }
   const int size = settings.rig.imageSize;
   const Pinhole pinhole = pinholeOf(settings.rig);
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
@@ -179,15 +170,15 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";
   GltfExportOptions exportOptions;
-  exportOptions.pose = poses.front();
+  exportOptions.placement = placements.front();
   exportOptions.rig = settings.rig;
   exportGltf(scene, exportOptions, glb);
 
   nlohmann::json frames = nlohmann::json::array();
-  for (size_t f = 0; f < poses.size(); ++f) {
-    nlohmann::json frame = {{"world_from_viewpoint", matrixRows(worldFromViewpoint(settings.rig, poses[f]))},
+  for (size_t f = 0; f < placements.size(); ++f) {
+    nlohmann::json frame = {{"world_from_viewpoint", matrixRows(placements[f].worldFromViewpoint(settings.rig))},
                             {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}};
-    if (moving(settings)) frame["motion"] = blenderMotion(settings, poses[f]);
+    if (moving(placements[f], settings.rig)) frame["motion"] = blenderMotion(settings, placements[f]);
     if (filtered) frame["direct_output"] = folder.path() + "/frame_" + std::to_string(f) + "_direct.exr";
     frames.push_back(frame);
   }
@@ -223,8 +214,6 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
                         " s; last output:\n" + r.logTail);
   if (r.exitCode != 0) throw ExternalError("blender: failed (exit " + std::to_string(r.exitCode) + "); last output:\n" + r.logTail);
 
-  // Cycles samples randomly inside the pixel; alpha is the rim geometry on the spp grid.
-  const int n = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(settings.spp)))));
   std::vector<ImageRGBA> images;
   for (const auto& frame : frames) {
     const std::string output = frame["output"];
@@ -239,9 +228,11 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<R
     }
     if (image.width != size || image.height != size)
       throw ExternalError("blender: output has the wrong size");
-    for (int j = 0; j < image.height; ++j)
-      for (int i = 0; i < image.width; ++i) image.at(i, j)[3] = imaging->coverage(i, j, n);
-    images.push_back(std::move(image));
+    // Cycles samples randomly inside the pixel; the alpha is the rim on the film's grid.
+    Film film = filmFor(settings);
+    film.image = std::move(image);
+    film.setRimAlpha(*imaging);
+    images.push_back(std::move(film.image));
   }
   return images;
 }

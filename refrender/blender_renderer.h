@@ -42,14 +42,10 @@ struct BlenderOptions {
   PathTracing pathTracing;
 };
 
-// Renders every pose in one Blender session. Throws ExternalError (missing blender, failure,
-// timeout: with the tail of its output).
-// InputError unless the Blender export can render the rig's camera (the ideal rig only, so far).
-void checkBlenderCamera(const RigSpec& rig);
-// InputError unless Blender renders this frame's motion: a still frame, or a global shutter
-// with stratified instants (Cycles samples time continuously; its rolling shutter is approximate).
-void checkBlenderMotion(const RenderSettings& settings);
-std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<RobotPose>& poses,
+// Renders every placement in one Blender session; the rim alpha is the film's (film.h).
+// InputError for what Blender cannot render (engine_capabilities.h); ExternalError for a missing
+// blender, a failure or a timeout, with the tail of its output.
+std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 
 // A frame blender_driver.py rendered with `direct_pass`: the multilayer OpenEXR `full` (Combined and

@@ -36,14 +36,12 @@ TEST_P(FastVsPovrayMoving, UnlitAtSixteenSamplesPerPixel) {
   settings.rig = robocup().rig.resized(c.size);
   settings.rig.shutter = c.shutter;
   settings.spp = 16;
-  settings.velocity = kDriving;
   const RobotPose start{-0.6, 0.4, 30.0};
-  const ImageRGBA truth = renderWithPovray(robocup(), start, settings);
+  const CameraPlacement driving(start, kDriving);
+  const ImageRGBA truth = renderWithPovray(robocup(), driving, settings);
   const FastRenderer fast(robocup());
-  const CompareResult r = compareImages(fast.render(start, settings), truth);
-  RenderSettings still = settings;
-  still.velocity = {};
-  const double unmoved = compareImages(fast.render(start, still), truth).psnrDb;
+  const CompareResult r = compareImages(fast.render(driving, settings), truth);
+  const double unmoved = compareImages(fast.render(start, settings), truth).psnrDb;
   std::printf("fast vs POV-Ray, moving, %s: PSNR %.2f dB, SSIM %.5f, max abs %.4f (the still robot's image: %.2f dB)\n",
               c.label, r.psnrDb, r.ssim, r.maxAbs, unmoved);
   EXPECT_GE(r.psnrDb, 60.0);

@@ -39,24 +39,6 @@ std::string povrayVersion(const std::string& executable) {
   return at == std::string::npos ? "povray" : tail.substr(at, tail.find('\n', at) - at);
 }
 
-ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const Camera& camera) {
-  ImageRGBA image(camera.width(), camera.height());
-  const float weight = 1.0f / static_cast<float>(n * n);
-  for (int j = 0; j < image.height; ++j)
-    for (int i = 0; i < image.width; ++i) {
-      float sum[3] = {0, 0, 0};
-      for (int b = 0; b < n; ++b)
-        for (int a = 0; a < n; ++a) {
-          const float* px = large.at(i * n + a, j * n + b);
-          for (int c = 0; c < 3; ++c) sum[c] += px[c];
-        }
-      float* out = image.at(i, j);
-      for (int c = 0; c < 3; ++c) out[c] = sum[c] * weight;
-      out[3] = camera.coverage(i, j, n);
-    }
-  return image;
-}
-
 namespace {
 
 // POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting.
@@ -109,8 +91,8 @@ PovrayRegion regionOfLine(const Shutter& shutter, int line, int size, int n) {
 // with the robot and mirror where they are then; each render gives exactly the samples the fast
 // renderer traces at that line and instant. POV-Ray spends most of a short job waiting, so several
 // run at once.
-ImageRGBA renderMovingWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
-                                 const PovrayOptions& options) {
+void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
+                            const PovrayOptions& options, Film& film) {
   const Shutter& shutter = settings.rig.shutter;
   const int n = *samplesPerAxis(settings.spp), size = settings.rig.imageSize;
   const PixelInstants instants = pixelInstants(shutter, n);
@@ -119,12 +101,11 @@ ImageRGBA renderMovingWithPovray(const Scene& scene, const RobotPose& pose, cons
     for (int m = 0; m < instants.count; ++m) jobs.push_back({line, m});
   std::vector<ImageRGBA> renders(jobs.size());
   RenderSettings still = settings;
-  still.velocity = {};
   still.rig.shutter = {};
   runConcurrently(jobs.size(), kConcurrentPovrayJobs, [&](size_t k) {
     const InstantJob& job = jobs[k];
     const double seconds = lineStart(shutter, job.line) + instantTime(shutter, job.instant, instants.count);
-    renders[k] = runPovrayJob(exportPovray(scene, poseAfter(pose, settings.velocity, seconds), still), options,
+    renders[k] = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options,
                               options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, size, n));
   });
   // Each sample from the render of its line and instant, summed in a fixed order.
@@ -141,27 +122,29 @@ ImageRGBA renderMovingWithPovray(const Scene& scene, const RobotPose& pose, cons
                 for (int c = 0; c < 3; ++c) sum[c] += renders[k].at(i * n + a, j * n + b)[c];
       }
   const auto camera = makeCamera(settings.rig);
-  ImageRGBA image(size, size);
-  const float weight = 1.0f / static_cast<float>(n * n * instants.passes);
+  film.allocate();
+  const float weight = film.weight(instants.passes);
   for (int j = 0; j < size; ++j)
-    for (int i = 0; i < size; ++i) {
-      for (int c = 0; c < 3; ++c) image.at(i, j)[c] = sums[(static_cast<size_t>(j) * size + i) * 3 + c] * weight;
-      image.at(i, j)[3] = camera->coverage(i, j, n);
-    }
-  return image;
+    for (int i = 0; i < size; ++i)
+      film.setPixel(i, j, &sums[(static_cast<size_t>(j) * size + i) * 3], weight, film.imagedGridPoints(*camera, i, j));
 }
 
 }  // namespace
 
-ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
+void renderWithPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
+                      const PovrayOptions& options, Film& film) {
+  checkRenderSettings(settings);
+  checkPlacement(placement);
+  if (moving(placement, settings.rig)) return renderMovingWithPovray(scene, placement, settings, options, film);
+  const PovrayJob job = exportPovray(scene, placement, settings);
+  film.reduceSupersampled(runPovrayJob(job, options, options.threads), *makeCamera(settings.rig));
+}
+
+ImageRGBA renderWithPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
                            const PovrayOptions& options) {
-  if (moving(settings)) {
-    checkRenderSettings(settings);
-    checkPose(pose, "pose");
-    return renderMovingWithPovray(scene, pose, settings, options);
-  }
-  const PovrayJob job = exportPovray(scene, pose, settings);
-  return downsampleWithRimAlpha(runPovrayJob(job, options, options.threads), job.samplesPerAxis, *makeCamera(settings.rig));
+  Film film = filmFor(settings);
+  renderWithPovray(scene, placement, settings, options, film);
+  return std::move(film.image);
 }
 
 }  // namespace omnicam

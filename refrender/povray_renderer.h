@@ -6,6 +6,7 @@
 #include <string>
 
 #include "camera.h"
+#include "film.h"
 #include "image.h"
 #include "render_settings.h"
 #include "scene.h"
@@ -21,13 +22,16 @@ struct PovrayOptions {
 
 // Throws ExternalError (missing povray, failure, timeout: with the tail of its output) or
 // InputError (what the export cannot represent).
-ImageRGBA renderWithPovray(const Scene& scene, const RobotPose& pose, const RenderSettings& settings,
+// Renders `film` (its colour) of the camera at `placement`: a still frame as one job at n× the
+// size, one ray per grid point; a moving one as the mean of still instants.
+void renderWithPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
+                      const PovrayOptions& options, Film& film);
+ImageRGBA renderWithPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
                            const PovrayOptions& options = {});
 
 // "POV-Ray 3.7.0.10..." as printed by the executable, or "" if it cannot run.
 std::string povrayVersion(const std::string& executable = "povray");
 
 // Box-downsamples an n× image and sets alpha to the fraction of sub-samples the camera images.
-ImageRGBA downsampleWithRimAlpha(const ImageRGBA& large, int n, const Camera& camera);
 
 }  // namespace omnicam

@@ -15,55 +15,37 @@
 
 namespace omnicam {
 
-std::vector<ImageRGBA> Engine::renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings) {
+std::vector<ImageRGBA> Engine::renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings) {
   std::vector<ImageRGBA> images;
-  images.reserve(poses.size());
-  for (const RobotPose& pose : poses) images.push_back(render(pose, settings));
+  images.reserve(placements.size());
+  for (const CameraPlacement& placement : placements) images.push_back(render(placement, settings));
   return images;
 }
 
-namespace {
-// Engines that have no model of time refuse a moving frame rather than render it still.
-void refuseMotion(const RenderSettings& settings, const std::string& engine) {
-  if (moving(settings))
-    throw InputError("the " + engine + " engine does not render motion yet: a moving robot needs an instantaneous global shutter "
-                     "there (rig.shutter; docs/motion.md lists what each engine renders)");
-}
-}  // namespace
-
-void Engine::checkMotion(const RenderSettings& settings) const { refuseMotion(settings, name()); }
-
-ImageRGBA Engine::render(const RobotPose&, const RenderSettings&, AovFrame&) {
-  throw std::logic_error("engine " + name() + " has no AOVs");
+ImageRGBA Engine::render(const CameraPlacement& placement, const RenderSettings& settings) {
+  Film film = filmFor(settings);
+  render(placement, settings, film);
+  return std::move(film.image);
 }
 
 namespace {
 
 class FastEngine : public Engine {
  public:
-  FastEngine(const Scene& scene, const CubeMapOptions* mode) : renderer_(scene), cubemap_(renderer_) {
+  FastEngine(const Scene& scene, const CubeMapOptions* mode)
+      : renderer_(scene), cubemap_(renderer_) {
     if (mode) mode_ = *mode;
   }
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
-    if (!mode_) return renderer_.render(pose, settings);
-    checkMotion(settings);
-    return cubemap_.render(pose, settings, *mode_);
+  EngineKind kind() const override {
+    if (!mode_) return EngineKind::FastExact;
+    return mode_->mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap;
   }
-  bool hasAovs() const override { return true; }
-  void checkMotion(const RenderSettings& settings) const override {
-    if (mode_) refuseMotion(settings, "fast engine's " + mode());
-  }
-  // Exact mode is a pure function of the pose; the cube-map modes keep per-render state.
-  bool concurrent() const override { return !mode_; }
-  // AOVs are geometric truth: always from the exact pixel → ray map, whatever the RGB mode.
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs) override {
-    if (!mode_) return renderer_.render(pose, settings, aovs);
-    checkMotion(settings);
-    renderer_.renderAovsOnly(pose, settings, aovs);
-    return cubemap_.render(pose, settings, *mode_);
-  }
-  void checkCamera(const RigSpec& rig) const override {
-    if (mode_) checkCubeMapCamera(rig, *mode_);
+  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
+    checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    if (!mode_) return renderer_.render(placement, settings, film);
+    // AOVs are geometric truth: always from the exact pixel → ray map, whatever the colour's mode.
+    if (film.aovs) renderer_.renderAovsOnly(placement, settings, *film.aovs);
+    cubemap_.render(placement, settings, *mode_, film);
   }
   std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }
@@ -92,11 +74,11 @@ class PovrayEngine : public Engine {
     // OMNICAM_POVRAY names another POV-Ray binary (tests use it to simulate failures).
     if (const char* exe = std::getenv("OMNICAM_POVRAY")) options_.executable = exe;
   }
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
-    return renderWithPovray(scene_, pose, settings, options_);
+  EngineKind kind() const override { return EngineKind::Povray; }
+  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
+    checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    renderWithPovray(scene_, placement, settings, options_, film);
   }
-  void checkCamera(const RigSpec& rig) const override { checkPovrayCamera(rig); }
-  void checkMotion(const RenderSettings&) const override {}  // every shutter (docs/motion.md)
   std::string name() const override { return "povray"; }
   std::string version() const override {
     if (version_.empty()) version_ = povrayVersion(options_.executable);
@@ -115,16 +97,15 @@ class BlenderEngine : public Engine {
     options_.timeoutSeconds = timeoutSeconds;
     options_.threads = threads;
   }
-  ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) override {
-    return std::move(renderWithBlender(scene_, {pose}, settings, options_).front());
+  EngineKind kind() const override { return EngineKind::Blender; }
+  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
+    checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    film.image = std::move(renderWithBlender(scene_, {placement}, settings, options_).front());
   }
-  std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings) override {
-    if (poses.empty()) return {};
-    return renderWithBlender(scene_, poses, settings, options_);
+  std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings) override {
+    if (placements.empty()) return {};
+    return renderWithBlender(scene_, placements, settings, options_);
   }
-  bool batches() const override { return true; }
-  void checkCamera(const RigSpec& rig) const override { checkBlenderCamera(rig); }
-  void checkMotion(const RenderSettings& settings) const override { checkBlenderMotion(settings); }
   std::string name() const override { return "blender"; }
   std::string version() const override {
     if (version_.empty()) version_ = blenderVersion(options_.executable) + " Cycles (CPU)";

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "aov_frame.h"
+#include "engine_capabilities.h"
+#include "film.h"
 #include "image.h"
 #include "omni_mode.h"
 #include "render_settings.h"
@@ -14,33 +16,25 @@
 
 namespace omnicam {
 
-// Poses a caller hands a batching engine at once: one Blender start and one export per batch,
+// Frames a caller hands a batching engine at once: one Blender start and one export per batch,
 // a bounded number of images in memory.
 inline constexpr int kFramesPerBatch = 50;
 
 class Engine {
  public:
   virtual ~Engine() = default;
-  virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings) = 0;
-  // Every pose with the same settings. Engines with a costly start (Blender) render them all in
+  // Which engine (and mode) this is, and so what it can render (engine_capabilities.h).
+  virtual EngineKind kind() const = 0;
+  const EngineCapabilities& capabilities() const { return capabilitiesOf(kind()); }
+  // Exposes `film` (filmFor(settings, …)) to the rig's camera at `placement`: its colour, and its
+  // AOVs when the film wants them (asked only of an engine whose capabilities have them).
+  // InputError for what checkEngineRenders refuses.
+  virtual void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) = 0;
+  // The colour alone.
+  ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings);
+  // The colour of every placement with the same settings. Engines that batch render them all in
   // one session; the default renders them one by one.
-  virtual std::vector<ImageRGBA> renderMany(const std::vector<RobotPose>& poses, const RenderSettings& settings);
-  // Whether renderMany is cheaper than one render per pose (the caller then batches frames).
-  virtual bool batches() const { return false; }
-  // Whether render and renderAovs may run for several poses at once (from different threads).
-  virtual bool concurrent() const { return false; }
-  // Per-pixel ground truth (depth, instances, normals) with the image, in one pass. Only the
-  // fast engine has it; ground truths write RGB only.
-  virtual bool hasAovs() const { return false; }
-  // InputError unless this engine renders a frame whose robot moves while the shutter is open as
-  // `settings` ask (docs/motion.md, "What each engine renders"); a still frame always passes.
-  // Every render checks it too; callers that write files first (datasets) ask before.
-  virtual void checkMotion(const RenderSettings& settings) const;
-  virtual ImageRGBA render(const RobotPose& pose, const RenderSettings& settings, AovFrame& aovs);
-  // InputError unless this engine renders the rig's camera (a moved, turned or distorted one
-  // needs an engine that models it; docs/physical-camera.md's table). Every render checks it too;
-  // callers that write files first (datasets) ask before.
-  virtual void checkCamera(const RigSpec& rig) const = 0;
+  virtual std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings);
   virtual std::string name() const = 0;
   virtual std::string version() const = 0;
   // The rendering mode and its options, as sidecars and manifests record them.

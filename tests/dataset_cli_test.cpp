@@ -27,6 +27,7 @@
 #include "rig.h"
 #include "sha256.h"
 #include "shell_command.h"
+#include "placement.h"
 
 extern char** environ;
 
@@ -134,7 +135,7 @@ TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
   rig.height = 0.5;
   rig.imageSize = 96;
   const OmniCamera camera = rig.camera();
-  const Rigid worldFromCam = worldFromCamera(rig, {0.3, -0.2, 40});
+  const Rigid worldFromCam = CameraPlacement({0.3, -0.2, 40}).worldFromCamera(rig);
   const DataImage depth = readDataExr(path("ds/cam0/depth/000000.exr"));
   const DataImage normal = readDataExr(path("ds/cam0/normal/000000.exr"));
   int w = 0, h = 0;
@@ -200,7 +201,7 @@ TEST_F(DatasetCliTest, APhysicalRigsRaysAndDepthAreExact) {
   const json& stated = intrinsics["pinhole"]["position_m"];
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(stated[axis].get<double>(), pinhole[axis], 1e-15);
   const HyperbolicMirror mirror = rig.mirror();
-  const Rigid worldFromView = worldFromViewpoint(rig, {0.3, -0.2, 40});
+  const Rigid worldFromView = CameraPlacement({0.3, -0.2, 40}).worldFromViewpoint(rig);
   int floorPixels = 0, imaged = 0;
   double worstSurface = 0.0, worstReflection = 0.0;
   for (size_t i = 0; i < static_cast<size_t>(96 * 96); ++i) {
@@ -818,6 +819,60 @@ TEST_F(DatasetCliTest, AVibratingRobotsFramesEachRecordTheRigTheyWereRenderedWit
   EXPECT_NE(refused.out.find("vibration: frame "), std::string::npos) << refused.out;
   EXPECT_NE(refused.out.find("the shaken rig is refused"), std::string::npos) << refused.out;
   EXPECT_FALSE(fs::exists(path("refused")));
+}
+
+// A robot rocking on its wheels (spec "robot": {"tilt_deg"}, vibration "robot_tilt_deg"): every
+// camera tilts alike about the robot's origin, frame by frame; the manifest records the tilt and
+// poses.tum follows it: F' = robot + Rz(yaw)·Rx(roll)·Ry(pitch)·(mount x, mount y, h).
+TEST_F(DatasetCliTest, ARockingRobotTiltsEveryCameraAlikeAboutItsOrigin) {
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                 R"(/scenes/robocup2006.json", "size": 32, "outputs": {"depth": false, "normal": false},
+    "poses": {"list": [[0, 0, 0], [0.5, 0.2, 30], [-1, 0.4, 200]]}, "robot": {"tilt_deg": [1, -2]},
+    "vibration": {"seed": 7, "robot_tilt_deg": [0.5, 0.5]},
+    "cameras": [{"name": "front", "mount": {"x": 0.2, "y": 0.05, "yaw_deg": 0}},
+                {"name": "rear", "mount": {"x": -0.2, "y": 0, "yaw_deg": 180}}]})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const json manifest = json::parse(readFile(path("ds/manifest.json")));
+  const json& frames = manifest.at("frames");
+  ASSERT_EQ(frames.size(), 3u);
+  std::vector<std::array<double, 2>> tilts;
+  for (const json& frame : frames) {
+    const std::array<double, 2> tilt{frame.at("robot_tilt_deg")[0].get<double>(), frame.at("robot_tilt_deg")[1].get<double>()};
+    EXPECT_LE(std::abs(tilt[0] - 1.0), 0.5);
+    EXPECT_LE(std::abs(tilt[1] + 2.0), 0.5);
+    EXPECT_FALSE(frame.at("cameras").at("front").contains("rig"));  // the rigs themselves stay as specified
+    tilts.push_back(tilt);
+  }
+  EXPECT_NE(tilts[0], tilts[1]);
+  const double h = manifest.at("cameras")[0].at("rig").at("height").get<double>();
+  for (const auto& [name, mx, my] : {std::tuple{"front", 0.2, 0.05}, std::tuple{"rear", -0.2, 0.0}}) {
+    std::istringstream tum(readFile(path(std::string("ds/") + name + "/poses.tum")));
+    std::string line;
+    int row = 0;
+    while (std::getline(tum, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream fields(line);
+      double t, x, y, z;
+      fields >> t >> x >> y >> z;
+      const double roll = radians(tilts[row][0]), pitch = radians(tilts[row][1]);
+      // Rx(roll)·Ry(pitch)·(mx, my, h), then turned by the robot's yaw.
+      const double px = std::cos(pitch) * mx + std::sin(pitch) * h;
+      const double qz = -std::sin(pitch) * mx + std::cos(pitch) * h;
+      const double lx = px, ly = std::cos(roll) * my - std::sin(roll) * qz, lz = std::sin(roll) * my + std::cos(roll) * qz;
+      const json& pose = frames[row].at("pose");
+      const double yaw = radians(pose.at("yaw_deg").get<double>());
+      EXPECT_NEAR(x, pose.at("x").get<double>() + std::cos(yaw) * lx - std::sin(yaw) * ly, 1e-12) << name << row;
+      EXPECT_NEAR(y, pose.at("y").get<double>() + std::sin(yaw) * lx + std::cos(yaw) * ly, 1e-12) << name << row;
+      EXPECT_NEAR(z, lz, 1e-12) << name << row;
+      ++row;
+    }
+    EXPECT_EQ(row, 3) << name;
+  }
+  // A rerun keeps every frame: each recorded tilt is the one the seed gives.
+  const auto again = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("(0 rendered, 3 kept"), std::string::npos) << again.out;
 }
 
 TEST_F(DatasetCliTest, TimedWaypointsGiveAFrameEveryIntervalWithTheVelocityItIsDrivenAt) {

@@ -1,7 +1,7 @@
 // LD_PRELOAD library for tests: holds an omnicam process at a point the test chooses, so that a
 // test can kill or interrupt it mid-run on any machine, fast or slow (tests/hold_point.h).
 //
-// It wraps rename(2) and renameat(2), with which every atomic write ends (core/atomic_file.cpp;
+// It wraps rename(2) and renameat(2), with which every atomic write ends (io/atomic_file.cpp;
 // files inside a dataset folder are renamed relative to their open folder). After a rename
 // onto a file named $OMNICAM_HOLD_MANIFEST whose content lists at least one frame and is not
 // complete, it creates $OMNICAM_HOLD_DIR/held (once: a second process sharing the folder never

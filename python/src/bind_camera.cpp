@@ -1,4 +1,4 @@
-// omnicam.Camera: the camera interface (core/camera.h), vectorised over numpy arrays.
+// omnicam.Camera: the camera interface (camera/camera.h), vectorised over numpy arrays.
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -7,7 +7,11 @@
 
 #include "bindings.h"
 #include "errors.h"
+#include "input_limits.h"
+#include "number_format.h"
 #include "make_camera.h"
+#include "placement.h"
+#include "render_settings.h"
 
 namespace omnicam::python {
 
@@ -27,10 +31,17 @@ py::array_t<double, py::array::c_style | py::array::forcecast> rowsOf(const py::
   return rows;
 }
 
-// Viewpoint frame from world frame at `pose`, or the identity without one.
-Rigid viewpointFrom(const Camera& camera, const py::object& pose) {
-  if (pose.is_none()) return Rigid::Identity();
-  return worldFromViewpoint(camera.rig(), poseFrom(pose, "pose")).inverse();
+// Viewpoint frame from world frame at `pose` (the exposure start), `seconds` later with the robot
+// driving at `velocity`; the identity without a pose.
+Rigid viewpointFrom(const Camera& camera, const py::object& pose, const py::object& velocity = py::none(),
+                    double seconds = 0.0) {
+  if (pose.is_none()) {
+    if (!velocity.is_none()) throw InputError("velocity: needs a pose (the robot's at the exposure start)");
+    return Rigid::Identity();
+  }
+  const CameraPlacement placement(poseFrom(pose, "pose"), velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
+  checkPlacement(placement);
+  return placement.worldFromViewpoint(camera.rig(), seconds).inverse();
 }
 
 py::array_t<double> project(const PyCamera& self, const py::array& points, const py::object& pose) {
@@ -50,16 +61,20 @@ py::array_t<double> project(const PyCamera& self, const py::array& points, const
   return arrayTakingOver(std::move(out), {static_cast<py::ssize_t>(n), 2});
 }
 
-py::tuple rays(const PyCamera& self, const py::array& pixels, const py::object& pose, double time) {
+py::tuple rays(const PyCamera& self, const py::array& pixels, const py::object& pose, const py::object& velocity, double time) {
   const auto in = rowsOf(pixels, 2, "pixels");
-  const Rigid outputFromViewpoint = viewpointFrom(*self.camera, pose).inverse();
+  // Times within an exposure (and as far before it): the motion model holds a velocity that long.
+  if (!(std::abs(time) <= limits::kMaxExposureS))
+    throw InputError("time: must be within ±" + shortNumber(limits::kMaxExposureS) + " s of the exposure start (got " +
+                     shortNumber(time) + ")");
+  const Rigid outputFromViewpoint = viewpointFrom(*self.camera, pose, velocity, time).inverse();
   const auto n = static_cast<size_t>(in.shape(0));
   std::vector<double> origins(3 * n), directions(3 * n);
   const double* p = in.data();
   {
     py::gil_scoped_release release;
     tbb::parallel_for(size_t{0}, n, [&](size_t i) {
-      const auto ray = self.camera->generateRay({Vec2(p[2 * i], p[2 * i + 1]), time});
+      const auto ray = self.camera->generateRay({Vec2(p[2 * i], p[2 * i + 1])});
       const Vec3 o = ray ? Vec3(outputFromViewpoint * ray->origin) : Vec3::Constant(kNaN);
       const Vec3 d = ray ? Vec3(outputFromViewpoint.linear() * ray->direction) : Vec3::Constant(kNaN);
       for (int k = 0; k < 3; ++k) origins[3 * i + k] = o[k], directions[3 * i + k] = d[k];
@@ -82,7 +97,7 @@ py::array_t<bool> images(const PyCamera& self, const py::array& pixels) {
 }  // namespace
 
 void bindCamera(py::module_& m) {
-  py::class_<PyCamera>(m, "Camera", R"(The camera of a rig (core/camera.h): the closed-form central (Mei) model for the
+  py::class_<PyCamera>(m, "Camera", R"(The camera of a rig (camera/camera.h): the closed-form central (Mei) model for the
 ideal rig, else the physical camera traced through the exact mirror.
 
 Raster coordinates are continuous: pixel (i, j) covers [i, i+1) × [j, j+1), its centre is
@@ -93,8 +108,11 @@ robot pose (x, y, yaw_deg) is given.)")
            py::arg("traced") = false, "traced: the physical camera even for the ideal rig.")
       .def("project", &project, py::arg("points"), py::arg("pose") = py::none(),
            "points (N, 3) → raster points (N, 2) float64, NaN where not imaged. The GIL is released.")
-      .def("rays", &rays, py::arg("pixels"), py::arg("pose") = py::none(), py::arg("time") = 0.0,
-           "raster points (N, 2) → (origins (N, 3), unit directions (N, 3)), NaN where nothing is imaged.")
+      .def("rays", &rays, py::arg("pixels"), py::arg("pose") = py::none(), py::arg("velocity") = py::none(),
+           py::arg("time") = 0.0,
+           "raster points (N, 2) → (origins (N, 3), unit directions (N, 3)), NaN where nothing is imaged. With a "
+           "pose, in the world: `time` seconds after the exposure start, the robot driving from `pose` at `velocity` "
+           "(vx, vy, yaw_rate_deg_per_s; docs/motion.md), still without one.")
       .def("images", &images, py::arg("pixels"), "raster points (N, 2) → bool (N,): inside the mirror's rim.")
       .def("describe", [](const PyCamera& c) { return toPython(c.camera->describe()); },
            "The camera model as sidecars and intrinsics files state it (dict).")

@@ -83,7 +83,7 @@ py::object outputToPython(DecodedOutput&& out) {
 }
 
 void bindDatasetReader(py::module_& m) {
-  // The outputs a frame may hold, from the one table of output kinds (dataset/output_kinds.h).
+  // The outputs a frame may hold, from the one table of output kinds (outputs/output_kinds.h).
   py::list outputNames;
   for (OutputKind kind : allOutputKinds())
     if (kind != OutputKind::Multilayer) outputNames.append(outputName(kind));

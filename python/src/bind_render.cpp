@@ -48,25 +48,25 @@ class PyRenderer {
     if (!parsedShading) throw InputError("shading: " + quote(shading) + " is not unlit or lit");
     settings.shading = *parsedShading;
     settings.traced = traced;
-    if (!velocity.is_none()) settings.velocity = velocityFrom(velocity, "velocity");
-    checkRenderSettings(settings, {"spp", "size", "velocity"});
-    const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
+    checkRenderSettings(settings, {"spp", "size"});
+    const CameraPlacement placement(pose.is_none() ? scene_->startPose : poseFrom(pose, "pose"),
+                                    velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
+    checkPlacement(placement);
     bool aovs = false;
     for (const std::string& o : outputs) {
       if (!kOutputs.count(o)) throw InputError("outputs: " + quote(o) + " is not one of rgba, rgb, depth, instance, class, normal");
       aovs = aovs || (o != "rgba" && o != "rgb");
     }
-    if (aovs && !engine_->hasAovs())
+    if (aovs && !engine_->capabilities().aovs)
       throw InputError("outputs: the " + engine_->name() + " engine renders colour only (rgba, rgb)");
-    ImageRGBA image;
-    AovFrame frame;
+    Film film = filmFor(settings, aovs);
     {
       py::gil_scoped_release release;
       std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
-      if (!engine_->concurrent()) turn.lock();
-      image = aovs ? engine_->render(robot, settings, frame) : engine_->render(robot, settings);
+      if (!engine_->capabilities().concurrent) turn.lock();
+      engine_->render(placement, settings, film);
     }
-    return arrays(std::move(image), std::move(frame), outputs);
+    return arrays(std::move(film.image), film.aovs ? std::move(*film.aovs) : AovFrame{}, outputs);
   }
 
   // The benchmark's reference (bench/python_bench.py): `frames` renders of one pose in a C++ loop,
@@ -81,7 +81,7 @@ class PyRenderer {
     const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
     py::gil_scoped_release release;
     std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
-    if (!engine_->concurrent()) turn.lock();
+    if (!engine_->capabilities().concurrent) turn.lock();
     const auto start = std::chrono::steady_clock::now();
     for (int k = 0; k < frames; ++k) engine_->render(robot, settings);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -154,7 +154,7 @@ per ground-truth frame; threads: 0 for every core.)")
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
-      .def_property_readonly("concurrent", [](const PyRenderer& r) { return r.engine().concurrent(); },
+      .def_property_readonly("concurrent", [](const PyRenderer& r) { return r.engine().capabilities().concurrent; },
                              "Whether renders from several threads run at once.");
 
   m.def(

@@ -59,6 +59,30 @@ def test_world_frame_rays_pass_through_the_points_they_image(robocup):
     np.testing.assert_allclose(camera.project(points, pose=pose), pixels, atol=1e-8)
 
 
+def test_rays_at_a_time_are_the_rays_from_where_the_motion_model_puts_the_robot(robocup):
+    # The motion model in closed form (docs/motion.md): driving at v along its heading without
+    # turning, the robot is v·t further along it; turning on the spot at ω, it has turned ω·t.
+    camera = omnicam.Camera(robocup.rig)
+    pixels = np.array([[100.5, 200.5], [180.5, 40.5], [300.25, 170.75]])
+    start = (2.0, 3.0, 30.0)
+    for velocity, t, then in [
+        ((1.5, 0.0, 0.0), 0.2, (2.0 + 0.3 * np.cos(np.radians(30.0)), 3.0 + 0.3 * np.sin(np.radians(30.0)), 30.0)),
+        ((0.0, 0.0, 90.0), 0.5, (2.0, 3.0, 75.0)),
+    ]:
+        moving = camera.rays(pixels, pose=start, velocity=velocity, time=t)
+        placed = camera.rays(pixels, pose=then)
+        for got, want in zip(moving, placed):
+            np.testing.assert_allclose(got, want, atol=1e-12)
+    # A still robot's rays do not depend on the time; at time 0 a moving one's are its start's.
+    np.testing.assert_array_equal(camera.rays(pixels, pose=start, time=0.7)[1], camera.rays(pixels, pose=start)[1])
+    np.testing.assert_array_equal(camera.rays(pixels, pose=start, velocity=(1.0, 0.5, 40.0))[0],
+                                  camera.rays(pixels, pose=start)[0])
+    with pytest.raises(omnicam.InputError, match="velocity: needs a pose"):
+        camera.rays(pixels, velocity=(1.0, 0.0, 0.0), time=0.1)
+    with pytest.raises(omnicam.InputError, match="time: must be within"):
+        camera.rays(pixels, pose=start, velocity=(1.0, 0.0, 0.0), time=float("nan"))
+
+
 def test_bad_arrays_are_input_errors(robocup):
     camera = omnicam.Camera(robocup.rig)
     with pytest.raises(omnicam.InputError, match=r"points: must be an array of shape \(N, 3\)"):

@@ -1,0 +1,148 @@
+#include "intrinsics_files.h"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/ccalib/omnidir.hpp>
+#include <opencv2/core.hpp>
+#include <regex>
+
+#include "central_camera.h"
+#include "opencv_omnidir.h"
+#include "physical_camera.h"
+#include "rig.h"
+#include "placement.h"
+
+namespace omnicam {
+namespace {
+
+// cv::omnidir::projectPoints with K, xi and D read back from `yaml` reproduces the camera's own
+// project (OpenCV's pixel centres are integers: ours minus 0.5) for a robot moved and turned in
+// the world, to within `tolerance` px.
+void expectOpenCvReproducesProject(const Camera& camera, const std::string& yaml, const RobotPose& pose, double tolerance) {
+  cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(fs.isOpened());
+  const OmnidirIntrinsics k = readOmnidirIntrinsics(fs);
+  const Rigid cfw = CameraPlacement(pose).worldFromCamera(camera.rig()).inverse();
+  const Rigid viewpointFromWorld = cameraFromViewpoint().inverse() * cfw;
+  std::vector<cv::Vec3d> world;
+  std::vector<Vec2> ours;
+  for (const Vec3& p : {Vec3(3, 1, 0), Vec3(-1, 2, 0.5), Vec3(1.6, -0.2, 0.0), Vec3(0, -3, 0.6), Vec3(2.5, -0.7, 0.39)}) {
+    const auto raster = camera.project(viewpointFromWorld * p);
+    ASSERT_TRUE(raster);
+    world.emplace_back(p.x(), p.y(), p.z());
+    ours.push_back(*raster);
+  }
+  cv::Mat rvec, tvec;
+  omnidirExtrinsics(cfw, rvec, tvec);
+  std::vector<cv::Vec2d> projected;
+  cv::omnidir::projectPoints(world, projected, rvec, tvec, k.K, k.xi, k.D);
+  for (size_t i = 0; i < world.size(); ++i) {
+    EXPECT_NEAR(projected[i][0] + 0.5, ours[i].x(), tolerance);
+    EXPECT_NEAR(projected[i][1] + 0.5, ours[i].y(), tolerance);
+  }
+}
+
+// cv::omnidir::projectPoints with K, xi and D read back from opencv.yaml reproduces omnicam's
+// projection (OpenCV's pixel centres are integers: ours minus 0.5), for a robot turned and
+// moved in the world — γ_y < 0 included.
+TEST(IntrinsicsFiles, OpenCvReadsTheYamlAndReproducesOurProjection) {
+  RigSpec rig;
+  rig.imageSize = 300;
+  const CentralCamera camera(rig);
+  const std::string yaml = openCvIntrinsicsYaml(camera);
+  cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(fs.isOpened());
+  EXPECT_LT(readOmnidirIntrinsics(fs).K.at<double>(1, 1), 0.0);
+  EXPECT_EQ(static_cast<int>(fs["image_width"]), 300);
+  expectOpenCvReproducesProject(camera, yaml, {1.5, -0.7, 125.0}, 1e-9);
+}
+
+TEST(IntrinsicsFiles, KalibrAndCamodocalCarryTheSameNumbers) {
+  RigSpec rig;
+  const OmniCamera camera = rig.camera();
+  const OpenCvIntrinsics k = camera.openCvIntrinsics();
+  cv::FileStorage mei(camodocalIntrinsicsYaml("front", CentralCamera(rig)), cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(mei.isOpened());
+  EXPECT_EQ(static_cast<std::string>(mei["model_type"]), "MEI");
+  EXPECT_EQ(static_cast<double>(mei["mirror_parameters"]["xi"]), k.xi);
+  EXPECT_EQ(static_cast<double>(mei["projection_parameters"]["gamma2"]), k.gamma_y);
+  EXPECT_EQ(static_cast<double>(mei["projection_parameters"]["u0"]), k.cx);
+
+  const std::string kalibr = kalibrIntrinsicsYaml("front", CentralCamera(rig));
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(kalibr, m, std::regex(R"(intrinsics: \[([^,]+), ([^,]+), ([^,]+), ([^,]+), ([^\]]+)\])")));
+  EXPECT_EQ(std::stod(m[1]), k.xi);  // round-trip text: exactly the same doubles
+  EXPECT_EQ(std::stod(m[2]), k.gamma_x);
+  EXPECT_EQ(std::stod(m[3]), k.gamma_y);
+  EXPECT_EQ(std::stod(m[4]), k.cx);
+  EXPECT_EQ(std::stod(m[5]), k.cy);
+  EXPECT_NE(kalibr.find("camera_model: omni\n"), std::string::npos);
+  EXPECT_NE(kalibr.find("resolution: [360, 360]"), std::string::npos);
+}
+
+// The aligned pinhole with a lens is exactly Mei's model with rescaled D: cv::omnidir with the
+// file's numbers reproduces the physical camera's own projection.
+TEST(IntrinsicsFiles, AnAlignedDistortedRigsFileIsExact) {
+  RigSpec rig;
+  rig.mount.distortion = {-0.08, 0.015, 0.0009, -0.0012, 0.0};
+  rig.mount.principalPointOffsetPx = {-0.6, 1.1};
+  const PhysicalCamera camera(rig);
+  const std::string yaml = openCvIntrinsicsYaml(camera);
+  cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(fs.isOpened());
+  EXPECT_EQ(static_cast<int>(fs["exact"]), 1);
+  expectOpenCvReproducesProject(camera, yaml, {0.4, 1.1, -35.0}, 1e-6);
+}
+
+// A non-central rig's files never claim the exact model; OpenCV's carries the fitted frame, with
+// which cv::omnidir sees distant points where the camera does, to within the stated residual.
+TEST(IntrinsicsFiles, ANonCentralRigsFilesSayApproximate) {
+  RigSpec rig;
+  rig.mount.offsetMm = {2.0, -1.0, 1.0};
+  rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  const PhysicalCamera camera(rig);
+  const std::string text = openCvIntrinsicsYaml(camera);
+  EXPECT_NE(text.find("APPROXIMATE"), std::string::npos);
+  EXPECT_NE(kalibrIntrinsicsYaml("front", camera).find("# APPROXIMATE"), std::string::npos);
+  EXPECT_NE(camodocalIntrinsicsYaml("front", camera).find("APPROXIMATE"), std::string::npos);
+  cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_EQ(static_cast<int>(fs["exact"]), 0);
+  const OmnidirIntrinsics k = readOmnidirIntrinsics(fs);
+  cv::Mat r, t;
+  fs["camera_from_rig_R"] >> r;
+  fs["camera_from_rig_t"] >> t;
+  ASSERT_EQ(r.rows, 3);
+  ASSERT_EQ(t.rows, 3);
+  Rigid fittedFromRig = Rigid::Identity();
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) fittedFromRig.linear()(row, col) = r.at<double>(row, col);
+    fittedFromRig.translation()[row] = t.at<double>(row);
+  }
+  const CentralApproximation& fit = camera.centralApproximation();
+  const double statedMaxAt5m = fit.residuals.back().maxPx;
+  ASSERT_EQ(fit.residuals.back().distanceM, 5.0);
+  std::vector<cv::Vec3d> points;
+  std::vector<Vec2> ours;
+  for (int i = 8; i < rig.imageSize; i += 16)
+    for (int j = 8; j < rig.imageSize; j += 16) {
+      const auto ray = camera.generateRay({Vec2(i + 0.5, j + 0.5)});
+      if (!ray) continue;
+      const Vec3 rigCamera = cameraFromViewpoint() * Vec3(ray->origin + 5.0 * ray->direction);
+      const Vec3 p = fittedFromRig * rigCamera;
+      points.emplace_back(p.x(), p.y(), p.z());
+      ours.emplace_back(i + 0.5, j + 0.5);
+    }
+  ASSERT_GT(points.size(), 300u);
+  std::vector<cv::Vec2d> projected;
+  cv::omnidir::projectPoints(points, projected, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), k.K, k.xi, k.D);
+  double worst = 0.0;
+  for (size_t i = 0; i < points.size(); ++i)
+    worst = std::max(worst, (Vec2(projected[i][0] + 0.5, projected[i][1] + 0.5) - ours[i]).norm());
+  // Points 5 m along the ray from its mirror point lie within millimetres of 5 m from the viewpoint.
+  EXPECT_LE(worst, 1.5 * statedMaxAt5m + 1e-3);
+  EXPECT_GT(worst, 0.0);
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -1,0 +1,115 @@
+#include "landmark_annotations.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "make_camera.h"
+#include "timed_projection.h"
+
+namespace omnicam {
+
+namespace {
+
+constexpr int kOutlinePoints = 32;      // per circle (top and bottom) for the bounding box
+constexpr double kSurfaceGap = 1e-3;    // metres short of a surface point when testing occlusion
+const double kFacingAnglesDeg[] = {-60.0, -30.0, 0.0, 30.0, 60.0};
+const double kFacingHeights[] = {-0.4, 0.0, 0.4};  // × the band's height, about its centre
+
+}  // namespace
+
+std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayScene& rays, const RigSpec& rig,
+                                                  const CameraPlacement& placement) {
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  auto imaged = [&](const Vec3& p) { return projectAtReadout(*camera, placement, p); };
+  auto rasterOf = [&](const Vec3& p) -> std::optional<Vec2> {
+    const auto at = imaged(p);
+    return at ? std::optional<Vec2>(at->raster) : std::nullopt;
+  };
+  // Is world point p imaged with nothing in front of it? Seen from where its ray leaves the mirror
+  // when its line sees it: F' for the central model, its own mirror point for a non-central rig.
+  auto seen = [&](const Vec3& p) {
+    const auto at = imaged(p);
+    if (!at) return false;
+    const Rigid worldFromView = placement.worldFromViewpoint(rig, at->seconds);
+    Vec3 from = worldFromView.translation();
+    if (!camera->central()) {
+      const auto ray = camera->generateRay({at->raster});
+      if (!ray) return false;
+      from = worldFromView * ray->origin;
+    }
+    const Vec3 toPoint = p - from;
+    const double distance = toPoint.norm();
+    return distance <= kSurfaceGap || !rays.occluded(from, toPoint / distance, 0.0, distance - kSurfaceGap);
+  };
+  std::vector<LandmarkAnnotation> result;
+  for (const Landmark& lm : scene.landmarks) {
+    LandmarkAnnotation a;
+    a.landmark = &lm;
+    const auto centre = imaged(lm.position);
+    // Range and bearing when the centre is imaged (mid-exposure of the middle line if it is not).
+    const double seconds =
+        centre ? centre->seconds : pixelTime(rig.shutter, rig.imageSize / 2, rig.imageSize / 2, rig.imageSize, rig.imageSize);
+    const RobotPose pose = placement.footAt(seconds);  // bearings from the camera's heading
+    const Vec3 viewpoint = placement.worldFromViewpoint(rig, seconds).translation();
+    const double radius = 0.5 * lm.diameter;
+    Vec2 toCamera = (viewpoint - lm.position).head<2>();
+    a.rangeM = toCamera.norm();
+    toCamera = a.rangeM > 1e-9 ? Vec2(toCamera / a.rangeM) : Vec2(1.0, 0.0);
+    const double bearingWorld = std::atan2(lm.position.y() - viewpoint.y(), lm.position.x() - viewpoint.x());
+    a.bearingDeg = std::remainder(degrees(bearingWorld) - pose.yawDeg, 360.0);
+    if (centre) a.centre = centre->raster;
+
+    int seenCount = 0, total = 0;
+    for (double angleDeg : kFacingAnglesDeg)
+      for (double height : kFacingHeights) {
+        const double angle = radians(angleDeg);
+        const Vec2 around(std::cos(angle) * toCamera.x() - std::sin(angle) * toCamera.y(),
+                          std::sin(angle) * toCamera.x() + std::cos(angle) * toCamera.y());
+        const Vec3 p = lm.position + Vec3(radius * around.x(), radius * around.y(), height * lm.height);
+        ++total;
+        const bool pointSeen = seen(p);
+        seenCount += pointSeen;
+        if (angleDeg == 0.0 && height == 0.0 && a.centre && !pointSeen) a.occluded = true;
+      }
+    a.visibleFraction = static_cast<double>(seenCount) / total;
+
+    Eigen::AlignedBox2d box;
+    for (int ring = 0; ring < 2; ++ring)
+      for (int k = 0; k < kOutlinePoints; ++k) {
+        const double angle = 2.0 * kPi * k / kOutlinePoints;
+        const Vec3 p = lm.position + Vec3(radius * std::cos(angle), radius * std::sin(angle),
+                                          (ring == 0 ? -0.5 : 0.5) * lm.height);
+        if (const auto raster = rasterOf(p)) box.extend(*raster);
+      }
+    if (!box.isEmpty()) {
+      a.bbox = std::array<double, 4>{std::max(0.0, box.min().x()), std::max(0.0, box.min().y()),
+                                     std::min<double>(camera->width(), box.max().x()),
+                                     std::min<double>(camera->height(), box.max().y())};
+    }
+    result.push_back(a);
+  }
+  return result;
+}
+
+nlohmann::json landmarksToJson(const std::vector<LandmarkAnnotation>& annotations) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const LandmarkAnnotation& a : annotations) {
+    nlohmann::json entry = {{"name", a.landmark->name},
+                            {"colour_class", a.landmark->colourClass},
+                            {"position", {a.landmark->position.x(), a.landmark->position.y(), a.landmark->position.z()}},
+                            {"in_view", a.inView()},
+                            {"visible", a.visible()},
+                            {"occluded", a.occluded},
+                            {"visible_fraction", a.visibleFraction},
+                            {"range_m", a.rangeM},
+                            {"bearing_deg", a.bearingDeg}};
+    entry["centre"] = a.centre ? nlohmann::json{a.centre->x(), a.centre->y()} : nlohmann::json(nullptr);
+    entry["bbox"] = a.bbox ? nlohmann::json{(*a.bbox)[0], (*a.bbox)[1], (*a.bbox)[2], (*a.bbox)[3]}
+                           : nlohmann::json(nullptr);
+    list.push_back(std::move(entry));
+  }
+  return {{"pixel_centre", "half-integer: pixel (i, j) covers [i, i+1) x [j, j+1), like `omnicam project`"},
+          {"landmarks", list}};
+}
+
+}  // namespace omnicam

@@ -1,0 +1,104 @@
+#include "landmark_annotations.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+// Two landmarks 2 m from the robot: one in the open at +X, one at −X behind a wall.
+Scene scene() {
+  return loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+    "objects": [{"type": "box", "name": "wall", "material": "m", "center": [-1, 0, 0.5], "size": [0.1, 2, 1]}],
+    "landmarks": [
+      {"name": "open", "position": [2, 0, 0.3], "diameter": 0.1, "height": 0.1, "colour_class": "cyan"},
+      {"name": "hidden", "position": [-2, 0, 0.3], "diameter": 0.1, "height": 0.1, "colour_class": "magenta"},
+      {"name": "overhead", "position": [0, 0.05, 5], "diameter": 0.1, "height": 0.1, "colour_class": "yellow"}]})",
+                           "landmarks.json");
+}
+
+// The unified (Mei) projection written out from docs/conventions.md §1, independent of
+// OmniCamera: ξ from k, γ from the framing, the robot frame from the pose, F' `height` above the
+// floor; a direction at incidence θ from straight down lands γ sinθ / (ξ + cosθ) from the centre,
+// u along the robot's +x, v along its +y.
+Vec2 closedFormRaster(const RigSpec& rig, const RobotPose& pose, const Vec3& world) {
+  const double eps = std::sqrt(rig.k / (rig.k - 2.0));
+  const double xi = 2.0 * eps / (1.0 + eps * eps);
+  const double framing = (90.0 + rig.framingElevationDeg) * kPi / 180.0;
+  const double gamma = 0.5 * rig.imageSize * (xi + std::cos(framing)) / std::sin(framing);
+  const double yaw = pose.yawDeg * kPi / 180.0;
+  const double dx = world.x() - pose.x, dy = world.y() - pose.y, dz = world.z() - rig.height;
+  const double x = std::cos(yaw) * dx + std::sin(yaw) * dy, y = -std::sin(yaw) * dx + std::cos(yaw) * dy;
+  const double theta = std::acos(-dz / std::sqrt(x * x + y * y + dz * dz));
+  const double r = gamma * std::sin(theta) / (xi + std::cos(theta));
+  const double phi = std::atan2(y, x);
+  return {0.5 * rig.imageSize + r * std::cos(phi), 0.5 * rig.imageSize + r * std::sin(phi)};
+}
+
+TEST(LandmarkAnnotations, CentresAreTheCameraProjectionAndWallsOcclude) {
+  const Scene s = scene();
+  const RayScene rays(s);
+  const RobotPose pose{0.0, 0.0, 30.0};
+  const auto a = annotateLandmarks(s, rays, s.rig, pose);
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_TRUE(a[0].centre);
+  EXPECT_NEAR((*a[0].centre - closedFormRaster(s.rig, pose, Vec3(2, 0, 0.3))).norm(), 0.0, 1e-9);
+  EXPECT_TRUE(a[0].visible());
+  EXPECT_DOUBLE_EQ(a[0].visibleFraction, 1.0);
+  EXPECT_NEAR(a[0].rangeM, 2.0, 1e-12);
+  EXPECT_NEAR(a[0].bearingDeg, -30.0, 1e-9);  // the robot faces 30°: the landmark at 0° is 30° to its right
+  // The box bounds the cylinder's top and bottom circles (radius 0.05 m at z = 0.25, 0.35 m):
+  // here from 720 points per circle; the 32 per circle of annotateLandmarks fall short by at most
+  // r (1 − cos(π/32)) = 0.012 px for this 4.8 px wide band (measured ≤ 0.0033 px).
+  ASSERT_TRUE(a[0].bbox);
+  Eigen::AlignedBox2d outline;
+  for (double z : {0.25, 0.35})
+    for (int k = 0; k < 720; ++k)
+      outline.extend(closedFormRaster(s.rig, pose, Vec3(2 + 0.05 * std::cos(k * kPi / 360), 0.05 * std::sin(k * kPi / 360), z)));
+  EXPECT_GT(outline.sizes().minCoeff(), 1.0);
+  EXPECT_NEAR((*a[0].bbox)[0], outline.min().x(), 0.015);
+  EXPECT_NEAR((*a[0].bbox)[1], outline.min().y(), 0.015);
+  EXPECT_NEAR((*a[0].bbox)[2], outline.max().x(), 0.015);
+  EXPECT_NEAR((*a[0].bbox)[3], outline.max().y(), 0.015);
+
+  ASSERT_TRUE(a[1].inView());
+  EXPECT_NEAR((*a[1].centre - closedFormRaster(s.rig, pose, Vec3(-2, 0, 0.3))).norm(), 0.0, 1e-9);
+  EXPECT_TRUE(a[1].occluded);
+  EXPECT_FALSE(a[1].visible());
+  EXPECT_DOUBLE_EQ(a[1].visibleFraction, 0.0);
+  EXPECT_NEAR(std::abs(a[1].bearingDeg), 150.0, 1e-9);
+
+  // Straight up, beyond the mirror's rim: not imaged at all.
+  EXPECT_FALSE(a[2].inView());
+  EXPECT_FALSE(a[2].bbox);
+}
+
+TEST(LandmarkAnnotations, UnderARollingShutterEachLandmarkIsWhereItsOwnLineSeesIt) {
+  // Driving at 1 m/s while turning at 90°/s, read top to bottom at 1 ms a line: the "open"
+  // landmark's centre is at the closed-form projection from the pose of its own line's time, and
+  // its line is the one that time belongs to.
+  const Scene s = scene();
+  const RayScene rays(s);
+  RigSpec rig = s.rig;
+  rig.shutter = {0.002, RollingShutter{1000.0, Readout::TopToBottom}, 0};
+  const RobotPose start{0.0, 0.0, 10.0};
+  const BodyVelocity driving{1.0, 0.0, 90.0};
+  const auto moving = annotateLandmarks(s, rays, rig, CameraPlacement(start, driving));
+  ASSERT_TRUE(moving[0].centre.has_value());
+  const int row = static_cast<int>(std::floor(moving[0].centre->y()));
+  const RobotPose then = poseAfter(start, driving, row * 1e-3 + 0.001);
+  const Vec2 expected = closedFormRaster(rig, then, s.landmarks[0].position);
+  EXPECT_NEAR(moving[0].centre->x(), expected.x(), 1e-6);
+  EXPECT_NEAR(moving[0].centre->y(), expected.y(), 1e-6);
+  EXPECT_NEAR(moving[0].bearingDeg, -then.yawDeg + std::atan2(-then.y, 2.0 - then.x) * 180.0 / kPi, 1e-9);
+  // Far from where the start pose sees it: the motion is there.
+  const Vec2 still = closedFormRaster(rig, start, s.landmarks[0].position);
+  EXPECT_GT((*moving[0].centre - still).norm(), 5.0);
+  EXPECT_TRUE(moving[1].occluded);  // still behind the wall
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -1,0 +1,56 @@
+#include "rig.h"
+
+#include "errors.h"
+#include "input_limits.h"
+
+namespace omnicam {
+
+void checkImageSize(int size, const std::string& what) {
+  if (size < limits::kMinImageSize || size > limits::kMaxImageSize)
+    throw InputError(what + ": must be in [" + std::to_string(limits::kMinImageSize) + ", " +
+                     std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
+}
+
+const char* mirrorShapeName(MirrorShape shape) {
+  switch (shape) {
+    case MirrorShape::Hyperboloid: return "hyperboloid";
+    case MirrorShape::Paraboloid: return "paraboloid";
+    case MirrorShape::Sphere: return "sphere";
+    case MirrorShape::Cone: return "cone";
+  }
+  return "?";
+}
+
+OmniCamera RigSpec::camera() const {
+  if (shape.shape != MirrorShape::Hyperboloid)
+    throw InputError(std::string("rig.mirror.shape: this needs the central (Mei) model of the hyperboloid; a ") +
+                     mirrorShapeName(shape.shape) + " mirror is traced physically only");
+  if (!ideal())
+    throw InputError(
+        "rig.camera: this needs the central (Mei) model, which describes only the ideal camera "
+        "(zero offset, rotation, distortion and principal point offset)");
+  return idealCamera();
+}
+
+Rigid worldFromRobot(const RobotPose& pose) {
+  Rigid t = Rigid::Identity();
+  t.translate(Vec3(pose.x, pose.y, 0.0));
+  t.rotate(Eigen::AngleAxisd(radians(pose.yawDeg), Vec3::UnitZ()));
+  return t;
+}
+
+Rigid robotFromViewpoint(const RigSpec& rig) {
+  Rigid t = Rigid::Identity();
+  t.rotate(Eigen::AngleAxisd(radians(rig.tiltDeg[0]), Vec3::UnitX()));
+  t.rotate(Eigen::AngleAxisd(radians(rig.tiltDeg[1]), Vec3::UnitY()));
+  t.translate(Vec3(0.0, 0.0, rig.height));
+  return t;
+}
+
+Rigid cameraFromViewpoint() {
+  Rigid t = Rigid::Identity();
+  t.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  return t;
+}
+
+}  // namespace omnicam

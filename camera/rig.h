@@ -1,0 +1,129 @@
+#pragma once
+// The camera rig on the robot and the frame chain world ← robot ← viewpoint ← camera.
+//   robot:     origin on the floor below F', x forward, y left, z up (yaw CCW from world +X).
+//   viewpoint: origin at F' = robot origin + (0, 0, height), robot axes.
+//   camera:    unified-model frame at F' (see omni_camera.h).
+//   pinhole:   the physical camera below the mirror (physical_camera.h): origin at its pinhole,
+//              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
+//              axes along robot x, y, z.
+#include <array>
+#include <string>
+
+#include "geometry.h"
+#include "omni_camera.h"
+#include "shutter.h"
+
+namespace omnicam {
+
+struct RobotPose {
+  double x = 0.0, y = 0.0, yawDeg = 0.0;
+};
+
+// OpenCV's radial-tangential lens distortion, applied to the pinhole's normalised image
+// coordinates (x, y) = (X/Z, Y/Z): x' = x(1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x y + p2 (r² + 2x²), etc.
+struct LensDistortion {
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;
+  bool none() const { return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0 && k3 == 0.0; }
+  bool operator==(const LensDistortion&) const = default;
+};
+
+// The physical camera below the mirror, as built rather than as designed. All zero: the ideal
+// pinhole at the mirror's outer focus F, looking straight up, distortion-free.
+struct CameraMount {
+  std::array<double, 3> offsetMm{0.0, 0.0, 0.0};     // pinhole minus its ideal position, robot axes
+  std::array<double, 3> rotationDeg{0.0, 0.0, 0.0};  // about the pinhole: axes = Rx·Ry·Rz · ideal axes
+  LensDistortion distortion;
+  std::array<double, 2> principalPointOffsetPx{0.0, 0.0};
+  bool ideal() const { return *this == CameraMount{}; }
+  bool operator==(const CameraMount&) const = default;
+};
+
+// The mirror's shape. The hyperboloid (k, c, rim_elevation_deg of RigSpec) is the designed
+// single-viewpoint mirror; the others are cheaper builds (docs/physical-camera.md, "Mirror
+// shapes"). Each sits level on the robot with its design point at `height`: the paraboloid's
+// focus, the sphere's centre, the cone's apex.
+enum class MirrorShape { Hyperboloid, Paraboloid, Sphere, Cone };
+const char* mirrorShapeName(MirrorShape shape);
+
+struct MirrorShapeSpec {
+  MirrorShape shape = MirrorShape::Hyperboloid;
+  double parabolaH = 0.0;       // paraboloid: z = (r² − h²)/(2h) about its focus, metres
+  double sphereRadius = 0.0;    // sphere, metres
+  double capAngleDeg = 0.0;     // sphere: the cap from its lowest point up to this polar angle
+  double coneHalfAngleDeg = 0.0;  // cone: apex half-angle
+  double coneRimRadius = 0.0;   // cone: radius of its rim, metres
+  // The ideal pinhole's distance below the design point, on the axis (paraboloid, sphere, cone;
+  // a paraboloid with 0 is seen by an orthographic camera looking straight up).
+  double cameraDistance = 0.0;
+  bool operator==(const MirrorShapeSpec&) const = default;
+};
+
+// InputError("<what>: must be in [8, 16384] (got N)") for an image size outside the limits.
+void checkImageSize(int size, const std::string& what);
+
+struct RigSpec {
+  double height = 0.40;            // F' above the floor, metres
+  double k = 11.546;               // Baker–Nayar mirror parameter, > 2
+  double c = 0.02321;              // focal distance between F and F', metres
+  double rimElevationDeg = 45.0;   // mirror rim, degrees above the horizon (hyperboloid, paraboloid)
+  MirrorShapeSpec shape;           // hyperboloid unless it says otherwise
+  CameraMount mount;               // the physical camera's misalignment and lens
+  int imageSize = 360;             // square image, pixels
+  double framingElevationDeg = 45.0;  // direction that touches the image border
+  Shutter shutter;                 // an instant unless it says otherwise (docs/motion.md)
+  // The whole rig (mirror and camera) tilted on its mount, as a robot rocking on its wheels
+  // tilts it, about the point on the floor below F': robotFromViewpoint = Rx(roll)·Ry(pitch)·
+  // T(0, 0, height), i.e. roll about the mount's x axis, then pitch about the rolled y axis.
+  // Level unless it says otherwise.
+  std::array<double, 2> tiltDeg{0.0, 0.0};
+
+  // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
+  // field can never leave a stale table behind.
+  bool operator==(const RigSpec&) const = default;
+
+  // True when the camera sits exactly where the mirror was designed for: the image is then the
+  // central (Mei) model's, in closed form.
+  bool ideal() const { return shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
+  // The same camera imaging at another size: the focal length scales with the image, and so does
+  // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
+  // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize.
+  RigSpec resized(int size) const {
+    checkImageSize(size, "image size");
+    RigSpec r = *this;
+    const double scale = static_cast<double>(size) / imageSize;
+    r.imageSize = size;
+    for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
+    return r;
+  }
+  // What shapes the camera's rays in the viewpoint frame: this rig without its shutter (when
+  // rays are taken) and its tilt (where the viewpoint frame sits on the robot).
+  RigSpec imaging() const {
+    RigSpec r = *this;
+    r.shutter = {};
+    r.tiltDeg = {0.0, 0.0};
+    return r;
+  }
+  // This rig with its camera put back where it belongs.
+  RigSpec idealized() const {
+    RigSpec r = *this;
+    r.mount = {};
+    return r;
+  }
+
+  HyperbolicMirror mirror() const { return {k, c}; }
+  // The ideal rig's central model: what the mirror and framing give, whatever the mount says.
+  OmniCamera idealCamera() const {
+    return {mirror(), imageSize, imageSize, rimElevationDeg, framingElevationDeg};
+  }
+  // The central model of this rig; InputError for a rig whose camera is not ideal, which no
+  // central model describes exactly (make_camera.h gives the camera of any rig).
+  OmniCamera camera() const;
+};
+
+// Links of the frame chain; placement.h (motion/) is the one place that composes them.
+Rigid worldFromRobot(const RobotPose& pose);
+Rigid robotFromViewpoint(const RigSpec& rig);
+// Fixed axis change viewpoint → camera: X = x, Y = −y, Z = −z (a proper rotation).
+Rigid cameraFromViewpoint();
+
+}  // namespace omnicam

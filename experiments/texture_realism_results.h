@@ -1,0 +1,57 @@
+#pragma once
+// What the texture-realism experiment is asked (its options) and what it finds: shared by the
+// runner (texture_realism.h) and the report that writes it (texture_realism_report.h).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "beacon_detector.h"
+#include "realistic_rendering.h"
+#include "recording_camera.h"
+
+namespace omnicam {
+
+struct TextureRealismOptions {
+  std::string outDir;
+  std::string fieldScene;                  // scenes/robocup2006.json
+  std::string labPhoto;                    // the textured (test) walls
+  std::vector<std::string> randomPhotos;   // the random_textures training walls
+  int size = 360;
+  int spp = 16;                // fast renders
+  RealisticRendering realistic = realisticRendering();
+  int testStride = 1;          // every k-th of the 100 thesis-loop poses
+  int trainFrames = 24;        // per train set
+  int randomHalls = 6;         // random_textures: frames spread over this many halls
+  int bins = 32;
+  DetectorOptions detector;
+  RecordingCamera recording = RecordingCamera::webcam();
+  uint64_t seed = 2008;
+  double matchRadiusPx = 8.0;  // at 360 px; scaled with the image size
+  double blenderTimeoutSeconds = 3600.0;
+
+  static TextureRealismOptions quick();  // a few frames, small images, low spp: for tests
+};
+
+struct ConditionOutcome {
+  std::string train, test;
+  int frames = 0, truePositives = 0, falsePositives = 0, missed = 0, falsePositiveBlobs = 0;
+  int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
+  double meanLocalisationErrorPx = 0.0, meanRangeErrorCm = 0.0, meanBearingErrorDeg = 0.0;
+  // The objects the false-positive blobs lie on, most frequent first (at most five).
+  std::vector<std::pair<std::string, int>> falsePositiveSources;
+  std::string key() const { return train + "_to_" + test; }
+};
+
+struct EkfOutcome {
+  std::string condition;
+  double meanErrorOdometryCm = 0.0, meanErrorEkfCm = 0.0;
+  int measurementsUsed = 0, measurementsGated = 0;
+};
+
+struct TextureRealismResults {
+  std::vector<ConditionOutcome> conditions;
+  std::vector<EkfOutcome> ekf;
+  double seconds = 0.0;
+};
+
+}  // namespace omnicam

@@ -1,0 +1,146 @@
+#include "atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <random>
+#include <cstdlib>
+#include <cstring>
+#include <climits>
+#include <filesystem>
+
+#include "errors.h"
+#include "file_descriptor.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void failWrite(const std::string& shownPath, int folderFd, const std::string& tmp, int error) {
+  if (!tmp.empty()) ::unlinkat(folderFd, tmp.c_str(), 0);
+  throw OutputError(shownPath + ": cannot write (" + std::strerror(error) + ")");
+}
+
+std::string randomSuffix() {
+  static std::atomic<uint64_t> counter{0};
+  thread_local std::mt19937_64 random(std::random_device{}() ^ (static_cast<uint64_t>(::getpid()) << 32));
+  static const char kAlphabet[] = "abcdefghijklmnopqrstuvwxyz0123456789";
+  uint64_t bits = random() ^ (counter++ * 0x9E3779B97F4A7C15ull);
+  std::string suffix;
+  for (int i = 0; i < 10; ++i, bits /= 36) suffix += kAlphabet[bits % 36];
+  return suffix;
+}
+
+}  // namespace
+
+void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
+  const fs::path target(path);
+  // The user's own path: links in it are followed, as the user meant.
+  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+  const FileDescriptor folderFd(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (folderFd.get() < 0) failWrite(showPath(path), AT_FDCWD, "", errno);
+  writeBytesAtomicallyAt(folderFd.get(), target.filename().string(), showPath(path), bytes, durability);
+}
+
+void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
+                            Durability durability) {
+  struct stat existing {};
+  if (::fstatat(folderFd, name.c_str(), &existing, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(existing.st_mode))
+    throw InputError(shownPath + ": is an existing folder, not a file name");
+  // The temporary keeps the final extension and is created exclusively (O_EXCL, which also
+  // refuses a planted link) under an unpredictable name, as mkstemp does, but with the umask's
+  // permissions of a normal file.
+  std::string tmp;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt) {
+    tmp = atomicTemporaryName(name);
+    fd = ::openat(folderFd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0 && (errno != EEXIST || attempt > 100)) failWrite(shownPath, folderFd, "", errno);
+  }
+  size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      failWrite(shownPath, folderFd, tmp, error);
+    }
+    written += static_cast<size_t>(n);
+  }
+  if (durability == Durability::Synced && ::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    failWrite(shownPath, folderFd, tmp, error);
+  }
+  if (::close(fd) != 0) failWrite(shownPath, folderFd, tmp, errno);
+  // rename replaces whatever entry holds the name (a planted link included) and writes nothing
+  // through it.
+  if (::renameat(folderFd, tmp.c_str(), folderFd, name.c_str()) != 0) failWrite(shownPath, folderFd, tmp, errno);
+}
+
+namespace {
+
+// Every component within NAME_MAX less what a temporary adds (".", ".tmp-" and 10 characters),
+// the whole within PATH_MAX: a name the file system would refuse is the user's mistake, found
+// before any work.
+void checkNameLengths(const std::string& path, const std::string& flag) {
+  constexpr size_t kTemporaryExtra = 16;
+  if (path.empty()) throw InputError(flag + ": empty path");
+  if (path.size() + kTemporaryExtra >= PATH_MAX) throw InputError(flag + ": path is longer than the file system allows");
+  for (const auto& part : fs::path(path))
+    if (part.string().size() + kTemporaryExtra > NAME_MAX)
+      throw InputError(flag + ": a name in the path is longer than " + std::to_string(NAME_MAX - kTemporaryExtra) +
+                       " bytes");
+}
+
+}  // namespace
+
+void checkOutputFile(const std::string& path, const std::string& flag) {
+  checkNameLengths(path, flag);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(flag + ": " + showPath(path) + " is an existing folder, not a file name");
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec)) throw InputError(flag + ": folder " + showPath(parent.string()) + " does not exist");
+}
+
+void checkOutputFolder(const std::string& path, const std::string& flag) {
+  checkNameLengths(path, flag);
+  std::error_code ec;
+  // The folder, or the nearest of its parents that exists, must be a folder: creating it would
+  // fail otherwise, after other work.
+  for (fs::path at = path; !at.empty(); at = at.parent_path()) {
+    if (!fs::exists(at, ec) && !fs::is_symlink(at, ec)) {
+      if (at == at.parent_path()) break;
+      continue;
+    }
+    if (!fs::is_directory(at, ec)) throw InputError(flag + ": " + showPath(at.string()) + " exists and is not a folder");
+    break;
+  }
+}
+
+std::string atomicTemporaryName(const std::string& name) {
+  const fs::path leaf(name);
+  return "." + leaf.stem().string() + ".tmp-" + randomSuffix() + leaf.extension().string();
+}
+
+bool isAtomicTemporaryName(const std::string& name) {
+  const size_t at = name.find(".tmp-");
+  return !name.empty() && name[0] == '.' && at != std::string::npos && name.size() >= at + 11;
+}
+
+void removeAtomicTemporaries(const std::string& dir) {
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+    if (it->symlink_status(ec).type() == std::filesystem::file_type::regular &&
+        isAtomicTemporaryName(it->path().filename().string()))
+      std::filesystem::remove(it->path(), ec);
+}
+
+}  // namespace omnicam

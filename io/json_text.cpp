@@ -1,0 +1,112 @@
+#include "json_text.h"
+
+#include <set>
+#include <string_view>
+#include <vector>
+
+#include "errors.h"
+#include "file_confinement.h"
+
+namespace omnicam {
+
+using nlohmann::json;
+
+namespace {
+
+// nlohmann's messages quote the token they stopped at ("last read: 'tru'", "parsing '1e400'"),
+// and a token can be a whole megabyte-long string: it is echoed like any user text.
+std::string jsonErrorText(const std::string& what) {
+  for (const std::string_view marker : {"; last read: '", "parsing '"}) {
+    const size_t open = what.find(marker);
+    if (open == std::string::npos) continue;
+    const size_t begin = open + marker.size();
+    size_t end = what.rfind("'; expected ");  // nlohmann may name what it expected after the token
+    if (end == std::string::npos || end < begin) end = what.size() - 1;
+    if (end < begin || what[end] != '\'') return what;
+    return what.substr(0, begin - 1) + quote(what.substr(begin, end - begin)) + what.substr(end + 1);
+  }
+  return what;
+}
+
+}  // namespace
+
+namespace {
+
+// The checking pass over a JSON text (SAX: no tree is built, no work per sibling): syntax, no
+// key twice in one object, nesting at most `maxDepth`. nlohmann's own callback parser would do
+// the key check too, but it rescans the parent at every object's end: quadratic in siblings.
+class StrictJsonCheck : public json::json_sax_t {
+ public:
+  StrictJsonCheck(const std::string& file, int maxDepth) : file_(file), maxDepth_(maxDepth) {}
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override {
+    enter();
+    keysOfOpenObjects_.emplace_back();
+    return true;
+  }
+  bool key(string_t& key) override {
+    if (!keysOfOpenObjects_.back().insert(key).second)
+      throw InputError(showPath(file_) + ": duplicate key " + quote(key) + " in one object");
+    return true;
+  }
+  bool end_object() override {
+    keysOfOpenObjects_.pop_back();
+    --depth_;
+    return true;
+  }
+  bool start_array(std::size_t) override {
+    enter();
+    return true;
+  }
+  bool end_array() override {
+    --depth_;
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const json::exception& e) override {
+    // Syntax errors, and numbers such as 1e400 that overflow.
+    throw InputError(showPath(file_) + ": not valid JSON (" + jsonErrorText(e.what()) + ")");
+  }
+
+ private:
+  void enter() {
+    if (++depth_ > maxDepth_)
+      throw InputError(showPath(file_) + ": JSON nested deeper than " + std::to_string(maxDepth_) +
+                       " levels of objects and arrays");
+  }
+  const std::string& file_;
+  const int maxDepth_;
+  int depth_ = 0;
+  std::vector<std::set<std::string>> keysOfOpenObjects_;
+};
+
+}  // namespace
+
+void checkJsonText(const std::string& text, const std::string& file, int maxDepth) {
+  StrictJsonCheck check(file, maxDepth);
+  json::sax_parse(text, &check);
+}
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& file, int maxDepth) {
+  checkJsonText(text, file, maxDepth);
+  // Checked: the plain parser (no callback, linear time) builds the tree.
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    throw InputError(showPath(file) + ": not valid JSON (" + jsonErrorText(e.what()) + ")");
+  }
+}
+
+nlohmann::json readJsonFile(const std::string& file, int64_t maxBytes, int maxDepth) {
+  std::string why;
+  const auto text = readWholeFile(file, why, maxBytes);
+  if (!text) throw InputError(showPath(file) + ": " + why);
+  return parseJsonText(*text, file, maxDepth);
+}
+
+}  // namespace omnicam

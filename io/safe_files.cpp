@@ -1,0 +1,271 @@
+#include "safe_files.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+#include "errors.h"
+#include "sha256.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kLinkNotFollowed = "is a symbolic link (links inside this folder are not followed)";
+
+// Something found on the way to a path inside the folder: `where` (a prefix of the relative
+// path, or all of it) and what is wrong with it. Thrown inside this file only.
+struct Problem {
+  std::string where, what;
+  EntryKind kind = EntryKind::Other;
+  bool output = false;  // the file system refused a write (OutputError), not a planted entry
+};
+
+std::string fullPath(const std::string& root, const std::string& relative) {
+  return relative.empty() ? root : (fs::path(root) / relative).string();
+}
+
+[[noreturn]] void rethrow(const std::string& root, const Problem& p) {
+  const std::string message = showPath(fullPath(root, p.where)) + ": " + p.what;
+  if (p.output) throw OutputError(message);
+  throw InputError(message);
+}
+
+std::string errorText(const std::string& action, int error) { return action + " (" + std::strerror(error) + ")"; }
+
+// The names of a relative path. Empty names, "." and ".." are refused: each caller's paths are
+// checked where they come from (a manifest, omnicam's layout); this is the last guard.
+std::vector<std::string> partsOf(const std::string& relative) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (start <= relative.size()) {
+    const size_t end = std::min(relative.find('/', start), relative.size());
+    const std::string part = relative.substr(start, end - start);
+    if (part.empty() || part == "." || part == "..")
+      throw InputError(quote(relative, kEchoedPathChars) + ": not a plain relative path inside the folder");
+    parts.push_back(part);
+    start = end + 1;
+  }
+  return parts;
+}
+
+std::string prefixOf(const std::vector<std::string>& parts, size_t count) {
+  std::string prefix;
+  for (size_t i = 0; i < count; ++i) prefix += (i ? "/" : "") + parts[i];
+  return prefix;
+}
+
+// What `name` in `folder` is, links not followed (st filled unless Missing).
+EntryKind kindAt(int folder, const std::string& name, struct stat& st) {
+  if (::fstatat(folder, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0)
+    return errno == ENOENT ? EntryKind::Missing : EntryKind::Other;
+  if (S_ISLNK(st.st_mode)) return EntryKind::Link;
+  if (S_ISDIR(st.st_mode)) return EntryKind::Folder;
+  return S_ISREG(st.st_mode) ? EntryKind::File : EntryKind::Other;
+}
+
+// Opens the folder `name` in `parent`, never through a link; creates it first when missing and
+// `create` is set.
+FileDescriptor openFolderAt(int parent, const std::string& name, const std::string& where, bool create) {
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    const int fd = ::openat(parent, name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd >= 0) return FileDescriptor(fd);
+    const int error = errno;
+    struct stat st {};
+    switch (kindAt(parent, name, st)) {
+      case EntryKind::Link: throw Problem{where, kLinkNotFollowed, EntryKind::Link};
+      case EntryKind::Missing:
+        if (!create) throw Problem{where, "missing", EntryKind::Missing};
+        if (::mkdirat(parent, name.c_str(), 0777) != 0 && errno != EEXIST)
+          throw Problem{where, errorText("cannot create folder", errno), EntryKind::Missing, true};
+        break;  // created (or by someone else meanwhile): open it
+      case EntryKind::Folder:
+        // Made by another process (a shard) between our open and our look: open it again.
+        if (error == ENOENT) break;
+        throw Problem{where, errorText("cannot open folder", error), EntryKind::Other};
+      default: throw Problem{where, "is not a folder", EntryKind::Other};
+    }
+  }
+  throw Problem{where, "keeps changing while being opened", EntryKind::Other};
+}
+
+// The folder holding parts[0..count): the user's root (followed as given), then one name at a
+// time.
+FileDescriptor openFolders(const std::string& root, const std::vector<std::string>& parts, size_t count, bool create) {
+  FileDescriptor folder(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (folder.get() < 0) {
+    const int error = errno;
+    if (error != ENOENT || !create)
+      throw Problem{"", error == ENOENT ? "missing" : errorText("cannot open folder", error),
+                    error == ENOENT ? EntryKind::Missing : EntryKind::Other};
+    std::error_code ec;
+    fs::create_directories(root, ec);  // the user's own path
+    if (ec) throw Problem{"", "cannot create folder (" + ec.message() + ")", EntryKind::Missing, true};
+    folder = FileDescriptor(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    if (folder.get() < 0) throw Problem{"", errorText("cannot open folder", errno), EntryKind::Other};
+  }
+  for (size_t i = 0; i < count; ++i) folder = openFolderAt(folder.get(), parts[i], prefixOf(parts, i + 1), create);
+  return folder;
+}
+
+// Opens the regular file `name` in `folder` for reading: checked before opening (a FIFO or a
+// device is never opened) and after (the same file, still regular); O_NONBLOCK so that a FIFO
+// swapped in between cannot block the open. Its size goes to `size`.
+FileDescriptor openRegularFile(int folder, const std::string& name, const std::string& where, int64_t maxBytes,
+                               int64_t& size) {
+  struct stat before {};
+  switch (kindAt(folder, name, before)) {
+    case EntryKind::File: break;
+    case EntryKind::Missing: throw Problem{where, "missing", EntryKind::Missing};
+    case EntryKind::Link: throw Problem{where, kLinkNotFollowed, EntryKind::Link};
+    default: throw Problem{where, "is not a regular file", EntryKind::Other};
+  }
+  if (before.st_size > maxBytes)
+    throw Problem{where, "is larger than " + std::to_string(maxBytes) + " bytes", EntryKind::File};
+  FileDescriptor fd(::openat(folder, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
+  if (fd.get() < 0) throw Problem{where, errorText("cannot open", errno), EntryKind::File};
+  struct stat after {};
+  if (::fstat(fd.get(), &after) != 0 || !S_ISREG(after.st_mode) || after.st_dev != before.st_dev ||
+      after.st_ino != before.st_ino)
+    throw Problem{where, "changed while being opened", EntryKind::Other};
+  size = after.st_size;
+  return fd;
+}
+
+// Feeds every byte of `fd` to `sink` in pieces, at most `maxBytes` in all (a file may grow).
+template <typename Sink>
+void readAll(int fd, const std::string& where, int64_t maxBytes, Sink&& sink) {
+  std::vector<char> buffer(1 << 16);
+  int64_t total = 0;
+  while (true) {
+    const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw Problem{where, errorText("cannot read", errno), EntryKind::File};
+    if (n == 0) return;
+    total += n;
+    if (total > maxBytes) throw Problem{where, "is larger than " + std::to_string(maxBytes) + " bytes", EntryKind::File};
+    sink(std::string_view(buffer.data(), static_cast<size_t>(n)));
+  }
+}
+
+// Runs `use(fd)` on the regular file root/relative.
+template <typename Use>
+void withRegularFile(const std::string& root, const std::string& relative, int64_t maxBytes, Use&& use) {
+  const std::vector<std::string> parts = partsOf(relative);
+  const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+  int64_t size = 0;
+  const FileDescriptor file = openRegularFile(folder.get(), parts.back(), relative, maxBytes, size);
+  use(file.get(), size);
+}
+
+}  // namespace
+
+EntryKind entryInside(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = partsOf(relative);
+  try {
+    const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+    struct stat st {};
+    return kindAt(folder.get(), parts.back(), st);
+  } catch (const Problem& p) {
+    return p.kind == EntryKind::Missing ? EntryKind::Missing : EntryKind::Blocked;
+  }
+}
+
+std::string readFileInside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+  std::string bytes;
+  try {
+    withRegularFile(root, relative, maxBytes, [&](int fd, int64_t size) {
+      bytes.reserve(static_cast<size_t>(size));
+      readAll(fd, relative, maxBytes, [&](std::string_view piece) { bytes.append(piece); });
+    });
+  } catch (const Problem& p) {
+    rethrow(root, p);
+  }
+  return bytes;
+}
+
+void checkFileInside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+  try {
+    withRegularFile(root, relative, maxBytes, [](int, int64_t) {});
+  } catch (const Problem& p) {
+    rethrow(root, p);
+  }
+}
+
+FileDigest sha256Inside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+  FileDigest digest;
+  try {
+    withRegularFile(root, relative, maxBytes, [&](int fd, int64_t) {
+      Sha256 hash;
+      readAll(fd, relative, maxBytes, [&](std::string_view piece) { hash.update(piece); });
+      digest.sha256 = hash.hex();
+    });
+  } catch (const Problem& p) {
+    digest.problem = p.where == relative ? p.what : showPath(p.where) + " " + p.what;
+  }
+  return digest;
+}
+
+void checkFoldersInside(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = partsOf(relative);
+  try {
+    openFolders(root, parts, parts.size(), false);
+  } catch (const Problem& p) {
+    if (p.kind != EntryKind::Missing) rethrow(root, p);
+  }
+}
+
+void makeFoldersInside(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = partsOf(relative);
+  try {
+    openFolders(root, parts, parts.size(), true);
+  } catch (const Problem& p) {
+    rethrow(root, p);
+  }
+}
+
+void writeFileInside(const std::string& root, const std::string& relative, std::string_view bytes,
+                     Durability durability) {
+  const std::vector<std::string> parts = partsOf(relative);
+  FileDescriptor folder;
+  try {
+    folder = openFolders(root, parts, parts.size() - 1, true);
+  } catch (const Problem& p) {
+    rethrow(root, p);
+  }
+  writeBytesAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root, relative)), bytes, durability);
+}
+
+bool removeFileInside(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = partsOf(relative);
+  try {
+    const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+    struct stat st {};
+    return kindAt(folder.get(), parts.back(), st) == EntryKind::File &&
+           ::unlinkat(folder.get(), parts.back().c_str(), 0) == 0;
+  } catch (const Problem&) {
+    return false;
+  }
+}
+
+bool removeEmptyFolderInside(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = partsOf(relative);
+  try {
+    const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+    struct stat st {};
+    // AT_REMOVEDIR removes only an empty folder, and never through a link.
+    return kindAt(folder.get(), parts.back(), st) == EntryKind::Folder &&
+           ::unlinkat(folder.get(), parts.back().c_str(), AT_REMOVEDIR) == 0;
+  } catch (const Problem&) {
+    return false;
+  }
+}
+
+}  // namespace omnicam

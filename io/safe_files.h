@@ -1,0 +1,55 @@
+#pragma once
+// Files inside a folder whose contents omnicam does not trust: a dataset folder on a shared file
+// system, where other users, a colleague's archive or an earlier tool may have planted symbolic
+// links, FIFOs, devices or huge files. The folder itself is the user's own (its path is followed
+// as given); every path inside it is walked one name at a time with openat(O_NOFOLLOW), so no
+// link inside is ever followed. Files are opened non-blocking, after lstat said they are regular
+// (a FIFO never blocks, a device is never opened), and read or hashed only up to a size bound.
+//
+// Errors name the file (root/relative): InputError for what was found there (exit 2),
+// OutputError when the file system refuses to create or write (exit 5).
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "atomic_file.h"
+#include "file_descriptor.h"
+
+namespace omnicam {
+
+// What a path inside the folder is, links not followed. Missing also when a folder on the way
+// is missing; Blocked when something on the way is a link or not a folder.
+enum class EntryKind { Missing, File, Folder, Link, Other, Blocked };
+EntryKind entryInside(const std::string& root, const std::string& relative);
+
+// The whole of a regular file of at most `maxBytes`; InputError otherwise (missing, a link or
+// something not a folder on the way, not a regular file, larger).
+std::string readFileInside(const std::string& root, const std::string& relative, int64_t maxBytes);
+
+// Checks that root/relative is what readFileInside would read, without reading it.
+void checkFileInside(const std::string& root, const std::string& relative, int64_t maxBytes);
+
+// SHA-256 of a regular file of at most `maxBytes`, streamed. `problem` says why there is none:
+// "missing", "is a symbolic link (not followed)", "is not a regular file", ...
+struct FileDigest {
+  std::string sha256, problem;
+  bool ok() const { return problem.empty(); }
+};
+FileDigest sha256Inside(const std::string& root, const std::string& relative, int64_t maxBytes);
+
+// Checks, creating nothing, that every part of `relative` that exists is a folder and not a link.
+void checkFoldersInside(const std::string& root, const std::string& relative);
+// Creates the folder `relative` and the missing folders on the way, each checked like that.
+void makeFoldersInside(const std::string& root, const std::string& relative);
+// writeBytesAtomically for root/relative: its folders walked like that (missing ones created),
+// the temporary created exclusively beside it, renamed into place.
+void writeFileInside(const std::string& root, const std::string& relative, std::string_view bytes,
+                     Durability durability);
+
+// Removes root/relative if it is a regular file (never a link, a folder or anything else);
+// true if it did.
+bool removeFileInside(const std::string& root, const std::string& relative);
+// Removes root/relative if it is an empty folder (not a link); true if it did.
+bool removeEmptyFolderInside(const std::string& root, const std::string& relative);
+
+}  // namespace omnicam

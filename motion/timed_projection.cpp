@@ -1,0 +1,60 @@
+#include "timed_projection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace omnicam {
+
+namespace {
+
+constexpr int kMaxIterations = 64;
+
+// The projection with the robot where it is `seconds` after the start.
+std::optional<TimedProjection> projectAt(const Camera& camera, const CameraPlacement& placement, const Vec3& p,
+                                         double seconds) {
+  const auto raster = camera.project(placement.worldFromViewpoint(camera.rig(), seconds).inverse() * p);
+  if (!raster) return std::nullopt;
+  return TimedProjection{*raster, seconds};
+}
+
+}  // namespace
+
+std::optional<TimedProjection> projectAtReadout(const Camera& camera, const CameraPlacement& placement, const Vec3& p) {
+  const Shutter& shutter = camera.rig().shutter;
+  const int width = camera.width(), height = camera.height();
+  const auto lineTime = [&](int line) { return lineStart(shutter, line) + 0.5 * shutter.exposureS; };
+  if (!shutter.rolling) return projectAt(camera, placement, p, lineTime(0));
+  // The line a raster point lies on (points off the image: the nearest line).
+  const auto lineAt = [&](const Vec2& raster) {
+    const int i = std::clamp(static_cast<int>(std::floor(raster.x())), 0, width - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(raster.y())), 0, height - 1);
+    return lineOf(shutter, i, j, width, height);
+  };
+  std::vector<int> visited;
+  int line = lineCount(shutter, width, height) / 2;
+  for (int k = 0; k < kMaxIterations; ++k) {
+    const auto at = projectAt(camera, placement, p, lineTime(line));
+    if (!at) return std::nullopt;
+    const int next = lineAt(at->raster);
+    if (next == line) return at;
+    for (size_t v = 0; v < visited.size(); ++v) {
+      if (visited[v] != next) continue;
+      // A cycle: the line of it whose projection lands nearest to itself.
+      std::optional<TimedProjection> best;
+      int bestMiss = 0;
+      for (size_t c = v; c < visited.size(); ++c) {
+        const auto candidate = projectAt(camera, placement, p, lineTime(visited[c]));
+        if (!candidate) continue;
+        const int miss = std::abs(lineAt(candidate->raster) - visited[c]);
+        if (!best || miss < bestMiss) best = candidate, bestMiss = miss;
+      }
+      return best;
+    }
+    visited.push_back(line);
+    line = next;
+  }
+  return projectAt(camera, placement, p, lineTime(line));
+}
+
+}  // namespace omnicam

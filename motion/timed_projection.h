@@ -1,0 +1,23 @@
+#pragma once
+// Where a moving camera images a world point (docs/motion.md): each readout line sees the scene at
+// its own time, so the point is imaged on the line whose time puts the robot where that line sees
+// it. That line is the fixed point of line → time → pose → raster point → line.
+#include <optional>
+
+#include "camera.h"
+#include "placement.h"
+
+namespace omnicam {
+
+struct TimedProjection {
+  Vec2 raster;           // continuous raster coordinates
+  double seconds = 0.0;  // after the exposure start: mid-exposure of the raster point's line
+};
+
+// The projection of world point `p` by `camera` (its rig's shutter) at `placement`. A global shutter images every point at mid-exposure. A rolling one
+// iterates from the middle line until the line repeats; when the motion is so fast that the lines
+// cycle instead, the one of the cycle whose own time images the point nearest to itself wins.
+// nullopt where the point is not imaged at that time.
+std::optional<TimedProjection> projectAtReadout(const Camera& camera, const CameraPlacement& placement, const Vec3& p);
+
+}  // namespace omnicam

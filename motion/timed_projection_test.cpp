@@ -1,0 +1,98 @@
+#include "timed_projection.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "make_camera.h"
+#include "placement.h"
+
+namespace omnicam {
+namespace {
+
+constexpr BodyVelocity kDriving{1.0, 0.0, 90.0};
+const RobotPose kStart{0.3, -0.2, 15.0};
+
+RigSpec rigWith(const Shutter& shutter) {
+  RigSpec rig = RigSpec{}.resized(96);
+  rig.shutter = shutter;
+  return rig;
+}
+
+// The line of a raster point, clamped to the image as projectAtReadout's is.
+int lineAt(const Shutter& shutter, const Vec2& raster, int size) {
+  const int i = std::clamp(static_cast<int>(std::floor(raster.x())), 0, size - 1);
+  const int j = std::clamp(static_cast<int>(std::floor(raster.y())), 0, size - 1);
+  return lineOf(shutter, i, j, size, size);
+}
+
+std::optional<Vec2> projectFrom(const Camera& camera, const RobotPose& pose, const Vec3& p) {
+  return camera.project(CameraPlacement(pose).worldFromViewpoint(camera.rig()).inverse() * p);
+}
+
+// Points on the floor and on walls around the robot, up to 3 m away.
+std::vector<Vec3> pointsAround() {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * kPi), range(0.5, 3.0), height(0.0, 0.6);
+  std::vector<Vec3> points;
+  for (int k = 0; k < 400; ++k) {
+    const double a = angle(random), r = range(random);
+    points.emplace_back(kStart.x + r * std::cos(a), kStart.y + r * std::sin(a), height(random));
+  }
+  return points;
+}
+
+TEST(TimedProjection, AGlobalShutterImagesEveryPointAtMidExposure) {
+  const auto camera = makeCamera(rigWith({0.04, std::nullopt, 0}));
+  const RobotPose middle = poseAfter(kStart, kDriving, 0.02);
+  for (const Vec3& p : pointsAround()) {
+    const auto timed = projectAtReadout(*camera, CameraPlacement(kStart, kDriving), p);
+    const auto direct = projectFrom(*camera, middle, p);
+    ASSERT_EQ(timed.has_value(), direct.has_value());
+    if (!timed) continue;
+    EXPECT_EQ(timed->raster, *direct);
+    EXPECT_EQ(timed->seconds, 0.02);
+  }
+}
+
+TEST(TimedProjection, ARollingShutterImagesEachPointOnTheLineWhoseTimeSeesItThere) {
+  // Brute force over every line: the lines whose own time images the point on themselves.
+  for (Readout readout : {Readout::TopToBottom, Readout::LeftToRight, Readout::BottomToTop}) {
+    const Shutter shutter{0.004, RollingShutter{300.0, readout}, 0};
+    const auto camera = makeCamera(rigWith(shutter));
+    int unique = 0, agreed = 0;
+    for (const Vec3& p : pointsAround()) {
+      std::vector<int> consistent;
+      for (int line = 0; line < 96; ++line) {
+        const auto raster = projectFrom(*camera, poseAfter(kStart, kDriving, lineStart(shutter, line) + 0.002), p);
+        if (raster && lineAt(shutter, *raster, 96) == line) consistent.push_back(line);
+      }
+      const auto timed = projectAtReadout(*camera, CameraPlacement(kStart, kDriving), p);
+      if (consistent.size() != 1) continue;
+      ++unique;
+      ASSERT_TRUE(timed.has_value());
+      const int line = consistent.front();
+      agreed += lineAt(shutter, timed->raster, 96) == line;
+      EXPECT_DOUBLE_EQ(timed->seconds, lineStart(shutter, line) + 0.002);
+      EXPECT_EQ(timed->raster, *projectFrom(*camera, poseAfter(kStart, kDriving, timed->seconds), p));
+    }
+    EXPECT_GT(unique, 100) << readoutName(readout);  // the case is exercised
+    EXPECT_EQ(agreed, unique) << readoutName(readout);
+  }
+}
+
+TEST(TimedProjection, AStillRobotIsProjectedAsTheStaticCameraProjects) {
+  const auto camera = makeCamera(rigWith({0.01, RollingShutter{300.0, Readout::TopToBottom}, 0}));
+  for (const Vec3& p : pointsAround()) {
+    const auto timed = projectAtReadout(*camera, CameraPlacement(kStart, BodyVelocity{}), p);
+    const auto direct = projectFrom(*camera, kStart, p);
+    ASSERT_EQ(timed.has_value(), direct.has_value());
+    if (timed) {
+      EXPECT_EQ(timed->raster, *direct);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace omnicam

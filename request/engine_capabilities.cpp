@@ -1,0 +1,120 @@
+#include "engine_capabilities.h"
+
+#include <algorithm>
+#include <functional>
+#include <iterator>
+
+#include "errors.h"
+#include "mirror_mesh.h"
+
+namespace omnicam {
+
+namespace {
+
+const std::vector<MirrorShape> kEveryShape = {MirrorShape::Hyperboloid, MirrorShape::Paraboloid, MirrorShape::Sphere,
+                                              MirrorShape::Cone};
+
+EngineCapabilities fastExact() {
+  EngineCapabilities c;
+  c.shownName = "the fast engine";
+  c.mirrorShapes = kEveryShape;
+  c.aovs = true;
+  c.concurrent = true;  // a pure function of the placement
+  return c;
+}
+
+EngineCapabilities fastCentral(const char* shownName) {
+  EngineCapabilities c;
+  c.shownName = shownName;
+  c.misalignedCamera = false;
+  c.mirrorShapes = {MirrorShape::Hyperboloid};
+  c.lensDistortion = false;
+  c.motion = c.rollingShutter = c.timeSamples = false;
+  c.aovs = true;  // from the exact pixel → ray map, whatever the colour's mode
+  return c;
+}
+
+EngineCapabilities povray() {
+  EngineCapabilities c;
+  c.shownName = "the povray engine";
+  c.mirrorShapes = kEveryShape;
+  c.lensDistortion = false;
+  return c;
+}
+
+EngineCapabilities blender() {
+  EngineCapabilities c;
+  c.shownName = "the blender engine";
+  c.mirrorShapes.assign(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes));
+  c.lensDistortion = false;
+  c.rollingShutter = false;
+  c.timeSamples = false;
+  c.batches = true;
+  c.why = "Cycles samples time continuously over the exposure, and its rolling shutter is approximate";
+  return c;
+}
+
+// The engines a user can pick, as messages name them.
+const std::vector<EngineKind> kChoices = {EngineKind::FastExact, EngineKind::Povray, EngineKind::Blender};
+
+// "the fast engine or the povray engine": the engines that have what `has` asks.
+std::string enginesThat(const std::function<bool(const EngineCapabilities&)>& has) {
+  std::vector<std::string> names;
+  for (EngineKind e : kChoices)
+    if (has(capabilitiesOf(e))) names.push_back(capabilitiesOf(e).shownName);
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k) out += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  return out;
+}
+
+bool hasShape(const EngineCapabilities& c, MirrorShape shape) {
+  return std::find(c.mirrorShapes.begin(), c.mirrorShapes.end(), shape) != c.mirrorShapes.end();
+}
+
+void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
+  const std::string shown = c.shownName;
+  if (!c.misalignedCamera && !rig.ideal())
+    throw InputError(shown + " is central by construction and renders the ideal rig only (the hyperboloid with its camera "
+                     "at F); this rig's mirror shape or camera (rig.mirror, rig.camera) differs: render it in exact mode");
+  const MirrorShape shape = rig.shape.shape;
+  if (!hasShape(c, shape))
+    throw InputError(std::string("rig.mirror.shape: ") + shown + " has no exact " + mirrorShapeName(shape) +
+                     " mirror; render it with " + enginesThat([shape](const EngineCapabilities& e) { return hasShape(e, shape); }));
+  if (!c.lensDistortion && !rig.mount.distortion.none())
+    throw InputError("rig.camera.distortion: " + shown + " has no lens distortion; render it with " +
+                     enginesThat([](const EngineCapabilities& e) { return e.lensDistortion; }));
+}
+
+void checkMotion(const EngineCapabilities& c, const RigSpec& rig, const CameraPlacement& placement) {
+  if (!moving(placement, rig)) return;
+  const std::string shown = c.shownName, why = c.why.empty() ? "" : " (" + c.why + ")";
+  if (!c.motion)
+    throw InputError(shown + " does not render motion: a moving robot needs an instantaneous global shutter there "
+                     "(rig.shutter); render it with " + enginesThat([](const EngineCapabilities& e) { return e.motion; }) +
+                     " (docs/motion.md lists what each engine renders)");
+  if (!c.rollingShutter && rig.shutter.rolling)
+    throw InputError(shown + " renders motion blur through a global shutter only" + why + ": render a rolling shutter with " +
+                     enginesThat([](const EngineCapabilities& e) { return e.rollingShutter; }) + " (docs/motion.md)");
+  if (!c.timeSamples && rig.shutter.timeSamples > 0)
+    throw InputError(shown + " has no stratified time samples" + why + ": rig.shutter.time_samples needs " +
+                     enginesThat([](const EngineCapabilities& e) { return e.timeSamples; }) + " (docs/motion.md)");
+}
+
+}  // namespace
+
+const EngineCapabilities& capabilitiesOf(EngineKind engine) {
+  static const EngineCapabilities rows[] = {fastExact(), fastCentral("the fast engine's cube-map mode"),
+                                            fastCentral("the fast engine's thesis-mesh mode"), povray(), blender()};
+  return rows[static_cast<int>(engine)];
+}
+
+void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs) {
+  const EngineCapabilities& c = capabilitiesOf(engine);
+  checkCamera(c, rig);
+  checkMotion(c, rig, placement);
+  if (aovs && !c.aovs)
+    throw InputError(std::string(c.shownName) + " renders colour only; per-pixel ground truth (depth, instances, normals) needs " +
+                     enginesThat([](const EngineCapabilities& e) { return e.aovs; }));
+}
+
+}  // namespace omnicam

@@ -1,0 +1,40 @@
+#pragma once
+// What each engine can render, as one row per engine (and fast mode): every caller checks a
+// request against it the same way (checkEngineRenders), before anything is written, and the
+// message names the engines that can.
+#include <string>
+#include <vector>
+
+#include "placement.h"
+#include "rig.h"
+
+namespace omnicam {
+
+enum class EngineKind { FastExact, FastCubeMap, FastThesisMesh, Povray, Blender };
+
+struct EngineCapabilities {
+  const char* shownName = "";  // in messages: "the povray engine", "the fast engine's cube-map mode"
+  // Cameras: a camera off the mirror's focus (false: the ideal rig only, central by
+  // construction), the mirror shapes it has exact surfaces of, a distorting lens.
+  bool misalignedCamera = true;
+  std::vector<MirrorShape> mirrorShapes;
+  bool lensDistortion = true;
+  // Time: a robot moving while the shutter is open, a rolling shutter, stratified time samples.
+  bool motion = true, rollingShutter = true, timeSamples = true;
+  // Per-pixel ground truth (AOVs) beside the colour.
+  bool aovs = false;
+  // Rendering many frames at once is cheaper than one at a time (callers then batch frames).
+  bool batches = false;
+  // Several frames may render at once, from different threads.
+  bool concurrent = false;
+  // Why a missing capability is missing, where the engine has a reason worth telling.
+  std::string why;
+};
+
+const EngineCapabilities& capabilitiesOf(EngineKind engine);
+
+// InputError naming what `engine` cannot render of this rig at this placement (and its AOVs when
+// `aovs`), and which engines can; nothing when it can.
+void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs = false);
+
+}  // namespace omnicam

@@ -1,0 +1,65 @@
+#include "render_settings.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "errors.h"
+#include "number_format.h"
+#include "input_limits.h"
+
+namespace omnicam {
+
+const char* shadingName(Shading shading) { return shading == Shading::Lit ? "lit" : "unlit"; }
+
+std::optional<Shading> parseShading(const std::string& name) {
+  if (name == "unlit") return Shading::Unlit;
+  if (name == "lit") return Shading::Lit;
+  return std::nullopt;
+}
+
+std::optional<int> samplesPerAxis(int spp) {
+  if (spp < 1) return std::nullopt;
+  const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(spp))));
+  if (n * n != spp) return std::nullopt;
+  return n;
+}
+
+void checkRenderSettings(const RenderSettings& settings, const SettingNames& names) {
+  if (!samplesPerAxis(settings.spp) || settings.spp > limits::kMaxSpp)
+    throw InputError(names.spp + ": must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
+                     std::to_string(settings.spp) + ")");
+  const int size = settings.rig.imageSize;
+  checkImageSize(size, names.size);
+  const int passes = std::max(1, settings.rig.shutter.timeSamples);
+  const int64_t samples = int64_t{size} * size * settings.spp * passes;
+  if (samples > limits::kMaxSamplesPerFrame)
+    throw InputError(names.spp + ": size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) +
+                     (passes > 1 ? " x time samples " + std::to_string(passes) : std::string()) + " = " +
+                     std::to_string(samples) + " samples per frame; the limit is " +
+                     std::to_string(limits::kMaxSamplesPerFrame));
+}
+
+void checkPlacement(const CameraPlacement& placement, const SettingNames& names) {
+  checkPose(placement.robot(), names.pose);
+  const BodyVelocity& v = placement.velocity();
+  if (!(std::hypot(v.vx, v.vy) <= limits::kMaxSpeed && std::abs(v.yawRateDegPerS) <= limits::kMaxYawRateDegPerS))
+    throw InputError(names.velocity + ": speed must be at most " + shortNumber(limits::kMaxSpeed) + " m/s and yaw rate at most " +
+                     shortNumber(limits::kMaxYawRateDegPerS) + " degrees/s (got " + shortNumber(std::hypot(v.vx, v.vy)) +
+                     " m/s, " + shortNumber(v.yawRateDegPerS) + " degrees/s)");
+}
+
+void checkPose(const RobotPose& pose, const std::string& what) {
+  if (!(std::abs(pose.x) <= limits::kMaxWorldCoordinate && std::abs(pose.y) <= limits::kMaxWorldCoordinate))
+    throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + shortNumber(pose.x) +
+                     ", " + shortNumber(pose.y) + ")");
+  if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
+    throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + shortNumber(pose.yawDeg) + ")");
+}
+
+void checkThreads(int threads, const std::string& what) {
+  if (threads < 0 || threads > limits::kMaxThreads)
+    throw InputError(what + ": must be an integer in [0, " + std::to_string(limits::kMaxThreads) + "] (0: every core; got " +
+                     std::to_string(threads) + ")");
+}
+
+}  // namespace omnicam

@@ -1,0 +1,44 @@
+#pragma once
+// What every engine needs to know about one render besides the scene and the pose.
+#include <optional>
+#include <string>
+
+#include "placement.h"
+#include "rig.h"
+
+namespace omnicam {
+
+enum class Shading { Unlit, Lit };
+
+struct RenderSettings {
+  RigSpec rig;     // usually the scene's, with --size applied
+  int spp = 1;     // n² samples on an n×n regular grid per pixel (docs/conventions.md §2)
+  Shading shading = Shading::Unlit;
+  // The fast renderer traces the physical camera through the mirror even for the ideal rig,
+  // whose closed form it otherwise uses (the check that both agree). Other engines always trace.
+  bool traced = false;
+};
+
+const char* shadingName(Shading shading);
+std::optional<Shading> parseShading(const std::string& name);
+// The n of spp = n², or nullopt if spp is not a positive perfect square.
+std::optional<int> samplesPerAxis(int spp);
+
+// How messages name spp and the image size: the library's own words by default; the CLI passes
+// its flags ("--spp"), a dataset spec its fields ("spec.json: spp").
+struct SettingNames {
+  std::string spp = "spp", size = "image size", velocity = "velocity", pose = "pose";
+};
+// Checks spp (a perfect square ≤ limits::kMaxSpp), the image size and size² × spp × time samples
+// against the documented limits; InputError naming them as `names` says otherwise. Every engine
+// calls it first.
+void checkRenderSettings(const RenderSettings& settings, const SettingNames& names = {});
+// Checks a placement's robot pose and velocity against the documented limits (the mount and the
+// robot's tilt are checked where they are read); InputError naming them as `names` says.
+void checkPlacement(const CameraPlacement& placement, const SettingNames& names = {});
+// Checks a thread count: 0 (every core) to limits::kMaxThreads; InputError naming `what`.
+void checkThreads(int threads, const std::string& what);
+// Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.
+void checkPose(const RobotPose& pose, const std::string& what);
+
+}  // namespace omnicam

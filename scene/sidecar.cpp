@@ -1,0 +1,121 @@
+#include "sidecar.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include "atomic_file.h"
+#include "central_camera.h"
+#include "errors.h"
+#include "file_confinement.h"
+#include "make_camera.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+
+using nlohmann::json;
+
+json rigToJson(const RigSpec& rig) {
+  const MirrorShapeSpec& s = rig.shape;
+  json mirror = {{"shape", mirrorShapeName(s.shape)}};
+  json image = {{"size", rig.imageSize}};
+  switch (s.shape) {
+    case MirrorShape::Hyperboloid:
+      mirror.update({{"k", rig.k}, {"c", rig.c}, {"rim_elevation_deg", rig.rimElevationDeg}});
+      image["framing_elevation_deg"] = rig.framingElevationDeg;
+      break;
+    case MirrorShape::Paraboloid:
+      mirror.update({{"h", s.parabolaH}, {"rim_elevation_deg", rig.rimElevationDeg}, {"camera_distance_m", s.cameraDistance}});
+      break;
+    case MirrorShape::Sphere:
+      mirror.update({{"radius", s.sphereRadius}, {"cap_angle_deg", s.capAngleDeg}, {"camera_distance_m", s.cameraDistance}});
+      break;
+    case MirrorShape::Cone:
+      mirror.update({{"half_angle_deg", s.coneHalfAngleDeg}, {"rim_radius", s.coneRimRadius}, {"camera_distance_m", s.cameraDistance}});
+      break;
+  }
+  json out = {{"height", rig.height}, {"mirror", mirror}, {"image", image}};
+  if (!rig.mount.ideal()) {  // the ideal camera is the default: its rigs read as they always did
+    const CameraMount& m = rig.mount;
+    const LensDistortion& l = m.distortion;
+    out["camera"] = {{"offset_mm", m.offsetMm},
+                     {"rotation_deg", m.rotationDeg},
+                     {"distortion", {{"k1", l.k1}, {"k2", l.k2}, {"p1", l.p1}, {"p2", l.p2}, {"k3", l.k3}}},
+                     {"principal_point_offset_px", m.principalPointOffsetPx}};
+  }
+  if (rig.tiltDeg != std::array<double, 2>{0.0, 0.0}) out["tilt_deg"] = rig.tiltDeg;  // level is the default
+  if (!(rig.shutter == Shutter{})) {  // likewise an instant
+    const Shutter& open = rig.shutter;
+    json shutter = {{"exposure_s", open.exposureS}};
+    if (open.rolling) shutter["rolling"] = {{"line_time_us", open.rolling->lineTimeUs}, {"readout", readoutName(open.rolling->readout)}};
+    if (open.timeSamples > 0) shutter["time_samples"] = open.timeSamples;
+    out["shutter"] = shutter;
+  }
+  return out;
+}
+
+
+json sidecarJson(const RenderRecord& r) {
+  const Rigid cfw = r.placement.worldFromCamera(r.rig).inverse();
+  const RobotPose& pose = r.placement.robot();
+  const BodyVelocity& velocity = r.placement.velocity();
+  json matrix = json::array();
+  for (int i = 0; i < 4; ++i) {
+    json row = json::array();
+    for (int j = 0; j < 4; ++j) row.push_back(cfw.matrix()(i, j));
+    matrix.push_back(row);
+  }
+  json sidecar = {{"engine", r.engine},
+          {"engine_version", r.engineVersion},
+          {"scene", {{"path", r.scenePath}, {"sha256", r.sceneSha256}}},
+          {"pose", {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}},
+          {"rig", rigToJson(r.rig)},
+          {"spp", r.spp},
+          {"shading", r.shading},
+          {"mode", r.mode},
+          {"mode_options", r.modeOptions},
+          {"seconds", r.seconds},
+          {"intrinsics", describeCamera(r.rig)},
+          {"camera_from_world", matrix}};
+  if (!velocity.still())  // the pose and camera_from_world are then the exposure start's
+    sidecar["velocity"] = {{"vx", velocity.vx}, {"vy", velocity.vy}, {"yaw_rate_deg_per_s", velocity.yawRateDegPerS}};
+  return sidecar;
+}
+
+std::string sidecarPath(const std::string& imagePath) { return imagePath + ".json"; }
+
+void writeSidecarAtomic(const std::string& imagePath, const json& sidecar) {
+  writeTextAtomically(sidecarPath(imagePath), sidecar.dump(2) + "\n");
+}
+
+void checkImageOutput(const std::string& imagePath, const std::string& flag) {
+  checkOutputFile(imagePath, flag);
+  checkOutputFile(sidecarPath(imagePath), flag + " (its sidecar)");
+}
+
+SidecarInfo sidecarFromText(const std::string& text, const std::string& path) {
+  SidecarInfo info;
+  info.json = parseJsonText(text, path);
+  if (!info.json.is_object()) throw InputError(showPath(path) + ": a sidecar must be a JSON object");
+  const auto rig = info.json.find("rig");
+  if (rig == info.json.end()) throw InputError(showPath(path) + ": rig: missing required field");
+  info.rig = rigFromJson(*rig, path, "rig");
+  return info;
+}
+
+std::optional<SidecarInfo> readSidecar(const std::string& imagePath) {
+  const std::string path = sidecarPath(imagePath);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return std::nullopt;
+  std::string why;
+  const auto text = readWholeFile(path, why, limits::kMaxJsonFileBytes);
+  if (!text) throw InputError(showPath(path) + ": cannot read sidecar (" + why + ")");
+  return sidecarFromText(*text, path);
+}
+
+RigSpec rigFromSidecar(const std::string& imagePath, RigSpec rig) {
+  const auto sidecar = readSidecar(imagePath);
+  if (!sidecar) return rig;
+  return sidecar->rig.resized(rig.imageSize);
+}
+
+}  // namespace omnicam

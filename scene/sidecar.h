@@ -1,0 +1,45 @@
+#pragma once
+// The JSON sidecar written next to every image (docs/conventions.md §5): provenance and the intrinsics and
+// extrinsics needed to use the image with OpenCV's cv::omnidir.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "placement.h"
+#include "rig.h"
+
+namespace omnicam {
+
+struct RenderRecord {
+  std::string engine, engineVersion;
+  std::string scenePath, sceneSha256;
+  CameraPlacement placement;  // the robot's pose at the exposure start, its velocity (docs/motion.md)
+  RigSpec rig;
+  int spp = 1;
+  std::string shading, mode = "exact";
+  nlohmann::json modeOptions = nlohmann::json::object();  // e.g. {"faces": 6, "face_size": 512}
+  double seconds = 0.0;
+};
+
+nlohmann::json rigToJson(const RigSpec& rig);
+nlohmann::json sidecarJson(const RenderRecord& record);
+// Sidecar path of an image: OUT + ".json".
+std::string sidecarPath(const std::string& imagePath);
+void writeSidecarAtomic(const std::string& imagePath, const nlohmann::json& sidecar);
+// checkOutputFile for an image and the sidecar written beside it: both names are checked before
+// the image is written, so a refused sidecar never leaves its image behind.
+void checkImageOutput(const std::string& imagePath, const std::string& flag);
+// A sidecar's text, read strictly: valid JSON, no duplicate keys, an object with a "rig" that
+// passes the same checks as a scene's rig. InputError naming `path` otherwise.
+struct SidecarInfo {
+  nlohmann::json json;
+  RigSpec rig;
+};
+SidecarInfo sidecarFromText(const std::string& text, const std::string& path);
+// The sidecar of an image, if it has one.
+std::optional<SidecarInfo> readSidecar(const std::string& imagePath);
+// The rig an image was rendered with, from its sidecar: mirror and framing replace `fallback`'s;
+// `fallback` unchanged if there is no sidecar. Throws InputError for an unreadable one.
+RigSpec rigFromSidecar(const std::string& imagePath, RigSpec fallback);
+
+}  // namespace omnicam
