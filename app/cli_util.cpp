@@ -102,10 +102,45 @@ std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t
   return v;
 }
 
-void checkSppFlag(int spp) {
-  RenderSettings settings;
-  settings.spp = spp;
-  checkRenderSettings(settings, kSettingFlags);
+void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
+  const RenderRequest defaults;
+  const auto integer = integerIn(0, INT32_MAX);  // the syntax; readRenderRequest checks the range
+  if (which & kEngineFlag) cmd.add_option("--engine", flags.engine, "fast (default), povray or blender (ground truth)");
+  if (which & kTimeoutFlag)
+    cmd.add_option("--timeout", flags.timeout,
+                   "Seconds allowed per external render (default " + shortNumber(defaults.timeoutSeconds) + ")")
+        ->check(numberIn(0, limits::kMaxTimeoutSeconds, true));
+  if (which & kSppFlag)
+    cmd.add_option("--spp", flags.spp, "Samples per pixel, n*n on a regular grid (default " + std::to_string(defaults.spp) + ")")
+        ->check(integer);
+  if (which & kShadingFlag) cmd.add_option("--shading", flags.shading, "unlit (default) or lit");
+  if (which & kModeFlags) {
+    cmd.add_option("--mode", flags.mode, "exact (default), cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
+    cmd.add_option("--faces", flags.faces,
+                   "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default " + std::to_string(defaults.modeOptions.faces) + ")")
+        ->check(integer);
+    cmd.add_option("--face-size", flags.faceSize,
+                   "cubemap/thesis-mesh: texels per face edge (default " + std::to_string(defaults.modeOptions.faceSize) + ")")
+        ->check(integer);
+    cmd.add_option("--polygons", flags.polygons,
+                   "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default " +
+                       std::to_string(defaults.modeOptions.polygons) + ")")
+        ->check(integer);
+  }
+}
+
+RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
+  const auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
+  RequestFields f;
+  if (given("--engine")) f.engine = flags.engine;
+  if (given("--mode")) f.mode = flags.mode;
+  if (given("--shading")) f.shading = flags.shading;
+  if (given("--faces")) f.faces = flags.faces;
+  if (given("--face-size")) f.faceSize = flags.faceSize;
+  if (given("--polygons")) f.polygons = flags.polygons;
+  if (given("--spp")) f.spp = flags.spp;
+  if (given("--timeout")) f.timeoutSeconds = flags.timeout;
+  return readRenderRequest(f, RequestFieldNames::cli());
 }
 
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {

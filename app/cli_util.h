@@ -10,6 +10,7 @@
 
 #include "geometry.h"
 #include "input_limits.h"
+#include "render_request.h"
 #include "render_settings.h"
 #include "rig.h"
 #include "scene_loader.h"
@@ -31,8 +32,24 @@ CLI::Validator integerIn(int64_t lo, uint64_t hi);
 CLI::Validator numberIn(double lo, double hi, bool openLow = false);
 // "<text>" as an integer in [lo, hi], or nullopt (the rule integerIn checks).
 std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t hi);
-// --spp alone, by the render settings' rule (checkRenderSettings), naming the flag.
-void checkSppFlag(int spp);
+// The render request's flags (render_request.h) as typed; 0 or "" when not given.
+struct RequestFlags {
+  std::string engine, mode, shading;
+  int64_t faces = 0, faceSize = 0, polygons = 0, spp = 0;
+  double timeout = 0.0;
+};
+enum RequestFlagSet : unsigned {
+  kEngineFlag = 1u,   // --engine
+  kModeFlags = 2u,    // --mode, --faces, --face-size, --polygons
+  kSppFlag = 4u,      // --spp
+  kShadingFlag = 8u,  // --shading
+  kTimeoutFlag = 16u  // --timeout
+};
+// Registers the request's flags in `which` on `cmd`; their help states RenderRequest's defaults.
+void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which);
+// The request those flags give (readRenderRequest, naming the flags): a flag not given keeps
+// the request's default.
+RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags);
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do

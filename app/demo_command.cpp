@@ -103,7 +103,7 @@ EngineFigures renderAndCompare(const std::string& out, const std::string& stem, 
   std::vector<ImageRGBA> images;
   for (const auto& name : engines) {
     std::printf("demo: %s, %s, %d spp\n", label.c_str(), name.c_str(), settings.spp);
-    auto engine = makeEngine(name, scene);
+    auto engine = makeEngine(RenderRequest{name}, scene);
     const auto rendered = renderToFile(scene, *engine, pose, settings, out + "/" + stem + "_" + name + ".png");
     images.push_back(rendered.image);
     const double seconds = rendered.sidecar["seconds"].get<double>();
@@ -223,7 +223,7 @@ std::string demoPhysicalCamera(const std::string& out, const Scene& arena, int s
           << format("<br>PSNR %.2f dB: the misalignment is not a detail", change.psnrDb) << "</figcaption></figure>\n";
   if (povray) {
     std::printf("demo: physical camera, POV-Ray ground truth of the misaligned rig\n");
-    auto engine = makeEngine("povray", arena);
+    auto engine = makeEngine(RenderRequest{"povray"}, arena);
     const auto truth = renderToFile(arena, *engine, arena.startPose, misaligned, out + "/physical_povray.png");
     const CompareResult r = compareImages(moved, truth.image);
     std::printf("demo: physical camera, fast vs POV-Ray: PSNR %.2f dB\n", r.psnrDb);
@@ -358,7 +358,7 @@ RingSection ringSection(const DemoArgs& a, const Scene& ringScene, const std::ve
   std::ostringstream ringFigures, ringTable, ringSummary;
   for (const auto& name : engines) {
     std::printf("demo: incidence-angle rings, %s\n", name.c_str());
-    auto engine = makeEngine(name, ringScene);
+    auto engine = makeEngine(RenderRequest{name}, ringScene);
     const auto rendered = renderToFile(ringScene, *engine, ringScene.startPose, ringSettings,
                                        a.out + "/rings_" + name + ".png");
     out.rings.push_back({name, measureRings(rendered.image, ringCamera, defaultRingThetasDeg())});
@@ -437,7 +437,7 @@ MethodSection methodSection(const DemoArgs& a, const Scene& arena) {
 
 void runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
-  checkSppFlag(a.spp);  // before any folder is made
+  checkSpp(a.spp, "--spp");  // before any folder is made
   ensureDirectory(a.out, "-o");
   const std::string dir = scenesDir();
   const Scene arena = loadScene(dir + "/robocup2006.json");

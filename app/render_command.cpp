@@ -25,9 +25,9 @@ namespace omnicam::cli {
 namespace {
 
 struct RenderArgs {
-  std::string scene, engine = "fast", pose, velocity, path, size, shading = "unlit", mode = "exact", out, format = "png";
-  int frames = 0, spp = 1, imageSize = 0, faces = 6, faceSize = 512, polygons = 1024;
-  double timeout = 600.0;
+  std::string scene, pose, velocity, path, size, out, format = "png";
+  int frames = 0, imageSize = 0;
+  RequestFlags request;
   std::vector<std::string> views;
   SceneLoadOptions load;
 };
@@ -79,25 +79,15 @@ class FrameViews {
 
 void runRender(const RenderArgs& a, const CLI::App& cmd) {
   // Validate everything before anything is written.
-  const bool fast = a.engine == "fast";
-  if (!fast && a.mode != "exact") throw InputError("--mode: only the fast engine has modes other than exact");
-  refuseUnless(cmd, "--faces", a.mode != "exact", "--mode cubemap or thesis-mesh");
-  refuseUnless(cmd, "--face-size", a.mode != "exact", "--mode cubemap or thesis-mesh");
-  refuseUnless(cmd, "--polygons", a.mode == "thesis-mesh", "--mode thesis-mesh");
-  refuseUnless(cmd, "--timeout", !fast, "--engine povray or blender");
+  const RenderRequest request = readRequestFlags(cmd, a.request);
   refuseUnless(cmd, "--format", !a.path.empty(), "--path (a single image's format comes from -o)");
-  const auto mode = parseMode(a.mode, a.faces, a.faceSize, a.polygons);
-  const auto shading = parseShading(a.shading);
-  if (!shading) throw InputError("--shading: must be unlit or lit (got " + quote(a.shading) + ")");
   if (!a.pose.empty() && !a.path.empty()) throw InputError("--pose and --path: give one, not both");
   if (a.path.empty() && a.frames) throw InputError("--frames: only with --path");
   if (a.path.empty() && !isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   if (a.format != "png" && a.format != "exr") throw InputError("--format: must be png or exr");
   std::optional<RobotPose> pose;
   if (!a.pose.empty()) pose = parsePose(a.pose, "--pose");
-  RenderSettings settings;
-  settings.spp = a.spp;
-  settings.shading = *shading;
+  RenderSettings settings = request.settings(RigSpec{});
   BodyVelocity velocity;
   if (!a.velocity.empty()) {
     const Vec3 v = parseTriple(a.velocity, "--velocity");
@@ -123,7 +113,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
       throw InputError("--frames: path " + quote(a.path) + " has only " + std::to_string(path->poses.size()) + " poses");
     checkOutputFolder(a.out, "-o");
   }
-  const auto engine = makeEngine(a.engine, scene, a.timeout, mode.get());
+  const auto engine = makeEngine(request, scene);
 
   if (!path) {
     const CameraPlacement at(pose ? *pose : scene.startPose, velocity);
@@ -147,7 +137,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
       for (const std::string& file : views.files(frameFile(f))) checkImageOutput(file, "--view");
     }
   ensureDirectory(a.out, "-o");
-  Progress progress("render " + a.path + " (" + a.engine + ")", total);
+  Progress progress("render " + a.path + " (" + request.engine + ")", total);
   // A batching engine (Blender) renders kFramesPerBatch poses per session.
   std::vector<ImageRGBA> batch;
   double batchSeconds = 0.0;
@@ -188,9 +178,7 @@ void addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (single pose, or a camera path into a folder)");
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
-  cmd->add_option("--engine", args->engine, "fast (default), povray or blender (ground truth)");
-  cmd->add_option("--timeout", args->timeout, "Seconds allowed per external render (default 600)")
-      ->check(numberIn(0, limits::kMaxTimeoutSeconds, true));
+  addRequestFlags(*cmd, args->request, kEngineFlag | kTimeoutFlag | kSppFlag | kShadingFlag | kModeFlags);
   cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");
   cmd->add_option("--velocity", args->velocity,
                   "VX,VY,YAW_RATE: the robot's body velocity while the shutter is open (m/s forward, m/s left, "
@@ -199,16 +187,6 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(integerIn(1, INT32_MAX));
   cmd->add_option("--size", args->imageSize, "Image size in pixels (square); default: the scene's rig")
       ->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
-  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n on a regular grid")->check(integerIn(1, INT32_MAX));
-  cmd->add_option("--shading", args->shading, "unlit or lit");
-  cmd->add_option("--mode", args->mode, "exact, cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
-  cmd->add_option("--faces", args->faces, "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default 6)")
-      ->check(integerIn(5, 6));
-  cmd->add_option("--face-size", args->faceSize, "cubemap/thesis-mesh: texels per face edge (default 512)")
-      ->check(integerIn(8, 8192));
-  cmd->add_option("--polygons", args->polygons, "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default 1024)")
-      ->check(integerIn(16, 1024))
-      ->check(CLI::IsMember({16, 64, 256, 1024}));
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
   cmd->add_option("--view", args->views,
                   "Also write this view of each image (birdseye, panorama or perspective; repeatable): "

@@ -87,14 +87,15 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   }
   if (a.out.empty()) throw InputError("-o: required (or --measure FILE)");
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
+  RequestFields fields;
+  fields.engine = a.engine;
+  fields.spp = a.spp;  // rings default to 16 spp, more than a single render's default
+  const RenderRequest request = readRenderRequest(fields, RequestFieldNames::cli());
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  if (a.size) settings.rig = settings.rig.resized(a.size);
-  settings.spp = a.spp;
+  RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size) : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
   checkImageOutput(a.out, "-o");
-  const auto engine = makeEngine(a.engine, scene);
+  const auto engine = makeEngine(request, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig, a.out, a);
   writeRendered(a.out, rendered);

@@ -54,7 +54,7 @@ void runStudy(const StudyArgs& a) {
   const Scene ringScene = loadScene(dir + "/incidence-rings.json");
   const fs::path outPath(a.out);
   const fs::path figures = outPath.parent_path() / "figures";
-  checkSppFlag(a.spp);  // before any folder is made
+  checkSpp(a.spp, "--spp");  // before any folder is made
   // The report's folder may be new (made with its figures/); an existing one must not hold a
   // folder under the report's name.
   std::error_code ec;
@@ -83,9 +83,13 @@ void runStudy(const StudyArgs& a) {
   const ImageRGBA reference = arenaFast.render(arena.startPose, quality);
   for (Row& row : rows) {
     std::printf("study: %s\n", row.label.c_str());
-    const CubeMapOptions* mode = row.options ? &*row.options : nullptr;
-    const auto arenaEngine = makeEngine("fast", arena, 0.0, mode);
-    const auto ringEngine = makeEngine("fast", ringScene, 0.0, mode);
+    RenderRequest request;
+    if (row.options) {
+      request.mode = row.options->mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cubemap";
+      request.modeOptions = *row.options;
+    }
+    const auto arenaEngine = makeEngine(request, arena);
+    const auto ringEngine = makeEngine(request, ringScene);
     const ImageRGBA image = arenaEngine->render(arena.startPose, quality);
     writeImageAtomic((figures / ("study_" + row.file + ".png")).string(), image);
     const CompareResult c = compareImages(reference, image);

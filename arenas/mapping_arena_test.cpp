@@ -88,7 +88,7 @@ TEST(MappingArena, FastAndPovrayAgreeUnlitAt16Spp) {
   settings.rig = scene.rig;
   settings.rig.imageSize = 200;
   settings.spp = 16;
-  const auto fast = makeEngine("fast", scene), povray = makeEngine("povray", scene);
+  const auto fast = makeEngine(RenderRequest{"fast"}, scene), povray = makeEngine(RenderRequest{"povray"}, scene);
   for (const RobotPose& pose : {scene.startPose, scene.findPath("maze-tour")->poses[77]}) {
     const CompareResult r = compareImages(fast->render(pose, settings), povray->render(pose, settings));
     std::printf("mapping, fast vs POV-Ray, pose (%.2f, %.2f, %.0f), unlit, 16 spp: PSNR %.2f dB\n", pose.x, pose.y,
@@ -104,8 +104,8 @@ TEST(MappingArena, BlenderRendersItToo) {
   settings.rig.imageSize = 64;
   settings.spp = 16;
   const RobotPose pose{0.8, 0.8, 30.0};
-  const CompareResult r = compareImages(makeEngine("fast", scene)->render(pose, settings),
-                                        makeEngine("blender", scene)->render(pose, settings));
+  const CompareResult r = compareImages(makeEngine(RenderRequest{"fast"}, scene)->render(pose, settings),
+                                        makeEngine(RenderRequest{"blender"}, scene)->render(pose, settings));
   std::printf("mapping, fast vs Blender, 64 px, unlit, 16 spp: PSNR %.2f dB\n", r.psnrDb);
   // Measured 42.0 dB (Cycles samples randomly within the pixel, docs/blender.md, with a fixed
   // seed): a floor 3 dB under it.

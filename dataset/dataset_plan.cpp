@@ -79,7 +79,7 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
     if (spec.size) setup.rig = setup.rig.resized(*spec.size);
-    checkRenderSettings({setup.rig, spec.spp, spec.shading}, settingNames(spec));
+    checkRenderSettings(spec.request.settings(setup.rig), settingNames(spec));
     setup.model = makeCamera(setup.rig);
     setups.push_back(setup);
   }
@@ -115,14 +115,14 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
       plan.outputs.insert(kind);
     } else {
       notWritten[outputName(kind)] = kind == OutputKind::Coco
-          ? "the " + spec.engine + " engine renders RGB only (COCO annotations come from the instance AOV); render the same spec with engine fast"
-          : "the " + spec.engine + " engine renders RGB only; render the same spec with engine fast for AOVs";
+          ? "the " + spec.request.engine + " engine renders RGB only (COCO annotations come from the instance AOV); render the same spec with engine fast"
+          : "the " + spec.request.engine + " engine renders RGB only; render the same spec with engine fast for AOVs";
     }
   }
   if (!notWritten.empty()) {
     std::string kinds;
     for (auto it = notWritten.begin(); it != notWritten.end(); ++it) kinds += (kinds.empty() ? "" : ", ") + it.key();
-    notes.push_back("engine " + spec.engine + " writes RGB only: " + kinds + " not written (see manifest outputs.not_written)");
+    notes.push_back("engine " + spec.request.engine + " writes RGB only: " + kinds + " not written (see manifest outputs.not_written)");
   }
   if (plan.wants(OutputKind::Coco))
     plan.cocoClasses = cocoClassIds(idTables(scene), spec.outputs.cocoClasses, showPath(spec.file) + ": outputs.coco.classes");
@@ -147,7 +147,7 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
   header["engine"] = {{"name", engine.name()}, {"version", engine.version()}, {"mode", engine.mode()},
                       {"mode_options", engine.modeOptions()}};
   header["scene"] = {{"path", scene.path}, {"name", scene.name}, {"sha256", scene.sha256}};
-  header["settings"] = {{"spp", spec.spp}, {"shading", shadingName(spec.shading)},
+  header["settings"] = {{"spp", spec.request.spp}, {"shading", shadingName(spec.request.shading)},
                         {"frame_interval_s", spec.frameIntervalSeconds},
                         {"aov_sampling", "point-sampled at pixel centres (i + 0.5, j + 0.5)"},
                         {"time", "timestamps and poses are each frame's exposure start; with a velocity, AOVs and landmark "
@@ -324,8 +324,9 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   names.pose = showPath(spec.file) + ": poses";
   for (int frame = 0; frame < static_cast<int>(poses.size()); ++frame)
     for (size_t c = 0; c < setups.size(); ++c) checkPlacement(placement(frame, c), names);
-  const auto mode = parseMode(spec.mode, spec.faces, spec.faceSize, spec.polygons, showPath(spec.file) + ": mode");
-  engine = makeEngine(spec.engine, scene, spec.timeoutSeconds, mode.get(), showPath(spec.file) + ": engine", options.threads);
+  RenderRequest request = spec.request;
+  request.threads = options.threads;
+  engine = makeEngine(request, scene);
   checkEngineRendersPlan(*this);
   if (vibrates()) checkVibratedRigs(*this);
   const int totalFrames = static_cast<int>(poses.size());
@@ -343,7 +344,7 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
 int64_t DatasetPlan::frameBytes() const {
   int64_t bytes = 0;
   for (const CameraSetup& setup : setups)
-    bytes += FastRenderer::frameBytes(setup.rig.imageSize, setup.rig.imageSize, spec.spp, setup.model->central());
+    bytes += FastRenderer::frameBytes(setup.rig.imageSize, setup.rig.imageSize, spec.request.spp, setup.model->central());
   return bytes;
 }
 

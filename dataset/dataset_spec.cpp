@@ -251,43 +251,31 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
   o.finish();
 }
 
-void readEngine(JsonFields& top, DatasetSpec& spec) {
-  spec.engine = top.string("engine", spec.engine);
-  if (spec.engine != "fast" && spec.engine != "povray" && spec.engine != "blender")
-    top.fail("engine", "must be fast, povray or blender (got " + quote(spec.engine) + ")");
-  spec.mode = top.string("mode", spec.mode);
-  if (spec.mode != "exact" && spec.mode != "cubemap" && spec.mode != "thesis-mesh")
-    top.fail("mode", "must be exact, cubemap or thesis-mesh (got " + quote(spec.mode) + ")");
-  if (spec.mode != "exact" && spec.engine != "fast") top.fail("mode", "only the fast engine has modes other than exact");
+// The render request's fields (engine, mode, mode_options, spp, shading, timeout_s), typed as
+// JSON; their rules and messages are readRenderRequest's.
+void readRequest(JsonFields& top, DatasetSpec& spec) {
+  constexpr int64_t kAny = int64_t{1} << 53;  // exact in every JSON reader; the request checks the range
+  RequestFields f;
+  if (top.has("engine")) f.engine = top.string("engine");
+  if (top.has("mode")) f.mode = top.string("mode");
   if (auto options = top.optionalObject("mode_options")) {
-    if (spec.mode == "exact") top.fail("mode_options", "only with mode cubemap or thesis-mesh");
-    spec.faces = options->integer("faces", spec.faces, 5, 6);
-    spec.faceSize = options->integer("face_size", spec.faceSize, 8, 8192);
-    if (options->has("polygons")) {
-      if (spec.mode != "thesis-mesh") options->fail("polygons", "only with mode thesis-mesh");
-      spec.polygons = options->integer("polygons", spec.polygons, 16, 1024);
-      if (spec.polygons != 16 && spec.polygons != 64 && spec.polygons != 256 && spec.polygons != 1024)
-        options->fail("polygons", "must be 16, 64, 256 or 1024 (got " + std::to_string(spec.polygons) + ")");
-    }
+    if (options->has("faces")) f.faces = options->integer("faces", -kAny, kAny);
+    if (options->has("face_size")) f.faceSize = options->integer("face_size", -kAny, kAny);
+    if (options->has("polygons")) f.polygons = options->integer("polygons", -kAny, kAny);
     options->finish();
   }
-  if (top.has("timeout_s")) {
-    if (spec.engine == "fast") top.fail("timeout_s", "only for the povray and blender engines");
-    spec.timeoutSeconds = top.number("timeout_s", {0.0, limits::kMaxTimeoutSeconds, true, "s"});
-  }
+  if (top.has("spp")) f.spp = top.integer("spp", -kAny, kAny);
+  if (top.has("shading")) f.shading = top.string("shading");
+  if (top.has("timeout_s")) f.timeoutSeconds = top.number("timeout_s");
+  spec.request = readRenderRequest(f, RequestFieldNames::json(spec.file));
 }
 
 void readSampling(JsonFields& top, DatasetSpec& spec) {
-  spec.spp = top.integer("spp", spec.spp, 1, limits::kMaxSpp);
-  if (!samplesPerAxis(spec.spp)) top.fail("spp", "must be a perfect square (1, 4, 9, 16, ...)");
-  const auto shading = parseShading(top.string("shading", "unlit"));
-  if (!shading) top.fail("shading", "must be unlit or lit");
-  spec.shading = *shading;
   if (top.has("size")) {
     spec.size = top.integer("size", 360, limits::kMinImageSize, limits::kMaxImageSize);
     RenderSettings check;
     check.rig = check.rig.resized(*spec.size);
-    check.spp = spec.spp;
+    check.spp = spec.request.spp;
     checkRenderSettings(check, settingNames(spec));  // size² × spp, before any scene is read
   }
   spec.frameIntervalSeconds =
@@ -321,7 +309,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   if (top.boolean("allow_outside_files", false))
     top.fail("allow_outside_files", "a spec cannot let its scene pull in files from outside the scene's folder; "
                                     "pass --allow-outside-files to omnicam dataset if you mean it");
-  readEngine(top, spec);
+  readRequest(top, spec);
   readSampling(top, spec);
   // Cameras before poses: the frame limit counts camera-frames.
   if (top.has("cameras")) {

@@ -12,6 +12,7 @@
 #include "output_kinds.h"
 #include "placement.h"
 #include "recording_camera.h"
+#include "render_request.h"
 #include "render_settings.h"
 #include "rig.h"
 #include "vibration.h"
@@ -89,13 +90,10 @@ struct DatasetSpec {
   // Lifts the scene-folder rule (SceneLoadOptions): set only from the user's own
   // --allow-outside-files, never by the spec file (docs/robustness.md, "Threat model").
   bool allowOutsideFiles = false;
-  std::string engine = "fast";
-  std::string mode = "exact";
-  int faces = 6, faceSize = 512, polygons = 1024;
-  int spp = 1;
-  Shading shading = Shading::Unlit;
+  // engine, mode and mode_options, spp, shading, timeout_s (render_request.h; threads come from
+  // the run's --threads, not the spec)
+  RenderRequest request;
   std::optional<int> size;  // overrides every camera's image size
-  double timeoutSeconds = 600.0;
   double frameIntervalSeconds = 0.1;  // timestamp of frame i = i · interval
   PoseSource poseSource = PoseSource::Path;
   std::string pathName;

@@ -34,14 +34,14 @@ TEST(DatasetSpec, TheDocumentedExampleLoadsAndItsPosesResolve) {
   ASSERT_EQ(s.cameras.size(), 2u);
   EXPECT_EQ(s.cameras[1].name, "rear");
   EXPECT_DOUBLE_EQ(s.cameras[1].mount.yawDeg, 180.0);
-  EXPECT_EQ(s.spp, 4);
+  EXPECT_EQ(s.request.spp, 4);
   const Scene scene = loadScene(s.scene);
   EXPECT_EQ(datasetPoses(s, scene, 0.4).size(), 10u);
 }
 
 TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec("")), "");
-  EXPECT_EQ(errorOf(spec(R"("spp": 3)")), "spec.json: spp: must be a perfect square (1, 4, 9, 16, ...)");
+  EXPECT_EQ(errorOf(spec(R"("spp": 3)")), "spec.json: spp: must be a perfect square n*n from 1 to 1024 (got 3)");
   EXPECT_EQ(errorOf(spec(R"("engine": "mitsuba")")), "spec.json: engine: must be fast, povray or blender (got \"mitsuba\")");
   EXPECT_EQ(errorOf(spec(R"("colour": 1)")), "spec.json: colour: unknown field");
   EXPECT_EQ(errorOf(spec(R"("outputs": {"depht": true})")), "spec.json: outputs.depht: unknown field");
@@ -55,14 +55,14 @@ TEST(DatasetSpec, ErrorsNameTheField) {
             "spec.json: poses.random.region: needs x_min < x_max and y_min < y_max");
   EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "engine": "povray")")),
             "spec.json: mode: only the fast engine has modes other than exact");
-  EXPECT_EQ(errorOf(spec(R"("timeout_s": 5)")), "spec.json: timeout_s: only for the povray and blender engines");
+  EXPECT_EQ(errorOf(spec(R"("timeout_s": 5)")), "spec.json: timeout_s: only with engine povray or blender");
   EXPECT_EQ(errorOf(spec(R"("recording": {"vignetting": 2})")), "spec.json: recording.vignetting: must be in [0, 1] (got 2)");
   EXPECT_EQ(errorOf(spec(R"("recording": {"iso": 100})")).rfind("spec.json: recording.iso: unknown field", 0), 0u);
 }
 
 // Integers are compared as the JSON wrote them: never wrapped into range, never rounded.
 TEST(DatasetSpec, IntegersOutOfRangeAreRefusedNeverWrapped) {
-  EXPECT_EQ(errorOf(spec(R"("spp": 4294967297)")), "spec.json: spp: must be in [1, 1024] (got 4294967297)");
+  EXPECT_EQ(errorOf(spec(R"("spp": 4294967297)")), "spec.json: spp: must be a perfect square n*n from 1 to 1024 (got 4294967297)");
   EXPECT_EQ(errorOf(spec(R"("size": 18446744073709551615)")), "spec.json: size: must be in [8, 16384] (got 18446744073709551615)");
   EXPECT_EQ(errorOf(spec(R"("size": -18446744073709551615)")), "spec.json: size: must be an integer (got -1.8446744073709552e+19)");
   EXPECT_EQ(errorOf(spec(R"("spp": 4.0)")), "spec.json: spp: must be an integer (got 4.0)");

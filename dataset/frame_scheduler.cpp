@@ -38,7 +38,7 @@ FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int ind
                      plan.robotTilt(index)};
   for (size_t c = 0; c < plan.setups.size(); ++c) {
     const CameraSetup& setup = plan.setups[c];
-    const RenderSettings settings{plan.frameRig(index, c), spec.spp, spec.shading};
+    const RenderSettings settings = spec.request.settings(plan.frameRig(index, c));
     const CameraPlacement placement = plan.placement(index, c);
     Film film = filmFor(settings, wantsAovs);
     if (wantsAovs) film.aovs = std::move(aovs);  // its planes' memory reused
@@ -69,7 +69,7 @@ std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const s
     std::vector<CameraPlacement> placements;
     for (size_t k = start; k < end; ++k) placements.push_back(plan.placement(todo[k], c));
     // One rig for the batch: batches of a vibrating or moving plan hold one frame (renderFrames).
-    const RenderSettings settings{plan.frameRig(todo[start], c), plan.spec.spp, plan.spec.shading};
+    const RenderSettings settings = plan.spec.request.settings(plan.frameRig(todo[start], c));
     rgb[c] = plan.engine->renderMany(placements, settings);
   }
   return rgb;

@@ -83,7 +83,7 @@ void datasetSpec(const uint8_t* data, size_t size) {
     for (const DatasetCamera& camera : spec.cameras) {
       RigSpec rig = camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : RigSpec{};
       if (spec.size) rig.imageSize = *spec.size;
-      checkRenderSettings(RenderSettings{rig, spec.spp, spec.shading}, settingNames(spec));
+      checkRenderSettings(spec.request.settings(rig), settingNames(spec));
       (void)rig.camera();
       SettingNames names;
       names.pose = showPath(spec.file) + ": poses";

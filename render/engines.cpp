@@ -1,8 +1,5 @@
 #include "engines.h"
 
-#include "input_limits.h"
-#include "number_format.h"
-
 #include <cstdlib>
 #include <optional>
 
@@ -120,31 +117,15 @@ class BlenderEngine : public Engine {
 
 }  // namespace
 
-std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons,
-                                          const std::string& flag) {
-  if (mode == "exact") return nullptr;
-  auto options = std::make_unique<CubeMapOptions>();
-  options->faces = faces;
-  options->faceSize = faceSize;
-  options->polygons = polygons;
-  if (mode == "cubemap") options->mode = OmniMode::CubeMap;
-  else if (mode == "thesis-mesh") options->mode = OmniMode::ThesisMesh;
-  else throw InputError(flag + ": must be exact, cubemap or thesis-mesh (got " + quote(mode) + ")");
-  checkCubeMapOptions(*options);  // when the engine is made, not at its first frame
-  return options;
-}
-
-std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds,
-                                   const CubeMapOptions* mode, const std::string& flag, int threads) {
-  checkThreads(threads, "threads");
-  if (!(timeoutSeconds > 0.0 && timeoutSeconds <= limits::kMaxTimeoutSeconds))
-    throw InputError("timeout: must be in (0, " + shortNumber(limits::kMaxTimeoutSeconds) + "] s (got " + shortNumber(timeoutSeconds) + ")");
-  if (name == "fast") return std::make_unique<FastEngine>(scene, mode);
-  if (mode) throw InputError((flag == "--engine" ? std::string("--mode") : flag + ": mode") +
-                             ": only the fast engine has modes other than exact");
-  if (name == "povray") return std::make_unique<PovrayEngine>(scene, timeoutSeconds, threads);
-  if (name == "blender") return std::make_unique<BlenderEngine>(scene, timeoutSeconds, threads);
-  throw InputError(flag + ": " + quote(name) + " is not available (fast, povray, blender)");
+std::unique_ptr<Engine> makeEngine(const RenderRequest& request, const Scene& scene) {
+  if (request.engine == "fast") {
+    if (request.cubeMap()) checkCubeMapOptions(*request.cubeMap());  // when the engine is made, not at its first frame
+    return std::make_unique<FastEngine>(scene, request.cubeMap());
+  }
+  if (request.cubeMap()) throw std::invalid_argument("makeEngine: a mode other than exact for " + request.engine);
+  if (request.engine == "povray") return std::make_unique<PovrayEngine>(scene, request.timeoutSeconds, request.threads);
+  if (request.engine == "blender") return std::make_unique<BlenderEngine>(scene, request.timeoutSeconds, request.threads);
+  throw std::invalid_argument("makeEngine: no engine " + request.engine + " (readRenderRequest checks the name)");
 }
 
 }  // namespace omnicam

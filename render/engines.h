@@ -11,6 +11,7 @@
 #include "film.h"
 #include "image.h"
 #include "omni_mode.h"
+#include "render_request.h"
 #include "render_settings.h"
 #include "scene.h"
 
@@ -42,16 +43,9 @@ class Engine {
   virtual nlohmann::json modeOptions() const { return nlohmann::json::object(); }
 };
 
-// Throws InputError for an unknown engine name, or a mode other than exact for an engine other
-// than fast. `scene` must outlive the engine. `flag` names the option in messages. `threads` > 0
-// caps a ground-truth engine's render threads (the fast engine runs on TBB's threads, which the
-// caller limits with tbb::global_control).
-std::unique_ptr<Engine> makeEngine(const std::string& name, const Scene& scene, double timeoutSeconds = 600.0,
-                                   const CubeMapOptions* mode = nullptr, const std::string& flag = "--engine",
-                                   int threads = 0);
-// "exact", "cubemap" or "thesis-mesh" → options (InputError naming `flag` otherwise); nullptr
-// for exact.
-std::unique_ptr<CubeMapOptions> parseMode(const std::string& mode, int faces, int faceSize, int polygons,
-                                          const std::string& flag = "--mode");
+// The engine a request asks for (render_request.h: read and checked there), rendering `scene`,
+// which must outlive it. The fast engine runs on TBB's threads (the caller limits them with
+// tbb::global_control); request.threads > 0 caps a ground truth's render threads.
+std::unique_ptr<Engine> makeEngine(const RenderRequest& request, const Scene& scene);
 
 }  // namespace omnicam

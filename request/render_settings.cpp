@@ -24,10 +24,14 @@ std::optional<int> samplesPerAxis(int spp) {
   return n;
 }
 
+void checkSpp(int64_t spp, const std::string& what) {
+  if (spp < 1 || spp > limits::kMaxSpp || !samplesPerAxis(static_cast<int>(spp)))
+    throw InputError(what + ": must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
+                     std::to_string(spp) + ")");
+}
+
 void checkRenderSettings(const RenderSettings& settings, const SettingNames& names) {
-  if (!samplesPerAxis(settings.spp) || settings.spp > limits::kMaxSpp)
-    throw InputError(names.spp + ": must be a perfect square n*n from 1 to " + std::to_string(limits::kMaxSpp) + " (got " +
-                     std::to_string(settings.spp) + ")");
+  checkSpp(settings.spp, names.spp);
   const int size = settings.rig.imageSize;
   checkImageSize(size, names.size);
   const int passes = std::max(1, settings.rig.shutter.timeSamples);

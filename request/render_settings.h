@@ -36,6 +36,8 @@ void checkRenderSettings(const RenderSettings& settings, const SettingNames& nam
 // Checks a placement's robot pose and velocity against the documented limits (the mount and the
 // robot's tilt are checked where they are read); InputError naming them as `names` says.
 void checkPlacement(const CameraPlacement& placement, const SettingNames& names = {});
+// Checks spp alone (a perfect square n*n from 1 to limits::kMaxSpp); InputError naming `what`.
+void checkSpp(int64_t spp, const std::string& what);
 // Checks a thread count: 0 (every core) to limits::kMaxThreads; InputError naming `what`.
 void checkThreads(int threads, const std::string& what);
 // Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.

@@ -75,8 +75,9 @@ Outputs = Sequence[str]  # "rgba", "rgb", "depth", "instance", "class", "normal"
 
 class Renderer:
     """A renderer of one scene, reused across renders."""
-    def __init__(self, scene: Scene, engine: str = ..., mode: str = ..., faces: int = ..., face_size: int = ...,
-                 polygons: int = ..., timeout: float = ..., threads: int = ...) -> None: ...
+    def __init__(self, scene: Scene, engine: Optional[str] = ..., mode: Optional[str] = ..., faces: Optional[int] = ...,
+                 face_size: Optional[int] = ..., polygons: Optional[int] = ..., timeout: Optional[float] = ...,
+                 threads: Optional[int] = ...) -> None: ...
     def render(self, pose: Optional[Pose] = ..., *, rig: Optional[Rig] = ..., size: int = ..., spp: int = ...,
                shading: str = ..., traced: bool = ..., outputs: Outputs = ...,
                velocity: Optional[Tuple[float, float, float]] = ...) -> Dict[str, np.ndarray]: ...
@@ -85,7 +86,7 @@ class Renderer:
     @property
     def concurrent(self) -> bool: ...
 
-def render(scene: Scene, pose: Optional[Pose] = ..., *, engine: str = ..., rig: Optional[Rig] = ..., size: int = ...,
+def render(scene: Scene, pose: Optional[Pose] = ..., *, engine: Optional[str] = ..., rig: Optional[Rig] = ..., size: int = ...,
            spp: int = ..., shading: str = ..., traced: bool = ..., outputs: Outputs = ...,
            velocity: Optional[Tuple[float, float, float]] = ...) -> Dict[str, np.ndarray]: ...
 

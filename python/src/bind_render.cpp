@@ -16,6 +16,12 @@ namespace omnicam::python {
 
 namespace {
 
+// An optional integer as the request reads it (its range is the request's rule, not Python's).
+std::optional<int64_t> wideInteger(const std::optional<PyInteger>& value, const std::string& name) {
+  if (!value) return std::nullopt;
+  return narrowed(*value, name, INT32_MIN, INT32_MAX);
+}
+
 // size=: 0 for the rig's own, else an image size in [8, 16384].
 int optionalSize(const PyInteger& size) {
   return size.fitsInt64 && size.value == 0 ? 0 : narrowed(size, "size", limits::kMinImageSize, limits::kMaxImageSize);
@@ -28,26 +34,23 @@ const std::set<std::string> kOutputs{"rgba", "rgb", "depth", "instance", "class"
 // take turns.
 class PyRenderer {
  public:
-  PyRenderer(std::shared_ptr<const Scene> scene, const std::string& engine, const std::string& mode, const PyInteger& faces,
-             const PyInteger& faceSize, const PyInteger& polygons, double timeoutSeconds, const PyInteger& threads)
-      : scene_(std::move(scene)), ids_(idTables(*scene_)) {
-    const auto options = parseMode(mode, narrowed(faces, "faces", 5, 6), narrowed(faceSize, "face_size", 8, 8192),
-                                   narrowed(polygons, "polygons", 16, 1024), "mode");
-    engine_ = makeEngine(engine, *scene_, timeoutSeconds, options.get(), "engine",
-                         narrowed(threads, "threads", 0, limits::kMaxThreads));
+  // The engine's part of the render request (render_request.h); spp, shading and traced come
+  // with each render.
+  PyRenderer(std::shared_ptr<const Scene> scene, const RequestFields& engineFields)
+      : scene_(std::move(scene)), ids_(idTables(*scene_)), engineFields_(engineFields) {
+    engine_ = makeEngine(readRenderRequest(engineFields_, {}), *scene_);
   }
 
   py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg, const PyInteger& sppArg,
                   const std::string& shading, bool traced, const std::vector<std::string>& outputs, const py::object& velocity) {
     const int size = optionalSize(sizeArg), spp = narrowed(sppArg, "spp", 1, limits::kMaxSpp);
-    RenderSettings settings;
-    settings.rig = rig.value_or(scene_->rig);
+    RequestFields fields = engineFields_;
+    fields.spp = spp;
+    fields.shading = shading;
+    fields.traced = traced;
+    const RenderRequest request = readRenderRequest(fields, {});
+    RenderSettings settings = request.settings(rig.value_or(scene_->rig));
     if (size) settings.rig = settings.rig.resized(size);
-    settings.spp = spp;
-    const auto parsedShading = parseShading(shading);
-    if (!parsedShading) throw InputError("shading: " + quote(shading) + " is not unlit or lit");
-    settings.shading = *parsedShading;
-    settings.traced = traced;
     checkRenderSettings(settings, {"spp", "size"});
     const CameraPlacement placement(pose.is_none() ? scene_->startPose : poseFrom(pose, "pose"),
                                     velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
@@ -114,6 +117,7 @@ class PyRenderer {
 
   std::shared_ptr<const Scene> scene_;
   IdTables ids_;
+  RequestFields engineFields_;
   std::unique_ptr<Engine> engine_;
   std::mutex mutex_;
 };
@@ -140,14 +144,24 @@ void bindRender(py::module_& m) {
 engine: "fast" (default), "povray" or "blender" (ground truths: colour only); mode: "exact",
 "cubemap" or "thesis-mesh" (fast engine only) with faces, face_size and polygons; timeout: seconds
 per ground-truth frame; threads: 0 for every core.)")
-      .def(py::init([](std::shared_ptr<Scene> scene, const std::string& engine, const std::string& mode, const PyInteger& faces,
-                       const PyInteger& faceSize, const PyInteger& polygons, double timeout, const PyInteger& threads) {
+      .def(py::init([](std::shared_ptr<Scene> scene, const std::optional<std::string>& engine, const std::optional<std::string>& mode,
+                       const std::optional<PyInteger>& faces, const std::optional<PyInteger>& faceSize,
+                       const std::optional<PyInteger>& polygons, const std::optional<double>& timeout,
+                       const std::optional<PyInteger>& threads) {
+             RequestFields fields;
+             fields.engine = engine;
+             fields.mode = mode;
+             fields.faces = wideInteger(faces, "faces");
+             fields.faceSize = wideInteger(faceSize, "face_size");
+             fields.polygons = wideInteger(polygons, "polygons");
+             fields.timeoutSeconds = timeout;
+             if (threads) fields.threads = narrowed(*threads, "threads", 0, limits::kMaxThreads);
              // The renderer keeps its own copy: changing the Python scene later does not change it.
-             return std::make_unique<PyRenderer>(std::make_shared<const Scene>(*scene), engine, mode, faces, faceSize,
-                                                 polygons, timeout, threads);
+             return std::make_unique<PyRenderer>(std::make_shared<const Scene>(*scene), fields);
            }),
-           py::arg("scene").none(false), py::arg("engine") = "fast", py::arg("mode") = "exact", py::arg("faces") = 6,
-           py::arg("face_size") = 512, py::arg("polygons") = 1024, py::arg("timeout") = 600.0, py::arg("threads") = 0)
+           py::arg("scene").none(false), py::arg("engine") = py::none(), py::arg("mode") = py::none(),
+           py::arg("faces") = py::none(), py::arg("face_size") = py::none(), py::arg("polygons") = py::none(),
+           py::arg("timeout") = py::none(), py::arg("threads") = py::none())
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
            py::arg("outputs") = std::vector<std::string>{"rgba"}, py::arg("velocity") = py::none(), kRenderDoc)
@@ -159,14 +173,15 @@ per ground-truth frame; threads: 0 for every core.)")
 
   m.def(
       "render",
-      [](std::shared_ptr<Scene> scene, const py::object& pose, const std::string& engine, const std::optional<RigSpec>& rig,
+      [](std::shared_ptr<Scene> scene, const py::object& pose, const std::optional<std::string>& engine, const std::optional<RigSpec>& rig,
          const PyInteger& size, const PyInteger& spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs,
          const py::object& velocity) {
-        PyRenderer renderer(std::make_shared<const Scene>(*scene), engine, "exact", PyInteger{true, true, 6, 6, "6"},
-                            PyInteger{true, true, 512, 512, "512"}, PyInteger{true, true, 1024, 1024, "1024"}, 600.0, PyInteger{});
+        RequestFields fields;
+        fields.engine = engine;
+        PyRenderer renderer(std::make_shared<const Scene>(*scene), fields);
         return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity);
       },
-      py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = "fast", py::arg("rig") = py::none(),
+      py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = py::none(), py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgba"}, py::arg("velocity") = py::none(),
       kOneRenderDoc.c_str());

@@ -1,0 +1,91 @@
+#include "render_request.h"
+
+#include <algorithm>
+
+#include "errors.h"
+#include "input_limits.h"
+#include "number_format.h"
+
+namespace omnicam {
+
+RequestFieldNames RequestFieldNames::cli() {
+  RequestFieldNames n;
+  n.engine = "--engine", n.mode = "--mode", n.faces = "--faces", n.faceSize = "--face-size", n.polygons = "--polygons";
+  n.spp = "--spp", n.shading = "--shading", n.traced = "--traced", n.threads = "--threads", n.timeout = "--timeout";
+  return n;
+}
+
+RequestFieldNames RequestFieldNames::json(const std::string& file) {
+  RequestFieldNames n;
+  n.prefix = showPath(file) + ": ";
+  n.faces = "mode_options.faces", n.faceSize = "mode_options.face_size", n.polygons = "mode_options.polygons";
+  n.timeout = "timeout_s";
+  return n;
+}
+
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(const RequestFieldNames& names) : names_(names) {}
+  [[noreturn]] void fail(const std::string& field, const std::string& rule) const {
+    throw InputError(names_.prefix + field + ": " + rule);
+  }
+  int integerIn(const std::optional<int64_t>& given, int fallback, const std::string& field, int64_t lo, int64_t hi,
+                const std::string& unit = "") const {
+    if (!given) return fallback;
+    if (*given < lo || *given > hi)
+      fail(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]" + unit + " (got " +
+                      std::to_string(*given) + ")");
+    return static_cast<int>(*given);
+  }
+
+ private:
+  const RequestFieldNames& names_;
+};
+
+}  // namespace
+
+RenderRequest readRenderRequest(const RequestFields& f, const RequestFieldNames& names) {
+  const Reader r(names);
+  RenderRequest q;
+  q.engine = f.engine.value_or(q.engine);
+  if (q.engine != "fast" && q.engine != "povray" && q.engine != "blender")
+    r.fail(names.engine, "must be fast, povray or blender (got " + quote(q.engine) + ")");
+  q.mode = f.mode.value_or(q.mode);
+  if (q.mode == "cubemap") q.modeOptions.mode = OmniMode::CubeMap;
+  else if (q.mode == "thesis-mesh") q.modeOptions.mode = OmniMode::ThesisMesh;
+  else if (q.mode != "exact") r.fail(names.mode, "must be exact, cubemap or thesis-mesh (got " + quote(q.mode) + ")");
+  if (q.mode != "exact" && q.engine != "fast") r.fail(names.mode, "only the fast engine has modes other than exact");
+  const bool cubeFaces = q.mode != "exact";
+  if ((f.faces || f.faceSize) && !cubeFaces)
+    r.fail(f.faces ? names.faces : names.faceSize, "only with " + names.mode + " cubemap or thesis-mesh");
+  if (f.polygons && q.mode != "thesis-mesh") r.fail(names.polygons, "only with " + names.mode + " thesis-mesh");
+  if (f.faces && *f.faces != 5 && *f.faces != 6) r.fail(names.faces, "must be 5 or 6 (got " + std::to_string(*f.faces) + ")");
+  q.modeOptions.faces = f.faces ? static_cast<int>(*f.faces) : q.modeOptions.faces;
+  q.modeOptions.faceSize = r.integerIn(f.faceSize, q.modeOptions.faceSize, names.faceSize, 8, 8192, " texels");
+  if (f.polygons && *f.polygons != 16 && *f.polygons != 64 && *f.polygons != 256 && *f.polygons != 1024)
+    r.fail(names.polygons, "must be 16, 64, 256 or 1024 (got " + std::to_string(*f.polygons) + ")");
+  q.modeOptions.polygons = f.polygons ? static_cast<int>(*f.polygons) : q.modeOptions.polygons;
+  if (f.spp) checkSpp(*f.spp, names.prefix + names.spp);
+  q.spp = f.spp ? static_cast<int>(*f.spp) : q.spp;
+  const std::string shading = f.shading.value_or(shadingName(q.shading));
+  const auto parsed = parseShading(shading);
+  if (!parsed) r.fail(names.shading, "must be unlit or lit (got " + quote(shading) + ")");
+  q.shading = *parsed;
+  q.traced = f.traced.value_or(q.traced);
+  if (q.traced && (q.engine != "fast" || q.mode != "exact"))
+    r.fail(names.traced, "only with the fast engine in exact mode (the other engines always trace)");
+  if (f.threads) checkThreads(static_cast<int>(std::clamp<int64_t>(*f.threads, -1, limits::kMaxThreads + 1)), names.prefix + names.threads);
+  q.threads = f.threads ? static_cast<int>(*f.threads) : q.threads;
+  if (f.timeoutSeconds) {
+    if (q.engine == "fast") r.fail(names.timeout, "only with " + names.engine + " povray or blender");
+    if (!(*f.timeoutSeconds > 0.0 && *f.timeoutSeconds <= limits::kMaxTimeoutSeconds))
+      r.fail(names.timeout, "must be in (0, " + shortNumber(limits::kMaxTimeoutSeconds) + "] s (got " +
+                                shortNumber(*f.timeoutSeconds) + ")");
+    q.timeoutSeconds = *f.timeoutSeconds;
+  }
+  return q;
+}
+
+}  // namespace omnicam

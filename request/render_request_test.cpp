@@ -1,0 +1,133 @@
+// One reader for the render request: the CLI's flags, a spec's fields and Python's keywords give
+// the same rule in the same words, only the field's name differs; absent fields take one set of
+// defaults. And one table of engine capabilities, checked the same way for every engine.
+#include "render_request.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "engine_capabilities.h"
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+std::string errorOf(const RequestFields& fields, const RequestFieldNames& names) {
+  try {
+    readRenderRequest(fields, names);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct BadField {
+  std::function<void(RequestFields&)> set;
+  std::string cli, json, rule;
+};
+
+TEST(RenderRequest, EveryFrontEndStatesARuleInTheSameWords) {
+  const std::vector<BadField> cases = {
+      {[](RequestFields& f) { f.engine = "mitsuba"; }, "--engine", "engine", "must be fast, povray or blender (got \"mitsuba\")"},
+      {[](RequestFields& f) { f.mode = "fisheye"; }, "--mode", "mode", "must be exact, cubemap or thesis-mesh (got \"fisheye\")"},
+      {[](RequestFields& f) { f.engine = "povray", f.mode = "cubemap"; }, "--mode", "mode",
+       "only the fast engine has modes other than exact"},
+      {[](RequestFields& f) { f.faces = 5; }, "--faces", "mode_options.faces", "only with MODE cubemap or thesis-mesh"},
+      {[](RequestFields& f) { f.mode = "cubemap", f.faces = 4; }, "--faces", "mode_options.faces", "must be 5 or 6 (got 4)"},
+      {[](RequestFields& f) { f.mode = "cubemap", f.faceSize = 4; }, "--face-size", "mode_options.face_size",
+       "must be in [8, 8192] texels (got 4)"},
+      {[](RequestFields& f) { f.mode = "cubemap", f.polygons = 16; }, "--polygons", "mode_options.polygons",
+       "only with MODE thesis-mesh"},
+      {[](RequestFields& f) { f.mode = "thesis-mesh", f.polygons = 17; }, "--polygons", "mode_options.polygons",
+       "must be 16, 64, 256 or 1024 (got 17)"},
+      {[](RequestFields& f) { f.spp = 5; }, "--spp", "spp", "must be a perfect square n*n from 1 to 1024 (got 5)"},
+      {[](RequestFields& f) { f.spp = 4096; }, "--spp", "spp", "must be a perfect square n*n from 1 to 1024 (got 4096)"},
+      {[](RequestFields& f) { f.shading = "shiny"; }, "--shading", "shading", "must be unlit or lit (got \"shiny\")"},
+      {[](RequestFields& f) { f.timeoutSeconds = 5.0; }, "--timeout", "timeout_s", "only with ENGINE povray or blender"},
+      {[](RequestFields& f) { f.engine = "povray", f.timeoutSeconds = 0.0; }, "--timeout", "timeout_s",
+       "must be in (0, 604800] s (got 0)"},
+      {[](RequestFields& f) { f.engine = "povray", f.traced = true; }, "--traced", "traced",
+       "only with the fast engine in exact mode (the other engines always trace)"},
+  };
+  for (const BadField& c : cases) {
+    RequestFields fields;
+    c.set(fields);
+    const auto named = [&](const std::string& rule, const char* mode, const char* engine) {
+      std::string out = rule;
+      if (const size_t at = out.find("MODE"); at != std::string::npos) out.replace(at, 4, mode);
+      if (const size_t at = out.find("ENGINE"); at != std::string::npos) out.replace(at, 6, engine);
+      return out;
+    };
+    EXPECT_EQ(errorOf(fields, RequestFieldNames::cli()), c.cli + ": " + named(c.rule, "--mode", "--engine"));
+    EXPECT_EQ(errorOf(fields, RequestFieldNames::json("spec.json")), "spec.json: " + c.json + ": " + named(c.rule, "mode", "engine"));
+  }
+}
+
+TEST(RenderRequest, AbsentFieldsTakeOneSetOfDefaults) {
+  const RenderRequest read = readRenderRequest({}, RequestFieldNames::cli());
+  const RenderRequest defaults;
+  const CubeMapOptions cube;
+  EXPECT_EQ(read.engine, "fast");
+  EXPECT_EQ(read.mode, "exact");
+  EXPECT_EQ(read.cubeMap(), nullptr);
+  EXPECT_EQ(read.spp, 1);
+  EXPECT_EQ(read.shading, Shading::Unlit);
+  EXPECT_EQ(read.timeoutSeconds, defaults.timeoutSeconds);
+  EXPECT_EQ(read.modeOptions.faces, cube.faces);
+  EXPECT_EQ(read.modeOptions.faceSize, cube.faceSize);
+  EXPECT_EQ(read.modeOptions.polygons, cube.polygons);
+  RequestFields mesh;
+  mesh.mode = "thesis-mesh";
+  mesh.polygons = 64;
+  const RenderRequest m = readRenderRequest(mesh, {});
+  ASSERT_NE(m.cubeMap(), nullptr);
+  EXPECT_EQ(m.cubeMap()->mode, OmniMode::ThesisMesh);
+  EXPECT_EQ(m.cubeMap()->polygons, 64);
+  EXPECT_EQ(m.cubeMap()->faceSize, cube.faceSize);
+}
+
+std::string refusal(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs = false) {
+  try {
+    checkEngineRenders(engine, rig, placement, aovs);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(EngineCapabilities, EachEngineIsCheckedByItsRowAndTheMessageNamesTheEnginesThatCan) {
+  RigSpec distorted;
+  distorted.mount.distortion.k1 = -0.05;
+  EXPECT_EQ(refusal(EngineKind::FastExact, distorted, {}), "");
+  EXPECT_EQ(refusal(EngineKind::Povray, distorted, {}),
+            "rig.camera.distortion: the povray engine has no lens distortion; render it with the fast engine");
+  RigSpec cone;
+  cone.shape.shape = MirrorShape::Cone;
+  EXPECT_EQ(refusal(EngineKind::Blender, cone, {}),
+            "rig.mirror.shape: the blender engine has no exact cone mirror; render it with the fast engine or the povray engine");
+  EXPECT_EQ(refusal(EngineKind::Povray, cone, {}), "");
+  RigSpec moved;
+  moved.mount.offsetMm = {1.0, 0.0, 0.0};
+  EXPECT_NE(refusal(EngineKind::FastCubeMap, moved, {}).find("the fast engine's cube-map mode is central by construction"),
+            std::string::npos);
+  RigSpec rolling;
+  rolling.shutter = {0.004, RollingShutter{300.0, Readout::TopToBottom}, 0};
+  const CameraPlacement driving({0.0, 0.0, 0.0}, {1.0, 0.0, 0.0});
+  EXPECT_EQ(refusal(EngineKind::Blender, rolling, {}), "");  // a still robot: no motion to render
+  EXPECT_NE(refusal(EngineKind::Blender, rolling, driving).find("the blender engine renders motion blur through a global "
+                                                               "shutter only"),
+            std::string::npos);
+  EXPECT_NE(refusal(EngineKind::FastThesisMesh, rolling, driving).find("render it with the fast engine, the povray engine or "
+                                                                      "the blender engine"),
+            std::string::npos);
+  EXPECT_EQ(refusal(EngineKind::Povray, rolling, driving), "");
+  EXPECT_EQ(refusal(EngineKind::Povray, RigSpec{}, {}, true),
+            "the povray engine renders colour only; per-pixel ground truth (depth, instances, normals) needs the fast engine");
+  EXPECT_TRUE(capabilitiesOf(EngineKind::Blender).batches);
+  EXPECT_TRUE(capabilitiesOf(EngineKind::FastExact).concurrent);
+  EXPECT_FALSE(capabilitiesOf(EngineKind::FastCubeMap).concurrent);
+}
+
+}  // namespace
+}  // namespace omnicam
