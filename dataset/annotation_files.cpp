@@ -72,7 +72,7 @@ FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const 
     }
     return out;
   }
-  out.image = requiredRecord(dir, frame, OutputKind::Rgb, where).path;
+  out.image = requiredRecord(dir, frame, kColourOutput, where).path;
   for (OutputKind kind : gathering.kinds) {
     const FileRecord& file = requiredRecord(dir, frame, kind, where);
     out.name = showPath(dir) + "/" + file.path;

@@ -54,7 +54,7 @@ std::string layoutFile(const std::string& dirB, const std::string& relative) {
 // The file holding a camera frame's colour: its rgb image (files layout) or its frame OpenEXR
 // (multilayer layout, whose R, G, B, A channels image readers take as the colour).
 const FileRecord* colourFile(const CameraFrame& frame) {
-  const FileRecord* rgb = frame.file(OutputKind::Rgb);
+  const FileRecord* rgb = frame.file(kColourOutput);
   return rgb ? rgb : frame.file(OutputKind::Multilayer);
 }
 

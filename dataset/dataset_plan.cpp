@@ -114,9 +114,10 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
     if (!needsAovs(kind) || engine.capabilities().aovs) {
       plan.outputs.insert(kind);
     } else {
-      notWritten[outputName(kind)] = kind == OutputKind::Coco
-          ? "the " + spec.request.engine + " engine renders RGB only (COCO annotations come from the instance AOV); render the same spec with engine fast"
-          : "the " + spec.request.engine + " engine renders RGB only; render the same spec with engine fast for AOVs";
+      const std::string note = outputRow(kind).aovNote;
+      notWritten[outputName(kind)] = "the " + spec.request.engine + " engine renders RGB only" +
+                                     (note.empty() ? "; render the same spec with engine fast for AOVs"
+                                                   : " (" + note + "); render the same spec with engine fast");
     }
   }
   if (!notWritten.empty()) {
@@ -124,10 +125,15 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
     for (auto it = notWritten.begin(); it != notWritten.end(); ++it) kinds += (kinds.empty() ? "" : ", ") + it.key();
     notes.push_back("engine " + spec.request.engine + " writes RGB only: " + kinds + " not written (see manifest outputs.not_written)");
   }
-  if (plan.wants(OutputKind::Coco))
-    plan.cocoClasses = cocoClassIds(idTables(scene), spec.outputs.cocoClasses, showPath(spec.file) + ": outputs.coco.classes");
-  if ((plan.wants(OutputKind::Instance) || plan.wants(OutputKind::Semantic) || plan.wants(OutputKind::Coco)) &&
-      scene.objects.size() > kMaxInstances)
+  bool instanceIds = false;
+  for (OutputKind kind : plan.outputs) {
+    const OutputKindRow& row = outputRow(kind);
+    if (row.classFilter)
+      plan.cocoClasses = cocoClassIds(idTables(scene), spec.outputs.cocoClasses,
+                                      showPath(spec.file) + ": outputs." + row.name + ".classes");
+    instanceIds = instanceIds || row.instanceIds;
+  }
+  if (instanceIds && scene.objects.size() > kMaxInstances)
     throw InputError(showPath(spec.file) + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
   return plan;
@@ -158,18 +164,19 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
   json written = json::array(), channels = json::object();
   for (OutputKind kind : plan.outputList()) {
     written.push_back(outputName(kind));
-    if (plan.layout == DatasetLayout::Multilayer && !isAnnotation(kind)) channels[outputName(kind)] = multilayerChannels(kind);
+    if (plan.layout == DatasetLayout::Multilayer && !isAnnotation(kind)) channels[outputName(kind)] = outputRow(kind).layerChannels;
   }
   header["outputs"] = {{"layout", layoutName(plan.layout)}, {"written", written}, {"not_written", notWritten}};
   if (plan.layout == DatasetLayout::Multilayer) {
     header["outputs"]["channels"] = channels;
     header["outputs"]["compression"] = compressionName(plan.compression);
   }
-  if (plan.wants(OutputKind::Coco)) {
-    header["outputs"]["coco_classes"] = plan.cocoClasses;
+  for (OutputKind kind : plan.outputs) {
+    if (!outputRow(kind).classFilter) continue;  // COCO: its classes, and its keypoints (the landmarks)
+    header["outputs"][std::string(outputName(kind)) + "_classes"] = plan.cocoClasses;
     json landmarks = json::array();
     for (const Landmark& l : scene.landmarks) landmarks.push_back(l.name);
-    header["outputs"]["coco_keypoints"] = landmarks;
+    header["outputs"][std::string(outputName(kind)) + "_keypoints"] = landmarks;
   }
   header["classes"] = ids.classes;
   header["instances"] = ids.instances;

@@ -63,22 +63,20 @@ namespace {
 // An output from its own file (files layout).
 DecodedOutput decodeOutputFile(const std::string& bytes, OutputKind kind, const std::string& name) {
   DecodedOutput out;
-  switch (kind) {
-    case OutputKind::Rgb:
+  const OutputKindRow& row = outputRow(kind);
+  switch (row.encoding) {
+    case OutputEncoding::ColourImage:
       out.image = readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
       out.width = out.image->width, out.height = out.image->height;
       return out;
-    case OutputKind::Depth:
-    case OutputKind::Normal:
-      out.data = readDataExrChannelsFromMemory(bytes, kind == OutputKind::Depth ? std::vector<std::string>{"Z"}
-                                                                                : std::vector<std::string>{"X", "Y", "Z"}, name);
+    case OutputEncoding::FloatExr:
+    case OutputEncoding::HalfExr:
+      out.data = readDataExrChannelsFromMemory(bytes, row.fileChannels, name);
       out.width = out.data->width, out.height = out.data->height;
       return out;
-    case OutputKind::Instance:
-    case OutputKind::Semantic: out.ids = readUint16PngFromMemory(bytes, out.width, out.height, name); return out;
-    case OutputKind::Landmarks:
-    case OutputKind::Coco: out.json = parseJsonText(bytes, name); return out;
-    case OutputKind::Multilayer: break;
+    case OutputEncoding::Uint16Png: out.ids = readUint16PngFromMemory(bytes, out.width, out.height, name); return out;
+    case OutputEncoding::Json: out.json = parseJsonText(bytes, name); return out;
+    case OutputEncoding::MultilayerExr: break;
   }
   throw InputError(name + ": no decoder for outputs of kind " + quote(outputName(kind)));
 }
@@ -94,8 +92,9 @@ DecodedOutput outputOfFrame(const ExrChannels& frame, OutputKind kind, const std
     out.json = parseJsonText(text->second, name + ": " + multilayerAttribute(kind));
     return out;
   }
-  const std::vector<std::string>& channels = multilayerChannels(kind);
-  const bool ids = kind == OutputKind::Instance || kind == OutputKind::Semantic;
+  const OutputKindRow& row = outputRow(kind);
+  const std::vector<std::string>& channels = row.layerChannels;
+  const bool ids = row.layerType == ExrSampleType::Uint;
   for (const std::string& channel : channels)
     if (!(ids ? frame.uints.count(channel) : frame.floats.count(channel)))
       throw InputError(name + ": no " + (ids ? "uint" : "half or float") + " channel " + quote(channel));
@@ -115,7 +114,7 @@ DecodedOutput outputOfFrame(const ExrChannels& frame, OutputKind kind, const std
     const std::vector<float>& plane = frame.floats.at(channels[c]);
     for (size_t p = 0; p < pixels; ++p) interleaved[p * channels.size() + c] = plane[p];
   }
-  if (kind == OutputKind::Rgb) {
+  if (row.plane == OutputPlane::Colour) {
     out.image = ImageRGBA(frame.width, frame.height);
     out.image->pixels = std::move(interleaved);
   } else {
@@ -127,9 +126,9 @@ DecodedOutput outputOfFrame(const ExrChannels& frame, OutputKind kind, const std
 }  // namespace
 
 ImageRGBA multilayerFrameColour(std::string_view bytes, const std::string& name) {
-  const std::vector<std::string>& names = multilayerChannels(OutputKind::Rgb);
+  const std::vector<std::string>& names = outputRow(kColourOutput).layerChannels;
   const std::set<std::string> channels(names.begin(), names.end());
-  return std::move(*outputOfFrame(decodeExrChannels(bytes, name, false, &channels), OutputKind::Rgb, name).image);
+  return std::move(*outputOfFrame(decodeExrChannels(bytes, name, false, &channels), kColourOutput, name).image);
 }
 
 std::map<OutputKind, DecodedOutput> DatasetReader::readOutputs(int index, const std::string& camera,
@@ -148,7 +147,7 @@ std::map<OutputKind, DecodedOutput> DatasetReader::readOutputs(int index, const 
   }
   const std::string name = showPath(dir_) + ": " + quote(record(index, camera, multilayer).path);
   std::set<std::string> channels;  // only what was asked for is decoded
-  for (OutputKind kind : kinds) channels.insert(multilayerChannels(kind).begin(), multilayerChannels(kind).end());
+  for (OutputKind kind : kinds) channels.insert(outputRow(kind).layerChannels.begin(), outputRow(kind).layerChannels.end());
   const ExrChannels decoded = decodeExrChannels(fileBytes(index, camera, multilayer, checkHash), name, channels.empty(), &channels);
   for (OutputKind kind : kinds) {
     if (kind == OutputKind::Multilayer) throw InputError(name + ": the frame file itself is not an output");

@@ -229,7 +229,7 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
   for (OutputKind kind : switchableOutputs()) {
     const std::string name = outputName(kind);
     bool on = out.wanted.count(kind) > 0;
-    if (kind == OutputKind::Coco && o.has(name) && o.raw(name).is_object()) {
+    if (outputRow(kind).classFilter && o.has(name) && o.raw(name).is_object()) {
       auto coco = o.optionalObject(name);
       on = true;
       const nlohmann::json& names = coco->raw("classes");

@@ -6,6 +6,7 @@
 
 #include "coco.h"
 #include "landmark_annotations.h"
+#include "frame_planes.h"
 #include "multilayer_frame.h"
 #include "scene_ids.h"
 
@@ -49,20 +50,19 @@ std::string annotationText(const FrameToEncode& f, OutputKind kind) {
   return doc.dump() + "\n";
 }
 
-// The files layout: one file per output.
+// The files layout: one file per output, encoded as its row says.
 std::string encodeOutputFile(const FrameToEncode& f, OutputKind kind, const std::string& path) {
-  const AovFrame* aov = f.aov;
-  switch (kind) {
-    case OutputKind::Rgb: return asString(encodeImage(path, f.rgb));
-    case OutputKind::Depth: return asString(encodeDataExr(path, aov->width, aov->height, 1, aov->depth.data()));
-    case OutputKind::Normal:
-      return asString(encodeDataExr(path, aov->width, aov->height, 3, aov->normal.data(), ExrPrecision::Half));
-    case OutputKind::Instance: return asString(encodeUint16Png(path, aov->width, aov->height, aov->instance));
-    case OutputKind::Semantic:
-      return asString(encodeUint16Png(path, aov->width, aov->height, classIdsOf(aov->instance, f.classOfInstance)));
-    case OutputKind::Landmarks:
-    case OutputKind::Coco: return annotationText(f, kind);
-    case OutputKind::Multilayer: break;
+  const OutputKindRow& row = outputRow(kind);
+  const FramePlanes planes{f.rgb, f.aov, f.classOfInstance};
+  const int width = planes.width(), height = planes.height(), channels = static_cast<int>(row.valuesPerPixel());
+  switch (row.encoding) {
+    case OutputEncoding::ColourImage: return asString(encodeImage(path, f.rgb));
+    case OutputEncoding::FloatExr: return asString(encodeDataExr(path, width, height, channels, planes.floats(row.plane)));
+    case OutputEncoding::HalfExr:
+      return asString(encodeDataExr(path, width, height, channels, planes.floats(row.plane), ExrPrecision::Half));
+    case OutputEncoding::Uint16Png: return asString(encodeUint16Png(path, width, height, planes.ids(row.plane)));
+    case OutputEncoding::Json: return annotationText(f, kind);
+    case OutputEncoding::MultilayerExr: break;
   }
   throw std::logic_error("encodeOutputFile: not an output of the files layout");
 }
@@ -72,7 +72,8 @@ std::string encodeMultilayerFile(const FrameToEncode& f, const std::string& path
   std::map<OutputKind, std::string> annotations;
   for (OutputKind kind : f.plan.outputs)
     if (isAnnotation(kind)) annotations[kind] = annotationText(f, kind);
-  return asString(encodeMultilayerFrame(path, f.rgb, f.aov, f.plan.outputs, f.classOfInstance, annotations, f.plan.compression));
+  return asString(encodeMultilayerFrame(path, FramePlanes{f.rgb, f.aov, f.classOfInstance}, f.plan.outputs, annotations,
+                                        f.plan.compression));
 }
 
 }  // namespace
@@ -91,7 +92,7 @@ std::vector<EncodedFile> encodeFrameOutputs(const Scene& scene, const RayScene* 
   // Each file is encoded on its own task: PNG and EXR compression dominate at 1 spp.
   tbb::parallel_for(size_t{0}, files.size(), [&](size_t k) {
     EncodedFile& file = files[k];
-    file.bytes = file.kind == OutputKind::Multilayer ? encodeMultilayerFile(frame, file.relativePath)
+    file.bytes = outputRow(file.kind).encoding == OutputEncoding::MultilayerExr ? encodeMultilayerFile(frame, file.relativePath)
                                                      : encodeOutputFile(frame, file.kind, file.relativePath);
   });
   // Inside a cancelled parallel_for (a neighbouring frame failed) the loop above ends early

@@ -10,41 +10,42 @@ namespace omnicam {
 
 namespace {
 
-// Whether a spec's `outputs` switches the kind on and off, and its default there.
-enum class InSpec { Always, On, Off, Never };
-
-struct KindRow {
-  OutputKind kind;
-  const char* name;
-  bool aovs;        // from the engine's AOVs
-  bool annotation;  // JSON
-  InSpec spec;
-};
+using P = OutputPlane;
+using E = OutputEncoding;
+using T = ExrSampleType;
 
 // Frame order. The one table of output kinds.
-constexpr KindRow kKinds[] = {
-    {OutputKind::Rgb, "rgb", false, false, InSpec::Always},
-    {OutputKind::Depth, "depth", true, false, InSpec::On},
-    {OutputKind::Instance, "instance", true, false, InSpec::On},
-    {OutputKind::Semantic, "semantic", true, false, InSpec::On},
-    {OutputKind::Normal, "normal", true, false, InSpec::On},
-    {OutputKind::Landmarks, "landmarks", false, true, InSpec::On},
-    {OutputKind::Coco, "coco", true, true, InSpec::Off},
-    {OutputKind::Multilayer, "multilayer", false, false, InSpec::Never},
+const OutputKindRow kKinds[] = {
+    {OutputKind::Rgb, "rgb", P::Colour, E::ColourImage, "png", {"R", "G", "B", "A"}, {"R", "G", "B", "A"}, T::Half,
+     false, false, InSpec::Always, false, false, Gathered::Never, ""},
+    {OutputKind::Depth, "depth", P::Depth, E::FloatExr, "exr", {"Z"}, {"depth.Z"}, T::Float,
+     true, false, InSpec::On, false, false, Gathered::Never, ""},
+    {OutputKind::Instance, "instance", P::Instance, E::Uint16Png, "png", {"I"}, {"instance.I"}, T::Uint,
+     true, false, InSpec::On, false, true, Gathered::Never, ""},
+    {OutputKind::Semantic, "semantic", P::Semantic, E::Uint16Png, "png", {"I"}, {"semantic.I"}, T::Uint,
+     true, false, InSpec::On, false, true, Gathered::Never, ""},
+    {OutputKind::Normal, "normal", P::Normal, E::HalfExr, "exr", {"X", "Y", "Z"}, {"normal.X", "normal.Y", "normal.Z"}, T::Half,
+     true, false, InSpec::On, false, false, Gathered::Never, ""},
+    {OutputKind::Landmarks, "landmarks", P::Annotation, E::Json, "json", {}, {}, T::Half,
+     false, true, InSpec::On, false, false, Gathered::InMultilayer, ""},
+    {OutputKind::Coco, "coco", P::Annotation, E::Json, "json", {}, {}, T::Half,
+     true, true, InSpec::Off, true, true, Gathered::Always, "COCO annotations come from the instance AOV"},
+    {OutputKind::Multilayer, "multilayer", P::Frame, E::MultilayerExr, "exr", {}, {}, T::Half,
+     false, false, InSpec::Never, false, false, Gathered::Never, ""},
 };
 
-const KindRow& row(OutputKind kind) {
-  for (const KindRow& r : kKinds)
+}  // namespace
+
+const OutputKindRow& outputRow(OutputKind kind) {
+  for (const OutputKindRow& r : kKinds)
     if (r.kind == kind) return r;
   throw std::logic_error("output kind " + std::to_string(static_cast<int>(kind)) + " has no row");
 }
 
-}  // namespace
-
-const char* outputName(OutputKind kind) { return row(kind).name; }
+const char* outputName(OutputKind kind) { return outputRow(kind).name; }
 
 std::optional<OutputKind> outputNamed(std::string_view name) {
-  for (const KindRow& r : kKinds)
+  for (const OutputKindRow& r : kKinds)
     if (name == r.name) return r.kind;
   return std::nullopt;
 }
@@ -52,28 +53,28 @@ std::optional<OutputKind> outputNamed(std::string_view name) {
 const std::vector<OutputKind>& allOutputKinds() {
   static const std::vector<OutputKind> kinds = [] {
     std::vector<OutputKind> all;
-    for (const KindRow& r : kKinds) all.push_back(r.kind);
+    for (const OutputKindRow& r : kKinds) all.push_back(r.kind);
     return all;
   }();
   return kinds;
 }
 
-bool needsAovs(OutputKind kind) { return row(kind).aovs; }
+bool needsAovs(OutputKind kind) { return outputRow(kind).aovs; }
 
 std::vector<OutputKind> switchableOutputs() {
   std::vector<OutputKind> kinds;
-  for (const KindRow& r : kKinds)
+  for (const OutputKindRow& r : kKinds)
     if (r.spec == InSpec::On || r.spec == InSpec::Off) kinds.push_back(r.kind);
   return kinds;
 }
 
 std::set<OutputKind> defaultOutputs() {
   std::set<OutputKind> kinds;
-  for (const KindRow& r : kKinds)
+  for (const OutputKindRow& r : kKinds)
     if (r.spec == InSpec::On) kinds.insert(r.kind);
   return kinds;
 }
-bool isAnnotation(OutputKind kind) { return row(kind).annotation; }
+bool isAnnotation(OutputKind kind) { return outputRow(kind).annotation; }
 
 const char* layoutName(DatasetLayout layout) { return layout == DatasetLayout::Multilayer ? "multilayer" : "files"; }
 
@@ -107,20 +108,19 @@ std::vector<OutputKind> FrameOutputPlan::fileKinds() const {
 std::vector<OutputKind> FrameOutputPlan::gatheredKinds() const {
   std::vector<OutputKind> kinds;
   for (OutputKind kind : outputs)
-    if (kind == OutputKind::Coco || (layout == DatasetLayout::Multilayer && isAnnotation(kind))) kinds.push_back(kind);
+    if (outputRow(kind).gathered == Gathered::Always ||
+        (layout == DatasetLayout::Multilayer && outputRow(kind).gathered == Gathered::InMultilayer))
+      kinds.push_back(kind);
   return kinds;
 }
 
 std::string FrameOutputPlan::frameFolder(const std::string& camera, OutputKind kind) const {
-  return camera + "/" + (kind == OutputKind::Rgb && eurocIntervalS ? "data" : outputName(kind));
+  return camera + "/" + (kind == kColourOutput && eurocIntervalS ? "data" : outputName(kind));
 }
 
 std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kind, int index) const {
-  if (kind == OutputKind::Rgb && eurocIntervalS) return frameFolder(camera, kind) + "/" + eurocImageName(index, *eurocIntervalS);
-  const char* extension = isAnnotation(kind) ? "json"
-                          : kind == OutputKind::Rgb ? (rgbFormat == "exr" ? "exr" : "png")
-                          : kind == OutputKind::Instance || kind == OutputKind::Semantic ? "png"
-                                                                                         : "exr";
+  if (kind == kColourOutput && eurocIntervalS) return frameFolder(camera, kind) + "/" + eurocImageName(index, *eurocIntervalS);
+  const char* extension = kind == kColourOutput && rgbFormat == "exr" ? "exr" : outputRow(kind).extension;
   char name[32];
   std::snprintf(name, sizeof name, "%06d.%s", index, extension);
   return frameFolder(camera, kind) + "/" + name;
@@ -136,7 +136,7 @@ std::string gatheredPath(const std::string& camera, OutputKind kind) { return ca
 
 std::vector<std::string> cameraFolderNames() {
   std::vector<std::string> names;
-  for (const KindRow& r : kKinds) names.push_back(r.name);
+  for (const OutputKindRow& r : kKinds) names.push_back(r.name);
   names.push_back("intrinsics");
   names.push_back("data");  // EuRoC/ASL
   return names;
@@ -145,7 +145,7 @@ std::vector<std::string> cameraFolderNames() {
 bool isLayoutFile(const std::string& relative, const std::set<std::string>& cameras) {
   static const std::regex layout = [] {
     std::string kinds, annotations;
-    for (const KindRow& r : kKinds) {
+    for (const OutputKindRow& r : kKinds) {
       kinds += (kinds.empty() ? "" : "|") + std::string(r.name);
       if (r.annotation) annotations += (annotations.empty() ? "" : "|") + std::string(r.name);
     }

@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "exr_channels.h"
+
 namespace omnicam {
 
 // What one camera's frame records. Multilayer is that layout's one file per frame holding the others.
@@ -20,6 +22,39 @@ enum class OutputKind { Rgb, Depth, Instance, Semantic, Normal, Landmarks, Coco,
 enum class DatasetLayout { Files, Multilayer };
 // How the multilayer layout's frame files are compressed (both lossless).
 enum class FrameCompression { Rle, Zip };
+
+// Where a kind's values come from in a rendered frame, and how its own file stores them.
+enum class OutputPlane { Colour, Depth, Normal, Instance, Semantic, Annotation, Frame };
+enum class OutputEncoding { ColourImage, FloatExr, HalfExr, Uint16Png, Json, MultilayerExr };
+// Whether a spec's `outputs` switches the kind on and off, and its default there.
+enum class InSpec { Always, On, Off, Never };
+// When an annotation is gathered into one file per camera once the dataset is complete.
+enum class Gathered { Never, Always, InMultilayer };
+
+// One kind, declared once: every encoder, decoder, the multilayer writer, the plan, `compare` and
+// Python iterate over these rows.
+struct OutputKindRow {
+  OutputKind kind;
+  const char* name;                        // the manifest's key, the folder, Python's key
+  OutputPlane plane;
+  OutputEncoding encoding;                 // its own file (files layout)
+  const char* extension;                   // of that file (colour: the plan's rgb format)
+  std::vector<std::string> fileChannels;   // that file's OpenEXR channels, or the image's RGBA
+  std::vector<std::string> layerChannels;  // its channels in a multilayer frame (none: in the header)
+  ExrSampleType layerType;
+  bool aovs;                               // rendered from the engine's AOVs, or derived from them
+  bool annotation;                         // JSON
+  InSpec spec;
+  bool classFilter;                        // a spec may give {"classes": [names]} (COCO)
+  bool instanceIds;                        // made of 16-bit instance ids
+  Gathered gathered;
+  const char* aovNote;                     // why it needs AOVs, where that is not obvious ("" if it is)
+  // Values per pixel when decoded (the reader and Python): the channels it has.
+  size_t valuesPerPixel() const { return fileChannels.size(); }
+};
+const OutputKindRow& outputRow(OutputKind kind);
+// The kind that holds a frame's colour (every frame has it).
+inline constexpr OutputKind kColourOutput = OutputKind::Rgb;
 
 // The kind's name: the manifest's key for its files and the folder they are in.
 const char* outputName(OutputKind kind);

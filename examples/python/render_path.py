@@ -33,7 +33,7 @@ def main(out_dir):
     palette[0] = 0.0  # instance 0: nothing (beyond the rim, or the sky)
     for row, pose in zip(axes, poses):
         frame = renderer.render(pose, spp=4, shading="lit", outputs=["rgb", "depth", "instance"])
-        row[0].imshow(np.clip(frame["rgb"], 0, 1) ** (1 / 2.2))  # linear → display
+        row[0].imshow(np.clip(frame["rgb"][..., :3], 0, 1) ** (1 / 2.2))  # linear RGB (alpha dropped) → display
         row[0].set_title("pose (%.1f, %.1f, %.0f°)" % pose, fontsize=9)
         depth = np.ma.masked_equal(frame["depth"], 0.0)
         shown = row[1].imshow(depth, cmap="viridis", vmax=np.percentile(depth.compressed(), 95))

@@ -5,7 +5,7 @@ The library's own objects, not subprocess calls (docs/python.md)::
     import omnicam
     scene = omnicam.load_scene("scenes/robocup2006.json")
     renderer = omnicam.Renderer(scene)
-    frame = renderer.render((1.0, 2.0, 90.0), outputs=["rgba", "depth", "instance"])
+    frame = renderer.render((1.0, 2.0, 90.0), outputs=["rgb", "depth", "instance"])
     camera = omnicam.Camera(scene.rig)
     pixels = camera.project(points_world, pose=(1.0, 2.0, 90.0))
 """

@@ -71,7 +71,7 @@ class Camera:
     @property
     def rig(self) -> Rig: ...
 
-Outputs = Sequence[str]  # "rgba", "rgb", "depth", "instance", "class", "normal"
+Outputs = Sequence[str]  # "rgb" (H, W, 4), "depth", "instance", "semantic", "normal": the dataset names
 
 class Renderer:
     """A renderer of one scene, reused across renders."""

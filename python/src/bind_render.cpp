@@ -1,6 +1,7 @@
 // omnicam.Renderer and omnicam.render: images and AOVs as numpy arrays.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <mutex>
@@ -9,6 +10,8 @@
 #include "bindings.h"
 #include "input_limits.h"
 #include "engines.h"
+#include "frame_planes.h"
+#include "output_kinds.h"
 #include "errors.h"
 #include "scene_ids.h"
 
@@ -27,7 +30,25 @@ int optionalSize(const PyInteger& size) {
   return size.fitsInt64 && size.value == 0 ? 0 : narrowed(size, "size", limits::kMinImageSize, limits::kMaxImageSize);
 }
 
-const std::set<std::string> kOutputs{"rgba", "rgb", "depth", "instance", "class", "normal"};
+// The image outputs a render returns, named as datasets name them (output_kinds.h); the old names
+// "rgba" and "class" are refused with the new ones.
+std::vector<OutputKind> imageOutputs(const std::vector<std::string>& names) {
+  std::string choices;
+  for (OutputKind kind : allOutputKinds())
+    if (!isAnnotation(kind) && outputRow(kind).plane != OutputPlane::Frame)
+      choices += (choices.empty() ? "" : ", ") + std::string(outputName(kind));
+  std::vector<OutputKind> kinds;
+  for (const std::string& name : names) {
+    const auto kind = outputNamed(name);
+    if (name == "rgba" || name == "class")
+      throw InputError("outputs: " + quote(name) + " is now " + (name == "rgba" ? "\"rgb\" (H, W, 4)" : "\"semantic\"") +
+                       ", as datasets name it");
+    if (!kind || isAnnotation(*kind) || outputRow(*kind).plane == OutputPlane::Frame)
+      throw InputError("outputs: " + quote(name) + " is not one of " + choices);
+    if (std::find(kinds.begin(), kinds.end(), *kind) == kinds.end()) kinds.push_back(*kind);
+  }
+  return kinds;
+}
 
 // One engine for one scene, reused render after render (the fast engine builds its ray-tracing
 // scene once). Renders of engines that may run concurrently run so, the GIL released; the others
@@ -55,13 +76,11 @@ class PyRenderer {
     const CameraPlacement placement(pose.is_none() ? scene_->startPose : poseFrom(pose, "pose"),
                                     velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
     checkPlacement(placement);
+    const std::vector<OutputKind> kinds = imageOutputs(outputs);
     bool aovs = false;
-    for (const std::string& o : outputs) {
-      if (!kOutputs.count(o)) throw InputError("outputs: " + quote(o) + " is not one of rgba, rgb, depth, instance, class, normal");
-      aovs = aovs || (o != "rgba" && o != "rgb");
-    }
+    for (OutputKind kind : kinds) aovs = aovs || needsAovs(kind);
     if (aovs && !engine_->capabilities().aovs)
-      throw InputError("outputs: the " + engine_->name() + " engine renders colour only (rgba, rgb)");
+      throw InputError("outputs: the " + engine_->name() + " engine renders colour only (rgb)");
     Film film = filmFor(settings, aovs);
     {
       py::gil_scoped_release release;
@@ -69,7 +88,7 @@ class PyRenderer {
       if (!engine_->capabilities().concurrent) turn.lock();
       engine_->render(placement, settings, film);
     }
-    return arrays(std::move(film.image), film.aovs ? std::move(*film.aovs) : AovFrame{}, outputs);
+    return arrays(film, kinds);
   }
 
   // The benchmark's reference (bench/python_bench.py): `frames` renders of one pose in a C++ loop,
@@ -94,23 +113,24 @@ class PyRenderer {
   const std::shared_ptr<const Scene>& scene() const { return scene_; }
 
  private:
-  py::dict arrays(ImageRGBA&& image, AovFrame&& frame, const std::vector<std::string>& outputs) const {
-    const py::ssize_t h = image.height, w = image.width;
+  // Each kind's plane as its row says (output_kinds.h): the dataset's names and channels; the
+  // colour and the float AOVs hand their buffers over, ids are made as the dataset stores them.
+  py::dict arrays(Film& film, const std::vector<OutputKind>& kinds) const {
+    const py::ssize_t h = film.height(), w = film.width();
+    const FramePlanes planes{film.image, film.aovs ? &*film.aovs : nullptr, ids_.classOfInstance};
     py::dict out;
-    const std::set<std::string> wanted(outputs.begin(), outputs.end());
-    if (wanted.count("class")) {
-      std::vector<uint16_t> classes(frame.instance.size());
-      for (size_t p = 0; p < classes.size(); ++p) classes[p] = ids_.classOfInstance[frame.instance[p]];
-      out["class"] = arrayTakingOver(std::move(classes), {h, w});
-    }
-    if (wanted.count("depth")) out["depth"] = arrayTakingOver(std::move(frame.depth), {h, w});
-    if (wanted.count("normal")) out["normal"] = arrayTakingOver(std::move(frame.normal), {h, w, 3});
-    if (wanted.count("instance")) out["instance"] = arrayTakingOver(std::move(frame.instance), {h, w});
-    if (wanted.count("rgba") || wanted.count("rgb")) {
-      py::array_t<float> rgba = arrayTakingOver(std::move(image.pixels), {h, w, 4});
-      if (wanted.count("rgba")) out["rgba"] = rgba;
-      // A view of the same pixels: no copy.
-      if (wanted.count("rgb")) out["rgb"] = rgba[py::make_tuple(py::ellipsis(), py::slice(0, 3, 1))];
+    for (OutputKind kind : kinds) {
+      const OutputKindRow& row = outputRow(kind);
+      const auto c = static_cast<py::ssize_t>(row.valuesPerPixel());
+      std::vector<py::ssize_t> shape = c == 1 ? std::vector<py::ssize_t>{h, w} : std::vector<py::ssize_t>{h, w, c};
+      if (row.encoding == OutputEncoding::Uint16Png) {
+        out[row.name] = arrayTakingOver(planes.ids(row.plane), shape);
+      } else if (row.plane == OutputPlane::Colour) {
+        out[row.name] = arrayTakingOver(std::move(film.image.pixels), shape);
+      } else {
+        std::vector<float>& plane = row.plane == OutputPlane::Depth ? film.aovs->depth : film.aovs->normal;
+        out[row.name] = arrayTakingOver(std::move(plane), shape);
+      }
     }
     return out;
   }
@@ -127,10 +147,11 @@ constexpr const char* kRenderDoc = R"(Renders the scene from a robot pose (x, y,
 rig: another rig (default the scene's); size: the image size (default the rig's); spp: samples
 per pixel, a perfect square; shading: "unlit" or "lit"; traced: trace the physical camera even
 for the ideal rig; velocity: (vx, vy, yaw_rate_deg_per_s), the robot's body velocity over the
-rig's shutter (docs/motion.md; the pose is the exposure start's). outputs: any of "rgba" (H, W, 4) float32 linear, premultiplied alpha; "rgb"
-(H, W, 3) a view of the same pixels; "depth" (H, W) float32 metres along the viewing ray;
-"instance" and "class" (H, W) uint16 ids (Scene.ids); "normal" (H, W, 3) float32 world-frame.
-AOVs (all but rgba and rgb) are point-sampled at pixel centres, fast engine only. Returns a dict
+rig's shutter (docs/motion.md; the pose is the exposure start's). outputs, named and shaped as
+datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultiplied alpha;
+"depth" (H, W) float32 metres along the viewing ray; "instance" and "semantic" (H, W) uint16 ids
+(Scene.ids); "normal" (H, W, 3) float32 world-frame. AOVs (all but rgb) are point-sampled at
+pixel centres, fast engine only. Returns a dict
 of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.)";
 
 const std::string kOneRenderDoc =
@@ -164,7 +185,7 @@ per ground-truth frame; threads: 0 for every core.)")
            py::arg("timeout") = py::none(), py::arg("threads") = py::none())
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
-           py::arg("outputs") = std::vector<std::string>{"rgba"}, py::arg("velocity") = py::none(), kRenderDoc)
+           py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), kRenderDoc)
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -183,7 +204,7 @@ per ground-truth frame; threads: 0 for every core.)")
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = py::none(), py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
-      py::arg("outputs") = std::vector<std::string>{"rgba"}, py::arg("velocity") = py::none(),
+      py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
       kOneRenderDoc.c_str());
 }
 

@@ -37,7 +37,7 @@ def mask_from_runs(runs, height, width):
 
 
 def test_every_annotation_decodes_to_its_instance_mask(robocup):
-    frame = omnicam.Renderer(robocup).render((4.0, 3.2, 0.0), outputs=["instance", "class"])
+    frame = omnicam.Renderer(robocup).render((4.0, 3.2, 0.0), outputs=["instance", "semantic"])
     instance = frame["instance"]
     annotations = omnicam.coco_annotations(instance, robocup)
     names = {c["id"]: c["name"] for c in robocup.ids["classes"]}
@@ -49,7 +49,7 @@ def test_every_annotation_decodes_to_its_instance_mask(robocup):
         rows, cols = np.nonzero(mask)
         assert a["bbox"] == [cols.min(), rows.min(), cols.max() - cols.min() + 1, rows.max() - rows.min() + 1]
         assert a["area"] == mask.sum() and a["iscrowd"] == 0
-        assert frame["class"][rows[0], cols[0]] == a["category_id"]
+        assert frame["semantic"][rows[0], cols[0]] == a["category_id"]
     # Every visible instance of those classes is annotated, once.
     chosen = {c["id"] for c in robocup.ids["classes"] if c["name"] in ("beacon", "goal")}
     class_of = {i["id"]: i["class_id"] for i in robocup.ids["instances"]}

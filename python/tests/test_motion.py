@@ -33,17 +33,17 @@ def test_a_moving_render_is_the_cli_s_bit_for_bit(robocup, tmp_path):
     scene["rig"] = rig.to_dict()
     scene_file.write_text(json.dumps(scene))
     pose, velocity = (0.3, -0.2, 40.0), (1.0, 0.2, 90.0)
-    ours = omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgba"]
+    ours = omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgb"]
     code, out, err = run_cli("render", scene_file, "--spp", "4", "--pose=0.3,-0.2,40", "--velocity", "1,0.2,90",
                              "-o", tmp_path / "cli.exr")
     assert code == 0, out + err
     assert np.array_equal(ours, omnicam.read_image(str(tmp_path / "cli.exr")))
-    still = omnicam.render(robocup, pose, rig=rig, spp=4)["rgba"]
+    still = omnicam.render(robocup, pose, rig=rig, spp=4)["rgb"]
     assert not np.array_equal(ours, still)
     # With the shutter an instant, a velocity changes nothing.
     rig.shutter = None
-    assert np.array_equal(omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgba"],
-                          omnicam.render(robocup, pose, rig=rig, spp=4)["rgba"])
+    assert np.array_equal(omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgb"],
+                          omnicam.render(robocup, pose, rig=rig, spp=4)["rgb"])
 
 
 def test_a_bad_velocity_or_a_shutter_the_engine_cannot_render_is_an_input_error(robocup):
@@ -72,5 +72,5 @@ def test_a_dataset_item_carries_its_velocity_and_its_vibrating_rig(source, tmp_p
     assert all(abs(t) <= 1.0 for t in second["rig"].tilt_deg)
     # The item's rig renders the item's image again (the scene's shutter is an instant: the
     # velocity changes nothing here, and the frame is the still render of its rig).
-    again = omnicam.render(robocup, second["pose"], rig=second["rig"], velocity=second["velocity"])["rgba"]
+    again = omnicam.render(robocup, second["pose"], rig=second["rig"], velocity=second["velocity"])["rgb"]
     assert np.array_equal(again, second["rgb"])

@@ -19,15 +19,15 @@ def test_the_pixels_are_the_clis_exactly(robocup, tmp_path):
                            "--spp", 4, "--shading", "lit", "-o", tmp_path / "cli.exr")
     assert code == 0, err
     cli = omnicam.read_image(str(tmp_path / "cli.exr"))
-    assert frame["rgba"].dtype == np.float32 and frame["rgba"].shape == (360, 360, 4)
-    np.testing.assert_array_equal(frame["rgba"], cli)
+    assert frame["rgb"].dtype == np.float32 and frame["rgb"].shape == (360, 360, 4)
+    np.testing.assert_array_equal(frame["rgb"], cli)
 
 
 def test_depth_of_the_floor_is_the_distance_along_the_ray(robocup):
     """Every floor pixel's depth is where its pixel-centre ray meets the plane z = 0."""
-    frame = omnicam.Renderer(robocup).render(POSE, outputs=["depth", "class", "instance"])
+    frame = omnicam.Renderer(robocup).render(POSE, outputs=["depth", "semantic", "instance"])
     floor_id = next(c["id"] for c in robocup.ids["classes"] if c["name"] == "floor")
-    rows, cols = np.nonzero(frame["class"] == floor_id)
+    rows, cols = np.nonzero(frame["semantic"] == floor_id)
     assert rows.size > 5000
     centres = np.column_stack([cols + 0.5, rows + 0.5])
     origins, directions = omnicam.Camera(robocup.rig).rays(centres, pose=POSE)
@@ -36,9 +36,9 @@ def test_depth_of_the_floor_is_the_distance_along_the_ray(robocup):
 
 
 def test_class_ids_follow_the_scenes_instance_table(robocup):
-    frame = omnicam.Renderer(robocup).render(POSE, outputs=["instance", "class", "normal", "depth"])
+    frame = omnicam.Renderer(robocup).render(POSE, outputs=["instance", "semantic", "normal", "depth"])
     class_of = np.array([i["class_id"] for i in robocup.ids["instances"]], dtype=np.uint16)
-    np.testing.assert_array_equal(frame["class"], class_of[frame["instance"]])
+    np.testing.assert_array_equal(frame["semantic"], class_of[frame["instance"]])
     hit = frame["instance"] > 0
     # The field below the horizon (its radius is 73.7 px of 180) and the low walls: the rest of
     # the mirror sees the sky, which holds nothing.
@@ -48,21 +48,32 @@ def test_class_ids_follow_the_scenes_instance_table(robocup):
     assert (frame["normal"][~hit] == 0).all()
 
 
-def test_arrays_own_the_rendered_buffers(robocup):
-    frame = omnicam.Renderer(robocup).render(POSE, outputs=["rgba", "rgb", "depth"])
-    assert frame["rgba"].flags.owndata is False and frame["rgba"].base is not None  # the C++ buffer itself
-    assert np.shares_memory(frame["rgb"], frame["rgba"])
-    np.testing.assert_array_equal(frame["rgb"], frame["rgba"][..., :3])
+def test_arrays_own_the_rendered_buffers_and_are_named_and_shaped_as_datasets_store_them(robocup):
+    frame = omnicam.Renderer(robocup).render(POSE, outputs=["rgb", "depth", "semantic", "normal"])
+    assert frame["rgb"].flags.owndata is False and frame["rgb"].base is not None  # the C++ buffer itself
+    assert frame["rgb"].shape == (360, 360, 4) and frame["rgb"].dtype == np.float32
     assert frame["depth"].shape == (360, 360) and frame["depth"].dtype == np.float32
+    assert frame["semantic"].shape == (360, 360) and frame["semantic"].dtype == np.uint16
+    assert frame["normal"].shape == (360, 360, 3)
+
+
+def test_the_old_output_names_are_refused_with_the_new_ones(robocup):
+    renderer = omnicam.Renderer(robocup)
+    with pytest.raises(omnicam.InputError, match=r'outputs: "rgba" is now "rgb" \(H, W, 4\), as datasets name it'):
+        renderer.render(outputs=["rgba"])
+    with pytest.raises(omnicam.InputError, match='outputs: "class" is now "semantic"'):
+        renderer.render(outputs=["class"])
+    with pytest.raises(omnicam.InputError, match='is not one of rgb, depth, instance, semantic, normal'):
+        renderer.render(outputs=["landmarks"])
 
 
 def test_one_renderer_serves_threads_and_poses(robocup):
     renderer = omnicam.Renderer(robocup)
     assert renderer.concurrent
     poses = [(1.0 + 0.5 * k, 2.0, 20.0 * k) for k in range(6)]
-    alone = [renderer.render(p, size=120)["rgba"] for p in poses]
+    alone = [renderer.render(p, size=120)["rgb"] for p in poses]
     with concurrent.futures.ThreadPoolExecutor(3) as pool:
-        together = list(pool.map(lambda p: renderer.render(p, size=120)["rgba"], poses))
+        together = list(pool.map(lambda p: renderer.render(p, size=120)["rgb"], poses))
     for a, b in zip(alone, together):
         np.testing.assert_array_equal(a, b)
     assert not np.array_equal(alone[0], alone[1])
@@ -71,8 +82,8 @@ def test_one_renderer_serves_threads_and_poses(robocup):
 def test_a_physical_rig_renders(robocup):
     rig = robocup.rig
     rig.camera_offset_mm = [2.0, 0.0, 0.0]
-    moved = omnicam.render(robocup, POSE, rig=rig, size=120)["rgba"]
-    ideal = omnicam.render(robocup, POSE, size=120)["rgba"]
+    moved = omnicam.render(robocup, POSE, rig=rig, size=120)["rgb"]
+    ideal = omnicam.render(robocup, POSE, size=120)["rgb"]
     assert moved.shape == ideal.shape and not np.array_equal(moved, ideal)
 
 
