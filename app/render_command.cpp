@@ -14,6 +14,7 @@
 #include "errors.h"
 #include "image.h"
 #include "make_camera.h"
+#include "frame_sequence.h"
 #include "render_output.h"
 #include "atomic_file.h"
 #include "sidecar.h"
@@ -138,35 +139,23 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     }
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + request.engine + ")", total);
-  // A batching engine (Blender) renders kFramesPerBatch poses per session.
-  std::vector<ImageRGBA> batch;
-  double batchSeconds = 0.0;
-  auto renderBatch = [&](int first) {
-    const int last = std::min(total, first + kFramesPerBatch);
-    std::vector<CameraPlacement> placements;
-    for (int f = first; f < last; ++f) placements.emplace_back(path->poses[f], velocity);
-    const auto start = std::chrono::steady_clock::now();
-    batch = engine->renderMany(placements, settings);
-    batchSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / (last - first);
-  };
-  // Frame f is written while frame f + 1 renders; each file still appears atomically.
+  // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
+  // each file still appears atomically.
   std::future<void> writing;
-  for (int f = 0; f < total; ++f) {
-    const bool batches = engine->capabilities().batches;
-    const CameraPlacement placement(path->poses[f], velocity);
-    if (batches && f % kFramesPerBatch == 0) renderBatch(f);
-    RenderedFile rendered = !batches ? renderPose(scene, *engine, placement, settings)
-                                     : RenderedFile{std::move(batch[f % kFramesPerBatch]),
-                                                    renderSidecar(scene, *engine, placement, settings, batchSeconds)};
-    rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
-    if (writing.valid()) writing.get();
-    writing = std::async(std::launch::async, [file = frameFile(f),
-                                              frame = std::move(rendered), &views] {
-      writeRendered(file, frame);
-      views.write(file, frame);
-    });
-    progress.step();
-  }
+  const auto placementOf = [&](size_t f) { return CameraPlacement(path->poses[f], velocity); };
+  renderSequence(
+      static_cast<size_t>(total), framesPerBatch(*engine), placementOf,
+      [&](const std::vector<CameraPlacement>& placements) { return engine->renderMany(placements, settings); },
+      [&](size_t f, ImageRGBA&& image, double seconds) {
+        RenderedFile rendered{std::move(image), renderSidecar(scene, *engine, placementOf(f), settings, seconds)};
+        rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
+        if (writing.valid()) writing.get();
+        writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
+          writeRendered(file, frame);
+          views.write(file, frame);
+        });
+        progress.step();
+      });
   if (writing.valid()) writing.get();
   progress.finish();
   std::printf("wrote %d frames to %s\n", total, a.out.c_str());

@@ -35,10 +35,10 @@ Gathering gatheringOf(const json& header) {
 }
 
 // A file's bytes, checked against the manifest.
-std::string checkedBytes(const std::string& dir, const FileRecord& file) {
-  std::string bytes = readFileInside(dir, file.path, kMaxDatasetFileBytes);
+std::string checkedBytes(const SafeFolder& dir, const FileRecord& file) {
+  std::string bytes = dir.readFile(file.path, kMaxDatasetFileBytes);
   if (sha256OfBytes(bytes) != file.sha256)
-    throw InputError(showPath(dir) + ": " + quote(file.path) + ": changed since it was written (run omnicam dataset --verify)");
+    throw InputError(showPath(dir.path()) + ": " + quote(file.path) + ": changed since it was written (run omnicam dataset --verify)");
   return bytes;
 }
 
@@ -51,18 +51,18 @@ struct FrameParts {
 
 // The record of `kind` every frame of a complete dataset has: InputError when a (forged) manifest
 // lacks it.
-const FileRecord& requiredRecord(const std::string& dir, const CameraFrame& frame, OutputKind kind, const std::string& where) {
+const FileRecord& requiredRecord(const SafeFolder& dir, const CameraFrame& frame, OutputKind kind, const std::string& where) {
   const FileRecord* file = frame.file(kind);
-  if (!file) throw InputError(showPath(dir) + ": " + where + " has no " + quote(outputName(kind)) + " file");
+  if (!file) throw InputError(showPath(dir.path()) + ": " + where + " has no " + quote(outputName(kind)) + " file");
   return *file;
 }
 
-FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const Gathering& gathering, const std::string& where) {
+FrameParts framePartsOf(const SafeFolder& dir, const CameraFrame& frame, const Gathering& gathering, const std::string& where) {
   FrameParts out;
   if (gathering.layout == DatasetLayout::Multilayer) {
     const FileRecord& file = requiredRecord(dir, frame, OutputKind::Multilayer, where);
     out.image = file.path;
-    out.name = showPath(dir) + "/" + file.path;
+    out.name = showPath(dir.path()) + "/" + file.path;
     const std::string& name = out.name;
     const ExrChannels header = decodeExrChannels(checkedBytes(dir, file), name, /*headerOnly=*/true);
     for (OutputKind kind : gathering.kinds) {
@@ -75,7 +75,7 @@ FrameParts framePartsOf(const std::string& dir, const CameraFrame& frame, const 
   out.image = requiredRecord(dir, frame, kColourOutput, where).path;
   for (OutputKind kind : gathering.kinds) {
     const FileRecord& file = requiredRecord(dir, frame, kind, where);
-    out.name = showPath(dir) + "/" + file.path;
+    out.name = showPath(dir.path()) + "/" + file.path;
     out.parts[kind] = parseJsonText(checkedBytes(dir, file), out.name);
   }
   return out;
@@ -140,14 +140,14 @@ class CocoFile {
 // Every frame's landmark annotations of one camera, in frame order.
 json landmarksFile(const std::string& camera, const json& frames) { return {{"camera", camera}, {"frames", frames}}; }
 
-void writeCameraFiles(const std::string& dir, DatasetManifest& manifest, json& camera, const Gathering& gathering) {
+void writeCameraFiles(const SafeFolder& dir, DatasetManifest& manifest, json& camera, const Gathering& gathering) {
   const std::string name = camera.at("name").get<std::string>();
   CocoFile coco(manifest.header, name);
   json landmarkFrames = json::array();
   for (const auto& [index, frame] : manifest.frames) {
     const std::string where = "frame " + std::to_string(index) + " camera " + quote(name);
     const auto c = frame.cameras.find(name);
-    if (c == frame.cameras.end()) throw InputError(showPath(dir) + ": " + where + " is not in the manifest");
+    if (c == frame.cameras.end()) throw InputError(showPath(dir.path()) + ": " + where + " is not in the manifest");
     const FrameParts parts = framePartsOf(dir, c->second, gathering, where);
     try {  // a part's fields are untrusted: a missing or mistyped one is the part's fault
       if (const auto part = parts.parts.find(OutputKind::Coco); part != parts.parts.end())
@@ -161,14 +161,14 @@ void writeCameraFiles(const std::string& dir, DatasetManifest& manifest, json& c
   for (OutputKind kind : gathering.kinds) {
     const std::string text = (kind == OutputKind::Coco ? coco.document() : landmarksFile(name, landmarkFrames)).dump() + "\n";
     const std::string relative = gatheredPath(name, kind);
-    writeFileInside(dir, relative, text, Durability::Unsynced);
+    dir.writeFile(relative, text, Durability::Unsynced);
     camera["files"][outputName(kind)] = {{"path", relative}, {"sha256", sha256OfBytes(text)}};
   }
 }
 
 }  // namespace
 
-void writeAnnotationFiles(const std::string& dir, DatasetManifest& manifest) {
+void writeAnnotationFiles(const SafeFolder& dir, DatasetManifest& manifest) {
   const Gathering gathering = gatheringOf(manifest.header);
   if (gathering.kinds.empty()) return;
   for (json& camera : manifest.header.at("cameras")) writeCameraFiles(dir, manifest, camera, gathering);

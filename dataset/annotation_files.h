@@ -9,6 +9,7 @@
 #include <string>
 
 #include "manifest.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -16,6 +17,6 @@ namespace omnicam {
 // outputs.written) and lists each among the camera's files under its kind's name. Each part is
 // read inside the folder (no link followed) and must hash to the manifest's SHA-256: InputError
 // naming it otherwise.
-void writeAnnotationFiles(const std::string& dir, DatasetManifest& manifest);
+void writeAnnotationFiles(const SafeFolder& dir, DatasetManifest& manifest);
 
 }  // namespace omnicam

@@ -13,7 +13,7 @@
 
 namespace omnicam {
 
-DatasetReader::DatasetReader(std::string dir) : dir_(std::move(dir)), manifest_(readDatasetManifest(dir_)) {
+DatasetReader::DatasetReader(std::string dir) : dir_(std::move(dir)), folder_(dir_), manifest_(readDatasetManifest(dir_)) {
   for (const auto& [index, frame] : manifest_.frames) frames_.push_back(index);
 }
 
@@ -52,7 +52,7 @@ FileRecord DatasetReader::record(std::optional<int> index, const std::string& ca
 std::string DatasetReader::fileBytes(std::optional<int> index, const std::string& camera, const std::string& kind,
                                      bool checkHash) const {
   const FileRecord file = record(index, camera, kind);
-  std::string bytes = readFileInside(dir_, file.path, kMaxDatasetFileBytes);
+  std::string bytes = folder_.readFile(file.path, kMaxDatasetFileBytes);
   if (checkHash && sha256OfBytes(bytes) != file.sha256)
     throw InputError(showPath(dir_) + ": " + quote(file.path) + ": changed since it was written (SHA-256 differs from the manifest's)");
   return bytes;

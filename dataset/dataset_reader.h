@@ -10,6 +10,7 @@
 
 #include "image.h"
 #include "manifest.h"
+#include "safe_files.h"
 #include "output_kinds.h"
 
 namespace omnicam {
@@ -53,6 +54,7 @@ class DatasetReader {
  private:
   FileRecord record(std::optional<int> index, const std::string& camera, const std::string& kind) const;
   std::string dir_;
+  SafeFolder folder_;  // the folder, opened once: every file is read through its descriptor
   DatasetManifest manifest_;
   std::vector<int> frames_;
 };

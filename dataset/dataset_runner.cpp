@@ -35,13 +35,13 @@ std::set<std::string> cameraNames(const DatasetManifest& manifest) {
 // Overwriting: removes the files `old` lists in the dataset layout (regular files only), then
 // its camera folders that this leaves empty. Nothing else: a folder named like a camera may hold
 // the user's own files, and they stay.
-void removeDatasetFiles(const std::string& dir, const DatasetManifest& old) {
+void removeDatasetFiles(const SafeFolder& dir, const DatasetManifest& old) {
   const std::set<std::string> cameras = cameraNames(old);
   for (const FileRecord& file : manifestFiles(old))
-    if (isLayoutFile(file.path, cameras)) removeFileInside(dir, file.path);
+    if (isLayoutFile(file.path, cameras)) dir.removeFile(file.path);
   for (const std::string& camera : cameras) {
-    for (const std::string& folder : cameraFolderNames()) removeEmptyFolderInside(dir, camera + "/" + folder);
-    removeEmptyFolderInside(dir, camera);
+    for (const std::string& folder : cameraFolderNames()) dir.removeEmptyFolder(camera + "/" + folder);
+    dir.removeEmptyFolder(camera);
   }
 }
 
@@ -59,26 +59,27 @@ DatasetManifest readPreviousManifest(const std::string& dir, const std::string& 
 // files are then removed. A shard reads its own manifest, and the merged one if there is one.
 std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, const json& header,
                                               const std::string& manifestName) {
-  const std::string& dir = options.dir;
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError(showPath(dir) + ": exists and is not a folder");
-  if (!fs::exists(dir, ec) || fs::is_empty(dir, ec)) return std::nullopt;
+  if (fs::exists(options.dir, ec) && !fs::is_directory(options.dir, ec))
+    throw InputError(showPath(options.dir) + ": exists and is not a folder");
+  if (!fs::exists(options.dir, ec) || fs::is_empty(options.dir, ec)) return std::nullopt;
+  const SafeFolder dir(options.dir);
   std::vector<std::string> names{kManifestName};
   if (manifestName != kManifestName) names.push_back(manifestName);
   std::optional<DatasetManifest> previous;
   for (const std::string& name : names) {
-    if (entryInside(dir, name) == EntryKind::Missing) continue;
-    previous = readPreviousManifest(dir, name);
+    if (dir.entry(name) == EntryKind::Missing) continue;
+    previous = readPreviousManifest(options.dir, name);
     if (datasetIdentity(previous->header) != datasetIdentity(header) && !options.overwrite) {
       const json sha = previous->header.value("spec_sha256", json());
-      throw OtherDatasetError(showPath(dir) + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
+      throw OtherDatasetError(showPath(options.dir) + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
                               (sha.is_string() ? quote(sha.get<std::string>()) : std::string("?")) + ")");
     }
   }
   if (!previous) {
     // Other shards of a dataset fill the folder ("shards/" marks it as theirs).
-    if (manifestName != kManifestName && entryInside(dir, "shards") == EntryKind::Folder) return std::nullopt;
-    throw InputError(showPath(dir) + ": folder is not empty and has no " + kManifestName +
+    if (manifestName != kManifestName && dir.entry("shards") == EntryKind::Folder) return std::nullopt;
+    throw InputError(showPath(options.dir) + ": folder is not empty and has no " + kManifestName +
                      ": omnicam writes a dataset only into an empty folder or its own dataset's (and replaces only files a "
                      "dataset's manifest lists)");
   }
@@ -91,7 +92,7 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
 // exactly the ones this run writes, each still a regular file hashing to the manifest's SHA-256
 // (a link or anything else is not intact: the frame is rendered again, and the rename replaces
 // the entry without writing through it).
-std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetManifest& previous,
+std::map<int, FrameRecord> intactFrames(const SafeFolder& dir, const DatasetManifest& previous,
                                         const DatasetPlan& plan) {
   std::map<int, FrameRecord> kept;
   const std::vector<OutputKind> kinds = plan.outputs.fileKinds();
@@ -111,7 +112,7 @@ std::map<int, FrameRecord> intactFrames(const std::string& dir, const DatasetMan
       for (size_t k = 0; intact && k < kinds.size(); ++k) {
         const FileRecord* file = camera->second.file(kinds[k]);
         intact = file && file->path == plan.outputs.framePath(setup.camera->name, kinds[k], index) &&
-                 sha256Inside(dir, file->path, kMaxDatasetFileBytes).sha256 == file->sha256;
+                 dir.sha256(file->path, kMaxDatasetFileBytes).sha256 == file->sha256;
       }
     }
     if (intact) kept[index] = frame;
@@ -134,27 +135,30 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   // dataset). Everything in it is checked before anything is written: a planted link or a file
   // where a folder goes ends the run here.
   const std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range.manifestName);
-  for (const std::string& folder : plan.folders) checkFoldersInside(options.dir, folder);
+  for (const std::string& folder : plan.folders) SafeFolder(options.dir).checkFolders(folder);
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
   if (!plan.range.sharded) removeAtomicTemporaries(options.dir);
-  if (previous) manifest.frames = intactFrames(options.dir, *previous, plan);
+  // Checked: the folder is opened (made when new) once, and everything below is written through
+  // its descriptor.
+  const SafeFolder folder(options.dir, true);
+  if (previous) manifest.frames = intactFrames(folder, *previous, plan);
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.
-  writeManifest(options.dir, manifest, plan.range.manifestName);
-  for (const std::string& folder : plan.folders) makeFoldersInside(options.dir, folder);
-  for (const StaticFile& file : plan.statics) writeFileInside(options.dir, file.relative, file.text, Durability::Unsynced);
+  writeManifest(folder, manifest, plan.range.manifestName);
+  for (const std::string& sub : plan.folders) folder.makeFolders(sub);
+  for (const StaticFile& file : plan.statics) folder.writeFile(file.relative, file.text, Durability::Unsynced);
 
   std::vector<int> todo;
   for (int f = plan.range.first; f < plan.range.end; ++f)
     if (!manifest.frames.count(f)) todo.push_back(f);
   if (options.onStart) options.onStart(result.kept, result.frames);
-  result.rendered = renderFrames(plan, options, todo, manifest, result.kept, result.frames);
+  result.rendered = renderFrames(plan, folder, options, todo, manifest, result.kept, result.frames);
   result.stopped = result.kept + result.rendered < result.frames;
   manifest.header["complete"] = !result.stopped;
   // The annotations gathered per camera, once every frame is there (a shard's: by the merge).
-  if (!result.stopped && !plan.range.sharded) writeAnnotationFiles(options.dir, manifest);
-  writeManifest(options.dir, manifest, plan.range.manifestName);
+  if (!result.stopped && !plan.range.sharded) writeAnnotationFiles(folder, manifest);
+  writeManifest(folder, manifest, plan.range.manifestName);
   return result;
 }
 

@@ -122,7 +122,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   merged->header["complete"] = result.finished == result.frames;
   if (result.finished == result.frames) {
     result.incompleteShards.clear();
-    writeAnnotationFiles(dir, *merged);
+    writeAnnotationFiles(SafeFolder(dir), *merged);
   }
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.

@@ -6,6 +6,7 @@
 #include <tbb/task_group.h>
 
 #include "frame_outputs.h"
+#include "frame_sequence.h"
 #include "memory_budget.h"
 #include "safe_files.h"
 #include "sha256.h"
@@ -30,7 +31,7 @@ void stopIfCancelled() {
 
 // Frame `index`: every camera's files, encoded in memory, hashed and written. `rgb[c]`, if not
 // null, holds camera c's image already rendered (a batching engine); `aovs` is reused memory.
-FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int index, std::vector<ImageRGBA*> rgb,
+FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int index, std::vector<ImageRGBA*> rgb,
                         AovFrame& aovs) {
   const bool wantsAovs = plan.outputs.anyAov();
   const DatasetSpec& spec = plan.spec;
@@ -54,7 +55,7 @@ FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int ind
     CameraFrame cameraFrame{placement.footAt(0.0), {}, std::nullopt};
     if (plan.vibrates()) cameraFrame.rig = settings.rig;
     for (EncodedFile& file : files) {
-      writeFileInside(dir, file.relativePath, file.bytes, Durability::Unsynced);
+      dir.writeFile(file.relativePath, file.bytes, Durability::Unsynced);
       cameraFrame.files[outputName(file.kind)] = {file.relativePath, sha256OfBytes(file.bytes)};
     }
     record.cameras[setup.camera->name] = std::move(cameraFrame);
@@ -66,25 +67,27 @@ FrameRecord renderFrame(const DatasetPlan& plan, const std::string& dir, int ind
 std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const std::vector<int>& todo, size_t start, size_t end) {
   std::vector<std::vector<ImageRGBA>> rgb(plan.setups.size());
   for (size_t c = 0; c < plan.setups.size(); ++c) {
-    std::vector<CameraPlacement> placements;
-    for (size_t k = start; k < end; ++k) placements.push_back(plan.placement(todo[k], c));
     // One rig for the batch: batches of a vibrating or moving plan hold one frame (renderFrames).
     const RenderSettings settings = plan.spec.request.settings(plan.frameRig(todo[start], c));
-    rgb[c] = plan.engine->renderMany(placements, settings);
+    rgb[c].resize(end - start);
+    renderSequence(
+        end - start, end - start, [&](size_t k) { return plan.placement(todo[start + k], c); },
+        [&](const std::vector<CameraPlacement>& placements) { return plan.engine->renderMany(placements, settings); },
+        [&](size_t k, ImageRGBA&& image, double) { rgb[c][k] = std::move(image); });
   }
   return rgb;
 }
 
 }  // namespace
 
-int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, const std::vector<int>& todo,
+int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const DatasetRunOptions& options, const std::vector<int>& todo,
                  DatasetManifest& manifest, int done, int total) {
   const Engine& engine = *plan.engine;
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
   const EngineCapabilities& can = engine.capabilities();
-  const size_t batch = can.batches      ? (plan.framesHaveOwnSettings() ? 1 : kFramesPerBatch)
+  const size_t batch = can.batches      ? (plan.framesHaveOwnSettings() ? 1 : framesPerBatch(engine))
                        : can.concurrent ? static_cast<size_t>(concurrencyWithin(plan.frameBytes(), kConcurrentFrames,
                                                                                      "one frame of this dataset"))
                                              : 1;
@@ -100,7 +103,7 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
       std::vector<ImageRGBA*> given(plan.setups.size(), nullptr);
       for (size_t c = 0; c < plan.setups.size(); ++c)
         if (!rgb[c].empty()) given[c] = &rgb[c][k];
-      records[k] = renderFrame(plan, options.dir, todo[start + k], given, aovSlots[k]);
+      records[k] = renderFrame(plan, folder, todo[start + k], given, aovSlots[k]);
     };
     if (can.concurrent) {
       tbb::parallel_for(size_t{0}, end - start, renderOne);
@@ -116,7 +119,7 @@ int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, cons
     // the machine, leaves frames to resume from and a --status that shows them.
     const auto now = std::chrono::steady_clock::now();
     if (start == 0 || std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
-      writeManifest(options.dir, manifest, plan.range.manifestName);
+      writeManifest(folder, manifest, plan.range.manifestName);
       lastManifest = now;
     }
   }

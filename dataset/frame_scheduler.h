@@ -7,14 +7,15 @@
 #include "dataset_options.h"
 #include "dataset_plan.h"
 #include "manifest.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
-// Renders the frames `todo` of `plan` into options.dir window by window, listing each window's
+// Renders the frames `todo` of `plan` into `folder` (the dataset folder, opened once) window by window, listing each window's
 // frames in `manifest` (written as `plan.range.manifestName`: the first window at once, then at
 // most once a second) until done or options.stopRequested. options.onFrame counts from `done`
 // of `total`. Returns the number of frames rendered.
-int renderFrames(const DatasetPlan& plan, const DatasetRunOptions& options, const std::vector<int>& todo,
-                 DatasetManifest& manifest, int done, int total);
+int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const DatasetRunOptions& options,
+                 const std::vector<int>& todo, DatasetManifest& manifest, int done, int total);
 
 }  // namespace omnicam

@@ -257,9 +257,13 @@ void checkManifestHeaderSize(const nlohmann::json& header, const std::string& sp
                      std::to_string(kMaxManifestHeaderBytes));
 }
 
-void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name) {
+void writeManifest(const SafeFolder& dir, const DatasetManifest& manifest, const std::string& name) {
   // Written without following links inside the dataset folder (safe_files.h).
-  writeFileInside(dir, name, manifestToJson(manifest).dump(1) + "\n", Durability::Synced);
+  dir.writeFile(name, manifestToJson(manifest).dump(1) + "\n", Durability::Synced);
+}
+
+void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name) {
+  writeManifest(SafeFolder(dir), manifest, name);
 }
 
 std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest) {

@@ -12,6 +12,7 @@
 #include "dataset_spec.h"
 #include "output_kinds.h"
 #include "rig.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -70,6 +71,7 @@ DatasetManifest manifestFromText(const std::string& text, const std::string& fil
 // InputError naming the spec unless a manifest with this header stays within
 // kMaxManifestHeaderBytes: called before a run writes anything.
 void checkManifestHeaderSize(const nlohmann::json& header, const std::string& specFile);
+void writeManifest(const SafeFolder& dir, const DatasetManifest& manifest, const std::string& name = kManifestName);
 void writeManifest(const std::string& dir, const DatasetManifest& manifest, const std::string& name = kManifestName);
 
 // What makes two runs the same dataset: the spec's content (not its formatting), the scene's

@@ -12,6 +12,7 @@
 
 #include "atomic_file.h"
 #include "engines.h"
+#include "frame_sequence.h"
 #include "errors.h"
 #include "fast_renderer.h"
 #include "hall_arena.h"
@@ -322,16 +323,17 @@ std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOpt
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
   std::vector<Frame>& realistic = tests["realistic"];
-  for (size_t first = 0; first < testPoses.size(); first += kFramesPerBatch) {
-    const std::vector<RobotPose> batch(testPoses.begin() + static_cast<long>(first),
-                                       testPoses.begin() + static_cast<long>(std::min(testPoses.size(), first + kFramesPerBatch)));
-    std::vector<ImageRGBA> images = renderRealistic(textured, batch, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
-    for (size_t k = 0; k < batch.size(); ++k) {
-      const size_t index = first + k;
-      realistic.push_back({batch[k], recordFrame(o.recording, images[k], index), tests["textured"][index].instance});
-      step();
-    }
-  }
+  renderSequence(
+      testPoses.size(), kFramesPerBatch, [&](size_t index) { return CameraPlacement(testPoses[index]); },
+      [&](const std::vector<CameraPlacement>& batch) {
+        std::vector<RobotPose> poses;
+        for (const CameraPlacement& p : batch) poses.push_back(p.robot());
+        return renderRealistic(textured, poses, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
+      },
+      [&](size_t index, ImageRGBA&& image, double) {
+        realistic.push_back({testPoses[index], recordFrame(o.recording, image, index), tests["textured"][index].instance});
+        step();
+      });
   return tests;
 }
 

@@ -98,8 +98,11 @@ FileDescriptor openFolderAt(int parent, const std::string& name, const std::stri
 
 // The folder holding parts[0..count): the user's root (followed as given), then one name at a
 // time.
-FileDescriptor openFolders(const std::string& root, const std::vector<std::string>& parts, size_t count, bool create) {
-  FileDescriptor folder(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+FileDescriptor openFolders(const std::string& root, int rootFd, const std::vector<std::string>& parts, size_t count,
+                           bool create) {
+  // An open folder handle is walked from its descriptor; a path is opened first.
+  FileDescriptor folder(rootFd >= 0 ? ::fcntl(rootFd, F_DUPFD_CLOEXEC, 0) : ::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (folder.get() < 0 && rootFd >= 0) throw Problem{"", errorText("cannot open folder", errno), EntryKind::Other};
   if (folder.get() < 0) {
     const int error = errno;
     if (error != ENOENT || !create)
@@ -157,9 +160,9 @@ void readAll(int fd, const std::string& where, int64_t maxBytes, Sink&& sink) {
 
 // Runs `use(fd)` on the regular file root/relative.
 template <typename Use>
-void withRegularFile(const std::string& root, const std::string& relative, int64_t maxBytes, Use&& use) {
+void withRegularFile(const std::string& root, int rootFd, const std::string& relative, int64_t maxBytes, Use&& use) {
   const std::vector<std::string> parts = partsOf(relative);
-  const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+  const FileDescriptor folder = openFolders(root, rootFd, parts, parts.size() - 1, false);
   int64_t size = 0;
   const FileDescriptor file = openRegularFile(folder.get(), parts.back(), relative, maxBytes, size);
   use(file.get(), size);
@@ -167,10 +170,20 @@ void withRegularFile(const std::string& root, const std::string& relative, int64
 
 }  // namespace
 
-EntryKind entryInside(const std::string& root, const std::string& relative) {
+SafeFolder::SafeFolder(const std::string& root, bool create) : root_(root) {
+  fd_ = FileDescriptor(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (fd_.get() >= 0 || !create) return;  // a missing folder is looked for again by each call
+  try {
+    fd_ = openFolders(root_, -1, {}, 0, true);
+  } catch (const Problem& p) {
+    rethrow(root_, p);
+  }
+}
+
+EntryKind SafeFolder::entry(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
-    const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+    const FileDescriptor folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, false);
     struct stat st {};
     return kindAt(folder.get(), parts.back(), st);
   } catch (const Problem& p) {
@@ -178,31 +191,31 @@ EntryKind entryInside(const std::string& root, const std::string& relative) {
   }
 }
 
-std::string readFileInside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+std::string SafeFolder::readFile(const std::string& relative, int64_t maxBytes) const {
   std::string bytes;
   try {
-    withRegularFile(root, relative, maxBytes, [&](int fd, int64_t size) {
+    withRegularFile(root_, fd_.get(), relative, maxBytes, [&](int fd, int64_t size) {
       bytes.reserve(static_cast<size_t>(size));
       readAll(fd, relative, maxBytes, [&](std::string_view piece) { bytes.append(piece); });
     });
   } catch (const Problem& p) {
-    rethrow(root, p);
+    rethrow(root_, p);
   }
   return bytes;
 }
 
-void checkFileInside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+void SafeFolder::checkFile(const std::string& relative, int64_t maxBytes) const {
   try {
-    withRegularFile(root, relative, maxBytes, [](int, int64_t) {});
+    withRegularFile(root_, fd_.get(), relative, maxBytes, [](int, int64_t) {});
   } catch (const Problem& p) {
-    rethrow(root, p);
+    rethrow(root_, p);
   }
 }
 
-FileDigest sha256Inside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+FileDigest SafeFolder::sha256(const std::string& relative, int64_t maxBytes) const {
   FileDigest digest;
   try {
-    withRegularFile(root, relative, maxBytes, [&](int fd, int64_t) {
+    withRegularFile(root_, fd_.get(), relative, maxBytes, [&](int fd, int64_t) {
       Sha256 hash;
       readAll(fd, relative, maxBytes, [&](std::string_view piece) { hash.update(piece); });
       digest.sha256 = hash.hex();
@@ -213,40 +226,39 @@ FileDigest sha256Inside(const std::string& root, const std::string& relative, in
   return digest;
 }
 
-void checkFoldersInside(const std::string& root, const std::string& relative) {
+void SafeFolder::checkFolders(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
-    openFolders(root, parts, parts.size(), false);
+    openFolders(root_, fd_.get(), parts, parts.size(), false);
   } catch (const Problem& p) {
-    if (p.kind != EntryKind::Missing) rethrow(root, p);
+    if (p.kind != EntryKind::Missing) rethrow(root_, p);
   }
 }
 
-void makeFoldersInside(const std::string& root, const std::string& relative) {
+void SafeFolder::makeFolders(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
-    openFolders(root, parts, parts.size(), true);
+    openFolders(root_, fd_.get(), parts, parts.size(), true);
   } catch (const Problem& p) {
-    rethrow(root, p);
+    rethrow(root_, p);
   }
 }
 
-void writeFileInside(const std::string& root, const std::string& relative, std::string_view bytes,
-                     Durability durability) {
+void SafeFolder::writeFile(const std::string& relative, std::string_view bytes, Durability durability) const {
   const std::vector<std::string> parts = partsOf(relative);
   FileDescriptor folder;
   try {
-    folder = openFolders(root, parts, parts.size() - 1, true);
+    folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
   } catch (const Problem& p) {
-    rethrow(root, p);
+    rethrow(root_, p);
   }
-  writeBytesAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root, relative)), bytes, durability);
+  writeBytesAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root_, relative)), bytes, durability);
 }
 
-bool removeFileInside(const std::string& root, const std::string& relative) {
+bool SafeFolder::removeFile(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
-    const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+    const FileDescriptor folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, false);
     struct stat st {};
     return kindAt(folder.get(), parts.back(), st) == EntryKind::File &&
            ::unlinkat(folder.get(), parts.back().c_str(), 0) == 0;
@@ -255,10 +267,10 @@ bool removeFileInside(const std::string& root, const std::string& relative) {
   }
 }
 
-bool removeEmptyFolderInside(const std::string& root, const std::string& relative) {
+bool SafeFolder::removeEmptyFolder(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
-    const FileDescriptor folder = openFolders(root, parts, parts.size() - 1, false);
+    const FileDescriptor folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, false);
     struct stat st {};
     // AT_REMOVEDIR removes only an empty folder, and never through a link.
     return kindAt(folder.get(), parts.back(), st) == EntryKind::Folder &&
@@ -266,6 +278,27 @@ bool removeEmptyFolderInside(const std::string& root, const std::string& relativ
   } catch (const Problem&) {
     return false;
   }
+}
+
+
+EntryKind entryInside(const std::string& root, const std::string& relative) { return SafeFolder(root).entry(relative); }
+std::string readFileInside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+  return SafeFolder(root).readFile(relative, maxBytes);
+}
+void checkFileInside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+  SafeFolder(root).checkFile(relative, maxBytes);
+}
+FileDigest sha256Inside(const std::string& root, const std::string& relative, int64_t maxBytes) {
+  return SafeFolder(root).sha256(relative, maxBytes);
+}
+void checkFoldersInside(const std::string& root, const std::string& relative) { SafeFolder(root).checkFolders(relative); }
+void makeFoldersInside(const std::string& root, const std::string& relative) { SafeFolder(root).makeFolders(relative); }
+void writeFileInside(const std::string& root, const std::string& relative, std::string_view bytes, Durability durability) {
+  SafeFolder(root).writeFile(relative, bytes, durability);
+}
+bool removeFileInside(const std::string& root, const std::string& relative) { return SafeFolder(root).removeFile(relative); }
+bool removeEmptyFolderInside(const std::string& root, const std::string& relative) {
+  return SafeFolder(root).removeEmptyFolder(relative);
 }
 
 }  // namespace omnicam

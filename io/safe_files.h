@@ -20,6 +20,35 @@ namespace omnicam {
 // What a path inside the folder is, links not followed. Missing also when a folder on the way
 // is missing; Blocked when something on the way is a link or not a folder.
 enum class EntryKind { Missing, File, Folder, Link, Other, Blocked };
+
+struct FileDigest;
+
+// A folder omnicam does not trust, opened once (a dataset's): every path inside it is walked
+// from the held descriptor, one name at a time, never re-walked from the root's own path. The
+// free functions below do the same for a folder named by its path, opening it on each call.
+class SafeFolder {
+ public:
+  // Opens `root` (followed as given: the user's own path); with `create`, makes it first when
+  // missing (OutputError if that fails). A missing folder without `create` is looked for again by
+  // each call, as the free functions do.
+  explicit SafeFolder(const std::string& root, bool create = false);
+  const std::string& path() const { return root_; }
+
+  EntryKind entry(const std::string& relative) const;
+  std::string readFile(const std::string& relative, int64_t maxBytes) const;
+  void checkFile(const std::string& relative, int64_t maxBytes) const;
+  FileDigest sha256(const std::string& relative, int64_t maxBytes) const;
+  void checkFolders(const std::string& relative) const;
+  void makeFolders(const std::string& relative) const;
+  void writeFile(const std::string& relative, std::string_view bytes, Durability durability) const;
+  bool removeFile(const std::string& relative) const;
+  bool removeEmptyFolder(const std::string& relative) const;
+
+ private:
+  std::string root_;
+  FileDescriptor fd_;
+};
+
 EntryKind entryInside(const std::string& root, const std::string& relative);
 
 // The whole of a regular file of at most `maxBytes`; InputError otherwise (missing, a link or
