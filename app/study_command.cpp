@@ -47,6 +47,22 @@ std::string fmt(const char* f, double v) {
   return b;
 }
 
+// The thesis mesh's PSNR against its polygon count, beside the 6-face cube map's.
+void writePsnrPlot(const std::vector<Row>& rows, const std::filesystem::path& figures) {
+  PlotSpec plot{"Thesis mirror mesh: PSNR against exact mode", "mirror polygons", "PSNR (dB)", 560, 320, {}};
+  PlotSeries mesh{"thesis mesh (linear UV per polygon)", "#d62728", {}, {}, false}, cube{"cube map, 6 faces", "#2ca02c", {}, {}, false};
+  for (const Row& r : rows)
+    if (r.options && r.options->mode == OmniMode::ThesisMesh) {
+      mesh.x.push_back(std::log2(r.options->polygons));
+      mesh.y.push_back(r.psnr);
+    }
+  cube.x = {4, 10};
+  cube.y = {rows[1].psnr, rows[1].psnr};
+  plot.xLabel = "log2(mirror polygons): 4 = 16, 6 = 64, 8 = 256, 10 = 1024";
+  plot.series = {mesh, cube};
+  writeTextAtomically((figures / "study_psnr.svg").string(), svgPlot(plot));
+}
+
 void runStudy(const StudyArgs& a) {
   namespace fs = std::filesystem;
   const std::string dir = scenesDir();
@@ -106,18 +122,7 @@ void runStudy(const StudyArgs& a) {
     row.fps = framesPerSecond([&] { arenaEngine->render(arena.startPose, timing); }, a.timingSeconds);
   }
 
-  PlotSpec plot{"Thesis mirror mesh: PSNR against exact mode", "mirror polygons", "PSNR (dB)", 560, 320, {}};
-  PlotSeries mesh{"thesis mesh (linear UV per polygon)", "#d62728", {}, {}, false}, cube{"cube map, 6 faces", "#2ca02c", {}, {}, false};
-  for (const Row& r : rows)
-    if (r.options && r.options->mode == OmniMode::ThesisMesh) {
-      mesh.x.push_back(std::log2(r.options->polygons));
-      mesh.y.push_back(r.psnr);
-    }
-  cube.x = {4, 10};
-  cube.y = {rows[1].psnr, rows[1].psnr};
-  plot.xLabel = "log2(mirror polygons): 4 = 16, 6 = 64, 8 = 256, 10 = 1024";
-  plot.series = {mesh, cube};
-  writeTextAtomically((figures / "study_psnr.svg").string(), svgPlot(plot));
+  writePsnrPlot(rows, figures);
 
   std::ostringstream md;
   md << "# The thesis' method, measured\n\n"

@@ -185,7 +185,7 @@ Eigen::Vector2d HitPacket::uv(int k) const {
 SurfaceHit HitPacket::surface(int k) const {
   SurfaceHit hit;
   const RTCHit8& h = rayhit_.hit;
-  scene_->fillHit(origins_[k], direction(k), rayhit_.ray.tfar[k], h.geomID[k], h.primID[k], h.u[k], h.v[k],
+  scene_->fillHit(origin(k), direction(k), rayhit_.ray.tfar[k], h.geomID[k], h.primID[k], h.u[k], h.v[k],
                   Vec3(h.Ng_x[k], h.Ng_y[k], h.Ng_z[k]), hit);
   hit.t -= rayhit_.ray.tnear[k];
   return hit;
@@ -236,8 +236,9 @@ void HitPacket::begin(const Vec3& origin, int count) {
   mask_ = 0;
   RTCRay8& rays = rayhit_.ray;
   const float x = static_cast<float>(origin.x()), y = static_cast<float>(origin.y()), z = static_cast<float>(origin.z());
+  origin_ = origin;
+  eachOrigin_ = false;
   for (int k = 0; k < kRayPacketSize; ++k) {
-    origins_[k] = origin;
     rays.tnear[k] = 0.0f;
     rays.org_x[k] = x;
     rays.org_y[k] = y;
@@ -251,6 +252,7 @@ void HitPacket::begin(const Vec3& origin, int count) {
 void HitPacket::beginEach(int count) {
   count_ = count;
   mask_ = 0;
+  eachOrigin_ = true;
   RTCRay8& rays = rayhit_.ray;
   for (int k = 0; k < kRayPacketSize; ++k) {
     rays.tfar[k] = std::numeric_limits<float>::infinity();
@@ -267,7 +269,7 @@ void RayScene::intersectPacket(HitPacket& packet) const {
   rtcInitIntersectContext(&context);
   if (packet.count_ == 1) {  // a lone ray: the single-ray query, its answer copied into lane 0
     RTCRayHit single;
-    single.ray = makeRay(packet.origins_[0], packet.direction(0), rayhit.ray.tnear[0], std::numeric_limits<float>::infinity());
+    single.ray = makeRay(packet.origin(0), packet.direction(0), rayhit.ray.tnear[0], std::numeric_limits<float>::infinity());
     single.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     single.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &context, &single);

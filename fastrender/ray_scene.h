@@ -38,6 +38,7 @@ class HitPacket {
   void beginEach(int count);
   // Ray k starts at o + tStart·direction; surface(k).t is measured from there.
   void setOrigin(int k, const Vec3& o, float tStart) {
+    eachOrigin_ = true;
     origins_[k] = o;
     rayhit_.ray.org_x[k] = static_cast<float>(o.x());
     rayhit_.ray.org_y[k] = static_cast<float>(o.y());
@@ -53,7 +54,7 @@ class HitPacket {
   int count() const { return count_; }
   uint32_t mask() const { return mask_; }  // bit k: ray k hit something
   bool hit(int k) const { return (mask_ >> k) & 1u; }
-  const Vec3& origin(int k) const { return origins_[k]; }
+  const Vec3& origin(int k) const { return eachOrigin_ ? origins_[k] : origin_; }
   Vec3 direction(int k) const { return {rayhit_.ray.dir_x[k], rayhit_.ray.dir_y[k], rayhit_.ray.dir_z[k]}; }
   // Preconditions below: hit(k).
   int object(int k) const;
@@ -63,6 +64,10 @@ class HitPacket {
  private:
   friend class RayScene;
   const RayScene* scene_ = nullptr;
+  // A still, central packet shares one origin (begin); rays with their own (setOrigin) use
+  // origins_. Kept apart so that the common packet writes one origin, not one per lane.
+  Vec3 origin_;
+  bool eachOrigin_ = false;
   Vec3 origins_[kRayPacketSize];
   int count_ = 0;
   uint32_t mask_ = 0;
