@@ -130,7 +130,11 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
 }
 
 RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
-  const auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
+  // A flag the verb did not register (addRequestFlags' `which`) was not given.
+  const auto given = [&](const char* flag) {
+    const CLI::Option* option = cmd.get_option_no_throw(flag);
+    return option && option->count() > 0;
+  };
   RequestFields f;
   if (given("--engine")) f.engine = flags.engine;
   if (given("--mode")) f.mode = flags.mode;

@@ -20,8 +20,9 @@ namespace omnicam::cli {
 namespace {
 
 struct ExportArgs {
-  std::string scene, to, out, pose, shading = "unlit";
-  int size = 0, spp = 1;
+  std::string scene, to, out, pose;
+  int size = 0;
+  RequestFlags request;  // --spp and --shading, for POV-Ray's job
   SceneLoadOptions load;
 };
 
@@ -30,19 +31,13 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     throw InputError("--to: " + quote(a.to) + " is not available (povray, gltf)");
   refuseUnless(cmd, "--spp", a.to == "povray", "--to povray (glTF holds no sampling)");
   refuseUnless(cmd, "--shading", a.to == "povray", "--to povray (glTF holds no shading mode)");
-  const auto shading = parseShading(a.shading);
-  if (!shading) throw InputError("--shading: must be unlit or lit (got " + quote(a.shading) + ")");
-  if (!samplesPerAxis(a.spp)) throw InputError("--spp: must be a perfect square n*n (got " + std::to_string(a.spp) + ")");
+  const RenderRequest request = readRequestFlags(cmd, a.request);
   std::optional<RobotPose> requested;
   if (!a.pose.empty()) requested = parsePose(a.pose, "--pose");
   checkOutputFolder(a.out, "-o");
   const Scene scene = loadScene(a.scene, a.load);
   const RobotPose pose = requested ? *requested : scene.startPose;
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  if (a.size) settings.rig = settings.rig.resized(a.size);
-  settings.spp = a.spp;
-  settings.shading = *shading;
+  RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size) : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
   if (a.to == "gltf") {
     GltfExportOptions options;
@@ -75,8 +70,7 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("--to", args->to, "povray or gltf")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot (default: the scene's start_pose)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
-  cmd->add_option("--spp", args->spp, "Samples per pixel n*n (the job renders n x larger)")->check(integerIn(1, INT32_MAX));
-  cmd->add_option("--shading", args->shading, "unlit or lit");
+  addRequestFlags(*cmd, args->request, kSppFlag | kShadingFlag);  // POV-Ray renders its job n x larger
   cmd->add_option("-o,--output", args->out, "Output folder")->required();
   addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args, cmd] { runExport(*args, *cmd); });

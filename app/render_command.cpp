@@ -137,6 +137,8 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
       checkImageOutput(frameFile(f), "-o");
       for (const std::string& file : views.files(frameFile(f))) checkImageOutput(file, "--view");
     }
+  // Every frame the engine cannot render is refused before the folder is made.
+  for (const RobotPose& framePose : path->poses) checkEngineRenders(engine->kind(), settings.rig, CameraPlacement(framePose, velocity));
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + request.engine + ")", total);
   // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);

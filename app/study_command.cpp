@@ -135,7 +135,7 @@ void runStudy(const StudyArgs& a) {
      << "produced by the mirrors based on the 16 and 64 polygon surfaces respectively, show heavy distortion\"*; the\n"
      << "256-polygon mirror *\"shows distortion of linearity where the 1024 polygon mirror does not\"* (Figs. 3.4–3.5);\n"
      << "frame rates did not depend on the polygon count (Fig. 4.1). Here the same method runs as modes of omnicam's\n"
-     << "fast renderer (`--mode cubemap`, `--mode thesis-mesh --polygons N`; faces of 512 texels, 6 faces for the\n"
+     << "fast renderer (`--mode cubemap`, `--mode thesis-mesh --polygons N`; faces of " << CubeMapOptions{}.faceSize << " texels, 6 faces for the\n"
      << "mesh rows so that only the mesh differs) and is measured against exact mode and the exact model.\n\n"
      << "| mode | PSNR vs exact (dB) | SSIM | ring RMS, circle fit (px) | ring RMS per azimuth (px) | frames/s (1 spp) | disc missed |\n"
      << "| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";

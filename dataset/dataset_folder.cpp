@@ -1,5 +1,6 @@
 #include "dataset_folder.h"
 
+#include <filesystem>
 #include <limits>
 
 #include "errors.h"
@@ -18,18 +19,24 @@ DatasetStatus datasetStatus(const std::string& dir) {
   return status;
 }
 
-DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name) {
-  // A missing one is the reader's to report ("not a dataset folder"); how large: its limit.
-  if (entryInside(dir, name) != EntryKind::Missing) checkFileInside(dir, name, std::numeric_limits<int64_t>::max());
-  return readManifest(dir, name);
+DatasetManifest readDatasetManifest(const SafeFolder& dir, const std::string& name) {
+  // Missing: not a dataset folder. Otherwise read through the folder's descriptor, no link
+  // followed, at most the manifest's size limit.
+  if (dir.entry(name) == EntryKind::Missing) throw InputError(showPath(dir.path()) + ": not a dataset folder (no " + name + ")");
+  return manifestFromText(dir.readFile(name, kMaxManifestBytes), (std::filesystem::path(dir.path()) / name).string());
 }
 
-DatasetVerifyResult verifyDataset(const std::string& dir, const std::string& manifestName) {
+DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name) {
+  return readDatasetManifest(SafeFolder(dir), name);
+}
+
+DatasetVerifyResult verifyDataset(const std::string& path, const std::string& manifestName) {
+  const SafeFolder dir(path);
   const DatasetManifest manifest = readDatasetManifest(dir, manifestName);
   DatasetVerifyResult result;
   for (const FileRecord& file : manifestFiles(manifest)) {
     ++result.files;
-    const FileDigest digest = sha256Inside(dir, file.path, kMaxDatasetFileBytes);
+    const FileDigest digest = dir.sha256(file.path, kMaxDatasetFileBytes);
     if (!digest.ok())
       result.problems.push_back(showPath(file.path) + ": " + digest.problem);
     else if (digest.sha256 != file.sha256)

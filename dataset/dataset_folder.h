@@ -31,6 +31,7 @@ struct DatasetVerifyResult {
 };
 // readManifest (manifest.h), after checking that DIR/`name` is a regular file reached without
 // following a link.
+DatasetManifest readDatasetManifest(const SafeFolder& dir, const std::string& name = kManifestName);
 DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name = kManifestName);
 
 // Re-hashes every file the manifest (or the shard manifest `manifestName`) lists. InputError if

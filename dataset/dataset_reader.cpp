@@ -13,7 +13,7 @@
 
 namespace omnicam {
 
-DatasetReader::DatasetReader(std::string dir) : dir_(std::move(dir)), folder_(dir_), manifest_(readDatasetManifest(dir_)) {
+DatasetReader::DatasetReader(std::string dir) : dir_(std::move(dir)), folder_(dir_), manifest_(readDatasetManifest(folder_)) {
   for (const auto& [index, frame] : manifest_.frames) frames_.push_back(index);
 }
 

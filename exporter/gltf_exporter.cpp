@@ -235,10 +235,12 @@ nlohmann::json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", po
 }  // namespace
 
 void checkGltfCamera(const RigSpec& rig) {
-  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes))
-    throw InputError(std::string("rig.mirror.shape: the glTF export (and Blender) has certified meshes of the "
-                                 "hyperboloid and the sphere only, not of a ") + mirrorShapeName(rig.shape.shape) +
-                     "; render it with the fast renderer or POV-Ray");
+  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes)) {
+    std::string certified;
+    for (MirrorShape shape : kCertifiedMeshShapes) certified += (certified.empty() ? "the " : " and the ") + std::string(mirrorShapeName(shape));
+    throw InputError("rig.mirror.shape: the glTF export (and Blender) has certified meshes of " + certified + " only, not of a " +
+                     mirrorShapeName(rig.shape.shape) + "; render it with the fast renderer or POV-Ray");
+  }
   if (!rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "
                      "the fast renderer");

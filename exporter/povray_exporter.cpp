@@ -1,5 +1,7 @@
 #include "povray_exporter.h"
 
+#include "engine_capabilities.h"
+
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -171,10 +173,7 @@ std::string mirrorSurfaceSdl(const RigSpec& rig) {
 
 }  // namespace
 
-void checkPovrayCamera(const RigSpec& rig) {
-  if (!rig.mount.distortion.none())
-    throw InputError("rig.camera.distortion: POV-Ray has no lens distortion; render it with the fast renderer");
-}
+void checkPovrayCamera(const RigSpec& rig) { checkEngineRenders(EngineKind::Povray, rig, CameraPlacement{}); }
 
 PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings) {
   checkRenderSettings(settings);

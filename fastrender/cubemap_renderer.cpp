@@ -1,6 +1,7 @@
 #include "cubemap_renderer.h"
 
 #include "engine_capabilities.h"
+#include "render_request.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -182,14 +183,7 @@ std::optional<std::pair<int, Eigen::Vector2d>> thesisMeshTexel(const ThesisMesh&
 
 }  // namespace
 
-void checkCubeMapOptions(const CubeMapOptions& o) {
-  if (o.faces != 5 && o.faces != 6) throw InputError("cube map: faces must be 5 or 6 (got " + std::to_string(o.faces) + ")");
-  if (o.faceSize < 8 || o.faceSize > 8192)
-    throw InputError("cube map: face size must be in [8, 8192] texels (got " + std::to_string(o.faceSize) + ")");
-  int sectors = 0, rings = 0;
-  if (o.mode == OmniMode::ThesisMesh && !thesisMeshLayout(o.polygons, sectors, rings))
-    throw InputError("thesis mesh: polygons must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
-}
+void checkCubeMapOptions(const CubeMapOptions& o) { checkModeOptions(o); }
 
 std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const RenderSettings& settings,
                                                                        const CubeMapOptions& o) const {
@@ -323,8 +317,9 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
                              Film& film) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
   checkPlacement(placement);
-  if (film.width() != settings.rig.imageSize || film.samplesPerAxis() != *samplesPerAxis(settings.spp))
-    throw std::invalid_argument("CubeMapRenderer::render: the film does not match the settings");
+  checkEngineRenders(options.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap,
+                     settings.rig, placement);  // the lookup checked the camera; this, the motion
+  film.requireFits(settings, "CubeMapRenderer::render");
   film.allocate();  // the lookup above checked that the frame fits in memory
   const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);
   const Vec3 origin = worldFromView.translation();

@@ -258,9 +258,7 @@ void FastRenderer::loadCentres(HitPacket& hits, const PlacementOfPixel& at, cons
 void FastRenderer::render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) const {
   checkRenderSettings(settings);
   checkPlacement(placement);
-  if (film.width() != settings.rig.imageSize || film.height() != settings.rig.imageSize ||
-      film.samplesPerAxis() != *samplesPerAxis(settings.spp))
-    throw std::invalid_argument("FastRenderer::render: the film does not match the settings");
+  film.requireFits(settings, "FastRenderer::render");
   renderPass(placement, settings, film);
 }
 
@@ -323,8 +321,8 @@ void FastRenderer::renderAovsOnly(const CameraPlacement& camera, const RenderSet
   centreOnly.spp = 1;
   checkRenderSettings(centreOnly);
   checkPlacement(camera);
+  const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);  // checks the frame fits in memory
   prepareAovs(settings, aovs);
-  const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);
   const Placement still = placement(settings, camera);
   const bool moves = moving(camera, settings.rig);
   const MovingPlacements motion = moves ? movingPlacements(settings, camera, 1) : MovingPlacements{};

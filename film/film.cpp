@@ -32,7 +32,39 @@ void Film::setRimAlpha(const Camera& camera) {
     for (int i = 0; i < width(); ++i) image.at(i, j)[3] = alpha(imagedGridPoints(camera, i, j));
 }
 
+void Film::requireFits(const RenderSettings& settings, const char* who) const {
+  const auto n = omnicam::samplesPerAxis(settings.spp);
+  if (width_ != settings.rig.imageSize || height_ != settings.rig.imageSize || !n || *n != n_)
+    throw std::invalid_argument(std::string(who) + ": the film does not match the settings");
+}
+
+namespace {
+
+void requireSupersampled(const ImageRGBA& large, int width, int height, int n) {
+  if (large.width != width * n || large.height != height * n)
+    throw std::invalid_argument("Film: a supersampled frame must be n times the film's size");
+}
+
+}  // namespace
+
+void Film::accumulateSupersampled(const ImageRGBA& large, int passes,
+                                  const std::function<bool(int, int, int, int, int)>& taken,
+                                  std::vector<float>& sums) const {
+  requireSupersampled(large, width_, height_, n_);
+  sums.resize(static_cast<size_t>(width_) * height_ * 3, 0.0f);
+  for (int j = 0; j < height_; ++j)
+    for (int i = 0; i < width_; ++i) {
+      float* sum = &sums[(static_cast<size_t>(j) * width_ + i) * 3];
+      for (int pass = 0; pass < passes; ++pass)
+        for (int b = 0; b < n_; ++b)
+          for (int a = 0; a < n_; ++a)
+            if (taken(i, j, a, b, pass))
+              for (int c = 0; c < 3; ++c) sum[c] += large.at(i * n_ + a, j * n_ + b)[c];
+    }
+}
+
 void Film::reduceSupersampled(const ImageRGBA& large, const Camera& camera) {
+  requireSupersampled(large, width_, height_, n_);
   allocate();
   const float w = weight();
   for (int j = 0; j < height(); ++j)

@@ -7,7 +7,9 @@
 // Written once and used by the fast renderer, its cube-map and thesis-mesh modes, POV-Ray (a
 // frame rendered at n× the size, one ray per grid point) and Blender (Cycles samples randomly
 // inside the pixel; its alpha is still the rim on the grid).
+#include <functional>
 #include <optional>
+#include <vector>
 
 #include "aov_frame.h"
 #include "camera.h"
@@ -51,8 +53,18 @@ class Film {
   // The colour from a frame rendered at n× the film's size, one sample per grid point, and the
   // rim alpha from `camera`.
   void reduceSupersampled(const ImageRGBA& large, const Camera& camera);
+  // Adds to `sums` (3 per pixel) the samples of `large` (n× the film's size) that `taken` picks:
+  // for each pixel, pass after pass, sample (a, b) in grid order is added once for each pass it
+  // is taken in. Frames rendered in several parts (a moving frame's instants) are summed so, then
+  // reduced with setPixel.
+  void accumulateSupersampled(const ImageRGBA& large, int passes,
+                              const std::function<bool(int i, int j, int a, int b, int pass)>& taken,
+                              std::vector<float>& sums) const;
 
   bool wantsAovs() const { return aovs.has_value(); }
+  // std::invalid_argument naming `who` unless this is the film `settings` render into (its size
+  // and grid): every engine checks before it writes a pixel.
+  void requireFits(const RenderSettings& settings, const char* who) const;
 
   ImageRGBA image;
   std::optional<AovFrame> aovs;

@@ -102,7 +102,7 @@ FileDescriptor openFolders(const std::string& root, int rootFd, const std::vecto
                            bool create) {
   // An open folder handle is walked from its descriptor; a path is opened first.
   FileDescriptor folder(rootFd >= 0 ? ::fcntl(rootFd, F_DUPFD_CLOEXEC, 0) : ::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  if (folder.get() < 0 && rootFd >= 0) throw Problem{"", errorText("cannot open folder", errno), EntryKind::Other};
+  if (folder.get() < 0 && rootFd >= 0) throw Problem{"", errorText("cannot duplicate the folder's descriptor", errno), EntryKind::Other, true};
   if (folder.get() < 0) {
     const int error = errno;
     if (error != ENOENT || !create)
@@ -172,7 +172,9 @@ void withRegularFile(const std::string& root, int rootFd, const std::string& rel
 
 SafeFolder::SafeFolder(const std::string& root, bool create) : root_(root) {
   fd_ = FileDescriptor(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  if (fd_.get() >= 0 || !create) return;  // a missing folder is looked for again by each call
+  // Not there (or not openable): each call then looks again by the path and reports what it
+  // finds, as the free functions do; only a missing folder is made here, when asked.
+  if (fd_.get() >= 0 || errno != ENOENT || !create) return;
   try {
     fd_ = openFolders(root_, -1, {}, 0, true);
   } catch (const Problem& p) {

@@ -23,12 +23,8 @@ BodyVelocity footVelocity(const BodyVelocity& robot, const RobotMount& mount) {
   return {c * vx + s * vy, -s * vx + c * vy, robot.yawRateDegPerS};
 }
 
-Rigid robotFromFoot(const RobotMount& mount) {
-  Rigid t = Rigid::Identity();
-  t.translate(Vec3(mount.x, mount.y, 0.0));
-  t.rotate(Eigen::AngleAxisd(radians(mount.yawDeg), Vec3::UnitZ()));
-  return t;
-}
+// A mount places the camera's foot on the robot as a pose places the robot on the floor.
+Rigid robotFromFoot(const RobotMount& mount) { return worldFromRobot({mount.x, mount.y, mount.yawDeg}); }
 
 Rigid tiltRotation(const RobotTilt& tiltDeg) {
   Rigid t = Rigid::Identity();

@@ -15,14 +15,25 @@ const AovFrame& aovsOf(const FramePlanes& f) {
 
 }  // namespace
 
-const float* FramePlanes::floats(OutputPlane plane) const {
+namespace {
+
+// The float planes, read-only or not: one switch for both.
+template <typename Image, typename Aovs>
+auto& floatPlane(Image& rgb, Aovs* aovs, OutputPlane plane) {
+  if (plane == OutputPlane::Colour) return rgb.pixels;
+  if (!aovs) throw std::logic_error("FramePlanes: an AOV plane asked for, but no AOVs were rendered");
   switch (plane) {
-    case OutputPlane::Colour: return rgb.pixels.data();
-    case OutputPlane::Depth: return aovsOf(*this).depth.data();
-    case OutputPlane::Normal: return aovsOf(*this).normal.data();
-    default: throw std::logic_error("FramePlanes::floats: not a float plane");
+    case OutputPlane::Depth: return aovs->depth;
+    case OutputPlane::Normal: return aovs->normal;
+    default: throw std::logic_error("FramePlanes: not a float plane");
   }
 }
+
+}  // namespace
+
+std::vector<float>& floatBuffer(ImageRGBA& rgb, AovFrame* aovs, OutputPlane plane) { return floatPlane(rgb, aovs, plane); }
+
+const float* FramePlanes::floats(OutputPlane plane) const { return floatPlane(rgb, aovs, plane).data(); }
 
 std::vector<uint16_t> FramePlanes::ids(OutputPlane plane) const {
   switch (plane) {

@@ -24,4 +24,7 @@ struct FramePlanes {
   std::vector<uint16_t> ids(OutputPlane plane) const;
 };
 
+// A float plane's own buffer (colour, depth, normal), for handing it over without a copy.
+std::vector<float>& floatBuffer(ImageRGBA& rgb, AovFrame* aovs, OutputPlane plane);
+
 }  // namespace omnicam

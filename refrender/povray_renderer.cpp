@@ -109,18 +109,11 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
                               options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, size, n));
   });
   // Each sample from the render of its line and instant, summed in a fixed order.
-  std::vector<float> sums(static_cast<size_t>(size) * size * 3, 0.0f);
+  std::vector<float> sums;
   for (size_t k = 0; k < jobs.size(); ++k)
-    for (int j = 0; j < size; ++j)
-      for (int i = 0; i < size; ++i) {
-        if (lineOf(shutter, i, j, size, size) != jobs[k].line) continue;
-        float* sum = &sums[(static_cast<size_t>(j) * size + i) * 3];
-        for (int pass = 0; pass < instants.passes; ++pass)
-          for (int b = 0; b < n; ++b)
-            for (int a = 0; a < n; ++a)
-              if (instantOf(shutter, a, b, n, pass) == jobs[k].instant)
-                for (int c = 0; c < 3; ++c) sum[c] += renders[k].at(i * n + a, j * n + b)[c];
-      }
+    film.accumulateSupersampled(renders[k], instants.passes, [&](int i, int j, int a, int b, int pass) {
+      return lineOf(shutter, i, j, size, size) == jobs[k].line && instantOf(shutter, a, b, n, pass) == jobs[k].instant;
+    }, sums);
   const auto camera = makeCamera(settings.rig);
   film.allocate();
   const float weight = film.weight(instants.passes);
@@ -135,6 +128,7 @@ void renderWithPovray(const Scene& scene, const CameraPlacement& placement, cons
                       const PovrayOptions& options, Film& film) {
   checkRenderSettings(settings);
   checkPlacement(placement);
+  film.requireFits(settings, "renderWithPovray");
   if (moving(placement, settings.rig)) return renderMovingWithPovray(scene, placement, settings, options, film);
   const PovrayJob job = exportPovray(scene, placement, settings);
   film.reduceSupersampled(runPovrayJob(job, options, options.threads), *makeCamera(settings.rig));

@@ -32,6 +32,5 @@ ImageRGBA renderWithPovray(const Scene& scene, const CameraPlacement& placement,
 // "POV-Ray 3.7.0.10..." as printed by the executable, or "" if it cannot run.
 std::string povrayVersion(const std::string& executable = "povray");
 
-// Box-downsamples an n× image and sets alpha to the fraction of sub-samples the camera images.
 
 }  // namespace omnicam

@@ -97,6 +97,7 @@ class BlenderEngine : public Engine {
   EngineKind kind() const override { return EngineKind::Blender; }
   void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    film.requireFits(settings, "BlenderEngine::render");
     film.image = std::move(renderWithBlender(scene_, {placement}, settings, options_).front());
   }
   std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings) override {
@@ -118,9 +119,10 @@ class BlenderEngine : public Engine {
 }  // namespace
 
 std::unique_ptr<Engine> makeEngine(const RenderRequest& request, const Scene& scene) {
+  const std::optional<CubeMapOptions> cube = request.cubeMap();
   if (request.engine == "fast") {
-    if (request.cubeMap()) checkCubeMapOptions(*request.cubeMap());  // when the engine is made, not at its first frame
-    return std::make_unique<FastEngine>(scene, request.cubeMap());
+    if (cube) checkModeOptions(*cube);  // when the engine is made, not at its first frame
+    return std::make_unique<FastEngine>(scene, cube ? &*cube : nullptr);
   }
   if (request.cubeMap()) throw std::invalid_argument("makeEngine: a mode other than exact for " + request.engine);
   if (request.engine == "povray") return std::make_unique<PovrayEngine>(scene, request.timeoutSeconds, request.threads);

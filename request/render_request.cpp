@@ -46,6 +46,14 @@ class Reader {
 
 }  // namespace
 
+void checkModeOptions(const CubeMapOptions& o, const RequestFieldNames& names) {
+  const Reader r(names);
+  if (o.faces != 5 && o.faces != 6) r.fail(names.faces, "must be 5 or 6 (got " + std::to_string(o.faces) + ")");
+  r.integerIn(o.faceSize, o.faceSize, names.faceSize, 8, 8192, " texels");
+  if (o.mode == OmniMode::ThesisMesh && o.polygons != 16 && o.polygons != 64 && o.polygons != 256 && o.polygons != 1024)
+    r.fail(names.polygons, "must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+}
+
 RenderRequest readRenderRequest(const RequestFields& f, const RequestFieldNames& names) {
   const Reader r(names);
   RenderRequest q;
@@ -53,20 +61,19 @@ RenderRequest readRenderRequest(const RequestFields& f, const RequestFieldNames&
   if (q.engine != "fast" && q.engine != "povray" && q.engine != "blender")
     r.fail(names.engine, "must be fast, povray or blender (got " + quote(q.engine) + ")");
   q.mode = f.mode.value_or(q.mode);
-  if (q.mode == "cubemap") q.modeOptions.mode = OmniMode::CubeMap;
-  else if (q.mode == "thesis-mesh") q.modeOptions.mode = OmniMode::ThesisMesh;
-  else if (q.mode != "exact") r.fail(names.mode, "must be exact, cubemap or thesis-mesh (got " + quote(q.mode) + ")");
+  if (q.mode != "exact" && q.mode != "cubemap" && q.mode != "thesis-mesh")
+    r.fail(names.mode, "must be exact, cubemap or thesis-mesh (got " + quote(q.mode) + ")");
   if (q.mode != "exact" && q.engine != "fast") r.fail(names.mode, "only the fast engine has modes other than exact");
-  const bool cubeFaces = q.mode != "exact";
-  if ((f.faces || f.faceSize) && !cubeFaces)
+  if ((f.faces || f.faceSize) && q.mode == "exact")
     r.fail(f.faces ? names.faces : names.faceSize, "only with " + names.mode + " cubemap or thesis-mesh");
   if (f.polygons && q.mode != "thesis-mesh") r.fail(names.polygons, "only with " + names.mode + " thesis-mesh");
-  if (f.faces && *f.faces != 5 && *f.faces != 6) r.fail(names.faces, "must be 5 or 6 (got " + std::to_string(*f.faces) + ")");
-  q.modeOptions.faces = f.faces ? static_cast<int>(*f.faces) : q.modeOptions.faces;
-  q.modeOptions.faceSize = r.integerIn(f.faceSize, q.modeOptions.faceSize, names.faceSize, 8, 8192, " texels");
-  if (f.polygons && *f.polygons != 16 && *f.polygons != 64 && *f.polygons != 256 && *f.polygons != 1024)
-    r.fail(names.polygons, "must be 16, 64, 256 or 1024 (got " + std::to_string(*f.polygons) + ")");
-  q.modeOptions.polygons = f.polygons ? static_cast<int>(*f.polygons) : q.modeOptions.polygons;
+  const auto narrow = [](const std::optional<int64_t>& v, int fallback) {
+    return v ? static_cast<int>(std::clamp<int64_t>(*v, INT32_MIN, INT32_MAX)) : fallback;
+  };
+  q.modeOptions.faces = narrow(f.faces, q.modeOptions.faces);
+  q.modeOptions.faceSize = narrow(f.faceSize, q.modeOptions.faceSize);
+  q.modeOptions.polygons = narrow(f.polygons, q.modeOptions.polygons);
+  if (const auto options = q.cubeMap()) checkModeOptions(*options, names);
   if (f.spp) checkSpp(*f.spp, names.prefix + names.spp);
   q.spp = f.spp ? static_cast<int>(*f.spp) : q.spp;
   const std::string shading = f.shading.value_or(shadingName(q.shading));

@@ -20,15 +20,20 @@ struct RenderRequest {
 
   std::string engine = "fast";  // fast, povray or blender
   std::string mode = "exact";   // exact, cubemap or thesis-mesh (fast only)
-  CubeMapOptions modeOptions;   // the cube-map / thesis-mesh options (omni_mode.h's defaults)
+  CubeMapOptions modeOptions;   // faces, face size, polygons (omni_mode.h's defaults); its own `mode` is unused
   int spp = 1;
   Shading shading = Shading::Unlit;
   bool traced = false;          // the fast engine traces even the ideal rig (render_settings.h)
   int threads = 0;              // a ground truth's render threads; 0: every core
   double timeoutSeconds = 600.0;  // per external (POV-Ray, Blender) render
 
-  // The mode's options, or nullptr for exact.
-  const CubeMapOptions* cubeMap() const { return mode == "exact" ? nullptr : &modeOptions; }
+  // The mode's options (their `mode` taken from `mode`), or nullopt for exact.
+  std::optional<CubeMapOptions> cubeMap() const {
+    if (mode == "exact") return std::nullopt;
+    CubeMapOptions options = modeOptions;
+    options.mode = mode == "thesis-mesh" ? OmniMode::ThesisMesh : OmniMode::CubeMap;
+    return options;
+  }
   // The settings of a render of `rig` with this request.
   RenderSettings settings(const RigSpec& rig) const { return {rig, spp, shading, traced}; }
 };
@@ -49,6 +54,11 @@ struct RequestFields {
   std::optional<double> timeoutSeconds;
   std::optional<bool> traced;
 };
+
+// The rules of the cube-map / thesis-mesh options (faces 5 or 6, 8–8192 texels a face edge,
+// 16, 64, 256 or 1024 mirror polygons for the thesis mesh): InputError naming the field as `names`
+// does. readRenderRequest and the cube-map renderer both check by it.
+void checkModeOptions(const CubeMapOptions& options, const RequestFieldNames& names = {});
 
 // InputError "<prefix><name>: <rule> (got …)" for the first field that breaks a rule: an
 // unknown engine, mode or shading, mode options out of range or without the mode that uses them,

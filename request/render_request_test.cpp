@@ -70,7 +70,7 @@ TEST(RenderRequest, AbsentFieldsTakeOneSetOfDefaults) {
   const CubeMapOptions cube;
   EXPECT_EQ(read.engine, "fast");
   EXPECT_EQ(read.mode, "exact");
-  EXPECT_EQ(read.cubeMap(), nullptr);
+  EXPECT_FALSE(read.cubeMap().has_value());
   EXPECT_EQ(read.spp, 1);
   EXPECT_EQ(read.shading, Shading::Unlit);
   EXPECT_EQ(read.timeoutSeconds, defaults.timeoutSeconds);
@@ -81,7 +81,7 @@ TEST(RenderRequest, AbsentFieldsTakeOneSetOfDefaults) {
   mesh.mode = "thesis-mesh";
   mesh.polygons = 64;
   const RenderRequest m = readRenderRequest(mesh, {});
-  ASSERT_NE(m.cubeMap(), nullptr);
+  ASSERT_TRUE(m.cubeMap().has_value());
   EXPECT_EQ(m.cubeMap()->mode, OmniMode::ThesisMesh);
   EXPECT_EQ(m.cubeMap()->polygons, 64);
   EXPECT_EQ(m.cubeMap()->faceSize, cube.faceSize);

@@ -72,6 +72,31 @@ class DatasetCliTest : public ::testing::Test {
 };
 
 // Every regular file under `dir`, relative path → bytes.
+// poses.tum's viewpoints against the closed form of a tilted camera: F' = robot + Rz(yaw)·Rx(roll)·
+// Ry(pitch)·(mx, my, h), with each frame's robot pose from the manifest and its tilt (roll, pitch).
+void expectTiltedViewpoints(const std::string& tumText, const json& frames, const std::vector<std::array<double, 2>>& tilts,
+                            double mx, double my, double h, const std::string& label) {
+  std::istringstream tum(tumText);
+  std::string line;
+  size_t row = 0;
+  while (std::getline(tum, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    double t, x, y, z;
+    fields >> t >> x >> y >> z;
+    const double roll = radians(tilts.at(row)[0]), pitch = radians(tilts.at(row)[1]);
+    const double px = std::cos(pitch) * mx + std::sin(pitch) * h, qz = -std::sin(pitch) * mx + std::cos(pitch) * h;
+    const double ly = std::cos(roll) * my - std::sin(roll) * qz, lz = std::sin(roll) * my + std::cos(roll) * qz;
+    const json& pose = frames.at(row).at("pose");
+    const double yaw = radians(pose.at("yaw_deg").get<double>());
+    EXPECT_NEAR(x, pose.at("x").get<double>() + std::cos(yaw) * px - std::sin(yaw) * ly, 1e-12) << label << row;
+    EXPECT_NEAR(y, pose.at("y").get<double>() + std::sin(yaw) * px + std::cos(yaw) * ly, 1e-12) << label << row;
+    EXPECT_NEAR(z, lz, 1e-12) << label << row;
+    ++row;
+  }
+  EXPECT_EQ(row, frames.size()) << label;
+}
+
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(dir))
@@ -784,23 +809,9 @@ TEST_F(DatasetCliTest, AVibratingRobotsFramesEachRecordTheRigTheyWereRenderedWit
   EXPECT_TRUE(fromDataset.pixels == fromRender.pixels);
 
   // poses.tum gives the tilted viewpoint: F' = robot + Rz(yaw)·Rx(roll)·Ry(pitch)·(0, 0, h).
-  std::istringstream tum(readFile(path("ds/cam0/poses.tum")));
-  std::string line;
-  int row = 0;
-  while (std::getline(tum, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    double t, x, y, z;
-    fields >> t >> x >> y >> z;
-    const double roll = radians(rigs[row].at("tilt_deg")[0].get<double>()), pitch = radians(rigs[row].at("tilt_deg")[1].get<double>());
-    const double yaw = radians(frames[row].at("pose").at("yaw_deg").get<double>()), h = nominal.at("height").get<double>();
-    const double lx = h * std::sin(pitch), ly = -h * std::sin(roll) * std::cos(pitch);
-    EXPECT_NEAR(x, frames[row].at("pose").at("x").get<double>() + std::cos(yaw) * lx - std::sin(yaw) * ly, 1e-12) << row;
-    EXPECT_NEAR(y, frames[row].at("pose").at("y").get<double>() + std::sin(yaw) * lx + std::cos(yaw) * ly, 1e-12) << row;
-    EXPECT_NEAR(z, h * std::cos(roll) * std::cos(pitch), 1e-12) << row;
-    ++row;
-  }
-  EXPECT_EQ(row, 3);
+  std::vector<std::array<double, 2>> rigTilts;
+  for (const json& rig : rigs) rigTilts.push_back({rig.at("tilt_deg")[0].get<double>(), rig.at("tilt_deg")[1].get<double>()});
+  expectTiltedViewpoints(readFile(path("ds/cam0/poses.tum")), frames, rigTilts, 0.0, 0.0, nominal.at("height").get<double>(), "cam0");
 
   // A rerun keeps every frame (each recorded rig is the one the seed gives); verify passes.
   const auto again = omnicam("dataset " + spec + " -o " + path("ds"));
@@ -846,29 +857,8 @@ TEST_F(DatasetCliTest, ARockingRobotTiltsEveryCameraAlikeAboutItsOrigin) {
   }
   EXPECT_NE(tilts[0], tilts[1]);
   const double h = manifest.at("cameras")[0].at("rig").at("height").get<double>();
-  for (const auto& [name, mx, my] : {std::tuple{"front", 0.2, 0.05}, std::tuple{"rear", -0.2, 0.0}}) {
-    std::istringstream tum(readFile(path(std::string("ds/") + name + "/poses.tum")));
-    std::string line;
-    int row = 0;
-    while (std::getline(tum, line)) {
-      if (line.empty() || line[0] == '#') continue;
-      std::istringstream fields(line);
-      double t, x, y, z;
-      fields >> t >> x >> y >> z;
-      const double roll = radians(tilts[row][0]), pitch = radians(tilts[row][1]);
-      // Rx(roll)·Ry(pitch)·(mx, my, h), then turned by the robot's yaw.
-      const double px = std::cos(pitch) * mx + std::sin(pitch) * h;
-      const double qz = -std::sin(pitch) * mx + std::cos(pitch) * h;
-      const double lx = px, ly = std::cos(roll) * my - std::sin(roll) * qz, lz = std::sin(roll) * my + std::cos(roll) * qz;
-      const json& pose = frames[row].at("pose");
-      const double yaw = radians(pose.at("yaw_deg").get<double>());
-      EXPECT_NEAR(x, pose.at("x").get<double>() + std::cos(yaw) * lx - std::sin(yaw) * ly, 1e-12) << name << row;
-      EXPECT_NEAR(y, pose.at("y").get<double>() + std::sin(yaw) * lx + std::cos(yaw) * ly, 1e-12) << name << row;
-      EXPECT_NEAR(z, lz, 1e-12) << name << row;
-      ++row;
-    }
-    EXPECT_EQ(row, 3) << name;
-  }
+  for (const auto& [name, mx, my] : {std::tuple{"front", 0.2, 0.05}, std::tuple{"rear", -0.2, 0.0}})
+    expectTiltedViewpoints(readFile(path(std::string("ds/") + name + "/poses.tum")), frames, tilts, mx, my, h, name);
   // A rerun keeps every frame: each recorded tilt is the one the seed gives.
   const auto again = omnicam("dataset " + spec + " -o " + path("ds"));
   ASSERT_EQ(again.code, 0) << again.out;

@@ -78,8 +78,8 @@ class Renderer:
     def __init__(self, scene: Scene, engine: Optional[str] = ..., mode: Optional[str] = ..., faces: Optional[int] = ...,
                  face_size: Optional[int] = ..., polygons: Optional[int] = ..., timeout: Optional[float] = ...,
                  threads: Optional[int] = ...) -> None: ...
-    def render(self, pose: Optional[Pose] = ..., *, rig: Optional[Rig] = ..., size: int = ..., spp: int = ...,
-               shading: str = ..., traced: bool = ..., outputs: Outputs = ...,
+    def render(self, pose: Optional[Pose] = ..., *, rig: Optional[Rig] = ..., size: int = ..., spp: Optional[int] = ...,
+               shading: Optional[str] = ..., traced: bool = ..., outputs: Outputs = ...,
                velocity: Optional[Tuple[float, float, float]] = ...) -> Dict[str, np.ndarray]: ...
     @property
     def engine(self) -> str: ...
@@ -87,7 +87,7 @@ class Renderer:
     def concurrent(self) -> bool: ...
 
 def render(scene: Scene, pose: Optional[Pose] = ..., *, engine: Optional[str] = ..., rig: Optional[Rig] = ..., size: int = ...,
-           spp: int = ..., shading: str = ..., traced: bool = ..., outputs: Outputs = ...,
+           spp: Optional[int] = ..., shading: Optional[str] = ..., traced: bool = ..., outputs: Outputs = ...,
            velocity: Optional[Tuple[float, float, float]] = ...) -> Dict[str, np.ndarray]: ...
 
 def run_dataset(spec: str, out: str, *, overwrite: bool = ..., threads: int = ...,

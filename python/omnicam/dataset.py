@@ -20,6 +20,7 @@ class Dataset:
     - ``index``, ``timestamp`` (seconds, the exposure start), ``robot_pose`` and ``pose`` (the
       camera's), each pose as (x, y, yaw_deg) at the timestamp;
     - ``velocity``: the robot's (vx, vy, yaw_rate_deg_per_s) over the exposure (docs/motion.md);
+    - ``robot_tilt_deg``: the robot's (roll, pitch), (0, 0) for a level robot;
     - ``rig``: the omnicam.Rig the frame was rendered with (a vibrating robot's frame rig, else
       the camera's rig);
     - ``camera`` and ``intrinsics`` (the manifest's entry for the camera: the model and its
@@ -117,6 +118,7 @@ class Dataset:
             "robot_pose": frame["robot_pose"],
             "pose": frame["cameras"][camera]["pose"],
             "velocity": frame["velocity"],
+            "robot_tilt_deg": frame["robot_tilt_deg"],
             "rig": frame["cameras"][camera].get("rig") or self.rig(camera),
             "camera": camera,
             "intrinsics": self.intrinsics(camera),

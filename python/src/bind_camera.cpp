@@ -37,6 +37,7 @@ Rigid viewpointFrom(const Camera& camera, const py::object& pose, const py::obje
                     double seconds = 0.0) {
   if (pose.is_none()) {
     if (!velocity.is_none()) throw InputError("velocity: needs a pose (the robot's at the exposure start)");
+    if (seconds != 0.0) throw InputError("time: needs a pose (rays without one are in the viewpoint frame, at no time)");
     return Rigid::Identity();
   }
   const CameraPlacement placement(poseFrom(pose, "pose"), velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));

@@ -106,7 +106,8 @@ void bindDatasetReader(py::module_& m) {
         const BodyVelocity& v = f.velocity;
         return py::dict(py::arg("index") = f.index, py::arg("timestamp") = f.timestamp,
                         py::arg("robot_pose") = poseTuple(f.robot), py::arg("cameras") = cameras,
-                        py::arg("velocity") = py::make_tuple(v.vx, v.vy, v.yawRateDegPerS));
+                        py::arg("velocity") = py::make_tuple(v.vx, v.vy, v.yawRateDegPerS),
+                        py::arg("robot_tilt_deg") = py::make_tuple(f.robotTiltDeg[0], f.robotTiltDeg[1]));
       }, py::arg("index"))
       .def("read", [](const DatasetReader& r, int index, const std::string& camera, const std::vector<std::string>& names,
                       bool checkHash) {

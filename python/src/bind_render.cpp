@@ -22,7 +22,8 @@ namespace {
 // An optional integer as the request reads it (its range is the request's rule, not Python's).
 std::optional<int64_t> wideInteger(const std::optional<PyInteger>& value, const std::string& name) {
   if (!value) return std::nullopt;
-  return narrowed(*value, name, INT32_MIN, INT32_MAX);
+  if (!value->fitsInt64) throw InputError(name + ": must be a 64-bit integer (got " + quote(value->text) + ")");
+  return value->value;
 }
 
 // size=: 0 for the rig's own, else an image size in [8, 16384].
@@ -62,13 +63,14 @@ class PyRenderer {
     engine_ = makeEngine(readRenderRequest(engineFields_, {}), *scene_);
   }
 
-  py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg, const PyInteger& sppArg,
-                  const std::string& shading, bool traced, const std::vector<std::string>& outputs, const py::object& velocity) {
-    const int size = optionalSize(sizeArg), spp = narrowed(sppArg, "spp", 1, limits::kMaxSpp);
+  py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg,
+                  const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
+                  const std::vector<std::string>& outputs, const py::object& velocity) {
+    const int size = optionalSize(sizeArg);
     RequestFields fields = engineFields_;
-    fields.spp = spp;
+    fields.spp = wideInteger(spp, "spp");
     fields.shading = shading;
-    fields.traced = traced;
+    if (traced) fields.traced = true;
     const RenderRequest request = readRenderRequest(fields, {});
     RenderSettings settings = request.settings(rig.value_or(scene_->rig));
     if (size) settings.rig = settings.rig.resized(size);
@@ -79,8 +81,7 @@ class PyRenderer {
     const std::vector<OutputKind> kinds = imageOutputs(outputs);
     bool aovs = false;
     for (OutputKind kind : kinds) aovs = aovs || needsAovs(kind);
-    if (aovs && !engine_->capabilities().aovs)
-      throw InputError("outputs: the " + engine_->name() + " engine renders colour only (rgb)");
+    checkEngineRenders(engine_->kind(), settings.rig, placement, aovs);
     Film film = filmFor(settings, aovs);
     {
       py::gil_scoped_release release;
@@ -125,11 +126,8 @@ class PyRenderer {
       std::vector<py::ssize_t> shape = c == 1 ? std::vector<py::ssize_t>{h, w} : std::vector<py::ssize_t>{h, w, c};
       if (row.encoding == OutputEncoding::Uint16Png) {
         out[row.name] = arrayTakingOver(planes.ids(row.plane), shape);
-      } else if (row.plane == OutputPlane::Colour) {
-        out[row.name] = arrayTakingOver(std::move(film.image.pixels), shape);
       } else {
-        std::vector<float>& plane = row.plane == OutputPlane::Depth ? film.aovs->depth : film.aovs->normal;
-        out[row.name] = arrayTakingOver(std::move(plane), shape);
+        out[row.name] = arrayTakingOver(std::move(floatBuffer(film.image, film.aovs ? &*film.aovs : nullptr, row.plane)), shape);
       }
     }
     return out;
@@ -184,7 +182,7 @@ per ground-truth frame; threads: 0 for every core.)")
            py::arg("faces") = py::none(), py::arg("face_size") = py::none(), py::arg("polygons") = py::none(),
            py::arg("timeout") = py::none(), py::arg("threads") = py::none())
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
-           py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
+           py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
            py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), kRenderDoc)
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
@@ -195,7 +193,8 @@ per ground-truth frame; threads: 0 for every core.)")
   m.def(
       "render",
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::optional<std::string>& engine, const std::optional<RigSpec>& rig,
-         const PyInteger& size, const PyInteger& spp, const std::string& shading, bool traced, const std::vector<std::string>& outputs,
+         const PyInteger& size, const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
+         const std::vector<std::string>& outputs,
          const py::object& velocity) {
         RequestFields fields;
         fields.engine = engine;
@@ -203,7 +202,7 @@ per ground-truth frame; threads: 0 for every core.)")
         return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity);
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = py::none(), py::arg("rig") = py::none(),
-      py::arg("size") = 0, py::arg("spp") = 1, py::arg("shading") = "unlit", py::arg("traced") = false,
+      py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
       kOneRenderDoc.c_str());
 }

@@ -4,6 +4,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <stdexcept>
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -37,6 +39,11 @@ void bindDataset(py::module_& m);
 // A numpy array that takes over `values` (no copy): the array owns them and frees them with itself.
 template <class T>
 py::array_t<T> arrayTakingOver(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
+  py::ssize_t elements = 1;
+  for (py::ssize_t extent : shape) elements *= extent;
+  if (static_cast<size_t>(elements) != values.size())
+    throw std::logic_error("arrayTakingOver: " + std::to_string(values.size()) + " values for a shape of " +
+                           std::to_string(elements));
   auto* owned = new std::vector<T>(std::move(values));
   py::capsule free(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
   return py::array_t<T>(std::move(shape), owned->data(), free);

@@ -74,3 +74,18 @@ def test_a_dataset_item_carries_its_velocity_and_its_vibrating_rig(source, tmp_p
     # velocity changes nothing here, and the frame is the still render of its rig).
     again = omnicam.render(robocup, second["pose"], rig=second["rig"], velocity=second["velocity"])["rgb"]
     assert np.array_equal(again, second["rgb"])
+
+
+def test_a_dataset_item_carries_its_robot_tilt(source, tmp_path):
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(source / "scenes" / "robocup2006.json"), "size": 24,
+        "outputs": {"rgb": "exr"}, "poses": {"list": [[0, 0, 0], [0.4, 0.1, 15]]},
+        "robot": {"tilt_deg": [1.0, -2.0]}, "vibration": {"seed": 3, "robot_tilt_deg": [0.5, 0.5]}}))
+    omnicam.run_dataset(str(spec), str(tmp_path / "ds"))
+    dataset = omnicam.Dataset(tmp_path / "ds")
+    tilts = [dataset[i]["robot_tilt_deg"] for i in range(2)]
+    assert tilts[0] != tilts[1]
+    for roll, pitch in tilts:
+        assert abs(roll - 1.0) <= 0.5 and abs(pitch + 2.0) <= 0.5
+    assert dataset[0]["rig"] == dataset.rig()  # the robot rocks; the rig itself is not shaken

@@ -46,7 +46,7 @@ def test_integers_beyond_64_bits_are_refused_in_the_libraries_words(robocup, thr
     """Not pybind's TypeError: the same InputError as for any number out of range."""
     with pytest.raises(omnicam.InputError, match=r"threads: must be an integer in \[0, 4096\]"):
         omnicam.Renderer(robocup, threads=threads)
-    with pytest.raises(omnicam.InputError, match=r"spp: must be an integer in \[1, 1024\]"):
+    with pytest.raises(omnicam.InputError, match=r"spp: must be a perfect square n\*n from 1 to 1024 \(got 4294967297\)"):
         omnicam.render(robocup, spp=2**32 + 1)
 
 
