@@ -8,13 +8,14 @@
 #include "camera.h"
 #include "film.h"
 #include "image.h"
+#include "render_request.h"
 #include "render_settings.h"
 #include "scene.h"
 
 namespace omnicam {
 
 struct PovrayOptions {
-  double timeoutSeconds = 600.0;
+  double timeoutSeconds = kDefaultTimeoutSeconds;
   std::string executable = "povray";
   bool keepJobFolder = false;  // for debugging: leave scene.pov etc. behind
   int threads = 0;             // render threads (Work_Threads); 0: POV-Ray's default, all cores

@@ -13,6 +13,9 @@
 
 namespace omnicam {
 
+// Seconds an external render (POV-Ray, Blender) may take before it is stopped.
+inline constexpr double kDefaultTimeoutSeconds = 600.0;
+
 struct RenderRequest {
   RenderRequest() = default;
   // The defaults, with this engine (a name readRenderRequest accepts).
@@ -25,7 +28,7 @@ struct RenderRequest {
   Shading shading = Shading::Unlit;
   bool traced = false;          // the fast engine traces even the ideal rig (render_settings.h)
   int threads = 0;              // a ground truth's render threads; 0: every core
-  double timeoutSeconds = 600.0;  // per external (POV-Ray, Blender) render
+  double timeoutSeconds = kDefaultTimeoutSeconds;
 
   // The mode's options (their `mode` taken from `mode`), or nullopt for exact.
   std::optional<CubeMapOptions> cubeMap() const {
