@@ -23,7 +23,7 @@ void checkShardCount(int count) {
     throw InputError("shard count " + std::to_string(count) + ": must be in [1, " + std::to_string(kMaxShards) + "]");
 }
 
-bool hasShardManifest(const std::string& dir, const std::string& name) { return entryInside(dir, name) != EntryKind::Missing; }
+bool hasShardManifest(const SafeFolder& dir, const std::string& name) { return dir.entry(name) != EntryKind::Missing; }
 
 // Shard `index` of `count`'s manifest, and its frame range: the manifest reader checked the
 // range's fields; this checks that the file is the shard its name says (a plain manifest or
@@ -33,12 +33,12 @@ struct ShardManifest {
   int first = 0, end = 0;
 };
 
-ShardManifest readShardManifest(const std::string& dir, int index, int count) {
+ShardManifest readShardManifest(const SafeFolder& dir, int index, int count) {
   const std::string name = shardManifestName(index, count);
   ShardManifest shard{readDatasetManifest(dir, name)};
   const json range = shard.manifest.header.value("shard", json());
   if (!range.is_object() || range.at("index") != index || range.at("count") != count)
-    throw InputError(showPath(dir + "/" + name) + ": shard: must say shard " + std::to_string(index) + " of " +
+    throw InputError(showPath(dir.path() + "/" + name) + ": shard: must say shard " + std::to_string(index) + " of " +
                      std::to_string(count) + " (the file is not that shard's manifest)");
   shard.first = range.at("first_frame").get<int>();
   shard.end = range.at("end_frame").get<int>();
@@ -47,8 +47,9 @@ ShardManifest readShardManifest(const std::string& dir, int index, int count) {
 
 }  // namespace
 
-std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles) {
+std::vector<ShardState> shardStates(const std::string& path, int count, bool checkFiles) {
   checkShardCount(count);
+  const SafeFolder dir(path);  // opened once for every shard's manifest
   std::vector<ShardState> states;
   for (int i = 0; i < count; ++i) {
     ShardState s;
@@ -62,7 +63,7 @@ std::vector<ShardState> shardStates(const std::string& dir, int count, bool chec
       s.finished = static_cast<int>(m.frames.size());
       s.complete = m.header.value("complete", false) && s.finished == s.frames;
       if (s.complete && checkFiles) {
-        s.problems = verifyDataset(dir, name).problems;
+        s.problems = verifyDataset(path, name).problems;
         s.complete = s.problems.empty();
       }
     }
@@ -84,8 +85,9 @@ std::vector<int> shardCountsIn(const std::string& dir) {
   return {counts.begin(), counts.end()};
 }
 
-MergeResult mergeDatasetShards(const std::string& dir, int count) {
+MergeResult mergeDatasetShards(const std::string& path, int count) {
   checkShardCount(count);
+  const SafeFolder dir(path);  // opened once: every shard's manifest read, the merged one written
   std::optional<DatasetManifest> merged;
   MergeResult result;
   for (int i = 0; i < count; ++i) {
@@ -100,7 +102,7 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
     } else if (datasetIdentity(shard.header) != datasetIdentity(merged->header)) {
-      throw InputError(showPath(dir + "/" + name) + ": from a different spec, scene or engine than the other shards");
+      throw InputError(showPath(path + "/" + name) + ": from a different spec, scene or engine than the other shards");
     }
     const int first = read.first, end = read.end;
     int finished = 0;
@@ -108,12 +110,12 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
       if (index >= first && index < end) merged->frames[index] = frame, ++finished;
     if (!shard.header.value("complete", false) || finished != end - first) result.incompleteShards.push_back(i);
   }
-  if (!merged) throw InputError(showPath(dir) + ": no shard of " + std::to_string(count) + " has started (no shards/shard-*-of-" +
+  if (!merged) throw InputError(showPath(path) + ": no shard of " + std::to_string(count) + " has started (no shards/shard-*-of-" +
                                 std::to_string(count) + ".json)");
-  if (entryInside(dir, kManifestName) != EntryKind::Missing) {
+  if (dir.entry(kManifestName) != EntryKind::Missing) {
     const DatasetManifest existing = readDatasetManifest(dir);
     if (datasetIdentity(existing.header) != datasetIdentity(merged->header))
-      throw InputError(showPath(dir) + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
+      throw InputError(showPath(path) + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
     // Frames an earlier merge (or an unsharded run) finished stay listed.
     for (const auto& [index, frame] : existing.frames) merged->frames.emplace(index, frame);
   }
@@ -122,11 +124,11 @@ MergeResult mergeDatasetShards(const std::string& dir, int count) {
   merged->header["complete"] = result.finished == result.frames;
   if (result.finished == result.frames) {
     result.incompleteShards.clear();
-    writeAnnotationFiles(SafeFolder(dir), *merged);
+    writeAnnotationFiles(dir, *merged);
   }
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.
-  removeAtomicTemporaries(dir);
+  removeAtomicTemporaries(path);
   return result;
 }
 
