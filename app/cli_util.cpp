@@ -113,7 +113,14 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
   if (which & kSppFlag)
     cmd.add_option("--spp", flags.spp, "Samples per pixel, n*n on a regular grid (default " + std::to_string(defaults.spp) + ")")
         ->check(integer);
-  if (which & kShadingFlag) cmd.add_option("--shading", flags.shading, "unlit (default) or lit");
+  if (which & kShadingFlag) {
+    cmd.add_option("--shading", flags.shading,
+                   "unlit (default), lit (the thesis' model) or path (physically based, docs/conventions.md §3)");
+    cmd.add_option("--bounces", flags.bounces,
+                   "path: diffuse bounces per path (default " + std::to_string(defaults.bounces) + ", as Cycles' export)")
+        ->check(integer);
+    cmd.add_option("--seed", flags.seed, "path and blender: the random stream's seed (default 0)")->check(integerIn(0, INT64_MAX));
+  }
   if (which & kModeFlags) {
     cmd.add_option("--mode", flags.mode, "exact (default), cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
     cmd.add_option("--faces", flags.faces,
@@ -144,6 +151,8 @@ RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
   if (given("--polygons")) f.polygons = flags.polygons;
   if (given("--spp")) f.spp = flags.spp;
   if (given("--timeout")) f.timeoutSeconds = flags.timeout;
+  if (given("--bounces")) f.bounces = flags.bounces;
+  if (given("--seed")) f.seed = flags.seed;
   return readRenderRequest(f, RequestFieldNames::cli());
 }
 

@@ -35,14 +35,14 @@ std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t
 // The render request's flags (render_request.h) as typed; 0 or "" when not given.
 struct RequestFlags {
   std::string engine, mode, shading;
-  int64_t faces = 0, faceSize = 0, polygons = 0, spp = 0;
+  int64_t faces = 0, faceSize = 0, polygons = 0, spp = 0, bounces = 0, seed = 0;
   double timeout = 0.0;
 };
 enum RequestFlagSet : unsigned {
   kEngineFlag = 1u,   // --engine
   kModeFlags = 2u,    // --mode, --faces, --face-size, --polygons
   kSppFlag = 4u,      // --spp
-  kShadingFlag = 8u,  // --shading
+  kShadingFlag = 8u,  // --shading, --bounces, --seed
   kTimeoutFlag = 16u  // --timeout
 };
 // Registers the request's flags in `which` on `cmd`; their help states RenderRequest's defaults.

@@ -267,6 +267,8 @@ void readRequest(JsonFields& top, DatasetSpec& spec) {
   if (top.has("spp")) f.spp = top.integer("spp", -kAny, kAny);
   if (top.has("shading")) f.shading = top.string("shading");
   if (top.has("timeout_s")) f.timeoutSeconds = top.number("timeout_s");
+  if (top.has("bounces")) f.bounces = top.integer("bounces", -kAny, kAny);
+  if (top.has("seed")) f.seed = top.integer("seed", -kAny, kAny);
   spec.request = readRenderRequest(f, RequestFieldNames::json(spec.file));
 }
 

@@ -190,6 +190,7 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
   // POV-Ray renders one instant: the exposure start (povray_renderer.h freezes a moving
   // placement at each instant it renders).
   const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);
+  checkEngineShading(EngineKind::Povray, settings.shading);
   SdlWriter writer(scene, settings.shading, job);
 
   std::ostringstream out;

@@ -319,6 +319,8 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
   checkPlacement(placement);
   checkEngineRenders(options.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap,
                      settings.rig, placement);  // the lookup checked the camera; this, the motion
+  checkEngineShading(options.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap,
+                     settings.shading);
   film.requireFits(settings, "CubeMapRenderer::render");
   film.allocate();  // the lookup above checked that the frame fits in memory
   const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "errors.h"
 #include "make_camera.h"
@@ -24,8 +25,34 @@ std::string fastRendererVersion() {
 
 FastRenderer::FastRenderer(const Scene& scene) : scene_(scene), rays_(scene) {}
 
-void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours) const {
+std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSettings& settings,
+                                                               const CameraPlacement& camera) const {
+  if (settings.shading != Shading::Path) return std::nullopt;
+  PathTracingOptions options;
+  options.diffuseBounces = settings.bounces;
+  // Frames of other poses get other noise; the same pose, seed and settings the same frame.
+  const RobotPose& pose = camera.robot();
+  const BodyVelocity& velocity = camera.velocity();
+  uint64_t key = settings.seed;
+  for (double v : {pose.x, pose.y, pose.yawDeg, velocity.vx, velocity.vy, velocity.yawRateDegPerS}) {
+    uint64_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    key = mixKey(key, bits);
+  }
+  return PathFrame{PathTracer(scene_, rays_, options), key};
+}
+
+void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path,
+                               const uint64_t* samples) const {
   const int count = hits.count();
+  if (shading == Shading::Path) {
+    for (int k = 0; k < count; ++k) {
+      const Vec3 direction = hits.direction(k).normalized();
+      const std::optional<SurfaceHit> first = hits.hit(k) ? std::optional<SurfaceHit>(hits.surface(k)) : std::nullopt;
+      colours[k] = path->tracer.cameraRay(hits.start(k), direction, first ? &*first : nullptr, mixKey(path->key, samples[k]));
+    }
+    return;
+  }
   const Material* materials[kRayPacketSize];
   for (int k = 0; k < count; ++k) {
     if (!hits.hit(k)) {
@@ -77,13 +104,16 @@ void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* co
     if (hits.hit(k)) colours[k] = colours[k].cwiseProduct(light[k]);
 }
 
-Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading shading) const {
+Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading shading, uint64_t key, int bounces) const {
   HitPacket hits;
   hits.begin(origin, 1);
   hits.setDirection(0, direction.cast<float>());
   rays_.intersectPacket(hits);
   Vec3f colour;
-  shadePacket(hits, shading, &colour);
+  PathTracingOptions options;
+  options.diffuseBounces = bounces;
+  const PathFrame path{PathTracer(scene_, rays_, options), 0};
+  shadePacket(hits, shading, &colour, &path, &key);
   return colour;
 }
 
@@ -197,7 +227,7 @@ void FastRenderer::RowPlacements::prepare(const MovingPlacements& at, int j, int
 }
 
 void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading,
-                                  MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums) const {
+                                  const PathFrame* path, MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums) const {
   const size_t rowStart = static_cast<size_t>(j) * at.width;
   const uint32_t rowFirst = table.firstSample[rowStart], rowEnd = table.firstSample[rowStart + at.width];
   const uint32_t samples = rowEnd - rowFirst;
@@ -208,6 +238,8 @@ void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable&
               scratch.columns.begin() + (table.firstSample[rowStart + i + 1] - rowFirst), static_cast<uint16_t>(i));
   const bool central = table.origins.empty();
   Vec3f colours[kRayPacketSize];
+  uint64_t keys[kRayPacketSize];
+  const uint64_t tableSize = table.directions.size();
   // With fixed instants the row is traced once per instant, and the sums add up.
   for (int pass = 0; pass < at.instants.passes; ++pass) {
     scratch.row.prepare(at, j, pass);
@@ -226,7 +258,8 @@ void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable&
         else hits.setOrigin(k, p.origin + p.rotation * table.origins[s].cast<double>(), table.starts[s]);
       }
       rays_.intersectPacket(hits);
-      shadePacket(hits, shading, colours);
+      for (int k = 0; k < count; ++k) keys[k] = pass * tableSize + rowFirst + first + static_cast<uint32_t>(k);
+      shadePacket(hits, shading, colours, path, keys);
       // A pixel's samples are consecutive: summed in a register, stored when the pixel changes.
       for (int k = 0; k < count; ++k) {
         const uint16_t column = scratch.columns[first + k];
@@ -373,6 +406,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
     return moves ? motion.centre(static_cast<int>(p % width), static_cast<int>(p / width)) : at;
   };
   const float weight = film.weight(passes);
+  const std::optional<PathFrame> path = pathFrame(settings, camera);
   constexpr int kPacket = kRayPacketSize;
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
@@ -387,7 +421,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
       // borders. Each pixel's sum is built in a register from zero in sample order (as one ray at
       // a time would) and stored once its last sample is in.
       if (moves) {
-        traceMovingRow(motion, *table, j, settings.shading, scratch, hits, sums.data());
+        traceMovingRow(motion, *table, j, settings.shading, path ? &*path : nullptr, scratch, hits, sums.data());
       } else {
         const uint32_t rowEnd = table->firstSample[rowStart + width];
         size_t pixel = rowStart;
@@ -402,7 +436,9 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
           const int count = static_cast<int>(std::min<uint32_t>(kPacket, rowEnd - first));
           loadSamples(hits, at, *table, first, count);
           rays_.intersectPacket(hits);
-          shadePacket(hits, settings.shading, colours);
+          uint64_t keys[kPacket];
+          for (int k = 0; k < count; ++k) keys[k] = first + static_cast<uint32_t>(k);
+          shadePacket(hits, settings.shading, colours, path ? &*path : nullptr, keys);
           for (int k = 0; k < count; ++k) {
             const uint32_t s = first + static_cast<uint32_t>(k);
             while (pixelEnd <= s) storePixel();

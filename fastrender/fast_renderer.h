@@ -13,6 +13,7 @@
 #include "camera.h"
 #include "film.h"
 #include "image.h"
+#include "path_tracer.h"
 #include "ray_scene.h"
 #include "render_settings.h"
 #include "scene.h"
@@ -46,10 +47,13 @@ class FastRenderer {
   const Scene& scene() const { return scene_; }
   const RayScene& rays() const { return rays_; }
 
-  // Radiance along one ray from `origin` (exposed for tests).
-  Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading) const;
+  // Radiance along one ray from `origin` (exposed for tests); path shading traces the path keyed
+  // `key` with `bounces` diffuse bounces.
+  Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading, uint64_t key = 0,
+                 int bounces = kDefaultBounces) const;
 
  private:
+  struct PathFrame;
   // The rays of every imaged sample, per pixel, in the viewpoint frame: they depend only on the
   // camera and spp, so they are computed once and reused for every pose.
   struct SampleTable {
@@ -108,7 +112,7 @@ class FastRenderer {
   };
   // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
   // sums[0, width).
-  void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading,
+  void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading, const PathFrame* path,
                       MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums) const;
   // Centre rays of listed pixels, each placed by at(pixel).
   template <typename PlacementOfPixel>
@@ -120,9 +124,17 @@ class FastRenderer {
   uint32_t recordCentreAovs(const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels, int count,
                             HitPacket& hits, AovFrame& aovs) const;
 
+  // Path shading's frame: its tracer and the key its samples' keys derive from.
+  struct PathFrame {
+    PathTracer tracer;
+    uint64_t key = 0;
+  };
+  std::optional<PathFrame> pathFrame(const RenderSettings& settings, const CameraPlacement& camera) const;
   // Colours of a packet of rays: the background where a ray missed, else its hit shaded per
-  // docs/conventions.md §2, with the shadow rays traced as packets too.
-  void shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours) const;
+  // docs/conventions.md §3, with the shadow rays traced as packets too. Path shading (`path`
+  // given) traces ray k's path keyed by samples[k].
+  void shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path = nullptr,
+                   const uint64_t* samples = nullptr) const;
   const Scene& scene_;
   RayScene rays_;
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable

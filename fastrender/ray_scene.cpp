@@ -191,6 +191,21 @@ SurfaceHit HitPacket::surface(int k) const {
   return hit;
 }
 
+std::optional<SurfaceHit> RayScene::intersect(const Vec3& origin, const Vec3& direction) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayhit;
+  rayhit.ray = makeRay(origin, direction, 0.0, std::numeric_limits<float>::infinity());
+  rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rayhit);
+  if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  SurfaceHit hit;
+  fillHit(origin, direction, rayhit.ray.tfar, rayhit.hit.geomID, rayhit.hit.primID, rayhit.hit.u, rayhit.hit.v,
+          Vec3(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z), hit);
+  return hit;
+}
+
 bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

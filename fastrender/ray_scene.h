@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,8 @@ class HitPacket {
   uint32_t mask() const { return mask_; }  // bit k: ray k hit something
   bool hit(int k) const { return (mask_ >> k) & 1u; }
   const Vec3& origin(int k) const { return eachOrigin_ ? origins_[k] : origin_; }
+  // Where ray k starts: origin(k) + tStart·direction(k).
+  Vec3 start(int k) const { return origin(k) + static_cast<double>(rayhit_.ray.tnear[k]) * direction(k); }
   Vec3 direction(int k) const { return {rayhit_.ray.dir_x[k], rayhit_.ray.dir_y[k], rayhit_.ray.dir_z[k]}; }
   // Preconditions below: hit(k).
   int object(int k) const;
@@ -81,6 +84,8 @@ class RayScene {
   RayScene(const RayScene&) = delete;
   RayScene& operator=(const RayScene&) = delete;
 
+  // The nearest hit of origin + t·direction, t ∈ (0, ∞), if any. Thread-safe.
+  std::optional<SurfaceHit> intersect(const Vec3& origin, const Vec3& direction) const;
   // True if anything lies on the open segment (tNear, tFar). Thread-safe.
   bool occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const;
 

@@ -3,9 +3,9 @@ the job JSON named after `--` (never Python built from scene strings):
 
     blender -b --factory-startup -noaudio --python-exit-code 1 -P blender_driver.py -- job.json
 
-job.json: {"glb": path, "shading": "unlit"|"lit", "samples": int, "seed": int, "width": int,
+job.json: {"glb": path, "shading": "unlit"|"lit"|"path", "samples": int, "seed": int, "width": int,
            "height": int, "focal_length_px": float, "principal_point_px": [u, v] (raster, v down;
-           default the image centre), "ambient": float,
+           default the image centre), "ambient": float (lit), "background": [r, g, b] (path),
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
                       diameter 0: a point, > 0: a disc luminaire facing straight down),
            "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
@@ -99,6 +99,50 @@ def make_emission_only(material):
     tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
 
 
+def make_lambertian(material):
+    """lit and path (docs/conventions.md §3): surfaces are Lambertian, radiance = albedo/pi x irradiance, plus
+    their emission. The imported Principled BSDF (specular 0.5, Disney diffuse) becomes a Diffuse BSDF of
+    roughness 0 (exactly Lambert) fed what fed its Base Color; its emission (glTF emissiveFactor x
+    KHR_materials_emissive_strength) is added by an Emission shader."""
+    tree = material.node_tree
+    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+    output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
+    if principled is None or output is None:
+        return
+    diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Roughness"].default_value = 0.0
+    base = principled.inputs["Base Color"]
+    if base.is_linked:
+        tree.links.new(base.links[0].from_socket, diffuse.inputs["Color"])
+    else:
+        diffuse.inputs["Color"].default_value = base.default_value
+    shader = diffuse.outputs["BSDF"]
+    emission_colour = principled.inputs["Emission"]
+    strength = principled.inputs["Emission Strength"].default_value
+    if emission_colour.is_linked or (strength > 0.0 and max(emission_colour.default_value[:3]) > 0.0):
+        emission = tree.nodes.new("ShaderNodeEmission")
+        if emission_colour.is_linked:
+            tree.links.new(emission_colour.links[0].from_socket, emission.inputs["Color"])
+        else:
+            emission.inputs["Color"].default_value = emission_colour.default_value
+        emission.inputs["Strength"].default_value = strength
+        add = tree.nodes.new("ShaderNodeAddShader")
+        tree.links.new(shader, add.inputs[0])
+        tree.links.new(emission.outputs["Emission"], add.inputs[1])
+        shader = add.outputs["Shader"]
+    tree.links.new(shader, output.inputs["Surface"])
+
+
+def background_world(colour):
+    """path (docs/conventions.md §3): the background is light of constant radiance from every direction,
+    for every ray (seen directly, in the mirror and by bounces)."""
+    world = bpy.data.worlds.new("omnicam_world")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (colour[0], colour[1], colour[2], 1.0)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    return world
+
+
 def ambient_world(ambient):
     """The ambient term of lit shading (docs/conventions.md §3) as uniform light from the sky, for diffuse rays only: seen
     directly or in the mirror the sky stays black, as in the other engines."""
@@ -184,10 +228,13 @@ def main():
     unlit = job["shading"] == "unlit"
     tracing = path_tracing(job)
 
-    if unlit:  # the rig's own materials are replaced below
-        for material in bpy.data.materials:
-            if material.use_nodes:
+    # The rig's own materials are replaced below.
+    for material in bpy.data.materials:
+        if material.use_nodes:
+            if unlit:
                 make_emission_only(material)
+            else:
+                make_lambertian(material)
     mirror.data.materials.clear()
     mirror.data.materials.append(perfect_mirror())
     # The mirror is part of the camera (docs/conventions.md §3): camera rays see it, bounces pass
@@ -200,7 +247,10 @@ def main():
     mask.data.materials.append(black_emission())
     only_camera_sees(mask)
 
-    scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0))
+    if job["shading"] == "path":
+        scene.world = background_world(job.get("background", [0.0, 0.0, 0.0]))
+    else:
+        scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0))
     for index, light in enumerate(job.get("lights", [])):
         obj = lights_by_index.get(index)
         if obj is None:

@@ -163,10 +163,11 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
     checkPlacement(placement);
     checkEngineRenders(EngineKind::Blender, settings.rig, placement);
   }
+  checkEngineShading(EngineKind::Blender, settings.shading);
   const int size = settings.rig.imageSize;
   const Pinhole pinhole = pinholeOf(settings.rig);
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
-  const bool filtered = tracing.filterIndirect && settings.shading == Shading::Lit;
+  const bool filtered = tracing.filterIndirect && settings.shading != Shading::Unlit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";
   GltfExportOptions exportOptions;
@@ -197,6 +198,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
                               {"focal_length_px", pinhole.focalPx},
                               {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}},
                               {"ambient", ambient},
+                              {"background", {scene.background.x(), scene.background.y(), scene.background.z()}},
                               {"lights", lights},
                               {"path_tracing", tracing.toJson()},  // the driver ignores direct_pass when unlit, as `filtered` does
                               {"frames", frames}};

@@ -39,6 +39,7 @@ class FastEngine : public Engine {
   }
   void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    checkEngineShading(kind(), settings.shading);
     if (!mode_) return renderer_.render(placement, settings, film);
     // AOVs are geometric truth: always from the exact pixel → ray map, whatever the colour's mode.
     if (film.aovs) renderer_.renderAovsOnly(placement, settings, *film.aovs);
@@ -74,6 +75,7 @@ class PovrayEngine : public Engine {
   EngineKind kind() const override { return EngineKind::Povray; }
   void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    checkEngineShading(kind(), settings.shading);
     renderWithPovray(scene_, placement, settings, options_, film);
   }
   std::string name() const override { return "povray"; }
@@ -97,6 +99,7 @@ class BlenderEngine : public Engine {
   EngineKind kind() const override { return EngineKind::Blender; }
   void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
+    checkEngineShading(kind(), settings.shading);
     film.requireFits(settings, "BlenderEngine::render");
     film.image = std::move(renderWithBlender(scene_, {placement}, settings, options_).front());
   }
@@ -116,9 +119,7 @@ class BlenderEngine : public Engine {
   mutable std::string version_;
 };
 
-}  // namespace
-
-std::unique_ptr<Engine> makeEngine(const RenderRequest& request, const Scene& scene) {
+std::unique_ptr<Engine> makeEngineOf(const RenderRequest& request, const Scene& scene) {
   const std::optional<CubeMapOptions> cube = request.cubeMap();
   if (request.engine == "fast") {
     if (cube) checkModeOptions(*cube);  // when the engine is made, not at its first frame
@@ -128,6 +129,14 @@ std::unique_ptr<Engine> makeEngine(const RenderRequest& request, const Scene& sc
   if (request.engine == "povray") return std::make_unique<PovrayEngine>(scene, request.timeoutSeconds, request.threads);
   if (request.engine == "blender") return std::make_unique<BlenderEngine>(scene, request.timeoutSeconds, request.threads);
   throw std::invalid_argument("makeEngine: no engine " + request.engine + " (readRenderRequest checks the name)");
+}
+
+}  // namespace
+
+std::unique_ptr<Engine> makeEngine(const RenderRequest& request, const Scene& scene) {
+  std::unique_ptr<Engine> engine = makeEngineOf(request, scene);
+  checkEngineShading(engine->kind(), request.shading);  // when the engine is made, not at its first frame
+  return engine;
 }
 
 }  // namespace omnicam

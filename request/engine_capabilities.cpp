@@ -19,6 +19,7 @@ EngineCapabilities fastExact() {
   c.shownName = "the fast engine";
   c.mirrorShapes = kEveryShape;
   c.aovs = true;
+  c.pathShading = true;
   c.concurrent = true;  // a pure function of the placement
   return c;
 }
@@ -50,6 +51,7 @@ EngineCapabilities blender() {
   c.rollingShutter = false;
   c.timeSamples = false;
   c.batches = true;
+  c.pathShading = true;
   c.why = "Cycles samples time continuously over the exposure, and its rolling shutter is approximate";
   return c;
 }
@@ -115,6 +117,13 @@ void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlace
   if (aovs && !c.aovs)
     throw InputError(std::string(c.shownName) + " renders colour only; per-pixel ground truth (depth, instances, normals) needs " +
                      enginesThat([](const EngineCapabilities& e) { return e.aovs; }));
+}
+
+void checkEngineShading(EngineKind engine, Shading shading) {
+  const EngineCapabilities& c = capabilitiesOf(engine);
+  if (shading == Shading::Path && !c.pathShading)
+    throw InputError(std::string("shading path: ") + c.shownName + " has no physically based light; render it with " +
+                     enginesThat([](const EngineCapabilities& e) { return e.pathShading; }));
 }
 
 }  // namespace omnicam

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "placement.h"
+#include "render_settings.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -21,6 +22,8 @@ struct EngineCapabilities {
   bool lensDistortion = true;
   // Time: a robot moving while the shutter is open, a rolling shutter, stratified time samples.
   bool motion = true, rollingShutter = true, timeSamples = true;
+  // Physically based light (Shading::Path).
+  bool pathShading = false;
   // Per-pixel ground truth (AOVs) beside the colour.
   bool aovs = false;
   // Rendering many frames at once is cheaper than one at a time (callers then batch frames).
@@ -36,5 +39,7 @@ const EngineCapabilities& capabilitiesOf(EngineKind engine);
 // InputError naming what `engine` cannot render of this rig at this placement (and its AOVs when
 // `aovs`), and which engines can; nothing when it can.
 void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs = false);
+// InputError naming the engines that shade this way, unless `engine` does.
+void checkEngineShading(EngineKind engine, Shading shading);
 
 }  // namespace omnicam

@@ -12,6 +12,7 @@ RequestFieldNames RequestFieldNames::cli() {
   RequestFieldNames n;
   n.engine = "--engine", n.mode = "--mode", n.faces = "--faces", n.faceSize = "--face-size", n.polygons = "--polygons";
   n.spp = "--spp", n.shading = "--shading", n.traced = "--traced", n.threads = "--threads", n.timeout = "--timeout";
+  n.bounces = "--bounces", n.seed = "--seed";
   return n;
 }
 
@@ -78,13 +79,23 @@ RenderRequest readRenderRequest(const RequestFields& f, const RequestFieldNames&
   q.spp = f.spp ? static_cast<int>(*f.spp) : q.spp;
   const std::string shading = f.shading.value_or(shadingName(q.shading));
   const auto parsed = parseShading(shading);
-  if (!parsed) r.fail(names.shading, "must be unlit or lit (got " + quote(shading) + ")");
+  if (!parsed) r.fail(names.shading, "must be unlit, lit or path (got " + quote(shading) + ")");
   q.shading = *parsed;
   q.traced = f.traced.value_or(q.traced);
   if (q.traced && (q.engine != "fast" || q.mode != "exact"))
     r.fail(names.traced, "only with the fast engine in exact mode (the other engines always trace)");
   if (f.threads) checkThreads(static_cast<int>(std::clamp<int64_t>(*f.threads, -1, limits::kMaxThreads + 1)), names.prefix + names.threads);
   q.threads = f.threads ? static_cast<int>(*f.threads) : q.threads;
+  if (f.bounces) {
+    if (q.shading != Shading::Path) r.fail(names.bounces, "only with " + names.shading + " path");
+    q.bounces = r.integerIn(f.bounces, q.bounces, names.bounces, 0, kMaxBounces);
+  }
+  if (f.seed) {
+    constexpr int64_t kMaxSeed = int64_t{1} << 53;  // exact in every JSON reader and in Python
+    if (*f.seed < 0 || *f.seed > kMaxSeed)
+      r.fail(names.seed, "must be in [0, 2^53] (got " + std::to_string(*f.seed) + ")");
+    q.seed = static_cast<uint64_t>(*f.seed);
+  }
   if (f.timeoutSeconds) {
     if (q.engine == "fast") r.fail(names.timeout, "only with " + names.engine + " povray or blender");
     if (!(*f.timeoutSeconds > 0.0 && *f.timeoutSeconds <= limits::kMaxTimeoutSeconds))

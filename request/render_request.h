@@ -29,6 +29,8 @@ struct RenderRequest {
   bool traced = false;          // the fast engine traces even the ideal rig (render_settings.h)
   int threads = 0;              // a ground truth's render threads; 0: every core
   double timeoutSeconds = kDefaultTimeoutSeconds;
+  int bounces = kDefaultBounces;  // path shading only
+  uint64_t seed = 0;              // path shading and Blender: the random stream
 
   // The mode's options (their `mode` taken from `mode`), or nullopt for exact.
   std::optional<CubeMapOptions> cubeMap() const {
@@ -38,14 +40,15 @@ struct RenderRequest {
     return options;
   }
   // The settings of a render of `rig` with this request.
-  RenderSettings settings(const RigSpec& rig) const { return {rig, spp, shading, traced}; }
+  RenderSettings settings(const RigSpec& rig) const { return {rig, spp, shading, traced, bounces, seed}; }
 };
 
 // How a front end names each field in messages, and a prefix before them (a spec's file name).
 struct RequestFieldNames {
   std::string prefix;
   std::string engine = "engine", mode = "mode", faces = "faces", faceSize = "face_size", polygons = "polygons",
-              spp = "spp", shading = "shading", traced = "traced", threads = "threads", timeout = "timeout";
+              spp = "spp", shading = "shading", traced = "traced", threads = "threads", timeout = "timeout",
+              bounces = "bounces", seed = "seed";
   static RequestFieldNames cli();                         // --engine, --face-size, …
   static RequestFieldNames json(const std::string& file);  // "FILE: engine", "FILE: mode_options.faces", …
 };
@@ -53,7 +56,7 @@ struct RequestFieldNames {
 // The fields as a user gave them: an absent one takes RenderRequest's default.
 struct RequestFields {
   std::optional<std::string> engine, mode, shading;
-  std::optional<int64_t> faces, faceSize, polygons, spp, threads;
+  std::optional<int64_t> faces, faceSize, polygons, spp, threads, bounces, seed;
   std::optional<double> timeoutSeconds;
   std::optional<bool> traced;
 };
@@ -66,7 +69,7 @@ void checkModeOptions(const CubeMapOptions& options, const RequestFieldNames& na
 // InputError "<prefix><name>: <rule> (got …)" for the first field that breaks a rule: an
 // unknown engine, mode or shading, mode options out of range or without the mode that uses them,
 // a mode or timeout the engine does not have, spp not a perfect square up to the limit, threads
-// out of range.
+// out of range, bounces without path shading or out of 0–kMaxBounces, a seed out of 0–2^53.
 RenderRequest readRenderRequest(const RequestFields& fields, const RequestFieldNames& names);
 
 }  // namespace omnicam

@@ -43,7 +43,7 @@ TEST(RenderRequest, EveryFrontEndStatesARuleInTheSameWords) {
        "must be 16, 64, 256 or 1024 (got 17)"},
       {[](RequestFields& f) { f.spp = 5; }, "--spp", "spp", "must be a perfect square n*n from 1 to 1024 (got 5)"},
       {[](RequestFields& f) { f.spp = 4096; }, "--spp", "spp", "must be a perfect square n*n from 1 to 1024 (got 4096)"},
-      {[](RequestFields& f) { f.shading = "shiny"; }, "--shading", "shading", "must be unlit or lit (got \"shiny\")"},
+      {[](RequestFields& f) { f.shading = "shiny"; }, "--shading", "shading", "must be unlit, lit or path (got \"shiny\")"},
       {[](RequestFields& f) { f.timeoutSeconds = 5.0; }, "--timeout", "timeout_s", "only with ENGINE povray or blender"},
       {[](RequestFields& f) { f.engine = "povray", f.timeoutSeconds = 0.0; }, "--timeout", "timeout_s",
        "must be in (0, 604800] s (got 0)"},

@@ -9,11 +9,19 @@
 
 namespace omnicam {
 
-const char* shadingName(Shading shading) { return shading == Shading::Lit ? "lit" : "unlit"; }
+const char* shadingName(Shading shading) {
+  switch (shading) {
+    case Shading::Lit: return "lit";
+    case Shading::Path: return "path";
+    case Shading::Unlit: break;
+  }
+  return "unlit";
+}
 
 std::optional<Shading> parseShading(const std::string& name) {
   if (name == "unlit") return Shading::Unlit;
   if (name == "lit") return Shading::Lit;
+  if (name == "path") return Shading::Path;
   return std::nullopt;
 }
 

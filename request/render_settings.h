@@ -8,7 +8,13 @@
 
 namespace omnicam {
 
-enum class Shading { Unlit, Lit };
+// unlit: radiance = albedo; lit: the thesis' model (ambient + Lambert point lights, no fall-off);
+// path: physically based light transport (docs/conventions.md §3).
+enum class Shading { Unlit, Lit, Path };
+
+// Diffuse bounces of path shading by default: Blender's export default, what the realistic frames use.
+inline constexpr int kDefaultBounces = 2;
+inline constexpr int kMaxBounces = 64;
 
 struct RenderSettings {
   RigSpec rig;     // usually the scene's, with --size applied
@@ -17,6 +23,10 @@ struct RenderSettings {
   // The fast renderer traces the physical camera through the mirror even for the ideal rig,
   // whose closed form it otherwise uses (the check that both agree). Other engines always trace.
   bool traced = false;
+  // path shading: diffuse scattering events per path (Cycles' diffuse_bounces), and the seed of
+  // the random stream (with the pose and the pixel sample, what a path's numbers depend on).
+  int bounces = kDefaultBounces;
+  uint64_t seed = 0;
 };
 
 const char* shadingName(Shading shading);

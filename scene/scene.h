@@ -22,6 +22,9 @@ struct Material {
   float ambient = 0.2f;
   float diffuse = 0.8f;
   std::string semanticClass;  // "class" in the scene; empty = none
+  // Emitted radiance (linear RGB, the image's units), from both sides; light for `path` shading
+  // and Blender only (docs/conventions.md §3).
+  Vec3f emission{0.0f, 0.0f, 0.0f};
 };
 
 // Axis-aligned in its own frame, rotated by yaw about +Z around its centre.

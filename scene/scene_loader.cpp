@@ -237,6 +237,7 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
     throw InputError(showPath(ctx.file) + ": " + m.where() + ": material names " + problem);
   mat.name = name;
   mat.color = m.colour("color", mat.color, 1.0);
+  mat.emission = m.colour("emission", mat.emission, 1e6);  // as a light's intensity
   mat.ambient = static_cast<float>(m.nonNegative("ambient", mat.ambient));
   mat.diffuse = static_cast<float>(m.nonNegative("diffuse", mat.diffuse));
   mat.semanticClass = readClass(m);

@@ -1,0 +1,187 @@
+#include "path_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace omnicam {
+
+namespace {
+
+// Secondary rays start this far off the surface (metres): scenes are metres across and Embree
+// traces in float (an ulp at 5 m is 5e-7 m).
+constexpr double kSurfaceOffset = 1e-5;
+
+// An orthonormal basis around a unit normal (Duff et al. 2017, branchless).
+void basisAround(const Vec3& n, Vec3& b1, Vec3& b2) {
+  const double sign = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sign + n.z());
+  const double b = n.x() * n.y() * a;
+  b1 = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+  b2 = Vec3(b, sign + n.y() * n.y() * a, -n.y());
+}
+
+double powerHeuristic(double a, double b) { return a * a / (a * a + b * b); }
+
+}  // namespace
+
+uint64_t mixKey(uint64_t a, uint64_t b) {
+  uint64_t z = a + 0x9e3779b97f4a7c15ull * (b + 1);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+PathRandom::PathRandom(uint64_t key) : state_(mixKey(key, 0x853c49e6748fea9bull)) {}
+
+double PathRandom::uniform() {
+  // PCG32 (O'Neill): 64-bit LCG state, xorshift-rotate output; two outputs make one double.
+  const auto next = [this] {
+    const uint64_t old = state_;
+    state_ = old * 6364136223846793005ull + 1442695040888963407ull;
+    const uint32_t shifted = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const uint32_t rot = static_cast<uint32_t>(old >> 59u);
+    return (shifted >> rot) | (shifted << ((-rot) & 31u));
+  };
+  const uint64_t bits = (uint64_t{next()} << 21) ^ next();
+  return static_cast<double>(bits & ((uint64_t{1} << 53) - 1)) * 0x1.0p-53;
+}
+
+double blenderWatts(const PointLight& light) {
+  return 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * light.intensity.maxCoeff();
+}
+
+Luminaire luminaireOf(const PointLight& light) {
+  Luminaire l;
+  l.position = light.position;
+  // A point of P = 4π²d²·I watts (blenderWatts) has the radiant intensity P/(4π) = π·d²·I: a
+  // Lambertian surface of albedo ρ at distance d facing it has the radiance ρ/π · π·d²·I/d² = ρ·I,
+  // the `lit` model's.
+  const double intensity = kPi * kLightMatchDistance * kLightMatchDistance;
+  if (light.diameter <= 0.0) {
+    l.emitted = static_cast<float>(intensity) * light.intensity;
+    return l;
+  }
+  // Blender's disc area light of P watts has the radiance P/(4A) (measured, Blender 3.4): with
+  // P the point's watts, π·d²·I·π/A.
+  l.radius = 0.5 * light.diameter;
+  l.emitted = static_cast<float>(intensity * kPi / l.area()) * light.intensity;
+  return l;
+}
+
+PathTracer::PathTracer(const Scene& scene, const RayScene& rays, PathTracingOptions options)
+    : scene_(scene), rays_(rays), options_(options) {
+  for (const PointLight& light : scene.lights) {
+    luminaires_.push_back(luminaireOf(light));
+    if (luminaires_.back().disc()) discs_.push_back(static_cast<int>(luminaires_.size()) - 1);
+  }
+}
+
+Vec3f PathTracer::albedoAt(const SurfaceHit& hit) const {
+  const Material& material = scene_.materials[scene_.objects[hit.object].material];
+  if (!material.texture) return material.color;
+  return material.color.cwiseProduct(
+      material.texture->sample(hit.uv.x() * material.textureScale.x(), hit.uv.y() * material.textureScale.y()));
+}
+
+int PathTracer::nearestDisc(const Vec3& origin, const Vec3& direction, double tMax, double& tHit) const {
+  int nearest = -1;
+  for (int index : discs_) {
+    const Luminaire& l = luminaires_[index];
+    if (direction.z() == 0.0) continue;
+    const double t = (l.position.z() - origin.z()) / direction.z();
+    if (!(t > 0.0 && t < tMax)) continue;
+    const Vec3 p = origin + t * direction;
+    if ((p - l.position).squaredNorm() > l.radius * l.radius) continue;
+    tMax = t;
+    tHit = t;
+    nearest = index;
+  }
+  return nearest;
+}
+
+Vec3f PathTracer::directLight(const Vec3& point, const Vec3& normal, const Vec3f& brdf, PathRandom& random) const {
+  const int count = static_cast<int>(luminaires_.size());
+  if (count == 0) return Vec3f::Zero();
+  const int index = std::min(count - 1, static_cast<int>(random.uniform() * count));
+  const Luminaire& l = luminaires_[index];
+  const double u1 = random.uniform(), u2 = random.uniform();
+  Vec3 target = l.position;
+  if (l.disc()) {
+    const double r = l.radius * std::sqrt(u1), phi = 2.0 * kPi * u2;
+    target += Vec3(r * std::cos(phi), r * std::sin(phi), 0.0);
+  }
+  const Vec3 offset = target - point;
+  const double distance2 = offset.squaredNorm(), distance = std::sqrt(distance2);
+  const Vec3 toLight = offset / distance;
+  const double cosine = normal.dot(toLight);
+  if (cosine <= 0.0) return Vec3f::Zero();
+  double weight = 0.0;  // emitted × weight is the estimate (before the BRDF and the cosine)
+  if (!l.disc()) {
+    weight = count / distance2;
+  } else {
+    const double cosLight = toLight.z();  // the disc faces −Z: it emits toward points below it
+    if (cosLight <= 0.0) return Vec3f::Zero();
+    const double lightPdf = distance2 / (l.area() * cosLight) / count;  // per solid angle
+    weight = powerHeuristic(lightPdf, cosine / kPi) / lightPdf;
+  }
+  if (rays_.occluded(point + kSurfaceOffset * normal, toLight, 0.0, distance - 2.0 * kSurfaceOffset)) return Vec3f::Zero();
+  return static_cast<float>(weight * cosine) * brdf.cwiseProduct(l.emitted);
+}
+
+Vec3f PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirection, const SurfaceHit* first,
+                            uint64_t key) const {
+  PathRandom random(key);
+  Vec3f radiance = Vec3f::Zero(), throughput = Vec3f::Ones();
+  Vec3 origin = cameraOrigin, direction = cameraDirection;
+  double bsdfPdf = -1.0;  // of the ray's direction; < 0 for the camera ray (no MIS)
+  std::optional<SurfaceHit> hit;
+  if (first) hit = *first;
+  for (int scatters = 0;; ++scatters) {
+    if (scatters > 0) hit = rays_.intersect(origin, direction);
+    double tDisc = 0.0;
+    const int disc = nearestDisc(origin, direction, hit ? hit->t : std::numeric_limits<double>::infinity(), tDisc);
+    if (disc >= 0) {  // a disc luminaire ends the path (Cycles: no transparent bounces)
+      const Luminaire& l = luminaires_[disc];
+      const double cosLight = direction.z();
+      if (cosLight > 0.0) {
+        double weight = 1.0;
+        if (bsdfPdf >= 0.0) {
+          const double lightPdf = tDisc * tDisc / (l.area() * cosLight) / luminaires_.size();
+          weight = powerHeuristic(bsdfPdf, lightPdf);
+        }
+        radiance += static_cast<float>(weight) * throughput.cwiseProduct(l.emitted);
+      }
+      break;
+    }
+    if (!hit) {
+      radiance += throughput.cwiseProduct(scene_.background);
+      break;
+    }
+    const Material& material = scene_.materials[scene_.objects[hit->object].material];
+    radiance += throughput.cwiseProduct(material.emission);  // emitters are found by the paths that meet them
+    // Cycles' diffuse_bounces = D: light reflected by at most D + 1 diffuse surfaces (D = 0 is
+    // direct light), so the path's last scattered ray only gathers what it meets (measured
+    // against Blender 3.4: docs/conventions.md §3).
+    if (scatters == options_.diffuseBounces + 1) break;
+    const Vec3 normal = hit->normal.dot(direction) > 0.0 ? Vec3(-hit->normal) : hit->normal;  // two-sided
+    const Vec3f albedo = albedoAt(*hit);
+    radiance += throughput.cwiseProduct(directLight(hit->point, normal, albedo / static_cast<float>(kPi), random));
+    // Cosine-weighted scattering: the BRDF × cosine / pdf is the albedo.
+    throughput = throughput.cwiseProduct(albedo);
+    if (scatters + 1 > options_.rouletteAfter) {
+      const double survive = std::min(1.0, std::sqrt(static_cast<double>(throughput.maxCoeff())));
+      if (!(random.uniform() < survive)) break;
+      throughput /= static_cast<float>(survive);
+    }
+    const double u1 = random.uniform(), u2 = random.uniform();
+    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2, cosine = std::sqrt(std::max(0.0, 1.0 - u1));
+    Vec3 b1, b2;
+    basisAround(normal, b1, b2);
+    direction = (r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + cosine * normal).normalized();
+    bsdfPdf = cosine / kPi;
+    origin = hit->point + kSurfaceOffset * normal;
+  }
+  return radiance;
+}
+
+}  // namespace omnicam

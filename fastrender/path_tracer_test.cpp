@@ -1,0 +1,182 @@
+// Path shading against closed forms: a white furnace, a disc luminaire's irradiance, a point
+// light's inverse-square fall-off; and the determinism frames promise.
+#include "path_tracer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "fast_renderer.h"
+#include "scene_loader.h"
+#include "thread_count_testing.h"
+
+namespace omnicam {
+namespace {
+
+Material lambertian(const Vec3f& albedo, const Vec3f& emission = Vec3f::Zero()) {
+  Material m;
+  m.name = "surface";
+  m.color = albedo;
+  m.emission = emission;
+  return m;
+}
+
+// The mean radiance of `paths` paths along one ray (keys 0, 1, …), and its standard error.
+struct Estimate {
+  Vec3 mean = Vec3::Zero();
+  double standardError = 0.0;  // of the first channel
+};
+Estimate meanRadiance(const FastRenderer& renderer, const Vec3& origin, const Vec3& direction, int paths, int bounces) {
+  Vec3 sum = Vec3::Zero();
+  double squares = 0.0;
+  for (int k = 0; k < paths; ++k) {
+    const Vec3 v = renderer.radiance(origin, direction, Shading::Path, static_cast<uint64_t>(k), bounces).cast<double>();
+    sum += v;
+    squares += v.x() * v.x();
+  }
+  Estimate e;
+  e.mean = sum / paths;
+  e.standardError = std::sqrt(std::max(0.0, squares / paths - e.mean.x() * e.mean.x()) / paths);
+  return e;
+}
+
+// A closed box of albedo ρ whose walls emit E: the radiance everywhere inside is E/(1 − ρ) (the
+// sum E·Σ ρ^k of light reflected k times), whatever the box's shape.
+TEST(PathTracer, WhiteFurnaceGivesEmissionOverOneMinusAlbedo) {
+  for (const double albedo : {0.3, 0.5, 0.8}) {
+    Scene s;
+    const float e = 0.25f;
+    s.materials.push_back(lambertian(Vec3f::Constant(static_cast<float>(albedo)), Vec3f::Constant(e)));
+    s.objects.push_back({"box", 0, Box{{0.0, 0.0, 1.0}, {3.0, 2.0, 2.0}, 20.0}, ""});
+    const FastRenderer renderer(s);
+    // 0.8^200 is nothing: the bounce limit does not cut the sum.
+    const Estimate estimate = meanRadiance(renderer, {0.2, -0.1, 1.1}, Vec3(0.3, 0.5, -0.8).normalized(), 20000, 200);
+    const double expected = e / (1.0 - albedo);
+    EXPECT_NEAR(estimate.mean.x(), expected, 4.0 * estimate.standardError + 1e-6) << "albedo " << albedo;
+    EXPECT_LT(estimate.standardError, 0.01 * expected) << "the estimate is too noisy to test anything";
+  }
+}
+
+// With D bounces the furnace holds light reflected at most D + 1 times: E·(1 − ρ^(D+2))/(1 − ρ).
+TEST(PathTracer, BounceLimitKeepsLightReflectedAtMostBouncesPlusOneTimes) {
+  const double albedo = 0.5;
+  Scene s;
+  s.materials.push_back(lambertian(Vec3f::Constant(0.5f), Vec3f::Ones()));
+  s.objects.push_back({"box", 0, Box{{0.0, 0.0, 1.0}, {2.0, 2.0, 2.0}, 0.0}, ""});
+  const FastRenderer renderer(s);
+  for (const int bounces : {0, 1, 2, 4}) {
+    const Estimate estimate = meanRadiance(renderer, {0.0, 0.0, 1.0}, Vec3(0, 0, -1), 20000, bounces);
+    const double expected = (1.0 - std::pow(albedo, bounces + 2)) / (1.0 - albedo);
+    EXPECT_NEAR(estimate.mean.x(), expected, 4.0 * estimate.standardError + 1e-6) << bounces << " bounces";
+  }
+}
+
+// A floor of albedo ρ under one scene light; the scene light's intensity I means (docs/conventions.md §3):
+// a point of radiant intensity π·d₀²·I, d₀ = 3 m; a disc of diameter D facing down, of radiance
+// π²·d₀²·I/A, A = π(D/2)².
+Scene floorUnder(const PointLight& light, float albedo) {
+  Scene s;
+  s.materials.push_back(lambertian(Vec3f::Constant(albedo)));
+  s.objects.push_back({"floor", 0, Quad{{-100, -100, 0}, {200, 0, 0}, {0, 200, 0}}, ""});
+  s.lights.push_back(light);
+  return s;
+}
+
+TEST(PathTracer, PointLightFallsOffWithTheInverseSquareOfDistance) {
+  const double d0 = 3.0, rho = 0.6, intensity = 0.7;
+  for (const double height : {1.0, 2.0, 4.0})
+    for (const double offset : {0.0, 1.5}) {
+      const Scene s = floorUnder({"lamp", {0.0, 0.0, height}, Vec3f::Constant(static_cast<float>(intensity)), 0.0},
+                                 static_cast<float>(rho));
+      const FastRenderer renderer(s);
+      // Looking straight down at the floor `offset` metres from the point under the lamp.
+      const Vec3 origin(offset, 0.0, 0.5);
+      const double r2 = height * height + offset * offset, cosine = height / std::sqrt(r2);
+      const double expected = rho / kPi * (kPi * d0 * d0 * intensity) * cosine / r2;
+      // A point light is sampled exactly and the open scene returns nothing else: no noise.
+      const Vec3f radiance = renderer.radiance(origin, Vec3(0, 0, -1), Shading::Path, 7, 2);
+      EXPECT_NEAR(radiance.x(), expected, 1e-5 * expected) << "height " << height << ", offset " << offset;
+    }
+}
+
+// Irradiance at a point of a plane parallel to a Lambertian disc of radiance L and radius R, at
+// height h below it and a horizontal distance d from its axis (the view-factor closed form):
+// E = (πL/2)·(1 − (h² + d² − R²)/√((h² + d² + R²)² − 4R²d²)).
+double discIrradiance(double radiance, double radius, double height, double d) {
+  const double h2 = height * height, d2 = d * d, r2 = radius * radius;
+  return 0.5 * kPi * radiance * (1.0 - (h2 + d2 - r2) / std::sqrt((h2 + d2 + r2) * (h2 + d2 + r2) - 4.0 * r2 * d2));
+}
+
+TEST(PathTracer, DiscLuminaireGivesTheClosedFormIrradiance) {
+  const double d0 = 3.0, rho = 0.5, intensity = 0.35, diameter = 0.8, height = 1.2;
+  const double radius = 0.5 * diameter, area = kPi * radius * radius;
+  const double radiance = kPi * kPi * d0 * d0 * intensity / area;
+  const Scene s = floorUnder({"lamp", {0.0, 0.0, height}, Vec3f::Constant(static_cast<float>(intensity)), diameter},
+                             static_cast<float>(rho));
+  const FastRenderer renderer(s);
+  for (const double d : {0.0, 0.3, 1.0, 2.5}) {
+    const Estimate estimate = meanRadiance(renderer, {d, 0.0, 0.5}, Vec3(0, 0, -1), 20000, 0);
+    const double expected = rho / kPi * discIrradiance(radiance, radius, height, d);
+    EXPECT_NEAR(estimate.mean.x(), expected, 4.0 * estimate.standardError + 1e-6 * expected) << "d = " << d;
+    EXPECT_LT(estimate.standardError, 0.01 * expected) << "d = " << d;
+  }
+  // Seen from below, the disc is its radiance.
+  EXPECT_NEAR(renderer.radiance({0.1, 0.0, 0.5}, Vec3(0, 0, 1), Shading::Path, 1, 2).x(), radiance, 1e-4 * radiance);
+  // It emits nothing upward: a ceiling above it, and nothing else, stays dark.
+  Scene ceiling;
+  ceiling.materials.push_back(lambertian(Vec3f::Constant(0.9f)));
+  ceiling.objects.push_back({"ceiling", 0, Quad{{-100, -100, 2.0}, {200, 0, 0}, {0, 200, 0}}, ""});
+  ceiling.lights = s.lights;
+  const FastRenderer dark(ceiling);
+  EXPECT_EQ(meanRadiance(dark, {0.6, 0.0, 1.5}, Vec3(0, 0, 1), 2000, 2).mean.x(), 0.0);
+}
+
+TEST(PathTracer, BackgroundIsConstantRadianceSeenAndReflected) {
+  Scene s;
+  s.background = {0.2f, 0.4f, 0.6f};
+  s.materials.push_back(lambertian(Vec3f::Constant(0.5f)));
+  s.objects.push_back({"floor", 0, Quad{{-1000, -1000, 0}, {2000, 0, 0}, {0, 2000, 0}}, ""});
+  const FastRenderer renderer(s);
+  const Vec3f sky = renderer.radiance({0, 0, 1}, Vec3(0.3, 0, 1).normalized(), Shading::Path, 0, 2);
+  EXPECT_FLOAT_EQ(sky.z(), 0.6f);
+  // An infinite floor under a uniform sky of radiance B has the radiance ρ·B.
+  const Estimate floor = meanRadiance(renderer, {0, 0, 1}, Vec3(0, 0, -1), 4000, 2);
+  EXPECT_NEAR(floor.mean.x(), 0.5 * 0.2, 1e-3);  // every path sees the sky on its first bounce
+}
+
+TEST(PathTracer, FramesAreBitIdenticalForAnyThreadCountAndDependOnTheSeed) {
+  const Scene s = loadScene(OMNICAM_SOURCE_DIR "/scenes/tiled-room.json");
+  RenderSettings settings;
+  settings.rig = s.rig;
+  settings.rig.imageSize = 128;
+  settings.spp = 16;  // tens of milliseconds: work enough for four threads to share
+  settings.shading = Shading::Path;
+  const FastRenderer rendererOne(s), rendererFour(s);
+  ImageRGBA one, four;
+  EXPECT_EQ(runOnThreads(1, [&] { one = rendererOne.render(s.startPose, settings); }), 1);
+  EXPECT_EQ(runOnThreads(4, [&] { four = rendererFour.render(s.startPose, settings); }), 4);
+  ASSERT_EQ(one.pixels.size(), four.pixels.size());
+  EXPECT_EQ(std::memcmp(one.pixels.data(), four.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  settings.seed = 1;
+  const ImageRGBA reseeded = rendererOne.render(s.startPose, settings);
+  EXPECT_NE(std::memcmp(one.pixels.data(), reseeded.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+}
+
+TEST(PathTracer, RandomStreamIsUniform) {
+  PathRandom random(42);
+  int bins[10] = {};
+  double sum = 0.0;
+  for (int k = 0; k < 100000; ++k) {
+    const double u = random.uniform();
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    ++bins[static_cast<int>(u * 10)];
+    sum += u;
+  }
+  EXPECT_NEAR(sum / 100000, 0.5, 0.003);
+  for (int b : bins) EXPECT_NEAR(b, 10000, 400);
+}
+
+}  // namespace
+}  // namespace omnicam
