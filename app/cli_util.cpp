@@ -120,6 +120,8 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
                    "path: diffuse bounces per path (default " + std::to_string(defaults.bounces) + ", as Cycles' export)")
         ->check(integer);
     cmd.add_option("--seed", flags.seed, "path and blender: the random stream's seed (default 0)")->check(integerIn(0, INT64_MAX));
+    cmd.add_flag("--denoise", flags.denoise,
+                 "Path-traced frames: filter the indirect light, guided by albedo, normal and depth (a small bias)");
   }
   if (which & kModeFlags) {
     cmd.add_option("--mode", flags.mode, "exact (default), cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
@@ -153,6 +155,7 @@ RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
   if (given("--timeout")) f.timeoutSeconds = flags.timeout;
   if (given("--bounces")) f.bounces = flags.bounces;
   if (given("--seed")) f.seed = flags.seed;
+  if (given("--denoise")) f.denoise = flags.denoise;
   return readRenderRequest(f, RequestFieldNames::cli());
 }
 

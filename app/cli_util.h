@@ -37,6 +37,7 @@ struct RequestFlags {
   std::string engine, mode, shading;
   int64_t faces = 0, faceSize = 0, polygons = 0, spp = 0, bounces = 0, seed = 0;
   double timeout = 0.0;
+  bool denoise = false;
 };
 enum RequestFlagSet : unsigned {
   kEngineFlag = 1u,   // --engine

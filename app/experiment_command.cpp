@@ -11,6 +11,7 @@
 #include "errors.h"
 #include "hall_arena.h"
 #include "mapping_arena.h"
+#include "path_convergence.h"
 #include "realistic_convergence.h"
 #include "safe_files.h"
 #include "scene_loader.h"
@@ -78,6 +79,49 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   std::printf("wrote %s/convergence.json (%.0f s)\n", a.out.c_str(), r.seconds);
 }
 
+// Replaces the generated section of `doc` (from "## Measured" to the next "## " heading) with
+// `section`, or appends it; the prose around it is kept.
+void replaceGeneratedSection(const std::string& doc, const std::string& section) {
+  std::string text;
+  if (std::filesystem::exists(doc)) {
+    const std::filesystem::path path(doc);
+    text = readFileInside(path.parent_path().empty() ? "." : path.parent_path().string(), path.filename().string(), 4 << 20);
+  }
+  const size_t begin = text.find("## Measured\n");
+  if (begin == std::string::npos) {
+    writeTextAtomically(doc, text + (text.empty() || text.back() == '\n' ? "" : "\n") + "\n" + section);
+    return;
+  }
+  const size_t next = text.find("\n## ", begin + 1);
+  const std::string after = next == std::string::npos ? "" : text.substr(next + 1);
+  writeTextAtomically(doc, text.substr(0, begin) + section + (after.empty() ? "" : "\n" + after));
+}
+
+void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures"})
+    refuseUnless(cmd, flag, false, "experiment texture-realism");
+  checkOutputFolder(a.out, "-o");
+  PathConvergenceOptions options = a.quick ? PathConvergenceOptions::quick() : PathConvergenceOptions();
+  options.outDir = a.out;
+  options.fieldScene = scenesDir() + "/robocup2006.json";
+  options.tiledRoom = scenesDir() + "/tiled-room.json";
+  options.labPhoto = std::string(kStudioLights) + kLabPhoto;
+  if (!std::filesystem::exists(options.labPhoto))
+    throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
+  ensureDirectory(a.out, "-o");
+  StageProgress progress;
+  const PathConvergenceResults r = runPathConvergence(
+      options, [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
+  progress.finish();
+  std::string command = "omnicam experiment path-convergence -o DIR";
+  if (a.quick) command += " --quick";
+  if (!a.doc.empty()) command += " --doc " + a.doc;
+  const std::string markdown = pathConvergenceMarkdown(r, command);
+  writeTextAtomically(a.out + "/path-convergence.md", markdown);
+  if (!a.doc.empty()) replaceGeneratedSection(a.doc, markdown);
+  std::printf("%swrote %s/path-convergence.json (%.0f s)\n", markdown.c_str(), a.out.c_str(), r.seconds);
+}
+
 // The study's results, read before anything is written (an output folder is untrusted input).
 ConvergenceResults readConvergence(const std::string& folder) {
   const std::string text = readFileInside(folder, "convergence.json", 64 << 20);
@@ -104,10 +148,11 @@ std::string convergenceSection(const ConvergenceResults& r, const std::string& f
 }
 
 void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
-  if (a.name != "texture-realism" && a.name != "realistic-convergence")
-    throw InputError("experiment: unknown experiment " + quote(a.name) + " (texture-realism, realistic-convergence)");
+  if (a.name != "texture-realism" && a.name != "realistic-convergence" && a.name != "path-convergence")
+    throw InputError("experiment: unknown experiment " + quote(a.name) + " (texture-realism, realistic-convergence, path-convergence)");
   if (a.out.empty()) throw InputError("-o: give the folder for the results");
   if (a.name == "realistic-convergence") return runConvergence(a, cmd);
+  if (a.name == "path-convergence") return runPathStudy(a, cmd);
   std::optional<ConvergenceResults> convergence;
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
   if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
@@ -186,7 +231,10 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
 void addExperimentCommands(CLI::App& app) {
   auto args = std::make_shared<ExperimentArgs>();
   CLI::App* cmd = app.add_subcommand("experiment", "Run one of the thesis' experiments (docs/texture-realism.md)");
-  cmd->add_option("name", args->name, "texture-realism, or realistic-convergence (how converged its Blender frames are)")->required();
+  cmd->add_option("name", args->name,
+                  "texture-realism, realistic-convergence (how converged its Blender frames are), or path-convergence (the "
+                  "fast renderer's path shading against Cycles, docs/path-tracing.md)")
+      ->required();
   cmd->add_option("-o,--output", args->out, "Folder for results.json, report.html, figures/ and data/")->required();
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");
   cmd->add_option("--doc", args->doc, "Also write the Markdown summary here (docs/texture-realism.md)");

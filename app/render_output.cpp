@@ -17,6 +17,8 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
   record.rig = settings.rig;
   record.spp = settings.spp;
   record.shading = shadingName(settings.shading);
+  if (settings.shading == Shading::Path)
+    record.pathTracing = {{"bounces", settings.bounces}, {"seed", settings.seed}, {"denoise", settings.denoise}};
   record.mode = engine.mode();
   record.modeOptions = engine.modeOptions();
   record.seconds = seconds;

@@ -161,6 +161,9 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
                                  "its line's mid-exposure; docs/motion.md)"},
                         {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
+  if (spec.request.shading == Shading::Path)
+    header["settings"]["path_tracing"] = {
+        {"bounces", spec.request.bounces}, {"seed", spec.request.seed}, {"denoise", spec.request.denoise}};
   json written = json::array(), channels = json::object();
   for (OutputKind kind : plan.outputList()) {
     written.push_back(outputName(kind));

@@ -269,6 +269,7 @@ void readRequest(JsonFields& top, DatasetSpec& spec) {
   if (top.has("timeout_s")) f.timeoutSeconds = top.number("timeout_s");
   if (top.has("bounces")) f.bounces = top.integer("bounces", -kAny, kAny);
   if (top.has("seed")) f.seed = top.integer("seed", -kAny, kAny);
+  if (top.has("denoise")) f.denoise = top.boolean("denoise", false);
   spec.request = readRenderRequest(f, RequestFieldNames::json(spec.file));
 }
 

@@ -183,6 +183,23 @@ class GltfBuilder {
     return static_cast<int>(model_.materials.size()) - 1;
   }
 
+  // Emitted radiance as glTF has it: a factor in [0, 1] times KHR_materials_emissive_strength.
+  void setEmission(int material, const Vec3f& emission) {
+    const float strength = emission.maxCoeff();
+    if (!(strength > 0.0f)) return;
+    tinygltf::Material& m = model_.materials[material];
+    const Vec3f factor = emission / strength;
+    m.emissiveFactor = {factor.x(), factor.y(), factor.z()};
+    if (strength != 1.0f) {
+      tinygltf::Value::Object ext;
+      ext["emissiveStrength"] = tinygltf::Value(static_cast<double>(strength));
+      m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(ext);
+      auto& used = model_.extensionsUsed;
+      if (std::find(used.begin(), used.end(), "KHR_materials_emissive_strength") == used.end())
+        used.push_back("KHR_materials_emissive_strength");
+    }
+  }
+
   // A node with a rigid transform given in omnicam coordinates. `cameraAxes`: the node's own
   // axes are glTF camera axes (view −Z, up +Y), which no axis conversion applies to, so only
   // the parent side is converted.
@@ -253,6 +270,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     const int texture = m.texture ? b.texture(m.name, pngBytes(*m.texture)) : -1;
     materials.push_back(b.material(m.name, m.color, texture, 0.0, 1.0,
                                    {{"omnicam", {{"ambient", m.ambient}, {"diffuse", m.diffuse}}}}));
+    b.setEmission(materials.back(), m.emission);
   }
   const int arena = b.node("arena", Rigid::Identity(), -1, {{"omnicam", {{"scene", scene.name}}}});
   b.addRoot(arena);

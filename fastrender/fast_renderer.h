@@ -47,13 +47,14 @@ class FastRenderer {
   const Scene& scene() const { return scene_; }
   const RayScene& rays() const { return rays_; }
 
-  // Radiance along one ray from `origin` (exposed for tests); path shading traces the path keyed
-  // `key` with `bounces` diffuse bounces.
+  // Radiance along one ray from `origin` (exposed for tests); path shading traces sample `key` of
+  // one pixel's sequence with `bounces` diffuse bounces.
   Vec3f radiance(const Vec3& origin, const Vec3& direction, Shading shading, uint64_t key = 0,
                  int bounces = kDefaultBounces) const;
 
  private:
   struct PathFrame;
+  struct DenoiseSums;
   // The rays of every imaged sample, per pixel, in the viewpoint frame: they depend only on the
   // camera and spp, so they are computed once and reused for every pose.
   struct SampleTable {
@@ -113,7 +114,7 @@ class FastRenderer {
   // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
   // sums[0, width).
   void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading, const PathFrame* path,
-                      MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums) const;
+                      MovingRowScratch& scratch, HitPacket& hits, Vec3f* sums, DenoiseSums* denoise) const;
   // Centre rays of listed pixels, each placed by at(pixel).
   template <typename PlacementOfPixel>
   static void loadCentres(HitPacket& hits, const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels,
@@ -130,11 +131,22 @@ class FastRenderer {
     uint64_t key = 0;
   };
   std::optional<PathFrame> pathFrame(const RenderSettings& settings, const CameraPlacement& camera) const;
+  // Per pixel, the sums a denoised path frame needs beside its colour: the direct light's, and the
+  // guides' of each sample's first surface (albedo, normal facing the camera, depth); nothing
+  // where a sample sees no surface.
+  struct DenoiseSums {
+    std::vector<Vec3f> direct, albedo, normal;
+    std::vector<float> depth;
+    void resize(size_t pixels);
+    void add(size_t pixel, const Vec3f& directLight, const HitPacket& hits, int k, const PathTracer& tracer);
+  };
+  // The film's colour with its indirect light filtered (denoise/indirect_filter.h).
+  static void denoise(Film& film, const DenoiseSums& sums, float weight, const std::vector<uint32_t>& imaged);
   // Colours of a packet of rays: the background where a ray missed, else its hit shaded per
   // docs/conventions.md §3, with the shadow rays traced as packets too. Path shading (`path`
   // given) traces ray k's path keyed by samples[k].
   void shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path = nullptr,
-                   const uint64_t* samples = nullptr) const;
+                   const PathKey* samples = nullptr, Vec3f* directs = nullptr) const;
   const Scene& scene_;
   RayScene rays_;
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable

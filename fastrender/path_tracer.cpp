@@ -33,6 +33,46 @@ uint64_t mixKey(uint64_t a, uint64_t b) {
 
 PathRandom::PathRandom(uint64_t key) : state_(mixKey(key, 0x853c49e6748fea9bull)) {}
 
+namespace {
+
+uint32_t reverseBits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+// Laine and Karras' hash, an Owen scramble of the bits from the lowest up; nested (reversed) it
+// scrambles from the highest (Burley 2020).
+uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
+  x = reverseBits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return reverseBits(x);
+}
+
+// The first two dimensions of Sobol's sequence: van der Corput, and its (0, 2) partner.
+uint32_t sobolSecond(uint32_t i) {
+  uint32_t result = 0;
+  for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
+    if (i & 1u) result ^= v;
+  return result;
+}
+
+}  // namespace
+
+Eigen::Vector2d PixelSequence::point(uint32_t dimension) const {
+  const uint64_t seed = mixKey(pixel_, dimension);
+  const uint32_t i = nestedUniformScramble(index_, static_cast<uint32_t>(seed));
+  const uint32_t x = nestedUniformScramble(reverseBits(i), static_cast<uint32_t>(seed >> 32));
+  const uint32_t y = nestedUniformScramble(sobolSecond(i), static_cast<uint32_t>(mixKey(seed, 1)));
+  return {x * 0x1.0p-32, y * 0x1.0p-32};
+}
+
 double PathRandom::uniform() {
   // PCG32 (O'Neill): 64-bit LCG state, xorshift-rotate output; two outputs make one double.
   const auto next = [this] {
@@ -99,15 +139,11 @@ int PathTracer::nearestDisc(const Vec3& origin, const Vec3& direction, double tM
   return nearest;
 }
 
-Vec3f PathTracer::directLight(const Vec3& point, const Vec3& normal, const Vec3f& brdf, PathRandom& random) const {
-  const int count = static_cast<int>(luminaires_.size());
-  if (count == 0) return Vec3f::Zero();
-  const int index = std::min(count - 1, static_cast<int>(random.uniform() * count));
-  const Luminaire& l = luminaires_[index];
-  const double u1 = random.uniform(), u2 = random.uniform();
+Vec3f PathTracer::lightSample(const Luminaire& l, double selection, const Vec3& point, const Vec3& normal,
+                              const Vec3f& brdf, const Eigen::Vector2d& u) const {
   Vec3 target = l.position;
   if (l.disc()) {
-    const double r = l.radius * std::sqrt(u1), phi = 2.0 * kPi * u2;
+    const double r = l.radius * std::sqrt(u.x()), phi = 2.0 * kPi * u.y();
     target += Vec3(r * std::cos(phi), r * std::sin(phi), 0.0);
   }
   const Vec3 offset = target - point;
@@ -117,21 +153,77 @@ Vec3f PathTracer::directLight(const Vec3& point, const Vec3& normal, const Vec3f
   if (cosine <= 0.0) return Vec3f::Zero();
   double weight = 0.0;  // emitted × weight is the estimate (before the BRDF and the cosine)
   if (!l.disc()) {
-    weight = count / distance2;
+    weight = 1.0 / (selection * distance2);
   } else {
     const double cosLight = toLight.z();  // the disc faces −Z: it emits toward points below it
     if (cosLight <= 0.0) return Vec3f::Zero();
-    const double lightPdf = distance2 / (l.area() * cosLight) / count;  // per solid angle
+    const double lightPdf = selection * distance2 / (l.area() * cosLight);  // per solid angle
     weight = powerHeuristic(lightPdf, cosine / kPi) / lightPdf;
   }
   if (rays_.occluded(point + kSurfaceOffset * normal, toLight, 0.0, distance - 2.0 * kSurfaceOffset)) return Vec3f::Zero();
   return static_cast<float>(weight * cosine) * brdf.cwiseProduct(l.emitted);
 }
 
-Vec3f PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirection, const SurfaceHit* first,
-                            uint64_t key) const {
-  PathRandom random(key);
+namespace {
+
+// A light's share of the light at a surface point, from its centre and without occlusion: what
+// the light to sample is chosen by.
+double unoccludedEstimate(const Luminaire& l, const Vec3& point, const Vec3& normal) {
+  const Vec3 offset = l.position - point;
+  const double distance2 = offset.squaredNorm();
+  if (!(distance2 > 0.0)) return 0.0;
+  const Vec3 toLight = offset / std::sqrt(distance2);
+  double estimate = std::max(0.0, normal.dot(toLight)) * l.emitted.maxCoeff() / distance2;
+  if (l.disc()) estimate *= l.area() * std::max(0.0, toLight.z());
+  return estimate;
+}
+
+// Lights are chosen in proportion to their estimates, mixed with a uniform choice so that every
+// light keeps a chance (a disc the estimate misses, say one the surface sees past its centre).
+constexpr double kUniformShare = 0.1;
+
+}  // namespace
+
+PathTracer::LightChoice PathTracer::chooseLights(const Vec3& point, const Vec3& normal) const {
+  LightChoice choice;
+  choice.point = point;
+  choice.normal = normal;
+  for (const Luminaire& l : luminaires_) choice.sum += unoccludedEstimate(l, point, normal);
+  return choice;
+}
+
+double PathTracer::selectionOf(const LightChoice& choice, int light) const {
+  const double uniform = 1.0 / static_cast<double>(luminaires_.size());
+  if (!(choice.sum > 0.0)) return uniform;
+  return (1.0 - kUniformShare) * unoccludedEstimate(luminaires_[light], choice.point, choice.normal) / choice.sum +
+         kUniformShare * uniform;
+}
+
+int PathTracer::pick(const LightChoice& choice, double& u, double& selection) const {
+  const int count = static_cast<int>(luminaires_.size());
+  double cumulative = 0.0;
+  for (int l = 0; l < count; ++l) {
+    const double p = selectionOf(choice, l);
+    if (u < cumulative + p || l == count - 1) {
+      u = std::clamp((u - cumulative) / p, 0.0, std::nextafter(1.0, 0.0));  // reused, still uniform
+      selection = p;
+      return l;
+    }
+    cumulative += p;
+  }
+  return count - 1;
+}
+
+PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirection, const SurfaceHit* first,
+                                 const PathKey& key) const {
+  // The first surface's samples (every light, the first bounce) are stratified over the pixel's
+  // samples; deeper vertices, whose light the pixel averages with many others, draw at random.
+  const PixelSequence stratified(key.pixel, key.index);
+  PathRandom random(mixKey(key.pixel, key.index));
+  const int lights = static_cast<int>(luminaires_.size());
   Vec3f radiance = Vec3f::Zero(), throughput = Vec3f::Ones();
+  std::optional<Vec3f> direct;  // set once the path is past its first reflection
+  LightChoice left;             // where the ray left: how its lights were chosen (MIS of the lights it meets)
   Vec3 origin = cameraOrigin, direction = cameraDirection;
   double bsdfPdf = -1.0;  // of the ray's direction; < 0 for the camera ray (no MIS)
   std::optional<SurfaceHit> hit;
@@ -146,7 +238,7 @@ Vec3f PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirectio
       if (cosLight > 0.0) {
         double weight = 1.0;
         if (bsdfPdf >= 0.0) {
-          const double lightPdf = tDisc * tDisc / (l.area() * cosLight) / luminaires_.size();
+          const double lightPdf = selectionOf(left, disc) * tDisc * tDisc / (l.area() * cosLight);
           weight = powerHeuristic(bsdfPdf, lightPdf);
         }
         radiance += static_cast<float>(weight) * throughput.cwiseProduct(l.emitted);
@@ -159,13 +251,21 @@ Vec3f PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirectio
     }
     const Material& material = scene_.materials[scene_.objects[hit->object].material];
     radiance += throughput.cwiseProduct(material.emission);  // emitters are found by the paths that meet them
+    if (scatters == 1) direct = radiance;
     // Cycles' diffuse_bounces = D: light reflected by at most D + 1 diffuse surfaces (D = 0 is
     // direct light), so the path's last scattered ray only gathers what it meets (measured
     // against Blender 3.4: docs/conventions.md §3).
     if (scatters == options_.diffuseBounces + 1) break;
     const Vec3 normal = hit->normal.dot(direction) > 0.0 ? Vec3(-hit->normal) : hit->normal;  // two-sided
     const Vec3f albedo = albedoAt(*hit);
-    radiance += throughput.cwiseProduct(directLight(hit->point, normal, albedo / static_cast<float>(kPi), random));
+    const Vec3f brdf = albedo / static_cast<float>(kPi);
+    if (lights > 0) {  // one light, by its estimate; the first surface's choice stratified
+      left = chooseLights(hit->point, normal);
+      Eigen::Vector2d u = scatters == 0 ? stratified.point(1) : Eigen::Vector2d(random.uniform(), random.uniform());
+      double selection = 1.0;
+      const int l = pick(left, u.x(), selection);
+      radiance += throughput.cwiseProduct(lightSample(luminaires_[l], selection, hit->point, normal, brdf, u));
+    }
     // Cosine-weighted scattering: the BRDF × cosine / pdf is the albedo.
     throughput = throughput.cwiseProduct(albedo);
     if (scatters + 1 > options_.rouletteAfter) {
@@ -173,7 +273,8 @@ Vec3f PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirectio
       if (!(random.uniform() < survive)) break;
       throughput /= static_cast<float>(survive);
     }
-    const double u1 = random.uniform(), u2 = random.uniform();
+    const Eigen::Vector2d u = scatters == 0 ? stratified.point(0) : Eigen::Vector2d(random.uniform(), random.uniform());
+    const double u1 = u.x(), u2 = u.y();
     const double r = std::sqrt(u1), phi = 2.0 * kPi * u2, cosine = std::sqrt(std::max(0.0, 1.0 - u1));
     Vec3 b1, b2;
     basisAround(normal, b1, b2);
@@ -181,7 +282,7 @@ Vec3f PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirectio
     bsdfPdf = cosine / kPi;
     origin = hit->point + kSurfaceOffset * normal;
   }
-  return radiance;
+  return {radiance, direct.value_or(radiance)};
 }
 
 }  // namespace omnicam

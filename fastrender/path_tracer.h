@@ -55,6 +55,34 @@ class PathRandom {
   uint64_t state_;
 };
 
+// What one camera path brings: every light it carries, and the part a denoiser keeps as traced
+// (denoise/indirect_filter.h): light reflected by the first surface at most, its emission included.
+struct PathSample {
+  Vec3f radiance = Vec3f::Zero();
+  Vec3f direct = Vec3f::Zero();
+};
+
+// A pixel's samples as stratified points: sample `index` of the pixel keyed `pixel` gets, in each
+// 2D dimension, a point of an Owen-scrambled Sobol (0, 2)-sequence (Burley 2020: the index
+// shuffled and each coordinate scrambled by hashes of the pixel and the dimension). Any prefix of
+// 4^k samples is stratified in every elementary interval: soft shadows and the first bounce
+// converge faster than with independent random numbers.
+class PixelSequence {
+ public:
+  PixelSequence(uint64_t pixel, uint32_t index) : pixel_(pixel), index_(index) {}
+  Eigen::Vector2d point(uint32_t dimension) const;
+
+ private:
+  uint64_t pixel_;
+  uint32_t index_;
+};
+
+// Which path a camera sample traces: its pixel's key and its index among the pixel's samples.
+struct PathKey {
+  uint64_t pixel = 0;
+  uint32_t index = 0;
+};
+
 class PathTracer {
  public:
   // Keeps references to `scene` and `rays`, which must outlive the tracer.
@@ -62,17 +90,30 @@ class PathTracer {
 
   // Radiance arriving along the camera ray origin + t·direction (unit) whose first surface hit is
   // `first` (nullptr: the ray met no surface), for the path keyed `key`.
-  Vec3f cameraRay(const Vec3& origin, const Vec3& direction, const SurfaceHit* first, uint64_t key) const;
+  PathSample cameraRay(const Vec3& origin, const Vec3& direction, const SurfaceHit* first, const PathKey& key) const;
 
   const std::vector<Luminaire>& luminaires() const { return luminaires_; }
+  // The material's colour times its texture at the hit.
+  Vec3f albedoAt(const SurfaceHit& hit) const;
 
  private:
+  // How a surface point chooses the light it samples: in proportion to each light's unoccluded
+  // estimate there, mixed with a uniform choice.
+  struct LightChoice {
+    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
+    double sum = 0.0;  // of the estimates
+  };
+  LightChoice chooseLights(const Vec3& point, const Vec3& normal) const;
+  double selectionOf(const LightChoice& choice, int light) const;
+  // The light `u` ∈ [0, 1) picks and its probability; u is remapped to [0, 1) within its pick.
+  int pick(const LightChoice& choice, double& u, double& selection) const;
   // The nearest disc luminaire the ray meets before tMax: its index, or -1; t in `tHit`.
   int nearestDisc(const Vec3& origin, const Vec3& direction, double tMax, double& tHit) const;
-  // Light from the luminaires at a surface point (next-event estimation, one light chosen
-  // uniformly), MIS-weighted against cosine sampling; `albedo` already includes 1/π.
-  Vec3f directLight(const Vec3& point, const Vec3& normal, const Vec3f& brdf, PathRandom& random) const;
-  Vec3f albedoAt(const SurfaceHit& hit) const;
+  // Light from luminaire `l` at a surface point by one sample `u` of it, MIS-weighted against
+  // cosine sampling; `selection`: the probability that this light was the one sampled; `brdf`
+  // already includes 1/π.
+  Vec3f lightSample(const Luminaire& l, double selection, const Vec3& point, const Vec3& normal, const Vec3f& brdf,
+                    const Eigen::Vector2d& u) const;
 
   const Scene& scene_;
   const RayScene& rays_;

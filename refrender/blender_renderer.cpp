@@ -167,7 +167,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
   const int size = settings.rig.imageSize;
   const Pinhole pinhole = pinholeOf(settings.rig);
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
-  const bool filtered = tracing.filterIndirect && settings.shading != Shading::Unlit;
+  const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";
   GltfExportOptions exportOptions;
@@ -192,7 +192,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
   const nlohmann::json job = {{"glb", glb},
                               {"shading", shadingName(settings.shading)},
                               {"samples", settings.spp},
-                              {"seed", options.seed},
+                              {"seed", options.seed + static_cast<int64_t>(settings.seed % (uint64_t{1} << 31))},
                               {"width", size},
                               {"height", size},
                               {"focal_length_px", pinhole.focalPx},
@@ -200,7 +200,12 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
                               {"ambient", ambient},
                               {"background", {scene.background.x(), scene.background.y(), scene.background.z()}},
                               {"lights", lights},
-                              {"path_tracing", tracing.toJson()},  // the driver ignores direct_pass when unlit, as `filtered` does
+                              {"path_tracing", [&] {
+                                 nlohmann::json t = tracing.toJson();
+                                 if (settings.shading == Shading::Path) t["diffuse_bounces"] = settings.bounces;
+                                 t["direct_pass"] = filtered;
+                                 return t;
+                               }()},  // the driver ignores direct_pass when unlit, as `filtered` does
                               {"frames", frames}};
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
 

@@ -12,7 +12,7 @@ RequestFieldNames RequestFieldNames::cli() {
   RequestFieldNames n;
   n.engine = "--engine", n.mode = "--mode", n.faces = "--faces", n.faceSize = "--face-size", n.polygons = "--polygons";
   n.spp = "--spp", n.shading = "--shading", n.traced = "--traced", n.threads = "--threads", n.timeout = "--timeout";
-  n.bounces = "--bounces", n.seed = "--seed";
+  n.bounces = "--bounces", n.seed = "--seed", n.denoise = "--denoise";
   return n;
 }
 
@@ -89,6 +89,11 @@ RenderRequest readRenderRequest(const RequestFields& f, const RequestFieldNames&
   if (f.bounces) {
     if (q.shading != Shading::Path) r.fail(names.bounces, "only with " + names.shading + " path");
     q.bounces = r.integerIn(f.bounces, q.bounces, names.bounces, 0, kMaxBounces);
+  }
+  if (f.denoise && *f.denoise) {
+    const bool pathTraced = q.shading == Shading::Path || (q.engine == "blender" && q.shading == Shading::Lit);
+    if (!pathTraced) r.fail(names.denoise, "only for path-traced frames: " + names.shading + " path, or the blender engine lit");
+    q.denoise = true;
   }
   if (f.seed) {
     constexpr int64_t kMaxSeed = int64_t{1} << 53;  // exact in every JSON reader and in Python

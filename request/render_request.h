@@ -31,6 +31,7 @@ struct RenderRequest {
   double timeoutSeconds = kDefaultTimeoutSeconds;
   int bounces = kDefaultBounces;  // path shading only
   uint64_t seed = 0;              // path shading and Blender: the random stream
+  bool denoise = false;           // path-traced frames: filter the indirect light
 
   // The mode's options (their `mode` taken from `mode`), or nullopt for exact.
   std::optional<CubeMapOptions> cubeMap() const {
@@ -40,7 +41,7 @@ struct RenderRequest {
     return options;
   }
   // The settings of a render of `rig` with this request.
-  RenderSettings settings(const RigSpec& rig) const { return {rig, spp, shading, traced, bounces, seed}; }
+  RenderSettings settings(const RigSpec& rig) const { return {rig, spp, shading, traced, bounces, seed, denoise}; }
 };
 
 // How a front end names each field in messages, and a prefix before them (a spec's file name).
@@ -48,7 +49,7 @@ struct RequestFieldNames {
   std::string prefix;
   std::string engine = "engine", mode = "mode", faces = "faces", faceSize = "face_size", polygons = "polygons",
               spp = "spp", shading = "shading", traced = "traced", threads = "threads", timeout = "timeout",
-              bounces = "bounces", seed = "seed";
+              bounces = "bounces", seed = "seed", denoise = "denoise";
   static RequestFieldNames cli();                         // --engine, --face-size, …
   static RequestFieldNames json(const std::string& file);  // "FILE: engine", "FILE: mode_options.faces", …
 };
@@ -58,7 +59,7 @@ struct RequestFields {
   std::optional<std::string> engine, mode, shading;
   std::optional<int64_t> faces, faceSize, polygons, spp, threads, bounces, seed;
   std::optional<double> timeoutSeconds;
-  std::optional<bool> traced;
+  std::optional<bool> traced, denoise;
 };
 
 // The rules of the cube-map / thesis-mesh options (faces 5 or 6, 8–8192 texels a face edge,

@@ -27,6 +27,9 @@ struct RenderSettings {
   // the random stream (with the pose and the pixel sample, what a path's numbers depend on).
   int bounces = kDefaultBounces;
   uint64_t seed = 0;
+  // Path-traced frames (the fast renderer's path shading, Blender's lit and path): filter the
+  // indirect light guided by the albedo, normal and depth (denoise/indirect_filter.h).
+  bool denoise = false;
 };
 
 const char* shadingName(Shading shading);

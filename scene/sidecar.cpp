@@ -76,6 +76,7 @@ json sidecarJson(const RenderRecord& r) {
           {"seconds", r.seconds},
           {"intrinsics", describeCamera(r.rig)},
           {"camera_from_world", matrix}};
+  if (!r.pathTracing.is_null()) sidecar["path_tracing"] = r.pathTracing;
   if (!velocity.still())  // the pose and camera_from_world are then the exposure start's
     sidecar["velocity"] = {{"vx", velocity.vx}, {"vy", velocity.vy}, {"yaw_rate_deg_per_s", velocity.yawRateDegPerS}};
   return sidecar;

@@ -65,12 +65,16 @@ class PyRenderer {
 
   py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg,
                   const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
-                  const std::vector<std::string>& outputs, const py::object& velocity) {
+                  const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
+                  const std::optional<PyInteger>& seed, bool denoise) {
     const int size = optionalSize(sizeArg);
     RequestFields fields = engineFields_;
     fields.spp = wideInteger(spp, "spp");
     fields.shading = shading;
     if (traced) fields.traced = true;
+    fields.bounces = wideInteger(bounces, "bounces");
+    fields.seed = wideInteger(seed, "seed");
+    if (denoise) fields.denoise = true;
     const RenderRequest request = readRenderRequest(fields, {});
     RenderSettings settings = request.settings(rig.value_or(scene_->rig));
     if (size) settings.rig = settings.rig.resized(size);
@@ -143,7 +147,9 @@ class PyRenderer {
 constexpr const char* kRenderDoc = R"(Renders the scene from a robot pose (x, y, yaw_deg; default the scene's start pose).
 
 rig: another rig (default the scene's); size: the image size (default the rig's); spp: samples
-per pixel, a perfect square; shading: "unlit" or "lit"; traced: trace the physical camera even
+per pixel, a perfect square; shading: "unlit", "lit" or "path" (physically based,
+docs/conventions.md §3) with bounces (diffuse bounces, default 2), seed (the random stream) and
+denoise (filter the indirect light); traced: trace the physical camera even
 for the ideal rig; velocity: (vx, vy, yaw_rate_deg_per_s), the robot's body velocity over the
 rig's shutter (docs/motion.md; the pose is the exposure start's). outputs, named and shaped as
 datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultiplied alpha;
@@ -183,7 +189,8 @@ per ground-truth frame; threads: 0 for every core.)")
            py::arg("timeout") = py::none(), py::arg("threads") = py::none())
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
-           py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), kRenderDoc)
+           py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
+           py::arg("bounces") = py::none(), py::arg("seed") = py::none(), py::arg("denoise") = false, kRenderDoc)
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -194,17 +201,17 @@ per ground-truth frame; threads: 0 for every core.)")
       "render",
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::optional<std::string>& engine, const std::optional<RigSpec>& rig,
          const PyInteger& size, const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
-         const std::vector<std::string>& outputs,
-         const py::object& velocity) {
+         const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
+         const std::optional<PyInteger>& seed, bool denoise) {
         RequestFields fields;
         fields.engine = engine;
         PyRenderer renderer(std::make_shared<const Scene>(*scene), fields);
-        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity);
+        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity, bounces, seed, denoise);
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = py::none(), py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
-      py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
-      kOneRenderDoc.c_str());
+      py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), py::arg("bounces") = py::none(),
+      py::arg("seed") = py::none(), py::arg("denoise") = false, kOneRenderDoc.c_str());
 }
 
 }  // namespace omnicam::python

@@ -34,7 +34,7 @@ bool finite(const float* values, size_t count) {
 struct Demodulated {
   std::vector<float> irradiance;  // 3 per pixel
   std::vector<float> unitNormal;  // 3 per pixel
-  std::vector<char> filtered;     // 1: a surface seen whole by the pixel
+  std::vector<char> filtered;     // 1: a surface seen whole by the pixel; 2: straddling surfaces, filtered alone
   std::vector<char> channel;      // 3 per pixel, 1: that channel's albedo is above the floor
 };
 
@@ -51,8 +51,10 @@ Demodulated demodulate(const IndirectFilterInputs& in, const IndirectFilterParam
     if (!finite(a, 3) || !finite(n, 3) || !finite(full, 3) || !finite(direct, 3) || !std::isfinite(in.depth[k])) continue;
     const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
     const bool surface = a[0] >= p.minAlbedo || a[1] >= p.minAlbedo || a[2] >= p.minAlbedo;
-    if (!surface || length < p.edgeNormalLength || !(in.depth[k] > 0.0f)) continue;
-    d.filtered[k] = 1;
+    if (!surface || !(in.depth[k] > 0.0f)) continue;
+    const bool straddles = length < p.edgeNormalLength;
+    if (straddles && (!p.filterStraddling || !(length > 0.0))) continue;
+    d.filtered[k] = straddles ? 2 : 1;
     for (size_t c = 0; c < 3; ++c) {
       d.unitNormal[3 * k + c] = static_cast<float>(n[c] / length);
       if (a[c] < p.minAlbedo) continue;  // a black channel says nothing of the irradiance
@@ -88,11 +90,11 @@ ImageRGBA filterIndirectLight(const IndirectFilterInputs& in, const IndirectFilt
         for (int y = std::max(0, j - r); y <= std::min(h - 1, j + r); ++y)
           for (int x = std::max(0, i - r); x <= std::min(w - 1, i + r); ++x) {
             const size_t q = static_cast<size_t>(y) * w + x;
-            if (!d.filtered[q]) continue;
+            if (d.filtered[q] != 1 && q != k) continue;
             const float* m = &d.unitNormal[3 * q];
             const double agreement = std::max(0.0, double(n[0]) * m[0] + double(n[1]) * m[1] + double(n[2]) * m[2]);
             const double weight = spatial[static_cast<size_t>((y - j + r) * (2 * r + 1) + x - i + r)] *
-                                  std::pow(agreement, p.normalExponent) *
+                                  (d.filtered[k] == 2 ? 1.0 : std::pow(agreement, p.normalExponent)) *
                                   std::exp(-std::abs(in.depth[q] - z) / (p.relativeDepthSigma * z));
             for (size_t c = 0; c < 3; ++c)
               if (d.channel[3 * q + c]) {

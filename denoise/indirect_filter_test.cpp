@@ -177,6 +177,26 @@ TEST(IndirectFilter, StraddlingPixelsAndPixelsWithoutASurfaceKeepTheirTracedValu
   EXPECT_EQ(louder.at(30, 30)[0], loud.full.at(30, 30)[0]);
 }
 
+// filterStraddling (the fast renderer's path frames): a crease pixel takes its neighbours' light,
+// whatever their normals, and still lends none of its own.
+TEST(IndirectFilter, StraddlingPixelsCanBeFilteredFromTheirNeighboursAlone) {
+  IndirectFilterInputs in = plane([](int i, int j, size_t) { return (i + j) % 2 ? 0.3 : 0.1; });  // mean 0.2
+  const size_t crease = static_cast<size_t>(20) * kSize + 20;
+  in.normal[3 * crease] = 0.5f;  // |n| = 0.87
+  in.normal[3 * crease + 2] = 0.7f;
+  IndirectFilterParameters parameters;
+  parameters.filterStraddling = true;
+  const ImageRGBA out = filterIndirectLight(in, parameters);
+  for (size_t c = 0; c < 3; ++c) {
+    const float albedo = in.albedo[3 * crease + c];
+    const float filteredIndirect = (out.pixels[4 * crease + c] - in.direct.pixels[4 * crease + c]) / albedo;
+    EXPECT_NEAR(filteredIndirect, 0.2f, 0.02f) << "channel " << c;  // traced: 0.3 or 0.1
+  }
+  IndirectFilterInputs loud = in;
+  for (size_t c = 0; c < 3; ++c) loud.full.pixels[4 * crease + c] = 1e6f;
+  EXPECT_EQ(filterIndirectLight(loud, parameters).at(21, 20)[0], out.at(21, 20)[0]);
+}
+
 TEST(IndirectFilter, ABlackChannelLendsNothingToItsNeighbours) {
   // A yellow patch (no blue albedo) on the plane: its blue channel has no irradiance to tell, so the
   // blue irradiance next to it stays what it is (0.3), not pulled towards 0.

@@ -33,6 +33,10 @@ struct IndirectFilterParameters {
   double relativeDepthSigma = 0.05;  // weight × exp(−|z − z'| / (sigma · z))
   double edgeNormalLength = 0.99;    // |normal| below: the pixel straddles surfaces, kept as traced
   float minAlbedo = 1e-3f;           // a channel's albedo below: nothing to demodulate, kept as traced
+  // Pixels that straddle surfaces are filtered too, from their neighbours' light weighted by
+  // distance and depth alone (their mean normal agrees with neither side); they still lend
+  // nothing. Off: kept as traced.
+  bool filterStraddling = false;
   int window() const { return 2 * radius + 1; }
 };
 

@@ -1,0 +1,294 @@
+#include "path_convergence.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "atomic_file.h"
+#include "blender_renderer.h"
+#include "errors.h"
+#include "fast_renderer.h"
+#include "hall_arena.h"
+#include "image.h"
+#include "render_noise.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+PathConvergenceOptions PathConvergenceOptions::quick() {
+  PathConvergenceOptions o;
+  o.size = 48;
+  o.referenceSpp = 64;
+  o.fastConvergedSpp = 64;
+  o.fastConvergedSeeds = 1;
+  o.chosenSpp = 4;
+  o.cyclesSpp = 4;
+  o.measureFloor = false;
+  o.fastLadder = {1, 4};
+  o.cyclesLadder = {4};
+  return o;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+struct StudyScene {
+  std::string name;
+  Scene scene;
+  std::vector<RobotPose> poses;
+};
+
+RenderSettings pathSettings(const Scene& scene, int size, int spp, bool denoise, uint64_t seed = 0) {
+  RenderSettings settings;
+  settings.rig = scene.rig.resized(size);
+  settings.spp = spp;
+  settings.shading = Shading::Path;
+  settings.denoise = denoise;
+  settings.seed = seed;
+  return settings;
+}
+
+// The mean of `seeds` independent fast frames of `spp` each: a frame of spp × seeds.
+ImageRGBA convergedFast(const FastRenderer& renderer, const RobotPose& pose, const RenderSettings& base, int seeds) {
+  ImageRGBA sum;
+  for (int s = 0; s < seeds; ++s) {
+    RenderSettings settings = base;
+    settings.seed = 1000 + static_cast<uint64_t>(s);
+    ImageRGBA frame = renderer.render(pose, settings);
+    if (s == 0) {
+      sum = std::move(frame);
+      continue;
+    }
+    for (size_t p = 0; p < sum.pixels.size(); p += 4)
+      for (size_t c = 0; c < 3; ++c) sum.pixels[p + c] += frame.pixels[p + c];
+  }
+  for (size_t p = 0; p < sum.pixels.size(); p += 4)
+    for (size_t c = 0; c < 3; ++c) sum.pixels[p + c] /= static_cast<float>(seeds);
+  return sum;
+}
+
+double meanInside(const ImageRGBA& image, const ImageRGBA& mask) {
+  double sum = 0.0;
+  for (size_t p = 0; p < image.pixels.size(); p += 4)
+    if (mask.pixels[p + 3] >= 0.999f) sum += image.pixels[p] + image.pixels[p + 1] + image.pixels[p + 2];
+  return sum;
+}
+
+std::vector<ImageRGBA> blenderFrames(const Scene& scene, const std::vector<RobotPose>& poses, const RenderSettings& settings,
+                                     const PathConvergenceOptions& o, int seed) {
+  BlenderOptions options;
+  options.timeoutSeconds = o.blenderTimeoutSeconds;
+  options.seed = seed;
+  return renderWithBlender(scene, std::vector<CameraPlacement>(poses.begin(), poses.end()), settings, options);
+}
+
+std::vector<StudyScene> studyScenes(const PathConvergenceOptions& o) {
+  const fs::path scenes = fs::path(o.outDir) / "scenes";
+  fs::create_directories(scenes);
+  std::vector<StudyScene> out;
+  HallOptions hall;
+  hall.fieldScene = o.fieldScene;
+  writeHallArena(hall, (scenes / "hall_plain.json").string());
+  hall.photos = {o.labPhoto};
+  writeHallArena(hall, (scenes / "hall_textured.json").string());
+  const std::vector<RobotPose> hallPoses = {{2.7, -1.8, 180.0}, {0.0, 0.0, 30.0}, {-1.5, 1.0, -60.0}};
+  out.push_back({"plain hall", loadScene((scenes / "hall_plain.json").string()), hallPoses});
+  out.push_back({"textured hall", loadScene((scenes / "hall_textured.json").string()), hallPoses});
+  out.push_back({"tiled room", loadScene(o.tiledRoom), {{0.0, 0.0, 0.0}, {0.8, -0.5, 45.0}, {-1.0, 0.7, 200.0}}});
+  return out;
+}
+
+void saveFrame(const fs::path& folder, const std::string& name, const ImageRGBA& image) {
+  fs::create_directories(folder);
+  writeImageAtomic((folder / name).string(), image);
+}
+
+std::string fileStem(const std::string& scene) {
+  std::string stem = scene;
+  std::replace(stem.begin(), stem.end(), ' ', '_');
+  return stem;
+}
+
+// Seconds at which a ladder (ascending spp) first reaches `target` dB, log-linear in seconds
+// between the rungs around it; 0 when it never does.
+double secondsToReach(const std::vector<LadderPoint>& ladder, const std::string& engine, double target) {
+  const LadderPoint* previous = nullptr;
+  for (const LadderPoint& p : ladder) {
+    if (p.engine != engine || !p.filtered) continue;
+    if (p.psnrDb >= target) {
+      if (!previous || previous->psnrDb >= target) return p.seconds;
+      const double t = (target - previous->psnrDb) / (p.psnrDb - previous->psnrDb);
+      return std::exp(std::log(previous->seconds) + t * (std::log(p.seconds) - std::log(previous->seconds)));
+    }
+    previous = &p;
+  }
+  return 0.0;
+}
+
+void runLadder(const StudyScene& s, const ImageRGBA& converged, const PathConvergenceOptions& o,
+               PathConvergenceResults& r, const PathConvergenceProgress& progress) {
+  const FastRenderer renderer(s.scene);
+  const RobotPose& pose = s.poses.front();
+  int done = 0;
+  const int total = static_cast<int>(2 * o.fastLadder.size() + o.cyclesLadder.size());
+  for (int spp : o.fastLadder)
+    for (bool filtered : {false, true}) {
+      const RenderSettings settings = pathSettings(s.scene, o.size, spp, filtered, 77);
+      renderer.render(pose, settings);  // warm: the sample table is built once per spp
+      const auto start = Clock::now();
+      const ImageRGBA frame = renderer.render(pose, settings);
+      r.ladder.push_back({"fast", spp, filtered, secondsSince(start), measureRenderNoise(frame, converged).psnrDb});
+      progress("time to error", ++done, total);
+    }
+  for (int spp : o.cyclesLadder) {
+    // One frame per Blender session, as a user renders one: its start-up counts.
+    const auto start = Clock::now();
+    const ImageRGBA frame = blenderFrames(s.scene, {pose}, pathSettings(s.scene, o.size, spp, true), o, 77).front();
+    r.ladder.push_back({"blender", spp, true, secondsSince(start), measureRenderNoise(frame, converged).psnrDb});
+    progress("time to error", ++done, total);
+  }
+  for (double target : {35.0, 38.0})
+    r.timeToError.push_back({target, secondsToReach(r.ladder, "fast", target), secondsToReach(r.ladder, "blender", target)});
+}
+
+}  // namespace
+
+PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const PathConvergenceProgress& progress) {
+  if (o.size < 16 || o.referenceSpp < 1 || o.fastConvergedSpp < 1 || o.fastConvergedSeeds < 1 || o.chosenSpp < 1 ||
+      o.cyclesSpp < 1)
+    throw InputError("path convergence: size >= 16 and every spp and seed count >= 1");
+  const auto started = Clock::now();
+  PathConvergenceResults r;
+  r.options = o;
+  const std::vector<StudyScene> scenes = studyScenes(o);
+  const int total = static_cast<int>(scenes.size() * 3);
+  int done = 0;
+  for (const StudyScene& s : scenes) {
+    const FastRenderer renderer(s.scene);
+    // Cycles: the converged references of the three poses in one session, and the realistic
+    // frames' setup (filtered) timed per session of three.
+    const std::vector<ImageRGBA> references = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 0);
+    std::vector<ImageRGBA> floors;
+    if (o.measureFloor && s.name == "textured hall")
+      floors = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 1);
+    const auto cyclesStart = Clock::now();
+    const std::vector<ImageRGBA> cycles = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.cyclesSpp, true), o, 5);
+    const double cyclesSeconds = secondsSince(cyclesStart) / static_cast<double>(s.poses.size());
+    for (size_t k = 0; k < s.poses.size(); ++k) {
+      PathFrameResult f;
+      f.scene = s.name;
+      f.pose = s.poses[k];
+      const ImageRGBA converged = convergedFast(renderer, f.pose, pathSettings(s.scene, o.size, o.fastConvergedSpp, false), o.fastConvergedSeeds);
+      const ImageRGBA filtered = renderer.render(f.pose, pathSettings(s.scene, o.size, o.fastConvergedSpp, true, 7));
+      const RenderSettings chosenSettings = pathSettings(s.scene, o.size, o.chosenSpp, true);
+      renderer.render(f.pose, chosenSettings);  // warm: the sample table
+      const auto chosenStart = Clock::now();
+      const ImageRGBA chosen = renderer.render(f.pose, chosenSettings);
+      f.chosenSeconds = secondsSince(chosenStart);
+      f.convergedPsnrDb = measureRenderNoise(converged, references[k]).psnrDb;
+      if (!floors.empty()) f.floorPsnrDb = measureRenderNoise(floors[k], references[k]).psnrDb;
+      f.filterBiasPsnrDb = measureRenderNoise(filtered, converged).psnrDb;
+      f.chosenPsnrDb = measureRenderNoise(chosen, references[k]).psnrDb;
+      f.cyclesPsnrDb = measureRenderNoise(cycles[k], references[k]).psnrDb;
+      f.cyclesSeconds = cyclesSeconds;
+      f.meanRatio = meanInside(converged, references[k]) / meanInside(references[k], references[k]);
+      r.frames.push_back(f);
+      if (k == 0) {
+        const fs::path frames = fs::path(o.outDir) / "frames";
+        const std::string stem = fileStem(s.name);
+        saveFrame(frames, stem + "_cycles_converged.png", references[k]);
+        saveFrame(frames, stem + "_fast_converged.png", converged);
+        saveFrame(frames, stem + "_fast_dataset.png", chosen);
+        saveFrame(frames, stem + "_cycles_realistic.png", cycles[k]);
+        if (s.name == "textured hall") runLadder(s, converged, o, r, progress);
+      }
+      progress("frames", ++done, total);
+    }
+  }
+  r.seconds = secondsSince(started);
+  writeTextAtomically((fs::path(o.outDir) / "path-convergence.json").string(), pathConvergenceJson(r).dump(2) + "\n");
+  return r;
+}
+
+nlohmann::json pathConvergenceJson(const PathConvergenceResults& r) {
+  nlohmann::json frames = nlohmann::json::array(), ladder = nlohmann::json::array(), times = nlohmann::json::array();
+  for (const PathFrameResult& f : r.frames)
+    frames.push_back({{"scene", f.scene},
+                      {"pose", {f.pose.x, f.pose.y, f.pose.yawDeg}},
+                      {"converged_psnr_db", f.convergedPsnrDb},
+                      {"reference_floor_psnr_db", f.floorPsnrDb},
+                      {"filter_bias_psnr_db", f.filterBiasPsnrDb},
+                      {"dataset_frame_psnr_db", f.chosenPsnrDb},
+                      {"dataset_frame_seconds", f.chosenSeconds},
+                      {"cycles_realistic_psnr_db", f.cyclesPsnrDb},
+                      {"cycles_realistic_seconds", f.cyclesSeconds},
+                      {"mean_ratio", f.meanRatio}});
+  for (const LadderPoint& p : r.ladder)
+    ladder.push_back({{"engine", p.engine}, {"spp", p.spp}, {"filtered", p.filtered}, {"seconds", p.seconds}, {"psnr_db", p.psnrDb}});
+  for (const auto& t : r.timeToError)
+    times.push_back({{"target_db", t.targetDb}, {"fast_seconds", t.fastSeconds}, {"blender_seconds", t.cyclesSeconds}});
+  const PathConvergenceOptions& o = r.options;
+  return {{"size", o.size},
+          {"reference_spp", o.referenceSpp},
+          {"fast_converged_spp", o.fastConvergedSpp * o.fastConvergedSeeds},
+          {"dataset_spp", o.chosenSpp},
+          {"cycles_realistic_spp", o.cyclesSpp},
+          {"frames", frames},
+          {"ladder", ladder},
+          {"time_to_error", times},
+          {"seconds", r.seconds}};
+}
+
+namespace {
+
+std::string fixed(double value, int decimals) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(decimals);
+  s << value;
+  return s.str();
+}
+
+}  // namespace
+
+std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::string& command) {
+  const PathConvergenceOptions& o = r.options;
+  std::ostringstream md;
+  md << "## Measured\n\n<!-- Generated by `" << command << "`; do not edit by hand. -->\n\n"
+     << o.size << "×" << o.size << " px; PSNR in 8-bit sRGB inside the mirror disc (experiments/render_noise.h). "
+     << "Cycles reference: " << o.referenceSpp << " spp, unfiltered. Converged fast frame: "
+     << o.fastConvergedSpp * o.fastConvergedSeeds << " spp, unfiltered. Dataset frame: fast, " << o.chosenSpp
+     << " spp, denoised. Cycles realistic frame: " << o.cyclesSpp << " spp, denoised (the texture-realism experiment's). "
+     << "Took " << fixed(r.seconds / 60.0, 0) << " min.\n\n"
+     << "| scene | pose | converged fast vs Cycles dB | reference's own noise dB | mean ratio | filter bias dB | "
+        "dataset frame dB | its s | Cycles realistic dB | its s |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const PathFrameResult& f : r.frames)
+    md << "| " << f.scene << " | (" << fixed(f.pose.x, 1) << ", " << fixed(f.pose.y, 1) << ", " << fixed(f.pose.yawDeg, 0)
+       << "°) | " << fixed(f.convergedPsnrDb, 2) << " | " << (f.floorPsnrDb > 0.0 ? fixed(f.floorPsnrDb + 3.0103, 2) : "–")
+       << " | " << fixed(f.meanRatio, 4) << " | " << fixed(f.filterBiasPsnrDb, 2) << " | " << fixed(f.chosenPsnrDb, 2)
+       << " | " << fixed(f.chosenSeconds, 3) << " | " << fixed(f.cyclesPsnrDb, 2) << " | " << fixed(f.cyclesSeconds, 1) << " |\n";
+  md << "\nThe reference's own noise is its PSNR against a converged frame, estimated as the PSNR between two "
+        "references of different seeds + 3.01 dB (render_noise.h). The filter bias: the fast frame denoised at "
+     << o.fastConvergedSpp << " spp against the unfiltered converged one.\n\n"
+     << "Time to error (textured hall, first pose, against the converged fast frame; one run, one engine after the "
+        "other; Cycles' seconds are one frame per Blender session, start-up included):\n\n"
+        "| engine | spp | denoised | seconds | PSNR dB |\n|---|---:|---|---:|---:|\n";
+  for (const LadderPoint& p : r.ladder)
+    md << "| " << p.engine << " | " << p.spp << " | " << (p.filtered ? "yes" : "no") << " | " << fixed(p.seconds, 3)
+       << " | " << fixed(p.psnrDb, 2) << " |\n";
+  md << "\n| target dB | fast s | Cycles s | ratio |\n|---:|---:|---:|---:|\n";
+  for (const auto& t : r.timeToError)
+    md << "| " << fixed(t.targetDb, 0) << " | " << (t.fastSeconds > 0 ? fixed(t.fastSeconds, 3) : "not reached") << " | "
+       << (t.cyclesSeconds > 0 ? fixed(t.cyclesSeconds, 1) : "not reached") << " | "
+       << (t.fastSeconds > 0 && t.cyclesSeconds > 0 ? fixed(t.cyclesSeconds / t.fastSeconds, 0) + "×" : "–") << " |\n";
+  return md.str();
+}
+
+}  // namespace omnicam

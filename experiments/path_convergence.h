@@ -1,0 +1,79 @@
+#pragma once
+// Does the fast renderer's path shading converge to Cycles' frame, and how fast? (issue #35,
+// docs/path-tracing.md). Three scenes (the plain hall, the textured hall, the tiled room with its
+// lamp) at three poses each, 360 px:
+//   - converged fast frames (unfiltered, fastConvergedSpp × seeds) against converged Cycles frames
+//     (unfiltered, referenceSpp), with the references' own noise measured on one scene (a second
+//     reference of another seed);
+//   - the filter's bias: fast frames filtered at fastConvergedSpp against the unfiltered converged
+//     fast frame;
+//   - the frames datasets use (filtered, chosenSpp) and Cycles' realistic frames (filtered,
+//     cyclesSpp) against the Cycles reference, with the time each took;
+//   - time to error, on the first pose of the textured hall: each engine's PSNR and seconds over a
+//     ladder of spp, one after the other in one run, against the converged fast frame.
+// PSNR is 8-bit sRGB inside the mirror disc (render_noise.h).
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rig.h"
+
+namespace omnicam {
+
+struct PathConvergenceOptions {
+  std::string outDir, fieldScene, labPhoto, tiledRoom;
+  int size = 360;
+  int referenceSpp = 1024;     // Cycles, unfiltered
+  int fastConvergedSpp = 1024;  // per seed
+  int fastConvergedSeeds = 2;
+  int chosenSpp = 16;          // the fast frames datasets use (filtered)
+  int cyclesSpp = 36;          // the realistic frames of the texture-realism experiment (filtered)
+  bool measureFloor = true;    // a second Cycles reference per pose of the textured hall
+  std::vector<int> fastLadder = {1, 4, 16, 64}, cyclesLadder = {4, 16, 36, 64};
+  double blenderTimeoutSeconds = 3600.0;
+  static PathConvergenceOptions quick();  // small images, few samples: for tests
+};
+
+struct PathFrameResult {
+  std::string scene;
+  RobotPose pose;
+  double convergedPsnrDb = 0.0;     // converged fast vs the Cycles reference
+  double floorPsnrDb = 0.0;         // the reference's own noise (0: not measured)
+  double filterBiasPsnrDb = 0.0;    // filtered fast vs unfiltered fast, both converged
+  double chosenPsnrDb = 0.0, chosenSeconds = 0.0;  // fast, filtered, chosenSpp
+  double cyclesPsnrDb = 0.0, cyclesSeconds = 0.0;  // Cycles, filtered, cyclesSpp
+  double meanRatio = 0.0;           // mean radiance inside the disc, converged fast / Cycles
+};
+
+struct LadderPoint {
+  std::string engine;  // "fast" or "blender"
+  int spp = 0;
+  bool filtered = false;
+  double seconds = 0.0, psnrDb = 0.0;
+};
+
+struct PathConvergenceResults {
+  PathConvergenceOptions options;
+  std::vector<PathFrameResult> frames;
+  std::vector<LadderPoint> ladder;
+  // Seconds for each engine to reach `target` dB on the ladder (log-linear between rungs; 0 when
+  // its ladder never gets there), and their ratio.
+  struct TimeToError {
+    double targetDb = 0.0, fastSeconds = 0.0, cyclesSeconds = 0.0;
+  };
+  std::vector<TimeToError> timeToError;
+  double seconds = 0.0;
+};
+
+using PathConvergenceProgress = std::function<void(const std::string& stage, int done, int total)>;
+
+// Writes outDir/path-convergence.json and frames/ (the first pose of each scene: converged fast,
+// Cycles reference, the fast dataset frame). InputError for bad options, ExternalError when
+// Blender fails.
+PathConvergenceResults runPathConvergence(const PathConvergenceOptions& options, const PathConvergenceProgress& progress);
+
+nlohmann::json pathConvergenceJson(const PathConvergenceResults& results);
+std::string pathConvergenceMarkdown(const PathConvergenceResults& results, const std::string& command);
+
+}  // namespace omnicam
