@@ -55,24 +55,29 @@ RenderSettings pathSettings(const Scene& scene, int size, int spp, bool denoise,
   return settings;
 }
 
-// The mean of `seeds` independent fast frames of `spp` each: a frame of spp × seeds.
-ImageRGBA convergedFast(const FastRenderer& renderer, const RobotPose& pose, const RenderSettings& base, int seeds) {
-  ImageRGBA sum;
+ImageRGBA meanOf(const std::vector<ImageRGBA>& frames) {
+  ImageRGBA sum = frames.front();
+  for (size_t f = 1; f < frames.size(); ++f)
+    for (size_t p = 0; p < sum.pixels.size(); p += 4)
+      for (size_t c = 0; c < 3; ++c) sum.pixels[p + c] += frames[f].pixels[p + c];
+  for (size_t p = 0; p < sum.pixels.size(); p += 4)
+    for (size_t c = 0; c < 3; ++c) sum.pixels[p + c] /= static_cast<float>(frames.size());
+  return sum;
+}
+
+std::vector<ImageRGBA> fastSeeds(const FastRenderer& renderer, const RobotPose& pose, const RenderSettings& base, int seeds) {
+  std::vector<ImageRGBA> frames;
   for (int s = 0; s < seeds; ++s) {
     RenderSettings settings = base;
     settings.seed = 1000 + static_cast<uint64_t>(s);
-    ImageRGBA frame = renderer.render(pose, settings);
-    if (s == 0) {
-      sum = std::move(frame);
-      continue;
-    }
-    for (size_t p = 0; p < sum.pixels.size(); p += 4)
-      for (size_t c = 0; c < 3; ++c) sum.pixels[p + c] += frame.pixels[p + c];
+    frames.push_back(renderer.render(pose, settings));
   }
-  for (size_t p = 0; p < sum.pixels.size(); p += 4)
-    for (size_t c = 0; c < 3; ++c) sum.pixels[p + c] /= static_cast<float>(seeds);
-  return sum;
+  return frames;
 }
+
+// Mean squared difference of 8-bit sRGB levels, from a PSNR; and back.
+double squaredLevels(double psnrDb) { return 255.0 * 255.0 * std::pow(10.0, -psnrDb / 10.0); }
+double psnrOf(double squared) { return squared > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / squared) : 99.0; }
 
 double meanInside(const ImageRGBA& image, const ImageRGBA& mask) {
   double sum = 0.0;
@@ -116,6 +121,15 @@ std::string fileStem(const std::string& scene) {
   return stem;
 }
 
+}  // namespace
+
+ImageRGBA convergedFastFrame(const Scene& scene, const RobotPose& pose, int size, int spp, int seeds) {
+  const FastRenderer renderer(scene);
+  return meanOf(fastSeeds(renderer, pose, pathSettings(scene, size, spp, false), seeds));
+}
+
+namespace {
+
 // Seconds at which a ladder (ascending spp) first reaches `target` dB, log-linear in seconds
 // between the rungs around it; 0 when it never does.
 double secondsToReach(const std::vector<LadderPoint>& ladder, const std::string& engine, double target) {
@@ -132,15 +146,16 @@ double secondsToReach(const std::vector<LadderPoint>& ladder, const std::string&
   return 0.0;
 }
 
-void runLadder(const StudyScene& s, const ImageRGBA& converged, const PathConvergenceOptions& o,
-               PathConvergenceResults& r, const PathConvergenceProgress& progress) {
-  const FastRenderer renderer(s.scene);
-  const RobotPose& pose = s.poses.front();
+}  // namespace
+
+void measureTimeToError(const Scene& scene, const RobotPose& pose, const ImageRGBA& converged,
+                        const PathConvergenceOptions& o, PathConvergenceResults& r, const PathConvergenceProgress& progress) {
+  const FastRenderer renderer(scene);
   int done = 0;
   const int total = static_cast<int>(2 * o.fastLadder.size() + o.cyclesLadder.size());
   for (int spp : o.fastLadder)
     for (bool filtered : {false, true}) {
-      const RenderSettings settings = pathSettings(s.scene, o.size, spp, filtered, 77);
+      const RenderSettings settings = pathSettings(scene, o.size, spp, filtered, 77);
       renderer.render(pose, settings);  // warm: the sample table is built once per spp
       const auto start = Clock::now();
       const ImageRGBA frame = renderer.render(pose, settings);
@@ -150,15 +165,13 @@ void runLadder(const StudyScene& s, const ImageRGBA& converged, const PathConver
   for (int spp : o.cyclesLadder) {
     // One frame per Blender session, as a user renders one: its start-up counts.
     const auto start = Clock::now();
-    const ImageRGBA frame = blenderFrames(s.scene, {pose}, pathSettings(s.scene, o.size, spp, true), o, 77).front();
+    const ImageRGBA frame = blenderFrames(scene, {pose}, pathSettings(scene, o.size, spp, true), o, 77).front();
     r.ladder.push_back({"blender", spp, true, secondsSince(start), measureRenderNoise(frame, converged).psnrDb});
     progress("time to error", ++done, total);
   }
   for (double target : {35.0, 38.0})
     r.timeToError.push_back({target, secondsToReach(r.ladder, "fast", target), secondsToReach(r.ladder, "blender", target)});
 }
-
-}  // namespace
 
 PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const PathConvergenceProgress& progress) {
   if (o.size < 16 || o.referenceSpp < 1 || o.fastConvergedSpp < 1 || o.fastConvergedSeeds < 1 || o.chosenSpp < 1 ||
@@ -176,8 +189,7 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
     // frames' setup (filtered) timed per session of three.
     const std::vector<ImageRGBA> references = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 0);
     std::vector<ImageRGBA> floors;
-    if (o.measureFloor && s.name == "textured hall")
-      floors = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 1);
+    if (o.measureFloor) floors = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 1);
     const auto cyclesStart = Clock::now();
     const std::vector<ImageRGBA> cycles = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.cyclesSpp, true), o, 5);
     const double cyclesSeconds = secondsSince(cyclesStart) / static_cast<double>(s.poses.size());
@@ -185,7 +197,9 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
       PathFrameResult f;
       f.scene = s.name;
       f.pose = s.poses[k];
-      const ImageRGBA converged = convergedFast(renderer, f.pose, pathSettings(s.scene, o.size, o.fastConvergedSpp, false), o.fastConvergedSeeds);
+      const std::vector<ImageRGBA> seeds =
+          fastSeeds(renderer, f.pose, pathSettings(s.scene, o.size, o.fastConvergedSpp, false), o.fastConvergedSeeds);
+      const ImageRGBA converged = meanOf(seeds);
       const ImageRGBA filtered = renderer.render(f.pose, pathSettings(s.scene, o.size, o.fastConvergedSpp, true, 7));
       const RenderSettings chosenSettings = pathSettings(s.scene, o.size, o.chosenSpp, true);
       renderer.render(f.pose, chosenSettings);  // warm: the sample table
@@ -193,7 +207,14 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
       const ImageRGBA chosen = renderer.render(f.pose, chosenSettings);
       f.chosenSeconds = secondsSince(chosenStart);
       f.convergedPsnrDb = measureRenderNoise(converged, references[k]).psnrDb;
-      if (!floors.empty()) f.floorPsnrDb = measureRenderNoise(floors[k], references[k]).psnrDb;
+      // Two frames of independent noise σ² differ by 2σ²; the mean of n seeds has σ²/n.
+      const double referenceNoise =
+          floors.empty() ? 0.0 : squaredLevels(measureRenderNoise(floors[k], references[k]).psnrDb) / 2.0;
+      const double fastNoise =
+          seeds.size() < 2 ? 0.0 : squaredLevels(measureRenderNoise(seeds[0], seeds[1]).psnrDb) / 2.0 / seeds.size();
+      if (referenceNoise > 0.0) f.referenceNoiseDb = psnrOf(referenceNoise);
+      if (fastNoise > 0.0) f.fastNoiseDb = psnrOf(fastNoise);
+      f.disagreementDb = psnrOf(std::max(0.0, squaredLevels(f.convergedPsnrDb) - referenceNoise - fastNoise));
       f.filterBiasPsnrDb = measureRenderNoise(filtered, converged).psnrDb;
       f.chosenPsnrDb = measureRenderNoise(chosen, references[k]).psnrDb;
       f.cyclesPsnrDb = measureRenderNoise(cycles[k], references[k]).psnrDb;
@@ -207,7 +228,7 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
         saveFrame(frames, stem + "_fast_converged.png", converged);
         saveFrame(frames, stem + "_fast_dataset.png", chosen);
         saveFrame(frames, stem + "_cycles_realistic.png", cycles[k]);
-        if (s.name == "textured hall") runLadder(s, converged, o, r, progress);
+        if (s.name == "textured hall") measureTimeToError(s.scene, f.pose, converged, o, r, progress);
       }
       progress("frames", ++done, total);
     }
@@ -223,7 +244,9 @@ nlohmann::json pathConvergenceJson(const PathConvergenceResults& r) {
     frames.push_back({{"scene", f.scene},
                       {"pose", {f.pose.x, f.pose.y, f.pose.yawDeg}},
                       {"converged_psnr_db", f.convergedPsnrDb},
-                      {"reference_floor_psnr_db", f.floorPsnrDb},
+                      {"reference_noise_db", f.referenceNoiseDb},
+                      {"fast_noise_db", f.fastNoiseDb},
+                      {"disagreement_db", f.disagreementDb},
                       {"filter_bias_psnr_db", f.filterBiasPsnrDb},
                       {"dataset_frame_psnr_db", f.chosenPsnrDb},
                       {"dataset_frame_seconds", f.chosenSeconds},
@@ -267,15 +290,20 @@ std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::
      << o.fastConvergedSpp * o.fastConvergedSeeds << " spp, unfiltered. Dataset frame: fast, " << o.chosenSpp
      << " spp, denoised. Cycles realistic frame: " << o.cyclesSpp << " spp, denoised (the texture-realism experiment's). "
      << "Took " << fixed(r.seconds / 60.0, 0) << " min.\n\n"
-     << "| scene | pose | converged fast vs Cycles dB | reference's own noise dB | mean ratio | filter bias dB | "
-        "dataset frame dB | its s | Cycles realistic dB | its s |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+     << "| scene | pose | converged fast vs Cycles dB | Cycles' own noise dB | fast's own noise dB | disagreement dB | "
+        "mean ratio | filter bias dB | dataset frame dB | its s | Cycles realistic dB | its s |\n"
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  const auto orDash = [](double v) { return v > 0.0 ? fixed(v, 2) : std::string("–"); };
   for (const PathFrameResult& f : r.frames)
     md << "| " << f.scene << " | (" << fixed(f.pose.x, 1) << ", " << fixed(f.pose.y, 1) << ", " << fixed(f.pose.yawDeg, 0)
-       << "°) | " << fixed(f.convergedPsnrDb, 2) << " | " << (f.floorPsnrDb > 0.0 ? fixed(f.floorPsnrDb + 3.0103, 2) : "–")
+       << "°) | " << fixed(f.convergedPsnrDb, 2) << " | " << orDash(f.referenceNoiseDb) << " | " << orDash(f.fastNoiseDb)
+       << " | " << (f.disagreementDb >= 99.0 ? std::string("within the noise") : fixed(f.disagreementDb, 2))
        << " | " << fixed(f.meanRatio, 4) << " | " << fixed(f.filterBiasPsnrDb, 2) << " | " << fixed(f.chosenPsnrDb, 2)
        << " | " << fixed(f.chosenSeconds, 3) << " | " << fixed(f.cyclesPsnrDb, 2) << " | " << fixed(f.cyclesSeconds, 1) << " |\n";
-  md << "\nThe reference's own noise is its PSNR against a converged frame, estimated as the PSNR between two "
-        "references of different seeds + 3.01 dB (render_noise.h). The filter bias: the fast frame denoised at "
+  md << "\nOwn noise: a frame's PSNR against its own converged frame, from the difference of two frames of "
+        "other seeds (two frames of noise σ² differ by 2σ²). Disagreement: the squared difference of the converged "
+        "frames less both frames' own noise, as a PSNR — what the engines disagree on beyond the noise. The filter "
+        "bias: the fast frame denoised at "
      << o.fastConvergedSpp << " spp against the unfiltered converged one.\n\n"
      << "Time to error (textured hall, first pose, against the converged fast frame; one run, one engine after the "
         "other; Cycles' seconds are one frame per Blender session, start-up included):\n\n"

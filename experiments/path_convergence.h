@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "image.h"
 #include "rig.h"
+#include "scene.h"
 
 namespace omnicam {
 
@@ -29,7 +31,7 @@ struct PathConvergenceOptions {
   int fastConvergedSeeds = 2;
   int chosenSpp = 16;          // the fast frames datasets use (filtered)
   int cyclesSpp = 36;          // the realistic frames of the texture-realism experiment (filtered)
-  bool measureFloor = true;    // a second Cycles reference per pose of the textured hall
+  bool measureFloor = true;    // a second Cycles reference per pose (the references' own noise)
   std::vector<int> fastLadder = {1, 4, 16, 64}, cyclesLadder = {4, 16, 36, 64};
   double blenderTimeoutSeconds = 3600.0;
   static PathConvergenceOptions quick();  // small images, few samples: for tests
@@ -39,7 +41,11 @@ struct PathFrameResult {
   std::string scene;
   RobotPose pose;
   double convergedPsnrDb = 0.0;     // converged fast vs the Cycles reference
-  double floorPsnrDb = 0.0;         // the reference's own noise (0: not measured)
+  double referenceNoiseDb = 0.0;    // the reference's own noise: vs a converged frame (0: not measured)
+  double fastNoiseDb = 0.0;         // the converged fast frame's own noise, likewise
+  // What is left of the difference once both frames' own noise is taken out: the two engines'
+  // disagreement (infinite within the noise).
+  double disagreementDb = 0.0;
   double filterBiasPsnrDb = 0.0;    // filtered fast vs unfiltered fast, both converged
   double chosenPsnrDb = 0.0, chosenSeconds = 0.0;  // fast, filtered, chosenSpp
   double cyclesPsnrDb = 0.0, cyclesSeconds = 0.0;  // Cycles, filtered, cyclesSpp
@@ -67,6 +73,15 @@ struct PathConvergenceResults {
 };
 
 using PathConvergenceProgress = std::function<void(const std::string& stage, int done, int total)>;
+
+// Time to error on one frame: the fast engine over `fastLadder` (unfiltered and denoised) and
+// Cycles over `cyclesLadder` (denoised, one frame per Blender session), one after the other,
+// against `converged`; with the seconds each engine needs for 35 and 38 dB.
+void measureTimeToError(const Scene& scene, const RobotPose& pose, const ImageRGBA& converged,
+                        const PathConvergenceOptions& options, PathConvergenceResults& results,
+                        const PathConvergenceProgress& progress);
+// The mean of `seeds` unfiltered fast frames of `spp` each (seeds 1000, 1001, …).
+ImageRGBA convergedFastFrame(const Scene& scene, const RobotPose& pose, int size, int spp, int seeds);
 
 // Writes outDir/path-convergence.json and frames/ (the first pose of each scene: converged fast,
 // Cycles reference, the fast dataset frame). InputError for bad options, ExternalError when

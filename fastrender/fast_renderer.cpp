@@ -16,6 +16,9 @@
 namespace omnicam {
 
 namespace {
+// Denoised frames trace the indirect light of this share of their samples: the filter smooths it
+// over its window anyway (measured in docs/path-tracing.md).
+constexpr double kDenoisedIndirectShare = 0.25;
 // Shadow rays start this far off the surface (metres) to avoid self-intersection.
 constexpr double kShadowEpsilon = 1e-5;
 }  // namespace
@@ -31,6 +34,7 @@ std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSetti
   if (settings.shading != Shading::Path) return std::nullopt;
   PathTracingOptions options;
   options.diffuseBounces = settings.bounces;
+  if (settings.denoise) options.indirectShare = kDenoisedIndirectShare;
   // Frames of other poses get other noise; the same pose, seed and settings the same frame.
   const RobotPose& pose = camera.robot();
   const BodyVelocity& velocity = camera.velocity();

@@ -251,7 +251,13 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     }
     const Material& material = scene_.materials[scene_.objects[hit->object].material];
     radiance += throughput.cwiseProduct(material.emission);  // emitters are found by the paths that meet them
-    if (scatters == 1) direct = radiance;
+    if (scatters == 1) {
+      direct = radiance;
+      if (options_.indirectShare < 1.0) {
+        if (!(stratified.point(2).x() < options_.indirectShare)) break;
+        throughput /= static_cast<float>(options_.indirectShare);
+      }
+    }
     // Cycles' diffuse_bounces = D: light reflected by at most D + 1 diffuse surfaces (D = 0 is
     // direct light), so the path's last scattered ray only gathers what it meets (measured
     // against Blender 3.4: docs/conventions.md §3).

@@ -24,6 +24,10 @@ struct PathTracingOptions {
   int diffuseBounces = 2;
   // Russian roulette from this many scattering events on (the path's expectation is unchanged).
   int rouletteAfter = 1;
+  // The share of a pixel's samples whose paths go on past the light the first surface reflects
+  // (the indirect light), weighted by its inverse; stratified over the pixel's samples. Below 1
+  // when a filter smooths the indirect light anyway: unbiased, cheaper, noisier indirect.
+  double indirectShare = 1.0;
 };
 
 // A scene light as the path tracer and Blender see it (docs/conventions.md §3). Units: the linear
