@@ -33,6 +33,7 @@ TextureRealismOptions TextureRealismOptions::quick() {
   o.testStride = 25;
   o.trainFrames = 6;
   o.randomHalls = 2;
+  o.pathSpp = 4;
   return o;
 }
 
@@ -61,19 +62,20 @@ std::vector<std::string> objectNamesOf(const Scene& scene) {
   return names;
 }
 
-RenderSettings settingsFor(const Scene& scene, int size, int spp) {
+RenderSettings settingsFor(const Scene& scene, int size, int spp, Shading shading) {
   RenderSettings settings;
   settings.rig = scene.rig;
   settings.rig.imageSize = size;
   settings.spp = spp;
-  settings.shading = Shading::Lit;
+  settings.shading = shading;
+  settings.denoise = shading == Shading::Path;  // as a dataset of path-traced frames would be
   return settings;
 }
 
 std::vector<Frame> renderFast(const Scene& scene, const std::vector<RobotPose>& poses, int size, int spp,
-                              const std::function<void()>& step) {
+                              const std::function<void()>& step, Shading shading = Shading::Lit) {
   const FastRenderer renderer(scene);
-  const RenderSettings settings = settingsFor(scene, size, spp);
+  const RenderSettings settings = settingsFor(scene, size, spp, shading);
   std::vector<Frame> frames;
   for (const RobotPose& pose : poses) {
     AovFrame aovs;
@@ -292,16 +294,44 @@ using Classifiers = std::map<std::string, std::map<std::string, ColourHistogramC
 
 // Train sets (plain; random_textures, spread over the random halls): labels from the fast
 // renderer's instance masks.
-Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain,
+// The realistic frames of `poses`: Blender on the textured hall (one session per batch of poses)
+// through the recording camera; their instance masks are the fast renderer's (`masks`).
+std::vector<Frame> renderRealisticFrames(const TextureRealismOptions& o, const Scene& textured,
+                                         const std::vector<Frame>& masks, const std::function<void()>& step) {
+  std::vector<Frame> realistic;
+  renderSequence(
+      masks.size(), kFramesPerBatch, [&](size_t index) { return CameraPlacement(masks[index].pose); },
+      [&](const std::vector<CameraPlacement>& batch) {
+        std::vector<RobotPose> poses;
+        for (const CameraPlacement& p : batch) poses.push_back(p.robot());
+        return renderRealistic(textured, poses, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
+      },
+      [&](size_t index, ImageRGBA&& image, double) {
+        realistic.push_back({masks[index].pose, recordFrame(o.recording, image, index), masks[index].instance});
+        step();
+      });
+  return realistic;
+}
+
+const char* const kTrainSets[] = {"plain", "random_textures", "path", "realistic"};
+
+Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
                              const std::vector<std::string>& bandColour, const std::function<void()>& step) {
   Classifiers trained;
   const std::vector<std::string> colours = {"cyan", "magenta", "yellow"};
-  for (const std::string& set : {std::string("plain"), std::string("random_textures")}) {
+  for (const std::string set : kTrainSets) {
     auto& classifiers = trained[set];
     for (const std::string& colour : colours) classifiers.emplace(colour, ColourHistogramClassifier(o.bins));
-    const std::vector<RobotPose> poses = randomFieldPoses(o.trainFrames, o.seed + (set == "plain" ? 1 : 2));
+    // plain and random_textures keep the poses they always had; path and realistic share theirs.
+    const uint64_t poseSeed = set == "plain" ? 1 : set == "random_textures" ? 2 : 3;
+    const std::vector<RobotPose> poses = randomFieldPoses(o.trainFrames, o.seed + poseSeed);
     if (set == "plain") {
       trainOn(classifiers, renderFast(plain, poses, o.size, o.spp, step), bandColour);
+    } else if (set == "path") {
+      trainOn(classifiers, renderFast(textured, poses, o.size, o.pathSpp, step, Shading::Path), bandColour);
+    } else if (set == "realistic") {
+      const std::vector<Frame> masks = renderFast(textured, poses, o.size, 1, [] {});
+      trainOn(classifiers, renderRealisticFrames(o, textured, masks, step), bandColour);
     } else {
       for (int k = 0; k < o.randomHalls; ++k) {
         std::vector<RobotPose> share;
@@ -322,18 +352,8 @@ std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOpt
   std::map<std::string, std::vector<Frame>> tests;
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
-  std::vector<Frame>& realistic = tests["realistic"];
-  renderSequence(
-      testPoses.size(), kFramesPerBatch, [&](size_t index) { return CameraPlacement(testPoses[index]); },
-      [&](const std::vector<CameraPlacement>& batch) {
-        std::vector<RobotPose> poses;
-        for (const CameraPlacement& p : batch) poses.push_back(p.robot());
-        return renderRealistic(textured, poses, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
-      },
-      [&](size_t index, ImageRGBA&& image, double) {
-        realistic.push_back({testPoses[index], recordFrame(o.recording, image, index), tests["textured"][index].instance});
-        step();
-      });
+  tests["path"] = renderFast(textured, testPoses, o.size, o.pathSpp, step, Shading::Path);
+  tests["realistic"] = renderRealisticFrames(o, textured, tests["textured"], step);
   return tests;
 }
 
@@ -415,10 +435,10 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<RobotPose> testPoses;
   for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
 
-  const int trainTotal = 2 * o.trainFrames, testTotal = 3 * static_cast<int>(testPoses.size());
+  const int trainTotal = 4 * o.trainFrames, testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering", ++done, trainTotal + testTotal); };
-  const Classifiers trained = trainClassifiers(o, out, plain, bandColour, step);
+  const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step);
   const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step);
 
   // Detection and evaluation.
@@ -429,7 +449,8 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<std::vector<GroundTruthBeacon>> truth;
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
   const std::vector<std::pair<std::string, std::string>> conditionList = {
-      {"plain", "plain"}, {"plain", "textured"}, {"plain", "realistic"}, {"random_textures", "realistic"}};
+      {"plain", "plain"},     {"plain", "textured"},     {"plain", "realistic"}, {"random_textures", "realistic"},
+      {"path", "realistic"}, {"realistic", "path"}};
   const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;

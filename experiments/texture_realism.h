@@ -5,15 +5,21 @@
 //
 //   train sets  plain           fast lit renders of the plain hall, random poses
 //               random_textures fast lit renders of halls whose walls carry random photos
+//               path            fast path-traced renders of the textured hall (physically based
+//                               light, denoised: docs/path-tracing.md), random poses
+//               realistic       the realistic frames' setup (below) at those random poses
 //   test sets   plain           fast lit renders of the plain hall along thesis-loop
 //               textured        the same in the hall textured with the "lab" photo
+//               path            fast path-traced renders of the textured hall along thesis-loop
 //               realistic       Blender Cycles (path traced, lit) renders of the textured hall
 //                               (realistic_rendering.h: lamps of real size, converged to the
 //                               measured ≥ 35 dB) through the recording-camera model
 //                               (recording_camera.h) — our stand-in for the thesis' real ISLA
 //                               images, which we do not have
 //   conditions  plain_to_plain, plain_to_textured, plain_to_realistic (the thesis' three) and
-//               random_textures_to_realistic (the question its result begs)
+//               random_textures_to_realistic (the question its result begs), and
+//               path_to_realistic, realistic_to_path (does physically based light in training
+//               carry over to Cycles' frames, and back?)
 #include <functional>
 #include <string>
 #include <vector>

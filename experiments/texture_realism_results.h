@@ -18,6 +18,7 @@ struct TextureRealismOptions {
   std::vector<std::string> randomPhotos;   // the random_textures training walls
   int size = 360;
   int spp = 16;                // fast renders
+  int pathSpp = 16;            // fast path-traced renders (denoised): the "path" sets
   RealisticRendering realistic = realisticRendering();
   int testStride = 1;          // every k-th of the 100 thesis-loop poses
   int trainFrames = 24;        // per train set

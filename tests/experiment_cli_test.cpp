@@ -115,7 +115,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   ASSERT_EQ(r.code, 0) << r.out;
   std::ifstream in(path("run/results.json"));
   const json results = json::parse(in);
-  for (const char* condition : {"plain_to_plain", "plain_to_textured", "plain_to_realistic", "random_textures_to_realistic"}) {
+  for (const char* condition : {"plain_to_plain", "plain_to_textured", "plain_to_realistic", "random_textures_to_realistic",
+                                "path_to_realistic", "realistic_to_path"}) {
     ASSERT_TRUE(results["conditions"].contains(condition)) << condition;
     const json& c = results["conditions"][condition];
     EXPECT_EQ(c["frames"], 4) << condition;
@@ -133,8 +134,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_LT(results["ekf"]["plain_to_plain"]["mean_error_ekf_cm"].get<double>(),
             results["ekf"]["plain_to_plain"]["mean_error_odometry_cm"].get<double>());
   EXPECT_GT(results["seconds"].get<double>(), 0.0);
-  ASSERT_EQ(results["conditions"].size(), 4u);
-  ASSERT_EQ(results["ekf"].size(), 4u);
+  ASSERT_EQ(results["conditions"].size(), 6u);
+  ASSERT_EQ(results["ekf"].size(), 6u);
 
   // --quick: every 25th of the 100 thesis-loop poses (4 test frames), 360 px, 6 training frames.
   const Scene field = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
@@ -148,7 +149,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const auto detections = readCsv(path("run/data/detections.csv"),
                                   {"condition", "frame", "pose_index", "visible_beacons", "true_positives",
                                    "false_identifications", "false_positive_blobs", "mean_error_px"});
-  ASSERT_EQ(detections.size(), 16u);
+  ASSERT_EQ(detections.size(), 24u);  // six conditions of four frames
   const auto blobs = readCsv(path("run/data/false_positive_blobs.csv"),
                              {"condition", "frame", "colour", "area_px", "u", "v", "object"});
   std::map<int, int> visibleAt;  // frame → visible beacons, from the first condition
@@ -282,8 +283,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   // same labelled pixels, at most those inside the rim of 6 frames (radius 180 px).
   std::ifstream histogramFile(path("run/data/histograms.json"));
   const json histograms = json::parse(histogramFile);
-  ASSERT_EQ(histograms.size(), 2u);
-  for (const char* set : {"plain", "random_textures"}) {
+  ASSERT_EQ(histograms.size(), 4u);
+  for (const char* set : {"plain", "random_textures", "path", "realistic"}) {
     SCOPED_TRACE(set);
     ASSERT_TRUE(histograms.contains(set));
     ASSERT_EQ(histograms[set].size(), 3u);
@@ -330,7 +331,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
     EXPECT_EQ(frame.width, 360) << file;
     EXPECT_EQ(frame.height, 360) << file;
   }
-  EXPECT_EQ(shown.size(), 8u);
+  EXPECT_EQ(shown.size(), 10u);  // four figures, one frame per condition
   for (const std::string& file : shown) EXPECT_TRUE(fs::exists(path("run/" + file))) << file;
 
   // The Markdown summary: the thesis' row beside the measured one.
