@@ -5,7 +5,10 @@
 // core TBB finds.
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
+
 #include "fast_renderer.h"
+#include "hall_arena.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -63,6 +66,44 @@ void BM_RollingShutterRobocup2006(benchmark::State& state) {
   rig.shutter = {1.0 / 30.0, RollingShutter{30.0, Readout::TopToBottom}, 0};
   renderFrames(state, renderer, rig, {1.0, 0.0, 90.0});
 }
+
+// docs/path-tracing.md: path shading of the textured hall (four disc lamps, 2 bounces) at the
+// texture-realism experiment's first thesis-loop pose, unfiltered and denoised (the frames
+// datasets use).
+const Scene& texturedHall() {
+  static const Scene scene = [] {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "omnicam_bench_hall";
+    std::filesystem::create_directories(folder);
+    HallOptions hall;
+    hall.fieldScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
+    hall.photos = {"/usr/share/blender/datafiles/studiolights/world/interior.exr"};
+    writeHallArena(hall, (folder / "hall-textured.json").string());
+    return loadScene((folder / "hall-textured.json").string());
+  }();
+  return scene;
+}
+
+void BM_PathTexturedHall(benchmark::State& state) {
+  static const FastRenderer renderer(texturedHall());
+  RenderSettings settings;
+  settings.rig = texturedHall().rig.resized(360);
+  settings.spp = static_cast<int>(state.range(0));
+  settings.shading = Shading::Path;
+  settings.denoise = state.range(1) != 0;
+  const RobotPose pose{2.7, -1.8, 180.0};
+  benchmark::DoNotOptimize(renderer.render(pose, settings));
+  for (auto _ : state) benchmark::DoNotOptimize(renderer.render(pose, settings));
+  state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.SetLabel(std::string("path, spp ") + std::to_string(settings.spp) + (settings.denoise ? ", denoised" : ""));
+}
+BENCHMARK(BM_PathTexturedHall)
+    ->ArgNames({"spp", "denoise"})
+    ->Args({1, 0})
+    ->Args({4, 1})
+    ->Args({16, 0})
+    ->Args({16, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // 1 and 16 spp, unlit and lit, for either rig.
 void frameArgs(benchmark::internal::Benchmark* b) {

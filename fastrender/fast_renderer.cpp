@@ -54,12 +54,11 @@ void FastRenderer::DenoiseSums::resize(size_t pixels) {
   depth.assign(pixels, 0.0f);
 }
 
-void FastRenderer::DenoiseSums::add(size_t pixel, const Vec3f& directLight, const HitPacket& hits, int k,
-                                    const PathTracer& tracer) {
-  direct[pixel] += directLight;
+void FastRenderer::DenoiseSums::add(size_t pixel, const PathSample& sample, const HitPacket& hits, int k) {
+  direct[pixel] += sample.direct;
   if (!hits.hit(k)) return;
   const SurfaceHit hit = hits.surface(k);
-  albedo[pixel] += tracer.albedoAt(hit);
+  albedo[pixel] += sample.firstAlbedo;
   const Vec3 d = hits.direction(k);
   normal[pixel] += (hit.normal.dot(d) > 0.0 ? Vec3(-hit.normal) : hit.normal).cast<float>();
   depth[pixel] += static_cast<float>(hit.t * d.norm());
@@ -91,7 +90,7 @@ void FastRenderer::denoise(Film& film, const DenoiseSums& sums, float weight, co
 }
 
 void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path,
-                               const PathKey* samples, Vec3f* directs) const {
+                               const PathKey* samples, PathSample* pathSamples) const {
   const int count = hits.count();
   if (shading == Shading::Path) {
     for (int k = 0; k < count; ++k) {
@@ -100,7 +99,7 @@ void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* co
       const PathSample sample =
           path->tracer.cameraRay(hits.start(k), direction, first ? &*first : nullptr, samples[k]);
       colours[k] = sample.radiance;
-      if (directs) directs[k] = sample.direct;
+      if (pathSamples) pathSamples[k] = sample;
     }
     return;
   }
@@ -290,7 +289,8 @@ void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable&
     std::fill(scratch.columns.begin() + (table.firstSample[rowStart + i] - rowFirst),
               scratch.columns.begin() + (table.firstSample[rowStart + i + 1] - rowFirst), static_cast<uint16_t>(i));
   const bool central = table.origins.empty();
-  Vec3f colours[kRayPacketSize], directs[kRayPacketSize];
+  Vec3f colours[kRayPacketSize];
+  PathSample pathSamples[kRayPacketSize];
   PathKey keys[kRayPacketSize];
   const uint32_t gridSize = static_cast<uint32_t>(at.n * at.n);
   // With fixed instants the row is traced once per instant, and the sums add up.
@@ -318,11 +318,11 @@ void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable&
           keys[k] = {mixKey(path->key, static_cast<uint64_t>(j) * at.width + scratch.columns[first + k]),
                      pass * gridSize + table.gridIndex[s]};
         }
-      shadePacket(hits, shading, colours, path, keys, denoise ? directs : nullptr);
+      shadePacket(hits, shading, colours, path, keys, denoise ? pathSamples : nullptr);
       // A pixel's samples are consecutive: summed in a register, stored when the pixel changes.
       for (int k = 0; k < count; ++k) {
         const uint16_t column = scratch.columns[first + k];
-        if (denoise) denoise->add(static_cast<size_t>(j) * at.width + column, directs[k], hits, k, path->tracer);
+        if (denoise) denoise->add(static_cast<size_t>(j) * at.width + column, pathSamples[k], hits, k);
         if (column != current) {
           sums[current] += sum;
           sum = Vec3f::Zero();
@@ -476,7 +476,8 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
     std::vector<uint8_t> centreRecorded(width);
     MovingRowScratch scratch;
     HitPacket hits;
-    Vec3f colours[kPacket], directs[kPacket];
+    Vec3f colours[kPacket];
+    PathSample pathSamples[kPacket];
     for (int j = rows.begin(); j != rows.end(); ++j) {
       const size_t rowStart = static_cast<size_t>(j) * width;
       std::fill(centreRecorded.begin(), centreRecorded.end(), uint8_t{0});
@@ -509,12 +510,12 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
               keys[k] = {mixKey(path->key, keyPixel), table->gridIndex[s]};
             }
           }
-          shadePacket(hits, settings.shading, colours, path ? &*path : nullptr, keys, denoising ? directs : nullptr);
+          shadePacket(hits, settings.shading, colours, path ? &*path : nullptr, keys, denoising ? pathSamples : nullptr);
           for (int k = 0; k < count; ++k) {
             const uint32_t s = first + static_cast<uint32_t>(k);
             while (pixelEnd <= s) storePixel();
             sum += colours[k];
-            if (denoising) denoising->add(pixel, directs[k], hits, k, path->tracer);
+            if (denoising) denoising->add(pixel, pathSamples[k], hits, k);
             if (aovs && s == table->centreSample[pixel] && hits.hit(k)) {
               recordAov(*aovs, pixel, hits.surface(k), hits.direction(k));
               centreRecorded[pixel - rowStart] = 1;

@@ -138,7 +138,7 @@ class FastRenderer {
     std::vector<Vec3f> direct, albedo, normal;
     std::vector<float> depth;
     void resize(size_t pixels);
-    void add(size_t pixel, const Vec3f& directLight, const HitPacket& hits, int k, const PathTracer& tracer);
+    void add(size_t pixel, const PathSample& sample, const HitPacket& hits, int k);
   };
   // The film's colour with its indirect light filtered (denoise/indirect_filter.h).
   static void denoise(Film& film, const DenoiseSums& sums, float weight, const std::vector<uint32_t>& imaged);
@@ -146,7 +146,7 @@ class FastRenderer {
   // docs/conventions.md §3, with the shadow rays traced as packets too. Path shading (`path`
   // given) traces ray k's path keyed by samples[k].
   void shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path = nullptr,
-                   const PathKey* samples = nullptr, Vec3f* directs = nullptr) const;
+                   const PathKey* samples = nullptr, PathSample* pathSamples = nullptr) const;
   const Scene& scene_;
   RayScene rays_;
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable

@@ -188,15 +188,20 @@ PathTracer::LightChoice PathTracer::chooseLights(const Vec3& point, const Vec3& 
   LightChoice choice;
   choice.point = point;
   choice.normal = normal;
-  for (const Luminaire& l : luminaires_) choice.sum += unoccludedEstimate(l, point, normal);
+  for (size_t l = 0; l < luminaires_.size(); ++l) {
+    const double estimate = unoccludedEstimate(luminaires_[l], point, normal);
+    if (l < LightChoice::kKept) choice.estimates[l] = estimate;
+    choice.sum += estimate;
+  }
   return choice;
 }
 
 double PathTracer::selectionOf(const LightChoice& choice, int light) const {
   const double uniform = 1.0 / static_cast<double>(luminaires_.size());
   if (!(choice.sum > 0.0)) return uniform;
-  return (1.0 - kUniformShare) * unoccludedEstimate(luminaires_[light], choice.point, choice.normal) / choice.sum +
-         kUniformShare * uniform;
+  const double estimate = light < LightChoice::kKept ? choice.estimates[light]
+                                                     : unoccludedEstimate(luminaires_[light], choice.point, choice.normal);
+  return (1.0 - kUniformShare) * estimate / choice.sum + kUniformShare * uniform;
 }
 
 int PathTracer::pick(const LightChoice& choice, double& u, double& selection) const {
@@ -223,6 +228,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
   const int lights = static_cast<int>(luminaires_.size());
   Vec3f radiance = Vec3f::Zero(), throughput = Vec3f::Ones();
   std::optional<Vec3f> direct;  // set once the path is past its first reflection
+  Vec3f firstAlbedo = Vec3f::Zero();
   LightChoice left;             // where the ray left: how its lights were chosen (MIS of the lights it meets)
   Vec3 origin = cameraOrigin, direction = cameraDirection;
   double bsdfPdf = -1.0;  // of the ray's direction; < 0 for the camera ray (no MIS)
@@ -264,6 +270,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     if (scatters == options_.diffuseBounces + 1) break;
     const Vec3 normal = hit->normal.dot(direction) > 0.0 ? Vec3(-hit->normal) : hit->normal;  // two-sided
     const Vec3f albedo = albedoAt(*hit);
+    if (scatters == 0) firstAlbedo = albedo;
     const Vec3f brdf = albedo / static_cast<float>(kPi);
     if (lights > 0) {  // one light, by its estimate; the first surface's choice stratified
       left = chooseLights(hit->point, normal);
@@ -288,7 +295,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     bsdfPdf = cosine / kPi;
     origin = hit->point + kSurfaceOffset * normal;
   }
-  return {radiance, direct.value_or(radiance)};
+  return {radiance, direct.value_or(radiance), firstAlbedo};
 }
 
 }  // namespace omnicam

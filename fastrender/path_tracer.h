@@ -64,6 +64,7 @@ class PathRandom {
 struct PathSample {
   Vec3f radiance = Vec3f::Zero();
   Vec3f direct = Vec3f::Zero();
+  Vec3f firstAlbedo = Vec3f::Zero();  // of the first surface (zero where there is none)
 };
 
 // A pixel's samples as stratified points: sample `index` of the pixel keyed `pixel` gets, in each
@@ -104,8 +105,10 @@ class PathTracer {
   // How a surface point chooses the light it samples: in proportion to each light's unoccluded
   // estimate there, mixed with a uniform choice.
   struct LightChoice {
+    static constexpr int kKept = 8;  // estimates kept for scenes of up to this many lights
     Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
     double sum = 0.0;  // of the estimates
+    double estimates[kKept] = {};
   };
   LightChoice chooseLights(const Vec3& point, const Vec3& normal) const;
   double selectionOf(const LightChoice& choice, int light) const;

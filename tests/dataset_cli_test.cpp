@@ -953,3 +953,62 @@ TEST_F(DatasetCliTest, BlenderReadsEveryLayerOfAMultilayerFrame) {
 
 }  // namespace
 }  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+// Path shading in datasets (docs/path-tracing.md): 100 denoised frames of the textured hall along
+// thesis-loop with every output run and verify; a frame is what `render` gives at its pose; shards
+// merge into the one-go dataset byte for byte; and a moving robot under a rolling shutter renders
+// path-traced frames as the render verb does.
+TEST_F(DatasetCliTest, PathShadedTexturedHallWithEveryOutputVerifiesShardsAndMoves) {
+  ASSERT_EQ(omnicam("arena hall --photo /usr/share/blender/datafiles/studiolights/world/interior.exr -o " + path("hall.json")).code, 0);
+  const std::string settings = R"("scene": "hall.json", "shading": "path", "spp": 4, "denoise": true, "size": 64, )";
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", )" + settings +
+                                                  R"("poses": {"path": "thesis-loop", "frames": 100}, )" + everyOutput("files") + "}");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+  const json manifest = json::parse(readFile(path("ds/manifest.json")));
+  EXPECT_EQ(manifest.at("frames").size(), 100u);
+  EXPECT_EQ(manifest.at("settings").at("shading"), "path");
+  EXPECT_EQ(manifest.at("settings").at("path_tracing"), json({{"bounces", 2}, {"seed", 0}, {"denoise", true}}));
+  // Frame 7 is the render verb's frame at its pose, byte for byte.
+  const json& pose = manifest.at("frames")[7].at("pose");
+  char poseText[128];
+  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
+                pose.at("yaw_deg").get<double>());
+  const auto single = omnicam("render " + path("hall.json") + " --shading path --spp 4 --denoise --size 64 --pose=" + poseText +
+                              " -o " + path("single.exr"));
+  ASSERT_EQ(single.code, 0) << single.out;
+  EXPECT_TRUE(readImage(path("ds/cam0/rgb/000007.exr")).pixels == readImage(path("single.exr")).pixels);
+  // Shards: the same bytes as the one-go run.
+  const std::string ten = write("ten.json", R"({"format": "omnicam-dataset/1", )" + settings +
+                                                R"("poses": {"path": "thesis-loop", "frames": 10}, )" + everyOutput("files") + "}");
+  ASSERT_EQ(omnicam("dataset " + ten + " -o " + path("whole")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + ten + " -o " + path("parts") + " --shard 1/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + ten + " -o " + path("parts") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+  std::map<std::string, std::string> merged = snapshot(dir_ / "parts"), whole = snapshot(dir_ / "whole");
+  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  EXPECT_EQ(merged, whole);
+  // Moving under a rolling shutter: the dataset's frame is the render verb's.
+  json hall = json::parse(readFile(path("hall.json")));
+  hall["rig"]["shutter"] = {{"exposure_s", 0.02}, {"rolling", {{"line_time_us", 200}, {"readout", "top-to-bottom"}}}};
+  write("moving.json", hall.dump());
+  const std::string moving = write("moving-spec.json", R"({"format": "omnicam-dataset/1", "scene": "moving.json",
+    "shading": "path", "spp": 4, "denoise": true, "size": 64, "frame_interval_s": 0.1, "outputs": {"rgb": "exr"},
+    "poses": {"list": [[0, 0, 0], [0.1, 0, 0]]}, "motion": {"between_poses": true}})");
+  ASSERT_EQ(omnicam("dataset " + moving + " -o " + path("moving")).code, 0);
+  const auto still = omnicam("render " + path("moving.json") + " --shading path --spp 4 --denoise --size 64 --pose 0,0,0 "
+                             "--velocity 1,0,0 -o " + path("moving0.exr"));
+  ASSERT_EQ(still.code, 0) << still.out;
+  EXPECT_TRUE(readImage(path("moving/cam0/rgb/000000.exr")).pixels == readImage(path("moving0.exr")).pixels);
+  const auto atRest = omnicam("render " + path("moving.json") + " --shading path --spp 4 --denoise --size 64 --pose 0,0,0 -o " +
+                              path("rest.exr"));
+  ASSERT_EQ(atRest.code, 0) << atRest.out;
+  EXPECT_FALSE(readImage(path("rest.exr")).pixels == readImage(path("moving0.exr")).pixels);  // the motion shows
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -101,6 +101,24 @@ def test_bad_render_arguments_raise_one_line(robocup):
         omnicam.Renderer(robocup, engine="povray").render(outputs=["depth"])
 
 
+def test_path_shading_is_the_clis_and_its_settings_are_checked(robocup, tmp_path):
+    """shading="path" with bounces, seed and denoise gives the CLI's pixels; a seed changes the
+    noise; bounces without path shading and denoise of lit frames raise one line."""
+    renderer = omnicam.Renderer(robocup)
+    frame = renderer.render(POSE, size=96, spp=4, shading="path", bounces=1, seed=3, denoise=True)
+    code, _, err = run_cli("render", SOURCE / "scenes" / "robocup2006.json", "--pose=%g,%g,%g" % POSE, "--size", 96,
+                           "--spp", 4, "--shading", "path", "--bounces", 1, "--seed", 3, "--denoise",
+                           "-o", tmp_path / "cli.exr")
+    assert code == 0, err
+    np.testing.assert_array_equal(frame["rgb"], omnicam.read_image(str(tmp_path / "cli.exr")))
+    other = renderer.render(POSE, size=96, spp=4, shading="path", bounces=1, seed=4, denoise=True)
+    assert not np.array_equal(frame["rgb"], other["rgb"])
+    with pytest.raises(omnicam.InputError, match="bounces: only with shading path"):
+        renderer.render(bounces=3)
+    with pytest.raises(omnicam.InputError, match="denoise: only for path-traced frames"):
+        renderer.render(shading="lit", denoise=True)
+
+
 def test_a_dataset_runs_with_progress_and_stops_on_an_exception(tmp_path):
     spec = tmp_path / "spec.json"
     spec.write_text(json.dumps({

@@ -1,0 +1,42 @@
+// make bench: how long the fast renderer's path shading and Blender Cycles each take to reach a
+// given error (PSNR, 8-bit sRGB inside the mirror) against a converged frame of the textured hall
+// at 360 px — both engines converge to the same frame (docs/path-tracing.md, "Measured") — one
+// engine after the other in one run. Prints the ladder and the time ratios; the converged frame is
+// the fast renderer's (2 × 1024 spp, unfiltered, about a minute).
+#include <cstdio>
+#include <filesystem>
+
+#include "hall_arena.h"
+#include "path_convergence.h"
+#include "scene_loader.h"
+
+int main() {
+  using namespace omnicam;
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "omnicam_path_vs_cycles";
+  std::filesystem::create_directories(folder);
+  HallOptions hall;
+  hall.fieldScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
+  hall.photos = {"/usr/share/blender/datafiles/studiolights/world/interior.exr"};
+  writeHallArena(hall, (folder / "hall-textured.json").string());
+  const Scene scene = loadScene((folder / "hall-textured.json").string());
+  const RobotPose pose{2.7, -1.8, 180.0};
+  PathConvergenceOptions options;
+  std::printf("path_vs_cycles: converged fast frame (%d x %d spp)...\n", options.fastConvergedSeeds, options.fastConvergedSpp);
+  const ImageRGBA converged = convergedFastFrame(scene, pose, options.size, options.fastConvergedSpp, options.fastConvergedSeeds);
+  PathConvergenceResults results;
+  measureTimeToError(scene, pose, converged, options, results, [](const std::string&, int done, int total) {
+    std::printf("path_vs_cycles: %d of %d\n", done, total);
+  });
+  std::printf("%-8s %5s %9s %10s %8s\n", "engine", "spp", "denoised", "seconds", "PSNR dB");
+  for (const LadderPoint& p : results.ladder)
+    std::printf("%-8s %5d %9s %10.3f %8.2f\n", p.engine.c_str(), p.spp, p.filtered ? "yes" : "no", p.seconds, p.psnrDb);
+  for (const auto& t : results.timeToError) {
+    if (t.fastSeconds > 0.0 && t.cyclesSeconds > 0.0)
+      std::printf("to %.0f dB: fast %.3f s, Cycles %.1f s: %.0fx\n", t.targetDb, t.fastSeconds, t.cyclesSeconds,
+                  t.cyclesSeconds / t.fastSeconds);
+    else
+      std::printf("to %.0f dB: fast %s, Cycles %s\n", t.targetDb, t.fastSeconds > 0.0 ? "reached" : "not reached on its ladder",
+                  t.cyclesSeconds > 0.0 ? "reached" : "not reached on its ladder");
+  }
+  return 0;
+}
