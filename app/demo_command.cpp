@@ -128,8 +128,6 @@ EngineFigures renderAndCompare(const std::string& out, const std::string& stem, 
   return result;
 }
 
-// A real 360° photo of an interior (CC0, shipped with Debian's blender) for the hall's walls.
-const char* kLabPhoto = "/usr/share/blender/datafiles/studiolights/world/interior.exr";
 
 // What the report opens with: a frame that fills the mirror — the field inside the thesis' hall,
 // walls carrying the real photo — from the fast renderer beside POV-Ray's ground truth. The pose

@@ -24,7 +24,6 @@ namespace {
 
 // Debian's blender-data: eight CC0 360° photos (Greg Zaal); "interior" plays the thesis' lab.
 const char* kStudioLights = "/usr/share/blender/datafiles/studiolights/world/";
-const char* kLabPhoto = "interior.exr";
 const char* kOtherPhotos[] = {"city.exr", "courtyard.exr", "forest.exr", "night.exr", "studio.exr", "sunrise.exr", "sunset.exr"};
 
 std::string experimentsDir() {
@@ -66,7 +65,7 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
-  options.labPhoto = std::string(kStudioLights) + kLabPhoto;
+  options.labPhoto = kLabPhoto;
   if (!std::filesystem::exists(options.labPhoto))
     throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
   ensureDirectory(a.out, "-o");
@@ -105,7 +104,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.tiledRoom = scenesDir() + "/tiled-room.json";
-  options.labPhoto = std::string(kStudioLights) + kLabPhoto;
+  options.labPhoto = kLabPhoto;
   if (!std::filesystem::exists(options.labPhoto))
     throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
   ensureDirectory(a.out, "-o");
@@ -162,7 +161,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   options.detector.theta = a.theta;
   options.bins = a.bins;
   options.fieldScene = scenesDir() + "/robocup2006.json";
-  options.labPhoto = std::string(kStudioLights) + kLabPhoto;
+  options.labPhoto = kLabPhoto;
   for (const char* photo : kOtherPhotos) options.randomPhotos.push_back(std::string(kStudioLights) + photo);
   for (const std::string& photo : options.randomPhotos)
     if (!std::filesystem::exists(photo))

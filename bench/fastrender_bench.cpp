@@ -71,15 +71,8 @@ void BM_RollingShutterRobocup2006(benchmark::State& state) {
 // texture-realism experiment's first thesis-loop pose, unfiltered and denoised (the frames
 // datasets use).
 const Scene& texturedHall() {
-  static const Scene scene = [] {
-    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "omnicam_bench_hall";
-    std::filesystem::create_directories(folder);
-    HallOptions hall;
-    hall.fieldScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
-    hall.photos = {"/usr/share/blender/datafiles/studiolights/world/interior.exr"};
-    writeHallArena(hall, (folder / "hall-textured.json").string());
-    return loadScene((folder / "hall-textured.json").string());
-  }();
+  static const Scene scene = loadScene(writeLabHall(
+      OMNICAM_SOURCE_DIR "/scenes/robocup2006.json", (std::filesystem::temp_directory_path() / "omnicam_bench_hall").string()));
   return scene;
 }
 

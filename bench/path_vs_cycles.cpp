@@ -12,13 +12,8 @@
 
 int main() {
   using namespace omnicam;
-  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "omnicam_path_vs_cycles";
-  std::filesystem::create_directories(folder);
-  HallOptions hall;
-  hall.fieldScene = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
-  hall.photos = {"/usr/share/blender/datafiles/studiolights/world/interior.exr"};
-  writeHallArena(hall, (folder / "hall-textured.json").string());
-  const Scene scene = loadScene((folder / "hall-textured.json").string());
+  const Scene scene = loadScene(writeLabHall(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json",
+                                            (std::filesystem::temp_directory_path() / "omnicam_path_vs_cycles").string()));
   const RobotPose pose{2.7, -1.8, 180.0};
   PathConvergenceOptions options;
   std::printf("path_vs_cycles: converged fast frame (%d x %d spp)...\n", options.fastConvergedSeeds, options.fastConvergedSpp);

@@ -186,4 +186,14 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
   return written;
 }
 
+std::string writeLabHall(const std::string& fieldScene, const std::string& folder) {
+  std::filesystem::create_directories(folder);
+  HallOptions hall;
+  hall.fieldScene = fieldScene;
+  hall.photos = {kLabPhoto};
+  const std::string scene = (std::filesystem::path(folder) / "hall-textured.json").string();
+  writeHallArena(hall, scene);
+  return scene;
+}
+
 }  // namespace omnicam

@@ -53,4 +53,10 @@ class PanoramaPhoto {
 // `<stem>_textures/`. Returns the texture files written.
 std::vector<std::string> writeHallArena(const HallOptions& options, const std::string& sceneOut);
 
+// The photo that plays the thesis' lab: a CC0 360° interior from Debian's blender-data.
+inline constexpr const char* kLabPhoto = "/usr/share/blender/datafiles/studiolights/world/interior.exr";
+// The hall around `fieldScene` with the lab photo's walls, written as `folder`/hall-textured.json
+// (made if missing); returns that path.
+std::string writeLabHall(const std::string& fieldScene, const std::string& folder);
+
 }  // namespace omnicam

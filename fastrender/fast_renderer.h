@@ -25,6 +25,7 @@ std::string fastRendererVersion();
 
 class FastRenderer {
  public:
+  using SceneType = Scene;
   // Keeps a reference to `scene`, which must outlive the renderer.
   explicit FastRenderer(const Scene& scene);
 

@@ -107,12 +107,7 @@ TEST(FastRenderer, OutputIsBitIdenticalForAnyThreadCount) {
   settings.shading = Shading::Lit;
   // One thread against four (more than this machine may have cores; all four in the arena when
   // the render starts), each with its own renderer, so that its tables are built there too.
-  const FastRenderer rendererOne(s), rendererFour(s);
-  ImageRGBA one, four;
-  EXPECT_EQ(runOnThreads(1, [&] { one = rendererOne.render(s.startPose, settings); }), 1);
-  EXPECT_EQ(runOnThreads(4, [&] { four = rendererFour.render(s.startPose, settings); }), 4);
-  ASSERT_EQ(one.pixels.size(), four.pixels.size());
-  EXPECT_EQ(std::memcmp(one.pixels.data(), four.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  expectSameFrameOnOneAndFourThreads<FastRenderer>(s, settings);
 }
 
 TEST(FastRenderer, TexturedFloorShowsTheSrgbDecodedBilinearTexel) {

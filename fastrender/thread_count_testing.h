@@ -8,6 +8,7 @@
 // the work starts only once all N threads have met in the arena (a rendezvous that waits for
 // them, however long the machine takes), with the others ready to take its tasks. Give it work
 // of some tens of milliseconds: a job of a few milliseconds may still be done by one thread.
+#include <gtest/gtest.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
@@ -52,6 +53,19 @@ int runOnThreads(int threads, const Work& work) {
         tbb::simple_partitioner());
   });
   return static_cast<int>(met.size());
+}
+
+// A frame of `scene` at its start pose rendered on one thread and on four, each by its own
+// renderer (so that its tables are built there too): the one-thread frame, once both were checked
+// bit-identical and to have had their threads.
+template <class Renderer, class Settings>
+auto expectSameFrameOnOneAndFourThreads(const typename Renderer::SceneType& scene, const Settings& settings) {
+  const Renderer rendererOne(scene), rendererFour(scene);
+  decltype(rendererOne.render(scene.startPose, settings)) one, four;
+  EXPECT_EQ(runOnThreads(1, [&] { one = rendererOne.render(scene.startPose, settings); }), 1);
+  EXPECT_EQ(runOnThreads(4, [&] { four = rendererFour.render(scene.startPose, settings); }), 4);
+  EXPECT_TRUE(one.pixels == four.pixels) << "the frame depends on the thread count";
+  return one;
 }
 
 }  // namespace omnicam
