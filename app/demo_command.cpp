@@ -4,8 +4,9 @@
 // the thesis start pose (unlit and lit) with the fast renderer, POV-Ray (the physical camera and
 // the exact mirror) and Blender, compares them, renders and measures the incidence-angle rings
 // with every engine, shows a misaligned physical camera against the ideal one (with POV-Ray's
-// truth and the best-fit central model's residual), renders a small two-camera dataset (depth,
-// instance and landmark overlays), and writes PNGs, plots and index.html.
+// truth and the best-fit central model's residual), shows physically based light (the fast path
+// tracer's dataset frame beside Cycles' converged frame of the textured hall), renders a small
+// two-camera dataset (depth, instance and landmark overlays), and writes PNGs, plots and index.html.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -92,6 +93,52 @@ std::vector<ImageRGBA> blenderFrames(const Scene& scene, const std::vector<Robot
   options.timeoutSeconds = o.blenderTimeoutSeconds;
   options.seed = seed;
   return renderWithBlender(scene, std::vector<CameraPlacement>(poses.begin(), poses.end()), settings, options);
+}
+
+// Cycles' frames of one scene cost minutes each: they are kept in outDir/data/ with what they
+// were rendered from (the scene's SHA-256, the poses, size, spp, seed, denoising), and a run that
+// asks for the same frames reads them back instead of rendering them again (the fast renderer's
+// side is always rendered). Seconds are the render's own, per frame.
+struct CyclesFrames {
+  std::vector<ImageRGBA> frames;
+  double secondsPerFrame = 0.0;
+};
+
+CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, const std::vector<RobotPose>& poses,
+                                 const RenderSettings& settings, const PathConvergenceOptions& o, int seed) {
+  const fs::path data = fs::path(o.outDir) / "data";
+  const std::string name = stem + "_cycles_" + std::to_string(settings.spp) + "spp" + (settings.denoise ? "_denoised" : "") +
+                           "_seed" + std::to_string(seed);
+  nlohmann::json key = {{"scene_sha256", scene.sha256}, {"size", settings.rig.imageSize}, {"spp", settings.spp},
+                        {"seed", seed}, {"denoise", settings.denoise}, {"shading", shadingName(settings.shading)},
+                        {"poses", nlohmann::json::array()}};
+  for (const RobotPose& p : poses) key["poses"].push_back({p.x, p.y, p.yawDeg});
+  const fs::path keyFile = data / (name + ".json");
+  const auto frameFile = [&](size_t k) { return data / (name + "_" + std::to_string(k) + ".exr"); };
+  // Only plain files are read back: a link planted in the folder is not followed.
+  const auto plainFile = [](const fs::path& path) { return fs::is_regular_file(fs::symlink_status(path)); };
+  bool complete = plainFile(keyFile);
+  for (size_t k = 0; k < poses.size(); ++k) complete = complete && plainFile(frameFile(k));
+  if (complete) {
+    try {
+      std::ifstream in(keyFile);
+      const nlohmann::json kept = nlohmann::json::parse(in);
+      if (kept.at("key") == key) {
+        CyclesFrames cached{{}, kept.at("seconds_per_frame").get<double>()};
+        for (size_t k = 0; k < poses.size(); ++k) cached.frames.push_back(readImage(frameFile(k).string()));
+        return cached;
+      }
+    } catch (const std::exception&) {
+      // Unreadable or another run's: rendered again below.
+    }
+  }
+  const auto start = Clock::now();
+  CyclesFrames rendered{blenderFrames(scene, poses, settings, o, seed), 0.0};
+  rendered.secondsPerFrame = secondsSince(start) / static_cast<double>(poses.size());
+  fs::create_directories(data);
+  for (size_t k = 0; k < poses.size(); ++k) writeImageAtomic(frameFile(k).string(), rendered.frames[k]);
+  writeTextAtomically(keyFile.string(), nlohmann::json{{"key", key}, {"seconds_per_frame", rendered.secondsPerFrame}}.dump(2) + "\n");
+  return rendered;
 }
 
 std::vector<StudyScene> studyScenes(const PathConvergenceOptions& o) {
@@ -187,12 +234,15 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
     const FastRenderer renderer(s.scene);
     // Cycles: the converged references of the three poses in one session, and the realistic
     // frames' setup (filtered) timed per session of three.
-    const std::vector<ImageRGBA> references = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 0);
+    const std::string stem = fileStem(s.name);
+    const std::vector<ImageRGBA> references =
+        cachedBlenderFrames(s.scene, stem, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 0).frames;
     std::vector<ImageRGBA> floors;
-    if (o.measureFloor) floors = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 1);
-    const auto cyclesStart = Clock::now();
-    const std::vector<ImageRGBA> cycles = blenderFrames(s.scene, s.poses, pathSettings(s.scene, o.size, o.cyclesSpp, true), o, 5);
-    const double cyclesSeconds = secondsSince(cyclesStart) / static_cast<double>(s.poses.size());
+    if (o.measureFloor)
+      floors = cachedBlenderFrames(s.scene, stem, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 1).frames;
+    const CyclesFrames realistic = cachedBlenderFrames(s.scene, stem, s.poses, pathSettings(s.scene, o.size, o.cyclesSpp, true), o, 5);
+    const std::vector<ImageRGBA>& cycles = realistic.frames;
+    const double cyclesSeconds = realistic.secondsPerFrame;
     for (size_t k = 0; k < s.poses.size(); ++k) {
       PathFrameResult f;
       f.scene = s.name;
@@ -223,7 +273,6 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
       r.frames.push_back(f);
       if (k == 0) {
         const fs::path frames = fs::path(o.outDir) / "frames";
-        const std::string stem = fileStem(s.name);
         saveFrame(frames, stem + "_cycles_converged.png", references[k]);
         saveFrame(frames, stem + "_fast_converged.png", converged);
         saveFrame(frames, stem + "_fast_dataset.png", chosen);

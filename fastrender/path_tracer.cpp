@@ -127,7 +127,9 @@ int PathTracer::nearestDisc(const Vec3& origin, const Vec3& direction, double tM
   int nearest = -1;
   for (int index : discs_) {
     const Luminaire& l = luminaires_[index];
-    if (direction.z() == 0.0) continue;
+    // One-sided, as Cycles' area lights: only a ray rising into the disc's face meets it; from
+    // behind (above) rays pass through (measured: the ceiling beside a lamp, 29 % darker otherwise).
+    if (!(direction.z() > 0.0)) continue;
     const double t = (l.position.z() - origin.z()) / direction.z();
     if (!(t > 0.0 && t < tMax)) continue;
     const Vec3 p = origin + t * direction;
@@ -238,17 +240,15 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     if (scatters > 0) hit = rays_.intersect(origin, direction);
     double tDisc = 0.0;
     const int disc = nearestDisc(origin, direction, hit ? hit->t : std::numeric_limits<double>::infinity(), tDisc);
-    if (disc >= 0) {  // a disc luminaire ends the path (Cycles: no transparent bounces)
+    if (disc >= 0) {  // a disc luminaire's face ends the path (Cycles: no transparent bounces)
       const Luminaire& l = luminaires_[disc];
       const double cosLight = direction.z();
-      if (cosLight > 0.0) {
-        double weight = 1.0;
-        if (bsdfPdf >= 0.0) {
-          const double lightPdf = selectionOf(left, disc) * tDisc * tDisc / (l.area() * cosLight);
-          weight = powerHeuristic(bsdfPdf, lightPdf);
-        }
-        radiance += static_cast<float>(weight) * throughput.cwiseProduct(l.emitted);
+      double weight = 1.0;
+      if (bsdfPdf >= 0.0) {
+        const double lightPdf = selectionOf(left, disc) * tDisc * tDisc / (l.area() * cosLight);
+        weight = powerHeuristic(bsdfPdf, lightPdf);
       }
+      radiance += static_cast<float>(weight) * throughput.cwiseProduct(l.emitted);
       break;
     }
     if (!hit) {

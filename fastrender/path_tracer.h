@@ -5,7 +5,8 @@
 // follows Cycles' rules where they change the converged image, so that both converge to the same
 // frame: light is reflected by at most `diffuseBounces` + 1 surfaces (next-event estimation at the
 // first diffuseBounces + 1 vertices, whose last scattered ray only gathers what it meets); lights
-// are not occluders of shadow rays; a ray that meets a disc luminaire ends there.
+// are not occluders of shadow rays; a ray that meets a disc luminaire's face ends there, one that
+// meets its back passes through.
 //
 // Deterministic: a path's random numbers come from its key alone (one per pixel sample), so frames
 // do not depend on the thread count or the order samples are traced in.
@@ -114,7 +115,7 @@ class PathTracer {
   double selectionOf(const LightChoice& choice, int light) const;
   // The light `u` ∈ [0, 1) picks and its probability; u is remapped to [0, 1) within its pick.
   int pick(const LightChoice& choice, double& u, double& selection) const;
-  // The nearest disc luminaire the ray meets before tMax: its index, or -1; t in `tHit`.
+  // The nearest disc luminaire whose face the ray meets before tMax: its index, or -1; t in `tHit`.
   int nearestDisc(const Vec3& origin, const Vec3& direction, double tMax, double& tHit) const;
   // Light from luminaire `l` at a surface point by one sample `u` of it, MIS-weighted against
   // cosine sampling; `selection`: the probability that this light was the one sampled; `brdf`

@@ -81,21 +81,32 @@ def black_emission():
     return material
 
 
+def principled_and_output(material):
+    """The imported Principled BSDF and the material output of a glTF material, or (None, None)."""
+    nodes = material.node_tree.nodes
+    principled = next((n for n in nodes if n.type == "BSDF_PRINCIPLED"), None)
+    output = next((n for n in nodes if n.type == "OUTPUT_MATERIAL"), None)
+    return (principled, output) if principled is not None and output is not None else (None, None)
+
+
+def feed(tree, socket, into):
+    """`into` takes what feeds `socket` (a link, or its value)."""
+    if socket.is_linked:
+        tree.links.new(socket.links[0].from_socket, into)
+    else:
+        into.default_value = socket.default_value
+
+
 def make_emission_only(material):
     """unlit (docs/conventions.md §2): radiance = albedo. The albedo is whatever fed the imported Principled
     BSDF's Base Color (factor × texture), now fed to an Emission of strength 1."""
-    tree = material.node_tree
-    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
-    output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
-    if principled is None or output is None:
+    principled, output = principled_and_output(material)
+    if principled is None:
         return
+    tree = material.node_tree
     emission = tree.nodes.new("ShaderNodeEmission")
     emission.inputs["Strength"].default_value = 1.0
-    base = principled.inputs["Base Color"]
-    if base.is_linked:
-        tree.links.new(base.links[0].from_socket, emission.inputs["Color"])
-    else:
-        emission.inputs["Color"].default_value = base.default_value
+    feed(tree, principled.inputs["Base Color"], emission.inputs["Color"])
     tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
 
 
@@ -104,27 +115,19 @@ def make_lambertian(material):
     their emission. The imported Principled BSDF (specular 0.5, Disney diffuse) becomes a Diffuse BSDF of
     roughness 0 (exactly Lambert) fed what fed its Base Color; its emission (glTF emissiveFactor x
     KHR_materials_emissive_strength) is added by an Emission shader."""
-    tree = material.node_tree
-    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
-    output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
-    if principled is None or output is None:
+    principled, output = principled_and_output(material)
+    if principled is None:
         return
+    tree = material.node_tree
     diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
     diffuse.inputs["Roughness"].default_value = 0.0
-    base = principled.inputs["Base Color"]
-    if base.is_linked:
-        tree.links.new(base.links[0].from_socket, diffuse.inputs["Color"])
-    else:
-        diffuse.inputs["Color"].default_value = base.default_value
+    feed(tree, principled.inputs["Base Color"], diffuse.inputs["Color"])
     shader = diffuse.outputs["BSDF"]
     emission_colour = principled.inputs["Emission"]
     strength = principled.inputs["Emission Strength"].default_value
     if emission_colour.is_linked or (strength > 0.0 and max(emission_colour.default_value[:3]) > 0.0):
         emission = tree.nodes.new("ShaderNodeEmission")
-        if emission_colour.is_linked:
-            tree.links.new(emission_colour.links[0].from_socket, emission.inputs["Color"])
-        else:
-            emission.inputs["Color"].default_value = emission_colour.default_value
+        feed(tree, emission_colour, emission.inputs["Color"])
         emission.inputs["Strength"].default_value = strength
         add = tree.nodes.new("ShaderNodeAddShader")
         tree.links.new(shader, add.inputs[0])

@@ -278,9 +278,9 @@ namespace {
 // Path shading means the same light in both engines (docs/conventions.md §3): the tiled room with
 // a glowing door (material emission), its lamp a disc luminaire, a second lamp a point, and a
 // sky of constant radiance, converged in both. Measured (64 px, 1024 spp each): mean ratio
-// fast/Cycles 0.9988, 0.993–1.001 per ring of the image; PSNR 34.2 dB, its largest errors
-// alternating in sign along the edges of tiles lit to radiance 2–3 under the lamp (the mirror's
-// mesh in Blender against the exact surface, amplified by the light), not in the light itself.
+// fast/Cycles 0.9997; PSNR 37.2 dB (linear, peak 1), its largest errors alternating in sign along
+// the edges of tiles lit to radiance 2–3 under the lamp, not in the light itself. (Before the disc
+// became one-sided as in Cycles, rays from above ended on its back: 0.9988 and 34.2 dB.)
 TEST(Blender, PathShadingConvergesToTheSameFrameAsCycles) {
   Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/tiled-room.json");
   for (Material& m : scene.materials)
@@ -307,8 +307,8 @@ TEST(Blender, PathShadingConvergesToTheSameFrameAsCycles) {
               r.psnrDb);
   // A convention off (a disc's power, the bounce rule, emission, the sky) moves the mean by
   // several percent; the noise of both frames moves it by well under one.
-  EXPECT_NEAR(sumFast / sumTruth, 1.0, 0.01);
-  EXPECT_GE(r.psnrDb, 32.0);
+  EXPECT_NEAR(sumFast / sumTruth, 1.0, 0.005);
+  EXPECT_GE(r.psnrDb, 35.0);
 }
 
 }  // namespace
