@@ -1,6 +1,7 @@
 // omnicam experiment texture-realism -o DIR [--quick] [--doc PATH]
 // omnicam arena hall [--photo IMG]... [--random-photos] [--seed S] -o SCENE.json
 // omnicam arena mapping [--seed S] -o SCENE.json
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -32,7 +33,7 @@ std::string experimentsDir() {
 }
 
 struct ExperimentArgs {
-  std::string name, out, doc, convergence;
+  std::string name, out, doc, convergence, noiseScene;
   bool quick = false, noFigures = false;
   double theta = 1.0;
   int bins = 32;
@@ -61,6 +62,7 @@ struct StageProgress {
 void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   for (const char* flag : {"--doc", "--convergence", "--theta", "--bins"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
+  refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
   options.outDir = a.out;
@@ -99,11 +101,17 @@ void replaceGeneratedSection(const std::string& doc, const std::string& section)
 void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
+  if (!a.noiseScene.empty() && a.noiseScene != "plain_hall" && a.noiseScene != "textured_hall" && a.noiseScene != "tiled_room")
+    throw InputError("--noise-scene: must be plain_hall, textured_hall or tiled_room (got " + quote(a.noiseScene) + ")");
   checkOutputFolder(a.out, "-o");
   PathConvergenceOptions options = a.quick ? PathConvergenceOptions::quick() : PathConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.tiledRoom = scenesDir() + "/tiled-room.json";
+  if (!a.noiseScene.empty()) {
+    options.floorScene = a.noiseScene;
+    std::replace(options.floorScene.begin(), options.floorScene.end(), '_', ' ');
+  }
   options.labPhoto = kLabPhoto;
   if (!std::filesystem::exists(options.labPhoto))
     throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
@@ -152,6 +160,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (a.out.empty()) throw InputError("-o: give the folder for the results");
   if (a.name == "realistic-convergence") return runConvergence(a, cmd);
   if (a.name == "path-convergence") return runPathStudy(a, cmd);
+  refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   std::optional<ConvergenceResults> convergence;
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
   if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
@@ -243,6 +252,9 @@ void addExperimentCommands(CLI::App& app) {
   cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)")->check(integerIn(2, 256));
   cmd->add_option("--convergence", args->convergence,
                   "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR");
+  cmd->add_option("--noise-scene", args->noiseScene,
+                  "path-convergence: measure the Cycles references' own noise on this scene only (plain_hall, "
+                  "textured_hall or tiled_room; default every scene, which doubles Cycles' share of the run)");
   cmd->callback([args, cmd] { runExperiment(*args, *cmd); });
 
   auto arena = std::make_shared<ArenaArgs>();

@@ -238,7 +238,7 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
     const std::vector<ImageRGBA> references =
         cachedBlenderFrames(s.scene, stem, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 0).frames;
     std::vector<ImageRGBA> floors;
-    if (o.measureFloor)
+    if (o.measureFloor && (o.floorScene.empty() || o.floorScene == s.name))
       floors = cachedBlenderFrames(s.scene, stem, s.poses, pathSettings(s.scene, o.size, o.referenceSpp, false), o, 1).frames;
     const CyclesFrames realistic = cachedBlenderFrames(s.scene, stem, s.poses, pathSettings(s.scene, o.size, o.cyclesSpp, true), o, 5);
     const std::vector<ImageRGBA>& cycles = realistic.frames;

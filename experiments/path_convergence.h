@@ -31,7 +31,8 @@ struct PathConvergenceOptions {
   int fastConvergedSeeds = 2;
   int chosenSpp = 16;          // the fast frames datasets use (filtered)
   int cyclesSpp = 36;          // the realistic frames of the texture-realism experiment (filtered)
-  bool measureFloor = true;    // a second Cycles reference per pose (the references' own noise)
+  bool measureFloor = true;    // a second Cycles reference per pose (the references' own noise) ...
+  std::string floorScene;      // ... of this scene only ("textured hall", say); empty: of every scene
   std::vector<int> fastLadder = {1, 4, 16, 36, 64}, cyclesLadder = {4, 16, 36, 64};
   double blenderTimeoutSeconds = 3600.0;
   static PathConvergenceOptions quick();  // small images, few samples: for tests
