@@ -402,3 +402,29 @@ TEST_F(ExperimentCliTest, ArenaHallFromARealPhotoAndFromAnUnwrappedOmniImage) {
 
 }  // namespace
 }  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+// experiment path-convergence --quick: nine frames against Cycles, each converged fast frame within
+// a few percent of Cycles' mean radiance; a rerun reads Cycles' frames back from data/ and measures
+// the same numbers (the fast side is deterministic, the Cycles side the cached frames).
+TEST_F(ExperimentCliTest, QuickPathConvergenceMeasuresNineFramesAndReusesCyclesFrames) {
+  const auto first = omnicam("experiment path-convergence --quick -o " + path("pc"));
+  ASSERT_EQ(first.code, 0) << first.out;
+  const json results = json::parse(std::ifstream(path("pc/path-convergence.json")));
+  ASSERT_EQ(results["frames"].size(), 9u);
+  for (const json& f : results["frames"]) {
+    EXPECT_NEAR(f["mean_ratio"].get<double>(), 1.0, 0.03) << f["scene"];  // 64 spp each side, 48 px
+    EXPECT_GT(f["converged_psnr_db"].get<double>(), 25.0) << f["scene"];
+  }
+  EXPECT_TRUE(fs::exists(path("pc/data/textured_hall_cycles_64spp_seed0.json")));
+  const auto second = omnicam("experiment path-convergence --quick -o " + path("pc"));
+  ASSERT_EQ(second.code, 0) << second.out;
+  const json again = json::parse(std::ifstream(path("pc/path-convergence.json")));
+  for (size_t k = 0; k < 9; ++k)
+    EXPECT_EQ(again["frames"][k]["converged_psnr_db"], results["frames"][k]["converged_psnr_db"]) << k;
+}
+
+}  // namespace
+}  // namespace omnicam
