@@ -43,24 +43,42 @@ uint32_t reverseBits(uint32_t x) {
   return (x >> 16) | (x << 16);
 }
 
-// Laine and Karras' hash, an Owen scramble of the bits from the lowest up; nested (reversed) it
-// scrambles from the highest (Burley 2020).
-uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) {
-  x = reverseBits(x);
+// Laine and Karras' hash: an Owen scramble of the bits from the lowest up.
+uint32_t laineKarras(uint32_t x, uint32_t seed) {
   x += seed;
   x ^= x * 0x6c50b47cu;
   x ^= x * 0xb82f1e52u;
   x ^= x * 0xc7afe638u;
   x ^= x * 0x8d22f6e6u;
-  return reverseBits(x);
+  return x;
 }
 
-// The first two dimensions of Sobol's sequence: van der Corput, and its (0, 2) partner.
+// Nested (reversed), it scrambles from the highest bit (Burley 2020).
+uint32_t nestedUniformScramble(uint32_t x, uint32_t seed) { return reverseBits(laineKarras(reverseBits(x), seed)); }
+
+// The second dimension of Sobol's sequence, the (0, 2) partner of van der Corput: linear over
+// GF(2) in the index's bits (direction numbers v₀ = 2³¹, vₖ₊₁ = vₖ ^ vₖ >> 1), so a byte at a time.
+struct SobolSecondTables {
+  uint32_t byte[4][256] = {};
+};
+
+constexpr SobolSecondTables sobolSecondTables() {
+  SobolSecondTables t;
+  uint32_t directions[32] = {};
+  directions[0] = 1u << 31;
+  for (int k = 1; k < 32; ++k) directions[k] = directions[k - 1] ^ (directions[k - 1] >> 1);
+  for (int b = 0; b < 4; ++b)
+    for (uint32_t e = 0; e < 256; ++e)
+      for (int j = 0; j < 8; ++j)
+        if (e & (1u << j)) t.byte[b][e] ^= directions[8 * b + j];
+  return t;
+}
+
+constexpr SobolSecondTables kSobolSecond = sobolSecondTables();
+
 uint32_t sobolSecond(uint32_t i) {
-  uint32_t result = 0;
-  for (uint32_t v = 1u << 31; i != 0; i >>= 1, v ^= v >> 1)
-    if (i & 1u) result ^= v;
-  return result;
+  return kSobolSecond.byte[0][i & 0xffu] ^ kSobolSecond.byte[1][(i >> 8) & 0xffu] ^
+         kSobolSecond.byte[2][(i >> 16) & 0xffu] ^ kSobolSecond.byte[3][i >> 24];
 }
 
 }  // namespace
@@ -68,7 +86,8 @@ uint32_t sobolSecond(uint32_t i) {
 Eigen::Vector2d PixelSequence::point(uint32_t dimension) const {
   const uint64_t seed = mixKey(pixel_, dimension);
   const uint32_t i = nestedUniformScramble(index_, static_cast<uint32_t>(seed));
-  const uint32_t x = nestedUniformScramble(reverseBits(i), static_cast<uint32_t>(seed >> 32));
+  // The first coordinate is van der Corput's, reverseBits(i), nested-scrambled: the two reversals cancel.
+  const uint32_t x = reverseBits(laineKarras(i, static_cast<uint32_t>(seed >> 32)));
   const uint32_t y = nestedUniformScramble(sobolSecond(i), static_cast<uint32_t>(mixKey(seed, 1)));
   return {x * 0x1.0p-32, y * 0x1.0p-32};
 }
@@ -142,7 +161,7 @@ int PathTracer::nearestDisc(const Vec3& origin, const Vec3& direction, double tM
 }
 
 Vec3f PathTracer::lightSample(const Luminaire& l, double selection, const Vec3& point, const Vec3& normal,
-                              const Vec3f& brdf, const Eigen::Vector2d& u) const {
+                              const Vec3f& brdf, const Eigen::Vector2d& u, double bsdfShare) const {
   Vec3 target = l.position;
   if (l.disc()) {
     const double r = l.radius * std::sqrt(u.x()), phi = 2.0 * kPi * u.y();
@@ -160,7 +179,8 @@ Vec3f PathTracer::lightSample(const Luminaire& l, double selection, const Vec3& 
     const double cosLight = toLight.z();  // the disc faces −Z: it emits toward points below it
     if (cosLight <= 0.0) return Vec3f::Zero();
     const double lightPdf = selection * distance2 / (l.area() * cosLight);  // per solid angle
-    weight = powerHeuristic(lightPdf, cosine / kPi) / lightPdf;
+    // The BRDF strategy runs for bsdfShare of the samples: its weight counts that many (Veach's n).
+    weight = powerHeuristic(lightPdf, bsdfShare * cosine / kPi) / lightPdf;
   }
   if (rays_.occluded(point + kSurfaceOffset * normal, toLight, 0.0, distance - 2.0 * kSurfaceOffset)) return Vec3f::Zero();
   return static_cast<float>(weight * cosine) * brdf.cwiseProduct(l.emitted);
@@ -257,13 +277,6 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     }
     const Material& material = scene_.materials[scene_.objects[hit->object].material];
     radiance += throughput.cwiseProduct(material.emission);  // emitters are found by the paths that meet them
-    if (scatters == 1) {
-      direct = radiance;
-      if (options_.indirectShare < 1.0) {
-        if (!(stratified.point(2).x() < options_.indirectShare)) break;
-        throughput /= static_cast<float>(options_.indirectShare);
-      }
-    }
     // Cycles' diffuse_bounces = D: light reflected by at most D + 1 diffuse surfaces (D = 0 is
     // direct light), so the path's last scattered ray only gathers what it meets (measured
     // against Blender 3.4: docs/conventions.md §3).
@@ -272,12 +285,25 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     const Vec3f albedo = albedoAt(*hit);
     if (scatters == 0) firstAlbedo = albedo;
     const Vec3f brdf = albedo / static_cast<float>(kPi);
+    // The first surface scatters a ray for indirectShare of the samples (stratified), weighted by
+    // its inverse: the light sample's MIS weight counts it so.
+    const bool firstSurface = scatters == 0;
+    const double scatterShare = firstSurface ? options_.indirectShare : 1.0;
     if (lights > 0) {  // one light, by its estimate; the first surface's choice stratified
       left = chooseLights(hit->point, normal);
-      Eigen::Vector2d u = scatters == 0 ? stratified.point(1) : Eigen::Vector2d(random.uniform(), random.uniform());
+      Eigen::Vector2d u = firstSurface ? stratified.point(1) : Eigen::Vector2d(random.uniform(), random.uniform());
       double selection = 1.0;
       const int l = pick(left, u.x(), selection);
-      radiance += throughput.cwiseProduct(lightSample(luminaires_[l], selection, hit->point, normal, brdf, u));
+      radiance += throughput.cwiseProduct(lightSample(luminaires_[l], selection, hit->point, normal, brdf, u, scatterShare));
+    }
+    if (firstSurface) {
+      // What a denoiser keeps as traced: the first surface's emission and its light sample.
+      // Everything its scattered ray brings (light it meets included) is smoothed with the rest.
+      direct = radiance;
+      if (scatterShare < 1.0) {
+        if (!(stratified.point(2).x() < scatterShare)) break;
+        throughput /= static_cast<float>(scatterShare);
+      }
     }
     // Cosine-weighted scattering: the BRDF × cosine / pdf is the albedo.
     throughput = throughput.cwiseProduct(albedo);
@@ -286,13 +312,13 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
       if (!(random.uniform() < survive)) break;
       throughput /= static_cast<float>(survive);
     }
-    const Eigen::Vector2d u = scatters == 0 ? stratified.point(0) : Eigen::Vector2d(random.uniform(), random.uniform());
+    const Eigen::Vector2d u = firstSurface ? stratified.point(0) : Eigen::Vector2d(random.uniform(), random.uniform());
     const double u1 = u.x(), u2 = u.y();
     const double r = std::sqrt(u1), phi = 2.0 * kPi * u2, cosine = std::sqrt(std::max(0.0, 1.0 - u1));
     Vec3 b1, b2;
     basisAround(normal, b1, b2);
     direction = (r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + cosine * normal).normalized();
-    bsdfPdf = cosine / kPi;
+    bsdfPdf = scatterShare * cosine / kPi;  // per sample of the pixel: for the MIS of a disc it meets
     origin = hit->point + kSurfaceOffset * normal;
   }
   return {radiance, direct.value_or(radiance), firstAlbedo};

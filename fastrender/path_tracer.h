@@ -25,9 +25,9 @@ struct PathTracingOptions {
   int diffuseBounces = 2;
   // Russian roulette from this many scattering events on (the path's expectation is unchanged).
   int rouletteAfter = 1;
-  // The share of a pixel's samples whose paths go on past the light the first surface reflects
-  // (the indirect light), weighted by its inverse; stratified over the pixel's samples. Below 1
-  // when a filter smooths the indirect light anyway: unbiased, cheaper, noisier indirect.
+  // The share of a pixel's samples whose first surface scatters a ray (which brings the indirect
+  // light and the light it meets), weighted by its inverse; stratified over the pixel's samples.
+  // Below 1 when a filter smooths that light anyway: unbiased, cheaper, noisier.
   double indirectShare = 1.0;
 };
 
@@ -61,7 +61,7 @@ class PathRandom {
 };
 
 // What one camera path brings: every light it carries, and the part a denoiser keeps as traced
-// (denoise/indirect_filter.h): light reflected by the first surface at most, its emission included.
+// (denoise/indirect_filter.h): the first surface's emission and the light its light sample finds.
 struct PathSample {
   Vec3f radiance = Vec3f::Zero();
   Vec3f direct = Vec3f::Zero();
@@ -118,10 +118,10 @@ class PathTracer {
   // The nearest disc luminaire whose face the ray meets before tMax: its index, or -1; t in `tHit`.
   int nearestDisc(const Vec3& origin, const Vec3& direction, double tMax, double& tHit) const;
   // Light from luminaire `l` at a surface point by one sample `u` of it, MIS-weighted against
-  // cosine sampling; `selection`: the probability that this light was the one sampled; `brdf`
-  // already includes 1/π.
+  // cosine sampling, which runs for `bsdfShare` of the samples; `selection`: the probability that
+  // this light was the one sampled; `brdf` already includes 1/π.
   Vec3f lightSample(const Luminaire& l, double selection, const Vec3& point, const Vec3& normal, const Vec3f& brdf,
-                    const Eigen::Vector2d& u) const;
+                    const Eigen::Vector2d& u, double bsdfShare) const;
 
   const Scene& scene_;
   const RayScene& rays_;

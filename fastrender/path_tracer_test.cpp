@@ -132,6 +132,57 @@ TEST(PathTracer, DiscLuminaireGivesTheClosedFormIrradiance) {
   EXPECT_EQ(meanRadiance(dark, {0.6, 0.0, 1.5}, Vec3(0, 0, 1), 2000, 2).mean.x(), 0.0);
 }
 
+// Denoised frames scatter a ray from the first surface for a share of the samples only: the
+// expectation stays the closed form (the light sample's MIS weight counts the share), and what a
+// denoiser keeps as traced is the light sample alone.
+TEST(PathTracer, IndirectShareKeepsTheClosedFormsAndKeepsOnlyTheLightSampleAsDirect) {
+  const auto mean = [](const Scene& s, const Vec3& origin, const Vec3& direction, double share, int bounces) {
+    const FastRenderer renderer(s);
+    PathTracingOptions options;
+    options.indirectShare = share;
+    options.diffuseBounces = bounces;
+    const PathTracer tracer(s, renderer.rays(), options);
+    const std::optional<SurfaceHit> first = renderer.rays().intersect(origin, direction);
+    const int paths = 40000;
+    Vec3 radiance = Vec3::Zero(), direct = Vec3::Zero();
+    double squares = 0.0;
+    for (int k = 0; k < paths; ++k) {
+      // 64 pixels of 625 samples each: the stratified share is exact per pixel.
+      const PathSample sample = tracer.cameraRay(origin, direction, first ? &*first : nullptr,
+                                                 {static_cast<uint64_t>(k / 625), static_cast<uint32_t>(k % 625)});
+      radiance += sample.radiance.cast<double>();
+      direct += sample.direct.cast<double>();
+      squares += sample.radiance.x() * sample.radiance.x();
+    }
+    radiance /= paths;
+    const double standardError = std::sqrt(std::max(0.0, squares / paths - radiance.x() * radiance.x()) / paths);
+    return std::make_tuple(radiance.x(), standardError, direct.x() / paths);
+  };
+  // A floor 0.3 m beside the axis of a disc 0.5 m above it: the MIS of the scattered ray matters.
+  const double d0 = 3.0, rho = 0.5, intensity = 0.35, diameter = 0.8, height = 0.5;
+  const double radius = 0.5 * diameter, radiance = kPi * kPi * d0 * d0 * intensity / (kPi * radius * radius);
+  const Scene lamp = floorUnder({"lamp", {0.0, 0.0, height}, Vec3f::Constant(static_cast<float>(intensity)), diameter},
+                                static_cast<float>(rho));
+  const double expected = rho / kPi * discIrradiance(radiance, radius, height, 0.3);
+  const auto [full, fullError, fullDirect] = mean(lamp, {0.3, 0.0, 0.2}, Vec3(0, 0, -1), 1.0, 2);
+  const auto [quarter, quarterError, quarterDirect] = mean(lamp, {0.3, 0.0, 0.2}, Vec3(0, 0, -1), 0.25, 2);
+  EXPECT_NEAR(full, expected, 4.0 * fullError);
+  EXPECT_NEAR(quarter, expected, 4.0 * quarterError);
+  EXPECT_LT(quarterError, 0.01 * expected);
+  // The light sample alone is below the whole: its MIS weight gives the rest to scattered rays,
+  // less of it the fewer rays are scattered.
+  EXPECT_LT(fullDirect, full - 4.0 * fullError);
+  EXPECT_LT(fullDirect, quarterDirect);
+  EXPECT_LT(quarterDirect, quarter + 4.0 * quarterError);
+  // A furnace: with a quarter of the paths going on, the sum of every reflection still holds.
+  Scene furnace;
+  furnace.materials.push_back(lambertian(Vec3f::Constant(0.5f), Vec3f::Constant(0.25f)));
+  furnace.objects.push_back({"box", 0, Box{{0.0, 0.0, 1.0}, {3.0, 2.0, 2.0}, 20.0}, ""});
+  const auto [box, boxError, boxDirect] = mean(furnace, {0.2, -0.1, 1.1}, Vec3(0.3, 0.5, -0.8).normalized(), 0.25, 200);
+  EXPECT_NEAR(box, 0.25 / (1.0 - 0.5), 4.0 * boxError + 1e-6);
+  EXPECT_FLOAT_EQ(static_cast<float>(boxDirect), 0.25f);  // the first wall's emission, and no light sample
+}
+
 TEST(PathTracer, BackgroundIsConstantRadianceSeenAndReflected) {
   Scene s;
   s.background = {0.2f, 0.4f, 0.6f};
