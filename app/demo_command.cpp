@@ -197,15 +197,14 @@ std::string demoTexturedHall(const std::string& out, const std::string& scenePat
   return html.str();
 }
 
-// Physically based light: the fast renderer's path shading as a dataset renders it (16 spp,
-// denoised) beside Cycles' converged frame of the same textured hall, and the PSNR between them
+// Physically based light: the fast renderer's path shading as a dataset renders it (denoised) beside Cycles' converged frame of the same textured hall, and the PSNR between them
 // (docs/path-tracing.md measures nine such pairs).
 std::string demoLight(const std::string& out, const std::string& scenePath, bool blender) {
   const Scene scene = loadScene(scenePath);
   RenderSettings settings;
   settings.rig = scene.rig;
   settings.shading = Shading::Path;
-  settings.spp = 16;
+  settings.spp = kPathDatasetSpp;
   settings.denoise = true;
   std::printf("demo: light, fast path shading, %d spp, denoised\n", settings.spp);
   auto fast = makeEngine(RenderRequest{"fast"}, scene);
@@ -228,12 +227,13 @@ std::string demoLight(const std::string& out, const std::string& scenePath, bool
   auto cycles = makeEngine(RenderRequest{"blender"}, scene);
   const RenderedFile cyclesFrame = renderToFile(scene, *cycles, kGlancePose, converged, out + "/light_cycles.png");
   const double psnr = measureRenderNoise(fastFrame.image, cyclesFrame.image).psnrDb;
-  std::printf("demo: light, fast (16 spp, denoised) vs Cycles (1024 spp): %.2f dB\n", psnr);
+  std::printf("demo: light, fast (%d spp, denoised) vs Cycles (%d spp): %.2f dB\n", settings.spp, converged.spp, psnr);
   html << " <b>blender</b>: Cycles' frame of the same scene, " << converged.spp << " samples per pixel, unfiltered"
        << format(" (%.0f s)", cyclesFrame.sidecar["seconds"].get<double>())
        << format(". Between them: <b>PSNR %.1f dB</b> (8-bit sRGB inside the mirror), ", psnr)
        << "which includes the Cycles frame's own noise.</p>\n<figure><img src=\"light_fast.png\" width=\"360\">"
-          "<figcaption>fast, path, 16 spp, denoised</figcaption></figure><figure><img src=\"light_cycles.png\" "
+          "<figcaption>fast, path, "
+       << settings.spp << " spp, denoised</figcaption></figure><figure><img src=\"light_cycles.png\" "
           "width=\"360\"><figcaption>Cycles, 1024 spp</figcaption></figure>\n";
   return html.str();
 }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "image.h"
+#include "render_settings.h"
 #include "rig.h"
 #include "scene.h"
 
@@ -29,7 +30,7 @@ struct PathConvergenceOptions {
   int referenceSpp = 1024;     // Cycles, unfiltered
   int fastConvergedSpp = 1024;  // per seed
   int fastConvergedSeeds = 2;
-  int chosenSpp = 16;          // the fast frames datasets use (filtered)
+  int chosenSpp = kPathDatasetSpp;  // the fast frames datasets use (filtered)
   int cyclesSpp = 36;          // the realistic frames of the texture-realism experiment (filtered)
   bool measureFloor = true;    // a second Cycles reference per pose (the references' own noise) ...
   std::string floorScene;      // ... of this scene only ("textured hall", say); empty: of every scene

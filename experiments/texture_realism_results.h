@@ -8,6 +8,7 @@
 #include "beacon_detector.h"
 #include "realistic_rendering.h"
 #include "recording_camera.h"
+#include "render_settings.h"
 
 namespace omnicam {
 
@@ -18,7 +19,7 @@ struct TextureRealismOptions {
   std::vector<std::string> randomPhotos;   // the random_textures training walls
   int size = 360;
   int spp = 16;                // fast renders
-  int pathSpp = 16;            // fast path-traced renders (denoised): the "path" sets
+  int pathSpp = kPathDatasetSpp;  // fast path-traced renders (denoised): the "path" sets
   RealisticRendering realistic = realisticRendering();
   int testStride = 1;          // every k-th of the 100 thesis-loop poses
   int trainFrames = 24;        // per train set
