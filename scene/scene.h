@@ -7,6 +7,7 @@
 #include <variant>
 #include <vector>
 
+#include "calibration_target.h"
 #include "geometry.h"
 #include "rig.h"
 #include "texture.h"
@@ -101,6 +102,8 @@ struct Scene {
   std::vector<PointLight> lights;
   std::vector<Landmark> landmarks;
   std::vector<CameraPath> paths;
+  // Each target's board is also one of `objects` (a textured quad) with a material of its own.
+  std::vector<CalibrationTarget> calibrationTargets;
 
   const CameraPath* findPath(const std::string& pathName) const;
 };

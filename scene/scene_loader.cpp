@@ -323,7 +323,7 @@ Shape readShape(const std::string& type, JsonFields& o) {
       o.fail("uvs", "must have one entry per vertex");
     return m;
   }
-  o.fail("type", "unknown object type " + quote(type) + " (box, cylinder, sphere, quad, disc, mesh)");
+  o.fail("type", "unknown object type " + quote(type) + " (box, cylinder, sphere, quad, disc, mesh, gltf, calibration_target)");
 }
 
 CameraPath readPath(JsonFields p, const std::string& file) {
@@ -369,6 +369,75 @@ std::string uniqueName(const std::string& wanted, std::set<std::string>& taken) 
     name = cut(wanted, 63 - suffix.size()) + suffix;
   }
   return name;
+}
+
+TargetPattern readTargetPattern(JsonFields p) {
+  const std::string kind = p.string("kind");
+  TargetPattern pattern;
+  if (kind == "checkerboard") {
+    Checkerboard b;
+    b.rows = static_cast<int>(p.integer("rows", 3, 1000));
+    b.columns = static_cast<int>(p.integer("columns", 3, 1000));
+    b.square = p.number("square", {1e-4, 10.0, false, "m"});
+    pattern = b;
+  } else if (kind == "aprilgrid") {
+    AprilGrid g;
+    g.tagRows = static_cast<int>(p.integer("tag_rows", 1, 100));
+    g.tagColumns = static_cast<int>(p.integer("tag_columns", 1, 100));
+    g.tagSize = p.number("tag_size", {1e-3, 10.0, false, "m"});
+    g.tagSpacing = p.number("tag_spacing", {0.0, 1.0, true});
+    g.firstId = p.integer("first_id", 0, 0, aprilGridFamilySize() - 1);
+    pattern = g;
+  } else {
+    p.fail("kind", "unknown pattern kind " + quote(kind) + " (checkerboard, aprilgrid)");
+  }
+  p.finish();
+  return pattern;
+}
+
+// A calibration target: its board joins the objects (a textured quad) and its material the
+// materials; the target itself keeps the exact pattern and pose.
+void addCalibrationTarget(JsonFields& o, const std::string& name, Scene& scene, std::set<std::string>& materialNames) {
+  CalibrationTarget target;
+  target.name = name;
+  target.pattern = readTargetPattern(o.object("pattern"));
+  const double texel = targetTexel(target.pattern);
+  const double defaultMargin = std::holds_alternative<Checkerboard>(target.pattern)
+                                   ? std::get<Checkerboard>(target.pattern).square
+                                   : std::get<AprilGrid>(target.pattern).tagSize / 5.0;  // two tag bits
+  target.margin = o.number("margin", defaultMargin, {0.0, 10.0, false, "m"});
+  if (std::llround(target.margin / texel) < 1)
+    o.fail("margin", "must be at least one texel of the pattern (" + shortNumber(texel) + " m; the texture repeats)");
+  const std::string problem = targetPatternProblem(target.pattern, target.margin);
+  if (!problem.empty()) o.fail("pattern", problem);
+  const Vec3 origin = o.vec3("origin"), xAxis = o.vec3("x_axis"), yAxis = o.vec3("y_axis");
+  if (!(xAxis.norm() > 0.0)) o.fail("x_axis", "must not be zero");
+  if (!(yAxis.norm() > 0.0)) o.fail("y_axis", "must not be zero");
+  const Vec3 x = xAxis.normalized(), y = yAxis.normalized();
+  if (std::abs(x.dot(y)) > 1e-6) o.fail("y_axis", "must be perpendicular to x_axis");
+  target.worldFromTarget.linear().col(0) = x;
+  target.worldFromTarget.linear().col(1) = y;
+  target.worldFromTarget.linear().col(2) = x.cross(y);
+  target.worldFromTarget.translation() = origin;
+  const double black = o.number("black", 0.03, {0.0, 1.0});
+  const double white = o.number("white", 0.85, {0.0, 1.0});
+  if (!(black < white)) o.fail("white", "must be brighter than black");
+  SceneObject board;
+  board.name = name;
+  board.semanticClass = readClass(o);
+  o.finish();
+
+  const TargetBoard printed = targetBoard(target.pattern, target.margin, static_cast<float>(black), static_cast<float>(white));
+  Material material;
+  material.name = uniqueName(name + "/print", materialNames);
+  material.texture = printed.texture;
+  const Eigen::Matrix3d& rotation = target.worldFromTarget.linear();
+  board.shape = Quad{target.worldFromTarget * printed.origin, rotation * printed.edgeU, rotation * printed.edgeV};
+  board.material = static_cast<int>(scene.materials.size());
+  scene.materials.push_back(std::move(material));
+  target.object = static_cast<int>(scene.objects.size());
+  scene.objects.push_back(std::move(board));
+  scene.calibrationTargets.push_back(std::move(target));
 }
 
 }  // namespace
@@ -456,6 +525,11 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
         scene.objects.push_back(std::move(imported));
       }
       o.finish();
+      continue;
+    }
+    if (o.has("type") && o.raw("type") == "calibration_target") {
+      o.string("type");
+      addCalibrationTarget(o, obj.name, scene, materialNames);
       continue;
     }
     const std::string materialName = o.string("material");

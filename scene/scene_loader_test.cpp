@@ -82,7 +82,7 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
   EXPECT_EQ(load(head + R"({"type": "cylinder", "material": "m", "base": [0,0,0], "top": [0,0,1], "radius": -0.1}]})"),
             file + ": objects[0].radius: must be in [1e-06, 20000] m (got -0.1)");
   EXPECT_EQ(load(head + R"({"type": "cone", "material": "m"}]})"),
-            file + ": objects[0].type: unknown object type \"cone\" (box, cylinder, sphere, quad, disc, mesh)");
+            file + ": objects[0].type: unknown object type \"cone\" (box, cylinder, sphere, quad, disc, mesh, gltf, calibration_target)");
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "x", "center": [0,0,0], "radius": 1}]})"),
             file + ": objects[0].material: no material named \"x\"");
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "m", "center": [0,0], "radius": 1}]})"),

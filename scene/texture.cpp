@@ -20,13 +20,6 @@ std::shared_ptr<const Texture> Texture::load(const std::string& path) {
 Texture::Texture(int width, int height, std::vector<float> rgbLinear)
     : width_(width), height_(height), rgb_(std::move(rgbLinear)) {}
 
-Vec3f Texture::texel(int i, int j) const {
-  i = ((i % width_) + width_) % width_;
-  j = ((j % height_) + height_) % height_;
-  const float* p = &rgb_[(static_cast<size_t>(j) * width_ + i) * 3];
-  return {p[0], p[1], p[2]};
-}
-
 Vec3f Texture::sample(double u, double v) const {
   // Repeat wrapping first, so that any finite UV (a scale of 1e6, say) stays in int range.
   if (!(std::isfinite(u) && std::isfinite(v))) u = v = 0.0;

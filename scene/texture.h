@@ -19,7 +19,6 @@ class Texture {
   const std::vector<float>& rgbLinear() const { return rgb_; }
 
  private:
-  Vec3f texel(int i, int j) const;
   int width_, height_;
   std::vector<float> rgb_;
 };
