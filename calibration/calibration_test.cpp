@@ -11,7 +11,9 @@
 #include <fstream>
 
 #include "fast_renderer.h"
+#include "board_poses.h"
 #include "imaged_corners.h"
+#include "omnidir_fit.h"
 #include "make_camera.h"
 #include "placement.h"
 #include "scene_loader.h"
@@ -59,7 +61,7 @@ std::vector<Agreement> agreement(const Scene& scene, const RobotPose& pose, cons
   std::vector<Agreement> out;
   for (const CalibrationTarget& target : scene.calibrationTargets) {
     Agreement a;
-    const std::vector<ImagedCorner> exact = imagedCorners(*camera, worldFromViewpoint, renderer.rays(), target);
+    const std::vector<ImagedCorner> exact = imagedCorners(*camera, worldFromViewpoint, &renderer.rays(), target);
     a.seen = static_cast<size_t>(std::count_if(exact.begin(), exact.end(), [](const ImagedCorner& c) { return c.sight == CornerSight::Seen; }));
     const std::vector<DetectedCorner> found = detectTarget(image, target.pattern, ImageHandedness::Mirrored);
     a.detected = found.size();
@@ -111,7 +113,7 @@ TEST(CalibrationTargets, HiddenCornersSayWhy) {
   const FastRenderer renderer(scene);
   const std::shared_ptr<const Camera> camera = makeCamera(settings.rig);
   const Rigid worldFromViewpoint = CameraPlacement(RobotPose{0.0, 0.0, 0.0}).worldFromViewpoint(settings.rig);
-  const std::vector<ImagedCorner> grid = imagedCorners(*camera, worldFromViewpoint, renderer.rays(), scene.calibrationTargets[0]);
+  const std::vector<ImagedCorner> grid = imagedCorners(*camera, worldFromViewpoint, &renderer.rays(), scene.calibrationTargets[0]);
   const auto count = [](const std::vector<ImagedCorner>& corners, CornerSight sight) {
     return std::count_if(corners.begin(), corners.end(), [&](const ImagedCorner& c) { return c.sight == sight; });
   };
@@ -136,14 +138,60 @@ TEST(CalibrationTargets, HiddenCornersSayWhy) {
   }
   // Seen from behind: the robot on the far side of the grid.
   const Rigid behind = CameraPlacement(RobotPose{1.2, 0.0, 180.0}).worldFromViewpoint(settings.rig);
-  const std::vector<ImagedCorner> back = imagedCorners(*camera, behind, renderer.rays(), scene.calibrationTargets[0]);
+  const std::vector<ImagedCorner> back = imagedCorners(*camera, behind, &renderer.rays(), scene.calibrationTargets[0]);
   EXPECT_EQ(count(back, CornerSight::BackFacing), static_cast<long>(back.size()));
   // Far away, the board sinks below the mirror's field of view... or is cut by the rim: corners
   // high above the mirror at close range are beyond it.
   Scene high = scene;
   high.calibrationTargets[0].worldFromTarget.translation() = Vec3(0.05, 0.35, 1.5);
-  const std::vector<ImagedCorner> above = imagedCorners(*camera, worldFromViewpoint, renderer.rays(), high.calibrationTargets[0]);
+  const std::vector<ImagedCorner> above = imagedCorners(*camera, worldFromViewpoint, &renderer.rays(), high.calibrationTargets[0]);
   EXPECT_EQ(count(above, CornerSight::BeyondRim), static_cast<long>(above.size()));
+}
+
+// The ideal rig's intrinsics are known in closed form (its describe()); OpenCV's omnidir
+// calibration from exact corners of 20 seeded AprilGrid poses recovers them.
+TEST(CalibrationTargets, OmnidirRecoversTheIdealRigsIntrinsicsFromExactCorners) {
+  RigSpec rig;
+  rig.imageSize = 720;
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  const Rigid worldFromViewpoint = CameraPlacement(RobotPose{}).worldFromViewpoint(rig);
+  const AprilGrid grid{6, 6, 0.088, 0.3, 0};
+  BoardPoseOptions poses;
+  poses.count = 20;
+  poses.seed = 7;
+  std::vector<CalibrationView> views;
+  CalibrationTarget board;
+  board.pattern = grid;
+  const std::vector<Vec3> corners = targetCorners(grid);
+  for (const Rigid& pose : boardPoses(*camera, worldFromViewpoint, grid, poses)) {
+    board.worldFromTarget = pose;
+    CalibrationView view;
+    for (const ImagedCorner& c : imagedCorners(*camera, worldFromViewpoint, nullptr, board))
+      if (c.sight == CornerSight::Seen) {
+        view.targetPoints.push_back(corners[static_cast<size_t>(c.index)]);
+        view.raster.push_back(c.raster);
+      }
+    ASSERT_GE(view.raster.size(), 12u);
+    views.push_back(view);
+  }
+  OmnidirOptions options;
+  options.fixDistortion = true;
+  const OmnidirCalibration fit = calibrateOmnidir(views, 720, 720, options);
+  ASSERT_TRUE(fit.converged) << fit.failure;
+  const nlohmann::json truth = camera->describe();
+  const auto relative = [](double found, double expected) { return std::abs(found - expected) / std::abs(expected); };
+  std::printf("ideal rig, exact corners, distortion fixed: rms %.2e px, %zu of 20 views; xi %.6f (truth %.6f, %.2e), "
+              "gamma_x %.4f (%.4f, %.2e), gamma_y %.4f (%.4f, %.2e), cx %.4f (%.4f, %.2e), cy %.4f (%.4f, %.2e)\n",
+              fit.rms, fit.usedViews.size(), fit.xi, truth["xi"].get<double>(), relative(fit.xi, truth["xi"]), fit.gammaX,
+              truth["gamma_x"].get<double>(), relative(fit.gammaX, truth["gamma_x"]), fit.gammaY, truth["gamma_y"].get<double>(),
+              relative(fit.gammaY, truth["gamma_y"]), fit.cx, truth["cx"].get<double>(), relative(fit.cx, truth["cx"]), fit.cy,
+              truth["cy"].get<double>(), relative(fit.cy, truth["cy"]));
+  EXPECT_LT(relative(fit.xi, truth["xi"]), 1e-3);
+  EXPECT_LT(relative(fit.gammaX, truth["gamma_x"]), 1e-3);
+  EXPECT_LT(relative(fit.gammaY, truth["gamma_y"]), 1e-3);
+  EXPECT_LT(relative(fit.cx, truth["cx"]), 1e-3);
+  EXPECT_LT(relative(fit.cy, truth["cy"]), 1e-3);
+  EXPECT_LT(fit.rms, 1e-3);
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ const char* cornerSightName(CornerSight sight) {
 
 namespace {
 
-CornerSight sightOf(const Camera& camera, const Rigid& worldFromViewpoint, const RayScene& rays,
+CornerSight sightOf(const Camera& camera, const Rigid& worldFromViewpoint, const RayScene* rays,
                     const CalibrationTarget& target, const Vec3& cornerWorld, const Vec2& raster) {
   if (raster.x() < 0.0 || raster.y() < 0.0 || raster.x() >= camera.width() || raster.y() >= camera.height())
     return CornerSight::OutsideImage;
@@ -25,7 +25,8 @@ CornerSight sightOf(const Camera& camera, const Rigid& worldFromViewpoint, const
   const Vec3 origin = worldFromViewpoint * ray->origin, direction = worldFromViewpoint.linear() * ray->direction;
   // The printed face looks along the target's z.
   if (!(target.worldFromTarget.linear().col(2).dot(direction) < 0.0)) return CornerSight::BackFacing;
-  const std::optional<SurfaceHit> hit = rays.intersect(origin, direction);
+  if (!rays) return CornerSight::Seen;
+  const std::optional<SurfaceHit> hit = rays->intersect(origin, direction);
   if (!hit || hit->object != target.object || (hit->point - cornerWorld).norm() > kCornerHitTolerance)
     return CornerSight::Occluded;
   return CornerSight::Seen;
@@ -33,7 +34,7 @@ CornerSight sightOf(const Camera& camera, const Rigid& worldFromViewpoint, const
 
 }  // namespace
 
-std::vector<ImagedCorner> imagedCorners(const Camera& camera, const Rigid& worldFromViewpoint, const RayScene& rays,
+std::vector<ImagedCorner> imagedCorners(const Camera& camera, const Rigid& worldFromViewpoint, const RayScene* rays,
                                         const CalibrationTarget& target) {
   const Rigid viewpointFromWorld = worldFromViewpoint.inverse();
   const std::vector<Vec3> corners = worldCorners(target);

@@ -30,9 +30,10 @@ struct ImagedCorner {
 // A corner whose camera ray meets the board this close to it (metres) is seen.
 inline constexpr double kCornerHitTolerance = 1e-4;
 
-// Every corner of `target`, seen by `camera` placed at worldFromViewpoint in `scene` (whose rays
-// `rays` traces; the target one of scene.calibrationTargets).
-std::vector<ImagedCorner> imagedCorners(const Camera& camera, const Rigid& worldFromViewpoint, const RayScene& rays,
+// Every corner of `target`, seen by `camera` placed at worldFromViewpoint in the scene `rays`
+// traces (the target one of its calibration targets); `rays` null: the board alone, nothing
+// occludes it.
+std::vector<ImagedCorner> imagedCorners(const Camera& camera, const Rigid& worldFromViewpoint, const RayScene* rays,
                                         const CalibrationTarget& target);
 
 }  // namespace omnicam

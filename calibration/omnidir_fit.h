@@ -1,0 +1,43 @@
+#pragma once
+// A calibration as a user runs one: OpenCV's cv::omnidir::calibrate (Mei's unified model with
+// radial-tangential distortion, opencv_contrib) from corner observations.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry.h"
+#include "target_detection.h"
+
+namespace omnicam {
+
+// One image's observations: target-frame corners and where they are imaged (omnicam raster).
+struct CalibrationView {
+  std::vector<Vec3> targetPoints;
+  std::vector<Vec2> raster;
+};
+
+struct OmnidirOptions {
+  bool fixDistortion = false;  // k1, k2, p1, p2 held at zero
+  bool fixSkew = true;
+  // A catadioptric image is a mirror image: OpenCV calibrates it flipped top to bottom, and the
+  // result is flipped back (gamma_y < 0, as omnicam's own intrinsics, docs/conventions.md).
+  ImageHandedness handedness = ImageHandedness::Mirrored;
+  int maxIterations = 300;
+  double epsilon = 1e-12;
+};
+
+// What the calibration found, in omnicam's intrinsics' terms (the camera's describe(): OpenCV's
+// pixel centres at integers).
+struct OmnidirCalibration {
+  bool converged = false;   // false: OpenCV's initialisation kept no view, or it threw
+  std::string failure;      // why, when it did not
+  double rms = 0.0;         // reprojection error, px
+  double xi = 0.0, gammaX = 0.0, gammaY = 0.0, skew = 0.0, cx = 0.0, cy = 0.0;
+  std::array<double, 4> distortion{};  // k1, k2, p1, p2
+  std::vector<int> usedViews;          // the views OpenCV's initialisation kept
+};
+
+OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, int width, int height,
+                                    const OmnidirOptions& options);
+
+}  // namespace omnicam
