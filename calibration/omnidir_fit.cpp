@@ -1,7 +1,11 @@
 #include "omnidir_fit.h"
 
 #include <opencv2/ccalib/omnidir.hpp>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cmath>
 
 namespace omnicam {
 
@@ -51,7 +55,68 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
   r.cy = mirrored ? height - 1 - K.at<double>(1, 2) : K.at<double>(1, 2);
   for (int k = 0; k < 4; ++k) r.distortion[static_cast<size_t>(k)] = D.at<double>(k);
   if (mirrored) r.distortion[2] = -r.distortion[2];  // p1 multiplies y' = -y: its sign flips with the image
+  // The flipped image's model sees the same camera frame (its γy is the true one negated), so
+  // the extrinsics are the camera frame's either way.
+  for (size_t k = 0; k < rvecs.size(); ++k) {
+    cv::Mat rotation;
+    cv::Rodrigues(rvecs[k], rotation);
+    Rigid t = Rigid::Identity();
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) t.linear()(a, b) = rotation.at<double>(a, b);
+      t.translation()(a) = tvecs[k].at<double>(a);
+    }
+    r.cameraFromTarget.push_back(t);
+  }
   return r;
+}
+
+CentralApproximation calibratedModel(const OmnidirCalibration& fit, const std::vector<Rigid>& viewpointFromTarget) {
+  CentralApproximation model;
+  model.intrinsics.xi = fit.xi;
+  model.intrinsics.gammaX = fit.gammaX;
+  model.intrinsics.gammaY = fit.gammaY;
+  model.intrinsics.cx = fit.cx;
+  model.intrinsics.cy = fit.cy;
+  model.intrinsics.lens.k1 = fit.distortion[0];
+  model.intrinsics.lens.k2 = fit.distortion[1];
+  model.intrinsics.lens.p1 = fit.distortion[2];
+  model.intrinsics.lens.p2 = fit.distortion[3];
+  // cameraFromViewpoint = cameraFromTarget · targetFromViewpoint, per view; the mean of the
+  // rotations (as quaternions, signs aligned) and of the translations.
+  Eigen::Vector4d quaternionSum = Eigen::Vector4d::Zero();
+  Vec3 translationSum = Vec3::Zero();
+  Eigen::Quaterniond first;
+  for (size_t k = 0; k < fit.cameraFromTarget.size(); ++k) {
+    const Rigid cameraFromViewpoint = fit.cameraFromTarget[k] * viewpointFromTarget[static_cast<size_t>(fit.usedViews[k])].inverse();
+    Eigen::Quaterniond q(cameraFromViewpoint.linear());
+    if (k == 0) first = q;
+    if (q.dot(first) < 0.0) q.coeffs() = -q.coeffs();
+    quaternionSum += q.coeffs();
+    translationSum += cameraFromViewpoint.translation();
+  }
+  const double views = static_cast<double>(fit.cameraFromTarget.size());
+  model.cameraFromViewpoint.linear() = Eigen::Quaterniond(quaternionSum.normalized()).toRotationMatrix();
+  model.cameraFromViewpoint.translation() = translationSum / views;
+  model.viewpoint = model.cameraFromViewpoint.inverse().translation();
+  return model;
+}
+
+HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM) {
+  std::vector<float> errors;
+  for (float e : centralResidualMap(camera, model, distanceM))
+    if (!std::isnan(e)) errors.push_back(e);
+  HeldOutError h;
+  h.distanceM = distanceM;
+  if (errors.empty()) return h;
+  double squares = 0.0;
+  for (float e : errors) {
+    squares += static_cast<double>(e) * e;
+    h.maxPx = std::max(h.maxPx, static_cast<double>(e));
+  }
+  h.rmsPx = std::sqrt(squares / static_cast<double>(errors.size()));
+  std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2), errors.end());
+  h.medianPx = errors[errors.size() / 2];
+  return h;
 }
 
 }  // namespace omnicam

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "central_fit.h"
 #include "geometry.h"
 #include "target_detection.h"
 
@@ -35,9 +36,24 @@ struct OmnidirCalibration {
   double xi = 0.0, gammaX = 0.0, gammaY = 0.0, skew = 0.0, cx = 0.0, cy = 0.0;
   std::array<double, 4> distortion{};  // k1, k2, p1, p2
   std::vector<int> usedViews;          // the views OpenCV's initialisation kept
+  std::vector<Rigid> cameraFromTarget;  // per used view: the target in the fitted camera frame
 };
 
 OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, int width, int height,
                                     const OmnidirOptions& options);
+
+// The calibrated model placed in the rig: its intrinsics, and its camera frame in the rig's
+// viewpoint frame from the calibration's own extrinsics against the true board poses
+// (viewpointFromTarget, one per input view), averaged over the views it used. What a user's
+// calibrated camera is, to be measured against the truth like the best-fit central model.
+CentralApproximation calibratedModel(const OmnidirCalibration& fit, const std::vector<Rigid>& viewpointFromTarget);
+
+// A central model's reprojection error (px) for points `distanceM` from its viewpoint along the
+// camera's true rays (0: at infinity), over every pixel centre the camera images.
+struct HeldOutError {
+  double distanceM = 0.0;
+  double medianPx = 0.0, rmsPx = 0.0, maxPx = 0.0;
+};
+HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM);
 
 }  // namespace omnicam
