@@ -104,6 +104,35 @@ TEST(CalibrationTargets, ExactCornersAgreeWithTheDetectorsOnAMisalignedRig) {
       agreement(targetScene("", R"({"camera": {"offset_mm": [2, 0, 0], "rotation_deg": [1, 0, 0]}})"), {0.0, 0.0, 10.0}, "misaligned rig"));
 }
 
+// The printed AprilGrid itself (its texture, magnified 4× nearest, seen straight on): AprilTag
+// decodes every tag and puts its corners where the target says they are.
+TEST(CalibrationTargets, AprilTagDecodesEveryPrintedTagAtItsCorners) {
+  const AprilGrid grid{4, 5, 0.05, 0.3, 3};
+  const TargetBoard board = targetBoard(grid, 0.01, 0.03f, 0.85f);
+  const Texture& texture = *board.texture;
+  constexpr int kMagnify = 4;
+  ImageRGBA image(texture.width() * kMagnify, texture.height() * kMagnify);
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i) {
+      const float* t = &texture.rgbLinear()[(static_cast<size_t>(j / kMagnify) * texture.width() + i / kMagnify) * 3];
+      float* p = image.at(i, j);
+      p[0] = t[0], p[1] = t[1], p[2] = t[2], p[3] = 1.0f;
+    }
+  const std::vector<DetectedCorner> found = detectAprilGrid(image, grid, ImageHandedness::Direct);
+  ASSERT_EQ(found.size(), 80u) << "every corner of the 20 tags";
+  const std::vector<Vec3> corners = targetCorners(grid);
+  const double texel = board.edgeU.x() / texture.width();
+  double worst = 0.0;
+  for (const DetectedCorner& d : found) {
+    const Vec3& c = corners[static_cast<size_t>(d.index)];
+    // omnicam raster: the image's top-left corner at (0, 0), y down.
+    const Vec2 expected((c.x() - board.origin.x()) / texel * kMagnify, (board.origin.y() + board.edgeV.y() - c.y()) / texel * kMagnify);
+    worst = std::max(worst, (d.raster - expected).norm());
+  }
+  std::printf("printed AprilGrid: AprilTag's corners at most %.4f px from the target's (bits of %d px)\n", worst, kMagnify * kTargetTexelsPerCell);
+  EXPECT_LT(worst, 0.1);
+}
+
 TEST(CalibrationTargets, HiddenCornersSayWhy) {
   // A box between the robot and the grid's left half, the checkerboard turned away.
   const Scene scene = targetScene(R"(, {"name": "pillar", "type": "box", "material": "grey", "center": [0.4, 0.25, 0.3], "size": [0.05, 0.12, 0.6]})");
