@@ -1,0 +1,99 @@
+#include "calibration_files.h"
+
+#include <charconv>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "errors.h"
+
+namespace omnicam {
+
+namespace {
+
+// A YAML float as PyYAML reads one: the shortest digits that read back exactly, with a decimal
+// point (Kalibr checks isinstance(value, float): "1" would be an int).
+std::string yamlFloat(double value) {
+  char text[64];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  std::string s(text, end);
+  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  return s;
+}
+
+}  // namespace
+
+std::string kalibrTargetYaml(const TargetPattern& pattern) {
+  // Kalibr's ConfigReader refuses fewer than 3 rows or columns (tags, or inner corners).
+  const auto atLeastThree = [](int value, const char* what) {
+    if (value < 3) throw InputError(std::string("Kalibr's target files need at least 3 ") + what + " (this target has " + std::to_string(value) + ")");
+  };
+  std::ostringstream yaml;
+  if (const auto* g = std::get_if<AprilGrid>(&pattern)) {
+    atLeastThree(g->tagColumns, "tag columns");
+    atLeastThree(g->tagRows, "tag rows");
+    yaml << "target_type: 'aprilgrid'\n"
+         << "tagCols: " << g->tagColumns << "\n"
+         << "tagRows: " << g->tagRows << "\n"
+         << "tagSize: " << yamlFloat(g->tagSize) << "\n"
+         << "tagSpacing: " << yamlFloat(g->tagSpacing) << "\n";
+    // Kalibr numbers tags from 0: a grid starting elsewhere is ours alone (noted for the reader).
+    if (g->firstId != 0) yaml << "# omnicam: first tag id " << g->firstId << " (Kalibr assumes 0)\n";
+    return yaml.str();
+  }
+  const auto& b = std::get<Checkerboard>(pattern);
+  atLeastThree(b.columns - 1, "inner corners a row");
+  atLeastThree(b.rows - 1, "inner corners a column");
+  yaml << "target_type: 'checkerboard'\n"
+       << "targetCols: " << b.columns - 1 << "\n"
+       << "targetRows: " << b.rows - 1 << "\n"
+       << "rowSpacingMeters: " << yamlFloat(b.square) << "\n"
+       << "colSpacingMeters: " << yamlFloat(b.square) << "\n";
+  return yaml.str();
+}
+
+std::string openCvCornerLists(const std::vector<CornerListImage>& images) {
+  cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  fs << "images" << "[";
+  for (const CornerListImage& image : images) {
+    const CalibrationView& v = image.view;
+    cv::Mat object(static_cast<int>(v.targetPoints.size()), 1, CV_64FC3), raster(static_cast<int>(v.raster.size()), 1, CV_64FC2);
+    for (size_t k = 0; k < v.targetPoints.size(); ++k) {
+      object.at<cv::Vec3d>(static_cast<int>(k)) = {v.targetPoints[k].x(), v.targetPoints[k].y(), v.targetPoints[k].z()};
+      raster.at<cv::Vec2d>(static_cast<int>(k)) = {v.raster[k].x() - 0.5, v.raster[k].y() - 0.5};
+    }
+    fs << "{" << "name" << image.name << "object_points" << object << "image_points" << raster << "}";
+  }
+  fs << "]";
+  return fs.releaseAndGetString();
+}
+
+std::vector<CornerListImage> readOpenCvCornerLists(const std::string& text, const std::string& source) {
+  std::vector<CornerListImage> out;
+  try {
+    cv::FileStorage fs(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+    const cv::FileNode images = fs["images"];
+    if (!images.isSeq()) throw InputError(showPath(source) + ": images: missing or not a list");
+    for (const cv::FileNode& node : images) {
+      CornerListImage image;
+      node["name"] >> image.name;
+      cv::Mat object, raster;
+      node["object_points"] >> object;
+      node["image_points"] >> raster;
+      if (object.type() != CV_64FC3 || raster.type() != CV_64FC2 || object.total() != raster.total())
+        throw InputError(showPath(source) + ": images[" + std::to_string(out.size()) +
+                         "]: object_points (N×1, 3 channels) and image_points (N×1, 2 channels) must match");
+      for (size_t k = 0; k < object.total(); ++k) {
+        const cv::Vec3d p = object.at<cv::Vec3d>(static_cast<int>(k));
+        const cv::Vec2d r = raster.at<cv::Vec2d>(static_cast<int>(k));
+        image.view.targetPoints.emplace_back(p[0], p[1], p[2]);
+        image.view.raster.emplace_back(r[0] + 0.5, r[1] + 0.5);
+      }
+      out.push_back(std::move(image));
+    }
+  } catch (const cv::Exception& e) {
+    throw InputError(showPath(source) + ": not an OpenCV corner list (" + e.msg + ")");
+  }
+  return out;
+}
+
+}  // namespace omnicam

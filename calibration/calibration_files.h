@@ -1,0 +1,28 @@
+#pragma once
+// Calibration data in the layouts calibration tools read: Kalibr's target YAML, and corner lists
+// as OpenCV's FileStorage writes them (what cv::omnidir::calibrate and cv::calibrateCamera take).
+#include <string>
+#include <vector>
+
+#include "calibration_target.h"
+#include "omnidir_fit.h"
+
+namespace omnicam {
+
+// Kalibr's target file (kalibr_common/ConfigReader.py, CalibrationTargetParameters): an AprilGrid
+// as tagCols, tagRows, tagSize (m), tagSpacing (a share of tagSize); a checkerboard as its inner
+// corners (targetCols, targetRows) and square edges (rowSpacingMeters, colSpacingMeters).
+std::string kalibrTargetYaml(const TargetPattern& pattern);
+
+// OpenCV's corner lists, one entry per image: the image's name, its corners in the target frame
+// (object_points, N×1 CV_64FC3) and in the image (image_points, N×1 CV_64FC2, OpenCV's pixel
+// centres at integers). Returns the file's text (cv::FileStorage YAML).
+struct CornerListImage {
+  std::string name;
+  CalibrationView view;  // omnicam raster
+};
+std::string openCvCornerLists(const std::vector<CornerListImage>& images);
+// Read back as OpenCV reads it (rasters converted to omnicam's); throws InputError naming `source`.
+std::vector<CornerListImage> readOpenCvCornerLists(const std::string& text, const std::string& source);
+
+}  // namespace omnicam

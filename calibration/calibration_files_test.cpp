@@ -1,0 +1,116 @@
+// Calibration files read by their consumers: Kalibr's target YAML by Kalibr's own rules (its
+// ConfigReader, as Python reads YAML), OpenCV's corner lists by cv::FileStorage into a calibration.
+#include "calibration_files.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "board_poses.h"
+#include "errors.h"
+#include "imaged_corners.h"
+#include "make_camera.h"
+#include "placement.h"
+
+namespace omnicam {
+namespace {
+
+namespace fs = std::filesystem;
+
+// kalibr_common/ConfigReader.py, CalibrationTargetParameters.getTargetParams (ethz-asl/kalibr),
+// on PyYAML's reading of the file: the keys it reads, with the types and ranges it checks.
+constexpr const char* kKalibrReader = R"PY(
+import sys, yaml
+d = yaml.safe_load(open(sys.argv[1]))
+kind = d['target_type']
+def integer(k):
+    v = d[k]
+    assert isinstance(v, int) and v >= 3, (k, v)
+    return v
+def real(k):
+    v = d[k]
+    assert isinstance(v, float) and v > 0, (k, v)
+    return v
+if kind == 'aprilgrid':
+    got = (integer('tagCols'), integer('tagRows'), real('tagSize'), real('tagSpacing'))
+elif kind == 'checkerboard':
+    got = (integer('targetCols'), integer('targetRows'), real('rowSpacingMeters'), real('colSpacingMeters'))
+else:
+    raise SystemExit('unknown target_type %r' % kind)
+print(kind, *got)
+)PY";
+
+std::string kalibrReads(const std::string& yaml) {
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_kalibr_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "reader.py") << kKalibrReader;
+  std::ofstream(dir / "target.yaml") << yaml;
+  const std::string command = "/usr/bin/python3 " + (dir / "reader.py").string() + " " + (dir / "target.yaml").string() +
+                              " > " + (dir / "out.txt").string();
+  const int status = std::system(command.c_str());
+  std::ifstream in(dir / "out.txt");
+  std::string line;
+  std::getline(in, line);
+  fs::remove_all(dir);
+  return status == 0 ? line : "failed: " + std::to_string(status);
+}
+
+TEST(CalibrationFiles, KalibrReadsTheTargetYaml) {
+  EXPECT_EQ(kalibrReads(kalibrTargetYaml(AprilGrid{6, 7, 0.088, 0.3, 0})), "aprilgrid 7 6 0.088 0.3");
+  EXPECT_EQ(kalibrReads(kalibrTargetYaml(Checkerboard{7, 10, 0.05})), "checkerboard 9 6 0.05 0.05");
+  EXPECT_EQ(kalibrReads(kalibrTargetYaml(AprilGrid{3, 3, 1.0, 0.25, 0})), "aprilgrid 3 3 1.0 0.25");  // whole metres stay floats
+  EXPECT_THROW(kalibrTargetYaml(AprilGrid{2, 6, 0.088, 0.3, 0}), InputError);  // Kalibr needs 3 rows
+  EXPECT_THROW(kalibrTargetYaml(Checkerboard{3, 10, 0.05}), InputError);
+}
+
+TEST(CalibrationFiles, OpenCvCornerListsCalibrateAsTheViewsThemselves) {
+  RigSpec rig;
+  rig.imageSize = 360;
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  const Rigid worldFromViewpoint = CameraPlacement(RobotPose{}).worldFromViewpoint(rig);
+  const Checkerboard board{7, 10, 0.05};
+  BoardPoseOptions poses;
+  poses.count = 12;
+  poses.seed = 3;
+  CalibrationTarget target;
+  target.pattern = board;
+  const std::vector<Vec3> corners = targetCorners(board);
+  std::vector<CornerListImage> images;
+  for (const Rigid& pose : boardPoses(*camera, worldFromViewpoint, board, poses)) {
+    target.worldFromTarget = pose;
+    CornerListImage image;
+    image.name = "frame_" + std::to_string(images.size()) + ".png";
+    for (const ImagedCorner& c : imagedCorners(*camera, worldFromViewpoint, nullptr, target))
+      if (c.sight == CornerSight::Seen) {
+        image.view.targetPoints.push_back(corners[static_cast<size_t>(c.index)]);
+        image.view.raster.push_back(c.raster);
+      }
+    images.push_back(image);
+  }
+  const std::vector<CornerListImage> back = readOpenCvCornerLists(openCvCornerLists(images), "corners.yml");
+  ASSERT_EQ(back.size(), images.size());
+  std::vector<CalibrationView> direct, read;
+  for (size_t k = 0; k < images.size(); ++k) {
+    EXPECT_EQ(back[k].name, images[k].name);
+    ASSERT_EQ(back[k].view.raster.size(), images[k].view.raster.size());
+    for (size_t i = 0; i < images[k].view.raster.size(); ++i) {
+      EXPECT_EQ(back[k].view.raster[i], images[k].view.raster[i]);
+      EXPECT_EQ(back[k].view.targetPoints[i], images[k].view.targetPoints[i]);
+    }
+    direct.push_back(images[k].view);
+    read.push_back(back[k].view);
+  }
+  OmnidirOptions options;
+  options.fixDistortion = true;
+  const OmnidirCalibration a = calibrateOmnidir(direct, 360, 360, options), b = calibrateOmnidir(read, 360, 360, options);
+  ASSERT_TRUE(b.converged) << b.failure;
+  EXPECT_EQ(a.xi, b.xi);
+  EXPECT_NEAR(b.xi, camera->describe()["xi"].get<double>(), 1e-6);
+  EXPECT_THROW(readOpenCvCornerLists("%YAML:1.0\nimages: 3\n", "bad.yml"), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam
