@@ -16,7 +16,11 @@ std::string yamlFloat(double value) {
   char text[64];
   const auto end = std::to_chars(text, text + sizeof text, value).ptr;
   std::string s(text, end);
-  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  // PyYAML's float needs a point, also before an exponent ("1e-04" is a string to it).
+  if (s.find('.') == std::string::npos) {
+    const size_t exponent = s.find_first_of("eE");
+    s.insert(exponent == std::string::npos ? s.size() : exponent, ".0");
+  }
   return s;
 }
 
@@ -29,6 +33,9 @@ std::string kalibrTargetYaml(const TargetPattern& pattern) {
   };
   std::ostringstream yaml;
   if (const auto* g = std::get_if<AprilGrid>(&pattern)) {
+    // Kalibr takes tag k for the grid's k-th cell: a grid starting at another id would be read wrong.
+    if (g->firstId != 0)
+      throw InputError("Kalibr's AprilGrids start at tag 0 (this target's first id is " + std::to_string(g->firstId) + ")");
     atLeastThree(g->tagColumns, "tag columns");
     atLeastThree(g->tagRows, "tag rows");
     yaml << "target_type: 'aprilgrid'\n"
@@ -36,8 +43,6 @@ std::string kalibrTargetYaml(const TargetPattern& pattern) {
          << "tagRows: " << g->tagRows << "\n"
          << "tagSize: " << yamlFloat(g->tagSize) << "\n"
          << "tagSpacing: " << yamlFloat(g->tagSpacing) << "\n";
-    // Kalibr numbers tags from 0: a grid starting elsewhere is ours alone (noted for the reader).
-    if (g->firstId != 0) yaml << "# omnicam: first tag id " << g->firstId << " (Kalibr assumes 0)\n";
     return yaml.str();
   }
   const auto& b = std::get<Checkerboard>(pattern);
@@ -53,6 +58,10 @@ std::string kalibrTargetYaml(const TargetPattern& pattern) {
 
 std::string openCvCornerLists(const std::vector<CornerListImage>& images) {
   cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  // The points are where the image shows them; a catadioptric image is a mirror image, which
+  // cv::omnidir fits with gamma_y < 0 or, flipped top to bottom (y -> height - 1 - y), as usual.
+  fs.writeComment("image_points: OpenCV pixels (centres at integers) of a mirror image: flip y to height - 1 - y for cv::omnidir::calibrate");
+  fs << "mirror_image" << 1;
   fs << "images" << "[";
   for (const CornerListImage& image : images) {
     const CalibrationView& v = image.view;
@@ -82,6 +91,9 @@ std::vector<CornerListImage> readOpenCvCornerLists(const std::string& text, cons
       if (object.type() != CV_64FC3 || raster.type() != CV_64FC2 || object.total() != raster.total())
         throw InputError(showPath(source) + ": images[" + std::to_string(out.size()) +
                          "]: object_points (N×1, 3 channels) and image_points (N×1, 2 channels) must match");
+      if (object.cols != 1 || raster.cols != 1 || !cv::checkRange(object) || !cv::checkRange(raster))
+        throw InputError(showPath(source) + ": images[" + std::to_string(out.size()) +
+                         "]: points must be N×1 and finite");
       for (size_t k = 0; k < object.total(); ++k) {
         const cv::Vec3d p = object.at<cv::Vec3d>(static_cast<int>(k));
         const cv::Vec2d r = raster.at<cv::Vec2d>(static_cast<int>(k));

@@ -62,7 +62,9 @@ TEST(CalibrationFiles, KalibrReadsTheTargetYaml) {
   EXPECT_EQ(kalibrReads(kalibrTargetYaml(AprilGrid{6, 7, 0.088, 0.3, 0})), "aprilgrid 7 6 0.088 0.3");
   EXPECT_EQ(kalibrReads(kalibrTargetYaml(Checkerboard{7, 10, 0.05})), "checkerboard 9 6 0.05 0.05");
   EXPECT_EQ(kalibrReads(kalibrTargetYaml(AprilGrid{3, 3, 1.0, 0.25, 0})), "aprilgrid 3 3 1.0 0.25");  // whole metres stay floats
+  EXPECT_EQ(kalibrReads(kalibrTargetYaml(Checkerboard{7, 10, 1e-4})), "checkerboard 9 6 0.0001 0.0001");  // "1e-04" would be a string
   EXPECT_THROW(kalibrTargetYaml(AprilGrid{2, 6, 0.088, 0.3, 0}), InputError);  // Kalibr needs 3 rows
+  EXPECT_THROW(kalibrTargetYaml(AprilGrid{6, 6, 0.088, 0.3, 36}), InputError);  // and tag 0 first
   EXPECT_THROW(kalibrTargetYaml(Checkerboard{3, 10, 0.05}), InputError);
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace omnicam {
 
@@ -15,6 +16,8 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
   // OpenCV takes one 1×N matrix per view (CV_64FC3 and CV_64FC2; N×3 single-channel throws).
   std::vector<cv::Mat> objectPoints, imagePoints;
   for (const CalibrationView& v : views) {
+    if (v.targetPoints.size() != v.raster.size())
+      throw std::invalid_argument("calibrateOmnidir: a view's target points and raster points differ in number");
     cv::Mat object(1, static_cast<int>(v.targetPoints.size()), CV_64FC3), image(1, static_cast<int>(v.raster.size()), CV_64FC2);
     for (size_t k = 0; k < v.targetPoints.size(); ++k) {
       object.at<cv::Vec3d>(0, static_cast<int>(k)) = {v.targetPoints[k].x(), v.targetPoints[k].y(), v.targetPoints[k].z()};
@@ -49,14 +52,13 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
   for (int k = 0; k < static_cast<int>(idx.total()); ++k) r.usedViews.push_back(idx.at<int>(k));
   r.xi = xi.at<double>(0);
   r.gammaX = K.at<double>(0, 0);
-  r.skew = mirrored ? -K.at<double>(0, 1) : K.at<double>(0, 1);  // it multiplies y, which the flip negates
+  r.skew = K.at<double>(0, 1);
   r.cx = K.at<double>(0, 2);
   r.gammaY = mirrored ? -K.at<double>(1, 1) : K.at<double>(1, 1);
   r.cy = mirrored ? height - 1 - K.at<double>(1, 2) : K.at<double>(1, 2);
   for (int k = 0; k < 4; ++k) r.distortion[static_cast<size_t>(k)] = D.at<double>(k);
-  if (mirrored) r.distortion[2] = -r.distortion[2];  // p1 multiplies y' = -y: its sign flips with the image
-  // The flipped image's model sees the same camera frame (its γy is the true one negated), so
-  // the extrinsics are the camera frame's either way.
+  // The flip changes v = γy·y_d + cy into H − 1 − v: the same camera frame and distorted point
+  // (x_d, y_d), so skew, distortion and extrinsics are the image's own; only γy and cy change.
   for (size_t k = 0; k < rvecs.size(); ++k) {
     cv::Mat rotation;
     cv::Rodrigues(rvecs[k], rotation);
@@ -71,6 +73,13 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
 }
 
 CentralApproximation calibratedModel(const OmnidirCalibration& fit, const std::vector<Rigid>& viewpointFromTarget) {
+  if (!fit.converged || fit.cameraFromTarget.empty() || fit.cameraFromTarget.size() != fit.usedViews.size())
+    throw std::invalid_argument("calibratedModel: the calibration did not converge");
+  for (int view : fit.usedViews)
+    if (view < 0 || static_cast<size_t>(view) >= viewpointFromTarget.size())
+      throw std::invalid_argument("calibratedModel: a used view has no true board pose");
+  // omnicam's Mei model has no skew: a calibration that fitted one cannot be placed as it is.
+  if (fit.skew != 0.0) throw std::invalid_argument("calibratedModel: the calibration fitted a skew (calibrate with fixSkew)");
   CentralApproximation model;
   model.intrinsics.xi = fit.xi;
   model.intrinsics.gammaX = fit.gammaX;

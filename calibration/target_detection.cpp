@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -33,6 +34,9 @@ Vec2 rasterOf(const cv::Point2f& p, int width, ImageHandedness handedness) {
   return {x + 0.5, p.y + 0.5};
 }
 
+// A checkerboard's outer square counts as black below this grey level (8-bit sRGB).
+constexpr double kDarkLevel = 100.0;
+
 // Kalibr's limit on how far cornerSubPix may move a detected corner (px²).
 constexpr double kMaxSubpixelShiftSquared = 1.5;
 
@@ -58,7 +62,7 @@ std::vector<DetectedCorner> detectCheckerboard(const ImageRGBA& image, const Che
     const int rr = (order & 1) ? rows - 1 - r : r, cc = (order & 2) ? columns - 1 - c : c;
     return found[static_cast<size_t>(rr * columns + cc)];
   };
-  int chosen = -1;
+  int chosen = -1, dark = 0;
   double darkest = 256.0;
   for (int order = 0; order < 4; ++order) {
     const cv::Point2f& origin = at(order, 0, 0);
@@ -69,12 +73,14 @@ std::vector<DetectedCorner> detectCheckerboard(const ImageRGBA& image, const Che
     const int x = static_cast<int>(std::lround(outside.x)), y = static_cast<int>(std::lround(outside.y));
     if (x < 0 || y < 0 || x >= grey.cols || y >= grey.rows) continue;
     const double level = grey.at<uint8_t>(y, x);
+    if (level < kDarkLevel) ++dark;
     if (level < darkest) {
       darkest = level;
       chosen = order;
     }
   }
-  if (chosen < 0) return {};
+  // Both ends black (rows + columns even; the loader refuses such boards): no order to trust.
+  if (chosen < 0 || dark != 1) return {};
   std::vector<DetectedCorner> corners;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < columns; ++c) corners.push_back({r * columns + c, rasterOf(at(chosen, r, c), image.width, handedness)});
@@ -87,15 +93,17 @@ std::vector<DetectedCorner> detectAprilGrid(const ImageRGBA& image, const AprilG
   // Its corner squares split the white ring around each tag that AprilTag segments by: the
   // detector reads a dilated copy (black shrinks by a pixel), and the corners, X-junctions of
   // tag and corner square, are refined on the image itself.
-  apriltag_family_t* family = tag36h11_create();
+  const std::unique_ptr<apriltag_family_t, void (*)(apriltag_family_t*)> owned(tag36h11_create(), tag36h11_destroy);
+  apriltag_family_t* family = owned.get();
   family->width_at_border += 2;
   family->total_width += 2;
   for (uint32_t i = 0; i < family->nbits; ++i) {
     ++family->bit_x[i];
     ++family->bit_y[i];
   }
-  apriltag_detector_t* detector = apriltag_detector_create();
-  apriltag_detector_add_family(detector, family);
+  const std::unique_ptr<apriltag_detector_t, void (*)(apriltag_detector_t*)> detector(apriltag_detector_create(),
+                                                                                      apriltag_detector_destroy);
+  apriltag_detector_add_family(detector.get(), family);
   detector->quad_decimate = 1.0f;
   detector->nthreads = 1;
   // Magnified first, so that the dilation shrinks black by a fifth of a pixel of the image: tag
@@ -104,13 +112,14 @@ std::vector<DetectedCorner> detectAprilGrid(const ImageRGBA& image, const AprilG
   cv::resize(grey, magnified, cv::Size(), kDetectionMagnification, kDetectionMagnification, cv::INTER_LINEAR);
   cv::dilate(magnified, dilated, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(3, 3)));
   image_u8_t view{dilated.cols, dilated.rows, static_cast<int32_t>(dilated.step), dilated.data};
-  zarray_t* detections = apriltag_detector_detect(detector, &view);
+  const std::unique_ptr<zarray_t, void (*)(zarray_t*)> detections(apriltag_detector_detect(detector.get(), &view),
+                                                                  apriltag_detections_destroy);
   std::vector<DetectedCorner> corners;
   std::vector<int> seen;
   const int tags = grid.tagRows * grid.tagColumns, pointsPerRow = 2 * grid.tagColumns;
-  for (int k = 0; k < zarray_size(detections); ++k) {
+  for (int k = 0; k < zarray_size(detections.get()); ++k) {
     apriltag_detection_t* d = nullptr;
-    zarray_get(detections, k, &d);
+    zarray_get(detections.get(), k, &d);
     const int t = d->id - grid.firstId;
     if (t < 0 || t >= tags || d->hamming > 0) continue;
     if (std::find(seen.begin(), seen.end(), t) != seen.end()) continue;  // a tag twice: keep the first
@@ -125,22 +134,23 @@ std::vector<DetectedCorner> detectAprilGrid(const ImageRGBA& image, const AprilG
       refined.emplace_back(static_cast<float>(d->p[i][0] / kDetectionMagnification - 0.5),
                            static_cast<float>(d->p[i][1] / kDetectionMagnification - 0.5));
     // The refinement's window: about a tag bit, so that it holds the X-junction of tag and corner
-    // square and no neighbour's; a corner it moves further than Kalibr allows (1.5 px²) is dropped.
+    // square and no neighbour's; a tag a corner of which it moves further than Kalibr allows
+    // (1.5 px²) is dropped.
     double side = 0.0;
     for (int i = 0; i < 4; ++i) side += 0.25 * cv::norm(refined[static_cast<size_t>(i)] - refined[static_cast<size_t>((i + 1) % 4)]);
     const int halfWindow = std::clamp(static_cast<int>(std::lround(side / 10.0)), 2, 4);
     const std::vector<cv::Point2f> detected = refined;
     cv::cornerSubPix(grey, refined, cv::Size(halfWindow, halfWindow), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 40, 0.001));
+    bool steady = true;
     for (int i = 0; i < 4; ++i) {
       const cv::Point2f shift = refined[static_cast<size_t>(i)] - detected[static_cast<size_t>(i)];
-      if (shift.dot(shift) > kMaxSubpixelShiftSquared) continue;
-      corners.push_back({indices[static_cast<size_t>(i)], rasterOf(refined[static_cast<size_t>(i)], image.width, handedness)});
+      steady = steady && shift.dot(shift) <= kMaxSubpixelShiftSquared;
     }
+    if (!steady) continue;  // as Kalibr: the tag's corners go together
+    for (int i = 0; i < 4; ++i)
+      corners.push_back({indices[static_cast<size_t>(i)], rasterOf(refined[static_cast<size_t>(i)], image.width, handedness)});
   }
-  apriltag_detections_destroy(detections);
-  apriltag_detector_destroy(detector);
-  tag36h11_destroy(family);
   std::sort(corners.begin(), corners.end(), [](const DetectedCorner& a, const DetectedCorner& b) { return a.index < b.index; });
   return corners;
 }

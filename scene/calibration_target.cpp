@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+
+#include "errors.h"
 
 namespace omnicam {
 
@@ -100,6 +103,7 @@ int aprilGridFamilySize() { return static_cast<int>(tagFamily().ncodes); }
 
 std::vector<bool> aprilTagBits(int id) {
   const apriltag_family_t& family = tagFamily();
+  if (id < 0 || static_cast<uint32_t>(id) >= family.ncodes) throw std::out_of_range("aprilTagBits: no tag " + std::to_string(id) + " in 36h11");
   std::vector<bool> bits(kTagBits * kTagBits, false);
   const uint64_t code = family.codes[id];
   // apriltag_to_image's layout: bit i (most significant first) at (bit_x, bit_y), counted in
@@ -130,7 +134,24 @@ std::string targetPatternProblem(const TargetPattern& pattern, double margin) {
   return "";
 }
 
+int64_t targetBoardTexels(const TargetPattern& pattern, double margin) {
+  const TexelLayout l = layoutOf(pattern);
+  const int64_t m = std::llround(margin / l.texel);
+  return (l.iEnd - l.iMin + 2 * m) * (l.jEnd - l.jMin + 2 * m);
+}
+
+namespace {
+
+// The public functions' guard: a pattern nobody checked is refused, not printed wrong.
+void requirePrintable(const TargetPattern& pattern, double margin) {
+  const std::string problem = targetPatternProblem(pattern, margin);
+  if (!problem.empty()) throw InputError("calibration target: " + problem);
+}
+
+}  // namespace
+
 std::vector<Vec3> targetCorners(const TargetPattern& pattern) {
+  requirePrintable(pattern, targetTexel(pattern));
   const TexelLayout l = layoutOf(pattern);
   std::vector<Vec3> corners;
   if (const auto* b = std::get_if<Checkerboard>(&pattern)) {
@@ -154,6 +175,7 @@ std::vector<Vec3> worldCorners(const CalibrationTarget& target) {
 }
 
 TargetBoard targetBoard(const TargetPattern& pattern, double margin, float blackAlbedo, float whiteAlbedo) {
+  requirePrintable(pattern, margin);
   const TexelLayout l = layoutOf(pattern);
   const std::vector<std::vector<bool>> bits = tagBitsOf(pattern);
   const int64_t m = std::llround(margin / l.texel);

@@ -12,6 +12,7 @@
 //   square; tag t = row·tag_columns + column (row 0 at the bottom) has the id first_id + t; its
 //   corners are Kalibr's points(): point r·(2·tag_columns) + c at
 //   ((c/2)·(1 + spacing)·size + (c%2)·size, (r/2)·(1 + spacing)·size + (r%2)·size).
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <variant>
@@ -43,8 +44,10 @@ int aprilGridFamilySize();
 // An AprilGrid's gap must be a whole number of texels: tagSpacing × 10 × kTargetTexelsPerCell
 // within this of an integer.
 inline constexpr double kTargetSpacingTolerance = 1e-6;
-// Texture texels per side, at most (the board's margin included).
+// Texture texels per side, at most (the board's margin included), and in all a scene's boards
+// (12 bytes each: 400 MB).
 inline constexpr int kMaxTargetTexels = 8192;
+inline constexpr int64_t kMaxTargetTexelsInScene = int64_t{1} << 25;
 
 struct CalibrationTarget {
   std::string name;
@@ -58,7 +61,10 @@ struct CalibrationTarget {
 double targetTexel(const TargetPattern& pattern);
 // Why a pattern cannot be printed with this margin ("" when it can): ids, spacing, texture size.
 std::string targetPatternProblem(const TargetPattern& pattern, double margin);
+// The texels of its printed board.
+int64_t targetBoardTexels(const TargetPattern& pattern, double margin);
 
+// These throw InputError for a pattern targetPatternProblem refuses.
 // Every corner of the pattern in the target frame (z = 0), in the order the header states.
 std::vector<Vec3> targetCorners(const TargetPattern& pattern);
 // The same corners in the world.
@@ -72,7 +78,8 @@ struct TargetBoard {
 };
 TargetBoard targetBoard(const TargetPattern& pattern, double margin, float blackAlbedo, float whiteAlbedo);
 
-// A tag's 6 × 6 data bits as printed, row by row from the top-left, true = white.
+// A tag's 6 × 6 data bits as printed, row by row from the top-left, true = white; id in
+// [0, aprilGridFamilySize()) (std::out_of_range otherwise).
 std::vector<bool> aprilTagBits(int id);
 
 }  // namespace omnicam

@@ -169,6 +169,10 @@ TEST_F(CalibrationTargetScene, BadTargetsNameTheirField) {
   const std::string pose = R"("origin": [0, 0, 1], "x_axis": [1, 0, 0], "y_axis": [0, 0, 1])";
   const std::string grid = R"("kind": "aprilgrid", "tag_rows": 2, "tag_columns": 3, "tag_size": 0.08, "tag_spacing": 0.3)";
   EXPECT_EQ(errorOf(R"({"type": "calibration_target", "pattern": {)" + grid + "}, " + pose + "}"), "");
+  EXPECT_EQ(errorOf(R"({"type": "calibration_target", "pattern": {"kind": "checkerboard", "rows": 6, "columns": 8, "square": 0.05}, )" +
+                    pose + "}"),
+            file + ": objects[1].pattern.columns: rows + columns must be odd (one side even, one odd: else the board has no "
+                   "first corner a detector can tell)");
   EXPECT_EQ(errorOf(R"({"type": "calibration_target", "pattern": {"kind": "circles"}, )" + pose + "}"),
             file + ": objects[1].pattern.kind: unknown pattern kind \"circles\" (checkerboard, aprilgrid)");
   EXPECT_EQ(errorOf(R"({"type": "calibration_target", "pattern": {"kind": "aprilgrid", "tag_rows": 2, "tag_columns": 3,

@@ -376,9 +376,13 @@ TargetPattern readTargetPattern(JsonFields p) {
   TargetPattern pattern;
   if (kind == "checkerboard") {
     Checkerboard b;
-    b.rows = static_cast<int>(p.integer("rows", 3, 1000));
-    b.columns = static_cast<int>(p.integer("columns", 3, 1000));
+    // At least 3 inner corners a side (Kalibr's and OpenCV's detectors need them).
+    b.rows = static_cast<int>(p.integer("rows", 4, 1000));
+    b.columns = static_cast<int>(p.integer("columns", 4, 1000));
     b.square = p.number("square", {1e-4, 10.0, false, "m"});
+    // One odd and one even side: only then does the board look different turned half round, and
+    // a detector can tell which corner is the first (OpenCV's advice).
+    if ((b.rows + b.columns) % 2 == 0) p.fail("columns", "rows + columns must be odd (one side even, one odd: else the board has no first corner a detector can tell)");
     pattern = b;
   } else if (kind == "aprilgrid") {
     AprilGrid g;
@@ -410,14 +414,21 @@ void addCalibrationTarget(JsonFields& o, const std::string& name, Scene& scene, 
     o.fail("margin", "must be at least one texel of the pattern (" + shortNumber(texel) + " m; the texture repeats)");
   const std::string problem = targetPatternProblem(target.pattern, target.margin);
   if (!problem.empty()) o.fail("pattern", problem);
+  int64_t texels = targetBoardTexels(target.pattern, target.margin);
+  for (const CalibrationTarget& other : scene.calibrationTargets) texels += targetBoardTexels(other.pattern, other.margin);
+  if (texels > kMaxTargetTexelsInScene)
+    o.fail("pattern", "the scene's boards need " + std::to_string(texels) + " texels in all (at most " +
+                          std::to_string(kMaxTargetTexelsInScene) + ")");
   const Vec3 origin = o.vec3("origin"), xAxis = o.vec3("x_axis"), yAxis = o.vec3("y_axis");
-  if (!(xAxis.norm() > 0.0)) o.fail("x_axis", "must not be zero");
-  if (!(yAxis.norm() > 0.0)) o.fail("y_axis", "must not be zero");
-  const Vec3 x = xAxis.normalized(), y = yAxis.normalized();
-  if (std::abs(x.dot(y)) > 1e-6) o.fail("y_axis", "must be perpendicular to x_axis");
+  if (!(xAxis.norm() > 1e-9)) o.fail("x_axis", "must not be zero");
+  if (!(yAxis.norm() > 1e-9)) o.fail("y_axis", "must not be zero");
+  const Vec3 x = xAxis.normalized();
+  if (std::abs(x.dot(yAxis.normalized())) > 1e-6) o.fail("y_axis", "must be perpendicular to x_axis");
+  // Exactly orthonormal: y is the given one's part perpendicular to x.
+  const Vec3 z = x.cross(yAxis).normalized();
   target.worldFromTarget.linear().col(0) = x;
-  target.worldFromTarget.linear().col(1) = y;
-  target.worldFromTarget.linear().col(2) = x.cross(y);
+  target.worldFromTarget.linear().col(1) = z.cross(x);
+  target.worldFromTarget.linear().col(2) = z;
   target.worldFromTarget.translation() = origin;
   const double black = o.number("black", 0.03, {0.0, 1.0});
   const double white = o.number("white", 0.85, {0.0, 1.0});
