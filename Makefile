@@ -13,7 +13,8 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   povray blender python3-numpy python3-matplotlib libtinygltf-dev \
   pybind11-dev python3-dev python3-pytest python3-yaml python3-pil mypy \
   clang libfuzzer-14-dev libclang-rt-14-dev \
-  slurmctld slurmd slurm-client munge libcgal-dev libapriltag-dev
+  slurmctld slurmd slurm-client munge libcgal-dev libapriltag-dev \
+  python3-rosbag python3-sensor-msgs
 
 .PHONY: deps build test demo bench clean fuzz-build fuzz
 

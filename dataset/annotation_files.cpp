@@ -34,13 +34,16 @@ Gathering gatheringOf(const json& header) {
   return {plan.layout, plan.gatheredKinds()};
 }
 
-// A file's bytes, checked against the manifest.
+}  // namespace
+
 std::string checkedBytes(const SafeFolder& dir, const FileRecord& file) {
   std::string bytes = dir.readFile(file.path, kMaxDatasetFileBytes);
   if (sha256OfBytes(bytes) != file.sha256)
     throw InputError(showPath(dir.path()) + ": " + quote(file.path) + ": changed since it was written (run omnicam dataset --verify)");
   return bytes;
 }
+
+namespace {
 
 // One camera's frame: its part of each gathered kind, the image file the COCO file names, and
 // what messages call the frame.

@@ -19,4 +19,7 @@ namespace omnicam {
 // naming it otherwise.
 void writeAnnotationFiles(const SafeFolder& dir, DatasetManifest& manifest);
 
+// A file the manifest lists, read inside the folder: InputError unless it hashes to its SHA-256.
+std::string checkedBytes(const SafeFolder& dir, const FileRecord& file);
+
 }  // namespace omnicam

@@ -5,6 +5,8 @@
 #include <functional>
 #include <sstream>
 
+#include "calibration_files.h"
+#include "calibration_sequence.h"
 #include "camera_rays.h"
 #include "coco.h"
 #include "dataset_shards.h"
@@ -305,7 +307,88 @@ void checkVibratedRigs(const DatasetPlan& plan) {
     }
 }
 
+// A calibration sequence: the target the spec names, the board's pose of every frame, and the
+// robot standing at its one pose in each of them.
+void startCalibrationSequence(DatasetPlan& plan) {
+  const CalibrationSequenceSpec& cal = *plan.spec.calibration;
+  const std::string file = showPath(plan.spec.file);
+  plan.calibrationTarget = findCalibrationTarget(plan.scene, cal.target);
+  if (plan.calibrationTarget < 0) {
+    std::string names;
+    for (const CalibrationTarget& t : plan.scene.calibrationTargets) names += (names.empty() ? "" : ", ") + quote(t.name);
+    throw InputError(file + ": calibration.target: the scene has no calibration target " + quote(cal.target) +
+                     (names.empty() ? std::string(" (it has none)") : " (it has " + names + ")"));
+  }
+  const CalibrationTarget& target = plan.scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
+  try {
+    plan.viewpointFromTarget = sequenceBoardPoses(cal, *plan.setups.front().model, target.pattern);
+  } catch (const InputError& e) {
+    throw InputError(file + ": calibration.poses.random: " + e.what());
+  }
+  const size_t frames = plan.viewpointFromTarget.size();
+  plan.poses.assign(frames, plan.poses.front());
+  plan.velocities.assign(frames, BodyVelocity{});
+  for (size_t f = 0; f < frames; ++f)
+    plan.worldFromTarget.push_back(plan.placement(static_cast<int>(f), 0).worldFromViewpoint(plan.setups.front().rig) *
+                                   plan.viewpointFromTarget[f]);
+}
+
+// Every camera's calibration files (docs/calibration.md, "Calibration sequences"): Kalibr's target
+// YAML, each frame's exact corners with their sight, and the seen ones as OpenCV's corner lists.
+void addCalibrationFiles(DatasetPlan& plan) {
+  const CalibrationTarget& target = plan.scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
+  const std::vector<Vec3> targetPoints = targetCorners(target.pattern);
+  const int frames = static_cast<int>(plan.poses.size());
+  std::vector<json> cornerFrames(plan.setups.size(), json::array());
+  std::vector<std::vector<CornerListImage>> lists(plan.setups.size());
+  for (int f = 0; f < frames; ++f) {
+    const std::unique_ptr<FrameWorld> world = plan.frameWorld(f, true);
+    const CalibrationTarget& moved = world->scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
+    for (size_t c = 0; c < plan.setups.size(); ++c) {
+      const Rigid worldFromViewpoint = plan.placement(f, c).worldFromViewpoint(plan.setups[c].rig);
+      const std::vector<ImagedCorner> corners = imagedCorners(*plan.setups[c].model, worldFromViewpoint, world->rays.get(), moved);
+      cornerFrames[c].push_back(cornersFrameJson(f, worldFromViewpoint.inverse() * moved.worldFromTarget, corners));
+      CornerListImage image{plan.outputs.framePath(plan.setups[c].camera->name, kColourOutput, f), {}};
+      for (const ImagedCorner& corner : corners)
+        if (corner.sight == CornerSight::Seen) {
+          image.view.targetPoints.push_back(targetPoints[static_cast<size_t>(corner.index)]);
+          image.view.raster.push_back(corner.raster);
+        }
+      // OpenCV's calibrations need four points of a view.
+      if (image.view.raster.size() >= 4) lists[c].push_back(std::move(image));
+    }
+  }
+  const std::string kalibr = kalibrTargetYaml(target.pattern);
+  for (size_t c = 0; c < plan.setups.size(); ++c) {
+    const std::string& name = plan.setups[c].camera->name;
+    json& files = plan.header["cameras"][c]["files"];
+    const json corners = {{"camera", name},
+                          {"target", target.name},
+                          {"convention", "raster: omnicam's (pixel centres at i + 0.5); opencv: centres at integers"},
+                          {"frames", cornerFrames[c]}};
+    for (StaticFile file : {StaticFile{"kalibr_target", name + "/calibration/target.yaml", kalibr},
+                            StaticFile{"corners", name + "/calibration/corners.json", corners.dump() + "\n"},
+                            StaticFile{"opencv_corners", name + "/calibration/opencv_corners.yml", openCvCornerLists(lists[c])}}) {
+      files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
+      plan.statics.push_back(std::move(file));
+    }
+  }
+  const CalibrationSequenceSpec& cal = *plan.spec.calibration;
+  plan.header["calibration"] = {{"target", target.name},
+                                {"poses", cal.random ? "random" : "list"},
+                                {"rosbag", cal.rosbag}};
+}
+
 }  // namespace
+
+std::unique_ptr<FrameWorld> DatasetPlan::frameWorld(int frame, bool withRays) const {
+  auto world = std::make_unique<FrameWorld>();
+  world->scene = scene;
+  placeCalibrationTarget(world->scene, calibrationTarget, worldFromTarget.at(static_cast<size_t>(frame)));
+  world->engine = makeEngine(request, world->scene);
+  if (withRays) world->rays = std::make_unique<RayScene>(world->scene);
+  return world;
+}
 
 RigSpec DatasetPlan::frameRig(int frame, size_t camera) const {
   return vibratedRig(setups[camera].rig, spec.vibration, static_cast<uint64_t>(frame), camera);
@@ -330,11 +413,12 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   } else {
     sampleTimedWaypoints(spec, datasetPoses(spec, scene, topHeight), poses, velocities);
   }
+  if (spec.calibration) startCalibrationSequence(*this);
   SettingNames names;
   names.pose = showPath(spec.file) + ": poses";
   for (int frame = 0; frame < static_cast<int>(poses.size()); ++frame)
     for (size_t c = 0; c < setups.size(); ++c) checkPlacement(placement(frame, c), names);
-  RenderRequest request = spec.request;
+  request = spec.request;
   request.threads = options.threads;
   engine = makeEngine(request, scene);
   checkEngineRendersPlan(*this);
@@ -346,8 +430,11 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   ids = idTables(scene);
   header = manifestHeader(spec, scene, *engine, outputs, notWritten, ids, totalFrames, options, range);
   header["cameras"] = manifestCameras(*this, statics);
+  if (movesTarget()) addCalibrationFiles(*this);
   checkManifestHeaderSize(header, spec.file);
   folders = datasetFolders(setups, outputs, range.sharded);
+  if (movesTarget())
+    for (const CameraSetup& setup : setups) folders.push_back(setup.camera->name + "/calibration");
   if (outputs.needsLandmarkAnnotations(!scene.landmarks.empty())) rays = std::make_unique<RayScene>(scene);
 }
 

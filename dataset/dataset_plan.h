@@ -39,6 +39,14 @@ struct StaticFile {
   std::string key, relative, text;
 };
 
+// A frame's own scene when frames differ in more than the camera's placement (a calibration
+// sequence moves its target): the scene, its engine and its landmark rays. Built in place.
+struct FrameWorld {
+  Scene scene;
+  std::unique_ptr<Engine> engine;
+  std::unique_ptr<RayScene> rays;  // when the outputs annotate landmarks
+};
+
 // Built in place and never moved: the engine and the landmark rays refer to the scene.
 class DatasetPlan {
  public:
@@ -61,6 +69,16 @@ class DatasetPlan {
   std::vector<std::string> folders; // relative to the dataset folder, made before frames are written
   std::vector<std::string> notes;   // for the user: outputs the engine does not write
   std::unique_ptr<RayScene> rays;   // for landmark annotations, when the outputs have any
+  RenderRequest request;            // the spec's, with the run's threads
+
+  // A calibration sequence (spec.calibration): the scene's target it moves, and its pose in the
+  // world and in the first camera's viewpoint frame in every frame.
+  int calibrationTarget = -1;
+  std::vector<Rigid> worldFromTarget, viewpointFromTarget;
+  bool movesTarget() const { return calibrationTarget >= 0; }
+  // Frame `frame`'s scene, with its engine (and rays when `withRays`): the target where the frame
+  // holds it. Only for a plan that movesTarget().
+  std::unique_ptr<FrameWorld> frameWorld(int frame, bool withRays) const;
 
   // What one frame holds while it is rendered and encoded: every camera's frame, AOVs, files and
   // sample table (FastRenderer::frameBytes; docs/robustness.md, "Memory"). The scheduler renders
@@ -78,7 +96,7 @@ class DatasetPlan {
   // Whether frames differ in more than their pose (a shaken rig, a velocity), so that an engine
   // rendering many poses with one setting (Blender's batches) must take them one at a time.
   bool framesHaveOwnSettings() const {
-    return vibrates() || std::any_of(velocities.begin(), velocities.end(), [](const BodyVelocity& v) { return !v.still(); });
+    return vibrates() || movesTarget() || std::any_of(velocities.begin(), velocities.end(), [](const BodyVelocity& v) { return !v.still(); });
   }
 };
 

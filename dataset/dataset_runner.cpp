@@ -9,6 +9,7 @@
 
 #include "annotation_files.h"
 #include "atomic_file.h"
+#include "calibration_bag.h"
 #include "dataset_plan.h"
 #include "errors.h"
 #include "frame_scheduler.h"
@@ -157,7 +158,10 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   result.stopped = result.kept + result.rendered < result.frames;
   manifest.header["complete"] = !result.stopped;
   // The annotations gathered per camera, once every frame is there (a shard's: by the merge).
-  if (!result.stopped && !plan.range.sharded) writeAnnotationFiles(folder, manifest);
+  if (!result.stopped && !plan.range.sharded) {
+    writeAnnotationFiles(folder, manifest);
+    writeCalibrationBags(folder, manifest);
+  }
   writeManifest(folder, manifest, plan.range.manifestName);
   return result;
 }

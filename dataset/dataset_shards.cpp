@@ -6,6 +6,7 @@
 
 #include "atomic_file.h"
 #include "annotation_files.h"
+#include "calibration_bag.h"
 #include "dataset_folder.h"
 #include "errors.h"
 #include "manifest.h"
@@ -125,6 +126,7 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
   if (result.finished == result.frames) {
     result.incompleteShards.clear();
     writeAnnotationFiles(dir, *merged);
+    writeCalibrationBags(dir, *merged);
   }
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.

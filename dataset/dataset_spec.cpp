@@ -145,6 +145,69 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
   poses.finish();
 }
 
+// A listed board pose: {"origin": [x, y, z], "x_axis": [...], "y_axis": [...]} in the first
+// camera's viewpoint frame (docs/conventions.md), as a scene places a target.
+Rigid readListedBoardPose(JsonFields p) {
+  const Vec3 origin = p.vec3("origin"), xAxis = p.vec3("x_axis"), yAxis = p.vec3("y_axis");
+  if (!(xAxis.norm() > 1e-9)) p.fail("x_axis", "must not be zero");
+  if (!(yAxis.norm() > 1e-9)) p.fail("y_axis", "must not be zero");
+  const Vec3 x = xAxis.normalized();
+  if (std::abs(x.dot(yAxis.normalized())) > 1e-6) p.fail("y_axis", "must be perpendicular to x_axis");
+  if (!(origin.norm() <= limits::kMaxMountOffset)) p.fail("origin", "must be within " + shortNumber(limits::kMaxMountOffset) + " m of the viewpoint");
+  p.finish();
+  const Vec3 z = x.cross(yAxis).normalized();
+  Rigid pose = Rigid::Identity();
+  pose.linear().col(0) = x;
+  pose.linear().col(1) = z.cross(x);
+  pose.linear().col(2) = z;
+  pose.translation() = origin;
+  return pose;
+}
+
+// "calibration": {"target": NAME, "poses": {"random": {...}} or {"list": [...]}, "rosbag": bool}.
+void readCalibration(JsonFields c, DatasetSpec& spec) {
+  CalibrationSequenceSpec cal;
+  cal.target = c.string("target");
+  JsonFields poses = c.object("poses");
+  if (poses.has("random") == poses.has("list"))
+    throw InputError(showPath(spec.file) + ": calibration.poses: give exactly one of \"random\" or \"list\"");
+  if (poses.has("random")) {
+    JsonFields r = poses.object("random");
+    BoardPoseOptions o;
+    o.count = static_cast<int>(r.integer("count", 1, limits::kMaxCalibrationPoses));
+    o.seed = static_cast<uint64_t>(r.integer("seed", 0, limits::kMaxSeed));
+    const std::vector<double> distance = r.numbers("distance_m", {o.nearM, o.farM}, {0.01, 100.0, false, "m"});
+    if (!(distance[0] < distance[1])) r.fail("distance_m", "must be [near, far] with near < far");
+    o.nearM = distance[0], o.farM = distance[1];
+    o.maxTiltDeg = r.number("max_tilt_deg", o.maxTiltDeg, {0.0, 80.0, false, "degrees"});
+    o.minSeenCorners = r.integer("min_seen_corners", o.minSeenCorners, 4, 1000000);
+    r.finish();
+    cal.random = o;
+  } else {
+    const json& list = poses.raw("list");
+    if (!list.is_array() || list.empty() || list.size() > static_cast<size_t>(limits::kMaxCalibrationPoses))
+      poses.fail("list", "must be an array of 1 to " + std::to_string(limits::kMaxCalibrationPoses) +
+                             " board poses {\"origin\", \"x_axis\", \"y_axis\"}");
+    for (size_t i = 0; i < list.size(); ++i) {
+      if (!list[i].is_object()) poses.fail("list[" + std::to_string(i) + "]", "must be an object {\"origin\", \"x_axis\", \"y_axis\"}");
+      cal.listed.push_back(readListedBoardPose(JsonFields(list[i], spec.file, poses.path("list[" + std::to_string(i) + "]"))));
+    }
+  }
+  poses.finish();
+  cal.rosbag = c.boolean("rosbag", false);
+  c.finish();
+  const size_t frames = cal.random ? static_cast<size_t>(cal.random->count) : cal.listed.size();
+  checkFrameCount(spec, frames, c.path("poses"));
+  // The robot stands still while the board moves: its one pose, every frame.
+  if (spec.poseSource != PoseSource::List || spec.poseList.size() != 1 || spec.timing.kind != PathTiming::Kind::None)
+    throw InputError(showPath(spec.file) + ": calibration: the robot stands still while the board moves: give poses as {\"list\": [[x, y, yaw_deg]]}, one pose");
+  if (spec.motion != MotionSource::Still || !spec.vibration.none())
+    throw InputError(showPath(spec.file) + ": calibration: the exact corners are a still camera's: leave motion and vibration out");
+  if (cal.rosbag && (spec.layout != DatasetLayout::Files || spec.outputs.rgb != "png"))
+    throw InputError(showPath(spec.file) + ": calibration.rosbag: needs the files layout and outputs.rgb \"png\" (the bag holds the PNG frames' pixels)");
+  spec.calibration = std::move(cal);
+}
+
 // "motion": {"velocity": [vx, vy, yaw_rate_deg_per_s]} or {"between_poses": true}.
 void readMotion(JsonFields motion, DatasetSpec& spec) {
   if (motion.has("velocity") == motion.has("between_poses"))
@@ -352,6 +415,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
       top.fail("euroc", "needs frame_interval_s of at least 1 ns (EuRoC names each image by its timestamp in ns)");
   }
   if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
+  if (auto calibration = top.optionalObject("calibration")) readCalibration(*calibration, spec);
   top.finish();
   return spec;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "calibration_sequence.h"
 #include "output_kinds.h"
 #include "placement.h"
 #include "recording_camera.h"
@@ -124,6 +125,9 @@ struct DatasetSpec {
   // What a real camera would record (recording_camera.h), applied to every RGB frame; none: the
   // renderer's image as it is.
   std::optional<RecordingCamera> recording;
+  // A calibration sequence (calibration_sequence.h): the robot stands at its one pose while the
+  // scene's target is held at one pose per frame; none: the scene as it is.
+  std::optional<CalibrationSequenceSpec> calibration;
 };
 
 // A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics".

@@ -35,6 +35,11 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
                         AovFrame& aovs) {
   const bool wantsAovs = plan.outputs.anyAov();
   const DatasetSpec& spec = plan.spec;
+  // A calibration sequence's frame has its own scene (the target where it holds it).
+  const std::unique_ptr<FrameWorld> world = plan.movesTarget() ? plan.frameWorld(index, plan.rays != nullptr) : nullptr;
+  Engine& engine = world ? *world->engine : *plan.engine;
+  const Scene& scene = world ? world->scene : plan.scene;
+  const RayScene* rays = world ? world->rays.get() : plan.rays.get();
   FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], plan.velocities[index], {},
                      plan.robotTilt(index)};
   for (size_t c = 0; c < plan.setups.size(); ++c) {
@@ -44,11 +49,11 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
     Film film = filmFor(settings, wantsAovs);
     if (wantsAovs) film.aovs = std::move(aovs);  // its planes' memory reused
     if (rgb[c]) film.image = std::move(*rgb[c]);
-    else plan.engine->render(placement, settings, film);
+    else engine.render(placement, settings, film);
     // Seeded by frame and camera: a resumed run records the same noise.
     if (spec.recording) film.image = recordFrame(*spec.recording, film.image, static_cast<uint64_t>(index) * plan.setups.size() + c);
     std::vector<EncodedFile> files =
-        encodeFrameOutputs(plan.scene, plan.rays.get(), settings, setup.camera->name, index, placement, film.image,
+        encodeFrameOutputs(scene, rays, settings, setup.camera->name, index, placement, film.image,
                            film.aovs ? &*film.aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
     if (film.aovs) aovs = std::move(*film.aovs);
     stopIfCancelled();
@@ -87,7 +92,9 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
   const EngineCapabilities& can = engine.capabilities();
-  const size_t batch = can.batches      ? (plan.framesHaveOwnSettings() ? 1 : framesPerBatch(engine))
+  // A calibration sequence's frames each have their own scene: rendered one by one, by renderFrame.
+  const bool batches = can.batches && !plan.movesTarget();
+  const size_t batch = batches          ? (plan.framesHaveOwnSettings() ? 1 : framesPerBatch(engine))
                        : can.concurrent ? static_cast<size_t>(concurrencyWithin(plan.frameBytes(), kConcurrentFrames,
                                                                                      "one frame of this dataset"))
                                              : 1;
@@ -96,7 +103,7 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
   int rendered = 0;
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);
-    std::vector<std::vector<ImageRGBA>> rgb = can.batches ? renderBatch(plan, todo, start, end)
+    std::vector<std::vector<ImageRGBA>> rgb = batches ? renderBatch(plan, todo, start, end)
                                                                : std::vector<std::vector<ImageRGBA>>(plan.setups.size());
     std::vector<FrameRecord> records(end - start);
     auto renderOne = [&](size_t k) {

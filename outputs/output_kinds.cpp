@@ -138,7 +138,8 @@ std::vector<std::string> cameraFolderNames() {
   std::vector<std::string> names;
   for (const OutputKindRow& r : kKinds) names.push_back(r.name);
   names.push_back("intrinsics");
-  names.push_back("data");  // EuRoC/ASL
+  names.push_back("data");         // EuRoC/ASL
+  names.push_back("calibration");  // a calibration sequence's files
   return names;
 }
 
@@ -150,7 +151,8 @@ bool isLayoutFile(const std::string& relative, const std::set<std::string>& came
       if (r.annotation) annotations += (annotations.empty() ? "" : "|") + std::string(r.name);
     }
     return std::regex("([^/]+)/((" + kinds + R"()/\d{6}\.(png|exr|json)|()" + annotations +
-                      R"()\.json|intrinsics/((opencv|kalibr|camodocal)\.yaml|rays\.exr)|poses\.tum|data/\d{1,19}\.png|data\.csv|sensor\.yaml))");
+                      R"()\.json|intrinsics/((opencv|kalibr|camodocal)\.yaml|rays\.exr)|poses\.tum|data/\d{1,19}\.png|data\.csv|sensor\.yaml|)"
+                      R"(calibration/(target\.yaml|corners\.json|opencv_corners\.yml|images\.bag)))");
   }();
   std::smatch m;
   return std::regex_match(relative, m, layout) && cameras.count(m[1].str());

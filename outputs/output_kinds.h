@@ -118,7 +118,8 @@ std::string gatheredPath(const std::string& camera, OutputKind kind);
 std::vector<std::string> cameraFolderNames();
 
 // Whether `relative` is a file some plan's dataset layout has for one of `cameras` (frame files,
-// gathered annotations, intrinsics and poses): all that replacing a dataset may remove.
+// gathered annotations, intrinsics and poses, calibration files): all that replacing a dataset may
+// remove.
 bool isLayoutFile(const std::string& relative, const std::set<std::string>& cameras);
 
 }  // namespace omnicam

@@ -283,6 +283,15 @@ def main():
     dataset_spec("timestamps_backwards", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [1, 0.5]})
     dataset_spec("speed_no_turn_rate", poses={"path": "p", "speed_m_s": 1})
     dataset_spec("euroc_exr", euroc=True, outputs={"rgb": "exr"})
+    # Calibration sequences (docs/calibration.md): the target, the still robot, the bag's images.
+    still = {"list": [[0, 0, 0]]}
+    board_poses = {"random": {"count": 5, "seed": 1}}
+    dataset_spec("calibration_no_target", poses=still, calibration={"target": "board", "poses": board_poses})
+    dataset_spec("calibration_path", calibration={"target": "board", "poses": board_poses})
+    dataset_spec("calibration_bag_exr", poses=still, outputs={"rgb": "exr"},
+                 calibration={"target": "board", "poses": board_poses, "rosbag": True})
+    dataset_spec("calibration_axes", poses=still,
+                 calibration={"target": "board", "poses": {"list": [{"origin": [1, 0, 0], "x_axis": [0, 1, 0], "y_axis": [0, 1, 0]}]}})
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
     random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}

@@ -1,0 +1,61 @@
+#include "rosbag_file.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "errors.h"
+#include "external_process.h"
+#include "job_folder.h"
+#include "safe_files.h"
+
+namespace omnicam {
+
+namespace {
+
+// The writer's interpreter: Debian's, where python3-rosbag is installed (not a virtualenv's).
+constexpr const char* kPython = "/usr/bin/python3";
+// Bags omnicam writes: a calibration sequence's images (the dataset's frame limits bound them).
+constexpr int64_t kMaxBagBytes = int64_t{1} << 40;
+constexpr double kWriterTimeoutSeconds = 3600.0;
+
+std::string writerScript() {
+  if (const char* env = std::getenv("OMNICAM_ROSBAG_WRITER")) return env;
+  return OMNICAM_ROSBAG_WRITER;
+}
+
+void put32(std::ofstream& out, uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); }
+void putString(std::ofstream& out, const std::string& s) {
+  put32(out, static_cast<uint32_t>(s.size()));
+  out.write(s.data(), static_cast<std::streamsize>(s.size()));
+}
+
+}  // namespace
+
+std::string imageBag(const std::vector<BagImage>& images) {
+  const JobFolder job("omnicam-rosbag", false);
+  {
+    std::ofstream out(job.path() + "/images.bin", std::ios::binary);
+    out.write("OMNIBAG1", 8);
+    put32(out, static_cast<uint32_t>(images.size()));
+    for (const BagImage& image : images) {
+      if (image.rgb8.size() != static_cast<size_t>(image.width) * image.height * 3)
+        throw std::logic_error("imageBag: an image's bytes are not width × height × 3");
+      putString(out, image.topic);
+      putString(out, image.frameId);
+      out.write(reinterpret_cast<const char*>(&image.stampNs), 8);
+      put32(out, image.seq);
+      put32(out, static_cast<uint32_t>(image.width));
+      put32(out, static_cast<uint32_t>(image.height));
+      out.write(image.rgb8.data(), static_cast<std::streamsize>(image.rgb8.size()));
+    }
+    if (!out) throw ExternalError("ROS bag: cannot write the writer's input in " + job.path());
+  }
+  const ProcessResult run = runProcess({kPython, writerScript()}, job.path(), job.path() + "/writer.log", kWriterTimeoutSeconds);
+  if (run.notFound) throw std::runtime_error(std::string("ROS bag: ") + kPython + " not found (make deps installs it with python3-rosbag)");
+  if (run.exitCode != 0 || run.timedOut)
+    throw ExternalError("ROS bag: python3-rosbag's writer failed (make deps installs python3-rosbag and python3-sensor-msgs): " +
+                             run.logTail);
+  return readFileInside(job.path(), "images.bag", kMaxBagBytes);
+}
+
+}  // namespace omnicam
