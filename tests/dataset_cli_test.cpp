@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "hold_point.h"
+#include "calibration_files.h"
 #include "camera_rays.h"
 #include "dataset_reader.h"
 #include "image.h"
@@ -27,6 +28,7 @@
 #include "rig.h"
 #include "sha256.h"
 #include "shell_command.h"
+#include "target_detection.h"
 #include "placement.h"
 
 extern char** environ;
@@ -1008,6 +1010,97 @@ TEST_F(DatasetCliTest, PathShadedTexturedHallWithEveryOutputVerifiesShardsAndMov
                               path("rest.exr"));
   ASSERT_EQ(atRest.code, 0) << atRest.out;
   EXPECT_FALSE(readImage(path("rest.exr")).pixels == readImage(path("moving0.exr")).pixels);  // the motion shows
+}
+
+
+// A calibration sequence (docs/examples/calibration_dataset.json, the documented example):
+// each frame's exact corners agree with what AprilTag finds in the rendered frame; the bag reads
+// back with Debian's rosbag, pixel for pixel the PNGs; OpenCV's omnidir, fed the corner list
+// file as cv::FileStorage reads it, recovers the ideal rig's closed-form intrinsics; a sharded run
+// merges into the same files.
+TEST_F(DatasetCliTest, CalibrationSequenceCornersBagAndCornerListsAreWhatToolsRead) {
+  const std::string spec = OMNICAM_SOURCE_DIR "/docs/examples/calibration_dataset.json";
+  const std::string out = path("cal");
+  const testing::CommandResult run = omnicam("dataset " + spec + " -o " + out + " --threads 2");
+  ASSERT_EQ(run.code, 0) << run.out;
+  ASSERT_EQ(omnicam("dataset --verify " + out).code, 0);
+
+  // The exact corners against AprilTag's on the frames as written.
+  const json corners = json::parse(readFile(out + "/cam0/calibration/corners.json"));
+  ASSERT_EQ(corners.at("frames").size(), 20u);
+  const AprilGrid grid{5, 5, 0.06, 0.3, 0};
+  std::vector<double> errors;
+  size_t seen = 0;
+  for (const json& frame : corners.at("frames")) {
+    const int index = frame.at("frame").get<int>();
+    char name[64];
+    std::snprintf(name, sizeof name, "/cam0/rgb/%06d.png", index);
+    const ImageRGBA image = readImage(out + name);
+    EXPECT_GE(frame.at("seen").get<int>(), 24) << "frame " << index << ": min_seen_corners";
+    seen += frame.at("seen").get<size_t>();
+    const std::vector<DetectedCorner> found = detectAprilGrid(image, grid, ImageHandedness::Mirrored);
+    for (const DetectedCorner& d : found) {
+      const json& exact = frame.at("corners").at(static_cast<size_t>(d.index));
+      ASSERT_EQ(exact.at("sight"), "seen") << "frame " << index << " corner " << d.index;
+      errors.push_back((d.raster - Vec2(exact.at("raster")[0].get<double>(), exact.at("raster")[1].get<double>())).norm());
+      // OpenCV's convention: half a pixel less.
+      EXPECT_DOUBLE_EQ(exact.at("opencv")[0].get<double>(), exact.at("raster")[0].get<double>() - 0.5);
+    }
+  }
+  std::sort(errors.begin(), errors.end());
+  // Boards imaged small (seen near the image centre, looking down) decode partly or not at all:
+  // measured 724 of 1628 corners.
+  ASSERT_GT(errors.size(), seen / 3) << "AprilTag finds a good share of the seen corners";
+  const double median = errors[errors.size() / 2], p99 = errors[static_cast<size_t>(0.99 * (errors.size() - 1))];
+  std::printf("calibration sequence: %zu corners detected of %zu seen; detected - exact: median %.3f px, 99th %.3f px\n",
+              errors.size(), seen, median, p99);
+  EXPECT_LT(median, 0.15);
+  EXPECT_LT(p99, 0.6);
+
+  // Debian's rosbag reads the bag: 20 rgb8 images on /cam0/image_raw, stamped i × 0.1 s, each
+  // the PNG's pixels.
+  const std::string script = write("read_bag.py", R"(import sys, rosbag, numpy
+from PIL import Image
+count = 0
+with rosbag.Bag(sys.argv[1] + "/cam0/calibration/images.bag") as bag:
+    for topic, m, t in bag.read_messages():
+        png = numpy.asarray(Image.open("%s/cam0/rgb/%06d.png" % (sys.argv[1], m.header.seq)).convert("RGB"))
+        data = numpy.frombuffer(m.data, numpy.uint8).reshape(m.height, m.width, 3)
+        assert topic == "/cam0/image_raw" and m.encoding == "rgb8" and m.step == 3 * m.width, (topic, m.encoding)
+        assert m.header.stamp.to_nsec() == m.header.seq * 100000000 == t.to_nsec(), (m.header.seq, m.header.stamp)
+        assert (data == png).all(), m.header.seq
+        count += 1
+print("bag frames", count)
+)");
+  const testing::CommandResult bag = testing::runShell("/usr/bin/python3 " + script + " " + out + " 2>&1");
+  EXPECT_EQ(bag.code, 0) << bag.out;
+  EXPECT_NE(bag.out.find("bag frames 20"), std::string::npos) << bag.out;
+
+  // The corner lists, as OpenCV reads them, calibrate the ideal rig.
+  const std::vector<CornerListImage> lists = readOpenCvCornerLists(readFile(out + "/cam0/calibration/opencv_corners.yml"), "opencv_corners.yml");
+  ASSERT_EQ(lists.size(), 20u);
+  std::vector<CalibrationView> views;
+  for (const CornerListImage& image : lists) views.push_back(image.view);
+  OmnidirOptions options;
+  options.fixDistortion = true;
+  const json intrinsics = json::parse(readFile(out + "/manifest.json")).at("cameras")[0].at("intrinsics");
+  const OmnidirCalibration fit = calibrateOmnidir(views, 720, 720, options);
+  ASSERT_TRUE(fit.converged) << fit.failure;
+  std::printf("from opencv_corners.yml: rms %.2e px, xi %.6f (truth %.6f), gamma_y %.4f (%.4f), cx %.4f (%.4f)\n", fit.rms, fit.xi,
+              intrinsics.at("xi").get<double>(), fit.gammaY, intrinsics.at("gamma_y").get<double>(), fit.cx, intrinsics.at("cx").get<double>());
+  EXPECT_NEAR(fit.xi, intrinsics.at("xi").get<double>(), 1e-3 * intrinsics.at("xi").get<double>());
+  EXPECT_NEAR(fit.gammaY, intrinsics.at("gamma_y").get<double>(), 1e-3 * std::abs(intrinsics.at("gamma_y").get<double>()));
+  EXPECT_NEAR(fit.cx, intrinsics.at("cx").get<double>(), 0.05);
+  EXPECT_NEAR(fit.cy, intrinsics.at("cy").get<double>(), 0.05);
+
+  // Two shards and a merge: the same calibration files, the same bag.
+  const std::string sharded = path("cal_shards");
+  for (int i = 0; i < 2; ++i)
+    ASSERT_EQ(omnicam("dataset " + spec + " -o " + sharded + " --shard " + std::to_string(i) + "/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + sharded).code, 0);
+  for (const char* file : {"corners.json", "opencv_corners.yml", "target.yaml", "images.bag"})
+    EXPECT_EQ(sha256OfBytes(readFile(sharded + "/cam0/calibration/" + file)), sha256OfBytes(readFile(out + "/cam0/calibration/" + file)))
+        << file;
 }
 
 }  // namespace
