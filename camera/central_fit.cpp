@@ -21,6 +21,21 @@ std::optional<Vec2> MeiIntrinsics::raster(const Vec3& pointCamera) const {
   return Vec2(gammaX * d.x() + cx + 0.5, gammaY * d.y() + cy + 0.5);
 }
 
+std::optional<Vec3> MeiIntrinsics::direction(const Vec2& raster) const {
+  const Vec2 distorted((raster.x() - 0.5 - cx) / gammaX, (raster.y() - 0.5 - cy) / gammaY);
+  const std::optional<Vec2> m = undistort(lens, distorted);
+  if (!m) return std::nullopt;
+  // The unit-sphere point s with (s.x, s.y) / (s.z + ξ) = m: s = λ(m, 1) − (0, 0, ξ),
+  // λ = (ξ + sqrt(1 + (1 − ξ²) r²)) / (1 + r²).
+  const double r2 = m->squaredNorm(), discriminant = 1.0 + (1.0 - xi * xi) * r2;
+  if (!(discriminant >= 0.0)) return std::nullopt;
+  const double lambda = (xi + std::sqrt(discriminant)) / (1.0 + r2);
+  const Vec3 s(lambda * m->x(), lambda * m->y(), lambda - xi);
+  // The projection's own condition: in front of the model (z_s + ξ > 0).
+  if (!(s.z() + xi > 0.0)) return std::nullopt;
+  return s.normalized();
+}
+
 namespace {
 
 struct GridRay {

@@ -24,6 +24,10 @@ struct MeiIntrinsics {
   // The continuous raster point (pixel centres at +0.5) of a camera-frame point; nullopt where
   // the unit-sphere point is behind the model (z_s + ξ ≤ 0).
   std::optional<Vec2> raster(const Vec3& pointCamera) const;
+  // The inverse: the unit camera-frame direction a raster point sees (undistorted, lifted to the
+  // unit sphere); nullopt where the model images nothing (outside its disc when ξ > 1, or where
+  // the distortion cannot be inverted).
+  std::optional<Vec3> direction(const Vec2& raster) const;
 };
 
 struct CentralApproximation {

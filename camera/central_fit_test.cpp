@@ -41,6 +41,43 @@ TEST(CentralFit, MeiProjectionIsOpenCvOmnidirs) {
   EXPECT_LE(worst, 1e-9);
 }
 
+// The lift back to the sphere against OpenCV's omnidir::undistortPoints (which returns the ray
+// as (x/z, y/z): compared where z > 0) and against our own projection (round trip).
+TEST(CentralFit, MeiDirectionIsOpenCvsUndistortionAndInvertsTheProjection) {
+  MeiIntrinsics k;
+  k.xi = 0.93, k.gammaX = 181.5, k.gammaY = -179.25, k.cx = 179.4, k.cy = 181.2;
+  k.lens = {-0.05, 0.01, 0.0013, -0.0009, 0.0};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> pixel(20.0, 340.0);
+  std::vector<cv::Point2d> distorted;
+  std::vector<Vec3> ours;
+  double roundTrip = 0.0;
+  while (distorted.size() < 2000) {
+    const Vec2 raster(pixel(rng), pixel(rng));
+    const auto d = k.direction(raster);
+    if (!d) continue;
+    ASSERT_NEAR(d->norm(), 1.0, 1e-12);
+    const auto back = k.raster(*d);
+    ASSERT_TRUE(back.has_value());
+    roundTrip = std::max(roundTrip, (*back - raster).norm());
+    if (d->z() < 0.2) continue;  // OpenCV's perspective output needs z > 0
+    distorted.emplace_back(raster.x() - 0.5, raster.y() - 0.5);
+    ours.push_back(*d);
+  }
+  EXPECT_LE(roundTrip, 1e-9);
+  const cv::Matx33d K(k.gammaX, 0.0, k.cx, 0.0, k.gammaY, k.cy, 0.0, 0.0, 1.0);
+  const cv::Matx14d D(k.lens.k1, k.lens.k2, k.lens.p1, k.lens.p2);
+  std::vector<cv::Point2d> undistorted;
+  cv::omnidir::undistortPoints(distorted, undistorted, K, D, cv::Mat(1, 1, CV_64F, cv::Scalar(k.xi)), cv::Matx33d::eye());
+  double worst = 0.0;
+  for (size_t i = 0; i < ours.size(); ++i) {
+    const Vec3 theirs = Vec3(undistorted[i].x, undistorted[i].y, 1.0).normalized();
+    worst = std::max(worst, std::acos(std::min(1.0, theirs.dot(ours[i]))));
+  }
+  // OpenCV inverts the distortion by 20 fixed-point steps: agreement to its precision.
+  EXPECT_LE(worst, 1e-6) << "radians";
+}
+
 TEST(CentralFit, RecoversTheExactModelOfTheAlignedDistortedRig) {
   RigSpec rig;
   rig.mount.distortion = {-0.09, 0.02, 0.0011, -0.0007, 0.0};

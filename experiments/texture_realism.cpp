@@ -212,68 +212,6 @@ double mean(const std::vector<double>& values) {
   return sum / static_cast<double>(values.size());
 }
 
-// Odometry between consecutive true poses, then noise drawn once for every condition.
-struct Drive {
-  std::vector<Vec3> truth;
-  std::vector<Odometry> noisyOdometry;  // [k] moves truth[k-1] → truth[k]; [0] unused
-  Eigen::Matrix2d motionNoiseFor(const Odometry& u) const {
-    Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
-    m(0, 0) = std::pow(kOdometryRangeFraction * std::abs(u.v) + 0.01, 2);
-    m(1, 1) = std::pow(kOdometryTurnSigmaRad, 2);
-    return m;
-  }
-  static constexpr double kOdometryRangeFraction = 0.08;
-  static constexpr double kOdometryTurnSigmaRad = 1.5 * kPi / 180.0;
-};
-
-Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed) {
-  Drive drive;
-  for (const RobotPose& p : poses) drive.truth.emplace_back(p.x, p.y, wrapAngle(p.yawDeg * kPi / 180.0));
-  std::mt19937_64 random(seed);
-  std::normal_distribution<double> gaussian(0.0, 1.0);
-  drive.noisyOdometry.resize(poses.size());
-  for (size_t k = 1; k < poses.size(); ++k) {
-    const Vec3& a = drive.truth[k - 1];
-    const Vec3& b = drive.truth[k];
-    const double omega = wrapAngle(b.z() - a.z());
-    const double distance = std::hypot(b.x() - a.x(), b.y() - a.y());
-    const double forward = std::cos(std::atan2(b.y() - a.y(), b.x() - a.x()) - b.z()) >= 0 ? 1.0 : -1.0;
-    Odometry noisy;
-    noisy.v = forward * distance * (1.0 + Drive::kOdometryRangeFraction * gaussian(random));
-    noisy.omega = omega + Drive::kOdometryTurnSigmaRad * gaussian(random);
-    drive.noisyOdometry[k] = noisy;
-  }
-  return drive;
-}
-
-// Drives every pose of the path; the test frames (every `stride`-th pose) bring measurements.
-EkfTrace runEkf(const Drive& drive, const std::vector<FrameEvaluation>& frames, size_t stride) {
-  EkfTrace trace;
-  const Eigen::Matrix3d initialCovariance = Eigen::Vector3d(1e-4, 1e-4, std::pow(kPi / 180.0, 2)).asDiagonal();
-  LandmarkEkf ekf(drive.truth[0], initialCovariance, Eigen::Matrix2d::Identity() * 1e-4, Eigen::Matrix2d::Identity());
-  Vec3 odometry = drive.truth[0];
-  for (size_t k = 0; k < drive.truth.size(); ++k) {
-    if (k > 0) {
-      const Odometry& u = drive.noisyOdometry[k];
-      odometry = motionModel(odometry, u);
-      ekf.setMotionNoise(drive.motionNoiseFor(u));
-      ekf.predict(u);
-    }
-    const std::vector<Measurement> none;
-    const bool tested = k % stride == 0 && k / stride < frames.size();
-    for (const Measurement& m : tested ? frames[k / stride].measurements : none) {
-      Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
-      q(0, 0) = std::pow(0.05 + 0.1 * m.z(0), 2);  // range from an elevation angle worsens with distance
-      q(1, 1) = std::pow(3.0 * kPi / 180.0, 2);
-      ekf.setMeasurementNoise(q);
-      if (ekf.update(m.z, m.landmark)) ++trace.used;
-      else ++trace.gated;
-    }
-    trace.rows.push_back({drive.truth[k], odometry, ekf.mean(), ekf.covariance()});
-  }
-  return trace;
-}
-
 // The plain, textured and random-photo halls of the run, in its arenas/ folder.
 void writeArenas(const TextureRealismOptions& o, const fs::path& out) {
   HallOptions hall;
@@ -385,7 +323,10 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   c.meanLocalisationErrorPx = mean(pixels);
   c.meanRangeErrorCm = mean(ranges);
   c.meanBearingErrorDeg = mean(bearings);
-  condition.ekf = runEkf(drive, condition.frames, static_cast<size_t>(testStride));
+  const size_t stride = static_cast<size_t>(testStride);
+  condition.ekf = runEkf(drive, [&](size_t k) -> const std::vector<Measurement>* {
+    return k % stride == 0 && k / stride < condition.frames.size() ? &condition.frames[k / stride].measurements : nullptr;
+  });
   size_t example = 0;
   for (size_t k = 0; k < condition.frames.size(); ++k)
     if (condition.frames[k].visibleBeacons > condition.frames[example].visibleBeacons) example = k;
@@ -397,14 +338,8 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
 EkfOutcome ekfOutcome(const ConditionReport& c) {
   EkfOutcome e;
   e.condition = c.outcome.key();
-  std::vector<double> odometryErrors, ekfErrors;
-  for (size_t k = 1; k < c.ekf.rows.size(); ++k) {
-    const EkfRow& row = c.ekf.rows[k];
-    odometryErrors.push_back(100.0 * (row.odometry.head<2>() - row.truth.head<2>()).norm());
-    ekfErrors.push_back(100.0 * (row.estimate.head<2>() - row.truth.head<2>()).norm());
-  }
-  e.meanErrorOdometryCm = mean(odometryErrors);
-  e.meanErrorEkfCm = mean(ekfErrors);
+  e.meanErrorOdometryCm = c.ekf.meanOdometryErrorCm();
+  e.meanErrorEkfCm = c.ekf.meanErrorCm();
   e.measurementsUsed = c.ekf.used;
   e.measurementsGated = c.ekf.gated;
   return e;

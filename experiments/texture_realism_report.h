@@ -6,14 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "ekf_drive.h"
 #include "texture_realism_results.h"
 
 namespace omnicam {
-
-struct Measurement {
-  Vec2 landmark;  // the identified beacon's position
-  RangeBearing z;
-};
 
 struct DrawnDetection {
   Vec2 raster;
@@ -35,16 +31,6 @@ struct FrameEvaluation {
   std::vector<DrawnDetection> drawn;
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
   std::vector<FalseBlob> falseBlobs;
-};
-
-struct EkfRow {
-  Vec3 truth, odometry, estimate;
-  Eigen::Matrix3d covariance;
-};
-
-struct EkfTrace {
-  std::vector<EkfRow> rows;
-  int used = 0, gated = 0;
 };
 
 struct ConditionReport {
