@@ -110,21 +110,39 @@ CentralApproximation calibratedModel(const OmnidirCalibration& fit, const std::v
   return model;
 }
 
-HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM) {
+namespace {
+
+struct MapStatistics {
+  double median = 0.0, rms = 0.0, max = 0.0;
+};
+
+// Over the map's imaged pixels (NaN: not imaged).
+MapStatistics statistics(const std::vector<float>& map) {
   std::vector<float> errors;
-  for (float e : centralResidualMap(camera, model, distanceM))
+  for (float e : map)
     if (!std::isnan(e)) errors.push_back(e);
-  HeldOutError h;
-  h.distanceM = distanceM;
-  if (errors.empty()) return h;
+  MapStatistics s;
+  if (errors.empty()) return s;
   double squares = 0.0;
   for (float e : errors) {
     squares += static_cast<double>(e) * e;
-    h.maxPx = std::max(h.maxPx, static_cast<double>(e));
+    s.max = std::max(s.max, static_cast<double>(e));
   }
-  h.rmsPx = std::sqrt(squares / static_cast<double>(errors.size()));
+  s.rms = std::sqrt(squares / static_cast<double>(errors.size()));
   std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2), errors.end());
-  h.medianPx = errors[errors.size() / 2];
+  s.median = errors[errors.size() / 2];
+  return s;
+}
+
+}  // namespace
+
+HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM) {
+  const MapStatistics px = statistics(centralResidualMap(camera, model, distanceM));
+  const MapStatistics rad = statistics(centralRayErrorMap(camera, model, distanceM));
+  HeldOutError h;
+  h.distanceM = distanceM;
+  h.medianPx = px.median, h.rmsPx = px.rms, h.maxPx = px.max;
+  h.medianMrad = 1e3 * rad.median, h.rmsMrad = 1e3 * rad.rms;
   return h;
 }
 

@@ -48,11 +48,13 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
 // calibrated camera is, to be measured against the truth like the best-fit central model.
 CentralApproximation calibratedModel(const OmnidirCalibration& fit, const std::vector<Rigid>& viewpointFromTarget);
 
-// A central model's reprojection error (px) for points `distanceM` from its viewpoint along the
-// camera's true rays (0: at infinity), over every pixel centre the camera images.
+// A central model's reprojection error (px) and ray error (mrad) for points `distanceM` from its
+// viewpoint along the camera's true rays (0: at infinity), over every pixel centre the camera
+// images (central_fit.h's maps).
 struct HeldOutError {
   double distanceM = 0.0;
   double medianPx = 0.0, rmsPx = 0.0, maxPx = 0.0;
+  double medianMrad = 0.0, rmsMrad = 0.0;
 };
 HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM);
 

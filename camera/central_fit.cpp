@@ -110,17 +110,28 @@ struct DirectionResiduals {
 
 // The fit's reprojection error for the point of `g`'s ray at `distance` from the fitted viewpoint
 // (the ray starts within it); 0 = infinity, where the model sees the ray's direction.
+// The point of the true ray `distance` from the fit's viewpoint.
+Vec3 pointAlong(const CentralApproximation& fit, const CameraRay& ray, double distance) {
+  const Vec3 fromViewpoint = ray.origin - fit.viewpoint;
+  const double b = ray.direction.dot(fromViewpoint);
+  const double t = -b + std::sqrt(std::max(0.0, b * b - (fromViewpoint.squaredNorm() - distance * distance)));
+  return ray.origin + t * ray.direction;
+}
+
 double reprojectionError(const CentralApproximation& fit, const GridRay& g, double distance) {
-  std::optional<Vec2> p;
-  if (distance == 0.0) {
-    p = fit.intrinsics.raster(fit.cameraFromViewpoint.linear() * g.ray.direction);
-  } else {
-    const Vec3 fromViewpoint = g.ray.origin - fit.viewpoint;
-    const double b = g.ray.direction.dot(fromViewpoint);
-    const double t = -b + std::sqrt(std::max(0.0, b * b - (fromViewpoint.squaredNorm() - distance * distance)));
-    p = fit.raster(g.ray.origin + t * g.ray.direction);
-  }
+  const std::optional<Vec2> p = distance == 0.0 ? fit.intrinsics.raster(fit.cameraFromViewpoint.linear() * g.ray.direction)
+                                                : fit.raster(pointAlong(fit, g.ray, distance));
   return p ? (*p - g.raster).norm() : std::numeric_limits<double>::infinity();
+}
+
+// The angle between the model's ray of the pixel and the direction from its viewpoint to the
+// true point (the true ray's direction at infinity).
+double rayError(const CentralApproximation& fit, const GridRay& g, double distance) {
+  const std::optional<Vec3> d = fit.intrinsics.direction(g.raster);
+  if (!d) return std::numeric_limits<double>::infinity();
+  const Vec3 model = fit.cameraFromViewpoint.linear().transpose() * *d;
+  const Vec3 truth = distance == 0.0 ? g.ray.direction : (pointAlong(fit, g.ray, distance) - fit.viewpoint).normalized();
+  return std::atan2(model.cross(truth).norm(), model.dot(truth));
 }
 
 CentralApproximation::Residual residualAt(const CentralApproximation& fit, const std::vector<GridRay>& rays, double distance) {
@@ -200,6 +211,17 @@ std::vector<float> centralResidualMap(const Camera& camera, const CentralApproxi
       const Vec2 centre(i + 0.5, j + 0.5);
       if (const auto ray = camera.generateRay({centre}))
         map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(reprojectionError(fit, {centre, *ray}, distanceM));
+    }
+  return map;
+}
+
+std::vector<float> centralRayErrorMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
+  std::vector<float> map(static_cast<size_t>(camera.width()) * camera.height(), std::numeric_limits<float>::quiet_NaN());
+  for (int j = 0; j < camera.height(); ++j)
+    for (int i = 0; i < camera.width(); ++i) {
+      const Vec2 centre(i + 0.5, j + 0.5);
+      if (const auto ray = camera.generateRay({centre}))
+        map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(rayError(fit, {centre, *ray}, distanceM));
     }
   return map;
 }

@@ -60,6 +60,10 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
 // nothing. Row-major, camera.width() × camera.height().
 std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM);
 
+// The same points' ray error (radians): the angle between the fit's ray of each pixel centre (from
+// its viewpoint) and the direction from its viewpoint to the point; NaN where the camera images
+// nothing, infinity where the fit has no ray.
+std::vector<float> centralRayErrorMap(const Camera& camera, const CentralApproximation& fit, double distanceM);
 // For sidecars and intrinsics files (cv::omnidir names).
 nlohmann::json toJson(const CentralApproximation& fit);
 

@@ -103,6 +103,46 @@ TEST(CentralFit, RecoversTheExactModelOfTheAlignedDistortedRig) {
   for (const auto& r : fit.residuals) EXPECT_LE(r.maxPx, 1e-6) << "at " << r.distanceM << " m";
 }
 
+// The ray error in closed form: the exact model of the ideal rig turned by α = 1 mrad about its
+// viewpoint's z axis errs at each pixel by the angle the turn moves that pixel's ray,
+// 2·asin(sin(α/2)·|z × d|); moved 1 cm sideways, by the parallax of a point 0.5 m away seen from
+// 1 cm off, at most asin(0.01/0.5) (a ray across the offset).
+TEST(CentralFit, TheRayErrorOfATurnedOrMovedExactModelIsItsAngle) {
+  RigSpec rig;
+  const PhysicalCamera camera(rig);
+  const CentralApproximation exact = fitCentralApproximation(camera);
+  const double alpha = 1e-3;
+  CentralApproximation turned = exact;
+  turned.cameraFromViewpoint.linear() = exact.cameraFromViewpoint.linear() * Eigen::AngleAxisd(alpha, Vec3::UnitZ()).toRotationMatrix();
+  const std::vector<float> map = centralRayErrorMap(camera, turned, 0.0);
+  double worst = 0.0;
+  int pixels = 0;
+  for (int j = 0; j < camera.height(); ++j)
+    for (int i = 0; i < camera.width(); ++i) {
+      const float e = map[static_cast<size_t>(j) * camera.width() + i];
+      const auto ray = camera.generateRay({Vec2(i + 0.5, j + 0.5)});
+      ASSERT_EQ(std::isnan(e), !ray.has_value());
+      if (!ray) continue;
+      const double expected = 2.0 * std::asin(std::sin(alpha / 2.0) * Vec3::UnitZ().cross(ray->direction).norm());
+      worst = std::max(worst, std::abs(e - expected));
+      ++pixels;
+    }
+  EXPECT_GT(pixels, 10000);
+  EXPECT_LT(worst, 1e-7) << "radians";
+  for (float e : centralRayErrorMap(camera, exact, 0.5)) {
+    if (!std::isnan(e)) {
+      EXPECT_LT(e, 1e-7);
+    }
+  }
+  CentralApproximation moved = exact;
+  moved.viewpoint = Vec3(0.01, 0.0, 0.0);
+  moved.cameraFromViewpoint.translation() = -(exact.cameraFromViewpoint.linear() * moved.viewpoint);
+  double hi = 0.0;
+  for (float e : centralRayErrorMap(camera, moved, 0.5))
+    if (!std::isnan(e)) hi = std::max(hi, static_cast<double>(e));
+  EXPECT_NEAR(hi, std::asin(0.01 / 0.5), 2e-4);
+}
+
 TEST(CentralFit, ATurnedPinholeAtTheFocusStaysCentral) {
   RigSpec rig;
   rig.mount.rotationDeg = {1.0, -0.5, 0.5};
