@@ -1,4 +1,5 @@
 // omnicam experiment texture-realism -o DIR [--quick] [--doc PATH]
+// omnicam experiment calibration -o DIR [--quick] [--doc PATH]
 // omnicam arena hall [--photo IMG]... [--random-photos] [--seed S] -o SCENE.json
 // omnicam arena mapping [--seed S] -o SCENE.json
 #include <algorithm>
@@ -7,6 +8,7 @@
 #include <optional>
 
 #include "atomic_file.h"
+#include "calibration_study.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
@@ -154,12 +156,48 @@ std::string convergenceSection(const ConvergenceResults& r, const std::string& f
   return convergenceMarkdown(r, "figures/realistic_convergence.svg");
 }
 
+// The figures of a run, copied beside the document that shows them (its figures/ folder).
+void copyFigures(const std::string& folder, const std::string& doc, const std::vector<std::string>& figures) {
+  const std::filesystem::path docFolder = std::filesystem::path(doc).parent_path();
+  makeFoldersInside(docFolder.empty() ? "." : docFolder.string(), "figures");
+  for (const std::string& figure : figures)
+    writeTextAtomically((docFolder / "figures" / figure).string(), readFileInside(folder, "figures/" + figure, 16 << 20));
+}
+
+void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--noise-scene"})
+    refuseUnless(cmd, flag, false, flag == std::string("--noise-scene") ? "experiment path-convergence" : "experiment texture-realism");
+  if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
+  if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
+  checkOutputFolder(a.out, "-o");
+  CalibrationStudyOptions options = a.quick ? CalibrationStudyOptions::quick() : CalibrationStudyOptions();
+  options.outDir = a.out;
+  options.fieldScene = scenesDir() + "/robocup2006.json";
+  ensureDirectory(a.out, "-o");
+  StageProgress progress;
+  const CalibrationStudyResults r = runCalibrationStudy(
+      options, a.noFigures ? "" : experimentsDir() + "/plot_calibration_study.py",
+      [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
+  progress.finish();
+  std::string command = std::string("omnicam experiment calibration -o DIR") + (a.quick ? " --quick" : "");
+  if (!a.doc.empty()) command += " --doc " + a.doc;
+  const std::string markdown = calibrationStudyMarkdown(r, options, command);
+  writeTextAtomically(a.out + "/calibration-study.md", markdown);
+  if (!a.doc.empty()) {
+    copyFigures(a.out, a.doc, {"calibration_study_error.svg", "calibration_study_residuals.png"});
+    writeTextAtomically(a.doc, markdown);
+  }
+  std::printf("%swrote %s/results.json, %s/calibration-study.md (%.0f s)\n", markdown.c_str(), a.out.c_str(), a.out.c_str(), r.seconds);
+}
+
 void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
-  if (a.name != "texture-realism" && a.name != "realistic-convergence" && a.name != "path-convergence")
-    throw InputError("experiment: unknown experiment " + quote(a.name) + " (texture-realism, realistic-convergence, path-convergence)");
+  if (a.name != "texture-realism" && a.name != "realistic-convergence" && a.name != "path-convergence" && a.name != "calibration")
+    throw InputError("experiment: unknown experiment " + quote(a.name) +
+                     " (texture-realism, realistic-convergence, path-convergence, calibration)");
   if (a.out.empty()) throw InputError("-o: give the folder for the results");
   if (a.name == "realistic-convergence") return runConvergence(a, cmd);
   if (a.name == "path-convergence") return runPathStudy(a, cmd);
+  if (a.name == "calibration") return runCalibration(a, cmd);
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   std::optional<ConvergenceResults> convergence;
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
@@ -240,8 +278,9 @@ void addExperimentCommands(CLI::App& app) {
   auto args = std::make_shared<ExperimentArgs>();
   CLI::App* cmd = app.add_subcommand("experiment", "Run one of the thesis' experiments (docs/texture-realism.md)");
   cmd->add_option("name", args->name,
-                  "texture-realism, realistic-convergence (how converged its Blender frames are), or path-convergence (the "
-                  "fast renderer's path shading against Cycles, docs/path-tracing.md)")
+                  "texture-realism, realistic-convergence (how converged its Blender frames are), path-convergence (the "
+                  "fast renderer's path shading against Cycles, docs/path-tracing.md), or calibration (what misalignment "
+                  "does to a calibrated camera, docs/calibration-study.md)")
       ->required();
   cmd->add_option("-o,--output", args->out, "Folder for results.json, report.html, figures/ and data/")->required();
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");

@@ -114,14 +114,20 @@ namespace {
 
 struct MapStatistics {
   double median = 0.0, rms = 0.0, max = 0.0;
+  double unmodelledShare = 0.0;
 };
 
-// Over the map's imaged pixels (NaN: not imaged).
+// Over the map's imaged pixels (NaN: not imaged); infinite errors (the model has no projection
+// or ray there) are counted apart.
 MapStatistics statistics(const std::vector<float>& map) {
   std::vector<float> errors;
-  for (float e : map)
-    if (!std::isnan(e)) errors.push_back(e);
+  size_t imaged = 0;
+  for (float e : map) {
+    imaged += !std::isnan(e);
+    if (std::isfinite(e)) errors.push_back(e);
+  }
   MapStatistics s;
+  if (imaged > 0) s.unmodelledShare = 1.0 - static_cast<double>(errors.size()) / static_cast<double>(imaged);
   if (errors.empty()) return s;
   double squares = 0.0;
   for (float e : errors) {
@@ -143,6 +149,7 @@ HeldOutError heldOutError(const Camera& camera, const CentralApproximation& mode
   h.distanceM = distanceM;
   h.medianPx = px.median, h.rmsPx = px.rms, h.maxPx = px.max;
   h.medianMrad = 1e3 * rad.median, h.rmsMrad = 1e3 * rad.rms;
+  h.unmodelledShare = std::max(px.unmodelledShare, rad.unmodelledShare);
   return h;
 }
 

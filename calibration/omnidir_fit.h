@@ -50,11 +50,13 @@ CentralApproximation calibratedModel(const OmnidirCalibration& fit, const std::v
 
 // A central model's reprojection error (px) and ray error (mrad) for points `distanceM` from its
 // viewpoint along the camera's true rays (0: at infinity), over every pixel centre the camera
-// images (central_fit.h's maps).
+// images (central_fit.h's maps) where the model projects the point and has a ray; the others are
+// its unmodelled share (a calibration whose model images less than the camera does).
 struct HeldOutError {
   double distanceM = 0.0;
   double medianPx = 0.0, rmsPx = 0.0, maxPx = 0.0;
   double medianMrad = 0.0, rmsMrad = 0.0;
+  double unmodelledShare = 0.0;
 };
 HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM);
 

@@ -57,7 +57,8 @@ struct CalibrationRun {
   CornerSource source = CornerSource::Exact;
   int seed = 0;
   int views = 0, corners = 0;  // views with at least four corners, and their corners
-  OmnidirCalibration fit;      // converged false: initialisation failed
+  OmnidirCalibration fit;      // converged false: failed (initialisation, or diverged)
+  bool diverged = false;       // OpenCV converged to a training RMS no user would keep
   std::vector<HeldOutError> heldOut;  // one per options.heldOutDistancesM
   TriangulationError triangulation;
 };

@@ -1,5 +1,7 @@
 #include "realistic_convergence.h"
 
+#include "plot_script.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -165,14 +167,6 @@ void writeCsv(const ConvergenceResults& r, const fs::path& out) {
   writeTextAtomically((out / "data/paths.csv").string(), paths.str());
 }
 
-void drawFigure(const std::string& plotScript, const fs::path& out) {
-  const fs::path root = fs::absolute(out);
-  const ProcessResult plot = runProcess({"/usr/bin/python3", fs::absolute(plotScript).string(), root.string()}, root.string(),
-                                        (root / "figures/plot.log").string(), 600.0);
-  if (plot.notFound) throw OutputError("/usr/bin/python3: not found (make deps installs python3 and python3-matplotlib)");
-  if (plot.exitCode != 0)
-    throw OutputError(showPath(plotScript) + ": the figure failed (exit " + std::to_string(plot.exitCode) + "): " + plot.logTail);
-}
 
 }  // namespace
 
@@ -257,7 +251,7 @@ ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const st
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   writeCsv(r, out);
   writeTextAtomically((out / "convergence.json").string(), convergenceJson(r).dump(2) + "\n");
-  if (!plotScript.empty()) drawFigure(plotScript, out);
+  if (!plotScript.empty()) runPlotScript(plotScript, out.string());
   return r;
 }
 

@@ -1,5 +1,7 @@
 #include "texture_realism_report.h"
 
+#include "plot_script.h"
+
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -194,14 +196,7 @@ void writeTextureRealismReport(const ReportData& data, const TextureRealismResul
   writeTextAtomically((out / "results.json").string(), textureRealismResultsJson(results).dump(2) + "\n");
   bool figures = false;
   if (!plotScript.empty()) {
-    // Debian's python3 (make deps installs python3-matplotlib for it), not whatever python3 comes
-    // first on PATH. Paths absolute: the process starts in the results folder.
-    const fs::path root = fs::absolute(out);
-    const ProcessResult plot = runProcess({"/usr/bin/python3", fs::absolute(plotScript).string(), root.string()}, root.string(),
-                                          (root / "figures/plot.log").string(), 600.0);
-    if (plot.notFound) throw OutputError("/usr/bin/python3: not found (make deps installs python3 and python3-matplotlib)");
-    if (plot.exitCode != 0)
-      throw OutputError(showPath(plotScript) + ": the figures failed (exit " + std::to_string(plot.exitCode) + "): " + plot.logTail);
+    runPlotScript(plotScript, out.string());
     figures = true;
   }
   writeHtml(data, results, out, figures);
