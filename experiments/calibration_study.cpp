@@ -159,43 +159,6 @@ std::optional<Vec3> modelDirection(const CentralApproximation& model, const Vec2
   return Vec3(model.cameraFromViewpoint.linear().transpose() * *d);
 }
 
-// Points `distance` from F' on the true rays of a pixel grid, seen again after the robot drove
-// `baseline` forward: each triangulated from the two rays the calibrated model gives their
-// pixels (midpoint of the closest points), against the truth.
-TriangulationError triangulation(const Camera& camera, const CentralApproximation& model, double distance, double baseline) {
-  const Vec3 moved(baseline, 0.0, 0.0);
-  const int stride = std::max(1, camera.width() / 48);
-  std::vector<double> errors;
-  for (int j = stride / 2; j < camera.height(); j += stride)
-    for (int i = stride / 2; i < camera.width(); i += stride) {
-      const Vec2 a(i + 0.5, j + 0.5);
-      const std::optional<CameraRay> ray = camera.generateRay({a});
-      if (!ray) continue;
-      const Vec3 point = pointAtDistance(ray->origin, ray->direction, distance);
-      const std::optional<Vec2> b = camera.project(point - moved);
-      if (!b || !camera.images(*b)) continue;
-      if ((point.normalized()).dot((point - moved).normalized()) > std::cos(kMinTriangulationAngleRad)) continue;
-      const std::optional<Vec3> da = modelDirection(model, a), db = modelDirection(model, *b);
-      if (!da || !db) continue;
-      const Vec3 oa = model.viewpoint, ob = model.viewpoint + moved;
-      // Closest points of oa + s·da and ob + t·db.
-      const Vec3 w = oa - ob;
-      const double aa = da->dot(*da), ab = da->dot(*db), bb = db->dot(*db), aw = da->dot(w), bw = db->dot(w);
-      const double denominator = aa * bb - ab * ab;
-      if (!(denominator > 1e-12)) continue;
-      const double s = (ab * bw - bb * aw) / denominator, t = (aa * bw - ab * aw) / denominator;
-      const Vec3 midpoint = 0.5 * ((oa + s * *da) + (ob + t * *db));
-      errors.push_back(1e3 * (midpoint - point).norm());
-    }
-  TriangulationError out;
-  out.points = static_cast<int>(errors.size());
-  if (errors.empty()) return out;
-  std::sort(errors.begin(), errors.end());
-  out.medianMm = errors[errors.size() / 2];
-  out.p90Mm = errors[static_cast<size_t>(0.9 * static_cast<double>(errors.size() - 1))];
-  return out;
-}
-
 CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera, const SeedViews& seed, CornerSource source,
                          int seedNumber) {
   CalibrationRun run;
@@ -227,7 +190,7 @@ CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera,
   }
   const CentralApproximation model = calibratedModel(run.fit, poses);
   for (double d : o.heldOutDistancesM) run.heldOut.push_back(heldOutError(camera, model, d));
-  run.triangulation = triangulation(camera, model, o.triangulationDistanceM, o.triangulationBaselineM);
+  run.triangulation = triangulationError(camera, model, o.triangulationDistanceM, o.triangulationBaselineM);
   return run;
 }
 
@@ -299,7 +262,11 @@ EkfComparison compareEkf(const Scene& field, const std::vector<RobotPose>& loop,
   e.measurements = m.count;
   e.odometryCm = runEkf(drive, [](size_t) { return nullptr; }).meanOdometryErrorCm();
   e.trueRaysCm = ekfError(m.trueRays);
-  e.nominalCm = ekfError(m.nominal);
+  const EkfTrace nominalTrace = runEkf(drive, [&](size_t k) { return &m.nominal[k]; });
+  e.nominalCm = nominalTrace.meanErrorCm();
+  e.nominalUsedShare = nominalTrace.used + nominalTrace.gated > 0
+                           ? static_cast<double>(nominalTrace.used) / (nominalTrace.used + nominalTrace.gated)
+                           : 0.0;
   e.calibratedCm = ekfError(m.calibrated);
   e.calibratedExactCm = ekfError(m.calibratedExact);
   return e;
@@ -328,6 +295,43 @@ bool mapped(const Misalignment& m) {
 }
 
 }  // namespace
+
+// Points `distance` from F' on the true rays of a pixel grid, seen again after the robot drove
+// `baseline` forward: each triangulated from the two rays the calibrated model gives their
+// pixels (midpoint of the closest points), against the truth.
+TriangulationError triangulationError(const Camera& camera, const CentralApproximation& model, double distance, double baseline) {
+  const Vec3 moved(baseline, 0.0, 0.0);
+  const int stride = std::max(1, camera.width() / 48);
+  std::vector<double> errors;
+  for (int j = stride / 2; j < camera.height(); j += stride)
+    for (int i = stride / 2; i < camera.width(); i += stride) {
+      const Vec2 a(i + 0.5, j + 0.5);
+      const std::optional<CameraRay> ray = camera.generateRay({a});
+      if (!ray) continue;
+      const Vec3 point = pointAtDistance(ray->origin, ray->direction, distance);
+      const std::optional<Vec2> b = camera.project(point - moved);
+      if (!b || !camera.images(*b)) continue;
+      if ((point.normalized()).dot((point - moved).normalized()) > std::cos(kMinTriangulationAngleRad)) continue;
+      const std::optional<Vec3> da = modelDirection(model, a), db = modelDirection(model, *b);
+      if (!da || !db) continue;
+      const Vec3 oa = model.viewpoint, ob = model.viewpoint + moved;
+      // Closest points of oa + s·da and ob + t·db.
+      const Vec3 w = oa - ob;
+      const double aa = da->dot(*da), ab = da->dot(*db), bb = db->dot(*db), aw = da->dot(w), bw = db->dot(w);
+      const double denominator = aa * bb - ab * ab;
+      if (!(denominator > 1e-12)) continue;
+      const double s = (ab * bw - bb * aw) / denominator, t = (aa * bw - ab * aw) / denominator;
+      const Vec3 midpoint = 0.5 * ((oa + s * *da) + (ob + t * *db));
+      errors.push_back(1e3 * (midpoint - point).norm());
+    }
+  TriangulationError out;
+  out.points = static_cast<int>(errors.size());
+  if (errors.empty()) return out;
+  std::sort(errors.begin(), errors.end());
+  out.medianMm = errors[errors.size() / 2];
+  out.p90Mm = errors[static_cast<size_t>(0.9 * static_cast<double>(errors.size() - 1))];
+  return out;
+}
 
 CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, const std::string& plotScript,
                                             const StudyProgress& progress) {
@@ -430,7 +434,7 @@ json calibrationStudyJson(const CalibrationStudyResults& r, const CalibrationStu
                     {"truth", intrinsicsJson(t.xi, t.gammaX, t.gammaY, t.cx, t.cy, {t.lens.k1, t.lens.k2, t.lens.p1, t.lens.p2})},
                     {"best_fit_held_out", heldOutJson(rig.bestFitHeldOut)},
                     {"runs", runs},
-                    {"ekf_cm", {{"odometry", rig.ekf.odometryCm}, {"true_rays", rig.ekf.trueRaysCm}, {"nominal", rig.ekf.nominalCm},
+                    {"ekf_cm", {{"odometry", rig.ekf.odometryCm}, {"true_rays", rig.ekf.trueRaysCm}, {"nominal", rig.ekf.nominalCm}, {"nominal_used_share", rig.ekf.nominalUsedShare},
                                 {"calibrated_noisy", rig.ekf.calibratedCm}, {"calibrated_exact", rig.ekf.calibratedExactCm},
                                 {"measurements", rig.ekf.measurements}}}});
   }

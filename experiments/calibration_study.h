@@ -52,6 +52,12 @@ struct TriangulationError {
   int points = 0;
 };
 
+// Points `distanceM` from F' on the true rays of a pixel grid, seen again after the robot drove
+// `baselineM` forward: each triangulated (midpoint of the closest points) from the two rays
+// `model` gives their pixels, against the truth. Points whose true rays meet at less than 5°
+// (almost along the baseline) are left out.
+TriangulationError triangulationError(const Camera& camera, const CentralApproximation& model, double distanceM, double baselineM);
+
 // One calibration: a seed's views with one source of corners.
 struct CalibrationRun {
   CornerSource source = CornerSource::Exact;
@@ -68,6 +74,7 @@ struct EkfComparison {
   double odometryCm = 0.0;
   double trueRaysCm = 0.0;      // the rig's exact rays
   double nominalCm = 0.0;       // the ideal rig's model, as if nothing were misaligned
+  double nominalUsedShare = 0.0;  // of its measurements, the share the EKF's gate let in
   double calibratedCm = 0.0;    // seed 1's calibration from noisy detected corners
   double calibratedExactCm = 0.0;  // seed 1's calibration from exact corners
   int measurements = 0;

@@ -426,5 +426,61 @@ TEST_F(ExperimentCliTest, QuickPathConvergenceMeasuresNineFramesAndReusesCyclesF
     EXPECT_EQ(again["frames"][k]["converged_psnr_db"], results["frames"][k]["converged_psnr_db"]) << k;
 }
 
+
+// `omnicam experiment calibration --quick`: the ideal rig, the pinhole 2 mm across and 2 mm along
+// the axis, one seed of twelve AprilGrid views at 720 px. What must hold whatever the numbers:
+// the ideal rig's calibration from exact corners is the rig (held-out error and triangulation
+// nil; its EKF with the nominal model is the EKF with the true rays, the same rays); a pinhole
+// moved across the axis is no longer central (the best central model errs > 1 px at 0.5 m) and
+// the thesis' nominal model localises worse than the calibrated one. Figures and the document.
+TEST_F(ExperimentCliTest, QuickCalibrationStudyMeasuresHeldOutErrorsAndWritesTheReport) {
+  fs::create_directories(path("docs"));
+  const auto r = omnicam("experiment calibration --quick -o " + path("cal") + " --doc " + path("docs/calibration-study.md"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const json results = json::parse(testing::readFile(path("cal/results.json")));
+  ASSERT_EQ(results["rigs"].size(), 3u);
+  std::map<std::string, json> rigs;
+  for (const json& rig : results["rigs"]) rigs[rig["label"].get<std::string>()] = rig;
+  ASSERT_TRUE(rigs.count("ideal") && rigs.count("lateral 2 mm") && rigs.count("axial 2 mm"));
+  const auto run = [](const json& rig, const std::string& source) {
+    for (const json& calibration : rig["runs"])
+      if (calibration["source"] == source) return calibration;
+    return json();
+  };
+  const json idealExact = run(rigs["ideal"], "exact");
+  ASSERT_TRUE(idealExact["converged"].get<bool>()) << idealExact.dump();
+  EXPECT_LT(idealExact["rms_px"].get<double>(), 1e-3);
+  for (const json& h : idealExact["held_out"]) {
+    EXPECT_LT(h["max_px"].get<double>(), 1e-2) << h.dump();
+    EXPECT_LT(h["rms_mrad"].get<double>(), 1e-2) << h.dump();
+    EXPECT_EQ(h["unmodelled_share"].get<double>(), 0.0);
+  }
+  EXPECT_LT(idealExact["triangulation"]["p90_mm"].get<double>(), 0.01);
+  EXPECT_GT(idealExact["triangulation"]["points"].get<int>(), 500);
+  // Detections calibrate too, less exactly.
+  for (const char* source : {"detected", "detected_noisy"}) {
+    const json detected = run(rigs["ideal"], source);
+    ASSERT_TRUE(detected["converged"].get<bool>()) << source;
+    EXPECT_LT(detected["rms_px"].get<double>(), 0.5) << source;
+    EXPECT_GT(detected["corners"].get<int>(), 200) << source;
+  }
+  EXPECT_EQ(rigs["ideal"]["ekf_cm"]["nominal"], rigs["ideal"]["ekf_cm"]["true_rays"]);
+  EXPECT_LT(rigs["ideal"]["ekf_cm"]["true_rays"].get<double>(), rigs["ideal"]["ekf_cm"]["odometry"].get<double>() / 2);
+  const json& lateral = rigs["lateral 2 mm"];
+  EXPECT_GT(lateral["best_fit_held_out"][1]["rms_px"].get<double>(), 1.0);
+  EXPECT_LT(rigs["axial 2 mm"]["best_fit_held_out"][1]["rms_px"].get<double>(), 0.1) << "along the axis: almost central";
+  EXPECT_GT(lateral["ekf_cm"]["nominal"].get<double>(), 2 * lateral["ekf_cm"]["calibrated_exact"].get<double>());
+  // The report: the headline, the tables, the figures beside the document.
+  const std::string doc = testing::readFile(path("docs/calibration-study.md"));
+  EXPECT_NE(doc.find("## Headline"), std::string::npos);
+  EXPECT_NE(doc.find("| lateral 2 mm | best central model |"), std::string::npos);
+  EXPECT_EQ(doc, testing::readFile(path("cal/calibration-study.md")));
+  for (const char* figure : {"calibration_study_error.svg", "calibration_study_residuals.png"}) {
+    EXPECT_TRUE(fs::is_regular_file(path(std::string("docs/figures/") + figure))) << figure;
+    EXPECT_GT(fs::file_size(path(std::string("cal/figures/") + figure)), 10000u) << figure;
+  }
+  EXPECT_TRUE(fs::is_regular_file(path("cal/data/residual_lateral_2_mm_exact.f32")));
+}
+
 }  // namespace
 }  // namespace omnicam
