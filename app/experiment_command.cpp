@@ -131,6 +131,13 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   std::printf("%swrote %s/path-convergence.json (%.0f s)\n", markdown.c_str(), a.out.c_str(), r.seconds);
 }
 
+// A figure's bytes into figures/ beside the document `doc`.
+void writeFigureBeside(const std::string& doc, const std::string& name, const std::string& bytes) {
+  const std::filesystem::path docFolder = std::filesystem::path(doc).parent_path();
+  makeFoldersInside(docFolder.empty() ? "." : docFolder.string(), "figures");
+  writeTextAtomically((docFolder / "figures" / name).string(), bytes);
+}
+
 // The study's results, read before anything is written (an output folder is untrusted input).
 ConvergenceResults readConvergence(const std::string& folder) {
   const std::string text = readFileInside(folder, "convergence.json", 64 << 20);
@@ -150,18 +157,13 @@ std::string convergenceSection(const ConvergenceResults& r, const std::string& f
   const std::string svg = readFileInside(folder, "figures/convergence.svg", 4 << 20);
   if (svg.find("<svg") == std::string::npos)
     throw InputError(showPath(folder + "/figures/convergence.svg") + ": not the study's SVG figure");
-  const std::filesystem::path docFolder = std::filesystem::path(doc).parent_path();
-  makeFoldersInside(docFolder.empty() ? "." : docFolder.string(), "figures");
-  writeTextAtomically((docFolder / "figures/realistic_convergence.svg").string(), svg);
+  writeFigureBeside(doc, "realistic_convergence.svg", svg);
   return convergenceMarkdown(r, "figures/realistic_convergence.svg");
 }
 
 // The figures of a run, copied beside the document that shows them (its figures/ folder).
 void copyFigures(const std::string& folder, const std::string& doc, const std::vector<std::string>& figures) {
-  const std::filesystem::path docFolder = std::filesystem::path(doc).parent_path();
-  makeFoldersInside(docFolder.empty() ? "." : docFolder.string(), "figures");
-  for (const std::string& figure : figures)
-    writeTextAtomically((docFolder / "figures" / figure).string(), readFileInside(folder, "figures/" + figure, 16 << 20));
+  for (const std::string& figure : figures) writeFigureBeside(doc, figure, readFileInside(folder, "figures/" + figure, 16 << 20));
 }
 
 void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {

@@ -1,5 +1,6 @@
 #include "board_poses.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -19,6 +20,13 @@ Vec3 patternCentre(const TargetPattern& pattern) {
     hi = hi.cwiseMax(c);
   }
   return 0.5 * (lo + hi);
+}
+
+// The board clears the floor by a centimetre: every corner of its pattern.
+constexpr double kFloorClearance = 0.01;
+bool aboveFloor(const Rigid& worldFromTarget, const std::vector<Vec3>& corners, double floorZ) {
+  return std::all_of(corners.begin(), corners.end(),
+                     [&](const Vec3& c) { return (worldFromTarget * c).z() >= floorZ + kFloorClearance; });
 }
 
 // A rotation whose z axis is `normal`, turned `rollRad` about it.
@@ -41,6 +49,7 @@ std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpo
   std::mt19937_64 random(o.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Vec3 centre = patternCentre(pattern);
+  const std::vector<Vec3> patternCorners = targetCorners(pattern);
   CalibrationTarget board;
   board.pattern = pattern;
   std::vector<Rigid> poses;
@@ -60,6 +69,7 @@ std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpo
     const Eigen::Matrix3d tilted = Eigen::AngleAxisd(tilt, toward.col(0)).toRotationMatrix() * toward;
     board.worldFromTarget.linear() = tilted * Eigen::AngleAxisd(roll, Vec3::UnitZ()).toRotationMatrix();
     board.worldFromTarget.translation() = at - board.worldFromTarget.linear() * centre;
+    if (o.floorZ && !aboveFloor(board.worldFromTarget, patternCorners, *o.floorZ)) continue;
     const std::vector<ImagedCorner> corners = imagedCorners(camera, worldFromViewpoint, nullptr, board);
     const auto seen = std::count_if(corners.begin(), corners.end(), [](const ImagedCorner& c) { return c.sight == CornerSight::Seen; });
     if (seen >= o.minSeenCorners) poses.push_back(board.worldFromTarget);

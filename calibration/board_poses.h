@@ -4,6 +4,7 @@
 // face turned back toward the camera, then tilted and rolled. Only poses with enough corners seen
 // are kept.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "calibration_target.h"
@@ -18,6 +19,9 @@ struct BoardPoseOptions {
   int minSeenCorners = 12;        // a pose with fewer corners seen is drawn again
   uint64_t seed = 1;
   int maxDraws = 100000;          // gives up (InputError) after this many draws
+  // A floor the board cannot go through: every corner of the pattern at least 1 cm above this
+  // height (metres, in the frame the poses are given in); none: anywhere.
+  std::optional<double> floorZ;
 };
 
 // `count` poses (worldFromTarget for a camera at worldFromViewpoint), each with at least

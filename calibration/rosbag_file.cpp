@@ -1,5 +1,6 @@
 #include "rosbag_file.h"
 
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -18,12 +19,17 @@ constexpr const char* kPython = "/usr/bin/python3";
 constexpr int64_t kMaxBagBytes = int64_t{1} << 40;
 constexpr double kWriterTimeoutSeconds = 3600.0;
 
+// Absolute: the writer runs in its job folder.
 std::string writerScript() {
-  if (const char* env = std::getenv("OMNICAM_ROSBAG_WRITER")) return env;
-  return OMNICAM_ROSBAG_WRITER;
+  const char* env = std::getenv("OMNICAM_ROSBAG_WRITER");
+  return std::filesystem::absolute(env ? env : OMNICAM_ROSBAG_WRITER).string();
 }
 
-void put32(std::ofstream& out, uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); }
+// Little-endian, as write_rosbag.py reads them, whatever the host's order.
+void putLittleEndian(std::ofstream& out, uint64_t v, int bytes) {
+  for (int k = 0; k < bytes; ++k) out.put(static_cast<char>((v >> (8 * k)) & 0xff));
+}
+void put32(std::ofstream& out, uint32_t v) { putLittleEndian(out, v, 4); }
 void putString(std::ofstream& out, const std::string& s) {
   put32(out, static_cast<uint32_t>(s.size()));
   out.write(s.data(), static_cast<std::streamsize>(s.size()));
@@ -42,20 +48,29 @@ std::string imageBag(const std::vector<BagImage>& images) {
         throw std::logic_error("imageBag: an image's bytes are not width × height × 3");
       putString(out, image.topic);
       putString(out, image.frameId);
-      out.write(reinterpret_cast<const char*>(&image.stampNs), 8);
+      putLittleEndian(out, static_cast<uint64_t>(image.stampNs), 8);
       put32(out, image.seq);
       put32(out, static_cast<uint32_t>(image.width));
       put32(out, static_cast<uint32_t>(image.height));
       out.write(image.rgb8.data(), static_cast<std::streamsize>(image.rgb8.size()));
     }
-    if (!out) throw ExternalError("ROS bag: cannot write the writer's input in " + job.path());
+    if (!out) throw OutputError("ROS bag: cannot write the writer's input in " + showPath(job.path()));
   }
   const ProcessResult run = runProcess({kPython, writerScript()}, job.path(), job.path() + "/writer.log", kWriterTimeoutSeconds);
-  if (run.notFound) throw std::runtime_error(std::string("ROS bag: ") + kPython + " not found (make deps installs it with python3-rosbag)");
+  if (run.notFound) throw ExternalError(std::string("ROS bag: ") + kPython + " not found (make deps installs it with python3-rosbag)");
   if (run.exitCode != 0 || run.timedOut)
     throw ExternalError("ROS bag: python3-rosbag's writer failed (make deps installs python3-rosbag and python3-sensor-msgs): " +
                              run.logTail);
   return readFileInside(job.path(), "images.bag", kMaxBagBytes);
+}
+
+void checkImageBagWriter() {
+  const JobFolder job("omnicam-rosbag", false);
+  const ProcessResult run = runProcess({kPython, "-c", "import genpy, rosbag, sensor_msgs.msg, std_msgs.msg"}, job.path(),
+                                       job.path() + "/check.log", kWriterTimeoutSeconds);
+  if (run.notFound) throw ExternalError(std::string("ROS bag: ") + kPython + " not found (make deps installs it with python3-rosbag)");
+  if (run.exitCode != 0 || run.timedOut)
+    throw ExternalError("ROS bag: Debian's python3-rosbag or python3-sensor-msgs is missing (make deps installs them): " + run.logTail);
 }
 
 }  // namespace omnicam

@@ -18,5 +18,7 @@ struct BagImage {
 
 // The bag's bytes. ExternalError when python3-rosbag is missing or fails (its log's tail).
 std::string imageBag(const std::vector<BagImage>& images);
+// ExternalError unless the writer's Python modules import: checked before a run renders anything.
+void checkImageBagWriter();
 
 }  // namespace omnicam

@@ -36,6 +36,13 @@ std::optional<Vec3> MeiIntrinsics::direction(const Vec2& raster) const {
   return s.normalized();
 }
 
+Vec3 pointAtDistance(const CameraRay& ray, const Vec3& centre, double distance) {
+  const Vec3 fromCentre = ray.origin - centre;
+  const double b = ray.direction.dot(fromCentre);
+  const double t = -b + std::sqrt(std::max(0.0, b * b - (fromCentre.squaredNorm() - distance * distance)));
+  return ray.origin + t * ray.direction;
+}
+
 namespace {
 
 struct GridRay {
@@ -110,28 +117,19 @@ struct DirectionResiduals {
 
 // The fit's reprojection error for the point of `g`'s ray at `distance` from the fitted viewpoint
 // (the ray starts within it); 0 = infinity, where the model sees the ray's direction.
-// The point of the true ray `distance` from the fit's viewpoint.
-Vec3 pointAlong(const CentralApproximation& fit, const CameraRay& ray, double distance) {
-  const Vec3 fromViewpoint = ray.origin - fit.viewpoint;
-  const double b = ray.direction.dot(fromViewpoint);
-  const double t = -b + std::sqrt(std::max(0.0, b * b - (fromViewpoint.squaredNorm() - distance * distance)));
-  return ray.origin + t * ray.direction;
-}
-
 double reprojectionError(const CentralApproximation& fit, const GridRay& g, double distance) {
   const std::optional<Vec2> p = distance == 0.0 ? fit.intrinsics.raster(fit.cameraFromViewpoint.linear() * g.ray.direction)
-                                                : fit.raster(pointAlong(fit, g.ray, distance));
+                                                : fit.raster(pointAtDistance(g.ray, fit.viewpoint, distance));
   return p ? (*p - g.raster).norm() : std::numeric_limits<double>::infinity();
 }
 
 // The angle between the model's ray of the pixel and the direction from its viewpoint to the
 // true point (the true ray's direction at infinity).
 double rayError(const CentralApproximation& fit, const GridRay& g, double distance) {
-  const std::optional<Vec3> d = fit.intrinsics.direction(g.raster);
-  if (!d) return std::numeric_limits<double>::infinity();
-  const Vec3 model = fit.cameraFromViewpoint.linear().transpose() * *d;
-  const Vec3 truth = distance == 0.0 ? g.ray.direction : (pointAlong(fit, g.ray, distance) - fit.viewpoint).normalized();
-  return std::atan2(model.cross(truth).norm(), model.dot(truth));
+  const std::optional<Vec3> model = fit.direction(g.raster);
+  if (!model) return std::numeric_limits<double>::infinity();
+  const Vec3 truth = distance == 0.0 ? g.ray.direction : (pointAtDistance(g.ray, fit.viewpoint, distance) - fit.viewpoint).normalized();
+  return std::atan2(model->cross(truth).norm(), model->dot(truth));
 }
 
 CentralApproximation::Residual residualAt(const CentralApproximation& fit, const std::vector<GridRay>& rays, double distance) {
@@ -204,26 +202,29 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
   return fit;
 }
 
-std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
+namespace {
+
+// `error` of every pixel centre's true ray, row-major; NaN where the camera images nothing.
+template <class Error>
+std::vector<float> pixelMap(const Camera& camera, const Error& error) {
   std::vector<float> map(static_cast<size_t>(camera.width()) * camera.height(), std::numeric_limits<float>::quiet_NaN());
   for (int j = 0; j < camera.height(); ++j)
     for (int i = 0; i < camera.width(); ++i) {
       const Vec2 centre(i + 0.5, j + 0.5);
       if (const auto ray = camera.generateRay({centre}))
-        map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(reprojectionError(fit, {centre, *ray}, distanceM));
+        map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(error(GridRay{centre, *ray}));
     }
   return map;
 }
 
+}  // namespace
+
+std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
+  return pixelMap(camera, [&](const GridRay& g) { return reprojectionError(fit, g, distanceM); });
+}
+
 std::vector<float> centralRayErrorMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
-  std::vector<float> map(static_cast<size_t>(camera.width()) * camera.height(), std::numeric_limits<float>::quiet_NaN());
-  for (int j = 0; j < camera.height(); ++j)
-    for (int i = 0; i < camera.width(); ++i) {
-      const Vec2 centre(i + 0.5, j + 0.5);
-      if (const auto ray = camera.generateRay({centre}))
-        map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(rayError(fit, {centre, *ray}, distanceM));
-    }
-  return map;
+  return pixelMap(camera, [&](const GridRay& g) { return rayError(fit, g, distanceM); });
 }
 
 nlohmann::json toJson(const CentralApproximation& fit) {

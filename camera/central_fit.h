@@ -47,7 +47,17 @@ struct CentralApproximation {
   std::optional<Vec2> raster(const Vec3& pointViewpoint) const {
     return intrinsics.raster(cameraFromViewpoint * pointViewpoint);
   }
+  // The unit direction, in the rig's viewpoint frame, of the model's ray of a raster point (its
+  // origin is `viewpoint`); nullopt where the model images nothing.
+  std::optional<Vec3> direction(const Vec2& raster) const {
+    const std::optional<Vec3> d = intrinsics.direction(raster);
+    if (!d) return std::nullopt;
+    return Vec3(cameraFromViewpoint.linear().transpose() * *d);
+  }
 };
+
+// The point of `ray` (from inside the sphere) `distance` from `centre`.
+Vec3 pointAtDistance(const CameraRay& ray, const Vec3& centre, double distance);
 
 // Fits the central model to `camera`'s rays through the pixel centres of a grid of about
 // gridSize × gridSize pixels, and measures its residual at `distancesM`. Throws std::runtime_error

@@ -18,7 +18,7 @@ using nlohmann::json;
 namespace {
 
 // A frame's PNG as rgb8 rows.
-BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::string& camera, int index, double timestamp) {
+BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::string& camera, int index, double intervalS) {
   const std::string bytes = checkedBytes(dir, file);
   const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
   cv::Mat bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
@@ -29,7 +29,7 @@ BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::stri
   BagImage image;
   image.topic = "/" + camera + "/image_raw";
   image.frameId = camera;
-  image.stampNs = std::llround(timestamp * 1e9);
+  image.stampNs = eurocTimestampNs(index, intervalS);  // the frame's time, as EuRoC names its images
   image.seq = static_cast<uint32_t>(index);
   image.width = rgb.cols, image.height = rgb.rows;
   image.rgb8.resize(static_cast<size_t>(rgb.cols) * rgb.rows * 3);
@@ -43,6 +43,10 @@ BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::stri
 void writeCalibrationBags(const SafeFolder& dir, DatasetManifest& manifest) {
   const json calibration = manifest.header.value("calibration", json::object());
   if (!calibration.is_object() || calibration.value("rosbag", json(false)) != json(true)) return;
+  const json intervalField = manifest.header.value("settings", json::object()).value("frame_interval_s", json());
+  if (!intervalField.is_number() || !(intervalField.get<double>() * 1e9 >= 1.0))
+    throw InputError(showPath(dir.path()) + ": manifest: settings.frame_interval_s must be a number of at least 1 ns for the ROS bag");
+  const double interval = intervalField.get<double>();
   for (json& camera : manifest.header.at("cameras")) {
     const std::string name = camera.at("name").get<std::string>();
     std::vector<BagImage> images;
@@ -51,7 +55,7 @@ void writeCalibrationBags(const SafeFolder& dir, DatasetManifest& manifest) {
       const FileRecord* file = c == frame.cameras.end() ? nullptr : c->second.file(kColourOutput);
       if (!file)
         throw InputError(showPath(dir.path()) + ": frame " + std::to_string(index) + " camera " + quote(name) + " has no colour image");
-      images.push_back(bagImage(dir, *file, name, index, frame.timestamp));
+      images.push_back(bagImage(dir, *file, name, index, interval));
     }
     const std::string bag = imageBag(images);
     const std::string relative = name + "/calibration/images.bag";

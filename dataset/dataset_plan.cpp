@@ -1,6 +1,7 @@
 #include "dataset_plan.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "calibration_files.h"
 #include "calibration_sequence.h"
 #include "camera_rays.h"
+#include "dataset_folder.h"
 #include "coco.h"
 #include "dataset_shards.h"
 #include "euroc_files.h"
@@ -16,6 +18,8 @@
 #include "image.h"
 #include "intrinsics_files.h"
 #include "make_camera.h"
+#include "memory_budget.h"
+#include "rosbag_file.h"
 #include "manifest.h"
 #include "multilayer_frame.h"
 #include "number_format.h"
@@ -307,6 +311,29 @@ void checkVibratedRigs(const DatasetPlan& plan) {
     }
 }
 
+// A calibration sequence's bags: topics ROS accepts, bags the dataset's reader reads back, memory
+// to write them in, and the writer's Python modules, all before anything renders.
+void checkRosbagOutputs(const DatasetPlan& plan, size_t frames) {
+  const std::string file = showPath(plan.spec.file);
+  for (const CameraSetup& setup : plan.setups) {
+    const std::string& name = setup.camera->name;
+    // A ROS graph name: a letter, then letters, digits and '_'.
+    if (!std::isalpha(static_cast<unsigned char>(name[0])) ||
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
+      throw InputError(file + ": calibration.rosbag: camera " + quote(name) +
+                       ": its topic /<camera>/image_raw needs a name ROS accepts (a letter, then letters, digits and '_')");
+    const int64_t bytes = static_cast<int64_t>(frames) * setup.rig.imageSize * setup.rig.imageSize * 3;
+    // Each image's message adds a few hundred bytes of headers and index.
+    if (bytes + static_cast<int64_t>(frames) * 1024 > kMaxDatasetFileBytes)
+      throw InputError(file + ": calibration.rosbag: camera " + quote(name) + "'s bag would hold " + std::to_string(bytes >> 20) +
+                       " MiB of images (a dataset file is at most " + std::to_string(kMaxDatasetFileBytes >> 20) +
+                       " MiB: fewer poses or a smaller size)");
+    // The images, the writer's input and the bag read back: three copies at once.
+    requireMemory(3 * bytes, "the ROS bag of camera " + quote(name));
+  }
+  checkImageBagWriter();
+}
+
 // A calibration sequence: the target the spec names, the board's pose of every frame, and the
 // robot standing at its one pose in each of them.
 void startCalibrationSequence(DatasetPlan& plan) {
@@ -320,6 +347,11 @@ void startCalibrationSequence(DatasetPlan& plan) {
                      (names.empty() ? std::string(" (it has none)") : " (it has " + names + ")"));
   }
   const CalibrationTarget& target = plan.scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
+  const size_t corners = targetCorners(target.pattern).size();
+  if (cal.random && static_cast<size_t>(cal.random->minSeenCorners) > corners)
+    throw InputError(file + ": calibration.poses.random.min_seen_corners: the target " + quote(target.name) + " has only " +
+                     std::to_string(corners) + " corners (got " + std::to_string(cal.random->minSeenCorners) + ")");
+  if (cal.rosbag) checkRosbagOutputs(plan, cal.random ? static_cast<size_t>(cal.random->count) : cal.listed.size());
   try {
     plan.viewpointFromTarget = sequenceBoardPoses(cal, *plan.setups.front().model, target.pattern);
   } catch (const InputError& e) {
@@ -342,13 +374,15 @@ void addCalibrationFiles(DatasetPlan& plan) {
   std::vector<json> cornerFrames(plan.setups.size(), json::array());
   std::vector<std::vector<CornerListImage>> lists(plan.setups.size());
   for (int f = 0; f < frames; ++f) {
-    const std::unique_ptr<FrameWorld> world = plan.frameWorld(f, true);
+    const std::unique_ptr<FrameWorld> world = plan.frameWorld(f, /*withEngine=*/false, /*withRays=*/true);
     const CalibrationTarget& moved = world->scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
     for (size_t c = 0; c < plan.setups.size(); ++c) {
       const Rigid worldFromViewpoint = plan.placement(f, c).worldFromViewpoint(plan.setups[c].rig);
       const std::vector<ImagedCorner> corners = imagedCorners(*plan.setups[c].model, worldFromViewpoint, world->rays.get(), moved);
       cornerFrames[c].push_back(cornersFrameJson(f, worldFromViewpoint.inverse() * moved.worldFromTarget, corners));
-      CornerListImage image{plan.outputs.framePath(plan.setups[c].camera->name, kColourOutput, f), {}};
+      // The frame's image: its colour file, or its multilayer frame.
+      const OutputKind imageKind = plan.outputs.layout == DatasetLayout::Multilayer ? OutputKind::Multilayer : kColourOutput;
+      CornerListImage image{plan.outputs.framePath(plan.setups[c].camera->name, imageKind, f), {}};
       for (const ImagedCorner& corner : corners)
         if (corner.sight == CornerSight::Seen) {
           image.view.targetPoints.push_back(targetPoints[static_cast<size_t>(corner.index)]);
@@ -381,11 +415,11 @@ void addCalibrationFiles(DatasetPlan& plan) {
 
 }  // namespace
 
-std::unique_ptr<FrameWorld> DatasetPlan::frameWorld(int frame, bool withRays) const {
+std::unique_ptr<FrameWorld> DatasetPlan::frameWorld(int frame, bool withEngine, bool withRays) const {
   auto world = std::make_unique<FrameWorld>();
   world->scene = scene;
   placeCalibrationTarget(world->scene, calibrationTarget, worldFromTarget.at(static_cast<size_t>(frame)));
-  world->engine = makeEngine(request, world->scene);
+  if (withEngine) world->engine = makeEngine(request, world->scene);
   if (withRays) world->rays = std::make_unique<RayScene>(world->scene);
   return world;
 }

@@ -76,9 +76,9 @@ class DatasetPlan {
   int calibrationTarget = -1;
   std::vector<Rigid> worldFromTarget, viewpointFromTarget;
   bool movesTarget() const { return calibrationTarget >= 0; }
-  // Frame `frame`'s scene, with its engine (and rays when `withRays`): the target where the frame
+  // Frame `frame`'s scene, with its engine and its rays when asked: the target where the frame
   // holds it. Only for a plan that movesTarget().
-  std::unique_ptr<FrameWorld> frameWorld(int frame, bool withRays) const;
+  std::unique_ptr<FrameWorld> frameWorld(int frame, bool withEngine, bool withRays) const;
 
   // What one frame holds while it is rendered and encoded: every camera's frame, AOVs, files and
   // sample table (FastRenderer::frameBytes; docs/robustness.md, "Memory"). The scheduler renders

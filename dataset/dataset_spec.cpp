@@ -145,6 +145,9 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
   poses.finish();
 }
 
+// A listed board's origin from the viewpoint F' (m): not through the camera, within the scene's reach.
+constexpr double kMinBoardDistanceM = 0.05, kMaxBoardDistanceM = 100.0;
+
 // A listed board pose: {"origin": [x, y, z], "x_axis": [...], "y_axis": [...]} in the first
 // camera's viewpoint frame (docs/conventions.md), as a scene places a target.
 Rigid readListedBoardPose(JsonFields p) {
@@ -153,7 +156,9 @@ Rigid readListedBoardPose(JsonFields p) {
   if (!(yAxis.norm() > 1e-9)) p.fail("y_axis", "must not be zero");
   const Vec3 x = xAxis.normalized();
   if (std::abs(x.dot(yAxis.normalized())) > 1e-6) p.fail("y_axis", "must be perpendicular to x_axis");
-  if (!(origin.norm() <= limits::kMaxMountOffset)) p.fail("origin", "must be within " + shortNumber(limits::kMaxMountOffset) + " m of the viewpoint");
+  if (!(origin.norm() >= kMinBoardDistanceM && origin.norm() <= kMaxBoardDistanceM))
+    p.fail("origin", "must be " + shortNumber(kMinBoardDistanceM) + " to " + shortNumber(kMaxBoardDistanceM) +
+                         " m from the viewpoint (the camera sits at it)");
   p.finish();
   const Vec3 z = x.cross(yAxis).normalized();
   Rigid pose = Rigid::Identity();
@@ -205,6 +210,8 @@ void readCalibration(JsonFields c, DatasetSpec& spec) {
     throw InputError(showPath(spec.file) + ": calibration: the exact corners are a still camera's: leave motion and vibration out");
   if (cal.rosbag && (spec.layout != DatasetLayout::Files || spec.outputs.rgb != "png"))
     throw InputError(showPath(spec.file) + ": calibration.rosbag: needs the files layout and outputs.rgb \"png\" (the bag holds the PNG frames' pixels)");
+  if (cal.rosbag && !(spec.frameIntervalSeconds * 1e9 >= 1.0))
+    throw InputError(showPath(spec.file) + ": calibration.rosbag: needs frame_interval_s of at least 1 ns (each image's stamp is its frame's time in ns)");
   spec.calibration = std::move(cal);
 }
 

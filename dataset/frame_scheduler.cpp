@@ -36,7 +36,7 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
   const bool wantsAovs = plan.outputs.anyAov();
   const DatasetSpec& spec = plan.spec;
   // A calibration sequence's frame has its own scene (the target where it holds it).
-  const std::unique_ptr<FrameWorld> world = plan.movesTarget() ? plan.frameWorld(index, plan.rays != nullptr) : nullptr;
+  const std::unique_ptr<FrameWorld> world = plan.movesTarget() ? plan.frameWorld(index, /*withEngine=*/true, plan.rays != nullptr) : nullptr;
   Engine& engine = world ? *world->engine : *plan.engine;
   const Scene& scene = world ? world->scene : plan.scene;
   const RayScene* rays = world ? world->rays.get() : plan.rays.get();

@@ -18,9 +18,11 @@
 #include "errors.h"
 #include "fast_renderer.h"
 #include "imaged_corners.h"
+#include "landmark_geometry.h"
 #include "make_camera.h"
 #include "placement.h"
 #include "plot_script.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 #include "target_detection.h"
 
@@ -122,6 +124,7 @@ SeedViews seedViews(const CalibrationStudyOptions& o, const Scene& room, const R
   poses.count = o.views;
   poses.seed = static_cast<uint64_t>(seed);
   poses.minSeenCorners = kMinSeenCorners;
+  poses.floorZ = -rig.height;  // the room's floor, in the viewpoint frame the poses are drawn in
   const Rigid worldFromViewpoint = CameraPlacement(RobotPose{}).worldFromViewpoint(rig);
   SeedViews out;
   out.viewpointFromTarget = boardPoses(camera, Rigid::Identity(), kGrid, poses);
@@ -133,30 +136,18 @@ SeedViews seedViews(const CalibrationStudyOptions& o, const Scene& room, const R
   for (size_t v = 0; v < out.viewpointFromTarget.size(); ++v) {
     Scene scene = room;
     placeCalibrationTarget(scene, 0, worldFromViewpoint * out.viewpointFromTarget[v]);
+    const FastRenderer renderer(scene);
+    // Exact corners as the render shows them: seen, in the room (the floor may hide some).
     std::vector<DetectedCorner> exact;
-    for (const ImagedCorner& c : imagedCorners(camera, worldFromViewpoint, nullptr, scene.calibrationTargets[0]))
+    for (const ImagedCorner& c : imagedCorners(camera, worldFromViewpoint, &renderer.rays(), scene.calibrationTargets[0]))
       if (c.sight == CornerSight::Seen) exact.push_back({c.index, c.raster});
     out.bySource[0][v] = viewOf(points, exact);
-    const FastRenderer renderer(scene);
     const ImageRGBA image = renderer.render(RobotPose{}, settings);
     out.bySource[1][v] = viewOf(points, detectAprilGrid(image, kGrid, ImageHandedness::Mirrored));
     const ImageRGBA recorded = recordFrame(o.recording, image, static_cast<uint64_t>(seed) * 1000 + v);
     out.bySource[2][v] = viewOf(points, detectAprilGrid(recorded, kGrid, ImageHandedness::Mirrored));
   }
   return out;
-}
-
-// A point `distance` from the origin along a ray from `origin` (inside that sphere).
-Vec3 pointAtDistance(const Vec3& origin, const Vec3& direction, double distance) {
-  const double b = direction.dot(origin);
-  return origin + (-b + std::sqrt(std::max(0.0, b * b - (origin.squaredNorm() - distance * distance)))) * direction;
-}
-
-// The model's ray of a raster point in the rig's viewpoint frame: from its viewpoint.
-std::optional<Vec3> modelDirection(const CentralApproximation& model, const Vec2& raster) {
-  const std::optional<Vec3> d = model.intrinsics.direction(raster);
-  if (!d) return std::nullopt;
-  return Vec3(model.cameraFromViewpoint.linear().transpose() * *d);
 }
 
 CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera, const SeedViews& seed, CornerSource source,
@@ -188,9 +179,9 @@ CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera,
     run.fit.failure = "diverged (RMS " + std::to_string(run.fit.rms) + " px)";
     return run;
   }
-  const CentralApproximation model = calibratedModel(run.fit, poses);
-  for (double d : o.heldOutDistancesM) run.heldOut.push_back(heldOutError(camera, model, d));
-  run.triangulation = triangulationError(camera, model, o.triangulationDistanceM, o.triangulationBaselineM);
+  run.model = calibratedModel(run.fit, poses);
+  for (double d : o.heldOutDistancesM) run.heldOut.push_back(heldOutError(camera, *run.model, d));
+  run.triangulation = triangulationError(camera, *run.model, o.triangulationDistanceM, o.triangulationBaselineM);
   return run;
 }
 
@@ -211,11 +202,9 @@ struct LoopMeasurements {
 };
 
 LoopMeasurements loopMeasurements(const Scene& field, const std::vector<RobotPose>& loop, const RigSpec& rig, const Camera& camera,
-                                  const std::optional<CentralApproximation>& calibrated,
-                                  const std::optional<CentralApproximation>& calibratedExact) {
+                                  const CentralApproximation* calibrated, const CentralApproximation* calibratedExact) {
   RigSpec nominalRig = rig;
   nominalRig.mount = CameraMount{};  // the rig as designed: what the thesis assumed
-  const std::shared_ptr<const Camera> nominal = makeCamera(nominalRig);
   LoopMeasurements m;
   for (auto* list : {&m.trueRays, &m.nominal, &m.calibrated, &m.calibratedExact}) list->resize(loop.size());
   for (size_t k = 0; k < loop.size(); ++k) {
@@ -228,12 +217,11 @@ LoopMeasurements loopMeasurements(const Scene& field, const std::vector<RobotPos
       const auto add = [&](std::vector<std::vector<Measurement>>& list, const std::optional<RangeBearing>& z) {
         if (z) list[k].push_back({landmark, *z});
       };
-      const std::optional<CameraRay> ray = camera.generateRay({*raster});
-      if (ray) add(m.trueRays, rangeBearingAlong(ray->origin, ray->direction, p.z()));
-      if (const auto n = nominal->generateRay({*raster})) add(m.nominal, rangeBearingAlong(n->origin, n->direction, p.z()));
-      for (auto [model, list] : {std::pair{&calibrated, &m.calibrated}, std::pair{&calibratedExact, &m.calibratedExact}})
-        if (*model)
-          if (const auto d = modelDirection(**model, *raster)) add(*list, rangeBearingAlong((*model)->viewpoint, *d, p.z()));
+      if (const std::optional<CameraRay> ray = camera.generateRay({*raster})) add(m.trueRays, rangeBearingAlong(ray->origin, ray->direction, p.z()));
+      add(m.nominal, rangeBearingFromRaster(nominalRig, *raster, l.position.z()));
+      for (auto [model, list] : {std::pair{calibrated, &m.calibrated}, std::pair{calibratedExact, &m.calibratedExact}})
+        if (model)
+          if (const auto d = model->direction(*raster)) add(*list, rangeBearingAlong(model->viewpoint, *d, p.z()));
       ++m.count;
     }
   }
@@ -241,20 +229,16 @@ LoopMeasurements loopMeasurements(const Scene& field, const std::vector<RobotPos
 }
 
 EkfComparison compareEkf(const Scene& field, const std::vector<RobotPose>& loop, const Drive& drive, const RigSpec& rig,
-                         const Camera& camera, const std::vector<CalibrationRun>& runs, const std::vector<SeedViews>& seeds) {
+                         const Camera& camera, const std::vector<CalibrationRun>& runs) {
   // Seed 1's calibrations, placed by their own extrinsics.
-  const auto modelOf = [&](CornerSource source) -> std::optional<CentralApproximation> {
+  const auto modelOf = [&](CornerSource source) -> const CentralApproximation* {
     for (const CalibrationRun& run : runs)
-      if (run.seed == 1 && run.source == source && run.fit.converged) {
-        std::vector<Rigid> poses;
-        const SeedViews& s = seeds.front();
-        for (size_t v = 0; v < s.bySource[static_cast<size_t>(source)].size(); ++v)
-          if (s.bySource[static_cast<size_t>(source)][v].raster.size() >= 4) poses.push_back(s.viewpointFromTarget[v]);
-        return calibratedModel(run.fit, poses);
-      }
-    return std::nullopt;
+      if (run.seed == 1 && run.source == source && run.model) return &*run.model;
+    return nullptr;
   };
-  const LoopMeasurements m = loopMeasurements(field, loop, rig, camera, modelOf(CornerSource::DetectedNoisy), modelOf(CornerSource::Exact));
+  const CentralApproximation* noisy = modelOf(CornerSource::DetectedNoisy);
+  const CentralApproximation* exact = modelOf(CornerSource::Exact);
+  const LoopMeasurements m = loopMeasurements(field, loop, rig, camera, noisy, exact);
   const auto ekfError = [&](const std::vector<std::vector<Measurement>>& list) {
     return runEkf(drive, [&](size_t k) { return &list[k]; }).meanErrorCm();
   };
@@ -267,8 +251,9 @@ EkfComparison compareEkf(const Scene& field, const std::vector<RobotPose>& loop,
   e.nominalUsedShare = nominalTrace.used + nominalTrace.gated > 0
                            ? static_cast<double>(nominalTrace.used) / (nominalTrace.used + nominalTrace.gated)
                            : 0.0;
-  e.calibratedCm = ekfError(m.calibrated);
-  e.calibratedExactCm = ekfError(m.calibratedExact);
+  // No calibration, no calibrated localisation (NaN: "—" in the report).
+  e.calibratedCm = noisy ? ekfError(m.calibrated) : std::nan("");
+  e.calibratedExactCm = exact ? ekfError(m.calibratedExact) : std::nan("");
   return e;
 }
 
@@ -308,11 +293,11 @@ TriangulationError triangulationError(const Camera& camera, const CentralApproxi
       const Vec2 a(i + 0.5, j + 0.5);
       const std::optional<CameraRay> ray = camera.generateRay({a});
       if (!ray) continue;
-      const Vec3 point = pointAtDistance(ray->origin, ray->direction, distance);
+      const Vec3 point = pointAtDistance(*ray, Vec3::Zero(), distance);
       const std::optional<Vec2> b = camera.project(point - moved);
       if (!b || !camera.images(*b)) continue;
       if ((point.normalized()).dot((point - moved).normalized()) > std::cos(kMinTriangulationAngleRad)) continue;
-      const std::optional<Vec3> da = modelDirection(model, a), db = modelDirection(model, *b);
+      const std::optional<Vec3> da = model.direction(a), db = model.direction(*b);
       if (!da || !db) continue;
       const Vec3 oa = model.viewpoint, ob = model.viewpoint + moved;
       // Closest points of oa + s·da and ob + t·db.
@@ -337,7 +322,7 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
                                             const StudyProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(o.outDir);
-  for (const char* folder : {"arenas", "data", "figures"}) fs::create_directories(out / folder);
+  for (const char* folder : {"arenas", "data", "figures"}) makeFoldersInside(o.outDir, folder);
   writeTextAtomically((out / "arenas/calibration-room.json").string(), roomSceneText());
   const Scene room = loadScene((out / "arenas/calibration-room.json").string());
   const Scene field = loadScene(o.fieldScene);
@@ -373,16 +358,12 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
       if (progress) progress("calibrations", now, total);
     });
     for (auto& list : runs) outcome.runs.insert(outcome.runs.end(), list.begin(), list.end());
-    outcome.ekf = compareEkf(field, loopPath->poses, drive, rig, *camera, outcome.runs, seeds);
+    outcome.ekf = compareEkf(field, loopPath->poses, drive, rig, *camera, outcome.runs);
     if (mapped(rigs[r]))
       for (const CalibrationRun& run : outcome.runs)
-        if (run.seed == 1 && run.fit.converged && run.source != CornerSource::Detected) {
-          std::vector<Rigid> poses;
-          for (size_t v = 0; v < seeds[0].bySource[static_cast<size_t>(run.source)].size(); ++v)
-            if (seeds[0].bySource[static_cast<size_t>(run.source)][v].raster.size() >= 4) poses.push_back(seeds[0].viewpointFromTarget[v]);
+        if (run.seed == 1 && run.model && run.source != CornerSource::Detected)
           writeResidualMap(out / ("data/residual_" + slug(rigs[r].label()) + "_" + cornerSourceName(run.source) + ".f32"),
-                           centralResidualMap(*camera, calibratedModel(run.fit, poses), 0.5));
-        }
+                           centralResidualMap(*camera, *run.model, 0.5));
   });
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writeTextAtomically((out / "results.json").string(), calibrationStudyJson(results, o).dump(1) + "\n");

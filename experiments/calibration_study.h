@@ -8,6 +8,7 @@
 // held-out reprojection and ray errors at several distances, triangulation from two robot poses,
 // and the thesis' EKF self-localisation with bearings from the calibrated model.
 #include <functional>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,7 +32,8 @@ struct CalibrationStudyOptions {
   std::vector<double> heldOutDistancesM{0.2, 0.5, 1.0, 5.0};
   double triangulationDistanceM = 1.0, triangulationBaselineM = 0.25;
   RecordingCamera recording = RecordingCamera::webcam();
-  // The sweep at its smallest: the ideal rig and 2 mm across, one seed, twelve views, 360 px.
+  // The sweep at its smallest: the ideal rig and 2 mm across and along the axis, one seed of
+  // twelve views (720 px: AprilTag finds too few corners at 360 px).
   static CalibrationStudyOptions quick();
 };
 
@@ -65,6 +67,7 @@ struct CalibrationRun {
   int views = 0, corners = 0;  // views with at least four corners, and their corners
   OmnidirCalibration fit;      // converged false: failed (initialisation, or diverged)
   bool diverged = false;       // OpenCV converged to a training RMS no user would keep
+  std::optional<CentralApproximation> model;  // when it converged: placed by its own extrinsics
   std::vector<HeldOutError> heldOut;  // one per options.heldOutDistancesM
   TriangulationError triangulation;
 };
@@ -75,8 +78,8 @@ struct EkfComparison {
   double trueRaysCm = 0.0;      // the rig's exact rays
   double nominalCm = 0.0;       // the ideal rig's model, as if nothing were misaligned
   double nominalUsedShare = 0.0;  // of its measurements, the share the EKF's gate let in
-  double calibratedCm = 0.0;    // seed 1's calibration from noisy detected corners
-  double calibratedExactCm = 0.0;  // seed 1's calibration from exact corners
+  double calibratedCm = 0.0;    // seed 1's calibration from noisy detected corners (NaN: it failed)
+  double calibratedExactCm = 0.0;  // seed 1's calibration from exact corners (NaN: it failed)
   int measurements = 0;
 };
 

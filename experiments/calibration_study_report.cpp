@@ -18,6 +18,7 @@ constexpr double kGoodRmsPx = 0.3, kBadHeldOutPx = 1.0, kHeadlineDistanceM = 0.5
 // detections can throw one calibration far off; the worst is shown beside).
 struct SourceSummary {
   int runs = 0, failed = 0, diverged = 0;
+  int partial = 0;  // converged, but its model has no ray for some imaged pixels (at the headline distance)
   double rms = 0.0, xi = 0.0, gammaX = 0.0, gammaY = 0.0, cx = 0.0, cy = 0.0;
   std::vector<double> heldOutPx, heldOutMrad;
   double worstHeldOutPx = 0.0;  // at the headline distance
@@ -43,6 +44,8 @@ SourceSummary summarise(const RigOutcome& rig, CornerSource source, const Calibr
       s.diverged += run.diverged;
       continue;
     }
+    for (const HeldOutError& h : run.heldOut)
+      if (h.distanceM == kHeadlineDistanceM && h.unmodelledShare > 0.0) ++s.partial;
     const double values[] = {run.fit.rms, run.fit.xi, run.fit.gammaX, run.fit.gammaY, run.fit.cx, run.fit.cy};
     for (size_t k = 0; k < 6; ++k) columns[k].push_back(values[k]);
     for (size_t d = 0; d < distances && d < run.heldOut.size(); ++d) {
@@ -92,7 +95,7 @@ void sweepTable(std::ostringstream& md, const CalibrationStudyResults& r, const 
   std::string distances;
   for (double d : o.heldOutDistancesM) distances += (distances.empty() ? "" : " / ") + fixed(d, d < 1 ? 1 : 0) + " m";
   md << "| rig | corners from | RMS px | held-out RMS px at " << distances << " | mrad at 0.5 m | triangulation at "
-     << fixed(o.triangulationDistanceM, 0) << " m, mm (median / 90 %) | worst seed at 0.5 m, px | failed: initialisation / diverged |\n"
+     << fixed(o.triangulationDistanceM, 0) << " m, mm (median / 90 %) | worst seed at 0.5 m, px | failed: initialisation / diverged; partial models |\n"
      << "|---|---|---:|---:|---:|---:|---:|---:|\n";
   const size_t half = distanceIndex(o, kHeadlineDistanceM);
   for (const RigOutcome& rig : r.rigs) {
@@ -104,13 +107,14 @@ void sweepTable(std::ostringstream& md, const CalibrationStudyResults& r, const 
       const SourceSummary s = summarise(rig, source, o);
       md << "| | " << sourceTitle(source) << " | ";
       if (s.failed == s.runs) {
-        md << "— | — | — | — | — | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << " |\n";
+        md << "— | — | — | — | — | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << "; 0 |\n";
         continue;
       }
       md << fixed(s.rms, 3) << " | ";
       for (size_t d = 0; d < s.heldOutPx.size(); ++d) md << (d ? " / " : "") << fixed(s.heldOutPx[d], 2);
       md << " | " << fixed(s.heldOutMrad[half], 2) << " | " << fixed(s.triangulationMm, 1) << " / " << fixed(s.triangulationP90Mm, 1)
-         << " | " << fixed(s.worstHeldOutPx, 2) << " | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << " |\n";
+         << " | " << fixed(s.worstHeldOutPx, 2) << " | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << "; "
+         << s.partial << " |\n";
     }
   }
 }
@@ -165,6 +169,8 @@ std::string headline(const CalibrationStudyResults& r, const CalibrationStudyOpt
     if (bad && (!good || *bad < *good))
       md << ". **From " << fixed(*bad, 2) << " " << unit << (good ? " to " + fixed(*good, 2) + " " + unit : std::string(" on"))
          << " the calibration looks fine and errs more than a pixel at 0.5 m.**\n";
+    else if (bad)
+      md << ": the training RMS flags it first.\n";
     else
       md << ": the central model absorbs it.\n";
   }
@@ -226,7 +232,7 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
          << " | " << fixed(s.cy, 3) << " | " << fixed(s.rms, 3) << " |\n";
     }
   }
-  md << "\nWith distortion free, OpenCV trades ξ against γ and k1 (they are strongly correlated over a partial view of the "
+  md << "\nWith its distortion estimated, OpenCV trades ξ against γ and k1 (they are strongly correlated over a partial view of the "
         "mirror): the RMS stays at the corners' noise while the parameters move; the held-out errors below show what that "
         "costs away from the boards.\n\n";
   md << "## Parameters against the best central model\n\nFor the misaligned rigs the truth a central calibration can "
@@ -266,8 +272,9 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
      << "|---|---:|---:|---:|---:|---:|\n";
   for (const RigOutcome& rig : r.rigs) {
     const EkfComparison& e = rig.ekf;
+    const auto cm = [](double v) { return std::isnan(v) ? std::string("— (no calibration)") : fixed(v, 1); };
     md << "| " << rig.misalignment.label() << " | " << fixed(e.odometryCm, 1) << " | " << fixed(e.trueRaysCm, 1) << " | "
-       << fixed(e.nominalCm, 1) << " (" << fixed(100.0 * e.nominalUsedShare, 0) << " %) | " << fixed(e.calibratedExactCm, 1) << " | " << fixed(e.calibratedCm, 1) << " |\n";
+       << fixed(e.nominalCm, 1) << " (" << fixed(100.0 * e.nominalUsedShare, 0) << " %) | " << cm(e.calibratedExactCm) << " | " << cm(e.calibratedCm) << " |\n";
   }
   md << "\n`results.json` in the run's folder holds every calibration (parameters, per-distance median/RMS/max, triangulation, "
         "failures).\n";

@@ -18,9 +18,10 @@ HEADLINE_DISTANCE_M = 0.5
 SOURCES = [("exact", "exact corners"), ("detected_noisy", "recorded detections")]
 
 
-def mean_over_runs(rig, source, value):
+def median_over_runs(rig, source, value):
+    """The median over the seeds that converged, as the report's tables."""
     values = [value(run) for run in rig["runs"] if run["source"] == source and run["converged"]]
-    return float(np.mean(values)) if values else float("nan")
+    return float(np.median(values)) if values else float("nan")
 
 
 def held_out_px(run_or_rig_list, distance):
@@ -42,9 +43,9 @@ def error_figure(results, out):
             x = [r["amount"] for r in rigs]
             suffix = ", lens" if lens else ""
             for (source, title), colour in zip(SOURCES, ("tab:blue", "tab:orange")):
-                ax.plot(x, [mean_over_runs(r, source, lambda run: run["rms_px"]) for r in rigs], style, color=colour,
+                ax.plot(x, [median_over_runs(r, source, lambda run: run["rms_px"]) for r in rigs], style, color=colour,
                         marker="o", markersize=3, alpha=0.5, label=f"training RMS, {title}{suffix}")
-                ax.plot(x, [mean_over_runs(r, source, lambda run: held_out_px(run["held_out"], HEADLINE_DISTANCE_M))
+                ax.plot(x, [median_over_runs(r, source, lambda run: held_out_px(run["held_out"], HEADLINE_DISTANCE_M))
                             for r in rigs], style, color=colour, marker="s", markersize=4,
                         label=f"held-out at 0.5 m, {title}{suffix}")
             ax.plot(x, [held_out_px(r["best_fit_held_out"], HEADLINE_DISTANCE_M) for r in rigs], style, color="grey",
