@@ -5,27 +5,15 @@
 // camera's own project() with why a hidden one is hidden. `omnicam dataset` renders the frames and
 // writes these files beside them.
 #include <nlohmann/json.hpp>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "board_poses.h"
+#include "calibration_sequence_spec.h"
 #include "imaged_corners.h"
 #include "scene.h"
 
 namespace omnicam {
-
-namespace limits {
-inline constexpr int kMaxCalibrationPoses = 10000;
-}
-
-// The board's poses, in the first camera's viewpoint frame: drawn (board_poses.h) or listed.
-struct CalibrationSequenceSpec {
-  std::string target;  // a calibration_target of the scene
-  std::optional<BoardPoseOptions> random;
-  std::vector<Rigid> listed;  // viewpointFromTarget, one per frame
-  bool rosbag = false;        // the images also in a ROS 1 bag (rosbag_file.h)
-};
 
 // Index of the scene's calibration target named `name`; -1 when there is none.
 int findCalibrationTarget(const Scene& scene, const std::string& name);

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "calibration_sequence.h"
+#include "calibration_sequence_spec.h"
 #include "output_kinds.h"
 #include "placement.h"
 #include "recording_camera.h"
