@@ -143,8 +143,12 @@ MapStatistics statistics(const std::vector<float>& map) {
 }  // namespace
 
 HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM) {
-  const MapStatistics px = statistics(centralResidualMap(camera, model, distanceM));
-  const MapStatistics rad = statistics(centralRayErrorMap(camera, model, distanceM));
+  return heldOutError(pixelRays(camera), model, distanceM);
+}
+
+HeldOutError heldOutError(const PixelRays& rays, const CentralApproximation& model, double distanceM) {
+  const MapStatistics px = statistics(centralResidualMap(rays, model, distanceM));
+  const MapStatistics rad = statistics(centralRayErrorMap(rays, model, distanceM));
   HeldOutError h;
   h.distanceM = distanceM;
   h.medianPx = px.median, h.rmsPx = px.rms, h.maxPx = px.max;

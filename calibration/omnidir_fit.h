@@ -59,5 +59,7 @@ struct HeldOutError {
   double unmodelledShare = 0.0;
 };
 HeldOutError heldOutError(const Camera& camera, const CentralApproximation& model, double distanceM);
+// The same over rays traced once (pixelRays), for many models or distances of one camera.
+HeldOutError heldOutError(const PixelRays& rays, const CentralApproximation& model, double distanceM);
 
 }  // namespace omnicam

@@ -202,29 +202,45 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
   return fit;
 }
 
+PixelRays pixelRays(const Camera& camera) {
+  PixelRays out;
+  out.width = camera.width(), out.height = camera.height();
+  out.rays.reserve(static_cast<size_t>(out.width) * out.height);
+  for (int j = 0; j < out.height; ++j)
+    for (int i = 0; i < out.width; ++i) out.rays.push_back(camera.generateRay({pixelCentre(i, j)}));
+  return out;
+}
+
 namespace {
 
 // `error` of every pixel centre's true ray, row-major; NaN where the camera images nothing.
 template <class Error>
-std::vector<float> pixelMap(const Camera& camera, const Error& error) {
-  std::vector<float> map(static_cast<size_t>(camera.width()) * camera.height(), std::numeric_limits<float>::quiet_NaN());
-  for (int j = 0; j < camera.height(); ++j)
-    for (int i = 0; i < camera.width(); ++i) {
-      const Vec2 centre(i + 0.5, j + 0.5);
-      if (const auto ray = camera.generateRay({centre}))
-        map[static_cast<size_t>(j) * camera.width() + i] = static_cast<float>(error(GridRay{centre, *ray}));
+std::vector<float> pixelMap(const PixelRays& rays, const Error& error) {
+  std::vector<float> map(rays.rays.size(), std::numeric_limits<float>::quiet_NaN());
+  for (int j = 0; j < rays.height; ++j)
+    for (int i = 0; i < rays.width; ++i) {
+      const size_t k = static_cast<size_t>(j) * rays.width + i;
+      if (const std::optional<CameraRay>& ray = rays.rays[k]) map[k] = static_cast<float>(error(GridRay{pixelCentre(i, j), *ray}));
     }
   return map;
 }
 
 }  // namespace
 
+std::vector<float> centralResidualMap(const PixelRays& rays, const CentralApproximation& fit, double distanceM) {
+  return pixelMap(rays, [&](const GridRay& g) { return reprojectionError(fit, g, distanceM); });
+}
+
 std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
-  return pixelMap(camera, [&](const GridRay& g) { return reprojectionError(fit, g, distanceM); });
+  return centralResidualMap(pixelRays(camera), fit, distanceM);
+}
+
+std::vector<float> centralRayErrorMap(const PixelRays& rays, const CentralApproximation& fit, double distanceM) {
+  return pixelMap(rays, [&](const GridRay& g) { return rayError(fit, g, distanceM); });
 }
 
 std::vector<float> centralRayErrorMap(const Camera& camera, const CentralApproximation& fit, double distanceM) {
-  return pixelMap(camera, [&](const GridRay& g) { return rayError(fit, g, distanceM); });
+  return centralRayErrorMap(pixelRays(camera), fit, distanceM);
 }
 
 nlohmann::json toJson(const CentralApproximation& fit) {

@@ -65,15 +65,25 @@ Vec3 pointAtDistance(const CameraRay& ray, const Vec3& centre, double distance);
 CentralApproximation fitCentralApproximation(const Camera& camera, const std::vector<double>& distancesM = {0.2, 0.5, 1.0, 5.0},
                                              int gridSize = 64);
 
+// Every pixel centre's true ray, row-major (nullopt where the camera images nothing): traced once
+// for all the maps taken of one camera.
+struct PixelRays {
+  int width = 0, height = 0;
+  std::vector<std::optional<CameraRay>> rays;
+};
+PixelRays pixelRays(const Camera& camera);
+
 // The fit's reprojection error (pixels) at every pixel centre, for points `distanceM` from the
 // fitted viewpoint along the camera's true rays (0: at infinity); NaN where the camera images
 // nothing. Row-major, camera.width() × camera.height().
 std::vector<float> centralResidualMap(const Camera& camera, const CentralApproximation& fit, double distanceM);
+std::vector<float> centralResidualMap(const PixelRays& rays, const CentralApproximation& fit, double distanceM);
 
 // The same points' ray error (radians): the angle between the fit's ray of each pixel centre (from
 // its viewpoint) and the direction from its viewpoint to the point; NaN where the camera images
 // nothing, infinity where the fit has no ray.
 std::vector<float> centralRayErrorMap(const Camera& camera, const CentralApproximation& fit, double distanceM);
+std::vector<float> centralRayErrorMap(const PixelRays& rays, const CentralApproximation& fit, double distanceM);
 // For sidecars and intrinsics files (cv::omnidir names).
 nlohmann::json toJson(const CentralApproximation& fit);
 

@@ -58,14 +58,20 @@ std::string Misalignment::label() const {
   return std::string(text) + (distorted ? ", lens" : "");
 }
 
-const char* cornerSourceName(CornerSource source) {
-  switch (source) {
-    case CornerSource::Exact: return "exact";
-    case CornerSource::Detected: return "detected";
-    case CornerSource::DetectedNoisy: return "detected_noisy";
-  }
-  return "?";
-}
+namespace {
+
+// Each source as results.json names it and as the report titles it, in the enum's order.
+struct CornerSourceRow {
+  const char* name;
+  const char* title;
+};
+constexpr CornerSourceRow kCornerSourceRows[] = {
+    {"exact", "exact corners"}, {"detected", "detected, clean"}, {"detected_noisy", "detected, recorded"}};
+
+}  // namespace
+
+const char* cornerSourceName(CornerSource source) { return kCornerSourceRows[static_cast<size_t>(source)].name; }
+const char* cornerSourceTitle(CornerSource source) { return kCornerSourceRows[static_cast<size_t>(source)].title; }
 
 namespace {
 
@@ -150,8 +156,8 @@ SeedViews seedViews(const CalibrationStudyOptions& o, const Scene& room, const R
   return out;
 }
 
-CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera, const SeedViews& seed, CornerSource source,
-                         int seedNumber) {
+CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera, const PixelRays& rays, const SeedViews& seed,
+                         CornerSource source, int seedNumber) {
   CalibrationRun run;
   run.source = source;
   run.seed = seedNumber;
@@ -180,7 +186,7 @@ CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera,
     return run;
   }
   run.model = calibratedModel(run.fit, poses);
-  for (double d : o.heldOutDistancesM) run.heldOut.push_back(heldOutError(camera, *run.model, d));
+  for (double d : o.heldOutDistancesM) run.heldOut.push_back(heldOutError(rays, *run.model, d));
   run.triangulation = triangulationError(camera, *run.model, o.triangulationDistanceM, o.triangulationBaselineM);
   return run;
 }
@@ -346,13 +352,15 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
     const std::shared_ptr<const Camera> camera = makeCamera(rig);
     const CentralApproximation best = fitCentralApproximation(*camera);
     outcome.truth = best.intrinsics;
-    for (double d : o.heldOutDistancesM) outcome.bestFitHeldOut.push_back(heldOutError(*camera, best, d));
+    // Every pixel's true ray, traced once for every model's held-out error on this rig.
+    const PixelRays rays = pixelRays(*camera);
+    for (double d : o.heldOutDistancesM) outcome.bestFitHeldOut.push_back(heldOutError(rays, best, d));
     std::vector<SeedViews> seeds(static_cast<size_t>(o.seeds));
     std::vector<std::vector<CalibrationRun>> runs(seeds.size());
     tbb::parallel_for(size_t{0}, seeds.size(), [&](size_t s) {
       const int seed = static_cast<int>(s) + 1;
       seeds[s] = seedViews(o, room, rig, *camera, seed);
-      for (CornerSource source : kSources) runs[s].push_back(calibrate(o, *camera, seeds[s], source, seed));
+      for (CornerSource source : kSources) runs[s].push_back(calibrate(o, *camera, rays, seeds[s], source, seed));
       const int now = ++done;
       const std::lock_guard<std::mutex> lock(progressMutex);
       if (progress) progress("calibrations", now, total);
@@ -363,7 +371,7 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
       for (const CalibrationRun& run : outcome.runs)
         if (run.seed == 1 && run.model && run.source != CornerSource::Detected)
           writeResidualMap(out / ("data/residual_" + slug(rigs[r].label()) + "_" + cornerSourceName(run.source) + ".f32"),
-                           centralResidualMap(*camera, *run.model, 0.5));
+                           centralResidualMap(rays, *run.model, 0.5));
   });
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writeTextAtomically((out / "results.json").string(), calibrationStudyJson(results, o).dump(1) + "\n");

@@ -47,7 +47,8 @@ struct Misalignment {
 };
 
 enum class CornerSource { Exact, Detected, DetectedNoisy };
-const char* cornerSourceName(CornerSource source);
+const char* cornerSourceName(CornerSource source);   // in results.json
+const char* cornerSourceTitle(CornerSource source);  // in the report
 
 struct TriangulationError {
   double medianMm = 0.0, p90Mm = 0.0;

@@ -82,14 +82,6 @@ size_t distanceIndex(const CalibrationStudyOptions& o, double distance) {
   return 0;
 }
 
-const char* sourceTitle(CornerSource s) {
-  switch (s) {
-    case CornerSource::Exact: return "exact corners";
-    case CornerSource::Detected: return "detected, clean";
-    case CornerSource::DetectedNoisy: return "detected, recorded";
-  }
-  return "?";
-}
 
 void sweepTable(std::ostringstream& md, const CalibrationStudyResults& r, const CalibrationStudyOptions& o, bool lens) {
   std::string distances;
@@ -105,7 +97,7 @@ void sweepTable(std::ostringstream& md, const CalibrationStudyResults& r, const 
     md << " | " << fixed(rig.bestFitHeldOut[half].rmsMrad, 2) << " | — | — | — |\n";
     for (CornerSource source : {CornerSource::Exact, CornerSource::Detected, CornerSource::DetectedNoisy}) {
       const SourceSummary s = summarise(rig, source, o);
-      md << "| | " << sourceTitle(source) << " | ";
+      md << "| | " << cornerSourceTitle(source) << " | ";
       if (s.failed == s.runs) {
         md << "— | — | — | — | — | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << "; 0 |\n";
         continue;
@@ -187,7 +179,7 @@ std::string headline(const CalibrationStudyResults& r, const CalibrationStudyOpt
         if (run.heldOut[half].rmsPx > kBadHeldOutPx) ++fineButOff, fineButOffCentral += central;
       }
     }
-    md << "- **" << sourceTitle(source) << "**: " << fineButOff << " of the " << fine << " calibrations with RMS < "
+    md << "- **" << cornerSourceTitle(source) << "**: " << fineButOff << " of the " << fine << " calibrations with RMS < "
        << fixed(kGoodRmsPx, 1) << " px err more than " << fixed(kBadHeldOutPx, 0) << " px at 0.5 m; " << fineButOffCentral
        << " of them on rigs whose exact corners calibrate to < 0.1 px there (the detections' error, extrapolated).\n";
   }
@@ -227,7 +219,7 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
       const SourceSummary s = summarise(rig, source, o);
       if (s.failed == s.runs) continue;
       const auto rel = [](double v, double truth) { return fixed(100.0 * (v - truth) / std::abs(truth), 2) + " %"; };
-      md << "| " << sourceTitle(source) << " | " << fixed(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixed(s.gammaX, 3) << " ("
+      md << "| " << cornerSourceTitle(source) << " | " << fixed(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixed(s.gammaX, 3) << " ("
          << rel(s.gammaX, t.gammaX) << ") | " << fixed(s.gammaY, 3) << " (" << rel(s.gammaY, t.gammaY) << ") | " << fixed(s.cx, 3)
          << " | " << fixed(s.cy, 3) << " | " << fixed(s.rms, 3) << " |\n";
     }
