@@ -48,7 +48,7 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
     const auto centre = imaged(lm.position);
     // Range and bearing when the centre is imaged (mid-exposure of the middle line if it is not).
     const double seconds =
-        centre ? centre->seconds : pixelTime(rig.shutter, rig.imageSize / 2, rig.imageSize / 2, rig.imageSize, rig.imageSize);
+        centre ? centre->seconds : pixelTime(rig.shutter, rig.imageWidth() / 2, rig.imageHeight() / 2, rig.imageWidth(), rig.imageHeight());
     const RobotPose pose = placement.footAt(seconds);  // bearings from the camera's heading
     const Vec3 viewpoint = placement.worldFromViewpoint(rig, seconds).translation();
     const double radius = 0.5 * lm.diameter;

@@ -176,7 +176,7 @@ void addRenderCommand(CLI::App& app) {
                   "degrees/s CCW; docs/motion.md); the pose is the exposure start's. Default: still");
   cmd->add_option("--path", args->path, "Render the named camera path into folder OUT");
   cmd->add_option("--frames", args->frames, "With --path: render only the first N poses")->check(integerIn(1, INT32_MAX));
-  cmd->add_option("--size", args->imageSize, "Image size in pixels (square); default: the scene's rig")
+  cmd->add_option("--size", args->imageSize, "Image size in pixels (square; a lens camera's width, its height keeping the aspect); default: the scene's rig")
       ->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
   cmd->add_option("--view", args->views,

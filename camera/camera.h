@@ -4,8 +4,9 @@
 // viewpoint frame (rig.h: origin at F', robot axes); rig.h's worldFromViewpoint places them.
 //
 // Implementations: CentralCamera (central_camera.h; the closed-form unified model of the ideal
-// rig, every ray from F') and PhysicalCamera (physical_camera.h; the pinhole as mounted, traced
-// through the exact mirror; rays leave the mirror, each from its own point). makeCamera
+// rig, every ray from F'), PhysicalCamera (physical_camera.h; the pinhole as mounted, traced
+// through the exact mirror; rays leave the mirror, each from its own point) and LensCamera
+// (lens_camera.h; a fisheye, panorama or pinhole without a mirror, rays from F'). makeCamera
 // (make_camera.h) picks the one a rig needs.
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -38,9 +39,10 @@ class Camera {
   virtual ~Camera() = default;
 
   const RigSpec& rig() const { return rig_; }
-  int width() const { return rig_.imageSize; }
-  int height() const { return rig_.imageSize; }
-  // The model's name in sidecars: "mei_unified" (central, closed form) or "physical" (traced).
+  int width() const { return rig_.imageWidth(); }
+  int height() const { return rig_.imageHeight(); }
+  // The model's name in sidecars: "mei_unified" (central, closed form), "physical" (traced), or a
+  // lens model's name (lens_models.h: lensModelName).
   virtual const char* model() const = 0;
   // True when every ray's origin is F', as the unified model's are. A physical camera's rays start
   // on the mirror even when their lines all meet in F' (the pinhole at F, turned or with a lens):
@@ -53,7 +55,8 @@ class Camera {
   // The raster point at which a viewpoint-frame point is imaged, or nullopt if it is not imaged
   // (behind the model, or seen beyond the rim). Not clipped to the image rectangle.
   virtual std::optional<Vec2> project(const Vec3& pointViewpoint) const = 0;
-  // True where the raster point sees the scene through the mirror (inside the rim).
+  // True where the raster point sees the scene (through the mirror: inside its rim; through a
+  // lens: inside its image circle or validity region).
   virtual bool images(const Vec2& raster) const = 0;
 
   // The camera model for sidecars and intrinsics files.

@@ -42,4 +42,12 @@ std::optional<Vec2> undistort(const LensDistortion& lens, const Vec2& distorted)
   return p;
 }
 
+std::optional<Vec2> distortImaged(const LensDistortion& lens, const Vec2& undistorted) {
+  const Vec2 distorted = distort(lens, undistorted);
+  if (lens.none()) return distorted;
+  const auto back = undistort(lens, distorted);
+  if (!back || (*back - undistorted).norm() > 1e-9 * (1.0 + undistorted.norm())) return std::nullopt;
+  return distorted;
+}
+
 }  // namespace omnicam

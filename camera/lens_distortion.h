@@ -1,11 +1,11 @@
 #pragma once
-// OpenCV's radial-tangential lens model (rig.h's LensDistortion) on normalised pinhole image
+// OpenCV's radial-tangential lens model (lens_models.h' LensDistortion) on normalised pinhole image
 // coordinates, forward in closed form and inverted exactly (Newton's method to machine
 // precision, not OpenCV's fixed five iterations of undistortPoints).
 #include <optional>
 
 #include "geometry.h"
-#include "rig.h"
+#include "lens_models.h"
 
 namespace omnicam {
 
@@ -17,5 +17,8 @@ Eigen::Matrix2d distortJacobian(const LensDistortion& lens, const Vec2& undistor
 // distorted point itself; nullopt where the lens folds (Jacobian not positive) or the iteration
 // does not reach a root to within 1e-14 of the coordinates' size — a pixel the lens never images.
 std::optional<Vec2> undistort(const LensDistortion& lens, const Vec2& distorted);
+// distort(), where the lens images the point: beyond its fold the distorted point's own ray is
+// another one, and undistort() refuses it — so does this (nullopt).
+std::optional<Vec2> distortImaged(const LensDistortion& lens, const Vec2& undistorted);
 
 }  // namespace omnicam

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "lens_distortion.h"
+
 namespace omnicam {
 
 namespace {
@@ -188,7 +190,71 @@ std::optional<Vec3> direction(const Equirectangular& m, const Vec2& pixel) {
   return Vec3(std::cos(lat) * std::sin(lon), -std::sin(lat), std::cos(lat) * std::cos(lon));
 }
 
+// --- pinhole with radial-tangential distortion ----------------------------------------------------
+
+std::optional<Vec2> project(const PinholeRadTan& m, const Vec3& p) {
+  if (!(p.z() > 0.0)) return std::nullopt;
+  const auto distorted = distortImaged(m.distortion, Vec2(p.x() / p.z(), p.y() / p.z()));
+  if (!distorted) return std::nullopt;
+  return Vec2(m.fx * distorted->x() + m.cx, m.fy * distorted->y() + m.cy);
+}
+
+std::optional<Vec3> direction(const PinholeRadTan& m, const Vec2& pixel) {
+  const auto undistorted = undistort(m.distortion, Vec2((pixel.x() - m.cx) / m.fx, (pixel.y() - m.cy) / m.fy));
+  if (!undistorted) return std::nullopt;
+  return Vec3(undistorted->x(), undistorted->y(), 1.0).normalized();
+}
+
+// c' of a pixel coordinate c when the image grows `scale` times (pixel centres at integers).
+double scaledCentre(double c, double scale) { return (c + 0.5) * scale - 0.5; }
+
+template <class M>
+M scaledFocal(M m, double scale) {
+  m.fx *= scale, m.fy *= scale;
+  m.cx = scaledCentre(m.cx, scale), m.cy = scaledCentre(m.cy, scale);
+  return m;
+}
+
+LensModel scaled(const KannalaBrandt& m, double s) { return scaledFocal(m, s); }
+LensModel scaled(const DoubleSphere& m, double s) { return scaledFocal(m, s); }
+LensModel scaled(const ExtendedUnified& m, double s) { return scaledFocal(m, s); }
+LensModel scaled(const PinholeRadTan& m, double s) { return scaledFocal(m, s); }
+LensModel scaled(const Equirectangular& m, double s) {
+  Equirectangular out = m;
+  out.width = static_cast<int>(std::lround(m.width * s)), out.height = static_cast<int>(std::lround(m.height * s));
+  return out;
+}
+LensModel scaled(const FThetaLens& m, double s) {
+  FThetaLens out = m;
+  out.f *= s;
+  out.cx = scaledCentre(m.cx, s), out.cy = scaledCentre(m.cy, s);
+  for (size_t i = 1; i < out.k.size(); ++i) out.k[i] /= std::pow(s, static_cast<double>(i));  // θ(r) with r in pixels
+  return out;
+}
+
+const char* name(const KannalaBrandt&) { return "kannala_brandt"; }
+const char* name(const DoubleSphere&) { return "double_sphere"; }
+const char* name(const ExtendedUnified&) { return "eucm"; }
+const char* name(const Equirectangular&) { return "equirectangular"; }
+const char* name(const PinholeRadTan&) { return "pinhole"; }
+const char* name(const FThetaLens& m) {
+  switch (m.kind) {
+    case FThetaLens::Kind::Equidistant: return "fisheye_equidistant";
+    case FThetaLens::Kind::Equisolid: return "fisheye_equisolid";
+    case FThetaLens::Kind::Polynomial: return "fisheye_polynomial";
+  }
+  return "fisheye";
+}
+
 }  // namespace
+
+std::string lensModelName(const LensModel& lens) {
+  return std::visit([](const auto& m) { return std::string(name(m)); }, lens);
+}
+
+LensModel scaledLens(const LensModel& lens, double scale) {
+  return std::visit([&](const auto& m) { return scaled(m, scale); }, lens);
+}
 
 std::optional<Vec2> lensProject(const LensModel& lens, const Vec3& pointCamera) {
   return std::visit([&](const auto& m) { return project(m, pointCamera); }, lens);

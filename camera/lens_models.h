@@ -17,7 +17,10 @@
 //   each up to a largest θ (its field of view's half).
 // - equirectangular: longitude across the image (from −X through +Z to +X, left to right),
 //   latitude up it (+ up, i.e. −Y), each linear over its range.
+// - pinhole with OpenCV's radial-tangential distortion (cv::projectPoints), imaging z > 0 up to
+//   where the lens folds (its radial mapping stops growing).
 #include <array>
+#include <string>
 #include <optional>
 #include <variant>
 
@@ -25,20 +28,31 @@
 
 namespace omnicam {
 
+// OpenCV's radial-tangential lens distortion, applied to a pinhole's normalised image coordinates
+// (x, y) = (X/Z, Y/Z): x' = x(1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x y + p2 (r² + 2x²), etc.
+struct LensDistortion {
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;
+  bool none() const { return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0 && k3 == 0.0; }
+  bool operator==(const LensDistortion&) const = default;
+};
+
 struct KannalaBrandt {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
   std::array<double, 4> k{};
   double maxThetaRad = kPi / 2;  // the lens images θ up to this (θd must grow up to it)
+  bool operator==(const KannalaBrandt&) const = default;
 };
 
 struct DoubleSphere {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
   double xi = 0.0, alpha = 0.5;  // alpha in [0, 1)
+  bool operator==(const DoubleSphere&) const = default;
 };
 
 struct ExtendedUnified {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
   double alpha = 0.5, beta = 1.0;  // alpha in [0, 1), beta > 0
+  bool operator==(const ExtendedUnified&) const = default;
 };
 
 struct FThetaLens {
@@ -48,14 +62,32 @@ struct FThetaLens {
   std::array<double, 5> k{};  // polynomial: θ(r) = k0 + k1 r + … + k4 r⁴, increasing over the image
   double cx = 0.0, cy = 0.0;
   double maxThetaRad = kPi / 2;
+  bool operator==(const FThetaLens&) const = default;
 };
 
 struct Equirectangular {
   int width = 0, height = 0;
   double lonMinRad = -kPi, lonMaxRad = kPi, latMinRad = -kPi / 2, latMaxRad = kPi / 2;
+  bool operator==(const Equirectangular&) const = default;
 };
 
-using LensModel = std::variant<KannalaBrandt, DoubleSphere, ExtendedUnified, FThetaLens, Equirectangular>;
+struct PinholeRadTan {
+  double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;
+  LensDistortion distortion;
+  bool operator==(const PinholeRadTan&) const = default;
+};
+
+using LensModel = std::variant<KannalaBrandt, DoubleSphere, ExtendedUnified, FThetaLens, Equirectangular, PinholeRadTan>;
+
+// The model's name in the scene format, sidecars and messages: "kannala_brandt", "double_sphere",
+// "eucm", "fisheye_equidistant", "fisheye_equisolid", "fisheye_polynomial", "equirectangular",
+// "pinhole".
+std::string lensModelName(const LensModel& lens);
+
+// The same lens imaging an image `scale` times as large (pixel centres keep their places:
+// c' = (c + ½)·scale − ½). Equirectangular panoramas keep their angles; their width and height
+// are the camera's to change.
+LensModel scaledLens(const LensModel& lens, double scale);
 
 // The image point (OpenCV's pixel convention) of a camera-frame point; nullopt where the model
 // images nothing (outside its field of view or validity region, or the point at the centre).

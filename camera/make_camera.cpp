@@ -4,11 +4,13 @@
 #include <mutex>
 
 #include "central_camera.h"
+#include "lens_camera.h"
 #include "physical_camera.h"
 
 namespace omnicam {
 
 std::shared_ptr<const Camera> makeCamera(const RigSpec& rig, bool traced) {
+  if (rig.lens) return std::make_shared<LensCamera>(rig);
   if (rig.ideal() && !traced) return std::make_shared<CentralCamera>(rig);
   return std::make_shared<PhysicalCamera>(rig);
 }

@@ -20,15 +20,9 @@ std::optional<Vec2> Pinhole::raster(const Vec3& pointViewpoint) const {
   const Vec3 q = viewpointFromPinhole.transpose() * (pointViewpoint - position);
   if (!(q.z() > 0.0)) return std::nullopt;
   if (orthographic) return principalPoint + focalPx * q.head<2>();
-  const Vec2 undistorted(q.x() / q.z(), q.y() / q.z());
-  const Vec2 distorted = distort(distortion, undistorted);
-  // Beyond the lens' fold the raster point's own ray is another one: such a point is not imaged
-  // (ray() refuses the same raster points).
-  if (!distortion.none()) {
-    const auto back = undistort(distortion, distorted);
-    if (!back || (*back - undistorted).norm() > 1e-9 * (1.0 + undistorted.norm())) return std::nullopt;
-  }
-  return principalPoint + focalPx * distorted;
+  const auto distorted = distortImaged(distortion, Vec2(q.x() / q.z(), q.y() / q.z()));
+  if (!distorted) return std::nullopt;  // beyond the lens' fold (ray() refuses the same raster points)
+  return principalPoint + focalPx * *distorted;
 }
 
 CameraRay Pinhole::rayTo(const Vec3& pointViewpoint) const {

@@ -53,4 +53,23 @@ Rigid cameraFromViewpoint() {
   return t;
 }
 
+Rigid cameraFromViewpoint(const RigSpec& rig) {
+  if (!rig.lens) return cameraFromViewpoint();
+  Rigid t = Rigid::Identity();
+  t.linear() = viewpointFromLens(*rig.lens).transpose();
+  return t;
+}
+
+Eigen::Matrix3d viewpointFromLens(const LensCameraSpec& lens) {
+  Eigen::Matrix3d forward;  // columns: image right, image down, optical axis (OpenCV's X, Y, Z)
+  forward.col(0) = -Vec3::UnitY();
+  forward.col(1) = -Vec3::UnitZ();
+  forward.col(2) = Vec3::UnitX();
+  const Eigen::Matrix3d turn = (Eigen::AngleAxisd(radians(lens.rotationDeg[2]), Vec3::UnitZ()) *
+                                Eigen::AngleAxisd(radians(lens.rotationDeg[1]), Vec3::UnitY()) *
+                                Eigen::AngleAxisd(radians(lens.rotationDeg[0]), Vec3::UnitX()))
+                                   .toRotationMatrix();
+  return turn * forward;
+}
+
 }  // namespace omnicam

@@ -6,10 +6,14 @@
 //   pinhole:   the physical camera below the mirror (physical_camera.h): origin at its pinhole,
 //              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
 //              axes along robot x, y, z.
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <optional>
 #include <string>
 
 #include "geometry.h"
+#include "lens_models.h"
 #include "omni_camera.h"
 #include "shutter.h"
 
@@ -17,14 +21,6 @@ namespace omnicam {
 
 struct RobotPose {
   double x = 0.0, y = 0.0, yawDeg = 0.0;
-};
-
-// OpenCV's radial-tangential lens distortion, applied to the pinhole's normalised image
-// coordinates (x, y) = (X/Z, Y/Z): x' = x(1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x y + p2 (r² + 2x²), etc.
-struct LensDistortion {
-  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;
-  bool none() const { return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0 && k3 == 0.0; }
-  bool operator==(const LensDistortion&) const = default;
 };
 
 // The physical camera below the mirror, as built rather than as designed. All zero: the ideal
@@ -58,6 +54,19 @@ struct MirrorShapeSpec {
   bool operator==(const MirrorShapeSpec&) const = default;
 };
 
+// A camera without a mirror (issue #37): a central lens model (lens_models.h) whose centre of
+// projection is the viewpoint F', looking along robot +x with its image's right along robot −y
+// and its image's down along robot −z, then turned by rotationDeg = [roll, pitch, yaw] about
+// robot x, y, z: viewpointFromLens = Rz(yaw)·Ry(pitch)·Rx(roll) · that forward camera (pitch −90
+// looks straight up, +90 straight down).
+struct LensCameraSpec {
+  LensModel model;
+  int width = 0, height = 0;
+  std::array<double, 3> rotationDeg{0.0, 0.0, 0.0};
+  bool operator==(const LensCameraSpec&) const = default;
+};
+Eigen::Matrix3d viewpointFromLens(const LensCameraSpec& lens);
+
 // InputError("<what>: must be in [8, 16384] (got N)") for an image size outside the limits.
 void checkImageSize(int size, const std::string& what);
 
@@ -76,6 +85,11 @@ struct RigSpec {
   // T(0, 0, height), i.e. roll about the mount's x axis, then pitch about the rolled y axis.
   // Level unless it says otherwise.
   std::array<double, 2> tiltDeg{0.0, 0.0};
+  // Set: the rig is a lens camera at F' (no mirror; the mirror's fields above are unused).
+  std::optional<LensCameraSpec> lens;
+
+  int imageWidth() const { return lens ? lens->width : imageSize; }
+  int imageHeight() const { return lens ? lens->height : imageSize; }
 
   // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
   // field can never leave a stale table behind.
@@ -83,7 +97,7 @@ struct RigSpec {
 
   // True when the camera sits exactly where the mirror was designed for: the image is then the
   // central (Mei) model's, in closed form.
-  bool ideal() const { return shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
+  bool ideal() const { return !lens && shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
   // The same camera imaging at another size: the focal length scales with the image, and so does
   // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
   // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize.
@@ -93,6 +107,12 @@ struct RigSpec {
     const double scale = static_cast<double>(size) / imageSize;
     r.imageSize = size;
     for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
+    if (lens) {  // `size` is the width; the height keeps the image's aspect
+      r.lens->width = size;
+      r.lens->height = std::max(1, static_cast<int>(std::lround(lens->height * scale)));
+      r.lens->model = scaledLens(lens->model, scale);
+      checkImageSize(r.lens->height, "image height");
+    }
     return r;
   }
   // What shapes the camera's rays in the viewpoint frame: this rig without its shutter (when
@@ -125,5 +145,8 @@ Rigid worldFromRobot(const RobotPose& pose);
 Rigid robotFromViewpoint(const RigSpec& rig);
 // Fixed axis change viewpoint → camera: X = x, Y = −y, Z = −z (a proper rotation).
 Rigid cameraFromViewpoint();
+// The camera frame of this rig's camera: the mirror's fixed one above, or a lens camera's OpenCV
+// frame (X image right, Y image down, Z its optical axis; viewpointFromLens).
+Rigid cameraFromViewpoint(const RigSpec& rig);
 
 }  // namespace omnicam

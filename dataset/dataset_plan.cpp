@@ -322,7 +322,7 @@ void checkRosbagOutputs(const DatasetPlan& plan, size_t frames) {
         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
       throw InputError(file + ": calibration.rosbag: camera " + quote(name) +
                        ": its topic /<camera>/image_raw needs a name ROS accepts (a letter, then letters, digits and '_')");
-    const int64_t bytes = static_cast<int64_t>(frames) * setup.rig.imageSize * setup.rig.imageSize * 3;
+    const int64_t bytes = static_cast<int64_t>(frames) * setup.rig.imageWidth() * setup.rig.imageHeight() * 3;
     // Each image's message adds a few hundred bytes of headers and index.
     if (bytes + static_cast<int64_t>(frames) * 1024 > kMaxDatasetFileBytes)
       throw InputError(file + ": calibration.rosbag: camera " + quote(name) + "'s bag would hold " + std::to_string(bytes >> 20) +
@@ -475,7 +475,7 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
 int64_t DatasetPlan::frameBytes() const {
   int64_t bytes = 0;
   for (const CameraSetup& setup : setups)
-    bytes += FastRenderer::frameBytes(setup.rig.imageSize, setup.rig.imageSize, spec.request.spp, setup.model->central());
+    bytes += FastRenderer::frameBytes(setup.rig.imageWidth(), setup.rig.imageHeight(), spec.request.spp, setup.model->central());
   return bytes;
 }
 

@@ -252,7 +252,7 @@ FastRenderer::MovingPlacements FastRenderer::movingPlacements(const RenderSettin
                                                               int samplesPerAxis) {
   MovingPlacements out;
   out.shutter = settings.rig.shutter;
-  out.width = out.height = settings.rig.imageSize;
+  out.width = settings.rig.imageWidth(), out.height = settings.rig.imageHeight();
   out.n = samplesPerAxis;
   out.instants = pixelInstants(out.shutter, samplesPerAxis);
   const int lines = lineCount(out.shutter, out.width, out.height);
@@ -373,7 +373,7 @@ void FastRenderer::prepareAovs(const RenderSettings& settings, AovFrame& aovs) c
   if (scene_.objects.size() > kMaxInstances)
     throw InputError(showPath(scene_.path) + ": " + std::to_string(scene_.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
-  aovs.width = aovs.height = settings.rig.imageSize;
+  aovs.width = settings.rig.imageWidth(), aovs.height = settings.rig.imageHeight();
   const size_t pixels = static_cast<size_t>(aovs.width) * aovs.height;
   // Sized only: every pixel is written by the pass (zeros where nothing is hit), so a reused
   // frame costs no clearing.
@@ -455,7 +455,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
   const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);  // checks the frame fits in memory
   film.allocate();
   if (aovs) prepareAovs(settings, *aovs);
-  const int width = settings.rig.imageSize, height = settings.rig.imageSize;
+  const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   const Placement at = placement(settings, camera);
   // A moving frame places each ray by its line and instant (the still one's path is unchanged,
   // so a still robot's frame is the static frame bit for bit, whatever the shutter).

@@ -34,7 +34,7 @@ void Film::setRimAlpha(const Camera& camera) {
 
 void Film::requireFits(const RenderSettings& settings, const char* who) const {
   const auto n = omnicam::samplesPerAxis(settings.spp);
-  if (width_ != settings.rig.imageSize || height_ != settings.rig.imageSize || !n || *n != n_)
+  if (width_ != settings.rig.imageWidth() || height_ != settings.rig.imageHeight() || !n || *n != n_)
     throw std::invalid_argument(std::string(who) + ": the film does not match the settings");
 }
 
@@ -81,7 +81,7 @@ void Film::reduceSupersampled(const ImageRGBA& large, const Camera& camera) {
 
 Film filmFor(const RenderSettings& settings, bool wantsAovs) {
   checkRenderSettings(settings);
-  return Film(settings.rig.imageSize, settings.rig.imageSize, *samplesPerAxis(settings.spp), wantsAovs);
+  return Film(settings.rig.imageWidth(), settings.rig.imageHeight(), *samplesPerAxis(settings.spp), wantsAovs);
 }
 
 }  // namespace omnicam

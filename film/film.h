@@ -73,7 +73,7 @@ class Film {
   int width_, height_, n_;
 };
 
-// The film a request renders into: rig.imageSize square, samplesPerAxis(spp) per axis.
+// The film a request renders into: rig.imageWidth() × rig.imageHeight(), samplesPerAxis(spp) per axis.
 // InputError (checkRenderSettings) for settings out of range.
 Film filmFor(const RenderSettings& settings, bool wantsAovs = false);
 

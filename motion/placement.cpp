@@ -57,7 +57,7 @@ Rigid CameraPlacement::worldFromViewpoint(const RigSpec& rig, double seconds) co
 }
 
 Rigid CameraPlacement::worldFromCamera(const RigSpec& rig, double seconds) const {
-  return worldFromViewpoint(rig, seconds) * cameraFromViewpoint().inverse();
+  return worldFromViewpoint(rig, seconds) * cameraFromViewpoint(rig).inverse();
 }
 
 CameraPlacement CameraPlacement::frozenAt(double seconds) const {

@@ -14,10 +14,15 @@ namespace {
 const std::vector<MirrorShape> kEveryShape = {MirrorShape::Hyperboloid, MirrorShape::Paraboloid, MirrorShape::Sphere,
                                               MirrorShape::Cone};
 
+const std::vector<std::string> kEveryLens = {"kannala_brandt",     "double_sphere",     "eucm",
+                                             "fisheye_equidistant", "fisheye_equisolid", "fisheye_polynomial",
+                                             "equirectangular",    "pinhole"};
+
 EngineCapabilities fastExact() {
   EngineCapabilities c;
   c.shownName = "the fast engine";
   c.mirrorShapes = kEveryShape;
+  c.lensModels = kEveryLens;
   c.aovs = true;
   c.pathShading = true;
   c.concurrent = true;  // a pure function of the placement
@@ -73,8 +78,19 @@ bool hasShape(const EngineCapabilities& c, MirrorShape shape) {
   return std::find(c.mirrorShapes.begin(), c.mirrorShapes.end(), shape) != c.mirrorShapes.end();
 }
 
+bool hasLens(const EngineCapabilities& c, const std::string& model) {
+  return std::find(c.lensModels.begin(), c.lensModels.end(), model) != c.lensModels.end();
+}
+
 void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
   const std::string shown = c.shownName;
+  if (rig.lens) {
+    const std::string model = lensModelName(rig.lens->model);
+    if (!hasLens(c, model))
+      throw InputError("rig.lens.model: " + shown + " has no " + model + " camera; render it with " +
+                       enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
+    return;
+  }
   if (!c.misalignedCamera && !rig.ideal())
     throw InputError(shown + " is central by construction and renders the ideal rig only (the hyperboloid with its camera "
                      "at F); this rig's mirror shape or camera (rig.mirror, rig.camera) differs: render it in exact mode");

@@ -20,6 +20,8 @@ struct EngineCapabilities {
   bool misalignedCamera = true;
   std::vector<MirrorShape> mirrorShapes;
   bool lensDistortion = true;
+  // The cameras without a mirror it renders (rig.lens), by lensModelName (lens_models.h).
+  std::vector<std::string> lensModels;
   // Time: a robot moving while the shutter is open, a rolling shutter, stratified time samples.
   bool motion = true, rollingShutter = true, timeSamples = true;
   // Physically based light (Shading::Path).

@@ -43,7 +43,7 @@ void checkRenderSettings(const RenderSettings& settings, const SettingNames& nam
   const int size = settings.rig.imageSize;
   checkImageSize(size, names.size);
   const int passes = std::max(1, settings.rig.shutter.timeSamples);
-  const int64_t samples = int64_t{size} * size * settings.spp * passes;
+  const int64_t samples = int64_t{settings.rig.imageWidth()} * settings.rig.imageHeight() * settings.spp * passes;
   if (samples > limits::kMaxSamplesPerFrame)
     throw InputError(names.spp + ": size " + std::to_string(size) + "^2 x spp " + std::to_string(settings.spp) +
                      (passes > 1 ? " x time samples " + std::to_string(passes) : std::string()) + " = " +

@@ -15,6 +15,7 @@
 #include "gltf_import.h"
 #include "input_limits.h"
 #include "json_fields.h"
+#include "lens_fields.h"
 #include "sha256.h"
 
 namespace omnicam {
@@ -169,9 +170,24 @@ void readMirror(JsonFields& mirror, RigSpec& spec) {
   }
 }
 
+// A lens camera's rig: its height, lens, shutter and tilt; a mirror's fields are refused.
+RigSpec readLensRig(JsonFields& rig, RigSpec spec) {
+  for (const char* mirrorOnly : {"mirror", "camera", "image"})
+    if (rig.has(mirrorOnly))
+      rig.fail(mirrorOnly, "a lens camera (rig.lens) has no mirror: its image size and intrinsics are rig.lens's");
+  spec.lens = readLensCamera(rig.object("lens"));
+  spec.imageSize = spec.lens->width;
+  if (auto shutter = rig.optionalObject("shutter")) spec.shutter = readShutter(*shutter);
+  const std::vector<double> tilt = rig.numbers("tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg, limits::kMaxRigTiltDeg, false, "degrees"});
+  spec.tiltDeg = {tilt[0], tilt[1]};
+  rig.finish();
+  return spec;
+}
+
 RigSpec readRig(JsonFields rig) {
   RigSpec spec;
   spec.height = rig.number("height", spec.height, {limits::kMinRigHeight, limits::kMaxRigHeight, false, "m"});
+  if (rig.has("lens")) return readLensRig(rig, spec);
   if (auto mirror = rig.optionalObject("mirror")) {
     readMirror(*mirror, spec);
     mirror->finish();

@@ -7,6 +7,7 @@
 #include "central_camera.h"
 #include "errors.h"
 #include "file_confinement.h"
+#include "lens_fields.h"
 #include "make_camera.h"
 #include "scene_loader.h"
 
@@ -14,7 +15,24 @@ namespace omnicam {
 
 using nlohmann::json;
 
+namespace {
+
+json shutterToJson(const Shutter& open) {
+  json shutter = {{"exposure_s", open.exposureS}};
+  if (open.rolling) shutter["rolling"] = {{"line_time_us", open.rolling->lineTimeUs}, {"readout", readoutName(open.rolling->readout)}};
+  if (open.timeSamples > 0) shutter["time_samples"] = open.timeSamples;
+  return shutter;
+}
+
+}  // namespace
+
 json rigToJson(const RigSpec& rig) {
+  if (rig.lens) {
+    json out = {{"height", rig.height}, {"lens", lensCameraToJson(*rig.lens)}};
+    if (rig.tiltDeg != std::array<double, 2>{0.0, 0.0}) out["tilt_deg"] = rig.tiltDeg;
+    if (!(rig.shutter == Shutter{})) out["shutter"] = shutterToJson(rig.shutter);
+    return out;
+  }
   const MirrorShapeSpec& s = rig.shape;
   json mirror = {{"shape", mirrorShapeName(s.shape)}};
   json image = {{"size", rig.imageSize}};
@@ -43,13 +61,7 @@ json rigToJson(const RigSpec& rig) {
                      {"principal_point_offset_px", m.principalPointOffsetPx}};
   }
   if (rig.tiltDeg != std::array<double, 2>{0.0, 0.0}) out["tilt_deg"] = rig.tiltDeg;  // level is the default
-  if (!(rig.shutter == Shutter{})) {  // likewise an instant
-    const Shutter& open = rig.shutter;
-    json shutter = {{"exposure_s", open.exposureS}};
-    if (open.rolling) shutter["rolling"] = {{"line_time_us", open.rolling->lineTimeUs}, {"readout", readoutName(open.rolling->readout)}};
-    if (open.timeSamples > 0) shutter["time_samples"] = open.timeSamples;
-    out["shutter"] = shutter;
-  }
+  if (!(rig.shutter == Shutter{})) out["shutter"] = shutterToJson(rig.shutter);  // likewise an instant
   return out;
 }
 

@@ -1,0 +1,177 @@
+#include "lens_fields.h"
+
+#include <cmath>
+
+#include "errors.h"
+#include "input_limits.h"
+#include "lens_camera.h"
+#include "number_format.h"
+
+namespace omnicam {
+
+namespace {
+
+// The parameters each model takes (Mitsuba-style: listed here, anything else is an error).
+//   every model: model, width, height, rotation_deg [roll, pitch, yaw] (±180, ±90, ±180)
+//   kannala_brandt:      fx, fy, cx, cy, k [k1..k4] (±10), max_theta_deg (0, 180] (90)
+//   double_sphere:       fx, fy, cx, cy, xi [−1, 1], alpha [0, 1)
+//   eucm:                fx, fy, cx, cy, alpha [0, 1), beta (0, 100]
+//   fisheye_equidistant: f_px, cx, cy, fov_deg (0, 360]
+//   fisheye_equisolid:   f_px, cx, cy, fov_deg (0, 360]
+//   fisheye_polynomial:  k [k0..k4] (θ(r) in radians, r in pixels), cx, cy, fov_deg (0, 360]
+//   equirectangular:     longitude_deg [min, max] (±180), latitude_deg [min, max] (±90)
+//   pinhole:             fx, fy, cx, cy, distortion {k1, k2, p1, p2, k3}
+// fx, fy, f_px in (0, 1e6] pixels; cx, cy within ±(width, height) of the image (default: its
+// centre, (width − 1)/2 and (height − 1)/2 in OpenCV's convention: pixel centres at integers).
+constexpr double kMaxFocalPx = 1e6;
+
+struct Focal {
+  double fx, fy, cx, cy;
+};
+
+Focal readFocal(JsonFields& f, int width, int height) {
+  const JsonFields::Range focal{0.0, kMaxFocalPx, true, "pixels"};
+  Focal out{};
+  out.fx = f.number("fx", focal);
+  out.fy = f.number("fy", focal);
+  out.cx = f.number("cx", (width - 1) / 2.0, {-1.0 * width, 2.0 * width, false, "pixels"});
+  out.cy = f.number("cy", (height - 1) / 2.0, {-1.0 * height, 2.0 * height, false, "pixels"});
+  return out;
+}
+
+template <class M>
+M withFocal(M m, const Focal& f) {
+  m.fx = f.fx, m.fy = f.fy, m.cx = f.cx, m.cy = f.cy;
+  return m;
+}
+
+double readHalfFov(JsonFields& f, double maxDeg) {
+  return radians(f.number("fov_deg", {0.0, maxDeg, true, "degrees"}) / 2.0);
+}
+
+KannalaBrandt readKannalaBrandt(JsonFields& f, int width, int height) {
+  KannalaBrandt m = withFocal(KannalaBrandt{}, readFocal(f, width, height));
+  const std::vector<double> k = f.numbers("k", {0.0, 0.0, 0.0, 0.0}, {-limits::kMaxDistortion, limits::kMaxDistortion});
+  for (size_t i = 0; i < 4; ++i) m.k[i] = k.at(i);
+  m.maxThetaRad = radians(f.number("max_theta_deg", 90.0, {0.0, 180.0, true, "degrees"}));
+  // θd must grow with θ up to the largest θ, else two directions share a pixel.
+  for (int step = 1; step <= 1000; ++step) {
+    const double t = m.maxThetaRad * step / 1000.0, t2 = t * t;
+    const double slope = 1.0 + t2 * (3.0 * m.k[0] + t2 * (5.0 * m.k[1] + t2 * (7.0 * m.k[2] + t2 * 9.0 * m.k[3])));
+    if (!(slope > 0.0))
+      f.fail("k", "the distorted angle θd stops growing at θ = " + shortNumber(degrees(t)) +
+                      "° (below max_theta_deg): lower max_theta_deg or the coefficients");
+  }
+  return m;
+}
+
+FThetaLens readFTheta(JsonFields& f, FThetaLens::Kind kind, int width, int height) {
+  FThetaLens m;
+  m.kind = kind;
+  if (kind == FThetaLens::Kind::Polynomial) {
+    const std::vector<double> k = f.numbers("k", {0.0, 0.0, 0.0, 0.0, 0.0}, {-1e3, 1e3});
+    for (size_t i = 0; i < 5; ++i) m.k[i] = k.at(i);
+  } else {
+    m.f = f.number("f_px", {0.0, kMaxFocalPx, true, "pixels"});
+  }
+  m.cx = f.number("cx", (width - 1) / 2.0, {-1.0 * width, 2.0 * width, false, "pixels"});
+  m.cy = f.number("cy", (height - 1) / 2.0, {-1.0 * height, 2.0 * height, false, "pixels"});
+  m.maxThetaRad = readHalfFov(f, 360.0);
+  if (kind == FThetaLens::Kind::Polynomial) {
+    // θ(r) must grow from the centre out to the image's farthest corner (or to the field of view).
+    const double corner = std::hypot(std::max(m.cx + 0.5, width - 0.5 - m.cx), std::max(m.cy + 0.5, height - 0.5 - m.cy));
+    if (!(m.k[0] >= 0.0 && m.k[0] < m.maxThetaRad)) f.fail("k", "k0 (θ at the centre) must be in [0, fov_deg/2)");
+    for (int step = 0; step <= 1000; ++step) {
+      const double r = corner * step / 1000.0;
+      if (m.k[0] + r * (m.k[1] + r * (m.k[2] + r * (m.k[3] + r * m.k[4]))) > m.maxThetaRad) break;
+      if (!(m.k[1] + r * (2.0 * m.k[2] + r * (3.0 * m.k[3] + r * 4.0 * m.k[4])) > 0.0))
+        f.fail("k", "θ(r) stops growing at r = " + shortNumber(r) + " px, inside the image and the field of view");
+    }
+  }
+  return m;
+}
+
+Equirectangular readEquirectangular(JsonFields& f, int width, int height) {
+  Equirectangular m;
+  m.width = width, m.height = height;
+  const auto range = [&](const char* key, double limit) {
+    const std::vector<double> v = f.numbers(key, {-limit, limit}, {-limit, limit, false, "degrees"});
+    if (!(v[0] < v[1])) f.fail(key, "must be [min, max] with min < max");
+    return std::pair<double, double>{radians(v[0]), radians(v[1])};
+  };
+  std::tie(m.lonMinRad, m.lonMaxRad) = range("longitude_deg", 180.0);
+  std::tie(m.latMinRad, m.latMaxRad) = range("latitude_deg", 90.0);
+  return m;
+}
+
+PinholeRadTan readPinhole(JsonFields& f, int width, int height) {
+  PinholeRadTan m = withFocal(PinholeRadTan{}, readFocal(f, width, height));
+  if (auto lens = f.optionalObject("distortion")) {
+    const JsonFields::Range radial{-limits::kMaxDistortion, limits::kMaxDistortion};
+    const JsonFields::Range tangential{-limits::kMaxTangentialDistortion, limits::kMaxTangentialDistortion};
+    m.distortion = {lens->number("k1", 0.0, radial), lens->number("k2", 0.0, radial), lens->number("p1", 0.0, tangential),
+                    lens->number("p2", 0.0, tangential), lens->number("k3", 0.0, radial)};
+    lens->finish();
+  }
+  return m;
+}
+
+LensModel readModel(JsonFields& f, const std::string& model, int width, int height) {
+  if (model == "kannala_brandt") return readKannalaBrandt(f, width, height);
+  if (model == "double_sphere") {
+    DoubleSphere m = withFocal(DoubleSphere{}, readFocal(f, width, height));
+    m.xi = f.number("xi", {-1.0, 1.0});
+    m.alpha = f.number("alpha", {0.0, 1.0});
+    if (!(m.alpha < 1.0)) f.fail("alpha", "must be below 1");
+    return m;
+  }
+  if (model == "eucm") {
+    ExtendedUnified m = withFocal(ExtendedUnified{}, readFocal(f, width, height));
+    m.alpha = f.number("alpha", {0.0, 1.0});
+    if (!(m.alpha < 1.0)) f.fail("alpha", "must be below 1");
+    m.beta = f.number("beta", {0.0, 100.0, true});
+    return m;
+  }
+  if (model == "fisheye_equidistant") return readFTheta(f, FThetaLens::Kind::Equidistant, width, height);
+  if (model == "fisheye_equisolid") return readFTheta(f, FThetaLens::Kind::Equisolid, width, height);
+  if (model == "fisheye_polynomial") return readFTheta(f, FThetaLens::Kind::Polynomial, width, height);
+  if (model == "equirectangular") return readEquirectangular(f, width, height);
+  if (model == "pinhole") return readPinhole(f, width, height);
+  f.fail("model", "unknown lens model " + quote(model) +
+                      " (kannala_brandt, double_sphere, eucm, fisheye_equidistant, fisheye_equisolid, fisheye_polynomial, "
+                      "equirectangular, pinhole)");
+}
+
+}  // namespace
+
+LensCameraSpec readLensCamera(JsonFields f) {
+  LensCameraSpec lens;
+  const std::string model = f.string("model");
+  lens.width = f.integer("width", limits::kMinImageSize, limits::kMaxImageSize);
+  lens.height = f.integer("height", limits::kMinImageSize, limits::kMaxImageSize);
+  const std::vector<double> turn = f.numbers("rotation_deg", {0.0, 0.0, 0.0}, {-180.0, 180.0, false, "degrees"});
+  if (std::abs(turn[1]) > 90.0) f.fail("rotation_deg", "pitch (the second) must be within ±90 degrees");
+  lens.rotationDeg = {turn[0], turn[1], turn[2]};
+  lens.model = readModel(f, model, lens.width, lens.height);
+  f.finish();
+  // A camera must image its own centre region: a lens whose every pixel is outside its model is
+  // a typing error (a focal length in millimetres, say).
+  RigSpec rig;
+  rig.lens = lens;
+  rig.imageSize = lens.width;
+  const LensCamera camera(rig);
+  int imaged = 0;
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) imaged += camera.images(Vec2((i + 0.5) * lens.width / 16.0, (j + 0.5) * lens.height / 16.0));
+  if (imaged == 0) f.fail("model", "this lens images none of its pixels (check the focal length, centre and field of view)");
+  return lens;
+}
+
+nlohmann::json lensCameraToJson(const LensCameraSpec& lens) {
+  nlohmann::json out = lensIntrinsicsJson(lens);
+  out.erase("pixel_centre");
+  out.erase("note");
+  return out;
+}
+
+}  // namespace omnicam

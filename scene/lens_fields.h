@@ -1,0 +1,17 @@
+#pragma once
+// The scene format's `rig.lens` (docs/scene-format.md, "Lens cameras"): a camera without a mirror,
+// read strictly (each model takes only its own fields, each range-checked) and written back in
+// the same shape, so a sidecar's rig reads as the scene's did.
+#include <nlohmann/json.hpp>
+
+#include "json_fields.h"
+#include "rig.h"
+
+namespace omnicam {
+
+// The lens camera of `lens`; fails on the field at fault (JsonFields::fail).
+LensCameraSpec readLensCamera(JsonFields lens);
+// `lens` in the scene format (readLensCamera reads it back to an equal spec).
+nlohmann::json lensCameraToJson(const LensCameraSpec& lens);
+
+}  // namespace omnicam
