@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "lens_intrinsics_files.h"
 #include "make_camera.h"
 #include "number_format.h"
 
@@ -39,7 +40,7 @@ std::string approximationNote(const CentralModel& model) {
 }
 
 std::string distortionText(const LensDistortion& l) {
-  return "[" + roundTrip(l.k1) + ", " + roundTrip(l.k2) + ", " + roundTrip(l.p1) + ", " + roundTrip(l.p2) + "]";
+  return "[" + yamlFloat(l.k1) + ", " + yamlFloat(l.k2) + ", " + yamlFloat(l.p1) + ", " + yamlFloat(l.p2) + "]";
 }
 
 }  // namespace
@@ -102,20 +103,34 @@ std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera) 
   if (model.approximation) out << "# " << approximationNote(model) << "\n";
   out << "cam0:\n"
       << "  camera_model: omni\n"
-      << "  intrinsics: [" << roundTrip(k.xi) << ", " << roundTrip(k.gammaX) << ", " << roundTrip(k.gammaY) << ", "
-      << roundTrip(k.cx) << ", " << roundTrip(k.cy) << "]\n"
+      << "  intrinsics: [" << yamlFloat(k.xi) << ", " << yamlFloat(k.gammaX) << ", " << yamlFloat(k.gammaY) << ", "
+      << yamlFloat(k.cx) << ", " << yamlFloat(k.cy) << "]\n"
       << "  distortion_model: radtan\n"
       << "  distortion_coeffs: " << distortionText(k.lens) << "\n"
       << "  resolution: [" << camera.width() << ", " << camera.height() << "]\n"
-      << "  rostopic: /omnicam/" << name << "/image_raw\n";
+      << "  rostopic: /" << name << "/image_raw\n";  // the calibration bag's topic (calibration_bag.h)
   return out.str();
+}
+
+std::vector<IntrinsicsFile> intrinsicsFiles(const std::string& name, const Camera& camera) {
+  if (const auto* lens = dynamic_cast<const LensCamera*>(&camera)) {
+    std::vector<IntrinsicsFile> files;
+    const auto add = [&](const char* kind, const char* fileName, const std::optional<std::string>& text) {
+      if (text) files.push_back({kind, fileName, *text});
+    };
+    add("intrinsics_opencv", "opencv.yaml", openCvLensYaml(*lens));
+    add("intrinsics_kalibr", "kalibr.yaml", kalibrLensYaml(name, *lens));
+    add("intrinsics_camodocal", "camodocal.yaml", camodocalLensYaml(name, *lens));
+    return files;
+  }
+  return {{"intrinsics_opencv", "opencv.yaml", openCvIntrinsicsYaml(camera)},
+          {"intrinsics_kalibr", "kalibr.yaml", kalibrIntrinsicsYaml(name, camera)},
+          {"intrinsics_camodocal", "camodocal.yaml", camodocalIntrinsicsYaml(name, camera)}};
 }
 
 void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const Camera& camera) {
   const std::filesystem::path folder(dir);
-  writeTextAtomically((folder / "opencv.yaml").string(), openCvIntrinsicsYaml(camera));
-  writeTextAtomically((folder / "kalibr.yaml").string(), kalibrIntrinsicsYaml(name, camera));
-  writeTextAtomically((folder / "camodocal.yaml").string(), camodocalIntrinsicsYaml(name, camera));
+  for (const IntrinsicsFile& file : intrinsicsFiles(name, camera)) writeTextAtomically((folder / file.fileName).string(), file.text);
 }
 
 }  // namespace omnicam

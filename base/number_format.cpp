@@ -21,4 +21,17 @@ std::string shortNumber(double value) {
   return s.str();
 }
 
+std::string yamlNumber(double value) {
+  std::string text = roundTrip(value);
+  const size_t e = text.find('e');
+  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
+  return text;
+}
+
+std::string yamlFloat(double value) {
+  std::string text = yamlNumber(value);
+  if (text.find_first_of(".ein") == std::string::npos) text += ".0";  // not 1e+20, nan or inf
+  return text;
+}
+
 }  // namespace omnicam

@@ -40,9 +40,13 @@ namespace {
 std::string posesTum(size_t frames, const CameraSetup& setup, double interval, const std::function<RigSpec(int)>& rigOfFrame,
                      const std::function<CameraPlacement(int)>& placementOfFrame) {
   std::ostringstream out;
-  out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n"
-      << "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
-      << "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
+  out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n";
+  if (setup.rig.lens)
+    out << "# pose of the camera frame in the world (world_from_camera): origin at the lens' centre of\n"
+        << "# projection, X right, Y down, Z along the optical axis (OpenCV's; intrinsics/*.yaml); world +Z up, metres\n";
+  else
+    out << "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
+        << "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
   for (size_t i = 0; i < frames; ++i) {
     const int frame = static_cast<int>(i);
     const Rigid worldFromCam = placementOfFrame(frame).worldFromCamera(rigOfFrame(frame));
@@ -61,11 +65,10 @@ std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<
                                     const std::function<CameraPlacement(int)>& placementOfFrame, bool euroc) {
   const std::string& name = setup.camera->name;
   const Camera& camera = *setup.model;
-  std::vector<StaticFile> files = {
-      {"intrinsics_opencv", name + "/intrinsics/opencv.yaml", openCvIntrinsicsYaml(camera)},
-      {"intrinsics_kalibr", name + "/intrinsics/kalibr.yaml", kalibrIntrinsicsYaml(name, camera)},
-      {"intrinsics_camodocal", name + "/intrinsics/camodocal.yaml", camodocalIntrinsicsYaml(name, camera)},
-      {"poses_tum", name + "/poses.tum", posesTum(poses.size(), setup, interval, rigOfFrame, placementOfFrame)}};
+  std::vector<StaticFile> files;
+  for (IntrinsicsFile& file : intrinsicsFiles(name, camera))
+    files.push_back({file.kind, name + "/intrinsics/" + file.fileName, std::move(file.text)});
+  files.push_back({"poses_tum", name + "/poses.tum", posesTum(poses.size(), setup, interval, rigOfFrame, placementOfFrame)});
   if (euroc) {
     files.push_back({"euroc_data_csv", name + "/data.csv", eurocDataCsv(static_cast<int>(poses.size()), interval)});
     files.push_back({"euroc_sensor_yaml", name + "/sensor.yaml", eurocSensorYaml(*setup.camera, setup.rig, camera, interval)});

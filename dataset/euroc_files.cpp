@@ -3,23 +3,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "lens_intrinsics_files.h"
 #include "make_camera.h"
 #include "number_format.h"
 
 namespace omnicam {
-
-namespace {
-
-// A number YAML 1.1 loaders (PyYAML) read as a float: its exponent form needs a '.' ("1.0e-05",
-// not "1e-05", which they read as a string).
-std::string yamlNumber(double v) {
-  std::string text = roundTrip(v);
-  const size_t e = text.find('e');
-  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
-  return text;
-}
-
-}  // namespace
 
 std::string eurocDataCsv(int frames, double intervalS) {
   std::ostringstream out;
@@ -28,7 +16,57 @@ std::string eurocDataCsv(int frames, double intervalS) {
   return out.str();
 }
 
+namespace {
+
+std::string numbers(const std::vector<double>& values) {
+  std::string out = "[";
+  for (const double v : values) out += (out.size() > 1 ? ", " : "") + yamlNumber(v);
+  return out + "]";
+}
+
+// A lens camera's sensor.yaml: Kalibr's terms where Kalibr has the model, else omnicam's own.
+std::string lensSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const LensCamera& camera, double intervalS) {
+  const Rigid bodyFromSensor =
+      CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromViewpoint(rig) * cameraFromViewpoint(rig).inverse();
+  std::ostringstream out;
+  out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"
+      << "# Body frame: the robot's (origin on the floor, x forward, y left, z up). Sensor frame: OpenCV's (X right,\n"
+      << "# Y down, Z along the optical axis) at the lens' centre of projection. Pixel centres are integers.\n"
+      << "sensor_type: camera\n"
+      << "comment: omnicam " << lensModelName(camera.lens().model) << " camera " << mount.name << "\n"
+      << "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out << yamlNumber(bodyFromSensor.matrix()(r, c)) << (r == 3 && c == 3 ? "]\n" : ", ");
+  out << "rate_hz: " << yamlNumber(1.0 / intervalS) << "\n"
+      << "resolution: [" << camera.width() << ", " << camera.height() << "]\n";
+  if (const auto kalibr = kalibrLensOf(camera.lens().model)) {
+    out << "camera_model: " << kalibr->cameraModel << "\n"
+        << "intrinsics: " << numbers(kalibr->intrinsics) << "\n"
+        << "distortion_model: " << kalibr->distortionModel << "\n"
+        << "distortion_coefficients: " << numbers(kalibr->coefficients) << "\n";
+  } else {
+    out << "camera_model: " << lensModelName(camera.lens().model) << "  # no Kalibr model: the sidecar's intrinsics and rays.exr state it\n";
+  }
+  return out.str();
+}
+
+std::string shutterYaml(const RigSpec& rig) {
+  std::ostringstream out;
+  out << "exposure_s: " << yamlNumber(rig.shutter.exposureS) << "\n";
+  if (rig.shutter.rolling) {
+    out << "shutter: rolling\n"
+        << "line_time_s: " << yamlNumber(rig.shutter.rolling->lineTimeUs / 1e6) << "\n"
+        << "readout: " << readoutName(rig.shutter.rolling->readout) << "\n";
+  } else {
+    out << "shutter: global\n";
+  }
+  return out.str();
+}
+
+}  // namespace
+
 std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const Camera& camera, double intervalS) {
+  if (const auto* lens = dynamic_cast<const LensCamera*>(&camera)) return lensSensorYaml(mount, rig, *lens, intervalS) + shutterYaml(rig);
   const CentralModel model = centralModelOf(camera);
   const MeiIntrinsics& k = model.intrinsics;
   // The rig's camera frame, or the frame of its best-fit central model.
@@ -58,16 +96,8 @@ std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, cons
       << yamlNumber(k.cx) << ", " << yamlNumber(k.cy) << "]\n"
       << "distortion_model: radial-tangential\n"
       << "distortion_coefficients: [" << yamlNumber(k.lens.k1) << ", " << yamlNumber(k.lens.k2) << ", "
-      << yamlNumber(k.lens.p1) << ", " << yamlNumber(k.lens.p2) << "]\n"
-      << "exposure_s: " << yamlNumber(rig.shutter.exposureS) << "\n";
-  if (rig.shutter.rolling) {
-    out << "shutter: rolling\n"
-        << "line_time_s: " << yamlNumber(rig.shutter.rolling->lineTimeUs / 1e6) << "\n"
-        << "readout: " << readoutName(rig.shutter.rolling->readout) << "\n";
-  } else {
-    out << "shutter: global\n";
-  }
-  return out.str();
+      << yamlNumber(k.lens.p1) << ", " << yamlNumber(k.lens.p2) << "]\n";
+  return out.str() + shutterYaml(rig);
 }
 
 }  // namespace omnicam
