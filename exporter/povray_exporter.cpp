@@ -133,6 +133,36 @@ std::string cameraSdl(const Pinhole& pinhole, int size, const Rigid& worldFromVi
   return out.str();
 }
 
+// A lens camera (rig.lens) as POV-Ray's own camera, in its definitions (POV-Ray 3.7.0.10,
+// TracePixel::CreateCameraRay; docs/povray.md, "Lens cameras"): pixel (i, j) is traced at its
+// centre; `fisheye` is the equidistant lens θ = ρ·angle/2 with ρ = |(x0·|right|, y0·|up|)| and
+// x0, y0 ∈ [−1, 1] across the image, no ray beyond ρ = 1 (black, alpha 0); `spherical` spreads
+// `angle H, V` evenly over the columns and rows about `direction`; `perspective` is the pinhole.
+// Each centres its image: the lens' principal point must be the image's centre (checked by the
+// engine's capabilities). `lens` is the rendered (supersampled) image's: rig.resized(width · n).
+std::string lensCameraSdl(const LensCameraSpec& lens, const Rigid& worldFromView) {
+  const Eigen::Matrix3d worldFromLens = worldFromView.linear() * viewpointFromLens(lens);
+  const Vec3 right = worldFromLens.col(0), up = -worldFromLens.col(1);
+  Vec3 forward = worldFromLens.col(2);
+  const double w = lens.width, h = lens.height;
+  std::ostringstream out;
+  out << "camera { ";
+  if (const auto* f = std::get_if<FThetaLens>(&lens.model)) {
+    const double angle = 2.0 * f->maxThetaRad;  // the image circle's θ = angle/2 at ρ = 1
+    out << "fisheye\n  angle " << num(degrees(angle)) << "\n  right " << povDirection(right * (w / (f->f * angle)))
+        << "\n  up " << povDirection(up * (h / (f->f * angle)));
+  } else if (const auto* e = std::get_if<Equirectangular>(&lens.model)) {
+    out << "spherical\n  angle " << num(degrees(e->lonMaxRad - e->lonMinRad)) << ", "
+        << num(degrees(e->latMaxRad - e->latMinRad)) << "\n  right " << povDirection(right) << "\n  up " << povDirection(up);
+  } else {
+    const auto& p = std::get<PinholeRadTan>(lens.model);
+    out << "perspective\n  right " << povDirection(right * (w / h)) << "\n  up " << povDirection(up);
+    forward = forward * (p.fx / h);
+  }
+  out << "\n  location " << pov(worldFromView.translation()) << "\n  direction " << povDirection(forward) << "\n}\n";
+  return out.str();
+}
+
 // The exact mirror in its local frame (mm, POV axes: POV y = omnicam z, origin at the design
 // point), an open object the caller clips at the rim and closes.
 std::string mirrorSurfaceSdl(const RigSpec& rig) {
@@ -171,6 +201,26 @@ std::string mirrorSurfaceSdl(const RigSpec& rig) {
   return out.str();
 }
 
+// The mirror as built, placed on the robot, and the black beyond its rim.
+std::string mirrorSdl(const RigSpec& rig, const Rigid& worldFromView) {
+  const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(rig);
+  const double u = kPovrayUnitsPerMetre;
+  std::ostringstream out;
+  const double rimY = surface->rimZ() * u, rimR = surface->rimRadius() * u;
+  const double bottomY = surface->heightAt(0.0, 0.0) * u - 0.5;
+  out << mirrorSurfaceSdl(rig)
+      << "  clipped_by { box { <" << num(-rimR - 1.0) << ", " << num(bottomY) << ", " << num(-rimR - 1.0)
+      << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
+      << "  bounded_by { clipped_by }\n"
+      << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
+      << "  no_shadow\n  " << povPlacement(worldFromView) << "\n}\n"
+      << "// Beyond the rim the camera sees black (docs/conventions.md §2); invisible to everything else.\n"
+      << "disc { <0, " << num(rimY) << ", 0>, y, " << num(rimR + 1000.0) << ", " << num(rimR) << "\n"
+      << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
+      << "  " << povPlacement(worldFromView) << "\n}\n\n";
+  return out.str();
+}
+
 }  // namespace
 
 void checkPovrayCamera(const RigSpec& rig) { checkEngineRenders(EngineKind::Povray, rig, CameraPlacement{}); }
@@ -183,10 +233,8 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
   job.samplesPerAxis = *n;
   // The physical camera as built (physical_camera.h) and the mirror it looks into.
   checkPovrayCamera(settings.rig);
-  const Pinhole pinhole = pinholeOf(settings.rig);
-  const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(settings.rig);
-  job.width = settings.rig.imageSize * *n;
-  job.height = settings.rig.imageSize * *n;
+  job.width = settings.rig.imageWidth() * *n;
+  job.height = settings.rig.imageHeight() * *n;
   // POV-Ray renders one instant: the exposure start (povray_renderer.h freezes a moving
   // placement at each instant it renders).
   const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);
@@ -197,25 +245,18 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
   out << "// omnicam POV-Ray export (generated). Units: mm; axes: <X, Z, Y> of omnicam's world.\n"
          "#version 3.7;\n"
          "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
-      << "background { " << rgb(scene.background) << " }\n\n"
-      << cameraSdl(pinhole, settings.rig.imageSize, worldFromView) << "\n";
+      << "background { " << rgb(scene.background) << " }\n\n";
+  if (settings.rig.lens)
+    out << lensCameraSdl(*settings.rig.resized(job.width).lens, worldFromView) << "\n";
+  else
+    out << cameraSdl(pinholeOf(settings.rig), settings.rig.imageSize, worldFromView) << "\n";
 
   if (settings.shading == Shading::Lit)
     for (const PointLight& l : scene.lights) out << "light_source { " << pov(l.position) << ", " << rgb(l.intensity) << " }\n";
 
+  if (!settings.rig.lens) out << mirrorSdl(settings.rig, worldFromView);
+
   const double u = kPovrayUnitsPerMetre;
-  const double rimY = surface->rimZ() * u, rimR = surface->rimRadius() * u;
-  const double bottomY = surface->heightAt(0.0, 0.0) * u - 0.5;
-  out << mirrorSurfaceSdl(settings.rig)
-      << "  clipped_by { box { <" << num(-rimR - 1.0) << ", " << num(bottomY) << ", " << num(-rimR - 1.0)
-      << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
-      << "  bounded_by { clipped_by }\n"
-      << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
-      << "  no_shadow\n  " << povPlacement(worldFromView) << "\n}\n"
-      << "// Beyond the rim the camera sees black (docs/conventions.md §2); invisible to everything else.\n"
-      << "disc { <0, " << num(rimY) << ", 0>, y, " << num(rimR + 1000.0) << ", " << num(rimR) << "\n"
-      << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
-      << "  " << povPlacement(worldFromView) << "\n}\n\n";
 
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];

@@ -77,14 +77,13 @@ struct InstantJob {
 };
 
 // The region of the n×-larger image that holds a line's samples.
-PovrayRegion regionOfLine(const Shutter& shutter, int line, int size, int n) {
-  const int large = size * n;
-  if (!shutter.rolling) return {0, large, 0, large};
-  int first = line;  // the line's row or column in the image
-  if (shutter.rolling->readout == Readout::BottomToTop || shutter.rolling->readout == Readout::RightToLeft)
-    first = size - 1 - line;
+PovrayRegion regionOfLine(const Shutter& shutter, int line, int width, int height, int n) {
+  if (!shutter.rolling) return {0, height * n, 0, width * n};
   const bool rows = shutter.rolling->readout == Readout::TopToBottom || shutter.rolling->readout == Readout::BottomToTop;
-  return rows ? PovrayRegion{first * n, (first + 1) * n, 0, large} : PovrayRegion{0, large, first * n, (first + 1) * n};
+  int first = line;  // the line's row or column in the image
+  if (shutter.rolling->readout == Readout::BottomToTop) first = height - 1 - line;
+  if (shutter.rolling->readout == Readout::RightToLeft) first = width - 1 - line;
+  return rows ? PovrayRegion{first * n, (first + 1) * n, 0, width * n} : PovrayRegion{0, height * n, first * n, (first + 1) * n};
 }
 
 // A moving frame as the mean of still POV-Ray renders (docs/motion.md): one per line and instant,
@@ -94,10 +93,10 @@ PovrayRegion regionOfLine(const Shutter& shutter, int line, int size, int n) {
 void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
                             const PovrayOptions& options, Film& film) {
   const Shutter& shutter = settings.rig.shutter;
-  const int n = *samplesPerAxis(settings.spp), size = settings.rig.imageSize;
+  const int n = *samplesPerAxis(settings.spp), width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   const PixelInstants instants = pixelInstants(shutter, n);
   std::vector<InstantJob> jobs;
-  for (int line = 0; line < lineCount(shutter, size, size); ++line)
+  for (int line = 0; line < lineCount(shutter, width, height); ++line)
     for (int m = 0; m < instants.count; ++m) jobs.push_back({line, m});
   std::vector<ImageRGBA> renders(jobs.size());
   RenderSettings still = settings;
@@ -106,20 +105,20 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
     const InstantJob& job = jobs[k];
     const double seconds = lineStart(shutter, job.line) + instantTime(shutter, job.instant, instants.count);
     renders[k] = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options,
-                              options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, size, n));
+                              options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, width, height, n));
   });
   // Each sample from the render of its line and instant, summed in a fixed order.
   std::vector<float> sums;
   for (size_t k = 0; k < jobs.size(); ++k)
     film.accumulateSupersampled(renders[k], instants.passes, [&](int i, int j, int a, int b, int pass) {
-      return lineOf(shutter, i, j, size, size) == jobs[k].line && instantOf(shutter, a, b, n, pass) == jobs[k].instant;
+      return lineOf(shutter, i, j, width, height) == jobs[k].line && instantOf(shutter, a, b, n, pass) == jobs[k].instant;
     }, sums);
   const auto camera = makeCamera(settings.rig);
   film.allocate();
   const float weight = film.weight(instants.passes);
-  for (int j = 0; j < size; ++j)
-    for (int i = 0; i < size; ++i)
-      film.setPixel(i, j, &sums[(static_cast<size_t>(j) * size + i) * 3], weight, film.imagedGridPoints(*camera, i, j));
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i)
+      film.setPixel(i, j, &sums[(static_cast<size_t>(j) * width + i) * 3], weight, film.imagedGridPoints(*camera, i, j));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "engine_capabilities.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <iterator>
 
@@ -44,6 +45,8 @@ EngineCapabilities povray() {
   EngineCapabilities c;
   c.shownName = "the povray engine";
   c.mirrorShapes = kEveryShape;
+  c.lensModels = {"fisheye_equidistant", "equirectangular", "pinhole"};  // fisheye, spherical, perspective
+  c.centredLensesOnly = true;
   c.lensDistortion = false;
   return c;
 }
@@ -78,6 +81,23 @@ bool hasShape(const EngineCapabilities& c, MirrorShape shape) {
   return std::find(c.mirrorShapes.begin(), c.mirrorShapes.end(), shape) != c.mirrorShapes.end();
 }
 
+// What keeps an engine's own camera from being this lens: "" when nothing does.
+std::string uncentredLensProblem(const LensCameraSpec& lens) {
+  const double cx = (lens.width - 1) / 2.0, cy = (lens.height - 1) / 2.0;
+  const auto centred = [&](double x, double y) { return std::abs(x - cx) <= 1e-9 * lens.width && std::abs(y - cy) <= 1e-9 * lens.height; };
+  if (const auto* f = std::get_if<FThetaLens>(&lens.model)) {
+    if (!centred(f->cx, f->cy)) return "cx, cy: its fisheye centres the image circle ((width − 1)/2, (height − 1)/2)";
+  } else if (const auto* p = std::get_if<PinholeRadTan>(&lens.model)) {
+    if (!centred(p->cx, p->cy)) return "cx, cy: its perspective camera centres the image ((width − 1)/2, (height − 1)/2)";
+    if (p->fx != p->fy) return "fx, fy: its perspective camera has square pixels (fx = fy)";
+    if (!p->distortion.none()) return "distortion: its perspective camera has no lens distortion";
+  } else if (const auto* e = std::get_if<Equirectangular>(&lens.model)) {
+    if (e->lonMinRad != -e->lonMaxRad || e->latMinRad != -e->latMaxRad)
+      return "longitude_deg, latitude_deg: its panorama is symmetric about its direction ([−a, a]; turn the camera instead)";
+  }
+  return "";
+}
+
 bool hasLens(const EngineCapabilities& c, const std::string& model) {
   return std::find(c.lensModels.begin(), c.lensModels.end(), model) != c.lensModels.end();
 }
@@ -89,6 +109,8 @@ void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
     if (!hasLens(c, model))
       throw InputError("rig.lens.model: " + shown + " has no " + model + " camera; render it with " +
                        enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
+    if (const std::string problem = c.centredLensesOnly ? uncentredLensProblem(*rig.lens) : ""; !problem.empty())
+      throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
     return;
   }
   if (!c.misalignedCamera && !rig.ideal())

@@ -22,6 +22,10 @@ struct EngineCapabilities {
   bool lensDistortion = true;
   // The cameras without a mirror it renders (rig.lens), by lensModelName (lens_models.h).
   std::vector<std::string> lensModels;
+  // Its lens cameras centre their image (the principal point at the image's centre), have square
+  // pixels, no lens distortion, and panoramas symmetric about their direction (POV-Ray's and
+  // Cycles' own cameras).
+  bool centredLensesOnly = false;
   // Time: a robot moving while the shutter is open, a rolling shutter, stratified time samples.
   bool motion = true, rollingShutter = true, timeSamples = true;
   // Physically based light (Shading::Path).
