@@ -11,11 +11,14 @@
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
+#include "engine_capabilities.h"
 #include "errors.h"
 #include "image.h"
+#include "lens_camera.h"
 #include "make_camera.h"
 #include "mirror_mesh.h"
 #include "physical_camera.h"
+#include "placement.h"
 #include "sidecar.h"
 #include "triangulate.h"
 
@@ -249,9 +252,41 @@ namespace {
 
 nlohmann::json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
 
+// A lens camera's rig: the rig node at the viewpoint and its camera, no mirror. glTF cameras look
+// along −Z with +Y up: the lens' axes (x right, y down, z forward) with y and z flipped. glTF has
+// only the pinhole: a lens travels in the node's extras ("lens", the sidecar's intrinsics), which
+// Blender's job turns into its panoramic camera.
+void addLensRig(GltfBuilder& b, const GltfExportOptions& options) {
+  const LensCameraSpec& lens = *options.rig.lens;
+  const int rig = b.node(kGltfRigNode, options.placement.worldFromViewpoint(options.rig), -1,
+                         {{"omnicam",
+                           {{"role", "rig"},
+                            {"rig", rigToJson(options.rig)},
+                            {"pose", poseJson(options.placement.footAt(0.0))},
+                            {"intrinsics", makeCamera(options.rig)->describe()},
+                            {"frame", "viewpoint: origin at the lens' centre of projection, robot axes (x forward, y left, z up)"}}}});
+  b.addRoot(rig);
+  tinygltf::Camera cam;
+  cam.name = kGltfCameraNode;
+  cam.type = "perspective";
+  cam.perspective.aspectRatio = static_cast<double>(lens.width) / lens.height;
+  const auto* pinhole = std::get_if<PinholeRadTan>(&lens.model);
+  cam.perspective.yfov = pinhole ? 2.0 * std::atan(0.5 * lens.height / pinhole->fy) : kPi / 2;  // a stand-in for the others
+  cam.perspective.znear = 1e-4;
+  cam.perspective.zfar = 1e4;
+  b.model().cameras.push_back(cam);
+  Rigid viewpointFromGltfCamera = Rigid::Identity();
+  viewpointFromGltfCamera.linear() = viewpointFromLens(lens) * Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  const int camNode = b.node(kGltfCameraNode, viewpointFromGltfCamera, -1,
+                             {{"omnicam", {{"role", "camera"}, {"lens", lensIntrinsicsJson(lens)}}}}, true);
+  b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
+  b.addChild(rig, camNode);
+}
+
 }  // namespace
 
 void checkGltfCamera(const RigSpec& rig) {
+  if (rig.lens) return checkEngineRenders(EngineKind::Blender, rig, CameraPlacement{});  // the lenses Cycles has
   if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes)) {
     std::string certified;
     for (MirrorShape shape : kCertifiedMeshShapes) certified += (certified.empty() ? "the " : " and the ") + std::string(mirrorShapeName(shape));
@@ -310,7 +345,10 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                      {{"omnicam", {{"role", "landmark"}, {"name", lm.name}, {"colour_class", lm.colourClass},
                                    {"diameter", lm.diameter}, {"height", lm.height}}}}));
   }
-  if (options.includeRig) {
+  if (options.includeRig && options.rig.lens) {
+    checkGltfCamera(options.rig);
+    addLensRig(b, options);
+  } else if (options.includeRig) {
     checkGltfCamera(options.rig);
     // The mirror and its rim are the ideal rig's whatever the camera; the camera is the physical
     // pinhole as mounted (physical_camera.h), modelled once for every exporter.

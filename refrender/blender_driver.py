@@ -5,7 +5,12 @@ the job JSON named after `--` (never Python built from scene strings):
 
 job.json: {"glb": path, "shading": "unlit"|"lit"|"path", "samples": int, "seed": int, "width": int,
            "height": int, "focal_length_px": float, "principal_point_px": [u, v] (raster, v down;
-           default the image centre), "ambient": float (lit), "background": [r, g, b] (path),
+           default the image centre) -- or, for a lens camera, "panorama": {"type": Cycles'
+           panorama_type, "sensor_width_mm", "shift_x", "shift_y", "fov" (fisheyes, radians),
+           "lens_mm" (equisolid), "polynomial": [k0..k4] (lens polynomial, Cycles' sign),
+           "longitude_min", "longitude_max", "latitude_min", "latitude_max" (equirectangular)},
+           "lens_camera": true for a lens camera's job (no mirror in the glTF),
+           "ambient": float (lit), "background": [r, g, b] (path),
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
                       diameter 0: a point, > 0: a disc luminaire facing straight down),
            "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
@@ -25,7 +30,7 @@ Albedo, Normal and Depth passes), and the frame is rendered a second time with t
 no bounce after the first surface seen in the mirror (direct light only) into `direct_output`.
 
 The .glb holds the arena and the rig (nodes omnicam_rig > omnicam_mirror, omnicam_rim_mask,
-omnicam_camera); the importer turns glTF's +Y-up into Blender's +Z-up, which is omnicam's world.
+omnicam_camera; a lens camera's rig holds the camera alone); the importer turns glTF's +Y-up into Blender's +Z-up, which is omnicam's world.
 Objects are found by the node extras omnicam's exporter writes ("omnicam": {"role": ...,
 "light_index": ...}, custom properties after import), never by name: Blender renames objects
 whose names collide or exceed 63 bytes, and a user's object may be called anything.
@@ -202,7 +207,7 @@ def omnicam_props(obj):
     return props if props is not None and hasattr(props, "get") else None
 
 
-def find_roles(objects):
+def find_roles(objects, lens):
     roles, lights = {}, {}
     for obj in objects:
         props = omnicam_props(obj)
@@ -215,7 +220,8 @@ def find_roles(objects):
             if role in roles:
                 raise RuntimeError("omnicam: two objects claim the role " + role)
             roles[role] = obj
-    missing = [r for r in ("rig", "mirror", "rim_mask", "camera") if r not in roles]
+    needed = ("rig", "camera") if lens else ("rig", "mirror", "rim_mask", "camera")
+    missing = [r for r in needed if r not in roles]
     if missing:
         raise RuntimeError("omnicam: the glTF rig lacks " + ", ".join(missing))
     return roles, lights
@@ -226,8 +232,9 @@ def main():
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.import_scene.gltf(filepath=job["glb"])
     scene = bpy.context.scene
-    roles, lights_by_index = find_roles(bpy.data.objects)
-    rig, mirror, mask, camera = roles["rig"], roles["mirror"], roles["rim_mask"], roles["camera"]
+    lens = job.get("lens_camera", False)
+    roles, lights_by_index = find_roles(bpy.data.objects, lens)
+    rig, mirror, mask, camera = roles["rig"], roles.get("mirror"), roles.get("rim_mask"), roles["camera"]
     unlit = job["shading"] == "unlit"
     tracing = path_tracing(job)
 
@@ -238,17 +245,19 @@ def main():
                 make_emission_only(material)
             else:
                 make_lambertian(material)
-    mirror.data.materials.clear()
-    mirror.data.materials.append(perfect_mirror())
-    # The mirror is part of the camera (docs/conventions.md §3): camera rays see it, bounces pass
-    # through it and it casts no shadow, as in the fast renderer and POV-Ray.
-    if tracing["mirror_seen_by_indirect_rays"]:
-        mirror.visible_shadow = False
-    else:
-        only_camera_sees(mirror)
-    mask.data.materials.clear()
-    mask.data.materials.append(black_emission())
-    only_camera_sees(mask)
+    if mirror is not None:
+        mirror.data.materials.clear()
+        mirror.data.materials.append(perfect_mirror())
+        # The mirror is part of the camera (docs/conventions.md §3): camera rays see it, bounces pass
+        # through it and it casts no shadow, as in the fast renderer and POV-Ray.
+        if tracing["mirror_seen_by_indirect_rays"]:
+            mirror.visible_shadow = False
+        else:
+            only_camera_sees(mirror)
+    if mask is not None:
+        mask.data.materials.clear()
+        mask.data.materials.append(black_emission())
+        only_camera_sees(mask)
 
     if job["shading"] == "path":
         scene.world = background_world(job.get("background", [0.0, 0.0, 0.0]))
@@ -265,15 +274,18 @@ def main():
         obj.data.energy = 0.0 if unlit else light["watts"]
 
     cam = camera.data
-    cam.type = "PERSP"
-    cam.sensor_fit = "HORIZONTAL"
-    cam.sensor_width = 36.0
-    cam.lens = job["focal_length_px"] * 36.0 / job["width"]
-    # The principal point (raster, v down) as a lens shift, in units of the image width: a shift
-    # to the right puts the optical axis left of the centre, one upward puts it below.
-    principal = job.get("principal_point_px", [0.5 * job["width"], 0.5 * job["height"]])
-    cam.shift_x = (0.5 * job["width"] - principal[0]) / job["width"]
-    cam.shift_y = (principal[1] - 0.5 * job["height"]) / job["width"]
+    if "panorama" in job:
+        set_panorama(cam, job["panorama"])
+    else:
+        cam.type = "PERSP"
+        cam.sensor_fit = "HORIZONTAL"
+        cam.sensor_width = 36.0
+        cam.lens = job["focal_length_px"] * 36.0 / job["width"]
+        # The principal point (raster, v down) as a lens shift, in units of the image width: a shift
+        # to the right puts the optical axis left of the centre, one upward puts it below.
+        principal = job.get("principal_point_px", [0.5 * job["width"], 0.5 * job["height"]])
+        cam.shift_x = (0.5 * job["width"] - principal[0]) / job["width"]
+        cam.shift_y = (principal[1] - 0.5 * job["height"]) / job["width"]
     cam.clip_start = 1e-4
     cam.clip_end = 1e4
     scene.camera = camera
@@ -313,11 +325,35 @@ def main():
 
     direct_pass = tracing["direct_pass"] and not unlit
     for frame in job["frames"]:
-        place_rig(scene, rig, (rig, mirror, mask, camera), frame)
+        place_rig(scene, rig, [obj for obj in (rig, mirror, mask, camera) if obj is not None], frame)
         if direct_pass:
             render_with_direct_twin(scene, frame)
         else:
             render_to(scene, frame["output"])
+
+
+def set_panorama(cam, panorama):
+    """Cycles' panoramic camera (Blender 3.4 keeps its settings in the Cycles add-on's
+    cam.cycles): image coordinates over [0, 1] across the sensor, shifted like a lens."""
+    cam.type = "PANO"
+    cam.sensor_fit = "HORIZONTAL"
+    cam.sensor_width = panorama["sensor_width_mm"]
+    cam.shift_x = panorama["shift_x"]
+    cam.shift_y = panorama["shift_y"]
+    settings = cam.cycles
+    settings.panorama_type = panorama["type"]
+    if panorama["type"] == "EQUIRECTANGULAR":
+        settings.longitude_min = panorama["longitude_min"]
+        settings.longitude_max = panorama["longitude_max"]
+        settings.latitude_min = panorama["latitude_min"]
+        settings.latitude_max = panorama["latitude_max"]
+        return
+    settings.fisheye_fov = panorama["fov"]
+    if panorama["type"] == "FISHEYE_EQUISOLID":
+        settings.fisheye_lens = panorama["lens_mm"]
+    elif panorama["type"] == "FISHEYE_LENS_POLYNOMIAL":
+        for index, k in enumerate(panorama["polynomial"]):
+            setattr(settings, "fisheye_polynomial_k%d" % index, k)
 
 
 def place_rig(scene, rig, rig_objects, frame):

@@ -149,6 +149,55 @@ nlohmann::json blenderMotion(const RenderSettings& settings, const CameraPlaceme
           {"world_from_viewpoint", placements}};
 }
 
+// The job's camera: the pinhole's focal length and principal point (a mirror rig's physical camera,
+// or a lens camera's pinhole), or a lens camera as Cycles' panoramic camera (docs/blender.md,
+// "Lens cameras"; Cycles 3.4 kernel/camera/projection.h). Cycles' panoramic image coordinates
+// run over [0, 1] across the image, v up, pixel centres at ½; the sensor is 36 mm wide.
+nlohmann::json cyclesCamera(const RigSpec& rig) {
+  if (!rig.lens) {
+    const Pinhole pinhole = pinholeOf(rig);
+    return {{"focal_length_px", pinhole.focalPx}, {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}};
+  }
+  const LensCameraSpec& lens = *rig.lens;
+  if (const auto* p = std::get_if<PinholeRadTan>(&lens.model))
+    return {{"lens_camera", true}, {"focal_length_px", p->fx}, {"principal_point_px", {p->cx + 0.5, p->cy + 0.5}}};
+  constexpr double kSensorWidthMm = 36.0;
+  const double w = lens.width, h = lens.height, mmPerPixel = kSensorWidthMm / w;
+  nlohmann::json panorama = {{"sensor_width_mm", kSensorWidthMm}, {"shift_x", 0.0}, {"shift_y", 0.0}};
+  if (const auto* e = std::get_if<Equirectangular>(&lens.model)) {
+    panorama.update({{"type", "EQUIRECTANGULAR"}, {"longitude_min", e->lonMinRad}, {"longitude_max", e->lonMaxRad},
+                     {"latitude_min", e->latMinRad}, {"latitude_max", e->latMaxRad}});
+    return {{"lens_camera", true}, {"panorama", panorama}};
+  }
+  const auto& f = std::get<FThetaLens>(lens.model);
+  // The principal point (OpenCV's, centres at integers) as a shift of the image's [0, 1] square.
+  panorama["shift_x"] = (0.5 * w - (f.cx + 0.5)) / w;
+  panorama["shift_y"] = (f.cy + 0.5 - 0.5 * h) / h;
+  panorama["fov"] = 2.0 * f.maxThetaRad;
+  // Cycles' equidistant fisheye spans the image's [0, 1] square with its circle (θ = r·fov/2):
+  // exactly ours when the circle touches the sides of a square image; any other is θ = r/f, a
+  // lens polynomial θ(r_mm) = −(k0 + k1 r + …) in Cycles' sign.
+  std::array<double, 5> k = f.k;
+  switch (f.kind) {
+    case FThetaLens::Kind::Equidistant:
+      if (lens.width == lens.height && std::abs(2.0 * f.maxThetaRad * f.f - w) <= 1e-12 * w && panorama["shift_x"] == 0.0 &&
+          panorama["shift_y"] == 0.0) {
+        panorama["type"] = "FISHEYE_EQUIDISTANT";
+        return {{"lens_camera", true}, {"panorama", panorama}};
+      }
+      k = {0.0, 1.0 / f.f, 0.0, 0.0, 0.0};
+      break;
+    case FThetaLens::Kind::Equisolid:
+      panorama.update({{"type", "FISHEYE_EQUISOLID"}, {"lens_mm", f.f * mmPerPixel}});
+      return {{"lens_camera", true}, {"panorama", panorama}};
+    case FThetaLens::Kind::Polynomial: break;
+  }
+  nlohmann::json coefficients = nlohmann::json::array();
+  for (size_t i = 0; i < k.size(); ++i) coefficients.push_back(-k[i] / std::pow(mmPerPixel, static_cast<double>(i)));
+  panorama.update({{"type", "FISHEYE_LENS_POLYNOMIAL"}, {"polynomial", coefficients}});
+  return {{"lens_camera", true}, {"panorama", panorama}};
+}
+
 }  // namespace
 
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
@@ -164,8 +213,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
     checkEngineRenders(EngineKind::Blender, settings.rig, placement);
   }
   checkEngineShading(EngineKind::Blender, settings.shading);
-  const int size = settings.rig.imageSize;
-  const Pinhole pinhole = pinholeOf(settings.rig);
+  const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
@@ -189,14 +237,12 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
   for (const PointLight& l : scene.lights)
     lights.push_back({{"watts", 4.0 * kPi * kPi * kLightMatchDistance * kLightMatchDistance * l.intensity.maxCoeff()},
                       {"diameter", l.diameter}});
-  const nlohmann::json job = {{"glb", glb},
+  nlohmann::json job = {{"glb", glb},
                               {"shading", shadingName(settings.shading)},
                               {"samples", settings.spp},
                               {"seed", options.seed + static_cast<int64_t>(settings.seed % (uint64_t{1} << 31))},
-                              {"width", size},
-                              {"height", size},
-                              {"focal_length_px", pinhole.focalPx},
-                              {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}},
+                              {"width", width},
+                              {"height", height},
                               {"ambient", ambient},
                               {"background", {scene.background.x(), scene.background.y(), scene.background.z()}},
                               {"lights", lights},
@@ -207,6 +253,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
                                  return t;
                                }()},  // the driver ignores direct_pass when unlit, as `filtered` does
                               {"frames", frames}};
+  job.update(cyclesCamera(settings.rig));
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
 
   const std::string log = folder.path() + "/blender.log";
@@ -229,11 +276,11 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
         throw ExternalError("blender: no output " + showPath(frame[key].get<std::string>()) + "; last output:\n" + r.logTail);
     ImageRGBA image;
     try {
-      image = filtered ? readFilteredBlenderFrame(output, frame["direct_output"], size, size) : readImage(output);
+      image = filtered ? readFilteredBlenderFrame(output, frame["direct_output"], width, height) : readImage(output);
     } catch (const InputError& e) {
       throw ExternalError(std::string("blender: unreadable output: ") + e.what());
     }
-    if (image.width != size || image.height != size)
+    if (image.width != width || image.height != height)
       throw ExternalError("blender: output has the wrong size");
     // Cycles samples randomly inside the pixel; the alpha is the rim on the film's grid.
     Film film = filmFor(settings);

@@ -55,6 +55,8 @@ EngineCapabilities blender() {
   EngineCapabilities c;
   c.shownName = "the blender engine";
   c.mirrorShapes.assign(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes));
+  // Cycles' panoramic cameras (fisheye equidistant or lens polynomial, equisolid, equirectangular) and its perspective one.
+  c.lensModels = {"fisheye_equidistant", "fisheye_equisolid", "fisheye_polynomial", "equirectangular", "pinhole"};
   c.lensDistortion = false;
   c.rollingShutter = false;
   c.timeSamples = false;
@@ -82,17 +84,17 @@ bool hasShape(const EngineCapabilities& c, MirrorShape shape) {
 }
 
 // What keeps an engine's own camera from being this lens: "" when nothing does.
-std::string uncentredLensProblem(const LensCameraSpec& lens) {
+std::string lensProblem(const LensCameraSpec& lens, bool centredOnly) {
   const double cx = (lens.width - 1) / 2.0, cy = (lens.height - 1) / 2.0;
   const auto centred = [&](double x, double y) { return std::abs(x - cx) <= 1e-9 * lens.width && std::abs(y - cy) <= 1e-9 * lens.height; };
-  if (const auto* f = std::get_if<FThetaLens>(&lens.model)) {
-    if (!centred(f->cx, f->cy)) return "cx, cy: its fisheye centres the image circle ((width − 1)/2, (height − 1)/2)";
-  } else if (const auto* p = std::get_if<PinholeRadTan>(&lens.model)) {
-    if (!centred(p->cx, p->cy)) return "cx, cy: its perspective camera centres the image ((width − 1)/2, (height − 1)/2)";
-    if (p->fx != p->fy) return "fx, fy: its perspective camera has square pixels (fx = fy)";
+  if (const auto* p = std::get_if<PinholeRadTan>(&lens.model)) {
     if (!p->distortion.none()) return "distortion: its perspective camera has no lens distortion";
+    if (p->fx != p->fy) return "fx, fy: its perspective camera has square pixels (fx = fy)";
+    if (centredOnly && !centred(p->cx, p->cy)) return "cx, cy: its perspective camera centres the image ((width − 1)/2, (height − 1)/2)";
+  } else if (const auto* f = std::get_if<FThetaLens>(&lens.model)) {
+    if (centredOnly && !centred(f->cx, f->cy)) return "cx, cy: its fisheye centres the image circle ((width − 1)/2, (height − 1)/2)";
   } else if (const auto* e = std::get_if<Equirectangular>(&lens.model)) {
-    if (e->lonMinRad != -e->lonMaxRad || e->latMinRad != -e->latMaxRad)
+    if (centredOnly && (e->lonMinRad != -e->lonMaxRad || e->latMinRad != -e->latMaxRad))
       return "longitude_deg, latitude_deg: its panorama is symmetric about its direction ([−a, a]; turn the camera instead)";
   }
   return "";
@@ -109,7 +111,8 @@ void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
     if (!hasLens(c, model))
       throw InputError("rig.lens.model: " + shown + " has no " + model + " camera; render it with " +
                        enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
-    if (const std::string problem = c.centredLensesOnly ? uncentredLensProblem(*rig.lens) : ""; !problem.empty())
+    // An engine without lens distortion traces its own cameras, which are not every lens of a model.
+    if (const std::string problem = c.lensDistortion ? "" : lensProblem(*rig.lens, c.centredLensesOnly); !problem.empty())
       throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
     return;
   }

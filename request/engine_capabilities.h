@@ -22,9 +22,8 @@ struct EngineCapabilities {
   bool lensDistortion = true;
   // The cameras without a mirror it renders (rig.lens), by lensModelName (lens_models.h).
   std::vector<std::string> lensModels;
-  // Its lens cameras centre their image (the principal point at the image's centre), have square
-  // pixels, no lens distortion, and panoramas symmetric about their direction (POV-Ray's and
-  // Cycles' own cameras).
+  // Its lens cameras centre their image (the principal point at the image's centre) and their
+  // panoramas are symmetric about their direction (POV-Ray's own cameras); Cycles' shift instead.
   bool centredLensesOnly = false;
   // Time: a robot moving while the shutter is open, a rolling shutter, stratified time samples.
   bool motion = true, rollingShutter = true, timeSamples = true;
