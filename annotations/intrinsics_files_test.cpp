@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "central_camera.h"
+#include "lens_camera.h"
 #include "opencv_omnidir.h"
 #include "physical_camera.h"
 #include "rig.h"
@@ -142,6 +143,102 @@ TEST(IntrinsicsFiles, ANonCentralRigsFilesSayApproximate) {
   // Points 5 m along the ray from its mirror point lie within millimetres of 5 m from the viewpoint.
   EXPECT_LE(worst, 1.5 * statedMaxAt5m + 1e-3);
   EXPECT_GT(worst, 0.0);
+}
+
+// Kalibr's reader wants floats ("146.0", not "146") and the calibration bag's topic.
+TEST(IntrinsicsFiles, TheMirrorsKalibrFileWritesFloatsAndTheBagsTopic) {
+  RigSpec rig;
+  rig.imageSize = 300;  // cx = 149.5, γ integer-free; the principal point below is an integer
+  rig.mount.principalPointOffsetPx = {0.5, -0.5};
+  const PhysicalCamera camera(rig);
+  const std::string kalibr = kalibrIntrinsicsYaml("front", camera);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(kalibr, m, std::regex(R"(intrinsics: \[([^\]]+)\])")));
+  const std::string numbers = m[1];
+  for (const std::string& number : {std::string("150.0"), std::string("149.0")})
+    EXPECT_NE(numbers.find(number), std::string::npos) << numbers;
+  EXPECT_TRUE(std::regex_search(kalibr, std::regex(R"(distortion_coeffs: \[-?0\.0, -?0\.0, -?0\.0, -?0\.0\])"))) << kalibr;
+  EXPECT_NE(kalibr.find("rostopic: /front/image_raw\n"), std::string::npos);
+}
+
+RigSpec lensRig(const LensModel& model, int width, int height) {
+  RigSpec rig;
+  rig.lens = LensCameraSpec{model, width, height, {0.0, 10.0, 20.0}};
+  rig.imageSize = width;
+  return rig;
+}
+
+// The points a lens camera sees, 2 m along its rays, in its own (OpenCV) frame, with their pixels.
+void seenPoints(const LensCamera& camera, std::vector<cv::Point3d>& points, std::vector<Vec2>& pixels, double minZ) {
+  for (double y = 0.5; y < camera.height(); y += 6.0)
+    for (double x = 0.5; x < camera.width(); x += 6.0) {
+      const auto ray = camera.generateRay({Vec2(x, y)});
+      if (!ray) continue;
+      const Vec3 p = cameraFromViewpoint(camera.rig()) * Vec3(2.0 * ray->direction);
+      if (p.z() <= minZ) continue;
+      points.emplace_back(p.x(), p.y(), p.z());
+      pixels.emplace_back(x, y);
+    }
+}
+
+// opencv.yaml of a Kannala–Brandt lens, read back by cv::FileStorage, makes cv::fisheye project
+// as the camera does; camodocal's file carries the same numbers under its names.
+TEST(IntrinsicsFiles, AKannalaBrandtLensReadsBackIntoCvFisheye) {
+  const KannalaBrandt kb{95.0, 96.0, 161.0, 118.0, {0.02, -0.005, 0.001, -0.0002}, radians(100.0)};
+  const LensCamera camera(lensRig(kb, 320, 240));
+  const std::vector<IntrinsicsFile> files = intrinsicsFiles("side", camera);
+  ASSERT_EQ(files.size(), 3u);
+  cv::FileStorage fs(files[0].text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  ASSERT_TRUE(fs.isOpened());
+  EXPECT_EQ(static_cast<std::string>(fs["camera_model"]), "fisheye");
+  cv::Mat k, d;
+  fs["K"] >> k;
+  fs["D"] >> d;
+  ASSERT_EQ(d.total(), 4u);
+  std::vector<cv::Point3d> points;
+  std::vector<Vec2> ours;
+  seenPoints(camera, points, ours, 1e-3);  // OpenCV images z > 0 only
+  ASSERT_GT(points.size(), 500u);
+  std::vector<cv::Point2d> projected;
+  cv::fisheye::projectPoints(points, projected, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), k, d);
+  double worst = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) worst = std::max(worst, (Vec2(projected[i].x + 0.5, projected[i].y + 0.5) - ours[i]).norm());
+  EXPECT_LE(worst, 1e-8);
+  cv::FileStorage camodocal(files[2].text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  EXPECT_EQ(static_cast<std::string>(camodocal["model_type"]), "KANNALA_BRANDT");
+  const cv::FileNode p = camodocal["projection_parameters"];
+  EXPECT_EQ(static_cast<double>(p["k2"]), kb.k[0]);
+  EXPECT_EQ(static_cast<double>(p["k5"]), kb.k[3]);
+  EXPECT_EQ(static_cast<double>(p["mu"]), kb.fx);
+  EXPECT_EQ(static_cast<double>(p["v0"]), kb.cy);
+  EXPECT_NE(files[1].text.find("camera_model: pinhole\n  intrinsics: [95.0, 96.0, 161.0, 118.0]\n  distortion_model: equidistant"),
+            std::string::npos)
+      << files[1].text;
+}
+
+// opencv.yaml of a distorted pinhole makes cv::projectPoints project as the camera does.
+TEST(IntrinsicsFiles, ADistortedPinholeReadsBackIntoCvProjectPoints) {
+  const PinholeRadTan pinhole{300.0, 302.0, 161.0, 118.0, {-0.2, 0.05, 0.001, -0.002, 0.01}};
+  const LensCamera camera(lensRig(pinhole, 320, 240));
+  const std::vector<IntrinsicsFile> files = intrinsicsFiles("side", camera);
+  ASSERT_EQ(files.size(), 1u) << "Kalibr's and camodocal's radtan have no k3";
+  cv::FileStorage fs(files[0].text, cv::FileStorage::READ | cv::FileStorage::MEMORY);
+  cv::Mat k, d;
+  fs["K"] >> k;
+  fs["D"] >> d;
+  std::vector<cv::Point3d> points;
+  std::vector<Vec2> ours;
+  seenPoints(camera, points, ours, 0.0);
+  std::vector<cv::Point2d> projected;
+  cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), k, d, projected);
+  double worst = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) worst = std::max(worst, (Vec2(projected[i].x + 0.5, projected[i].y + 0.5) - ours[i]).norm());
+  EXPECT_LE(worst, 1e-8);
+}
+
+// Models no tool's layout has get no file (their sidecar and rays.exr state them).
+TEST(IntrinsicsFiles, APanoramaHasNoThirdPartyFile) {
+  EXPECT_TRUE(intrinsicsFiles("pano", LensCamera(lensRig(Equirectangular{128, 64}, 128, 64))).empty());
 }
 
 }  // namespace

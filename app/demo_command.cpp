@@ -21,6 +21,7 @@
 #include "commands.h"
 #include "cubemap_renderer.h"
 #include "dataset_runner.h"
+#include "demo_lenses.h"
 #include "demo_motion.h"
 #include "texture_realism.h"
 #include "hall_arena.h"
@@ -494,6 +495,7 @@ void runDemo(const DemoArgs& a) {
   const std::string hall = demoTexturedHall(a.out, dir + "/robocup2006.json");
   const std::string physical = demoPhysicalCamera(a.out, arena, a.spp, a.povray);
   const std::string motion = demoMotion(a.out, arena, a.spp);
+  const std::string lenses = demoLenses(a.out, arena, a.spp, a.povray, a.blender);
   const std::string light = demoLight(a.out, a.out + "/hall/hall-textured.json", a.blender);
   const MethodSection method = methodSection(a, arena);
 
@@ -530,7 +532,7 @@ per-pixel lookups does not. See <code>docs/thesis-reproduction.md</code> (<code>
 Panorama: centre = forward, top = rim. <i>thesis</i> uses the parabolic Eq. 3.4 / radius-linear rows; <i>exact</i>
 the model of docs/conventions.md §1.</p>
 )" << method.views
-       << light << physical << motion << dataset << hall << R"(
+       << light << physical << lenses << motion << dataset << hall << R"(
 <p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,
 and OpenCV <code>cv::omnidir</code> intrinsics.</p></body></html>
 )";

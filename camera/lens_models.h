@@ -25,16 +25,9 @@
 #include <variant>
 
 #include "geometry.h"
+#include "lens_distortion.h"
 
 namespace omnicam {
-
-// OpenCV's radial-tangential lens distortion, applied to a pinhole's normalised image coordinates
-// (x, y) = (X/Z, Y/Z): x' = x(1 + k1 r² + k2 r⁴ + k3 r⁶) + 2 p1 x y + p2 (r² + 2x²), etc.
-struct LensDistortion {
-  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0, k3 = 0.0;
-  bool none() const { return k1 == 0.0 && k2 == 0.0 && p1 == 0.0 && p2 == 0.0 && k3 == 0.0; }
-  bool operator==(const LensDistortion&) const = default;
-};
 
 struct KannalaBrandt {
   double fx = 0.0, fy = 0.0, cx = 0.0, cy = 0.0;

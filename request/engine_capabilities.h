@@ -20,7 +20,9 @@ struct EngineCapabilities {
   bool misalignedCamera = true;
   std::vector<MirrorShape> mirrorShapes;
   bool lensDistortion = true;
-  // The cameras without a mirror it renders (rig.lens), by lensModelName (lens_models.h).
+  // The cameras without a mirror it renders (rig.lens): every model, or these by lensModelName
+  // (lens_models.h).
+  bool everyLensModel = false;
   std::vector<std::string> lensModels;
   // Its lens cameras centre their image (the principal point at the image's centre) and their
   // panoramas are symmetric about their direction (POV-Ray's own cameras); Cycles' shift instead.

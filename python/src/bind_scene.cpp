@@ -76,6 +76,8 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
       .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")
       .def_property_readonly("shape", [](const RigSpec& r) { return std::string(mirrorShapeName(r.shape.shape)); },
                              "The mirror shape: hyperboloid, paraboloid, sphere or cone.")
+      .def_property_readonly("lens", [](const RigSpec& r) { return r.lens ? toPython(rigToJson(r)["lens"]) : py::object(py::none()); },
+                             "A lens camera's \"lens\" block (docs/lens-cameras.md), or None for a mirror rig.")
       .def(py::self == py::self)
       .def("__repr__", [](const RigSpec& r) { return "omnicam.Rig(" + rigToJson(r).dump() + ")"; });
   rigProperty(rig, "height", {"height"}, "The design point's height above the floor, metres.");

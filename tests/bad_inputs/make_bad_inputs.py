@@ -185,6 +185,17 @@ def main():
           scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}))
     write(os.path.join(SCENES, "shutter_unknown_key.json"), scene([FLOOR], rig={"shutter": {"iso": 100}}))
     write(os.path.join(SCENES, "tilt_too_far.json"), scene([FLOOR], rig={"tilt_deg": [40, 0]}))
+    # Lens cameras (rig.lens, docs/lens-cameras.md): each model takes only its own fields, range-checked.
+    kb = {"model": "kannala_brandt", "width": 64, "height": 48, "fx": 20, "fy": 20}
+    write(os.path.join(SCENES, "lens_unknown_model.json"), scene([FLOOR], rig={"lens": dict(kb, model="fisheye\n")}))
+    write(os.path.join(SCENES, "lens_foreign_field.json"), scene([FLOOR], rig={"lens": dict(kb, xi=0.5)}))
+    write(os.path.join(SCENES, "lens_and_mirror.json"), scene([FLOOR], rig={"lens": kb, "mirror": {"k": 11}}))
+    write(os.path.join(SCENES, "lens_folding.json"), scene([FLOOR], rig={"lens": dict(kb, k=[-0.5, 0, 0, 0], max_theta_deg=120)}))
+    write(os.path.join(SCENES, "lens_sees_nothing.json"),
+          scene([FLOOR], rig={"lens": {"model": "fisheye_equisolid", "width": 64, "height": 64, "f_px": 1, "fov_deg": 180, "cx": -60}}))
+    write(os.path.join(SCENES, "lens_alpha_one.json"),
+          scene([FLOOR], rig={"lens": {"model": "double_sphere", "width": 64, "height": 64, "fx": 20, "fy": 20, "xi": 0.1, "alpha": 1}}))
+    write(os.path.join(SCENES, "lens_kb_povray.json"), scene([FLOOR], rig={"lens": kb}))
     write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
     write(os.path.join(SCENES, "light_shares_name.json"),
           scene([dict(FLOOR, name="lamp")], lights=[{"name": "lamp", "position": [0, 0, 2]}]))
