@@ -62,6 +62,16 @@ class GoldenHashes : public ::testing::Test {
     std::ofstream(file) << s.dump(1);
     return file.string();
   }
+  // robocup2006 seen by a lens camera (docs/lens-cameras.md) instead of its mirror.
+  std::string lensScene(const std::string& name, const json& lens, const json& shutter = json()) const {
+    std::ifstream in(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+    json s = json::parse(in);
+    s["rig"] = {{"height", 0.4}, {"lens", lens}};
+    if (!shutter.is_null()) s["rig"]["shutter"] = shutter;
+    const fs::path file = work_ / (name + ".json");
+    std::ofstream(file) << s.dump(1);
+    return file.string();
+  }
   std::string path(const std::string& name) const { return (work_ / name).string(); }
   void omnicam(const std::string& args) const {
     const auto [code, out] = testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");
@@ -132,6 +142,17 @@ TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
   const std::string rolling = scene("rolling", {{"shutter", {{"exposure_s", 0.004}, {"rolling", {{"line_time_us", 300}}}}}});
   render("fast_moving_global", global, small + " --velocity 1,0.2,90");
   render("fast_moving_rolling", rolling, small + " --velocity 1,0.2,90");
+  // Lens cameras: a Kannala-Brandt fisheye, a panorama, a distorted pinhole, rolling.
+  const json kb = {{"model", "kannala_brandt"}, {"width", 64}, {"height", 48}, {"fx", 19}, {"fy", 19},
+                   {"k", {0.02, -0.005, 0.001, 0}}, {"max_theta_deg", 100}, {"rotation_deg", {0, 15, 0}}};
+  render("fast_lens_kannala_brandt", lensScene("kb", kb), "--spp 4 --pose=1.2,-0.4,30 --shading lit");
+  const json pano = {{"model", "equirectangular"}, {"width", 64}, {"height", 32}};
+  render("fast_lens_panorama", lensScene("pano", pano), "--spp 4 --pose=1.2,-0.4,30");
+  const json pinhole = {{"model", "pinhole"}, {"width", 48}, {"height", 36}, {"fx", 40}, {"fy", 40},
+                        {"distortion", {{"k1", -0.2}, {"p2", 0.001}}}, {"rotation_deg", {0, 20, -10}}};
+  render("fast_lens_pinhole_rolling", lensScene("pinhole", pinhole, {{"exposure_s", 0.004}, {"rolling", {{"line_time_us", 300}}}}), "--spp 4 --pose=1.2,-0.4,30 --velocity 1,0.2,90");
+  const json equidistant = {{"model", "fisheye_equidistant"}, {"width", 32}, {"height", 32}, {"f_px", 9}, {"fov_deg", 190}};
+  render("povray_lens_fisheye", lensScene("equidistant", equidistant), "--engine povray --spp 4 --pose=1.2,-0.4,30");
   // The ground truths.
   render("povray_ideal", robocup, "--engine povray --size 32 --spp 4 --pose=1.2,-0.4,30");
   const std::string turned = scene("turned", {{"camera", {{"offset_mm", {2, -1, 0.5}}, {"rotation_deg", {1, -0.5, 0.3}}}}});
