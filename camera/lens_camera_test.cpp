@@ -8,25 +8,13 @@
 #include <opencv2/calib3d.hpp>
 
 #include "make_camera.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
 
-RigSpec lensRig(const LensModel& model, int width, int height, std::array<double, 3> rotationDeg = {0.0, 0.0, 0.0}) {
-  RigSpec rig;
-  rig.lens = LensCameraSpec{model, width, height, rotationDeg};
-  rig.imageSize = width;
-  return rig;
-}
-
-FThetaLens fTheta(FThetaLens::Kind kind, double f, double fovDeg, double cx, double cy) {
-  FThetaLens lens;
-  lens.kind = kind;
-  lens.f = f;
-  lens.cx = cx, lens.cy = cy;
-  lens.maxThetaRad = radians(fovDeg / 2.0);
-  return lens;
-}
+using test::fTheta;
+using test::lensRig;
 
 // One of each model, off-centre and turned, as a researcher would configure them.
 std::vector<RigSpec> everyModel() {

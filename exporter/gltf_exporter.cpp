@@ -252,35 +252,52 @@ namespace {
 
 nlohmann::json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
 
-// A lens camera's rig: the rig node at the viewpoint and its camera, no mirror. glTF cameras look
-// along −Z with +Y up: the lens' axes (x right, y down, z forward) with y and z flipped. glTF has
-// only the pinhole: a lens travels in the node's extras ("lens", the sidecar's intrinsics), which
-// Blender's job turns into its panoramic camera.
-void addLensRig(GltfBuilder& b, const GltfExportOptions& options) {
-  const LensCameraSpec& lens = *options.rig.lens;
+// The rig's root node at the viewpoint, with the rig, pose and intrinsics in its extras.
+int addRigNode(GltfBuilder& b, const GltfExportOptions& options, const char* frame) {
   const int rig = b.node(kGltfRigNode, options.placement.worldFromViewpoint(options.rig), -1,
                          {{"omnicam",
                            {{"role", "rig"},
                             {"rig", rigToJson(options.rig)},
                             {"pose", poseJson(options.placement.footAt(0.0))},
                             {"intrinsics", makeCamera(options.rig)->describe()},
-                            {"frame", "viewpoint: origin at the lens' centre of projection, robot axes (x forward, y left, z up)"}}}});
+                            {"frame", frame}}}});
   b.addRoot(rig);
+  return rig;
+}
+
+// The rig's camera: a glTF perspective camera whose axes are `viewpointFromCamera`'s (x image
+// right, y image down, z optical axis) with y and z flipped, as glTF cameras look along −Z with
+// +Y up; what glTF cannot say travels in `extras`.
+void addCameraNode(GltfBuilder& b, int rig, double yfov, double aspectRatio, const Rigid& viewpointFromCamera,
+                   const nlohmann::json& extras) {
   tinygltf::Camera cam;
   cam.name = kGltfCameraNode;
   cam.type = "perspective";
-  cam.perspective.aspectRatio = static_cast<double>(lens.width) / lens.height;
-  const auto* pinhole = std::get_if<PinholeRadTan>(&lens.model);
-  cam.perspective.yfov = pinhole ? 2.0 * std::atan(0.5 * lens.height / pinhole->fy) : kPi / 2;  // a stand-in for the others
+  cam.perspective.aspectRatio = aspectRatio;
+  cam.perspective.yfov = yfov;
   cam.perspective.znear = 1e-4;
-  cam.perspective.zfar = 1e4;
+  cam.perspective.zfar = 1e4;  // tinygltf would write 0, which the validator rejects
   b.model().cameras.push_back(cam);
-  Rigid viewpointFromGltfCamera = Rigid::Identity();
-  viewpointFromGltfCamera.linear() = viewpointFromLens(lens) * Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  const int camNode = b.node(kGltfCameraNode, viewpointFromGltfCamera, -1,
-                             {{"omnicam", {{"role", "camera"}, {"lens", lensIntrinsicsJson(lens)}}}}, true);
+  Rigid viewpointFromGltfCamera = viewpointFromCamera;
+  viewpointFromGltfCamera.linear() = viewpointFromCamera.linear() * Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  const int camNode = b.node(kGltfCameraNode, viewpointFromGltfCamera, -1, {{"omnicam", extras}}, true);
   b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
   b.addChild(rig, camNode);
+}
+
+// A lens camera's rig: the rig node at the viewpoint and its camera, no mirror. glTF cameras look
+// along −Z with +Y up: the lens' axes (x right, y down, z forward) with y and z flipped. glTF has
+// only the pinhole: a lens travels in the node's extras ("lens", the sidecar's intrinsics), which
+// Blender's job turns into its panoramic camera.
+void addLensRig(GltfBuilder& b, const GltfExportOptions& options) {
+  const LensCameraSpec& lens = *options.rig.lens;
+  const int rig = addRigNode(b, options, "viewpoint: origin at the lens' centre of projection, robot axes (x forward, y left, z up)");
+  const auto* pinhole = std::get_if<PinholeRadTan>(&lens.model);
+  const double yfov = pinhole ? 2.0 * std::atan(0.5 * lens.height / pinhole->fy) : kPi / 2;  // a stand-in for the others
+  Rigid viewpointFromLensFrame = Rigid::Identity();
+  viewpointFromLensFrame.linear() = viewpointFromLens(lens);
+  addCameraNode(b, rig, yfov, static_cast<double>(lens.width) / lens.height, viewpointFromLensFrame,
+                {{"role", "camera"}, {"lens", lensIntrinsicsJson(lens)}});
 }
 
 }  // namespace
@@ -358,14 +375,7 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
         shape.shape == MirrorShape::Sphere
             ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
             : buildMirrorMesh(options.rig.mirror(), options.rig.idealCamera().rimTheta(), options.mirrorDeviation);
-    const int rig = b.node(kGltfRigNode, options.placement.worldFromViewpoint(options.rig), -1,
-                           {{"omnicam",
-                             {{"role", "rig"},
-                              {"rig", rigToJson(options.rig)},
-                              {"pose", poseJson(options.placement.footAt(0.0))},
-                              {"intrinsics", makeCamera(options.rig)->describe()},
-                              {"frame", "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)"}}}});
-    b.addRoot(rig);
+    const int rig = addRigNode(b, options, "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)");
     const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
     b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
                            b.mesh(kGltfMirrorNode, mirrorMesh.mesh, &mirrorMesh.normals, mirrorMaterial, nullptr),
@@ -381,28 +391,15 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                            b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
                                   nullptr, maskMaterial, nullptr),
                            {{"omnicam", {{"role", "rim_mask"}}}}));
-    // The pinhole looking up: glTF cameras look along −Z with +Y up, so their axes are the
-    // pinhole's (x = image right, y = image down, z = optical axis) with y and z flipped. glTF has
-    // no principal point: it travels in the node's extras (Blender's job shifts the lens by it).
-    tinygltf::Camera cam;
-    cam.name = kGltfCameraNode;
-    cam.type = "perspective";
-    cam.perspective.aspectRatio = 1.0;  // square images
-    cam.perspective.yfov = 2.0 * std::atan(0.5 * options.rig.imageSize / pinhole.focalPx);
-    cam.perspective.znear = 1e-4;
-    cam.perspective.zfar = 1e4;  // tinygltf would write 0, which the validator rejects
-    b.model().cameras.push_back(cam);
-    Rigid viewpointFromGltfCamera = Rigid::Identity();
-    viewpointFromGltfCamera.translate(pinhole.position);
-    viewpointFromGltfCamera.linear() = pinhole.viewpointFromPinhole * Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-    const int camNode = b.node(kGltfCameraNode, viewpointFromGltfCamera, -1,
-                               {{"omnicam",
-                                 {{"role", "camera"},
-                                  {"focal_length_px", pinhole.focalPx},
-                                  {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}}}},
-                               true);
-    b.model().nodes[camNode].camera = static_cast<int>(b.model().cameras.size()) - 1;
-    b.addChild(rig, camNode);
+    // The pinhole looking up. glTF has no principal point: it travels in the node's extras
+    // (Blender's job shifts the lens by it). Square images.
+    Rigid viewpointFromPinhole = Rigid::Identity();
+    viewpointFromPinhole.translate(pinhole.position);
+    viewpointFromPinhole.linear() = pinhole.viewpointFromPinhole;
+    addCameraNode(b, rig, 2.0 * std::atan(0.5 * options.rig.imageSize / pinhole.focalPx), 1.0, viewpointFromPinhole,
+                  {{"role", "camera"},
+                   {"focal_length_px", pinhole.focalPx},
+                   {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}});
   }
   std::ostringstream glb;
   tinygltf::TinyGLTF writer;

@@ -10,9 +10,12 @@
 #include "fast_renderer.h"
 #include "image_compare.h"
 #include "scene_loader.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
+
+using test::fTheta;
 
 struct LensCase {
   const char* label;
@@ -22,15 +25,6 @@ struct LensCase {
 };
 
 void PrintTo(const LensCase& c, std::ostream* os) { *os << c.label; }
-
-FThetaLens fTheta(FThetaLens::Kind kind, double f, double fovDeg, double cx, double cy) {
-  FThetaLens lens;
-  lens.kind = kind;
-  lens.f = f;
-  lens.cx = cx, lens.cy = cy;
-  lens.maxThetaRad = radians(fovDeg / 2.0);
-  return lens;
-}
 
 FThetaLens polynomial() {
   FThetaLens lens = fTheta(FThetaLens::Kind::Polynomial, 0.0, 190.0, 101.0, 73.5);

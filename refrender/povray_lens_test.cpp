@@ -11,9 +11,13 @@
 #include "image_compare.h"
 #include "povray_renderer.h"
 #include "scene_loader.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
+
+using test::equidistant;
+using test::panorama;
 
 struct LensCase {
   const char* label;
@@ -21,19 +25,6 @@ struct LensCase {
   RobotPose pose;
   double height;
 };
-
-FThetaLens equidistant(double f, double fovDeg, int width, int height) {
-  FThetaLens lens;
-  lens.kind = FThetaLens::Kind::Equidistant;
-  lens.f = f;
-  lens.cx = (width - 1) / 2.0, lens.cy = (height - 1) / 2.0;
-  lens.maxThetaRad = radians(fovDeg / 2.0);
-  return lens;
-}
-
-Equirectangular panorama(int width, int height, double lonDeg, double latDeg) {
-  return {width, height, radians(-lonDeg), radians(lonDeg), radians(-latDeg), radians(latDeg)};
-}
 
 void PrintTo(const LensCase& c, std::ostream* os) { *os << c.label; }
 

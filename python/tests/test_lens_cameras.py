@@ -60,7 +60,8 @@ def mixed(tmp_path_factory):
     (root / "spec.json").write_text(json.dumps({
         "format": "omnicam-dataset/1", "scene": str(SOURCE / "scenes" / "robocup2006.json"),
         "poses": {"list": [[0.5, -0.3, 20.0], [1.5, 0.4, -70.0]]}, "cameras": cameras,
-        "outputs": {"rgb": "png", "depth": True, "instance": True, "landmarks": True}}))
+        "outputs": {"rgb": "png", "depth": True, "instance": True, "semantic": True, "normal": True, "landmarks": True,
+                    "coco": True}}))
     omnicam.run_dataset(str(root / "spec.json"), str(root / "ds"))
     return root / "ds"
 
@@ -73,6 +74,15 @@ def test_a_mirror_and_lens_cameras_make_one_dataset_that_verifies(mixed):
     fisheye = dataset[1, "fisheye"]
     assert fisheye["depth"].shape == (72, 96) and fisheye["intrinsics"]["model"] == "kannala_brandt"
     assert dataset[0, "pano"]["rgb"].shape == (64, 128, 4)
+    assert fisheye["normal"].shape == (72, 96, 3) and fisheye["semantic"].shape == (72, 96)
+    # Landmarks are where the lens camera projects them.
+    camera = omnicam.Camera(lens_rig("fisheye"))
+    seen = [lm for lm in fisheye["landmarks"]["landmarks"] if lm["in_view"]]
+    assert len(seen) >= 2
+    pose = tuple(fisheye["pose"])
+    projected = camera.project(np.array([lm["position"] for lm in seen]), pose=pose)
+    np.testing.assert_allclose(projected, [lm["centre"] for lm in seen], atol=1e-9)
+    assert (mixed / "fisheye" / "coco.json").exists()
     files = {p.name for p in (mixed / "pano" / "intrinsics").iterdir()}
     assert files == {"rays.exr"}  # no third-party layout has the panorama
     assert {p.name for p in (mixed / "fisheye" / "intrinsics").iterdir()} == {
