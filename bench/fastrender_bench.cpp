@@ -10,6 +10,7 @@
 #include "fast_renderer.h"
 #include "hall_arena.h"
 #include "scene_loader.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
@@ -24,7 +25,7 @@ void renderFrames(benchmark::State& state, const FastRenderer& renderer, const R
   const Scene& scene = arena();
   RenderSettings settings;
   settings.rig = rig;
-  settings.rig.imageSize = 360;
+  if (!settings.rig.lens) settings.rig.imageSize = 360;
   settings.spp = static_cast<int>(state.range(0));
   settings.shading = state.range(1) ? Shading::Lit : Shading::Unlit;
   // Sample tables are built once per camera and spp, then serve every frame: build them first,
@@ -67,6 +68,20 @@ void BM_RollingShutterRobocup2006(benchmark::State& state) {
   renderFrames(state, renderer, rig, {1.0, 0.0, 90.0});
 }
 
+// docs/lens-cameras.md: lens cameras at the mirror's viewpoint, about as many pixels as the
+// mirror's 360×360 — a 190° Kannala–Brandt fisheye (360×360) and a full panorama (512×256) —
+// their rays inverted per sample like the physical rig's, against the closed form above.
+void BM_FisheyeRobocup2006(benchmark::State& state) {
+  static const FastRenderer renderer(arena());
+  const KannalaBrandt lens{105.0, 105.0, 179.5, 179.5, {0.02, -0.005, 0.001, -0.0002}, radians(95.0)};
+  renderFrames(state, renderer, test::lensRig(lens, 360, 360, {0.0, 0.0, 0.0}, arena().rig.height));
+}
+
+void BM_PanoramaRobocup2006(benchmark::State& state) {
+  static const FastRenderer renderer(arena());
+  renderFrames(state, renderer, test::lensRig(Equirectangular{512, 256}, 512, 256, {0.0, 0.0, 0.0}, arena().rig.height));
+}
+
 // docs/path-tracing.md: path shading of the textured hall (four disc lamps, 2 bounces) at the
 // texture-realism experiment's first thesis-loop pose, unfiltered and denoised (the frames
 // datasets use).
@@ -107,6 +122,8 @@ BENCHMARK(BM_ExactRobocup2006)->Apply(frameArgs);
 BENCHMARK(BM_PhysicalRigRobocup2006)->Apply(frameArgs);
 BENCHMARK(BM_MotionBlurRobocup2006)->Apply(frameArgs);
 BENCHMARK(BM_RollingShutterRobocup2006)->Apply(frameArgs);
+BENCHMARK(BM_FisheyeRobocup2006)->Apply(frameArgs);
+BENCHMARK(BM_PanoramaRobocup2006)->Apply(frameArgs);
 
 }  // namespace
 }  // namespace omnicam
