@@ -73,8 +73,11 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   checkImageOutput(a.out, "-o");
   const ImageRGBA omni = readImage(a.in);
-  if (omni.width != omni.height) throw InputError(showPath(a.in) + ": omni images must be square");
   auto [rig, sidecar] = rigOf(a, omni.width);
+  // A mirror camera's image is square; a lens camera's has its own aspect, which its rig states.
+  if (omni.height != rig.imageHeight())
+    throw InputError(showPath(a.in) + ": is " + std::to_string(omni.width) + "x" + std::to_string(omni.height) + "; its camera images " +
+                     std::to_string(rig.imageWidth()) + "x" + std::to_string(rig.imageHeight()) + " at that width");
   const ViewMap map = buildViewMap(spec, *makeCamera(rig));
   sidecar["view"] = viewToJson(spec, map);
   sidecar["source_image"] = a.in;

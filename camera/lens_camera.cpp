@@ -1,5 +1,8 @@
 #include "lens_camera.h"
 
+#include <cmath>
+#include <limits>
+
 #include "errors.h"
 
 namespace omnicam {
@@ -42,8 +45,23 @@ nlohmann::json LensCamera::describe() const { return lensIntrinsicsJson(lens());
 
 namespace {
 
+// Degrees that the scene format's reader turns back into exactly `rad` (it takes radians(d)):
+// degrees(rad) itself, or one of its neighbours a few ulps away (the degrees a user wrote), so
+// that a lens written out reads back equal — rig equality keys caches and resumed datasets.
+double exactDegrees(double rad) {
+  double up = degrees(rad), down = up;
+  if (radians(up) == rad) return up;
+  for (int step = 0; step < 16; ++step) {
+    up = std::nextafter(up, std::numeric_limits<double>::infinity());
+    down = std::nextafter(down, -std::numeric_limits<double>::infinity());
+    if (radians(up) == rad) return up;
+    if (radians(down) == rad) return down;
+  }
+  return degrees(rad);
+}
+
 nlohmann::json fields(const KannalaBrandt& m) {
-  return {{"fx", m.fx}, {"fy", m.fy}, {"cx", m.cx}, {"cy", m.cy}, {"k", m.k}, {"max_theta_deg", degrees(m.maxThetaRad)}};
+  return {{"fx", m.fx}, {"fy", m.fy}, {"cx", m.cx}, {"cy", m.cy}, {"k", m.k}, {"max_theta_deg", exactDegrees(m.maxThetaRad)}};
 }
 nlohmann::json fields(const DoubleSphere& m) {
   return {{"fx", m.fx}, {"fy", m.fy}, {"cx", m.cx}, {"cy", m.cy}, {"xi", m.xi}, {"alpha", m.alpha}};
@@ -52,7 +70,7 @@ nlohmann::json fields(const ExtendedUnified& m) {
   return {{"fx", m.fx}, {"fy", m.fy}, {"cx", m.cx}, {"cy", m.cy}, {"alpha", m.alpha}, {"beta", m.beta}};
 }
 nlohmann::json fields(const FThetaLens& m) {
-  nlohmann::json out = {{"cx", m.cx}, {"cy", m.cy}, {"fov_deg", 2.0 * degrees(m.maxThetaRad)}};
+  nlohmann::json out = {{"cx", m.cx}, {"cy", m.cy}, {"fov_deg", 2.0 * exactDegrees(m.maxThetaRad)}};  // read as radians(fov / 2)
   if (m.kind == FThetaLens::Kind::Polynomial)
     out["k"] = m.k;
   else
@@ -60,8 +78,8 @@ nlohmann::json fields(const FThetaLens& m) {
   return out;
 }
 nlohmann::json fields(const Equirectangular& m) {
-  return {{"longitude_deg", {degrees(m.lonMinRad), degrees(m.lonMaxRad)}},
-          {"latitude_deg", {degrees(m.latMinRad), degrees(m.latMaxRad)}}};
+  return {{"longitude_deg", {exactDegrees(m.lonMinRad), exactDegrees(m.lonMaxRad)}},
+          {"latitude_deg", {exactDegrees(m.latMinRad), exactDegrees(m.latMaxRad)}}};
 }
 nlohmann::json fields(const PinholeRadTan& m) {
   const LensDistortion& d = m.distortion;

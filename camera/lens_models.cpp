@@ -170,6 +170,7 @@ std::optional<Vec3> direction(const FThetaLens& m, const Vec2& pixel) {
   const double dx = pixel.x() - m.cx, dy = pixel.y() - m.cy;
   const std::optional<double> theta = thetaAt(m, std::hypot(dx, dy));
   if (!theta || *theta < 0.0 || *theta > m.maxThetaRad) return std::nullopt;
+  if (dx == 0.0 && dy == 0.0 && *theta != 0.0) return std::nullopt;  // a polynomial with k0 > 0: its centre sees a cone, no one ray
   return rayAt(*theta, dx, dy);
 }
 

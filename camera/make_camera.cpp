@@ -4,6 +4,7 @@
 #include <mutex>
 
 #include "central_camera.h"
+#include "errors.h"
 #include "lens_camera.h"
 #include "physical_camera.h"
 
@@ -37,7 +38,9 @@ CentralModel centralModelOf(const Camera& camera) {
     model.rimRadiusPx = central->unified().rimRadius();
     return model;
   }
-  const auto& physical = dynamic_cast<const PhysicalCamera&>(camera);
+  const auto* traced = dynamic_cast<const PhysicalCamera*>(&camera);
+  if (!traced) throw InputError(std::string("rig.lens: a ") + camera.model() + " lens camera has no unified (Mei) model");
+  const PhysicalCamera& physical = *traced;
   if (const auto mei = physical.meiEquivalent()) {
     model.intrinsics = *mei;
     if (camera.rig().shape.shape == MirrorShape::Hyperboloid && physical.pinhole().distortion.none())

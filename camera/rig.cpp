@@ -1,5 +1,7 @@
 #include "rig.h"
 
+#include <numeric>
+
 #include "errors.h"
 #include "input_limits.h"
 
@@ -58,6 +60,22 @@ Rigid cameraFromViewpoint(const RigSpec& rig) {
   Rigid t = Rigid::Identity();
   t.linear() = viewpointFromLens(*rig.lens).transpose();
   return t;
+}
+
+LensCameraSpec resizedLens(const LensCameraSpec& lens, int width) {
+  const int64_t scaledHeight = int64_t{lens.height} * width;
+  if (scaledHeight % lens.width != 0) {
+    const int64_t step = lens.width / std::gcd(lens.width, lens.height);
+    throw InputError("image size: a lens camera of " + std::to_string(lens.width) + "x" + std::to_string(lens.height) +
+                     " keeps its aspect only at widths that are multiples of " + std::to_string(step) + " (got " +
+                     std::to_string(width) + ")");
+  }
+  LensCameraSpec out = lens;
+  out.width = width;
+  out.height = static_cast<int>(scaledHeight / lens.width);
+  checkImageSize(out.height, "image height");
+  out.model = scaledLens(lens.model, static_cast<double>(width) / lens.width);
+  return out;
 }
 
 Eigen::Matrix3d viewpointFromLens(const LensCameraSpec& lens) {

@@ -66,6 +66,9 @@ struct LensCameraSpec {
   bool operator==(const LensCameraSpec&) const = default;
 };
 Eigen::Matrix3d viewpointFromLens(const LensCameraSpec& lens);
+// The lens imaging `width` pixels across, its height keeping the aspect exactly: InputError
+// naming the widths that do, for one that does not (or a height outside the limits).
+LensCameraSpec resizedLens(const LensCameraSpec& lens, int width);
 
 // InputError("<what>: must be in [8, 16384] (got N)") for an image size outside the limits.
 void checkImageSize(int size, const std::string& what);
@@ -100,19 +103,16 @@ struct RigSpec {
   bool ideal() const { return !lens && shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
   // The same camera imaging at another size: the focal length scales with the image, and so does
   // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
+  // A lens camera's `size` is its width; its height keeps the aspect exactly (else InputError:
+  // one scale for both axes keeps its pixels square).
   // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize.
   RigSpec resized(int size) const {
     checkImageSize(size, "image size");
     RigSpec r = *this;
-    const double scale = static_cast<double>(size) / imageSize;
+    const double scale = static_cast<double>(size) / imageWidth();
     r.imageSize = size;
     for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
-    if (lens) {  // `size` is the width; the height keeps the image's aspect
-      r.lens->width = size;
-      r.lens->height = std::max(1, static_cast<int>(std::lround(lens->height * scale)));
-      r.lens->model = scaledLens(lens->model, scale);
-      checkImageSize(r.lens->height, "image height");
-    }
+    if (lens) r.lens = resizedLens(*lens, size);
     return r;
   }
   // What shapes the camera's rays in the viewpoint frame: this rig without its shutter (when

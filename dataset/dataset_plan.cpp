@@ -300,6 +300,13 @@ void checkEngineRendersPlan(const DatasetPlan& plan) {
 // InputError unless every frame's shaken rig is one the scene format accepts (the manifest
 // records it in that format) and the engine renders.
 void checkVibratedRigs(const DatasetPlan& plan) {
+  // A lens camera's centre of projection is its viewpoint: there is no camera below a mirror to move.
+  if (plan.spec.vibration.cameraOffsetMm != std::array<double, 3>{})
+    for (const CameraSetup& setup : plan.setups)
+      if (setup.rig.lens)
+        throw InputError(showPath(plan.spec.file) + ": vibration.camera_offset_mm: camera " + quote(setup.camera->name) +
+                         " is a lens camera (rig.lens), whose centre of projection is its viewpoint: shake it with "
+                         "camera_rotation_deg and rig_tilt_deg");
   for (int frame = 0; frame < static_cast<int>(plan.poses.size()); ++frame)
     for (size_t c = 0; c < plan.setups.size(); ++c) {
       const RigSpec rig = plan.frameRig(frame, c);

@@ -139,7 +139,7 @@ std::string cameraSdl(const Pinhole& pinhole, int size, const Rigid& worldFromVi
 // x0, y0 ∈ [−1, 1] across the image, no ray beyond ρ = 1 (black, alpha 0); `spherical` spreads
 // `angle H, V` evenly over the columns and rows about `direction`; `perspective` is the pinhole.
 // Each centres its image: the lens' principal point must be the image's centre (checked by the
-// engine's capabilities). `lens` is the rendered (supersampled) image's: rig.resized(width · n).
+// engine's capabilities). `lens` is the rendered (supersampled) image's.
 std::string lensCameraSdl(const LensCameraSpec& lens, const Rigid& worldFromView) {
   const Eigen::Matrix3d worldFromLens = worldFromView.linear() * viewpointFromLens(lens);
   const Vec3 right = worldFromLens.col(0), up = -worldFromLens.col(1);
@@ -201,6 +201,16 @@ std::string mirrorSurfaceSdl(const RigSpec& rig) {
   return out.str();
 }
 
+// The lens imaging the n×-larger image POV-Ray renders (n samples per pixel and axis); no size
+// limit applies to it.
+LensCameraSpec supersampled(const LensCameraSpec& lens, int n) {
+  LensCameraSpec large = lens;
+  large.width = lens.width * n;
+  large.height = lens.height * n;
+  large.model = scaledLens(lens.model, n);
+  return large;
+}
+
 // The mirror as built, placed on the robot, and the black beyond its rim.
 std::string mirrorSdl(const RigSpec& rig, const Rigid& worldFromView) {
   const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(rig);
@@ -247,7 +257,7 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
          "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
       << "background { " << rgb(scene.background) << " }\n\n";
   if (settings.rig.lens)
-    out << lensCameraSdl(*settings.rig.resized(job.width).lens, worldFromView) << "\n";
+    out << lensCameraSdl(supersampled(*settings.rig.lens, *n), worldFromView) << "\n";
   else
     out << cameraSdl(pinholeOf(settings.rig), settings.rig.imageSize, worldFromView) << "\n";
 

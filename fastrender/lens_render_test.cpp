@@ -21,7 +21,7 @@ Scene wallAt(double x) {
 
 // An equidistant fisheye (r = f·θ) looking along robot +x at a wall 1.5 m ahead: the pixel whose
 // centre lies r pixels from the principal point sees the wall at 1.5 / cos(r / f) along its ray,
-// out to 85° from the axis (17 times the planar distance).
+// out to 85° from the axis (11.5 times the planar distance).
 TEST(LensRender, FisheyeDepthIsTheRayLengthOutToTheImageEdge) {
   constexpr double kWall = 1.5, kFocal = 60.0, kHalfFovDeg = 85.0;
   const FastRenderer renderer(wallAt(kWall));

@@ -39,7 +39,12 @@ RigSpec vibratedRig(const RigSpec& rig, const Vibration& vibration, uint64_t fra
   UniformStream draw(vibration.seed, frame, camera);
   RigSpec out = rig;
   for (int k = 0; k < 3; ++k) out.mount.offsetMm[k] += draw.within(vibration.cameraOffsetMm[k]);
-  for (int k = 0; k < 3; ++k) out.mount.rotationDeg[k] += draw.within(vibration.cameraRotationDeg[k]);
+  // A lens camera turns as a whole ([roll, pitch, yaw] of its lens); its offset draws (refused
+  // with an amplitude, checkLensVibration) are drawn all the same, so that every camera's stream
+  // stays what it is.
+  std::array<double, 3>& rotationDeg = out.lens ? out.lens->rotationDeg : out.mount.rotationDeg;
+  if (out.lens) out.mount = rig.mount;
+  for (int k = 0; k < 3; ++k) rotationDeg[k] += draw.within(vibration.cameraRotationDeg[k]);
   for (int k = 0; k < 2; ++k) out.tiltDeg[k] += draw.within(vibration.rigTiltDeg[k]);
   return out;
 }

@@ -14,7 +14,7 @@ namespace omnicam {
 struct Vibration {
   uint64_t seed = 0;
   std::array<double, 3> cameraOffsetMm{0.0, 0.0, 0.0};    // added to rig.camera.offset_mm
-  std::array<double, 3> cameraRotationDeg{0.0, 0.0, 0.0};  // added to rig.camera.rotation_deg
+  std::array<double, 3> cameraRotationDeg{0.0, 0.0, 0.0};  // added to rig.camera.rotation_deg (a lens camera's rig.lens.rotation_deg)
   // Tilts (roll, pitch): each camera's rig on its own (added to its rig.tilt_deg, drawn per
   // camera), and the whole robot (added to its tilt, drawn once per frame: every camera alike).
   std::array<double, 2> rigTiltDeg{0.0, 0.0};

@@ -7,6 +7,7 @@
 
 #include "errors.h"
 #include "mirror_mesh.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -53,6 +54,7 @@ EngineCapabilities blender() {
   c.mirrorShapes.assign(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes));
   // Cycles' panoramic cameras (fisheye equidistant or lens polynomial, equisolid, equirectangular) and its perspective one.
   c.lensModels = {"fisheye_equidistant", "fisheye_equisolid", "fisheye_polynomial", "equirectangular", "pinhole"};
+  c.cyclesLensLimits = true;
   c.lensDistortion = false;
   c.rollingShutter = false;
   c.timeSamples = false;
@@ -80,7 +82,7 @@ bool hasShape(const EngineCapabilities& c, MirrorShape shape) {
 }
 
 // What keeps an engine's own camera from being this lens: "" when nothing does.
-std::string lensProblem(const LensCameraSpec& lens, bool centredOnly) {
+std::string lensProblem(const LensCameraSpec& lens, bool centredOnly, bool cyclesLimits) {
   const double cx = (lens.width - 1) / 2.0, cy = (lens.height - 1) / 2.0;
   const auto centred = [&](double x, double y) { return std::abs(x - cx) <= 1e-9 * lens.width && std::abs(y - cy) <= 1e-9 * lens.height; };
   if (const auto* p = std::get_if<PinholeRadTan>(&lens.model)) {
@@ -89,6 +91,9 @@ std::string lensProblem(const LensCameraSpec& lens, bool centredOnly) {
     if (centredOnly && !centred(p->cx, p->cy)) return "cx, cy: its perspective camera centres the image ((width − 1)/2, (height − 1)/2)";
   } else if (const auto* f = std::get_if<FThetaLens>(&lens.model)) {
     if (centredOnly && !centred(f->cx, f->cy)) return "cx, cy: its fisheye centres the image circle ((width − 1)/2, (height − 1)/2)";
+    if (cyclesLimits && f->maxThetaRad < radians(5.0)) return "fov_deg: Cycles' fisheyes see at least 10 degrees";
+    if (cyclesLimits && f->kind == FThetaLens::Kind::Equisolid && f->f * 36.0 / lens.width > 100.0)
+      return "f_px: Cycles' equisolid lens is at most 100 mm on its 36 mm sensor (f_px at most " + shortNumber(100.0 / 36.0 * lens.width) + ")";
   } else if (const auto* e = std::get_if<Equirectangular>(&lens.model)) {
     if (centredOnly && (e->lonMinRad != -e->lonMaxRad || e->latMinRad != -e->latMaxRad))
       return "longitude_deg, latitude_deg: its panorama is symmetric about its direction ([−a, a]; turn the camera instead)";
@@ -108,7 +113,7 @@ void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
       throw InputError("rig.lens.model: " + shown + " has no " + model + " camera; render it with " +
                        enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
     // An engine without lens distortion traces its own cameras, which are not every lens of a model.
-    if (const std::string problem = c.lensDistortion ? "" : lensProblem(*rig.lens, c.centredLensesOnly); !problem.empty())
+    if (const std::string problem = c.lensDistortion ? "" : lensProblem(*rig.lens, c.centredLensesOnly, c.cyclesLensLimits); !problem.empty())
       throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
     return;
   }

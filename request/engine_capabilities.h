@@ -27,6 +27,9 @@ struct EngineCapabilities {
   // Its lens cameras centre their image (the principal point at the image's centre) and their
   // panoramas are symmetric about their direction (POV-Ray's own cameras); Cycles' shift instead.
   bool centredLensesOnly = false;
+  // Its fisheyes are Cycles' panoramic cameras, whose settings Blender clamps: fisheye_fov ≥ 10°,
+  // fisheye_lens ≤ 100 mm on the 36 mm sensor (refused beyond, never clamped).
+  bool cyclesLensLimits = false;
   // Time: a robot moving while the shutter is open, a rolling shutter, stratified time samples.
   bool motion = true, rollingShutter = true, timeSamples = true;
   // Physically based light (Shading::Path).

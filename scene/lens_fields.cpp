@@ -81,10 +81,16 @@ FThetaLens readFTheta(JsonFields& f, FThetaLens::Kind kind, int width, int heigh
     // θ(r) must grow from the centre out to the image's farthest corner (or to the field of view).
     const double corner = std::hypot(std::max(m.cx + 0.5, width - 0.5 - m.cx), std::max(m.cy + 0.5, height - 0.5 - m.cy));
     if (!(m.k[0] >= 0.0 && m.k[0] < m.maxThetaRad)) f.fail("k", "k0 (θ at the centre) must be in [0, fov_deg/2)");
+    // Past the field of view θ may do anything but come back into it: that would image its
+    // directions a second time, on a ring outside the first.
+    bool beyondFov = false;
     for (int step = 0; step <= 1000; ++step) {
       const double r = corner * step / 1000.0;
-      if (m.k[0] + r * (m.k[1] + r * (m.k[2] + r * (m.k[3] + r * m.k[4]))) > m.maxThetaRad) break;
-      if (!(m.k[1] + r * (2.0 * m.k[2] + r * (3.0 * m.k[3] + r * 4.0 * m.k[4])) > 0.0))
+      const bool beyond = m.k[0] + r * (m.k[1] + r * (m.k[2] + r * (m.k[3] + r * m.k[4]))) > m.maxThetaRad;
+      if (beyondFov && !beyond)
+        f.fail("k", "θ(r) comes back inside the field of view at r = " + shortNumber(r) + " px, imaging its directions twice");
+      beyondFov = beyondFov || beyond;
+      if (!beyondFov && !(m.k[1] + r * (2.0 * m.k[2] + r * (3.0 * m.k[3] + r * 4.0 * m.k[4])) > 0.0))
         f.fail("k", "θ(r) stops growing at r = " + shortNumber(r) + " px, inside the image and the field of view");
     }
   }

@@ -11,7 +11,8 @@ namespace omnicam {
 
 // The lens camera of `lens`; fails on the field at fault (JsonFields::fail).
 LensCameraSpec readLensCamera(JsonFields lens);
-// `lens` in the scene format (readLensCamera reads it back to an equal spec).
+// `lens` in the scene format (readLensCamera reads it back to an equal spec: angles are written
+// as the degrees that convert back to the very same radians).
 nlohmann::json lensCameraToJson(const LensCameraSpec& lens);
 
 }  // namespace omnicam

@@ -26,9 +26,12 @@ RigSpec edited(const RigSpec& rig, const std::function<void(json&)>& edit) {
   json j = rigToJson(rig);
   edit(j);
   // Another mirror shape frames its image by its rim: the hyperboloid's framing goes with it.
-  const json& mirror = j["mirror"];
-  if (mirror.is_object() && mirror.contains("shape") && mirror["shape"] != "hyperboloid" && j["image"].is_object())
-    j["image"].erase("framing_elevation_deg");
+  // (find, not operator[]: a lens rig has no mirror, and operator[] would add a null one)
+  const auto mirror = j.find("mirror");
+  const auto image = j.find("image");
+  if (mirror != j.end() && mirror->is_object() && mirror->contains("shape") && (*mirror)["shape"] != "hyperboloid" &&
+      image != j.end() && image->is_object())
+    image->erase("framing_elevation_deg");
   return rigFromDict(j);
 }
 
@@ -72,10 +75,11 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
       .def("to_dict", [](const RigSpec& r) { return toPython(rigToJson(r)); }, "The rig as the scene format's \"rig\" block.")
       .def("resized", [](const RigSpec& r, const PyInteger& size) {
              return r.resized(narrowed(size, "image size", limits::kMinImageSize, limits::kMaxImageSize));
-           }, py::arg("size"), "The same rig imaging size × size pixels.")
+           }, py::arg("size"), "The same rig imaging size × size pixels (a lens camera: size wide, keeping its aspect).")
       .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")
-      .def_property_readonly("shape", [](const RigSpec& r) { return std::string(mirrorShapeName(r.shape.shape)); },
-                             "The mirror shape: hyperboloid, paraboloid, sphere or cone.")
+      .def_property_readonly("shape", [](const RigSpec& r) {
+             return r.lens ? py::object(py::none()) : py::object(py::str(mirrorShapeName(r.shape.shape)));
+           }, "The mirror shape: hyperboloid, paraboloid, sphere or cone; None for a lens camera.")
       .def_property_readonly("lens", [](const RigSpec& r) { return r.lens ? toPython(rigToJson(r)["lens"]) : py::object(py::none()); },
                              "A lens camera's \"lens\" block (docs/lens-cameras.md), or None for a mirror rig.")
       .def(py::self == py::self)

@@ -10,7 +10,7 @@ import pytest
 import yaml
 
 import omnicam
-from conftest import SOURCE
+from conftest import SOURCE, run_cli
 
 LENSES = {
     "fisheye": {"model": "kannala_brandt", "width": 96, "height": 72, "fx": 30, "fy": 30.5, "cx": 48.2, "cy": 35.1,
@@ -167,3 +167,40 @@ def test_kalibr_files_pass_kalibrs_checks_and_project_like_the_camera(mixed, nam
             assert abs(u + 0.5 - pixel[0]) < 1e-6 and abs(v + 0.5 - pixel[1]) < 1e-6, (name, pixel, u, v)
             checked += 1
     assert checked > 100
+
+
+def test_a_lens_rigs_own_fields_can_be_set_and_the_mirrors_cannot():
+    rig = lens_rig("fisheye")
+    rig.height = 0.5
+    rig.tilt_deg = [1.0, -2.0]
+    rig.shutter = {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}
+    assert rig.to_dict()["height"] == 0.5 and rig.tilt_deg == [1.0, -2.0] and rig.lens["model"] == "kannala_brandt"
+    assert rig.shape is None and omnicam.Rig().shape == "hyperboloid"
+    with pytest.raises(omnicam.InputError, match=r"rig\.camera: a lens camera \(rig\.lens\) has no mirror"):
+        rig.camera_offset_mm = [1.0, 0.0, 0.0]
+    assert rig.camera_offset_mm is None  # left unchanged
+    assert rig.resized(192).lens["width"] == 192 and rig.resized(192).lens["height"] == 144
+    with pytest.raises(omnicam.InputError, match="keeps its aspect only at widths that are multiples of 4"):
+        rig.resized(97)
+
+
+def test_vibration_turns_a_lens_camera_and_a_resumed_run_keeps_every_frame(tmp_path):
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(SOURCE / "scenes" / "robocup2006.json"),
+        "poses": {"list": [[0.5, -0.3, 20.0], [1.5, 0.4, -70.0]]},
+        "cameras": [{"name": "omni"}, {"name": "pano", "rig": {"height": 0.35, "lens": dict(LENSES["pano"], width=64, height=32)}},
+                    {"name": "fisheye", "rig": {"height": 0.35, "lens": dict(LENSES["fisheye"], max_theta_deg=75)}}],
+        "vibration": {"seed": 4, "camera_rotation_deg": [1.0, 2.0, 3.0], "rig_tilt_deg": [1.0, 1.0]},
+        "outputs": {"rgb": "png", "depth": True}}))
+    code, out, err = run_cli("dataset", spec, "-o", tmp_path / "ds")
+    assert code == 0, err
+    manifest = json.loads((tmp_path / "ds" / "manifest.json").read_text())
+    turned = [frame["cameras"]["fisheye"]["rig"]["lens"]["rotation_deg"] for frame in manifest["frames"]]
+    assert all(abs(t[2]) > 0.0 and t != [0, 10, 0] for t in turned) and turned[0] != turned[1]
+    code, out, err = run_cli("dataset", spec, "-o", tmp_path / "ds")
+    assert code == 0 and "(0 rendered, 2 kept from an earlier run)" in out, out + err
+    # Frames rendered from the manifest's rig are the frames: the recorded rig is the rendered one.
+    frame = manifest["frames"][1]["cameras"]["fisheye"]
+    rig = omnicam.Rig(frame["rig"])
+    assert rig.lens["rotation_deg"] == turned[1]

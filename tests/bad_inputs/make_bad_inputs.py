@@ -289,6 +289,9 @@ def main():
     dataset_spec("files_compression", multilayer_compression="zip")
     # Time and shaking (docs/motion.md): timed waypoints, vibration, the EuRoC layout.
     dataset_spec("vibration_tilt", vibration={"seed": 1, "rig_tilt_deg": [20, 0]})
+    dataset_spec("vibration_lens_offset", cameras=[{"name": "omni"}, {"name": "fisheye", "rig": {"lens": {
+        "model": "fisheye_equidistant", "width": 32, "height": 32, "f_px": 9, "fov_deg": 190}}}],
+                 vibration={"seed": 1, "camera_offset_mm": [1, 1, 1]})
     dataset_spec("vibration_pushed", cameras=[{"name": "c", "rig": {"tilt_deg": [29.9, 29.9]}}],
                  poses={"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0], [0.3, 0, 0]]}, vibration={"seed": 1, "rig_tilt_deg": [5, 5]})
     dataset_spec("timestamps_backwards", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [1, 0.5]})

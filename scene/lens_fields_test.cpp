@@ -1,0 +1,78 @@
+// The scene format's rig.lens: what it writes reads back to the same rig bit for bit (rig
+// equality keys every cache and a resumed dataset's frames), for every model, with angles whose
+// degrees ↔ radians conversion is not exact both ways.
+#include "lens_fields.h"
+
+#include <gtest/gtest.h>
+
+#include "errors.h"
+#include "scene_loader.h"
+#include "sidecar.h"
+
+namespace omnicam {
+namespace {
+
+using nlohmann::json;
+
+RigSpec readBack(const RigSpec& rig) { return rigFromJson(rigToJson(rig), "sidecar.json", "rig"); }
+
+TEST(LensFields, EveryModelReadsBackBitForBit) {
+  int checked = 0;
+  for (const double angle : {69.0, 75.0, 85.0, 138.0, 150.0, 17.3, 99.99}) {
+    const json lenses[] = {
+        {{"model", "kannala_brandt"}, {"width", 320}, {"height", 240}, {"fx", 95.5}, {"fy", 96.0}, {"cx", 161.25}, {"cy", 118.0},
+         {"k", {0.02, -0.005, 0.001, -0.0002}}, {"max_theta_deg", std::min(angle, 100.0)}, {"rotation_deg", {1.5, -angle / 2, angle}}},
+        {{"model", "double_sphere"}, {"width", 320}, {"height", 240}, {"fx", 120}, {"fy", 121}, {"xi", -0.2}, {"alpha", 0.6}},
+        {{"model", "eucm"}, {"width", 320}, {"height", 240}, {"fx", 150}, {"fy", 149}, {"alpha", 0.6}, {"beta", 1.1}},
+        {{"model", "fisheye_equidistant"}, {"width", 200}, {"height", 150}, {"f_px", 40}, {"fov_deg", 2 * angle}},
+        {{"model", "fisheye_equisolid"}, {"width", 160}, {"height", 160}, {"f_px", 55}, {"fov_deg", angle}},
+        {{"model", "fisheye_polynomial"}, {"width", 200}, {"height", 150}, {"k", {0, 0.0125, 1.5e-5, -4e-8, 0}}, {"fov_deg", angle}},
+        {{"model", "equirectangular"}, {"width", 256}, {"height", 128}, {"longitude_deg", {-angle, angle / 3}},
+         {"latitude_deg", {-angle / 2, 0.1 * angle}}},
+        {{"model", "pinhole"}, {"width", 320}, {"height", 240}, {"fx", 300}, {"fy", 302},
+         {"distortion", {{"k1", -0.2}, {"k2", 0.05}, {"p1", 0.001}, {"p2", -0.002}, {"k3", 0.01}}}}};
+    for (const json& lens : lenses) {
+      const RigSpec rig = rigFromJson({{"height", 0.4}, {"lens", lens}, {"tilt_deg", {1, -2}}}, "scene.json", "rig");
+      ASSERT_TRUE(rig.lens);
+      EXPECT_TRUE(readBack(rig) == rig) << lens.dump() << "\n -> " << rigToJson(rig).dump();
+      EXPECT_TRUE(readBack(rig.resized(2 * rig.lens->width)) == rig.resized(2 * rig.lens->width)) << lens.dump();
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 56);
+}
+
+// Each model takes only its own fields, range-checked; the mirror's blocks are refused beside it.
+TEST(LensFields, FieldsOfOtherModelsAndOutOfRangeValuesAreRefused) {
+  const json kb = {{"model", "kannala_brandt"}, {"width", 64}, {"height", 48}, {"fx", 20}, {"fy", 20}};
+  const auto problem = [](const json& rig) {
+    try {
+      (void)rigFromJson(rig, "scene.json", "rig");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(problem({{"lens", kb}, {"image", {{"size", 64}}}}).find("rig.image: a lens camera"), std::string::npos);
+  json foreign = kb;
+  foreign["f_px"] = 3;
+  EXPECT_NE(problem({{"lens", foreign}}).find("rig.lens.f_px: unknown field"), std::string::npos);
+  json fy = kb;
+  fy["fy"] = -1;
+  EXPECT_NE(problem({{"lens", fy}}).find("rig.lens.fy: must be in (0, 1e+06]"), std::string::npos) << problem({{"lens", fy}});
+  json pitch = kb;
+  pitch["rotation_deg"] = {0, 100, 0};
+  EXPECT_NE(problem({{"lens", pitch}}).find("rig.lens.rotation_deg: pitch"), std::string::npos);
+  // A polynomial that leaves the field of view and comes back images some directions twice.
+  const json twice = {{"model", "fisheye_polynomial"}, {"width", 200}, {"height", 200}, {"k", {0, 0.03, -2e-4, 0, 0}},
+                      {"fov_deg", 100}};
+  EXPECT_NE(problem({{"lens", twice}}).find("rig.lens.k: θ(r) comes back inside the field of view"), std::string::npos)
+      << problem({{"lens", twice}});
+  // A width that cannot keep the aspect exactly.
+  const RigSpec rig = rigFromJson({{"lens", json(kb)}}, "scene.json", "rig");
+  EXPECT_THROW((void)rig.resized(99), InputError);
+  EXPECT_EQ(rig.resized(96).lens->height, 72);
+}
+
+}  // namespace
+}  // namespace omnicam
