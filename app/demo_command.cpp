@@ -544,7 +544,7 @@ and OpenCV <code>cv::omnidir</code> intrinsics.</p></body></html>
 
 void addDemoCommand(CLI::App& app) {
   auto args = std::make_shared<DemoArgs>();
-  CLI::App* cmd = app.add_subcommand("demo", "Main job: fast vs POV-Ray renders and rings, with an HTML report");
+  CLI::App* cmd = app.add_subcommand("demo", "Main job: fast vs POV-Ray renders and rings, the physical and lens cameras (mirror, fisheye, panorama), with an HTML report");
   cmd->add_option("-o,--output", args->out, "Report folder (default out/demo)");
   cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)")->check(integerIn(1, INT32_MAX));
   cmd->add_flag("!--no-povray", args->povray, "Skip the POV-Ray ground truth");

@@ -96,7 +96,7 @@ nlohmann::json lensIntrinsicsJson(const LensCameraSpec& lens) {
   out["height"] = lens.height;
   out["rotation_deg"] = lens.rotationDeg;
   out["pixel_centre"] = "integer";
-  out["note"] = "camera frame at the effective viewpoint F': X right, Y down, Z along the optical axis (OpenCV's)";
+  out["note"] = "camera frame at the lens' centre of projection (the rig's viewpoint): X right, Y down, Z along the optical axis (OpenCV's)";
   return out;
 }
 

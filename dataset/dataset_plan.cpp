@@ -87,7 +87,13 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
   std::vector<CameraSetup> setups;
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
-    if (spec.size) setup.rig = setup.rig.resized(*spec.size);
+    if (spec.size) {
+      try {
+        setup.rig = setup.rig.resized(*spec.size);
+      } catch (const InputError& e) {
+        throw InputError(showPath(spec.file) + ": size: camera " + quote(camera.name) + ": " + e.what());
+      }
+    }
     checkRenderSettings(spec.request.settings(setup.rig), settingNames(spec));
     setup.model = makeCamera(setup.rig);
     setups.push_back(setup);

@@ -18,9 +18,10 @@ std::string eurocDataCsv(int frames, double intervalS) {
 
 namespace {
 
-std::string numbers(const std::vector<double>& values) {
+// Floats, as Kalibr's reader wants them ("76.0", not "76").
+std::string floats(const std::vector<double>& values) {
   std::string out = "[";
-  for (const double v : values) out += (out.size() > 1 ? ", " : "") + yamlNumber(v);
+  for (const double v : values) out += (out.size() > 1 ? ", " : "") + yamlFloat(v);
   return out + "]";
 }
 
@@ -41,9 +42,9 @@ std::string lensSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const
       << "resolution: [" << camera.width() << ", " << camera.height() << "]\n";
   if (const auto kalibr = kalibrLensOf(camera.lens().model)) {
     out << "camera_model: " << kalibr->cameraModel << "\n"
-        << "intrinsics: " << numbers(kalibr->intrinsics) << "\n"
+        << "intrinsics: " << floats(kalibr->intrinsics) << "\n"
         << "distortion_model: " << kalibr->distortionModel << "\n"
-        << "distortion_coefficients: " << numbers(kalibr->coefficients) << "\n";
+        << "distortion_coefficients: " << floats(kalibr->coefficients) << "\n";
   } else {
     out << "camera_model: " << lensModelName(camera.lens().model) << "  # no Kalibr model: the sidecar's intrinsics and rays.exr state it\n";
   }

@@ -160,16 +160,19 @@ LensCameraSpec readLensCamera(JsonFields f) {
   lens.rotationDeg = {turn[0], turn[1], turn[2]};
   lens.model = readModel(f, model, lens.width, lens.height);
   f.finish();
-  // A camera must image its own centre region: a lens whose every pixel is outside its model is
-  // a typing error (a focal length in millimetres, say).
+  // A lens that images none of its pixels is a typing error (a principal point off the image,
+  // say). A lens images the pixel under its principal point, however small its circle; else a
+  // grid over the image must find one.
   RigSpec rig;
   rig.lens = lens;
   rig.imageSize = lens.width;
   const LensCamera camera(rig);
-  int imaged = 0;
-  for (int j = 0; j < 16; ++j)
-    for (int i = 0; i < 16; ++i) imaged += camera.images(Vec2((i + 0.5) * lens.width / 16.0, (j + 0.5) * lens.height / 16.0));
-  if (imaged == 0) f.fail("model", "this lens images none of its pixels (check the focal length, centre and field of view)");
+  bool imaged = false;
+  if (const auto centre = camera.project(viewpointFromLens(lens).col(2)))
+    imaged = camera.images(Vec2(std::floor(centre->x()) + 0.5, std::floor(centre->y()) + 0.5));
+  for (int j = 0; j < 64 && !imaged; ++j)
+    for (int i = 0; i < 64 && !imaged; ++i) imaged = camera.images(Vec2((i + 0.5) * lens.width / 64.0, (j + 0.5) * lens.height / 64.0));
+  if (!imaged) f.fail("model", "this lens images none of its pixels (check the focal length, centre and field of view)");
   return lens;
 }
 
