@@ -39,10 +39,6 @@ double kbDistort(const KannalaBrandt& m, double theta) {
   const double t2 = theta * theta;
   return theta * (1.0 + t2 * (m.k[0] + t2 * (m.k[1] + t2 * (m.k[2] + t2 * m.k[3]))));
 }
-double kbSlope(const KannalaBrandt& m, double theta) {
-  const double t2 = theta * theta;
-  return 1.0 + t2 * (3.0 * m.k[0] + t2 * (5.0 * m.k[1] + t2 * (7.0 * m.k[2] + t2 * 9.0 * m.k[3])));
-}
 
 std::optional<Vec2> project(const KannalaBrandt& m, const Vec3& p) {
   const double r = std::hypot(p.x(), p.y());
@@ -123,12 +119,6 @@ std::optional<Vec3> direction(const ExtendedUnified& m, const Vec2& pixel) {
 
 // --- f-θ lenses -----------------------------------------------------------------------------------
 
-double polynomialTheta(const FThetaLens& m, double r) {
-  return m.k[0] + r * (m.k[1] + r * (m.k[2] + r * (m.k[3] + r * m.k[4])));
-}
-double polynomialSlope(const FThetaLens& m, double r) {
-  return m.k[1] + r * (2.0 * m.k[2] + r * (3.0 * m.k[3] + r * 4.0 * m.k[4]));
-}
 
 std::optional<double> radiusAt(const FThetaLens& m, double theta) {
   switch (m.kind) {
@@ -248,6 +238,19 @@ const char* name(const FThetaLens& m) {
 }
 
 }  // namespace
+
+double kbSlope(const KannalaBrandt& m, double theta) {
+  const double t2 = theta * theta;
+  return 1.0 + t2 * (3.0 * m.k[0] + t2 * (5.0 * m.k[1] + t2 * (7.0 * m.k[2] + t2 * 9.0 * m.k[3])));
+}
+
+double polynomialTheta(const FThetaLens& m, double r) {
+  return m.k[0] + r * (m.k[1] + r * (m.k[2] + r * (m.k[3] + r * m.k[4])));
+}
+
+double polynomialSlope(const FThetaLens& m, double r) {
+  return m.k[1] + r * (2.0 * m.k[2] + r * (3.0 * m.k[3] + r * 4.0 * m.k[4]));
+}
 
 std::string lensModelName(const LensModel& lens) {
   return std::visit([](const auto& m) { return std::string(name(m)); }, lens);

@@ -72,6 +72,12 @@ struct PinholeRadTan {
 
 using LensModel = std::variant<KannalaBrandt, DoubleSphere, ExtendedUnified, FThetaLens, Equirectangular, PinholeRadTan>;
 
+// The models' own curves, for the checks that a lens does not fold: Kannala–Brandt's dθd/dθ, and
+// the polynomial f-θ lens' θ(r) and dθ/dr (r in pixels).
+double kbSlope(const KannalaBrandt& lens, double theta);
+double polynomialTheta(const FThetaLens& lens, double r);
+double polynomialSlope(const FThetaLens& lens, double r);
+
 // The model's name in the scene format, sidecars and messages: "kannala_brandt", "double_sphere",
 // "eucm", "fisheye_equidistant", "fisheye_equisolid", "fisheye_polynomial", "equirectangular",
 // "pinhole".

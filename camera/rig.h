@@ -6,9 +6,7 @@
 //   pinhole:   the physical camera below the mirror (physical_camera.h): origin at its pinhole,
 //              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
 //              axes along robot x, y, z.
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <optional>
 #include <string>
 

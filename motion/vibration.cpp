@@ -38,12 +38,14 @@ RigSpec vibratedRig(const RigSpec& rig, const Vibration& vibration, uint64_t fra
   if (!vibration.shakesRigs()) return rig;
   UniformStream draw(vibration.seed, frame, camera);
   RigSpec out = rig;
-  for (int k = 0; k < 3; ++k) out.mount.offsetMm[k] += draw.within(vibration.cameraOffsetMm[k]);
-  // A lens camera turns as a whole ([roll, pitch, yaw] of its lens); its offset draws (refused
-  // with an amplitude, checkLensVibration) are drawn all the same, so that every camera's stream
-  // stays what it is.
+  // A lens camera has no camera below a mirror to move (the dataset refuses an offset amplitude
+  // for one) and turns as a whole: [roll, pitch, yaw] of its lens. Its offsets are drawn all the
+  // same, so that every camera's stream stays what it is.
+  for (int k = 0; k < 3; ++k) {
+    const double offset = draw.within(vibration.cameraOffsetMm[k]);
+    if (!out.lens) out.mount.offsetMm[k] += offset;
+  }
   std::array<double, 3>& rotationDeg = out.lens ? out.lens->rotationDeg : out.mount.rotationDeg;
-  if (out.lens) out.mount = rig.mount;
   for (int k = 0; k < 3; ++k) rotationDeg[k] += draw.within(vibration.cameraRotationDeg[k]);
   for (int k = 0; k < 2; ++k) out.tiltDeg[k] += draw.within(vibration.rigTiltDeg[k]);
   return out;

@@ -56,9 +56,8 @@ KannalaBrandt readKannalaBrandt(JsonFields& f, int width, int height) {
   m.maxThetaRad = radians(f.number("max_theta_deg", 90.0, {0.0, 180.0, true, "degrees"}));
   // θd must grow with θ up to the largest θ, else two directions share a pixel.
   for (int step = 1; step <= 1000; ++step) {
-    const double t = m.maxThetaRad * step / 1000.0, t2 = t * t;
-    const double slope = 1.0 + t2 * (3.0 * m.k[0] + t2 * (5.0 * m.k[1] + t2 * (7.0 * m.k[2] + t2 * 9.0 * m.k[3])));
-    if (!(slope > 0.0))
+    const double t = m.maxThetaRad * step / 1000.0;
+    if (!(kbSlope(m, t) > 0.0))
       f.fail("k", "the distorted angle θd stops growing at θ = " + shortNumber(degrees(t)) +
                       "° (below max_theta_deg): lower max_theta_deg or the coefficients");
   }
@@ -86,11 +85,11 @@ FThetaLens readFTheta(JsonFields& f, FThetaLens::Kind kind, int width, int heigh
     bool beyondFov = false;
     for (int step = 0; step <= 1000; ++step) {
       const double r = corner * step / 1000.0;
-      const bool beyond = m.k[0] + r * (m.k[1] + r * (m.k[2] + r * (m.k[3] + r * m.k[4]))) > m.maxThetaRad;
+      const bool beyond = polynomialTheta(m, r) > m.maxThetaRad;
       if (beyondFov && !beyond)
         f.fail("k", "θ(r) comes back inside the field of view at r = " + shortNumber(r) + " px, imaging its directions twice");
       beyondFov = beyondFov || beyond;
-      if (!beyondFov && !(m.k[1] + r * (2.0 * m.k[2] + r * (3.0 * m.k[3] + r * 4.0 * m.k[4])) > 0.0))
+      if (!beyondFov && !(polynomialSlope(m, r) > 0.0))
         f.fail("k", "θ(r) stops growing at r = " + shortNumber(r) + " px, inside the image and the field of view");
     }
   }
