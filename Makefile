@@ -56,7 +56,8 @@ test: build fuzz-build
 # The demo needs the omnicam binary only: not the test programs, benchmarks or the Python module.
 demo: deps $(BUILD_DIR)/CMakeCache.txt
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target omnicam
-	$(BUILD_DIR)/bin/omnicam demo -o out/demo
+	@status=0; $(BUILD_DIR)/bin/omnicam demo -o out/demo || status=$$?; \
+	  echo "make demo: the report is $(CURDIR)/out/demo/index.html"; exit $$status
 
 # Frames/s of the fast renderer, fast vs POV-Ray per frame over the 100-frame thesis-loop (1 and
 # 16 spp), what a dataset frame costs and a 1000-frame dataset with all outputs against RGB only,

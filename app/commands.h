@@ -9,7 +9,8 @@ void addRenderCommand(CLI::App& app);
 void addRingsCommand(CLI::App& app);
 void addProjectCommand(CLI::App& app);
 void addCameraRaysCommand(CLI::App& app);
-void addDemoCommand(CLI::App& app);
+// Sets exitCode: 64 + a bit per section that fell short (demo_sections.h).
+void addDemoCommand(CLI::App& app, int& exitCode);
 void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);

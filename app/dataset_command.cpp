@@ -11,6 +11,7 @@
 #include "dataset_runner.h"
 #include "dataset_shards.h"
 #include "errors.h"
+#include "interrupts.h"
 #include "manifest.h"
 #include "safe_files.h"
 #include "slurm_backend.h"
@@ -19,8 +20,6 @@ namespace omnicam::cli {
 
 namespace {
 
-std::atomic<bool> interruptRequested{false};
-extern "C" void onInterrupt(int) { interruptRequested.store(true); }
 
 struct DatasetArgs {
   std::string spec, out, verify, status, merge, shard, backend = "local", slurmArgs;
@@ -142,22 +141,34 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   options.dir = a.out;
   options.overwrite = a.overwrite;
   options.threads = a.threads;
-  options.stopRequested = &interruptRequested;
+  options.stopRequested = &interruptRequested();
   std::unique_ptr<Progress> progress;
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };
   options.onFrame = [&](int, int) { progress->step(); };
-  // Ctrl-C finishes the frame in progress, writes the manifest and stops: the run resumes.
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
+  // Ctrl-C finishes the frame in progress, writes the manifest and stops: the run resumes. An
+  // external renderer at work is ended at once (base/interrupts.h), its frame given up.
+  stopGracefullyOnInterrupt();
+  std::string interruption;  // an external renderer ended by the signal
   const DatasetRunResult r = [&] {
     try {
       return runDataset(spec, options);
     } catch (const OtherDatasetError& e) {
       throw InputError("-o: " + std::string(e.what()) + "; use --overwrite to replace it");
+    } catch (const Interrupted& e) {
+      interruption = e.what();
+      DatasetRunResult stopped;
+      stopped.stopped = true;
+      return stopped;
     }
   }();
   if (progress) progress->finish();
   for (const std::string& note : r.notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
+  if (!interruption.empty()) {
+    std::fprintf(stderr, "omnicam: %s; the frames finished before are listed in %s: run the same command again to resume\n",
+                 interruption.c_str(), showPath(a.out).c_str());
+    exitCode = 130;
+    return;
+  }
   if (r.stopped) {
     std::fprintf(stderr, "omnicam: interrupted: %d of %d frames finished in %s; run the same command again to resume\n",
                  r.kept + r.rendered, r.frames, showPath(a.out).c_str());

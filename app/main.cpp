@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "errors.h"
+#include "interrupts.h"
 #include "malloc_tuning.h"
 #include "memory_budget.h"
 
@@ -31,19 +32,20 @@ int main(int argc, char** argv) {
   // name) instead of the signal killing the process mid-file.
   std::signal(SIGXFSZ, SIG_IGN);
   omnicam::keepFreedMemoryInTheHeap();
+  omnicam::installInterruptHandlers();
   CLI::App app{"omnicam: exact catadioptric omnidirectional camera simulation"};
   app.require_subcommand(1);
   omnicam::cli::addRenderCommand(app);
   omnicam::cli::addRingsCommand(app);
   omnicam::cli::addProjectCommand(app);
   omnicam::cli::addCameraRaysCommand(app);
-  omnicam::cli::addDemoCommand(app);
   omnicam::cli::addExportCommand(app);
   omnicam::cli::addStudyCommand(app);
   omnicam::cli::addViewCommand(app);
   omnicam::cli::addBenchCommand(app);
   omnicam::cli::addExperimentCommands(app);
   int exitCode = 0;
+  omnicam::cli::addDemoCommand(app, exitCode);
   omnicam::cli::addCompareCommand(app, exitCode);
   omnicam::cli::addDatasetCommand(app, exitCode);
   try {
@@ -52,6 +54,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const omnicam::Interrupted& e) {
+    // Every external program is ended and its job folder gone; then the usual death by the signal.
+    reportError(e.what(), 0);
+    omnicam::dieBySignal(e.signal());
   } catch (const CLI::ParseError& e) {
     return reportError(e.what(), 2);
   } catch (const omnicam::InputError& e) {

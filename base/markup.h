@@ -1,6 +1,6 @@
 #pragma once
-// Text spliced into generated HTML reports and JUnit XML is escaped here: names come from users'
-// scenes and specs.
+// Text spliced into generated HTML reports, JUnit XML and shell scripts or command lines is escaped
+// here: names come from users' scenes and specs.
 #include <string>
 
 namespace omnicam {
@@ -22,6 +22,14 @@ inline std::string escapeMarkup(const std::string& text) {
     }
   }
   return out;
+}
+
+// A POSIX shell word in single quotes: nothing inside is special; a quote is closed, escaped and
+// reopened.
+inline std::string shellQuote(const std::string& text) {
+  std::string out = "'";
+  for (char ch : text) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
 }
 
 }  // namespace omnicam

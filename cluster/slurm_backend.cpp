@@ -9,6 +9,7 @@
 #include "errors.h"
 #include "external_process.h"
 #include "manifest.h"
+#include "markup.h"
 #include "safe_files.h"
 
 namespace omnicam {
@@ -16,13 +17,6 @@ namespace omnicam {
 namespace fs = std::filesystem;
 
 namespace {
-
-// POSIX shell single quotes: nothing inside is special; a quote is closed, escaped and reopened.
-std::string shellQuote(const std::string& text) {
-  std::string out = "'";
-  for (char ch : text) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
 
 // Paths go into the scripts single-quoted (shellQuote) and into sbatch's log options, where
 // Slurm expands '%'. A line break would end a comment or the quoted word's line, so every path

@@ -1,5 +1,7 @@
 #include "frame_scheduler.h"
 
+#include "interrupts.h"
+
 #include <algorithm>
 #include <chrono>
 #include <tbb/parallel_for.h>
@@ -101,7 +103,7 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
   auto lastManifest = std::chrono::steady_clock::now();
   int rendered = 0;
-  for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
+  for (size_t start = 0; start < todo.size() && !stop(); start += batch) try {
     const size_t end = std::min(todo.size(), start + batch);
     std::vector<std::vector<ImageRGBA>> rgb = batches ? renderBatch(plan, todo, start, end)
                                                                : std::vector<std::vector<ImageRGBA>>(plan.setups.size());
@@ -129,6 +131,11 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
       writeManifest(folder, manifest, plan.range.manifestName);
       lastManifest = now;
     }
+  } catch (const Interrupted&) {
+    // An external renderer was ended by SIGTERM or SIGINT: every finished frame is listed, to
+    // resume from.
+    writeManifest(folder, manifest, plan.range.manifestName);
+    throw;
   }
   return rendered;
 }

@@ -111,7 +111,7 @@ nlohmann::json PathTracing::toJson() const {
 
 std::string blenderVersion(const std::string& executable) {
   JobFolder job("omnicam-blender", false);
-  const ProcessResult r = runProcess({executable, "--version"}, job.path(), job.path() + "/version.log", 60.0);
+  const ProcessResult r = runRenderer({executable, "--version"}, job.path(), job.path() + "/version.log", 60.0);
   if (r.exitCode != 0) return "";
   const std::string tail = tailOfFile(job.path() + "/version.log", 200);
   const size_t at = tail.find("Blender ");
@@ -261,7 +261,7 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
   std::vector<std::string> argv{options.executable, "-b", "--factory-startup", "-noaudio"};
   if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
   argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", folder.path() + "/job.json"});
-  const ProcessResult r = runProcess(argv, folder.path(), log, options.timeoutSeconds);
+  const ProcessResult r = runRenderer(argv, folder.path(), log, options.timeoutSeconds);
   if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
     throw ExternalError("blender: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +

@@ -9,12 +9,16 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <thread>
+
+#include "interrupts.h"
 
 extern char** environ;
 
@@ -33,20 +37,61 @@ std::string tailOfFile(const std::string& path, int lines) {
   return out;
 }
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Ends the process group led by `pid`: SIGTERM (and SIGCONT), up to `graceSeconds` for the leader to exit, then
+// SIGKILL to whatever of the group is left. Returns the leader's wait status.
+int endProcessGroup(pid_t pid, double graceSeconds) {
+  ::kill(-pid, SIGTERM);
+  ::kill(-pid, SIGCONT);  // a stopped member acts on SIGTERM only once it runs
+  const auto deadline = Clock::now() + std::chrono::duration<double>(graceSeconds);
+  int status = 0;
+  while (::waitpid(pid, &status, WNOHANG) != pid) {
+    if (Clock::now() > deadline) {
+      ::kill(-pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(-pid, SIGKILL);  // members that outlived their leader (the group id stays theirs)
+  return status;
+}
+
+// Copies what was appended to the file at `path` since `offset` to stdout.
+void echoNewOutput(const std::string& path, std::streamoff& offset) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in.seekg(offset)) return;
+  char buffer[4096];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    std::fwrite(buffer, 1, static_cast<size_t>(in.gcount()), stdout);
+    offset += in.gcount();
+  }
+  std::fflush(stdout);
+}
+
+}  // namespace
+
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
-                         const std::string& logPath, double timeoutSeconds) {
+                         const std::string& logPath, const ProcessOptions& options) {
+  const DeferInterrupts deferred;
+  throwIfInterrupted(argv.at(0) + " not started");
   ProcessResult result;
   // posix_spawn, not fork + exec: between fork and exec only async-signal-safe calls are allowed,
   // and setenv/open are not while TBB's threads exist. Everything the child needs — its own
-  // process group (a timeout kills helpers too), working folder, HOME, log, stdin — is prepared
-  // here and applied by the spawn itself.
+  // process group (a timeout or an interrupt ends helpers too), working folder, HOME, log,
+  // stdin — is prepared here and applied by the spawn itself.
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   std::vector<std::string> environment;
   for (char** e = environ; *e; ++e)
-    if (std::strncmp(*e, "HOME=", 5) != 0) environment.emplace_back(*e);
+    if (std::strncmp(*e, "HOME=", 5) != 0 && (!options.temporaryFilesInWorkDir || std::strncmp(*e, "TMPDIR=", 7) != 0))
+      environment.emplace_back(*e);
   environment.push_back("HOME=" + workDir);
+  if (options.temporaryFilesInWorkDir) environment.push_back("TMPDIR=" + workDir);
   std::vector<char*> envp;
   for (auto& e : environment) envp.push_back(e.data());
   envp.push_back(nullptr);
@@ -76,20 +121,24 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
     result.logTail = std::string("cannot start: ") + std::strerror(spawned);
     return result;
   }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeoutSeconds);
+  const auto deadline = Clock::now() + std::chrono::duration<double>(options.timeoutSeconds);
+  std::streamoff echoed = 0;
   int status = 0;
-  while (true) {
-    const pid_t done = ::waitpid(pid, &status, WNOHANG);
-    if (done == pid) break;
-    if (std::chrono::steady_clock::now() > deadline) {
-      ::kill(-pid, SIGKILL);
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
+  while (::waitpid(pid, &status, WNOHANG) != pid) {
+    if (options.echoOutput) echoNewOutput(logPath, echoed);
+    if (const int signal = pendingInterrupt()) {
+      endProcessGroup(pid, options.terminationGraceSeconds);
+      throw Interrupted(signal, "interrupted by " + signalName(signal) + " (" +
+                                    std::filesystem::path(argv[0]).filename().string() + " ended)");
+    }
+    if (Clock::now() > deadline) {
+      status = endProcessGroup(pid, options.terminationGraceSeconds);
       result.timedOut = true;
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  if (options.echoOutput) echoNewOutput(logPath, echoed);
   if (!result.timedOut && WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
   result.notFound = result.exitCode == 127;  // glibc's posix_spawnp reports a missing binary so
   result.logTail = tailOfFile(logPath, 15);

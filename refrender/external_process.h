@@ -14,8 +14,36 @@ struct ProcessResult {
   std::string logTail;  // last lines of stdout + stderr
 };
 
+struct ProcessOptions {
+  double timeoutSeconds = 600.0;
+  // Copies what the program writes to the log onto omnicam's stdout as it comes (progress).
+  bool echoOutput = false;
+  // After SIGTERM (timeout or interrupt) the program's group has this long before SIGKILL: a
+  // program of omnicam's own then ends its renderers and removes its job folders.
+  double terminationGraceSeconds = 10.0;
+  // TMPDIR is the working folder too (a renderer's job folder): what the program leaves in its
+  // temporary folder when it is ended goes with the job folder.
+  bool temporaryFilesInWorkDir = false;
+};
+
+// SIGTERM or SIGINT while it waits (base/interrupts.h) ends the program's whole process group and
+// throws Interrupted; a timeout ends it the same way and reports timedOut.
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
-                         const std::string& logPath, double timeoutSeconds);
+                         const std::string& logPath, const ProcessOptions& options);
+inline ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
+                                const std::string& logPath, double timeoutSeconds) {
+  ProcessOptions options;
+  options.timeoutSeconds = timeoutSeconds;
+  return runProcess(argv, workDir, logPath, options);
+}
+// A renderer (POV-Ray, Blender) in its job folder: HOME and TMPDIR there.
+inline ProcessResult runRenderer(const std::vector<std::string>& argv, const std::string& jobFolder,
+                                 const std::string& logPath, double timeoutSeconds) {
+  ProcessOptions options;
+  options.timeoutSeconds = timeoutSeconds;
+  options.temporaryFilesInWorkDir = true;
+  return runProcess(argv, jobFolder, logPath, options);
+}
 
 // Runs task(0) … task(count − 1) on up to `workers` threads at once, for work that mostly waits
 // on external processes. The first exception a task throws is rethrown once every running task is

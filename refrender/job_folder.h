@@ -7,6 +7,8 @@
 #include <string>
 #include <sys/types.h>
 
+#include "interrupts.h"
+
 namespace omnicam {
 
 // Removes <tmp>/<prefix>-XXXXXX folders of this user whose owner process has exited; returns
@@ -22,6 +24,9 @@ class JobFolder {
   const std::string& path() const { return path_; }
 
  private:
+  // A signal received while the folder exists is acted on by whoever waits on the job, after the
+  // folder is gone (base/interrupts.h); declared first, so it outlives the folder.
+  DeferInterrupts deferred_;
   std::string path_;
   bool keep_;
 };

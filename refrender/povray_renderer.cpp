@@ -32,7 +32,7 @@ void writeRestrictiveConfig(const std::string& jobDir) {
 std::string povrayVersion(const std::string& executable) {
   JobFolder job("omnicam-povray", false);
   writeRestrictiveConfig(job.path());
-  const ProcessResult r = runProcess({executable, "--version"}, job.path(), job.path() + "/version.log", 30.0);
+  const ProcessResult r = runRenderer({executable, "--version"}, job.path(), job.path() + "/version.log", 30.0);
   if (r.exitCode != 0) return "";
   const std::string tail = tailOfFile(job.path() + "/version.log", 200);
   const size_t at = tail.find("POV-Ray ");
@@ -51,7 +51,7 @@ ImageRGBA runPovrayJob(const PovrayJob& job, const PovrayOptions& options, int t
   writePovrayJob(job, folder.path(), threads, region);
   writeRestrictiveConfig(folder.path());
   const std::string log = folder.path() + "/povray.log";
-  const ProcessResult r = runProcess({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
+  const ProcessResult r = runRenderer({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
   if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
     throw ExternalError("povray: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +

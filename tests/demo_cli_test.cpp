@@ -1,5 +1,7 @@
-// End to end: `omnicam demo`, the report a newcomer opens first (`make demo`). Blender is skipped
-// (--no-blender) to keep the test short; everything else is the real demo.
+// End to end: `omnicam demo`, the report a newcomer opens first (`make demo`), on a machine whose
+// cores are kept busy by other work (a `yes` per core, started and stopped here by pid): with and
+// without Blender it writes its report; a section that runs out of its budget is marked in it,
+// with the command that reproduces it, and the exit code's bits name it (issue #45).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,8 +10,11 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
+#include <thread>
+#include <memory>
 
 #include "image.h"
+#include "renderer_shim.h"
 #include "shell_command.h"
 
 namespace omnicam {
@@ -39,10 +44,59 @@ double filledFraction(const ImageRGBA& image) {
   return inside ? static_cast<double>(lit) / inside : 0.0;
 }
 
+// Other work on every core, for as long as it exists.
+class BusyCores {
+ public:
+  BusyCores() {
+    for (unsigned k = 0; k < std::max(1u, std::thread::hardware_concurrency()); ++k)
+      yes_.push_back(std::make_unique<testing::SpawnedProcess>(std::vector<std::string>{"/usr/bin/yes"},
+                                                               std::vector<std::string>{}, "/dev/null"));
+  }  // the destructor of each SpawnedProcess kills and reaps exactly the process it started
+
+ private:
+  std::vector<std::unique_ptr<testing::SpawnedProcess>> yes_;
+};
+
+// The sections in report order, each with its bit in the exit code and a phrase its own HTML has.
+struct SectionMark {
+  const char* name;
+  int bit;
+  const char* phrase;
+};
+const std::vector<SectionMark> kSections = {{"glance", 1, "<h2>At a glance</h2>"},
+                                            {"start-pose", 2, "<h2>Incidence-angle rings"},
+                                            {"light", 4, "<h2>Light: physically based"},
+                                            {"physical", 8, "<h2>The physical camera"},
+                                            {"lenses", 16, "<h2>Lens cameras"},
+                                            {"robot", 32, "<h2>A reference dataset"}};
+
+// Every section is either in the report or marked as fallen short with the command that
+// reproduces it, and the exit code's bits are exactly the marked ones. Returns those bits.
+int checkEverySectionIsShownOrMarked(const std::string& html, int exitCode) {
+  int marked = 0;
+  for (const SectionMark& s : kSections) {
+    const bool shortOf = html.find("--section " + std::string(s.name) + " ") != std::string::npos;
+    if (shortOf) marked |= s.bit;
+    EXPECT_TRUE(shortOf || html.find(s.phrase) != std::string::npos) << s.name << " silently dropped";
+    std::smatch row;
+    EXPECT_TRUE(std::regex_search(html, row, std::regex("<tr><td>" + std::string(s.name) + "</td><td>([^<]*)</td>")))
+        << s.name << " missing from the sections table";
+    if (!row.empty()) {
+      EXPECT_EQ(row[1] == "done", !shortOf) << s.name << ": " << row[1];
+    }
+  }
+  EXPECT_EQ(exitCode, marked == 0 ? 0 : 64 + marked);
+  return marked;
+}
+
 TEST(DemoCliTest, TheReportOpensWithAFilledMirrorBesideItsGroundTruthAndKeepsTheRest) {
   const fs::path out = fs::temp_directory_path() / ("omnicam_demo_" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto r = testing::runShell(std::string(OMNICAM_BINARY) + " demo --no-blender -o " + out.string() + " 2>&1");
+  testing::CommandResult r;
+  {
+    const BusyCores busy;
+    r = testing::runShell(std::string(OMNICAM_BINARY) + " demo --no-blender -o " + out.string() + " 2>&1");
+  }
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string html = readText(out / "index.html");
 
@@ -110,7 +164,62 @@ TEST(DemoCliTest, TheReportOpensWithAFilledMirrorBesideItsGroundTruthAndKeepsThe
                             "hall_detections.png", "method_4.png", "panorama_exact.png", "dataset_rear_3_depth.png"})
     EXPECT_NE(std::find(images.begin(), images.end(), image), images.end()) << image;
   for (const std::string& image : images) EXPECT_TRUE(fs::exists(out / image)) << image;
+  EXPECT_EQ(checkEverySectionIsShownOrMarked(html, r.code), 0);
   fs::remove_all(out);
+}
+
+// With Blender: Cycles' reference of the light section is small enough for a slow machine, and
+// its own noise is stated. Both cores are busy; whatever falls short is marked, never dropped.
+TEST(DemoCliTest, WithBlenderOnABusyMachineTheReportIsWrittenAndEverySectionShownOrMarked) {
+  const fs::path out = fs::temp_directory_path() / ("omnicam_demo_blender_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  testing::CommandResult r;
+  {
+    const BusyCores busy;
+    r = testing::runShell(std::string(OMNICAM_BINARY) + " demo -o " + out.string() + " 2>&1");
+  }
+  ASSERT_TRUE(fs::exists(out / "index.html")) << r.out;
+  const std::string html = readText(out / "index.html");
+  const int marked = checkEverySectionIsShownOrMarked(html, r.code);
+  if (!(marked & 4)) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(html, m, std::regex("its own noise, from the difference of its two seeds, is PSNR ([0-9.]+) dB")))
+        << "the light section states its reference's noise";
+    EXPECT_GT(std::stod(m[1]), 25.0);
+  }
+  EXPECT_NE(r.out.find("demo: open " + (out / "index.html").string()), std::string::npos) << r.out;
+  fs::remove_all(out);
+}
+
+// A renderer that never finishes (the stand-in stops POV-Ray after its first line): each section
+// that needs POV-Ray runs out of its (scaled-down) budget and is ended with its renderer; the
+// report is written, marks them with the reason and the command, and the exit code names them.
+TEST(DemoCliTest, SectionsThatRunOutOfTheirBudgetAreEndedMarkedAndNamedByTheExitCode) {
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_demo_budget_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const testing::RendererShim shim(dir / "shim", "povray");
+  fs::create_directories(dir / "tmp");
+  const auto r = testing::runShell("OMNICAM_POVRAY=" + shim.script() + " TMPDIR=" + (dir / "tmp").string() + " " +
+                                   OMNICAM_BINARY + " demo --no-blender --budget-scale 0.05 -o " + (dir / "demo").string() +
+                                   " 2>&1");
+  ASSERT_TRUE(fs::exists(dir / "demo" / "index.html")) << r.out;
+  const std::string html = readText(dir / "demo" / "index.html");
+  const int marked = checkEverySectionIsShownOrMarked(html, r.code);
+  // glance, start-pose, physical and lenses wait on POV-Ray: none can finish.
+  EXPECT_EQ(marked & (1 | 2 | 8 | 16), 1 | 2 | 8 | 16) << r.out;
+  EXPECT_NE(html.find("ran out of its budget of"), std::string::npos);
+  EXPECT_NE(html.find("--section glance -o "), std::string::npos);
+  // Every stand-in that started was ended with its group, and no job folder is left.
+  for (size_t k = 0;; ++k) {
+    const auto start = shim.waitForStart(k, [] { return true; }, 0.0);
+    if (!start) {
+      EXPECT_GE(k, 1u) << "POV-Ray never started";
+      break;
+    }
+    EXPECT_EQ(testing::liveGroupMembers(start->shell), std::vector<pid_t>{});
+  }
+  EXPECT_TRUE(fs::is_empty(dir / "tmp"));
+  fs::remove_all(dir);
 }
 
 }  // namespace
