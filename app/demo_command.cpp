@@ -222,7 +222,7 @@ std::string demoTexturedHall(const std::string& out, const std::string& scenePat
 // width (a quarter of the pixels), two seeds, and their mean as the reference; the pair's
 // difference states the reference's own noise.
 constexpr int kLightReferenceSize = 180;
-constexpr int kLightReferenceSpp = 128;
+constexpr int kLightReferenceSpp = 144;  // 12², as every spp
 
 ImageRGBA meanOf(const ImageRGBA& a, const ImageRGBA& b) {
   ImageRGBA mean = a;
@@ -680,7 +680,8 @@ int runDemo(const DemoArgs& a) {
     const double seconds = sectionBudgetSeconds(sections[k], budget);
     std::printf("demo: section %zu/%zu, %s (budget %.0f s)\n", n + 1, kRunOrder.size(), sections[k].name.c_str(), seconds);
     std::fflush(stdout);
-    runs[k] = runDemoSection(sections[k], sectionCommand(a, sections[k].name), a.out + "/sections", seconds);
+    runs[k] = runDemoSection(sections[k], sectionCommand(a, sections[k].name),
+                             (fs::absolute(a.out) / "sections").string(), seconds);
     if (runs[k].outcome == SectionOutcome::Done)
       std::printf("demo: section %s done in %.1f s\n", sections[k].name.c_str(), runs[k].seconds);
     else

@@ -65,8 +65,12 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
     run.outcome = SectionOutcome::TimedOut;
     std::snprintf(line, sizeof line, "ran out of its budget of %.0f s and was ended", budgetSeconds);
     run.reason = line;
+  } else if (result.endedBySignal) {
+    std::snprintf(line, sizeof line, "was ended by signal %d", result.endedBySignal);
+    run.reason = line;
+  } else if (result.exitCode < 0) {
+    run.reason = "could not be started (" + result.logTail + ")";
   } else if (result.exitCode != 0) {
-    run.outcome = SectionOutcome::Failed;
     std::snprintf(line, sizeof line, "failed (exit %d)", result.exitCode);
     run.reason = line;
   } else if (!fs::is_regular_file(fs::symlink_status(html))) {

@@ -103,7 +103,9 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   posix_spawn_file_actions_addchdir_np(&actions, workDir.c_str());
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   // O_NOFOLLOW: a link planted where the log goes is never written through.
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
+  // Absolute: the spawn changes into workDir before it opens the log.
+  const std::string log = std::filesystem::absolute(logPath).string();
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   posix_spawnattr_setpgroup(&attributes, 0);
   sigset_t defaults;
@@ -140,6 +142,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   }
   if (options.echoOutput) echoNewOutput(logPath, echoed);
   if (!result.timedOut && WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
+  if (!result.timedOut && WIFSIGNALED(status)) result.endedBySignal = WTERMSIG(status);
   result.notFound = result.exitCode == 127;  // glibc's posix_spawnp reports a missing binary so
   result.logTail = tailOfFile(logPath, 15);
   return result;

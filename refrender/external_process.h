@@ -8,7 +8,8 @@
 namespace omnicam {
 
 struct ProcessResult {
-  int exitCode = -1;
+  int exitCode = -1;   // -1: not started, timed out, or ended by a signal
+  int endedBySignal = 0;  // the signal that ended it, if one did (not by omnicam's timeout)
   bool timedOut = false;
   bool notFound = false;
   std::string logTail;  // last lines of stdout + stderr
