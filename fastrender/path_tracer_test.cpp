@@ -251,7 +251,7 @@ DiscMeans discMeans(const ImageRGBA& frame, int window) {
 // Issue #45: denoised closed furnaces read low. Every pixel of a furnace has the same expectation,
 // E·(1 − ρ^(D+2))/(1 − ρ), so any weighted mean of neighbours would keep it: what moves it is the
 // filter's bias. Measured on frames of kPathDatasetSpp at three sizes (docs/path-tracing.md, "The
-// filter's bias in a furnace").
+// filter's bias in a closed furnace").
 TEST(PathTracer, DenoisedFurnaceReadsLowByTheFiltersBias) {
   const double albedo = 0.8, emission = 0.2;
   const int bounces = 12;
