@@ -117,8 +117,9 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
     cmd.add_option("--shading", flags.shading,
                    "unlit (default), lit (the thesis' model) or path (physically based, docs/conventions.md §3)");
     cmd.add_option("--bounces", flags.bounces,
-                   "path: diffuse bounces per path (default " + std::to_string(defaults.bounces) + ", as Cycles' export)")
-        ->check(integer);
+                   "path: diffuse bounces per path, as Cycles' diffuse_bounces (default " + std::to_string(defaults.bounces) +
+                       ", as Blender's export)")
+        ->check(integerIn(0, kMaxBounces));
     cmd.add_option("--seed", flags.seed, "path and blender: the random stream's seed (default 0)")->check(integerIn(0, INT64_MAX));
     cmd.add_flag("--denoise", flags.denoise,
                  "Path-traced frames: filter the indirect light, guided by albedo, normal and depth (a small bias)");

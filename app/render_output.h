@@ -20,7 +20,7 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
 // Renders one placement with `engine`; the sidecar describes it.
 RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                         const RenderSettings& settings);
-// Writes OUT and OUT.json atomically.
+// Writes OUT and its sidecar OUT + ".json" (out.png.json) atomically.
 void writeRendered(const std::string& out, const RenderedFile& rendered);
 // Both, with `extra` merged into the sidecar.
 RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,

@@ -375,7 +375,7 @@ std::string filterMarkdown(const ConvergenceResults& r) {
   for (const ConvergencePoint& p : r.ladder) top = std::max(top, p.spp);
   const RungSummary filtered = summarise(r, "today", top), unfiltered = summarise(r, "physical", top);
   const IndirectFilterParameters f;
-  md << "\nFiltering the indirect light (`today`, refrender/indirect_filter.h): Cycles renders each frame twice with the same "
+  md << "\nFiltering the indirect light (`today`, denoise/indirect_filter.h): Cycles renders each frame twice with the same "
         "seed, once with every path and once ending at the first surface seen in the mirror (its direct light), with its "
         "albedo, normal and depth passes, which pass through the sharp mirror. The difference, the indirect light, is "
         "divided by the albedo, averaged over the "

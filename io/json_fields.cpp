@@ -187,15 +187,17 @@ Vec3f JsonFields::colour(const std::string& key, const Vec3f& fallback, double m
     return fallback;
   }
   const json& v = required(key);
+  if (!v.is_number() && !(v.is_array() && v.size() == 3)) fail(key, "must be a number or an array of 3 numbers");
+  // Read here, not by jsonVec3: a colour's range is `max` (emission up to 1e6), not a coordinate's.
   Vec3 c;
-  if (v.is_number()) {
-    c = Vec3::Constant(v.get<double>());
-  } else {
-    c = jsonVec3(v, file_, path(key));
-  }
-  for (int i = 0; i < 3; ++i)
+  for (int i = 0; i < 3; ++i) {
+    const json& component = v.is_array() ? v[i] : v;
+    if (!component.is_number() || !std::isfinite(component.get<double>()))
+      fail(v.is_array() ? key + "[" + std::to_string(i) + "]" : key, "must be a finite number");
+    c[i] = component.get<double>();
     if (!(c[i] >= 0.0 && c[i] <= max))
       fail(key, "components must be in [0, " + shortNumber(max) + "] (got " + shortNumber(c[i]) + ")");
+  }
   return c.cast<float>();
 }
 

@@ -300,12 +300,16 @@ def main():
     cycles.use_animated_seed = False
     cycles.pixel_filter_type = "BOX"
     cycles.filter_width = 1.0
-    cycles.max_bounces = 8
     cycles.glossy_bounces = max(1, tracing["glossy_bounces"])  # the mirror's reflection is one
     cycles.diffuse_bounces = 0 if unlit else tracing["diffuse_bounces"]
     cycles.transmission_bounces = 0
     cycles.volume_bounces = 0
     cycles.transparent_max_bounces = 0
+    # max_bounces caps diffuse, glossy, transmission and volume bounces together (transparent ones
+    # have their own cap): as their sum it never cuts a path, and diffuse_bounces is what limits
+    # (a fixed 8 held --bounces 7 and up at 7, the mirror's reflection being the eighth).
+    cycles.max_bounces = (cycles.diffuse_bounces + cycles.glossy_bounces + cycles.transmission_bounces +
+                          cycles.volume_bounces)
     cycles.sample_clamp_direct = 0.0
     cycles.sample_clamp_indirect = 0.0 if unlit else tracing["clamp_indirect"]
     cycles.blur_glossy = 0.0

@@ -99,6 +99,33 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
             file + ": format: must be \"omnicam-scene/1\"");
 }
 
+// Issue #45: emission's documented range is [0, 1e6] (a light's), one number or three; an array
+// went through the coordinates' ±10000 and its own message. One range and one wording now, for
+// either sign, an array or a single number; the albedo keeps [0, 1].
+TEST_F(SceneLoaderTest, ColoursTakeTheirWholeRangeWithOneMessage) {
+  const std::string file = (dir_ / "scene.json").string();
+  const auto material = [&](const std::string& fields) -> std::string {
+    try {
+      const Scene s = loadScene(write(R"({"format": "omnicam-scene/1", "materials": {"m": {)" + fields +
+                                      R"(}}, "objects": [{"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1}]})"));
+      const Vec3f e = s.materials[0].emission;
+      return "emission " + std::to_string(e.x()) + " " + std::to_string(e.y()) + " " + std::to_string(e.z());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+  };
+  EXPECT_EQ(material(R"("emission": [20000, 1e6, 0])"), "emission 20000.000000 1000000.000000 0.000000");
+  EXPECT_EQ(material(R"("emission": 1e6)"), "emission 1000000.000000 1000000.000000 1000000.000000");
+  const std::string range = file + ": materials.m.emission: components must be in [0, 1e+06] (got ";
+  EXPECT_EQ(material(R"("emission": [1, 2e6, 1])"), range + "2e+06)");
+  EXPECT_EQ(material(R"("emission": 2e6)"), range + "2e+06)");
+  EXPECT_EQ(material(R"("emission": [1, 1, -1])"), range + "-1)");
+  EXPECT_EQ(material(R"("emission": -0.5)"), range + "-0.5)");
+  EXPECT_EQ(material(R"("emission": [1, "x", 1])"), file + ": materials.m.emission[1]: must be a finite number");
+  EXPECT_EQ(material(R"("emission": [1, 1])"), file + ": materials.m.emission: must be a number or an array of 3 numbers");
+  EXPECT_EQ(material(R"("color": [0.5, 1.5, 0.5])"), file + ": materials.m.color: components must be in [0, 1] (got 1.5)");
+}
+
 TEST_F(SceneLoaderTest, EchoedNamesKeysAndTokensAreEscapedAndShortened) {
   const std::string file = (dir_ / "scene.json").string();
   auto load = [&](const std::string& text) -> std::string {

@@ -150,6 +150,9 @@ def main():
     write(os.path.join(SCENES, "radius_1e400.json"),
           scene([FLOOR, dict(ball, radius=0.1)]).replace('"radius": 0.1', '"radius": 1e400'))
     write(os.path.join(SCENES, "coordinate_1e20.json"), scene([FLOOR, dict(ball, center=[1e20, 0, 0])]))
+    # Emission: one range, [0, 1e6], and one message for either side of it (issue #45).
+    write(os.path.join(SCENES, "emission_2e6.json"), scene([FLOOR], {"grey": {"color": 0.5, "emission": [2e6, 1, 1]}}))
+    write(os.path.join(SCENES, "emission_negative.json"), scene([FLOOR], {"grey": {"color": 0.5, "emission": -1}}))
     # The physical camera block (rig.camera): strict, bounded, and the pinhole stays below the mirror.
     write(os.path.join(SCENES, "camera_unknown_key.json"), scene([FLOOR], rig={"camera": {"tilt_deg": 1}}))
     write(os.path.join(SCENES, "camera_offset_two.json"), scene([FLOOR], rig={"camera": {"offset_mm": [1, 2]}}))
