@@ -23,6 +23,7 @@
 #include "camera_rays.h"
 #include "dataset_reader.h"
 #include "image.h"
+#include "image_compare.h"
 #include "mirror.h"
 #include "opencv_omnidir.h"
 #include "rig.h"
@@ -1101,6 +1102,256 @@ print("bag frames", count)
   for (const char* file : {"corners.json", "opencv_corners.yml", "target.yaml", "images.bag"})
     EXPECT_EQ(sha256OfBytes(readFile(sharded + "/cam0/calibration/" + file)), sha256OfBytes(readFile(out + "/cam0/calibration/" + file)))
         << file;
+}
+
+// Issue #45: two datasets of 8192² PNG frames compare under a 4 GiB address-space limit (both
+// frames whole would need 6 GiB): compare streams rows through OpenImageIO. Its numbers are the
+// whole-image comparison's, bit for bit; the heat map (--diff), which needs both images whole,
+// is still refused with the memory it needs. A is rendered by `omnicam dataset` (one 8192² frame,
+// unlit, 1 spp, PNG only); B is a folder in the dataset layout (no manifest) holding A's frame
+// with its upper half's green dimmed, which is cheaper than a second render.
+TEST_F(DatasetCliTest, CompareOf8192SquareDatasetsFitsInFourGiB) {
+  writeFloorScene();
+  const std::string spec = write("a.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 8192, "spp": 1,
+    "shading": "unlit", "poses": {"list": [[0, 0, 0]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("a")).code, 0);
+  const std::string frameA = path("a/cam0/rgb/000000.png"), frameB = path("b/cam0/rgb/000000.png");
+  {
+    ImageRGBA b = readImage(frameA);
+    ASSERT_EQ(b.width, 8192);
+    ASSERT_EQ(b.height, 8192);
+    for (int j = 0; j < 4096; ++j)
+      for (int i = 0; i < 8192; ++i) b.at(i, j)[1] *= 0.9f;
+    fs::create_directories(fs::path(frameB).parent_path());
+    writeImageAtomic(frameB, b);
+  }
+  const std::string limited = "ulimit -v 4194304; " + std::string(OMNICAM_BINARY) + " compare ";
+  const auto run = testing::runShell(limited + path("a") + " " + path("b") + " --json 2>" + path("err.txt"));
+  ASSERT_EQ(run.code, 0) << run.out << readFile(dir_ / "err.txt");
+  const json frame = json::parse(run.out).at("frames").at(0);
+
+  // The same two files decoded whole (this process has no limit).
+  const CompareResult whole = compareImages(readImage(frameA), readImage(frameB));
+  EXPECT_EQ(frame.at("rmse").get<double>(), whole.rmse);
+  EXPECT_EQ(frame.at("psnr_db").get<double>(), whole.psnrDb);
+  EXPECT_EQ(frame.at("ssim").get<double>(), whole.ssim);
+  EXPECT_EQ(frame.at("max_abs").get<double>(), whole.maxAbs);
+  EXPECT_EQ(frame.at("frac_over_tol").get<double>(), whole.fracOverTol);
+  EXPECT_EQ(frame.at("max_abs_pixel").at(1).get<int>(), whole.maxJ);
+  EXPECT_EQ(frame.at("pixels").get<long>(), whole.pixels);
+  // The dimmed half was seen: differences there, none below it.
+  EXPECT_GT(whole.maxAbs, 0.02);
+  EXPECT_LT(whole.maxJ, 4096);
+  EXPECT_LT(whole.ssim, 1.0);
+
+  // The two images alike, streamed; with --diff both whole and the heat map: 3 × 8192² × (4 B ×
+  // 4 channels + 16 B) = 6.0 GiB, refused (exit 5) before anything is decoded or written.
+  const auto images = testing::runShell(limited + frameA + " " + frameB + " 2>&1");
+  EXPECT_EQ(images.code, 0) << images.out;
+  EXPECT_NE(images.out.find("compared 67108864 pixels"), std::string::npos) << images.out;
+  const auto diff = testing::runShell(limited + frameA + " " + frameB + " --diff " + path("d.png") + " 2>&1");
+  EXPECT_EQ(diff.code, 5) << diff.out;
+  EXPECT_NE(diff.out.find("comparing the two images and their heat map (--diff) needs 6.0 GiB"), std::string::npos) << diff.out;
+  EXPECT_FALSE(fs::exists(path("d.png")));
+}
+
+}  // namespace
+}  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+// Path shading in datasets (docs/path-tracing.md): 100 denoised frames of the textured hall along
+// thesis-loop with every output run and verify; a frame is what `render` gives at its pose; shards
+// merge into the one-go dataset byte for byte; and a moving robot under a rolling shutter renders
+// path-traced frames as the render verb does.
+TEST_F(DatasetCliTest, PathShadedTexturedHallWithEveryOutputVerifiesShardsAndMoves) {
+  ASSERT_EQ(omnicam("arena hall --photo /usr/share/blender/datafiles/studiolights/world/interior.exr -o " + path("hall.json")).code, 0);
+  const std::string settings = R"("scene": "hall.json", "shading": "path", "spp": 4, "denoise": true, "size": 64, )";
+  const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", )" + settings +
+                                                  R"("poses": {"path": "thesis-loop", "frames": 100}, )" + everyOutput("files") + "}");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+  const json manifest = json::parse(readFile(path("ds/manifest.json")));
+  EXPECT_EQ(manifest.at("frames").size(), 100u);
+  EXPECT_EQ(manifest.at("settings").at("shading"), "path");
+  EXPECT_EQ(manifest.at("settings").at("path_tracing"), json({{"bounces", 2}, {"seed", 0}, {"denoise", true}}));
+  // Frame 7 is the render verb's frame at its pose, byte for byte.
+  const json& pose = manifest.at("frames")[7].at("pose");
+  char poseText[128];
+  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
+                pose.at("yaw_deg").get<double>());
+  const auto single = omnicam("render " + path("hall.json") + " --shading path --spp 4 --denoise --size 64 --pose=" + poseText +
+                              " -o " + path("single.exr"));
+  ASSERT_EQ(single.code, 0) << single.out;
+  EXPECT_TRUE(readImage(path("ds/cam0/rgb/000007.exr")).pixels == readImage(path("single.exr")).pixels);
+  // Shards: the same bytes as the one-go run.
+  const std::string ten = write("ten.json", R"({"format": "omnicam-dataset/1", )" + settings +
+                                                R"("poses": {"path": "thesis-loop", "frames": 10}, )" + everyOutput("files") + "}");
+  ASSERT_EQ(omnicam("dataset " + ten + " -o " + path("whole")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + ten + " -o " + path("parts") + " --shard 1/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + ten + " -o " + path("parts") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+  std::map<std::string, std::string> merged = snapshot(dir_ / "parts"), whole = snapshot(dir_ / "whole");
+  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  EXPECT_EQ(merged, whole);
+  // Moving under a rolling shutter: the dataset's frame is the render verb's.
+  json hall = json::parse(readFile(path("hall.json")));
+  hall["rig"]["shutter"] = {{"exposure_s", 0.02}, {"rolling", {{"line_time_us", 200}, {"readout", "top-to-bottom"}}}};
+  write("moving.json", hall.dump());
+  const std::string moving = write("moving-spec.json", R"({"format": "omnicam-dataset/1", "scene": "moving.json",
+    "shading": "path", "spp": 4, "denoise": true, "size": 64, "frame_interval_s": 0.1, "outputs": {"rgb": "exr"},
+    "poses": {"list": [[0, 0, 0], [0.1, 0, 0]]}, "motion": {"between_poses": true}})");
+  ASSERT_EQ(omnicam("dataset " + moving + " -o " + path("moving")).code, 0);
+  const auto still = omnicam("render " + path("moving.json") + " --shading path --spp 4 --denoise --size 64 --pose 0,0,0 "
+                             "--velocity 1,0,0 -o " + path("moving0.exr"));
+  ASSERT_EQ(still.code, 0) << still.out;
+  EXPECT_TRUE(readImage(path("moving/cam0/rgb/000000.exr")).pixels == readImage(path("moving0.exr")).pixels);
+  const auto atRest = omnicam("render " + path("moving.json") + " --shading path --spp 4 --denoise --size 64 --pose 0,0,0 -o " +
+                              path("rest.exr"));
+  ASSERT_EQ(atRest.code, 0) << atRest.out;
+  EXPECT_FALSE(readImage(path("rest.exr")).pixels == readImage(path("moving0.exr")).pixels);  // the motion shows
+}
+
+
+// A calibration sequence (docs/examples/calibration_dataset.json, the documented example):
+// each frame's exact corners agree with what AprilTag finds in the rendered frame; the bag reads
+// back with Debian's rosbag, pixel for pixel the PNGs; OpenCV's omnidir, fed the corner list
+// file as cv::FileStorage reads it, recovers the ideal rig's closed-form intrinsics; a sharded run
+// merges into the same files.
+TEST_F(DatasetCliTest, CalibrationSequenceCornersBagAndCornerListsAreWhatToolsRead) {
+  const std::string spec = OMNICAM_SOURCE_DIR "/docs/examples/calibration_dataset.json";
+  const std::string out = path("cal");
+  const testing::CommandResult run = omnicam("dataset " + spec + " -o " + out + " --threads 2");
+  ASSERT_EQ(run.code, 0) << run.out;
+  ASSERT_EQ(omnicam("dataset --verify " + out).code, 0);
+
+  // The exact corners against AprilTag's on the frames as written.
+  const json corners = json::parse(readFile(out + "/cam0/calibration/corners.json"));
+  ASSERT_EQ(corners.at("frames").size(), 20u);
+  const AprilGrid grid{5, 5, 0.06, 0.3, 0};
+  std::vector<double> errors;
+  size_t seen = 0;
+  for (const json& frame : corners.at("frames")) {
+    const int index = frame.at("frame").get<int>();
+    char name[64];
+    std::snprintf(name, sizeof name, "/cam0/rgb/%06d.png", index);
+    const ImageRGBA image = readImage(out + name);
+    EXPECT_GE(frame.at("seen").get<int>(), 24) << "frame " << index << ": min_seen_corners";
+    seen += frame.at("seen").get<size_t>();
+    const std::vector<DetectedCorner> found = detectAprilGrid(image, grid, ImageHandedness::Mirrored);
+    for (const DetectedCorner& d : found) {
+      const json& exact = frame.at("corners").at(static_cast<size_t>(d.index));
+      ASSERT_EQ(exact.at("sight"), "seen") << "frame " << index << " corner " << d.index;
+      errors.push_back((d.raster - Vec2(exact.at("raster")[0].get<double>(), exact.at("raster")[1].get<double>())).norm());
+      // OpenCV's convention: half a pixel less.
+      EXPECT_DOUBLE_EQ(exact.at("opencv")[0].get<double>(), exact.at("raster")[0].get<double>() - 0.5);
+    }
+  }
+  std::sort(errors.begin(), errors.end());
+  // Boards imaged small (seen near the image centre, looking down) decode partly or not at all:
+  // measured 724 of 1629 corners.
+  ASSERT_GT(errors.size(), seen / 3) << "AprilTag finds a good share of the seen corners";
+  const double median = errors[errors.size() / 2], p99 = errors[static_cast<size_t>(0.99 * (errors.size() - 1))];
+  std::printf("calibration sequence: %zu corners detected of %zu seen; detected - exact: median %.3f px, 99th %.3f px\n",
+              errors.size(), seen, median, p99);
+  EXPECT_LT(median, 0.15);
+  EXPECT_LT(p99, 0.6);
+
+  // Debian's rosbag reads the bag: 20 rgb8 images on /cam0/image_raw, stamped i × 0.1 s, each
+  // the PNG's pixels.
+  const std::string script = write("read_bag.py", R"(import sys, rosbag, numpy
+from PIL import Image
+count = 0
+with rosbag.Bag(sys.argv[1] + "/cam0/calibration/images.bag") as bag:
+    for topic, m, t in bag.read_messages():
+        png = numpy.asarray(Image.open("%s/cam0/rgb/%06d.png" % (sys.argv[1], m.header.seq)).convert("RGB"))
+        data = numpy.frombuffer(m.data, numpy.uint8).reshape(m.height, m.width, 3)
+        assert topic == "/cam0/image_raw" and m.encoding == "rgb8" and m.step == 3 * m.width, (topic, m.encoding)
+        assert m.header.stamp.to_nsec() == m.header.seq * 100000000 == t.to_nsec(), (m.header.seq, m.header.stamp)
+        assert (data == png).all(), m.header.seq
+        count += 1
+print("bag frames", count)
+)");
+  const testing::CommandResult bag = testing::runShell("/usr/bin/python3 " + script + " " + out + " 2>&1");
+  EXPECT_EQ(bag.code, 0) << bag.out;
+  EXPECT_NE(bag.out.find("bag frames 20"), std::string::npos) << bag.out;
+
+  // The corner lists, as OpenCV reads them, calibrate the ideal rig.
+  const std::vector<CornerListImage> lists = readOpenCvCornerLists(readFile(out + "/cam0/calibration/opencv_corners.yml"), "opencv_corners.yml");
+  ASSERT_EQ(lists.size(), 20u);
+  std::vector<CalibrationView> views;
+  for (const CornerListImage& image : lists) views.push_back(image.view);
+  OmnidirOptions options;
+  options.fixDistortion = true;
+  const json intrinsics = json::parse(readFile(out + "/manifest.json")).at("cameras")[0].at("intrinsics");
+  const OmnidirCalibration fit = calibrateOmnidir(views, 720, 720, options);
+  ASSERT_TRUE(fit.converged) << fit.failure;
+  std::printf("from opencv_corners.yml: rms %.2e px, xi %.6f (truth %.6f), gamma_y %.4f (%.4f), cx %.4f (%.4f)\n", fit.rms, fit.xi,
+              intrinsics.at("xi").get<double>(), fit.gammaY, intrinsics.at("gamma_y").get<double>(), fit.cx, intrinsics.at("cx").get<double>());
+  EXPECT_NEAR(fit.xi, intrinsics.at("xi").get<double>(), 1e-3 * intrinsics.at("xi").get<double>());
+  EXPECT_NEAR(fit.gammaY, intrinsics.at("gamma_y").get<double>(), 1e-3 * std::abs(intrinsics.at("gamma_y").get<double>()));
+  EXPECT_NEAR(fit.cx, intrinsics.at("cx").get<double>(), 0.05);
+  EXPECT_NEAR(fit.cy, intrinsics.at("cy").get<double>(), 0.05);
+
+  // Two shards and a merge: the same calibration files, the same bag.
+  const std::string sharded = path("cal_shards");
+  for (int i = 0; i < 2; ++i)
+    ASSERT_EQ(omnicam("dataset " + spec + " -o " + sharded + " --shard " + std::to_string(i) + "/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + sharded).code, 0);
+  for (const char* file : {"corners.json", "opencv_corners.yml", "target.yaml", "images.bag"})
+    EXPECT_EQ(sha256OfBytes(readFile(sharded + "/cam0/calibration/" + file)), sha256OfBytes(readFile(out + "/cam0/calibration/" + file)))
+        << file;
+}
+
+// Issue #45: two datasets of 8192² PNG frames compare under a 4 GiB address-space limit (both
+// frames whole would need 6 GiB): compare streams rows through OpenImageIO. Its numbers are the
+// whole-image comparison's, bit for bit; the heat map (--diff), which needs both images whole,
+// is still refused with the memory it needs.
+TEST_F(DatasetCliTest, CompareOf8192SquareDatasetsFitsInFourGiB) {
+  writeFloorScene();
+  std::string scene = readFile(dir_ / "floor.json");
+  const std::string green = "[0.2, 0.6, 0.2]";
+  scene.replace(scene.find(green), green.size(), "[0.25, 0.55, 0.2]");
+  write("floor_b.json", scene);
+  const std::string common = R"("size": 8192, "spp": 1, "shading": "unlit", "poses": {"list": [[0, 0, 0]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
+  const std::string specA = write("a.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", )" + common);
+  const std::string specB = write("b.json", R"({"format": "omnicam-dataset/1", "scene": "floor_b.json", )" + common);
+  ASSERT_EQ(omnicam("dataset " + specA + " -o " + path("a")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + specB + " -o " + path("b")).code, 0);
+  const std::string limited = "ulimit -v 4194304; " + std::string(OMNICAM_BINARY) + " compare ";
+  const auto run = testing::runShell(limited + path("a") + " " + path("b") + " --json 2>" + path("err.txt"));
+  ASSERT_EQ(run.code, 0) << run.out << readFile(dir_ / "err.txt");
+  const json frame = json::parse(run.out).at("frames").at(0);
+
+  // The same two frames decoded whole (this process has no limit).
+  const std::string frameA = path("a/cam0/rgb/000000.png"), frameB = path("b/cam0/rgb/000000.png");
+  const ImageRGBA a = readImage(frameA), b = readImage(frameB);
+  ASSERT_EQ(a.width, 8192);
+  ASSERT_EQ(a.height, 8192);
+  const CompareResult whole = compareImages(a, b);
+  EXPECT_EQ(frame.at("rmse").get<double>(), whole.rmse);
+  EXPECT_EQ(frame.at("psnr_db").get<double>(), whole.psnrDb);
+  EXPECT_EQ(frame.at("ssim").get<double>(), whole.ssim);
+  EXPECT_EQ(frame.at("max_abs").get<double>(), whole.maxAbs);
+  EXPECT_EQ(frame.at("frac_over_tol").get<double>(), whole.fracOverTol);
+  EXPECT_EQ(frame.at("pixels").get<long>(), whole.pixels);
+  // The floors differ: the comparison saw them (0.6 → 0.55 in green is ~0.05 where the floor shows).
+  EXPECT_GT(whole.maxAbs, 0.04);
+  EXPECT_LT(whole.ssim, 1.0);
+
+  // Two images alike, streamed; with --diff both whole and the heat map: 3 × 8192² × (4 B × 4
+  // channels + 16 B) = 6.0 GiB, refused (exit 5) before anything is decoded or written.
+  const auto images = testing::runShell(limited + frameA + " " + frameB + " 2>&1");
+  EXPECT_EQ(images.code, 0) << images.out;
+  EXPECT_NE(images.out.find("compared 67108864 pixels"), std::string::npos) << images.out;
+  const auto diff = testing::runShell(limited + frameA + " " + frameB + " --diff " + path("d.png") + " 2>&1");
+  EXPECT_EQ(diff.code, 5) << diff.out;
+  EXPECT_NE(diff.out.find("comparing the two images and their heat map (--diff) needs 6.0 GiB"), std::string::npos) << diff.out;
+  EXPECT_FALSE(fs::exists(path("d.png")));
 }
 
 }  // namespace
