@@ -165,6 +165,20 @@ LensCameraSpec readLensCamera(JsonFields f) {
   return lens;
 }
 
+namespace {
+
+// True when the pixels a model images are a disc about lensCentre in pixels scaled by (fx, fy)
+// (for a polynomial f-θ lens with k0 > 0, without its centre): the angle from the axis grows with
+// the distance up to the field of view's or the fold's edge, as the readers require. Every model
+// but a pinhole with distortion: not radially symmetric when tangential, and its undistort()
+// takes some pixels past the fold for imaged (both factors of its Jacobian negative).
+bool imagesADisc(const LensModel& model) {
+  const auto* pinhole = std::get_if<PinholeRadTan>(&model);
+  return radiallySymmetric(model) && !(pinhole && !pinhole->distortion.none());
+}
+
+}  // namespace
+
 bool imagesSomePixel(const LensCameraSpec& lens) {
   RigSpec rig;
   rig.lens = lens;
@@ -182,8 +196,8 @@ bool imagesSomePixel(const LensCameraSpec& lens) {
   const int steps[5][2] = {{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   for (const auto& step : steps)
     if (inImage(i + step[0], j + step[1]) && imaged(i + step[0], j + step[1])) return true;
-  if (!radiallySymmetric(lens.model)) {
-    // A pinhole with tangential distortion: no closed form; a grid over the image as well.
+  if (!imagesADisc(lens.model)) {
+    // A pinhole with distortion: no closed form; a grid over the image as well.
     for (int y = 0; y < 64; ++y)
       for (int x = 0; x < 64; ++x)
         if (imaged((2 * x + 1) * lens.width / 128, (2 * y + 1) * lens.height / 128)) return true;

@@ -15,9 +15,8 @@ LensCameraSpec readLensCamera(JsonFields lens);
 // as the degrees that convert back to the very same radians).
 nlohmann::json lensCameraToJson(const LensCameraSpec& lens);
 // True when the lens images at least one pixel centre. Exact for every model whose image is a
-// disc about its centre in pixels scaled by (fx, fy) (lensCentre, radiallySymmetric: the angle
-// from the axis grows with the distance up to the field of view's or the fold's edge, as the
-// readers require), with or without the centre itself; a grid search besides for the others.
+// disc about its centre in pixels scaled by (fx, fy) (lensCentre, imagesADisc), with or without
+// the centre itself; for a pinhole with distortion, a 64 × 64 grid of pixel centres besides.
 bool imagesSomePixel(const LensCameraSpec& lens);
 
 }  // namespace omnicam
