@@ -67,18 +67,23 @@ ImageRGBA readDatasetImage(const std::string& dir, const std::string& relative, 
   return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
 }
 
+struct FrameFilesComparison {
+  CompareResult result;
+  int64_t bytes = 0;  // the memory the comparison held at once
+};
+
 // One frame of A against B's: each image file read whole (bounded by kMaxDatasetFileBytes), its
 // pixels decoded a band of rows at a time (compareImageRows) — a multilayer frame whole, by the
-// dataset reader's own decoder. `bytes` is set to the memory the comparison holds at once.
-CompareResult compareFrameFiles(const std::string& dirA, const std::string& dirB, const FrameComparison& f,
-                                const CompareOptions& options, int64_t& bytes) {
+// dataset reader's own decoder.
+FrameFilesComparison compareFrameFiles(const std::string& dirA, const std::string& dirB, const FrameComparison& f,
+                                       const CompareOptions& options) {
   if (f.layeredA || f.layeredB) {
     const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
     const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
     // Both images as floats, and their decoding (the larger of the multilayer reader's planes plus
     // interleaved copy and OpenImageIO's raw channels).
-    bytes = (static_cast<int64_t>(imageA.width) * imageA.height + static_cast<int64_t>(imageB.width) * imageB.height) * 16 * 3;
-    return compareImages(imageA, imageB, options);
+    return {compareImages(imageA, imageB, options),
+            (static_cast<int64_t>(imageA.width) * imageA.height + static_cast<int64_t>(imageB.width) * imageB.height) * 16 * 3};
   }
   const std::string bytesA = readFileInside(dirA, f.fileA, kMaxDatasetFileBytes);
   const std::string bytesB = readFileInside(dirB, f.fileB, kMaxDatasetFileBytes);
@@ -86,9 +91,8 @@ CompareResult compareFrameFiles(const std::string& dirA, const std::string& dirB
                                                 showPath((fs::path(dirA) / f.fileA).string()));
   ImageRowReader b = ImageRowReader::openMemory(reinterpret_cast<const unsigned char*>(bytesB.data()), bytesB.size(),
                                                 showPath((fs::path(dirB) / f.fileB).string()));
-  bytes = static_cast<int64_t>(bytesA.size() + bytesB.size()) + imageRowsCompareBytes(a, b);
   requireMemory(imageRowsCompareBytes(a, b), "comparing two frames");
-  return compareImageRows(a, b, options);
+  return {compareImageRows(a, b, options), static_cast<int64_t>(bytesA.size() + bytesB.size()) + imageRowsCompareBytes(a, b)};
 }
 
 std::string frameLabel(const FrameComparison& f) {
@@ -163,7 +167,9 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
   std::vector<int64_t> bytes(result.frames.size(), 0);
   const auto compareFrame = [&](size_t k) {
     FrameComparison& f = result.frames[k];
-    f.result = compareFrameFiles(dirA, dirB, f, options.image, bytes[k]);
+    const FrameFilesComparison compared = compareFrameFiles(dirA, dirB, f, options.image);
+    f.result = compared.result;
+    bytes[k] = compared.bytes;
     f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
   };
   std::set<std::string> sized;
