@@ -78,6 +78,23 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   return r.failures ? 1 : 0;
 }
 
+// Two images read a band of rows at a time: memory for a few rows, whatever their size.
+CompareResult compareStreamed(const CompareArgs& args, const CompareOptions& options) {
+  ImageRowReader a = ImageRowReader::openFile(args.a), b = ImageRowReader::openFile(args.b);
+  requireMemory(imageRowsCompareBytes(a, b), "comparing the two images");
+  return compareImageRows(a, b, options);
+}
+
+// Both images whole, for the heat map (--diff), sized from the headers before either is decoded.
+CompareResult compareWhole(const CompareArgs& args, const CompareOptions& options) {
+  const int64_t bytesA = imageDecodeBytes(args.a), bytesB = imageDecodeBytes(args.b);
+  requireMemory(bytesA + bytesB + bytesA, "comparing the two images and their heat map (--diff)");
+  const ImageRGBA a = readImage(args.a), b = readImage(args.b);
+  const CompareResult r = compareImages(a, b, options);
+  writeImageAtomic(args.diff, differenceHeatmap(a, b, args.diffScale));
+  return r;
+}
+
 int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   std::error_code ec;
   const bool folderA = std::filesystem::is_directory(args.a, ec), folderB = std::filesystem::is_directory(args.b, ec);
@@ -90,19 +107,14 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + showPath(args.diff) + ": must end in .png or .exr");
     checkOutputFile(args.diff, "--diff");
   }
-  // Both images and the heat map, sized from the headers before either is decoded.
-  const int64_t bytesA = imageDecodeBytes(args.a), bytesB = imageDecodeBytes(args.b);
-  requireMemory(bytesA + bytesB + (args.diff.empty() ? 0 : bytesA), "comparing the two images");
-  const ImageRGBA a = readImage(args.a), b = readImage(args.b);
   CompareOptions options;
   options.tolerance = args.tol;
   options.discOnly = args.disc;
-  const CompareResult r = compareImages(a, b, options);
+  const CompareResult r = args.diff.empty() ? compareStreamed(args, options) : compareWhole(args, options);
   std::string failure;
   if (args.failPsnr >= 0.0 && r.psnrDb < args.failPsnr) failure += " psnr_db < " + std::to_string(args.failPsnr);
   if (args.failRmse >= 0.0 && r.rmse > args.failRmse) failure += " rmse > " + std::to_string(args.failRmse);
   if (args.failMax >= 0.0 && r.maxAbs > args.failMax) failure += " max_abs > " + std::to_string(args.failMax);
-  if (!args.diff.empty()) writeImageAtomic(args.diff, differenceHeatmap(a, b, args.diffScale));
   const bool checked = args.failPsnr >= 0.0 || args.failRmse >= 0.0 || args.failMax >= 0.0;
   const char* verdict = !checked ? "NOTHRESHOLD" : failure.empty() ? "PASS" : "FAIL";
   if (args.json) {

@@ -37,7 +37,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   checkOutputFolder(a.out, "-o");
   const Scene scene = loadScene(a.scene, a.load);
   const RobotPose pose = requested ? *requested : scene.startPose;
-  RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size) : scene.rig);
+  RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
   if (a.to == "gltf") {
     GltfExportOptions options;

@@ -35,7 +35,7 @@ void runProject(const ProjectArgs& a) {
   for (const auto& text : a.points) points.push_back(parseTriple(text, "--point"));
   const Scene scene = loadScene(a.scene, a.load);
   RigSpec rig = scene.rig;
-  if (a.size) rig = rig.resized(a.size);
+  if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   const Rigid viewpointFromWorld = CameraPlacement(pose).worldFromViewpoint(rig).inverse();
   for (const Vec3& world : points) {
@@ -56,7 +56,7 @@ void runCameraRays(const CameraRaysArgs& a) {
   if (std::filesystem::path(a.out).extension() != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
   const Scene scene = loadScene(a.scene, a.load);
   RigSpec rig = scene.rig;
-  if (a.size) rig = rig.resized(a.size);
+  if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   writeCameraRayTable(a.out, cameraRayTable(*camera));
   writeSidecarAtomic(a.out, {{"rig", rigToJson(rig)},

@@ -95,11 +95,11 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     velocity = {v.x(), v.y(), v.z()};
   }
   checkPlacement(CameraPlacement(pose.value_or(RobotPose{}), velocity), kSettingFlags);
-  if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize);
+  if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize, "--size");
   checkRenderSettings(settings, kSettingFlags);  // before the scene: a bad --spp needs no scene to be read
   const Scene scene = loadScene(a.scene, a.load);
   settings.rig = scene.rig;
-  if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize);
+  if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize, "--size");
   checkRenderSettings(settings, kSettingFlags);
   const FrameViews views(a.views, settings.rig);
   if (a.path.empty()) {

@@ -92,7 +92,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   fields.spp = a.spp;  // rings default to 16 spp, more than a single render's default
   const RenderRequest request = readRenderRequest(fields, RequestFieldNames::cli());
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
-  RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size) : scene.rig);
+  RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
   checkImageOutput(a.out, "-o");
   const auto engine = makeEngine(request, scene);

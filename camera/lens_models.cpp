@@ -1,6 +1,7 @@
 #include "lens_models.h"
 
 #include <cmath>
+#include <type_traits>
 
 #include "lens_distortion.h"
 
@@ -258,6 +259,18 @@ std::string lensModelName(const LensModel& lens) {
 
 LensModel scaledLens(const LensModel& lens, double scale) {
   return std::visit([&](const auto& m) { return scaled(m, scale); }, lens);
+}
+
+Vec2 lensCentre(const LensModel& lens) {
+  return std::visit([](const auto& m) -> Vec2 {
+    if constexpr (std::is_same_v<std::decay_t<decltype(m)>, Equirectangular>) return Vec2((m.width - 1) / 2.0, (m.height - 1) / 2.0);
+    else return Vec2(m.cx, m.cy);
+  }, lens);
+}
+
+bool radiallySymmetric(const LensModel& lens) {
+  const auto* pinhole = std::get_if<PinholeRadTan>(&lens);
+  return !pinhole || (pinhole->distortion.p1 == 0.0 && pinhole->distortion.p2 == 0.0);
 }
 
 std::optional<Vec2> lensProject(const LensModel& lens, const Vec3& pointCamera) {

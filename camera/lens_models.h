@@ -88,6 +88,13 @@ std::string lensModelName(const LensModel& lens);
 // are the camera's to change.
 LensModel scaledLens(const LensModel& lens, double scale);
 
+// The image point of the optical axis (OpenCV's pixel convention), the centre of the region a
+// model images; an equirectangular panorama's image centre.
+Vec2 lensCentre(const LensModel& lens);
+// True when what a pixel sees depends only on its distance from lensCentre in pixels scaled by
+// (fx, fy): every model but a pinhole with tangential distortion.
+bool radiallySymmetric(const LensModel& lens);
+
 // The image point (OpenCV's pixel convention) of a camera-frame point; nullopt where the model
 // images nothing (outside its field of view or validity region, or the point at the centre).
 std::optional<Vec2> lensProject(const LensModel& lens, const Vec3& pointCamera);

@@ -62,18 +62,19 @@ Rigid cameraFromViewpoint(const RigSpec& rig) {
   return t;
 }
 
-LensCameraSpec resizedLens(const LensCameraSpec& lens, int width) {
+LensCameraSpec resizedLens(const LensCameraSpec& lens, int width, const std::string& what) {
+  const std::string camera = "a lens camera of " + std::to_string(lens.width) + "x" + std::to_string(lens.height);
   const int64_t scaledHeight = int64_t{lens.height} * width;
   if (scaledHeight % lens.width != 0) {
     const int64_t step = lens.width / std::gcd(lens.width, lens.height);
-    throw InputError("image size: a lens camera of " + std::to_string(lens.width) + "x" + std::to_string(lens.height) +
-                     " keeps its aspect only at widths that are multiples of " + std::to_string(step) + " (got " +
-                     std::to_string(width) + ")");
+    throw InputError(what + ": " + camera + " keeps its aspect only at widths that are multiples of " + std::to_string(step) +
+                     " (got " + std::to_string(width) + ")");
   }
   LensCameraSpec out = lens;
   out.width = width;
   out.height = static_cast<int>(scaledHeight / lens.width);
-  checkImageSize(out.height, "image height");
+  checkImageSize(out.height, what + ": " + camera + " is " + std::to_string(out.height) + " pixels high at width " +
+                                 std::to_string(width) + "; its height");
   out.model = scaledLens(lens.model, static_cast<double>(width) / lens.width);
   return out;
 }

@@ -65,8 +65,9 @@ struct LensCameraSpec {
 };
 Eigen::Matrix3d viewpointFromLens(const LensCameraSpec& lens);
 // The lens imaging `width` pixels across, its height keeping the aspect exactly: InputError
-// naming the widths that do, for one that does not (or a height outside the limits).
-LensCameraSpec resizedLens(const LensCameraSpec& lens, int width);
+// naming `what` (the width's name) and the widths that do, for one that does not (or a height
+// outside the limits).
+LensCameraSpec resizedLens(const LensCameraSpec& lens, int width, const std::string& what = "image size");
 
 // InputError("<what>: must be in [8, 16384] (got N)") for an image size outside the limits.
 void checkImageSize(int size, const std::string& what);
@@ -103,14 +104,15 @@ struct RigSpec {
   // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
   // A lens camera's `size` is its width; its height keeps the aspect exactly (else InputError:
   // one scale for both axes keeps its pixels square).
-  // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize.
-  RigSpec resized(int size) const {
-    checkImageSize(size, "image size");
+  // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize; `what` names the
+  // size in messages (the CLI's "--size", a spec's file and field).
+  RigSpec resized(int size, const std::string& what = "image size") const {
+    checkImageSize(size, what);
     RigSpec r = *this;
     const double scale = static_cast<double>(size) / imageWidth();
     r.imageSize = size;
     for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
-    if (lens) r.lens = resizedLens(*lens, size);
+    if (lens) r.lens = resizedLens(*lens, size, what);
     return r;
   }
   // What shapes the camera's rays in the viewpoint frame: this rig without its shutter (when

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "errors.h"
@@ -10,67 +11,114 @@ namespace omnicam {
 
 namespace {
 
-bool included(const ImageRGBA& a, const ImageRGBA& b, int i, int j, bool discOnly) {
-  return !discOnly || (a.at(i, j)[3] >= 0.999f && b.at(i, j)[3] >= 0.999f);
-}
+// SSIM's windows: 8×8 pixels, one every 4 pixels across and down.
+constexpr int kSsimWindow = 8, kSsimStride = 4;
+// Rows read at once when comparing from files.
+constexpr int kBandRows = 32;
 
-// Mean SSIM (Wang et al. 2004) of the luminance, 8×8 windows with stride 4, L = 1.
-double meanSsim(const ImageRGBA& a, const ImageRGBA& b, bool discOnly) {
-  auto luma = [](const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; };
-  const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
-  const int w = 8;
-  double sum = 0.0;
-  int windows = 0;
-  for (int y = 0; y + w <= a.height; y += 4)
-    for (int x = 0; x + w <= a.width; x += 4) {
-      double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-      bool all = true;
-      for (int j = y; j < y + w && all; ++j)
-        for (int i = x; i < x + w; ++i) {
-          if (!included(a, b, i, j, discOnly)) {
-            all = false;
-            break;
-          }
-          const double va = luma(a.at(i, j)), vb = luma(b.at(i, j));
-          sa += va, sb += vb, saa += va * va, sbb += vb * vb, sab += va * vb;
-        }
-      if (!all) continue;
-      const double n = w * w, ma = sa / n, mb = sb / n;
-      const double va = saa / n - ma * ma, vb = sbb / n - mb * mb, cov = sab / n - ma * mb;
-      sum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
-      ++windows;
-    }
-  return windows ? sum / windows : 1.0;
-}
+bool included(const float* a, const float* b, bool discOnly) { return !discOnly || (a[3] >= 0.999f && b[3] >= 0.999f); }
+
+double luma(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
 }  // namespace
 
-CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const CompareOptions& options) {
-  if (a.width != b.width || a.height != b.height)
-    throw InputError("compare: image sizes differ (" + std::to_string(a.width) + "x" + std::to_string(a.height) +
-                     " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) + ")");
-  CompareResult r;
-  double sumSq = 0.0;
-  long over = 0;
-  for (int j = 0; j < a.height; ++j)
-    for (int i = 0; i < a.width; ++i) {
-      if (!included(a, b, i, j, options.discOnly)) continue;
-      double worst = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        const double d = static_cast<double>(a.at(i, j)[c]) - b.at(i, j)[c];
-        sumSq += d * d;
-        worst = std::max(worst, std::abs(d));
-      }
-      if (worst > r.maxAbs) r.maxAbs = worst, r.maxI = i, r.maxJ = j;
-      over += worst > options.tolerance;
-      ++r.pixels;
+RowComparison::RowComparison(int widthA, int heightA, int widthB, int heightB, const CompareOptions& options)
+    : width_(widthA), height_(heightA), options_(options) {
+  if (widthA != widthB || heightA != heightB)
+    throw InputError("compare: image sizes differ (" + std::to_string(widthA) + "x" + std::to_string(heightA) + " vs " +
+                     std::to_string(widthB) + "x" + std::to_string(heightB) + ")");
+  keptA_.resize(static_cast<size_t>(width_) * 4 * kSsimWindow);
+  keptB_.resize(keptA_.size());
+}
+
+void RowComparison::addRows(const float* a, const float* b, int count) {
+  const size_t row = static_cast<size_t>(width_) * 4;
+  for (int k = 0; k < count; ++k) addRow(a + k * row, b + k * row);
+}
+
+void RowComparison::addRow(const float* a, const float* b) {
+  const int j = rows_++;
+  for (int i = 0; i < width_; ++i) {
+    const float *pa = a + 4 * i, *pb = b + 4 * i;
+    if (!included(pa, pb, options_.discOnly)) continue;
+    double worst = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = static_cast<double>(pa[c]) - pb[c];
+      sumSq_ += d * d;
+      worst = std::max(worst, std::abs(d));
     }
-  if (r.pixels == 0) throw InputError("compare: no pixels to compare");
-  r.rmse = std::sqrt(sumSq / (3.0 * r.pixels));
+    if (worst > r_.maxAbs) r_.maxAbs = worst, r_.maxI = i, r_.maxJ = j;
+    over_ += worst > options_.tolerance;
+    ++r_.pixels;
+  }
+  const size_t row = static_cast<size_t>(width_) * 4, slot = static_cast<size_t>(j % kSsimWindow) * row;
+  std::copy(a, a + row, keptA_.begin() + static_cast<std::ptrdiff_t>(slot));
+  std::copy(b, b + row, keptB_.begin() + static_cast<std::ptrdiff_t>(slot));
+  const int top = j - (kSsimWindow - 1);
+  if (top >= 0 && top % kSsimStride == 0) addSsimWindows(top);
+}
+
+// Mean SSIM (Wang et al. 2004) of the luminance, L = 1: the windows whose top row is `top`, left
+// to right; a window with a pixel outside the disc (discOnly) is left out.
+void RowComparison::addSsimWindows(int top) {
+  const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+  const size_t row = static_cast<size_t>(width_) * 4;
+  for (int x = 0; x + kSsimWindow <= width_; x += kSsimStride) {
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    bool all = true;
+    for (int j = top; j < top + kSsimWindow && all; ++j) {
+      const size_t slot = static_cast<size_t>(j % kSsimWindow) * row;
+      for (int i = x; i < x + kSsimWindow; ++i) {
+        const float *pa = &keptA_[slot + 4 * static_cast<size_t>(i)], *pb = &keptB_[slot + 4 * static_cast<size_t>(i)];
+        if (!included(pa, pb, options_.discOnly)) {
+          all = false;
+          break;
+        }
+        const double va = luma(pa), vb = luma(pb);
+        sa += va, sb += vb, saa += va * va, sbb += vb * vb, sab += va * vb;
+      }
+    }
+    if (!all) continue;
+    const double n = kSsimWindow * kSsimWindow, ma = sa / n, mb = sb / n;
+    const double va = saa / n - ma * ma, vb = sbb / n - mb * mb, cov = sab / n - ma * mb;
+    ssimSum_ += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+    ++windows_;
+  }
+}
+
+CompareResult RowComparison::result() const {
+  if (rows_ != height_)
+    throw std::logic_error("compare: " + std::to_string(rows_) + " of " + std::to_string(height_) + " rows given");
+  if (r_.pixels == 0) throw InputError("compare: no pixels to compare");
+  CompareResult r = r_;
+  r.rmse = std::sqrt(sumSq_ / (3.0 * r.pixels));
   r.psnrDb = r.rmse > 0.0 ? 20.0 * std::log10(1.0 / r.rmse) : INFINITY;
-  r.fracOverTol = static_cast<double>(over) / r.pixels;
-  r.ssim = meanSsim(a, b, options.discOnly);
+  r.fracOverTol = static_cast<double>(over_) / r.pixels;
+  r.ssim = windows_ ? ssimSum_ / windows_ : 1.0;
   return r;
+}
+
+CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const CompareOptions& options) {
+  RowComparison comparison(a.width, a.height, b.width, b.height, options);
+  comparison.addRows(a.pixels.data(), b.pixels.data(), a.height);
+  return comparison.result();
+}
+
+CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const CompareOptions& options) {
+  RowComparison comparison(a.width(), a.height(), b.width(), b.height(), options);
+  std::vector<float> bandA(static_cast<size_t>(a.width()) * 4 * kBandRows), bandB(bandA.size());
+  for (int first = 0; first < a.height(); first += kBandRows) {
+    const int count = std::min(kBandRows, a.height() - first);
+    a.readRows(first, count, bandA.data());
+    b.readRows(first, count, bandB.data());
+    comparison.addRows(bandA.data(), bandB.data(), count);
+  }
+  return comparison.result();
+}
+
+int64_t imageRowsCompareBytes(const ImageRowReader& a, const ImageRowReader& b) {
+  // Each side: a band of decoded rows and its RGBA, and the 8 rows SSIM keeps.
+  return (a.rowBytes() + b.rowBytes()) * kBandRows + static_cast<int64_t>(a.width()) * 16 * kSsimWindow * 2;
 }
 
 ImageRGBA scalarHeatmap(const std::vector<float>& values, int width, int height, double scale) {

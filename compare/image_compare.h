@@ -4,6 +4,7 @@
 // mirror disc. Values are linear RGB; alpha is not compared.
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <vector>
 
 #include "image.h"
 
@@ -20,8 +21,38 @@ struct CompareResult {
   long pixels = 0;
 };
 
+// A comparison fed rows top to bottom, a band at a time: the pixel statistics accumulate row by
+// row and SSIM's 8-row windows are taken as their last row arrives, from the 8 rows kept. Its
+// sums are the whole images' sums in the same order, so the result is compareImages' bit for bit,
+// in memory that does not grow with the height.
+class RowComparison {
+ public:
+  // InputError if the sizes differ.
+  RowComparison(int widthA, int heightA, int widthB, int heightB, const CompareOptions& options = {});
+  // The next `count` rows of each image (RGBA floats, width × count × 4).
+  void addRows(const float* a, const float* b, int count);
+  // Once every row is in; InputError if no pixel is compared.
+  CompareResult result() const;
+
+ private:
+  void addRow(const float* a, const float* b);
+  void addSsimWindows(int top);
+  int width_, height_, rows_ = 0;
+  CompareOptions options_;
+  CompareResult r_;
+  double sumSq_ = 0.0, ssimSum_ = 0.0;
+  long over_ = 0;
+  int windows_ = 0;
+  std::vector<float> keptA_, keptB_;  // the last 8 rows, row y at (y mod 8)
+};
+
 // Throws InputError if the sizes differ or no pixel is compared.
 CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const CompareOptions& options = {});
+// The same, reading both images a band of rows at a time (ImageRowReader): memory for a few rows
+// of each, whatever their height. Reads both to the end.
+CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const CompareOptions& options = {});
+// What compareImageRows holds at once besides the readers' own state.
+int64_t imageRowsCompareBytes(const ImageRowReader& a, const ImageRowReader& b);
 // |a − b| (max over channels) as a heat map: black 0 → red → yellow → white at `scale`.
 ImageRGBA differenceHeatmap(const ImageRGBA& a, const ImageRGBA& b, double scale);
 // A scalar field as the same heat ramp (black 0 → red → yellow → white at `scale`); NaN is

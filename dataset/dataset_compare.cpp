@@ -67,10 +67,32 @@ ImageRGBA readDatasetImage(const std::string& dir, const std::string& relative, 
   return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
 }
 
-// Memory one comparison holds: both images as floats, and their decoding (the larger of the
-// multilayer reader's planes plus interleaved copy and OpenImageIO's raw channels).
-int64_t comparisonBytes(const ImageRGBA& a, const ImageRGBA& b) {
-  return (static_cast<int64_t>(a.width) * a.height + static_cast<int64_t>(b.width) * b.height) * 16 * 3;
+struct FrameFilesComparison {
+  CompareResult result;
+  int64_t bytes = 0;  // the memory the comparison held at once
+};
+
+// One frame of A against B's: each image file read whole (bounded by kMaxDatasetFileBytes), its
+// pixels decoded a band of rows at a time (compareImageRows) — a multilayer frame whole, by the
+// dataset reader's own decoder.
+FrameFilesComparison compareFrameFiles(const std::string& dirA, const std::string& dirB, const FrameComparison& f,
+                                       const CompareOptions& options) {
+  if (f.layeredA || f.layeredB) {
+    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
+    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
+    // Both images as floats, and their decoding (the larger of the multilayer reader's planes plus
+    // interleaved copy and OpenImageIO's raw channels).
+    return {compareImages(imageA, imageB, options),
+            (static_cast<int64_t>(imageA.width) * imageA.height + static_cast<int64_t>(imageB.width) * imageB.height) * 16 * 3};
+  }
+  const std::string bytesA = readFileInside(dirA, f.fileA, kMaxDatasetFileBytes);
+  const std::string bytesB = readFileInside(dirB, f.fileB, kMaxDatasetFileBytes);
+  ImageRowReader a = ImageRowReader::openMemory(reinterpret_cast<const unsigned char*>(bytesA.data()), bytesA.size(),
+                                                showPath((fs::path(dirA) / f.fileA).string()));
+  ImageRowReader b = ImageRowReader::openMemory(reinterpret_cast<const unsigned char*>(bytesB.data()), bytesB.size(),
+                                                showPath((fs::path(dirB) / f.fileB).string()));
+  requireMemory(imageRowsCompareBytes(a, b), "comparing two frames");
+  return {compareImageRows(a, b, options), static_cast<int64_t>(bytesA.size() + bytesB.size()) + imageRowsCompareBytes(a, b)};
 }
 
 std::string frameLabel(const FrameComparison& f) {
@@ -145,10 +167,9 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
   std::vector<int64_t> bytes(result.frames.size(), 0);
   const auto compareFrame = [&](size_t k) {
     FrameComparison& f = result.frames[k];
-    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
-    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
-    bytes[k] = comparisonBytes(imageA, imageB);
-    f.result = compareImages(imageA, imageB, options.image);
+    const FrameFilesComparison compared = compareFrameFiles(dirA, dirB, f, options.image);
+    f.result = compared.result;
+    bytes[k] = compared.bytes;
     f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
   };
   std::set<std::string> sized;

@@ -87,13 +87,7 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
   std::vector<CameraSetup> setups;
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
-    if (spec.size) {
-      try {
-        setup.rig = setup.rig.resized(*spec.size);
-      } catch (const InputError& e) {
-        throw InputError(showPath(spec.file) + ": size: camera " + quote(camera.name) + ": " + e.what());
-      }
-    }
+    if (spec.size) setup.rig = setup.rig.resized(*spec.size, showPath(spec.file) + ": size: camera " + quote(camera.name));
     checkRenderSettings(spec.request.settings(setup.rig), settingNames(spec));
     setup.model = makeCamera(setup.rig);
     setups.push_back(setup);
@@ -465,9 +459,11 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& opti
   }
   if (spec.calibration) startCalibrationSequence(*this);
   SettingNames names;
-  names.pose = showPath(spec.file) + ": poses";
   for (int frame = 0; frame < static_cast<int>(poses.size()); ++frame)
-    for (size_t c = 0; c < setups.size(); ++c) checkPlacement(placement(frame, c), names);
+    for (size_t c = 0; c < setups.size(); ++c) {
+      names.pose = showPath(spec.file) + ": poses: frame " + std::to_string(frame) + ", camera " + quote(setups[c].camera->name);
+      checkPlacement(placement(frame, c), names);
+    }
   request = spec.request;
   request.threads = options.threads;
   engine = makeEngine(request, scene);

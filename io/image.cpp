@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <mutex>
+#include <stdexcept>
 #include <filesystem>
 #include <OpenImageIO/filesystem.h>
 
@@ -192,6 +193,37 @@ std::unique_ptr<OIIO::ImageInput> openImageFile(const std::string& path) {
   return input;
 }
 
+// How a file's decoded channels become linear premultiplied RGBA.
+struct PixelDecoding {
+  int channels = 0, alphaChannel = -1;
+  Transfer transfer;
+  bool unassociated = false;
+
+  explicit PixelDecoding(const OIIO::ImageSpec& spec)
+      : channels(spec.nchannels),
+        alphaChannel(spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 || channels == 4 ? channels - 1 : -1)),
+        transfer(transferOf(spec)),
+        unassociated(transfer.kind != Transfer::Linear || spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0) {}
+
+  // `count` pixels of `raw` (channels floats each) into `rgba` (4 floats each).
+  void apply(const float* raw, size_t count, float* rgba) const {
+    const int colourChannels = channels >= 3 ? 3 : 1;
+    for (size_t p = 0; p < count; ++p) {
+      const float* src = &raw[p * channels];
+      float rgb[3];
+      for (int c = 0; c < 3; ++c) {
+        const float v = src[std::min(c, colourChannels - 1)];
+        rgb[c] = std::isfinite(v) ? transfer(v) : 0.0f;
+      }
+      float alpha = alphaChannel >= 0 ? src[alphaChannel] : 1.0f;
+      if (!std::isfinite(alpha)) alpha = 0.0f;
+      float* dst = &rgba[p * 4];
+      for (int c = 0; c < 3; ++c) dst[c] = unassociated ? rgb[c] * alpha : rgb[c];
+      dst[3] = alpha;
+    }
+  }
+};
+
 ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
   const OIIO::ImageSpec& spec = input.spec();
   checkHeader(spec, name);
@@ -200,28 +232,79 @@ ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
   std::vector<float> raw(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
     throw InputError(name + ": cannot decode image (" + firstLine(input.geterror()) + ")");
-  const Transfer transfer = transferOf(spec);
-  const bool unassociated = transfer.kind != Transfer::Linear || spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
-  const int alphaChannel = spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 || channels == 4 ? channels - 1 : -1);
   ImageRGBA image(spec.width, spec.height);
-  for (size_t p = 0; p < static_cast<size_t>(spec.width) * spec.height; ++p) {
-    const float* src = &raw[p * channels];
-    const int colourChannels = channels >= 3 ? 3 : 1;
-    float rgb[3];
-    for (int c = 0; c < 3; ++c) {
-      const float v = src[std::min(c, colourChannels - 1)];
-      rgb[c] = std::isfinite(v) ? transfer(v) : 0.0f;
-    }
-    float alpha = alphaChannel >= 0 ? src[alphaChannel] : 1.0f;
-    if (!std::isfinite(alpha)) alpha = 0.0f;
-    float* dst = &image.pixels[p * 4];
-    for (int c = 0; c < 3; ++c) dst[c] = unassociated ? rgb[c] * alpha : rgb[c];
-    dst[3] = alpha;
-  }
+  PixelDecoding(spec).apply(raw.data(), static_cast<size_t>(spec.width) * spec.height, image.pixels.data());
   return image;
 }
 
+// OpenImageIO's reader of an image in memory, by the bytes' signature, never by a name the data
+// chose; `reader` must outlive it.
+std::unique_ptr<OIIO::ImageInput> openImageMemory(const unsigned char* data, size_t size, const std::string& name,
+                                                  OIIO::Filesystem::IOMemReader& reader) {
+  const char* format = nullptr;
+  if (size >= 8 && std::memcmp(data, "\x89PNG\r\n\x1a\n", 8) == 0) format = "memory.png";
+  else if (size >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF) format = "memory.jpg";
+  else if (size >= 4 && std::memcmp(data, "\x76\x2f\x31\x01", 4) == 0) format = "memory.exr";
+  if (!format) throw InputError(name + ": not a PNG, JPEG or EXR image");
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  void* proxy = &reader;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const QuietStderr quiet;
+  auto input = OIIO::ImageInput::open(format, &config);
+  if (!input) throw InputError(name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
+  return input;
+}
+
 }  // namespace
+
+struct ImageRowReader::State {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;  // the proxy of an image in memory
+  std::unique_ptr<OIIO::ImageInput> input;
+  std::string name;
+  int next = 0;  // the first row not yet read
+  std::vector<float> raw;
+};
+
+ImageRowReader::ImageRowReader(std::unique_ptr<State> state) : state_(std::move(state)) {
+  checkHeader(state_->input->spec(), state_->name);
+}
+ImageRowReader::ImageRowReader(ImageRowReader&&) noexcept = default;
+ImageRowReader& ImageRowReader::operator=(ImageRowReader&&) noexcept = default;
+ImageRowReader::~ImageRowReader() = default;
+
+ImageRowReader ImageRowReader::openFile(const std::string& path) {
+  auto state = std::make_unique<State>();
+  state->input = openImageFile(path);
+  state->name = showPath(path);
+  return ImageRowReader(std::move(state));
+}
+
+ImageRowReader ImageRowReader::openMemory(const unsigned char* data, size_t size, const std::string& name) {
+  auto state = std::make_unique<State>();
+  state->memory = std::make_unique<OIIO::Filesystem::IOMemReader>(const_cast<unsigned char*>(data), size);
+  state->input = openImageMemory(data, size, name, *state->memory);
+  state->name = name;
+  return ImageRowReader(std::move(state));
+}
+
+int ImageRowReader::width() const { return state_->input->spec().width; }
+int ImageRowReader::height() const { return state_->input->spec().height; }
+int64_t ImageRowReader::rowBytes() const { return decodeBytes(state_->input->spec()) / height(); }
+
+void ImageRowReader::readRows(int first, int count, float* rgba) {
+  const OIIO::ImageSpec& spec = state_->input->spec();
+  if (first != state_->next || count < 0 || first + count > spec.height)
+    throw std::logic_error(state_->name + ": rows " + std::to_string(first) + " to " + std::to_string(first + count) +
+                           " asked for out of order (next " + std::to_string(state_->next) + " of " + std::to_string(spec.height) + ")");
+  const size_t pixels = static_cast<size_t>(spec.width) * count;
+  state_->raw.resize(pixels * spec.nchannels);
+  const QuietStderr quiet;
+  if (!state_->input->read_scanlines(0, 0, first, first + count, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, state_->raw.data()))
+    throw InputError(state_->name + ": cannot decode image (" + firstLine(state_->input->geterror()) + ")");
+  PixelDecoding(spec).apply(state_->raw.data(), pixels, rgba);
+  state_->next = first + count;
+}
 
 ImageRGBA readImage(const std::string& path) {
   const auto input = openImageFile(path);
@@ -236,20 +319,9 @@ int64_t imageDecodeBytes(const std::string& path) {
 }
 
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
-  // The format comes from the bytes' signature, never from a name the data chose.
-  const char* format = nullptr;
-  if (size >= 8 && std::memcmp(data, "\x89PNG\r\n\x1a\n", 8) == 0) format = "memory.png";
-  else if (size >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF) format = "memory.jpg";
-  else if (size >= 4 && std::memcmp(data, "\x76\x2f\x31\x01", 4) == 0) format = "memory.exr";
-  if (!format) throw InputError(name + ": not a PNG, JPEG or EXR image");
   OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(data), size);
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  void* proxy = &reader;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  const auto input = openImageMemory(data, size, name, reader);
   const QuietStderr quiet;
-  auto input = OIIO::ImageInput::open(format, &config);
-  if (!input) throw InputError(name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
   return decode(*input, name);
 }
 

@@ -3,6 +3,7 @@
 // PNG/JPEG are sRGB-encoded 8-bit on disk; EXR is linear half/float (docs/conventions.md §2).
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,34 @@ int64_t imageDecodeBytes(const std::string& path);
 // The same for an image held in memory (PNG, JPEG or EXR, told by its signature); `name` is
 // used in errors.
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name);
+
+// An image read a band of rows at a time through OpenImageIO's scanline reads (tiles for a tiled
+// file), decoded as readImage decodes it whole (the same colour space and alpha, the same floats):
+// for work that needs only a few rows at once, in memory that does not grow with the height.
+// The header is checked as readImage checks it; InputError naming the file.
+class ImageRowReader {
+ public:
+  static ImageRowReader openFile(const std::string& path);
+  // An image in memory (PNG, JPEG or EXR, told by its signature); `data` must outlive the reader.
+  static ImageRowReader openMemory(const unsigned char* data, size_t size, const std::string& name);
+  ImageRowReader(ImageRowReader&&) noexcept;
+  ImageRowReader& operator=(ImageRowReader&&) noexcept;
+  ~ImageRowReader();
+
+  int width() const;
+  int height() const;
+  // Memory one row takes while it is decoded: OpenImageIO's floats of every channel and the RGBA.
+  int64_t rowBytes() const;
+  // Rows [first, first + count) as readImage's pixels (linear premultiplied RGBA), into `rgba`
+  // (width × count × 4 floats). Rows are read top to bottom: `first` is where the last read ended.
+  void readRows(int first, int count, float* rgba);
+
+ private:
+  struct State;
+  explicit ImageRowReader(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
 // The bytes of .png (sRGB 8-bit, straight alpha) or .exr (linear float, associated alpha,
 // byte-identical for identical pixels). Throws InputError for another extension.
 std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image);

@@ -1,7 +1,11 @@
 #include "povray_renderer.h"
 
+#include <algorithm>
+#include <condition_variable>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <mutex>
 #include <optional>
 
 #include "atomic_file.h"
@@ -10,6 +14,7 @@
 #include "external_process.h"
 #include "motion.h"
 #include "job_folder.h"
+#include "memory_budget.h"
 #include "povray_exporter.h"
 
 namespace omnicam {
@@ -43,6 +48,10 @@ namespace {
 
 // POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting.
 constexpr int kConcurrentPovrayJobs = 8;
+// A moving frame's renders are summed in job order as they arrive; one that finishes before an
+// earlier one waits, and a job starts only within this many of the next to be summed. So at most
+// this many renders are held, however many lines and instants the frame has.
+constexpr size_t kHeldPovrayRenders = 2 * kConcurrentPovrayJobs;
 
 // Renders one exported job (a region of it, if given) in a private job folder: the n×-larger image.
 ImageRGBA runPovrayJob(const PovrayJob& job, const PovrayOptions& options, int threads,
@@ -98,21 +107,52 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
   std::vector<InstantJob> jobs;
   for (int line = 0; line < lineCount(shutter, width, height); ++line)
     for (int m = 0; m < instants.count; ++m) jobs.push_back({line, m});
-  std::vector<ImageRGBA> renders(jobs.size());
+  // Each render is the whole n×-larger image (RGBA floats; while decoded, its channels too).
+  const int64_t renderBytes = static_cast<int64_t>(width) * n * height * n * 32;
+  const size_t atOnce = std::min(jobs.size(), kHeldPovrayRenders + kConcurrentPovrayJobs);
+  requireMemory(static_cast<int64_t>(atOnce) * renderBytes + static_cast<int64_t>(width) * height * 12,
+                "POV-Ray's moving frame (" + std::to_string(atOnce) + " of its " + std::to_string(jobs.size()) + " renders of " +
+                    std::to_string(width * n) + "x" + std::to_string(height * n) + " pixels held at once)");
   RenderSettings still = settings;
   still.rig.shutter = {};
+  // Each sample from the render of its line and instant, summed in job order (a fixed order).
+  std::vector<float> sums;
+  std::mutex mutex;
+  std::condition_variable summed;
+  size_t nextToSum = 0;
+  bool stopped = false;
+  std::map<size_t, ImageRGBA> held;  // finished, waiting for an earlier job
   runConcurrently(jobs.size(), kConcurrentPovrayJobs, [&](size_t k) {
+    {
+      std::unique_lock<std::mutex> lock(mutex);
+      summed.wait(lock, [&] { return stopped || k < nextToSum + kHeldPovrayRenders; });
+      if (stopped) return;
+    }
     const InstantJob& job = jobs[k];
     const double seconds = lineStart(shutter, job.line) + instantTime(shutter, job.instant, instants.count);
-    renders[k] = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options,
-                              options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, width, height, n));
+    ImageRGBA render;
+    try {
+      render = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options,
+                            options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, width, height, n));
+    } catch (...) {
+      // The jobs waiting for this one to be summed stop (runConcurrently rethrows this).
+      const std::lock_guard<std::mutex> lock(mutex);
+      stopped = true;
+      summed.notify_all();
+      throw;
+    }
+    const std::lock_guard<std::mutex> lock(mutex);
+    held.emplace(k, std::move(render));
+    for (auto next = held.find(nextToSum); next != held.end(); next = held.find(nextToSum)) {
+      const InstantJob& done = jobs[nextToSum];
+      film.accumulateSupersampled(next->second, instants.passes, [&](int i, int j, int a, int b, int pass) {
+        return lineOf(shutter, i, j, width, height) == done.line && instantOf(shutter, a, b, n, pass) == done.instant;
+      }, sums);
+      held.erase(next);
+      ++nextToSum;
+    }
+    summed.notify_all();
   });
-  // Each sample from the render of its line and instant, summed in a fixed order.
-  std::vector<float> sums;
-  for (size_t k = 0; k < jobs.size(); ++k)
-    film.accumulateSupersampled(renders[k], instants.passes, [&](int i, int j, int a, int b, int pass) {
-      return lineOf(shutter, i, j, width, height) == jobs[k].line && instantOf(shutter, a, b, n, pass) == jobs[k].instant;
-    }, sums);
   const auto camera = makeCamera(settings.rig);
   film.allocate();
   const float weight = film.weight(instants.passes);

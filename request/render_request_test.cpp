@@ -9,6 +9,7 @@
 
 #include "engine_capabilities.h"
 #include "errors.h"
+#include "render_settings.h"
 
 namespace omnicam {
 namespace {
@@ -127,6 +128,29 @@ TEST(EngineCapabilities, EachEngineIsCheckedByItsRowAndTheMessageNamesTheEngines
   EXPECT_TRUE(capabilitiesOf(EngineKind::Blender).batches);
   EXPECT_TRUE(capabilitiesOf(EngineKind::FastExact).concurrent);
   EXPECT_FALSE(capabilitiesOf(EngineKind::FastCubeMap).concurrent);
+}
+
+// Issue #45: the world's bounds hold for where the camera stands — the robot's pose with the
+// camera's mount (robot ∘ mount on SE(2), in closed form) — not for the robot alone.
+TEST(RenderSettings, PlacementLimitsSeeTheCameraNotOnlyTheRobot) {
+  const auto problem = [](const RobotPose& robot, const RobotMount& mount) {
+    try {
+      checkPlacement(CameraPlacement(robot, {}, mount));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  // The issue's repro: the robot 1 cm inside, its camera 99 m further along x.
+  EXPECT_EQ(problem({9999.99, 0, 0}, {99, 0, 0}),
+            "pose: the camera must stand within ±10000 m; the robot at (9999.99, 0) with its mount at (99, 0) puts it at (10099, 0)");
+  // Turned by 90°, the robot carries that mount to (9999.99, 99): inside.
+  EXPECT_EQ(problem({9999.99, 0, 90}, {99, 0, 0}), "accepted");
+  // Turned by 180°: a mount at y = 30 stands at y = −30; one at x = −20 stands 20 m further along +x.
+  EXPECT_EQ(problem({-9990, 0, 180}, {0, 30, 0}), "accepted");
+  EXPECT_NE(problem({9990, 0, 180}, {-20, 0, 0}).find("puts it at (10010, "), std::string::npos) << problem({9990, 0, 180}, {-20, 0, 0});
+  // The robot itself past the bounds is the robot's message, as before.
+  EXPECT_NE(problem({10001, 0, 0}, {}).find("pose: x and y must be within ±10000 m"), std::string::npos);
 }
 
 }  // namespace

@@ -57,6 +57,14 @@ void checkRenderSettings(const RenderSettings& settings, const SettingNames& nam
 
 void checkPlacement(const CameraPlacement& placement, const SettingNames& names) {
   checkPose(placement.robot(), names.pose);
+  // The camera stands at its mount's foot, which may lie outside the world even when the robot
+  // does not: the limit is on where the camera is.
+  const RobotPose foot = placement.footAt(0.0);
+  if (!(std::abs(foot.x) <= limits::kMaxWorldCoordinate && std::abs(foot.y) <= limits::kMaxWorldCoordinate))
+    throw InputError(names.pose + ": the camera must stand within ±" + shortNumber(limits::kMaxWorldCoordinate) +
+                     " m; the robot at (" + shortNumber(placement.robot().x) + ", " + shortNumber(placement.robot().y) +
+                     ") with its mount at (" + shortNumber(placement.mount().x) + ", " + shortNumber(placement.mount().y) +
+                     ") puts it at (" + shortNumber(foot.x) + ", " + shortNumber(foot.y) + ")");
   const BodyVelocity& v = placement.velocity();
   if (!(std::hypot(v.vx, v.vy) <= limits::kMaxSpeed && std::abs(v.yawRateDegPerS) <= limits::kMaxYawRateDegPerS))
     throw InputError(names.velocity + ": speed must be at most " + shortNumber(limits::kMaxSpeed) + " m/s and yaw rate at most " +

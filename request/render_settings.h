@@ -49,8 +49,9 @@ struct SettingNames {
 // against the documented limits; InputError naming them as `names` says otherwise. Every engine
 // calls it first.
 void checkRenderSettings(const RenderSettings& settings, const SettingNames& names = {});
-// Checks a placement's robot pose and velocity against the documented limits (the mount and the
-// robot's tilt are checked where they are read); InputError naming them as `names` says.
+// Checks a placement's robot pose, the camera's position (the robot's pose with the mount) and
+// the velocity against the documented limits (the mount and the robot's tilt are checked where
+// they are read); InputError naming them as `names` says.
 void checkPlacement(const CameraPlacement& placement, const SettingNames& names = {});
 // Checks spp alone (a perfect square n*n from 1 to limits::kMaxSpp); InputError naming `what`.
 void checkSpp(int64_t spp, const std::string& what);

@@ -1,5 +1,6 @@
 #include "lens_fields.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "errors.h"
@@ -159,20 +160,49 @@ LensCameraSpec readLensCamera(JsonFields f) {
   lens.rotationDeg = {turn[0], turn[1], turn[2]};
   lens.model = readModel(f, model, lens.width, lens.height);
   f.finish();
-  // A lens that images none of its pixels is a typing error (a principal point off the image,
-  // say). A lens images the pixel under its principal point, however small its circle; else a
-  // grid over the image must find one.
+  // A lens that images none of its pixels is a typing error (a principal point off the image, say).
+  if (!imagesSomePixel(lens)) f.fail("model", "this lens images none of its pixels (check the focal length, centre and field of view)");
+  return lens;
+}
+
+namespace {
+
+// True when the pixels a model images are a disc about lensCentre in pixels scaled by (fx, fy)
+// (for a polynomial f-θ lens with k0 > 0, without its centre): the angle from the axis grows with
+// the distance up to the field of view's or the fold's edge, as the readers require. Every model
+// but a pinhole with distortion: not radially symmetric when tangential, and its undistort()
+// takes some pixels past the fold for imaged (both factors of its Jacobian negative).
+bool imagesADisc(const LensModel& model) {
+  const auto* pinhole = std::get_if<PinholeRadTan>(&model);
+  return radiallySymmetric(model) && !(pinhole && !pinhole->distortion.none());
+}
+
+}  // namespace
+
+bool imagesSomePixel(const LensCameraSpec& lens) {
   RigSpec rig;
   rig.lens = lens;
   rig.imageSize = lens.width;
   const LensCamera camera(rig);
-  bool imaged = false;
-  if (const auto centre = camera.project(viewpointFromLens(lens).col(2)))
-    imaged = camera.images(Vec2(std::floor(centre->x()) + 0.5, std::floor(centre->y()) + 0.5));
-  for (int j = 0; j < 64 && !imaged; ++j)
-    for (int i = 0; i < 64 && !imaged; ++i) imaged = camera.images(Vec2((i + 0.5) * lens.width / 64.0, (j + 0.5) * lens.height / 64.0));
-  if (!imaged) f.fail("model", "this lens images none of its pixels (check the focal length, centre and field of view)");
-  return lens;
+  const auto imaged = [&](int i, int j) { return camera.images(Vec2(i + 0.5, j + 0.5)); };
+  // The pixel centre nearest the lens' centre, each coordinate rounded into the image: scaled
+  // distance is a sum of an x and a y term, so it minimises both.
+  const Vec2 centre = lensCentre(lens.model);
+  const auto nearest = [](double c, int n) { return static_cast<int>(std::clamp(std::round(c), 0.0, n - 1.0)); };
+  const int i = nearest(centre.x(), lens.width), j = nearest(centre.y(), lens.height);
+  const auto inImage = [&](int x, int y) { return x >= 0 && x < lens.width && y >= 0 && y < lens.height; };
+  // Its four neighbours: a disc without its centre (a polynomial f-θ lens with k0 > 0) images one
+  // of them if it images any pixel, the one on the way from the centre to that pixel.
+  const int steps[5][2] = {{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (const auto& step : steps)
+    if (inImage(i + step[0], j + step[1]) && imaged(i + step[0], j + step[1])) return true;
+  if (!imagesADisc(lens.model)) {
+    // A pinhole with distortion: no closed form; a grid over the image as well.
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; ++x)
+        if (imaged((2 * x + 1) * lens.width / 128, (2 * y + 1) * lens.height / 128)) return true;
+  }
+  return false;
 }
 
 nlohmann::json lensCameraToJson(const LensCameraSpec& lens) {

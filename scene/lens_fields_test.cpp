@@ -5,7 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "errors.h"
+#include "lens_camera.h"
 #include "scene_loader.h"
 #include "sidecar.h"
 
@@ -72,6 +76,74 @@ TEST(LensFields, FieldsOfOtherModelsAndOutOfRangeValuesAreRefused) {
   const RigSpec rig = rigFromJson({{"lens", json(kb)}}, "scene.json", "rig");
   EXPECT_THROW((void)rig.resized(99), InputError);
   EXPECT_EQ(rig.resized(96).lens->height, 72);
+}
+
+// Issue #45: an equidistant lens whose small circle lies mostly left of the image still images
+// pixel centres along the left edge; the reader took only the principal point's pixel and a
+// 64 × 64 grid and refused it.
+TEST(LensFields, ASmallCircleOffTheImageIsAcceptedWhenItCoversPixelCentres) {
+  const json lens = {{"model", "fisheye_equidistant"}, {"width", 4096}, {"height", 64}, {"f_px", 400}, {"fov_deg", 10},
+                     {"cx", -10}, {"cy", 31.5}};
+  // The circle r = f·θmax about (cx, cy), counted in closed form: 1246 pixel centres (the issue's count).
+  const double radius = 400.0 * radians(5.0);
+  int covered = 0;
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 4096; ++i) covered += std::hypot(i + 10.0, j - 31.5) <= radius;
+  EXPECT_EQ(covered, 1246);
+  const RigSpec rig = rigFromJson({{"lens", lens}}, "scene.json", "rig");
+  ASSERT_TRUE(rig.lens);
+  EXPECT_TRUE(imagesSomePixel(*rig.lens));
+  // Moved one radius and a pixel further left, it images nothing: refused.
+  json gone = lens;
+  gone["cx"] = -radius - 1.0;
+  EXPECT_THROW((void)rigFromJson({{"lens", gone}}, "scene.json", "rig"), InputError);
+}
+
+// imagesSomePixel's shortcut (the pixel nearest the centre and its neighbours) agrees with asking
+// every pixel centre, for each model whose image is a disc (imagesADisc), over centres inside, at the edge of and off the image, and
+// circles from a fraction of a pixel to the whole image — including a polynomial f-θ lens with
+// k0 > 0 on an integer centre, whose own centre pixel is not imaged.
+TEST(LensFields, ImagesSomePixelAgreesWithAskingEveryPixel) {
+  const int width = 24, height = 16;
+  const auto everyPixel = [&](const LensCameraSpec& lens) {
+    RigSpec rig;
+    rig.lens = lens;
+    rig.imageSize = lens.width;
+    const LensCamera camera(rig);
+    for (int j = 0; j < lens.height; ++j)
+      for (int i = 0; i < lens.width; ++i)
+        if (camera.images(Vec2(i + 0.5, j + 0.5))) return true;
+    return false;
+  };
+  int imaged = 0, notImaged = 0;
+  for (const double cx : {-24.0, -7.3, -3.0, -0.6, 0.0, 5.0, 11.5, 23.0, 23.4, 30.0, 47.9})
+    for (const double cy : {-16.0, -2.5, 0.0, 7.5, 8.0, 15.2, 19.0, 32.0})
+      for (const double size : {0.3, 1.0, 2.2, 4.0, 9.5, 40.0}) {
+        FThetaLens equidistant;
+        equidistant.f = size, equidistant.cx = cx, equidistant.cy = cy, equidistant.maxThetaRad = radians(60.0);
+        FThetaLens equisolid = equidistant;
+        equisolid.kind = FThetaLens::Kind::Equisolid;
+        FThetaLens polynomial = equidistant;
+        polynomial.kind = FThetaLens::Kind::Polynomial;
+        polynomial.k = {0.3, 0.5 / size, 0.0, 0.0, 0.0};  // k0 > 0: the centre sees a cone, not imaged
+        KannalaBrandt kb;
+        kb.fx = size, kb.fy = 1.7 * size, kb.cx = cx, kb.cy = cy, kb.k = {0.05, 0.0, 0.0, 0.0}, kb.maxThetaRad = radians(70.0);
+        DoubleSphere ds;
+        ds.fx = 0.6 * size, ds.fy = 0.4 * size, ds.cx = cx, ds.cy = cy, ds.xi = -0.3, ds.alpha = 0.7;
+        ExtendedUnified eucm;
+        eucm.fx = size, eucm.fy = size, eucm.cx = cx, eucm.cy = cy, eucm.alpha = 0.7, eucm.beta = 1.5;
+        PinholeRadTan pinhole;  // undistorted: a pinhole with distortion is searched on a grid (not exact)
+        pinhole.fx = 3 * size, pinhole.fy = 2 * size, pinhole.cx = cx, pinhole.cy = cy;
+        for (const LensModel& model : std::vector<LensModel>{equidistant, equisolid, polynomial, kb, ds, eucm, pinhole}) {
+          const LensCameraSpec lens{model, width, height, {0.0, 0.0, 0.0}};
+          const bool expected = everyPixel(lens);
+          EXPECT_EQ(imagesSomePixel(lens), expected) << lensModelName(model) << " centre (" << cx << ", " << cy << ") size " << size;
+          (expected ? imaged : notImaged) += 1;
+        }
+      }
+  // Both answers were asked for many times.
+  EXPECT_GT(imaged, 500);
+  EXPECT_GT(notImaged, 500);
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "camera_rays.h"
 #include "dataset_reader.h"
 #include "image.h"
+#include "image_compare.h"
 #include "mirror.h"
 #include "opencv_omnidir.h"
 #include "rig.h"
@@ -1101,6 +1102,57 @@ print("bag frames", count)
   for (const char* file : {"corners.json", "opencv_corners.yml", "target.yaml", "images.bag"})
     EXPECT_EQ(sha256OfBytes(readFile(sharded + "/cam0/calibration/" + file)), sha256OfBytes(readFile(out + "/cam0/calibration/" + file)))
         << file;
+}
+
+// Issue #45: two datasets of 8192² PNG frames compare under a 4 GiB address-space limit (both
+// frames whole would need 6 GiB): compare streams rows through OpenImageIO. Its numbers are the
+// whole-image comparison's, bit for bit; the heat map (--diff), which needs both images whole,
+// is still refused with the memory it needs. A is rendered by `omnicam dataset` (one 8192² frame,
+// unlit, 1 spp, PNG only); B is a folder in the dataset layout (no manifest) holding A's frame
+// with its upper half's green dimmed, which is cheaper than a second render.
+TEST_F(DatasetCliTest, CompareOf8192SquareDatasetsFitsInFourGiB) {
+  writeFloorScene();
+  const std::string spec = write("a.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 8192, "spp": 1,
+    "shading": "unlit", "poses": {"list": [[0, 0, 0]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("a")).code, 0);
+  const std::string frameA = path("a/cam0/rgb/000000.png"), frameB = path("b/cam0/rgb/000000.png");
+  const ImageRGBA a = readImage(frameA);
+  ASSERT_EQ(a.width, 8192);
+  ASSERT_EQ(a.height, 8192);
+  {
+    ImageRGBA b = a;
+    for (int j = 0; j < 4096; ++j)
+      for (int i = 0; i < 8192; ++i) b.at(i, j)[1] *= 0.9f;
+    fs::create_directories(fs::path(frameB).parent_path());
+    writeImageAtomic(frameB, b);
+  }
+  const std::string limited = "ulimit -v 4194304; " + std::string(OMNICAM_BINARY) + " compare ";
+  const auto run = testing::runShell(limited + path("a") + " " + path("b") + " --json 2>" + path("err.txt"));
+  ASSERT_EQ(run.code, 0) << run.out << readFile(dir_ / "err.txt");
+  const json frame = json::parse(run.out).at("frames").at(0);
+
+  // The same two files decoded whole (this process has no limit).
+  const CompareResult whole = compareImages(a, readImage(frameB));
+  EXPECT_EQ(frame.at("rmse").get<double>(), whole.rmse);
+  EXPECT_EQ(frame.at("psnr_db").get<double>(), whole.psnrDb);
+  EXPECT_EQ(frame.at("ssim").get<double>(), whole.ssim);
+  EXPECT_EQ(frame.at("max_abs").get<double>(), whole.maxAbs);
+  EXPECT_EQ(frame.at("frac_over_tol").get<double>(), whole.fracOverTol);
+  EXPECT_EQ(frame.at("max_abs_pixel").at(1).get<int>(), whole.maxJ);
+  EXPECT_EQ(frame.at("pixels").get<long>(), whole.pixels);
+  // The dimmed half was seen: differences there, none below it.
+  EXPECT_GT(whole.maxAbs, 0.02);
+  EXPECT_LT(whole.maxJ, 4096);
+  EXPECT_LT(whole.ssim, 1.0);
+
+  // The two images alike with --diff: both whole and the heat map, 3 × 8192² × (4 B × 4 channels
+  // + 16 B) = 6.0 GiB, refused (exit 5) before anything is decoded or written. (Without --diff
+  // they stream as the datasets' frames do: image_compare_test.)
+  const auto diff = testing::runShell(limited + frameA + " " + frameB + " --diff " + path("d.png") + " 2>&1");
+  EXPECT_EQ(diff.code, 5) << diff.out;
+  EXPECT_NE(diff.out.find("comparing the two images and their heat map (--diff) needs 6.0 GiB"), std::string::npos) << diff.out;
+  EXPECT_FALSE(fs::exists(path("d.png")));
 }
 
 }  // namespace

@@ -77,7 +77,7 @@ class PyRenderer {
     if (denoise) fields.denoise = true;
     const RenderRequest request = readRenderRequest(fields, {});
     RenderSettings settings = request.settings(rig.value_or(scene_->rig));
-    if (size) settings.rig = settings.rig.resized(size);
+    if (size) settings.rig = settings.rig.resized(size, "size");
     checkRenderSettings(settings, {"spp", "size"});
     const CameraPlacement placement(pose.is_none() ? scene_->startPose : poseFrom(pose, "pose"),
                                     velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
@@ -102,7 +102,7 @@ class PyRenderer {
     const int frames = narrowed(framesArg, "frames", 0, 1000000), size = optionalSize(sizeArg),
               spp = narrowed(sppArg, "spp", 1, limits::kMaxSpp);
     RenderSettings settings;
-    settings.rig = size ? scene_->rig.resized(size) : scene_->rig;
+    settings.rig = size ? scene_->rig.resized(size, "size") : scene_->rig;
     settings.spp = spp;
     checkRenderSettings(settings);
     const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");

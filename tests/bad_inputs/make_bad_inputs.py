@@ -187,6 +187,8 @@ def main():
     write(os.path.join(SCENES, "shutter_rolling.json"),
           scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}))
     write(os.path.join(SCENES, "shutter_unknown_key.json"), scene([FLOOR], rig={"shutter": {"iso": 100}}))
+    # A global shutter open while the robot moves, seen at 8 instants: POV-Ray renders each.
+    write(os.path.join(SCENES, "shutter_eight_instants.json"), scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "time_samples": 8}}))
     write(os.path.join(SCENES, "tilt_too_far.json"), scene([FLOOR], rig={"tilt_deg": [40, 0]}))
     # Lens cameras (rig.lens, docs/lens-cameras.md): each model takes only its own fields, range-checked.
     kb = {"model": "kannala_brandt", "width": 64, "height": 48, "fx": 20, "fy": 20}
@@ -199,6 +201,9 @@ def main():
     write(os.path.join(SCENES, "lens_alpha_one.json"),
           scene([FLOOR], rig={"lens": {"model": "double_sphere", "width": 64, "height": 64, "fx": 20, "fy": 20, "xi": 0.1, "alpha": 1}}))
     write(os.path.join(SCENES, "lens_kb_povray.json"), scene([FLOOR], rig={"lens": kb}))
+    # 160 x 120 keeps its aspect only at widths that are multiples of 4 (--size 161 cannot).
+    write(os.path.join(SCENES, "lens_160x120.json"),
+          scene([FLOOR], rig={"lens": {"model": "fisheye_equidistant", "width": 160, "height": 120, "f_px": 50, "fov_deg": 180}}))
     write(os.path.join(SCENES, "duplicate_object.json"), scene([dict(FLOOR, name="wall"), dict(ball, name="wall")]))
     write(os.path.join(SCENES, "light_shares_name.json"),
           scene([dict(FLOOR, name="lamp")], lights=[{"name": "lamp", "position": [0, 0, 2]}]))
@@ -316,6 +321,10 @@ def main():
     dataset_spec("clearance_1e200", poses={"random": dict(random, clearance=1e200)})
     dataset_spec("jpeg_4294967346", recording={"jpeg_quality": 4294967346})
     dataset_spec("mount_y", cameras=[{"name": "c", "mount": {"y": 1000}}])
+    # The robot inside the world, its camera's mount outside it.
+    dataset_spec("mount_past_world", cameras=[{"name": "c", "mount": {"x": 99}}], poses={"list": [[9999.99, 0, 0]]})
+    dataset_spec("lens_size", size=161, cameras=[{"name": "fisheye", "rig": {"lens": {
+        "model": "fisheye_equidistant", "width": 160, "height": 120, "f_px": 50, "fov_deg": 180}}}])
     dataset_spec("samples_huge", size=16384, spp=16)
     dataset_spec("camera_frames", cameras=[{"name": "a"}, {"name": "b"}], poses={"random": dict(random, count=60000)})
     dataset_spec("seed_inexact", poses={"random": dict(random, seed=2 ** 53 + 1)})
