@@ -105,8 +105,9 @@ frames = manifest["frame_count"]
 assert seen_topics == {name: frames for name in names}, seen_topics
 
 # The corners through the camchain's model, against the flipped image's; the boards above the floor.
-projected, lowest = 0, math.inf
+projected, lowest = {}, math.inf
 for n, name in enumerate(names):
+    projected[name] = 0
     cam = chain["cam%d" % n]
     height = cam["resolution"][1]
     world_from_cam = world_from_camera(name)
@@ -122,7 +123,8 @@ for n, name in enumerate(names):
             u, v = project_like_aslam(cam, in_camera[corner["index"]])
             x, y = corner["raster"][0] - 0.5, height - 1 - (corner["raster"][1] - 0.5)
             assert abs(u - x) < 1e-6 and abs(v - y) < 1e-6, (name, frame["frame"], corner["index"], u, v, x, y)
-            projected += 1
+            projected[name] += 1
 assert lowest >= 0.01 - 1e-9, "a board corner %.4f m above the floor" % lowest
-print("kalibr ok: %d cameras, %d images, %d corners projected, lowest board corner (margin included) %.4f m above the floor"
+assert all(projected.values()), ("a camera with no corner to project", projected)
+print("kalibr ok: %d cameras, %d images, corners projected %s, lowest board corner (margin included) %.4f m above the floor"
       % (len(names), sum(seen_topics.values()), projected, lowest))
