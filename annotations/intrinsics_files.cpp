@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "errors.h"
+#include "lens_camera.h"
 #include "lens_intrinsics_files.h"
 #include "make_camera.h"
 #include "number_format.h"
@@ -109,6 +111,46 @@ std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera) 
       << "  distortion_coeffs: " << distortionText(k.lens) << "\n"
       << "  resolution: [" << camera.width() << ", " << camera.height() << "]\n"
       << "  rostopic: /" << name << "/image_raw\n";  // the calibration bag's topic (calibration_bag.h)
+  return out.str();
+}
+
+std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras) {
+  const auto list = [](const std::vector<double>& values) {
+    std::string text = "[";
+    for (size_t k = 0; k < values.size(); ++k) text += (k ? ", " : "") + yamlFloat(values[k]);
+    return text + "]";
+  };
+  std::ostringstream out;
+  out << "# Kalibr camchain written by omnicam for its calibration bag (kalibr.bag), every camera's images on its rostopic.\n"
+      << "# A mirror camera's images are flipped top to bottom in the bag (a catadioptric image is a mirror image):\n"
+      << "# its omni intrinsics [xi, fu, fv, pu, pv] describe the flipped image, fv > 0, pv = H - 1 - cy of intrinsics/kalibr.yaml.\n";
+  for (size_t n = 0; n < cameras.size(); ++n) {
+    const KalibrChainCamera& c = cameras[n];
+    KalibrLens model;
+    if (const auto* lens = dynamic_cast<const LensCamera*>(c.camera)) {
+      const std::optional<KalibrLens> kalibr = kalibrLensOf(lens->lens().model);
+      if (!kalibr) throw InputError("camera " + quote(c.name) + ": Kalibr has no camera model for its lens (" + lensModelName(lens->lens().model) + ")");
+      model = *kalibr;
+    } else {
+      const CentralModel central = centralModelOf(*c.camera);
+      const MeiIntrinsics& k = central.intrinsics;
+      if (central.approximation) out << "# cam" << n << " (" << c.name << "): " << approximationNote(central) << "\n";
+      model = {"omni", {k.xi, k.gammaX, -k.gammaY, k.cx, c.camera->height() - 1.0 - k.cy}, "radtan",
+               {k.lens.k1, k.lens.k2, k.lens.p1, k.lens.p2}};
+    }
+    out << "cam" << n << ":\n"
+        << "  camera_model: " << model.cameraModel << "\n"
+        << "  intrinsics: " << list(model.intrinsics) << "\n"
+        << "  distortion_model: " << model.distortionModel << "\n"
+        << "  distortion_coeffs: " << list(model.coefficients) << "\n"
+        << "  resolution: [" << c.camera->width() << ", " << c.camera->height() << "]\n"
+        << "  rostopic: /" << c.name << "/image_raw\n";
+    if (n > 0) {
+      const Eigen::Matrix4d t = (c.worldFromCamera.inverse() * cameras[n - 1].worldFromCamera).matrix();
+      out << "  T_cn_cnm1:\n";
+      for (int row = 0; row < 4; ++row) out << "  - " << list({t(row, 0), t(row, 1), t(row, 2), t(row, 3)}) << "\n";
+    }
+  }
   return out.str();
 }
 

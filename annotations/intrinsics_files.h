@@ -30,6 +30,19 @@ std::vector<IntrinsicsFile> intrinsicsFiles(const std::string& name, const Camer
 // Writes intrinsicsFiles() into DIR (each atomically).
 void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const Camera& camera);
 
+// Kalibr's camchain of `cameras` as a calibration bag shows their images (dataset/calibration_bag.h):
+// a mirror camera's image flipped top to bottom, so that its omni intrinsics are
+// [xi, γx, −γy, cx, H − 1 − cy] with fv > 0, as Kalibr's reader requires (same camera frame, same
+// radtan distortion); a lens camera's as its kalibr.yaml. camN (N > 0) has T_cn_cnm1, the
+// previous camera's frame into its own (4×4, rows). InputError naming a camera Kalibr has no
+// model for (a panorama, ...).
+struct KalibrChainCamera {
+  std::string name;
+  const Camera* camera = nullptr;
+  Rigid worldFromCamera = Rigid::Identity();  // the intrinsics files' camera frame (poses.tum's)
+};
+std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras);
+
 // A mirror camera's files' texts, for writing and for tests.
 std::string openCvIntrinsicsYaml(const Camera& camera);
 std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera);

@@ -14,8 +14,12 @@ struct BoardPoseOptions {
   uint64_t seed = 1;
   int maxDraws = 100000;          // gives up (InputError) after this many draws
   // A floor the board cannot go through: every corner of the pattern at least 1 cm above this
-  // height (metres, in the frame the poses are given in); none: anywhere.
+  // height (metres, z in the world frame of boardPoses' worldFromViewpoint); none: anywhere.
   std::optional<double> floorZ;
+  // What must clear that floor: the printed board's outline with this white margin (metres;
+  // targetBoardOutline), the whole board a dataset renders; none: the pattern's corners, as the
+  // calibration study measured its boards.
+  std::optional<double> boardMarginM;
 };
 
 }  // namespace omnicam

@@ -22,13 +22,6 @@ Vec3 patternCentre(const TargetPattern& pattern) {
   return 0.5 * (lo + hi);
 }
 
-// The board clears the floor by a centimetre: every corner of its pattern.
-constexpr double kFloorClearance = 0.01;
-bool aboveFloor(const Rigid& worldFromTarget, const std::vector<Vec3>& corners, double floorZ) {
-  return std::all_of(corners.begin(), corners.end(),
-                     [&](const Vec3& c) { return (worldFromTarget * c).z() >= floorZ + kFloorClearance; });
-}
-
 // A rotation whose z axis is `normal`, turned `rollRad` about it.
 Eigen::Matrix3d facing(const Vec3& normal, double rollRad) {
   const Vec3 z = normal.normalized();
@@ -44,12 +37,23 @@ Eigen::Matrix3d facing(const Vec3& normal, double rollRad) {
 
 }  // namespace
 
+bool boardClearsFloor(const Rigid& worldFromTarget, const std::vector<Vec3>& points, double floorZ) {
+  return std::all_of(points.begin(), points.end(),
+                     [&](const Vec3& c) { return (worldFromTarget * c).z() >= floorZ + kBoardFloorClearanceM; });
+}
+
+std::vector<Vec3> floorTestPoints(const TargetPattern& pattern, const std::optional<double>& boardMarginM) {
+  if (!boardMarginM) return targetCorners(pattern);
+  const std::array<Vec3, 4> outline = targetBoardOutline(pattern, *boardMarginM);
+  return {outline.begin(), outline.end()};
+}
+
 std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpoint, const TargetPattern& pattern,
                               const BoardPoseOptions& o) {
   std::mt19937_64 random(o.seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Vec3 centre = patternCentre(pattern);
-  const std::vector<Vec3> patternCorners = targetCorners(pattern);
+  const std::vector<Vec3> floorPoints = floorTestPoints(pattern, o.boardMarginM);
   CalibrationTarget board;
   board.pattern = pattern;
   std::vector<Rigid> poses;
@@ -69,7 +73,7 @@ std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpo
     const Eigen::Matrix3d tilted = Eigen::AngleAxisd(tilt, toward.col(0)).toRotationMatrix() * toward;
     board.worldFromTarget.linear() = tilted * Eigen::AngleAxisd(roll, Vec3::UnitZ()).toRotationMatrix();
     board.worldFromTarget.translation() = at - board.worldFromTarget.linear() * centre;
-    if (o.floorZ && !aboveFloor(board.worldFromTarget, patternCorners, *o.floorZ)) continue;
+    if (o.floorZ && !boardClearsFloor(board.worldFromTarget, floorPoints, *o.floorZ)) continue;
     const std::vector<ImagedCorner> corners = imagedCorners(camera, worldFromViewpoint, nullptr, board);
     const auto seen = std::count_if(corners.begin(), corners.end(), [](const ImagedCorner& c) { return c.sight == CornerSight::Seen; });
     if (seen >= o.minSeenCorners) poses.push_back(board.worldFromTarget);

@@ -11,10 +11,16 @@
 
 namespace omnicam {
 
+// A board clears the floor when every one of `points` (target frame: its outline, or its
+// pattern's corners) is this far above it.
+inline constexpr double kBoardFloorClearanceM = 0.01;
+bool boardClearsFloor(const Rigid& worldFromTarget, const std::vector<Vec3>& points, double floorZ);
+// The points that must clear the floor by the options (BoardPoseOptions::boardMarginM).
+std::vector<Vec3> floorTestPoints(const TargetPattern& pattern, const std::optional<double>& boardMarginM);
 
 // `count` poses (worldFromTarget for a camera at worldFromViewpoint), each with at least
 // minSeenCorners corners seen (imaged inside the rim and the image, on the printed face; no
-// occluders: the board alone).
+// occluders: the board alone) and, with options.floorZ, clearing that floor (boardClearsFloor).
 std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpoint, const TargetPattern& pattern,
                               const BoardPoseOptions& options);
 

@@ -26,18 +26,29 @@ std::string yamlFloat(double value) {
 
 }  // namespace
 
-std::string kalibrTargetYaml(const TargetPattern& pattern) {
+std::string kalibrTargetProblem(const TargetPattern& pattern) {
   // Kalibr's ConfigReader refuses fewer than 3 rows or columns (tags, or inner corners).
-  const auto atLeastThree = [](int value, const char* what) {
-    if (value < 3) throw InputError(std::string("Kalibr's target files need at least 3 ") + what + " (this target has " + std::to_string(value) + ")");
+  const auto atLeastThree = [](int value, const std::string& field, const char* what) -> std::string {
+    if (value >= 3) return "";
+    return field + ": Kalibr's target files need at least 3 " + what + " (this target has " + std::to_string(value) + ")";
   };
-  std::ostringstream yaml;
+  std::string problem;
   if (const auto* g = std::get_if<AprilGrid>(&pattern)) {
     // Kalibr takes tag k for the grid's k-th cell: a grid starting at another id would be read wrong.
     if (g->firstId != 0)
-      throw InputError("Kalibr's AprilGrids start at tag 0 (this target's first id is " + std::to_string(g->firstId) + ")");
-    atLeastThree(g->tagColumns, "tag columns");
-    atLeastThree(g->tagRows, "tag rows");
+      return "pattern.first_id: Kalibr's AprilGrids start at tag 0 (this target's first_id is " + std::to_string(g->firstId) + ")";
+    problem = atLeastThree(g->tagColumns, "pattern.tag_columns", "tag columns");
+    return problem.empty() ? atLeastThree(g->tagRows, "pattern.tag_rows", "tag rows") : problem;
+  }
+  const auto& b = std::get<Checkerboard>(pattern);
+  problem = atLeastThree(b.columns - 1, "pattern.columns", "inner corners a row");
+  return problem.empty() ? atLeastThree(b.rows - 1, "pattern.rows", "inner corners a column") : problem;
+}
+
+std::string kalibrTargetYaml(const TargetPattern& pattern) {
+  if (const std::string problem = kalibrTargetProblem(pattern); !problem.empty()) throw InputError(problem);
+  std::ostringstream yaml;
+  if (const auto* g = std::get_if<AprilGrid>(&pattern)) {
     yaml << "target_type: 'aprilgrid'\n"
          << "tagCols: " << g->tagColumns << "\n"
          << "tagRows: " << g->tagRows << "\n"
@@ -46,8 +57,6 @@ std::string kalibrTargetYaml(const TargetPattern& pattern) {
     return yaml.str();
   }
   const auto& b = std::get<Checkerboard>(pattern);
-  atLeastThree(b.columns - 1, "inner corners a row");
-  atLeastThree(b.rows - 1, "inner corners a column");
   yaml << "target_type: 'checkerboard'\n"
        << "targetCols: " << b.columns - 1 << "\n"
        << "targetRows: " << b.rows - 1 << "\n"

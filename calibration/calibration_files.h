@@ -12,7 +12,12 @@ namespace omnicam {
 // Kalibr's target file (kalibr_common/ConfigReader.py, CalibrationTargetParameters): an AprilGrid
 // as tagCols, tagRows, tagSize (m), tagSpacing (a share of tagSize); a checkerboard as its inner
 // corners (targetCols, targetRows) and square edges (rowSpacingMeters, colSpacingMeters).
+// Targets Kalibr would misread or refuse (an AprilGrid whose first id is not 0; fewer than 3 tag
+// or inner-corner rows or columns) throw InputError with kalibrTargetProblem's words.
 std::string kalibrTargetYaml(const TargetPattern& pattern);
+// Why Kalibr cannot read this target ("" when it can), led by the scene's field of the pattern
+// ("pattern.first_id: ...").
+std::string kalibrTargetProblem(const TargetPattern& pattern);
 
 // OpenCV's corner lists, one entry per image: the image's name, its corners in the target frame
 // (object_points, N×1 CV_64FC3) and in the image (image_points, N×1 CV_64FC2, OpenCV's pixel

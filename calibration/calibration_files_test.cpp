@@ -66,6 +66,16 @@ TEST(CalibrationFiles, KalibrReadsTheTargetYaml) {
   EXPECT_THROW(kalibrTargetYaml(AprilGrid{2, 6, 0.088, 0.3, 0}), InputError);  // Kalibr needs 3 rows
   EXPECT_THROW(kalibrTargetYaml(AprilGrid{6, 6, 0.088, 0.3, 36}), InputError);  // and tag 0 first
   EXPECT_THROW(kalibrTargetYaml(Checkerboard{3, 10, 0.05}), InputError);
+  // The problem names the scene's field of the pattern (a dataset adds its file and field).
+  EXPECT_EQ(kalibrTargetProblem(AprilGrid{6, 6, 0.088, 0.3, 36}),
+            "pattern.first_id: Kalibr's AprilGrids start at tag 0 (this target's first_id is 36)");
+  EXPECT_EQ(kalibrTargetProblem(AprilGrid{6, 2, 0.088, 0.3, 0}),
+            "pattern.tag_columns: Kalibr's target files need at least 3 tag columns (this target has 2)");
+  EXPECT_EQ(kalibrTargetProblem(AprilGrid{2, 6, 0.088, 0.3, 0}),
+            "pattern.tag_rows: Kalibr's target files need at least 3 tag rows (this target has 2)");
+  EXPECT_EQ(kalibrTargetProblem(Checkerboard{10, 3, 0.05}),
+            "pattern.columns: Kalibr's target files need at least 3 inner corners a row (this target has 2)");
+  EXPECT_EQ(kalibrTargetProblem(AprilGrid{3, 3, 0.088, 0.3, 0}), "");
 }
 
 TEST(CalibrationFiles, OpenCvCornerListsCalibrateAsTheViewsThemselves) {

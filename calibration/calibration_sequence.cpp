@@ -21,9 +21,32 @@ void placeCalibrationTarget(Scene& scene, int target, const Rigid& worldFromTarg
   t.worldFromTarget = worldFromTarget;
 }
 
-std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const Camera& camera, const TargetPattern& pattern) {
-  if (!spec.random) return spec.listed;
-  return boardPoses(camera, Rigid::Identity(), pattern, *spec.random);
+std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const Camera& camera, const Rigid& worldFromViewpoint,
+                                      const CalibrationTarget& target) {
+  // The floor the robot stands on (z = 0 in the world): no board goes through it, as in the study,
+  // and here the whole board, its white margin included (the frames render it).
+  constexpr double kFloorZ = 0.0;
+  const TargetPattern& pattern = target.pattern;
+  const Rigid viewpointFromWorld = worldFromViewpoint.inverse();
+  if (spec.random) {
+    BoardPoseOptions options = *spec.random;
+    options.floorZ = kFloorZ;
+    options.boardMarginM = target.margin;
+    std::vector<Rigid> poses;
+    try {
+      poses = boardPoses(camera, worldFromViewpoint, pattern, options);
+    } catch (const InputError& e) {
+      throw InputError(std::string("random: ") + e.what());
+    }
+    for (Rigid& pose : poses) pose = viewpointFromWorld * pose;
+    return poses;
+  }
+  const std::vector<Vec3> outline = floorTestPoints(pattern, target.margin);
+  for (size_t i = 0; i < spec.listed.size(); ++i)
+    if (!boardClearsFloor(worldFromViewpoint * spec.listed[i], outline, kFloorZ))
+      throw InputError("list[" + std::to_string(i) + "]: the board goes through the floor (its every corner, margin included, must be " +
+                       std::to_string(static_cast<int>(kBoardFloorClearanceM * 100)) + " cm above it)");
+  return spec.listed;
 }
 
 namespace {

@@ -22,8 +22,11 @@ int findCalibrationTarget(const Scene& scene, const std::string& name);
 void placeCalibrationTarget(Scene& scene, int target, const Rigid& worldFromTarget);
 
 // The board's pose of every frame in the viewpoint frame of `camera` (the first camera of the
-// robot): the listed ones, or `random->count` drawn ones. InputError when too few can be drawn.
-std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const Camera& camera, const TargetPattern& pattern);
+// robot, at worldFromViewpoint): the listed ones, or `random->count` drawn ones, each board's
+// outline (its margin included) clearing the floor (z = 0) by boardClearsFloor. InputError, its field under calibration.poses ("random: …",
+// "list[3]: …"), when too few can be drawn or a listed board goes through the floor.
+std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const Camera& camera, const Rigid& worldFromViewpoint,
+                                      const CalibrationTarget& target);
 
 // One frame of one camera in <camera>/calibration/corners.json.
 nlohmann::json cornersFrameJson(int frame, const Rigid& viewpointFromTarget, const std::vector<ImagedCorner>& corners);

@@ -12,6 +12,9 @@ namespace omnicam {
 
 namespace limits {
 inline constexpr int kMaxCalibrationPoses = 10000;
+// A board's distance from the camera (metres), listed or drawn: nearer than 5 cm it would reach
+// into the mirror.
+inline constexpr double kMinBoardDistanceM = 0.05, kMaxBoardDistanceM = 100.0;
 }
 
 // The board's poses, in the first camera's viewpoint frame: drawn (board_poses.h) or listed.

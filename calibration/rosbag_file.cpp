@@ -1,5 +1,6 @@
 #include "rosbag_file.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include "external_process.h"
 #include "job_folder.h"
 #include "safe_files.h"
+#include "sha256.h"
 
 namespace omnicam {
 
@@ -18,6 +20,8 @@ constexpr const char* kPython = "/usr/bin/python3";
 // Bags omnicam writes: a calibration sequence's images (the dataset's frame limits bound them).
 constexpr int64_t kMaxBagBytes = int64_t{1} << 40;
 constexpr double kWriterTimeoutSeconds = 3600.0;
+// The bag is copied into the dataset this much at a time.
+constexpr size_t kCopyPieceBytes = size_t{1} << 20;
 
 // Absolute: the writer runs in its job folder.
 std::string writerScript() {
@@ -37,22 +41,25 @@ void putString(std::ofstream& out, const std::string& s) {
 
 }  // namespace
 
-std::string imageBag(const std::vector<BagImage>& images) {
+WrittenBag writeImageBag(const SafeFolder& dir, const std::string& relative, const BagImageSource& next) {
   const JobFolder job("omnicam-rosbag", false);
+  WrittenBag written;
   {
+    // The writer's input, image by image: each is dropped once written.
     std::ofstream out(job.path() + "/images.bin", std::ios::binary);
-    out.write("OMNIBAG1", 8);
-    put32(out, static_cast<uint32_t>(images.size()));
-    for (const BagImage& image : images) {
-      if (image.rgb8.size() != static_cast<size_t>(image.width) * image.height * 3)
-        throw std::logic_error("imageBag: an image's bytes are not width × height × 3");
-      putString(out, image.topic);
-      putString(out, image.frameId);
-      putLittleEndian(out, static_cast<uint64_t>(image.stampNs), 8);
-      put32(out, image.seq);
-      put32(out, static_cast<uint32_t>(image.width));
-      put32(out, static_cast<uint32_t>(image.height));
-      out.write(image.rgb8.data(), static_cast<std::streamsize>(image.rgb8.size()));
+    out.write("OMNIBAG2", 8);
+    while (std::optional<BagImage> image = next()) {
+      if (image->rgb8.size() != static_cast<size_t>(image->width) * image->height * 3)
+        throw std::logic_error("writeImageBag: an image's bytes are not width × height × 3");
+      putString(out, image->topic);
+      putString(out, image->frameId);
+      putLittleEndian(out, static_cast<uint64_t>(image->stampNs), 8);
+      put32(out, image->seq);
+      put32(out, static_cast<uint32_t>(image->width));
+      put32(out, static_cast<uint32_t>(image->height));
+      out.write(image->rgb8.data(), static_cast<std::streamsize>(image->rgb8.size()));
+      written.largestImageBytes = std::max(written.largestImageBytes, static_cast<int64_t>(image->rgb8.size()));
+      ++written.images;
     }
     if (!out) throw OutputError("ROS bag: cannot write the writer's input in " + showPath(job.path()));
   }
@@ -61,7 +68,29 @@ std::string imageBag(const std::vector<BagImage>& images) {
   if (run.exitCode != 0 || run.timedOut)
     throw ExternalError("ROS bag: python3-rosbag's writer failed (make deps installs python3-rosbag and python3-sensor-msgs): " +
                              run.logTail);
-  return readFileInside(job.path(), "images.bag", kMaxBagBytes);
+  // The writer's own account of its memory (peak.txt: ru_maxrss in KiB).
+  std::ifstream peak(job.path() + "/peak.txt");
+  int64_t peakKiB = 0;
+  if (peak >> peakKiB) written.writerPeakBytes = peakKiB * 1024;
+  // Into the dataset piece by piece, hashed on the way.
+  checkFileInside(job.path(), "images.bag", kMaxBagBytes);
+  std::ifstream bag(job.path() + "/images.bag", std::ios::binary);
+  Sha256 hash;
+  std::string piece(kCopyPieceBytes, '\0');
+  dir.writeFileFrom(relative, [&](std::string_view& view) {
+    bag.read(piece.data(), static_cast<std::streamsize>(piece.size()));
+    const std::streamsize got = bag.gcount();
+    if (got <= 0) {
+      if (bag.bad()) throw OutputError("ROS bag: cannot read the writer's bag in " + showPath(job.path()));
+      return false;
+    }
+    view = std::string_view(piece.data(), static_cast<size_t>(got));
+    hash.update(view);
+    written.bytes += got;
+    return true;
+  }, Durability::Unsynced);
+  written.sha256 = hash.hex();
+  return written;
 }
 
 void checkImageBagWriter() {

@@ -4,10 +4,15 @@ Run by omnicam in a private job folder: reads `images.bin` (written by omnicam, 
 and writes `images.bag` there, uncompressed; omnicam then moves the bag's bytes into the
 dataset. Takes no paths from anyone: both names are fixed.
 
-images.bin: b"OMNIBAG1", u32 count, then per image (little-endian):
+images.bin: b"OMNIBAG2", then per image up to the end of the file (little-endian):
   u32 topic length, topic (UTF-8), u32 frame_id length, frame_id, i64 stamp (ns), u32 seq,
   u32 width, u32 height, width*height*3 bytes of rgb8, row by row from the top.
+
+One image at a time is read and written (rosbag flushes its chunk when an image fills it), so
+memory does not grow with the bag; `peak.txt` gets this process's peak resident memory (KiB),
+which omnicam's tests check.
 """
+import resource
 import struct
 import sys
 
@@ -31,11 +36,15 @@ def read_string(f):
 
 def main():
     with open("images.bin", "rb") as f, rosbag.Bag("images.bag", "w") as bag:
-        if read_exactly(f, 8) != b"OMNIBAG1":
+        if read_exactly(f, 8) != b"OMNIBAG2":
             raise SystemExit("write_rosbag: images.bin is not omnicam's")
-        (count,) = struct.unpack("<I", read_exactly(f, 4))
-        for _ in range(count):
-            topic = read_string(f)
+        while True:
+            length = f.read(4)
+            if not length:
+                break
+            if len(length) != 4:
+                raise SystemExit("write_rosbag: images.bin is truncated")
+            topic = read_exactly(f, struct.unpack("<I", length)[0]).decode("utf-8")
             frame_id = read_string(f)
             stamp_ns, seq, width, height = struct.unpack("<qIII", read_exactly(f, 20))
             # Exact: secs and nsecs from the integer, never through a float.
@@ -45,6 +54,9 @@ def main():
                             data=read_exactly(f, 3 * width * height))
             # Kalibr reads header.stamp; the bag's record time is the same.
             bag.write(topic, message, stamp)
+            del message
+    with open("peak.txt", "w") as peak:
+        peak.write("%d\n" % resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
 
 
 if __name__ == "__main__":

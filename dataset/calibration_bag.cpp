@@ -17,51 +17,62 @@ using nlohmann::json;
 
 namespace {
 
-// A frame's PNG as rgb8 rows.
-BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::string& camera, int index, double intervalS) {
-  const std::string bytes = checkedBytes(dir, file);
-  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
-  cv::Mat bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
-  if (bgr.empty() || bgr.depth() != CV_8U)
-    throw InputError(showPath(dir.path()) + ": " + quote(file.path) + ": not an 8-bit PNG (a ROS bag holds 8-bit images)");
+// A frame's PNG as rgb8 rows, top to bottom or (`flip`) bottom to top.
+BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::string& camera, bool flip, int index, double intervalS) {
   cv::Mat rgb;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  {
+    const std::string bytes = checkedBytes(dir, file);
+    const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
+    const cv::Mat bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
+    if (bgr.empty() || bgr.depth() != CV_8U)
+      throw InputError(showPath(dir.path()) + ": " + quote(file.path) + ": not an 8-bit PNG (a ROS bag holds 8-bit images)");
+    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  }
   BagImage image;
   image.topic = "/" + camera + "/image_raw";
   image.frameId = camera;
   image.stampNs = eurocTimestampNs(index, intervalS);  // the frame's time, as EuRoC names its images
   image.seq = static_cast<uint32_t>(index);
   image.width = rgb.cols, image.height = rgb.rows;
-  image.rgb8.resize(static_cast<size_t>(rgb.cols) * rgb.rows * 3);
+  const size_t row = static_cast<size_t>(rgb.cols) * 3;
+  image.rgb8.resize(row * static_cast<size_t>(rgb.rows));
   for (int y = 0; y < rgb.rows; ++y)
-    std::memcpy(image.rgb8.data() + static_cast<size_t>(y) * rgb.cols * 3, rgb.ptr(y), static_cast<size_t>(rgb.cols) * 3);
+    std::memcpy(image.rgb8.data() + static_cast<size_t>(flip ? rgb.rows - 1 - y : y) * row, rgb.ptr(y), row);
   return image;
 }
 
 }  // namespace
 
-void writeCalibrationBags(const SafeFolder& dir, DatasetManifest& manifest) {
-  const json calibration = manifest.header.value("calibration", json::object());
+void writeCalibrationBag(const SafeFolder& dir, DatasetManifest& manifest) {
+  json& calibration = manifest.header["calibration"];
   if (!calibration.is_object() || calibration.value("rosbag", json(false)) != json(true)) return;
   const json intervalField = manifest.header.value("settings", json::object()).value("frame_interval_s", json());
   if (!intervalField.is_number() || !(intervalField.get<double>() * 1e9 >= 1.0))
     throw InputError(showPath(dir.path()) + ": manifest: settings.frame_interval_s must be a number of at least 1 ns for the ROS bag");
   const double interval = intervalField.get<double>();
-  for (json& camera : manifest.header.at("cameras")) {
-    const std::string name = camera.at("name").get<std::string>();
-    std::vector<BagImage> images;
-    for (const auto& [index, frame] : manifest.frames) {
-      const auto c = frame.cameras.find(name);
-      const FileRecord* file = c == frame.cameras.end() ? nullptr : c->second.file(kColourOutput);
-      if (!file)
-        throw InputError(showPath(dir.path()) + ": frame " + std::to_string(index) + " camera " + quote(name) + " has no colour image");
-      images.push_back(bagImage(dir, *file, name, index, interval));
-    }
-    const std::string bag = imageBag(images);
-    const std::string relative = name + "/calibration/images.bag";
-    dir.writeFile(relative, bag, Durability::Unsynced);
-    camera["files"]["rosbag"] = {{"path", relative}, {"sha256", sha256OfBytes(bag)}};
-  }
+  struct BagCamera {
+    std::string name;
+    bool flip;  // a mirror camera's image is a mirror image: Kalibr's omni model needs it flipped
+  };
+  std::vector<BagCamera> cameras;
+  for (const json& camera : manifest.header.at("cameras"))
+    cameras.push_back({camera.at("name").get<std::string>(), !camera.value("rig", json::object()).contains("lens")});
+  // Frame by frame, each camera's image in turn: one image in memory at a time.
+  auto frame = manifest.frames.begin();
+  size_t next = 0;
+  const WrittenBag bag = writeImageBag(dir, kKalibrBagPath, [&]() -> std::optional<BagImage> {
+    if (frame == manifest.frames.end()) return std::nullopt;
+    const auto& [index, record] = *frame;
+    const BagCamera& camera = cameras[next];
+    const auto c = record.cameras.find(camera.name);
+    const FileRecord* file = c == record.cameras.end() ? nullptr : c->second.file(kColourOutput);
+    if (!file)
+      throw InputError(showPath(dir.path()) + ": frame " + std::to_string(index) + " camera " + quote(camera.name) + " has no colour image");
+    BagImage image = bagImage(dir, *file, camera.name, camera.flip, index, interval);
+    if (++next == cameras.size()) next = 0, ++frame;
+    return image;
+  });
+  calibration["files"]["rosbag"] = {{"path", kKalibrBagPath}, {"sha256", bag.sha256}};
 }
 
 }  // namespace omnicam

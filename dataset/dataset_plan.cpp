@@ -28,6 +28,7 @@
 #include "sha256.h"
 #include "sidecar.h"
 #include "trajectory.h"
+#include "triangulate.h"
 
 namespace omnicam {
 
@@ -321,10 +322,11 @@ void checkVibratedRigs(const DatasetPlan& plan) {
     }
 }
 
-// A calibration sequence's bags: topics ROS accepts, bags the dataset's reader reads back, memory
-// to write them in, and the writer's Python modules, all before anything renders.
+// A calibration sequence's bag: topics ROS accepts, a bag the dataset's reader reads back, memory
+// to write it in, and the writer's Python modules, all before anything renders.
 void checkRosbagOutputs(const DatasetPlan& plan, size_t frames) {
   const std::string file = showPath(plan.spec.file);
+  int64_t bytes = 0, largestImage = 0;
   for (const CameraSetup& setup : plan.setups) {
     const std::string& name = setup.camera->name;
     // A ROS graph name: a letter, then letters, digits and '_'.
@@ -332,15 +334,18 @@ void checkRosbagOutputs(const DatasetPlan& plan, size_t frames) {
         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
       throw InputError(file + ": calibration.rosbag: camera " + quote(name) +
                        ": its topic /<camera>/image_raw needs a name ROS accepts (a letter, then letters, digits and '_')");
-    const int64_t bytes = static_cast<int64_t>(frames) * setup.rig.imageWidth() * setup.rig.imageHeight() * 3;
-    // Each image's message adds a few hundred bytes of headers and index.
-    if (bytes + static_cast<int64_t>(frames) * 1024 > kMaxDatasetFileBytes)
-      throw InputError(file + ": calibration.rosbag: camera " + quote(name) + "'s bag would hold " + std::to_string(bytes >> 20) +
-                       " MiB of images (a dataset file is at most " + std::to_string(kMaxDatasetFileBytes >> 20) +
-                       " MiB: fewer poses or a smaller size)");
-    // The images, the writer's input and the bag read back: three copies at once.
-    requireMemory(3 * bytes, "the ROS bag of camera " + quote(name));
+    const int64_t image = int64_t{setup.rig.imageWidth()} * setup.rig.imageHeight() * 3;
+    bytes += static_cast<int64_t>(frames) * image;
+    largestImage = std::max(largestImage, image);
   }
+  // Each image's message adds a few hundred bytes of headers and index.
+  if (bytes + static_cast<int64_t>(frames * plan.setups.size()) * 1024 > kMaxDatasetFileBytes)
+    throw InputError(file + ": calibration.rosbag: the bag would hold " + std::to_string(bytes >> 20) +
+                     " MiB of images (a dataset file is at most " + std::to_string(kMaxDatasetFileBytes >> 20) +
+                     " MiB: fewer poses, cameras or a smaller size)");
+  // Streamed (rosbag_file.h): an image at a time, its PNG decoded beside it and its copy in the
+  // writer; the bag's size does not count.
+  requireMemory(3 * largestImage, "writing the ROS bag");
   checkImageBagWriter();
 }
 
@@ -357,15 +362,22 @@ void startCalibrationSequence(DatasetPlan& plan) {
                      (names.empty() ? std::string(" (it has none)") : " (it has " + names + ")"));
   }
   const CalibrationTarget& target = plan.scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
+  // Every camera's calibration files include Kalibr's target.yaml: a target it cannot describe
+  // is refused before anything renders.
+  if (const std::string problem = kalibrTargetProblem(target.pattern); !problem.empty())
+    throw InputError(file + ": calibration.target: " + quote(cal.target) + " (a target of " + showPath(plan.spec.scene) +
+                     ") cannot be Kalibr's target.yaml: " + problem);
   const size_t corners = targetCorners(target.pattern).size();
   if (cal.random && static_cast<size_t>(cal.random->minSeenCorners) > corners)
     throw InputError(file + ": calibration.poses.random.min_seen_corners: the target " + quote(target.name) + " has only " +
                      std::to_string(corners) + " corners (got " + std::to_string(cal.random->minSeenCorners) + ")");
   if (cal.rosbag) checkRosbagOutputs(plan, cal.random ? static_cast<size_t>(cal.random->count) : cal.listed.size());
+  // The robot stands at its one pose: the first camera's viewpoint is the same every frame.
+  const Rigid worldFromViewpoint = plan.placement(0, 0).worldFromViewpoint(plan.setups.front().rig);
   try {
-    plan.viewpointFromTarget = sequenceBoardPoses(cal, *plan.setups.front().model, target.pattern);
+    plan.viewpointFromTarget = sequenceBoardPoses(cal, *plan.setups.front().model, worldFromViewpoint, target);
   } catch (const InputError& e) {
-    throw InputError(file + ": calibration.poses.random: " + e.what());
+    throw InputError(file + ": calibration.poses." + e.what());
   }
   const size_t frames = plan.viewpointFromTarget.size();
   plan.poses.assign(frames, plan.poses.front());
@@ -421,6 +433,20 @@ void addCalibrationFiles(DatasetPlan& plan) {
   plan.header["calibration"] = {{"target", target.name},
                                 {"poses", cal.random ? "random" : "list"},
                                 {"rosbag", cal.rosbag}};
+  if (cal.rosbag) {
+    // The bag's cameras for Kalibr, as the bag shows them (calibration_bag.h).
+    std::vector<KalibrChainCamera> chain;
+    for (size_t c = 0; c < plan.setups.size(); ++c)
+      chain.push_back({plan.setups[c].camera->name, plan.setups[c].model.get(), plan.placement(0, c).worldFromCamera(plan.setups[c].rig)});
+    StaticFile camchain{"kalibr_camchain", kKalibrCamchainPath, ""};
+    try {
+      camchain.text = kalibrCamchainYaml(chain);
+    } catch (const InputError& e) {
+      throw InputError(showPath(plan.spec.file) + ": calibration.rosbag: " + e.what());
+    }
+    plan.header["calibration"]["files"][camchain.key] = {{"path", camchain.relative}, {"sha256", sha256OfBytes(camchain.text)}};
+    plan.statics.push_back(std::move(camchain));
+  }
 }
 
 }  // namespace
@@ -488,7 +514,34 @@ int64_t DatasetPlan::frameBytes() const {
   int64_t bytes = 0;
   for (const CameraSetup& setup : setups)
     bytes += FastRenderer::frameBytes(setup.rig.imageWidth(), setup.rig.imageHeight(), spec.request.spp, setup.model->central());
+  // A calibration sequence's frame renders in a world of its own (frameWorld): the scene's copy,
+  // its engine's ray scene and, with landmark annotations, a second one for the landmarks' rays.
+  if (movesTarget()) bytes += frameWorldBytes(scene, rays ? 2 : 1);
   return bytes;
+}
+
+int64_t frameWorldBytes(const Scene& scene, int rayScenes) {
+  // The copy: every object (a mesh with its arrays; textures are shared, not copied).
+  int64_t copy = static_cast<int64_t>(sizeof(Scene)), triangles = 0, vertices = 0, curved = 0;
+  for (const SceneObject& object : scene.objects) {
+    copy += static_cast<int64_t>(sizeof(SceneObject) + object.name.size() + object.semanticClass.size());
+    if (const auto* mesh = std::get_if<Mesh>(&object.shape)) {
+      copy += static_cast<int64_t>(mesh->vertices.size() * sizeof(Vec3) + mesh->triangles.size() * sizeof(Eigen::Vector3i) +
+                                   mesh->uvs.size() * sizeof(Eigen::Vector2d));
+      triangles += static_cast<int64_t>(mesh->triangles.size()), vertices += static_cast<int64_t>(mesh->vertices.size());
+    } else if (const std::optional<TriangleMesh> planar = triangulatePlanar(object.shape)) {
+      triangles += static_cast<int64_t>(planar->triangles.size()), vertices += static_cast<int64_t>(planar->vertices.size());
+    } else {
+      ++curved;
+    }
+  }
+  // A ray scene (ray_scene.h) per triangle: Embree's index buffer and its BVH, taken as 128 bytes
+  // (more than Embree's BVH4 needs), and RayScene's own vertex indices; per vertex Embree's float
+  // vertex and RayScene's float UV; a curved shape is one small user geometry.
+  constexpr int64_t kBvhBytesPerTriangle = 128, kCurvedShapeBytes = 512;
+  const int64_t rayScene = triangles * (int64_t{sizeof(Eigen::Vector3i)} * 2 + kBvhBytesPerTriangle) +
+                           vertices * (int64_t{sizeof(float)} * 4 + int64_t{sizeof(Eigen::Vector2f)}) + curved * kCurvedShapeBytes;
+  return copy + rayScenes * rayScene;
 }
 
 }  // namespace omnicam

@@ -81,7 +81,8 @@ class DatasetPlan {
   std::unique_ptr<FrameWorld> frameWorld(int frame, bool withEngine, bool withRays) const;
 
   // What one frame holds while it is rendered and encoded: every camera's frame, AOVs, files and
-  // sample table (FastRenderer::frameBytes; docs/robustness.md, "Memory"). The scheduler renders
+  // sample table (FastRenderer::frameBytes; docs/robustness.md, "Memory"), and a calibration
+  // sequence's own world of the frame (frameWorldBytes). The scheduler renders
   // as many frames at once as memory holds.
   int64_t frameBytes() const;
   // Camera `camera`'s rig during frame `frame`: its setup's, shaken by the spec's vibration.
@@ -99,5 +100,10 @@ class DatasetPlan {
     return vibrates() || movesTarget() || std::any_of(velocities.begin(), velocities.end(), [](const BodyVelocity& v) { return !v.still(); });
   }
 };
+
+// The memory of one frame's own world (DatasetPlan::frameWorld) over `scene`: its copy (textures
+// shared) and `rayScenes` Embree scenes built over it. Counted in frameBytes, so that the frames
+// rendered at once fit (docs/robustness.md, "Memory").
+int64_t frameWorldBytes(const Scene& scene, int rayScenes);
 
 }  // namespace omnicam

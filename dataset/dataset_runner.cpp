@@ -160,7 +160,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   // The annotations gathered per camera, once every frame is there (a shard's: by the merge).
   if (!result.stopped && !plan.range.sharded) {
     writeAnnotationFiles(folder, manifest);
-    writeCalibrationBags(folder, manifest);
+    writeCalibrationBag(folder, manifest);
   }
   writeManifest(folder, manifest, plan.range.manifestName);
   return result;

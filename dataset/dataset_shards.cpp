@@ -126,7 +126,7 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
   if (result.finished == result.frames) {
     result.incompleteShards.clear();
     writeAnnotationFiles(dir, *merged);
-    writeCalibrationBags(dir, *merged);
+    writeCalibrationBag(dir, *merged);
   }
   writeManifest(dir, *merged);
   // Every shard has ended (the merge runs after them): what a killed one left behind goes.

@@ -145,8 +145,8 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
   poses.finish();
 }
 
-// A listed board's origin from the viewpoint F' (m): not through the camera, within the scene's reach.
-constexpr double kMinBoardDistanceM = 0.05, kMaxBoardDistanceM = 100.0;
+// A listed board's origin from the viewpoint F' (m), as a drawn board's centre (distance_m).
+using limits::kMinBoardDistanceM, limits::kMaxBoardDistanceM;
 
 // A listed board pose: {"origin": [x, y, z], "x_axis": [...], "y_axis": [...]} in the first
 // camera's viewpoint frame (docs/conventions.md), as a scene places a target.
@@ -181,7 +181,7 @@ void readCalibration(JsonFields c, DatasetSpec& spec) {
     BoardPoseOptions o;
     o.count = static_cast<int>(r.integer("count", 1, limits::kMaxCalibrationPoses));
     o.seed = static_cast<uint64_t>(r.integer("seed", 0, limits::kMaxSeed));
-    const std::vector<double> distance = r.numbers("distance_m", {o.nearM, o.farM}, {0.01, 100.0, false, "m"});
+    const std::vector<double> distance = r.numbers("distance_m", {o.nearM, o.farM}, {kMinBoardDistanceM, kMaxBoardDistanceM, false, "m"});
     if (!(distance[0] < distance[1])) r.fail("distance_m", "must be [near, far] with near < far");
     o.nearM = distance[0], o.farM = distance[1];
     o.maxTiltDeg = r.number("max_tilt_deg", o.maxTiltDeg, {0.0, 80.0, false, "degrees"});

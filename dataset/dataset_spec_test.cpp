@@ -1,9 +1,13 @@
 #include "dataset_spec.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
+#include "dataset_plan.h"
 #include "errors.h"
 #include "pose_sampler.h"
 #include "floor_obstacles.h"
@@ -274,6 +278,42 @@ TEST(DatasetMotion, TimedWaypointsVibrationAndEurocAreStrict) {
           "vibration.shake: unknown field");
   refuses(R"("poses": {"path": "p"}, "euroc": true, "outputs": {"rgb": "exr"})", "euroc: needs outputs.rgb \"png\"");
   refuses(R"("poses": {"path": "p"}, "euroc": true, "layout": "multilayer")", "euroc: needs the files layout");
+}
+
+// A calibration sequence renders each frame in its own copy of the scene with its own ray scene
+// (DatasetPlan::frameWorld): the frame's memory counts them. A scene with a mesh of 30,000
+// triangles: the calibration sequence's frame needs at least the mesh's copy (its vertices and
+// triangles as the scene holds them) and one Embree index buffer more than the same still frames.
+TEST(DatasetPlan, ACalibrationFrameCountsItsOwnCopyOfTheScene) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("omnicam_plan_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  constexpr int kStrips = 15000;  // two triangles each
+  std::string vertices, triangles;
+  for (int k = 0; k <= kStrips; ++k)
+    vertices += (k ? ", " : "") + std::string("[") + std::to_string(-3 + 0.0004 * k) + ", 2.5, 0], [" + std::to_string(-3 + 0.0004 * k) + ", 2.5, 0.3]";
+  for (int k = 0; k < kStrips; ++k)
+    triangles += (k ? ", " : "") + std::string("[") + std::to_string(2 * k) + ", " + std::to_string(2 * k + 2) + ", " +
+                 std::to_string(2 * k + 1) + "], [" + std::to_string(2 * k + 1) + ", " + std::to_string(2 * k + 2) + ", " +
+                 std::to_string(2 * k + 3) + "]";
+  std::ofstream(dir / "scene.json") << R"({"format": "omnicam-scene/1", "materials": {"grey": {"color": 0.5}}, "objects": [
+    {"type": "mesh", "material": "grey", "vertices": [)" << vertices << R"(], "triangles": [)" << triangles << R"(]},
+    {"name": "grid", "type": "calibration_target", "origin": [1, 0, 0.5], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1],
+     "pattern": {"kind": "aprilgrid", "tag_rows": 3, "tag_columns": 3, "tag_size": 0.06, "tag_spacing": 0.3}}]})";
+  const std::string common = R"({"format": "omnicam-dataset/1", "scene": "scene.json", "size": 64, "poses": {"list": [[0, 0, 0]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false})";
+  std::ofstream(dir / "still.json") << common << "}";
+  std::ofstream(dir / "calibration.json") << common << R"(, "calibration": {"target": "grid", "poses": {"list": [
+    {"origin": [0.4, -0.1, 0.0], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]}]}}})";
+  DatasetRunOptions options;
+  options.dir = (dir / "out").string();
+  const DatasetPlan still(loadDatasetSpec((dir / "still.json").string()), options);
+  const DatasetPlan calibration(loadDatasetSpec((dir / "calibration.json").string()), options);
+  const int64_t meshCopy = int64_t{2 * (kStrips + 1)} * int64_t{sizeof(Vec3)} + int64_t{2 * kStrips} * int64_t{sizeof(Eigen::Vector3i)};
+  const int64_t embreeIndices = int64_t{2 * kStrips} * 3 * 4;
+  std::printf("a frame: %lld bytes still, %lld in a calibration sequence (the mesh's copy alone %lld)\n",
+              static_cast<long long>(still.frameBytes()), static_cast<long long>(calibration.frameBytes()), static_cast<long long>(meshCopy));
+  EXPECT_GE(calibration.frameBytes() - still.frameBytes(), meshCopy + embreeIndices);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -268,6 +268,23 @@ void writeManifest(const std::string& dir, const DatasetManifest& manifest, cons
 
 std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest) {
   std::vector<FileRecord> files;
+  // A calibration sequence's Kalibr files beside the manifest (calibration_bag.h): only their
+  // fixed names, never a path of the manifest's choosing.
+  const json calibration = manifest.header.value("calibration", json::object());
+  if (calibration.is_object() && calibration.contains("files")) {
+    const json& listed = calibration.at("files");
+    if (!listed.is_object()) throw InputError(std::string(kManifestName) + ": calibration.files: must be an object");
+    for (const auto& file : listed.items()) {
+      const json& record = file.value();
+      const std::string where = std::string(kManifestName) + ": calibration.files." + file.key();
+      if (!record.is_object() || !record.contains("path") || !record.contains("sha256") || !record.at("sha256").is_string() ||
+          !isSha256(record.at("sha256").get<std::string>()))
+        throw InputError(where + ": must be {\"path\", \"sha256\"} (64 lowercase hex digits)");
+      if (record.at("path") != kKalibrBagPath && record.at("path") != kKalibrCamchainPath)
+        throw InputError(where + ".path: must be \"" + kKalibrBagPath + "\" or \"" + kKalibrCamchainPath + "\"");
+      files.push_back({record.at("path").get<std::string>(), record.at("sha256").get<std::string>()});
+    }
+  }
   for (const json& camera : manifest.header.at("cameras"))
     for (const auto& file : camera.at("files").items())
       files.push_back({file.value().at("path").get<std::string>(), file.value().at("sha256").get<std::string>()});

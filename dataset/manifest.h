@@ -18,6 +18,10 @@ namespace omnicam {
 
 inline constexpr const char* kManifestFormat = "omnicam-dataset-manifest/1";
 inline constexpr const char* kManifestName = "manifest.json";
+// A calibration sequence's Kalibr files beside the manifest (calibration_bag.h), listed in the
+// header's calibration.files: the only files outside the cameras' folders.
+inline constexpr const char* kKalibrBagPath = "kalibr.bag";
+inline constexpr const char* kKalibrCamchainPath = "kalibr_camchain.yaml";
 
 // Manifests are read whole, so bounded — by what the dataset limits let omnicam write
 // (dataset_spec.h): a header (the spec as read, cameras, class and instance tables) of at most

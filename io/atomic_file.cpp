@@ -49,6 +49,16 @@ void writeBytesAtomically(const std::string& path, std::string_view bytes, Durab
 
 void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
                             Durability durability) {
+  bool given = false;
+  writeStreamAtomicallyAt(folderFd, name, shownPath, [&](std::string_view& piece) {
+    if (given) return false;
+    piece = bytes;
+    return given = true;
+  }, durability);
+}
+
+void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
+                             Durability durability) {
   struct stat existing {};
   if (::fstatat(folderFd, name.c_str(), &existing, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(existing.st_mode))
     throw InputError(shownPath + ": is an existing folder, not a file name");
@@ -62,16 +72,28 @@ void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::st
     fd = ::openat(folderFd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd < 0 && (errno != EEXIST || attempt > 100)) failWrite(shownPath, folderFd, "", errno);
   }
-  size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int error = n < 0 ? errno : EIO;
+  std::string_view piece;
+  for (;;) {
+    bool more = false;
+    try {
+      more = next(piece);
+    } catch (...) {
       ::close(fd);
-      failWrite(shownPath, folderFd, tmp, error);
+      ::unlinkat(folderFd, tmp.c_str(), 0);
+      throw;
     }
-    written += static_cast<size_t>(n);
+    if (!more) break;
+    size_t written = 0;
+    while (written < piece.size()) {
+      const ssize_t n = ::write(fd, piece.data() + written, piece.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const int error = n < 0 ? errno : EIO;
+        ::close(fd);
+        failWrite(shownPath, folderFd, tmp, error);
+      }
+      written += static_cast<size_t>(n);
+    }
   }
   if (durability == Durability::Synced && ::fsync(fd) != 0) {
     const int error = errno;

@@ -3,6 +3,7 @@
 // exclusively, mkstemp-style), every write is checked, the file is flushed to disk, and only then
 // renamed into place. A failure (disk full, file-size limit, permissions) removes the temporary
 // and throws OutputError; the final name is never left truncated.
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -18,6 +19,12 @@ void writeBytesAtomically(const std::string& path, std::string_view bytes,
 // reached without following links (safe_files.h); `shownPath` names the file in errors.
 void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
                             Durability durability);
+// The same fed piece by piece (memory: one piece, whatever the file's size): `next` points its
+// argument at the next piece (valid until the next call) and returns false when there are no
+// more. An exception from `next` removes the temporary and propagates.
+using PieceSource = std::function<bool(std::string_view& piece)>;
+void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
+                             Durability durability);
 inline void writeTextAtomically(const std::string& path, const std::string& text) {
   writeBytesAtomically(path, text);
 }

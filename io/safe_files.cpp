@@ -257,6 +257,17 @@ void SafeFolder::writeFile(const std::string& relative, std::string_view bytes, 
   writeBytesAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root_, relative)), bytes, durability);
 }
 
+void SafeFolder::writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const {
+  const std::vector<std::string> parts = partsOf(relative);
+  FileDescriptor folder;
+  try {
+    folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
+  } catch (const Problem& p) {
+    rethrow(root_, p);
+  }
+  writeStreamAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root_, relative)), next, durability);
+}
+
 bool SafeFolder::removeFile(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {

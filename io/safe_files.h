@@ -41,6 +41,8 @@ class SafeFolder {
   void checkFolders(const std::string& relative) const;
   void makeFolders(const std::string& relative) const;
   void writeFile(const std::string& relative, std::string_view bytes, Durability durability) const;
+  // writeFile fed piece by piece (writeStreamAtomicallyAt): a file of any size in one piece's memory.
+  void writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const;
   bool removeFile(const std::string& relative) const;
   bool removeEmptyFolder(const std::string& relative) const;
 

@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "errors.h"
 
@@ -48,6 +50,30 @@ TEST_F(SafeFolderTest, AHandleKeepsItsFolderWhenThePathIsRenamedOrReplacedByALin
   EXPECT_TRUE(fs::is_empty(elsewhere));                       // never through the planted link
   // The path-based functions look again: the name now leads into the link's target.
   EXPECT_EQ(entryInside(original.string(), "cam0/rgb/000001.png"), EntryKind::Missing);
+}
+
+// A file written piece by piece: its pieces in order, atomically; a source that fails midway
+// leaves neither the file nor its temporary.
+TEST_F(SafeFolderTest, AStreamedFileIsItsPiecesOrNothing) {
+  const SafeFolder folder(dir_.string());
+  const std::vector<std::string> pieces = {"kalibr", ".bag ", std::string(3000, 'x'), "end"};
+  size_t next = 0;
+  folder.writeFileFrom("sub/streamed.bin", [&](std::string_view& piece) {
+    if (next == pieces.size()) return false;
+    piece = pieces[next++];
+    return true;
+  }, Durability::Synced);
+  EXPECT_EQ(text(dir_ / "sub/streamed.bin"), "kalibr.bag " + std::string(3000, 'x') + "end");
+  int calls = 0;
+  EXPECT_THROW(folder.writeFileFrom("failed.bin", [&](std::string_view& piece) {
+    if (++calls == 2) throw OutputError("the source failed");
+    piece = "first";
+    return true;
+  }, Durability::Unsynced), OutputError);
+  EXPECT_FALSE(fs::exists(dir_ / "failed.bin"));
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_)) ++entries;
+  EXPECT_EQ(entries, 1u) << "only sub/: no temporary left";
 }
 
 TEST_F(SafeFolderTest, AMissingFolderIsLookedForAgainAndOnlyMadeWhenAsked) {

@@ -174,13 +174,42 @@ std::vector<Vec3> worldCorners(const CalibrationTarget& target) {
   return corners;
 }
 
-TargetBoard targetBoard(const TargetPattern& pattern, double margin, float blackAlbedo, float whiteAlbedo) {
+namespace {
+
+// The printed board in texels: its bottom-left texel (i0, j0) and its size, margin included.
+struct BoardTexels {
+  TexelLayout layout;
+  int64_t i0 = 0, j0 = 0;
+  int width = 0, height = 0;
+};
+
+BoardTexels boardTexels(const TargetPattern& pattern, double margin) {
   requirePrintable(pattern, margin);
-  const TexelLayout l = layoutOf(pattern);
-  const std::vector<std::vector<bool>> bits = tagBitsOf(pattern);
+  BoardTexels b;
+  b.layout = layoutOf(pattern);
+  const TexelLayout& l = b.layout;
   const int64_t m = std::llround(margin / l.texel);
-  const int64_t i0 = l.iMin - m, j0 = l.jMin - m;
-  const int width = static_cast<int>(l.iEnd - l.iMin + 2 * m), height = static_cast<int>(l.jEnd - l.jMin + 2 * m);
+  b.i0 = l.iMin - m, b.j0 = l.jMin - m;
+  b.width = static_cast<int>(l.iEnd - l.iMin + 2 * m), b.height = static_cast<int>(l.jEnd - l.jMin + 2 * m);
+  return b;
+}
+
+}  // namespace
+
+std::array<Vec3, 4> targetBoardOutline(const TargetPattern& pattern, double margin) {
+  const BoardTexels b = boardTexels(pattern, margin);
+  const double texel = b.layout.texel;
+  const double x0 = static_cast<double>(b.i0) * texel, y0 = static_cast<double>(b.j0) * texel;
+  const double x1 = x0 + b.width * texel, y1 = y0 + b.height * texel;
+  return {Vec3(x0, y0, 0.0), Vec3(x1, y0, 0.0), Vec3(x1, y1, 0.0), Vec3(x0, y1, 0.0)};
+}
+
+TargetBoard targetBoard(const TargetPattern& pattern, double margin, float blackAlbedo, float whiteAlbedo) {
+  const BoardTexels b = boardTexels(pattern, margin);
+  const TexelLayout& l = b.layout;
+  const std::vector<std::vector<bool>> bits = tagBitsOf(pattern);
+  const int64_t i0 = b.i0, j0 = b.j0;
+  const int width = b.width, height = b.height;
   std::vector<float> rgb(static_cast<size_t>(width) * height * 3, whiteAlbedo);
   for (int row = 0; row < height; ++row) {
     const int64_t j = j0 + (height - 1 - row);  // image rows run down, J up

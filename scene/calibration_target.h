@@ -12,6 +12,7 @@
 //   square; tag t = row·tag_columns + column (row 0 at the bottom) has the id first_id + t; its
 //   corners are Kalibr's points(): point r·(2·tag_columns) + c at
 //   ((c/2)·(1 + spacing)·size + (c%2)·size, (r/2)·(1 + spacing)·size + (r%2)·size).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -77,6 +78,9 @@ struct TargetBoard {
   Vec3 origin, edgeU, edgeV;  // target frame
 };
 TargetBoard targetBoard(const TargetPattern& pattern, double margin, float blackAlbedo, float whiteAlbedo);
+// The printed board's four corners in the target frame (z = 0), margin included: the outline of
+// targetBoard's quad.
+std::array<Vec3, 4> targetBoardOutline(const TargetPattern& pattern, double margin);
 
 // A tag's 6 × 6 data bits as printed, row by row from the top-left, true = white; id in
 // [0, aprilGridFamilySize()) (std::out_of_range otherwise).

@@ -190,5 +190,22 @@ TEST_F(CalibrationTargetScene, BadTargetsNameTheirField) {
             file + ": objects[1].material: unknown field");
 }
 
+// The board's outline (what must clear a floor): an AprilGrid's pattern reaches a gap (spacing ×
+// size) beyond its outer tags, the margin beyond that; a checkerboard's a square beyond its inner
+// corners.
+TEST(CalibrationTarget, BoardOutlineIsThePatternAndItsMargin) {
+  const std::array<Vec3, 4> grid = targetBoardOutline(AprilGrid{5, 5, 0.06, 0.3, 0}, 0.012);
+  EXPECT_NEAR(grid[0].x(), -0.018 - 0.012, 1e-12);
+  EXPECT_NEAR(grid[0].y(), -0.018 - 0.012, 1e-12);
+  EXPECT_NEAR(grid[2].x(), 5 * 1.3 * 0.06 + 0.012, 1e-12);
+  EXPECT_NEAR(grid[2].y(), 5 * 1.3 * 0.06 + 0.012, 1e-12);
+  const std::array<Vec3, 4> board = targetBoardOutline(Checkerboard{7, 10, 0.05}, 0.05);
+  EXPECT_NEAR(board[0].x(), -0.1, 1e-12);
+  EXPECT_NEAR(board[2].x(), 9 * 0.05 + 0.05, 1e-12);
+  EXPECT_NEAR(board[2].y(), 6 * 0.05 + 0.05, 1e-12);
+  EXPECT_EQ(board[1].y(), board[0].y());
+  EXPECT_EQ(board[3].x(), board[0].x());
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -314,6 +314,25 @@ def main():
                  calibration={"target": "board", "poses": board_poses, "rosbag": True})
     dataset_spec("calibration_axes", poses=still,
                  calibration={"target": "board", "poses": {"list": [{"origin": [1, 0, 0], "x_axis": [0, 1, 0], "y_axis": [0, 1, 0]}]}})
+    # Kalibr's limits and the board's place: a grid starting at tag 5, a board at the mirror, one under the floor.
+    grid = {"kind": "aprilgrid", "tag_rows": 3, "tag_columns": 3, "tag_size": 0.05, "tag_spacing": 0.3}
+    write(os.path.join(datasets, "grids.json"), scene([
+        FLOOR,
+        {"name": "board", "type": "calibration_target", "pattern": grid, "origin": [1, 0, 0.5], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]},
+        {"name": "board5", "type": "calibration_target", "pattern": dict(grid, first_id=5),
+         "origin": [-1, 0, 0.5], "x_axis": [0, -1, 0], "y_axis": [0, 0, 1]},
+        {"name": "board2", "type": "calibration_target", "pattern": dict(grid, tag_columns=2),
+         "origin": [0, 1, 0.5], "x_axis": [1, 0, 0], "y_axis": [0, 0, 1]}]))
+    dataset_spec("calibration_first_id", scene="grids.json", poses=still, calibration={"target": "board5", "poses": board_poses})
+    dataset_spec("calibration_two_columns", scene="grids.json", poses=still, calibration={"target": "board2", "poses": board_poses})
+    dataset_spec("calibration_at_mirror", scene="grids.json", poses=still, calibration={"target": "board", "poses": {"random": {
+        "count": 5, "seed": 1, "distance_m": [0.01, 0.02], "max_tilt_deg": 80, "min_seen_corners": 4}}})
+    dataset_spec("calibration_bag_panorama", scene="grids.json", poses=still, cameras=[
+        {"name": "omni"}, {"name": "pano", "rig": {"lens": {"model": "equirectangular", "width": 32, "height": 16}}}],
+                 calibration={"target": "board", "poses": board_poses, "rosbag": True})
+    dataset_spec("calibration_under_floor", scene="grids.json", poses=still, calibration={"target": "board", "poses": {"list": [
+        {"origin": [0.3, 0, 0.2], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]},
+        {"origin": [0.3, 0, -5], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]}]}})
 
     # Untrusted specs (docs/robustness.md, "Threat model"): confinement, numbers that size work.
     random = {"count": 5, "seed": 1, "region": [-1, -1, 1, 1]}
