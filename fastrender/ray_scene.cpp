@@ -105,7 +105,7 @@ void recordEmbreeError(void* user, RTCError code, const char* message) {
 
 std::string embreeIsa() {
   const char* chosen = std::getenv(kEmbreeIsaVariable);
-  if (!chosen) return kDefaultEmbreeIsa;
+  if (!chosen) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? "avx2" : "native";
   for (const char* isa : kEmbreeIsas)
     if (std::string_view(chosen) == isa) return chosen;
   throw InputError(std::string(kEmbreeIsaVariable) + ": " + quote(chosen) +

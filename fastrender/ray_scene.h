@@ -28,13 +28,13 @@ class RayScene;
 
 // Embree's code paths (ISAs) round differently — fused multiply-adds, approximate reciprocals,
 // BVH4 or BVH8 — so its hit distances and (u, v) differ in their last bits from one CPU to another.
-// omnicam works a triangle hit out again in double (fillHit), so frames do not depend on the path
-// (docs/conventions.md, "Reproducible pixels"). By default Embree takes the widest path the CPU
-// has ("native"); OMNICAM_EMBREE_ISA forces one, as the test of that guarantee does.
+// omnicam works a triangle hit out again in double (fillHit), so frames do not depend on that.
+// Which triangle a grazing ray hits is still Embree's decision, so every CPU with AVX2 and FMA
+// takes the one path "avx2" (as fast as AVX-512 here), and others Embree's own choice, "native"
+// (docs/conventions.md §8). OMNICAM_EMBREE_ISA forces one, as the test of that guarantee does.
 inline constexpr const char* kEmbreeIsaVariable = "OMNICAM_EMBREE_ISA";
-inline constexpr const char* kDefaultEmbreeIsa = "native";
 inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2", "avx512", "native"};
-// The path this process's ray scenes take: kDefaultEmbreeIsa, or OMNICAM_EMBREE_ISA's.
+// The path this process's ray scenes take: OMNICAM_EMBREE_ISA's, else avx2 or native as above.
 // InputError if that names none of kEmbreeIsas.
 std::string embreeIsa();
 

@@ -218,10 +218,11 @@ TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
 }
 
 // Issue #45: a frame is the same on every x86-64 machine. What a CPU's features steer: Embree's
-// code path (the widest the CPU has; OMNICAM_EMBREE_ISA forces each one here) and the build of
-// glibc's libm (omnicam masks FMA, so an FMA CPU takes the plain build like a CPU without FMA;
-// masking AVX too gives the SSE2 build that CPUs without AVX take). Under each, omnicam's own
-// renders must give the golden hashes. This machine must offer every path (AVX-512 and FMA).
+// code path (avx2, or Embree's own choice on a CPU without it; OMNICAM_EMBREE_ISA forces each
+// one here) and the build of glibc's libm (omnicam masks FMA, so an FMA CPU takes the plain
+// build like a CPU without FMA; masking AVX too gives the SSE2 build that CPUs without AVX
+// take). Under each, omnicam's own renders must give the golden hashes. This machine must offer
+// every path (AVX-512 and FMA).
 TEST_F(GoldenHashes, EveryCodePathOfTheCpuMakesTheSamePixels) {
   __builtin_cpu_init();
   const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
