@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.h"
+#include "cpu_independent_math.h"
 #include "errors.h"
 #include "interrupts.h"
 #include "malloc_tuning.h"
@@ -28,6 +29,7 @@ int reportError(const std::string& message, int exitCode) {
 // not be written (disk full, file-size limit, permissions) or the machine lacks the memory the
 // work needs (memory_budget.h).
 int main(int argc, char** argv) {
+  omnicam::restartWithPlainMath(argv);  // first: it may start the program again
   // Past a file-size limit, write() must fail with EFBIG (exit 5, nothing left under the final
   // name) instead of the signal killing the process mid-file.
   std::signal(SIGXFSZ, SIG_IGN);

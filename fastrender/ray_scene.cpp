@@ -1,10 +1,13 @@
 #include "ray_scene.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 
 #include "analytic_shapes.h"
+#include "errors.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -100,11 +103,25 @@ void recordEmbreeError(void* user, RTCError code, const char* message) {
 
 }  // namespace
 
+std::string embreeIsa() {
+  const char* chosen = std::getenv(kEmbreeIsaVariable);
+  if (!chosen) return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? "avx2" : "native";
+  for (const char* isa : kEmbreeIsas)
+    if (std::string_view(chosen) == isa) return chosen;
+  throw InputError(std::string(kEmbreeIsaVariable) + ": " + quote(chosen) +
+                   " is not an Embree code path; one of sse2, sse4.2, avx, avx2, avx512, native");
+}
+
 RayScene::RayScene(const Scene& scene) {
-  // Default config: with a "threads=N" setting Embree installs a process-wide TBB limit that
-  // would also throttle the renderer's own parallel loops.
-  device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: cannot create device");
+  // No "threads=N": with it Embree installs a process-wide TBB limit that would also throttle
+  // the renderer's own parallel loops. "isa=": see kEmbreeIsaVariable.
+  const std::string isa = embreeIsa();
+  device_ = rtcNewDevice(isa == "native" ? nullptr : ("isa=" + isa).c_str());
+  if (!device_) {
+    if (rtcGetDeviceError(nullptr) == RTC_ERROR_UNSUPPORTED_CPU)
+      throw InputError(std::string(kEmbreeIsaVariable) + ": this CPU cannot take Embree's " + isa + " code path");
+    throw std::runtime_error("Embree: cannot create device");
+  }
   // Embree reports errors through a callback; without one they are silently lost.
   rtcSetDeviceErrorFunction(device_, recordEmbreeError, &errors_);
   scene_ = rtcNewScene(device_);
@@ -138,6 +155,7 @@ RayScene::RayScene(const Scene& scene) {
       for (size_t k = 0; k < mesh.triangles.size(); ++k)
         for (int c = 0; c < 3; ++c) idx[3 * k + c] = static_cast<unsigned>(mesh.triangles[k][c]);
       for (const auto& uv : mesh.uvs) g->vertexUv.push_back(uv.cast<float>());
+      for (const Vec3& vertex : mesh.vertices) g->vertices.push_back(vertex.cast<float>().cast<double>());
       g->triangles = mesh.triangles;
     }
     rtcCommitGeometry(geom);
@@ -167,19 +185,60 @@ Eigen::Vector2d RayScene::uvOf(unsigned geomID, unsigned primID, float u, float 
   return ((1.0f - u - v) * g.vertexUv[tri[0]] + u * g.vertexUv[tri[1]] + v * g.vertexUv[tri[2]]).cast<double>();
 }
 
+namespace {
+
+// A ray's crossing of a triangle's plane, worked out in double from the vertices Embree holds:
+// Embree's own distance and (u, v) depend on its code path (fused multiply-adds, approximate
+// reciprocals), these do not. The point is a + u·(b − a) + v·(c − a), as Embree's (u, v); the
+// normal (b − a) × (c − a), unnormalised, is on the side of Embree's Ng.
+struct TriangleCrossing {
+  double t = 0.0;
+  float u = 0.0f, v = 0.0f;
+  Vec3 normal;
+};
+
+TriangleCrossing crossing(const Geometry& g, unsigned primID, const Vec3& origin, const Vec3& direction) {
+  const Eigen::Vector3i& tri = g.triangles[primID];
+  const Vec3& a = g.vertices[tri[0]];
+  const Vec3 e1 = g.vertices[tri[1]] - a, e2 = g.vertices[tri[2]] - a;
+  TriangleCrossing c;
+  c.normal = e1.cross(e2);
+  c.t = (a - origin).dot(c.normal) / direction.dot(c.normal);
+  const Vec3 w = origin + c.t * direction - a;
+  const double area2 = c.normal.squaredNorm();
+  c.u = static_cast<float>(c.normal.dot(w.cross(e2)) / area2);
+  c.v = static_cast<float>(c.normal.dot(e1.cross(w)) / area2);
+  return c;
+}
+
+}  // namespace
+
 void RayScene::fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u,
                        float v, const Vec3& ng, SurfaceHit& hit) const {
-  hit.object = geometries_[geomID]->object;
-  hit.t = t;
+  const Geometry& g = *geometries_[geomID];
+  hit.object = g.object;
+  if (g.analytic) {  // Embree holds what the user geometry's callbacks worked out
+    hit.t = t;
+    hit.point = origin + hit.t * direction;
+    hit.normal = ng.normalized();
+    hit.uv = uvOf(geomID, primID, u, v);
+    return;
+  }
+  const TriangleCrossing c = crossing(g, primID, origin, direction);
+  hit.t = c.t;
   hit.point = origin + hit.t * direction;
-  hit.normal = ng.normalized();
-  hit.uv = uvOf(geomID, primID, u, v);
+  hit.normal = c.normal.normalized();
+  hit.uv = uvOf(geomID, primID, c.u, c.v);
 }
 
 int HitPacket::object(int k) const { return scene_->geometries_[rayhit_.hit.geomID[k]]->object; }
 
 Eigen::Vector2d HitPacket::uv(int k) const {
-  return scene_->uvOf(rayhit_.hit.geomID[k], rayhit_.hit.primID[k], rayhit_.hit.u[k], rayhit_.hit.v[k]);
+  const unsigned geomID = rayhit_.hit.geomID[k], primID = rayhit_.hit.primID[k];
+  const Geometry& g = *scene_->geometries_[geomID];
+  if (g.analytic) return scene_->uvOf(geomID, primID, rayhit_.hit.u[k], rayhit_.hit.v[k]);
+  const TriangleCrossing c = crossing(g, primID, origin(k), direction(k));
+  return scene_->uvOf(geomID, primID, c.u, c.v);
 }
 
 SurfaceHit HitPacket::surface(int k) const {

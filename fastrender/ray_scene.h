@@ -26,6 +26,18 @@ struct SurfaceHit {
 constexpr int kRayPacketSize = 8;
 class RayScene;
 
+// Embree's code paths (ISAs) round differently — fused multiply-adds, approximate reciprocals,
+// BVH4 or BVH8 — so its hit distances and (u, v) differ in their last bits from one CPU to another.
+// omnicam works a triangle hit out again in double (fillHit), so frames do not depend on that.
+// Which triangle a grazing ray hits is still Embree's decision, so every CPU with AVX2 and FMA
+// takes the one path "avx2" (as fast as AVX-512 here), and others Embree's own choice, "native"
+// (docs/conventions.md §8). OMNICAM_EMBREE_ISA forces one, as the test of that guarantee does.
+inline constexpr const char* kEmbreeIsaVariable = "OMNICAM_EMBREE_ISA";
+inline constexpr const char* kEmbreeIsas[] = {"sse2", "sse4.2", "avx", "avx2", "avx512", "native"};
+// The path this process's ray scenes take: OMNICAM_EMBREE_ISA's, else avx2 or native as above.
+// InputError if that names none of kEmbreeIsas.
+std::string embreeIsa();
+
 // One packet's answers as Embree returned them. A hit's details (point, normal, UV) are worked
 // out only when asked for: unlit shading of a plain material needs nothing but the object.
 class HitPacket {
@@ -112,15 +124,18 @@ class RayScene {
     bool analytic = false;                     // user geometry: hit.u/v hold texture UVs
     std::vector<Eigen::Vector2f> vertexUv;     // triangles: UV per vertex
     std::vector<Eigen::Vector3i> triangles;    // triangles: vertex indices
+    std::vector<Vec3> vertices;                // triangles: the vertices Embree holds (float)
     const Shape* shape = nullptr;              // analytic: the primitive
   };
 
  private:
   void throwIfEmbreeFailed() const;
   friend class HitPacket;
-  // Texture coordinates of a hit on geometry geomID, primitive primID, at Embree's (u, v).
+  // Texture coordinates of a hit on geometry geomID, primitive primID, at barycentrics (u, v) as Embree counts them.
   Eigen::Vector2d uvOf(unsigned geomID, unsigned primID, float u, float v) const;
   // The SurfaceHit of a ray that hit geometry geomID, primitive primID, at (u, v) with normal ng.
+  // On a triangle, the distance, (u, v) and normal are worked out again, in double from its
+  // vertices: Embree's own depend on its code path (docs/conventions.md, "Reproducible pixels").
   void fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u, float v,
                const Vec3& ng, SurfaceHit& hit) const;  // std::runtime_error (an internal error) if Embree reported one
   mutable Errors errors_;

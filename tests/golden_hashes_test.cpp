@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "cpu_independent_math.h"
 #include "dataset_reader.h"
 #include "image.h"
 #include "sha256.h"
@@ -74,7 +75,7 @@ class GoldenHashes : public ::testing::Test {
   }
   std::string path(const std::string& name) const { return (work_ / name).string(); }
   void omnicam(const std::string& args) const {
-    const auto [code, out] = testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");
+    const auto [code, out] = testing::runShell(environment_ + OMNICAM_BINARY + " " + args + " 2>&1");
     if (code != 0) throw std::runtime_error("omnicam " + args + " exited " + std::to_string(code) + ":\n" + out);
   }
   // One render through the CLI, its pixels hashed.
@@ -116,11 +117,16 @@ class GoldenHashes : public ::testing::Test {
       }
   }
 
+  void renderOwnSet();
+  std::map<std::string, std::string> golden() const;
+
   fs::path work_;
+  std::string environment_;  // variables set for each omnicam run, as "NAME=value " words
   std::map<std::string, std::string> hashes_;
 };
 
-TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
+// Every render of the set that omnicam's own code makes (the fast engine: renders and datasets).
+void GoldenHashes::renderOwnSet() {
   const std::string robocup = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
   const std::string small = "--size 48 --spp 4 --pose=1.2,-0.4,30";
   // The fast engine, every mode, both shadings.
@@ -151,13 +157,8 @@ TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
   const json pinhole = {{"model", "pinhole"}, {"width", 48}, {"height", 36}, {"fx", 40}, {"fy", 40},
                         {"distortion", {{"k1", -0.2}, {"p2", 0.001}}}, {"rotation_deg", {0, 20, -10}}};
   render("fast_lens_pinhole_rolling", lensScene("pinhole", pinhole, {{"exposure_s", 0.004}, {"rolling", {{"line_time_us", 300}}}}), "--spp 4 --pose=1.2,-0.4,30 --velocity 1,0.2,90");
-  const json equidistant = {{"model", "fisheye_equidistant"}, {"width", 32}, {"height", 32}, {"f_px", 9}, {"fov_deg", 190}};
-  render("povray_lens_fisheye", lensScene("equidistant", equidistant), "--engine povray --spp 4 --pose=1.2,-0.4,30");
-  // The ground truths.
-  render("povray_ideal", robocup, "--engine povray --size 32 --spp 4 --pose=1.2,-0.4,30");
-  const std::string turned = scene("turned", {{"camera", {{"offset_mm", {2, -1, 0.5}}, {"rotation_deg", {1, -0.5, 0.3}}}}});
-  render("povray_physical", turned, "--engine povray --size 32 --spp 4 --pose=1.2,-0.4,30");
-  render("blender_ideal", robocup, "--engine blender --size 32 --spp 4 --pose=1.2,-0.4,30");
+  // Path tracing: its sampling calls sin, cos and sqrt for every bounce.
+  render("fast_path", robocup, "--size 32 --spp 4 --pose=1.2,-0.4,30 --shading path");
   // Datasets: both layouts, every output and COCO, two cameras, a moving robot.
   const json outputs = {{"depth", true}, {"instance", true}, {"semantic", true}, {"normal", true}, {"landmarks", true}, {"coco", true}};
   json spec = {{"format", "omnicam-dataset/1"}, {"scene", robocup}, {"spp", 4}, {"shading", "lit"}, {"size", 48},
@@ -171,6 +172,33 @@ TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
   spec["layout"] = "multilayer";
   spec["outputs"].erase("rgb");
   dataset("dataset_multilayer", spec);
+}
+
+// The golden file's hashes, by name.
+std::map<std::string, std::string> GoldenHashes::golden() const {
+  std::map<std::string, std::string> golden;
+  std::ifstream in(kGoldenFile);
+  if (!in) throw std::runtime_error(std::string(kGoldenFile) + " is missing");
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string name, hash;
+    fields >> name >> hash;
+    golden[name] = hash;
+  }
+  return golden;
+}
+
+TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
+  renderOwnSet();
+  // The ground truths.
+  const std::string robocup = OMNICAM_SOURCE_DIR "/scenes/robocup2006.json";
+  const json equidistant = {{"model", "fisheye_equidistant"}, {"width", 32}, {"height", 32}, {"f_px", 9}, {"fov_deg", 190}};
+  render("povray_lens_fisheye", lensScene("equidistant", equidistant), "--engine povray --spp 4 --pose=1.2,-0.4,30");
+  render("povray_ideal", robocup, "--engine povray --size 32 --spp 4 --pose=1.2,-0.4,30");
+  const std::string turned = scene("turned", {{"camera", {{"offset_mm", {2, -1, 0.5}}, {"rotation_deg", {1, -0.5, 0.3}}}}});
+  render("povray_physical", turned, "--engine povray --size 32 --spp 4 --pose=1.2,-0.4,30");
+  render("blender_ideal", robocup, "--engine blender --size 32 --spp 4 --pose=1.2,-0.4,30");
 
   if (std::getenv("OMNICAM_RECORD_GOLDEN")) {
     std::ofstream out(kGoldenFile);
@@ -180,21 +208,65 @@ TEST_F(GoldenHashes, ThePixelsAndAnnotationsOfAFixedSetOfRendersAreUnchanged) {
     std::printf("recorded %zu hashes in %s\n", hashes_.size(), kGoldenFile);
     return;
   }
-  std::map<std::string, std::string> golden;
-  std::ifstream in(kGoldenFile);
-  ASSERT_TRUE(in) << kGoldenFile << " is missing";
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string name, hash;
-    fields >> name >> hash;
-    golden[name] = hash;
-  }
+  const std::map<std::string, std::string> golden = this->golden();
   EXPECT_EQ(golden.size(), hashes_.size()) << "the set of renders changed";
   for (const auto& [name, hash] : hashes_) {
     const auto it = golden.find(name);
     if (it == golden.end()) ADD_FAILURE() << name << ": not in " << kGoldenFile;
     else EXPECT_EQ(hash, it->second) << name << ": its decoded values changed";
+  }
+}
+
+// Issue #45: a frame is the same on every x86-64 machine. What a CPU's features steer: Embree's
+// code path (avx2, or Embree's own choice on a CPU without it; OMNICAM_EMBREE_ISA forces each
+// one here) and the build of glibc's libm (omnicam masks FMA, so an FMA CPU takes the plain
+// build like a CPU without FMA; masking AVX too gives the SSE2 build that CPUs without AVX
+// take). Under each, omnicam's own renders must give the golden hashes. This machine must offer
+// every path (AVX-512 and FMA).
+TEST_F(GoldenHashes, EveryCodePathOfTheCpuMakesTheSamePixels) {
+  __builtin_cpu_init();
+  const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq") &&
+                      __builtin_cpu_supports("avx512cd");
+  // The libm builds are really different here, and the tunables really select them.
+  ASSERT_TRUE(__builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2"))
+      << "this CPU has no FMA and AVX2: glibc's FMA build of libm, which omnicam must avoid, cannot be taken here";
+  const auto probe = [](const std::string& tunables) {
+    const auto [code, out] = testing::runShell("GLIBC_TUNABLES=" + tunables + " " LIBM_PROBE);
+    if (code != 0) throw std::runtime_error("libm_probe exited " + std::to_string(code));
+    return out;
+  };
+  const std::string fmaBuild = probe("glibc.cpu.hwcaps="), plainBuild = probe(kPlainMathTunable);
+  ASSERT_NE(fmaBuild, plainBuild) << kPlainMathTunable << " does not change libm's results: the tunable no longer selects its build";
+  ASSERT_EQ(plainBuild, probe("glibc.cpu.hwcaps=-AVX,-AVX2,-FMA,-FMA4")) << "libm's AVX and SSE2 builds disagree";
+
+  // Embree's paths as Debian's Embree 3.13 is built: SSE2, AVX, AVX2, AVX-512 ("isa=sse4.2" takes
+  // the SSE2 code there).
+  struct Path {
+    std::string name, environment;
+    bool cpuHasIt;
+  };
+  // With the tunable omnicam would add already set, it does not start itself again (quicker).
+  const std::string plainMath = std::string("GLIBC_TUNABLES=") + kPlainMathTunable;
+  const std::vector<Path> paths = {
+      {"Embree sse2", plainMath + " OMNICAM_EMBREE_ISA=sse2", true},
+      {"Embree avx", plainMath + " OMNICAM_EMBREE_ISA=avx", __builtin_cpu_supports("avx") != 0},
+      {"Embree avx2", plainMath + " OMNICAM_EMBREE_ISA=avx2", __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")},
+      {"Embree avx512", plainMath + " OMNICAM_EMBREE_ISA=avx512", avx512},
+      {"libm's SSE2 build (a CPU without AVX)", "GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX,-AVX2,-FMA,-FMA4", true},
+  };
+  const std::map<std::string, std::string> golden = this->golden();
+  for (const Path& path : paths) {
+    SCOPED_TRACE(path.name);
+    ASSERT_TRUE(path.cpuHasIt) << "this CPU cannot take the path " << path.name << ", so it is not checked here";
+    environment_ = path.environment + " ";
+    hashes_.clear();
+    renderOwnSet();
+    for (const auto& [name, hash] : hashes_) {
+      const auto it = golden.find(name);
+      if (it == golden.end()) ADD_FAILURE() << name << ": not in " << kGoldenFile;
+      else EXPECT_EQ(hash, it->second) << name << ": its decoded values differ on the path " << path.name;
+    }
   }
 }
 
