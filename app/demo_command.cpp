@@ -47,6 +47,7 @@ struct DemoArgs {
   int spp = 16;
   bool povray = true, blender = true;
   double budgetScale = 1.0;
+  std::vector<std::string> only;  // --sections: run these, leave the others out
   std::string section;  // a child renders this one section (demo_sections.h)
 };
 
@@ -604,9 +605,13 @@ the model of docs/conventions.md §1.</p>
   return html.str();
 }
 
-// What a child `omnicam demo --section NAME` renders; returns the section's HTML.
+// What a child `omnicam demo --section NAME` renders; returns the section's HTML. Run alone (to
+// reproduce it), a section writes the shared hall itself.
 std::string sectionHtml(const DemoArgs& a) {
   const std::string dir = scenesDir();
+  const bool needsHall = a.section == "glance" || a.section == "light" || a.section == "robot";
+  if (needsHall && !std::filesystem::exists(std::filesystem::symlink_status(hallScenePath(a.out))))
+    writeDemoHall(a.out, dir + "/robocup2006.json");
   if (a.section == "start-pose") return startPoseHtml(a);
   if (a.section == "glance") return glanceSection(renderGlance(a.out, a), readRingSummary(a), a.spp);
   if (a.section == "light") return demoLight(a.out, hallScenePath(a.out), a.blender);
@@ -616,9 +621,16 @@ std::string sectionHtml(const DemoArgs& a) {
   if (a.section == "robot")
     return demoMotion(a.out, arena, a.spp) + demoDataset(a.out, dir + "/robocup2006.json") +
            demoTexturedHall(a.out, dir + "/robocup2006.json");
-  std::string names;
-  for (const DemoSection& s : demoSections()) names += (names.empty() ? "" : ", ") + s.name;
-  throw InputError("--section: unknown section " + quote(a.section) + " (" + names + ")");
+  throw std::logic_error("unknown demo section " + a.section);  // checked by checkSectionNames
+}
+
+// Refuses names that are not sections, before anything is written.
+void checkSectionNames(const std::vector<std::string>& names, const std::string& flag) {
+  std::string known;
+  for (const DemoSection& s : demoSections()) known += (known.empty() ? "" : ", ") + s.name;
+  for (const std::string& name : names)
+    if (std::none_of(demoSections().begin(), demoSections().end(), [&](const DemoSection& s) { return s.name == name; }))
+      throw InputError(flag + ": unknown section " + quote(name) + " (the sections are " + known + ")");
 }
 
 void renderOneSection(const DemoArgs& a) {
@@ -663,6 +675,8 @@ int runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
   checkSpp(a.spp, "--spp");  // before any folder is made
   if (!(a.budgetScale > 0.0) || a.budgetScale > 1000.0) throw InputError("--budget-scale: must be above 0 and at most 1000");
+  if (!a.section.empty()) checkSectionNames({a.section}, "--section");
+  checkSectionNames(a.only, "--sections");
   ensureDirectory(a.out, "-o");
   if (!a.section.empty()) {
     renderOneSection(a);
@@ -681,6 +695,11 @@ int runDemo(const DemoArgs& a) {
     const size_t k = static_cast<size_t>(
         std::find_if(sections.begin(), sections.end(), [&](const DemoSection& s) { return s.name == kRunOrder[n]; }) -
         sections.begin());
+    if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), sections[k].name) == a.only.end()) {
+      runs[k].outcome = SectionOutcome::NotRun;
+      runs[k].reason = "not run (--sections)";
+      continue;
+    }
     const double seconds = sectionBudgetSeconds(sections[k], budget);
     std::printf("demo: section %zu/%zu, %s (budget %.0f s)\n", n + 1, kRunOrder.size(), sections[k].name.c_str(), seconds);
     std::fflush(stdout);
@@ -696,13 +715,14 @@ int runDemo(const DemoArgs& a) {
   html << kReportHead;
   std::string shortfalls;
   for (size_t k = 0; k < runs.size(); ++k)
-    if (runs[k].outcome != SectionOutcome::Done)
+    if (fellShort(runs[k]))
       shortfalls += (shortfalls.empty() ? "" : ", ") + escapeMarkup(sections[k].name) + " (" + escapeMarkup(runs[k].reason) + ")";
   if (!shortfalls.empty())
     html << "<p class=\"short\"><b>Sections that fell short:</b> " << shortfalls
          << ". They are marked below; the rest of the report is complete.</p>\n";
   for (size_t k = 0; k < runs.size(); ++k)
-    html << (runs[k].outcome == SectionOutcome::Done ? runs[k].html : shortSectionHtml(sections[k], runs[k]));
+    if (runs[k].outcome != SectionOutcome::NotRun)
+      html << (runs[k].outcome == SectionOutcome::Done ? runs[k].html : shortSectionHtml(sections[k], runs[k]));
   html << R"(
 <p>Every image has a sidecar (<code>*.png.json</code>): engine and version, scene SHA-256, pose, rig, spp, seconds,
 and OpenCV <code>cv::omnidir</code> intrinsics.</p>
@@ -728,6 +748,9 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("!--no-blender", args->blender, "Skip the Blender ground truth");
   cmd->add_option("--budget-scale", args->budgetScale,
                   "Multiply every section's time budget (default 1; a slow or busy machine: 2 or more)");
+  cmd->add_option("--sections", args->only, "Run only these sections (comma-separated: glance, start-pose, light, "
+                  "physical, lenses, robot); the report lists the others as not run")
+      ->delimiter(',');
   cmd->add_option("--section", args->section, "Render one section into the report folder (what the demo runs for each)")
       ->group("");
   cmd->callback([args, &exitCode] { exitCode = runDemo(*args); });

@@ -56,6 +56,9 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
   ProcessOptions options;
   options.timeoutSeconds = budgetSeconds;
   options.echoOutput = true;
+  // Longer than a renderer's own grace (external_process.h): a section ended by its budget or an
+  // interrupt first ends its renderer, whose process group the section's SIGKILL would not reach.
+  options.terminationGraceSeconds = 30.0;
   const auto start = std::chrono::steady_clock::now();
   const ProcessResult result = runProcess(argv, sectionsDir, sectionsDir + "/" + section.name + ".log", options);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -82,10 +85,14 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
   return run;
 }
 
+bool fellShort(const SectionRun& run) {
+  return run.outcome == SectionOutcome::Failed || run.outcome == SectionOutcome::TimedOut;
+}
+
 int demoExitCode(const std::vector<SectionRun>& runs) {
   int bits = 0;
   for (size_t k = 0; k < runs.size(); ++k)
-    if (runs[k].outcome != SectionOutcome::Done) bits |= 1 << k;
+    if (fellShort(runs[k])) bits |= 1 << k;
   return bits == 0 ? 0 : 64 + bits;
 }
 

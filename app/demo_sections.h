@@ -27,7 +27,8 @@ struct DemoBudgetInputs {
 // (a machine half as fast, both cores busy with other work), times `scale`.
 double sectionBudgetSeconds(const DemoSection& section, const DemoBudgetInputs& inputs);
 
-enum class SectionOutcome { Done, Failed, TimedOut };
+// NotRun: left out by --sections (neither shown nor counted as short).
+enum class SectionOutcome { Done, Failed, TimedOut, NotRun };
 
 struct SectionRun {
   SectionOutcome outcome = SectionOutcome::Failed;
@@ -44,8 +45,12 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
                           double budgetSeconds);
 
 // The exit code of a demo whose `runs` (in `sections` order, one bit per section from bit 0): 0
-// when every section is done, else 64 + the bits of those that fell short.
+// when every section run is done, else 64 + the bits of those that fell short (65 to 127; 126 and
+// 127, which shells also use, mean all sections but the glance, or all, fell short).
 int demoExitCode(const std::vector<SectionRun>& runs);
+
+// True for a section that was run and did not finish.
+bool fellShort(const SectionRun& run);
 
 // HTML for a section that fell short: its title, why, its last output and the command.
 std::string shortSectionHtml(const DemoSection& section, const SectionRun& run);

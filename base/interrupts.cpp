@@ -1,6 +1,7 @@
 #include "interrupts.h"
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -36,6 +37,10 @@ void installInterruptHandlers() {
   action.sa_flags = SA_RESTART;
   ::sigaction(SIGTERM, &action, nullptr);
   ::sigaction(SIGINT, &action, nullptr);
+  // What an ended program leaves behind (its renderer's own children) is adopted by omnicam rather
+  // than by init, so that omnicam can wait until the last of a process group is gone
+  // (external_process.cpp).
+  ::prctl(PR_SET_CHILD_SUBREAPER, 1);
   installed.store(true);
 }
 

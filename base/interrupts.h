@@ -20,7 +20,8 @@ class Interrupted : public std::runtime_error {
   int signal_;
 };
 
-// The CLI installs the handler once, at start. Without it (Python, tests) nothing is recorded.
+// The CLI installs the handler once, at start, and adopts orphaned descendants (a child
+// subreaper). Without it (Python, tests) nothing is recorded.
 void installInterruptHandlers();
 // The verb polls interruptRequested() itself between units of work: a signal outside a region
 // no longer ends the process (the dataset verb's resumable stop).

@@ -91,6 +91,10 @@ FrameFilesComparison compareFrameFiles(const std::string& dirA, const std::strin
                                                 showPath((fs::path(dirA) / f.fileA).string()));
   ImageRowReader b = ImageRowReader::openMemory(reinterpret_cast<const unsigned char*>(bytesB.data()), bytesB.size(),
                                                 showPath((fs::path(dirB) / f.fileB).string()));
+  if (a.width() != b.width() || a.height() != b.height())
+    throw InputError(showPath((fs::path(dirB) / f.fileB).string()) + ": frame " + std::to_string(f.index) + " of camera " +
+                     quote(f.camera) + " is " + std::to_string(b.width()) + "x" + std::to_string(b.height()) + ", A's is " +
+                     std::to_string(a.width()) + "x" + std::to_string(a.height()));
   requireMemory(imageRowsCompareBytes(a, b), "comparing two frames");
   return {compareImageRows(a, b, options), static_cast<int64_t>(bytesA.size() + bytesB.size()) + imageRowsCompareBytes(a, b)};
 }

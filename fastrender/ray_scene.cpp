@@ -197,7 +197,8 @@ struct TriangleCrossing {
   Vec3 normal;
 };
 
-TriangleCrossing crossing(const Geometry& g, unsigned primID, const Vec3& origin, const Vec3& direction) {
+// Empty for a ray in the triangle's plane or a triangle without area (Embree's own numbers then).
+std::optional<TriangleCrossing> crossing(const Geometry& g, unsigned primID, const Vec3& origin, const Vec3& direction) {
   const Eigen::Vector3i& tri = g.triangles[primID];
   const Vec3& a = g.vertices[tri[0]];
   const Vec3 e1 = g.vertices[tri[1]] - a, e2 = g.vertices[tri[2]] - a;
@@ -208,6 +209,7 @@ TriangleCrossing crossing(const Geometry& g, unsigned primID, const Vec3& origin
   const double area2 = c.normal.squaredNorm();
   c.u = static_cast<float>(c.normal.dot(w.cross(e2)) / area2);
   c.v = static_cast<float>(c.normal.dot(e1.cross(w)) / area2);
+  if (!std::isfinite(c.t) || !std::isfinite(c.u) || !std::isfinite(c.v) || !(area2 > 0.0)) return std::nullopt;
   return c;
 }
 
@@ -224,11 +226,11 @@ void RayScene::fillHit(const Vec3& origin, const Vec3& direction, float t, unsig
     hit.uv = uvOf(geomID, primID, u, v);
     return;
   }
-  const TriangleCrossing c = crossing(g, primID, origin, direction);
-  hit.t = c.t;
+  const std::optional<TriangleCrossing> c = crossing(g, primID, origin, direction);
+  hit.t = c ? c->t : t;
   hit.point = origin + hit.t * direction;
-  hit.normal = c.normal.normalized();
-  hit.uv = uvOf(geomID, primID, c.u, c.v);
+  hit.normal = c ? c->normal.normalized() : ng.normalized();
+  hit.uv = c ? uvOf(geomID, primID, c->u, c->v) : uvOf(geomID, primID, u, v);
 }
 
 int HitPacket::object(int k) const { return scene_->geometries_[rayhit_.hit.geomID[k]]->object; }
@@ -237,8 +239,8 @@ Eigen::Vector2d HitPacket::uv(int k) const {
   const unsigned geomID = rayhit_.hit.geomID[k], primID = rayhit_.hit.primID[k];
   const Geometry& g = *scene_->geometries_[geomID];
   if (g.analytic) return scene_->uvOf(geomID, primID, rayhit_.hit.u[k], rayhit_.hit.v[k]);
-  const TriangleCrossing c = crossing(g, primID, origin(k), direction(k));
-  return scene_->uvOf(geomID, primID, c.u, c.v);
+  const std::optional<TriangleCrossing> c = crossing(g, primID, origin(k), direction(k));
+  return c ? scene_->uvOf(geomID, primID, c->u, c->v) : scene_->uvOf(geomID, primID, rayhit_.hit.u[k], rayhit_.hit.v[k]);
 }
 
 SurfaceHit HitPacket::surface(int k) const {

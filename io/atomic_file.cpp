@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "errors.h"
+#include "interrupts.h"
 #include "file_descriptor.h"
 
 namespace omnicam {
@@ -59,6 +60,8 @@ void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::st
 
 void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
                              Durability durability) {
+  // SIGTERM or SIGINT now is acted on once the temporary is renamed or removed (base/interrupts.h).
+  const DeferInterrupts deferred;
   struct stat existing {};
   if (::fstatat(folderFd, name.c_str(), &existing, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(existing.st_mode))
     throw InputError(shownPath + ": is an existing folder, not a file name");

@@ -247,14 +247,12 @@ void SafeFolder::makeFolders(const std::string& relative) const {
 }
 
 void SafeFolder::writeFile(const std::string& relative, std::string_view bytes, Durability durability) const {
-  const std::vector<std::string> parts = partsOf(relative);
-  FileDescriptor folder;
-  try {
-    folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
-  } catch (const Problem& p) {
-    rethrow(root_, p);
-  }
-  writeBytesAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root_, relative)), bytes, durability);
+  bool given = false;
+  writeFileFrom(relative, [&](std::string_view& piece) {
+    if (given) return false;
+    piece = bytes;
+    return given = true;
+  }, durability);
 }
 
 void SafeFolder::writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const {

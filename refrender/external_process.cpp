@@ -41,23 +41,33 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Ends the process group led by `pid`: SIGTERM (and SIGCONT), up to `graceSeconds` for the leader to exit, then
-// SIGKILL to whatever of the group is left. Returns the leader's wait status.
+// True once the leader `pid` has exited; it is left unreaped (a zombie), so its process group id
+// cannot be taken by another group while the group is swept.
+bool leaderExited(pid_t pid) {
+  siginfo_t info{};
+  return ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+}
+
+// Ends what is left of the group of the exited leader `pid` (helpers it left behind), reaps the
+// leader, then the members its end handed to omnicam (the CLI is a child subreaper,
+// base/interrupts.h), so that none still runs when this returns. Returns the leader's status.
+int sweepAndReap(pid_t pid) {
+  ::kill(-pid, SIGKILL);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  while (::waitpid(-pid, nullptr, 0) > 0) {
+  }
+  return status;
+}
+
+// Ends the process group led by `pid`: SIGTERM (and SIGCONT), up to `graceSeconds` for the leader
+// to exit, then SIGKILL to the whole group. Returns the leader's wait status.
 int endProcessGroup(pid_t pid, double graceSeconds) {
   ::kill(-pid, SIGTERM);
   ::kill(-pid, SIGCONT);  // a stopped member acts on SIGTERM only once it runs
   const auto deadline = Clock::now() + std::chrono::duration<double>(graceSeconds);
-  int status = 0;
-  while (::waitpid(pid, &status, WNOHANG) != pid) {
-    if (Clock::now() > deadline) {
-      ::kill(-pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ::kill(-pid, SIGKILL);  // members that outlived their leader (the group id stays theirs)
-  return status;
+  while (!leaderExited(pid) && Clock::now() <= deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  return sweepAndReap(pid);  // SIGKILL: the members still there, the leader too if it outlived its grace
 }
 
 // Copies what was appended to the file at `path` since `offset` to stdout.
@@ -126,7 +136,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   const auto deadline = Clock::now() + std::chrono::duration<double>(options.timeoutSeconds);
   std::streamoff echoed = 0;
   int status = 0;
-  while (::waitpid(pid, &status, WNOHANG) != pid) {
+  bool exited = false;
+  while (!(exited = leaderExited(pid))) {
     if (options.echoOutput) echoNewOutput(logPath, echoed);
     if (const int signal = pendingInterrupt()) {
       endProcessGroup(pid, options.terminationGraceSeconds);
@@ -140,6 +151,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  if (exited) status = sweepAndReap(pid);
   if (options.echoOutput) echoNewOutput(logPath, echoed);
   if (!result.timedOut && WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
   if (!result.timedOut && WIFSIGNALED(status)) result.endedBySignal = WTERMSIG(status);

@@ -109,7 +109,8 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
     for (int m = 0; m < instants.count; ++m) jobs.push_back({line, m});
   // Each render is the whole n×-larger image (RGBA floats; while decoded, its channels too).
   const int64_t renderBytes = static_cast<int64_t>(width) * n * height * n * 32;
-  const size_t atOnce = std::min(jobs.size(), kHeldPovrayRenders + kConcurrentPovrayJobs);
+  // A job starts only within kHeldPovrayRenders of the next to be summed: running and held ones together.
+  const size_t atOnce = std::min(jobs.size(), kHeldPovrayRenders);
   requireMemory(static_cast<int64_t>(atOnce) * renderBytes + static_cast<int64_t>(width) * height * 12,
                 "POV-Ray's moving frame (" + std::to_string(atOnce) + " of its " + std::to_string(jobs.size()) + " renders of " +
                     std::to_string(width * n) + "x" + std::to_string(height * n) + " pixels held at once)");
@@ -130,26 +131,36 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
     }
     const InstantJob& job = jobs[k];
     const double seconds = lineStart(shutter, job.line) + instantTime(shutter, job.instant, instants.count);
+    // Any failure (a render, or summing it) stops the jobs waiting for their turn; runConcurrently
+    // rethrows it once the running ones are done.
+    const auto stopOthers = [&] {
+      const std::lock_guard<std::mutex> lock(mutex);
+      stopped = true;
+      summed.notify_all();
+    };
     ImageRGBA render;
     try {
       render = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options,
                             options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, width, height, n));
     } catch (...) {
-      // The jobs waiting for this one to be summed stop (runConcurrently rethrows this).
-      const std::lock_guard<std::mutex> lock(mutex);
-      stopped = true;
-      summed.notify_all();
+      stopOthers();
       throw;
     }
-    const std::lock_guard<std::mutex> lock(mutex);
-    held.emplace(k, std::move(render));
-    for (auto next = held.find(nextToSum); next != held.end(); next = held.find(nextToSum)) {
-      const InstantJob& done = jobs[nextToSum];
-      film.accumulateSupersampled(next->second, instants.passes, [&](int i, int j, int a, int b, int pass) {
-        return lineOf(shutter, i, j, width, height) == done.line && instantOf(shutter, a, b, n, pass) == done.instant;
-      }, sums);
-      held.erase(next);
-      ++nextToSum;
+    std::unique_lock<std::mutex> lock(mutex);
+    try {
+      held.emplace(k, std::move(render));
+      for (auto next = held.find(nextToSum); next != held.end(); next = held.find(nextToSum)) {
+        const InstantJob& done = jobs[nextToSum];
+        film.accumulateSupersampled(next->second, instants.passes, [&](int i, int j, int a, int b, int pass) {
+          return lineOf(shutter, i, j, width, height) == done.line && instantOf(shutter, a, b, n, pass) == done.instant;
+        }, sums);
+        held.erase(next);
+        ++nextToSum;
+      }
+    } catch (...) {
+      lock.unlock();
+      stopOthers();
+      throw;
     }
     summed.notify_all();
   });

@@ -307,12 +307,26 @@ TEST_F(InputTrustTest, WorkBeyondTheMachinesMemoryIsRefusedBeforeItIsAllocated) 
     const auto [code, out] = testing::runShell("oiiotool --create 16384x8192 4 -o " + path(name) + " 2>&1");
     ASSERT_EQ(code, 0) << "oiiotool (openimageio-tools, make deps): " << out;
   }
-  refusedForMemory("compare " + path("a.png") + " " + path("b.png"));
+  // Two such images compare streamed, in bounded memory (issue #45); their heat map needs them whole.
+  {
+    const auto [code, out] = testing::runShell("ulimit -v 4194304; " + std::string(OMNICAM_BINARY) + " compare " +
+                                               path("a.png") + " " + path("b.png") + " 2>&1");
+    EXPECT_EQ(code, 0) << out;
+    EXPECT_NE(out.find("compared 134217728 pixels"), std::string::npos) << out;
+  }
+  refusedForMemory("compare " + path("a.png") + " " + path("b.png") + " --diff " + path("d.png"));
   // Datasets: B (a folder in the dataset layout) holds such a frame where A's 16-pixel one is.
   renderDataset();
   fs::create_directories(dir_ / "b" / "cam0" / "rgb");
   fs::copy_file(dir_ / "a.png", dir_ / "b" / "cam0" / "rgb" / "000000.png");
-  refusedForMemory("compare " + path("ds") + " " + path("b"));
+  // Streamed too: the frames' sizes are compared first, and B's frame is named.
+  {
+    const auto [code, out] = testing::runShell("ulimit -v 4194304; " + std::string(OMNICAM_BINARY) + " compare " +
+                                               path("ds") + " " + path("b") + " 2>&1");
+    EXPECT_EQ(code, 2) << out;
+    EXPECT_TRUE(isOneLine(out)) << out;
+    EXPECT_NE(out.find("000000.png: frame 0 of camera \"cam0\" is 16384x8192, A's is 16x16"), std::string::npos) << out;
+  }
   // Multilayer: B's frame file a valid 16384 x 8192 OpenEXR (half RGBA, a few hundred KB): the
   // frame reader sizes it per channel, and a shortage stays a shortage (exit 5), not bad input.
   const auto [made, madeOut] = omnicam("dataset " + spec({{"layout", "multilayer"}, {"outputs", json::object()}}, "ml.json") +

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "markup.h"
+
 extern char** environ;
 
 namespace omnicam::testing {
@@ -20,12 +22,6 @@ namespace omnicam::testing {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string singleQuoted(const std::string& text) {
-  std::string out = "'";
-  for (char ch : text) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
 
 std::vector<std::string> linesOf(const fs::path& path) {
   std::ifstream in(path);
@@ -45,12 +41,12 @@ RendererShim::RendererShim(const fs::path& folder, const std::string& realProgra
   out << "#!/bin/sh\n"
          "# Test stand-in: the real renderer, stopped after its first output line.\n"
          "case \"$1\" in --version) exec " << realProgram << " \"$@\";; esac\n"
-         "pipe=" << singleQuoted((folder / "pipe").string()) << ".$$\n"
+         "pipe=" << shellQuote((folder / "pipe").string()) << ".$$\n"
          "mkfifo \"$pipe\"\n"
       << realProgram << " \"$@\" >\"$pipe\" 2>&1 &\n"
          "renderer=$!\n"
          "{ IFS= read -r first; printf '%s\\n' \"$first\"; kill -STOP \"$renderer\"; echo \"$$ $renderer\" >> "
-      << singleQuoted(starts) << "; cat; } <\"$pipe\"\n"
+      << shellQuote(starts) << "; cat; } <\"$pipe\"\n"
          "rm -f \"$pipe\"\n"
          "wait \"$renderer\"\n";
   out.close();
