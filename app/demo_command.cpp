@@ -535,15 +535,16 @@ MethodSection methodSection(const DemoArgs& a, const Scene& arena) {
 }
 
 // The sections in report order; a section's bit in the exit code is its place here. Costs are
-// what each renders on an idle 2-core machine at 16 spp (measured with `omnicam demo`).
+// what each renders on an idle 2-core machine at 16 spp, by engine (measured 2026-11-28 with
+// `omnicam demo`, `--no-blender` and `--no-povray --no-blender`; the whole demo took 54 s).
 const std::vector<DemoSection>& demoSections() {
   static const std::vector<DemoSection> sections = {
-      {"glance", "At a glance", 2.0, 6.0, 0.0, true},
-      {"start-pose", "The thesis camera at its start pose: renders, rings, the thesis' method, views", 4.0, 14.0, 40.0, true},
-      {"light", "Light: physically based at the fast renderer's speed", 3.0, 0.0, 30.0, false},
-      {"physical", "The physical camera", 2.0, 6.0, 0.0, true},
-      {"lenses", "Lens cameras", 2.0, 8.0, 12.0, true},
-      {"robot", "Time in the camera, a reference dataset, texture realism", 20.0, 0.0, 0.0, false},
+      {"glance", "At a glance", 1.5, 2.0, 0.0, true},
+      {"start-pose", "The thesis camera at its start pose: renders, rings, the thesis' method, views", 3.0, 8.5, 11.5, true},
+      {"light", "Light: physically based at the fast renderer's speed", 2.0, 0.0, 15.0, false},
+      {"physical", "The physical camera", 1.0, 1.6, 0.0, true},
+      {"lenses", "Lens cameras", 2.0, 2.3, 2.2, true},
+      {"robot", "Time in the camera, a reference dataset, texture realism", 2.0, 0.0, 0.0, true},
   };
   return sections;
 }
@@ -618,9 +619,11 @@ std::string sectionHtml(const DemoArgs& a) {
   const Scene arena = loadScene(dir + "/robocup2006.json");
   if (a.section == "physical") return demoPhysicalCamera(a.out, arena, a.spp, a.povray);
   if (a.section == "lenses") return demoLenses(a.out, arena, a.spp, a.povray, a.blender);
-  if (a.section == "robot")
-    return demoMotion(a.out, arena, a.spp) + demoDataset(a.out, dir + "/robocup2006.json") +
-           demoTexturedHall(a.out, dir + "/robocup2006.json");
+  if (a.section == "robot") {  // one after the other, as the progress lines say
+    const std::string motion = demoMotion(a.out, arena, a.spp);
+    const std::string dataset = demoDataset(a.out, dir + "/robocup2006.json");
+    return motion + dataset + demoTexturedHall(a.out, dir + "/robocup2006.json");
+  }
   throw std::logic_error("unknown demo section " + a.section);  // checked by checkSectionNames
 }
 

@@ -197,7 +197,7 @@ TEST(DemoCliTest, WithBlenderOnABusyMachineTheReportIsWrittenAndEverySectionShow
 
 // A renderer that never finishes (the stand-in stops POV-Ray after its first line): the glance
 // and the physical camera, which need POV-Ray, run out of their budgets (a quarter of the usual:
-// about 30 s, where each reaches POV-Ray within seconds) and are ended with their renderers;
+// about 20 s, where each reaches POV-Ray within 2 s on an idle machine) and are ended with their renderers;
 // the report is written, marks them with the reason and the command, lists the sections left
 // out by --sections as not run, and the exit code names the two.
 TEST(DemoCliTest, SectionsThatRunOutOfTheirBudgetAreEndedMarkedAndNamedByTheExitCode) {
