@@ -537,10 +537,11 @@ int64_t frameWorldBytes(const Scene& scene, int rayScenes) {
   }
   // A ray scene (ray_scene.h) per triangle: Embree's index buffer and its BVH, taken as 128 bytes
   // (more than Embree's BVH4 needs), and RayScene's own vertex indices; per vertex Embree's float
-  // vertex and RayScene's float UV; a curved shape is one small user geometry.
+  // vertex, RayScene's double copy (hits are worked out again in double) and its float UV; a
+  // curved shape is one small user geometry.
   constexpr int64_t kBvhBytesPerTriangle = 128, kCurvedShapeBytes = 512;
   const int64_t rayScene = triangles * (int64_t{sizeof(Eigen::Vector3i)} * 2 + kBvhBytesPerTriangle) +
-                           vertices * (int64_t{sizeof(float)} * 4 + int64_t{sizeof(Eigen::Vector2f)}) + curved * kCurvedShapeBytes;
+                           vertices * (int64_t{sizeof(float)} * 4 + int64_t{sizeof(Vec3)} + int64_t{sizeof(Eigen::Vector2f)}) + curved * kCurvedShapeBytes;
   return copy + rayScenes * rayScene;
 }
 
