@@ -582,11 +582,12 @@ std::string startPoseHtml(const DemoArgs& a) {
 <p>The RoboCup 2006 Four-Legged field seen by the simulated catadioptric camera (k = 11.546, c = 2.321 cm, rim 45°
 above the horizon, 360×360) from the thesis start pose, )"
        << a.spp << R"( samples per pixel on a regular grid. <b>fast</b>: omnicam's renderer, every ray straight from the
-closed-form model (no mirror). <b>povray</b>: the ground truth — a pinhole camera looking up into the exact
-hyperboloidal mirror (a quadric), traced by POV-Ray 3.7 at the same sample positions. <b>blender</b>: the second
-ground truth — Cycles (CPU, box filter, fixed seed, no denoising) looking into a mirror mesh certified to deviate
-less than 0.5 µm from the quadric; it samples randomly inside each pixel, so it converges with spp.</p>
-)" << views
+closed-form model (no mirror). )" << (a.povray ? R"(<b>povray</b>: the ground truth — a pinhole camera looking up into the exact
+hyperboloidal mirror (a quadric), traced by POV-Ray 3.7 at the same sample positions. )" : "")
+       << (a.blender ? R"(<b>blender</b>: the second ground truth — Cycles (CPU, box filter, fixed seed, no denoising)
+looking into a mirror mesh certified to deviate less than 0.5 µm from the quadric; it samples randomly inside each
+pixel, so it converges with spp.)" : "")
+       << "</p>\n" << views
        << R"(<h2>Incidence-angle rings (thesis Figs. 3.11–3.12)</h2><ul>)" << rings.summary
        << R"(</ul><p>docs/conventions.md §1: Eq. 3.2 against the exact model has MSE 0.256 px² — the thesis' "below one pixel".</p>
 )" << rings.figures
@@ -637,6 +638,8 @@ void checkSectionNames(const std::vector<std::string>& names, const std::string&
 }
 
 void renderOneSection(const DemoArgs& a) {
+  // Line by line into the section's log: a section ended on its budget keeps what it said.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ensureDirectory(a.out + "/sections", "-o");
   const std::string html = sectionHtml(a);
   writeTextAtomically(a.out + "/sections/" + a.section + ".html", html);
@@ -669,7 +672,7 @@ std::string sectionsTable(const std::vector<SectionRun>& runs) {
   for (size_t k = 0; k < runs.size(); ++k)
     html << "<tr><td>" << demoSections()[k].name << "</td><td>"
          << (runs[k].outcome == SectionOutcome::Done ? "done" : escapeMarkup(runs[k].reason)) << "</td>"
-         << format("<td>%.1f</td><td>%.0f</td></tr>\n", runs[k].seconds, runs[k].budgetSeconds);
+         << format("<td>%.1f</td><td>%.3g</td></tr>\n", runs[k].seconds, runs[k].budgetSeconds);
   html << "</table>\n";
   return html.str();
 }
@@ -677,7 +680,6 @@ std::string sectionsTable(const std::vector<SectionRun>& runs) {
 int runDemo(const DemoArgs& a) {
   namespace fs = std::filesystem;
   checkSpp(a.spp, "--spp");  // before any folder is made
-  if (!(a.budgetScale > 0.0) || a.budgetScale > 1000.0) throw InputError("--budget-scale: must be above 0 and at most 1000");
   if (!a.section.empty()) checkSectionNames({a.section}, "--section");
   checkSectionNames(a.only, "--sections");
   ensureDirectory(a.out, "-o");
@@ -704,7 +706,7 @@ int runDemo(const DemoArgs& a) {
       continue;
     }
     const double seconds = sectionBudgetSeconds(sections[k], budget);
-    std::printf("demo: section %zu/%zu, %s (budget %.0f s)\n", n + 1, kRunOrder.size(), sections[k].name.c_str(), seconds);
+    std::printf("demo: section %zu/%zu, %s (budget %.3g s)\n", n + 1, kRunOrder.size(), sections[k].name.c_str(), seconds);
     std::fflush(stdout);
     runs[k] = runDemoSection(sections[k], sectionCommand(a, sections[k].name),
                              (fs::absolute(a.out) / "sections").string(), seconds);
@@ -750,13 +752,18 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("!--no-povray", args->povray, "Skip the POV-Ray ground truth");
   cmd->add_flag("!--no-blender", args->blender, "Skip the Blender ground truth");
   cmd->add_option("--budget-scale", args->budgetScale,
-                  "Multiply every section's time budget (default 1; a slow or busy machine: 2 or more)");
+                  "Multiply every section's time budget (default 1; a slow or busy machine: 2 or more)")
+      ->check(numberIn(0, 1000, true));
   cmd->add_option("--sections", args->only, "Run only these sections (comma-separated: glance, start-pose, light, "
                   "physical, lenses, robot); the report lists the others as not run")
       ->delimiter(',');
   cmd->add_option("--section", args->section, "Render one section into the report folder (what the demo runs for each)")
       ->group("");
-  cmd->callback([args, &exitCode] { exitCode = runDemo(*args); });
+  cmd->callback([args, cmd, &exitCode] {
+    refuseUnless(*cmd, "--sections", args->section.empty(), "the whole demo (not with --section)");
+    refuseUnless(*cmd, "--budget-scale", args->section.empty(), "the whole demo (not with --section)");
+    exitCode = runDemo(*args);
+  });
 }
 
 }  // namespace omnicam::cli

@@ -66,7 +66,7 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
   char line[256];
   if (result.timedOut) {
     run.outcome = SectionOutcome::TimedOut;
-    std::snprintf(line, sizeof line, "ran out of its budget of %.0f s and was ended", budgetSeconds);
+    std::snprintf(line, sizeof line, "ran out of its budget of %.3g s and was ended", budgetSeconds);
     run.reason = line;
   } else if (result.endedBySignal) {
     std::snprintf(line, sizeof line, "was ended by signal %d", result.endedBySignal);
@@ -98,7 +98,7 @@ int demoExitCode(const std::vector<SectionRun>& runs) {
 
 std::string shortSectionHtml(const DemoSection& section, const SectionRun& run) {
   char seconds[96];
-  std::snprintf(seconds, sizeof seconds, " after %.0f s (budget %.0f s)", run.seconds, run.budgetSeconds);
+  std::snprintf(seconds, sizeof seconds, " after %.1f s (budget %.3g s)", run.seconds, run.budgetSeconds);
   return "<h2>" + escapeMarkup(section.title) + "</h2>\n<div class=\"short\"><p><b>This section fell short:</b> it " +
          escapeMarkup(run.reason) + seconds + ". Reproduce it alone with <code>" + escapeMarkup(run.command) +
          "</code>; its whole output is in <code>sections/" + escapeMarkup(section.name) +
