@@ -421,7 +421,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
     if (!(spec.frameIntervalSeconds * 1e9 >= 1.0))
       top.fail("euroc", "needs frame_interval_s of at least 1 ns (EuRoC names each image by its timestamp in ns)");
   }
-  if (top.has("recording")) spec.recording = recordingCameraFromJson(top.raw("recording"), file, "recording");
+  if (top.has("recording")) spec.recording = recordingCameraSpecFromJson(top.raw("recording"), file, "recording");
   if (auto calibration = top.optionalObject("calibration")) readCalibration(*calibration, spec);
   top.finish();
   return spec;

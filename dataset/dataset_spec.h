@@ -12,7 +12,7 @@
 #include "calibration_sequence_spec.h"
 #include "output_kinds.h"
 #include "placement.h"
-#include "recording_camera.h"
+#include "recording_camera_spec.h"
 #include "render_request.h"
 #include "render_settings.h"
 #include "rig.h"
@@ -124,7 +124,7 @@ struct DatasetSpec {
   bool euroc = false;
   // What a real camera would record (recording_camera.h), applied to every RGB frame; none: the
   // renderer's image as it is.
-  std::optional<RecordingCamera> recording;
+  std::optional<RecordingCameraSpec> recording;
   // A calibration sequence (calibration_sequence.h): the robot stands at its one pose while the
   // scene's target is held at one pose per frame; none: the scene as it is.
   std::optional<CalibrationSequenceSpec> calibration;

@@ -53,14 +53,21 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
     if (rgb[c]) film.image = std::move(*rgb[c]);
     else engine.render(placement, settings, film);
     // Seeded by frame and camera: a resumed run records the same noise.
-    if (spec.recording) film.image = recordFrame(*spec.recording, film.image, static_cast<uint64_t>(index) * plan.setups.size() + c);
+    // Seeded (and drawn, for a randomised camera) by frame and camera.
+    std::optional<RecordingCamera> recording;
+    if (spec.recording) {
+      const uint64_t drawIndex = static_cast<uint64_t>(index) * plan.setups.size() + c;
+      recording = spec.recording->draw(drawIndex);
+      film.image = recordFrame(*recording, film.image, drawIndex);
+    }
     std::vector<EncodedFile> files =
         encodeFrameOutputs(scene, rays, settings, setup.camera->name, index, placement, film.image,
                            film.aovs ? &*film.aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
     if (film.aovs) aovs = std::move(*film.aovs);
     stopIfCancelled();
-    CameraFrame cameraFrame{placement.footAt(0.0), {}, std::nullopt};
+    CameraFrame cameraFrame{placement.footAt(0.0), {}, std::nullopt, std::nullopt};
     if (plan.vibrates()) cameraFrame.rig = settings.rig;
+    if (spec.recording && spec.recording->randomised()) cameraFrame.recording = recording;
     for (EncodedFile& file : files) {
       dir.writeFile(file.relativePath, file.bytes, Durability::Unsynced);
       cameraFrame.files[outputName(file.kind)] = {file.relativePath, sha256OfBytes(file.bytes)};

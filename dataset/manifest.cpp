@@ -177,8 +177,9 @@ FrameRecord readFrame(JsonFields f, const HeaderFacts& header) {
   for (auto it = raw.begin(); it != raw.end(); ++it) {
     if (!header.cameras.count(it.key())) cameras.fail(it.key(), "not a camera of the manifest's cameras");
     JsonFields camera = cameras.object(it.key());
-    CameraFrame cameraFrame{readManifestPose(camera.object("pose")), readFileRecords(camera, it.key(), true), std::nullopt};
+    CameraFrame cameraFrame{readManifestPose(camera.object("pose")), readFileRecords(camera, it.key(), true), std::nullopt, std::nullopt};
     if (camera.has("rig")) cameraFrame.rig = rigFromJson(camera.raw("rig"), f.file(), camera.path("rig"));
+    if (camera.has("recording")) cameraFrame.recording = recordingCameraFromJson(camera.raw("recording"), f.file(), camera.path("recording"));
     camera.finish();
     frame.cameras[it.key()] = std::move(cameraFrame);
   }
@@ -199,6 +200,7 @@ json manifestToJson(const DatasetManifest& manifest) {
       for (const auto& [kind, file] : camera.files) files[kind] = {{"path", file.path}, {"sha256", file.sha256}};
       cameras[name] = {{"pose", poseJson(camera.pose)}, {"files", files}};
       if (camera.rig) cameras[name]["rig"] = rigToJson(*camera.rig);
+      if (camera.recording) cameras[name]["recording"] = recordingCameraToJson(*camera.recording);
     }
     json entry = {{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)}, {"cameras", cameras}};
     if (!frame.velocity.still())  // the pose is then the exposure start's (docs/motion.md)

@@ -43,6 +43,9 @@ struct CameraFrame {
   // The rig this frame was rendered with, when it is not the camera's rig of the header: a
   // vibrating robot's (vibration.h).
   std::optional<RigSpec> rig;
+  // The recording camera drawn for this frame and camera, when the spec's `recording` draws its
+  // values (recording_camera_spec.h): every value, as recordFrame used it.
+  std::optional<RecordingCamera> recording;
 
   // The file of `kind`, or null when the frame has none.
   const FileRecord* file(OutputKind kind) const {

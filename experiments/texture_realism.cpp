@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 
@@ -18,6 +19,8 @@
 #include "hall_arena.h"
 #include "landmark_annotations.h"
 #include "safe_files.h"
+#include "sha256.h"
+#include "input_limits.h"
 #include "scene_loader.h"
 #include "texture_realism_report.h"
 
@@ -232,22 +235,84 @@ using Classifiers = std::map<std::string, std::map<std::string, ColourHistogramC
 
 // Train sets (plain; random_textures, spread over the random halls): labels from the fast
 // renderer's instance masks.
-// The realistic frames of `poses`: Blender on the textured hall (one session per batch of poses)
-// through the recording camera; their instance masks are the fast renderer's (`masks`).
-std::vector<Frame> renderRealisticFrames(const TextureRealismOptions& o, const Scene& textured,
-                                         const std::vector<Frame>& masks, const std::function<void()>& step) {
-  std::vector<Frame> realistic;
+// Cycles' linear frames are kept in outDir/cycles/, one EXR per frame named by the hash of
+// everything that makes it (the hall's file, the lab photo's bytes, the setup, size, spp, pose),
+// so a run that only adds test cameras or conditions does not render them again. A frame is used
+// as decoded from its file even when it was just rendered, so cached and fresh runs agree exactly.
+class CyclesFrameCache {
+ public:
+  CyclesFrameCache(const TextureRealismOptions& o, const fs::path& out) : folder_(out.string()) {
+    folder_.makeFolders("cycles");
+    Sha256 key;
+    key.update("omnicam texture-realism cycles frame v1\n");
+    key.update(readFileInside(out.string(), "arenas/hall-textured.json", limits::kMaxJsonFileBytes));
+    key.update(sha256OfFile(o.labPhoto));
+    key.update(o.realistic.describe() + "\n" + o.realistic.tracing.toJson().dump() + "\n" +
+               std::to_string(o.realistic.lampDiameter) + " " + std::to_string(o.realistic.spp) + " " + std::to_string(o.size));
+    base_ = key.hex();
+  }
+  std::string nameOf(const RobotPose& pose) const {
+    char text[160];
+    std::snprintf(text, sizeof text, "%a %a %a", pose.x, pose.y, pose.yawDeg);
+    return "cycles/" + sha256OfBytes(base_ + text).substr(0, 32) + ".exr";
+  }
+  std::optional<ImageRGBA> find(const RobotPose& pose) const {
+    const std::string name = nameOf(pose);
+    if (folder_.entry(name) != EntryKind::File) return std::nullopt;
+    const std::string bytes = folder_.readFile(name, limits::kMaxInputFileBytes);
+    return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), folder_.path() + "/" + name);
+  }
+  ImageRGBA keep(const RobotPose& pose, const ImageRGBA& image) const {
+    const std::string name = nameOf(pose);
+    const std::vector<unsigned char> bytes = encodeImage(name, image);
+    folder_.writeFile(name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), Durability::Unsynced);
+    return readImageFromMemory(bytes.data(), bytes.size(), folder_.path() + "/" + name);
+  }
+
+ private:
+  SafeFolder folder_;
+  std::string base_;
+};
+
+// The linear Cycles frames of the textured hall at `poses`: from the cache, or rendered by Blender
+// (one session per batch of the missing poses) and kept.
+std::vector<ImageRGBA> cyclesFrames(const TextureRealismOptions& o, const fs::path& out, const Scene& textured,
+                                    const std::vector<RobotPose>& poses, const std::function<void()>& step) {
+  const CyclesFrameCache cache(o, out);
+  std::vector<ImageRGBA> frames(poses.size());
+  std::vector<size_t> missing;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    if (std::optional<ImageRGBA> kept = cache.find(poses[k])) {
+      frames[k] = std::move(*kept);
+      step();
+    } else {
+      missing.push_back(k);
+    }
+  }
   renderSequence(
-      masks.size(), kFramesPerBatch, [&](size_t index) { return CameraPlacement(masks[index].pose); },
+      missing.size(), kFramesPerBatch, [&](size_t m) { return CameraPlacement(poses[missing[m]]); },
       [&](const std::vector<CameraPlacement>& batch) {
-        std::vector<RobotPose> poses;
-        for (const CameraPlacement& p : batch) poses.push_back(p.robot());
-        return renderRealistic(textured, poses, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
+        std::vector<RobotPose> batchPoses;
+        for (const CameraPlacement& p : batch) batchPoses.push_back(p.robot());
+        return renderRealistic(textured, batchPoses, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
       },
-      [&](size_t index, ImageRGBA&& image, double) {
-        realistic.push_back({masks[index].pose, recordFrame(o.recording, image, index), masks[index].instance});
+      [&](size_t m, ImageRGBA&& image, double) {
+        frames[missing[m]] = cache.keep(poses[missing[m]], image);
         step();
       });
+  return frames;
+}
+
+// The realistic frames of `masks`' poses: Cycles' frames of the textured hall through `recording`;
+// their instance masks are the fast renderer's (`masks`).
+std::vector<Frame> renderRealisticFrames(const TextureRealismOptions& o, const fs::path& out, const Scene& textured,
+                                         const std::vector<Frame>& masks, const std::function<void()>& step) {
+  std::vector<RobotPose> poses;
+  for (const Frame& mask : masks) poses.push_back(mask.pose);
+  const std::vector<ImageRGBA> linear = cyclesFrames(o, out, textured, poses, step);
+  std::vector<Frame> realistic;
+  for (size_t index = 0; index < masks.size(); ++index)
+    realistic.push_back({masks[index].pose, recordFrame(o.recording, linear[index], index), masks[index].instance});
   return realistic;
 }
 
@@ -269,7 +334,7 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
       trainOn(classifiers, renderFast(textured, poses, o.size, o.pathSpp, step, Shading::Path), bandColour);
     } else if (set == "realistic") {
       const std::vector<Frame> masks = renderFast(textured, poses, o.size, 1, [] {});
-      trainOn(classifiers, renderRealisticFrames(o, textured, masks, step), bandColour);
+      trainOn(classifiers, renderRealisticFrames(o, out, textured, masks, step), bandColour);
     } else {
       for (int k = 0; k < o.randomHalls; ++k) {
         std::vector<RobotPose> share;
@@ -284,14 +349,14 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
 
 // Test sets along thesis-loop: plain and textured by the fast renderer, realistic by Blender (one
 // session per batch of poses) on the textured hall, whose instance masks hold for them too.
-std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const Scene& plain, const Scene& textured,
+std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
                                                          const std::vector<RobotPose>& testPoses,
                                                          const std::function<void()>& step) {
   std::map<std::string, std::vector<Frame>> tests;
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
   tests["path"] = renderFast(textured, testPoses, o.size, o.pathSpp, step, Shading::Path);
-  tests["realistic"] = renderRealisticFrames(o, textured, tests["textured"], step);
+  tests["realistic"] = renderRealisticFrames(o, out, textured, tests["textured"], step);
   return tests;
 }
 
@@ -374,7 +439,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering", ++done, trainTotal + testTotal); };
   const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step);
-  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step);
+  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, out, plain, textured, testPoses, step);
 
   // Detection and evaluation.
   const FastRenderer geometry(plain);

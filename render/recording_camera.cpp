@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <random>
-
-#include "errors.h"
-#include "json_fields.h"
-#include "number_format.h"
 
 namespace omnicam {
 
@@ -22,69 +19,191 @@ RecordingCamera RecordingCamera::webcam() {
   return camera;
 }
 
-RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  JsonFields f(j, file, where);
-  RecordingCamera camera;
-  camera.exposureEv = f.number("exposure_ev", camera.exposureEv, {-10, 10});
-  if (f.has("white_balance")) {
-    const Vec3 gains = f.vec3("white_balance");
-    for (int c = 0; c < 3; ++c) {
-      if (!(gains[c] > 0 && gains[c] <= 10)) f.fail("white_balance", "gains must be in (0, 10] (got " + shortNumber(gains[c]) + ")");
-      camera.whiteBalance[c] = gains[c];
-    }
-  }
-  camera.vignetting = f.number("vignetting", camera.vignetting, {0, 1});
-  camera.fullWellElectrons = f.number("full_well_electrons", camera.fullWellElectrons, {0, 1e7});
-  camera.readNoise = f.number("read_noise", camera.readNoise, {0, 1});
-  if (f.has("jpeg_quality")) {
-    const auto quality = integerInRange(f.raw("jpeg_quality"), 0, 100);
-    if (!quality) f.fail("jpeg_quality", "must be an integer in [0, 100] (0: no JPEG) (got " + jsonValueText(f.raw("jpeg_quality")) + ")");
-    camera.jpegQuality = static_cast<int>(*quality);
-  }
-  if (f.has("seed")) {  // any unsigned 64-bit integer, read exactly
-    const nlohmann::json& seed = f.raw("seed");
-    if (!seed.is_number_unsigned()) f.fail("seed", "must be an integer in [0, 2^64 - 1] (got " + jsonValueText(seed) + ")");
-    camera.seed = seed.get<uint64_t>();
-  }
-  f.finish();
-  return camera;
+namespace {
+
+// SplitMix-style mixing: neighbouring frame indices give unrelated streams.
+uint64_t noiseSeed(uint64_t seed, uint64_t frameIndex) {
+  uint64_t mixed = seed + 0x9E3779B97F4A7C15ull * (frameIndex + 1);
+  mixed = (mixed ^ (mixed >> 30)) * 0xBF58476D1CE4E5B9ull;
+  mixed = (mixed ^ (mixed >> 27)) * 0x94D049BB133111EBull;
+  return mixed ^ (mixed >> 31);
 }
 
-nlohmann::json recordingCameraToJson(const RecordingCamera& c) {
-  return {{"exposure_ev", c.exposureEv},   {"white_balance", c.whiteBalance}, {"vignetting", c.vignetting},
-          {"full_well_electrons", c.fullWellElectrons}, {"read_noise", c.readNoise}, {"jpeg_quality", c.jpegQuality},
-          {"seed", c.seed}};
+// Each Bayer pattern as OpenCV's demosaicing names it (its RGGB… aliases), per method.
+int demosaicCode(BayerPattern pattern, DemosaicMethod method) {
+  static const int codes[4][3] = {
+      {cv::COLOR_BayerRGGB2BGR, cv::COLOR_BayerRGGB2BGR_VNG, cv::COLOR_BayerRGGB2BGR_EA},
+      {cv::COLOR_BayerBGGR2BGR, cv::COLOR_BayerBGGR2BGR_VNG, cv::COLOR_BayerBGGR2BGR_EA},
+      {cv::COLOR_BayerGRBG2BGR, cv::COLOR_BayerGRBG2BGR_VNG, cv::COLOR_BayerGRBG2BGR_EA},
+      {cv::COLOR_BayerGBRG2BGR, cv::COLOR_BayerGBRG2BGR_VNG, cv::COLOR_BayerGBRG2BGR_EA},
+  };
+  return codes[static_cast<int>(pattern) - 1][static_cast<int>(method)];
+}
+
+cv::Mat planeMat(LinearPlanes& planes, int c) { return cv::Mat(planes.height, planes.width, CV_32F, planes.rgb[static_cast<size_t>(c)].data()); }
+
+LinearPlanes premultipliedPlanes(const ImageRGBA& image) {
+  LinearPlanes planes;
+  planes.width = image.width;
+  planes.height = image.height;
+  for (auto& plane : planes.rgb) plane.assign(static_cast<size_t>(image.width) * image.height, 0.0f);
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i)
+      for (int c = 0; c < 3; ++c) planes.at(c, i, j) = image.at(i, j)[3] > 0 ? image.at(i, j)[c] : 0.0f;
+  return planes;
+}
+
+// What the sensor does to one colour sample `value` (irradiance × exposure × gain): shot, read
+// and row noise, then the ADC's clipping.
+struct SensorNoise {
+  const RecordingCamera& camera;
+  std::mt19937_64& random;
+  std::normal_distribution<double>& gaussian;
+  double operator()(double value, double rowOffset) const {
+    if (camera.fullWellElectrons > 0) {
+      const double electrons = std::max(0.0, value) * camera.fullWellElectrons;
+      value = static_cast<double>(std::poisson_distribution<int64_t>(electrons)(random)) / camera.fullWellElectrons;
+    }
+    if (camera.readNoise > 0) value += camera.readNoise * gaussian(random);
+    return std::clamp(value + rowOffset, 0.0, 1.0);
+  }
+};
+
+// In float, as the 8-bit codes have always been computed (the golden hashes hold them).
+unsigned char eightBit(double encoded) {
+  return static_cast<unsigned char>(std::lround(std::clamp(static_cast<float>(encoded), 0.0f, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+int bayerColourAt(BayerPattern pattern, int i, int j) {
+  static const int layouts[4][4] = {{0, 1, 1, 2}, {2, 1, 1, 0}, {1, 0, 2, 1}, {1, 2, 0, 1}};  // RGGB, BGGR, GRBG, GBRG
+  return layouts[static_cast<int>(pattern) - 1][(j & 1) * 2 + (i & 1)];
+}
+
+void applyLensBlur(LinearPlanes& planes, double radiusPx, BlurKernel kernel) {
+  if (radiusPx <= 0) return;
+  cv::Mat psf;
+  if (kernel == BlurKernel::Gaussian) {
+    const int half = static_cast<int>(std::ceil(3.0 * radiusPx));
+    const cv::Mat g = cv::getGaussianKernel(2 * half + 1, radiusPx, CV_32F);
+    psf = g * g.t();
+  } else {
+    // A uniform disc: each cell weighted by the share of its area inside the radius (8×8 samples).
+    const int half = static_cast<int>(std::ceil(radiusPx));
+    psf = cv::Mat::zeros(2 * half + 1, 2 * half + 1, CV_32F);
+    for (int y = -half; y <= half; ++y)
+      for (int x = -half; x <= half; ++x) {
+        int inside = 0;
+        for (int sy = 0; sy < 8; ++sy)
+          for (int sx = 0; sx < 8; ++sx) {
+            const double px = x - 0.5 + (sx + 0.5) / 8.0, py = y - 0.5 + (sy + 0.5) / 8.0;
+            inside += px * px + py * py <= radiusPx * radiusPx;
+          }
+        psf.at<float>(y + half, x + half) = static_cast<float>(inside);
+      }
+    psf /= cv::sum(psf)[0];
+  }
+  for (int c = 0; c < 3; ++c) {
+    cv::Mat plane = planeMat(planes, c);
+    cv::filter2D(plane.clone(), plane, CV_32F, psf, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
+  }
+}
+
+void applyChromaticAberration(LinearPlanes& planes, double aberration) {
+  if (aberration == 0) return;
+  const double cx = 0.5 * planes.width, cy = 0.5 * planes.height;
+  for (const auto& [c, magnification] : {std::pair{0, 1.0 + aberration}, std::pair{2, 1.0 - aberration}}) {
+    // The channel's image is magnified about the centre: the value at pixel centre p comes from
+    // centre + (p − centre) / magnification (pixel centres at index + 0.5).
+    cv::Mat mapX(planes.height, planes.width, CV_32F), mapY(planes.height, planes.width, CV_32F);
+    for (int j = 0; j < planes.height; ++j)
+      for (int i = 0; i < planes.width; ++i) {
+        mapX.at<float>(j, i) = static_cast<float>(cx + (i + 0.5 - cx) / magnification - 0.5);
+        mapY.at<float>(j, i) = static_cast<float>(cy + (j + 0.5 - cy) / magnification - 0.5);
+      }
+    cv::Mat plane = planeMat(planes, c);
+    cv::remap(plane.clone(), plane, mapX, mapY, cv::INTER_LINEAR, cv::BORDER_CONSTANT, 0.0);
+  }
+}
+
+double toneCurveValue(const RecordingCamera& camera, double v) {
+  v = std::clamp(v, 0.0, 1.0);
+  switch (camera.tone) {
+    case ToneCurve::Srgb: return linearToSrgb(static_cast<float>(v));
+    case ToneCurve::Gamma: return std::pow(v, 1.0 / camera.gamma);
+    case ToneCurve::Filmic: {
+      const double x = std::pow(v, 1.0 / 2.2), a = std::pow(x, camera.contrast), b = std::pow(1.0 - x, camera.contrast);
+      return a + b > 0 ? a / (a + b) : 0.0;
+    }
+  }
+  return v;
 }
 
 ImageRGBA recordFrame(const RecordingCamera& camera, const ImageRGBA& linear, uint64_t frameIndex) {
-  // SplitMix-style mixing: neighbouring frame indices give unrelated streams.
-  uint64_t mixed = camera.seed + 0x9E3779B97F4A7C15ull * (frameIndex + 1);
-  mixed = (mixed ^ (mixed >> 30)) * 0xBF58476D1CE4E5B9ull;
-  mixed = (mixed ^ (mixed >> 27)) * 0x94D049BB133111EBull;
-  std::mt19937_64 random(mixed ^ (mixed >> 31));
+  const uint64_t seed = noiseSeed(camera.seed, frameIndex);
+  std::mt19937_64 random(seed);
   std::normal_distribution<double> gaussian(0.0, 1.0);
-
   const int w = linear.width, h = linear.height;
+
+  // Optics, on the irradiance the sensor receives (premultiplied: black beyond the mirror).
+  LinearPlanes planes = premultipliedPlanes(linear);
+  applyLensBlur(planes, camera.blurRadiusPx, camera.blurKernel);
+  applyChromaticAberration(planes, camera.chromaticAberration);
+
+  // Row noise: one offset per row, from a stream of its own (the pixels' stream stays as it was).
+  std::vector<double> rowOffset(static_cast<size_t>(h), 0.0);
+  if (camera.rowNoise > 0) {
+    std::mt19937_64 rows(seed ^ 0xA0761D6478BD642Full);
+    std::normal_distribution<double> rowGaussian(0.0, camera.rowNoise);
+    for (double& offset : rowOffset) offset = rowGaussian(rows);
+  }
+
+  // Sensor: vignetting, exposure and white balance, the mosaic's colour at each site, noise, ADC.
+  const bool mosaic = camera.bayer != BayerPattern::None;
+  const bool eightBitRaw = camera.demosaic == DemosaicMethod::Vng;  // OpenCV's VNG takes 8-bit only
+  const double rawScale = eightBitRaw ? 255.0 : 65535.0;
+  cv::Mat raw(h, w, eightBitRaw ? CV_8U : CV_16U, cv::Scalar(0));
+  cv::Mat sensed(h, w, CV_64FC3, cv::Scalar(0, 0, 0));  // without a mosaic: RGB at every pixel
   const double gain = std::exp2(camera.exposureEv);
   const double halfDiagonalSquared = 0.25 * (static_cast<double>(w) * w + static_cast<double>(h) * h);
-  cv::Mat codes(h, w, CV_8UC3);
+  const SensorNoise noise{camera, random, gaussian};
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
-      const float* p = linear.at(i, j);
-      const double alpha = p[3];
+      const double alpha = linear.at(i, j)[3];
+      if (alpha <= 0) continue;
       const double dx = i + 0.5 - 0.5 * w, dy = j + 0.5 - 0.5 * h;
       const double vignette = 1.0 - camera.vignetting * (dx * dx + dy * dy) / halfDiagonalSquared;
-      cv::Vec3b& out = codes.at<cv::Vec3b>(j, i);
-      for (int c = 0; c < 3; ++c) {
-        double value = alpha > 0 ? p[c] / alpha * gain * camera.whiteBalance[c] * vignette : 0.0;
-        if (alpha > 0 && camera.fullWellElectrons > 0) {
-          const double electrons = std::max(0.0, value) * camera.fullWellElectrons;
-          value = static_cast<double>(std::poisson_distribution<int64_t>(electrons)(random)) / camera.fullWellElectrons;
-        }
-        if (alpha > 0 && camera.readNoise > 0) value += camera.readNoise * gaussian(random);
-        const float code = linearToSrgb(static_cast<float>(std::clamp(value, 0.0, 1.0)));
-        out[2 - c] = static_cast<unsigned char>(std::lround(std::clamp(code, 0.0f, 1.0f) * 255.0f));  // OpenCV: BGR
+      auto sample = [&](int c) {
+        return noise(planes.at(c, i, j) / alpha * gain * camera.whiteBalance[static_cast<size_t>(c)] * vignette,
+                     rowOffset[static_cast<size_t>(j)]);
+      };
+      if (mosaic) {
+        const double v = sample(bayerColourAt(camera.bayer, i, j));
+        if (eightBitRaw) raw.at<unsigned char>(j, i) = static_cast<unsigned char>(std::lround(v * rawScale));
+        else raw.at<uint16_t>(j, i) = static_cast<uint16_t>(std::lround(v * rawScale));
+      } else {
+        cv::Vec3d& out = sensed.at<cv::Vec3d>(j, i);
+        for (int c = 0; c < 3; ++c) out[c] = sample(c);
       }
+    }
+
+  // ISP: demosaicing, the tone curve to 8-bit codes, JPEG.
+  if (mosaic) {
+    cv::Mat bgr;
+    cv::demosaicing(raw, bgr, demosaicCode(camera.bayer, camera.demosaic));
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i)
+        for (int c = 0; c < 3; ++c)
+          sensed.at<cv::Vec3d>(j, i)[c] =
+              (eightBitRaw ? bgr.at<cv::Vec3b>(j, i)[2 - c] : bgr.at<cv::Vec3w>(j, i)[2 - c]) / rawScale;
+  }
+  cv::Mat codes(h, w, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      if (linear.at(i, j)[3] <= 0) continue;
+      for (int c = 0; c < 3; ++c)
+        codes.at<cv::Vec3b>(j, i)[2 - c] = eightBit(toneCurveValue(camera, sensed.at<cv::Vec3d>(j, i)[c]));  // OpenCV: BGR
     }
   if (camera.jpegQuality > 0) {
     std::vector<unsigned char> jpeg;

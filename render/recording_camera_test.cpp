@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "errors.h"
+#include "recording_camera_spec.h"
 
 namespace omnicam {
 namespace {
@@ -161,39 +162,167 @@ TEST(RecordingCamera, WhiteBalanceExposureAndVignettingScaleTheMeanColour) {
   }
 }
 
-TEST(RecordingCamera, ParametersAreStrict) {
-  // Every field away from its default and from the webcam's, through JSON text and back.
+// A camera whose tone curve is linear (γ = 1): its 8-bit codes are the sensor's values.
+RecordingCamera linearCodes() {
   RecordingCamera camera;
-  camera.exposureEv = -1.25;
-  camera.whiteBalance = {1.3, 0.95, 0.7};
-  camera.vignetting = 1.0;
-  camera.fullWellElectrons = 1234.5;
-  camera.readNoise = 0.0125;
-  camera.jpegQuality = 100;
-  camera.seed = UINT64_MAX;
-  const nlohmann::json written = recordingCameraToJson(camera);
-  EXPECT_EQ(written.size(), 7u);
-  const RecordingCamera back = recordingCameraFromJson(nlohmann::json::parse(written.dump()), "recording");
-  EXPECT_EQ(back.exposureEv, camera.exposureEv);
-  EXPECT_EQ(back.whiteBalance, camera.whiteBalance);
-  EXPECT_EQ(back.vignetting, camera.vignetting);
-  EXPECT_EQ(back.fullWellElectrons, camera.fullWellElectrons);
-  EXPECT_EQ(back.readNoise, camera.readNoise);
-  EXPECT_EQ(back.jpegQuality, camera.jpegQuality);
-  EXPECT_EQ(back.seed, camera.seed);
-  // Fields left out keep their defaults.
-  const RecordingCamera defaults = recordingCameraFromJson(nlohmann::json::object(), "recording");
-  EXPECT_EQ(defaults.exposureEv, 0.0);
-  EXPECT_EQ(defaults.whiteBalance, (std::array<double, 3>{1.0, 1.0, 1.0}));
-  EXPECT_EQ(defaults.jpegQuality, 0);
-  EXPECT_EQ(defaults.seed, 1u);
-  EXPECT_THROW(recordingCameraFromJson({{"exposure", 1.0}}, "recording"), InputError);
-  EXPECT_THROW(recordingCameraFromJson({{"vignetting", 1.5}}, "recording"), InputError);
-  EXPECT_THROW(recordingCameraFromJson({{"jpeg_quality", 101}}, "recording"), InputError);
-  EXPECT_THROW(recordingCameraFromJson({{"jpeg_quality", 80.5}}, "recording"), InputError);
-  EXPECT_THROW(recordingCameraFromJson({{"white_balance", {1, 0, 1}}}, "recording"), InputError);
-  EXPECT_THROW(recordingCameraFromJson({{"seed", -1}}, "recording"), InputError);
-  EXPECT_THROW(recordingCameraFromJson({{"read_noise", "0.1"}}, "recording"), InputError);
+  camera.tone = ToneCurve::Gamma;
+  camera.gamma = 1.0;
+  return camera;
+}
+
+// The sensor value behind each pixel's code (linear tone curve), per channel.
+double sensorValue(const ImageRGBA& out, int i, int j, int c) { return std::round(linearToSrgb(out.at(i, j)[c]) * 255.0f) / 255.0; }
+
+TEST(RecordingCamera, AFlatFieldsNoiseVarianceIsShotPlusReadPlusQuantisation) {
+  // Closed form: Var = v / N (Poisson electrons over full well) + σ_read² + q² / 12, q = 1/255.
+  RecordingCamera camera = linearCodes();
+  camera.fullWellElectrons = 400.0;
+  camera.readNoise = 0.01;
+  const double v = 0.3;
+  const int n = 256;
+  const ImageRGBA out = recordFrame(camera, uniform(n, static_cast<float>(v)), 5);
+  double sum = 0.0, squares = 0.0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double x = sensorValue(out, i, j, 1);
+      sum += x, squares += x * x;
+    }
+  const double count = static_cast<double>(n) * n, mean = sum / count, variance = squares / count - mean * mean;
+  const double expected = v / 400.0 + 0.01 * 0.01 + 1.0 / (255.0 * 255.0 * 12.0);
+  std::printf("flat field: variance %.4g, closed form %.4g\n", variance, expected);
+  EXPECT_NEAR(mean, v, 0.002);
+  EXPECT_NEAR(variance, expected, 0.03 * expected);  // 65536 samples: the variance's own spread is 0.6 %
+}
+
+TEST(RecordingCamera, RowNoiseIsOneOffsetPerRow) {
+  RecordingCamera camera = linearCodes();
+  camera.rowNoise = 0.02;
+  const int n = 256;
+  const ImageRGBA out = recordFrame(camera, uniform(n, 0.5f), 2);
+  double sum = 0.0, squares = 0.0;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 1; i < n; ++i)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(out.at(i, j)[c], out.at(0, j)[c]) << "row " << j << " is not one value";
+    const double x = sensorValue(out, 0, j, 0);
+    sum += x, squares += x * x;
+  }
+  const double mean = sum / n, sigma = std::sqrt(squares / n - mean * mean);
+  std::printf("row offsets: σ %.4f (closed form 0.02, plus 8-bit steps)\n", sigma);
+  EXPECT_NEAR(sigma, std::sqrt(0.02 * 0.02 + 1.0 / (255.0 * 255.0 * 12.0)), 0.2 * 0.02);  // 256 rows: ±9 % at 1σ
+}
+
+TEST(RecordingCamera, DemosaicingAConstantColourIsExactForEveryPatternAndMethod) {
+  // Each pattern samples its colour per site (bayerColourAt); OpenCV's demosaicing must give the
+  // constant colour back at every pixel: a pattern named wrongly would swap the channels.
+  const double colour[3] = {0.2, 0.55, 0.8};
+  ImageRGBA in(32, 32);
+  for (size_t p = 0; p < in.pixels.size(); p += 4)
+    for (int c = 0; c < 4; ++c) in.pixels[p + static_cast<size_t>(c)] = c < 3 ? static_cast<float>(colour[c]) : 1.0f;
+  for (const BayerPattern pattern : {BayerPattern::RGGB, BayerPattern::BGGR, BayerPattern::GRBG, BayerPattern::GBRG})
+    for (const DemosaicMethod method : {DemosaicMethod::Bilinear, DemosaicMethod::Vng, DemosaicMethod::EdgeAware}) {
+      RecordingCamera camera = linearCodes();
+      camera.bayer = pattern;
+      camera.demosaic = method;
+      const ImageRGBA out = recordFrame(camera, in, 0);
+      const double rawScale = method == DemosaicMethod::Vng ? 255.0 : 65535.0;
+      for (int c = 0; c < 3; ++c) {
+        const double raw = std::round(colour[c] * rawScale) / rawScale;
+        const double expected = std::round(raw * 255.0) / 255.0;
+        for (int j = 0; j < 32; ++j)
+          for (int i = 0; i < 32; ++i)
+            ASSERT_NEAR(sensorValue(out, i, j, c), expected, 1e-9)
+                << "pattern " << static_cast<int>(pattern) << " method " << static_cast<int>(method) << " channel " << c
+                << " at " << i << "," << j;
+      }
+    }
+  // The layouts themselves: RGGB has red at (0, 0) and blue at (1, 1); GBRG green at (0, 0), blue at (1, 0).
+  EXPECT_EQ(bayerColourAt(BayerPattern::RGGB, 0, 0), 0);
+  EXPECT_EQ(bayerColourAt(BayerPattern::RGGB, 1, 1), 2);
+  EXPECT_EQ(bayerColourAt(BayerPattern::GBRG, 1, 0), 2);
+  EXPECT_EQ(bayerColourAt(BayerPattern::GRBG, 1, 0), 0);
+  EXPECT_EQ(bayerColourAt(BayerPattern::BGGR, 2, 2), 2);
+}
+
+LinearPlanes pointSpread(int n, double x, double y, double sigma) {
+  LinearPlanes planes;
+  planes.width = planes.height = n;
+  for (auto& plane : planes.rgb) plane.assign(static_cast<size_t>(n) * n, 0.0f);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double dx = i + 0.5 - x, dy = j + 0.5 - y;
+      const float v = sigma > 0 ? static_cast<float>(std::exp(-0.5 * (dx * dx + dy * dy) / (sigma * sigma))) : (dx == 0 && dy == 0);
+      for (int c = 0; c < 3; ++c) planes.at(c, i, j) = v;
+    }
+  return planes;
+}
+
+// A channel's sum and its centroid's offset from (cx, cy), and its second moment in x about it.
+struct Moments {
+  double sum = 0, x = 0, y = 0, xx = 0;
+};
+Moments momentsOf(const LinearPlanes& planes, int c, double cx, double cy) {
+  Moments m;
+  for (int j = 0; j < planes.height; ++j)
+    for (int i = 0; i < planes.width; ++i) {
+      const double v = planes.at(c, i, j);
+      m.sum += v, m.x += v * (i + 0.5 - cx), m.y += v * (j + 0.5 - cy);
+    }
+  m.x /= m.sum, m.y /= m.sum;
+  for (int j = 0; j < planes.height; ++j)
+    for (int i = 0; i < planes.width; ++i) m.xx += planes.at(c, i, j) * std::pow(i + 0.5 - cx - m.x, 2) / m.sum;
+  return m;
+}
+
+TEST(RecordingCamera, LateralChromaticAberrationMovesRedOutAndBlueInByTheRadius) {
+  // A spot at radius r = 40 px from the centre: red's centroid at r (1 + a), blue's at r (1 − a),
+  // green's at r.
+  const int n = 128;
+  const double a = 0.02, r = 40.0;
+  LinearPlanes planes = pointSpread(n, 64.0 + r * 0.6, 64.0 - r * 0.8, 1.5);
+  applyChromaticAberration(planes, a);
+  for (const auto& [c, scale] : {std::pair{0, 1 + a}, std::pair{1, 1.0}, std::pair{2, 1 - a}}) {
+    const Moments m = momentsOf(planes, c, 64.0, 64.0);
+    std::printf("channel %d: centroid at radius %.4f px (closed form %.4f)\n", c, std::hypot(m.x, m.y), r * scale);
+    EXPECT_NEAR(m.x, r * 0.6 * scale, 0.01) << "channel " << c;
+    EXPECT_NEAR(m.y, -r * 0.8 * scale, 0.01) << "channel " << c;
+  }
+}
+
+TEST(RecordingCamera, LensBlurSpreadsAPointByItsKernelsSecondMoment) {
+  // A point through a Gaussian PSF of σ: second moment σ² per axis; through a uniform disc of
+  // radius R: R²/4 per axis. Both keep the light (sum 1).
+  const int n = 65;
+  LinearPlanes gaussian = pointSpread(n, 32.5, 32.5, 0.0);
+  applyLensBlur(gaussian, 2.5, BlurKernel::Gaussian);
+  const Moments g = momentsOf(gaussian, 1, 32.5, 32.5);
+  EXPECT_NEAR(g.sum, 1.0, 1e-4);
+  EXPECT_NEAR(g.xx, 2.5 * 2.5, 0.02 * 6.25);  // the kernel is cut at 3σ
+  LinearPlanes disc = pointSpread(n, 32.5, 32.5, 0.0);
+  applyLensBlur(disc, 6.0, BlurKernel::Disc);
+  const Moments d = momentsOf(disc, 1, 32.5, 32.5);
+  std::printf("second moments: Gaussian %.4f (σ² 6.25), disc %.4f (R²/4 = 9; the cells' discretisation adds about 1 %%)\n", g.xx, d.xx);
+  EXPECT_NEAR(d.sum, 1.0, 1e-4);
+  EXPECT_NEAR(d.xx, 9.0, 0.02 * 9.0);
+  EXPECT_NEAR(d.x, 0.0, 1e-6);
+}
+
+TEST(RecordingCamera, ToneCurvesFollowTheirClosedForms) {
+  RecordingCamera camera;
+  EXPECT_DOUBLE_EQ(toneCurveValue(camera, 0.18), linearToSrgb(0.18f));
+  camera.tone = ToneCurve::Gamma;
+  camera.gamma = 2.0;
+  EXPECT_NEAR(toneCurveValue(camera, 0.25), 0.5, 1e-12);
+  camera.tone = ToneCurve::Filmic;
+  camera.contrast = 1.8;
+  // s(x) = x^c / (x^c + (1 − x)^c) of x = v^(1/2.2): mid-grey at 0.5, symmetric, slope c there.
+  const double mid = std::pow(0.5, 2.2);
+  EXPECT_NEAR(toneCurveValue(camera, mid), 0.5, 1e-12);
+  for (double x : {0.1, 0.3, 0.45})
+    EXPECT_NEAR(toneCurveValue(camera, std::pow(x, 2.2)) + toneCurveValue(camera, std::pow(1 - x, 2.2)), 1.0, 1e-12);
+  const double h = 1e-5;
+  EXPECT_NEAR((toneCurveValue(camera, std::pow(0.5 + h, 2.2)) - toneCurveValue(camera, std::pow(0.5 - h, 2.2))) / (2 * h), 1.8, 1e-6);
+  EXPECT_EQ(toneCurveValue(camera, 0.0), 0.0);
+  EXPECT_EQ(toneCurveValue(camera, 1.0), 1.0);
 }
 
 }  // namespace

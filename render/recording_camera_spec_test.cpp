@@ -1,0 +1,138 @@
+// Recording-camera specs: distributions drawn as stated, deterministic per frame, presets within
+// their ranges, stages held neutral, and strict reading with one clear line per mistake.
+#include "recording_camera_spec.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+RecordingCameraSpec specOf(const std::string& text) { return recordingCameraSpecFromJson(nlohmann::json::parse(text), "spec.json"); }
+
+std::string errorOf(const std::string& text) {
+  try {
+    specOf(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(RecordingCameraSpec, DistributionsAreDrawnAsStated) {
+  const RecordingCameraSpec spec = specOf(R"({"exposure_ev": {"uniform": [-1, 0.5]}, "full_well_electrons": {"log_uniform": [100, 10000]},
+    "bayer": {"choice": ["rggb", "gbrg"]}, "jpeg_quality": {"uniform": [60, 90]}, "read_noise": 0.01, "seed": 3})");
+  ASSERT_TRUE(spec.randomised());
+  const int n = 4000;
+  double exposureSum = 0, logWellSum = 0;
+  std::map<BayerPattern, int> patterns;
+  for (int k = 0; k < n; ++k) {
+    const RecordingCamera c = spec.draw(static_cast<uint64_t>(k));
+    ASSERT_GE(c.exposureEv, -1.0);
+    ASSERT_LE(c.exposureEv, 0.5);
+    ASSERT_GE(c.fullWellElectrons, 100.0);
+    ASSERT_LE(c.fullWellElectrons, 10000.0);
+    ASSERT_TRUE(c.jpegQuality >= 60 && c.jpegQuality <= 90);
+    ASSERT_EQ(c.readNoise, 0.01);
+    exposureSum += c.exposureEv;
+    logWellSum += std::log10(c.fullWellElectrons);
+    ++patterns[c.bayer];
+  }
+  // Means of uniform draws: σ/√n = 0.43/63 ≈ 0.007 for the exposure, 0.58/63 for log10 of the well.
+  EXPECT_NEAR(exposureSum / n, -0.25, 0.03);
+  EXPECT_NEAR(logWellSum / n, 3.0, 0.04);
+  EXPECT_EQ(patterns.size(), 2u);
+  EXPECT_NEAR(patterns[BayerPattern::RGGB], n / 2, 150);
+  // The same index draws the same camera; another index another; the seed matters.
+  EXPECT_EQ(spec.draw(17).exposureEv, spec.draw(17).exposureEv);
+  EXPECT_NE(spec.draw(17).exposureEv, spec.draw(18).exposureEv);
+  RecordingCameraSpec other = spec;
+  other.seed = 4;
+  EXPECT_NE(other.draw(17).exposureEv, spec.draw(17).exposureEv);
+  // A parameter added to the spec leaves the others' draws as they were.
+  RecordingCameraSpec more = spec;
+  more.draws["vignetting"] = ParameterDraw{ParameterDraw::Kind::Uniform, 0.0, 0.5, {}};
+  EXPECT_EQ(more.draw(17).exposureEv, spec.draw(17).exposureEv);
+  EXPECT_EQ(more.draw(17).fullWellElectrons, spec.draw(17).fullWellElectrons);
+}
+
+TEST(RecordingCameraSpec, PresetsDrawWithinTheirRangesAndOverridesWin) {
+  for (const std::string& name : recordingPresetNames()) {
+    const RecordingCameraSpec preset = recordingPreset(name);
+    EXPECT_TRUE(preset.randomised()) << name;
+    for (uint64_t k = 0; k < 200; ++k) {
+      const RecordingCamera c = preset.draw(k);
+      EXPECT_NE(c.bayer, BayerPattern::None) << name;
+      EXPECT_GT(c.fullWellElectrons, 900.0) << name;
+      EXPECT_LE(std::abs(c.exposureEv), 1.0) << name;
+    }
+  }
+  const RecordingCameraSpec phone = specOf(R"({"preset": "phone", "jpeg_quality": 50})");
+  for (uint64_t k = 0; k < 50; ++k) {
+    EXPECT_EQ(phone.draw(k).jpegQuality, 50);
+    EXPECT_EQ(phone.draw(k).tone, ToneCurve::Filmic);
+  }
+  // A choice of presets draws each of them.
+  const RecordingCameraSpec mixed = specOf(R"({"preset": {"choice": ["webcam", "phone"]}})");
+  int filmic = 0;
+  for (uint64_t k = 0; k < 400; ++k) filmic += mixed.draw(k).tone == ToneCurve::Filmic;
+  EXPECT_NEAR(filmic, 200, 40);
+  EXPECT_EQ(specOf(R"("webcam")"), specOf(R"({"preset": "webcam"})"));
+  // The drawn values read back as a fixed camera, exactly.
+  const RecordingCamera drawn = mixed.draw(11);
+  const RecordingCamera back = recordingCameraFromJson(nlohmann::json::parse(recordingCameraToJson(drawn).dump()), "manifest.json");
+  EXPECT_EQ(recordingCameraToJson(back), recordingCameraToJson(drawn));
+  // The spec reads back from what omnicam writes of it.
+  EXPECT_EQ(recordingCameraSpecFromJson(recordingCameraSpecToJson(mixed), "x"), mixed);
+}
+
+TEST(RecordingCameraSpec, AStageHeldNeutralDoesNothing) {
+  RecordingCamera everything = recordingPreset("phone").draw(3);
+  everything.chromaticAberration = 0.01;
+  RecordingCamera neutral = everything;
+  for (const std::string& stage : recordingStages()) neutral = withStageNeutral(neutral, stage);
+  EXPECT_EQ(recordingCameraToJson(neutral).dump(), [&] {
+    RecordingCamera c;
+    c.seed = everything.seed;
+    return recordingCameraToJson(c).dump();
+  }());
+  const RecordingCamera noBlur = withStageNeutral(everything, "blur");
+  EXPECT_EQ(noBlur.blurRadiusPx, 0.0);
+  EXPECT_EQ(noBlur.jpegQuality, everything.jpegQuality);
+}
+
+TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
+  EXPECT_EQ(errorOf(R"({"iso": 100})").rfind("spec.json: recording.iso: unknown field", 0), 0u);
+  EXPECT_EQ(errorOf(R"({"exposure_ev": {"gaussian": [0, 1]}})"),
+            "spec.json: recording.exposure_ev: unknown distribution \"gaussian\" (uniform, log_uniform, choice)");
+  EXPECT_EQ(errorOf(R"({"exposure_ev": {"uniform": [1, -1]}})"), "spec.json: recording.exposure_ev.uniform: lo > hi (1 > -1)");
+  EXPECT_EQ(errorOf(R"({"vignetting": {"uniform": [0, 1.5]}})"),
+            "spec.json: recording.vignetting.uniform[1]: must be a number in [0, 1] (got 1.5)");
+  EXPECT_EQ(errorOf(R"({"full_well_electrons": {"log_uniform": [0, 100]}})"),
+            "spec.json: recording.full_well_electrons.log_uniform: log_uniform needs lo > 0 (got 0)");
+  EXPECT_EQ(errorOf(R"({"bayer": "rgbg"})"), "spec.json: recording.bayer: must be one of none, rggb, bggr, grbg, gbrg (got \"rgbg\")");
+  EXPECT_EQ(errorOf(R"({"bayer": {"choice": ["rggb", "xyz"]}})"),
+            "spec.json: recording.bayer.choice[1]: must be one of none, rggb, bggr, grbg, gbrg (got \"xyz\")");
+  EXPECT_EQ(errorOf(R"({"bayer": {"uniform": [0, 1]}})"), "spec.json: recording.bayer.uniform: a word is drawn with {\"choice\": [...]}");
+  EXPECT_EQ(errorOf(R"({"preset": "dslr"})"),
+            "spec.json: recording.preset: must be one of webcam, machine_vision, phone (got \"dslr\")");
+  EXPECT_EQ(errorOf(R"("dslr")"), "spec.json: recording: unknown preset \"dslr\" (webcam, machine_vision, phone)");
+  EXPECT_EQ(errorOf(R"({"jpeg_quality": 80.5})"), "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (got 80.5)");
+  EXPECT_EQ(errorOf(R"({"white_balance": [1, 0, 1]})"), "spec.json: recording.white_balance[1]: must be a number in (0, 10] (got 0)");
+  EXPECT_EQ(errorOf(R"({"white_balance": 1})"),
+            "spec.json: recording.white_balance: must be [r, g, b], each a gain in (0, 10] or a distribution (got 1)");
+  EXPECT_EQ(errorOf(R"({"exposure_ev": {"uniform": [0, 1], "choice": [1]}})").rfind("spec.json: recording.exposure_ev: a distribution is one of", 0), 0u);
+  EXPECT_EQ(errorOf(R"({"gamma": {"choice": []}})"), "spec.json: recording.gamma.choice: must be a list of 1 to 64 values (got array)");
+  EXPECT_EQ(errorOf(R"({"seed": -1})"), "spec.json: recording.seed: must be an integer in [0, 2^64 - 1] (got -1)");
+  EXPECT_EQ(errorOf(R"({"read_noise": "0.1"})"), "spec.json: recording.read_noise: must be a number in [0, 1] (got \"0.1\")");
+  // A single camera (a manifest's drawn values) refuses ranges.
+  EXPECT_THROW(recordingCameraFromJson(nlohmann::json::parse(R"({"exposure_ev": {"uniform": [0, 1]}})"), "m.json"), InputError);
+  EXPECT_THROW(recordingCameraFromJson(nlohmann::json::parse(R"("webcam")"), "m.json"), InputError);
+}
+
+}  // namespace
+}  // namespace omnicam
