@@ -60,7 +60,7 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "engine": "povray")")),
             "spec.json: mode: only the fast engine has modes other than exact");
   EXPECT_EQ(errorOf(spec(R"("timeout_s": 5)")), "spec.json: timeout_s: only with engine povray or blender");
-  EXPECT_EQ(errorOf(spec(R"("recording": {"vignetting": 2})")), "spec.json: recording.vignetting: must be in [0, 1] (got 2)");
+  EXPECT_EQ(errorOf(spec(R"("recording": {"vignetting": 2})")), "spec.json: recording.vignetting: must be a number in [0, 1] (got 2)");
   EXPECT_EQ(errorOf(spec(R"("recording": {"iso": 100})")).rfind("spec.json: recording.iso: unknown field", 0), 0u);
 }
 
@@ -134,10 +134,12 @@ TEST(DatasetSpec, ARecordingCameraIsReadWithItsParameters) {
       spec(R"("recording": {"exposure_ev": -0.5, "white_balance": [1.1, 1, 0.9], "jpeg_quality": 75, "seed": 9})"),
       "spec.json");
   ASSERT_TRUE(s.recording);
-  EXPECT_DOUBLE_EQ(s.recording->exposureEv, -0.5);
-  EXPECT_DOUBLE_EQ(s.recording->whiteBalance[2], 0.9);
-  EXPECT_EQ(s.recording->jpegQuality, 75);
-  EXPECT_EQ(s.recording->seed, 9u);
+  ASSERT_FALSE(s.recording->randomised());
+  const RecordingCamera camera = s.recording->draw(0);
+  EXPECT_DOUBLE_EQ(camera.exposureEv, -0.5);
+  EXPECT_DOUBLE_EQ(camera.whiteBalance[2], 0.9);
+  EXPECT_EQ(camera.jpegQuality, 75);
+  EXPECT_EQ(camera.seed, 9u);
   EXPECT_FALSE(datasetSpecFromText(spec(""), "spec.json").recording);
 }
 

@@ -27,31 +27,33 @@ struct Parameter {
   double neutral;                    // the value at which the stage does nothing
   std::function<double(const RecordingCamera&)> get;
   std::function<void(RecordingCamera&, double)> set;
+  std::string note = "";  // what a special value means, for messages
 };
 
 template <typename Enum>
 Parameter wordParameter(const char* name, const char* stage, std::vector<const char*> words, Enum RecordingCamera::*member) {
   return {name, stage, ValueType::Word, 0, static_cast<double>(words.size() - 1), false, std::move(words), 0.0,
           [member](const RecordingCamera& c) { return static_cast<double>(static_cast<int>(c.*member)); },
-          [member](RecordingCamera& c, double v) { c.*member = static_cast<Enum>(static_cast<int>(v)); }};
+          [member](RecordingCamera& c, double v) { c.*member = static_cast<Enum>(static_cast<int>(v)); }, ""};
 }
 
 Parameter realParameter(const char* name, const char* stage, double lo, double hi, double neutral,
                         double RecordingCamera::*member, bool openLow = false) {
   return {name, stage, ValueType::Real, lo, hi, openLow, {}, neutral,
-          [member](const RecordingCamera& c) { return c.*member; }, [member](RecordingCamera& c, double v) { c.*member = v; }};
+          [member](const RecordingCamera& c) { return c.*member; }, [member](RecordingCamera& c, double v) { c.*member = v; }, ""};
 }
 
 Parameter whiteBalanceGain(int channel) {
   static const char* const names[] = {"white_balance[0]", "white_balance[1]", "white_balance[2]"};
   return {names[channel], "white_balance", ValueType::Real, 0.0, 10.0, true, {}, 1.0,
           [channel](const RecordingCamera& c) { return c.whiteBalance[static_cast<size_t>(channel)]; },
-          [channel](RecordingCamera& c, double v) { c.whiteBalance[static_cast<size_t>(channel)] = v; }};
+          [channel](RecordingCamera& c, double v) { c.whiteBalance[static_cast<size_t>(channel)] = v; }, ""};
 }
 
 const std::vector<Parameter>& parameters() {
   using C = RecordingCamera;
-  static const std::vector<Parameter> table = {
+  static const std::vector<Parameter> table = [] {
+  std::vector<Parameter> t = {
       realParameter("blur_radius_px", "blur", 0, 20, 0, &C::blurRadiusPx),
       wordParameter("blur_kernel", "blur", {"gaussian", "disc"}, &C::blurKernel),
       realParameter("chromatic_aberration", "chromatic_aberration", -0.05, 0.05, 0, &C::chromaticAberration),
@@ -69,8 +71,13 @@ const std::vector<Parameter>& parameters() {
       realParameter("gamma", "tone", 1, 4, 2.2, &C::gamma),
       realParameter("contrast", "tone", 0.5, 4, 1.5, &C::contrast),
       {"jpeg_quality", "jpeg", ValueType::Integer, 0, 100, false, {}, 0,
-       [](const C& c) { return static_cast<double>(c.jpegQuality); }, [](C& c, double v) { c.jpegQuality = static_cast<int>(v); }},
+       [](const C& c) { return static_cast<double>(c.jpegQuality); }, [](C& c, double v) { c.jpegQuality = static_cast<int>(v); },
+       "0: no JPEG"},
   };
+  for (Parameter& p : t)
+    if (std::string(p.name) == "full_well_electrons") p.note = "0: no shot noise";
+  return t;
+  }();
   return table;
 }
 
@@ -122,7 +129,8 @@ std::string intervalText(const Parameter& p) {
 
 std::string domainText(const Parameter& p) {
   if (p.type == ValueType::Word) return "one of " + wordList(p.words);
-  return std::string(p.type == ValueType::Integer ? "an integer in " : "a number in ") + intervalText(p);
+  return std::string(p.type == ValueType::Integer ? "an integer in " : "a number in ") + intervalText(p) +
+         (p.note.empty() ? "" : " (" + p.note + ")");
 }
 
 bool inDomain(const Parameter& p, double v) {
@@ -263,12 +271,10 @@ void readDraws(JsonFields& f, const nlohmann::json& j, std::map<std::string, Par
   (void)j;
 }
 
-ParameterDraw presetDrawOf(const nlohmann::json& j, const JsonFields& f) {
-  static const Parameter presetParameter = [] {
-    Parameter p{"preset", "", ValueType::Word, 0, 2, false, {"webcam", "machine_vision", "phone"}, 0, {}, {}};
-    return p;
-  }();
-  return drawOf(presetParameter, j, f, "preset");
+// The preset, read and written as a Word parameter of its own (not a camera's).
+const Parameter& presetParameter() {
+  static const Parameter preset{"preset", "", ValueType::Word, 0, 2, false, {"webcam", "machine_vision", "phone"}, 0, {}, {}, ""};
+  return preset;
 }
 
 uint64_t seedOf(JsonFields& f) {
@@ -285,9 +291,15 @@ const std::vector<std::string>& recordingPresetNames() {
 }
 
 RecordingCameraSpec recordingPreset(const std::string& name) {
-  const char* text = presetText(name);
-  if (!text) throw InputError("recording: unknown preset " + quote(name) + " (webcam, machine_vision, phone)");
-  return recordingCameraSpecFromJson(nlohmann::json::parse(text), "the " + name + " preset", "recording");
+  static const std::map<std::string, RecordingCameraSpec> presets = [] {
+    std::map<std::string, RecordingCameraSpec> read;
+    for (const std::string& preset : recordingPresetNames())
+      read[preset] = recordingCameraSpecFromJson(nlohmann::json::parse(presetText(preset)), "the " + preset + " preset", "recording");
+    return read;
+  }();
+  const auto found = presets.find(name);
+  if (found == presets.end()) throw InputError("recording: unknown preset " + quote(name) + " (webcam, machine_vision, phone)");
+  return found->second;
 }
 
 const std::vector<std::string>& recordingStages() {
@@ -306,13 +318,13 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
-      throw InputError(file + ": " + where + ": unknown preset " + quote(j.get<std::string>()) + " (webcam, machine_vision, phone)");
+      throw InputError(showPath(file) + ": " + where + ": unknown preset " + quote(j.get<std::string>()) + " (webcam, machine_vision, phone)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
     return spec;
   }
   JsonFields f(j, file, where);
-  if (f.has("preset")) spec.preset = presetDrawOf(f.raw("preset"), f);
+  if (f.has("preset")) spec.preset = drawOf(presetParameter(), f.raw("preset"), f, "preset");
   readDraws(f, j, spec.draws);
   if (f.has("seed")) spec.seed = seedOf(f);
   f.finish();
@@ -321,10 +333,7 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
 
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec) {
   nlohmann::json j = nlohmann::json::object();
-  if (spec.preset) {
-    static const Parameter presetParameter{"preset", "", ValueType::Word, 0, 2, false, {"webcam", "machine_vision", "phone"}, 0, {}, {}};
-    j["preset"] = drawJson(presetParameter, *spec.preset);
-  }
+  if (spec.preset) j["preset"] = drawJson(presetParameter(), *spec.preset);
   nlohmann::json gains = nlohmann::json::array({1.0, 1.0, 1.0});
   bool anyGain = false;
   for (const auto& [name, draw] : spec.draws) {
@@ -392,7 +401,7 @@ nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
   const RecordingCameraSpec spec = recordingCameraSpecFromJson(j, file, where);
   if (spec.randomised())
-    throw InputError(file + ": " + where + ": a single camera is wanted here: fixed values, no distributions or preset ranges");
+    throw InputError(showPath(file) + ": " + where + ": a single camera is wanted here: fixed values, no distributions or preset ranges");
   return spec.draw(0);
 }
 

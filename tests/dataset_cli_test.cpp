@@ -26,6 +26,7 @@
 #include "image_compare.h"
 #include "mirror.h"
 #include "opencv_omnidir.h"
+#include "recording_camera_spec.h"
 #include "rig.h"
 #include "sha256.h"
 #include "shell_command.h"
@@ -423,6 +424,50 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("different spec"), std::string::npos) << r.out;
   EXPECT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 3/3").code, 2);
+}
+
+// A recording camera drawn per frame (domain randomisation): each frame's drawn values are in
+// the manifest and make its frame — the same render through recordFrame with those values gives its
+// PNG — and a killed-and-resumed run and a sharded run give the one-go dataset byte for byte.
+TEST_F(DatasetCliTest, ARandomisedRecordingCameraResumesAndShardsByteForByteWithEachFramesDraws) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 128, "spp": 4, "shading": "lit", "outputs": {"depth": false,
+    "normal": false}, "poses": {"path": "thesis-loop", "frames": 20},
+    "recording": {"preset": {"choice": ["webcam", "machine_vision", "phone"]}, "seed": 5})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole")).code, 0);
+  const json manifest = json::parse(readFile(dir_ / "whole/manifest.json"));
+  std::set<std::string> tones, exposures;
+  for (const json& frame : manifest.at("frames")) {
+    const json& drawn = frame.at("cameras").at("cam0").at("recording");
+    tones.insert(drawn.at("tone_curve").get<std::string>());
+    exposures.insert(drawn.at("exposure_ev").dump());
+  }
+  EXPECT_EQ(tones.size(), 3u) << "20 frames over three presets drew fewer tone curves";
+  EXPECT_EQ(exposures.size(), 20u) << "frames share a drawn exposure";
+  // Frame 7's drawn values and its clean render make its recorded frame exactly.
+  const json& frame7 = manifest.at("frames").at(7);
+  const RecordingCamera drawn = recordingCameraFromJson(frame7.at("cameras").at("cam0").at("recording"), "manifest.json");
+  const json& pose = frame7.at("pose");
+  char poseText[128];
+  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
+                pose.at("yaw_deg").get<double>());
+  const auto clean = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 128 --spp 4 --shading lit --pose=" +
+                             std::string(poseText) + " -o " + path("clean7.exr"));
+  ASSERT_EQ(clean.code, 0) << clean.out;
+  const ImageRGBA recorded = recordFrame(drawn, readImage(path("clean7.exr")), 7);
+  const ImageRGBA written = readImage(path("whole/cam0/rgb/000007.png"));
+  EXPECT_TRUE(encodeImage("a.png", recorded) == encodeImage("a.png", written)) << "frame 7 is not its drawn camera's recording";
+
+  int status = 0;
+  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
+  EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+  std::map<std::string, std::string> merged = snapshot(dir_ / "parts");
+  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
+  EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
 }
 
 TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
