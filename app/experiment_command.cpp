@@ -13,6 +13,8 @@
 #include "commands.h"
 #include "errors.h"
 #include "hall_arena.h"
+#include "json_text.h"
+#include "markup.h"
 #include "mapping_arena.h"
 #include "path_convergence.h"
 #include "realistic_convergence.h"
@@ -36,6 +38,7 @@ std::string experimentsDir() {
 
 struct ExperimentArgs {
   std::string name, out, doc, convergence, noiseScene;
+  std::vector<std::string> testCameras;
   bool quick = false, noFigures = false;
   double theta = 1.0;
   int bins = 32;
@@ -62,7 +65,7 @@ struct StageProgress {
 };
 
 void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--doc", "--convergence", "--theta", "--bins"})
+  for (const char* flag : {"--doc", "--convergence", "--theta", "--bins", "--test-camera"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
@@ -101,7 +104,7 @@ void replaceGeneratedSection(const std::string& doc, const std::string& section)
 }
 
 void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures"})
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures", "--test-camera"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
   if (!a.noiseScene.empty() && a.noiseScene != "plain_hall" && a.noiseScene != "textured_hall" && a.noiseScene != "tiled_room")
     throw InputError("--noise-scene: must be plain_hall, textured_hall or tiled_room (got " + quote(a.noiseScene) + ")");
@@ -167,7 +170,7 @@ void copyFigures(const std::string& folder, const std::string& doc, const std::v
 }
 
 void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--convergence", "--theta", "--bins", "--noise-scene"})
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--noise-scene", "--test-camera"})
     refuseUnless(cmd, flag, false, flag == std::string("--noise-scene") ? "experiment path-convergence" : "experiment texture-realism");
   if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
   if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
@@ -212,6 +215,8 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.labPhoto = kLabPhoto;
   for (const char* photo : kOtherPhotos) options.randomPhotos.push_back(std::string(kStudioLights) + photo);
+  for (const std::string& file : a.testCameras)  // read before anything is written: a bad one writes nothing
+    options.testCameras.push_back({file, recordingCameraSpecFromJson(readJsonFile(file), file, "")});
   for (const std::string& photo : options.randomPhotos)
     if (!std::filesystem::exists(photo))
       throw InputError(showPath(photo) + ": missing (Debian's blender-data ships it; run make deps)");
@@ -232,10 +237,14 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (a.bins != 32) command += " --bins " + std::to_string(a.bins);
   if (!a.doc.empty()) command += " --doc " + a.doc;
   if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
+  for (const std::string& file : a.testCameras) command += " --test-camera " + shellQuote(file);
   const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.doc) : "";
   const std::string markdown = textureRealismMarkdown(results, options, command, section);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);
-  if (!a.doc.empty()) writeTextAtomically(a.doc, markdown);
+  if (!a.doc.empty()) {
+    if (!results.comparison.pixels.empty()) copyFigures(a.out, a.doc, {kRecordingFigure});
+    writeTextAtomically(a.doc, markdown);
+  }
   std::printf("wrote %s/results.json, %s/report.html (%.0f s)\n", a.out.c_str(), a.out.c_str(), results.seconds);
 }
 
@@ -293,6 +302,9 @@ void addExperimentCommands(CLI::App& app) {
   cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)")->check(integerIn(2, 256));
   cmd->add_option("--convergence", args->convergence,
                   "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR");
+  cmd->add_option("--test-camera", args->testCameras,
+                  "texture-realism: an extra realistic test set, the Cycles frames recorded through this camera "
+                  "(JSON in a dataset's `recording` format; repeatable; training never sees it)");
   cmd->add_option("--noise-scene", args->noiseScene,
                   "path-convergence: measure the Cycles references' own noise on this scene only (plain_hall, "
                   "textured_hall or tiled_room; default every scene, which doubles Cycles' share of the run)");

@@ -24,6 +24,8 @@
 #include "scene_loader.h"
 #include "texture_realism_report.h"
 
+#include <opencv2/imgproc.hpp>
+
 namespace omnicam {
 
 namespace fs = std::filesystem;
@@ -37,7 +39,15 @@ TextureRealismOptions TextureRealismOptions::quick() {
   o.trainFrames = 6;
   o.randomHalls = 2;
   o.pathSpp = 4;
+  o.recordingDraws = 2;
   return o;
+}
+
+RecordingCameraSpec trainingRecordingMix(uint64_t seed) {
+  RecordingCameraSpec spec;
+  spec.preset = ParameterDraw{ParameterDraw::Kind::Choice, 0, 0, {0, 1, 2}};  // recordingPresetNames()
+  spec.seed = seed;
+  return spec;
 }
 
 namespace {
@@ -303,52 +313,78 @@ std::vector<ImageRGBA> cyclesFrames(const TextureRealismOptions& o, const fs::pa
   return frames;
 }
 
-// The realistic frames of `masks`' poses: Cycles' frames of the textured hall through `recording`;
-// their instance masks are the fast renderer's (`masks`).
-std::vector<Frame> renderRealisticFrames(const TextureRealismOptions& o, const fs::path& out, const Scene& textured,
-                                         const std::vector<Frame>& masks, const std::function<void()>& step) {
-  std::vector<RobotPose> poses;
-  for (const Frame& mask : masks) poses.push_back(mask.pose);
-  const std::vector<ImageRGBA> linear = cyclesFrames(o, out, textured, poses, step);
-  std::vector<Frame> realistic;
-  for (size_t index = 0; index < masks.size(); ++index)
-    realistic.push_back({masks[index].pose, recordFrame(o.recording, linear[index], index), masks[index].instance});
-  return realistic;
+std::string testCameraSet(size_t k) { return "realistic_camera_" + std::to_string(k + 1); }
+
+// Frames as `recording` records them (frame k drawn and seeded with index k), masks and poses kept.
+std::vector<Frame> recordedFrames(const std::vector<Frame>& frames, const std::vector<ImageRGBA>& linear,
+                                  const RecordingCameraSpec& recording) {
+  std::vector<Frame> recorded;
+  for (size_t k = 0; k < frames.size(); ++k)
+    recorded.push_back({frames[k].pose, recordFrame(recording.draw(k), linear[k], k), frames[k].instance});
+  return recorded;
 }
 
-const char* const kTrainSets[] = {"plain", "random_textures", "path", "realistic"};
+// Trains `classifiers` on `frames`, each recorded `draws` times through a camera drawn from
+// `recording` (draw index frame × draws + d), with `neutralStage` (if any) held neutral: one
+// recorded frame in memory at a time.
+void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifiers, const std::vector<Frame>& frames,
+                     const TextureRealismOptions& o, const std::string& neutralStage, const std::vector<std::string>& bandColour) {
+  for (size_t k = 0; k < frames.size(); ++k)
+    for (int d = 0; d < o.recordingDraws; ++d) {
+      const uint64_t index = k * static_cast<uint64_t>(o.recordingDraws) + static_cast<uint64_t>(d);
+      RecordingCamera camera = o.trainingRecording.draw(index);
+      if (!neutralStage.empty()) camera = withStageNeutral(camera, neutralStage);
+      trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour);
+    }
+}
+
+// The training sets' names: path and plain frames recorded through drawn cameras, and the ablation's
+// sets (one stage held neutral each).
+std::string recordedSet(const std::string& frames) { return frames + "_recorded"; }
+std::string ablationSet(const std::string& stage) { return "path_recorded_without_" + stage; }
 
 Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
                              const std::vector<std::string>& bandColour, const std::function<void()>& step) {
   Classifiers trained;
-  const std::vector<std::string> colours = {"cyan", "magenta", "yellow"};
-  for (const std::string set : kTrainSets) {
+  auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
     auto& classifiers = trained[set];
-    for (const std::string& colour : colours) classifiers.emplace(colour, ColourHistogramClassifier(o.bins));
-    // plain and random_textures keep the poses they always had; path and realistic share theirs.
-    const uint64_t poseSeed = set == "plain" ? 1 : set == "random_textures" ? 2 : 3;
-    const std::vector<RobotPose> poses = randomFieldPoses(o.trainFrames, o.seed + poseSeed);
-    if (set == "plain") {
-      trainOn(classifiers, renderFast(plain, poses, o.size, o.spp, step), bandColour);
-    } else if (set == "path") {
-      trainOn(classifiers, renderFast(textured, poses, o.size, o.pathSpp, step, Shading::Path), bandColour);
-    } else if (set == "realistic") {
-      const std::vector<Frame> masks = renderFast(textured, poses, o.size, 1, [] {});
-      trainOn(classifiers, renderRealisticFrames(o, out, textured, masks, step), bandColour);
-    } else {
-      for (int k = 0; k < o.randomHalls; ++k) {
-        std::vector<RobotPose> share;
-        for (size_t p = static_cast<size_t>(k); p < poses.size(); p += static_cast<size_t>(o.randomHalls)) share.push_back(poses[p]);
-        const Scene scene = loadScene((out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
-        trainOn(classifiers, renderFast(scene, share, o.size, o.spp, step), bandColour);
-      }
-    }
+    for (const char* colour : {"cyan", "magenta", "yellow"}) classifiers.emplace(colour, ColourHistogramClassifier(o.bins));
+    return classifiers;
+  };
+  // plain and random_textures keep the poses they always had; path and realistic share theirs.
+  const std::vector<Frame> plainFrames = renderFast(plain, randomFieldPoses(o.trainFrames, o.seed + 1), o.size, o.spp, step);
+  trainOn(fresh("plain"), plainFrames, bandColour);
+  const std::vector<RobotPose> randomPoses = randomFieldPoses(o.trainFrames, o.seed + 2);
+  auto& randomTextures = fresh("random_textures");
+  for (int k = 0; k < o.randomHalls; ++k) {
+    std::vector<RobotPose> share;
+    for (size_t p = static_cast<size_t>(k); p < randomPoses.size(); p += static_cast<size_t>(o.randomHalls)) share.push_back(randomPoses[p]);
+    const Scene scene = loadScene((out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
+    trainOn(randomTextures, renderFast(scene, share, o.size, o.spp, step), bandColour);
   }
+  const std::vector<RobotPose> sharedPoses = randomFieldPoses(o.trainFrames, o.seed + 3);
+  const std::vector<Frame> pathFrames = renderFast(textured, sharedPoses, o.size, o.pathSpp, step, Shading::Path);
+  trainOn(fresh("path"), pathFrames, bandColour);
+  const std::vector<Frame> masks = renderFast(textured, sharedPoses, o.size, 1, [] {});
+  std::vector<RobotPose> poses;
+  for (const Frame& mask : masks) poses.push_back(mask.pose);
+  trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, out, textured, poses, step), fixedRecordingCameraSpec(o.recording)),
+          bandColour);
+  // Domain randomisation of the camera: path and plain frames through drawn cameras, and the ablation.
+  trainOnRecorded(fresh(recordedSet("path")), pathFrames, o, "", bandColour);
+  trainOnRecorded(fresh(recordedSet("plain")), plainFrames, o, "", bandColour);
+  step();
+  if (o.ablation)
+    for (const std::string& stage : recordingStages()) {
+      trainOnRecorded(fresh(ablationSet(stage)), pathFrames, o, stage, bandColour);
+      step();
+    }
   return trained;
 }
 
 // Test sets along thesis-loop: plain and textured by the fast renderer, realistic by Blender (one
-// session per batch of poses) on the textured hall, whose instance masks hold for them too.
+// session per batch of poses) on the textured hall, whose instance masks hold for them too, through
+// the webcam and through each test camera (realistic_camera_1, …).
 std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
                                                          const std::vector<RobotPose>& testPoses,
                                                          const std::function<void()>& step) {
@@ -356,7 +392,10 @@ std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOpt
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
   tests["path"] = renderFast(textured, testPoses, o.size, o.pathSpp, step, Shading::Path);
-  tests["realistic"] = renderRealisticFrames(o, out, textured, tests["textured"], step);
+  const std::vector<ImageRGBA> linear = cyclesFrames(o, out, textured, testPoses, step);
+  tests["realistic"] = recordedFrames(tests["textured"], linear, fixedRecordingCameraSpec(o.recording));
+  for (size_t k = 0; k < o.testCameras.size(); ++k)
+    tests[testCameraSet(k)] = recordedFrames(tests["textured"], linear, o.testCameras[k].recording);
   return tests;
 }
 
@@ -399,6 +438,62 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   condition.exampleImage = frames[example].image;
 }
 
+// Every train → test pair the run evaluates: the thesis' and earlier ones, training through drawn
+// cameras, the ablation, and each test camera against the training sets that matter for it.
+std::vector<std::pair<std::string, std::string>> conditionsOf(const TextureRealismOptions& o) {
+  std::vector<std::pair<std::string, std::string>> list = {
+      {"plain", "plain"},     {"plain", "textured"},     {"plain", "realistic"}, {"random_textures", "realistic"},
+      {"path", "realistic"}, {"realistic", "path"},     {recordedSet("path"), "realistic"}, {recordedSet("plain"), "realistic"}};
+  if (o.ablation)
+    for (const std::string& stage : recordingStages()) list.emplace_back(ablationSet(stage), "realistic");
+  for (size_t k = 0; k < o.testCameras.size(); ++k)
+    for (const std::string& train : {std::string("plain"), std::string("path"), recordedSet("path"), recordedSet("plain")})
+      list.emplace_back(train, testCameraSet(k));
+  return list;
+}
+
+// The cameras the report shows: the training ranges, the webcam and each test camera's values.
+void describeCameras(const TextureRealismOptions& o, TextureRealismResults& results) {
+  results.trainingRanges = describeRanges(o.trainingRecording);
+  results.testCameras.push_back({"realistic", "webcam (fixed; the realistic frames)", describeValues(o.recording)});
+  for (size_t k = 0; k < o.testCameras.size(); ++k)
+    results.testCameras.push_back({testCameraSet(k), fs::path(o.testCameras[k].file).filename().string(),
+                                   o.testCameras[k].recording.randomised() ? describeRanges(o.testCameras[k].recording)
+                                                                          : describeValues(o.testCameras[k].recording.draw(0))});
+  if (o.ablation) results.ablatedStages = recordingStages();
+}
+
+// One test pose side by side, labelled, each panel at most 240 px (the figure the document shows):
+// plain, path, path through one drawn training camera, realistic.
+ImageRGBA recordingComparison(const TextureRealismOptions& o, const std::map<std::string, std::vector<Frame>>& tests, size_t pose) {
+  const ImageRGBA& path = tests.at("path")[pose].image;
+  const uint64_t drawIndex = 1000000 + pose;  // a draw no training frame used
+  const ImageRGBA panels[] = {tests.at("plain")[pose].image, path, recordFrame(o.trainingRecording.draw(drawIndex), path, drawIndex),
+                              tests.at("realistic")[pose].image};
+  const char* const labels[] = {"plain", "path", "path + drawn camera", "realistic"};
+  const int side = std::min(240, path.width);
+  cv::Mat strip(side, 4 * side, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int k = 0; k < 4; ++k) {
+    cv::Mat codes(path.height, path.width, CV_8UC3);
+    for (int j = 0; j < path.height; ++j)
+      for (int i = 0; i < path.width; ++i) {
+        const Rgb8 code = rgb8FromPixel(panels[k].at(i, j));
+        codes.at<cv::Vec3b>(j, i) = cv::Vec3b(code[0], code[1], code[2]);
+      }
+    cv::Mat panel = strip(cv::Rect(k * side, 0, side, side));
+    cv::resize(codes, panel, panel.size(), 0, 0, cv::INTER_AREA);
+    cv::putText(panel, labels[k], cv::Point(6, side - 8), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  }
+  ImageRGBA figure(strip.cols, strip.rows);
+  for (int j = 0; j < strip.rows; ++j)
+    for (int i = 0; i < strip.cols; ++i) {
+      float* to = figure.at(i, j);
+      for (int c = 0; c < 3; ++c) to[c] = srgbToLinear(strip.at<cv::Vec3b>(j, i)[c] / 255.0f);
+      to[3] = 1.0f;
+    }
+  return figure;
+}
+
 // The EKF's mean position errors along the loop, odometry alone and filtered (cm).
 EkfOutcome ekfOutcome(const ConditionReport& c) {
   EkfOutcome e;
@@ -435,9 +530,10 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<RobotPose> testPoses;
   for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
 
-  const int trainTotal = 4 * o.trainFrames, testTotal = 4 * static_cast<int>(testPoses.size());
+  const int trainTotal = 4 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0);
+  const int testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
-  const std::function<void()> step = [&] { progress("rendering", ++done, trainTotal + testTotal); };
+  const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
   const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step);
   const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, out, plain, textured, testPoses, step);
 
@@ -448,9 +544,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const double matchRadius = o.matchRadiusPx * o.size / 360.0;
   std::vector<std::vector<GroundTruthBeacon>> truth;
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
-  const std::vector<std::pair<std::string, std::string>> conditionList = {
-      {"plain", "plain"},     {"plain", "textured"},     {"plain", "realistic"}, {"random_textures", "realistic"},
-      {"path", "realistic"}, {"realistic", "path"}};
+  const std::vector<std::pair<std::string, std::string>> conditionList = conditionsOf(o);
   const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;
@@ -471,6 +565,8 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   for (const auto& [set, classifiers] : trained) report.classifiers[set] = &classifiers;
 
   TextureRealismResults results;
+  describeCameras(o, results);
+  results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);
   for (const ConditionReport& c : report.conditions) {
     results.conditions.push_back(c.outcome);
     results.ekf.push_back(ekfOutcome(c));

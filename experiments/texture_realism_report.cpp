@@ -173,6 +173,9 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
     html << "<tr><td>" << escapeMarkup(e.condition) << "</td><td>" << fixed(e.meanErrorOdometryCm, 1) << "</td><td>"
          << fixed(e.meanErrorEkfCm, 1) << "</td><td>" << fixed(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1)
          << "</td><td>" << e.measurementsUsed << " / " << e.measurementsGated << "</td></tr>";
+  if (results.comparison.width > 0)
+    html << "</table><h2>One pose: plain, path, path through one drawn camera, realistic</h2><img src=\"figures/"
+         << kRecordingFigure << "\" style=\"max-width:100%\"><table>";
   html << "</table><h2>Frames with detections</h2><p>Green crosses: visible beacons (projected). Yellow circles: "
           "correct detections; red: wrong identity or position.</p>";
   for (const ConditionReport& c : data.conditions)
@@ -193,6 +196,7 @@ void writeTextureRealismReport(const ReportData& data, const TextureRealismResul
   for (const ConditionReport& c : data.conditions)
     writeImageAtomic((out / ("frames/" + c.outcome.key() + ".png")).string(),
                      drawDetections(c.exampleImage, c.frames[c.exampleFrame]));
+  if (results.comparison.width > 0) writeImageAtomic((out / "figures" / kRecordingFigure).string(), results.comparison);
   writeTextAtomically((out / "results.json").string(), textureRealismResultsJson(results).dump(2) + "\n");
   bool figures = false;
   if (!plotScript.empty()) {
@@ -432,6 +436,7 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
   writeFalsePositivesAndEkf(md, results);
   writeFindings(md, results);
   writeRealisticChanges(md, results);
+  md << recordingSectionMarkdown(results, o, results.comparison.width > 0 ? std::string("figures/") + kRecordingFigure : "");
   if (!convergence.empty()) md << "\n" << convergence;
   md << "\nWhere the numbers differ from the thesis: its counts come from hand labels on its own arena and ISLA's "
         "real camera; ours from projection on our hall, and our realistic frames are rendered, so only the "

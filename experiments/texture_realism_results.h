@@ -7,10 +7,14 @@
 
 #include "beacon_detector.h"
 #include "realistic_rendering.h"
-#include "recording_camera.h"
+#include "recording_camera_spec.h"
 #include "render_settings.h"
 
 namespace omnicam {
+
+// The training cameras' ranges: each frame one of the presets (webcam, machine_vision, phone), its
+// values drawn from that preset's ranges.
+RecordingCameraSpec trainingRecordingMix(uint64_t seed);
 
 struct TextureRealismOptions {
   std::string outDir;
@@ -26,7 +30,19 @@ struct TextureRealismOptions {
   int randomHalls = 6;         // random_textures: frames spread over this many halls
   int bins = 32;
   DetectorOptions detector;
-  RecordingCamera recording = RecordingCamera::webcam();
+  RecordingCamera recording = RecordingCamera::webcam();  // the realistic frames' camera (fixed)
+  // Training through a range of cameras (domain randomisation): each path / plain training frame
+  // recorded `recordingDraws` times, each with a camera drawn from `trainingRecording` — the three
+  // presets' ranges, fixed before any result and never fitted to a test camera.
+  RecordingCameraSpec trainingRecording = trainingRecordingMix(2008);
+  int recordingDraws = 4;
+  bool ablation = true;  // the path + recording condition once per stage held neutral
+  // Extra realistic test sets: the same Cycles frames through cameras the user supplies.
+  struct TestCamera {
+    std::string file;                  // where it was read from (shown in the report)
+    RecordingCameraSpec recording;
+  };
+  std::vector<TestCamera> testCameras;
   uint64_t seed = 2008;
   double matchRadiusPx = 8.0;  // at 360 px; scaled with the image size
   double blenderTimeoutSeconds = 3600.0;
@@ -50,8 +66,20 @@ struct EkfOutcome {
   int measurementsUsed = 0, measurementsGated = 0;
 };
 
+// A realistic test set's camera as the report shows it: its name in condition keys, where it came
+// from, and its values in words (by parameter).
+struct TestCameraSummary {
+  std::string set;    // "realistic", "realistic_camera_1", …
+  std::string label;  // "webcam (fixed)", a file name
+  std::vector<std::pair<std::string, std::string>> values;
+};
+
 struct TextureRealismResults {
   std::vector<ConditionOutcome> conditions;
+  std::vector<TestCameraSummary> testCameras;
+  std::vector<std::pair<std::string, std::string>> trainingRanges;  // by parameter, in words
+  std::vector<std::string> ablatedStages;
+  ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
   double seconds = 0.0;
 };

@@ -1,6 +1,6 @@
 """Type stubs of the compiled part of omnicam (python/src/*.cpp); docs/python.md."""
 
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -83,7 +83,8 @@ class Renderer:
     def render(self, pose: Optional[Pose] = ..., *, rig: Optional[Rig] = ..., size: int = ..., spp: Optional[int] = ...,
                shading: Optional[str] = ..., traced: bool = ..., outputs: Outputs = ...,
                velocity: Optional[Tuple[float, float, float]] = ..., bounces: Optional[int] = ...,
-               seed: Optional[int] = ..., denoise: bool = ...) -> Dict[str, np.ndarray]: ...
+               seed: Optional[int] = ..., denoise: bool = ...,
+               recording: Optional[Union[str, Dict[str, Any]]] = ..., frame: int = ...) -> Dict[str, np.ndarray]: ...
     @property
     def engine(self) -> str: ...
     @property
@@ -92,7 +93,8 @@ class Renderer:
 def render(scene: Scene, pose: Optional[Pose] = ..., *, engine: Optional[str] = ..., rig: Optional[Rig] = ..., size: int = ...,
            spp: Optional[int] = ..., shading: Optional[str] = ..., traced: bool = ..., outputs: Outputs = ...,
            velocity: Optional[Tuple[float, float, float]] = ..., bounces: Optional[int] = ...,
-           seed: Optional[int] = ..., denoise: bool = ...) -> Dict[str, np.ndarray]: ...
+           seed: Optional[int] = ..., denoise: bool = ...,
+           recording: Optional[Union[str, Dict[str, Any]]] = ..., frame: int = ...) -> Dict[str, np.ndarray]: ...
 
 def run_dataset(spec: str, out: str, *, overwrite: bool = ..., threads: int = ...,
                 progress: Optional[Callable[[int, int], None]] = ...) -> Dict[str, Any]: ...

@@ -12,6 +12,7 @@
 #include "engines.h"
 #include "frame_planes.h"
 #include "output_kinds.h"
+#include "recording_camera_spec.h"
 #include "errors.h"
 #include "scene_ids.h"
 
@@ -66,8 +67,13 @@ class PyRenderer {
   py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg,
                   const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
                   const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
-                  const std::optional<PyInteger>& seed, bool denoise) {
+                  const std::optional<PyInteger>& seed, bool denoise, const py::object& recording, const PyInteger& frameArg) {
     const int size = optionalSize(sizeArg);
+    // The recording camera (recording_camera_spec.h): read before rendering, drawn for `frame`.
+    std::optional<RecordingCamera> camera;
+    const uint64_t frame = static_cast<uint64_t>(narrowed(frameArg, "frame", 0, INT64_MAX));
+    if (!recording.is_none())
+      camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "recording=", "recording").draw(frame);
     RequestFields fields = engineFields_;
     fields.spp = wideInteger(spp, "spp");
     fields.shading = shading;
@@ -92,6 +98,7 @@ class PyRenderer {
       std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
       if (!engine_->capabilities().concurrent) turn.lock();
       engine_->render(placement, settings, film);
+      if (camera) film.image = recordFrame(*camera, film.image, frame);
     }
     return arrays(film, kinds);
   }
@@ -155,7 +162,10 @@ rig's shutter (docs/motion.md; the pose is the exposure start's). outputs, named
 datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultiplied alpha;
 "depth" (H, W) float32 metres along the viewing ray; "instance" and "semantic" (H, W) uint16 ids
 (Scene.ids); "normal" (H, W, 3) float32 world-frame. AOVs (all but rgb) are point-sampled at
-pixel centres, fast engine only. Returns a dict
+pixel centres, fast engine only. recording: what a real camera makes of the colour (AOVs stay
+exact): a preset's name ("webcam", "machine_vision", "phone") or a dict in a dataset's
+`recording` format (docs/experiments.md), its distributions drawn for `frame` (default 0) from
+its seed, as a dataset draws frame × cameras + camera. Returns a dict
 of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.)";
 
 const std::string kOneRenderDoc =
@@ -190,7 +200,8 @@ per ground-truth frame; threads: 0 for every core.)")
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
            py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
-           py::arg("bounces") = py::none(), py::arg("seed") = py::none(), py::arg("denoise") = false, kRenderDoc)
+           py::arg("bounces") = py::none(), py::arg("seed") = py::none(), py::arg("denoise") = false,
+           py::arg("recording") = py::none(), py::arg("frame") = 0, kRenderDoc)
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -202,16 +213,17 @@ per ground-truth frame; threads: 0 for every core.)")
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::optional<std::string>& engine, const std::optional<RigSpec>& rig,
          const PyInteger& size, const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
          const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
-         const std::optional<PyInteger>& seed, bool denoise) {
+         const std::optional<PyInteger>& seed, bool denoise, const py::object& recording, const PyInteger& frame) {
         RequestFields fields;
         fields.engine = engine;
         PyRenderer renderer(std::make_shared<const Scene>(*scene), fields);
-        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity, bounces, seed, denoise);
+        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity, bounces, seed, denoise, recording, frame);
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = py::none(), py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), py::arg("bounces") = py::none(),
-      py::arg("seed") = py::none(), py::arg("denoise") = false, kOneRenderDoc.c_str());
+      py::arg("seed") = py::none(), py::arg("denoise") = false, py::arg("recording") = py::none(), py::arg("frame") = 0,
+      kOneRenderDoc.c_str());
 }
 
 }  // namespace omnicam::python
