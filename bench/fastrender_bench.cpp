@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "fast_renderer.h"
+#include "recording_camera.h"
 #include "hall_arena.h"
 #include "scene_loader.h"
 #include "test_lenses.h"
@@ -110,8 +111,41 @@ BENCHMARK(BM_PathTexturedHall)
     ->Args({4, 1})
     ->Args({16, 0})
     ->Args({16, 1})
+    ->Args({kPathDatasetSpp, 1})  // a path-traced dataset's frame: the recording stage's yardstick
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The recording camera with every stage on (blur, lateral CA, vignetting, exposure, white balance,
+// Bayer mosaic and demosaicing by state.range(0): 0 bilinear, 1 VNG, 2 edge-aware; shot, read and
+// row noise; filmic tone; JPEG 90) on a 360-px path-traced frame: frames/s beside
+// BM_PathTexturedHall's, which it must not halve.
+void BM_RecordingCameraEveryStage(benchmark::State& state) {
+  RenderSettings settings;
+  settings.rig = texturedHall().rig.resized(360);
+  settings.spp = 4;
+  settings.shading = Shading::Path;
+  settings.denoise = true;
+  static const ImageRGBA frame = FastRenderer(texturedHall()).render(RobotPose{2.7, -1.8, 180.0}, settings);
+  RecordingCamera camera;
+  camera.blurRadiusPx = 1.0;
+  camera.chromaticAberration = 0.003;
+  camera.vignetting = 0.3;
+  camera.exposureEv = 0.3;
+  camera.whiteBalance = {1.1, 1.0, 0.9};
+  camera.bayer = BayerPattern::RGGB;
+  camera.demosaic = static_cast<DemosaicMethod>(state.range(0));
+  camera.fullWellElectrons = 3000;
+  camera.readNoise = 0.005;
+  camera.rowNoise = 0.002;
+  camera.tone = ToneCurve::Filmic;
+  camera.jpegQuality = 90;
+  uint64_t index = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(recordFrame(camera, frame, index++));
+  state.counters["frames/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  static const char* const methods[] = {"bilinear", "VNG", "edge-aware"};
+  state.SetLabel(std::string("every stage, ") + methods[state.range(0)] + " demosaicing");
+}
+BENCHMARK(BM_RecordingCameraEveryStage)->ArgName("demosaic")->DenseRange(0, 2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // 1 and 16 spp, unlit and lit, for either rig.
 void frameArgs(benchmark::internal::Benchmark* b) {
