@@ -110,8 +110,10 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const auto study = omnicam("experiment realistic-convergence --quick -o " + path("convergence"));
   ASSERT_EQ(study.code, 0) << study.out;
   expectQuickConvergenceStudy(path("convergence"), study.out);
+  const std::string testCameras = " --test-camera " OMNICAM_SOURCE_DIR "/examples/recording/cool_noisy.json --test-camera " OMNICAM_SOURCE_DIR
+                                  "/examples/recording/sharp_jpeg95.json";
   const auto r = omnicam("experiment texture-realism --quick -o " + path("run") + " --doc " + path("doc.md") +
-                         " --convergence " + path("convergence"));
+                         " --convergence " + path("convergence") + testCameras);
   ASSERT_EQ(r.code, 0) << r.out;
   std::ifstream in(path("run/results.json"));
   const json results = json::parse(in);
@@ -134,8 +136,20 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_LT(results["ekf"]["plain_to_plain"]["mean_error_ekf_cm"].get<double>(),
             results["ekf"]["plain_to_plain"]["mean_error_odometry_cm"].get<double>());
   EXPECT_GT(results["seconds"].get<double>(), 0.0);
-  ASSERT_EQ(results["conditions"].size(), 6u);
-  ASSERT_EQ(results["ekf"].size(), 6u);
+  // Training through drawn cameras, the ablation (nine stages) and two test cameras against four
+  // training sets each: 6 + 2 + 9 + 8 conditions.
+  std::vector<std::string> recordingConditions = {"path_recorded_to_realistic", "plain_recorded_to_realistic"};
+  for (const char* stage : {"blur", "chromatic_aberration", "vignetting", "exposure", "white_balance", "bayer", "noise", "tone", "jpeg"})
+    recordingConditions.push_back(std::string("path_recorded_without_") + stage + "_to_realistic");
+  for (const char* camera : {"realistic_camera_1", "realistic_camera_2"})
+    for (const char* train : {"plain", "path", "path_recorded", "plain_recorded"}) recordingConditions.push_back(std::string(train) + "_to_" + camera);
+  for (const std::string& condition : recordingConditions) {
+    ASSERT_TRUE(results["conditions"].contains(condition)) << condition;
+    EXPECT_EQ(results["conditions"][condition]["frames"], 4) << condition;
+    ASSERT_TRUE(results["ekf"].contains(condition)) << condition;
+  }
+  ASSERT_EQ(results["conditions"].size(), 25u);
+  ASSERT_EQ(results["ekf"].size(), 25u);
 
   // --quick: every 25th of the 100 thesis-loop poses (4 test frames), 360 px, 6 training frames.
   const Scene field = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
@@ -149,7 +163,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const auto detections = readCsv(path("run/data/detections.csv"),
                                   {"condition", "frame", "pose_index", "visible_beacons", "true_positives",
                                    "false_identifications", "false_positive_blobs", "mean_error_px"});
-  ASSERT_EQ(detections.size(), 24u);  // six conditions of four frames
+  ASSERT_EQ(detections.size(), 100u);  // 25 conditions of four frames
   const auto blobs = readCsv(path("run/data/false_positive_blobs.csv"),
                              {"condition", "frame", "colour", "area_px", "u", "v", "object"});
   std::map<int, int> visibleAt;  // frame → visible beacons, from the first condition
@@ -283,9 +297,11 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   // same labelled pixels, at most those inside the rim of 6 frames (radius 180 px).
   std::ifstream histogramFile(path("run/data/histograms.json"));
   const json histograms = json::parse(histogramFile);
-  ASSERT_EQ(histograms.size(), 4u);
-  for (const char* set : {"plain", "random_textures", "path", "realistic"}) {
+  ASSERT_EQ(histograms.size(), 15u);
+  for (const auto& [set, classifiers] : histograms.items()) {
     SCOPED_TRACE(set);
+    // A recorded set sees each of its 6 frames twice (--quick: two drawn cameras per frame).
+    const double frames = set.find("_recorded") != std::string::npos ? 12.0 : 6.0;
     ASSERT_TRUE(histograms.contains(set));
     ASSERT_EQ(histograms[set].size(), 3u);
     uint64_t labelled = 0;
@@ -307,8 +323,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
       if (labelled == 0) labelled = total;
       EXPECT_EQ(total, labelled) << colour;
     }
-    EXPECT_LE(static_cast<double>(labelled), 6 * kPi * 180.0 * 180.0);
-    EXPECT_GT(static_cast<double>(labelled), 0.9 * 6 * kPi * 180.0 * 180.0);
+    EXPECT_LE(static_cast<double>(labelled), frames * kPi * 180.0 * 180.0);
+    EXPECT_GT(static_cast<double>(labelled), 0.9 * frames * kPi * 180.0 * 180.0);
   }
 
   // Every image the report shows exists: the four figures, and a 360 px frame per condition.
@@ -331,7 +347,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
     EXPECT_EQ(frame.width, 360) << file;
     EXPECT_EQ(frame.height, 360) << file;
   }
-  EXPECT_EQ(shown.size(), 10u);  // four figures, one frame per condition
+  EXPECT_TRUE(shown.count("figures/texture_realism_recording.png"));
+  EXPECT_EQ(shown.size(), 30u);  // four figures, the recording strip, one frame per condition
   for (const std::string& file : shown) EXPECT_TRUE(fs::exists(path("run/" + file))) << file;
 
   // The Markdown summary: the thesis' row beside the measured one.
@@ -351,9 +368,28 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_NE(doc.str().find("](figures/realistic_convergence.svg)"), std::string::npos);
   EXPECT_TRUE(fs::exists(path("figures/realistic_convergence.svg")));
   EXPECT_NE(doc.str().find("## What changed with the new realistic frames"), std::string::npos);
+  // The recording section: the table per test camera, the ablation, the ranges beside the test
+  // cameras' values (each file named), the strip of four 240-px panels beside the document.
+  for (const char* part : {"## Frames that transfer: the recording camera in training", "| path + drawn recording cameras |",
+                           "### Which faults matter", "| noise |", "**They are never tuned to a test camera**",
+                           "| cool_noisy.json | sharp_jpeg95.json |", "| bayer | webcam: one of rggb, bggr, grbg, gbrg;",
+                           "](figures/texture_realism_recording.png)", "### Finding"})
+    EXPECT_NE(doc.str().find(part), std::string::npos) << part;
+  const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
+  EXPECT_EQ(strip.width, 960);
+  EXPECT_EQ(strip.height, 240);
   std::stringstream copy;
   copy << std::ifstream(path("run/texture-realism.md")).rdbuf();
   EXPECT_EQ(copy.str(), doc.str());
+
+  // A second run into the folder reuses Cycles' frames (a Blender that cannot run proves it) and
+  // finds the same.
+  const auto again = testing::runShell("env OMNICAM_BLENDER=/bin/false " OMNICAM_BINARY " experiment texture-realism --quick --no-figures -o " +
+                                       path("run") + testCameras + " 2>&1");
+  ASSERT_EQ(again.code, 0) << again.out;
+  std::ifstream secondIn(path("run/results.json"));
+  const json second = json::parse(secondIn);
+  EXPECT_EQ(second["conditions"], results["conditions"]);
 }
 
 TEST_F(ExperimentCliTest, ConvergenceOptionsAreCheckedBeforeAnythingRuns) {
