@@ -318,7 +318,7 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
-      throw InputError(showPath(file) + ": " + where + ": unknown preset " + quote(j.get<std::string>()) + " (webcam, machine_vision, phone)");
+      throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "unknown preset " + quote(j.get<std::string>()) + " (webcam, machine_vision, phone)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
     return spec;
@@ -401,7 +401,7 @@ nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
   const RecordingCameraSpec spec = recordingCameraSpecFromJson(j, file, where);
   if (spec.randomised())
-    throw InputError(showPath(file) + ": " + where + ": a single camera is wanted here: fixed values, no distributions or preset ranges");
+    throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "a single camera is wanted here: fixed values, no distributions or preset ranges");
   return spec.draw(0);
 }
 
