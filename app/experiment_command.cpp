@@ -164,6 +164,18 @@ std::string convergenceSection(const ConvergenceResults& r, const std::string& f
   return convergenceMarkdown(r, "figures/realistic_convergence.svg");
 }
 
+// Without --convergence, the study's section an earlier run wrote into the document (its figure
+// already beside it) is carried over as it was: the study's data did not change. "" if none.
+std::string keptConvergenceSection(const std::string& doc) {
+  if (doc.empty() || !std::filesystem::is_regular_file(doc)) return "";
+  const std::filesystem::path path(doc);
+  const std::string text = readFileInside(path.parent_path().empty() ? "." : path.parent_path().string(), path.filename().string(), 4 << 20);
+  const size_t begin = text.find("## Are the realistic frames converged?\n");
+  const size_t end = text.find("\nWhere the numbers differ from the thesis:", begin);
+  if (begin == std::string::npos || end == std::string::npos) return "";
+  return text.substr(begin, end - begin);
+}
+
 // The figures of a run, copied beside the document that shows them (its figures/ folder).
 void copyFigures(const std::string& folder, const std::string& doc, const std::vector<std::string>& figures) {
   for (const std::string& figure : figures) writeFigureBeside(doc, figure, readFileInside(folder, "figures/" + figure, 16 << 20));
@@ -238,7 +250,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.doc.empty()) command += " --doc " + a.doc;
   if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
   for (const std::string& file : a.testCameras) command += " --test-camera " + shellQuote(file);
-  const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.doc) : "";
+  const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.doc) : keptConvergenceSection(a.doc);
   const std::string markdown = textureRealismMarkdown(results, options, command, section);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);
   if (!a.doc.empty()) {
@@ -301,7 +313,8 @@ void addExperimentCommands(CLI::App& app) {
       ->check(numberIn(0, 1e6, true));
   cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)")->check(integerIn(2, 256));
   cmd->add_option("--convergence", args->convergence,
-                  "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR");
+                  "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR (without it, "
+                  "--doc keeps the study's section the document already has)");
   cmd->add_option("--test-camera", args->testCameras,
                   "texture-realism: an extra realistic test set, the Cycles frames recorded through this camera "
                   "(JSON in a dataset's `recording` format; repeatable; training never sees it)");

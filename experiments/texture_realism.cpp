@@ -45,7 +45,8 @@ TextureRealismOptions TextureRealismOptions::quick() {
 
 RecordingCameraSpec trainingRecordingMix(uint64_t seed) {
   RecordingCameraSpec spec;
-  spec.preset = ParameterDraw{ParameterDraw::Kind::Choice, 0, 0, {0, 1, 2}};  // recordingPresetNames()
+  spec.preset = ParameterDraw{ParameterDraw::Kind::Choice, 0, 0, {}};
+  for (size_t k = 0; k < recordingPresetNames().size(); ++k) spec.preset->values.push_back(static_cast<double>(k));
   spec.seed = seed;
   return spec;
 }
@@ -245,8 +246,9 @@ using Classifiers = std::map<std::string, std::map<std::string, ColourHistogramC
 
 // Train sets (plain; random_textures, spread over the random halls): labels from the fast
 // renderer's instance masks.
-// Cycles' linear frames are kept in outDir/cycles/, one EXR per frame named by the hash of
-// everything that makes it (the hall's file, the lab photo's bytes, the setup, size, spp, pose),
+// Cycles' linear frames are kept in outDir/cycles/, one EXR per frame named by the hash of what
+// the experiment chooses (the hall's file, the lab photo's bytes, the setup, size, spp, pose; not
+// Blender's version or its driver script: after changing those, delete the folder),
 // so a run that only adds test cameras or conditions does not render them again. A frame is used
 // as decoded from its file even when it was just rendered, so cached and fresh runs agree exactly.
 class CyclesFrameCache {
@@ -457,7 +459,7 @@ void describeCameras(const TextureRealismOptions& o, TextureRealismResults& resu
   results.trainingRanges = describeRanges(o.trainingRecording);
   results.testCameras.push_back({"realistic", "webcam (fixed; the realistic frames)", describeValues(o.recording)});
   for (size_t k = 0; k < o.testCameras.size(); ++k)
-    results.testCameras.push_back({testCameraSet(k), fs::path(o.testCameras[k].file).filename().string(),
+    results.testCameras.push_back({testCameraSet(k), "camera " + std::to_string(k + 1) + ": " + fs::path(o.testCameras[k].file).filename().string(),
                                    o.testCameras[k].recording.randomised() ? describeRanges(o.testCameras[k].recording)
                                                                           : describeValues(o.testCameras[k].recording.draw(0))});
   if (o.ablation) results.ablatedStages = recordingStages();

@@ -7,36 +7,18 @@
 
 #include "markup.h"
 #include "texture_realism_report.h"
+#include "texture_realism_tables.h"
 
 namespace omnicam {
 
 namespace {
 
-const ConditionOutcome* findCondition(const TextureRealismResults& r, const std::string& key) {
-  for (const ConditionOutcome& c : r.conditions)
-    if (c.key() == key) return &c;
-  return nullptr;
-}
-
-const EkfOutcome* findEkfOf(const TextureRealismResults& r, const std::string& key) {
-  for (const EkfOutcome& e : r.ekf)
-    if (e.condition == key) return &e;
-  return nullptr;
-}
-
-std::string digits(double value, int count) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(count) << value;
-  return s.str();
-}
-
-double ratio(const ConditionOutcome& c) { return c.falsePositives ? static_cast<double>(c.truePositives) / c.falsePositives : INFINITY; }
-std::string ratioWords(double r) { return std::isinf(r) ? "∞" : digits(r, 4); }
-
-// Markdown table cells may not hold a bare '|'.
+// Text from outside (a test camera's file name) as a Markdown table cell: letters, digits and
+// ". _ - + ( ) , : ;" and spaces kept, anything else shown as '?' — no markup, no line break.
 std::string cell(const std::string& text) {
   std::string out;
-  for (char ch : text) out += ch == '|' ? std::string("\\|") : std::string(1, ch);
+  for (const char ch : text)
+    out += std::isalnum(static_cast<unsigned char>(ch)) || std::string(" ._-+(),:;").find(ch) != std::string::npos ? ch : '?';
   return out;
 }
 
@@ -59,13 +41,13 @@ Transfer transferTo(const TextureRealismResults& r, const std::string& test) {
   Transfer t;
   const ConditionOutcome* pp = findCondition(r, "plain_to_plain");
   const ConditionOutcome* c = findCondition(r, "path_recorded_to_" + test);
-  const EkfOutcome* ppEkf = findEkfOf(r, "plain_to_plain");
-  const EkfOutcome* cEkf = findEkfOf(r, "path_recorded_to_" + test);
+  const EkfOutcome* ppEkf = findEkf(r, "plain_to_plain");
+  const EkfOutcome* cEkf = findEkf(r, "path_recorded_to_" + test);
   if (!pp || !c || !ppEkf || !cEkf) return t;
   t.truePositives = c->truePositives;
   t.needed = static_cast<int>(std::ceil(0.8 * pp->truePositives));
   t.found = c->truePositives >= t.needed;
-  t.ratioHolds = ratio(*c) >= ratio(*pp);
+  t.ratioHolds = trueOverFalse(*c) >= trueOverFalse(*pp);
   t.ekfHolds = cEkf->meanErrorEkfCm <= 2.0 * ppEkf->meanErrorEkfCm;
   return t;
 }
@@ -80,18 +62,18 @@ void writeConditionsPerTestCamera(std::ostringstream& md, const TextureRealismRe
     md << "| " << trainLabel(train) << " ";
     for (const TestCameraSummary& t : r.testCameras) {
       const ConditionOutcome* c = findCondition(r, train + "_to_" + t.set);
-      const EkfOutcome* e = findEkfOf(r, train + "_to_" + t.set);
-      if (c && e) md << "| " << c->truePositives << " | " << c->falsePositives << " | " << ratioWords(ratio(*c)) << " | " << digits(e->meanErrorEkfCm, 1) << " ";
+      const EkfOutcome* e = findEkf(r, train + "_to_" + t.set);
+      if (c && e) md << "| " << c->truePositives << " | " << c->falsePositives << " | " << ratioText(trueOverFalse(*c)) << " | " << fixed(e->meanErrorEkfCm, 1) << " ";
       else md << "| – | – | – | – ";
     }
     md << "|\n";
   }
   const ConditionOutcome* pp = findCondition(r, "plain_to_plain");
-  const EkfOutcome* ppEkf = findEkfOf(r, "plain_to_plain");
+  const EkfOutcome* ppEkf = findEkf(r, "plain_to_plain");
   if (pp && ppEkf)
-    md << "\nThe bar (plain → plain): " << pp->truePositives << " TP, TP/FP " << ratioWords(ratio(*pp)) << ", EKF "
-       << digits(ppEkf->meanErrorEkfCm, 1) << " cm; path + drawn cameras must find ≥ " << std::ceil(0.8 * pp->truePositives)
-       << " TP (80 %) with TP/FP ≥ " << ratioWords(ratio(*pp)) << " and an EKF error ≤ " << digits(2 * ppEkf->meanErrorEkfCm, 1)
+    md << "\nThe bar (plain → plain): " << pp->truePositives << " TP, TP/FP " << ratioText(trueOverFalse(*pp)) << ", EKF "
+       << fixed(ppEkf->meanErrorEkfCm, 1) << " cm; path + drawn cameras must find ≥ " << std::ceil(0.8 * pp->truePositives)
+       << " TP (80 %) with TP/FP ≥ " << ratioText(trueOverFalse(*pp)) << " and an EKF error ≤ " << fixed(2 * ppEkf->meanErrorEkfCm, 1)
        << " cm, on every test camera.\n\n";
   for (const TestCameraSummary& t : r.testCameras) {
     const Transfer x = transferTo(r, t.set);
@@ -103,7 +85,7 @@ void writeConditionsPerTestCamera(std::ostringstream& md, const TextureRealismRe
 
 void writeAblation(std::ostringstream& md, const TextureRealismResults& r) {
   const ConditionOutcome* full = findCondition(r, "path_recorded_to_realistic");
-  const EkfOutcome* fullEkf = findEkfOf(r, "path_recorded_to_realistic");
+  const EkfOutcome* fullEkf = findEkf(r, "path_recorded_to_realistic");
   if (!full || !fullEkf || r.ablatedStages.empty()) return;
   md << "\n### Which faults matter: one stage at a time held neutral in training\n\n"
         "Each row trains on the same path-traced frames through the same drawn cameras with one stage held at its "
@@ -111,13 +93,13 @@ void writeAblation(std::ostringstream& md, const TextureRealismResults& r) {
         "true positives or gains false ones is a fault the detector has to have seen.\n\n"
         "| stage held neutral | TP | FP | TP/FP | EKF cm | ΔTP | ΔFP |\n|---|---:|---:|---:|---:|---:|---:|\n"
      << "| (none: every stage drawn) | " << full->truePositives << " | " << full->falsePositives << " | "
-     << ratioWords(ratio(*full)) << " | " << digits(fullEkf->meanErrorEkfCm, 1) << " | – | – |\n";
+     << ratioText(trueOverFalse(*full)) << " | " << fixed(fullEkf->meanErrorEkfCm, 1) << " | – | – |\n";
   for (const std::string& stage : r.ablatedStages) {
     const ConditionOutcome* c = findCondition(r, "path_recorded_without_" + stage + "_to_realistic");
-    const EkfOutcome* e = findEkfOf(r, "path_recorded_without_" + stage + "_to_realistic");
+    const EkfOutcome* e = findEkf(r, "path_recorded_without_" + stage + "_to_realistic");
     if (!c || !e) continue;
-    md << "| " << stage << " | " << c->truePositives << " | " << c->falsePositives << " | " << ratioWords(ratio(*c)) << " | "
-       << digits(e->meanErrorEkfCm, 1) << " | " << std::showpos << c->truePositives - full->truePositives << " | "
+    md << "| " << stage << " | " << c->truePositives << " | " << c->falsePositives << " | " << ratioText(trueOverFalse(*c)) << " | "
+       << fixed(e->meanErrorEkfCm, 1) << " | " << std::showpos << c->truePositives - full->truePositives << " | "
        << c->falsePositives - full->falsePositives << std::noshowpos << " |\n";
   }
 }
@@ -133,8 +115,9 @@ void writeRanges(std::ostringstream& md, const TextureRealismResults& r) {
   for (size_t k = 0; k < r.testCameras.size(); ++k) md << "|---";
   md << "|\n";
   for (size_t p = 0; p < r.trainingRanges.size(); ++p) {
-    md << "| " << r.trainingRanges[p].first << " | " << cell(r.trainingRanges[p].second) << " ";
-    for (const TestCameraSummary& t : r.testCameras) md << "| " << (p < t.values.size() ? cell(t.values[p].second) : "") << " ";
+    // Ranges and values are omnicam's own words and numbers: no user text.
+    md << "| " << r.trainingRanges[p].first << " | " << r.trainingRanges[p].second << " ";
+    for (const TestCameraSummary& t : r.testCameras) md << "| " << (p < t.values.size() ? t.values[p].second : "") << " ";
     md << "|\n";
   }
 }

@@ -12,6 +12,7 @@
 #include "errors.h"
 #include "external_process.h"
 #include "markup.h"
+#include "texture_realism_tables.h"
 
 namespace omnicam {
 
@@ -142,12 +143,6 @@ void writeData(const ReportData& data, const fs::path& out) {
   writeTextAtomically((out / "data/histograms.json").string(), histograms.dump() + "\n");
 }
 
-std::string fixed(double value, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << value;
-  return s.str();
-}
-
 void writeHtml(const ReportData& data, const TextureRealismResults& results, const fs::path& out, bool figures) {
   std::ostringstream html;
   html << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam texture-realism</title>"
@@ -221,17 +216,6 @@ struct ThesisRow {
   const char* ratio;
 };
 
-const ConditionOutcome* find(const TextureRealismResults& r, const std::string& key) {
-  for (const ConditionOutcome& c : r.conditions)
-    if (c.key() == key) return &c;
-  return nullptr;
-}
-
-double trueOverFalse(const ConditionOutcome& c) {
-  return c.falsePositives ? static_cast<double>(c.truePositives) / c.falsePositives : INFINITY;
-}
-
-std::string ratioText(double ratio) { return std::isinf(ratio) ? "∞" : fixed(ratio, 4); }
 
 }  // namespace
 
@@ -251,12 +235,6 @@ constexpr BeforeRow kBeforeConvergence[] = {{"plain_to_plain", 287, 402, 4.2, 28
                                             {"plain_to_textured", 242, 877, 4.6, 242, 877, 4.6},
                                             {"plain_to_realistic", 10, 7064, 20.4, 3, 5705, 51.6},
                                             {"random_textures_to_realistic", 18, 511, 15.9, 6, 893, 30.8}};
-
-const EkfOutcome* findEkf(const TextureRealismResults& results, const std::string& condition) {
-  for (const EkfOutcome& e : results.ekf)
-    if (e.condition == condition) return &e;
-  return nullptr;
-}
 
 // The experiment's setup, and its detections beside the thesis' counts.
 void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults& results, const TextureRealismOptions& o,
@@ -299,7 +277,7 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
         "wrong beacons | FP blobs on walls/ceiling | missed | px | range cm | bearing ° | TP/FP |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ThesisRow& row : thesis) {
-    const ConditionOutcome* c = find(results, row.condition);
+    const ConditionOutcome* c = findCondition(results, row.condition);
     if (!c) continue;
     md << "| " << row.condition << " | " << row.thesisSetting << " | " << row.truePositives << " | "
        << row.falsePositives << " | " << row.errorPx << " | " << row.ratio << " | " << c->truePositives << " | "
@@ -331,10 +309,10 @@ void writeFalsePositivesAndEkf(std::ostringstream& md, const TextureRealismResul
 
 // Which of the thesis' findings reproduce, each with its verdict.
 void writeFindings(std::ostringstream& md, const TextureRealismResults& results) {
-  const ConditionOutcome* pp = find(results, "plain_to_plain");
-  const ConditionOutcome* pt = find(results, "plain_to_textured");
-  const ConditionOutcome* pr = find(results, "plain_to_realistic");
-  const ConditionOutcome* rr = find(results, "random_textures_to_realistic");
+  const ConditionOutcome* pp = findCondition(results, "plain_to_plain");
+  const ConditionOutcome* pt = findCondition(results, "plain_to_textured");
+  const ConditionOutcome* pr = findCondition(results, "plain_to_realistic");
+  const ConditionOutcome* rr = findCondition(results, "random_textures_to_realistic");
   auto verdict = [](bool holds) { return holds ? "**reproduces**" : "**does not reproduce**"; };
   md << "\n## Which findings reproduce\n\n";
   if (pp && pt && pr) {
@@ -364,8 +342,8 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
           "realistic result from "
        << pr->truePositives << " TP, " << pr->falsePositives << " FP (TP/FP " << ratioText(trueOverFalse(*pr)) << ") to "
        << rr->truePositives << " TP, " << rr->falsePositives << " FP (TP/FP " << ratioText(trueOverFalse(*rr)) << ").\n";
-  const ConditionOutcome* path = find(results, "path_to_realistic");
-  const ConditionOutcome* back = find(results, "realistic_to_path");
+  const ConditionOutcome* path = findCondition(results, "path_to_realistic");
+  const ConditionOutcome* back = findCondition(results, "realistic_to_path");
   if (pr && path) {
     // Yes: most of the beacons plain frames find in plain frames; partly: several times plain
     // training's few, with fewer false positives per true one; else no.
@@ -394,8 +372,8 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
 
 // The realistic frames' history: the numbers before and after their convergence fixes.
 void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& results) {
-  const ConditionOutcome* pp = find(results, "plain_to_plain");
-  const ConditionOutcome* pr = find(results, "plain_to_realistic");
+  const ConditionOutcome* pp = findCondition(results, "plain_to_plain");
+  const ConditionOutcome* pr = findCondition(results, "plain_to_realistic");
   md << "\n## What changed with the new realistic frames\n\n"
         "Until issue #20 the realistic frames were Cycles renders at 16 spp with point lamps 0.2 m under the ceiling: "
         "mostly render noise (about 21 dB against a converged frame, white speckle over the whole mirror disc). "
@@ -406,7 +384,7 @@ void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& 
         "EKF error cm 100 spp | EKF error cm now |\n"
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const BeforeRow& row : kBeforeConvergence) {
-    const ConditionOutcome* c = find(results, row.condition);
+    const ConditionOutcome* c = findCondition(results, row.condition);
     const EkfOutcome* e = findEkf(results, row.condition);
     if (!c || !e) continue;
     md << "| " << row.condition << " | " << row.truePositives << " | " << row.falsePositives << " | "

@@ -6,6 +6,8 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "seed_mixing.h"
+
 namespace omnicam {
 
 RecordingCamera RecordingCamera::webcam() {
@@ -21,13 +23,8 @@ RecordingCamera RecordingCamera::webcam() {
 
 namespace {
 
-// SplitMix-style mixing: neighbouring frame indices give unrelated streams.
-uint64_t noiseSeed(uint64_t seed, uint64_t frameIndex) {
-  uint64_t mixed = seed + 0x9E3779B97F4A7C15ull * (frameIndex + 1);
-  mixed = (mixed ^ (mixed >> 30)) * 0xBF58476D1CE4E5B9ull;
-  mixed = (mixed ^ (mixed >> 27)) * 0x94D049BB133111EBull;
-  return mixed ^ (mixed >> 31);
-}
+// Neighbouring frame indices give unrelated streams.
+uint64_t noiseSeed(uint64_t seed, uint64_t frameIndex) { return mixBits(seed + kGoldenGamma * (frameIndex + 1)); }
 
 // Each Bayer pattern as OpenCV's demosaicing names it (its RGGB… aliases), per method.
 int demosaicCode(BayerPattern pattern, DemosaicMethod method) {
@@ -62,7 +59,8 @@ struct SensorNoise {
   double operator()(double value, double rowOffset) const {
     if (camera.fullWellElectrons > 0) {
       const double electrons = std::max(0.0, value) * camera.fullWellElectrons;
-      value = static_cast<double>(std::poisson_distribution<int64_t>(electrons)(random)) / camera.fullWellElectrons;
+      // Poisson(0) is 0 (and outside the distribution's domain: no draw).
+      value = electrons > 0 ? static_cast<double>(std::poisson_distribution<int64_t>(electrons)(random)) / camera.fullWellElectrons : 0.0;
     }
     if (camera.readNoise > 0) value += camera.readNoise * gaussian(random);
     return std::clamp(value + rowOffset, 0.0, 1.0);
@@ -102,7 +100,9 @@ void applyLensBlur(LinearPlanes& planes, double radiusPx, BlurKernel kernel) {
           }
         psf.at<float>(y + half, x + half) = static_cast<float>(inside);
       }
-    psf /= cv::sum(psf)[0];
+    const double total = cv::sum(psf)[0];
+    if (total == 0) return;  // a radius below every sample's distance: the point stays a point
+    psf /= total;
   }
   for (int c = 0; c < 3; ++c) {
     cv::Mat plane = planeMat(planes, c);
@@ -140,79 +140,117 @@ double toneCurveValue(const RecordingCamera& camera, double v) {
   return v;
 }
 
-ImageRGBA recordFrame(const RecordingCamera& camera, const ImageRGBA& linear, uint64_t frameIndex) {
-  const uint64_t seed = noiseSeed(camera.seed, frameIndex);
+namespace {
+
+// The light the sensor receives, after the optics (premultiplied: black beyond the mirror), and
+// what divides it into a pixel's colour: 1 where the mirror covers the pixel, its coverage
+// (through the same optics, per channel) where it covers part of it — a rim pixel's colour is the
+// light of its covered part. Without optics: the rendered colour over its alpha, as always.
+struct SensorLight {
+  LinearPlanes light, coverage;
+  bool optics = false;
+  double colour(const ImageRGBA& linear, int c, int i, int j) const {
+    const double alpha = linear.at(i, j)[3];
+    const double divisor = !optics ? alpha : alpha >= 1.0 ? 1.0 : std::max<double>(coverage.at(c, i, j), alpha);
+    return light.at(c, i, j) / divisor;
+  }
+};
+
+SensorLight sensorLight(const RecordingCamera& camera, const ImageRGBA& linear) {
+  SensorLight s;
+  s.light = premultipliedPlanes(linear);
+  s.optics = camera.blurRadiusPx > 0 || camera.chromaticAberration != 0;
+  if (!s.optics) return s;
+  s.coverage.width = linear.width;
+  s.coverage.height = linear.height;
+  for (auto& plane : s.coverage.rgb) plane.resize(static_cast<size_t>(linear.width) * linear.height);
+  for (int j = 0; j < linear.height; ++j)
+    for (int i = 0; i < linear.width; ++i)
+      for (int c = 0; c < 3; ++c) s.coverage.at(c, i, j) = std::max(0.0f, linear.at(i, j)[3]);
+  for (LinearPlanes* planes : {&s.light, &s.coverage}) {
+    applyLensBlur(*planes, camera.blurRadiusPx, camera.blurKernel);
+    applyChromaticAberration(*planes, camera.chromaticAberration);
+  }
+  return s;
+}
+
+// One offset per row, from a stream of its own (the pixels' stream stays as it was without it).
+std::vector<double> rowOffsets(const RecordingCamera& camera, uint64_t seed, int rows) {
+  std::vector<double> offsets(static_cast<size_t>(rows), 0.0);
+  if (camera.rowNoise <= 0) return offsets;
+  std::mt19937_64 random(seed ^ 0xA0761D6478BD642Full);
+  std::normal_distribution<double> gaussian(0.0, camera.rowNoise);
+  for (double& offset : offsets) offset = gaussian(random);
+  return offsets;
+}
+
+// The sensor and the ADC: vignetting, exposure and white balance, the mosaic's colour at each
+// site, noise, clipping; then demosaicing. Linear RGB in [0, 1] per pixel (CV_64FC3, RGB order).
+cv::Mat sensedColour(const RecordingCamera& camera, const ImageRGBA& linear, const SensorLight& light, uint64_t seed) {
+  const int w = linear.width, h = linear.height;
   std::mt19937_64 random(seed);
   std::normal_distribution<double> gaussian(0.0, 1.0);
-  const int w = linear.width, h = linear.height;
-
-  // Optics, on the irradiance the sensor receives (premultiplied: black beyond the mirror).
-  LinearPlanes planes = premultipliedPlanes(linear);
-  applyLensBlur(planes, camera.blurRadiusPx, camera.blurKernel);
-  applyChromaticAberration(planes, camera.chromaticAberration);
-
-  // Row noise: one offset per row, from a stream of its own (the pixels' stream stays as it was).
-  std::vector<double> rowOffset(static_cast<size_t>(h), 0.0);
-  if (camera.rowNoise > 0) {
-    std::mt19937_64 rows(seed ^ 0xA0761D6478BD642Full);
-    std::normal_distribution<double> rowGaussian(0.0, camera.rowNoise);
-    for (double& offset : rowOffset) offset = rowGaussian(rows);
-  }
-
-  // Sensor: vignetting, exposure and white balance, the mosaic's colour at each site, noise, ADC.
+  const std::vector<double> rowOffset = rowOffsets(camera, seed, h);
   const bool mosaic = camera.bayer != BayerPattern::None;
   const bool eightBitRaw = camera.demosaic == DemosaicMethod::Vng;  // OpenCV's VNG takes 8-bit only
   const double rawScale = eightBitRaw ? 255.0 : 65535.0;
   cv::Mat raw(h, w, eightBitRaw ? CV_8U : CV_16U, cv::Scalar(0));
-  cv::Mat sensed(h, w, CV_64FC3, cv::Scalar(0, 0, 0));  // without a mosaic: RGB at every pixel
+  cv::Mat sensed(h, w, CV_64FC3, cv::Scalar(0, 0, 0));
   const double gain = std::exp2(camera.exposureEv);
   const double halfDiagonalSquared = 0.25 * (static_cast<double>(w) * w + static_cast<double>(h) * h);
   const SensorNoise noise{camera, random, gaussian};
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
-      const double alpha = linear.at(i, j)[3];
-      if (alpha <= 0) continue;
+      if (linear.at(i, j)[3] <= 0) continue;
       const double dx = i + 0.5 - 0.5 * w, dy = j + 0.5 - 0.5 * h;
       const double vignette = 1.0 - camera.vignetting * (dx * dx + dy * dy) / halfDiagonalSquared;
       auto sample = [&](int c) {
-        return noise(planes.at(c, i, j) / alpha * gain * camera.whiteBalance[static_cast<size_t>(c)] * vignette,
+        return noise(light.colour(linear, c, i, j) * gain * camera.whiteBalance[static_cast<size_t>(c)] * vignette,
                      rowOffset[static_cast<size_t>(j)]);
       };
-      if (mosaic) {
-        const double v = sample(bayerColourAt(camera.bayer, i, j));
-        if (eightBitRaw) raw.at<unsigned char>(j, i) = static_cast<unsigned char>(std::lround(v * rawScale));
-        else raw.at<uint16_t>(j, i) = static_cast<uint16_t>(std::lround(v * rawScale));
+      if (!mosaic) {
+        for (int c = 0; c < 3; ++c) sensed.at<cv::Vec3d>(j, i)[c] = sample(c);
+      } else if (eightBitRaw) {
+        raw.at<unsigned char>(j, i) = static_cast<unsigned char>(std::lround(sample(bayerColourAt(camera.bayer, i, j)) * rawScale));
       } else {
-        cv::Vec3d& out = sensed.at<cv::Vec3d>(j, i);
-        for (int c = 0; c < 3; ++c) out[c] = sample(c);
+        raw.at<uint16_t>(j, i) = static_cast<uint16_t>(std::lround(sample(bayerColourAt(camera.bayer, i, j)) * rawScale));
       }
     }
-
-  // ISP: demosaicing, the tone curve to 8-bit codes, JPEG.
-  if (mosaic) {
-    cv::Mat bgr;
-    cv::demosaicing(raw, bgr, demosaicCode(camera.bayer, camera.demosaic));
-    for (int j = 0; j < h; ++j)
-      for (int i = 0; i < w; ++i)
-        for (int c = 0; c < 3; ++c)
-          sensed.at<cv::Vec3d>(j, i)[c] =
-              (eightBitRaw ? bgr.at<cv::Vec3b>(j, i)[2 - c] : bgr.at<cv::Vec3w>(j, i)[2 - c]) / rawScale;
-  }
-  cv::Mat codes(h, w, CV_8UC3, cv::Scalar(0, 0, 0));
+  if (!mosaic) return sensed;
+  cv::Mat bgr;
+  cv::demosaicing(raw, bgr, demosaicCode(camera.bayer, camera.demosaic));
   for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
-      if (linear.at(i, j)[3] <= 0) continue;
+    for (int i = 0; i < w; ++i)
       for (int c = 0; c < 3; ++c)
-        codes.at<cv::Vec3b>(j, i)[2 - c] = eightBit(toneCurveValue(camera, sensed.at<cv::Vec3d>(j, i)[c]));  // OpenCV: BGR
+        sensed.at<cv::Vec3d>(j, i)[c] = (eightBitRaw ? bgr.at<cv::Vec3b>(j, i)[2 - c] : bgr.at<cv::Vec3w>(j, i)[2 - c]) / rawScale;
+  return sensed;
+}
+
+// The ISP's output: the tone curve to 8-bit codes (BGR, as OpenCV holds them), then JPEG.
+cv::Mat recordedCodes(const RecordingCamera& camera, const ImageRGBA& linear, const cv::Mat& sensed) {
+  cv::Mat codes(linear.height, linear.width, CV_8UC3, cv::Scalar(0, 0, 0));
+  for (int j = 0; j < linear.height; ++j)
+    for (int i = 0; i < linear.width; ++i) {
+      if (linear.at(i, j)[3] <= 0) continue;
+      for (int c = 0; c < 3; ++c) codes.at<cv::Vec3b>(j, i)[2 - c] = eightBit(toneCurveValue(camera, sensed.at<cv::Vec3d>(j, i)[c]));
     }
   if (camera.jpegQuality > 0) {
     std::vector<unsigned char> jpeg;
     cv::imencode(".jpg", codes, jpeg, {cv::IMWRITE_JPEG_QUALITY, camera.jpegQuality});
     codes = cv::imdecode(jpeg, cv::IMREAD_COLOR);
   }
-  ImageRGBA recorded(w, h);
-  for (int j = 0; j < h; ++j)
-    for (int i = 0; i < w; ++i) {
+  return codes;
+}
+
+}  // namespace
+
+ImageRGBA recordFrame(const RecordingCamera& camera, const ImageRGBA& linear, uint64_t frameIndex) {
+  const uint64_t seed = noiseSeed(camera.seed, frameIndex);
+  const cv::Mat codes = recordedCodes(camera, linear, sensedColour(camera, linear, sensorLight(camera, linear), seed));
+  // Linear again: the 8-bit codes decoded as sRGB, alpha kept (beyond the rim: black).
+  ImageRGBA recorded(linear.width, linear.height);
+  for (int j = 0; j < linear.height; ++j)
+    for (int i = 0; i < linear.width; ++i) {
       const float alpha = linear.at(i, j)[3];
       const cv::Vec3b& code = codes.at<cv::Vec3b>(j, i);
       float* out = recorded.at(i, j);

@@ -14,13 +14,14 @@
 //            shot noise       Poisson with fullWellElectrons electrons at value 1 (0: none)
 //            read noise       Gaussian, σ = readNoise (full-scale units), per pixel
 //            row noise        Gaussian, σ = rowNoise, one draw per row (all pixels of the row)
-//            ADC              clipped to [0, 1], 16-bit codes (8-bit for VNG demosaicing)
+//            ADC              clipped to [0, 1]; with a mosaic, 16-bit codes (8-bit for VNG demosaicing)
 //   ISP      demosaicing      cv::demosaicing: bilinear, VNG or edge-aware
 //            tone curve       sRGB; gamma: v^(1/γ); filmic: an S-curve s(v^(1/2.2)) of contrast c
 //            8-bit codes, then JPEG at jpegQuality (0: none)
 // The result is linear again (the 8-bit codes decoded as sRGB, as every reader of the frame
 // would), alpha kept and premultiplied. Pixels with alpha 0 (beyond the mirror) stay black: the
-// sensor sees nothing there.
+// sensor sees nothing there; the optics spread that black inward, and a rim pixel the mirror covers
+// in part keeps the colour of its covered part.
 #include <array>
 #include <cstdint>
 #include <nlohmann/json.hpp>
@@ -62,7 +63,8 @@ struct RecordingCamera {
 // own noise and the same frame always the same.
 ImageRGBA recordFrame(const RecordingCamera& camera, const ImageRGBA& linear, uint64_t frameIndex);
 
-// The stages on their own, for tests and tools: straight linear RGB planes in, the same out.
+// The optical stages on their own, for tests and tools: linear RGB planes (the light the sensor
+// receives) in, the same out.
 struct LinearPlanes {
   int width = 0, height = 0;
   std::array<std::vector<float>, 3> rgb;

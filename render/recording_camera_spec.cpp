@@ -9,6 +9,7 @@
 #include "json_fields.h"
 #include "json_text.h"
 #include "number_format.h"
+#include "seed_mixing.h"
 
 namespace omnicam {
 
@@ -38,9 +39,9 @@ Parameter wordParameter(const char* name, const char* stage, std::vector<const c
 }
 
 Parameter realParameter(const char* name, const char* stage, double lo, double hi, double neutral,
-                        double RecordingCamera::*member, bool openLow = false) {
-  return {name, stage, ValueType::Real, lo, hi, openLow, {}, neutral,
-          [member](const RecordingCamera& c) { return c.*member; }, [member](RecordingCamera& c, double v) { c.*member = v; }, ""};
+                        double RecordingCamera::*member, const char* note = "") {
+  return {name, stage, ValueType::Real, lo, hi, false, {}, neutral,
+          [member](const RecordingCamera& c) { return c.*member; }, [member](RecordingCamera& c, double v) { c.*member = v; }, note};
 }
 
 Parameter whiteBalanceGain(int channel) {
@@ -52,8 +53,7 @@ Parameter whiteBalanceGain(int channel) {
 
 const std::vector<Parameter>& parameters() {
   using C = RecordingCamera;
-  static const std::vector<Parameter> table = [] {
-  std::vector<Parameter> t = {
+  static const std::vector<Parameter> table = {
       realParameter("blur_radius_px", "blur", 0, 20, 0, &C::blurRadiusPx),
       wordParameter("blur_kernel", "blur", {"gaussian", "disc"}, &C::blurKernel),
       realParameter("chromatic_aberration", "chromatic_aberration", -0.05, 0.05, 0, &C::chromaticAberration),
@@ -64,7 +64,7 @@ const std::vector<Parameter>& parameters() {
       whiteBalanceGain(2),
       wordParameter("bayer", "bayer", {"none", "rggb", "bggr", "grbg", "gbrg"}, &C::bayer),
       wordParameter("demosaic", "bayer", {"bilinear", "vng", "edge_aware"}, &C::demosaic),
-      realParameter("full_well_electrons", "noise", 0, 1e7, 0, &C::fullWellElectrons),
+      realParameter("full_well_electrons", "noise", 0, 1e7, 0, &C::fullWellElectrons, "0: no shot noise"),
       realParameter("read_noise", "noise", 0, 1, 0, &C::readNoise),
       realParameter("row_noise", "noise", 0, 1, 0, &C::rowNoise),
       wordParameter("tone_curve", "tone", {"srgb", "gamma", "filmic"}, &C::tone),
@@ -74,12 +74,11 @@ const std::vector<Parameter>& parameters() {
        [](const C& c) { return static_cast<double>(c.jpegQuality); }, [](C& c, double v) { c.jpegQuality = static_cast<int>(v); },
        "0: no JPEG"},
   };
-  for (Parameter& p : t)
-    if (std::string(p.name) == "full_well_electrons") p.note = "0: no shot noise";
-  return t;
-  }();
   return table;
 }
+
+// The presets, in the order a preset draw's values index them.
+const std::vector<const char*> kPresets = {"webcam", "machine_vision", "phone"};
 
 const Parameter* findParameter(const std::string& name) {
   for (const Parameter& p : parameters())
@@ -226,34 +225,26 @@ std::string drawText(const Parameter& p, const ParameterDraw& d) {
   return "";
 }
 
-// SplitMix64's finaliser: neighbouring inputs give unrelated outputs.
-uint64_t mix(uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
-// One value from `d`, from its own stream (seed, index, slot): adding a parameter to a spec
-// leaves the others' draws as they were.
-double drawValue(const Parameter* p, const ParameterDraw& d, uint64_t seed, uint64_t index, uint64_t slot) {
+// One value from `d`, from its own stream (seed, index, the parameter's name): adding a parameter
+// to a spec, or to the table, leaves the others' draws as they were. A draw stays within [lo, hi];
+// an integer's uniform draw gives each integer in [lo, hi] the same chance.
+double drawValue(const Parameter& p, const ParameterDraw& d, uint64_t seed, uint64_t index) {
   if (d.kind == ParameterDraw::Kind::Fixed) return d.values.front();
-  std::mt19937_64 random(mix(mix(mix(seed ^ 0x5EEDCA3E7A5EC0DEull) + index) + slot));
+  std::mt19937_64 random(mixBits(mixBits(mixBits(seed ^ 0x5EEDCA3E7A5EC0DEull) + index) + nameHash(p.name)));
   const double u = static_cast<double>(random() >> 11) * 0x1.0p-53;  // [0, 1)
-  double v = 0.0;
-  if (d.kind == ParameterDraw::Kind::Choice) {
-    v = d.values[std::min(d.values.size() - 1, static_cast<size_t>(u * static_cast<double>(d.values.size())))];
-  } else if (d.kind == ParameterDraw::Kind::Uniform) {
-    v = d.lo + (d.hi - d.lo) * u;
-  } else {
-    v = std::exp(std::log(d.lo) + (std::log(d.hi) - std::log(d.lo)) * u);
+  if (d.kind == ParameterDraw::Kind::Choice)
+    return d.values[std::min(d.values.size() - 1, static_cast<size_t>(u * static_cast<double>(d.values.size())))];
+  if (p.type == ValueType::Integer) {
+    const double lo = std::ceil(d.lo), hi = std::floor(d.hi);
+    return std::min(hi, lo + std::floor((hi - lo + 1.0) * u));
   }
-  if (p && p->type == ValueType::Integer) v = std::clamp(std::round(v), d.lo, std::max(d.lo, d.hi));
-  return v;
+  const double v = d.kind == ParameterDraw::Kind::Uniform ? d.lo + (d.hi - d.lo) * u
+                                                          : std::exp(std::log(d.lo) + (std::log(d.hi) - std::log(d.lo)) * u);
+  return std::clamp(v, d.lo, d.hi);
 }
 
 // Reads the parameters of `f` into `draws` (the white balance as three), leaving other fields.
-void readDraws(JsonFields& f, const nlohmann::json& j, std::map<std::string, ParameterDraw>& draws) {
+void readDraws(JsonFields& f, std::map<std::string, ParameterDraw>& draws) {
   for (const Parameter& p : parameters()) {
     const std::string name = p.name;
     if (name.rfind("white_balance[", 0) == 0) continue;
@@ -268,12 +259,11 @@ void readDraws(JsonFields& f, const nlohmann::json& j, std::map<std::string, Par
       draws[p.name] = drawOf(p, gains[static_cast<size_t>(c)], f, "white_balance[" + std::to_string(c) + "]");
     }
   }
-  (void)j;
 }
 
 // The preset, read and written as a Word parameter of its own (not a camera's).
 const Parameter& presetParameter() {
-  static const Parameter preset{"preset", "", ValueType::Word, 0, 2, false, {"webcam", "machine_vision", "phone"}, 0, {}, {}, ""};
+  static const Parameter preset{"preset", "", ValueType::Word, 0, static_cast<double>(kPresets.size() - 1), false, kPresets, 0, {}, {}, ""};
   return preset;
 }
 
@@ -286,7 +276,7 @@ uint64_t seedOf(JsonFields& f) {
 }  // namespace
 
 const std::vector<std::string>& recordingPresetNames() {
-  static const std::vector<std::string> names = {"webcam", "machine_vision", "phone"};
+  static const std::vector<std::string> names(kPresets.begin(), kPresets.end());
   return names;
 }
 
@@ -298,7 +288,7 @@ RecordingCameraSpec recordingPreset(const std::string& name) {
     return read;
   }();
   const auto found = presets.find(name);
-  if (found == presets.end()) throw InputError("recording: unknown preset " + quote(name) + " (webcam, machine_vision, phone)");
+  if (found == presets.end()) throw InputError("recording: unknown preset " + quote(name) + " (" + wordList(kPresets) + ")");
   return found->second;
 }
 
@@ -318,14 +308,14 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
-      throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "unknown preset " + quote(j.get<std::string>()) + " (webcam, machine_vision, phone)");
+      throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "unknown preset " + quote(j.get<std::string>()) + " (" + wordList(kPresets) + ")");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
     return spec;
   }
   JsonFields f(j, file, where);
   if (f.has("preset")) spec.preset = drawOf(presetParameter(), f.raw("preset"), f, "preset");
-  readDraws(f, j, spec.draws);
+  readDraws(f, spec.draws);
   if (f.has("seed")) spec.seed = seedOf(f);
   f.finish();
   return spec;
@@ -373,17 +363,15 @@ RecordingCamera RecordingCameraSpec::draw(uint64_t index) const {
   RecordingCamera camera;
   std::optional<RecordingCameraSpec> family;
   if (preset) {
-    const double which = drawValue(nullptr, *preset, seed, index, 1000);
+    const double which = drawValue(presetParameter(), *preset, seed, index);
     family = recordingPreset(recordingPresetNames()[static_cast<size_t>(which)]);
   }
-  const std::vector<Parameter>& table = parameters();
-  for (size_t slot = 0; slot < table.size(); ++slot) {
-    const Parameter& p = table[slot];
+  for (const Parameter& p : parameters()) {
     const ParameterDraw* d = nullptr;
     if (const auto own = draws.find(p.name); own != draws.end()) d = &own->second;
     else if (family)
       if (const auto inherited = family->draws.find(p.name); inherited != family->draws.end()) d = &inherited->second;
-    p.set(camera, d ? drawValue(&p, *d, seed, index, slot) : p.neutral);
+    p.set(camera, d ? drawValue(p, *d, seed, index) : p.neutral);
   }
   camera.seed = seed;
   return camera;

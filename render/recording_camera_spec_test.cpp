@@ -60,6 +60,23 @@ TEST(RecordingCameraSpec, DistributionsAreDrawnAsStated) {
   EXPECT_EQ(more.draw(17).fullWellElectrons, spec.draw(17).fullWellElectrons);
 }
 
+TEST(RecordingCameraSpec, IntegersAreDrawnEvenlyAndChoicesOfIntegersKeepTheirValues) {
+  // jpeg_quality uniform over [60, 62]: 60, 61 and 62 a third each; a choice of 0 and 95 gives both.
+  const RecordingCameraSpec uniform = specOf(R"({"jpeg_quality": {"uniform": [60, 62]}})");
+  const RecordingCameraSpec choice = specOf(R"({"jpeg_quality": {"choice": [0, 95]}})");
+  std::map<int, int> drawn, chosen;
+  for (uint64_t k = 0; k < 3000; ++k) ++drawn[uniform.draw(k).jpegQuality], ++chosen[choice.draw(k).jpegQuality];
+  ASSERT_EQ(drawn.size(), 3u);
+  for (const auto& [quality, count] : drawn) EXPECT_NEAR(count, 1000, 90) << quality;  // 3.5 σ of a binomial
+  ASSERT_EQ(chosen.size(), 2u);
+  EXPECT_NEAR(chosen[95], 1500, 100);
+  // The machine-vision preset's JPEG: none or 95.
+  std::map<int, int> machine;
+  for (uint64_t k = 0; k < 200; ++k) ++machine[recordingPreset("machine_vision").draw(k).jpegQuality];
+  EXPECT_EQ(machine.size(), 2u);
+  EXPECT_TRUE(machine.count(0) && machine.count(95));
+}
+
 TEST(RecordingCameraSpec, PresetsDrawWithinTheirRangesAndOverridesWin) {
   for (const std::string& name : recordingPresetNames()) {
     const RecordingCameraSpec preset = recordingPreset(name);

@@ -306,9 +306,31 @@ TEST(RecordingCamera, LensBlurSpreadsAPointByItsKernelsSecondMoment) {
   EXPECT_NEAR(d.x, 0.0, 1e-6);
 }
 
+TEST(RecordingCamera, ATinyDiscKeepsThePointAndBlurAtTheRimAddsNoLight) {
+  // A disc radius below every sample's distance from its cell centre is a point: the light stays.
+  LinearPlanes point = pointSpread(9, 4.5, 4.5, 0.0);
+  applyLensBlur(point, 0.05, BlurKernel::Disc);
+  EXPECT_EQ(point.at(1, 4, 4), 1.0f);
+  // The mirror disc through blur and aberration: no pixel, rim ones included, comes out brighter
+  // than the brightest light in the frame (a rim pixel's colour is its covered part's), and
+  // beyond the rim stays black.
+  RecordingCamera camera = linearCodes();
+  camera.blurRadiusPx = 1.5;
+  camera.chromaticAberration = 0.01;
+  const ImageRGBA in = discImage(), out = recordFrame(camera, in, 0);
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const float alpha = in.at(i, j)[3];
+        if (alpha == 0.0f) ASSERT_EQ(out.at(i, j)[c], 0.0f) << i << "," << j;
+        else ASSERT_LE(sensorValue(out, i, j, c) / alpha, 0.7 + 1.0 / 255.0) << i << "," << j << " channel " << c;
+      }
+}
+
 TEST(RecordingCamera, ToneCurvesFollowTheirClosedForms) {
   RecordingCamera camera;
-  EXPECT_DOUBLE_EQ(toneCurveValue(camera, 0.18), linearToSrgb(0.18f));
+  EXPECT_NEAR(toneCurveValue(camera, 0.18), 1.055 * std::pow(0.18, 1 / 2.4) - 0.055, 1e-6);  // IEC 61966-2-1
+  EXPECT_NEAR(toneCurveValue(camera, 0.002), 12.92 * 0.002, 1e-7);
   camera.tone = ToneCurve::Gamma;
   camera.gamma = 2.0;
   EXPECT_NEAR(toneCurveValue(camera, 0.25), 0.5, 1e-12);

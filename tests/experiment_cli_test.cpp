@@ -372,7 +372,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   // cameras' values (each file named), the strip of four 240-px panels beside the document.
   for (const char* part : {"## Frames that transfer: the recording camera in training", "| path + drawn recording cameras |",
                            "### Which faults matter", "| noise |", "**They are never tuned to a test camera**",
-                           "| cool_noisy.json | sharp_jpeg95.json |", "| bayer | webcam: one of rggb, bggr, grbg, gbrg;",
+                           "| camera 1: cool_noisy.json | camera 2: sharp_jpeg95.json |", "| bayer | webcam: one of rggb, bggr, grbg, gbrg;",
                            "](figures/texture_realism_recording.png)", "### Finding"})
     EXPECT_NE(doc.str().find(part), std::string::npos) << part;
   const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
