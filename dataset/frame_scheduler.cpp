@@ -52,8 +52,8 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
     if (wantsAovs) film.aovs = std::move(aovs);  // its planes' memory reused
     if (rgb[c]) film.image = std::move(*rgb[c]);
     else engine.render(placement, settings, film);
-    // Seeded by frame and camera: a resumed run records the same noise.
-    // Seeded (and drawn, for a randomised camera) by frame and camera.
+    // Seeded (and drawn, for a randomised camera) by frame and camera: a resumed or sharded run
+    // records the same frames.
     std::optional<RecordingCamera> recording;
     if (spec.recording) {
       const uint64_t drawIndex = static_cast<uint64_t>(index) * plan.setups.size() + c;

@@ -56,15 +56,16 @@ void writeTextureRealismReport(const ReportData& data, const TextureRealismResul
 
 nlohmann::json textureRealismResultsJson(const TextureRealismResults& results);
 
-// The measured table beside the thesis' numbers, with which findings reproduce (Markdown);
-// `convergence`, when given, is the realistic-convergence study's section (its figure at
-// `convergenceFigure`, relative to the document).
 // The section on training through drawn recording cameras (texture_realism_recording_report.cpp);
 // `figure`: the comparison strip's path relative to the document, or "" for none.
 std::string recordingSectionMarkdown(const TextureRealismResults& results, const TextureRealismOptions& options,
                                      const std::string& figure);
+// The strip of one pose (plain, path, path through a drawn camera, realistic), in figures/.
 inline constexpr const char* kRecordingFigure = "texture_realism_recording.png";
 
+// The measured table beside the thesis' numbers, with which findings reproduce (Markdown);
+// `convergence`, when given, is the realistic-convergence study's section (its figure at
+// `convergenceFigure`, relative to the document).
 std::string textureRealismMarkdown(const TextureRealismResults& results, const TextureRealismOptions& options,
                                    const std::string& command, const std::string& convergence = "");
 
