@@ -41,7 +41,8 @@ struct ExperimentArgs {
   std::vector<std::string> testCameras;
   bool quick = false, noFigures = false;
   double theta = 1.0;
-  int bins = 32;
+  int bins = 32, medianPx = 1, minBlobArea = 2;
+  bool noAblation = false;
 };
 
 // Progress bars, one per stage.
@@ -65,7 +66,7 @@ struct StageProgress {
 };
 
 void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--doc", "--convergence", "--theta", "--bins", "--test-camera"})
+  for (const char* flag : {"--doc", "--convergence", "--theta", "--bins", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
@@ -104,7 +105,7 @@ void replaceGeneratedSection(const std::string& doc, const std::string& section)
 }
 
 void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures", "--test-camera"})
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
   if (!a.noiseScene.empty() && a.noiseScene != "plain_hall" && a.noiseScene != "textured_hall" && a.noiseScene != "tiled_room")
     throw InputError("--noise-scene: must be plain_hall, textured_hall or tiled_room (got " + quote(a.noiseScene) + ")");
@@ -182,7 +183,7 @@ void copyFigures(const std::string& folder, const std::string& doc, const std::v
 }
 
 void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--convergence", "--theta", "--bins", "--noise-scene", "--test-camera"})
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--noise-scene", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
     refuseUnless(cmd, flag, false, flag == std::string("--noise-scene") ? "experiment path-convergence" : "experiment texture-realism");
   if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
   if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
@@ -223,6 +224,9 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
   options.detector.theta = a.theta;
+  options.detector.medianPx = a.medianPx;
+  options.detector.minBlobArea = a.minBlobArea;
+  options.ablation = !a.noAblation;
   options.bins = a.bins;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.labPhoto = kLabPhoto;
@@ -247,6 +251,9 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   std::string command = std::string("omnicam experiment texture-realism -o DIR") + (a.quick ? " --quick" : "");
   if (a.theta != 1.0) command += " --theta " + std::to_string(a.theta);
   if (a.bins != 32) command += " --bins " + std::to_string(a.bins);
+  if (a.medianPx != 1) command += " --median " + std::to_string(a.medianPx);
+  if (a.minBlobArea != 2) command += " --min-blob-area " + std::to_string(a.minBlobArea);
+  if (a.noAblation) command += " --no-ablation";
   if (!a.doc.empty()) command += " --doc " + a.doc;
   if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
   for (const std::string& file : a.testCameras) command += " --test-camera " + shellQuote(file);
@@ -312,6 +319,13 @@ void addExperimentCommands(CLI::App& app) {
   cmd->add_option("--theta", args->theta, "Likelihood-ratio threshold of the classifiers (Eq. 3.10; default 1)")
       ->check(numberIn(0, 1e6, true));
   cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)")->check(integerIn(2, 256));
+  cmd->add_option("--median", args->medianPx,
+                  "texture-realism: median filter of N×N pixels on the frames before classifying, in training and "
+                  "detection (odd, 1 = none; default 1)")
+      ->check(CLI::IsMember({1, 3, 5, 7}));
+  cmd->add_option("--min-blob-area", args->minBlobArea, "texture-realism: smallest colour blob kept, in pixels (default 2)")
+      ->check(integerIn(1, 10000));
+  cmd->add_flag("--no-ablation", args->noAblation, "texture-realism: skip the ablation of the recording camera's stages");
   cmd->add_option("--convergence", args->convergence,
                   "texture-realism: include the study `experiment realistic-convergence -o DIR` wrote in DIR (without it, "
                   "--doc keeps the study's section the document already has)");

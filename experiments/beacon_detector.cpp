@@ -61,8 +61,30 @@ struct Candidate {
 
 }  // namespace
 
-DetectionResult detectBeacons(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
+ImageRGBA detectorInput(const ImageRGBA& image, const DetectorOptions& options) {
+  if (options.medianPx <= 1) return image;
+  cv::Mat codes(image.height, image.width, CV_8UC3);
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i) {
+      const Rgb8 code = rgb8FromPixel(image.at(i, j));
+      codes.at<cv::Vec3b>(j, i) = cv::Vec3b(code[0], code[1], code[2]);
+    }
+  cv::Mat filtered;
+  cv::medianBlur(codes, filtered, options.medianPx);
+  ImageRGBA out(image.width, image.height);
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i) {
+      const float alpha = image.at(i, j)[3];
+      float* p = out.at(i, j);
+      for (int c = 0; c < 3; ++c) p[c] = alpha * srgbToLinear(filtered.at<cv::Vec3b>(j, i)[c] / 255.0f);
+      p[3] = alpha;
+    }
+  return out;
+}
+
+DetectionResult detectBeacons(const ImageRGBA& frame, const std::map<std::string, ColourHistogramClassifier>& classifiers,
                               const std::vector<Beacon>& beacons, const RigSpec& rig, const DetectorOptions& options) {
+  const ImageRGBA image = detectorInput(frame, options);
   DetectionResult result;
   const int w = image.width, h = image.height;
   for (const auto& [colour, classifier] : classifiers) {

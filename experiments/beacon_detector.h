@@ -51,9 +51,16 @@ struct DetectionResult {
 struct DetectorOptions {
   double theta = 1.0;     // likelihood-ratio threshold Θ (Eq. 3.10)
   int minBlobArea = 2;    // pixels
+  // A median filter of this many pixels a side on the 8-bit codes before classifying (1: none):
+  // the frame's noise off the colours, thin bands kept.
+  int medianPx = 1;
   double rangeAgreement = 0.35;  // |r_upper − r_lower| ≤ this × mean range (+ 5 cm)
   double maxBearingGapDeg = 6.0;
 };
+
+// What the classifiers see of `image` (and are trained on): its 8-bit codes through the median
+// filter, linear again, alpha kept; `image` itself when options.medianPx is 1.
+ImageRGBA detectorInput(const ImageRGBA& image, const DetectorOptions& options);
 
 // `classifiers` by colour name (e.g. "cyan"). Pixels with alpha < 0.5 (beyond the rim) are never
 // classified.

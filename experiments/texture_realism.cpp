@@ -115,8 +115,9 @@ std::vector<RobotPose> randomFieldPoses(int count, uint64_t seed) {
 }
 
 void trainOn(std::map<std::string, ColourHistogramClassifier>& classifiers, const std::vector<Frame>& frames,
-             const std::vector<std::string>& bandColour) {
+             const std::vector<std::string>& bandColour, const DetectorOptions& detector) {
   for (const Frame& frame : frames) {
+    const ImageRGBA input = detectorInput(frame.image, detector);
     const int w = frame.image.width, h = frame.image.height;
     auto colourAt = [&](int i, int j) -> const std::string* {
       const uint16_t id = frame.instance[static_cast<size_t>(j) * w + i];
@@ -144,7 +145,7 @@ void trainOn(std::map<std::string, ColourHistogramClassifier>& classifiers, cons
           if (isBand ? same < 2 : touchesBand) continue;
           labels[p] = isBand && *band == colour ? 1 : 0;
         }
-      classifier.train(frame.image, labels);
+      classifier.train(input, labels);
     }
   }
 }
@@ -286,16 +287,21 @@ class CyclesFrameCache {
   std::string base_;
 };
 
+struct CyclesCount {
+  int rendered = 0, reused = 0;
+};
+
 // The linear Cycles frames of the textured hall at `poses`: from the cache, or rendered by Blender
 // (one session per batch of the missing poses) and kept.
 std::vector<ImageRGBA> cyclesFrames(const TextureRealismOptions& o, const fs::path& out, const Scene& textured,
-                                    const std::vector<RobotPose>& poses, const std::function<void()>& step) {
+                                    const std::vector<RobotPose>& poses, const std::function<void()>& step, CyclesCount& count) {
   const CyclesFrameCache cache(o, out);
   std::vector<ImageRGBA> frames(poses.size());
   std::vector<size_t> missing;
   for (size_t k = 0; k < poses.size(); ++k) {
     if (std::optional<ImageRGBA> kept = cache.find(poses[k])) {
       frames[k] = std::move(*kept);
+      ++count.reused;
       step();
     } else {
       missing.push_back(k);
@@ -310,6 +316,7 @@ std::vector<ImageRGBA> cyclesFrames(const TextureRealismOptions& o, const fs::pa
       },
       [&](size_t m, ImageRGBA&& image, double) {
         frames[missing[m]] = cache.keep(poses[missing[m]], image);
+        ++count.rendered;
         step();
       });
   return frames;
@@ -336,7 +343,7 @@ void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifie
       const uint64_t index = k * static_cast<uint64_t>(o.recordingDraws) + static_cast<uint64_t>(d);
       RecordingCamera camera = o.trainingRecording.draw(index);
       if (!neutralStage.empty()) camera = withStageNeutral(camera, neutralStage);
-      trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour);
+      trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour, o.detector);
     }
 }
 
@@ -346,7 +353,7 @@ std::string recordedSet(const std::string& frames) { return frames + "_recorded"
 std::string ablationSet(const std::string& stage) { return "path_recorded_without_" + stage; }
 
 Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
-                             const std::vector<std::string>& bandColour, const std::function<void()>& step) {
+                             const std::vector<std::string>& bandColour, const std::function<void()>& step, CyclesCount& cycles) {
   Classifiers trained;
   auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
     auto& classifiers = trained[set];
@@ -355,23 +362,23 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
   };
   // plain and random_textures keep the poses they always had; path and realistic share theirs.
   const std::vector<Frame> plainFrames = renderFast(plain, randomFieldPoses(o.trainFrames, o.seed + 1), o.size, o.spp, step);
-  trainOn(fresh("plain"), plainFrames, bandColour);
+  trainOn(fresh("plain"), plainFrames, bandColour, o.detector);
   const std::vector<RobotPose> randomPoses = randomFieldPoses(o.trainFrames, o.seed + 2);
   auto& randomTextures = fresh("random_textures");
   for (int k = 0; k < o.randomHalls; ++k) {
     std::vector<RobotPose> share;
     for (size_t p = static_cast<size_t>(k); p < randomPoses.size(); p += static_cast<size_t>(o.randomHalls)) share.push_back(randomPoses[p]);
     const Scene scene = loadScene((out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
-    trainOn(randomTextures, renderFast(scene, share, o.size, o.spp, step), bandColour);
+    trainOn(randomTextures, renderFast(scene, share, o.size, o.spp, step), bandColour, o.detector);
   }
   const std::vector<RobotPose> sharedPoses = randomFieldPoses(o.trainFrames, o.seed + 3);
   const std::vector<Frame> pathFrames = renderFast(textured, sharedPoses, o.size, o.pathSpp, step, Shading::Path);
-  trainOn(fresh("path"), pathFrames, bandColour);
+  trainOn(fresh("path"), pathFrames, bandColour, o.detector);
   const std::vector<Frame> masks = renderFast(textured, sharedPoses, o.size, 1, [] {});
   std::vector<RobotPose> poses;
   for (const Frame& mask : masks) poses.push_back(mask.pose);
-  trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, out, textured, poses, step), fixedRecordingCameraSpec(o.recording)),
-          bandColour);
+  trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, out, textured, poses, step, cycles), fixedRecordingCameraSpec(o.recording)),
+          bandColour, o.detector);
   // Domain randomisation of the camera: path and plain frames through drawn cameras, and the ablation.
   trainOnRecorded(fresh(recordedSet("path")), pathFrames, o, "", bandColour);
   trainOnRecorded(fresh(recordedSet("plain")), plainFrames, o, "", bandColour);
@@ -389,12 +396,12 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
 // the webcam and through each test camera (realistic_camera_1, …).
 std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
                                                          const std::vector<RobotPose>& testPoses,
-                                                         const std::function<void()>& step) {
+                                                         const std::function<void()>& step, CyclesCount& cycles) {
   std::map<std::string, std::vector<Frame>> tests;
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
   tests["path"] = renderFast(textured, testPoses, o.size, o.pathSpp, step, Shading::Path);
-  const std::vector<ImageRGBA> linear = cyclesFrames(o, out, textured, testPoses, step);
+  const std::vector<ImageRGBA> linear = cyclesFrames(o, out, textured, testPoses, step, cycles);
   tests["realistic"] = recordedFrames(tests["textured"], linear, fixedRecordingCameraSpec(o.recording));
   for (size_t k = 0; k < o.testCameras.size(); ++k)
     tests[testCameraSet(k)] = recordedFrames(tests["textured"], linear, o.testCameras[k].recording);
@@ -536,8 +543,9 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const int testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
-  const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step);
-  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, out, plain, textured, testPoses, step);
+  CyclesCount cycles;
+  const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
+  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, out, plain, textured, testPoses, step, cycles);
 
   // Detection and evaluation.
   const FastRenderer geometry(plain);
@@ -568,6 +576,8 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
 
   TextureRealismResults results;
   describeCameras(o, results);
+  results.cyclesFramesRendered = cycles.rendered;
+  results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);
   for (const ConditionReport& c : report.conditions) {
     results.conditions.push_back(c.outcome);
@@ -592,7 +602,7 @@ DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const s
   const std::vector<std::string> bandColour = bandColourOfObjects(plain);
   std::map<std::string, ColourHistogramClassifier> classifiers;
   for (const char* colour : {"cyan", "magenta", "yellow"}) classifiers.emplace(colour, ColourHistogramClassifier(32));
-  trainOn(classifiers, renderFast(plain, randomFieldPoses(trainFrames, 2009), size, spp, [] {}), bandColour);
+  trainOn(classifiers, renderFast(plain, randomFieldPoses(trainFrames, 2009), size, spp, [] {}), bandColour, DetectorOptions{});
   const CameraPath* loop = plain.findPath("thesis-loop");
   if (!loop) throw InputError(showPath(fieldScene) + ": paths: no \"thesis-loop\"");
   // Mid-way along the field's long edge: several beacons in view.

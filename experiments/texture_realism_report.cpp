@@ -419,7 +419,9 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
   md << "\nWhere the numbers differ from the thesis: its counts come from hand labels on its own arena and ISLA's "
         "real camera; ours from projection on our hall, and our realistic frames are rendered, so only the "
         "direction of each effect is comparable, not the counts.\n\n"
-     << "Full run: " << fixed(results.seconds / 60.0, 1) << " min on this machine. Figures and the per-frame data "
+     << "Full run: " << fixed(results.seconds / 60.0, 1) << " min on this machine ("
+     << results.cyclesFramesRendered << " Cycles frames rendered, " << results.cyclesFramesReused
+     << " reused from an earlier run into the same folder). Figures and the per-frame data "
         "are in the run's folder (`report.html`, `figures/`, `data/`).\n";
   return md.str();
 }

@@ -82,6 +82,7 @@ struct TextureRealismResults {
   ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
   double seconds = 0.0;
+  int cyclesFramesRendered = 0, cyclesFramesReused = 0;  // Cycles' frames, rendered now or kept from an earlier run
 };
 
 }  // namespace omnicam
