@@ -111,5 +111,29 @@ TEST(BeaconDetector, BandsFarApartOrOfOneColourAreNoBeacon) {
   EXPECT_TRUE(detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{}).blobs.empty());
 }
 
+TEST(BeaconDetector, TheMedianInputRemovesASpeckAndKeepsAThreePixelBand) {
+  // A grey field with one bright pixel and a band three pixels tall: a 3×3 median takes the speck
+  // back to grey and keeps the band's middle row; without the filter the input is the frame.
+  ImageRGBA image(16, 16);
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      float* p = image.at(i, j);
+      const bool band = j >= 8 && j <= 10;
+      for (int c = 0; c < 3; ++c) p[c] = band ? (c == 2 ? 0.05f : 0.8f) : 0.2f;
+      p[3] = 1.0f;
+    }
+  for (int c = 0; c < 3; ++c) image.at(3, 3)[c] = 1.0f;
+  DetectorOptions none;
+  EXPECT_EQ(detectorInput(image, none).pixels, image.pixels);
+  DetectorOptions median;
+  median.medianPx = 3;
+  const ImageRGBA filtered = detectorInput(image, median);
+  const Rgb8 grey = rgb8FromPixel(image.at(0, 0)), yellow = rgb8FromPixel(image.at(5, 9));
+  EXPECT_EQ(rgb8FromPixel(filtered.at(3, 3)), grey);
+  EXPECT_EQ(rgb8FromPixel(filtered.at(5, 9)), yellow);
+  EXPECT_EQ(rgb8FromPixel(filtered.at(5, 8)), yellow);  // two of the 3×3 rows are band
+  EXPECT_EQ(rgb8FromPixel(filtered.at(5, 7)), grey);
+}
+
 }  // namespace
 }  // namespace omnicam
