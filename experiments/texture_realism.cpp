@@ -7,24 +7,21 @@
 #include <fstream>
 #include <functional>
 #include <map>
-#include <optional>
+#include <opencv2/imgproc.hpp>
 #include <random>
 #include <sstream>
 
 #include "atomic_file.h"
+#include "cycles_frame_cache.h"
 #include "engines.h"
-#include "frame_sequence.h"
 #include "errors.h"
 #include "fast_renderer.h"
+#include "frame_sequence.h"
 #include "hall_arena.h"
 #include "landmark_annotations.h"
 #include "safe_files.h"
-#include "sha256.h"
-#include "input_limits.h"
 #include "scene_loader.h"
 #include "texture_realism_report.h"
-
-#include <opencv2/imgproc.hpp>
 
 namespace omnicam {
 
@@ -247,81 +244,6 @@ using Classifiers = std::map<std::string, std::map<std::string, ColourHistogramC
 
 // Train sets (plain; random_textures, spread over the random halls): labels from the fast
 // renderer's instance masks.
-// Cycles' linear frames are kept in outDir/cycles/, one EXR per frame named by the hash of what
-// the experiment chooses (the hall's file, the lab photo's bytes, the setup, size, spp, pose; not
-// Blender's version or its driver script: after changing those, delete the folder),
-// so a run that only adds test cameras or conditions does not render them again. A frame is used
-// as decoded from its file even when it was just rendered, so cached and fresh runs agree exactly.
-class CyclesFrameCache {
- public:
-  CyclesFrameCache(const TextureRealismOptions& o, const fs::path& out) : folder_(out.string()) {
-    folder_.makeFolders("cycles");
-    Sha256 key;
-    key.update("omnicam texture-realism cycles frame v1\n");
-    key.update(readFileInside(out.string(), "arenas/hall-textured.json", limits::kMaxJsonFileBytes));
-    key.update(sha256OfFile(o.labPhoto));
-    key.update(o.realistic.describe() + "\n" + o.realistic.tracing.toJson().dump() + "\n" +
-               std::to_string(o.realistic.lampDiameter) + " " + std::to_string(o.realistic.spp) + " " + std::to_string(o.size));
-    base_ = key.hex();
-  }
-  std::string nameOf(const RobotPose& pose) const {
-    char text[160];
-    std::snprintf(text, sizeof text, "%a %a %a", pose.x, pose.y, pose.yawDeg);
-    return "cycles/" + sha256OfBytes(base_ + text).substr(0, 32) + ".exr";
-  }
-  std::optional<ImageRGBA> find(const RobotPose& pose) const {
-    const std::string name = nameOf(pose);
-    if (folder_.entry(name) != EntryKind::File) return std::nullopt;
-    const std::string bytes = folder_.readFile(name, limits::kMaxInputFileBytes);
-    return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), folder_.path() + "/" + name);
-  }
-  ImageRGBA keep(const RobotPose& pose, const ImageRGBA& image) const {
-    const std::string name = nameOf(pose);
-    const std::vector<unsigned char> bytes = encodeImage(name, image);
-    folder_.writeFile(name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), Durability::Unsynced);
-    return readImageFromMemory(bytes.data(), bytes.size(), folder_.path() + "/" + name);
-  }
-
- private:
-  SafeFolder folder_;
-  std::string base_;
-};
-
-struct CyclesCount {
-  int rendered = 0, reused = 0;
-};
-
-// The linear Cycles frames of the textured hall at `poses`: from the cache, or rendered by Blender
-// (one session per batch of the missing poses) and kept.
-std::vector<ImageRGBA> cyclesFrames(const TextureRealismOptions& o, const fs::path& out, const Scene& textured,
-                                    const std::vector<RobotPose>& poses, const std::function<void()>& step, CyclesCount& count) {
-  const CyclesFrameCache cache(o, out);
-  std::vector<ImageRGBA> frames(poses.size());
-  std::vector<size_t> missing;
-  for (size_t k = 0; k < poses.size(); ++k) {
-    if (std::optional<ImageRGBA> kept = cache.find(poses[k])) {
-      frames[k] = std::move(*kept);
-      ++count.reused;
-      step();
-    } else {
-      missing.push_back(k);
-    }
-  }
-  renderSequence(
-      missing.size(), kFramesPerBatch, [&](size_t m) { return CameraPlacement(poses[missing[m]]); },
-      [&](const std::vector<CameraPlacement>& batch) {
-        std::vector<RobotPose> batchPoses;
-        for (const CameraPlacement& p : batch) batchPoses.push_back(p.robot());
-        return renderRealistic(textured, batchPoses, o.realistic, o.size, o.realistic.spp, 0, o.blenderTimeoutSeconds);
-      },
-      [&](size_t m, ImageRGBA&& image, double) {
-        frames[missing[m]] = cache.keep(poses[missing[m]], image);
-        ++count.rendered;
-        step();
-      });
-  return frames;
-}
-
 std::string testCameraSet(size_t k) { return "realistic_camera_" + std::to_string(k + 1); }
 
 // Frames as `recording` records them (frame k drawn and seeded with index k), masks and poses kept.
@@ -377,7 +299,7 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
   const std::vector<Frame> masks = renderFast(textured, sharedPoses, o.size, 1, [] {});
   std::vector<RobotPose> poses;
   for (const Frame& mask : masks) poses.push_back(mask.pose);
-  trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, out, textured, poses, step, cycles), fixedRecordingCameraSpec(o.recording)),
+  trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, textured, poses, step, cycles), fixedRecordingCameraSpec(o.recording)),
           bandColour, o.detector);
   // Domain randomisation of the camera: path and plain frames through drawn cameras, and the ablation.
   trainOnRecorded(fresh(recordedSet("path")), pathFrames, o, "", bandColour);
@@ -394,14 +316,14 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
 // Test sets along thesis-loop: plain and textured by the fast renderer, realistic by Blender (one
 // session per batch of poses) on the textured hall, whose instance masks hold for them too, through
 // the webcam and through each test camera (realistic_camera_1, …).
-std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
+std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOptions& o, const Scene& plain, const Scene& textured,
                                                          const std::vector<RobotPose>& testPoses,
                                                          const std::function<void()>& step, CyclesCount& cycles) {
   std::map<std::string, std::vector<Frame>> tests;
   tests["plain"] = renderFast(plain, testPoses, o.size, o.spp, step);
   tests["textured"] = renderFast(textured, testPoses, o.size, o.spp, step);
   tests["path"] = renderFast(textured, testPoses, o.size, o.pathSpp, step, Shading::Path);
-  const std::vector<ImageRGBA> linear = cyclesFrames(o, out, textured, testPoses, step, cycles);
+  const std::vector<ImageRGBA> linear = cyclesFrames(o, textured, testPoses, step, cycles);
   tests["realistic"] = recordedFrames(tests["textured"], linear, fixedRecordingCameraSpec(o.recording));
   for (size_t k = 0; k < o.testCameras.size(); ++k)
     tests[testCameraSet(k)] = recordedFrames(tests["textured"], linear, o.testCameras[k].recording);
@@ -545,7 +467,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
   CyclesCount cycles;
   const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
-  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, out, plain, textured, testPoses, step, cycles);
+  const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step, cycles);
 
   // Detection and evaluation.
   const FastRenderer geometry(plain);
