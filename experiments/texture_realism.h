@@ -8,6 +8,9 @@
 //               path            fast path-traced renders of the textured hall (physically based
 //                               light, denoised: docs/path-tracing.md), random poses
 //               realistic       the realistic frames' setup (below) at those random poses
+//               path_recorded,  the path (plain) frames, each recorded through several cameras
+//               plain_recorded  drawn from the presets' ranges (domain randomisation)
+//               path_recorded_without_<stage>  the same with one stage held neutral (ablation)
 //   test sets   plain           fast lit renders of the plain hall along thesis-loop
 //               textured        the same in the hall textured with the "lab" photo
 //               path            fast path-traced renders of the textured hall along thesis-loop
@@ -16,10 +19,12 @@
 //                               measured ≥ 35 dB) through the recording-camera model
 //                               (recording_camera.h) — our stand-in for the thesis' real ISLA
 //                               images, which we do not have
+//               realistic_camera_<k>  the same Cycles frames through the k-th --test-camera
 //   conditions  plain_to_plain, plain_to_textured, plain_to_realistic (the thesis' three) and
 //               random_textures_to_realistic (the question its result begs), and
 //               path_to_realistic, realistic_to_path (does physically based light in training
-//               carry over to Cycles' frames, and back?)
+//               carry over to Cycles' frames, and back?), and the recorded sets against the
+//               realistic frames and each test camera (do frames through drawn cameras carry over?)
 #include <functional>
 #include <string>
 #include <vector>
