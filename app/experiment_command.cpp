@@ -65,9 +65,15 @@ struct StageProgress {
   ~StageProgress() { finish(); }
 };
 
-void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--doc", "--convergence", "--theta", "--bins", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
+// The flags only texture-realism takes, refused by the other experiments.
+void refuseTextureRealismFlags(const CLI::App& cmd) {
+  for (const char* flag : {"--convergence", "--theta", "--bins", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
     refuseUnless(cmd, flag, false, "experiment texture-realism");
+}
+
+void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
+  refuseTextureRealismFlags(cmd);
+  refuseUnless(cmd, "--doc", false, "experiment texture-realism");
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
@@ -105,8 +111,8 @@ void replaceGeneratedSection(const std::string& doc, const std::string& section)
 }
 
 void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--convergence", "--theta", "--bins", "--no-figures", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
-    refuseUnless(cmd, flag, false, "experiment texture-realism");
+  refuseTextureRealismFlags(cmd);
+  refuseUnless(cmd, "--no-figures", false, "experiment texture-realism");
   if (!a.noiseScene.empty() && a.noiseScene != "plain_hall" && a.noiseScene != "textured_hall" && a.noiseScene != "tiled_room")
     throw InputError("--noise-scene: must be plain_hall, textured_hall or tiled_room (got " + quote(a.noiseScene) + ")");
   checkOutputFolder(a.out, "-o");
@@ -183,8 +189,8 @@ void copyFigures(const std::string& folder, const std::string& doc, const std::v
 }
 
 void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
-  for (const char* flag : {"--convergence", "--theta", "--bins", "--noise-scene", "--test-camera", "--median", "--min-blob-area", "--no-ablation"})
-    refuseUnless(cmd, flag, false, flag == std::string("--noise-scene") ? "experiment path-convergence" : "experiment texture-realism");
+  refuseTextureRealismFlags(cmd);
+  refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
   if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
   checkOutputFolder(a.out, "-o");
