@@ -66,8 +66,8 @@ std::string openCvIntrinsicsYaml(const Camera& camera) {
     fs << "D" << (cv::Mat_<double>(1, 4) << k.lens.k1, k.lens.k2, k.lens.p1, k.lens.p2);
     if (model.rimRadiusPx) fs << "rim_radius_px" << *model.rimRadiusPx;
     if (model.approximation) {
-      // The rig's camera frame is cameraFromViewpoint() applied to the viewpoint frame.
-      const Rigid fromRig = model.approximation->cameraFromViewpoint * cameraFromViewpoint().inverse();
+      // The rig's camera frame is unifiedCameraFromViewpoint() applied to the viewpoint frame.
+      const Rigid fromRig = model.approximation->cameraFromViewpoint * unifiedCameraFromViewpoint().inverse();
       cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F);
       for (int row = 0; row < 3; ++row) {
         for (int col = 0; col < 3; ++col) r.at<double>(row, col) = fromRig.linear()(row, col);

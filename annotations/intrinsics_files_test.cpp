@@ -25,7 +25,7 @@ void expectOpenCvReproducesProject(const Camera& camera, const std::string& yaml
   ASSERT_TRUE(fs.isOpened());
   const OmnidirIntrinsics k = readOmnidirIntrinsics(fs);
   const Rigid cfw = CameraPlacement(pose).worldFromCamera(camera.rig()).inverse();
-  const Rigid viewpointFromWorld = cameraFromViewpoint().inverse() * cfw;
+  const Rigid viewpointFromWorld = unifiedCameraFromViewpoint().inverse() * cfw;
   std::vector<cv::Vec3d> world;
   std::vector<Vec2> ours;
   for (const Vec3& p : {Vec3(3, 1, 0), Vec3(-1, 2, 0.5), Vec3(1.6, -0.2, 0.0), Vec3(0, -3, 0.6), Vec3(2.5, -0.7, 0.39)}) {
@@ -129,7 +129,7 @@ TEST(IntrinsicsFiles, ANonCentralRigsFilesSayApproximate) {
     for (int j = 8; j < rig.imageSize; j += 16) {
       const auto ray = camera.generateRay({Vec2(i + 0.5, j + 0.5)});
       if (!ray) continue;
-      const Vec3 rigCamera = cameraFromViewpoint() * Vec3(ray->origin + 5.0 * ray->direction);
+      const Vec3 rigCamera = unifiedCameraFromViewpoint() * Vec3(ray->origin + 5.0 * ray->direction);
       const Vec3 p = fittedFromRig * rigCamera;
       points.emplace_back(p.x(), p.y(), p.z());
       ours.emplace_back(i + 0.5, j + 0.5);

@@ -238,7 +238,7 @@ TEST(CalibrationTargets, OmnidirRecoversTheIdealRigsIntrinsicsFromExactCorners) 
   EXPECT_LT(fit.rms, 1e-3);
   // Placed by its own extrinsics, the calibrated model is the rig's: camera frame rig.h's, at F'.
   const CentralApproximation model = calibratedModel(fit, exact.viewpointFromTarget);
-  EXPECT_LT((model.cameraFromViewpoint.linear() - cameraFromViewpoint().linear()).norm(), 1e-6);
+  EXPECT_LT((model.cameraFromViewpoint.linear() - unifiedCameraFromViewpoint().linear()).norm(), 1e-6);
   EXPECT_LT(model.viewpoint.norm(), 1e-6);
   for (double d : {0.2, 0.5, 1.0, 5.0}) EXPECT_LT(heldOutError(*camera, model, d).maxPx, 1e-3) << d << " m";
 }

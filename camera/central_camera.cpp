@@ -6,12 +6,12 @@ CentralCamera::CentralCamera(const RigSpec& rig) : Camera(rig), model_(rig.camer
 
 std::optional<CameraRay> CentralCamera::generateRay(const CameraSample& sample) const {
   if (!model_.insideRim(sample.raster)) return std::nullopt;
-  const Eigen::Matrix3d viewpointFromCamera = cameraFromViewpoint().inverse().linear();
+  const Eigen::Matrix3d viewpointFromCamera = unifiedCameraFromViewpoint().inverse().linear();
   return CameraRay{Vec3::Zero(), viewpointFromCamera * model_.cameraFromRaster(sample.raster)};
 }
 
 std::optional<Vec2> CentralCamera::project(const Vec3& pointViewpoint) const {
-  return model_.rasterFromCamera(cameraFromViewpoint().linear() * pointViewpoint);
+  return model_.rasterFromCamera(unifiedCameraFromViewpoint().linear() * pointViewpoint);
 }
 
 nlohmann::json CentralCamera::describe() const { return unifiedIntrinsicsJson(model_); }

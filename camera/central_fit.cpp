@@ -182,7 +182,7 @@ CentralApproximation fitCentralApproximation(const Camera& camera, const std::ve
 
   DirectionResiduals residuals;
   residuals.rays = &rays;
-  residuals.idealCameraFromViewpoint = omnicam::cameraFromViewpoint().linear();
+  residuals.idealCameraFromViewpoint = omnicam::unifiedCameraFromViewpoint().linear();
   Eigen::VectorXd x = initialGuess(camera, rays, residuals.idealCameraFromViewpoint);
   Eigen::NumericalDiff<DirectionResiduals, Eigen::Central> differentiated(residuals);
   Eigen::LevenbergMarquardt<Eigen::NumericalDiff<DirectionResiduals, Eigen::Central>> solver(differentiated);

@@ -29,6 +29,10 @@ nlohmann::json describeCamera(const RigSpec& rig) {
   return description;
 }
 
+Rigid CentralModel::cameraFromViewpoint() const {
+  return approximation ? approximation->cameraFromViewpoint : unifiedCameraFromViewpoint();
+}
+
 CentralModel centralModelOf(const Camera& camera) {
   CentralModel model;
   if (const auto* central = dynamic_cast<const CentralCamera*>(&camera)) {

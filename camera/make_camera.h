@@ -23,6 +23,8 @@ struct CentralModel {
   // Set when the model is not exact: the fit, its camera frame and its residuals (central_fit.h).
   std::optional<CentralApproximation> approximation;
   std::optional<double> rimRadiusPx;  // the rim's circle about (cx, cy), where the rim is one
+  // The model's camera frame: the fit's, or the unified model's (omni_camera.h) when exact.
+  Rigid cameraFromViewpoint() const;
 };
 CentralModel centralModelOf(const Camera& camera);
 

@@ -7,6 +7,12 @@
 
 namespace omnicam {
 
+Rigid unifiedCameraFromViewpoint() {
+  Rigid t = Rigid::Identity();
+  t.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  return t;
+}
+
 namespace {
 void requireElevation(double deg, const char* field) {
   if (!(deg > -90.0 && deg < 90.0))

@@ -16,6 +16,9 @@
 
 namespace omnicam {
 
+// The fixed axis change viewpoint → camera above: X = x, Y = −y, Z = −z (a proper rotation).
+Rigid unifiedCameraFromViewpoint();
+
 // Intrinsics in OpenCV's convention (pixel centres at integers: cx = W/2 − 0.5).
 struct OpenCvIntrinsics {
   double xi, gamma_x, gamma_y, cx, cy;

@@ -80,7 +80,7 @@ TEST(OmniCamera, MatchesAnIndependentTraceOfThePhysicalPinholeAndQuadricMirror) 
   const OmniCamera cam = defaultCamera();
   const HyperbolicMirror& mirror = cam.mirror();
   const double f = cam.physicalFocalLength();
-  const Rigid viewpointFromCamera = cameraFromViewpoint().inverse();
+  const Rigid viewpointFromCamera = unifiedCameraFromViewpoint().inverse();
   double worst = 0.0;
   for (int j = 0; j < 360; j += 7) {
     for (int i = 0; i < 360; i += 7) {
@@ -92,7 +92,7 @@ TEST(OmniCamera, MatchesAnIndependentTraceOfThePhysicalPinholeAndQuadricMirror) 
       const Vec3 seen = hit->normalized();  // from F' toward the mirror point and beyond
       const Vec3 model = viewpointFromCamera.linear() * cam.cameraFromRaster(p);
       // Compare as pixel distance by projecting the traced direction back with the model.
-      const auto traced = cam.rasterFromCameraUnclipped(cameraFromViewpoint().linear() * seen);
+      const auto traced = cam.rasterFromCameraUnclipped(unifiedCameraFromViewpoint().linear() * seen);
       ASSERT_TRUE(traced.has_value());
       worst = std::max(worst, (*traced - p).norm());
       EXPECT_LT((seen - model).norm(), 1e-6);

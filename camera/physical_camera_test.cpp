@@ -299,7 +299,7 @@ TEST(PhysicalCamera, AlignedDistortionIsMeiWithRescaledCoefficients) {
     const auto raster = camera->project(p);
     ASSERT_TRUE(raster);
     ours.push_back(*raster);
-    const Vec3 q = cameraFromViewpoint() * p;
+    const Vec3 q = unifiedCameraFromViewpoint() * p;
     points.emplace_back(q.x(), q.y(), q.z());
   }
   std::vector<cv::Point2d> projected;
@@ -333,7 +333,7 @@ TEST(PhysicalCamera, TheOrthographicParaboloidIsMeiWithXiOne) {
     const auto raster = camera.project(p);
     ASSERT_TRUE(raster);
     ours.push_back(*raster);
-    const Vec3 q = cameraFromViewpoint() * p;  // the unified model's frame at the focus
+    const Vec3 q = unifiedCameraFromViewpoint() * p;  // the unified model's frame at the focus
     points.emplace_back(q.x(), q.y(), q.z());
   }
   std::vector<cv::Point2d> projected;

@@ -34,29 +34,8 @@ OmniCamera RigSpec::camera() const {
   return idealCamera();
 }
 
-Rigid worldFromRobot(const RobotPose& pose) {
-  Rigid t = Rigid::Identity();
-  t.translate(Vec3(pose.x, pose.y, 0.0));
-  t.rotate(Eigen::AngleAxisd(radians(pose.yawDeg), Vec3::UnitZ()));
-  return t;
-}
-
-Rigid robotFromViewpoint(const RigSpec& rig) {
-  Rigid t = Rigid::Identity();
-  t.rotate(Eigen::AngleAxisd(radians(rig.tiltDeg[0]), Vec3::UnitX()));
-  t.rotate(Eigen::AngleAxisd(radians(rig.tiltDeg[1]), Vec3::UnitY()));
-  t.translate(Vec3(0.0, 0.0, rig.height));
-  return t;
-}
-
-Rigid cameraFromViewpoint() {
-  Rigid t = Rigid::Identity();
-  t.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
-  return t;
-}
-
 Rigid cameraFromViewpoint(const RigSpec& rig) {
-  if (!rig.lens) return cameraFromViewpoint();
+  if (!rig.lens) return unifiedCameraFromViewpoint();
   Rigid t = Rigid::Identity();
   t.linear() = viewpointFromLens(*rig.lens).transpose();
   return t;

@@ -1,6 +1,6 @@
 #pragma once
-// The camera rig on the robot and the frame chain world ← robot ← viewpoint ← camera.
-//   robot:     origin on the floor below F', x forward, y left, z up (yaw CCW from world +X).
+// The camera rig on the robot. Its frames (the chain world ← robot ← viewpoint ← camera is
+// composed by motion/placement.h):
 //   viewpoint: origin at F' = robot origin + (0, 0, height), robot axes.
 //   camera:    unified-model frame at F' (see omni_camera.h).
 //   pinhole:   the physical camera below the mirror (physical_camera.h): origin at its pinhole,
@@ -16,10 +16,6 @@
 #include "shutter.h"
 
 namespace omnicam {
-
-struct RobotPose {
-  double x = 0.0, y = 0.0, yawDeg = 0.0;
-};
 
 // The physical camera below the mirror, as built rather than as designed. All zero: the ideal
 // pinhole at the mirror's outer focus F, looking straight up, distortion-free.
@@ -140,13 +136,10 @@ struct RigSpec {
   OmniCamera camera() const;
 };
 
-// Links of the frame chain; placement.h (motion/) is the one place that composes them.
-Rigid worldFromRobot(const RobotPose& pose);
-Rigid robotFromViewpoint(const RigSpec& rig);
-// Fixed axis change viewpoint → camera: X = x, Y = −y, Z = −z (a proper rotation).
-Rigid cameraFromViewpoint();
-// The camera frame of this rig's camera: the mirror's fixed one above, or a lens camera's OpenCV
-// frame (X image right, Y image down, Z its optical axis; viewpointFromLens).
+// The last link of the frame chain (motion/placement.h composes the chain): the camera frame of
+// this rig's camera, the unified model's (unifiedCameraFromViewpoint, omni_camera.h) for a mirror
+// rig, or a lens camera's OpenCV frame (X image right, Y image down, Z its optical axis;
+// viewpointFromLens).
 Rigid cameraFromViewpoint(const RigSpec& rig);
 
 }  // namespace omnicam

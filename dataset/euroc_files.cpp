@@ -27,8 +27,7 @@ std::string floats(const std::vector<double>& values) {
 
 // A lens camera's sensor.yaml: Kalibr's terms where Kalibr has the model, else omnicam's own.
 std::string lensSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const LensCamera& camera, double intervalS) {
-  const Rigid bodyFromSensor =
-      CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromViewpoint(rig) * cameraFromViewpoint(rig).inverse();
+  const Rigid bodyFromSensor = CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromCamera(rig);
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"
       << "# Body frame: the robot's (origin on the floor, x forward, y left, z up). Sensor frame: OpenCV's (X right,\n"
@@ -70,11 +69,10 @@ std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, cons
   if (const auto* lens = dynamic_cast<const LensCamera*>(&camera)) return lensSensorYaml(mount, rig, *lens, intervalS) + shutterYaml(rig);
   const CentralModel model = centralModelOf(camera);
   const MeiIntrinsics& k = model.intrinsics;
-  // The rig's camera frame, or the frame of its best-fit central model.
-  Rigid viewpointFromSensor = cameraFromViewpoint().inverse();
-  if (model.approximation) viewpointFromSensor = model.approximation->cameraFromViewpoint.inverse();
-  // The camera's place on a level robot standing at the origin: the body frame is the robot's.
-  const Rigid bodyFromSensor = CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromViewpoint(rig) * viewpointFromSensor;
+  // The camera's place on a level robot standing at the origin (the body frame is the robot's), in
+  // the frame of the rig's central model: its own, or its best fit's.
+  const Rigid bodyFromSensor =
+      CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromViewpoint(rig) * model.cameraFromViewpoint().inverse();
 
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"

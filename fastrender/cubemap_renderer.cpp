@@ -212,7 +212,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   L->options = o;
   L->padded = o.faceSize + 2;
   const OmniCamera camera = r.camera();
-  const Rigid viewpointFromCamera = cameraFromViewpoint().inverse();
+  const Rigid viewpointFromCamera = unifiedCameraFromViewpoint().inverse();
   const HyperbolicMirror mirror = r.mirror();
   ThesisMesh mesh;
   if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(mirror, camera.rimTheta(), sectors, rings);

@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "geometry.h"
-#include "rig.h"
+#include "robot_pose.h"
 
 namespace omnicam {
 

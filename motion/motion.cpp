@@ -12,6 +12,13 @@ double versineOverX(double x) { return std::abs(x) < 1e-4 ? x / 2.0 - x * x * x 
 
 }  // namespace
 
+Rigid worldFromRobot(const RobotPose& pose) {
+  Rigid t = Rigid::Identity();
+  t.translate(Vec3(pose.x, pose.y, 0.0));
+  t.rotate(Eigen::AngleAxisd(radians(pose.yawDeg), Vec3::UnitZ()));
+  return t;
+}
+
 RobotPose poseAfter(const RobotPose& start, const BodyVelocity& velocity, double seconds) {
   // The body frame turns at ω while moving at v in it: the displacement in the start's body frame
   // is ∫₀ᵗ R(ωs) v ds = t·[S −V; V S]·v with S = sin θ/θ, V = (1 − cos θ)/θ, θ = ωt.

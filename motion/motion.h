@@ -2,7 +2,7 @@
 // The robot's motion while a shutter is open (docs/motion.md): a constant body velocity held from
 // the pose at the exposure start, integrated exactly on SE(2), so the robot drives an arc (a line
 // when it does not turn). Frame i's pose is the pose at its timestamp, the exposure start.
-#include "rig.h"
+#include "robot_pose.h"
 
 namespace omnicam {
 

@@ -35,6 +35,12 @@ Rigid tiltRotation(const RobotTilt& tiltDeg) {
 
 }  // namespace
 
+Rigid robotFromViewpoint(const RigSpec& rig) {
+  Rigid t = tiltRotation(rig.tiltDeg);
+  t.translate(Vec3(0.0, 0.0, rig.height));
+  return t;
+}
+
 CameraPlacement::CameraPlacement(const RobotPose& robot, const BodyVelocity& velocity, const RobotMount& mount,
                                  const RobotTilt& robotTiltDeg)
     : robot_(robot),

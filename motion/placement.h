@@ -11,7 +11,9 @@
 //   mount       where the camera stands on the robot: its foot's offset from the robot's centre
 //               and its turn (a multi-camera robot; zero for one camera)
 //   rig tilt    the rig tilted on its own mount, about its foot (RigSpec::tiltDeg), then up to
-//               F' at the rig's height: robotFromViewpoint (rig.h)
+//               F' at the rig's height: robotFromViewpoint below
+//
+//   camera      the rig's camera frame: cameraFromViewpoint (rig.h)
 //
 // Engines, annotations, projection, exporters and Python all ask a placement where the camera
 // is; none composes these transforms itself.
@@ -31,6 +33,9 @@ struct RobotMount {
 
 // The robot's own tilt (degrees): roll about its x axis, then pitch about the rolled y axis.
 using RobotTilt = std::array<double, 2>;
+
+// The rig-tilt link: the rig tilted on its mount about its foot, then up to F' at its height.
+Rigid robotFromViewpoint(const RigSpec& rig);
 
 class CameraPlacement {
  public:
@@ -52,7 +57,7 @@ class CameraPlacement {
   RobotPose footAt(double seconds) const;
   // The chain above, `seconds` after the exposure start.
   Rigid worldFromViewpoint(const RigSpec& rig, double seconds = 0.0) const;
-  // The same in the unified model's camera axes (rig.h's cameraFromViewpoint).
+  // The same in the rig's camera axes (rig.h's cameraFromViewpoint).
   Rigid worldFromCamera(const RigSpec& rig, double seconds = 0.0) const;
   // This camera on a still robot where this one is `seconds` after its start: one instant of a
   // moving frame, for engines that render still instants. Gives exactly the same transforms.

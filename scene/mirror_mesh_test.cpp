@@ -59,7 +59,7 @@ TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
   EXPECT_GT(face.dot(mesh.normals[t[0]]), 0.0);
   // The rim ring lies exactly at the rim direction.
   const Vec3 rimVertex = mesh.mesh.vertices.back();
-  EXPECT_NEAR(incidenceAngle(cameraFromViewpoint().linear() * rimVertex), rig.camera().rimTheta(), 1e-12);
+  EXPECT_NEAR(incidenceAngle(unifiedCameraFromViewpoint().linear() * rimVertex), rig.camera().rimTheta(), 1e-12);
 }
 
 // The sphere's cap: its exact distance is | |p| − R |, independent of the builder.

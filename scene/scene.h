@@ -10,6 +10,7 @@
 #include "calibration_target.h"
 #include "geometry.h"
 #include "rig.h"
+#include "robot_pose.h"
 #include "texture.h"
 
 namespace omnicam {

@@ -42,7 +42,7 @@ TEST(Views, ExactBirdsEyeAgreesWithTheCameraProjection) {
     for (int i = 0; i < 400; i += 19) {
       // The ground point of this map pixel, projected by the camera model (another code path).
       const Vec3 viewpointDir(i + 0.5 - 200.0, 200.0 - (j + 0.5), -40.0);
-      const auto raster = camera().rasterFromCamera(cameraFromViewpoint().linear() * viewpointDir);
+      const auto raster = camera().rasterFromCamera(unifiedCameraFromViewpoint().linear() * viewpointDir);
       const size_t k = static_cast<size_t>(j) * 400 + i;
       if (!raster) {
         EXPECT_TRUE(std::isnan(map.sourceX[k]));
