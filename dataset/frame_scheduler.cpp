@@ -49,8 +49,8 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
     const RenderSettings settings = spec.request.settings(plan.frameRig(index, c));
     const CameraPlacement placement = plan.placement(index, c);
     Film film = filmFor(settings, wantsAovs);
-    if (wantsAovs) film.aovs = std::move(aovs);  // its planes' memory reused
-    if (rgb[c]) film.image = std::move(*rgb[c]);
+    if (wantsAovs) film.reuseAovPlanes(std::move(aovs));
+    if (rgb[c]) film.setResolvedColour(std::move(*rgb[c]));
     else engine.render(placement, settings, film);
     // Seeded (and drawn, for a randomised camera) by frame and camera: a resumed or sharded run
     // records the same frames.
@@ -58,12 +58,12 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
     if (spec.recording) {
       const uint64_t drawIndex = static_cast<uint64_t>(index) * plan.setups.size() + c;
       recording = spec.recording->draw(drawIndex);
-      film.image = recordFrame(*recording, film.image, drawIndex);
+      film.setResolvedColour(recordFrame(*recording, film.image(), drawIndex));
     }
     std::vector<EncodedFile> files =
-        encodeFrameOutputs(scene, rays, settings, setup.camera->name, index, placement, film.image,
-                           film.aovs ? &*film.aovs : nullptr, plan.outputs, plan.ids.classOfInstance);
-    if (film.aovs) aovs = std::move(*film.aovs);
+        encodeFrameOutputs(scene, rays, settings, setup.camera->name, index, placement, film.image(), film.aovs(),
+                           plan.outputs, plan.ids.classOfInstance);
+    if (wantsAovs) aovs = film.takeAovs();
     stopIfCancelled();
     CameraFrame cameraFrame{placement.footAt(0.0), {}, std::nullopt, std::nullopt};
     if (plan.vibrates()) cameraFrame.rig = settings.rig;

@@ -2,10 +2,10 @@
 
 namespace omnicam {
 
-AovFrame renderAovs(const FastRenderer& renderer, const RobotPose& pose, const RenderSettings& settings) {
-  AovFrame frame;
-  renderer.renderAovsOnly(pose, settings, frame);
-  return frame;
+AovFrame renderAovs(const FastRenderer& renderer, const CameraPlacement& placement, const RenderSettings& settings) {
+  Film film(settings.rig.imageWidth(), settings.rig.imageHeight(), 1, /*wantsAovs=*/true);
+  renderer.renderAovsOnly(placement, settings, film);
+  return film.takeAovs();
 }
 
 }  // namespace omnicam

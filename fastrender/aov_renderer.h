@@ -6,9 +6,9 @@
 
 namespace omnicam {
 
-// Renders the AOVs of `pose` with the scene of `renderer`, whose settings' rig gives the camera.
+// Renders the AOVs of the camera at `placement` with the scene of `renderer`, whose settings' rig gives the camera.
 // Rows in parallel; the result does not depend on the thread count, nor on settings.spp. Throws
 // InputError for a scene with more than kMaxInstances objects or bad settings.
-AovFrame renderAovs(const FastRenderer& renderer, const RobotPose& pose, const RenderSettings& settings);
+AovFrame renderAovs(const FastRenderer& renderer, const CameraPlacement& placement, const RenderSettings& settings);
 
 }  // namespace omnicam

@@ -98,8 +98,8 @@ TEST(AovRenderer, IndependentOfTheThreadCount) {
   RenderSettings settings;
   settings.rig.imageSize = 360;
   AovFrame single, many;
-  EXPECT_EQ(runOnThreads(1, [&] { single = renderAovs(one, {0.3, 0.2, 45.0}, settings); }), 1);
-  EXPECT_EQ(runOnThreads(4, [&] { many = renderAovs(four, {0.3, 0.2, 45.0}, settings); }), 4);
+  EXPECT_EQ(runOnThreads(1, [&] { single = renderAovs(one, RobotPose{0.3, 0.2, 45.0}, settings); }), 1);
+  EXPECT_EQ(runOnThreads(4, [&] { many = renderAovs(four, RobotPose{0.3, 0.2, 45.0}, settings); }), 4);
   EXPECT_EQ(many.depth, single.depth);
   EXPECT_EQ(many.instance, single.instance);
   EXPECT_EQ(many.normal, single.normal);

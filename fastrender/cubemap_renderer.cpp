@@ -310,7 +310,7 @@ ImageRGBA CubeMapRenderer::render(const CameraPlacement& placement, const Render
                                   const CubeMapOptions& options) const {
   Film film = filmFor(settings);
   render(placement, settings, options, film);
-  return std::move(film.image);
+  return film.takeImage();
 }
 
 void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSettings& settings, const CubeMapOptions& options,
@@ -322,7 +322,7 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
   checkEngineShading(options.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap,
                      settings.shading);
   film.requireFits(settings, "CubeMapRenderer::render");
-  film.allocate();  // the lookup above checked that the frame fits in memory
+  film.begin();  // the lookup above checked that the frame fits in memory
   const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);
   const Vec3 origin = worldFromView.translation();
   const Eigen::Matrix3d rotation = worldFromView.linear();
@@ -347,7 +347,6 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
   }
   // 2. Every omni sample from its precomputed bilinear footprint.
   const int width = settings.rig.imageSize, height = width;
-  const float weight = film.weight();
   const uint32_t* firstSample = L->firstSample.data();
   const Lookup::Sample* samples = L->samples.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
@@ -358,10 +357,12 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
         for (uint32_t s = firstSample[pixel]; s < firstSample[pixel + 1]; ++s) {
           if (samples[s].top != UINT32_MAX) addFootprint(texel, samples[s], sum);
         }
-        film.setPixel(i, j, sum, weight, static_cast<int>(firstSample[pixel + 1] - firstSample[pixel]));
+        film.addSamples(i, j, sum);
+        film.setImagedGridPoints(i, j, static_cast<int>(firstSample[pixel + 1] - firstSample[pixel]));
       }
     }
   });
+  film.resolve();
 }
 
 }  // namespace omnicam

@@ -207,9 +207,9 @@ TEST(CubeMap, OutputIsBitIdenticalForAnyThreadCountAndOptionsAreChecked) {
   Film reused = filmFor(settings);
   cube.render(RobotPose{0.5, 0.5, 10.0}, settings, options, reused);
   cube.render(arena().startPose, settings, options, reused);
-  ASSERT_EQ(reused.image.pixels.size(), one.pixels.size());
-  EXPECT_EQ(reused.image.width, one.width);
-  EXPECT_EQ(std::memcmp(one.pixels.data(), reused.image.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+  ASSERT_EQ(reused.image().pixels.size(), one.pixels.size());
+  EXPECT_EQ(reused.image().width, one.width);
+  EXPECT_EQ(std::memcmp(one.pixels.data(), reused.image().pixels.data(), one.pixels.size() * sizeof(float)), 0);
   // A film of another size is refused, not resized behind the caller's back.
   RenderSettings small = settings;
   small.rig.imageSize = 97;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "errors.h"
 #include "indirect_filter.h"
@@ -67,8 +68,8 @@ void FastRenderer::DenoiseSums::add(size_t pixel, const PathSample& sample, cons
 void FastRenderer::denoise(Film& film, const DenoiseSums& sums, float weight, const std::vector<uint32_t>& imaged) {
   IndirectFilterInputs in;
   const size_t pixels = sums.depth.size();
-  in.full = film.image;
-  in.direct = film.image;
+  in.full = film.image();
+  in.direct = film.image();
   in.albedo.resize(3 * pixels);
   in.normal.resize(3 * pixels);
   in.depth.resize(pixels);
@@ -86,7 +87,7 @@ void FastRenderer::denoise(Film& film, const DenoiseSums& sums, float weight, co
   // noisiest left: they are filtered too (measured +0.3 dB at 16 spp, docs/path-tracing.md).
   IndirectFilterParameters parameters;
   parameters.filterStraddling = true;
-  film.image = filterIndirectLight(in, parameters);
+  film.setResolvedColour(filterIndirectLight(in, parameters));
 }
 
 void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path,
@@ -358,87 +359,76 @@ void FastRenderer::render(const CameraPlacement& placement, const RenderSettings
 ImageRGBA FastRenderer::render(const CameraPlacement& placement, const RenderSettings& settings) const {
   Film film = filmFor(settings);
   render(placement, settings, film);
-  return std::move(film.image);
+  return film.takeImage();
 }
 
 ImageRGBA FastRenderer::render(const CameraPlacement& placement, const RenderSettings& settings, AovFrame& aovs) const {
-  Film film = filmFor(settings);
-  film.aovs = std::move(aovs);  // its planes' memory reused
+  Film film = filmFor(settings, /*wantsAovs=*/true);
+  film.reuseAovPlanes(std::move(aovs));
   render(placement, settings, film);
-  aovs = std::move(*film.aovs);
-  return std::move(film.image);
+  aovs = film.takeAovs();
+  return film.takeImage();
 }
 
-void FastRenderer::prepareAovs(const RenderSettings& settings, AovFrame& aovs) const {
+void FastRenderer::beginAovs(Film& film) const {
   if (scene_.objects.size() > kMaxInstances)
     throw InputError(showPath(scene_.path) + ": " + std::to_string(scene_.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
-  aovs.width = settings.rig.imageWidth(), aovs.height = settings.rig.imageHeight();
-  const size_t pixels = static_cast<size_t>(aovs.width) * aovs.height;
-  // Sized only: every pixel is written by the pass (zeros where nothing is hit), so a reused
-  // frame costs no clearing.
-  aovs.depth.resize(pixels);
-  aovs.instance.resize(pixels);
-  aovs.normal.resize(3 * pixels);
+  film.beginAovs();
 }
 
 namespace {
 
-void recordNoHit(AovFrame& aovs, size_t pixel) {
-  aovs.depth[pixel] = 0.0f;
-  aovs.instance[pixel] = 0;
-  for (int c = 0; c < 3; ++c) aovs.normal[3 * pixel + c] = 0.0f;
-}
-
-void recordAov(AovFrame& aovs, size_t pixel, const SurfaceHit& hit, const Vec3& direction) {
-  aovs.depth[pixel] = static_cast<float>(hit.t);
-  aovs.instance[pixel] = static_cast<uint16_t>(hit.object + 1);
+void recordAov(Film& film, size_t pixel, const SurfaceHit& hit, const Vec3& direction) {
   const Vec3 n = hit.normal.dot(direction) > 0.0 ? Vec3(-hit.normal) : hit.normal;  // two-sided
-  for (int c = 0; c < 3; ++c) aovs.normal[3 * pixel + c] = static_cast<float>(n[c]);
+  film.recordAov(pixel, static_cast<float>(hit.t), static_cast<uint16_t>(hit.object + 1), n);
 }
 
 }  // namespace
 
 template <typename PlacementOfPixel>
 uint32_t FastRenderer::recordCentreAovs(const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels,
-                                        int count, HitPacket& hits, AovFrame& aovs) const {
+                                        int count, HitPacket& hits, Film& film) const {
   loadCentres(hits, at, table, pixels, count);
   rays_.intersectPacket(hits);
   for (int k = 0; k < count; ++k)
-    if (hits.hit(k)) recordAov(aovs, pixels[k], hits.surface(k), hits.direction(k));
+    if (hits.hit(k)) recordAov(film, pixels[k], hits.surface(k), hits.direction(k));
   return hits.mask();
 }
 
-void FastRenderer::renderAovsOnly(const CameraPlacement& camera, const RenderSettings& settings, AovFrame& aovs) const {
+void FastRenderer::renderAovsOnly(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const {
   RenderSettings centreOnly = settings;
   centreOnly.spp = 1;
   checkRenderSettings(centreOnly);
   checkPlacement(camera);
   const std::shared_ptr<const SampleTable> table = sampleTable(centreOnly, 1);  // checks the frame fits in memory
-  prepareAovs(settings, aovs);
+  if (film.width() != settings.rig.imageWidth() || film.height() != settings.rig.imageHeight() || !film.wantsAovs())
+    throw std::invalid_argument("FastRenderer::renderAovsOnly: the film does not match the settings or wants no AOVs");
+  beginAovs(film);
+  const int width = film.width(), height = film.height();
   const Placement still = placement(settings, camera);
   const bool moves = moving(camera, settings.rig);
   const MovingPlacements motion = moves ? movingPlacements(settings, camera, 1) : MovingPlacements{};
   const auto at = [&](size_t p) -> const Placement& {
-    return moves ? motion.centre(static_cast<int>(p % aovs.width), static_cast<int>(p / aovs.width)) : still;
+    return moves ? motion.centre(static_cast<int>(p % width), static_cast<int>(p / width)) : still;
   };
-  tbb::parallel_for(tbb::blocked_range<int>(0, aovs.height), [&](const tbb::blocked_range<int>& rows) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     // The same packets as a render pass traces for its centre rays, so both give the same AOVs.
     HitPacket hits;
     size_t pending[kRayPacketSize];
     int count = 0;
     const auto trace = [&] {
-      const uint32_t hit = recordCentreAovs(at, *table, pending, count, hits, aovs);
+      const uint32_t hit = recordCentreAovs(at, *table, pending, count, hits, film);
       for (int k = 0; k < count; ++k)
-        if (!((hit >> k) & 1u)) recordNoHit(aovs, pending[k]);
+        if (!((hit >> k) & 1u)) film.recordNoHit(pending[k]);
       count = 0;
     };
     for (int j = rows.begin(); j != rows.end(); ++j) {
-      for (int i = 0; i < aovs.width; ++i) {
-        const size_t p = static_cast<size_t>(j) * aovs.width + i;
+      for (int i = 0; i < width; ++i) {
+        const size_t p = static_cast<size_t>(j) * width + i;
         const Eigen::Vector3f& centre = table->centreDirections[p];
         if (std::isnan(centre.x())) {
-          recordNoHit(aovs, p);
+          film.recordNoHit(p);
           continue;
         }
         pending[count++] = p;
@@ -450,11 +440,11 @@ void FastRenderer::renderAovsOnly(const CameraPlacement& camera, const RenderSet
 }
 
 void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const {
-  AovFrame* aovs = film.aovs ? &*film.aovs : nullptr;
+  const bool aovs = film.wantsAovs();
   const auto n = samplesPerAxis(settings.spp);
   const std::shared_ptr<const SampleTable> table = sampleTable(settings, *n);  // checks the frame fits in memory
-  film.allocate();
-  if (aovs) prepareAovs(settings, *aovs);
+  film.begin();
+  if (aovs) beginAovs(film);
   const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   const Placement at = placement(settings, camera);
   // A moving frame places each ray by its line and instant (the still one's path is unchanged,
@@ -517,7 +507,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
             sum += colours[k];
             if (denoising) denoising->add(pixel, pathSamples[k], hits, k);
             if (aovs && s == table->centreSample[pixel] && hits.hit(k)) {
-              recordAov(*aovs, pixel, hits.surface(k), hits.direction(k));
+              recordAov(film, pixel, hits.surface(k), hits.direction(k));
               centreRecorded[pixel - rowStart] = 1;
             }
           }
@@ -530,7 +520,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
         size_t pending[kPacket];
         int count = 0;
         const auto traceCentres = [&] {
-          const uint32_t hit = recordCentreAovs(centreAt, *table, pending, count, hits, *aovs);
+          const uint32_t hit = recordCentreAovs(centreAt, *table, pending, count, hits, film);
           for (int k = 0; k < count; ++k)
             if ((hit >> k) & 1u) centreRecorded[pending[k] - rowStart] = 1;
           count = 0;
@@ -543,14 +533,16 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
         }
         if (count > 0) traceCentres();
         for (int i = 0; i < width; ++i)
-          if (!centreRecorded[i]) recordNoHit(*aovs, rowStart + i);
+          if (!centreRecorded[i]) film.recordNoHit(rowStart + i);
       }
       for (int i = 0; i < width; ++i) {
         const size_t p = rowStart + i;
-        film.setPixel(i, j, sums[i].data(), weight, static_cast<int>(table->firstSample[p + 1] - table->firstSample[p]));
+        film.addSamples(i, j, sums[i].data());
+        film.setImagedGridPoints(i, j, static_cast<int>(table->firstSample[p + 1] - table->firstSample[p]));
       }
     }
   });
+  film.resolve(passes);
   if (denoising) {
     std::vector<uint32_t> imaged(static_cast<size_t>(width) * height);
     for (size_t p = 0; p < imaged.size(); ++p) imaged[p] = (table->firstSample[p + 1] - table->firstSample[p]) * passes;

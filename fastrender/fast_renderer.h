@@ -37,8 +37,9 @@ class FastRenderer {
   // The colour alone; the colour and the AOVs.
   ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings) const;
   ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings, AovFrame& aovs) const;
-  // Only the AOVs (settings.spp does not matter).
-  void renderAovsOnly(const CameraPlacement& placement, const RenderSettings& settings, AovFrame& aovs) const;
+  // Only the AOVs, into a film that wants them (settings.spp does not matter; its colour is left
+  // alone).
+  void renderAovsOnly(const CameraPlacement& placement, const RenderSettings& settings, Film& film) const;
 
   // The memory one width × height frame at `spp` takes (its sample table, a central or a traced
   // camera's, and the frame with every AOV and its files): checked before a table is built, and
@@ -102,7 +103,8 @@ class FastRenderer {
   };
   static MovingPlacements movingPlacements(const RenderSettings& settings, const CameraPlacement& camera, int samplesPerAxis);
   void renderPass(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const;
-  void prepareAovs(const RenderSettings& settings, AovFrame& aovs) const;
+  // The film's AOV planes sized for a frame; InputError for a scene whose instance ids overflow.
+  void beginAovs(Film& film) const;
   std::shared_ptr<const SampleTable> sampleTable(const RenderSettings& settings, int samplesPerAxis) const;
   static Placement placement(const RenderSettings& settings, const CameraPlacement& camera, double seconds = 0.0);
   // Loads `count` rays of one table (first.., or the listed entries) into a packet.
@@ -124,7 +126,7 @@ class FastRenderer {
   // the AOVs of those that hit; returns the mask of hits (bit k: pixels[k]).
   template <typename PlacementOfPixel>
   uint32_t recordCentreAovs(const PlacementOfPixel& at, const SampleTable& table, const size_t* pixels, int count,
-                            HitPacket& hits, AovFrame& aovs) const;
+                            HitPacket& hits, Film& film) const;
 
   // Path shading's frame: its tracer and the key its samples' keys derive from.
   struct PathFrame {

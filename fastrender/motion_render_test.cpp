@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "aov_renderer.h"
 #include "fast_renderer.h"
 #include "make_camera.h"
 #include "scene_loader.h"
@@ -146,7 +147,7 @@ TEST(MotionRender, AovsArePointSamplesAtEachPixelsOwnTime) {
   const Shutter global{0.04, std::nullopt, 0};
   AovFrame moving, atMiddle;
   renderer.render(kDrivingFromStart, settingsOf(64, 4, global), moving);
-  renderer.renderAovsOnly(poseAfter(kStart, kDriving, 0.02), settingsOf(64, 1, Shutter{}), atMiddle);
+  atMiddle = renderAovs(renderer, poseAfter(kStart, kDriving, 0.02), settingsOf(64, 1, Shutter{}));
   EXPECT_EQ(moving.depth, atMiddle.depth);
   EXPECT_EQ(moving.instance, atMiddle.instance);
   EXPECT_EQ(moving.normal, atMiddle.normal);
@@ -156,14 +157,12 @@ TEST(MotionRender, AovsArePointSamplesAtEachPixelsOwnTime) {
   renderer.render(kDrivingFromStart, settingsOf(64, 9, rolling), rolled);
   bool rowsMatch = true;
   for (int j = 0; j < 64; j += 9) {
-    AovFrame row;
-    renderer.renderAovsOnly(poseAfter(kStart, kDriving, pixelTime(rolling, 0, j, 64, 64)),
-                            settingsOf(64, 1, Shutter{}), row);
+    const AovFrame row =
+        renderAovs(renderer, poseAfter(kStart, kDriving, pixelTime(rolling, 0, j, 64, 64)), settingsOf(64, 1, Shutter{}));
     for (int i = 0; i < 64; ++i) rowsMatch = rowsMatch && row.depth[j * 64 + i] == rolled.depth[j * 64 + i];
   }
   EXPECT_TRUE(rowsMatch);
-  AovFrame only;
-  renderer.renderAovsOnly(kDrivingFromStart, settingsOf(64, 9, rolling), only);
+  const AovFrame only = renderAovs(renderer, kDrivingFromStart, settingsOf(64, 9, rolling));
   EXPECT_EQ(only.depth, rolled.depth);
 }
 

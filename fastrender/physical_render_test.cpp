@@ -12,6 +12,7 @@
 #include "scene_loader.h"
 #include "thread_count_testing.h"
 #include "placement.h"
+#include "aov_renderer.h"
 #include "film.h"
 
 namespace omnicam {
@@ -63,8 +64,7 @@ TEST(PhysicalRender, DepthOfANonCentralRayRunsFromItsMirrorPoint) {
   settings.rig = misalignedRig();
   settings.rig.imageSize = 96;
   const RobotPose pose{0.3, -0.2, 30.0};
-  AovFrame aovs;
-  renderer.renderAovsOnly(pose, settings, aovs);
+  const AovFrame aovs = renderAovs(renderer, pose, settings);
   const auto camera = makeCamera(settings.rig);
   ASSERT_FALSE(camera->central());
   const Rigid worldFromView = CameraPlacement(pose).worldFromViewpoint(settings.rig);

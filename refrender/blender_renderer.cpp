@@ -284,9 +284,9 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
       throw ExternalError("blender: output has the wrong size");
     // Cycles samples randomly inside the pixel; the alpha is the rim on the film's grid.
     Film film = filmFor(settings);
-    film.image = std::move(image);
+    film.setResolvedColour(std::move(image));
     film.setRimAlpha(*imaging);
-    images.push_back(std::move(film.image));
+    images.push_back(film.takeImage());
   }
   return images;
 }

@@ -111,13 +111,14 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
   const int64_t renderBytes = static_cast<int64_t>(width) * n * height * n * 32;
   // A job starts only within kHeldPovrayRenders of the next to be summed: running and held ones together.
   const size_t atOnce = std::min(jobs.size(), kHeldPovrayRenders);
-  requireMemory(static_cast<int64_t>(atOnce) * renderBytes + static_cast<int64_t>(width) * height * 12,
+  requireMemory(static_cast<int64_t>(atOnce) * renderBytes + static_cast<int64_t>(width) * height * 16,
                 "POV-Ray's moving frame (" + std::to_string(atOnce) + " of its " + std::to_string(jobs.size()) + " renders of " +
                     std::to_string(width * n) + "x" + std::to_string(height * n) + " pixels held at once)");
   RenderSettings still = settings;
   still.rig.shutter = {};
-  // Each sample from the render of its line and instant, summed in job order (a fixed order).
-  std::vector<float> sums;
+  // Each sample from the render of its line and instant, summed into the film in job order (a
+  // fixed order).
+  film.begin();
   std::mutex mutex;
   std::condition_variable summed;
   size_t nextToSum = 0;
@@ -153,7 +154,7 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
         const InstantJob& done = jobs[nextToSum];
         film.accumulateSupersampled(next->second, instants.passes, [&](int i, int j, int a, int b, int pass) {
           return lineOf(shutter, i, j, width, height) == done.line && instantOf(shutter, a, b, n, pass) == done.instant;
-        }, sums);
+        });
         held.erase(next);
         ++nextToSum;
       }
@@ -164,12 +165,8 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
     }
     summed.notify_all();
   });
-  const auto camera = makeCamera(settings.rig);
-  film.allocate();
-  const float weight = film.weight(instants.passes);
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i)
-      film.setPixel(i, j, &sums[(static_cast<size_t>(j) * width + i) * 3], weight, film.imagedGridPoints(*camera, i, j));
+  film.setRimAlpha(*makeCamera(settings.rig));
+  film.resolve(instants.passes);
 }
 
 }  // namespace
@@ -188,7 +185,7 @@ ImageRGBA renderWithPovray(const Scene& scene, const CameraPlacement& placement,
                            const PovrayOptions& options) {
   Film film = filmFor(settings);
   renderWithPovray(scene, placement, settings, options, film);
-  return std::move(film.image);
+  return film.takeImage();
 }
 
 }  // namespace omnicam

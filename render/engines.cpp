@@ -22,7 +22,7 @@ std::vector<ImageRGBA> Engine::renderMany(const std::vector<CameraPlacement>& pl
 ImageRGBA Engine::render(const CameraPlacement& placement, const RenderSettings& settings) {
   Film film = filmFor(settings);
   render(placement, settings, film);
-  return std::move(film.image);
+  return film.takeImage();
 }
 
 namespace {
@@ -42,7 +42,7 @@ class FastEngine : public Engine {
     checkEngineShading(kind(), settings.shading);
     if (!mode_) return renderer_.render(placement, settings, film);
     // AOVs are geometric truth: always from the exact pixel → ray map, whatever the colour's mode.
-    if (film.aovs) renderer_.renderAovsOnly(placement, settings, *film.aovs);
+    if (film.wantsAovs()) renderer_.renderAovsOnly(placement, settings, film);
     cubemap_.render(placement, settings, *mode_, film);
   }
   std::string name() const override { return "fast"; }
@@ -101,7 +101,7 @@ class BlenderEngine : public Engine {
     checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
     checkEngineShading(kind(), settings.shading);
     film.requireFits(settings, "BlenderEngine::render");
-    film.image = std::move(renderWithBlender(scene_, {placement}, settings, options_).front());
+    film.setResolvedColour(std::move(renderWithBlender(scene_, {placement}, settings, options_).front()));
   }
   std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings) override {
     if (placements.empty()) return {};

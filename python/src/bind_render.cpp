@@ -98,7 +98,7 @@ class PyRenderer {
       std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
       if (!engine_->capabilities().concurrent) turn.lock();
       engine_->render(placement, settings, film);
-      if (camera) film.image = recordFrame(*camera, film.image, frame);
+      if (camera) film.setResolvedColour(recordFrame(*camera, film.image(), frame));
     }
     return arrays(film, kinds);
   }
@@ -129,7 +129,11 @@ class PyRenderer {
   // colour and the float AOVs hand their buffers over, ids are made as the dataset stores them.
   py::dict arrays(Film& film, const std::vector<OutputKind>& kinds) const {
     const py::ssize_t h = film.height(), w = film.width();
-    const FramePlanes planes{film.image, film.aovs ? &*film.aovs : nullptr, ids_.classOfInstance};
+    ImageRGBA rgb = film.takeImage();
+    std::optional<AovFrame> aovFrame;
+    if (film.wantsAovs()) aovFrame = film.takeAovs();
+    AovFrame* aovs = aovFrame ? &*aovFrame : nullptr;
+    const FramePlanes planes{rgb, aovs, ids_.classOfInstance};
     py::dict out;
     for (OutputKind kind : kinds) {
       const OutputKindRow& row = outputRow(kind);
@@ -138,7 +142,7 @@ class PyRenderer {
       if (row.encoding == OutputEncoding::Uint16Png) {
         out[row.name] = arrayTakingOver(planes.ids(row.plane), shape);
       } else {
-        out[row.name] = arrayTakingOver(std::move(floatBuffer(film.image, film.aovs ? &*film.aovs : nullptr, row.plane)), shape);
+        out[row.name] = arrayTakingOver(std::move(floatBuffer(rgb, aovs, row.plane)), shape);
       }
     }
     return out;
