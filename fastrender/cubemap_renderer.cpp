@@ -191,8 +191,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   int sectors = 0, rings = 0;
   if (o.mode == OmniMode::ThesisMesh) thesisMeshLayout(o.polygons, sectors, rings);
   checkRenderSettings(settings);
-  checkEngineRenders(o.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap, settings.rig,
-                     CameraPlacement{});
+  checkEngineRenders(fastEngineKind(o.mode), settings.rig, CameraPlacement{});
   const auto n = samplesPerAxis(settings.spp);
   // The faces' texels (colour and slot, bordered), every sample's footprint (16 B) and the frame
   // with its encoding (48 B a pixel), before any of it is allocated.
@@ -317,10 +316,8 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
                              Film& film) const {
   const std::shared_ptr<const Lookup> L = lookup(settings, options);
   checkPlacement(placement);
-  checkEngineRenders(options.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap,
-                     settings.rig, placement);  // the lookup checked the camera; this, the motion
-  checkEngineShading(options.mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap,
-                     settings.shading);
+  checkEngineRenders(fastEngineKind(options.mode), settings.rig, placement);  // the lookup checked the camera; this, the motion
+  checkEngineShading(fastEngineKind(options.mode), settings.shading);
   film.requireFits(settings, "CubeMapRenderer::render");
   film.begin();  // the lookup above checked that the frame fits in memory
   const Rigid worldFromView = placement.worldFromViewpoint(settings.rig);

@@ -19,6 +19,13 @@ std::vector<ImageRGBA> Engine::renderMany(const std::vector<CameraPlacement>& pl
   return images;
 }
 
+void Engine::render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) {
+  checkEngineRenders(kind_, settings.rig, placement, film.wantsAovs());
+  checkEngineShading(kind_, settings.shading);
+  film.requireFits(settings, capabilities().shownName);
+  renderChecked(placement, settings, film);
+}
+
 ImageRGBA Engine::render(const CameraPlacement& placement, const RenderSettings& settings) {
   Film film = filmFor(settings);
   render(placement, settings, film);
@@ -30,27 +37,16 @@ namespace {
 class FastEngine : public Engine {
  public:
   FastEngine(const Scene& scene, const CubeMapOptions* mode)
-      : renderer_(scene), cubemap_(renderer_) {
+      : Engine(mode ? fastEngineKind(mode->mode) : EngineKind::FastExact), renderer_(scene), cubemap_(renderer_) {
     if (mode) mode_ = *mode;
   }
-  EngineKind kind() const override {
-    if (!mode_) return EngineKind::FastExact;
-    return mode_->mode == OmniMode::ThesisMesh ? EngineKind::FastThesisMesh : EngineKind::FastCubeMap;
-  }
-  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
-    checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
-    checkEngineShading(kind(), settings.shading);
+  void renderChecked(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     if (!mode_) return renderer_.render(placement, settings, film);
     // AOVs are geometric truth: always from the exact pixel → ray map, whatever the colour's mode.
     if (film.wantsAovs()) renderer_.renderAovsOnly(placement, settings, film);
     cubemap_.render(placement, settings, *mode_, film);
   }
-  std::string name() const override { return "fast"; }
   std::string version() const override { return fastRendererVersion(); }
-  std::string mode() const override {
-    if (!mode_) return "exact";
-    return mode_->mode == OmniMode::ThesisMesh ? "thesis-mesh" : "cubemap";
-  }
   nlohmann::json modeOptions() const override {
     if (!mode_) return nlohmann::json::object();
     nlohmann::json options = {{"faces", mode_->faces}, {"face_size", mode_->faceSize}};
@@ -66,19 +62,15 @@ class FastEngine : public Engine {
 
 class PovrayEngine : public Engine {
  public:
-  PovrayEngine(const Scene& scene, double timeoutSeconds, int threads) : scene_(scene) {
+  PovrayEngine(const Scene& scene, double timeoutSeconds, int threads) : Engine(EngineKind::Povray), scene_(scene) {
     options_.timeoutSeconds = timeoutSeconds;
     options_.threads = threads;
     // OMNICAM_POVRAY names another POV-Ray binary (tests use it to simulate failures).
     if (const char* exe = std::getenv("OMNICAM_POVRAY")) options_.executable = exe;
   }
-  EngineKind kind() const override { return EngineKind::Povray; }
-  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
-    checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
-    checkEngineShading(kind(), settings.shading);
+  void renderChecked(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     renderWithPovray(scene_, placement, settings, options_, film);
   }
-  std::string name() const override { return "povray"; }
   std::string version() const override {
     if (version_.empty()) version_ = povrayVersion(options_.executable);
     return version_;
@@ -92,22 +84,17 @@ class PovrayEngine : public Engine {
 
 class BlenderEngine : public Engine {
  public:
-  BlenderEngine(const Scene& scene, double timeoutSeconds, int threads) : scene_(scene) {
+  BlenderEngine(const Scene& scene, double timeoutSeconds, int threads) : Engine(EngineKind::Blender), scene_(scene) {
     options_.timeoutSeconds = timeoutSeconds;
     options_.threads = threads;
   }
-  EngineKind kind() const override { return EngineKind::Blender; }
-  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
-    checkEngineRenders(kind(), settings.rig, placement, film.wantsAovs());
-    checkEngineShading(kind(), settings.shading);
-    film.requireFits(settings, "BlenderEngine::render");
+  void renderChecked(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     film.setResolvedColour(std::move(renderWithBlender(scene_, {placement}, settings, options_).front()));
   }
   std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings) override {
     if (placements.empty()) return {};
     return renderWithBlender(scene_, placements, settings, options_);
   }
-  std::string name() const override { return "blender"; }
   std::string version() const override {
     if (version_.empty()) version_ = blenderVersion(options_.executable) + " Cycles (CPU)";
     return version_;
@@ -121,14 +108,18 @@ class BlenderEngine : public Engine {
 
 std::unique_ptr<Engine> makeEngineOf(const RenderRequest& request, const Scene& scene) {
   const std::optional<CubeMapOptions> cube = request.cubeMap();
-  if (request.engine == "fast") {
-    if (cube) checkModeOptions(*cube);  // when the engine is made, not at its first frame
-    return std::make_unique<FastEngine>(scene, cube ? &*cube : nullptr);
+  const std::optional<EngineKind> kind = engineKindNamed(request.engine, cube ? cube->mode : OmniMode::Exact);
+  if (!kind) throw std::invalid_argument("makeEngine: no engine " + request.engine + " in mode " + request.mode + " (readRenderRequest checks both)");
+  switch (*kind) {
+    case EngineKind::FastExact:
+    case EngineKind::FastCubeMap:
+    case EngineKind::FastThesisMesh:
+      if (cube) checkModeOptions(*cube);  // when the engine is made, not at its first frame
+      return std::make_unique<FastEngine>(scene, cube ? &*cube : nullptr);
+    case EngineKind::Povray: return std::make_unique<PovrayEngine>(scene, request.timeoutSeconds, request.threads);
+    case EngineKind::Blender: return std::make_unique<BlenderEngine>(scene, request.timeoutSeconds, request.threads);
   }
-  if (request.cubeMap()) throw std::invalid_argument("makeEngine: a mode other than exact for " + request.engine);
-  if (request.engine == "povray") return std::make_unique<PovrayEngine>(scene, request.timeoutSeconds, request.threads);
-  if (request.engine == "blender") return std::make_unique<BlenderEngine>(scene, request.timeoutSeconds, request.threads);
-  throw std::invalid_argument("makeEngine: no engine " + request.engine + " (readRenderRequest checks the name)");
+  throw std::invalid_argument("makeEngine: an engine without a maker");
 }
 
 }  // namespace

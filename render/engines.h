@@ -23,24 +23,35 @@ inline constexpr int kFramesPerBatch = 50;
 
 class Engine {
  public:
+  explicit Engine(EngineKind kind) : kind_(kind) {}
   virtual ~Engine() = default;
-  // Which engine (and mode) this is, and so what it can render (engine_capabilities.h).
-  virtual EngineKind kind() const = 0;
-  const EngineCapabilities& capabilities() const { return capabilitiesOf(kind()); }
+  // Which engine (and mode) this is, and so its names and what it can render
+  // (engine_capabilities.h: one row each).
+  EngineKind kind() const { return kind_; }
+  const EngineCapabilities& capabilities() const { return capabilitiesOf(kind_); }
+  std::string name() const { return capabilities().engine; }
+  // The rendering mode and its options, as sidecars and manifests record them.
+  std::string mode() const { return omniModeName(capabilities().mode); }
+  virtual nlohmann::json modeOptions() const { return nlohmann::json::object(); }
+  virtual std::string version() const = 0;
+
   // Exposes `film` (filmFor(settings, …)) to the rig's camera at `placement`: its colour, and its
   // AOVs when the film wants them (asked only of an engine whose capabilities have them).
-  // InputError for what checkEngineRenders refuses.
-  virtual void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film) = 0;
+  // InputError for what checkEngineRenders or checkEngineShading refuse, checked here for every
+  // engine; std::invalid_argument for a film that does not fit the settings.
+  void render(const CameraPlacement& placement, const RenderSettings& settings, Film& film);
   // The colour alone.
   ImageRGBA render(const CameraPlacement& placement, const RenderSettings& settings);
   // The colour of every placement with the same settings. Engines that batch render them all in
   // one session; the default renders them one by one.
   virtual std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings);
-  virtual std::string name() const = 0;
-  virtual std::string version() const = 0;
-  // The rendering mode and its options, as sidecars and manifests record them.
-  virtual std::string mode() const { return "exact"; }
-  virtual nlohmann::json modeOptions() const { return nlohmann::json::object(); }
+
+ protected:
+  // render() once the request is known to be one this engine renders.
+  virtual void renderChecked(const CameraPlacement& placement, const RenderSettings& settings, Film& film) = 0;
+
+ private:
+  EngineKind kind_;
 };
 
 // The engine a request asks for (render_request.h: read and checked there), rendering `scene`,

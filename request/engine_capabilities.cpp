@@ -18,6 +18,8 @@ const std::vector<MirrorShape> kEveryShape = {MirrorShape::Hyperboloid, MirrorSh
 
 EngineCapabilities fastExact() {
   EngineCapabilities c;
+  c.kind = EngineKind::FastExact;
+  c.engine = "fast";
   c.shownName = "the fast engine";
   c.mirrorShapes = kEveryShape;
   c.everyLensModel = true;  // it traces lens_models.h itself
@@ -27,8 +29,11 @@ EngineCapabilities fastExact() {
   return c;
 }
 
-EngineCapabilities fastCentral(const char* shownName) {
+EngineCapabilities fastCentral(EngineKind kind, OmniMode mode, const char* shownName) {
   EngineCapabilities c;
+  c.kind = kind;
+  c.engine = "fast";
+  c.mode = mode;
   c.shownName = shownName;
   c.misalignedCamera = false;
   c.mirrorShapes = {MirrorShape::Hyperboloid};
@@ -40,6 +45,8 @@ EngineCapabilities fastCentral(const char* shownName) {
 
 EngineCapabilities povray() {
   EngineCapabilities c;
+  c.kind = EngineKind::Povray;
+  c.engine = "povray";
   c.shownName = "the povray engine";
   c.mirrorShapes = kEveryShape;
   c.lensModels = {"fisheye_equidistant", "equirectangular", "pinhole"};  // fisheye, spherical, perspective
@@ -50,6 +57,8 @@ EngineCapabilities povray() {
 
 EngineCapabilities blender() {
   EngineCapabilities c;
+  c.kind = EngineKind::Blender;
+  c.engine = "blender";
   c.shownName = "the blender engine";
   c.mirrorShapes.assign(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes));
   // Cycles' panoramic cameras (fisheye equidistant or lens polynomial, equisolid, equirectangular) and its perspective one.
@@ -67,14 +76,19 @@ EngineCapabilities blender() {
 // The engines a user can pick, as messages name them.
 const std::vector<EngineKind> kChoices = {EngineKind::FastExact, EngineKind::Povray, EngineKind::Blender};
 
+// "a, b or c".
+std::string listWithOr(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k) out += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  return out;
+}
+
 // "the fast engine or the povray engine": the engines that have what `has` asks.
 std::string enginesThat(const std::function<bool(const EngineCapabilities&)>& has) {
   std::vector<std::string> names;
   for (EngineKind e : kChoices)
     if (has(capabilitiesOf(e))) names.push_back(capabilitiesOf(e).shownName);
-  std::string out;
-  for (size_t k = 0; k < names.size(); ++k) out += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
-  return out;
+  return listWithOr(names);
 }
 
 bool hasShape(const EngineCapabilities& c, MirrorShape shape) {
@@ -147,9 +161,25 @@ void checkMotion(const EngineCapabilities& c, const RigSpec& rig, const CameraPl
 }  // namespace
 
 const EngineCapabilities& capabilitiesOf(EngineKind engine) {
-  static const EngineCapabilities rows[] = {fastExact(), fastCentral("the fast engine's cube-map mode"),
-                                            fastCentral("the fast engine's thesis-mesh mode"), povray(), blender()};
+  static const EngineCapabilities rows[] = {fastExact(),
+                                            fastCentral(EngineKind::FastCubeMap, OmniMode::CubeMap, "the fast engine's cube-map mode"),
+                                            fastCentral(EngineKind::FastThesisMesh, OmniMode::ThesisMesh, "the fast engine's thesis-mesh mode"),
+                                            povray(), blender()};
   return rows[static_cast<int>(engine)];
+}
+
+EngineKind fastEngineKind(OmniMode mode) { return *engineKindNamed("fast", mode); }
+
+std::optional<EngineKind> engineKindNamed(const std::string& engine, OmniMode mode) {
+  for (EngineKind kind : {EngineKind::FastExact, EngineKind::FastCubeMap, EngineKind::FastThesisMesh, EngineKind::Povray, EngineKind::Blender})
+    if (capabilitiesOf(kind).engine == engine && capabilitiesOf(kind).mode == mode) return kind;
+  return std::nullopt;
+}
+
+std::string engineChoices() {
+  std::vector<std::string> names;
+  for (EngineKind e : kChoices) names.push_back(capabilitiesOf(e).engine);
+  return listWithOr(names);
 }
 
 void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs) {

@@ -2,18 +2,24 @@
 // What each engine can render, as one row per engine (and fast mode): every caller checks a
 // request against it the same way (checkEngineRenders), before anything is written, and the
 // message names the engines that can.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "omni_mode.h"
 #include "placement.h"
 #include "render_settings.h"
 #include "rig.h"
 
 namespace omnicam {
 
+// One identity per engine and fast mode: its row below holds its names and what it renders.
 enum class EngineKind { FastExact, FastCubeMap, FastThesisMesh, Povray, Blender };
 
 struct EngineCapabilities {
+  EngineKind kind = EngineKind::FastExact;
+  const char* engine = "";     // as requests, sidecars and manifests name it: fast, povray, blender
+  OmniMode mode = OmniMode::Exact;  // the fast engine's modes; the ground truths' is exact
   const char* shownName = "";  // in messages: "the povray engine", "the fast engine's cube-map mode"
   // Cameras: a camera off the mirror's focus (false: the ideal rig only, central by
   // construction), the mirror shapes it has exact surfaces of, a distorting lens.
@@ -45,6 +51,12 @@ struct EngineCapabilities {
 };
 
 const EngineCapabilities& capabilitiesOf(EngineKind engine);
+// The fast engine's kind in this mode.
+EngineKind fastEngineKind(OmniMode mode);
+// The engine of this name in this mode (omni_mode.h's names), or nullopt for none.
+std::optional<EngineKind> engineKindNamed(const std::string& engine, OmniMode mode = OmniMode::Exact);
+// "fast, povray or blender": the engines a request may name.
+std::string engineChoices();
 
 // InputError naming what `engine` cannot render of this rig at this placement (and its AOVs when
 // `aovs`), and which engines can; nothing when it can.

@@ -2,9 +2,15 @@
 // The fast renderer's modes and their options, apart from the renderer (fastrender/
 // cubemap_renderer.h implements them) so that the engine interface (render/engines.h) can name
 // them without including a renderer.
+#include <optional>
+#include <string>
+
 namespace omnicam {
 
 enum class OmniMode { Exact, CubeMap, ThesisMesh };
+// "exact", "cubemap", "thesis-mesh": the names requests, sidecars and manifests use.
+const char* omniModeName(OmniMode mode);
+std::optional<OmniMode> omniModeNamed(const std::string& name);
 
 struct CubeMapOptions {
   OmniMode mode = OmniMode::CubeMap;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "engine_capabilities.h"
 #include "errors.h"
 #include "input_limits.h"
 #include "number_format.h"
@@ -59,12 +60,11 @@ RenderRequest readRenderRequest(const RequestFields& f, const RequestFieldNames&
   const Reader r(names);
   RenderRequest q;
   q.engine = f.engine.value_or(q.engine);
-  if (q.engine != "fast" && q.engine != "povray" && q.engine != "blender")
-    r.fail(names.engine, "must be fast, povray or blender (got " + quote(q.engine) + ")");
+  if (!engineKindNamed(q.engine)) r.fail(names.engine, "must be " + engineChoices() + " (got " + quote(q.engine) + ")");
   q.mode = f.mode.value_or(q.mode);
-  if (q.mode != "exact" && q.mode != "cubemap" && q.mode != "thesis-mesh")
-    r.fail(names.mode, "must be exact, cubemap or thesis-mesh (got " + quote(q.mode) + ")");
-  if (q.mode != "exact" && q.engine != "fast") r.fail(names.mode, "only the fast engine has modes other than exact");
+  const std::optional<OmniMode> mode = omniModeNamed(q.mode);
+  if (!mode) r.fail(names.mode, "must be exact, cubemap or thesis-mesh (got " + quote(q.mode) + ")");
+  if (!engineKindNamed(q.engine, *mode)) r.fail(names.mode, "only the fast engine has modes other than exact");
   if ((f.faces || f.faceSize) && q.mode == "exact")
     r.fail(f.faces ? names.faces : names.faceSize, "only with " + names.mode + " cubemap or thesis-mesh");
   if (f.polygons && q.mode != "thesis-mesh") r.fail(names.polygons, "only with " + names.mode + " thesis-mesh");

@@ -37,7 +37,7 @@ struct RenderRequest {
   std::optional<CubeMapOptions> cubeMap() const {
     if (mode == "exact") return std::nullopt;
     CubeMapOptions options = modeOptions;
-    options.mode = mode == "thesis-mesh" ? OmniMode::ThesisMesh : OmniMode::CubeMap;
+    options.mode = omniModeNamed(mode).value_or(OmniMode::CubeMap);
     return options;
   }
   // The settings of a render of `rig` with this request.
