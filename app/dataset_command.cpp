@@ -73,61 +73,53 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   std::printf("follow: omnicam dataset --status %s; after failures submit the same command again\n", a.out.c_str());
 }
 
-void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
-  const int verbs = !a.spec.empty() + !a.verify.empty() + !a.status.empty() + !a.merge.empty();
-  if (verbs != 1) throw InputError("dataset: give a SPEC with -o DIR, or --verify DIR, --status DIR or --merge DIR");
-  if (a.backend != "local" && a.backend != "slurm") throw InputError("--backend: must be local or slurm (got " + quote(a.backend) + ")");
-  refuseUnless(cmd, "--allow-outside-files", !a.spec.empty(), "a SPEC");
-  if (!a.merge.empty()) {
-    refuseUnless(cmd, "-o", false, "a SPEC");
-    int count = a.shards;
-    if (count == 0) {
-      const std::vector<int> counts = shardCountsIn(a.merge);
-      if (counts.size() != 1) throw InputError("--merge: " + showPath(a.merge) + ": say how many shards with --shards N");
-      count = counts.front();
-    }
-    const MergeResult r = mergeDatasetShards(a.merge, count);
-    std::printf("%s: merged %d shards: %d of %d frames finished%s\n", a.merge.c_str(), count, r.finished, r.frames,
-                r.complete() ? " (complete)" : "");
-    if (!r.complete()) printShardStates(a.merge, count);
-    exitCode = r.complete() ? 0 : 1;
-    return;
+// --merge DIR: the shard manifests into DIR's manifest; exit 0 complete, 1 not.
+int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
+  refuseUnless(cmd, "-o", false, "a SPEC");
+  int count = shards;
+  if (count == 0) {
+    const std::vector<int> counts = shardCountsIn(dir);
+    if (counts.size() != 1) throw InputError("--merge: " + showPath(dir) + ": say how many shards with --shards N");
+    count = counts.front();
   }
-  if (!a.verify.empty() || !a.status.empty()) {
-    refuseUnless(cmd, "-o", false, "a SPEC");
-    refuseUnless(cmd, "--overwrite", false, "a SPEC");
-    refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
+  const MergeResult r = mergeDatasetShards(dir, count);
+  std::printf("%s: merged %d shards: %d of %d frames finished%s\n", dir.c_str(), count, r.finished, r.frames,
+              r.complete() ? " (complete)" : "");
+  if (!r.complete()) printShardStates(dir, count);
+  return r.complete() ? 0 : 1;
+}
+
+// --verify DIR: every file re-hashed against the manifest; exit 0 all right, 1 not.
+int runVerify(const std::string& dir) {
+  const DatasetVerifyResult r = verifyDataset(dir);
+  for (const std::string& problem : r.problems) std::printf("%s\n", problem.c_str());
+  std::printf("%s: %s: %d files checked, %zu problems\n", r.ok() ? "PASS" : "FAIL", dir.c_str(), r.files,
+              r.problems.size());
+  return r.ok() ? 0 : 1;
+}
+
+// --status DIR: how many frames are finished, shard by shard before a merge; exit 0 complete, 1 not.
+int printStatus(const std::string& dir) {
+  const std::vector<int> shardCounts = shardCountsIn(dir);
+  if (entryInside(dir, kManifestName) == EntryKind::Missing && !shardCounts.empty()) {
+    // Shards rendering, not merged yet.
+    int finished = 0;
+    for (int count : shardCounts)
+      for (const ShardState& state : shardStates(dir, count, false)) finished += state.finished;
+    std::printf("%s: shards not merged yet: %d frames finished in the shards that have started\n", dir.c_str(), finished);
+    for (int count : shardCounts) printShardStates(dir, count);
+    return 1;
   }
-  if (!a.verify.empty()) {
-    const DatasetVerifyResult r = verifyDataset(a.verify);
-    for (const std::string& problem : r.problems) std::printf("%s\n", problem.c_str());
-    std::printf("%s: %s: %d files checked, %zu problems\n", r.ok() ? "PASS" : "FAIL", a.verify.c_str(), r.files,
-                r.problems.size());
-    exitCode = r.ok() ? 0 : 1;
-    return;
-  }
-  if (!a.status.empty()) {
-    const std::vector<int> shardCounts = shardCountsIn(a.status);
-    if (entryInside(a.status, kManifestName) == EntryKind::Missing && !shardCounts.empty()) {
-      // Shards rendering, not merged yet.
-      int finished = 0;
-      for (int count : shardCounts)
-        for (const ShardState& state : shardStates(a.status, count, false)) finished += state.finished;
-      std::printf("%s: shards not merged yet: %d frames finished in the shards that have started\n", a.status.c_str(), finished);
-      for (int count : shardCounts) printShardStates(a.status, count);
-      exitCode = 1;
-      return;
-    }
-    const DatasetStatus s = datasetStatus(a.status);
-    std::printf("%s: %d of %d frames finished%s\n", a.status.c_str(), s.finished, s.frames,
-                s.complete ? " (complete)" : " (incomplete: run the same command again to resume)");
-    if (!s.complete)
-      for (int count : shardCountsIn(a.status)) printShardStates(a.status, count);
-    exitCode = s.complete ? 0 : 1;
-    return;
-  }
-  if (a.out.empty()) throw InputError("-o: a dataset needs an output folder");
-  if (a.backend == "slurm") return runSlurm(a, cmd);
+  const DatasetStatus s = datasetStatus(dir);
+  std::printf("%s: %d of %d frames finished%s\n", dir.c_str(), s.finished, s.frames,
+              s.complete ? " (complete)" : " (incomplete: run the same command again to resume)");
+  if (!s.complete)
+    for (int count : shardCountsIn(dir)) printShardStates(dir, count);
+  return s.complete ? 0 : 1;
+}
+
+// SPEC -o DIR on this machine (all of it, or --shard I/N); exit 0, or 130 when interrupted.
+int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
   refuseUnless(cmd, "--slurm-args", false, "--backend slurm");
   refuseUnless(cmd, "--max-parallel", false, "--backend slurm");
@@ -166,17 +158,43 @@ void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
   if (!interruption.empty()) {
     std::fprintf(stderr, "omnicam: %s; the frames finished before are listed in %s: run the same command again to resume\n",
                  interruption.c_str(), showPath(a.out).c_str());
-    exitCode = 130;
-    return;
+    return 130;
   }
   if (r.stopped) {
     std::fprintf(stderr, "omnicam: interrupted: %d of %d frames finished in %s; run the same command again to resume\n",
                  r.kept + r.rendered, r.frames, showPath(a.out).c_str());
-    exitCode = 130;
-    return;
+    return 130;
   }
   std::printf("wrote %s: %d frames (%d rendered, %d kept from an earlier run)\n", a.out.c_str(), r.frames, r.rendered,
               r.kept);
+  return 0;
+}
+
+void runDatasetVerb(const DatasetArgs& a, const CLI::App& cmd, int& exitCode) {
+  const int verbs = !a.spec.empty() + !a.verify.empty() + !a.status.empty() + !a.merge.empty();
+  if (verbs != 1) throw InputError("dataset: give a SPEC with -o DIR, or --verify DIR, --status DIR or --merge DIR");
+  if (a.backend != "local" && a.backend != "slurm") throw InputError("--backend: must be local or slurm (got " + quote(a.backend) + ")");
+  refuseUnless(cmd, "--allow-outside-files", !a.spec.empty(), "a SPEC");
+  if (!a.merge.empty()) {
+    exitCode = runMerge(a.merge, a.shards, cmd);
+    return;
+  }
+  if (!a.verify.empty() || !a.status.empty()) {
+    refuseUnless(cmd, "-o", false, "a SPEC");
+    refuseUnless(cmd, "--overwrite", false, "a SPEC");
+    refuseUnless(cmd, "--shards", false, "--backend slurm or --merge");
+  }
+  if (!a.verify.empty()) {
+    exitCode = runVerify(a.verify);
+    return;
+  }
+  if (!a.status.empty()) {
+    exitCode = printStatus(a.status);
+    return;
+  }
+  if (a.out.empty()) throw InputError("-o: a dataset needs an output folder");
+  if (a.backend == "slurm") return runSlurm(a, cmd);
+  exitCode = runLocal(a, cmd);
 }
 
 }  // namespace

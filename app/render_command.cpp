@@ -78,6 +78,50 @@ class FrameViews {
   std::vector<View> maps_;
 };
 
+// The first frames of `path` (all, or --frames) into the folder OUT: frame_NNNN.<format>, each
+// with its views and sidecars.
+void renderPath(const RenderArgs& a, const std::string& engineName, const Scene& scene, Engine& engine,
+                const RenderSettings& settings, const BodyVelocity& velocity, const FrameViews& views,
+                const CameraPath& path) {
+  const int total = a.frames ? a.frames : static_cast<int>(path.poses.size());
+  const auto frameFile = [&](int f) {
+    char name[64];
+    std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
+    return (std::filesystem::path(a.out) / name).string();
+  };
+  // An existing folder may already hold a folder under a frame's name: refused before any frame.
+  std::error_code ec;
+  if (std::filesystem::is_directory(a.out, ec))
+    for (int f = 0; f < total; ++f) {
+      checkImageOutput(frameFile(f), "-o");
+      for (const std::string& file : views.files(frameFile(f))) checkImageOutput(file, "--view");
+    }
+  // Every frame the engine cannot render is refused before the folder is made.
+  for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
+  ensureDirectory(a.out, "-o");
+  Progress progress("render " + a.path + " (" + engineName + ")", total);
+  // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
+  // each file still appears atomically.
+  std::future<void> writing;
+  const auto placementOf = [&](size_t f) { return CameraPlacement(path.poses[f], velocity); };
+  renderSequence(
+      static_cast<size_t>(total), framesPerBatch(engine), placementOf,
+      [&](const std::vector<CameraPlacement>& placements) { return engine.renderMany(placements, settings); },
+      [&](size_t f, ImageRGBA&& image, double seconds) {
+        RenderedFile rendered{std::move(image), renderSidecar(scene, engine, placementOf(f), settings, seconds)};
+        rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
+        if (writing.valid()) writing.get();
+        writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
+          writeRendered(file, frame);
+          views.write(file, frame);
+        });
+        progress.step();
+      });
+  if (writing.valid()) writing.get();
+  progress.finish();
+  std::printf("wrote %d frames to %s\n", total, a.out.c_str());
+}
+
 void runRender(const RenderArgs& a, const CLI::App& cmd) {
   // Validate everything before anything is written.
   const RenderRequest request = readRequestFlags(cmd, a.request);
@@ -124,43 +168,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     std::printf("wrote %s\n", a.out.c_str());
     return;
   }
-  const int total = a.frames ? a.frames : static_cast<int>(path->poses.size());
-  const auto frameFile = [&](int f) {
-    char name[64];
-    std::snprintf(name, sizeof name, "frame_%04d.%s", f, a.format.c_str());
-    return (std::filesystem::path(a.out) / name).string();
-  };
-  // An existing folder may already hold a folder under a frame's name: refused before any frame.
-  std::error_code ec;
-  if (std::filesystem::is_directory(a.out, ec))
-    for (int f = 0; f < total; ++f) {
-      checkImageOutput(frameFile(f), "-o");
-      for (const std::string& file : views.files(frameFile(f))) checkImageOutput(file, "--view");
-    }
-  // Every frame the engine cannot render is refused before the folder is made.
-  for (const RobotPose& framePose : path->poses) checkEngineRenders(engine->kind(), settings.rig, CameraPlacement(framePose, velocity));
-  ensureDirectory(a.out, "-o");
-  Progress progress("render " + a.path + " (" + request.engine + ")", total);
-  // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
-  // each file still appears atomically.
-  std::future<void> writing;
-  const auto placementOf = [&](size_t f) { return CameraPlacement(path->poses[f], velocity); };
-  renderSequence(
-      static_cast<size_t>(total), framesPerBatch(*engine), placementOf,
-      [&](const std::vector<CameraPlacement>& placements) { return engine->renderMany(placements, settings); },
-      [&](size_t f, ImageRGBA&& image, double seconds) {
-        RenderedFile rendered{std::move(image), renderSidecar(scene, *engine, placementOf(f), settings, seconds)};
-        rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
-        if (writing.valid()) writing.get();
-        writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
-          writeRendered(file, frame);
-          views.write(file, frame);
-        });
-        progress.step();
-      });
-  if (writing.valid()) writing.get();
-  progress.finish();
-  std::printf("wrote %d frames to %s\n", total, a.out.c_str());
+  renderPath(a, request.engine, scene, *engine, settings, velocity, views, *path);
 }
 
 }  // namespace

@@ -116,13 +116,69 @@ std::vector<double> defaultRingThetasDeg() {
   return t;
 }
 
+namespace {
+
+// A pixel wholly inside the mirror rim: its distance from the image centre and its brightness.
+struct RingSample {
+  double r, value;
+  int i, j;
+};
+
+// Rings = clusters of bright pixels in radius: [rmin, rmax] of each, inside out.
+std::vector<std::pair<double, double>> brightClusters(const std::vector<RingSample>& samples, double threshold) {
+  std::vector<double> bright;
+  for (const auto& s : samples)
+    if (s.value > threshold) bright.push_back(s.r);
+  std::sort(bright.begin(), bright.end());
+  std::vector<std::pair<double, double>> clusters;
+  for (double r : bright) {
+    if (clusters.empty() || r - clusters.back().second > kClusterGapPx) clusters.push_back({r, r});
+    else clusters.back().second = r;
+  }
+  return clusters;
+}
+
+// Ring k's radius: fitted to the pixels of its window (between its neighbours' clusters), from
+// the azimuths whose whole window lies inside the image and the rim.
+RingMeasurement measureRing(const std::vector<RingSample>& samples, const std::vector<std::pair<double, double>>& clusters,
+                            size_t k, double thetaDeg, const ImageRGBA& image, const OmniCamera& camera, double background) {
+  const Vec2 c(0.5 * image.width, 0.5 * image.height);
+  double lo = clusters[k].first - kWindowPaddingPx, hi = clusters[k].second + kWindowPaddingPx;
+  if (k > 0) lo = std::max(lo, 0.5 * (clusters[k - 1].second + clusters[k].first));
+  if (k + 1 < clusters.size()) hi = std::min(hi, 0.5 * (clusters[k].second + clusters[k + 1].first));
+  double sumW = 0.0, sumWr2 = 0.0;
+  int used = 0;
+  std::vector<RingPixel> ringPixels;
+  for (const auto& s : samples) {
+    if (s.r < lo || s.r > hi) continue;
+    // Use an azimuth only where the whole window lies inside the image and the rim, so that a
+    // ring touching the border is not measured from its inner half alone.
+    const Vec2 dir = (Vec2(s.i + 0.5, s.j + 0.5) - c) / std::max(s.r, 1e-9);
+    const Vec2 outer = c + (hi + 1.0) * dir;
+    if (outer.x() < 0.0 || outer.y() < 0.0 || outer.x() > image.width || outer.y() > image.height) continue;
+    if (!camera.insideRim(outer)) continue;
+    const double w = std::max(0.0, s.value - background);
+    sumW += w;
+    sumWr2 += w * s.r * s.r;
+    ringPixels.push_back({s.i - c.x(), s.j - c.y(), s.value});
+    ++used;
+  }
+  if (sumW <= 0.0) throw InputError("rings: ring " + std::to_string(k) + " has no measurable light");
+  RingMeasurement m{};
+  m.thetaDeg = thetaDeg;
+  const double momentRadius = std::sqrt(std::max(0.0, sumWr2 / sumW - kPixelCentreVariance));
+  const double halfWidth0 = std::max(0.05, 0.25 * (clusters[k].second - clusters[k].first));
+  m.measuredPx = fitRingRadius(ringPixels, momentRadius, halfWidth0, background);
+  m.exactPx = camera.radiusOfTheta(radians(m.thetaDeg));
+  m.pixelsUsed = used;
+  return m;
+}
+
+}  // namespace
+
 RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg) {
   const Vec2 c(0.5 * image.width, 0.5 * image.height);
-  struct Sample {
-    double r, value;
-    int i, j;
-  };
-  std::vector<Sample> samples;
+  std::vector<RingSample> samples;
   for (int j = 0; j < image.height; ++j)
     for (int i = 0; i < image.width; ++i) {
       const float* px = image.at(i, j);
@@ -137,16 +193,7 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   const double peak = *std::max_element(values.begin(), values.end());
   const double threshold = background + 0.08 * (peak - background);
 
-  // Rings = clusters of bright pixels in radius.
-  std::vector<double> bright;
-  for (const auto& s : samples)
-    if (s.value > threshold) bright.push_back(s.r);
-  std::sort(bright.begin(), bright.end());
-  std::vector<std::pair<double, double>> clusters;  // [rmin, rmax]
-  for (double r : bright) {
-    if (clusters.empty() || r - clusters.back().second > kClusterGapPx) clusters.push_back({r, r});
-    else clusters.back().second = r;
-  }
+  const std::vector<std::pair<double, double>> clusters = brightClusters(samples, threshold);
   if (clusters.size() != thetasDeg.size())
     throw InputError("rings: found " + std::to_string(clusters.size()) + " rings in the image, expected " +
                      std::to_string(thetasDeg.size()));
@@ -154,34 +201,7 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   RingReport report;
   report.hPxExact = camera.horizonRadius();
   for (size_t k = 0; k < clusters.size(); ++k) {
-    double lo = clusters[k].first - kWindowPaddingPx, hi = clusters[k].second + kWindowPaddingPx;
-    if (k > 0) lo = std::max(lo, 0.5 * (clusters[k - 1].second + clusters[k].first));
-    if (k + 1 < clusters.size()) hi = std::min(hi, 0.5 * (clusters[k].second + clusters[k + 1].first));
-    double sumW = 0.0, sumWr2 = 0.0;
-    int used = 0;
-    std::vector<RingPixel> ringPixels;
-    for (const auto& s : samples) {
-      if (s.r < lo || s.r > hi) continue;
-      // Use an azimuth only where the whole window lies inside the image and the rim, so that a
-      // ring touching the border is not measured from its inner half alone.
-      const Vec2 dir = (Vec2(s.i + 0.5, s.j + 0.5) - c) / std::max(s.r, 1e-9);
-      const Vec2 outer = c + (hi + 1.0) * dir;
-      if (outer.x() < 0.0 || outer.y() < 0.0 || outer.x() > image.width || outer.y() > image.height) continue;
-      if (!camera.insideRim(outer)) continue;
-      const double w = std::max(0.0, s.value - background);
-      sumW += w;
-      sumWr2 += w * s.r * s.r;
-      ringPixels.push_back({s.i - c.x(), s.j - c.y(), s.value});
-      ++used;
-    }
-    if (sumW <= 0.0) throw InputError("rings: ring " + std::to_string(k) + " has no measurable light");
-    RingMeasurement m{};
-    m.thetaDeg = thetasDeg[k];
-    const double momentRadius = std::sqrt(std::max(0.0, sumWr2 / sumW - kPixelCentreVariance));
-    const double halfWidth0 = std::max(0.05, 0.25 * (clusters[k].second - clusters[k].first));
-    m.measuredPx = fitRingRadius(ringPixels, momentRadius, halfWidth0, background);
-    m.exactPx = camera.radiusOfTheta(radians(m.thetaDeg));
-    m.pixelsUsed = used;
+    const RingMeasurement m = measureRing(samples, clusters, k, thetasDeg[k], image, camera, background);
     report.rings.push_back(m);
     if (std::abs(m.thetaDeg - 90.0) < 1e-9) report.hPx = m.measuredPx;
   }

@@ -114,25 +114,26 @@ std::string psnrText(double psnr) {
 
 }  // namespace
 
-DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
-                                     const DatasetCompareOptions& options) {
-  const DatasetManifest a = readDatasetManifest(dirA);
-  std::error_code ec;
-  if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
-  std::optional<DatasetManifest> b;
-  if (entryInside(dirB, kManifestName) != EntryKind::Missing) b = readDatasetManifest(dirB);
-  DatasetCompareResult result;
-  if (b) {
-    std::vector<int> onlyA, onlyB;
-    for (const auto& [index, frame] : a.frames)
-      if (!b->frames.count(index)) onlyA.push_back(index);
-    for (const auto& [index, frame] : b->frames)
-      if (!a.frames.count(index)) onlyB.push_back(index);
-    if (!onlyA.empty() || !onlyB.empty())
-      throw InputError(showPath(dirB) + ": frames do not match " + showPath(dirA) + ": " + std::to_string(onlyA.size()) + " only in A (first " +
-                       (onlyA.empty() ? "-" : std::to_string(onlyA[0])) + "), " + std::to_string(onlyB.size()) +
-                       " only in B (first " + (onlyB.empty() ? "-" : std::to_string(onlyB[0])) + ")");
-  }
+namespace {
+
+// B's manifest lists exactly A's frames.
+void checkSameFrames(const DatasetManifest& a, const DatasetManifest& b, const std::string& dirA, const std::string& dirB) {
+  std::vector<int> onlyA, onlyB;
+  for (const auto& [index, frame] : a.frames)
+    if (!b.frames.count(index)) onlyA.push_back(index);
+  for (const auto& [index, frame] : b.frames)
+    if (!a.frames.count(index)) onlyB.push_back(index);
+  if (!onlyA.empty() || !onlyB.empty())
+    throw InputError(showPath(dirB) + ": frames do not match " + showPath(dirA) + ": " + std::to_string(onlyA.size()) + " only in A (first " +
+                     (onlyA.empty() ? "-" : std::to_string(onlyA[0])) + "), " + std::to_string(onlyB.size()) +
+                     " only in B (first " + (onlyB.empty() ? "-" : std::to_string(onlyB[0])) + ")");
+}
+
+// Each frame's colour file of each camera in A beside B's: from B's manifest when it has one
+// (same frames, cameras and poses), else at the same place in B's folder.
+std::vector<FrameComparison> pairFrames(const DatasetManifest& a, const std::optional<DatasetManifest>& b,
+                                        const std::string& dirA, const std::string& dirB) {
+  std::vector<FrameComparison> pairs;
   for (const auto& [index, frame] : a.frames) {
     for (const auto& [camera, files] : frame.cameras) {
       FrameComparison f;
@@ -158,19 +159,24 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
       } else {
         f.fileB = layoutFile(dirB, f.fileA);
       }
-      result.frames.push_back(f);
+      pairs.push_back(f);
     }
     if (b && b->frames.at(index).cameras.size() != frame.cameras.size())
       throw InputError(showPath(dirB) + ": frame " + std::to_string(index) + " has " + std::to_string(b->frames.at(index).cameras.size()) +
                        " cameras, A has " + std::to_string(frame.cameras.size()));
   }
-  if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
+  return pairs;
+}
+
+// Compares every pair, as many at once as memory holds.
+void compareAll(std::vector<FrameComparison>& frames, const std::string& dirA, const std::string& dirB,
+                const DatasetCompareOptions& options) {
   // Each camera's first pair, one at a time, sizes the rest: as many comparisons run at once as
   // memory holds for the largest (a dataset's frames share a size per camera; each decode checks
   // its own need again).
-  std::vector<int64_t> bytes(result.frames.size(), 0);
+  std::vector<int64_t> bytes(frames.size(), 0);
   const auto compareFrame = [&](size_t k) {
-    FrameComparison& f = result.frames[k];
+    FrameComparison& f = frames[k];
     const FrameFilesComparison compared = compareFrameFiles(dirA, dirB, f, options.image);
     f.result = compared.result;
     bytes[k] = compared.bytes;
@@ -178,14 +184,30 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
   };
   std::set<std::string> sized;
   std::vector<size_t> rest;
-  for (size_t k = 0; k < result.frames.size(); ++k) {
-    if (sized.insert(result.frames[k].camera).second) compareFrame(k);
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (sized.insert(frames[k].camera).second) compareFrame(k);
     else rest.push_back(k);
   }
   const int64_t bytesEach = *std::max_element(bytes.begin(), bytes.end());
   const int concurrency = concurrencyWithin(bytesEach, tbb::this_task_arena::max_concurrency(), "comparing two frames");
   tbb::task_arena arena(concurrency);
   arena.execute([&] { tbb::parallel_for(size_t{0}, rest.size(), [&](size_t r) { compareFrame(rest[r]); }); });
+}
+
+}  // namespace
+
+DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
+                                     const DatasetCompareOptions& options) {
+  const DatasetManifest a = readDatasetManifest(dirA);
+  std::error_code ec;
+  if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
+  std::optional<DatasetManifest> b;
+  if (entryInside(dirB, kManifestName) != EntryKind::Missing) b = readDatasetManifest(dirB);
+  DatasetCompareResult result;
+  if (b) checkSameFrames(a, *b, dirA, dirB);
+  result.frames = pairFrames(a, b, dirA, dirB);
+  if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
+  compareAll(result.frames, dirA, dirB, options);
   result.minPsnrDb = std::numeric_limits<double>::infinity();
   double finiteSum = 0.0;
   int finite = 0;

@@ -186,6 +186,50 @@ std::string headline(const CalibrationStudyResults& r, const CalibrationStudyOpt
   return md.str();
 }
 
+// The ideal rig's closed-form parameters and each corner source's calibration of them.
+void idealRigTable(std::ostringstream& md, const CalibrationStudyResults& r, const CalibrationStudyOptions& o) {
+  for (const RigOutcome& rig : r.rigs) {
+    if (rig.misalignment.kind != "ideal" || rig.misalignment.distorted) continue;
+    const MeiIntrinsics& t = rig.truth;
+    md << "| closed form | " << fixed(t.xi, 6) << " | " << fixed(t.gammaX, 3) << " | " << fixed(t.gammaY, 3) << " | "
+       << fixed(t.cx, 3) << " | " << fixed(t.cy, 3) << " | — |\n";
+    for (CornerSource source : {CornerSource::Exact, CornerSource::Detected, CornerSource::DetectedNoisy}) {
+      const SourceSummary s = summarise(rig, source, o);
+      if (s.failed == s.runs) continue;
+      const auto rel = [](double v, double truth) { return fixed(100.0 * (v - truth) / std::abs(truth), 2) + " %"; };
+      md << "| " << cornerSourceTitle(source) << " | " << fixed(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixed(s.gammaX, 3) << " ("
+         << rel(s.gammaX, t.gammaX) << ") | " << fixed(s.gammaY, 3) << " (" << rel(s.gammaY, t.gammaY) << ") | " << fixed(s.cx, 3)
+         << " | " << fixed(s.cy, 3) << " | " << fixed(s.rms, 3) << " |\n";
+    }
+  }
+}
+
+// The best central model's parameters beside the calibrations' medians, rig by rig (no lens).
+void centralModelTable(std::ostringstream& md, const CalibrationStudyResults& r, const CalibrationStudyOptions& o) {
+  for (const RigOutcome& rig : r.rigs) {
+    if (rig.misalignment.distorted) continue;
+    const SourceSummary exact = summarise(rig, CornerSource::Exact, o), noisy = summarise(rig, CornerSource::DetectedNoisy, o);
+    const auto cell = [&](double best, double e, double n, int decimals) {
+      return fixed(best, decimals) + " / " + (exact.failed < exact.runs ? fixed(e, decimals) : "—") + " / " +
+             (noisy.failed < noisy.runs ? fixed(n, decimals) : "—");
+    };
+    const MeiIntrinsics& t = rig.truth;
+    md << "| " << rig.misalignment.label() << " | " << cell(t.xi, exact.xi, noisy.xi, 4) << " | "
+       << cell(t.gammaX, exact.gammaX, noisy.gammaX, 2) << " | " << cell(t.cx, exact.cx, noisy.cx, 2) << " | "
+       << cell(t.cy, exact.cy, noisy.cy, 2) << " |\n";
+  }
+}
+
+// The EKF's mean position error along thesis-loop through each model of each rig's camera.
+void localisationTable(std::ostringstream& md, const CalibrationStudyResults& r) {
+  for (const RigOutcome& rig : r.rigs) {
+    const EkfComparison& e = rig.ekf;
+    const auto cm = [](double v) { return std::isnan(v) ? std::string("— (no calibration)") : fixed(v, 1); };
+    md << "| " << rig.misalignment.label() << " | " << fixed(e.odometryCm, 1) << " | " << fixed(e.trueRaysCm, 1) << " | "
+       << fixed(e.nominalCm, 1) << " (" << fixed(100.0 * e.nominalUsedShare, 0) << " %) | " << cm(e.calibratedExactCm) << " | " << cm(e.calibratedCm) << " |\n";
+  }
+}
+
 }  // namespace
 
 std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const CalibrationStudyOptions& o, const std::string& command) {
@@ -210,20 +254,7 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
      << "seeds, no lens):\n\n"
      << headline(r, o) << "\n";
   md << "## The ideal rig: recovered against the closed form\n\n| corners from | ξ | γx | γy | cx | cy | RMS px |\n|---|---:|---:|---:|---:|---:|---:|\n";
-  for (const RigOutcome& rig : r.rigs) {
-    if (rig.misalignment.kind != "ideal" || rig.misalignment.distorted) continue;
-    const MeiIntrinsics& t = rig.truth;
-    md << "| closed form | " << fixed(t.xi, 6) << " | " << fixed(t.gammaX, 3) << " | " << fixed(t.gammaY, 3) << " | "
-       << fixed(t.cx, 3) << " | " << fixed(t.cy, 3) << " | — |\n";
-    for (CornerSource source : {CornerSource::Exact, CornerSource::Detected, CornerSource::DetectedNoisy}) {
-      const SourceSummary s = summarise(rig, source, o);
-      if (s.failed == s.runs) continue;
-      const auto rel = [](double v, double truth) { return fixed(100.0 * (v - truth) / std::abs(truth), 2) + " %"; };
-      md << "| " << cornerSourceTitle(source) << " | " << fixed(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixed(s.gammaX, 3) << " ("
-         << rel(s.gammaX, t.gammaX) << ") | " << fixed(s.gammaY, 3) << " (" << rel(s.gammaY, t.gammaY) << ") | " << fixed(s.cx, 3)
-         << " | " << fixed(s.cy, 3) << " | " << fixed(s.rms, 3) << " |\n";
-    }
-  }
+  idealRigTable(md, r, o);
   md << "\nWith its distortion estimated, OpenCV trades ξ against γ and k1 (they are strongly correlated over a partial view of the "
         "mirror): the RMS stays at the corners' noise while the parameters move; the held-out errors below show what that "
         "costs away from the boards.\n\n";
@@ -231,18 +262,7 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
         "reach is the best-fit central model; the calibrations' medians (exact corners / recorded detections) beside it:\n\n"
      << "| rig | ξ: best / exact / recorded | γx: best / exact / recorded | cx: best / exact / recorded | cy: best / exact / recorded |\n"
      << "|---|---:|---:|---:|---:|\n";
-  for (const RigOutcome& rig : r.rigs) {
-    if (rig.misalignment.distorted) continue;
-    const SourceSummary exact = summarise(rig, CornerSource::Exact, o), noisy = summarise(rig, CornerSource::DetectedNoisy, o);
-    const auto cell = [&](double best, double e, double n, int decimals) {
-      return fixed(best, decimals) + " / " + (exact.failed < exact.runs ? fixed(e, decimals) : "—") + " / " +
-             (noisy.failed < noisy.runs ? fixed(n, decimals) : "—");
-    };
-    const MeiIntrinsics& t = rig.truth;
-    md << "| " << rig.misalignment.label() << " | " << cell(t.xi, exact.xi, noisy.xi, 4) << " | "
-       << cell(t.gammaX, exact.gammaX, noisy.gammaX, 2) << " | " << cell(t.cx, exact.cx, noisy.cx, 2) << " | "
-       << cell(t.cy, exact.cy, noisy.cy, 2) << " |\n";
-  }
+  centralModelTable(md, r, o);
   md << "\n";
   md << "## The sweep\n\n![held-out error against misalignment](figures/calibration_study_error.svg)\n\n"
      << "### Without lens distortion\n\n";
@@ -262,12 +282,7 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
      << "| rig | odometry alone | true rays | nominal model (measurements the gate let in) | calibrated, exact corners | "
         "calibrated, recorded detections |\n"
      << "|---|---:|---:|---:|---:|---:|\n";
-  for (const RigOutcome& rig : r.rigs) {
-    const EkfComparison& e = rig.ekf;
-    const auto cm = [](double v) { return std::isnan(v) ? std::string("— (no calibration)") : fixed(v, 1); };
-    md << "| " << rig.misalignment.label() << " | " << fixed(e.odometryCm, 1) << " | " << fixed(e.trueRaysCm, 1) << " | "
-       << fixed(e.nominalCm, 1) << " (" << fixed(100.0 * e.nominalUsedShare, 0) << " %) | " << cm(e.calibratedExactCm) << " | " << cm(e.calibratedCm) << " |\n";
-  }
+  localisationTable(md, r);
   md << "\n`results.json` in the run's folder holds every calibration (parameters, per-distance median/RMS/max, triangulation, "
         "failures).\n";
   return md.str();

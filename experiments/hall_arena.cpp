@@ -96,6 +96,50 @@ Vec3f PanoramaPhoto::sample(double azimuth, double elevation) const {
   return out;
 }
 
+namespace {
+
+// A wall's texture: the photo projected from `centre` onto it, turned by `azimuthOffset`.
+ImageRGBA wallTexture(const Wall& wall, const PanoramaPhoto& photo, double azimuthOffset, const Vec3& centre,
+                      double texelsPerMetre) {
+  const int tw = std::max(8, static_cast<int>(std::lround(wall.edgeU.norm() * texelsPerMetre)));
+  const int th = std::max(8, static_cast<int>(std::lround(wall.edgeV.norm() * texelsPerMetre)));
+  ImageRGBA texture(tw, th);
+  for (int j = 0; j < th; ++j)
+    for (int i = 0; i < tw; ++i) {
+      // Texel centres; row 0 is the top of the wall (v = 1).
+      const Vec3 point = wall.origin + (i + 0.5) / tw * wall.edgeU + (1.0 - (j + 0.5) / th) * wall.edgeV;
+      const Vec3 d = point - centre;
+      const Vec3f colour = photo.sample(std::atan2(d.y(), d.x()) - azimuthOffset, std::atan2(d.z(), std::hypot(d.x(), d.y())));
+      float* p = texture.at(i, j);
+      p[0] = colour[0], p[1] = colour[1], p[2] = colour[2], p[3] = 1.0f;
+    }
+  return texture;
+}
+
+// Checks every output name, then makes the scene's folder and, for a `textured` hall, the
+// texture folder beside it: a refused name leaves nothing behind.
+void makeOutputFolders(const std::string& sceneOut, bool textured, const std::string& textureFolder,
+                       const std::vector<std::pair<std::string, ImageRGBA>>& textures) {
+  const std::filesystem::path scenePath(sceneOut);
+  const std::string sceneFolder = scenePath.parent_path().empty() ? "." : scenePath.parent_path().string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(sceneFolder, ec)) {
+    checkOutputFile(sceneOut, "hall arena");
+    // The texture folder beside the scene, not through a link planted under its name.
+    if (textured && entryInside(sceneFolder, textureFolder) != EntryKind::Missing) {
+      checkFoldersInside(sceneFolder, textureFolder);
+      for (const auto& [file, image] : textures) checkOutputFile(file, "hall arena");
+    }
+  } else {
+    checkOutputFolder(sceneFolder, "hall arena");
+    std::filesystem::create_directories(sceneFolder, ec);
+    if (ec) throw OutputError(showPath(sceneFolder) + ": cannot create folder (" + ec.message() + ")");
+  }
+  if (textured) makeFoldersInside(sceneFolder, textureFolder);
+}
+
+}  // namespace
+
 std::vector<std::string> writeHallArena(const HallOptions& o, const std::string& sceneOut) {
   if (!(o.halfLength > 3.1 && o.halfWidth > 2.2 && o.height > 0.5 && o.projectionHeight > 0 &&
         o.projectionHeight < o.height && o.texelsPerMetre >= 8 && o.texelsPerMetre <= 1024 &&
@@ -143,19 +187,7 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
         photoIndex = static_cast<size_t>(random() % photos.size());
         azimuthOffset = 2 * kPi * static_cast<double>(random() >> 11) * 0x1.0p-53;
       }
-      const int tw = std::max(8, static_cast<int>(std::lround(wall.edgeU.norm() * o.texelsPerMetre)));
-      const int th = std::max(8, static_cast<int>(std::lround(wall.edgeV.norm() * o.texelsPerMetre)));
-      ImageRGBA texture(tw, th);
-      for (int j = 0; j < th; ++j)
-        for (int i = 0; i < tw; ++i) {
-          // Texel centres; row 0 is the top of the wall (v = 1).
-          const Vec3 point = wall.origin + (i + 0.5) / tw * wall.edgeU + (1.0 - (j + 0.5) / th) * wall.edgeV;
-          const Vec3 d = point - centre;
-          const Vec3f colour = photos[photoIndex].sample(std::atan2(d.y(), d.x()) - azimuthOffset,
-                                                         std::atan2(d.z(), std::hypot(d.x(), d.y())));
-          float* p = texture.at(i, j);
-          p[0] = colour[0], p[1] = colour[1], p[2] = colour[2], p[3] = 1.0f;
-        }
+      ImageRGBA texture = wallTexture(wall, photos[photoIndex], azimuthOffset, centre, o.texelsPerMetre);
       const std::string relative = textureFolder + "/" + name + ".png";
       textures.emplace_back((scenePath.parent_path() / relative).string(), std::move(texture));
       material = name;
@@ -165,21 +197,7 @@ std::vector<std::string> writeHallArena(const HallOptions& o, const std::string&
     objects.push_back({{"name", name}, {"type", "quad"}, {"material", material}, {"origin", vec(wall.origin)},
                        {"edge_u", vec(wall.edgeU)}, {"edge_v", vec(wall.edgeV)}});
   }
-  const std::string sceneFolder = scenePath.parent_path().empty() ? "." : scenePath.parent_path().string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(sceneFolder, ec)) {
-    checkOutputFile(sceneOut, "hall arena");
-    // The texture folder beside the scene, not through a link planted under its name.
-    if (textured && entryInside(sceneFolder, textureFolder) != EntryKind::Missing) {
-      checkFoldersInside(sceneFolder, textureFolder);
-      for (const auto& [file, image] : textures) checkOutputFile(file, "hall arena");
-    }
-  } else {
-    checkOutputFolder(sceneFolder, "hall arena");
-    std::filesystem::create_directories(sceneFolder, ec);
-    if (ec) throw OutputError(showPath(sceneFolder) + ": cannot create folder (" + ec.message() + ")");
-  }
-  if (textured) makeFoldersInside(sceneFolder, textureFolder);
+  makeOutputFolders(sceneOut, textured, textureFolder, textures);
   std::vector<std::string> written;
   for (const auto& [file, image] : textures) {
     writeImageAtomic(file, image);

@@ -21,11 +21,13 @@
 #include "landmark_annotations.h"
 #include "safe_files.h"
 #include "scene_loader.h"
+#include "texture_realism_frames.h"
 #include "texture_realism_report.h"
 
 namespace omnicam {
 
 namespace fs = std::filesystem;
+using namespace texture_realism;  // its frames: rendered, trained on, scored
 
 TextureRealismOptions TextureRealismOptions::quick() {
   TextureRealismOptions o;
@@ -49,173 +51,6 @@ RecordingCameraSpec trainingRecordingMix(uint64_t seed) {
 }
 
 namespace {
-
-
-// A rendered frame with what the experiment knows about it.
-struct Frame {
-  RobotPose pose;
-  ImageRGBA image;
-  std::vector<uint16_t> instance;  // 1 + object index, 0 = nothing
-};
-
-// Per object (instance − 1): the colour class of the landmark band it is, or "".
-std::vector<std::string> bandColourOfObjects(const Scene& scene) {
-  std::vector<std::string> colours(scene.objects.size());
-  for (size_t k = 0; k < scene.objects.size(); ++k)
-    for (const Landmark& landmark : scene.landmarks)
-      if (landmark.name == scene.objects[k].name) colours[k] = landmark.colourClass;
-  return colours;
-}
-
-std::vector<std::string> objectNamesOf(const Scene& scene) {
-  std::vector<std::string> names;
-  for (const SceneObject& object : scene.objects) names.push_back(object.name);
-  return names;
-}
-
-RenderSettings settingsFor(const Scene& scene, int size, int spp, Shading shading) {
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  settings.rig.imageSize = size;
-  settings.spp = spp;
-  settings.shading = shading;
-  settings.denoise = shading == Shading::Path;  // as a dataset of path-traced frames would be
-  return settings;
-}
-
-std::vector<Frame> renderFast(const Scene& scene, const std::vector<RobotPose>& poses, int size, int spp,
-                              const std::function<void()>& step, Shading shading = Shading::Lit) {
-  const FastRenderer renderer(scene);
-  const RenderSettings settings = settingsFor(scene, size, spp, shading);
-  std::vector<Frame> frames;
-  for (const RobotPose& pose : poses) {
-    AovFrame aovs;
-    Frame frame{pose, renderer.render(pose, settings, aovs), std::move(aovs.instance)};
-    frames.push_back(std::move(frame));
-    step();
-  }
-  return frames;
-}
-
-std::vector<RobotPose> randomFieldPoses(int count, uint64_t seed) {
-  std::mt19937_64 random(seed);
-  auto unit = [&] { return static_cast<double>(random() >> 11) * 0x1.0p-53; };
-  std::vector<RobotPose> poses;
-  for (int k = 0; k < count; ++k) {
-    RobotPose pose;
-    pose.x = -2.4 + 4.8 * unit();
-    pose.y = -1.5 + 3.0 * unit();
-    pose.yawDeg = -180.0 + 360.0 * unit();
-    poses.push_back(pose);
-  }
-  return poses;
-}
-
-void trainOn(std::map<std::string, ColourHistogramClassifier>& classifiers, const std::vector<Frame>& frames,
-             const std::vector<std::string>& bandColour, const DetectorOptions& detector) {
-  for (const Frame& frame : frames) {
-    const ImageRGBA input = detectorInput(frame.image, detector);
-    const int w = frame.image.width, h = frame.image.height;
-    auto colourAt = [&](int i, int j) -> const std::string* {
-      const uint16_t id = frame.instance[static_cast<size_t>(j) * w + i];
-      return id == 0 ? nullptr : &bandColour[id - 1];
-    };
-    for (auto& [colour, classifier] : classifiers) {
-      std::vector<uint8_t> labels(static_cast<size_t>(w) * h, 255);
-      for (int j = 1; j + 1 < h; ++j)
-        for (int i = 1; i + 1 < w; ++i) {
-          if (frame.image.at(i, j)[3] < 0.999f) continue;  // the rim and beyond
-          const size_t p = static_cast<size_t>(j) * w + i;
-          const uint16_t id = frame.instance[p];
-          const std::string* band = colourAt(i, j);
-          // Bands are a few pixels tall, so their outline pixels are kept as positives when most
-          // neighbours agree; pixels next to a band are left out of the negatives (their RGB
-          // mixes in the band's colour: spp samples, the mask one).
-          int same = 0;
-          bool touchesBand = false;
-          for (const size_t q : {p - 1, p + 1, p - static_cast<size_t>(w), p + static_cast<size_t>(w)}) {
-            same += frame.instance[q] == id;
-            const uint16_t other = frame.instance[q];
-            touchesBand = touchesBand || (other != 0 && !bandColour[other - 1].empty());
-          }
-          const bool isBand = band && !band->empty();
-          if (isBand ? same < 2 : touchesBand) continue;
-          labels[p] = isBand && *band == colour ? 1 : 0;
-        }
-      classifier.train(input, labels);
-    }
-  }
-}
-
-struct GroundTruthBeacon {
-  const Beacon* beacon;
-  bool visible;
-  Vec2 raster;
-  double rangeM, bearingRad;
-};
-
-std::vector<GroundTruthBeacon> groundTruth(const Scene& scene, const RayScene& rays, const RigSpec& rig,
-                                           const RobotPose& pose, const std::vector<Beacon>& beacons) {
-  const std::vector<LandmarkAnnotation> annotations = annotateLandmarks(scene, rays, rig, pose);
-  auto visible = [&](const Landmark* landmark) {
-    for (const LandmarkAnnotation& a : annotations)
-      if (a.landmark == landmark) return a.visible();
-    return false;
-  };
-  const OmniCamera camera = rig.camera();
-  const Rigid cameraFromWorldT = CameraPlacement(pose).worldFromCamera(rig).inverse();
-  std::vector<GroundTruthBeacon> truth;
-  for (const Beacon& beacon : beacons) {
-    const Vec3 boundary(beacon.position().x(), beacon.position().y(), beacon.boundaryHeight());
-    const auto raster = camera.rasterFromCamera(cameraFromWorldT * boundary);
-    const double dx = boundary.x() - pose.x, dy = boundary.y() - pose.y;
-    truth.push_back({&beacon, raster && visible(beacon.upper) && visible(beacon.lower), raster.value_or(Vec2(-1, -1)),
-                     std::hypot(dx, dy), wrapAngle(std::atan2(dy, dx) - pose.yawDeg * kPi / 180.0)});
-  }
-  return truth;
-}
-
-FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detected,
-                              const std::vector<GroundTruthBeacon>& truth, const std::vector<std::string>& bandColour,
-                              const std::vector<std::string>& objectNames, double matchRadiusPx) {
-  FrameEvaluation e;
-  e.visibleBeacons = static_cast<int>(std::count_if(truth.begin(), truth.end(), [](auto& t) { return t.visible; }));
-  for (const ColourBlob& blob : detected.blobs) {
-    int onBand = 0;
-    std::map<uint16_t, int> shown;
-    for (int p : blob.pixels) {
-      const uint16_t id = frame.instance[static_cast<size_t>(p)];
-      if (id != 0 && bandColour[id - 1] == blob.colour) ++onBand;
-      ++shown[id];
-    }
-    if (2 * onBand >= blob.area) continue;
-    ++e.falsePositiveBlobs;
-    const auto most = std::max_element(shown.begin(), shown.end(), [](auto& a, auto& b) { return a.second < b.second; });
-    e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area,
-                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1]});
-  }
-  for (const BeaconDetection& d : detected.beacons) {
-    DrawnDetection drawn{d.raster, false};
-    const auto t = std::find_if(truth.begin(), truth.end(), [&](auto& g) { return g.beacon == d.beacon; });
-    const double error = (d.raster - t->raster).norm();
-    if (t->visible && error <= matchRadiusPx) {
-      ++e.truePositives;
-      drawn.correct = true;
-      e.localisationErrorsPx.push_back(error);
-      if (d.rangeBearing) {
-        e.rangeErrorsCm.push_back(100.0 * std::abs((*d.rangeBearing)(0) - t->rangeM));
-        e.bearingErrorsDeg.push_back(std::abs(wrapAngle((*d.rangeBearing)(1) - t->bearingRad)) * 180.0 / kPi);
-      }
-    } else {
-      ++e.falseIdentifications;
-    }
-    if (d.rangeBearing) e.measurements.push_back({d.beacon->position(), *d.rangeBearing});
-    e.drawn.push_back(drawn);
-  }
-  for (const GroundTruthBeacon& t : truth)
-    if (t.visible) e.truth.push_back(t.raster);
-  return e;
-}
 
 double mean(const std::vector<double>& values) {
   if (values.empty()) return 0.0;

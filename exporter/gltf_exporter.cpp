@@ -300,23 +300,8 @@ void addLensRig(GltfBuilder& b, const GltfExportOptions& options) {
                 {{"role", "camera"}, {"lens", lensIntrinsicsJson(lens)}});
 }
 
-}  // namespace
-
-void checkGltfCamera(const RigSpec& rig) {
-  if (rig.lens) return checkEngineRenders(EngineKind::Blender, rig, CameraPlacement{});  // the lenses Cycles has
-  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes)) {
-    std::string certified;
-    for (MirrorShape shape : kCertifiedMeshShapes) certified += (certified.empty() ? "the " : " and the ") + std::string(mirrorShapeName(shape));
-    throw InputError("rig.mirror.shape: the glTF export (and Blender) has certified meshes of " + certified + " only, not of a " +
-                     mirrorShapeName(rig.shape.shape) + "; render it with the fast renderer or POV-Ray");
-  }
-  if (!rig.mount.distortion.none())
-    throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "
-                     "the fast renderer");
-}
-
-void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
-  GltfBuilder b;
+// The scene's materials, and its objects tessellated under one "arena" node.
+void addArena(GltfBuilder& b, const Scene& scene, double chordTolerance) {
   std::vector<int> materials;
   for (const Material& m : scene.materials) {
     const int texture = m.texture ? b.texture(m.name, pngBytes(*m.texture)) : -1;
@@ -328,11 +313,15 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
   b.addRoot(arena);
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
-    const TriangleMesh mesh = tessellate(o.shape, options.chordTolerance);
+    const TriangleMesh mesh = tessellate(o.shape, chordTolerance);
     const Material& material = scene.materials[o.material];
     const int meshIndex = b.mesh(o.name, mesh, nullptr, materials[o.material], material.texture ? &material.textureScale : nullptr);
     b.addChild(arena, b.node(o.name, Rigid::Identity(), meshIndex, nullptr));
   }
+}
+
+// Point lights (KHR_lights_punctual), each a root node.
+void addLights(GltfBuilder& b, const Scene& scene) {
   for (const PointLight& l : scene.lights) {
     tinygltf::Light light;
     light.name = l.name;
@@ -353,6 +342,10 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
     b.addRoot(node);
   }
   if (!scene.lights.empty()) b.model().extensionsUsed.push_back("KHR_lights_punctual");
+}
+
+// Landmarks as empty root nodes whose extras say what they mark.
+void addLandmarks(GltfBuilder& b, const Scene& scene) {
   for (size_t i = 0; i < scene.landmarks.size(); ++i) {
     const Landmark& lm = scene.landmarks[i];
     Rigid at = Rigid::Identity();
@@ -362,44 +355,70 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
                      {{"omnicam", {{"role", "landmark"}, {"name", lm.name}, {"colour_class", lm.colourClass},
                                    {"diameter", lm.diameter}, {"height", lm.height}}}}));
   }
+}
+
+// The mirror and its rim are the ideal rig's whatever the camera; the camera is the physical
+// pinhole as mounted (physical_camera.h), modelled once for every exporter.
+void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options) {
+  const Pinhole pinhole = pinholeOf(options.rig);
+  const MirrorShapeSpec& shape = options.rig.shape;
+  const MirrorMesh mirrorMesh =
+      shape.shape == MirrorShape::Sphere
+          ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
+          : buildMirrorMesh(options.rig.mirror(), options.rig.idealCamera().rimTheta(), options.mirrorDeviation);
+  const int rig = addRigNode(b, options, "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)");
+  const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
+  b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
+                         b.mesh(kGltfMirrorNode, mirrorMesh.mesh, &mirrorMesh.normals, mirrorMaterial, nullptr),
+                         {{"omnicam",
+                           {{"role", "mirror"},
+                            {"certified_max_deviation_m", mirrorMesh.requestedBound},
+                            {"rings", mirrorMesh.rings},
+                            {"sectors", mirrorMesh.sectors}}}}));
+  const Vec3 rimPoint = mirrorMesh.mesh.vertices.back();
+  const int maskMaterial = b.material(kGltfRimMaskNode, Vec3f::Zero(), -1, 0.0, 1.0,
+                                      {{"omnicam", "black, seen only by the camera"}});
+  b.addChild(rig, b.node(kGltfRimMaskNode, Rigid::Identity(),
+                         b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
+                                nullptr, maskMaterial, nullptr),
+                         {{"omnicam", {{"role", "rim_mask"}}}}));
+  // The pinhole looking up. glTF has no principal point: it travels in the node's extras
+  // (Blender's job shifts the lens by it). Square images.
+  Rigid viewpointFromPinhole = Rigid::Identity();
+  viewpointFromPinhole.translate(pinhole.position);
+  viewpointFromPinhole.linear() = pinhole.viewpointFromPinhole;
+  addCameraNode(b, rig, 2.0 * std::atan(0.5 * options.rig.imageSize / pinhole.focalPx), 1.0, viewpointFromPinhole,
+                {{"role", "camera"},
+                 {"focal_length_px", pinhole.focalPx},
+                 {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}});
+}
+
+}  // namespace
+
+void checkGltfCamera(const RigSpec& rig) {
+  if (rig.lens) return checkEngineRenders(EngineKind::Blender, rig, CameraPlacement{});  // the lenses Cycles has
+  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes)) {
+    std::string certified;
+    for (MirrorShape shape : kCertifiedMeshShapes) certified += (certified.empty() ? "the " : " and the ") + std::string(mirrorShapeName(shape));
+    throw InputError("rig.mirror.shape: the glTF export (and Blender) has certified meshes of " + certified + " only, not of a " +
+                     mirrorShapeName(rig.shape.shape) + "; render it with the fast renderer or POV-Ray");
+  }
+  if (!rig.mount.distortion.none())
+    throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "
+                     "the fast renderer");
+}
+
+void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
+  GltfBuilder b;
+  addArena(b, scene, options.chordTolerance);
+  addLights(b, scene);
+  addLandmarks(b, scene);
   if (options.includeRig && options.rig.lens) {
     checkGltfCamera(options.rig);
     addLensRig(b, options);
   } else if (options.includeRig) {
     checkGltfCamera(options.rig);
-    // The mirror and its rim are the ideal rig's whatever the camera; the camera is the physical
-    // pinhole as mounted (physical_camera.h), modelled once for every exporter.
-    const Pinhole pinhole = pinholeOf(options.rig);
-    const MirrorShapeSpec& shape = options.rig.shape;
-    const MirrorMesh mirrorMesh =
-        shape.shape == MirrorShape::Sphere
-            ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
-            : buildMirrorMesh(options.rig.mirror(), options.rig.idealCamera().rimTheta(), options.mirrorDeviation);
-    const int rig = addRigNode(b, options, "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)");
-    const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
-    b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
-                           b.mesh(kGltfMirrorNode, mirrorMesh.mesh, &mirrorMesh.normals, mirrorMaterial, nullptr),
-                           {{"omnicam",
-                             {{"role", "mirror"},
-                              {"certified_max_deviation_m", mirrorMesh.requestedBound},
-                              {"rings", mirrorMesh.rings},
-                              {"sectors", mirrorMesh.sectors}}}}));
-    const Vec3 rimPoint = mirrorMesh.mesh.vertices.back();
-    const int maskMaterial = b.material(kGltfRimMaskNode, Vec3f::Zero(), -1, 0.0, 1.0,
-                                        {{"omnicam", "black, seen only by the camera"}});
-    b.addChild(rig, b.node(kGltfRimMaskNode, Rigid::Identity(),
-                           b.mesh(kGltfRimMaskNode, rimMask(rimPoint.z(), std::hypot(rimPoint.x(), rimPoint.y())),
-                                  nullptr, maskMaterial, nullptr),
-                           {{"omnicam", {{"role", "rim_mask"}}}}));
-    // The pinhole looking up. glTF has no principal point: it travels in the node's extras
-    // (Blender's job shifts the lens by it). Square images.
-    Rigid viewpointFromPinhole = Rigid::Identity();
-    viewpointFromPinhole.translate(pinhole.position);
-    viewpointFromPinhole.linear() = pinhole.viewpointFromPinhole;
-    addCameraNode(b, rig, 2.0 * std::atan(0.5 * options.rig.imageSize / pinhole.focalPx), 1.0, viewpointFromPinhole,
-                  {{"role", "camera"},
-                   {"focal_length_px", pinhole.focalPx},
-                   {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}});
+    addMirrorRig(b, options);
   }
   std::ostringstream glb;
   tinygltf::TinyGLTF writer;

@@ -181,6 +181,15 @@ std::optional<std::pair<int, Eigen::Vector2d>> thesisMeshTexel(const ThesisMesh&
   return std::nullopt;
 }
 
+// The faces' texels (colour and slot, bordered), every sample's footprint (16 B) and the frame
+// with its encoding (48 B a pixel), before any of it is allocated.
+void requireLookupMemory(const RenderSettings& settings, const CubeMapOptions& o) {
+  const int64_t pixels = int64_t{settings.rig.imageSize} * settings.rig.imageSize;
+  requireMemory(int64_t{o.faces} * (o.faceSize + 2) * (o.faceSize + 2) * 24 + pixels * (int64_t{settings.spp} * 16 + 48),
+                std::string(o.mode == OmniMode::ThesisMesh ? "the thesis mesh's" : "the cube map's") + " lookup of " +
+                    std::to_string(settings.rig.imageSize) + "x" + std::to_string(settings.rig.imageSize) + " pixels");
+}
+
 }  // namespace
 
 void checkCubeMapOptions(const CubeMapOptions& o) { checkModeOptions(o); }
@@ -193,12 +202,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   checkRenderSettings(settings);
   checkEngineRenders(fastEngineKind(o.mode), settings.rig, CameraPlacement{});
   const auto n = samplesPerAxis(settings.spp);
-  // The faces' texels (colour and slot, bordered), every sample's footprint (16 B) and the frame
-  // with its encoding (48 B a pixel), before any of it is allocated.
-  const int64_t pixels = int64_t{settings.rig.imageSize} * settings.rig.imageSize;
-  requireMemory(int64_t{o.faces} * (o.faceSize + 2) * (o.faceSize + 2) * 24 + pixels * (int64_t{settings.spp} * 16 + 48),
-                std::string(o.mode == OmniMode::ThesisMesh ? "the thesis mesh's" : "the cube map's") + " lookup of " +
-                    std::to_string(settings.rig.imageSize) + "x" + std::to_string(settings.rig.imageSize) + " pixels");
+  requireLookupMemory(settings, o);
   std::lock_guard<std::mutex> lock(mutex_);
   const RigSpec& r = settings.rig;
   if (cached_ && cached_->spp == settings.spp && cached_->options.mode == o.mode && cached_->options.faces == o.faces &&

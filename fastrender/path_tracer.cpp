@@ -22,6 +22,26 @@ void basisAround(const Vec3& n, Vec3& b1, Vec3& b2) {
 
 double powerHeuristic(double a, double b) { return a * a / (a * a + b * b); }
 
+// A direction about `normal` with density cosine / π from the uniform pair `u`; `cosine` is its
+// cosine to the normal.
+Vec3 cosineWeighted(const Vec3& normal, const Eigen::Vector2d& u, double& cosine) {
+  const double u1 = u.x(), u2 = u.y();
+  const double r = std::sqrt(u1), phi = 2.0 * kPi * u2;
+  cosine = std::sqrt(std::max(0.0, 1.0 - u1));
+  Vec3 b1, b2;
+  basisAround(normal, b1, b2);
+  return (r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + cosine * normal).normalized();
+}
+
+// Russian roulette: a path goes on with a chance that falls with its throughput, which is then
+// divided by that chance (unbiased).
+bool survivesRoulette(Vec3f& throughput, PathRandom& random) {
+  const double survive = std::min(1.0, std::sqrt(static_cast<double>(throughput.maxCoeff())));
+  if (!(random.uniform() < survive)) return false;
+  throughput /= static_cast<float>(survive);
+  return true;
+}
+
 }  // namespace
 
 uint64_t mixKey(uint64_t a, uint64_t b) {
@@ -307,17 +327,10 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     }
     // Cosine-weighted scattering: the BRDF × cosine / pdf is the albedo.
     throughput = throughput.cwiseProduct(albedo);
-    if (scatters + 1 > options_.rouletteAfter) {
-      const double survive = std::min(1.0, std::sqrt(static_cast<double>(throughput.maxCoeff())));
-      if (!(random.uniform() < survive)) break;
-      throughput /= static_cast<float>(survive);
-    }
+    if (scatters + 1 > options_.rouletteAfter && !survivesRoulette(throughput, random)) break;
     const Eigen::Vector2d u = firstSurface ? stratified.point(0) : Eigen::Vector2d(random.uniform(), random.uniform());
-    const double u1 = u.x(), u2 = u.y();
-    const double r = std::sqrt(u1), phi = 2.0 * kPi * u2, cosine = std::sqrt(std::max(0.0, 1.0 - u1));
-    Vec3 b1, b2;
-    basisAround(normal, b1, b2);
-    direction = (r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + cosine * normal).normalized();
+    double cosine = 0.0;
+    direction = cosineWeighted(normal, u, cosine);
     bsdfPdf = scatterShare * cosine / kPi;  // per sample of the pixel: for the MIS of a disc it meets
     origin = hit->point + kSurfaceOffset * normal;
   }

@@ -200,37 +200,29 @@ nlohmann::json cyclesCamera(const RigSpec& rig) {
 
 }  // namespace
 
-std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
-                                         const RenderSettings& settings, const BlenderOptions& options) {
-  if (placements.empty()) return {};
-  checkRenderSettings(settings);
-  const PathTracing& tracing = options.pathTracing;
-  if (tracing.diffuseBounces < 0 || tracing.diffuseBounces > 16 || tracing.glossyBounces < 1 ||
-      tracing.glossyBounces > 16 || !(tracing.clampIndirect >= 0.0 && tracing.clampIndirect < 1e6))
-    throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
-  for (const CameraPlacement& placement : placements) {
-    checkPlacement(placement);
-    checkEngineRenders(EngineKind::Blender, settings.rig, placement);
-  }
-  checkEngineShading(EngineKind::Blender, settings.shading);
-  const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
-  const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
-  const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
-  JobFolder folder("omnicam-blender", options.keepJobFolder);
-  const std::string glb = folder.path() + "/scene.glb";
-  GltfExportOptions exportOptions;
-  exportOptions.placement = placements.front();
-  exportOptions.rig = settings.rig;
-  exportGltf(scene, exportOptions, glb);
+namespace {
 
+// One entry per frame for the driver: where the viewpoint stands (and moves), where its
+// image goes, and with `filtered` where its direct-light pass goes.
+nlohmann::json jobFrames(const std::vector<CameraPlacement>& placements, const RenderSettings& settings,
+                         const std::string& dir, bool filtered) {
   nlohmann::json frames = nlohmann::json::array();
   for (size_t f = 0; f < placements.size(); ++f) {
     nlohmann::json frame = {{"world_from_viewpoint", matrixRows(placements[f].worldFromViewpoint(settings.rig))},
-                            {"output", folder.path() + "/frame_" + std::to_string(f) + ".exr"}};
+                            {"output", dir + "/frame_" + std::to_string(f) + ".exr"}};
     if (moving(placements[f], settings.rig)) frame["motion"] = blenderMotion(settings, placements[f]);
-    if (filtered) frame["direct_output"] = folder.path() + "/frame_" + std::to_string(f) + "_direct.exr";
+    if (filtered) frame["direct_output"] = dir + "/frame_" + std::to_string(f) + "_direct.exr";
     frames.push_back(frame);
   }
+  return frames;
+}
+
+// The driver's job (refrender/blender_driver.py): the glTF, the shading, the lights as lamps
+// of matching power, path tracing and the camera.
+nlohmann::json blenderJob(const Scene& scene, const RenderSettings& settings, const BlenderOptions& options,
+                          const std::string& glb, bool filtered, const nlohmann::json& frames) {
+  const PathTracing& tracing = options.pathTracing;
+  const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   double ambient = 0.0;
   for (const Material& m : scene.materials) ambient += m.ambient / scene.materials.size();
   nlohmann::json lights = nlohmann::json::array();
@@ -254,26 +246,35 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
                                }()},  // the driver ignores direct_pass when unlit, as `filtered` does
                               {"frames", frames}};
   job.update(cyclesCamera(settings.rig));
-  writeTextAtomically(folder.path() + "/job.json", job.dump(2));
+  return job;
+}
 
-  const std::string log = folder.path() + "/blender.log";
+// Runs Blender on the job in `dir`; its output's last lines (for the messages of later failures).
+std::string runBlenderJob(const BlenderOptions& options, const std::string& dir) {
+  const std::string log = dir + "/blender.log";
   const std::string driver = options.driver.empty() ? defaultDriver() : options.driver;
   std::vector<std::string> argv{options.executable, "-b", "--factory-startup", "-noaudio"};
   if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
-  argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", folder.path() + "/job.json"});
-  const ProcessResult r = runRenderer(argv, folder.path(), log, options.timeoutSeconds);
+  argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", dir + "/job.json"});
+  const ProcessResult r = runRenderer(argv, dir, log, options.timeoutSeconds);
   if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
     throw ExternalError("blender: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +
                         " s; last output:\n" + r.logTail);
   if (r.exitCode != 0) throw ExternalError("blender: failed (exit " + std::to_string(r.exitCode) + "); last output:\n" + r.logTail);
+  return r.logTail;
+}
 
+// The frames Blender wrote, each with its rim's alpha on the film's grid.
+std::vector<ImageRGBA> readBlenderFrames(const nlohmann::json& frames, const RenderSettings& settings, bool filtered,
+                                         const Camera& imaging, const std::string& logTail) {
+  const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   std::vector<ImageRGBA> images;
   for (const auto& frame : frames) {
     const std::string output = frame["output"];
     for (const char* key : {"output", "direct_output"})
       if (frame.contains(key) && !fs::exists(frame[key].get<std::string>()))
-        throw ExternalError("blender: no output " + showPath(frame[key].get<std::string>()) + "; last output:\n" + r.logTail);
+        throw ExternalError("blender: no output " + showPath(frame[key].get<std::string>()) + "; last output:\n" + logTail);
     ImageRGBA image;
     try {
       image = filtered ? readFilteredBlenderFrame(output, frame["direct_output"], width, height) : readImage(output);
@@ -285,10 +286,40 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
     // Cycles samples randomly inside the pixel; the alpha is the rim on the film's grid.
     Film film = filmFor(settings);
     film.setResolvedColour(std::move(image));
-    film.setRimAlpha(*imaging);
+    film.setRimAlpha(imaging);
     images.push_back(film.takeImage());
   }
   return images;
+}
+
+}  // namespace
+
+std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                         const RenderSettings& settings, const BlenderOptions& options) {
+  if (placements.empty()) return {};
+  checkRenderSettings(settings);
+  const PathTracing& tracing = options.pathTracing;
+  if (tracing.diffuseBounces < 0 || tracing.diffuseBounces > 16 || tracing.glossyBounces < 1 ||
+      tracing.glossyBounces > 16 || !(tracing.clampIndirect >= 0.0 && tracing.clampIndirect < 1e6))
+    throw InputError("blender: path tracing needs 0-16 diffuse and 1-16 glossy bounces and a clamp >= 0");
+  for (const CameraPlacement& placement : placements) {
+    checkPlacement(placement);
+    checkEngineRenders(EngineKind::Blender, settings.rig, placement);
+  }
+  checkEngineShading(EngineKind::Blender, settings.shading);
+  const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
+  const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
+  JobFolder folder("omnicam-blender", options.keepJobFolder);
+  const std::string glb = folder.path() + "/scene.glb";
+  GltfExportOptions exportOptions;
+  exportOptions.placement = placements.front();
+  exportOptions.rig = settings.rig;
+  exportGltf(scene, exportOptions, glb);
+
+  const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
+  writeTextAtomically(folder.path() + "/job.json", blenderJob(scene, settings, options, glb, filtered, frames).dump(2));
+  const std::string logTail = runBlenderJob(options, folder.path());
+  return readBlenderFrames(frames, settings, filtered, *imaging, logTail);
 }
 
 }  // namespace omnicam

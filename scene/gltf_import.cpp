@@ -222,109 +222,145 @@ float extraFactor(const tinygltf::Value& o, const char* key, float fallback, con
   return static_cast<float>(d);
 }
 
+Material convertMaterial(const tinygltf::Model& model, size_t i, const std::string& file) {
+  const auto& m = model.materials[i];
+  const std::string where = file + ": materials[" + std::to_string(i) + "]";
+  Material mat;
+  mat.name = m.name.empty() ? "material_" + std::to_string(i) : m.name;
+  const auto& f = m.pbrMetallicRoughness.baseColorFactor;
+  if (f.size() != 4) throw InputError(where + ".baseColorFactor: must have 4 numbers");
+  for (int c = 0; c < 3; ++c)
+    mat.color[c] = static_cast<float>(std::isfinite(f[c]) ? std::clamp(f[c], 0.0, 1.0) : 0.0);
+  mat.texture = textureOf(model, m.pbrMetallicRoughness.baseColorTexture.index, where);
+  // omnicam's own exports carry the lit-shading factors in extras.
+  if (m.extras.IsObject() && m.extras.Has("omnicam") && m.extras.Get("omnicam").IsObject()) {
+    const auto& o = m.extras.Get("omnicam");
+    mat.ambient = extraFactor(o, "ambient", mat.ambient, where);
+    mat.diffuse = extraFactor(o, "diffuse", mat.diffuse, where);
+  }
+  return mat;
+}
+
+// A primitive's TEXCOORD_0, if it has one, one per vertex; v flipped (glTF's origin is top left).
+void appendTexCoords(const tinygltf::Model& model, const tinygltf::Primitive& prim, size_t vertexCount,
+                     const std::string& where, Mesh& out) {
+  auto uv = prim.attributes.find("TEXCOORD_0");
+  if (uv == prim.attributes.end()) return;
+  const AccessorReader t(model, uv->second, AccessorUse::TexCoord, where);
+  if (t.count() != vertexCount)
+    throw InputError(where + ": TEXCOORD_0 has " + std::to_string(t.count()) + " entries for " +
+                     std::to_string(vertexCount) + " vertices");
+  for (size_t k = 0; k < t.count(); ++k) {
+    const Eigen::Vector2d st(t.get(k, 0), 1.0 - t.get(k, 1));
+    if (!st.allFinite() || st.cwiseAbs().maxCoeff() > 1e6) throw InputError(where + ": TEXCOORD_0 must be finite");
+    out.uvs.push_back(st);
+  }
+}
+
+// The primitive's triangles: its indices in threes, or without indices its vertices in threes.
+void appendTriangles(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                     Mesh& out) {
+  const auto vertexCount = static_cast<double>(out.vertices.size());
+  if (prim.indices >= 0) {
+    const AccessorReader idx(model, prim.indices, AccessorUse::Index, where);
+    if (idx.count() % 3) throw InputError(where + ": index count " + std::to_string(idx.count()) + " is not a multiple of 3");
+    for (size_t k = 0; k < idx.count(); k += 3) {
+      Eigen::Vector3i tri;
+      for (int c = 0; c < 3; ++c) {
+        const double i = idx.get(k + c, 0);
+        if (!(i < vertexCount)) throw InputError(where + ": index " + std::to_string(k + c) + " out of range");
+        tri[c] = static_cast<int>(i);
+      }
+      out.triangles.push_back(tri);
+    }
+  } else {
+    if (out.vertices.size() % 3) throw InputError(where + ": vertex count is not a multiple of 3 (no indices)");
+    for (size_t k = 0; k + 2 < out.vertices.size(); k += 3)
+      out.triangles.emplace_back(static_cast<int>(k), static_cast<int>(k + 1), static_cast<int>(k + 2));
+  }
+}
+
+// A triangle primitive as a mesh in omnicam's world frame (`world`: the node's glTF transform).
+Mesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Eigen::Matrix4d& world,
+                   const std::string& where) {
+  if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
+    throw InputError(where + ": only triangle primitives are supported");
+  auto position = prim.attributes.find("POSITION");
+  if (position == prim.attributes.end()) throw InputError(where + ": no POSITION");
+  Mesh out;
+  const AccessorReader pos(model, position->second, AccessorUse::Position, where);
+  for (size_t k = 0; k < pos.count(); ++k) {
+    const Eigen::Vector4d g = world * Eigen::Vector4d(pos.get(k, 0), pos.get(k, 1), pos.get(k, 2), 1.0);
+    const Vec3 v = fromGltf(g.head<3>());
+    if (!v.allFinite() || v.cwiseAbs().maxCoeff() > limits::kMaxWorldCoordinate)
+      throw InputError(where + ": vertex " + std::to_string(k) + " lies beyond ±" +
+                       std::to_string(static_cast<int>(limits::kMaxWorldCoordinate)) + " m");
+    out.vertices.push_back(v);
+  }
+  appendTexCoords(model, prim, pos.count(), where, out);
+  appendTriangles(model, prim, where, out);
+  return out;
+}
+
+// The walk down the default scene's node trees, each mesh primitive becoming an arena object.
+class NodeWalk {
+ public:
+  NodeWalk(const tinygltf::Model& model, const std::string& file, GltfArena& arena)
+      : model_(model), file_(file), arena_(arena) {}
+
+  void visit(int nodeIndex, const Eigen::Matrix4d& parent, int depth) {
+    const std::string nodeWhere = file_ + ": nodes[" + std::to_string(nodeIndex) + "]";
+    if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model_.nodes.size())) throw InputError(nodeWhere + ": out of range");
+    if (!visited_.insert(nodeIndex).second) throw InputError(nodeWhere + ": reached twice (node graphs must be trees)");
+    if (depth > 256) throw InputError(nodeWhere + ": nested deeper than 256 levels");
+    const tinygltf::Node& node = model_.nodes[nodeIndex];
+    if (isOmnicamRig(node)) return;  // an exported camera rig, not arena geometry
+    const Eigen::Matrix4d world = parent * nodeMatrix(node, nodeWhere);
+    if (node.mesh >= static_cast<int>(model_.meshes.size())) throw InputError(nodeWhere + ".mesh: out of range");
+    if (node.mesh >= 0)
+      for (size_t pi = 0; pi < model_.meshes[node.mesh].primitives.size(); ++pi) addPrimitive(node, pi, world);
+    for (int child : node.children) visit(child, world, depth + 1);
+  }
+
+ private:
+  void addPrimitive(const tinygltf::Node& node, size_t pi, const Eigen::Matrix4d& world) {
+    const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
+    const tinygltf::Primitive& prim = mesh.primitives[pi];
+    const std::string where = file_ + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
+    Mesh out = primitiveMesh(model_, prim, world, where);
+    triangles_ += static_cast<int64_t>(out.triangles.size());
+    if (triangles_ > limits::kMaxTriangles)
+      throw InputError(file_ + ": more than " + std::to_string(limits::kMaxTriangles) + " triangles");
+    int material = prim.material;
+    if (material >= static_cast<int>(model_.materials.size())) throw InputError(where + ".material: out of range");
+    if (material < 0) {
+      if (defaultMaterial_ < 0) {
+        defaultMaterial_ = static_cast<int>(arena_.materials.size());
+        arena_.materials.push_back(Material{"default", {1.0f, 1.0f, 1.0f}, nullptr, "", {1, 1}, 0.2f, 0.8f, ""});
+      }
+      material = defaultMaterial_;
+    }
+    const std::string name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh_" + std::to_string(node.mesh);
+    arena_.objects.push_back({name, material, std::move(out), ""});
+  }
+
+  const tinygltf::Model& model_;
+  const std::string& file_;
+  GltfArena& arena_;
+  int defaultMaterial_ = -1;
+  int64_t triangles_ = 0;
+  std::set<int> visited_;  // glTF node graphs are trees: a node reached twice is invalid
+};
+
 GltfArena convert(const tinygltf::Model& model, const std::string& path) {
   const std::string file = showPath(path);  // prefixes every message
   GltfArena arena;
-  for (size_t i = 0; i < model.materials.size(); ++i) {
-    const auto& m = model.materials[i];
-    const std::string where = file + ": materials[" + std::to_string(i) + "]";
-    Material mat;
-    mat.name = m.name.empty() ? "material_" + std::to_string(i) : m.name;
-    const auto& f = m.pbrMetallicRoughness.baseColorFactor;
-    if (f.size() != 4) throw InputError(where + ".baseColorFactor: must have 4 numbers");
-    for (int c = 0; c < 3; ++c)
-      mat.color[c] = static_cast<float>(std::isfinite(f[c]) ? std::clamp(f[c], 0.0, 1.0) : 0.0);
-    mat.texture = textureOf(model, m.pbrMetallicRoughness.baseColorTexture.index, where);
-    // omnicam's own exports carry the lit-shading factors in extras.
-    if (m.extras.IsObject() && m.extras.Has("omnicam") && m.extras.Get("omnicam").IsObject()) {
-      const auto& o = m.extras.Get("omnicam");
-      mat.ambient = extraFactor(o, "ambient", mat.ambient, where);
-      mat.diffuse = extraFactor(o, "diffuse", mat.diffuse, where);
-    }
-    arena.materials.push_back(mat);
-  }
+  for (size_t i = 0; i < model.materials.size(); ++i) arena.materials.push_back(convertMaterial(model, i, file));
   if (model.scenes.empty()) throw InputError(file + ": no scene in the glTF file");
   const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (sceneIndex >= static_cast<int>(model.scenes.size())) throw InputError(file + ": scene: out of range");
-  int defaultMaterial = -1;
-  int64_t triangles = 0;
-  std::set<int> visited;  // glTF node graphs are trees: a node reached twice is invalid
-  std::function<void(int, const Eigen::Matrix4d&, int)> visit = [&](int nodeIndex, const Eigen::Matrix4d& parent, int depth) {
-    const std::string nodeWhere = file + ": nodes[" + std::to_string(nodeIndex) + "]";
-    if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model.nodes.size())) throw InputError(nodeWhere + ": out of range");
-    if (!visited.insert(nodeIndex).second) throw InputError(nodeWhere + ": reached twice (node graphs must be trees)");
-    if (depth > 256) throw InputError(nodeWhere + ": nested deeper than 256 levels");
-    const tinygltf::Node& node = model.nodes[nodeIndex];
-    if (isOmnicamRig(node)) return;  // an exported camera rig, not arena geometry
-    const Eigen::Matrix4d world = parent * nodeMatrix(node, nodeWhere);
-    if (node.mesh >= static_cast<int>(model.meshes.size())) throw InputError(nodeWhere + ".mesh: out of range");
-    if (node.mesh >= 0) {
-      const tinygltf::Mesh& mesh = model.meshes[node.mesh];
-      for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
-        const tinygltf::Primitive& prim = mesh.primitives[pi];
-        const std::string where = file + ": meshes[" + std::to_string(node.mesh) + "].primitives[" + std::to_string(pi) + "]";
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-          throw InputError(where + ": only triangle primitives are supported");
-        auto position = prim.attributes.find("POSITION");
-        if (position == prim.attributes.end()) throw InputError(where + ": no POSITION");
-        Mesh out;
-        const AccessorReader pos(model, position->second, AccessorUse::Position, where);
-        for (size_t k = 0; k < pos.count(); ++k) {
-          const Eigen::Vector4d g = world * Eigen::Vector4d(pos.get(k, 0), pos.get(k, 1), pos.get(k, 2), 1.0);
-          const Vec3 v = fromGltf(g.head<3>());
-          if (!v.allFinite() || v.cwiseAbs().maxCoeff() > limits::kMaxWorldCoordinate)
-            throw InputError(where + ": vertex " + std::to_string(k) + " lies beyond ±" +
-                             std::to_string(static_cast<int>(limits::kMaxWorldCoordinate)) + " m");
-          out.vertices.push_back(v);
-        }
-        if (auto uv = prim.attributes.find("TEXCOORD_0"); uv != prim.attributes.end()) {
-          const AccessorReader t(model, uv->second, AccessorUse::TexCoord, where);
-          if (t.count() != pos.count())
-            throw InputError(where + ": TEXCOORD_0 has " + std::to_string(t.count()) + " entries for " +
-                             std::to_string(pos.count()) + " vertices");
-          for (size_t k = 0; k < t.count(); ++k) {
-            const Eigen::Vector2d st(t.get(k, 0), 1.0 - t.get(k, 1));
-            if (!st.allFinite() || st.cwiseAbs().maxCoeff() > 1e6) throw InputError(where + ": TEXCOORD_0 must be finite");
-            out.uvs.push_back(st);
-          }
-        }
-        const auto vertexCount = static_cast<double>(out.vertices.size());
-        if (prim.indices >= 0) {
-          const AccessorReader idx(model, prim.indices, AccessorUse::Index, where);
-          if (idx.count() % 3) throw InputError(where + ": index count " + std::to_string(idx.count()) + " is not a multiple of 3");
-          for (size_t k = 0; k < idx.count(); k += 3) {
-            Eigen::Vector3i tri;
-            for (int c = 0; c < 3; ++c) {
-              const double i = idx.get(k + c, 0);
-              if (!(i < vertexCount)) throw InputError(where + ": index " + std::to_string(k + c) + " out of range");
-              tri[c] = static_cast<int>(i);
-            }
-            out.triangles.push_back(tri);
-          }
-        } else {
-          if (out.vertices.size() % 3) throw InputError(where + ": vertex count is not a multiple of 3 (no indices)");
-          for (size_t k = 0; k + 2 < out.vertices.size(); k += 3)
-            out.triangles.emplace_back(static_cast<int>(k), static_cast<int>(k + 1), static_cast<int>(k + 2));
-        }
-        triangles += static_cast<int64_t>(out.triangles.size());
-        if (triangles > limits::kMaxTriangles)
-          throw InputError(file + ": more than " + std::to_string(limits::kMaxTriangles) + " triangles");
-        int material = prim.material;
-        if (material >= static_cast<int>(model.materials.size())) throw InputError(where + ".material: out of range");
-        if (material < 0) {
-          if (defaultMaterial < 0) {
-            defaultMaterial = static_cast<int>(arena.materials.size());
-            arena.materials.push_back(Material{"default", {1.0f, 1.0f, 1.0f}, nullptr, "", {1, 1}, 0.2f, 0.8f, ""});
-          }
-          material = defaultMaterial;
-        }
-        const std::string name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh_" + std::to_string(node.mesh);
-        arena.objects.push_back({name, material, std::move(out), ""});
-      }
-    }
-    for (int child : node.children) visit(child, world, depth + 1);
-  };
-  for (int root : model.scenes[sceneIndex].nodes) visit(root, Eigen::Matrix4d::Identity(), 0);
+  NodeWalk walk(model, file, arena);
+  for (int root : model.scenes[sceneIndex].nodes) walk.visit(root, Eigen::Matrix4d::Identity(), 0);
   return arena;
 }
 
