@@ -1,0 +1,112 @@
+#include "fast_renderer.h"
+
+#include <cstring>
+
+namespace omnicam {
+
+namespace {
+// Denoised frames trace the indirect light of this share of their samples: the filter smooths it
+// over its window anyway (measured in docs/path-tracing.md).
+constexpr double kDenoisedIndirectShare = 0.25;
+// Shadow rays start this far off the surface (metres) to avoid self-intersection.
+constexpr double kShadowEpsilon = 1e-5;
+}  // namespace
+
+std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSettings& settings,
+                                                               const CameraPlacement& camera) const {
+  if (settings.shading != Shading::Path) return std::nullopt;
+  PathTracingOptions options;
+  options.diffuseBounces = settings.bounces;
+  if (settings.denoise) options.indirectShare = kDenoisedIndirectShare;
+  // Frames of other poses get other noise; the same pose, seed and settings the same frame.
+  const RobotPose& pose = camera.robot();
+  const BodyVelocity& velocity = camera.velocity();
+  uint64_t key = settings.seed;
+  for (double v : {pose.x, pose.y, pose.yawDeg, velocity.vx, velocity.vy, velocity.yawRateDegPerS}) {
+    uint64_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    key = mixKey(key, bits);
+  }
+  return PathFrame{PathTracer(scene_, rays_, options), key};
+}
+
+void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path,
+                               const PathKey* samples, PathSample* pathSamples) const {
+  const int count = hits.count();
+  if (shading == Shading::Path) {
+    for (int k = 0; k < count; ++k) {
+      const Vec3 direction = hits.direction(k).normalized();
+      const std::optional<SurfaceHit> first = hits.hit(k) ? std::optional<SurfaceHit>(hits.surface(k)) : std::nullopt;
+      const PathSample sample =
+          path->tracer.cameraRay(hits.start(k), direction, first ? &*first : nullptr, samples[k]);
+      colours[k] = sample.radiance;
+      if (pathSamples) pathSamples[k] = sample;
+    }
+    return;
+  }
+  const Material* materials[kRayPacketSize];
+  for (int k = 0; k < count; ++k) {
+    if (!hits.hit(k)) {
+      colours[k] = scene_.background;
+      continue;
+    }
+    const Material& material = scene_.materials[scene_.objects[hits.object(k)].material];
+    materials[k] = &material;
+    colours[k] = material.color;
+    if (material.texture) {
+      const Eigen::Vector2d uv = hits.uv(k);
+      colours[k] = colours[k].cwiseProduct(
+          material.texture->sample(uv.x() * material.textureScale.x(), uv.y() * material.textureScale.y()));
+    }
+  }
+  if (shading == Shading::Unlit || hits.mask() == 0) return;
+  SurfaceHit surfaces[kRayPacketSize];
+  Vec3 faced[kRayPacketSize];  // two-sided surfaces: the normal faces the viewer
+  Vec3f light[kRayPacketSize];
+  for (int k = 0; k < count; ++k) {
+    light[k] = Vec3f::Zero();
+    if (!hits.hit(k)) continue;
+    surfaces[k] = hits.surface(k);
+    faced[k] = surfaces[k].normal.dot(hits.direction(k)) > 0.0 ? Vec3(-surfaces[k].normal) : surfaces[k].normal;
+    light[k] = Vec3f::Constant(materials[k]->ambient);
+  }
+  // One shadow packet per lamp: the hit points are neighbours, so their shadow rays are too.
+  Vec3 origins[kRayPacketSize], toLamp[kRayPacketSize];
+  double tNear[kRayPacketSize], tFar[kRayPacketSize], cosine[kRayPacketSize];
+  for (const PointLight& lamp : scene_.lights) {
+    uint32_t facing = 0;
+    for (int k = 0; k < count; ++k) {
+      if (!hits.hit(k)) continue;
+      const Vec3 offset = lamp.position - surfaces[k].point;
+      const double distance = offset.norm();
+      toLamp[k] = offset / distance;
+      cosine[k] = faced[k].dot(toLamp[k]);
+      if (cosine[k] <= 0.0) continue;
+      origins[k] = surfaces[k].point + kShadowEpsilon * faced[k];
+      tNear[k] = 0.0;
+      tFar[k] = distance - kShadowEpsilon;
+      facing |= 1u << k;
+    }
+    const uint32_t lit = facing & ~rays_.occludedPacket(origins, toLamp, tNear, tFar, facing);
+    for (int k = 0; k < count; ++k)
+      if ((lit >> k) & 1u) light[k] += static_cast<float>(materials[k]->diffuse * cosine[k]) * lamp.intensity;
+  }
+  for (int k = 0; k < count; ++k)
+    if (hits.hit(k)) colours[k] = colours[k].cwiseProduct(light[k]);
+}
+
+Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading shading, uint64_t key, int bounces) const {
+  HitPacket hits;
+  hits.begin(origin, 1);
+  hits.setDirection(0, direction.cast<float>());
+  rays_.intersectPacket(hits);
+  Vec3f colour;
+  PathTracingOptions options;
+  options.diffuseBounces = bounces;
+  const PathFrame path{PathTracer(scene_, rays_, options), 0};
+  const PathKey sample{0, static_cast<uint32_t>(key)};
+  shadePacket(hits, shading, &colour, &path, &sample);
+  return colour;
+}
+
+}  // namespace omnicam
