@@ -39,16 +39,16 @@ struct OutputKindRow {
   OutputPlane plane;
   OutputEncoding encoding;                 // its own file (files layout)
   const char* extension;                   // of that file (colour: the plan's rgb format)
-  std::vector<std::string> fileChannels;   // that file's OpenEXR channels, or the image's RGBA
-  std::vector<std::string> layerChannels;  // its channels in a multilayer frame (none: in the header)
-  ExrSampleType layerType;
-  bool aovs;                               // rendered from the engine's AOVs, or derived from them
-  bool annotation;                         // JSON
-  InSpec spec;
-  bool classFilter;                        // a spec may give {"classes": [names]} (COCO)
-  bool instanceIds;                        // made of 16-bit instance ids
-  Gathered gathered;
-  const char* aovNote;                     // why it needs AOVs, where that is not obvious ("" if it is)
+  std::vector<std::string> fileChannels = {};   // that file's OpenEXR channels, or the image's RGBA
+  std::vector<std::string> layerChannels = {};  // its channels in a multilayer frame (none: in the header)
+  ExrSampleType layerType = ExrSampleType::Half;
+  bool aovs = false;                       // rendered from the engine's AOVs, or derived from them
+  bool annotation = false;                 // JSON
+  InSpec spec = InSpec::On;
+  bool classFilter = false;                // a spec may give {"classes": [names]} (COCO)
+  bool instanceIds = false;                // made of 16-bit instance ids
+  Gathered gathered = Gathered::Never;
+  const char* aovNote = "";                // why it needs AOVs, where that is not obvious
   // Values per pixel when decoded (the reader and Python): the channels it has.
   size_t valuesPerPixel() const { return fileChannels.size(); }
 };
