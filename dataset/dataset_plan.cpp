@@ -6,8 +6,6 @@
 #include <functional>
 #include <sstream>
 
-#include "calibration_files.h"
-#include "calibration_sequence.h"
 #include "camera_rays.h"
 #include "dataset_folder.h"
 #include "coco.h"
@@ -19,7 +17,6 @@
 #include "intrinsics_files.h"
 #include "make_camera.h"
 #include "memory_budget.h"
-#include "rosbag_file.h"
 #include "manifest.h"
 #include "multilayer_frame.h"
 #include "number_format.h"
@@ -28,7 +25,6 @@
 #include "sha256.h"
 #include "sidecar.h"
 #include "trajectory.h"
-#include "triangulate.h"
 
 namespace omnicam {
 
@@ -205,13 +201,13 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
 // files themselves go to `statics`.
 json manifestCameras(const DatasetPlan& plan, std::vector<StaticFile>& statics) {
   json cameras = json::array();
-  for (size_t c = 0; c < plan.setups.size(); ++c) {
-    const CameraSetup& setup = plan.setups[c];
+  for (size_t c = 0; c < plan.setups().size(); ++c) {
+    const CameraSetup& setup = plan.setups()[c];
     json files = json::object();
     const auto rigOfFrame = [&](int frame) { return plan.frameRig(frame, c); };
     const auto placementOfFrame = [&](int frame) { return plan.placement(frame, c); };
     for (StaticFile& file :
-         staticFiles(setup, plan.poses, plan.spec.frameIntervalSeconds, rigOfFrame, placementOfFrame, plan.spec.euroc)) {
+         staticFiles(setup, plan.poses(), plan.spec().frameIntervalSeconds, rigOfFrame, placementOfFrame, plan.spec().euroc)) {
       files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
       statics.push_back(std::move(file));
     }
@@ -279,21 +275,21 @@ void sampleTimedWaypoints(const DatasetSpec& spec, const std::vector<RobotPose>&
 // InputError unless the engine renders every camera (its rig, "camera NAME: …") and every
 // frame's motion ("motion: camera NAME: …"), by its capabilities (engine_capabilities.h).
 void checkEngineRendersPlan(const DatasetPlan& plan) {
-  const std::string file = showPath(plan.spec.file);
-  const EngineKind engine = plan.engine->kind();
-  for (const CameraSetup& setup : plan.setups) {
+  const std::string file = showPath(plan.spec().file);
+  const EngineKind engine = plan.engine().kind();
+  for (const CameraSetup& setup : plan.setups()) {
     try {
       checkEngineRenders(engine, setup.rig, CameraPlacement{});
     } catch (const InputError& e) {
       throw InputError(file + ": camera " + quote(setup.camera->name) + ": " + e.what());
     }
   }
-  for (size_t c = 0; c < plan.setups.size(); ++c)
-    for (int frame = 0; frame < static_cast<int>(plan.poses.size()); ++frame) {
+  for (size_t c = 0; c < plan.setups().size(); ++c)
+    for (int frame = 0; frame < static_cast<int>(plan.poses().size()); ++frame) {
       try {
-        checkEngineRenders(engine, plan.setups[c].rig, plan.placement(frame, c));
+        checkEngineRenders(engine, plan.setups()[c].rig, plan.placement(frame, c));
       } catch (const InputError& e) {
-        throw InputError(file + ": motion: camera " + quote(plan.setups[c].camera->name) + ": " + e.what());
+        throw InputError(file + ": motion: camera " + quote(plan.setups()[c].camera->name) + ": " + e.what());
       }
     }
 }
@@ -302,247 +298,86 @@ void checkEngineRendersPlan(const DatasetPlan& plan) {
 // records it in that format) and the engine renders.
 void checkVibratedRigs(const DatasetPlan& plan) {
   // A lens camera's centre of projection is its viewpoint: there is no camera below a mirror to move.
-  if (plan.spec.vibration.cameraOffsetMm != std::array<double, 3>{})
-    for (const CameraSetup& setup : plan.setups)
+  if (plan.spec().vibration.cameraOffsetMm != std::array<double, 3>{})
+    for (const CameraSetup& setup : plan.setups())
       if (setup.rig.lens)
-        throw InputError(showPath(plan.spec.file) + ": vibration.camera_offset_mm: camera " + quote(setup.camera->name) +
+        throw InputError(showPath(plan.spec().file) + ": vibration.camera_offset_mm: camera " + quote(setup.camera->name) +
                          " is a lens camera (rig.lens), whose centre of projection is its viewpoint: shake it with "
                          "camera_rotation_deg and rig_tilt_deg");
-  for (int frame = 0; frame < static_cast<int>(plan.poses.size()); ++frame)
-    for (size_t c = 0; c < plan.setups.size(); ++c) {
+  for (int frame = 0; frame < static_cast<int>(plan.poses().size()); ++frame)
+    for (size_t c = 0; c < plan.setups().size(); ++c) {
       const RigSpec rig = plan.frameRig(frame, c);
       try {
-        (void)rigFromJson(rigToJson(rig), plan.spec.file, "rig");
-        checkEngineRenders(plan.engine->kind(), rig, CameraPlacement{});
+        (void)rigFromJson(rigToJson(rig), plan.spec().file, "rig");
+        checkEngineRenders(plan.engine().kind(), rig, CameraPlacement{});
       } catch (const InputError& e) {
-        throw InputError(showPath(plan.spec.file) + ": vibration: frame " + std::to_string(frame) + ", camera " +
-                         quote(plan.setups[c].camera->name) + ": the shaken rig is refused (" + e.what() +
+        throw InputError(showPath(plan.spec().file) + ": vibration: frame " + std::to_string(frame) + ", camera " +
+                         quote(plan.setups()[c].camera->name) + ": the shaken rig is refused (" + e.what() +
                          "); lower the amplitudes or move the camera's nominal pose");
       }
     }
 }
 
-// A calibration sequence's bag: topics ROS accepts, a bag the dataset's reader reads back, memory
-// to write it in, and the writer's Python modules, all before anything renders.
-void checkRosbagOutputs(const DatasetPlan& plan, size_t frames) {
-  const std::string file = showPath(plan.spec.file);
-  int64_t bytes = 0, largestImage = 0;
-  for (const CameraSetup& setup : plan.setups) {
-    const std::string& name = setup.camera->name;
-    // A ROS graph name: a letter, then letters, digits and '_'.
-    if (!std::isalpha(static_cast<unsigned char>(name[0])) ||
-        name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_") != std::string::npos)
-      throw InputError(file + ": calibration.rosbag: camera " + quote(name) +
-                       ": its topic /<camera>/image_raw needs a name ROS accepts (a letter, then letters, digits and '_')");
-    const int64_t image = int64_t{setup.rig.imageWidth()} * setup.rig.imageHeight() * 3;
-    bytes += static_cast<int64_t>(frames) * image;
-    largestImage = std::max(largestImage, image);
-  }
-  // Each image's message adds a few hundred bytes of headers and index.
-  if (bytes + static_cast<int64_t>(frames * plan.setups.size()) * 1024 > kMaxDatasetFileBytes)
-    throw InputError(file + ": calibration.rosbag: the bag would hold " + std::to_string(bytes >> 20) +
-                     " MiB of images (a dataset file is at most " + std::to_string(kMaxDatasetFileBytes >> 20) +
-                     " MiB: fewer poses, cameras or a smaller size)");
-  // Streamed (rosbag_file.h): an image at a time, its PNG decoded beside it and its copy in the
-  // writer; the bag's size does not count.
-  requireMemory(3 * largestImage, "writing the ROS bag");
-  checkImageBagWriter();
-}
-
-// A calibration sequence: the target the spec names, the board's pose of every frame, and the
-// robot standing at its one pose in each of them.
-void startCalibrationSequence(DatasetPlan& plan) {
-  const CalibrationSequenceSpec& cal = *plan.spec.calibration;
-  const std::string file = showPath(plan.spec.file);
-  plan.calibrationTarget = findCalibrationTarget(plan.scene, cal.target);
-  if (plan.calibrationTarget < 0) {
-    std::string names;
-    for (const CalibrationTarget& t : plan.scene.calibrationTargets) names += (names.empty() ? "" : ", ") + quote(t.name);
-    throw InputError(file + ": calibration.target: the scene has no calibration target " + quote(cal.target) +
-                     (names.empty() ? std::string(" (it has none)") : " (it has " + names + ")"));
-  }
-  const CalibrationTarget& target = plan.scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
-  // Every camera's calibration files include Kalibr's target.yaml: a target it cannot describe
-  // is refused before anything renders.
-  if (const std::string problem = kalibrTargetProblem(target.pattern); !problem.empty())
-    throw InputError(file + ": calibration.target: " + quote(cal.target) + " (a target of " + showPath(plan.spec.scene) +
-                     ") cannot be Kalibr's target.yaml: " + problem);
-  const size_t corners = targetCorners(target.pattern).size();
-  if (cal.random && static_cast<size_t>(cal.random->minSeenCorners) > corners)
-    throw InputError(file + ": calibration.poses.random.min_seen_corners: the target " + quote(target.name) + " has only " +
-                     std::to_string(corners) + " corners (got " + std::to_string(cal.random->minSeenCorners) + ")");
-  if (cal.rosbag) checkRosbagOutputs(plan, cal.random ? static_cast<size_t>(cal.random->count) : cal.listed.size());
-  // The robot stands at its one pose: the first camera's viewpoint is the same every frame.
-  const Rigid worldFromViewpoint = plan.placement(0, 0).worldFromViewpoint(plan.setups.front().rig);
-  try {
-    plan.viewpointFromTarget = sequenceBoardPoses(cal, *plan.setups.front().model, worldFromViewpoint, target);
-  } catch (const InputError& e) {
-    throw InputError(file + ": calibration.poses." + e.what());
-  }
-  const size_t frames = plan.viewpointFromTarget.size();
-  plan.poses.assign(frames, plan.poses.front());
-  plan.velocities.assign(frames, BodyVelocity{});
-  for (size_t f = 0; f < frames; ++f)
-    plan.worldFromTarget.push_back(plan.placement(static_cast<int>(f), 0).worldFromViewpoint(plan.setups.front().rig) *
-                                   plan.viewpointFromTarget[f]);
-}
-
-// Every camera's calibration files (docs/calibration.md, "Calibration sequences"): Kalibr's target
-// YAML, each frame's exact corners with their sight, and the seen ones as OpenCV's corner lists.
-void addCalibrationFiles(DatasetPlan& plan) {
-  const CalibrationTarget& target = plan.scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
-  const std::vector<Vec3> targetPoints = targetCorners(target.pattern);
-  const int frames = static_cast<int>(plan.poses.size());
-  std::vector<json> cornerFrames(plan.setups.size(), json::array());
-  std::vector<std::vector<CornerListImage>> lists(plan.setups.size());
-  for (int f = 0; f < frames; ++f) {
-    const std::unique_ptr<FrameWorld> world = plan.frameWorld(f, /*withEngine=*/false, /*withRays=*/true);
-    const CalibrationTarget& moved = world->scene.calibrationTargets[static_cast<size_t>(plan.calibrationTarget)];
-    for (size_t c = 0; c < plan.setups.size(); ++c) {
-      const Rigid worldFromViewpoint = plan.placement(f, c).worldFromViewpoint(plan.setups[c].rig);
-      const std::vector<ImagedCorner> corners = imagedCorners(*plan.setups[c].model, worldFromViewpoint, world->rays.get(), moved);
-      cornerFrames[c].push_back(cornersFrameJson(f, worldFromViewpoint.inverse() * moved.worldFromTarget, corners));
-      // The frame's image: its colour file, or its multilayer frame.
-      const OutputKind imageKind = plan.outputs.layout == DatasetLayout::Multilayer ? OutputKind::Multilayer : kColourOutput;
-      CornerListImage image{plan.outputs.framePath(plan.setups[c].camera->name, imageKind, f), {}};
-      for (const ImagedCorner& corner : corners)
-        if (corner.sight == CornerSight::Seen) {
-          image.view.targetPoints.push_back(targetPoints[static_cast<size_t>(corner.index)]);
-          image.view.raster.push_back(corner.raster);
-        }
-      // OpenCV's calibrations need four points of a view.
-      if (image.view.raster.size() >= 4) lists[c].push_back(std::move(image));
-    }
-  }
-  const std::string kalibr = kalibrTargetYaml(target.pattern);
-  for (size_t c = 0; c < plan.setups.size(); ++c) {
-    const std::string& name = plan.setups[c].camera->name;
-    json& files = plan.header["cameras"][c]["files"];
-    const json corners = {{"camera", name},
-                          {"target", target.name},
-                          {"convention", "raster: omnicam's (pixel centres at i + 0.5); opencv: centres at integers"},
-                          {"frames", cornerFrames[c]}};
-    for (StaticFile file : {StaticFile{"kalibr_target", name + "/calibration/target.yaml", kalibr},
-                            StaticFile{"corners", name + "/calibration/corners.json", corners.dump() + "\n"},
-                            StaticFile{"opencv_corners", name + "/calibration/opencv_corners.yml", openCvCornerLists(lists[c])}}) {
-      files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
-      plan.statics.push_back(std::move(file));
-    }
-  }
-  const CalibrationSequenceSpec& cal = *plan.spec.calibration;
-  plan.header["calibration"] = {{"target", target.name},
-                                {"poses", cal.random ? "random" : "list"},
-                                {"rosbag", cal.rosbag}};
-  if (cal.rosbag) {
-    // The bag's cameras for Kalibr, as the bag shows them (calibration_bag.h).
-    std::vector<KalibrChainCamera> chain;
-    for (size_t c = 0; c < plan.setups.size(); ++c)
-      chain.push_back({plan.setups[c].camera->name, plan.setups[c].model.get(), plan.placement(0, c).worldFromCamera(plan.setups[c].rig)});
-    StaticFile camchain{"kalibr_camchain", kKalibrCamchainPath, ""};
-    try {
-      camchain.text = kalibrCamchainYaml(chain);
-    } catch (const InputError& e) {
-      throw InputError(showPath(plan.spec.file) + ": calibration.rosbag: " + e.what());
-    }
-    plan.header["calibration"]["files"][camchain.key] = {{"path", camchain.relative}, {"sha256", sha256OfBytes(camchain.text)}};
-    plan.statics.push_back(std::move(camchain));
-  }
-}
-
 }  // namespace
 
-std::unique_ptr<FrameWorld> DatasetPlan::frameWorld(int frame, bool withEngine, bool withRays) const {
-  auto world = std::make_unique<FrameWorld>();
-  world->scene = scene;
-  placeCalibrationTarget(world->scene, calibrationTarget, worldFromTarget.at(static_cast<size_t>(frame)));
-  if (withEngine) world->engine = makeEngine(request, world->scene);
-  if (withRays) world->rays = std::make_unique<RayScene>(world->scene);
-  return world;
-}
-
 RigSpec DatasetPlan::frameRig(int frame, size_t camera) const {
-  return vibratedRig(setups[camera].rig, spec.vibration, static_cast<uint64_t>(frame), camera);
+  return vibratedRig(setups_[camera].rig, spec_.vibration, static_cast<uint64_t>(frame), camera);
 }
 
 RobotTilt DatasetPlan::robotTilt(int frame) const {
-  return vibratedRobotTilt(spec.robotTiltDeg, spec.vibration, static_cast<uint64_t>(frame));
+  return vibratedRobotTilt(spec_.robotTiltDeg, spec_.vibration, static_cast<uint64_t>(frame));
 }
 
 CameraPlacement DatasetPlan::placement(int frame, size_t camera) const {
-  return {poses[static_cast<size_t>(frame)], velocities[static_cast<size_t>(frame)], setups[camera].camera->mount, robotTilt(frame)};
+  return {poses_[static_cast<size_t>(frame)], velocities_[static_cast<size_t>(frame)], setups_[camera].camera->mount, robotTilt(frame)};
 }
 
-DatasetPlan::DatasetPlan(const DatasetSpec& spec_, const DatasetRunOptions& options)
-    : spec(spec_), scene(loadScene(spec.scene, {spec.allowOutsideFiles})) {
-  setups = cameraSetups(spec, scene);
+DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& options)
+    : spec_(spec), scene_(loadScene(spec.scene, {spec.allowOutsideFiles})) {
+  setups_ = cameraSetups(spec, scene_);
   double topHeight = 0.0;
-  for (const CameraSetup& setup : setups) topHeight = std::max(topHeight, setup.rig.height);
+  for (const CameraSetup& setup : setups_) topHeight = std::max(topHeight, setup.rig.height);
   if (spec.timing.kind == PathTiming::Kind::None) {
-    poses = datasetPoses(spec, scene, topHeight);
-    velocities = frameVelocities(spec, poses);
+    poses_ = datasetPoses(spec, scene_, topHeight);
+    velocities_ = frameVelocities(spec, poses_);
   } else {
-    sampleTimedWaypoints(spec, datasetPoses(spec, scene, topHeight), poses, velocities);
+    sampleTimedWaypoints(spec, datasetPoses(spec, scene_, topHeight), poses_, velocities_);
   }
-  if (spec.calibration) startCalibrationSequence(*this);
+  if (spec.calibration) startCalibrationSequence();
   SettingNames names;
-  for (int frame = 0; frame < static_cast<int>(poses.size()); ++frame)
-    for (size_t c = 0; c < setups.size(); ++c) {
-      names.pose = showPath(spec.file) + ": poses: frame " + std::to_string(frame) + ", camera " + quote(setups[c].camera->name);
+  for (int frame = 0; frame < static_cast<int>(poses_.size()); ++frame)
+    for (size_t c = 0; c < setups_.size(); ++c) {
+      names.pose = showPath(spec.file) + ": poses: frame " + std::to_string(frame) + ", camera " + quote(setups_[c].camera->name);
       checkPlacement(placement(frame, c), names);
     }
-  request = spec.request;
-  request.threads = options.threads;
-  engine = makeEngine(request, scene);
+  request_ = spec.request;
+  request_.threads = options.threads;
+  engine_ = makeEngine(request_, scene_);
   checkEngineRendersPlan(*this);
   if (vibrates()) checkVibratedRigs(*this);
-  const int totalFrames = static_cast<int>(poses.size());
-  range = frameRange(options, totalFrames);
+  const int totalFrames = static_cast<int>(poses_.size());
+  range_ = frameRange(options, totalFrames);
   json notWritten;
-  outputs = outputPlan(spec, *engine, scene, notWritten, notes);
-  ids = idTables(scene);
-  header = manifestHeader(spec, scene, *engine, outputs, notWritten, ids, totalFrames, options, range);
-  header["cameras"] = manifestCameras(*this, statics);
-  if (movesTarget()) addCalibrationFiles(*this);
-  checkManifestHeaderSize(header, spec.file);
-  folders = datasetFolders(setups, outputs, range.sharded);
+  outputs_ = outputPlan(spec, *engine_, scene_, notWritten, notes_);
+  ids_ = idTables(scene_);
+  header_ = manifestHeader(spec, scene_, *engine_, outputs_, notWritten, ids_, totalFrames, options, range_);
+  header_["cameras"] = manifestCameras(*this, statics_);
+  if (movesTarget()) addCalibrationFiles();
+  checkManifestHeaderSize(header_, spec.file);
+  folders_ = datasetFolders(setups_, outputs_, range_.sharded);
   if (movesTarget())
-    for (const CameraSetup& setup : setups) folders.push_back(setup.camera->name + "/calibration");
-  if (outputs.needsLandmarkAnnotations(!scene.landmarks.empty())) rays = std::make_unique<RayScene>(scene);
+    for (const CameraSetup& setup : setups_) folders_.push_back(setup.camera->name + "/calibration");
+  if (outputs_.needsLandmarkAnnotations(!scene_.landmarks.empty())) rays_ = std::make_unique<RayScene>(scene_);
 }
 
 int64_t DatasetPlan::frameBytes() const {
   int64_t bytes = 0;
-  for (const CameraSetup& setup : setups)
-    bytes += FastRenderer::frameBytes(setup.rig.imageWidth(), setup.rig.imageHeight(), spec.request.spp, setup.model->central());
+  for (const CameraSetup& setup : setups_)
+    bytes += FastRenderer::frameBytes(setup.rig.imageWidth(), setup.rig.imageHeight(), spec_.request.spp, setup.model->central());
   // A calibration sequence's frame renders in a world of its own (frameWorld): the scene's copy,
   // its engine's ray scene and, with landmark annotations, a second one for the landmarks' rays.
-  if (movesTarget()) bytes += frameWorldBytes(scene, rays ? 2 : 1);
+  if (movesTarget()) bytes += frameWorldBytes(scene_, rays_ ? 2 : 1);
   return bytes;
-}
-
-int64_t frameWorldBytes(const Scene& scene, int rayScenes) {
-  // The copy: every object (a mesh with its arrays; textures are shared, not copied).
-  int64_t copy = static_cast<int64_t>(sizeof(Scene)), triangles = 0, vertices = 0, curved = 0;
-  for (const SceneObject& object : scene.objects) {
-    copy += static_cast<int64_t>(sizeof(SceneObject) + object.name.size() + object.semanticClass.size());
-    if (const auto* mesh = std::get_if<Mesh>(&object.shape)) {
-      copy += static_cast<int64_t>(mesh->vertices.size() * sizeof(Vec3) + mesh->triangles.size() * sizeof(Eigen::Vector3i) +
-                                   mesh->uvs.size() * sizeof(Eigen::Vector2d));
-      triangles += static_cast<int64_t>(mesh->triangles.size()), vertices += static_cast<int64_t>(mesh->vertices.size());
-    } else if (const std::optional<TriangleMesh> planar = triangulatePlanar(object.shape)) {
-      triangles += static_cast<int64_t>(planar->triangles.size()), vertices += static_cast<int64_t>(planar->vertices.size());
-    } else {
-      ++curved;
-    }
-  }
-  // A ray scene (ray_scene.h) per triangle: Embree's index buffer and its BVH, taken as 128 bytes
-  // (more than Embree's BVH4 needs), and RayScene's own vertex indices; per vertex Embree's float
-  // vertex, RayScene's double copy (hits are worked out again in double) and its float UV; a
-  // curved shape is one small user geometry.
-  constexpr int64_t kBvhBytesPerTriangle = 128, kCurvedShapeBytes = 512;
-  const int64_t rayScene = triangles * (int64_t{sizeof(Eigen::Vector3i)} * 2 + kBvhBytesPerTriangle) +
-                           vertices * (int64_t{sizeof(float)} * 4 + int64_t{sizeof(Vec3)} + int64_t{sizeof(Eigen::Vector2f)}) + curved * kCurvedShapeBytes;
-  return copy + rayScenes * rayScene;
 }
 
 }  // namespace omnicam

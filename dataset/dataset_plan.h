@@ -6,6 +6,7 @@
 // decides what the folder keeps.
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -47,7 +48,16 @@ struct FrameWorld {
   std::unique_ptr<RayScene> rays;  // when the outputs annotate landmarks
 };
 
-// Built in place and never moved: the engine and the landmark rays refer to the scene.
+// A calibration sequence (spec.calibration): the scene's target it moves, and the target's pose
+// in the world and in the first camera's viewpoint frame in every frame.
+struct CalibrationSequence {
+  int target = -1;
+  std::vector<Rigid> worldFromTarget, viewpointFromTarget;
+};
+
+// Decided once, in the constructor, and read only after: every accessor is const. The engine is
+// the run's one moving part (rendering changes its state: a ground truth's session, its version
+// read once). Built in place and never moved: the engine and the landmark rays refer to the scene.
 class DatasetPlan {
  public:
   // InputError for a bad spec or scene, a pose or camera the engine refuses, or a bad shard.
@@ -55,31 +65,30 @@ class DatasetPlan {
   DatasetPlan(const DatasetPlan&) = delete;
   DatasetPlan& operator=(const DatasetPlan&) = delete;
 
-  const DatasetSpec& spec;
-  Scene scene;
-  std::vector<CameraSetup> setups;
-  std::vector<RobotPose> poses;  // every frame's robot pose (the whole dataset's), at its exposure start
-  std::vector<BodyVelocity> velocities;  // every frame's robot velocity over its exposure
-  std::unique_ptr<Engine> engine;
-  FrameRange range;
-  FrameOutputPlan outputs;
-  IdTables ids;
-  nlohmann::json header;            // the manifest's header (docs/dataset-format.md)
-  std::vector<StaticFile> statics;  // every camera's
-  std::vector<std::string> folders; // relative to the dataset folder, made before frames are written
-  std::vector<std::string> notes;   // for the user: outputs the engine does not write
-  std::unique_ptr<RayScene> rays;   // for landmark annotations, when the outputs have any
-  RenderRequest request;            // the spec's, with the run's threads
+  const DatasetSpec& spec() const { return spec_; }
+  const Scene& scene() const { return scene_; }
+  const std::vector<CameraSetup>& setups() const { return setups_; }
+  // Every frame's robot pose (the whole dataset's), at its exposure start, and its velocity over
+  // its exposure.
+  const std::vector<RobotPose>& poses() const { return poses_; }
+  const std::vector<BodyVelocity>& velocities() const { return velocities_; }
+  Engine& engine() const { return *engine_; }
+  const FrameRange& range() const { return range_; }
+  const FrameOutputPlan& outputs() const { return outputs_; }
+  const IdTables& ids() const { return ids_; }
+  const nlohmann::json& header() const { return header_; }        // the manifest's (docs/dataset-format.md)
+  const std::vector<StaticFile>& statics() const { return statics_; }  // every camera's
+  // Relative to the dataset folder, made before frames are written.
+  const std::vector<std::string>& folders() const { return folders_; }
+  const std::vector<std::string>& notes() const { return notes_; }  // for the user: outputs the engine does not write
+  const RayScene* rays() const { return rays_.get(); }           // for landmark annotations, when the outputs have any
+  const RenderRequest& request() const { return request_; }       // the spec's, with the run's threads
+  const std::optional<CalibrationSequence>& calibration() const { return calibration_; }
+  bool movesTarget() const { return calibration_.has_value(); }
 
-  // A calibration sequence (spec.calibration): the scene's target it moves, and its pose in the
-  // world and in the first camera's viewpoint frame in every frame.
-  int calibrationTarget = -1;
-  std::vector<Rigid> worldFromTarget, viewpointFromTarget;
-  bool movesTarget() const { return calibrationTarget >= 0; }
   // Frame `frame`'s scene, with its engine and its rays when asked: the target where the frame
   // holds it. Only for a plan that movesTarget().
   std::unique_ptr<FrameWorld> frameWorld(int frame, bool withEngine, bool withRays) const;
-
   // What one frame holds while it is rendered and encoded: every camera's frame, AOVs, files and
   // sample table (FastRenderer::frameBytes; docs/robustness.md, "Memory"), and a calibration
   // sequence's own world of the frame (frameWorldBytes). The scheduler renders
@@ -93,12 +102,35 @@ class DatasetPlan {
   // velocity, the camera's mount, the robot's tilt.
   CameraPlacement placement(int frame, size_t camera) const;
   // Whether frames shake each camera's rig (the manifest then records every frame's rig).
-  bool vibrates() const { return spec.vibration.shakesRigs(); }
+  bool vibrates() const { return spec_.vibration.shakesRigs(); }
   // Whether frames differ in more than their pose (a shaken rig, a velocity), so that an engine
   // rendering many poses with one setting (Blender's batches) must take them one at a time.
   bool framesHaveOwnSettings() const {
-    return vibrates() || movesTarget() || std::any_of(velocities.begin(), velocities.end(), [](const BodyVelocity& v) { return !v.still(); });
+    return vibrates() || movesTarget() || std::any_of(velocities_.begin(), velocities_.end(), [](const BodyVelocity& v) { return !v.still(); });
   }
+
+ private:
+  // The calibration sequence's parts of the plan (dataset_plan_calibration.cpp): its target and
+  // board poses, with the robot at its one pose in every frame; then every camera's files.
+  void startCalibrationSequence();
+  void addCalibrationFiles();
+
+  const DatasetSpec& spec_;
+  Scene scene_;
+  std::vector<CameraSetup> setups_;
+  std::vector<RobotPose> poses_;
+  std::vector<BodyVelocity> velocities_;
+  std::unique_ptr<Engine> engine_;
+  FrameRange range_;
+  FrameOutputPlan outputs_;
+  IdTables ids_;
+  nlohmann::json header_;
+  std::vector<StaticFile> statics_;
+  std::vector<std::string> folders_;
+  std::vector<std::string> notes_;
+  std::unique_ptr<RayScene> rays_;
+  RenderRequest request_;
+  std::optional<CalibrationSequence> calibration_;
 };
 
 // The memory of one frame's own world (DatasetPlan::frameWorld) over `scene`: its copy (textures

@@ -96,13 +96,13 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
 std::map<int, FrameRecord> intactFrames(const SafeFolder& dir, const DatasetManifest& previous,
                                         const DatasetPlan& plan) {
   std::map<int, FrameRecord> kept;
-  const std::vector<OutputKind> kinds = plan.outputs.fileKinds();
-  const std::vector<CameraSetup>& setups = plan.setups;
+  const std::vector<OutputKind> kinds = plan.outputs().fileKinds();
+  const std::vector<CameraSetup>& setups = plan.setups();
   for (const auto& [index, frame] : previous.frames) {
-    if (index < plan.range.first || index >= plan.range.end || frame.cameras.size() != setups.size()) continue;
-    const RobotPose& want = plan.poses[index];
+    if (index < plan.range().first || index >= plan.range().end || frame.cameras.size() != setups.size()) continue;
+    const RobotPose& want = plan.poses()[index];
     if (frame.robot.x != want.x || frame.robot.y != want.y || frame.robot.yawDeg != want.yawDeg ||
-        !(frame.velocity == plan.velocities[index]) || frame.robotTiltDeg != plan.robotTilt(index))
+        !(frame.velocity == plan.velocities()[index]) || frame.robotTiltDeg != plan.robotTilt(index))
       continue;
     bool intact = true;
     for (size_t c = 0; c < setups.size(); ++c) {
@@ -112,7 +112,7 @@ std::map<int, FrameRecord> intactFrames(const SafeFolder& dir, const DatasetMani
                camera->second.rig == (plan.vibrates() ? std::optional<RigSpec>(plan.frameRig(index, c)) : std::nullopt);
       for (size_t k = 0; intact && k < kinds.size(); ++k) {
         const FileRecord* file = camera->second.file(kinds[k]);
-        intact = file && file->path == plan.outputs.framePath(setup.camera->name, kinds[k], index) &&
+        intact = file && file->path == plan.outputs().framePath(setup.camera->name, kinds[k], index) &&
                  dir.sha256(file->path, kMaxDatasetFileBytes).sha256 == file->sha256;
       }
     }
@@ -127,42 +127,42 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   // At least one frame must fit, before the folder is touched.
   requireMemory(plan.frameBytes(), "one frame of this dataset");
   DatasetRunResult result;
-  result.frames = plan.range.end - plan.range.first;
-  result.notes = plan.notes;
+  result.frames = plan.range().end - plan.range().first;
+  result.notes = plan.notes();
   DatasetManifest manifest;
-  manifest.header = plan.header;
+  manifest.header = plan.header();
 
   // The folder: new, this dataset (resume), or something else (refused unless overwriting a
   // dataset). Everything in it is checked before anything is written: a planted link or a file
   // where a folder goes ends the run here.
-  const std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range.manifestName);
-  for (const std::string& folder : plan.folders) SafeFolder(options.dir).checkFolders(folder);
+  const std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
+  for (const std::string& folder : plan.folders()) SafeFolder(options.dir).checkFolders(folder);
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
-  if (!plan.range.sharded) removeAtomicTemporaries(options.dir);
+  if (!plan.range().sharded) removeAtomicTemporaries(options.dir);
   // Checked: the folder is opened (made when new) once, and everything below is written through
   // its descriptor.
   const SafeFolder folder(options.dir, true);
   if (previous) manifest.frames = intactFrames(folder, *previous, plan);
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.
-  writeManifest(folder, manifest, plan.range.manifestName);
-  for (const std::string& sub : plan.folders) folder.makeFolders(sub);
-  for (const StaticFile& file : plan.statics) folder.writeFile(file.relative, file.text, Durability::Unsynced);
+  writeManifest(folder, manifest, plan.range().manifestName);
+  for (const std::string& sub : plan.folders()) folder.makeFolders(sub);
+  for (const StaticFile& file : plan.statics()) folder.writeFile(file.relative, file.text, Durability::Unsynced);
 
   std::vector<int> todo;
-  for (int f = plan.range.first; f < plan.range.end; ++f)
+  for (int f = plan.range().first; f < plan.range().end; ++f)
     if (!manifest.frames.count(f)) todo.push_back(f);
   if (options.onStart) options.onStart(result.kept, result.frames);
   result.rendered = renderFrames(plan, folder, options, todo, manifest, result.kept, result.frames);
   result.stopped = result.kept + result.rendered < result.frames;
   manifest.header["complete"] = !result.stopped;
   // The annotations gathered per camera, once every frame is there (a shard's: by the merge).
-  if (!result.stopped && !plan.range.sharded) {
+  if (!result.stopped && !plan.range().sharded) {
     writeAnnotationFiles(folder, manifest);
     writeCalibrationBag(folder, manifest);
   }
-  writeManifest(folder, manifest, plan.range.manifestName);
+  writeManifest(folder, manifest, plan.range().manifestName);
   return result;
 }
 

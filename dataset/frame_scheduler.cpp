@@ -35,17 +35,17 @@ void stopIfCancelled() {
 // null, holds camera c's image already rendered (a batching engine); `aovs` is reused memory.
 FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int index, std::vector<ImageRGBA*> rgb,
                         AovFrame& aovs) {
-  const bool wantsAovs = plan.outputs.anyAov();
-  const DatasetSpec& spec = plan.spec;
+  const bool wantsAovs = plan.outputs().anyAov();
+  const DatasetSpec& spec = plan.spec();
   // A calibration sequence's frame has its own scene (the target where it holds it).
-  const std::unique_ptr<FrameWorld> world = plan.movesTarget() ? plan.frameWorld(index, /*withEngine=*/true, plan.rays != nullptr) : nullptr;
-  Engine& engine = world ? *world->engine : *plan.engine;
-  const Scene& scene = world ? world->scene : plan.scene;
-  const RayScene* rays = world ? world->rays.get() : plan.rays.get();
-  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses[index], plan.velocities[index], {},
+  const std::unique_ptr<FrameWorld> world = plan.movesTarget() ? plan.frameWorld(index, /*withEngine=*/true, plan.rays() != nullptr) : nullptr;
+  Engine& engine = world ? *world->engine : plan.engine();
+  const Scene& scene = world ? world->scene : plan.scene();
+  const RayScene* rays = world ? world->rays.get() : plan.rays();
+  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses()[index], plan.velocities()[index], {},
                      plan.robotTilt(index)};
-  for (size_t c = 0; c < plan.setups.size(); ++c) {
-    const CameraSetup& setup = plan.setups[c];
+  for (size_t c = 0; c < plan.setups().size(); ++c) {
+    const CameraSetup& setup = plan.setups()[c];
     const RenderSettings settings = spec.request.settings(plan.frameRig(index, c));
     const CameraPlacement placement = plan.placement(index, c);
     Film film = filmFor(settings, wantsAovs);
@@ -56,13 +56,13 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
     // records the same frames.
     std::optional<RecordingCamera> recording;
     if (spec.recording) {
-      const uint64_t drawIndex = static_cast<uint64_t>(index) * plan.setups.size() + c;
+      const uint64_t drawIndex = static_cast<uint64_t>(index) * plan.setups().size() + c;
       recording = spec.recording->draw(drawIndex);
       film.setResolvedColour(recordFrame(*recording, film.image(), drawIndex));
     }
     std::vector<EncodedFile> files =
         encodeFrameOutputs(scene, rays, settings, setup.camera->name, index, placement, film.image(), film.aovs(),
-                           plan.outputs, plan.ids.classOfInstance);
+                           plan.outputs(), plan.ids().classOfInstance);
     if (wantsAovs) aovs = film.takeAovs();
     stopIfCancelled();
     CameraFrame cameraFrame{placement.footAt(0.0), {}, std::nullopt, std::nullopt};
@@ -79,14 +79,14 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
 
 // A batching engine's images of frames todo[start, end), per camera.
 std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const std::vector<int>& todo, size_t start, size_t end) {
-  std::vector<std::vector<ImageRGBA>> rgb(plan.setups.size());
-  for (size_t c = 0; c < plan.setups.size(); ++c) {
+  std::vector<std::vector<ImageRGBA>> rgb(plan.setups().size());
+  for (size_t c = 0; c < plan.setups().size(); ++c) {
     // One rig for the batch: batches of a vibrating or moving plan hold one frame (renderFrames).
-    const RenderSettings settings = plan.spec.request.settings(plan.frameRig(todo[start], c));
+    const RenderSettings settings = plan.spec().request.settings(plan.frameRig(todo[start], c));
     rgb[c].resize(end - start);
     renderSequence(
         end - start, end - start, [&](size_t k) { return plan.placement(todo[start + k], c); },
-        [&](const std::vector<CameraPlacement>& placements) { return plan.engine->renderMany(placements, settings); },
+        [&](const std::vector<CameraPlacement>& placements) { return plan.engine().renderMany(placements, settings); },
         [&](size_t k, ImageRGBA&& image, double) { rgb[c][k] = std::move(image); });
   }
   return rgb;
@@ -96,7 +96,7 @@ std::vector<std::vector<ImageRGBA>> renderBatch(const DatasetPlan& plan, const s
 
 int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const DatasetRunOptions& options, const std::vector<int>& todo,
                  DatasetManifest& manifest, int done, int total) {
-  const Engine& engine = *plan.engine;
+  const Engine& engine = plan.engine();
   auto stop = [&] { return options.stopRequested && options.stopRequested->load(); };
   // A batching engine (Blender) renders a camera's poses of a batch in one session; a concurrent
   // one (fast, exact) renders a window of frames at once, every frame itself in parallel too.
@@ -113,11 +113,11 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
   for (size_t start = 0; start < todo.size() && !stop(); start += batch) try {
     const size_t end = std::min(todo.size(), start + batch);
     std::vector<std::vector<ImageRGBA>> rgb = batches ? renderBatch(plan, todo, start, end)
-                                                               : std::vector<std::vector<ImageRGBA>>(plan.setups.size());
+                                                               : std::vector<std::vector<ImageRGBA>>(plan.setups().size());
     std::vector<FrameRecord> records(end - start);
     auto renderOne = [&](size_t k) {
-      std::vector<ImageRGBA*> given(plan.setups.size(), nullptr);
-      for (size_t c = 0; c < plan.setups.size(); ++c)
+      std::vector<ImageRGBA*> given(plan.setups().size(), nullptr);
+      for (size_t c = 0; c < plan.setups().size(); ++c)
         if (!rgb[c].empty()) given[c] = &rgb[c][k];
       records[k] = renderFrame(plan, folder, todo[start + k], given, aovSlots[k]);
     };
@@ -135,13 +135,13 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
     // the machine, leaves frames to resume from and a --status that shows them.
     const auto now = std::chrono::steady_clock::now();
     if (start == 0 || std::chrono::duration<double>(now - lastManifest).count() >= kManifestIntervalSeconds) {
-      writeManifest(folder, manifest, plan.range.manifestName);
+      writeManifest(folder, manifest, plan.range().manifestName);
       lastManifest = now;
     }
   } catch (const Interrupted&) {
     // An external renderer was ended by SIGTERM or SIGINT: every finished frame is listed, to
     // resume from.
-    writeManifest(folder, manifest, plan.range.manifestName);
+    writeManifest(folder, manifest, plan.range().manifestName);
     throw;
   }
   return rendered;
