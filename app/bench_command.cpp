@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "cubemap_renderer.h"
 #include "frame_rate.h"
+#include "render_request.h"
 #include "scene_loader.h"
 #include "views.h"
 
@@ -24,9 +25,7 @@ struct BenchArgs {
 
 void runBench(const BenchArgs& a) {
   const Scene scene = loadScene(scenesDir() + "/robocup2006.json");
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  settings.rig.imageSize = 360;
+  const RenderSettings settings = requestedSettings(scene.rig.resized(360), {});
   const FastRenderer fast(scene);
   const CubeMapRenderer cube(fast);
   CubeMapOptions cubemap, mesh;

@@ -103,61 +103,44 @@ std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t
 }
 
 void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
-  const RenderRequest defaults;
-  const auto integer = integerIn(0, INT32_MAX);  // the syntax; readRenderRequest checks the range
-  if (which & kEngineFlag) cmd.add_option("--engine", flags.engine, "fast (default), povray or blender (ground truth)");
-  if (which & kTimeoutFlag)
-    cmd.add_option("--timeout", flags.timeout,
-                   "Seconds allowed per external render (default " + shortNumber(defaults.timeoutSeconds) + ")")
-        ->check(numberIn(0, limits::kMaxTimeoutSeconds, true));
-  if (which & kSppFlag)
-    cmd.add_option("--spp", flags.spp, "Samples per pixel, n*n on a regular grid (default " + std::to_string(defaults.spp) + ")")
-        ->check(integer);
-  if (which & kShadingFlag) {
-    cmd.add_option("--shading", flags.shading,
-                   "unlit (default), lit (the thesis' model) or path (physically based, docs/conventions.md §3)");
-    cmd.add_option("--bounces", flags.bounces,
-                   "path: diffuse bounces per path, as Cycles' diffuse_bounces (default " + std::to_string(defaults.bounces) +
-                       ", as Blender's export)")
-        ->check(integerIn(0, kMaxBounces));
-    cmd.add_option("--seed", flags.seed, "path and blender: the random stream's seed (default 0)")->check(integerIn(0, INT64_MAX));
-    cmd.add_flag("--denoise", flags.denoise,
-                 "Path-traced frames: filter the indirect light, guided by albedo, normal and depth (a small bias)");
-  }
-  if (which & kModeFlags) {
-    cmd.add_option("--mode", flags.mode, "exact (default), cubemap (thesis' cube faces) or thesis-mesh (thesis' mirror mesh)");
-    cmd.add_option("--faces", flags.faces,
-                   "cubemap/thesis-mesh: 5 (the thesis) or 6 cube faces (default " + std::to_string(defaults.modeOptions.faces) + ")")
-        ->check(integer);
-    cmd.add_option("--face-size", flags.faceSize,
-                   "cubemap/thesis-mesh: texels per face edge (default " + std::to_string(defaults.modeOptions.faceSize) + ")")
-        ->check(integer);
-    cmd.add_option("--polygons", flags.polygons,
-                   "thesis-mesh: 16, 64, 256 or 1024 mirror polygons (default " +
-                       std::to_string(defaults.modeOptions.polygons) + ")")
-        ->check(integer);
+  for (const RequestFieldRow& row : requestFieldRows()) {
+    if (!row.cli || !(row.cliGroup & which)) continue;
+    const std::string help = row.help + " (default " + row.defaultText() + ")";
+    switch (row.type) {
+      case RequestFieldType::Switch: cmd.add_flag(row.cli, flags.on[row.field], help); break;
+      case RequestFieldType::Text: cmd.add_option(row.cli, flags.text[row.field], help); break;
+      case RequestFieldType::Integer:
+        cmd.add_option(row.cli, flags.text[row.field], help)->type_name("INT")->check(integerIn(0, row.cliIntegerMax));
+        break;
+      case RequestFieldType::Number:
+        cmd.add_option(row.cli, flags.text[row.field], help)->type_name("FLOAT")->check(numberIn(0, row.cliNumberMax, true));
+        break;
+    }
   }
 }
 
 RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
-  // A flag the verb did not register (addRequestFlags' `which`) was not given.
-  const auto given = [&](const char* flag) {
-    const CLI::Option* option = cmd.get_option_no_throw(flag);
-    return option && option->count() > 0;
-  };
-  RequestFields f;
-  if (given("--engine")) f.engine = flags.engine;
-  if (given("--mode")) f.mode = flags.mode;
-  if (given("--shading")) f.shading = flags.shading;
-  if (given("--faces")) f.faces = flags.faces;
-  if (given("--face-size")) f.faceSize = flags.faceSize;
-  if (given("--polygons")) f.polygons = flags.polygons;
-  if (given("--spp")) f.spp = flags.spp;
-  if (given("--timeout")) f.timeoutSeconds = flags.timeout;
-  if (given("--bounces")) f.bounces = flags.bounces;
-  if (given("--seed")) f.seed = flags.seed;
-  if (given("--denoise")) f.denoise = flags.denoise;
-  return readRenderRequest(f, RequestFieldNames::cli());
+  RequestFields fields;
+  for (const RequestFieldRow& row : requestFieldRows()) {
+    // A flag the verb did not register (addRequestFlags' `which`) was not given.
+    const CLI::Option* option = row.cli ? cmd.get_option_no_throw(row.cli) : nullptr;
+    if (!option || option->count() == 0) continue;
+    switch (row.type) {
+      case RequestFieldType::Switch: fields.set(row.field, flags.on.at(row.field)); break;
+      case RequestFieldType::Text: fields.set(row.field, flags.text.at(row.field)); break;
+      case RequestFieldType::Integer:  // its validator took it: a plain integer in range
+        fields.set(row.field, *parseIntegerIn(flags.text.at(row.field), 0, INT64_MAX));
+        break;
+      case RequestFieldType::Number: {  // its validator took it: a finite number in range
+        const std::string& text = flags.text.at(row.field);
+        double value = 0.0;
+        std::from_chars(text.data(), text.data() + text.size(), value, std::chars_format::general);
+        fields.set(row.field, value);
+        break;
+      }
+    }
+  }
+  return readRenderRequest(fields, RequestFieldNames::cli());
 }
 
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {

@@ -2,6 +2,7 @@
 // Small helpers shared by the CLI verbs: strict number parsing, progress display, data paths.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <map>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -32,21 +33,13 @@ CLI::Validator integerIn(int64_t lo, uint64_t hi);
 CLI::Validator numberIn(double lo, double hi, bool openLow = false);
 // "<text>" as an integer in [lo, hi], or nullopt (the rule integerIn checks).
 std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t hi);
-// The render request's flags (render_request.h) as typed; 0 or "" when not given.
+// The render request's flags (request_fields.h's rows) as given: each flag's text, or a switch.
 struct RequestFlags {
-  std::string engine, mode, shading;
-  int64_t faces = 0, faceSize = 0, polygons = 0, spp = 0, bounces = 0, seed = 0;
-  double timeout = 0.0;
-  bool denoise = false;
+  std::map<RequestField, std::string> text;
+  std::map<RequestField, bool> on;
 };
-enum RequestFlagSet : unsigned {
-  kEngineFlag = 1u,   // --engine
-  kModeFlags = 2u,    // --mode, --faces, --face-size, --polygons
-  kSppFlag = 4u,      // --spp
-  kShadingFlag = 8u,  // --shading, --bounces, --seed
-  kTimeoutFlag = 16u  // --timeout
-};
-// Registers the request's flags in `which` on `cmd`; their help states RenderRequest's defaults.
+// Registers the request's flags in the groups `which` (RequestFlagGroup) on `cmd`, as their rows
+// say; their help states RenderRequest's defaults.
 void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which);
 // The request those flags give (readRenderRequest, naming the flags): a flag not given keeps
 // the request's default.

@@ -5,6 +5,7 @@
 
 #include "demo_figures.h"
 #include "hall_arena.h"
+#include "render_request.h"
 #include "scene_loader.h"
 
 namespace omnicam::cli {
@@ -23,10 +24,7 @@ namespace {
 
 EngineFigures renderGlance(const std::string& out, int spp, bool povray) {
   const Scene scene = loadScene(hallScenePath(out));
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  settings.spp = spp;
-  settings.shading = Shading::Lit;
+  const RenderSettings settings = requestedSettings(scene.rig, {{RequestField::Spp, int64_t{spp}}, {RequestField::Shading, "lit"}});
   std::vector<std::string> engines{"fast"};
   if (povray) engines.push_back("povray");  // the exact ground truth; Blender lit is not a pixel comparison
   return renderAndCompare(out, "glance", "at a glance: robocup2006 in the textured hall, lit", scene, kGlancePose,

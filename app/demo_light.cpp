@@ -9,6 +9,7 @@
 #include "demo_glance.h"
 #include "render_noise.h"
 #include "render_output.h"
+#include "render_request.h"
 #include "scene_loader.h"
 
 namespace omnicam::cli {
@@ -34,11 +35,8 @@ ImageRGBA meanOf(const ImageRGBA& a, const ImageRGBA& b) {
 // measures nine such pairs against 1024-spp references).
 std::string demoLight(const std::string& out, const std::string& scenePath, bool blender) {
   const Scene scene = loadScene(scenePath);
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  settings.shading = Shading::Path;
-  settings.spp = kPathDatasetSpp;
-  settings.denoise = true;
+  const RenderSettings settings = requestedSettings(
+      scene.rig, {{RequestField::Shading, "path"}, {RequestField::Spp, int64_t{kPathDatasetSpp}}, {RequestField::Denoise, true}});
   std::printf("demo: light, fast path shading, %d spp, denoised\n", settings.spp);
   auto fast = makeEngine(RenderRequest{"fast"}, scene);
   const RenderedFile fastFrame = renderToFile(scene, *fast, kGlancePose, settings, out + "/light_fast.png");
@@ -56,9 +54,8 @@ std::string demoLight(const std::string& out, const std::string& scenePath, bool
   RenderSettings small = settings;
   small.rig = settings.rig.resized(kLightReferenceSize);
   const ImageRGBA fastSmall = fast->render(kGlancePose, small);
-  RenderSettings reference = small;
-  reference.spp = kLightReferenceSpp;
-  reference.denoise = false;
+  RenderSettings reference =
+      requestedSettings(small.rig, {{RequestField::Shading, "path"}, {RequestField::Spp, int64_t{kLightReferenceSpp}}});
   auto cycles = makeEngine(RenderRequest{"blender"}, scene);
   std::vector<RenderedFile> seeds;
   for (uint64_t seed : {1, 2}) {

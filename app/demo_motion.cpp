@@ -7,6 +7,7 @@
 #include "atomic_file.h"
 #include "fast_renderer.h"
 #include "image_compare.h"
+#include "render_request.h"
 #include "svg_plot.h"
 #include "trajectory.h"
 #include "vibration.h"
@@ -55,9 +56,7 @@ std::string demoMotion(const std::string& out, const Scene& arena, int spp) {
   for (double t = drive.start(); t < drive.end(); t += kTimeStep)
     if (std::abs(drive.velocityAt(t).yawRateDegPerS) > std::abs(drive.velocityAt(frameTime).yawRateDegPerS)) frameTime = t;
   const RobotPose pose = drive.poseAt(frameTime);
-  RenderSettings global;
-  global.rig = arena.rig;
-  global.spp = spp;
+  RenderSettings global = requestedSettings(arena.rig, {{RequestField::Spp, int64_t{spp}}});
   const CameraPlacement driving(pose, drive.velocityAt(frameTime));
   global.rig.shutter.exposureS = kExposureS;
   RenderSettings rolling = global;

@@ -13,6 +13,7 @@
 #include "number_format.h"
 #include "physical_camera.h"
 #include "render_output.h"
+#include "render_request.h"
 
 namespace omnicam::cli {
 
@@ -20,9 +21,7 @@ namespace omnicam::cli {
 // is turned by 1°, their difference, POV-Ray's ground truth of the misaligned rig, and the
 // best-fit central model's residual map (docs/physical-camera.md).
 std::string demoPhysicalCamera(const std::string& out, const Scene& arena, int spp, bool povray) {
-  RenderSettings settings;
-  settings.rig = arena.rig;
-  settings.spp = spp;
+  const RenderSettings settings = requestedSettings(arena.rig, {{RequestField::Spp, int64_t{spp}}});
   RenderSettings misaligned = settings;
   misaligned.rig.mount.offsetMm = {2.0, -1.0, 1.0};
   misaligned.rig.mount.rotationDeg = {1.0, -0.5, 0.5};

@@ -12,6 +12,7 @@
 #include "demo_figures.h"
 #include "json_text.h"
 #include "render_output.h"
+#include "render_request.h"
 #include "rings.h"
 #include "scene_loader.h"
 #include "svg_plot.h"
@@ -69,10 +70,8 @@ void writeRingPlots(const std::string& out, const OmniCamera& camera, const std:
 std::string openFieldSection(const StartPose& a, const Scene& arena, const std::vector<std::string>& engines) {
   std::ostringstream views;
   for (Shading shading : {Shading::Unlit, Shading::Lit}) {
-    RenderSettings settings;
-    settings.rig = arena.rig;
-    settings.spp = a.spp;
-    settings.shading = shading;
+    const RenderSettings settings =
+        requestedSettings(arena.rig, {{RequestField::Spp, int64_t{a.spp}}, {RequestField::Shading, shadingName(shading)}});
     const std::string s = shadingName(shading);
     views << "<h3>" << s << "</h3>\n"
           << renderAndCompare(a.out, "robocup2006_" + s, "robocup2006, thesis start pose, " + s, arena,
@@ -95,9 +94,7 @@ struct RingSection {
 };
 
 RingSection ringSection(const StartPose& a, const Scene& ringScene, const std::vector<std::string>& engines) {
-  RenderSettings ringSettings;
-  ringSettings.rig = ringScene.rig;
-  ringSettings.spp = a.spp;
+  const RenderSettings ringSettings = requestedSettings(ringScene.rig, {{RequestField::Spp, int64_t{a.spp}}});
   const OmniCamera ringCamera = ringSettings.rig.camera();
   RingSection out;
   std::ostringstream ringFigures, ringTable, ringSummary;
@@ -142,9 +139,7 @@ struct MethodSection {
 
 MethodSection methodSection(const StartPose& a, const Scene& arena) {
   std::ostringstream method, viewFigures;
-  RenderSettings settings;
-  settings.rig = arena.rig;
-  settings.spp = a.spp;
+  const RenderSettings settings = requestedSettings(arena.rig, {{RequestField::Spp, int64_t{a.spp}}});
   const FastRenderer fast(arena);
   const CubeMapRenderer cube(fast);
   const ImageRGBA exact = fast.render(arena.startPose, settings);

@@ -87,9 +87,8 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   }
   if (a.out.empty()) throw InputError("-o: required (or --measure FILE)");
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
-  RequestFields fields;
-  fields.engine = a.engine;
-  fields.spp = a.spp;  // rings default to 16 spp, more than a single render's default
+  // Rings default to 16 spp, more than a single render's default.
+  const RequestFields fields{{RequestField::Engine, a.engine}, {RequestField::Spp, int64_t{a.spp}}};
   const RenderRequest request = readRenderRequest(fields, RequestFieldNames::cli());
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);

@@ -85,10 +85,9 @@ void measureRows(std::vector<Row>& rows, const Scene& arena, const Scene& ringSc
                  const std::filesystem::path& figures) {
   const FastRenderer arenaFast(arena);
   const CubeMapRenderer arenaCube(arenaFast);  // for the cube map's own statistics only
-  RenderSettings quality, ringSettings, timing;
-  quality.rig = arena.rig, quality.spp = a.spp;
-  ringSettings.rig = ringScene.rig, ringSettings.spp = a.spp;
-  timing.rig = arena.rig, timing.spp = 1;
+  const RequestFields sampled{{RequestField::Spp, int64_t{a.spp}}};
+  const RenderSettings quality = requestedSettings(arena.rig, sampled), ringSettings = requestedSettings(ringScene.rig, sampled),
+                       timing = requestedSettings(arena.rig, {});  // one sample, as the thesis timed
 
   const ImageRGBA reference = arenaFast.render(arena.startPose, quality);
   for (Row& row : rows) {

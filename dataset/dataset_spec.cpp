@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "errors.h"
@@ -321,35 +322,41 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
   o.finish();
 }
 
-// The render request's fields (engine, mode, mode_options, spp, shading, timeout_s), typed as
-// JSON; their rules and messages are readRenderRequest's.
-void readRequest(JsonFields& top, DatasetSpec& spec) {
+// The render request's settings (request_fields.h's rows with a JSON name; a dotted name lies in
+// an object of its own), typed as JSON; their rules and messages are readRenderRequest's.
+void readRequestField(JsonFields& object, const std::string& key, const RequestFieldRow& row, RequestFields& f) {
   constexpr int64_t kAny = int64_t{1} << 53;  // exact in every JSON reader; the request checks the range
-  RequestFields f;
-  if (top.has("engine")) f.engine = top.string("engine");
-  if (top.has("mode")) f.mode = top.string("mode");
-  if (auto options = top.optionalObject("mode_options")) {
-    if (options->has("faces")) f.faces = options->integer("faces", -kAny, kAny);
-    if (options->has("face_size")) f.faceSize = options->integer("face_size", -kAny, kAny);
-    if (options->has("polygons")) f.polygons = options->integer("polygons", -kAny, kAny);
-    options->finish();
+  if (!object.has(key)) return;
+  switch (row.type) {
+    case RequestFieldType::Text: f.set(row.field, object.string(key)); break;
+    case RequestFieldType::Integer: f.set(row.field, object.integer(key, -kAny, kAny)); break;
+    case RequestFieldType::Number: f.set(row.field, object.number(key)); break;
+    case RequestFieldType::Switch: f.set(row.field, object.boolean(key, false)); break;
   }
-  if (top.has("spp")) f.spp = top.integer("spp", -kAny, kAny);
-  if (top.has("shading")) f.shading = top.string("shading");
-  if (top.has("timeout_s")) f.timeoutSeconds = top.number("timeout_s");
-  if (top.has("bounces")) f.bounces = top.integer("bounces", -kAny, kAny);
-  if (top.has("seed")) f.seed = top.integer("seed", -kAny, kAny);
-  if (top.has("denoise")) f.denoise = top.boolean("denoise", false);
+}
+
+void readRequest(JsonFields& top, DatasetSpec& spec) {
+  RequestFields f;
+  std::map<std::string, std::vector<const RequestFieldRow*>> nested;  // by the object that holds them
+  for (const RequestFieldRow& row : requestFieldRows()) {
+    if (!row.json) continue;
+    const std::string name = row.json;
+    if (const size_t dot = name.find('.'); dot != std::string::npos) nested[name.substr(0, dot)].push_back(&row);
+    else readRequestField(top, name, row, f);
+  }
+  for (const auto& [objectName, rows] : nested) {
+    auto object = top.optionalObject(objectName);
+    if (!object) continue;
+    for (const RequestFieldRow* row : rows) readRequestField(*object, std::string(row->json).substr(objectName.size() + 1), *row, f);
+    object->finish();
+  }
   spec.request = readRenderRequest(f, RequestFieldNames::json(spec.file));
 }
 
 void readSampling(JsonFields& top, DatasetSpec& spec) {
   if (top.has("size")) {
     spec.size = top.integer("size", 360, limits::kMinImageSize, limits::kMaxImageSize);
-    RenderSettings check;
-    check.rig = check.rig.resized(*spec.size);
-    check.spp = spec.request.spp;
-    checkRenderSettings(check, settingNames(spec));  // size² × spp, before any scene is read
+    checkRenderSettings(spec.request.settings(RigSpec{}.resized(*spec.size)), settingNames(spec));  // size² × spp, before any scene is read
   }
   spec.frameIntervalSeconds =
       top.number("frame_interval_s", spec.frameIntervalSeconds, {0.0, limits::kMaxFrameIntervalSeconds, true, "s"});

@@ -10,6 +10,7 @@
 #include "dataset_plan.h"
 #include "errors.h"
 #include "pose_sampler.h"
+#include "request_fields.h"
 #include "floor_obstacles.h"
 #include "scene_loader.h"
 
@@ -65,6 +66,23 @@ TEST(DatasetSpec, ErrorsNameTheField) {
 }
 
 // Integers are compared as the JSON wrote them: never wrapped into range, never rounded.
+// Issue #47: the spec reader reads every request setting a row gives a JSON name, as the row
+// types it: a wrong type is that field's message, never "unknown field" (a row the reader missed).
+TEST(DatasetSpec, EveryRequestRowWithAJsonNameIsRead) {
+  int read = 0;
+  for (const RequestFieldRow& row : requestFieldRows()) {
+    if (!row.json) continue;
+    const std::string name = row.json;
+    const size_t dot = name.find('.');
+    const std::string field = dot == std::string::npos ? "\"" + name + "\": [1]"
+                                                       : "\"" + name.substr(0, dot) + "\": {\"" + name.substr(dot + 1) + "\": [1]}";
+    const std::string error = errorOf(spec(field));
+    EXPECT_EQ(error.rfind("spec.json: " + name + ": must be", 0), 0u) << name << ": " << error;
+    ++read;
+  }
+  EXPECT_EQ(read, 11);
+}
+
 TEST(DatasetSpec, IntegersOutOfRangeAreRefusedNeverWrapped) {
   EXPECT_EQ(errorOf(spec(R"("spp": 4294967297)")), "spec.json: spp: must be a perfect square n*n from 1 to 1024 (got 4294967297)");
   EXPECT_EQ(errorOf(spec(R"("size": 18446744073709551615)")), "spec.json: size: must be in [8, 16384] (got 18446744073709551615)");

@@ -22,6 +22,7 @@
 #include "make_camera.h"
 #include "placement.h"
 #include "plot_script.h"
+#include "render_request.h"
 #include "safe_files.h"
 #include "scene_loader.h"
 #include "target_detection.h"
@@ -136,9 +137,7 @@ SeedViews seedViews(const CalibrationStudyOptions& o, const Scene& room, const R
   out.viewpointFromTarget = boardPoses(camera, Rigid::Identity(), kGrid, poses);
   out.bySource.assign(3, std::vector<CalibrationView>(out.viewpointFromTarget.size()));
   const std::vector<Vec3> points = targetCorners(kGrid);
-  RenderSettings settings;
-  settings.rig = rig;
-  settings.spp = o.spp;
+  const RenderSettings settings = requestedSettings(rig, {{RequestField::Spp, int64_t{o.spp}}});
   for (size_t v = 0; v < out.viewpointFromTarget.size(); ++v) {
     Scene scene = room;
     placeCalibrationTarget(scene, 0, worldFromViewpoint * out.viewpointFromTarget[v]);

@@ -14,6 +14,7 @@
 #include "hall_arena.h"
 #include "image.h"
 #include "render_noise.h"
+#include "render_request.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -47,13 +48,10 @@ struct StudyScene {
 };
 
 RenderSettings pathSettings(const Scene& scene, int size, int spp, bool denoise, uint64_t seed = 0) {
-  RenderSettings settings;
-  settings.rig = scene.rig.resized(size);
-  settings.spp = spp;
-  settings.shading = Shading::Path;
-  settings.denoise = denoise;
-  settings.seed = seed;
-  return settings;
+  return requestedSettings(scene.rig.resized(size), {{RequestField::Spp, int64_t{spp}},
+                                                     {RequestField::Shading, "path"},
+                                                     {RequestField::Denoise, denoise},
+                                                     {RequestField::Seed, static_cast<int64_t>(seed)}});
 }
 
 ImageRGBA meanOf(const std::vector<ImageRGBA>& frames) {

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "errors.h"
+#include "render_request.h"
 #include "render_settings.h"
 
 namespace omnicam {
@@ -67,17 +68,15 @@ std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<Robo
   if (spp < 1) throw InputError("realistic rendering: spp must be at least 1");
   Scene scene = hall;
   for (PointLight& lamp : scene.lights) lamp.diameter = setup.lampDiameter;
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  settings.rig.imageSize = size;
-  settings.shading = Shading::Lit;
   BlenderOptions options;
   options.timeoutSeconds = timeoutSeconds;
   options.pathTracing = setup.tracing;
   const int sessions = std::max(1, (spp + kSamplesPerSession - 1) / kSamplesPerSession);
   if (sessions > 1 && spp % kSamplesPerSession != 0)
     throw InputError("realistic rendering: above " + std::to_string(kSamplesPerSession) + " spp, a multiple of it");
-  settings.spp = sessions > 1 ? kSamplesPerSession : spp;
+  const int sessionSpp = sessions > 1 ? kSamplesPerSession : spp;
+  const RenderSettings settings =
+      requestedSettings(scene.rig.resized(size), {{RequestField::Shading, "lit"}, {RequestField::Spp, int64_t{sessionSpp}}});
   std::vector<ImageRGBA> sum;
   for (int k = 0; k < sessions; ++k) {
     options.seed = seed + k;

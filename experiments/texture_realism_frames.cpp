@@ -6,19 +6,17 @@
 
 #include "fast_renderer.h"
 #include "landmark_annotations.h"
+#include "render_request.h"
 
 namespace omnicam::texture_realism {
 
 namespace {
 
 RenderSettings settingsFor(const Scene& scene, int size, int spp, Shading shading) {
-  RenderSettings settings;
-  settings.rig = scene.rig;
-  settings.rig.imageSize = size;
-  settings.spp = spp;
-  settings.shading = shading;
-  settings.denoise = shading == Shading::Path;  // as a dataset of path-traced frames would be
-  return settings;
+  // Path-traced frames denoised, as a dataset of them would be.
+  return requestedSettings(scene.rig.resized(size), {{RequestField::Spp, int64_t{spp}},
+                                                     {RequestField::Shading, shadingName(shading)},
+                                                     {RequestField::Denoise, shading == Shading::Path}});
 }
 
 }  // namespace

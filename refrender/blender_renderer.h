@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "image.h"
+#include "render_request.h"
 #include "render_settings.h"
 #include "scene.h"
 
@@ -33,7 +34,7 @@ struct PathTracing {
 };
 
 struct BlenderOptions {
-  double timeoutSeconds = 1800.0;
+  double timeoutSeconds = kDefaultTimeoutSeconds;
   std::string executable = blenderExecutable();
   std::string driver;  // default: the repository's refrender/blender_driver.py
   int seed = 0;

@@ -1,8 +1,9 @@
 #pragma once
 // One render request: which engine renders, in which mode, with which settings (spp, shading,
 // threads, timeout). Read by one reader from CLI flags, dataset JSON and Python keyword
-// arguments: each front end names its fields its own way (RequestFieldNames), the rules, the
-// defaults and the messages are these. makeEngine (render/engines.h) takes the result.
+// arguments, whose settings are the rows of request_fields.h: each front end names them its own
+// way (RequestFieldNames), the rules, the defaults and the messages are these. makeEngine
+// (render/engines.h) takes the result.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -10,13 +11,15 @@
 
 #include "omni_mode.h"
 #include "render_settings.h"
+#include "request_fields.h"
 
 namespace omnicam {
 
 // Seconds an external render (POV-Ray, Blender) may take before it is stopped.
 inline constexpr double kDefaultTimeoutSeconds = 600.0;
 
-struct RenderRequest {
+// The sampling (spp, shading, traced, bounces, seed, denoise) is RenderSampling's, defaults included.
+struct RenderRequest : RenderSampling {
   RenderRequest() = default;
   // The defaults, with this engine (a name readRenderRequest accepts).
   explicit RenderRequest(std::string engineName) : engine(std::move(engineName)) {}
@@ -24,14 +27,8 @@ struct RenderRequest {
   std::string engine = "fast";  // fast, povray or blender
   std::string mode = "exact";   // exact, cubemap or thesis-mesh (fast only)
   CubeMapOptions modeOptions;   // faces, face size, polygons (omni_mode.h's defaults); its own `mode` is unused
-  int spp = 1;
-  Shading shading = Shading::Unlit;
-  bool traced = false;          // the fast engine traces even the ideal rig (render_settings.h)
   int threads = 0;              // a ground truth's render threads; 0: every core
   double timeoutSeconds = kDefaultTimeoutSeconds;
-  int bounces = kDefaultBounces;  // path shading only
-  uint64_t seed = 0;              // path shading and Blender: the random stream
-  bool denoise = false;           // path-traced frames: filter the indirect light
 
   // The mode's options (their `mode` taken from `mode`), or nullopt for exact.
   std::optional<CubeMapOptions> cubeMap() const {
@@ -40,26 +37,13 @@ struct RenderRequest {
     options.mode = omniModeNamed(mode).value_or(OmniMode::CubeMap);
     return options;
   }
-  // The settings of a render of `rig` with this request.
-  RenderSettings settings(const RigSpec& rig) const { return {rig, spp, shading, traced, bounces, seed, denoise}; }
-};
-
-// How a front end names each field in messages, and a prefix before them (a spec's file name).
-struct RequestFieldNames {
-  std::string prefix;
-  std::string engine = "engine", mode = "mode", faces = "faces", faceSize = "face_size", polygons = "polygons",
-              spp = "spp", shading = "shading", traced = "traced", threads = "threads", timeout = "timeout",
-              bounces = "bounces", seed = "seed", denoise = "denoise";
-  static RequestFieldNames cli();                         // --engine, --face-size, …
-  static RequestFieldNames json(const std::string& file);  // "FILE: engine", "FILE: mode_options.faces", …
-};
-
-// The fields as a user gave them: an absent one takes RenderRequest's default.
-struct RequestFields {
-  std::optional<std::string> engine, mode, shading;
-  std::optional<int64_t> faces, faceSize, polygons, spp, threads, bounces, seed;
-  std::optional<double> timeoutSeconds;
-  std::optional<bool> traced, denoise;
+  // The settings of a render of `rig` with this request: the only way settings are made.
+  RenderSettings settings(const RigSpec& rig) const {
+    RenderSettings out;
+    static_cast<RenderSampling&>(out) = *this;
+    out.rig = rig;
+    return out;
+  }
 };
 
 // The rules of the cube-map / thesis-mesh options (faces 5 or 6, 8–8192 texels a face edge,
@@ -72,5 +56,9 @@ void checkModeOptions(const CubeMapOptions& options, const RequestFieldNames& na
 // a mode or timeout the engine does not have, spp not a perfect square up to the limit, threads
 // out of range, bounces without path shading or out of 0–kMaxBounces, a seed out of 0–2^53.
 RenderRequest readRenderRequest(const RequestFields& fields, const RequestFieldNames& names);
+
+// The settings of a render of `rig` with the request `fields` give (readRenderRequest, in the
+// library's names): how the demo, the bench and the experiments ask for their renders.
+RenderSettings requestedSettings(const RigSpec& rig, const RequestFields& fields);
 
 }  // namespace omnicam

@@ -19,8 +19,9 @@ inline constexpr int kDefaultBounces = 2;
 inline constexpr int kPathDatasetSpp = 36;
 inline constexpr int kMaxBounces = 64;
 
-struct RenderSettings {
-  RigSpec rig;     // usually the scene's, with --size applied
+// How a render samples and shades, whatever the camera: declared once, with its defaults, for
+// the request that asks for it (render_request.h) and the settings every engine reads.
+struct RenderSampling {
   int spp = 1;     // n² samples on an n×n regular grid per pixel (docs/conventions.md §2)
   Shading shading = Shading::Unlit;
   // The fast renderer traces the physical camera through the mirror even for the ideal rig,
@@ -33,6 +34,11 @@ struct RenderSettings {
   // Path-traced frames (the fast renderer's path shading, Blender's lit and path): filter the
   // indirect light guided by the albedo, normal and depth (denoise/indirect_filter.h).
   bool denoise = false;
+};
+
+// What every engine reads: the sampling, and the rig whose camera renders.
+struct RenderSettings : RenderSampling {
+  RigSpec rig;  // usually the scene's, with --size applied
 };
 
 const char* shadingName(Shading shading);

@@ -14,6 +14,7 @@
 
 #include "image.h"
 #include "mirror.h"
+#include "request_fields.h"
 #include "scene_loader.h"
 #include "sha256.h"
 #include "shell_command.h"
@@ -51,6 +52,28 @@ std::string poseArg(double x, double y, double yaw) {
   std::ostringstream s;
   s << "--pose=" << x << "," << y << "," << yaw;
   return s.str();
+}
+
+// Issue #47: every request setting with a flag is a flag of `render` (which registers every
+// group), its help stating the row's default; a flag with a bad value is refused naming it.
+TEST_F(CliTest, EveryRequestRowWithAFlagIsAFlagOfRender) {
+  const CommandResult help = run("render --help");
+  ASSERT_EQ(help.code, 0) << help.out;
+  int flags = 0;
+  for (const RequestFieldRow& row : requestFieldRows()) {
+    if (!row.cli) continue;
+    ++flags;
+    const size_t at = help.out.find(std::string("  ") + row.cli + " ");
+    ASSERT_NE(at, std::string::npos) << row.cli << " is not a flag of render:\n" << help.out;
+    const std::string line = help.out.substr(at, help.out.find("\n  -", at + 1) - at);  // with its wrapped help
+    EXPECT_NE(line.find("(default " + row.defaultText() + ")"), std::string::npos) << line;
+    if (row.type == RequestFieldType::Switch) continue;
+    const CommandResult bad = run("render " + kScene + " " + row.cli + "=x -o " + path("x.png"));
+    EXPECT_EQ(bad.code, 2) << bad.out;
+    EXPECT_EQ(bad.out.rfind(std::string("omnicam: ") + row.cli + ": ", 0), 0u) << row.cli << ": " << bad.out;
+  }
+  EXPECT_EQ(flags, 11);
+  EXPECT_TRUE(dirEmpty());
 }
 
 TEST_F(CliTest, EachBeaconBandAppearsWhereProjectPutsIt) {

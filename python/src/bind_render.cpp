@@ -75,12 +75,12 @@ class PyRenderer {
     if (!recording.is_none())
       camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "recording=", "recording").draw(frame);
     RequestFields fields = engineFields_;
-    fields.spp = wideInteger(spp, "spp");
-    fields.shading = shading;
-    if (traced) fields.traced = true;
-    fields.bounces = wideInteger(bounces, "bounces");
-    fields.seed = wideInteger(seed, "seed");
-    if (denoise) fields.denoise = true;
+    fields.setIfGiven(RequestField::Spp, wideInteger(spp, "spp"));
+    fields.setIfGiven(RequestField::Shading, shading);
+    if (traced) fields.set(RequestField::Traced, true);
+    fields.setIfGiven(RequestField::Bounces, wideInteger(bounces, "bounces"));
+    fields.setIfGiven(RequestField::Seed, wideInteger(seed, "seed"));
+    if (denoise) fields.set(RequestField::Denoise, true);
     const RenderRequest request = readRenderRequest(fields, {});
     RenderSettings settings = request.settings(rig.value_or(scene_->rig));
     if (size) settings.rig = settings.rig.resized(size, "size");
@@ -108,9 +108,8 @@ class PyRenderer {
   double renderRepeatedly(const py::object& pose, const PyInteger& framesArg, const PyInteger& sizeArg, const PyInteger& sppArg) {
     const int frames = narrowed(framesArg, "frames", 0, 1000000), size = optionalSize(sizeArg),
               spp = narrowed(sppArg, "spp", 1, limits::kMaxSpp);
-    RenderSettings settings;
-    settings.rig = size ? scene_->rig.resized(size, "size") : scene_->rig;
-    settings.spp = spp;
+    const RenderRequest request = readRenderRequest({{RequestField::Spp, int64_t{spp}}}, {});
+    const RenderSettings settings = request.settings(size ? scene_->rig.resized(size, "size") : scene_->rig);
     checkRenderSettings(settings);
     const RobotPose robot = pose.is_none() ? scene_->startPose : poseFrom(pose, "pose");
     py::gil_scoped_release release;
@@ -155,11 +154,14 @@ class PyRenderer {
   std::mutex mutex_;
 };
 
-constexpr const char* kRenderDoc = R"(Renders the scene from a robot pose (x, y, yaw_deg; default the scene's start pose).
+// The render settings' defaults are their rows' (request_fields.h).
+std::string renderDoc() {
+  return R"(Renders the scene from a robot pose (x, y, yaw_deg; default the scene's start pose).
 
 rig: another rig (default the scene's); size: the image size (default the rig's); spp: samples
 per pixel, a perfect square; shading: "unlit", "lit" or "path" (physically based,
-docs/conventions.md §3) with bounces (diffuse bounces, default 2), seed (the random stream) and
+docs/conventions.md §3) with bounces (diffuse bounces, default )" +
+         requestFieldRow(RequestField::Bounces).defaultText() + R"(), seed (the random stream) and
 denoise (filter the indirect light); traced: trace the physical camera even
 for the ideal rig; velocity: (vx, vy, yaw_rate_deg_per_s), the robot's body velocity over the
 rig's shutter (docs/motion.md; the pose is the exposure start's). outputs, named and shaped as
@@ -170,31 +172,34 @@ pixel centres, fast engine only. recording: what a real camera makes of the colo
 exact): a preset's name ("webcam", "machine_vision", "phone") or a dict in a dataset's
 `recording` format (docs/experiments.md), its distributions drawn for `frame` (default 0) from
 its seed, as a dataset draws frame × cameras + camera. Returns a dict
-of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.)";
+of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.
+Every setting's default and range: docs/render-settings.md.)";
+}
 
-const std::string kOneRenderDoc =
-    std::string("One render with a new Renderer (a loop over poses should keep one Renderer instead).\n\n") + kRenderDoc;
+std::string oneRenderDoc() {
+  return "One render with a new Renderer (a loop over poses should keep one Renderer instead).\n\n" + renderDoc();
+}
 
 }  // namespace
 
 void bindRender(py::module_& m) {
   py::class_<PyRenderer>(m, "Renderer", R"(A renderer of one scene, reused across renders (docs/python.md).
 
-engine: "fast" (default), "povray" or "blender" (ground truths: colour only); mode: "exact",
-"cubemap" or "thesis-mesh" (fast engine only) with faces, face_size and polygons; timeout: seconds
-per ground-truth frame; threads: 0 for every core.)")
+engine: "fast", "povray" or "blender" (ground truths: colour only); mode: "exact", "cubemap" or
+"thesis-mesh" (fast engine only) with faces, face_size and polygons; timeout: seconds per
+ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-settings.md.)")
       .def(py::init([](std::shared_ptr<Scene> scene, const std::optional<std::string>& engine, const std::optional<std::string>& mode,
                        const std::optional<PyInteger>& faces, const std::optional<PyInteger>& faceSize,
                        const std::optional<PyInteger>& polygons, const std::optional<double>& timeout,
                        const std::optional<PyInteger>& threads) {
              RequestFields fields;
-             fields.engine = engine;
-             fields.mode = mode;
-             fields.faces = wideInteger(faces, "faces");
-             fields.faceSize = wideInteger(faceSize, "face_size");
-             fields.polygons = wideInteger(polygons, "polygons");
-             fields.timeoutSeconds = timeout;
-             if (threads) fields.threads = narrowed(*threads, "threads", 0, limits::kMaxThreads);
+             fields.setIfGiven(RequestField::Engine, engine);
+             fields.setIfGiven(RequestField::Mode, mode);
+             fields.setIfGiven(RequestField::Faces, wideInteger(faces, "faces"));
+             fields.setIfGiven(RequestField::FaceSize, wideInteger(faceSize, "face_size"));
+             fields.setIfGiven(RequestField::Polygons, wideInteger(polygons, "polygons"));
+             fields.setIfGiven(RequestField::Timeout, timeout);
+             if (threads) fields.set(RequestField::Threads, int64_t{narrowed(*threads, "threads", 0, limits::kMaxThreads)});
              // The renderer keeps its own copy: changing the Python scene later does not change it.
              return std::make_unique<PyRenderer>(std::make_shared<const Scene>(*scene), fields);
            }),
@@ -205,7 +210,7 @@ per ground-truth frame; threads: 0 for every core.)")
            py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
            py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
            py::arg("bounces") = py::none(), py::arg("seed") = py::none(), py::arg("denoise") = false,
-           py::arg("recording") = py::none(), py::arg("frame") = 0, kRenderDoc)
+           py::arg("recording") = py::none(), py::arg("frame") = 0, renderDoc().c_str())
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -213,13 +218,29 @@ per ground-truth frame; threads: 0 for every core.)")
                              "Whether renders from several threads run at once.");
 
   m.def(
+      "_request_fields",
+      [] {
+        py::list rows;
+        for (const RequestFieldRow& row : requestFieldRows()) {
+          py::dict d;
+          d["python"] = row.python;
+          d["place"] = row.pythonPlace == PythonPlace::Renderer ? "Renderer" : row.pythonPlace == PythonPlace::Render ? "render" : "";
+          d["cli"] = row.cli ? py::object(py::str(row.cli)) : py::object(py::none());
+          d["json"] = row.json ? py::object(py::str(row.json)) : py::object(py::none());
+          d["default"] = row.defaultText();
+          rows.append(d);
+        }
+        return rows;
+      },
+      "The render request's settings as rows (docs/render-settings.md): each keyword's place and names.");
+  m.def(
       "render",
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::optional<std::string>& engine, const std::optional<RigSpec>& rig,
          const PyInteger& size, const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
          const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
          const std::optional<PyInteger>& seed, bool denoise, const py::object& recording, const PyInteger& frame) {
         RequestFields fields;
-        fields.engine = engine;
+        fields.setIfGiven(RequestField::Engine, engine);
         PyRenderer renderer(std::make_shared<const Scene>(*scene), fields);
         return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity, bounces, seed, denoise, recording, frame);
       },
@@ -227,7 +248,7 @@ per ground-truth frame; threads: 0 for every core.)")
       py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), py::arg("bounces") = py::none(),
       py::arg("seed") = py::none(), py::arg("denoise") = false, py::arg("recording") = py::none(), py::arg("frame") = 0,
-      kOneRenderDoc.c_str());
+      oneRenderDoc().c_str());
 }
 
 }  // namespace omnicam::python
