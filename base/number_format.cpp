@@ -1,6 +1,7 @@
 #include "number_format.h"
 
 #include <charconv>
+#include <iomanip>
 #include <locale>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,13 @@ std::string shortNumber(double value) {
   std::ostringstream s;
   s.imbue(std::locale::classic());
   s << value;
+  return s.str();
+}
+
+std::string fixedDecimals(double value, int decimals) {
+  std::ostringstream s;
+  s.imbue(std::locale::classic());
+  s << std::fixed << std::setprecision(decimals) << value;
   return s.str();
 }
 

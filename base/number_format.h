@@ -13,4 +13,6 @@ std::string yamlNumber(double value);
 std::string yamlFloat(double value);
 // A number for messages: at most 6 significant digits ("0.001", "1e+06", "10000"), any locale.
 std::string shortNumber(double value);
+// `value` with exactly `decimals` digits after the point ("3.14"), for reports; any locale.
+std::string fixedDecimals(double value, int decimals);
 }  // namespace omnicam

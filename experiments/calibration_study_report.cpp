@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "calibration_study.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -70,12 +71,6 @@ SourceSummary summarise(const RigOutcome& rig, CornerSource source, const Calibr
   return s;
 }
 
-std::string fixed(double v, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, v);
-  return text;
-}
-
 size_t distanceIndex(const CalibrationStudyOptions& o, double distance) {
   for (size_t d = 0; d < o.heldOutDistancesM.size(); ++d)
     if (o.heldOutDistancesM[d] == distance) return d;
@@ -85,16 +80,16 @@ size_t distanceIndex(const CalibrationStudyOptions& o, double distance) {
 
 void sweepTable(std::ostringstream& md, const CalibrationStudyResults& r, const CalibrationStudyOptions& o, bool lens) {
   std::string distances;
-  for (double d : o.heldOutDistancesM) distances += (distances.empty() ? "" : " / ") + fixed(d, d < 1 ? 1 : 0) + " m";
+  for (double d : o.heldOutDistancesM) distances += (distances.empty() ? "" : " / ") + fixedDecimals(d, d < 1 ? 1 : 0) + " m";
   md << "| rig | corners from | RMS px | held-out RMS px at " << distances << " | mrad at 0.5 m | triangulation at "
-     << fixed(o.triangulationDistanceM, 0) << " m, mm (median / 90 %) | worst seed at 0.5 m, px | failed: initialisation / diverged; partial models |\n"
+     << fixedDecimals(o.triangulationDistanceM, 0) << " m, mm (median / 90 %) | worst seed at 0.5 m, px | failed: initialisation / diverged; partial models |\n"
      << "|---|---|---:|---:|---:|---:|---:|---:|\n";
   const size_t half = distanceIndex(o, kHeadlineDistanceM);
   for (const RigOutcome& rig : r.rigs) {
     if (rig.misalignment.distorted != lens) continue;
     md << "| " << rig.misalignment.label() << " | best central model | — | ";
-    for (size_t d = 0; d < rig.bestFitHeldOut.size(); ++d) md << (d ? " / " : "") << fixed(rig.bestFitHeldOut[d].rmsPx, 2);
-    md << " | " << fixed(rig.bestFitHeldOut[half].rmsMrad, 2) << " | — | — | — |\n";
+    for (size_t d = 0; d < rig.bestFitHeldOut.size(); ++d) md << (d ? " / " : "") << fixedDecimals(rig.bestFitHeldOut[d].rmsPx, 2);
+    md << " | " << fixedDecimals(rig.bestFitHeldOut[half].rmsMrad, 2) << " | — | — | — |\n";
     for (CornerSource source : {CornerSource::Exact, CornerSource::Detected, CornerSource::DetectedNoisy}) {
       const SourceSummary s = summarise(rig, source, o);
       md << "| | " << cornerSourceTitle(source) << " | ";
@@ -102,10 +97,10 @@ void sweepTable(std::ostringstream& md, const CalibrationStudyResults& r, const 
         md << "— | — | — | — | — | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << "; 0 |\n";
         continue;
       }
-      md << fixed(s.rms, 3) << " | ";
-      for (size_t d = 0; d < s.heldOutPx.size(); ++d) md << (d ? " / " : "") << fixed(s.heldOutPx[d], 2);
-      md << " | " << fixed(s.heldOutMrad[half], 2) << " | " << fixed(s.triangulationMm, 1) << " / " << fixed(s.triangulationP90Mm, 1)
-         << " | " << fixed(s.worstHeldOutPx, 2) << " | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << "; "
+      md << fixedDecimals(s.rms, 3) << " | ";
+      for (size_t d = 0; d < s.heldOutPx.size(); ++d) md << (d ? " / " : "") << fixedDecimals(s.heldOutPx[d], 2);
+      md << " | " << fixedDecimals(s.heldOutMrad[half], 2) << " | " << fixedDecimals(s.triangulationMm, 1) << " / " << fixedDecimals(s.triangulationP90Mm, 1)
+         << " | " << fixedDecimals(s.worstHeldOutPx, 2) << " | " << s.failed - s.diverged << " / " << s.diverged << " of " << s.runs << "; "
          << s.partial << " |\n";
     }
   }
@@ -136,7 +131,7 @@ std::optional<double> crossing(const CalibrationStudyResults& r, const Calibrati
 
 // "the training RMS reaches 0.3 px at ≈ 1.86 mm", or that it stays below it through the sweep.
 std::string reaches(const std::string& what, const std::string& threshold, const std::optional<double>& amount, const std::string& unit) {
-  return amount ? what + " reaches " + threshold + " at ≈ " + fixed(*amount, 2) + " " + unit
+  return amount ? what + " reaches " + threshold + " at ≈ " + fixedDecimals(*amount, 2) + " " + unit
                 : what + " stays below " + threshold + " through the sweep";
 }
 
@@ -155,11 +150,11 @@ std::string headline(const CalibrationStudyResults& r, const CalibrationStudyOpt
     const std::optional<double> bad = crossing(r, o, kind, CornerSource::Exact, atHalf, kBadHeldOutPx);
     const std::optional<double> badNear = crossing(r, o, kind, CornerSource::Exact, atNear, kBadHeldOutPx);
     md << "- **" << kind << "** (model error alone, exact corners): "
-       << reaches("the training RMS", fixed(kGoodRmsPx, 1) + " px", good, unit) << "; "
-       << reaches("the held-out error at 0.5 m", fixed(kBadHeldOutPx, 0) + " px", bad, unit) << " ("
-       << reaches("at 0.2 m it", fixed(kBadHeldOutPx, 0) + " px", badNear, unit) << ")";
+       << reaches("the training RMS", fixedDecimals(kGoodRmsPx, 1) + " px", good, unit) << "; "
+       << reaches("the held-out error at 0.5 m", fixedDecimals(kBadHeldOutPx, 0) + " px", bad, unit) << " ("
+       << reaches("at 0.2 m it", fixedDecimals(kBadHeldOutPx, 0) + " px", badNear, unit) << ")";
     if (bad && (!good || *bad < *good))
-      md << ". **From " << fixed(*bad, 2) << " " << unit << (good ? " to " + fixed(*good, 2) + " " + unit : std::string(" on"))
+      md << ". **From " << fixedDecimals(*bad, 2) << " " << unit << (good ? " to " + fixedDecimals(*good, 2) + " " + unit : std::string(" on"))
          << " the calibration looks fine and errs more than a pixel at 0.5 m.**\n";
     else if (bad)
       md << ": the training RMS flags it first.\n";
@@ -180,7 +175,7 @@ std::string headline(const CalibrationStudyResults& r, const CalibrationStudyOpt
       }
     }
     md << "- **" << cornerSourceTitle(source) << "**: " << fineButOff << " of the " << fine << " calibrations with RMS < "
-       << fixed(kGoodRmsPx, 1) << " px err more than " << fixed(kBadHeldOutPx, 0) << " px at 0.5 m; " << fineButOffCentral
+       << fixedDecimals(kGoodRmsPx, 1) << " px err more than " << fixedDecimals(kBadHeldOutPx, 0) << " px at 0.5 m; " << fineButOffCentral
        << " of them on rigs whose exact corners calibrate to < 0.1 px there (the detections' error, extrapolated).\n";
   }
   return md.str();
@@ -191,15 +186,15 @@ void idealRigTable(std::ostringstream& md, const CalibrationStudyResults& r, con
   for (const RigOutcome& rig : r.rigs) {
     if (rig.misalignment.kind != "ideal" || rig.misalignment.distorted) continue;
     const MeiIntrinsics& t = rig.truth;
-    md << "| closed form | " << fixed(t.xi, 6) << " | " << fixed(t.gammaX, 3) << " | " << fixed(t.gammaY, 3) << " | "
-       << fixed(t.cx, 3) << " | " << fixed(t.cy, 3) << " | — |\n";
+    md << "| closed form | " << fixedDecimals(t.xi, 6) << " | " << fixedDecimals(t.gammaX, 3) << " | " << fixedDecimals(t.gammaY, 3) << " | "
+       << fixedDecimals(t.cx, 3) << " | " << fixedDecimals(t.cy, 3) << " | — |\n";
     for (CornerSource source : {CornerSource::Exact, CornerSource::Detected, CornerSource::DetectedNoisy}) {
       const SourceSummary s = summarise(rig, source, o);
       if (s.failed == s.runs) continue;
-      const auto rel = [](double v, double truth) { return fixed(100.0 * (v - truth) / std::abs(truth), 2) + " %"; };
-      md << "| " << cornerSourceTitle(source) << " | " << fixed(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixed(s.gammaX, 3) << " ("
-         << rel(s.gammaX, t.gammaX) << ") | " << fixed(s.gammaY, 3) << " (" << rel(s.gammaY, t.gammaY) << ") | " << fixed(s.cx, 3)
-         << " | " << fixed(s.cy, 3) << " | " << fixed(s.rms, 3) << " |\n";
+      const auto rel = [](double v, double truth) { return fixedDecimals(100.0 * (v - truth) / std::abs(truth), 2) + " %"; };
+      md << "| " << cornerSourceTitle(source) << " | " << fixedDecimals(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixedDecimals(s.gammaX, 3) << " ("
+         << rel(s.gammaX, t.gammaX) << ") | " << fixedDecimals(s.gammaY, 3) << " (" << rel(s.gammaY, t.gammaY) << ") | " << fixedDecimals(s.cx, 3)
+         << " | " << fixedDecimals(s.cy, 3) << " | " << fixedDecimals(s.rms, 3) << " |\n";
     }
   }
 }
@@ -210,8 +205,8 @@ void centralModelTable(std::ostringstream& md, const CalibrationStudyResults& r,
     if (rig.misalignment.distorted) continue;
     const SourceSummary exact = summarise(rig, CornerSource::Exact, o), noisy = summarise(rig, CornerSource::DetectedNoisy, o);
     const auto cell = [&](double best, double e, double n, int decimals) {
-      return fixed(best, decimals) + " / " + (exact.failed < exact.runs ? fixed(e, decimals) : "—") + " / " +
-             (noisy.failed < noisy.runs ? fixed(n, decimals) : "—");
+      return fixedDecimals(best, decimals) + " / " + (exact.failed < exact.runs ? fixedDecimals(e, decimals) : "—") + " / " +
+             (noisy.failed < noisy.runs ? fixedDecimals(n, decimals) : "—");
     };
     const MeiIntrinsics& t = rig.truth;
     md << "| " << rig.misalignment.label() << " | " << cell(t.xi, exact.xi, noisy.xi, 4) << " | "
@@ -224,9 +219,9 @@ void centralModelTable(std::ostringstream& md, const CalibrationStudyResults& r,
 void localisationTable(std::ostringstream& md, const CalibrationStudyResults& r) {
   for (const RigOutcome& rig : r.rigs) {
     const EkfComparison& e = rig.ekf;
-    const auto cm = [](double v) { return std::isnan(v) ? std::string("— (no calibration)") : fixed(v, 1); };
-    md << "| " << rig.misalignment.label() << " | " << fixed(e.odometryCm, 1) << " | " << fixed(e.trueRaysCm, 1) << " | "
-       << fixed(e.nominalCm, 1) << " (" << fixed(100.0 * e.nominalUsedShare, 0) << " %) | " << cm(e.calibratedExactCm) << " | " << cm(e.calibratedCm) << " |\n";
+    const auto cm = [](double v) { return std::isnan(v) ? std::string("— (no calibration)") : fixedDecimals(v, 1); };
+    md << "| " << rig.misalignment.label() << " | " << fixedDecimals(e.odometryCm, 1) << " | " << fixedDecimals(e.trueRaysCm, 1) << " | "
+       << fixedDecimals(e.nominalCm, 1) << " (" << fixedDecimals(100.0 * e.nominalUsedShare, 0) << " %) | " << cm(e.calibratedExactCm) << " | " << cm(e.calibratedCm) << " |\n";
   }
 }
 
@@ -235,7 +230,7 @@ void localisationTable(std::ostringstream& md, const CalibrationStudyResults& r)
 std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const CalibrationStudyOptions& o, const std::string& command) {
   std::ostringstream md;
   md << "# The calibration study: what misalignment does to a calibrated omnicam\n\n"
-     << "Generated by `" << command << "` (" << fixed(r.seconds / 60.0, 1) << " min on this machine); do not edit by hand.\n\n"
+     << "Generated by `" << command << "` (" << fixedDecimals(r.seconds / 60.0, 1) << " min on this machine); do not edit by hand.\n\n"
      << "A user calibrates the robot's omnicam as the tools teach: a Kalibr AprilGrid (6 × 6 tags of 88 mm) waved at " << o.views
      << " seeded poses 0.3–1.0 m from the camera, its corners found by AprilTag, `cv::omnidir::calibrate` (Mei's unified model with "
         "radial-tangential distortion, skew fixed) on them. omnicam repeats that on rigs whose camera is misaligned behind the "
@@ -245,12 +240,12 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
         "shot and read noise, vignetting, JPEG). Each calibrated model, placed by its own extrinsics, is then measured where no "
         "board was — every pixel of the image: the reprojection error of points on the true rays at each distance, the angle "
         "between its ray and the true one (mrad), and the error of points at "
-     << fixed(o.triangulationDistanceM, 0) << " m triangulated after the robot drove " << fixed(o.triangulationBaselineM, 2)
+     << fixedDecimals(o.triangulationDistanceM, 0) << " m triangulated after the robot drove " << fixedDecimals(o.triangulationBaselineM, 2)
      << " m. `best central model` is the best any central calibration can do (`camera/central_fit.h`: fitted to every ray); for "
         "the ideal rig it is the closed form. Numbers are medians over the seeds that converged (a seed's detections can "
         "throw its calibration far off: the worst seed's held-out error is shown beside).\n\n";
-  md << "## Headline\n\nWhere a calibration looks fine (training RMS < " << fixed(kGoodRmsPx, 1) << " px) while it errs by more than "
-     << fixed(kBadHeldOutPx, 0) << " px on held-out points 0.5 m away (amounts interpolated between the swept ones, medians over "
+  md << "## Headline\n\nWhere a calibration looks fine (training RMS < " << fixedDecimals(kGoodRmsPx, 1) << " px) while it errs by more than "
+     << fixedDecimals(kBadHeldOutPx, 0) << " px on held-out points 0.5 m away (amounts interpolated between the swept ones, medians over "
      << "seeds, no lens):\n\n"
      << headline(r, o) << "\n";
   md << "## The ideal rig: recovered against the closed form\n\n| corners from | ξ | γx | γy | cx | cy | RMS px |\n|---|---:|---:|---:|---:|---:|---:|\n";

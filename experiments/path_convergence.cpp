@@ -16,6 +16,7 @@
 #include "render_noise.h"
 #include "render_request.h"
 #include "scene_loader.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -318,14 +319,6 @@ nlohmann::json pathConvergenceJson(const PathConvergenceResults& r) {
 
 namespace {
 
-std::string fixed(double value, int decimals) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(decimals);
-  s << value;
-  return s.str();
-}
-
 }  // namespace
 
 std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::string& command) {
@@ -336,17 +329,17 @@ std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::
      << "Cycles reference: " << o.referenceSpp << " spp, unfiltered. Converged fast frame: "
      << o.fastConvergedSpp * o.fastConvergedSeeds << " spp, unfiltered. Dataset frame: fast, " << o.chosenSpp
      << " spp, denoised. Cycles realistic frame: " << o.cyclesSpp << " spp, denoised (the texture-realism experiment's). "
-     << "Took " << fixed(r.seconds / 60.0, 0) << " min.\n\n"
+     << "Took " << fixedDecimals(r.seconds / 60.0, 0) << " min.\n\n"
      << "| scene | pose | converged fast vs Cycles dB | Cycles' own noise dB | fast's own noise dB | disagreement dB | "
         "mean ratio | filter bias dB | dataset frame dB | its s | Cycles realistic dB | its s |\n"
         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  const auto orDash = [](double v) { return v > 0.0 ? fixed(v, 2) : std::string("–"); };
+  const auto orDash = [](double v) { return v > 0.0 ? fixedDecimals(v, 2) : std::string("–"); };
   for (const PathFrameResult& f : r.frames)
-    md << "| " << f.scene << " | (" << fixed(f.pose.x, 1) << ", " << fixed(f.pose.y, 1) << ", " << fixed(f.pose.yawDeg, 0)
-       << "°) | " << fixed(f.convergedPsnrDb, 2) << " | " << orDash(f.referenceNoiseDb) << " | " << orDash(f.fastNoiseDb)
-       << " | " << (f.disagreementDb >= 99.0 ? std::string("within the noise") : fixed(f.disagreementDb, 2))
-       << " | " << fixed(f.meanRatio, 4) << " | " << fixed(f.filterBiasPsnrDb, 2) << " | " << fixed(f.chosenPsnrDb, 2)
-       << " | " << fixed(f.chosenSeconds, 3) << " | " << fixed(f.cyclesPsnrDb, 2) << " | " << fixed(f.cyclesSeconds, 1) << " |\n";
+    md << "| " << f.scene << " | (" << fixedDecimals(f.pose.x, 1) << ", " << fixedDecimals(f.pose.y, 1) << ", " << fixedDecimals(f.pose.yawDeg, 0)
+       << "°) | " << fixedDecimals(f.convergedPsnrDb, 2) << " | " << orDash(f.referenceNoiseDb) << " | " << orDash(f.fastNoiseDb)
+       << " | " << (f.disagreementDb >= 99.0 ? std::string("within the noise") : fixedDecimals(f.disagreementDb, 2))
+       << " | " << fixedDecimals(f.meanRatio, 4) << " | " << fixedDecimals(f.filterBiasPsnrDb, 2) << " | " << fixedDecimals(f.chosenPsnrDb, 2)
+       << " | " << fixedDecimals(f.chosenSeconds, 3) << " | " << fixedDecimals(f.cyclesPsnrDb, 2) << " | " << fixedDecimals(f.cyclesSeconds, 1) << " |\n";
   md << "\nOwn noise: a frame's PSNR against its own converged frame, from the difference of two frames of "
         "other seeds (two frames of noise σ² differ by 2σ²). Disagreement: the squared difference of the converged "
         "frames less both frames' own noise, as a PSNR — what the engines disagree on beyond the noise. The filter "
@@ -356,13 +349,13 @@ std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::
         "other; Cycles' seconds are one frame per Blender session, start-up included):\n\n"
         "| engine | spp | denoised | seconds | PSNR dB |\n|---|---:|---|---:|---:|\n";
   for (const LadderPoint& p : r.ladder)
-    md << "| " << p.engine << " | " << p.spp << " | " << (p.filtered ? "yes" : "no") << " | " << fixed(p.seconds, 3)
-       << " | " << fixed(p.psnrDb, 2) << " |\n";
+    md << "| " << p.engine << " | " << p.spp << " | " << (p.filtered ? "yes" : "no") << " | " << fixedDecimals(p.seconds, 3)
+       << " | " << fixedDecimals(p.psnrDb, 2) << " |\n";
   md << "\n| target dB | fast s | Cycles s | ratio |\n|---:|---:|---:|---:|\n";
   for (const auto& t : r.timeToError)
-    md << "| " << fixed(t.targetDb, 0) << " | " << (t.fastSeconds > 0 ? fixed(t.fastSeconds, 3) : "not reached") << " | "
-       << (t.cyclesSeconds > 0 ? fixed(t.cyclesSeconds, 1) : "not reached") << " | "
-       << (t.fastSeconds > 0 && t.cyclesSeconds > 0 ? fixed(t.cyclesSeconds / t.fastSeconds, 0) + "×" : "–") << " |\n";
+    md << "| " << fixedDecimals(t.targetDb, 0) << " | " << (t.fastSeconds > 0 ? fixedDecimals(t.fastSeconds, 3) : "not reached") << " | "
+       << (t.cyclesSeconds > 0 ? fixedDecimals(t.cyclesSeconds, 1) : "not reached") << " | "
+       << (t.fastSeconds > 0 && t.cyclesSeconds > 0 ? fixedDecimals(t.cyclesSeconds / t.fastSeconds, 0) + "×" : "–") << " |\n";
   return md.str();
 }
 

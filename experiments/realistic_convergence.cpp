@@ -17,6 +17,7 @@
 #include "indirect_filter.h"
 #include "safe_files.h"
 #include "scene_loader.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -39,12 +40,6 @@ namespace {
 
 // The clamp measured (Cycles counts everything seen in the mirror as indirect light).
 constexpr double kClampIndirect = 1.0;
-
-std::string fixedText(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
 
 // Seeds never shared between a rung, its reference and a seed pair.
 constexpr int kReferenceSeed = 90000, kPairSeeds[2] = {1, 2};
@@ -149,7 +144,7 @@ std::vector<PathVariant> diagnosePaths(Study& study) {
   paths.push_back(study.pair("physical", physicalWords, physical));
   RealisticRendering clamped = physical;
   clamped.tracing.clampIndirect = kClampIndirect;
-  paths.push_back(study.pair("physical_clamped", std::string(physicalWords) + ", indirect samples clamped at " + fixedText(kClampIndirect, 1),
+  paths.push_back(study.pair("physical_clamped", std::string(physicalWords) + ", indirect samples clamped at " + fixedDecimals(kClampIndirect, 1),
                              clamped));
   return paths;
 }

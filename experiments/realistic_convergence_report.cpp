@@ -6,6 +6,7 @@
 
 #include "errors.h"
 #include "indirect_filter.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -83,12 +84,6 @@ ConvergenceResults convergenceFromJson(const nlohmann::json& j, const std::strin
 
 namespace {
 
-std::string fixed(double value, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
 // Mean and minimum PSNR and the mean outlier share of one setup at one rung, over the poses.
 struct RungSummary {
   double meanPsnr = 0.0, minPsnr = 1e9, outliers = 0.0;
@@ -129,22 +124,22 @@ std::string filterMarkdown(const ConvergenceResults& r) {
         "seed, once with every path and once ending at the first surface seen in the mirror (its direct light), with its "
         "albedo, normal and depth passes, which pass through the sharp mirror. The difference, the indirect light, is "
         "divided by the albedo, averaged over the "
-     << f.window() << "×" << f.window() << " window of pixels that see the same surface (Gaussian of " << fixed(f.spatialSigmaPx, 0)
-     << " px, weighted by the agreement of normals to the power " << fixed(f.normalExponent, 0) << " and of depths within "
-     << fixed(100.0 * f.relativeDepthSigma, 0)
+     << f.window() << "×" << f.window() << " window of pixels that see the same surface (Gaussian of " << fixedDecimals(f.spatialSigmaPx, 0)
+     << " px, weighted by the agreement of normals to the power " << fixedDecimals(f.normalExponent, 0) << " and of depths within "
+     << fixedDecimals(100.0 * f.relativeDepthSigma, 0)
      << " %) and multiplied back; direct light and textures stay as traced, and so do pixels that straddle two surfaces. "
         "Each sample costs about 1.8× an unfiltered one.";
   if (filtered.poses && unfiltered.poses)
-    md << " Its bias: at " << top << " spp, the ladder's top, filtered frames are " << fixed(filtered.meanPsnr, 1)
-       << " dB (worst " << fixed(filtered.minPsnr, 1) << ") from the unfiltered converged reference, unfiltered ones "
-       << fixed(unfiltered.meanPsnr, 1) << " dB, at " << r.size << " px, where a pixel spans " << fixed(360.0 / r.size, 1)
+    md << " Its bias: at " << top << " spp, the ladder's top, filtered frames are " << fixedDecimals(filtered.meanPsnr, 1)
+       << " dB (worst " << fixedDecimals(filtered.minPsnr, 1) << ") from the unfiltered converged reference, unfiltered ones "
+       << fixedDecimals(unfiltered.meanPsnr, 1) << " dB, at " << r.size << " px, where a pixel spans " << fixedDecimals(360.0 / r.size, 1)
        << "× more of the hall than at 360 px (the window with it).";
   md << '\n';
   if (!r.experimentPsnrDb.empty()) {
     double worst = 1e9;
     for (double p : r.experimentPsnrDb) worst = std::min(worst, p);
     md << "\nAt the experiment's own " << r.experimentSize << " px and " << r.experimentSpp << " spp, the experiment's frames of "
-       << "the same poses against unfiltered " << r.experimentReferenceSpp << "-spp references: worst " << fixed(worst, 1)
+       << "the same poses against unfiltered " << r.experimentReferenceSpp << "-spp references: worst " << fixedDecimals(worst, 1)
        << " dB (a lower bound: the reference's own noise counts against the frame) — "
        << (worst >= 35.0 ? "the 35 dB target is met" : "short of the 35 dB target") << ".\n";
   }
@@ -165,7 +160,7 @@ std::string convergenceMarkdown(const ConvergenceResults& r, const std::string& 
   std::ostringstream md;
   md << "## Are the realistic frames converged?\n\n"
      << "Measured by `omnicam experiment realistic-convergence -o DIR` (experiments/realistic_convergence.h; "
-     << fixed(r.seconds / 60.0, 0) << " min): Blender renders of the textured hall at " << r.size << "×" << r.size
+     << fixedDecimals(r.seconds / 60.0, 0) << " min): Blender renders of the textured hall at " << r.size << "×" << r.size
      << " px for pose" << (poses.size() == 1 ? " " : "s ") << poseList << " of thesis-loop, against a converged reference of " << r.referenceSpp
      << " spp per setup (independent 1024-spp renders averaged; a filtered setup's is the unfiltered one), compared as 8-bit sRGB inside the mirror disc. "
      << "Outliers: pixels further from their 3×3 median than the reference's pixel is from its own, by more than "
@@ -180,7 +175,7 @@ std::string convergenceMarkdown(const ConvergenceResults& r, const std::string& 
     md << "| " << spp << " |";
     for (const std::string& s : r.setups) {
       const RungSummary sum = summarise(r, s, spp);
-      md << ' ' << fixed(sum.meanPsnr, 1) << " (" << fixed(sum.minPsnr, 1) << ") | " << fixed(100.0 * sum.outliers, 2) << " |";
+      md << ' ' << fixedDecimals(sum.meanPsnr, 1) << " (" << fixedDecimals(sum.minPsnr, 1) << ") | " << fixedDecimals(100.0 * sum.outliers, 2) << " |";
     }
     md << '\n';
   }
@@ -189,8 +184,8 @@ std::string convergenceMarkdown(const ConvergenceResults& r, const std::string& 
      << "the PSNR of either against a converged frame is 3.0 dB higher), mean over the poses:\n\n"
      << "| variant | seed pair PSNR dB | implied PSNR vs converged dB | outliers % |\n|---|---:|---:|---:|\n";
   for (const PathVariant& v : r.paths)
-    md << "| " << v.description << " | " << fixed(v.pairPsnrDb, 1) << " | " << fixed(v.estimatedPsnrDb, 1) << " | "
-       << fixed(100.0 * v.outlierShare, 2) << " |\n";
+    md << "| " << v.description << " | " << fixedDecimals(v.pairPsnrDb, 1) << " | " << fixedDecimals(v.estimatedPsnrDb, 1) << " | "
+       << fixedDecimals(100.0 * v.outlierShare, 2) << " |\n";
   const PathVariant* all = findVariant(r, "before");
   const PathVariant* direct = findVariant(r, "before_direct");
   const PathVariant* glossy = findVariant(r, "before_glossy");
@@ -198,19 +193,19 @@ std::string convergenceMarkdown(const ConvergenceResults& r, const std::string& 
   const PathVariant* physical = findVariant(r, "physical");
   const PathVariant* clampedPair = findVariant(r, "physical_clamped");
   if (all && direct && glossy && hidden && physical) {
-    md << "\nRead from this table: with point lamps, direct light alone is " << fixed(direct->pairPsnrDb - all->pairPsnrDb, 1)
-       << " dB cleaner than all paths; glossy bounces bring it to " << fixed(glossy->pairPsnrDb, 1)
+    md << "\nRead from this table: with point lamps, direct light alone is " << fixedDecimals(direct->pairPsnrDb - all->pairPsnrDb, 1)
+       << " dB cleaner than all paths; glossy bounces bring it to " << fixedDecimals(glossy->pairPsnrDb, 1)
        << " dB and diffuse bounces the rest, so the speckle is light that reaches a surface after a bounce. "
-       << "Hiding the mirror from bounces changes the pair PSNR by " << fixed(hidden->pairPsnrDb - all->pairPsnrDb, 2)
+       << "Hiding the mirror from bounces changes the pair PSNR by " << fixedDecimals(hidden->pairPsnrDb - all->pairPsnrDb, 2)
        << " dB. Lamps of real size, which light nothing above them, gain "
-       << fixed(physical->pairPsnrDb - all->pairPsnrDb, 1) << " dB at the same spp.\n";
+       << fixedDecimals(physical->pairPsnrDb - all->pairPsnrDb, 1) << " dB at the same spp.\n";
   }
   md << "\nClamping: Cycles counts everything seen in the mirror as indirect light, so clamping indirect samples at "
-     << fixed(r.clampIndirect, 1) << " clamps the directly lit field too: its converged frames differ from unclamped "
-     << "ones by " << fixed(r.clampBiasPsnrDb, 1) << " dB, mean luminance " << (r.clampBiasLuminancePercent >= 0 ? "+" : "")
-     << fixed(r.clampBiasLuminancePercent, 1) << " %";
+     << fixedDecimals(r.clampIndirect, 1) << " clamps the directly lit field too: its converged frames differ from unclamped "
+     << "ones by " << fixedDecimals(r.clampBiasPsnrDb, 1) << " dB, mean luminance " << (r.clampBiasLuminancePercent >= 0 ? "+" : "")
+     << fixedDecimals(r.clampBiasLuminancePercent, 1) << " %";
   if (clampedPair && physical)
-    md << ", for " << fixed(clampedPair->pairPsnrDb - physical->pairPsnrDb, 1) << " dB less noise at the same spp";
+    md << ", for " << fixedDecimals(clampedPair->pairPsnrDb - physical->pairPsnrDb, 1) << " dB less noise at the same spp";
   md << ". The realistic frames are not clamped.\n";
   md << filterMarkdown(r);
   return md.str();

@@ -8,6 +8,7 @@
 #include "markup.h"
 #include "texture_realism_report.h"
 #include "texture_realism_tables.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -63,7 +64,7 @@ void writeConditionsPerTestCamera(std::ostringstream& md, const TextureRealismRe
     for (const TestCameraSummary& t : r.testCameras) {
       const ConditionOutcome* c = findCondition(r, train + "_to_" + t.set);
       const EkfOutcome* e = findEkf(r, train + "_to_" + t.set);
-      if (c && e) md << "| " << c->truePositives << " | " << c->falsePositives << " | " << ratioText(trueOverFalse(*c)) << " | " << fixed(e->meanErrorEkfCm, 1) << " ";
+      if (c && e) md << "| " << c->truePositives << " | " << c->falsePositives << " | " << ratioText(trueOverFalse(*c)) << " | " << fixedDecimals(e->meanErrorEkfCm, 1) << " ";
       else md << "| – | – | – | – ";
     }
     md << "|\n";
@@ -72,8 +73,8 @@ void writeConditionsPerTestCamera(std::ostringstream& md, const TextureRealismRe
   const EkfOutcome* ppEkf = findEkf(r, "plain_to_plain");
   if (pp && ppEkf)
     md << "\nThe bar (plain → plain): " << pp->truePositives << " TP, TP/FP " << ratioText(trueOverFalse(*pp)) << ", EKF "
-       << fixed(ppEkf->meanErrorEkfCm, 1) << " cm; path + drawn cameras must find ≥ " << std::ceil(0.8 * pp->truePositives)
-       << " TP (80 %) with TP/FP ≥ " << ratioText(trueOverFalse(*pp)) << " and an EKF error ≤ " << fixed(2 * ppEkf->meanErrorEkfCm, 1)
+       << fixedDecimals(ppEkf->meanErrorEkfCm, 1) << " cm; path + drawn cameras must find ≥ " << std::ceil(0.8 * pp->truePositives)
+       << " TP (80 %) with TP/FP ≥ " << ratioText(trueOverFalse(*pp)) << " and an EKF error ≤ " << fixedDecimals(2 * ppEkf->meanErrorEkfCm, 1)
        << " cm, on every test camera.\n\n";
   for (const TestCameraSummary& t : r.testCameras) {
     const Transfer x = transferTo(r, t.set);
@@ -93,13 +94,13 @@ void writeAblation(std::ostringstream& md, const TextureRealismResults& r) {
         "true positives or gains false ones is a fault the detector has to have seen.\n\n"
         "| stage held neutral | TP | FP | TP/FP | EKF cm | ΔTP | ΔFP |\n|---|---:|---:|---:|---:|---:|---:|\n"
      << "| (none: every stage drawn) | " << full->truePositives << " | " << full->falsePositives << " | "
-     << ratioText(trueOverFalse(*full)) << " | " << fixed(fullEkf->meanErrorEkfCm, 1) << " | – | – |\n";
+     << ratioText(trueOverFalse(*full)) << " | " << fixedDecimals(fullEkf->meanErrorEkfCm, 1) << " | – | – |\n";
   for (const std::string& stage : r.ablatedStages) {
     const ConditionOutcome* c = findCondition(r, "path_recorded_without_" + stage + "_to_realistic");
     const EkfOutcome* e = findEkf(r, "path_recorded_without_" + stage + "_to_realistic");
     if (!c || !e) continue;
     md << "| " << stage << " | " << c->truePositives << " | " << c->falsePositives << " | " << ratioText(trueOverFalse(*c)) << " | "
-       << fixed(e->meanErrorEkfCm, 1) << " | " << std::showpos << c->truePositives - full->truePositives << " | "
+       << fixedDecimals(e->meanErrorEkfCm, 1) << " | " << std::showpos << c->truePositives - full->truePositives << " | "
        << c->falsePositives - full->falsePositives << std::noshowpos << " |\n";
   }
 }

@@ -13,6 +13,7 @@
 #include "external_process.h"
 #include "markup.h"
 #include "texture_realism_tables.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -152,21 +153,21 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
        << "<p>" << data.testPoses.size() << " thesis-loop frames per test set, " << data.options->size << "&times;"
        << data.options->size << " px; fast renders " << data.options->spp << " spp, Blender Cycles "
        << data.options->realistic.spp << " spp for the realistic set (through the recording-camera model: a stand-in "
-       << "for the thesis' real ISLA images). Run time " << fixed(results.seconds, 1) << " s.</p>"
+       << "for the thesis' real ISLA images). Run time " << fixedDecimals(results.seconds, 1) << " s.</p>"
        << "<h2>Detection</h2><table><tr><th>train &rarr; test</th><th>frames</th><th>true positives</th>"
           "<th>false positives</th><th>(blobs)</th><th>true/false</th><th>missed</th><th>error px</th>"
           "<th>range error cm</th><th>bearing error &deg;</th></tr>";
   for (const ConditionOutcome& c : results.conditions)
     html << "<tr><td>" << escapeMarkup(c.key()) << "</td><td>" << c.frames << "</td><td>" << c.truePositives
          << "</td><td>" << c.falsePositives << "</td><td>" << c.falsePositiveBlobs << "</td><td>"
-         << (c.falsePositives ? fixed(static_cast<double>(c.truePositives) / c.falsePositives, 4) : "&infin;")
-         << "</td><td>" << c.missed << "</td><td>" << fixed(c.meanLocalisationErrorPx, 2) << "</td><td>"
-         << fixed(c.meanRangeErrorCm, 1) << "</td><td>" << fixed(c.meanBearingErrorDeg, 2) << "</td></tr>";
+         << (c.falsePositives ? fixedDecimals(static_cast<double>(c.truePositives) / c.falsePositives, 4) : "&infin;")
+         << "</td><td>" << c.missed << "</td><td>" << fixedDecimals(c.meanLocalisationErrorPx, 2) << "</td><td>"
+         << fixedDecimals(c.meanRangeErrorCm, 1) << "</td><td>" << fixedDecimals(c.meanBearingErrorDeg, 2) << "</td></tr>";
   html << "</table><h2>EKF self-localisation</h2><table><tr><th>condition</th><th>odometry cm</th><th>EKF cm</th>"
           "<th>improvement cm</th><th>measurements used / gated</th></tr>";
   for (const EkfOutcome& e : results.ekf)
-    html << "<tr><td>" << escapeMarkup(e.condition) << "</td><td>" << fixed(e.meanErrorOdometryCm, 1) << "</td><td>"
-         << fixed(e.meanErrorEkfCm, 1) << "</td><td>" << fixed(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1)
+    html << "<tr><td>" << escapeMarkup(e.condition) << "</td><td>" << fixedDecimals(e.meanErrorOdometryCm, 1) << "</td><td>"
+         << fixedDecimals(e.meanErrorEkfCm, 1) << "</td><td>" << fixedDecimals(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1)
          << "</td><td>" << e.measurementsUsed << " / " << e.measurementsGated << "</td></tr>";
   if (results.comparison.width > 0)
     html << "</table><h2>One pose: plain, path, path through one drawn camera, realistic</h2><img src=\"figures/"
@@ -283,8 +284,8 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
        << row.falsePositives << " | " << row.errorPx << " | " << row.ratio << " | " << c->truePositives << " | "
        << c->falsePositives << " | " << c->falsePositives - c->falsePositiveBlobs << " | "
        << c->falsePositiveBlobsOnHall << " | " << c->missed << " | "
-       << fixed(c->meanLocalisationErrorPx, 2) << " | " << fixed(c->meanRangeErrorCm, 1) << " | "
-       << fixed(c->meanBearingErrorDeg, 2) << " | " << ratioText(trueOverFalse(*c)) << " |\n";
+       << fixedDecimals(c->meanLocalisationErrorPx, 2) << " | " << fixedDecimals(c->meanRangeErrorCm, 1) << " | "
+       << fixedDecimals(c->meanBearingErrorDeg, 2) << " | " << ratioText(trueOverFalse(*c)) << " |\n";
   }
 }
 
@@ -303,8 +304,8 @@ void writeFalsePositivesAndEkf(std::ostringstream& md, const TextureRealismResul
   for (const EkfOutcome& e : results.ekf)
     md << "| " << e.condition << " | "
        << (e.condition == "plain_to_plain" ? "30.35 (simulation)" : e.condition == "plain_to_realistic" ? "35.11 (real)" : "–")
-       << " | " << fixed(e.meanErrorOdometryCm, 1) << " | " << fixed(e.meanErrorEkfCm, 1) << " | "
-       << fixed(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1) << " |\n";
+       << " | " << fixedDecimals(e.meanErrorOdometryCm, 1) << " | " << fixedDecimals(e.meanErrorEkfCm, 1) << " | "
+       << fixedDecimals(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1) << " |\n";
 }
 
 // Which of the thesis' findings reproduce, each with its verdict.
@@ -336,7 +337,7 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
   for (const EkfOutcome& e : results.ekf)
     if (e.condition == "plain_to_plain")
       md << "4. The EKF improves on odometry (thesis 30.35 cm): " << verdict(e.meanErrorOdometryCm > e.meanErrorEkfCm)
-         << " — " << fixed(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1) << " cm.\n";
+         << " — " << fixedDecimals(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1) << " cm.\n";
   if (pr && rr)
     md << "5. Beyond the thesis: training on walls with random real photos instead of plain walls changes the "
           "realistic result from "
@@ -360,8 +361,8 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
     const EkfOutcome* pathEkf = findEkf(results, "path_to_realistic");
     const EkfOutcome* plainEkf = findEkf(results, "plain_to_realistic");
     if (pathEkf && plainEkf)
-      md << "; the EKF along thesis-loop, fed by its detections, errs " << fixed(pathEkf->meanErrorEkfCm, 1) << " cm against "
-         << fixed(plainEkf->meanErrorEkfCm, 1) << " cm with plain training (odometry " << fixed(plainEkf->meanErrorOdometryCm, 1)
+      md << "; the EKF along thesis-loop, fed by its detections, errs " << fixedDecimals(pathEkf->meanErrorEkfCm, 1) << " cm against "
+         << fixedDecimals(plainEkf->meanErrorEkfCm, 1) << " cm with plain training (odometry " << fixedDecimals(plainEkf->meanErrorOdometryCm, 1)
          << " cm)";
     if (back)
       md << "; the converse (trained on Cycles' realistic frames, tested on the path-traced ones) finds "
@@ -389,8 +390,8 @@ void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& 
     if (!c || !e) continue;
     md << "| " << row.condition << " | " << row.truePositives << " | " << row.falsePositives << " | "
        << row.truePositivesUnfiltered << " | " << row.falsePositivesUnfiltered << " | " << c->truePositives << " | "
-       << c->falsePositives << " | " << fixed(row.ekfErrorCm, 1) << " | " << fixed(row.ekfErrorCmUnfiltered, 1) << " | "
-       << fixed(e->meanErrorEkfCm, 1) << " |\n";
+       << c->falsePositives << " | " << fixedDecimals(row.ekfErrorCm, 1) << " | " << fixedDecimals(row.ekfErrorCmUnfiltered, 1) << " | "
+       << fixedDecimals(e->meanErrorEkfCm, 1) << " |\n";
   }
   const BeforeRow& earlier = kBeforeConvergence[2];  // plain_to_realistic
   if (pp && pr)
@@ -419,7 +420,7 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
   md << "\nWhere the numbers differ from the thesis: its counts come from hand labels on its own arena and ISLA's "
         "real camera; ours from projection on our hall, and our realistic frames are rendered, so only the "
         "direction of each effect is comparable, not the counts.\n\n"
-     << "Full run: " << fixed(results.seconds / 60.0, 1) << " min on this machine ("
+     << "Full run: " << fixedDecimals(results.seconds / 60.0, 1) << " min on this machine ("
      << results.cyclesFramesRendered << " Cycles frames rendered, " << results.cyclesFramesReused
      << " reused from an earlier run into the same folder). Figures and the per-frame data "
         "are in the run's folder (`report.html`, `figures/`, `data/`).\n";

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "texture_realism_results.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -21,16 +22,10 @@ inline const EkfOutcome* findEkf(const TextureRealismResults& r, const std::stri
   return nullptr;
 }
 
-inline std::string fixed(double value, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << value;
-  return s.str();
-}
-
 inline double trueOverFalse(const ConditionOutcome& c) {
   return c.falsePositives ? static_cast<double>(c.truePositives) / c.falsePositives : INFINITY;
 }
 
-inline std::string ratioText(double ratio) { return std::isinf(ratio) ? "∞" : fixed(ratio, 4); }
+inline std::string ratioText(double ratio) { return std::isinf(ratio) ? "∞" : fixedDecimals(ratio, 4); }
 
 }  // namespace omnicam

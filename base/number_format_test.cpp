@@ -1,0 +1,35 @@
+// Report numbers: a fixed count of decimals, rounded half away as printf does, in any locale.
+#include "number_format.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <locale>
+
+namespace omnicam {
+namespace {
+
+TEST(FixedDecimals, RoundsToTheGivenDecimalsAsPrintfDoes) {
+  EXPECT_EQ(fixedDecimals(3.14159, 2), "3.14");
+  EXPECT_EQ(fixedDecimals(2.5, 0), "2");      // round half to even: the binary value is exactly 2.5
+  EXPECT_EQ(fixedDecimals(0.125, 2), "0.12");  // exactly representable: to even
+  EXPECT_EQ(fixedDecimals(-1.0, 3), "-1.000");
+  EXPECT_EQ(fixedDecimals(1e6, 1), "1000000.0");
+  for (double v : {0.1, 12.345, 99.995, 1.0 / 3.0}) {
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%.*f", 2, v);
+    EXPECT_EQ(fixedDecimals(v, 2), expected) << v;
+  }
+}
+
+TEST(FixedDecimals, IgnoresTheGlobalLocale) {
+  struct Comma : std::numpunct<char> {
+    char do_decimal_point() const override { return ','; }
+  };
+  const std::locale before = std::locale::global(std::locale(std::locale::classic(), new Comma));
+  EXPECT_EQ(fixedDecimals(1.5, 1), "1.5");
+  std::locale::global(before);
+}
+
+}  // namespace
+}  // namespace omnicam
