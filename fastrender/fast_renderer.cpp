@@ -186,7 +186,14 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
   DenoiseSums denoiseSums;
   DenoiseSums* denoising = path && settings.denoise ? &denoiseSums : nullptr;
   if (denoising) denoiseSums.resize(static_cast<size_t>(width) * height);
-  const FrameJob job{*table, still, moves ? &motion : nullptr, settings.shading, path ? &*path : nullptr, denoising, aovs, !moves};
+  const FrameJob job{.table = *table,
+                     .still = still,
+                     .moving = moves ? &motion : nullptr,
+                     .shading = settings.shading,
+                     .path = path ? &*path : nullptr,
+                     .denoise = denoising,
+                     .aovs = aovs,
+                     .centresFromSamples = !moves};
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
     RowScratch scratch;

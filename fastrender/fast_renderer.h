@@ -74,12 +74,12 @@ class FastRenderer {
   struct FrameJob {
     const SampleTable& table;
     const RayPlacement& still;
-    const MovingPlacements* moving;  // null for a still frame
-    Shading shading;
-    const PathFrame* path;           // path shading only
-    DenoiseSums* denoise;            // a denoised path frame only
-    bool aovs;
-    bool centresFromSamples;  // at odd n a still frame's centre sample gives its AOVs
+    const MovingPlacements* moving = nullptr;  // null for a still frame
+    Shading shading = Shading::Unlit;
+    const PathFrame* path = nullptr;           // path shading only
+    DenoiseSums* denoise = nullptr;            // a denoised path frame only
+    bool aovs = false;
+    bool centresFromSamples = false;  // at odd n a still frame's centre sample gives its AOVs
   };
 
   std::shared_ptr<const SampleTable> sampleTable(const RenderSettings& settings, int samplesPerAxis) const;

@@ -77,7 +77,7 @@ void FastRenderer::renderAovsOnly(const CameraPlacement& camera, const RenderSet
   const MovingPlacements motion = moves ? movingPlacements(settings, camera, 1) : MovingPlacements{};
   // Every centre traced, in the packets a render pass traces its centre rays in, so both give the
   // same AOVs.
-  const FrameJob job{*table, still, moves ? &motion : nullptr, settings.shading, nullptr, nullptr, true, false};
+  const FrameJob job{.table = *table, .still = still, .moving = moves ? &motion : nullptr, .shading = settings.shading, .aovs = true};
   tbb::parallel_for(tbb::blocked_range<int>(0, film.height()), [&](const tbb::blocked_range<int>& rows) {
     HitPacket hits;
     std::vector<uint8_t> centreRecorded(film.width());
