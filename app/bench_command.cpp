@@ -26,7 +26,7 @@ void runBench(const BenchArgs& a) {
   const Scene scene = loadScene(scenesDir() + "/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 360;
+  settings.rig.mirrorRig().imageSize = 360;
   const FastRenderer fast(scene);
   const CubeMapRenderer cube(fast);
   CubeMapOptions cubemap, mesh;

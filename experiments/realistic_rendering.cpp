@@ -69,7 +69,7 @@ std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<Robo
   for (PointLight& lamp : scene.lights) lamp.diameter = setup.lampDiameter;
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = size;
+  settings.rig.mirrorRig().imageSize = size;
   settings.shading = Shading::Lit;
   BlenderOptions options;
   options.timeoutSeconds = timeoutSeconds;

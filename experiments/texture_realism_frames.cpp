@@ -14,7 +14,7 @@ namespace {
 RenderSettings settingsFor(const Scene& scene, int size, int spp, Shading shading) {
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = size;
+  settings.rig.mirrorRig().imageSize = size;
   settings.spp = spp;
   settings.shading = shading;
   settings.denoise = shading == Shading::Path;  // as a dataset of path-traced frames would be
