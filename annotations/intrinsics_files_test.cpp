@@ -49,7 +49,7 @@ void expectOpenCvReproducesProject(const Camera& camera, const std::string& yaml
 // moved in the world — γ_y < 0 included.
 TEST(IntrinsicsFiles, OpenCvReadsTheYamlAndReproducesOurProjection) {
   RigSpec rig;
-  rig.imageSize = 300;
+  rig.mirrorRig().imageSize = 300;
   const CentralCamera camera(rig);
   const std::string yaml = openCvIntrinsicsYaml(camera);
   cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
@@ -86,8 +86,8 @@ TEST(IntrinsicsFiles, KalibrAndCamodocalCarryTheSameNumbers) {
 // file's numbers reproduces the physical camera's own projection.
 TEST(IntrinsicsFiles, AnAlignedDistortedRigsFileIsExact) {
   RigSpec rig;
-  rig.mount.distortion = {-0.08, 0.015, 0.0009, -0.0012, 0.0};
-  rig.mount.principalPointOffsetPx = {-0.6, 1.1};
+  rig.mirrorRig().mount.distortion = {-0.08, 0.015, 0.0009, -0.0012, 0.0};
+  rig.mirrorRig().mount.principalPointOffsetPx = {-0.6, 1.1};
   const PhysicalCamera camera(rig);
   const std::string yaml = openCvIntrinsicsYaml(camera);
   cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY);
@@ -100,8 +100,8 @@ TEST(IntrinsicsFiles, AnAlignedDistortedRigsFileIsExact) {
 // which cv::omnidir sees distant points where the camera does, to within the stated residual.
 TEST(IntrinsicsFiles, ANonCentralRigsFilesSayApproximate) {
   RigSpec rig;
-  rig.mount.offsetMm = {2.0, -1.0, 1.0};
-  rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+  rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   const PhysicalCamera camera(rig);
   const std::string text = openCvIntrinsicsYaml(camera);
   EXPECT_NE(text.find("APPROXIMATE"), std::string::npos);
@@ -125,8 +125,8 @@ TEST(IntrinsicsFiles, ANonCentralRigsFilesSayApproximate) {
   ASSERT_EQ(fit.residuals.back().distanceM, 5.0);
   std::vector<cv::Vec3d> points;
   std::vector<Vec2> ours;
-  for (int i = 8; i < rig.imageSize; i += 16)
-    for (int j = 8; j < rig.imageSize; j += 16) {
+  for (int i = 8; i < rig.mirrorRig().imageSize; i += 16)
+    for (int j = 8; j < rig.mirrorRig().imageSize; j += 16) {
       const auto ray = camera.generateRay({Vec2(i + 0.5, j + 0.5)});
       if (!ray) continue;
       const Vec3 rigCamera = unifiedCameraFromViewpoint() * Vec3(ray->origin + 5.0 * ray->direction);
@@ -148,8 +148,8 @@ TEST(IntrinsicsFiles, ANonCentralRigsFilesSayApproximate) {
 // Kalibr's reader wants floats ("146.0", not "146") and the calibration bag's topic.
 TEST(IntrinsicsFiles, TheMirrorsKalibrFileWritesFloatsAndTheBagsTopic) {
   RigSpec rig;
-  rig.imageSize = 300;  // cx = 149.5, γ integer-free; the principal point below is an integer
-  rig.mount.principalPointOffsetPx = {0.5, -0.5};
+  rig.mirrorRig().imageSize = 300;  // cx = 149.5, γ integer-free; the principal point below is an integer
+  rig.mirrorRig().mount.principalPointOffsetPx = {0.5, -0.5};
   const PhysicalCamera camera(rig);
   const std::string kalibr = kalibrIntrinsicsYaml("front", camera);
   std::smatch m;
@@ -163,8 +163,7 @@ TEST(IntrinsicsFiles, TheMirrorsKalibrFileWritesFloatsAndTheBagsTopic) {
 
 RigSpec lensRig(const LensModel& model, int width, int height) {
   RigSpec rig;
-  rig.lens = LensCameraSpec{model, width, height, {0.0, 10.0, 20.0}};
-  rig.imageSize = width;
+  rig.kind = LensCameraSpec{model, width, height, {0.0, 10.0, 20.0}};
   return rig;
 }
 

@@ -25,17 +25,17 @@ Scene scene() {
 // floor; a direction at incidence θ from straight down lands γ sinθ / (ξ + cosθ) from the centre,
 // u along the robot's +x, v along its +y.
 Vec2 closedFormRaster(const RigSpec& rig, const RobotPose& pose, const Vec3& world) {
-  const double eps = std::sqrt(rig.k / (rig.k - 2.0));
+  const double eps = std::sqrt(rig.mirrorRig().k / (rig.mirrorRig().k - 2.0));
   const double xi = 2.0 * eps / (1.0 + eps * eps);
-  const double framing = (90.0 + rig.framingElevationDeg) * kPi / 180.0;
-  const double gamma = 0.5 * rig.imageSize * (xi + std::cos(framing)) / std::sin(framing);
+  const double framing = (90.0 + rig.mirrorRig().framingElevationDeg) * kPi / 180.0;
+  const double gamma = 0.5 * rig.mirrorRig().imageSize * (xi + std::cos(framing)) / std::sin(framing);
   const double yaw = pose.yawDeg * kPi / 180.0;
   const double dx = world.x() - pose.x, dy = world.y() - pose.y, dz = world.z() - rig.height;
   const double x = std::cos(yaw) * dx + std::sin(yaw) * dy, y = -std::sin(yaw) * dx + std::cos(yaw) * dy;
   const double theta = std::acos(-dz / std::sqrt(x * x + y * y + dz * dz));
   const double r = gamma * std::sin(theta) / (xi + std::cos(theta));
   const double phi = std::atan2(y, x);
-  return {0.5 * rig.imageSize + r * std::cos(phi), 0.5 * rig.imageSize + r * std::sin(phi)};
+  return {0.5 * rig.mirrorRig().imageSize + r * std::cos(phi), 0.5 * rig.mirrorRig().imageSize + r * std::sin(phi)};
 }
 
 TEST(LandmarkAnnotations, CentresAreTheCameraProjectionAndWallsOcclude) {

@@ -35,16 +35,14 @@ RigSpec fisheyeRig(const RigSpec& mirror) {
   lens.cx = lens.cy = 179.5;
   RigSpec rig;
   rig.height = mirror.height;
-  rig.lens = LensCameraSpec{lens, 360, 360, {0.0, 0.0, 0.0}};
-  rig.imageSize = 360;
+  rig.kind = LensCameraSpec{lens, 360, 360, {0.0, 0.0, 0.0}};
   return rig;
 }
 
 RigSpec panoramaRig(const RigSpec& mirror) {
   RigSpec rig;
   rig.height = mirror.height;
-  rig.lens = LensCameraSpec{Equirectangular{720, 360}, 720, 360, {0.0, 0.0, 0.0}};
-  rig.imageSize = 720;
+  rig.kind = LensCameraSpec{Equirectangular{720, 360}, 720, 360, {0.0, 0.0, 0.0}};
   return rig;
 }
 

@@ -36,8 +36,8 @@ std::string vibrationPlot(const RigSpec& rig, const Vibration& vibration) {
   for (int s = 0; s < 5; ++s) plot.series.push_back({labels[s], colours[s], {}, {}, false});
   for (int f = 0; f < kVibrationFrames; ++f) {
     const RigSpec shaken = vibratedRig(rig, vibration, static_cast<uint64_t>(f), 0);
-    const double values[] = {shaken.mount.offsetMm[0], shaken.mount.offsetMm[1], shaken.mount.offsetMm[2], shaken.tiltDeg[0],
-                             shaken.tiltDeg[1]};
+    const std::array<double, 3>& offsetMm = shaken.mirrorRig().mount.offsetMm;
+    const double values[] = {offsetMm[0], offsetMm[1], offsetMm[2], shaken.tiltDeg[0], shaken.tiltDeg[1]};
     for (int s = 0; s < 5; ++s) {
       plot.series[s].x.push_back(f);
       plot.series[s].y.push_back(values[s]);
@@ -91,7 +91,7 @@ std::string demoMotion(const std::string& out, const Scene& arena, int spp) {
        << " m/s (turning at up to " << kYawRate << "°/s), the frame " << frameTime << " s in, the robot at " << speed
        << ". Each line is exposed for " << kExposureS * 1000
        << " ms. The global shutter exposes every line at once; the rolling shutter starts line l at l × " << kLineTimeUs
-       << " µs, so the last line is read " << kLineTimeUs * 1e-3 * (global.rig.imageSize - 1)
+       << " µs, so the last line is read " << kLineTimeUs * 1e-3 * (global.rig.imageHeight() - 1)
        << " ms after the first and the world has turned under it. Every ray is placed at "
           "its own line's and instant's pose; POV-Ray renders the same frames as the mean of still renders (94.9–96.2 dB, "
           "docs/motion.md, \"Measured\"). "

@@ -23,8 +23,8 @@ namespace omnicam::cli {
 std::string demoPhysicalCamera(const std::string& out, const Scene& arena, int spp, bool povray) {
   const RenderSettings settings = requestedSettings(arena.rig, {{RequestField::Spp, int64_t{spp}}});
   RenderSettings misaligned = settings;
-  misaligned.rig.mount.offsetMm = {2.0, -1.0, 1.0};
-  misaligned.rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  misaligned.rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+  misaligned.rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   std::printf("demo: physical camera, ideal vs 2 mm / 1 deg misaligned, %d spp\n", spp);
   const FastRenderer fast(arena);
   const ImageRGBA ideal = fast.render(arena.startPose, settings);

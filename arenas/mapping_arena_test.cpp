@@ -86,7 +86,7 @@ TEST(MappingArena, FastAndPovrayAgreeUnlitAt16Spp) {
   const Scene scene = sceneOf(generateMappingArena(MappingOptions{}));
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 200;
+  settings.rig.mirrorRig().imageSize = 200;
   settings.spp = 16;
   const auto fast = makeEngine(RenderRequest{"fast"}, scene), povray = makeEngine(RenderRequest{"povray"}, scene);
   for (const RobotPose& pose : {scene.startPose, scene.findPath("maze-tour")->poses[77]}) {
@@ -101,7 +101,7 @@ TEST(MappingArena, BlenderRendersItToo) {
   const Scene scene = sceneOf(generateMappingArena(MappingOptions{}));
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 64;
+  settings.rig.mirrorRig().imageSize = 64;
   settings.spp = 16;
   const RobotPose pose{0.8, 0.8, 30.0};
   const CompareResult r = compareImages(makeEngine(RenderRequest{"fast"}, scene)->render(pose, settings),

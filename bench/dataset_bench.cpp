@@ -22,7 +22,7 @@ struct Frame {
   AovFrame aovs;
   Frame() {
     settings.rig = scene.rig;
-    settings.rig.imageSize = 360;
+    settings.rig.mirrorRig().imageSize = 360;
     rgb = renderer.render(scene.startPose, settings, aovs);
   }
 };

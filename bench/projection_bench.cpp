@@ -26,7 +26,7 @@ const std::vector<Vec3>& farPoints() {
 
 RigSpec aligned(MirrorShape shape, double cameraDistance) {
   RigSpec rig = test::shaped(shape, cameraDistance);
-  rig.mount = CameraMount{};
+  rig.mirrorRig().mount = CameraMount{};
   return rig;
 }
 

@@ -75,7 +75,7 @@ size_t triangleCount(const Scene& scene) {
 double framesPerSecond(const FastRenderer& renderer, const Scene& scene) {
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 360;
+  settings.rig.mirrorRig().imageSize = 360;
   renderer.render(scene.startPose, settings);
   int frames = 0;
   const auto start = Clock::now();
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
       if (image && triangles == 1000000 && arena == &hall) {
         RenderSettings settings;
         settings.rig = scene.rig;
-        settings.rig.imageSize = 360;
+        settings.rig.mirrorRig().imageSize = 360;
         settings.spp = 4;
         writeImageAtomic(image, renderer.render(scene.startPose, settings));
       }

@@ -80,7 +80,7 @@ TEST(CalibrationFiles, KalibrReadsTheTargetYaml) {
 
 TEST(CalibrationFiles, OpenCvCornerListsCalibrateAsTheViewsThemselves) {
   RigSpec rig;
-  rig.imageSize = 360;
+  rig.mirrorRig().imageSize = 360;
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   const Rigid worldFromViewpoint = CameraPlacement(RobotPose{}).worldFromViewpoint(rig);
   const Checkerboard board{7, 10, 0.05};

@@ -54,7 +54,7 @@ struct Agreement {
 std::vector<Agreement> agreement(const Scene& scene, const RobotPose& pose, const std::string& label) {
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 720;
+  settings.rig.mirrorRig().imageSize = 720;
   settings.spp = 16;
   const FastRenderer renderer(scene);
   const ImageRGBA image = renderer.render(pose, settings);
@@ -140,7 +140,7 @@ TEST(CalibrationTargets, HiddenCornersSayWhy) {
   const Scene scene = targetScene(R"(, {"name": "pillar", "type": "box", "material": "grey", "center": [0.4, 0.25, 0.3], "size": [0.05, 0.12, 0.6]})");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 360;
+  settings.rig.mirrorRig().imageSize = 360;
   const FastRenderer renderer(scene);
   const std::shared_ptr<const Camera> camera = makeCamera(settings.rig);
   const Rigid worldFromViewpoint = CameraPlacement(RobotPose{0.0, 0.0, 0.0}).worldFromViewpoint(settings.rig);
@@ -215,7 +215,7 @@ ExactViews exactViews(const Camera& camera) {
 // points at every distance where the camera images them.
 TEST(CalibrationTargets, OmnidirRecoversTheIdealRigsIntrinsicsFromExactCorners) {
   RigSpec rig;
-  rig.imageSize = 720;
+  rig.mirrorRig().imageSize = 720;
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   const ExactViews exact = exactViews(*camera);
   OmnidirOptions options;
@@ -251,8 +251,8 @@ TEST(CalibrationTargets, OmnidirRecoversTheIdealRigsIntrinsicsFromExactCorners) 
 TEST(CalibrationTargets, AMisalignedRigsCalibrationLooksFineButErrsNearby) {
   for (const std::array<double, 3> offset : {std::array<double, 3>{2.0, 0.0, 0.0}, std::array<double, 3>{0.0, 2.0, 0.0}}) {
     RigSpec rig;
-    rig.imageSize = 720;
-    rig.mount.offsetMm = offset;
+    rig.mirrorRig().imageSize = 720;
+    rig.mirrorRig().mount.offsetMm = offset;
     const std::shared_ptr<const Camera> camera = makeCamera(rig);
     const ExactViews exact = exactViews(*camera);
     const OmnidirCalibration fit = calibrateOmnidir(exact.views, 720, 720, OmnidirOptions{});

@@ -149,8 +149,9 @@ CentralApproximation::Residual residualAt(const CentralApproximation& fit, const
 // one (ξ = 1) centred in the image, its γx, γy by linear least squares on the rays.
 Eigen::VectorXd initialGuess(const Camera& camera, const std::vector<GridRay>& rays, const Eigen::Matrix3d& cameraFromViewpoint) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(kParameters);
-  if (camera.rig().shape.shape == MirrorShape::Hyperboloid) {
-    const OpenCvIntrinsics ideal = camera.rig().idealCamera().openCvIntrinsics();
+  const MirrorRig& rig = camera.rig().mirrorRig();
+  if (rig.shape.shape == MirrorShape::Hyperboloid) {
+    const OpenCvIntrinsics ideal = rig.idealCamera().openCvIntrinsics();
     x[0] = ideal.xi, x[1] = ideal.gamma_x, x[2] = ideal.gamma_y, x[3] = ideal.cx, x[4] = ideal.cy;
     return x;
   }

@@ -80,14 +80,14 @@ TEST(CentralFit, MeiDirectionIsOpenCvsUndistortionAndInvertsTheProjection) {
 
 TEST(CentralFit, RecoversTheExactModelOfTheAlignedDistortedRig) {
   RigSpec rig;
-  rig.mount.distortion = {-0.09, 0.02, 0.0011, -0.0007, 0.0};
-  rig.mount.principalPointOffsetPx = {0.9, -1.3};
+  rig.mirrorRig().mount.distortion = {-0.09, 0.02, 0.0011, -0.0007, 0.0};
+  rig.mirrorRig().mount.principalPointOffsetPx = {0.9, -1.3};
   const CentralApproximation fit = fitCentralApproximation(PhysicalCamera(rig));
   // Closed form (docs/physical-camera.md): the pinhole's normalised coordinates are Mei's scaled by
   // s = γ/f with v flipped, so D = (k1 s², k2 s⁴, −p1 s, p2 s).
-  const OmniCamera ideal = rig.idealCamera();
+  const OmniCamera ideal = rig.mirrorRig().idealCamera();
   const double s = ideal.gamma() / ideal.physicalFocalLength();
-  const LensDistortion& l = rig.mount.distortion;
+  const LensDistortion& l = rig.mirrorRig().mount.distortion;
   EXPECT_NEAR(fit.intrinsics.lens.k1, l.k1 * s * s, 1e-7);
   EXPECT_NEAR(fit.intrinsics.lens.k2, l.k2 * s * s * s * s, 1e-7);
   EXPECT_NEAR(fit.intrinsics.lens.p1, -l.p1 * s, 1e-8);
@@ -95,8 +95,8 @@ TEST(CentralFit, RecoversTheExactModelOfTheAlignedDistortedRig) {
   EXPECT_NEAR(fit.intrinsics.xi, ideal.xi(), 1e-8);
   EXPECT_NEAR(fit.intrinsics.gammaX, ideal.gamma(), 1e-6);
   EXPECT_NEAR(fit.intrinsics.gammaY, -ideal.gamma(), 1e-6);
-  EXPECT_NEAR(fit.intrinsics.cx, rig.imageSize / 2.0 + 0.9 - 0.5, 1e-7);
-  EXPECT_NEAR(fit.intrinsics.cy, rig.imageSize / 2.0 - 1.3 - 0.5, 1e-7);
+  EXPECT_NEAR(fit.intrinsics.cx, rig.mirrorRig().imageSize / 2.0 + 0.9 - 0.5, 1e-7);
+  EXPECT_NEAR(fit.intrinsics.cy, rig.mirrorRig().imageSize / 2.0 - 1.3 - 0.5, 1e-7);
   EXPECT_LE(fit.viewpoint.norm(), 1e-12);       // every ray passes through F'
   EXPECT_LE(fit.rotationVector.norm(), 1e-9);
   ASSERT_EQ(fit.residuals.size(), 5u);
@@ -145,7 +145,7 @@ TEST(CentralFit, TheRayErrorOfATurnedOrMovedExactModelIsItsAngle) {
 
 TEST(CentralFit, ATurnedPinholeAtTheFocusStaysCentral) {
   RigSpec rig;
-  rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   const CentralApproximation fit = fitCentralApproximation(PhysicalCamera(rig));
   EXPECT_LE(fit.viewpoint.norm(), 1e-12);  // every ray still passes through F'
   // A tilted image plane is not quite Mei's (its tangential terms absorb most of it) ...
@@ -157,8 +157,8 @@ TEST(CentralFit, ATurnedPinholeAtTheFocusStaysCentral) {
 
 TEST(CentralFit, AMovedPinholesParallaxFallsWithDistance) {
   RigSpec rig;  // the demo's misalignment: 2 mm and 1°
-  rig.mount.offsetMm = {2.0, -1.0, 1.0};
-  rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+  rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   const PhysicalCamera camera(rig);
   const CentralApproximation& fit = camera.centralApproximation();
   ASSERT_EQ(fit.residuals.size(), 5u);
@@ -177,7 +177,7 @@ TEST(CentralFit, AMovedPinholesParallaxFallsWithDistance) {
   EXPECT_GT(parallax(1), 1e-3);
   // The per-pixel map holds every pixel, the grid's among them.
   const std::vector<float> map = centralResidualMap(camera, fit, 1.0);
-  ASSERT_EQ(map.size(), static_cast<size_t>(rig.imageSize * rig.imageSize));
+  ASSERT_EQ(map.size(), static_cast<size_t>(rig.mirrorRig().imageSize * rig.mirrorRig().imageSize));
   float worst = 0.0f;
   int imaged = 0;
   for (float v : map)

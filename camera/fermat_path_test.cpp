@@ -23,9 +23,9 @@ std::vector<RigSpec> everyShape() {
 }
 
 const char* nameOf(const RigSpec& rig) {
-  switch (rig.shape.shape) {
+  switch (rig.mirrorRig().shape.shape) {
     case MirrorShape::Hyperboloid: return "hyperboloid";
-    case MirrorShape::Paraboloid: return rig.shape.cameraDistance == 0.0 ? "orthographic paraboloid" : "perspective paraboloid";
+    case MirrorShape::Paraboloid: return rig.mirrorRig().shape.cameraDistance == 0.0 ? "orthographic paraboloid" : "perspective paraboloid";
     case MirrorShape::Sphere: return "sphere";
     case MirrorShape::Cone: return "cone";
   }
@@ -37,7 +37,7 @@ TEST(FermatPath, ItsMinimumIsTheMirrorPointTheTraceReflectsFrom) {
     const PhysicalCamera camera(rig);
     const double r = camera.mirror().rimRadius();
     std::mt19937 rng(5);
-    std::uniform_real_distribution<double> coord(0.0, rig.imageSize), logDepth(std::log(0.1), std::log(100.0));
+    std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize), logDepth(std::log(0.1), std::log(100.0));
     double worst = 0.0;
     int atTheEdge = 0;
     for (int done = 0; done < 2000;) {
@@ -80,7 +80,7 @@ TEST(FermatPath, PointsNoMirrorPointReflectsHaveTheirMinimumOffTheMirror) {
         const double e = radians(elevation), a = kPi * k / 4.0;
         unseen.push_back(5.0 * Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)));
       }
-    if (rig.shape.shape == MirrorShape::Cone) {
+    if (rig.mirrorRig().shape.shape == MirrorShape::Cone) {
       unseen.push_back(Vec3(0.001, 0.002, -5.0));
       EXPECT_EQ(minimiseFermatPath(mirror, camera.pinhole(), unseen.back()).on, FermatMinimum::On::Corner);
     }
@@ -95,7 +95,7 @@ TEST(FermatPath, TheConvexRouteAloneRoundTripsEveryShape) {
   for (const RigSpec& rig : everyShape()) {
     const PhysicalCamera camera(rig);
     std::mt19937 rng(11);
-    std::uniform_real_distribution<double> coord(0.0, rig.imageSize), logDepth(std::log(0.1), std::log(100.0));
+    std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize), logDepth(std::log(0.1), std::log(100.0));
     double worst = 0.0;
     int lost = 0;
     for (int done = 0; done < 3000;) {
@@ -144,10 +144,10 @@ RouteAgreement projectAgainstSearch(const PhysicalCamera& camera, int count, uns
 // (Its round trips: PhysicalCamera.RoundTripsOfAConeFromItsAxis.)
 TEST(FermatPath, TheConesClosedFormAgreesWithTheConvexSearch) {
   RigSpec centred = test::shaped(MirrorShape::Cone, 0.05);
-  centred.mount = CameraMount{};
+  centred.mirrorRig().mount = CameraMount{};
   RigSpec movedAlongAxisAndTurned = centred;
-  movedAlongAxisAndTurned.mount.offsetMm = {0.0, 0.0, -4.0};
-  movedAlongAxisAndTurned.mount.rotationDeg = {1.0, -0.6, 0.8};
+  movedAlongAxisAndTurned.mirrorRig().mount.offsetMm = {0.0, 0.0, -4.0};
+  movedAlongAxisAndTurned.mirrorRig().mount.rotationDeg = {1.0, -0.6, 0.8};
   for (const RigSpec& rig : {centred, movedAlongAxisAndTurned}) {
     const PhysicalCamera camera(rig);
     ASSERT_EQ(camera.pinhole().position.head<2>().norm(), 0.0);
@@ -165,8 +165,8 @@ TEST(FermatPath, TheConesClosedFormAgreesWithTheConvexSearch) {
 TEST(FermatPath, TheQuickAnswersAgreeWithTheConvexSearchOnEveryShape) {
   std::vector<RigSpec> rigs = everyShape();
   RigSpec turnedCone = test::shaped(MirrorShape::Cone, 0.05);
-  turnedCone.mount.offsetMm = {-6.0, 4.0, -3.0};
-  turnedCone.mount.rotationDeg = {-4.0, 3.0, 10.0};
+  turnedCone.mirrorRig().mount.offsetMm = {-6.0, 4.0, -3.0};
+  turnedCone.mirrorRig().mount.rotationDeg = {-4.0, 3.0, 10.0};
   rigs.push_back(turnedCone);
   for (const RigSpec& rig : rigs) {
     const RouteAgreement a = projectAgainstSearch(PhysicalCamera(rig), 3000, 17);

@@ -18,10 +18,9 @@ bool inside(const Camera& camera, const Vec2& raster) {
 
 }  // namespace
 
-LensCamera::LensCamera(const RigSpec& rig) : Camera(rig) {
-  if (!rig.lens) throw InputError("rig: a lens camera needs rig.lens");
-  modelName_ = lensModelName(rig.lens->model);
-  viewpointFromLens_ = viewpointFromLens(*rig.lens);
+LensCamera::LensCamera(const RigSpec& rig) : Camera(rig), lens_(rig.lensCamera()) {
+  modelName_ = lensModelName(lens().model);
+  viewpointFromLens_ = viewpointFromLens(lens());
 }
 
 std::optional<CameraRay> LensCamera::generateRay(const CameraSample& sample) const {

@@ -10,7 +10,7 @@ namespace omnicam {
 
 class LensCamera final : public Camera {
  public:
-  // InputError unless rig.lens is set.
+  // std::bad_variant_access for a mirror rig (makeCamera builds one for lens rigs only).
   explicit LensCamera(const RigSpec& rig);
 
   const char* model() const override { return modelName_.c_str(); }
@@ -20,10 +20,11 @@ class LensCamera final : public Camera {
   bool images(const Vec2& raster) const override;
   nlohmann::json describe() const override;
 
-  const LensCameraSpec& lens() const { return *rig().lens; }
+  const LensCameraSpec& lens() const { return lens_; }
   const Eigen::Matrix3d& viewpointFromLensMatrix() const { return viewpointFromLens_; }
 
  private:
+  LensCameraSpec lens_;  // rig().lensCamera(), resolved once rather than per ray
   std::string modelName_;
   Eigen::Matrix3d viewpointFromLens_;
 };

@@ -34,9 +34,9 @@ TEST(LensCamera, RaysAndProjectionsInvertEachOtherWhereverTheCameraImages) {
   for (const RigSpec& rig : everyModel()) {
     const std::shared_ptr<const Camera> camera = makeCamera(rig);
     ASSERT_NE(dynamic_cast<const LensCamera*>(camera.get()), nullptr);
-    EXPECT_EQ(camera->model(), lensModelName(rig.lens->model));
-    EXPECT_EQ(camera->width(), rig.lens->width);
-    EXPECT_EQ(camera->height(), rig.lens->height);
+    EXPECT_EQ(camera->model(), lensModelName(rig.lensCamera().model));
+    EXPECT_EQ(camera->width(), rig.lensCamera().width);
+    EXPECT_EQ(camera->height(), rig.lensCamera().height);
     int imaged = 0;
     double worst = 0.0;
     for (double y = 0.25; y < camera->height(); y += 1.5)
@@ -84,8 +84,8 @@ TEST(LensCamera, TheLensLooksWhereItsRotationSays) {
 // raster runs over [0, W] × [0, H], so it scales exactly).
 TEST(LensCamera, AResizedLensImagesTheSameDirectionsAtScaledPoints) {
   for (const RigSpec& rig : everyModel()) {
-    const RigSpec large = rig.resized(2 * rig.lens->width);
-    ASSERT_EQ(large.lens->height, 2 * rig.lens->height);
+    const RigSpec large = rig.resized(2 * rig.lensCamera().width);
+    ASSERT_EQ(large.lensCamera().height, 2 * rig.lensCamera().height);
     const LensCamera small(rig), big(large);
     for (double y = 3.3; y < small.height(); y += 7.0)
       for (double x = 2.1; x < small.width(); x += 7.0) {
@@ -157,10 +157,10 @@ TEST(LensCamera, RigEqualitySeesEveryLensField) {
   const RigSpec a = everyModel().front();
   RigSpec b = a;
   EXPECT_TRUE(a == b);
-  std::get<KannalaBrandt>(b.lens->model).k[3] += 1e-12;
+  std::get<KannalaBrandt>(b.lensCamera().model).k[3] += 1e-12;
   EXPECT_FALSE(a == b);
   b = a;
-  b.lens->rotationDeg[1] += 1e-9;
+  b.lensCamera().rotationDeg[1] += 1e-9;
   EXPECT_FALSE(a == b);
   EXPECT_FALSE(*makeCamera(a) == *makeCamera(b));
 }

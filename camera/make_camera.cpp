@@ -11,9 +11,12 @@
 namespace omnicam {
 
 std::shared_ptr<const Camera> makeCamera(const RigSpec& rig, bool traced) {
-  if (rig.lens) return std::make_shared<LensCamera>(rig);
-  if (rig.ideal() && !traced) return std::make_shared<CentralCamera>(rig);
-  return std::make_shared<PhysicalCamera>(rig);
+  return std::visit(Overloaded{[&](const LensCameraSpec&) -> std::shared_ptr<const Camera> { return std::make_shared<LensCamera>(rig); },
+                               [&](const MirrorRig& mirror) -> std::shared_ptr<const Camera> {
+                                 if (mirror.ideal() && !traced) return std::make_shared<CentralCamera>(rig);
+                                 return std::make_shared<PhysicalCamera>(rig);
+                               }},
+                    rig.kind);
 }
 
 nlohmann::json describeCamera(const RigSpec& rig) {
@@ -47,8 +50,9 @@ CentralModel centralModelOf(const Camera& camera) {
   const PhysicalCamera& physical = *traced;
   if (const auto mei = physical.meiEquivalent()) {
     model.intrinsics = *mei;
-    if (camera.rig().shape.shape == MirrorShape::Hyperboloid && physical.pinhole().distortion.none())
-      model.rimRadiusPx = camera.rig().idealCamera().rimRadius();
+    const MirrorRig& rig = camera.rig().mirrorRig();
+    if (rig.shape.shape == MirrorShape::Hyperboloid && physical.pinhole().distortion.none())
+      model.rimRadiusPx = rig.idealCamera().rimRadius();
     return model;
   }
   model.approximation = physical.centralApproximation();

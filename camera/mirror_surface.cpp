@@ -42,7 +42,7 @@ std::optional<Vec3> firstValidRoot(double a, double b, double c, const Vec3& o, 
 
 class HyperboloidSurface final : public MirrorSurface {
  public:
-  explicit HyperboloidSurface(const RigSpec& rig)
+  explicit HyperboloidSurface(const MirrorRig& rig)
       : MirrorSurface(rig.idealCamera().rimPoint().z(), rig.idealCamera().rimPoint().head<2>().norm()),
         mirror_(rig.mirror()) {}
   std::optional<Vec3> firstHit(const Vec3& o, const Vec3& d) const override { return mirror_.firstHit(o, d); }
@@ -197,7 +197,7 @@ class ConeSurface final : public MirrorSurface {
 
 }  // namespace
 
-std::shared_ptr<const MirrorSurface> mirrorSurfaceOf(const RigSpec& rig) {
+std::shared_ptr<const MirrorSurface> mirrorSurfaceOf(const MirrorRig& rig) {
   const MirrorShapeSpec& s = rig.shape;
   switch (s.shape) {
     case MirrorShape::Hyperboloid: return std::make_shared<HyperboloidSurface>(rig);

@@ -61,6 +61,6 @@ class MirrorSurface {
 
 // The mirror of a rig. Throws InputError (naming the mirror's fields) for a shape whose
 // parameters describe no mirror.
-std::shared_ptr<const MirrorSurface> mirrorSurfaceOf(const RigSpec& rig);
+std::shared_ptr<const MirrorSurface> mirrorSurfaceOf(const MirrorRig& rig);
 
 }  // namespace omnicam

@@ -9,7 +9,7 @@
 
 namespace omnicam {
 
-PhysicalCamera::PhysicalCamera(const RigSpec& rig) : Camera(rig), mirror_(mirrorSurfaceOf(rig)), pinhole_(pinholeOf(rig)) {
+PhysicalCamera::PhysicalCamera(const RigSpec& rig) : Camera(rig), mirror_(mirrorSurfaceOf(rig.mirrorRig())), pinhole_(pinholeOf(rig.mirrorRig())) {
   if (pinhole_.orthographic && !pinhole_.distortion.none())
     throw InputError("camera.distortion: the paraboloid's orthographic camera has no lens model here; give "
                      "rig.mirror.camera_distance_m for a perspective camera");
@@ -24,7 +24,7 @@ void PhysicalCamera::checkMirrorInView() const {
   // frame: refuse it instead. Compared on a coarse grid with the disc inscribed in the image,
   // which the ideal camera of every shape fills (its rim touches the border).
   constexpr int kGrid = 24;
-  const double size = rig().imageSize;
+  const double size = width();  // square
   int seen = 0, disc = 0;
   for (int j = 0; j < kGrid; ++j)
     for (int i = 0; i < kGrid; ++i) {
@@ -209,13 +209,14 @@ std::optional<Vec2> PhysicalCamera::projectFromFermatMinimum(const Vec3& p) cons
 }
 
 std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
-  const CameraMount& mount = rig().mount;
-  if (rig().shape.shape == MirrorShape::Paraboloid && pinhole_.orthographic &&
+  const MirrorRig& rig = this->rig().mirrorRig();
+  const CameraMount& mount = rig.mount;
+  if (rig.shape.shape == MirrorShape::Paraboloid && pinhole_.orthographic &&
       mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0}) {
     // The orthographic paraboloid is the unified model with ξ = 1 (Geyer and Daniilidis): a
     // mirror point at radius r = h·tan(θ/2) seen f px per metre gives γ = h·f. Moving the camera
     // sideways moves the mirror's image by −f·offset; along the axis, nothing.
-    const double gamma = rig().shape.parabolaH * pinhole_.focalPx;
+    const double gamma = rig.shape.parabolaH * pinhole_.focalPx;
     const Vec2 centre = pinhole_.principalPoint - pinhole_.focalPx * pinhole_.position.head<2>();
     MeiIntrinsics mei;
     mei.xi = 1.0, mei.gammaX = gamma, mei.gammaY = -gamma;
@@ -223,13 +224,13 @@ std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
     mei.cy = centre.y() - 0.5;
     return mei;
   }
-  if (rig().shape.shape != MirrorShape::Hyperboloid || mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} ||
+  if (rig.shape.shape != MirrorShape::Hyperboloid || mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} ||
       mount.rotationDeg != std::array<double, 3>{0.0, 0.0, 0.0} || mount.distortion.k3 != 0.0)
     return std::nullopt;
   // The aligned pinhole's normalised coordinates are the unified model's scaled by s = γ/f with
   // v's sign flipped (γ_y = −γ), so its lens is Mei's distortion with rescaled coefficients;
   // cv::omnidir has no k3.
-  const OmniCamera ideal = rig().idealCamera();
+  const OmniCamera ideal = rig.idealCamera();
   const OpenCvIntrinsics k = ideal.openCvIntrinsics();
   const double s = ideal.gamma() / pinhole_.focalPx;
   const LensDistortion& l = mount.distortion;
@@ -250,7 +251,7 @@ namespace {
 
 // Whether the reflected rays' lines all meet in one point: the hyperboloid's pinhole at F, or
 // the paraboloid's orthographic camera looking along its axis (wherever it is moved sideways).
-bool singleViewpoint(const RigSpec& rig, const Pinhole& camera) {
+bool singleViewpoint(const MirrorRig& rig, const Pinhole& camera) {
   const CameraMount& mount = rig.mount;
   switch (rig.shape.shape) {
     case MirrorShape::Hyperboloid: return mount.offsetMm == std::array<double, 3>{0.0, 0.0, 0.0};
@@ -262,11 +263,12 @@ bool singleViewpoint(const RigSpec& rig, const Pinhole& camera) {
 }  // namespace
 
 nlohmann::json PhysicalCamera::describe() const {
-  const CameraMount& mount = rig().mount;
+  const MirrorRig& rig = this->rig().mirrorRig();
+  const CameraMount& mount = rig.mount;
   const LensDistortion& l = mount.distortion;
   nlohmann::json out = {
       {"model", "physical"},
-      {"non_central", !singleViewpoint(rig(), pinhole_)},
+      {"non_central", !singleViewpoint(rig, pinhole_)},
       {"width", width()},
       {"height", height()},
       {"pixel_centre", "half-integer"},
@@ -289,7 +291,7 @@ nlohmann::json PhysicalCamera::describe() const {
     nlohmann::json exact = {{"model", "mei_unified"},      {"xi", mei->xi},           {"gamma_x", mei->gammaX},
                             {"gamma_y", mei->gammaY},      {"pixel_centre", "integer"}, {"width", width()},
                             {"height", height()}};
-    if (rig().shape.shape == MirrorShape::Hyperboloid) exact = unifiedIntrinsicsJson(rig().idealCamera());
+    if (rig.shape.shape == MirrorShape::Hyperboloid) exact = unifiedIntrinsicsJson(rig.idealCamera());
     if (!pinhole_.distortion.none()) {
       // The lens bends the rim and horizon circles: no radius describes them.
       exact.erase("rim_radius_px");

@@ -23,8 +23,8 @@ using test::misaligned;
 using test::shaped;
 
 RigSpec distorted(RigSpec rig) {
-  rig.mount.distortion = {-0.12, 0.03, 0.0015, -0.001, 0.0};
-  rig.mount.principalPointOffsetPx = {1.25, -0.8};
+  rig.mirrorRig().mount.distortion = {-0.12, 0.03, 0.0015, -0.001, 0.0};
+  rig.mirrorRig().mount.principalPointOffsetPx = {1.25, -0.8};
   return rig;
 }
 
@@ -33,7 +33,7 @@ TEST(PhysicalCamera, TheIdealPinholeTracesTheClosedFormsRays) {
   const PhysicalCamera traced(rig);
   const CentralCamera closed(rig);
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
   int checked = 0;
   double worstAngle = 0.0, worstOffset = 0.0;
   for (int i = 0; i < 20000; ++i) {
@@ -62,7 +62,7 @@ TEST(PhysicalCamera, AMovedTurnedDistortedCameraObeysTheReflectionLaw) {
   const PhysicalCamera camera(rig);
   const Pinhole& pinhole = camera.pinhole();
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
   int checked = 0;
   for (int i = 0; i < 5000; ++i) {
     const Vec2 p(coord(rng), coord(rng));
@@ -88,7 +88,7 @@ TEST(PhysicalCamera, AMovedTurnedDistortedCameraObeysTheReflectionLaw) {
 void expectRoundTrips(const RigSpec& rig, int count, double bound) {
   const auto camera = makeCamera(rig);
   std::mt19937 rng(17);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize), logDepth(std::log(0.1), std::log(100.0));
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize), logDepth(std::log(0.1), std::log(100.0));
   double worst = 0.0;
   int done = 0, lost = 0;
   while (done < count) {
@@ -113,7 +113,7 @@ TEST(PhysicalCamera, RoundTripsOfTheIdealRigTraced) {
   const RigSpec rig;
   const PhysicalCamera camera(rig);
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
   double worst = 0.0;
   for (int done = 0; done < 20000;) {
     const Vec2 p(coord(rng), coord(rng));
@@ -141,7 +141,7 @@ TEST(PhysicalCamera, RoundTripsOfACone) { expectRoundTrips(shaped(MirrorShape::C
 // A pinhole on the cone's axis: project is the closed form alone (mirror_surface.h).
 TEST(PhysicalCamera, RoundTripsOfAConeFromItsAxis) {
   RigSpec rig = shaped(MirrorShape::Cone, 0.05);
-  rig.mount.offsetMm = {0.0, 0.0, -4.0};
+  rig.mirrorRig().mount.offsetMm = {0.0, 0.0, -4.0};
   expectRoundTrips(rig, 100000, 1e-6);
 }
 
@@ -151,7 +151,7 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
                              shaped(MirrorShape::Sphere, 0.12), shaped(MirrorShape::Cone, 0.05)}) {
     const PhysicalCamera camera(rig);
     std::mt19937 rng(13);
-    std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+    std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
     int checked = 0;
     for (int i = 0; i < 3000; ++i) {
       const Vec2 p(coord(rng), coord(rng));
@@ -159,7 +159,7 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
       if (!ray) continue;
       ++checked;
       const Vec3 m = ray->origin;
-      ASSERT_NEAR(camera.mirror().implicit(m), 0.0, 1e-9) << mirrorShapeName(rig.shape.shape);
+      ASSERT_NEAR(camera.mirror().implicit(m), 0.0, 1e-9) << mirrorShapeName(rig.mirrorRig().shape.shape);
       const Vec3 incoming = camera.pinhole().rayTo(m).direction;
       const Vec3 n = camera.mirror().normalAt(m);
       EXPECT_NEAR(incoming.dot(n), -ray->direction.dot(n), 1e-12);
@@ -167,7 +167,7 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
       EXPECT_LE(m.z(), camera.mirror().rimZ() + 1e-15);
     }
     // The rim touches the image border: the mirror fills most of the inscribed disc.
-    EXPECT_GT(checked, 3000 * 0.6) << mirrorShapeName(rig.shape.shape);
+    EXPECT_GT(checked, 3000 * 0.6) << mirrorShapeName(rig.mirrorRig().shape.shape);
   }
 }
 
@@ -175,21 +175,21 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
 // stopping test must still be reachable in floating point there.
 TEST(PhysicalCamera, RoundTripsNearAWideRim) {
   RigSpec rig = misaligned(2.0, 1.0);
-  rig.k = 6.0;
-  rig.rimElevationDeg = 51.0;  // 4.2 c from F'; at 52° this mirror has no rim
-  rig.framingElevationDeg = 51.0;
-  const double rimDistance = rig.idealCamera().rimPoint().norm();
-  std::printf("rim %.2f c from F'\n", rimDistance / rig.c);
-  EXPECT_GT(rimDistance, 3.0 * rig.c);
+  rig.mirrorRig().k = 6.0;
+  rig.mirrorRig().rimElevationDeg = 51.0;  // 4.2 c from F'; at 52° this mirror has no rim
+  rig.mirrorRig().framingElevationDeg = 51.0;
+  const double rimDistance = rig.mirrorRig().idealCamera().rimPoint().norm();
+  std::printf("rim %.2f c from F'\n", rimDistance / rig.mirrorRig().c);
+  EXPECT_GT(rimDistance, 3.0 * rig.mirrorRig().c);
   expectRoundTrips(rig, 20000, 1e-6);
 }
 
 // --size renders the same camera with other pixels: the principal point's offset scales too.
 TEST(PhysicalCamera, ResizingKeepsTheCamerasGeometry) {
   const RigSpec rig = distorted(misaligned(2.0, 1.0));
-  const PhysicalCamera small(rig), large(rig.resized(2 * rig.imageSize));
+  const PhysicalCamera small(rig), large(rig.resized(2 * rig.mirrorRig().imageSize));
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
   int checked = 0;
   for (int i = 0; i < 2000; ++i) {
     const Vec2 p(coord(rng), coord(rng));
@@ -207,10 +207,10 @@ TEST(PhysicalCamera, ResizingKeepsTheCamerasGeometry) {
 // ray is another one.
 TEST(PhysicalCamera, ProjectRespectsTheLensFold) {
   RigSpec rig;
-  rig.mount.distortion = {-4.0, 0.0, 0.0, 0.0, 0.0};  // folds at r = 1/sqrt(12) ≈ 0.29, inside the corners
+  rig.mirrorRig().mount.distortion = {-4.0, 0.0, 0.0, 0.0, 0.0};  // folds at r = 1/sqrt(12) ≈ 0.29, inside the corners
   const PhysicalCamera camera(rig);
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize), logDepth(std::log(0.1), std::log(100.0));
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize), logDepth(std::log(0.1), std::log(100.0));
   int projected = 0;
   for (int i = 0; i < 20000; ++i) {
     // Random scene points around the rig, seen or not.
@@ -232,16 +232,16 @@ TEST(PhysicalCamera, PointsItCannotSeeAreNotProjected) {
 
 TEST(PhysicalCamera, ACameraThatMissesTheMirrorIsRefused) {
   RigSpec rig;
-  rig.mount.offsetMm = {100.0, 0.0, 0.0};
+  rig.mirrorRig().mount.offsetMm = {100.0, 0.0, 0.0};
   EXPECT_THROW(PhysicalCamera{rig}, InputError);
-  rig.mount.offsetMm = {0.0, 0.0, 0.0};
-  rig.mount.rotationDeg = {30.0, 0.0, 0.0};
+  rig.mirrorRig().mount.offsetMm = {0.0, 0.0, 0.0};
+  rig.mirrorRig().mount.rotationDeg = {30.0, 0.0, 0.0};
   EXPECT_THROW(PhysicalCamera{rig}, InputError);
 }
 
 TEST(PhysicalCamera, APinholeInsideTheMirrorIsRefused) {
   RigSpec rig;
-  rig.mount.offsetMm = {0.0, 0.0, 40.0};
+  rig.mirrorRig().mount.offsetMm = {0.0, 0.0, 40.0};
   EXPECT_THROW(PhysicalCamera{rig}, InputError);
 }
 
@@ -279,8 +279,8 @@ TEST(LensDistortion, MatchesOpenCvAndInvertsExactly) {
 // distortion with k1·s², k2·s⁴, p1·(−s), p2·s (cv::omnidir has no k3).
 TEST(PhysicalCamera, AlignedDistortionIsMeiWithRescaledCoefficients) {
   RigSpec rig;
-  rig.mount.distortion = {-0.09, 0.02, 0.0011, -0.0007, 0.0};
-  rig.mount.principalPointOffsetPx = {0.9, -1.3};
+  rig.mirrorRig().mount.distortion = {-0.09, 0.02, 0.0011, -0.0007, 0.0};
+  rig.mirrorRig().mount.principalPointOffsetPx = {0.9, -1.3};
   const auto camera = makeCamera(rig);
   const nlohmann::json intrinsics = camera->describe();
   ASSERT_TRUE(intrinsics.contains("mei_equivalent")) << intrinsics.dump();
@@ -289,7 +289,7 @@ TEST(PhysicalCamera, AlignedDistortionIsMeiWithRescaledCoefficients) {
   const cv::Matx14d D(mei["distortion"][0], mei["distortion"][1], mei["distortion"][2], mei["distortion"][3]);
   const double xi = mei["xi"];
   std::mt19937 rng(29);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
   std::vector<cv::Point3d> points;  // OpenCV's camera frame: x forward, y = −robot y, z down
   std::vector<Vec2> ours;
   while (points.size() < 2000) {
@@ -316,14 +316,14 @@ TEST(PhysicalCamera, AlignedDistortionIsMeiWithRescaledCoefficients) {
 // project, and the best-fit central model finds the same numbers with no residual.
 TEST(PhysicalCamera, TheOrthographicParaboloidIsMeiWithXiOne) {
   RigSpec rig = shaped(MirrorShape::Paraboloid, 0.0);
-  rig.mount.rotationDeg = {0.0, 0.0, 0.0};
+  rig.mirrorRig().mount.rotationDeg = {0.0, 0.0, 0.0};
   const PhysicalCamera camera(rig);
   const auto mei = camera.meiEquivalent();
   ASSERT_TRUE(mei);
   EXPECT_FALSE(camera.describe()["non_central"].get<bool>());
   const cv::Matx33d K(mei->gammaX, 0.0, mei->cx, 0.0, mei->gammaY, mei->cy, 0.0, 0.0, 1.0);
   std::mt19937 rng(31);
-  std::uniform_real_distribution<double> coord(0.0, rig.imageSize);
+  std::uniform_real_distribution<double> coord(0.0, rig.mirrorRig().imageSize);
   std::vector<cv::Point3d> points;
   std::vector<Vec2> ours;
   while (points.size() < 2000) {
@@ -356,7 +356,7 @@ TEST(Camera, EqualityIsTheRigsAndTheModels) {
   RigSpec a, b;
   EXPECT_TRUE(*makeCamera(a) == *makeCamera(b));
   EXPECT_FALSE(*makeCamera(a) == *makeCamera(a, true));
-  b.mount.distortion.k3 = 1e-9;
+  b.mirrorRig().mount.distortion.k3 = 1e-9;
   EXPECT_FALSE(a == b);
   EXPECT_FALSE(*makeCamera(a, true) == *makeCamera(b));
   EXPECT_THROW((void)b.camera(), InputError);  // no central model for it

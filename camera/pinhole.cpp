@@ -31,7 +31,7 @@ CameraRay Pinhole::rayTo(const Vec3& pointViewpoint) const {
   return {position + viewpointFromPinhole * Vec3(q.x(), q.y(), 0.0), viewpointFromPinhole.col(2)};
 }
 
-Pinhole pinholeOf(const RigSpec& rig) {
+Pinhole pinholeOf(const MirrorRig& rig) {
   const CameraMount& m = rig.mount;
   Pinhole p;
   const double half = 0.5 * rig.imageSize;

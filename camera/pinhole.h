@@ -31,6 +31,6 @@ struct Pinhole {
 // framed as the ideal rig's image; for the other shapes on the axis at rig.shape.cameraDistance
 // below the design point (the paraboloid with 0: orthographic), framed so that the rim touches
 // the image border.
-Pinhole pinholeOf(const RigSpec& rig);
+Pinhole pinholeOf(const MirrorRig& rig);
 
 }  // namespace omnicam

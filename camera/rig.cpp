@@ -1,6 +1,7 @@
 #include "rig.h"
 
 #include <numeric>
+#include <utility>
 
 #include "errors.h"
 #include "input_limits.h"
@@ -23,22 +24,75 @@ const char* mirrorShapeName(MirrorShape shape) {
   return "?";
 }
 
+int RigSpec::imageWidth() const {
+  return std::visit(Overloaded{[](const MirrorRig& m) { return m.imageSize; }, [](const LensCameraSpec& l) { return l.width; }},
+                    kind);
+}
+
+int RigSpec::imageHeight() const {
+  return std::visit(Overloaded{[](const MirrorRig& m) { return m.imageSize; }, [](const LensCameraSpec& l) { return l.height; }},
+                    kind);
+}
+
+std::string RigSpec::imageSizeText() const {
+  return std::visit(Overloaded{[](const MirrorRig& m) { return std::to_string(m.imageSize) + "^2"; },
+                               [](const LensCameraSpec& l) { return std::to_string(l.width) + "x" + std::to_string(l.height); }},
+                    kind);
+}
+
+const MirrorRig& RigSpec::mirrorRig(const std::string& what) const {
+  if (const MirrorRig* mirror = std::get_if<MirrorRig>(&kind)) return *mirror;
+  throw InputError(what + ": a lens camera (rig.lens) has no mirror");
+}
+
+MirrorRig& RigSpec::mirrorRig(const std::string& what) {
+  return const_cast<MirrorRig&>(std::as_const(*this).mirrorRig(what));
+}
+
+bool RigSpec::ideal() const {
+  return std::visit(Overloaded{[](const MirrorRig& m) { return m.ideal(); }, [](const LensCameraSpec&) { return false; }},
+                    kind);
+}
+
+RigSpec RigSpec::resized(int size, const std::string& what) const {
+  checkImageSize(size, what);
+  RigSpec r = *this;
+  std::visit(Overloaded{[&](MirrorRig& m) {
+                          const double scale = static_cast<double>(size) / m.imageSize;
+                          m.imageSize = size;
+                          for (double& offset : m.mount.principalPointOffsetPx) offset *= scale;
+                        },
+                        [&](LensCameraSpec& l) { l = resizedLens(l, size, what); }},
+             r.kind);
+  return r;
+}
+
+RigSpec RigSpec::idealized() const {
+  RigSpec r = *this;
+  std::visit(Overloaded{[](MirrorRig& m) { m.mount = {}; }, [](LensCameraSpec&) {}}, r.kind);
+  return r;
+}
+
 OmniCamera RigSpec::camera() const {
-  if (shape.shape != MirrorShape::Hyperboloid)
+  const MirrorRig* mirror = std::get_if<MirrorRig>(&kind);
+  if (mirror && mirror->shape.shape != MirrorShape::Hyperboloid)
     throw InputError(std::string("rig.mirror.shape: this needs the central (Mei) model of the hyperboloid; a ") +
-                     mirrorShapeName(shape.shape) + " mirror is traced physically only");
-  if (!ideal())
+                     mirrorShapeName(mirror->shape.shape) + " mirror is traced physically only");
+  if (!ideal())  // a lens camera included: no central (Mei) model describes it
     throw InputError(
         "rig.camera: this needs the central (Mei) model, which describes only the ideal camera "
         "(zero offset, rotation, distortion and principal point offset)");
-  return idealCamera();
+  return mirror->idealCamera();
 }
 
 Rigid cameraFromViewpoint(const RigSpec& rig) {
-  if (!rig.lens) return unifiedCameraFromViewpoint();
-  Rigid t = Rigid::Identity();
-  t.linear() = viewpointFromLens(*rig.lens).transpose();
-  return t;
+  return std::visit(Overloaded{[](const MirrorRig&) { return unifiedCameraFromViewpoint(); },
+                               [](const LensCameraSpec& lens) {
+                                 Rigid t = Rigid::Identity();
+                                 t.linear() = viewpointFromLens(lens).transpose();
+                                 return t;
+                               }},
+                    rig.kind);
 }
 
 LensCameraSpec resizedLens(const LensCameraSpec& lens, int width, const std::string& what) {

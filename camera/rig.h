@@ -7,8 +7,8 @@
 //              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
 //              axes along robot x, y, z.
 #include <array>
-#include <optional>
 #include <string>
+#include <variant>
 
 #include "geometry.h"
 #include "lens_models.h"
@@ -68,8 +68,9 @@ LensCameraSpec resizedLens(const LensCameraSpec& lens, int width, const std::str
 // InputError("<what>: must be in [8, 16384] (got N)") for an image size outside the limits.
 void checkImageSize(int size, const std::string& what);
 
-struct RigSpec {
-  double height = 0.40;            // F' above the floor, metres
+// A camera that sees the scene in a mirror: the mirror, and the physical camera below it that
+// images it onto a square image.
+struct MirrorRig {
   double k = 11.546;               // Baker–Nayar mirror parameter, > 2
   double c = 0.02321;              // focal distance between F and F', metres
   double rimElevationDeg = 45.0;   // mirror rim, degrees above the horizon (hyperboloid, paraboloid)
@@ -77,40 +78,65 @@ struct RigSpec {
   CameraMount mount;               // the physical camera's misalignment and lens
   int imageSize = 360;             // square image, pixels
   double framingElevationDeg = 45.0;  // direction that touches the image border
+  bool operator==(const MirrorRig&) const = default;
+
+  // True when the camera sits exactly where the mirror was designed for: the image is then the
+  // central (Mei) model's, in closed form.
+  bool ideal() const { return shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
+  HyperbolicMirror mirror() const { return {k, c}; }
+  // The ideal rig's central model: what the mirror and framing give, whatever the mount says.
+  OmniCamera idealCamera() const {
+    return {mirror(), imageSize, imageSize, rimElevationDeg, framingElevationDeg};
+  }
+};
+
+// What a rig's camera is: a mirror with its camera, or a lens without one. Code outside camera/
+// asks RigSpec, or visits this (std::visit with Overloaded), rather than testing which it holds.
+using CameraKind = std::variant<MirrorRig, LensCameraSpec>;
+
+// The sum type's idiom: std::visit(Overloaded{[](const MirrorRig&) {...}, [](const LensCameraSpec&) {...}}, rig.kind).
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+struct RigSpec {
+  double height = 0.40;            // F' above the floor, metres
   Shutter shutter;                 // an instant unless it says otherwise (docs/motion.md)
   // The whole rig (mirror and camera) tilted on its mount, as a robot rocking on its wheels
   // tilts it, about the point on the floor below F': robotFromViewpoint = Rx(roll)·Ry(pitch)·
   // T(0, 0, height), i.e. roll about the mount's x axis, then pitch about the rolled y axis.
   // Level unless it says otherwise.
   std::array<double, 2> tiltDeg{0.0, 0.0};
-  // Set: the rig is a lens camera at F' (no mirror; the mirror's fields above are unused).
-  std::optional<LensCameraSpec> lens;
+  CameraKind kind;                 // the hyperboloid rig unless it says otherwise
 
-  int imageWidth() const { return lens ? lens->width : imageSize; }
-  int imageHeight() const { return lens ? lens->height : imageSize; }
+  int imageWidth() const;
+  int imageHeight() const;
+  // The image's pixels as messages count them: "360^2" for a mirror rig's square image, "640x480"
+  // for a lens'.
+  std::string imageSizeText() const;
+
+  // The camera's own parameters. mirrorRig(): InputError("<what>: a lens camera (rig.lens) has
+  // no mirror") for a lens rig; lensCamera(): std::bad_variant_access for a mirror rig (only
+  // camera/'s LensCamera, built for lens rigs, asks).
+  const MirrorRig& mirrorRig(const std::string& what = "rig") const;
+  MirrorRig& mirrorRig(const std::string& what = "rig");
+  const LensCameraSpec& lensCamera() const { return std::get<LensCameraSpec>(kind); }
+  LensCameraSpec& lensCamera() { return std::get<LensCameraSpec>(kind); }
 
   // The one definition of rig equality: every cache keyed on a rig compares with it, so a new
   // field can never leave a stale table behind.
   bool operator==(const RigSpec&) const = default;
 
-  // True when the camera sits exactly where the mirror was designed for: the image is then the
-  // central (Mei) model's, in closed form.
-  bool ideal() const { return !lens && shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
+  // True for a mirror rig whose camera sits exactly where the mirror was designed for.
+  bool ideal() const;
   // The same camera imaging at another size: the focal length scales with the image, and so does
   // the principal point's offset (given in pixels of imageSize), so only the pixel size changes.
   // A lens camera's `size` is its width; its height keeps the aspect exactly (else InputError:
   // one scale for both axes keeps its pixels square).
   // InputError unless `size` is within limits::kMinImageSize … kMaxImageSize; `what` names the
   // size in messages (the CLI's "--size", a spec's file and field).
-  RigSpec resized(int size, const std::string& what = "image size") const {
-    checkImageSize(size, what);
-    RigSpec r = *this;
-    const double scale = static_cast<double>(size) / imageWidth();
-    r.imageSize = size;
-    for (double& offset : r.mount.principalPointOffsetPx) offset *= scale;
-    if (lens) r.lens = resizedLens(*lens, size, what);
-    return r;
-  }
+  RigSpec resized(int size, const std::string& what = "image size") const;
   // What shapes the camera's rays in the viewpoint frame: this rig without its shutter (when
   // rays are taken) and its tilt (where the viewpoint frame sits on the robot).
   RigSpec imaging() const {
@@ -119,18 +145,10 @@ struct RigSpec {
     r.tiltDeg = {0.0, 0.0};
     return r;
   }
-  // This rig with its camera put back where it belongs.
-  RigSpec idealized() const {
-    RigSpec r = *this;
-    r.mount = {};
-    return r;
-  }
+  // This rig with its camera put back where it belongs (a mirror rig's mount made ideal; a lens
+  // is where its rotation says).
+  RigSpec idealized() const;
 
-  HyperbolicMirror mirror() const { return {k, c}; }
-  // The ideal rig's central model: what the mirror and framing give, whatever the mount says.
-  OmniCamera idealCamera() const {
-    return {mirror(), imageSize, imageSize, rimElevationDeg, framingElevationDeg};
-  }
   // The central model of this rig; InputError for a rig whose camera is not ideal, which no
   // central model describes exactly (make_camera.h gives the camera of any rig).
   OmniCamera camera() const;

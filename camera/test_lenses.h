@@ -9,8 +9,7 @@ namespace omnicam::test {
 inline RigSpec lensRig(const LensModel& model, int width, int height, std::array<double, 3> rotationDeg = {0.0, 0.0, 0.0},
                        double height_m = 0.4) {
   RigSpec rig;
-  rig.lens = LensCameraSpec{model, width, height, rotationDeg};
-  rig.imageSize = width;
+  rig.kind = LensCameraSpec{model, width, height, rotationDeg};
   rig.height = height_m;
   return rig;
 }

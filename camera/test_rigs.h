@@ -8,8 +8,9 @@ namespace omnicam::test {
 // The camera moved (offsetMm, −0.7·offsetMm, 0.5·offsetMm) and turned (r, −0.6·r, 0.8·r).
 inline RigSpec misaligned(double offsetMm, double rotationDeg) {
   RigSpec rig;
-  rig.mount.offsetMm = {offsetMm, -0.7 * offsetMm, 0.5 * offsetMm};
-  rig.mount.rotationDeg = {rotationDeg, -0.6 * rotationDeg, 0.8 * rotationDeg};
+  CameraMount& mount = rig.mirrorRig().mount;
+  mount.offsetMm = {offsetMm, -0.7 * offsetMm, 0.5 * offsetMm};
+  mount.rotationDeg = {rotationDeg, -0.6 * rotationDeg, 0.8 * rotationDeg};
   return rig;
 }
 
@@ -17,14 +18,15 @@ inline RigSpec misaligned(double offsetMm, double rotationDeg) {
 // paraboloid's orthographic build).
 inline RigSpec shaped(MirrorShape shape, double cameraDistance) {
   RigSpec rig = misaligned(2.0, 1.0);
-  rig.shape.shape = shape;
-  rig.shape.cameraDistance = cameraDistance;
-  rig.shape.parabolaH = 0.02;
-  rig.rimElevationDeg = shape == MirrorShape::Paraboloid ? 30.0 : rig.rimElevationDeg;
-  rig.shape.sphereRadius = 0.03;
-  rig.shape.capAngleDeg = 60.0;
-  rig.shape.coneHalfAngleDeg = 60.0;  // > 45°: the axial ray reflects below the horizon
-  rig.shape.coneRimRadius = 0.03;
+  MirrorRig& mirror = rig.mirrorRig();
+  mirror.shape.shape = shape;
+  mirror.shape.cameraDistance = cameraDistance;
+  mirror.shape.parabolaH = 0.02;
+  mirror.rimElevationDeg = shape == MirrorShape::Paraboloid ? 30.0 : mirror.rimElevationDeg;
+  mirror.shape.sphereRadius = 0.03;
+  mirror.shape.capAngleDeg = 60.0;
+  mirror.shape.coneHalfAngleDeg = 60.0;  // > 45°: the axial ray reflects below the horizon
+  mirror.shape.coneRimRadius = 0.03;
   return rig;
 }
 

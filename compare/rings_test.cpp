@@ -40,7 +40,7 @@ TEST(Rings, MeasuresSyntheticRingsOfKnownRadius) {
   const std::vector<double> radii{3.3, 9.1, 20.25, 47.6, 88.0, 150.4};
   const ImageRGBA img = drawRings(radii, 0.3, 360);
   RigSpec rig;
-  rig.rimElevationDeg = 50.0;  // whole image inside the rim
+  rig.mirrorRig().rimElevationDeg = 50.0;  // whole image inside the rim
   const RingReport r = measureRings(img, rig.camera(), {10, 20, 30, 40, 50, 60});
   ASSERT_EQ(r.rings.size(), radii.size());
   for (size_t k = 0; k < radii.size(); ++k) EXPECT_NEAR(r.rings[k].measuredPx, radii[k], 0.02) << radii[k];
@@ -50,8 +50,8 @@ TEST(Rings, ProfilesMeasureHowFarRingsBend) {
   // Rings at the camera's exact radii, straight and bent by ±0.8 px: the per-sector RMS is
   // ~0 and 0.8/√2 (less a 1 % sector-averaging loss: sin 15°/15° for 10° sectors and cos 3φ).
   RigSpec rig;
-  rig.rimElevationDeg = 50.0;  // whole image inside the rim
-  rig.imageSize = 180;
+  rig.mirrorRig().rimElevationDeg = 50.0;  // whole image inside the rim
+  rig.mirrorRig().imageSize = 180;
   const OmniCamera camera = rig.camera();
   const std::vector<double> thetas{40, 60, 80, 100, 120};
   std::vector<double> radii;
@@ -73,8 +73,8 @@ TEST(Rings, ProfilesMeasureHowFarRingsBend) {
 TEST(Rings, AMisalignedCamerasRingsAreWhereItProjectsThem) {
   const Scene ideal = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
   Scene moved = ideal;
-  moved.rig.mount.offsetMm = {2.0, -1.4, 1.0};
-  moved.rig.mount.rotationDeg = {1.0, -0.6, 0.8};
+  moved.rig.mirrorRig().mount.offsetMm = {2.0, -1.4, 1.0};
+  moved.rig.mirrorRig().mount.rotationDeg = {1.0, -0.6, 0.8};
   const auto renderRings = [](const Scene& s) {
     RenderSettings settings;
     settings.rig = s.rig;
@@ -97,7 +97,7 @@ TEST(Rings, AMisalignedCamerasRingsAreWhereItProjectsThem) {
 TEST(Rings, WrongRingCountIsAnInputError) {
   const ImageRGBA img = drawRings({10.0, 20.0}, 0.3, 64);
   RigSpec rig;
-  rig.imageSize = 64;
+  rig.mirrorRig().imageSize = 64;
   EXPECT_THROW(measureRings(img, rig.camera(), {5, 10, 15}), InputError);
 }
 

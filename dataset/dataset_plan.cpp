@@ -38,12 +38,15 @@ std::string posesTum(size_t frames, const CameraSetup& setup, double interval, c
                      const std::function<CameraPlacement(int)>& placementOfFrame) {
   std::ostringstream out;
   out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n";
-  if (setup.rig.lens)
-    out << "# pose of the camera frame in the world (world_from_camera): origin at the lens' centre of\n"
-        << "# projection, X right, Y down, Z along the optical axis (OpenCV's; intrinsics/*.yaml); world +Z up, metres\n";
-  else
-    out << "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
-        << "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
+  out << std::visit(Overloaded{[](const MirrorRig&) {
+                                 return "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
+                                        "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
+                               },
+                               [](const LensCameraSpec&) {
+                                 return "# pose of the camera frame in the world (world_from_camera): origin at the lens' centre of\n"
+                                        "# projection, X right, Y down, Z along the optical axis (OpenCV's; intrinsics/*.yaml); world +Z up, metres\n";
+                               }},
+                    setup.rig.kind);
   for (size_t i = 0; i < frames; ++i) {
     const int frame = static_cast<int>(i);
     const Rigid worldFromCam = placementOfFrame(frame).worldFromCamera(rigOfFrame(frame));
@@ -300,10 +303,14 @@ void checkVibratedRigs(const DatasetPlan& plan) {
   // A lens camera's centre of projection is its viewpoint: there is no camera below a mirror to move.
   if (plan.spec().vibration.cameraOffsetMm != std::array<double, 3>{})
     for (const CameraSetup& setup : plan.setups())
-      if (setup.rig.lens)
-        throw InputError(showPath(plan.spec().file) + ": vibration.camera_offset_mm: camera " + quote(setup.camera->name) +
-                         " is a lens camera (rig.lens), whose centre of projection is its viewpoint: shake it with "
-                         "camera_rotation_deg and rig_tilt_deg");
+      std::visit(Overloaded{[](const MirrorRig&) {},
+                            [&](const LensCameraSpec&) {
+                              throw InputError(showPath(plan.spec().file) + ": vibration.camera_offset_mm: camera " +
+                                               quote(setup.camera->name) +
+                                               " is a lens camera (rig.lens), whose centre of projection is its viewpoint: "
+                                               "shake it with camera_rotation_deg and rig_tilt_deg");
+                            }},
+                 setup.rig.kind);
   for (int frame = 0; frame < static_cast<int>(plan.poses().size()); ++frame)
     for (size_t c = 0; c < plan.setups().size(); ++c) {
       const RigSpec rig = plan.frameRig(frame, c);

@@ -326,8 +326,11 @@ TEST(DatasetPlan, ACalibrationFrameCountsItsOwnCopyOfTheScene) {
     {"origin": [0.4, -0.1, 0.0], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]}]}}})";
   DatasetRunOptions options;
   options.dir = (dir / "out").string();
-  const DatasetPlan still(loadDatasetSpec((dir / "still.json").string()), options);
-  const DatasetPlan calibration(loadDatasetSpec((dir / "calibration.json").string()), options);
+  // A plan reads its spec by reference (dataset_plan.h): the specs outlive the plans.
+  const DatasetSpec stillSpec = loadDatasetSpec((dir / "still.json").string());
+  const DatasetSpec calibrationSpec = loadDatasetSpec((dir / "calibration.json").string());
+  const DatasetPlan still(stillSpec, options);
+  const DatasetPlan calibration(calibrationSpec, options);
   const int64_t meshCopy = int64_t{2 * (kStrips + 1)} * int64_t{sizeof(Vec3)} + int64_t{2 * kStrips} * int64_t{sizeof(Eigen::Vector3i)};
   const int64_t embreeIndices = int64_t{2 * kStrips} * 3 * 4;
   std::printf("a frame: %lld bytes still, %lld in a calibration sequence (the mesh's copy alone %lld)\n",

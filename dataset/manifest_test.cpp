@@ -39,11 +39,11 @@ FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
   const double tiny = 1.2345678901234567e-300, negativeTiny = -tiny;
   RigSpec rig;
   rig.height = std::nextafter(0.4, 1.0);
-  rig.k = std::nextafter(11.546, 100.0);
-  rig.c = std::nextafter(0.02321, 1.0);
-  rig.rimElevationDeg = rig.framingElevationDeg = std::nextafter(45.0, 80.0);
-  rig.imageSize = 16384;
-  rig.mount = {{negativeTiny, negativeTiny, negativeTiny},
+  rig.mirrorRig().k = std::nextafter(11.546, 100.0);
+  rig.mirrorRig().c = std::nextafter(0.02321, 1.0);
+  rig.mirrorRig().rimElevationDeg = rig.mirrorRig().framingElevationDeg = std::nextafter(45.0, 80.0);
+  rig.mirrorRig().imageSize = 16384;
+  rig.mirrorRig().mount = {{negativeTiny, negativeTiny, negativeTiny},
                {negativeTiny, negativeTiny, negativeTiny},
                {negativeTiny, negativeTiny, negativeTiny, negativeTiny, negativeTiny},
                {negativeTiny, negativeTiny}};

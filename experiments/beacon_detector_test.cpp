@@ -68,11 +68,11 @@ TEST(BeaconDetector, BeaconsComeFromUpperAndLowerLandmarks) {
 
 TEST(BeaconDetector, IdentifiesEachBeaconByItsTwoBandsAndInvertsItsPosition) {
   RigSpec rig = field().rig;
-  rig.imageSize = 720;  // the farthest beacon's bands are 5 px apart
+  rig.mirrorRig().imageSize = 720;  // the farthest beacon's bands are 5 px apart
   const std::vector<Beacon> beacons = beaconsOf(field());
   const RobotPose pose{0.4, -0.2, 30.0};
   for (const Beacon& beacon : beacons) {
-    ImageRGBA image = greyImage(rig.imageSize);
+    ImageRGBA image = greyImage(rig.mirrorRig().imageSize);
     const Vec2 upper = projected(rig, pose, beacon.upper->position), lower = projected(rig, pose, beacon.lower->position);
     // Discs as large as they can be without touching (far beacons' bands are a few pixels apart).
     const double radius = 0.45 * (upper - lower).norm();
@@ -96,7 +96,7 @@ TEST(BeaconDetector, IdentifiesEachBeaconByItsTwoBandsAndInvertsItsPosition) {
 TEST(BeaconDetector, BandsFarApartOrOfOneColourAreNoBeacon) {
   const RigSpec rig = field().rig;
   const std::vector<Beacon> beacons = beaconsOf(field());
-  ImageRGBA image = greyImage(rig.imageSize);
+  ImageRGBA image = greyImage(rig.mirrorRig().imageSize);
   // Magenta and yellow, but on opposite sides of the image: their inversions disagree.
   disc(image, {100, 180}, 2.6, kColours.at("magenta"));
   disc(image, {260, 180}, 2.6, kColours.at("yellow"));

@@ -45,10 +45,10 @@ CalibrationStudyOptions CalibrationStudyOptions::quick() {
 
 RigSpec Misalignment::rig(const RigSpec& nominal, const LensDistortion& lens) const {
   RigSpec r = nominal;
-  if (kind == "lateral") r.mount.offsetMm[0] = amount;
-  if (kind == "axial") r.mount.offsetMm[2] = amount;
-  if (kind == "tilt") r.mount.rotationDeg[0] = amount;
-  if (distorted) r.mount.distortion = lens;
+  if (kind == "lateral") r.mirrorRig().mount.offsetMm[0] = amount;
+  if (kind == "axial") r.mirrorRig().mount.offsetMm[2] = amount;
+  if (kind == "tilt") r.mirrorRig().mount.rotationDeg[0] = amount;
+  if (distorted) r.mirrorRig().mount.distortion = lens;
   return r;
 }
 
@@ -209,7 +209,7 @@ struct LoopMeasurements {
 LoopMeasurements loopMeasurements(const Scene& field, const std::vector<RobotPose>& loop, const RigSpec& rig, const Camera& camera,
                                   const CentralApproximation* calibrated, const CentralApproximation* calibratedExact) {
   RigSpec nominalRig = rig;
-  nominalRig.mount = CameraMount{};  // the rig as designed: what the thesis assumed
+  nominalRig.mirrorRig().mount = CameraMount{};  // the rig as designed: what the thesis assumed
   LoopMeasurements m;
   for (auto* list : {&m.trueRays, &m.nominal, &m.calibrated, &m.calibratedExact}) list->resize(loop.size());
   for (size_t k = 0; k < loop.size(); ++k) {
@@ -335,7 +335,7 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
   if (!loopPath) throw InputError(showPath(o.fieldScene) + ": paths: no \"thesis-loop\"");
   const Drive drive = makeDrive(loopPath->poses, 7);
   RigSpec nominal = room.rig;
-  nominal.imageSize = o.size;
+  nominal.mirrorRig().imageSize = o.size;
 
   CalibrationStudyResults results;
   results.width = o.size;

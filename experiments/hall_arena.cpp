@@ -48,10 +48,13 @@ PanoramaPhoto PanoramaPhoto::load(const std::string& path) {
     if (view->value("variant", "") != "exact")
       throw InputError(showPath(sidecarPath) + ": view.variant: must be exact (rows equal incidence-angle steps)");
     const RigSpec rig = rigFromJson(sidecar.at("rig"), sidecarPath, "rig");
-    if (rig.lens)
-      throw InputError(showPath(sidecarPath) + ": rig.lens: a panorama unwrapped from a mirror camera's image is needed; "
-                       "a lens camera's own equirectangular image is not one (give it as a photo of its own)");
-    const double rimTheta = rig.camera().rimTheta();  // from straight down
+    const double rimTheta = std::visit(  // from straight down
+        Overloaded{[&](const MirrorRig&) { return rig.camera().rimTheta(); },
+                   [&](const LensCameraSpec&) -> double {
+                     throw InputError(showPath(sidecarPath) + ": rig.lens: a panorama unwrapped from a mirror camera's image is needed; "
+                                      "a lens camera's own equirectangular image is not one (give it as a photo of its own)");
+                   }},
+        rig.kind);
     photo.topElevation_ = rimTheta - kPi / 2;
     photo.bottomElevation_ = -kPi / 2;
   } else {

@@ -87,7 +87,7 @@ TEST_F(HallArenaTest, TheHallFillsTheMirrorWhereTheOpenFieldIsBlack) {
   const Scene field = loadScene(options().fieldScene);
   RenderSettings settings;
   settings.rig = field.rig;
-  settings.rig.imageSize = 120;
+  settings.rig.mirrorRig().imageSize = 120;
   auto missFraction = [&](const Scene& scene) {
     AovFrame aovs;
     const ImageRGBA image = FastRenderer(scene).render(field.startPose, settings, aovs);

@@ -108,7 +108,7 @@ CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, co
   const fs::path data = fs::path(o.outDir) / "data";
   const std::string name = stem + "_cycles_" + std::to_string(settings.spp) + "spp" + (settings.denoise ? "_denoised" : "") +
                            "_seed" + std::to_string(seed);
-  nlohmann::json key = {{"scene_sha256", scene.sha256}, {"size", settings.rig.imageSize}, {"spp", settings.spp},
+  nlohmann::json key = {{"scene_sha256", scene.sha256}, {"size", settings.rig.imageWidth()}, {"spp", settings.spp},
                         {"seed", seed}, {"denoise", settings.denoise}, {"shading", shadingName(settings.shading)},
                         {"poses", nlohmann::json::array()}};
   for (const RobotPose& p : poses) key["poses"].push_back({p.x, p.y, p.yawDeg});

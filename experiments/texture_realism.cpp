@@ -307,7 +307,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   // Detection and evaluation.
   const FastRenderer geometry(plain);
   RigSpec rig = plain.rig;
-  rig.imageSize = o.size;
+  rig.mirrorRig().imageSize = o.size;
   const double matchRadius = o.matchRadiusPx * o.size / 360.0;
   std::vector<std::vector<GroundTruthBeacon>> truth;
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
@@ -368,7 +368,7 @@ DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const s
   const RobotPose pose = loop->poses[static_cast<size_t>(result.poseIndex)];
   const Frame frame = std::move(renderFast(textured, {pose}, size, spp, [] {}).front());
   RigSpec rig = plain.rig;
-  rig.imageSize = size;
+  rig.mirrorRig().imageSize = size;
   const FastRenderer geometry(plain);
   const FrameEvaluation e =
       evaluateFrame(frame, detectBeacons(frame.image, classifiers, beacons, rig, DetectorOptions{}),

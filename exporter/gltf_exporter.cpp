@@ -289,8 +289,7 @@ void addCameraNode(GltfBuilder& b, int rig, double yfov, double aspectRatio, con
 // along −Z with +Y up: the lens' axes (x right, y down, z forward) with y and z flipped. glTF has
 // only the pinhole: a lens travels in the node's extras ("lens", the sidecar's intrinsics), which
 // Blender's job turns into its panoramic camera.
-void addLensRig(GltfBuilder& b, const GltfExportOptions& options) {
-  const LensCameraSpec& lens = *options.rig.lens;
+void addLensRig(GltfBuilder& b, const GltfExportOptions& options, const LensCameraSpec& lens) {
   const int rig = addRigNode(b, options, "viewpoint: origin at the lens' centre of projection, robot axes (x forward, y left, z up)");
   const auto* pinhole = std::get_if<PinholeRadTan>(&lens.model);
   const double yfov = pinhole ? 2.0 * std::atan(0.5 * lens.height / pinhole->fy) : kPi / 2;  // a stand-in for the others
@@ -359,13 +358,13 @@ void addLandmarks(GltfBuilder& b, const Scene& scene) {
 
 // The mirror and its rim are the ideal rig's whatever the camera; the camera is the physical
 // pinhole as mounted (physical_camera.h), modelled once for every exporter.
-void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options) {
-  const Pinhole pinhole = pinholeOf(options.rig);
-  const MirrorShapeSpec& shape = options.rig.shape;
+void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options, const MirrorRig& mirror) {
+  const Pinhole pinhole = pinholeOf(mirror);
+  const MirrorShapeSpec& shape = mirror.shape;
   const MirrorMesh mirrorMesh =
       shape.shape == MirrorShape::Sphere
           ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
-          : buildMirrorMesh(options.rig.mirror(), options.rig.idealCamera().rimTheta(), options.mirrorDeviation);
+          : buildMirrorMesh(mirror.mirror(), mirror.idealCamera().rimTheta(), options.mirrorDeviation);
   const int rig = addRigNode(b, options, "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)");
   const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
   b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
@@ -387,7 +386,7 @@ void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options) {
   Rigid viewpointFromPinhole = Rigid::Identity();
   viewpointFromPinhole.translate(pinhole.position);
   viewpointFromPinhole.linear() = pinhole.viewpointFromPinhole;
-  addCameraNode(b, rig, 2.0 * std::atan(0.5 * options.rig.imageSize / pinhole.focalPx), 1.0, viewpointFromPinhole,
+  addCameraNode(b, rig, 2.0 * std::atan(0.5 * mirror.imageSize / pinhole.focalPx), 1.0, viewpointFromPinhole,
                 {{"role", "camera"},
                  {"focal_length_px", pinhole.focalPx},
                  {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}});
@@ -395,8 +394,9 @@ void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options) {
 
 }  // namespace
 
-void checkGltfCamera(const RigSpec& rig) {
-  if (rig.lens) return checkEngineRenders(EngineKind::Blender, rig, CameraPlacement{});  // the lenses Cycles has
+namespace {
+
+void checkGltfMirror(const MirrorRig& rig) {
   if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes)) {
     std::string certified;
     for (MirrorShape shape : kCertifiedMeshShapes) certified += (certified.empty() ? "the " : " and the ") + std::string(mirrorShapeName(shape));
@@ -408,17 +408,24 @@ void checkGltfCamera(const RigSpec& rig) {
                      "the fast renderer");
 }
 
+}  // namespace
+
+void checkGltfCamera(const RigSpec& rig) {
+  std::visit(Overloaded{[](const MirrorRig& mirror) { checkGltfMirror(mirror); },
+                        [&](const LensCameraSpec&) { checkEngineRenders(EngineKind::Blender, rig, CameraPlacement{}); }},  // the lenses Cycles has
+             rig.kind);
+}
+
 void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
   GltfBuilder b;
   addArena(b, scene, options.chordTolerance);
   addLights(b, scene);
   addLandmarks(b, scene);
-  if (options.includeRig && options.rig.lens) {
+  if (options.includeRig) {
     checkGltfCamera(options.rig);
-    addLensRig(b, options);
-  } else if (options.includeRig) {
-    checkGltfCamera(options.rig);
-    addMirrorRig(b, options);
+    std::visit(Overloaded{[&](const MirrorRig& mirror) { addMirrorRig(b, options, mirror); },
+                          [&](const LensCameraSpec& lens) { addLensRig(b, options, lens); }},
+               options.rig.kind);
   }
   std::ostringstream glb;
   tinygltf::TinyGLTF writer;

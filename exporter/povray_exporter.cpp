@@ -165,7 +165,7 @@ std::string lensCameraSdl(const LensCameraSpec& lens, const Rigid& worldFromView
 
 // The exact mirror in its local frame (mm, POV axes: POV y = omnicam z, origin at the design
 // point), an open object the caller clips at the rim and closes.
-std::string mirrorSurfaceSdl(const RigSpec& rig) {
+std::string mirrorSurfaceSdl(const MirrorRig& rig) {
   const double u = kPovrayUnitsPerMetre;
   const MirrorShapeSpec& s = rig.shape;
   std::ostringstream out;
@@ -212,7 +212,7 @@ LensCameraSpec supersampled(const LensCameraSpec& lens, int n) {
 }
 
 // The mirror as built, placed on the robot, and the black beyond its rim.
-std::string mirrorSdl(const RigSpec& rig, const Rigid& worldFromView) {
+std::string mirrorSdl(const MirrorRig& rig, const Rigid& worldFromView) {
   const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(rig);
   const double u = kPovrayUnitsPerMetre;
   std::ostringstream out;
@@ -229,6 +229,21 @@ std::string mirrorSdl(const RigSpec& rig, const Rigid& worldFromView) {
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 } } no_shadow no_reflection\n"
       << "  " << povPlacement(worldFromView) << "\n}\n\n";
   return out.str();
+}
+
+// The rig in SDL: its camera, and the mirror it looks into (none for a lens camera).
+struct RigSdl {
+  std::string camera, mirror;
+};
+
+RigSdl rigSdl(const RigSpec& rig, int samplesPerAxis, const Rigid& worldFromView) {
+  return std::visit(Overloaded{[&](const MirrorRig& mirror) {
+                                 return RigSdl{cameraSdl(pinholeOf(mirror), mirror.imageSize, worldFromView), mirrorSdl(mirror, worldFromView)};
+                               },
+                               [&](const LensCameraSpec& lens) {
+                                 return RigSdl{lensCameraSdl(supersampled(lens, samplesPerAxis), worldFromView), ""};
+                               }},
+                    rig.kind);
 }
 
 }  // namespace
@@ -256,15 +271,13 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
          "#version 3.7;\n"
          "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
       << "background { " << rgb(scene.background) << " }\n\n";
-  if (settings.rig.lens)
-    out << lensCameraSdl(supersampled(*settings.rig.lens, *n), worldFromView) << "\n";
-  else
-    out << cameraSdl(pinholeOf(settings.rig), settings.rig.imageSize, worldFromView) << "\n";
+  const RigSdl rig = rigSdl(settings.rig, *n, worldFromView);
+  out << rig.camera << "\n";
 
   if (settings.shading == Shading::Lit)
     for (const PointLight& l : scene.lights) out << "light_source { " << pov(l.position) << ", " << rgb(l.intensity) << " }\n";
 
-  if (!settings.rig.lens) out << mirrorSdl(settings.rig, worldFromView);
+  out << rig.mirror;
 
   const double u = kPovrayUnitsPerMetre;
 

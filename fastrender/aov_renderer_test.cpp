@@ -25,7 +25,7 @@ TEST(AovRenderer, DepthInstanceAndNormalAreTheGeometryAtEachPixelCentre) {
   const Scene scene = floorAndBox();
   const FastRenderer renderer(scene);
   RenderSettings settings;
-  settings.rig.imageSize = 120;
+  settings.rig.mirrorRig().imageSize = 120;
   const RobotPose pose{0.2, -0.1, 30.0};
   const AovFrame aov = renderAovs(renderer, pose, settings);
   const OmniCamera camera = settings.rig.camera();
@@ -73,7 +73,7 @@ TEST(AovRenderer, TheBoxTopIsAtItsClosedFormDistance) {
   const Scene scene = floorAndBox();
   const FastRenderer renderer(scene);
   RenderSettings settings;
-  settings.rig.imageSize = 240;
+  settings.rig.mirrorRig().imageSize = 240;
   const RobotPose pose{0.0, 0.0, 0.0};
   const OmniCamera camera = settings.rig.camera();
   const Vec3 top(1.0, 0.5, 0.3);
@@ -96,7 +96,7 @@ TEST(AovRenderer, IndependentOfTheThreadCount) {
   const Scene scene = floorAndBox();
   const FastRenderer one(scene), four(scene);
   RenderSettings settings;
-  settings.rig.imageSize = 360;
+  settings.rig.mirrorRig().imageSize = 360;
   AovFrame single, many;
   EXPECT_EQ(runOnThreads(1, [&] { single = renderAovs(one, RobotPose{0.3, 0.2, 45.0}, settings); }), 1);
   EXPECT_EQ(runOnThreads(4, [&] { many = renderAovs(four, RobotPose{0.3, 0.2, 45.0}, settings); }), 4);
@@ -113,7 +113,7 @@ TEST(AovRenderer, OnePassGivesTheSameImageAndAovs) {
   const FastRenderer renderer(scene);
   for (int spp : {1, 4, 9}) {
     RenderSettings settings;
-    settings.rig.imageSize = 80;
+    settings.rig.mirrorRig().imageSize = 80;
     settings.spp = spp;
     settings.shading = Shading::Lit;
     const RobotPose pose{0.1, -0.3, 70.0};
@@ -133,7 +133,7 @@ TEST(AovRenderer, AReusedFrameHoldsOnlyTheNewPose) {
   const Scene scene = floorAndBox();
   const FastRenderer renderer(scene);
   RenderSettings settings;
-  settings.rig.imageSize = 64;
+  settings.rig.mirrorRig().imageSize = 64;
   AovFrame reused, fresh;
   renderer.render(RobotPose{1.0, 0.5, 0.0}, settings, reused);  // right next to the box: a different picture
   renderer.render(RobotPose{-2.0, -1.0, 120.0}, settings, reused);

@@ -184,10 +184,10 @@ std::optional<std::pair<int, Eigen::Vector2d>> thesisMeshTexel(const ThesisMesh&
 // The faces' texels (colour and slot, bordered), every sample's footprint (16 B) and the frame
 // with its encoding (48 B a pixel), before any of it is allocated.
 void requireLookupMemory(const RenderSettings& settings, const CubeMapOptions& o) {
-  const int64_t pixels = int64_t{settings.rig.imageSize} * settings.rig.imageSize;
+  const int64_t pixels = int64_t{settings.rig.imageWidth()} * settings.rig.imageHeight();
   requireMemory(int64_t{o.faces} * (o.faceSize + 2) * (o.faceSize + 2) * 24 + pixels * (int64_t{settings.spp} * 16 + 48),
                 std::string(o.mode == OmniMode::ThesisMesh ? "the thesis mesh's" : "the cube map's") + " lookup of " +
-                    std::to_string(settings.rig.imageSize) + "x" + std::to_string(settings.rig.imageSize) + " pixels");
+                    std::to_string(settings.rig.imageWidth()) + "x" + std::to_string(settings.rig.imageHeight()) + " pixels");
 }
 
 }  // namespace
@@ -216,10 +216,10 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   L->padded = o.faceSize + 2;
   const OmniCamera camera = r.camera();
   const Rigid viewpointFromCamera = unifiedCameraFromViewpoint().inverse();
-  const HyperbolicMirror mirror = r.mirror();
+  const HyperbolicMirror mirror = r.mirrorRig().mirror();  // r.camera() above: the ideal hyperboloid rig
   ThesisMesh mesh;
   if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(mirror, camera.rimTheta(), sectors, rings);
-  const Pinhole pinhole = pinholeOf(r);  // the physical camera, modelled once (physical_camera.h)
+  const Pinhole pinhole = pinholeOf(r.mirrorRig());  // the physical camera, modelled once (physical_camera.h)
   std::vector<char> used(static_cast<size_t>(6) * L->padded * L->padded, 0);
 
   // Samples first hold atlas indices in `top`; they become slots once the texel set is known.
@@ -347,7 +347,7 @@ void CubeMapRenderer::render(const CameraPlacement& placement, const RenderSetti
     });
   }
   // 2. Every omni sample from its precomputed bilinear footprint.
-  const int width = settings.rig.imageSize, height = width;
+  const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   const uint32_t* firstSample = L->firstSample.data();
   const Lookup::Sample* samples = L->samples.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

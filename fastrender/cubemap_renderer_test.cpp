@@ -212,7 +212,7 @@ TEST(CubeMap, OutputIsBitIdenticalForAnyThreadCountAndOptionsAreChecked) {
   EXPECT_EQ(std::memcmp(one.pixels.data(), reused.image().pixels.data(), one.pixels.size() * sizeof(float)), 0);
   // A film of another size is refused, not resized behind the caller's back.
   RenderSettings small = settings;
-  small.rig.imageSize = 97;
+  small.rig.mirrorRig().imageSize = 97;
   EXPECT_THROW(cube.render(arena().startPose, small, options, reused), std::invalid_argument);
   options.faces = 4;
   EXPECT_THROW(cube.render(arena().startPose, settings, options), InputError);

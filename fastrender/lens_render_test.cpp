@@ -31,8 +31,7 @@ TEST(LensRender, FisheyeDepthIsTheRayLengthOutToTheImageEdge) {
   lens.f = kFocal;
   lens.cx = 99.5, lens.cy = 89.5;
   lens.maxThetaRad = radians(kHalfFovDeg);
-  settings.rig.lens = LensCameraSpec{lens, 200, 180, {0.0, 0.0, 0.0}};
-  settings.rig.imageSize = 200;
+  settings.rig.kind = LensCameraSpec{lens, 200, 180, {0.0, 0.0, 0.0}};
   settings.rig.height = 1.0;
   const AovFrame aov = renderAovs(renderer, RobotPose{}, settings);
   ASSERT_EQ(aov.width, 200);
@@ -68,8 +67,7 @@ TEST(LensRender, PanoramaDepthIsTheRayLengthInEveryColumn) {
   RenderSettings settings;
   Equirectangular pano;
   pano.width = 256, pano.height = 128;
-  settings.rig.lens = LensCameraSpec{pano, 256, 128, {0.0, 0.0, 37.0}};
-  settings.rig.imageSize = 256;
+  settings.rig.kind = LensCameraSpec{pano, 256, 128, {0.0, 0.0, 37.0}};
   settings.rig.height = 0.4;
   const AovFrame aov = renderAovs(renderer, RobotPose{0.3, -0.2, 25.0}, settings);
   int checked = 0;
@@ -101,8 +99,7 @@ TEST(LensRender, ATurnedLensLooksWhereItsRotationSays) {
   const FastRenderer renderer(floor);
   RenderSettings settings;
   PinholeRadTan pinhole{100.0, 100.0, 20.0, 15.0, {}};
-  settings.rig.lens = LensCameraSpec{pinhole, 41, 31, {0.0, 90.0, 0.0}};
-  settings.rig.imageSize = 41;
+  settings.rig.kind = LensCameraSpec{pinhole, 41, 31, {0.0, 90.0, 0.0}};
   settings.rig.height = 0.7;
   const AovFrame aov = renderAovs(renderer, RobotPose{1.0, 2.0, 60.0}, settings);
   EXPECT_FLOAT_EQ(aov.depth[15 * 41 + 20], 0.7f);

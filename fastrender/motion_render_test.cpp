@@ -29,7 +29,7 @@ const CameraPlacement kDrivingFromStart(kStart, kDriving);
 RenderSettings settingsOf(int size, int spp, const Shutter& shutter, bool physical = false) {
   RenderSettings settings;
   settings.rig = robocup().rig.resized(size);
-  if (physical) settings.rig.mount.offsetMm = {1.5, -1.0, 2.0};
+  if (physical) settings.rig.mirrorRig().mount.offsetMm = {1.5, -1.0, 2.0};
   settings.rig.shutter = shutter;
   settings.spp = spp;
   return settings;
@@ -103,7 +103,7 @@ TEST(MotionRender, ARollingShutterReadsEachLineAtItsOwnPose) {
 // instant, traced by the renderer's radiance() one at a time.
 ImageRGBA perSampleReference(const FastRenderer& renderer, const RenderSettings& settings) {
   const auto camera = makeCamera(settings.rig);
-  const int n = *samplesPerAxis(settings.spp), size = settings.rig.imageSize;
+  const int n = *samplesPerAxis(settings.spp), size = settings.rig.mirrorRig().imageSize;
   const Shutter& shutter = settings.rig.shutter;
   const PixelInstants instants = pixelInstants(shutter, n);
   ImageRGBA out(size, size);

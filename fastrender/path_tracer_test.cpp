@@ -204,7 +204,7 @@ TEST(PathTracer, FramesAreBitIdenticalForAnyThreadCountAndDependOnTheSeed) {
   const Scene s = loadScene(OMNICAM_SOURCE_DIR "/scenes/tiled-room.json");
   RenderSettings settings;
   settings.rig = s.rig;
-  settings.rig.imageSize = 128;
+  settings.rig.mirrorRig().imageSize = 128;
   settings.spp = 16;  // tens of milliseconds: work enough for four threads to share
   settings.shading = Shading::Path;
   const ImageRGBA one = expectSameFrameOnOneAndFourThreads<FastRenderer>(s, settings);
@@ -270,7 +270,7 @@ TEST(PathTracer, DenoisedFurnaceReadsLowByTheFiltersBias) {
   // The disc's mean, denoised, in percent from the closed form, as measured (and stated in the docs).
   const std::map<int, double> statedBias{{64, -1.09}, {128, -0.65}, {360, -0.21}};
   for (const auto& [size, bias] : statedBias) {
-    settings.rig.imageSize = size;
+    settings.rig.mirrorRig().imageSize = size;
     settings.denoise = false;
     const DiscMeans traced = discMeans(renderer.render(pose, settings), window);
     settings.denoise = true;

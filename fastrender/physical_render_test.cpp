@@ -25,9 +25,9 @@ const Scene& robocup() {
 
 RigSpec misalignedRig() {
   RigSpec rig = robocup().rig;
-  rig.mount.offsetMm = {2.0, -1.5, 1.0};
-  rig.mount.rotationDeg = {1.0, -0.7, 0.5};
-  rig.mount.distortion = {-0.08, 0.01, 0.0005, -0.0004, 0.0};
+  rig.mirrorRig().mount.offsetMm = {2.0, -1.5, 1.0};
+  rig.mirrorRig().mount.rotationDeg = {1.0, -0.7, 0.5};
+  rig.mirrorRig().mount.distortion = {-0.08, 0.01, 0.0005, -0.0004, 0.0};
   return rig;
 }
 
@@ -62,7 +62,7 @@ TEST(PhysicalRender, DepthOfANonCentralRayRunsFromItsMirrorPoint) {
   const FastRenderer renderer(floor);
   RenderSettings settings;
   settings.rig = misalignedRig();
-  settings.rig.imageSize = 96;
+  settings.rig.mirrorRig().imageSize = 96;
   const RobotPose pose{0.3, -0.2, 30.0};
   const AovFrame aovs = renderAovs(renderer, pose, settings);
   const auto camera = makeCamera(settings.rig);
@@ -89,7 +89,7 @@ TEST(PhysicalRender, AMisalignedFrameIsBitIdenticalForAnyThreadCount) {
   const FastRenderer renderer(robocup()), rendererFour(robocup());
   RenderSettings settings;
   settings.rig = misalignedRig();
-  settings.rig.imageSize = 200;
+  settings.rig.mirrorRig().imageSize = 200;
   settings.spp = 4;
   settings.shading = Shading::Lit;
   const RobotPose pose{0.4, 0.2, 75.0};

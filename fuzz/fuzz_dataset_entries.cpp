@@ -82,7 +82,7 @@ void datasetSpec(const uint8_t* data, size_t size) {
     checkManifestHeaderSize(json{{"spec", spec.json}, {"spec_file", spec.file}, {"spec_sha256", spec.sha256}}, spec.file);
     for (const DatasetCamera& camera : spec.cameras) {
       RigSpec rig = camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : RigSpec{};
-      if (spec.size) rig.imageSize = *spec.size;
+      if (spec.size) rig = rig.resized(*spec.size);  // as cameraSetups (dataset_plan.cpp) sizes it
       checkRenderSettings(spec.request.settings(rig), settingNames(spec));
       (void)rig.camera();
       SettingNames names;

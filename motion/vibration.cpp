@@ -41,12 +41,17 @@ RigSpec vibratedRig(const RigSpec& rig, const Vibration& vibration, uint64_t fra
   // A lens camera has no camera below a mirror to move (the dataset refuses an offset amplitude
   // for one) and turns as a whole: [roll, pitch, yaw] of its lens. Its offsets are drawn all the
   // same, so that every camera's stream stays what it is.
-  for (int k = 0; k < 3; ++k) {
-    const double offset = draw.within(vibration.cameraOffsetMm[k]);
-    if (!out.lens) out.mount.offsetMm[k] += offset;
-  }
-  std::array<double, 3>& rotationDeg = out.lens ? out.lens->rotationDeg : out.mount.rotationDeg;
-  for (int k = 0; k < 3; ++k) rotationDeg[k] += draw.within(vibration.cameraRotationDeg[k]);
+  std::array<double, 3> offsetMm{}, rotationDeg{};
+  for (int k = 0; k < 3; ++k) offsetMm[k] = draw.within(vibration.cameraOffsetMm[k]);
+  for (int k = 0; k < 3; ++k) rotationDeg[k] = draw.within(vibration.cameraRotationDeg[k]);
+  std::visit(Overloaded{[&](MirrorRig& mirror) {
+                          for (int k = 0; k < 3; ++k) mirror.mount.offsetMm[k] += offsetMm[k];
+                          for (int k = 0; k < 3; ++k) mirror.mount.rotationDeg[k] += rotationDeg[k];
+                        },
+                        [&](LensCameraSpec& lens) {
+                          for (int k = 0; k < 3; ++k) lens.rotationDeg[k] += rotationDeg[k];
+                        }},
+             out.kind);
   for (int k = 0; k < 2; ++k) out.tiltDeg[k] += draw.within(vibration.rigTiltDeg[k]);
   return out;
 }

@@ -49,8 +49,8 @@ TEST(RigTilt, APointOnTheTiltedAxisIsSeenAtTheImageCentre) {
   // Straight down the tilted axis, 0.3 m below F': the image centre.
   const auto centre = camera->project(CameraPlacement(pose).worldFromViewpoint(rig).inverse() * (viewpoint - 0.3 * axis));
   ASSERT_TRUE(centre);
-  EXPECT_NEAR(centre->x(), 0.5 * rig.imageSize, 1e-9);
-  EXPECT_NEAR(centre->y(), 0.5 * rig.imageSize, 1e-9);
+  EXPECT_NEAR(centre->x(), 0.5 * rig.mirrorRig().imageSize, 1e-9);
+  EXPECT_NEAR(centre->y(), 0.5 * rig.mirrorRig().imageSize, 1e-9);
   // The level rig sees the same point off centre.
   RigSpec level = rig;
   level.tiltDeg = {0.0, 0.0};
@@ -80,7 +80,7 @@ Vibration shaking() {
 
 TEST(Vibration, WithoutAmplitudesTheRigStaysAsItIs) {
   RigSpec rig;
-  rig.mount.offsetMm = {1.0, 2.0, 3.0};
+  rig.mirrorRig().mount.offsetMm = {1.0, 2.0, 3.0};
   Vibration still;
   still.seed = 9;
   EXPECT_EQ(vibratedRig(rig, still, 17, 1), rig);
@@ -88,7 +88,7 @@ TEST(Vibration, WithoutAmplitudesTheRigStaysAsItIs) {
 
 TEST(Vibration, EachFrameAndCameraDrawsItsOwnPerturbationWithinTheAmplitudes) {
   RigSpec rig;
-  rig.mount.offsetMm = {1.0, 0.0, -2.0};
+  rig.mirrorRig().mount.offsetMm = {1.0, 0.0, -2.0};
   rig.tiltDeg = {0.5, 0.0};
   const Vibration v = shaking();
   // The same (seed, frame, camera) gives the same rig, in any order; others differ.
@@ -104,11 +104,11 @@ TEST(Vibration, EachFrameAndCameraDrawsItsOwnPerturbationWithinTheAmplitudes) {
   double sum = 0.0, sumSquares = 0.0, lowest = 0.0, highest = 0.0;
   for (int f = 0; f < frames; ++f) {
     const RigSpec r = vibratedRig(rig, v, static_cast<uint64_t>(f), 0);
-    EXPECT_EQ(r.mount.distortion, rig.mount.distortion);
+    EXPECT_EQ(r.mirrorRig().mount.distortion, rig.mirrorRig().mount.distortion);
     EXPECT_EQ(r.height, rig.height);
     for (int k = 0; k < 3; ++k) {
-      EXPECT_LE(std::abs(r.mount.offsetMm[k] - rig.mount.offsetMm[k]), v.cameraOffsetMm[k]);
-      EXPECT_LE(std::abs(r.mount.rotationDeg[k] - rig.mount.rotationDeg[k]), v.cameraRotationDeg[k]);
+      EXPECT_LE(std::abs(r.mirrorRig().mount.offsetMm[k] - rig.mirrorRig().mount.offsetMm[k]), v.cameraOffsetMm[k]);
+      EXPECT_LE(std::abs(r.mirrorRig().mount.rotationDeg[k] - rig.mirrorRig().mount.rotationDeg[k]), v.cameraRotationDeg[k]);
     }
     const double d = r.tiltDeg[1] - rig.tiltDeg[1];  // amplitude 2°
     EXPECT_LE(std::abs(r.tiltDeg[0] - rig.tiltDeg[0]), v.rigTiltDeg[0]);

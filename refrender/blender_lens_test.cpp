@@ -39,8 +39,7 @@ TEST_P(FastVsBlenderLens, UnlitAt64Spp) {
   static const FastRenderer fast(scene);
   const LensCase& c = GetParam();
   RenderSettings settings;
-  settings.rig.lens = c.lens;
-  settings.rig.imageSize = c.lens.width;
+  settings.rig.kind = c.lens;
   settings.rig.height = c.height;
   settings.spp = 64;
   const ImageRGBA truth = renderWithBlender(scene, {CameraPlacement(c.pose)}, settings).front();
@@ -48,7 +47,7 @@ TEST_P(FastVsBlenderLens, UnlitAt64Spp) {
   const CompareResult r = compareImages(ours, truth);
   // The same view a degree turned: what a convention slip would give.
   RenderSettings turned = settings;
-  turned.rig.lens->rotationDeg[2] += 1.0;
+  turned.rig.lensCamera().rotationDeg[2] += 1.0;
   const double fromTurned = compareImages(fast.render(c.pose, turned), truth).psnrDb;
   std::printf("fast vs Blender, %s, unlit, 64 spp: PSNR %.2f dB, SSIM %.5f (turned 1 deg: %.2f dB)\n", c.label, r.psnrDb, r.ssim,
               fromTurned);

@@ -153,12 +153,7 @@ nlohmann::json blenderMotion(const RenderSettings& settings, const CameraPlaceme
 // or a lens camera's pinhole), or a lens camera as Cycles' panoramic camera (docs/blender.md,
 // "Lens cameras"; Cycles 3.4 kernel/camera/projection.h). Cycles' panoramic image coordinates
 // run over [0, 1] across the image, v up, pixel centres at ½; the sensor is 36 mm wide.
-nlohmann::json cyclesCamera(const RigSpec& rig) {
-  if (!rig.lens) {
-    const Pinhole pinhole = pinholeOf(rig);
-    return {{"focal_length_px", pinhole.focalPx}, {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}};
-  }
-  const LensCameraSpec& lens = *rig.lens;
+nlohmann::json cyclesLensCamera(const LensCameraSpec& lens) {
   if (const auto* p = std::get_if<PinholeRadTan>(&lens.model))
     return {{"lens_camera", true}, {"focal_length_px", p->fx}, {"principal_point_px", {p->cx + 0.5, p->cy + 0.5}}};
   constexpr double kSensorWidthMm = 36.0;
@@ -196,6 +191,16 @@ nlohmann::json cyclesCamera(const RigSpec& rig) {
   for (size_t i = 0; i < k.size(); ++i) coefficients.push_back(-k[i] / std::pow(mmPerPixel, static_cast<double>(i)));
   panorama.update({{"type", "FISHEYE_LENS_POLYNOMIAL"}, {"polynomial", coefficients}});
   return {{"lens_camera", true}, {"panorama", panorama}};
+}
+
+nlohmann::json cyclesCamera(const RigSpec& rig) {
+  return std::visit(Overloaded{[](const MirrorRig& mirror) {
+                                 const Pinhole pinhole = pinholeOf(mirror);
+                                 return nlohmann::json{{"focal_length_px", pinhole.focalPx},
+                                                       {"principal_point_px", {pinhole.principalPoint.x(), pinhole.principalPoint.y()}}};
+                               },
+                               [](const LensCameraSpec& lens) { return cyclesLensCamera(lens); }},
+                    rig.kind);
 }
 
 }  // namespace

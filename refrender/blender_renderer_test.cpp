@@ -80,9 +80,9 @@ TEST(Blender, AgreesWithTheFastRendererOnAMisalignedRig) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.mount.offsetMm = {3.0, -2.0, 1.5};
-  settings.rig.mount.rotationDeg = {2.0, -1.5, 1.0};
-  settings.rig.mount.principalPointOffsetPx = {1.5, -0.75};
+  settings.rig.mirrorRig().mount.offsetMm = {3.0, -2.0, 1.5};
+  settings.rig.mirrorRig().mount.rotationDeg = {2.0, -1.5, 1.0};
+  settings.rig.mirrorRig().mount.principalPointOffsetPx = {1.5, -0.75};
   settings.spp = 64;
   const RobotPose pose{2.7, -1.8, 180.0};
   const ImageRGBA truth = renderWithBlender(scene, {pose}, settings).front();
@@ -102,12 +102,12 @@ TEST(Blender, AgreesWithTheFastRendererOnAMisalignedSphere) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.shape.shape = MirrorShape::Sphere;
-  settings.rig.shape.sphereRadius = 0.03;
-  settings.rig.shape.capAngleDeg = 60.0;
-  settings.rig.shape.cameraDistance = 0.12;
-  settings.rig.mount.offsetMm = {2.0, -1.0, 1.0};
-  settings.rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  settings.rig.mirrorRig().shape.shape = MirrorShape::Sphere;
+  settings.rig.mirrorRig().shape.sphereRadius = 0.03;
+  settings.rig.mirrorRig().shape.capAngleDeg = 60.0;
+  settings.rig.mirrorRig().shape.cameraDistance = 0.12;
+  settings.rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+  settings.rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   settings.spp = 64;
   const RobotPose pose{2.7, -1.8, 180.0};
   const ImageRGBA truth = renderWithBlender(scene, {pose}, settings).front();
@@ -121,7 +121,7 @@ TEST(Blender, ALensIsRefusedNotIgnored) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.mount.distortion.k1 = -0.05;
+  settings.rig.mirrorRig().mount.distortion.k1 = -0.05;
   EXPECT_THROW(renderWithBlender(scene, {RobotPose{}}, settings), InputError);
 }
 
@@ -132,7 +132,7 @@ TEST(Blender, TheDirectTwinTracesTheSameSamples) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 48;
+  settings.rig.mirrorRig().imageSize = 48;
   settings.spp = 4;
   settings.shading = Shading::Lit;
   BlenderOptions options;
@@ -208,7 +208,7 @@ TEST(Blender, ObjectsNamedLikeTheRigOrLightsDoNotConfuseTheDriver) {
   fs::remove_all(dir);
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 96;
+  settings.rig.mirrorRig().imageSize = 96;
   settings.spp = 64;
   const ImageRGBA truth = renderWithBlender(scene, {scene.startPose}, settings).front();
   const CompareResult r = compareImages(FastRenderer(scene).render(scene.startPose, settings), truth);
@@ -260,7 +260,7 @@ TEST(Blender, AGltfArenaIsRenderedAlikeByAllThreeEngines) {
   const Scene scene = loadScene((dir / "scene.json").string());
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 120;
+  settings.rig.mirrorRig().imageSize = 120;
   settings.spp = 16;
   const RobotPose pose{0.1, -0.2, 25.0};
   const ImageRGBA fast = FastRenderer(scene).render(pose, settings);
@@ -285,7 +285,7 @@ TEST(Blender, CalibrationTargetsAreRenderedAlikeByAllThreeEngines) {
   const Scene scene = loadScene((dir / "scene.json").string());
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 160;
+  settings.rig.mirrorRig().imageSize = 160;
   settings.spp = 16;
   const RobotPose pose{0.0, 0.0, 10.0};
   const ImageRGBA fast = FastRenderer(scene).render(pose, settings);
@@ -318,7 +318,7 @@ TEST(Blender, PathShadingConvergesToTheSameFrameAsCycles) {
   scene.background = {0.05f, 0.07f, 0.1f};
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 64;
+  settings.rig.mirrorRig().imageSize = 64;
   settings.spp = 1024;
   settings.shading = Shading::Path;
   const RobotPose pose{0.4, -0.3, 30.0};
@@ -382,7 +382,7 @@ Furnace furnace(int bounces) {
   f.scene.materials.push_back(walls);
   f.scene.objects.push_back({"box", 0, Box{{0.0, 0.0, 1.0}, {4.0, 3.0, 3.0}, 20.0}, ""});
   f.settings.rig = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json").rig;
-  f.settings.rig.imageSize = 24;
+  f.settings.rig.mirrorRig().imageSize = 24;
   f.settings.spp = 256;
   f.settings.shading = Shading::Path;
   f.settings.bounces = bounces;

@@ -35,8 +35,7 @@ TEST_P(FastVsPovrayLens, UnlitAtSixteenSamplesPerPixel) {
   static const FastRenderer fast(scene);
   const LensCase& c = GetParam();
   RenderSettings settings;
-  settings.rig.lens = c.lens;
-  settings.rig.imageSize = c.lens.width;
+  settings.rig.kind = c.lens;
   settings.rig.height = c.height;
   settings.spp = 16;
   const ImageRGBA ours = fast.render(c.pose, settings);
@@ -85,8 +84,7 @@ TEST_P(FastVsPovrayMovingLens, UnlitAtSixteenSamplesPerPixel) {
   static const FastRenderer fast(scene);
   const MovingLensCase& c = GetParam();
   RenderSettings settings;
-  settings.rig.lens = c.lens;
-  settings.rig.imageSize = c.lens.width;
+  settings.rig.kind = c.lens;
   settings.rig.height = 0.4;
   settings.rig.shutter = c.shutter;
   settings.spp = 16;
@@ -117,8 +115,7 @@ TEST(PovrayLens, LensesPovrayHasNoCameraForAreRefused) {
   RenderSettings settings;
   FThetaLens offCentre = equidistant(50.0, 180.0, 160, 160);
   offCentre.cx += 3.0;
-  settings.rig.lens = LensCameraSpec{offCentre, 160, 160, {0.0, 0.0, 0.0}};
-  settings.rig.imageSize = 160;
+  settings.rig.kind = LensCameraSpec{offCentre, 160, 160, {0.0, 0.0, 0.0}};
   EXPECT_THROW(
       {
         try {
@@ -129,7 +126,7 @@ TEST(PovrayLens, LensesPovrayHasNoCameraForAreRefused) {
         }
       },
       InputError);
-  settings.rig.lens = LensCameraSpec{KannalaBrandt{50.0, 50.0, 79.5, 79.5, {0.01, 0.0, 0.0, 0.0}}, 160, 160, {0.0, 0.0, 0.0}};
+  settings.rig.kind = LensCameraSpec{KannalaBrandt{50.0, 50.0, 79.5, 79.5, {0.01, 0.0, 0.0, 0.0}}, 160, 160, {0.0, 0.0, 0.0}};
   try {
     (void)renderWithPovray(scene, RobotPose{}, settings);
     ADD_FAILURE() << "Kannala-Brandt rendered by POV-Ray";

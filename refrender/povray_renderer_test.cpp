@@ -80,7 +80,7 @@ TEST_P(FastVsPovrayMisaligned, UnlitAtSixteenSamplesPerPixel) {
   static const FastRenderer fast(scene);
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.mount = GetParam().mount;
+  settings.rig.mirrorRig().mount = GetParam().mount;
   settings.rig.tiltDeg = GetParam().tiltDeg;
   settings.spp = 16;
   const ImageRGBA ours = fast.render(GetParam().pose, settings);
@@ -148,16 +148,16 @@ TEST_P(FastVsPovrayShapes, UnlitAtSixteenSamplesPerPixel) {
   static const FastRenderer fast(scene);
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.shape = GetParam().shape;
-  settings.rig.rimElevationDeg = GetParam().rimElevationDeg;
-  settings.rig.mount.offsetMm = {2.0, -1.0, 1.0};
-  settings.rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  settings.rig.mirrorRig().shape = GetParam().shape;
+  settings.rig.mirrorRig().rimElevationDeg = GetParam().rimElevationDeg;
+  settings.rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+  settings.rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   settings.spp = 16;
   const RobotPose pose{2.7, -1.8, 180.0};
   const ImageRGBA ours = fast.render(pose, settings);
   const ImageRGBA truth = renderWithPovray(scene, pose, settings);
   const CompareResult r = compareImages(ours, truth);
-  settings.rig.mount = {};
+  settings.rig.mirrorRig().mount = {};
   const double aligned = compareImages(fast.render(pose, settings), truth).psnrDb;
   std::printf("fast vs POV-Ray, %s, moved 2 mm / turned 1 deg: PSNR %.2f dB, SSIM %.5f, max abs %.4f (the aligned "
               "camera's image: %.2f dB)\n", GetParam().label, r.psnrDb, r.ssim, r.maxAbs, aligned);
@@ -189,7 +189,7 @@ TEST(Povray, LensDistortionIsRefusedNotIgnored) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.mount.distortion.k1 = -0.1;
+  settings.rig.mirrorRig().mount.distortion.k1 = -0.1;
   EXPECT_THROW(renderWithPovray(scene, scene.startPose, settings), InputError);
 }
 
@@ -243,7 +243,7 @@ TEST(Povray, AsymmetricTexturedSceneProvesAxesHandednessAndTextures) {
   const Scene scene = asymmetricScene(dir.string());
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.imageSize = 160;
+  settings.rig.mirrorRig().imageSize = 160;
   settings.spp = 4;
   const RobotPose pose{0.2, -0.1, 30.0};
   const ImageRGBA ours = FastRenderer(scene).render(pose, settings);
@@ -277,8 +277,8 @@ TEST(Povray, RigRangeCornersRenderTheSameInBothEngines) {
     Scene scene = base;
     // From 100 m up the field fills less than a pixel: a sky colour makes every ray count.
     scene.background = Vec3f(0.2f, 0.3f, 0.4f);
-    scene.rig.k = corner.k, scene.rig.c = corner.c, scene.rig.height = corner.height;
-    scene.rig.imageSize = 64;
+    scene.rig.mirrorRig().k = corner.k, scene.rig.mirrorRig().c = corner.c, scene.rig.height = corner.height;
+    scene.rig.mirrorRig().imageSize = 64;
     const FastRenderer fast(scene);
     RenderSettings settings;
     settings.rig = scene.rig;

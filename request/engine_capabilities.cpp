@@ -119,18 +119,18 @@ bool hasLens(const EngineCapabilities& c, const std::string& model) {
   return c.everyLensModel || std::find(c.lensModels.begin(), c.lensModels.end(), model) != c.lensModels.end();
 }
 
-void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
+void checkLensCamera(const EngineCapabilities& c, const LensCameraSpec& lens) {
+  const std::string model = lensModelName(lens.model);
+  if (!hasLens(c, model))
+    throw InputError(std::string("rig.lens.model: ") + c.shownName + " has no " + model + " camera; render it with " +
+                     enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
+  // An engine without lens distortion traces its own cameras, which are not every lens of a model.
+  if (const std::string problem = c.lensDistortion ? "" : lensProblem(lens, c.centredLensesOnly, c.cyclesLensLimits); !problem.empty())
+    throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
+}
+
+void checkMirrorCamera(const EngineCapabilities& c, const MirrorRig& rig) {
   const std::string shown = c.shownName;
-  if (rig.lens) {
-    const std::string model = lensModelName(rig.lens->model);
-    if (!hasLens(c, model))
-      throw InputError("rig.lens.model: " + shown + " has no " + model + " camera; render it with " +
-                       enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
-    // An engine without lens distortion traces its own cameras, which are not every lens of a model.
-    if (const std::string problem = c.lensDistortion ? "" : lensProblem(*rig.lens, c.centredLensesOnly, c.cyclesLensLimits); !problem.empty())
-      throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
-    return;
-  }
   if (!c.misalignedCamera && !rig.ideal())
     throw InputError(shown + " is central by construction and renders the ideal rig only (the hyperboloid with its camera "
                      "at F); this rig's mirror shape or camera (rig.mirror, rig.camera) differs: render it in exact mode");
@@ -141,6 +141,12 @@ void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
   if (!c.lensDistortion && !rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: " + shown + " has no lens distortion; render it with " +
                      enginesThat([](const EngineCapabilities& e) { return e.lensDistortion; }));
+}
+
+void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
+  std::visit(Overloaded{[&](const MirrorRig& mirror) { checkMirrorCamera(c, mirror); },
+                        [&](const LensCameraSpec& lens) { checkLensCamera(c, lens); }},
+             rig.kind);
 }
 
 void checkMotion(const EngineCapabilities& c, const RigSpec& rig, const CameraPlacement& placement) {

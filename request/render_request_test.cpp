@@ -102,17 +102,17 @@ std::string refusal(EngineKind engine, const RigSpec& rig, const CameraPlacement
 
 TEST(EngineCapabilities, EachEngineIsCheckedByItsRowAndTheMessageNamesTheEnginesThatCan) {
   RigSpec distorted;
-  distorted.mount.distortion.k1 = -0.05;
+  distorted.mirrorRig().mount.distortion.k1 = -0.05;
   EXPECT_EQ(refusal(EngineKind::FastExact, distorted, {}), "");
   EXPECT_EQ(refusal(EngineKind::Povray, distorted, {}),
             "rig.camera.distortion: the povray engine has no lens distortion; render it with the fast engine");
   RigSpec cone;
-  cone.shape.shape = MirrorShape::Cone;
+  cone.mirrorRig().shape.shape = MirrorShape::Cone;
   EXPECT_EQ(refusal(EngineKind::Blender, cone, {}),
             "rig.mirror.shape: the blender engine has no exact cone mirror; render it with the fast engine or the povray engine");
   EXPECT_EQ(refusal(EngineKind::Povray, cone, {}), "");
   RigSpec moved;
-  moved.mount.offsetMm = {1.0, 0.0, 0.0};
+  moved.mirrorRig().mount.offsetMm = {1.0, 0.0, 0.0};
   EXPECT_NE(refusal(EngineKind::FastCubeMap, moved, {}).find("the fast engine's cube-map mode is central by construction"),
             std::string::npos);
   RigSpec rolling;

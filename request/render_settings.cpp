@@ -46,10 +46,7 @@ void checkRenderSettings(const RenderSettings& settings, const SettingNames& nam
   const int passes = std::max(1, settings.rig.shutter.timeSamples);
   const int64_t samples = int64_t{settings.rig.imageWidth()} * settings.rig.imageHeight() * settings.spp * passes;
   if (samples > limits::kMaxSamplesPerFrame)
-    throw InputError(names.spp + ": size " +
-                     (settings.rig.lens ? std::to_string(size) + "x" + std::to_string(settings.rig.imageHeight())
-                                        : std::to_string(size) + "^2") +
-                     " x spp " + std::to_string(settings.spp) +
+    throw InputError(names.spp + ": size " + settings.rig.imageSizeText() + " x spp " + std::to_string(settings.spp) +
                      (passes > 1 ? " x time samples " + std::to_string(passes) : std::string()) + " = " +
                      std::to_string(samples) + " samples per frame; the limit is " +
                      std::to_string(limits::kMaxSamplesPerFrame));

@@ -181,8 +181,7 @@ bool imagesADisc(const LensModel& model) {
 
 bool imagesSomePixel(const LensCameraSpec& lens) {
   RigSpec rig;
-  rig.lens = lens;
-  rig.imageSize = lens.width;
+  rig.kind = lens;
   const LensCamera camera(rig);
   const auto imaged = [&](int i, int j) { return camera.images(Vec2(i + 0.5, j + 0.5)); };
   // The pixel centre nearest the lens' centre, each coordinate rounded into the image: scaled

@@ -37,9 +37,9 @@ TEST(LensFields, EveryModelReadsBackBitForBit) {
          {"distortion", {{"k1", -0.2}, {"k2", 0.05}, {"p1", 0.001}, {"p2", -0.002}, {"k3", 0.01}}}}};
     for (const json& lens : lenses) {
       const RigSpec rig = rigFromJson({{"height", 0.4}, {"lens", lens}, {"tilt_deg", {1, -2}}}, "scene.json", "rig");
-      ASSERT_TRUE(rig.lens);
+      ASSERT_TRUE(std::holds_alternative<LensCameraSpec>(rig.kind));
       EXPECT_TRUE(readBack(rig) == rig) << lens.dump() << "\n -> " << rigToJson(rig).dump();
-      EXPECT_TRUE(readBack(rig.resized(2 * rig.lens->width)) == rig.resized(2 * rig.lens->width)) << lens.dump();
+      EXPECT_TRUE(readBack(rig.resized(2 * rig.lensCamera().width)) == rig.resized(2 * rig.lensCamera().width)) << lens.dump();
       ++checked;
     }
   }
@@ -75,7 +75,7 @@ TEST(LensFields, FieldsOfOtherModelsAndOutOfRangeValuesAreRefused) {
   // A width that cannot keep the aspect exactly.
   const RigSpec rig = rigFromJson({{"lens", json(kb)}}, "scene.json", "rig");
   EXPECT_THROW((void)rig.resized(99), InputError);
-  EXPECT_EQ(rig.resized(96).lens->height, 72);
+  EXPECT_EQ(rig.resized(96).lensCamera().height, 72);
 }
 
 // Issue #45: an equidistant lens whose small circle lies mostly left of the image still images
@@ -91,8 +91,8 @@ TEST(LensFields, ASmallCircleOffTheImageIsAcceptedWhenItCoversPixelCentres) {
     for (int i = 0; i < 4096; ++i) covered += std::hypot(i + 10.0, j - 31.5) <= radius;
   EXPECT_EQ(covered, 1246);
   const RigSpec rig = rigFromJson({{"lens", lens}}, "scene.json", "rig");
-  ASSERT_TRUE(rig.lens);
-  EXPECT_TRUE(imagesSomePixel(*rig.lens));
+  ASSERT_TRUE(std::holds_alternative<LensCameraSpec>(rig.kind));
+  EXPECT_TRUE(imagesSomePixel(rig.lensCamera()));
   // Moved one radius and a pixel further left, it images nothing: refused.
   json gone = lens;
   gone["cx"] = -radius - 1.0;
@@ -107,8 +107,7 @@ TEST(LensFields, ImagesSomePixelAgreesWithAskingEveryPixel) {
   const int width = 24, height = 16;
   const auto everyPixel = [&](const LensCameraSpec& lens) {
     RigSpec rig;
-    rig.lens = lens;
-    rig.imageSize = lens.width;
+    rig.kind = lens;
     const LensCamera camera(rig);
     for (int j = 0; j < lens.height; ++j)
       for (int i = 0; i < lens.width; ++i)

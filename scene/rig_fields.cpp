@@ -62,7 +62,7 @@ Shutter readShutter(JsonFields fields) {
 }
 
 // rig.mirror: the shape and its parameters (docs/scene-format.md); each shape takes only its own.
-void readMirror(JsonFields& mirror, RigSpec& spec) {
+void readMirror(JsonFields& mirror, MirrorRig& spec, double height) {
   const std::string shape = mirror.string("shape", "hyperboloid");
   MirrorShapeSpec& s = spec.shape;
   const JsonFields::Range size{limits::kMinMirrorSize, limits::kMaxMirrorSize, false, "m"};
@@ -76,7 +76,7 @@ void readMirror(JsonFields& mirror, RigSpec& spec) {
     s.cameraDistance = mirror.number("camera_distance_m", fallback, {0.0, limits::kMaxCameraDistance, false, "m"});
     if (s.cameraDistance != 0.0 && !(s.cameraDistance > below))
       mirror.fail("camera_distance_m", "puts the camera on or above the mirror (it must exceed " + shortNumber(below) + " m)");
-    if (!(s.cameraDistance < spec.height))
+    if (!(s.cameraDistance < height))
       mirror.fail("camera_distance_m", "must be smaller than rig.height (the camera sits above the floor)");
   };
   // Another shape's field is a likely slip (a forgotten or misspelt "shape"): say so.
@@ -91,7 +91,7 @@ void readMirror(JsonFields& mirror, RigSpec& spec) {
   if (shape == "hyperboloid") {
     spec.k = mirror.number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
     spec.c = mirror.number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
-    if (!(spec.c < spec.height))
+    if (!(spec.c < height))
       mirror.fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
     rimElevation();
   } else if (shape == "paraboloid") {
@@ -133,8 +133,7 @@ RigSpec readLensRig(JsonFields& rig, RigSpec spec) {
   for (const char* mirrorOnly : {"mirror", "camera", "image"})
     if (rig.has(mirrorOnly))
       rig.fail(mirrorOnly, "a lens camera (rig.lens) has no mirror: its image size and intrinsics are rig.lens's");
-  spec.lens = readLensCamera(rig.object("lens"));
-  spec.imageSize = spec.lens->width;
+  spec.kind = readLensCamera(rig.object("lens"));
   if (auto shutter = rig.optionalObject("shutter")) spec.shutter = readShutter(*shutter);
   const std::vector<double> tilt = rig.numbers("tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg, limits::kMaxRigTiltDeg, false, "degrees"});
   spec.tiltDeg = {tilt[0], tilt[1]};
@@ -148,30 +147,31 @@ RigSpec readRig(JsonFields rig) {
   RigSpec spec;
   spec.height = rig.number("height", spec.height, {limits::kMinRigHeight, limits::kMaxRigHeight, false, "m"});
   if (rig.has("lens")) return readLensRig(rig, spec);
+  MirrorRig& mirrorRig = spec.mirrorRig();
   if (auto mirror = rig.optionalObject("mirror")) {
-    readMirror(*mirror, spec);
+    readMirror(*mirror, mirrorRig, spec.height);
     mirror->finish();
   }
-  if (auto camera = rig.optionalObject("camera")) spec.mount = readCameraMount(*camera);
+  if (auto camera = rig.optionalObject("camera")) mirrorRig.mount = readCameraMount(*camera);
   if (auto shutter = rig.optionalObject("shutter")) spec.shutter = readShutter(*shutter);
   const std::vector<double> tilt = rig.numbers("tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg, limits::kMaxRigTiltDeg, false, "degrees"});
   spec.tiltDeg = {tilt[0], tilt[1]};
   if (auto image = rig.optionalObject("image")) {
-    spec.imageSize = image->integer("size", spec.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
-    if (spec.shape.shape != MirrorShape::Hyperboloid && image->has("framing_elevation_deg"))
+    mirrorRig.imageSize = image->integer("size", mirrorRig.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
+    if (mirrorRig.shape.shape != MirrorShape::Hyperboloid && image->has("framing_elevation_deg"))
       image->fail("framing_elevation_deg", "only for the hyperboloid: the other shapes' images frame their rim");
-    spec.framingElevationDeg = image->number("framing_elevation_deg", spec.rimElevationDeg);
-    if (!(spec.framingElevationDeg > -60.0 && spec.framingElevationDeg <= spec.rimElevationDeg))
+    mirrorRig.framingElevationDeg = image->number("framing_elevation_deg", mirrorRig.rimElevationDeg);
+    if (!(mirrorRig.framingElevationDeg > -60.0 && mirrorRig.framingElevationDeg <= mirrorRig.rimElevationDeg))
       image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees");
     image->finish();
   } else {
-    spec.framingElevationDeg = spec.rimElevationDeg;
+    mirrorRig.framingElevationDeg = mirrorRig.rimElevationDeg;
   }
-  if (!rig.has("mirror") && !(spec.c < spec.height))
-    rig.fail("height", "must be larger than the mirror's c = " + shortNumber(spec.c) + " m");
+  if (!rig.has("mirror") && !(mirrorRig.c < spec.height))
+    rig.fail("height", "must be larger than the mirror's c = " + shortNumber(mirrorRig.c) + " m");
   rig.finish();
   try {
-    if (spec.shape.shape == MirrorShape::Hyperboloid) (void)spec.idealCamera();  // it must image the rim and framing
+    if (mirrorRig.shape.shape == MirrorShape::Hyperboloid) (void)mirrorRig.idealCamera();  // it must image the rim and framing
     (void)makeCamera(spec);    // and the camera must sit below the mirror
   } catch (const InputError& e) {
     throw InputError(showPath(rig.file()) + ": " + rig.where() + "." + e.what());

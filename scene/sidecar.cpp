@@ -24,15 +24,9 @@ json shutterToJson(const Shutter& open) {
   return shutter;
 }
 
-}  // namespace
 
-json rigToJson(const RigSpec& rig) {
-  if (rig.lens) {
-    json out = {{"height", rig.height}, {"lens", lensCameraToJson(*rig.lens)}};
-    if (rig.tiltDeg != std::array<double, 2>{0.0, 0.0}) out["tilt_deg"] = rig.tiltDeg;
-    if (!(rig.shutter == Shutter{})) out["shutter"] = shutterToJson(rig.shutter);
-    return out;
-  }
+// rig.mirror, rig.image and (unless ideal) rig.camera.
+void addMirrorRig(json& out, const MirrorRig& rig) {
   const MirrorShapeSpec& s = rig.shape;
   json mirror = {{"shape", mirrorShapeName(s.shape)}};
   json image = {{"size", rig.imageSize}};
@@ -51,7 +45,8 @@ json rigToJson(const RigSpec& rig) {
       mirror.update({{"half_angle_deg", s.coneHalfAngleDeg}, {"rim_radius", s.coneRimRadius}, {"camera_distance_m", s.cameraDistance}});
       break;
   }
-  json out = {{"height", rig.height}, {"mirror", mirror}, {"image", image}};
+  out["mirror"] = mirror;
+  out["image"] = image;
   if (!rig.mount.ideal()) {  // the ideal camera is the default: its rigs read as they always did
     const CameraMount& m = rig.mount;
     const LensDistortion& l = m.distortion;
@@ -60,6 +55,15 @@ json rigToJson(const RigSpec& rig) {
                      {"distortion", {{"k1", l.k1}, {"k2", l.k2}, {"p1", l.p1}, {"p2", l.p2}, {"k3", l.k3}}},
                      {"principal_point_offset_px", m.principalPointOffsetPx}};
   }
+}
+
+}  // namespace
+
+json rigToJson(const RigSpec& rig) {
+  json out = {{"height", rig.height}};
+  std::visit(Overloaded{[&](const MirrorRig& mirror) { addMirrorRig(out, mirror); },
+                        [&](const LensCameraSpec& lens) { out["lens"] = lensCameraToJson(lens); }},
+             rig.kind);
   if (rig.tiltDeg != std::array<double, 2>{0.0, 0.0}) out["tilt_deg"] = rig.tiltDeg;  // level is the default
   if (!(rig.shutter == Shutter{})) out["shutter"] = shutterToJson(rig.shutter);  // likewise an instant
   return out;
@@ -128,7 +132,7 @@ std::optional<SidecarInfo> readSidecar(const std::string& imagePath) {
 RigSpec rigFromSidecar(const std::string& imagePath, RigSpec rig) {
   const auto sidecar = readSidecar(imagePath);
   if (!sidecar) return rig;
-  return sidecar->rig.resized(rig.imageSize);
+  return sidecar->rig.resized(rig.imageWidth());
 }
 
 }  // namespace omnicam

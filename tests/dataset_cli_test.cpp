@@ -162,7 +162,7 @@ TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
 
   RigSpec rig;
   rig.height = 0.5;
-  rig.imageSize = 96;
+  rig.mirrorRig().imageSize = 96;
   const OmniCamera camera = rig.camera();
   const Rigid worldFromCam = CameraPlacement({0.3, -0.2, 40}).worldFromCamera(rig);
   const DataImage depth = readDataExr(path("ds/cam0/depth/000000.exr"));
@@ -226,10 +226,10 @@ TEST_F(DatasetCliTest, APhysicalRigsRaysAndDepthAreExact) {
   RigSpec rig;
   rig.height = 0.5;
   // The pinhole as the spec mounts it: F = (0, 0, −c) moved by offset_mm (the manifest must say so).
-  const Vec3 pinhole = Vec3(0.0, 0.0, -rig.c) + 1e-3 * Vec3(2.0, -1.0, 1.0);
+  const Vec3 pinhole = Vec3(0.0, 0.0, -rig.mirrorRig().c) + 1e-3 * Vec3(2.0, -1.0, 1.0);
   const json& stated = intrinsics["pinhole"]["position_m"];
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(stated[axis].get<double>(), pinhole[axis], 1e-15);
-  const HyperbolicMirror mirror = rig.mirror();
+  const HyperbolicMirror mirror = rig.mirrorRig().mirror();
   const Rigid worldFromView = CameraPlacement({0.3, -0.2, 40}).worldFromViewpoint(rig);
   int floorPixels = 0, imaged = 0;
   double worstSurface = 0.0, worstReflection = 0.0;

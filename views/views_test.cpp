@@ -84,9 +84,9 @@ TEST(Views, PerspectiveViewIsAPinholeAtTheViewpoint) {
   // That direction lands where the unified model, written out here from k, c and the framing
   // (docs/conventions.md §1), puts it. A swapped axis, a sign or a wrong focal length shows.
   const RigSpec rig;
-  const double eps = std::sqrt(rig.k / (rig.k - 2.0)), xi = 2.0 * eps / (1.0 + eps * eps);
-  const double framing = radians(90.0 + rig.framingElevationDeg), rim = radians(90.0 + rig.rimElevationDeg);
-  const double gamma = 0.5 * rig.imageSize * (xi + std::cos(framing)) / std::sin(framing);
+  const double eps = std::sqrt(rig.mirrorRig().k / (rig.mirrorRig().k - 2.0)), xi = 2.0 * eps / (1.0 + eps * eps);
+  const double framing = radians(90.0 + rig.mirrorRig().framingElevationDeg), rim = radians(90.0 + rig.mirrorRig().rimElevationDeg);
+  const double gamma = 0.5 * rig.mirrorRig().imageSize * (xi + std::cos(framing)) / std::sin(framing);
   int imaged = 0, beyond = 0;
   for (const auto& [yawDeg, pitchDeg] : {std::pair{60.0, -25.0}, std::pair{-120.0, 20.0}}) {
     ViewSpec spec;
@@ -175,8 +175,8 @@ TEST(Views, TheCentralCameraGivesTheClosedFormsViews) {
 // centimetres from the viewpoint).
 TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
   RigSpec rig;
-  rig.mount.offsetMm = {2.0, -1.0, 1.0};
-  rig.mount.rotationDeg = {1.0, -0.5, 0.5};
+  rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+  rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   const PhysicalCamera physical(rig);
   ViewSpec thesis;
   thesis.variant = ViewVariant::Thesis;
@@ -185,7 +185,7 @@ TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
   double widest = 0.0;
   for (int b = 0; b < 128; ++b)
     for (int a = 0; a < 128; ++a)
-      if (const auto r = physical.generateRay({Vec2((a + 0.5) * rig.imageSize / 128.0, (b + 0.5) * rig.imageSize / 128.0)}))
+      if (const auto r = physical.generateRay({Vec2((a + 0.5) * rig.mirrorRig().imageSize / 128.0, (b + 0.5) * rig.mirrorRig().imageSize / 128.0)}))
         widest = std::max(widest, std::acos(std::clamp(-r->direction.z(), -1.0, 1.0)));
   for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
     ViewSpec spec;

@@ -78,10 +78,15 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
            }, py::arg("size"), "The same rig imaging size × size pixels (a lens camera: size wide, keeping its aspect).")
       .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")
       .def_property_readonly("shape", [](const RigSpec& r) {
-             return r.lens ? py::object(py::none()) : py::object(py::str(mirrorShapeName(r.shape.shape)));
+             return std::visit(Overloaded{[](const MirrorRig& mirror) -> py::object { return py::str(mirrorShapeName(mirror.shape.shape)); },
+                                         [](const LensCameraSpec&) -> py::object { return py::none(); }},
+                               r.kind);
            }, "The mirror shape: hyperboloid, paraboloid, sphere or cone; None for a lens camera.")
-      .def_property_readonly("lens", [](const RigSpec& r) { return r.lens ? toPython(rigToJson(r)["lens"]) : py::object(py::none()); },
-                             "A lens camera's \"lens\" block (docs/lens-cameras.md), or None for a mirror rig.")
+      .def_property_readonly("lens", [](const RigSpec& r) {
+             return std::visit(Overloaded{[](const MirrorRig&) -> py::object { return py::none(); },
+                                          [&](const LensCameraSpec&) -> py::object { return toPython(rigToJson(r)["lens"]); }},
+                               r.kind);
+           }, "A lens camera's \"lens\" block (docs/lens-cameras.md), or None for a mirror rig.")
       .def(py::self == py::self)
       .def("__repr__", [](const RigSpec& r) { return "omnicam.Rig(" + rigToJson(r).dump() + ")"; });
   rigProperty(rig, "height", {"height"}, "The design point's height above the floor, metres.");
