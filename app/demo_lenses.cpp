@@ -52,12 +52,10 @@ std::string demoLenses(const std::string& out, const Scene& arena, int spp, bool
   std::printf("demo: lens cameras, the start pose through the mirror, a fisheye and a panorama, %d spp\n", spp);
   const RobotPose pose = arena.startPose;
   const FastRenderer fast(arena);
-  RenderSettings mirror, fisheye, panorama;
-  mirror.rig = arena.rig;
-  fisheye.rig = fisheyeRig(arena.rig);
-  panorama.rig = panoramaRig(arena.rig);
-  for (RenderSettings* s : {&mirror, &fisheye, &panorama}) s->spp = spp;
-  auto engine = makeEngine(RenderRequest{"fast"}, arena);
+  const RenderRequest request = readRenderRequest({{RequestField::Spp, int64_t{spp}}}, {});
+  const RenderSettings mirror = request.settings(arena.rig), fisheye = request.settings(fisheyeRig(arena.rig)),
+                       panorama = request.settings(panoramaRig(arena.rig));
+  auto engine = makeEngine(request, arena);
   renderToFile(arena, *engine, pose, mirror, out + "/lens_mirror.png");
   const ImageRGBA fisheyeImage = renderToFile(arena, *engine, pose, fisheye, out + "/lens_fisheye.png").image;
   const ImageRGBA panoramaImage = renderToFile(arena, *engine, pose, panorama, out + "/lens_panorama.png").image;

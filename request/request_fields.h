@@ -1,10 +1,10 @@
 #pragma once
 // The render request's settings as rows, as output kinds are (outputs/output_kinds.h): each
-// setting is declared once here — its names on the command line, in a dataset spec and in
+// setting is declared once, in request_field_table.cpp — its names on the command line, in a dataset spec and in
 // Python, its type, range, help text and the engines that take it; its default is
 // RenderRequest's. The CLI flags, the spec reader and the docs' table are made from the rows;
 // Python's keywords and the .pyi are checked against them (request_fields_test.cpp,
-// python/tests/test_request_fields.py). A new setting is one row here plus its use in
+// python/tests/test_request_fields.py). A new setting is one row there plus its use in
 // readRenderRequest (render_request.cpp).
 #include <cstdint>
 #include <initializer_list>

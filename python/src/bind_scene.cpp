@@ -63,9 +63,7 @@ void rigProperty(py::class_<RigSpec>& rig, const char* name, std::vector<std::st
       doc);
 }
 
-}  // namespace
-
-void bindScene(py::module_& m) {
+void bindRig(py::module_& m) {
   py::class_<RigSpec> rig(m, "Rig", R"(The camera rig: mirror, camera as mounted, image (docs/scene-format.md, "rig").
 
 Rig() is the ideal rig; Rig(dict) reads the scene format's "rig" block strictly. Every property
@@ -99,6 +97,12 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
   rigProperty(rig, "tilt_deg", {"tilt_deg"}, "The whole rig tilted on the robot: [roll, pitch], degrees (None: level).");
   rigProperty(rig, "shutter", {"shutter"},
               "The shutter (docs/motion.md): {exposure_s, rolling: {line_time_us, readout}, time_samples} (None: an instant).");
+}
+
+}  // namespace
+
+void bindScene(py::module_& m) {
+  bindRig(m);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A loaded scene file (docs/scene-format.md).")
       .def_property_readonly("path", [](const Scene& s) { return s.path; })
