@@ -61,7 +61,9 @@ struct CalibrationSequence {
 class DatasetPlan {
  public:
   // InputError for a bad spec or scene, a pose or camera the engine refuses, or a bad shard.
+  // The plan reads `spec` for as long as it lives: a temporary spec does not compile.
   DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& options);
+  DatasetPlan(DatasetSpec&& spec, const DatasetRunOptions& options) = delete;
   DatasetPlan(const DatasetPlan&) = delete;
   DatasetPlan& operator=(const DatasetPlan&) = delete;
 
