@@ -25,9 +25,9 @@ Scene scene() {
 // floor; a direction at incidence θ from straight down lands γ sinθ / (ξ + cosθ) from the centre,
 // u along the robot's +x, v along its +y.
 Vec2 closedFormRaster(const RigSpec& rig, const RobotPose& pose, const Vec3& world) {
-  const double eps = std::sqrt(rig.mirrorRig().k / (rig.mirrorRig().k - 2.0));
+  const double eps = std::sqrt(rig.mirrorRig().hyperboloid().k / (rig.mirrorRig().hyperboloid().k - 2.0));
   const double xi = 2.0 * eps / (1.0 + eps * eps);
-  const double framing = (90.0 + rig.mirrorRig().framingElevationDeg) * kPi / 180.0;
+  const double framing = (90.0 + rig.mirrorRig().hyperboloid().framingElevationDeg) * kPi / 180.0;
   const double gamma = 0.5 * rig.mirrorRig().imageSize * (xi + std::cos(framing)) / std::sin(framing);
   const double yaw = pose.yawDeg * kPi / 180.0;
   const double dx = world.x() - pose.x, dy = world.y() - pose.y, dz = world.z() - rig.height;

@@ -150,7 +150,7 @@ CentralApproximation::Residual residualAt(const CentralApproximation& fit, const
 Eigen::VectorXd initialGuess(const Camera& camera, const std::vector<GridRay>& rays, const Eigen::Matrix3d& cameraFromViewpoint) {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(kParameters);
   const MirrorRig& rig = camera.rig().mirrorRig();
-  if (rig.shape.shape == MirrorShape::Hyperboloid) {
+  if (std::holds_alternative<HyperboloidMirror>(rig.shape)) {
     const OpenCvIntrinsics ideal = rig.idealCamera().openCvIntrinsics();
     x[0] = ideal.xi, x[1] = ideal.gamma_x, x[2] = ideal.gamma_y, x[3] = ideal.cx, x[4] = ideal.cy;
     return x;

@@ -23,13 +23,9 @@ std::vector<RigSpec> everyShape() {
 }
 
 const char* nameOf(const RigSpec& rig) {
-  switch (rig.mirrorRig().shape.shape) {
-    case MirrorShape::Hyperboloid: return "hyperboloid";
-    case MirrorShape::Paraboloid: return rig.mirrorRig().shape.cameraDistance == 0.0 ? "orthographic paraboloid" : "perspective paraboloid";
-    case MirrorShape::Sphere: return "sphere";
-    case MirrorShape::Cone: return "cone";
-  }
-  return "?";
+  if (const auto* paraboloid = std::get_if<ParaboloidMirror>(&rig.mirrorRig().shape))
+    return paraboloid->cameraDistance == 0.0 ? "orthographic paraboloid" : "perspective paraboloid";
+  return mirrorShapeName(rig.mirrorRig().shape);
 }
 
 TEST(FermatPath, ItsMinimumIsTheMirrorPointTheTraceReflectsFrom) {
@@ -80,7 +76,7 @@ TEST(FermatPath, PointsNoMirrorPointReflectsHaveTheirMinimumOffTheMirror) {
         const double e = radians(elevation), a = kPi * k / 4.0;
         unseen.push_back(5.0 * Vec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)));
       }
-    if (rig.mirrorRig().shape.shape == MirrorShape::Cone) {
+    if (std::holds_alternative<ConeMirror>(rig.mirrorRig().shape)) {
       unseen.push_back(Vec3(0.001, 0.002, -5.0));
       EXPECT_EQ(minimiseFermatPath(mirror, camera.pinhole(), unseen.back()).on, FermatMinimum::On::Corner);
     }

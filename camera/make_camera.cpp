@@ -51,7 +51,7 @@ CentralModel centralModelOf(const Camera& camera) {
   if (const auto mei = physical.meiEquivalent()) {
     model.intrinsics = *mei;
     const MirrorRig& rig = camera.rig().mirrorRig();
-    if (rig.shape.shape == MirrorShape::Hyperboloid && physical.pinhole().distortion.none())
+    if (std::holds_alternative<HyperboloidMirror>(rig.shape) && physical.pinhole().distortion.none())
       model.rimRadiusPx = rig.idealCamera().rimRadius();
     return model;
   }

@@ -44,7 +44,7 @@ class HyperboloidSurface final : public MirrorSurface {
  public:
   explicit HyperboloidSurface(const MirrorRig& rig)
       : MirrorSurface(rig.idealCamera().rimPoint().z(), rig.idealCamera().rimPoint().head<2>().norm()),
-        mirror_(rig.mirror()) {}
+        mirror_(rig.hyperboloid().mirror()) {}
   std::optional<Vec3> firstHit(const Vec3& o, const Vec3& d) const override { return mirror_.firstHit(o, d); }
   Vec3 normalAt(const Vec3& p) const override { return mirror_.normalAt(p); }
   double implicit(const Vec3& p) const override { return mirror_.implicit(p); }
@@ -198,14 +198,18 @@ class ConeSurface final : public MirrorSurface {
 }  // namespace
 
 std::shared_ptr<const MirrorSurface> mirrorSurfaceOf(const MirrorRig& rig) {
-  const MirrorShapeSpec& s = rig.shape;
-  switch (s.shape) {
-    case MirrorShape::Hyperboloid: return std::make_shared<HyperboloidSurface>(rig);
-    case MirrorShape::Paraboloid: return std::make_shared<ParaboloidSurface>(s.parabolaH, rig.rimElevationDeg);
-    case MirrorShape::Sphere: return std::make_shared<SphereSurface>(s.sphereRadius, s.capAngleDeg);
-    case MirrorShape::Cone: return std::make_shared<ConeSurface>(s.coneHalfAngleDeg, s.coneRimRadius);
-  }
-  throw InputError("rig.mirror.shape: unknown");
+  return std::visit(
+      Overloaded{[&](const HyperboloidMirror&) -> std::shared_ptr<const MirrorSurface> { return std::make_shared<HyperboloidSurface>(rig); },
+                 [](const ParaboloidMirror& p) -> std::shared_ptr<const MirrorSurface> {
+                   return std::make_shared<ParaboloidSurface>(p.h, p.rimElevationDeg);
+                 },
+                 [](const SphereMirror& s) -> std::shared_ptr<const MirrorSurface> {
+                   return std::make_shared<SphereSurface>(s.radius, s.capAngleDeg);
+                 },
+                 [](const ConeMirror& c) -> std::shared_ptr<const MirrorSurface> {
+                   return std::make_shared<ConeSurface>(c.halfAngleDeg, c.rimRadius);
+                 }},
+      rig.shape);
 }
 
 }  // namespace omnicam

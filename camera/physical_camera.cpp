@@ -211,12 +211,13 @@ std::optional<Vec2> PhysicalCamera::projectFromFermatMinimum(const Vec3& p) cons
 std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
   const MirrorRig& rig = this->rig().mirrorRig();
   const CameraMount& mount = rig.mount;
-  if (rig.shape.shape == MirrorShape::Paraboloid && pinhole_.orthographic &&
+  const auto* paraboloid = std::get_if<ParaboloidMirror>(&rig.shape);
+  if (paraboloid && pinhole_.orthographic &&
       mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0}) {
     // The orthographic paraboloid is the unified model with ξ = 1 (Geyer and Daniilidis): a
     // mirror point at radius r = h·tan(θ/2) seen f px per metre gives γ = h·f. Moving the camera
     // sideways moves the mirror's image by −f·offset; along the axis, nothing.
-    const double gamma = rig.shape.parabolaH * pinhole_.focalPx;
+    const double gamma = paraboloid->h * pinhole_.focalPx;
     const Vec2 centre = pinhole_.principalPoint - pinhole_.focalPx * pinhole_.position.head<2>();
     MeiIntrinsics mei;
     mei.xi = 1.0, mei.gammaX = gamma, mei.gammaY = -gamma;
@@ -224,7 +225,7 @@ std::optional<MeiIntrinsics> PhysicalCamera::meiEquivalent() const {
     mei.cy = centre.y() - 0.5;
     return mei;
   }
-  if (rig.shape.shape != MirrorShape::Hyperboloid || mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} ||
+  if (!std::holds_alternative<HyperboloidMirror>(rig.shape) || mount.offsetMm != std::array<double, 3>{0.0, 0.0, 0.0} ||
       mount.rotationDeg != std::array<double, 3>{0.0, 0.0, 0.0} || mount.distortion.k3 != 0.0)
     return std::nullopt;
   // The aligned pinhole's normalised coordinates are the unified model's scaled by s = γ/f with
@@ -253,7 +254,7 @@ namespace {
 // the paraboloid's orthographic camera looking along its axis (wherever it is moved sideways).
 bool singleViewpoint(const MirrorRig& rig, const Pinhole& camera) {
   const CameraMount& mount = rig.mount;
-  switch (rig.shape.shape) {
+  switch (rig.shapeKind()) {
     case MirrorShape::Hyperboloid: return mount.offsetMm == std::array<double, 3>{0.0, 0.0, 0.0};
     case MirrorShape::Paraboloid: return camera.orthographic && mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0};
     default: return false;
@@ -291,7 +292,7 @@ nlohmann::json PhysicalCamera::describe() const {
     nlohmann::json exact = {{"model", "mei_unified"},      {"xi", mei->xi},           {"gamma_x", mei->gammaX},
                             {"gamma_y", mei->gammaY},      {"pixel_centre", "integer"}, {"width", width()},
                             {"height", height()}};
-    if (rig.shape.shape == MirrorShape::Hyperboloid) exact = unifiedIntrinsicsJson(rig.idealCamera());
+    if (std::holds_alternative<HyperboloidMirror>(rig.shape)) exact = unifiedIntrinsicsJson(rig.idealCamera());
     if (!pinhole_.distortion.none()) {
       // The lens bends the rim and horizon circles: no radius describes them.
       exact.erase("rim_radius_px");

@@ -159,7 +159,7 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
       if (!ray) continue;
       ++checked;
       const Vec3 m = ray->origin;
-      ASSERT_NEAR(camera.mirror().implicit(m), 0.0, 1e-9) << mirrorShapeName(rig.mirrorRig().shape.shape);
+      ASSERT_NEAR(camera.mirror().implicit(m), 0.0, 1e-9) << mirrorShapeName(rig.mirrorRig().shape);
       const Vec3 incoming = camera.pinhole().rayTo(m).direction;
       const Vec3 n = camera.mirror().normalAt(m);
       EXPECT_NEAR(incoming.dot(n), -ray->direction.dot(n), 1e-12);
@@ -167,7 +167,7 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
       EXPECT_LE(m.z(), camera.mirror().rimZ() + 1e-15);
     }
     // The rim touches the image border: the mirror fills most of the inscribed disc.
-    EXPECT_GT(checked, 3000 * 0.6) << mirrorShapeName(rig.mirrorRig().shape.shape);
+    EXPECT_GT(checked, 3000 * 0.6) << mirrorShapeName(rig.mirrorRig().shape);
   }
 }
 
@@ -175,12 +175,12 @@ TEST(PhysicalCamera, EveryShapeReflectsFromItsSurface) {
 // stopping test must still be reachable in floating point there.
 TEST(PhysicalCamera, RoundTripsNearAWideRim) {
   RigSpec rig = misaligned(2.0, 1.0);
-  rig.mirrorRig().k = 6.0;
-  rig.mirrorRig().rimElevationDeg = 51.0;  // 4.2 c from F'; at 52° this mirror has no rim
-  rig.mirrorRig().framingElevationDeg = 51.0;
+  rig.mirrorRig().hyperboloid().k = 6.0;
+  rig.mirrorRig().hyperboloid().rimElevationDeg = 51.0;  // 4.2 c from F'; at 52° this mirror has no rim
+  rig.mirrorRig().hyperboloid().framingElevationDeg = 51.0;
   const double rimDistance = rig.mirrorRig().idealCamera().rimPoint().norm();
-  std::printf("rim %.2f c from F'\n", rimDistance / rig.mirrorRig().c);
-  EXPECT_GT(rimDistance, 3.0 * rig.mirrorRig().c);
+  std::printf("rim %.2f c from F'\n", rimDistance / rig.mirrorRig().hyperboloid().c);
+  EXPECT_GT(rimDistance, 3.0 * rig.mirrorRig().hyperboloid().c);
   expectRoundTrips(rig, 20000, 1e-6);
 }
 

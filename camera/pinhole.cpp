@@ -36,23 +36,25 @@ Pinhole pinholeOf(const MirrorRig& rig) {
   Pinhole p;
   const double half = 0.5 * rig.imageSize;
   Vec3 idealPosition;
-  if (rig.shape.shape == MirrorShape::Hyperboloid) {
-    const OmniCamera ideal = rig.idealCamera();
-    idealPosition = ideal.mirror().pinholeInViewpoint();
-    p.focalPx = ideal.physicalFocalLength();
-  } else {
-    const auto mirror = mirrorSurfaceOf(rig);
-    const double d = rig.shape.cameraDistance;
-    p.orthographic = d == 0.0;
-    if (p.orthographic) {
-      // The image plane well below the vertex: where it sits along the axis changes nothing.
-      idealPosition = Vec3(0.0, 0.0, mirror->heightAt(0.0, 0.0) - mirror->rimRadius());
-      p.focalPx = half / mirror->rimRadius();
-    } else {
-      idealPosition = Vec3(0.0, 0.0, -d);
-      p.focalPx = half * (mirror->rimZ() + d) / mirror->rimRadius();
-    }
-  }
+  std::visit(Overloaded{[&](const HyperboloidMirror&) {
+                          const OmniCamera ideal = rig.idealCamera();
+                          idealPosition = ideal.mirror().pinholeInViewpoint();
+                          p.focalPx = ideal.physicalFocalLength();
+                        },
+                        [&](const auto& other) {  // paraboloid, sphere, cone: on the axis, framed on the rim
+                          const auto mirror = mirrorSurfaceOf(rig);
+                          const double d = other.cameraDistance;
+                          p.orthographic = d == 0.0;
+                          if (p.orthographic) {
+                            // The image plane well below the vertex: where it sits along the axis changes nothing.
+                            idealPosition = Vec3(0.0, 0.0, mirror->heightAt(0.0, 0.0) - mirror->rimRadius());
+                            p.focalPx = half / mirror->rimRadius();
+                          } else {
+                            idealPosition = Vec3(0.0, 0.0, -d);
+                            p.focalPx = half * (mirror->rimZ() + d) / mirror->rimRadius();
+                          }
+                        }},
+             rig.shape);
   p.position = idealPosition + 1e-3 * Vec3(m.offsetMm[0], m.offsetMm[1], m.offsetMm[2]);
   // An orthographic camera's image does not depend on where along its axis it sits: keep its
   // image plane below the mirror whatever offset_mm's z says.

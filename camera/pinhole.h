@@ -28,7 +28,7 @@ struct Pinhole {
 };
 
 // The camera of a rig: the ideal one moved by rig.mount. The ideal one: for the hyperboloid at F,
-// framed as the ideal rig's image; for the other shapes on the axis at rig.shape.cameraDistance
+// framed as the ideal rig's image; for the other shapes on the axis at their cameraDistance
 // below the design point (the paraboloid with 0: orthographic), framed so that the rim touches
 // the image border.
 Pinhole pinholeOf(const MirrorRig& rig);

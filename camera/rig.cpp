@@ -14,14 +14,19 @@ void checkImageSize(int size, const std::string& what) {
                      std::to_string(limits::kMaxImageSize) + "] (got " + std::to_string(size) + ")");
 }
 
-const char* mirrorShapeName(MirrorShape shape) {
-  switch (shape) {
-    case MirrorShape::Hyperboloid: return "hyperboloid";
-    case MirrorShape::Paraboloid: return "paraboloid";
-    case MirrorShape::Sphere: return "sphere";
-    case MirrorShape::Cone: return "cone";
-  }
-  return "?";
+const HyperboloidMirror& MirrorRig::hyperboloid(const std::string& why) const {
+  if (const auto* h = std::get_if<HyperboloidMirror>(&shape)) return *h;
+  throw InputError("rig.mirror.shape: this needs the hyperboloid (" + why + "); a " + mirrorShapeName(shape) +
+                   " mirror is traced physically only");
+}
+
+HyperboloidMirror& MirrorRig::hyperboloid(const std::string& why) {
+  return const_cast<HyperboloidMirror&>(std::as_const(*this).hyperboloid(why));
+}
+
+OmniCamera MirrorRig::idealCamera() const {
+  const HyperboloidMirror& h = hyperboloid();
+  return {h.mirror(), imageSize, imageSize, h.rimElevationDeg, h.framingElevationDeg};
 }
 
 int RigSpec::imageWidth() const {
@@ -75,9 +80,7 @@ RigSpec RigSpec::idealized() const {
 
 OmniCamera RigSpec::camera() const {
   const MirrorRig* mirror = std::get_if<MirrorRig>(&kind);
-  if (mirror && mirror->shape.shape != MirrorShape::Hyperboloid)
-    throw InputError(std::string("rig.mirror.shape: this needs the central (Mei) model of the hyperboloid; a ") +
-                     mirrorShapeName(mirror->shape.shape) + " mirror is traced physically only");
+  if (mirror) (void)mirror->hyperboloid("the central (Mei) model's mirror");
   if (!ideal())  // a lens camera included: no central (Mei) model describes it
     throw InputError(
         "rig.camera: this needs the central (Mei) model, which describes only the ideal camera "

@@ -11,7 +11,9 @@
 #include <variant>
 
 #include "geometry.h"
+#include "overloaded.h"
 #include "lens_models.h"
+#include "mirror_shape.h"
 #include "omni_camera.h"
 #include "shutter.h"
 
@@ -26,26 +28,6 @@ struct CameraMount {
   std::array<double, 2> principalPointOffsetPx{0.0, 0.0};
   bool ideal() const { return *this == CameraMount{}; }
   bool operator==(const CameraMount&) const = default;
-};
-
-// The mirror's shape. The hyperboloid (k, c, rim_elevation_deg of RigSpec) is the designed
-// single-viewpoint mirror; the others are cheaper builds (docs/physical-camera.md, "Mirror
-// shapes"). Each sits level on the robot with its design point at `height`: the paraboloid's
-// focus, the sphere's centre, the cone's apex.
-enum class MirrorShape { Hyperboloid, Paraboloid, Sphere, Cone };
-const char* mirrorShapeName(MirrorShape shape);
-
-struct MirrorShapeSpec {
-  MirrorShape shape = MirrorShape::Hyperboloid;
-  double parabolaH = 0.0;       // paraboloid: z = (r² − h²)/(2h) about its focus, metres
-  double sphereRadius = 0.0;    // sphere, metres
-  double capAngleDeg = 0.0;     // sphere: the cap from its lowest point up to this polar angle
-  double coneHalfAngleDeg = 0.0;  // cone: apex half-angle
-  double coneRimRadius = 0.0;   // cone: radius of its rim, metres
-  // The ideal pinhole's distance below the design point, on the axis (paraboloid, sphere, cone;
-  // a paraboloid with 0 is seen by an orthographic camera looking straight up).
-  double cameraDistance = 0.0;
-  bool operator==(const MirrorShapeSpec&) const = default;
 };
 
 // A camera without a mirror (issue #37): a central lens model (lens_models.h) whose centre of
@@ -71,36 +53,26 @@ void checkImageSize(int size, const std::string& what);
 // A camera that sees the scene in a mirror: the mirror, and the physical camera below it that
 // images it onto a square image.
 struct MirrorRig {
-  double k = 11.546;               // Baker–Nayar mirror parameter, > 2
-  double c = 0.02321;              // focal distance between F and F', metres
-  double rimElevationDeg = 45.0;   // mirror rim, degrees above the horizon (hyperboloid, paraboloid)
-  MirrorShapeSpec shape;           // hyperboloid unless it says otherwise
-  CameraMount mount;               // the physical camera's misalignment and lens
-  int imageSize = 360;             // square image, pixels
-  double framingElevationDeg = 45.0;  // direction that touches the image border
+  MirrorShapeSpec shape;  // the hyperboloid unless it says otherwise
+  CameraMount mount;      // the physical camera's misalignment and lens
+  int imageSize = 360;    // square image, pixels
   bool operator==(const MirrorRig&) const = default;
 
+  MirrorShape shapeKind() const { return mirrorShapeOf(shape); }
+  // The hyperboloid's parameters; InputError("rig.mirror.shape: this needs the hyperboloid
+  // (<why>); a <shape> mirror ...") for another shape.
+  const HyperboloidMirror& hyperboloid(const std::string& why = "the central model's mirror") const;
+  HyperboloidMirror& hyperboloid(const std::string& why = "the central model's mirror");
   // True when the camera sits exactly where the mirror was designed for: the image is then the
   // central (Mei) model's, in closed form.
-  bool ideal() const { return shape.shape == MirrorShape::Hyperboloid && mount.ideal(); }
-  HyperbolicMirror mirror() const { return {k, c}; }
-  // The ideal rig's central model: what the mirror and framing give, whatever the mount says.
-  OmniCamera idealCamera() const {
-    return {mirror(), imageSize, imageSize, rimElevationDeg, framingElevationDeg};
-  }
+  bool ideal() const { return std::holds_alternative<HyperboloidMirror>(shape) && mount.ideal(); }
+  // The hyperboloid's central model, as its mirror and framing give it whatever the mount says.
+  OmniCamera idealCamera() const;
 };
 
 // What a rig's camera is: a mirror with its camera, or a lens without one. Code outside camera/
-// asks RigSpec, or visits this (std::visit with Overloaded), rather than testing which it holds.
+// asks RigSpec, or visits this (std::visit with Overloaded, overloaded.h), rather than testing which it holds.
 using CameraKind = std::variant<MirrorRig, LensCameraSpec>;
-
-// The sum type's idiom: std::visit(Overloaded{[](const MirrorRig&) {...}, [](const LensCameraSpec&) {...}}, rig.kind).
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;  // clang before 17 deduces no aggregate's arguments
 
 struct RigSpec {
   double height = 0.40;            // F' above the floor, metres

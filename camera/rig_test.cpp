@@ -13,10 +13,7 @@ namespace {
 RigSpec misalignedSphere() {
   RigSpec rig;
   MirrorRig& mirror = rig.mirrorRig();
-  mirror.shape.shape = MirrorShape::Sphere;
-  mirror.shape.sphereRadius = 0.03;
-  mirror.shape.capAngleDeg = 60.0;
-  mirror.shape.cameraDistance = 0.12;
+  mirror.shape = SphereMirror{0.03, 60.0, 0.12};
   mirror.mount.offsetMm = {2.0, -1.0, 1.0};
   mirror.mount.rotationDeg = {1.0, -0.5, 0.5};
   mirror.mount.principalPointOffsetPx = {1.5, -0.75};
@@ -30,7 +27,8 @@ TEST(Rig, TheDefaultRigIsTheIdealHyperboloidAt360) {
   EXPECT_EQ(rig.imageWidth(), 360);
   EXPECT_EQ(rig.imageHeight(), 360);
   EXPECT_EQ(rig.imageSizeText(), "360^2");
-  EXPECT_EQ(rig.mirrorRig().shape.shape, MirrorShape::Hyperboloid);
+  EXPECT_EQ(rig.mirrorRig().shapeKind(), MirrorShape::Hyperboloid);
+  EXPECT_EQ(rig.mirrorRig().hyperboloid(), (HyperboloidMirror{11.546, 0.02321, 45.0, 45.0}));  // the thesis' mirror
 }
 
 // Resizing scales what is in pixels (a mirror rig's image and principal point offset; a lens'
@@ -61,7 +59,10 @@ TEST(Rig, EqualitySeesTheKindAndItsFields) {
   const RigSpec a = misalignedSphere();
   RigSpec b = a;
   EXPECT_EQ(a, b);
-  b.mirrorRig().shape.capAngleDeg += 1e-9;
+  std::get<SphereMirror>(b.mirrorRig().shape).capAngleDeg += 1e-9;
+  EXPECT_NE(a, b);
+  b = a;  // another shape with the same numbers is another mirror
+  b.mirrorRig().shape = ConeMirror{0.03, 60.0, 0.12};
   EXPECT_NE(a, b);
   b = a;
   b.mirrorRig().mount.rotationDeg[2] += 1e-9;
@@ -86,6 +87,26 @@ TEST(Rig, ALensRigCannotCarryAMount) {
   EXPECT_THROW((void)lens.camera(), InputError);
   EXPECT_THROW((void)RigSpec{}.lensCamera(), std::bad_variant_access);
   EXPECT_EQ(misalignedSphere().idealized().mirrorRig().mount, CameraMount{});
+}
+
+// A mirror's shape carries only its own parameters; what needs the hyperboloid's (the central
+// model) says which shape it got.
+TEST(Rig, OnlyTheHyperboloidHasTheCentralModelsMirror) {
+  const RigSpec sphere = misalignedSphere();
+  EXPECT_EQ(sphere.mirrorRig().shapeKind(), MirrorShape::Sphere);
+  EXPECT_STREQ(mirrorShapeName(sphere.mirrorRig().shape), "sphere");
+  EXPECT_FALSE(sphere.idealized().ideal());  // the camera put back is still not a single viewpoint
+  try {
+    (void)sphere.idealized().camera();
+    ADD_FAILURE() << "a sphere gave a central model";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "rig.mirror.shape: this needs the hyperboloid (the central (Mei) model's mirror); a sphere mirror is traced "
+                 "physically only");
+  }
+  const MirrorShapeSpec shapes[] = {HyperboloidMirror{}, ParaboloidMirror{}, SphereMirror{}, ConeMirror{}};
+  const char* names[] = {"hyperboloid", "paraboloid", "sphere", "cone"};
+  for (size_t i = 0; i < 4; ++i) EXPECT_STREQ(mirrorShapeName(shapes[i]), names[i]);
 }
 
 // The camera frame is the kind's: the unified model's for a mirror, the lens' OpenCV frame.

@@ -1,5 +1,5 @@
 #pragma once
-// Rigs the physical-camera tests share (physical_camera_test.cpp, fermat_path_test.cpp): one
+// Rigs the physical-camera tests share (physical_camera_test.cpp, fermat_path_test.cpp, the POV-Ray shapes): one
 // definition, so that both test the same misalignments and shapes.
 #include "rig.h"
 
@@ -14,19 +14,21 @@ inline RigSpec misaligned(double offsetMm, double rotationDeg) {
   return rig;
 }
 
-// The other mirror shapes, each with the 2 mm / 1° misalignment (cameraDistance 0: the
-// paraboloid's orthographic build).
+// The other mirror shapes' test builds (cameraDistance 0: the paraboloid's orthographic one).
+inline MirrorShapeSpec shapeOf(MirrorShape shape, double cameraDistance) {
+  switch (shape) {
+    case MirrorShape::Paraboloid: return ParaboloidMirror{0.02, 30.0, cameraDistance};
+    case MirrorShape::Sphere: return SphereMirror{0.03, 60.0, cameraDistance};
+    case MirrorShape::Cone: return ConeMirror{60.0, 0.03, cameraDistance};  // > 45°: the axial ray reflects below the horizon
+    case MirrorShape::Hyperboloid: break;
+  }
+  return HyperboloidMirror{};
+}
+
+// Those shapes, each with the 2 mm / 1° misalignment.
 inline RigSpec shaped(MirrorShape shape, double cameraDistance) {
   RigSpec rig = misaligned(2.0, 1.0);
-  MirrorRig& mirror = rig.mirrorRig();
-  mirror.shape.shape = shape;
-  mirror.shape.cameraDistance = cameraDistance;
-  mirror.shape.parabolaH = 0.02;
-  mirror.rimElevationDeg = shape == MirrorShape::Paraboloid ? 30.0 : mirror.rimElevationDeg;
-  mirror.shape.sphereRadius = 0.03;
-  mirror.shape.capAngleDeg = 60.0;
-  mirror.shape.coneHalfAngleDeg = 60.0;  // > 45°: the axial ray reflects below the horizon
-  mirror.shape.coneRimRadius = 0.03;
+  rig.mirrorRig().shape = shapeOf(shape, cameraDistance);
   return rig;
 }
 

@@ -40,7 +40,7 @@ TEST(Rings, MeasuresSyntheticRingsOfKnownRadius) {
   const std::vector<double> radii{3.3, 9.1, 20.25, 47.6, 88.0, 150.4};
   const ImageRGBA img = drawRings(radii, 0.3, 360);
   RigSpec rig;
-  rig.mirrorRig().rimElevationDeg = 50.0;  // whole image inside the rim
+  rig.mirrorRig().hyperboloid().rimElevationDeg = 50.0;  // whole image inside the rim
   const RingReport r = measureRings(img, rig.camera(), {10, 20, 30, 40, 50, 60});
   ASSERT_EQ(r.rings.size(), radii.size());
   for (size_t k = 0; k < radii.size(); ++k) EXPECT_NEAR(r.rings[k].measuredPx, radii[k], 0.02) << radii[k];
@@ -50,7 +50,7 @@ TEST(Rings, ProfilesMeasureHowFarRingsBend) {
   // Rings at the camera's exact radii, straight and bent by ±0.8 px: the per-sector RMS is
   // ~0 and 0.8/√2 (less a 1 % sector-averaging loss: sin 15°/15° for 10° sectors and cos 3φ).
   RigSpec rig;
-  rig.mirrorRig().rimElevationDeg = 50.0;  // whole image inside the rim
+  rig.mirrorRig().hyperboloid().rimElevationDeg = 50.0;  // whole image inside the rim
   rig.mirrorRig().imageSize = 180;
   const OmniCamera camera = rig.camera();
   const std::vector<double> thetas{40, 60, 80, 100, 120};

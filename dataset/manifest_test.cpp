@@ -39,9 +39,9 @@ FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
   const double tiny = 1.2345678901234567e-300, negativeTiny = -tiny;
   RigSpec rig;
   rig.height = std::nextafter(0.4, 1.0);
-  rig.mirrorRig().k = std::nextafter(11.546, 100.0);
-  rig.mirrorRig().c = std::nextafter(0.02321, 1.0);
-  rig.mirrorRig().rimElevationDeg = rig.mirrorRig().framingElevationDeg = std::nextafter(45.0, 80.0);
+  rig.mirrorRig().hyperboloid().k = std::nextafter(11.546, 100.0);
+  rig.mirrorRig().hyperboloid().c = std::nextafter(0.02321, 1.0);
+  rig.mirrorRig().hyperboloid().rimElevationDeg = rig.mirrorRig().hyperboloid().framingElevationDeg = std::nextafter(45.0, 80.0);
   rig.mirrorRig().imageSize = 16384;
   rig.mirrorRig().mount = {{negativeTiny, negativeTiny, negativeTiny},
                {negativeTiny, negativeTiny, negativeTiny},

@@ -360,11 +360,10 @@ void addLandmarks(GltfBuilder& b, const Scene& scene) {
 // pinhole as mounted (physical_camera.h), modelled once for every exporter.
 void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options, const MirrorRig& mirror) {
   const Pinhole pinhole = pinholeOf(mirror);
-  const MirrorShapeSpec& shape = mirror.shape;
+  const auto* sphere = std::get_if<SphereMirror>(&mirror.shape);  // checkGltfMirror: else the hyperboloid
   const MirrorMesh mirrorMesh =
-      shape.shape == MirrorShape::Sphere
-          ? buildSphereMirrorMesh(shape.sphereRadius, shape.capAngleDeg, options.mirrorDeviation)
-          : buildMirrorMesh(mirror.mirror(), mirror.idealCamera().rimTheta(), options.mirrorDeviation);
+      sphere ? buildSphereMirrorMesh(sphere->radius, sphere->capAngleDeg, options.mirrorDeviation)
+             : buildMirrorMesh(mirror.hyperboloid().mirror(), mirror.idealCamera().rimTheta(), options.mirrorDeviation);
   const int rig = addRigNode(b, options, "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)");
   const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
   b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),
@@ -397,11 +396,11 @@ void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options, const Mirror
 namespace {
 
 void checkGltfMirror(const MirrorRig& rig) {
-  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shape.shape) == std::end(kCertifiedMeshShapes)) {
+  if (std::find(std::begin(kCertifiedMeshShapes), std::end(kCertifiedMeshShapes), rig.shapeKind()) == std::end(kCertifiedMeshShapes)) {
     std::string certified;
     for (MirrorShape shape : kCertifiedMeshShapes) certified += (certified.empty() ? "the " : " and the ") + std::string(mirrorShapeName(shape));
     throw InputError("rig.mirror.shape: the glTF export (and Blender) has certified meshes of " + certified + " only, not of a " +
-                     mirrorShapeName(rig.shape.shape) + "; render it with the fast renderer or POV-Ray");
+                     mirrorShapeName(rig.shape) + "; render it with the fast renderer or POV-Ray");
   }
   if (!rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: glTF cameras (and Blender's) have no lens distortion; render it with "

@@ -167,37 +167,33 @@ std::string lensCameraSdl(const LensCameraSpec& lens, const Rigid& worldFromView
 // point), an open object the caller clips at the rim and closes.
 std::string mirrorSurfaceSdl(const MirrorRig& rig) {
   const double u = kPovrayUnitsPerMetre;
-  const MirrorShapeSpec& s = rig.shape;
   std::ostringstream out;
-  switch (s.shape) {
-    case MirrorShape::Hyperboloid: {
-      // (y + c/2)²/a² − (x² + z²)/b² = 1, times a²: −(a²/b²)x² + y² − (a²/b²)z² + c·y + c²/4 − a² = 0.
-      const HyperbolicMirror mirror = rig.mirror();
-      const double a2 = mirror.a2() * u * u, b2 = mirror.b2() * u * u, c = mirror.c() * u;
-      out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
-          << " m), upper sheet from its vertex to the rim.\n"
-          << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c) << ", 0>, "
-          << num(c * c / 4.0 - a2) << "\n";
-      break;
-    }
-    case MirrorShape::Paraboloid: {
-      // x² + z² − 2h·y − h² = 0 about the focus.
-      const double h = s.parabolaH * u;
-      out << "// Mirror: exact paraboloid (h = " << num(s.parabolaH) << " m) about its focus.\n"
-          << "quadric { <1, 0, 1>, <0, 0, 0>, <0, " << num(-2.0 * h) << ", 0>, " << num(-h * h) << "\n";
-      break;
-    }
-    case MirrorShape::Sphere:
-      out << "// Mirror: sphere (radius " << num(s.sphereRadius) << " m) about its centre, its lower cap.\n"
-          << "sphere { <0, 0, 0>, " << num(s.sphereRadius * u) << "\n";
-      break;
-    case MirrorShape::Cone: {
-      const double rimR = s.coneRimRadius * u, rimY = rimR / std::tan(radians(s.coneHalfAngleDeg));
-      out << "// Mirror: cone (half-angle " << num(s.coneHalfAngleDeg) << " deg), apex down at the origin.\n"
-          << "cone { <0, 0, 0>, 0, <0, " << num(rimY) << ", 0>, " << num(rimR) << " open\n";
-      break;
-    }
-  }
+  std::visit(Overloaded{
+                 [&](const HyperboloidMirror& hyperboloid) {
+                   // (y + c/2)²/a² − (x² + z²)/b² = 1, times a²: −(a²/b²)x² + y² − (a²/b²)z² + c·y + c²/4 − a² = 0.
+                   const HyperbolicMirror mirror = hyperboloid.mirror();
+                   const double a2 = mirror.a2() * u * u, b2 = mirror.b2() * u * u, c = mirror.c() * u;
+                   out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
+                       << " m), upper sheet from its vertex to the rim.\n"
+                       << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c)
+                       << ", 0>, " << num(c * c / 4.0 - a2) << "\n";
+                 },
+                 [&](const ParaboloidMirror& paraboloid) {
+                   // x² + z² − 2h·y − h² = 0 about the focus.
+                   const double h = paraboloid.h * u;
+                   out << "// Mirror: exact paraboloid (h = " << num(paraboloid.h) << " m) about its focus.\n"
+                       << "quadric { <1, 0, 1>, <0, 0, 0>, <0, " << num(-2.0 * h) << ", 0>, " << num(-h * h) << "\n";
+                 },
+                 [&](const SphereMirror& sphere) {
+                   out << "// Mirror: sphere (radius " << num(sphere.radius) << " m) about its centre, its lower cap.\n"
+                       << "sphere { <0, 0, 0>, " << num(sphere.radius * u) << "\n";
+                 },
+                 [&](const ConeMirror& cone) {
+                   const double rimR = cone.rimRadius * u, rimY = rimR / std::tan(radians(cone.halfAngleDeg));
+                   out << "// Mirror: cone (half-angle " << num(cone.halfAngleDeg) << " deg), apex down at the origin.\n"
+                       << "cone { <0, 0, 0>, 0, <0, " << num(rimY) << ", 0>, " << num(rimR) << " open\n";
+                 }},
+             rig.shape);
   return out.str();
 }
 

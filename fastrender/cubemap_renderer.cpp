@@ -216,7 +216,7 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   L->padded = o.faceSize + 2;
   const OmniCamera camera = r.camera();
   const Rigid viewpointFromCamera = unifiedCameraFromViewpoint().inverse();
-  const HyperbolicMirror mirror = r.mirrorRig().mirror();  // r.camera() above: the ideal hyperboloid rig
+  const HyperbolicMirror mirror = r.mirrorRig().hyperboloid().mirror();  // r.camera() above: the ideal hyperboloid rig
   ThesisMesh mesh;
   if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(mirror, camera.rimTheta(), sectors, rings);
   const Pinhole pinhole = pinholeOf(r.mirrorRig());  // the physical camera, modelled once (physical_camera.h)

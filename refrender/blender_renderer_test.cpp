@@ -102,10 +102,7 @@ TEST(Blender, AgreesWithTheFastRendererOnAMisalignedSphere) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
-  settings.rig.mirrorRig().shape.shape = MirrorShape::Sphere;
-  settings.rig.mirrorRig().shape.sphereRadius = 0.03;
-  settings.rig.mirrorRig().shape.capAngleDeg = 60.0;
-  settings.rig.mirrorRig().shape.cameraDistance = 0.12;
+  settings.rig.mirrorRig().shape = SphereMirror{0.03, 60.0, 0.12};
   settings.rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
   settings.rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   settings.spp = 64;

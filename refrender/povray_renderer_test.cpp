@@ -16,6 +16,7 @@
 #include "job_folder.h"
 #include "rings.h"
 #include "scene_loader.h"
+#include "test_rigs.h"
 
 namespace omnicam {
 namespace {
@@ -138,7 +139,6 @@ TEST(FastVsPovrayRockingRobot, EveryMountedCameraTiltsAboutTheRobotsOrigin) {
 struct ShapeCase {
   const char* label;
   MirrorShapeSpec shape;
-  double rimElevationDeg;
 };
 
 class FastVsPovrayShapes : public ::testing::TestWithParam<ShapeCase> {};
@@ -149,7 +149,6 @@ TEST_P(FastVsPovrayShapes, UnlitAtSixteenSamplesPerPixel) {
   RenderSettings settings;
   settings.rig = scene.rig;
   settings.rig.mirrorRig().shape = GetParam().shape;
-  settings.rig.mirrorRig().rimElevationDeg = GetParam().rimElevationDeg;
   settings.rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
   settings.rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
   settings.spp = 16;
@@ -165,25 +164,13 @@ TEST_P(FastVsPovrayShapes, UnlitAtSixteenSamplesPerPixel) {
   EXPECT_LT(aligned, 40.0);  // the misalignment shows
 }
 
-MirrorShapeSpec shapeSpec(MirrorShape shape, double cameraDistance) {
-  MirrorShapeSpec s;
-  s.shape = shape;
-  s.cameraDistance = cameraDistance;
-  s.parabolaH = 0.02;
-  s.sphereRadius = 0.03;
-  s.capAngleDeg = 60.0;
-  s.coneHalfAngleDeg = 60.0;
-  s.coneRimRadius = 0.03;
-  return s;
-}
-
 INSTANTIATE_TEST_SUITE_P(
     Shapes, FastVsPovrayShapes,
-    ::testing::Values(ShapeCase{"paraboloid, orthographic camera", shapeSpec(MirrorShape::Paraboloid, 0.0), 30.0},
-                      ShapeCase{"paraboloid, perspective camera 0.15 m below", shapeSpec(MirrorShape::Paraboloid, 0.15), 30.0},
-                      ShapeCase{"sphere r 3 cm, cap 60 deg, camera 0.12 m below", shapeSpec(MirrorShape::Sphere, 0.12), 45.0},
-                      ShapeCase{"cone 60 deg, rim 3 cm, camera 0.05 m below", shapeSpec(MirrorShape::Cone, 0.05), 45.0}),
-    [](const auto& param) { return std::string(mirrorShapeName(param.param.shape.shape)) + std::to_string(param.index); });
+    ::testing::Values(ShapeCase{"paraboloid, orthographic camera", test::shapeOf(MirrorShape::Paraboloid, 0.0)},
+                      ShapeCase{"paraboloid, perspective camera 0.15 m below", test::shapeOf(MirrorShape::Paraboloid, 0.15)},
+                      ShapeCase{"sphere r 3 cm, cap 60 deg, camera 0.12 m below", test::shapeOf(MirrorShape::Sphere, 0.12)},
+                      ShapeCase{"cone 60 deg, rim 3 cm, camera 0.05 m below", test::shapeOf(MirrorShape::Cone, 0.05)}),
+    [](const auto& param) { return std::string(mirrorShapeName(param.param.shape)) + std::to_string(param.index); });
 
 TEST(Povray, LensDistortionIsRefusedNotIgnored) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
@@ -277,7 +264,7 @@ TEST(Povray, RigRangeCornersRenderTheSameInBothEngines) {
     Scene scene = base;
     // From 100 m up the field fills less than a pixel: a sky colour makes every ray count.
     scene.background = Vec3f(0.2f, 0.3f, 0.4f);
-    scene.rig.mirrorRig().k = corner.k, scene.rig.mirrorRig().c = corner.c, scene.rig.height = corner.height;
+    scene.rig.mirrorRig().hyperboloid().k = corner.k, scene.rig.mirrorRig().hyperboloid().c = corner.c, scene.rig.height = corner.height;
     scene.rig.mirrorRig().imageSize = 64;
     const FastRenderer fast(scene);
     RenderSettings settings;

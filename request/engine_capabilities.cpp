@@ -134,7 +134,7 @@ void checkMirrorCamera(const EngineCapabilities& c, const MirrorRig& rig) {
   if (!c.misalignedCamera && !rig.ideal())
     throw InputError(shown + " is central by construction and renders the ideal rig only (the hyperboloid with its camera "
                      "at F); this rig's mirror shape or camera (rig.mirror, rig.camera) differs: render it in exact mode");
-  const MirrorShape shape = rig.shape.shape;
+  const MirrorShape shape = rig.shapeKind();
   if (!hasShape(c, shape))
     throw InputError(std::string("rig.mirror.shape: ") + shown + " has no exact " + mirrorShapeName(shape) +
                      " mirror; render it with " + enginesThat([shape](const EngineCapabilities& e) { return hasShape(e, shape); }));

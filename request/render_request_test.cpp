@@ -107,7 +107,7 @@ TEST(EngineCapabilities, EachEngineIsCheckedByItsRowAndTheMessageNamesTheEngines
   EXPECT_EQ(refusal(EngineKind::Povray, distorted, {}),
             "rig.camera.distortion: the povray engine has no lens distortion; render it with the fast engine");
   RigSpec cone;
-  cone.mirrorRig().shape.shape = MirrorShape::Cone;
+  cone.mirrorRig().shape = ConeMirror{60.0, 0.03, 0.05};
   EXPECT_EQ(refusal(EngineKind::Blender, cone, {}),
             "rig.mirror.shape: the blender engine has no exact cone mirror; render it with the fast engine or the povray engine");
   EXPECT_EQ(refusal(EngineKind::Povray, cone, {}), "");

@@ -40,7 +40,7 @@ double measuredDeviation(const MirrorMesh& mesh, Distance distance) {
 
 TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
   const RigSpec rig;
-  const HyperbolicMirror m = rig.mirrorRig().mirror();
+  const HyperbolicMirror m = rig.mirrorRig().hyperboloid().mirror();
   const double bound = 0.5e-6;  // 0.5 µm
   const MirrorMesh mesh = buildMirrorMesh(m, rig.camera().rimTheta(), bound);
   const double worst = measuredDeviation(mesh, [&m](const Vec3& p) { return mirrorSurfaceDistance(m, p); });

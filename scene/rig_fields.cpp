@@ -1,6 +1,7 @@
 #include "rig_fields.h"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,71 +62,91 @@ Shutter readShutter(JsonFields fields) {
   return shutter;
 }
 
-// rig.mirror: the shape and its parameters (docs/scene-format.md); each shape takes only its own.
-void readMirror(JsonFields& mirror, MirrorRig& spec, double height) {
-  const std::string shape = mirror.string("shape", "hyperboloid");
-  MirrorShapeSpec& s = spec.shape;
-  const JsonFields::Range size{limits::kMinMirrorSize, limits::kMaxMirrorSize, false, "m"};
-  const auto rimElevation = [&] {
-    spec.rimElevationDeg = mirror.number("rim_elevation_deg", spec.rimElevationDeg);
-    if (!(spec.rimElevationDeg > -60.0 && spec.rimElevationDeg < 80.0))
-      mirror.fail("rim_elevation_deg", "must be in (-60, 80) degrees");
-  };
-  // The ideal camera's distance below the design point: above the floor, below the mirror.
-  const auto cameraDistance = [&](double fallback, double below) {
-    s.cameraDistance = mirror.number("camera_distance_m", fallback, {0.0, limits::kMaxCameraDistance, false, "m"});
-    if (s.cameraDistance != 0.0 && !(s.cameraDistance > below))
-      mirror.fail("camera_distance_m", "puts the camera on or above the mirror (it must exceed " + shortNumber(below) + " m)");
-    if (!(s.cameraDistance < height))
-      mirror.fail("camera_distance_m", "must be smaller than rig.height (the camera sits above the floor)");
-  };
-  // Another shape's field is a likely slip (a forgotten or misspelt "shape"): say so.
+// The fields another shape owns: one of them is a likely slip (a forgotten or misspelt "shape").
+void refuseOtherShapesFields(JsonFields& mirror, const std::string& shape) {
   const std::pair<const char*, const char*> owners[] = {
       {"k", "hyperboloid"}, {"c", "hyperboloid"}, {"h", "paraboloid"}, {"radius", "sphere"}, {"cap_angle_deg", "sphere"},
       {"half_angle_deg", "cone"}, {"rim_radius", "cone"}, {"camera_distance_m", "paraboloid, sphere and cone"}};
-  const bool known = shape == "hyperboloid" || shape == "paraboloid" || shape == "sphere" || shape == "cone";
   for (const auto& [key, owner] : owners)
-    if (known && mirror.has(key) && std::string(owner).find(shape) == std::string::npos)
+    if (mirror.has(key) && std::string(owner).find(shape) == std::string::npos)
       mirror.fail(key, std::string("belongs to the ") + owner + " shape, not to " + quote(shape) +
                            (mirror.has("shape") ? "" : " (the default; give \"shape\")"));
+}
+
+double rimElevation(JsonFields& mirror, double fallback) {
+  const double deg = mirror.number("rim_elevation_deg", fallback);
+  if (!(deg > -60.0 && deg < 80.0)) mirror.fail("rim_elevation_deg", "must be in (-60, 80) degrees");
+  return deg;
+}
+
+// The ideal camera's distance below the design point: above the floor, below the mirror
+// (beyond `below`); 0 (orthographic) only where `fallback` is.
+double cameraDistance(JsonFields& mirror, std::optional<double> fallback, double below, double height) {
+  const JsonFields::Range range{0.0, limits::kMaxCameraDistance, false, "m"};
+  const double d = fallback ? mirror.number("camera_distance_m", *fallback, range) : mirror.number("camera_distance_m", range);
+  if (!fallback && d == 0.0) mirror.fail("camera_distance_m", "must be positive: a perspective camera below the mirror");
+  if (d != 0.0 && !(d > below))
+    mirror.fail("camera_distance_m", "puts the camera on or above the mirror (it must exceed " + shortNumber(below) + " m)");
+  if (!(d < height)) mirror.fail("camera_distance_m", "must be smaller than rig.height (the camera sits above the floor)");
+  return d;
+}
+
+MirrorShapeSpec readShape(JsonFields& mirror, const std::string& shape, double height) {
+  const JsonFields::Range size{limits::kMinMirrorSize, limits::kMaxMirrorSize, false, "m"};
   if (shape == "hyperboloid") {
-    spec.k = mirror.number("k", spec.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
-    spec.c = mirror.number("c", spec.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
-    if (!(spec.c < height))
-      mirror.fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
-    rimElevation();
-  } else if (shape == "paraboloid") {
-    s.shape = MirrorShape::Paraboloid;
-    s.parabolaH = mirror.number("h", size);
-    rimElevation();
-    if (!(spec.rimElevationDeg < 60.0)) mirror.fail("rim_elevation_deg", "must be below 60 degrees for a paraboloid");
-    cameraDistance(0.0, 0.5 * s.parabolaH);
-  } else if (shape == "sphere") {
-    s.shape = MirrorShape::Sphere;
-    s.sphereRadius = mirror.number("radius", size);
-    s.capAngleDeg = mirror.number("cap_angle_deg", 60.0, {10.0, 90.0, false, "degrees"});
-    cameraDistance(mirror.number("camera_distance_m"), s.sphereRadius);
-  } else if (shape == "cone") {
-    s.shape = MirrorShape::Cone;
-    s.coneHalfAngleDeg = mirror.number("half_angle_deg", 60.0, {10.0, 80.0, false, "degrees"});
-    s.coneRimRadius = mirror.number("rim_radius", size);
-    cameraDistance(mirror.number("camera_distance_m"), 0.0);
-  } else {
-    mirror.fail("shape", quote(shape) + " is not a mirror shape omnicam models (hyperboloid, paraboloid, sphere, cone)");
+    HyperboloidMirror h;
+    h.k = mirror.number("k", h.k, {limits::kMinMirrorK, limits::kMaxMirrorK, true});
+    h.c = mirror.number("c", h.c, {limits::kMinMirrorC, limits::kMaxMirrorC, false, "m"});
+    if (!(h.c < height)) mirror.fail("c", "must be smaller than rig.height (the camera sits c below F', above the floor)");
+    h.rimElevationDeg = rimElevation(mirror, h.rimElevationDeg);
+    return h;
   }
-  if (s.shape == MirrorShape::Sphere || s.shape == MirrorShape::Cone) {
-    if (s.cameraDistance == 0.0) mirror.fail("camera_distance_m", "must be positive: a perspective camera below the mirror");
+  if (shape == "paraboloid") {
+    ParaboloidMirror p;
+    p.h = mirror.number("h", size);
+    p.rimElevationDeg = rimElevation(mirror, p.rimElevationDeg);
+    if (!(p.rimElevationDeg < 60.0)) mirror.fail("rim_elevation_deg", "must be below 60 degrees for a paraboloid");
+    p.cameraDistance = cameraDistance(mirror, 0.0, 0.5 * p.h, height);
+    return p;
   }
-  // The image is framed on the rim: the ideal camera must see it, not the mirror's edge in front
-  // of it (a sphere's cap beyond its tangent circle, a paraboloid seen from too close).
-  if (s.shape != MirrorShape::Hyperboloid && s.cameraDistance > 0.0) {
-    const auto surface = mirrorSurfaceOf(spec);
-    const Vec3 camera(0.0, 0.0, -s.cameraDistance), rim(surface->rimRadius(), 0.0, surface->rimZ());
-    const auto seen = surface->firstHit(camera, rim - camera);
-    if (!seen || (*seen - rim).norm() > 1e-9 * surface->rimRadius())
-      mirror.fail("camera_distance_m", "hides the rim behind the mirror's edge (the image is framed on the rim): "
-                                       "move the camera further away, or make the mirror's rim lower");
+  if (shape == "sphere") {
+    SphereMirror s;
+    s.radius = mirror.number("radius", size);
+    s.capAngleDeg = mirror.number("cap_angle_deg", s.capAngleDeg, {10.0, 90.0, false, "degrees"});
+    s.cameraDistance = cameraDistance(mirror, std::nullopt, s.radius, height);
+    return s;
   }
+  if (shape == "cone") {
+    ConeMirror c;
+    c.halfAngleDeg = mirror.number("half_angle_deg", c.halfAngleDeg, {10.0, 80.0, false, "degrees"});
+    c.rimRadius = mirror.number("rim_radius", size);
+    c.cameraDistance = cameraDistance(mirror, std::nullopt, 0.0, height);
+    return c;
+  }
+  mirror.fail("shape", quote(shape) + " is not a mirror shape omnicam models (hyperboloid, paraboloid, sphere, cone)");
+}
+
+// The image is framed on the rim: a perspective camera must see it, not the mirror's edge in
+// front of it (a sphere's cap beyond its tangent circle, a paraboloid seen from too close).
+void requireRimInView(JsonFields& mirror, const MirrorRig& spec, double cameraDistance) {
+  if (cameraDistance == 0.0) return;
+  const auto surface = mirrorSurfaceOf(spec);
+  const Vec3 camera(0.0, 0.0, -cameraDistance), rim(surface->rimRadius(), 0.0, surface->rimZ());
+  const auto seen = surface->firstHit(camera, rim - camera);
+  if (!seen || (*seen - rim).norm() > 1e-9 * surface->rimRadius())
+    mirror.fail("camera_distance_m", "hides the rim behind the mirror's edge (the image is framed on the rim): "
+                                     "move the camera further away, or make the mirror's rim lower");
+}
+
+// rig.mirror: the shape and its parameters (docs/scene-format.md); each shape takes only its own.
+void readMirror(JsonFields& mirror, MirrorRig& spec, double height) {
+  const std::string shape = mirror.string("shape", "hyperboloid");
+  const bool known = shape == "hyperboloid" || shape == "paraboloid" || shape == "sphere" || shape == "cone";
+  if (known) refuseOtherShapesFields(mirror, shape);
+  spec.shape = readShape(mirror, shape, height);
+  std::visit(Overloaded{[](const HyperboloidMirror&) {},
+                        [&](const auto& other) { requireRimInView(mirror, spec, other.cameraDistance); }},
+             spec.shape);
 }
 
 // A lens camera's rig: its height, lens, shutter and tilt; a mirror's fields are refused.
@@ -156,22 +177,24 @@ RigSpec readRig(JsonFields rig) {
   if (auto shutter = rig.optionalObject("shutter")) spec.shutter = readShutter(*shutter);
   const std::vector<double> tilt = rig.numbers("tilt_deg", {0.0, 0.0}, {-limits::kMaxRigTiltDeg, limits::kMaxRigTiltDeg, false, "degrees"});
   spec.tiltDeg = {tilt[0], tilt[1]};
+  HyperboloidMirror* hyperboloid = std::get_if<HyperboloidMirror>(&mirrorRig.shape);
+  if (hyperboloid) hyperboloid->framingElevationDeg = hyperboloid->rimElevationDeg;
   if (auto image = rig.optionalObject("image")) {
     mirrorRig.imageSize = image->integer("size", mirrorRig.imageSize, limits::kMinImageSize, limits::kMaxImageSize);
-    if (mirrorRig.shape.shape != MirrorShape::Hyperboloid && image->has("framing_elevation_deg"))
+    if (!hyperboloid && image->has("framing_elevation_deg"))
       image->fail("framing_elevation_deg", "only for the hyperboloid: the other shapes' images frame their rim");
-    mirrorRig.framingElevationDeg = image->number("framing_elevation_deg", mirrorRig.rimElevationDeg);
-    if (!(mirrorRig.framingElevationDeg > -60.0 && mirrorRig.framingElevationDeg <= mirrorRig.rimElevationDeg))
-      image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees");
+    if (hyperboloid) {
+      hyperboloid->framingElevationDeg = image->number("framing_elevation_deg", hyperboloid->rimElevationDeg);
+      if (!(hyperboloid->framingElevationDeg > -60.0 && hyperboloid->framingElevationDeg <= hyperboloid->rimElevationDeg))
+        image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees");
+    }
     image->finish();
-  } else {
-    mirrorRig.framingElevationDeg = mirrorRig.rimElevationDeg;
   }
-  if (!rig.has("mirror") && !(mirrorRig.c < spec.height))
-    rig.fail("height", "must be larger than the mirror's c = " + shortNumber(mirrorRig.c) + " m");
+  if (!rig.has("mirror") && !(hyperboloid->c < spec.height))
+    rig.fail("height", "must be larger than the mirror's c = " + shortNumber(hyperboloid->c) + " m");
   rig.finish();
   try {
-    if (mirrorRig.shape.shape == MirrorShape::Hyperboloid) (void)mirrorRig.idealCamera();  // it must image the rim and framing
+    if (hyperboloid) (void)mirrorRig.idealCamera();  // it must image the rim and framing
     (void)makeCamera(spec);    // and the camera must sit below the mirror
   } catch (const InputError& e) {
     throw InputError(showPath(rig.file()) + ": " + rig.where() + "." + e.what());

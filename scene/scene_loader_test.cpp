@@ -50,7 +50,7 @@ class SceneLoaderTest : public ::testing::Test {
 TEST_F(SceneLoaderTest, MinimalSceneLoadsWithDefaults) {
   EXPECT_EQ(errorOf(""), "");
   const Scene s = loadScene((dir_ / "scene.json").string());
-  EXPECT_DOUBLE_EQ(s.rig.mirrorRig().k, 11.546);
+  EXPECT_DOUBLE_EQ(s.rig.mirrorRig().hyperboloid().k, 11.546);
   EXPECT_EQ(s.objects.size(), 1u);
   EXPECT_EQ(s.sha256.size(), 64u);
 }

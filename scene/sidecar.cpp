@@ -27,24 +27,22 @@ json shutterToJson(const Shutter& open) {
 
 // rig.mirror, rig.image and (unless ideal) rig.camera.
 void addMirrorRig(json& out, const MirrorRig& rig) {
-  const MirrorShapeSpec& s = rig.shape;
-  json mirror = {{"shape", mirrorShapeName(s.shape)}};
+  json mirror = {{"shape", mirrorShapeName(rig.shape)}};
   json image = {{"size", rig.imageSize}};
-  switch (s.shape) {
-    case MirrorShape::Hyperboloid:
-      mirror.update({{"k", rig.k}, {"c", rig.c}, {"rim_elevation_deg", rig.rimElevationDeg}});
-      image["framing_elevation_deg"] = rig.framingElevationDeg;
-      break;
-    case MirrorShape::Paraboloid:
-      mirror.update({{"h", s.parabolaH}, {"rim_elevation_deg", rig.rimElevationDeg}, {"camera_distance_m", s.cameraDistance}});
-      break;
-    case MirrorShape::Sphere:
-      mirror.update({{"radius", s.sphereRadius}, {"cap_angle_deg", s.capAngleDeg}, {"camera_distance_m", s.cameraDistance}});
-      break;
-    case MirrorShape::Cone:
-      mirror.update({{"half_angle_deg", s.coneHalfAngleDeg}, {"rim_radius", s.coneRimRadius}, {"camera_distance_m", s.cameraDistance}});
-      break;
-  }
+  std::visit(Overloaded{[&](const HyperboloidMirror& h) {
+                          mirror.update({{"k", h.k}, {"c", h.c}, {"rim_elevation_deg", h.rimElevationDeg}});
+                          image["framing_elevation_deg"] = h.framingElevationDeg;
+                        },
+                        [&](const ParaboloidMirror& p) {
+                          mirror.update({{"h", p.h}, {"rim_elevation_deg", p.rimElevationDeg}, {"camera_distance_m", p.cameraDistance}});
+                        },
+                        [&](const SphereMirror& s) {
+                          mirror.update({{"radius", s.radius}, {"cap_angle_deg", s.capAngleDeg}, {"camera_distance_m", s.cameraDistance}});
+                        },
+                        [&](const ConeMirror& c) {
+                          mirror.update({{"half_angle_deg", c.halfAngleDeg}, {"rim_radius", c.rimRadius}, {"camera_distance_m", c.cameraDistance}});
+                        }},
+             rig.shape);
   out["mirror"] = mirror;
   out["image"] = image;
   if (!rig.mount.ideal()) {  // the ideal camera is the default: its rigs read as they always did

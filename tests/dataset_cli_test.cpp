@@ -226,10 +226,10 @@ TEST_F(DatasetCliTest, APhysicalRigsRaysAndDepthAreExact) {
   RigSpec rig;
   rig.height = 0.5;
   // The pinhole as the spec mounts it: F = (0, 0, −c) moved by offset_mm (the manifest must say so).
-  const Vec3 pinhole = Vec3(0.0, 0.0, -rig.mirrorRig().c) + 1e-3 * Vec3(2.0, -1.0, 1.0);
+  const Vec3 pinhole = Vec3(0.0, 0.0, -rig.mirrorRig().hyperboloid().c) + 1e-3 * Vec3(2.0, -1.0, 1.0);
   const json& stated = intrinsics["pinhole"]["position_m"];
   for (int axis = 0; axis < 3; ++axis) EXPECT_NEAR(stated[axis].get<double>(), pinhole[axis], 1e-15);
-  const HyperbolicMirror mirror = rig.mirrorRig().mirror();
+  const HyperbolicMirror mirror = rig.mirrorRig().hyperboloid().mirror();
   const Rigid worldFromView = CameraPlacement({0.3, -0.2, 40}).worldFromViewpoint(rig);
   int floorPixels = 0, imaged = 0;
   double worstSurface = 0.0, worstReflection = 0.0;

@@ -99,8 +99,8 @@ struct ThesisMapDistortion {
 TEST_F(TiledRoom, FloorLinesAreStraightInTheExactBirdsEyeView) {
   const OmniCamera cam = scene_->rig.camera();
   // ξ and γ from k, c and the framing (docs/conventions.md §1), not from the camera under test.
-  const double eps = std::sqrt(scene_->rig.mirrorRig().k / (scene_->rig.mirrorRig().k - 2.0));
-  const double framing = radians(90.0 + scene_->rig.mirrorRig().framingElevationDeg);
+  const double eps = std::sqrt(scene_->rig.mirrorRig().hyperboloid().k / (scene_->rig.mirrorRig().hyperboloid().k - 2.0));
+  const double framing = radians(90.0 + scene_->rig.mirrorRig().hyperboloid().framingElevationDeg);
   const double xi = 2.0 * eps / (1.0 + eps * eps);
   const ThesisMapDistortion thesis{xi, 0.5 * scene_->rig.mirrorRig().imageSize * (xi + std::cos(framing)) / std::sin(framing), 40.0};
   ASSERT_NEAR(thesis.xi, 0.995494, 1e-6);  // docs/conventions.md §1

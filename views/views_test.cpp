@@ -84,8 +84,8 @@ TEST(Views, PerspectiveViewIsAPinholeAtTheViewpoint) {
   // That direction lands where the unified model, written out here from k, c and the framing
   // (docs/conventions.md §1), puts it. A swapped axis, a sign or a wrong focal length shows.
   const RigSpec rig;
-  const double eps = std::sqrt(rig.mirrorRig().k / (rig.mirrorRig().k - 2.0)), xi = 2.0 * eps / (1.0 + eps * eps);
-  const double framing = radians(90.0 + rig.mirrorRig().framingElevationDeg), rim = radians(90.0 + rig.mirrorRig().rimElevationDeg);
+  const double eps = std::sqrt(rig.mirrorRig().hyperboloid().k / (rig.mirrorRig().hyperboloid().k - 2.0)), xi = 2.0 * eps / (1.0 + eps * eps);
+  const double framing = radians(90.0 + rig.mirrorRig().hyperboloid().framingElevationDeg), rim = radians(90.0 + rig.mirrorRig().hyperboloid().rimElevationDeg);
   const double gamma = 0.5 * rig.mirrorRig().imageSize * (xi + std::cos(framing)) / std::sin(framing);
   int imaged = 0, beyond = 0;
   for (const auto& [yawDeg, pitchDeg] : {std::pair{60.0, -25.0}, std::pair{-120.0, 20.0}}) {

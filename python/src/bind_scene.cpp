@@ -76,7 +76,7 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
            }, py::arg("size"), "The same rig imaging size × size pixels (a lens camera: size wide, keeping its aspect).")
       .def_property_readonly("ideal", &RigSpec::ideal, "The ideal hyperboloid rig, whose camera is the closed-form (Mei) model.")
       .def_property_readonly("shape", [](const RigSpec& r) {
-             return std::visit(Overloaded{[](const MirrorRig& mirror) -> py::object { return py::str(mirrorShapeName(mirror.shape.shape)); },
+             return std::visit(Overloaded{[](const MirrorRig& mirror) -> py::object { return py::str(mirrorShapeName(mirror.shape)); },
                                          [](const LensCameraSpec&) -> py::object { return py::none(); }},
                                r.kind);
            }, "The mirror shape: hyperboloid, paraboloid, sphere or cone; None for a lens camera.")
