@@ -28,7 +28,7 @@ struct MirrorMesh {
 // surface): what the glTF export, and so Blender, can show.
 inline constexpr MirrorShape kCertifiedMeshShapes[] = {MirrorShape::Hyperboloid, MirrorShape::Sphere};
 MirrorMesh buildMirrorMesh(const HyperbolicMirror& mirror, double rimTheta, double maxDeviation);
-// The sphere's lower cap (rig.h's MirrorShape::Sphere, centre at the origin) the same way; its
+// The sphere's lower cap (mirror_shape.h's SphereMirror, centre at the origin) the same way; its
 // distance to a point is | |p| − R |.
 MirrorMesh buildSphereMirrorMesh(double radius, double capAngleDeg, double maxDeviation);
 
