@@ -50,15 +50,20 @@ struct PathFrameResult {
   double disagreementDb = 0.0;
   double filterBiasPsnrDb = 0.0;    // filtered fast vs unfiltered fast, both converged
   double chosenPsnrDb = 0.0, chosenSeconds = 0.0;  // fast, filtered, chosenSpp
-  double cyclesPsnrDb = 0.0, cyclesSeconds = 0.0;  // Cycles, filtered, cyclesSpp
+  // Cycles, filtered, cyclesSpp: a frame's seconds in a session of the scene's poses, and the
+  // session's start-up (Blender's, the glTF import, the scene's set-up) apart.
+  double cyclesPsnrDb = 0.0, cyclesSeconds = 0.0, cyclesStartupSeconds = 0.0;
   double meanRatio = 0.0;           // mean radiance inside the disc, converged fast / Cycles
 };
 
+// One rung: an engine's seconds per frame of a sequence (Cycles: in one Blender session, its
+// start-up in startupSeconds), and the first pose's PSNR.
 struct LadderPoint {
   std::string engine;  // "fast" or "blender"
   int spp = 0;
   bool filtered = false;
   double seconds = 0.0, psnrDb = 0.0;
+  double startupSeconds = 0.0;
 };
 
 struct PathConvergenceResults {
@@ -76,12 +81,16 @@ struct PathConvergenceResults {
 
 using PathConvergenceProgress = std::function<void(const std::string& stage, int done, int total)>;
 
-// Time to error on one frame: the fast engine over `fastLadder` (unfiltered and denoised) and
-// Cycles over `cyclesLadder` (denoised, one frame per Blender session), one after the other,
-// against `converged`; with the seconds each engine needs for 35 and 38 dB.
-void measureTimeToError(const Scene& scene, const RobotPose& pose, const ImageRGBA& converged,
+// Time to error on the first of `poses`: the fast engine over `fastLadder` (unfiltered and
+// denoised) and Cycles over `cyclesLadder` (denoised), one after the other, against `converged`
+// (that pose's); with the seconds each engine needs for 35, 38 and 40 dB. Each engine is timed
+// per frame of a sequence of `poses`, as a dataset renders them: the fast renderer's frames after
+// a warm-up frame, Cycles' frames after the first of one Blender session (docs/performance.md).
+void measureTimeToError(const Scene& scene, const std::vector<RobotPose>& poses, const ImageRGBA& converged,
                         const PathConvergenceOptions& options, PathConvergenceResults& results,
                         const PathConvergenceProgress& progress);
+// The halls' three poses (the study's, the first the time-to-error pose).
+std::vector<RobotPose> hallPoses();
 // The mean of `seeds` unfiltered fast frames of `spp` each (seeds 1000, 1001, …).
 ImageRGBA convergedFastFrame(const Scene& scene, const RobotPose& pose, int size, int spp, int seeds);
 

@@ -18,7 +18,13 @@ job.json: {"glb": path, "shading": "unlit"|"lit"|"path", "samples": int, "seed":
            "frames": [{"world_from_viewpoint": 4x4 rows, "output": path.exr,
                        "direct_output": path.exr (with direct_pass),
                        "motion": {"exposure_s": float, "motion_steps": int,
-                                  "world_from_viewpoint": [4x4 rows, ...]} (a moving frame)}]}
+                                  "world_from_viewpoint": [4x4 rows, ...]} (a moving frame)}],
+           "timings_output": path.json (optional)}
+
+timings_output: where the driver writes how its session spent its time, {"setup_seconds": from
+the script's start to the first frame (factory settings, glTF import, materials), "frame_seconds":
+[each frame's render call, its EXR written, in order]}; Blender's own start-up before the script
+runs is the caller's to measure (the whole session's time minus these).
 
 motion: the rig's exact placements at 2^(motion_steps - 1) + 1 evenly spaced instants of a
 global shutter's exposure, from the frame's pose on. They are keyed on the rig at those instants
@@ -37,6 +43,7 @@ whose names collide or exceed 63 bytes, and a user's object may be called anythi
 """
 import json
 import sys
+import time
 
 import bpy
 import numpy
@@ -228,6 +235,7 @@ def find_roles(objects, lens):
 
 
 def main():
+    started = time.perf_counter()
     job = load_job()
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.import_scene.gltf(filepath=job["glb"])
@@ -328,12 +336,18 @@ def main():
     settings.color_mode = "RGB"
 
     direct_pass = tracing["direct_pass"] and not unlit
+    timings = {"setup_seconds": time.perf_counter() - started, "frame_seconds": []}
     for frame in job["frames"]:
+        frame_started = time.perf_counter()
         place_rig(scene, rig, [obj for obj in (rig, mirror, mask, camera) if obj is not None], frame)
         if direct_pass:
             render_with_direct_twin(scene, frame)
         else:
             render_to(scene, frame["output"])
+        timings["frame_seconds"].append(time.perf_counter() - frame_started)
+    if "timings_output" in job:
+        with open(job["timings_output"], "w") as out:
+            json.dump(timings, out)
 
 
 def set_panorama(cam, panorama):

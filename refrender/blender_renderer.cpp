@@ -3,9 +3,12 @@
 #include "engine_capabilities.h"
 #include "film.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <numeric>
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
@@ -222,6 +225,22 @@ nlohmann::json jobFrames(const std::vector<CameraPlacement>& placements, const R
   return frames;
 }
 
+// Where the driver says how its session spent its time: beside the glTF, in the job folder.
+std::string timingsFile(const std::string& glb) { return (fs::path(glb).parent_path() / "timings.json").string(); }
+
+// The driver's frame times; ExternalError when they are missing or not one per frame.
+std::vector<double> readFrameSeconds(const std::string& path, size_t frames, const std::string& logTail) {
+  try {
+    std::ifstream in(path);
+    const nlohmann::json timings = nlohmann::json::parse(in);
+    const std::vector<double> seconds = timings.at("frame_seconds").get<std::vector<double>>();
+    if (seconds.size() == frames) return seconds;
+  } catch (const std::exception&) {
+    // Said below, with what Blender printed.
+  }
+  throw ExternalError("blender: no frame times in " + showPath(path) + "; last output:\n" + logTail);
+}
+
 // The driver's job (refrender/blender_driver.py): the glTF, the shading, the lights as lamps
 // of matching power, path tracing and the camera.
 nlohmann::json blenderJob(const Scene& scene, const RenderSettings& settings, const BlenderOptions& options,
@@ -249,7 +268,8 @@ nlohmann::json blenderJob(const Scene& scene, const RenderSettings& settings, co
                                  t["direct_pass"] = filtered;
                                  return t;
                                }()},  // the driver ignores direct_pass when unlit, as `filtered` does
-                              {"frames", frames}};
+                              {"frames", frames},
+                              {"timings_output", timingsFile(glb)}};
   job.update(cyclesCamera(settings.rig));
   return job;
 }
@@ -299,8 +319,22 @@ std::vector<ImageRGBA> readBlenderFrames(const nlohmann::json& frames, const Ren
 
 }  // namespace
 
+double BlenderTimings::startupSeconds() const {
+  return sessionSeconds - std::accumulate(frameSeconds.begin(), frameSeconds.end(), 0.0);
+}
+
+double BlenderTimings::batchedFrameSeconds() const {
+  if (frameSeconds.size() < 2) return frameSeconds.empty() ? 0.0 : frameSeconds.front();
+  return std::accumulate(frameSeconds.begin() + 1, frameSeconds.end(), 0.0) / static_cast<double>(frameSeconds.size() - 1);
+}
+
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options) {
+  return renderWithBlenderTimed(scene, placements, settings, options).images;
+}
+
+BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                     const RenderSettings& settings, const BlenderOptions& options) {
   if (placements.empty()) return {};
   checkRenderSettings(settings);
   const PathTracing& tracing = options.pathTracing;
@@ -323,8 +357,13 @@ std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<C
 
   const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
   writeTextAtomically(folder.path() + "/job.json", blenderJob(scene, settings, options, glb, filtered, frames).dump(2));
+  const auto started = std::chrono::steady_clock::now();
   const std::string logTail = runBlenderJob(options, folder.path());
-  return readBlenderFrames(frames, settings, filtered, *imaging, logTail);
+  BlenderFrames rendered;
+  rendered.timings.sessionSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  rendered.images = readBlenderFrames(frames, settings, filtered, *imaging, logTail);
+  rendered.timings.frameSeconds = readFrameSeconds(timingsFile(glb), frames.size(), logTail);
+  return rendered;
 }
 
 }  // namespace omnicam

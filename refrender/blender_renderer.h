@@ -43,9 +43,30 @@ struct BlenderOptions {
   PathTracing pathTracing;
 };
 
+// How one Blender session spent its time. A dataset renders many frames per session, so a frame
+// costs its own render, not the session's start-up (docs/performance.md, "Timing Cycles").
+struct BlenderTimings {
+  double sessionSeconds = 0.0;       // the blender process, from its start to its exit
+  std::vector<double> frameSeconds;  // each frame's render call inside it (its EXR written), in order
+  // The rest: Blender's start-up, the glTF import and the scene's set-up.
+  double startupSeconds() const;
+  // A frame's cost in a long session: the mean of the frames after the first (whose render also
+  // builds what later frames reuse), or the only frame's own; 0 without frames.
+  double batchedFrameSeconds() const;
+};
+
+struct BlenderFrames {
+  std::vector<ImageRGBA> images;
+  BlenderTimings timings;
+};
+
 // Renders every placement in one Blender session; the rim alpha is the film's (film.h).
 // InputError for what Blender cannot render (engine_capabilities.h); ExternalError for a missing
-// blender, a failure or a timeout, with the tail of its output.
+// blender, a failure or a timeout, with the tail of its output, and for a session that did not
+// say how long its frames took.
+BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                     const RenderSettings& settings, const BlenderOptions& options = {});
+// The same, for the images alone.
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 

@@ -32,8 +32,16 @@ TEST(Blender, AgreesWithTheFastRendererUnlitAt64Spp) {
   settings.rig = scene.rig;
   settings.spp = 64;
   const std::vector<RobotPose> poses{{2.7, -1.8, 180.0}, {1.0, -1.5, 137.0}};
-  const std::vector<ImageRGBA> truth = renderWithBlender(scene, {poses[0], poses[1]}, settings);  // one Blender session
+  const BlenderFrames session = renderWithBlenderTimed(scene, {poses[0], poses[1]}, settings);  // one Blender session
+  const std::vector<ImageRGBA>& truth = session.images;
   ASSERT_EQ(truth.size(), poses.size());
+  // The session says what each frame's render took inside it; the rest is its start-up.
+  const BlenderTimings& t = session.timings;
+  ASSERT_EQ(t.frameSeconds.size(), poses.size());
+  for (double seconds : t.frameSeconds) EXPECT_GT(seconds, 0.0);
+  EXPECT_GT(t.startupSeconds(), 0.0);
+  EXPECT_DOUBLE_EQ(t.startupSeconds() + t.frameSeconds[0] + t.frameSeconds[1], t.sessionSeconds);
+  EXPECT_DOUBLE_EQ(t.batchedFrameSeconds(), t.frameSeconds[1]);
   const FastRenderer fast(scene);
   for (size_t k = 0; k < poses.size(); ++k) {
     const CompareResult r = compareImages(fast.render(poses[k], settings), truth[k]);
@@ -43,6 +51,16 @@ TEST(Blender, AgreesWithTheFastRendererUnlitAt64Spp) {
     // the 35 dB target of docs/conventions.md §7, so that a regression shows.
     EXPECT_GE(r.psnrDb, 52.0);
   }
+}
+
+// A frame's cost in a batch is the frames after the first (whose render also builds what later
+// frames reuse); the start-up is the session less its frames.
+TEST(BlenderTimings, ABatchedFrameIsTheMeanAfterTheFirst) {
+  const BlenderTimings three{10.0, {4.0, 1.0, 2.0}};
+  EXPECT_DOUBLE_EQ(three.startupSeconds(), 3.0);
+  EXPECT_DOUBLE_EQ(three.batchedFrameSeconds(), 1.5);
+  EXPECT_DOUBLE_EQ((BlenderTimings{5.0, {4.0}}).batchedFrameSeconds(), 4.0);
+  EXPECT_DOUBLE_EQ(BlenderTimings{}.batchedFrameSeconds(), 0.0);
 }
 
 // Cycles' own motion blur: the rig (mirror and camera) keyed at the exact arc's poses over a
