@@ -453,13 +453,22 @@ TEST_F(ExperimentCliTest, QuickPathConvergenceMeasuresNineFramesAndReusesCyclesF
   for (const json& f : results["frames"]) {
     EXPECT_NEAR(f["mean_ratio"].get<double>(), 1.0, 0.03) << f["scene"];  // 64 spp each side, 48 px
     EXPECT_GT(f["converged_psnr_db"].get<double>(), 25.0) << f["scene"];
+    // Cycles' realistic frame is timed per frame of its session, its start-up apart.
+    EXPECT_GT(f["cycles_realistic_seconds"].get<double>(), 0.0) << f["scene"];
+    EXPECT_GT(f["cycles_startup_seconds"].get<double>(), 0.0) << f["scene"];
   }
+  for (const json& rung : results["ladder"])
+    if (rung["engine"] == "blender") {
+      EXPECT_GT(rung["startup_seconds"].get<double>(), 0.0) << rung.dump();
+    }
   EXPECT_TRUE(fs::exists(path("pc/data/textured_hall_cycles_64spp_seed0.json")));
   const auto second = omnicam("experiment path-convergence --quick -o " + path("pc"));
   ASSERT_EQ(second.code, 0) << second.out;
   const json again = json::parse(std::ifstream(path("pc/path-convergence.json")));
-  for (size_t k = 0; k < 9; ++k)
+  for (size_t k = 0; k < 9; ++k) {
     EXPECT_EQ(again["frames"][k]["converged_psnr_db"], results["frames"][k]["converged_psnr_db"]) << k;
+    EXPECT_EQ(again["frames"][k]["cycles_startup_seconds"], results["frames"][k]["cycles_startup_seconds"]) << k;  // kept
+  }
 }
 
 
