@@ -254,11 +254,13 @@ namespace {
 // the paraboloid's orthographic camera looking along its axis (wherever it is moved sideways).
 bool singleViewpoint(const MirrorRig& rig, const Pinhole& camera) {
   const CameraMount& mount = rig.mount;
-  switch (rig.shapeKind()) {
-    case MirrorShape::Hyperboloid: return mount.offsetMm == std::array<double, 3>{0.0, 0.0, 0.0};
-    case MirrorShape::Paraboloid: return camera.orthographic && mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0};
-    default: return false;
-  }
+  return std::visit(
+      Overloaded{[&](const HyperboloidMirror&) { return mount.offsetMm == std::array<double, 3>{0.0, 0.0, 0.0}; },
+                 [&](const ParaboloidMirror&) {
+                   return camera.orthographic && mount.rotationDeg == std::array<double, 3>{0.0, 0.0, 0.0};
+                 },
+                 [](const SphereMirror&) { return false; }, [](const ConeMirror&) { return false; }},
+      rig.shape);
 }
 
 }  // namespace

@@ -123,7 +123,11 @@ CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, co
       std::ifstream in(keyFile);
       const nlohmann::json kept = nlohmann::json::parse(in);
       if (kept.at("key") == key) {
-        CyclesFrames cached{{}, kept.at("seconds_per_frame").get<double>(), kept.at("startup_seconds").get<double>()};
+        // Frames kept before Cycles was timed per frame of its session (#48) are reused; their
+        // seconds, a session over its frames, are not this run's measure: shown as unknown (0).
+        const bool timedPerFrame = kept.contains("startup_seconds");
+        CyclesFrames cached{{}, timedPerFrame ? kept.at("seconds_per_frame").get<double>() : 0.0,
+                            timedPerFrame ? kept.at("startup_seconds").get<double>() : 0.0};
         for (size_t k = 0; k < poses.size(); ++k) cached.frames.push_back(readImage(frameFile(k).string()));
         return cached;
       }
@@ -346,8 +350,8 @@ std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::
        << "°) | " << fixedDecimals(f.convergedPsnrDb, 2) << " | " << orDash(f.referenceNoiseDb) << " | " << orDash(f.fastNoiseDb)
        << " | " << (f.disagreementDb >= 99.0 ? std::string("within the noise") : fixedDecimals(f.disagreementDb, 2))
        << " | " << fixedDecimals(f.meanRatio, 4) << " | " << fixedDecimals(f.filterBiasPsnrDb, 2) << " | " << fixedDecimals(f.chosenPsnrDb, 2)
-       << " | " << fixedDecimals(f.chosenSeconds, 3) << " | " << fixedDecimals(f.cyclesPsnrDb, 2) << " | " << fixedDecimals(f.cyclesSeconds, 1) << " | "
-       << fixedDecimals(f.cyclesStartupSeconds, 1) << " |\n";
+       << " | " << fixedDecimals(f.chosenSeconds, 3) << " | " << fixedDecimals(f.cyclesPsnrDb, 2) << " | " << orDash(f.cyclesSeconds) << " | " << orDash(f.cyclesStartupSeconds)
+       << " |\n";
   md << "\nOwn noise: a frame's PSNR against its own converged frame, from the difference of two frames of "
         "other seeds (two frames of noise σ² differ by 2σ²). Disagreement: the squared difference of the converged "
         "frames less both frames' own noise, as a PSNR — what the engines disagree on beyond the noise. The filter "

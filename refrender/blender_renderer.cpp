@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
@@ -228,17 +229,18 @@ nlohmann::json jobFrames(const std::vector<CameraPlacement>& placements, const R
 // Where the driver says how its session spent its time: beside the glTF, in the job folder.
 std::string timingsFile(const std::string& glb) { return (fs::path(glb).parent_path() / "timings.json").string(); }
 
-// The driver's frame times; ExternalError when they are missing or not one per frame.
-std::vector<double> readFrameSeconds(const std::string& path, size_t frames, const std::string& logTail) {
+// The driver's frame times, one per frame; nullopt when the file is missing or says otherwise
+// (another driver, OMNICAM_BLENDER_DRIVER, need not write it).
+std::optional<std::vector<double>> readFrameSeconds(const std::string& path, size_t frames) {
   try {
     std::ifstream in(path);
     const nlohmann::json timings = nlohmann::json::parse(in);
-    const std::vector<double> seconds = timings.at("frame_seconds").get<std::vector<double>>();
+    std::vector<double> seconds = timings.at("frame_seconds").get<std::vector<double>>();
     if (seconds.size() == frames) return seconds;
   } catch (const std::exception&) {
-    // Said below, with what Blender printed.
+    // Missing or not the driver's: no frame times.
   }
-  throw ExternalError("blender: no frame times in " + showPath(path) + "; last output:\n" + logTail);
+  return std::nullopt;
 }
 
 // The driver's job (refrender/blender_driver.py): the glTF, the shading, the lights as lamps
@@ -328,13 +330,18 @@ double BlenderTimings::batchedFrameSeconds() const {
   return std::accumulate(frameSeconds.begin() + 1, frameSeconds.end(), 0.0) / static_cast<double>(frameSeconds.size() - 1);
 }
 
-std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
-                                         const RenderSettings& settings, const BlenderOptions& options) {
-  return renderWithBlenderTimed(scene, placements, settings, options).images;
-}
+namespace {
 
-BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<CameraPlacement>& placements,
-                                     const RenderSettings& settings, const BlenderOptions& options) {
+// One Blender session; its frame times when the driver wrote them.
+struct BlenderSession {
+  std::vector<ImageRGBA> images;
+  double seconds = 0.0;
+  std::optional<std::vector<double>> frameSeconds;
+  std::string logTail;
+};
+
+BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                 const RenderSettings& settings, const BlenderOptions& options) {
   if (placements.empty()) return {};
   checkRenderSettings(settings);
   const PathTracing& tracing = options.pathTracing;
@@ -358,12 +365,28 @@ BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<Camer
   const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
   writeTextAtomically(folder.path() + "/job.json", blenderJob(scene, settings, options, glb, filtered, frames).dump(2));
   const auto started = std::chrono::steady_clock::now();
-  const std::string logTail = runBlenderJob(options, folder.path());
-  BlenderFrames rendered;
-  rendered.timings.sessionSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  rendered.images = readBlenderFrames(frames, settings, filtered, *imaging, logTail);
-  rendered.timings.frameSeconds = readFrameSeconds(timingsFile(glb), frames.size(), logTail);
-  return rendered;
+  BlenderSession session;
+  session.logTail = runBlenderJob(options, folder.path());
+  session.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  session.images = readBlenderFrames(frames, settings, filtered, *imaging, session.logTail);
+  session.frameSeconds = readFrameSeconds(timingsFile(glb), frames.size());
+  return session;
+}
+
+}  // namespace
+
+std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                         const RenderSettings& settings, const BlenderOptions& options) {
+  return runBlenderSession(scene, placements, settings, options).images;
+}
+
+BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                     const RenderSettings& settings, const BlenderOptions& options) {
+  BlenderSession session = runBlenderSession(scene, placements, settings, options);
+  if (placements.empty()) return {};
+  if (!session.frameSeconds)
+    throw ExternalError("blender: the driver wrote no frame times (timings.json); last output:\n" + session.logTail);
+  return {std::move(session.images), {session.seconds, std::move(*session.frameSeconds)}};
 }
 
 }  // namespace omnicam

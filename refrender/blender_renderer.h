@@ -62,11 +62,11 @@ struct BlenderFrames {
 
 // Renders every placement in one Blender session; the rim alpha is the film's (film.h).
 // InputError for what Blender cannot render (engine_capabilities.h); ExternalError for a missing
-// blender, a failure or a timeout, with the tail of its output, and for a session that did not
-// say how long its frames took.
+// blender, a failure or a timeout, with the tail of its output, and for a driver that did not say
+// how long its frames took (blender_driver.py's timings_output).
 BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                      const RenderSettings& settings, const BlenderOptions& options = {});
-// The same, for the images alone.
+// The same, for the images alone (a driver need not time its frames).
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 

@@ -63,6 +63,34 @@ TEST(BlenderTimings, ABatchedFrameIsTheMeanAfterTheFirst) {
   EXPECT_DOUBLE_EQ(BlenderTimings{}.batchedFrameSeconds(), 0.0);
 }
 
+// A driver need not time its frames (OMNICAM_BLENDER_DRIVER may name another): the images are
+// rendered all the same, and only the timed render says that the times are missing.
+TEST(Blender, ADriverWithoutFrameTimesStillRendersAndOnlyTheTimedRenderSaysSo) {
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_untimed_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string driver = (dir / "untimed_driver.py").string();
+  std::ofstream(driver) << "import json, runpy, sys\n"
+                           "path = sys.argv[sys.argv.index('--') + 1]\n"
+                           "job = json.load(open(path))\n"
+                           "job.pop('timings_output')\n"
+                           "json.dump(job, open(path, 'w'))\n"
+                           "runpy.run_path('" OMNICAM_SOURCE_DIR "/refrender/blender_driver.py', run_name='__main__')\n";
+  const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  RenderSettings settings;
+  settings.rig = scene.rig.resized(32);
+  settings.spp = 1;
+  BlenderOptions options;
+  options.driver = driver;
+  EXPECT_EQ(renderWithBlender(scene, {RobotPose{2.7, -1.8, 180.0}}, settings, options).size(), 1u);
+  try {
+    (void)renderWithBlenderTimed(scene, {RobotPose{2.7, -1.8, 180.0}}, settings, options);
+    ADD_FAILURE() << "a session without frame times was timed";
+  } catch (const ExternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("blender: the driver wrote no frame times (timings.json)"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 // Cycles' own motion blur: the rig (mirror and camera) keyed at the exact arc's poses over a
 // global shutter, each camera ray at a random time of the exposure (issue #23: >= 35 dB at
 // 64 spp, 1 m/s and 90 deg/s). A rolling shutter and fixed instants are refused, not rendered
