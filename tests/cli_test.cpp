@@ -56,6 +56,19 @@ std::string poseArg(double x, double y, double yaw) {
 
 // Issue #47: every request setting with a flag is a flag of `render` (which registers every
 // group), its help stating the row's default; a flag with a bad value is refused naming it.
+// build/bin/omnicam is a launcher: it starts omnicam-cli from its own folder, found through the
+// link a user may have made to it, and says so clearly when the CLI is not there.
+TEST_F(CliTest, TheLauncherStartsTheCliBesideItAndNamesItWhenMissing) {
+  fs::create_symlink(OMNICAM_BINARY, path("linked-omnicam"));
+  const CommandResult linked = testing::runShell(path("linked-omnicam") + " render --help 2>&1");
+  EXPECT_EQ(linked.code, 0) << linked.out;
+  EXPECT_NE(linked.out.find("--spp"), std::string::npos) << linked.out;
+  fs::copy_file(OMNICAM_BINARY, path("alone"));
+  const CommandResult alone = testing::runShell(path("alone") + " render --help 2>&1");
+  EXPECT_EQ(alone.code, 2);
+  EXPECT_EQ(alone.out, "omnicam: cannot start " + path("omnicam-cli") + ": No such file or directory (build it with `make build`)\n");
+}
+
 TEST_F(CliTest, EveryRequestRowWithAFlagIsAFlagOfRender) {
   const CommandResult help = run("render --help");
   ASSERT_EQ(help.code, 0) << help.out;
