@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "errors.h"
+#include "filter_weights.h"
 
 namespace omnicam {
 
@@ -21,31 +22,6 @@ void checkInputs(const IndirectFilterInputs& in, const IndirectFilterParameters&
   if (p.radius < 0 || p.radius > 32 || !(p.spatialSigmaPx > 0.0) || !(p.normalExponent >= 0.0) ||
       !(p.relativeDepthSigma > 0.0) || !(p.edgeNormalLength >= 0.0 && p.edgeNormalLength <= 1.0) || !(p.minAlbedo > 0.0f))
     throw InputError("indirect filter: radius 0-32, positive sigmas and albedo floor, normal exponent >= 0, edge length in [0, 1]");
-}
-
-// x^exponent for x in [0, 1]: by squaring for whole exponents (the default 64: six products
-// instead of a pow per neighbour, most of the filter's time), else std::pow.
-class Power {
- public:
-  explicit Power(double exponent)
-      : exponent_(exponent), whole_(exponent == std::floor(exponent) && exponent >= 0.0 && exponent <= 1024.0) {}
-  double operator()(double x) const {
-    if (!whole_) return std::pow(x, exponent_);
-    double result = 1.0;
-    for (unsigned e = static_cast<unsigned>(exponent_); e != 0; e >>= 1, x *= x)
-      if (e & 1u) result *= x;
-    return result;
-  }
-
- private:
-  double exponent_;
-  bool whole_;
-};
-
-bool finite(const float* values, size_t count) {
-  for (size_t k = 0; k < count; ++k)
-    if (!std::isfinite(values[k])) return false;
-  return true;
 }
 
 // Per pixel: the indirect light divided by the albedo (an irradiance), per channel where the
@@ -66,8 +42,7 @@ Demodulated demodulate(const IndirectFilterInputs& in, const IndirectFilterParam
     const float* n = &in.normal[3 * k];
     const float* full = &in.full.pixels[4 * k];
     const float* direct = &in.direct.pixels[4 * k];
-    // A NaN anywhere would spread over the whole window: such a pixel is kept as traced.
-    if (!finite(a, 3) || !finite(n, 3) || !finite(full, 3) || !finite(direct, 3) || !std::isfinite(in.depth[k])) continue;
+    if (!allFinite(a, 3) || !allFinite(n, 3) || !allFinite(full, 3) || !allFinite(direct, 3) || !std::isfinite(in.depth[k])) continue;
     const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
     const bool surface = a[0] >= p.minAlbedo || a[1] >= p.minAlbedo || a[2] >= p.minAlbedo;
     if (!surface || !(in.depth[k] > 0.0f)) continue;

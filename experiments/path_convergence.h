@@ -34,7 +34,7 @@ struct PathConvergenceOptions {
   int cyclesSpp = 36;          // the realistic frames of the texture-realism experiment (filtered)
   bool measureFloor = true;    // a second Cycles reference per pose (the references' own noise) ...
   std::string floorScene;      // ... of this scene only ("textured hall", say); empty: of every scene
-  std::vector<int> fastLadder = {1, 4, 16, 36, 64}, cyclesLadder = {4, 16, 36, 64};
+  std::vector<int> fastLadder = {1, 4, 9, 16, 36, 64}, cyclesLadder = {4, 16, 36, 64};
   double blenderTimeoutSeconds = 3600.0;
   static PathConvergenceOptions quick();  // small images, few samples: for tests
 };

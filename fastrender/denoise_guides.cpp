@@ -1,39 +1,71 @@
 #include "denoise_guides.h"
 
-#include "indirect_filter.h"
+#include "path_light_filter.h"
+#include <algorithm>
 
 namespace omnicam {
 
 void DenoiseSums::resize(size_t pixels) {
+  emitted.assign(pixels, Vec3f::Zero());
   direct.assign(pixels, Vec3f::Zero());
   albedo.assign(pixels, Vec3f::Zero());
   normal.assign(pixels, Vec3f::Zero());
   depth.assign(pixels, 0.0f);
+  moments.assign(pixels, Moments{});
 }
 
+namespace {
+
+// The variance of the mean of `count` samples from their sum and sum of squares; −1 for one
+// sample (the filter estimates it from the neighbours).
+float varianceOfMean(float sum, float squares, uint32_t count) {
+  if (count < 2) return -1.0f;
+  const double n = count, mean = sum / n;
+  return static_cast<float>(std::max(0.0, (squares / n - mean * mean) * n / (n - 1.0)) / n);
+}
+
+}  // namespace
+
 void denoiseFilm(Film& film, const DenoiseSums& sums, float weight, const std::vector<uint32_t>& imaged) {
-  IndirectFilterInputs in;
+  const ImageRGBA& colour = film.image();
   const size_t pixels = sums.depth.size();
-  in.full = film.image();
-  in.direct = film.image();
-  in.albedo.resize(3 * pixels);
-  in.normal.resize(3 * pixels);
-  in.depth.resize(pixels);
+  PathLightInputs in;
+  in.width = colour.width;
+  in.height = colour.height;
+  for (std::vector<float>* plane : {&in.full, &in.kept, &in.direct, &in.indirect, &in.albedo, &in.normal})
+    plane->assign(3 * pixels, 0.0f);
+  in.depth.assign(pixels, 0.0f);
+  in.directVariance.assign(pixels, 0.0f);
+  in.indirectVariance.assign(pixels, 0.0f);
   for (size_t p = 0; p < pixels; ++p) {
-    // The guides are means over the samples the camera images (the colour's, over the whole grid).
-    const float perSample = imaged[p] > 0 ? 1.0f / static_cast<float>(imaged[p]) : 0.0f;
+    if (imaged[p] == 0) continue;
+    // Means over the samples the camera images; the film's colour is over the whole grid (its
+    // rim pixels blend to black), so it is divided by the share imaged.
+    const float perSample = 1.0f / static_cast<float>(imaged[p]);
+    const float coverage = weight * static_cast<float>(imaged[p]);
     for (int c = 0; c < 3; ++c) {
-      in.direct.pixels[4 * p + c] = sums.direct[p][c] * weight;
+      const float full = colour.pixels[4 * p + c] / coverage;
+      const float kept = sums.emitted[p][c] * perSample, direct = sums.direct[p][c] * perSample;
+      in.full[3 * p + c] = full;
+      in.kept[3 * p + c] = kept;
+      in.direct[3 * p + c] = direct - kept;
+      in.indirect[3 * p + c] = full - direct;
       in.albedo[3 * p + c] = sums.albedo[p][c] * perSample;
       in.normal[3 * p + c] = sums.normal[p][c] * perSample;
     }
     in.depth[p] = sums.depth[p] * perSample;
+    const DenoiseSums::Moments& m = sums.moments[p];
+    in.directVariance[p] = varianceOfMean(m.direct, m.directSquared, imaged[p]);
+    in.indirectVariance[p] = varianceOfMean(m.indirect, m.indirectSquared, imaged[p]);
   }
-  // At the few samples per pixel datasets use, the traced light of pixels along creases is the
-  // noisiest left: they are filtered too (measured +0.3 dB at 16 spp, docs/path-tracing.md).
-  IndirectFilterParameters parameters;
-  parameters.filterStraddling = true;
-  film.setResolvedColour(filterIndirectLight(in, parameters));
+  const std::vector<float> filtered = filterPathLight(in);
+  ImageRGBA out = colour;
+  for (size_t p = 0; p < pixels; ++p) {
+    if (imaged[p] == 0) continue;
+    const float coverage = weight * static_cast<float>(imaged[p]);
+    for (int c = 0; c < 3; ++c) out.pixels[4 * p + c] = filtered[3 * p + c] * coverage;
+  }
+  film.setResolvedColour(std::move(out));
 }
 
 }  // namespace omnicam

@@ -269,7 +269,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
   PathRandom random(mixKey(key.pixel, key.index));
   const int lights = static_cast<int>(luminaires_.size());
   Vec3f radiance = Vec3f::Zero(), throughput = Vec3f::Ones();
-  std::optional<Vec3f> direct;  // set once the path is past its first reflection
+  std::optional<Vec3f> emitted, direct;  // set once the path is past its first surface, its first reflection
   Vec3f firstAlbedo = Vec3f::Zero();
   LightChoice left;             // where the ray left: how its lights were chosen (MIS of the lights it meets)
   Vec3 origin = cameraOrigin, direction = cameraDirection;
@@ -297,6 +297,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     }
     const Material& material = scene_.materials[scene_.objects[hit->object].material];
     radiance += throughput.cwiseProduct(material.emission);  // emitters are found by the paths that meet them
+    if (scatters == 0) emitted = radiance;
     // Cycles' diffuse_bounces = D: light reflected by at most D + 1 diffuse surfaces (D = 0 is
     // direct light), so the path's last scattered ray only gathers what it meets (measured
     // against Blender 3.4: docs/conventions.md §3).
@@ -334,7 +335,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     bsdfPdf = scatterShare * cosine / kPi;  // per sample of the pixel: for the MIS of a disc it meets
     origin = hit->point + kSurfaceOffset * normal;
   }
-  return {radiance, direct.value_or(radiance), firstAlbedo};
+  return {radiance, emitted.value_or(radiance), direct.value_or(radiance), firstAlbedo};
 }
 
 }  // namespace omnicam

@@ -60,10 +60,12 @@ class PathRandom {
   uint64_t state_;
 };
 
-// What one camera path brings: every light it carries, and the part a denoiser keeps as traced
-// (denoise/indirect_filter.h): the first surface's emission and the light its light sample finds.
+// What one camera path brings: every light it carries, and the parts a denoiser tells apart
+// (denoise/path_light_filter.h): what the camera ray meets that shines itself, and that plus the
+// light the first surface's light sample finds.
 struct PathSample {
   Vec3f radiance = Vec3f::Zero();
+  Vec3f emitted = Vec3f::Zero();
   Vec3f direct = Vec3f::Zero();
   Vec3f firstAlbedo = Vec3f::Zero();  // of the first surface (zero where there is none)
 };
