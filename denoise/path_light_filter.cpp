@@ -21,8 +21,8 @@ constexpr float kRelativeDepthFloor = 0.01f;
 // Luminance differences are scaled by the noise plus this (irradiance units): a pixel whose
 // light has no variance (one lamp, no shadow border) still lets its equals in.
 constexpr float kLuminanceFloor = 1e-4f;
-// The kernel of each level, per axis: 3×3 taps (9 instead of the B3 spline's 25; with one level
-// more, as sharp on this frame and 2.4× faster, measured in docs/path-tracing.md).
+// The kernel of each level, per axis: 3×3 taps, not the B3 spline's 5×5: as sharp on the hall's
+// frames and 2.3× faster (docs/path-tracing.md, "The filter").
 constexpr float kKernel[3] = {0.25f, 0.5f, 0.25f};
 
 enum PixelKind : uint8_t { kKeptAsTraced = 0, kWholeSurface = 1, kStraddling = 2 };

@@ -57,7 +57,7 @@ std::vector<RequestFieldRow> makeRows() {
       {.field = RequestField::Denoise, .type = Type::Switch, .cli = "--denoise", .json = "denoise", .python = "denoise",
        .pythonPlace = PythonPlace::Render, .cliGroup = kShadingFlag, .range = "on, off",
        .engines = "shading path, blender lit",
-       .help = "Path-traced frames: filter the indirect light, guided by albedo, normal and depth (a small bias)",
+       .help = "Path-traced frames: filter the noise, guided by albedo, normal and depth (a small bias)",
        .shown = [](const Request& r) { return onOff(r.denoise); }},
       {.field = RequestField::Timeout, .type = Type::Number, .cli = "--timeout", .json = "timeout_s", .python = "timeout",
        .pythonPlace = PythonPlace::Renderer, .cliGroup = kTimeoutFlag, .cliNumberMax = limits::kMaxTimeoutSeconds,

@@ -162,7 +162,7 @@ rig: another rig (default the scene's); size: the image size (default the rig's)
 per pixel, a perfect square; shading: "unlit", "lit" or "path" (physically based,
 docs/conventions.md §3) with bounces (diffuse bounces, default )" +
          requestFieldRow(RequestField::Bounces).defaultText() + R"(), seed (the random stream) and
-denoise (filter the indirect light); traced: trace the physical camera even
+denoise (filter the noise); traced: trace the physical camera even
 for the ideal rig; velocity: (vx, vy, yaw_rate_deg_per_s), the robot's body velocity over the
 rig's shutter (docs/motion.md; the pose is the exposure start's). outputs, named and shaped as
 datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultiplied alpha;
