@@ -1,5 +1,5 @@
 #pragma once
-// Small pieces both path-light filters weigh neighbours with.
+// Small pieces the path-light filters and their inputs share.
 #include <cmath>
 #include <cstddef>
 
@@ -23,6 +23,9 @@ class Power {
   double exponent_;
   bool whole_;
 };
+
+// Rec. 709 luminance of linear RGB: what the filters compare neighbours' light by.
+inline float luminance(const float* rgb) { return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2]; }
 
 // A NaN anywhere would spread over a filter's whole window: such a pixel is kept as traced.
 inline bool allFinite(const float* values, size_t count) {

@@ -26,6 +26,10 @@
 
 namespace omnicam {
 
+// A channel whose albedo is below this has nothing to demodulate: its light is kept as traced,
+// and a sample's noise leaves it out (fastrender/denoise_guides.h).
+inline constexpr float kMinDemodulatedAlbedo = 1e-3f;
+
 // One part's filter, in pixels of the frame.
 struct AtrousParameters {
   int levels = 3;                   // taps 1, 2, …, 2^(levels−1) pixels apart (0: the part as traced)
@@ -41,7 +45,7 @@ struct PathLightFilterParameters {
   AtrousParameters direct{.levels = 2};
   AtrousParameters indirect{.levels = 5, .luminanceSigma = 16.0};
   double edgeNormalLength = 0.99;  // |mean normal| below: the pixel straddles surfaces
-  float minAlbedo = 1e-3f;         // a channel's albedo below: nothing to demodulate, kept as traced
+  float minAlbedo = kMinDemodulatedAlbedo;
 };
 
 // Per pixel, row-major, every light a mean over the pixel's samples (not weighted by coverage).
@@ -51,8 +55,9 @@ struct PathLightInputs {
   std::vector<float> kept;      // 3 per pixel
   std::vector<float> direct;    // 3 per pixel: radiance, before demodulation
   std::vector<float> indirect;  // 3 per pixel
-  // 1 per pixel: the variance of the pixel's mean luminance of each part, demodulated (≥ 0; a
-  // pixel of one sample: −1, then estimated from its neighbours).
+  // 1 per pixel: the variance of the pixel's mean luminance of each part, demodulated channel by
+  // channel as the filter demodulates it (≥ 0; a pixel of fewer than two samples: −1, then
+  // estimated from its neighbours).
   std::vector<float> directVariance, indirectVariance;
   std::vector<float> albedo;    // 3 per pixel: the first surface's
   std::vector<float> normal;    // 3 per pixel: mean of unit normals facing the camera

@@ -1,7 +1,8 @@
 // The path-light filter on synthetic passes with known answers: what it must reproduce exactly
-// (constant and linear light, the texture, the light kept as traced, pixels without a surface),
-// what it must not mix (surfaces facing elsewhere), which borders it keeps (a shadow the noise
-// cannot explain) and how much white noise of a known variance it removes.
+// (constant and linear light, the texture, the light kept as traced, pixels and channels without
+// a surface), what it must not mix (surfaces facing elsewhere or at another depth, pixels
+// straddling a crease), which borders it keeps (a shadow the noise cannot explain) and how much
+// white noise of a known (or unknown) variance it removes.
 #include "path_light_filter.h"
 
 #include <gtest/gtest.h>
@@ -103,8 +104,29 @@ TEST(PathLightFilter, WhiteNoiseOfTheReportedVarianceIsRemoved) {
   EXPECT_LT(rms(filterPathLight(noisy, indirectOnly), clean.full), 0.05 * std::sqrt(1.0 + 1.0 / 25.0));
   const double direct2 = rms(filterPathLight(noisy, directOnly), clean.full);
   const double both = rms(filterPathLight(noisy), clean.full);
+  EXPECT_LT(direct2, 0.05 * std::sqrt(1.0 + 1.0 / 4.0)) << "the direct light's filter alone";
   EXPECT_LT(both, 0.025) << "both parts filtered";
-  EXPECT_LT(both, direct2);
+}
+
+TEST(PathLightFilter, PixelsOfOneSampleTakeTheirNoiseFromTheirNeighbours) {
+  // The same noise reported as unknown (−1: one sample per pixel): each pixel's variance comes
+  // from its 3×3 neighbours' spread, and the filter still removes most of the noise.
+  std::mt19937 random(11);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::vector<double> values(static_cast<size_t>(kSize) * kSize);
+  for (double& v : values) v = noise(random);
+  const PathLightInputs noisy =
+      plane([&](int i, int j, int) { return 0.5 + values[at(i, j)]; }, [&](int i, int j, int) { return 0.2 + values[at(j, i)]; }, -1.0f, -1.0f);
+  const PathLightInputs clean = plane([](int, int, int) { return 0.5; }, [](int, int, int) { return 0.2; });
+  const std::vector<float> out = filterPathLight(noisy);
+  double sum = 0.0;
+  size_t count = 0;
+  for (int j = 31; j < kSize - 31; ++j)
+    for (int i = 31; i < kSize - 31; ++i, ++count) {
+      const double d = (out[3 * at(i, j) + 1] - clean.full[3 * at(i, j) + 1]) / noisy.albedo[3 * at(i, j) + 1];
+      sum += d * d;
+    }
+  EXPECT_LT(std::sqrt(sum / count), 0.025) << "unfiltered: 0.05 * sqrt(2)";
 }
 
 TEST(PathLightFilter, AShadowBorderTheNoiseCannotExplainIsKeptOneItCanIsSmoothed) {
@@ -134,6 +156,44 @@ TEST(PathLightFilter, SurfacesFacingElsewhereDoNotMix) {
     }
   const std::vector<float> out = filterPathLight(in);
   for (int i = 0; i < 48; ++i) EXPECT_NEAR(out[3 * at(i, 50) + 1], in.full[3 * at(i, 50) + 1], 1e-5f) << "column " << i;
+}
+
+TEST(PathLightFilter, SurfacesAtAnotherDepthDoNotMix) {
+  // Both halves face +z; the right half lies twice as far (a step the depth's gradient, zero on
+  // each half, does not explain) and is lit ten times brighter.
+  PathLightInputs in = plane([](int, int, int) { return 0.1; }, [](int i, int, int) { return i < 48 ? 0.1 : 1.0; }, 1e-3f, 1.0f);
+  for (int j = 0; j < kSize; ++j)
+    for (int i = 48; i < kSize; ++i) in.depth[at(i, j)] = 4.0f;
+  const std::vector<float> out = filterPathLight(in);
+  for (int i = 0; i < 48; ++i) EXPECT_NEAR(out[3 * at(i, 50) + 1], in.full[3 * at(i, 50) + 1], 1e-5f) << "column " << i;
+}
+
+TEST(PathLightFilter, PixelsStraddlingSurfacesGatherButLendNothing) {
+  // Column 48 straddles a crease (its mean normal is short) and carries ten times the light: its
+  // neighbours ignore it, and it takes its neighbours' light.
+  PathLightInputs in = plane([](int, int, int) { return 0.1; }, [](int i, int, int) { return i == 48 ? 1.0 : 0.1; }, 1e-3f, 1e-2f);
+  for (int j = 0; j < kSize; ++j) in.normal[3 * at(48, j) + 2] = 0.8f;
+  const std::vector<float> out = filterPathLight(in);
+  const PathLightInputs clean = plane([](int, int, int) { return 0.1; }, [](int, int, int) { return 0.1; });
+  for (int i = 40; i < 57; ++i) {
+    if (i == 48) continue;
+    EXPECT_NEAR(out[3 * at(i, 50) + 1], clean.full[3 * at(i, 50) + 1], 1e-5f) << "column " << i;
+  }
+  // It keeps a little of its own (it is in its own sum at every level): a tenth of its excess at most.
+  const size_t k = at(48, 50);
+  EXPECT_LT(std::abs(out[3 * k + 1] - clean.full[3 * k + 1]), 0.1f * (in.full[3 * k + 1] - clean.full[3 * k + 1]));
+}
+
+TEST(PathLightFilter, AChannelWithoutAlbedoKeepsItsLight) {
+  // One pixel's green albedo is below the floor: its green light (a lamp's glow, say) is kept as
+  // traced; its red and blue are filtered as their neighbours'.
+  PathLightInputs in = plane([](int, int, int) { return 0.5; }, [](int, int, int) { return 0.2; }, 1e-3f, 1e-2f);
+  const size_t k = at(40, 40);
+  in.albedo[3 * k + 1] = 1e-4f;
+  in.full[3 * k + 1] = 0.37f;
+  const std::vector<float> out = filterPathLight(in);
+  EXPECT_EQ(out[3 * k + 1], 0.37f);
+  EXPECT_NEAR(out[3 * k + 0], in.full[3 * k + 0], 1e-5f);
 }
 
 TEST(PathLightFilter, PixelsWithoutASurfaceOrWithNaNAreKeptAndLendNothing) {

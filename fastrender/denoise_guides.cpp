@@ -1,6 +1,5 @@
 #include "denoise_guides.h"
 
-#include "path_light_filter.h"
 #include <algorithm>
 
 namespace omnicam {
@@ -16,8 +15,8 @@ void DenoiseSums::resize(size_t pixels) {
 
 namespace {
 
-// The variance of the mean of `count` samples from their sum and sum of squares; −1 for one
-// sample (the filter estimates it from the neighbours).
+// The variance of the mean of `count` samples from their sum and sum of squares; −1 for fewer
+// than two (the filter estimates it from the neighbours).
 float varianceOfMean(float sum, float squares, uint32_t count) {
   if (count < 2) return -1.0f;
   const double n = count, mean = sum / n;
@@ -55,8 +54,8 @@ void denoiseFilm(Film& film, const DenoiseSums& sums, float weight, const std::v
     }
     in.depth[p] = sums.depth[p] * perSample;
     const DenoiseSums::Moments& m = sums.moments[p];
-    in.directVariance[p] = varianceOfMean(m.direct, m.directSquared, imaged[p]);
-    in.indirectVariance[p] = varianceOfMean(m.indirect, m.indirectSquared, imaged[p]);
+    in.directVariance[p] = varianceOfMean(m.direct, m.directSquared, m.samples);
+    in.indirectVariance[p] = varianceOfMean(m.indirect, m.indirectSquared, m.samples);
   }
   const std::vector<float> filtered = filterPathLight(in);
   ImageRGBA out = colour;

@@ -8,14 +8,18 @@
 #include <vector>
 
 #include "film.h"
+#include "filter_weights.h"
+#include "path_light_filter.h"
 #include "path_tracer.h"
 #include "ray_scene.h"
 
 namespace omnicam {
 
 struct DenoiseSums {
-  // Per sample, the luminance of a part of its light divided by its albedo's, and its square.
+  // Per sample that reaches a surface, the luminance of each part of its light divided by its
+  // albedo channel by channel (as the filter demodulates it), and its square.
   struct Moments {
+    uint32_t samples = 0;
     float direct = 0.0f, directSquared = 0.0f, indirect = 0.0f, indirectSquared = 0.0f;
   };
   std::vector<Vec3f> emitted, direct, albedo, normal;
@@ -26,23 +30,28 @@ struct DenoiseSums {
   void add(size_t pixel, const PathSample& sample, const HitPacket& hits, int k) {
     emitted[pixel] += sample.emitted;
     direct[pixel] += sample.direct;
-    if (!hits.hit(k)) return;
+    // A lamp's face in front of the surface ends the path there: no surface, no guides.
+    if (!hits.hit(k) || !sample.surface) return;
     const SurfaceHit hit = hits.surface(k);
     albedo[pixel] += sample.firstAlbedo;
     const Vec3 d = hits.direction(k);
     normal[pixel] += (hit.normal.dot(d) > 0.0 ? Vec3(-hit.normal) : hit.normal).cast<float>();
     depth[pixel] += static_cast<float>(hit.t * d.norm());
-    const float albedoLuminance = luminance(sample.firstAlbedo);
-    if (!(albedoLuminance > 0.0f)) return;
-    const float directLight = luminance(sample.direct - sample.emitted) / albedoLuminance;
-    const float indirectLight = luminance(sample.radiance - sample.direct) / albedoLuminance;
+    float directLight[3], indirectLight[3];
+    for (int c = 0; c < 3; ++c) {
+      const float a = sample.firstAlbedo[c];
+      const bool demodulated = a >= kMinDemodulatedAlbedo;
+      directLight[c] = demodulated ? (sample.direct[c] - sample.emitted[c]) / a : 0.0f;
+      indirectLight[c] = demodulated ? (sample.radiance[c] - sample.direct[c]) / a : 0.0f;
+    }
     Moments& m = moments[pixel];
-    m.direct += directLight;
-    m.directSquared += directLight * directLight;
-    m.indirect += indirectLight;
-    m.indirectSquared += indirectLight * indirectLight;
+    const float l = luminance(directLight), li = luminance(indirectLight);
+    ++m.samples;
+    m.direct += l;
+    m.directSquared += l * l;
+    m.indirect += li;
+    m.indirectSquared += li * li;
   }
-  static float luminance(const Vec3f& rgb) { return 0.2126f * rgb.x() + 0.7152f * rgb.y() + 0.0722f * rgb.z(); }
 };
 
 // The film's resolved colour with its light filtered. `weight` is a sample's weight in its

@@ -271,6 +271,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
   Vec3f radiance = Vec3f::Zero(), throughput = Vec3f::Ones();
   std::optional<Vec3f> emitted, direct;  // set once the path is past its first surface, its first reflection
   Vec3f firstAlbedo = Vec3f::Zero();
+  bool surface = false;
   LightChoice left;             // where the ray left: how its lights were chosen (MIS of the lights it meets)
   Vec3 origin = cameraOrigin, direction = cameraDirection;
   double bsdfPdf = -1.0;  // of the ray's direction; < 0 for the camera ray (no MIS)
@@ -304,7 +305,10 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     if (scatters == options_.diffuseBounces + 1) break;
     const Vec3 normal = hit->normal.dot(direction) > 0.0 ? Vec3(-hit->normal) : hit->normal;  // two-sided
     const Vec3f albedo = albedoAt(*hit);
-    if (scatters == 0) firstAlbedo = albedo;
+    if (scatters == 0) {
+      firstAlbedo = albedo;
+      surface = true;
+    }
     const Vec3f brdf = albedo / static_cast<float>(kPi);
     // The first surface scatters a ray for indirectShare of the samples (stratified), weighted by
     // its inverse: the light sample's MIS weight counts it so.
@@ -335,7 +339,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     bsdfPdf = scatterShare * cosine / kPi;  // per sample of the pixel: for the MIS of a disc it meets
     origin = hit->point + kSurfaceOffset * normal;
   }
-  return {radiance, emitted.value_or(radiance), direct.value_or(radiance), firstAlbedo};
+  return {radiance, emitted.value_or(radiance), direct.value_or(radiance), firstAlbedo, surface};
 }
 
 }  // namespace omnicam

@@ -68,6 +68,8 @@ struct PathSample {
   Vec3f emitted = Vec3f::Zero();
   Vec3f direct = Vec3f::Zero();
   Vec3f firstAlbedo = Vec3f::Zero();  // of the first surface (zero where there is none)
+  // The path reached the surface the camera ray hit (not a lamp's face in front of it, nor nothing).
+  bool surface = false;
 };
 
 // A pixel's samples as stratified points: sample `index` of the pixel keyed `pixel` gets, in each
