@@ -11,7 +11,6 @@
 #include "filter_weights.h"
 #include "path_light_filter.h"
 #include "path_tracer.h"
-#include "ray_scene.h"
 
 namespace omnicam {
 
@@ -26,17 +25,15 @@ struct DenoiseSums {
   std::vector<float> depth;
   std::vector<Moments> moments;
   void resize(size_t pixels);
-  // Sample k of a packet, in pixel `pixel` (inline: once per sample).
-  void add(size_t pixel, const PathSample& sample, const HitPacket& hits, int k) {
+  // A sample of pixel `pixel` (inline: once per sample).
+  void add(size_t pixel, const PathSample& sample) {
     emitted[pixel] += sample.emitted;
     direct[pixel] += sample.direct;
     // A lamp's face in front of the surface ends the path there: no surface, no guides.
-    if (!hits.hit(k) || !sample.surface) return;
-    const SurfaceHit hit = hits.surface(k);
+    if (!sample.surface) return;
     albedo[pixel] += sample.firstAlbedo;
-    const Vec3 d = hits.direction(k);
-    normal[pixel] += (hit.normal.dot(d) > 0.0 ? Vec3(-hit.normal) : hit.normal).cast<float>();
-    depth[pixel] += static_cast<float>(hit.t * d.norm());
+    normal[pixel] += sample.firstNormal;
+    depth[pixel] += sample.firstDepth;
     float directLight[3], indirectLight[3];
     for (int c = 0; c < 3; ++c) {
       const float a = sample.firstAlbedo[c];

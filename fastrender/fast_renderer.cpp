@@ -88,7 +88,7 @@ void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable&
       // A pixel's samples are consecutive: summed in a register, stored when the pixel changes.
       for (int k = 0; k < count; ++k) {
         const uint16_t column = scratch.columns[first + k];
-        if (denoise) denoise->add(static_cast<size_t>(j) * at.width + column, pathSamples[k], hits, k);
+        if (denoise) denoise->add(static_cast<size_t>(j) * at.width + column, pathSamples[k]);
         if (column != current) {
           sums[current] += sum;
           sum = Vec3f::Zero();
@@ -159,7 +159,7 @@ void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacke
       const uint32_t s = first + static_cast<uint32_t>(k);
       while (pixelEnd <= s) storePixel();
       sum += colours[k];
-      if (job.denoise) job.denoise->add(pixel, pathSamples[k], hits, k);
+      if (job.denoise) job.denoise->add(pixel, pathSamples[k]);
       if (job.aovs && s == table.centreSample[pixel] && hits.hit(k)) {
         recordSampleAov(film, pixel, hits, k);
         scratch.centreRecorded[pixel - rowStart] = 1;

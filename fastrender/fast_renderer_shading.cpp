@@ -37,10 +37,15 @@ void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* co
     for (int k = 0; k < count; ++k) {
       const Vec3 direction = hits.direction(k).normalized();
       const std::optional<SurfaceHit> first = hits.hit(k) ? std::optional<SurfaceHit>(hits.surface(k)) : std::nullopt;
-      const PathSample sample =
-          path->tracer.cameraRay(hits.start(k), direction, first ? &*first : nullptr, samples[k]);
+      PathSample sample = path->tracer.cameraRay(hits.start(k), direction, first ? &*first : nullptr, samples[k]);
       colours[k] = sample.radiance;
-      if (pathSamples) pathSamples[k] = sample;
+      if (!pathSamples) continue;
+      if (first) {  // the denoiser's guides, from the hit in hand (working it out again costs a re-intersection)
+        const Vec3 d = hits.direction(k);
+        sample.firstNormal = (first->normal.dot(d) > 0.0 ? Vec3(-first->normal) : first->normal).cast<float>();
+        sample.firstDepth = static_cast<float>(first->t * d.norm());
+      }
+      pathSamples[k] = sample;
     }
     return;
   }

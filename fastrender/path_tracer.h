@@ -70,6 +70,10 @@ struct PathSample {
   Vec3f firstAlbedo = Vec3f::Zero();  // of the first surface (zero where there is none)
   // The path reached the surface the camera ray hit (not a lamp's face in front of it, nor nothing).
   bool surface = false;
+  // That surface's normal facing the camera and its distance along the camera ray: set by the
+  // renderer, which has the hit (denoise guides).
+  Vec3f firstNormal = Vec3f::Zero();
+  float firstDepth = 0.0f;
 };
 
 // A pixel's samples as stratified points: sample `index` of the pixel keyed `pixel` gets, in each
