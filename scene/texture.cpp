@@ -1,5 +1,7 @@
 #include "texture.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "image.h"
@@ -17,8 +19,46 @@ std::shared_ptr<const Texture> Texture::load(const std::string& path) {
   return std::make_shared<Texture>(image.width, image.height, std::move(rgb));
 }
 
+namespace {
+
+// Each value's index among the distinct values of `values` (by their bits), when there are at most
+// 256; empty otherwise. One pass with a small open-addressing table: a float texture gives up at
+// its 257th value.
+struct Palette {
+  std::vector<uint8_t> indices;
+  std::vector<float> values;
+};
+
+Palette paletteOf(const std::vector<float>& values) {
+  constexpr size_t kSlots = 1024;  // a power of two, four times the most entries: short probes
+  uint32_t keys[kSlots];
+  int16_t slots[kSlots];
+  std::fill(slots, slots + kSlots, int16_t{-1});
+  Palette palette;
+  palette.indices.resize(values.size());
+  for (size_t k = 0; k < values.size(); ++k) {
+    const uint32_t bits = std::bit_cast<uint32_t>(values[k]);
+    size_t slot = (bits * 0x9e3779b1u) >> 22;  // the top 10 bits of a Fibonacci hash
+    while (slots[slot] >= 0 && keys[slot] != bits) slot = (slot + 1) & (kSlots - 1);
+    if (slots[slot] < 0) {
+      if (palette.values.size() == 256) return {};
+      keys[slot] = bits;
+      slots[slot] = static_cast<int16_t>(palette.values.size());
+      palette.values.push_back(values[k]);
+    }
+    palette.indices[k] = static_cast<uint8_t>(slots[slot]);
+  }
+  return palette;
+}
+
+}  // namespace
+
 Texture::Texture(int width, int height, std::vector<float> rgbLinear)
-    : width_(width), height_(height), rgb_(std::move(rgbLinear)) {}
+    : width_(width), height_(height), rgb_(std::move(rgbLinear)) {
+  Palette palette = paletteOf(rgb_);
+  indices_ = std::move(palette.indices);
+  palette_ = std::move(palette.values);
+}
 
 Vec3f Texture::sample(double u, double v) const {
   // Repeat wrapping first, so that any finite UV (a scale of 1e6, say) stays in int range.
@@ -36,7 +76,10 @@ Vec3f Texture::sample(double u, double v) const {
   const int left = i < 0 ? width_ - 1 : i, right = i + 1 >= width_ ? 0 : i + 1;
   const int above = j < 0 ? height_ - 1 : j, below = j + 1 >= height_ ? 0 : j + 1;
   const auto at = [this](int column, int row) {
-    const float* p = &rgb_[(static_cast<size_t>(row) * width_ + column) * 3];
+    const size_t first = (static_cast<size_t>(row) * width_ + column) * 3;
+    if (!palette_.empty())
+      return Vec3f(palette_[indices_[first]], palette_[indices_[first + 1]], palette_[indices_[first + 2]]);
+    const float* p = &rgb_[first];
     return Vec3f(p[0], p[1], p[2]);
   };
   const Vec3f top = (1.0f - fx) * at(left, above) + fx * at(right, above);

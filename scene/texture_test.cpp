@@ -41,6 +41,31 @@ TEST(Texture, VZeroIsTheBottomRow) {
   EXPECT_FLOAT_EQ(t.sample(0.5, 0.75).x(), 1.0f);
 }
 
+// An 8-bit image's texture (at most 256 distinct values) is looked up through a palette; one of
+// 257 values is not. Both give back every texel exactly at its centre and blend alike between:
+// the first texture's texels are the second's but for one value no look-up here reaches.
+TEST(Texture, AnEightBitTextureIsPalettedAndGivesTheSameFloats) {
+  const int width = 64, height = 16;
+  std::vector<float> rgb(static_cast<size_t>(width) * height * 3);
+  for (size_t k = 0; k < rgb.size(); ++k) rgb[k] = srgbToLinear(static_cast<float>((k * 37) % 256) / 255.0f);
+  const Texture eightBit(width, height, rgb);
+  EXPECT_TRUE(eightBit.paletted());
+  std::vector<float> wider = rgb;
+  wider.back() = 0.123456f;  // the 257th value, in the last texel's blue
+  const Texture floats(width, height, wider);
+  EXPECT_FALSE(floats.paletted());
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const double u = (i + 0.5) / width, v = 1.0 - (j + 0.5) / height;
+      const Vec3f texel = eightBit.sample(u, v);
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(texel[c], rgb[(static_cast<size_t>(j) * width + i) * 3 + c]) << i << ", " << j;
+    }
+  for (int k = 0; k < 1000; ++k) {  // between texels, away from the last one
+    const double u = 0.013 + 0.9 * ((k * 0.618034) - std::floor(k * 0.618034)), v = 0.2 + 0.7 * ((k * 0.414214) - std::floor(k * 0.414214));
+    ASSERT_EQ(eightBit.sample(u, v), floats.sample(u, v)) << u << ", " << v;
+  }
+}
+
 TEST(Srgb, RoundTripsAndKnownValues) {
   EXPECT_NEAR(srgbToLinear(0.5f), 0.214041f, 1e-6);
   EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-6);
