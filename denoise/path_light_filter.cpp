@@ -232,6 +232,15 @@ Signal atrous(Signal s, const Guides& g, const AtrousParameters& p) {
 
 }  // namespace
 
+PathLightFilterParameters pathLightFilterForWidth(int width) {
+  PathLightFilterParameters p;
+  if (width < 256) {
+    p.direct.levels = 1;
+    p.indirect.levels = width < 128 ? 3 : 4;
+  }
+  return p;
+}
+
 std::vector<float> filterPathLight(const PathLightInputs& in, const PathLightFilterParameters& p) {
   checkInputs(in, p);
   const Guides g = guidesOf(in, p);

@@ -57,7 +57,7 @@ void denoiseFilm(Film& film, const DenoiseSums& sums, float weight, const std::v
     in.directVariance[p] = varianceOfMean(m.direct, m.directSquared, m.samples);
     in.indirectVariance[p] = varianceOfMean(m.indirect, m.indirectSquared, m.samples);
   }
-  const std::vector<float> filtered = filterPathLight(in);
+  const std::vector<float> filtered = filterPathLight(in, pathLightFilterForWidth(in.width));
   ImageRGBA out = colour;
   for (size_t p = 0; p < pixels; ++p) {
     if (imaged[p] == 0) continue;
