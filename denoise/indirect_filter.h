@@ -35,7 +35,8 @@ struct IndirectFilterParameters {
   float minAlbedo = 1e-3f;           // a channel's albedo below: nothing to demodulate, kept as traced
   // Pixels that straddle surfaces are filtered too, from their neighbours' light weighted by
   // distance and depth alone (their mean normal agrees with neither side); they still lend
-  // nothing. Off: kept as traced.
+  // nothing. Off: kept as traced. (Blender's frames keep them; the fast renderer's path frames,
+  // which set it, moved to path_light_filter.h in #48.)
   bool filterStraddling = false;
   int window() const { return 2 * radius + 1; }
 };

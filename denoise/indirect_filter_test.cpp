@@ -177,7 +177,8 @@ TEST(IndirectFilter, StraddlingPixelsAndPixelsWithoutASurfaceKeepTheirTracedValu
   EXPECT_EQ(louder.at(30, 30)[0], loud.full.at(30, 30)[0]);
 }
 
-// filterStraddling (the fast renderer's path frames): a crease pixel takes its neighbours' light,
+// filterStraddling (the fast renderer's path frames used it until #48's filter of all the light):
+// a crease pixel takes its neighbours' light,
 // whatever their normals, and still lends none of its own.
 TEST(IndirectFilter, StraddlingPixelsCanBeFilteredFromTheirNeighboursAlone) {
   IndirectFilterInputs in = plane([](int i, int j, size_t) { return (i + j) % 2 ? 0.3 : 0.1; });  // mean 0.2
