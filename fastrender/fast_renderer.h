@@ -115,6 +115,7 @@ class FastRenderer {
 
   const Scene& scene_;
   RayScene rays_;
+  std::shared_ptr<const EnvironmentLight> environmentLight_;  // built once: its tables cost a frame's worth
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable
   mutable std::shared_ptr<const SampleTable> table_;
 };

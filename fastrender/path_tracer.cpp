@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace omnicam {
 
@@ -147,12 +148,23 @@ Luminaire luminaireOf(const PointLight& light) {
   return l;
 }
 
+std::shared_ptr<const EnvironmentLight> environmentLightOf(const Scene& scene) {
+  if (!scene.environment) return nullptr;
+  auto light = std::make_shared<const EnvironmentLight>(*scene.environment);
+  return light->emits() ? light : nullptr;
+}
+
 PathTracer::PathTracer(const Scene& scene, const RayScene& rays, PathTracingOptions options)
-    : scene_(scene), rays_(rays), options_(options) {
+    : PathTracer(scene, rays, options, environmentLightOf(scene)) {}
+
+PathTracer::PathTracer(const Scene& scene, const RayScene& rays, PathTracingOptions options,
+                       std::shared_ptr<const EnvironmentLight> environment)
+    : scene_(scene), rays_(rays), options_(options), environment_(std::move(environment)) {
   for (const PointLight& light : scene.lights) {
     luminaires_.push_back(luminaireOf(light));
     if (luminaires_.back().disc()) discs_.push_back(static_cast<int>(luminaires_.size()) - 1);
   }
+  lightCount_ = static_cast<int>(luminaires_.size()) + (environment_ ? 1 : 0);
 }
 
 Vec3f PathTracer::albedoAt(const SurfaceHit& hit) const {
@@ -206,6 +218,26 @@ Vec3f PathTracer::lightSample(const Luminaire& l, double selection, const Vec3& 
   return static_cast<float>(weight * cosine) * brdf.cwiseProduct(l.emitted);
 }
 
+Vec3f PathTracer::environmentSample(double selection, const Vec3& point, const Vec3& normal, const Vec3f& brdf,
+                                    const Eigen::Vector2d& u, double bsdfShare) const {
+  const EnvironmentLight::Sample s = environment_->sample(u);
+  const double cosine = normal.dot(s.direction);
+  if (cosine <= 0.0 || !(s.pdf > 0.0)) return Vec3f::Zero();
+  const double lightPdf = selection * s.pdf;
+  const double weight = powerHeuristic(lightPdf, bsdfShare * cosine / kPi) / lightPdf;
+  if (rays_.occluded(point + kSurfaceOffset * normal, s.direction, 0.0, std::numeric_limits<double>::infinity()))
+    return Vec3f::Zero();
+  return static_cast<float>(weight * cosine) * brdf.cwiseProduct(s.radiance);
+}
+
+Vec3f PathTracer::missed(const Vec3& direction, double bsdfPdf, const LightChoice& left) const {
+  if (!scene_.environment) return scene_.background;
+  const Vec3f radiance = scene_.environment->radiance(direction);
+  if (!environment_ || bsdfPdf < 0.0) return radiance;
+  const double lightPdf = selectionOf(left, environmentIndex()) * environment_->pdf(direction);
+  return static_cast<float>(powerHeuristic(bsdfPdf, lightPdf)) * radiance;
+}
+
 namespace {
 
 // A light's share of the light at a surface point, from its centre and without occlusion: what
@@ -226,12 +258,17 @@ constexpr double kUniformShare = 0.1;
 
 }  // namespace
 
+double PathTracer::estimateOf(int light, const Vec3& point, const Vec3& normal) const {
+  if (light == environmentIndex()) return environment_->irradianceEstimate(normal);
+  return unoccludedEstimate(luminaires_[light], point, normal);
+}
+
 PathTracer::LightChoice PathTracer::chooseLights(const Vec3& point, const Vec3& normal) const {
   LightChoice choice;
   choice.point = point;
   choice.normal = normal;
-  for (size_t l = 0; l < luminaires_.size(); ++l) {
-    const double estimate = unoccludedEstimate(luminaires_[l], point, normal);
+  for (int l = 0; l < lightCount_; ++l) {
+    const double estimate = estimateOf(l, point, normal);
     if (l < LightChoice::kKept) choice.estimates[l] = estimate;
     choice.sum += estimate;
   }
@@ -239,15 +276,14 @@ PathTracer::LightChoice PathTracer::chooseLights(const Vec3& point, const Vec3& 
 }
 
 double PathTracer::selectionOf(const LightChoice& choice, int light) const {
-  const double uniform = 1.0 / static_cast<double>(luminaires_.size());
+  const double uniform = 1.0 / static_cast<double>(lightCount_);
   if (!(choice.sum > 0.0)) return uniform;
-  const double estimate = light < LightChoice::kKept ? choice.estimates[light]
-                                                     : unoccludedEstimate(luminaires_[light], choice.point, choice.normal);
+  const double estimate = light < LightChoice::kKept ? choice.estimates[light] : estimateOf(light, choice.point, choice.normal);
   return (1.0 - kUniformShare) * estimate / choice.sum + kUniformShare * uniform;
 }
 
 int PathTracer::pick(const LightChoice& choice, double& u, double& selection) const {
-  const int count = static_cast<int>(luminaires_.size());
+  const int count = lightCount_;
   double cumulative = 0.0;
   for (int l = 0; l < count; ++l) {
     const double p = selectionOf(choice, l);
@@ -267,7 +303,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
   // samples; deeper vertices, whose light the pixel averages with many others, draw at random.
   const PixelSequence stratified(key.pixel, key.index);
   PathRandom random(mixKey(key.pixel, key.index));
-  const int lights = static_cast<int>(luminaires_.size());
+  const int lights = lightCount_;
   Vec3f radiance = Vec3f::Zero(), throughput = Vec3f::Ones();
   std::optional<Vec3f> emitted, direct;  // set once the path is past its first surface, its first reflection
   Vec3f firstAlbedo = Vec3f::Zero();
@@ -293,7 +329,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
       break;
     }
     if (!hit) {
-      radiance += throughput.cwiseProduct(scene_.background);
+      radiance += throughput.cwiseProduct(missed(direction, bsdfPdf, left));
       break;
     }
     const Material& material = scene_.materials[scene_.objects[hit->object].material];
@@ -319,7 +355,9 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
       Eigen::Vector2d u = firstSurface ? stratified.point(1) : Eigen::Vector2d(random.uniform(), random.uniform());
       double selection = 1.0;
       const int l = pick(left, u.x(), selection);
-      radiance += throughput.cwiseProduct(lightSample(luminaires_[l], selection, hit->point, normal, brdf, u, scatterShare));
+      radiance += throughput.cwiseProduct(l == environmentIndex()
+                                              ? environmentSample(selection, hit->point, normal, brdf, u, scatterShare)
+                                              : lightSample(luminaires_[l], selection, hit->point, normal, brdf, u, scatterShare));
     }
     if (firstSurface) {
       // What a denoiser keeps as traced: the first surface's emission and its light sample.

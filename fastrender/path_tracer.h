@@ -11,8 +11,10 @@
 // Deterministic: a path's random numbers come from its key alone (one per pixel sample), so frames
 // do not depend on the thread count or the order samples are traced in.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "environment_light.h"
 #include "geometry.h"
 #include "ray_scene.h"
 #include "scene.h"
@@ -99,7 +101,10 @@ struct PathKey {
 
 class PathTracer {
  public:
-  // Keeps references to `scene` and `rays`, which must outlive the tracer.
+  // Keeps references to `scene` and `rays`, which must outlive the tracer. `environment`: the
+  // scene's environment as a light (environmentLightOf), built once for the tracers of many frames.
+  PathTracer(const Scene& scene, const RayScene& rays, PathTracingOptions options,
+             std::shared_ptr<const EnvironmentLight> environment);
   PathTracer(const Scene& scene, const RayScene& rays, PathTracingOptions options = {});
 
   // Radiance arriving along the camera ray origin + t·direction (unit) whose first surface hit is
@@ -107,6 +112,7 @@ class PathTracer {
   PathSample cameraRay(const Vec3& origin, const Vec3& direction, const SurfaceHit* first, const PathKey& key) const;
 
   const std::vector<Luminaire>& luminaires() const { return luminaires_; }
+
   // The material's colour times its texture at the hit.
   Vec3f albedoAt(const SurfaceHit& hit) const;
 
@@ -120,9 +126,18 @@ class PathTracer {
     double estimates[kKept] = {};
   };
   LightChoice chooseLights(const Vec3& point, const Vec3& normal) const;
+  // Light `light`'s share of the light at a surface point, unoccluded: what it is chosen by.
+  double estimateOf(int light, const Vec3& point, const Vec3& normal) const;
   double selectionOf(const LightChoice& choice, int light) const;
   // The light `u` ∈ [0, 1) picks and its probability; u is remapped to [0, 1) within its pick.
   int pick(const LightChoice& choice, double& u, double& selection) const;
+  // What a ray that leaves the scene along `direction` brings: the environment, MIS-weighted
+  // against its light samples when the ray was scattered (bsdfPdf ≥ 0) from where `left` chose;
+  // else the background.
+  Vec3f missed(const Vec3& direction, double bsdfPdf, const LightChoice& left) const;
+  // Light from the environment at a surface point by one sample `u` of it (as lightSample).
+  Vec3f environmentSample(double selection, const Vec3& point, const Vec3& normal, const Vec3f& brdf,
+                          const Eigen::Vector2d& u, double bsdfShare) const;
   // The nearest disc luminaire whose face the ray meets before tMax: its index, or -1; t in `tHit`.
   int nearestDisc(const Vec3& origin, const Vec3& direction, double tMax, double& tHit) const;
   // Light from luminaire `l` at a surface point by one sample `u` of it, MIS-weighted against
@@ -136,7 +151,15 @@ class PathTracer {
   PathTracingOptions options_;
   std::vector<Luminaire> luminaires_;
   std::vector<int> discs_;  // indices of the disc luminaires
+  std::shared_ptr<const EnvironmentLight> environment_;
+  // The lights a surface point chooses among: the luminaires, then the environment (if it emits).
+  int lightCount_ = 0;
+  int environmentIndex() const { return static_cast<int>(luminaires_.size()); }
 };
+
+// The scene's environment as a light the path tracer samples; null without one, or with one that
+// is black everywhere.
+std::shared_ptr<const EnvironmentLight> environmentLightOf(const Scene& scene);
 
 // Stable 64-bit mix of two values (SplitMix64's finaliser): path keys from a frame's seed and a
 // sample's index.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "calibration_target.h"
+#include "environment.h"
 #include "geometry.h"
 #include "rig.h"
 #include "robot_pose.h"
@@ -96,6 +97,9 @@ struct Scene {
   std::string sha256;  // of that file's bytes
   std::string name;
   Vec3f background{0.0f, 0.0f, 0.0f};
+  // Light from every direction for `path` shading and Blender (docs/conventions.md §3); it
+  // replaces the background there. The unlit and lit modes keep `background`.
+  std::optional<Environment> environment;
   RigSpec rig;
   RobotPose startPose;
   std::vector<Material> materials;

@@ -1,5 +1,7 @@
 #include "scene_loader.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -113,6 +115,25 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   }
   m.finish();
   return mat;
+}
+
+// The environment's image must be light: finite and not negative in every channel.
+Environment readEnvironment(JsonFields e, const Context& ctx) {
+  Environment environment;
+  environment.file = e.string("file");
+  const fs::path resolved = resolveInside(ctx, e, "file", environment.file);
+  try {
+    environment.image = Texture::load(resolved.string());
+  } catch (const InputError& error) {
+    e.fail("file", error.what());
+  }
+  const std::vector<float>& values = environment.image->rgbLinear();
+  if (!std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }))
+    e.fail("file", "every pixel must be finite and not negative (radiance)");
+  environment.strength = static_cast<float>(e.number("strength", 1.0, {0.0, 1e6}));
+  environment.rotationDeg = e.number("rotation_deg", 0.0, {-360.0, 360.0});
+  e.finish();
+  return environment;
 }
 
 // A primitive's length: at least a micrometre, at most the world's extent.
@@ -397,6 +418,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   scene.name = top.string("name", fs::path(file).stem().string());
   top.string("description", "");
   scene.background = top.colour("background", scene.background, 1e6);
+  if (top.has("environment")) scene.environment = readEnvironment(top.object("environment"), ctx);
   scene.rig = top.has("rig") ? readRig(top.object("rig")) : RigSpec{};
   if (top.has("start_pose")) scene.startPose = readPose(top.raw("start_pose"), file, "start_pose");
   readMaterials(top, ctx, scene);
