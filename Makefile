@@ -10,7 +10,7 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev zlib1g-dev \
   libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev bc \
   libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
-  povray blender python3-numpy python3-matplotlib libtinygltf-dev \
+  povray blender blender-data python3-numpy python3-matplotlib libtinygltf-dev \
   pybind11-dev python3-dev python3-pytest python3-yaml python3-pil mypy \
   clang libfuzzer-14-dev libclang-rt-14-dev \
   slurmctld slurmd slurm-client munge libcgal-dev libapriltag-dev \

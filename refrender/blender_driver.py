@@ -11,6 +11,8 @@ job.json: {"glb": path, "shading": "unlit"|"lit"|"path", "samples": int, "seed":
            "longitude_min", "longitude_max", "latitude_min", "latitude_max" (equirectangular)},
            "lens_camera": true for a lens camera's job (no mirror in the glTF),
            "ambient": float (lit), "background": [r, g, b] (path),
+           "environment": {"image": path.exr, "strength": float, "rotation_deg": float} (path; replaces
+                           the background: an equirectangular image around the world, Cycles' mapping),
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
                       diameter 0: a point, > 0: a disc luminaire facing straight down),
            "path_tracing": {"diffuse_bounces": int, "glossy_bounces": int, "clamp_indirect": float,
@@ -42,6 +44,7 @@ Objects are found by the node extras omnicam's exporter writes ("omnicam": {"rol
 whose names collide or exceed 63 bytes, and a user's object may be called anything.
 """
 import json
+import math
 import sys
 import time
 
@@ -158,6 +161,30 @@ def background_world(colour):
     return world
 
 
+def environment_world(environment):
+    """path with an environment (docs/conventions.md §3): the equirectangular image around the world as
+    the Environment Texture maps it, turned counter-clockwise about +Z by rotation_deg: the direction d
+    reads the image at Rz(-rotation)·d. Cycles samples it by its own importance map (sampling_method
+    AUTOMATIC, the default)."""
+    world = bpy.data.worlds.new("omnicam_world")
+    world.use_nodes = True
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    texture = nodes.new("ShaderNodeTexEnvironment")
+    texture.image = bpy.data.images.load(environment["image"], check_existing=False)
+    texture.interpolation = "Linear"
+    texture.projection = "EQUIRECTANGULAR"
+    coordinates = nodes.new("ShaderNodeTexCoord")
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "POINT"
+    mapping.inputs["Rotation"].default_value = (0.0, 0.0, -math.radians(environment["rotation_deg"]))
+    links.new(coordinates.outputs["Generated"], mapping.inputs["Vector"])
+    links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    background = nodes["Background"]
+    links.new(texture.outputs["Color"], background.inputs["Color"])
+    background.inputs["Strength"].default_value = environment["strength"]
+    return world
+
+
 def ambient_world(ambient):
     """The ambient term of lit shading (docs/conventions.md §3) as uniform light from the sky, for diffuse rays only: seen
     directly or in the mirror the sky stays black, as in the other engines."""
@@ -268,7 +295,10 @@ def main():
         only_camera_sees(mask)
 
     if job["shading"] == "path":
-        scene.world = background_world(job.get("background", [0.0, 0.0, 0.0]))
+        if "environment" in job:
+            scene.world = environment_world(job["environment"])
+        else:
+            scene.world = background_world(job.get("background", [0.0, 0.0, 0.0]))
     else:
         scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0))
     for index, light in enumerate(job.get("lights", [])):

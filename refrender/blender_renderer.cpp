@@ -276,6 +276,20 @@ nlohmann::json blenderJob(const Scene& scene, const RenderSettings& settings, co
   return job;
 }
 
+// The environment for the driver: the image omnicam lights with, as a float EXR in the job
+// folder (whatever the scene's file was, Cycles reads the same radiance), its strength and turn.
+nlohmann::json writeEnvironment(const Environment& environment, const std::string& file) {
+  const Texture& image = *environment.image;
+  ImageRGBA exr(image.width(), image.height());
+  const std::vector<float>& rgb = image.rgbLinear();
+  for (size_t p = 0; p < rgb.size() / 3; ++p) {
+    for (int c = 0; c < 3; ++c) exr.pixels[4 * p + c] = rgb[3 * p + c];
+    exr.pixels[4 * p + 3] = 1.0f;
+  }
+  writeImageAtomic(file, exr);
+  return {{"image", file}, {"strength", environment.strength}, {"rotation_deg", environment.rotationDeg}};
+}
+
 // Runs Blender on the job in `dir`; its output's last lines (for the messages of later failures).
 std::string runBlenderJob(const BlenderOptions& options, const std::string& dir) {
   const std::string log = dir + "/blender.log";
@@ -363,7 +377,10 @@ BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPla
   exportGltf(scene, exportOptions, glb);
 
   const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
-  writeTextAtomically(folder.path() + "/job.json", blenderJob(scene, settings, options, glb, filtered, frames).dump(2));
+  nlohmann::json job = blenderJob(scene, settings, options, glb, filtered, frames);
+  if (settings.shading == Shading::Path && scene.environment)
+    job["environment"] = writeEnvironment(*scene.environment, folder.path() + "/environment.exr");
+  writeTextAtomically(folder.path() + "/job.json", job.dump(2));
   const auto started = std::chrono::steady_clock::now();
   BlenderSession session;
   session.logTail = runBlenderJob(options, folder.path());

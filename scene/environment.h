@@ -16,7 +16,7 @@ Eigen::Vector2d equirectFromDirection(const Vec3& direction);
 Vec3 directionFromEquirect(const Eigen::Vector2d& uv);
 
 struct Environment {
-  std::string file;  // as given in the scene (relative to it)
+  std::string file;  // as given in the scene: relative to it, or the name of one of Blender's worlds
   std::shared_ptr<const Texture> image;  // linear radiance; looked up bilinearly
   float strength = 1.0f;                 // multiplies the image (Cycles' Background strength)
   // The image turned about +Z by this much (counter-clockwise seen from above): what it shows

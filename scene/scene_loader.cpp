@@ -1,7 +1,6 @@
 #include "scene_loader.h"
 
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -117,19 +116,39 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   return mat;
 }
 
-// The environment's image must be light: finite and not negative in every channel.
+// Blender's own world EXRs (Debian's blender-data, CC0), named without their folder.
+constexpr const char* kBlenderWorlds = "/usr/share/blender/datafiles/studiolights/world";
+
+// The world EXR `name` names, or a failure listing those there are.
+fs::path blenderWorld(const JsonFields& e, const std::string& name) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(kBlenderWorlds, ec))
+    if (entry.path().extension() == ".exr") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  if (std::find(names.begin(), names.end(), name) != names.end()) return fs::path(kBlenderWorlds) / (name + ".exr");
+  std::string known;
+  for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
+  e.fail("blender_world", "no world " + quote(name) + " in " + kBlenderWorlds +
+                              (names.empty() ? " (install blender-data with `make deps`)" : " (" + known + ")"));
+}
+
+// The environment's image is light: negative values count as none.
 Environment readEnvironment(JsonFields e, const Context& ctx) {
   Environment environment;
-  environment.file = e.string("file");
-  const fs::path resolved = resolveInside(ctx, e, "file", environment.file);
+  if (e.has("file") == e.has("blender_world")) e.fail("file", "give either file or blender_world");
+  const std::string key = e.has("file") ? "file" : "blender_world";
+  environment.file = e.string(key);
+  const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
   try {
     environment.image = Texture::load(resolved.string());
   } catch (const InputError& error) {
-    e.fail("file", error.what());
+    e.fail(key, error.what());
   }
-  const std::vector<float>& values = environment.image->rgbLinear();
-  if (!std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v) && v >= 0.0f; }))
-    e.fail("file", "every pixel must be finite and not negative (radiance)");
+  std::vector<float> values = environment.image->rgbLinear();  // non-finite values read as 0 (readImage)
+  // Lossy EXR compression leaves small negative values (Blender's forest.exr: -0.0016): no light.
+  for (float& v : values) v = std::max(v, 0.0f);
+  environment.image = std::make_shared<Texture>(environment.image->width(), environment.image->height(), std::move(values));
   environment.strength = static_cast<float>(e.number("strength", 1.0, {0.0, 1e6}));
   environment.rotationDeg = e.number("rotation_deg", 0.0, {-360.0, 360.0});
   e.finish();
