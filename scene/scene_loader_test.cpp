@@ -176,7 +176,9 @@ TEST_F(SceneLoaderTest, TheDocumentedExampleLoads) {
   ImageRGBA tile(2, 2);
   for (float& v : tile.pixels) v = 1.0f;
   writeImageAtomic((dir_ / "textures" / "tiles.png").string(), tile);
+  writeImageAtomic((dir_ / "sky.exr").string(), tile);
   const Scene s = loadScene(write(json));
+  EXPECT_TRUE(s.environment);
   EXPECT_EQ(s.objects.size(), 6u);
   EXPECT_EQ(s.materials.size(), 2u);
   EXPECT_TRUE(s.materials[0].texture != nullptr);
