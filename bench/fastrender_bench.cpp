@@ -5,7 +5,9 @@
 // core TBB finds.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <filesystem>
+#include <random>
 
 #include "fast_renderer.h"
 #include "recording_camera.h"
@@ -115,6 +117,35 @@ BENCHMARK(BM_PathTexturedHall)
     ->Args({kPathDatasetSpp, 1})  // a path-traced dataset's frame: the recording stage's yardstick
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// Embree's own ray rate on one core in the textured hall, the yardstick of a path sample's cost
+// (docs/performance.md, "Light at speed"): incoherent rays as bounces cast them, from points
+// spread through the hall in uniform directions. kind 0: shadow rays (any hit) 2 m long; kind 1:
+// closest hits with the hit's details (RayScene::intersect, what a scattered ray costs the path
+// tracer: uv, normal, the double-precision re-intersection of #45).
+void BM_EmbreeRaysInTexturedHall(benchmark::State& state) {
+  static const RayScene rays(texturedHall());
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const HallOptions hall;
+  std::vector<Vec3> origins, directions;
+  for (int k = 0; k < 1 << 16; ++k) {
+    origins.emplace_back((2.0 * unit(random) - 1.0) * (hall.halfLength - 0.2), (2.0 * unit(random) - 1.0) * (hall.halfWidth - 0.2),
+                         0.05 + unit(random) * (hall.height - 0.1));
+    const double z = 2.0 * unit(random) - 1.0, phi = 2.0 * kPi * unit(random), r = std::sqrt(1.0 - z * z);
+    directions.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  const bool closest = state.range(0) != 0;
+  size_t k = 0;
+  for (auto _ : state) {
+    if (closest) benchmark::DoNotOptimize(rays.intersect(origins[k], directions[k]));
+    else benchmark::DoNotOptimize(rays.occluded(origins[k], directions[k], 0.0, 2.0));
+    k = (k + 1) & (origins.size() - 1);
+  }
+  state.counters["Mrays/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * 1e-6, benchmark::Counter::kIsRate);
+  state.SetLabel(closest ? "closest hit with details, one core" : "shadow rays (any hit, 2 m), one core");
+}
+BENCHMARK(BM_EmbreeRaysInTexturedHall)->ArgName("closest")->DenseRange(0, 1);
 
 // The recording camera with every stage on (blur, lateral CA, vignetting, exposure, white balance,
 // Bayer mosaic and demosaicing by state.range(0): 0 bilinear, 1 VNG, 2 edge-aware; shot, read and
