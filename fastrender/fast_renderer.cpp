@@ -124,7 +124,7 @@ ImageRGBA FastRenderer::render(const CameraPlacement& placement, const RenderSet
 }
 
 void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacket& hits, Vec3f* sums, RowScratch& scratch,
-                                 Film& film) const {
+                                 Film& film, float* squares) const {
   const SampleTable& table = job.table;
   const size_t rowStart = static_cast<size_t>(j) * width;
   // The row's samples are contiguous in the table; packets run across pixel borders. Each
@@ -134,9 +134,12 @@ void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacke
   size_t pixel = rowStart;
   uint32_t pixelEnd = table.firstSample[pixel + 1];
   Vec3f sum = Vec3f::Zero();
+  float squareSum = 0.0f;
   const auto storePixel = [&] {
     sums[pixel - rowStart] = sum;
     sum = Vec3f::Zero();
+    if (squares) squares[pixel - rowStart] = squareSum;
+    squareSum = 0.0f;
     if (++pixel < rowStart + width) pixelEnd = table.firstSample[pixel + 1];
   };
   Vec3f colours[kRayPacketSize];
@@ -160,6 +163,7 @@ void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacke
       const uint32_t s = first + static_cast<uint32_t>(k);
       while (pixelEnd <= s) storePixel();
       sum += colours[k];
+      if (squares) squareSum += luminance(colours[k].data()) * luminance(colours[k].data());
       if (job.denoise) job.denoise->add(pixel, pathSamples[k]);
       if (job.aovs && s == table.centreSample[pixel] && hits.hit(k)) {
         recordSampleAov(film, pixel, hits, k);
@@ -184,6 +188,13 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
   const MovingPlacements motion = moves ? movingPlacements(settings, camera, *n) : MovingPlacements{};
   const int passes = moves ? motion.instants.passes : 1;
   const std::optional<PathFrame> path = pathFrame(settings, camera);
+  const bool adaptive = settings.adaptiveSpp > 0;
+  if (adaptive && (moves || !path))
+    throw InputError(std::string("adaptive sampling: only path shading of a still frame (this one ") +
+                     (moves ? "moves" : "is not path-shaded") + ")");
+  const size_t pixels = static_cast<size_t>(width) * height;
+  std::vector<Vec3f> frameSums(adaptive ? pixels : 0);  // adaptive: the first grid's sums, then the finest
+  std::vector<float> frameSquares(adaptive ? pixels : 0);
   DenoiseSums denoiseSums;
   DenoiseSums* denoising = path && settings.denoise ? &denoiseSums : nullptr;
   if (denoising) denoiseSums.resize(static_cast<size_t>(width) * height);
@@ -195,6 +206,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
                      .denoise = denoising,
                      .aovs = aovs,
                      .centresFromSamples = !moves};
+  const auto rowStart = [width](int j) { return static_cast<size_t>(j) * width; };
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     std::vector<Vec3f> sums(width);
     RowScratch scratch;
@@ -203,14 +215,16 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
     for (int j = rows.begin(); j != rows.end(); ++j) {
       std::fill(scratch.centreRecorded.begin(), scratch.centreRecorded.end(), uint8_t{0});
       if (moves) traceMovingRow(motion, *table, j, settings.shading, job.path, scratch, hits, sums.data(), denoising);
-      else traceStillRow(job, j, width, hits, sums.data(), scratch, film);
+      else traceStillRow(job, j, width, hits, sums.data(), scratch, film, adaptive ? &frameSquares[rowStart(j)] : nullptr);
       if (aovs) finishRowAovs(job, j, width, hits, scratch.centreRecorded, film);
       for (int i = 0; i < width; ++i) {
-        film.addSamples(i, j, sums[i].data());
+        if (adaptive) frameSums[rowStart(j) + i] = sums[i];
+        else film.addSamples(i, j, sums[i].data());
         film.setImagedGridPoints(i, j, table->imagedSamples(static_cast<size_t>(j) * width + i));
       }
     }
   });
+  if (adaptive) refineAdaptively(job, settings, frameSums, frameSquares, film);
   film.resolve(passes);
   if (denoising) {
     std::vector<uint32_t> imaged(static_cast<size_t>(width) * height);

@@ -67,7 +67,9 @@ class FastRenderer {
   // Reused memory of a thread's rows.
   struct RowScratch {
     RowPlacements row;
-    std::vector<uint16_t> columns;  // per sample of a moving row
+    std::vector<uint16_t> columns;  // per sample of a moving row, or of an adaptive row's finer grid
+    std::vector<StoredRay> rays;    // an adaptive row's finer grids' rays
+    std::vector<uint16_t> grid;     // their index in their pixel's grid
     std::vector<uint8_t> centreRecorded;  // per column: its AOVs are written
   };
   // What every row of one frame shares.
@@ -86,7 +88,23 @@ class FastRenderer {
   void renderPass(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const;
   // Row j of a still frame: every pixel's sum of its samples' colours into sums[0, width), and the
   // AOVs of pixels whose centre is a sample.
-  void traceStillRow(const FrameJob& job, int j, int width, HitPacket& hits, Vec3f* sums, RowScratch& scratch, Film& film) const;
+  // With `squares`, also each pixel's sum of its samples' squared luminances into squares[0, width).
+  void traceStillRow(const FrameJob& job, int j, int width, HitPacket& hits, Vec3f* sums, RowScratch& scratch, Film& film,
+                     float* squares = nullptr) const;
+
+  // Adaptive sampling (fast_renderer_adaptive.cpp). Each pixel's grid from its first grid's noise:
+  // level k is the grid of 4^k·spp samples (0: the first; pixels the rim cuts stay there).
+  std::vector<uint8_t> adaptiveLevels(const RenderSettings& settings, const SampleTable& table, const std::vector<Vec3f>& sums,
+                                      const std::vector<float>& squares) const;
+  // Row j's pixels of level > 0 traced anew on their grid (the first grid's samples dropped),
+  // exactly as a fixed frame of that grid traces them; their colours' sums into sums[i]. A pixel
+  // whose grid the rim cuts goes back a level (its alpha is the first grid's), to 0 at most.
+  void traceFinerRow(const FrameJob& job, int j, int width, uint8_t* levels, HitPacket& hits, Vec3f* sums,
+                     RowScratch& scratch) const;
+  // The pixels whose error is above the target traced again on finer grids; then every pixel's
+  // sum into the film, scaled to the first grid's count of samples.
+  void refineAdaptively(const FrameJob& job, const RenderSettings& settings, std::vector<Vec3f>& sums,
+                        const std::vector<float>& squares, Film& film) const;
   // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
   // sums[0, width).
   void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading, const PathFrame* path,

@@ -17,6 +17,13 @@ void loadSamples(HitPacket& hits, const RayPlacement& at, const SampleTable& tab
     hits.setOrigin(k, at.origin + at.rotation * table.origins[first + k].cast<double>(), table.starts[first + k]);
 }
 
+void loadStoredRays(HitPacket& hits, const RayPlacement& at, const StoredRay* rays, bool central, int count) {
+  hits.begin(at.origin, count);
+  for (int k = 0; k < count; ++k) hits.setDirection(k, at.rotationF * rays[k].direction);
+  if (central) return;
+  for (int k = 0; k < count; ++k) hits.setOrigin(k, at.origin + at.rotation * rays[k].origin.cast<double>(), rays[k].start);
+}
+
 void loadCentres(HitPacket& hits, const CentrePlacements& at, const SampleTable& table, const size_t* pixels, int count) {
   hits.begin(Vec3::Zero(), count);
   const bool central = table.centreOrigins.empty();

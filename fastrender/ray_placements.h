@@ -42,6 +42,9 @@ struct RowPlacements {
 
 // Loads `count` rays of `table` from sample `first` on into a packet.
 void loadSamples(HitPacket& hits, const RayPlacement& at, const SampleTable& table, uint32_t first, int count);
+// Loads `count` rays stored as a table stores them (storedRay) into a packet, as loadSamples
+// loads the table's.
+void loadStoredRays(HitPacket& hits, const RayPlacement& at, const StoredRay* rays, bool central, int count);
 
 // Each pixel's centre ray placement: the still frame's, or its readout line's at mid-exposure
 // (MovingPlacements::centre).

@@ -7,6 +7,15 @@
 
 namespace omnicam {
 
+StoredRay storedRay(const CameraRay& ray, bool central) {
+  StoredRay stored{ray.direction.cast<float>()};
+  if (central) return stored;
+  const double start = std::max(0.0, ray.origin.dot(ray.direction));
+  stored.origin = (ray.origin - start * ray.direction).cast<float>();
+  stored.start = static_cast<float>(start);
+  return stored;
+}
+
 std::shared_ptr<const SampleTable> buildSampleTable(const std::shared_ptr<const Camera>& camera, int n) {
   auto table = std::make_shared<SampleTable>();
   table->camera = camera;
@@ -18,11 +27,11 @@ std::shared_ptr<const SampleTable> buildSampleTable(const std::shared_ptr<const 
   table->centreSample.reserve(pixels);
   const auto record = [&](const CameraRay& ray, std::vector<Eigen::Vector3f>& directions,
                           std::vector<Eigen::Vector3f>& origins, std::vector<float>& starts) {
-    directions.push_back(ray.direction.cast<float>());
+    const StoredRay stored = storedRay(ray, central);
+    directions.push_back(stored.direction);
     if (central) return;
-    const double start = std::max(0.0, ray.origin.dot(ray.direction));
-    origins.push_back((ray.origin - start * ray.direction).cast<float>());
-    starts.push_back(static_cast<float>(start));
+    origins.push_back(stored.origin);
+    starts.push_back(stored.start);
   };
   for (int j = 0; j < camera->height(); ++j)
     for (int i = 0; i < camera->width(); ++i) {

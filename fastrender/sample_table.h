@@ -35,6 +35,14 @@ struct SampleTable {
   int imagedSamples(size_t p) const { return static_cast<int>(firstSample[p + 1] - firstSample[p]); }
 };
 
+// A camera ray as the table stores it: its direction in float and, for a non-central camera, the
+// point of its line nearest F' and the distance on to where tracing starts.
+struct StoredRay {
+  Eigen::Vector3f direction, origin = Eigen::Vector3f::Zero();
+  float start = 0.0f;
+};
+StoredRay storedRay(const CameraRay& ray, bool central);
+
 // The table of `camera` at n×n samples per pixel (Film::sample's grid). The caller checks first
 // that it fits in memory.
 std::shared_ptr<const SampleTable> buildSampleTable(const std::shared_ptr<const Camera>& camera, int samplesPerAxis);

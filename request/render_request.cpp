@@ -68,6 +68,28 @@ void readEngineAndMode(const RequestFields& f, const Reader& r, RenderRequest& q
   if (const auto options = q.cubeMap()) checkModeOptions(*options, r.names());
 }
 
+// adaptive_spp and target_error: after spp, shading and denoise.
+void readAdaptive(const RequestFields& f, const Reader& r, RenderRequest& q) {
+  if (const auto target = f.number(F::TargetError)) {
+    if (!f.has(F::AdaptiveSpp)) r.fail(F::TargetError, "only with " + r.name(F::AdaptiveSpp));
+    if (!(*target > 0.0 && *target <= 1.0)) r.fail(F::TargetError, "must be in (0, 1] (got " + shortNumber(*target) + ")");
+    q.targetError = *target;
+  }
+  const std::optional<int64_t> most = f.integer(F::AdaptiveSpp);
+  if (!most || *most == 0) return;
+  if (q.engine != "fast" || q.mode != "exact" || q.shading != Shading::Path)
+    r.fail(F::AdaptiveSpp, "only with the fast engine's exact mode and " + r.name(F::Shading) + " path");
+  if (q.denoise)
+    r.fail(F::AdaptiveSpp, "not with " + r.name(F::Denoise) +
+                               " (refining some pixels of a filtered frame made it worse: docs/path-tracing.md, \"Adaptive sampling\")");
+  int64_t grid = q.spp;
+  while (grid < *most && grid <= limits::kMaxSpp / 4) grid *= 4;
+  if (*most <= q.spp || grid != *most || *most > limits::kMaxSpp)
+    r.fail(F::AdaptiveSpp, "must be " + r.name(F::Spp) + " (" + std::to_string(q.spp) + ") times 4, 16, 64, … up to " +
+                               std::to_string(limits::kMaxSpp) + " (got " + std::to_string(*most) + ")");
+  q.adaptiveSpp = static_cast<int>(*most);
+}
+
 // spp, shading, traced, bounces, denoise and seed.
 void readSampling(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (const auto spp = f.integer(F::Spp)) {
@@ -90,6 +112,7 @@ void readSampling(const RequestFields& f, const Reader& r, RenderRequest& q) {
     if (!pathTraced) r.fail(F::Denoise, "only for path-traced frames: " + r.name(F::Shading) + " path, or the blender engine lit");
     q.denoise = true;
   }
+  readAdaptive(f, r, q);
   if (const auto seed = f.integer(F::Seed)) {
     constexpr int64_t kMaxSeed = int64_t{1} << 53;  // exact in every JSON reader and in Python
     if (*seed < 0 || *seed > kMaxSeed) r.fail(F::Seed, "must be in [0, 2^53] (got " + std::to_string(*seed) + ")");

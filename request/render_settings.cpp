@@ -38,15 +38,35 @@ void checkSpp(int64_t spp, const std::string& what) {
                      std::to_string(spp) + ")");
 }
 
+namespace {
+
+// The request states these rules in its own words first (render_request.cpp); this is the
+// library's check of settings made without it.
+void checkAdaptive(const RenderSettings& settings, const SettingNames& names) {
+  int64_t grid = settings.spp;
+  while (grid < settings.adaptiveSpp) grid *= 4;
+  if (grid != settings.adaptiveSpp || settings.adaptiveSpp <= settings.spp || settings.adaptiveSpp > limits::kMaxSpp)
+    throw InputError("adaptive sampling: its most samples (" + std::to_string(settings.adaptiveSpp) + ") must be " + names.spp +
+                     " times 4, 16, 64, … up to " + std::to_string(limits::kMaxSpp));
+  if (settings.shading != Shading::Path || settings.denoise)
+    throw InputError("adaptive sampling: only unfiltered path shading");
+  if (!(settings.targetError > 0.0 && settings.targetError <= 1.0))
+    throw InputError("adaptive sampling: the target error must be in (0, 1] (got " + shortNumber(settings.targetError) + ")");
+}
+
+}  // namespace
+
 void checkRenderSettings(const RenderSettings& settings, const SettingNames& names) {
   checkSpp(settings.spp, names.spp);
+  if (settings.adaptiveSpp != 0) checkAdaptive(settings, names);
   const int size = settings.rig.imageWidth();
   checkImageSize(size, names.size);
   checkImageSize(settings.rig.imageHeight(), names.size + " (the image's height)");
   const int passes = std::max(1, settings.rig.shutter.timeSamples);
-  const int64_t samples = int64_t{settings.rig.imageWidth()} * settings.rig.imageHeight() * settings.spp * passes;
+  const int mostSpp = std::max(settings.spp, settings.adaptiveSpp);
+  const int64_t samples = int64_t{settings.rig.imageWidth()} * settings.rig.imageHeight() * mostSpp * passes;
   if (samples > limits::kMaxSamplesPerFrame)
-    throw InputError(names.spp + ": size " + settings.rig.imageSizeText() + " x spp " + std::to_string(settings.spp) +
+    throw InputError(names.spp + ": size " + settings.rig.imageSizeText() + " x spp " + std::to_string(mostSpp) +
                      (passes > 1 ? " x time samples " + std::to_string(passes) : std::string()) + " = " +
                      std::to_string(samples) + " samples per frame; the limit is " +
                      std::to_string(limits::kMaxSamplesPerFrame));

@@ -34,6 +34,13 @@ struct RenderSampling {
   // Path-traced frames (the fast renderer's path shading, Blender's lit and path): filter the
   // indirect light guided by the albedo, normal and depth (denoise/indirect_filter.h).
   bool denoise = false;
+  // Adaptive sampling (the fast renderer's unfiltered path shading of a still frame): 0 is off;
+  // otherwise every pixel is first traced on the grid of spp samples, then, where its error
+  // (the standard error of its luminance over √(luminance + 10⁻³)) is above targetError, traced
+  // anew on the finest grid it needs of 4·spp, 16·spp, … samples, up to adaptiveSpp: exactly as
+  // a fixed frame of that grid traces it (docs/path-tracing.md, "Adaptive sampling").
+  int adaptiveSpp = 0;
+  double targetError = 0.01;
 };
 
 // What every engine reads: the sampling, and the rig whose camera renders.

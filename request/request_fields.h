@@ -18,7 +18,9 @@ namespace omnicam {
 
 struct RenderRequest;
 
-enum class RequestField { Engine, Mode, Faces, FaceSize, Polygons, Spp, Shading, Traced, Bounces, Seed, Denoise, Timeout, Threads };
+enum class RequestField {
+  Engine, Mode, Faces, FaceSize, Polygons, Spp, Shading, Traced, Bounces, Seed, Denoise, AdaptiveSpp, TargetError, Timeout, Threads
+};
 
 // How a value is written: a word, an integer, a number, or a switch (a CLI flag without value).
 enum class RequestFieldType { Text, Integer, Number, Switch };
@@ -28,7 +30,7 @@ enum RequestFlagGroup : unsigned {
   kEngineFlag = 1u,   // --engine
   kModeFlags = 2u,    // --mode, --faces, --face-size, --polygons
   kSppFlag = 4u,      // --spp
-  kShadingFlag = 8u,  // --shading, --bounces, --seed, --denoise
+  kShadingFlag = 8u,  // --shading, --bounces, --seed, --denoise, --adaptive-spp, --target-error
   kTimeoutFlag = 16u  // --timeout
 };
 

@@ -36,7 +36,7 @@ TEST(RequestFields, EveryRowIsCompleteAndEachNameIsUsedOncePerFront) {
       EXPECT_TRUE(json.insert(row.json).second) << row.json;
     }
   }
-  EXPECT_EQ(python.size(), 13u);
+  EXPECT_EQ(python.size(), 15u);
 }
 
 TEST(RequestFields, DefaultsAreTheRequestsOwn) {

@@ -85,7 +85,7 @@ TEST_F(CliTest, EveryRequestRowWithAFlagIsAFlagOfRender) {
     EXPECT_EQ(bad.code, 2) << bad.out;
     EXPECT_EQ(bad.out.rfind(std::string("omnicam: ") + row.cli + ": ", 0), 0u) << row.cli << ": " << bad.out;
   }
-  EXPECT_EQ(flags, 11);
+  EXPECT_EQ(flags, 13);
   EXPECT_TRUE(dirEmpty());
 }
 

@@ -470,6 +470,36 @@ TEST_F(DatasetCliTest, ARandomisedRecordingCameraResumesAndShardsByteForByteWith
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
 }
 
+// Adaptive sampling (docs/path-tracing.md): each frame's refined pixels depend on its own samples
+// only, so one thread or two, a killed-and-resumed run and shards give the one-go dataset byte
+// for byte; and the frames are the render verb's.
+TEST_F(DatasetCliTest, AdaptiveFramesAreTheSameOnAnyThreadsResumedAndSharded) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 64, "spp": 4, "shading": "path", "adaptive_spp": 64,
+    "target_error": 0.05, "outputs": {"rgb": "exr"}, "poses": {"path": "thesis-loop", "frames": 6})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole") + " --threads 2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("one") + " --threads 1").code, 0);
+  EXPECT_EQ(snapshot(dir_ / "one"), snapshot(dir_ / "whole"));
+  int status = 0;
+  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
+  EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+  std::map<std::string, std::string> merged = snapshot(dir_ / "parts");
+  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
+  // Frame 2 is the render verb's adaptive frame at its pose.
+  const json pose = json::parse(readFile(dir_ / "whole/manifest.json")).at("frames").at(2).at("pose");
+  char poseText[128];
+  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
+                pose.at("yaw_deg").get<double>());
+  const auto single = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 64 --spp 4 --shading path "
+                              "--adaptive-spp 64 --target-error 0.05 --pose=" + std::string(poseText) + " -o " + path("frame2.exr"));
+  ASSERT_EQ(single.code, 0) << single.out;
+  EXPECT_TRUE(readImage(path("frame2.exr")).pixels == readImage(path("whole/cam0/rgb/000002.exr")).pixels);
+}
+
 TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   const std::string spec = robocupSpec("spec.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3})");
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);

@@ -83,7 +83,8 @@ class Renderer:
     def render(self, pose: Optional[Pose] = ..., *, rig: Optional[Rig] = ..., size: int = ..., spp: Optional[int] = ...,
                shading: Optional[str] = ..., traced: bool = ..., outputs: Outputs = ...,
                velocity: Optional[Tuple[float, float, float]] = ..., bounces: Optional[int] = ...,
-               seed: Optional[int] = ..., denoise: bool = ...,
+               seed: Optional[int] = ..., denoise: bool = ..., adaptive_spp: Optional[int] = ...,
+               target_error: Optional[float] = ...,
                recording: Optional[Union[str, Dict[str, Any]]] = ..., frame: int = ...) -> Dict[str, np.ndarray]: ...
     @property
     def engine(self) -> str: ...
@@ -93,7 +94,8 @@ class Renderer:
 def render(scene: Scene, pose: Optional[Pose] = ..., *, engine: Optional[str] = ..., rig: Optional[Rig] = ..., size: int = ...,
            spp: Optional[int] = ..., shading: Optional[str] = ..., traced: bool = ..., outputs: Outputs = ...,
            velocity: Optional[Tuple[float, float, float]] = ..., bounces: Optional[int] = ...,
-           seed: Optional[int] = ..., denoise: bool = ...,
+           seed: Optional[int] = ..., denoise: bool = ..., adaptive_spp: Optional[int] = ...,
+           target_error: Optional[float] = ...,
            recording: Optional[Union[str, Dict[str, Any]]] = ..., frame: int = ...) -> Dict[str, np.ndarray]: ...
 
 def run_dataset(spec: str, out: str, *, overwrite: bool = ..., threads: int = ...,

@@ -67,7 +67,8 @@ class PyRenderer {
   py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg,
                   const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
                   const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
-                  const std::optional<PyInteger>& seed, bool denoise, const py::object& recording, const PyInteger& frameArg) {
+                  const std::optional<PyInteger>& seed, bool denoise, const std::optional<PyInteger>& adaptiveSpp,
+                  const std::optional<double>& targetError, const py::object& recording, const PyInteger& frameArg) {
     const int size = optionalSize(sizeArg);
     // The recording camera (recording_camera_spec.h): read before rendering, drawn for `frame`.
     std::optional<RecordingCamera> camera;
@@ -81,6 +82,8 @@ class PyRenderer {
     fields.setIfGiven(RequestField::Bounces, wideInteger(bounces, "bounces"));
     fields.setIfGiven(RequestField::Seed, wideInteger(seed, "seed"));
     if (denoise) fields.set(RequestField::Denoise, true);
+    fields.setIfGiven(RequestField::AdaptiveSpp, wideInteger(adaptiveSpp, "adaptive_spp"));
+    fields.setIfGiven(RequestField::TargetError, targetError);
     const RenderRequest request = readRenderRequest(fields, {});
     RenderSettings settings = request.settings(rig.value_or(scene_->rig));
     if (size) settings.rig = settings.rig.resized(size, "size");
@@ -162,7 +165,9 @@ rig: another rig (default the scene's); size: the image size (default the rig's)
 per pixel, a perfect square; shading: "unlit", "lit" or "path" (physically based,
 docs/conventions.md §3) with bounces (diffuse bounces, default )" +
          requestFieldRow(RequestField::Bounces).defaultText() + R"(), seed (the random stream) and
-denoise (filter the noise); traced: trace the physical camera even
+denoise (filter the noise); adaptive_spp (path, unfiltered: pixels whose error is above
+target_error traced again on finer grids, up to this many samples; docs/path-tracing.md,
+"Adaptive sampling"); traced: trace the physical camera even
 for the ideal rig; velocity: (vx, vy, yaw_rate_deg_per_s), the robot's body velocity over the
 rig's shutter (docs/motion.md; the pose is the exposure start's). outputs, named and shaped as
 datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultiplied alpha;
@@ -210,7 +215,8 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
            py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
            py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
            py::arg("bounces") = py::none(), py::arg("seed") = py::none(), py::arg("denoise") = false,
-           py::arg("recording") = py::none(), py::arg("frame") = 0, renderDoc().c_str())
+           py::arg("adaptive_spp") = py::none(), py::arg("target_error") = py::none(), py::arg("recording") = py::none(),
+           py::arg("frame") = 0, renderDoc().c_str())
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -238,17 +244,19 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
       [](std::shared_ptr<Scene> scene, const py::object& pose, const std::optional<std::string>& engine, const std::optional<RigSpec>& rig,
          const PyInteger& size, const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
          const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
-         const std::optional<PyInteger>& seed, bool denoise, const py::object& recording, const PyInteger& frame) {
+         const std::optional<PyInteger>& seed, bool denoise, const std::optional<PyInteger>& adaptiveSpp,
+         const std::optional<double>& targetError, const py::object& recording, const PyInteger& frame) {
         RequestFields fields;
         fields.setIfGiven(RequestField::Engine, engine);
         PyRenderer renderer(std::make_shared<const Scene>(*scene), fields);
-        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity, bounces, seed, denoise, recording, frame);
+        return renderer.render(pose, rig, size, spp, shading, traced, outputs, velocity, bounces, seed, denoise, adaptiveSpp,
+                               targetError, recording, frame);
       },
       py::arg("scene").none(false), py::arg("pose") = py::none(), py::kw_only(), py::arg("engine") = py::none(), py::arg("rig") = py::none(),
       py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), py::arg("bounces") = py::none(),
-      py::arg("seed") = py::none(), py::arg("denoise") = false, py::arg("recording") = py::none(), py::arg("frame") = 0,
-      oneRenderDoc().c_str());
+      py::arg("seed") = py::none(), py::arg("denoise") = false, py::arg("adaptive_spp") = py::none(),
+      py::arg("target_error") = py::none(), py::arg("recording") = py::none(), py::arg("frame") = 0, oneRenderDoc().c_str());
 }
 
 }  // namespace omnicam::python

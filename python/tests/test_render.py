@@ -119,6 +119,28 @@ def test_path_shading_is_the_clis_and_its_settings_are_checked(robocup, tmp_path
         renderer.render(shading="lit", denoise=True)
 
 
+def test_adaptive_sampling_is_the_clis_and_its_settings_are_checked(robocup, tmp_path):
+    """adaptive_spp and target_error give the CLI's pixels; a tighter target refines more pixels;
+    adaptive sampling of denoised or unlit frames raises one line."""
+    renderer = omnicam.Renderer(robocup)
+    frame = renderer.render(POSE, size=64, spp=4, shading="path", adaptive_spp=64, target_error=0.05)
+    code, _, err = run_cli("render", SOURCE / "scenes" / "robocup2006.json", "--pose=%g,%g,%g" % POSE, "--size", 64,
+                           "--spp", 4, "--shading", "path", "--adaptive-spp", 64, "--target-error", 0.05,
+                           "-o", tmp_path / "cli.exr")
+    assert code == 0, err
+    np.testing.assert_array_equal(frame["rgb"], omnicam.read_image(str(tmp_path / "cli.exr")))
+    first = renderer.render(POSE, size=64, spp=4, shading="path")["rgb"]
+    loose = renderer.render(POSE, size=64, spp=4, shading="path", adaptive_spp=64, target_error=0.2)["rgb"]
+    refined = np.any(frame["rgb"] != first, axis=-1).sum()
+    assert 0 < np.any(loose != first, axis=-1).sum() < refined
+    with pytest.raises(omnicam.InputError, match="adaptive_spp: not with denoise"):
+        renderer.render(shading="path", denoise=True, adaptive_spp=16)
+    with pytest.raises(omnicam.InputError, match="adaptive_spp: only with the fast engine's exact mode and shading path"):
+        renderer.render(adaptive_spp=16)
+    with pytest.raises(omnicam.InputError, match="target_error: only with adaptive_spp"):
+        renderer.render(shading="path", target_error=0.1)
+
+
 def test_a_dataset_runs_with_progress_and_stops_on_an_exception(tmp_path):
     spec = tmp_path / "spec.json"
     spec.write_text(json.dumps({

@@ -47,7 +47,7 @@ def _places():
 
 def test_every_python_row_is_a_keyword_where_its_row_says(source):
     rows = omnicam._omnicam._request_fields()
-    assert len(rows) == 13
+    assert len(rows) == 15
     places = _places()
     for row in rows:
         if not row["place"]:
