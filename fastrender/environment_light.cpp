@@ -40,7 +40,7 @@ EnvironmentLight::EnvironmentLight(const Environment& environment) : environment
         for (int di = -1; di <= 1; ++di) neighbourhood += kCellMean[di + 1] * kCellMean[dj + 1] * at(i + di, j + dj);
       rowSum += neighbourhood * sinTheta;  // the texel's weight: what is sampled, before normalising
       rowCdf_[static_cast<size_t>(j) * width_ + i] = rowSum;
-      const double radiance = environment.strength * at(i, j);
+      const double radiance = static_cast<double>(environment.strength) * at(i, j);
       const Vec3 direction =
           environment.worldFromImage(directionFromEquirect({(i + 0.5) / width_, 1.0 - (j + 0.5) / height_}));
       mean += radiance * texelSolidAngle;
@@ -97,6 +97,7 @@ EnvironmentLight::Sample EnvironmentLight::sample(const Eigen::Vector2d& u) cons
 double EnvironmentLight::pdf(const Vec3& direction) const {
   const Vec3 inImage = environment_.imageFromWorld(direction);
   const Eigen::Vector2d uv = equirectFromDirection(inImage);
+  if (!uv.allFinite()) return 0.0;
   const int column = std::clamp(static_cast<int>(uv.x() * width_), 0, width_ - 1);
   const int row = std::clamp(static_cast<int>((1.0 - uv.y()) * height_), 0, height_ - 1);
   return densityOver(texelShare(column, row), std::hypot(inImage.x(), inImage.y()));

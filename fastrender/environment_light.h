@@ -28,8 +28,8 @@ class EnvironmentLight {
   // normal `normal` would receive, from the image's first spherical harmonics (exact for a sky
   // that is uniform, or uniform over a hemisphere).
   double irradianceEstimate(const Vec3& normal) const;
-  // False for an image that is black everywhere: nothing to sample.
-  bool emits() const { return total_ > 0.0; }
+  // False for an image that is black everywhere, or at strength 0: nothing to sample.
+  bool emits() const { return total_ > 0.0 && environment_.strength > 0.0f; }
 
  private:
   // The index of the first entry of `cdf` (of `count` entries, the last 1) above u; u remapped to

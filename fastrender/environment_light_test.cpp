@@ -8,6 +8,7 @@
 
 #include "fast_renderer.h"
 #include "path_tracer.h"
+#include "ray_scene.h"
 
 namespace omnicam {
 namespace {
@@ -114,9 +115,8 @@ TEST(EnvironmentLight, ItsIrradianceEstimateIsExactForUniformAndHemisphereSkies)
   EXPECT_FALSE(EnvironmentLight(black).emits());
 }
 
-// A floor of albedo ρ under the sky: its radiance is ρ/π times the irradiance of the sky's upper
-// hemisphere, which the light samples and the scattered rays that leave the scene share by MIS.
-TEST(EnvironmentLight, AFloorUnderTheSkyReflectsItsIrradiance) {
+// A floor of albedo 0.6 under the test sky.
+Scene floorUnderTheSky() {
   Scene scene;
   scene.environment = testSky();
   Material floor;
@@ -124,6 +124,13 @@ TEST(EnvironmentLight, AFloorUnderTheSkyReflectsItsIrradiance) {
   floor.color = Vec3f::Constant(0.6f);
   scene.materials.push_back(floor);
   scene.objects.push_back({"floor", 0, Quad{{-100, -100, 0}, {200, 0, 0}, {0, 200, 0}}, ""});
+  return scene;
+}
+
+// A floor of albedo ρ under the sky: its radiance is ρ/π times the irradiance of the sky's upper
+// hemisphere, which the light samples and the scattered rays that leave the scene share by MIS.
+TEST(EnvironmentLight, AFloorUnderTheSkyReflectsItsIrradiance) {
+  const Scene scene = floorUnderTheSky();
   const FastRenderer renderer(scene);
   const double expected = 0.6 / kPi * irradianceFromAbove(*scene.environment);
   const int paths = 8192;
@@ -141,6 +148,30 @@ TEST(EnvironmentLight, AFloorUnderTheSkyReflectsItsIrradiance) {
   const Vec3 up = Vec3(0.2, -0.3, 0.9).normalized();
   const Vec3f seen = renderer.radiance({0.0, 0.0, 0.5}, up, Shading::Path, 1, 2);
   EXPECT_FLOAT_EQ(seen.z(), scene.environment->radiance(up).z());
+}
+
+// The same floor when only a quarter of the first surfaces scatter a ray (denoised frames): the
+// light samples' MIS weights count the scattered rays' share, the scattered rays their weight.
+TEST(EnvironmentLight, AFloorUnderTheSkyKeepsItsIrradianceWhenAQuarterOfTheSamplesScatter) {
+  const Scene scene = floorUnderTheSky();
+  const RayScene rays(scene);
+  PathTracingOptions options;
+  options.indirectShare = 0.25;
+  const PathTracer tracer(scene, rays, options);
+  const Vec3 origin(0.3, 0.2, 0.5), direction = Vec3(0.1, 0.0, -1.0).normalized();
+  const std::optional<SurfaceHit> first = rays.intersect(origin, direction);
+  ASSERT_TRUE(first);
+  const double expected = 0.6 / kPi * irradianceFromAbove(*scene.environment);
+  const int paths = 16384;
+  double sum = 0.0, squares = 0.0;
+  for (int k = 0; k < paths; ++k) {
+    const double v = tracer.cameraRay(origin, direction, &*first, {11, static_cast<uint32_t>(k)}).radiance.x();
+    sum += v;
+    squares += v * v;
+  }
+  const double mean = sum / paths, standardError = std::sqrt((squares / paths - mean * mean) / paths);
+  EXPECT_NEAR(mean, expected, 4.0 * standardError + 1e-3 * expected);
+  EXPECT_LT(standardError, 0.01 * expected);
 }
 
 }  // namespace

@@ -17,8 +17,12 @@ std::string fastRendererVersion() {
   return std::string("omnicam ") + OMNICAM_VERSION + " (Embree " + RTC_VERSION_STRING + ")";
 }
 
-FastRenderer::FastRenderer(const Scene& scene)
-    : scene_(scene), rays_(scene), environmentLight_(environmentLightOf(scene)) {}
+FastRenderer::FastRenderer(const Scene& scene) : scene_(scene), rays_(scene) {}
+
+std::shared_ptr<const EnvironmentLight> FastRenderer::environmentLight() const {
+  std::call_once(environmentOnce_, [this] { environmentLight_ = environmentLightOf(scene_); });
+  return environmentLight_;
+}
 
 std::shared_ptr<const SampleTable> FastRenderer::sampleTable(const RenderSettings& settings, int n) const {
   const std::shared_ptr<const Camera> camera = makeCamera(settings.rig, settings.traced);

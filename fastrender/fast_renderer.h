@@ -133,7 +133,11 @@ class FastRenderer {
 
   const Scene& scene_;
   RayScene rays_;
-  std::shared_ptr<const EnvironmentLight> environmentLight_;  // built once: its tables cost a frame's worth
+  // The environment's sampling tables: built once, by the first path-shaded frame (they cost a
+  // frame's worth), shared by every frame after.
+  std::shared_ptr<const EnvironmentLight> environmentLight() const;
+  mutable std::once_flag environmentOnce_;
+  mutable std::shared_ptr<const EnvironmentLight> environmentLight_;
   mutable std::mutex tableMutex_;  // guards only the cached pointer; tables are immutable
   mutable std::shared_ptr<const SampleTable> table_;
 };

@@ -27,7 +27,7 @@ std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSetti
     std::memcpy(&bits, &v, sizeof bits);
     key = mixKey(key, bits);
   }
-  return PathFrame{PathTracer(scene_, rays_, options, environmentLight_), key};
+  return PathFrame{PathTracer(scene_, rays_, options, environmentLight()), key};
 }
 
 void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* colours, const PathFrame* path,
@@ -108,7 +108,7 @@ Vec3f FastRenderer::radiance(const Vec3& origin, const Vec3& direction, Shading 
   Vec3f colour;
   PathTracingOptions options;
   options.diffuseBounces = bounces;
-  const PathFrame path{PathTracer(scene_, rays_, options, environmentLight_), 0};
+  const PathFrame path{PathTracer(scene_, rays_, options, shading == Shading::Path ? environmentLight() : nullptr), 0};
   const PathKey sample{0, static_cast<uint32_t>(key)};
   shadePacket(hits, shading, &colour, &path, &sample);
   return colour;

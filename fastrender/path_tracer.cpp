@@ -223,6 +223,10 @@ Vec3f PathTracer::environmentSample(double selection, const Vec3& point, const V
   const EnvironmentLight::Sample s = environment_->sample(u);
   const double cosine = normal.dot(s.direction);
   if (cosine <= 0.0 || !(s.pdf > 0.0)) return Vec3f::Zero();
+  // A disc's face ends a ray (Cycles: no transparent bounces): the sky behind it is not seen, by
+  // this sample as by a scattered ray.
+  double tDisc = 0.0;
+  if (nearestDisc(point, s.direction, std::numeric_limits<double>::infinity(), tDisc) >= 0) return Vec3f::Zero();
   const double lightPdf = selection * s.pdf;
   const double weight = powerHeuristic(lightPdf, bsdfShare * cosine / kPi) / lightPdf;
   if (rays_.occluded(point + kSurfaceOffset * normal, s.direction, 0.0, std::numeric_limits<double>::infinity()))

@@ -392,8 +392,8 @@ TEST(Blender, PathShadingConvergesToTheSameFrameAsCycles) {
 // An environment is the same sky in both engines (docs/conventions.md §3): the outdoor field lit by
 // Blender's city world alone, turned 70° and at 0.7 of its strength, its sun's hard shadows on the
 // grass and the sky seen in the mirror. Measured (64 px, 1024 spp each): mean ratio fast/Cycles
-// 1.0001, PSNR 50.7 dB (linear, peak 1); with the sky turned the other way (−70°) the fast frame
-// read −4.5 dB against Cycles' (at full strength).
+// 1.0001, PSNR 50.7 dB (linear, peak 1); a fast frame with the sky turned the other way (−70°)
+// was at PSNR −4.5 dB from Cycles' frame (both at full strength).
 TEST(Blender, AnEnvironmentLightsBothEnginesAlike) {
   Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/outdoor-field.json");
   ASSERT_TRUE(scene.environment);

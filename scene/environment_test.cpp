@@ -107,6 +107,9 @@ TEST_F(EnvironmentLoadTest, AnEquirectangularImageLoadsWithItsStrengthAndRotatio
 TEST_F(EnvironmentLoadTest, BadEnvironmentsAreRefusedWithOneLine) {
   const std::string file = (dir_ / "scene.json").string();
   writeSky("sky.exr", 1.0f);
+  writeSky("bright.exr", 5e5f);
+  EXPECT_EQ(errorOf(R"({"file": "bright.exr", "strength": 3})"),
+            file + ": environment.strength: the image's brightest value (500000) times strength must be at most 1e+06, a light's limit");
   writeSky("negative.exr", -1.0f);  // lossy compression leaves small negative values: no light
   EXPECT_EQ(errorOf(R"({"file": "negative.exr"})"), "");
   EXPECT_EQ(scene_.environment->image->rgbLinear()[0], 0.0f);

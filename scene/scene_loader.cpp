@@ -11,6 +11,7 @@
 #include "number_format.h"
 #include "file_confinement.h"
 #include "gltf_import.h"
+#include "image.h"
 #include "input_limits.h"
 #include "json_fields.h"
 #include "rig_fields.h"
@@ -133,25 +134,34 @@ fs::path blenderWorld(const JsonFields& e, const std::string& name) {
                               (names.empty() ? " (install blender-data with `make deps`)" : " (" + known + ")"));
 }
 
-// The environment's image is light: negative values count as none.
+// The environment's image is light: its stored RGB (an EXR's colour, associated with its alpha, as
+// renderers show it), negative values counting as none; at most a light's 1e6 once scaled.
 Environment readEnvironment(JsonFields e, const Context& ctx) {
   Environment environment;
   if (e.has("file") == e.has("blender_world")) e.fail("file", "give either file or blender_world");
   const std::string key = e.has("file") ? "file" : "blender_world";
   environment.file = e.string(key);
+  environment.strength = static_cast<float>(e.number("strength", 1.0, {0.0, 1e6}));
+  environment.rotationDeg = e.number("rotation_deg", 0.0, {-360.0, 360.0});
+  e.finish();  // every field checked before the image is decoded
   const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
+  ImageRGBA image;
   try {
-    environment.image = Texture::load(resolved.string());
+    image = readImage(resolved.string());  // non-finite values read as 0
   } catch (const InputError& error) {
     e.fail(key, error.what());
   }
-  std::vector<float> values = environment.image->rgbLinear();  // non-finite values read as 0 (readImage)
-  // Lossy EXR compression leaves small negative values (Blender's forest.exr: -0.0016): no light.
-  for (float& v : values) v = std::max(v, 0.0f);
-  environment.image = std::make_shared<Texture>(environment.image->width(), environment.image->height(), std::move(values));
-  environment.strength = static_cast<float>(e.number("strength", 1.0, {0.0, 1e6}));
-  environment.rotationDeg = e.number("rotation_deg", 0.0, {-360.0, 360.0});
-  e.finish();
+  std::vector<float> rgb(static_cast<size_t>(image.width) * image.height * 3);
+  float brightest = 0.0f;
+  for (size_t p = 0; p < rgb.size() / 3; ++p)
+    for (int c = 0; c < 3; ++c) {
+      // Lossy EXR compression leaves small negative values (Blender's forest.exr: -0.0016): no light.
+      rgb[3 * p + c] = std::max(image.pixels[4 * p + c], 0.0f);
+      brightest = std::max(brightest, rgb[3 * p + c]);
+    }
+  if (static_cast<double>(brightest) * environment.strength > 1e6)
+    e.fail("strength", "the image's brightest value (" + shortNumber(brightest) + ") times strength must be at most 1e+06, a light's limit");
+  environment.image = std::make_shared<Texture>(image.width, image.height, std::move(rgb));
   return environment;
 }
 
