@@ -46,6 +46,9 @@ testing::CommandResult omnicam(const std::string& args) {
   return testing::runShell(std::string(OMNICAM_BINARY) + " " + args + " 2>&1");
 }
 
+// Every file under `dir`, by its relative path: its bytes.
+std::map<std::string, std::string> snapshot(const fs::path& dir);
+
 class DatasetCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -59,6 +62,23 @@ class DatasetCliTest : public ::testing::Test {
   std::string write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
     return path(name);
+  }
+  // The two halves of `spec` rendered as shards 1/2 then 0/2 into `folder` and merged: its files
+  // but the shard lists.
+  std::map<std::string, std::string> mergedShards(const std::string& spec, const std::string& folder) const {
+    EXPECT_EQ(omnicam("dataset " + spec + " -o " + path(folder) + " --shard 1/2").code, 0);
+    EXPECT_EQ(omnicam("dataset " + spec + " -o " + path(folder) + " --shard 0/2").code, 0);
+    EXPECT_EQ(omnicam("dataset --merge " + path(folder)).code, 0);
+    std::map<std::string, std::string> merged = snapshot(dir_ / folder);
+    for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+    return merged;
+  }
+  // A manifest frame's pose as the render verb's --pose value, exactly.
+  static std::string poseFlag(const json& pose) {
+    char text[128];
+    std::snprintf(text, sizeof text, "--pose=%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
+                  pose.at("yaw_deg").get<double>());
+    return text;
   }
   // A spec over robocup2006 with `extra` fields.
   std::string robocupSpec(const std::string& name, const std::string& extra) const {
@@ -447,11 +467,8 @@ TEST_F(DatasetCliTest, ARandomisedRecordingCameraResumesAndShardsByteForByteWith
   const json& frame7 = manifest.at("frames").at(7);
   const RecordingCamera drawn = recordingCameraFromJson(frame7.at("cameras").at("cam0").at("recording"), "manifest.json");
   const json& pose = frame7.at("pose");
-  char poseText[128];
-  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
-                pose.at("yaw_deg").get<double>());
-  const auto clean = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 128 --spp 4 --shading lit --pose=" +
-                             std::string(poseText) + " -o " + path("clean7.exr"));
+  const auto clean = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 128 --spp 4 --shading lit " +
+                             poseFlag(pose) + " -o " + path("clean7.exr"));
   ASSERT_EQ(clean.code, 0) << clean.out;
   const ImageRGBA recorded = recordFrame(drawn, readImage(path("clean7.exr")), 7);
   const ImageRGBA written = readImage(path("whole/cam0/rgb/000007.png"));
@@ -461,11 +478,7 @@ TEST_F(DatasetCliTest, ARandomisedRecordingCameraResumesAndShardsByteForByteWith
   ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
   EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
-  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
-  std::map<std::string, std::string> merged = snapshot(dir_ / "parts");
-  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  const std::map<std::string, std::string> merged = mergedShards(spec, "parts");
   EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
 }
@@ -483,19 +496,12 @@ TEST_F(DatasetCliTest, AdaptiveFramesAreTheSameOnAnyThreadsResumedAndSharded) {
   ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
   EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
-  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
-  std::map<std::string, std::string> merged = snapshot(dir_ / "parts");
-  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  const std::map<std::string, std::string> merged = mergedShards(spec, "parts");
   EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
   // Frame 2 is the render verb's adaptive frame at its pose.
   const json pose = json::parse(readFile(dir_ / "whole/manifest.json")).at("frames").at(2).at("pose");
-  char poseText[128];
-  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
-                pose.at("yaw_deg").get<double>());
   const auto single = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 64 --spp 4 --shading path "
-                              "--adaptive-spp 64 --target-error 0.05 --pose=" + std::string(poseText) + " -o " + path("frame2.exr"));
+                              "--adaptive-spp 64 --target-error 0.05 " + poseFlag(pose) + " -o " + path("frame2.exr"));
   ASSERT_EQ(single.code, 0) << single.out;
   EXPECT_TRUE(readImage(path("frame2.exr")).pixels == readImage(path("whole/cam0/rgb/000002.exr")).pixels);
 }
@@ -746,11 +752,7 @@ TEST_F(DatasetCliTest, MultilayerDatasetsResumeAfterKillNineAndMergeShardsByteFo
   EXPECT_EQ(resumed.out.find(" 0 kept"), std::string::npos) << resumed.out;
   EXPECT_TRUE(snapshot(dir_ / "killed") == whole) << "the resumed dataset differs from the uninterrupted one";
 
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
-  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
-  std::map<std::string, std::string> merged = snapshot(dir_ / "parts");
-  for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
+  const std::map<std::string, std::string> merged = mergedShards(spec, "parts");
   EXPECT_TRUE(merged == whole) << "the merged shards differ from the one-go dataset";
   EXPECT_EQ(listedFiles(dir_ / "parts").size(), 20u + 6u) << "20 frames, 3 intrinsics, poses and 2 gathered files";
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
@@ -1053,10 +1055,7 @@ TEST_F(DatasetCliTest, PathShadedTexturedHallWithEveryOutputVerifiesShardsAndMov
   EXPECT_EQ(manifest.at("settings").at("path_tracing"), json({{"bounces", 2}, {"seed", 0}, {"denoise", true}}));
   // Frame 7 is the render verb's frame at its pose, byte for byte.
   const json& pose = manifest.at("frames")[7].at("pose");
-  char poseText[128];
-  std::snprintf(poseText, sizeof poseText, "%.17g,%.17g,%.17g", pose.at("x").get<double>(), pose.at("y").get<double>(),
-                pose.at("yaw_deg").get<double>());
-  const auto single = omnicam("render " + path("hall.json") + " --shading path --spp 4 --denoise --size 64 --pose=" + poseText +
+  const auto single = omnicam("render " + path("hall.json") + " --shading path --spp 4 --denoise --size 64 " + poseFlag(pose) +
                               " -o " + path("single.exr"));
   ASSERT_EQ(single.code, 0) << single.out;
   EXPECT_TRUE(readImage(path("ds/cam0/rgb/000007.exr")).pixels == readImage(path("single.exr")).pixels);
