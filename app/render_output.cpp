@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "path_tracing_record.h"
 #include "sidecar.h"
 
 namespace omnicam::cli {
@@ -18,7 +19,7 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
   record.spp = settings.spp;
   record.shading = shadingName(settings.shading);
   if (settings.shading == Shading::Path)
-    record.pathTracing = {{"bounces", settings.bounces}, {"seed", settings.seed}, {"denoise", settings.denoise}};
+    record.pathTracing = pathTracingRecord(settings);
   record.mode = engine.mode();
   record.modeOptions = engine.modeOptions();
   record.seconds = seconds;

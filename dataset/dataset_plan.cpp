@@ -23,6 +23,7 @@
 #include "pose_sampler.h"
 #include "scene_loader.h"
 #include "sha256.h"
+#include "path_tracing_record.h"
 #include "sidecar.h"
 #include "trajectory.h"
 
@@ -171,8 +172,7 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
                         {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
   if (spec.request.shading == Shading::Path)
-    header["settings"]["path_tracing"] = {
-        {"bounces", spec.request.bounces}, {"seed", spec.request.seed}, {"denoise", spec.request.denoise}};
+    header["settings"]["path_tracing"] = pathTracingRecord(spec.request);
   json written = json::array(), channels = json::object();
   for (OutputKind kind : plan.outputList()) {
     written.push_back(outputName(kind));
@@ -294,6 +294,9 @@ void checkEngineRendersPlan(const DatasetPlan& plan) {
       } catch (const InputError& e) {
         throw InputError(file + ": motion: camera " + quote(plan.setups()[c].camera->name) + ": " + e.what());
       }
+      if (plan.spec().request.adaptiveSpp > 0 && moving(plan.placement(frame, c), plan.setups()[c].rig))
+        throw InputError(file + ": adaptive_spp: not with moving frames (camera " + quote(plan.setups()[c].camera->name) +
+                         ", frame " + std::to_string(frame) + ": its shutter is open while the robot moves)");
     }
 }
 

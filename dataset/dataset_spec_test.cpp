@@ -80,7 +80,7 @@ TEST(DatasetSpec, EveryRequestRowWithAJsonNameIsRead) {
     EXPECT_EQ(error.rfind("spec.json: " + name + ": must be", 0), 0u) << name << ": " << error;
     ++read;
   }
-  EXPECT_EQ(read, 11);
+  EXPECT_EQ(read, 13);
 }
 
 TEST(DatasetSpec, IntegersOutOfRangeAreRefusedNeverWrapped) {

@@ -128,7 +128,7 @@ ImageRGBA FastRenderer::render(const CameraPlacement& placement, const RenderSet
 }
 
 void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacket& hits, Vec3f* sums, RowScratch& scratch,
-                                 Film& film, float* squares) const {
+                                 Film& film, LuminanceMoments* moments) const {
   const SampleTable& table = job.table;
   const size_t rowStart = static_cast<size_t>(j) * width;
   // The row's samples are contiguous in the table; packets run across pixel borders. Each
@@ -138,12 +138,12 @@ void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacke
   size_t pixel = rowStart;
   uint32_t pixelEnd = table.firstSample[pixel + 1];
   Vec3f sum = Vec3f::Zero();
-  float squareSum = 0.0f;
+  LuminanceMoments moment;
   const auto storePixel = [&] {
     sums[pixel - rowStart] = sum;
     sum = Vec3f::Zero();
-    if (squares) squares[pixel - rowStart] = squareSum;
-    squareSum = 0.0f;
+    if (moments) moments[pixel - rowStart] = moment;
+    moment = {};
     if (++pixel < rowStart + width) pixelEnd = table.firstSample[pixel + 1];
   };
   Vec3f colours[kRayPacketSize];
@@ -167,7 +167,11 @@ void FastRenderer::traceStillRow(const FrameJob& job, int j, int width, HitPacke
       const uint32_t s = first + static_cast<uint32_t>(k);
       while (pixelEnd <= s) storePixel();
       sum += colours[k];
-      if (squares) squareSum += luminance(colours[k].data()) * luminance(colours[k].data());
+      if (moments) {
+        const double l = luminance(colours[k].data());
+        moment.sum += l;
+        moment.squares += l * l;
+      }
       if (job.denoise) job.denoise->add(pixel, pathSamples[k]);
       if (job.aovs && s == table.centreSample[pixel] && hits.hit(k)) {
         recordSampleAov(film, pixel, hits, k);
@@ -193,12 +197,10 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
   const int passes = moves ? motion.instants.passes : 1;
   const std::optional<PathFrame> path = pathFrame(settings, camera);
   const bool adaptive = settings.adaptiveSpp > 0;
-  if (adaptive && (moves || !path))
-    throw InputError(std::string("adaptive sampling: only path shading of a still frame (this one ") +
-                     (moves ? "moves" : "is not path-shaded") + ")");
+  if (adaptive && moves) throw InputError("adaptive sampling: not with a moving frame (its shutter is open while the robot moves)");
   const size_t pixels = static_cast<size_t>(width) * height;
   std::vector<Vec3f> frameSums(adaptive ? pixels : 0);  // adaptive: the first grid's sums, then the finest
-  std::vector<float> frameSquares(adaptive ? pixels : 0);
+  std::vector<LuminanceMoments> frameMoments(adaptive ? pixels : 0);
   DenoiseSums denoiseSums;
   DenoiseSums* denoising = path && settings.denoise ? &denoiseSums : nullptr;
   if (denoising) denoiseSums.resize(static_cast<size_t>(width) * height);
@@ -219,7 +221,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
     for (int j = rows.begin(); j != rows.end(); ++j) {
       std::fill(scratch.centreRecorded.begin(), scratch.centreRecorded.end(), uint8_t{0});
       if (moves) traceMovingRow(motion, *table, j, settings.shading, job.path, scratch, hits, sums.data(), denoising);
-      else traceStillRow(job, j, width, hits, sums.data(), scratch, film, adaptive ? &frameSquares[rowStart(j)] : nullptr);
+      else traceStillRow(job, j, width, hits, sums.data(), scratch, film, adaptive ? &frameMoments[rowStart(j)] : nullptr);
       if (aovs) finishRowAovs(job, j, width, hits, scratch.centreRecorded, film);
       for (int i = 0; i < width; ++i) {
         if (adaptive) frameSums[rowStart(j) + i] = sums[i];
@@ -228,7 +230,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
       }
     }
   });
-  if (adaptive) refineAdaptively(job, settings, frameSums, frameSquares, film);
+  if (adaptive) refineAdaptively(job, settings, frameSums, frameMoments, film);
   film.resolve(passes);
   if (denoising) {
     std::vector<uint32_t> imaged(static_cast<size_t>(width) * height);

@@ -67,9 +67,9 @@ class FastRenderer {
   // Reused memory of a thread's rows.
   struct RowScratch {
     RowPlacements row;
-    std::vector<uint16_t> columns;  // per sample of a moving row, or of an adaptive row's finer grid
-    std::vector<StoredRay> rays;    // an adaptive row's finer grids' rays
-    std::vector<uint16_t> grid;     // their index in their pixel's grid
+    std::vector<uint16_t> columns;  // per sample of a moving row
+    std::vector<StoredRay> rays;    // an adaptive pixel's finer grid's rays
+    std::vector<uint16_t> grid;     // their index in that grid
     std::vector<uint8_t> centreRecorded;  // per column: its AOVs are written
   };
   // What every row of one frame shares.
@@ -88,14 +88,19 @@ class FastRenderer {
   void renderPass(const CameraPlacement& camera, const RenderSettings& settings, Film& film) const;
   // Row j of a still frame: every pixel's sum of its samples' colours into sums[0, width), and the
   // AOVs of pixels whose centre is a sample.
-  // With `squares`, also each pixel's sum of its samples' squared luminances into squares[0, width).
+  // A pixel's samples' luminances summed, and their squares (in double: in float a bright pixel's
+  // rounding would pass for noise).
+  struct LuminanceMoments {
+    double sum = 0.0, squares = 0.0;
+  };
+  // With `moments`, also each pixel's luminance moments into moments[0, width).
   void traceStillRow(const FrameJob& job, int j, int width, HitPacket& hits, Vec3f* sums, RowScratch& scratch, Film& film,
-                     float* squares = nullptr) const;
+                     LuminanceMoments* moments = nullptr) const;
 
   // Adaptive sampling (fast_renderer_adaptive.cpp). Each pixel's grid from its first grid's noise:
   // level k is the grid of 4^k·spp samples (0: the first; pixels the rim cuts stay there).
-  std::vector<uint8_t> adaptiveLevels(const RenderSettings& settings, const SampleTable& table, const std::vector<Vec3f>& sums,
-                                      const std::vector<float>& squares) const;
+  std::vector<uint8_t> adaptiveLevels(const RenderSettings& settings, const SampleTable& table,
+                                      const std::vector<LuminanceMoments>& moments) const;
   // Row j's pixels of level > 0 traced anew on their grid (the first grid's samples dropped),
   // exactly as a fixed frame of that grid traces them; their colours' sums into sums[i]. A pixel
   // whose grid the rim cuts goes back a level (its alpha is the first grid's), to 0 at most.
@@ -104,7 +109,7 @@ class FastRenderer {
   // The pixels whose error is above the target traced again on finer grids; then every pixel's
   // sum into the film, scaled to the first grid's count of samples.
   void refineAdaptively(const FrameJob& job, const RenderSettings& settings, std::vector<Vec3f>& sums,
-                        const std::vector<float>& squares, Film& film) const;
+                        const std::vector<LuminanceMoments>& moments, Film& film) const;
   // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
   // sums[0, width).
   void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading, const PathFrame* path,

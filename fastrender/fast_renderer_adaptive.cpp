@@ -22,15 +22,15 @@ constexpr double kLuminanceFloor = 1e-3;
 }  // namespace
 
 std::vector<uint8_t> FastRenderer::adaptiveLevels(const RenderSettings& settings, const SampleTable& table,
-                                                  const std::vector<Vec3f>& sums, const std::vector<float>& squares) const {
+                                                  const std::vector<LuminanceMoments>& moments) const {
   int mostLevel = 0;
   while ((int64_t{settings.spp} << (2 * (mostLevel + 1))) <= settings.adaptiveSpp) ++mostLevel;
   const double count = settings.spp, target2 = settings.targetError * settings.targetError;
-  std::vector<uint8_t> levels(sums.size(), 0);
-  for (size_t p = 0; p < sums.size(); ++p) {
+  std::vector<uint8_t> levels(moments.size(), 0);
+  for (size_t p = 0; p < moments.size(); ++p) {
     if (table.imagedSamples(p) != settings.spp) continue;  // the rim cuts it: its alpha is its first grid's
-    const double mean = luminance(sums[p].data()) / count;
-    const double sampleVariance = std::max(0.0, (squares[p] / count - mean * mean) * count / (count - 1.0));
+    const double mean = moments[p].sum / count;
+    const double sampleVariance = std::max(0.0, (moments[p].squares / count - mean * mean) * count / (count - 1.0));
     // The error falls as 1/√samples: a grid of `needed` times the samples brings it to the target.
     const double needed = sampleVariance / count / (std::max(0.0, mean) + kLuminanceFloor) / target2;
     int level = 0;
@@ -67,32 +67,31 @@ void FastRenderer::traceFinerRow(const FrameJob& job, int j, int width, uint8_t*
   const Camera& camera = *job.table.camera;
   const int n = job.table.samplesPerAxis;
   const size_t rowStart = static_cast<size_t>(j) * width;
-  scratch.rays.clear();
-  scratch.grid.clear();
-  scratch.columns.clear();
-  for (int i = 0; i < width; ++i) {
-    while (levels[i] > 0 && !addGridRays(camera, i, j, n << levels[i], scratch.rays, scratch.grid)) --levels[i];
-    if (levels[i] == 0) continue;
-    sums[i] = Vec3f::Zero();
-    scratch.columns.resize(scratch.rays.size(), static_cast<uint16_t>(i));
-  }
   Vec3f colours[kRayPacketSize];
   PathKey keys[kRayPacketSize];
-  for (size_t first = 0; first < scratch.rays.size(); first += kRayPacketSize) {
-    const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, scratch.rays.size() - first));
-    loadStoredRays(hits, job.still, &scratch.rays[first], camera.central(), count);
-    rays_.intersectPacket(hits);
-    for (int k = 0; k < count; ++k)  // the keys a fixed frame of this grid gives these samples
-      keys[k] = {mixKey(job.path->key, rowStart + scratch.columns[first + k]), scratch.grid[first + k]};
-    shadePacket(hits, job.shading, colours, job.path, keys);
-    for (int k = 0; k < count; ++k) sums[scratch.columns[first + k]] += colours[k];  // in sample order, as a fixed frame sums
+  for (int i = 0; i < width; ++i) {  // a pixel at a time: at most adaptiveSpp rays in hand
+    scratch.rays.clear();
+    scratch.grid.clear();
+    while (levels[i] > 0 && !addGridRays(camera, i, j, n << levels[i], scratch.rays, scratch.grid)) --levels[i];
+    if (levels[i] == 0) continue;
+    Vec3f sum = Vec3f::Zero();
+    for (size_t first = 0; first < scratch.rays.size(); first += kRayPacketSize) {
+      const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, scratch.rays.size() - first));
+      loadStoredRays(hits, job.still, &scratch.rays[first], camera.central(), count);
+      rays_.intersectPacket(hits);
+      for (int k = 0; k < count; ++k)  // the keys a fixed frame of this grid gives these samples
+        keys[k] = {mixKey(job.path->key, rowStart + i), scratch.grid[first + k]};
+      shadePacket(hits, job.shading, colours, job.path, keys);
+      for (int k = 0; k < count; ++k) sum += colours[k];  // in sample order, as a fixed frame sums
+    }
+    sums[i] = sum;
   }
 }
 
 void FastRenderer::refineAdaptively(const FrameJob& job, const RenderSettings& settings, std::vector<Vec3f>& sums,
-                                    const std::vector<float>& squares, Film& film) const {
+                                    const std::vector<LuminanceMoments>& moments, Film& film) const {
   const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
-  std::vector<uint8_t> levels = adaptiveLevels(settings, job.table, sums, squares);
+  std::vector<uint8_t> levels = adaptiveLevels(settings, job.table, moments);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     RowScratch scratch;
     HitPacket hits;

@@ -82,6 +82,8 @@ void readAdaptive(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (q.denoise)
     r.fail(F::AdaptiveSpp, "not with " + r.name(F::Denoise) +
                                " (refining some pixels of a filtered frame made it worse: docs/path-tracing.md, \"Adaptive sampling\")");
+  if (q.spp < 4)
+    r.fail(F::AdaptiveSpp, "needs " + r.name(F::Spp) + " of at least 4 (the first grid's noise is measured from its samples)");
   int64_t grid = q.spp;
   while (grid < *most && grid <= limits::kMaxSpp / 4) grid *= 4;
   if (*most <= q.spp || grid != *most || *most > limits::kMaxSpp)

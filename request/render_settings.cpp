@@ -50,6 +50,7 @@ void checkAdaptive(const RenderSettings& settings, const SettingNames& names) {
                      " times 4, 16, 64, … up to " + std::to_string(limits::kMaxSpp));
   if (settings.shading != Shading::Path || settings.denoise)
     throw InputError("adaptive sampling: only unfiltered path shading");
+  if (settings.spp < 4) throw InputError("adaptive sampling: needs " + names.spp + " of at least 4 (its noise is measured from its samples)");
   if (!(settings.targetError > 0.0 && settings.targetError <= 1.0))
     throw InputError("adaptive sampling: the target error must be in (0, 1] (got " + shortNumber(settings.targetError) + ")");
 }

@@ -18,7 +18,7 @@ struct RenderRecord {
   int spp = 1;
   std::string shading, mode = "exact";
   nlohmann::json modeOptions = nlohmann::json::object();  // e.g. {"faces": 6, "face_size": 512}
-  nlohmann::json pathTracing;  // path-traced frames: {"bounces", "seed", "denoise"}; null otherwise
+  nlohmann::json pathTracing;  // path-traced frames: pathTracingRecord (request/path_tracing_record.h); null otherwise
   double seconds = 0.0;
 };
 

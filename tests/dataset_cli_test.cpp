@@ -498,12 +498,26 @@ TEST_F(DatasetCliTest, AdaptiveFramesAreTheSameOnAnyThreadsResumedAndSharded) {
   EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
   const std::map<std::string, std::string> merged = mergedShards(spec, "parts");
   EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
+  const json manifest = json::parse(readFile(dir_ / "whole/manifest.json"));
+  EXPECT_EQ(manifest.at("settings").at("path_tracing"),
+            json({{"bounces", 2}, {"seed", 0}, {"denoise", false}, {"adaptive_spp", 64}, {"target_error", 0.05}}));
   // Frame 2 is the render verb's adaptive frame at its pose.
-  const json pose = json::parse(readFile(dir_ / "whole/manifest.json")).at("frames").at(2).at("pose");
+  const json pose = manifest.at("frames").at(2).at("pose");
   const auto single = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 64 --spp 4 --shading path "
                               "--adaptive-spp 64 --target-error 0.05 " + poseFlag(pose) + " -o " + path("frame2.exr"));
   ASSERT_EQ(single.code, 0) << single.out;
   EXPECT_TRUE(readImage(path("frame2.exr")).pixels == readImage(path("whole/cam0/rgb/000002.exr")).pixels);
+  // Moving frames are refused before anything is rendered, naming the field.
+  json scene = json::parse(readFile(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json"));
+  scene["rig"]["shutter"] = {{"exposure_s", 0.02}};
+  write("shutter.json", scene.dump());
+  const std::string moving = write("moving.json", R"({"format": "omnicam-dataset/1", "scene": "shutter.json", "size": 32,
+    "spp": 4, "shading": "path", "adaptive_spp": 16, "poses": {"path": "thesis-loop", "frames": 3},
+    "motion": {"velocity": [1, 0, 0]}})");
+  const auto refused = omnicam("dataset " + moving + " -o " + path("moving"));
+  EXPECT_EQ(refused.code, 2) << refused.out;
+  EXPECT_NE(refused.out.find("moving.json: adaptive_spp: not with moving frames"), std::string::npos) << refused.out;
+  EXPECT_FALSE(fs::exists(dir_ / "moving"));
 }
 
 TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
