@@ -48,6 +48,8 @@ testing::CommandResult omnicam(const std::string& args) {
 
 // Every file under `dir`, by its relative path: its bytes.
 std::map<std::string, std::string> snapshot(const fs::path& dir);
+// Starts `omnicam dataset SPEC -o DIR`, sends `signal` once frames are written, waits (defined below).
+bool interruptAfterFirstFrames(const std::string& spec, const fs::path& dir, int signal, int& status);
 
 class DatasetCliTest : public ::testing::Test {
  protected:
@@ -72,6 +74,15 @@ class DatasetCliTest : public ::testing::Test {
     std::map<std::string, std::string> merged = snapshot(dir_ / folder);
     for (auto it = merged.begin(); it != merged.end();) it = it->first.rfind("shards/", 0) == 0 ? merged.erase(it) : std::next(it);
     return merged;
+  }
+  // A run of `spec` killed after its first frames and resumed, and its two shards merged: each the
+  // one-go run in folder "whole", byte for byte.
+  void expectResumedAndShardedAsWhole(const std::string& spec) const {
+    int status = 0;
+    ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
+    ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
+    EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
+    EXPECT_TRUE(mergedShards(spec, "parts") == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
   }
   // A manifest frame's pose as the render verb's --pose value, exactly.
   static std::string poseFlag(const json& pose) {
@@ -474,12 +485,7 @@ TEST_F(DatasetCliTest, ARandomisedRecordingCameraResumesAndShardsByteForByteWith
   const ImageRGBA written = readImage(path("whole/cam0/rgb/000007.png"));
   EXPECT_TRUE(encodeImage("a.png", recorded) == encodeImage("a.png", written)) << "frame 7 is not its drawn camera's recording";
 
-  int status = 0;
-  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
-  EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
-  const std::map<std::string, std::string> merged = mergedShards(spec, "parts");
-  EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
+  expectResumedAndShardedAsWhole(spec);
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
 }
 
@@ -492,12 +498,7 @@ TEST_F(DatasetCliTest, AdaptiveFramesAreTheSameOnAnyThreadsResumedAndSharded) {
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole") + " --threads 2").code, 0);
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("one") + " --threads 1").code, 0);
   EXPECT_EQ(snapshot(dir_ / "one"), snapshot(dir_ / "whole"));
-  int status = 0;
-  ASSERT_TRUE(interruptAfterFirstFrames(spec, dir_ / "killed", SIGKILL, status)) << readFile(path("killed.log"));
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("killed")).code, 0);
-  EXPECT_TRUE(snapshot(dir_ / "killed") == snapshot(dir_ / "whole")) << "the resumed run differs from the one-go run";
-  const std::map<std::string, std::string> merged = mergedShards(spec, "parts");
-  EXPECT_TRUE(merged == snapshot(dir_ / "whole")) << "the merged shards differ from the one-go run";
+  expectResumedAndShardedAsWhole(spec);
   const json manifest = json::parse(readFile(dir_ / "whole/manifest.json"));
   EXPECT_EQ(manifest.at("settings").at("path_tracing"),
             json({{"bounces", 2}, {"seed", 0}, {"denoise", false}, {"adaptive_spp", 64}, {"target_error", 0.05}}));
