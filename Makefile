@@ -14,7 +14,8 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   pybind11-dev python3-dev python3-pytest python3-yaml python3-pil mypy \
   clang libfuzzer-14-dev libclang-rt-14-dev \
   slurmctld slurmd slurm-client munge libcgal-dev libapriltag-dev \
-  python3-rosbag python3-sensor-msgs
+  python3-rosbag python3-sensor-msgs \
+  python3-setuptools python3-wheel python3-pip python3-venv python3-build ccache
 
 .PHONY: deps build test demo bench clean fuzz-build fuzz
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "atomic_file.h"
+#include "data_files.h"
 #include "errors.h"
 #include "number_format.h"
 #include "render_settings.h"
@@ -154,7 +155,7 @@ void refuseUnless(const CLI::App& cmd, const std::string& flag, bool allowed, co
 
 std::string scenesDir() {
   if (const char* env = std::getenv("OMNICAM_SCENES")) return env;
-  return OMNICAM_SCENES_DIR;
+  return dataFile("scenes").string();
 }
 
 std::vector<std::string> ensureDirectory(const std::string& dir, const std::string& flag) {

@@ -11,6 +11,7 @@
 #include "calibration_study.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "data_files.h"
 #include "errors.h"
 #include "hall_arena.h"
 #include "json_text.h"
@@ -33,7 +34,7 @@ const char* kOtherPhotos[] = {"city.exr", "courtyard.exr", "forest.exr", "night.
 
 std::string experimentsDir() {
   if (const char* env = std::getenv("OMNICAM_EXPERIMENTS")) return env;
-  return OMNICAM_EXPERIMENTS_DIR;
+  return dataFile("experiments").string();
 }
 
 struct ExperimentArgs {

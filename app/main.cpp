@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "cpu_independent_math.h"
 #include "errors.h"
+#include "fast_renderer.h"
 #include "interrupts.h"
 #include "malloc_tuning.h"
 #include "memory_budget.h"
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
   omnicam::installInterruptHandlers();
   CLI::App app{"omnicam: exact catadioptric omnidirectional camera simulation"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", omnicam::fastRendererVersion());
   omnicam::cli::addRenderCommand(app);
   omnicam::cli::addRingsCommand(app);
   omnicam::cli::addProjectCommand(app);
@@ -55,6 +57,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const omnicam::Interrupted& e) {
     // Every external program is ended and its job folder gone; then the usual death by the signal.

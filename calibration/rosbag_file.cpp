@@ -5,6 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "data_files.h"
 #include "errors.h"
 #include "external_process.h"
 #include "job_folder.h"
@@ -26,7 +27,7 @@ constexpr size_t kCopyPieceBytes = size_t{1} << 20;
 // Absolute: the writer runs in its job folder.
 std::string writerScript() {
   const char* env = std::getenv("OMNICAM_ROSBAG_WRITER");
-  return std::filesystem::absolute(env ? env : OMNICAM_ROSBAG_WRITER).string();
+  return std::filesystem::absolute(env ? std::filesystem::path(env) : dataFile("calibration/write_rosbag.py")).string();
 }
 
 // Little-endian, as write_rosbag.py reads them, whatever the host's order.

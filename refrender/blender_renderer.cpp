@@ -19,6 +19,7 @@
 #include "gltf_exporter.h"
 #include "physical_camera.h"
 #include "indirect_filter.h"
+#include "data_files.h"
 #include "job_folder.h"
 #include "motion.h"
 
@@ -32,7 +33,7 @@ namespace {
 
 std::string defaultDriver() {
   if (const char* env = std::getenv("OMNICAM_BLENDER_DRIVER")) return env;
-  return OMNICAM_BLENDER_DRIVER;
+  return dataFile("refrender/blender_driver.py").string();
 }
 
 // docs/conventions.md §2's lights have no fall-off; Blender's are physical. A point light of P watts gives a

@@ -29,6 +29,7 @@ from ._omnicam import (  # noqa: F401  (the public interface)
     run_dataset,
     verify_dataset,
 )
+from ._omnicam import __version__ as __version__  # the file VERSION
 from .dataset import Dataset  # noqa: F401
 
 # Name the compiled classes as users import them (omnicam.Rig, not omnicam._omnicam.Rig).

@@ -5,6 +5,8 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 import numpy.typing as npt
 
+__version__: str
+
 Pose = Tuple[float, float, float]  # robot x, y (metres), yaw (degrees)
 
 class InputError(ValueError): ...

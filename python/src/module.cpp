@@ -67,6 +67,7 @@ PYBIND11_MODULE(_omnicam, m) {
   namespace py = pybind11;
   using namespace omnicam;
   m.doc() = "omnicam: catadioptric omnidirectional camera simulation with exact ground truth (docs/python.md)";
+  m.attr("__version__") = OMNICAM_VERSION;  // the file VERSION, as the installed package's metadata
   // The library's errors keep their one-line messages. Bad input is a ValueError, a file that
   // cannot be written an OSError, a failing external tool (POV-Ray, Blender) a RuntimeError.
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);

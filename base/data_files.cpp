@@ -1,0 +1,44 @@
+#include "data_files.h"
+
+#include <dlfcn.h>
+#include <link.h>
+
+namespace omnicam {
+
+namespace fs = std::filesystem;
+
+#ifdef OMNICAM_PACKAGE_DATA
+namespace {
+
+// The folder of the binary this function is linked into: the Python extension
+// (`omnicam/_omnicam*.so`) or the CLI (`omnicam/bin/omnicam-cli`). The loader names a shared
+// object by the path it opened; the program itself has no name there, hence /proc/self/exe.
+fs::path folderOfThisBinary() {
+  Dl_info info{};
+  link_map* map = nullptr;
+  if (::dladdr1(reinterpret_cast<const void*>(&folderOfThisBinary), &info, reinterpret_cast<void**>(&map),
+                RTLD_DL_LINKMAP) == 0 || map == nullptr)
+    return {};
+  const fs::path binary = map->l_name[0] != '\0' ? fs::path(map->l_name) : fs::path("/proc/self/exe");
+  std::error_code ec;
+  const fs::path resolved = fs::canonical(binary, ec);
+  return ec ? fs::path() : resolved.parent_path();
+}
+
+}  // namespace
+
+// The package's `data/` folder: beside the extension, one level up from `bin/`.
+fs::path dataRoot() {
+  static const fs::path root = [] {
+    const fs::path here = folderOfThisBinary();
+    return (here.filename() == "bin" ? here.parent_path() : here) / OMNICAM_PACKAGE_DATA;
+  }();
+  return root;
+}
+#else
+fs::path dataRoot() { return OMNICAM_SOURCE_ROOT; }
+#endif
+
+fs::path dataFile(std::string_view relative) { return dataRoot() / fs::path(relative); }
+
+}  // namespace omnicam

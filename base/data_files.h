@@ -1,0 +1,19 @@
+#pragma once
+// The files omnicam reads at run time besides its inputs: the Blender driver, the ROS bag writer,
+// the plotting scripts and the bundled scenes. They keep their places in the source tree
+// (`refrender/blender_driver.py`, `scenes/robocup2006.json`, ...) under one data root:
+// - a CMake build reads them from its source tree;
+// - an installed Python package (pyproject.toml) carries them in `omnicam/data/` and finds them
+//   beside its own binaries, wherever it was installed, never in a source or build tree.
+#include <filesystem>
+#include <string_view>
+
+namespace omnicam {
+
+// The data root this build reads from (see above).
+std::filesystem::path dataRoot();
+
+// dataRoot() / relative, e.g. dataFile("refrender/blender_driver.py").
+std::filesystem::path dataFile(std::string_view relative);
+
+}  // namespace omnicam
