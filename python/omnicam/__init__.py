@@ -10,32 +10,10 @@ The library's own objects, not subprocess calls (docs/python.md)::
     pixels = camera.project(points_world, pose=(1.0, 2.0, 90.0))
 """
 
-from ._omnicam import (  # noqa: F401  (the public interface)
-    Camera,
-    ExternalError,
-    InputError,
-    MemoryShortage,
-    OutputError,
-    Renderer,
-    Rig,
-    Scene,
-    coco_annotations,
-    load_scene,
-    mapping_arena,
-    read_exr_channels,
-    read_image,
-    read_uint16_png,
-    render,
-    run_dataset,
-    verify_dataset,
-)
-from ._omnicam import __version__ as __version__  # the file VERSION
-from .dataset import Dataset  # noqa: F401
-
-# Name the compiled classes as users import them (omnicam.Rig, not omnicam._omnicam.Rig).
-for _name in ("Camera", "ExternalError", "InputError", "MemoryShortage", "OutputError", "Renderer", "Rig", "Scene"):
-    globals()[_name].__module__ = __name__
-del _name
+# The compiled part loads on first use (PEP 562): `omnicam ...` and `python -m omnicam`, which
+# only start the CLI, would otherwise load its ~280 shared libraries first, doubling what a short
+# command costs. Type checkers and editors read __init__.pyi.
+from typing import Any, List
 
 __all__ = [
     "Camera",
@@ -57,3 +35,21 @@ __all__ = [
     "run_dataset",
     "verify_dataset",
 ]
+_COMPILED = frozenset(__all__) - {"Dataset"} | {"__version__"}
+
+
+def __getattr__(name: str) -> Any:
+    if name == "Dataset":
+        from .dataset import Dataset as value
+    elif name in _COMPILED:
+        from . import _omnicam
+
+        value = getattr(_omnicam, name)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> List[str]:
+    return sorted(set(globals()) | _COMPILED | {"Dataset"})

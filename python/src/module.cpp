@@ -78,4 +78,8 @@ PYBIND11_MODULE(_omnicam, m) {
   python::bindCamera(m);
   python::bindRender(m);
   python::bindDataset(m);
+  // Named as users import them, however the module is loaded: omnicam.Rig, not omnicam._omnicam.Rig
+  // (messages, reprs, pickles).
+  for (const char* name : {"Camera", "ExternalError", "InputError", "MemoryShortage", "OutputError", "Renderer", "Rig", "Scene"})
+    m.attr(name).attr("__module__") = "omnicam";
 }

@@ -1,0 +1,44 @@
+"""What `import omnicam` offers (__init__.py loads it on first use)."""
+
+from ._omnicam import (
+    Camera as Camera,
+    ExternalError as ExternalError,
+    InputError as InputError,
+    MemoryShortage as MemoryShortage,
+    OutputError as OutputError,
+    Renderer as Renderer,
+    Rig as Rig,
+    Scene as Scene,
+    __version__ as __version__,
+    coco_annotations as coco_annotations,
+    load_scene as load_scene,
+    mapping_arena as mapping_arena,
+    read_exr_channels as read_exr_channels,
+    read_image as read_image,
+    read_uint16_png as read_uint16_png,
+    render as render,
+    run_dataset as run_dataset,
+    verify_dataset as verify_dataset,
+)
+from .dataset import Dataset as Dataset
+
+__all__ = [
+    "Camera",
+    "Dataset",
+    "ExternalError",
+    "InputError",
+    "MemoryShortage",
+    "OutputError",
+    "Renderer",
+    "Rig",
+    "Scene",
+    "coco_annotations",
+    "load_scene",
+    "mapping_arena",
+    "read_exr_channels",
+    "read_image",
+    "read_uint16_png",
+    "render",
+    "run_dataset",
+    "verify_dataset",
+]
