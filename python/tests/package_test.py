@@ -253,12 +253,15 @@ def test_the_cli_starts_without_loading_the_extension_which_loads_on_first_use(p
     assert out.split() == ["False", "True", "omnicam", "[]"], out
 
 
-def test_the_installed_cli_finds_its_own_data_files(package, tmp_path):
-    """`rings` reads its default scene from the package's data, not from any tree."""
-    run([package["venv"] / "bin" / "omnicam", "rings", "-o", tmp_path / "rings.png"], cwd=package["empty"],
+@pytest.mark.parametrize("arguments", [["rings"], ["render", SCENE, "--engine", "blender", "--size", 64]],
+                         ids=["rings", "blender"])
+def test_the_installed_cli_finds_its_own_data_files(package, tmp_path, arguments):
+    """`rings` reads its default scene, the Blender engine its driver script, from the package's
+    data, not from any tree; the images equal the CMake CLI's."""
+    run([package["venv"] / "bin" / "omnicam", *arguments, "-o", tmp_path / "installed.png"], cwd=package["empty"],
         env=user_environment(package["venv"]))
-    run([CLI, "rings", "-o", tmp_path / "cli.png"], cwd=tmp_path)
-    np.testing.assert_array_equal(decoded(tmp_path / "rings.png"), decoded(tmp_path / "cli.png"))
+    run([CLI, *arguments, "-o", tmp_path / "cli.png"], cwd=tmp_path)
+    np.testing.assert_array_equal(decoded(tmp_path / "installed.png"), decoded(tmp_path / "cli.png"))
 
 
 def test_a_typed_user_script_passes_mypy_strict_and_the_stubs_match_the_module(package):
