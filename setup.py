@@ -27,6 +27,9 @@ class CMakeBuiltExtension(Extension):
 
 class BuildWithCMake(build_ext):
     def build_extension(self, ext: Extension) -> None:
+        if self.inplace:  # it would put binaries and data into python/omnicam/ of the source tree
+            sys.exit("omnicam: editable installs (pip install -e) are not supported: install with "
+                     "`pip install --no-build-isolation --no-index .`, or use PYTHONPATH=build/python")
         # The folder that holds omnicam/ in the wheel's tree.
         package_root = Path(self.get_ext_fullpath(ext.name)).resolve().parent.parent
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))

@@ -50,7 +50,7 @@ void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // nothing in the chosen mode are refused, not silently ignored.
 void refuseUnless(const CLI::App& cmd, const std::string& flag, bool allowed, const std::string& when);
 
-// Folder with the repository's scenes (compile-time default, OMNICAM_SCENES overrides).
+// Folder with the bundled scenes: dataFile("scenes") (base/data_files.h); OMNICAM_SCENES overrides.
 std::string scenesDir();
 // Creates `dir` (and parents) if missing; throws InputError if it exists as a non-folder.
 // Returns the folders it made, deepest first.

@@ -3,6 +3,8 @@
 #include <dlfcn.h>
 #include <link.h>
 
+#include <stdexcept>
+
 namespace omnicam {
 
 namespace fs = std::filesystem;
@@ -27,10 +29,12 @@ fs::path folderOfThisBinary() {
 
 }  // namespace
 
-// The package's `data/` folder: beside the extension, one level up from `bin/`.
+// The package's `data/` folder: beside the extension, one level up from `bin/`. Never a folder
+// relative to the working directory.
 fs::path dataRoot() {
   static const fs::path root = [] {
     const fs::path here = folderOfThisBinary();
+    if (here.empty()) throw std::runtime_error("cannot locate the folder of omnicam's binary, hence its data files");
     return (here.filename() == "bin" ? here.parent_path() : here) / OMNICAM_PACKAGE_DATA;
   }();
   return root;

@@ -10,7 +10,8 @@
 
 namespace omnicam {
 
-// The data root this build reads from (see above).
+// The data root this build reads from (see above). An installed binary that cannot find itself
+// throws std::runtime_error rather than read files relative to the working directory.
 std::filesystem::path dataRoot();
 
 // dataRoot() / relative, e.g. dataFile("refrender/blender_driver.py").

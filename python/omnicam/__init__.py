@@ -13,7 +13,8 @@ The library's own objects, not subprocess calls (docs/python.md)::
 # The compiled part loads on first use (PEP 562): `omnicam ...` and `python -m omnicam`, which
 # only start the CLI, would otherwise load its ~280 shared libraries first, doubling what a short
 # command costs. Type checkers and editors read __init__.pyi.
-from typing import Any, List
+import importlib as _importlib
+import typing as _typing
 
 __all__ = [
     "Camera",
@@ -36,20 +37,23 @@ __all__ = [
     "verify_dataset",
 ]
 _COMPILED = frozenset(__all__) - {"Dataset"} | {"__version__"}
+_SUBMODULES = frozenset({"_omnicam", "dataset"})
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> _typing.Any:
     if name == "Dataset":
         from .dataset import Dataset as value
     elif name in _COMPILED:
         from . import _omnicam
 
         value = getattr(_omnicam, name)
+    elif name in _SUBMODULES:
+        value = _importlib.import_module(f".{name}", __name__)
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     globals()[name] = value
     return value
 
 
-def __dir__() -> List[str]:
-    return sorted(set(globals()) | _COMPILED | {"Dataset"})
+def __dir__() -> _typing.List[str]:
+    return sorted(set(globals()) | _COMPILED | _SUBMODULES | {"Dataset"})
