@@ -1,4 +1,5 @@
-"""What `import omnicam` offers (__init__.py loads it on first use)."""
+"""What `import omnicam` offers (__init__.py loads it on first use). Each name is re-exported
+(`X as X`), which is what __init__.py's __all__ lists."""
 
 from ._omnicam import (
     Camera as Camera,
@@ -21,24 +22,3 @@ from ._omnicam import (
     verify_dataset as verify_dataset,
 )
 from .dataset import Dataset as Dataset
-
-__all__ = [
-    "Camera",
-    "Dataset",
-    "ExternalError",
-    "InputError",
-    "MemoryShortage",
-    "OutputError",
-    "Renderer",
-    "Rig",
-    "Scene",
-    "coco_annotations",
-    "load_scene",
-    "mapping_arena",
-    "read_exr_channels",
-    "read_image",
-    "read_uint16_png",
-    "render",
-    "run_dataset",
-    "verify_dataset",
-]
