@@ -1,25 +1,12 @@
 #include "slurm_cluster.h"
 
-#include <fcntl.h>
-#include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <chrono>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <thread>
-
-extern char** environ;
 
 namespace omnicam::testing {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 std::map<int, std::string> frameHashes(const fs::path& dataset) {
   const nlohmann::json manifest = nlohmann::json::parse(readFile(dataset / "manifest.json"));
@@ -27,23 +14,6 @@ std::map<int, std::string> frameHashes(const fs::path& dataset) {
   for (const nlohmann::json& frame : manifest.at("frames")) hashes[frame.at("index")] = frame.at("cameras").dump();
   return hashes;
 }
-
-namespace {
-
-// A free TCP port on localhost (the kernel's pick; released again at once).
-int freePort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address);
-  socklen_t length = sizeof address;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length);
-  ::close(fd);
-  return ntohs(address.sin_port);
-}
-
-}  // namespace
 
 SlurmCluster::SlurmCluster(const fs::path& root) : root_(root) {
   for (const char* sub : {"state", "spool", "log"}) fs::create_directories(root_ / sub);
@@ -66,7 +36,7 @@ SlurmCluster::SlurmCluster(const fs::path& root) : root_(root) {
     problem_ = "munged never created its socket " + socket + logs();
     return;
   }
-  const int controllerPort = freePort(), nodePort = freePort();
+  const int controllerPort = TestDaemons::freePort(), nodePort = TestDaemons::freePort();
   std::ofstream(root_ / "slurm.conf")
       << "ClusterName=omnicamtest\nSlurmctldHost=localhost(127.0.0.1)\nSlurmctldPort=" << controllerPort
       << "\nSlurmdPort=" << nodePort << "\nSlurmUser=root\nSlurmdUser=root\nAuthType=auth/munge\nAuthInfo=socket="
@@ -87,22 +57,6 @@ SlurmCluster::SlurmCluster(const fs::path& root) : root_(root) {
     problem_ = "the node never became idle; sinfo: " + shell("/usr/bin/sinfo 2>&1").out + logs();
 }
 
-SlurmCluster::~SlurmCluster() {
-  for (auto it = started_.rbegin(); it != started_.rend(); ++it) ::kill(it->second, SIGTERM);
-  for (auto it = started_.rbegin(); it != started_.rend(); ++it) {
-    const auto deadline = Clock::now() + std::chrono::seconds(10);
-    int status = 0;
-    while (::waitpid(it->second, &status, WNOHANG) == 0) {
-      if (Clock::now() > deadline) {
-        ::kill(it->second, SIGKILL);
-        ::waitpid(it->second, &status, 0);
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  }
-}
-
 CommandResult SlurmCluster::shell(const std::string& command) const {
   return runShell("SLURM_CONF=" + conf_ + " " + command);
 }
@@ -120,28 +74,8 @@ std::string SlurmCluster::logs() const {
   return out;
 }
 
-bool SlurmCluster::waitFor(const std::function<bool()>& ready, double seconds) {
-  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
-  while (Clock::now() < deadline) {
-    if (ready()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return ready();
-}
-
 void SlurmCluster::start(const std::string& name, const std::vector<std::string>& argv) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  const std::string log = (root_ / (name + ".out")).string();
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  if (::posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ) == 0) started_.emplace_back(name, pid);
-  else problem_ += "cannot start " + name + "; ";
-  posix_spawn_file_actions_destroy(&actions);
+  if (!daemons_.start(name, argv, root_ / (name + ".out"))) problem_ += "cannot start " + name + "; ";
 }
 
 }  // namespace omnicam::testing

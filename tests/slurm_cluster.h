@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "shell_command.h"
+#include "test_daemons.h"
 
 namespace omnicam::testing {
 
 class SlurmCluster {
  public:
   explicit SlurmCluster(const std::filesystem::path& root);
-  // Stops exactly what it started: SIGTERM, then SIGKILL after 10 s.
-  ~SlurmCluster();
+  // Stops exactly what it started (TestDaemons).
   SlurmCluster(const SlurmCluster&) = delete;
   SlurmCluster& operator=(const SlurmCluster&) = delete;
 
@@ -33,14 +33,14 @@ class SlurmCluster {
   // The daemons' logs (their first 3000 characters each), for failure messages.
   std::string logs() const;
 
-  static bool waitFor(const std::function<bool()>& ready, double seconds);
+  static bool waitFor(const std::function<bool()>& ready, double seconds) { return TestDaemons::waitFor(ready, seconds); }
 
  private:
   void start(const std::string& name, const std::vector<std::string>& argv);
 
   std::filesystem::path root_;
   std::string conf_, problem_;
-  std::vector<std::pair<std::string, pid_t>> started_;
+  TestDaemons daemons_;  // the last member, so destroyed first: the daemons stop before the rest goes
 };
 
 // Every frame's files and hashes in DATASET/manifest.json, by frame index: equal maps mean the

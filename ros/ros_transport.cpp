@@ -1,0 +1,97 @@
+#include "ros_transport.h"
+
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+namespace omnicam::ros1 {
+
+namespace {
+
+Stamp stampOf(const ros::Time& t) { return {t.sec, t.nsec}; }
+
+Odometry odometryOf(const nav_msgs::Odometry& m) {
+  Odometry o;
+  o.stamp = stampOf(m.header.stamp);
+  o.frame = m.header.frame_id;
+  o.childFrame = m.child_frame_id;
+  const auto& p = m.pose.pose;
+  o.position[0] = p.position.x, o.position[1] = p.position.y, o.position[2] = p.position.z;
+  o.orientationXyzw[0] = p.orientation.x, o.orientationXyzw[1] = p.orientation.y;
+  o.orientationXyzw[2] = p.orientation.z, o.orientationXyzw[3] = p.orientation.w;
+  const auto& t = m.twist.twist;
+  o.linear[0] = t.linear.x, o.linear[1] = t.linear.y, o.linear[2] = t.linear.z;
+  o.angular[0] = t.angular.x, o.angular[1] = t.angular.y, o.angular[2] = t.angular.z;
+  return o;
+}
+
+sensor_msgs::Image messageOf(const Image& image) {
+  sensor_msgs::Image m;
+  m.header.stamp = ros::Time(image.stamp.sec, image.stamp.nsec);
+  m.header.frame_id = image.frame;
+  m.width = image.width, m.height = image.height, m.step = image.step;
+  m.encoding = image.encoding;
+  m.is_bigendian = 0;
+  m.data = image.data;
+  return m;
+}
+
+}  // namespace
+
+struct Transport::Impl {
+  std::unique_ptr<ros::NodeHandle> node;
+  std::unique_ptr<ros::AsyncSpinner> spinner;
+  std::vector<ros::Subscriber> subscriptions;
+  mutable std::mutex mutex;  // guards publishers (publish may come from a worker thread)
+  std::map<std::string, ros::Publisher> publishers;
+};
+
+Transport::Transport(const std::string& name, double masterWaitSeconds) : impl_(std::make_unique<Impl>()) {
+  int argc = 0;
+  ros::init(argc, nullptr, name, ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(masterWaitSeconds);
+  while (!ros::master::check()) {
+    if (ros::WallTime::now() > deadline) throw std::runtime_error("no ROS master at " + ros::master::getURI());
+    ros::WallDuration(0.05).sleep();
+  }
+  impl_->node = std::make_unique<ros::NodeHandle>();
+  impl_->spinner = std::make_unique<ros::AsyncSpinner>(1);
+  impl_->spinner->start();
+}
+
+Transport::~Transport() {
+  impl_->spinner->stop();
+  impl_->subscriptions.clear();
+  impl_->publishers.clear();
+  impl_->node.reset();
+  ros::shutdown();
+}
+
+void Transport::subscribeOdometry(const std::string& topic, OdometryHandler handler) {
+  impl_->subscriptions.push_back(impl_->node->subscribe<nav_msgs::Odometry>(
+      topic, 10, [handler](const nav_msgs::Odometry::ConstPtr& m) { handler(odometryOf(*m)); }));
+}
+
+void Transport::advertiseImage(const std::string& topic, bool latched) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->publishers[topic] = impl_->node->advertise<sensor_msgs::Image>(topic, 2, latched);
+}
+
+void Transport::publish(const std::string& topic, const Image& image) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  const auto it = impl_->publishers.find(topic);
+  if (it == impl_->publishers.end()) throw std::logic_error("publish: " + topic + " was not advertised");
+  it->second.publish(messageOf(image));
+}
+
+uint32_t Transport::subscribers(const std::string& topic) const {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  const auto it = impl_->publishers.find(topic);
+  return it == impl_->publishers.end() ? 0 : it->second.getNumSubscribers();
+}
+
+}  // namespace omnicam::ros1

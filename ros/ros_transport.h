@@ -1,0 +1,35 @@
+#pragma once
+// omnicam's one connection to a ROS 1 master (roscpp): a node that subscribes to odometry and
+// publishes images. Built as C++17 (ros_messages.h says why). Callbacks run on roscpp's own
+// spinner thread; a handler must hand work off rather than render there.
+#include <memory>
+#include <string>
+
+#include "ros_messages.h"
+
+namespace omnicam::ros1 {
+
+class Transport {
+ public:
+  // Registers node `name` with the master of ROS_MASTER_URI (roscpp reads the environment);
+  // SIGINT is left to the caller. Throws std::runtime_error if the master cannot be reached
+  // within `masterWaitSeconds`.
+  Transport(const std::string& name, double masterWaitSeconds);
+  ~Transport();
+  Transport(const Transport&) = delete;
+  Transport& operator=(const Transport&) = delete;
+
+  // Odometry messages of `topic`, to `handler` on the spinner thread.
+  void subscribeOdometry(const std::string& topic, OdometryHandler handler);
+  // Announces `topic` as sensor_msgs/Image; `latched` keeps the last message for late subscribers.
+  void advertiseImage(const std::string& topic, bool latched = false);
+  void publish(const std::string& topic, const Image& image);
+  // Subscribers of `topic` connected now.
+  uint32_t subscribers(const std::string& topic) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace omnicam::ros1
