@@ -15,6 +15,8 @@ void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+// The live ROS 1 sensor (ros/live_sensor.h).
+void addRosCommand(CLI::App& app);
 // experiment texture-realism and arena hall.
 void addExperimentCommands(CLI::App& app);
 // Sets exitCode: 1 when a verified dataset has problems or is incomplete, 130 when interrupted.

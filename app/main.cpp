@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addStudyCommand(app);
   omnicam::cli::addViewCommand(app);
   omnicam::cli::addBenchCommand(app);
+  omnicam::cli::addRosCommand(app);
   omnicam::cli::addExperimentCommands(app);
   int exitCode = 0;
   omnicam::cli::addDemoCommand(app, exitCode);

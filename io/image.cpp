@@ -256,6 +256,18 @@ ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std:
   return decode(*input, name);
 }
 
+std::vector<unsigned char> srgb8Codes(const ImageRGBA& image) {
+  static const SrgbEncoder encode;
+  std::vector<unsigned char> codes(image.pixels.size());
+  for (size_t p = 0; p < image.pixels.size() / 4; ++p) {
+    const float* src = &image.pixels[p * 4];
+    const float alpha = src[3];
+    for (int c = 0; c < 3; ++c) codes[p * 4 + c] = encode(alpha > 0.0f ? src[c] / alpha : 0.0f);
+    codes[p * 4 + 3] = static_cast<unsigned char>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * 255.0f));
+  }
+  return codes;
+}
+
 std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image) {
   const std::string ext = lowerExtension(path);
   if (ext != ".png" && ext != ".exr") throw InputError(showPath(path) + ": output must end in .png or .exr");
@@ -274,14 +286,7 @@ std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA&
       throw OutputError(showPath(path) + ": cannot encode EXR (" + firstLine(out->geterror()) + ")");
     return bytes;
   }
-  static const SrgbEncoder encode;
-  std::vector<unsigned char> codes(image.pixels.size());
-  for (size_t p = 0; p < image.pixels.size() / 4; ++p) {
-    const float* src = &image.pixels[p * 4];
-    const float alpha = src[3];
-    for (int c = 0; c < 3; ++c) codes[p * 4 + c] = encode(alpha > 0.0f ? src[c] / alpha : 0.0f);
-    codes[p * 4 + 3] = static_cast<unsigned char>(std::lround(std::clamp(alpha, 0.0f, 1.0f) * 255.0f));
-  }
+  const std::vector<unsigned char> codes = srgb8Codes(image);
   OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:UnassociatedAlpha", 1);
   spec.attribute("oiio:ColorSpace", "sRGB");

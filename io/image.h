@@ -62,6 +62,10 @@ class ImageRowReader {
   std::unique_ptr<State> state_;
 };
 
+// The image as a PNG holds it: sRGB 8-bit codes with straight alpha, RGBA, row by row. The same
+// codes reach a live sensor's rgb8 messages (ros/live_sensor.h).
+std::vector<unsigned char> srgb8Codes(const ImageRGBA& image);
+
 // The bytes of .png (sRGB 8-bit, straight alpha) or .exr (linear float, associated alpha,
 // byte-identical for identical pixels). Throws InputError for another extension.
 std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image);

@@ -33,6 +33,17 @@ void TestDaemons::stop(const std::string& name) {
     }
 }
 
+int TestDaemons::waitForExit(const std::string& name, double seconds) {
+  for (auto it = started_.begin(); it != started_.end(); ++it)
+    if (it->first == name) {
+      int status = 0;
+      if (!waitFor([&] { return ::waitpid(it->second, &status, WNOHANG) == it->second; }, seconds)) return -1;
+      started_.erase(it);
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+  return -1;
+}
+
 // Waits for `pid`, already sent SIGTERM; SIGKILL after 10 s.
 void TestDaemons::stopAndReap(pid_t pid) {
   const auto deadline = Clock::now() + std::chrono::seconds(10);

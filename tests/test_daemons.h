@@ -28,6 +28,9 @@ class TestDaemons {
   pid_t pid(const std::string& name) const;
   // Stops daemon `name` now (SIGTERM, SIGKILL after 10 s) and forgets it.
   void stop(const std::string& name);
+  // Waits up to `seconds` for daemon `name` to end by itself: its exit code, then forgets it;
+  // -1 if it did not end in time (it keeps running) or ended by a signal.
+  int waitForExit(const std::string& name, double seconds);
 
   // Polls `ready` until it holds or `seconds` pass (the limit only bounds a failure).
   static bool waitFor(const std::function<bool()>& ready, double seconds);

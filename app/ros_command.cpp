@@ -1,0 +1,42 @@
+// `omnicam ros SPEC`: the live ROS 1 sensor (ros/live_sensor.h, docs/ros.md).
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "cli_util.h"
+#include "commands.h"
+#include "dataset_spec.h"
+#include "interrupts.h"
+#include "live_sensor.h"
+
+namespace omnicam::cli {
+
+namespace {
+
+struct RosArgs {
+  std::string spec;
+  LiveSensorOptions options;
+};
+
+void runRos(const RosArgs& a) {
+  const DatasetSpec spec = loadDatasetSpec(a.spec);
+  stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
+  const LiveSensorReport report = runLiveSensor(spec, a.options);
+  std::printf("ros: %lld poses rendered, %lld dropped while rendering\n", static_cast<long long>(report.rendered),
+              static_cast<long long>(report.dropped));
+}
+
+}  // namespace
+
+void addRosCommand(CLI::App& app) {
+  auto args = std::make_shared<RosArgs>();
+  CLI::App* cmd = app.add_subcommand("ros", "Run as a live ROS 1 camera: render the spec's cameras for each odometry pose");
+  cmd->add_option("spec", args->spec, "Dataset spec JSON: the scene, the cameras and their mounts, the settings")->required();
+  cmd->add_option("--odom", args->options.odometryTopic, "nav_msgs/Odometry topic of the robot's poses (default /odom)");
+  cmd->add_option("--robot", args->options.robot, "Namespace of the image topics: /ROBOT/CAMERA/image_raw (default robot)");
+  cmd->add_option("--frames", args->options.frames, "Stop after this many poses (default: run until SIGINT or SIGTERM)")
+      ->check(integerIn(0, INT32_MAX));
+  cmd->callback([args] { runRos(*args); });
+}
+
+}  // namespace omnicam::cli

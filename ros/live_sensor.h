@@ -1,0 +1,43 @@
+#pragma once
+// `omnicam ros SPEC` (issue #49): the cameras of a dataset spec on a robot that ROS drives, as a
+// live ROS 1 sensor. Each nav_msgs/Odometry message is a pose (its twist the robot's velocity,
+// so motion blur and rolling shutter follow the robot as in datasets). The newest pose is
+// rendered off the ROS thread and every camera's image published on /<robot>/<camera>/image_raw
+// (rgb8, the codes a dataset's PNG holds), stamped with the pose's stamp: the exposure start.
+// Poses that arrive while a frame renders replace each other; the replaced ones are dropped and
+// counted.
+#include <cstdint>
+#include <string>
+
+#include "dataset_spec.h"
+#include "motion.h"
+#include "robot_pose.h"
+#include "ros_messages.h"
+
+namespace omnicam {
+
+struct LiveSensorOptions {
+  std::string odometryTopic = "/odom";
+  std::string robot = "robot";  // the topics' namespace
+  int64_t frames = 0;           // stop after this many rendered poses; 0: until SIGINT or SIGTERM
+  double masterWaitSeconds = 30.0;
+};
+
+struct LiveSensorReport {
+  int64_t rendered = 0, dropped = 0;
+};
+
+// An odometry message as the robot's pose (x, y, yaw about +Z from the quaternion) and velocity
+// (the twist's forward, left and yaw rate, in the robot's frame).
+struct LivePose {
+  RobotPose pose;
+  BodyVelocity velocity;
+  ros1::Stamp stamp;
+};
+LivePose livePoseOf(const ros1::Odometry& odometry);
+
+// Runs the sensor until options.frames poses are rendered or a signal arrives. InputError for a
+// spec the dataset reader refuses; ExternalError if no master answers.
+LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options);
+
+}  // namespace omnicam
