@@ -21,9 +21,14 @@ struct RosArgs {
 void runRos(const RosArgs& a) {
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
-  const LiveSensorReport report = runLiveSensor(spec, a.options);
-  std::printf("ros: %lld poses rendered, %lld dropped while rendering\n", static_cast<long long>(report.rendered),
-              static_cast<long long>(report.dropped));
+  const LiveSensorReport report = runLiveSensor(spec, a.options, [&] {
+    std::printf("ros: ready: poses from %s, images on /%s/CAMERA/image_raw\n", a.options.odometryTopic.c_str(),
+                a.options.robot.c_str());
+    std::fflush(stdout);
+  });
+  std::printf("ros: %lld poses rendered, %lld dropped while rendering, %lld refused\n",
+              static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
+              static_cast<long long>(report.refused));
 }
 
 }  // namespace

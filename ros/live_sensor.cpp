@@ -1,8 +1,10 @@
 #include "live_sensor.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdio>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -24,13 +26,17 @@ constexpr double kDegreesPerRadian = 180.0 / M_PI;
 // The newest pose not yet rendered: the ROS thread puts, the render loop takes.
 class NewestPose {
  public:
-  void put(const LivePose& pose) {
+  // Whether it replaced a pose not yet rendered (which is then dropped).
+  bool put(const LivePose& pose) {
+    bool replaced = false;
     {
       std::lock_guard lock(mutex_);
-      if (pending_) ++dropped_;
+      replaced = pending_.has_value();
+      if (replaced) ++dropped_;
       pending_ = pose;
     }
     ready_.notify_one();
+    return replaced;
   }
   // The newest pose, or nothing if none came within `wait`.
   std::optional<LivePose> take(std::chrono::milliseconds wait) {
@@ -78,7 +84,44 @@ ros1::Image renderCamera(const DatasetPlan& plan, size_t camera, const LivePose&
   return out;
 }
 
+std::string stampText(const ros1::Stamp& stamp) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%u.%09u", stamp.sec, stamp.nsec);
+  return text;
+}
+
+ros1::Diagnostic diagnostic(const LiveSensorOptions& options, const std::string& message, const ros1::Stamp& stamp,
+                            int64_t count) {
+  ros1::Diagnostic d;
+  d.level = ros1::Diagnostic::Warn;
+  d.name = "omnicam ros: " + options.robot;
+  d.hardwareId = options.robot;
+  d.message = message;
+  d.values = {{"pose_stamp", stampText(stamp)}, {"count", std::to_string(count)}};
+  return d;
+}
+
+// Dataset limits (docs/dataset-format.md): poses within ±10 km, speeds up to 100 m/s.
+constexpr double kMaxCoordinate = 10000.0, kMaxSpeed = 100.0;
+
 }  // namespace
+
+std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted) {
+  const double* numbers[] = {o.position, o.orientationXyzw, o.linear, o.angular};
+  const size_t counts[] = {3, 4, 3, 3};
+  for (size_t k = 0; k < 4; ++k)
+    for (size_t i = 0; i < counts[k]; ++i)
+      if (!std::isfinite(numbers[k][i])) return "a number of the pose or twist is not finite";
+  const double* q = o.orientationXyzw;
+  if (std::abs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) - 1.0) > 1e-3)
+    return "the orientation is not a unit quaternion";
+  if (std::abs(o.position[0]) > kMaxCoordinate || std::abs(o.position[1]) > kMaxCoordinate)
+    return "the position is beyond ±10 km";
+  if (std::hypot(o.linear[0], o.linear[1]) > kMaxSpeed) return "the speed is above 100 m/s";
+  if (lastAccepted && (o.stamp.sec < lastAccepted->sec || (o.stamp.sec == lastAccepted->sec && o.stamp.nsec <= lastAccepted->nsec)))
+    return "its stamp " + stampText(o.stamp) + " is not after the last pose's, " + stampText(*lastAccepted);
+  return "";
+}
 
 LivePose livePoseOf(const ros1::Odometry& odometry) {
   const double* q = odometry.orientationXyzw;
@@ -90,7 +133,8 @@ LivePose livePoseOf(const ros1::Odometry& odometry) {
   return live;
 }
 
-LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options) {
+LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
+                               const std::function<void()>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
   std::optional<ros1::Transport> transport;
   try {
@@ -100,8 +144,20 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   }
   for (const CameraSetup& setup : plan.setups()) transport->advertiseImage(imageTopic(options, setup.camera->name));
   NewestPose newest;
-  transport->subscribeOdometry(options.odometryTopic, [&](const ros1::Odometry& o) { newest.put(livePoseOf(o)); });
+  // Called on the spinner's one thread only: `lastAccepted` and `refused` are its own.
+  std::optional<ros1::Stamp> lastAccepted;
+  std::atomic<int64_t> refused = 0;
+  transport->subscribeOdometry(options.odometryTopic, [&](const ros1::Odometry& o) {
+    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty()) {
+      transport->publish(diagnostic(options, "pose refused: " + problem, o.stamp, ++refused));
+      return;
+    }
+    lastAccepted = o.stamp;
+    if (newest.put(livePoseOf(o)))
+      transport->publish(diagnostic(options, "pose dropped: the last one was still rendering", o.stamp, newest.dropped()));
+  });
 
+  if (ready) ready();
   LiveSensorReport report;
   while (!interruptRequested() && (options.frames == 0 || report.rendered < options.frames)) {
     const std::optional<LivePose> live = newest.take(std::chrono::milliseconds(100));
@@ -113,6 +169,7 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     ++report.rendered;
   }
   report.dropped = newest.dropped();
+  report.refused = refused;
   return report;
 }
 

@@ -4,9 +4,10 @@
 // so motion blur and rolling shutter follow the robot as in datasets). The newest pose is
 // rendered off the ROS thread and every camera's image published on /<robot>/<camera>/image_raw
 // (rgb8, the codes a dataset's PNG holds), stamped with the pose's stamp: the exposure start.
-// Poses that arrive while a frame renders replace each other; the replaced ones are dropped and
-// counted.
+// Poses that arrive while a frame renders replace each other; the replaced ones are dropped,
+// counted and reported on /diagnostics, as are refused poses (problemWith).
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "dataset_spec.h"
@@ -24,7 +25,7 @@ struct LiveSensorOptions {
 };
 
 struct LiveSensorReport {
-  int64_t rendered = 0, dropped = 0;
+  int64_t rendered = 0, dropped = 0, refused = 0;
 };
 
 // An odometry message as the robot's pose (x, y, yaw about +Z from the quaternion) and velocity
@@ -36,8 +37,17 @@ struct LivePose {
 };
 LivePose livePoseOf(const ros1::Odometry& odometry);
 
-// Runs the sensor until options.frames poses are rendered or a signal arrives. InputError for a
-// spec the dataset reader refuses; ExternalError if no master answers.
-LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options);
+// Why an odometry message is refused ("" if it is not): a number that is not finite, a
+// quaternion far from unit length, a pose or speed beyond a dataset's limits, or a stamp not
+// after `lastAccepted`'s. A refused pose is not rendered; the sensor says why on /diagnostics
+// and goes on.
+std::string problemWith(const ros1::Odometry& odometry, const ros1::Stamp* lastAccepted);
+
+// Runs the sensor until options.frames poses are rendered or a signal arrives (then within
+// 0.1 s of the frame being rendered). `ready`, if set, is called once the topics are announced
+// and the odometry subscribed. InputError for a spec the dataset reader refuses; ExternalError
+// if no master answers.
+LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
+                               const std::function<void()>& ready = {});
 
 }  // namespace omnicam

@@ -2,10 +2,12 @@
 // published on odometry, the images of two cameras received, each equal byte for byte to the
 // frame `omnicam dataset` renders for the same spec and poses (the front camera with a rolling
 // shutter, so that the odometry's twist shows).
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -105,34 +107,62 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForTwoCameras) {
           std::lock_guard<std::mutex> lock(mutex);
           received[camera].push_back(*m);
         }));
+  std::vector<std::string> diagnostics;
+  subscriptions.push_back(handle.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& status : m->status) diagnostics.push_back(status.message);
+      }));
   const auto count = [&](const std::string& camera) {
     std::lock_guard<std::mutex> lock(mutex);
     return received[camera].size();
   };
-  // The node is up when it listens to the odometry and both image topics are connected.
+  const auto lastDiagnostic = [&](size_t atLeast) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return diagnostics.size() >= atLeast ? diagnostics[atLeast - 1] : std::string();
+  };
+  // The node is up when it listens to the odometry and both images and its diagnostics are
+  // connected (a message published before its connection would be lost).
   ASSERT_TRUE(TestDaemons::waitFor(
       [&] {
-        return odometry.getNumSubscribers() > 0 && subscriptions[0].getNumPublishers() > 0 &&
-               subscriptions[1].getNumPublishers() > 0;
+        bool connected = odometry.getNumSubscribers() > 0;
+        for (const ros::Subscriber& s : subscriptions) connected = connected && s.getNumPublishers() > 0;
+        return connected;
       },
       120.0))
       << readFile(root / "node.out");
 
-  // One pose at a time, each sent once the last one's images are in: nothing is dropped.
-  for (size_t k = 0; k < std::size(kPoses); ++k) {
+  const auto odometryOf = [](const SentPose& pose, uint32_t sec) {
     nav_msgs::Odometry m;
-    m.header.stamp = ros::Time(100 + static_cast<uint32_t>(k), 250);
+    m.header.stamp = ros::Time(sec, 250);
     m.header.frame_id = "odom";
     m.child_frame_id = "base_link";
-    m.pose.pose.position.x = kPoses[k].x, m.pose.pose.position.y = kPoses[k].y;
-    m.pose.pose.orientation.z = kPoses[k].qz, m.pose.pose.orientation.w = kPoses[k].qw;
+    m.pose.pose.position.x = pose.x, m.pose.pose.position.y = pose.y;
+    m.pose.pose.orientation.z = pose.qz, m.pose.pose.orientation.w = pose.qw;
     m.twist.twist.linear.x = kForward, m.twist.twist.angular.z = kYawRateRadPerS;
-    odometry.publish(m);
+    return m;
+  };
+  // One pose at a time, each sent once the last one's images are in: nothing is dropped. After
+  // the first, two hostile ones: each refused with a diagnostic, and the node goes on.
+  for (size_t k = 0; k < std::size(kPoses); ++k) {
+    odometry.publish(odometryOf(kPoses[k], 100 + static_cast<uint32_t>(k)));
     ASSERT_TRUE(TestDaemons::waitFor([&] { return count("front") > k && count("rear") > k; }, 300.0))
         << "pose " << k << ": " << readFile(root / "node.out");
+    if (k > 0) continue;
+    nav_msgs::Odometry notFinite = odometryOf(kPoses[1], 150);
+    notFinite.pose.pose.position.x = std::nan("");
+    odometry.publish(notFinite);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return !lastDiagnostic(1).empty(); }, 120.0));
+    EXPECT_NE(lastDiagnostic(1).find("pose refused: a number of the pose or twist is not finite"), std::string::npos)
+        << lastDiagnostic(1);
+    odometry.publish(odometryOf(kPoses[1], 99));  // before pose 0's stamp
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return !lastDiagnostic(2).empty(); }, 120.0));
+    EXPECT_NE(lastDiagnostic(2).find("pose refused: its stamp 99.000000250 is not after the last pose's, 100.000000250"),
+              std::string::npos)
+        << lastDiagnostic(2);
   }
   ASSERT_EQ(node.waitForExit("omnicam ros", 120.0), 0) << readFile(root / "node.out");
-  EXPECT_NE(readFile(root / "node.out").find("3 poses rendered, 0 dropped"), std::string::npos) << readFile(root / "node.out");
+  EXPECT_NE(readFile(root / "node.out").find("3 poses rendered, 0 dropped while rendering, 2 refused"), std::string::npos) << readFile(root / "node.out");
 
   for (const std::string camera : kCameras)
     for (size_t k = 0; k < std::size(kPoses); ++k) {
@@ -150,6 +180,47 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForTwoCameras) {
   ros::shutdown();
   fs::remove_all(root);
 }
+
+// A spec the dataset reader refuses is refused the same way, before any master is looked for.
+TEST(LiveSensor, RefusesASpecAsTheDatasetReaderDoes) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_spec_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::string text = specText();
+  const std::string spp = "\"spp\": 4";
+  text.replace(text.find(spp), spp.size(), "\"spp\": 5");
+  std::ofstream(root / "spec.json") << text;
+  const std::string spec = (root / "spec.json").string();
+  const CommandResult live = runShell(std::string(OMNICAM_BINARY) + " ros " + spec + " 2>&1");
+  const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " + (root / "d").string() + " 2>&1");
+  EXPECT_EQ(live.code, 2) << live.out;
+  EXPECT_EQ(dataset.code, 2) << dataset.out;
+  EXPECT_NE(live.out.find("spp: must be a perfect square"), std::string::npos) << live.out;
+  EXPECT_EQ(live.out, dataset.out);
+  fs::remove_all(root);
+}
+
+// A live node runs until it is told to stop: SIGINT (Ctrl-C) or SIGTERM (roslaunch, systemd) end
+// it cleanly between frames, exit code 0, with nothing left running.
+class LiveSensorStops : public ::testing::TestWithParam<int> {};
+
+TEST_P(LiveSensorStops, OnItsSignalWithExitCodeZero) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_stop_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::ofstream(root / "spec.json") << specText();
+  RosMaster master(root);
+  ASSERT_EQ(master.problem(), "");
+  TestDaemons node;
+  ASSERT_TRUE(node.start("omnicam ros", {OMNICAM_BINARY, "ros", (root / "spec.json").string()}, root / "node.out",
+                         master.environment()));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return readFile(root / "node.out").find("ros: ready") != std::string::npos; }, 120.0))
+      << readFile(root / "node.out");
+  ::kill(node.pid("omnicam ros"), GetParam());
+  EXPECT_EQ(node.waitForExit("omnicam ros", 60.0), 0) << readFile(root / "node.out");
+  EXPECT_NE(readFile(root / "node.out").find("ros: 0 poses rendered"), std::string::npos) << readFile(root / "node.out");
+  fs::remove_all(root);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, LiveSensorStops, ::testing::Values(SIGINT, SIGTERM));
 
 }  // namespace
 }  // namespace omnicam

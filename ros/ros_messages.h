@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace omnicam::ros1 {
@@ -34,6 +35,14 @@ struct Image {
   uint32_t width = 0, height = 0, step = 0;
   std::string encoding;  // "rgb8", "32FC1", "16UC1"
   std::vector<uint8_t> data;
+};
+
+// diagnostic_msgs/DiagnosticStatus, published alone in a DiagnosticArray on /diagnostics.
+struct Diagnostic {
+  enum Level : int8_t { Ok = 0, Warn = 1, Error = 2 };
+  Level level = Ok;
+  std::string name, message, hardwareId;
+  std::vector<std::pair<std::string, std::string>> values;
 };
 
 using OdometryHandler = std::function<void(const Odometry&)>;

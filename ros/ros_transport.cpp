@@ -1,5 +1,6 @@
 #include "ros_transport.h"
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
@@ -48,6 +49,7 @@ struct Transport::Impl {
   std::vector<ros::Subscriber> subscriptions;
   mutable std::mutex mutex;  // guards publishers (publish may come from a worker thread)
   std::map<std::string, ros::Publisher> publishers;
+  ros::Publisher diagnostics;
 };
 
 Transport::Transport(const std::string& name, double masterWaitSeconds) : impl_(std::make_unique<Impl>()) {
@@ -59,6 +61,7 @@ Transport::Transport(const std::string& name, double masterWaitSeconds) : impl_(
     ros::WallDuration(0.05).sleep();
   }
   impl_->node = std::make_unique<ros::NodeHandle>();
+  impl_->diagnostics = impl_->node->advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
   impl_->spinner = std::make_unique<ros::AsyncSpinner>(1);
   impl_->spinner->start();
 }
@@ -67,6 +70,7 @@ Transport::~Transport() {
   impl_->spinner->stop();
   impl_->subscriptions.clear();
   impl_->publishers.clear();
+  impl_->diagnostics.shutdown();
   impl_->node.reset();
   ros::shutdown();
 }
@@ -86,6 +90,24 @@ void Transport::publish(const std::string& topic, const Image& image) {
   const auto it = impl_->publishers.find(topic);
   if (it == impl_->publishers.end()) throw std::logic_error("publish: " + topic + " was not advertised");
   it->second.publish(messageOf(image));
+}
+
+void Transport::publish(const Diagnostic& diagnostic) {
+  diagnostic_msgs::DiagnosticStatus status;
+  status.level = diagnostic.level;
+  status.name = diagnostic.name;
+  status.message = diagnostic.message;
+  status.hardware_id = diagnostic.hardwareId;
+  for (const auto& [key, value] : diagnostic.values) {
+    diagnostic_msgs::KeyValue pair;
+    pair.key = key, pair.value = value;
+    status.values.push_back(pair);
+  }
+  diagnostic_msgs::DiagnosticArray array;
+  array.header.stamp = ros::Time::now();
+  array.status.push_back(status);
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->diagnostics.publish(array);
 }
 
 uint32_t Transport::subscribers(const std::string& topic) const {

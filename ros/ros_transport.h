@@ -24,6 +24,8 @@ class Transport {
   // Announces `topic` as sensor_msgs/Image; `latched` keeps the last message for late subscribers.
   void advertiseImage(const std::string& topic, bool latched = false);
   void publish(const std::string& topic, const Image& image);
+  // One status on /diagnostics (advertised by the constructor), stamped now.
+  void publish(const Diagnostic& diagnostic);
   // Subscribers of `topic` connected now.
   uint32_t subscribers(const std::string& topic) const;
 

@@ -1,0 +1,56 @@
+// An odometry message as the sensor's pose, and the messages it refuses: closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "live_sensor.h"
+
+namespace omnicam {
+namespace {
+
+ros1::Odometry turnedBy(double yawRad) {
+  ros1::Odometry o;
+  o.stamp = {5, 7};
+  o.position[0] = 3.5, o.position[1] = -1.25;
+  o.orientationXyzw[2] = std::sin(yawRad / 2), o.orientationXyzw[3] = std::cos(yawRad / 2);
+  o.linear[0] = 0.8, o.linear[1] = -0.1, o.angular[2] = M_PI / 4;
+  return o;
+}
+
+TEST(LivePose, YawComesFromTheQuaternionAndTheTwistIsTheVelocity) {
+  for (const double yawDeg : {0.0, 30.0, 90.0, 179.0, -135.0}) {
+    const LivePose live = livePoseOf(turnedBy(yawDeg * M_PI / 180.0));
+    EXPECT_NEAR(live.pose.yawDeg, yawDeg, 1e-12);
+    EXPECT_EQ(live.pose.x, 3.5);
+    EXPECT_EQ(live.pose.y, -1.25);
+    EXPECT_EQ(live.velocity.vx, 0.8);
+    EXPECT_EQ(live.velocity.vy, -0.1);
+    EXPECT_NEAR(live.velocity.yawRateDegPerS, 45.0, 1e-12);
+    EXPECT_EQ(live.stamp.sec, 5u);
+    EXPECT_EQ(live.stamp.nsec, 7u);
+  }
+}
+
+TEST(LivePose, HostileMessagesAreRefusedWithTheirReason) {
+  const ros1::Stamp last{5, 7};
+  EXPECT_EQ(problemWith(turnedBy(0.3), &last), "its stamp 5.000000007 is not after the last pose's, 5.000000007");
+  EXPECT_EQ(problemWith(turnedBy(0.3), nullptr), "");
+  const ros1::Stamp earlier{5, 6};
+  EXPECT_EQ(problemWith(turnedBy(0.3), &earlier), "");
+  ros1::Odometry o = turnedBy(0.3);
+  o.angular[2] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(problemWith(o, nullptr), "a number of the pose or twist is not finite");
+  o = turnedBy(0.3);
+  o.orientationXyzw[3] = 0.5;
+  EXPECT_EQ(problemWith(o, nullptr), "the orientation is not a unit quaternion");
+  o = turnedBy(0.3);
+  o.position[1] = -10000.5;
+  EXPECT_EQ(problemWith(o, nullptr), "the position is beyond ±10 km");
+  o = turnedBy(0.3);
+  o.linear[0] = 80.0, o.linear[1] = 61.0;
+  EXPECT_EQ(problemWith(o, nullptr), "the speed is above 100 m/s");
+}
+
+}  // namespace
+}  // namespace omnicam
