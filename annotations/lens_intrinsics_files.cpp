@@ -21,21 +21,6 @@ constexpr const char* kFrameNote =
     "Camera frame: X right, Y down, Z along the optical axis, at the lens' centre of projection; pixel centres "
     "are integers (cx = (W - 1)/2 at the image centre).";
 
-// The Kannala–Brandt view of a lens, where it is one: Kannala–Brandt itself, or the equidistant
-// f-θ lens (k = 0).
-std::optional<KannalaBrandt> asKannalaBrandt(const LensModel& model) {
-  if (const auto* kb = std::get_if<KannalaBrandt>(&model)) return *kb;
-  if (const auto* f = std::get_if<FThetaLens>(&model); f && f->kind == FThetaLens::Kind::Equidistant)
-    return KannalaBrandt{f->f, f->f, f->cx, f->cy, {0.0, 0.0, 0.0, 0.0}, f->maxThetaRad};
-  return std::nullopt;
-}
-
-// A pinhole Kalibr and camodocal describe: their radtan has no k3.
-const PinholeRadTan* asFourCoefficientPinhole(const LensModel& model) {
-  const auto* p = std::get_if<PinholeRadTan>(&model);
-  return p && p->distortion.k3 == 0.0 ? p : nullptr;
-}
-
 cv::Mat cameraMatrix(double fx, double fy, double cx, double cy) {
   return (cv::Mat_<double>(3, 3) << fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0);
 }
@@ -47,6 +32,18 @@ std::string floats(const std::vector<double>& values) {
 }
 
 }  // namespace
+
+std::optional<KannalaBrandt> asKannalaBrandt(const LensModel& model) {
+  if (const auto* kb = std::get_if<KannalaBrandt>(&model)) return *kb;
+  if (const auto* f = std::get_if<FThetaLens>(&model); f && f->kind == FThetaLens::Kind::Equidistant)
+    return KannalaBrandt{f->f, f->f, f->cx, f->cy, {0.0, 0.0, 0.0, 0.0}, f->maxThetaRad};
+  return std::nullopt;
+}
+
+const PinholeRadTan* asFourCoefficientPinhole(const LensModel& model) {
+  const auto* p = std::get_if<PinholeRadTan>(&model);
+  return p && p->distortion.k3 == 0.0 ? p : nullptr;
+}
 
 std::optional<KalibrLens> kalibrLensOf(const LensModel& model) {
   if (const auto kb = asKannalaBrandt(model))

@@ -17,6 +17,12 @@
 
 namespace omnicam {
 
+// The Kannala–Brandt view of a lens, where it is one: Kannala–Brandt itself, or the equidistant
+// f-θ lens (k = 0).
+std::optional<KannalaBrandt> asKannalaBrandt(const LensModel& model);
+// A pinhole Kalibr and camodocal describe: their radtan has no k3.
+const PinholeRadTan* asFourCoefficientPinhole(const LensModel& model);
+
 // A lens in Kalibr's (and EuRoC's sensor.yaml's) terms: camera_model, intrinsics, distortion.
 struct KalibrLens {
   std::string cameraModel;       // pinhole, ds, eucm

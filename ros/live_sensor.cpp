@@ -15,6 +15,7 @@
 #include "film.h"
 #include "image.h"
 #include "interrupts.h"
+#include "ros_camera_info.h"
 #include "ros_transport.h"
 
 namespace omnicam {
@@ -56,8 +57,13 @@ class NewestPose {
   int64_t dropped_ = 0;
 };
 
-std::string imageTopic(const LiveSensorOptions& options, const std::string& camera) {
-  return "/" + options.robot + "/" + camera + "/image_raw";
+// /<robot>/<camera>/<leaf>: image_raw, camera_info, intrinsics.
+std::string cameraTopic(const LiveSensorOptions& options, const std::string& camera, const char* leaf) {
+  return "/" + options.robot + "/" + camera + "/" + leaf;
+}
+
+ros1::CameraInfo cameraInfoMessage(const RosCameraInfo& info, const ros1::Stamp& stamp, const std::string& frame) {
+  return {stamp, frame, info.width, info.height, info.distortionModel, info.d, info.k, info.r, info.p};
 }
 
 // Camera `camera`'s frame at `live`, as the dataset renders it (frame_scheduler.cpp).
@@ -142,7 +148,16 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   } catch (const std::runtime_error& e) {
     throw ExternalError(std::string("ros: ") + e.what() + " (start one with `roscore`, or set ROS_MASTER_URI)");
   }
-  for (const CameraSetup& setup : plan.setups()) transport->advertiseImage(imageTopic(options, setup.camera->name));
+  // Each camera's intrinsics, once; a model ROS has no name for also on a latched topic.
+  std::vector<RosCameraInfo> infos;
+  for (const CameraSetup& setup : plan.setups()) {
+    const std::string& name = setup.camera->name;
+    transport->advertiseImage(cameraTopic(options, name, "image_raw"));
+    transport->advertiseCameraInfo(cameraTopic(options, name, "camera_info"));
+    infos.push_back(rosCameraInfoOf(*setup.model));
+    if (!infos.back().intrinsicsJson.empty())
+      transport->publishLatchedText(cameraTopic(options, name, "intrinsics"), infos.back().intrinsicsJson);
+  }
   NewestPose newest;
   // Called on the spinner's one thread only: `lastAccepted` and `refused` are its own.
   std::optional<ros1::Stamp> lastAccepted;
@@ -164,7 +179,9 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     if (!live) continue;
     for (size_t c = 0; c < plan.setups().size(); ++c) {
       const uint64_t drawIndex = static_cast<uint64_t>(report.rendered) * plan.setups().size() + c;
-      transport->publish(imageTopic(options, plan.setups()[c].camera->name), renderCamera(plan, c, *live, drawIndex));
+      const std::string& name = plan.setups()[c].camera->name;
+      transport->publish(cameraTopic(options, name, "image_raw"), renderCamera(plan, c, *live, drawIndex));
+      transport->publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live->stamp, name));
     }
     ++report.rendered;
   }

@@ -1,11 +1,13 @@
 // `omnicam ros SPEC` end to end against a ROS master the test starts and stops itself: poses
 // published on odometry, the images of two cameras received, each equal byte for byte to the
 // frame `omnicam dataset` renders for the same spec and poses (the front camera with a rolling
-// shutter, so that the odometry's twist shows).
+// shutter, so that the odometry's twist shows), each camera_info equal to the dataset's
+// intrinsics files, the fisheye's as image_geometry reads it.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <signal.h>
 #include <unistd.h>
@@ -17,6 +19,9 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <image_geometry/pinhole_camera_model.h>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/persistence.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -41,7 +46,7 @@ struct SentPose {
 };
 const SentPose kPoses[] = {{1.0, -0.5, 0.0, 1.0, 0.0}, {2.0, 1.0, 1.0, 0.0, 180.0}, {-1.5, 0.25, 0.0, 1.0, 0.0}};
 constexpr double kForward = 0.5, kYawRateRadPerS = 0.3;
-const char* kCameras[] = {"front", "rear"};
+const char* kCameras[] = {"front", "rear", "fisheye"};
 
 // The scene's rig with a rolling shutter: the front camera's frames then depend on the twist.
 std::string rollingShutterRig() {
@@ -61,7 +66,10 @@ std::string specText() {
   "poses": {"list": [)" + poses.str() + R"(]}, "motion": {"velocity": [)" + std::to_string(kForward) + ", 0, " + yawRate +
          R"(]},
   "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}, "rig": )" + rollingShutterRig() + R"(},
-              {"name": "rear", "mount": {"x": -0.1, "y": 0, "yaw_deg": 180}}],
+              {"name": "rear", "mount": {"x": -0.1, "y": 0, "yaw_deg": 180}},
+              {"name": "fisheye", "mount": {"x": 0, "y": 0.1, "yaw_deg": 90}, "rig": {"height": 0.3, "lens":
+                {"model": "kannala_brandt", "width": 320, "height": 240, "fx": 95, "fy": 95,
+                 "k": [0.02, -0.005, 0.001, 0], "max_theta_deg": 100}}}],
   "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
 }
 
@@ -75,7 +83,45 @@ std::vector<uint8_t> datasetRgb8(const fs::path& dataset, const std::string& cam
   return std::vector<uint8_t>(rgb.data, rgb.data + rgb.total() * 3);
 }
 
-TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForTwoCameras) {
+cv::Mat matrixOf(const double* values, int rows, int cols) { return cv::Mat(rows, cols, CV_64F, const_cast<double*>(values)).clone(); }
+
+// camera_info against the dataset's opencv.yaml of the camera: the same K and D (and ξ first in
+// D for the mirror camera), number for number.
+void expectIntrinsicsOfTheFile(const sensor_msgs::CameraInfo& info, const fs::path& yaml) {
+  cv::FileStorage file(yaml.string(), cv::FileStorage::READ);
+  ASSERT_TRUE(file.isOpened()) << yaml;
+  const cv::Mat k = file["K"].mat(), d = file["D"].mat();
+  EXPECT_EQ(cv::norm(matrixOf(info.K.data(), 3, 3), k, cv::NORM_INF), 0.0);
+  EXPECT_EQ(info.width, static_cast<uint32_t>(static_cast<int>(file["image_width"])));
+  EXPECT_EQ(info.height, static_cast<uint32_t>(static_cast<int>(file["image_height"])));
+  std::vector<double> expected;
+  if (static_cast<std::string>(file["camera_model"]) == "omnidir") {
+    EXPECT_EQ(info.distortion_model, "omnidirectional");
+    expected.push_back(static_cast<double>(file["xi"]));
+  } else {
+    EXPECT_EQ(info.distortion_model, "equidistant");
+  }
+  expected.insert(expected.end(), d.begin<double>(), d.end<double>());
+  EXPECT_EQ(info.D, expected);
+}
+
+// An equidistant camera_info as image_geometry reads it: undistorting cv::fisheye's projection
+// of a point gives the point's pinhole projection.
+void expectImageGeometryUndistortsCvFisheye(const sensor_msgs::CameraInfo& info) {
+  image_geometry::PinholeCameraModel model;
+  ASSERT_TRUE(model.fromCameraInfo(info));
+  const cv::Matx33d k(info.K.data());
+  const cv::Vec4d d(info.D[0], info.D[1], info.D[2], info.D[3]);
+  for (const cv::Point3d point : {cv::Point3d(0.2, -0.1, 1.0), cv::Point3d(-0.6, 0.3, 1.0), cv::Point3d(0.9, 0.7, 1.0)}) {
+    std::vector<cv::Point2d> raw;
+    cv::fisheye::projectPoints(std::vector<cv::Point3d>{point}, raw, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), k, d);
+    const cv::Point2d rectified = model.rectifyPoint(raw[0]), pinhole = model.project3dToPixel(point);
+    EXPECT_NEAR(rectified.x, pinhole.x, 1e-3) << point;
+    EXPECT_NEAR(rectified.y, pinhole.y, 1e-3) << point;
+  }
+}
+
+TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
   const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_test_" + std::to_string(::getpid()));
   fs::create_directories(root);
   std::ofstream(root / "spec.json") << specText();
@@ -100,22 +146,32 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForTwoCameras) {
   ros::Publisher odometry = handle.advertise<nav_msgs::Odometry>("/bot/odom", 10);
   std::mutex mutex;
   std::map<std::string, std::vector<sensor_msgs::Image>> received;
+  std::map<std::string, std::vector<sensor_msgs::CameraInfo>> infos;
   std::vector<ros::Subscriber> subscriptions;
-  for (const std::string camera : kCameras)
+  for (const std::string camera : kCameras) {
     subscriptions.push_back(handle.subscribe<sensor_msgs::Image>(
         "/bot/" + camera + "/image_raw", 10, [&, camera](const sensor_msgs::Image::ConstPtr& m) {
           std::lock_guard<std::mutex> lock(mutex);
           received[camera].push_back(*m);
         }));
+    subscriptions.push_back(handle.subscribe<sensor_msgs::CameraInfo>(
+        "/bot/" + camera + "/camera_info", 10, [&, camera](const sensor_msgs::CameraInfo::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex);
+          infos[camera].push_back(*m);
+        }));
+  }
   std::vector<std::string> diagnostics;
   subscriptions.push_back(handle.subscribe<diagnostic_msgs::DiagnosticArray>(
       "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
         std::lock_guard<std::mutex> lock(mutex);
         for (const auto& status : m->status) diagnostics.push_back(status.message);
       }));
-  const auto count = [&](const std::string& camera) {
+  // Frames complete with their camera_info, of every camera.
+  const auto count = [&] {
     std::lock_guard<std::mutex> lock(mutex);
-    return received[camera].size();
+    size_t least = SIZE_MAX;
+    for (const std::string camera : kCameras) least = std::min({least, received[camera].size(), infos[camera].size()});
+    return least;
   };
   const auto lastDiagnostic = [&](size_t atLeast) {
     std::lock_guard<std::mutex> lock(mutex);
@@ -146,7 +202,7 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForTwoCameras) {
   // the first, two hostile ones: each refused with a diagnostic, and the node goes on.
   for (size_t k = 0; k < std::size(kPoses); ++k) {
     odometry.publish(odometryOf(kPoses[k], 100 + static_cast<uint32_t>(k)));
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return count("front") > k && count("rear") > k; }, 300.0))
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return count() > k; }, 300.0))
         << "pose " << k << ": " << readFile(root / "node.out");
     if (k > 0) continue;
     nav_msgs::Odometry notFinite = odometryOf(kPoses[1], 150);
@@ -171,11 +227,17 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForTwoCameras) {
       EXPECT_EQ(image.header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 250));
       EXPECT_EQ(image.header.frame_id, camera);
       EXPECT_EQ(image.encoding, "rgb8");
-      EXPECT_EQ(image.width, 96u);
-      EXPECT_EQ(image.height, 96u);
-      EXPECT_EQ(image.step, 96u * 3);
+      EXPECT_EQ(image.step, image.width * 3);
       EXPECT_TRUE(image.data == datasetRgb8(root / "dataset", camera, static_cast<int>(k)));
+      const sensor_msgs::CameraInfo& info = infos[camera][k];
+      EXPECT_EQ(info.header.stamp, image.header.stamp);
+      EXPECT_EQ(info.header.frame_id, camera);
+      EXPECT_EQ(info.width, image.width);
+      EXPECT_EQ(info.height, image.height);
+      expectIntrinsicsOfTheFile(info, root / "dataset" / camera / "intrinsics" / "opencv.yaml");
     }
+  EXPECT_EQ(received["front"][0].width, 96u);
+  expectImageGeometryUndistortsCvFisheye(infos["fisheye"][0]);
   spinner.stop();
   ros::shutdown();
   fs::remove_all(root);

@@ -3,6 +3,7 @@
 // ROS 1's generated message headers do not compile as C++20 (they use std::allocator<void>::rebind,
 // removed in C++20), so only ros_transport.cpp, built as C++17, includes them; the rest of
 // omnicam talks to ROS through these structs.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -35,6 +36,17 @@ struct Image {
   uint32_t width = 0, height = 0, step = 0;
   std::string encoding;  // "rgb8", "32FC1", "16UC1"
   std::vector<uint8_t> data;
+};
+
+// sensor_msgs/CameraInfo (annotations/ros_camera_info.h says what each model's holds).
+struct CameraInfo {
+  Stamp stamp;
+  std::string frame;
+  uint32_t width = 0, height = 0;
+  std::string distortionModel;
+  std::vector<double> d;
+  std::array<double, 9> k{}, r{};
+  std::array<double, 12> p{};
 };
 
 // diagnostic_msgs/DiagnosticStatus, published alone in a DiagnosticArray on /diagnostics.

@@ -3,8 +3,11 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <std_msgs/String.h>
 
+#include <algorithm>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -41,6 +44,19 @@ sensor_msgs::Image messageOf(const Image& image) {
   return m;
 }
 
+sensor_msgs::CameraInfo messageOf(const CameraInfo& info) {
+  sensor_msgs::CameraInfo m;
+  m.header.stamp = ros::Time(info.stamp.sec, info.stamp.nsec);
+  m.header.frame_id = info.frame;
+  m.width = info.width, m.height = info.height;
+  m.distortion_model = info.distortionModel;
+  m.D = info.d;
+  std::copy(info.k.begin(), info.k.end(), m.K.begin());
+  std::copy(info.r.begin(), info.r.end(), m.R.begin());
+  std::copy(info.p.begin(), info.p.end(), m.P.begin());
+  return m;
+}
+
 }  // namespace
 
 struct Transport::Impl {
@@ -50,6 +66,13 @@ struct Transport::Impl {
   mutable std::mutex mutex;  // guards publishers (publish may come from a worker thread)
   std::map<std::string, ros::Publisher> publishers;
   ros::Publisher diagnostics;
+
+  // The publisher of `topic` (the mutex held): a topic must be advertised first.
+  ros::Publisher& advertised(const std::string& topic) {
+    const auto it = publishers.find(topic);
+    if (it == publishers.end()) throw std::logic_error("publish: " + topic + " was not advertised");
+    return it->second;
+  }
 };
 
 Transport::Transport(const std::string& name, double masterWaitSeconds) : impl_(std::make_unique<Impl>()) {
@@ -87,9 +110,7 @@ void Transport::advertiseImage(const std::string& topic, bool latched) {
 
 void Transport::publish(const std::string& topic, const Image& image) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  const auto it = impl_->publishers.find(topic);
-  if (it == impl_->publishers.end()) throw std::logic_error("publish: " + topic + " was not advertised");
-  it->second.publish(messageOf(image));
+  impl_->advertised(topic).publish(messageOf(image));
 }
 
 void Transport::publish(const Diagnostic& diagnostic) {
@@ -108,6 +129,25 @@ void Transport::publish(const Diagnostic& diagnostic) {
   array.status.push_back(status);
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->diagnostics.publish(array);
+}
+
+void Transport::advertiseCameraInfo(const std::string& topic) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->publishers[topic] = impl_->node->advertise<sensor_msgs::CameraInfo>(topic, 2);
+}
+
+void Transport::publish(const std::string& topic, const CameraInfo& info) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->advertised(topic).publish(messageOf(info));
+}
+
+void Transport::publishLatchedText(const std::string& topic, const std::string& text) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  ros::Publisher& publisher = impl_->publishers[topic];
+  publisher = impl_->node->advertise<std_msgs::String>(topic, 1, /*latch=*/true);
+  std_msgs::String m;
+  m.data = text;
+  publisher.publish(m);
 }
 
 uint32_t Transport::subscribers(const std::string& topic) const {

@@ -24,6 +24,11 @@ class Transport {
   // Announces `topic` as sensor_msgs/Image; `latched` keeps the last message for late subscribers.
   void advertiseImage(const std::string& topic, bool latched = false);
   void publish(const std::string& topic, const Image& image);
+  // sensor_msgs/CameraInfo, as images.
+  void advertiseCameraInfo(const std::string& topic);
+  void publish(const std::string& topic, const CameraInfo& info);
+  // std_msgs/String, latched: published once, kept for every later subscriber.
+  void publishLatchedText(const std::string& topic, const std::string& text);
   // One status on /diagnostics (advertised by the constructor), stamped now.
   void publish(const Diagnostic& diagnostic);
   // Subscribers of `topic` connected now.
