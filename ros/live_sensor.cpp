@@ -13,6 +13,7 @@
 #include "dataset_plan.h"
 #include "errors.h"
 #include "film.h"
+#include "frame_planes.h"
 #include "image.h"
 #include "interrupts.h"
 #include "ros_camera_info.h"
@@ -66,28 +67,64 @@ ros1::CameraInfo cameraInfoMessage(const RosCameraInfo& info, const ros1::Stamp&
   return {stamp, frame, info.width, info.height, info.distortionModel, info.d, info.k, info.r, info.p};
 }
 
-// Camera `camera`'s frame at `live`, as the dataset renders it (frame_scheduler.cpp).
-ros1::Image renderCamera(const DatasetPlan& plan, size_t camera, const LivePose& live, uint64_t drawIndex) {
+// The kinds of frame file a live sensor publishes besides the colour, each on its kind's name.
+constexpr OutputKind kPlaneKinds[] = {OutputKind::Depth, OutputKind::Instance, OutputKind::Semantic, OutputKind::Normal};
+
+ros1::Image imageHeader(const LivePose& live, const std::string& frame, int width, int height) {
+  ros1::Image out;
+  out.stamp = live.stamp;
+  out.frame = frame;
+  out.width = static_cast<uint32_t>(width);
+  out.height = static_cast<uint32_t>(height);
+  return out;
+}
+
+// A plane as the dataset's file holds its values (frame_planes.h): floats as 32FC<n>, ids as 16UC1.
+ros1::Image planeImage(const FramePlanes& planes, OutputKind kind, const LivePose& live, const std::string& frame) {
+  const OutputKindRow& row = outputRow(kind);
+  ros1::Image out = imageHeader(live, frame, planes.width(), planes.height());
+  const size_t pixels = static_cast<size_t>(planes.width()) * planes.height();
+  if (row.encoding == OutputEncoding::Uint16Png) {
+    const std::vector<uint16_t> ids = planes.ids(row.plane);
+    out.encoding = "16UC1";
+    out.step = out.width * 2;
+    out.data.assign(reinterpret_cast<const uint8_t*>(ids.data()), reinterpret_cast<const uint8_t*>(ids.data() + pixels));
+  } else {
+    const float* values = planes.floats(row.plane);
+    out.encoding = "32FC" + std::to_string(row.valuesPerPixel());
+    out.step = out.width * 4 * static_cast<uint32_t>(row.valuesPerPixel());
+    out.data.assign(reinterpret_cast<const uint8_t*>(values),
+                    reinterpret_cast<const uint8_t*>(values + pixels * row.valuesPerPixel()));
+  }
+  return out;
+}
+
+// Camera `camera`'s frame at `live`, as the dataset renders it (frame_scheduler.cpp): the colour
+// as rgb8 (the codes of the dataset's PNG), then each plane the spec's outputs ask for.
+std::vector<std::pair<const char*, ros1::Image>> renderCamera(const DatasetPlan& plan, size_t camera,
+                                                              const LivePose& live, uint64_t drawIndex) {
   const DatasetSpec& spec = plan.spec();
   const CameraSetup& setup = plan.setups()[camera];
   const RenderSettings settings = spec.request.settings(setup.rig);
   const CameraPlacement placement(live.pose, live.velocity, setup.camera->mount, spec.robotTiltDeg);
-  Film film = filmFor(settings, false);
+  const bool wantsAovs = plan.outputs().anyAov();
+  Film film = filmFor(settings, wantsAovs);
   plan.engine().render(placement, settings, film);
   if (spec.recording) film.setResolvedColour(recordFrame(spec.recording->draw(drawIndex), film.image(), drawIndex));
   const ImageRGBA& image = film.image();
   const std::vector<unsigned char> rgba = srgb8Codes(image);
-  ros1::Image out;
-  out.stamp = live.stamp;
-  out.frame = setup.camera->name;
-  out.width = static_cast<uint32_t>(image.width);
-  out.height = static_cast<uint32_t>(image.height);
-  out.step = out.width * 3;
-  out.encoding = "rgb8";
-  out.data.resize(static_cast<size_t>(out.step) * out.height);
+  ros1::Image rgb = imageHeader(live, setup.camera->name, image.width, image.height);
+  rgb.step = rgb.width * 3;
+  rgb.encoding = "rgb8";
+  rgb.data.resize(static_cast<size_t>(rgb.step) * rgb.height);
   for (size_t p = 0, n = rgba.size() / 4; p < n; ++p)
-    for (size_t c = 0; c < 3; ++c) out.data[p * 3 + c] = rgba[p * 4 + c];
-  return out;
+    for (size_t c = 0; c < 3; ++c) rgb.data[p * 3 + c] = rgba[p * 4 + c];
+  std::vector<std::pair<const char*, ros1::Image>> images;
+  images.emplace_back("image_raw", std::move(rgb));
+  const FramePlanes planes{image, film.aovs(), plan.ids().classOfInstance};
+  for (const OutputKind kind : kPlaneKinds)
+    if (plan.outputs().wants(kind)) images.emplace_back(outputName(kind), planeImage(planes, kind, live, setup.camera->name));
+  return images;
 }
 
 std::string stampText(const ros1::Stamp& stamp) {
@@ -153,6 +190,8 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   for (const CameraSetup& setup : plan.setups()) {
     const std::string& name = setup.camera->name;
     transport->advertiseImage(cameraTopic(options, name, "image_raw"));
+    for (const OutputKind kind : kPlaneKinds)
+      if (plan.outputs().wants(kind)) transport->advertiseImage(cameraTopic(options, name, outputName(kind)));
     transport->advertiseCameraInfo(cameraTopic(options, name, "camera_info"));
     infos.push_back(rosCameraInfoOf(*setup.model));
     if (!infos.back().intrinsicsJson.empty())
@@ -180,7 +219,8 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     for (size_t c = 0; c < plan.setups().size(); ++c) {
       const uint64_t drawIndex = static_cast<uint64_t>(report.rendered) * plan.setups().size() + c;
       const std::string& name = plan.setups()[c].camera->name;
-      transport->publish(cameraTopic(options, name, "image_raw"), renderCamera(plan, c, *live, drawIndex));
+      for (const auto& [leaf, image] : renderCamera(plan, c, *live, drawIndex))
+        transport->publish(cameraTopic(options, name, leaf), image);
       transport->publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live->stamp, name));
     }
     ++report.rendered;

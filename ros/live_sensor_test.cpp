@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -25,6 +26,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "image.h"
 #include "ros_master.h"
 #include "shell_command.h"
 #include "test_daemons.h"
@@ -47,6 +49,8 @@ struct SentPose {
 const SentPose kPoses[] = {{1.0, -0.5, 0.0, 1.0, 0.0}, {2.0, 1.0, 1.0, 0.0, 180.0}, {-1.5, 0.25, 0.0, 1.0, 0.0}};
 constexpr double kForward = 0.5, kYawRateRadPerS = 0.3;
 const char* kCameras[] = {"front", "rear", "fisheye"};
+// Each camera's image topics: the colour and the planes the spec's outputs ask for.
+const char* kImageLeaves[] = {"image_raw", "depth", "instance", "semantic", "normal"};
 
 // The scene's rig with a rolling shutter: the front camera's frames then depend on the twist.
 std::string rollingShutterRig() {
@@ -70,7 +74,7 @@ std::string specText() {
               {"name": "fisheye", "mount": {"x": 0, "y": 0.1, "yaw_deg": 90}, "rig": {"height": 0.3, "lens":
                 {"model": "kannala_brandt", "width": 320, "height": 240, "fx": 95, "fy": 95,
                  "k": [0.02, -0.005, 0.001, 0], "max_theta_deg": 100}}}],
-  "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
+  "outputs": {"rgb": "png", "depth": true, "instance": true, "semantic": true, "normal": true, "landmarks": false}})";
 }
 
 // The dataset's frame as rgb8 bytes, row by row.
@@ -81,6 +85,42 @@ std::vector<uint8_t> datasetRgb8(const fs::path& dataset, const std::string& cam
   cv::Mat rgb;
   cv::cvtColor(bgra, rgb, bgra.channels() == 4 ? cv::COLOR_BGRA2RGB : cv::COLOR_BGR2RGB);
   return std::vector<uint8_t>(rgb.data, rgb.data + rgb.total() * 3);
+}
+
+template <typename T>
+std::vector<T> valuesOf(const sensor_msgs::Image& image) {
+  std::vector<T> values(image.data.size() / sizeof(T));
+  std::memcpy(values.data(), image.data.data(), image.data.size());
+  return values;
+}
+
+// The planes' messages against the dataset's files of the frame: depth (32FC1) and the ids
+// (16UC1) value for value; the normals (32FC3) as the file's half floats hold them.
+void expectPlanesOfTheFiles(std::map<std::string, std::vector<sensor_msgs::Image>>& received, const std::string& camera,
+                            int frame, const fs::path& dataset) {
+  char name[16];
+  std::snprintf(name, sizeof name, "%06d", frame);
+  const auto file = [&](const char* kind, const char* extension) {
+    return (dataset / camera / kind / (std::string(name) + extension)).string();
+  };
+  const sensor_msgs::Image& depth = received[camera + "/depth"][frame];
+  EXPECT_EQ(depth.encoding, "32FC1");
+  EXPECT_EQ(valuesOf<float>(depth), readDataExr(file("depth", ".exr")).values);
+  for (const char* kind : {"instance", "semantic"}) {
+    const sensor_msgs::Image& ids = received[camera + "/" + kind][frame];
+    int width = 0, height = 0;
+    EXPECT_EQ(ids.encoding, "16UC1");
+    EXPECT_EQ(valuesOf<uint16_t>(ids), readUint16Png(file(kind, ".png"), width, height)) << kind;
+    EXPECT_EQ(ids.step, static_cast<uint32_t>(width) * 2) << kind;
+  }
+  const sensor_msgs::Image& normal = received[camera + "/normal"][frame];
+  EXPECT_EQ(normal.encoding, "32FC3");
+  const std::vector<float> normals = valuesOf<float>(normal);
+  cv::Mat asHalf;
+  cv::Mat(1, static_cast<int>(normals.size()), CV_32F, const_cast<float*>(normals.data())).convertTo(asHalf, CV_16F);
+  cv::Mat back;
+  asHalf.convertTo(back, CV_32F);
+  EXPECT_EQ(std::vector<float>(back.begin<float>(), back.end<float>()), readDataExr(file("normal", ".exr")).values);
 }
 
 cv::Mat matrixOf(const double* values, int rows, int cols) { return cv::Mat(rows, cols, CV_64F, const_cast<double*>(values)).clone(); }
@@ -149,11 +189,12 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
   std::map<std::string, std::vector<sensor_msgs::CameraInfo>> infos;
   std::vector<ros::Subscriber> subscriptions;
   for (const std::string camera : kCameras) {
-    subscriptions.push_back(handle.subscribe<sensor_msgs::Image>(
-        "/bot/" + camera + "/image_raw", 10, [&, camera](const sensor_msgs::Image::ConstPtr& m) {
-          std::lock_guard<std::mutex> lock(mutex);
-          received[camera].push_back(*m);
-        }));
+    for (const std::string leaf : kImageLeaves)
+      subscriptions.push_back(handle.subscribe<sensor_msgs::Image>(
+          "/bot/" + camera + "/" + leaf, 10, [&, key = camera + "/" + leaf](const sensor_msgs::Image::ConstPtr& m) {
+            std::lock_guard<std::mutex> lock(mutex);
+            received[key].push_back(*m);
+          }));
     subscriptions.push_back(handle.subscribe<sensor_msgs::CameraInfo>(
         "/bot/" + camera + "/camera_info", 10, [&, camera](const sensor_msgs::CameraInfo::ConstPtr& m) {
           std::lock_guard<std::mutex> lock(mutex);
@@ -170,7 +211,10 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
   const auto count = [&] {
     std::lock_guard<std::mutex> lock(mutex);
     size_t least = SIZE_MAX;
-    for (const std::string camera : kCameras) least = std::min({least, received[camera].size(), infos[camera].size()});
+    for (const std::string camera : kCameras) {
+      least = std::min(least, infos[camera].size());
+      for (const std::string leaf : kImageLeaves) least = std::min(least, received[camera + "/" + leaf].size());
+    }
     return least;
   };
   const auto lastDiagnostic = [&](size_t atLeast) {
@@ -222,7 +266,7 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
 
   for (const std::string camera : kCameras)
     for (size_t k = 0; k < std::size(kPoses); ++k) {
-      const sensor_msgs::Image& image = received[camera][k];
+      const sensor_msgs::Image& image = received[camera + "/image_raw"][k];
       SCOPED_TRACE(camera + " pose " + std::to_string(k));
       EXPECT_EQ(image.header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 250));
       EXPECT_EQ(image.header.frame_id, camera);
@@ -235,8 +279,9 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
       EXPECT_EQ(info.width, image.width);
       EXPECT_EQ(info.height, image.height);
       expectIntrinsicsOfTheFile(info, root / "dataset" / camera / "intrinsics" / "opencv.yaml");
+      expectPlanesOfTheFiles(received, camera, static_cast<int>(k), root / "dataset");
     }
-  EXPECT_EQ(received["front"][0].width, 96u);
+  EXPECT_EQ(received["front/image_raw"][0].width, 96u);
   expectImageGeometryUndistortsCvFisheye(infos["fisheye"][0]);
   spinner.stop();
   ros::shutdown();
