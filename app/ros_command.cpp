@@ -39,6 +39,7 @@ void addRosCommand(CLI::App& app) {
   cmd->add_option("spec", args->spec, "Dataset spec JSON: the scene, the cameras and their mounts, the settings")->required();
   cmd->add_option("--odom", args->options.odometryTopic, "nav_msgs/Odometry topic of the robot's poses (default /odom)");
   cmd->add_option("--robot", args->options.robot, "Namespace of the image topics: /ROBOT/CAMERA/image_raw (default robot)");
+  cmd->add_option("--base-frame", args->options.baseFrame, "The robot's tf frame, parent of ROBOT/CAMERA (default base_link)");
   cmd->add_option("--frames", args->options.frames, "Stop after this many poses (default: run until SIGINT or SIGTERM)")
       ->check(integerIn(0, INT32_MAX));
   cmd->callback([args] { runRos(*args); });

@@ -16,6 +16,7 @@
 #include "frame_planes.h"
 #include "image.h"
 #include "interrupts.h"
+#include "placement.h"
 #include "ros_camera_info.h"
 #include "ros_transport.h"
 
@@ -102,7 +103,8 @@ ros1::Image planeImage(const FramePlanes& planes, OutputKind kind, const LivePos
 // Camera `camera`'s frame at `live`, as the dataset renders it (frame_scheduler.cpp): the colour
 // as rgb8 (the codes of the dataset's PNG), then each plane the spec's outputs ask for.
 std::vector<std::pair<const char*, ros1::Image>> renderCamera(const DatasetPlan& plan, size_t camera,
-                                                              const LivePose& live, uint64_t drawIndex) {
+                                                              const LivePose& live, uint64_t drawIndex,
+                                                              const std::string& frame) {
   const DatasetSpec& spec = plan.spec();
   const CameraSetup& setup = plan.setups()[camera];
   const RenderSettings settings = spec.request.settings(setup.rig);
@@ -113,7 +115,7 @@ std::vector<std::pair<const char*, ros1::Image>> renderCamera(const DatasetPlan&
   if (spec.recording) film.setResolvedColour(recordFrame(spec.recording->draw(drawIndex), film.image(), drawIndex));
   const ImageRGBA& image = film.image();
   const std::vector<unsigned char> rgba = srgb8Codes(image);
-  ros1::Image rgb = imageHeader(live, setup.camera->name, image.width, image.height);
+  ros1::Image rgb = imageHeader(live, frame, image.width, image.height);
   rgb.step = rgb.width * 3;
   rgb.encoding = "rgb8";
   rgb.data.resize(static_cast<size_t>(rgb.step) * rgb.height);
@@ -123,7 +125,7 @@ std::vector<std::pair<const char*, ros1::Image>> renderCamera(const DatasetPlan&
   images.emplace_back("image_raw", std::move(rgb));
   const FramePlanes planes{image, film.aovs(), plan.ids().classOfInstance};
   for (const OutputKind kind : kPlaneKinds)
-    if (plan.outputs().wants(kind)) images.emplace_back(outputName(kind), planeImage(planes, kind, live, setup.camera->name));
+    if (plan.outputs().wants(kind)) images.emplace_back(outputName(kind), planeImage(planes, kind, live, frame));
   return images;
 }
 
@@ -146,6 +148,24 @@ ros1::Diagnostic diagnostic(const LiveSensorOptions& options, const std::string&
 
 // Dataset limits (docs/dataset-format.md): poses within ±10 km, speeds up to 100 m/s.
 constexpr double kMaxCoordinate = 10000.0, kMaxSpeed = 100.0;
+
+std::string cameraFrame(const LiveSensorOptions& options, const std::string& camera) {
+  return options.robot + "/" + camera;
+}
+
+// Camera `camera`'s frame in the robot's: the frame chain of a robot at the origin.
+ros1::Transform baseFromCamera(const DatasetPlan& plan, size_t camera, const LiveSensorOptions& options) {
+  const CameraSetup& setup = plan.setups()[camera];
+  const Rigid chain =
+      CameraPlacement(RobotPose{}, BodyVelocity{}, setup.camera->mount, plan.spec().robotTiltDeg).worldFromCamera(setup.rig);
+  const Eigen::Quaterniond q(chain.linear());
+  ros1::Transform t;
+  t.parent = options.baseFrame;
+  t.child = cameraFrame(options, setup.camera->name);
+  for (int i = 0; i < 3; ++i) t.translation[i] = chain.translation()[i];
+  t.rotationXyzw[0] = q.x(), t.rotationXyzw[1] = q.y(), t.rotationXyzw[2] = q.z(), t.rotationXyzw[3] = q.w();
+  return t;
+}
 
 }  // namespace
 
@@ -187,6 +207,7 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   }
   // Each camera's intrinsics, once; a model ROS has no name for also on a latched topic.
   std::vector<RosCameraInfo> infos;
+  std::vector<ros1::Transform> mounts;
   for (const CameraSetup& setup : plan.setups()) {
     const std::string& name = setup.camera->name;
     transport->advertiseImage(cameraTopic(options, name, "image_raw"));
@@ -194,9 +215,11 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
       if (plan.outputs().wants(kind)) transport->advertiseImage(cameraTopic(options, name, outputName(kind)));
     transport->advertiseCameraInfo(cameraTopic(options, name, "camera_info"));
     infos.push_back(rosCameraInfoOf(*setup.model));
+    mounts.push_back(baseFromCamera(plan, infos.size() - 1, options));
     if (!infos.back().intrinsicsJson.empty())
       transport->publishLatchedText(cameraTopic(options, name, "intrinsics"), infos.back().intrinsicsJson);
   }
+  transport->publishStaticTransforms(mounts);
   NewestPose newest;
   // Called on the spinner's one thread only: `lastAccepted` and `refused` are its own.
   std::optional<ros1::Stamp> lastAccepted;
@@ -219,9 +242,10 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     for (size_t c = 0; c < plan.setups().size(); ++c) {
       const uint64_t drawIndex = static_cast<uint64_t>(report.rendered) * plan.setups().size() + c;
       const std::string& name = plan.setups()[c].camera->name;
-      for (const auto& [leaf, image] : renderCamera(plan, c, *live, drawIndex))
+      const std::string frame = cameraFrame(options, name);
+      for (const auto& [leaf, image] : renderCamera(plan, c, *live, drawIndex, frame))
         transport->publish(cameraTopic(options, name, leaf), image);
-      transport->publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live->stamp, name));
+      transport->publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live->stamp, frame));
     }
     ++report.rendered;
   }

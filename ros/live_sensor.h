@@ -5,7 +5,9 @@
 // rendered off the ROS thread and every camera's image published on /<robot>/<camera>/image_raw
 // (rgb8, the codes a dataset's PNG holds), stamped with the pose's stamp: the exposure start.
 // Poses that arrive while a frame renders replace each other; the replaced ones are dropped,
-// counted and reported on /diagnostics, as are refused poses (problemWith).
+// counted and reported on /diagnostics, as are refused poses (problemWith). Each camera's frame
+// (ROBOT/CAMERA: the intrinsics files' camera frame, as poses.tum) is on /tf_static under the
+// robot's base frame, through the one frame chain (placement.h), the robot's tilt included.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -19,7 +21,8 @@ namespace omnicam {
 
 struct LiveSensorOptions {
   std::string odometryTopic = "/odom";
-  std::string robot = "robot";  // the topics' namespace
+  std::string robot = "robot";  // the topics' namespace; frames are ROBOT/CAMERA
+  std::string baseFrame = "base_link";  // the robot's frame, parent of the cameras' on /tf_static
   int64_t frames = 0;           // stop after this many rendered poses; 0: until SIGINT or SIGTERM
   double masterWaitSeconds = 30.0;
 };

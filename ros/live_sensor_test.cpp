@@ -9,6 +9,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <tf2_msgs/TFMessage.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -18,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <image_geometry/pinhole_camera_model.h>
@@ -69,6 +71,7 @@ std::string specText() {
          R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "lit",
   "poses": {"list": [)" + poses.str() + R"(]}, "motion": {"velocity": [)" + std::to_string(kForward) + ", 0, " + yawRate +
          R"(]},
+  "robot": {"tilt_deg": [2.5, -1.5]},
   "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}, "rig": )" + rollingShutterRig() + R"(},
               {"name": "rear", "mount": {"x": -0.1, "y": 0, "yaw_deg": 180}},
               {"name": "fisheye", "mount": {"x": 0, "y": 0.1, "yaw_deg": 90}, "rig": {"height": 0.3, "lens":
@@ -121,6 +124,26 @@ void expectPlanesOfTheFiles(std::map<std::string, std::vector<sensor_msgs::Image
   cv::Mat back;
   asHalf.convertTo(back, CV_32F);
   EXPECT_EQ(std::vector<float>(back.begin<float>(), back.end<float>()), readDataExr(file("normal", ".exr")).values);
+}
+
+// A camera's frame on /tf_static against the dataset's poses.tum: at frame 0 the robot stands at
+// kPoses[0] (yaw 0), so world_from_camera there is the mount (on the tilted robot) moved by the
+// pose's x and y.
+void expectMountOfTheTumPoses(const geometry_msgs::TransformStamped& mount, const fs::path& tum) {
+  SCOPED_TRACE(mount.child_frame_id);
+  EXPECT_EQ(mount.header.frame_id, "base_link");
+  std::istringstream lines(readFile(tum));
+  std::string line;
+  while (std::getline(lines, line) && line.rfind('#', 0) == 0) {
+  }
+  double t = 0, x = 0, y = 0, z = 0, qx = 0, qy = 0, qz = 0, qw = 0;
+  ASSERT_EQ(std::sscanf(line.c_str(), "%lf %lf %lf %lf %lf %lf %lf %lf", &t, &x, &y, &z, &qx, &qy, &qz, &qw), 8) << line;
+  const auto& m = mount.transform;
+  EXPECT_NEAR(m.translation.x, x - kPoses[0].x, 1e-9);
+  EXPECT_NEAR(m.translation.y, y - kPoses[0].y, 1e-9);
+  EXPECT_NEAR(m.translation.z, z, 1e-9);
+  const double dot = m.rotation.x * qx + m.rotation.y * qy + m.rotation.z * qz + m.rotation.w * qw;
+  EXPECT_NEAR(std::abs(dot), 1.0, 1e-9);  // the same rotation (q and -q are one)
 }
 
 cv::Mat matrixOf(const double* values, int rows, int cols) { return cv::Mat(rows, cols, CV_64F, const_cast<double*>(values)).clone(); }
@@ -201,6 +224,11 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
           infos[camera].push_back(*m);
         }));
   }
+  std::vector<geometry_msgs::TransformStamped> mounts;
+  subscriptions.push_back(handle.subscribe<tf2_msgs::TFMessage>("/tf_static", 10, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    mounts.insert(mounts.end(), m->transforms.begin(), m->transforms.end());
+  }));
   std::vector<std::string> diagnostics;
   subscriptions.push_back(handle.subscribe<diagnostic_msgs::DiagnosticArray>(
       "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
@@ -210,7 +238,7 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
   // Frames complete with their camera_info, of every camera.
   const auto count = [&] {
     std::lock_guard<std::mutex> lock(mutex);
-    size_t least = SIZE_MAX;
+    size_t least = mounts.size() >= std::size(kCameras) ? SIZE_MAX : 0;
     for (const std::string camera : kCameras) {
       least = std::min(least, infos[camera].size());
       for (const std::string leaf : kImageLeaves) least = std::min(least, received[camera + "/" + leaf].size());
@@ -269,19 +297,22 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
       const sensor_msgs::Image& image = received[camera + "/image_raw"][k];
       SCOPED_TRACE(camera + " pose " + std::to_string(k));
       EXPECT_EQ(image.header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 250));
-      EXPECT_EQ(image.header.frame_id, camera);
+      EXPECT_EQ(image.header.frame_id, "bot/" + camera);
       EXPECT_EQ(image.encoding, "rgb8");
       EXPECT_EQ(image.step, image.width * 3);
       EXPECT_TRUE(image.data == datasetRgb8(root / "dataset", camera, static_cast<int>(k)));
       const sensor_msgs::CameraInfo& info = infos[camera][k];
       EXPECT_EQ(info.header.stamp, image.header.stamp);
-      EXPECT_EQ(info.header.frame_id, camera);
+      EXPECT_EQ(info.header.frame_id, "bot/" + camera);
       EXPECT_EQ(info.width, image.width);
       EXPECT_EQ(info.height, image.height);
       expectIntrinsicsOfTheFile(info, root / "dataset" / camera / "intrinsics" / "opencv.yaml");
       expectPlanesOfTheFiles(received, camera, static_cast<int>(k), root / "dataset");
     }
   EXPECT_EQ(received["front/image_raw"][0].width, 96u);
+  ASSERT_EQ(mounts.size(), std::size(kCameras));
+  for (const geometry_msgs::TransformStamped& mount : mounts)
+    expectMountOfTheTumPoses(mount, root / "dataset" / mount.child_frame_id.substr(4) / "poses.tum");
   expectImageGeometryUndistortsCvFisheye(infos["fisheye"][0]);
   spinner.stop();
   ros::shutdown();

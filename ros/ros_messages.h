@@ -49,6 +49,13 @@ struct CameraInfo {
   std::array<double, 12> p{};
 };
 
+// geometry_msgs/TransformStamped: `child`'s frame in `parent`'s.
+struct Transform {
+  std::string parent, child;
+  double translation[3] = {0, 0, 0};
+  double rotationXyzw[4] = {0, 0, 0, 1};
+};
+
 // diagnostic_msgs/DiagnosticStatus, published alone in a DiagnosticArray on /diagnostics.
 struct Diagnostic {
   enum Level : int8_t { Ok = 0, Warn = 1, Error = 2 };

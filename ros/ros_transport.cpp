@@ -6,6 +6,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/String.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 
 #include <algorithm>
 #include <map>
@@ -66,6 +67,7 @@ struct Transport::Impl {
   mutable std::mutex mutex;  // guards publishers (publish may come from a worker thread)
   std::map<std::string, ros::Publisher> publishers;
   ros::Publisher diagnostics;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> staticTransforms;
 
   // The publisher of `topic` (the mutex held): a topic must be advertised first.
   ros::Publisher& advertised(const std::string& topic) {
@@ -94,6 +96,7 @@ Transport::~Transport() {
   impl_->subscriptions.clear();
   impl_->publishers.clear();
   impl_->diagnostics.shutdown();
+  impl_->staticTransforms.reset();
   impl_->node.reset();
   ros::shutdown();
 }
@@ -139,6 +142,24 @@ void Transport::advertiseCameraInfo(const std::string& topic) {
 void Transport::publish(const std::string& topic, const CameraInfo& info) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->advertised(topic).publish(messageOf(info));
+}
+
+void Transport::publishStaticTransforms(const std::vector<Transform>& transforms) {
+  std::vector<geometry_msgs::TransformStamped> messages;
+  for (const Transform& t : transforms) {
+    geometry_msgs::TransformStamped m;
+    m.header.stamp = ros::Time::now();
+    m.header.frame_id = t.parent;
+    m.child_frame_id = t.child;
+    m.transform.translation.x = t.translation[0], m.transform.translation.y = t.translation[1];
+    m.transform.translation.z = t.translation[2];
+    m.transform.rotation.x = t.rotationXyzw[0], m.transform.rotation.y = t.rotationXyzw[1];
+    m.transform.rotation.z = t.rotationXyzw[2], m.transform.rotation.w = t.rotationXyzw[3];
+    messages.push_back(m);
+  }
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  if (!impl_->staticTransforms) impl_->staticTransforms = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  impl_->staticTransforms->sendTransform(messages);
 }
 
 void Transport::publishLatchedText(const std::string& topic, const std::string& text) {

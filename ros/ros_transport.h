@@ -29,6 +29,8 @@ class Transport {
   void publish(const std::string& topic, const CameraInfo& info);
   // std_msgs/String, latched: published once, kept for every later subscriber.
   void publishLatchedText(const std::string& topic, const std::string& text);
+  // Transforms that never change, on /tf_static (latched, as tf2's static broadcaster does).
+  void publishStaticTransforms(const std::vector<Transform>& transforms);
   // One status on /diagnostics (advertised by the constructor), stamped now.
   void publish(const Diagnostic& diagnostic);
   // Subscribers of `topic` connected now.
