@@ -78,6 +78,7 @@ bench: build
 	bench/dataset_ratio.sh 1000
 	mkdir -p out && $(BUILD_DIR)/bin/scene_scaling --csv out/scaling.csv
 	$(BUILD_DIR)/bin/slurm_speedup --csv out/slurm_speedup.csv
+	$(BUILD_DIR)/bin/ros_latency
 	PYTHONPATH=$(BUILD_DIR)/python /usr/bin/python3 bench/python_bench.py
 
 clean:
