@@ -22,8 +22,9 @@ void runRos(const RosArgs& a) {
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
   const LiveSensorReport report = runLiveSensor(spec, a.options, [&] {
-    std::printf("ros: ready: poses from %s, images on /%s/CAMERA/image_raw\n", a.options.odometryTopic.c_str(),
-                a.options.robot.c_str());
+    const std::string from = a.options.tfParent.empty() ? a.options.odometryTopic
+                                                        : "tf (" + a.options.baseFrame + " in " + a.options.tfParent + ")";
+    std::printf("ros: ready: poses from %s, images on /%s/CAMERA/image_raw\n", from.c_str(), a.options.robot.c_str());
     std::fflush(stdout);
   });
   std::printf("ros: %lld poses rendered, %lld dropped while rendering, %lld refused\n",
@@ -39,6 +40,9 @@ void addRosCommand(CLI::App& app) {
   cmd->add_option("spec", args->spec, "Dataset spec JSON: the scene, the cameras and their mounts, the settings")->required();
   cmd->add_option("--odom", args->options.odometryTopic, "nav_msgs/Odometry topic of the robot's poses (default /odom)");
   cmd->add_option("--robot", args->options.robot, "Namespace of the image topics: /ROBOT/CAMERA/image_raw (default robot)");
+  cmd->add_option("--tf", args->options.tfParent,
+                  "Take poses from tf instead of odometry: the base frame in this frame (e.g. map or odom)")
+      ->excludes(cmd->get_option("--odom"));
   cmd->add_option("--base-frame", args->options.baseFrame, "The robot's tf frame, parent of ROBOT/CAMERA (default base_link)");
   cmd->add_option("--frames", args->options.frames, "Stop after this many poses (default: run until SIGINT or SIGTERM)")
       ->check(integerIn(0, INT32_MAX));

@@ -224,15 +224,22 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   // Called on the spinner's one thread only: `lastAccepted` and `refused` are its own.
   std::optional<ros1::Stamp> lastAccepted;
   std::atomic<int64_t> refused = 0;
-  transport->subscribeOdometry(options.odometryTopic, [&](const ros1::Odometry& o) {
-    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty()) {
-      transport->publish(diagnostic(options, "pose refused: " + problem, o.stamp, ++refused));
-      return;
-    }
+  const auto refuse = [&](const std::string& why, const ros1::Stamp& stamp) {
+    transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
+  };
+  const auto accept = [&](const ros1::Odometry& o) {
+    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty())
+      return refuse(problem, o.stamp);
     lastAccepted = o.stamp;
     if (newest.put(livePoseOf(o)))
       transport->publish(diagnostic(options, "pose dropped: the last one was still rendering", o.stamp, newest.dropped()));
-  });
+  };
+  if (options.tfParent.empty())
+    transport->subscribeOdometry(options.odometryTopic, accept);
+  else
+    transport->subscribeTransform(options.tfParent, options.baseFrame, accept, [&](const ros1::Stamp& stamp, const std::string& why) {
+      refuse("no transform from " + options.tfParent + " to " + options.baseFrame + ": " + why, stamp);
+    });
 
   if (ready) ready();
   LiveSensorReport report;

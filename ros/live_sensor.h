@@ -1,7 +1,8 @@
 #pragma once
 // `omnicam ros SPEC` (issue #49): the cameras of a dataset spec on a robot that ROS drives, as a
 // live ROS 1 sensor. Each nav_msgs/Odometry message is a pose (its twist the robot's velocity,
-// so motion blur and rolling shutter follow the robot as in datasets). The newest pose is
+// so motion blur and rolling shutter follow the robot as in datasets), or each tf transform that
+// moves the robot's base frame. The newest pose is
 // rendered off the ROS thread and every camera's image published on /<robot>/<camera>/image_raw
 // (rgb8, the codes a dataset's PNG holds), stamped with the pose's stamp: the exposure start.
 // Poses that arrive while a frame renders replace each other; the replaced ones are dropped,
@@ -21,6 +22,9 @@ namespace omnicam {
 
 struct LiveSensorOptions {
   std::string odometryTopic = "/odom";
+  // Poses from tf instead: the base frame in this frame (map or odom), whenever /tf moves the
+  // base frame. tf has no twist: the robot is still over each exposure.
+  std::string tfParent;
   std::string robot = "robot";  // the topics' namespace; frames are ROBOT/CAMERA
   std::string baseFrame = "base_link";  // the robot's frame, parent of the cameras' on /tf_static
   int64_t frames = 0;           // stop after this many rendered poses; 0: until SIGINT or SIGTERM

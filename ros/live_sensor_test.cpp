@@ -146,6 +146,14 @@ void expectMountOfTheTumPoses(const geometry_msgs::TransformStamped& mount, cons
   EXPECT_NEAR(std::abs(dot), 1.0, 1e-9);  // the same rotation (q and -q are one)
 }
 
+// This process's ROS node, once: each test runs in a process of its own (gtest_discover_tests),
+// with the master it started.
+void startRos(const RosMaster& master) {
+  for (const std::string& variable : master.environment()) ::putenv(::strdup(variable.c_str()));
+  int argc = 0;
+  ros::init(argc, nullptr, "live_sensor_test", ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
+}
+
 cv::Mat matrixOf(const double* values, int rows, int cols) { return cv::Mat(rows, cols, CV_64F, const_cast<double*>(values)).clone(); }
 
 // camera_info against the dataset's opencv.yaml of the camera: the same K and D (and ξ first in
@@ -200,9 +208,7 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
                           "--frames", std::to_string(std::size(kPoses))},
                          root / "node.out", master.environment()));
 
-  for (const std::string& variable : master.environment()) ::putenv(::strdup(variable.c_str()));
-  int argc = 0;
-  ros::init(argc, nullptr, "live_sensor_test", ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
+  startRos(master);
   ros::NodeHandle handle;
   ros::AsyncSpinner spinner(1);
   spinner.start();
@@ -315,7 +321,86 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
     expectMountOfTheTumPoses(mount, root / "dataset" / mount.child_frame_id.substr(4) / "poses.tum");
   expectImageGeometryUndistortsCvFisheye(infos["fisheye"][0]);
   spinner.stop();
-  ros::shutdown();
+  fs::remove_all(root);
+}
+
+// Poses from tf through a tree (map -> odom -> base_link), each image equal to the dataset's
+// frame; a gap in the tree refuses its pose with a diagnostic, and the node goes on.
+TEST(LiveSensor, TakesPosesFromTfAndRefusesAGapInTheTree) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_tf_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::ofstream(root / "spec.json") << R"({"format": "omnicam-dataset/1", "scene": ")" << OMNICAM_SOURCE_DIR
+                                    << R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "lit",
+    "poses": {"list": [[1.0, -0.5, 0], [2.0, 1.0, 180]]}, "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}}],
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
+  const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + (root / "spec.json").string() +
+                                         " -o " + (root / "dataset").string() + " 2>&1");
+  ASSERT_EQ(dataset.code, 0) << dataset.out;
+  RosMaster master(root);
+  ASSERT_EQ(master.problem(), "");
+  TestDaemons node;
+  ASSERT_TRUE(node.start("omnicam ros",
+                         {OMNICAM_BINARY, "ros", (root / "spec.json").string(), "--robot", "tfbot", "--tf", "map",
+                          "--frames", "2"},
+                         root / "node.out", master.environment()));
+  startRos(master);
+  ros::NodeHandle handle;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  ros::Publisher tf = handle.advertise<tf2_msgs::TFMessage>("/tf", 10);
+  std::mutex mutex;
+  std::vector<sensor_msgs::Image> images;
+  std::vector<std::string> diagnostics;
+  ros::Subscriber imageIn = handle.subscribe<sensor_msgs::Image>("/tfbot/front/image_raw", 10, [&](const sensor_msgs::Image::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    images.push_back(*m);
+  });
+  ros::Subscriber diagnosticsIn = handle.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& status : m->status) diagnostics.push_back(status.message);
+      });
+  // The node's listener and its trigger share the node's one connection to /tf.
+  ASSERT_TRUE(TestDaemons::waitFor(
+      [&] { return tf.getNumSubscribers() > 0 && imageIn.getNumPublishers() > 0 && diagnosticsIn.getNumPublishers() > 0; },
+      120.0))
+      << readFile(root / "node.out");
+  const auto edge = [](const char* parent, const char* child, uint32_t sec, double x, double y, double qz, double qw) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = ros::Time(sec, 0);
+    t.header.frame_id = parent;
+    t.child_frame_id = child;
+    t.transform.translation.x = x, t.transform.translation.y = y;
+    t.transform.rotation.z = qz, t.transform.rotation.w = qw;
+    return t;
+  };
+  const auto send = [&](std::vector<geometry_msgs::TransformStamped> transforms) {
+    tf2_msgs::TFMessage m;
+    m.transforms = std::move(transforms);
+    tf.publish(m);
+  };
+  const auto count = [&](auto& list) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return list.size();
+  };
+  // map -> odom is 0.5 m along x; odom -> base_link puts the robot at the spec's poses.
+  send({edge("map", "odom", 100, 0.5, 0, 0, 1), edge("odom", "base_link", 100, 0.5, -0.5, 0, 1)});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return count(images) > 0; }, 120.0)) << readFile(root / "node.out");
+  // map -> odom is not known after 100 yet (tf2 drops data older than its newest by 10 s, so
+  // the stamps only grow).
+  send({edge("odom", "base_link", 150, 1.5, 1.0, 1, 0)});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return count(diagnostics) > 0; }, 120.0)) << readFile(root / "node.out");
+  EXPECT_NE(diagnostics[0].find("pose refused: no transform from map to base_link"), std::string::npos) << diagnostics[0];
+  send({edge("map", "odom", 200, 0.5, 0, 0, 1), edge("odom", "base_link", 200, 1.5, 1.0, 1, 0)});
+  ASSERT_EQ(node.waitForExit("omnicam ros", 120.0), 0) << readFile(root / "node.out");
+  EXPECT_NE(readFile(root / "node.out").find("2 poses rendered, 0 dropped while rendering, 1 refused"), std::string::npos)
+      << readFile(root / "node.out");
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return count(images) > 1; }, 120.0));
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(images[k].header.stamp, ros::Time(k == 0 ? 100 : 200, 0));
+    EXPECT_TRUE(images[k].data == datasetRgb8(root / "dataset", "front", k)) << "pose " << k;
+  }
+  spinner.stop();
   fs::remove_all(root);
 }
 

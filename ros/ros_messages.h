@@ -65,5 +65,7 @@ struct Diagnostic {
 };
 
 using OdometryHandler = std::function<void(const Odometry&)>;
+// A transform tf could not give at `stamp` (a gap in the tree, an extrapolation): why.
+using GapHandler = std::function<void(const Stamp& stamp, const std::string& why)>;
 
 }  // namespace omnicam::ros1

@@ -6,7 +6,9 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/String.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <algorithm>
 #include <map>
@@ -68,6 +70,8 @@ struct Transport::Impl {
   std::map<std::string, ros::Publisher> publishers;
   ros::Publisher diagnostics;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> staticTransforms;
+  std::unique_ptr<tf2_ros::Buffer> tfBuffer;
+  std::unique_ptr<tf2_ros::TransformListener> tfListener;
 
   // The publisher of `topic` (the mutex held): a topic must be advertised first.
   ros::Publisher& advertised(const std::string& topic) {
@@ -94,6 +98,8 @@ Transport::Transport(const std::string& name, double masterWaitSeconds) : impl_(
 Transport::~Transport() {
   impl_->spinner->stop();
   impl_->subscriptions.clear();
+  impl_->tfListener.reset();
+  impl_->tfBuffer.reset();
   impl_->publishers.clear();
   impl_->diagnostics.shutdown();
   impl_->staticTransforms.reset();
@@ -104,6 +110,38 @@ Transport::~Transport() {
 void Transport::subscribeOdometry(const std::string& topic, OdometryHandler handler) {
   impl_->subscriptions.push_back(impl_->node->subscribe<nav_msgs::Odometry>(
       topic, 10, [handler](const nav_msgs::Odometry::ConstPtr& m) { handler(odometryOf(*m)); }));
+}
+
+void Transport::subscribeTransform(const std::string& parent, const std::string& child, OdometryHandler handler,
+                                   GapHandler gap) {
+  if (!impl_->tfBuffer) {
+    impl_->tfBuffer = std::make_unique<tf2_ros::Buffer>();
+    impl_->tfListener = std::make_unique<tf2_ros::TransformListener>(*impl_->tfBuffer);  // its own thread
+  }
+  tf2_ros::Buffer& buffer = *impl_->tfBuffer;
+  impl_->subscriptions.push_back(impl_->node->subscribe<tf2_msgs::TFMessage>(
+      "/tf", 100, [&buffer, parent, child, handler, gap](const tf2_msgs::TFMessage::ConstPtr& m) {
+        for (const geometry_msgs::TransformStamped& moved : m->transforms) {
+          if (moved.child_frame_id != child) continue;
+          const Stamp stamp = stampOf(moved.header.stamp);
+          std::string why;
+          // The listener (its own thread) may not have this message yet: wait for it up to 1 s.
+          if (!buffer.canTransform(parent, child, moved.header.stamp, ros::Duration(1.0), &why)) {
+            gap(stamp, why);
+            continue;
+          }
+          const geometry_msgs::TransformStamped t = buffer.lookupTransform(parent, child, moved.header.stamp);
+          Odometry o;
+          o.stamp = stamp;
+          o.frame = parent;
+          o.childFrame = child;
+          o.position[0] = t.transform.translation.x, o.position[1] = t.transform.translation.y;
+          o.position[2] = t.transform.translation.z;
+          o.orientationXyzw[0] = t.transform.rotation.x, o.orientationXyzw[1] = t.transform.rotation.y;
+          o.orientationXyzw[2] = t.transform.rotation.z, o.orientationXyzw[3] = t.transform.rotation.w;
+          handler(o);
+        }
+      }));
 }
 
 void Transport::advertiseImage(const std::string& topic, bool latched) {

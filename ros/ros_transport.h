@@ -21,6 +21,10 @@ class Transport {
 
   // Odometry messages of `topic`, to `handler` on the spinner thread.
   void subscribeOdometry(const std::string& topic, OdometryHandler handler);
+  // Poses from tf: each /tf message that moves `child` is looked up as `child` in `parent` at
+  // its stamp, through the whole tree (map → odom → base_link), and handed over as an odometry
+  // without twist (tf has none). A lookup that fails goes to `gap`.
+  void subscribeTransform(const std::string& parent, const std::string& child, OdometryHandler handler, GapHandler gap);
   // Announces `topic` as sensor_msgs/Image; `latched` keeps the last message for late subscribers.
   void advertiseImage(const std::string& topic, bool latched = false);
   void publish(const std::string& topic, const Image& image);
