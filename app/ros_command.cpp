@@ -1,11 +1,14 @@
 // `omnicam ros SPEC`: the live ROS 1 sensor (ros/live_sensor.h, docs/ros.md).
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 
+#include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
 #include "dataset_spec.h"
+#include "errors.h"
 #include "interrupts.h"
 #include "live_sensor.h"
 
@@ -20,6 +23,11 @@ struct RosArgs {
 
 void runRos(const RosArgs& a) {
   const DatasetSpec spec = loadDatasetSpec(a.spec);
+  if (!a.options.recordBag.empty()) {
+    checkOutputFile(a.options.recordBag, "--record");
+    if (std::filesystem::exists(std::filesystem::symlink_status(a.options.recordBag)))
+      throw InputError("--record: " + showPath(a.options.recordBag) + ": exists already (a bag is never overwritten)");
+  }
   stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
   const LiveSensorReport report = runLiveSensor(spec, a.options, [&] {
     const std::string from = a.options.tfParent.empty() ? a.options.odometryTopic
@@ -44,6 +52,8 @@ void addRosCommand(CLI::App& app) {
                   "Take poses from tf instead of odometry: the base frame in this frame (e.g. map or odom)")
       ->excludes(cmd->get_option("--odom"));
   cmd->add_option("--base-frame", args->options.baseFrame, "The robot's tf frame, parent of ROBOT/CAMERA (default base_link)");
+  cmd->add_option("--record", args->options.recordBag,
+                  "Also write every message published into this new ROS bag (complete when the node stops)");
   cmd->add_option("--frames", args->options.frames, "Stop after this many poses (default: run until SIGINT or SIGTERM)")
       ->check(integerIn(0, INT32_MAX));
   cmd->callback([args] { runRos(*args); });

@@ -5,10 +5,12 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 
+#include "atomic_file.h"
 #include "dataset_options.h"
 #include "dataset_plan.h"
 #include "errors.h"
@@ -204,6 +206,15 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds);
   } catch (const std::runtime_error& e) {
     throw ExternalError(std::string("ros: ") + e.what() + " (start one with `roscore`, or set ROS_MASTER_URI)");
+  }
+  if (!options.recordBag.empty()) {
+    const std::filesystem::path bag(options.recordBag);
+    const std::filesystem::path partial = bag.parent_path() / atomicTemporaryName(bag.filename().string());
+    try {
+      transport->record(partial.string(), bag.string());
+    } catch (const std::runtime_error& e) {
+      throw OutputError(showPath(options.recordBag) + ": cannot write the bag (" + e.what() + ")");
+    }
   }
   // Each camera's intrinsics, once; a model ROS has no name for also on a latched topic.
   std::vector<RosCameraInfo> infos;

@@ -29,6 +29,9 @@ struct LiveSensorOptions {
   std::string baseFrame = "base_link";  // the robot's frame, parent of the cameras' on /tf_static
   int64_t frames = 0;           // stop after this many rendered poses; 0: until SIGINT or SIGTERM
   double masterWaitSeconds = 30.0;
+  // When set: every message published also goes into this ROS bag (written under a temporary
+  // name, renamed when the sensor stops). The path must be a new file (checkOutputFile).
+  std::string recordBag;
 };
 
 struct LiveSensorReport {

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <tf2_msgs/TFMessage.h>
@@ -146,6 +148,28 @@ void expectMountOfTheTumPoses(const geometry_msgs::TransformStamped& mount, cons
   EXPECT_NEAR(std::abs(dot), 1.0, 1e-9);  // the same rotation (q and -q are one)
 }
 
+// The bag `omnicam ros --record` wrote: every camera's colour frames equal the dataset's, with
+// their camera_info and the cameras' frames on /tf_static.
+void expectTheBagHoldsTheDataset(const fs::path& path, const fs::path& dataset) {
+  rosbag::Bag bag(path.string(), rosbag::bagmode::Read);
+  std::map<std::string, std::vector<sensor_msgs::Image>> images;
+  std::map<std::string, size_t> messages;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+    ++messages[m.getTopic()];
+    if (const sensor_msgs::Image::ConstPtr image = m.instantiate<sensor_msgs::Image>(); image && image->encoding == "rgb8")
+      images[m.getTopic()].push_back(*image);
+  }
+  EXPECT_EQ(messages["/tf_static"], 1u);
+  for (const std::string camera : kCameras) {
+    SCOPED_TRACE(camera);
+    EXPECT_EQ(messages["/bot/" + camera + "/camera_info"], std::size(kPoses));
+    const std::vector<sensor_msgs::Image>& frames = images["/bot/" + camera + "/image_raw"];
+    ASSERT_EQ(frames.size(), std::size(kPoses));
+    for (size_t k = 0; k < frames.size(); ++k)
+      EXPECT_TRUE(frames[k].data == datasetRgb8(dataset, camera, static_cast<int>(k))) << "pose " << k;
+  }
+}
+
 // This process's ROS node, once: each test runs in a process of its own (gtest_discover_tests),
 // with the master it started.
 void startRos(const RosMaster& master) {
@@ -205,7 +229,7 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
   TestDaemons node;
   ASSERT_TRUE(node.start("omnicam ros",
                          {OMNICAM_BINARY, "ros", (root / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom",
-                          "--frames", std::to_string(std::size(kPoses))},
+                          "--frames", std::to_string(std::size(kPoses)), "--record", (root / "run.bag").string()},
                          root / "node.out", master.environment()));
 
   startRos(master);
@@ -320,6 +344,9 @@ TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
   for (const geometry_msgs::TransformStamped& mount : mounts)
     expectMountOfTheTumPoses(mount, root / "dataset" / mount.child_frame_id.substr(4) / "poses.tum");
   expectImageGeometryUndistortsCvFisheye(infos["fisheye"][0]);
+  expectTheBagHoldsTheDataset(root / "run.bag", root / "dataset");
+  for (const fs::directory_entry& entry : fs::directory_iterator(root))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
   spinner.stop();
   fs::remove_all(root);
 }
@@ -419,6 +446,26 @@ TEST(LiveSensor, RefusesASpecAsTheDatasetReaderDoes) {
   EXPECT_EQ(dataset.code, 2) << dataset.out;
   EXPECT_NE(live.out.find("spp: must be a perfect square"), std::string::npos) << live.out;
   EXPECT_EQ(live.out, dataset.out);
+  fs::remove_all(root);
+}
+
+// A bag is a new file: an existing one (or a link) is never overwritten, before any master is
+// looked for.
+TEST(LiveSensor, NeverOverwritesABag) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_bag_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::ofstream(root / "spec.json") << specText();
+  std::ofstream(root / "old.bag") << "someone's bag";
+  fs::create_symlink(root / "elsewhere.bag", root / "link.bag");
+  for (const char* bag : {"old.bag", "link.bag"}) {
+    const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + (root / "spec.json").string() + " --record " +
+                                       (root / bag).string() + " 2>&1");
+    EXPECT_EQ(run.code, 2) << run.out;
+    EXPECT_NE(run.out.find("--record: "), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("exists already"), std::string::npos) << run.out;
+  }
+  EXPECT_EQ(readFile(root / "old.bag"), "someone's bag");
+  EXPECT_FALSE(fs::exists(root / "elsewhere.bag"));
   fs::remove_all(root);
 }
 

@@ -2,6 +2,7 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -11,6 +12,7 @@
 #include <tf2_ros/transform_listener.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -71,7 +73,16 @@ struct Transport::Impl {
   ros::Publisher diagnostics;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> staticTransforms;
   std::unique_ptr<tf2_ros::Buffer> tfBuffer;
+  std::unique_ptr<rosbag::Bag> bag;  // when recording (the mutex held to write)
+  std::string bagPath, bagPartial;
   std::unique_ptr<tf2_ros::TransformListener> tfListener;
+
+  // Publishes `message` on `topic` and records it (the mutex held).
+  template <typename Message>
+  void send(const std::string& topic, const Message& message) {
+    advertised(topic).publish(message);
+    if (bag) bag->write(topic, message.header.stamp, message);
+  }
 
   // The publisher of `topic` (the mutex held): a topic must be advertised first.
   ros::Publisher& advertised(const std::string& topic) {
@@ -100,6 +111,10 @@ Transport::~Transport() {
   impl_->subscriptions.clear();
   impl_->tfListener.reset();
   impl_->tfBuffer.reset();
+  if (impl_->bag) {
+    impl_->bag->close();
+    std::rename(impl_->bagPartial.c_str(), impl_->bagPath.c_str());
+  }
   impl_->publishers.clear();
   impl_->diagnostics.shutdown();
   impl_->staticTransforms.reset();
@@ -151,7 +166,7 @@ void Transport::advertiseImage(const std::string& topic, bool latched) {
 
 void Transport::publish(const std::string& topic, const Image& image) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->advertised(topic).publish(messageOf(image));
+  impl_->send(topic, messageOf(image));
 }
 
 void Transport::publish(const Diagnostic& diagnostic) {
@@ -179,7 +194,7 @@ void Transport::advertiseCameraInfo(const std::string& topic) {
 
 void Transport::publish(const std::string& topic, const CameraInfo& info) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->advertised(topic).publish(messageOf(info));
+  impl_->send(topic, messageOf(info));
 }
 
 void Transport::publishStaticTransforms(const std::vector<Transform>& transforms) {
@@ -198,6 +213,11 @@ void Transport::publishStaticTransforms(const std::vector<Transform>& transforms
   std::lock_guard<std::mutex> lock(impl_->mutex);
   if (!impl_->staticTransforms) impl_->staticTransforms = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
   impl_->staticTransforms->sendTransform(messages);
+  if (impl_->bag) {
+    tf2_msgs::TFMessage all;
+    all.transforms = messages;
+    impl_->bag->write("/tf_static", messages.empty() ? ros::Time::now() : messages.front().header.stamp, all);
+  }
 }
 
 void Transport::publishLatchedText(const std::string& topic, const std::string& text) {
@@ -207,6 +227,19 @@ void Transport::publishLatchedText(const std::string& topic, const std::string& 
   std_msgs::String m;
   m.data = text;
   publisher.publish(m);
+}
+
+void Transport::record(const std::string& partialPath, const std::string& path) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->bagPath = path;
+  impl_->bagPartial = partialPath;
+  impl_->bag = std::make_unique<rosbag::Bag>();
+  try {
+    impl_->bag->open(impl_->bagPartial, rosbag::bagmode::Write);
+  } catch (const rosbag::BagException& e) {
+    impl_->bag.reset();
+    throw std::runtime_error(e.what());
+  }
 }
 
 uint32_t Transport::subscribers(const std::string& topic) const {

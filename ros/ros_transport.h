@@ -37,6 +37,11 @@ class Transport {
   void publishStaticTransforms(const std::vector<Transform>& transforms);
   // One status on /diagnostics (advertised by the constructor), stamped now.
   void publish(const Diagnostic& diagnostic);
+  // From now on every message this node publishes is also written to a ROS bag, under its topic
+  // and stamped with its header's stamp. The bag is written as `partialPath` and renamed to
+  // `path` when the transport closes: a killed node leaves no half-written bag under the final
+  // name. std::runtime_error if it cannot be opened.
+  void record(const std::string& partialPath, const std::string& path);
   // Subscribers of `topic` connected now.
   uint32_t subscribers(const std::string& topic) const;
 
