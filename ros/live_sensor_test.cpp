@@ -449,6 +449,65 @@ TEST(LiveSensor, RefusesASpecAsTheDatasetReaderDoes) {
   fs::remove_all(root);
 }
 
+// examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to
+// the dataset's frame of the pose; SIGTERM ends it cleanly.
+TEST(RosPythonExample, PublishesTheRenderersFramesForOdometryPoses) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_ros_python_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  const std::string scene = std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json";
+  std::ofstream(root / "spec.json") << R"({"format": "omnicam-dataset/1", "scene": ")" << scene
+                                    << R"(", "spp": 4, "shading": "lit", "poses": {"list": [[1.0, -0.5, 0], [2.0, 1.0, 180]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
+  const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + (root / "spec.json").string() +
+                                         " -o " + (root / "dataset").string() + " 2>&1");
+  ASSERT_EQ(dataset.code, 0) << dataset.out;
+  RosMaster master(root);
+  ASSERT_EQ(master.problem(), "");
+  std::vector<std::string> environment = master.environment();
+  environment.push_back("PYTHONPATH=" OMNICAM_PYTHON_DIR);
+  environment.push_back("GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA,-FMA4");  // the CLI's math (docs/python.md)
+  TestDaemons example;
+  ASSERT_TRUE(example.start("ros_camera.py",
+                            {"/usr/bin/python3", std::string(OMNICAM_SOURCE_DIR) + "/examples/python/ros_camera.py", scene,
+                             "--odom", "/py/odom", "--image", "/py/image_raw"},
+                            root / "example.out", environment));
+  startRos(master);
+  ros::NodeHandle handle;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  ros::Publisher odometry = handle.advertise<nav_msgs::Odometry>("/py/odom", 10);
+  std::mutex mutex;
+  std::vector<sensor_msgs::Image> images;
+  ros::Subscriber imageIn = handle.subscribe<sensor_msgs::Image>("/py/image_raw", 10, [&](const sensor_msgs::Image::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    images.push_back(*m);
+  });
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return odometry.getNumSubscribers() > 0 && imageIn.getNumPublishers() > 0; }, 120.0))
+      << readFile(root / "example.out");
+  const auto received = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    return images.size();
+  };
+  for (size_t k = 0; k < 2; ++k) {
+    nav_msgs::Odometry m;
+    m.header.stamp = ros::Time(100 + static_cast<uint32_t>(k), 0);
+    m.pose.pose.position.x = kPoses[k].x, m.pose.pose.position.y = kPoses[k].y;
+    m.pose.pose.orientation.z = kPoses[k].qz, m.pose.pose.orientation.w = kPoses[k].qw;
+    odometry.publish(m);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return received() > k; }, 120.0)) << readFile(root / "example.out");
+  }
+  ::kill(example.pid("ros_camera.py"), SIGTERM);
+  EXPECT_EQ(example.waitForExit("ros_camera.py", 60.0), 0) << readFile(root / "example.out");
+  EXPECT_NE(readFile(root / "example.out").find("ros_camera: 2 poses rendered"), std::string::npos) << readFile(root / "example.out");
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(images[k].encoding, "rgb8");
+    EXPECT_EQ(images[k].header.stamp, ros::Time(100 + k, 0));
+    EXPECT_TRUE(images[k].data == datasetRgb8(root / "dataset", "cam0", k)) << "pose " << k;
+  }
+  spinner.stop();
+  fs::remove_all(root);
+}
+
 // A bag is a new file: an existing one (or a link) is never overwritten, before any master is
 // looked for.
 TEST(LiveSensor, NeverOverwritesABag) {

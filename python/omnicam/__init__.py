@@ -34,6 +34,7 @@ __all__ = [
     "read_uint16_png",
     "render",
     "run_dataset",
+    "srgb8",
     "verify_dataset",
 ]
 _COMPILED = frozenset(__all__) - {"Dataset"} | {"__version__"}

@@ -19,6 +19,7 @@ from ._omnicam import (
     read_uint16_png as read_uint16_png,
     render as render,
     run_dataset as run_dataset,
+    srgb8 as srgb8,
     verify_dataset as verify_dataset,
 )
 from .dataset import Dataset as Dataset

@@ -174,6 +174,15 @@ at once) are written, and is raised again. Returns {"frames", "kept", "rendered"
     const py::ssize_t h = image.height, w = image.width, c = image.channels;
     return arrayTakingOver(std::move(image.values), {h, w, c});
   }, py::arg("path"), py::arg("channels"), "The named channels of an OpenEXR as float32 (H, W, len(channels)), exactly.");
+  m.def("srgb8", [](const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba) {
+    if (rgba.ndim() != 3 || rgba.shape(2) != 4) throw InputError("srgb8: the image must be (H, W, 4) RGBA");
+    ImageRGBA image(static_cast<int>(rgba.shape(1)), static_cast<int>(rgba.shape(0)));
+    std::copy(rgba.data(), rgba.data() + image.pixels.size(), image.pixels.begin());
+    std::vector<unsigned char> codes = srgb8Codes(image);
+    return arrayTakingOver(std::move(codes), {rgba.shape(0), rgba.shape(1), 4});
+  }, py::arg("rgba"),
+        "A frame's colour (linear, premultiplied RGBA float32, (H, W, 4)) as the 8-bit sRGB codes a PNG of it "
+        "holds (straight alpha, uint8 (H, W, 4)): omnicam's own encoding, for ROS images and the like.");
   m.def("read_uint16_png", [](const std::string& path) {
     int w = 0, h = 0;
     std::vector<uint16_t> values = readUint16Png(path, w, h);

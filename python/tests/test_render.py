@@ -207,3 +207,18 @@ def test_recording_is_the_datasets_camera_drawn_for_the_frame(robocup, tmp_path)
         renderer.render(pose, size=32, recording={"bayer": "rgbg"})
     with pytest.raises(omnicam.InputError, match=r"recording\.exposure_ev\.uniform: lo > hi"):
         renderer.render(pose, size=32, recording={"exposure_ev": {"uniform": [1, 0]}})
+
+
+def test_srgb8_gives_the_codes_of_the_clis_png(robocup, tmp_path):
+    from PIL import Image
+
+    frame = omnicam.Renderer(robocup).render(POSE, spp=4, shading="lit")
+    code, _, err = run_cli("render", SOURCE / "scenes" / "robocup2006.json", "--pose=%g,%g,%g" % POSE,
+                           "--spp", 4, "--shading", "lit", "-o", tmp_path / "cli.png")
+    assert code == 0, err
+    png = np.asarray(Image.open(tmp_path / "cli.png").convert("RGBA"))
+    codes = omnicam.srgb8(frame["rgb"])
+    assert codes.dtype == np.uint8 and codes.shape == (360, 360, 4)
+    np.testing.assert_array_equal(codes, png)
+    with pytest.raises(omnicam.InputError, match="srgb8: the image must be"):
+        omnicam.srgb8(frame["rgb"][..., :3])
