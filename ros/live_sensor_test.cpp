@@ -232,182 +232,205 @@ void expectImageGeometryUndistortsCvFisheye(const sensor_msgs::CameraInfo& info)
   }
 }
 
-TEST(LiveSensor, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
-  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_test_" + std::to_string(::getpid()));
-  fs::create_directories(root);
-  std::ofstream(root / "spec.json") << specText();
-  const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + (root / "spec.json").string() +
-                                         " -o " + (root / "dataset").string() + " 2>&1");
-  ASSERT_EQ(dataset.code, 0) << dataset.out;
-
-  RosMaster master(root);
-  ASSERT_EQ(master.problem(), "");
-  TestDaemons node;
-  ASSERT_TRUE(node.start("omnicam ros",
-                         {OMNICAM_BINARY, "ros", (root / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom",
-                          "--frames", std::to_string(std::size(kPoses)), "--record", (root / "run.bag").string()},
-                         root / "node.out", master.environment()));
-
-  startRos(master);
-  ros::NodeHandle handle;
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  ros::Publisher odometry = handle.advertise<nav_msgs::Odometry>("/bot/odom", 10);
-  std::mutex mutex;
-  std::map<std::string, std::vector<sensor_msgs::Image>> received;
-  std::map<std::string, std::vector<sensor_msgs::CameraInfo>> infos;
-  std::vector<ros::Subscriber> subscriptions;
-  for (const std::string camera : kCameras) {
-    for (const std::string leaf : kImageLeaves)
-      subscriptions.push_back(handle.subscribe<sensor_msgs::Image>(
-          "/bot/" + camera + "/" + leaf, 10, [&, key = camera + "/" + leaf](const sensor_msgs::Image::ConstPtr& m) {
-            std::lock_guard<std::mutex> lock(mutex);
-            received[key].push_back(*m);
-          }));
-    subscriptions.push_back(handle.subscribe<sensor_msgs::CameraInfo>(
-        "/bot/" + camera + "/camera_info", 10, [&, camera](const sensor_msgs::CameraInfo::ConstPtr& m) {
-          std::lock_guard<std::mutex> lock(mutex);
-          infos[camera].push_back(*m);
-        }));
+// The messages of one topic as they arrive (on the spinner's thread), for the test's thread.
+template <typename Message>
+class Inbox {
+ public:
+  Inbox(ros::NodeHandle& handle, const std::string& topic)
+      : subscriber_(handle.subscribe<Message>(topic, 100, [this](const typename Message::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          messages_.push_back(*m);
+        })) {}
+  size_t size() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_.size();
   }
-  std::vector<geometry_msgs::TransformStamped> mounts;
-  subscriptions.push_back(handle.subscribe<tf2_msgs::TFMessage>("/tf_static", 10, [&](const tf2_msgs::TFMessage::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    mounts.insert(mounts.end(), m->transforms.begin(), m->transforms.end());
-  }));
-  std::vector<std::string> diagnostics;
-  subscriptions.push_back(handle.subscribe<diagnostic_msgs::DiagnosticArray>(
-      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-        std::lock_guard<std::mutex> lock(mutex);
-        for (const auto& status : m->status) diagnostics.push_back(status.message);
-      }));
-  // Frames complete with their camera_info, of every camera.
-  const auto count = [&] {
-    std::lock_guard<std::mutex> lock(mutex);
-    size_t least = mounts.size() >= std::size(kCameras) ? SIZE_MAX : 0;
-    for (const std::string camera : kCameras) {
-      least = std::min(least, infos[camera].size());
-      for (const std::string leaf : kImageLeaves) least = std::min(least, received[camera + "/" + leaf].size());
+  // A copy: the spinner may still add to the list.
+  std::vector<Message> messages() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_;
+  }
+  bool connected() const { return subscriber_.getNumPublishers() > 0; }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<Message> messages_;
+  ros::Subscriber subscriber_;  // last: unsubscribed before the list goes
+};
+using Images = Inbox<sensor_msgs::Image>;
+
+// The diagnostics' messages, one per status.
+std::vector<std::string> diagnosticMessages(const Inbox<diagnostic_msgs::DiagnosticArray>& inbox) {
+  std::vector<std::string> messages;
+  for (const auto& array : inbox.messages())
+    for (const auto& status : array.status) messages.push_back(status.message);
+  return messages;
+}
+
+// One run against a master of the test's own: the spec's dataset rendered by the CLI, the program
+// under test started with the master, and this process's node to talk to it.
+class LiveRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    root_ = fs::temp_directory_path() / ("omnicam_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
+    fs::create_directories(root_);
+  }
+  void TearDown() override {
+    if (spinner_) spinner_->stop();
+    fs::remove_all(root_);
+  }
+
+  // Writes the spec and renders its dataset with the CLI (into root/dataset).
+  void renderDataset(const std::string& spec) {
+    std::ofstream(root_ / "spec.json") << spec;
+    const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + (root_ / "spec.json").string() +
+                                           " -o " + (root_ / "dataset").string() + " 2>&1");
+    ASSERT_EQ(dataset.code, 0) << dataset.out;
+  }
+  // Starts the master, then `argv` with it (its output in root/program.out), then this
+  // process's node.
+  void start(const std::vector<std::string>& argv, const std::vector<std::string>& extraEnvironment = {}) {
+    master_ = std::make_unique<RosMaster>(root_);
+    ASSERT_EQ(master_->problem(), "");
+    std::vector<std::string> environment = master_->environment();
+    environment.insert(environment.end(), extraEnvironment.begin(), extraEnvironment.end());
+    ASSERT_TRUE(program_.start("program", argv, root_ / "program.out", environment));
+    startRos(*master_);
+    handle_ = std::make_unique<ros::NodeHandle>();
+    spinner_ = std::make_unique<ros::AsyncSpinner>(1);
+    spinner_->start();
+  }
+  // Until `connected` holds: a message published before its connection would be lost.
+  void waitUntilConnected(const std::function<bool()>& connected) {
+    ASSERT_TRUE(TestDaemons::waitFor(connected, 120.0)) << output();
+  }
+  int waitForExit() { return program_.waitForExit("program", 120.0); }
+  void stopProgram(int signal) { ::kill(program_.pid("program"), signal); }
+  std::string output() const { return readFile(root_ / "program.out"); }
+  fs::path dataset() const { return root_ / "dataset"; }
+
+  fs::path root_;
+  std::unique_ptr<RosMaster> master_;
+  TestDaemons program_;
+  std::unique_ptr<ros::NodeHandle> handle_;
+  std::unique_ptr<ros::AsyncSpinner> spinner_;
+};
+
+nav_msgs::Odometry odometryOf(const SentPose& pose, ros::Time stamp, bool moving) {
+  nav_msgs::Odometry m;
+  m.header.stamp = stamp;
+  m.header.frame_id = "odom";
+  m.child_frame_id = "base_link";
+  m.pose.pose.position.x = pose.x, m.pose.pose.position.y = pose.y;
+  m.pose.pose.orientation.z = pose.qz, m.pose.pose.orientation.w = pose.qw;
+  if (moving) m.twist.twist.linear.x = kForward, m.twist.twist.angular.z = kYawRateRadPerS;
+  return m;
+}
+
+// Every camera's frame, planes and camera_info of one pose, as the node published them.
+struct CameraInboxes {
+  std::map<std::string, std::unique_ptr<Images>> images;  // by leaf
+  std::unique_ptr<Inbox<sensor_msgs::CameraInfo>> info;
+};
+
+TEST_F(LiveRun, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
+  renderDataset(specText());
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--frames",
+         std::to_string(kPoses.size()), "--record", (root_ / "run.bag").string()});
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  std::map<std::string, CameraInboxes> cameras;
+  for (const std::string camera : kCameras) {
+    for (const std::string leaf : kImageLeaves) cameras[camera].images[leaf] = std::make_unique<Images>(*handle_, "/bot/" + camera + "/" + leaf);
+    cameras[camera].info = std::make_unique<Inbox<sensor_msgs::CameraInfo>>(*handle_, "/bot/" + camera + "/camera_info");
+  }
+  Inbox<tf2_msgs::TFMessage> mounts(*handle_, "/tf_static");
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
+  // Poses whose every message is in: each camera's planes and camera_info, and the mounts.
+  const auto complete = [&] {
+    size_t least = mounts.size() > 0 ? SIZE_MAX : 0;
+    for (const auto& [camera, inboxes] : cameras) {
+      least = std::min(least, inboxes.info->size());
+      for (const auto& [leaf, images] : inboxes.images) least = std::min(least, images->size());
     }
     return least;
   };
-  const auto lastDiagnostic = [&](size_t atLeast) {
-    std::lock_guard<std::mutex> lock(mutex);
-    return diagnostics.size() >= atLeast ? diagnostics[atLeast - 1] : std::string();
-  };
-  // The node is up when it listens to the odometry and both images and its diagnostics are
-  // connected (a message published before its connection would be lost).
-  ASSERT_TRUE(TestDaemons::waitFor(
-      [&] {
-        bool connected = odometry.getNumSubscribers() > 0;
-        for (const ros::Subscriber& s : subscriptions) connected = connected && s.getNumPublishers() > 0;
-        return connected;
-      },
-      120.0))
-      << readFile(root / "node.out");
+  waitUntilConnected([&] {
+    bool connected = odometry.getNumSubscribers() > 0 && mounts.connected() && diagnostics.connected();
+    for (const auto& [camera, inboxes] : cameras) {
+      connected = connected && inboxes.info->connected();
+      for (const auto& [leaf, images] : inboxes.images) connected = connected && images->connected();
+    }
+    return connected;
+  });
 
-  const auto odometryOf = [](const SentPose& pose, uint32_t sec) {
-    nav_msgs::Odometry m;
-    m.header.stamp = ros::Time(sec, 250);
-    m.header.frame_id = "odom";
-    m.child_frame_id = "base_link";
-    m.pose.pose.position.x = pose.x, m.pose.pose.position.y = pose.y;
-    m.pose.pose.orientation.z = pose.qz, m.pose.pose.orientation.w = pose.qw;
-    m.twist.twist.linear.x = kForward, m.twist.twist.angular.z = kYawRateRadPerS;
-    return m;
-  };
   // One pose at a time, each sent once the last one's images are in: nothing is dropped. After
   // the first, two hostile ones: each refused with a diagnostic, and the node goes on.
-  for (size_t k = 0; k < std::size(kPoses); ++k) {
-    odometry.publish(odometryOf(kPoses[k], 100 + static_cast<uint32_t>(k)));
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return count() > k; }, 300.0))
-        << "pose " << k << ": " << readFile(root / "node.out");
+  for (size_t k = 0; k < kPoses.size(); ++k) {
+    odometry.publish(odometryOf(kPoses[k], ros::Time(100 + static_cast<uint32_t>(k), 250), true));
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return complete() > k; }, 300.0)) << "pose " << k << ": " << output();
     if (k > 0) continue;
-    nav_msgs::Odometry notFinite = odometryOf(kPoses[1], 150);
+    nav_msgs::Odometry notFinite = odometryOf(kPoses[1], ros::Time(150, 0), true);
     notFinite.pose.pose.position.x = std::nan("");
     odometry.publish(notFinite);
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return !lastDiagnostic(1).empty(); }, 120.0));
-    EXPECT_NE(lastDiagnostic(1).find("pose refused: a number of the pose or twist is not finite"), std::string::npos)
-        << lastDiagnostic(1);
-    odometry.publish(odometryOf(kPoses[1], 99));  // before pose 0's stamp
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return !lastDiagnostic(2).empty(); }, 120.0));
-    EXPECT_NE(lastDiagnostic(2).find("pose refused: its stamp 99.000000250 is not after the last pose's, 100.000000250"),
-              std::string::npos)
-        << lastDiagnostic(2);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
+    odometry.publish(odometryOf(kPoses[1], ros::Time(99, 250), true));  // before pose 0's stamp
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 1; }, 120.0)) << output();
+    const std::vector<std::string> refused = diagnosticMessages(diagnostics);
+    EXPECT_EQ(refused[0], "pose refused: a number of the pose or twist is not finite");
+    EXPECT_EQ(refused[1], "pose refused: its stamp 99.000000250 is not after the last pose's, 100.000000250");
   }
-  ASSERT_EQ(node.waitForExit("omnicam ros", 120.0), 0) << readFile(root / "node.out");
-  EXPECT_NE(readFile(root / "node.out").find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped while rendering, 2 refused"), std::string::npos) << readFile(root / "node.out");
+  ASSERT_EQ(waitForExit(), 0) << output();
+  EXPECT_NE(output().find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped while rendering, 2 refused"),
+            std::string::npos)
+      << output();
 
-  for (const std::string camera : kCameras)
-    for (size_t k = 0; k < std::size(kPoses); ++k) {
-      const sensor_msgs::Image& image = received[camera + "/image_raw"][k];
+  std::map<std::string, std::vector<sensor_msgs::Image>> planes;  // by "camera/leaf", for expectPlanesOfTheFiles
+  for (const std::string camera : kCameras) {
+    for (const std::string leaf : kImageLeaves) planes[camera + "/" + leaf] = cameras[camera].images[leaf]->messages();
+    const std::vector<sensor_msgs::CameraInfo> infos = cameras[camera].info->messages();
+    for (size_t k = 0; k < kPoses.size(); ++k) {
+      const sensor_msgs::Image& image = planes[camera + "/image_raw"][k];
       SCOPED_TRACE(camera + " pose " + std::to_string(k));
       EXPECT_EQ(image.header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 250));
       EXPECT_EQ(image.header.frame_id, "bot/" + camera);
       EXPECT_EQ(image.encoding, "rgb8");
       EXPECT_EQ(image.step, image.width * 3);
-      EXPECT_TRUE(image.data == datasetRgb8(root / "dataset", camera, static_cast<int>(k)));
-      const sensor_msgs::CameraInfo& info = infos[camera][k];
-      EXPECT_EQ(info.header.stamp, image.header.stamp);
-      EXPECT_EQ(info.header.frame_id, "bot/" + camera);
-      EXPECT_EQ(info.width, image.width);
-      EXPECT_EQ(info.height, image.height);
-      expectIntrinsicsOfTheFile(info, root / "dataset" / camera / "intrinsics" / "opencv.yaml");
-      expectPlanesOfTheFiles(received, camera, static_cast<int>(k), root / "dataset");
+      EXPECT_TRUE(image.data == datasetRgb8(dataset(), camera, static_cast<int>(k)));
+      EXPECT_EQ(infos[k].header.stamp, image.header.stamp);
+      EXPECT_EQ(infos[k].header.frame_id, "bot/" + camera);
+      EXPECT_EQ(infos[k].width, image.width);
+      EXPECT_EQ(infos[k].height, image.height);
+      expectIntrinsicsOfTheFile(infos[k], dataset() / camera / "intrinsics" / "opencv.yaml");
+      expectPlanesOfTheFiles(planes, camera, static_cast<int>(k), dataset());
     }
-  EXPECT_EQ(received["front/image_raw"][0].width, 96u);
-  ASSERT_EQ(mounts.size(), std::size(kCameras));
-  for (const geometry_msgs::TransformStamped& mount : mounts)
-    expectMountOfTheTumPoses(mount, root / "dataset" / mount.child_frame_id.substr(4) / "poses.tum");
-  expectImageGeometryUndistortsCvFisheye(infos["fisheye"][0]);
-  expectTheBagHoldsTheDataset(root / "run.bag", root / "dataset");
-  for (const fs::directory_entry& entry : fs::directory_iterator(root))
+  }
+  EXPECT_EQ(planes["front/image_raw"][0].width, 96u);
+  expectImageGeometryUndistortsCvFisheye(cameras["fisheye"].info->messages()[0]);
+  const std::vector<tf2_msgs::TFMessage> statics = mounts.messages();
+  ASSERT_EQ(statics.size(), 1u);
+  ASSERT_EQ(statics[0].transforms.size(), std::size(kCameras));
+  for (const geometry_msgs::TransformStamped& mount : statics[0].transforms)
+    expectMountOfTheTumPoses(mount, dataset() / mount.child_frame_id.substr(4) / "poses.tum");
+  expectTheBagHoldsTheDataset(root_ / "run.bag", dataset());
+  for (const fs::directory_entry& entry : fs::directory_iterator(root_))
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
-  spinner.stop();
-  fs::remove_all(root);
 }
 
 // Poses from tf through a tree (map -> odom -> base_link), each image equal to the dataset's
 // frame; a gap in the tree refuses its pose with a diagnostic, and the node goes on.
-TEST(LiveSensor, TakesPosesFromTfAndRefusesAGapInTheTree) {
-  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_tf_" + std::to_string(::getpid()));
-  fs::create_directories(root);
-  std::ofstream(root / "spec.json") << R"({"format": "omnicam-dataset/1", "scene": ")" << OMNICAM_SOURCE_DIR
-                                    << R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "lit",
-    )" << poseList(kPoses.size()) << R"(, "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}}],
-    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
-  const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + (root / "spec.json").string() +
-                                         " -o " + (root / "dataset").string() + " 2>&1");
-  ASSERT_EQ(dataset.code, 0) << dataset.out;
-  RosMaster master(root);
-  ASSERT_EQ(master.problem(), "");
-  TestDaemons node;
-  ASSERT_TRUE(node.start("omnicam ros",
-                         {OMNICAM_BINARY, "ros", (root / "spec.json").string(), "--robot", "tfbot", "--tf", "map",
-                          "--frames", std::to_string(kPoses.size())},
-                         root / "node.out", master.environment()));
-  startRos(master);
-  ros::NodeHandle handle;
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  ros::Publisher tf = handle.advertise<tf2_msgs::TFMessage>("/tf", 10);
-  std::mutex mutex;
-  std::vector<sensor_msgs::Image> images;
-  std::vector<std::string> diagnostics;
-  ros::Subscriber imageIn = handle.subscribe<sensor_msgs::Image>("/tfbot/front/image_raw", 10, [&](const sensor_msgs::Image::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    images.push_back(*m);
-  });
-  ros::Subscriber diagnosticsIn = handle.subscribe<diagnostic_msgs::DiagnosticArray>(
-      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-        std::lock_guard<std::mutex> lock(mutex);
-        for (const auto& status : m->status) diagnostics.push_back(status.message);
-      });
+TEST_F(LiveRun, TakesPosesFromTfAndRefusesAGapInTheTree) {
+  renderDataset(std::string(R"({"format": "omnicam-dataset/1", "scene": ")") + OMNICAM_SOURCE_DIR +
+                R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "lit", )" + poseList(kPoses.size()) +
+                R"(, "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}}],
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "tfbot", "--tf", "map", "--frames",
+         std::to_string(kPoses.size())});
+  ros::Publisher tf = handle_->advertise<tf2_msgs::TFMessage>("/tf", 10);
+  Images images(*handle_, "/tfbot/front/image_raw");
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
   // The node's listener and its trigger share the node's one connection to /tf.
-  ASSERT_TRUE(TestDaemons::waitFor(
-      [&] { return tf.getNumSubscribers() > 0 && imageIn.getNumPublishers() > 0 && diagnosticsIn.getNumPublishers() > 0; },
-      120.0))
-      << readFile(root / "node.out");
+  waitUntilConnected([&] { return tf.getNumSubscribers() > 0 && images.connected() && diagnostics.connected(); });
   const auto edge = [](const char* parent, const char* child, ros::Time stamp, double x, double y, double qz, double qw) {
     geometry_msgs::TransformStamped t;
     t.header.stamp = stamp;
@@ -422,34 +445,30 @@ TEST(LiveSensor, TakesPosesFromTfAndRefusesAGapInTheTree) {
     m.transforms = std::move(transforms);
     tf.publish(m);
   };
-  const auto count = [&](auto& list) {
-    std::lock_guard<std::mutex> lock(mutex);
-    return list.size();
-  };
   // map -> odom is 0.5 m along x at every stamp; odom -> base_link puts the robot at the spec's
   // poses. One at a time: each sent once the last one's image is in.
   for (size_t k = 0; k < kPoses.size(); ++k) {
     const ros::Time stamp(100 + static_cast<uint32_t>(k), 0);
     send({edge("map", "odom", stamp, 0.5, 0, 0, 1),
           edge("odom", "base_link", stamp, kPoses[k].x - 0.5, kPoses[k].y, kPoses[k].qz, kPoses[k].qw)});
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return count(images) > k; }, 120.0)) << "pose " << k << readFile(root / "node.out");
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > k; }, 120.0)) << "pose " << k << output();
     if (k > 0) continue;
     // A gap: map -> odom is not known half a second later yet. (tf2 ignores data 10 s older than
     // its newest, so the stamps only grow.)
     send({edge("odom", "base_link", ros::Time(100, 500000000), 1.5, 1.0, 1, 0)});
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return count(diagnostics) > 0; }, 120.0)) << readFile(root / "node.out");
-    EXPECT_NE(diagnostics[0].find("pose refused: no transform from map to base_link"), std::string::npos) << diagnostics[0];
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
+    EXPECT_NE(diagnosticMessages(diagnostics)[0].find("pose refused: no transform from map to base_link"), std::string::npos)
+        << diagnosticMessages(diagnostics)[0];
   }
-  ASSERT_EQ(node.waitForExit("omnicam ros", 120.0), 0) << readFile(root / "node.out");
-  EXPECT_NE(readFile(root / "node.out").find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped while rendering, 1 refused"),
+  ASSERT_EQ(waitForExit(), 0) << output();
+  EXPECT_NE(output().find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped while rendering, 1 refused"),
             std::string::npos)
-      << readFile(root / "node.out");
+      << output();
+  const std::vector<sensor_msgs::Image> frames = images.messages();
   for (size_t k = 0; k < kPoses.size(); ++k) {
-    EXPECT_EQ(images[k].header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 0));
-    EXPECT_TRUE(images[k].data == datasetRgb8(root / "dataset", "front", static_cast<int>(k))) << "pose " << k;
+    EXPECT_EQ(frames[k].header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 0));
+    EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "pose " << k;
   }
-  spinner.stop();
-  fs::remove_all(root);
 }
 
 // A spec the dataset reader refuses is refused the same way, before any master is looked for.
@@ -472,61 +491,30 @@ TEST(LiveSensor, RefusesASpecAsTheDatasetReaderDoes) {
 
 // examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to
 // the dataset's frame of the pose; SIGTERM ends it cleanly.
-TEST(RosPythonExample, PublishesTheRenderersFramesForOdometryPoses) {
-  const fs::path root = fs::temp_directory_path() / ("omnicam_ros_python_" + std::to_string(::getpid()));
-  fs::create_directories(root);
+TEST_F(LiveRun, PythonExamplePublishesTheRenderersFramesForOdometryPoses) {
   const std::string scene = std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json";
-  std::ofstream(root / "spec.json") << R"({"format": "omnicam-dataset/1", "scene": ")" << scene
-                                    << R"(", "spp": 4, "shading": "lit", )" << poseList(2) << R"(,
-    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
-  const CommandResult dataset = runShell(std::string(OMNICAM_BINARY) + " dataset " + (root / "spec.json").string() +
-                                         " -o " + (root / "dataset").string() + " 2>&1");
-  ASSERT_EQ(dataset.code, 0) << dataset.out;
-  RosMaster master(root);
-  ASSERT_EQ(master.problem(), "");
-  std::vector<std::string> environment = master.environment();
-  environment.push_back("PYTHONPATH=" OMNICAM_PYTHON_DIR);
-  environment.push_back("GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA,-FMA4");  // the CLI's math (docs/python.md)
-  TestDaemons example;
-  ASSERT_TRUE(example.start("ros_camera.py",
-                            {"/usr/bin/python3", std::string(OMNICAM_SOURCE_DIR) + "/examples/python/ros_camera.py", scene,
-                             "--odom", "/py/odom", "--image", "/py/image_raw"},
-                            root / "example.out", environment));
-  startRos(master);
-  ros::NodeHandle handle;
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  ros::Publisher odometry = handle.advertise<nav_msgs::Odometry>("/py/odom", 10);
-  std::mutex mutex;
-  std::vector<sensor_msgs::Image> images;
-  ros::Subscriber imageIn = handle.subscribe<sensor_msgs::Image>("/py/image_raw", 10, [&](const sensor_msgs::Image::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    images.push_back(*m);
-  });
-  ASSERT_TRUE(TestDaemons::waitFor([&] { return odometry.getNumSubscribers() > 0 && imageIn.getNumPublishers() > 0; }, 120.0))
-      << readFile(root / "example.out");
-  const auto received = [&] {
-    std::lock_guard<std::mutex> lock(mutex);
-    return images.size();
-  };
+  renderDataset(std::string(R"({"format": "omnicam-dataset/1", "scene": ")") + scene + R"(", "spp": 4, "shading": "lit", )" +
+                poseList(2) + R"(,
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  start({"/usr/bin/python3", std::string(OMNICAM_SOURCE_DIR) + "/examples/python/ros_camera.py", scene, "--odom", "/py/odom",
+         "--image", "/py/image_raw"},
+        {"PYTHONPATH=" OMNICAM_PYTHON_DIR, "GLIBC_TUNABLES=glibc.cpu.hwcaps=-FMA,-FMA4"});  // the CLI's math (docs/python.md)
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/py/odom", 10);
+  Images images(*handle_, "/py/image_raw");
+  waitUntilConnected([&] { return odometry.getNumSubscribers() > 0 && images.connected(); });
   for (size_t k = 0; k < 2; ++k) {
-    nav_msgs::Odometry m;
-    m.header.stamp = ros::Time(100 + static_cast<uint32_t>(k), 0);
-    m.pose.pose.position.x = kPoses[k].x, m.pose.pose.position.y = kPoses[k].y;
-    m.pose.pose.orientation.z = kPoses[k].qz, m.pose.pose.orientation.w = kPoses[k].qw;
-    odometry.publish(m);
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return received() > k; }, 120.0)) << readFile(root / "example.out");
+    odometry.publish(odometryOf(kPoses[k], ros::Time(100 + static_cast<uint32_t>(k), 0), false));
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > k; }, 120.0)) << output();
   }
-  ::kill(example.pid("ros_camera.py"), SIGTERM);
-  EXPECT_EQ(example.waitForExit("ros_camera.py", 60.0), 0) << readFile(root / "example.out");
-  EXPECT_NE(readFile(root / "example.out").find("ros_camera: 2 poses rendered"), std::string::npos) << readFile(root / "example.out");
+  stopProgram(SIGTERM);
+  EXPECT_EQ(waitForExit(), 0) << output();
+  EXPECT_NE(output().find("ros_camera: 2 poses rendered"), std::string::npos) << output();
+  const std::vector<sensor_msgs::Image> frames = images.messages();
   for (int k = 0; k < 2; ++k) {
-    EXPECT_EQ(images[k].encoding, "rgb8");
-    EXPECT_EQ(images[k].header.stamp, ros::Time(100 + k, 0));
-    EXPECT_TRUE(images[k].data == datasetRgb8(root / "dataset", "cam0", k)) << "pose " << k;
+    EXPECT_EQ(frames[k].encoding, "rgb8");
+    EXPECT_EQ(frames[k].header.stamp, ros::Time(100 + k, 0));
+    EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "cam0", k)) << "pose " << k;
   }
-  spinner.stop();
-  fs::remove_all(root);
 }
 
 // A bag is a new file: an existing one (or a link) is never overwritten, before any master is
