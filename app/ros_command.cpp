@@ -35,9 +35,9 @@ void runRos(const RosArgs& a) {
     std::printf("ros: ready: poses from %s, images on /%s/CAMERA/image_raw\n", from.c_str(), a.options.robot.c_str());
     std::fflush(stdout);
   });
-  std::printf("ros: %lld poses rendered, %lld dropped while rendering, %lld refused\n",
+  std::printf("ros: %lld poses rendered, %lld dropped while rendering, %lld refused, %lld new masters\n",
               static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
-              static_cast<long long>(report.refused));
+              static_cast<long long>(report.refused), static_cast<long long>(report.newMasters));
 }
 
 }  // namespace

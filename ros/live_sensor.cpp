@@ -180,6 +180,7 @@ std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted
   const double* q = o.orientationXyzw;
   if (std::abs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) - 1.0) > 1e-3)
     return "the orientation is not a unit quaternion";
+  if (o.stamp.sec == 0 && o.stamp.nsec == 0) return "its stamp is zero (set header.stamp, e.g. rostopic pub -s with stamp: now)";
   if (std::abs(o.position[0]) > kMaxCoordinate || std::abs(o.position[1]) > kMaxCoordinate)
     return "the position is beyond ±10 km";
   if (std::hypot(o.linear[0], o.linear[1]) > kMaxSpeed) return "the speed is above 100 m/s";
@@ -201,9 +202,16 @@ LivePose livePoseOf(const ros1::Odometry& odometry) {
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
                                const std::function<void()>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
+  if (plan.vibrates())
+    throw InputError(showPath(spec.file) + ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
+  // The state the ROS callbacks use, declared before the transport: its destructor stops the
+  // callbacks before any of this goes (a pose arriving while the sensor stops is safe).
+  NewestPose newest;
+  std::optional<ros1::Stamp> lastAccepted;  // the spinner's one thread's own
+  std::atomic<int64_t> refused = 0;
   std::optional<ros1::Transport> transport;
   try {
-    transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds);
+    transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds, [] { return interruptRequested().load(); });
   } catch (const std::runtime_error& e) {
     throw ExternalError(std::string("ros: ") + e.what() + " (start one with `roscore`, or set ROS_MASTER_URI)");
   }
@@ -231,10 +239,6 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
       transport->publishLatchedText(cameraTopic(options, name, "intrinsics"), infos.back().intrinsicsJson);
   }
   transport->publishStaticTransforms(mounts);
-  NewestPose newest;
-  // Called on the spinner's one thread only: `lastAccepted` and `refused` are its own.
-  std::optional<ros1::Stamp> lastAccepted;
-  std::atomic<int64_t> refused = 0;
   const auto refuse = [&](const std::string& why, const ros1::Stamp& stamp) {
     transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
   };
@@ -254,7 +258,15 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
 
   if (ready) ready();
   LiveSensorReport report;
+  auto masterChecked = std::chrono::steady_clock::now();
   while (!interruptRequested() && (options.frames == 0 || report.rendered < options.frames)) {
+    // Once a second: a master that went away and came back gets every topic again.
+    if (std::chrono::steady_clock::now() - masterChecked > std::chrono::seconds(1)) {
+      masterChecked = std::chrono::steady_clock::now();
+      if (transport->registerAgainIfTheMasterCameBack())
+        transport->publish(
+            diagnostic(options, "the ROS master came back: every topic registered again", ros1::Stamp{}, ++report.newMasters));
+    }
     const std::optional<LivePose> live = newest.take(std::chrono::milliseconds(100));
     if (!live) continue;
     for (size_t c = 0; c < plan.setups().size(); ++c) {

@@ -36,6 +36,7 @@ struct LiveSensorOptions {
 
 struct LiveSensorReport {
   int64_t rendered = 0, dropped = 0, refused = 0;
+  int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again
 };
 
 // An odometry message as the robot's pose (x, y, yaw about +Z from the quaternion) and velocity

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -278,6 +279,8 @@ class LiveRun : public ::testing::Test {
   }
   void TearDown() override {
     if (spinner_) spinner_->stop();
+    program_.stop("program");  // then the master: neither writes into the folder any more
+    master_.reset();
     fs::remove_all(root_);
   }
 
@@ -487,6 +490,37 @@ TEST(LiveSensor, RefusesASpecAsTheDatasetReaderDoes) {
   EXPECT_NE(live.out.find("spp: must be a perfect square"), std::string::npos) << live.out;
   EXPECT_EQ(live.out, dataset.out);
   fs::remove_all(root);
+}
+
+// A master that goes away and comes back: the node keeps running, registers every topic with
+// the new master (saying so on /diagnostics) and renders the next pose as before.
+TEST_F(LiveRun, OutlivesItsMasterAndRegistersAgainWhenItComesBack) {
+  renderDataset(specText());
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--frames", "2"});
+  std::optional<ros::Publisher> odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  auto images = std::make_unique<Images>(*handle_, "/bot/front/image_raw");
+  waitUntilConnected([&] { return odometry->getNumSubscribers() > 0 && images->connected(); });
+  odometry->publish(odometryOf(kPoses[0], ros::Time(100, 250), true));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images->size() > 0; }, 120.0)) << output();
+  const sensor_msgs::Image first = images->messages()[0];
+
+  master_->stop();
+  master_->restart();
+  ASSERT_EQ(master_->problem(), "");
+  // This process's topics are new to the new master too.
+  odometry.reset();
+  images.reset();
+  odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  images = std::make_unique<Images>(*handle_, "/bot/front/image_raw");
+  waitUntilConnected([&] { return odometry->getNumSubscribers() > 0 && images->connected(); });
+  odometry->publish(odometryOf(kPoses[1], ros::Time(101, 250), true));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images->size() > 0; }, 120.0)) << output();
+  ASSERT_EQ(waitForExit(), 0) << output();
+  EXPECT_TRUE(first.data == datasetRgb8(dataset(), "front", 0));
+  EXPECT_TRUE(images->messages()[0].data == datasetRgb8(dataset(), "front", 1));
+  // (Its diagnostic goes out as the node registers again, before a subscriber can connect.)
+  EXPECT_NE(output().find("2 poses rendered, 0 dropped while rendering, 0 refused, 1 new masters"), std::string::npos)
+      << output();
 }
 
 // examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -62,6 +63,14 @@ sensor_msgs::CameraInfo messageOf(const CameraInfo& info) {
   return m;
 }
 
+// The master's process id, 0 if no master answers (its getPid call).
+int masterPid() {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  if (!ros::master::execute("getPid", args, result, payload, false)) return 0;
+  return payload.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(payload) : 0;
+}
+
 }  // namespace
 
 struct Transport::Impl {
@@ -75,6 +84,11 @@ struct Transport::Impl {
   std::unique_ptr<tf2_ros::Buffer> tfBuffer;
   std::unique_ptr<rosbag::Bag> bag;  // when recording (the mutex held to write)
   std::string bagPath, bagPartial;
+  // roscpp registers a topic with the master once; a master that restarts knows none. These make
+  // every subscription (on the owner's thread) and publication (the mutex held) again.
+  std::vector<std::function<void()>> subscribe, advertise;
+  std::vector<geometry_msgs::TransformStamped> staticMessages;
+  int masterPid = 0;  // the master registered with; another pid is a master that restarted
   std::unique_ptr<tf2_ros::TransformListener> tfListener;
 
   // Publishes `message` on `topic` and records it (the mutex held).
@@ -92,16 +106,21 @@ struct Transport::Impl {
   }
 };
 
-Transport::Transport(const std::string& name, double masterWaitSeconds) : impl_(std::make_unique<Impl>()) {
+Transport::Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested)
+    : impl_(std::make_unique<Impl>()) {
   int argc = 0;
   ros::init(argc, nullptr, name, ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(masterWaitSeconds);
-  while (!ros::master::check()) {
+  while ((impl_->masterPid = masterPid()) == 0) {
     if (ros::WallTime::now() > deadline) throw std::runtime_error("no ROS master at " + ros::master::getURI());
+    if (stopRequested && stopRequested()) throw std::runtime_error("stopped while waiting for the ROS master");
     ros::WallDuration(0.05).sleep();
   }
   impl_->node = std::make_unique<ros::NodeHandle>();
-  impl_->diagnostics = impl_->node->advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10);
+  Impl* impl = impl_.get();
+  impl->advertise.push_back(
+      [impl] { impl->diagnostics = impl->node->advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 10); });
+  impl->advertise.back()();
   impl_->spinner = std::make_unique<ros::AsyncSpinner>(1);
   impl_->spinner->start();
 }
@@ -123,8 +142,12 @@ Transport::~Transport() {
 }
 
 void Transport::subscribeOdometry(const std::string& topic, OdometryHandler handler) {
-  impl_->subscriptions.push_back(impl_->node->subscribe<nav_msgs::Odometry>(
-      topic, 10, [handler](const nav_msgs::Odometry::ConstPtr& m) { handler(odometryOf(*m)); }));
+  Impl* impl = impl_.get();
+  impl->subscribe.push_back([impl, topic, handler] {
+    impl->subscriptions.push_back(impl->node->subscribe<nav_msgs::Odometry>(
+        topic, 10, [handler](const nav_msgs::Odometry::ConstPtr& m) { handler(odometryOf(*m)); }));
+  });
+  impl->subscribe.back()();
 }
 
 void Transport::subscribeTransform(const std::string& parent, const std::string& child, OdometryHandler handler,
@@ -134,7 +157,9 @@ void Transport::subscribeTransform(const std::string& parent, const std::string&
     impl_->tfListener = std::make_unique<tf2_ros::TransformListener>(*impl_->tfBuffer);  // its own thread
   }
   tf2_ros::Buffer& buffer = *impl_->tfBuffer;
-  impl_->subscriptions.push_back(impl_->node->subscribe<tf2_msgs::TFMessage>(
+  Impl* impl = impl_.get();
+  impl->subscribe.push_back([impl, &buffer, parent, child, handler, gap] {
+  impl->subscriptions.push_back(impl->node->subscribe<tf2_msgs::TFMessage>(
       "/tf", 100, [&buffer, parent, child, handler, gap](const tf2_msgs::TFMessage::ConstPtr& m) {
         for (const geometry_msgs::TransformStamped& moved : m->transforms) {
           if (moved.child_frame_id != child) continue;
@@ -157,11 +182,16 @@ void Transport::subscribeTransform(const std::string& parent, const std::string&
           handler(o);
         }
       }));
+  });
+  impl->subscribe.back()();
 }
 
 void Transport::advertiseImage(const std::string& topic, bool latched) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->publishers[topic] = impl_->node->advertise<sensor_msgs::Image>(topic, 2, latched);
+  Impl* impl = impl_.get();
+  impl->advertise.push_back(
+      [impl, topic, latched] { impl->publishers[topic] = impl->node->advertise<sensor_msgs::Image>(topic, 2, latched); });
+  impl->advertise.back()();
 }
 
 void Transport::publish(const std::string& topic, const Image& image) {
@@ -189,7 +219,9 @@ void Transport::publish(const Diagnostic& diagnostic) {
 
 void Transport::advertiseCameraInfo(const std::string& topic) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->publishers[topic] = impl_->node->advertise<sensor_msgs::CameraInfo>(topic, 2);
+  Impl* impl = impl_.get();
+  impl->advertise.push_back([impl, topic] { impl->publishers[topic] = impl->node->advertise<sensor_msgs::CameraInfo>(topic, 2); });
+  impl->advertise.back()();
 }
 
 void Transport::publish(const std::string& topic, const CameraInfo& info) {
@@ -213,6 +245,7 @@ void Transport::publishStaticTransforms(const std::vector<Transform>& transforms
   std::lock_guard<std::mutex> lock(impl_->mutex);
   if (!impl_->staticTransforms) impl_->staticTransforms = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
   impl_->staticTransforms->sendTransform(messages);
+  impl_->staticMessages.insert(impl_->staticMessages.end(), messages.begin(), messages.end());
   if (impl_->bag) {
     tf2_msgs::TFMessage all;
     all.transforms = messages;
@@ -222,11 +255,39 @@ void Transport::publishStaticTransforms(const std::vector<Transform>& transforms
 
 void Transport::publishLatchedText(const std::string& topic, const std::string& text) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
-  ros::Publisher& publisher = impl_->publishers[topic];
-  publisher = impl_->node->advertise<std_msgs::String>(topic, 1, /*latch=*/true);
-  std_msgs::String m;
-  m.data = text;
-  publisher.publish(m);
+  Impl* impl = impl_.get();
+  impl->advertise.push_back([impl, topic, text] {
+    ros::Publisher& publisher = impl->publishers[topic];
+    publisher = impl->node->advertise<std_msgs::String>(topic, 1, /*latch=*/true);
+    std_msgs::String m;
+    m.data = text;
+    publisher.publish(m);
+  });
+  impl->advertise.back()();
+}
+
+bool Transport::registerAgainIfTheMasterCameBack() {
+  const int pid = masterPid();
+  if (pid == 0 || pid == impl_->masterPid) return false;  // away, or the same master
+  impl_->masterPid = pid;
+  // Subscriptions first, outside the mutex: a callback may be waiting for it.
+  for (ros::Subscriber& s : impl_->subscriptions) s.shutdown();
+  impl_->subscriptions.clear();
+  if (impl_->tfListener) {
+    impl_->tfListener.reset();
+    impl_->tfListener = std::make_unique<tf2_ros::TransformListener>(*impl_->tfBuffer);
+  }
+  for (const auto& make : impl_->subscribe) make();
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  for (auto& [topic, publisher] : impl_->publishers) publisher.shutdown();
+  impl_->publishers.clear();
+  impl_->diagnostics.shutdown();
+  for (const auto& make : impl_->advertise) make();
+  if (impl_->staticTransforms) {
+    impl_->staticTransforms = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+    impl_->staticTransforms->sendTransform(impl_->staticMessages);
+  }
+  return true;
 }
 
 void Transport::record(const std::string& partialPath, const std::string& path) {

@@ -2,6 +2,7 @@
 // omnicam's one connection to a ROS 1 master (roscpp): a node that subscribes to odometry and
 // publishes images. Built as C++17 (ros_messages.h says why). Callbacks run on roscpp's own
 // spinner thread; a handler must hand work off rather than render there.
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -13,8 +14,8 @@ class Transport {
  public:
   // Registers node `name` with the master of ROS_MASTER_URI (roscpp reads the environment);
   // SIGINT is left to the caller. Throws std::runtime_error if the master cannot be reached
-  // within `masterWaitSeconds`.
-  Transport(const std::string& name, double masterWaitSeconds);
+  // within `masterWaitSeconds`, or if `stopRequested` (asked while it waits) says so.
+  Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested = {});
   ~Transport();
   Transport(const Transport&) = delete;
   Transport& operator=(const Transport&) = delete;
@@ -42,6 +43,11 @@ class Transport {
   // `path` when the transport closes: a killed node leaves no half-written bag under the final
   // name. std::runtime_error if it cannot be opened.
   void record(const std::string& partialPath, const std::string& path);
+  // Whether another master answers now than the one registered with (it restarted, whether or
+  // not a call saw it away); then every subscription, publication, latched message and static
+  // transform is registered again (roscpp registers once, and a new master knows none). Call it
+  // now and then from the owner's thread.
+  bool registerAgainIfTheMasterCameBack();
   // Subscribers of `topic` connected now.
   uint32_t subscribers(const std::string& topic) const;
 

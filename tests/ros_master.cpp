@@ -23,18 +23,25 @@ bool accepts(int port) {
   return connected;
 }
 
+constexpr const char* kRosmaster = "/usr/bin/rosmaster";
+
 }  // namespace
 
 RosMaster::RosMaster(const fs::path& root) : root_(root) {
-  const char* binary = "/usr/bin/rosmaster";
-  if (!fs::exists(binary)) {
-    problem_ = std::string(binary) + " is missing (make deps installs python3-rosmaster)";
+  if (!fs::exists(kRosmaster)) {
+    problem_ = std::string(kRosmaster) + " is missing (make deps installs python3-rosmaster)";
     return;
   }
   fs::create_directories(root_ / "ros_home");
   port_ = TestDaemons::freePort();
   uri_ = "http://127.0.0.1:" + std::to_string(port_) + "/";
-  if (!daemons_.start("rosmaster", {binary, "--core", "-p", std::to_string(port_)}, root_ / "rosmaster.out",
+  start();
+}
+
+void RosMaster::restart() { start(); }
+
+void RosMaster::start() {
+  if (!daemons_.start("rosmaster", {kRosmaster, "--core", "-p", std::to_string(port_)}, root_ / "rosmaster.out",
                       environment())) {
     problem_ = "cannot start rosmaster";
     return;

@@ -20,8 +20,12 @@ class RosMaster {
   std::vector<std::string> environment() const;
   // Ends the master (SIGTERM) and waits for it: a node then finds no master.
   void stop();
+  // Starts a new master on the same port (after stop()): one that knows no node.
+  void restart();
 
  private:
+  void start();
+
   std::filesystem::path root_;
   std::string uri_, problem_;
   int port_ = 0;
