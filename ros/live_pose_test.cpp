@@ -48,6 +48,9 @@ TEST(LivePose, HostileMessagesAreRefusedWithTheirReason) {
   o.position[1] = -10000.5;
   EXPECT_EQ(problemWith(o, nullptr), "the position is beyond ±10 km");
   o = turnedBy(0.3);
+  o.stamp = {0, 0};
+  EXPECT_EQ(problemWith(o, nullptr), "its stamp is zero (set header.stamp, e.g. rostopic pub -s with stamp: now)");
+  o = turnedBy(0.3);
   o.linear[0] = 80.0, o.linear[1] = 61.0;
   EXPECT_EQ(problemWith(o, nullptr), "the speed is above 100 m/s");
 }

@@ -202,6 +202,13 @@ LivePose livePoseOf(const ros1::Odometry& odometry) {
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
                                const std::function<void()>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
+  // Names ROS refuses (a camera called "front-left"), before any master is looked for.
+  std::vector<std::string> names = {"/" + options.robot, options.tfParent.empty() ? options.odometryTopic : "/" + options.tfParent,
+                                    "/" + options.baseFrame};
+  for (const CameraSetup& setup : plan.setups()) names.push_back(cameraTopic(options, setup.camera->name, "image_raw"));
+  for (const std::string& name : names)
+    if (const std::string why = ros1::invalidGraphName(name); !why.empty())
+      throw InputError("ros: " + quote(name) + " is not a ROS name: " + why);
   if (plan.vibrates())
     throw InputError(showPath(spec.file) + ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
   // The state the ROS callbacks use, declared before the transport: its destructor stops the
@@ -278,6 +285,13 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
       transport->publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live->stamp, frame));
     }
     ++report.rendered;
+  }
+  if (!options.recordBag.empty()) {
+    try {
+      transport->finishRecording();
+    } catch (const std::runtime_error& e) {
+      throw OutputError(showPath(options.recordBag) + ": cannot finish the bag (" + e.what() + ")");
+    }
   }
   report.dropped = newest.dropped();
   report.refused = refused;

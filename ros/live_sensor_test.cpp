@@ -15,6 +15,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -549,6 +550,24 @@ TEST_F(LiveRun, PythonExamplePublishesTheRenderersFramesForOdometryPoses) {
     EXPECT_EQ(frames[k].header.stamp, ros::Time(100 + k, 0));
     EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "cam0", k)) << "pose " << k;
   }
+}
+
+// Names a dataset takes but ROS does not (a camera "front-left", a robot "my bot"): one line,
+// exit 2, before any master is looked for.
+TEST(LiveSensor, RefusesNamesRosCannotTake) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_names_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::string text = specText();
+  text.replace(text.find("\"front\""), 7, "\"front-left\"");
+  std::ofstream(root / "camera.json") << text;
+  std::ofstream(root / "spec.json") << specText();
+  for (const std::string& arguments : {(root / "camera.json").string(), (root / "spec.json").string() + " --robot 'my bot'"}) {
+    const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + arguments + " 2>&1");
+    EXPECT_EQ(run.code, 2) << run.out;
+    EXPECT_NE(run.out.find("is not a ROS name"), std::string::npos) << run.out;
+    EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+  }
+  fs::remove_all(root);
 }
 
 // A bag is a new file: an existing one (or a link) is never overwritten, before any master is

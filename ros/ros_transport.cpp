@@ -3,6 +3,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
+#include <ros/names.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -11,8 +12,12 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -73,6 +78,11 @@ int masterPid() {
 
 }  // namespace
 
+std::string invalidGraphName(const std::string& name) {
+  std::string why;
+  return ros::names::validate(name, why) ? "" : why;
+}
+
 struct Transport::Impl {
   std::unique_ptr<ros::NodeHandle> node;
   std::unique_ptr<ros::AsyncSpinner> spinner;
@@ -130,9 +140,12 @@ Transport::~Transport() {
   impl_->subscriptions.clear();
   impl_->tfListener.reset();
   impl_->tfBuffer.reset();
-  if (impl_->bag) {
-    impl_->bag->close();
-    std::rename(impl_->bagPartial.c_str(), impl_->bagPath.c_str());
+  if (impl_->bag) {  // not finished: the run failed or was cut short
+    try {
+      impl_->bag->close();
+    } catch (const std::exception&) {
+    }
+    ::unlink(impl_->bagPartial.c_str());
   }
   impl_->publishers.clear();
   impl_->diagnostics.shutdown();
@@ -262,6 +275,7 @@ void Transport::publishLatchedText(const std::string& topic, const std::string& 
     std_msgs::String m;
     m.data = text;
     publisher.publish(m);
+    if (impl->bag) impl->bag->write(topic, ros::Time::now(), m);
   });
   impl->advertise.back()();
 }
@@ -301,6 +315,23 @@ void Transport::record(const std::string& partialPath, const std::string& path) 
     impl_->bag.reset();
     throw std::runtime_error(e.what());
   }
+}
+
+void Transport::finishRecording() {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  if (!impl_->bag) return;
+  std::unique_ptr<rosbag::Bag> bag = std::move(impl_->bag);
+  try {
+    bag->close();
+  } catch (const rosbag::BagException& e) {
+    ::unlink(impl_->bagPartial.c_str());
+    throw std::runtime_error(e.what());
+  }
+  // link(2) fails if the name exists: a file someone made there meanwhile stays theirs.
+  const bool linked = ::link(impl_->bagPartial.c_str(), impl_->bagPath.c_str()) == 0;
+  const int error = errno;
+  ::unlink(impl_->bagPartial.c_str());
+  if (!linked) throw std::runtime_error(std::strerror(error));
 }
 
 uint32_t Transport::subscribers(const std::string& topic) const {

@@ -10,6 +10,9 @@
 
 namespace omnicam::ros1 {
 
+// Why `name` is not a valid ROS graph name (a topic or a node's), "" if it is.
+std::string invalidGraphName(const std::string& name);
+
 class Transport {
  public:
   // Registers node `name` with the master of ROS_MASTER_URI (roscpp reads the environment);
@@ -38,11 +41,15 @@ class Transport {
   void publishStaticTransforms(const std::vector<Transform>& transforms);
   // One status on /diagnostics (advertised by the constructor), stamped now.
   void publish(const Diagnostic& diagnostic);
-  // From now on every message this node publishes is also written to a ROS bag, under its topic
-  // and stamped with its header's stamp. The bag is written as `partialPath` and renamed to
-  // `path` when the transport closes: a killed node leaves no half-written bag under the final
-  // name. std::runtime_error if it cannot be opened.
+  // From now on the images, camera_info, static transforms and latched texts this node
+  // publishes also go into a ROS bag, under their topics, stamped with their headers' stamps.
+  // The bag is written as `partialPath`; finishRecording() gives it the name `path`. A node that
+  // ends otherwise removes the partial bag: nothing half-written is left under either name.
+  // std::runtime_error if it cannot be opened.
   void record(const std::string& partialPath, const std::string& path);
+  // Closes the bag and links it to its name, never replacing a file that appeared there since,
+  // then removes the partial name. std::runtime_error saying why it could not.
+  void finishRecording();
   // Whether another master answers now than the one registered with (it restarted, whether or
   // not a call saw it away); then every subscription, publication, latched message and static
   // transform is registered again (roscpp registers once, and a new master knows none). Call it
