@@ -19,6 +19,7 @@
 #include "image.h"
 #include "interrupts.h"
 #include "placement.h"
+#include "engine_capabilities.h"
 #include "ros_camera_info.h"
 #include "ros_transport.h"
 
@@ -68,6 +69,16 @@ std::string cameraTopic(const LiveSensorOptions& options, const std::string& cam
 
 ros1::CameraInfo cameraInfoMessage(const RosCameraInfo& info, const ros1::Stamp& stamp, const std::string& frame) {
   return {stamp, frame, info.width, info.height, info.distortionModel, info.d, info.k, info.r, info.p};
+}
+
+// InputError if the engine cannot render camera `camera` at `live` as the dataset would refuse
+// the frame (dataset_plan.cpp's checks of moving frames).
+void checkLiveRender(const DatasetPlan& plan, size_t camera, const LivePose& live) {
+  const CameraSetup& setup = plan.setups()[camera];
+  const CameraPlacement placement(live.pose, live.velocity, setup.camera->mount, plan.spec().robotTiltDeg);
+  checkEngineRenders(plan.engine().kind(), setup.rig, placement);
+  if (plan.spec().request.adaptiveSpp > 0 && moving(placement, setup.rig))
+    throw InputError("adaptive_spp: not while the robot moves during an exposure (camera " + quote(setup.camera->name) + ")");
 }
 
 // The kinds of frame file a live sensor publishes besides the colour, each on its kind's name.
@@ -276,13 +287,24 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     }
     const std::optional<LivePose> live = newest.take(std::chrono::milliseconds(100));
     if (!live) continue;
+    // Every camera's frame first: a pose the engine cannot render (a motion it does not take,
+    // adaptive sampling while the shutter moves) is refused whole, and the node goes on.
+    std::vector<std::vector<std::pair<const char*, ros1::Image>>> frames;
+    try {
+      for (size_t c = 0; c < plan.setups().size(); ++c) {
+        const uint64_t drawIndex = static_cast<uint64_t>(report.rendered) * plan.setups().size() + c;
+        checkLiveRender(plan, c, *live);
+        frames.push_back(renderCamera(plan, c, *live, drawIndex, cameraFrame(options, plan.setups()[c].camera->name)));
+      }
+    } catch (const InputError& e) {
+      transport->publish(diagnostic(options, std::string("pose refused: ") + e.what(), live->stamp, ++refused));
+      continue;
+    }
     for (size_t c = 0; c < plan.setups().size(); ++c) {
-      const uint64_t drawIndex = static_cast<uint64_t>(report.rendered) * plan.setups().size() + c;
       const std::string& name = plan.setups()[c].camera->name;
-      const std::string frame = cameraFrame(options, name);
-      for (const auto& [leaf, image] : renderCamera(plan, c, *live, drawIndex, frame))
-        transport->publish(cameraTopic(options, name, leaf), image);
-      transport->publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live->stamp, frame));
+      for (const auto& [leaf, image] : frames[c]) transport->publish(cameraTopic(options, name, leaf), image);
+      transport->publish(cameraTopic(options, name, "camera_info"),
+                         cameraInfoMessage(infos[c], live->stamp, cameraFrame(options, name)));
     }
     ++report.rendered;
   }
