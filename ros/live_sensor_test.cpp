@@ -524,6 +524,29 @@ TEST_F(LiveRun, OutlivesItsMasterAndRegistersAgainWhenItComesBack) {
       << output();
 }
 
+// A pose the engine cannot render as a dataset frame (here adaptive sampling while a rolling
+// shutter moves) is refused with its reason; the next, still one renders as the dataset does.
+TEST_F(LiveRun, RefusesAPoseItsEngineCannotRenderAndGoesOn) {
+  renderDataset(std::string(R"({"format": "omnicam-dataset/1", "scene": ")") + OMNICAM_SOURCE_DIR +
+                R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "path", "adaptive_spp": 16, )" + poseList(1) +
+                R"(, "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}, "rig": )" + rollingShutterRig() +
+                R"(}], "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--frames", "1"});
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  Images images(*handle_, "/bot/front/image_raw");
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
+  waitUntilConnected([&] { return odometry.getNumSubscribers() > 0 && images.connected() && diagnostics.connected(); });
+  odometry.publish(odometryOf(kPoses[0], ros::Time(100, 0), /*moving=*/true));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
+  EXPECT_EQ(diagnosticMessages(diagnostics)[0],
+            "pose refused: adaptive_spp: not while the robot moves during an exposure (camera \"front\")");
+  odometry.publish(odometryOf(kPoses[0], ros::Time(101, 0), /*moving=*/false));
+  ASSERT_EQ(waitForExit(), 0) << output();
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > 0; }, 120.0)) << output();
+  EXPECT_TRUE(images.messages()[0].data == datasetRgb8(dataset(), "front", 0));
+  EXPECT_NE(output().find("1 poses rendered, 0 dropped while rendering, 1 refused"), std::string::npos) << output();
+}
+
 // examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to
 // the dataset's frame of the pose; SIGTERM ends it cleanly.
 TEST_F(LiveRun, PythonExamplePublishesTheRenderersFramesForOdometryPoses) {
