@@ -210,10 +210,11 @@ LivePose livePoseOf(const ros1::Odometry& odometry) {
   return live;
 }
 
-LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
-                               const std::function<void()>& ready) {
-  const DatasetPlan plan(spec, DatasetRunOptions{});
-  // Names ROS refuses (a camera called "front-left"), before any master is looked for.
+namespace {
+
+// What a live sensor cannot take, before any master is looked for: names ROS refuses (a camera
+// called "front-left"), a spec that shakes its rigs.
+void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
   std::vector<std::string> names = {"/" + options.robot, options.tfParent.empty() ? options.odometryTopic : "/" + options.tfParent,
                                     "/" + options.baseFrame};
   for (const CameraSetup& setup : plan.setups()) names.push_back(cameraTopic(options, setup.camera->name, "image_raw"));
@@ -221,7 +222,72 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     if (const std::string why = ros1::invalidGraphName(name); !why.empty())
       throw InputError("ros: " + quote(name) + " is not a ROS name: " + why);
   if (plan.vibrates())
-    throw InputError(showPath(spec.file) + ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
+    throw InputError(showPath(plan.spec().file) +
+                     ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
+}
+
+void startRecording(ros1::Transport& transport, const std::string& path) {
+  const std::filesystem::path bag(path);
+  const std::filesystem::path partial = bag.parent_path() / atomicTemporaryName(bag.filename().string());
+  try {
+    transport.record(partial.string(), bag.string());
+  } catch (const std::runtime_error& e) {
+    throw OutputError(showPath(path) + ": cannot write the bag (" + e.what() + ")");
+  }
+}
+
+void finishRecording(ros1::Transport& transport, const std::string& path) {
+  try {
+    transport.finishRecording();
+  } catch (const std::runtime_error& e) {
+    throw OutputError(showPath(path) + ": cannot finish the bag (" + e.what() + ")");
+  }
+}
+
+// Every camera's topics announced, its mount on /tf_static, a model ROS has no name for on a
+// latched topic; returns each camera's camera_info, sent with every frame.
+std::vector<RosCameraInfo> announceCameras(ros1::Transport& transport, const DatasetPlan& plan, const LiveSensorOptions& options) {
+  std::vector<RosCameraInfo> infos;
+  std::vector<ros1::Transform> mounts;
+  for (const CameraSetup& setup : plan.setups()) {
+    const std::string& name = setup.camera->name;
+    transport.advertiseImage(cameraTopic(options, name, "image_raw"));
+    for (const OutputKind kind : kPlaneKinds)
+      if (plan.outputs().wants(kind)) transport.advertiseImage(cameraTopic(options, name, outputName(kind)));
+    transport.advertiseCameraInfo(cameraTopic(options, name, "camera_info"));
+    infos.push_back(rosCameraInfoOf(*setup.model));
+    mounts.push_back(baseFromCamera(plan, infos.size() - 1, options));
+    if (!infos.back().intrinsicsJson.empty())
+      transport.publishLatchedText(cameraTopic(options, name, "intrinsics"), infos.back().intrinsicsJson);
+  }
+  transport.publishStaticTransforms(mounts);
+  return infos;
+}
+
+// Every camera's frame at `live`, rendered first and then published: a pose the engine cannot
+// render (a motion it does not take, adaptive sampling while the shutter moves) throws
+// InputError before anything is sent. `frameIndex` draws the recording camera's faults.
+void renderAndPublish(ros1::Transport& transport, const DatasetPlan& plan, const LiveSensorOptions& options,
+                      const std::vector<RosCameraInfo>& infos, const LivePose& live, int64_t frameIndex) {
+  std::vector<std::vector<std::pair<const char*, ros1::Image>>> frames;
+  for (size_t c = 0; c < plan.setups().size(); ++c) {
+    checkLiveRender(plan, c, live);
+    const uint64_t drawIndex = static_cast<uint64_t>(frameIndex) * plan.setups().size() + c;
+    frames.push_back(renderCamera(plan, c, live, drawIndex, cameraFrame(options, plan.setups()[c].camera->name)));
+  }
+  for (size_t c = 0; c < plan.setups().size(); ++c) {
+    const std::string& name = plan.setups()[c].camera->name;
+    for (const auto& [leaf, image] : frames[c]) transport.publish(cameraTopic(options, name, leaf), image);
+    transport.publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live.stamp, cameraFrame(options, name)));
+  }
+}
+
+}  // namespace
+
+LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
+                               const std::function<void()>& ready) {
+  const DatasetPlan plan(spec, DatasetRunOptions{});
+  checkLiveSpec(plan, options);
   // The state the ROS callbacks use, declared before the transport: its destructor stops the
   // callbacks before any of this goes (a pose arriving while the sensor stops is safe).
   NewestPose newest;
@@ -233,30 +299,8 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   } catch (const std::runtime_error& e) {
     throw ExternalError(std::string("ros: ") + e.what() + " (start one with `roscore`, or set ROS_MASTER_URI)");
   }
-  if (!options.recordBag.empty()) {
-    const std::filesystem::path bag(options.recordBag);
-    const std::filesystem::path partial = bag.parent_path() / atomicTemporaryName(bag.filename().string());
-    try {
-      transport->record(partial.string(), bag.string());
-    } catch (const std::runtime_error& e) {
-      throw OutputError(showPath(options.recordBag) + ": cannot write the bag (" + e.what() + ")");
-    }
-  }
-  // Each camera's intrinsics, once; a model ROS has no name for also on a latched topic.
-  std::vector<RosCameraInfo> infos;
-  std::vector<ros1::Transform> mounts;
-  for (const CameraSetup& setup : plan.setups()) {
-    const std::string& name = setup.camera->name;
-    transport->advertiseImage(cameraTopic(options, name, "image_raw"));
-    for (const OutputKind kind : kPlaneKinds)
-      if (plan.outputs().wants(kind)) transport->advertiseImage(cameraTopic(options, name, outputName(kind)));
-    transport->advertiseCameraInfo(cameraTopic(options, name, "camera_info"));
-    infos.push_back(rosCameraInfoOf(*setup.model));
-    mounts.push_back(baseFromCamera(plan, infos.size() - 1, options));
-    if (!infos.back().intrinsicsJson.empty())
-      transport->publishLatchedText(cameraTopic(options, name, "intrinsics"), infos.back().intrinsicsJson);
-  }
-  transport->publishStaticTransforms(mounts);
+  if (!options.recordBag.empty()) startRecording(*transport, options.recordBag);
+  const std::vector<RosCameraInfo> infos = announceCameras(*transport, plan, options);
   const auto refuse = [&](const std::string& why, const ros1::Stamp& stamp) {
     transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
   };
@@ -287,34 +331,14 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     }
     const std::optional<LivePose> live = newest.take(std::chrono::milliseconds(100));
     if (!live) continue;
-    // Every camera's frame first: a pose the engine cannot render (a motion it does not take,
-    // adaptive sampling while the shutter moves) is refused whole, and the node goes on.
-    std::vector<std::vector<std::pair<const char*, ros1::Image>>> frames;
     try {
-      for (size_t c = 0; c < plan.setups().size(); ++c) {
-        const uint64_t drawIndex = static_cast<uint64_t>(report.rendered) * plan.setups().size() + c;
-        checkLiveRender(plan, c, *live);
-        frames.push_back(renderCamera(plan, c, *live, drawIndex, cameraFrame(options, plan.setups()[c].camera->name)));
-      }
+      renderAndPublish(*transport, plan, options, infos, *live, report.rendered);
+      ++report.rendered;
     } catch (const InputError& e) {
-      transport->publish(diagnostic(options, std::string("pose refused: ") + e.what(), live->stamp, ++refused));
-      continue;
-    }
-    for (size_t c = 0; c < plan.setups().size(); ++c) {
-      const std::string& name = plan.setups()[c].camera->name;
-      for (const auto& [leaf, image] : frames[c]) transport->publish(cameraTopic(options, name, leaf), image);
-      transport->publish(cameraTopic(options, name, "camera_info"),
-                         cameraInfoMessage(infos[c], live->stamp, cameraFrame(options, name)));
-    }
-    ++report.rendered;
-  }
-  if (!options.recordBag.empty()) {
-    try {
-      transport->finishRecording();
-    } catch (const std::runtime_error& e) {
-      throw OutputError(showPath(options.recordBag) + ": cannot finish the bag (" + e.what() + ")");
+      refuse(e.what(), live->stamp);
     }
   }
+  if (!options.recordBag.empty()) finishRecording(*transport, options.recordBag);
   report.dropped = newest.dropped();
   report.refused = refused;
   return report;
