@@ -55,5 +55,25 @@ TEST(LivePose, HostileMessagesAreRefusedWithTheirReason) {
   EXPECT_EQ(problemWith(o, nullptr), "the speed is above 100 m/s");
 }
 
+// A slow render drops stale poses instead of queueing them: the newest wins, each replaced one
+// counted; a pose taken is gone.
+TEST(NewestPose, KeepsOnlyTheNewestAndCountsTheDropped) {
+  NewestPose newest;
+  EXPECT_FALSE(newest.take(std::chrono::milliseconds(0)).has_value());
+  LivePose pose;
+  for (uint32_t k = 1; k <= 3; ++k) {
+    pose.stamp = {k, 0};
+    EXPECT_EQ(newest.put(pose), k > 1);
+  }
+  EXPECT_EQ(newest.dropped(), 2);
+  const std::optional<LivePose> taken = newest.take(std::chrono::milliseconds(0));
+  ASSERT_TRUE(taken.has_value());
+  EXPECT_EQ(taken->stamp.sec, 3u);
+  EXPECT_FALSE(newest.take(std::chrono::milliseconds(0)).has_value());
+  pose.stamp = {4, 0};
+  EXPECT_FALSE(newest.put(pose));  // nothing was waiting: nothing dropped
+  EXPECT_EQ(newest.dropped(), 2);
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -29,39 +29,6 @@ namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / M_PI;
 
-// The newest pose not yet rendered: the ROS thread puts, the render loop takes.
-class NewestPose {
- public:
-  // Whether it replaced a pose not yet rendered (which is then dropped).
-  bool put(const LivePose& pose) {
-    bool replaced = false;
-    {
-      std::lock_guard lock(mutex_);
-      replaced = pending_.has_value();
-      if (replaced) ++dropped_;
-      pending_ = pose;
-    }
-    ready_.notify_one();
-    return replaced;
-  }
-  // The newest pose, or nothing if none came within `wait`.
-  std::optional<LivePose> take(std::chrono::milliseconds wait) {
-    std::unique_lock lock(mutex_);
-    ready_.wait_for(lock, wait, [&] { return pending_.has_value(); });
-    return std::exchange(pending_, std::nullopt);
-  }
-  int64_t dropped() const {
-    std::lock_guard lock(mutex_);
-    return dropped_;
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::condition_variable ready_;
-  std::optional<LivePose> pending_;
-  int64_t dropped_ = 0;
-};
-
 // /<robot>/<camera>/<leaf>: image_raw, camera_info, intrinsics.
 std::string cameraTopic(const LiveSensorOptions& options, const std::string& camera, const char* leaf) {
   return "/" + options.robot + "/" + camera + "/" + leaf;
@@ -198,6 +165,29 @@ std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted
   if (lastAccepted && (o.stamp.sec < lastAccepted->sec || (o.stamp.sec == lastAccepted->sec && o.stamp.nsec <= lastAccepted->nsec)))
     return "its stamp " + stampText(o.stamp) + " is not after the last pose's, " + stampText(*lastAccepted);
   return "";
+}
+
+bool NewestPose::put(const LivePose& pose) {
+  bool replaced = false;
+  {
+    std::lock_guard lock(mutex_);
+    replaced = pending_.has_value();
+    if (replaced) ++dropped_;
+    pending_ = pose;
+  }
+  ready_.notify_one();
+  return replaced;
+}
+
+std::optional<LivePose> NewestPose::take(std::chrono::milliseconds wait) {
+  std::unique_lock lock(mutex_);
+  ready_.wait_for(lock, wait, [&] { return pending_.has_value(); });
+  return std::exchange(pending_, std::nullopt);
+}
+
+int64_t NewestPose::dropped() const {
+  std::lock_guard lock(mutex_);
+  return dropped_;
 }
 
 LivePose livePoseOf(const ros1::Odometry& odometry) {

@@ -9,8 +9,12 @@
 // counted and reported on /diagnostics, as are refused poses (problemWith). Each camera's frame
 // (ROBOT/CAMERA: the intrinsics files' camera frame, as poses.tum) is on /tf_static under the
 // robot's base frame, through the one frame chain (placement.h), the robot's tilt included.
+#include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <mutex>
+#include <optional>
 #include <string>
 
 #include "dataset_spec.h"
@@ -47,6 +51,23 @@ struct LivePose {
   ros1::Stamp stamp;
 };
 LivePose livePoseOf(const ros1::Odometry& odometry);
+
+// The newest pose not yet rendered: the ROS thread puts, the render loop takes. A pose put while
+// another waits replaces it; the replaced one is dropped and counted.
+class NewestPose {
+ public:
+  // Whether it replaced a pose not yet rendered.
+  bool put(const LivePose& pose);
+  // The newest pose, or nothing if none came within `wait`.
+  std::optional<LivePose> take(std::chrono::milliseconds wait);
+  int64_t dropped() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::condition_variable ready_;
+  std::optional<LivePose> pending_;
+  int64_t dropped_ = 0;
+};
 
 // Why an odometry message is refused ("" if it is not): a number that is not finite, a
 // quaternion far from unit length, a pose or speed beyond a dataset's limits, or a stamp not
