@@ -53,7 +53,7 @@ void addRosCommand(CLI::App& app) {
       ->excludes(cmd->get_option("--odom"));
   cmd->add_option("--base-frame", args->options.baseFrame, "The robot's tf frame, parent of ROBOT/CAMERA (default base_link)");
   cmd->add_option("--record", args->options.recordBag,
-                  "Also write every message published into this new ROS bag (complete when the node stops)");
+                  "Also write the images, camera_info and transforms into this new ROS bag (complete when the node stops)");
   cmd->add_option("--frames", args->options.frames, "Stop after this many poses (default: run until SIGINT or SIGTERM)")
       ->check(integerIn(0, INT32_MAX));
   cmd->callback([args] { runRos(*args); });

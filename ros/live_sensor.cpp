@@ -13,13 +13,13 @@
 #include "atomic_file.h"
 #include "dataset_options.h"
 #include "dataset_plan.h"
+#include "engine_capabilities.h"
 #include "errors.h"
 #include "film.h"
 #include "frame_planes.h"
 #include "image.h"
 #include "interrupts.h"
 #include "placement.h"
-#include "engine_capabilities.h"
 #include "ros_camera_info.h"
 #include "ros_transport.h"
 
@@ -38,11 +38,16 @@ ros1::CameraInfo cameraInfoMessage(const RosCameraInfo& info, const ros1::Stamp&
   return {stamp, frame, info.width, info.height, info.distortionModel, info.d, info.k, info.r, info.p};
 }
 
+// Camera `camera` on the robot at `live`: its mount, the spec's robot tilt (as a dataset frame's).
+CameraPlacement placementOf(const DatasetPlan& plan, size_t camera, const LivePose& live) {
+  return CameraPlacement(live.pose, live.velocity, plan.setups()[camera].camera->mount, plan.spec().robotTiltDeg);
+}
+
 // InputError if the engine cannot render camera `camera` at `live` as the dataset would refuse
 // the frame (dataset_plan.cpp's checks of moving frames).
 void checkLiveRender(const DatasetPlan& plan, size_t camera, const LivePose& live) {
   const CameraSetup& setup = plan.setups()[camera];
-  const CameraPlacement placement(live.pose, live.velocity, setup.camera->mount, plan.spec().robotTiltDeg);
+  const CameraPlacement placement = placementOf(plan, camera, live);
   checkEngineRenders(plan.engine().kind(), setup.rig, placement);
   if (plan.spec().request.adaptiveSpp > 0 && moving(placement, setup.rig))
     throw InputError("adaptive_spp: not while the robot moves during an exposure (camera " + quote(setup.camera->name) + ")");
@@ -88,7 +93,7 @@ std::vector<std::pair<const char*, ros1::Image>> renderCamera(const DatasetPlan&
   const DatasetSpec& spec = plan.spec();
   const CameraSetup& setup = plan.setups()[camera];
   const RenderSettings settings = spec.request.settings(setup.rig);
-  const CameraPlacement placement(live.pose, live.velocity, setup.camera->mount, spec.robotTiltDeg);
+  const CameraPlacement placement = placementOf(plan, camera, live);
   const bool wantsAovs = plan.outputs().anyAov();
   Film film = filmFor(settings, wantsAovs);
   plan.engine().render(placement, settings, film);
@@ -137,7 +142,7 @@ std::string cameraFrame(const LiveSensorOptions& options, const std::string& cam
 ros1::Transform baseFromCamera(const DatasetPlan& plan, size_t camera, const LiveSensorOptions& options) {
   const CameraSetup& setup = plan.setups()[camera];
   const Rigid chain =
-      CameraPlacement(RobotPose{}, BodyVelocity{}, setup.camera->mount, plan.spec().robotTiltDeg).worldFromCamera(setup.rig);
+      placementOf(plan, camera, LivePose{}).worldFromCamera(setup.rig);
   const Eigen::Quaterniond q(chain.linear());
   ros1::Transform t;
   t.parent = options.baseFrame;
