@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "atomic_file.h"
 #include "cli_util.h"
@@ -21,7 +22,17 @@ struct RosArgs {
   LiveSensorOptions options;
 };
 
-void runRos(const RosArgs& a) {
+// A ROS node's own arguments (`from:=to`, as roslaunch passes `__name:=` and `__log:=`) go to
+// ROS; anything else is a mistake.
+std::vector<std::string> rosArgumentsOf(const std::vector<std::string>& extras) {
+  for (const std::string& extra : extras)
+    if (extra.find(":=") == std::string::npos || extra.rfind(":=", 0) == 0)
+      throw InputError("ros: unexpected argument " + quote(extra) + " (ROS arguments are from:=to)");
+  return extras;
+}
+
+void runRos(RosArgs a, const std::vector<std::string>& extras) {
+  a.options.rosArguments = rosArgumentsOf(extras);
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   if (!a.options.recordBag.empty()) {
     checkOutputFile(a.options.recordBag, "--record");
@@ -35,7 +46,7 @@ void runRos(const RosArgs& a) {
     std::printf("ros: ready: poses from %s, images on /%s/CAMERA/image_raw\n", from.c_str(), a.options.robot.c_str());
     std::fflush(stdout);
   });
-  std::printf("ros: %lld poses rendered, %lld dropped while rendering, %lld refused, %lld new masters\n",
+  std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters\n",
               static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
               static_cast<long long>(report.refused), static_cast<long long>(report.newMasters));
 }
@@ -56,7 +67,17 @@ void addRosCommand(CLI::App& app) {
                   "Also write the images, camera_info and transforms into this new ROS bag (complete when the node stops)");
   cmd->add_option("--frames", args->options.frames, "Stop after this many poses (default: run until SIGINT or SIGTERM)")
       ->check(integerIn(0, INT32_MAX));
-  cmd->callback([args] { runRos(*args); });
+  cmd->add_option("--rate", args->options.rateHz,
+                  "Render at this rate (Hz, on ROS time: /clock's under /use_sim_time) with the newest pose, "
+                  "stamped with each tick (default 0: each pose as it comes)")
+      ->check(numberIn(0, 1000));
+  cmd->add_option("--max-pose-age", args->options.maxPoseAgeSeconds,
+                  "With --rate and odometry: carry the newest pose to a tick at most this many seconds (default 0.5)")
+      ->check(numberIn(0, 60, true))
+      ->needs(cmd->get_option("--rate"));
+  cmd->allow_extras();  // ROS's own from:=to arguments (remappings, roslaunch's __name:= and __log:=)
+  cmd->footer("ROS arguments: from:=to remaps a topic (image_raw:=camera); __name:=, __ns:=, _param:=value as for any ROS node.");
+  cmd->callback([args, cmd] { runRos(*args, cmd->remaining()); });
 }
 
 }  // namespace omnicam::cli

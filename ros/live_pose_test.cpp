@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "live_sensor.h"
 
@@ -73,6 +75,50 @@ TEST(NewestPose, KeepsOnlyTheNewestAndCountsTheDropped) {
   pose.stamp = {4, 0};
   EXPECT_FALSE(newest.put(pose));  // nothing was waiting: nothing dropped
   EXPECT_EQ(newest.dropped(), 2);
+}
+
+// A fixed-rate camera's ticks lie on the grid of its period from the epoch.
+TEST(LiveTick, IsTheGridPointAtOrBeforeNow) {
+  const ros1::Stamp quarter = tickAtOrBefore({100, 300000000}, 250000000);
+  EXPECT_EQ(quarter.sec, 100u);
+  EXPECT_EQ(quarter.nsec, 250000000u);
+  const ros1::Stamp onTheGrid = tickAtOrBefore({100, 250000000}, 250000000);
+  EXPECT_EQ(onTheGrid.nsec, 250000000u);
+  // 30 Hz: 33333333 ns; 1 s is past the 30th tick, 999999990 ns.
+  const ros1::Stamp thirty = tickAtOrBefore({1, 0}, 33333333);
+  EXPECT_EQ(thirty.sec, 0u);
+  EXPECT_EQ(thirty.nsec, 999999990u);
+}
+
+// The newest pose carried to a tick with its velocity: a straight line, and an arc of a quarter
+// turn (radius v/ω), against closed forms; too far from the tick, nothing, with why.
+TEST(LiveTick, CarriesTheNewestPoseToTheTickWithItsTwist) {
+  LivePose latest;
+  latest.stamp = {10, 0};
+  latest.pose = {1.0, 2.0, 90.0};
+  latest.velocity = {1.0, 0.0, 0.0};
+  std::string problem;
+  const std::optional<LivePose> ahead = poseAtTick(latest, {10, 400000000}, 0.5, problem);
+  ASSERT_TRUE(ahead.has_value()) << problem;
+  EXPECT_NEAR(ahead->pose.x, 1.0, 1e-12);  // facing +y: x stays
+  EXPECT_NEAR(ahead->pose.y, 2.4, 1e-12);
+  EXPECT_EQ(ahead->stamp.nsec, 400000000u);
+  EXPECT_EQ(ahead->velocity, latest.velocity);
+  const std::optional<LivePose> behind = poseAtTick(latest, {9, 800000000}, 0.5, problem);
+  ASSERT_TRUE(behind.has_value());
+  EXPECT_NEAR(behind->pose.y, 1.8, 1e-12);
+
+  latest.pose = {0.0, 0.0, 0.0};
+  latest.velocity = {1.0, 0.0, 90.0};  // a quarter turn a second on a circle of radius 2/π m
+  const std::optional<LivePose> arc = poseAtTick(latest, {10, 500000000}, 0.5, problem);
+  ASSERT_TRUE(arc.has_value());
+  const double radius = 1.0 / (M_PI / 2);
+  EXPECT_NEAR(arc->pose.x, radius * std::sin(M_PI / 4), 1e-12);
+  EXPECT_NEAR(arc->pose.y, radius * (1 - std::cos(M_PI / 4)), 1e-12);
+  EXPECT_NEAR(arc->pose.yawDeg, 45.0, 1e-12);
+
+  EXPECT_FALSE(poseAtTick(latest, {10, 600000000}, 0.5, problem).has_value());
+  EXPECT_EQ(problem, "the newest pose, at 10.000000000, is 0.600 s from the tick at 10.600000000 (more than 0.5 s)");
 }
 
 }  // namespace

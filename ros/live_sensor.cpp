@@ -9,6 +9,7 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "atomic_file.h"
 #include "dataset_options.h"
@@ -195,6 +196,23 @@ int64_t NewestPose::dropped() const {
   return dropped_;
 }
 
+ros1::Stamp tickAtOrBefore(const ros1::Stamp& now, int64_t periodNs) {
+  return ros1::Stamp::ofNanoseconds(now.nanoseconds() / periodNs * periodNs);
+}
+
+std::optional<LivePose> poseAtTick(const LivePose& latest, const ros1::Stamp& tick, double maxAgeSeconds,
+                                   std::string& problem) {
+  const double seconds = static_cast<double>(tick.nanoseconds() - latest.stamp.nanoseconds()) * 1e-9;
+  if (std::abs(seconds) > maxAgeSeconds) {
+    char text[160];
+    std::snprintf(text, sizeof text, "the newest pose, at %s, is %.3f s from the tick at %s (more than %g s)",
+                  stampText(latest.stamp).c_str(), std::abs(seconds), stampText(tick).c_str(), maxAgeSeconds);
+    problem = text;
+    return std::nullopt;
+  }
+  return LivePose{poseAfter(latest.pose, latest.velocity, seconds), latest.velocity, tick};
+}
+
 LivePose livePoseOf(const ros1::Odometry& odometry) {
   const double* q = odometry.orientationXyzw;
   const double yaw = std::atan2(2.0 * (q[3] * q[2] + q[0] * q[1]), 1.0 - 2.0 * (q[1] * q[1] + q[2] * q[2]));
@@ -220,6 +238,48 @@ void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
     throw InputError(showPath(plan.spec().file) +
                      ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
 }
+
+// A fixed-rate camera's clock: each tick of the grid of 1/rate s that ROS time passes is posted
+// to the spinner thread. Ticks the clock jumps over (simulated time) are not made up for.
+class Ticker {
+ public:
+  Ticker(ros1::Transport& transport, double rateHz, std::function<void(const ros1::Stamp&)> tick)
+      : transport_(transport),
+        periodNs_(std::max<int64_t>(1, std::llround(1e9 / rateHz))),
+        tick_(std::move(tick)),
+        thread_([this] { run(); }) {}
+  ~Ticker() {
+    stop_ = true;
+    thread_.join();
+  }
+  Ticker(const Ticker&) = delete;
+  Ticker& operator=(const Ticker&) = delete;
+
+ private:
+  void run() {
+    int64_t last = 0;
+    while (!stop_) {
+      const ros1::Stamp now = transport_.now();  // zero under simulated time until /clock comes
+      const ros1::Stamp tick = tickAtOrBefore(now, periodNs_);
+      if (!now.zero() && tick.nanoseconds() > last) {
+        last = tick.nanoseconds();
+        transport_.post([work = tick_, tick] { work(tick); });  // may run after this Ticker is gone
+        continue;
+      }
+      // Simulated time moves when /clock says: look again each millisecond.
+      const int64_t untilNext = tick.nanoseconds() + periodNs_ - now.nanoseconds();
+      std::this_thread::sleep_for(transport_.simulatedTime() || now.zero()
+                                      ? std::chrono::nanoseconds(1000000)
+                                      : std::chrono::nanoseconds(std::clamp<int64_t>(untilNext, 0, 50000000)));
+    }
+  }
+
+  ros1::Transport& transport_;
+  const int64_t periodNs_;
+  const std::function<void(const ros1::Stamp&)> tick_;
+  std::atomic<bool> stop_ = false;
+  std::thread thread_;  // last: starts once the rest is set
+};
 
 void startRecording(ros1::Transport& transport, const std::string& path) {
   const std::filesystem::path bag(path);
@@ -277,41 +337,86 @@ void renderAndPublish(ros1::Transport& transport, const DatasetPlan& plan, const
   }
 }
 
+
+// The poses ROS sends and what becomes of them: everything here runs on the transport's spinner
+// thread but `newest` (which the render loop takes from) and the count of refusals.
+struct LivePoses {
+  explicit LivePoses(const LiveSensorOptions& o) : options(o) {}
+  const LiveSensorOptions& options;
+  ros1::Transport* transport = nullptr;
+  NewestPose newest;
+  std::optional<ros1::Stamp> lastAccepted;
+  std::optional<LivePose> latest;  // at a fixed rate from odometry: the newest pose
+  std::atomic<int64_t> refused = 0;
+  int64_t overtaken = 0;  // poses from tf that a later one overtook (dropped as newest's are)
+
+  void refuse(const std::string& why, const ros1::Stamp& stamp) {
+    transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
+  }
+  void render(const LivePose& live) {
+    if (newest.put(live))
+      transport->publish(diagnostic(options, "pose dropped: the last one was still rendering", live.stamp, newest.dropped()));
+  }
+  void accept(const ros1::Odometry& o) {
+    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty())
+      return refuse(problem, o.stamp);
+    lastAccepted = o.stamp;
+    if (options.rateHz > 0 && options.tfParent.empty())
+      latest = livePoseOf(o);
+    else
+      render(livePoseOf(o));
+  }
+  void tick(const ros1::Stamp& stamp) {
+    if (!options.tfParent.empty()) return transport->requestTransform(stamp);
+    if (!latest) return;  // no odometry yet
+    std::string problem;
+    if (const std::optional<LivePose> live = poseAtTick(*latest, stamp, options.maxPoseAgeSeconds, problem))
+      render(*live);
+    else
+      refuse(problem, stamp);
+  }
+  void subscribe() {
+    if (options.tfParent.empty())
+      return transport->subscribeOdometry(options.odometryTopic, [this](const ros1::Odometry& o) { accept(o); });
+    ros1::TransformHandlers handlers;
+    handlers.pose = [this](const ros1::Odometry& o) { accept(o); };
+    handlers.gap = [this](const ros1::Stamp& stamp, const std::string& why) {
+      refuse("no transform from " + options.tfParent + " to " + options.baseFrame + ": " + why, stamp);
+    };
+    handlers.overtaken = [this](const ros1::Stamp& stamp) {
+      transport->publish(diagnostic(options, "pose dropped: tf reached a later pose first", stamp, ++overtaken + newest.dropped()));
+    };
+    transport->subscribeTransform(options.tfParent, options.baseFrame, /*eachMove=*/options.rateHz == 0, std::move(handlers));
+  }
+};
+
+ros1::Transport& connect(std::optional<ros1::Transport>& transport, const LiveSensorOptions& options) {
+  try {
+    return transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds,
+                             [] { return interruptRequested().load(); }, options.rosArguments);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("ros: ") + e.what());
+  } catch (const std::runtime_error& e) {
+    throw ExternalError(std::string("ros: ") + e.what() + " (start one with `roscore`, or set ROS_MASTER_URI)");
+  }
+}
+
 }  // namespace
 
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
                                const std::function<void()>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
   checkLiveSpec(plan, options);
-  // The state the ROS callbacks use, declared before the transport: its destructor stops the
-  // callbacks before any of this goes (a pose arriving while the sensor stops is safe).
-  NewestPose newest;
-  std::optional<ros1::Stamp> lastAccepted;  // the spinner's one thread's own
-  std::atomic<int64_t> refused = 0;
-  std::optional<ros1::Transport> transport;
-  try {
-    transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds, [] { return interruptRequested().load(); });
-  } catch (const std::runtime_error& e) {
-    throw ExternalError(std::string("ros: ") + e.what() + " (start one with `roscore`, or set ROS_MASTER_URI)");
-  }
-  if (!options.recordBag.empty()) startRecording(*transport, options.recordBag);
-  const std::vector<RosCameraInfo> infos = announceCameras(*transport, plan, options);
-  const auto refuse = [&](const std::string& why, const ros1::Stamp& stamp) {
-    transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
-  };
-  const auto accept = [&](const ros1::Odometry& o) {
-    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty())
-      return refuse(problem, o.stamp);
-    lastAccepted = o.stamp;
-    if (newest.put(livePoseOf(o)))
-      transport->publish(diagnostic(options, "pose dropped: the last one was still rendering", o.stamp, newest.dropped()));
-  };
-  if (options.tfParent.empty())
-    transport->subscribeOdometry(options.odometryTopic, accept);
-  else
-    transport->subscribeTransform(options.tfParent, options.baseFrame, accept, [&](const ros1::Stamp& stamp, const std::string& why) {
-      refuse("no transform from " + options.tfParent + " to " + options.baseFrame + ": " + why, stamp);
-    });
+  // Declared before the transport: its destructor stops the callbacks before these go.
+  LivePoses poses(options);
+  std::optional<ros1::Transport> connection;
+  ros1::Transport& transport = connect(connection, options);
+  poses.transport = &transport;
+  if (!options.recordBag.empty()) startRecording(transport, options.recordBag);
+  const std::vector<RosCameraInfo> infos = announceCameras(transport, plan, options);
+  poses.subscribe();
+  std::optional<Ticker> ticker;  // after the transport: stops before it
+  if (options.rateHz > 0) ticker.emplace(transport, options.rateHz, [&poses](const ros1::Stamp& tick) { poses.tick(tick); });
 
   if (ready) ready();
   LiveSensorReport report;
@@ -320,22 +425,23 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
     // Once a second: a master that went away and came back gets every topic again.
     if (std::chrono::steady_clock::now() - masterChecked > std::chrono::seconds(1)) {
       masterChecked = std::chrono::steady_clock::now();
-      if (transport->registerAgainIfTheMasterCameBack())
-        transport->publish(
+      if (transport.registerAgainIfTheMasterCameBack())
+        transport.publish(
             diagnostic(options, "the ROS master came back: every topic registered again", ros1::Stamp{}, ++report.newMasters));
     }
-    const std::optional<LivePose> live = newest.take(std::chrono::milliseconds(100));
+    const std::optional<LivePose> live = poses.newest.take(std::chrono::milliseconds(100));
     if (!live) continue;
     try {
-      renderAndPublish(*transport, plan, options, infos, *live, report.rendered);
+      renderAndPublish(transport, plan, options, infos, *live, report.rendered);
       ++report.rendered;
     } catch (const InputError& e) {
-      refuse(e.what(), live->stamp);
+      poses.refuse(e.what(), live->stamp);  // (the render loop's refusals race no callback: refused is atomic)
     }
   }
-  if (!options.recordBag.empty()) finishRecording(*transport, options.recordBag);
-  report.dropped = newest.dropped();
-  report.refused = refused;
+  ticker.reset();
+  if (!options.recordBag.empty()) finishRecording(transport, options.recordBag);
+  report.dropped = poses.newest.dropped() + poses.overtaken;
+  report.refused = poses.refused;
   return report;
 }
 

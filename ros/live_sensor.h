@@ -16,6 +16,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "dataset_spec.h"
 #include "motion.h"
@@ -32,6 +33,17 @@ struct LiveSensorOptions {
   std::string robot = "robot";  // the topics' namespace; frames are ROBOT/CAMERA
   std::string baseFrame = "base_link";  // the robot's frame, parent of the cameras' on /tf_static
   int64_t frames = 0;           // stop after this many rendered poses; 0: until SIGINT or SIGTERM
+  // 0: render each pose as it comes. Otherwise render at this rate, on ROS time's grid of
+  // 1/rate s (the /clock's under simulated time), each frame stamped with its tick: from
+  // odometry, the newest pose carried to the tick with its twist (the dataset's motion); from
+  // tf, the tree's pose at the tick, once tf has it.
+  double rateHz = 0.0;
+  // At a fixed rate from odometry: a tick whose newest pose is further from it than this renders
+  // nothing and says so on /diagnostics (a robot whose odometry stopped).
+  double maxPoseAgeSeconds = 0.5;
+  // A ROS node's own command-line arguments (from:=to): remappings, __name:=, __ns:=, __log:=
+  // (roslaunch's), _param:=value.
+  std::vector<std::string> rosArguments;
   double masterWaitSeconds = 30.0;
   // When set: every message published also goes into this ROS bag (written under a temporary
   // name, renamed when the sensor stops). The path must be a new file (checkOutputFile).
@@ -39,7 +51,9 @@ struct LiveSensorOptions {
 };
 
 struct LiveSensorReport {
-  int64_t rendered = 0, dropped = 0, refused = 0;
+  int64_t rendered = 0, refused = 0;
+  // Poses a newer one replaced: while a frame rendered, or (from tf) reached by the tree first.
+  int64_t dropped = 0;
   int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again
 };
 
@@ -74,6 +88,16 @@ class NewestPose {
 // after `lastAccepted`'s. A refused pose is not rendered; the sensor says why on /diagnostics
 // and goes on.
 std::string problemWith(const ros1::Odometry& odometry, const ros1::Stamp* lastAccepted);
+
+// The tick of a fixed-rate camera (LiveSensorOptions::rateHz) at or before `now`: the grid of
+// `periodNs` from the epoch.
+ros1::Stamp tickAtOrBefore(const ros1::Stamp& now, int64_t periodNs);
+
+// `latest` carried to `tick` with its own velocity (poseAfter, the dataset's motion), stamped
+// with the tick; nothing, with why in `problem`, if the tick is more than `maxAgeSeconds` from
+// the pose.
+std::optional<LivePose> poseAtTick(const LivePose& latest, const ros1::Stamp& tick, double maxAgeSeconds,
+                                   std::string& problem);
 
 // Runs the sensor until options.frames poses are rendered or a signal arrives (then within
 // 0.1 s of the frame being rendered). `ready`, if set, is called once the topics are announced

@@ -6,8 +6,11 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
+#include <ros/network.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
+#include <rosgraph_msgs/Clock.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -172,12 +175,22 @@ void expectTheBagHoldsTheDataset(const fs::path& path, const fs::path& dataset) 
   rosbag::Bag bag(path.string(), rosbag::bagmode::Read);
   std::map<std::string, std::vector<sensor_msgs::Image>> images;
   std::map<std::string, size_t> messages;
+  std::vector<std::pair<std::string, ros::Time>> order;  // topic and bag time, as rosbag play sends them
   for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
     ++messages[m.getTopic()];
+    order.emplace_back(m.getTopic(), m.getTime());
     if (const sensor_msgs::Image::ConstPtr image = m.instantiate<sensor_msgs::Image>(); image && image->encoding == "rgb8")
       images[m.getTopic()].push_back(*image);
   }
   EXPECT_EQ(messages["/tf_static"], 1u);
+  // The static transforms are at the first pose's stamp, the bag's start (not the wall clock's
+  // time, which rosbag play would reach decades later).
+  ASSERT_FALSE(order.empty());
+  EXPECT_EQ(order[0].second, ros::Time(100, 250));
+  for (const auto& [topic, time] : order)
+    if (topic == "/tf_static") {
+      EXPECT_EQ(time, ros::Time(100, 250));
+    }
   for (const std::string camera : kCameras) {
     SCOPED_TRACE(camera);
     EXPECT_EQ(messages["/bot/" + camera + "/camera_info"], std::size(kPoses));
@@ -292,18 +305,21 @@ class LiveRun : public ::testing::Test {
                                            " -o " + (root_ / "dataset").string() + " 2>&1");
     ASSERT_EQ(dataset.code, 0) << dataset.out;
   }
-  // Starts the master, then `argv` with it (its output in root/program.out), then this
-  // process's node.
-  void start(const std::vector<std::string>& argv, const std::vector<std::string>& extraEnvironment = {}) {
+  // Starts the master, this process's node, then `argv` with the master (its output in
+  // root/program.out). With `simulatedTime`, /use_sim_time is set for the program (not for this
+  // process's node, started before): its time is the /clock this test publishes.
+  void start(const std::vector<std::string>& argv, const std::vector<std::string>& extraEnvironment = {},
+             bool simulatedTime = false) {
     master_ = std::make_unique<RosMaster>(root_);
     ASSERT_EQ(master_->problem(), "");
-    std::vector<std::string> environment = master_->environment();
-    environment.insert(environment.end(), extraEnvironment.begin(), extraEnvironment.end());
-    ASSERT_TRUE(program_.start("program", argv, root_ / "program.out", environment));
     startRos(*master_);
     handle_ = std::make_unique<ros::NodeHandle>();
     spinner_ = std::make_unique<ros::AsyncSpinner>(1);
     spinner_->start();
+    if (simulatedTime) ros::param::set("/use_sim_time", true);
+    std::vector<std::string> environment = master_->environment();
+    environment.insert(environment.end(), extraEnvironment.begin(), extraEnvironment.end());
+    ASSERT_TRUE(program_.start("program", argv, root_ / "program.out", environment));
   }
   // Until `connected` holds: a message published before its connection would be lost.
   void waitUntilConnected(const std::function<bool()>& connected) {
@@ -385,7 +401,7 @@ TEST_F(LiveRun, RendersEveryOdometryPoseAsTheDatasetDoesForThreeCameras) {
     EXPECT_EQ(refused[1], "pose refused: its stamp 99.000000250 is not after the last pose's, 100.000000250");
   }
   ASSERT_EQ(waitForExit(), 0) << output();
-  EXPECT_NE(output().find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped while rendering, 2 refused"),
+  EXPECT_NE(output().find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped for newer ones, 2 refused"),
             std::string::npos)
       << output();
 
@@ -449,30 +465,191 @@ TEST_F(LiveRun, TakesPosesFromTfAndRefusesAGapInTheTree) {
     m.transforms = std::move(transforms);
     tf.publish(m);
   };
+  // First a gap: the robot moves in odom at 98 s and 99 s while map -> odom is not known yet.
+  // The pose at 98 s waits until /tf data is 1 s past it, then is refused with tf's reason.
+  send({edge("odom", "base_link", ros::Time(98, 0), 1.5, 1.0, 1, 0)});
+  send({edge("odom", "base_link", ros::Time(99, 0), 1.5, 1.0, 1, 0)});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
+  EXPECT_NE(diagnosticMessages(diagnostics)[0].find("pose refused: no transform from map to base_link: "), std::string::npos)
+      << diagnosticMessages(diagnostics)[0];
   // map -> odom is 0.5 m along x at every stamp; odom -> base_link puts the robot at the spec's
-  // poses. One at a time: each sent once the last one's image is in.
+  // poses. One at a time: each sent once the last one's image is in. The first one drops the
+  // pose at 99 s, still waiting: poses only go forward.
   for (size_t k = 0; k < kPoses.size(); ++k) {
     const ros::Time stamp(100 + static_cast<uint32_t>(k), 0);
     send({edge("map", "odom", stamp, 0.5, 0, 0, 1),
           edge("odom", "base_link", stamp, kPoses[k].x - 0.5, kPoses[k].y, kPoses[k].qz, kPoses[k].qw)});
     ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > k; }, 120.0)) << "pose " << k << output();
-    if (k > 0) continue;
-    // A gap: map -> odom is not known half a second later yet. (tf2 ignores data 10 s older than
-    // its newest, so the stamps only grow.)
-    send({edge("odom", "base_link", ros::Time(100, 500000000), 1.5, 1.0, 1, 0)});
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
-    EXPECT_NE(diagnosticMessages(diagnostics)[0].find("pose refused: no transform from map to base_link"), std::string::npos)
-        << diagnosticMessages(diagnostics)[0];
   }
   ASSERT_EQ(waitForExit(), 0) << output();
-  EXPECT_NE(output().find(std::to_string(kPoses.size()) + " poses rendered, 0 dropped while rendering, 1 refused"),
+  EXPECT_NE(output().find(std::to_string(kPoses.size()) + " poses rendered, 1 dropped for newer ones, 1 refused"),
             std::string::npos)
       << output();
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 1; }, 120.0)) << output();
+  EXPECT_EQ(diagnosticMessages(diagnostics)[1], "pose dropped: tf reached a later pose first");
   const std::vector<sensor_msgs::Image> frames = images.messages();
   for (size_t k = 0; k < kPoses.size(); ++k) {
     EXPECT_EQ(frames[k].header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 0));
     EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "pose " << k;
   }
+}
+
+// A spec of one front camera with a rolling shutter (so a twist shows), poses `poses` ([x, y,
+// yaw°] each), the robot driving forward at kForward m/s when `moving`.
+std::string forwardSpec(const std::string& poses, bool moving) {
+  return std::string(R"({"format": "omnicam-dataset/1", "scene": ")") + OMNICAM_SOURCE_DIR +
+         R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "lit", "poses": {"list": [)" + poses + "]}" +
+         (moving ? R"(, "motion": {"velocity": [)" + std::to_string(kForward) + R"(, 0, 0]})" : std::string()) + R"(,
+    "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}, "rig": )" + rollingShutterRig() + R"(}],
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
+}
+
+// At a fixed rate, on simulated time the test drives with /clock: each tick renders the newest
+// odometry pose carried to the tick with its twist (a straight drive: x grows by kForward · Δt,
+// exact in binary here), stamped with the tick; a tick too far from the newest pose is refused.
+TEST_F(LiveRun, RendersAtAFixedRateTheNewestPoseCarriedToEachTick) {
+  // kPoses[0] = (-2, -1, 0°) carried 0 s and 0.25 s; kPoses[2] = (-1.5, 0, 0°) carried 0.25 s.
+  renderDataset(forwardSpec("[-2, -1, 0], [-1.875, -1, 0], [-1.375, 0, 0]", /*moving=*/true));
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--rate", "4",
+         "--frames", "3"},
+        {}, /*simulatedTime=*/true);
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  ros::Publisher clock = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
+  Images images(*handle_, "/bot/front/image_raw");
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
+  waitUntilConnected([&] {
+    return odometry.getNumSubscribers() > 0 && clock.getNumSubscribers() > 0 && images.connected() && diagnostics.connected();
+  });
+  // A moving pose, then the same again: its refusal (the stamp is not after the last) says the
+  // node has the first before the clock moves (odometry and /clock come on two connections).
+  const auto sendPose = [&](const SentPose& pose, ros::Time stamp) {
+    nav_msgs::Odometry m = odometryOf(pose, stamp, /*moving=*/false);
+    m.twist.twist.linear.x = kForward;
+    const size_t before = diagnostics.size();
+    odometry.publish(m);
+    odometry.publish(m);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > before; }, 120.0)) << output();
+  };
+  const auto clockTo = [&](ros::Time now) {
+    rosgraph_msgs::Clock m;
+    m.clock = now;
+    clock.publish(m);
+  };
+  const auto imagesReach = [&](size_t count) {
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= count; }, 120.0)) << output();
+  };
+  sendPose(kPoses[0], ros::Time(100, 0));
+  clockTo(ros::Time(100, 0));  // the tick at 100 s: the pose as it is
+  imagesReach(1);
+  clockTo(ros::Time(100, 300000000));  // the tick at 100.25 s: the pose 0.25 s on
+  imagesReach(2);
+  clockTo(ros::Time(101, 0));  // 1 s after the newest pose: refused
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 1; }, 120.0)) << output();
+  sendPose(kPoses[2], ros::Time(101, 0));
+  clockTo(ros::Time(101, 250000000));
+  ASSERT_EQ(waitForExit(), 0) << output();
+  imagesReach(3);
+
+  const std::vector<sensor_msgs::Image> frames = images.messages();
+  const ros::Time ticks[] = {ros::Time(100, 0), ros::Time(100, 250000000), ros::Time(101, 250000000)};
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(frames[k].header.stamp, ticks[k]) << "tick " << k;
+    EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "tick " << k;
+  }
+  const std::vector<std::string> messages = diagnosticMessages(diagnostics);
+  ASSERT_EQ(messages.size(), 3u);
+  EXPECT_EQ(messages[1],
+            "pose refused: the newest pose, at 100.000000000, is 1.000 s from the tick at 101.000000000 (more than 0.5 s)");
+  EXPECT_NE(output().find("3 poses rendered, 0 dropped for newer ones, 3 refused"), std::string::npos) << output();
+}
+
+// At a fixed rate from tf: each tick asks the tree for the robot at the tick and renders it once
+// tf reaches it (tf2 interpolates between its data), stamped with the tick.
+TEST_F(LiveRun, RendersAtAFixedRateTheTreesPoseAtEachTick) {
+  renderDataset(forwardSpec("[0.5, 0, 0], [1, 0, 0], [1.5, 0, 0]", /*moving=*/false));  // tf has no twist
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--tf", "map", "--rate", "4",
+         "--frames", "3"},
+        {}, /*simulatedTime=*/true);
+  ros::Publisher tf = handle_->advertise<tf2_msgs::TFMessage>("/tf", 10);
+  ros::Publisher clock = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
+  Images images(*handle_, "/bot/front/image_raw");
+  waitUntilConnected([&] { return tf.getNumSubscribers() > 0 && clock.getNumSubscribers() > 0 && images.connected(); });
+  const auto robotAt = [&](ros::Time stamp, double x) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = "map";
+    t.child_frame_id = "base_link";
+    t.transform.translation.x = x;
+    t.transform.rotation.w = 1;
+    tf2_msgs::TFMessage m;
+    m.transforms = {t};
+    tf.publish(m);
+  };
+  const auto clockTo = [&](ros::Time now) {
+    rosgraph_msgs::Clock m;
+    m.clock = now;
+    clock.publish(m);
+  };
+  robotAt(ros::Time(100, 0), 0.0);
+  robotAt(ros::Time(100, 500000000), 1.0);
+  clockTo(ros::Time(100, 250000000));  // between two of the tree's poses: x 0.5
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= 1; }, 120.0)) << output();
+  clockTo(ros::Time(100, 500000000));  // at one: x 1
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= 2; }, 120.0)) << output();
+  clockTo(ros::Time(100, 750000000));  // beyond the tree's newest (if it comes first): the tick waits for tf
+  robotAt(ros::Time(101, 0), 2.0);     // x 1.5 at the tick
+  ASSERT_EQ(waitForExit(), 0) << output();
+  const std::vector<sensor_msgs::Image> frames = images.messages();
+  ASSERT_EQ(frames.size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(frames[k].header.stamp, ros::Time(100, 250000000 * static_cast<uint32_t>(k + 1))) << "tick " << k;
+    EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "tick " << k;
+  }
+  EXPECT_NE(output().find("3 poses rendered, 0 dropped for newer ones, 0 refused"), std::string::npos) << output();
+}
+
+// The pid of ROS node `name` (its getPid, found through the master), 0 if it does not answer.
+int nodePid(const std::string& name) {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = name;
+  if (!ros::master::execute("lookupNode", args, result, payload, false)) return 0;
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port)) return 0;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue request, reply;
+  request[0] = ros::this_node::getName();
+  if (!client.execute("getPid", request, reply) || reply.getType() != XmlRpc::XmlRpcValue::TypeArray || reply.size() != 3)
+    return 0;
+  return static_cast<int>(reply[2]);
+}
+
+// roslaunch starts the node from the build folder's ROS package (ROS_PACKAGE_PATH) with the
+// launch file's arguments, as node /omnicam_bot; its images equal the dataset's frames; Ctrl-C
+// to roslaunch ends the node cleanly, and nothing is left running.
+TEST_F(LiveRun, StartsFromItsLaunchFileAndEndsWithRoslaunch) {
+  renderDataset(forwardSpec("[-2, -1, 0], [-1.75, -0.5, 180]", /*moving=*/true));
+  start({"/usr/bin/roslaunch", "omnicam", "live_camera.launch", "spec:=" + (root_ / "spec.json").string(), "robot:=bot",
+         "odom:=/bot/odom"},
+        {"ROS_PACKAGE_PATH=" OMNICAM_ROS_PACKAGE_PATH});
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  Images images(*handle_, "/bot/front/image_raw");
+  waitUntilConnected([&] { return odometry.getNumSubscribers() > 0 && images.connected(); });
+  const int node = nodePid("/omnicam_bot");
+  ASSERT_GT(node, 0) << output();
+  for (size_t k = 0; k < 2; ++k) {
+    nav_msgs::Odometry m = odometryOf(kPoses[k], ros::Time(100 + static_cast<uint32_t>(k), 0), /*moving=*/false);
+    m.twist.twist.linear.x = kForward;
+    odometry.publish(m);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > k; }, 120.0)) << output();
+  }
+  stopProgram(SIGINT);
+  EXPECT_EQ(waitForExit(), 0) << output();
+  EXPECT_NE(output().find("ros: 2 poses rendered, 0 dropped for newer ones, 0 refused"), std::string::npos) << output();
+  EXPECT_NE(::kill(node, 0), 0) << "the node " << node << " outlived roslaunch";
+  const std::vector<sensor_msgs::Image> frames = images.messages();
+  for (int k = 0; k < 2; ++k) EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", k)) << "pose " << k;
 }
 
 // A spec the dataset reader refuses is refused the same way, before any master is looked for.
@@ -520,7 +697,7 @@ TEST_F(LiveRun, OutlivesItsMasterAndRegistersAgainWhenItComesBack) {
   EXPECT_TRUE(first.data == datasetRgb8(dataset(), "front", 0));
   EXPECT_TRUE(images->messages()[0].data == datasetRgb8(dataset(), "front", 1));
   // (Its diagnostic goes out as the node registers again, before a subscriber can connect.)
-  EXPECT_NE(output().find("2 poses rendered, 0 dropped while rendering, 0 refused, 1 new masters"), std::string::npos)
+  EXPECT_NE(output().find("2 poses rendered, 0 dropped for newer ones, 0 refused, 1 new masters"), std::string::npos)
       << output();
 }
 
@@ -544,7 +721,7 @@ TEST_F(LiveRun, RefusesAPoseItsEngineCannotRenderAndGoesOn) {
   ASSERT_EQ(waitForExit(), 0) << output();
   ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > 0; }, 120.0)) << output();
   EXPECT_TRUE(images.messages()[0].data == datasetRgb8(dataset(), "front", 0));
-  EXPECT_NE(output().find("1 poses rendered, 0 dropped while rendering, 1 refused"), std::string::npos) << output();
+  EXPECT_NE(output().find("1 poses rendered, 0 dropped for newer ones, 1 refused"), std::string::npos) << output();
 }
 
 // examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to
@@ -588,6 +765,25 @@ TEST(LiveSensor, RefusesNamesRosCannotTake) {
     const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + arguments + " 2>&1");
     EXPECT_EQ(run.code, 2) << run.out;
     EXPECT_NE(run.out.find("is not a ROS name"), std::string::npos) << run.out;
+    EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+  }
+  fs::remove_all(root);
+}
+
+// Arguments other than ROS's own (from:=to), and a node name ROS refuses: one line, exit 2,
+// before any master is looked for.
+TEST(LiveSensor, RefusesArgumentsThatAreNotRosOnes) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_arguments_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::ofstream(root / "spec.json") << specText();
+  const std::pair<const char*, const char*> cases[] = {{"stray", "unexpected argument \"stray\""},
+                                                       {":=x", "unexpected argument \":=x\""},
+                                                       {"__name:=front-left", "front-left"}};
+  for (const auto& [argument, expected] : cases) {
+    const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + (root / "spec.json").string() + " '" + argument +
+                                       "' 2>&1");
+    EXPECT_EQ(run.code, 2) << argument << ": " << run.out;
+    EXPECT_NE(run.out.find(expected), std::string::npos) << argument << ": " << run.out;
     EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
   }
   fs::remove_all(root);

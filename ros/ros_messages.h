@@ -17,6 +17,11 @@ struct Stamp {
   uint32_t sec = 0;
   uint32_t nsec = 0;
   double seconds() const { return sec + nsec * 1e-9; }
+  int64_t nanoseconds() const { return int64_t{sec} * 1000000000 + nsec; }
+  static Stamp ofNanoseconds(int64_t ns) { return {static_cast<uint32_t>(ns / 1000000000), static_cast<uint32_t>(ns % 1000000000)}; }
+  bool zero() const { return sec == 0 && nsec == 0; }
+  bool operator==(const Stamp& o) const { return sec == o.sec && nsec == o.nsec; }
+  bool operator<(const Stamp& o) const { return nanoseconds() < o.nanoseconds(); }
 };
 
 // nav_msgs/Odometry: the pose of `childFrame` in `frame`, and its twist in `childFrame`.
@@ -65,7 +70,14 @@ struct Diagnostic {
 };
 
 using OdometryHandler = std::function<void(const Odometry&)>;
-// A transform tf could not give at `stamp` (a gap in the tree, an extrapolation): why.
-using GapHandler = std::function<void(const Stamp& stamp, const std::string& why)>;
+
+// What becomes of the poses asked of tf (Transport::subscribeTransform).
+struct TransformHandlers {
+  OdometryHandler pose;  // the pose at a stamp asked for, once the tree reaches it
+  // A stamp the tree did not reach (a gap, a parent never sent): tf's reason.
+  std::function<void(const Stamp& stamp, const std::string& why)> gap;
+  // A stamp passed over: the tree reached a later one first, which was handed over instead.
+  std::function<void(const Stamp& stamp)> overtaken;
+};
 
 }  // namespace omnicam::ros1

@@ -10,7 +10,8 @@
 #include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_listener.h>
+#include <tf2/buffer_core.h>
+#include <ros/callback_queue.h>
 
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <utility>
 #include <mutex>
 #include <stdexcept>
 
@@ -83,6 +85,77 @@ std::string invalidGraphName(const std::string& name) {
   return ros::names::validate(name, why) ? "" : why;
 }
 
+// Poses of `child` in `parent`, asked for at stamps and handed over once the tree reaches them
+// (as tf2's MessageFilter does, without its thread): everything here runs on the spinner thread.
+class TfPoses {
+ public:
+  TfPoses(std::string parent, std::string child, bool eachMove, TransformHandlers handlers)
+      : parent_(std::move(parent)), child_(std::move(child)), eachMove_(eachMove), handlers_(std::move(handlers)) {}
+
+  void take(const tf2_msgs::TFMessage& message, bool isStatic) {
+    for (const geometry_msgs::TransformStamped& t : message.transforms) {
+      if (!buffer_.setTransform(t, "omnicam", isStatic)) continue;  // tf2 says why on the log
+      if (isStatic) continue;
+      newestData_ = std::max(newestData_, t.header.stamp);
+      if (eachMove_ && t.child_frame_id == child_) pending_.push_back(t.header.stamp);
+    }
+    handOver();
+  }
+  void request(const ros::Time& stamp) {
+    pending_.push_back(stamp);
+    handOver();
+  }
+
+ private:
+  // The newest request the tree reaches is handed over; older ones are overtaken (poses only go
+  // forward), newer ones wait until /tf data is kTfPatienceSeconds past them.
+  void handOver() {
+    std::sort(pending_.begin(), pending_.end());
+    pending_.erase(std::unique(pending_.begin(), pending_.end()), pending_.end());
+    std::vector<std::string> why(pending_.size());
+    size_t reached = pending_.size();
+    for (size_t i = pending_.size(); i-- > 0;)
+      if (buffer_.canTransform(parent_, child_, pending_[i], &why[i])) {
+        reached = i;
+        break;
+      }
+    if (reached < pending_.size()) {
+      for (size_t i = 0; i < reached; ++i) handlers_.overtaken(stampOf(pending_[i]));
+      handlers_.pose(odometryAt(pending_[reached]));
+      pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(reached) + 1);
+      why.erase(why.begin(), why.begin() + static_cast<std::ptrdiff_t>(reached) + 1);
+    }
+    const ros::Duration patience(Transport::kTfPatienceSeconds);
+    std::vector<ros::Time> waiting;
+    for (size_t i = 0; i < pending_.size(); ++i) {
+      if (newestData_ >= pending_[i] + patience)
+        handlers_.gap(stampOf(pending_[i]), why[i]);
+      else
+        waiting.push_back(pending_[i]);
+    }
+    pending_ = std::move(waiting);
+  }
+  Odometry odometryAt(const ros::Time& stamp) const {
+    const geometry_msgs::TransformStamped t = buffer_.lookupTransform(parent_, child_, stamp);
+    Odometry o;
+    o.stamp = stampOf(stamp);
+    o.frame = parent_;
+    o.childFrame = child_;
+    o.position[0] = t.transform.translation.x, o.position[1] = t.transform.translation.y;
+    o.position[2] = t.transform.translation.z;
+    o.orientationXyzw[0] = t.transform.rotation.x, o.orientationXyzw[1] = t.transform.rotation.y;
+    o.orientationXyzw[2] = t.transform.rotation.z, o.orientationXyzw[3] = t.transform.rotation.w;
+    return o;
+  }
+
+  const std::string parent_, child_;
+  const bool eachMove_;
+  const TransformHandlers handlers_;
+  tf2::BufferCore buffer_;  // tf2's 10 s of each frame, filled by take()
+  std::vector<ros::Time> pending_;
+  ros::Time newestData_;
+};
+
 struct Transport::Impl {
   std::unique_ptr<ros::NodeHandle> node;
   std::unique_ptr<ros::AsyncSpinner> spinner;
@@ -91,21 +164,29 @@ struct Transport::Impl {
   std::map<std::string, ros::Publisher> publishers;
   ros::Publisher diagnostics;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> staticTransforms;
-  std::unique_ptr<tf2_ros::Buffer> tfBuffer;
   std::unique_ptr<rosbag::Bag> bag;  // when recording (the mutex held to write)
   std::string bagPath, bagPartial;
+  // What goes into the bag at the first stamped message's stamp: static transforms, latched texts.
+  std::vector<std::function<void(const ros::Time&)>> bagAtFirstStamp;
   // roscpp registers a topic with the master once; a master that restarts knows none. These make
   // every subscription (on the owner's thread) and publication (the mutex held) again.
   std::vector<std::function<void()>> subscribe, advertise;
   std::vector<geometry_msgs::TransformStamped> staticMessages;
   int masterPid = 0;  // the master registered with; another pid is a master that restarted
-  std::unique_ptr<tf2_ros::TransformListener> tfListener;
+  std::unique_ptr<TfPoses> tfPoses;  // the spinner thread's own
 
   // Publishes `message` on `topic` and records it (the mutex held).
   template <typename Message>
   void send(const std::string& topic, const Message& message) {
     advertised(topic).publish(message);
-    if (bag) bag->write(topic, message.header.stamp, message);
+    if (bag) {
+      writeWaitingBagMessages(message.header.stamp);
+      bag->write(topic, message.header.stamp, message);
+    }
+  }
+  void writeWaitingBagMessages(const ros::Time& stamp) {
+    for (const auto& write : bagAtFirstStamp) write(stamp);
+    bagAtFirstStamp.clear();
   }
 
   // The publisher of `topic` (the mutex held): a topic must be advertised first.
@@ -116,10 +197,20 @@ struct Transport::Impl {
   }
 };
 
-Transport::Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested)
+Transport::Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested,
+                     const std::vector<std::string>& rosArguments)
     : impl_(std::make_unique<Impl>()) {
-  int argc = 0;
-  ros::init(argc, nullptr, name, ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
+  ros::M_string remappings;
+  for (const std::string& argument : rosArguments) {
+    const size_t split = argument.find(":=");
+    if (split == std::string::npos || split == 0) throw std::invalid_argument("not a ROS argument (from:=to): " + argument);
+    remappings[argument.substr(0, split)] = argument.substr(split + 2);
+  }
+  try {
+    ros::init(remappings, name, ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
+  } catch (const ros::Exception& e) {  // a node name or namespace ROS cannot take
+    throw std::invalid_argument(e.what());
+  }
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(masterWaitSeconds);
   while ((impl_->masterPid = masterPid()) == 0) {
     if (ros::WallTime::now() > deadline) throw std::runtime_error("no ROS master at " + ros::master::getURI());
@@ -138,8 +229,7 @@ Transport::Transport(const std::string& name, double masterWaitSeconds, const st
 Transport::~Transport() {
   impl_->spinner->stop();
   impl_->subscriptions.clear();
-  impl_->tfListener.reset();
-  impl_->tfBuffer.reset();
+  impl_->tfPoses.reset();
   if (impl_->bag) {  // not finished: the run failed or was cut short
     try {
       impl_->bag->close();
@@ -163,41 +253,50 @@ void Transport::subscribeOdometry(const std::string& topic, OdometryHandler hand
   impl->subscribe.back()();
 }
 
-void Transport::subscribeTransform(const std::string& parent, const std::string& child, OdometryHandler handler,
-                                   GapHandler gap) {
-  if (!impl_->tfBuffer) {
-    impl_->tfBuffer = std::make_unique<tf2_ros::Buffer>();
-    impl_->tfListener = std::make_unique<tf2_ros::TransformListener>(*impl_->tfBuffer);  // its own thread
-  }
-  tf2_ros::Buffer& buffer = *impl_->tfBuffer;
+void Transport::subscribeTransform(const std::string& parent, const std::string& child, bool eachMove,
+                                   TransformHandlers handlers) {
   Impl* impl = impl_.get();
-  impl->subscribe.push_back([impl, &buffer, parent, child, handler, gap] {
-  impl->subscriptions.push_back(impl->node->subscribe<tf2_msgs::TFMessage>(
-      "/tf", 100, [&buffer, parent, child, handler, gap](const tf2_msgs::TFMessage::ConstPtr& m) {
-        for (const geometry_msgs::TransformStamped& moved : m->transforms) {
-          if (moved.child_frame_id != child) continue;
-          const Stamp stamp = stampOf(moved.header.stamp);
-          std::string why;
-          // The listener (its own thread) may not have this message yet: wait for it up to 1 s.
-          if (!buffer.canTransform(parent, child, moved.header.stamp, ros::Duration(1.0), &why)) {
-            gap(stamp, why);
-            continue;
-          }
-          const geometry_msgs::TransformStamped t = buffer.lookupTransform(parent, child, moved.header.stamp);
-          Odometry o;
-          o.stamp = stamp;
-          o.frame = parent;
-          o.childFrame = child;
-          o.position[0] = t.transform.translation.x, o.position[1] = t.transform.translation.y;
-          o.position[2] = t.transform.translation.z;
-          o.orientationXyzw[0] = t.transform.rotation.x, o.orientationXyzw[1] = t.transform.rotation.y;
-          o.orientationXyzw[2] = t.transform.rotation.z, o.orientationXyzw[3] = t.transform.rotation.w;
-          handler(o);
-        }
-      }));
-  });
-  impl->subscribe.back()();
+  impl->tfPoses = std::make_unique<TfPoses>(parent, child, eachMove, std::move(handlers));
+  TfPoses* poses = impl->tfPoses.get();
+  for (const bool isStatic : {false, true}) {
+    impl->subscribe.push_back([impl, poses, isStatic] {
+      impl->subscriptions.push_back(impl->node->subscribe<tf2_msgs::TFMessage>(
+          isStatic ? "/tf_static" : "/tf", 100,
+          [poses, isStatic](const tf2_msgs::TFMessage::ConstPtr& m) { poses->take(*m, isStatic); }));
+    });
+    impl->subscribe.back()();
+  }
 }
+
+void Transport::requestTransform(const Stamp& stamp) {
+  if (!impl_->tfPoses) throw std::logic_error("requestTransform: no subscribeTransform");
+  impl_->tfPoses->request(ros::Time(stamp.sec, stamp.nsec));
+}
+
+namespace {
+
+// Work handed to the spinner thread (post).
+class PostedWork : public ros::CallbackInterface {
+ public:
+  explicit PostedWork(std::function<void()> work) : work_(std::move(work)) {}
+  CallResult call() override {
+    work_();
+    return Success;
+  }
+
+ private:
+  std::function<void()> work_;
+};
+
+}  // namespace
+
+void Transport::post(std::function<void()> work) {
+  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<PostedWork>(std::move(work)));
+}
+
+Stamp Transport::now() const { return stampOf(ros::Time::now()); }
+
+bool Transport::simulatedTime() const { return ros::Time::isSimTime(); }
 
 void Transport::advertiseImage(const std::string& topic, bool latched) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
@@ -260,9 +359,12 @@ void Transport::publishStaticTransforms(const std::vector<Transform>& transforms
   impl_->staticTransforms->sendTransform(messages);
   impl_->staticMessages.insert(impl_->staticMessages.end(), messages.begin(), messages.end());
   if (impl_->bag) {
-    tf2_msgs::TFMessage all;
-    all.transforms = messages;
-    impl_->bag->write("/tf_static", messages.empty() ? ros::Time::now() : messages.front().header.stamp, all);
+    impl_->bagAtFirstStamp.push_back([impl = impl_.get(), messages](const ros::Time& stamp) {
+      tf2_msgs::TFMessage all;
+      all.transforms = messages;
+      for (geometry_msgs::TransformStamped& t : all.transforms) t.header.stamp = stamp;
+      impl->bag->write("/tf_static", stamp, all);
+    });
   }
 }
 
@@ -275,7 +377,11 @@ void Transport::publishLatchedText(const std::string& topic, const std::string& 
     std_msgs::String m;
     m.data = text;
     publisher.publish(m);
-    if (impl->bag) impl->bag->write(topic, ros::Time::now(), m);
+  });
+  if (impl->bag) impl->bagAtFirstStamp.push_back([impl, topic, text](const ros::Time& stamp) {
+    std_msgs::String m;
+    m.data = text;
+    impl->bag->write(topic, stamp, m);
   });
   impl->advertise.back()();
 }
@@ -287,10 +393,6 @@ bool Transport::registerAgainIfTheMasterCameBack() {
   // Subscriptions first, outside the mutex: a callback may be waiting for it.
   for (ros::Subscriber& s : impl_->subscriptions) s.shutdown();
   impl_->subscriptions.clear();
-  if (impl_->tfListener) {
-    impl_->tfListener.reset();
-    impl_->tfListener = std::make_unique<tf2_ros::TransformListener>(*impl_->tfBuffer);
-  }
   for (const auto& make : impl_->subscribe) make();
   std::lock_guard<std::mutex> lock(impl_->mutex);
   for (auto& [topic, publisher] : impl_->publishers) publisher.shutdown();
@@ -320,8 +422,9 @@ void Transport::record(const std::string& partialPath, const std::string& path) 
 void Transport::finishRecording() {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   if (!impl_->bag) return;
-  std::unique_ptr<rosbag::Bag> bag = std::move(impl_->bag);
   try {
+    impl_->writeWaitingBagMessages(ros::Time::now());  // no image came: they go in now
+    std::unique_ptr<rosbag::Bag> bag = std::move(impl_->bag);
     bag->close();
   } catch (const rosbag::BagException& e) {
     ::unlink(impl_->bagPartial.c_str());

@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "ros_messages.h"
 
@@ -16,19 +17,35 @@ std::string invalidGraphName(const std::string& name);
 class Transport {
  public:
   // Registers node `name` with the master of ROS_MASTER_URI (roscpp reads the environment);
-  // SIGINT is left to the caller. Throws std::runtime_error if the master cannot be reached
+  // SIGINT is left to the caller. `rosArguments` are a ROS node's command-line arguments, each
+  // `from:=to`: remappings (`image_raw:=camera`), `__name:=`, `__ns:=`, `__log:=` (roslaunch's),
+  // private parameters `_name:=value`. Throws std::runtime_error if the master cannot be reached
   // within `masterWaitSeconds`, or if `stopRequested` (asked while it waits) says so.
-  Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested = {});
+  Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested = {},
+            const std::vector<std::string>& rosArguments = {});
   ~Transport();
   Transport(const Transport&) = delete;
   Transport& operator=(const Transport&) = delete;
 
   // Odometry messages of `topic`, to `handler` on the spinner thread.
   void subscribeOdometry(const std::string& topic, OdometryHandler handler);
-  // Poses from tf: each /tf message that moves `child` is looked up as `child` in `parent` at
-  // its stamp, through the whole tree (map → odom → base_link), and handed over as an odometry
-  // without twist (tf has none). A lookup that fails goes to `gap`.
-  void subscribeTransform(const std::string& parent, const std::string& child, OdometryHandler handler, GapHandler gap);
+  // Poses of `child` in `parent` from tf, through the whole tree (map → odom → base_link), each
+  // handed over as an odometry without twist (tf has none). /tf and /tf_static go into the
+  // node's own buffer on the spinner thread; a pose is asked for at a stamp (each /tf message
+  // that moves `child` asks at its stamp when `eachMove`; requestTransform asks too) and handed
+  // over as soon as the tree reaches it, never by blocking the spinner. A request goes to
+  // `handlers.gap` with tf's reason once /tf data is kTfPatienceSeconds past its stamp without
+  // it, to `handlers.overtaken` when a later one was handed over first (poses only go forward).
+  void subscribeTransform(const std::string& parent, const std::string& child, bool eachMove, TransformHandlers handlers);
+  // Asks subscribeTransform's tree for its pose at `stamp`. On the spinner thread only (post).
+  void requestTransform(const Stamp& stamp);
+  static constexpr double kTfPatienceSeconds = 1.0;
+  // Runs `work` on the spinner thread, after the callbacks already waiting: the one thread that
+  // owns what the callbacks share.
+  void post(std::function<void()> work);
+  // ROS time: the wall clock, or /clock's when the master's /use_sim_time is set.
+  Stamp now() const;
+  bool simulatedTime() const;
   // Announces `topic` as sensor_msgs/Image; `latched` keeps the last message for late subscribers.
   void advertiseImage(const std::string& topic, bool latched = false);
   void publish(const std::string& topic, const Image& image);
@@ -43,6 +60,9 @@ class Transport {
   void publish(const Diagnostic& diagnostic);
   // From now on the images, camera_info, static transforms and latched texts this node
   // publishes also go into a ROS bag, under their topics, stamped with their headers' stamps.
+  // Static transforms and latched texts, which have no stamp of their own, go in at the first
+  // image's stamp (or when the bag is finished, if no image came): `rosbag play` then sends
+  // them first, not at a wall-clock time far from the images' (simulated) ones.
   // The bag is written as `partialPath`; finishRecording() gives it the name `path`. A node that
   // ends otherwise removes the partial bag: nothing half-written is left under either name.
   // std::runtime_error if it cannot be opened.
