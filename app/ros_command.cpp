@@ -22,12 +22,16 @@ struct RosArgs {
   LiveSensorOptions options;
 };
 
-// A ROS node's own arguments (`from:=to`, as roslaunch passes `__name:=` and `__log:=`) go to
-// ROS; anything else is a mistake.
+// A ROS node's own arguments (`from:=to` remappings, roslaunch's `__name:=` and `__log:=`) go to
+// ROS; anything else is a mistake. Private parameters (`_name:=value`) too: the node reads none,
+// and roscpp would wait for a master without limit to set them.
 std::vector<std::string> rosArgumentsOf(const std::vector<std::string>& extras) {
-  for (const std::string& extra : extras)
+  for (const std::string& extra : extras) {
     if (extra.find(":=") == std::string::npos || extra.rfind(":=", 0) == 0)
       throw InputError("ros: unexpected argument " + quote(extra) + " (ROS arguments are from:=to)");
+    if (extra.rfind('_', 0) == 0 && extra.rfind("__", 0) != 0)
+      throw InputError("ros: " + quote(extra) + ": the node takes no private parameters (its settings are flags and the spec)");
+  }
   return extras;
 }
 
@@ -74,9 +78,11 @@ void addRosCommand(CLI::App& app) {
   cmd->add_option("--max-pose-age", args->options.maxPoseAgeSeconds,
                   "With --rate and odometry: carry the newest pose to a tick at most this many seconds (default 0.5)")
       ->check(numberIn(0, 60, true))
-      ->needs(cmd->get_option("--rate"));
+      ->needs(cmd->get_option("--rate"))
+      ->excludes(cmd->get_option("--tf"));
   cmd->allow_extras();  // ROS's own from:=to arguments (remappings, roslaunch's __name:= and __log:=)
-  cmd->footer("ROS arguments: from:=to remaps a topic (image_raw:=camera); __name:=, __ns:=, _param:=value as for any ROS node.");
+  cmd->footer("ROS arguments: from:=to remaps a topic by its full name (/robot/front/image_raw:=/camera/image); "
+              "__name:= names the node, __log:= its log, as roslaunch passes them.");
   cmd->callback([args, cmd] { runRos(*args, cmd->remaining()); });
 }
 

@@ -261,6 +261,7 @@ class Ticker {
     while (!stop_) {
       const ros1::Stamp now = transport_.now();  // zero under simulated time until /clock comes
       const ros1::Stamp tick = tickAtOrBefore(now, periodNs_);
+      if (tick.nanoseconds() < last) last = 0;  // time went back (a simulation reset): tick anew
       if (!now.zero() && tick.nanoseconds() > last) {
         last = tick.nanoseconds();
         transport_.post([work = tick_, tick] { work(tick); });  // may run after this Ticker is gone
@@ -347,17 +348,28 @@ struct LivePoses {
   NewestPose newest;
   std::optional<ros1::Stamp> lastAccepted;
   std::optional<LivePose> latest;  // at a fixed rate from odometry: the newest pose
+  ros1::Stamp lastNow;             // ROS time when the last pose or tick came
   std::atomic<int64_t> refused = 0;
-  int64_t overtaken = 0;  // poses from tf that a later one overtook (dropped as newest's are)
 
   void refuse(const std::string& why, const ros1::Stamp& stamp) {
     transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
   }
   void render(const LivePose& live) {
     if (newest.put(live))
-      transport->publish(diagnostic(options, "pose dropped: the last one was still rendering", live.stamp, newest.dropped()));
+      transport->publish(diagnostic(options, "pose dropped: a newer one came before it was rendered", live.stamp, newest.dropped()));
+  }
+  // A simulation reset sends ROS time back: the stamps of the new run start anew.
+  void startAnewIfTimeWentBack() {
+    const ros1::Stamp now = transport->now();
+    if (now < lastNow) {
+      lastAccepted.reset();
+      latest.reset();
+      transport->publish(diagnostic(options, "ROS time went back (a simulation reset?): poses start anew", now, 0));
+    }
+    lastNow = now;
   }
   void accept(const ros1::Odometry& o) {
+    startAnewIfTimeWentBack();
     if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty())
       return refuse(problem, o.stamp);
     lastAccepted = o.stamp;
@@ -367,6 +379,7 @@ struct LivePoses {
       render(livePoseOf(o));
   }
   void tick(const ros1::Stamp& stamp) {
+    startAnewIfTimeWentBack();
     if (!options.tfParent.empty()) return transport->requestTransform(stamp);
     if (!latest) return;  // no odometry yet
     std::string problem;
@@ -382,9 +395,6 @@ struct LivePoses {
     handlers.pose = [this](const ros1::Odometry& o) { accept(o); };
     handlers.gap = [this](const ros1::Stamp& stamp, const std::string& why) {
       refuse("no transform from " + options.tfParent + " to " + options.baseFrame + ": " + why, stamp);
-    };
-    handlers.overtaken = [this](const ros1::Stamp& stamp) {
-      transport->publish(diagnostic(options, "pose dropped: tf reached a later pose first", stamp, ++overtaken + newest.dropped()));
     };
     transport->subscribeTransform(options.tfParent, options.baseFrame, /*eachMove=*/options.rateHz == 0, std::move(handlers));
   }
@@ -440,7 +450,7 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   }
   ticker.reset();
   if (!options.recordBag.empty()) finishRecording(transport, options.recordBag);
-  report.dropped = poses.newest.dropped() + poses.overtaken;
+  report.dropped = poses.newest.dropped();
   report.refused = poses.refused;
   return report;
 }

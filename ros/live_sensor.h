@@ -41,8 +41,9 @@ struct LiveSensorOptions {
   // At a fixed rate from odometry: a tick whose newest pose is further from it than this renders
   // nothing and says so on /diagnostics (a robot whose odometry stopped).
   double maxPoseAgeSeconds = 0.5;
-  // A ROS node's own command-line arguments (from:=to): remappings, __name:=, __ns:=, __log:=
-  // (roslaunch's), _param:=value.
+  // A ROS node's own command-line arguments (from:=to): remappings of the full topic names,
+  // __name:= and __log:= (roslaunch's). The topics are absolute (/ROBOT/CAMERA/...): __ns:=
+  // moves the node's name only.
   std::vector<std::string> rosArguments;
   double masterWaitSeconds = 30.0;
   // When set: every message published also goes into this ROS bag (written under a temporary
@@ -52,8 +53,7 @@ struct LiveSensorOptions {
 
 struct LiveSensorReport {
   int64_t rendered = 0, refused = 0;
-  // Poses a newer one replaced: while a frame rendered, or (from tf) reached by the tree first.
-  int64_t dropped = 0;
+  int64_t dropped = 0;  // poses a newer one replaced before they were rendered
   int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again
 };
 

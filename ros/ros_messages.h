@@ -74,10 +74,9 @@ using OdometryHandler = std::function<void(const Odometry&)>;
 // What becomes of the poses asked of tf (Transport::subscribeTransform).
 struct TransformHandlers {
   OdometryHandler pose;  // the pose at a stamp asked for, once the tree reaches it
-  // A stamp the tree did not reach (a gap, a parent never sent): tf's reason.
+  // A stamp the tree did not reach (a gap, a parent never sent) in time, or before it reached a
+  // later one: tf's reason.
   std::function<void(const Stamp& stamp, const std::string& why)> gap;
-  // A stamp passed over: the tree reached a later one first, which was handed over instead.
-  std::function<void(const Stamp& stamp)> overtaken;
 };
 
 }  // namespace omnicam::ros1

@@ -93,6 +93,7 @@ class TfPoses {
       : parent_(std::move(parent)), child_(std::move(child)), eachMove_(eachMove), handlers_(std::move(handlers)) {}
 
   void take(const tf2_msgs::TFMessage& message, bool isStatic) {
+    forgetIfTimeWentBack();
     for (const geometry_msgs::TransformStamped& t : message.transforms) {
       if (!buffer_.setTransform(t, "omnicam", isStatic)) continue;  // tf2 says why on the log
       if (isStatic) continue;
@@ -102,38 +103,55 @@ class TfPoses {
     handOver();
   }
   void request(const ros::Time& stamp) {
+    forgetIfTimeWentBack();
     pending_.push_back(stamp);
     handOver();
   }
 
  private:
-  // The newest request the tree reaches is handed over; older ones are overtaken (poses only go
-  // forward), newer ones wait until /tf data is kTfPatienceSeconds past them.
+  static constexpr size_t kMostWaiting = 1000;
+
+  // Every request the tree reaches is handed over, oldest first. One it does not reach is
+  // refused with tf's reason when a later one was handed over (poses only go forward), when tf
+  // is kTfPatienceSeconds past it, or when more than kMostWaiting wait; else it waits.
   void handOver() {
     std::sort(pending_.begin(), pending_.end());
     pending_.erase(std::unique(pending_.begin(), pending_.end()), pending_.end());
-    std::vector<std::string> why(pending_.size());
-    size_t reached = pending_.size();
-    for (size_t i = pending_.size(); i-- > 0;)
-      if (buffer_.canTransform(parent_, child_, pending_[i], &why[i])) {
-        reached = i;
-        break;
+    std::vector<std::pair<ros::Time, std::string>> unreached;
+    for (const ros::Time& stamp : pending_) {
+      std::string why;
+      if (!buffer_.canTransform(parent_, child_, stamp, &why)) {
+        unreached.emplace_back(stamp, why);
+        continue;
       }
-    if (reached < pending_.size()) {
-      for (size_t i = 0; i < reached; ++i) handlers_.overtaken(stampOf(pending_[i]));
-      handlers_.pose(odometryAt(pending_[reached]));
-      pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(reached) + 1);
-      why.erase(why.begin(), why.begin() + static_cast<std::ptrdiff_t>(reached) + 1);
+      for (const auto& [older, whyNot] : unreached) handlers_.gap(stampOf(older), whyNot);
+      unreached.clear();
+      handlers_.pose(odometryAt(stamp));
     }
+    pending_.clear();
+    const ros::Time reference = patienceReference();
     const ros::Duration patience(Transport::kTfPatienceSeconds);
-    std::vector<ros::Time> waiting;
-    for (size_t i = 0; i < pending_.size(); ++i) {
-      if (newestData_ >= pending_[i] + patience)
-        handlers_.gap(stampOf(pending_[i]), why[i]);
+    for (size_t i = 0; i < unreached.size(); ++i) {
+      const auto& [stamp, why] = unreached[i];
+      if (stamp + patience <= reference || unreached.size() - i > kMostWaiting)
+        handlers_.gap(stampOf(stamp), why);
       else
-        waiting.push_back(pending_[i]);
+        pending_.push_back(stamp);
     }
-    pending_ = std::move(waiting);
+  }
+  // What a request's patience is measured against: /tf's own data for stamps taken from it; for
+  // stamps of ROS time (a fixed rate's ticks) ROS time too, so requests expire while /tf is silent.
+  ros::Time patienceReference() const { return eachMove_ ? newestData_ : std::max(newestData_, ros::Time::now()); }
+  // A simulation reset sends ROS time back: what tf knew belongs to the old run (as
+  // tf2_ros::TransformListener clears its buffer then).
+  void forgetIfTimeWentBack() {
+    const ros::Time now = ros::Time::now();
+    if (now < lastNow_) {
+      buffer_.clear();
+      pending_.clear();
+      newestData_ = ros::Time();
+    }
+    lastNow_ = now;
   }
   Odometry odometryAt(const ros::Time& stamp) const {
     const geometry_msgs::TransformStamped t = buffer_.lookupTransform(parent_, child_, stamp);
@@ -153,7 +171,7 @@ class TfPoses {
   const TransformHandlers handlers_;
   tf2::BufferCore buffer_;  // tf2's 10 s of each frame, filled by take()
   std::vector<ros::Time> pending_;
-  ros::Time newestData_;
+  ros::Time newestData_, lastNow_;
 };
 
 struct Transport::Impl {
@@ -423,7 +441,9 @@ void Transport::finishRecording() {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   if (!impl_->bag) return;
   try {
-    impl_->writeWaitingBagMessages(ros::Time::now());  // no image came: they go in now
+    // No image came: they go in now (at least rosbag's first time: under simulated time before
+    // any /clock, now is 0, which a bag cannot hold).
+    impl_->writeWaitingBagMessages(std::max(ros::Time::now(), ros::TIME_MIN));
     std::unique_ptr<rosbag::Bag> bag = std::move(impl_->bag);
     bag->close();
   } catch (const rosbag::BagException& e) {

@@ -18,9 +18,11 @@ class Transport {
  public:
   // Registers node `name` with the master of ROS_MASTER_URI (roscpp reads the environment);
   // SIGINT is left to the caller. `rosArguments` are a ROS node's command-line arguments, each
-  // `from:=to`: remappings (`image_raw:=camera`), `__name:=`, `__ns:=`, `__log:=` (roslaunch's),
-  // private parameters `_name:=value`. Throws std::runtime_error if the master cannot be reached
-  // within `masterWaitSeconds`, or if `stopRequested` (asked while it waits) says so.
+  // `from:=to`: remappings (`/robot/front/image_raw:=/camera`), `__name:=`, `__ns:=`, `__log:=`
+  // (roslaunch's); std::invalid_argument for one that is not, or a name ROS refuses. (A private
+  // parameter `_name:=value` makes roscpp wait for a master without limit: callers refuse it.)
+  // Throws std::runtime_error if the master cannot be reached within `masterWaitSeconds`, or if
+  // `stopRequested` (asked while it waits) says so.
   Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested = {},
             const std::vector<std::string>& rosArguments = {});
   ~Transport();
@@ -33,9 +35,11 @@ class Transport {
   // handed over as an odometry without twist (tf has none). /tf and /tf_static go into the
   // node's own buffer on the spinner thread; a pose is asked for at a stamp (each /tf message
   // that moves `child` asks at its stamp when `eachMove`; requestTransform asks too) and handed
-  // over as soon as the tree reaches it, never by blocking the spinner. A request goes to
-  // `handlers.gap` with tf's reason once /tf data is kTfPatienceSeconds past its stamp without
-  // it, to `handlers.overtaken` when a later one was handed over first (poses only go forward).
+  // over as soon as the tree reaches it, oldest first, never by blocking the spinner. A request
+  // goes to `handlers.gap` with tf's reason when a later one was handed over first (poses only go
+  // forward), or once tf is kTfPatienceSeconds past its stamp without reaching it: /tf's newest
+  // data for stamps from /tf, and ROS time too for requestTransform's. A ROS time that goes back
+  // (a simulation reset) empties the buffer and the requests.
   void subscribeTransform(const std::string& parent, const std::string& child, bool eachMove, TransformHandlers handlers);
   // Asks subscribeTransform's tree for its pose at `stamp`. On the spinner thread only (post).
   void requestTransform(const Stamp& stamp);

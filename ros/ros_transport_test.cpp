@@ -1,16 +1,20 @@
 // ros1::Transport against a real ROS master the test starts and stops itself: odometry in and
-// images out, field by field, and a node that outlives its master.
+// images out, field by field, a node that outlives its master, and poses asked of tf.
 #include "ros_transport.h"
 
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
+#include <tf2_msgs/TFMessage.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <future>
+#include <mutex>
+#include <utility>
+#include <vector>
 
 #include "ros_master.h"
 #include "test_daemons.h"
@@ -93,6 +97,88 @@ TEST(RosTransport, CarriesOdometryInAndImagesOutThroughItsOwnMaster) {
   master.stop();
   EXPECT_FALSE(ros::master::check());
   transport.publish(imageTopic, out);
+  fs::remove_all(root);
+}
+
+// Poses asked of tf at stamps: handed over, oldest first, once /tf reaches them (tf2
+// interpolating between its data), never before; refused with tf's reason when ROS time is 1 s
+// past one the tree has not reached.
+TEST(RosTransport, HandsOverTfRequestsOnceTheTreeReachesThem) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_ros_transport_tf_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  RosMaster master(root);
+  ASSERT_EQ(master.problem(), "");
+  for (const std::string& variable : master.environment()) ::putenv(::strdup(variable.c_str()));
+
+  Transport transport("omnicam_transport_tf_test", 60.0);
+  std::mutex mutex;  // the handlers run on the spinner thread
+  std::vector<Odometry> poses;
+  std::vector<std::pair<Stamp, std::string>> gaps;
+  TransformHandlers handlers;
+  handlers.pose = [&](const Odometry& o) {
+    std::lock_guard<std::mutex> lock(mutex);
+    poses.push_back(o);
+  };
+  handlers.gap = [&](const Stamp& stamp, const std::string& why) {
+    std::lock_guard<std::mutex> lock(mutex);
+    gaps.emplace_back(stamp, why);
+  };
+  transport.subscribeTransform("map", "base_link", /*eachMove=*/false, handlers);
+  const auto counts = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    return std::make_pair(poses.size(), gaps.size());
+  };
+
+  ros::NodeHandle node;
+  ros::Publisher tf = node.advertise<tf2_msgs::TFMessage>("/tf", 10);
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return tf.getNumSubscribers() > 0; }, 60.0));
+  const auto robotAt = [&](const std::vector<std::pair<ros::Time, double>>& xs) {
+    tf2_msgs::TFMessage m;
+    for (const auto& [stamp, x] : xs) {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = stamp;
+      t.header.frame_id = "map";
+      t.child_frame_id = "base_link";
+      t.transform.translation.x = x;
+      t.transform.rotation.w = 1;
+      m.transforms.push_back(t);
+    }
+    tf.publish(m);
+  };
+  const auto request = [&](const std::vector<ros::Time>& stamps) {
+    transport.post([&transport, stamps] {
+      for (const ros::Time& t : stamps) transport.requestTransform({t.sec, t.nsec});
+    });
+  };
+  // ROS time is the wall clock here: stamps 100 s ahead of it never expire during the test.
+  const ros::Time ahead = ros::Time::now() + ros::Duration(100.0);
+
+  // 5 s behind ROS time, with no tf at all: refused at once, with tf's reason.
+  const ros::Time behind = ros::Time::now() - ros::Duration(5.0);
+  request({behind});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return counts().second == 1; }, 60.0));
+  // Ahead, waiting for tf: handed over once the tree has data around it, x interpolated.
+  request({ahead});
+  robotAt({{ahead - ros::Duration(1.0), 0.0}, {ahead + ros::Duration(1.0), 2.0}});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return counts().first == 1; }, 60.0));
+  // Two beyond the tree's data, asked newest first: both handed over, oldest first, by the one
+  // message that reaches them (x = 2 + (t − ahead − 1) between the samples at +1 s and +5 s).
+  request({ahead + ros::Duration(3.0), ahead + ros::Duration(2.0)});
+  robotAt({{ahead + ros::Duration(5.0), 6.0}});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return counts().first == 3; }, 60.0));
+
+  std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_EQ(gaps[0].first.sec, behind.sec);
+  EXPECT_NE(gaps[0].second.find("map"), std::string::npos) << gaps[0].second;  // tf2: the frame does not exist
+  const double expectedX[] = {1.0, 3.0, 4.0};
+  const ros::Time expectedStamp[] = {ahead, ahead + ros::Duration(2.0), ahead + ros::Duration(3.0)};
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(poses[k].stamp.sec, expectedStamp[k].sec) << k;
+    EXPECT_EQ(poses[k].stamp.nsec, expectedStamp[k].nsec) << k;
+    EXPECT_DOUBLE_EQ(poses[k].position[0], expectedX[k]) << k;
+    EXPECT_EQ(poses[k].frame, "map");
+  }
+  EXPECT_EQ(gaps.size(), 1u);
   fs::remove_all(root);
 }
 

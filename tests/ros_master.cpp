@@ -2,10 +2,12 @@
 
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "shell_command.h"
 
@@ -23,6 +25,10 @@ int masterPidAt(int port) {
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<uint16_t>(port));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  // A foreign process on the port may accept and never answer: give up on it after 2 s.
+  const timeval patience{2, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &patience, sizeof patience);
+  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &patience, sizeof patience);
   std::string reply;
   if (::connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
     const std::string body =
@@ -36,16 +42,22 @@ int masterPidAt(int port) {
     }
   }
   ::close(fd);
-  // The reply is [code, message, pid]: the third <int> (or <i4>).
-  size_t at = 0;
-  for (int value = 0; value < 3; ++value) {
-    at = reply.find("<value>", at);
-    if (at == std::string::npos) return 0;
-    at += 7;
-    if (value == 0 && reply.compare(at, 7, "<array>") == 0) --value;  // the reply's outer array
+  // The reply is the array [code, message, pid]: code 1, then the pid as the third value's <int>
+  // (or <i4>).
+  size_t at = reply.find("<data>");
+  std::vector<std::string> values;
+  while (at != std::string::npos && values.size() < 3) {
+    const size_t open = reply.find("<value>", at), close = reply.find("</value>", open);
+    if (open == std::string::npos || close == std::string::npos) break;
+    values.push_back(reply.substr(open + 7, close - open - 7));
+    at = close + 8;
   }
-  const size_t digits = reply.find_first_of("0123456789", at);
-  return digits == std::string::npos ? 0 : std::atoi(reply.c_str() + digits);
+  const auto integer = [](const std::string& value) {
+    const size_t digits = value.find_first_of("0123456789");
+    const bool typed = value.rfind("<int>", 0) == 0 || value.rfind("<i4>", 0) == 0;
+    return typed && digits != std::string::npos ? std::atoi(value.c_str() + digits) : 0;
+  };
+  return values.size() == 3 && integer(values[0]) == 1 ? integer(values[2]) : 0;
 }
 
 constexpr const char* kRosmaster = "/usr/bin/rosmaster";
