@@ -565,6 +565,50 @@ TEST_F(LiveRun, RendersAtAFixedRateTheNewestPoseCarriedToEachTick) {
   EXPECT_NE(output().find("3 poses rendered, 0 dropped for newer ones, 3 refused"), std::string::npos) << output();
 }
 
+// A simulation reset sends /clock back: the node ticks again from there and takes the new run's
+// poses, though their stamps are before the old run's (said once on /diagnostics).
+TEST_F(LiveRun, StartsAnewWhenSimulatedTimeGoesBack) {
+  renderDataset(forwardSpec("[-2, -1, 0], [-1.375, 0, 0]", /*moving=*/true));
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--rate", "4",
+         "--frames", "2"},
+        {}, /*simulatedTime=*/true);
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  ros::Publisher clock = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
+  Images images(*handle_, "/bot/front/image_raw");
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
+  waitUntilConnected([&] {
+    return odometry.getNumSubscribers() > 0 && clock.getNumSubscribers() > 0 && images.connected() && diagnostics.connected();
+  });
+  // As in the fixed-rate test: a pose sent twice, the second's refusal says the node has it.
+  const auto sendPose = [&](const SentPose& pose, ros::Time stamp) {
+    nav_msgs::Odometry m = odometryOf(pose, stamp, /*moving=*/false);
+    m.twist.twist.linear.x = kForward;
+    const size_t before = diagnostics.size();
+    odometry.publish(m);
+    odometry.publish(m);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > before; }, 120.0)) << output();
+  };
+  const auto clockTo = [&](ros::Time now) {
+    rosgraph_msgs::Clock m;
+    m.clock = now;
+    clock.publish(m);
+  };
+  sendPose(kPoses[0], ros::Time(100, 0));
+  clockTo(ros::Time(100, 0));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= 1; }, 120.0)) << output();
+  clockTo(ros::Time(50, 0));  // the reset: its first tick says so
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() >= 2; }, 120.0)) << output();
+  sendPose(kPoses[2], ros::Time(50, 0));  // before 100 s, taken all the same
+  clockTo(ros::Time(50, 250000000));
+  ASSERT_EQ(waitForExit(), 0) << output();
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= 2; }, 120.0)) << output();
+  const std::vector<sensor_msgs::Image> frames = images.messages();
+  EXPECT_EQ(frames[0].header.stamp, ros::Time(100, 0));
+  EXPECT_EQ(frames[1].header.stamp, ros::Time(50, 250000000));
+  for (int k = 0; k < 2; ++k) EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", k)) << "frame " << k;
+  EXPECT_EQ(diagnosticMessages(diagnostics)[1], "ROS time went back (a simulation reset?): poses start anew");
+}
+
 // At a fixed rate from tf: each tick asks the tree for the robot at the tick and renders it once
 // tf reaches it (tf2 interpolates between its data), stamped with the tick. Started by roslaunch
 // with the launch file's tf, rate, frames and record arguments; the bag holds the frames.
