@@ -348,6 +348,31 @@ nav_msgs::Odometry odometryOf(const SentPose& pose, ros::Time stamp, bool moving
   return m;
 }
 
+// `child` in `parent` at `stamp`: at (x, y), turned by the quaternion (0, 0, qz, qw).
+geometry_msgs::TransformStamped transformAt(const char* parent, const char* child, ros::Time stamp, double x, double y = 0,
+                                            double qz = 0, double qw = 1) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = x, t.transform.translation.y = y;
+  t.transform.rotation.z = qz, t.transform.rotation.w = qw;
+  return t;
+}
+
+void publishTransforms(const ros::Publisher& tf, std::vector<geometry_msgs::TransformStamped> transforms) {
+  tf2_msgs::TFMessage m;
+  m.transforms = std::move(transforms);
+  tf.publish(m);
+}
+
+// Simulated time for the node under test (/use_sim_time): the test's /clock.
+void publishClock(const ros::Publisher& clock, ros::Time now) {
+  rosgraph_msgs::Clock m;
+  m.clock = now;
+  clock.publish(m);
+}
+
 // Every camera's frame, planes and camera_info of one pose, as the node published them.
 struct CameraInboxes {
   std::map<std::string, std::unique_ptr<Images>> images;  // by leaf
@@ -451,24 +476,10 @@ TEST_F(LiveRun, TakesPosesFromTfAndRefusesAGapInTheTree) {
   Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
   // The node's listener and its trigger share the node's one connection to /tf.
   waitUntilConnected([&] { return tf.getNumSubscribers() > 0 && images.connected() && diagnostics.connected(); });
-  const auto edge = [](const char* parent, const char* child, ros::Time stamp, double x, double y, double qz, double qw) {
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = stamp;
-    t.header.frame_id = parent;
-    t.child_frame_id = child;
-    t.transform.translation.x = x, t.transform.translation.y = y;
-    t.transform.rotation.z = qz, t.transform.rotation.w = qw;
-    return t;
-  };
-  const auto send = [&](std::vector<geometry_msgs::TransformStamped> transforms) {
-    tf2_msgs::TFMessage m;
-    m.transforms = std::move(transforms);
-    tf.publish(m);
-  };
   // First a gap: the robot moves in odom at 98 s and 99 s while map -> odom is not known yet.
   // The pose at 98 s waits until /tf data is 1 s past it, then is refused with tf's reason.
-  send({edge("odom", "base_link", ros::Time(98, 0), 1.5, 1.0, 1, 0)});
-  send({edge("odom", "base_link", ros::Time(99, 0), 1.5, 1.0, 1, 0)});
+  publishTransforms(tf, {transformAt("odom", "base_link", ros::Time(98, 0), 1.5, 1.0, 1, 0)});
+  publishTransforms(tf, {transformAt("odom", "base_link", ros::Time(99, 0), 1.5, 1.0, 1, 0)});
   ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
   EXPECT_NE(diagnosticMessages(diagnostics)[0].find("pose refused: no transform from map to base_link: "), std::string::npos)
       << diagnosticMessages(diagnostics)[0];
@@ -477,8 +488,8 @@ TEST_F(LiveRun, TakesPosesFromTfAndRefusesAGapInTheTree) {
   // pose at 99 s, still waiting: poses only go forward.
   for (size_t k = 0; k < kPoses.size(); ++k) {
     const ros::Time stamp(100 + static_cast<uint32_t>(k), 0);
-    send({edge("map", "odom", stamp, 0.5, 0, 0, 1),
-          edge("odom", "base_link", stamp, kPoses[k].x - 0.5, kPoses[k].y, kPoses[k].qz, kPoses[k].qw)});
+    publishTransforms(tf, {transformAt("map", "odom", stamp, 0.5, 0, 0, 1),
+                            transformAt("odom", "base_link", stamp, kPoses[k].x - 0.5, kPoses[k].y, kPoses[k].qz, kPoses[k].qw)});
     ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > k; }, 120.0)) << "pose " << k << output();
   }
   ASSERT_EQ(waitForExit(), 0) << output();
@@ -506,59 +517,73 @@ std::string forwardSpec(const std::string& poses, bool moving) {
     "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
 }
 
-// At a fixed rate, on simulated time the test drives with /clock: each tick renders the newest
-// odometry pose carried to the tick with its twist (a straight drive: x grows by kForward · Δt,
-// exact in binary here), stamped with the tick; a tick too far from the newest pose is refused.
-TEST_F(LiveRun, RendersAtAFixedRateTheNewestPoseCarriedToEachTick) {
-  // kPoses[0] = (-2, -1, 0°) carried 0 s and 0.25 s; kPoses[2] = (-1.5, 0, 0°) carried 0.25 s.
-  renderDataset(forwardSpec("[-2, -1, 0], [-1.875, -1, 0], [-1.375, 0, 0]", /*moving=*/true));
-  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--rate", "4",
-         "--frames", "3"},
-        {}, /*simulatedTime=*/true);
-  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
-  ros::Publisher clock = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
-  Images images(*handle_, "/bot/front/image_raw");
-  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
-  waitUntilConnected([&] {
-    return odometry.getNumSubscribers() > 0 && clock.getNumSubscribers() > 0 && images.connected() && diagnostics.connected();
-  });
-  // A moving pose, then the same again: its refusal (the stamp is not after the last) says the
-  // node has the first before the clock moves (odometry and /clock come on two connections).
-  const auto sendPose = [&](const SentPose& pose, ros::Time stamp) {
+// A node on simulated time rendering at 4 Hz from odometry: the test sends the poses and moves
+// /clock.
+class SimulatedTimeRun : public LiveRun {
+ protected:
+  void startAtFourHertz(int frames) {
+    start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--rate", "4",
+           "--frames", std::to_string(frames)},
+          {}, /*simulatedTime=*/true);
+    odometry_ = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+    clock_ = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
+    images_ = std::make_unique<Images>(*handle_, "/bot/front/image_raw");
+    diagnostics_ = std::make_unique<Inbox<diagnostic_msgs::DiagnosticArray>>(*handle_, "/diagnostics");
+    waitUntilConnected([&] {
+      return odometry_.getNumSubscribers() > 0 && clock_.getNumSubscribers() > 0 && images_->connected() &&
+             diagnostics_->connected();
+    });
+  }
+  // A pose driving forward at kForward, then the same again: the second's refusal (its stamp is
+  // not after the last) says the node has the first before the clock moves (odometry and /clock
+  // come on two connections).
+  void sendPose(const SentPose& pose, ros::Time stamp) {
     nav_msgs::Odometry m = odometryOf(pose, stamp, /*moving=*/false);
     m.twist.twist.linear.x = kForward;
-    const size_t before = diagnostics.size();
-    odometry.publish(m);
-    odometry.publish(m);
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > before; }, 120.0)) << output();
-  };
-  const auto clockTo = [&](ros::Time now) {
-    rosgraph_msgs::Clock m;
-    m.clock = now;
-    clock.publish(m);
-  };
-  const auto imagesReach = [&](size_t count) {
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= count; }, 120.0)) << output();
-  };
+    const size_t before = diagnostics_->size();
+    odometry_.publish(m);
+    odometry_.publish(m);
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics_->size() > before; }, 120.0)) << output();
+  }
+  void clockTo(ros::Time now) { publishClock(clock_, now); }
+  void waitForImages(size_t count) {
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return images_->size() >= count; }, 120.0)) << output();
+  }
+  void waitForDiagnostics(size_t count) {
+    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics_->size() >= count; }, 120.0)) << output();
+  }
+
+  ros::Publisher odometry_, clock_;
+  std::unique_ptr<Images> images_;
+  std::unique_ptr<Inbox<diagnostic_msgs::DiagnosticArray>> diagnostics_;
+};
+
+// Each tick renders the newest odometry pose carried to the tick with its twist (a straight
+// drive: x grows by kForward · Δt, exact in binary here), stamped with the tick; a tick too far
+// from the newest pose is refused.
+TEST_F(SimulatedTimeRun, RendersAtAFixedRateTheNewestPoseCarriedToEachTick) {
+  // kPoses[0] = (-2, -1, 0°) carried 0 s and 0.25 s; kPoses[2] = (-1.5, 0, 0°) carried 0.25 s.
+  renderDataset(forwardSpec("[-2, -1, 0], [-1.875, -1, 0], [-1.375, 0, 0]", /*moving=*/true));
+  startAtFourHertz(3);
   sendPose(kPoses[0], ros::Time(100, 0));
   clockTo(ros::Time(100, 0));  // the tick at 100 s: the pose as it is
-  imagesReach(1);
+  waitForImages(1);
   clockTo(ros::Time(100, 300000000));  // the tick at 100.25 s: the pose 0.25 s on
-  imagesReach(2);
+  waitForImages(2);
   clockTo(ros::Time(101, 0));  // 1 s after the newest pose: refused
-  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 1; }, 120.0)) << output();
+  waitForDiagnostics(2);
   sendPose(kPoses[2], ros::Time(101, 0));
   clockTo(ros::Time(101, 250000000));
   ASSERT_EQ(waitForExit(), 0) << output();
-  imagesReach(3);
+  waitForImages(3);
 
-  const std::vector<sensor_msgs::Image> frames = images.messages();
+  const std::vector<sensor_msgs::Image> frames = images_->messages();
   const ros::Time ticks[] = {ros::Time(100, 0), ros::Time(100, 250000000), ros::Time(101, 250000000)};
   for (size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(frames[k].header.stamp, ticks[k]) << "tick " << k;
     EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "tick " << k;
   }
-  const std::vector<std::string> messages = diagnosticMessages(diagnostics);
+  const std::vector<std::string> messages = diagnosticMessages(*diagnostics_);
   ASSERT_EQ(messages.size(), 3u);
   EXPECT_EQ(messages[1],
             "pose refused: the newest pose, at 100.000000000, is 1.000 s from the tick at 101.000000000 (more than 0.5 s)");
@@ -567,46 +592,23 @@ TEST_F(LiveRun, RendersAtAFixedRateTheNewestPoseCarriedToEachTick) {
 
 // A simulation reset sends /clock back: the node ticks again from there and takes the new run's
 // poses, though their stamps are before the old run's (said once on /diagnostics).
-TEST_F(LiveRun, StartsAnewWhenSimulatedTimeGoesBack) {
+TEST_F(SimulatedTimeRun, StartsAnewWhenSimulatedTimeGoesBack) {
   renderDataset(forwardSpec("[-2, -1, 0], [-1.375, 0, 0]", /*moving=*/true));
-  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--rate", "4",
-         "--frames", "2"},
-        {}, /*simulatedTime=*/true);
-  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
-  ros::Publisher clock = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
-  Images images(*handle_, "/bot/front/image_raw");
-  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
-  waitUntilConnected([&] {
-    return odometry.getNumSubscribers() > 0 && clock.getNumSubscribers() > 0 && images.connected() && diagnostics.connected();
-  });
-  // As in the fixed-rate test: a pose sent twice, the second's refusal says the node has it.
-  const auto sendPose = [&](const SentPose& pose, ros::Time stamp) {
-    nav_msgs::Odometry m = odometryOf(pose, stamp, /*moving=*/false);
-    m.twist.twist.linear.x = kForward;
-    const size_t before = diagnostics.size();
-    odometry.publish(m);
-    odometry.publish(m);
-    ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > before; }, 120.0)) << output();
-  };
-  const auto clockTo = [&](ros::Time now) {
-    rosgraph_msgs::Clock m;
-    m.clock = now;
-    clock.publish(m);
-  };
+  startAtFourHertz(2);
   sendPose(kPoses[0], ros::Time(100, 0));
   clockTo(ros::Time(100, 0));
-  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= 1; }, 120.0)) << output();
+  waitForImages(1);
   clockTo(ros::Time(50, 0));  // the reset: its first tick says so
-  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() >= 2; }, 120.0)) << output();
+  waitForDiagnostics(2);
   sendPose(kPoses[2], ros::Time(50, 0));  // before 100 s, taken all the same
   clockTo(ros::Time(50, 250000000));
   ASSERT_EQ(waitForExit(), 0) << output();
-  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() >= 2; }, 120.0)) << output();
-  const std::vector<sensor_msgs::Image> frames = images.messages();
+  waitForImages(2);
+  const std::vector<sensor_msgs::Image> frames = images_->messages();
   EXPECT_EQ(frames[0].header.stamp, ros::Time(100, 0));
   EXPECT_EQ(frames[1].header.stamp, ros::Time(50, 250000000));
   for (int k = 0; k < 2; ++k) EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", k)) << "frame " << k;
-  EXPECT_EQ(diagnosticMessages(diagnostics)[1], "ROS time went back (a simulation reset?): poses start anew");
+  EXPECT_EQ(diagnosticMessages(*diagnostics_)[1], "ROS time went back (a simulation reset?): poses start anew");
 }
 
 // At a fixed rate from tf: each tick asks the tree for the robot at the tick and renders it once
@@ -621,22 +623,8 @@ TEST_F(LiveRun, RendersAtAFixedRateTheTreesPoseAtEachTick) {
   ros::Publisher clock = handle_->advertise<rosgraph_msgs::Clock>("/clock", 10);
   Images images(*handle_, "/bot/front/image_raw");
   waitUntilConnected([&] { return tf.getNumSubscribers() > 0 && clock.getNumSubscribers() > 0 && images.connected(); });
-  const auto robotAt = [&](ros::Time stamp, double x) {
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = stamp;
-    t.header.frame_id = "map";
-    t.child_frame_id = "base_link";
-    t.transform.translation.x = x;
-    t.transform.rotation.w = 1;
-    tf2_msgs::TFMessage m;
-    m.transforms = {t};
-    tf.publish(m);
-  };
-  const auto clockTo = [&](ros::Time now) {
-    rosgraph_msgs::Clock m;
-    m.clock = now;
-    clock.publish(m);
-  };
+  const auto robotAt = [&](ros::Time stamp, double x) { publishTransforms(tf, {transformAt("map", "base_link", stamp, x)}); };
+  const auto clockTo = [&](ros::Time now) { publishClock(clock, now); };
   robotAt(ros::Time(100, 0), 0.0);
   robotAt(ros::Time(100, 500000000), 1.0);
   clockTo(ros::Time(100, 250000000));  // between two of the tree's poses: x 0.5
