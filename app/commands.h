@@ -15,8 +15,10 @@ void addExportCommand(CLI::App& app);
 void addStudyCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
-// The live ROS 1 sensor (ros/live_sensor.h).
+// The live ROS 1 sensor (ros/live_sensor.h): the verb of omnicam-ros (ros_main.cpp).
 void addRosCommand(CLI::App& app);
+// `ros` in omnicam-cli: hands `argv` over to omnicam-ros (ros_handoff.cpp).
+void addRosHandoff(CLI::App& app, char** argv);
 // experiment texture-realism and arena hall.
 void addExperimentCommands(CLI::App& app);
 // Sets exitCode: 1 when a verified dataset has problems or is incomplete, 130 when interrupted.

@@ -59,7 +59,7 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
 
 void addRosCommand(CLI::App& app) {
   auto args = std::make_shared<RosArgs>();
-  CLI::App* cmd = app.add_subcommand("ros", "Run as a live ROS 1 camera: render the spec's cameras for each odometry pose");
+  CLI::App* cmd = app.add_subcommand("ros", "Run as a live ROS 1 camera: render the spec's cameras for each pose ROS sends (odometry or tf)");
   cmd->add_option("spec", args->spec, "Dataset spec JSON: the scene, the cameras and their mounts, the settings")->required();
   cmd->add_option("--odom", args->options.odometryTopic, "nav_msgs/Odometry topic of the robot's poses (default /odom)");
   cmd->add_option("--robot", args->options.robot, "Namespace of the image topics: /ROBOT/CAMERA/image_raw (default robot)");

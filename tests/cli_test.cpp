@@ -69,6 +69,27 @@ TEST_F(CliTest, TheLauncherStartsTheCliBesideItAndNamesItWhenMissing) {
   EXPECT_EQ(alone.out, "omnicam: cannot start " + path("omnicam-cli") + ": No such file or directory (build it with `make build`)\n");
 }
 
+// `omnicam ros` is omnicam-ros, the one executable that links ROS: the launcher starts it (and
+// names it when it is missing), the CLI run by hand hands the command over to it, and the CLI,
+// which every other verb runs in, loads none of ROS's libraries.
+TEST_F(CliTest, OnlyTheRosVerbLoadsRos) {
+  const std::string bin = fs::path(OMNICAM_BINARY).parent_path().string();
+  const CommandResult cli = testing::runShell("ldd " + bin + "/omnicam-cli 2>&1");
+  ASSERT_EQ(cli.code, 0) << cli.out;
+  EXPECT_EQ(cli.out.find("libroscpp"), std::string::npos) << cli.out;
+  const CommandResult ros = testing::runShell("ldd " + bin + "/omnicam-ros 2>&1");
+  EXPECT_NE(ros.out.find("libroscpp"), std::string::npos) << ros.out;
+  for (const std::string& program : {std::string(OMNICAM_BINARY), bin + "/omnicam-cli"}) {
+    const CommandResult help = testing::runShell(program + " ros --help 2>&1");
+    EXPECT_EQ(help.code, 0) << program << ": " << help.out;
+    EXPECT_NE(help.out.find("--rate"), std::string::npos) << program << ": " << help.out;  // omnicam-ros's flags
+  }
+  fs::copy_file(OMNICAM_BINARY, path("alone"));
+  const CommandResult alone = testing::runShell(path("alone") + " ros spec.json 2>&1");
+  EXPECT_EQ(alone.code, 2);
+  EXPECT_EQ(alone.out, "omnicam: cannot start " + path("omnicam-ros") + ": No such file or directory (build it with `make build`)\n");
+}
+
 TEST_F(CliTest, EveryRequestRowWithAFlagIsAFlagOfRender) {
   const CommandResult help = run("render --help");
   ASSERT_EQ(help.code, 0) << help.out;

@@ -162,7 +162,7 @@ def site_package(package):
 def test_the_wheel_holds_the_extension_the_cli_the_stubs_and_the_data(package):
     names = set(zipfile.ZipFile(package["wheel"]).namelist())
     for name in ("omnicam/__init__.py", "omnicam/__main__.py", "omnicam/_omnicam.pyi", "omnicam/dataset.pyi",
-                 "omnicam/py.typed", "omnicam/bin/omnicam", "omnicam/bin/omnicam-cli",
+                 "omnicam/py.typed", "omnicam/bin/omnicam", "omnicam/bin/omnicam-cli", "omnicam/bin/omnicam-ros",
                  "omnicam/data/refrender/blender_driver.py", "omnicam/data/calibration/write_rosbag.py",
                  "omnicam/data/scenes/robocup2006.json", "omnicam/data/experiments/plot_convergence.py"):
         assert name in names, f"{name} is not in the wheel"
@@ -201,7 +201,7 @@ def test_every_data_file_the_code_reads_is_installed(package):
 
 def test_no_installed_binary_names_a_source_or_build_tree(package):
     installed = site_package(package)
-    binaries = [*installed.glob("_omnicam*.so"), installed / "bin" / "omnicam", installed / "bin" / "omnicam-cli"]
+    binaries = [*installed.glob("_omnicam*.so"), *(installed / "bin" / name for name in ("omnicam", "omnicam-cli", "omnicam-ros"))]
     for binary in binaries:
         content = binary.read_bytes()
         for tree in package["trees"]:

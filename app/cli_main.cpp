@@ -1,0 +1,74 @@
+#include "cli_main.h"
+
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+
+#include "cpu_independent_math.h"
+#include "errors.h"
+#include "interrupts.h"
+#include "malloc_tuning.h"
+#include "memory_budget.h"
+
+namespace omnicam::cli {
+
+namespace {
+
+// Prints "omnicam: <message>" as one line, whatever the message holds: each echoed user string
+// was quoted where the message was made, this catches what slipped through (and CLI11's own).
+int reportError(const std::string& message, int exitCode) {
+  std::fprintf(stderr, "omnicam: %s\n", oneLine(message).c_str());
+  return exitCode;
+}
+
+}  // namespace
+
+void prepareProcess(char** argv) {
+  restartWithPlainMath(argv);  // first: it may start the program again
+  // Past a file-size limit, write() must fail with EFBIG (exit 5, nothing left under the final
+  // name) instead of the signal killing the process mid-file.
+  std::signal(SIGXFSZ, SIG_IGN);
+  keepFreedMemoryInTheHeap();
+  installInterruptHandlers();
+}
+
+// Exit codes (docs/conventions.md): 0 ok, 1 comparison over threshold, 2 bad input or usage,
+// 3 an external renderer failed, 4 internal error (a bug: please report it), 5 an output could
+// not be written (disk full, file-size limit, permissions) or the machine lacks the memory the
+// work needs (memory_budget.h).
+int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const Interrupted& e) {
+    // Every external program is ended and its job folder gone; then the usual death by the signal.
+    reportError(e.what(), 0);
+    dieBySignal(e.signal());
+  } catch (const CLI::ParseError& e) {
+    return reportError(e.what(), 2);
+  } catch (const InputError& e) {
+    return reportError(e.what(), 2);
+  } catch (const ExternalError& e) {
+    // Not one line on purpose: the renderer's last output follows on lines of its own.
+    std::fprintf(stderr, "omnicam: %s\n", e.what());
+    return 3;
+  } catch (const OutputError& e) {
+    return reportError(e.what(), 5);
+  } catch (const MemoryShortage& e) {
+    return reportError(e.what(), 5);
+  } catch (const std::bad_alloc&) {
+    return reportError("internal error: out of memory (inputs within the documented limits should not get here)", 4);
+  } catch (const std::exception& e) {
+    return reportError(std::string("internal error: ") + e.what(), 4);
+  }
+  return exitCode;
+}
+
+}  // namespace omnicam::cli
