@@ -239,8 +239,8 @@ void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
                      ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
 }
 
-// A fixed-rate camera's clock: each tick of the grid of 1/rate s that ROS time passes is posted
-// to the spinner thread. Ticks the clock jumps over (simulated time) are not made up for.
+// A fixed-rate camera's clock: each tick of the grid of round(10⁹/rate) ns that ROS time passes is
+// posted to the spinner thread. Ticks the clock jumps over (simulated time) are not made up for.
 class Ticker {
  public:
   Ticker(ros1::Transport& transport, double rateHz, std::function<void(const ros1::Stamp&)> tick)
@@ -337,7 +337,6 @@ void renderAndPublish(ros1::Transport& transport, const DatasetPlan& plan, const
     transport.publish(cameraTopic(options, name, "camera_info"), cameraInfoMessage(infos[c], live.stamp, cameraFrame(options, name)));
   }
 }
-
 
 // The poses ROS sends and what becomes of them: everything here runs on the transport's spinner
 // thread but `newest` (which the render loop takes from) and the count of refusals.

@@ -34,7 +34,7 @@ struct LiveSensorOptions {
   std::string baseFrame = "base_link";  // the robot's frame, parent of the cameras' on /tf_static
   int64_t frames = 0;           // stop after this many rendered poses; 0: until SIGINT or SIGTERM
   // 0: render each pose as it comes. Otherwise render at this rate, on ROS time's grid of
-  // 1/rate s (the /clock's under simulated time), each frame stamped with its tick: from
+  // round(10⁹/rate) ns (the /clock's under simulated time), each frame stamped with its tick: from
   // odometry, the newest pose carried to the tick with its twist (the dataset's motion); from
   // tf, the tree's pose at the tick, once tf has it.
   double rateHz = 0.0;
