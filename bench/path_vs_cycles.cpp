@@ -10,11 +10,13 @@
 #include <filesystem>
 
 #include "hall_arena.h"
+#include "malloc_tuning.h"
 #include "path_convergence.h"
 #include "scene_loader.h"
 
 int main() {
   using namespace omnicam;
+  keepFreedMemoryInTheHeap();  // as the CLI does: frames' buffers are not faulted in anew
   const Scene scene = loadScene(writeLabHall(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json",
                                             (std::filesystem::temp_directory_path() / "omnicam_path_vs_cycles").string()));
   const std::vector<RobotPose> poses = hallPoses();

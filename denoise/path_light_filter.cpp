@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "errors.h"
 #include "filter_weights.h"
@@ -74,6 +75,33 @@ float depthSlope(const Guides& g, size_t k, int i, int step, int limit) {
   return best;
 }
 
+// Rows [0, height) in parallel: each pixel is written by one task alone, so results do not depend
+// on the thread count.
+template <typename RowFunction>
+void forEachRow(int height, const RowFunction& row) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j) row(j);
+  });
+}
+
+void classifyPixel(const PathLightInputs& in, const PathLightFilterParameters& p, Guides& g, size_t k) {
+  const float* a = &in.albedo[3 * k];
+  const float* n = &in.normal[3 * k];
+  if (!allFinite(a, 3) || !allFinite(n, 3) || !allFinite(&in.full[3 * k], 3) || !allFinite(&in.kept[3 * k], 3) ||
+      !allFinite(&in.direct[3 * k], 3) || !allFinite(&in.indirect[3 * k], 3) || !std::isfinite(in.depth[k]) ||
+      !(in.depth[k] > 0.0f) || !std::isfinite(in.directVariance[k]) || !std::isfinite(in.indirectVariance[k]))
+    return;
+  for (int c = 0; c < 3; ++c)
+    if (a[c] >= p.minAlbedo) g.channels[k] |= static_cast<uint8_t>(1u << c);
+  const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+  if (!g.channels[k] || !(length > 0.0)) {
+    g.channels[k] = 0;
+    return;
+  }
+  g.kind[k] = length < p.edgeNormalLength ? kStraddling : kWholeSurface;
+  for (int c = 0; c < 3; ++c) g.normal[3 * k + c] = static_cast<float>(n[c] / length);
+}
+
 Guides guidesOf(const PathLightInputs& in, const PathLightFilterParameters& p) {
   Guides g;
   g.width = in.width;
@@ -85,30 +113,17 @@ Guides guidesOf(const PathLightInputs& in, const PathLightFilterParameters& p) {
   g.depth = in.depth;
   g.gradientX.assign(pixels, 0.0f);
   g.gradientY.assign(pixels, 0.0f);
-  for (size_t k = 0; k < pixels; ++k) {
-    const float* a = &in.albedo[3 * k];
-    const float* n = &in.normal[3 * k];
-    if (!allFinite(a, 3) || !allFinite(n, 3) || !allFinite(&in.full[3 * k], 3) || !allFinite(&in.kept[3 * k], 3) ||
-        !allFinite(&in.direct[3 * k], 3) || !allFinite(&in.indirect[3 * k], 3) || !std::isfinite(in.depth[k]) ||
-        !(in.depth[k] > 0.0f) || !std::isfinite(in.directVariance[k]) || !std::isfinite(in.indirectVariance[k]))
-      continue;
-    for (int c = 0; c < 3; ++c)
-      if (a[c] >= p.minAlbedo) g.channels[k] |= static_cast<uint8_t>(1u << c);
-    const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
-    if (!g.channels[k] || !(length > 0.0)) {
-      g.channels[k] = 0;
-      continue;
-    }
-    g.kind[k] = length < p.edgeNormalLength ? kStraddling : kWholeSurface;
-    for (int c = 0; c < 3; ++c) g.normal[3 * k + c] = static_cast<float>(n[c] / length);
-  }
-  for (int j = 0; j < g.height; ++j)
+  forEachRow(g.height, [&](int j) {
+    for (int i = 0; i < g.width; ++i) classifyPixel(in, p, g, static_cast<size_t>(j) * g.width + i);
+  });
+  forEachRow(g.height, [&](int j) {
     for (int i = 0; i < g.width; ++i) {
       const size_t k = static_cast<size_t>(j) * g.width + i;
       if (!g.kind[k]) continue;
       g.gradientX[k] = depthSlope(g, k, i, 1, g.width);
       g.gradientY[k] = depthSlope(g, k, j, g.width, g.height);
     }
+  });
   return g;
 }
 
@@ -117,10 +132,12 @@ Guides guidesOf(const PathLightInputs& in, const PathLightFilterParameters& p) {
 Signal demodulate(const std::vector<float>& light, const std::vector<float>& variance, const PathLightInputs& in,
                   const Guides& g) {
   Signal s{std::vector<float>(light.size(), 0.0f), variance};
-  for (size_t k = 0; k < g.pixels(); ++k)
-    for (int c = 0; c < 3; ++c)
-      if (g.channels[k] & (1u << c)) s.value[3 * k + c] = light[3 * k + c] / in.albedo[3 * k + c];
-  for (int j = 0; j < g.height; ++j)
+  forEachRow(g.height, [&](int j) {
+    for (size_t k = static_cast<size_t>(j) * g.width; k < static_cast<size_t>(j + 1) * g.width; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (g.channels[k] & (1u << c)) s.value[3 * k + c] = light[3 * k + c] / in.albedo[3 * k + c];
+  });
+  forEachRow(g.height, [&](int j) {
     for (int i = 0; i < g.width; ++i) {
       const size_t k = static_cast<size_t>(j) * g.width + i;
       if (!g.kind[k] || variance[k] >= 0.0f) continue;
@@ -137,6 +154,7 @@ Signal demodulate(const std::vector<float>& light, const std::vector<float>& var
         }
       s.variance[k] = count > 1 ? static_cast<float>(std::max(0.0, (squares - sum * sum / count) / (count - 1))) : 0.0f;
     }
+  });
   return s;
 }
 
@@ -169,64 +187,72 @@ float blurredVariance(const Signal& s, const Guides& g, int i, int j) {
   return sum / weights;  // the pixel itself has a surface: weights > 0
 }
 
-// One à-trous level: taps `step` pixels apart.
-Signal atrousLevel(const Signal& in, const Guides& g, const AtrousParameters& p, int step) {
-  Signal out = in;
-  std::vector<float> luminances(g.pixels());
-  for (size_t k = 0; k < g.pixels(); ++k) luminances[k] = luminance(&in.value[3 * k]);
+// One à-trous level: taps `step` pixels apart, from `in` into `out` (of in's sizes); `luminances`
+// is scratch of a float per pixel.
+void atrousLevel(const Signal& in, Signal& out, std::vector<float>& luminances, const Guides& g,
+                 const AtrousParameters& p, int step) {
+  forEachRow(g.height, [&](int j) {
+    for (size_t k = static_cast<size_t>(j) * g.width; k < static_cast<size_t>(j + 1) * g.width; ++k)
+      luminances[k] = luminance(&in.value[3 * k]);
+  });
   const float luminanceSigma = static_cast<float>(p.luminanceSigma), depthSigma = static_cast<float>(p.depthSigma);
   const float normalExponent = static_cast<float>(p.normalExponent);
-  tbb::parallel_for(tbb::blocked_range<int>(0, g.height), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j < rows.end(); ++j)
-      for (int i = 0; i < g.width; ++i) {
-        const size_t k = static_cast<size_t>(j) * g.width + i;
-        if (!g.kind[k]) continue;
-        const float* n = &g.normal[3 * k];
-        const float z = g.depth[k], l = luminances[k];
-        const float luminanceScale =
-            1.0f / (luminanceSigma * std::sqrt(std::max(0.0f, blurredVariance(in, g, i, j))) + kLuminanceFloor);
-        const bool whole = g.kind[k] == kWholeSurface;
-        float sum[3] = {0.0f, 0.0f, 0.0f}, weights[3] = {0.0f, 0.0f, 0.0f};
-        float total = 0.0f, variance = 0.0f;
-        for (int dy = -1; dy <= 1; ++dy) {
-          const int y = j + dy * step;
-          if (y < 0 || y >= g.height) continue;
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int x = i + dx * step;
-            if (x < 0 || x >= g.width) continue;
-            const size_t q = static_cast<size_t>(y) * g.width + x;
-            if (q != k && g.kind[q] != kWholeSurface) continue;  // only whole surfaces lend
-            // Normals: exp(−e·(1 − n·n')), which is (n·n')^e where normals nearly agree and ≈ 0
-            // where they do not; one exp for the three agreements.
-            float normalTerm = 0.0f;
-            if (whole) {
-              const float* m = &g.normal[3 * q];
-              normalTerm = normalExponent * (1.0f - (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]));
-            }
-            const float expected = std::abs(g.gradientX[k] * static_cast<float>(dx * step) +
-                                            g.gradientY[k] * static_cast<float>(dy * step));
-            const float depthTerm = std::abs(g.depth[q] - z) / (depthSigma * expected + kRelativeDepthFloor * z);
-            const float w = kKernel[dx + 1] * kKernel[dy + 1] *
-                            expNegative(std::max(0.0f, normalTerm + depthTerm + std::abs(luminances[q] - l) * luminanceScale));
-            for (int c = 0; c < 3; ++c)
-              if (g.channels[q] & (1u << c)) {
-                sum[c] += w * in.value[3 * q + c];
-                weights[c] += w;
-              }
-            total += w;
-            variance += w * w * in.variance[q];
+  forEachRow(g.height, [&](int j) {
+    for (int i = 0; i < g.width; ++i) {
+      const size_t k = static_cast<size_t>(j) * g.width + i;
+      for (int c = 0; c < 3; ++c) out.value[3 * k + c] = in.value[3 * k + c];  // what no tap replaces
+      out.variance[k] = in.variance[k];
+      if (!g.kind[k]) continue;
+      const float* n = &g.normal[3 * k];
+      const float z = g.depth[k], l = luminances[k];
+      const float luminanceScale =
+          1.0f / (luminanceSigma * std::sqrt(std::max(0.0f, blurredVariance(in, g, i, j))) + kLuminanceFloor);
+      const bool whole = g.kind[k] == kWholeSurface;
+      float sum[3] = {0.0f, 0.0f, 0.0f}, weights[3] = {0.0f, 0.0f, 0.0f};
+      float total = 0.0f, variance = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy) {
+        const int y = j + dy * step;
+        if (y < 0 || y >= g.height) continue;
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = i + dx * step;
+          if (x < 0 || x >= g.width) continue;
+          const size_t q = static_cast<size_t>(y) * g.width + x;
+          if (q != k && g.kind[q] != kWholeSurface) continue;  // only whole surfaces lend
+          // Normals: exp(−e·(1 − n·n')), which is (n·n')^e where normals nearly agree and ≈ 0
+          // where they do not; one exp for the three agreements.
+          float normalTerm = 0.0f;
+          if (whole) {
+            const float* m = &g.normal[3 * q];
+            normalTerm = normalExponent * (1.0f - (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]));
           }
+          const float expected = std::abs(g.gradientX[k] * static_cast<float>(dx * step) +
+                                          g.gradientY[k] * static_cast<float>(dy * step));
+          const float depthTerm = std::abs(g.depth[q] - z) / (depthSigma * expected + kRelativeDepthFloor * z);
+          const float w = kKernel[dx + 1] * kKernel[dy + 1] *
+                          expNegative(std::max(0.0f, normalTerm + depthTerm + std::abs(luminances[q] - l) * luminanceScale));
+          for (int c = 0; c < 3; ++c)
+            if (g.channels[q] & (1u << c)) {
+              sum[c] += w * in.value[3 * q + c];
+              weights[c] += w;
+            }
+          total += w;
+          variance += w * w * in.variance[q];
         }
-        for (int c = 0; c < 3; ++c)  // the pixel itself is in its sum: weights[c] > 0 where its channel is
-          if (g.channels[k] & (1u << c)) out.value[3 * k + c] = sum[c] / weights[c];
-        out.variance[k] = variance / (total * total);
       }
+      for (int c = 0; c < 3; ++c)  // the pixel itself is in its sum: weights[c] > 0 where its channel is
+        if (g.channels[k] & (1u << c)) out.value[3 * k + c] = sum[c] / weights[c];
+      out.variance[k] = variance / (total * total);
+    }
   });
-  return out;
 }
 
 Signal atrous(Signal s, const Guides& g, const AtrousParameters& p) {
-  for (int level = 0; level < p.levels; ++level) s = atrousLevel(s, g, p, 1 << level);
+  Signal next{std::vector<float>(s.value.size()), std::vector<float>(s.variance.size())};
+  std::vector<float> luminances(g.pixels());
+  for (int level = 0; level < p.levels; ++level) {
+    atrousLevel(s, next, luminances, g, p, 1 << level);
+    std::swap(s, next);
+  }
   return s;
 }
 
@@ -247,10 +273,12 @@ std::vector<float> filterPathLight(const PathLightInputs& in, const PathLightFil
   const Signal direct = atrous(demodulate(in.direct, in.directVariance, in, g), g, p.direct);
   const Signal indirect = atrous(demodulate(in.indirect, in.indirectVariance, in, g), g, p.indirect);
   std::vector<float> out = in.full;
-  for (size_t k = 0; k < g.pixels(); ++k)
-    for (int c = 0; c < 3; ++c)
-      if (g.channels[k] & (1u << c))
-        out[3 * k + c] = in.kept[3 * k + c] + in.albedo[3 * k + c] * (direct.value[3 * k + c] + indirect.value[3 * k + c]);
+  forEachRow(g.height, [&](int j) {
+    for (size_t k = static_cast<size_t>(j) * g.width; k < static_cast<size_t>(j + 1) * g.width; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (g.channels[k] & (1u << c))
+          out[3 * k + c] = in.kept[3 * k + c] + in.albedo[3 * k + c] * (direct.value[3 * k + c] + indirect.value[3 * k + c]);
+  });
   return out;
 }
 

@@ -1,5 +1,8 @@
 #include "denoise_guides.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace omnicam {
@@ -36,34 +39,39 @@ void denoiseFilm(Film& film, const DenoiseSums& sums, float weight, const std::v
   in.depth.assign(pixels, 0.0f);
   in.directVariance.assign(pixels, 0.0f);
   in.indirectVariance.assign(pixels, 0.0f);
-  for (size_t p = 0; p < pixels; ++p) {
-    if (imaged[p] == 0) continue;
-    // Means over the samples the camera images; the film's colour is over the whole grid (its
-    // rim pixels blend to black), so it is divided by the share imaged.
-    const float perSample = 1.0f / static_cast<float>(imaged[p]);
-    const float coverage = weight * static_cast<float>(imaged[p]);
-    for (int c = 0; c < 3; ++c) {
-      const float full = colour.pixels[4 * p + c] / coverage;
-      const float kept = sums.emitted[p][c] * perSample, direct = sums.direct[p][c] * perSample;
-      in.full[3 * p + c] = full;
-      in.kept[3 * p + c] = kept;
-      in.direct[3 * p + c] = direct - kept;
-      in.indirect[3 * p + c] = full - direct;
-      in.albedo[3 * p + c] = sums.albedo[p][c] * perSample;
-      in.normal[3 * p + c] = sums.normal[p][c] * perSample;
+  // Pixel by pixel, in parallel: each writes its own.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      if (imaged[p] == 0) continue;
+      // Means over the samples the camera images; the film's colour is over the whole grid (its
+      // rim pixels blend to black), so it is divided by the share imaged.
+      const float perSample = 1.0f / static_cast<float>(imaged[p]);
+      const float coverage = weight * static_cast<float>(imaged[p]);
+      for (int c = 0; c < 3; ++c) {
+        const float full = colour.pixels[4 * p + c] / coverage;
+        const float kept = sums.emitted[p][c] * perSample, direct = sums.direct[p][c] * perSample;
+        in.full[3 * p + c] = full;
+        in.kept[3 * p + c] = kept;
+        in.direct[3 * p + c] = direct - kept;
+        in.indirect[3 * p + c] = full - direct;
+        in.albedo[3 * p + c] = sums.albedo[p][c] * perSample;
+        in.normal[3 * p + c] = sums.normal[p][c] * perSample;
+      }
+      in.depth[p] = sums.depth[p] * perSample;
+      const DenoiseSums::Moments& m = sums.moments[p];
+      in.directVariance[p] = varianceOfMean(m.direct, m.directSquared, m.samples);
+      in.indirectVariance[p] = varianceOfMean(m.indirect, m.indirectSquared, m.samples);
     }
-    in.depth[p] = sums.depth[p] * perSample;
-    const DenoiseSums::Moments& m = sums.moments[p];
-    in.directVariance[p] = varianceOfMean(m.direct, m.directSquared, m.samples);
-    in.indirectVariance[p] = varianceOfMean(m.indirect, m.indirectSquared, m.samples);
-  }
+  });
   const std::vector<float> filtered = filterPathLight(in, pathLightFilterForWidth(in.width));
   ImageRGBA out = colour;
-  for (size_t p = 0; p < pixels; ++p) {
-    if (imaged[p] == 0) continue;
-    const float coverage = weight * static_cast<float>(imaged[p]);
-    for (int c = 0; c < 3; ++c) out.pixels[4 * p + c] = filtered[3 * p + c] * coverage;
-  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t p = range.begin(); p != range.end(); ++p) {
+      if (imaged[p] == 0) continue;
+      const float coverage = weight * static_cast<float>(imaged[p]);
+      for (int c = 0; c < 3; ++c) out.pixels[4 * p + c] = filtered[3 * p + c] * coverage;
+    }
+  });
   film.setResolvedColour(std::move(out));
 }
 
