@@ -49,8 +49,11 @@ void checkInputs(const PathLightInputs& in, const PathLightFilterParameters& p) 
   const bool sizes = in.width > 0 && in.height > 0 && in.full.size() == 3 * pixels && in.kept.size() == 3 * pixels &&
                      in.direct.size() == 3 * pixels && in.indirect.size() == 3 * pixels &&
                      in.directVariance.size() == pixels && in.indirectVariance.size() == pixels &&
-                     in.albedo.size() == 3 * pixels && in.normal.size() == 3 * pixels && in.depth.size() == pixels;
-  if (!sizes) throw InputError("path light filter: the light, variance, albedo, normal and depth passes differ in size");
+                     in.albedo.size() == 3 * pixels && in.normal.size() == 3 * pixels && in.depth.size() == pixels &&
+                     (in.coverageKept.empty() || in.coverageKept.size() == 3 * pixels) &&
+                     in.coverageAlbedo.size() == in.coverageKept.size();
+  if (!sizes)
+    throw InputError("path light filter: the light, variance, albedo, normal, depth and coverage passes differ in size");
   for (const AtrousParameters* a : {&p.direct, &p.indirect})
     if (a->levels < 0 || a->levels > 8 || !(a->normalExponent >= 0.0) || !(a->depthSigma > 0.0) || !(a->luminanceSigma > 0.0))
       throw InputError("path light filter: levels 0-8, a normal exponent >= 0, positive depth and luminance sigmas");
@@ -89,7 +92,8 @@ void classifyPixel(const PathLightInputs& in, const PathLightFilterParameters& p
   const float* n = &in.normal[3 * k];
   if (!allFinite(a, 3) || !allFinite(n, 3) || !allFinite(&in.full[3 * k], 3) || !allFinite(&in.kept[3 * k], 3) ||
       !allFinite(&in.direct[3 * k], 3) || !allFinite(&in.indirect[3 * k], 3) || !std::isfinite(in.depth[k]) ||
-      !(in.depth[k] > 0.0f) || !std::isfinite(in.directVariance[k]) || !std::isfinite(in.indirectVariance[k]))
+      !(in.depth[k] > 0.0f) || !std::isfinite(in.directVariance[k]) || !std::isfinite(in.indirectVariance[k]) ||
+      (!in.coverageKept.empty() && (!allFinite(&in.coverageKept[3 * k], 3) || !allFinite(&in.coverageAlbedo[3 * k], 3))))
     return;
   for (int c = 0; c < 3; ++c)
     if (a[c] >= p.minAlbedo) g.channels[k] |= static_cast<uint8_t>(1u << c);
@@ -272,12 +276,14 @@ std::vector<float> filterPathLight(const PathLightInputs& in, const PathLightFil
   const Guides g = guidesOf(in, p);
   const Signal direct = atrous(demodulate(in.direct, in.directVariance, in, g), g, p.direct);
   const Signal indirect = atrous(demodulate(in.indirect, in.indirectVariance, in, g), g, p.indirect);
+  const std::vector<float>& kept = in.coverageKept.empty() ? in.kept : in.coverageKept;
+  const std::vector<float>& albedo = in.coverageAlbedo.empty() ? in.albedo : in.coverageAlbedo;
   std::vector<float> out = in.full;
   forEachRow(g.height, [&](int j) {
     for (size_t k = static_cast<size_t>(j) * g.width; k < static_cast<size_t>(j + 1) * g.width; ++k)
       for (int c = 0; c < 3; ++c)
         if (g.channels[k] & (1u << c))
-          out[3 * k + c] = in.kept[3 * k + c] + in.albedo[3 * k + c] * (direct.value[3 * k + c] + indirect.value[3 * k + c]);
+          out[3 * k + c] = kept[3 * k + c] + albedo[3 * k + c] * (direct.value[3 * k + c] + indirect.value[3 * k + c]);
   });
   return out;
 }

@@ -8,7 +8,8 @@
 //               surface's albedo: an irradiance with sharp shadow borders, filtered lightly;
 //   indirect  — everything the first surface's scattered ray brings, divided likewise: smooth,
 //               filtered widely.
-// Output = kept + albedo · (F_direct[direct] + F_indirect[indirect]).
+// Output = kept + albedo · (F_direct[direct] + F_indirect[indirect]), with kept and albedo over a
+// finer grid of camera rays where the renderer gives them (coverage).
 //
 // F is the edge-avoiding à-trous wavelet filter (Dammertz et al. 2010) as SVGF uses it (Schied et
 // al. 2017, without the temporal part): levels of a 3×3 kernel (¼, ½, ¼ per axis) whose taps lie 2^level
@@ -69,6 +70,11 @@ struct PathLightInputs {
   std::vector<float> albedo;    // 3 per pixel: the first surface's
   std::vector<float> normal;    // 3 per pixel: mean of unit normals facing the camera
   std::vector<float> depth;     // 1 per pixel: along the path, camera to surface
+  // Optional (empty: `kept` and `albedo`), 3 per pixel: the kept light and the albedo over a finer
+  // grid of camera rays than the light's, which the output is made of: where a pixel's few samples
+  // saw its surfaces in the wrong shares (a field line, a lamp's rim), the finer grid's shares
+  // times the filtered light (fastrender/denoise_guides.h).
+  std::vector<float> coverageKept, coverageAlbedo;
 };
 
 // The filtered light, 3 floats per pixel. InputError when sizes disagree or a parameter is out

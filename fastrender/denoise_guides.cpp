@@ -14,6 +14,10 @@ void DenoiseSums::resize(size_t pixels) {
   normal.assign(pixels, Vec3f::Zero());
   depth.assign(pixels, 0.0f);
   moments.assign(pixels, Moments{});
+  seen.assign(pixels, Seen{});
+  coverageRefined.clear();
+  coverageEmitted.clear();
+  coverageAlbedo.clear();
 }
 
 namespace {
@@ -39,6 +43,11 @@ void denoiseFilm(Film& film, const DenoiseSums& sums, float weight, const std::v
   in.depth.assign(pixels, 0.0f);
   in.directVariance.assign(pixels, 0.0f);
   in.indirectVariance.assign(pixels, 0.0f);
+  const bool refined = !sums.coverageRefined.empty();
+  if (refined) {
+    in.coverageKept.assign(3 * pixels, 0.0f);
+    in.coverageAlbedo.assign(3 * pixels, 0.0f);
+  }
   // Pixel by pixel, in parallel: each writes its own.
   tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t p = range.begin(); p != range.end(); ++p) {
@@ -56,6 +65,11 @@ void denoiseFilm(Film& film, const DenoiseSums& sums, float weight, const std::v
         in.indirect[3 * p + c] = full - direct;
         in.albedo[3 * p + c] = sums.albedo[p][c] * perSample;
         in.normal[3 * p + c] = sums.normal[p][c] * perSample;
+        if (refined) {
+          const bool finer = sums.coverageRefined[p] != 0;
+          in.coverageKept[3 * p + c] = finer ? sums.coverageEmitted[p][c] : kept;
+          in.coverageAlbedo[3 * p + c] = finer ? sums.coverageAlbedo[p][c] : in.albedo[3 * p + c];
+        }
       }
       in.depth[p] = sums.depth[p] * perSample;
       const DenoiseSums::Moments& m = sums.moments[p];

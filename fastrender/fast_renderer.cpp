@@ -232,6 +232,7 @@ void FastRenderer::renderPass(const CameraPlacement& camera, const RenderSetting
   });
   if (adaptive) refineAdaptively(job, settings, frameSums, frameMoments, film);
   film.resolve(passes);
+  if (denoising && !moves) refineCoverage(job, width, height, denoiseSums);
   if (denoising) {
     std::vector<uint32_t> imaged(static_cast<size_t>(width) * height);
     for (size_t p = 0; p < imaged.size(); ++p) imaged[p] = static_cast<uint32_t>(table->imagedSamples(p)) * passes;

@@ -110,6 +110,11 @@ class FastRenderer {
   // sum into the film, scaled to the first grid's count of samples.
   void refineAdaptively(const FrameJob& job, const RenderSettings& settings, std::vector<Vec3f>& sums,
                         const std::vector<LuminanceMoments>& moments, Film& film) const;
+  // Coverage refinement of denoised still frames (fast_renderer_coverage.cpp): the pixels whose
+  // samples (or a neighbour's) disagree on the albedo or the light shining along them, where the
+  // frame's whole grid is imaged; then their finer grid's kept light and albedo into `sums`.
+  static std::vector<uint8_t> coverageCandidates(const SampleTable& table, const DenoiseSums& sums, int width, int height);
+  void refineCoverage(const FrameJob& job, int width, int height, DenoiseSums& sums) const;
   // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
   // sums[0, width).
   void traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading, const PathFrame* path,

@@ -40,28 +40,6 @@ std::vector<uint8_t> FastRenderer::adaptiveLevels(const RenderSettings& settings
   return levels;
 }
 
-namespace {
-
-// The rays of pixel (i, j)'s n×n grid, as buildSampleTable stores them, in its order; false (and
-// nothing added) when one of them falls outside the image.
-bool addGridRays(const Camera& camera, int i, int j, int n, std::vector<StoredRay>& rays, std::vector<uint16_t>& grid) {
-  const size_t before = rays.size();
-  for (int b = 0; b < n; ++b)
-    for (int a = 0; a < n; ++a) {
-      const auto ray = camera.generateRay({Film::sample(i, j, a, b, n)});
-      if (!ray) {
-        rays.resize(before);
-        grid.resize(before);
-        return false;
-      }
-      rays.push_back(storedRay(*ray, camera.central()));
-      grid.push_back(static_cast<uint16_t>(b * n + a));
-    }
-  return true;
-}
-
-}  // namespace
-
 void FastRenderer::traceFinerRow(const FrameJob& job, int j, int width, uint8_t* levels, HitPacket& hits, Vec3f* sums,
                                  RowScratch& scratch) const {
   const Camera& camera = *job.table.camera;

@@ -301,6 +301,14 @@ int PathTracer::pick(const LightChoice& choice, double& u, double& selection) co
   return count - 1;
 }
 
+PathTracer::FirstHit PathTracer::firstHit(const Vec3& origin, const Vec3& direction, const SurfaceHit* first) const {
+  double tDisc = 0.0;
+  const int disc = nearestDisc(origin, direction, first ? first->t : std::numeric_limits<double>::infinity(), tDisc);
+  if (disc >= 0) return {luminaires_[disc].emitted, Vec3f::Zero()};
+  if (!first) return {missed(direction, -1.0, LightChoice{}), Vec3f::Zero()};
+  return {scene_.materials[scene_.objects[first->object].material].emission, albedoAt(*first)};
+}
+
 PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDirection, const SurfaceHit* first,
                                  const PathKey& key) const {
   // The first surface's samples (every light, the first bounce) are stratified over the pixel's

@@ -111,6 +111,14 @@ class PathTracer {
   // `first` (nullptr: the ray met no surface), for the path keyed `key`.
   PathSample cameraRay(const Vec3& origin, const Vec3& direction, const SurfaceHit* first, const PathKey& key) const;
 
+  // What the camera ray alone finds, tracing no light: what shines along it (a lamp's face, the
+  // background or environment, a surface's emission: PathSample::emitted) and its first surface's
+  // albedo (zero where there is none).
+  struct FirstHit {
+    Vec3f emitted = Vec3f::Zero(), albedo = Vec3f::Zero();
+  };
+  FirstHit firstHit(const Vec3& origin, const Vec3& direction, const SurfaceHit* first) const;
+
   const std::vector<Luminaire>& luminaires() const { return luminaires_; }
 
   // The material's colour times its texture at the hit.

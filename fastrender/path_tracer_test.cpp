@@ -350,6 +350,57 @@ TEST(PathTracer, DenoisedDirectLightUnderALampKeepsItsMeanAndLosesItsNoise) {
   }
 }
 
+// Issue #48: a denoised pixel is its kept light plus its albedo times its filtered light, and a few
+// samples give its surfaces' shares only roughly (2×2 samples see a line a third of a pixel wide
+// 0 or 1 times, whatever the seed). A floor of albedo 0.2 with lines of 0.9 under a uniform sky of
+// radiance L, no lamp, no bounce: every sample that scatters sees the sky, so a traced sample's
+// radiance is exactly its surface's albedo × L, and the converged frame (32×32 samples per pixel)
+// is each pixel's shares of the two albedos × L. Pixels whose samples disagree are traced again on
+// an 8×8 grid to their first surface: the denoised 4-spp frame must come much closer to the
+// converged one on the lines' pixels than the traced 4-spp frame, whose shares are the 2×2 grid's.
+TEST(PathTracer, DenoisedPixelsTakeTheirSurfacesSharesFromAFinerGrid) {
+  Scene s;
+  s.background = Vec3f::Constant(0.5f);
+  s.materials.push_back(lambertian(Vec3f::Constant(0.2f)));
+  s.materials.push_back(lambertian(Vec3f::Constant(0.9f)));
+  s.objects.push_back({"floor", 0, Quad{{-100, -100, 0}, {200, 0, 0}, {0, 200, 0}}, ""});
+  for (int line = -6; line <= 6; ++line) {  // 2.5 cm wide, 0.5 m apart, 1 mm above the floor, both ways
+    const double at = 0.5 * line;
+    s.objects.push_back({"line", 1, Quad{{at - 0.0125, -4.0, 0.001}, {0.025, 0, 0}, {0, 8.0, 0}}, ""});
+    s.objects.push_back({"line", 1, Quad{{-4.0, at - 0.0125, 0.001}, {8.0, 0, 0}, {0, 0.025, 0}}, ""});
+  }
+  RenderSettings settings;
+  settings.rig = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json").rig;
+  settings.rig.mirrorRig().imageSize = 128;
+  settings.shading = Shading::Path;
+  settings.bounces = 0;
+  const RobotPose pose{0.1, 0.2, 10.0};
+  const FastRenderer renderer(s);
+  settings.spp = 1024;
+  const ImageRGBA converged = renderer.render(pose, settings);
+  settings.spp = 4;
+  const ImageRGBA traced = renderer.render(pose, settings);
+  settings.denoise = true;
+  const ImageRGBA denoised = renderer.render(pose, settings);
+  // The lines' pixels: wholly inside the mirror and brighter than bare floor (0.2 × 0.5 = 0.1).
+  double squaresTraced = 0.0, squaresDenoised = 0.0;
+  long pixels = 0;
+  for (size_t k = 0; k < converged.pixels.size() / 4; ++k) {
+    const float c = converged.pixels[4 * k];
+    if (converged.pixels[4 * k + 3] < 1.0f || !(c > 0.102f && c < 0.449f)) continue;
+    squaresTraced += std::pow(traced.pixels[4 * k] - c, 2);
+    squaresDenoised += std::pow(denoised.pixels[4 * k] - c, 2);
+    ++pixels;
+  }
+  const double rmsTraced = std::sqrt(squaresTraced / std::max(1L, pixels));
+  const double rmsDenoised = std::sqrt(squaresDenoised / std::max(1L, pixels));
+  std::printf("lines on a floor, 128 px, 4 spp: %ld pixels on lines; RMS from converged %.4f traced, %.4f denoised\n", pixels,
+              rmsTraced, rmsDenoised);
+  ASSERT_GT(pixels, 200) << "the lines must be seen";
+  EXPECT_GT(rmsTraced, 0.02) << "the 2x2 grid's shares are far off: else the test shows nothing";
+  EXPECT_LT(rmsDenoised, 0.4 * rmsTraced) << "the finer grid's shares make the output";
+}
+
 TEST(PathTracer, RandomStreamIsUniform) {
   PathRandom random(42);
   int bins[10] = {};

@@ -61,4 +61,20 @@ std::shared_ptr<const SampleTable> buildSampleTable(const std::shared_ptr<const 
   return table;
 }
 
+bool addGridRays(const Camera& camera, int i, int j, int n, std::vector<StoredRay>& rays, std::vector<uint16_t>& grid) {
+  const size_t before = rays.size();
+  for (int b = 0; b < n; ++b)
+    for (int a = 0; a < n; ++a) {
+      const auto ray = camera.generateRay({Film::sample(i, j, a, b, n)});
+      if (!ray) {
+        rays.resize(before);
+        grid.resize(before);
+        return false;
+      }
+      rays.push_back(storedRay(*ray, camera.central()));
+      grid.push_back(static_cast<uint16_t>(b * n + a));
+    }
+  return true;
+}
+
 }  // namespace omnicam

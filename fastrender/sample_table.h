@@ -43,6 +43,11 @@ struct StoredRay {
 };
 StoredRay storedRay(const CameraRay& ray, bool central);
 
+// The rays of pixel (i, j)'s n×n grid, as buildSampleTable stores them and in its order, appended
+// to `rays` with their index in the grid appended to `grid`; false (and nothing appended) when
+// one of them falls outside the image.
+bool addGridRays(const Camera& camera, int i, int j, int n, std::vector<StoredRay>& rays, std::vector<uint16_t>& grid);
+
 // The table of `camera` at n×n samples per pixel (Film::sample's grid). The caller checks first
 // that it fits in memory.
 std::shared_ptr<const SampleTable> buildSampleTable(const std::shared_ptr<const Camera>& camera, int samplesPerAxis);
