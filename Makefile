@@ -72,6 +72,7 @@ bench: build
 	$(BUILD_DIR)/bin/omnicam_bench --benchmark_counters_tabular=true
 	$(BUILD_DIR)/bin/omnicam bench --json
 	$(BUILD_DIR)/bin/path_vs_cycles
+	$(BUILD_DIR)/bin/path_dataset_rate
 	bench/povray_ratio.sh 1 100
 	bench/povray_ratio.sh 16 100
 	$(BUILD_DIR)/bin/dataset_bench

@@ -161,6 +161,8 @@ void GoldenHashes::renderOwnSet() {
   render("fast_lens_pinhole_rolling", lensScene("pinhole", pinhole, {{"exposure_s", 0.004}, {"rolling", {{"line_time_us", 300}}}}), "--spp 4 --pose=1.2,-0.4,30 --velocity 1,0.2,90");
   // Path tracing: its sampling calls sin, cos and sqrt for every bounce.
   render("fast_path", robocup, "--size 32 --spp 4 --pose=1.2,-0.4,30 --shading path");
+  // Denoised: the filter of all the light, and the coverage refinement of the field lines' pixels.
+  render("fast_path_denoised", robocup, "--size 48 --spp 4 --pose=1.2,-0.4,30 --shading path --denoise");
   // Datasets: both layouts, every output and COCO, two cameras, a moving robot.
   const json outputs = {{"depth", true}, {"instance", true}, {"semantic", true}, {"normal", true}, {"landmarks", true}, {"coco", true}};
   json spec = {{"format", "omnicam-dataset/1"}, {"scene", robocup}, {"spp", 4}, {"shading", "lit"}, {"size", 48},
