@@ -383,7 +383,8 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& optio
 int64_t DatasetPlan::frameBytes() const {
   int64_t bytes = 0;
   for (const CameraSetup& setup : setups_)
-    bytes += FastRenderer::frameBytes(setup.rig.imageWidth(), setup.rig.imageHeight(), spec_.request.spp, setup.model->central());
+    bytes += FastRenderer::frameBytes(setup.rig.imageWidth(), setup.rig.imageHeight(), spec_.request.spp, setup.model->central(),
+                                      spec_.request.denoise && spec_.request.shading == Shading::Path);
   // A calibration sequence's frame renders in a world of its own (frameWorld): the scene's copy,
   // its engine's ray scene and, with landmark annotations, a second one for the landmarks' rays.
   if (movesTarget()) bytes += frameWorldBytes(scene_, rays_ ? 2 : 1);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "errors.h"
@@ -213,6 +214,29 @@ TEST(PathLightFilter, PixelsWithoutASurfaceOrWithNaNAreKeptAndLendNothing) {
   }
   const PathLightInputs clean = plane([](int, int, int) { return 0.5; }, [](int, int, int) { return 0.2; });
   for (int i = 41; i < 44; ++i) EXPECT_NEAR(out[3 * at(i, 40) + 1], clean.full[3 * at(i, 40) + 1], 1e-5f);
+}
+
+// A renderer that traced a pixel's surfaces on a finer grid gives their kept light and albedo
+// (coverageKept, coverageAlbedo): the output is those times the filtered light, which under a
+// constant light is that light exactly, whatever the pixel's own samples' albedo was.
+TEST(PathLightFilter, APixelsSurfacesFromAFinerGridMakeItsOutput) {
+  PathLightInputs in = plane([](int, int, int c) { return 0.3 + 0.1 * c; }, [](int, int, int c) { return 0.1 + 0.05 * c; });
+  in.coverageKept = in.kept;
+  in.coverageAlbedo = in.albedo;
+  const size_t refined = at(40, 50), unknown = at(41, 50);
+  for (int c = 0; c < 3; ++c) {
+    in.coverageKept[3 * refined + c] = 0.05f;
+    in.coverageAlbedo[3 * refined + c] = 0.35f;
+  }
+  in.coverageAlbedo[3 * unknown + 1] = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> out = filterPathLight(in);
+  for (int c = 0; c < 3; ++c) {
+    const double light = (0.3 + 0.1 * c) + (0.1 + 0.05 * c);
+    EXPECT_NEAR(out[3 * refined + c], 0.05 + 0.35 * light, 2e-6) << "channel " << c;
+    EXPECT_EQ(out[3 * unknown + c], in.full[3 * unknown + c]) << "a pixel with a non-finite pass is kept as traced";
+  }
+  in.coverageAlbedo.pop_back();
+  EXPECT_THROW(filterPathLight(in), InputError);
 }
 
 TEST(PathLightFilter, TheResultDoesNotDependOnTheThreadCount) {

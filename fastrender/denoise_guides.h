@@ -28,6 +28,7 @@ struct DenoiseSums {
     Vec3f albedoLow = Vec3f::Constant(kNotSeen), albedoHigh = Vec3f::Constant(-kNotSeen);  // −1: no surface
     float emittedLow = kNotSeen, emittedHigh = -kNotSeen;  // luminance of what shines along the ray
     static constexpr float kNotSeen = 1e30f;
+    bool sawSurface() const { return albedoHigh.maxCoeff() >= 0.0f; }
     bool straddles(float albedoTolerance, float emittedTolerance) const {
       return (albedoHigh - albedoLow).maxCoeff() > albedoTolerance || emittedHigh - emittedLow > emittedTolerance;
     }

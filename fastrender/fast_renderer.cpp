@@ -31,7 +31,8 @@ std::shared_ptr<const SampleTable> FastRenderer::sampleTable(const RenderSetting
     if (table_ && table_->samplesPerAxis == n && *table_->camera == *camera) return table_;
   }
   // Built outside the lock: frames of other rigs (a vibrating robot's) build theirs meanwhile.
-  requireMemory(frameBytes(camera->width(), camera->height(), n * n, camera->central()),
+  const bool denoised = settings.denoise && settings.shading == Shading::Path;
+  requireMemory(frameBytes(camera->width(), camera->height(), n * n, camera->central(), denoised),
                 "a " + std::to_string(camera->width()) + "x" + std::to_string(camera->height()) + " frame at " +
                     std::to_string(n * n) + " spp (its sample table, the frame and its files)");
   std::shared_ptr<const SampleTable> table = buildSampleTable(camera, n);
@@ -40,12 +41,14 @@ std::shared_ptr<const SampleTable> FastRenderer::sampleTable(const RenderSetting
   return table;
 }
 
-int64_t FastRenderer::frameBytes(int width, int height, int spp, bool central) {
+int64_t FastRenderer::frameBytes(int width, int height, int spp, bool central, bool denoised) {
   // At most every sample imaged: its direction and grid index (14 B), a non-central ray's origin
   // and start too (30 B), in vectors that may hold twice that while they grow; per pixel, the
   // centre's ray and indices (20 B, non-central 36 B), and the frame with every AOV and its
-  // encoding (84 B).
-  return int64_t{width} * height * (int64_t{spp} * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84);
+  // encoding (84 B). A denoised path frame adds its sums and the filter's planes at once:
+  // DenoiseSums 129 B, the filter's inputs 84, guides 26, two parts' levels 72, outputs 44.
+  const int64_t filter = denoised ? 355 : 0;
+  return int64_t{width} * height * (int64_t{spp} * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84 + filter);
 }
 
 void FastRenderer::traceMovingRow(const MovingPlacements& at, const SampleTable& table, int j, Shading shading,

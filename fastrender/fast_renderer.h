@@ -4,6 +4,7 @@
 // map (no mirror tracing), for a physical rig traced through the exact mirror from its own
 // mirror point. It is intersected with the scene and shaded per docs/conventions.md §2. Pixels are box-filtered means of an n×n regular grid;
 // rows are rendered in parallel with TBB and the result does not depend on the thread count.
+#include <algorithm>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -46,9 +47,9 @@ class FastRenderer {
   void renderAovsOnly(const CameraPlacement& placement, const RenderSettings& settings, Film& film) const;
 
   // The memory one width × height frame at `spp` takes (its sample table, a central or a traced
-  // camera's, and the frame with every AOV and its files): checked before a table is built, and
-  // the size of a dataset's frame in flight.
-  static int64_t frameBytes(int width, int height, int spp, bool central);
+  // camera's, the frame with every AOV and its files, and a denoised path frame's filter):
+  // checked before a table is built, and the size of a dataset's frame in flight.
+  static int64_t frameBytes(int width, int height, int spp, bool central, bool denoised);
 
   const Scene& scene() const { return scene_; }
   const RayScene& rays() const { return rays_; }
@@ -68,7 +69,7 @@ class FastRenderer {
   struct RowScratch {
     RowPlacements row;
     std::vector<uint16_t> columns;  // per sample of a moving row
-    std::vector<StoredRay> rays;    // an adaptive pixel's finer grid's rays
+    std::vector<StoredRay> rays;    // a refined pixel's finer grid's rays (adaptive sampling, coverage)
     std::vector<uint16_t> grid;     // their index in that grid
     std::vector<uint8_t> centreRecorded;  // per column: its AOVs are written
   };
@@ -110,10 +111,21 @@ class FastRenderer {
   // sum into the film, scaled to the first grid's count of samples.
   void refineAdaptively(const FrameJob& job, const RenderSettings& settings, std::vector<Vec3f>& sums,
                         const std::vector<LuminanceMoments>& moments, Film& film) const;
+  // A pixel's grid of rays (addGridRays) traced from the still frame's placement in packets;
+  // after each packet, packet(first, count) with its hits in `hits`.
+  template <typename PacketFunction>
+  void traceGridRays(const FrameJob& job, const std::vector<StoredRay>& rays, HitPacket& hits,
+                     const PacketFunction& packet) const {
+    for (size_t first = 0; first < rays.size(); first += kRayPacketSize) {
+      const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, rays.size() - first));
+      loadStoredRays(hits, job.still, &rays[first], job.table.camera->central(), count);
+      rays_.intersectPacket(hits);
+      packet(first, count);
+    }
+  }
   // Coverage refinement of denoised still frames (fast_renderer_coverage.cpp): the pixels whose
-  // samples (or a neighbour's) disagree on the albedo or the light shining along them, where the
-  // frame's whole grid is imaged; then their finer grid's kept light and albedo into `sums`.
-  static std::vector<uint8_t> coverageCandidates(const SampleTable& table, const DenoiseSums& sums, int width, int height);
+  // samples (or a neighbour's) disagree on the albedo or the light shining along them traced again
+  // on a finer grid to their first surfaces; its kept light and albedo into `sums`.
   void refineCoverage(const FrameJob& job, int width, int height, DenoiseSums& sums) const;
   // Row j of a moving frame: every pixel's sum of its samples' colours (over every pass) into
   // sums[0, width).

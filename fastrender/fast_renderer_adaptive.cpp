@@ -53,15 +53,12 @@ void FastRenderer::traceFinerRow(const FrameJob& job, int j, int width, uint8_t*
     while (levels[i] > 0 && !addGridRays(camera, i, j, n << levels[i], scratch.rays, scratch.grid)) --levels[i];
     if (levels[i] == 0) continue;
     Vec3f sum = Vec3f::Zero();
-    for (size_t first = 0; first < scratch.rays.size(); first += kRayPacketSize) {
-      const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, scratch.rays.size() - first));
-      loadStoredRays(hits, job.still, &scratch.rays[first], camera.central(), count);
-      rays_.intersectPacket(hits);
+    traceGridRays(job, scratch.rays, hits, [&](size_t first, int count) {
       for (int k = 0; k < count; ++k)  // the keys a fixed frame of this grid gives these samples
         keys[k] = {mixKey(job.path->key, rowStart + i), scratch.grid[first + k]};
       shadePacket(hits, job.shading, colours, job.path, keys);
       for (int k = 0; k < count; ++k) sum += colours[k];  // in sample order, as a fixed frame sums
-    }
+    });
     sums[i] = sum;
   }
 }

@@ -22,28 +22,32 @@ namespace {
 // grain stays below; a field line on the carpet, a beacon's band or a lamp's rim do not.
 constexpr float kAlbedoTolerance = 0.08f;
 constexpr float kEmittedTolerance = 0.02f;
-// The finer grid: the first multiple of the frame's samples per axis from this many on (a frame
-// of so many samples per axis is not refined).
+// The finer grid: the first multiple of the frame's samples per axis from twice them on, and from
+// kCoverageSamplesPerAxis on (8×8 at 4 spp, 12×12 at 36, 16×16 at 64). Frames of
+// kUnrefinedSamplesPerAxis per axis and more are fine enough already; a frame of one sample per
+// pixel has no samples that could disagree.
 constexpr int kCoverageSamplesPerAxis = 8;
+constexpr int kUnrefinedSamplesPerAxis = 16;
 
 int coverageSamplesPerAxis(int samplesPerAxis) {
-  if (samplesPerAxis >= kCoverageSamplesPerAxis) return 0;
-  return samplesPerAxis * ((kCoverageSamplesPerAxis + samplesPerAxis - 1) / samplesPerAxis);
+  if (samplesPerAxis < 2 || samplesPerAxis >= kUnrefinedSamplesPerAxis) return 0;
+  const int least = std::max(kCoverageSamplesPerAxis, 2 * samplesPerAxis);
+  return samplesPerAxis * ((least + samplesPerAxis - 1) / samplesPerAxis);
 }
 
-}  // namespace
-
-std::vector<uint8_t> FastRenderer::coverageCandidates(const SampleTable& table, const DenoiseSums& sums, int width,
-                                                      int height) {
+// The pixels to refine: those whose samples straddle and their neighbours (which may hold the
+// same border between their samples), where the frame's whole grid is imaged (the rim cuts the
+// others: their alpha is their grid's) and some sample met a surface (the filter keeps the others'
+// light as traced, so their finer grid would go unused).
+std::vector<uint8_t> coverageCandidates(const SampleTable& table, const DenoiseSums& sums, int width, int height) {
   const size_t pixels = static_cast<size_t>(width) * height;
   std::vector<uint8_t> straddles(pixels, 0), candidates(pixels, 0);
   const int full = table.samplesPerAxis * table.samplesPerAxis;
   for (size_t p = 0; p < pixels; ++p) straddles[p] = sums.seen[p].straddles(kAlbedoTolerance, kEmittedTolerance);
-  // A pixel next to one that straddles may hold the same border between its samples.
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) {
       const size_t p = static_cast<size_t>(j) * width + i;
-      if (table.imagedSamples(p) != full) continue;  // the rim cuts it: its alpha is its grid's
+      if (table.imagedSamples(p) != full || !sums.seen[p].sawSurface()) continue;
       for (int y = std::max(0, j - 1); y <= std::min(height - 1, j + 1) && !candidates[p]; ++y)
         for (int x = std::max(0, i - 1); x <= std::min(width - 1, i + 1); ++x)
           if (straddles[static_cast<size_t>(y) * width + x]) {
@@ -53,6 +57,8 @@ std::vector<uint8_t> FastRenderer::coverageCandidates(const SampleTable& table, 
     }
   return candidates;
 }
+
+}  // namespace
 
 void FastRenderer::refineCoverage(const FrameJob& job, int width, int height, DenoiseSums& sums) const {
   const int fine = coverageSamplesPerAxis(job.table.samplesPerAxis);
@@ -75,10 +81,7 @@ void FastRenderer::refineCoverage(const FrameJob& job, int width, int height, De
           continue;
         }
         Vec3f emitted = Vec3f::Zero(), albedo = Vec3f::Zero();
-        for (size_t first = 0; first < scratch.rays.size(); first += kRayPacketSize) {
-          const int count = static_cast<int>(std::min<size_t>(kRayPacketSize, scratch.rays.size() - first));
-          loadStoredRays(hits, job.still, &scratch.rays[first], camera.central(), count);
-          rays_.intersectPacket(hits);
+        traceGridRays(job, scratch.rays, hits, [&](size_t, int count) {
           for (int k = 0; k < count; ++k) {
             const std::optional<SurfaceHit> hit = hits.hit(k) ? std::optional<SurfaceHit>(hits.surface(k)) : std::nullopt;
             const PathTracer::FirstHit seen =
@@ -86,7 +89,7 @@ void FastRenderer::refineCoverage(const FrameJob& job, int width, int height, De
             emitted += seen.emitted;
             albedo += seen.albedo;
           }
-        }
+        });
         const float rays = static_cast<float>(scratch.rays.size());
         sums.coverageEmitted[p] = emitted / rays;
         sums.coverageAlbedo[p] = albedo / rays;

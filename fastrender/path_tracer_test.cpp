@@ -352,22 +352,25 @@ TEST(PathTracer, DenoisedDirectLightUnderALampKeepsItsMeanAndLosesItsNoise) {
 
 // Issue #48: a denoised pixel is its kept light plus its albedo times its filtered light, and a few
 // samples give its surfaces' shares only roughly (2×2 samples see a line a third of a pixel wide
-// 0 or 1 times, whatever the seed). A floor of albedo 0.2 with lines of 0.9 under a uniform sky of
-// radiance L, no lamp, no bounce: every sample that scatters sees the sky, so a traced sample's
-// radiance is exactly its surface's albedo × L, and the converged frame (32×32 samples per pixel)
-// is each pixel's shares of the two albedos × L. Pixels whose samples disagree are traced again on
-// an 8×8 grid to their first surface: the denoised 4-spp frame must come much closer to the
-// converged one on the lines' pixels than the traced 4-spp frame, whose shares are the 2×2 grid's.
+// 0 or 1 times, whatever the seed). A floor of albedo 0.2 under a uniform sky of radiance 0.5, no
+// lamp, no bounce, with lines 2.5 cm wide: of albedo 0.9 one way, of albedo 0.5 that also emit
+// 0.3 the other way (kept light). A traced sample that scatters sees the sky (or, rarely, a line's
+// underside), so the light is nearly the same everywhere and the converged frame (32×32 samples
+// per pixel) gives each pixel's shares of the three surfaces. Pixels whose samples disagree are
+// traced again on an 8×8 grid to their first surface: the denoised 4-spp frame must come much
+// closer to the converged one on the lines' pixels than the traced 4-spp frame, whose shares are
+// the 2×2 grid's.
 TEST(PathTracer, DenoisedPixelsTakeTheirSurfacesSharesFromAFinerGrid) {
   Scene s;
   s.background = Vec3f::Constant(0.5f);
   s.materials.push_back(lambertian(Vec3f::Constant(0.2f)));
   s.materials.push_back(lambertian(Vec3f::Constant(0.9f)));
+  s.materials.push_back(lambertian(Vec3f::Constant(0.5f), Vec3f::Constant(0.3f)));
   s.objects.push_back({"floor", 0, Quad{{-100, -100, 0}, {200, 0, 0}, {0, 200, 0}}, ""});
-  for (int line = -6; line <= 6; ++line) {  // 2.5 cm wide, 0.5 m apart, 1 mm above the floor, both ways
+  for (int line = -6; line <= 6; ++line) {  // 0.5 m apart, 1 mm above the floor
     const double at = 0.5 * line;
     s.objects.push_back({"line", 1, Quad{{at - 0.0125, -4.0, 0.001}, {0.025, 0, 0}, {0, 8.0, 0}}, ""});
-    s.objects.push_back({"line", 1, Quad{{-4.0, at - 0.0125, 0.001}, {8.0, 0, 0}, {0, 0.025, 0}}, ""});
+    s.objects.push_back({"glowing line", 2, Quad{{-4.0, at - 0.0125, 0.001}, {8.0, 0, 0}, {0, 0.025, 0}}, ""});
   }
   RenderSettings settings;
   settings.rig = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json").rig;
@@ -382,12 +385,13 @@ TEST(PathTracer, DenoisedPixelsTakeTheirSurfacesSharesFromAFinerGrid) {
   const ImageRGBA traced = renderer.render(pose, settings);
   settings.denoise = true;
   const ImageRGBA denoised = renderer.render(pose, settings);
-  // The lines' pixels: wholly inside the mirror and brighter than bare floor (0.2 × 0.5 = 0.1).
+  // The lines' pixels: wholly inside the mirror, brighter than bare floor (0.2 × 0.5 = 0.1), not
+  // wholly on a glowing line (0.5 × 0.5 + 0.3 = 0.55) and not the sky (0.5).
   double squaresTraced = 0.0, squaresDenoised = 0.0;
   long pixels = 0;
   for (size_t k = 0; k < converged.pixels.size() / 4; ++k) {
     const float c = converged.pixels[4 * k];
-    if (converged.pixels[4 * k + 3] < 1.0f || !(c > 0.102f && c < 0.449f)) continue;
+    if (converged.pixels[4 * k + 3] < 1.0f || !(c > 0.102f && c < 0.54f) || std::abs(c - 0.5f) < 0.002f) continue;
     squaresTraced += std::pow(traced.pixels[4 * k] - c, 2);
     squaresDenoised += std::pow(denoised.pixels[4 * k] - c, 2);
     ++pixels;

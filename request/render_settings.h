@@ -32,7 +32,10 @@ struct RenderSampling {
   int bounces = kDefaultBounces;
   uint64_t seed = 0;
   // Path-traced frames (the fast renderer's path shading, Blender's lit and path): filter the
-  // indirect light guided by the albedo, normal and depth (denoise/indirect_filter.h).
+  // noise, guided by the albedo, normal and depth. The fast renderer filters all the light and
+  // takes its surfaces' shares from a finer grid where a pixel's samples disagree
+  // (denoise/path_light_filter.h, fastrender/fast_renderer_coverage.cpp); Blender's frames filter
+  // the indirect light (denoise/indirect_filter.h).
   bool denoise = false;
   // Adaptive sampling (the fast renderer's unfiltered path shading of a still frame): 0 is off;
   // otherwise every pixel is first traced on the grid of spp samples, then, where its error
