@@ -45,8 +45,9 @@ int64_t FastRenderer::frameBytes(int width, int height, int spp, bool central, b
   // At most every sample imaged: its direction and grid index (14 B), a non-central ray's origin
   // and start too (30 B), in vectors that may hold twice that while they grow; per pixel, the
   // centre's ray and indices (20 B, non-central 36 B), and the frame with every AOV and its
-  // encoding (84 B). A denoised path frame adds its sums and the filter's planes at once:
-  // DenoiseSums 129 B, the filter's inputs 84, guides 26, two parts' levels 72, outputs 44.
+  // encoding (84 B). A denoised path frame adds its sums and the filter's planes: DenoiseSums
+  // 129 B, the filter's inputs 108, guides 26, two parts' levels 72, outputs 44, not all live at
+  // once (about 320 B at the peak, budgeted as 355).
   const int64_t filter = denoised ? 355 : 0;
   return int64_t{width} * height * (int64_t{spp} * (central ? 14 : 30) * 2 + (central ? 20 : 36) + 84 + filter);
 }

@@ -8,7 +8,7 @@ namespace omnicam {
 namespace {
 // Denoised frames trace the indirect light of a share of their samples, as the filter smooths it
 // over its window anyway: a quarter, and at least two samples per pixel (half of 4 spp, all of 1).
-// Measured in docs/path-tracing.md ("Coverage"): at 4 spp half gives +1.0 dB for 10 % more time.
+// Measured in docs/path-tracing.md ("Coverage"): at 4 spp half gives +1.0 dB for 10–36 % more time.
 constexpr double kDenoisedIndirectShare = 0.25;
 constexpr int kDenoisedScatteringSamples = 2;
 double denoisedIndirectShare(int spp) { return std::min(1.0, std::max(kDenoisedIndirectShare, double{kDenoisedScatteringSamples} / spp)); }

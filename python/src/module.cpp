@@ -70,7 +70,7 @@ PYBIND11_MODULE(_omnicam, m) {
   m.doc() = "omnicam: catadioptric omnidirectional camera simulation with exact ground truth (docs/python.md)";
   m.attr("__version__") = OMNICAM_VERSION;  // the file VERSION, as the installed package's metadata
   // As the CLI: frames' large buffers stay in the heap for the next frame instead of being faulted
-  // in anew (a denoised 360-px path frame took 0.42 s instead of 0.23 s). Process-wide: glibc's
+  // in anew (a denoised 360-px path frame took 0.42 s instead of 0.28 s). Process-wide: glibc's
   // mmap and trim thresholds (base/malloc_tuning.h).
   keepFreedMemoryInTheHeap();
   // The library's errors keep their one-line messages. Bad input is a ValueError, a file that
