@@ -16,6 +16,7 @@
 #include "engines.h"
 #include "errors.h"
 #include "fast_renderer.h"
+#include "footprint_detector.h"
 #include "frame_sequence.h"
 #include "hall_arena.h"
 #include "landmark_annotations.h"
@@ -77,6 +78,13 @@ void writeArenas(const TextureRealismOptions& o, const fs::path& out) {
 
 using Classifiers = std::map<std::string, std::map<std::string, ColourHistogramClassifier>>;
 
+// A new training set's classifiers, one per beacon colour, untrained.
+std::map<std::string, ColourHistogramClassifier>& freshClassifiers(Classifiers& trained, const std::string& set, int bins) {
+  auto& classifiers = trained[set];
+  for (const char* colour : {"cyan", "magenta", "yellow"}) classifiers.emplace(colour, ColourHistogramClassifier(bins));
+  return classifiers;
+}
+
 // Train sets (plain; random_textures, spread over the random halls): labels from the fast
 // renderer's instance masks.
 std::string testCameraSet(size_t k) { return "realistic_camera_" + std::to_string(k + 1); }
@@ -113,9 +121,7 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
                              const std::vector<std::string>& bandColour, const std::function<void()>& step, CyclesCount& cycles) {
   Classifiers trained;
   auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
-    auto& classifiers = trained[set];
-    for (const char* colour : {"cyan", "magenta", "yellow"}) classifiers.emplace(colour, ColourHistogramClassifier(o.bins));
-    return classifiers;
+    return freshClassifiers(trained, set, o.bins);
   };
   // plain and random_textures keep the poses they always had; path and realistic share theirs.
   const std::vector<Frame> plainFrames = renderFast(plain, randomFieldPoses(o.trainFrames, o.seed + 1), o.size, o.spp, step);
@@ -204,17 +210,38 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   condition.exampleImage = frames[example].image;
 }
 
+constexpr const char* kOracleSet = "realistic_test_frames";
+
+struct ConditionToRun {
+  std::string train, test;
+  DetectorKind detector;
+};
+
 // Every train → test pair the run evaluates: the thesis' and earlier ones, training through drawn
-// cameras, the ablation, and each test camera against the training sets that matter for it.
-std::vector<std::pair<std::string, std::string>> conditionsOf(const TextureRealismOptions& o) {
-  std::vector<std::pair<std::string, std::string>> list = {
-      {"plain", "plain"},     {"plain", "textured"},     {"plain", "realistic"}, {"random_textures", "realistic"},
-      {"path", "realistic"}, {"realistic", "path"},     {recordedSet("path"), "realistic"}, {recordedSet("plain"), "realistic"}};
+// cameras, the ablation, and each test camera against the training sets that matter for it — by
+// the thesis' pixel detector; then the pairs that ask whether frames transfer again by the
+// footprint detector. realistic → realistic (trained on the test camera's own frames, at other
+// poses) and the oracle (trained on the test frames themselves) are ceilings on the realistic
+// frames, not conditions a user could run.
+std::vector<ConditionToRun> conditionsOf(const TextureRealismOptions& o) {
+  std::vector<std::pair<std::string, std::string>> thesis = {
+      {"plain", "plain"}, {"plain", "textured"}, {"plain", "realistic"}, {"random_textures", "realistic"},
+      {"path", "realistic"}, {"realistic", "path"}, {"realistic", "realistic"}, {kOracleSet, "realistic"},
+      {recordedSet("path"), "realistic"}, {recordedSet("plain"), "realistic"}};
+  std::vector<std::pair<std::string, std::string>> transfer = {
+      {"plain", "plain"}, {"plain", "realistic"}, {"path", "realistic"}, {"realistic", "realistic"},
+      {kOracleSet, "realistic"}, {recordedSet("path"), "realistic"}, {recordedSet("plain"), "realistic"}};
+  std::vector<std::pair<std::string, std::string>> extra;
   if (o.ablation)
-    for (const std::string& stage : recordingStages()) list.emplace_back(ablationSet(stage), "realistic");
+    for (const std::string& stage : recordingStages()) extra.emplace_back(ablationSet(stage), "realistic");
   for (size_t k = 0; k < o.testCameras.size(); ++k)
     for (const std::string& train : {std::string("plain"), std::string("path"), recordedSet("path"), recordedSet("plain")})
-      list.emplace_back(train, testCameraSet(k));
+      extra.emplace_back(train, testCameraSet(k));
+  std::vector<ConditionToRun> list;
+  for (const auto& [train, test] : thesis) list.push_back({train, test, DetectorKind::Pixels});
+  for (const auto& [train, test] : extra) list.push_back({train, test, DetectorKind::Pixels});
+  for (const auto& [train, test] : transfer) list.push_back({train, test, DetectorKind::Footprints});
+  for (const auto& [train, test] : extra) list.push_back({train, test, DetectorKind::Footprints});
   return list;
 }
 
@@ -301,8 +328,11 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
   CyclesCount cycles;
-  const Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
+  Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
   const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step, cycles);
+  // The oracle: classifiers trained on the realistic test frames themselves. What no training set
+  // can beat with these classifiers: whether the bands' colours survive the test camera at all.
+  trainOn(freshClassifiers(trained, kOracleSet, o.bins), tests.at("realistic"), bandColour, o.detector);
 
   // Detection and evaluation.
   const FastRenderer geometry(plain);
@@ -311,18 +341,22 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const double matchRadius = o.matchRadiusPx * o.size / 360.0;
   std::vector<std::vector<GroundTruthBeacon>> truth;
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
-  const std::vector<std::pair<std::string, std::string>> conditionList = conditionsOf(o);
+  const FootprintDetector footprints(rig, beacons);
   const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;
   report.testPoses = testPoses;
-  for (const auto& [train, test] : conditionList) {
+  for (const ConditionToRun& run : conditionsOf(o)) {
     ConditionReport condition;
-    condition.outcome.train = train;
-    condition.outcome.test = test;
-    const std::vector<Frame>& frames = tests.at(test);
+    condition.outcome.train = run.train;
+    condition.outcome.test = run.test;
+    condition.outcome.detector = run.detector;
+    const std::vector<Frame>& frames = tests.at(run.test);
+    const auto& classifiers = trained.at(run.train);
     for (size_t k = 0; k < frames.size(); ++k) {
-      const DetectionResult detected = detectBeacons(frames[k].image, trained.at(train), beacons, rig, o.detector);
+      const DetectionResult detected = run.detector == DetectorKind::Footprints
+                                           ? footprints.detect(frames[k].image, classifiers, o.detector)
+                                           : detectBeacons(frames[k].image, classifiers, beacons, rig, o.detector);
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
     }

@@ -50,14 +50,25 @@ struct TextureRealismOptions {
   static TextureRealismOptions quick();  // a few frames, small images, low spp: for tests
 };
 
+// The detectors a condition can run: the thesis' pixel detector (beacon_detector.h), and the one
+// that scores whole beacon footprints (footprint_detector.h), whose keys end in "_footprints".
+enum class DetectorKind { Pixels, Footprints };
+
+// A condition's name in results.json, data/ and the report: "<train>_to_<test>", and
+// "_footprints" after it for the footprint detector.
+inline std::string conditionKey(const std::string& train, const std::string& test, DetectorKind detector) {
+  return train + "_to_" + test + (detector == DetectorKind::Footprints ? "_footprints" : "");
+}
+
 struct ConditionOutcome {
   std::string train, test;
+  DetectorKind detector = DetectorKind::Pixels;
   int frames = 0, truePositives = 0, falsePositives = 0, missed = 0, falsePositiveBlobs = 0;
   int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
   double meanLocalisationErrorPx = 0.0, meanRangeErrorCm = 0.0, meanBearingErrorDeg = 0.0;
   // The objects the false-positive blobs lie on, most frequent first (at most five).
   std::vector<std::pair<std::string, int>> falsePositiveSources;
-  std::string key() const { return train + "_to_" + test; }
+  std::string key() const { return conditionKey(train, test, detector); }
 };
 
 struct EkfOutcome {

@@ -22,10 +22,14 @@ inline const EkfOutcome* findEkf(const TextureRealismResults& r, const std::stri
   return nullptr;
 }
 
+// TP/FP: ∞ with true positives and no false ones; NaN (shown "–", never at least a bar) with neither.
 inline double trueOverFalse(const ConditionOutcome& c) {
-  return c.falsePositives ? static_cast<double>(c.truePositives) / c.falsePositives : INFINITY;
+  if (c.falsePositives == 0) return c.truePositives ? INFINITY : NAN;
+  return static_cast<double>(c.truePositives) / c.falsePositives;
 }
 
-inline std::string ratioText(double ratio) { return std::isinf(ratio) ? "∞" : fixedDecimals(ratio, 4); }
+inline std::string ratioText(double ratio) {
+  return std::isnan(ratio) ? "–" : std::isinf(ratio) ? "∞" : fixedDecimals(ratio, 4);
+}
 
 }  // namespace omnicam

@@ -1,0 +1,69 @@
+#pragma once
+// A beacon detector with spatial context: it scores whole beacon footprints, not single pixels.
+//
+// The thesis' detector (beacon_detector.h) thresholds each pixel's likelihood ratio and pairs the
+// blobs that result. Through a noisy camera a few wall pixels pass the threshold in every frame,
+// and their blobs (2–3 pixels, the size of a far band) win pairings the true bands should win.
+// Here each beacon is a known shape: two stacked bands of a cylinder of known size. For every
+// pixel taken as a beacon's band boundary, the beacon's image footprint follows from the rig
+// (the boundary inverted at its height gives range and bearing; the bands' samples projected back
+// give their pixels). A footprint's evidence is the sum of its pixels' log likelihood ratios
+// (naive Bayes over the footprint), each band's mean must reach log Θ, and each beacon is taken
+// where its evidence is highest. A speck under half a band's footprint cannot make a beacon (a far
+// beacon's bands are footprints of a few pixels, so the smallest specks still can).
+//
+// The footprints depend only on the rig and the beacons' geometry, so they are built once
+// (FootprintTable) and reused for every frame.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "beacon_detector.h"
+
+namespace omnicam {
+
+// One beacon geometry's footprints: for each candidate boundary pixel, the pixels of its upper
+// and lower band (indices j·W + i), stored flat.
+struct BeaconFootprints {
+  std::vector<int> candidate;                   // boundary pixel index per candidate
+  std::vector<int> upperBegin, lowerBegin;      // offsets into `pixels`; candidate c's upper band is
+  std::vector<int> pixels;                      // [upperBegin[c], lowerBegin[c]), its lower band
+                                                // [lowerBegin[c], upperBegin[c + 1])
+  size_t size() const { return candidate.size(); }
+};
+
+// Builds the footprints of `beacon`'s shape as `rig` sees it from the origin: every pixel from
+// which the boundary's height can be inverted is a candidate when both its bands land on pixels
+// of the image.
+BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon);
+
+class FootprintDetector {
+ public:
+  // `beacons` must outlive the detector: detections point into it.
+  FootprintDetector(const RigSpec& rig, const std::vector<Beacon>& beacons);
+  FootprintDetector(const RigSpec& rig, std::vector<Beacon>&& beacons) = delete;
+
+  // The detections of `image`: at most one per beacon, each with its two bands as blobs (the
+  // footprint's pixels, coloured as the beacon's bands), no two overlapping (a beacon whose best
+  // footprint overlaps a stronger beacon's takes its best one that does not). options.theta (> 0)
+  // bounds each band's mean likelihood ratio; medianPx filters the frame as the pixel detector does. Pixels with alpha
+  // < 0.5 count as certainly not a band.
+  DetectionResult detect(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
+                         const DetectorOptions& options) const;
+
+  const BeaconFootprints& footprints(size_t beacon) const { return *footprintOfBeacon_[beacon]; }
+
+
+ private:
+  RigSpec rig_;
+  const std::vector<Beacon>& beacons_;
+  std::vector<BeaconFootprints> shapes_;                  // one per distinct beacon geometry
+  std::vector<const BeaconFootprints*> footprintOfBeacon_;
+};
+
+// log of the classifier's likelihood ratio, clamped to ±kMaxLogLikelihoodRatio (a colour seen
+// only as negative, or never as positive, is −max; one seen only as positive is +max).
+constexpr double kMaxLogLikelihoodRatio = 5.0;
+double clampedLogLikelihoodRatio(const ColourHistogramClassifier& classifier, const Rgb8& colour);
+
+}  // namespace omnicam

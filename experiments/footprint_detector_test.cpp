@@ -1,0 +1,222 @@
+// The footprint detector against the rig's exact projection: beacons painted by projecting dense
+// points of their bands' cylinder surfaces (not the detector's own samples), with classifiers that
+// know the three colours and the grey background exactly.
+#include "footprint_detector.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "placement.h"
+#include "scene_loader.h"
+
+namespace omnicam {
+namespace {
+
+const Scene& field() {
+  static const Scene scene = loadScene(std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json");
+  return scene;
+}
+
+const std::map<std::string, Vec3f> kColours = {
+    {"cyan", {0.02f, 0.65f, 0.85f}}, {"magenta", {0.85f, 0.02f, 0.55f}}, {"yellow", {0.9f, 0.8f, 0.02f}}};
+const Vec3f kGrey{0.3f, 0.3f, 0.3f};
+
+std::map<std::string, ColourHistogramClassifier> exactClassifiers() {
+  std::map<std::string, ColourHistogramClassifier> classifiers;
+  for (const auto& [name, colour] : kColours) {
+    ColourHistogramClassifier c(32);
+    for (const auto& [other, otherColour] : kColours) {
+      const float rgba[4] = {otherColour[0], otherColour[1], otherColour[2], 1.0f};
+      if (other == name) c.addPositive(rgb8FromPixel(rgba), 100);
+      else c.addNegative(rgb8FromPixel(rgba), 100);
+    }
+    const float grey[4] = {kGrey[0], kGrey[1], kGrey[2], 1.0f};
+    c.addNegative(rgb8FromPixel(grey), 10000);
+    classifiers.emplace(name, c);
+  }
+  return classifiers;
+}
+
+ImageRGBA greyImage(int size) {
+  ImageRGBA image(size, size);
+  for (size_t p = 0; p < image.pixels.size(); p += 4)
+    image.pixels[p] = kGrey[0], image.pixels[p + 1] = kGrey[1], image.pixels[p + 2] = kGrey[2], image.pixels[p + 3] = 1.0f;
+  return image;
+}
+
+void paint(ImageRGBA& image, const Vec2& raster, const Vec3f& colour) {
+  const int i = static_cast<int>(std::floor(raster.x())), j = static_cast<int>(std::floor(raster.y()));
+  if (i < 0 || j < 0 || i >= image.width || j >= image.height) return;
+  float* p = image.at(i, j);
+  p[0] = colour[0], p[1] = colour[1], p[2] = colour[2];
+}
+
+std::optional<Vec2> projected(const RigSpec& rig, const RobotPose& pose, const Vec3& world) {
+  return rig.camera().rasterFromCamera(CameraPlacement(pose).worldFromCamera(rig).inverse() * world);
+}
+
+// The half of each band's cylinder that faces the robot, 80 × 80 points a band.
+void paintBeacon(ImageRGBA& image, const RigSpec& rig, const RobotPose& pose, const Beacon& beacon) {
+  const Vec2 towardRobot = (Vec2(pose.x, pose.y) - beacon.position()).normalized();
+  for (const Landmark* band : {beacon.lower, beacon.upper})
+    for (int a = 0; a < 80; ++a) {
+      const double angle = std::atan2(towardRobot.y(), towardRobot.x()) + M_PI * ((a + 0.5) / 80.0 - 0.5);
+      const Vec2 xy = beacon.position() + 0.5 * band->diameter * Vec2(std::cos(angle), std::sin(angle));
+      for (int k = 0; k < 80; ++k) {
+        const double z = band->position.z() + band->height * ((k + 0.5) / 80.0 - 0.5);
+        if (const auto raster = projected(rig, pose, Vec3(xy.x(), xy.y(), z))) paint(image, *raster, kColours.at(band->colourClass));
+      }
+    }
+}
+
+Vec2 boundaryRaster(const RigSpec& rig, const RobotPose& pose, const Beacon& beacon) {
+  return *projected(rig, pose, Vec3(beacon.position().x(), beacon.position().y(), beacon.boundaryHeight()));
+}
+
+// The footprint whose boundary is the pixel holding `raster`, or npos.
+size_t candidateAt(const BeaconFootprints& fp, const Vec2& raster, int width) {
+  const int pixel = static_cast<int>(std::floor(raster.y())) * width + static_cast<int>(std::floor(raster.x()));
+  for (size_t c = 0; c < fp.size(); ++c)
+    if (fp.candidate[c] == pixel) return c;
+  return std::string::npos;
+}
+
+const RobotPose kPose{0.4, -0.2, 30.0};
+
+TEST(FootprintDetector, AFootprintLiesOnItsBandsAsTheRigProjectsThem) {
+  // The footprint at the pixel holding a beacon's projected boundary, against the beacon painted
+  // densely through the placement chain: most of each band's footprint lies on that band's paint
+  // (the candidate is the pixel, not the exact projection, so an edge pixel may miss).
+  RigSpec rig = field().rig;
+  rig.mirrorRig().imageSize = 720;  // bands of 5+ px, so a footprint has an inside
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const int w = rig.camera().width();
+  for (const Beacon& beacon : beacons) {
+    SCOPED_TRACE(beacon.name);
+    ImageRGBA painted = greyImage(w);
+    paintBeacon(painted, rig, kPose, beacon);
+    const BeaconFootprints fp = footprintsOf(rig, beacon);
+    const size_t c = candidateAt(fp, boundaryRaster(rig, kPose, beacon), w);
+    ASSERT_NE(c, std::string::npos);
+    auto shareOn = [&](int begin, int end, const std::string& colour) {
+      int on = 0;
+      for (int k = begin; k < end; ++k) {
+        const float* p = painted.at(fp.pixels[k] % w, fp.pixels[k] / w);
+        on += Vec3f(p[0], p[1], p[2]) == kColours.at(colour);
+      }
+      return static_cast<double>(on) / (end - begin);
+    };
+    EXPECT_GE(fp.lowerBegin[c] - fp.upperBegin[c], 4);
+    EXPECT_GE(fp.upperBegin[c + 1] - fp.lowerBegin[c], 4);
+    EXPECT_GE(shareOn(fp.upperBegin[c], fp.lowerBegin[c], beacon.upper->colourClass), 0.75);
+    EXPECT_GE(shareOn(fp.lowerBegin[c], fp.upperBegin[c + 1], beacon.lower->colourClass), 0.75);
+    // The footprint three pixels (at 360 px) nearer the image centre lies off the lower band.
+    const Vec2 centre = rig.camera().centre(), boundary = boundaryRaster(rig, kPose, beacon);
+    const size_t off = candidateAt(fp, boundary - 3.0 * (boundary - centre).normalized() * (w / 360.0), w);
+    ASSERT_NE(off, std::string::npos);
+    EXPECT_LE(shareOn(fp.lowerBegin[off], fp.upperBegin[off + 1], beacon.lower->colourClass), 0.25);
+  }
+}
+
+TEST(FootprintDetector, FindsEachBeaconWhereItsBandsProject) {
+  RigSpec rig = field().rig;
+  rig.mirrorRig().imageSize = 720;  // a pixel near the horizon is tens of cm of range at 360 px
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  for (const Beacon& beacon : beacons) {
+    ImageRGBA image = greyImage(rig.camera().width());
+    paintBeacon(image, rig, kPose, beacon);
+    const DetectionResult r = detector.detect(image, exactClassifiers(), DetectorOptions{});
+    ASSERT_EQ(r.beacons.size(), 1u) << beacon.name;
+    EXPECT_EQ(r.beacons[0].beacon, &beacon);
+    EXPECT_LT((r.beacons[0].raster - boundaryRaster(rig, kPose, beacon)).norm(), 1.5) << beacon.name;
+    ASSERT_EQ(r.blobs.size(), 2u);
+    EXPECT_EQ(r.blobs[0].colour, beacon.upper->colourClass);
+    EXPECT_EQ(r.blobs[1].colour, beacon.lower->colourClass);
+    ASSERT_TRUE(r.beacons[0].rangeBearing);
+    const double dx = beacon.position().x() - kPose.x, dy = beacon.position().y() - kPose.y;
+    EXPECT_NEAR((*r.beacons[0].rangeBearing)(0), std::hypot(dx, dy), 0.05 * std::hypot(dx, dy)) << beacon.name;
+    EXPECT_NEAR(wrapAngle((*r.beacons[0].rangeBearing)(1) - (std::atan2(dy, dx) - kPose.yawDeg * M_PI / 180)), 0.0, 0.01);
+  }
+}
+
+TEST(FootprintDetector, SpecksOfTheBandsColoursAreNoBeaconAndDoNotOutvoteOne) {
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const Beacon& beacon = beacons[0];
+  // Specks of two pixels where the beacon's band centres would be seen from another pose: the
+  // pixel detector pairs them (their inversions agree exactly); each is under half its band's
+  // footprint, whose mean evidence is then below log Θ = 0.
+  const RobotPose ghostPose{beacon.position().x() - 1.0, beacon.position().y() + 0.6, -40.0};
+  ImageRGBA specks = greyImage(rig.camera().width());
+  const size_t ghost = candidateAt(detector.footprints(0), boundaryRaster(rig, ghostPose, beacon), rig.camera().width());
+  ASSERT_NE(ghost, std::string::npos);
+  const BeaconFootprints& fp = detector.footprints(0);
+  ASSERT_GE(fp.lowerBegin[ghost] - fp.upperBegin[ghost], 5);  // a speck is under half of either band
+  ASSERT_GE(fp.upperBegin[ghost + 1] - fp.lowerBegin[ghost], 5);
+  for (const Landmark* band : {beacon.upper, beacon.lower}) {
+    const Vec2 r = *projected(rig, ghostPose, band->position);
+    paint(specks, r, kColours.at(band->colourClass));
+    paint(specks, r + Vec2(1, 0), kColours.at(band->colourClass));
+  }
+  const DetectionResult pixels = detectBeacons(specks, exactClassifiers(), beacons, rig, DetectorOptions{});
+  ASSERT_EQ(pixels.beacons.size(), 1u);  // the thesis' detector takes them for the beacon
+  EXPECT_TRUE(detector.detect(specks, exactClassifiers(), DetectorOptions{}).beacons.empty());
+  // The beacon itself beside them is found where it is.
+  ImageRGBA both = greyImage(rig.camera().width());
+  paintBeacon(both, rig, kPose, beacon);
+  for (const Landmark* band : {beacon.upper, beacon.lower}) {
+    const Vec2 r = *projected(rig, ghostPose, band->position);
+    paint(both, r, kColours.at(band->colourClass));
+    paint(both, r + Vec2(1, 0), kColours.at(band->colourClass));
+  }
+  const DetectionResult found = detector.detect(both, exactClassifiers(), DetectorOptions{});
+  ASSERT_EQ(found.beacons.size(), 1u);
+  EXPECT_LT((found.beacons[0].raster - boundaryRaster(rig, kPose, beacon)).norm(), 1.5);
+}
+
+TEST(FootprintDetector, NoBeaconWhereAlphaIsZeroAndOnlyTheRigsImageSize) {
+  // Pixels with alpha < 0.5 (beyond the mirror's rim) are certainly no band: a beacon whose lower
+  // band lies there is not found, though its upper band is painted in full view.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  ImageRGBA image = greyImage(rig.camera().width());
+  const Beacon& beacon = beacons[1];
+  paintBeacon(image, rig, kPose, beacon);
+  ASSERT_EQ(detector.detect(image, exactClassifiers(), DetectorOptions{}).beacons.size(), 1u);
+  const Vec2 centre = rig.camera().centre();
+  const double split = (boundaryRaster(rig, kPose, beacon) - centre).norm();
+  const double lowerSide = (*projected(rig, kPose, beacon.lower->position) - centre).norm();
+  for (int j = 0; j < image.height; ++j)
+    for (int i = 0; i < image.width; ++i) {
+      const double r = (Vec2(i + 0.5, j + 0.5) - centre).norm();
+      // The rim a pixel into the upper band: no sliver of the lower band's paint is left in view.
+      if (lowerSide > split ? r > split - 1.0 : r < split + 1.0) image.at(i, j)[3] = 0.0f;
+    }
+  EXPECT_TRUE(detector.detect(image, exactClassifiers(), DetectorOptions{}).beacons.empty());
+  EXPECT_THROW(detector.detect(greyImage(rig.camera().width() / 2), exactClassifiers(), DetectorOptions{}),
+               std::invalid_argument);
+  DetectorOptions zero;
+  zero.theta = 0.0;
+  EXPECT_THROW(detector.detect(greyImage(rig.camera().width()), exactClassifiers(), zero), std::invalid_argument);
+}
+
+TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {
+  ColourHistogramClassifier c(32);
+  const Rgb8 a{200, 20, 150}, b{90, 90, 90}, both{10, 200, 220};
+  c.addPositive(a, 10);
+  c.addNegative(b, 10);
+  c.addPositive(both, 30);
+  c.addNegative(both, 10);
+  EXPECT_EQ(clampedLogLikelihoodRatio(c, a), kMaxLogLikelihoodRatio);     // only ever positive
+  EXPECT_EQ(clampedLogLikelihoodRatio(c, b), -kMaxLogLikelihoodRatio);    // never positive
+  EXPECT_EQ(clampedLogLikelihoodRatio(c, Rgb8{0, 0, 0}), -kMaxLogLikelihoodRatio);  // never seen
+  // (30/40) / (10/20) = 1.5
+  EXPECT_NEAR(clampedLogLikelihoodRatio(c, both), std::log(1.5), 1e-12);
+}
+
+}  // namespace
+}  // namespace omnicam
