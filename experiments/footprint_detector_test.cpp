@@ -8,42 +8,12 @@
 #include <cmath>
 
 #include "placement.h"
-#include "scene_loader.h"
+#include "detector_test_fixtures.h"
 
 namespace omnicam {
 namespace {
 
-const Scene& field() {
-  static const Scene scene = loadScene(std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json");
-  return scene;
-}
-
-const std::map<std::string, Vec3f> kColours = {
-    {"cyan", {0.02f, 0.65f, 0.85f}}, {"magenta", {0.85f, 0.02f, 0.55f}}, {"yellow", {0.9f, 0.8f, 0.02f}}};
-const Vec3f kGrey{0.3f, 0.3f, 0.3f};
-
-std::map<std::string, ColourHistogramClassifier> exactClassifiers() {
-  std::map<std::string, ColourHistogramClassifier> classifiers;
-  for (const auto& [name, colour] : kColours) {
-    ColourHistogramClassifier c(32);
-    for (const auto& [other, otherColour] : kColours) {
-      const float rgba[4] = {otherColour[0], otherColour[1], otherColour[2], 1.0f};
-      if (other == name) c.addPositive(rgb8FromPixel(rgba), 100);
-      else c.addNegative(rgb8FromPixel(rgba), 100);
-    }
-    const float grey[4] = {kGrey[0], kGrey[1], kGrey[2], 1.0f};
-    c.addNegative(rgb8FromPixel(grey), 10000);
-    classifiers.emplace(name, c);
-  }
-  return classifiers;
-}
-
-ImageRGBA greyImage(int size) {
-  ImageRGBA image(size, size);
-  for (size_t p = 0; p < image.pixels.size(); p += 4)
-    image.pixels[p] = kGrey[0], image.pixels[p + 1] = kGrey[1], image.pixels[p + 2] = kGrey[2], image.pixels[p + 3] = 1.0f;
-  return image;
-}
+using namespace detector_test;
 
 void paint(ImageRGBA& image, const Vec2& raster, const Vec3f& colour) {
   const int i = static_cast<int>(std::floor(raster.x())), j = static_cast<int>(std::floor(raster.y()));
