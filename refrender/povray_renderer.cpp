@@ -60,7 +60,18 @@ ImageRGBA runPovrayJob(const PovrayJob& job, const PovrayOptions& options, int t
   writePovrayJob(job, folder.path(), threads, region);
   writeRestrictiveConfig(folder.path());
   const std::string log = folder.path() + "/povray.log";
-  const ProcessResult r = runRenderer({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
+  // POV-Ray 3.7 gives up when its render threads do not start within its own fixed time, which a
+  // loaded machine (several POV-Ray processes at once) can cause. Nothing was rendered then, so
+  // the job runs again.
+  constexpr int kStartupAttempts = 3;
+  constexpr const char* kWorkerStartupTimeout = "Timed out waiting for worker thread startup";
+  ProcessResult r;
+  for (int attempt = 1;; ++attempt) {
+    r = runRenderer({options.executable, "render.ini"}, folder.path(), log, options.timeoutSeconds);
+    if (r.exitCode == 0 || r.notFound || r.timedOut || attempt == kStartupAttempts ||
+        r.logTail.find(kWorkerStartupTimeout) == std::string::npos)
+      break;
+  }
   if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
     throw ExternalError("povray: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +

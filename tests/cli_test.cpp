@@ -309,6 +309,33 @@ TEST_F(CliTest, PovrayFailuresExitThreeWithItsOutputAndWriteNothing) {
   }
 }
 
+TEST_F(CliTest, APovrayWhoseThreadsDidNotStartRunsAgain) {
+  // POV-Ray 3.7 on a loaded machine can give up before rendering ("Timed out waiting for worker
+  // thread startup"): the job runs again, up to three times, and nothing else is retried.
+  const std::string attempts = path("attempts");
+  const std::string flaky = path("flaky-povray");
+  // Only renders are counted (and fail); a version probe reaches the real POV-Ray.
+  std::ofstream(flaky) << "#!/bin/sh\nif [ \"$1\" = render.ini ]; then\n  echo run >> '" << attempts << "'\n"
+                       << "  if [ $(wc -l < '" << attempts << "') -lt 3 ]; then echo 'Timed out waiting for worker thread startup' >&2; exit 1; fi\n"
+                       << "fi\nexec povray \"$@\"\n";
+  fs::permissions(flaky, fs::perms::owner_all);
+  CommandResult r = run("render " + kScene + " --engine povray --size 32 -o " + path("p.exr"), "OMNICAM_POVRAY=" + flaky);
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(path("p.exr")));
+  EXPECT_EQ(testing::readFile(attempts), "run\nrun\nrun\n");
+  // A POV-Ray that never starts its threads fails after three runs, with its words.
+  fs::remove(attempts);
+  const std::string stuck = path("stuck-povray");
+  std::ofstream(stuck) << "#!/bin/sh\nif [ \"$1\" = render.ini ]; then\n  echo run >> '" << attempts
+                       << "'\n  echo 'Timed out waiting for worker thread startup' >&2\n  exit 1\nfi\nexec povray \"$@\"\n";
+  fs::permissions(stuck, fs::perms::owner_all);
+  r = run("render " + kScene + " --engine povray --size 32 -o " + path("q.exr"), "OMNICAM_POVRAY=" + stuck);
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("worker thread startup"), std::string::npos) << r.out;
+  EXPECT_EQ(testing::readFile(attempts), "run\nrun\nrun\n");
+  EXPECT_FALSE(fs::exists(path("q.exr")));
+}
+
 TEST_F(CliTest, BlenderFailuresExitThreeWithItsOutputAndWriteNothing) {
   const std::string out = path("b.exr");
   const std::string script = path("fake-blender");
