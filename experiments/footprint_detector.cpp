@@ -189,9 +189,9 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
 DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                           const std::map<std::string, ColourHistogramClassifier>& classifiers,
                                           const DetectorOptions& options) const {
-  const int size = rig_.camera().width();
-  if (frame.width != size || frame.height != rig_.camera().height())
+  if (frame.width != rig_.camera().width() || frame.height != rig_.camera().height())
     throw std::invalid_argument("footprint detector: the frame is not the rig's image size");
+  if (!(options.theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
   const ImageRGBA image = detectorInput(frame, options);
   const size_t pixelCount = static_cast<size_t>(image.width) * image.height;
   // Each band colour's evidence per pixel.
@@ -209,7 +209,6 @@ DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                 : static_cast<float>(clampedLogLikelihoodRatio(classifier->second, rgb8FromPixel(rgba)));
       }
     }
-  if (!(options.theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
   const double minMean = std::log(options.theta);
   std::vector<uint8_t> taken(pixelCount, 0);
   auto overlapsTaken = [&](const BeaconFootprints& fp, size_t c) {
