@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace omnicam {
 
@@ -49,6 +50,25 @@ void ColourHistogramClassifier::train(const ImageRGBA& image, const std::vector<
       if (label == 1) addPositive(rgb8FromPixel(image.at(i, j)));
       else if (label == 0) addNegative(rgb8FromPixel(image.at(i, j)));
     }
+}
+
+ColourHistogramClassifier ColourHistogramClassifier::coarsened(int binsPerChannel) const {
+  if (binsPerChannel < 1 || binsPerChannel > bins_ || bins_ % binsPerChannel != 0)
+    throw std::invalid_argument("coarsened: " + std::to_string(binsPerChannel) + " bins do not divide " + std::to_string(bins_));
+  ColourHistogramClassifier coarse(binsPerChannel);
+  const size_t fine = static_cast<size_t>(bins_), factor = fine / static_cast<size_t>(binsPerChannel);
+  const size_t coarseBins = static_cast<size_t>(binsPerChannel);
+  for (size_t r = 0; r < fine; ++r)
+    for (size_t g = 0; g < fine; ++g)
+      for (size_t b = 0; b < fine; ++b) {
+        const size_t from = (r * fine + g) * fine + b;
+        const size_t to = ((r / factor) * coarseBins + g / factor) * coarseBins + b / factor;
+        coarse.positive_[to] += positive_[from];
+        coarse.negative_[to] += negative_[from];
+      }
+  coarse.positiveTotal_ = positiveTotal_;
+  coarse.negativeTotal_ = negativeTotal_;
+  return coarse;
 }
 
 double ColourHistogramClassifier::likelihoodRatio(const Rgb8& colour) const {

@@ -35,6 +35,11 @@ class ColourHistogramClassifier {
   // One mask entry per pixel: 1 positive, 0 not.
   std::vector<uint8_t> classify(const ImageRGBA& image, double theta) const;
 
+  // The same training at `binsPerChannel` bins, which must divide this one's: each coarse bin
+  // holds its fine bins' counts (bin c·bins/256 of a code c nests in the finer bin, so this is
+  // exactly what training at the coarse resolution would count).
+  ColourHistogramClassifier coarsened(int binsPerChannel) const;
+
   int binsPerChannel() const { return bins_; }
   uint64_t positiveTotal() const { return positiveTotal_; }
   uint64_t negativeTotal() const { return negativeTotal_; }

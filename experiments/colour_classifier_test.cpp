@@ -45,6 +45,41 @@ ImageRGBA discImage(int size, double cx, double cy, std::mt19937_64& rng, std::v
   return image;
 }
 
+TEST(ColourClassifier, CoarsenedCountsWhatTrainingAtTheCoarseResolutionCounts) {
+  // Random colours trained at 32 and at 8 bins: the 32-bin histogram coarsened to 8 bins agrees
+  // with the 8-bin one at every code (codes 0–31 → coarse bin 0, …), and by hand at two codes.
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> code(0, 255);
+  ColourHistogramClassifier fine(32), direct(8);
+  for (int k = 0; k < 5000; ++k) {
+    const Rgb8 colour{static_cast<uint8_t>(code(random)), static_cast<uint8_t>(code(random) / 2), static_cast<uint8_t>(code(random))};
+    const bool positive = colour[0] > 150 && k % 3 != 0;
+    (positive ? fine.addPositive(colour) : fine.addNegative(colour));
+    (positive ? direct.addPositive(colour) : direct.addNegative(colour));
+  }
+  const ColourHistogramClassifier coarse = fine.coarsened(8);
+  EXPECT_EQ(coarse.binsPerChannel(), 8);
+  EXPECT_EQ(coarse.positiveTotal(), fine.positiveTotal());
+  EXPECT_EQ(coarse.negativeTotal(), fine.negativeTotal());
+  for (int r = 0; r < 256; r += 5)
+    for (int g = 0; g < 256; g += 7)
+      for (int b = 0; b < 256; b += 11) {
+        const Rgb8 colour{static_cast<uint8_t>(r), static_cast<uint8_t>(g), static_cast<uint8_t>(b)};
+        ASSERT_EQ(coarse.positiveCount(colour), direct.positiveCount(colour));
+        ASSERT_EQ(coarse.negativeCount(colour), direct.negativeCount(colour));
+      }
+  ColourHistogramClassifier byHand(4);
+  byHand.addPositive(Rgb8{0, 0, 0}, 2);      // fine bins (0,0,0) and (1,1,1) of 4 share coarse bin (0,0,0) of 2
+  byHand.addPositive(Rgb8{127, 127, 127}, 3);
+  byHand.addNegative(Rgb8{128, 0, 0}, 5);    // fine bin (2,0,0) → coarse (1,0,0)
+  const ColourHistogramClassifier halved = byHand.coarsened(2);
+  EXPECT_EQ(halved.positiveCount(Rgb8{10, 100, 50}), 5u);
+  EXPECT_EQ(halved.negativeCount(Rgb8{255, 127, 0}), 5u);
+  EXPECT_EQ(halved.positiveCount(Rgb8{255, 255, 255}), 0u);
+  EXPECT_THROW(byHand.coarsened(3), std::invalid_argument);
+  EXPECT_THROW(byHand.coarsened(8), std::invalid_argument);
+}
+
 TEST(ColourClassifier, LearnsACyanDiscAndFindsItElsewhere) {
   std::mt19937_64 rng(5);
   std::vector<uint8_t> labels, truth;

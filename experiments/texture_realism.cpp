@@ -212,6 +212,71 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
 
 constexpr const char* kOracleSet = "realistic_test_frames";
 
+// The validation frames that choose the footprint detector's colour resolution: path frames at
+// poses no training frame has. tryResolutions records each through cameras drawn from the training
+// ranges at draws no training frame (nor the figure) uses; no test camera is seen.
+constexpr uint64_t kValidationDraws = 2000000;
+std::vector<Frame> validationFrames(const TextureRealismOptions& o, const Scene& textured, const std::function<void()>& step) {
+  return renderFast(textured, randomFieldPoses(o.trainFrames, o.seed + 4), o.size, o.pathSpp, step, Shading::Path);
+}
+
+// Every training set's classifiers at `bins` per channel (coarsened from the trained ones).
+Classifiers coarsenedTo(const Classifiers& trained, int bins) {
+  Classifiers out;
+  for (const auto& [set, classifiers] : trained)
+    for (const auto& [colour, classifier] : classifiers) out[set].emplace(colour, classifier.coarsened(bins));
+  return out;
+}
+
+// What detecting and scoring a set of frames needs besides the classifiers.
+struct Scoring {
+  const Scene& plain;
+  const FastRenderer& geometry;
+  const RigSpec& rig;
+  const std::vector<Beacon>& beacons;
+  const std::vector<std::string>& bandColour;
+  const std::vector<std::string>& objectNames;
+  double matchRadiusPx;
+};
+
+// The footprint detector's colour resolution: the trained resolution and its halvings (down to 8
+// bins), each tried by path_recorded's classifiers on the validation frames, each frame recorded
+// `recordingDraws` times (one recorded frame in memory at a time); the best score wins.
+std::vector<ResolutionTrial> tryResolutions(const TextureRealismOptions& o, const Classifiers& trained, const std::vector<Frame>& validation,
+                                            const FootprintDetector& detector, const Scoring& s) {
+  std::vector<ResolutionTrial> trials;
+  std::vector<std::map<std::string, ColourHistogramClassifier>> classifiers;
+  // The trained resolution always; then each halving it divides into, down to 8 bins.
+  for (int bins = o.bins; bins == o.bins || (bins >= 8 && o.bins % bins == 0); bins /= 2) {
+    trials.push_back({});
+    trials.back().bins = bins;
+    classifiers.emplace_back();
+    for (const auto& [colour, classifier] : trained.at(recordedSet("path"))) classifiers.back().emplace(colour, classifier.coarsened(bins));
+  }
+  for (size_t k = 0; k < validation.size(); ++k) {
+    const std::vector<GroundTruthBeacon> truth = groundTruth(s.plain, s.geometry.rays(), s.rig, validation[k].pose, s.beacons);
+    for (int d = 0; d < o.recordingDraws; ++d) {
+      const uint64_t index = kValidationDraws + k * static_cast<uint64_t>(o.recordingDraws) + static_cast<uint64_t>(d);
+      const Frame recorded{validation[k].pose, recordFrame(o.trainingRecording.draw(index), validation[k].image, index), validation[k].instance};
+      for (size_t r = 0; r < trials.size(); ++r) {
+        const FrameEvaluation e = evaluateFrame(recorded, detector.detect(recorded.image, classifiers[r], o.detector), truth,
+                                                s.bandColour, s.objectNames, s.matchRadiusPx);
+        trials[r].visibleBeacons += e.visibleBeacons;
+        trials[r].truePositives += e.truePositives;
+        trials[r].falsePositives += e.falsePositiveBlobs + e.falseIdentifications;
+      }
+    }
+  }
+  return trials;
+}
+
+int chosenBins(const std::vector<ResolutionTrial>& trials) {
+  const ResolutionTrial* best = &trials.front();
+  for (const ResolutionTrial& t : trials)
+    if (t.score() > best->score()) best = &t;  // finer first: a tie keeps the finer
+  return best->bins;
+}
+
 struct ConditionToRun {
   std::string train, test;
   DetectorKind detector;
@@ -323,7 +388,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<RobotPose> testPoses;
   for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
 
-  const int trainTotal = 4 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0);
+  const int trainTotal = 5 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0);
   const int testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
@@ -333,6 +398,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   // The oracle: classifiers trained on the realistic test frames themselves. What no training set
   // can beat with these classifiers: whether the bands' colours survive the test camera at all.
   trainOn(freshClassifiers(trained, kOracleSet, o.bins), tests.at("realistic"), bandColour, o.detector);
+  const std::vector<Frame> validation = validationFrames(o, textured, step);
 
   // Detection and evaluation.
   const FastRenderer geometry(plain);
@@ -342,6 +408,11 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<std::vector<GroundTruthBeacon>> truth;
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
   const FootprintDetector footprints(rig, beacons);
+  progress("choosing the footprint detector's colour resolution", 0, 1);
+  const std::vector<ResolutionTrial> resolutions =
+      tryResolutions(o, trained, validation, footprints, {plain, geometry, rig, beacons, bandColour, objectNames, matchRadius});
+  const Classifiers forFootprints = coarsenedTo(trained, chosenBins(resolutions));
+  progress("choosing the footprint detector's colour resolution", 1, 1);
   const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;
@@ -352,7 +423,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     condition.outcome.test = run.test;
     condition.outcome.detector = run.detector;
     const std::vector<Frame>& frames = tests.at(run.test);
-    const auto& classifiers = trained.at(run.train);
+    const auto& classifiers = (run.detector == DetectorKind::Footprints ? forFootprints : trained).at(run.train);
     for (size_t k = 0; k < frames.size(); ++k) {
       const DetectionResult detected = run.detector == DetectorKind::Footprints
                                            ? footprints.detect(frames[k].image, classifiers, o.detector)
@@ -367,6 +438,8 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
 
   TextureRealismResults results;
   describeCameras(o, results);
+  results.footprintResolutions = resolutions;
+  results.footprintBins = chosenBins(resolutions);
   results.cyclesFramesRendered = cycles.rendered;
   results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);

@@ -69,6 +69,13 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                              {"mean_improvement_cm", e.meanErrorOdometryCm - e.meanErrorEkfCm},
                              {"measurements_used", e.measurementsUsed},
                              {"measurements_gated", e.measurementsGated}};
+  j["footprint_bins"] = results.footprintBins;
+  j["footprint_resolutions"] = nlohmann::json::array();
+  for (const ResolutionTrial& t : results.footprintResolutions)
+    j["footprint_resolutions"].push_back({{"bins_per_channel", t.bins},
+                                          {"visible_beacons", t.visibleBeacons},
+                                          {"true_positives", t.truePositives},
+                                          {"false_positives", t.falsePositives}});
   j["seconds"] = results.seconds;
   return j;
 }

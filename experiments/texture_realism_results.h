@@ -85,6 +85,15 @@ struct TestCameraSummary {
   std::vector<std::pair<std::string, std::string>> values;
 };
 
+// One colour resolution tried for the footprint detector on the validation frames (path frames at
+// poses no training frame has, each recorded through cameras drawn from the training ranges with
+// draws no training frame used; never a test camera), by its path_recorded classifiers.
+struct ResolutionTrial {
+  int bins = 0;
+  int visibleBeacons = 0, truePositives = 0, falsePositives = 0;
+  int score() const { return truePositives - falsePositives; }
+};
+
 struct TextureRealismResults {
   std::vector<ConditionOutcome> conditions;
   std::vector<TestCameraSummary> testCameras;
@@ -92,6 +101,10 @@ struct TextureRealismResults {
   std::vector<std::string> ablatedStages;
   ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
+  // The footprint detector's conditions use classifiers coarsened to `footprintBins`, the tried
+  // resolution with the best validation score (the finer one on a tie).
+  std::vector<ResolutionTrial> footprintResolutions;
+  int footprintBins = 0;
   double seconds = 0.0;
   int cyclesFramesRendered = 0, cyclesFramesReused = 0;  // Cycles' frames, rendered now or kept from an earlier run
 };

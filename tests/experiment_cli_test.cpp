@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -160,6 +161,23 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const json& plainFootprints = results["conditions"]["plain_to_plain_footprints"];
   EXPECT_GE(plainFootprints["true_positives"].get<int>(), 4);
   EXPECT_LT(plainFootprints["false_positives"].get<int>(), plain["false_positives"].get<int>());
+  // Its colour resolution: 32 bins and its halvings tried on the validation frames (6 poses, each
+  // through 2 drawn cameras); the chosen one scores best.
+  const json& resolutions = results["footprint_resolutions"];
+  ASSERT_EQ(resolutions.size(), 3u);
+  int bestScore = std::numeric_limits<int>::min();
+  for (size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(resolutions[k]["bins_per_channel"], 32 >> k);
+    EXPECT_LE(resolutions[k]["visible_beacons"].get<int>(), 48);  // 12 recorded frames of at most 4 beacons
+    EXPECT_EQ(resolutions[k]["visible_beacons"].get<int>() % 2, 0);  // each pose's beacons counted once per drawn camera
+    EXPECT_EQ(resolutions[k]["visible_beacons"], resolutions[0]["visible_beacons"]);
+    EXPECT_GT(resolutions[k]["visible_beacons"].get<int>(), 0);
+    bestScore = std::max(bestScore, resolutions[k]["true_positives"].get<int>() - resolutions[k]["false_positives"].get<int>());
+  }
+  int chosenScore = std::numeric_limits<int>::min();
+  for (const json& t : resolutions)
+    if (t["bins_per_channel"] == results["footprint_bins"]) chosenScore = t["true_positives"].get<int>() - t["false_positives"].get<int>();
+  EXPECT_EQ(chosenScore, bestScore);
 
   // --quick: every 25th of the 100 thesis-loop poses (4 test frames), 360 px, 6 training frames.
   const Scene field = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
