@@ -18,6 +18,12 @@ Rgb8 rgb8FromPixel(const float* rgba) {
   return out;
 }
 
+std::vector<int> resolutionAndHalvings(int bins, int smallest) {
+  std::vector<int> out = {bins};
+  while (out.back() % 2 == 0 && out.back() / 2 >= smallest) out.push_back(out.back() / 2);
+  return out;
+}
+
 ColourHistogramClassifier::ColourHistogramClassifier(int binsPerChannel) : bins_(binsPerChannel) {
   if (bins_ < 1 || bins_ > 256) throw std::invalid_argument("bins per channel must be in [1, 256]");
   const size_t cells = static_cast<size_t>(bins_) * bins_ * bins_;

@@ -16,6 +16,10 @@ using Rgb8 = std::array<uint8_t, 3>;
 // The 8-bit sRGB code of a linear, premultiplied pixel (as PNG encoding rounds it).
 Rgb8 rgb8FromPixel(const float* rgba);
 
+// `bins` and each exact halving of it not below `smallest` (32, 8 → 32, 16, 8; 24, 8 → 24, 12;
+// 7, 8 → 7): the resolutions a classifier trained at `bins` coarsens to by halving.
+std::vector<int> resolutionAndHalvings(int bins, int smallest);
+
 class ColourHistogramClassifier {
  public:
   // `binsPerChannel` in [1, 256]: code c falls in bin c·bins/256.

@@ -78,6 +78,28 @@ TEST(ColourClassifier, CoarsenedCountsWhatTrainingAtTheCoarseResolutionCounts) {
   EXPECT_EQ(halved.positiveCount(Rgb8{255, 255, 255}), 0u);
   EXPECT_THROW(byHand.coarsened(3), std::invalid_argument);
   EXPECT_THROW(byHand.coarsened(8), std::invalid_argument);
+  EXPECT_THROW(byHand.coarsened(0), std::invalid_argument);
+  // A factor that is not a power of two: 12 bins (codes 0–21 → 0, 22–42 → 1, …) to 4 (0–63 → 0, …).
+  ColourHistogramClassifier twelve(12), four(4);
+  for (int c = 0; c < 256; c += 3) {
+    const Rgb8 colour{static_cast<uint8_t>(c), static_cast<uint8_t>(255 - c), static_cast<uint8_t>((c * 7) % 256)};
+    twelve.addPositive(colour, static_cast<uint64_t>(c % 5 + 1));
+    four.addPositive(colour, static_cast<uint64_t>(c % 5 + 1));
+  }
+  const ColourHistogramClassifier thirds = twelve.coarsened(4);
+  for (int c = 0; c < 256; ++c) {
+    const Rgb8 colour{static_cast<uint8_t>(c), static_cast<uint8_t>(255 - c), static_cast<uint8_t>((c * 7) % 256)};
+    ASSERT_EQ(thirds.positiveCount(colour), four.positiveCount(colour)) << c;
+  }
+}
+
+TEST(ColourClassifier, ResolutionsAreTheTrainedOneAndItsExactHalvings) {
+  EXPECT_EQ(resolutionAndHalvings(32, 8), (std::vector<int>{32, 16, 8}));
+  EXPECT_EQ(resolutionAndHalvings(24, 8), (std::vector<int>{24, 12}));
+  EXPECT_EQ(resolutionAndHalvings(136, 8), (std::vector<int>{136, 68, 34, 17}));
+  EXPECT_EQ(resolutionAndHalvings(7, 8), (std::vector<int>{7}));
+  EXPECT_EQ(resolutionAndHalvings(2, 8), (std::vector<int>{2}));
+  EXPECT_EQ(resolutionAndHalvings(256, 8), (std::vector<int>{256, 128, 64, 32, 16, 8}));
 }
 
 TEST(ColourClassifier, LearnsACyanDiscAndFindsItElsewhere) {

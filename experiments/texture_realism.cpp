@@ -98,6 +98,13 @@ std::vector<Frame> recordedFrames(const std::vector<Frame>& frames, const std::v
   return recorded;
 }
 
+// Which drawn camera records a frame: training frame k's d-th draw is k × draws + d; the figure's
+// and the validation frames' draws start far above any training draw.
+constexpr uint64_t kFigureDraws = 1000000, kValidationDraws = 2000000;
+uint64_t drawIndex(uint64_t first, size_t frame, int draw, int draws) {
+  return first + frame * static_cast<uint64_t>(draws) + static_cast<uint64_t>(draw);
+}
+
 // Trains `classifiers` on `frames`, each recorded `draws` times through a camera drawn from
 // `recording` (draw index frame × draws + d), with `neutralStage` (if any) held neutral: one
 // recorded frame in memory at a time.
@@ -105,7 +112,7 @@ void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifie
                      const TextureRealismOptions& o, const std::string& neutralStage, const std::vector<std::string>& bandColour) {
   for (size_t k = 0; k < frames.size(); ++k)
     for (int d = 0; d < o.recordingDraws; ++d) {
-      const uint64_t index = k * static_cast<uint64_t>(o.recordingDraws) + static_cast<uint64_t>(d);
+      const uint64_t index = drawIndex(0, k, d, o.recordingDraws);
       RecordingCamera camera = o.trainingRecording.draw(index);
       if (!neutralStage.empty()) camera = withStageNeutral(camera, neutralStage);
       trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour, o.detector);
@@ -179,7 +186,7 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   for (const FrameEvaluation& f : condition.frames) {
     c.truePositives += f.truePositives;
     c.falsePositiveBlobs += f.falsePositiveBlobs;
-    c.falsePositives += f.falsePositiveBlobs + f.falseIdentifications;
+    c.falsePositives += f.falsePositives();
     c.missed += f.visibleBeacons - f.truePositives;
     pixels.insert(pixels.end(), f.localisationErrorsPx.begin(), f.localisationErrorsPx.end());
     ranges.insert(ranges.end(), f.rangeErrorsCm.begin(), f.rangeErrorsCm.end());
@@ -215,65 +222,64 @@ constexpr const char* kOracleSet = "realistic_test_frames";
 // The validation frames that choose the footprint detector's colour resolution: path frames at
 // poses no training frame has. tryResolutions records each through cameras drawn from the training
 // ranges at draws no training frame (nor the figure) uses; no test camera is seen.
-constexpr uint64_t kValidationDraws = 2000000;
 std::vector<Frame> validationFrames(const TextureRealismOptions& o, const Scene& textured, const std::function<void()>& step) {
   return renderFast(textured, randomFieldPoses(o.trainFrames, o.seed + 4), o.size, o.pathSpp, step, Shading::Path);
 }
 
-// Every training set's classifiers at `bins` per channel (coarsened from the trained ones).
-Classifiers coarsenedTo(const Classifiers& trained, int bins) {
-  Classifiers out;
-  for (const auto& [set, classifiers] : trained)
-    for (const auto& [colour, classifier] : classifiers) out[set].emplace(colour, classifier.coarsened(bins));
+// One training set's classifiers at `bins` per channel (coarsened from the trained ones).
+std::map<std::string, ColourHistogramClassifier> coarsenedSet(const std::map<std::string, ColourHistogramClassifier>& set, int bins) {
+  std::map<std::string, ColourHistogramClassifier> out;
+  for (const auto& [colour, classifier] : set) out.emplace(colour, classifier.coarsened(bins));
   return out;
 }
 
-// What detecting and scoring a set of frames needs besides the classifiers.
+// The coarsest colour resolution validation tries for the footprint detector.
+constexpr int kSmallestFootprintBins = 8;
+
+// What scoring a frame needs besides the detections.
 struct Scoring {
-  const Scene& plain;
-  const FastRenderer& geometry;
-  const RigSpec& rig;
-  const std::vector<Beacon>& beacons;
   const std::vector<std::string>& bandColour;
   const std::vector<std::string>& objectNames;
   double matchRadiusPx;
 };
 
-// The footprint detector's colour resolution: the trained resolution and its halvings (down to 8
-// bins), each tried by path_recorded's classifiers on the validation frames, each frame recorded
-// `recordingDraws` times (one recorded frame in memory at a time); the best score wins.
-std::vector<ResolutionTrial> tryResolutions(const TextureRealismOptions& o, const Classifiers& trained, const std::vector<Frame>& validation,
-                                            const FootprintDetector& detector, const Scoring& s) {
+// The footprint detector's colour resolution: path + drawn cameras' classifiers (`pathRecorded`) at
+// each candidate resolution detect the validation frames (their beacons' `truth` beside them), each
+// frame recorded `recordingDraws` times, one recorded frame in memory at a time.
+std::vector<ResolutionTrial> tryResolutions(const TextureRealismOptions& o,
+                                            const std::map<std::string, ColourHistogramClassifier>& pathRecorded,
+                                            const std::vector<Frame>& validation,
+                                            const std::vector<std::vector<GroundTruthBeacon>>& truth,
+                                            const FootprintDetector& detector, const Scoring& s, const ExperimentProgress& progress) {
   std::vector<ResolutionTrial> trials;
   std::vector<std::map<std::string, ColourHistogramClassifier>> classifiers;
-  // The trained resolution always; then each halving it divides into, down to 8 bins.
-  for (int bins = o.bins; bins == o.bins || (bins >= 8 && o.bins % bins == 0); bins /= 2) {
+  for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins)) {
     trials.push_back({});
     trials.back().bins = bins;
-    classifiers.emplace_back();
-    for (const auto& [colour, classifier] : trained.at(recordedSet("path"))) classifiers.back().emplace(colour, classifier.coarsened(bins));
+    classifiers.push_back(coarsenedSet(pathRecorded, bins));
   }
   for (size_t k = 0; k < validation.size(); ++k) {
-    const std::vector<GroundTruthBeacon> truth = groundTruth(s.plain, s.geometry.rays(), s.rig, validation[k].pose, s.beacons);
     for (int d = 0; d < o.recordingDraws; ++d) {
-      const uint64_t index = kValidationDraws + k * static_cast<uint64_t>(o.recordingDraws) + static_cast<uint64_t>(d);
+      const uint64_t index = drawIndex(kValidationDraws, k, d, o.recordingDraws);
       const Frame recorded{validation[k].pose, recordFrame(o.trainingRecording.draw(index), validation[k].image, index), validation[k].instance};
       for (size_t r = 0; r < trials.size(); ++r) {
-        const FrameEvaluation e = evaluateFrame(recorded, detector.detect(recorded.image, classifiers[r], o.detector), truth,
+        const FrameEvaluation e = evaluateFrame(recorded, detector.detect(recorded.image, classifiers[r], o.detector), truth[k],
                                                 s.bandColour, s.objectNames, s.matchRadiusPx);
         trials[r].visibleBeacons += e.visibleBeacons;
         trials[r].truePositives += e.truePositives;
-        trials[r].falsePositives += e.falsePositiveBlobs + e.falseIdentifications;
+        trials[r].falsePositives += e.falsePositives();
       }
     }
+    progress("choosing the footprint detector's colour resolution", static_cast<int>(k + 1), static_cast<int>(validation.size()));
   }
   return trials;
 }
 
+// The best TP − FP; candidates run finest first, so a tie keeps the finer.
 int chosenBins(const std::vector<ResolutionTrial>& trials) {
   const ResolutionTrial* best = &trials.front();
   for (const ResolutionTrial& t : trials)
-    if (t.score() > best->score()) best = &t;  // finer first: a tie keeps the finer
+    if (t.score() > best->score()) best = &t;
   return best->bins;
 }
 
@@ -325,8 +331,8 @@ void describeCameras(const TextureRealismOptions& o, TextureRealismResults& resu
 // plain, path, path through one drawn training camera, realistic.
 ImageRGBA recordingComparison(const TextureRealismOptions& o, const std::map<std::string, std::vector<Frame>>& tests, size_t pose) {
   const ImageRGBA& path = tests.at("path")[pose].image;
-  const uint64_t drawIndex = 1000000 + pose;  // a draw no training frame used
-  const ImageRGBA panels[] = {tests.at("plain")[pose].image, path, recordFrame(o.trainingRecording.draw(drawIndex), path, drawIndex),
+  const uint64_t draw = kFigureDraws + pose;  // a draw no training frame used
+  const ImageRGBA panels[] = {tests.at("plain")[pose].image, path, recordFrame(o.trainingRecording.draw(draw), path, draw),
                               tests.at("realistic")[pose].image};
   const char* const labels[] = {"plain", "path", "path + drawn camera", "realistic"};
   const int side = std::min(240, path.width);
@@ -371,6 +377,8 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   if (o.size < 64 || o.spp < 1 || o.realistic.spp < 1 || o.testStride < 1 || o.trainFrames < 1 || o.randomHalls < 1 ||
       o.randomPhotos.empty() || o.labPhoto.empty())
     throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
+  if (o.recordingDraws < 1 || static_cast<uint64_t>(o.trainFrames) * static_cast<uint64_t>(o.recordingDraws) >= kFigureDraws)
+    throw InputError("texture-realism: 1 to " + std::to_string(kFigureDraws - 1) + " training recordings (frames × draws)");
   const fs::path out(o.outDir);
   // Its folders are made without following a link planted there: what it writes stays inside.
   const char* const folders[] = {"arenas", "data", "frames", "figures"};
@@ -408,11 +416,15 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<std::vector<GroundTruthBeacon>> truth;
   for (const RobotPose& pose : testPoses) truth.push_back(groundTruth(plain, geometry.rays(), rig, pose, beacons));
   const FootprintDetector footprints(rig, beacons);
-  progress("choosing the footprint detector's colour resolution", 0, 1);
-  const std::vector<ResolutionTrial> resolutions =
-      tryResolutions(o, trained, validation, footprints, {plain, geometry, rig, beacons, bandColour, objectNames, matchRadius});
-  const Classifiers forFootprints = coarsenedTo(trained, chosenBins(resolutions));
-  progress("choosing the footprint detector's colour resolution", 1, 1);
+  std::vector<std::vector<GroundTruthBeacon>> validationTruth;
+  for (const Frame& frame : validation) validationTruth.push_back(groundTruth(plain, geometry.rays(), rig, frame.pose, beacons));
+  const std::vector<ResolutionTrial> resolutions = tryResolutions(o, trained.at(recordedSet("path")), validation, validationTruth, footprints,
+                                                                  {bandColour, objectNames, matchRadius}, progress);
+  const int footprintBins = chosenBins(resolutions);
+  Classifiers coarsened;  // every set at footprintBins, when that is not the trained resolution
+  if (footprintBins != o.bins)
+    for (const auto& [set, classifiers] : trained) coarsened[set] = coarsenedSet(classifiers, footprintBins);
+  const Classifiers& forFootprints = footprintBins != o.bins ? coarsened : trained;
   const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;
@@ -439,7 +451,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   TextureRealismResults results;
   describeCameras(o, results);
   results.footprintResolutions = resolutions;
-  results.footprintBins = chosenBins(resolutions);
+  results.footprintBins = footprintBins;
   results.cyclesFramesRendered = cycles.rendered;
   results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);
@@ -484,7 +496,7 @@ DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const s
   result.drawn = drawDetections(frame.image, e);
   result.visibleBeacons = e.visibleBeacons;
   result.truePositives = e.truePositives;
-  result.falsePositives = e.falsePositiveBlobs + e.falseIdentifications;
+  result.falsePositives = e.falsePositives();
   return result;
 }
 

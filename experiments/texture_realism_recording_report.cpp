@@ -178,14 +178,15 @@ void writeFinding(std::ostringstream& md, const TextureRealismResults& r) {
 }
 
 // How the footprint detector's colour resolution was chosen: on validation frames, never a test camera.
-void writeResolutionChoice(std::ostringstream& md, const TextureRealismResults& r) {
+void writeResolutionChoice(std::ostringstream& md, const TextureRealismResults& r, const TextureRealismOptions& o) {
   if (r.footprintResolutions.empty()) return;
   md << "Its colour resolution is chosen before any test frame is seen. Validation frames — path frames at "
         "poses no training frame has, each recorded through cameras drawn from the training ranges with draws no "
         "training frame used — are detected with path + drawn cameras' histograms at the trained resolution and "
-        "its halvings (a coarse bin holds exactly its fine bins' counts). The best TP − FP wins, and every "
-        "footprint condition below, its bar plain → plain included, uses it: **"
-     << r.footprintBins << "³ bins**. The thesis' pixel detector keeps its " << r.footprintResolutions.front().bins
+        "each exact halving of it down to 8 bins (a coarse bin holds exactly its fine bins' counts). The best "
+        "TP − FP wins, the finer on a tie, and every footprint condition below, its bar plain → plain included, "
+        "uses it: **"
+     << r.footprintBins << "³ bins**. The thesis' pixel detector keeps its " << o.bins
      << "³ bins.\n\n| bins per channel | visible | TP | FP | TP − FP |\n|---|---|---|---|---|\n";
   for (const ResolutionTrial& t : r.footprintResolutions)
     md << "| " << t.bins << (t.bins == r.footprintBins ? " (chosen)" : "") << " | " << t.visibleBeacons << " | "
@@ -194,7 +195,7 @@ void writeResolutionChoice(std::ostringstream& md, const TextureRealismResults& 
 }
 
 // The same questions asked of the footprint detector, and what it changes.
-void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& r) {
+void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& r, const TextureRealismOptions& o) {
   const DetectorKind d = DetectorKind::Footprints;
   const ConditionOutcome* recorded = findCondition(r, conditionKey("path_recorded", "realistic", d));
   const ConditionOutcome* pixels = findCondition(r, conditionKey("path_recorded", "realistic", DetectorKind::Pixels));
@@ -215,7 +216,7 @@ void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& 
      << kMaxLogLikelihoodRatio << "); each band's mean must reach log Θ; "
         "each beacon is taken where its evidence is highest. Its false positives are its bands placed where no band "
         "of their colour is, and beacons named where they are not.\n\n";
-  writeResolutionChoice(md, r);
+  writeResolutionChoice(md, r, o);
   writeConditionsPerTestCamera(md, r, d);
   writeAblation(md, r, d);
   md << "\nWith footprints, path + drawn cameras → realistic finds " << recorded->truePositives << " TP with "
@@ -255,7 +256,7 @@ std::string recordingSectionMarkdown(const TextureRealismResults& r, const Textu
         "which training never sees.\n\n";
   writeConditionsPerTestCamera(md, r, DetectorKind::Pixels);
   writeAblation(md, r, DetectorKind::Pixels);
-  writeFootprintSection(md, r);
+  writeFootprintSection(md, r, o);
   writeRanges(md, r);
   if (!figure.empty())
     md << "\n![One pose: plain, path, path through one drawn camera, realistic](" << figure << ")\n\n"

@@ -31,6 +31,8 @@ struct FrameEvaluation {
   std::vector<DrawnDetection> drawn;
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
   std::vector<FalseBlob> falseBlobs;
+  // False positives: blobs on no band of their colour plus beacons named where they are not.
+  int falsePositives() const { return falsePositiveBlobs + falseIdentifications; }
 };
 
 struct ConditionReport {
