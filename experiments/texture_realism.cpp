@@ -188,6 +188,8 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
     c.falsePositiveBlobs += f.falsePositiveBlobs;
     c.falsePositives += f.falsePositives();
     c.missed += f.visibleBeacons - f.truePositives;
+    for (const double range : f.visibleRangesM) ++c.visibleByRange[static_cast<size_t>(rangeBucket(range))];
+    for (const double range : f.foundRangesM) ++c.truePositivesByRange[static_cast<size_t>(rangeBucket(range))];
     pixels.insert(pixels.end(), f.localisationErrorsPx.begin(), f.localisationErrorsPx.end());
     ranges.insert(ranges.end(), f.rangeErrorsCm.begin(), f.rangeErrorsCm.end());
     bearings.insert(bearings.end(), f.bearingErrorsDeg.begin(), f.bearingErrorsDeg.end());

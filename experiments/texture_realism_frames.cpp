@@ -146,6 +146,7 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
     const double error = (d.raster - t->raster).norm();
     if (t->visible && error <= matchRadiusPx) {
       ++e.truePositives;
+      e.foundRangesM.push_back(t->rangeM);
       drawn.correct = true;
       e.localisationErrorsPx.push_back(error);
       if (d.rangeBearing) {
@@ -159,7 +160,10 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
     e.drawn.push_back(drawn);
   }
   for (const GroundTruthBeacon& t : truth)
-    if (t.visible) e.truth.push_back(t.raster);
+    if (t.visible) {
+      e.truth.push_back(t.raster);
+      e.visibleRangesM.push_back(t.rangeM);
+    }
   return e;
 }
 

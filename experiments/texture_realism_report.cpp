@@ -61,7 +61,9 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                                 {"mean_localisation_error_px", c.meanLocalisationErrorPx},
                                 {"mean_range_error_cm", c.meanRangeErrorCm},
                                 {"mean_bearing_error_deg", c.meanBearingErrorDeg},
-                                {"false_positive_sources", c.falsePositiveSources}};
+                                {"false_positive_sources", c.falsePositiveSources},
+                                {"visible_by_range_m", c.visibleByRange},
+                                {"true_positives_by_range_m", c.truePositivesByRange}};
   j["ekf"] = nlohmann::json::object();
   for (const EkfOutcome& e : results.ekf)
     j["ekf"][e.condition] = {{"mean_error_odometry_cm", e.meanErrorOdometryCm},

@@ -30,6 +30,7 @@ struct FrameEvaluation {
   std::vector<Measurement> measurements;
   std::vector<DrawnDetection> drawn;
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
+  std::vector<double> visibleRangesM, foundRangesM;  // the true ranges of visible beacons, and of those found
   std::vector<FalseBlob> falseBlobs;
   // False positives: blobs on no band of their colour plus beacons named where they are not.
   int falsePositives() const { return falsePositiveBlobs + falseIdentifications; }

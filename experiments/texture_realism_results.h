@@ -1,6 +1,8 @@
 #pragma once
 // What the texture-realism experiment is asked (its options) and what it finds: shared by the
 // runner (texture_realism.h) and the report that writes it (texture_realism_report.h).
+#include <algorithm>
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -60,6 +62,11 @@ inline std::string conditionKey(const std::string& train, const std::string& tes
   return train + "_to_" + test + (detector == DetectorKind::Footprints ? "_footprints" : "");
 }
 
+// Beacons by their true range from the robot, in whole metres: 0–1 m, 1–2 m, …, the last bucket
+// everything from kRangeBuckets − 1 m on.
+inline constexpr int kRangeBuckets = 6;
+inline int rangeBucket(double rangeM) { return rangeM < 0.0 ? 0 : std::min(kRangeBuckets - 1, static_cast<int>(rangeM)); }
+
 struct ConditionOutcome {
   std::string train, test;
   DetectorKind detector = DetectorKind::Pixels;
@@ -68,6 +75,8 @@ struct ConditionOutcome {
   double meanLocalisationErrorPx = 0.0, meanRangeErrorCm = 0.0, meanBearingErrorDeg = 0.0;
   // The objects the false-positive blobs lie on, most frequent first (at most five).
   std::vector<std::pair<std::string, int>> falsePositiveSources;
+  // Visible beacons and true positives per range bucket (rangeBucket).
+  std::array<int, kRangeBuckets> visibleByRange{}, truePositivesByRange{};
   std::string key() const { return conditionKey(train, test, detector); }
 };
 

@@ -194,6 +194,13 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   ASSERT_EQ(detections.size(), 204u);  // 51 conditions of four frames
   const auto blobs = readCsv(path("run/data/false_positive_blobs.csv"),
                              {"condition", "frame", "colour", "area_px", "u", "v", "object"});
+  std::vector<int> beaconsByRange(6, 0);  // each beacon's distance from the 4 test poses, in whole metres
+  for (const Landmark& band : field.landmarks)
+    if (band.name.size() > 6 && band.name.compare(band.name.size() - 6, 6, "_upper") == 0)
+      for (size_t f = 0; f < 4; ++f) {
+        const double range = std::hypot(band.position.x() - loop[25 * f].x, band.position.y() - loop[25 * f].y);
+        ++beaconsByRange[std::min<size_t>(5, static_cast<size_t>(range))];
+      }
   std::map<int, int> visibleAt;  // frame → visible beacons, from the first condition
   for (const auto& [key, c] : results["conditions"].items()) {
     SCOPED_TRACE(key);
@@ -228,6 +235,19 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
     EXPECT_EQ(c["false_identifications"], identifications);
     EXPECT_EQ(c["false_positive_blobs"], blobCount);
     EXPECT_EQ(c["false_positives"], identifications + blobCount);
+    // By true range in whole metres: the buckets hold every visible beacon and true positive; all
+    // four beacons are in view from each of the four test poses, so the visible ones are the
+    // beacons' distances from those poses.
+    int visibleSum = 0, foundSum = 0;
+    for (size_t k = 0; k < 6; ++k) {
+      const int visible = c["visible_by_range_m"][k], found = c["true_positives_by_range_m"][k];
+      EXPECT_LE(found, visible) << k;
+      visibleSum += visible, foundSum += found;
+    }
+    EXPECT_EQ(visibleSum, tp + missed);
+    EXPECT_EQ(foundSum, tp);
+    EXPECT_EQ(visibleSum, 16);
+    EXPECT_EQ(c["visible_by_range_m"], json(beaconsByRange));
     const double meanError = c["mean_localisation_error_px"].get<double>();
     EXPECT_NEAR(meanError, tp ? weightedError / tp : 0.0, 1e-5);  // the CSV holds 6 digits
     const double bearing = c["mean_bearing_error_deg"].get<double>(), range = c["mean_range_error_cm"].get<double>();
@@ -404,8 +424,13 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                            "### A detector with spatial context: whole beacon footprints", "#### Which faults matter to the footprint detector",
                            "| realistic (the test camera's own frames, other poses: a ceiling, not a method) |", "**They are never tuned to a test camera**",
                            "| camera 1: cool_noisy.json | camera 2: sharp_jpeg95.json |", "| bayer | webcam: one of rggb, bggr, grbg, gbrg;",
-                           "](figures/texture_realism_recording.png)", "### Finding"})
+                           "](figures/texture_realism_recording.png)", "### Finding",
+                           "#### Where beacons are lost: found of visible, by true range",
+                           "| plain → plain (the bar) |", "| path + drawn cameras → camera 2: sharp_jpeg95.json |",
+                           "| ceiling: the webcam's own frames → realistic |"})
     EXPECT_NE(doc.str().find(part), std::string::npos) << part;
+  const std::string chosen = "| " + std::to_string(results["footprint_bins"].get<int>()) + " (chosen) |";
+  EXPECT_NE(doc.str().find(chosen), std::string::npos) << chosen;
   const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
   EXPECT_EQ(strip.width, 960);
   EXPECT_EQ(strip.height, 240);
