@@ -57,10 +57,7 @@ TEST(BeaconDetector, IdentifiesEachBeaconByItsTwoBandsAndInvertsItsPosition) {
     // Symmetric discs: the centroids are the drawn centres, up to the pixel grid (discs of 2-3 px
     // radius, point-sampled, put their centroid up to ~0.2 px off).
     EXPECT_LT((r.beacons[0].raster - 0.5 * (upper + lower)).norm(), 0.25);
-    ASSERT_TRUE(r.beacons[0].rangeBearing);
-    const double dx = beacon.position().x() - pose.x, dy = beacon.position().y() - pose.y;
-    EXPECT_NEAR((*r.beacons[0].rangeBearing)(0), std::hypot(dx, dy), 0.05 * std::hypot(dx, dy)) << beacon.name;
-    EXPECT_NEAR(wrapAngle((*r.beacons[0].rangeBearing)(1) - (std::atan2(dy, dx) - pose.yawDeg * M_PI / 180)), 0.0, 0.01);
+    expectRangeBearingOf(r.beacons[0], beacon, pose);
   }
 }
 

@@ -1,10 +1,15 @@
 #pragma once
 // What the beacon detectors' tests share: the RoboCup field, three band colours on a grey field,
 // and classifiers that know exactly those colours and the grey.
+#include <gtest/gtest.h>
+
+#include <cmath>
 #include <map>
 #include <string>
 
+#include "beacon_detector.h"
 #include "colour_classifier.h"
+#include "ekf.h"
 #include "scene.h"
 #include "scene_loader.h"
 
@@ -40,6 +45,14 @@ inline ImageRGBA greyImage(int size) {
   for (size_t p = 0; p < image.pixels.size(); p += 4)
     image.pixels[p] = kGrey[0], image.pixels[p + 1] = kGrey[1], image.pixels[p + 2] = kGrey[2], image.pixels[p + 3] = 1.0f;
   return image;
+}
+
+// A detection's range within 5 % and bearing within 0.01 rad of `beacon` seen from `pose`.
+inline void expectRangeBearingOf(const BeaconDetection& detection, const Beacon& beacon, const RobotPose& pose) {
+  ASSERT_TRUE(detection.rangeBearing);
+  const double dx = beacon.position().x() - pose.x, dy = beacon.position().y() - pose.y;
+  EXPECT_NEAR((*detection.rangeBearing)(0), std::hypot(dx, dy), 0.05 * std::hypot(dx, dy)) << beacon.name;
+  EXPECT_NEAR(wrapAngle((*detection.rangeBearing)(1) - (std::atan2(dy, dx) - pose.yawDeg * M_PI / 180)), 0.0, 0.01) << beacon.name;
 }
 
 }  // namespace omnicam::detector_test

@@ -104,10 +104,7 @@ TEST(FootprintDetector, FindsEachBeaconWhereItsBandsProject) {
     ASSERT_EQ(r.blobs.size(), 2u);
     EXPECT_EQ(r.blobs[0].colour, beacon.upper->colourClass);
     EXPECT_EQ(r.blobs[1].colour, beacon.lower->colourClass);
-    ASSERT_TRUE(r.beacons[0].rangeBearing);
-    const double dx = beacon.position().x() - kPose.x, dy = beacon.position().y() - kPose.y;
-    EXPECT_NEAR((*r.beacons[0].rangeBearing)(0), std::hypot(dx, dy), 0.05 * std::hypot(dx, dy)) << beacon.name;
-    EXPECT_NEAR(wrapAngle((*r.beacons[0].rangeBearing)(1) - (std::atan2(dy, dx) - kPose.yawDeg * M_PI / 180)), 0.0, 0.01);
+    expectRangeBearingOf(r.beacons[0], beacon, kPose);
   }
 }
 
