@@ -58,14 +58,32 @@ BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon) {
   const double top = beacon.upper->position.z() + 0.5 * beacon.upper->height;
   const double bottom = beacon.lower->position.z() - 0.5 * beacon.lower->height;
   const double radius = 0.25 * (beacon.upper->diameter + beacon.lower->diameter);
+  const double beyondHorizon = std::numeric_limits<double>::infinity();
+  std::vector<double> rangeAt(static_cast<size_t>(w) * h, beyondHorizon), bearingAt(rangeAt.size(), 0.0);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      if (const auto rangeBearing = rangeBearingFromRaster(rig, Vec2(i + 0.5, j + 0.5), boundary)) {
+        rangeAt[static_cast<size_t>(j) * w + i] = (*rangeBearing)(0);
+        bearingAt[static_cast<size_t>(j) * w + i] = (*rangeBearing)(1);
+      }
+  auto rangeNear = [&](int i, int j) {
+    Interval r{beyondHorizon, 0.0};
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        const double at = i + di < 0 || j + dj < 0 || i + di >= w || j + dj >= h
+                              ? beyondHorizon
+                              : rangeAt[static_cast<size_t>(j + dj) * w + i + di];
+        r.lo = std::min(r.lo, at), r.hi = std::max(r.hi, at);
+      }
+    return r;
+  };
   BeaconFootprints out;
   std::vector<Sample> samples;
   std::vector<int> upper, lower;
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
-      const auto rangeBearing = rangeBearingFromRaster(rig, Vec2(i + 0.5, j + 0.5), boundary);
-      if (!rangeBearing || (*rangeBearing)(0) <= 2.0 * radius) continue;  // the rig inside the beacon
-      const double range = (*rangeBearing)(0), bearing = (*rangeBearing)(1);
+      const double range = rangeAt[static_cast<size_t>(j) * w + i], bearing = bearingAt[static_cast<size_t>(j) * w + i];
+      if (std::isinf(range) || range <= 2.0 * radius) continue;  // beyond the horizon, or the rig inside the beacon
       const Vec2 axis(range * std::cos(bearing), range * std::sin(bearing));
       const Vec2 across(-std::sin(bearing), std::cos(bearing));
       samples.clear();
@@ -93,6 +111,8 @@ BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon) {
       }
       if (!imaged || !bandPixels(samples, upper, lower)) continue;
       out.candidate.push_back(j * w + i);
+      out.range.push_back(rangeNear(i, j));
+      out.bearing.push_back(bearing);
       out.upperBegin.push_back(static_cast<int>(out.pixels.size()));
       out.pixels.insert(out.pixels.end(), upper.begin(), upper.end());
       out.lowerBegin.push_back(static_cast<int>(out.pixels.size()));
@@ -132,6 +152,130 @@ struct Found {
   size_t beacon;
   size_t candidate;
 };
+
+// One of a beacon's strongest footprints: its candidate, evidence, the evidence beyond what the
+// threshold asks of its pixels (≥ 0), and its pixels (sorted).
+struct Hypothesis {
+  double evidence, excess;
+  size_t candidate;
+  std::vector<int> pixels;
+  Sighting sighting;  // of the beacon's axis: the boundary's range interval and bearing
+};
+
+bool overlap(const std::vector<int>& a, const std::vector<int>& b) {
+  for (size_t i = 0, j = 0; i < a.size() && j < b.size();) {
+    if (a[i] == b[j]) return true;
+    a[i] < b[j] ? ++i : ++j;
+  }
+  return false;
+}
+
+// The footprints whose bands both reach a mean evidence of `minMean`, strongest first, each
+// overlapping no stronger one kept (a footprint a pixel off the strongest is the same sighting),
+// at most kHypothesesPerBeacon.
+std::vector<Hypothesis> strongestFootprints(const Beacon& beacon, const BeaconFootprints& fp, const std::vector<float>& upper,
+                                            const std::vector<float>& lower, double minMean) {
+  std::vector<std::pair<double, size_t>> passing;
+  for (size_t c = 0; c < fp.size(); ++c) {
+    double sumUpper = 0.0, sumLower = 0.0;
+    const int u0 = fp.upperBegin[c], l0 = fp.lowerBegin[c], l1 = fp.upperBegin[c + 1];
+    for (int k = u0; k < l0; ++k) sumUpper += upper[static_cast<size_t>(fp.pixels[k])];
+    if (sumUpper < minMean * (l0 - u0)) continue;
+    for (int k = l0; k < l1; ++k) sumLower += lower[static_cast<size_t>(fp.pixels[k])];
+    if (sumLower < minMean * (l1 - l0)) continue;
+    passing.emplace_back(sumUpper + sumLower, c);
+  }
+  // Strongest first; equal evidence in candidate order, so the choice never depends on the sort.
+  std::sort(passing.begin(), passing.end(),
+            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+  std::vector<Hypothesis> kept;
+  for (const auto& [evidence, c] : passing) {
+    std::vector<int> pixels(fp.pixels.begin() + fp.upperBegin[c], fp.pixels.begin() + fp.upperBegin[c + 1]);
+    std::sort(pixels.begin(), pixels.end());
+    if (std::any_of(kept.begin(), kept.end(), [&](const Hypothesis& h) { return overlap(h.pixels, pixels); })) continue;
+    const double excess = evidence - minMean * static_cast<double>(pixels.size());
+    kept.push_back({evidence, std::max(0.0, excess), c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
+    if (kept.size() == static_cast<size_t>(kHypothesesPerBeacon)) break;
+  }
+  return kept;
+}
+
+// How far two beacons' sightings may stray from the map: a sighting's range is to the beacon's
+// near side, the map's to its axis.
+double slackOf(const Beacon& a, const Beacon& b) {
+  return 0.25 * (a.upper->diameter + a.lower->diameter + b.upper->diameter + b.lower->diameter) + kMapAgreementSlackM;
+}
+
+// One hypothesis or none per beacon, no two overlapping, every two and every three sightings
+// agreeing with the map (so all can be right from one place): the
+// choice with the greatest total excess (then the most beacons), so a strong sighting is never
+// traded for a weak one just to name one more beacon. Strongest first. A branch-and-bound search:
+// a branch stops when even each remaining beacon's best hypothesis could not beat the best found.
+std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std::vector<std::vector<Hypothesis>>& hypotheses) {
+  const size_t n = beacons.size();
+  // compatible[a][b][i][j]: beacon a's hypothesis i with beacon b's hypothesis j.
+  std::vector<std::vector<std::vector<std::vector<uint8_t>>>> compatible(n, std::vector<std::vector<std::vector<uint8_t>>>(n));
+  for (size_t a = 0; a < n; ++a)
+    for (size_t b = a + 1; b < n; ++b) {
+      compatible[a][b].assign(hypotheses[a].size(), std::vector<uint8_t>(hypotheses[b].size(), 0));
+      for (size_t i = 0; i < hypotheses[a].size(); ++i)
+        for (size_t j = 0; j < hypotheses[b].size(); ++j)
+          compatible[a][b][i][j] = !overlap(hypotheses[a][i].pixels, hypotheses[b][j].pixels) &&
+                                   sightingsAgree(hypotheses[a][i].sighting, hypotheses[b][j].sighting, slackOf(beacons[a], beacons[b]));
+    }
+  std::vector<double> bestFrom(n + 1, 0.0);  // the most excess beacons b.. could add
+  std::vector<int> mostFrom(n + 1, 0);       // and the most of them that could be named
+  for (size_t b = n; b-- > 0;) {
+    mostFrom[b] = mostFrom[b + 1] + !hypotheses[b].empty();
+    bestFrom[b] = bestFrom[b + 1];
+    for (const Hypothesis& h : hypotheses[b]) bestFrom[b] = std::max(bestFrom[b], bestFrom[b + 1] + h.excess);
+  }
+  std::vector<int> pick(n, -1), best(n, -1);
+  int bestCount = 0;
+  double bestExcess = 0.0;
+  // Every picked sighting against the place each two other picked ones put the robot.
+  auto triplesAgree = [&] {
+    for (size_t a = 0; a < n; ++a)
+      for (size_t b = a + 1; b < n; ++b)
+        for (size_t c = 0; c < n; ++c) {
+          if (c == a || c == b || pick[a] < 0 || pick[b] < 0 || pick[c] < 0) continue;
+          if (!sightingsAgree(hypotheses[a][static_cast<size_t>(pick[a])].sighting,
+                              hypotheses[b][static_cast<size_t>(pick[b])].sighting,
+                              hypotheses[c][static_cast<size_t>(pick[c])].sighting,
+                              slackOf(beacons[a], beacons[c]) + slackOf(beacons[b], beacons[c])))
+            return false;
+        }
+    return true;
+  };
+  auto search = [&](auto&& self, size_t b, int count, double excess) -> void {
+    const double reach = excess + bestFrom[b];
+    if (reach < bestExcess || (reach == bestExcess && count + mostFrom[b] <= bestCount)) return;
+    if (b == n) {
+      if (!triplesAgree()) return;
+      if (excess > bestExcess || (excess == bestExcess && count > bestCount)) best = pick, bestCount = count, bestExcess = excess;
+      return;
+    }
+    for (size_t i = 0; i < hypotheses[b].size(); ++i) {
+      bool fits = true;
+      for (size_t a = 0; a < b && fits; ++a)
+        fits = pick[a] < 0 || compatible[a][b][static_cast<size_t>(pick[a])][i];
+      if (!fits) continue;
+      pick[b] = static_cast<int>(i);
+      self(self, b + 1, count + 1, excess + hypotheses[b][i].excess);
+    }
+    pick[b] = -1;
+    self(self, b + 1, count, excess);
+  };
+  search(search, 0, 0, 0.0);
+  std::vector<Found> chosen;
+  for (size_t b = 0; b < n; ++b)
+    if (best[b] >= 0) {
+      const Hypothesis& h = hypotheses[b][static_cast<size_t>(best[b])];
+      chosen.push_back({h.evidence, b, h.candidate});
+    }
+  std::sort(chosen.begin(), chosen.end(), [](const Found& a, const Found& b) { return a.evidence > b.evidence; });
+  return chosen;
+}
 
 ColourBlob blobOf(const std::string& colour, const int* begin, const int* end, int width) {
   ColourBlob blob;
@@ -210,44 +354,15 @@ DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
       }
     }
   const double minMean = std::log(options.theta);
-  std::vector<uint8_t> taken(pixelCount, 0);
-  auto overlapsTaken = [&](const BeaconFootprints& fp, size_t c) {
-    for (int k = fp.upperBegin[c]; k < fp.upperBegin[c + 1]; ++k)
-      if (taken[static_cast<size_t>(fp.pixels[k])]) return true;
-    return false;
-  };
-  // Beacon b's strongest footprint whose bands both reach log Θ, skipping those on taken pixels.
-  auto strongest = [&](size_t b, bool skipTaken) {
-    const BeaconFootprints& fp = *footprintOfBeacon_[b];
-    const std::vector<float>& upper = evidence.at(beacons_[b].upper->colourClass);
-    const std::vector<float>& lower = evidence.at(beacons_[b].lower->colourClass);
-    Found best{-std::numeric_limits<double>::infinity(), b, fp.size()};
-    for (size_t c = 0; c < fp.size(); ++c) {
-      double sumUpper = 0.0, sumLower = 0.0;
-      const int u0 = fp.upperBegin[c], l0 = fp.lowerBegin[c], l1 = fp.upperBegin[c + 1];
-      for (int k = u0; k < l0; ++k) sumUpper += upper[static_cast<size_t>(fp.pixels[k])];
-      if (sumUpper < minMean * (l0 - u0)) continue;
-      for (int k = l0; k < l1; ++k) sumLower += lower[static_cast<size_t>(fp.pixels[k])];
-      if (sumLower < minMean * (l1 - l0)) continue;
-      if (sumUpper + sumLower > best.evidence && !(skipTaken && overlapsTaken(fp, c))) best = {sumUpper + sumLower, b, c};
-    }
-    return best;
-  };
-  std::vector<Found> found;
+  std::vector<std::vector<Hypothesis>> hypotheses(beacons_.size());
   for (size_t b = 0; b < beacons_.size(); ++b)
-    if (const Found f = strongest(b, false); f.candidate < footprintOfBeacon_[b]->size()) found.push_back(f);
-  // Strongest first; a beacon whose footprint overlaps a stronger one's takes its best elsewhere.
-  std::sort(found.begin(), found.end(), [](const Found& a, const Found& b) { return a.evidence > b.evidence; });
+    hypotheses[b] = strongestFootprints(beacons_[b], *footprintOfBeacon_[b], evidence.at(beacons_[b].upper->colourClass),
+                                        evidence.at(beacons_[b].lower->colourClass), minMean);
   DetectionResult result;
-  for (Found f : found) {
+  for (const Found& f : agreeingChoice(beacons_, hypotheses)) {
     const BeaconFootprints& fp = *footprintOfBeacon_[f.beacon];
-    if (overlapsTaken(fp, f.candidate)) {
-      f = strongest(f.beacon, true);
-      if (f.candidate >= fp.size()) continue;
-    }
     const int* first = fp.pixels.data() + fp.upperBegin[f.candidate];
     const int* last = fp.pixels.data() + fp.upperBegin[f.candidate + 1];
-    for (const int* p = first; p != last; ++p) taken[static_cast<size_t>(*p)] = 1;
     const Beacon& beacon = beacons_[f.beacon];
     BeaconDetection detection;
     detection.beacon = &beacon;

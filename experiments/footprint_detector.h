@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "beacon_detector.h"
+#include "landmark_geometry.h"
 
 namespace omnicam {
 
@@ -29,6 +30,11 @@ struct BeaconFootprints {
   std::vector<int> upperBegin, lowerBegin;      // offsets into `pixels`; candidate c's upper band is
   std::vector<int> pixels;                      // [upperBegin[c], lowerBegin[c]), its lower band
                                                 // [lowerBegin[c], upperBegin[c + 1])
+  // The boundary's range if it is anywhere within a pixel of the candidate (least and greatest
+  // over the 3 × 3 pixel centres around it; +∞ when one of them is at or beyond the horizon), and
+  // its bearing: what the detection can say about where the beacon is.
+  std::vector<Interval> range;
+  std::vector<double> bearing;
   size_t size() const { return candidate.size(); }
 };
 
@@ -44,8 +50,12 @@ class FootprintDetector {
   FootprintDetector(const RigSpec& rig, std::vector<Beacon>&& beacons) = delete;
 
   // The detections of `image`: at most one per beacon, each with its two bands as blobs (the
-  // footprint's pixels, coloured as the beacon's bands), no two overlapping (a beacon whose best
-  // footprint overlaps a stronger beacon's takes its best one that does not). options.theta (> 0)
+  // footprint's pixels, coloured as the beacon's bands), no two overlapping, and in agreement
+  // with the map: every two sightings' ranges and bearings allow the two beacons' distance apart,
+  // and every two place the robot where each third is seen, so all can be right from one place
+  // (no pose is needed). Among each beacon's strongest footprints (at most
+  // kHypothesesPerBeacon, no two overlapping), the choice with the greatest evidence beyond what
+  // log Θ asks of its pixels wins (then the one naming more beacons). options.theta (> 0)
   // bounds each band's mean likelihood ratio; medianPx filters the frame as the pixel detector does. Pixels with alpha
   // < 0.5 count as certainly not a band.
   DetectionResult detect(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
@@ -60,6 +70,11 @@ class FootprintDetector {
   std::vector<BeaconFootprints> shapes_;                  // one per distinct beacon geometry
   std::vector<const BeaconFootprints*> footprintOfBeacon_;
 };
+
+constexpr int kHypothesesPerBeacon = 4;
+// Slack on the map distance between two sightings, beyond the beacons' radii (a sighting's range
+// is to the beacon's near side, the map's to its axis).
+constexpr double kMapAgreementSlackM = 0.1;
 
 // log of the classifier's likelihood ratio, clamped to ±kMaxLogLikelihoodRatio (a colour seen
 // only as negative, or never as positive, is −max; one seen only as positive is +max).

@@ -171,6 +171,35 @@ TEST(FootprintDetector, NoBeaconWhereAlphaIsZeroAndOnlyTheRigsImageSize) {
   EXPECT_THROW(detector.detect(greyImage(rig.camera().width()), exactClassifiers(), zero), std::invalid_argument);
 }
 
+TEST(FootprintDetector, ASightingTheMapRulesOutLosesToOnesThatAgree) {
+  // Each beacon painted where it is seen from kPose, and beacon 0's bands painted a second time as
+  // seen from kGhostRangeM away: that ghost is nearer, so its footprint holds more evidence than the
+  // beacon's own. Alone, the ghost wins; beside the other three beacons, whose ranges and bearings
+  // place the robot where the ghost cannot be seen from, beacon 0 is found where it is.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const Beacon& beacon = beacons[0];
+  constexpr double kGhostRangeM = 2.0;  // nearer than from kPose, yet less evidence than the other three
+  const Vec2 towardField = -beacon.position().normalized();
+  const Vec2 ghostAt = beacon.position() + kGhostRangeM * towardField;
+  const RobotPose ghostPose{ghostAt.x(), ghostAt.y(), kPose.yawDeg + 150.0};
+  ASSERT_GT((beacon.position() - Vec2(kPose.x, kPose.y)).norm(), kGhostRangeM);
+  const int w = rig.camera().width();
+  ImageRGBA ghostAndBeacon = greyImage(w);
+  paintBeacon(ghostAndBeacon, rig, ghostPose, beacon);
+  paintBeacon(ghostAndBeacon, rig, kPose, beacon);
+  const DetectionResult alone = detector.detect(ghostAndBeacon, exactClassifiers(), DetectorOptions{});
+  ASSERT_EQ(alone.beacons.size(), 1u);
+  EXPECT_LT((alone.beacons[0].raster - boundaryRaster(rig, ghostPose, beacon)).norm(), 1.5);
+  ImageRGBA all = ghostAndBeacon;
+  for (size_t b = 1; b < beacons.size(); ++b) paintBeacon(all, rig, kPose, beacons[b]);
+  const DetectionResult agreeing = detector.detect(all, exactClassifiers(), DetectorOptions{});
+  ASSERT_EQ(agreeing.beacons.size(), beacons.size());
+  for (const BeaconDetection& d : agreeing.beacons)
+    EXPECT_LT((d.raster - boundaryRaster(rig, kPose, *d.beacon)).norm(), 1.5) << d.beacon->name;
+}
+
 TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {
   ColourHistogramClassifier c(32);
   const Rgb8 a{200, 20, 150}, b{90, 90, 90}, both{10, 200, 220};

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace omnicam {
 namespace {
@@ -27,6 +28,92 @@ TEST(LandmarkGeometry, InvertingTheProjectionAtTheKnownHeightRecoversRangeAndBea
   EXPECT_FALSE(rangeBearingFromRaster(rig, {180.0 + camera.horizonRadius(), 180.0}, rig.height));
   // Above F' (seen above the horizon), a point cannot be on a ray that goes down.
   EXPECT_FALSE(rangeBearingFromRaster(rig, {190.0, 180.0}, 1.0));
+}
+
+TEST(LandmarkGeometry, DistanceBetweenSightingsMatchesClosedFormsAndADenseSearch) {
+  // Closed forms: same bearing, d = |r_a − r_b|; perpendicular, d = √(r_a² + r_b²); opposite, r_a + r_b.
+  auto expectInterval = [](const Interval& d, double lo, double hi) {
+    EXPECT_NEAR(d.lo, lo, 1e-12);
+    EXPECT_NEAR(d.hi, hi, 1e-12);
+  };
+  expectInterval(distanceBetweenSightings({1, 2}, 0.3, {3, 4}, 0.3), 1.0, 3.0);
+  expectInterval(distanceBetweenSightings({1, 3}, 0.3, {2, 4}, 0.3), 0.0, 3.0);  // the ranges can coincide
+  expectInterval(distanceBetweenSightings({1, 2}, 0.0, {3, 4}, kPi / 2), std::sqrt(10.0), std::sqrt(20.0));
+  expectInterval(distanceBetweenSightings({1, 2}, 1.0, {3, 4}, 1.0 + kPi), 4.0, 6.0);
+  // A range up to the horizon leaves the distance unbounded above.
+  const double inf = std::numeric_limits<double>::infinity();
+  const Interval open = distanceBetweenSightings({2, inf}, 0.0, {1, 1.5}, 0.4);
+  EXPECT_TRUE(std::isinf(open.hi));
+  EXPECT_NEAR(open.lo, std::hypot(2.0 - 1.5 * std::cos(0.4), 1.5 * std::sin(0.4)), 1e-12);
+  // Any bearings: against the least and greatest over a dense grid of the two ranges.
+  for (const double gap : {0.1, 0.7, 1.6, 2.5, 3.1}) {
+    const Interval a{1.2, 2.9}, b{0.4, 3.3};
+    const Interval d = distanceBetweenSightings(a, 0.2, b, 0.2 + gap);
+    double lo = inf, hi = 0.0;
+    for (int i = 0; i <= 400; ++i)
+      for (int j = 0; j <= 400; ++j) {
+        const double ra = a.lo + (a.hi - a.lo) * i / 400.0, rb = b.lo + (b.hi - b.lo) * j / 400.0;
+        const double dd = std::hypot(ra - rb * std::cos(gap), rb * std::sin(gap));
+        lo = std::min(lo, dd), hi = std::max(hi, dd);
+      }
+    EXPECT_NEAR(d.lo, lo, 2e-3) << gap;
+    EXPECT_NEAR(d.hi, hi, 1e-12) << gap;
+    EXPECT_LE(d.lo, lo + 1e-12) << gap;  // the grid can only overshoot the least
+  }
+}
+
+TEST(LandmarkGeometry, TwoExactSightingsPredictWhereAThirdLandmarkIsSeen) {
+  // Sightings computed forward from a pose (range |p − t|, bearing of p − t less the yaw) give
+  // back that pose, so the third landmark is predicted exactly where the pose sees it.
+  const Vec2 a(2.7, 1.8), b(-2.7, 1.8), c(-2.7, -1.8), d(2.7, -1.8);
+  for (const RobotPose& pose : {RobotPose{0.3, -0.4, 35.0}, RobotPose{-1.9, 1.2, -170.0}, RobotPose{2.0, 0.0, 90.0}}) {
+    auto seen = [&](const Vec2& p) {
+      const Vec2 v = p - Vec2(pose.x, pose.y);
+      return RangeBearing(v.norm(), wrapAngle(std::atan2(v.y(), v.x()) - radians(pose.yawDeg)));
+    };
+    for (const Vec2& third : {c, d}) {
+      const RangeBearing predicted = predictedSighting(a, seen(a), b, seen(b), third);
+      EXPECT_NEAR(predicted(0), seen(third)(0), 1e-9);
+      EXPECT_NEAR(wrapAngle(predicted(1) - seen(third)(1)), 0.0, 1e-9);
+    }
+    // A range 10 cm long on both sightings moves the robot and so the prediction.
+    const RangeBearing off = predictedSighting(a, seen(a) + RangeBearing(0.1, 0.0), b, seen(b) + RangeBearing(0.1, 0.0), c);
+    EXPECT_GT(std::abs(off(0) - seen(c)(0)) + std::abs(wrapAngle(off(1) - seen(c)(1))), 1e-3);
+  }
+}
+
+TEST(LandmarkGeometry, SightingsFromOnePlaceAgreeAndAMovedOneDoesNot) {
+  const Vec2 a(2.7, 1.8), b(-2.7, 1.8), c(-2.7, -1.8);
+  const RobotPose pose{0.3, -0.4, 35.0};
+  // Exact sightings, each range known to ±2 %.
+  auto seen = [&](const Vec2& p, double bearingOffset = 0.0, double rangeScale = 1.0) {
+    const Vec2 v = p - Vec2(pose.x, pose.y);
+    const double range = rangeScale * v.norm();
+    return Sighting{p, {0.98 * range, 1.02 * range}, wrapAngle(std::atan2(v.y(), v.x()) - radians(pose.yawDeg) + bearingOffset)};
+  };
+  const double slack = 0.2;
+  EXPECT_TRUE(sightingsAgree(seen(a), seen(b), slack));
+  EXPECT_TRUE(sightingsAgree(seen(a), seen(b), seen(c), slack));
+  // c seen 1.3 m too far: its distance to a or b no longer matches the map.
+  EXPECT_FALSE(sightingsAgree(seen(a), seen(c, 0.0, 1.3), slack));
+  EXPECT_FALSE(sightingsAgree(seen(a), seen(b), seen(c, 0.0, 1.3), slack));
+  // c seen near the horizon (range unbounded) 25° off its bearing: the pair a–c still allows it
+  // (some range on c's ray lies at the map distance from a), but a and b place the robot, and
+  // from there c is not where it is seen.
+  const double inf = std::numeric_limits<double>::infinity();
+  Sighting far = seen(c, radians(25.0));
+  far.range = {1.0, inf};
+  EXPECT_TRUE(sightingsAgree(seen(a), far, slack));
+  EXPECT_TRUE(sightingsAgree(seen(b), far, slack));
+  EXPECT_FALSE(sightingsAgree(seen(a), seen(b), far, slack));
+  // On its true bearing, unbounded, it agrees; and with a and b unbounded as well, the grid
+  // still finds the ranges that place the robot.
+  Sighting farTrue = seen(c);
+  farTrue.range = {1.0, inf};
+  EXPECT_TRUE(sightingsAgree(seen(a), seen(b), farTrue, slack));
+  Sighting aFar = seen(a), bFar = seen(b);
+  aFar.range.hi = bFar.range.hi = inf;
+  EXPECT_TRUE(sightingsAgree(aFar, bFar, seen(c), slack));
 }
 
 }  // namespace

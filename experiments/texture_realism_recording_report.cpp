@@ -271,8 +271,11 @@ void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& 
         "bands would cover (a cylinder of known size at the range that boundary inverts to). A footprint's evidence "
         "is the sum of its pixels' log likelihood ratios (each clamped to ±"
      << kMaxLogLikelihoodRatio << "); each band's mean must reach log Θ; "
-        "each beacon is taken where its evidence is highest. Its false positives are its bands placed where no band "
-        "of their colour is, and beacons named where they are not.\n\n";
+        "each beacon keeps its " << kHypothesesPerBeacon << " strongest footprints, and of the choices of one or none "
+        "per beacon that agree with the map (every two sightings' ranges and bearings allow the beacons' map distance, "
+        "and every two place the robot where each third is seen: all can be right from one place, no pose needed), "
+        "the one with the greatest evidence beyond log Θ wins. Its false positives are its bands placed where no band of their colour is, and beacons named "
+        "where they are not.\n\n";
   writeResolutionChoice(md, r, o);
   writeConditionsPerTestCamera(md, r, d);
   writeRecallByRange(md, r);
