@@ -200,8 +200,7 @@ std::vector<Hypothesis> strongestFootprints(const Beacon& beacon, const BeaconFo
   return kept;
 }
 
-// How far two beacons' sightings may stray from the map: a sighting's range is to the beacon's
-// near side, the map's to its axis.
+// How far two beacons' sightings may stray from the map (kMapAgreementSlackM).
 double slackOf(const Beacon& a, const Beacon& b) {
   return 0.25 * (a.upper->diameter + a.lower->diameter + b.upper->diameter + b.lower->diameter) + kMapAgreementSlackM;
 }
@@ -213,16 +212,30 @@ double slackOf(const Beacon& a, const Beacon& b) {
 // a branch stops when even each remaining beacon's best hypothesis could not beat the best found.
 std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std::vector<std::vector<Hypothesis>>& hypotheses) {
   const size_t n = beacons.size();
-  // compatible[a][b][i][j]: beacon a's hypothesis i with beacon b's hypothesis j.
-  std::vector<std::vector<std::vector<std::vector<uint8_t>>>> compatible(n, std::vector<std::vector<std::vector<uint8_t>>>(n));
-  for (size_t a = 0; a < n; ++a)
-    for (size_t b = a + 1; b < n; ++b) {
-      compatible[a][b].assign(hypotheses[a].size(), std::vector<uint8_t>(hypotheses[b].size(), 0));
-      for (size_t i = 0; i < hypotheses[a].size(); ++i)
-        for (size_t j = 0; j < hypotheses[b].size(); ++j)
-          compatible[a][b][i][j] = !overlap(hypotheses[a][i].pixels, hypotheses[b][j].pixels) &&
-                                   sightingsAgree(hypotheses[a][i].sighting, hypotheses[b][j].sighting, slackOf(beacons[a], beacons[b]));
-    }
+  // Every hypothesis numbered: beacon b's i-th is first[b] + i.
+  std::vector<size_t> first(n + 1, 0), beaconOf;
+  for (size_t b = 0; b < n; ++b) {
+    first[b + 1] = first[b] + hypotheses[b].size();
+    beaconOf.insert(beaconOf.end(), hypotheses[b].size(), b);
+  }
+  const size_t count = first[n];
+  auto hypothesis = [&](size_t id) -> const Hypothesis& { return hypotheses[beaconOf[id]][id - first[beaconOf[id]]]; };
+  std::vector<uint8_t> pairAgrees(count * count, 0);  // of hypotheses of different beacons
+  for (size_t x = 0; x < count; ++x)
+    for (size_t y = x + 1; y < count; ++y)
+      if (beaconOf[x] != beaconOf[y])
+        pairAgrees[x * count + y] = pairAgrees[y * count + x] =
+            !overlap(hypothesis(x).pixels, hypothesis(y).pixels) &&
+            sightingsAgree(hypothesis(x).sighting, hypothesis(y).sighting, slackOf(beacons[beaconOf[x]], beacons[beaconOf[y]]));
+  // Whether x and y place the robot where z is seen; each asked once.
+  std::map<std::tuple<size_t, size_t, size_t>, bool> tripleAgrees;
+  auto placesThird = [&](size_t x, size_t y, size_t z) {
+    const auto key = std::make_tuple(std::min(x, y), std::max(x, y), z);
+    if (const auto known = tripleAgrees.find(key); known != tripleAgrees.end()) return known->second;
+    const Beacon &bx = beacons[beaconOf[x]], &by = beacons[beaconOf[y]], &bz = beacons[beaconOf[z]];
+    return tripleAgrees[key] = sightingsAgree(hypothesis(x).sighting, hypothesis(y).sighting, hypothesis(z).sighting,
+                                              slackOf(bx, bz) + slackOf(by, bz));
+  };
   std::vector<double> bestFrom(n + 1, 0.0);  // the most excess beacons b.. could add
   std::vector<int> mostFrom(n + 1, 0);       // and the most of them that could be named
   for (size_t b = n; b-- > 0;) {
@@ -230,49 +243,39 @@ std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std:
     bestFrom[b] = bestFrom[b + 1];
     for (const Hypothesis& h : hypotheses[b]) bestFrom[b] = std::max(bestFrom[b], bestFrom[b + 1] + h.excess);
   }
-  std::vector<int> pick(n, -1), best(n, -1);
+  std::vector<size_t> picked, best;  // hypothesis ids, in beacon order
   int bestCount = 0;
   double bestExcess = 0.0;
-  // Every picked sighting against the place each two other picked ones put the robot.
-  auto triplesAgree = [&] {
-    for (size_t a = 0; a < n; ++a)
-      for (size_t b = a + 1; b < n; ++b)
-        for (size_t c = 0; c < n; ++c) {
-          if (c == a || c == b || pick[a] < 0 || pick[b] < 0 || pick[c] < 0) continue;
-          if (!sightingsAgree(hypotheses[a][static_cast<size_t>(pick[a])].sighting,
-                              hypotheses[b][static_cast<size_t>(pick[b])].sighting,
-                              hypotheses[c][static_cast<size_t>(pick[c])].sighting,
-                              slackOf(beacons[a], beacons[c]) + slackOf(beacons[b], beacons[c])))
-            return false;
-        }
+  // Whether hypothesis h agrees with every picked one and with every two of them as a triple.
+  auto fits = [&](size_t h) {
+    for (const size_t p : picked)
+      if (!pairAgrees[p * count + h]) return false;
+    for (size_t u = 0; u < picked.size(); ++u)
+      for (size_t v = u + 1; v < picked.size(); ++v)
+        if (!placesThird(picked[u], picked[v], h) || !placesThird(picked[u], h, picked[v]) ||
+            !placesThird(picked[v], h, picked[u]))
+          return false;
     return true;
   };
-  auto search = [&](auto&& self, size_t b, int count, double excess) -> void {
+  auto search = [&](auto&& self, size_t b, double excess) -> void {
     const double reach = excess + bestFrom[b];
-    if (reach < bestExcess || (reach == bestExcess && count + mostFrom[b] <= bestCount)) return;
+    const int named = static_cast<int>(picked.size());
+    if (reach < bestExcess || (reach == bestExcess && named + mostFrom[b] <= bestCount)) return;
     if (b == n) {
-      if (!triplesAgree()) return;
-      if (excess > bestExcess || (excess == bestExcess && count > bestCount)) best = pick, bestCount = count, bestExcess = excess;
+      best = picked, bestCount = named, bestExcess = excess;  // the bound above let only a better one through
       return;
     }
-    for (size_t i = 0; i < hypotheses[b].size(); ++i) {
-      bool fits = true;
-      for (size_t a = 0; a < b && fits; ++a)
-        fits = pick[a] < 0 || compatible[a][b][static_cast<size_t>(pick[a])][i];
-      if (!fits) continue;
-      pick[b] = static_cast<int>(i);
-      self(self, b + 1, count + 1, excess + hypotheses[b][i].excess);
+    for (size_t h = first[b]; h < first[b + 1]; ++h) {
+      if (!fits(h)) continue;
+      picked.push_back(h);
+      self(self, b + 1, excess + hypothesis(h).excess);
+      picked.pop_back();
     }
-    pick[b] = -1;
-    self(self, b + 1, count, excess);
+    self(self, b + 1, excess);
   };
-  search(search, 0, 0, 0.0);
+  search(search, 0, 0.0);
   std::vector<Found> chosen;
-  for (size_t b = 0; b < n; ++b)
-    if (best[b] >= 0) {
-      const Hypothesis& h = hypotheses[b][static_cast<size_t>(best[b])];
-      chosen.push_back({h.evidence, b, h.candidate});
-    }
+  for (const size_t h : best) chosen.push_back({hypothesis(h).evidence, beaconOf[h], hypothesis(h).candidate});
   std::sort(chosen.begin(), chosen.end(), [](const Found& a, const Found& b) { return a.evidence > b.evidence; });
   return chosen;
 }

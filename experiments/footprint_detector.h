@@ -31,8 +31,8 @@ struct BeaconFootprints {
   std::vector<int> pixels;                      // [upperBegin[c], lowerBegin[c]), its lower band
                                                 // [lowerBegin[c], upperBegin[c + 1])
   // The boundary's range if it is anywhere within a pixel of the candidate (least and greatest
-  // over the 3 × 3 pixel centres around it; +∞ when one of them is at or beyond the horizon), and
-  // its bearing: what the detection can say about where the beacon is.
+  // over the 3 × 3 pixel centres around it; +∞ when one of them is at or beyond the horizon or
+  // off the image), and its bearing: what the detection can say about where the beacon is.
   std::vector<Interval> range;
   std::vector<double> bearing;
   size_t size() const { return candidate.size(); }
@@ -54,7 +54,8 @@ class FootprintDetector {
   // with the map: every two sightings' ranges and bearings allow the two beacons' distance apart,
   // and every two place the robot where each third is seen, so all can be right from one place
   // (no pose is needed). Among each beacon's strongest footprints (at most
-  // kHypothesesPerBeacon, no two overlapping), the choice with the greatest evidence beyond what
+  // kHypothesesPerBeacon, no two overlapping: a footprint a pixel off a stronger one is the same
+  // sighting, and is no alternative to it), the choice with the greatest evidence beyond what
   // log Θ asks of its pixels wins (then the one naming more beacons). options.theta (> 0)
   // bounds each band's mean likelihood ratio; medianPx filters the frame as the pixel detector does. Pixels with alpha
   // < 0.5 count as certainly not a band.
@@ -72,8 +73,9 @@ class FootprintDetector {
 };
 
 constexpr int kHypothesesPerBeacon = 4;
-// Slack on the map distance between two sightings, beyond the beacons' radii (a sighting's range
-// is to the beacon's near side, the map's to its axis).
+// How far a sighting may stray from the map, beyond the beacons' radii: two sightings' distance
+// may differ from the map's by the two beacons' radii + this; a third sighting from where two
+// place the robot, by both those pairs' slacks.
 constexpr double kMapAgreementSlackM = 0.1;
 
 // log of the classifier's likelihood ratio, clamped to ±kMaxLogLikelihoodRatio (a colour seen

@@ -200,6 +200,42 @@ TEST(FootprintDetector, ASightingTheMapRulesOutLosesToOnesThatAgree) {
     EXPECT_LT((d.raster - boundaryRaster(rig, kPose, *d.beacon)).norm(), 1.5) << d.beacon->name;
 }
 
+TEST(FootprintDetector, AFarSightingThatEveryPairAllowsIsDroppedWhereTwoOthersPlaceTheRobot) {
+  // Beacons 1–3 painted where they are seen from kPose; beacon 0 painted only as seen from 5.5 m
+  // away, a ghost off its bearing from kPose. Its range is known only loosely (one pixel spans
+  // metres there), so its distance to each other sighting can match the map; but every two of
+  // the others place the robot, and from there beacon 0 is not where the ghost is.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const int w = rig.camera().width();
+  const Beacon& beacon = beacons[0];
+  const Vec2 awayFromField = beacon.position().normalized();
+  const Vec2 ghostAt = beacon.position() - 5.5 * (Eigen::Rotation2Dd(radians(12.0)) * awayFromField);
+  const RobotPose ghostPose{ghostAt.x(), ghostAt.y(), kPose.yawDeg - 30.0};
+  ImageRGBA image = greyImage(w);
+  paintBeacon(image, rig, ghostPose, beacon);
+  const DetectionResult ghostAlone = detector.detect(image, exactClassifiers(), DetectorOptions{});
+  ASSERT_EQ(ghostAlone.beacons.size(), 1u);  // alone, the ghost is beacon 0
+  const size_t ghost = candidateAt(detector.footprints(0), boundaryRaster(rig, ghostPose, beacon), w);
+  ASSERT_NE(ghost, std::string::npos);
+  const BeaconFootprints& fp0 = detector.footprints(0);
+  const Sighting ghostSighting{beacon.position(), fp0.range[ghost], fp0.bearing[ghost]};
+  for (size_t b = 1; b < beacons.size(); ++b) {
+    paintBeacon(image, rig, kPose, beacons[b]);
+    const size_t c = candidateAt(detector.footprints(b), boundaryRaster(rig, kPose, beacons[b]), w);
+    ASSERT_NE(c, std::string::npos);
+    const Sighting seen{beacons[b].position(), detector.footprints(b).range[c], detector.footprints(b).bearing[c]};
+    ASSERT_TRUE(sightingsAgree(ghostSighting, seen, kMapAgreementSlackM)) << beacons[b].name << ": a pair would rule it out";
+  }
+  const DetectionResult found = detector.detect(image, exactClassifiers(), DetectorOptions{});
+  ASSERT_EQ(found.beacons.size(), beacons.size() - 1);
+  for (const BeaconDetection& d : found.beacons) {
+    EXPECT_NE(d.beacon, &beacon);
+    EXPECT_LT((d.raster - boundaryRaster(rig, kPose, *d.beacon)).norm(), 1.5) << d.beacon->name;
+  }
+}
+
 TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {
   ColourHistogramClassifier c(32);
   const Rgb8 a{200, 20, 150}, b{90, 90, 90}, both{10, 200, 220};

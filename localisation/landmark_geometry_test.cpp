@@ -63,14 +63,10 @@ TEST(LandmarkGeometry, DistanceBetweenSightingsMatchesClosedFormsAndADenseSearch
 }
 
 TEST(LandmarkGeometry, TwoExactSightingsPredictWhereAThirdLandmarkIsSeen) {
-  // Sightings computed forward from a pose (range |p − t|, bearing of p − t less the yaw) give
-  // back that pose, so the third landmark is predicted exactly where the pose sees it.
+  // Sightings computed forward from a pose (the EKF's measurement model h) give back that pose, so the third landmark is predicted exactly where the pose sees it.
   const Vec2 a(2.7, 1.8), b(-2.7, 1.8), c(-2.7, -1.8), d(2.7, -1.8);
   for (const RobotPose& pose : {RobotPose{0.3, -0.4, 35.0}, RobotPose{-1.9, 1.2, -170.0}, RobotPose{2.0, 0.0, 90.0}}) {
-    auto seen = [&](const Vec2& p) {
-      const Vec2 v = p - Vec2(pose.x, pose.y);
-      return RangeBearing(v.norm(), wrapAngle(std::atan2(v.y(), v.x()) - radians(pose.yawDeg)));
-    };
+    auto seen = [&](const Vec2& p) { return measurementModel(Vec3(pose.x, pose.y, radians(pose.yawDeg)), p); };
     for (const Vec2& third : {c, d}) {
       const RangeBearing predicted = predictedSighting(a, seen(a), b, seen(b), third);
       EXPECT_NEAR(predicted(0), seen(third)(0), 1e-9);
@@ -87,9 +83,9 @@ TEST(LandmarkGeometry, SightingsFromOnePlaceAgreeAndAMovedOneDoesNot) {
   const RobotPose pose{0.3, -0.4, 35.0};
   // Exact sightings, each range known to ±2 %.
   auto seen = [&](const Vec2& p, double bearingOffset = 0.0, double rangeScale = 1.0) {
-    const Vec2 v = p - Vec2(pose.x, pose.y);
-    const double range = rangeScale * v.norm();
-    return Sighting{p, {0.98 * range, 1.02 * range}, wrapAngle(std::atan2(v.y(), v.x()) - radians(pose.yawDeg) + bearingOffset)};
+    const RangeBearing exact = measurementModel(Vec3(pose.x, pose.y, radians(pose.yawDeg)), p);
+    const double range = rangeScale * exact(0);
+    return Sighting{p, {0.98 * range, 1.02 * range}, wrapAngle(exact(1) + bearingOffset)};
   };
   const double slack = 0.2;
   EXPECT_TRUE(sightingsAgree(seen(a), seen(b), slack));

@@ -40,10 +40,8 @@ RangeBearing predictedSighting(const Vec2& a, const RangeBearing& seenA, const V
   const Vec2 robotB = seenB(0) * Vec2(std::cos(seenB(1)), std::sin(seenB(1)));
   const Vec2 chordMap = b - a, chordRobot = robotB - robotA;
   const double yaw = std::atan2(chordMap.y(), chordMap.x()) - std::atan2(chordRobot.y(), chordRobot.x());
-  const Eigen::Rotation2Dd worldFromRobot(yaw);
-  const Vec2 robotPosition = 0.5 * (a + b) - worldFromRobot * (0.5 * (robotA + robotB));
-  const Vec2 robotC = worldFromRobot.inverse() * (c - robotPosition);
-  return RangeBearing(robotC.norm(), std::atan2(robotC.y(), robotC.x()));
+  const Vec2 robotPosition = 0.5 * (a + b) - Eigen::Rotation2Dd(yaw) * (0.5 * (robotA + robotB));
+  return measurementModel(Vec3(robotPosition.x(), robotPosition.y(), yaw), c);
 }
 
 bool sightingsAgree(const Sighting& a, const Sighting& b, double slack) {
@@ -53,19 +51,39 @@ bool sightingsAgree(const Sighting& a, const Sighting& b, double slack) {
 }
 
 bool sightingsAgree(const Sighting& a, const Sighting& b, const Sighting& c, double slack) {
+  // A range on a geometric grid over the interval (a ratio step suits a range known to a pixel).
   auto rangeAt = [](const Interval& r, int k) {
-    return r.lo * std::pow(std::min(r.hi, kFarthestSightingM) / r.lo, k / static_cast<double>(kTripleGridSteps));
+    const double top = std::max(r.lo, std::min(r.hi, kFarthestSightingM));
+    if (r.lo <= 0.0) return top * k / kTripleGridSteps;
+    return r.lo * std::pow(top / r.lo, k / static_cast<double>(kTripleGridSteps));
   };
-  for (int ka = 0; ka <= kTripleGridSteps; ++ka)
-    for (int kb = 0; kb <= kTripleGridSteps; ++kb) {
-      const RangeBearing predicted = predictedSighting(a.landmark, RangeBearing(rangeAt(a.range, ka), a.bearing),
-                                                       b.landmark, RangeBearing(rangeAt(b.range, kb), b.bearing), c.landmark);
-      const double bearingSlack = std::atan2(slack, std::max(predicted(0), slack));
-      if (std::abs(wrapAngle(predicted(1) - c.bearing)) <= bearingSlack && predicted(0) - slack <= c.range.hi &&
-          predicted(0) + slack >= c.range.lo)
-        return true;
+  const double mapDistance = (a.landmark - b.landmark).norm();
+  auto placesC = [&](double ra, double rb) {
+    const RangeBearing predicted =
+        predictedSighting(a.landmark, RangeBearing(ra, a.bearing), b.landmark, RangeBearing(rb, b.bearing), c.landmark);
+    const double bearingSlack = std::atan2(slack, std::max(predicted(0), slack));
+    return std::abs(wrapAngle(predicted(1) - c.bearing)) <= bearingSlack && predicted(0) - slack <= c.range.hi &&
+           predicted(0) + slack >= c.range.lo;
+  };
+  // Each grid range of `s`, and the ranges of `t` that put the two at their map distance
+  // (|r_s·u_s − r_t·u_t| = D: r_t = r_s cos Δ ± √(D² − r_s² sin² Δ)), within t's interval ± slack.
+  auto along = [&](const Sighting& s, const Sighting& t, bool sIsA) {
+    const double cosGap = std::cos(s.bearing - t.bearing), sinGap = std::sin(s.bearing - t.bearing);
+    for (int k = 0; k <= kTripleGridSteps; ++k) {
+      const double rs = rangeAt(s.range, k);
+      const double reach = mapDistance * mapDistance - rs * rs * sinGap * sinGap;
+      // Too far off t's ray for the map distance: its nearest point, if within slack of it.
+      const double root = reach >= 0.0 ? std::sqrt(reach) : (rs * std::abs(sinGap) <= mapDistance + slack ? 0.0 : -1.0);
+      if (root < 0.0) continue;
+      for (const double rt : {rs * cosGap - root, rs * cosGap + root}) {
+        if (rt <= 0.0 || rt < t.range.lo - slack || rt > t.range.hi + slack) continue;
+        const double kept = std::clamp(rt, t.range.lo, t.range.hi);
+        if (sIsA ? placesC(rs, kept) : placesC(kept, rs)) return true;
+      }
     }
-  return false;
+    return false;
+  };
+  return along(a, b, true) || along(b, a, false);
 }
 
 }  // namespace omnicam

@@ -42,14 +42,15 @@ struct Sighting {
 // and greatest distance their ranges and bearings allow, ± slack.
 bool sightingsAgree(const Sighting& a, const Sighting& b, double slack);
 
-// Whether three sightings can all be right from one place: some ranges within a's and b's place
-// the robot where c is predicted within `slack` of c's range interval, and within the slack seen
-// from c's predicted range of c's bearing. A pair's distance cannot tell this when a range is
-// unbounded (a sighting near the horizon); two sightings and their bearings pin the robot down
-// for a third. The ranges are searched on a grid geometric in range (a ratio step suits a range
-// known to a pixel), kTripleGridSteps + 1 values an interval, an unbounded one taken up to
-// kFarthestSightingM (beyond any arena's landmarks). (In the texture-realism experiment's plain
-// frames, a grid of 17 values rejected one true beacon of 383; 33 none.)
+// Whether three sightings can all be right from one place: some ranges within a's and b's
+// intervals that put a and b at their map distance apart (± slack) place the robot where c is
+// predicted within `slack` of c's range interval, and within the slack seen from c's predicted
+// range of c's bearing. A pair's distance cannot tell this when a range is unbounded (a sighting
+// near the horizon); two sightings and their bearings pin the robot down for a third. Two
+// sightings at their map distance leave one free parameter: one range, searched on a grid
+// geometric in range (a ratio step suits a range known to a pixel), kTripleGridSteps + 1 values
+// an interval, an unbounded one taken up to kFarthestSightingM (beyond any arena's landmarks),
+// each with the other's ranges that keep the map distance, and then the other way round.
 constexpr int kTripleGridSteps = 32;
 constexpr double kFarthestSightingM = 50.0;
 bool sightingsAgree(const Sighting& a, const Sighting& b, const Sighting& c, double slack);
