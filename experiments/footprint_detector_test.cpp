@@ -221,13 +221,17 @@ TEST(FootprintDetector, AFarSightingThatEveryPairAllowsIsDroppedWhereTwoOthersPl
   ASSERT_NE(ghost, std::string::npos);
   const BeaconFootprints& fp0 = detector.footprints(0);
   const Sighting ghostSighting{beacon.position(), fp0.range[ghost], fp0.bearing[ghost]};
+  std::vector<Sighting> seen;
   for (size_t b = 1; b < beacons.size(); ++b) {
     paintBeacon(image, rig, kPose, beacons[b]);
     const size_t c = candidateAt(detector.footprints(b), boundaryRaster(rig, kPose, beacons[b]), w);
     ASSERT_NE(c, std::string::npos);
-    const Sighting seen{beacons[b].position(), detector.footprints(b).range[c], detector.footprints(b).bearing[c]};
-    ASSERT_TRUE(sightingsAgree(ghostSighting, seen, kMapAgreementSlackM)) << beacons[b].name << ": a pair would rule it out";
+    seen.push_back({beacons[b].position(), detector.footprints(b).range[c], detector.footprints(b).bearing[c]});
+    ASSERT_TRUE(sightingsAgree(ghostSighting, seen.back(), kMapAgreementSlackM)) << beacons[b].name << ": a pair would rule it out";
   }
+  // A triple does, with a slack above the detector's (twice the radii, 0.05 m each, + 0.1 m).
+  ASSERT_EQ(beacons[1].upper->diameter, 0.1);
+  EXPECT_FALSE(sightingsAgree(seen[0], seen[1], ghostSighting, 0.5));
   const DetectionResult found = detector.detect(image, exactClassifiers(), DetectorOptions{});
   ASSERT_EQ(found.beacons.size(), beacons.size() - 1);
   for (const BeaconDetection& d : found.beacons) {
