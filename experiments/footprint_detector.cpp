@@ -49,6 +49,30 @@ double clampedLogLikelihoodRatio(const ColourHistogramClassifier& classifier, co
   return std::clamp(std::log(ratio), -kMaxLogLikelihoodRatio, kMaxLogLikelihoodRatio);
 }
 
+const std::vector<FootprintScore>& footprintScores() {
+  static const std::vector<FootprintScore> all = {FootprintScore::Total, FootprintScore::Standardised, FootprintScore::Mean};
+  return all;
+}
+
+std::string footprintScoreName(FootprintScore score) {
+  switch (score) {
+    case FootprintScore::Total: return "total";
+    case FootprintScore::Standardised: return "standardised";
+    case FootprintScore::Mean: return "mean";
+  }
+  throw std::logic_error("footprint detector: unknown score");
+}
+
+double footprintScore(FootprintScore score, double excess, size_t pixels) {
+  const double n = static_cast<double>(std::max<size_t>(pixels, 1));
+  switch (score) {
+    case FootprintScore::Total: return excess;
+    case FootprintScore::Standardised: return excess / std::sqrt(n);
+    case FootprintScore::Mean: return excess / n;
+  }
+  throw std::logic_error("footprint detector: unknown score");
+}
+
 BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon) {
   const OmniCamera camera = rig.camera();
   const Eigen::Matrix3d cameraFromViewpoint = unifiedCameraFromViewpoint().linear();
@@ -148,15 +172,15 @@ namespace {
 Vec2 pixelCentre(int p, int width) { return Vec2(p % width + 0.5, p / width + 0.5); }
 
 struct Found {
-  double evidence;
+  double score;
   size_t beacon;
   size_t candidate;
 };
 
-// One of a beacon's strongest footprints: its candidate, evidence, the evidence beyond what the
-// threshold asks of its pixels (≥ 0), and its pixels (sorted).
+// One of a beacon's highest-scoring footprints: its candidate, score (≥ 0: both its bands reach
+// log Θ), and its pixels (sorted).
 struct Hypothesis {
-  double evidence, excess;
+  double score;
   size_t candidate;
   std::vector<int> pixels;
   Sighting sighting;  // of the beacon's axis: the boundary's range interval and bearing
@@ -170,11 +194,11 @@ bool overlap(const std::vector<int>& a, const std::vector<int>& b) {
   return false;
 }
 
-// The footprints whose bands both reach a mean evidence of `minMean`, strongest first, each
-// overlapping no stronger one kept (a footprint a pixel off the strongest is the same sighting),
-// at most kHypothesesPerBeacon.
-std::vector<Hypothesis> strongestFootprints(const Beacon& beacon, const BeaconFootprints& fp, const std::vector<float>& upper,
-                                            const std::vector<float>& lower, double minMean) {
+// The footprints whose bands both reach a mean evidence of `minMean`, best `score` first, each
+// overlapping no better one kept (a footprint a pixel off the best is the same sighting), at most
+// kHypothesesPerBeacon.
+std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootprints& fp, const std::vector<float>& upper,
+                                       const std::vector<float>& lower, double minMean, FootprintScore score) {
   std::vector<std::pair<double, size_t>> passing;
   for (size_t c = 0; c < fp.size(); ++c) {
     double sumUpper = 0.0, sumLower = 0.0;
@@ -183,18 +207,18 @@ std::vector<Hypothesis> strongestFootprints(const Beacon& beacon, const BeaconFo
     if (sumUpper < minMean * (l0 - u0)) continue;
     for (int k = l0; k < l1; ++k) sumLower += lower[static_cast<size_t>(fp.pixels[k])];
     if (sumLower < minMean * (l1 - l0)) continue;
-    passing.emplace_back(sumUpper + sumLower, c);
+    const size_t pixels = static_cast<size_t>(l1 - u0);
+    passing.emplace_back(footprintScore(score, sumUpper + sumLower - minMean * static_cast<double>(pixels), pixels), c);
   }
-  // Strongest first; equal evidence in candidate order, so the choice never depends on the sort.
+  // Best first; equal scores in candidate order, so the choice never depends on the sort.
   std::sort(passing.begin(), passing.end(),
             [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   std::vector<Hypothesis> kept;
-  for (const auto& [evidence, c] : passing) {
+  for (const auto& [value, c] : passing) {
     std::vector<int> pixels(fp.pixels.begin() + fp.upperBegin[c], fp.pixels.begin() + fp.upperBegin[c + 1]);
     std::sort(pixels.begin(), pixels.end());
     if (std::any_of(kept.begin(), kept.end(), [&](const Hypothesis& h) { return overlap(h.pixels, pixels); })) continue;
-    const double excess = evidence - minMean * static_cast<double>(pixels.size());
-    kept.push_back({evidence, std::max(0.0, excess), c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
+    kept.push_back({std::max(0.0, value), c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
     if (kept.size() == static_cast<size_t>(kHypothesesPerBeacon)) break;
   }
   return kept;
@@ -207,8 +231,8 @@ double slackOf(const Beacon& a, const Beacon& b) {
 
 // One hypothesis or none per beacon, no two overlapping, every two and every three sightings
 // agreeing with the map (so all can be right from one place): the
-// choice with the greatest total excess (then the most beacons), so a strong sighting is never
-// traded for a weak one just to name one more beacon. Strongest first. A branch-and-bound search:
+// choice whose scores sum highest (then the most beacons), so a strong sighting is never
+// traded for a weak one just to name one more beacon. Best first. A branch-and-bound search:
 // a branch stops when even each remaining beacon's best hypothesis could not beat the best found.
 std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std::vector<std::vector<Hypothesis>>& hypotheses) {
   const size_t n = beacons.size();
@@ -236,16 +260,16 @@ std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std:
     return tripleAgrees[key] = sightingsAgree(hypothesis(x).sighting, hypothesis(y).sighting, hypothesis(z).sighting,
                                               slackOf(bx, bz) + slackOf(by, bz));
   };
-  std::vector<double> bestFrom(n + 1, 0.0);  // the most excess beacons b.. could add
+  std::vector<double> bestFrom(n + 1, 0.0);  // the most score beacons b.. could add
   std::vector<int> mostFrom(n + 1, 0);       // and the most of them that could be named
   for (size_t b = n; b-- > 0;) {
     mostFrom[b] = mostFrom[b + 1] + !hypotheses[b].empty();
     bestFrom[b] = bestFrom[b + 1];
-    for (const Hypothesis& h : hypotheses[b]) bestFrom[b] = std::max(bestFrom[b], bestFrom[b + 1] + h.excess);
+    for (const Hypothesis& h : hypotheses[b]) bestFrom[b] = std::max(bestFrom[b], bestFrom[b + 1] + h.score);
   }
   std::vector<size_t> picked, best;  // hypothesis ids, in beacon order
   int bestCount = 0;
-  double bestExcess = 0.0;
+  double bestTotal = 0.0;
   // Whether hypothesis h agrees with every picked one and with every two of them as a triple.
   auto fits = [&](size_t h) {
     for (const size_t p : picked)
@@ -257,26 +281,26 @@ std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std:
           return false;
     return true;
   };
-  auto search = [&](auto&& self, size_t b, double excess) -> void {
-    const double reach = excess + bestFrom[b];
+  auto search = [&](auto&& self, size_t b, double total) -> void {
+    const double reach = total + bestFrom[b];
     const int named = static_cast<int>(picked.size());
-    if (reach < bestExcess || (reach == bestExcess && named + mostFrom[b] <= bestCount)) return;
+    if (reach < bestTotal || (reach == bestTotal && named + mostFrom[b] <= bestCount)) return;
     if (b == n) {
-      best = picked, bestCount = named, bestExcess = excess;  // the bound above let only a better one through
+      best = picked, bestCount = named, bestTotal = total;  // the bound above let only a better one through
       return;
     }
     for (size_t h = first[b]; h < first[b + 1]; ++h) {
       if (!fits(h)) continue;
       picked.push_back(h);
-      self(self, b + 1, excess + hypothesis(h).excess);
+      self(self, b + 1, total + hypothesis(h).score);
       picked.pop_back();
     }
-    self(self, b + 1, excess);
+    self(self, b + 1, total);
   };
   search(search, 0, 0.0);
   std::vector<Found> chosen;
-  for (const size_t h : best) chosen.push_back({hypothesis(h).evidence, beaconOf[h], hypothesis(h).candidate});
-  std::sort(chosen.begin(), chosen.end(), [](const Found& a, const Found& b) { return a.evidence > b.evidence; });
+  for (const size_t h : best) chosen.push_back({hypothesis(h).score, beaconOf[h], hypothesis(h).candidate});
+  std::sort(chosen.begin(), chosen.end(), [](const Found& a, const Found& b) { return a.score > b.score; });
   return chosen;
 }
 
@@ -335,7 +359,7 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
 
 DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                           const std::map<std::string, ColourHistogramClassifier>& classifiers,
-                                          const DetectorOptions& options) const {
+                                          const DetectorOptions& options, FootprintScore score) const {
   if (frame.width != rig_.camera().width() || frame.height != rig_.camera().height())
     throw std::invalid_argument("footprint detector: the frame is not the rig's image size");
   if (!(options.theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
@@ -359,8 +383,8 @@ DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
   const double minMean = std::log(options.theta);
   std::vector<std::vector<Hypothesis>> hypotheses(beacons_.size());
   for (size_t b = 0; b < beacons_.size(); ++b)
-    hypotheses[b] = strongestFootprints(beacons_[b], *footprintOfBeacon_[b], evidence.at(beacons_[b].upper->colourClass),
-                                        evidence.at(beacons_[b].lower->colourClass), minMean);
+    hypotheses[b] = bestFootprints(beacons_[b], *footprintOfBeacon_[b], evidence.at(beacons_[b].upper->colourClass),
+                                   evidence.at(beacons_[b].lower->colourClass), minMean, score);
   DetectionResult result;
   for (const Found& f : agreeingChoice(beacons_, hypotheses)) {
     const BeaconFootprints& fp = *footprintOfBeacon_[f.beacon];

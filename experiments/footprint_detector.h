@@ -43,6 +43,19 @@ struct BeaconFootprints {
 // of the image.
 BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon);
 
+// How a footprint's evidence beyond log Θ, Σ (ℓᵢ − log Θ) over its n pixels, weighs its size:
+//   Total        Σ (ℓᵢ − log Θ)        naive Bayes: every pixel independent evidence;
+//   Standardised Σ (ℓᵢ − log Θ) / √n   a z statistic: how surely the mean exceeds log Θ;
+//   Mean         Σ (ℓᵢ − log Θ) / n    the mean alone.
+// A camera's blur, demosaicing and JPEG blocks make neighbouring pixels' colours alike, so a near
+// footprint's many pixels are fewer independent observations than Total counts; Standardised
+// then keeps a small, clear far beacon from losing to a large, doubtful patch of wall.
+enum class FootprintScore { Total, Standardised, Mean };
+const std::vector<FootprintScore>& footprintScores();  // every one, in the order above
+std::string footprintScoreName(FootprintScore score);  // "total", "standardised", "mean"
+// The score of a footprint of `pixels` pixels whose evidence beyond log Θ sums to `excess`.
+double footprintScore(FootprintScore score, double excess, size_t pixels);
+
 class FootprintDetector {
  public:
   // `beacons` must outlive the detector: detections point into it.
@@ -53,14 +66,14 @@ class FootprintDetector {
   // footprint's pixels, coloured as the beacon's bands), no two overlapping, and in agreement
   // with the map: every two sightings' ranges and bearings allow the two beacons' distance apart,
   // and every two place the robot where each third is seen, so all can be right from one place
-  // (no pose is needed). Among each beacon's strongest footprints (at most
-  // kHypothesesPerBeacon, no two overlapping: a footprint a pixel off a stronger one is the same
-  // sighting, and is no alternative to it), the choice with the greatest evidence beyond what
-  // log Θ asks of its pixels wins (then the one naming more beacons). options.theta (> 0)
-  // bounds each band's mean likelihood ratio; medianPx filters the frame as the pixel detector does. Pixels with alpha
-  // < 0.5 count as certainly not a band.
+  // (no pose is needed). Among each beacon's highest-scoring footprints (at most
+  // kHypothesesPerBeacon, no two overlapping: a footprint a pixel off a better one is the same
+  // sighting, and is no alternative to it), the choice whose scores sum highest wins (then the
+  // one naming more beacons). options.theta (> 0) bounds each band's mean likelihood ratio;
+  // medianPx filters the frame as the pixel detector does. Pixels with alpha < 0.5 count as
+  // certainly not a band.
   DetectionResult detect(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
-                         const DetectorOptions& options) const;
+                         const DetectorOptions& options, FootprintScore score = FootprintScore::Standardised) const;
 
   const BeaconFootprints& footprints(size_t beacon) const { return *footprintOfBeacon_[beacon]; }
 
@@ -72,7 +85,7 @@ class FootprintDetector {
   std::vector<const BeaconFootprints*> footprintOfBeacon_;
 };
 
-constexpr int kHypothesesPerBeacon = 4;
+constexpr int kHypothesesPerBeacon = 8;
 // How far a sighting may stray from the map, beyond the beacons' radii: two sightings' distance
 // may differ from the map's by the two beacons' radii + this; a third sighting from where two
 // place the robot, by both those pairs' slacks.

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "placement.h"
 #include "detector_test_fixtures.h"
@@ -53,6 +54,8 @@ size_t candidateAt(const BeaconFootprints& fp, const Vec2& raster, int width) {
 }
 
 const RobotPose kPose{0.4, -0.2, 30.0};
+
+Vec2 pixelCentre(int pixel, int width) { return Vec2(pixel % width + 0.5, pixel / width + 0.5); }
 
 TEST(FootprintDetector, AFootprintLiesOnItsBandsAsTheRigProjectsThem) {
   // The footprint at the pixel holding a beacon's projected boundary, against the beacon painted
@@ -173,14 +176,14 @@ TEST(FootprintDetector, NoBeaconWhereAlphaIsZeroAndOnlyTheRigsImageSize) {
 
 TEST(FootprintDetector, ASightingTheMapRulesOutLosesToOnesThatAgree) {
   // Each beacon painted where it is seen from kPose, and beacon 0's bands painted a second time as
-  // seen from kGhostRangeM away: that ghost is nearer, so its footprint holds more evidence than the
-  // beacon's own. Alone, the ghost wins; beside the other three beacons, whose ranges and bearings
+  // seen from kGhostRangeM away: that ghost is nearer, so its footprint (as many certain pixels, but
+  // more of them) scores higher than the beacon's own. Alone, the ghost wins; beside the other three beacons, whose ranges and bearings
   // place the robot where the ghost cannot be seen from, beacon 0 is found where it is.
   const RigSpec rig = field().rig;
   const std::vector<Beacon> beacons = beaconsOf(field());
   const FootprintDetector detector(rig, beacons);
   const Beacon& beacon = beacons[0];
-  constexpr double kGhostRangeM = 2.0;  // nearer than from kPose, yet less evidence than the other three
+  constexpr double kGhostRangeM = 2.0;  // nearer than from kPose, yet scoring less than the other three
   const Vec2 towardField = -beacon.position().normalized();
   const Vec2 ghostAt = beacon.position() + kGhostRangeM * towardField;
   const RobotPose ghostPose{ghostAt.x(), ghostAt.y(), kPose.yawDeg + 150.0};
@@ -238,6 +241,64 @@ TEST(FootprintDetector, AFarSightingThatEveryPairAllowsIsDroppedWhereTwoOthersPl
     EXPECT_NE(d.beacon, &beacon);
     EXPECT_LT((d.raster - boundaryRaster(rig, kPose, *d.beacon)).norm(), 1.5) << d.beacon->name;
   }
+}
+
+TEST(FootprintDetector, TheScoresWeighAFootprintsEvidenceByItsSizeAsTheirClosedForms) {
+  EXPECT_EQ(footprintScore(FootprintScore::Total, 12.0, 9), 12.0);
+  EXPECT_EQ(footprintScore(FootprintScore::Standardised, 12.0, 9), 4.0);  // 12 / √9
+  EXPECT_EQ(footprintScore(FootprintScore::Mean, 12.0, 9), 12.0 / 9.0);
+  ASSERT_EQ(footprintScores().size(), 3u);
+  EXPECT_EQ(footprintScoreName(footprintScores()[1]), "standardised");
+}
+
+TEST(FootprintDetector, AStandardisedScoreKeepsAClearFarBeaconFromLosingToALargeDoubtfulPatch) {
+  // Beacon 0 painted as seen from kFarM away (a few pixels a band, every one certain: +5), and a
+  // patch where it would be seen from kNearM: its footprint's pixels painted in the bands' colours
+  // only in part, each band just over half (mean evidence ≥ 0 = log Θ, but doubtful). By total
+  // evidence the patch's many pixels outweigh the far beacon; standardised (S / √n) they do not.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const int w = rig.camera().width();
+  const Beacon& beacon = beacons[0];
+  constexpr double kFarM = 4.5, kNearM = 1.2;
+  const Vec2 towardField = -beacon.position().normalized();
+  const Vec2 farAt = beacon.position() + kFarM * towardField;
+  const RobotPose farPose{farAt.x(), farAt.y(), 10.0};
+  const Vec2 nearAt = beacon.position() + kNearM * (Eigen::Rotation2Dd(radians(25.0)) * towardField);
+  const RobotPose nearPose{nearAt.x(), nearAt.y(), 10.0};
+  ImageRGBA image = greyImage(w);
+  paintBeacon(image, rig, farPose, beacon);
+  const BeaconFootprints& fp = detector.footprints(0);
+  const size_t far = candidateAt(fp, boundaryRaster(rig, farPose, beacon), w);
+  const size_t near = candidateAt(fp, boundaryRaster(rig, nearPose, beacon), w);
+  ASSERT_NE(far, std::string::npos);
+  ASSERT_NE(near, std::string::npos);
+  // A share (1 + x) / 2 of each of the patch's bands in the band's colour, the rest grey: its mean
+  // evidence is 5x. x between n_far / n_near and its square root puts total and standardised apart.
+  const int nearPixels = fp.upperBegin[near + 1] - fp.upperBegin[near];
+  const int farPixels = fp.upperBegin[far + 1] - fp.upperBegin[far];
+  const double x = std::pow(static_cast<double>(farPixels) / nearPixels, 0.75);
+  int painted = 0;
+  for (const auto& [begin, end, band] : {std::make_tuple(fp.upperBegin[near], fp.lowerBegin[near], beacon.upper),
+                                         std::make_tuple(fp.lowerBegin[near], fp.upperBegin[near + 1], beacon.lower)}) {
+    const int pixels = end - begin, inBand = static_cast<int>(std::ceil(0.5 * (1.0 + x) * pixels));
+    for (int k = 0; k < inBand; ++k) {
+      const int p = fp.pixels[static_cast<size_t>(begin + 2 * k < end ? begin + 2 * k : begin + 2 * (k - (pixels + 1) / 2) + 1)];
+      paint(image, pixelCentre(p, w), kColours.at(band->colourClass));
+      ++painted;
+    }
+  }
+  const double nearExcess = kMaxLogLikelihoodRatio * (2 * painted - nearPixels), farExcess = kMaxLogLikelihoodRatio * farPixels;
+  // The closed forms' verdicts, which the detector must follow.
+  ASSERT_GT(nearExcess, farExcess);
+  ASSERT_LT(nearExcess / std::sqrt(nearPixels), farExcess / std::sqrt(farPixels));
+  const DetectionResult byTotal = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Total);
+  ASSERT_EQ(byTotal.beacons.size(), 1u);
+  EXPECT_LT((byTotal.beacons[0].raster - boundaryRaster(rig, nearPose, beacon)).norm(), 3.0);
+  const DetectionResult byStandardised = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Standardised);
+  ASSERT_EQ(byStandardised.beacons.size(), 1u);
+  EXPECT_LT((byStandardised.beacons[0].raster - boundaryRaster(rig, farPose, beacon)).norm(), 1.5);
 }
 
 TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {

@@ -221,8 +221,8 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
 
 constexpr const char* kOracleSet = "realistic_test_frames";
 
-// The validation frames that choose the footprint detector's colour resolution: path frames at
-// poses no training frame has. tryResolutions records each through cameras drawn from the training
+// The validation frames that choose the footprint detector's setting: path frames at
+// poses no training frame has. tryFootprintSettings records each through cameras drawn from the training
 // ranges at draws no training frame (nor the figure) uses; no test camera is seen.
 std::vector<Frame> validationFrames(const TextureRealismOptions& o, const Scene& textured, const std::function<void()>& step) {
   return renderFast(textured, randomFieldPoses(o.trainFrames, o.seed + 4), o.size, o.pathSpp, step, Shading::Path);
@@ -245,44 +245,50 @@ struct Scoring {
   double matchRadiusPx;
 };
 
-// The footprint detector's colour resolution: path + drawn cameras' classifiers (`pathRecorded`) at
-// each candidate resolution detect the validation frames (their beacons' `truth` beside them), each
-// frame recorded `recordingDraws` times, one recorded frame in memory at a time.
-std::vector<ResolutionTrial> tryResolutions(const TextureRealismOptions& o,
-                                            const std::map<std::string, ColourHistogramClassifier>& pathRecorded,
-                                            const std::vector<Frame>& validation,
-                                            const std::vector<std::vector<GroundTruthBeacon>>& truth,
-                                            const FootprintDetector& detector, const Scoring& s, const ExperimentProgress& progress) {
-  std::vector<ResolutionTrial> trials;
-  std::vector<std::map<std::string, ColourHistogramClassifier>> classifiers;
+// The footprint detector's setting: path + drawn cameras' classifiers (`pathRecorded`) at each
+// candidate resolution, with each footprint score, detect the validation frames (their beacons'
+// `truth` beside them), each frame recorded `recordingDraws` times, one recorded frame in memory
+// at a time.
+std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o,
+                                                 const std::map<std::string, ColourHistogramClassifier>& pathRecorded,
+                                                 const std::vector<Frame>& validation,
+                                                 const std::vector<std::vector<GroundTruthBeacon>>& truth,
+                                                 const FootprintDetector& detector, const Scoring& s,
+                                                 const ExperimentProgress& progress) {
+  std::vector<FootprintTrial> trials;
+  std::map<int, std::map<std::string, ColourHistogramClassifier>> classifiers;  // by bins
   for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins)) {
-    trials.push_back({});
-    trials.back().bins = bins;
-    classifiers.push_back(coarsenedSet(pathRecorded, bins));
+    classifiers[bins] = coarsenedSet(pathRecorded, bins);
+    for (const FootprintScore score : footprintScores()) {
+      trials.push_back({});
+      trials.back().bins = bins;
+      trials.back().score = score;
+    }
   }
   for (size_t k = 0; k < validation.size(); ++k) {
     for (int d = 0; d < o.recordingDraws; ++d) {
       const uint64_t index = drawIndex(kValidationDraws, k, d, o.recordingDraws);
       const Frame recorded{validation[k].pose, recordFrame(o.trainingRecording.draw(index), validation[k].image, index), validation[k].instance};
-      for (size_t r = 0; r < trials.size(); ++r) {
-        const FrameEvaluation e = evaluateFrame(recorded, detector.detect(recorded.image, classifiers[r], o.detector), truth[k],
-                                                s.bandColour, s.objectNames, s.matchRadiusPx);
-        trials[r].visibleBeacons += e.visibleBeacons;
-        trials[r].truePositives += e.truePositives;
-        trials[r].falsePositives += e.falsePositives();
+      for (FootprintTrial& t : trials) {
+        const FrameEvaluation e = evaluateFrame(recorded, detector.detect(recorded.image, classifiers.at(t.bins), o.detector, t.score),
+                                                truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
+        t.visibleBeacons += e.visibleBeacons;
+        t.truePositives += e.truePositives;
+        t.falsePositives += e.falsePositives();
       }
     }
-    progress("choosing the footprint detector's colour resolution", static_cast<int>(k + 1), static_cast<int>(validation.size()));
+    progress("choosing the footprint detector's colour resolution and score", static_cast<int>(k + 1),
+             static_cast<int>(validation.size()));
   }
   return trials;
 }
 
-// The best TP − FP; candidates run finest first, so a tie keeps the finer.
-int chosenBins(const std::vector<ResolutionTrial>& trials) {
-  const ResolutionTrial* best = &trials.front();
-  for (const ResolutionTrial& t : trials)
-    if (t.score() > best->score()) best = &t;
-  return best->bins;
+// The best TP − FP; trials run finest first, so a tie keeps the finer (then the score listed first).
+const FootprintTrial& chosenSetting(const std::vector<FootprintTrial>& trials) {
+  const FootprintTrial* best = &trials.front();
+  for (const FootprintTrial& t : trials)
+    if (t.validationScore() > best->validationScore()) best = &t;
+  return *best;
 }
 
 struct ConditionToRun {
@@ -420,9 +426,10 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const FootprintDetector footprints(rig, beacons);
   std::vector<std::vector<GroundTruthBeacon>> validationTruth;
   for (const Frame& frame : validation) validationTruth.push_back(groundTruth(plain, geometry.rays(), rig, frame.pose, beacons));
-  const std::vector<ResolutionTrial> resolutions = tryResolutions(o, trained.at(recordedSet("path")), validation, validationTruth, footprints,
-                                                                  {bandColour, objectNames, matchRadius}, progress);
-  const int footprintBins = chosenBins(resolutions);
+  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trained.at(recordedSet("path")), validation, validationTruth,
+                                                                  footprints, {bandColour, objectNames, matchRadius}, progress);
+  const int footprintBins = chosenSetting(trials).bins;
+  const FootprintScore footprintScore = chosenSetting(trials).score;
   Classifiers coarsened;  // every set at footprintBins, when that is not the trained resolution
   if (footprintBins != o.bins)
     for (const auto& [set, classifiers] : trained) coarsened[set] = coarsenedSet(classifiers, footprintBins);
@@ -440,7 +447,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     const auto& classifiers = (run.detector == DetectorKind::Footprints ? forFootprints : trained).at(run.train);
     for (size_t k = 0; k < frames.size(); ++k) {
       const DetectionResult detected = run.detector == DetectorKind::Footprints
-                                           ? footprints.detect(frames[k].image, classifiers, o.detector)
+                                           ? footprints.detect(frames[k].image, classifiers, o.detector, footprintScore)
                                            : detectBeacons(frames[k].image, classifiers, beacons, rig, o.detector);
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
@@ -452,8 +459,9 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
 
   TextureRealismResults results;
   describeCameras(o, results);
-  results.footprintResolutions = resolutions;
+  results.footprintTrials = trials;
   results.footprintBins = footprintBins;
+  results.footprintScore = footprintScore;
   results.cyclesFramesRendered = cycles.rendered;
   results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);

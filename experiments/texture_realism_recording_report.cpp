@@ -177,20 +177,24 @@ void writeFinding(std::ostringstream& md, const TextureRealismResults& r) {
   if (!r.ablatedStages.empty()) writeAblationFinding(md, r, *recorded, DetectorKind::Pixels);
 }
 
-// How the footprint detector's colour resolution was chosen: on validation frames, never a test camera.
-void writeResolutionChoice(std::ostringstream& md, const TextureRealismResults& r, const TextureRealismOptions& o) {
-  if (r.footprintResolutions.empty()) return;
-  md << "Its colour resolution is chosen before any test frame is seen. Validation frames — path frames at "
+// How the footprint detector's colour resolution and score were chosen: on validation frames, never
+// a test camera.
+void writeFootprintSettingChoice(std::ostringstream& md, const TextureRealismResults& r, const TextureRealismOptions& o) {
+  if (r.footprintTrials.empty()) return;
+  md << "Its colour resolution and score are chosen before any test frame is seen. Validation frames — path frames at "
         "poses no training frame has, each recorded through cameras drawn from the training ranges with draws no "
         "training frame used — are detected with path + drawn cameras' histograms at the trained resolution and "
-        "each exact halving of it down to 8 bins (a coarse bin holds exactly its fine bins' counts). The best "
-        "TP − FP wins, the finer on a tie, and every footprint condition below, its bar plain → plain included, "
-        "uses it: **"
-     << r.footprintBins << "³ bins**. The thesis' pixel detector keeps its " << o.bins
-     << "³ bins.\n\n| bins per channel | visible | TP | FP | TP − FP |\n|---|---|---|---|---|\n";
-  for (const ResolutionTrial& t : r.footprintResolutions)
-    md << "| " << t.bins << (t.bins == r.footprintBins ? " (chosen)" : "") << " | " << t.visibleBeacons << " | "
-       << t.truePositives << " | " << t.falsePositives << " | " << t.score() << " |\n";
+        "each exact halving of it down to 8 bins (a coarse bin holds exactly its fine bins' counts), with each score. "
+        "The best TP − FP wins, the finer resolution on a tie, and every footprint condition below, its bar plain → "
+        "plain included, uses it: **"
+     << r.footprintBins << "³ bins, the " << footprintScoreName(r.footprintScore)
+     << " score**. The thesis' pixel detector keeps its " << o.bins
+     << "³ bins.\n\n| bins per channel | score | visible | TP | FP | TP − FP |\n|---|---|---|---|---|---|\n";
+  for (const FootprintTrial& t : r.footprintTrials) {
+    const bool chosen = t.bins == r.footprintBins && t.score == r.footprintScore;
+    md << "| " << t.bins << " | " << footprintScoreName(t.score) << (chosen ? " (chosen)" : "") << " | "
+       << t.visibleBeacons << " | " << t.truePositives << " | " << t.falsePositives << " | " << t.validationScore() << " |\n";
+  }
   md << "\n";
 }
 
@@ -268,15 +272,17 @@ void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& 
         "agree better than the true bands' takes the beacon's name. The footprint detector "
         "(experiments/footprint_detector.h) keeps the same classifiers, trained on the same frames, and decides per "
         "beacon instead: every pixel taken as a beacon's band boundary gives, through the rig, the pixels its two "
-        "bands would cover (a cylinder of known size at the range that boundary inverts to). A footprint's evidence "
-        "is the sum of its pixels' log likelihood ratios (each clamped to ±"
-     << kMaxLogLikelihoodRatio << "); each band's mean must reach log Θ; "
-        "each beacon keeps its " << kHypothesesPerBeacon << " strongest footprints, and of the choices of one or none "
+        "bands would cover (a cylinder of known size at the range that boundary inverts to). Each pixel's evidence "
+        "is its log likelihood ratio (clamped to ±"
+     << kMaxLogLikelihoodRatio << "); each band's mean must reach log Θ, and a footprint's score is its evidence "
+        "beyond log Θ, summed over its n pixels: as it is (total), over √n (standardised: how surely the mean "
+        "exceeds log Θ, when neighbouring pixels are not independent observations) or over n (mean). "
+        "Each beacon keeps its " << kHypothesesPerBeacon << " best-scoring footprints, and of the choices of one or none "
         "per beacon that agree with the map (every two sightings' ranges and bearings allow the beacons' map distance, "
         "and every two place the robot where each third is seen: all can be right from one place, no pose needed), "
-        "the one with the greatest evidence beyond log Θ wins. Its false positives are its bands placed where no band of their colour is, and beacons named "
-        "where they are not.\n\n";
-  writeResolutionChoice(md, r, o);
+        "the one whose scores sum highest wins. Its false positives are its bands placed where no band of their colour "
+        "is, and beacons named where they are not.\n\n";
+  writeFootprintSettingChoice(md, r, o);
   writeConditionsPerTestCamera(md, r, d);
   writeRecallByRange(md, r);
   writeAblation(md, r, d);

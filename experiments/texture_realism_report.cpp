@@ -72,12 +72,14 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                              {"measurements_used", e.measurementsUsed},
                              {"measurements_gated", e.measurementsGated}};
   j["footprint_bins"] = results.footprintBins;
-  j["footprint_resolutions"] = nlohmann::json::array();
-  for (const ResolutionTrial& t : results.footprintResolutions)
-    j["footprint_resolutions"].push_back({{"bins_per_channel", t.bins},
-                                          {"visible_beacons", t.visibleBeacons},
-                                          {"true_positives", t.truePositives},
-                                          {"false_positives", t.falsePositives}});
+  j["footprint_score"] = footprintScoreName(results.footprintScore);
+  j["footprint_trials"] = nlohmann::json::array();
+  for (const FootprintTrial& t : results.footprintTrials)
+    j["footprint_trials"].push_back({{"bins_per_channel", t.bins},
+                                     {"score", footprintScoreName(t.score)},
+                                     {"visible_beacons", t.visibleBeacons},
+                                     {"true_positives", t.truePositives},
+                                     {"false_positives", t.falsePositives}});
   j["seconds"] = results.seconds;
   return j;
 }

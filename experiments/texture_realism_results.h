@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "beacon_detector.h"
+#include "footprint_detector.h"
 #include "realistic_rendering.h"
 #include "recording_camera_spec.h"
 #include "render_settings.h"
@@ -94,13 +95,15 @@ struct TestCameraSummary {
   std::vector<std::pair<std::string, std::string>> values;
 };
 
-// One colour resolution tried for the footprint detector on the validation frames (path frames at
-// poses no training frame has, each recorded through cameras drawn from the training ranges with
-// draws no training frame used; never a test camera), by its path_recorded classifiers.
-struct ResolutionTrial {
+// One setting tried for the footprint detector on the validation frames (path frames at poses no
+// training frame has, each recorded through cameras drawn from the training ranges with draws no
+// training frame used; never a test camera), by its path_recorded classifiers: a colour
+// resolution and how a footprint's score weighs its size.
+struct FootprintTrial {
   int bins = 0;
+  FootprintScore score = FootprintScore::Total;
   int visibleBeacons = 0, truePositives = 0, falsePositives = 0;
-  int score() const { return truePositives - falsePositives; }
+  int validationScore() const { return truePositives - falsePositives; }
 };
 
 struct TextureRealismResults {
@@ -110,10 +113,11 @@ struct TextureRealismResults {
   std::vector<std::string> ablatedStages;
   ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
-  // The footprint detector's conditions use classifiers coarsened to `footprintBins`, the tried
-  // resolution with the best validation score (the finer one on a tie).
-  std::vector<ResolutionTrial> footprintResolutions;
+  // The footprint detector's conditions use classifiers coarsened to `footprintBins` and
+  // `footprintScore`: the tried setting with the best validation score (the first tried on a tie).
+  std::vector<FootprintTrial> footprintTrials;
   int footprintBins = 0;
+  FootprintScore footprintScore = FootprintScore::Total;
   double seconds = 0.0;
   int cyclesFramesRendered = 0, cyclesFramesReused = 0;  // Cycles' frames, rendered now or kept from an earlier run
 };

@@ -161,22 +161,25 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const json& plainFootprints = results["conditions"]["plain_to_plain_footprints"];
   EXPECT_GE(plainFootprints["true_positives"].get<int>(), 4);
   EXPECT_LT(plainFootprints["false_positives"].get<int>(), plain["false_positives"].get<int>());
-  // Its colour resolution: 32 bins and its halvings tried on the validation frames (6 poses, each
-  // through 2 drawn cameras); the chosen one scores best.
-  const json& resolutions = results["footprint_resolutions"];
-  ASSERT_EQ(resolutions.size(), 3u);
+  // Its colour resolution and score: 32 bins and its halvings, each with the three scores, tried on
+  // the validation frames (6 poses, each through 2 drawn cameras); the chosen one scores best.
+  const json& trials = results["footprint_trials"];
+  const std::vector<std::string> scores = {"total", "standardised", "mean"};
+  ASSERT_EQ(trials.size(), 9u);
   int bestScore = std::numeric_limits<int>::min();
-  for (size_t k = 0; k < 3; ++k) {
-    EXPECT_EQ(resolutions[k]["bins_per_channel"], 32 >> k);
-    EXPECT_LE(resolutions[k]["visible_beacons"].get<int>(), 48);  // 12 recorded frames of at most 4 beacons
-    EXPECT_EQ(resolutions[k]["visible_beacons"].get<int>() % 2, 0);  // each pose's beacons counted once per drawn camera
-    EXPECT_EQ(resolutions[k]["visible_beacons"], resolutions[0]["visible_beacons"]);
-    EXPECT_GT(resolutions[k]["visible_beacons"].get<int>(), 0);
-    bestScore = std::max(bestScore, resolutions[k]["true_positives"].get<int>() - resolutions[k]["false_positives"].get<int>());
+  for (size_t k = 0; k < trials.size(); ++k) {
+    EXPECT_EQ(trials[k]["bins_per_channel"], 32 >> (k / 3));
+    EXPECT_EQ(trials[k]["score"], scores[k % 3]);
+    EXPECT_LE(trials[k]["visible_beacons"].get<int>(), 48);  // 12 recorded frames of at most 4 beacons
+    EXPECT_EQ(trials[k]["visible_beacons"].get<int>() % 2, 0);  // each pose's beacons counted once per drawn camera
+    EXPECT_EQ(trials[k]["visible_beacons"], trials[0]["visible_beacons"]);
+    EXPECT_GT(trials[k]["visible_beacons"].get<int>(), 0);
+    bestScore = std::max(bestScore, trials[k]["true_positives"].get<int>() - trials[k]["false_positives"].get<int>());
   }
   int chosenScore = std::numeric_limits<int>::min();
-  for (const json& t : resolutions)
-    if (t["bins_per_channel"] == results["footprint_bins"]) chosenScore = t["true_positives"].get<int>() - t["false_positives"].get<int>();
+  for (const json& t : trials)
+    if (t["bins_per_channel"] == results["footprint_bins"] && t["score"] == results["footprint_score"])
+      chosenScore = t["true_positives"].get<int>() - t["false_positives"].get<int>();
   EXPECT_EQ(chosenScore, bestScore);
 
   // --quick: every 25th of the 100 thesis-loop poses (4 test frames), 360 px, 6 training frames.
@@ -429,7 +432,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                            "| plain → plain (the bar) |", "| path + drawn cameras → camera 2: sharp_jpeg95.json |",
                            "| ceiling: the webcam's own frames → realistic |"})
     EXPECT_NE(doc.str().find(part), std::string::npos) << part;
-  const std::string chosen = "| " + std::to_string(results["footprint_bins"].get<int>()) + " (chosen) |";
+  const std::string chosen = "| " + std::to_string(results["footprint_bins"].get<int>()) + " | " +
+                             results["footprint_score"].get<std::string>() + " (chosen) |";
   EXPECT_NE(doc.str().find(chosen), std::string::npos) << chosen;
   const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
   EXPECT_EQ(strip.width, 960);
