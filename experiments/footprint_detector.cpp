@@ -199,7 +199,11 @@ bool overlap(const std::vector<int>& a, const std::vector<int>& b) {
 // kHypothesesPerBeacon.
 std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootprints& fp, const std::vector<float>& upper,
                                        const std::vector<float>& lower, double minMean, FootprintScore score) {
-  std::vector<std::pair<double, size_t>> passing;
+  struct Passing {
+    double score;
+    size_t pixels, candidate;
+  };
+  std::vector<Passing> passing;
   for (size_t c = 0; c < fp.size(); ++c) {
     double sumUpper = 0.0, sumLower = 0.0;
     const int u0 = fp.upperBegin[c], l0 = fp.lowerBegin[c], l1 = fp.upperBegin[c + 1];
@@ -208,17 +212,21 @@ std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootpri
     for (int k = l0; k < l1; ++k) sumLower += lower[static_cast<size_t>(fp.pixels[k])];
     if (sumLower < minMean * (l1 - l0)) continue;
     const size_t pixels = static_cast<size_t>(l1 - u0);
-    passing.emplace_back(footprintScore(score, sumUpper + sumLower - minMean * static_cast<double>(pixels), pixels), c);
+    passing.push_back({footprintScore(score, sumUpper + sumLower - minMean * static_cast<double>(pixels), pixels), pixels, c});
   }
-  // Best first; equal scores in candidate order, so the choice never depends on the sort.
-  std::sort(passing.begin(), passing.end(),
-            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+  // Best first; on equal scores the larger footprint (under the mean score every footprint inside a
+  // clean beacon ties, and the largest is the one that fits it), then candidate order, so the
+  // choice never depends on the sort.
+  std::sort(passing.begin(), passing.end(), [](const Passing& a, const Passing& b) {
+    return std::tie(b.score, b.pixels, a.candidate) < std::tie(a.score, a.pixels, b.candidate);
+  });
   std::vector<Hypothesis> kept;
-  for (const auto& [value, c] : passing) {
+  for (const Passing& p : passing) {
+    const size_t c = p.candidate;
     std::vector<int> pixels(fp.pixels.begin() + fp.upperBegin[c], fp.pixels.begin() + fp.upperBegin[c + 1]);
     std::sort(pixels.begin(), pixels.end());
     if (std::any_of(kept.begin(), kept.end(), [&](const Hypothesis& h) { return overlap(h.pixels, pixels); })) continue;
-    kept.push_back({std::max(0.0, value), c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
+    kept.push_back({std::max(0.0, p.score), c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
     if (kept.size() == static_cast<size_t>(kHypothesesPerBeacon)) break;
   }
   return kept;
@@ -260,7 +268,7 @@ std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std:
     return tripleAgrees[key] = sightingsAgree(hypothesis(x).sighting, hypothesis(y).sighting, hypothesis(z).sighting,
                                               slackOf(bx, bz) + slackOf(by, bz));
   };
-  std::vector<double> bestFrom(n + 1, 0.0);  // the most score beacons b.. could add
+  std::vector<double> bestFrom(n + 1, 0.0);  // the highest score beacons b.. could add together
   std::vector<int> mostFrom(n + 1, 0);       // and the most of them that could be named
   for (size_t b = n; b-- > 0;) {
     mostFrom[b] = mostFrom[b + 1] + !hypotheses[b].empty();
@@ -300,7 +308,8 @@ std::vector<Found> agreeingChoice(const std::vector<Beacon>& beacons, const std:
   search(search, 0, 0.0);
   std::vector<Found> chosen;
   for (const size_t h : best) chosen.push_back({hypothesis(h).score, beaconOf[h], hypothesis(h).candidate});
-  std::sort(chosen.begin(), chosen.end(), [](const Found& a, const Found& b) { return a.score > b.score; });
+  std::sort(chosen.begin(), chosen.end(),
+            [](const Found& a, const Found& b) { return std::tie(b.score, a.beacon) < std::tie(a.score, b.beacon); });
   return chosen;
 }
 

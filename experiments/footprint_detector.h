@@ -7,10 +7,11 @@
 // Here each beacon is a known shape: two stacked bands of a cylinder of known size. For every
 // pixel taken as a beacon's band boundary, the beacon's image footprint follows from the rig
 // (the boundary inverted at its height gives range and bearing; the bands' samples projected back
-// give their pixels). A footprint's evidence is the sum of its pixels' log likelihood ratios
-// (naive Bayes over the footprint), each band's mean must reach log Θ, and each beacon is taken
-// where its evidence is highest. A speck under half a band's footprint cannot make a beacon (a far
-// beacon's bands are footprints of a few pixels, so the smallest specks still can).
+// give their pixels). Each band's mean log likelihood ratio must reach log Θ; a footprint's score
+// is its evidence beyond log Θ weighed by its size (FootprintScore), and each beacon is taken
+// where the scores of a choice that agrees with the map sum highest. A speck under half a band's
+// footprint cannot make a beacon (a far beacon's bands are footprints of a few pixels, so the
+// smallest specks still can).
 //
 // The footprints depend only on the rig and the beacons' geometry, so they are built once
 // (FootprintTable) and reused for every frame.

@@ -176,8 +176,8 @@ TEST(FootprintDetector, NoBeaconWhereAlphaIsZeroAndOnlyTheRigsImageSize) {
 
 TEST(FootprintDetector, ASightingTheMapRulesOutLosesToOnesThatAgree) {
   // Each beacon painted where it is seen from kPose, and beacon 0's bands painted a second time as
-  // seen from kGhostRangeM away: that ghost is nearer, so its footprint (as many certain pixels, but
-  // more of them) scores higher than the beacon's own. Alone, the ghost wins; beside the other three beacons, whose ranges and bearings
+  // seen from kGhostRangeM away: that ghost is nearer, so its footprint (every pixel as certain,
+  // but more of them) scores higher than the beacon's own. Alone, the ghost wins; beside the other three beacons, whose ranges and bearings
   // place the robot where the ghost cannot be seen from, beacon 0 is found where it is.
   const RigSpec rig = field().rig;
   const std::vector<Beacon> beacons = beaconsOf(field());
@@ -248,7 +248,12 @@ TEST(FootprintDetector, TheScoresWeighAFootprintsEvidenceByItsSizeAsTheirClosedF
   EXPECT_EQ(footprintScore(FootprintScore::Standardised, 12.0, 9), 4.0);  // 12 / √9
   EXPECT_EQ(footprintScore(FootprintScore::Mean, 12.0, 9), 12.0 / 9.0);
   ASSERT_EQ(footprintScores().size(), 3u);
-  EXPECT_EQ(footprintScoreName(footprintScores()[1]), "standardised");
+  EXPECT_EQ(footprintScores()[0], FootprintScore::Total);
+  EXPECT_EQ(footprintScores()[1], FootprintScore::Standardised);
+  EXPECT_EQ(footprintScores()[2], FootprintScore::Mean);
+  EXPECT_EQ(footprintScoreName(FootprintScore::Total), "total");
+  EXPECT_EQ(footprintScoreName(FootprintScore::Standardised), "standardised");
+  EXPECT_EQ(footprintScoreName(FootprintScore::Mean), "mean");
 }
 
 TEST(FootprintDetector, AStandardisedScoreKeepsAClearFarBeaconFromLosingToALargeDoubtfulPatch) {

@@ -428,8 +428,9 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   for (const Frame& frame : validation) validationTruth.push_back(groundTruth(plain, geometry.rays(), rig, frame.pose, beacons));
   const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trained.at(recordedSet("path")), validation, validationTruth,
                                                                   footprints, {bandColour, objectNames, matchRadius}, progress);
-  const int footprintBins = chosenSetting(trials).bins;
-  const FootprintScore footprintScore = chosenSetting(trials).score;
+  const FootprintTrial& chosen = chosenSetting(trials);
+  const int footprintBins = chosen.bins;
+  const FootprintScore scoreOfFootprints = chosen.score;
   Classifiers coarsened;  // every set at footprintBins, when that is not the trained resolution
   if (footprintBins != o.bins)
     for (const auto& [set, classifiers] : trained) coarsened[set] = coarsenedSet(classifiers, footprintBins);
@@ -447,7 +448,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     const auto& classifiers = (run.detector == DetectorKind::Footprints ? forFootprints : trained).at(run.train);
     for (size_t k = 0; k < frames.size(); ++k) {
       const DetectionResult detected = run.detector == DetectorKind::Footprints
-                                           ? footprints.detect(frames[k].image, classifiers, o.detector, footprintScore)
+                                           ? footprints.detect(frames[k].image, classifiers, o.detector, scoreOfFootprints)
                                            : detectBeacons(frames[k].image, classifiers, beacons, rig, o.detector);
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
@@ -461,7 +462,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   describeCameras(o, results);
   results.footprintTrials = trials;
   results.footprintBins = footprintBins;
-  results.footprintScore = footprintScore;
+  results.footprintScore = scoreOfFootprints;
   results.cyclesFramesRendered = cycles.rendered;
   results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);

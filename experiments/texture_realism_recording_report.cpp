@@ -185,8 +185,8 @@ void writeFootprintSettingChoice(std::ostringstream& md, const TextureRealismRes
         "poses no training frame has, each recorded through cameras drawn from the training ranges with draws no "
         "training frame used — are detected with path + drawn cameras' histograms at the trained resolution and "
         "each exact halving of it down to 8 bins (a coarse bin holds exactly its fine bins' counts), with each score. "
-        "The best TP − FP wins, the finer resolution on a tie, and every footprint condition below, its bar plain → "
-        "plain included, uses it: **"
+        "The best TP − FP wins (on a tie the finer resolution, then the score in the order total, standardised, "
+        "mean), and every footprint condition below, its bar plain → plain included, uses it: **"
      << r.footprintBins << "³ bins, the " << footprintScoreName(r.footprintScore)
      << " score**. The thesis' pixel detector keeps its " << o.bins
      << "³ bins.\n\n| bins per channel | score | visible | TP | FP | TP − FP |\n|---|---|---|---|---|---|\n";

@@ -11,6 +11,7 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "external_process.h"
+#include "markdown_html.h"
 #include "markup.h"
 #include "texture_realism_tables.h"
 #include "number_format.h"
@@ -180,10 +181,11 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
     html << "<tr><td>" << escapeMarkup(e.condition) << "</td><td>" << fixedDecimals(e.meanErrorOdometryCm, 1) << "</td><td>"
          << fixedDecimals(e.meanErrorEkfCm, 1) << "</td><td>" << fixedDecimals(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1)
          << "</td><td>" << e.measurementsUsed << " / " << e.measurementsGated << "</td></tr>";
-  if (results.comparison.width > 0)
-    html << "</table><h2>One pose: plain, path, path through one drawn camera, realistic</h2><img src=\"figures/"
-         << kRecordingFigure << "\" style=\"max-width:100%\"><table>";
-  html << "</table><h2>Frames with detections</h2><p>Green crosses: visible beacons (projected). Yellow circles: "
+  // The transfer tables, the validation's choice, the ablation and the strip of one pose, as in the .md.
+  html << "</table>"
+       << htmlFromMarkdown(recordingSectionMarkdown(results, *data.options,
+                                                    results.comparison.width > 0 ? std::string("figures/") + kRecordingFigure : ""));
+  html << "<h2>Frames with detections</h2><p>Green crosses: visible beacons (projected). Yellow circles: "
           "correct detections; red: wrong identity or position.</p>";
   for (const ConditionReport& c : data.conditions)
     html << "<figure><img src=\"frames/" << escapeMarkup(c.outcome.key()) << ".png\" width=\"300\"><figcaption>"

@@ -101,7 +101,7 @@ struct TestCameraSummary {
 // resolution and how a footprint's score weighs its size.
 struct FootprintTrial {
   int bins = 0;
-  FootprintScore score = FootprintScore::Total;
+  FootprintScore score = FootprintScore::Standardised;
   int visibleBeacons = 0, truePositives = 0, falsePositives = 0;
   int validationScore() const { return truePositives - falsePositives; }
 };
@@ -113,11 +113,12 @@ struct TextureRealismResults {
   std::vector<std::string> ablatedStages;
   ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
-  // The footprint detector's conditions use classifiers coarsened to `footprintBins` and
-  // `footprintScore`: the tried setting with the best validation score (the first tried on a tie).
+  // The footprint detector's conditions use classifiers coarsened to `footprintBins` and score
+  // footprints by `footprintScore`: the tried setting with the best validation score (the first
+  // tried on a tie).
   std::vector<FootprintTrial> footprintTrials;
   int footprintBins = 0;
-  FootprintScore footprintScore = FootprintScore::Total;
+  FootprintScore footprintScore = FootprintScore::Standardised;
   double seconds = 0.0;
   int cyclesFramesRendered = 0, cyclesFramesReused = 0;  // Cycles' frames, rendered now or kept from an earlier run
 };

@@ -1,0 +1,29 @@
+#include "markdown_html.h"
+
+#include <gtest/gtest.h>
+
+namespace omnicam {
+namespace {
+
+TEST(HtmlFromMarkdown, HeadingsParagraphsAndInlineSpans) {
+  EXPECT_EQ(htmlFromMarkdown("### A **b** c\n\nOne line\nand the next, `x < y`.\n"),
+            "<h3>A <strong>b</strong> c</h3>\n<p>One line and the next, <code>x &lt; y</code>.</p>\n");
+  EXPECT_EQ(htmlFromMarkdown("an unpaired ** and ` stay\n"), "<p>an unpaired ** and ` stay</p>\n");
+}
+
+TEST(HtmlFromMarkdown, APipeTableDropsItsSeparatorRow) {
+  EXPECT_EQ(htmlFromMarkdown("| a | **b** |\n|---|---:|\n| 1 |  |\n| <x> | 2 |\nafter\n"),
+            "<table>\n<tr><th>a</th><th><strong>b</strong></th></tr>\n<tr><td>1</td><td></td></tr>\n"
+            "<tr><td>&lt;x&gt;</td><td>2</td></tr>\n</table>\n<p>after</p>\n");
+}
+
+TEST(HtmlFromMarkdown, ListsAndImagesAndEscapedUserText) {
+  EXPECT_EQ(htmlFromMarkdown("- one\n- two & \"three\"\n\n![a \"strip\"](figures/x.png)\n"),
+            "<ul>\n<li>one</li>\n<li>two &amp; &quot;three&quot;</li>\n</ul>\n"
+            "<p><img src=\"figures/x.png\" alt=\"a &quot;strip&quot;\" style=\"max-width:100%\"></p>\n");
+  // Markup in the text is shown, never interpreted.
+  EXPECT_EQ(htmlFromMarkdown("<script>alert(1)</script>"), "<p>&lt;script&gt;alert(1)&lt;/script&gt;</p>\n");
+}
+
+}  // namespace
+}  // namespace omnicam
