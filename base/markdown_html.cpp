@@ -29,34 +29,51 @@ std::string inlineHtml(const std::string& text) {
   return out;
 }
 
-// The cells of a pipe-table row: "| a | b |" → {"a", "b"}.
+// The cells of a pipe-table row: "| a | b |" → {"a", "b"}; "| a ||" → {"a", ""}.
 std::vector<std::string> cellsOf(const std::string& row) {
   std::vector<std::string> cells;
-  std::string inner = row.substr(1);
-  if (!inner.empty() && inner.back() == '|') inner.pop_back();
-  std::istringstream in(inner);
-  for (std::string cell; std::getline(in, cell, '|');) {
+  const size_t end = row.size() > 1 && row.back() == '|' ? row.size() - 1 : row.size();
+  for (size_t from = 1; from <= end;) {
+    const size_t bar = std::min(row.find('|', from), end);
+    const std::string cell = row.substr(from, bar - from);
     const size_t first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
     cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+    from = bar + 1;
   }
   return cells;
 }
 
 bool startsWith(const std::string& line, const std::string& prefix) { return line.compare(0, prefix.size(), prefix) == 0; }
 
+// "![alt](src)" and nothing else on the line, src a relative path (the reports' own figures; no
+// scheme such as javascript:).
+bool isImageLine(const std::string& line) {
+  const size_t middle = line.find("](");
+  return startsWith(line, "![") && middle != std::string::npos && line.back() == ')' &&
+         line.find(':', middle) == std::string::npos;
+}
+
+// Whether a line begins a block of its own (and so ends a paragraph).
+bool startsBlock(const std::string& line) {
+  return line.empty() || line[0] == '#' || line[0] == '|' || startsWith(line, "- ") || isImageLine(line);
+}
+
 }  // namespace
 
 std::string htmlFromMarkdown(const std::string& markdown) {
   std::istringstream in(markdown);
   std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
   std::string html;
   for (size_t k = 0; k < lines.size();) {
     const std::string& line = lines[k];
     if (line.empty()) {
       ++k;
     } else if (line[0] == '#') {
-      const size_t level = line.find_first_not_of('#');
+      const size_t level = std::min(line.find_first_not_of('#'), line.size());
       const size_t text = line.find_first_not_of(' ', level);
       const std::string tag = "h" + std::to_string(std::min<size_t>(level, 6));
       html += "<" + tag + ">" + inlineHtml(text == std::string::npos ? "" : line.substr(text)) + "</" + tag + ">\n";
@@ -71,7 +88,7 @@ std::string htmlFromMarkdown(const std::string& markdown) {
         html += "</tr>\n";
       }
       html += "</table>\n";
-    } else if (startsWith(line, "![") && line.find("](") != std::string::npos && line.back() == ')') {
+    } else if (isImageLine(line)) {
       const size_t middle = line.find("](");
       html += "<p><img src=\"" + escapeMarkup(line.substr(middle + 2, line.size() - middle - 3)) + "\" alt=\"" +
               escapeMarkup(line.substr(2, middle - 2)) + "\" style=\"max-width:100%\"></p>\n";
@@ -81,11 +98,8 @@ std::string htmlFromMarkdown(const std::string& markdown) {
       for (; k < lines.size() && startsWith(lines[k], "- "); ++k) html += "<li>" + inlineHtml(lines[k].substr(2)) + "</li>\n";
       html += "</ul>\n";
     } else {
-      std::string paragraph;
-      for (; k < lines.size() && !lines[k].empty() && lines[k][0] != '#' && lines[k][0] != '|' && !startsWith(lines[k], "- ") &&
-             !startsWith(lines[k], "![");
-           ++k)
-        paragraph += (paragraph.empty() ? "" : " ") + lines[k];
+      std::string paragraph = line;  // this line starts no other block, so the paragraph has it
+      for (++k; k < lines.size() && !startsBlock(lines[k]); ++k) paragraph += " " + lines[k];
       html += "<p>" + inlineHtml(paragraph) + "</p>\n";
     }
   }

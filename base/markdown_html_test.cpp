@@ -25,5 +25,19 @@ TEST(HtmlFromMarkdown, ListsAndImagesAndEscapedUserText) {
   EXPECT_EQ(htmlFromMarkdown("<script>alert(1)</script>"), "<p>&lt;script&gt;alert(1)&lt;/script&gt;</p>\n");
 }
 
+TEST(HtmlFromMarkdown, WhatIsNotAWholeImageLineIsText) {
+  EXPECT_EQ(htmlFromMarkdown("![not an image\nx\n![a](b.png) trailing\n![a](javascript:x)\n"),
+            "<p>![not an image x ![a](b.png) trailing ![a](javascript:x)</p>\n");
+  EXPECT_EQ(htmlFromMarkdown("text\n![a](b.png)\n"), "<p>text</p>\n<p><img src=\"b.png\" alt=\"a\" style=\"max-width:100%\"></p>\n");
+  EXPECT_EQ(htmlFromMarkdown("![a](fig<1>.png)"), "<p><img src=\"fig&lt;1&gt;.png\" alt=\"a\" style=\"max-width:100%\"></p>\n");
+}
+
+TEST(HtmlFromMarkdown, WindowsLineEndsEmptyCellsAndBareHeadings) {
+  EXPECT_EQ(htmlFromMarkdown("| a ||\r\n|---|---|\r\n| 1 | 2 |\r\none\r\ntwo\r\n"),
+            "<table>\n<tr><th>a</th><th></th></tr>\n<tr><td>1</td><td>2</td></tr>\n</table>\n<p>one two</p>\n");
+  EXPECT_EQ(htmlFromMarkdown("#\n"), "<h1></h1>\n");
+  EXPECT_EQ(htmlFromMarkdown(""), "");
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "placement.h"
@@ -304,6 +305,37 @@ TEST(FootprintDetector, AStandardisedScoreKeepsAClearFarBeaconFromLosingToALarge
   const DetectionResult byStandardised = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Standardised);
   ASSERT_EQ(byStandardised.beacons.size(), 1u);
   EXPECT_LT((byStandardised.beacons[0].raster - boundaryRaster(rig, farPose, beacon)).norm(), 1.5);
+}
+
+TEST(FootprintDetector, OnEqualScoresTheLargerFootprintIsTaken) {
+  // Beacon 0's footprints as seen from 1.5 m and from 3.5 m, each painted exactly in its bands'
+  // colours: under the mean score both score the clamp, 5. The larger (nearer) one is taken,
+  // not whichever comes first.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const int w = rig.camera().width();
+  const Beacon& beacon = beacons[0];
+  const BeaconFootprints& fp = detector.footprints(0);
+  ImageRGBA image = greyImage(w);
+  std::vector<std::pair<int, Vec2>> painted;  // each footprint's size and its boundary's raster
+  for (const auto& [rangeM, turnDeg] : {std::make_pair(1.5, 0.0), std::make_pair(3.5, 60.0)}) {
+    const Vec2 at = beacon.position() - rangeM * (Eigen::Rotation2Dd(radians(turnDeg)) * beacon.position().normalized());
+    const Vec2 raster = boundaryRaster(rig, RobotPose{at.x(), at.y(), 10.0}, beacon);
+    const size_t c = candidateAt(fp, raster, w);
+    ASSERT_NE(c, std::string::npos);
+    for (int k = fp.upperBegin[c]; k < fp.upperBegin[c + 1]; ++k)
+      paint(image, pixelCentre(fp.pixels[static_cast<size_t>(k)], w),
+            kColours.at((k < fp.lowerBegin[c] ? beacon.upper : beacon.lower)->colourClass));
+    painted.emplace_back(fp.upperBegin[c + 1] - fp.upperBegin[c], raster);
+  }
+  ASSERT_GT(painted[0].first, painted[1].first);
+  const DetectionResult found = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Mean);
+  ASSERT_EQ(found.beacons.size(), 1u);
+  EXPECT_EQ(found.blobs[static_cast<size_t>(found.beacons[0].upperBlob)].area +
+                found.blobs[static_cast<size_t>(found.beacons[0].lowerBlob)].area,
+            painted[0].first);
+  EXPECT_LT((found.beacons[0].raster - painted[0].second).norm(), 1.5);
 }
 
 TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {
