@@ -177,7 +177,7 @@ struct Found {
   size_t candidate;
 };
 
-// One of a beacon's highest-scoring footprints: its candidate, score (≥ 0: both its bands reach
+// One of a beacon's highest-scoring footprints: its candidate, score (≥ 0: its mean reaches
 // log Θ), and its pixels (sorted).
 struct Hypothesis {
   double score;
@@ -194,11 +194,12 @@ bool overlap(const std::vector<int>& a, const std::vector<int>& b) {
   return false;
 }
 
-// The footprints whose bands both reach a mean evidence of `minMean`, best `score` first, each
-// overlapping no better one kept (a footprint a pixel off the best is the same sighting), at most
-// kHypothesesPerBeacon.
+// The footprints whose mean evidence reaches `minMean` (each band's, `rule.bandTolerance` less),
+// best `rule.score` first, each overlapping no better one kept (a footprint a pixel off the best is
+// the same sighting), at most kHypothesesPerBeacon.
 std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootprints& fp, const std::vector<float>& upper,
-                                       const std::vector<float>& lower, double minMean, FootprintScore score) {
+                                       const std::vector<float>& lower, double minMean, const FootprintRule& rule) {
+  const double minBandMean = minMean - rule.bandTolerance;
   struct Passing {
     double score;
     size_t pixels, candidate;
@@ -208,11 +209,13 @@ std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootpri
     double sumUpper = 0.0, sumLower = 0.0;
     const int u0 = fp.upperBegin[c], l0 = fp.lowerBegin[c], l1 = fp.upperBegin[c + 1];
     for (int k = u0; k < l0; ++k) sumUpper += upper[static_cast<size_t>(fp.pixels[k])];
-    if (sumUpper < minMean * (l0 - u0)) continue;
+    if (sumUpper < minBandMean * (l0 - u0)) continue;
     for (int k = l0; k < l1; ++k) sumLower += lower[static_cast<size_t>(fp.pixels[k])];
-    if (sumLower < minMean * (l1 - l0)) continue;
+    if (sumLower < minBandMean * (l1 - l0)) continue;
     const size_t pixels = static_cast<size_t>(l1 - u0);
-    passing.push_back({footprintScore(score, sumUpper + sumLower - minMean * static_cast<double>(pixels), pixels), pixels, c});
+    const double excess = sumUpper + sumLower - minMean * static_cast<double>(pixels);
+    if (excess < 0.0) continue;
+    passing.push_back({footprintScore(rule.score, excess, pixels), pixels, c});
   }
   // Best first; on equal scores the larger footprint (under the mean score every footprint inside a
   // clean beacon ties, and the largest is the one that fits it), then candidate order, so the
@@ -226,7 +229,7 @@ std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootpri
     std::vector<int> pixels(fp.pixels.begin() + fp.upperBegin[c], fp.pixels.begin() + fp.upperBegin[c + 1]);
     std::sort(pixels.begin(), pixels.end());
     if (std::any_of(kept.begin(), kept.end(), [&](const Hypothesis& h) { return overlap(h.pixels, pixels); })) continue;
-    kept.push_back({std::max(0.0, p.score), c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
+    kept.push_back({p.score, c, std::move(pixels), Sighting{beacon.position(), fp.range[c], fp.bearing[c]}});
     if (kept.size() == static_cast<size_t>(kHypothesesPerBeacon)) break;
   }
   return kept;
@@ -368,10 +371,12 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
 
 DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                           const std::map<std::string, ColourHistogramClassifier>& classifiers,
-                                          const DetectorOptions& options, FootprintScore score) const {
+                                          const DetectorOptions& options, const FootprintRule& rule) const {
   if (frame.width != rig_.camera().width() || frame.height != rig_.camera().height())
     throw std::invalid_argument("footprint detector: the frame is not the rig's image size");
   if (!(options.theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
+  if (!(rule.bandTolerance >= 0.0) || !std::isfinite(rule.bandTolerance))
+    throw std::invalid_argument("footprint detector: the band tolerance must be finite and ≥ 0");
   const ImageRGBA image = detectorInput(frame, options);
   const size_t pixelCount = static_cast<size_t>(image.width) * image.height;
   // Each band colour's evidence per pixel.
@@ -393,7 +398,7 @@ DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
   std::vector<std::vector<Hypothesis>> hypotheses(beacons_.size());
   for (size_t b = 0; b < beacons_.size(); ++b)
     hypotheses[b] = bestFootprints(beacons_[b], *footprintOfBeacon_[b], evidence.at(beacons_[b].upper->colourClass),
-                                   evidence.at(beacons_[b].lower->colourClass), minMean, score);
+                                   evidence.at(beacons_[b].lower->colourClass), minMean, rule);
   DetectionResult result;
   for (const Found& f : agreeingChoice(beacons_, hypotheses)) {
     const BeaconFootprints& fp = *footprintOfBeacon_[f.beacon];

@@ -7,7 +7,8 @@
 // Here each beacon is a known shape: two stacked bands of a cylinder of known size. For every
 // pixel taken as a beacon's band boundary, the beacon's image footprint follows from the rig
 // (the boundary inverted at its height gives range and bearing; the bands' samples projected back
-// give their pixels). Each band's mean log likelihood ratio must reach log Θ; a footprint's score
+// give their pixels). The footprint's mean log likelihood ratio must reach log Θ, and each band's
+// nearly so (FootprintRule); a footprint's score
 // is its evidence beyond log Θ weighed by its size (FootprintScore), and each beacon is taken
 // where the scores of a choice that agrees with the map sum highest. A speck under half a band's
 // footprint cannot make a beacon (a far beacon's bands are footprints of a few pixels, so the
@@ -57,6 +58,15 @@ std::string footprintScoreName(FootprintScore score);  // "total", "standardised
 // The score of a footprint of `pixels` pixels whose evidence beyond log Θ sums to `excess`.
 double footprintScore(FootprintScore score, double excess, size_t pixels);
 
+// What makes a footprint a beacon, and how it is weighed. The whole footprint's mean evidence
+// must reach log Θ, and each band's mean log Θ − bandTolerance: a camera's blur and chromatic
+// shift mix a thin band's colour with its neighbour's, so one band of a far beacon can fall just
+// short while the other is clear. 0 asks each band to reach log Θ itself.
+struct FootprintRule {
+  FootprintScore score = FootprintScore::Standardised;
+  double bandTolerance = 0.0;  // ≥ 0, in units of log likelihood ratio
+};
+
 class FootprintDetector {
  public:
   // `beacons` must outlive the detector: detections point into it.
@@ -70,11 +80,11 @@ class FootprintDetector {
   // (no pose is needed). Among each beacon's highest-scoring footprints (at most
   // kHypothesesPerBeacon, no two overlapping: a footprint a pixel off a better one is the same
   // sighting, and is no alternative to it), the choice whose scores sum highest wins (then the
-  // one naming more beacons). options.theta (> 0) bounds each band's mean likelihood ratio;
-  // medianPx filters the frame as the pixel detector does. Pixels with alpha < 0.5 count as
-  // certainly not a band.
+  // one naming more beacons). options.theta (> 0) bounds the footprints' mean likelihood ratio
+  // (with `rule`, each band's); medianPx filters the frame as the pixel detector does. Pixels with
+  // alpha < 0.5 count as certainly not a band.
   DetectionResult detect(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
-                         const DetectorOptions& options, FootprintScore score = FootprintScore::Standardised) const;
+                         const DetectorOptions& options, const FootprintRule& rule = {}) const;
 
   const BeaconFootprints& footprints(size_t beacon) const { return *footprintOfBeacon_[beacon]; }
 

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
 
 #include "placement.h"
@@ -299,10 +300,10 @@ TEST(FootprintDetector, AStandardisedScoreKeepsAClearFarBeaconFromLosingToALarge
   // The closed forms' verdicts, which the detector must follow.
   ASSERT_GT(nearExcess, farExcess);
   ASSERT_LT(nearExcess / std::sqrt(nearPixels), farExcess / std::sqrt(farPixels));
-  const DetectionResult byTotal = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Total);
+  const DetectionResult byTotal = detector.detect(image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Total});
   ASSERT_EQ(byTotal.beacons.size(), 1u);
   EXPECT_LT((byTotal.beacons[0].raster - boundaryRaster(rig, nearPose, beacon)).norm(), 3.0);
-  const DetectionResult byStandardised = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Standardised);
+  const DetectionResult byStandardised = detector.detect(image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised});
   ASSERT_EQ(byStandardised.beacons.size(), 1u);
   EXPECT_LT((byStandardised.beacons[0].raster - boundaryRaster(rig, farPose, beacon)).norm(), 1.5);
 }
@@ -330,12 +331,76 @@ TEST(FootprintDetector, OnEqualScoresTheLargerFootprintIsTaken) {
     painted.emplace_back(fp.upperBegin[c + 1] - fp.upperBegin[c], raster);
   }
   ASSERT_GT(painted[0].first, painted[1].first);
-  const DetectionResult found = detector.detect(image, exactClassifiers(), DetectorOptions{}, FootprintScore::Mean);
+  const DetectionResult found = detector.detect(image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Mean});
   ASSERT_EQ(found.beacons.size(), 1u);
   EXPECT_EQ(found.blobs[static_cast<size_t>(found.beacons[0].upperBlob)].area +
                 found.blobs[static_cast<size_t>(found.beacons[0].lowerBlob)].area,
             painted[0].first);
   EXPECT_LT((found.beacons[0].raster - painted[0].second).norm(), 1.5);
+}
+
+// Beacon 0's footprint as seen from 1.5 m, its upper band painted in a share `upperShare` of its
+// pixels and its lower band in `lowerShare`, the rest grey, spread evenly over each band. With the
+// exact classifiers a pixel's evidence is ±5, so a band's mean is 5 (2 · painted / pixels − 1).
+struct PartlyPainted {
+  ImageRGBA image;
+  Vec2 boundary;
+  double upperMean = 0.0, lowerMean = 0.0, mean = 0.0;
+};
+PartlyPainted partlyPaintedBeacon(const RigSpec& rig, const FootprintDetector& detector, const Beacon& beacon, double upperShare,
+                                  double lowerShare) {
+  const int w = rig.camera().width();
+  const BeaconFootprints& fp = detector.footprints(0);
+  const Vec2 at = beacon.position() - 1.5 * beacon.position().normalized();
+  PartlyPainted out{greyImage(w), boundaryRaster(rig, RobotPose{at.x(), at.y(), 10.0}, beacon)};
+  const size_t c = candidateAt(fp, out.boundary, w);
+  if (c == std::string::npos) throw std::logic_error("no footprint at the boundary");
+  int paintedTotal = 0;
+  double* means[] = {&out.upperMean, &out.lowerMean};
+  const int bounds[] = {fp.upperBegin[c], fp.lowerBegin[c], fp.upperBegin[c + 1]};
+  for (int band = 0; band < 2; ++band) {
+    const int begin = bounds[band], pixels = bounds[band + 1] - begin;
+    const int painted = static_cast<int>(std::lround((band == 0 ? upperShare : lowerShare) * pixels));
+    for (int k = 0; k < painted; ++k) {  // evenly: pixel ⌊k · pixels / painted⌋
+      const int p = fp.pixels[static_cast<size_t>(begin + k * pixels / painted)];
+      paint(out.image, pixelCentre(p, w), kColours.at((band == 0 ? beacon.upper : beacon.lower)->colourClass));
+    }
+    *means[band] = kMaxLogLikelihoodRatio * (2.0 * painted / pixels - 1.0);
+    paintedTotal += painted;
+  }
+  out.mean = kMaxLogLikelihoodRatio * (2.0 * paintedTotal / (bounds[2] - bounds[0]) - 1.0);
+  return out;
+}
+
+TEST(FootprintDetector, ABandMayFallShortOfThetaByTheToleranceWhenTheWholeFootprintReachesIt) {
+  // log Θ = 0. The upper band painted whole (+5), the lower band just under half (its mean a
+  // little under 0): no beacon when each band must reach log Θ; found with a tolerance beyond
+  // the lower band's shortfall, not with one short of it.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const PartlyPainted one = partlyPaintedBeacon(rig, detector, beacons[0], 1.0, 0.45);
+  ASSERT_LT(one.lowerMean, 0.0);
+  ASSERT_GT(one.lowerMean, -1.0);
+  ASSERT_GT(one.mean, 0.0);
+  EXPECT_TRUE(detector.detect(one.image, exactClassifiers(), DetectorOptions{}).beacons.empty());
+  EXPECT_TRUE(detector.detect(one.image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised, 0.5 * -one.lowerMean})
+                  .beacons.empty());
+  const DetectionResult found = detector.detect(one.image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised, 1.0});
+  ASSERT_EQ(found.beacons.size(), 1u);
+  EXPECT_EQ(found.beacons[0].beacon, &beacons[0]);
+  EXPECT_LT((found.beacons[0].raster - one.boundary).norm(), 1.5);
+
+  // Both bands a little under half: each within the tolerance, but the footprint's mean is under
+  // log Θ, so no tolerance makes it a beacon.
+  const PartlyPainted both = partlyPaintedBeacon(rig, detector, beacons[0], 0.45, 0.45);
+  ASSERT_LT(both.mean, 0.0);
+  ASSERT_GT(std::min(both.upperMean, both.lowerMean), -1.0);
+  EXPECT_TRUE(detector.detect(both.image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised, 3.0}).beacons.empty());
+
+  for (const double bad : {-0.5, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+    EXPECT_THROW(detector.detect(one.image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised, bad}),
+                 std::invalid_argument);
 }
 
 TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {

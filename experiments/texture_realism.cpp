@@ -43,6 +43,19 @@ TextureRealismOptions TextureRealismOptions::quick() {
   return o;
 }
 
+std::vector<PresetFold> presetFolds(const RecordingCameraSpec& mix) {
+  if (!mix.preset || mix.preset->kind != ParameterDraw::Kind::Choice || mix.preset->values.size() < 2)
+    throw std::logic_error("texture-realism: the training cameras do not draw one of several presets");
+  std::vector<PresetFold> folds;
+  for (size_t p = 0; p < mix.preset->values.size(); ++p) {
+    PresetFold fold{mix, mix};
+    fold.training.preset->values.erase(fold.training.preset->values.begin() + static_cast<std::ptrdiff_t>(p));
+    fold.validation.preset->values = {mix.preset->values[p]};
+    folds.push_back(std::move(fold));
+  }
+  return folds;
+}
+
 RecordingCameraSpec trainingRecordingMix(uint64_t seed) {
   RecordingCameraSpec spec;
   spec.preset = ParameterDraw{ParameterDraw::Kind::Choice, 0, 0, {}};
@@ -105,15 +118,16 @@ uint64_t drawIndex(uint64_t first, size_t frame, int draw, int draws) {
   return first + frame * static_cast<uint64_t>(draws) + static_cast<uint64_t>(draw);
 }
 
-// Trains `classifiers` on `frames`, each recorded `draws` times through a camera drawn from
-// `recording` (draw index frame × draws + d), with `neutralStage` (if any) held neutral: one
+// Trains `classifiers` on `frames`, each recorded o.recordingDraws times through a camera drawn
+// from `recording` (draw index frame × draws + d), with `neutralStage` (if any) held neutral: one
 // recorded frame in memory at a time.
 void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifiers, const std::vector<Frame>& frames,
-                     const TextureRealismOptions& o, const std::string& neutralStage, const std::vector<std::string>& bandColour) {
+                     const RecordingCameraSpec& recording, const TextureRealismOptions& o, const std::string& neutralStage,
+                     const std::vector<std::string>& bandColour) {
   for (size_t k = 0; k < frames.size(); ++k)
     for (int d = 0; d < o.recordingDraws; ++d) {
       const uint64_t index = drawIndex(0, k, d, o.recordingDraws);
-      RecordingCamera camera = o.trainingRecording.draw(index);
+      RecordingCamera camera = recording.draw(index);
       if (!neutralStage.empty()) camera = withStageNeutral(camera, neutralStage);
       trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour, o.detector);
     }
@@ -124,9 +138,16 @@ void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifie
 std::string recordedSet(const std::string& frames) { return frames + "_recorded"; }
 std::string ablationSet(const std::string& stage) { return "path_recorded_without_" + stage; }
 
-Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
+struct TrainedSets {
+  Classifiers sets;  // by training set's name
+  // path frames through drawn cameras, one per presetFolds' fold: its training cameras
+  std::vector<std::map<std::string, ColourHistogramClassifier>> withoutFold;
+};
+
+TrainedSets trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
                              const std::vector<std::string>& bandColour, const std::function<void()>& step, CyclesCount& cycles) {
-  Classifiers trained;
+  TrainedSets result;
+  Classifiers& trained = result.sets;
   auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
     return freshClassifiers(trained, set, o.bins);
   };
@@ -150,15 +171,22 @@ Classifiers trainClassifiers(const TextureRealismOptions& o, const fs::path& out
   trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, textured, poses, step, cycles), fixedRecordingCameraSpec(o.recording)),
           bandColour, o.detector);
   // Domain randomisation of the camera: path and plain frames through drawn cameras, and the ablation.
-  trainOnRecorded(fresh(recordedSet("path")), pathFrames, o, "", bandColour);
-  trainOnRecorded(fresh(recordedSet("plain")), plainFrames, o, "", bandColour);
+  trainOnRecorded(fresh(recordedSet("path")), pathFrames, o.trainingRecording, o, "", bandColour);
+  trainOnRecorded(fresh(recordedSet("plain")), plainFrames, o.trainingRecording, o, "", bandColour);
   step();
   if (o.ablation)
     for (const std::string& stage : recordingStages()) {
-      trainOnRecorded(fresh(ablationSet(stage)), pathFrames, o, stage, bandColour);
+      trainOnRecorded(fresh(ablationSet(stage)), pathFrames, o.trainingRecording, o, stage, bandColour);
       step();
     }
-  return trained;
+  for (const PresetFold& fold : presetFolds(o.trainingRecording)) {
+    Classifiers unnamed;
+    auto& classifiers = freshClassifiers(unnamed, "", o.bins);
+    trainOnRecorded(classifiers, pathFrames, fold.training, o, "", bandColour);
+    result.withoutFold.push_back(std::move(classifiers));
+    step();
+  }
+  return result;
 }
 
 // Test sets along thesis-loop: plain and textured by the fast renderer, realistic by Blender (one
@@ -221,9 +249,9 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
 
 constexpr const char* kOracleSet = "realistic_test_frames";
 
-// The validation frames that choose the footprint detector's setting: path frames at
-// poses no training frame has. tryFootprintSettings records each through cameras drawn from the training
-// ranges at draws no training frame (nor the figure) uses; no test camera is seen.
+// The validation frames that choose the footprint detector's setting: path frames at poses no
+// training frame has. tryFootprintSettings records each through every fold's held-out preset, at
+// draws no training frame (nor the figure) uses; no test camera is seen.
 std::vector<Frame> validationFrames(const TextureRealismOptions& o, const Scene& textured, const std::function<void()>& step) {
   return renderFast(textured, randomFieldPoses(o.trainFrames, o.seed + 4), o.size, o.pathSpp, step, Shading::Path);
 }
@@ -235,8 +263,10 @@ std::map<std::string, ColourHistogramClassifier> coarsenedSet(const std::map<std
   return out;
 }
 
-// The coarsest colour resolution validation tries for the footprint detector.
+// The coarsest colour resolution validation tries for the footprint detector, and the band
+// tolerances it tries (FootprintRule; in units of log likelihood ratio, the evidence clamped to ±5).
 constexpr int kSmallestFootprintBins = 8;
+constexpr double kBandTolerances[] = {0.0, 1.0, 2.0};
 
 // What scoring a frame needs besides the detections.
 struct Scoring {
@@ -245,45 +275,58 @@ struct Scoring {
   double matchRadiusPx;
 };
 
-// The footprint detector's setting: path + drawn cameras' classifiers (`pathRecorded`) at each
-// candidate resolution, with each footprint score, detect the validation frames (their beacons'
-// `truth` beside them), each frame recorded `recordingDraws` times, one recorded frame in memory
-// at a time.
+// Every setting validation tries: each colour resolution from the trained one down, finest first;
+// within it each score, then each band tolerance.
+std::vector<FootprintTrial> footprintSettings(int bins) {
+  std::vector<FootprintTrial> trials;
+  for (const int b : resolutionAndHalvings(bins, kSmallestFootprintBins))
+    for (const FootprintScore score : footprintScores())
+      for (const double tolerance : kBandTolerances) {
+        trials.push_back({});
+        trials.back().bins = b;
+        trials.back().rule = {score, tolerance};
+      }
+  return trials;
+}
+
+// The footprint detector's setting, by leave-one-preset-out validation (presetFolds): in each fold
+// every validation frame is recorded o.recordingDraws times through the fold's validation cameras
+// and detected by every setting with the classifiers trained through its training cameras
+// (`withoutFold`), one recorded frame in memory at a time. Each trial sums over the folds.
 std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o,
-                                                 const std::map<std::string, ColourHistogramClassifier>& pathRecorded,
+                                                 const std::vector<std::map<std::string, ColourHistogramClassifier>>& withoutFold,
                                                  const std::vector<Frame>& validation,
                                                  const std::vector<std::vector<GroundTruthBeacon>>& truth,
                                                  const FootprintDetector& detector, const Scoring& s,
                                                  const ExperimentProgress& progress) {
-  std::vector<FootprintTrial> trials;
-  std::map<int, std::map<std::string, ColourHistogramClassifier>> classifiers;  // by bins
-  for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins)) {
-    classifiers[bins] = coarsenedSet(pathRecorded, bins);
-    for (const FootprintScore score : footprintScores()) {
-      trials.push_back({});
-      trials.back().bins = bins;
-      trials.back().score = score;
-    }
-  }
+  std::vector<FootprintTrial> trials = footprintSettings(o.bins);
+  std::vector<std::map<int, std::map<std::string, ColourHistogramClassifier>>> classifiers(withoutFold.size());  // by fold, bins
+  for (size_t fold = 0; fold < withoutFold.size(); ++fold)
+    for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins))
+      classifiers[fold][bins] = coarsenedSet(withoutFold[fold], bins);
+  const std::vector<PresetFold> folds = presetFolds(o.trainingRecording);
   for (size_t k = 0; k < validation.size(); ++k) {
-    for (int d = 0; d < o.recordingDraws; ++d) {
-      const uint64_t index = drawIndex(kValidationDraws, k, d, o.recordingDraws);
-      const Frame recorded{validation[k].pose, recordFrame(o.trainingRecording.draw(index), validation[k].image, index), validation[k].instance};
-      for (FootprintTrial& t : trials) {
-        const FrameEvaluation e = evaluateFrame(recorded, detector.detect(recorded.image, classifiers.at(t.bins), o.detector, t.score),
-                                                truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
-        t.visibleBeacons += e.visibleBeacons;
-        t.truePositives += e.truePositives;
-        t.falsePositives += e.falsePositives();
+    for (size_t fold = 0; fold < folds.size(); ++fold)
+      for (int d = 0; d < o.recordingDraws; ++d) {
+        const uint64_t index = drawIndex(kValidationDraws, k, d, o.recordingDraws);
+        const Frame recorded{validation[k].pose, recordFrame(folds[fold].validation.draw(index), validation[k].image, index),
+                             validation[k].instance};
+        for (FootprintTrial& t : trials) {
+          const DetectionResult detected = detector.detect(recorded.image, classifiers[fold].at(t.bins), o.detector, t.rule);
+          const FrameEvaluation e = evaluateFrame(recorded, detected, truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
+          t.visibleBeacons += e.visibleBeacons;
+          t.truePositives += e.truePositives;
+          t.falsePositives += e.falsePositives();
+        }
       }
-    }
-    progress("choosing the footprint detector's colour resolution and score", static_cast<int>(k + 1),
+    progress("choosing the footprint detector's colour resolution, score and band tolerance", static_cast<int>(k + 1),
              static_cast<int>(validation.size()));
   }
   return trials;
 }
 
-// The best TP − FP; trials run finest first, so a tie keeps the finer (then the score listed first).
+// The best TP − FP; trials run finest first, so a tie keeps the finer (then the score listed first,
+// then the smaller tolerance).
 const FootprintTrial& chosenSetting(const std::vector<FootprintTrial>& trials) {
   const FootprintTrial* best = &trials.front();
   for (const FootprintTrial& t : trials)
@@ -404,12 +447,14 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<RobotPose> testPoses;
   for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
 
-  const int trainTotal = 5 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0);
+  const int trainTotal = 5 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0) +
+                         static_cast<int>(presetFolds(o.trainingRecording).size());
   const int testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
   CyclesCount cycles;
-  Classifiers trained = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
+  TrainedSets trainedSets = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
+  Classifiers& trained = trainedSets.sets;
   const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step, cycles);
   // The oracle: classifiers trained on the realistic test frames themselves. What no training set
   // can beat with these classifiers: whether the bands' colours survive the test camera at all.
@@ -426,11 +471,11 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const FootprintDetector footprints(rig, beacons);
   std::vector<std::vector<GroundTruthBeacon>> validationTruth;
   for (const Frame& frame : validation) validationTruth.push_back(groundTruth(plain, geometry.rays(), rig, frame.pose, beacons));
-  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trained.at(recordedSet("path")), validation, validationTruth,
+  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trainedSets.withoutFold, validation, validationTruth,
                                                                   footprints, {bandColour, objectNames, matchRadius}, progress);
   const FootprintTrial& chosen = chosenSetting(trials);
   const int footprintBins = chosen.bins;
-  const FootprintScore scoreOfFootprints = chosen.score;
+  const FootprintRule footprintRule = chosen.rule;
   Classifiers coarsened;  // every set at footprintBins, when that is not the trained resolution
   if (footprintBins != o.bins)
     for (const auto& [set, classifiers] : trained) coarsened[set] = coarsenedSet(classifiers, footprintBins);
@@ -448,7 +493,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     const auto& classifiers = (run.detector == DetectorKind::Footprints ? forFootprints : trained).at(run.train);
     for (size_t k = 0; k < frames.size(); ++k) {
       const DetectionResult detected = run.detector == DetectorKind::Footprints
-                                           ? footprints.detect(frames[k].image, classifiers, o.detector, scoreOfFootprints)
+                                           ? footprints.detect(frames[k].image, classifiers, o.detector, footprintRule)
                                            : detectBeacons(frames[k].image, classifiers, beacons, rig, o.detector);
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
@@ -462,7 +507,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   describeCameras(o, results);
   results.footprintTrials = trials;
   results.footprintBins = footprintBins;
-  results.footprintScore = scoreOfFootprints;
+  results.footprintRule = footprintRule;
   results.cyclesFramesRendered = cycles.rendered;
   results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);

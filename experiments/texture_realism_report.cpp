@@ -73,11 +73,13 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                              {"measurements_used", e.measurementsUsed},
                              {"measurements_gated", e.measurementsGated}};
   j["footprint_bins"] = results.footprintBins;
-  j["footprint_score"] = footprintScoreName(results.footprintScore);
+  j["footprint_score"] = footprintScoreName(results.footprintRule.score);
+  j["footprint_band_tolerance"] = results.footprintRule.bandTolerance;
   j["footprint_trials"] = nlohmann::json::array();
   for (const FootprintTrial& t : results.footprintTrials)
     j["footprint_trials"].push_back({{"bins_per_channel", t.bins},
-                                     {"score", footprintScoreName(t.score)},
+                                     {"score", footprintScoreName(t.rule.score)},
+                                     {"band_tolerance", t.rule.bandTolerance},
                                      {"visible_beacons", t.visibleBeacons},
                                      {"true_positives", t.truePositives},
                                      {"false_positives", t.falsePositives}});

@@ -19,6 +19,14 @@ namespace omnicam {
 // values drawn from that preset's ranges.
 RecordingCameraSpec trainingRecordingMix(uint64_t seed);
 
+// Leave-one-preset-out validation: fold p's training cameras never draw the mix's preset p, and its
+// validation cameras always do, so a fold validates on cameras of a kind its training never saw,
+// as a test camera is. Each preset keeps its own ranges. The mix must draw one of several presets.
+struct PresetFold {
+  RecordingCameraSpec training, validation;
+};
+std::vector<PresetFold> presetFolds(const RecordingCameraSpec& mix);
+
 struct TextureRealismOptions {
   std::string outDir;
   std::string fieldScene;                  // scenes/robocup2006.json
@@ -96,12 +104,14 @@ struct TestCameraSummary {
 };
 
 // One setting tried for the footprint detector on the validation frames (path frames at poses no
-// training frame has, each recorded through cameras drawn from the training ranges with draws no
-// training frame used; never a test camera), by its path_recorded classifiers: a colour
-// resolution and how a footprint's score weighs its size.
+// training frame has), leave one preset out: each frame recorded through one of the training
+// cameras' presets, at draws no training frame used, and detected with classifiers trained on the
+// path frames through the other presets; never a test camera. A setting is a colour resolution
+// and a FootprintRule: how a footprint's score weighs its size, and how far one band's evidence
+// may fall short.
 struct FootprintTrial {
   int bins = 0;
-  FootprintScore score = FootprintScore::Standardised;
+  FootprintRule rule;
   int visibleBeacons = 0, truePositives = 0, falsePositives = 0;
   int validationScore() const { return truePositives - falsePositives; }
 };
@@ -113,12 +123,11 @@ struct TextureRealismResults {
   std::vector<std::string> ablatedStages;
   ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
-  // The footprint detector's conditions use classifiers coarsened to `footprintBins` and score
-  // footprints by `footprintScore`: the tried setting with the best validation score (the first
-  // tried on a tie).
+  // The footprint detector's conditions use classifiers coarsened to `footprintBins` and
+  // `footprintRule`: the tried setting with the best validation score (the first tried on a tie).
   std::vector<FootprintTrial> footprintTrials;
   int footprintBins = 0;
-  FootprintScore footprintScore = FootprintScore::Standardised;
+  FootprintRule footprintRule;
   double seconds = 0.0;
   int cyclesFramesRendered = 0, cyclesFramesReused = 0;  // Cycles' frames, rendered now or kept from an earlier run
 };

@@ -161,26 +161,31 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const json& plainFootprints = results["conditions"]["plain_to_plain_footprints"];
   EXPECT_GE(plainFootprints["true_positives"].get<int>(), 4);
   EXPECT_LT(plainFootprints["false_positives"].get<int>(), plain["false_positives"].get<int>());
-  // Its colour resolution and score: 32 bins and its halvings, each with the three scores, tried on
-  // the validation frames (6 poses, each through 2 drawn cameras); the chosen one scores best.
+  // Its setting: 32 bins and its halvings, each with the three scores and the three band
+  // tolerances, tried on the validation frames (6 poses, each through 2 cameras of its fold's
+  // held-out preset); the chosen one scores best.
   const json& trials = results["footprint_trials"];
   const std::vector<std::string> scores = {"total", "standardised", "mean"};
-  ASSERT_EQ(trials.size(), 9u);
+  const std::vector<double> tolerances = {0.0, 1.0, 2.0};
+  ASSERT_EQ(trials.size(), 27u);
   int bestScore = std::numeric_limits<int>::min();
   for (size_t k = 0; k < trials.size(); ++k) {
-    EXPECT_EQ(trials[k]["bins_per_channel"], 32 >> (k / 3));
-    EXPECT_EQ(trials[k]["score"], scores[k % 3]);
-    EXPECT_LE(trials[k]["visible_beacons"].get<int>(), 48);  // 12 recorded frames of at most 4 beacons
-    EXPECT_EQ(trials[k]["visible_beacons"].get<int>() % 2, 0);  // each pose's beacons counted once per drawn camera
+    EXPECT_EQ(trials[k]["bins_per_channel"], 32 >> (k / 9));
+    EXPECT_EQ(trials[k]["score"], scores[k / 3 % 3]);
+    EXPECT_EQ(trials[k]["band_tolerance"].get<double>(), tolerances[k % 3]);
+    EXPECT_LE(trials[k]["visible_beacons"].get<int>(), 144);  // 6 poses × 3 folds × 2 cameras, at most 4 beacons each
+    EXPECT_EQ(trials[k]["visible_beacons"].get<int>() % 6, 0);  // each pose's beacons counted once per fold and camera
     EXPECT_EQ(trials[k]["visible_beacons"], trials[0]["visible_beacons"]);
     EXPECT_GT(trials[k]["visible_beacons"].get<int>(), 0);
     bestScore = std::max(bestScore, trials[k]["true_positives"].get<int>() - trials[k]["false_positives"].get<int>());
   }
-  // The first trial with the best score: the finer resolution on a tie, then total, standardised, mean.
+  // The first trial with the best score: the finer resolution on a tie, then total, standardised,
+  // mean, then the smaller tolerance.
   for (const json& t : trials)
     if (t["true_positives"].get<int>() - t["false_positives"].get<int>() == bestScore) {
       EXPECT_EQ(t["bins_per_channel"], results["footprint_bins"]);
       EXPECT_EQ(t["score"], results["footprint_score"]);
+      EXPECT_EQ(t["band_tolerance"], results["footprint_band_tolerance"]);
       break;
     }
 
@@ -392,7 +397,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_TRUE(shown.count("figures/texture_realism_recording.png"));
   // The .md's transfer tables and the footprint detector's chosen setting are in the HTML too.
   for (const char* part : {"<h2>Frames that transfer: the recording camera in training</h2>",
-                           "<th>train ↓ test →</th>", "<th>stage held neutral</th>", " (chosen)</td>"})
+                           "<th>train ↓ test →</th>", "<th>stage held neutral</th>", ", chosen</strong></td>"})
     EXPECT_NE(text.find(part), std::string::npos) << part;
   for (const char* figure : {"detections_per_frame", "histograms", "ekf_path", "ekf_covariance"}) {
     const std::string file = std::string("figures/") + figure + ".png";
@@ -439,9 +444,15 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                            "| plain → plain (the bar) |", "| path + drawn cameras → camera 2: sharp_jpeg95.json |",
                            "| ceiling: the webcam's own frames → realistic |"})
     EXPECT_NE(doc.str().find(part), std::string::npos) << part;
-  const std::string chosen = "| " + std::to_string(results["footprint_bins"].get<int>()) + " | " +
-                             results["footprint_score"].get<std::string>() + " (chosen) |";
-  EXPECT_NE(doc.str().find(chosen), std::string::npos) << chosen;
+  // The chosen setting's cell, bold, in its resolution's and score's row.
+  const std::string chosenRow = "| " + std::to_string(results["footprint_bins"].get<int>()) + " | " +
+                                results["footprint_score"].get<std::string>() + " |";
+  const size_t row = doc.str().find(chosenRow);
+  ASSERT_NE(row, std::string::npos) << chosenRow;
+  const std::string rowText = doc.str().substr(row, doc.str().find('\n', row) - row);
+  EXPECT_NE(rowText.find(", chosen**"), std::string::npos) << rowText;
+  EXPECT_EQ(doc.str().find(", chosen**"), row + rowText.find(", chosen**"));  // chosen once
+  EXPECT_EQ(doc.str().find(", chosen**", row + rowText.size()), std::string::npos);
   const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
   EXPECT_EQ(strip.width, 960);
   EXPECT_EQ(strip.height, 240);
