@@ -213,7 +213,8 @@ std::vector<Hypothesis> bestFootprints(const Beacon& beacon, const BeaconFootpri
     for (int k = l0; k < l1; ++k) sumLower += lower[static_cast<size_t>(fp.pixels[k])];
     if (sumLower < minBandMean * (l1 - l0)) continue;
     const size_t pixels = static_cast<size_t>(l1 - u0);
-    const double excess = sumUpper + sumLower - minMean * static_cast<double>(pixels);
+    // Per band, so that with no tolerance two passing bands never sum below 0 by rounding.
+    const double excess = (sumUpper - minMean * (l0 - u0)) + (sumLower - minMean * (l1 - l0));
     if (excess < 0.0) continue;
     passing.push_back({footprintScore(rule.score, excess, pixels), pixels, c});
   }

@@ -10,7 +10,7 @@
 // give their pixels). The footprint's mean log likelihood ratio must reach log Θ, and each band's
 // nearly so (FootprintRule); a footprint's score
 // is its evidence beyond log Θ weighed by its size (FootprintScore), and each beacon is taken
-// where the scores of a choice that agrees with the map sum highest. A speck under half a band's
+// where the scores of a choice that agrees with the map sum highest. A speck under half of a
 // footprint cannot make a beacon (a far beacon's bands are footprints of a few pixels, so the
 // smallest specks still can).
 //

@@ -135,7 +135,11 @@ TEST(FootprintDetector, SpecksOfTheBandsColoursAreNoBeaconAndDoNotOutvoteOne) {
   }
   const DetectionResult pixels = detectBeacons(specks, exactClassifiers(), beacons, rig, DetectorOptions{});
   ASSERT_EQ(pixels.beacons.size(), 1u);  // the thesis' detector takes them for the beacon
-  EXPECT_TRUE(detector.detect(specks, exactClassifiers(), DetectorOptions{}).beacons.empty());
+  // Under half of the whole footprint: no band tolerance makes them a beacon (with 2, each band of
+  // 5 pixels would pass on 2 of them).
+  for (const double tolerance : {0.0, 1.0, 2.0})
+    EXPECT_TRUE(detector.detect(specks, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised, tolerance}).beacons.empty())
+        << "band tolerance " << tolerance;
   // The beacon itself beside them is found where it is.
   ImageRGBA both = greyImage(rig.camera().width());
   paintBeacon(both, rig, kPose, beacon);
@@ -339,7 +343,7 @@ TEST(FootprintDetector, OnEqualScoresTheLargerFootprintIsTaken) {
   EXPECT_LT((found.beacons[0].raster - painted[0].second).norm(), 1.5);
 }
 
-// Beacon 0's footprint as seen from 1.5 m, its upper band painted in a share `upperShare` of its
+// Beacon `index`'s footprint as seen from 1.5 m, its upper band painted in a share `upperShare` of its
 // pixels and its lower band in `lowerShare`, the rest grey, spread evenly over each band. With the
 // exact classifiers a pixel's evidence is ±5, so a band's mean is 5 (2 · painted / pixels − 1).
 struct PartlyPainted {
@@ -347,10 +351,11 @@ struct PartlyPainted {
   Vec2 boundary;
   double upperMean = 0.0, lowerMean = 0.0, mean = 0.0;
 };
-PartlyPainted partlyPaintedBeacon(const RigSpec& rig, const FootprintDetector& detector, const Beacon& beacon, double upperShare,
-                                  double lowerShare) {
+PartlyPainted partlyPaintedBeacon(const RigSpec& rig, const FootprintDetector& detector, const std::vector<Beacon>& beacons,
+                                  size_t index, double upperShare, double lowerShare) {
   const int w = rig.camera().width();
-  const BeaconFootprints& fp = detector.footprints(0);
+  const Beacon& beacon = beacons[index];
+  const BeaconFootprints& fp = detector.footprints(index);
   const Vec2 at = beacon.position() - 1.5 * beacon.position().normalized();
   PartlyPainted out{greyImage(w), boundaryRaster(rig, RobotPose{at.x(), at.y(), 10.0}, beacon)};
   const size_t c = candidateAt(fp, out.boundary, w);
@@ -379,7 +384,7 @@ TEST(FootprintDetector, ABandMayFallShortOfThetaByTheToleranceWhenTheWholeFootpr
   const RigSpec rig = field().rig;
   const std::vector<Beacon> beacons = beaconsOf(field());
   const FootprintDetector detector(rig, beacons);
-  const PartlyPainted one = partlyPaintedBeacon(rig, detector, beacons[0], 1.0, 0.45);
+  const PartlyPainted one = partlyPaintedBeacon(rig, detector, beacons, 0, 1.0, 0.45);
   ASSERT_LT(one.lowerMean, 0.0);
   ASSERT_GT(one.lowerMean, -1.0);
   ASSERT_GT(one.mean, 0.0);
@@ -392,8 +397,9 @@ TEST(FootprintDetector, ABandMayFallShortOfThetaByTheToleranceWhenTheWholeFootpr
   EXPECT_LT((found.beacons[0].raster - one.boundary).norm(), 1.5);
 
   // Both bands a little under half: each within the tolerance, but the footprint's mean is under
-  // log Θ, so no tolerance makes it a beacon.
-  const PartlyPainted both = partlyPaintedBeacon(rig, detector, beacons[0], 0.45, 0.45);
+  // log Θ, so no tolerance makes it a beacon. (The joint choice would not take it either: its
+  // score, the evidence beyond log Θ, is below 0.)
+  const PartlyPainted both = partlyPaintedBeacon(rig, detector, beacons, 0, 0.45, 0.45);
   ASSERT_LT(both.mean, 0.0);
   ASSERT_GT(std::min(both.upperMean, both.lowerMean), -1.0);
   EXPECT_TRUE(detector.detect(both.image, exactClassifiers(), DetectorOptions{}, {FootprintScore::Standardised, 3.0}).beacons.empty());

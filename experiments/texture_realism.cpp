@@ -138,14 +138,21 @@ void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifie
 std::string recordedSet(const std::string& frames) { return frames + "_recorded"; }
 std::string ablationSet(const std::string& stage) { return "path_recorded_without_" + stage; }
 
+// One fold of leave-one-preset-out validation: the path frames' classifiers through its training
+// cameras, beside the cameras its validation frames are recorded through.
+struct ValidationFold {
+  std::map<std::string, ColourHistogramClassifier> classifiers;
+  RecordingCameraSpec validation;
+};
+
 struct TrainedSets {
   Classifiers sets;  // by training set's name
-  // path frames through drawn cameras, one per presetFolds' fold: its training cameras
-  std::vector<std::map<std::string, ColourHistogramClassifier>> withoutFold;
+  std::vector<ValidationFold> folds;  // one per presetFolds' fold, in its order
 };
 
 TrainedSets trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
-                             const std::vector<std::string>& bandColour, const std::function<void()>& step, CyclesCount& cycles) {
+                             const std::vector<PresetFold>& folds, const std::vector<std::string>& bandColour,
+                             const std::function<void()>& step, CyclesCount& cycles) {
   TrainedSets result;
   Classifiers& trained = result.sets;
   auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
@@ -179,11 +186,11 @@ TrainedSets trainClassifiers(const TextureRealismOptions& o, const fs::path& out
       trainOnRecorded(fresh(ablationSet(stage)), pathFrames, o.trainingRecording, o, stage, bandColour);
       step();
     }
-  for (const PresetFold& fold : presetFolds(o.trainingRecording)) {
+  for (const PresetFold& fold : folds) {
     Classifiers unnamed;
     auto& classifiers = freshClassifiers(unnamed, "", o.bins);
     trainOnRecorded(classifiers, pathFrames, fold.training, o, "", bandColour);
-    result.withoutFold.push_back(std::move(classifiers));
+    result.folds.push_back({std::move(classifiers), fold.validation});
     step();
   }
   return result;
@@ -291,20 +298,18 @@ std::vector<FootprintTrial> footprintSettings(int bins) {
 
 // The footprint detector's setting, by leave-one-preset-out validation (presetFolds): in each fold
 // every validation frame is recorded o.recordingDraws times through the fold's validation cameras
-// and detected by every setting with the classifiers trained through its training cameras
-// (`withoutFold`), one recorded frame in memory at a time. Each trial sums over the folds.
-std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o,
-                                                 const std::vector<std::map<std::string, ColourHistogramClassifier>>& withoutFold,
+// and detected by every setting with the fold's classifiers, one recorded frame in memory at a
+// time. Each trial sums over the folds.
+std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o, const std::vector<ValidationFold>& folds,
                                                  const std::vector<Frame>& validation,
                                                  const std::vector<std::vector<GroundTruthBeacon>>& truth,
                                                  const FootprintDetector& detector, const Scoring& s,
                                                  const ExperimentProgress& progress) {
   std::vector<FootprintTrial> trials = footprintSettings(o.bins);
-  std::vector<std::map<int, std::map<std::string, ColourHistogramClassifier>>> classifiers(withoutFold.size());  // by fold, bins
-  for (size_t fold = 0; fold < withoutFold.size(); ++fold)
+  std::vector<std::map<int, std::map<std::string, ColourHistogramClassifier>>> classifiers(folds.size());  // by fold, bins
+  for (size_t fold = 0; fold < folds.size(); ++fold)
     for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins))
-      classifiers[fold][bins] = coarsenedSet(withoutFold[fold], bins);
-  const std::vector<PresetFold> folds = presetFolds(o.trainingRecording);
+      classifiers[fold][bins] = coarsenedSet(folds[fold].classifiers, bins);
   for (size_t k = 0; k < validation.size(); ++k) {
     for (size_t fold = 0; fold < folds.size(); ++fold)
       for (int d = 0; d < o.recordingDraws; ++d) {
@@ -447,13 +452,14 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   std::vector<RobotPose> testPoses;
   for (size_t k = 0; k < loop->poses.size(); k += static_cast<size_t>(o.testStride)) testPoses.push_back(loop->poses[k]);
 
+  const std::vector<PresetFold> folds = presetFolds(o.trainingRecording);
   const int trainTotal = 5 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0) +
-                         static_cast<int>(presetFolds(o.trainingRecording).size());
+                         static_cast<int>(folds.size());
   const int testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
   CyclesCount cycles;
-  TrainedSets trainedSets = trainClassifiers(o, out, plain, textured, bandColour, step, cycles);
+  TrainedSets trainedSets = trainClassifiers(o, out, plain, textured, folds, bandColour, step, cycles);
   Classifiers& trained = trainedSets.sets;
   const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step, cycles);
   // The oracle: classifiers trained on the realistic test frames themselves. What no training set
@@ -471,7 +477,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const FootprintDetector footprints(rig, beacons);
   std::vector<std::vector<GroundTruthBeacon>> validationTruth;
   for (const Frame& frame : validation) validationTruth.push_back(groundTruth(plain, geometry.rays(), rig, frame.pose, beacons));
-  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trainedSets.withoutFold, validation, validationTruth,
+  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trainedSets.folds, validation, validationTruth,
                                                                   footprints, {bandColour, objectNames, matchRadius}, progress);
   const FootprintTrial& chosen = chosenSetting(trials);
   const int footprintBins = chosen.bins;

@@ -42,6 +42,9 @@ struct Transfer {
   int truePositives = 0, needed = 0;
   bool holds() const { return found && ratioHolds && ekfHolds; }
 };
+// The recall the bar asks: 80 % of plain → plain's true positives.
+int recallNeeded(const ConditionOutcome& plainToPlain) { return static_cast<int>(std::ceil(0.8 * plainToPlain.truePositives)); }
+
 // The bar is plain → plain's by detector `bar` (the tested one's own, or the thesis' pixels).
 Transfer transferTo(const TextureRealismResults& r, const std::string& test, DetectorKind d, DetectorKind bar) {
   Transfer t;
@@ -51,11 +54,17 @@ Transfer transferTo(const TextureRealismResults& r, const std::string& test, Det
   const EkfOutcome* cEkf = findEkf(r, conditionKey("path_recorded", test, d));
   if (!pp || !c || !ppEkf || !cEkf) return t;
   t.truePositives = c->truePositives;
-  t.needed = static_cast<int>(std::ceil(0.8 * pp->truePositives));
+  t.needed = recallNeeded(*pp);
   t.found = c->truePositives >= t.needed;
   t.ratioHolds = trueOverFalse(*c) >= trueOverFalse(*pp);
   t.ekfHolds = cEkf->meanErrorEkfCm <= 2.0 * ppEkf->meanErrorEkfCm;
   return t;
+}
+
+// Whether path + drawn cameras by detector `d` meet the bar by detector `bar` on every test camera.
+bool metOnEveryCamera(const TextureRealismResults& r, DetectorKind d, DetectorKind bar) {
+  return std::all_of(r.testCameras.begin(), r.testCameras.end(),
+                     [&](const TestCameraSummary& t) { return transferTo(r, t.set, d, bar).holds(); });
 }
 
 // Whether path + drawn cameras by detector `d` meet plain → plain's bar by detector `bar`, per test camera.
@@ -64,7 +73,7 @@ void writeBar(std::ostringstream& md, const TextureRealismResults& r, DetectorKi
   const EkfOutcome* ppEkf = findEkf(r, conditionKey("plain", "plain", bar));
   if (!pp || !ppEkf) return;
   md << "\nThe bar (plain → plain, " << whose << "): " << pp->truePositives << " TP, TP/FP " << ratioText(trueOverFalse(*pp))
-     << ", EKF " << fixedDecimals(ppEkf->meanErrorEkfCm, 1) << " cm; path + drawn cameras must find ≥ " << std::ceil(0.8 * pp->truePositives)
+     << ", EKF " << fixedDecimals(ppEkf->meanErrorEkfCm, 1) << " cm; path + drawn cameras must find ≥ " << recallNeeded(*pp)
      << " TP (80 %) with TP/FP ≥ " << ratioText(trueOverFalse(*pp)) << " and an EKF error ≤ " << fixedDecimals(2 * ppEkf->meanErrorEkfCm, 1)
      << " cm, on every test camera.\n\n";
   for (const TestCameraSummary& t : r.testCameras) {
@@ -93,7 +102,7 @@ void writeConditionsPerTestCamera(std::ostringstream& md, const TextureRealismRe
   }
   writeBar(md, r, d, d, "by the same detector");
   // The footprint detector also against the thesis detector's plain → plain: the criterion's
-  // numbers as first written (80 % of its 287 TP), before the footprint detector existed.
+  // numbers as first written, before the footprint detector existed.
   if (d == DetectorKind::Footprints)
     writeBar(md, r, d, DetectorKind::Pixels, "by the thesis' pixel detector, the criterion's numbers as first written");
 }
@@ -174,9 +183,8 @@ void writeFinding(std::ostringstream& md, const TextureRealismResults& r) {
     md << "The camera is most of the gap: plain frames through the same cameras come close.";
   else
     md << "The drawn cameras do not close the gap.";
-  bool allMet = true;
-  for (const TestCameraSummary& t : r.testCameras) allMet = allMet && transferTo(r, t.set, DetectorKind::Pixels, DetectorKind::Pixels).holds();
-  md << (allMet ? " The bar is met on every test camera.\n" : " The bar is not met on every test camera (above).\n");
+  md << (metOnEveryCamera(r, DetectorKind::Pixels, DetectorKind::Pixels) ? " The bar is met on every test camera.\n"
+                                                                          : " The bar is not met on every test camera (above).\n");
   // Precision: drawn cameras widen what the colour histograms call a band.
   const ConditionOutcome* pp = findCondition(r, "plain_to_plain");
   if (pp && trueOverFalse(*recorded) < trueOverFalse(*path))
@@ -195,12 +203,16 @@ std::string toleranceText(double tolerance) {
 }
 
 // How the footprint detector's setting was chosen: leave one preset out on validation frames,
-// never a test camera. One row per resolution and score, one column per band tolerance.
+// never a test camera. One row per resolution and score, one column per band tolerance, in the
+// order tried.
 void writeFootprintSettingChoice(std::ostringstream& md, const TextureRealismResults& r, const TextureRealismOptions& o) {
   if (r.footprintTrials.empty()) return;
+  std::vector<std::pair<int, FootprintScore>> rows;
   std::vector<double> tolerances;
-  for (const FootprintTrial& t : r.footprintTrials)
+  for (const FootprintTrial& t : r.footprintTrials) {
+    if (std::find(rows.begin(), rows.end(), std::make_pair(t.bins, t.rule.score)) == rows.end()) rows.emplace_back(t.bins, t.rule.score);
     if (std::find(tolerances.begin(), tolerances.end(), t.rule.bandTolerance) == tolerances.end()) tolerances.push_back(t.rule.bandTolerance);
+  }
   md << "Its setting is chosen before any test frame is seen, leaving one training preset out at a time: in each "
         "fold every validation frame (a path frame at a pose no training frame has) is recorded through the held-out "
         "preset at draws no training frame used, and detected with histograms trained on the path frames through the "
@@ -212,20 +224,26 @@ void writeFootprintSettingChoice(std::ostringstream& md, const TextureRealismRes
         "included, uses it: **"
      << r.footprintBins << "³ bins, the " << footprintScoreName(r.footprintRule.score) << " score, band tolerance "
      << toleranceText(r.footprintRule.bandTolerance) << "**. The thesis' pixel detector keeps its " << o.bins
-     << "³ bins.\n\nEach cell: TP / FP (TP − FP) on the validation frames, "
-     << r.footprintTrials.front().visibleBeacons << " beacons visible.\n\n| bins per channel | score |";
+     << "³ bins.\n\nEach cell: TP / FP (TP − FP) on the validation frames, of "
+     << r.footprintTrials.front().visibleBeacons
+     << " sightings of visible beacons (each validation frame counted once per fold and drawn camera).\n\n"
+        "| bins per channel | score |";
   for (const double tolerance : tolerances) md << " tolerance " << toleranceText(tolerance) << " |";
   md << "\n|---|---|";
   for (size_t k = 0; k < tolerances.size(); ++k) md << "---|";
   md << "\n";
-  for (size_t k = 0; k < r.footprintTrials.size(); k += tolerances.size()) {
-    const FootprintTrial& first = r.footprintTrials[k];
-    md << "| " << first.bins << " | " << footprintScoreName(first.rule.score) << " |";
-    for (size_t m = k; m < k + tolerances.size() && m < r.footprintTrials.size(); ++m) {
-      const FootprintTrial& t = r.footprintTrials[m];
-      const bool chosen = t.bins == r.footprintBins && t.rule.score == r.footprintRule.score &&
-                          t.rule.bandTolerance == r.footprintRule.bandTolerance;
-      md << " " << (chosen ? "**" : "") << t.truePositives << " / " << t.falsePositives << " (" << t.validationScore() << ")"
+  for (const auto& [bins, score] : rows) {
+    md << "| " << bins << " | " << footprintScoreName(score) << " |";
+    for (const double tolerance : tolerances) {
+      const auto t = std::find_if(r.footprintTrials.begin(), r.footprintTrials.end(), [&](const FootprintTrial& x) {
+        return x.bins == bins && x.rule.score == score && x.rule.bandTolerance == tolerance;
+      });
+      if (t == r.footprintTrials.end()) {
+        md << " – |";
+        continue;
+      }
+      const bool chosen = bins == r.footprintBins && score == r.footprintRule.score && tolerance == r.footprintRule.bandTolerance;
+      md << " " << (chosen ? "**" : "") << t->truePositives << " / " << t->falsePositives << " (" << t->validationScore() << ")"
          << (chosen ? ", chosen**" : "") << " |";
     }
     md << "\n";
@@ -329,7 +347,7 @@ void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& 
      << pixelCeiling->truePositives << "). The oracle, trained on the test frames themselves, finds " << oracle->truePositives
      << " TP with " << oracle->falsePositives << " FP (pixels: " << pixelOracle->truePositives << " TP, "
      << pixelOracle->falsePositives << " FP)";
-  const int needed = static_cast<int>(std::ceil(0.8 * bar->truePositives));
+  const int needed = recallNeeded(*bar);
   if (needed > 0 && oracle->truePositives >= needed && recorded->truePositives < needed)
     md << ": with these classifiers the bands' colours survive the camera for the bar's recall (" << needed
        << " TP), so the recall missing in training through drawn cameras is in what the training colours cover, "
@@ -338,13 +356,9 @@ void writeFootprintSection(std::ostringstream& md, const TextureRealismResults& 
     md << ": even knowing the test frames' colours, these classifiers stay below the bar's recall (" << needed << " TP).";
   else
     md << ".";
-  bool allMet = true;
-  for (const TestCameraSummary& t : r.testCameras) allMet = allMet && transferTo(r, t.set, d, d).holds();
-  md << (allMet ? " The bar is met on every test camera." : " The bar is not met on every test camera (above).");
-  bool allMetThesis = true;
-  for (const TestCameraSummary& t : r.testCameras) allMetThesis = allMetThesis && transferTo(r, t.set, d, DetectorKind::Pixels).holds();
+  md << (metOnEveryCamera(r, d, d) ? " The bar is met on every test camera." : " The bar is not met on every test camera (above).");
   md << " Against the thesis detector's plain → plain (the criterion's numbers as first written) it is "
-     << (allMetThesis ? "met on every test camera.\n" : "not met on every test camera.\n");
+     << (metOnEveryCamera(r, d, DetectorKind::Pixels) ? "met on every test camera.\n" : "not met on every test camera.\n");
   if (!r.ablatedStages.empty()) writeAblationFinding(md, r, *recorded, d);
 }
 

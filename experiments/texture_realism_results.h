@@ -104,9 +104,9 @@ struct TestCameraSummary {
 };
 
 // One setting tried for the footprint detector on the validation frames (path frames at poses no
-// training frame has), leave one preset out: each frame recorded through one of the training
-// cameras' presets, at draws no training frame used, and detected with classifiers trained on the
-// path frames through the other presets; never a test camera. A setting is a colour resolution
+// training frame has), leave one preset out: every validation frame recorded, once per fold,
+// through that fold's held-out preset at draws no training frame used, and detected with
+// classifiers trained on the path frames through the other presets; never a test camera. A setting is a colour resolution
 // and a FootprintRule: how a footprint's score weighs its size, and how far one band's evidence
 // may fall short.
 struct FootprintTrial {

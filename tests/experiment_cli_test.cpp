@@ -3,6 +3,7 @@
 // from an omni image unwrapped with `omnicam view --as panorama`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -450,7 +451,11 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const size_t row = doc.str().find(chosenRow);
   ASSERT_NE(row, std::string::npos) << chosenRow;
   const std::string rowText = doc.str().substr(row, doc.str().find('\n', row) - row);
-  EXPECT_NE(rowText.find(", chosen**"), std::string::npos) << rowText;
+  ASSERT_NE(rowText.find(", chosen**"), std::string::npos) << rowText;
+  // Its column: the cells before it are the resolution, the score and the smaller tolerances.
+  const auto barsBefore = std::count(rowText.begin(), rowText.begin() + static_cast<std::ptrdiff_t>(rowText.find(", chosen**")), '|');
+  ASSERT_GE(barsBefore, 3);
+  EXPECT_EQ(tolerances.at(static_cast<size_t>(barsBefore - 3)), results["footprint_band_tolerance"].get<double>()) << rowText;
   EXPECT_EQ(doc.str().find(", chosen**"), row + rowText.find(", chosen**"));  // chosen once
   EXPECT_EQ(doc.str().find(", chosen**", row + rowText.size()), std::string::npos);
   const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
