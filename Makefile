@@ -43,7 +43,7 @@ build: deps $(BUILD_DIR)/CMakeCache.txt
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The libFuzzer targets (clang, ASan + UBSan) in their own build folder; make test runs each for
-# 30 s ("fuzz smoke"), make fuzz for FUZZ_SECONDS each.
+# 10 s ("fuzz smoke"), make fuzz for FUZZ_SECONDS each.
 $(FUZZ_DIR)/CMakeCache.txt:
 	cmake -S . -B $(FUZZ_DIR) -DOMNICAM_FUZZ=ON -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
