@@ -373,21 +373,25 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
 DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                           const std::map<std::string, ColourHistogramClassifier>& classifiers,
                                           const DetectorOptions& options, const FootprintRule& rule) const {
+  return detect(evidence(frame, classifiers, options), options.theta, rule);
+}
+
+BandEvidence FootprintDetector::evidence(const ImageRGBA& frame,
+                                         const std::map<std::string, ColourHistogramClassifier>& classifiers,
+                                         const DetectorOptions& options) const {
   if (frame.width != rig_.camera().width() || frame.height != rig_.camera().height())
     throw std::invalid_argument("footprint detector: the frame is not the rig's image size");
-  if (!(options.theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
-  if (!(rule.bandTolerance >= 0.0) || !std::isfinite(rule.bandTolerance))
-    throw std::invalid_argument("footprint detector: the band tolerance must be finite and ≥ 0");
   const ImageRGBA image = detectorInput(frame, options);
   const size_t pixelCount = static_cast<size_t>(image.width) * image.height;
-  // Each band colour's evidence per pixel.
-  std::map<std::string, std::vector<float>> evidence;
+  BandEvidence evidence;
+  evidence.width = image.width;
+  evidence.height = image.height;
   for (const Beacon& beacon : beacons_)
     for (const std::string& colour : {beacon.upper->colourClass, beacon.lower->colourClass}) {
-      if (evidence.count(colour)) continue;
+      if (evidence.byColour.count(colour)) continue;
       const auto classifier = classifiers.find(colour);
       if (classifier == classifiers.end()) throw std::invalid_argument("footprint detector: no classifier for " + colour);
-      std::vector<float>& map = evidence[colour];
+      std::vector<float>& map = evidence.byColour[colour];
       map.resize(pixelCount);
       for (size_t p = 0; p < pixelCount; ++p) {
         const float* rgba = &image.pixels[p * 4];
@@ -395,11 +399,25 @@ DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                 : static_cast<float>(clampedLogLikelihoodRatio(classifier->second, rgb8FromPixel(rgba)));
       }
     }
-  const double minMean = std::log(options.theta);
+  return evidence;
+}
+
+DetectionResult FootprintDetector::detect(const BandEvidence& evidence, double theta, const FootprintRule& rule) const {
+  if (evidence.width != rig_.camera().width() || evidence.height != rig_.camera().height())
+    throw std::invalid_argument("footprint detector: the evidence is not the rig's image size");
+  if (!(theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
+  if (!(rule.bandTolerance >= 0.0) || !std::isfinite(rule.bandTolerance))
+    throw std::invalid_argument("footprint detector: the band tolerance must be finite and ≥ 0");
+  auto mapOf = [&](const std::string& colour) -> const std::vector<float>& {
+    const auto found = evidence.byColour.find(colour);
+    if (found == evidence.byColour.end()) throw std::invalid_argument("footprint detector: no evidence for " + colour);
+    return found->second;
+  };
+  const double minMean = std::log(theta);
   std::vector<std::vector<Hypothesis>> hypotheses(beacons_.size());
   for (size_t b = 0; b < beacons_.size(); ++b)
-    hypotheses[b] = bestFootprints(beacons_[b], *footprintOfBeacon_[b], evidence.at(beacons_[b].upper->colourClass),
-                                   evidence.at(beacons_[b].lower->colourClass), minMean, rule);
+    hypotheses[b] = bestFootprints(beacons_[b], *footprintOfBeacon_[b], mapOf(beacons_[b].upper->colourClass),
+                                   mapOf(beacons_[b].lower->colourClass), minMean, rule);
   DetectionResult result;
   for (const Found& f : agreeingChoice(beacons_, hypotheses)) {
     const BeaconFootprints& fp = *footprintOfBeacon_[f.beacon];
@@ -409,13 +427,13 @@ DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
     BeaconDetection detection;
     detection.beacon = &beacon;
     const int* middle = fp.pixels.data() + fp.lowerBegin[f.candidate];
-    detection.raster = 0.5 * (observedCentroid(evidence.at(beacon.upper->colourClass), first, middle, image.width, image.height, minMean) +
-                              observedCentroid(evidence.at(beacon.lower->colourClass), middle, last, image.width, image.height, minMean));
+    detection.raster = 0.5 * (observedCentroid(mapOf(beacon.upper->colourClass), first, middle, evidence.width, evidence.height, minMean) +
+                              observedCentroid(mapOf(beacon.lower->colourClass), middle, last, evidence.width, evidence.height, minMean));
     detection.rangeBearing = rangeBearingFromRaster(rig_, detection.raster, beacon.boundaryHeight());
     detection.upperBlob = static_cast<int>(result.blobs.size());
-    result.blobs.push_back(blobOf(beacon.upper->colourClass, first, middle, image.width));
+    result.blobs.push_back(blobOf(beacon.upper->colourClass, first, middle, evidence.width));
     detection.lowerBlob = static_cast<int>(result.blobs.size());
-    result.blobs.push_back(blobOf(beacon.lower->colourClass, middle, last, image.width));
+    result.blobs.push_back(blobOf(beacon.lower->colourClass, middle, last, evidence.width));
     result.beacons.push_back(detection);
   }
   return result;

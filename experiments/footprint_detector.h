@@ -67,6 +67,14 @@ struct FootprintRule {
   double bandTolerance = 0.0;  // ≥ 0, in units of log likelihood ratio
 };
 
+// A frame's evidence for each band colour: per pixel the clamped log likelihood ratio of its
+// colour (clampedLogLikelihoodRatio; a pixel with alpha < 0.5 is certainly not a band), indices
+// j·W + i. What a detection weighs; computed once, it serves every FootprintRule tried on a frame.
+struct BandEvidence {
+  int width = 0, height = 0;
+  std::map<std::string, std::vector<float>> byColour;
+};
+
 class FootprintDetector {
  public:
   // `beacons` must outlive the detector: detections point into it.
@@ -85,6 +93,12 @@ class FootprintDetector {
   // alpha < 0.5 count as certainly not a band.
   DetectionResult detect(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
                          const DetectorOptions& options, const FootprintRule& rule = {}) const;
+
+  // The two halves of detect: the frame's evidence for every band colour of the beacons (after
+  // options.medianPx), and the detections it supports with bound `theta` (> 0) and `rule`.
+  BandEvidence evidence(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
+                        const DetectorOptions& options) const;
+  DetectionResult detect(const BandEvidence& evidence, double theta, const FootprintRule& rule = {}) const;
 
   const BeaconFootprints& footprints(size_t beacon) const { return *footprintOfBeacon_[beacon]; }
 

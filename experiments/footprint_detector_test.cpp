@@ -409,6 +409,53 @@ TEST(FootprintDetector, ABandMayFallShortOfThetaByTheToleranceWhenTheWholeFootpr
                  std::invalid_argument);
 }
 
+TEST(FootprintDetector, AFramesEvidenceIsComputedOnceAndServesEveryRule) {
+  // The evidence of a grey frame with beacon 0 painted, a pixel beyond the rim and one painted
+  // pixel checked against the closed forms: the exact classifiers give a band's own colour +5 and
+  // every other colour −5, grey −5, and alpha < 0.5 is −5 whatever its colour. Detections from it
+  // are those of the frame, under each rule.
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const FootprintDetector detector(rig, beacons);
+  const PartlyPainted one = partlyPaintedBeacon(rig, detector, beacons, 0, 1.0, 1.0);
+  ImageRGBA image = one.image;
+  const int w = rig.camera().width();
+  const BeaconFootprints& fp = detector.footprints(0);
+  const size_t c = candidateAt(fp, one.boundary, w);
+  ASSERT_NE(c, std::string::npos);
+  const int upperPixel = fp.pixels[static_cast<size_t>(fp.upperBegin[c])];
+  const int hidden = 0;  // the image's corner, beyond the rim: made transparent, painted upper-band colour
+  paint(image, pixelCentre(hidden, w), kColours.at(beacons[0].upper->colourClass));
+  image.pixels[3] = 0.0f;
+  const BandEvidence evidence = detector.evidence(image, exactClassifiers(), DetectorOptions{});
+  EXPECT_EQ(evidence.width, w);
+  EXPECT_EQ(evidence.height, rig.camera().height());
+  for (const auto& [colour, map] : evidence.byColour) {
+    SCOPED_TRACE(colour);
+    ASSERT_EQ(map.size(), static_cast<size_t>(w) * rig.camera().height());
+    EXPECT_EQ(map[static_cast<size_t>(upperPixel)], colour == beacons[0].upper->colourClass ? kMaxLogLikelihoodRatio : -kMaxLogLikelihoodRatio);
+    EXPECT_EQ(map[static_cast<size_t>(hidden)], -kMaxLogLikelihoodRatio);
+    EXPECT_EQ(map[static_cast<size_t>(w) * (rig.camera().height() / 2) + 1], -kMaxLogLikelihoodRatio);  // grey
+  }
+  for (const FootprintScore score : footprintScores())
+    for (const double tolerance : {0.0, 2.0}) {
+      const DetectionResult fromImage = detector.detect(image, exactClassifiers(), DetectorOptions{}, {score, tolerance});
+      const DetectionResult fromEvidence = detector.detect(evidence, DetectorOptions{}.theta, {score, tolerance});
+      ASSERT_EQ(fromEvidence.beacons.size(), 1u);
+      ASSERT_EQ(fromImage.beacons.size(), 1u);
+      EXPECT_EQ(fromEvidence.beacons[0].beacon, &beacons[0]);
+      EXPECT_EQ(fromEvidence.beacons[0].raster, fromImage.beacons[0].raster);
+      EXPECT_LT((fromEvidence.beacons[0].raster - one.boundary).norm(), 1.5);
+    }
+  BandEvidence smaller = evidence;
+  smaller.width /= 2;
+  EXPECT_THROW(detector.detect(smaller, 1.0), std::invalid_argument);
+  BandEvidence withoutOne = evidence;
+  withoutOne.byColour.erase(beacons[0].upper->colourClass);
+  EXPECT_THROW(detector.detect(withoutOne, 1.0), std::invalid_argument);
+  EXPECT_THROW(detector.detect(evidence, 0.0), std::invalid_argument);
+}
+
 TEST(FootprintDetector, TheEvidenceOfAColourIsItsClampedLogLikelihoodRatio) {
   ColourHistogramClassifier c(32);
   const Rgb8 a{200, 20, 150}, b{90, 90, 90}, both{10, 200, 220};

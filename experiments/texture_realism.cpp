@@ -299,7 +299,7 @@ std::vector<FootprintTrial> footprintSettings(int bins) {
 // The footprint detector's setting, by leave-one-preset-out validation (presetFolds): in each fold
 // every validation frame is recorded o.recordingDraws times through the fold's validation cameras
 // and detected by every setting with the fold's classifiers, one recorded frame in memory at a
-// time. Each trial sums over the folds.
+// time (its evidence computed once per colour resolution). Each trial sums over the folds.
 std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o, const std::vector<ValidationFold>& folds,
                                                  const std::vector<Frame>& validation,
                                                  const std::vector<std::vector<GroundTruthBeacon>>& truth,
@@ -316,12 +316,16 @@ std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o,
         const uint64_t index = drawIndex(kValidationDraws, k, d, o.recordingDraws);
         const Frame recorded{validation[k].pose, recordFrame(folds[fold].validation.draw(index), validation[k].image, index),
                              validation[k].instance};
-        for (FootprintTrial& t : trials) {
-          const DetectionResult detected = detector.detect(recorded.image, classifiers[fold].at(t.bins), o.detector, t.rule);
-          const FrameEvaluation e = evaluateFrame(recorded, detected, truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
-          t.visibleBeacons += e.visibleBeacons;
-          t.truePositives += e.truePositives;
-          t.falsePositives += e.falsePositives();
+        for (const auto& [bins, classifiersAtBins] : classifiers[fold]) {
+          const BandEvidence evidence = detector.evidence(recorded.image, classifiersAtBins, o.detector);
+          for (FootprintTrial& t : trials) {
+            if (t.bins != bins) continue;
+            const DetectionResult detected = detector.detect(evidence, o.detector.theta, t.rule);
+            const FrameEvaluation e = evaluateFrame(recorded, detected, truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
+            t.visibleBeacons += e.visibleBeacons;
+            t.truePositives += e.truePositives;
+            t.falsePositives += e.falsePositives();
+          }
         }
       }
     progress("choosing the footprint detector's colour resolution, score and band tolerance", static_cast<int>(k + 1),
