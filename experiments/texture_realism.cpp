@@ -221,6 +221,7 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   for (const FrameEvaluation& f : condition.frames) {
     c.truePositives += f.truePositives;
     c.falsePositiveBlobs += f.falsePositiveBlobs;
+    c.falsePositiveBlobsOfFoundBeacons += f.falsePositiveBlobsOfFoundBeacons;
     c.falsePositives += f.falsePositives();
     c.missed += f.visibleBeacons - f.truePositives;
     for (const double range : f.visibleRangesM) ++c.visibleByRange[static_cast<size_t>(rangeBucket(range))];

@@ -126,20 +126,7 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
                               const std::vector<std::string>& objectNames, double matchRadiusPx) {
   FrameEvaluation e;
   e.visibleBeacons = static_cast<int>(std::count_if(truth.begin(), truth.end(), [](auto& t) { return t.visible; }));
-  for (const ColourBlob& blob : detected.blobs) {
-    int onBand = 0;
-    std::map<uint16_t, int> shown;
-    for (int p : blob.pixels) {
-      const uint16_t id = frame.instance[static_cast<size_t>(p)];
-      if (id != 0 && bandColour[id - 1] == blob.colour) ++onBand;
-      ++shown[id];
-    }
-    if (2 * onBand >= blob.area) continue;
-    ++e.falsePositiveBlobs;
-    const auto most = std::max_element(shown.begin(), shown.end(), [](auto& a, auto& b) { return a.second < b.second; });
-    e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area,
-                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1]});
-  }
+  std::vector<bool> ofFoundBeacon(detected.blobs.size(), false);  // the bands of beacons named rightly
   for (const BeaconDetection& d : detected.beacons) {
     DrawnDetection drawn{d.raster, false};
     const auto t = std::find_if(truth.begin(), truth.end(), [&](auto& g) { return g.beacon == d.beacon; });
@@ -153,11 +140,29 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
         e.rangeErrorsCm.push_back(100.0 * std::abs((*d.rangeBearing)(0) - t->rangeM));
         e.bearingErrorsDeg.push_back(std::abs(wrapAngle((*d.rangeBearing)(1) - t->bearingRad)) * 180.0 / kPi);
       }
+      for (const int blob : {d.upperBlob, d.lowerBlob})
+        if (blob >= 0 && static_cast<size_t>(blob) < ofFoundBeacon.size()) ofFoundBeacon[static_cast<size_t>(blob)] = true;
     } else {
       ++e.falseIdentifications;
     }
     if (d.rangeBearing) e.measurements.push_back({d.beacon->position(), *d.rangeBearing});
     e.drawn.push_back(drawn);
+  }
+  for (size_t k = 0; k < detected.blobs.size(); ++k) {
+    const ColourBlob& blob = detected.blobs[k];
+    int onBand = 0;
+    std::map<uint16_t, int> shown;
+    for (int p : blob.pixels) {
+      const uint16_t id = frame.instance[static_cast<size_t>(p)];
+      if (id != 0 && bandColour[id - 1] == blob.colour) ++onBand;
+      ++shown[id];
+    }
+    if (2 * onBand >= blob.area) continue;
+    ++e.falsePositiveBlobs;
+    e.falsePositiveBlobsOfFoundBeacons += ofFoundBeacon[k];
+    const auto most = std::max_element(shown.begin(), shown.end(), [](auto& a, auto& b) { return a.second < b.second; });
+    e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area,
+                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1]});
   }
   for (const GroundTruthBeacon& t : truth)
     if (t.visible) {

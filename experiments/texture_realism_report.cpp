@@ -57,7 +57,8 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                                 {"false_positives", c.falsePositives},
                                 {"false_positive_blobs", c.falsePositiveBlobs},
                                 {"false_positive_blobs_on_hall", c.falsePositiveBlobsOnHall},
-                                {"false_identifications", c.falsePositives - c.falsePositiveBlobs},
+                                {"false_identifications", c.falseIdentifications()},
+                                {"false_positive_blobs_of_found_beacons", c.falsePositiveBlobsOfFoundBeacons},
                                 {"missed", c.missed},
                                 {"mean_localisation_error_px", c.meanLocalisationErrorPx},
                                 {"mean_range_error_cm", c.meanRangeErrorCm},
@@ -297,7 +298,7 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
     if (!c) continue;
     md << "| " << row.condition << " | " << row.thesisSetting << " | " << row.truePositives << " | "
        << row.falsePositives << " | " << row.errorPx << " | " << row.ratio << " | " << c->truePositives << " | "
-       << c->falsePositives << " | " << c->falsePositives - c->falsePositiveBlobs << " | "
+       << c->falsePositives << " | " << c->falseIdentifications() << " | "
        << c->falsePositiveBlobsOnHall << " | " << c->missed << " | "
        << fixedDecimals(c->meanLocalisationErrorPx, 2) << " | " << fixedDecimals(c->meanRangeErrorCm, 1) << " | "
        << fixedDecimals(c->meanBearingErrorDeg, 2) << " | " << ratioText(trueOverFalse(*c)) << " |\n";
@@ -332,7 +333,7 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
   auto verdict = [](bool holds) { return holds ? "**reproduces**" : "**does not reproduce**"; };
   md << "\n## Which findings reproduce\n\n";
   if (pp && pt && pr) {
-    const int ppWrong = pp->falsePositives - pp->falsePositiveBlobs;
+    const int ppWrong = pp->falseIdentifications();
     md << "1. In the plain hall the beacons are found and almost never confused (thesis 94 TP, 2 FP): "
        << verdict(pp->truePositives > 0 && ppWrong * 50 <= pp->truePositives) << " — " << pp->truePositives
        << " TP, " << ppWrong << " wrong beacons. Colour blobs are another matter: the goals are painted the "

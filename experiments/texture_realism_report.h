@@ -26,6 +26,9 @@ struct FalseBlob {
 
 struct FrameEvaluation {
   int visibleBeacons = 0, truePositives = 0, falseIdentifications = 0, falsePositiveBlobs = 0;
+  // Of the false-positive blobs, the bands of beacons named rightly: a far band is a pixel or two
+  // tall, so the blob placed on it can show more of what lies behind it than of the band.
+  int falsePositiveBlobsOfFoundBeacons = 0;
   std::vector<double> localisationErrorsPx, rangeErrorsCm, bearingErrorsDeg;
   std::vector<Measurement> measurements;
   std::vector<DrawnDetection> drawn;

@@ -5,9 +5,13 @@
 #include <stdexcept>
 
 #include "texture_realism.h"
+#include "texture_realism_frames.h"
+#include "texture_realism_report.h"
 
 namespace omnicam {
 namespace {
+
+using namespace texture_realism;
 
 TEST(PresetFolds, EachFoldTrainsWithoutOnePresetAndValidatesThroughItAlone) {
   const RecordingCameraSpec mix = trainingRecordingMix(2008);
@@ -35,6 +39,38 @@ TEST(PresetFolds, NeedTrainingCamerasThatDrawOneOfSeveralPresets) {
   RecordingCameraSpec one = trainingRecordingMix(1);
   one.preset->values = {0.0};
   EXPECT_THROW(presetFolds(one), std::logic_error);
+}
+
+// A 10 × 10 frame whose mask holds, row 2, a cyan band (object 1) over, row 3, a magenta band
+// (object 2) of beacon A, and a wall (object 3) everywhere else. A is named rightly (its boundary
+// 1 px off): its upper blob on cyan counts for nothing, its lower blob of 3 pixels with 1 on magenta
+// is an off-band band of a beacon named rightly. B is named where it is not visible: one false
+// identification, its two blobs on the wall two off-band bands of a beacon named wrongly.
+TEST(EvaluateFrame, CountsFalseIdentificationsAndOffBandBandsWithThoseOfBeaconsNamedRightly) {
+  const int w = 10;
+  Frame frame{RobotPose{}, ImageRGBA(w, w), std::vector<uint16_t>(static_cast<size_t>(w) * w, 3)};
+  for (int i = 2; i < 8; ++i) frame.instance[static_cast<size_t>(2 * w + i)] = 1, frame.instance[static_cast<size_t>(3 * w + i)] = 2;
+  const std::vector<std::string> bandColour = {"cyan", "magenta", ""}, objectNames = {"a_upper", "a_lower", "hall_wall"};
+  Landmark upper{}, lower{};
+  upper.position = Vec3(1.0, 0.0, 0.6), lower.position = Vec3(1.0, 0.0, 0.4);
+  const Beacon a{"a", &upper, &lower}, b{"b", &upper, &lower};
+  const std::vector<GroundTruthBeacon> truth = {{&a, true, Vec2(5.0, 3.0), 1.0, 0.0}, {&b, false, Vec2(-1.0, -1.0), 2.0, 0.0}};
+  auto blob = [&](const std::string& colour, std::vector<int> pixels) {
+    return ColourBlob{colour, Vec2(0.0, 0.0), static_cast<int>(pixels.size()), std::move(pixels)};
+  };
+  DetectionResult detected;
+  detected.blobs = {blob("cyan", {2 * w + 4, 2 * w + 5}), blob("magenta", {3 * w + 5, 4 * w + 5, 5 * w + 5}),
+                    blob("cyan", {7 * w + 1}), blob("magenta", {8 * w + 1})};
+  detected.beacons = {BeaconDetection{&a, Vec2(5.0, 4.0), std::nullopt, 0, 1}, BeaconDetection{&b, Vec2(1.5, 8.0), std::nullopt, 2, 3}};
+  const FrameEvaluation e = evaluateFrame(frame, detected, truth, bandColour, objectNames, 8.0);
+  EXPECT_EQ(e.visibleBeacons, 1);
+  EXPECT_EQ(e.truePositives, 1);
+  EXPECT_EQ(e.falseIdentifications, 1);
+  EXPECT_EQ(e.falsePositiveBlobs, 3);
+  EXPECT_EQ(e.falsePositiveBlobsOfFoundBeacons, 1);
+  EXPECT_EQ(e.falsePositives(), 4);
+  ASSERT_EQ(e.falseBlobs.size(), 3u);
+  EXPECT_EQ(e.falseBlobs[0].object, "hall_wall");  // A's lower blob: 2 of its 3 pixels on the wall
 }
 
 }  // namespace

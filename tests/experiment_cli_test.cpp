@@ -246,6 +246,15 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
     EXPECT_EQ(c["false_identifications"], identifications);
     EXPECT_EQ(c["false_positive_blobs"], blobCount);
     EXPECT_EQ(c["false_positives"], identifications + blobCount);
+    // Of the off-band blobs, those that are bands of beacons named rightly; the footprint detector
+    // reports no blob but a beacon's two bands, so the rest are bands of beacons named wrongly.
+    const int ofFound = c["false_positive_blobs_of_found_beacons"];
+    EXPECT_GE(ofFound, 0);
+    EXPECT_LE(ofFound, blobCount);
+    EXPECT_LE(ofFound, 2 * tp);
+    if (key.ends_with("_footprints")) {
+      EXPECT_LE(blobCount - ofFound, 2 * identifications);
+    }
     // By true range in whole metres: the buckets hold every visible beacon and true positive; all
     // four beacons are in view from each of the four test poses, so the visible ones are the
     // beacons' distances from those poses.
@@ -443,8 +452,19 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                            "](figures/texture_realism_recording.png)", "### Finding",
                            "#### Where beacons are lost: found of visible, by true range",
                            "| plain → plain (the bar) |", "| path + drawn cameras → camera 2: sharp_jpeg95.json |",
-                           "| ceiling: the webcam's own frames → realistic |"})
+                           "| ceiling: the webcam's own frames → realistic |",
+                           "| train → test | FP | beacons named wrongly | bands off their colour | of those, bands of beacons named rightly |",
+                           "| oracle: the test frames → realistic |"})
     EXPECT_NE(doc.str().find(part), std::string::npos) << part;
+  // What each detector's plain → plain false positives are, from results.json.
+  for (const char* key : {"plain_to_plain", "plain_to_plain_footprints"}) {
+    const json& c = results["conditions"][key];
+    const std::string makeup = "| plain → plain (the bar) | " + std::to_string(c["false_positives"].get<int>()) + " | " +
+                               std::to_string(c["false_identifications"].get<int>()) + " | " +
+                               std::to_string(c["false_positive_blobs"].get<int>()) + " | " +
+                               std::to_string(c["false_positive_blobs_of_found_beacons"].get<int>()) + " |\n";
+    EXPECT_NE(doc.str().find(makeup), std::string::npos) << key << ": " << makeup;
+  }
   // The chosen setting's cell, bold, in its resolution's and score's row.
   const std::string chosenRow = "| " + std::to_string(results["footprint_bins"].get<int>()) + " | " +
                                 results["footprint_score"].get<std::string>() + " |";
