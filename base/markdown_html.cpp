@@ -43,19 +43,17 @@ std::vector<std::string> cellsOf(const std::string& row) {
   return cells;
 }
 
-bool startsWith(const std::string& line, const std::string& prefix) { return line.compare(0, prefix.size(), prefix) == 0; }
-
 // "![alt](src)" and nothing else on the line, src a relative path (the reports' own figures; no
 // scheme such as javascript:).
 bool isImageLine(const std::string& line) {
   const size_t middle = line.find("](");
-  return startsWith(line, "![") && middle != std::string::npos && line.back() == ')' &&
+  return line.starts_with("![") && middle != std::string::npos && line.back() == ')' &&
          line.find(':', middle) == std::string::npos;
 }
 
 // Whether a line begins a block of its own (and so ends a paragraph).
 bool startsBlock(const std::string& line) {
-  return line.empty() || line[0] == '#' || line[0] == '|' || startsWith(line, "- ") || isImageLine(line);
+  return line.empty() || line[0] == '#' || line[0] == '|' || line.starts_with("- ") || isImageLine(line);
 }
 
 }  // namespace
@@ -80,7 +78,7 @@ std::string htmlFromMarkdown(const std::string& markdown) {
       ++k;
     } else if (line[0] == '|') {
       html += "<table>\n";
-      for (size_t row = 0; k < lines.size() && startsWith(lines[k], "|"); ++k, ++row) {
+      for (size_t row = 0; k < lines.size() && lines[k].starts_with("|"); ++k, ++row) {
         if (row == 1) continue;  // the separator under the header
         const char* cell = row == 0 ? "th" : "td";
         html += "<tr>";
@@ -93,9 +91,9 @@ std::string htmlFromMarkdown(const std::string& markdown) {
       html += "<p><img src=\"" + escapeMarkup(line.substr(middle + 2, line.size() - middle - 3)) + "\" alt=\"" +
               escapeMarkup(line.substr(2, middle - 2)) + "\" style=\"max-width:100%\"></p>\n";
       ++k;
-    } else if (startsWith(line, "- ")) {
+    } else if (line.starts_with("- ")) {
       html += "<ul>\n";
-      for (; k < lines.size() && startsWith(lines[k], "- "); ++k) html += "<li>" + inlineHtml(lines[k].substr(2)) + "</li>\n";
+      for (; k < lines.size() && lines[k].starts_with("- "); ++k) html += "<li>" + inlineHtml(lines[k].substr(2)) + "</li>\n";
       html += "</ul>\n";
     } else {
       std::string paragraph = line;  // this line starts no other block, so the paragraph has it
