@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "detector_test_fixtures.h"
+#include "detector_testing.h"
 #include "errors.h"
 #include "placement.h"
 

@@ -368,11 +368,19 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
   return sum / static_cast<double>(end - begin);
 }
 
+// What a detection is asked: a bound Θ > 0, and a finite band tolerance ≥ 0.
+void checkDetection(double theta, const FootprintRule& rule) {
+  if (!(theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
+  if (!(rule.bandTolerance >= 0.0) || !std::isfinite(rule.bandTolerance))
+    throw std::invalid_argument("footprint detector: the band tolerance must be finite and ≥ 0");
+}
+
 }  // namespace
 
 DetectionResult FootprintDetector::detect(const ImageRGBA& frame,
                                           const std::map<std::string, ColourHistogramClassifier>& classifiers,
                                           const DetectorOptions& options, const FootprintRule& rule) const {
+  checkDetection(options.theta, rule);  // before the evidence is computed
   return detect(evidence(frame, classifiers, options), options.theta, rule);
 }
 
@@ -403,14 +411,15 @@ BandEvidence FootprintDetector::evidence(const ImageRGBA& frame,
 }
 
 DetectionResult FootprintDetector::detect(const BandEvidence& evidence, double theta, const FootprintRule& rule) const {
+  checkDetection(theta, rule);
   if (evidence.width != rig_.camera().width() || evidence.height != rig_.camera().height())
     throw std::invalid_argument("footprint detector: the evidence is not the rig's image size");
-  if (!(theta > 0.0)) throw std::invalid_argument("footprint detector: theta must be > 0");
-  if (!(rule.bandTolerance >= 0.0) || !std::isfinite(rule.bandTolerance))
-    throw std::invalid_argument("footprint detector: the band tolerance must be finite and ≥ 0");
+  const size_t pixelCount = static_cast<size_t>(evidence.width) * evidence.height;
   auto mapOf = [&](const std::string& colour) -> const std::vector<float>& {
     const auto found = evidence.byColour.find(colour);
     if (found == evidence.byColour.end()) throw std::invalid_argument("footprint detector: no evidence for " + colour);
+    if (found->second.size() != pixelCount)
+      throw std::invalid_argument("footprint detector: the evidence for " + colour + " is not one value per pixel");
     return found->second;
   };
   const double minMean = std::log(theta);

@@ -7,11 +7,12 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
 #include "placement.h"
-#include "detector_test_fixtures.h"
+#include "detector_testing.h"
 
 namespace omnicam {
 namespace {
@@ -409,11 +410,11 @@ TEST(FootprintDetector, ABandMayFallShortOfThetaByTheToleranceWhenTheWholeFootpr
                  std::invalid_argument);
 }
 
-TEST(FootprintDetector, AFramesEvidenceIsComputedOnceAndServesEveryRule) {
+TEST(FootprintDetector, AFramesEvidenceIsEachBandColoursClampedRatioPerPixel) {
   // The evidence of a grey frame with beacon 0 painted, a pixel beyond the rim and one painted
   // pixel checked against the closed forms: the exact classifiers give a band's own colour +5 and
-  // every other colour −5, grey −5, and alpha < 0.5 is −5 whatever its colour. Detections from it
-  // are those of the frame, under each rule.
+  // every other colour −5, grey −5, and alpha < 0.5 is −5 whatever its colour. It holds the
+  // beacons' band colours, and each rule finds the beacon in it where it is painted.
   const RigSpec rig = field().rig;
   const std::vector<Beacon> beacons = beaconsOf(field());
   const FootprintDetector detector(rig, beacons);
@@ -430,6 +431,10 @@ TEST(FootprintDetector, AFramesEvidenceIsComputedOnceAndServesEveryRule) {
   const BandEvidence evidence = detector.evidence(image, exactClassifiers(), DetectorOptions{});
   EXPECT_EQ(evidence.width, w);
   EXPECT_EQ(evidence.height, rig.camera().height());
+  std::set<std::string> bandColours, held;
+  for (const Beacon& beacon : beacons) bandColours.insert({beacon.upper->colourClass, beacon.lower->colourClass});
+  for (const auto& [colour, map] : evidence.byColour) held.insert(colour);
+  EXPECT_EQ(held, bandColours);
   for (const auto& [colour, map] : evidence.byColour) {
     SCOPED_TRACE(colour);
     ASSERT_EQ(map.size(), static_cast<size_t>(w) * rig.camera().height());
@@ -444,8 +449,12 @@ TEST(FootprintDetector, AFramesEvidenceIsComputedOnceAndServesEveryRule) {
       ASSERT_EQ(fromEvidence.beacons.size(), 1u);
       ASSERT_EQ(fromImage.beacons.size(), 1u);
       EXPECT_EQ(fromEvidence.beacons[0].beacon, &beacons[0]);
-      EXPECT_EQ(fromEvidence.beacons[0].raster, fromImage.beacons[0].raster);
       EXPECT_LT((fromEvidence.beacons[0].raster - one.boundary).norm(), 1.5);
+      // Its bands are the footprint painted: every pixel of each on its own colour.
+      for (const int blob : {fromEvidence.beacons[0].upperBlob, fromEvidence.beacons[0].lowerBlob})
+        for (const int p : fromEvidence.blobs[static_cast<size_t>(blob)].pixels)
+          EXPECT_EQ(evidence.byColour.at(fromEvidence.blobs[static_cast<size_t>(blob)].colour)[static_cast<size_t>(p)], kMaxLogLikelihoodRatio);
+      EXPECT_EQ(fromEvidence.beacons[0].raster, fromImage.beacons[0].raster);
     }
   BandEvidence smaller = evidence;
   smaller.width /= 2;
@@ -453,6 +462,9 @@ TEST(FootprintDetector, AFramesEvidenceIsComputedOnceAndServesEveryRule) {
   BandEvidence withoutOne = evidence;
   withoutOne.byColour.erase(beacons[0].upper->colourClass);
   EXPECT_THROW(detector.detect(withoutOne, 1.0), std::invalid_argument);
+  BandEvidence shortByOne = evidence;
+  shortByOne.byColour.at(beacons[0].lower->colourClass).pop_back();
+  EXPECT_THROW(detector.detect(shortByOne, 1.0), std::invalid_argument);
   EXPECT_THROW(detector.detect(evidence, 0.0), std::invalid_argument);
 }
 

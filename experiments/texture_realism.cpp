@@ -221,7 +221,6 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   for (const FrameEvaluation& f : condition.frames) {
     c.truePositives += f.truePositives;
     c.falsePositiveBlobs += f.falsePositiveBlobs;
-    c.falsePositiveBlobsOfFoundBeacons += f.falsePositiveBlobsOfFoundBeacons;
     c.falsePositives += f.falsePositives();
     c.missed += f.visibleBeacons - f.truePositives;
     for (const double range : f.visibleRangesM) ++c.visibleByRange[static_cast<size_t>(rangeBucket(range))];
@@ -234,7 +233,8 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   for (const FrameEvaluation& f : condition.frames)
     for (const FalseBlob& b : f.falseBlobs) {
       ++sources[b.object.empty() ? "(nothing)" : b.object];
-      c.falsePositiveBlobsOnHall += b.object.rfind("hall_", 0) == 0;
+      c.falsePositiveBlobsOnHall += b.object.starts_with("hall_");
+      c.falsePositiveBlobsOfFoundBeacons += b.ofFoundBeacon;
     }
   c.falsePositiveSources.assign(sources.begin(), sources.end());
   std::sort(c.falsePositiveSources.begin(), c.falsePositiveSources.end(),

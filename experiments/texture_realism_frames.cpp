@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "fast_renderer.h"
 #include "landmark_annotations.h"
@@ -140,8 +141,12 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
         e.rangeErrorsCm.push_back(100.0 * std::abs((*d.rangeBearing)(0) - t->rangeM));
         e.bearingErrorsDeg.push_back(std::abs(wrapAngle((*d.rangeBearing)(1) - t->bearingRad)) * 180.0 / kPi);
       }
-      for (const int blob : {d.upperBlob, d.lowerBlob})
-        if (blob >= 0 && static_cast<size_t>(blob) < ofFoundBeacon.size()) ofFoundBeacon[static_cast<size_t>(blob)] = true;
+      for (const int blob : {d.upperBlob, d.lowerBlob}) {
+        if (blob == -1) continue;  // a band the detector did not report as a blob
+        if (blob < 0 || static_cast<size_t>(blob) >= ofFoundBeacon.size())
+          throw std::logic_error("evaluateFrame: a detection's blob index is not one of the frame's blobs");
+        ofFoundBeacon[static_cast<size_t>(blob)] = true;
+      }
     } else {
       ++e.falseIdentifications;
     }
@@ -159,10 +164,9 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
     }
     if (2 * onBand >= blob.area) continue;
     ++e.falsePositiveBlobs;
-    e.falsePositiveBlobsOfFoundBeacons += ofFoundBeacon[k];
     const auto most = std::max_element(shown.begin(), shown.end(), [](auto& a, auto& b) { return a.second < b.second; });
     e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area,
-                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1]});
+                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1], ofFoundBeacon[k]});
   }
   for (const GroundTruthBeacon& t : truth)
     if (t.visible) {

@@ -3,6 +3,7 @@
 // comparison figure and the finding in words.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <sstream>
 
@@ -84,10 +85,9 @@ void writeBar(std::ostringstream& md, const TextureRealismResults& r, DetectorKi
   }
 }
 
-// What the false positives of the bar and of path + drawn cameras are made of: beacons named
-// where they are not, and bands lying mostly off their colour's pixels — of which some are the
-// bands of beacons named rightly (a far band is a pixel or two tall, so the blob placed on it can
-// show more of what lies behind it).
+// What the false positives of the bar, of path + drawn cameras and of the oracle are made of:
+// beacons named where they are not, and blobs lying mostly off the bands of their colour (by the
+// instance mask) — some of which are bands of beacons named rightly.
 void writeFalsePositiveMakeup(std::ostringstream& md, const TextureRealismResults& r, DetectorKind d) {
   const ConditionOutcome* pp = findCondition(r, conditionKey("plain", "plain", d));
   if (!pp) return;
@@ -97,25 +97,26 @@ void writeFalsePositiveMakeup(std::ostringstream& md, const TextureRealismResult
       rows.emplace_back("path + drawn cameras → " + cell(t.label), c);
   if (const ConditionOutcome* oracle = findCondition(r, conditionKey("realistic_test_frames", "realistic", d)))
     rows.emplace_back("oracle: the test frames → realistic", oracle);
-  md << "\nWhat the false positives are: beacons named where they are not, and bands lying mostly off their colour's "
-        "pixels — of which some are bands of beacons named rightly (a far band is a pixel or two tall, so the band "
-        "placed on it can show more of what lies behind it).\n\n"
-        "| train → test | FP | beacons named wrongly | bands off their colour | of those, bands of beacons named rightly |\n"
+  md << "\nWhat the false positives are: beacons named where they are not, and blobs lying mostly off the bands of "
+        "their colour (by the instance mask, which samples each pixel's centre) — some of them bands of beacons named "
+        "rightly, whose pixels show more of something else than of the band.\n\n"
+        "| train → test | FP | beacons named where they are not | off-band blobs | of those, bands of beacons named rightly |\n"
         "|---|---:|---:|---:|---:|\n";
   for (const auto& [label, c] : rows)
     md << "| " << label << " | " << c->falsePositives << " | " << c->falseIdentifications() << " | " << c->falsePositiveBlobs << " | "
        << c->falsePositiveBlobsOfFoundBeacons << " |\n";
-  const bool onlyBandsOfFoundBeacons = pp->falsePositives > 0 && pp->falseIdentifications() == 0 &&
-                                      pp->falsePositiveBlobsOfFoundBeacons == pp->falsePositives;
-  if (!onlyBandsOfFoundBeacons) return;
-  md << "\nPlain → plain names no beacon wrongly: each of its " << pp->falsePositives
-     << " false positives is a band of a beacon it found. Its TP/FP is set by where its right answers' bands fall on "
-        "pixels, not by any wrong answer";
+  // Only bands of beacons it found: no wrong answer sets the bar's TP/FP.
+  if (pp->falsePositives == 0 || pp->truePositives == 0 || pp->falsePositiveBlobsOfFoundBeacons != pp->falsePositives) return;
+  md << "\nPlain → plain names no beacon where it is not: each of its " << pp->falsePositives
+     << " false positives is a band of a beacon it found. Its TP/FP is set by how its right answers' bands fall on the "
+        "mask, not by any wrong answer";
   const ConditionOutcome* c = r.testCameras.empty() ? nullptr : findCondition(r, conditionKey("path_recorded", r.testCameras.front().set, d));
-  if (c)
+  if (c) {
+    // TP / FP ≥ the bar's ⇔ FP ≤ TP · bar FP / bar TP, in whole numbers.
+    const int64_t allowed = static_cast<int64_t>(c->truePositives) * pp->falsePositives / pp->truePositives;
     md << "; to reach it, path + drawn cameras → " << cell(r.testCameras.front().label) << ", with its " << c->truePositives
-       << " TP, may make at most " << static_cast<int>(std::floor(c->truePositives / trueOverFalse(*pp)))
-       << " false positives of both kinds together (it makes " << c->falsePositives << ")";
+       << " TP, may make at most " << allowed << " false positives of both kinds together (it makes " << c->falsePositives << ")";
+  }
   md << ".\n";
 }
 
@@ -136,11 +137,11 @@ void writeConditionsPerTestCamera(std::ostringstream& md, const TextureRealismRe
     md << "|\n";
   }
   writeBar(md, r, d, d, "by the same detector");
-  writeFalsePositiveMakeup(md, r, d);
   // The footprint detector also against the thesis detector's plain → plain: the criterion's
   // numbers as first written, before the footprint detector existed.
   if (d == DetectorKind::Footprints)
     writeBar(md, r, d, DetectorKind::Pixels, "by the thesis' pixel detector, the criterion's numbers as first written");
+  writeFalsePositiveMakeup(md, r, d);
 }
 
 void writeAblation(std::ostringstream& md, const TextureRealismResults& r, DetectorKind d) {

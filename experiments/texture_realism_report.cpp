@@ -114,12 +114,12 @@ void writeData(const ReportData& data, const fs::path& out) {
 
   // What the false-positive blobs lie on: which textures fool the classifiers.
   std::ostringstream blobs;
-  blobs << "condition,frame,colour,area_px,u,v,object\n";
+  blobs << "condition,frame,colour,area_px,u,v,object,of_found_beacon\n";
   for (const ConditionReport& c : data.conditions)
     for (size_t k = 0; k < c.frames.size(); ++k)
       for (const FalseBlob& b : c.frames[k].falseBlobs)
         blobs << c.outcome.key() << ',' << k << ',' << b.colour << ',' << b.area << ',' << b.centroid.x() << ','
-              << b.centroid.y() << ',' << csvField(b.object.empty() ? "(nothing)" : b.object) << '\n';
+              << b.centroid.y() << ',' << csvField(b.object.empty() ? "(nothing)" : b.object) << ',' << b.ofFoundBeacon << '\n';
   writeTextAtomically((out / "data/false_positive_blobs.csv").string(), blobs.str());
 
   for (const ConditionReport& c : data.conditions) {

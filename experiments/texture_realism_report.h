@@ -16,26 +16,27 @@ struct DrawnDetection {
   bool correct;
 };
 
-// A colour blob that lies on no band of its colour, and what it lies on.
+// A colour blob that lies mostly off the bands of its colour (by the instance mask), and what it
+// lies on.
 struct FalseBlob {
   std::string colour;
   Vec2 centroid;
   int area = 0;
   std::string object;  // the scene object most of its pixels show ("" = nothing: beyond the hall)
+  // Whether it is a band of a beacon named rightly (a true positive): its footprint, or its
+  // pixels, show more of something else than of the band.
+  bool ofFoundBeacon = false;
 };
 
 struct FrameEvaluation {
   int visibleBeacons = 0, truePositives = 0, falseIdentifications = 0, falsePositiveBlobs = 0;
-  // Of the false-positive blobs, the bands of beacons named rightly: a far band is a pixel or two
-  // tall, so the blob placed on it can show more of what lies behind it than of the band.
-  int falsePositiveBlobsOfFoundBeacons = 0;
   std::vector<double> localisationErrorsPx, rangeErrorsCm, bearingErrorsDeg;
   std::vector<Measurement> measurements;
   std::vector<DrawnDetection> drawn;
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
   std::vector<double> visibleRangesM, foundRangesM;  // the true ranges of visible beacons, and of those found
   std::vector<FalseBlob> falseBlobs;
-  // False positives: blobs on no band of their colour plus beacons named where they are not.
+  // False positives: blobs mostly off the bands of their colour plus beacons named where they are not.
   int falsePositives() const { return falsePositiveBlobs + falseIdentifications; }
 };
 

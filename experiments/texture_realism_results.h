@@ -81,7 +81,7 @@ struct ConditionOutcome {
   DetectorKind detector = DetectorKind::Pixels;
   int frames = 0, truePositives = 0, falsePositives = 0, missed = 0, falsePositiveBlobs = 0;
   int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
-  int falsePositiveBlobsOfFoundBeacons = 0;  // of those, bands of beacons named rightly (FrameEvaluation)
+  int falsePositiveBlobsOfFoundBeacons = 0;  // of those, bands of beacons named rightly (FalseBlob)
   int falseIdentifications() const { return falsePositives - falsePositiveBlobs; }
   double meanLocalisationErrorPx = 0.0, meanRangeErrorCm = 0.0, meanBearingErrorDeg = 0.0;
   // The objects the false-positive blobs lie on, most frequent first (at most five).

@@ -45,7 +45,7 @@ TEST(PresetFolds, NeedTrainingCamerasThatDrawOneOfSeveralPresets) {
 // (object 2) of beacon A, and a wall (object 3) everywhere else. A is named rightly (its boundary
 // 1 px off): its upper blob on cyan counts for nothing, its lower blob of 3 pixels with 1 on magenta
 // is an off-band band of a beacon named rightly. B is named where it is not visible: one false
-// identification, its two blobs on the wall two off-band bands of a beacon named wrongly.
+// identification, its two blobs on the wall two off-band bands of a beacon named where it is not.
 TEST(EvaluateFrame, CountsFalseIdentificationsAndOffBandBandsWithThoseOfBeaconsNamedRightly) {
   const int w = 10;
   Frame frame{RobotPose{}, ImageRGBA(w, w), std::vector<uint16_t>(static_cast<size_t>(w) * w, 3)};
@@ -67,10 +67,16 @@ TEST(EvaluateFrame, CountsFalseIdentificationsAndOffBandBandsWithThoseOfBeaconsN
   EXPECT_EQ(e.truePositives, 1);
   EXPECT_EQ(e.falseIdentifications, 1);
   EXPECT_EQ(e.falsePositiveBlobs, 3);
-  EXPECT_EQ(e.falsePositiveBlobsOfFoundBeacons, 1);
   EXPECT_EQ(e.falsePositives(), 4);
-  ASSERT_EQ(e.falseBlobs.size(), 3u);
+  ASSERT_EQ(e.falseBlobs.size(), 3u);  // in the blobs' order: A's lower, B's upper, B's lower
   EXPECT_EQ(e.falseBlobs[0].object, "hall_wall");  // A's lower blob: 2 of its 3 pixels on the wall
+  EXPECT_TRUE(e.falseBlobs[0].ofFoundBeacon);
+  EXPECT_FALSE(e.falseBlobs[1].ofFoundBeacon);
+  EXPECT_FALSE(e.falseBlobs[2].ofFoundBeacon);
+  // A blob index that is not one of the frame's blobs is the detector's mistake, not a count.
+  DetectionResult broken = detected;
+  broken.beacons[0].lowerBlob = 4;
+  EXPECT_THROW(evaluateFrame(frame, broken, truth, bandColour, objectNames, 8.0), std::logic_error);
 }
 
 }  // namespace
