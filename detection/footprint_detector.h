@@ -14,8 +14,8 @@
 // footprint cannot make a beacon (a far beacon's bands are footprints of a few pixels, so the
 // smallest specks still can).
 //
-// The footprints depend only on the rig and the beacons' geometry, so they are built once
-// (FootprintTable) and reused for every frame.
+// The footprints depend only on the rig and the beacons' geometry, so the detector builds them
+// once, one BeaconFootprints per distinct beacon shape, and reuses them for every frame.
 #include <map>
 #include <string>
 #include <vector>
@@ -101,7 +101,6 @@ class FootprintDetector {
   DetectionResult detect(const BandEvidence& evidence, double theta, const FootprintRule& rule = {}) const;
 
   const BeaconFootprints& footprints(size_t beacon) const { return *footprintOfBeacon_[beacon]; }
-
 
  private:
   RigSpec rig_;
