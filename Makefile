@@ -8,6 +8,7 @@ SUDO      := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 # Every Debian 12 package the project needs (build, tests, demo, benchmarks).
 DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev zlib1g-dev \
+  libpng-dev libjpeg-dev libtiff-dev \
   libeigen3-dev nlohmann-json3-dev libcli11-dev libssl-dev bc \
   libgtest-dev libgmock-dev libbenchmark-dev libopencv-dev libopencv-contrib-dev \
   povray blender blender-data python3-numpy python3-matplotlib libtinygltf-dev \

@@ -2,8 +2,11 @@
 // exact corners (the camera's own project) and OpenCV's and AprilTag's corners in noise-free
 // 720-px renders agree to within the detectors' own accuracy, on the ideal and a misaligned rig;
 // hidden corners are told apart by why they are hidden.
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
+
+#include <opencv2/ccalib/omnidir.hpp>
 
 #include <algorithm>
 #include <array>
@@ -208,6 +211,12 @@ ExactViews exactViews(const Camera& camera) {
     out.viewpointFromTarget.push_back(worldFromViewpoint.inverse() * pose);
   }
   return out;
+}
+
+// calibrateOmnidir finds cv::omnidir::calibrate by its linker name when it opens ccalib: that name
+// is the one of the function this test links against.
+TEST(CalibrationTargets, TheOmnidirCalibrateOpenedAtRunTimeIsOpenCvsOwn) {
+  EXPECT_EQ(::dlsym(RTLD_DEFAULT, kOmnidirCalibrateSymbol), reinterpret_cast<void*>(&cv::omnidir::calibrate));
 }
 
 // The ideal rig's intrinsics are known in closed form (its describe()); OpenCV's omnidir

@@ -4,11 +4,36 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "errors.h"
+
 namespace omnicam {
+
+namespace {
+
+// cv::omnidir::calibrate's own type (decltype: the header only, no link to its library).
+using OmnidirCalibrate = decltype(&cv::omnidir::calibrate);
+
+// Linking ccalib would load its highgui, videoio and imgcodecs (~150 shared libraries) into every
+// omnicam process at start-up; only calibrations need it, so it is loaded here, once.
+OmnidirCalibrate omnidirCalibrate() {
+  static const OmnidirCalibrate function = [] {
+    void* library = ::dlopen(OMNICAM_OPENCV_CCALIB, RTLD_NOW | RTLD_LOCAL);
+    if (!library)
+      throw ExternalError(std::string("cannot load OpenCV's ccalib module (") + ::dlerror() + "): make deps installs it");
+    void* symbol = ::dlsym(library, kOmnidirCalibrateSymbol);
+    if (!symbol) throw ExternalError(std::string("OpenCV's ccalib module has no cv::omnidir::calibrate (") + ::dlerror() + ")");
+    return reinterpret_cast<OmnidirCalibrate>(symbol);
+  }();
+  return function;
+}
+
+}  // namespace
 
 OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, int width, int height,
                                     const OmnidirOptions& o) {
@@ -37,7 +62,7 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
   OmnidirCalibration r;
   try {
     // The criteria's type must be COUNT + EPS exactly, or the loop never ends.
-    r.rms = cv::omnidir::calibrate(objectPoints, imagePoints, cv::Size(width, height), K, xi, D, rvecs, tvecs, flags,
+    r.rms = omnidirCalibrate()(objectPoints, imagePoints, cv::Size(width, height), K, xi, D, rvecs, tvecs, flags,
                                    cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, o.maxIterations, o.epsilon),
                                    idx);
   } catch (const cv::Exception& e) {

@@ -11,6 +11,12 @@
 
 namespace omnicam {
 
+// cv::omnidir::calibrate's linker name (OpenCV 4's C++ signature), which calibrateOmnidir looks up
+// when it loads OpenCV's ccalib module at its first call (tested against the linked function).
+inline constexpr const char* kOmnidirCalibrateSymbol =
+    "_ZN2cv7omnidir9calibrateERKNS_11_InputArrayES3_NS_5Size_IiEERKNS_17_InputOutputArrayES8_S8_RKNS_12_OutputArrayESB_iNS_"
+    "12TermCriteriaESB_";
+
 // One image's observations: target-frame corners and where they are imaged (omnicam raster).
 struct CalibrationView {
   std::vector<Vec3> targetPoints;

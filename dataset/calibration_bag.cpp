@@ -2,11 +2,10 @@
 
 #include <cmath>
 #include <cstring>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "annotation_files.h"
 #include "errors.h"
+#include "image.h"
 #include "output_kinds.h"
 #include "rosbag_file.h"
 #include "sha256.h"
@@ -19,25 +18,24 @@ namespace {
 
 // A frame's PNG as rgb8 rows, top to bottom or (`flip`) bottom to top.
 BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::string& camera, bool flip, int index, double intervalS) {
-  cv::Mat rgb;
+  BagImage image;
+  std::vector<unsigned char> rgb;
   {
     const std::string bytes = checkedBytes(dir, file);
-    const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
-    const cv::Mat bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
-    if (bgr.empty() || bgr.depth() != CV_8U)
-      throw InputError(showPath(dir.path()) + ": " + quote(file.path) + ": not an 8-bit PNG (a ROS bag holds 8-bit images)");
-    cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+    try {
+      rgb = readRgb8Codes(bytes, showPath(dir.path()) + ": " + quote(file.path), image.width, image.height);
+    } catch (const InputError& e) {
+      throw InputError(std::string(e.what()) + " (a ROS bag holds 8-bit images)");
+    }
   }
-  BagImage image;
   image.topic = "/" + camera + "/image_raw";
   image.frameId = camera;
   image.stampNs = eurocTimestampNs(index, intervalS);  // the frame's time, as EuRoC names its images
   image.seq = static_cast<uint32_t>(index);
-  image.width = rgb.cols, image.height = rgb.rows;
-  const size_t row = static_cast<size_t>(rgb.cols) * 3;
-  image.rgb8.resize(row * static_cast<size_t>(rgb.rows));
-  for (int y = 0; y < rgb.rows; ++y)
-    std::memcpy(image.rgb8.data() + static_cast<size_t>(flip ? rgb.rows - 1 - y : y) * row, rgb.ptr(y), row);
+  const size_t row = static_cast<size_t>(image.width) * 3;
+  image.rgb8.resize(row * static_cast<size_t>(image.height));
+  for (int y = 0; y < image.height; ++y)
+    std::memcpy(image.rgb8.data() + static_cast<size_t>(flip ? image.height - 1 - y : y) * row, rgb.data() + static_cast<size_t>(y) * row, row);
   return image;
 }
 

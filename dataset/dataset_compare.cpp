@@ -81,7 +81,7 @@ FrameFilesComparison compareFrameFiles(const std::string& dirA, const std::strin
     const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
     const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
     // Both images as floats, and their decoding (the larger of the multilayer reader's planes plus
-    // interleaved copy and OpenImageIO's raw channels).
+    // interleaved copy and the decoder's raw channels).
     return {compareImages(imageA, imageB, options),
             (static_cast<int64_t>(imageA.width) * imageA.height + static_cast<int64_t>(imageB.width) * imageB.height) * 16 * 3};
   }

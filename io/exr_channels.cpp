@@ -18,6 +18,7 @@
 
 #include "errors.h"
 #include "exr_chunks.h"
+#include "exr_memory_input.h"
 #include "input_limits.h"
 #include "memory_budget.h"
 
@@ -32,23 +33,6 @@ constexpr size_t kMaxExrChannels = 64;
 struct MemoryExrFile {
   std::vector<unsigned char> bytes;
   std::string message;
-};
-
-class MemoryExrInput : public Imf::IStream {
- public:
-  explicit MemoryExrInput(std::string_view bytes) : Imf::IStream("memory.exr"), bytes_(bytes) {}
-  bool read(char c[], int n) override {
-    if (n < 0 || position_ + static_cast<uint64_t>(n) > bytes_.size()) throw std::runtime_error("unexpected end of file");
-    std::memcpy(c, bytes_.data() + position_, static_cast<size_t>(n));
-    position_ += static_cast<uint64_t>(n);
-    return position_ < bytes_.size();
-  }
-  uint64_t tellg() override { return position_; }
-  void seekg(uint64_t pos) override { position_ = pos; }
-
- private:
-  std::string_view bytes_;
-  uint64_t position_ = 0;
 };
 
 // Every `stride`-th float of `values` as half (round to nearest even), n of them: with the CPU's

@@ -1,7 +1,5 @@
 #include "image.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,16 +7,18 @@
 #include <cstring>
 #include <stdexcept>
 #include <filesystem>
-#include <OpenImageIO/filesystem.h>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "exr_channels.h"
+#include "image_decoder.h"
+#include "jpeg_codec.h"
 #include "memory_budget.h"
-#include "oiio_support.h"
+#include "png_codec.h"
 
 namespace omnicam {
 
-using namespace image_io;  // OpenImageIO, quietly and in one-line messages
+using namespace image_io;
 
 namespace {
 
@@ -77,7 +77,7 @@ bool isSupportedImageOutput(const std::string& path) {
 namespace {
 
 // How an image file's integer code values map to linear light: by the colour space the file
-// declares (OpenImageIO's oiio:ColorSpace), not by its bit depth. Float data is linear.
+// declares, not by its bit depth. Float data is linear.
 struct Transfer {
   enum Kind { Linear, Srgb, Gamma } kind = Srgb;
   float gamma = 1.0f;
@@ -90,11 +90,9 @@ struct Transfer {
   }
 };
 
-Transfer transferOf(const OIIO::ImageSpec& spec) {
-  const auto base = spec.format.basetype;
-  if (base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF || base == OIIO::TypeDesc::DOUBLE)
-    return {Transfer::Linear};
-  std::string cs = spec.get_string_attribute("oiio:ColorSpace");
+Transfer transferOf(const ImageHeader& header) {
+  if (header.type == SampleType::Float) return {Transfer::Linear};
+  std::string cs = header.colourSpace;
   std::transform(cs.begin(), cs.end(), cs.begin(), [](unsigned char ch) { return std::tolower(ch); });
   if (cs == "linear" || cs == "scene_linear" || cs == "lin_srgb" || cs == "lin_rec709") return {Transfer::Linear};
   if (cs.rfind("gammacorrected", 0) == 0 || cs.rfind("gamma", 0) == 0) {
@@ -106,22 +104,14 @@ Transfer transferOf(const OIIO::ImageSpec& spec) {
 }
 
 // The decoded channels as floats, then the RGBA image.
-int64_t decodeBytes(const OIIO::ImageSpec& spec) {
-  return static_cast<int64_t>(spec.width) * spec.height * (4 * spec.nchannels + 16);
+int64_t decodeBytes(const ImageHeader& header) {
+  return static_cast<int64_t>(header.width) * header.height * (4 * header.channels + 16);
 }
 
-std::unique_ptr<OIIO::ImageInput> openImageFile(const std::string& path) {
-  // Only regular files: a FIFO or a device (/dev/zero) would be read forever.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(showPath(path) + ": cannot read image (" +
-                     (std::filesystem::exists(path, ec) ? "not a regular file" : "no such file") + ")");
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // we associate ourselves, after decoding
-  const QuietStderr quiet;
-  auto input = OIIO::ImageInput::open(path, &config);
-  if (!input) throw InputError(showPath(path) + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
-  return input;
+std::unique_ptr<ImageDecoder> openImageFile(const std::string& path) { return openImageDecoder({path, {}, showPath(path)}); }
+
+std::unique_ptr<ImageDecoder> openImageMemory(const unsigned char* data, size_t size, const std::string& name) {
+  return openImageDecoder({"", std::string_view(reinterpret_cast<const char*>(data), size), name});
 }
 
 // How a file's decoded channels become linear premultiplied RGBA.
@@ -130,11 +120,11 @@ struct PixelDecoding {
   Transfer transfer;
   bool unassociated = false;
 
-  explicit PixelDecoding(const OIIO::ImageSpec& spec)
-      : channels(spec.nchannels),
-        alphaChannel(spec.alpha_channel >= 0 ? spec.alpha_channel : (channels == 2 || channels == 4 ? channels - 1 : -1)),
-        transfer(transferOf(spec)),
-        unassociated(transfer.kind != Transfer::Linear || spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0) {}
+  explicit PixelDecoding(const ImageHeader& header)
+      : channels(header.channels),
+        alphaChannel(header.alphaChannel >= 0 ? header.alphaChannel : (channels == 2 || channels == 4 ? channels - 1 : -1)),
+        transfer(transferOf(header)),
+        unassociated(transfer.kind != Transfer::Linear || header.unassociatedAlpha) {}
 
   // `count` pixels of `raw` (channels floats each) into `rgba` (4 floats each).
   void apply(const float* raw, size_t count, float* rgba) const {
@@ -155,105 +145,64 @@ struct PixelDecoding {
   }
 };
 
-ImageRGBA decode(OIIO::ImageInput& input, const std::string& name) {
-  const OIIO::ImageSpec& spec = input.spec();
-  checkHeader(spec, name);
-  requireMemory(decodeBytes(spec), name + ": decoding " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels");
-  const int channels = spec.nchannels;
-  std::vector<float> raw(static_cast<size_t>(spec.width) * spec.height * channels);
-  if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-    throw InputError(name + ": cannot decode image (" + firstLine(input.geterror()) + ")");
-  ImageRGBA image(spec.width, spec.height);
-  PixelDecoding(spec).apply(raw.data(), static_cast<size_t>(spec.width) * spec.height, image.pixels.data());
+ImageRGBA decode(ImageDecoder& decoder) {
+  const ImageHeader& header = decoder.header();
+  requireMemory(decodeBytes(header), decoder.name() + ": decoding " + std::to_string(header.width) + "x" +
+                                         std::to_string(header.height) + " pixels");
+  std::vector<float> raw(static_cast<size_t>(header.width) * header.height * header.channels);
+  decoder.readRows(0, header.height, raw.data());
+  ImageRGBA image(header.width, header.height);
+  PixelDecoding(header).apply(raw.data(), static_cast<size_t>(header.width) * header.height, image.pixels.data());
   return image;
-}
-
-// OpenImageIO's reader of an image in memory, by the bytes' signature, never by a name the data
-// chose; `reader` must outlive it.
-std::unique_ptr<OIIO::ImageInput> openImageMemory(const unsigned char* data, size_t size, const std::string& name,
-                                                  OIIO::Filesystem::IOMemReader& reader) {
-  const char* format = nullptr;
-  if (size >= 8 && std::memcmp(data, "\x89PNG\r\n\x1a\n", 8) == 0) format = "memory.png";
-  else if (size >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF) format = "memory.jpg";
-  else if (size >= 4 && std::memcmp(data, "\x76\x2f\x31\x01", 4) == 0) format = "memory.exr";
-  if (!format) throw InputError(name + ": not a PNG, JPEG or EXR image");
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  void* proxy = &reader;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  const QuietStderr quiet;
-  auto input = OIIO::ImageInput::open(format, &config);
-  if (!input) throw InputError(name + ": cannot read image (" + firstLine(OIIO::geterror()) + ")");
-  return input;
 }
 
 }  // namespace
 
 struct ImageRowReader::State {
-  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;  // the proxy of an image in memory
-  std::unique_ptr<OIIO::ImageInput> input;
-  std::string name;
+  std::unique_ptr<ImageDecoder> decoder;
   int next = 0;  // the first row not yet read
   std::vector<float> raw;
 };
 
-ImageRowReader::ImageRowReader(std::unique_ptr<State> state) : state_(std::move(state)) {
-  checkHeader(state_->input->spec(), state_->name);
-}
+ImageRowReader::ImageRowReader(std::unique_ptr<State> state) : state_(std::move(state)) {}
 ImageRowReader::ImageRowReader(ImageRowReader&&) noexcept = default;
 ImageRowReader& ImageRowReader::operator=(ImageRowReader&&) noexcept = default;
 ImageRowReader::~ImageRowReader() = default;
 
 ImageRowReader ImageRowReader::openFile(const std::string& path) {
   auto state = std::make_unique<State>();
-  state->input = openImageFile(path);
-  state->name = showPath(path);
+  state->decoder = openImageFile(path);
   return ImageRowReader(std::move(state));
 }
 
 ImageRowReader ImageRowReader::openMemory(const unsigned char* data, size_t size, const std::string& name) {
   auto state = std::make_unique<State>();
-  state->memory = std::make_unique<OIIO::Filesystem::IOMemReader>(const_cast<unsigned char*>(data), size);
-  state->input = openImageMemory(data, size, name, *state->memory);
-  state->name = name;
+  state->decoder = openImageMemory(data, size, name);
   return ImageRowReader(std::move(state));
 }
 
-int ImageRowReader::width() const { return state_->input->spec().width; }
-int ImageRowReader::height() const { return state_->input->spec().height; }
-int64_t ImageRowReader::rowBytes() const { return decodeBytes(state_->input->spec()) / height(); }
+int ImageRowReader::width() const { return state_->decoder->header().width; }
+int ImageRowReader::height() const { return state_->decoder->header().height; }
+int64_t ImageRowReader::rowBytes() const { return decodeBytes(state_->decoder->header()) / height(); }
 
 void ImageRowReader::readRows(int first, int count, float* rgba) {
-  const OIIO::ImageSpec& spec = state_->input->spec();
-  if (first != state_->next || count < 0 || first + count > spec.height)
-    throw std::logic_error(state_->name + ": rows " + std::to_string(first) + " to " + std::to_string(first + count) +
-                           " asked for out of order (next " + std::to_string(state_->next) + " of " + std::to_string(spec.height) + ")");
-  const size_t pixels = static_cast<size_t>(spec.width) * count;
-  state_->raw.resize(pixels * spec.nchannels);
-  const QuietStderr quiet;
-  if (!state_->input->read_scanlines(0, 0, first, first + count, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, state_->raw.data()))
-    throw InputError(state_->name + ": cannot decode image (" + firstLine(state_->input->geterror()) + ")");
-  PixelDecoding(spec).apply(state_->raw.data(), pixels, rgba);
+  const ImageHeader& header = state_->decoder->header();
+  if (first != state_->next || count < 0 || first + count > header.height)
+    throw std::logic_error(state_->decoder->name() + ": rows " + std::to_string(first) + " to " + std::to_string(first + count) +
+                           " asked for out of order (next " + std::to_string(state_->next) + " of " + std::to_string(header.height) + ")");
+  const size_t pixels = static_cast<size_t>(header.width) * count;
+  state_->raw.resize(pixels * header.channels);
+  state_->decoder->readRows(first, count, state_->raw.data());
+  PixelDecoding(header).apply(state_->raw.data(), pixels, rgba);
   state_->next = first + count;
 }
 
-ImageRGBA readImage(const std::string& path) {
-  const auto input = openImageFile(path);
-  const QuietStderr quiet;
-  return decode(*input, showPath(path));  // decode names it in messages only
-}
+ImageRGBA readImage(const std::string& path) { return decode(*openImageFile(path)); }
 
-int64_t imageDecodeBytes(const std::string& path) {
-  const auto input = openImageFile(path);
-  checkHeader(input->spec(), showPath(path));
-  return decodeBytes(input->spec());
-}
+int64_t imageDecodeBytes(const std::string& path) { return decodeBytes(openImageFile(path)->header()); }
 
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
-  OIIO::Filesystem::IOMemReader reader(const_cast<unsigned char*>(data), size);
-  const auto input = openImageMemory(data, size, name, reader);
-  const QuietStderr quiet;
-  return decode(*input, name);
+  return decode(*openImageMemory(data, size, name));
 }
 
 std::vector<unsigned char> srgb8Codes(const ImageRGBA& image) {
@@ -270,32 +219,36 @@ std::vector<unsigned char> srgb8Codes(const ImageRGBA& image) {
 
 std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA& image) {
   const std::string ext = lowerExtension(path);
-  if (ext != ".png" && ext != ".exr") throw InputError(showPath(path) + ": output must end in .png or .exr");
-  std::vector<unsigned char> bytes;
-  OIIO::Filesystem::IOVecOutput sink(bytes);
-  void* proxy = &sink;
-  const std::string format = "memory" + ext;
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) throw OutputError(showPath(path) + ": no image writer (" + firstLine(OIIO::geterror()) + ")");
   if (ext == ".exr") {
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-    spec.attribute("compression", "zip");
-    spec.attribute("DateTime", "");  // no timestamp: identical pixels give identical bytes
-    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-    if (!out->open(format, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
-      throw OutputError(showPath(path) + ": cannot encode EXR (" + firstLine(out->geterror()) + ")");
-    return bytes;
+    std::vector<ExrChannelSource> channels;
+    for (int c = 0; c < 4; ++c) channels.push_back({std::string(1, "RGBA"[c]), ExrSampleType::Float, image.pixels.data() + c, nullptr, 4});
+    return encodeExrChannels(path, image.width, image.height, channels, {});
   }
+  if (ext != ".png") throw InputError(showPath(path) + ": output must end in .png or .exr");
   const std::vector<unsigned char> codes = srgb8Codes(image);
-  OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  spec.attribute("png:compressionLevel", 1);  // sequences: speed over the last few percent of size
-  spec.attribute("png:filter", kPngFilterSub);
-  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  if (!out->open(format, spec) || !out->write_image(OIIO::TypeDesc::UINT8, codes.data()) || !out->close())
-    throw OutputError(showPath(path) + ": cannot encode PNG (" + firstLine(out->geterror()) + ")");
-  return bytes;
+  return encodePng(path, image.width, image.height, 4, 8, codes.data(), true);
+}
+
+std::vector<unsigned char> readRgb8Codes(std::string_view bytes, const std::string& name, int& width, int& height) {
+  const auto decoder = openImageDecoder({"", bytes, name});
+  const ImageHeader& header = decoder->header();
+  if (header.type != SampleType::Uint8) throw InputError(name + ": not an 8-bit image");
+  width = header.width, height = header.height;
+  const size_t pixels = static_cast<size_t>(width) * height, channels = static_cast<size_t>(header.channels);
+  std::vector<unsigned char> stored(pixels * channels), rgb(pixels * 3);
+  decoder->readNativeRows(0, height, stored.data());
+  const size_t colours = channels >= 3 ? 3 : 1;
+  for (size_t p = 0; p < pixels; ++p)
+    for (size_t c = 0; c < 3; ++c) rgb[3 * p + c] = stored[p * channels + std::min(c, colours - 1)];
+  return rgb;
+}
+
+std::vector<unsigned char> jpegCompressed(const std::vector<unsigned char>& rgb, int width, int height, int quality) {
+  const std::vector<unsigned char> jpeg = encodeJpeg("frame.jpg", width, height, 3, rgb.data(), quality);
+  const auto decoder = openImageDecoder({"", std::string_view(reinterpret_cast<const char*>(jpeg.data()), jpeg.size()), "frame.jpg"});
+  std::vector<unsigned char> codes(rgb.size());
+  decoder->readNativeRows(0, height, codes.data());
+  return codes;
 }
 
 void writeImageAtomic(const std::string& path, const ImageRGBA& image) {

@@ -23,7 +23,8 @@ struct ImageRGBA {
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);
 
-// Reads any OpenImageIO-supported file as linear premultiplied RGBA; missing alpha becomes 1.
+// Reads a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file (told by its first bytes, not its name) as
+// linear premultiplied RGBA; missing alpha becomes 1.
 // Integer images are decoded by the colour space they declare (sRGB unless tagged linear or
 // with a gamma), whatever their bit depth; float images are linear. The header is checked
 // against limits::kMaxImageDimension / kMaxImagePixels before any pixel is read. Throws
@@ -31,18 +32,18 @@ float linearToSrgb(float linear);
 ImageRGBA readImage(const std::string& path);
 // What readImage needs to decode `path`, from its header alone (checked as readImage checks it).
 int64_t imageDecodeBytes(const std::string& path);
-// The same for an image held in memory (PNG, JPEG or EXR, told by its signature); `name` is
-// used in errors.
+// The same for an image held in memory (any of the formats readImage reads, told by its
+// signature); `name` is used in errors.
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name);
 
-// An image read a band of rows at a time through OpenImageIO's scanline reads (tiles for a tiled
-// file), decoded as readImage decodes it whole (the same colour space and alpha, the same floats):
+// An image read a band of rows at a time (whole, once, where the format cannot be read by rows:
+// interlaced PNG, tiled TIFF, HDR), decoded as readImage decodes it whole (the same colour space and alpha, the same floats):
 // for work that needs only a few rows at once, in memory that does not grow with the height.
 // The header is checked as readImage checks it; InputError naming the file.
 class ImageRowReader {
  public:
   static ImageRowReader openFile(const std::string& path);
-  // An image in memory (PNG, JPEG or EXR, told by its signature); `data` must outlive the reader.
+  // An image in memory (told by its signature); `data` must outlive the reader.
   static ImageRowReader openMemory(const unsigned char* data, size_t size, const std::string& name);
   ImageRowReader(ImageRowReader&&) noexcept;
   ImageRowReader& operator=(ImageRowReader&&) noexcept;
@@ -50,7 +51,7 @@ class ImageRowReader {
 
   int width() const;
   int height() const;
-  // Memory one row takes while it is decoded: OpenImageIO's floats of every channel and the RGBA.
+  // Memory one row takes while it is decoded: the floats of every channel and the RGBA.
   int64_t rowBytes() const;
   // Rows [first, first + count) as readImage's pixels (linear premultiplied RGBA), into `rgba`
   // (width × count × 4 floats). Rows are read top to bottom: `first` is where the last read ended.
@@ -65,6 +66,16 @@ class ImageRowReader {
 // The image as a PNG holds it: sRGB 8-bit codes with straight alpha, RGBA, row by row. The same
 // codes reach a live sensor's rgb8 messages (ros/live_sensor.h).
 std::vector<unsigned char> srgb8Codes(const ImageRGBA& image);
+
+// The 8-bit codes of an 8-bit image in memory (PNG, JPEG, TIFF) as RGB, as stored: no colour
+// conversion, alpha dropped, grey repeated; rows top to bottom. InputError "<name>: not an 8-bit
+// image" for deeper ones.
+std::vector<unsigned char> readRgb8Codes(std::string_view bytes, const std::string& name, int& width, int& height);
+
+// 8-bit RGB codes (width × height × 3, rows top to bottom) as a JPEG of `quality` (1 to 100)
+// decodes them: what a camera's compression leaves. libjpeg's defaults, which OpenCV's
+// imencode / imdecode use too (tested against them).
+std::vector<unsigned char> jpegCompressed(const std::vector<unsigned char>& rgb, int width, int height, int quality);
 
 // The bytes of .png (sRGB 8-bit, straight alpha) or .exr (linear float, associated alpha,
 // byte-identical for identical pixels). Throws InputError for another extension.

@@ -8,12 +8,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numeric>
 #include <optional>
 #include <nlohmann/json.hpp>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "exr_channels.h"
 #include "make_camera.h"
 #include "external_process.h"
 #include "gltf_exporter.h"
@@ -23,7 +25,6 @@
 #include "job_folder.h"
 #include "motion.h"
 
-#include <OpenImageIO/imageio.h>
 
 namespace omnicam {
 
@@ -40,29 +41,38 @@ std::string defaultDriver() {
 // Lambertian surface at distance d the radiance ρ·P/(4π²d²): match I at a typical distance.
 constexpr double kLightMatchDistance = 3.0;
 
-// An OpenEXR Cycles wrote (into omnicam's own job folder), every channel read once.
-struct ExrChannels {
+// An OpenEXR Cycles wrote (into omnicam's own job folder), every float channel read once.
+struct PassChannels {
   std::vector<std::string> names;
   std::vector<float> data;  // interleaved per pixel
 };
 
-constexpr int kMaxPassChannels = 64;
+constexpr size_t kMaxPassChannels = 64;
 
-ExrChannels readExr(const std::string& path, int width, int height) {
-  auto input = OIIO::ImageInput::open(path);
-  if (!input) throw ExternalError("blender: unreadable output " + showPath(path) + ": " + oneLine(OIIO::geterror()));
-  const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width != width || spec.height != height || spec.nchannels < 1 || spec.nchannels > kMaxPassChannels)
+PassChannels readExr(const std::string& path, int width, int height) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ExrChannels decoded;
+  try {
+    decoded = decodeExrChannels(bytes, showPath(path));
+  } catch (const InputError& e) {
+    throw ExternalError("blender: unreadable output " + showPath(path) + ": " + oneLine(e.what()));
+  }
+  if (decoded.width != width || decoded.height != height || decoded.floats.empty() || decoded.floats.size() > kMaxPassChannels)
     throw ExternalError("blender: output " + showPath(path) + " is not " + std::to_string(width) + "×" +
-                        std::to_string(height) + " px with 1-" + std::to_string(kMaxPassChannels) + " channels");
-  ExrChannels exr{spec.channelnames, std::vector<float>(static_cast<size_t>(width) * height * spec.nchannels)};
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, exr.data.data()))
-    throw ExternalError("blender: unreadable output " + showPath(path) + ": " + oneLine(input->geterror()));
+                        std::to_string(height) + " px with 1-" + std::to_string(kMaxPassChannels) + " float channels");
+  const size_t pixels = static_cast<size_t>(width) * height, count = decoded.floats.size();
+  PassChannels exr{{}, std::vector<float>(pixels * count)};
+  for (const auto& [name, values] : decoded.floats) {
+    const size_t c = exr.names.size();
+    exr.names.push_back(name);
+    for (size_t p = 0; p < pixels; ++p) exr.data[p * count + c] = values[p];
+  }
   return exr;
 }
 
 // The channels named `suffixes` ("Combined.R": any view layer's), interleaved per pixel.
-std::vector<float> channels(const ExrChannels& exr, const std::vector<std::string>& suffixes, const std::string& path) {
+std::vector<float> channels(const PassChannels& exr, const std::vector<std::string>& suffixes, const std::string& path) {
   const size_t count = exr.names.size(), pixels = exr.data.size() / count;
   std::vector<float> out(pixels * suffixes.size());
   for (size_t c = 0; c < suffixes.size(); ++c) {
@@ -91,7 +101,7 @@ ImageRGBA rgbaFrom(const std::vector<float>& rgb, int width, int height) {
 }  // namespace
 
 ImageRGBA readFilteredBlenderFrame(const std::string& full, const std::string& direct, int width, int height) {
-  const ExrChannels passes = readExr(full, width, height), twin = readExr(direct, width, height);
+  const PassChannels passes = readExr(full, width, height), twin = readExr(direct, width, height);
   IndirectFilterInputs in;
   in.full = rgbaFrom(channels(passes, {"Combined.R", "Combined.G", "Combined.B"}, full), width, height);
   in.direct = rgbaFrom(channels(twin, {"R", "G", "B"}, direct), width, height);

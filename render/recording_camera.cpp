@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "image.h"
 #include "seed_mixing.h"
 
 namespace omnicam {
@@ -235,9 +235,13 @@ cv::Mat recordedCodes(const RecordingCamera& camera, const ImageRGBA& linear, co
       for (int c = 0; c < 3; ++c) codes.at<cv::Vec3b>(j, i)[2 - c] = eightBit(toneCurveValue(camera, sensed.at<cv::Vec3d>(j, i)[c]));
     }
   if (camera.jpegQuality > 0) {
-    std::vector<unsigned char> jpeg;
-    cv::imencode(".jpg", codes, jpeg, {cv::IMWRITE_JPEG_QUALITY, camera.jpegQuality});
-    codes = cv::imdecode(jpeg, cv::IMREAD_COLOR);
+    const size_t pixels = codes.total();
+    std::vector<unsigned char> rgb(pixels * 3);
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c) rgb[3 * p + c] = codes.data[3 * p + 2 - c];
+    rgb = jpegCompressed(rgb, linear.width, linear.height, camera.jpegQuality);
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c) codes.data[3 * p + 2 - c] = rgb[3 * p + c];
   }
   return codes;
 }

@@ -1,0 +1,345 @@
+// The decoders of image_decoder.h against OpenImageIO, the reader they replaced: for files of
+// every format, sample type, channel count and layout, the same header (size, channels, alpha,
+// declared colour space, EXR channel order) and the same floats, bit for bit, from a file and
+// from memory. The encoders against OpenImageIO's and OpenCV's readers and writers.
+#include "image_decoder.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <jpeglib.h>
+#include <png.h>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "errors.h"
+#include "image.h"
+#include "jpeg_codec.h"
+#include "png_codec.h"
+
+namespace omnicam::image_io {
+namespace {
+
+std::string tempPath(const std::string& name) { return ::testing::TempDir() + "/omnicam_decoder_" + name; }
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Smooth gradients with noise: every code of a channel is exercised somewhere at 8 bits.
+std::vector<float> testPixels(int width, int height, int channels, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> noise(-0.05f, 0.05f);
+  std::vector<float> values(static_cast<size_t>(width) * height * channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c)
+        values[(static_cast<size_t>(y) * width + x) * channels + c] =
+            std::clamp(static_cast<float>(x + 3 * y + 17 * c) / static_cast<float>(width + 3 * height + 17 * channels) + noise(rng), 0.0f, 1.0f);
+  return values;
+}
+
+struct Written {
+  std::string path;
+  std::string note;
+};
+
+// A file written by OpenImageIO with `spec` (its attributes choose the layout).
+Written writeWithOiio(const std::string& name, OIIO::ImageSpec spec, unsigned seed = 1) {
+  const std::string path = tempPath(name);
+  auto out = OIIO::ImageOutput::create(path);
+  EXPECT_TRUE(out) << name;
+  const std::vector<float> pixels = testPixels(spec.width, spec.height, spec.nchannels, seed);
+  EXPECT_TRUE(out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close())
+      << name << ": " << out->geterror();
+  return {path, name};
+}
+
+OIIO::ImageSpec specOf(int width, int height, int channels, OIIO::TypeDesc type) { return OIIO::ImageSpec(width, height, channels, type); }
+
+// What OpenImageIO reads, configured as image.cpp configured it (alpha left unassociated).
+struct OiioRead {
+  OIIO::ImageSpec spec;
+  std::vector<float> values;
+};
+
+OiioRead readWithOiio(const std::string& path) {
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
+  OiioRead read{in->spec(), {}};
+  read.values.resize(static_cast<size_t>(read.spec.width) * read.spec.height * read.spec.nchannels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, read.spec.nchannels, OIIO::TypeDesc::FLOAT, read.values.data())) << in->geterror();
+  return read;
+}
+
+bool isFloatType(const OIIO::ImageSpec& spec) {
+  return spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF;
+}
+
+// Our decoder against OpenImageIO's reading of the same file, from the file and from memory, in
+// bands of 7 rows (the row reader's path) and whole.
+void expectSameAsOiio(const Written& file) {
+  SCOPED_TRACE(file.note);
+  const OiioRead want = readWithOiio(file.path);
+  const std::string bytes = fileBytes(file.path);
+  for (const ImageSource& source : {ImageSource{file.path, {}, file.note}, ImageSource{"", bytes, file.note}}) {
+    const auto decoder = openImageDecoder(source);
+    const ImageHeader& h = decoder->header();
+    ASSERT_EQ(h.width, want.spec.width);
+    ASSERT_EQ(h.height, want.spec.height);
+    ASSERT_EQ(h.channels, want.spec.nchannels);
+    EXPECT_EQ(h.alphaChannel, want.spec.alpha_channel);
+    EXPECT_EQ(h.type == SampleType::Float, isFloatType(want.spec));
+    if (!isFloatType(want.spec)) {
+      EXPECT_EQ(h.colourSpace, want.spec.get_string_attribute("oiio:ColorSpace", "sRGB"));
+    }
+    if (h.alphaChannel >= 0) {
+      EXPECT_EQ(h.unassociatedAlpha, want.spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0);
+    }
+    if (decoder->format() == "openexr") {
+      EXPECT_EQ(h.channelNames, want.spec.channelnames);
+    }
+    std::vector<float> got(want.values.size());
+    const size_t rowFloats = static_cast<size_t>(h.width) * h.channels;
+    for (int y = 0; y < h.height; y += 7) decoder->readRows(y, std::min(7, h.height - y), got.data() + y * rowFloats);
+    ASSERT_EQ(got.size(), want.values.size());
+    for (size_t i = 0; i < got.size(); ++i)
+      ASSERT_EQ(std::bit_cast<uint32_t>(got[i]), std::bit_cast<uint32_t>(want.values[i]))
+          << "value " << i << ": " << got[i] << " against OpenImageIO's " << want.values[i];
+  }
+}
+
+TEST(ImageDecoders, PngOfEveryChannelCountDepthAndColourSpaceReadsAsOpenImageIoReadsIt) {
+  for (int channels = 1; channels <= 4; ++channels)
+    for (const OIIO::TypeDesc type : {OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT16})
+      for (const char* space : {"", "sRGB", "linear", "Gamma1.8", "Gamma2.2"}) {
+        OIIO::ImageSpec spec = specOf(45, 23, channels, type);
+        if (*space) spec.attribute("oiio:ColorSpace", space);
+        expectSameAsOiio(writeWithOiio("c" + std::to_string(channels) + "_" + std::to_string(type.size() * 8) + "_" + space + ".png", spec));
+      }
+}
+
+// A PNG written by libpng directly, with what OpenImageIO's writer does not make: palettes with
+// transparency, 1/2/4-bit grey and Adam7 interlacing.
+Written writeSpecialPng(const std::string& name, int colourType, int bitDepth, bool interlaced) {
+  const int width = 29, height = 17;
+  const std::string path = tempPath(name);
+  FILE* file = std::fopen(path.c_str(), "wb");
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) ADD_FAILURE() << name;
+  png_init_io(png, file);
+  png_set_IHDR(png, info, width, height, bitDepth, colourType, interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (colourType == PNG_COLOR_TYPE_PALETTE) {
+    png_color palette[16];
+    png_byte alpha[16];
+    for (int i = 0; i < 16; ++i) palette[i] = {static_cast<png_byte>(i * 16), static_cast<png_byte>(255 - i * 9), static_cast<png_byte>(i * 5)},
+                                 alpha[i] = static_cast<png_byte>(255 - i * 13);
+    png_set_PLTE(png, info, palette, 16);
+    png_set_tRNS(png, info, alpha, 16, nullptr);
+  }
+  png_write_info(png, info);
+  const int passes = png_set_interlace_handling(png);
+  const int channels = colourType == PNG_COLOR_TYPE_RGB ? 3 : colourType == PNG_COLOR_TYPE_RGB_ALPHA ? 4 : 1;
+  std::vector<png_byte> row((static_cast<size_t>(width) * channels * bitDepth + 7) / 8);
+  for (int pass = 0; pass < passes; ++pass)
+    for (int y = 0; y < height; ++y) {
+      for (size_t i = 0; i < row.size(); ++i) row[i] = static_cast<png_byte>((i * 37 + static_cast<size_t>(y) * 11) % 256);
+      if (colourType == PNG_COLOR_TYPE_PALETTE)
+        for (png_byte& b : row) b &= bitDepth == 8 ? 0x0F : 0xFF;
+      png_write_row(png, row.data());
+    }
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  std::fclose(file);
+  return {path, name};
+}
+
+TEST(ImageDecoders, PalettedLowBitAndInterlacedPngsReadAsOpenImageIoReadsThem) {
+  expectSameAsOiio(writeSpecialPng("palette8.png", PNG_COLOR_TYPE_PALETTE, 8, false));
+  expectSameAsOiio(writeSpecialPng("palette4.png", PNG_COLOR_TYPE_PALETTE, 4, false));
+  expectSameAsOiio(writeSpecialPng("grey1.png", PNG_COLOR_TYPE_GRAY, 1, false));
+  expectSameAsOiio(writeSpecialPng("grey2.png", PNG_COLOR_TYPE_GRAY, 2, false));
+  expectSameAsOiio(writeSpecialPng("rgb_adam7.png", PNG_COLOR_TYPE_RGB, 8, true));
+  expectSameAsOiio(writeSpecialPng("rgba16_adam7.png", PNG_COLOR_TYPE_RGB_ALPHA, 16, true));
+}
+
+TEST(ImageDecoders, JpegsOfGreyColourAndCmykReadAsOpenImageIoReadsThem) {
+  for (int channels : {1, 3})
+    for (int quality : {50, 95}) {
+      OIIO::ImageSpec spec = specOf(61, 37, channels, OIIO::TypeDesc::UINT8);
+      spec.attribute("CompressionQuality", quality);
+      expectSameAsOiio(writeWithOiio("q" + std::to_string(quality) + "_c" + std::to_string(channels) + ".jpg", spec));
+    }
+  // Adobe CMYK (OpenImageIO writes none): libjpeg's own writer.
+  const int width = 33, height = 21;
+  const std::string path = tempPath("cmyk.jpg");
+  FILE* file = std::fopen(path.c_str(), "wb");
+  jpeg_compress_struct cinfo{};
+  jpeg_error_mgr errors{};
+  cinfo.err = jpeg_std_error(&errors);
+  jpeg_create_compress(&cinfo);
+  jpeg_stdio_dest(&cinfo, file);
+  cinfo.image_width = width, cinfo.image_height = height, cinfo.input_components = 4, cinfo.in_color_space = JCS_CMYK;
+  jpeg_set_defaults(&cinfo);
+  jpeg_start_compress(&cinfo, TRUE);
+  std::vector<unsigned char> row(static_cast<size_t>(width) * 4);
+  for (int y = 0; y < height; ++y) {
+    for (size_t i = 0; i < row.size(); ++i) row[i] = static_cast<unsigned char>((i * 23 + static_cast<size_t>(y) * 7) % 256);
+    JSAMPROW rows[] = {row.data()};
+    jpeg_write_scanlines(&cinfo, rows, 1);
+  }
+  jpeg_finish_compress(&cinfo);
+  jpeg_destroy_compress(&cinfo);
+  std::fclose(file);
+  expectSameAsOiio({path, "cmyk.jpg"});
+}
+
+TEST(ImageDecoders, TiffsOfEveryDepthLayoutAndAlphaReadAsOpenImageIoReadsThem) {
+  for (int channels : {1, 2, 3, 4})
+    for (const OIIO::TypeDesc type : {OIIO::TypeDesc::UINT8, OIIO::TypeDesc::UINT16, OIIO::TypeDesc::FLOAT})
+      for (const char* layout : {"strips", "tiles", "planes"}) {
+        OIIO::ImageSpec spec = specOf(41, 27, channels, type);
+        if (std::string(layout) == "tiles") spec.tile_width = spec.tile_height = 16;
+        if (std::string(layout) == "planes") spec.attribute("planarconfig", "separate");
+        spec.attribute("compression", channels % 2 ? "zip" : "lzw");
+        expectSameAsOiio(writeWithOiio("c" + std::to_string(channels) + "_" + std::to_string(type.size() * 8) + "_" + layout + ".tif", spec));
+      }
+  OIIO::ImageSpec unassociated = specOf(19, 13, 4, OIIO::TypeDesc::UINT16);
+  unassociated.attribute("oiio:UnassociatedAlpha", 1);
+  expectSameAsOiio(writeWithOiio("unassociated.tif", unassociated));
+}
+
+TEST(ImageDecoders, ExrsPresentTheirChannelsInOpenImageIosOrderWithTheSameValues) {
+  OIIO::ImageSpec layers = specOf(37, 19, 10, OIIO::TypeDesc::HALF);
+  layers.channelnames = {"Z", "A", "B", "G", "R", "diffuse.R", "diffuse.G", "N.Z", "N.Y", "N.X"};
+  layers.alpha_channel = 1;
+  expectSameAsOiio(writeWithOiio("layers.exr", layers));
+  OIIO::ImageSpec tiled = specOf(53, 29, 4, OIIO::TypeDesc::FLOAT);
+  tiled.tile_width = tiled.tile_height = 16;
+  expectSameAsOiio(writeWithOiio("tiled.exr", tiled));
+  OIIO::ImageSpec mixed = specOf(23, 11, 3, OIIO::TypeDesc::FLOAT);
+  mixed.channelnames = {"R", "G", "id"};
+  mixed.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT};
+  expectSameAsOiio(writeWithOiio("mixed.exr", mixed));
+  OIIO::ImageSpec luminance = specOf(17, 9, 2, OIIO::TypeDesc::HALF);
+  luminance.channelnames = {"Y", "A"};
+  expectSameAsOiio(writeWithOiio("luminance.exr", luminance));
+}
+
+TEST(ImageDecoders, RadianceHdrReadsAsOpenImageIoReadsIt) {
+  expectSameAsOiio(writeWithOiio("sky.hdr", specOf(47, 21, 3, OIIO::TypeDesc::FLOAT)));
+}
+
+TEST(ImageDecoders, TheFormatIsToldByTheBytesNotTheName) {
+  // A PNG named .exr is read as the PNG it is.
+  const Written png = writeWithOiio("named_wrong.png", specOf(8, 4, 3, OIIO::TypeDesc::UINT8));
+  const std::string misnamed = tempPath("named_wrong.exr");
+  std::ofstream(misnamed, std::ios::binary) << fileBytes(png.path);
+  EXPECT_EQ(openImageDecoder({misnamed, {}, "x"})->format(), "png");
+  try {
+    (void)openImageDecoder({"", "GIF89a........", "mem.gif"});
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "mem.gif: cannot read image (not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file)");
+  }
+}
+
+TEST(ImageDecoders, DamagedFilesOfEveryFormatAreInputErrorsNamingThem) {
+  // Each file cut after its header, then with its pixel data overwritten: an error, never a crash
+  // or a partly decoded image.
+  const std::vector<Written> files = {writeWithOiio("cut.png", specOf(64, 64, 3, OIIO::TypeDesc::UINT8)),
+                                      writeWithOiio("cut.jpg", specOf(64, 64, 3, OIIO::TypeDesc::UINT8)),
+                                      writeWithOiio("cut.tif", specOf(64, 64, 3, OIIO::TypeDesc::UINT16)),
+                                      writeWithOiio("cut.exr", specOf(64, 64, 3, OIIO::TypeDesc::HALF)),
+                                      writeWithOiio("cut.hdr", specOf(64, 64, 3, OIIO::TypeDesc::FLOAT))};
+  for (const Written& file : files) {
+    const std::string bytes = fileBytes(file.path);
+    for (const std::string& damaged : {bytes.substr(0, bytes.size() / 3), bytes.substr(0, 40) + std::string(bytes.size() - 40, '\x5a')}) {
+      try {
+        auto decoder = openImageDecoder({"", damaged, "damaged"});
+        std::vector<float> values(static_cast<size_t>(decoder->header().width) * decoder->header().height * decoder->header().channels);
+        decoder->readRows(0, decoder->header().height, values.data());
+        // libjpeg fills a truncated scan with grey and warns: that is all a JPEG reader can do.
+        EXPECT_EQ(decoder->format(), "jpeg") << file.note << " decoded damaged bytes without an error";
+      } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("damaged: ", 0), 0u) << e.what();
+        EXPECT_EQ(oneLine(e.what()), e.what());
+      }
+    }
+  }
+}
+
+TEST(ImageEncoders, PngsHoldTheCodesExactlyAndDeclareSrgbOnlyForColour) {
+  const int width = 31, height = 9;
+  std::vector<unsigned char> rgba(static_cast<size_t>(width) * height * 4);
+  for (size_t i = 0; i < rgba.size(); ++i) rgba[i] = static_cast<unsigned char>(i * 7 % 256);
+  std::vector<uint16_t> ids(static_cast<size_t>(width) * height);
+  for (size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<uint16_t>(i * 2111 % 65536);
+  const auto colour = encodePng("c.png", width, height, 4, 8, rgba.data(), true);
+  const auto data = encodePng("d.png", width, height, 1, 16, ids.data(), false);
+  std::ofstream(tempPath("c.png"), std::ios::binary).write(reinterpret_cast<const char*>(colour.data()), static_cast<std::streamsize>(colour.size()));
+  std::ofstream(tempPath("d.png"), std::ios::binary).write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
+  OIIO::ImageSpec straight;
+  straight.attribute("oiio:UnassociatedAlpha", 1);  // the codes as stored, not premultiplied
+  auto in = OIIO::ImageInput::open(tempPath("c.png"), &straight);
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().get_string_attribute("oiio:ColorSpace"), "sRGB");
+  std::vector<unsigned char> backRgba(rgba.size());
+  ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, backRgba.data()));
+  EXPECT_EQ(backRgba, rgba);
+  in = OIIO::ImageInput::open(tempPath("d.png"));
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().nchannels, 1);
+  EXPECT_EQ(in->spec().format, OIIO::TypeDesc::UINT16);
+  std::vector<uint16_t> backIds(ids.size());
+  ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT16, backIds.data()));
+  EXPECT_EQ(backIds, ids);
+}
+
+TEST(ImageEncoders, JpegBytesAndTheirDecodingAreOpenCvsImencodeAndImdecode) {
+  // The recording camera's JPEG stage once ran through cv::imencode / cv::imdecode: the same
+  // settings give the same bytes, and decoding them the same codes.
+  const int width = 67, height = 45;
+  for (int channels : {1, 3})
+    for (int quality : {10, 80, 95}) {
+      SCOPED_TRACE("channels " + std::to_string(channels) + ", quality " + std::to_string(quality));
+      cv::Mat codes(height, width, channels == 3 ? CV_8UC3 : CV_8UC1);
+      cv::randu(codes, 0, 256);
+      cv::GaussianBlur(codes, codes, cv::Size(5, 5), 1.5);  // image-like, not pure noise
+      cv::Mat bgr;
+      if (channels == 3) cv::cvtColor(codes, bgr, cv::COLOR_RGB2BGR);
+      else bgr = codes;
+      std::vector<unsigned char> theirs;
+      ASSERT_TRUE(cv::imencode(".jpg", bgr, theirs, {cv::IMWRITE_JPEG_QUALITY, quality}));
+      const std::vector<unsigned char> ours = encodeJpeg("x.jpg", width, height, channels, codes.data, quality);
+      EXPECT_EQ(ours, theirs);
+      const cv::Mat decodedTheirs = cv::imdecode(theirs, channels == 3 ? cv::IMREAD_COLOR : cv::IMREAD_GRAYSCALE);
+      cv::Mat rgbTheirs;
+      if (channels == 3) cv::cvtColor(decodedTheirs, rgbTheirs, cv::COLOR_BGR2RGB);
+      else rgbTheirs = decodedTheirs;
+      const auto decoder = openImageDecoder({"", std::string_view(reinterpret_cast<const char*>(ours.data()), ours.size()), "x.jpg"});
+      std::vector<unsigned char> decodedOurs(static_cast<size_t>(width) * height * channels);
+      decoder->readNativeRows(0, height, decodedOurs.data());
+      ASSERT_TRUE(rgbTheirs.isContinuous());
+      EXPECT_EQ(decodedOurs, std::vector<unsigned char>(rgbTheirs.data, rgbTheirs.data + decodedOurs.size()));
+    }
+}
+
+}  // namespace
+}  // namespace omnicam::image_io

@@ -1,0 +1,203 @@
+// TIFF through libtiff. Grey and RGB images of 8-, 16- or 32-bit samples are read as stored
+// (strips of interleaved channels a row at a time; tiles and separate planes whole); any other
+// layout libtiff can show as RGBA (palette, CMYK, YCbCr, 1-bit, min-is-white) as its 8-bit RGBA.
+#include <tiffio.h>
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "errors.h"
+#include "image_decoder.h"
+
+namespace omnicam::image_io {
+
+namespace {
+
+struct TiffMessage {
+  char text[200] = "no details";
+};
+
+// libtiff's per-file handler: the last error kept, warnings dropped, nothing on stderr.
+int keepTiffError(TIFF*, void* user, const char*, const char* format, va_list args) {
+  std::vsnprintf(static_cast<TiffMessage*>(user)->text, sizeof(TiffMessage::text), format, args);
+  return 1;
+}
+int dropTiffWarning(TIFF*, void*, const char*, const char*, va_list) { return 1; }
+
+// An image in memory as libtiff's client I/O.
+struct MemoryFile {
+  std::string_view bytes;
+  toff_t at = 0;
+};
+tmsize_t readMemory(thandle_t handle, void* out, tmsize_t n) {
+  auto* file = static_cast<MemoryFile*>(handle);
+  if (n < 0 || file->at >= file->bytes.size()) return 0;
+  const size_t count = std::min<size_t>(static_cast<size_t>(n), file->bytes.size() - file->at);
+  std::memcpy(out, file->bytes.data() + file->at, count);
+  file->at += count;
+  return static_cast<tmsize_t>(count);
+}
+tmsize_t writeNothing(thandle_t, void*, tmsize_t) { return 0; }
+toff_t seekMemory(thandle_t handle, toff_t offset, int whence) {
+  auto* file = static_cast<MemoryFile*>(handle);
+  const toff_t base = whence == SEEK_CUR ? file->at : whence == SEEK_END ? file->bytes.size() : 0;
+  file->at = base + offset;
+  return file->at;
+}
+int closeNothing(thandle_t) { return 0; }
+toff_t sizeOfMemory(thandle_t handle) { return static_cast<MemoryFile*>(handle)->bytes.size(); }
+int mapNothing(thandle_t, void**, toff_t*) { return 0; }
+void unmapNothing(thandle_t, void*, toff_t) {}
+
+class TiffDecoder final : public ImageDecoder {
+ public:
+  explicit TiffDecoder(const ImageSource& source) : ImageDecoder(source.name) {
+    const std::unique_ptr<TIFFOpenOptions, void (*)(TIFFOpenOptions*)> options(TIFFOpenOptionsAlloc(), TIFFOpenOptionsFree);
+    if (!options) throw std::bad_alloc();
+    TIFFOpenOptionsSetErrorHandlerExtR(options.get(), keepTiffError, &message_);
+    TIFFOpenOptionsSetWarningHandlerExtR(options.get(), dropTiffWarning, nullptr);
+    if (source.inMemory()) {
+      memory_.bytes = source.bytes;
+      tiff_.reset(TIFFClientOpenExt("memory.tif", "r", &memory_, readMemory, writeNothing, seekMemory, closeNothing,
+                                    sizeOfMemory, mapNothing, unmapNothing, options.get()));
+    } else {
+      tiff_.reset(TIFFOpenExt(source.path.c_str(), "r", options.get()));
+    }
+    if (!tiff_) fail("cannot read image");
+    readHeader();
+  }
+
+  std::string_view format() const override { return "tiff"; }
+
+  void readNativeRows(int first, int count, void* samples) override {
+    if (first != next_) throw std::logic_error(name_ + ": TIFF rows asked for out of order");
+    auto* out = static_cast<unsigned char*>(samples);
+    const size_t rowBytes = static_cast<size_t>(header_.width) * header_.channels * sampleBytes(header_.type);
+    if (asRgba_ || separate_ || TIFFIsTiled(tiff_.get())) {
+      if (whole_.empty()) readWhole(rowBytes);
+      std::memcpy(out, whole_.data() + static_cast<size_t>(first) * rowBytes, static_cast<size_t>(count) * rowBytes);
+    } else {
+      if (static_cast<tmsize_t>(rowBytes) != TIFFScanlineSize(tiff_.get())) fail("cannot decode image");
+      for (int r = 0; r < count; ++r)
+        if (TIFFReadScanline(tiff_.get(), out + static_cast<size_t>(r) * rowBytes, static_cast<uint32_t>(first + r), 0) < 0)
+          fail("cannot decode image");
+    }
+    next_ = first + count;
+  }
+
+ private:
+  [[noreturn]] void fail(const char* what) const {
+    throw InputError(name_ + ": " + what + " (TIFF read error: " + message_.text + ")");
+  }
+
+  template <typename T>
+  T field(ttag_t tag, T fallback) const {
+    T value = fallback;
+    return TIFFGetFieldDefaulted(tiff_.get(), tag, &value) == 1 ? value : fallback;
+  }
+
+  void readHeader() {
+    TIFF* tiff = tiff_.get();
+    const uint32_t width = field<uint32_t>(TIFFTAG_IMAGEWIDTH, 0), height = field<uint32_t>(TIFFTAG_IMAGELENGTH, 0);
+    header_.width = static_cast<int>(std::min<uint32_t>(width, 1u << 30));
+    header_.height = static_cast<int>(std::min<uint32_t>(height, 1u << 30));
+    const uint16_t samples = field<uint16_t>(TIFFTAG_SAMPLESPERPIXEL, 1), bits = field<uint16_t>(TIFFTAG_BITSPERSAMPLE, 1);
+    const uint16_t format = field<uint16_t>(TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
+    const uint16_t planar = field<uint16_t>(TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+    const uint16_t photometric = field<uint16_t>(TIFFTAG_PHOTOMETRIC, samples >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+    const bool integer = format == SAMPLEFORMAT_UINT && (bits == 8 || bits == 16 || bits == 32);
+    const bool real = format == SAMPLEFORMAT_IEEEFP && bits == 32;
+    const bool asStored = (photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_RGB) && (integer || real);
+    separate_ = planar == PLANARCONFIG_SEPARATE && samples > 1;
+    if (!asStored) {
+      char problem[1024] = "";
+      if (!TIFFRGBAImageOK(tiff, problem))
+        throw InputError(name_ + ": cannot read image (TIFF layout not read: " + problem + ")");
+      asRgba_ = true;
+      header_.channels = 4;
+      header_.type = SampleType::Uint8;
+      header_.alphaChannel = 3;
+      return;
+    }
+    header_.channels = samples;
+    header_.type = real ? SampleType::Float : bits == 8 ? SampleType::Uint8 : bits == 16 ? SampleType::Uint16 : SampleType::Uint32;
+    // Alpha as OpenImageIO reads it: the fourth channel by default, then as ExtraSamples says.
+    header_.alphaChannel = samples >= 4 ? 3 : -1;
+    uint16_t extras = 0;
+    uint16_t* kinds = nullptr;
+    if (TIFFGetField(tiff, TIFFTAG_EXTRASAMPLES, &extras, &kinds) == 1 && kinds) {
+      const int colourChannels = photometric == PHOTOMETRIC_RGB ? 3 : 1;
+      for (int i = 0, c = colourChannels; i < extras && c < samples; ++i, ++c) {
+        if (kinds[i] == EXTRASAMPLE_ASSOCALPHA) {
+          header_.alphaChannel = c;
+        } else if (kinds[i] == EXTRASAMPLE_UNASSALPHA) {
+          header_.alphaChannel = c;
+          header_.unassociatedAlpha = true;
+        } else if (header_.alphaChannel == c) {
+          header_.alphaChannel = -1;  // an extra channel that is not alpha
+        }
+      }
+    }
+  }
+
+  void readWhole(size_t rowBytes) {
+    whole_.resize(rowBytes * static_cast<size_t>(header_.height));
+    TIFF* tiff = tiff_.get();
+    const auto width = static_cast<uint32_t>(header_.width), height = static_cast<uint32_t>(header_.height);
+    if (asRgba_) {
+      if (!TIFFReadRGBAImageOriented(tiff, width, height, reinterpret_cast<uint32_t*>(whole_.data()), ORIENTATION_TOPLEFT, 0))
+        fail("cannot decode image");
+      // libtiff packs each pixel as ABGR in a 32-bit word: on this little-endian machine that is
+      // R, G, B, A in memory already.
+      return;
+    }
+    // Plane by plane (one plane when the channels are together), each scattered into whole_.
+    const size_t pixelBytes = rowBytes / width;
+    const size_t planes = separate_ ? static_cast<size_t>(header_.channels) : 1;
+    const size_t planePixelBytes = pixelBytes / planes;
+    const auto place = [&](size_t plane, uint32_t y, uint32_t x, const unsigned char* from, uint32_t columns) {
+      unsigned char* to = whole_.data() + size_t{y} * rowBytes + size_t{x} * pixelBytes + plane * planePixelBytes;
+      if (planes == 1) return (void)std::memcpy(to, from, size_t{columns} * pixelBytes);
+      for (uint32_t i = 0; i < columns; ++i) std::memcpy(to + i * pixelBytes, from + i * planePixelBytes, planePixelBytes);
+    };
+    if (!TIFFIsTiled(tiff)) {
+      std::vector<unsigned char> line(static_cast<size_t>(std::max<tmsize_t>(TIFFScanlineSize(tiff), 0)));
+      if (line.size() != size_t{width} * planePixelBytes) fail("cannot decode image");
+      for (size_t plane = 0; plane < planes; ++plane)
+        for (uint32_t y = 0; y < height; ++y) {
+          if (TIFFReadScanline(tiff, line.data(), y, static_cast<uint16_t>(plane)) < 0) fail("cannot decode image");
+          place(plane, y, 0, line.data(), width);
+        }
+      return;
+    }
+    const uint32_t tileW = field<uint32_t>(TIFFTAG_TILEWIDTH, 0), tileH = field<uint32_t>(TIFFTAG_TILELENGTH, 0);
+    const tmsize_t tileBytes = TIFFTileSize(tiff);
+    if (tileW == 0 || tileH == 0 || tileBytes != static_cast<tmsize_t>(size_t{tileW} * tileH * planePixelBytes)) fail("cannot decode image");
+    std::vector<unsigned char> tile(static_cast<size_t>(tileBytes));
+    for (size_t plane = 0; plane < planes; ++plane)
+      for (uint32_t y = 0; y < height; y += tileH)
+        for (uint32_t x = 0; x < width; x += tileW) {
+          if (TIFFReadTile(tiff, tile.data(), x, y, 0, static_cast<uint16_t>(plane)) < 0) fail("cannot decode image");
+          const uint32_t rows = std::min(tileH, height - y), columns = std::min(tileW, width - x);
+          for (uint32_t r = 0; r < rows; ++r) place(plane, y + r, x, tile.data() + size_t{r} * tileW * planePixelBytes, columns);
+        }
+  }
+
+  TiffMessage message_;
+  MemoryFile memory_;
+  std::unique_ptr<TIFF, void (*)(TIFF*)> tiff_{nullptr, &TIFFClose};
+  bool asRgba_ = false, separate_ = false;
+  int next_ = 0;
+  std::vector<unsigned char> whole_;
+};
+
+}  // namespace
+
+std::unique_ptr<ImageDecoder> openTiffDecoder(const ImageSource& source) { return std::make_unique<TiffDecoder>(source); }
+
+}  // namespace omnicam::image_io
