@@ -10,7 +10,8 @@
 #include <fstream>
 #include <map>
 
-#include <OpenImageIO/imageio.h>
+#include "atomic_file.h"
+#include "exr_channels.h"
 
 #include "errors.h"
 #include "fast_renderer.h"
@@ -193,12 +194,12 @@ TEST(Blender, TheDirectTwinTracesTheSameSamples) {
 // What blender_driver.py writes with direct_pass, made here: a multilayer OpenEXR named as Cycles
 // names it (the view layer's name may be any) and a plain RGB twin.
 void writeExr(const std::string& path, const std::vector<std::string>& channels, int size, float base) {
-  OIIO::ImageSpec spec(size, size, static_cast<int>(channels.size()), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = channels;
   std::vector<float> data(static_cast<size_t>(size) * size * channels.size());
   for (size_t k = 0; k < data.size(); ++k) data[k] = base + 0.001f * static_cast<float>(k % 97);
-  auto out = OIIO::ImageOutput::create(path);
-  ASSERT_TRUE(out && out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, data.data()) && out->close());
+  std::vector<ExrChannelSource> sources;
+  for (size_t c = 0; c < channels.size(); ++c) sources.push_back({channels[c], ExrSampleType::Float, data.data() + c, nullptr, channels.size()});
+  const std::vector<unsigned char> bytes = encodeExrChannels(path, size, size, sources, {});
+  writeBytesAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 TEST(Blender, TheDirectPassFramesAreReadByChannelName) {
