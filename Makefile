@@ -52,7 +52,7 @@ fuzz-build: deps $(FUZZ_DIR)/CMakeCache.txt
 	cmake --build $(FUZZ_DIR) -j $(JOBS)
 
 fuzz: fuzz-build
-	@for t in scene_loader gltf_import sidecar dataset_spec manifest shard_manifest; do \
+	@for t in scene_loader gltf_import sidecar dataset_spec manifest shard_manifest exr_frame image; do \
 	  fuzz/run_fuzzer.sh $(FUZZ_DIR)/bin/fuzz_$$t $(FUZZ_SECONDS) $$t || exit 1; done
 
 test: build fuzz-build

@@ -1,8 +1,12 @@
 #include "fuzz_entries.h"
 
+#include <algorithm>
+#include <vector>
+
 #include "errors.h"
 #include "exr_channels.h"
 #include "gltf_import.h"
+#include "image.h"
 #include "scene_loader.h"
 #include "sidecar.h"
 #include "triangulate.h"
@@ -46,6 +50,20 @@ void exrFrame(const uint8_t* data, size_t size) {
       (void)decodeExrChannels(bytes, "fuzz.exr");
     for (const auto& [key, value] : header.text)
       if (key.rfind("omnicam:", 0) == 0) (void)parseJsonText(value, "fuzz.exr: " + key);
+  } catch (const InputError&) {
+  }
+}
+
+void image(const uint8_t* data, size_t size) {
+  constexpr int64_t kMaxFuzzedPixels = int64_t{1} << 20;
+  try {
+    ImageRowReader rows = ImageRowReader::openMemory(data, size, "fuzz.image");
+    if (int64_t{rows.width()} * rows.height() > kMaxFuzzedPixels) return;  // the header was read and checked
+    std::vector<float> band(static_cast<size_t>(rows.width()) * 5 * 4);
+    for (int y = 0; y < rows.height(); y += 5) rows.readRows(y, std::min(5, rows.height() - y), band.data());
+    (void)readImageFromMemory(data, size, "fuzz.image");
+    int width = 0, height = 0;
+    (void)readRgb8Codes(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.image", width, height);
   } catch (const InputError&) {
   }
 }

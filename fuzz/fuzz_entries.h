@@ -34,6 +34,10 @@ void shardManifest(const uint8_t* data, size_t size);
 // each omnicam:* text attribute parsed as the annotation JSON the gathering reads.
 void exrFrame(const uint8_t* data, size_t size);
 
+// An image file of any format omnicam reads (image.h), told by its bytes: read by rows, whole,
+// and as 8-bit codes, when its header allows at most 2²⁰ pixels.
+void image(const uint8_t* data, size_t size);
+
 // The folder with the assets above.
 std::string assetsDir();
 

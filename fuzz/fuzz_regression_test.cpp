@@ -57,5 +57,9 @@ TEST(FuzzRegression, ExrFrameSurvivesEverySavedInput) {
   EXPECT_GT(feedAll(kFuzz + "/regressions/exr_frame", exrFrame) + feedAll(kFuzz + "/seeds/exr_frame", exrFrame), 0);
 }
 
+TEST(FuzzRegression, ImageSurvivesEverySavedInput) {
+  EXPECT_GT(feedAll(kFuzz + "/regressions/image", image) + feedAll(kFuzz + "/seeds/image", image), 0);
+}
+
 }  // namespace
 }  // namespace omnicam::fuzz
