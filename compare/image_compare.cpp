@@ -117,8 +117,10 @@ CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const Compa
 }
 
 int64_t imageRowsCompareBytes(const ImageRowReader& a, const ImageRowReader& b) {
-  // Each side: a band of decoded rows and its RGBA, and the 8 rows SSIM keeps.
-  return (a.rowBytes() + b.rowBytes()) * kBandRows + static_cast<int64_t>(a.width()) * 16 * kSsimWindow * 2;
+  // Each side: a band of decoded rows and its RGBA, the 8 rows SSIM keeps, and what a file that
+  // cannot be read by rows holds whole.
+  return (a.rowBytes() + b.rowBytes()) * kBandRows + static_cast<int64_t>(a.width()) * 16 * kSsimWindow * 2 + a.wholeBytes() +
+         b.wholeBytes();
 }
 
 ImageRGBA scalarHeatmap(const std::vector<float>& values, int width, int height, double scale) {

@@ -22,11 +22,7 @@ BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::stri
   std::vector<unsigned char> rgb;
   {
     const std::string bytes = checkedBytes(dir, file);
-    try {
-      rgb = readRgb8Codes(bytes, showPath(dir.path()) + ": " + quote(file.path), image.width, image.height);
-    } catch (const InputError& e) {
-      throw InputError(std::string(e.what()) + " (a ROS bag holds 8-bit images)");
-    }
+    rgb = readRgb8Codes(bytes, showPath(dir.path()) + ": " + quote(file.path), image.width, image.height);
   }
   image.topic = "/" + camera + "/image_raw";
   image.frameId = camera;

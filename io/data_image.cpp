@@ -49,8 +49,8 @@ std::unique_ptr<ImageDecoder> openDataImage(std::string_view bytes, const std::s
 
 std::vector<float> allRows(ImageDecoder& decoder) {
   const ImageHeader& header = decoder.header();
-  std::vector<float> values(static_cast<size_t>(header.width) * header.height * header.channels);
-  decoder.readRows(0, header.height, values.data());
+  std::vector<float> values(static_cast<size_t>(header.width * header.height) * header.channels);
+  decoder.readRows(0, static_cast<int>(header.height), values.data());
   return values;
 }
 
@@ -65,7 +65,8 @@ DataImage readExrChannels(ImageDecoder& in, const std::vector<std::string>& name
   }
   const std::vector<float> all = allRows(in);
   const size_t channels = names.size(), pixels = static_cast<size_t>(header.width) * header.height;
-  DataImage image{header.width, header.height, static_cast<int>(channels), std::vector<float>(pixels * channels)};
+  DataImage image{static_cast<int>(header.width), static_cast<int>(header.height), static_cast<int>(channels),
+                  std::vector<float>(pixels * channels)};
   for (size_t p = 0; p < pixels; ++p)
     for (size_t c = 0; c < channels; ++c) image.values[p * channels + c] = all[p * header.channels + index[c]];
   return image;
@@ -75,7 +76,7 @@ std::vector<uint16_t> readUint16(ImageDecoder& in, int& width, int& height) {
   const ImageHeader& header = in.header();
   if (in.format() != "png" || header.channels != 1 || header.type != SampleType::Uint16)
     throw InputError(in.name() + ": not a 16-bit single-channel PNG");
-  width = header.width, height = header.height;
+  width = static_cast<int>(header.width), height = static_cast<int>(header.height);
   std::vector<uint16_t> values(static_cast<size_t>(width) * height);
   in.readNativeRows(0, height, values.data());
   return values;
@@ -88,7 +89,7 @@ DataImage readDataExr(const std::string& path) {
   const ImageHeader& header = in->header();
   if (in->format() != "openexr" || (header.channels != 1 && header.channels != 3))
     throw InputError(in->name() + ": not a 1- or 3-channel OpenEXR data image");
-  return DataImage{header.width, header.height, header.channels, allRows(*in)};
+  return DataImage{static_cast<int>(header.width), static_cast<int>(header.height), header.channels, allRows(*in)};
 }
 
 DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names) {

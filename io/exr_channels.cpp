@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #if defined(__x86_64__)
 #include <cpuid.h>
 #include <immintrin.h>
@@ -193,19 +194,24 @@ int64_t sizeOfMemory(exr_const_context_t, void* user) noexcept {
 
 void ignoreMessage(exr_const_context_t, exr_result_t, const char*) noexcept {}
 
-// Whether the file can hold the pixels its header claims, from its offset table and chunk leaders
-// alone, before a pixel is allocated: every chunk lies within the file and is large enough to
-// unpack to its lines. A forged header claiming 16384 x 8192 pixels in 64 KB is refused here
-// in microseconds, not after gigabytes are allocated. InputError naming `name` otherwise.
-void checkChunksPresent(std::string_view bytes, const std::string& name) {
+}  // namespace
+
+void checkExrChunksPresent(std::string_view bytes, const std::string& path, const std::string& name) {
   MemoryExrSource source{bytes};
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.user_data = &source;
-  init.read_fn = &readFromMemory;
-  init.size_fn = &sizeOfMemory;
   init.error_handler_fn = &ignoreMessage;
+  uint64_t fileSize = bytes.size();
+  if (path.empty()) {
+    init.user_data = &source;
+    init.read_fn = &readFromMemory;
+    init.size_fn = &sizeOfMemory;
+  } else {
+    std::error_code ec;
+    fileSize = std::filesystem::file_size(path, ec);
+    if (ec) throw InputError(name + ": cannot read OpenEXR (" + ec.message() + ")");
+  }
   exr_context_t context = nullptr;
-  if (exr_start_read(&context, "memory.exr", &init) != EXR_ERR_SUCCESS) {
+  if (exr_start_read(&context, path.empty() ? "memory.exr" : path.c_str(), &init) != EXR_ERR_SUCCESS) {
     if (context) exr_finish(&context);
     throw InputError(name + ": cannot read OpenEXR (a header OpenEXR's reader refuses)");
   }
@@ -215,8 +221,8 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
   if (exr_get_storage(context, 0, &storage) != EXR_ERR_SUCCESS || exr_get_chunk_count(context, 0, &chunks) != EXR_ERR_SUCCESS ||
       chunks < 0)
     problem = "no chunk table";
-  else if (uint64_t{8} * static_cast<uint64_t>(chunks) * 2 > bytes.size())
-    problem = "its " + std::to_string(chunks) + " chunks cannot fit in " + std::to_string(bytes.size()) + " bytes";
+  else if (uint64_t{8} * static_cast<uint64_t>(chunks) * 2 > fileSize)
+    problem = "its " + std::to_string(chunks) + " chunks cannot fit in " + std::to_string(fileSize) + " bytes";
   if (problem.empty() && storage == EXR_STORAGE_SCANLINE) {
     exr_attr_box2i_t window{};
     int32_t lines = 0;
@@ -226,7 +232,7 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
     for (int64_t y = window.min.y; problem.empty() && y <= window.max.y; y += lines) {
       exr_chunk_info_t chunk{};
       const bool read = exr_read_scanline_chunk_info(context, 0, static_cast<int>(y), &chunk) == EXR_ERR_SUCCESS;
-      problem = chunkProblem(read, chunk, bytes.size(), "line " + std::to_string(y));
+      problem = chunkProblem(read, chunk, fileSize, "line " + std::to_string(y));
     }
   } else if (problem.empty() && storage == EXR_STORAGE_TILED) {
     // The level the reader decodes (0, 0), tile by tile, as above.
@@ -240,7 +246,7 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
       for (int32_t tx = 0; problem.empty() && tx < tilesX; ++tx) {
         exr_chunk_info_t chunk{};
         const bool read = exr_read_tile_chunk_info(context, 0, tx, ty, 0, 0, &chunk) == EXR_ERR_SUCCESS;
-        problem = chunkProblem(read, chunk, bytes.size(), "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")");
+        problem = chunkProblem(read, chunk, fileSize, "tile (" + std::to_string(tx) + ", " + std::to_string(ty) + ")");
       }
   } else if (problem.empty()) {
     problem = "not a single-part scanline or tiled image";
@@ -248,8 +254,6 @@ void checkChunksPresent(std::string_view bytes, const std::string& name) {
   exr_finish(&context);
   if (!problem.empty()) throw InputError(name + ": cannot read OpenEXR (" + problem + ": the file cannot hold the pixels its header claims)");
 }
-
-}  // namespace
 
 std::vector<unsigned char> encodeExrChannels(const std::string& path, int width, int height,
                                              const std::vector<ExrChannelSource>& channels, const ExrWriteOptions& options) {
@@ -319,7 +323,7 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
                        std::to_string(limits::kMaxImageDimension) + " per side and " + std::to_string(limits::kMaxImagePixels) +
                        " in all");
     out.width = static_cast<int>(width), out.height = static_cast<int>(height);
-    if (!headerOnly) checkChunksPresent(bytes, name);
+    if (!headerOnly) checkExrChunksPresent(bytes, "", name);
     for (auto it = file.header().begin(); it != file.header().end(); ++it)
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out.text[it.name()] = text->value();
     Imf::FrameBuffer frameBuffer;

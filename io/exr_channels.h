@@ -55,4 +55,11 @@ inline constexpr int64_t kMaxDecodedExrSamples = int64_t{1} << 29;  // 2 GiB of 
 ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, bool headerOnly = false,
                               const std::set<std::string>* channels = nullptr);
 
+// Whether an OpenEXR can hold the pixels its header claims, from its offset table and chunk
+// leaders alone, before a pixel is allocated: every chunk lies within the file and is large
+// enough to unpack to its lines. A forged header claiming 16384 x 8192 pixels in 64 KB is refused
+// in microseconds, not after gigabytes are allocated. The file at `path`, or (`path` empty)
+// `bytes`; InputError naming `name` otherwise.
+void checkExrChunksPresent(std::string_view bytes, const std::string& path, const std::string& name);
+
 }  // namespace omnicam

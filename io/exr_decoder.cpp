@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "exr_channels.h"
 #include "exr_memory_input.h"
 #include "image_decoder.h"
 
@@ -69,6 +70,8 @@ std::vector<ExrChannel> orderedChannels(const Imf::ChannelList& list) {
 class ExrDecoder final : public ImageDecoder {
  public:
   explicit ExrDecoder(const ImageSource& source) : ImageDecoder(source.name) {
+    // The offset table against the file first: a forged chunk offset never reaches OpenEXR's reader.
+    checkExrChunksPresent(source.bytes, source.path, name_);
     guarded("cannot read image", [&] {
       if (source.inMemory()) {
         stream_ = std::make_unique<MemoryExrInput>(source.bytes);
@@ -79,8 +82,8 @@ class ExrDecoder final : public ImageDecoder {
     });
     const Imath::Box2i window = file_->header().dataWindow();
     header_.originX = window.min.x, header_.originY = window.min.y;
-    header_.width = static_cast<int>(std::clamp<int64_t>(int64_t{window.max.x} - window.min.x + 1, 0, 1 << 30));
-    header_.height = static_cast<int>(std::clamp<int64_t>(int64_t{window.max.y} - window.min.y + 1, 0, 1 << 30));
+    header_.width = int64_t{window.max.x} - window.min.x + 1;
+    header_.height = int64_t{window.max.y} - window.min.y + 1;
     channels_ = orderedChannels(file_->header().channels());
     header_.channels = static_cast<int>(channels_.size());
     for (const ExrChannel& c : channels_) header_.channelNames.push_back(c.name);
@@ -98,9 +101,10 @@ class ExrDecoder final : public ImageDecoder {
     auto* out = static_cast<float*>(samples);
     const size_t channels = channels_.size(), width = static_cast<size_t>(header_.width);
     // uint32 channels are read as stored, then scaled as OpenImageIO scales them.
-    std::vector<uint32_t> uints(width * static_cast<size_t>(count) * channels);
+    const bool anyUint = std::any_of(channels_.begin(), channels_.end(), [](const ExrChannel& c) { return c.type == Imf::UINT; });
+    std::vector<uint32_t> uints(anyUint ? width * static_cast<size_t>(count) * channels : 0);
     Imf::FrameBuffer frame;
-    const Imath::V2i origin(header_.originX, header_.originY + first);
+    const Imath::V2i origin(static_cast<int>(header_.originX), static_cast<int>(header_.originY) + first);
     for (size_t c = 0; c < channels; ++c) {
       const bool uint = channels_[c].type == Imf::UINT;
       void* base = uint ? static_cast<void*>(uints.data() + c) : static_cast<void*>(out + c);
@@ -109,7 +113,7 @@ class ExrDecoder final : public ImageDecoder {
     }
     guarded("cannot decode image", [&] {
       file_->setFrameBuffer(frame);
-      file_->readPixels(header_.originY + first, header_.originY + first + count - 1);
+      file_->readPixels(static_cast<int>(header_.originY) + first, static_cast<int>(header_.originY) + first + count - 1);
     });
     constexpr float scale = 1.0f / 4294967295.0f;
     for (size_t c = 0; c < channels; ++c)

@@ -14,7 +14,9 @@ class MemoryExrInput : public Imf::IStream {
  public:
   explicit MemoryExrInput(std::string_view bytes) : Imf::IStream("memory.exr"), bytes_(bytes) {}
   bool read(char c[], int n) override {
-    if (n < 0 || position_ + static_cast<uint64_t>(n) > bytes_.size()) throw std::runtime_error("unexpected end of file");
+    // Written so that no sum can wrap: a forged offset may be seeked to anything up to 2⁶⁴ − 1.
+    if (n < 0 || position_ > bytes_.size() || static_cast<uint64_t>(n) > bytes_.size() - position_)
+      throw std::runtime_error("unexpected end of file");
     std::memcpy(c, bytes_.data() + position_, static_cast<size_t>(n));
     position_ += static_cast<uint64_t>(n);
     return position_ < bytes_.size();

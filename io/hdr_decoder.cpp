@@ -1,13 +1,12 @@
-// Radiance HDR (RGBE, Greg Ward's format): linear float RGB, a scanline at a time, flat or with
-// the per-channel run-length coding. Written here because stb_image's reader loops forever on a
-// truncated run-length scanline; every loop below advances or fails. The header is read as
-// OpenImageIO reads it (FORMAT=32-bit_rle_rgbe required); only the standard orientation
+// Radiance HDR (RGBE, Greg Ward's format): linear float RGB, a scanline at a time from the file or
+// memory, flat or with the per-channel run-length coding. Written here because stb_image's reader
+// loops forever on a truncated run-length scanline; every loop below advances or fails. The header
+// is read as OpenImageIO reads it (FORMAT=32-bit_rle_rgbe required); only the standard orientation
 // "-Y height +X width" is accepted.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -21,6 +20,7 @@ namespace omnicam::image_io {
 namespace {
 
 constexpr int kMaxHeaderLines = 100;
+constexpr size_t kMaxHeaderLine = 4096;
 
 class HdrDecoder final : public ImageDecoder {
  public:
@@ -28,10 +28,8 @@ class HdrDecoder final : public ImageDecoder {
     if (source.inMemory()) {
       bytes_ = source.bytes;
     } else {
-      std::ifstream in(source.path, std::ios::binary);
-      owned_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-      if (in.bad()) throw InputError(name_ + ": cannot read image (cannot read the file)");
-      bytes_ = owned_;
+      file_.open(source.path, std::ios::binary);
+      if (!file_) throw InputError(name_ + ": cannot read image (cannot open the file)");
     }
     readHeader();
     header_.channels = 3;
@@ -61,11 +59,22 @@ class HdrDecoder final : public ImageDecoder {
  private:
   [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + ": " + what); }
 
-  std::string_view nextLine() {
-    const size_t end = bytes_.find('\n', at_);
-    if (end == std::string_view::npos) fail("cannot read image (HDR header ends without its resolution line)");
-    const std::string_view line = bytes_.substr(at_, end - at_);
-    at_ = end + 1;
+  // The next byte, or -1 at the end.
+  int next() {
+    if (file_.is_open()) {
+      const int c = file_.get();
+      return c == std::char_traits<char>::eof() ? -1 : c;
+    }
+    return at_ < bytes_.size() ? static_cast<unsigned char>(bytes_[at_++]) : -1;
+  }
+
+  std::string nextLine() {
+    std::string line;
+    for (int c = next(); c != '\n'; c = next()) {
+      if (c < 0) fail("cannot read image (HDR header ends without its resolution line)");
+      if (line.size() == kMaxHeaderLine) fail("cannot read image (HDR header line of more than " + std::to_string(kMaxHeaderLine) + " bytes)");
+      line.push_back(static_cast<char>(c));
+    }
     return line;
   }
 
@@ -74,12 +83,12 @@ class HdrDecoder final : public ImageDecoder {
     bool rgbeFormat = false;
     for (int n = 0;; ++n) {
       if (n == kMaxHeaderLines) fail("cannot read image (HDR header of more than " + std::to_string(kMaxHeaderLines) + " lines)");
-      const std::string_view line = nextLine();
+      const std::string line = nextLine();
       if (line.empty()) break;
       if (line == "FORMAT=32-bit_rle_rgbe") rgbeFormat = true;
     }
     if (!rgbeFormat) fail("cannot read image (HDR header without FORMAT=32-bit_rle_rgbe)");
-    const std::string resolution(nextLine());
+    const std::string resolution = nextLine();
     int height = 0, width = 0, used = 0;
     if (std::sscanf(resolution.c_str(), "-Y %d +X %d%n", &height, &width, &used) != 2 || used != static_cast<int>(resolution.size()))
       fail("cannot read image (HDR resolution " + quote(resolution) + " is not \"-Y <height> +X <width>\")");
@@ -87,8 +96,9 @@ class HdrDecoder final : public ImageDecoder {
   }
 
   unsigned char byte(int row) {
-    if (at_ >= bytes_.size()) fail("cannot decode image (HDR data ends in scanline " + std::to_string(row) + ")");
-    return static_cast<unsigned char>(bytes_[at_++]);
+    const int c = next();
+    if (c < 0) fail("cannot decode image (HDR data ends in scanline " + std::to_string(row) + ")");
+    return static_cast<unsigned char>(c);
   }
 
   // One scanline into `rgbe`, channel-major.
@@ -122,7 +132,7 @@ class HdrDecoder final : public ImageDecoder {
     }
   }
 
-  std::string owned_;
+  std::ifstream file_;
   std::string_view bytes_;
   size_t at_ = 0;
   int next_ = 0;

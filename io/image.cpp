@@ -149,9 +149,9 @@ ImageRGBA decode(ImageDecoder& decoder) {
   const ImageHeader& header = decoder.header();
   requireMemory(decodeBytes(header), decoder.name() + ": decoding " + std::to_string(header.width) + "x" +
                                          std::to_string(header.height) + " pixels");
-  std::vector<float> raw(static_cast<size_t>(header.width) * header.height * header.channels);
-  decoder.readRows(0, header.height, raw.data());
-  ImageRGBA image(header.width, header.height);
+  std::vector<float> raw(static_cast<size_t>(header.width * header.height) * header.channels);
+  decoder.readRows(0, static_cast<int>(header.height), raw.data());
+  ImageRGBA image(static_cast<int>(header.width), static_cast<int>(header.height));
   PixelDecoding(header).apply(raw.data(), static_cast<size_t>(header.width) * header.height, image.pixels.data());
   return image;
 }
@@ -181,9 +181,10 @@ ImageRowReader ImageRowReader::openMemory(const unsigned char* data, size_t size
   return ImageRowReader(std::move(state));
 }
 
-int ImageRowReader::width() const { return state_->decoder->header().width; }
-int ImageRowReader::height() const { return state_->decoder->header().height; }
+int ImageRowReader::width() const { return static_cast<int>(state_->decoder->header().width); }
+int ImageRowReader::height() const { return static_cast<int>(state_->decoder->header().height); }
 int64_t ImageRowReader::rowBytes() const { return decodeBytes(state_->decoder->header()) / height(); }
+int64_t ImageRowReader::wholeBytes() const { return state_->decoder->wholeBytes(); }
 
 void ImageRowReader::readRows(int first, int count, float* rgba) {
   const ImageHeader& header = state_->decoder->header();
@@ -232,8 +233,8 @@ std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA&
 std::vector<unsigned char> readRgb8Codes(std::string_view bytes, const std::string& name, int& width, int& height) {
   const auto decoder = openImageDecoder({"", bytes, name});
   const ImageHeader& header = decoder->header();
-  if (header.type != SampleType::Uint8) throw InputError(name + ": not an 8-bit image");
-  width = header.width, height = header.height;
+  if (header.type != SampleType::Uint8) throw InputError(name + ": not an 8-bit image (its codes would be rounded)");
+  width = static_cast<int>(header.width), height = static_cast<int>(header.height);
   const size_t pixels = static_cast<size_t>(width) * height, channels = static_cast<size_t>(header.channels);
   std::vector<unsigned char> stored(pixels * channels), rgb(pixels * 3);
   decoder->readNativeRows(0, height, stored.data());

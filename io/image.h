@@ -53,6 +53,8 @@ class ImageRowReader {
   int height() const;
   // Memory one row takes while it is decoded: the floats of every channel and the RGBA.
   int64_t rowBytes() const;
+  // Memory held whatever the band: the whole image, for files that cannot be read by rows.
+  int64_t wholeBytes() const;
   // Rows [first, first + count) as readImage's pixels (linear premultiplied RGBA), into `rgba`
   // (width × count × 4 floats). Rows are read top to bottom: `first` is where the last read ended.
   void readRows(int first, int count, float* rgba);

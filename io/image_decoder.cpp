@@ -79,21 +79,16 @@ std::string signatureOf(const ImageSource& source) {
   return head;
 }
 
-bool startsWith(const std::string& bytes, std::string_view prefix) { return std::string_view(bytes).starts_with(prefix); }
-
-}  // namespace
-
-namespace {
-
 std::unique_ptr<ImageDecoder> openByFormat(const ImageSource& source) {
-  const std::string head = signatureOf(source);
-  if (startsWith(head, std::string_view("\x89PNG\r\n\x1a\n", 8))) return openPngDecoder(source);
-  if (startsWith(head, "\xFF\xD8\xFF")) return openJpegDecoder(source);
-  if (startsWith(head, std::string_view("\x76\x2f\x31\x01", 4))) return openExrDecoder(source);
-  if (startsWith(head, std::string_view("II*\0", 4)) || startsWith(head, std::string_view("MM\0*", 4)) ||
-      startsWith(head, std::string_view("II+\0", 4)) || startsWith(head, std::string_view("MM\0+", 4)))
+  using namespace std::string_view_literals;
+  const std::string bytes = signatureOf(source);
+  const std::string_view head = bytes;
+  if (head.starts_with("\x89PNG\r\n\x1a\n"sv)) return openPngDecoder(source);
+  if (head.starts_with("\xFF\xD8\xFF"sv)) return openJpegDecoder(source);
+  if (head.starts_with("\x76\x2f\x31\x01"sv)) return openExrDecoder(source);
+  if (head.starts_with("II*\0"sv) || head.starts_with("MM\0*"sv) || head.starts_with("II+\0"sv) || head.starts_with("MM\0+"sv))
     return openTiffDecoder(source);
-  if (startsWith(head, "#?RADIANCE") || startsWith(head, "#?RGBE")) return openHdrDecoder(source);
+  if (head.starts_with("#?RADIANCE"sv) || head.starts_with("#?RGBE"sv)) return openHdrDecoder(source);
   throw InputError(source.name + ": cannot read image (not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file)");
 }
 

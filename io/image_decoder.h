@@ -26,8 +26,9 @@ size_t sampleBytes(SampleType type);
 
 // What a file's header says, before any pixel is decoded.
 struct ImageHeader {
-  int width = 0, height = 0, channels = 0;
-  int originX = 0, originY = 0;  // where the pixels start (PNG oFFs, EXR data window)
+  int64_t width = 0, height = 0;  // as the file states them, before checkHeader bounds them
+  int channels = 0;
+  int64_t originX = 0, originY = 0;  // where the pixels start (PNG oFFs, EXR data window)
   SampleType type = SampleType::Uint8;
   // How integer codes map to light, by OpenImageIO's names: "sRGB", "linear" or "Gamma<g>" (a
   // PNG's gAMA chunk). Float samples are linear whatever this says.
@@ -49,6 +50,10 @@ class ImageDecoder {
   virtual void readNativeRows(int first, int count, void* samples) = 0;
   // The same as floats: integer samples scaled to [0, 1] by v · (1 / max), as OpenImageIO does.
   void readRows(int first, int count, float* values);
+  // Memory the decoder holds beyond the rows asked for, from its first read on: the whole image
+  // where the format cannot be read by rows (an interlaced PNG, tiled or planar TIFF, a
+  // progressive JPEG's coefficients). It asks the memory budget for it before allocating.
+  virtual int64_t wholeBytes() const { return 0; }
 
  protected:
   explicit ImageDecoder(std::string name) : name_(std::move(name)) {}

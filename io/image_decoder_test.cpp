@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <jpeglib.h>
 #include <png.h>
+#include <sys/resource.h>
+#include <tiffio.h>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -90,8 +92,8 @@ bool isFloatType(const OIIO::ImageSpec& spec) {
   return spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF;
 }
 
-// Our decoder against OpenImageIO's reading of the same file, from the file and from memory, in
-// bands of 7 rows (the row reader's path) and whole.
+// Our decoder against OpenImageIO's reading of the same file: from the file in bands of 7 rows
+// (the row reader's path), from memory whole.
 void expectSameAsOiio(const Written& file) {
   SCOPED_TRACE(file.note);
   const OiioRead want = readWithOiio(file.path);
@@ -115,7 +117,8 @@ void expectSameAsOiio(const Written& file) {
     }
     std::vector<float> got(want.values.size());
     const size_t rowFloats = static_cast<size_t>(h.width) * h.channels;
-    for (int y = 0; y < h.height; y += 7) decoder->readRows(y, std::min(7, h.height - y), got.data() + y * rowFloats);
+    const int height = static_cast<int>(h.height), band = source.inMemory() ? height : 7;
+    for (int y = 0; y < height; y += band) decoder->readRows(y, std::min(band, height - y), got.data() + y * rowFloats);
     ASSERT_EQ(got.size(), want.values.size());
     for (size_t i = 0; i < got.size(); ++i)
       ASSERT_EQ(std::bit_cast<uint32_t>(got[i]), std::bit_cast<uint32_t>(want.values[i]))
@@ -185,6 +188,8 @@ TEST(ImageDecoders, JpegsOfGreyColourAndCmykReadAsOpenImageIoReadsThem) {
       OIIO::ImageSpec spec = specOf(61, 37, channels, OIIO::TypeDesc::UINT8);
       spec.attribute("CompressionQuality", quality);
       expectSameAsOiio(writeWithOiio("q" + std::to_string(quality) + "_c" + std::to_string(channels) + ".jpg", spec));
+      spec.attribute("jpeg:progressive", 1);
+      expectSameAsOiio(writeWithOiio("q" + std::to_string(quality) + "_c" + std::to_string(channels) + "_progressive.jpg", spec));
     }
   // Adobe CMYK (OpenImageIO writes none): libjpeg's own writer.
   const int width = 33, height = 21;
@@ -223,6 +228,16 @@ TEST(ImageDecoders, TiffsOfEveryDepthLayoutAndAlphaReadAsOpenImageIoReadsThem) {
   OIIO::ImageSpec unassociated = specOf(19, 13, 4, OIIO::TypeDesc::UINT16);
   unassociated.attribute("oiio:UnassociatedAlpha", 1);
   expectSameAsOiio(writeWithOiio("unassociated.tif", unassociated));
+}
+
+TEST(ImageDecoders, SignedTiffsAreRefusedByName) {
+  const Written file = writeWithOiio("signed.tif", specOf(8, 4, 1, OIIO::TypeDesc::INT16));
+  try {
+    (void)openImageDecoder({file.path, {}, "signed.tif"});
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("signed.tif: cannot read image (TIFF of 16-bit signed samples"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ImageDecoders, ExrsPresentTheirChannelsInOpenImageIosOrderWithTheSameValues) {
@@ -283,6 +298,86 @@ TEST(ImageDecoders, DamagedFilesOfEveryFormatAreInputErrorsNamingThem) {
       }
     }
   }
+}
+
+// The process's peak resident memory, MiB (each test runs in a process of its own).
+double peakMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+void expectRefused(const std::string& bytes, const std::string& fragment) {
+  try {
+    const auto decoder = openImageDecoder({"", bytes, "forged"});
+    const ImageHeader& h = decoder->header();
+    std::vector<float> values(static_cast<size_t>(h.width * h.height) * h.channels);
+    decoder->readRows(0, static_cast<int>(h.height), values.data());
+    ADD_FAILURE() << "decoded; expected " << fragment;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+// The byte offset where an OpenEXR's chunk offset table starts: after the magic, version and
+// the attributes (name, type, size, value), closed by an empty name.
+size_t exrOffsetTable(const std::string& bytes) {
+  size_t at = 8;
+  while (bytes.at(at) != '\0') {
+    at = bytes.find('\0', at) + 1;  // name
+    at = bytes.find('\0', at) + 1;  // type
+    uint32_t size = 0;
+    std::memcpy(&size, bytes.data() + at, 4);
+    at += 4 + size;
+  }
+  return at + 1;
+}
+
+TEST(ImageDecoders, ForgedHeadersAreRefusedBeforeTheirPixelsAreAllocated) {
+  const double before = peakMiB();
+  // A progressive JPEG whose frame header claims 20000 x 20000 (its start would fill 2.4 GB of
+  // coefficients): refused by size before decoding starts.
+  std::string jpeg = fileBytes(writeWithOiio("p.jpg", [] {
+                                 OIIO::ImageSpec spec = specOf(16, 16, 3, OIIO::TypeDesc::UINT8);
+                                 spec.attribute("jpeg:progressive", 1);
+                                 return spec;
+                               }()).path);
+  const size_t sof = jpeg.find("\xFF\xC2");
+  ASSERT_NE(sof, std::string::npos);
+  jpeg[sof + 5] = jpeg[sof + 7] = '\x4E', jpeg[sof + 6] = jpeg[sof + 8] = '\x20';
+  expectRefused(jpeg, "image is 20000x20000 pixels; the limit is");
+  // A 1-pixel TIFF whose tiles are 65536 x 32768 (a buffer of 2 GiB per tile).
+  const std::string tiffPath = tempPath("tiles.tif");
+  TIFF* tiff = TIFFOpen(tiffPath.c_str(), "w");
+  ASSERT_TRUE(tiff);
+  TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, 1u), TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, 1u);
+  TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1), TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 8);
+  TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(tiff, TIFFTAG_TILEWIDTH, 65536u), TIFFSetField(tiff, TIFFTAG_TILELENGTH, 32768u);
+  const unsigned char oneByte = 0;
+  TIFFWriteRawTile(tiff, 0, const_cast<unsigned char*>(&oneByte), 1);
+  TIFFClose(tiff);
+  expectRefused(fileBytes(tiffPath), "TIFF tiles of 65536x32768 for a 1x1 image");
+  // An OpenEXR in memory whose one tile's offset is 2^64 - 1: the memory stream once wrapped its
+  // bound there and read before its buffer; OpenEXR's chunk check rebuilds the table by scanning,
+  // so the read itself must stop at the end.
+  OIIO::ImageSpec tiled = specOf(16, 16, 3, OIIO::TypeDesc::HALF);
+  tiled.tile_width = tiled.tile_height = 16;
+  std::string exr = fileBytes(writeWithOiio("one_tile.exr", tiled).path);
+  std::memset(exr.data() + exrOffsetTable(exr), 0xFF, 8);
+  expectRefused(exr, "forged: cannot decode image (unexpected end of file)");
+  // A Radiance HDR claiming 100000 x 100000 pixels in a few bytes.
+  expectRefused("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n\x02\x02", "image is 100000x100000 pixels");
+  EXPECT_LT(peakMiB() - before, 64.0) << "MiB allocated while refusing forged headers";
+}
+
+TEST(ImageDecoders, RunLengthHdrScanlinesThatEndEarlyOrDoNotAdvanceAreErrors) {
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
+  const std::string rle = std::string("\x02\x02\x00\x08", 4);
+  expectRefused(header + rle + "\x88", "HDR data ends in scanline 0");          // a run of 8 without its value
+  expectRefused(header + rle + std::string("\x00\x01", 2), "HDR scanline 0 has bad runs");  // a literal of 0
+  expectRefused(header + rle + "\x89\x01", "HDR scanline 0 has bad runs");  // a run of 9 in a row of 8
+  expectRefused(header + "\x01\x02\x03", "HDR data ends in scanline 0");    // flat, cut short
 }
 
 TEST(ImageEncoders, PngsHoldTheCodesExactlyAndDeclareSrgbOnlyForColour) {

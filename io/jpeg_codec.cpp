@@ -18,6 +18,7 @@
 
 #include "errors.h"
 #include "image_decoder.h"
+#include "memory_budget.h"
 
 namespace omnicam::image_io {
 
@@ -36,7 +37,10 @@ struct JpegErrors {
   std::longjmp(errors->back, 1);
 }
 
-void onJpegMessage(j_common_ptr, int) {}  // warnings (a truncated file) are not failures; stderr stays quiet
+void onJpegMessage(j_common_ptr, int) {}
+
+// libjpeg-turbo's advice for untrusted files (its tjbench's limit): real progressive files have ten.
+constexpr int kMaxJpegScans = 500;  // warnings (a truncated file) are not failures; stderr stays quiet
 
 void installErrors(JpegErrors& errors) {
   jpeg_std_error(&errors.manager);
@@ -73,11 +77,13 @@ class JpegDecoder final : public ImageDecoder {
           // CMYK (Adobe's, inverted) is converted to RGB here, as OpenImageIO converts it.
           cmyk_ = cinfo->jpeg_color_space == JCS_CMYK || cinfo->jpeg_color_space == JCS_YCCK;
           if (cmyk_) cinfo->out_color_space = JCS_CMYK;
-          jpeg_start_decompress(cinfo);
+          // The output's size from the header alone: decoding starts at the first read, after
+          // checkHeader (a progressive file's start reads every scan into a whole-image buffer).
+          jpeg_calc_output_dimensions(cinfo);
         }))
       fail("cannot read image");
-    header_.width = static_cast<int>(cinfo_.output_width);
-    header_.height = static_cast<int>(cinfo_.output_height);
+    header_.width = cinfo_.output_width;
+    header_.height = cinfo_.output_height;
     header_.channels = cmyk_ ? 3 : cinfo_.output_components;
     header_.type = SampleType::Uint8;
     header_.colourSpace = "sRGB";
@@ -85,7 +91,12 @@ class JpegDecoder final : public ImageDecoder {
 
   std::string_view format() const override { return "jpeg"; }
 
+  int64_t wholeBytes() const override {
+    return jpeg_has_multiple_scans(const_cast<jpeg_decompress_struct*>(&cinfo_)) ? header_.width * header_.height * cinfo_.num_components * 2 : 0;
+  }
+
   void readNativeRows(int first, int count, void* samples) override {
+    if (!started_) start();
     if (first != static_cast<int>(cinfo_.output_scanline))
       throw std::logic_error(name_ + ": JPEG rows asked for out of order");
     auto* out = static_cast<unsigned char*>(samples);
@@ -108,6 +119,32 @@ class JpegDecoder final : public ImageDecoder {
  private:
   [[noreturn]] void fail(const char* what) const {
     throw InputError(name_ + ": " + what + " (JPEG read error: " + errors_.message + ")");
+  }
+
+  // A progressive (multi-scan) file is read whole into DCT coefficients, two bytes a sample, at
+  // the start; its scans are counted, since thousands of tiny scans cost scans × pixels of time.
+  void start() {
+    requireMemory(wholeBytes(), name_ + ": decoding a progressive JPEG of " + std::to_string(header_.width) + "x" +
+                                    std::to_string(header_.height) + " pixels");
+    progress_.errors = &errors_;
+    progress_.manager.progress_monitor = limitScans;
+    cinfo_.progress = &progress_.manager;
+    jpeg_decompress_struct* cinfo = &cinfo_;
+    if (!jpegGuarded(errors_, [&] { jpeg_start_decompress(cinfo); })) fail("cannot decode image");
+    started_ = true;
+  }
+
+  struct ScanLimit {
+    jpeg_progress_mgr manager{};
+    JpegErrors* errors = nullptr;
+  };
+
+  static void limitScans(j_common_ptr common) {
+    const auto* cinfo = reinterpret_cast<j_decompress_ptr>(common);
+    if (cinfo->input_scan_number <= kMaxJpegScans) return;
+    auto* limit = reinterpret_cast<ScanLimit*>(common->progress);
+    std::snprintf(limit->errors->message, sizeof limit->errors->message, "more than %d scans", kMaxJpegScans);
+    std::longjmp(limit->errors->back, 1);
   }
 
   // OpenImageIO's conversion: stored CMYK is 1 − ink, so each colour is C·K (in [0, 1]), rounded.
@@ -133,7 +170,8 @@ class JpegDecoder final : public ImageDecoder {
     }
   } decompress_;
   jpeg_decompress_struct& cinfo_ = decompress_.cinfo;
-  bool cmyk_ = false;
+  bool cmyk_ = false, started_ = false;
+  ScanLimit progress_;
   std::vector<unsigned char> scratch_;
 };
 

@@ -16,6 +16,7 @@
 
 #include "errors.h"
 #include "image_decoder.h"
+#include "memory_budget.h"
 
 namespace omnicam::image_io {
 
@@ -90,6 +91,8 @@ class PngDecoder final : public ImageDecoder {
 
   std::string_view format() const override { return "png"; }
 
+  int64_t wholeBytes() const override { return passes_ > 1 ? static_cast<int64_t>(rowBytes_) * header_.height : 0; }
+
   void readNativeRows(int first, int count, void* samples) override {
     if (first != next_) throw std::logic_error(name_ + ": PNG rows asked for out of order");
     auto* out = static_cast<unsigned char*>(samples);
@@ -134,13 +137,13 @@ class PngDecoder final : public ImageDecoder {
         }))
       fail("cannot read image");
     passes_ = passes;
-    header_.width = static_cast<int>(std::min<png_uint_32>(png_get_image_width(png, info), 1u << 30));
-    header_.height = static_cast<int>(std::min<png_uint_32>(png_get_image_height(png, info), 1u << 30));
+    header_.width = png_get_image_width(png, info);
+    header_.height = png_get_image_height(png, info);
     header_.channels = png_get_channels(png, info);
     header_.type = png_get_bit_depth(png, info) == 16 ? SampleType::Uint16 : SampleType::Uint8;
     header_.colourSpace = colourSpaceOf(png, info);
-    header_.originX = static_cast<int>(png_get_x_offset_pixels(png, info));
-    header_.originY = static_cast<int>(png_get_y_offset_pixels(png, info));
+    header_.originX = png_get_x_offset_pixels(png, info);
+    header_.originY = png_get_y_offset_pixels(png, info);
     if (header_.channels == 2 || header_.channels == 4) {
       header_.alphaChannel = header_.channels - 1;
       header_.unassociatedAlpha = true;  // PNG stores straight alpha
@@ -149,6 +152,8 @@ class PngDecoder final : public ImageDecoder {
   }
 
   void readWhole() {
+    requireMemory(wholeBytes(), name_ + ": decoding an interlaced " + std::to_string(header_.width) + "x" +
+                                    std::to_string(header_.height) + " PNG whole");
     whole_.resize(rowBytes_ * static_cast<size_t>(header_.height));
     std::vector<png_bytep> rows(static_cast<size_t>(header_.height));
     for (size_t r = 0; r < rows.size(); ++r) rows[r] = whole_.data() + r * rowBytes_;
@@ -177,8 +182,8 @@ void writeToVector(png_structp png, png_bytep data, png_size_t n) {
     sink->bytes.insert(sink->bytes.end(), data, data + n);
   } catch (const std::bad_alloc&) {
     sink->outOfMemory = true;
-    png_error(png, "out of memory");
   }
+  if (sink->outOfMemory) png_error(png, "out of memory");  // outside the handler: longjmp must not leave a catch
 }
 
 void flushNothing(png_structp) {}

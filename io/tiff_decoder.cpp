@@ -13,10 +13,15 @@
 
 #include "errors.h"
 #include "image_decoder.h"
+#include "memory_budget.h"
 
 namespace omnicam::image_io {
 
 namespace {
+
+// The most libtiff may allocate at once (its strip and tile buffers, tag arrays): a forged header
+// is refused, a real strip or tile is far smaller.
+constexpr tmsize_t kMaxTiffAllocation = tmsize_t{256} << 20;
 
 struct TiffMessage {
   char text[200] = "no details";
@@ -61,6 +66,7 @@ class TiffDecoder final : public ImageDecoder {
     if (!options) throw std::bad_alloc();
     TIFFOpenOptionsSetErrorHandlerExtR(options.get(), keepTiffError, &message_);
     TIFFOpenOptionsSetWarningHandlerExtR(options.get(), dropTiffWarning, nullptr);
+    TIFFOpenOptionsSetMaxSingleMemAlloc(options.get(), kMaxTiffAllocation);
     if (source.inMemory()) {
       memory_.bytes = source.bytes;
       tiff_.reset(TIFFClientOpenExt("memory.tif", "r", &memory_, readMemory, writeNothing, seekMemory, closeNothing,
@@ -74,11 +80,15 @@ class TiffDecoder final : public ImageDecoder {
 
   std::string_view format() const override { return "tiff"; }
 
+  int64_t wholeBytes() const override {
+    return decodesWhole() ? header_.width * header_.height * header_.channels * static_cast<int64_t>(sampleBytes(header_.type)) : 0;
+  }
+
   void readNativeRows(int first, int count, void* samples) override {
     if (first != next_) throw std::logic_error(name_ + ": TIFF rows asked for out of order");
     auto* out = static_cast<unsigned char*>(samples);
     const size_t rowBytes = static_cast<size_t>(header_.width) * header_.channels * sampleBytes(header_.type);
-    if (asRgba_ || separate_ || TIFFIsTiled(tiff_.get())) {
+    if (decodesWhole()) {
       if (whole_.empty()) readWhole(rowBytes);
       std::memcpy(out, whole_.data() + static_cast<size_t>(first) * rowBytes, static_cast<size_t>(count) * rowBytes);
     } else {
@@ -91,9 +101,12 @@ class TiffDecoder final : public ImageDecoder {
   }
 
  private:
-  [[noreturn]] void fail(const char* what) const {
+  [[noreturn]] void fail(const std::string& what) const {
     throw InputError(name_ + ": " + what + " (TIFF read error: " + message_.text + ")");
   }
+
+  // Tiles, separate planes and libtiff's RGBA conversion are decoded whole at the first read.
+  bool decodesWhole() const { return asRgba_ || separate_ || TIFFIsTiled(tiff_.get()); }
 
   template <typename T>
   T field(ttag_t tag, T fallback) const {
@@ -104,8 +117,7 @@ class TiffDecoder final : public ImageDecoder {
   void readHeader() {
     TIFF* tiff = tiff_.get();
     const uint32_t width = field<uint32_t>(TIFFTAG_IMAGEWIDTH, 0), height = field<uint32_t>(TIFFTAG_IMAGELENGTH, 0);
-    header_.width = static_cast<int>(std::min<uint32_t>(width, 1u << 30));
-    header_.height = static_cast<int>(std::min<uint32_t>(height, 1u << 30));
+    header_.width = width, header_.height = height;
     const uint16_t samples = field<uint16_t>(TIFFTAG_SAMPLESPERPIXEL, 1), bits = field<uint16_t>(TIFFTAG_BITSPERSAMPLE, 1);
     const uint16_t format = field<uint16_t>(TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
     const uint16_t planar = field<uint16_t>(TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
@@ -114,6 +126,10 @@ class TiffDecoder final : public ImageDecoder {
     const bool real = format == SAMPLEFORMAT_IEEEFP && bits == 32;
     const bool asStored = (photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_RGB) && (integer || real);
     separate_ = planar == PLANARCONFIG_SEPARATE && samples > 1;
+    if (format != SAMPLEFORMAT_UINT && !real)
+      throw InputError(name_ + ": cannot read image (TIFF of " + std::to_string(bits) + "-bit " +
+                       (format == SAMPLEFORMAT_INT ? "signed" : format == SAMPLEFORMAT_IEEEFP ? "float" : "other") +
+                       " samples: unsigned integers of 8, 16 or 32 bits and 32-bit floats are read)");
     if (!asStored) {
       char problem[1024] = "";
       if (!TIFFRGBAImageOK(tiff, problem))
@@ -122,6 +138,7 @@ class TiffDecoder final : public ImageDecoder {
       header_.channels = 4;
       header_.type = SampleType::Uint8;
       header_.alphaChannel = 3;
+      header_.unassociatedAlpha = true;  // made straight by readRgba
       return;
     }
     header_.channels = samples;
@@ -146,38 +163,62 @@ class TiffDecoder final : public ImageDecoder {
   }
 
   void readWhole(size_t rowBytes) {
+    requireMemory(wholeBytes(), name_ + ": decoding a " + std::to_string(header_.width) + "x" + std::to_string(header_.height) +
+                                    " TIFF whole (tiles, planes or a converted layout)");
     whole_.resize(rowBytes * static_cast<size_t>(header_.height));
-    TIFF* tiff = tiff_.get();
-    const auto width = static_cast<uint32_t>(header_.width), height = static_cast<uint32_t>(header_.height);
-    if (asRgba_) {
-      if (!TIFFReadRGBAImageOriented(tiff, width, height, reinterpret_cast<uint32_t*>(whole_.data()), ORIENTATION_TOPLEFT, 0))
-        fail("cannot decode image");
-      // libtiff packs each pixel as ABGR in a 32-bit word: on this little-endian machine that is
-      // R, G, B, A in memory already.
-      return;
-    }
-    // Plane by plane (one plane when the channels are together), each scattered into whole_.
-    const size_t pixelBytes = rowBytes / width;
+    if (asRgba_) return readRgba();
     const size_t planes = separate_ ? static_cast<size_t>(header_.channels) : 1;
-    const size_t planePixelBytes = pixelBytes / planes;
+    // Plane by plane (one plane when the channels are together), each scattered into whole_.
+    const size_t pixelBytes = rowBytes / static_cast<size_t>(header_.width), planePixelBytes = pixelBytes / planes;
     const auto place = [&](size_t plane, uint32_t y, uint32_t x, const unsigned char* from, uint32_t columns) {
       unsigned char* to = whole_.data() + size_t{y} * rowBytes + size_t{x} * pixelBytes + plane * planePixelBytes;
       if (planes == 1) return (void)std::memcpy(to, from, size_t{columns} * pixelBytes);
       for (uint32_t i = 0; i < columns; ++i) std::memcpy(to + i * pixelBytes, from + i * planePixelBytes, planePixelBytes);
     };
-    if (!TIFFIsTiled(tiff)) {
-      std::vector<unsigned char> line(static_cast<size_t>(std::max<tmsize_t>(TIFFScanlineSize(tiff), 0)));
-      if (line.size() != size_t{width} * planePixelBytes) fail("cannot decode image");
-      for (size_t plane = 0; plane < planes; ++plane)
-        for (uint32_t y = 0; y < height; ++y) {
-          if (TIFFReadScanline(tiff, line.data(), y, static_cast<uint16_t>(plane)) < 0) fail("cannot decode image");
-          place(plane, y, 0, line.data(), width);
-        }
-      return;
+    if (TIFFIsTiled(tiff_.get())) readTiles(planes, planePixelBytes, place);
+    else readStrips(planes, planePixelBytes, place);
+  }
+
+  // libtiff's RGBA: 8-bit, alpha associated; made straight, as PNG's, since image.cpp associates
+  // integer images' alpha itself.
+  void readRgba() {
+    const auto width = static_cast<uint32_t>(header_.width), height = static_cast<uint32_t>(header_.height);
+    // Each pixel is ABGR in a 32-bit word: on this little-endian machine, R, G, B, A in memory.
+    if (!TIFFReadRGBAImageOriented(tiff_.get(), width, height, reinterpret_cast<uint32_t*>(whole_.data()), ORIENTATION_TOPLEFT, 0))
+      fail("cannot decode image");
+    for (size_t p = 0; p < whole_.size(); p += 4) {
+      const unsigned alpha = whole_[p + 3];
+      if (alpha == 0 || alpha == 255) continue;
+      for (size_t c = 0; c < 3; ++c) whole_[p + c] = static_cast<unsigned char>(std::min(255u, (whole_[p + c] * 255u + alpha / 2) / alpha));
     }
+  }
+
+  template <typename Place>
+  void readStrips(size_t planes, size_t planePixelBytes, const Place& place) {
+    TIFF* tiff = tiff_.get();
+    const auto width = static_cast<uint32_t>(header_.width), height = static_cast<uint32_t>(header_.height);
+    std::vector<unsigned char> line(static_cast<size_t>(std::max<tmsize_t>(TIFFScanlineSize(tiff), 0)));
+    if (line.size() != size_t{width} * planePixelBytes) fail("cannot decode image");
+    for (size_t plane = 0; plane < planes; ++plane)
+      for (uint32_t y = 0; y < height; ++y) {
+        if (TIFFReadScanline(tiff, line.data(), y, static_cast<uint16_t>(plane)) < 0) fail("cannot decode image");
+        place(plane, y, 0, line.data(), width);
+      }
+  }
+
+  template <typename Place>
+  void readTiles(size_t planes, size_t planePixelBytes, const Place& place) {
+    TIFF* tiff = tiff_.get();
+    const auto width = static_cast<uint32_t>(header_.width), height = static_cast<uint32_t>(header_.height);
     const uint32_t tileW = field<uint32_t>(TIFFTAG_TILEWIDTH, 0), tileH = field<uint32_t>(TIFFTAG_TILELENGTH, 0);
+    // Tiles no larger than the image rounded up to TIFF's 16-pixel tile multiple, or 1024: a forged
+    // tile size would otherwise size the buffer below.
+    const auto bound = [](uint32_t side) { return std::max<uint64_t>(1024, (uint64_t{side} + 15) / 16 * 16); };
+    if (tileW == 0 || tileH == 0 || tileW > bound(width) || tileH > bound(height))
+      throw InputError(name_ + ": cannot decode image (TIFF tiles of " + std::to_string(tileW) + "x" + std::to_string(tileH) +
+                       " for a " + std::to_string(width) + "x" + std::to_string(height) + " image)");
     const tmsize_t tileBytes = TIFFTileSize(tiff);
-    if (tileW == 0 || tileH == 0 || tileBytes != static_cast<tmsize_t>(size_t{tileW} * tileH * planePixelBytes)) fail("cannot decode image");
+    if (tileBytes != static_cast<tmsize_t>(size_t{tileW} * tileH * planePixelBytes)) fail("cannot decode image");
     std::vector<unsigned char> tile(static_cast<size_t>(tileBytes));
     for (size_t plane = 0; plane < planes; ++plane)
       for (uint32_t y = 0; y < height; y += tileH)
