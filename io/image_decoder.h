@@ -1,9 +1,10 @@
 #pragma once
 // The image file decoders behind image.h: PNG (libpng), JPEG (libjpeg), TIFF (libtiff), OpenEXR
-// and Radiance HDR (its own, hdr_decoder.cpp), each presenting its file as OpenImageIO did before them (the same
-// channels in the same order, the same colour-space names, integers scaled as it scales them), so
-// decoded pixels are unchanged. Each library is small; OpenImageIO loaded 260 shared libraries
-// into every process that could read an image (docs/performance.md, "Start-up").
+// and Radiance HDR (its own, hdr_decoder.cpp). Each presents its file as OpenImageIO did before
+// them (the same channels in the same order, the same colour-space names, integers scaled as it
+// scales them), so decoded pixels are unchanged. Each library is small; OpenImageIO loaded 260
+// shared libraries into every process that could read an image (docs/performance.md, "What an
+// omnicam command pays before it renders").
 #include <cstdint>
 #include <memory>
 #include <string>
