@@ -474,7 +474,7 @@ TEST_F(CliTest, AllowOutsideFilesIsTheUsersExplicitChoice) {
 namespace omnicam {
 namespace {
 
-// The ray table of a misaligned rig, read back as a user would (OpenImageIO), checked against
+// The ray table of a misaligned rig, read back by channel name as a user would (OpenEXR), checked against
 // the physics it claims: each origin on the mirror, each ray the pinhole's reflected by the
 // mirror's normal, and `project` of a point on it landing back on its pixel.
 TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {

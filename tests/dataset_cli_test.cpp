@@ -1212,7 +1212,7 @@ TEST_F(DatasetCliTest, CalibrationSequenceOfTwoCamerasIsOneKalibrBag) {
 }
 
 // Issue #45: two datasets of 8192² PNG frames compare under a 4 GiB address-space limit (both
-// frames whole would need 6 GiB): compare streams rows through OpenImageIO. Its numbers are the
+// frames whole would need 6 GiB): compare streams rows through libpng. Its numbers are the
 // whole-image comparison's, bit for bit; the heat map (--diff), which needs both images whole,
 // is still refused with the memory it needs. A is rendered by `omnicam dataset` (one 8192² frame,
 // unlit, 1 spp, PNG only); B is a folder in the dataset layout (no manifest) holding A's frame
