@@ -152,14 +152,16 @@ void packLines(const std::vector<PackedChannel>& channels, int width, int y0, in
 }
 
 // The smallest packed size a chunk of `unpacked` bytes can have under `compression`: RLE codes a
-// run of up to 128 equal bytes in 2, deflate at best about 1:1032; the others are not bounded here.
+// run of up to 128 equal bytes in 2, deflate at best about 1:1032. PIZ (Huffman with runs), PXR24
+// (deflate after a transform), B44 and DWA (a flat DWAB frame packs 11 000:1) are not bounded:
+// only their chunks' places in the file are checked.
 uint64_t smallestPackedSize(uint8_t compression, uint64_t unpacked) {
   switch (compression) {
     case EXR_COMPRESSION_NONE: return unpacked;
     case EXR_COMPRESSION_RLE: return unpacked / 64;
     case EXR_COMPRESSION_ZIPS:
     case EXR_COMPRESSION_ZIP: return unpacked / 1100;
-    default: return unpacked / 4096;  // PIZ, PXR24, B44, DWA: none packs 4096 bytes into 1
+    default: return 0;
   }
 }
 

@@ -62,8 +62,8 @@ class HdrDecoder final : public ImageDecoder {
   // The next byte, or -1 at the end.
   int next() {
     if (file_.is_open()) {
-      const int c = file_.get();
-      return c == std::char_traits<char>::eof() ? -1 : c;
+      const auto c = file_.rdbuf()->sbumpc();  // the buffer directly: get() builds a sentry per byte
+      return c == std::char_traits<char>::eof() ? -1 : static_cast<unsigned char>(c);
     }
     return at_ < bytes_.size() ? static_cast<unsigned char>(bytes_[at_++]) : -1;
   }

@@ -200,7 +200,10 @@ void ImageRowReader::readRows(int first, int count, float* rgba) {
 
 ImageRGBA readImage(const std::string& path) { return decode(*openImageFile(path)); }
 
-int64_t imageDecodeBytes(const std::string& path) { return decodeBytes(openImageFile(path)->header()); }
+int64_t imageDecodeBytes(const std::string& path) {
+  const auto decoder = openImageFile(path);
+  return decodeBytes(decoder->header()) + decoder->wholeBytes();
+}
 
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
   return decode(*openImageMemory(data, size, name));

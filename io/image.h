@@ -36,9 +36,10 @@ int64_t imageDecodeBytes(const std::string& path);
 // signature); `name` is used in errors.
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name);
 
-// An image read a band of rows at a time (whole, once, where the format cannot be read by rows:
-// interlaced PNG, tiled TIFF, HDR), decoded as readImage decodes it whole (the same colour space and alpha, the same floats):
-// for work that needs only a few rows at once, in memory that does not grow with the height.
+// An image read a band of rows at a time, decoded as readImage decodes it whole (the same colour
+// space and alpha, the same floats): for work that needs only a few rows at once, in memory that
+// does not grow with the height, except where the format cannot be read by rows (an interlaced
+// PNG, a tiled or planar TIFF, a progressive JPEG: wholeBytes()).
 // The header is checked as readImage checks it; InputError naming the file.
 class ImageRowReader {
  public:

@@ -252,6 +252,16 @@ TEST(ImageDecoders, ExrsPresentTheirChannelsInOpenImageIosOrderWithTheSameValues
   mixed.channelnames = {"R", "G", "id"};
   mixed.channelformats = {OIIO::TypeDesc::HALF, OIIO::TypeDesc::FLOAT, OIIO::TypeDesc::UINT};
   expectSameAsOiio(writeWithOiio("mixed.exr", mixed));
+  // DWA packs a flat frame far tighter than any bound a chunk check could set (11 000:1 for DWAB).
+  for (const char* compression : {"dwaa", "dwab", "piz", "b44", "pxr24"}) {
+    OIIO::ImageSpec flat = specOf(512, 256, 4, OIIO::TypeDesc::HALF);
+    flat.attribute("compression", compression);
+    const std::string path = tempPath(std::string("flat_") + compression + ".exr");
+    auto out = OIIO::ImageOutput::create(path);
+    const std::vector<float> black(512 * 256 * 4, 0.0f);
+    ASSERT_TRUE(out->open(path, flat) && out->write_image(OIIO::TypeDesc::FLOAT, black.data()) && out->close());
+    expectSameAsOiio({path, std::string("flat ") + compression});
+  }
   OIIO::ImageSpec luminance = specOf(17, 9, 2, OIIO::TypeDesc::HALF);
   luminance.channelnames = {"Y", "A"};
   expectSameAsOiio(writeWithOiio("luminance.exr", luminance));
@@ -333,37 +343,46 @@ size_t exrOffsetTable(const std::string& bytes) {
   return at + 1;
 }
 
+// A TIFF of `width` x `height` 8-bit grey pixels in tiles of `tileW` x `tileH`, its one tile a
+// single byte: only the directory matters.
+std::string tiledTiff(uint32_t width, uint32_t height, uint16_t samples, uint32_t tileW, uint32_t tileH) {
+  const std::string path = tempPath("tiles_" + std::to_string(width) + "_" + std::to_string(tileW) + ".tif");
+  TIFF* tiff = TIFFOpen(path.c_str(), "w");
+  EXPECT_TRUE(tiff);
+  TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, width), TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, height);
+  TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, samples), TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 32);
+  TIFFSetField(tiff, TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_IEEEFP);
+  TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(tiff, TIFFTAG_TILEWIDTH, tileW), TIFFSetField(tiff, TIFFTAG_TILELENGTH, tileH);
+  const unsigned char oneByte = 0;
+  TIFFWriteRawTile(tiff, 0, const_cast<unsigned char*>(&oneByte), 1);
+  TIFFClose(tiff);
+  return fileBytes(path);
+}
+
 TEST(ImageDecoders, ForgedHeadersAreRefusedBeforeTheirPixelsAreAllocated) {
+  // The fixtures first (OpenImageIO's writers load and allocate on their own), then the peak.
+  OIIO::ImageSpec progressive = specOf(16, 16, 3, OIIO::TypeDesc::UINT8);
+  progressive.attribute("jpeg:progressive", 1);
+  std::string jpeg = fileBytes(writeWithOiio("p.jpg", progressive).path);
+  OIIO::ImageSpec tiled = specOf(16, 16, 3, OIIO::TypeDesc::HALF);
+  tiled.tile_width = tiled.tile_height = 16;
+  std::string exr = fileBytes(writeWithOiio("one_tile.exr", tiled).path);
+  const std::string hugeTiles = tiledTiff(1, 1, 1, 65536, 32768), tallTiles = tiledTiff(1, 16384, 16, 1024, 16384);
   const double before = peakMiB();
   // A progressive JPEG whose frame header claims 20000 x 20000 (its start would fill 2.4 GB of
   // coefficients): refused by size before decoding starts.
-  std::string jpeg = fileBytes(writeWithOiio("p.jpg", [] {
-                                 OIIO::ImageSpec spec = specOf(16, 16, 3, OIIO::TypeDesc::UINT8);
-                                 spec.attribute("jpeg:progressive", 1);
-                                 return spec;
-                               }()).path);
   const size_t sof = jpeg.find("\xFF\xC2");
   ASSERT_NE(sof, std::string::npos);
   jpeg[sof + 5] = jpeg[sof + 7] = '\x4E', jpeg[sof + 6] = jpeg[sof + 8] = '\x20';
   expectRefused(jpeg, "image is 20000x20000 pixels; the limit is");
-  // A 1-pixel TIFF whose tiles are 65536 x 32768 (a buffer of 2 GiB per tile).
-  const std::string tiffPath = tempPath("tiles.tif");
-  TIFF* tiff = TIFFOpen(tiffPath.c_str(), "w");
-  ASSERT_TRUE(tiff);
-  TIFFSetField(tiff, TIFFTAG_IMAGEWIDTH, 1u), TIFFSetField(tiff, TIFFTAG_IMAGELENGTH, 1u);
-  TIFFSetField(tiff, TIFFTAG_SAMPLESPERPIXEL, 1), TIFFSetField(tiff, TIFFTAG_BITSPERSAMPLE, 8);
-  TIFFSetField(tiff, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_MINISBLACK);
-  TIFFSetField(tiff, TIFFTAG_TILEWIDTH, 65536u), TIFFSetField(tiff, TIFFTAG_TILELENGTH, 32768u);
-  const unsigned char oneByte = 0;
-  TIFFWriteRawTile(tiff, 0, const_cast<unsigned char*>(&oneByte), 1);
-  TIFFClose(tiff);
-  expectRefused(fileBytes(tiffPath), "TIFF tiles of 65536x32768 for a 1x1 image");
+  // A 1-pixel TIFF whose tiles are 65536 x 32768 (a buffer of 8 GiB per tile), and a 1 x 16384
+  // one of 16 float channels whose tiles, each side within bounds, are 1 GiB.
+  expectRefused(hugeTiles, "TIFF tiles of 65536x32768 for a 1x1 image");
+  expectRefused(tallTiles, "TIFF tiles of 1073741824 bytes for a 1x16384 image");
   // An OpenEXR in memory whose one tile's offset is 2^64 - 1: the memory stream once wrapped its
   // bound there and read before its buffer; OpenEXR's chunk check rebuilds the table by scanning,
   // so the read itself must stop at the end.
-  OIIO::ImageSpec tiled = specOf(16, 16, 3, OIIO::TypeDesc::HALF);
-  tiled.tile_width = tiled.tile_height = 16;
-  std::string exr = fileBytes(writeWithOiio("one_tile.exr", tiled).path);
   std::memset(exr.data() + exrOffsetTable(exr), 0xFF, 8);
   expectRefused(exr, "forged: cannot decode image (unexpected end of file)");
   // A Radiance HDR claiming 100000 x 100000 pixels in a few bytes.

@@ -122,11 +122,12 @@ class TiffDecoder final : public ImageDecoder {
     const uint16_t format = field<uint16_t>(TIFFTAG_SAMPLEFORMAT, SAMPLEFORMAT_UINT);
     const uint16_t planar = field<uint16_t>(TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
     const uint16_t photometric = field<uint16_t>(TIFFTAG_PHOTOMETRIC, samples >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
-    const bool integer = format == SAMPLEFORMAT_UINT && (bits == 8 || bits == 16 || bits == 32);
+    // VOID: "untyped", which old writers meant as unsigned.
+    const bool integer = (format == SAMPLEFORMAT_UINT || format == SAMPLEFORMAT_VOID) && (bits == 8 || bits == 16 || bits == 32);
     const bool real = format == SAMPLEFORMAT_IEEEFP && bits == 32;
     const bool asStored = (photometric == PHOTOMETRIC_MINISBLACK || photometric == PHOTOMETRIC_RGB) && (integer || real);
     separate_ = planar == PLANARCONFIG_SEPARATE && samples > 1;
-    if (format != SAMPLEFORMAT_UINT && !real)
+    if (format != SAMPLEFORMAT_UINT && format != SAMPLEFORMAT_VOID && !real)
       throw InputError(name_ + ": cannot read image (TIFF of " + std::to_string(bits) + "-bit " +
                        (format == SAMPLEFORMAT_INT ? "signed" : format == SAMPLEFORMAT_IEEEFP ? "float" : "other") +
                        " samples: unsigned integers of 8, 16 or 32 bits and 32-bit floats are read)");
@@ -219,6 +220,11 @@ class TiffDecoder final : public ImageDecoder {
                        " for a " + std::to_string(width) + "x" + std::to_string(height) + " image)");
     const tmsize_t tileBytes = TIFFTileSize(tiff);
     if (tileBytes != static_cast<tmsize_t>(size_t{tileW} * tileH * planePixelBytes)) fail("cannot decode image");
+    // The sides alone do not bound the area: a 1 x 16384 image may claim 1024 x 16384 tiles.
+    if (tileBytes > std::max<int64_t>(wholeBytes(), kMaxTiffAllocation))
+      throw InputError(name_ + ": cannot decode image (TIFF tiles of " + std::to_string(tileBytes) + " bytes for a " +
+                       std::to_string(width) + "x" + std::to_string(height) + " image)");
+    requireMemory(tileBytes, name_ + ": a TIFF tile");
     std::vector<unsigned char> tile(static_cast<size_t>(tileBytes));
     for (size_t plane = 0; plane < planes; ++plane)
       for (uint32_t y = 0; y < height; y += tileH)
