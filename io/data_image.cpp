@@ -40,20 +40,6 @@ std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, i
 
 namespace {
 
-// A data image's decoder, from a file or from bytes in memory (which must outlive it).
-std::unique_ptr<ImageDecoder> openDataImage(const std::string& path) { return openImageDecoder({path, {}, showPath(path)}); }
-
-std::unique_ptr<ImageDecoder> openDataImage(std::string_view bytes, const std::string& name) {
-  return openImageDecoder({"", bytes, name});
-}
-
-std::vector<float> allRows(ImageDecoder& decoder) {
-  const ImageHeader& header = decoder.header();
-  std::vector<float> values(static_cast<size_t>(header.width * header.height) * header.channels);
-  decoder.readRows(0, static_cast<int>(header.height), values.data());
-  return values;
-}
-
 DataImage readExrChannels(ImageDecoder& in, const std::vector<std::string>& names) {
   if (in.format() != "openexr") throw InputError(in.name() + ": not an OpenEXR image");
   const ImageHeader& header = in.header();
@@ -63,7 +49,7 @@ DataImage readExrChannels(ImageDecoder& in, const std::vector<std::string>& name
     if (at == header.channelNames.end()) throw InputError(in.name() + ": no channel " + quote(name));
     index.push_back(static_cast<size_t>(at - header.channelNames.begin()));
   }
-  const std::vector<float> all = allRows(in);
+  const std::vector<float> all = in.readAllRows();
   const size_t channels = names.size(), pixels = static_cast<size_t>(header.width) * header.height;
   DataImage image{static_cast<int>(header.width), static_cast<int>(header.height), static_cast<int>(channels),
                   std::vector<float>(pixels * channels)};
@@ -85,27 +71,27 @@ std::vector<uint16_t> readUint16(ImageDecoder& in, int& width, int& height) {
 }  // namespace
 
 DataImage readDataExr(const std::string& path) {
-  const auto in = openDataImage(path);
+  const auto in = openImageDecoder(ImageSource::file(path));
   const ImageHeader& header = in->header();
   if (in->format() != "openexr" || (header.channels != 1 && header.channels != 3))
     throw InputError(in->name() + ": not a 1- or 3-channel OpenEXR data image");
-  return DataImage{static_cast<int>(header.width), static_cast<int>(header.height), header.channels, allRows(*in)};
+  return DataImage{static_cast<int>(header.width), static_cast<int>(header.height), header.channels, in->readAllRows()};
 }
 
 DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names) {
-  return readExrChannels(*openDataImage(path), names);
+  return readExrChannels(*openImageDecoder(ImageSource::file(path)), names);
 }
 
 DataImage readDataExrChannelsFromMemory(std::string_view bytes, const std::vector<std::string>& names, const std::string& name) {
-  return readExrChannels(*openDataImage(bytes, name), names);
+  return readExrChannels(*openImageDecoder(ImageSource::memory(bytes, name)), names);
 }
 
 std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height) {
-  return readUint16(*openDataImage(path), width, height);
+  return readUint16(*openImageDecoder(ImageSource::file(path)), width, height);
 }
 
 std::vector<uint16_t> readUint16PngFromMemory(std::string_view bytes, int& width, int& height, const std::string& name) {
-  return readUint16(*openDataImage(bytes, name), width, height);
+  return readUint16(*openImageDecoder(ImageSource::memory(bytes, name)), width, height);
 }
 
 }  // namespace omnicam

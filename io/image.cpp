@@ -108,10 +108,10 @@ int64_t decodeBytes(const ImageHeader& header) {
   return static_cast<int64_t>(header.width) * header.height * (4 * header.channels + 16);
 }
 
-std::unique_ptr<ImageDecoder> openImageFile(const std::string& path) { return openImageDecoder({path, {}, showPath(path)}); }
+std::unique_ptr<ImageDecoder> openImageFile(const std::string& path) { return openImageDecoder(ImageSource::file(path)); }
 
 std::unique_ptr<ImageDecoder> openImageMemory(const unsigned char* data, size_t size, const std::string& name) {
-  return openImageDecoder({"", std::string_view(reinterpret_cast<const char*>(data), size), name});
+  return openImageDecoder(ImageSource::memory(std::string_view(reinterpret_cast<const char*>(data), size), name));
 }
 
 // How a file's decoded channels become linear premultiplied RGBA.
@@ -149,8 +149,7 @@ ImageRGBA decode(ImageDecoder& decoder) {
   const ImageHeader& header = decoder.header();
   requireMemory(decodeBytes(header), decoder.name() + ": decoding " + std::to_string(header.width) + "x" +
                                          std::to_string(header.height) + " pixels");
-  std::vector<float> raw(static_cast<size_t>(header.width * header.height) * header.channels);
-  decoder.readRows(0, static_cast<int>(header.height), raw.data());
+  const std::vector<float> raw = decoder.readAllRows();
   ImageRGBA image(static_cast<int>(header.width), static_cast<int>(header.height));
   PixelDecoding(header).apply(raw.data(), static_cast<size_t>(header.width) * header.height, image.pixels.data());
   return image;
@@ -234,7 +233,7 @@ std::vector<unsigned char> encodeImage(const std::string& path, const ImageRGBA&
 }
 
 std::vector<unsigned char> readRgb8Codes(std::string_view bytes, const std::string& name, int& width, int& height) {
-  const auto decoder = openImageDecoder({"", bytes, name});
+  const auto decoder = openImageDecoder(ImageSource::memory(bytes, name));
   const ImageHeader& header = decoder->header();
   if (header.type != SampleType::Uint8) throw InputError(name + ": not an 8-bit image (its codes would be rounded)");
   width = static_cast<int>(header.width), height = static_cast<int>(header.height);
@@ -249,7 +248,7 @@ std::vector<unsigned char> readRgb8Codes(std::string_view bytes, const std::stri
 
 std::vector<unsigned char> jpegCompressed(const std::vector<unsigned char>& rgb, int width, int height, int quality) {
   const std::vector<unsigned char> jpeg = encodeJpeg("frame.jpg", width, height, 3, rgb.data(), quality);
-  const auto decoder = openImageDecoder({"", std::string_view(reinterpret_cast<const char*>(jpeg.data()), jpeg.size()), "frame.jpg"});
+  const auto decoder = openImageDecoder(ImageSource::memory(std::string_view(reinterpret_cast<const char*>(jpeg.data()), jpeg.size()), "frame.jpg"));
   std::vector<unsigned char> codes(rgb.size());
   decoder->readNativeRows(0, height, codes.data());
   return codes;

@@ -30,6 +30,14 @@ void scaleToFloats(const T* codes, size_t n, float* values) {
 
 }  // namespace
 
+ImageSource ImageSource::file(const std::string& path) { return {path, {}, showPath(path)}; }
+
+std::vector<float> ImageDecoder::readAllRows() {
+  std::vector<float> values(static_cast<size_t>(header_.width * header_.height) * static_cast<size_t>(header_.channels));
+  readRows(0, static_cast<int>(header_.height), values.data());
+  return values;
+}
+
 void ImageDecoder::readRows(int first, int count, float* values) {
   const size_t n = static_cast<size_t>(header_.width) * static_cast<size_t>(count) * static_cast<size_t>(header_.channels);
   if (header_.type == SampleType::Float) {

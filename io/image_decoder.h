@@ -20,6 +20,8 @@ struct ImageSource {
   std::string_view bytes;
   std::string name;
   bool inMemory() const { return path.empty(); }
+  static ImageSource file(const std::string& path);  // named by showPath(path)
+  static ImageSource memory(std::string_view bytes, const std::string& name) { return {"", bytes, name}; }
 };
 
 enum class SampleType { Uint8, Uint16, Uint32, Float };
@@ -51,6 +53,8 @@ class ImageDecoder {
   virtual void readNativeRows(int first, int count, void* samples) = 0;
   // The same as floats: integer samples scaled to [0, 1] by v · (1 / max), as OpenImageIO does.
   void readRows(int first, int count, float* values);
+  // Every row, as readRows gives them.
+  std::vector<float> readAllRows();
   // Memory the decoder holds beyond the rows asked for, from its first read on: the whole image
   // where the format cannot be read by rows (an interlaced PNG, tiled or planar TIFF, a
   // progressive JPEG's coefficients). It asks the memory budget for it before allocating.
