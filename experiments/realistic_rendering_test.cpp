@@ -10,6 +10,7 @@
 #include "hall_arena.h"
 #include "render_noise.h"
 #include "scene_loader.h"
+#include "scratch_folder.h"
 
 namespace omnicam {
 namespace {
@@ -34,8 +35,8 @@ constexpr double kReferenceBoundDb = 31.0;
 TEST(RealisticNoiseGuard, TwoSeedsOfARealisticFrameAgreeAndTheOldSettingsDoNot) {
   const std::string lab = "/usr/share/blender/datafiles/studiolights/world/interior.exr";
   ASSERT_TRUE(fs::exists(lab)) << lab << " is missing: Debian's blender-data ships it (make deps)";
-  const fs::path folder = fs::path(::testing::TempDir()) / "realistic_noise_guard";
-  fs::remove_all(folder);
+  const testing::ScratchFolder scratch("realistic_noise_guard");
+  const fs::path& folder = scratch.path();
   HallOptions options;
   options.fieldScene = std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json";
   options.photos = {lab};

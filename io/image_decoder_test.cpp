@@ -29,11 +29,16 @@
 #include "image.h"
 #include "jpeg_codec.h"
 #include "png_codec.h"
+#include "scratch_folder.h"
 
 namespace omnicam::image_io {
 namespace {
 
-std::string tempPath(const std::string& name) { return ::testing::TempDir() + "/omnicam_decoder_" + name; }
+// The fixtures live in this process's own folder, removed when it ends.
+std::string tempPath(const std::string& name) {
+  static const testing::ScratchFolder folder("omnicam_decoder");
+  return folder.file(name);
+}
 
 std::string fileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -21,6 +21,7 @@
 #include "povray_renderer.h"
 #include "rings.h"
 #include "scene_loader.h"
+#include "scratch_folder.h"
 
 namespace omnicam {
 namespace {
@@ -203,9 +204,8 @@ void writeExr(const std::string& path, const std::vector<std::string>& channels,
 }
 
 TEST(Blender, TheDirectPassFramesAreReadByChannelName) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "direct_pass_read";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::ScratchFolder scratch("direct_pass_read");
+  const fs::path& dir = scratch.path();
   const std::string full = (dir / "full.exr").string(), direct = (dir / "direct.exr").string();
   const std::vector<std::string> passes = {"Hall.Combined.R", "Hall.Combined.G", "Hall.Combined.B", "Hall.Combined.A",
                                            "Hall.Denoising Albedo.R", "Hall.Denoising Albedo.G", "Hall.Denoising Albedo.B",

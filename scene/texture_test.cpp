@@ -6,6 +6,7 @@
 
 #include "errors.h"
 #include "image.h"
+#include "scratch_folder.h"
 
 #include <chrono>
 #include <ctime>
@@ -16,6 +17,12 @@
 
 namespace omnicam {
 namespace {
+
+// The files these tests write, in this process's own folder.
+std::string scratchFile(const std::string& name) {
+  static const testing::ScratchFolder folder("omnicam_texture");
+  return folder.file(name);
+}
 
 TEST(Texture, BilinearWithTexelCentresAtHalf) {
   // 2×1 texture: left texel 0, right texel 1. Texel centres sit at u = 0.25 and 0.75.
@@ -79,7 +86,7 @@ TEST(Srgb, PngWriterEncodesExactlyLikeTheFormula) {
     float* p = img.at(i, 0);
     p[0] = i / 1023.0f, p[1] = (i / 1023.0f) * (i / 1023.0f), p[2] = 0.5f * i / 1023.0f, p[3] = 1.0f;
   }
-  const std::string path = ::testing::TempDir() + "/srgb_exact.png";
+  const std::string path = scratchFile("srgb_exact.png");
   writeImageAtomic(path, img);
   const ImageRGBA back = readImage(path);
   for (int i = 0; i < 1024; ++i)
@@ -91,7 +98,7 @@ TEST(Srgb, PngWriterEncodesExactlyLikeTheFormula) {
 
 // Writes a 2×1 RGB image of `format` with the code value `code` (of 2^bits − 1) in every channel.
 std::string writeCoded(const std::string& name, OIIO::TypeDesc format, double fraction, const char* colourSpace) {
-  const std::string path = ::testing::TempDir() + "/" + name;
+  const std::string path = scratchFile(name);
   auto out = OIIO::ImageOutput::create(path);
   OIIO::ImageSpec spec(2, 1, 3, format);
   if (colourSpace) spec.attribute("oiio:ColorSpace", colourSpace);
@@ -117,7 +124,7 @@ TEST(ImageColourSpace, SixteenBitImagesAreDecodedByColourSpaceNotBitDepth) {
     const ImageRGBA image = readImage(writeCoded(c.name, c.format, 0.5, c.colourSpace));
     // 8-bit codes round 127.5 to 128: allow half a code step there.
     EXPECT_NEAR(image.at(1, 0)[1], c.expected, 2.5e-3) << c.name;
-    const auto texture = Texture::load(::testing::TempDir() + "/" + c.name);
+    const auto texture = Texture::load(scratchFile(c.name));
     EXPECT_NEAR(texture->sample(0.5, 0.5).y(), c.expected, 2.5e-3) << c.name;
   }
 }
