@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -393,6 +394,61 @@ TEST(ImageDecoders, ForgedHeadersAreRefusedBeforeTheirPixelsAreAllocated) {
   // A Radiance HDR claiming 100000 x 100000 pixels in a few bytes.
   expectRefused("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n\x02\x02", "image is 100000x100000 pixels");
   EXPECT_LT(peakMiB() - before, 64.0) << "MiB allocated while refusing forged headers";
+}
+
+// A legal progressive grey JPEG of (lowBit + 1) × 64 scans: the DC and each of the 63 AC
+// coefficients on its own, first to bit lowBit, then refined one bit a scan down to bit 0.
+std::string jpegOfManyScans(int lowBit) {
+  std::vector<jpeg_scan_info> script;
+  for (int coefficient = 0; coefficient < 64; ++coefficient) {
+    script.push_back({1, {0, 0, 0, 0}, coefficient, coefficient, 0, lowBit});
+    for (int bit = lowBit; bit > 0; --bit) script.push_back({1, {0, 0, 0, 0}, coefficient, coefficient, bit, bit - 1});
+  }
+  jpeg_compress_struct compress{};
+  jpeg_error_mgr errors{};
+  compress.err = jpeg_std_error(&errors);
+  jpeg_create_compress(&compress);
+  unsigned char* buffer = nullptr;
+  unsigned long size = 0;
+  jpeg_mem_dest(&compress, &buffer, &size);
+  const int side = 16;
+  compress.image_width = compress.image_height = side;
+  compress.input_components = 1;
+  compress.in_color_space = JCS_GRAYSCALE;
+  jpeg_set_defaults(&compress);
+  compress.scan_info = script.data();
+  compress.num_scans = static_cast<int>(script.size());
+  jpeg_start_compress(&compress, TRUE);
+  std::vector<unsigned char> row(side);
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) row[x] = static_cast<unsigned char>((x * 37 + y * 11) % 256);
+    JSAMPROW rows[] = {row.data()};
+    jpeg_write_scanlines(&compress, rows, 1);
+  }
+  jpeg_finish_compress(&compress);
+  std::string bytes(reinterpret_cast<const char*>(buffer), size);
+  jpeg_destroy_compress(&compress);
+  std::free(buffer);
+  return bytes;
+}
+
+TEST(ImageDecoders, ProgressiveJpegsOfMoreThan500ScansAreRefusedAndFewerRead) {
+  // 448 scans: read as OpenCV reads them. 704 scans, as legal (OpenCV reads them): refused, since
+  // each scan of a progressive file costs a pass over the whole image.
+  for (const int lowBit : {6, 10}) {
+    const std::string bytes = jpegOfManyScans(lowBit);
+    SCOPED_TRACE(std::to_string((lowBit + 1) * 64) + " scans");
+    const cv::Mat opencv = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), cv::IMREAD_GRAYSCALE);
+    ASSERT_EQ(opencv.rows, 16) << "not a legal JPEG";
+    if (lowBit == 10) {
+      expectRefused(bytes, "forged: cannot decode image (JPEG read error: more than 500 scans)");
+      continue;
+    }
+    const auto decoder = openImageDecoder({"", bytes, "scans"});
+    std::vector<float> values(256);
+    decoder->readRows(0, 16, values.data());
+    for (int i = 0; i < 256; ++i) ASSERT_EQ(std::lround(values[static_cast<size_t>(i)] * 255.0f), opencv.data[i]) << i;
+  }
 }
 
 TEST(ImageDecoders, RunLengthHdrScanlinesThatEndEarlyOrDoNotAdvanceAreErrors) {
