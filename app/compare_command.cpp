@@ -106,6 +106,8 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   if (!args.diff.empty()) {
     if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + showPath(args.diff) + ": must end in .png or .exr");
     checkOutputFile(args.diff, "--diff");
+    checkOutputIsNotInput(args.diff, "--diff", args.a, "the first image");
+    checkOutputIsNotInput(args.diff, "--diff", args.b, "the second image");
   }
   CompareOptions options;
   options.tolerance = args.tol;

@@ -145,6 +145,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   settings.rig = scene.rig;
   if (a.imageSize) settings.rig = settings.rig.resized(a.imageSize, "--size");
   checkRenderSettings(settings, kSettingFlags);
+  checkMotionIsSeen(CameraPlacement(RobotPose{}, velocity), settings.rig, "--velocity");
   const FrameViews views(a.views, settings.rig);
   if (a.path.empty()) {
     checkImageOutput(a.out, "-o");

@@ -26,7 +26,7 @@ namespace omnicam::cli {
 namespace {
 
 struct StudyArgs {
-  std::string out = "docs/thesis-reproduction.md";
+  std::string out;
   int spp = 16;
   double timingSeconds = 1.0;
 };
@@ -193,7 +193,8 @@ void runStudy(const StudyArgs& a) {
 void addStudyCommand(CLI::App& app) {
   auto args = std::make_shared<StudyArgs>();
   CLI::App* cmd = app.add_subcommand("study", "Measure the thesis' cube-map/mirror-mesh method (writes Markdown + figures)");
-  cmd->add_option("-o,--output", args->out, "Markdown file (figures go to a figures/ folder beside it)");
+  // Required: a default would write docs/ into whatever folder the user stands in.
+  cmd->add_option("-o,--output", args->out, "Markdown file (figures go to a figures/ folder beside it)")->required();
   cmd->add_option("--spp", args->spp, "Samples per pixel for the quality columns (default 16)")->check(integerIn(1, INT32_MAX));
   cmd->add_option("--timing-seconds", args->timingSeconds, "Seconds timed per mode (default 1)")->check(numberIn(0, 3600, true));
   cmd->callback([args] { runStudy(*args); });

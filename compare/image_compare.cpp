@@ -50,6 +50,8 @@ void RowComparison::addRow(const float* a, const float* b) {
     if (worst > r_.maxAbs) r_.maxAbs = worst, r_.maxI = i, r_.maxJ = j;
     over_ += worst > options_.tolerance;
     ++r_.pixels;
+    const double la = luma(pa), lb = luma(pb);
+    whole_.a += la, whole_.b += lb, whole_.aa += la * la, whole_.bb += lb * lb, whole_.ab += la * lb;
   }
   const size_t row = static_cast<size_t>(width_) * 4, slot = static_cast<size_t>(j % kSsimWindow) * row;
   std::copy(a, a + row, keptA_.begin() + static_cast<std::ptrdiff_t>(slot));
@@ -58,13 +60,20 @@ void RowComparison::addRow(const float* a, const float* b) {
   if (top >= 0 && top % kSsimStride == 0) addSsimWindows(top);
 }
 
-// Mean SSIM (Wang et al. 2004) of the luminance, L = 1: the windows whose top row is `top`, left
-// to right; a window with a pixel outside the disc (discOnly) is left out.
-void RowComparison::addSsimWindows(int top) {
+// SSIM (Wang et al. 2004) of one window's luminance sums over n pixels, L = 1.
+double RowComparison::LumaSums::ssim(double n) const {
   const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+  const double ma = a / n, mb = b / n;
+  const double va = aa / n - ma * ma, vb = bb / n - mb * mb, cov = ab / n - ma * mb;
+  return ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+}
+
+// Mean SSIM of the luminance: the windows whose top row is `top`, left to right; a window with a
+// pixel outside the disc (discOnly) is left out.
+void RowComparison::addSsimWindows(int top) {
   const size_t row = static_cast<size_t>(width_) * 4;
   for (int x = 0; x + kSsimWindow <= width_; x += kSsimStride) {
-    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    LumaSums sums;
     bool all = true;
     for (int j = top; j < top + kSsimWindow && all; ++j) {
       const size_t slot = static_cast<size_t>(j % kSsimWindow) * row;
@@ -75,13 +84,11 @@ void RowComparison::addSsimWindows(int top) {
           break;
         }
         const double va = luma(pa), vb = luma(pb);
-        sa += va, sb += vb, saa += va * va, sbb += vb * vb, sab += va * vb;
+        sums.a += va, sums.b += vb, sums.aa += va * va, sums.bb += vb * vb, sums.ab += va * vb;
       }
     }
     if (!all) continue;
-    const double n = kSsimWindow * kSsimWindow, ma = sa / n, mb = sb / n;
-    const double va = saa / n - ma * ma, vb = sbb / n - mb * mb, cov = sab / n - ma * mb;
-    ssimSum_ += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+    ssimSum_ += sums.ssim(kSsimWindow * kSsimWindow);
     ++windows_;
   }
 }
@@ -94,7 +101,9 @@ CompareResult RowComparison::result() const {
   r.rmse = std::sqrt(sumSq_ / (3.0 * r.pixels));
   r.psnrDb = r.rmse > 0.0 ? 20.0 * std::log10(1.0 / r.rmse) : INFINITY;
   r.fracOverTol = static_cast<double>(over_) / r.pixels;
-  r.ssim = windows_ ? ssimSum_ / windows_ : 1.0;
+  // Where no 8×8 window fits (an image, or a disc, smaller than that), the compared pixels are
+  // one window.
+  r.ssim = windows_ ? ssimSum_ / windows_ : whole_.ssim(static_cast<double>(r.pixels));
   return r;
 }
 

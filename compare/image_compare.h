@@ -1,5 +1,6 @@
 #pragma once
-// Pixel-by-pixel comparison of two renders (OpenImageIO idiff style): RMSE, PSNR, SSIM,
+// Pixel-by-pixel comparison of two renders (OpenImageIO idiff style): RMSE, PSNR, SSIM (mean
+// over 8×8 windows a stride of 4 apart; the compared pixels as one window if none fits),
 // max abs error and where, fraction of pixels over a tolerance; optionally only inside the
 // mirror disc. Values are linear RGB; alpha is not compared.
 #include <nlohmann/json.hpp>
@@ -37,6 +38,10 @@ class RowComparison {
  private:
   void addRow(const float* a, const float* b);
   void addSsimWindows(int top);
+  struct LumaSums {
+    double a = 0, b = 0, aa = 0, bb = 0, ab = 0;
+    double ssim(double n) const;
+  };
   int width_, height_, rows_ = 0;
   CompareOptions options_;
   CompareResult r_;
@@ -44,6 +49,7 @@ class RowComparison {
   long over_ = 0;
   int windows_ = 0;
   std::vector<float> keptA_, keptB_;  // the last 8 rows, row y at (y mod 8)
+  LumaSums whole_;                     // of every compared pixel: SSIM when no window fits
 };
 
 // Throws InputError if the sizes differ or no pixel is compared.

@@ -62,6 +62,25 @@ TEST(ImageCompare, IdenticalImagesAndKnownOffsets) {
   EXPECT_LT(off.ssim, 1.0);
 }
 
+TEST(ImageCompare, ImagesTooSmallForAWindowAreOneWindow) {
+  // 5×5: no 8×8 window fits, so SSIM is Wang et al.'s formula over all 25 pixels' luminance.
+  // Black against a ramp: means 0 and m, variances 0 and v, covariance 0, so
+  // SSIM = c1·c2 / ((m² + c1)(v + c2)), which once came out as 1.
+  ImageRGBA black(5, 5), ramp(5, 5);
+  double sum = 0, sumSq = 0;
+  for (int p = 0; p < 25; ++p) {
+    black.pixels[4 * p + 3] = ramp.pixels[4 * p + 3] = 1.0f;
+    const float v = static_cast<float>(p) / 24.0f;
+    for (int c = 0; c < 3; ++c) ramp.pixels[4 * p + c] = v;
+    const double luminance = (0.2126 + 0.7152 + 0.0722) * v;
+    sum += luminance, sumSq += luminance * luminance;
+  }
+  const double mean = sum / 25, variance = sumSq / 25 - mean * mean, c1 = 1e-4, c2 = 9e-4;
+  EXPECT_NEAR(compareImages(black, ramp).ssim, c1 * c2 / ((mean * mean + c1) * (variance + c2)), 1e-12);
+  EXPECT_NEAR(compareImages(ramp, ramp).ssim, 1.0, 1e-12);
+  EXPECT_NEAR(compareImages(ImageRGBA(1, 1), ImageRGBA(1, 1)).ssim, 1.0, 1e-12);
+}
+
 TEST(ImageCompare, DiscOnlySkipsPixelsBeyondTheRim) {
   ImageRGBA a = noiseImage(3, 1.0f), b = a;
   a.at(0, 0)[3] = 0.5f;  // a rim pixel in one image
@@ -120,7 +139,21 @@ CompareResult wholeImageReference(const ImageRGBA& a, const ImageRGBA& b, const 
       sum += ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
       ++windows;
     }
-  r.ssim = windows ? sum / windows : 1.0;
+  if (windows) {
+    r.ssim = sum / windows;
+    return r;
+  }
+  // No window fits: the compared pixels as one.
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+  for (int j = 0; j < a.height; ++j)
+    for (int i = 0; i < a.width; ++i)
+      if (included(i, j)) {
+        const double va = luma(a.at(i, j)), vb = luma(b.at(i, j));
+        sa += va, sb += vb, saa += va * va, sbb += vb * vb, sab += va * vb;
+      }
+  const double n = static_cast<double>(r.pixels), ma = sa / n, mb = sb / n;
+  const double va = saa / n - ma * ma, vb = sbb / n - mb * mb, cov = sab / n - ma * mb;
+  r.ssim = ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
   return r;
 }
 

@@ -149,6 +149,13 @@ void checkOutputFolder(const std::string& path, const std::string& flag) {
   }
 }
 
+void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,
+                           const std::string& inputName) {
+  std::error_code ec;
+  if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
+    throw InputError(flag + ": " + showPath(path) + " is " + inputName + "; writing it would destroy what is read: choose another name");
+}
+
 std::string atomicTemporaryName(const std::string& name) {
   const fs::path leaf(name);
   return "." + leaf.stem().string() + ".tmp-" + randomSuffix() + leaf.extension().string();

@@ -35,6 +35,10 @@ inline void writeTextAtomically(const std::string& path, const std::string& text
 void checkOutputFile(const std::string& path, const std::string& flag);
 // The same for an output folder: a folder already, or a name that can be created.
 void checkOutputFolder(const std::string& path, const std::string& flag);
+// InputError("<flag>: <path> is <inputName>; ...") if `path` names the same existing file as
+// `input`, by any spelling or link: writing it would destroy what is being read.
+void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,
+                           const std::string& inputName);
 
 // A fresh unpredictable temporary name for the file `name`: ".<stem>.tmp-XXXXXXXXXX<ext>".
 std::string atomicTemporaryName(const std::string& name);

@@ -1,5 +1,7 @@
 #include "placement.h"
 
+#include "errors.h"
+
 #include <cmath>
 
 namespace omnicam {
@@ -77,6 +79,12 @@ CameraPlacement CameraPlacement::frozenAt(double seconds) const {
 
 bool moving(const CameraPlacement& placement, const RigSpec& rig) {
   return !placement.still() && !rig.shutter.instantaneous();
+}
+
+void checkMotionIsSeen(const CameraPlacement& placement, const RigSpec& rig, const std::string& what) {
+  if (!placement.still() && rig.shutter.instantaneous())
+    throw InputError(what + ": the rig's shutter is an instant (no rig.shutter with an exposure_s or a rolling readout), so "
+                            "a moving robot renders as a still one: give the rig a shutter (docs/motion.md) or leave " + what + " out");
 }
 
 }  // namespace omnicam

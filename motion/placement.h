@@ -78,5 +78,8 @@ class CameraPlacement {
 // True when a frame's samples see the camera in more than one place: the robot moves while a
 // shutter that is not an instant is open.
 bool moving(const CameraPlacement& placement, const RigSpec& rig);
+// InputError("<what>: ...") if the robot moves but the rig's shutter is an instant: the frame
+// would be the still one, and a velocity that changes nothing is refused, not ignored.
+void checkMotionIsSeen(const CameraPlacement& placement, const RigSpec& rig, const std::string& what);
 
 }  // namespace omnicam

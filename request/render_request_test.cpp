@@ -49,6 +49,8 @@ TEST(RenderRequest, EveryFrontEndStatesARuleInTheSameWords) {
       {{{F::Bounces, int64_t{3}}}, "--bounces", "bounces", "only with SHADING path"},
       {{{F::Shading, "path"}, {F::Bounces, int64_t{65}}}, "--bounces", "bounces", "must be in [0, 64] (got 65)"},
       {{{F::Shading, "path"}, {F::Seed, int64_t{-1}}}, "--seed", "seed", "must be in [0, 2^53] (got -1)"},
+      {{{F::Shading, "lit"}, {F::Seed, int64_t{5}}}, "--seed", "seed", "only with SHADING path or ENGINE blender (nothing else is random)"},
+      {{{F::Engine, "povray"}, {F::Seed, int64_t{5}}}, "--seed", "seed", "only with SHADING path or ENGINE blender (nothing else is random)"},
       {{{F::Denoise, true}}, "--denoise", "denoise", "only for path-traced frames: SHADING path, or the blender engine lit"},
       {{{F::Timeout, 5.0}}, "--timeout", "timeout_s", "only with ENGINE povray or blender"},
       {{{F::Engine, "povray"}, {F::Timeout, 0.0}}, "--timeout", "timeout_s", "must be in (0, 604800] s (got 0)"},

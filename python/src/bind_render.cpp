@@ -91,6 +91,7 @@ class PyRenderer {
     const CameraPlacement placement(pose.is_none() ? scene_->startPose : poseFrom(pose, "pose"),
                                     velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
     checkPlacement(placement);
+    checkMotionIsSeen(placement, settings.rig, "velocity");
     const std::vector<OutputKind> kinds = imageOutputs(outputs);
     bool aovs = false;
     for (OutputKind kind : kinds) aovs = aovs || needsAovs(kind);

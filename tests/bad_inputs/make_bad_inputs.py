@@ -315,6 +315,7 @@ def main():
     dataset_spec("timestamps_backwards", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [1, 0.5]})
     dataset_spec("speed_no_turn_rate", poses={"path": "p", "speed_m_s": 1})
     dataset_spec("euroc_exr", euroc=True, outputs={"rgb": "exr"})
+    dataset_spec("motion_no_shutter", motion={"velocity": [1, 0, 90]})
     # Calibration sequences (docs/calibration.md): the target, the still robot, the bag's images.
     still = {"list": [[0, 0, 0]]}
     board_poses = {"random": {"count": 5, "seed": 1}}
