@@ -1,11 +1,14 @@
 #include "cli_main.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
 #include <new>
 #include <string>
+#include <vector>
 
+#include "closest_name.h"
 #include "cpu_independent_math.h"
 #include "errors.h"
 #include "interrupts.h"
@@ -21,6 +24,42 @@ namespace {
 int reportError(const std::string& message, int exitCode) {
   std::fprintf(stderr, "omnicam: %s\n", oneLine(message).c_str());
   return exitCode;
+}
+
+// The names a user may type for the options of `command`: each long and short name.
+std::vector<std::string> optionNames(const CLI::App& command) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : option->get_snames()) names.push_back("-" + name);
+  }
+  return names;
+}
+
+// The command the words chose: the deepest subcommand parsed.
+const CLI::App* chosenCommand(const CLI::App& app) {
+  const CLI::App* command = &app;
+  while (!command->get_subcommands().empty()) command = command->get_subcommands().front();
+  return command;
+}
+
+// CLI11's message, or a clearer one where the words show the mistake: an unknown command, or an
+// unknown option (reported before a missing argument it may have caused), with the name it
+// most likely meant.
+std::string parseErrorMessage(const CLI::App& app, int argc, char** argv, const CLI::ParseError& error) {
+  std::vector<std::string> commands;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
+  if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+    return "unknown command " + quote(argv[1]) + didYouMean(argv[1], commands) + "; omnicam --help lists them";
+  }
+  const CLI::App* command = chosenCommand(app);
+  for (const std::string& word : command->remaining()) {
+    if (word.size() < 2 || word[0] != '-') continue;
+    const std::string name = word.substr(0, word.find('='));
+    return command->get_name() + ": unknown option " + quote(name) + didYouMean(name, optionNames(*command)) + "; " +
+           "omnicam " + command->get_name() + " --help lists them";
+  }
+  return error.what();
 }
 
 }  // namespace
@@ -52,7 +91,7 @@ int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
     reportError(e.what(), 0);
     dieBySignal(e.signal());
   } catch (const CLI::ParseError& e) {
-    return reportError(e.what(), 2);
+    return reportError(parseErrorMessage(app, argc, argv, e), 2);
   } catch (const InputError& e) {
     return reportError(e.what(), 2);
   } catch (const ExternalError& e) {

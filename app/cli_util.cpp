@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -16,13 +17,13 @@
 
 namespace omnicam::cli {
 
-Vec3 parseTriple(const std::string& text, const std::string& flag) {
+Vec3 parseTriple(const std::string& text, const std::string& flag, const std::string& form) {
+  if (std::count(text.begin(), text.end(), ',') != 2)
+    throw InputError(flag + ": expected three comma-separated numbers " + form + " (got " + quote(text) + ")");
   Vec3 out;
   size_t start = 0;
   for (int k = 0; k < 3; ++k) {
     const size_t end = k < 2 ? text.find(',', start) : text.size();
-    if (end == std::string::npos)
-      throw InputError(flag + ": expected three comma-separated numbers X,Y,Z (got " + quote(text) + ")");
     const char* first = text.data() + start;
     const char* last = text.data() + end;
     double v = 0.0;
@@ -36,7 +37,7 @@ Vec3 parseTriple(const std::string& text, const std::string& flag) {
 }
 
 RobotPose parsePose(const std::string& text, const std::string& flag) {
-  const Vec3 p = parseTriple(text, flag);
+  const Vec3 p = parseTriple(text, flag, "X,Y,YAW");
   const RobotPose pose{p.x(), p.y(), p.z()};
   checkPose(pose, flag);
   return pose;
@@ -61,23 +62,44 @@ std::string rangeText(const std::string& lo, const std::string& hi, bool openLow
 
 }  // namespace
 
+namespace {
+
+// A plain integer (plainInteger) in [lo, hi].
+bool integerTextIn(const std::string& text, int64_t lo, uint64_t hi) {
+  if (!plainInteger(text)) return false;
+  if (text[0] == '-') {
+    int64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    return ec == std::errc() && end == text.data() + text.size() && v >= lo;
+  }
+  uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  return ec == std::errc() && end == text.data() + text.size() && v <= hi && (lo <= 0 || v >= static_cast<uint64_t>(lo));
+}
+
+}  // namespace
+
 CLI::Validator integerIn(int64_t lo, uint64_t hi) {
   const std::string range = rangeText(std::to_string(lo), std::to_string(hi), false);
   return CLI::Validator(
       [lo, hi, range](std::string& text) -> std::string {
-        bool ok = plainInteger(text);
-        if (ok && text[0] == '-') {
-          int64_t v = 0;
-          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-          ok = ec == std::errc() && end == text.data() + text.size() && v >= lo;
-        } else if (ok) {
-          uint64_t v = 0;
-          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-          ok = ec == std::errc() && end == text.data() + text.size() && v <= hi && (lo <= 0 || v >= static_cast<uint64_t>(lo));
-        }
-        return ok ? std::string() : "must be an integer in " + range + " (got " + quote(text) + ")";
+        return integerTextIn(text, lo, hi) ? std::string() : "must be an integer in " + range + " (got " + quote(text) + ")";
       },
       "INT in " + range);
+}
+
+CLI::Validator integerRuled(const std::string& rule, int64_t lo, int64_t hi) {
+  return CLI::Validator(
+      [rule, lo, hi](std::string& text) -> std::string {
+        return integerTextIn(text, lo, static_cast<uint64_t>(hi)) ? std::string()
+                                                                   : "must be an integer, " + rule + " (got " + quote(text) + ")";
+      },
+      "");
+}
+
+void addSppOption(CLI::App& cmd, int& spp, const std::string& help) {
+  const std::string& rule = requestFieldRow(RequestField::Spp).range;
+  cmd.add_option("--spp", spp, help)->type_name("INT (" + rule + ")")->check(integerRuled(rule, INT32_MIN, INT32_MAX));
 }
 
 CLI::Validator numberIn(double lo, double hi, bool openLow) {
@@ -111,7 +133,8 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
       case RequestFieldType::Switch: cmd.add_flag(row.cli, flags.on[row.field], help); break;
       case RequestFieldType::Text: cmd.add_option(row.cli, flags.text[row.field], help); break;
       case RequestFieldType::Integer:
-        cmd.add_option(row.cli, flags.text[row.field], help)->type_name("INT")->check(integerIn(0, row.cliIntegerMax));
+        // Any integer passes here: the request states the rule, in the words a spec and Python get too.
+        cmd.add_option(row.cli, flags.text[row.field], help)->type_name("INT (" + row.range + ")")->check(integerRuled(row.range));
         break;
       case RequestFieldType::Number:
         cmd.add_option(row.cli, flags.text[row.field], help)->type_name("FLOAT")->check(numberIn(0, row.cliNumberMax, true));
@@ -129,8 +152,8 @@ RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
     switch (row.type) {
       case RequestFieldType::Switch: fields.set(row.field, flags.on.at(row.field)); break;
       case RequestFieldType::Text: fields.set(row.field, flags.text.at(row.field)); break;
-      case RequestFieldType::Integer:  // its validator took it: a plain integer in range
-        fields.set(row.field, *parseIntegerIn(flags.text.at(row.field), 0, INT64_MAX));
+      case RequestFieldType::Integer:  // its validator took it: a plain integer of 64 bits
+        fields.set(row.field, *parseIntegerIn(flags.text.at(row.field), INT64_MIN, INT64_MAX));
         break;
       case RequestFieldType::Number: {  // its validator took it: a finite number in range
         const std::string& text = flags.text.at(row.field);

@@ -18,8 +18,9 @@
 
 namespace omnicam::cli {
 
-// "X,Y,Z" → three finite doubles (locale-independent); throws InputError naming `flag`.
-Vec3 parseTriple(const std::string& text, const std::string& flag);
+// "X,Y,Z" → three finite doubles (locale-independent); throws InputError naming `flag` and the
+// expected `form` ("VX,VY,YAW_RATE").
+Vec3 parseTriple(const std::string& text, const std::string& flag, const std::string& form = "X,Y,Z");
 // "X,Y,YAW" → a robot pose within the documented bounds; InputError naming `flag`.
 RobotPose parsePose(const std::string& text, const std::string& flag);
 // Messages about render settings name the flags that set them.
@@ -31,6 +32,13 @@ inline const SettingNames kSettingFlags{"--spp", "--size", "--velocity"};
 // "<flag>: must be an integer in [lo, hi] (got "text")": never wrapped, clamped or rounded.
 CLI::Validator integerIn(int64_t lo, uint64_t hi);
 CLI::Validator numberIn(double lo, double hi, bool openLow = false);
+// Any such integer in [lo, hi] (what the option's variable holds), its rule (`rule`, as the docs
+// state it) checked by the reader that owns it; "must be an integer, <rule> (got "text")"
+// otherwise. Its help shows no range: the option's type name states the rule.
+CLI::Validator integerRuled(const std::string& rule, int64_t lo = INT64_MIN, int64_t hi = INT64_MAX);
+// --spp of a verb that renders with its own default (demo, rings, study): the render's rule and
+// help; the request (or checkSpp) checks the rule.
+void addSppOption(CLI::App& cmd, int& spp, const std::string& help);
 // "<text>" as an integer in [lo, hi], or nullopt (the rule integerIn checks).
 std::optional<int64_t> parseIntegerIn(std::string_view text, int64_t lo, int64_t hi);
 // The render request's flags (request_fields.h's rows) as given: each flag's text, or a switch.

@@ -79,7 +79,10 @@ int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
   int count = shards;
   if (count == 0) {
     const std::vector<int> counts = shardCountsIn(dir);
-    if (counts.size() != 1) throw InputError("--merge: " + showPath(dir) + ": say how many shards with --shards N");
+    if (counts.empty())
+      throw InputError("--merge: " + showPath(dir) + ": holds no shard manifests (shards/shard-I-of-N.json): it was not run "
+                       "in shards, or none has started");
+    if (counts.size() > 1) throw InputError("--merge: " + showPath(dir) + ": holds shards of several counts: say which with --shards N");
     count = counts.front();
   }
   const MergeResult r = mergeDatasetShards(dir, count);

@@ -202,9 +202,9 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
                                              "(mirror, fisheye, panorama), with an HTML report. Exit 0, or 64 + one bit "
                                              "per section that fell short (docs/conventions.md)");
   cmd->add_option("-o,--output", args->out, "Report folder (default out/demo)");
-  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)")->check(integerIn(1, INT32_MAX));
-  cmd->add_flag("!--no-povray", args->povray, "Skip the POV-Ray ground truth");
-  cmd->add_flag("!--no-blender", args->blender, "Skip the Blender ground truth");
+  addSppOption(*cmd, args->spp, "Samples per pixel, n*n (default 16)");
+  cmd->add_flag_callback("--no-povray", [args] { args->povray = false; }, "Skip the POV-Ray ground truth");
+  cmd->add_flag_callback("--no-blender", [args] { args->blender = false; }, "Skip the Blender ground truth");
   cmd->add_option("--budget-scale", args->budgetScale,
                   "Multiply every section's time budget (default 1; a slow or busy machine: 2 or more)")
       ->check(numberIn(0, 1000, true));

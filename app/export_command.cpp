@@ -11,6 +11,7 @@
 #include "cli_util.h"
 #include "commands.h"
 #include "errors.h"
+#include "markup.h"
 #include "gltf_exporter.h"
 #include "povray_exporter.h"
 #include "scene_loader.h"
@@ -58,7 +59,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
   std::printf("wrote %s/scene.pov and render.ini (%dx%d, render with: cd %s && povray render.ini)\n", a.out.c_str(),
-              job.width, job.height, a.out.c_str());
+              job.width, job.height, shellWord(a.out).c_str());
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <chrono>
 #include <future>
 #include <memory>
@@ -78,6 +79,19 @@ class FrameViews {
   std::vector<View> maps_;
 };
 
+// A folder of frames is one run's: frames of an earlier run that this one would not replace (more
+// of them, another format or view) are refused, never mixed in, and never deleted.
+void checkNoOtherFrames(const std::string& folder, const std::set<std::string>& written) {
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator(folder, ec); !ec && it != std::filesystem::directory_iterator();
+       it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("frame_", 0) == 0 && !written.count(name))
+      throw InputError("-o: " + showPath(folder) + " holds " + quote(name) +
+                       " of another run, which this one would not replace: give an empty folder, or remove that run's frames");
+  }
+}
+
 // The first frames of `path` (all, or --frames) into the folder OUT: frame_NNNN.<format>, each
 // with its views and sidecars.
 void renderPath(const RenderArgs& a, const std::string& engineName, const Scene& scene, Engine& engine,
@@ -91,11 +105,20 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
   };
   // An existing folder may already hold a folder under a frame's name: refused before any frame.
   std::error_code ec;
-  if (std::filesystem::is_directory(a.out, ec))
+  if (std::filesystem::is_directory(a.out, ec)) {
+    std::set<std::string> written;
     for (int f = 0; f < total; ++f) {
       checkImageOutput(frameFile(f), "-o");
-      for (const std::string& file : views.files(frameFile(f))) checkImageOutput(file, "--view");
+      std::vector<std::string> files = views.files(frameFile(f));
+      for (const std::string& file : files) checkImageOutput(file, "--view");
+      files.push_back(frameFile(f));
+      for (const std::string& file : files) {
+        const std::string name = std::filesystem::path(file).filename().string();
+        written.insert(name), written.insert(name + ".json");
+      }
     }
+    checkNoOtherFrames(a.out, written);
+  }
   // Every frame the engine cannot render is refused before the folder is made.
   for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
   ensureDirectory(a.out, "-o");
@@ -135,7 +158,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   RenderSettings settings = request.settings(RigSpec{});
   BodyVelocity velocity;
   if (!a.velocity.empty()) {
-    const Vec3 v = parseTriple(a.velocity, "--velocity");
+    const Vec3 v = parseTriple(a.velocity, "--velocity", "VX,VY,YAW_RATE");
     velocity = {v.x(), v.y(), v.z()};
   }
   checkPlacement(CameraPlacement(pose.value_or(RobotPose{}), velocity), kSettingFlags);
@@ -157,6 +180,8 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     if (!path) throw InputError("--path: scene " + showPath(a.scene) + " has no path " + quote(a.path));
     if (a.frames > static_cast<int>(path->poses.size()))
       throw InputError("--frames: path " + quote(a.path) + " has only " + std::to_string(path->poses.size()) + " poses");
+    if (isSupportedImageOutput(a.out))
+      throw InputError("-o: " + showPath(a.out) + ": with --path, -o names the folder for the frames, not an image");
     checkOutputFolder(a.out, "-o");
   }
   const auto engine = makeEngine(request, scene);

@@ -108,7 +108,7 @@ void addRingsCommand(CLI::App& app) {
   cmd->add_option("--engine", args->engine, "fast (default), povray or blender");
   cmd->add_option("--scene", args->scene, "Ring scene (default: scenes/incidence-rings.json)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(32, limits::kMaxImageSize));
-  cmd->add_option("--spp", args->spp, "Samples per pixel, n*n (default 16)")->check(integerIn(1, INT32_MAX));
+  addSppOption(*cmd, args->spp, "Samples per pixel, n*n (default 16)");
   cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr");
   cmd->add_option("--measure", args->measure, "Measure an existing ring image instead of rendering one");
   cmd->add_flag("--json", args->json, "Print per-ring radii and the summary as JSON");

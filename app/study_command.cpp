@@ -195,7 +195,7 @@ void addStudyCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("study", "Measure the thesis' cube-map/mirror-mesh method (writes Markdown + figures)");
   // Required: a default would write docs/ into whatever folder the user stands in.
   cmd->add_option("-o,--output", args->out, "Markdown file (figures go to a figures/ folder beside it)")->required();
-  cmd->add_option("--spp", args->spp, "Samples per pixel for the quality columns (default 16)")->check(integerIn(1, INT32_MAX));
+  addSppOption(*cmd, args->spp, "Samples per pixel for the quality columns (default 16)");
   cmd->add_option("--timing-seconds", args->timingSeconds, "Seconds timed per mode (default 1)")->check(numberIn(0, 3600, true));
   cmd->callback([args] { runStudy(*args); });
 }

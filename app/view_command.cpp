@@ -35,7 +35,10 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
     rig = loadScene(a.scene, a.load).rig;
     sidecar["rig_from"] = {{"scene", a.scene}};
   } else if (!a.rig.empty()) {
-    rig = rigFromJson(readJsonFile(a.rig), a.rig, "rig");
+    const nlohmann::json file = readJsonFile(a.rig);
+    if (file.is_object() && file.contains("format") && file["format"] == "omnicam-scene/1")
+      throw InputError("--rig: " + showPath(a.rig) + " is a scene file: give it as --scene (--rig takes a scene's \"rig\" object)");
+    rig = rigFromJson(file, a.rig, "rig");
     sidecar["rig_from"] = {{"rig_file", a.rig}};
   } else if (auto found = readSidecar(a.in)) {
     rig = found->rig;

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <Eigen/Dense>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "errors.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -174,6 +177,23 @@ RingMeasurement measureRing(const std::vector<RingSample>& samples, const std::v
   return m;
 }
 
+// Why rings may be missing: at this size the closest two lie too near to be told apart (a dark
+// pixel between them needs about 2 px: at 210 px the closest of the default rings, 1.9 px apart, are
+// told apart, at 200 px, 1.8 px apart, not), or "" when they are far enough apart.
+std::string ringSpacingNote(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg) {
+  std::vector<double> radii;
+  for (double theta : thetasDeg) radii.push_back(camera.radiusOfTheta(radians(theta)));
+  std::sort(radii.begin(), radii.end());
+  double closest = INFINITY;
+  for (size_t k = 1; k < radii.size(); ++k) closest = std::min(closest, radii[k] - radii[k - 1]);
+  constexpr double kApartPx = 2.0;
+  if (!(closest < kApartPx)) return "";
+  const int enough = static_cast<int>(std::ceil(image.width * kApartPx / closest));
+  return ": at " + std::to_string(image.width) + " px its closest rings are " + shortNumber(closest) +
+         " px apart and merge (an image of at least " + std::to_string(enough) + " px keeps them " + shortNumber(kApartPx) +
+         " px apart)";
+}
+
 }  // namespace
 
 RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg) {
@@ -196,7 +216,7 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   const std::vector<std::pair<double, double>> clusters = brightClusters(samples, threshold);
   if (clusters.size() != thetasDeg.size())
     throw InputError("rings: found " + std::to_string(clusters.size()) + " rings in the image, expected " +
-                     std::to_string(thetasDeg.size()));
+                     std::to_string(thetasDeg.size()) + ringSpacingNote(image, camera, thetasDeg));
 
   RingReport report;
   report.hPxExact = camera.horizonRadius();

@@ -47,8 +47,10 @@ std::string layoutFile(const std::string& dirB, const std::string& relative) {
     const std::string candidate = fs::path(relative).replace_extension(ext).string();
     if (entryInside(dirB, candidate) != EntryKind::Missing) return candidate;
   }
-  throw InputError(showPath(dirB) + ": no image " + showPath(fs::path(relative).replace_extension("").string()) +
-                   ".png or .exr for frame of " + showPath(relative) + " (a folder without manifest.json must follow the dataset layout)");
+  const std::string stem = fs::path(relative).replace_extension("").string();
+  throw InputError(showPath(dirB) + ": has neither " + showPath(stem + ".png") + " nor " + showPath(stem + ".exr") +
+                   ", the image to compare with the first dataset's " + showPath(relative) +
+                   " (a folder without manifest.json must follow the dataset layout)");
 }
 
 // The file holding a camera frame's colour: its rgb image (files layout) or its frame OpenEXR

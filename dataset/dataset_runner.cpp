@@ -71,11 +71,10 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
   for (const std::string& name : names) {
     if (dir.entry(name) == EntryKind::Missing) continue;
     previous = readPreviousManifest(options.dir, name);
-    if (datasetIdentity(previous->header) != datasetIdentity(header) && !options.overwrite) {
-      const json sha = previous->header.value("spec_sha256", json());
-      throw OtherDatasetError(showPath(options.dir) + ": holds a dataset made from a different spec, scene or engine (spec_sha256 " +
-                              (sha.is_string() ? quote(sha.get<std::string>()) : std::string("?")) + ")");
-    }
+    const std::string difference = identityDifference(previous->header, header);
+    if (!difference.empty() && !options.overwrite)
+      throw OtherDatasetError(showPath(options.dir) + ": holds another dataset (" + difference +
+                              "): --overwrite replaces it, or give another folder");
   }
   if (!previous) {
     // Other shards of a dataset fill the folder ("shards/" marks it as theirs).

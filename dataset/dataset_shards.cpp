@@ -102,8 +102,8 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     if (!merged) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
-    } else if (datasetIdentity(shard.header) != datasetIdentity(merged->header)) {
-      throw InputError(showPath(path + "/" + name) + ": from a different spec, scene or engine than the other shards");
+    } else if (const std::string difference = identityDifference(shard.header, merged->header); !difference.empty()) {
+      throw InputError(showPath(path + "/" + name) + ": from another dataset than the other shards (" + difference + ")");
     }
     const int first = read.first, end = read.end;
     int finished = 0;
@@ -115,8 +115,9 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
                                 std::to_string(count) + ".json)");
   if (dir.entry(kManifestName) != EntryKind::Missing) {
     const DatasetManifest existing = readDatasetManifest(dir);
-    if (datasetIdentity(existing.header) != datasetIdentity(merged->header))
-      throw InputError(showPath(path) + ": its " + std::string(kManifestName) + " is from a different spec, scene or engine than the shards");
+    if (const std::string difference = identityDifference(existing.header, merged->header); !difference.empty())
+      throw InputError(showPath(path) + ": its " + std::string(kManifestName) + " is from another dataset than the shards (" +
+                       difference + ")");
     // Frames an earlier merge (or an unsharded run) finished stay listed.
     for (const auto& [index, frame] : existing.frames) merged->frames.emplace(index, frame);
   }

@@ -377,7 +377,9 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   spec.sha256 = sha256OfBytes(text);
   spec.json = parseJsonText(text, file);
   JsonFields top(spec.json, file, "");
-  if (top.string("format") != kFormat) top.fail("format", "must be \"" + std::string(kFormat) + "\"");
+  if (const std::string format = top.string("format"); format != kFormat)
+    top.fail("format", "must be \"" + std::string(kFormat) + "\"" +
+                           (format == "omnicam-scene/1" ? std::string(": this is a scene file; a dataset spec names one in \"scene\"") : ""));
   top.string("description", "");
   if (top.has("comment")) top.raw("comment");
   const std::string scene = top.string("scene");

@@ -213,8 +213,33 @@ json manifestToJson(const DatasetManifest& manifest) {
 }
 
 json datasetIdentity(const json& header) {
-  return {{"spec", header.at("spec")}, {"scene_sha256", header.at("scene").at("sha256")},
-          {"engine", header.at("engine")}};
+  json spec = header.at("spec");
+  // Words for people: a new description is the same dataset.
+  if (spec.is_object())
+    for (const char* words : {"description", "comment"}) spec.erase(words);
+  return {{"spec", spec}, {"scene_sha256", header.at("scene").at("sha256")}, {"engine", header.at("engine")}};
+}
+
+std::string identityDifference(const json& a, const json& b) {
+  const json x = datasetIdentity(a), y = datasetIdentity(b);
+  std::vector<std::string> parts;
+  const json &specX = x.at("spec"), &specY = y.at("spec");
+  if (specX != specY) {
+    std::string fields;
+    if (specX.is_object() && specY.is_object()) {
+      std::set<std::string> keys;
+      for (const auto& [key, value] : specX.items()) keys.insert(key);
+      for (const auto& [key, value] : specY.items()) keys.insert(key);
+      for (const std::string& key : keys)
+        if (specX.value(key, json()) != specY.value(key, json())) fields += (fields.empty() ? "" : ", ") + quote(key);
+    }
+    parts.push_back(fields.empty() ? "the spec differs" : "the spec's " + fields + " differ");
+  }
+  if (x.at("scene_sha256") != y.at("scene_sha256")) parts.push_back("the scene's bytes differ");
+  if (x.at("engine") != y.at("engine")) parts.push_back("the engine differs");
+  std::string text;
+  for (const std::string& part : parts) text += (text.empty() ? "" : "; ") + part;
+  return text;
 }
 
 std::string shardManifestName(int index, int count) {

@@ -131,7 +131,10 @@ void checkOutputFile(const std::string& path, const std::string& flag) {
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw InputError(flag + ": " + showPath(path) + " is an existing folder, not a file name");
   const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent, ec)) throw InputError(flag + ": folder " + showPath(parent.string()) + " does not exist");
+  if (!parent.empty() && !fs::is_directory(parent, ec)) {
+    if (fs::exists(parent, ec)) throw InputError(flag + ": " + showPath(parent.string()) + " exists and is not a folder");
+    throw InputError(flag + ": folder " + showPath(parent.string()) + " does not exist");
+  }
 }
 
 void checkOutputFolder(const std::string& path, const std::string& flag) {

@@ -33,12 +33,16 @@ std::optional<fs::path> resolveConfined(const fs::path& folder, const std::strin
     why = "cannot resolve " + quote(name) + " (" + ec.message() + ")";
     return std::nullopt;
   }
+  if (fs::is_directory(resolved, ec)) {
+    why = quote(name) + " is a folder, not a file";
+    return std::nullopt;
+  }
   if (!allowOutside && !isInsideFolder(folder, resolved)) {
     why = quote(name) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
     return std::nullopt;
   }
   if (!fs::is_regular_file(resolved, ec)) {
-    why = "file not found: " + showPath(name);
+    why = fs::exists(resolved, ec) ? quote(name) + " is not a regular file" : "file not found: " + showPath(name);
     return std::nullopt;
   }
   return resolved;

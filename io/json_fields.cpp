@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "closest_name.h"
 #include "errors.h"
 #include "number_format.h"
 #include "input_limits.h"
@@ -213,7 +214,8 @@ void JsonFields::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
     // "comment" annotates any object (JSON has no comments); it is documentation only.
     if (it.key() == "comment" || read_.count(it.key())) continue;
-    throw InputError(showPath(file_) + ": " + path(it.key()) + ": unknown field");
+    throw InputError(showPath(file_) + ": " + path(it.key()) + ": unknown field" +
+                     didYouMean(it.key(), std::vector<std::string>(read_.begin(), read_.end())));
   }
 }
 

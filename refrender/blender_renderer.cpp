@@ -24,6 +24,7 @@
 #include "data_files.h"
 #include "job_folder.h"
 #include "motion.h"
+#include "number_format.h"
 
 
 namespace omnicam {
@@ -311,7 +312,7 @@ std::string runBlenderJob(const BlenderOptions& options, const std::string& dir)
   const ProcessResult r = runRenderer(argv, dir, log, options.timeoutSeconds);
   if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
-    throw ExternalError("blender: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +
+    throw ExternalError("blender: timed out after " + shortNumber(options.timeoutSeconds) +
                         " s; last output:\n" + r.logTail);
   if (r.exitCode != 0) throw ExternalError("blender: failed (exit " + std::to_string(r.exitCode) + "); last output:\n" + r.logTail);
   return r.logTail;

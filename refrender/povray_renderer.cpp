@@ -15,6 +15,7 @@
 #include "motion.h"
 #include "job_folder.h"
 #include "memory_budget.h"
+#include "number_format.h"
 #include "povray_exporter.h"
 
 namespace omnicam {
@@ -74,7 +75,7 @@ ImageRGBA runPovrayJob(const PovrayJob& job, const PovrayOptions& options, int t
   }
   if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + showPath(options.executable));
   if (r.timedOut)
-    throw ExternalError("povray: timed out after " + std::to_string(static_cast<int>(options.timeoutSeconds)) +
+    throw ExternalError("povray: timed out after " + shortNumber(options.timeoutSeconds) +
                         " s; last output:\n" + r.logTail);
   const std::string output = folder.path() + "/render.exr";
   if (r.exitCode != 0 || !fs::exists(output))

@@ -308,7 +308,8 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
-      throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "unknown preset " + quote(j.get<std::string>()) + " (" + wordList(kPresets) + ")");
+      throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "unknown preset " + quote(j.get<std::string>()) +
+                       " (" + wordList(kPresets) + "; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
     return spec;

@@ -137,7 +137,7 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"bayer": {"uniform": [0, 1]}})"), "spec.json: recording.bayer.uniform: a word is drawn with {\"choice\": [...]}");
   EXPECT_EQ(errorOf(R"({"preset": "dslr"})"),
             "spec.json: recording.preset: must be one of webcam, machine_vision, phone (got \"dslr\")");
-  EXPECT_EQ(errorOf(R"("dslr")"), "spec.json: recording: unknown preset \"dslr\" (webcam, machine_vision, phone)");
+  EXPECT_EQ(errorOf(R"("dslr")"), "spec.json: recording: unknown preset \"dslr\" (webcam, machine_vision, phone; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
   EXPECT_EQ(errorOf(R"({"jpeg_quality": 80.5})"), "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (0: no JPEG) (got 80.5)");
   EXPECT_EQ(errorOf(R"({"white_balance": [1, 0, 1]})"), "spec.json: recording.white_balance[1]: must be a number in (0, 10] (got 0)");
   EXPECT_EQ(errorOf(R"({"white_balance": 1})"),

@@ -45,9 +45,8 @@ struct RequestFieldRow {
   const char* python = nullptr;  // "face_size"; nullptr: not a keyword
   PythonPlace pythonPlace = PythonPlace::None;
   unsigned cliGroup = 0;         // the RequestFlagGroup that registers the flag
-  // The CLI's syntax check of an integer, [0, cliIntegerMax], or a number, (0, cliNumberMax]
+  // The CLI's syntax check of a number, (0, cliNumberMax]; an integer's is any 64-bit integer
   // (the request checks the rule itself, so a spec and Python get the same message).
-  uint64_t cliIntegerMax = 0;
   double cliNumberMax = 0.0;
   std::string range;             // the rule, as the docs' table states it
   const char* engines = "all";   // the engines (and modes) that take it

@@ -191,6 +191,17 @@ TEST_F(CliTest, PathSequenceWritesNumberedFramesWithSidecars) {
     EXPECT_EQ(j["rig"]["image"]["size"], 96);
   }
   EXPECT_FALSE(fs::exists(fs::path(folder) / "frame_0003.png"));
+  // The same run again replaces its own frames; a run that would leave some of these behind (fewer
+  // frames, another format) is refused before it writes, and nothing is deleted.
+  const std::string first = sha256OfFile((fs::path(folder) / "frame_0002.png").string());
+  ASSERT_EQ(run("render " + kScene + " --path thesis-loop --frames 3 --size 96 -o " + folder).code, 0);
+  for (const std::string& other : {std::string("--frames 2"), std::string("--frames 3 --format exr")}) {
+    const CommandResult refused = run("render " + kScene + " --path thesis-loop --size 96 --shading lit " + other + " -o " + folder);
+    EXPECT_EQ(refused.code, 2) << other;
+    EXPECT_NE(refused.out.find("of another run, which this one would not replace"), std::string::npos) << refused.out;
+  }
+  EXPECT_EQ(sha256OfFile((fs::path(folder) / "frame_0002.png").string()), first);
+  EXPECT_FALSE(fs::exists(fs::path(folder) / "frame_0000.exr"));
 }
 
 TEST_F(CliTest, RenderWritesViewsThatTheViewVerbReproduces) {

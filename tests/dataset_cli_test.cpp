@@ -396,8 +396,16 @@ TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   ASSERT_EQ(omnicam("dataset " + a + " -o " + path("ds")).code, 0);
   const auto refused = omnicam("dataset " + b + " -o " + path("ds"));
   EXPECT_EQ(refused.code, 2);
-  EXPECT_NE(refused.out.find("holds a dataset made from a different spec"), std::string::npos) << refused.out;
+  // It names what differs.
+  EXPECT_NE(refused.out.find("holds another dataset (the spec's \"poses\" differ): --overwrite replaces it"), std::string::npos)
+      << refused.out;
   EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 3);  // untouched
+  // A new description is the same dataset: the run resumes, every frame kept.
+  const std::string described =
+      robocupSpec("described.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3}, "description": "new words")");
+  const auto resumed = omnicam("dataset " + described + " -o " + path("ds"));
+  EXPECT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find("(0 rendered, 3 kept from an earlier run)"), std::string::npos) << resumed.out;
   ASSERT_EQ(omnicam("dataset " + b + " -o " + path("ds") + " --overwrite").code, 0);
   EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 4);
   // --overwrite removes only what a dataset owns, and never trusts a manifest's names to do so.
@@ -583,7 +591,7 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   fs::remove(dir_ / "mine/cam0/rgb/000001.exr");
   const auto missing = omnicam("compare " + path("fast") + " " + path("mine") + " --fail-psnr 45");
   EXPECT_EQ(missing.code, 2);
-  EXPECT_NE(missing.out.find("no image cam0/rgb/000001.png or .exr"), std::string::npos) << missing.out;
+  EXPECT_NE(missing.out.find("has neither cam0/rgb/000001.png nor cam0/rgb/000001.exr, the image to compare with"), std::string::npos) << missing.out;
 
   const auto mixed = omnicam("compare " + path("fast") + " " + path("povray/cam0/rgb/000000.exr"));
   EXPECT_EQ(mixed.code, 2);

@@ -410,7 +410,7 @@ TEST_F(OutputFolderTrust, ShardCountsAreBoundedBeforeAnyWork) {
   EXPECT_REFUSED(omnicam("dataset --merge " + sh(at("ds")) + " --shards 100000"), "no shard of 100000 has started");
   // A planted shard manifest of a count beyond the bound does not count.
   writeFile(dir_ / "ds/shards/shard-0-of-999999.json", "{}");
-  EXPECT_REFUSED(omnicam("dataset --merge " + sh(at("ds"))), "say how many shards with --shards N");
+  EXPECT_REFUSED(omnicam("dataset --merge " + sh(at("ds"))), "holds no shard manifests (shards/shard-I-of-N.json)");
   EXPECT_FALSE(fs::exists(dir_ / "ds/manifest.json"));
 }
 

@@ -23,9 +23,11 @@ struct PyCamera {
   std::shared_ptr<const Camera> camera;
 };
 
-// An (N, k) float64 array's rows; InputError naming `what` for any other shape.
-py::array_t<double, py::array::c_style | py::array::forcecast> rowsOf(const py::array& a, int k, const std::string& what) {
+// An (N, k) array-like's rows (a numpy array of any number type, nested lists, …) as float64;
+// InputError naming `what` for anything else.
+py::array_t<double, py::array::c_style | py::array::forcecast> rowsOf(const py::object& a, int k, const std::string& what) {
   auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!rows) PyErr_Clear();
   if (!rows || rows.ndim() != 2 || rows.shape(1) != k)
     throw InputError(what + ": must be an array of shape (N, " + std::to_string(k) + ")");
   return rows;
@@ -45,7 +47,7 @@ Rigid viewpointFrom(const Camera& camera, const py::object& pose, const py::obje
   return placement.worldFromViewpoint(camera.rig(), seconds).inverse();
 }
 
-py::array_t<double> project(const PyCamera& self, const py::array& points, const py::object& pose) {
+py::array_t<double> project(const PyCamera& self, const py::object& points, const py::object& pose) {
   const auto in = rowsOf(points, 3, "points");
   const Rigid viewpointFromInput = viewpointFrom(*self.camera, pose);
   const auto n = static_cast<size_t>(in.shape(0));
@@ -62,7 +64,7 @@ py::array_t<double> project(const PyCamera& self, const py::array& points, const
   return arrayTakingOver(std::move(out), {static_cast<py::ssize_t>(n), 2});
 }
 
-py::tuple rays(const PyCamera& self, const py::array& pixels, const py::object& pose, const py::object& velocity, double time) {
+py::tuple rays(const PyCamera& self, const py::object& pixels, const py::object& pose, const py::object& velocity, double time) {
   const auto in = rowsOf(pixels, 2, "pixels");
   // Times within an exposure (and as far before it): the motion model holds a velocity that long.
   if (!(std::abs(time) <= limits::kMaxExposureS))
@@ -85,7 +87,7 @@ py::tuple rays(const PyCamera& self, const py::array& pixels, const py::object& 
   return py::make_tuple(arrayTakingOver(std::move(origins), shape), arrayTakingOver(std::move(directions), shape));
 }
 
-py::array_t<bool> images(const PyCamera& self, const py::array& pixels) {
+py::array_t<bool> images(const PyCamera& self, const py::object& pixels) {
   const auto in = rowsOf(pixels, 2, "pixels");
   const auto n = static_cast<size_t>(in.shape(0));
   py::array_t<bool> out(static_cast<py::ssize_t>(n));

@@ -1,4 +1,5 @@
 // omnicam.run_dataset and the readers the Python Dataset class (omnicam/dataset.py) builds on.
+#include <pybind11/stl/filesystem.h>
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
@@ -24,12 +25,12 @@ namespace {
 // every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run once the frames
 // in progress are written (the fast engine renders a window of 8 at once, Blender a batch) and is
 // raised again once the run has stopped.
-py::dict runDatasetFromPython(const std::string& specPath, const std::string& out, bool overwrite, const PyInteger& threadsArg,
+py::dict runDatasetFromPython(const std::filesystem::path& specPath, const std::filesystem::path& out, bool overwrite, const PyInteger& threadsArg,
                               const std::optional<py::function>& progress) {
   const int threads = narrowed(threadsArg, "threads", 0, limits::kMaxThreads);
-  const DatasetSpec spec = loadDatasetSpec(specPath);
+  const DatasetSpec spec = loadDatasetSpec(specPath.string());
   DatasetRunOptions options;
-  options.dir = out;
+  options.dir = out.string();
   options.overwrite = overwrite;
   options.threads = threads;
   std::atomic<bool> stop{false};
@@ -131,11 +132,11 @@ void bindDatasetReader(py::module_& m) {
         return py::bytes(r.fileBytes(std::nullopt, camera, kind, checkHash));
       }, py::arg("camera"), py::arg("kind"), py::arg("check_hash") = false);
 
-  m.def("verify_dataset", [](const std::string& path) {
+  m.def("verify_dataset", [](const std::filesystem::path& path) {
     DatasetVerifyResult result;
     {
       py::gil_scoped_release release;
-      result = verifyDataset(path);
+      result = verifyDataset(path.string());
     }
     return py::dict(py::arg("files") = result.files, py::arg("problems") = result.problems, py::arg("ok") = result.ok());
   }, py::arg("path"), "Re-hashes every file the dataset's manifest lists: {\"files\", \"problems\", \"ok\"}.");
@@ -164,13 +165,13 @@ the chosen class ids (default: every class but floor, wall, ceiling and line) wi
 called after every frame; an exception in it stops the run once the frames in progress (up to 8
 at once) are written, and is raised again. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
 
-  m.def("read_image", [](const std::string& path) {
-    ImageRGBA image = readImage(path);
+  m.def("read_image", [](const std::filesystem::path& path) {
+    ImageRGBA image = readImage(path.string());
     const py::ssize_t h = image.height, w = image.width;
     return arrayTakingOver(std::move(image.pixels), {h, w, 4});
   }, py::arg("path"), "Any image file as linear, premultiplied RGBA float32 (H, W, 4).");
-  m.def("read_exr_channels", [](const std::string& path, const std::vector<std::string>& channels) {
-    DataImage image = readDataExrChannels(path, channels);
+  m.def("read_exr_channels", [](const std::filesystem::path& path, const std::vector<std::string>& channels) {
+    DataImage image = readDataExrChannels(path.string(), channels);
     const py::ssize_t h = image.height, w = image.width, c = image.channels;
     return arrayTakingOver(std::move(image.values), {h, w, c});
   }, py::arg("path"), py::arg("channels"), "The named channels of an OpenEXR as float32 (H, W, len(channels)), exactly.");
@@ -183,9 +184,9 @@ at once) are written, and is raised again. Returns {"frames", "kept", "rendered"
   }, py::arg("rgba"),
         "A frame's colour (linear, premultiplied RGBA float32, (H, W, 4)) as the 8-bit sRGB codes a PNG of it "
         "holds (straight alpha, uint8 (H, W, 4)): omnicam's own encoding, for ROS images and the like.");
-  m.def("read_uint16_png", [](const std::string& path) {
+  m.def("read_uint16_png", [](const std::filesystem::path& path) {
     int w = 0, h = 0;
-    std::vector<uint16_t> values = readUint16Png(path, w, h);
+    std::vector<uint16_t> values = readUint16Png(path.string(), w, h);
     return arrayTakingOver(std::move(values), {h, w});
   }, py::arg("path"), "A 16-bit single-channel PNG (instance and class ids) as uint16 (H, W).");
 }

@@ -1,4 +1,5 @@
 // omnicam.load_scene, omnicam.Scene and omnicam.Rig.
+#include <pybind11/stl/filesystem.h>
 #include <pybind11/operators.h>
 #include <pybind11/stl.h>
 
@@ -141,10 +142,10 @@ void bindScene(py::module_& m) {
   R"(The rescue maze of `omnicam arena mapping` (RoboCup Rescue's mapping arena: walls, ramps,
 debris, victims as landmarks) as a scene file's content (dict): write it with json.dump and load it.)");
 
-  m.def("load_scene", [](const std::string& path, bool allowOutsideFiles) {
+  m.def("load_scene", [](const std::filesystem::path& path, bool allowOutsideFiles) {
     SceneLoadOptions options;
     options.allowOutsideFolder = allowOutsideFiles;
-    return std::make_shared<Scene>(loadScene(path, options));
+    return std::make_shared<Scene>(loadScene(path.string(), options));
   }, py::arg("path"), py::arg("allow_outside_files") = false,
         R"(Loads and checks a scene file. Anything wrong raises omnicam.InputError with one line
 "<file>: <field>: <what is wrong>". Files the scene pulls in must lie inside its folder unless

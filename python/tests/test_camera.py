@@ -91,6 +91,19 @@ def test_bad_arrays_are_input_errors(robocup):
         camera.project(np.zeros((1, 3)), pose=(1.0, 2.0))
     with pytest.raises(omnicam.InputError):
         camera.rays(np.zeros(5))
+    with pytest.raises(omnicam.InputError, match=r"points: must be an array of shape \(N, 3\)"):
+        camera.project([["a", "b", "c"]])
+
+
+def test_plain_lists_are_arrays_too(robocup):
+    camera = omnicam.Camera(robocup.rig)
+    points = [[1, 1, 0], [1.5, 0.5, 0.3]]
+    np.testing.assert_array_equal(camera.project(points, pose=(1.0, 1.0, 30.0)),
+                                  camera.project(np.array(points, dtype=np.float64), pose=(1.0, 1.0, 30.0)))
+    pixels = [[180.5, 100.5]]
+    origins, directions = camera.rays(pixels)
+    np.testing.assert_array_equal(directions, camera.rays(np.array(pixels))[1])
+    assert camera.images(pixels).tolist() == [True]
 
 
 def test_describe_states_the_model(robocup):

@@ -40,10 +40,12 @@ def test_a_moving_render_is_the_cli_s_bit_for_bit(robocup, tmp_path):
     assert np.array_equal(ours, omnicam.read_image(str(tmp_path / "cli.exr")))
     still = omnicam.render(robocup, pose, rig=rig, spp=4)["rgb"]
     assert not np.array_equal(ours, still)
-    # With the shutter an instant, a velocity changes nothing.
+    # With the shutter an instant, a velocity would change nothing: refused, as the CLI refuses it.
     rig.shutter = None
-    assert np.array_equal(omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)["rgb"],
-                          omnicam.render(robocup, pose, rig=rig, spp=4)["rgb"])
+    with pytest.raises(omnicam.InputError, match="velocity: the rig's shutter is an instant"):
+        omnicam.render(robocup, pose, rig=rig, spp=4, velocity=velocity)
+    code, _, err = run_cli("render", robocup.path, "--size", "48", "--velocity", "1,0.2,90", "-o", tmp_path / "x.png")
+    assert code == 2 and "--velocity: the rig's shutter is an instant" in err
 
 
 def test_a_bad_velocity_or_a_shutter_the_engine_cannot_render_is_an_input_error(robocup):
@@ -57,23 +59,28 @@ def test_a_bad_velocity_or_a_shutter_the_engine_cannot_render_is_an_input_error(
 
 
 def test_a_dataset_item_carries_its_velocity_and_its_vibrating_rig(source, tmp_path, robocup):
+    # The scene with a global shutter: a dataset's motion needs one to be seen.
+    scene = json.loads((source / "scenes" / "robocup2006.json").read_text())
+    scene["rig"]["shutter"] = {"exposure_s": 0.01}
+    (tmp_path / "moving.json").write_text(json.dumps(scene))
+    moving = omnicam.load_scene(tmp_path / "moving.json")
     spec = tmp_path / "spec.json"
     spec.write_text(json.dumps({
-        "format": "omnicam-dataset/1", "scene": str(source / "scenes" / "robocup2006.json"), "size": 40,
+        "format": "omnicam-dataset/1", "scene": "moving.json", "size": 40,
         "outputs": {"rgb": "exr"}, "poses": {"list": [[0, 0, 0], [0.4, 0.1, 15]]},
         "motion": {"velocity": [0.5, 0.0, 30.0]},
         "vibration": {"seed": 3, "rig_tilt_deg": [1.0, 1.0], "camera_offset_mm": [0.5, 0.5, 0.5]}}))
     omnicam.run_dataset(str(spec), str(tmp_path / "ds"))
     dataset = omnicam.Dataset(tmp_path / "ds")
-    assert dataset.rig() == robocup.rig.resized(40)
+    assert dataset.rig() == moving.rig.resized(40)
     first, second = dataset[0], dataset[1]
     assert first["velocity"] == (0.5, 0.0, 30.0)
     assert first["rig"] != second["rig"] and first["rig"] != dataset.rig()
     assert all(abs(t) <= 1.0 for t in second["rig"].tilt_deg)
-    # The item's rig renders the item's image again (the scene's shutter is an instant: the
-    # velocity changes nothing here, and the frame is the still render of its rig).
-    again = omnicam.render(robocup, second["pose"], rig=second["rig"], velocity=second["velocity"])["rgb"]
+    # The item's rig, pose and velocity render the item's image again, moving through its shutter.
+    again = omnicam.render(moving, second["pose"], rig=second["rig"], velocity=second["velocity"])["rgb"]
     assert np.array_equal(again, second["rgb"])
+    assert not np.array_equal(again, omnicam.render(moving, second["pose"], rig=second["rig"])["rgb"])
 
 
 def test_a_dataset_item_carries_its_robot_tilt(source, tmp_path):

@@ -34,6 +34,15 @@ def test_a_bad_scene_raises_the_clis_one_line_message(tmp_path):
     assert isinstance(raised.value, ValueError)
 
 
+def test_files_are_named_by_str_or_pathlib_path(tmp_path):
+    from_path = omnicam.load_scene(SOURCE / "scenes" / "robocup2006.json")
+    assert from_path.sha256 == omnicam.load_scene(str(SOURCE / "scenes" / "robocup2006.json")).sha256
+    frame = omnicam.render(from_path, None, size=32)["rgb"]
+    code, _, err = run_cli("render", SOURCE / "scenes" / "robocup2006.json", "--size", "32", "-o", tmp_path / "x.exr")
+    assert code == 0, err
+    assert (omnicam.read_image(tmp_path / "x.exr") == frame).all()
+
+
 def test_a_missing_scene_file_is_an_input_error(tmp_path):
     with pytest.raises(omnicam.InputError):
         omnicam.load_scene(str(tmp_path / "nothing.json"))

@@ -140,6 +140,7 @@ def main():
     def textured(file):
         return scene([FLOOR], {"grey": {"color": 0.5, "texture": {"file": file}}})
     write(os.path.join(SCENES, "texture_outside.json"), textured("../outside.png"))
+    write(os.path.join(SCENES, "texture_folder.json"), textured("."))
     write(os.path.join(SCENES, "texture_symlink.json"), textured("link_outside.png"))
     write(os.path.join(SCENES, "texture_absolute.json"), textured("/etc/passwd"))
     write(os.path.join(SCENES, "texture_huge_1e6.json"), textured("huge_1e6.png"))

@@ -1,0 +1,22 @@
+#pragma once
+// "Did you mean …?": the known name a mistyped one most likely meant, for messages about
+// unknown commands, flags and fields.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace omnicam {
+
+// Edits (insert, delete, substitute, swap two neighbours) from `a` to `b`: the optimal string
+// alignment distance.
+int editDistance(std::string_view a, std::string_view b);
+
+// The name in `names` fewest edits from `given`, if that is few enough to be a typo: at most one
+// edit per three characters of `given` (at least one), and not `given` itself. On a tie, the first.
+std::optional<std::string> closestName(std::string_view given, const std::vector<std::string>& names);
+
+// " (did you mean X?)" for closestName's answer, or "".
+std::string didYouMean(std::string_view given, const std::vector<std::string>& names);
+
+}  // namespace omnicam
