@@ -36,28 +36,37 @@ std::vector<std::string> optionNames(const CLI::App& command) {
   return names;
 }
 
-// The command the words chose: the deepest subcommand parsed.
-const CLI::App* chosenCommand(const CLI::App& app) {
-  const CLI::App* command = &app;
-  while (!command->get_subcommands().empty()) command = command->get_subcommands().front();
-  return command;
+// " (did you mean --size?)" for an option, its letters compared without their dashes.
+std::string optionSuggestion(const std::string& given, const CLI::App& command) {
+  const auto bare = [](const std::string& name) { return name.substr(std::min(name.find_first_not_of('-'), name.size())); };
+  std::vector<std::string> names;
+  for (const std::string& name : optionNames(command)) names.push_back(bare(name));
+  const auto best = closestName(bare(given), names);
+  if (!best) return "";
+  for (const std::string& name : optionNames(command))
+    if (bare(name) == *best) return " (did you mean " + name + "?)";
+  return "";
 }
 
 // CLI11's message, or a clearer one where the words show the mistake: an unknown command, or an
-// unknown option (reported before a missing argument it may have caused), with the name it
-// most likely meant.
+// unknown option (reported before a missing argument it may have caused) of the program or of the
+// command it was given to, with the name it most likely meant.
 std::string parseErrorMessage(const CLI::App& app, int argc, char** argv, const CLI::ParseError& error) {
   std::vector<std::string> commands;
   for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) commands.push_back(sub->get_name());
-  if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+  if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end())
     return "unknown command " + quote(argv[1]) + didYouMean(argv[1], commands) + "; omnicam --help lists them";
-  }
-  const CLI::App* command = chosenCommand(app);
-  for (const std::string& word : command->remaining()) {
-    if (word.size() < 2 || word[0] != '-') continue;
-    const std::string name = word.substr(0, word.find('='));
-    return command->get_name() + ": unknown option " + quote(name) + didYouMean(name, optionNames(*command)) + "; " +
-           "omnicam " + command->get_name() + " --help lists them";
+  // The program, then each command the words chose, deepest last.
+  std::string words = "omnicam";
+  for (const CLI::App* command = &app; command;
+       command = command->get_subcommands().empty() ? nullptr : command->get_subcommands().front()) {
+    if (command != &app) words += " " + command->get_name();
+    for (const std::string& word : command->remaining()) {
+      if (word.size() < 2 || word[0] != '-') continue;
+      const std::string name = word.substr(0, word.find('='));
+      return (command == &app ? std::string() : command->get_name() + ": ") + "unknown option " + quote(name) +
+             optionSuggestion(name, *command) + "; " + words + " --help lists them";
+    }
   }
   return error.what();
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "atomic_file.h"
@@ -77,6 +78,13 @@ bool integerTextIn(const std::string& text, int64_t lo, uint64_t hi) {
   return ec == std::errc() && end == text.data() + text.size() && v <= hi && (lo <= 0 || v >= static_cast<uint64_t>(lo));
 }
 
+// A rule as the docs write it, in ASCII for the help's columns (CLI11 counts bytes, not letters).
+std::string asciiRule(std::string rule) {
+  for (const auto& [from, to] : {std::pair{"²", "^2"}, std::pair{"–", "-"}, std::pair{"·", "*"}})
+    for (size_t at = rule.find(from); at != std::string::npos; at = rule.find(from, at)) rule.replace(at, std::strlen(from), to);
+  return rule;
+}
+
 }  // namespace
 
 CLI::Validator integerIn(int64_t lo, uint64_t hi) {
@@ -99,7 +107,7 @@ CLI::Validator integerRuled(const std::string& rule, int64_t lo, int64_t hi) {
 
 void addSppOption(CLI::App& cmd, int& spp, const std::string& help) {
   const std::string& rule = requestFieldRow(RequestField::Spp).range;
-  cmd.add_option("--spp", spp, help)->type_name("INT (" + rule + ")")->check(integerRuled(rule, INT32_MIN, INT32_MAX));
+  cmd.add_option("--spp", spp, help)->type_name("INT (" + asciiRule(rule) + ")")->check(integerRuled(rule, INT32_MIN, INT32_MAX));
 }
 
 CLI::Validator numberIn(double lo, double hi, bool openLow) {
@@ -134,7 +142,7 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which) {
       case RequestFieldType::Text: cmd.add_option(row.cli, flags.text[row.field], help); break;
       case RequestFieldType::Integer:
         // Any integer passes here: the request states the rule, in the words a spec and Python get too.
-        cmd.add_option(row.cli, flags.text[row.field], help)->type_name("INT (" + row.range + ")")->check(integerRuled(row.range));
+        cmd.add_option(row.cli, flags.text[row.field], help)->type_name("INT (" + asciiRule(row.range) + ")")->check(integerRuled(row.range));
         break;
       case RequestFieldType::Number:
         cmd.add_option(row.cli, flags.text[row.field], help)->type_name("FLOAT")->check(numberIn(0, row.cliNumberMax, true));

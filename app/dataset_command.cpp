@@ -148,7 +148,7 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
     try {
       return runDataset(spec, options);
     } catch (const OtherDatasetError& e) {
-      throw InputError("-o: " + std::string(e.what()) + "; use --overwrite to replace it");
+      throw InputError("-o: " + std::string(e.what()) + ": --overwrite replaces it, or give another folder");
     } catch (const Interrupted& e) {
       interruption = e.what();
       DatasetRunResult stopped;

@@ -59,7 +59,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
   std::printf("wrote %s/scene.pov and render.ini (%dx%d, render with: cd %s && povray render.ini)\n", a.out.c_str(),
-              job.width, job.height, shellWord(a.out).c_str());
+              job.width, job.height, shellWord(a.out[0] == '-' ? "./" + a.out : a.out).c_str());
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <regex>
 
 #include "cli_util.h"
 #include "commands.h"
@@ -80,13 +81,15 @@ class FrameViews {
 };
 
 // A folder of frames is one run's: frames of an earlier run that this one would not replace (more
-// of them, another format or view) are refused, never mixed in, and never deleted.
+// of them, another format or view) are refused, never mixed in, and never deleted. Only names a
+// run writes count (frame_NNNN.png, frame_NNNN.KIND.exr, their sidecars); the user's own files stay.
 void checkNoOtherFrames(const std::string& folder, const std::set<std::string>& written) {
+  static const std::regex frameFile(R"(frame_\d{4,}(\.[a-z]+)?\.(png|exr)(\.json)?)");
   std::error_code ec;
   for (auto it = std::filesystem::directory_iterator(folder, ec); !ec && it != std::filesystem::directory_iterator();
        it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.rfind("frame_", 0) == 0 && !written.count(name))
+    if (std::regex_match(name, frameFile) && !written.count(name))
       throw InputError("-o: " + showPath(folder) + " holds " + quote(name) +
                        " of another run, which this one would not replace: give an empty folder, or remove that run's frames");
   }

@@ -51,6 +51,9 @@ nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const
   RingReport report;
   try {
     report = measureRings(image, rig.camera(), defaultRingThetasDeg());
+  } catch (const RingCountError& e) {
+    if (e.tooSmall()) throw;  // the message says how large an image resolves them
+    throw InputError(std::string(e.what()) + " (for rings that are not circles: --per-azimuth)");
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) + " (for rings that are not circles: --per-azimuth)");
   }

@@ -1,4 +1,4 @@
-// omnicam study [-o docs/thesis-reproduction.md]: the thesis' mirror polygon-count study
+// omnicam study -o FILE.md: the thesis' mirror polygon-count study
 // (thesis §3.1.2, Figs. 3.4–3.5), measured. For exact mode, the cube map (6 and 5 faces) and the
 // thesis mesh at 16–1024 polygons: PSNR/SSIM against exact mode, ring RMS against the exact
 // model, frames/s; writes the Markdown table and its figures next to it.

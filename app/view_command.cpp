@@ -76,7 +76,8 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   checkImageOutput(a.out, "-o");
   checkOutputIsNotInput(a.out, "-o", a.in, "the input image");
-  checkOutputIsNotInput(sidecarPath(a.out), "-o (its sidecar)", a.in, "the input image");
+  for (const auto& [file, what] : {std::pair{a.scene, "the --scene file"}, std::pair{a.rig, "the --rig file"}})
+    if (!file.empty()) checkOutputIsNotInput(sidecarPath(a.out), "-o (its sidecar)", file, what);
   const ImageRGBA omni = readImage(a.in);
   auto [rig, sidecar] = rigOf(a, omni.width);
   // A mirror camera's image is square; a lens camera's has its own aspect, which its rig states.

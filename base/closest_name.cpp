@@ -1,6 +1,7 @@
 #include "closest_name.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace omnicam {
 
@@ -22,11 +23,17 @@ int editDistance(std::string_view a, std::string_view b) {
 }
 
 std::optional<std::string> closestName(std::string_view given, const std::vector<std::string>& names) {
+  // One letter is one edit from every other: no suggestion. Past a long word's length, none is a
+  // typo of it (and the distance's cost stays small whatever a file holds).
+  constexpr size_t kLongestName = 64;
+  if (given.size() < 2 || given.size() > kLongestName) return std::nullopt;
   const int allowed = std::max(1, static_cast<int>(given.size()) / 3);
   std::optional<std::string> best;
   int bestDistance = allowed + 1;
   for (const std::string& name : names) {
     if (name == given) continue;
+    const int lengths = std::abs(static_cast<int>(name.size()) - static_cast<int>(given.size()));
+    if (lengths > allowed) continue;  // at least that many edits
     const int distance = editDistance(given, name);
     if (distance < bestDistance) best = name, bestDistance = distance;
   }

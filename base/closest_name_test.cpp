@@ -25,6 +25,8 @@ TEST(ClosestName, SuggestsOnlyWhatIsCloseEnoughToBeATypo) {
   EXPECT_EQ(closestName("xyzzyplugh", verbs), std::nullopt);
   EXPECT_EQ(didYouMean("--sise", {"--size", "--spp"}), " (did you mean --size?)");
   EXPECT_EQ(didYouMean("--quux", {"--size", "--spp"}), "");
+  EXPECT_EQ(closestName("q", {"h", "o"}), std::nullopt);  // one letter: every other is one edit away
+  EXPECT_EQ(closestName(std::string(65, 'a'), {std::string(64, 'a')}), std::nullopt);
 }
 
 }  // namespace

@@ -32,10 +32,11 @@ inline std::string shellQuote(const std::string& text) {
   return out + "'";
 }
 
-// `text` as a shell word to paste: as it is when it holds nothing the shell treats specially
-// (and is no option), shellQuote'd otherwise.
+// `text` as a shell word to paste: as it is when it holds nothing the shell treats specially,
+// shellQuote'd otherwise. (A word that starts with '-' is an option to most commands, quoted or
+// not: a path should then be given as ./-name.)
 inline std::string shellWord(const std::string& text) {
-  const bool plain = !text.empty() && text[0] != '-' && text.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./-+,:@=") ==
+  const bool plain = !text.empty() && text.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_./-+,:@=") ==
                                           std::string::npos;
   return plain ? text : shellQuote(text);
 }

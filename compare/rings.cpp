@@ -187,7 +187,7 @@ std::string ringSpacingNote(const ImageRGBA& image, const OmniCamera& camera, co
   double closest = INFINITY;
   for (size_t k = 1; k < radii.size(); ++k) closest = std::min(closest, radii[k] - radii[k - 1]);
   constexpr double kApartPx = 2.0;
-  if (!(closest < kApartPx)) return "";
+  if (!(closest > 0.0 && closest < kApartPx)) return "";
   const int enough = static_cast<int>(std::ceil(image.width * kApartPx / closest));
   return ": at " + std::to_string(image.width) + " px its closest rings are " + shortNumber(closest) +
          " px apart and merge (an image of at least " + std::to_string(enough) + " px keeps them " + shortNumber(kApartPx) +
@@ -214,9 +214,12 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   const double threshold = background + 0.08 * (peak - background);
 
   const std::vector<std::pair<double, double>> clusters = brightClusters(samples, threshold);
-  if (clusters.size() != thetasDeg.size())
-    throw InputError("rings: found " + std::to_string(clusters.size()) + " rings in the image, expected " +
-                     std::to_string(thetasDeg.size()) + ringSpacingNote(image, camera, thetasDeg));
+  if (clusters.size() != thetasDeg.size()) {
+    const std::string note = clusters.size() < thetasDeg.size() ? ringSpacingNote(image, camera, thetasDeg) : "";
+    throw RingCountError("rings: found " + std::to_string(clusters.size()) + " rings in the image, expected " +
+                             std::to_string(thetasDeg.size()) + note,
+                         !note.empty());
+  }
 
   RingReport report;
   report.hPxExact = camera.horizonRadius();

@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "errors.h"
+
 #include "camera.h"
 #include "image.h"
 #include "omni_camera.h"
@@ -30,7 +32,19 @@ struct RingReport {
 
 std::vector<double> defaultRingThetasDeg();  // 5°, 10°, …, 135°
 
-// Throws InputError if the number of rings found differs from thetasDeg.size().
+// Too few or too many rings found; `tooSmall`: too few because the image is too small to tell its
+// closest rings apart (the message says how large it must be), not because they are not circles.
+class RingCountError : public InputError {
+ public:
+  RingCountError(const std::string& message, bool tooSmall) : InputError(message), tooSmall_(tooSmall) {}
+  bool tooSmall() const { return tooSmall_; }
+
+ private:
+  bool tooSmall_;
+};
+
+// Throws RingCountError if the number of rings found differs from thetasDeg.size(), and
+// InputError for an image without light to measure.
 RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg);
 
 nlohmann::json ringReportToJson(const RingReport& report);

@@ -281,7 +281,10 @@ void checkEngineRendersPlan(const DatasetPlan& plan) {
   const std::string file = showPath(plan.spec().file);
   const EngineKind engine = plan.engine().kind();
   // Motion that no camera's shutter sees would change no frame: refused, not ignored.
-  if (plan.spec().motion != MotionSource::Still &&
+  bool robotMoves = false;
+  for (int frame = 0; frame < static_cast<int>(plan.poses().size()) && !robotMoves; ++frame)
+    robotMoves = !plan.placement(frame, 0).still();
+  if (plan.spec().motion != MotionSource::Still && robotMoves &&
       std::all_of(plan.setups().begin(), plan.setups().end(), [](const CameraSetup& s) { return s.rig.shutter.instantaneous(); }))
     throw InputError(file + ": motion: every camera's shutter is an instant (no rig.shutter with an exposure_s or a rolling "
                             "readout), so a moving robot renders as a still one: give a rig a shutter (docs/motion.md) or leave motion out");

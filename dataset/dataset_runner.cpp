@@ -73,8 +73,7 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
     previous = readPreviousManifest(options.dir, name);
     const std::string difference = identityDifference(previous->header, header);
     if (!difference.empty() && !options.overwrite)
-      throw OtherDatasetError(showPath(options.dir) + ": holds another dataset (" + difference +
-                              "): --overwrite replaces it, or give another folder");
+      throw OtherDatasetError(showPath(options.dir) + ": holds another dataset (" + difference + ")");
   }
   if (!previous) {
     // Other shards of a dataset fill the folder ("shards/" marks it as theirs).

@@ -49,7 +49,7 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("spp": 3)")), "spec.json: spp: must be a perfect square n*n from 1 to 1024 (got 3)");
   EXPECT_EQ(errorOf(spec(R"("engine": "mitsuba")")), "spec.json: engine: must be fast, povray or blender (got \"mitsuba\")");
   EXPECT_EQ(errorOf(spec(R"("colour": 1)")), "spec.json: colour: unknown field");
-  EXPECT_EQ(errorOf(spec(R"("outputs": {"depht": true})")), "spec.json: outputs.depht: unknown field");
+  EXPECT_EQ(errorOf(spec(R"("outputs": {"depht": true})")), "spec.json: outputs.depht: unknown field (did you mean depth?)");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "a"}])")),
             "spec.json: cameras[1].name: duplicate camera name \"a\"");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "../x"}])")),

@@ -212,11 +212,25 @@ json manifestToJson(const DatasetManifest& manifest) {
   return root;
 }
 
+namespace {
+
+// `value` without the "comment" of any object in it (JsonFields lets every object have one).
+json withoutComments(json value) {
+  if (value.is_object()) {
+    value.erase("comment");
+    for (auto& [key, inner] : value.items()) inner = withoutComments(std::move(inner));
+  } else if (value.is_array()) {
+    for (json& inner : value) inner = withoutComments(std::move(inner));
+  }
+  return value;
+}
+
+}  // namespace
+
 json datasetIdentity(const json& header) {
-  json spec = header.at("spec");
-  // Words for people: a new description is the same dataset.
-  if (spec.is_object())
-    for (const char* words : {"description", "comment"}) spec.erase(words);
+  // Words for people: a new description or comment is the same dataset.
+  json spec = withoutComments(header.at("spec"));
+  if (spec.is_object()) spec.erase("description");
   return {{"spec", spec}, {"scene_sha256", header.at("scene").at("sha256")}, {"engine", header.at("engine")}};
 }
 
@@ -225,15 +239,17 @@ std::string identityDifference(const json& a, const json& b) {
   std::vector<std::string> parts;
   const json &specX = x.at("spec"), &specY = y.at("spec");
   if (specX != specY) {
-    std::string fields;
+    std::vector<std::string> fields;
     if (specX.is_object() && specY.is_object()) {
       std::set<std::string> keys;
       for (const auto& [key, value] : specX.items()) keys.insert(key);
       for (const auto& [key, value] : specY.items()) keys.insert(key);
       for (const std::string& key : keys)
-        if (specX.value(key, json()) != specY.value(key, json())) fields += (fields.empty() ? "" : ", ") + quote(key);
+        if (specX.value(key, json()) != specY.value(key, json())) fields.push_back(quote(key));
     }
-    parts.push_back(fields.empty() ? "the spec differs" : "the spec's " + fields + " differ");
+    std::string named;
+    for (const std::string& field : fields) named += (named.empty() ? "" : ", ") + field;
+    parts.push_back(fields.empty() ? "the spec differs" : "the spec's " + named + (fields.size() == 1 ? " differs" : " differ"));
   }
   if (x.at("scene_sha256") != y.at("scene_sha256")) parts.push_back("the scene's bytes differ");
   if (x.at("engine") != y.at("engine")) parts.push_back("the engine differs");

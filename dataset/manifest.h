@@ -83,10 +83,10 @@ void writeManifest(const std::string& dir, const DatasetManifest& manifest, cons
 
 // What makes two runs the same dataset: the spec's content (not its formatting), the scene's
 // bytes and the engine. Resuming or merging across any difference would mix frames.
-// Its spec's "description" and "comment" are words for people, not part of it.
+// Its spec's "description" and any object's "comment" are words for people, not part of it.
 nlohmann::json datasetIdentity(const nlohmann::json& header);
 // What makes two headers' datasets differ, in words ("the spec's "spp", "size" differ; the
-// scene's bytes differ"), or "" when they are the same dataset.
+// scene's bytes differ"; one field "differs"), or "" when they are the same dataset.
 std::string identityDifference(const nlohmann::json& a, const nlohmann::json& b);
 
 // At most this many shards (Slurm array tasks) per dataset: a count sizes work (a file and a

@@ -35,7 +35,7 @@ constexpr double kReferenceBoundDb = 31.0;
 TEST(RealisticNoiseGuard, TwoSeedsOfARealisticFrameAgreeAndTheOldSettingsDoNot) {
   const std::string lab = "/usr/share/blender/datafiles/studiolights/world/interior.exr";
   ASSERT_TRUE(fs::exists(lab)) << lab << " is missing: Debian's blender-data ships it (make deps)";
-  const testing::ScratchFolder scratch("realistic_noise_guard");
+  const test_support::ScratchFolder scratch("realistic_noise_guard");
   const fs::path& folder = scratch.path();
   HallOptions options;
   options.fieldScene = std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json";

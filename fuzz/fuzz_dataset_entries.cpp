@@ -114,7 +114,7 @@ void manifest(const uint8_t* data, size_t size) {
   }
   // What --verify and a resumed run do next with it.
   (void)manifestFiles(read);
-  (void)datasetIdentity(read.header);
+  if (!identityDifference(read.header, read.header).empty()) finding("a manifest's dataset differs from itself");
   // A resumed run rewrites the manifest it read (writeManifest): omnicam must read that back.
   try {
     const DatasetManifest again = manifestFromText(manifestToJson(read).dump(1) + "\n", file);

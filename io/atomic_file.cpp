@@ -155,6 +155,9 @@ void checkOutputFolder(const std::string& path, const std::string& flag) {
 void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,
                            const std::string& inputName) {
   std::error_code ec;
+  // An output that is a link is replaced, never written through (writeBytesAtomically): the file it
+  // points to is safe.
+  if (fs::is_symlink(path, ec)) return;
   if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
     throw InputError(flag + ": " + showPath(path) + " is " + inputName + "; writing it would destroy what is read: choose another name");
 }

@@ -36,7 +36,8 @@ void checkOutputFile(const std::string& path, const std::string& flag);
 // The same for an output folder: a folder already, or a name that can be created.
 void checkOutputFolder(const std::string& path, const std::string& flag);
 // InputError("<flag>: <path> is <inputName>; ...") if `path` names the same existing file as
-// `input`, by any spelling or link: writing it would destroy what is being read.
+// `input`, by any spelling or hard link: writing it would destroy what is being read. (A `path`
+// that is a symbolic link is replaced by the write, not written through: allowed.)
 void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,
                            const std::string& inputName);
 

@@ -33,12 +33,14 @@ std::optional<fs::path> resolveConfined(const fs::path& folder, const std::strin
     why = "cannot resolve " + quote(name) + " (" + ec.message() + ")";
     return std::nullopt;
   }
-  if (fs::is_directory(resolved, ec)) {
-    why = quote(name) + " is a folder, not a file";
+  // Confinement first: what lies outside is not even told apart (folder, file or nothing).
+  if (!allowOutside && !isInsideFolder(folder, resolved)) {
+    why = resolved == fs::weakly_canonical(folder, ec) ? quote(name) + " is the scene's folder, not a file"
+                                                       : quote(name) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
     return std::nullopt;
   }
-  if (!allowOutside && !isInsideFolder(folder, resolved)) {
-    why = quote(name) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+  if (fs::is_directory(resolved, ec)) {
+    why = quote(name) + " is a folder, not a file";
     return std::nullopt;
   }
   if (!fs::is_regular_file(resolved, ec)) {

@@ -37,7 +37,7 @@ namespace {
 
 // The fixtures live in this process's own folder, removed when it ends.
 std::string tempPath(const std::string& name) {
-  static const testing::ScratchFolder folder("omnicam_decoder");
+  static const test_support::ScratchFolder folder("omnicam_decoder");
   return folder.file(name);
 }
 

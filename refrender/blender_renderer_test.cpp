@@ -204,7 +204,7 @@ void writeExr(const std::string& path, const std::vector<std::string>& channels,
 }
 
 TEST(Blender, TheDirectPassFramesAreReadByChannelName) {
-  const testing::ScratchFolder scratch("direct_pass_read");
+  const test_support::ScratchFolder scratch("direct_pass_read");
   const fs::path& dir = scratch.path();
   const std::string full = (dir / "full.exr").string(), direct = (dir / "direct.exr").string();
   const std::vector<std::string> passes = {"Hall.Combined.R", "Hall.Combined.G", "Hall.Combined.B", "Hall.Combined.A",

@@ -35,12 +35,30 @@ class Reader {
 
 }  // namespace
 
+namespace {
+
+// The rule of one mode option, on the value as given (any 64-bit integer, never narrowed first).
+void checkModeOption(RequestField field, int64_t value, const Reader& r) {
+  switch (field) {
+    case RequestField::Faces:
+      if (value != 5 && value != 6) r.fail(field, "must be 5 or 6 (got " + std::to_string(value) + ")");
+      break;
+    case RequestField::FaceSize: r.integerIn(value, 0, field, 8, 8192, " texels"); break;
+    case RequestField::Polygons:
+      if (value != 16 && value != 64 && value != 256 && value != 1024)
+        r.fail(field, "must be 16, 64, 256 or 1024 (got " + std::to_string(value) + ")");
+      break;
+    default: break;
+  }
+}
+
+}  // namespace
+
 void checkModeOptions(const CubeMapOptions& o, const RequestFieldNames& names) {
   const Reader r(names);
-  if (o.faces != 5 && o.faces != 6) r.fail(RequestField::Faces, "must be 5 or 6 (got " + std::to_string(o.faces) + ")");
-  r.integerIn(o.faceSize, o.faceSize, RequestField::FaceSize, 8, 8192, " texels");
-  if (o.mode == OmniMode::ThesisMesh && o.polygons != 16 && o.polygons != 64 && o.polygons != 256 && o.polygons != 1024)
-    r.fail(RequestField::Polygons, "must be 16, 64, 256 or 1024 (got " + std::to_string(o.polygons) + ")");
+  checkModeOption(RequestField::Faces, o.faces, r);
+  checkModeOption(RequestField::FaceSize, o.faceSize, r);
+  if (o.mode == OmniMode::ThesisMesh) checkModeOption(RequestField::Polygons, o.polygons, r);
 }
 
 namespace {
@@ -58,9 +76,12 @@ void readEngineAndMode(const RequestFields& f, const Reader& r, RenderRequest& q
   if ((f.has(F::Faces) || f.has(F::FaceSize)) && q.mode == "exact")
     r.fail(f.has(F::Faces) ? F::Faces : F::FaceSize, "only with " + r.name(F::Mode) + " cubemap or thesis-mesh");
   if (f.has(F::Polygons) && q.mode != "thesis-mesh") r.fail(F::Polygons, "only with " + r.name(F::Mode) + " thesis-mesh");
-  const auto narrow = [&f](F field, int fallback) {
+  // Each given option meets its rule as given; only then is it an int.
+  const auto narrow = [&f, &r](F field, int fallback) {
     const std::optional<int64_t> v = f.integer(field);
-    return v ? static_cast<int>(std::clamp<int64_t>(*v, INT32_MIN, INT32_MAX)) : fallback;
+    if (!v) return fallback;
+    checkModeOption(field, *v, r);
+    return static_cast<int>(*v);
   };
   q.modeOptions.faces = narrow(F::Faces, q.modeOptions.faces);
   q.modeOptions.faceSize = narrow(F::FaceSize, q.modeOptions.faceSize);

@@ -58,7 +58,7 @@ TEST_F(SceneLoaderTest, MinimalSceneLoadsWithDefaults) {
 TEST_F(SceneLoaderTest, ErrorsNameFileAndField) {
   const std::string file = (dir_ / "scene.json").string();
   EXPECT_EQ(errorOf(R"("colour": 1,)"), file + ": colour: unknown field");
-  EXPECT_EQ(errorOf("", R"(, "radius2": 3)"), file + ": objects[0].radius2: unknown field");
+  EXPECT_EQ(errorOf("", R"(, "radius2": 3)"), file + ": objects[0].radius2: unknown field (did you mean radius?)");
   EXPECT_EQ(errorOf("", "", R"({"mirror": {"k": 2}})"), file + ": rig.mirror.k: must be in (2, 100] (got 2)");
   EXPECT_EQ(errorOf("", "", R"({"mirror": {"c": 0}})"), file + ": rig.mirror.c: must be in [0.001, 1] m (got 0)");
   EXPECT_EQ(errorOf("", "", R"({"height": "tall"})"), file + ": rig.height: must be a number (got string)");

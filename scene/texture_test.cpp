@@ -20,7 +20,7 @@ namespace {
 
 // The files these tests write, in this process's own folder.
 std::string scratchFile(const std::string& name) {
-  static const testing::ScratchFolder folder("omnicam_texture");
+  static const test_support::ScratchFolder folder("omnicam_texture");
   return folder.file(name);
 }
 

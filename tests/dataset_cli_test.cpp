@@ -397,7 +397,7 @@ TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   const auto refused = omnicam("dataset " + b + " -o " + path("ds"));
   EXPECT_EQ(refused.code, 2);
   // It names what differs.
-  EXPECT_NE(refused.out.find("holds another dataset (the spec's \"poses\" differ): --overwrite replaces it"), std::string::npos)
+  EXPECT_NE(refused.out.find("holds another dataset (the spec's \"poses\" differs): --overwrite replaces it"), std::string::npos)
       << refused.out;
   EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 3);  // untouched
   // A new description is the same dataset: the run resumes, every frame kept.
@@ -461,7 +461,7 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   const std::string other = robocupSpec("other.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 10})");
   r = omnicam("dataset " + other + " -o " + path("parts") + " --shard 0/2");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("different spec"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("holds another dataset (the spec's \"size\" differs)"), std::string::npos) << r.out;
   EXPECT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 3/3").code, 2);
 }
 

@@ -272,7 +272,9 @@ TEST_F(InputTrustTest, IntegerFlagsAreReadExactly) {
     expectRefused("arena mapping --seed " + seed + " -o " + path("m.json"), "--seed: must be an integer in [0, 18446744073709551615]");
   expectRefused("render " + path("box.json") + " --size 010 -o " + path("x.png"), "--size: must be an integer in [8, 16384] (got \"010\")");
   expectRefused("render " + path("box.json") + " --size 4294967304 -o " + path("x.png"), "--size: must be an integer in [8, 16384]");
-  expectRefused("render " + path("box.json") + " --mode cubemap --faces 0x5 -o " + path("x.png"), "--faces: must be an integer in [0, 2147483647] (got \"0x5\")");
+  expectRefused("render " + path("box.json") + " --mode cubemap --faces 0x5 -o " + path("x.png"), "--faces: must be an integer, 5 or 6 (got \"0x5\")");
+  // Past 2^31 the rule sees the value as given: never clamped to 2147483647 first.
+  expectRefused("render " + path("box.json") + " --mode cubemap --faces 4294967301 -o " + path("x.png"), "--faces: must be 5 or 6 (got 4294967301)");
   expectRefused("dataset " + spec({}) + " -o " + path("ds") + " --threads 4097", "--threads: must be an integer in [0, 4096] (got \"4097\")");
   expectRefused("dataset " + spec({}) + " -o " + path("ds") + " --shard 01/2", "--shard: must be I/N");
   expectRefused("dataset " + spec({}) + " -o " + path("ds") + " --shard ' 1/2'", "--shard: must be I/N");

@@ -1,22 +1,26 @@
 #pragma once
-// A test program's own folder for the files it writes, under the test temp folder, named by the
-// process id and removed with everything in it when the object goes: nothing is left behind, and
+// A test program's own folder for the files it writes: a fresh one under the test temp folder
+// (mkdtemp), removed with everything in it when the object goes. Nothing is left behind, and
 // programs running side by side (ctest -j, --repeat) never share a file.
 #include <gtest/gtest.h>
-#include <unistd.h>
+#include <stdlib.h>
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <system_error>
+#include <vector>
 
-namespace omnicam::testing {
+namespace omnicam::test_support {
 
 class ScratchFolder {
  public:
-  explicit ScratchFolder(const std::string& prefix)
-      : path_(std::filesystem::path(::testing::TempDir()) / (prefix + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
+  explicit ScratchFolder(const std::string& prefix) {
+    std::string pattern = (std::filesystem::path(::testing::TempDir()) / (prefix + "_XXXXXX")).string();
+    std::vector<char> name(pattern.begin(), pattern.end());
+    name.push_back('\0');
+    if (!::mkdtemp(name.data())) throw std::runtime_error("cannot make a scratch folder like " + pattern);
+    path_ = name.data();
   }
   ~ScratchFolder() {
     std::error_code ignored;
@@ -32,4 +36,4 @@ class ScratchFolder {
   std::filesystem::path path_;
 };
 
-}  // namespace omnicam::testing
+}  // namespace omnicam::test_support

@@ -53,6 +53,8 @@ py::dict runDatasetFromPython(const std::filesystem::path& specPath, const std::
   try {
     py::gil_scoped_release release;
     result = runDataset(spec, options);
+  } catch (const OtherDatasetError& e) {
+    throw InputError(std::string(e.what()) + ": overwrite=True replaces it, or give another folder");
   } catch (...) {
     if (raised) throw std::move(*raised);  // the callback's exception first: it caused the stop
     throw;
