@@ -17,6 +17,8 @@
 #include "image.h"
 #include "make_camera.h"
 #include "frame_sequence.h"
+#include "recording_camera.h"
+#include "recording_camera_spec.h"
 #include "render_output.h"
 #include "atomic_file.h"
 #include "sidecar.h"
@@ -28,7 +30,7 @@ namespace omnicam::cli {
 namespace {
 
 struct RenderArgs {
-  std::string scene, pose, velocity, path, size, out, format = "png";
+  std::string scene, pose, velocity, path, size, out, format = "png", recording;
   int frames = 0, imageSize = 0;
   RequestFlags request;
   std::vector<std::string> views;
@@ -80,6 +82,23 @@ class FrameViews {
   std::vector<View> maps_;
 };
 
+// --recording: a preset's name, or a file holding one `recording` object (docs/experiments.md).
+std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(text, ec)) return recordingCameraSpecFromJson(readJsonFile(text), text, "");
+  return recordingCameraSpecFromJson(nlohmann::json(text), "--recording", "");
+}
+
+// Frame `frame` (0 for a single image) through the recording camera drawn for it, which its
+// sidecar records, as a dataset's manifest does.
+void record(RenderedFile& rendered, const std::optional<RecordingCameraSpec>& recording, uint64_t frame) {
+  if (!recording) return;
+  const RecordingCamera camera = recording->draw(frame);
+  rendered.image = recordFrame(camera, rendered.image, frame);
+  rendered.sidecar["recording"] = recordingCameraToJson(camera);
+}
+
 // A folder of frames is one run's: frames of an earlier run that this one would not replace (more
 // of them, another format or view) are refused, never mixed in, and never deleted. Only names a
 // run writes count (frame_NNNN.png, frame_NNNN.KIND.exr, their sidecars); the user's own files stay.
@@ -99,7 +118,7 @@ void checkNoOtherFrames(const std::string& folder, const std::set<std::string>& 
 // with its views and sidecars.
 void renderPath(const RenderArgs& a, const std::string& engineName, const Scene& scene, Engine& engine,
                 const RenderSettings& settings, const BodyVelocity& velocity, const FrameViews& views,
-                const CameraPath& path) {
+                const CameraPath& path, const std::optional<RecordingCameraSpec>& recording) {
   const int total = a.frames ? a.frames : static_cast<int>(path.poses.size());
   const auto frameFile = [&](int f) {
     char name[64];
@@ -136,6 +155,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
       [&](size_t f, ImageRGBA&& image, double seconds) {
         RenderedFile rendered{std::move(image), renderSidecar(scene, engine, placementOf(f), settings, seconds)};
         rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
+        record(rendered, recording, f);
         if (writing.valid()) writing.get();
         writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
           writeRendered(file, frame);
@@ -158,6 +178,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   if (a.format != "png" && a.format != "exr") throw InputError("--format: must be png or exr");
   std::optional<RobotPose> pose;
   if (!a.pose.empty()) pose = parsePose(a.pose, "--pose");
+  const std::optional<RecordingCameraSpec> recording = readRecordingFlag(a.recording);
   RenderSettings settings = request.settings(RigSpec{});
   BodyVelocity velocity;
   if (!a.velocity.empty()) {
@@ -192,12 +213,13 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   if (!path) {
     const CameraPlacement at(pose ? *pose : scene.startPose, velocity);
     RenderedFile rendered = renderPose(scene, *engine, at, settings);
+    record(rendered, recording, 0);
     writeRendered(a.out, rendered);
     views.write(a.out, rendered);
     std::printf("wrote %s\n", a.out.c_str());
     return;
   }
-  renderPath(a, request.engine, scene, *engine, settings, velocity, views, *path);
+  renderPath(a, request.engine, scene, *engine, settings, velocity, views, *path, recording);
 }
 
 }  // namespace
@@ -219,6 +241,10 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--view", args->views,
                   "Also write this view of each image (birdseye, panorama or perspective; repeatable): "
                   "OUT.KIND.png, frame_NNNN.KIND.png");
+  cmd->add_option("--recording", args->recording,
+                  "Record each image through a camera's faults: a preset (webcam, machine_vision, phone; drawn per frame "
+                  "from its ranges) or a JSON file of one recording object (docs/experiments.md); the sidecar records the "
+                  "drawn values");
   cmd->add_option("-o,--output", args->out, "OUT.png / OUT.exr, or a folder with --path")->required();
   addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args, cmd] { runRender(*args, *cmd); });

@@ -492,6 +492,14 @@ TEST_F(DatasetCliTest, ARandomisedRecordingCameraResumesAndShardsByteForByteWith
   const ImageRGBA recorded = recordFrame(drawn, readImage(path("clean7.exr")), 7);
   const ImageRGBA written = readImage(path("whole/cam0/rgb/000007.png"));
   EXPECT_TRUE(encodeImage("a.png", recorded) == encodeImage("a.png", written)) << "frame 7 is not its drawn camera's recording";
+  // The render verb's --recording draws frame f as this one-camera dataset draws it: the same
+  // values in the sidecar, the same PNG.
+  const std::string cameraFile = write("camera.json", R"({"preset": {"choice": ["webcam", "machine_vision", "phone"]}, "seed": 5})");
+  const auto sequence = omnicam("render " OMNICAM_SOURCE_DIR "/scenes/robocup2006.json --size 128 --spp 4 --shading lit "
+                                "--path thesis-loop --frames 8 --recording " + cameraFile + " -o " + path("seq"));
+  ASSERT_EQ(sequence.code, 0) << sequence.out;
+  EXPECT_EQ(readFile(dir_ / "seq/frame_0007.png"), readFile(dir_ / "whole/cam0/rgb/000007.png"));
+  EXPECT_EQ(json::parse(readFile(dir_ / "seq/frame_0007.png.json")).at("recording"), frame7.at("cameras").at("cam0").at("recording"));
 
   expectResumedAndShardedAsWhole(spec);
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
