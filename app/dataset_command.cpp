@@ -115,7 +115,8 @@ int printStatus(const std::string& dir) {
   }
   const DatasetStatus s = datasetStatus(dir);
   std::printf("%s: %d of %d frames finished%s\n", dir.c_str(), s.finished, s.frames,
-              s.complete ? " (complete)" : " (incomplete: run the same command again to resume)");
+              s.complete ? " (complete, by its manifest; --verify re-hashes every file)"
+                         : " (incomplete: run the same command again to resume)");
   if (!s.complete)
     for (int count : shardCountsIn(dir)) printShardStates(dir, count);
   return s.complete ? 0 : 1;

@@ -130,17 +130,24 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   DatasetManifest manifest;
   manifest.header = plan.header();
 
+  // The folder is opened (made when new) once, and everything below is written through its
+  // descriptor. It is claimed first: one run at a time, or the shards of one together (each
+  // writes its own manifest), so two runs never take the same folder over at once.
+  std::error_code ec;
+  if (fs::exists(options.dir, ec) && !fs::is_directory(options.dir, ec))
+    throw InputError(showPath(options.dir) + ": exists and is not a folder");
+  const SafeFolder folder(options.dir, true);
+  if (!folder.tryClaim(plan.range().sharded))
+    throw InputError(showPath(options.dir) + ": another omnicam run is writing " +
+                     (plan.range().sharded ? "a whole dataset" : "a dataset") + " there now: wait for it to end, or give another folder");
   // The folder: new, this dataset (resume), or something else (refused unless overwriting a
   // dataset). Everything in it is checked before anything is written: a planted link or a file
   // where a folder goes ends the run here.
   const std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
-  for (const std::string& folder : plan.folders()) SafeFolder(options.dir).checkFolders(folder);
+  for (const std::string& sub : plan.folders()) folder.checkFolders(sub);
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
   if (!plan.range().sharded) removeAtomicTemporaries(options.dir);
-  // Checked: the folder is opened (made when new) once, and everything below is written through
-  // its descriptor.
-  const SafeFolder folder(options.dir, true);
   if (previous) manifest.frames = intactFrames(folder, *previous, plan);
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.

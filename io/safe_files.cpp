@@ -1,6 +1,7 @@
 #include "safe_files.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -180,6 +181,13 @@ SafeFolder::SafeFolder(const std::string& root, bool create) : root_(root) {
   } catch (const Problem& p) {
     rethrow(root_, p);
   }
+}
+
+bool SafeFolder::tryClaim(bool shared) const {
+  if (fd_.get() < 0) return true;
+  while (::flock(fd_.get(), (shared ? LOCK_SH : LOCK_EX) | LOCK_NB) != 0)
+    if (errno != EINTR) return errno != EWOULDBLOCK;
+  return true;
 }
 
 EntryKind SafeFolder::entry(const std::string& relative) const {

@@ -45,6 +45,10 @@ class SafeFolder {
   void writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const;
   bool removeFile(const std::string& relative) const;
   bool removeEmptyFolder(const std::string& relative) const;
+  // Claims the folder for this process (flock(2) on the folder itself: no lock file, and the claim
+  // ends with the process however it ends): `shared` with other shared claims, or alone. False if
+  // another process holds a claim that excludes this one; true for a folder not opened.
+  bool tryClaim(bool shared) const;
 
  private:
   std::string root_;

@@ -390,6 +390,44 @@ TEST_F(DatasetCliTest, CtrlCStopsCleanlyAndTheRunResumes) {
   EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
 }
 
+// One run at a time per folder, or the shards of one together: a run held mid-way (after its
+// manifest lists a frame) keeps a second whole run and a shard out, with one line saying why, and
+// nothing of its changes; a shard held mid-way lets another shard finish beside it.
+TEST_F(DatasetCliTest, AFolderIsOneRunsOrItsShardsAtATime) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 48, "poses": {"path": "thesis-loop", "frames": 6})");
+  {
+    testing::HoldPoint hold(path("hold"), "manifest.json");
+    const pid_t pid = spawnOmnicam({"dataset", spec, "-o", path("ds")}, path("ds.log"), hold.environment());
+    int status = 0;
+    ASSERT_TRUE(hold.waitUntilHeld([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, 300.0)) << readFile(dir_ / "ds.log");
+    const std::string manifest = readFile(dir_ / "ds/manifest.json");
+    for (const std::string& second : {std::string(""), std::string(" --shard 0/2")}) {
+      const auto refused = omnicam("dataset " + spec + " -o " + path("ds") + second);
+      EXPECT_EQ(refused.code, 2) << refused.out;
+      EXPECT_NE(refused.out.find("another omnicam run is writing"), std::string::npos) << refused.out;
+      EXPECT_EQ(readFile(dir_ / "ds/manifest.json"), manifest);
+    }
+    hold.release();
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readFile(dir_ / "ds.log");
+  }
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+  // Shards share the folder.
+  testing::HoldPoint hold(path("hold-shard"), "shard-0-of-2.json");
+  const pid_t pid = spawnOmnicam({"dataset", spec, "-o", path("parts"), "--shard", "0/2"}, path("parts.log"), hold.environment());
+  int status = 0;
+  ASSERT_TRUE(hold.waitUntilHeld([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, 300.0)) << readFile(dir_ / "parts.log");
+  const auto beside = omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2");
+  EXPECT_EQ(beside.code, 0) << beside.out;
+  const auto whole = omnicam("dataset " + spec + " -o " + path("parts"));
+  EXPECT_EQ(whole.code, 2) << whole.out;
+  EXPECT_NE(whole.out.find("another omnicam run is writing"), std::string::npos) << whole.out;
+  hold.release();
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readFile(dir_ / "parts.log");
+  EXPECT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+}
+
 TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   const std::string a = robocupSpec("a.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3})");
   const std::string b = robocupSpec("b.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 4})");
