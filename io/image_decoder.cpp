@@ -1,6 +1,7 @@
 #include "image_decoder.h"
 
 #include <cstring>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -87,6 +88,24 @@ std::string signatureOf(const ImageSource& source) {
   return head;
 }
 
+// Why an image omnicam does not read is refused: formats users meet (POV-Ray's +FP and +FB
+// outputs, web images) named by their first bytes, so the message says what the file is.
+std::string unreadFormatOf(std::string_view head) {
+  using namespace std::string_view_literals;
+  if (head.empty()) return "the file is empty";
+  std::string format;
+  if (head.starts_with("GIF87a"sv) || head.starts_with("GIF89a"sv)) format = "a GIF file";
+  else if (head.starts_with("BM"sv) && head.size() >= 14) format = "a BMP file";
+  else if (head.size() >= 3 && head[0] == 'P' && head[1] >= '1' && head[1] <= '7' && std::isspace(static_cast<unsigned char>(head[2])))
+    format = "a Netpbm (PBM, PGM, PPM or PAM) file";
+  else if (head.starts_with("RIFF"sv) && head.substr(8, 4) == "WEBP"sv) format = "a WebP file";
+  else if (head.starts_with("8BPS"sv)) format = "a Photoshop file";
+  else if (head.starts_with("SDPX"sv) || head.starts_with("XPDS"sv)) format = "a DPX file";
+  const std::string read = "omnicam reads PNG, JPEG, TIFF, OpenEXR and Radiance HDR";
+  return format.empty() ? "not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file"
+                        : format + "; " + read + ": convert it (oiiotool, ImageMagick), or have POV-Ray write PNG (+FN)";
+}
+
 std::unique_ptr<ImageDecoder> openByFormat(const ImageSource& source) {
   using namespace std::string_view_literals;
   const std::string bytes = signatureOf(source);
@@ -97,7 +116,7 @@ std::unique_ptr<ImageDecoder> openByFormat(const ImageSource& source) {
   if (head.starts_with("II*\0"sv) || head.starts_with("MM\0*"sv) || head.starts_with("II+\0"sv) || head.starts_with("MM\0+"sv))
     return openTiffDecoder(source);
   if (head.starts_with("#?RADIANCE"sv) || head.starts_with("#?RGBE"sv)) return openHdrDecoder(source);
-  throw InputError(source.name + ": cannot read image (not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file)");
+  throw InputError(source.name + ": cannot read image (" + unreadFormatOf(head) + ")");
 }
 
 }  // namespace

@@ -283,11 +283,33 @@ TEST(ImageDecoders, TheFormatIsToldByTheBytesNotTheName) {
   const std::string misnamed = tempPath("named_wrong.exr");
   std::ofstream(misnamed, std::ios::binary) << fileBytes(png.path);
   EXPECT_EQ(openImageDecoder({misnamed, {}, "x"})->format(), "png");
-  try {
-    (void)openImageDecoder({"", "GIF89a........", "mem.gif"});
-    FAIL() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "mem.gif: cannot read image (not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file)");
+  // Formats omnicam does not read are named by their bytes, with what to do.
+  const std::string advice = "; omnicam reads PNG, JPEG, TIFF, OpenEXR and Radiance HDR: convert it (oiiotool, ImageMagick), "
+                             "or have POV-Ray write PNG (+FN))";
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"GIF89a........", "a GIF file" + advice},
+      {std::string("BM\x36\x00\x00\x00\x00\x00\x00\x00\x36\x00\x00\x00", 14), "a BMP file" + advice},
+      {"P6\n4 4\n255\n", "a Netpbm (PBM, PGM, PPM or PAM) file" + advice},
+      {std::string("RIFF\x10\x00\x00\x00WEBPVP8 ", 16), "a WebP file" + advice},
+      {"", "the file is empty)"},
+      {"hello, world", "not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file)"}};
+  for (const auto& [bytes, why] : refused) {
+    try {
+      (void)openImageDecoder({"", bytes, "mem"});
+      ADD_FAILURE() << "accepted: " << why;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "mem: cannot read image (" + why);
+    }
+  }
+  // OpenImageIO writes a real PPM and BMP: the same words.
+  for (const char* name : {"real.ppm", "real.bmp"}) {
+    const Written file = writeWithOiio(name, specOf(4, 4, 3, OIIO::TypeDesc::UINT8));
+    try {
+      (void)openImageDecoder({file.path, {}, name});
+      ADD_FAILURE() << "accepted " << name;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(name[5] == 'p' ? "a Netpbm" : "a BMP file"), std::string::npos) << e.what();
+    }
   }
 }
 
