@@ -98,7 +98,7 @@ std::string unreadFormatOf(std::string_view head) {
   else if (head.starts_with("BM"sv) && head.size() >= 14) format = "a BMP file";
   else if (head.size() >= 3 && head[0] == 'P' && head[1] >= '1' && head[1] <= '7' && std::isspace(static_cast<unsigned char>(head[2])))
     format = "a Netpbm (PBM, PGM, PPM or PAM) file";
-  else if (head.starts_with("RIFF"sv) && head.substr(8, 4) == "WEBP"sv) format = "a WebP file";
+  else if (head.starts_with("RIFF"sv) && head.size() >= 12 && head.substr(8, 4) == "WEBP"sv) format = "a WebP file";
   else if (head.starts_with("8BPS"sv)) format = "a Photoshop file";
   else if (head.starts_with("SDPX"sv) || head.starts_with("XPDS"sv)) format = "a DPX file";
   const std::string read = "omnicam reads PNG, JPEG, TIFF, OpenEXR and Radiance HDR";
