@@ -36,7 +36,7 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
     sidecar["rig_from"] = {{"scene", a.scene}};
   } else if (!a.rig.empty()) {
     const nlohmann::json file = readJsonFile(a.rig);
-    if (file.is_object() && file.contains("format") && file["format"] == "omnicam-scene/1")
+    if (file.is_object() && file.contains("format") && file["format"] == kSceneFormat)
       throw InputError("--rig: " + showPath(a.rig) + " is a scene file: give it as --scene (--rig takes a scene's \"rig\" object)");
     rig = rigFromJson(file, a.rig, "rig");
     sidecar["rig_from"] = {{"rig_file", a.rig}};

@@ -60,9 +60,8 @@ DatasetManifest readPreviousManifest(const std::string& dir, const std::string& 
 // files are then removed. A shard reads its own manifest, and the merged one if there is one.
 std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, const json& header,
                                               const std::string& manifestName) {
+  // The folder is one already (runDatasetHere opened it).
   std::error_code ec;
-  if (fs::exists(options.dir, ec) && !fs::is_directory(options.dir, ec))
-    throw InputError(showPath(options.dir) + ": exists and is not a folder");
   if (!fs::exists(options.dir, ec) || fs::is_empty(options.dir, ec)) return std::nullopt;
   const SafeFolder dir(options.dir);
   std::vector<std::string> names{kManifestName};

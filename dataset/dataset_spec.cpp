@@ -379,7 +379,7 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   JsonFields top(spec.json, file, "");
   if (const std::string format = top.string("format"); format != kFormat)
     top.fail("format", "must be \"" + std::string(kFormat) + "\"" +
-                           (format == "omnicam-scene/1" ? std::string(": this is a scene file; a dataset spec names one in \"scene\"") : ""));
+                           (format == kSceneFormat ? std::string(": this is a scene file; a dataset spec names one in \"scene\"") : ""));
   top.string("description", "");
   if (top.has("comment")) top.raw("comment");
   const std::string scene = top.string("scene");

@@ -25,8 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kFormat = "omnicam-scene/1";
-
 struct Context {
   std::string file;
   fs::path folder;  // textures resolve relative to, and must stay inside, this folder
@@ -443,7 +441,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   scene.path = file;
   scene.sha256 = sha256OfBytes(text);
   const std::string format = top.string("format");
-  if (format != kFormat) top.fail("format", "must be \"" + std::string(kFormat) + "\"");
+  if (format != kSceneFormat) top.fail("format", "must be \"" + std::string(kSceneFormat) + "\"");
   scene.name = top.string("name", fs::path(file).stem().string());
   top.string("description", "");
   scene.background = top.colour("background", scene.background, 1e6);

@@ -8,6 +8,9 @@
 
 namespace omnicam {
 
+// The "format" a scene file states (docs/scene-format.md).
+inline constexpr const char* kSceneFormat = "omnicam-scene/1";
+
 struct SceneLoadOptions {
   // Files a scene pulls in (textures, glTF and the glTF's buffers and images) must resolve,
   // symlinks followed, to a place inside the scene file's folder; `data:` URIs are always fine.
