@@ -206,23 +206,28 @@ void removeMadeFolders(const std::vector<std::string>& made) {
   for (const std::string& folder : made) std::filesystem::remove(folder, ec);  // an empty folder only
 }
 
-Progress::Progress(std::string label, int total, int alreadyDone)
-    : label_(std::move(label)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
+Progress::Progress(std::string label, int total, int alreadyDone, std::string unit)
+    : label_(std::move(label)), unit_(std::move(unit)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
       tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
 
-void Progress::step() {
-  ++done_;
+void Progress::step() { advanceTo(done_ + 1); }
+
+void Progress::advanceTo(int done) {
+  const int before = done_;
+  done_ = done;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double rate = seconds > 0.0 ? (done_ - alreadyDone_) / seconds : 0.0;
   const int width = 30, filled = total_ > 0 ? width * done_ / total_ : width;
   const double left = rate > 0.0 ? (total_ - done_) / rate : 0.0;
   char eta[32];
   std::snprintf(eta, sizeof eta, "ETA %d:%02d", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
+  // Without a terminal: a line at each tenth crossed (every step when there are fewer than ten).
+  const auto tenth = [&](int n) { return total_ >= 10 ? n / (total_ / 10) : n; };
   if (tty_) {
-    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f frames/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
-                 std::string(width - filled, ' ').c_str(), done_, total_, rate, eta);
-  } else if (done_ == total_ || (total_ >= 10 && done_ % (total_ / 10) == 0)) {
-    std::fprintf(stderr, "%s %d/%d  %.1f frames/s  %s\n", label_.c_str(), done_, total_, rate, eta);
+    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f %s/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), done_, total_, rate, unit_.c_str(), eta);
+  } else if (done_ == total_ || tenth(done_) > tenth(before)) {
+    std::fprintf(stderr, "%s %d/%d  %.1f %s/s  %s\n", label_.c_str(), done_, total_, rate, unit_.c_str(), eta);
   }
   std::fflush(stderr);
 }

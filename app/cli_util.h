@@ -67,16 +67,19 @@ std::vector<std::string> ensureDirectory(const std::string& dir, const std::stri
 // nothing behind, and nothing else is touched.
 void removeMadeFolders(const std::vector<std::string>& made);
 
-// A one-line progress bar on stderr for long sequences: frames/s and time left. `alreadyDone`
-// frames (kept from an earlier run) count toward the bar but not toward the rate.
+// A one-line progress bar on stderr for long sequences: steps/s and time left, each step one of
+// `unit` (frames, renders, rows). `alreadyDone` steps (kept from an earlier run) count toward the
+// bar but not toward the rate.
 class Progress {
  public:
-  Progress(std::string label, int total, int alreadyDone = 0);
+  Progress(std::string label, int total, int alreadyDone = 0, std::string unit = "frames");
   void step();
+  // Jumps to `done` steps, printing once.
+  void advanceTo(int done);
   void finish();
 
  private:
-  std::string label_;
+  std::string label_, unit_;
   int total_, done_ = 0, alreadyDone_ = 0;
   bool tty_;
   std::chrono::steady_clock::time_point start_;

@@ -55,7 +55,8 @@ struct StageProgress {
     if (s != stage) {
       if (bar) bar->finish();
       stage = s;
-      bar = std::make_unique<Progress>(s, total, sharedTotal ? done - 1 : 0);
+      // A stage named by what it counts ("calibrations", "paths") counts those; a longer one, steps.
+      bar = std::make_unique<Progress>(s, total, sharedTotal ? done - 1 : 0, s.find(' ') == std::string::npos ? s : "steps");
     }
     bar->step();
   }

@@ -58,7 +58,14 @@ void runCameraRays(const CameraRaysArgs& a) {
   RigSpec rig = scene.rig;
   if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
-  writeCameraRayTable(a.out, cameraRayTable(*camera));
+  // Rows as the bars' steps: a large table takes minutes to trace (a physical camera) and to encode.
+  const std::string size = std::to_string(camera->width()) + "x" + std::to_string(camera->height());
+  Progress tracing("camera-rays " + size + ": tracing", camera->height(), 0, "rows");
+  const CameraRayTable table = cameraRayTable(*camera, [&](int rowsDone, int) { tracing.advanceTo(rowsDone); });
+  tracing.finish();
+  Progress encoding("camera-rays " + size + ": writing", camera->height(), 0, "rows");
+  writeCameraRayTable(a.out, table, [&](int rowsDone, int) { encoding.advanceTo(rowsDone); });
+  encoding.finish();
   writeSidecarAtomic(a.out, {{"rig", rigToJson(rig)},
                              {"intrinsics", camera->describe()},
                              {"channels", kCameraRayChannels},

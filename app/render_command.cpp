@@ -212,7 +212,14 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
 
   if (!path) {
     const CameraPlacement at(pose ? *pose : scene.startPose, velocity);
+    // A frame rendered in parts (POV-Ray's moving frame) shows them; the others print nothing.
+    std::unique_ptr<Progress> parts;
+    engine->reportPartsTo([&](int done, int total) {
+      if (!parts) parts = std::make_unique<Progress>("render " + a.out + " (" + request.engine + ")", total, 0, "renders");
+      parts->advanceTo(done);
+    });
     RenderedFile rendered = renderPose(scene, *engine, at, settings);
+    if (parts) parts->finish();
     record(rendered, recording, 0);
     writeRendered(a.out, rendered);
     views.write(a.out, rendered);

@@ -1,7 +1,10 @@
 #include "camera_rays.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
+
+#include <tbb/parallel_for.h>
 
 #include "atomic_file.h"
 #include "image.h"
@@ -14,13 +17,13 @@ int64_t cameraRayTableBytes(int width, int height) {
   return int64_t{width} * height * static_cast<int64_t>(kCameraRayChannels.size() * sizeof(float)) * 2;
 }
 
-CameraRayTable cameraRayTable(const Camera& camera) {
+CameraRayTable cameraRayTable(const Camera& camera, const std::function<void(int rowsDone, int rows)>& onRows) {
   requireMemory(cameraRayTableBytes(camera.width(), camera.height()),
                 "the ray table of " + std::to_string(camera.width()) + "x" + std::to_string(camera.height()) + " pixels");
   CameraRayTable table{camera.width(), camera.height(), {}};
   const size_t channels = kCameraRayChannels.size();
   table.values.assign(static_cast<size_t>(table.width) * table.height * channels, NAN);
-  for (int j = 0; j < table.height; ++j)
+  const auto traceRow = [&](int j) {
     for (int i = 0; i < table.width; ++i) {
       const auto ray = camera.generateRay({pixelCentre(i, j)});
       if (!ray) continue;
@@ -30,12 +33,21 @@ CameraRayTable cameraRayTable(const Camera& camera) {
         out[3 + c] = static_cast<float>(ray->direction[c]);
       }
     }
+  };
+  // About a hundred bands: progress often enough, each band still wide enough for every thread.
+  const int band = std::max(1, table.height / 100);
+  for (int first = 0; first < table.height; first += band) {
+    const int end = std::min(table.height, first + band);
+    tbb::parallel_for(first, end, traceRow);
+    if (onRows) onRows(end, table.height);
+  }
   return table;
 }
 
-void writeCameraRayTable(const std::string& path, const CameraRayTable& table) {
+void writeCameraRayTable(const std::string& path, const CameraRayTable& table,
+                         const std::function<void(int rowsDone, int rows)>& onRows) {
   const std::vector<unsigned char> bytes =
-      encodeDataExr(path, table.width, table.height, kCameraRayChannels, table.values.data());
+      encodeDataExr(path, table.width, table.height, kCameraRayChannels, table.values.data(), ExrPrecision::Float, onRows);
   writeBytesAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 

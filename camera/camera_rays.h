@@ -4,6 +4,7 @@
 // origin.X/Y/Z (metres) and direction.X/Y/Z (unit), in the viewpoint frame (origin F', robot
 // axes); NaN where the camera images nothing.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,12 @@ struct CameraRayTable {
 // What making and writing a table takes: 48 bytes a pixel (2 × 6 float32 values).
 int64_t cameraRayTableBytes(int width, int height);
 // MemoryShortage (memory_budget.h) before anything is allocated when the machine cannot hold it.
-CameraRayTable cameraRayTable(const Camera& camera);
-// Writes the table atomically; OutputError naming `path` if it cannot.
-void writeCameraRayTable(const std::string& path, const CameraRayTable& table);
+// Rows are traced in parallel, a band at a time; `onRows(done, total)` is called on the calling
+// thread after each band (a physical camera's 16384² table takes minutes).
+CameraRayTable cameraRayTable(const Camera& camera, const std::function<void(int rowsDone, int rows)>& onRows = {});
+// Writes the table atomically; OutputError naming `path` if it cannot. `onRows(done, total)` as
+// rows are encoded.
+void writeCameraRayTable(const std::string& path, const CameraRayTable& table,
+                         const std::function<void(int rowsDone, int rows)>& onRows = {});
 
 }  // namespace omnicam

@@ -25,12 +25,14 @@ std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int
 
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height,
                                          const std::vector<std::string>& names, const float* values,
-                                         ExrPrecision precision) {
+                                         ExrPrecision precision, const std::function<void(int linesDone, int lines)>& onLines) {
   std::vector<ExrChannelSource> channels;
   for (size_t c = 0; c < names.size(); ++c)
     channels.push_back({names[c], precision == ExrPrecision::Half ? ExrSampleType::Half : ExrSampleType::Float, values + c,
                         nullptr, names.size()});
-  return encodeExrChannels(path, width, height, channels, {});
+  ExrWriteOptions options;
+  options.onLines = onLines;
+  return encodeExrChannels(path, width, height, channels, options);
 }
 
 std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,

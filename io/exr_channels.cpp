@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+
+#include <tbb/parallel_for.h>
 #if defined(__x86_64__)
 #include <cpuid.h>
 #include <immintrin.h>
@@ -295,12 +297,33 @@ std::vector<unsigned char> encodeExrChannels(const std::string& path, int width,
     }
     for (const auto& [key, value] : options.text) check(exr_attr_set_string(context, part, key.c_str(), value.c_str()), file, "attribute");
     check(exr_write_header(context), file, "header");
-    std::vector<unsigned char> packed, scratch, compressed;
-    for (int y = 0; y < height; y += format.lines) {
-      packLines(packedChannels, width, y, std::min(height, y + format.lines), packed);
-      const bool smaller = compressExrChunk(format.chunk, packed.data(), packed.size(), options.zipLevel, scratch, compressed);
-      const std::vector<unsigned char>& chunk = smaller ? compressed : packed;
-      check(exr_write_scanline_chunk(context, part, y, chunk.data(), chunk.size()), file, "chunk");
+    // Chunks are packed and compressed in parallel, a batch at a time (a few tens of MB, so a
+    // large image needs little more memory than its file), and written in order: the same bytes
+    // as one at a time.
+    size_t lineBytes = 0;
+    for (const PackedChannel& c : packedChannels) lineBytes += c.bytes() * static_cast<size_t>(width);
+    const size_t chunkBytes = std::max<size_t>(1, lineBytes * static_cast<size_t>(format.lines));
+    const int chunkCount = (height + format.lines - 1) / format.lines;
+    const int batch = static_cast<int>(std::clamp<size_t>((size_t{32} << 20) / chunkBytes, 1, 64));
+    struct ChunkBuffers {
+      std::vector<unsigned char> packed, scratch, compressed;
+      bool smaller = false;
+    };
+    std::vector<ChunkBuffers> buffers(static_cast<size_t>(std::min(batch, chunkCount)));
+    for (int first = 0; first < chunkCount; first += batch) {
+      const int count = std::min(batch, chunkCount - first);
+      tbb::parallel_for(0, count, [&](int k) {
+        ChunkBuffers& b = buffers[static_cast<size_t>(k)];
+        const int y = (first + k) * format.lines;
+        packLines(packedChannels, width, y, std::min(height, y + format.lines), b.packed);
+        b.smaller = compressExrChunk(format.chunk, b.packed.data(), b.packed.size(), options.zipLevel, b.scratch, b.compressed);
+      });
+      for (int k = 0; k < count; ++k) {
+        const ChunkBuffers& b = buffers[static_cast<size_t>(k)];
+        const std::vector<unsigned char>& chunk = b.smaller ? b.compressed : b.packed;
+        check(exr_write_scanline_chunk(context, part, (first + k) * format.lines, chunk.data(), chunk.size()), file, "chunk");
+      }
+      if (options.onLines) options.onLines(std::min(height, (first + count) * format.lines), height);
     }
     check(exr_finish(&context), file, "finish");
   } catch (const std::exception& e) {

@@ -5,6 +5,7 @@
 // Written with OpenEXR's core API and compressed here (exr_chunks.h), read with OpenEXR's C++
 // API, on the calling thread (frames are encoded in parallel already).
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -30,6 +31,8 @@ struct ExrWriteOptions {
   ExrCompression compression = ExrCompression::Zip;
   int zipLevel = 1;  // deflate level of Zip and Zips (1: speed over the last percent of size)
   std::map<std::string, std::string> text;  // string attributes of the header
+  // Called on the encoding thread as lines are compressed (a 16384² image takes tens of seconds).
+  std::function<void(int linesDone, int lines)> onLines;
 };
 
 // The file's bytes; OutputError naming `path` if OpenEXR refuses. No DateTime is written:

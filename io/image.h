@@ -1,6 +1,7 @@
 #pragma once
 // Linear RGBA float images with associated (premultiplied) alpha, and their files.
 // PNG/JPEG are sRGB-encoded 8-bit on disk; EXR is linear half/float (docs/conventions.md §2).
+#include <functional>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -100,10 +101,12 @@ struct DataImage {
 enum class ExrPrecision { Float, Half };
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height, int channels,
                                          const float* values, ExrPrecision precision = ExrPrecision::Float);
-// The same with the channels named (OpenEXR's "layer.channel" names allowed), one per value.
+// The same with the channels named (OpenEXR's "layer.channel" names allowed), one per value;
+// `onLines(done, total)` as lines are encoded.
 std::vector<unsigned char> encodeDataExr(const std::string& path, int width, int height,
                                          const std::vector<std::string>& channelNames, const float* values,
-                                         ExrPrecision precision = ExrPrecision::Float);
+                                         ExrPrecision precision = ExrPrecision::Float,
+                                         const std::function<void(int linesDone, int lines)>& onLines = {});
 // A 16-bit single-channel PNG holding `values` exactly.
 std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, int height,
                                            const std::vector<uint16_t>& values);

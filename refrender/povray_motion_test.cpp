@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "fast_renderer.h"
 #include "image_compare.h"
@@ -60,6 +62,22 @@ const MotionCase kCases[] = {
 std::string caseName(const ::testing::TestParamInfo<MotionCase>& param) { return param.param.name; }
 
 INSTANTIATE_TEST_SUITE_P(Shutters, FastVsPovrayMoving, ::testing::ValuesIn(kCases), caseName);
+
+// A moving frame is many POV-Ray renders (one per readout line and instant): the count before the
+// first, then each once summed, in order, so a long frame shows its progress. 8 rows × 2 instants
+// = 16 renders.
+TEST(PovrayMoving, ReportsEachRenderAsItIsSummed) {
+  RenderSettings settings;
+  settings.rig = robocup().rig.resized(8);
+  settings.rig.shutter = {0.004, RollingShutter{1000.0, Readout::TopToBottom}, 2};
+  settings.spp = 1;
+  PovrayOptions options;
+  std::vector<std::pair<int, int>> reports;
+  options.onRenderSummed = [&](int done, int total) { reports.emplace_back(done, total); };
+  renderWithPovray(robocup(), CameraPlacement({-0.6, 0.4, 30.0}, kDriving), settings, options);
+  ASSERT_EQ(reports.size(), 17u);
+  for (size_t k = 0; k < reports.size(); ++k) EXPECT_EQ(reports[k], std::make_pair(static_cast<int>(k), 16));
+}
 
 }  // namespace
 }  // namespace omnicam

@@ -136,6 +136,7 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
   size_t nextToSum = 0;
   bool stopped = false;
   std::map<size_t, ImageRGBA> held;  // finished, waiting for an earlier job
+  if (options.onRenderSummed) options.onRenderSummed(0, static_cast<int>(jobs.size()));
   runConcurrently(jobs.size(), kConcurrentPovrayJobs, [&](size_t k) {
     {
       std::unique_lock<std::mutex> lock(mutex);
@@ -169,6 +170,7 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
         });
         held.erase(next);
         ++nextToSum;
+        if (options.onRenderSummed) options.onRenderSummed(static_cast<int>(nextToSum), static_cast<int>(jobs.size()));
       }
     } catch (...) {
       lock.unlock();

@@ -3,6 +3,7 @@
 // with a restrictive configuration (shell-outs forbidden, file I/O limited to the job folder),
 // renders n× larger without anti-aliasing or jitter and box-downsamples by n — exactly the
 // fast renderer's n×n regular sample grid (POV-Ray traces pixel centres).
+#include <functional>
 #include <string>
 
 #include "camera.h"
@@ -19,6 +20,9 @@ struct PovrayOptions {
   std::string executable = "povray";
   bool keepJobFolder = false;  // for debugging: leave scene.pov etc. behind
   int threads = 0;             // render threads (Work_Threads); 0: POV-Ray's default, all cores
+  // A moving frame is many still renders (one per readout line and instant): called with 0 before
+  // the first starts, then after each is summed, in order, one call at a time.
+  std::function<void(int rendersDone, int renders)> onRenderSummed;
 };
 
 // Throws ExternalError (missing povray, failure, timeout: with the tail of its output) or

@@ -71,6 +71,7 @@ class PovrayEngine : public Engine {
   void renderChecked(const CameraPlacement& placement, const RenderSettings& settings, Film& film) override {
     renderWithPovray(scene_, placement, settings, options_, film);
   }
+  void reportPartsTo(std::function<void(int done, int total)> onPart) override { options_.onRenderSummed = std::move(onPart); }
   std::string version() const override {
     if (version_.empty()) version_ = povrayVersion(options_.executable);
     return version_;

@@ -1,6 +1,7 @@
 #pragma once
 // The renderer interface behind --engine and every verb that renders (render, dataset, study,
 // demo): omnicam's fast renderer and the two ground truths, POV-Ray and Blender.
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -45,6 +46,10 @@ class Engine {
   // The colour of every placement with the same settings. Engines that batch render them all in
   // one session; the default renders them one by one.
   virtual std::vector<ImageRGBA> renderMany(const std::vector<CameraPlacement>& placements, const RenderSettings& settings);
+  // For an engine that renders one frame in many parts (POV-Ray's moving frame: one still render
+  // per readout line and instant), `onPart(0, total)` before the first and `onPart(done, total)`
+  // after each; the others never call it.
+  virtual void reportPartsTo(std::function<void(int done, int total)> onPart) { (void)onPart; }
 
  protected:
   // render() once the request is known to be one this engine renders.

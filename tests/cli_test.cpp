@@ -494,8 +494,11 @@ TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {
     "objects": [{"type": "quad", "material": "grey", "origin": [-2, -2, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]}],
     "rig": {"camera": {"offset_mm": [2, -1, 1], "rotation_deg": [1, 0.5, -0.5], "distortion": {"k1": -0.05, "p1": 0.001}}}})";
   const std::string out = path("rays.exr");
-  const CommandResult r = run("camera-rays " + scene + " --size 48 -o " + out);
+  const CommandResult r = run("camera-rays " + scene + " --size 48 -o " + out + " 2>&1");
   ASSERT_EQ(r.code, 0) << r.out;
+  // Tracing and writing each show their rows (a large table takes minutes); no terminal: lines.
+  EXPECT_NE(r.out.find("camera-rays 48x48: tracing 48/48"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("camera-rays 48x48: writing 48/48"), std::string::npos) << r.out;
   const nlohmann::json sidecar = nlohmann::json::parse(std::ifstream(out + ".json"));
   ASSERT_EQ(sidecar["intrinsics"]["model"], "physical");
   EXPECT_TRUE(sidecar["intrinsics"]["non_central"].get<bool>());
@@ -533,6 +536,19 @@ TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {
     }
   EXPECT_GT(imaged, 1000);
   EXPECT_GT(blank, 100);  // the corners beyond the rim
+}
+
+// POV-Ray's moving frame is one still render per instant: the CLI shows them as they finish.
+TEST_F(CliTest, APovrayMovingFrameShowsItsRenders) {
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(kScene));
+  scene["rig"]["shutter"] = {{"exposure_s", 0.01}, {"time_samples", 3}};
+  const std::string file = path("moving.json");
+  std::ofstream(file) << scene.dump();
+  const CommandResult r =
+      run("render " + file + " --engine povray --size 8 --spp 1 --velocity 1,0,90 -o " + path("moving.png") + " 2>&1");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find(" (povray) 3/3  "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" renders/s "), std::string::npos) << r.out;
 }
 
 }  // namespace
