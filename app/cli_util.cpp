@@ -206,6 +206,14 @@ void removeMadeFolders(const std::vector<std::string>& made) {
   for (const std::string& folder : made) std::filesystem::remove(folder, ec);  // an empty folder only
 }
 
+void checkScene(const std::string& sceneFile, const std::function<void()>& check) {
+  try {
+    check();
+  } catch (const InputError& e) {
+    throw InputError(showPath(sceneFile) + ": " + e.what());
+  }
+}
+
 Progress::Progress(std::string label, int total, int alreadyDone, std::string unit)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
       tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}

@@ -2,6 +2,7 @@
 // Small helpers shared by the CLI verbs: strict number parsing, progress display, data paths.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <cstdint>
 #include <optional>
@@ -54,6 +55,10 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which);
 RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags);
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
+// Runs `check`, a check of what a scene file holds (an engine's capabilities against its rig),
+// naming the file in the InputError it throws: "SCENE: rig.lens.model: …".
+void checkScene(const std::string& sceneFile, const std::function<void()>& check);
+
 // InputError("<flag>: only with <when>") if `flag` was given on `cmd`: flags that would do
 // nothing in the chosen mode are refused, not silently ignored.
 void refuseUnless(const CLI::App& cmd, const std::string& flag, bool allowed, const std::string& when);

@@ -40,6 +40,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   const RobotPose pose = requested ? *requested : scene.startPose;
   RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
+  checkScene(a.scene, [&] { a.to == "gltf" ? checkGltfCamera(settings.rig) : checkPovrayCamera(settings.rig); });
   if (a.to == "gltf") {
     GltfExportOptions options;
     options.placement = pose;

@@ -142,7 +142,9 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
     checkNoOtherFrames(a.out, written);
   }
   // Every frame the engine cannot render is refused before the folder is made.
-  for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
+  checkScene(a.scene, [&] {
+    for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
+  });
   ensureDirectory(a.out, "-o");
   Progress progress("render " + a.path + " (" + engineName + ")", total);
   // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
@@ -212,6 +214,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
 
   if (!path) {
     const CameraPlacement at(pose ? *pose : scene.startPose, velocity);
+    checkScene(a.scene, [&] { checkEngineRenders(engine->kind(), settings.rig, at); });
     // A frame rendered in parts (POV-Ray's moving frame) shows them; the others print nothing.
     std::unique_ptr<Progress> parts;
     engine->reportPartsTo([&](int done, int total) {
