@@ -1,8 +1,10 @@
 // omnicam dataset SPEC -o DIR [--overwrite] | --verify DIR | --status DIR
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <tuple>
 
 #include "atomic_file.h"
@@ -13,6 +15,7 @@
 #include "errors.h"
 #include "interrupts.h"
 #include "manifest.h"
+#include "markup.h"
 #include "safe_files.h"
 #include "slurm_backend.h"
 
@@ -101,6 +104,23 @@ int runVerify(const std::string& dir) {
   return r.ok() ? 0 : 1;
 }
 
+// The shard count whose shards have all finished, if any: what --merge completes.
+std::optional<int> finishedShardCount(const std::string& dir) {
+  for (int count : shardCountsIn(dir)) {
+    const std::vector<ShardState> states = shardStates(dir, count, false);
+    if (std::all_of(states.begin(), states.end(), [](const ShardState& s) { return s.complete; })) return count;
+  }
+  return std::nullopt;
+}
+
+// What finishes an incomplete dataset: merging finished shards, or running again.
+std::string nextStep(const std::string& dir) {
+  if (const std::optional<int> count = finishedShardCount(dir))
+    return "every shard of " + std::to_string(*count) + " is finished: merge them with omnicam dataset --merge " + shellWord(dir);
+  if (!shardCountsIn(dir).empty()) return "run the shards not yet finished (--shard I/N), then --merge";
+  return "run the same command again to resume";
+}
+
 // --status DIR: how many frames are finished, shard by shard before a merge; exit 0 complete, 1 not.
 int printStatus(const std::string& dir) {
   const std::vector<int> shardCounts = shardCountsIn(dir);
@@ -109,14 +129,14 @@ int printStatus(const std::string& dir) {
     int finished = 0;
     for (int count : shardCounts)
       for (const ShardState& state : shardStates(dir, count, false)) finished += state.finished;
-    std::printf("%s: shards not merged yet: %d frames finished in the shards that have started\n", dir.c_str(), finished);
+    std::printf("%s: shards not merged yet: %d frames finished in the shards that have started (%s)\n", dir.c_str(), finished,
+                nextStep(dir).c_str());
     for (int count : shardCounts) printShardStates(dir, count);
     return 1;
   }
   const DatasetStatus s = datasetStatus(dir);
   std::printf("%s: %d of %d frames finished%s\n", dir.c_str(), s.finished, s.frames,
-              s.complete ? " (complete, by its manifest; --verify re-hashes every file)"
-                         : " (incomplete: run the same command again to resume)");
+              s.complete ? " (complete, by its manifest; --verify re-hashes every file)" : (" (incomplete: " + nextStep(dir) + ")").c_str());
   if (!s.complete)
     for (int count : shardCountsIn(dir)) printShardStates(dir, count);
   return s.complete ? 0 : 1;

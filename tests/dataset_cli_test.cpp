@@ -475,11 +475,17 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   auto r = omnicam("dataset --status " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("shard 1/3: not started"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(run the shards not yet finished (--shard I/N), then --merge)"), std::string::npos) << r.out;
   r = omnicam("dataset --merge " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   // Frames [10·I/3, 10·(I+1)/3): 0-2, 3-5, 6-9; shards 0 and 2 hold 3 + 4.
   EXPECT_NE(r.out.find("7 of 10 frames finished"), std::string::npos) << r.out;
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/3").code, 0);
+  // The partial merge's manifest is incomplete and every shard finished: merging is what is left.
+  r = omnicam("dataset --status " + path("parts"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("7 of 10 frames finished (incomplete: every shard of 3 is finished: merge them with omnicam dataset --merge "),
+            std::string::npos) << r.out;
   r = omnicam("dataset --merge " + path("parts"));
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(omnicam("dataset --verify " + path("parts")).code, 0);
