@@ -1,5 +1,6 @@
 #include "dataset_spec.h"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -24,8 +25,13 @@ constexpr const char* kFormat = "omnicam-dataset/1";
 
 }  // namespace
 
+// Names the dataset folder keeps for itself: a camera's folder beside them would mix with them.
+constexpr std::array<const char*, 3> kReservedFolderNames = {"intrinsics", "shards", "slurm"};
+
 bool isCameraFolderName(const std::string& name) {
-  if (name.empty() || name.size() > 63 || name == "intrinsics") return false;
+  if (name.empty() || name.size() > 63) return false;
+  for (const char* reserved : kReservedFolderNames)
+    if (name == reserved) return false;
   for (char ch : name)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-') return false;
   return true;
@@ -259,7 +265,7 @@ void readVibration(JsonFields fields, DatasetSpec& spec) {
 // The rule a camera name broke; the name itself too when it holds characters the user cannot
 // see in it (control characters, bytes that are not UTF-8), shown escaped.
 std::string cameraNameProblem(const std::string& name) {
-  const std::string rule = "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\"";
+  const std::string rule = "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\", \"shards\" or \"slurm\"";
   return rule + (oneLine(name) != name ? "; got " + quote(name) : "") + ")";
 }
 

@@ -130,7 +130,8 @@ struct DatasetSpec {
   std::optional<CalibrationSequenceSpec> calibration;
 };
 
-// A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics".
+// A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics", "shards" or
+// "slurm" (the dataset folder's own).
 bool isCameraFolderName(const std::string& name);
 
 // InputError naming the spec's `field` unless `frames` frames of every camera stay within

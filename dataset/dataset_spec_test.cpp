@@ -53,7 +53,11 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "a"}])")),
             "spec.json: cameras[1].name: duplicate camera name \"a\"");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "../x"}])")),
-            "spec.json: cameras[0].name: must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\")");
+            "spec.json: cameras[0].name: must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\", \"shards\" or \"slurm\")");
+  // The dataset folder's own folders: a camera named so would share shards/ with the shard manifests.
+  for (const char* reserved : {"intrinsics", "shards", "slurm"})
+    EXPECT_NE(errorOf(spec(std::string(R"("cameras": [{"name": ")") + reserved + R"("}])")).find("cameras[0].name: must be"),
+              std::string::npos) << reserved;
   EXPECT_EQ(errorOf(spec("", R"({"path": "a", "list": [[0, 0, 0]]})")),
             "spec.json: poses: give exactly one of \"path\", \"list\" or \"random\"");
   EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 5, "seed": 1, "region": [1, 0, 0, 1]}})")),
