@@ -118,8 +118,27 @@ std::string psnrText(double psnr) {
 
 namespace {
 
-// B's manifest lists exactly A's frames.
+// Every camera any finished frame of the manifest has, sorted.
+std::set<std::string> camerasOf(const DatasetManifest& m) {
+  std::set<std::string> names;
+  for (const auto& [index, frame] : m.frames)
+    for (const auto& [camera, files] : frame.cameras) names.insert(camera);
+  return names;
+}
+
+std::string cameraList(const std::set<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + showPath(name);
+  return list.empty() ? "none" : list;
+}
+
+// B's manifest lists exactly A's frames, of the same cameras: the cameras first, since datasets
+// of other rigs differ in their frames too.
 void checkSameFrames(const DatasetManifest& a, const DatasetManifest& b, const std::string& dirA, const std::string& dirB) {
+  const std::set<std::string> camerasA = camerasOf(a), camerasB = camerasOf(b);
+  if (camerasA != camerasB)
+    throw InputError(showPath(dirB) + ": cameras do not match " + showPath(dirA) + ": A has " + cameraList(camerasA) + ", B has " +
+                     cameraList(camerasB));
   std::vector<int> onlyA, onlyB;
   for (const auto& [index, frame] : a.frames)
     if (!b.frames.count(index)) onlyA.push_back(index);

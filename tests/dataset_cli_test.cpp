@@ -634,6 +634,12 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   const auto mismatch = omnicam("compare " + path("fast") + " " + path("moved") + " --fail-psnr 45");
   EXPECT_EQ(mismatch.code, 2);
   EXPECT_NE(mismatch.out.find("frame 1 camera cam0: pose"), std::string::npos) << mismatch.out;
+  // Other cameras: said so, not reported as other frames.
+  const std::string renamed = robocupSpec("renamed.json", R"("cameras": [{"name": "front"}], "poses": {"list": [[0.5, 0.3, 20]]}, "size": 32)");
+  ASSERT_EQ(omnicam("dataset " + renamed + " -o " + path("renamed")).code, 0);
+  const auto cameras = omnicam("compare " + path("fast") + " " + path("renamed"));
+  EXPECT_EQ(cameras.code, 2);
+  EXPECT_NE(cameras.out.find("renamed: cameras do not match " + path("fast") + ": A has cam0, B has front"), std::string::npos) << cameras.out;
 
   // A user's own frames in the dataset layout, without a manifest: matched by path.
   fs::create_directories(dir_ / "mine/cam0/rgb");
