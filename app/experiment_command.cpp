@@ -205,9 +205,9 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
       options, a.noFigures ? "" : experimentsDir() + "/plot_calibration_study.py",
       [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
   progress.finish();
-  std::string command = std::string("omnicam experiment calibration -o DIR") + (a.quick ? " --quick" : "");
+  std::string command = std::string("omnicam experiment calibration -o DIR") + (a.quick ? " --quick" : "") + (a.noFigures ? " --no-figures" : "");
   if (!a.doc.empty()) command += " --doc " + a.doc;
-  const std::string markdown = calibrationStudyMarkdown(r, options, command);
+  const std::string markdown = calibrationStudyMarkdown(r, options, command, !a.noFigures);
   writeTextAtomically(a.out + "/calibration-study.md", markdown);
   if (!a.doc.empty()) {
     copyFigures(a.out, a.doc, {"calibration_study_error.svg", "calibration_study_residuals.png"});

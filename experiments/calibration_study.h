@@ -107,8 +107,9 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& optio
                                             const StudyProgress& progress);
 
 nlohmann::json calibrationStudyJson(const CalibrationStudyResults& results, const CalibrationStudyOptions& options);
-// The tables and the headline (Markdown; figures under figures/, relative to the document).
+// The tables and the headline (Markdown; with `figures`, the figures under figures/, relative to
+// the document; without, a note where each would be).
 std::string calibrationStudyMarkdown(const CalibrationStudyResults& results, const CalibrationStudyOptions& options,
-                                     const std::string& command);
+                                     const std::string& command, bool figures = true);
 
 }  // namespace omnicam

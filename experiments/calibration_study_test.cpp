@@ -27,5 +27,18 @@ TEST(CalibrationStudy, TriangulationFromAShiftedExactModelErrsByTheShift) {
   EXPECT_NEAR(moved.p90Mm, 1e3 * shifted.viewpoint.norm(), 1e-6);
 }
 
+// A run without figures links to none: each figure's place says it was not drawn.
+TEST(CalibrationStudy, TheReportOfARunWithoutFiguresLinksToNone) {
+  const CalibrationStudyResults results;
+  const CalibrationStudyOptions options = CalibrationStudyOptions::quick();
+  const std::string with = calibrationStudyMarkdown(results, options, "cmd");
+  EXPECT_NE(with.find("](figures/calibration_study_error.svg)"), std::string::npos);
+  EXPECT_NE(with.find("](figures/calibration_study_residuals.png)"), std::string::npos);
+  const std::string without = calibrationStudyMarkdown(results, options, "cmd", false);
+  EXPECT_EQ(without.find("figures/"), std::string::npos) << without;
+  EXPECT_NE(without.find("(held-out error against misalignment: not drawn in this run)"), std::string::npos);
+  EXPECT_NE(without.find("(residual maps: not drawn in this run)"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace omnicam
