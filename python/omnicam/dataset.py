@@ -5,6 +5,7 @@ read as untrusted input: the manifest strictly, files only inside the folder, li
 followed, hashes checked on request.
 """
 
+import operator
 import os
 
 from ._omnicam import OUTPUTS, Rig, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
@@ -105,6 +106,11 @@ class Dataset:
 
     def __getitem__(self, key):
         position, camera = key if isinstance(key, tuple) else (key, self.camera)
+        try:
+            position = operator.index(position)
+        except TypeError:
+            raise TypeError("Dataset indices are frame positions (int) or (position, camera) tuples, "
+                            f"not {type(position).__name__}") from None
         frames = self.reader.frames
         if not -len(frames) <= position < len(frames):
             raise IndexError(f"frame {position} of {len(frames)}")

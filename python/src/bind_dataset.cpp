@@ -144,22 +144,53 @@ void bindDatasetReader(py::module_& m) {
   }, py::arg("path"), "Re-hashes every file the dataset's manifest lists: {\"files\", \"problems\", \"ok\"}.");
 }
 
+// The class ids `classes` names: None (the default classes), or names and ids of the scene's
+// classes; InputError for one it does not have.
+std::set<uint16_t> chosenCocoClasses(const IdTables& tables, const py::object& classes) {
+  if (classes.is_none()) return defaultCocoClasses(tables);
+  if (py::isinstance<py::str>(classes)) throw InputError("classes: must be a list of class names or ids, not one string");
+  std::vector<std::string> names;
+  std::set<uint16_t> chosen;
+  for (const py::handle item : classes) {
+    if (py::isinstance<py::str>(item)) {
+      names.push_back(item.cast<std::string>());
+      continue;
+    }
+    if (!PyIndex_Check(item.ptr()))
+      throw InputError("classes: each must be a class name or id (got " + std::string(py::str(py::type::of(item).attr("__name__"))) + ")");
+    const int64_t id = narrowed(item.cast<PyInteger>(), "classes", 0, 65535);
+    if (id == 0 || static_cast<size_t>(id) >= tables.classes.size())
+      throw InputError("classes: " + std::to_string(id) + " is not a class id of the scene (its ids: 1 to " +
+                       std::to_string(tables.classes.size() - 1) + ")");
+    chosen.insert(static_cast<uint16_t>(id));
+  }
+  const std::set<uint16_t> named = cocoClassIds(tables, names, "classes");
+  chosen.insert(named.begin(), named.end());
+  return chosen;
+}
+
 }  // namespace
 
 void bindDataset(py::module_& m) {
   bindDatasetReader(m);
   m.def("coco_annotations", [](const py::array_t<uint16_t, py::array::c_style | py::array::forcecast>& instance,
-                               const Scene& scene, const std::optional<std::vector<uint16_t>>& classes) {
+                               const Scene& scene, const py::object& classes) {
     if (instance.ndim() != 2) throw InputError("instance: must be an array of shape (H, W)");
     const int h = static_cast<int>(instance.shape(0)), w = static_cast<int>(instance.shape(1));
     const std::vector<uint16_t> ids(instance.data(), instance.data() + instance.size());
     const IdTables tables = idTables(scene);
-    const std::set<uint16_t> chosen = classes ? std::set<uint16_t>(classes->begin(), classes->end()) : defaultCocoClasses(tables);
-    return toPython(cocoInstanceAnnotations(ids, w, h, tables.classOfInstance, chosen));
+    // An id the scene does not have is another scene's image: refused, not annotated as nothing.
+    for (const uint16_t id : ids)
+      if (id >= tables.classOfInstance.size())
+        throw InputError("instance: id " + std::to_string(id) + " is not an instance of the scene (its ids: 0 to " +
+                         std::to_string(tables.classOfInstance.size() - 1) + ")");
+    return toPython(cocoInstanceAnnotations(ids, w, h, tables.classOfInstance, chosenCocoClasses(tables, classes)));
   }, py::arg("instance"), py::arg("scene"), py::arg("classes") = py::none(),
   R"(COCO annotations of one frame's instance ids (H, W) uint16 of `scene`: one per visible instance of
-the chosen class ids (default: every class but floor, wall, ceiling and line) with "instance_id",
-"category_id", "bbox" [x, y, w, h], "area", "segmentation" (COCO compressed RLE) and "iscrowd".)");
+the chosen classes, given by name (as a spec's outputs.coco.classes) or class id (default: every
+class but floor, wall, ceiling and line) with "instance_id", "category_id", "bbox" [x, y, w, h],
+"area", "segmentation" (COCO compressed RLE) and "iscrowd". InputError for a class or instance id
+the scene does not have.)");
   m.def("run_dataset", &runDatasetFromPython, py::arg("spec"), py::arg("out"), py::kw_only(), py::arg("overwrite") = false,
         py::arg("threads") = 0, py::arg("progress") = py::none(),
         R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does

@@ -67,10 +67,10 @@ void rigProperty(py::class_<RigSpec>& rig, const char* name, std::vector<std::st
 void bindRig(py::module_& m) {
   py::class_<RigSpec> rig(m, "Rig", R"(The camera rig: mirror, camera as mounted, image (docs/scene-format.md, "rig").
 
-Rig() is the ideal rig; Rig(dict) reads the scene format's "rig" block strictly. Every property
+Rig() (or Rig(None)) is the ideal rig; Rig(dict) reads the scene format's "rig" block strictly. Every property
 set is checked the same way: a bad value raises omnicam.InputError and leaves the rig unchanged.)");
-  rig.def(py::init<>())
-      .def(py::init([](const py::dict& d) { return rigFromDict(fromPython(d, "omnicam.Rig")); }), py::arg("rig").none(false))
+  rig.def(py::init([](const std::optional<py::dict>& d) { return d ? rigFromDict(fromPython(*d, "omnicam.Rig")) : RigSpec{}; }),
+          py::arg("rig") = py::none())
       .def("to_dict", [](const RigSpec& r) { return toPython(rigToJson(r)); }, "The rig as the scene format's \"rig\" block.")
       .def("resized", [](const RigSpec& r, const PyInteger& size) {
              return r.resized(narrowed(size, "image size", limits::kMinImageSize, limits::kMaxImageSize));
@@ -89,8 +89,8 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
       .def(py::self == py::self)
       .def("__repr__", [](const RigSpec& r) { return "omnicam.Rig(" + rigToJson(r).dump() + ")"; });
   rigProperty(rig, "height", {"height"}, "The design point's height above the floor, metres.");
-  rigProperty(rig, "image_size", {"image", "size"}, "Image width and height, pixels.");
-  rigProperty(rig, "mirror", {"mirror"}, "The mirror block: shape and its parameters (dict).");
+  rigProperty(rig, "image_size", {"image", "size"}, "Image width and height, pixels (None for a lens camera: see lens).");
+  rigProperty(rig, "mirror", {"mirror"}, "The mirror block: shape and its parameters (dict; None for a lens camera).");
   rigProperty(rig, "camera_offset_mm", {"camera", "offset_mm"}, "The pinhole minus its ideal position, robot axes, mm.");
   rigProperty(rig, "camera_rotation_deg", {"camera", "rotation_deg"}, "The camera turned about its pinhole, degrees.");
   rigProperty(rig, "distortion", {"camera", "distortion"}, "OpenCV radial-tangential lens distortion {k1, k2, p1, p2, k3}.");

@@ -1,6 +1,8 @@
 """COCO annotations of a rendered frame, decoded by an independent implementation of COCO's
 compressed RLE (pycocotools' rleFrString, written out here), back to the instance masks exactly."""
 
+import re
+
 import numpy as np
 
 import omnicam
@@ -62,6 +64,17 @@ def test_classes_can_be_chosen(robocup):
     floor = next(c["id"] for c in robocup.ids["classes"] if c["name"] == "floor")
     only_floor = omnicam.coco_annotations(frame["instance"], robocup, classes=[floor])
     assert only_floor and all(a["category_id"] == floor for a in only_floor)
+    # By name, as a spec's outputs.coco.classes names them: the same annotations.
+    assert omnicam.coco_annotations(frame["instance"], robocup, classes=["floor"]) == only_floor
+    # What the scene does not have is refused, not annotated as nothing.
+    for classes, words in (([99], "99 is not a class id of the scene"), (["flor"], '"flor" is not a class of the scene'),
+                           ("floor", "a list of class names or ids, not one string"), ([1.5], "class name or id (got float)")):
+        with pytest.raises(omnicam.InputError, match=re.escape(words)):
+            omnicam.coco_annotations(frame["instance"], robocup, classes=classes)
+    foreign = frame["instance"].copy()
+    foreign[0, 0] = 999
+    with pytest.raises(omnicam.InputError, match="id 999 is not an instance of the scene"):
+        omnicam.coco_annotations(foreign, robocup)
 
 
 # A dataset's COCO files.

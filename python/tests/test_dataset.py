@@ -51,6 +51,9 @@ def test_items_hold_every_output_as_the_files_hold_them(folder):
     assert dataset[-1]["index"] == manifest["frames"][-1]["index"]
     with pytest.raises(IndexError):
         dataset[3]
+    assert dataset[np.int64(1)]["index"] == dataset[1]["index"]  # numpy's integers index too
+    with pytest.raises(TypeError, match="frame positions .* not str"):
+        dataset["a"]
 
 
 def test_a_frame_is_what_the_renderer_draws_at_its_pose(folder, robocup):

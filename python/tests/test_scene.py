@@ -76,3 +76,7 @@ def test_a_rig_round_trips_through_its_dict():
         omnicam.Rig({"mirror": {"shape": "sphere", "radius": 0.03, "k": 11}})
     assert "belongs to the hyperboloid shape" in str(raised.value)
     assert omnicam.Rig().resized(180).image_size == 180
+    assert omnicam.Rig(None) == omnicam.Rig() and omnicam.Rig().ideal  # as the stub's default says
+    # A lens camera has no mirror and no square image size: None, as the stub types them.
+    lens = omnicam.Rig({"height": 0.4, "lens": {"model": "pinhole", "width": 64, "height": 48, "fx": 50, "fy": 50}})
+    assert lens.image_size is None and lens.mirror is None and lens.lens["width"] == 64
