@@ -74,6 +74,8 @@ void measureExisting(const RingsArgs& a) {
   const ImageRGBA image = readImage(a.measure);
   const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
+  // Rings are incidence angles about a mirror's axis (docs/lens-cameras.md: rings are the mirror's alone).
+  rig.mirrorRig(showPath(a.measure) + ": rings measure a mirror camera's image; its rig");
   if (image.width != image.height) throw InputError(showPath(a.measure) + ": ring images must be square");
   checkImageSize(image.width, showPath(a.measure) + ": its size");
   rig = rig.resized(image.width);  // scales a principal point offset with the image
@@ -93,7 +95,9 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   // Rings default to 16 spp, more than a single render's default.
   const RequestFields fields{{RequestField::Engine, a.engine}, {RequestField::Spp, int64_t{a.spp}}};
   const RenderRequest request = readRenderRequest(fields, RequestFieldNames::cli());
-  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
+  const std::string sceneFile = a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene;
+  const Scene scene = loadScene(sceneFile, a.load);
+  scene.rig.mirrorRig(showPath(sceneFile) + ": rings measure a mirror camera; its rig");
   RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
   checkImageOutput(a.out, "-o");
