@@ -47,7 +47,10 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
   const LiveSensorReport report = runLiveSensor(spec, a.options, [&] {
     const std::string from = a.options.tfParent.empty() ? a.options.odometryTopic
                                                         : "tf (" + a.options.baseFrame + " in " + a.options.tfParent + ")";
-    std::printf("ros: ready: poses from %s, images on /%s/CAMERA/image_raw\n", from.c_str(), a.options.robot.c_str());
+    std::string topics;
+    for (const DatasetCamera& camera : spec.cameras)
+      topics += (topics.empty() ? "/" : ", /") + a.options.robot + "/" + camera.name + "/image_raw";
+    std::printf("ros: ready: poses from %s, images on %s\n", from.c_str(), topics.c_str());
     std::fflush(stdout);
   });
   std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters\n",

@@ -875,6 +875,9 @@ TEST_P(LiveSensorStops, OnItsSignalWithExitCodeZero) {
                          master.environment()));
   ASSERT_TRUE(TestDaemons::waitFor([&] { return readFile(root / "node.out").find("ros: ready") != std::string::npos; }, 120.0))
       << readFile(root / "node.out");
+  // The ready line names the topics themselves (the default robot namespace).
+  EXPECT_NE(readFile(root / "node.out").find("images on /robot/front/image_raw, /robot/rear/image_raw, /robot/fisheye/image_raw"),
+            std::string::npos) << readFile(root / "node.out");
   ::kill(node.pid("omnicam ros"), GetParam());
   EXPECT_EQ(node.waitForExit("omnicam ros", 60.0), 0) << readFile(root / "node.out");
   EXPECT_NE(readFile(root / "node.out").find("ros: 0 poses rendered"), std::string::npos) << readFile(root / "node.out");
