@@ -14,7 +14,7 @@ namespace omnicam {
 
 enum class CornerSight {
   Seen,
-  BeyondRim,     // not imaged: behind the model or beyond the mirror's rim
+  BeyondRim,     // not imaged: behind the model, beyond the mirror's rim or a lens' field of view
   OutsideImage,  // imaged outside the image rectangle
   BackFacing,    // the camera sees the board's back
   Occluded,      // something else is in front of it
