@@ -30,7 +30,8 @@ std::string fixedDecimals(double value, int decimals) {
 }
 
 std::string yamlNumber(double value) {
-  std::string text = roundTrip(value);
+  // A rotation's exact zeros come out signed (-0): the same number, written as tools write it.
+  std::string text = roundTrip(value == 0.0 ? 0.0 : value);
   const size_t e = text.find('e');
   if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
   return text;

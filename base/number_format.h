@@ -6,7 +6,7 @@ namespace omnicam {
 // Shortest text that parses back to exactly `value` ("0.1", "1e-07"); never uses the locale.
 std::string roundTrip(double value);
 // roundTrip() that YAML 1.1 loaders (PyYAML) read as a number: its exponent form needs a '.'
-// ("1.0e-05", not "1e-05", which they read as a string).
+// ("1.0e-05", not "1e-05", which they read as a string); -0 is written 0.
 std::string yamlNumber(double value);
 // yamlNumber() that they read as a float, integers included ("500.0"): Kalibr's reader refuses
 // an int where it wants a float.

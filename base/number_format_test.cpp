@@ -31,5 +31,16 @@ TEST(FixedDecimals, IgnoresTheGlobalLocale) {
   std::locale::global(before);
 }
 
+// YAML 1.1 loaders read these as numbers (PyYAML: an exponent needs a '.'), and a signed zero
+// (a rotation matrix's exact zeros) is written as the 0 it is.
+TEST(YamlNumber, WritesWhatYamlLoadersReadAsTheSameNumber) {
+  EXPECT_EQ(yamlNumber(0.1), "0.1");
+  EXPECT_EQ(yamlNumber(1e-05), "1.0e-05");
+  EXPECT_EQ(yamlNumber(-0.0), "0");
+  EXPECT_EQ(yamlNumber(-2.5), "-2.5");
+  EXPECT_EQ(yamlFloat(-0.0), "0.0");
+  EXPECT_EQ(yamlFloat(500.0), "500.0");
+}
+
 }  // namespace
 }  // namespace omnicam

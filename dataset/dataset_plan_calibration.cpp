@@ -2,6 +2,7 @@
 // sequences"): the target and its pose in every frame, every camera's calibration files, a frame's
 // own world with the target where the frame holds it, and what that world costs in memory.
 #include <cctype>
+#include <map>
 
 #include "calibration_files.h"
 #include "calibration_sequence.h"
@@ -100,9 +101,11 @@ void DatasetPlan::addCalibrationFiles() {
   for (int f = 0; f < frames; ++f) {
     const std::unique_ptr<FrameWorld> world = frameWorld(f, /*withEngine=*/false, /*withRays=*/true);
     const CalibrationTarget& moved = world->scene.calibrationTargets[static_cast<size_t>(calibration_->target)];
+    std::map<std::string, int> sights;  // over every camera: a listed pose no camera sees is told
     for (size_t c = 0; c < setups_.size(); ++c) {
       const Rigid worldFromViewpoint = placement(f, c).worldFromViewpoint(setups_[c].rig);
       const std::vector<ImagedCorner> corners = imagedCorners(*setups_[c].model, worldFromViewpoint, world->rays.get(), moved);
+      for (const ImagedCorner& corner : corners) ++sights[cornerSightName(corner.sight)];
       cornerFrames[c].push_back(cornersFrameJson(f, worldFromViewpoint.inverse() * moved.worldFromTarget, corners));
       // The frame's image: its colour file, or its multilayer frame.
       const OutputKind imageKind = outputs_.layout == DatasetLayout::Multilayer ? OutputKind::Multilayer : kColourOutput;
@@ -114,6 +117,12 @@ void DatasetPlan::addCalibrationFiles() {
         }
       // OpenCV's calibrations need four points of a view.
       if (image.view.raster.size() >= 4) lists[c].push_back(std::move(image));
+    }
+    if (!sights.count(cornerSightName(CornerSight::Seen)) && !spec_.calibration->random) {
+      std::string counts;
+      for (const auto& [sight, count] : sights) counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " + sight;
+      notes_.push_back(showPath(spec_.file) + ": calibration.poses.list[" + std::to_string(f) + "]: no camera sees a corner of the board (" +
+                       counts + "): the frame calibrates nothing");
     }
   }
   const std::string kalibr = kalibrTargetYaml(target.pattern);

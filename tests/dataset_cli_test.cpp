@@ -1277,6 +1277,25 @@ TEST_F(DatasetCliTest, CalibrationSequenceOfTwoCamerasIsOneKalibrBag) {
   EXPECT_FALSE(std::filesystem::exists(out + "/front/calibration/images.bag"));
 }
 
+// A listed board pose that no camera sees (its back to the robot) is told, with why, and the
+// sequence still runs: its frame is in the dataset, its corners say so, nothing calibrates on it.
+TEST_F(DatasetCliTest, AListedBoardPoseNoCameraSeesIsToldWithWhy) {
+  const std::string spec = write("listed.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                 R"(/docs/examples/calibration_room.json", "size": 96, "spp": 1, "poses": {"list": [[0, 0, 0]]},
+    "calibration": {"target": "grid", "poses": {"list": [
+      {"origin": [0.35, 0, -0.1], "x_axis": [0, -1, 0], "y_axis": [0, 0, 1]},
+      {"origin": [0.5, 0, 0.2], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]}]}},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  const testing::CommandResult run = omnicam("dataset " + spec + " -o " + path("listed"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("listed.json: calibration.poses.list[1]: no camera sees a corner of the board (90 back_facing, 10 beyond_rim)"),
+            std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("list[0]"), std::string::npos) << run.out;
+  const json corners = json::parse(readFile(dir_ / "listed/cam0/calibration/corners.json"));
+  for (const json& corner : corners.at("frames").at(0).at("corners")) EXPECT_EQ(corner.at("sight"), "seen");
+  for (const json& corner : corners.at("frames").at(1).at("corners")) EXPECT_NE(corner.at("sight"), "seen");
+}
+
 // Issue #45: two datasets of 8192² PNG frames compare under a 4 GiB address-space limit (both
 // frames whole would need 6 GiB): compare streams rows through libpng. Its numbers are the
 // whole-image comparison's, bit for bit; the heat map (--diff), which needs both images whole,
