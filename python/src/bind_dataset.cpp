@@ -21,8 +21,8 @@ namespace omnicam::python {
 
 namespace {
 
-// Runs a dataset spec with the GIL released; `progress(done, total)` is called with the GIL after
-// every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run once the frames
+// Runs a dataset spec with the GIL released; `progress(done, total)` is called with the GIL when
+// the run starts (the frames kept) and after every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run once the frames
 // in progress are written (the fast engine renders a window of 8 at once, Blender a batch) and is
 // raised again once the run has stopped.
 py::dict runDatasetFromPython(const std::filesystem::path& specPath, const std::filesystem::path& out, bool overwrite, const PyInteger& threadsArg,
@@ -195,7 +195,7 @@ the scene does not have.)");
         py::arg("threads") = 0, py::arg("progress") = py::none(),
         R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does
 (docs/dataset-format.md): resumes a partial run, keeps verified frames. progress(done, total) is
-called after every frame; an exception in it stops the run once the frames in progress (up to 8
+called when the run starts (done: the frames kept) and after every frame; an exception in it stops the run once the frames in progress (up to 8
 at once) are written, and is raised again. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
 
   m.def("read_image", [](const std::filesystem::path& path) {
