@@ -15,6 +15,7 @@
 #include "errors.h"
 #include "number_format.h"
 #include "render_settings.h"
+#include "sidecar.h"
 
 namespace omnicam::cli {
 
@@ -204,6 +205,13 @@ std::vector<std::string> ensureDirectory(const std::string& dir, const std::stri
 void removeMadeFolders(const std::vector<std::string>& made) {
   std::error_code ec;
   for (const std::string& folder : made) std::filesystem::remove(folder, ec);  // an empty folder only
+}
+
+void checkOutputsSpareScene(const Scene& scene, const std::vector<std::string>& images, const std::string& flag) {
+  for (const std::string& image : images)
+    for (const auto& [output, which] : {std::pair{image, flag}, std::pair{sidecarPath(image), flag + " (its sidecar)"}})
+      for (const std::string& input : scene.inputFiles)
+        checkOutputIsNotInput(output, which, input, input == scene.path ? "the scene file" : "a file the scene reads");
 }
 
 void checkScene(const std::string& sceneFile, const std::function<void()>& check) {

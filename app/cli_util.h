@@ -55,6 +55,11 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which);
 RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags);
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
+// InputError("<flag>: … is the scene file; writing it would destroy what is read") if an image
+// in `images`, or its sidecar, is a file the scene was read from (Scene::inputFiles: the scene,
+// its textures, environment and glTF files).
+void checkOutputsSpareScene(const Scene& scene, const std::vector<std::string>& images, const std::string& flag);
+
 // Runs `check`, a check of what a scene file holds (an engine's capabilities against its rig),
 // naming the file in the InputError it throws: "SCENE: rig.lens.model: …".
 void checkScene(const std::string& sceneFile, const std::function<void()>& check);

@@ -55,6 +55,7 @@ void runCameraRays(const CameraRaysArgs& a) {
   checkImageOutput(a.out, "-o");
   if (std::filesystem::path(a.out).extension() != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
   const Scene scene = loadScene(a.scene, a.load);
+  checkOutputsSpareScene(scene, {a.out}, "-o");
   RigSpec rig = scene.rig;
   if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);

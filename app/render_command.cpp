@@ -134,6 +134,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
       std::vector<std::string> files = views.files(frameFile(f));
       for (const std::string& file : files) checkImageOutput(file, "--view");
       files.push_back(frameFile(f));
+      checkOutputsSpareScene(scene, files, "-o");
       for (const std::string& file : files) {
         const std::string name = std::filesystem::path(file).filename().string();
         written.insert(name), written.insert(name + ".json");
@@ -199,6 +200,9 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   if (a.path.empty()) {
     checkImageOutput(a.out, "-o");
     for (const std::string& file : views.files(a.out)) checkImageOutput(file, "--view");
+    std::vector<std::string> images = views.files(a.out);
+    images.push_back(a.out);
+    checkOutputsSpareScene(scene, images, "-o");
   }
   const CameraPath* path = nullptr;
   if (!a.path.empty()) {

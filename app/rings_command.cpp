@@ -101,6 +101,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
   checkImageOutput(a.out, "-o");
+  checkOutputsSpareScene(scene, {a.out}, "-o");
   const auto engine = makeEngine(request, scene);
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig, a.out, a);

@@ -29,6 +29,7 @@ struct LoadContext {
   fs::path confineTo;  // empty: anywhere
   std::string problem;
   int images = 0;
+  std::vector<std::string> filesRead;
 };
 
 bool fileExists(const std::string& path, void*) {
@@ -47,6 +48,7 @@ bool readWholeFileConfined(std::vector<unsigned char>* out, std::string* err, co
           " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
   } else if (const auto bytes = readWholeFile(path, why)) {
     out->assign(bytes->begin(), bytes->end());
+    ctx->filesRead.push_back(path);
     return true;
   }
   if (ctx->problem.empty()) ctx->problem = why;
@@ -411,7 +413,9 @@ GltfArena load(const std::string& path, const std::string* bytes, const GltfImpo
     std::string line = error.substr(0, error.find('\n'));
     throw InputError(showPath(path) + ": cannot load glTF (" + (line.empty() ? "invalid file" : line) + ")");
   }
-  return convert(model, path);
+  GltfArena arena = convert(model, path);
+  arena.filesRead = std::move(ctx.filesRead);
+  return arena;
 }
 
 }  // namespace

@@ -95,6 +95,9 @@ struct CameraPath {
 struct Scene {
   std::string path;    // file it was loaded from
   std::string sha256;  // of that file's bytes
+  // Every file the scene was read from: itself, its textures, environment and glTF files and
+  // theirs. An output must be none of them (writing one would destroy what is read).
+  std::vector<std::string> inputFiles;
   std::string name;
   Vec3f background{0.0f, 0.0f, 0.0f};
   // Light from every direction for `path` shading and Blender (docs/conventions.md §3); it

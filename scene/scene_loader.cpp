@@ -30,6 +30,7 @@ struct Context {
   fs::path folder;  // textures resolve relative to, and must stay inside, this folder
   SceneLoadOptions options;
   std::map<std::string, int> materialIndex;
+  std::vector<std::string>* inputFiles = nullptr;  // the scene's, to which each file read is added
 };
 
 std::string indexed(const std::string& array, size_t i) {
@@ -53,6 +54,7 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   std::string why;
   const auto resolved = resolveConfined(ctx.folder, name, ctx.options.allowOutsideFolder, why);
   if (!resolved) fields.fail(key, why);
+  if (ctx.inputFiles) ctx.inputFiles->push_back(resolved->string());
   return *resolved;
 }
 
@@ -321,12 +323,13 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
   const std::string gltfFile = o.string("file");
   const std::string gltfClass = readClass(o);
   GltfArena arena;
+  const fs::path resolved = resolveInside(ctx, o, "file", gltfFile);  // names the field itself
   try {
-    arena = importGltf(resolveInside(ctx, o, "file", gltfFile).string(),
-                       {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder});
+    arena = importGltf(resolved.string(), {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder});
   } catch (const InputError& e) {
     o.fail("file", e.what());
   }
+  scene.inputFiles.insert(scene.inputFiles.end(), arena.filesRead.begin(), arena.filesRead.end());
   const int offset = static_cast<int>(scene.materials.size());
   for (Material& m : arena.materials) {
     m.name = uniqueName(name + "/" + m.name, names.materials);
@@ -435,9 +438,10 @@ Scene loadScene(const std::string& file, const SceneLoadOptions& options) {
 
 Scene loadSceneFromText(const std::string& text, const std::string& file, const SceneLoadOptions& options) {
   const json root = parseJsonText(text, file);
-  Context ctx{file, fs::absolute(file).parent_path(), options, {}};
-  JsonFields top(root, file, "");
   Scene scene;
+  scene.inputFiles.push_back(file);
+  Context ctx{file, fs::absolute(file).parent_path(), options, {}, &scene.inputFiles};
+  JsonFields top(root, file, "");
   scene.path = file;
   scene.sha256 = sha256OfBytes(text);
   const std::string format = top.string("format");

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <regex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -494,7 +496,7 @@ TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {
     "objects": [{"type": "quad", "material": "grey", "origin": [-2, -2, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]}],
     "rig": {"camera": {"offset_mm": [2, -1, 1], "rotation_deg": [1, 0.5, -0.5], "distortion": {"k1": -0.05, "p1": 0.001}}}})";
   const std::string out = path("rays.exr");
-  const CommandResult r = run("camera-rays " + scene + " --size 48 -o " + out + " 2>&1");
+  const CommandResult r = run("camera-rays " + scene + " --size 48 -o " + out);
   ASSERT_EQ(r.code, 0) << r.out;
   // Tracing and writing each show their rows (a large table takes minutes); no terminal: lines.
   EXPECT_NE(r.out.find("camera-rays 48x48: tracing 48/48"), std::string::npos) << r.out;
@@ -538,6 +540,36 @@ TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {
   EXPECT_GT(blank, 100);  // the corners beyond the rim
 }
 
+// No output may be a file the scene is read from — the scene itself (through an image's sidecar),
+// a texture, a texture named as a --path frame — by any command that renders or traces it:
+// refused, every file as it was.
+TEST_F(CliTest, NoOutputReplacesAFileTheSceneReads) {
+  fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/outside.png", dir_ / "t.png");
+  fs::copy_file(dir_ / "t.png", dir_ / "frame_0000.png");
+  const std::string scene = R"({"format": "omnicam-scene/1", "materials": {"g": {"color": 1, "texture": {"file": "TEX"}}},
+    "objects": [{"type": "quad", "material": "g", "origin": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]}],
+    "paths": [{"name": "p", "poses": [[0, 0, 0]]}]})";
+  const auto withTexture = [&](const std::string& texture) { return std::regex_replace(scene, std::regex("TEX"), texture); };
+  for (const char* name : {"shot.png.json", "rays.exr.json", "s.json"}) std::ofstream(dir_ / name) << withTexture("t.png");
+  std::ofstream(dir_ / "s2.json") << withTexture("frame_0000.png");
+  std::map<std::string, std::string> before;
+  for (const auto& entry : fs::directory_iterator(dir_)) before[entry.path().filename().string()] = testing::readFile(entry.path());
+  const std::pair<std::string, std::string> cases[] = {
+      {"render " + path("shot.png.json") + " --size 16 -o " + path("shot.png"), "-o (its sidecar): " + path("shot.png.json") + " is the scene file"},
+      {"render " + path("s.json") + " --size 16 -o " + path("t.png"), "-o: " + path("t.png") + " is a file the scene reads"},
+      {"camera-rays " + path("rays.exr.json") + " --size 8 -o " + path("rays.exr"), "is the scene file"},
+      {"rings --scene " + path("s.json") + " --size 32 -o " + path("t.png"), "is a file the scene reads"},
+      {"render " + path("s2.json") + " --size 16 --path p -o " + dir_.string(), "frame_0000.png is a file the scene reads"}};
+  for (const auto& [command, words] : cases) {
+    const CommandResult r = run(command);
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.out;
+    EXPECT_NE(r.out.find(words), std::string::npos) << command << "\n" << r.out;
+  }
+  std::map<std::string, std::string> after;
+  for (const auto& entry : fs::directory_iterator(dir_)) after[entry.path().filename().string()] = testing::readFile(entry.path());
+  EXPECT_EQ(after, before);
+}
+
 // POV-Ray's moving frame is one still render per instant: the CLI shows them as they finish.
 TEST_F(CliTest, APovrayMovingFrameShowsItsRenders) {
   nlohmann::json scene = nlohmann::json::parse(std::ifstream(kScene));
@@ -545,7 +577,7 @@ TEST_F(CliTest, APovrayMovingFrameShowsItsRenders) {
   const std::string file = path("moving.json");
   std::ofstream(file) << scene.dump();
   const CommandResult r =
-      run("render " + file + " --engine povray --size 8 --spp 1 --velocity 1,0,90 -o " + path("moving.png") + " 2>&1");
+      run("render " + file + " --engine povray --size 8 --spp 1 --velocity 1,0,90 -o " + path("moving.png"));
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find(" (povray) 3/3  "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" renders/s "), std::string::npos) << r.out;
