@@ -10,7 +10,8 @@ job.json: {"glb": path, "shading": "unlit"|"lit"|"path", "samples": int, "seed":
            "lens_mm" (equisolid), "polynomial": [k0..k4] (lens polynomial, Cycles' sign),
            "longitude_min", "longitude_max", "latitude_min", "latitude_max" (equirectangular)},
            "lens_camera": true for a lens camera's job (no mirror in the glTF),
-           "ambient": float (lit), "background": [r, g, b] (path),
+           "ambient": float (lit), "background": [r, g, b] (path: light from every direction; unlit and lit:
+                           what camera and mirror rays that hit nothing see),
            "environment": {"image": path.exr, "strength": float, "rotation_deg": float} (path; replaces
                            the background: an equirectangular image around the world, Cycles' mapping),
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
@@ -185,16 +186,16 @@ def environment_world(environment):
     return world
 
 
-def ambient_world(ambient):
+def ambient_world(ambient, background):
     """The ambient term of lit shading (docs/conventions.md §3) as uniform light from the sky, for diffuse rays only: seen
-    directly or in the mirror the sky stays black, as in the other engines."""
+    directly or in the mirror the sky is the scene's background, as in the other engines (unlit and lit keep it)."""
     world = bpy.data.worlds.new("omnicam_world")
     world.use_nodes = True
     nodes, links = world.node_tree.nodes, world.node_tree.links
     lit = nodes["Background"]
     lit.inputs["Color"].default_value = (ambient, ambient, ambient, 1.0)
-    black = nodes.new("ShaderNodeBackground")
-    black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    seen_sky = nodes.new("ShaderNodeBackground")
+    seen_sky.inputs["Color"].default_value = (background[0], background[1], background[2], 1.0)
     path = nodes.new("ShaderNodeLightPath")
     seen = nodes.new("ShaderNodeMath")
     seen.operation = "MAXIMUM"
@@ -203,7 +204,7 @@ def ambient_world(ambient):
     mix = nodes.new("ShaderNodeMixShader")
     links.new(seen.outputs["Value"], mix.inputs["Fac"])
     links.new(lit.outputs["Background"], mix.inputs[1])
-    links.new(black.outputs["Background"], mix.inputs[2])
+    links.new(seen_sky.outputs["Background"], mix.inputs[2])
     links.new(mix.outputs["Shader"], nodes["World Output"].inputs["Surface"])
     return world
 
@@ -300,7 +301,7 @@ def main():
         else:
             scene.world = background_world(job.get("background", [0.0, 0.0, 0.0]))
     else:
-        scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0))
+        scene.world = ambient_world(0.0 if unlit else job.get("ambient", 0.0), job.get("background", [0.0, 0.0, 0.0]))
     for index, light in enumerate(job.get("lights", [])):
         obj = lights_by_index.get(index)
         if obj is None:
