@@ -12,6 +12,7 @@ namespace omnicam {
 
 class Texture {
  public:
+  // An albedo texture: InputError naming the file for a texel outside [0, 1] (or unreadable).
   static std::shared_ptr<const Texture> load(const std::string& path);
   Texture(int width, int height, std::vector<float> rgbLinear);
   Vec3f sample(double u, double v) const;

@@ -146,6 +146,10 @@ def main():
     write(os.path.join(SCENES, "texture_huge_1e6.json"), textured("huge_1e6.png"))
     write(os.path.join(SCENES, "texture_huge_30000.json"), textured("huge_30000.png"))
     write(os.path.join(SCENES, "texture_corrupt.json"), textured("corrupt.png"))
+    # Radiance is not an albedo: a Radiance HDR whose every texel is 2 (RGBE 128 128 128 130).
+    write(os.path.join(SCENES, "radiance_2.hdr"),
+          b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n" + bytes([128, 128, 128, 130]) * 32)
+    write(os.path.join(SCENES, "texture_radiance.json"), textured("radiance_2.hdr"))
 
     ball = {"type": "sphere", "material": "grey", "center": [1, 0, 0.2], "radius": 0.1}
     write(os.path.join(SCENES, "radius_1e400.json"),
