@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "make_camera.h"
+#include "number_format.h"
 #include "rig.h"
 #include "scene_loader.h"
 #include "sidecar.h"
@@ -32,7 +33,13 @@ struct ProjectArgs {
 void runProject(const ProjectArgs& a) {
   const RobotPose pose = parsePose(a.pose, "--pose");
   std::vector<Vec3> points;
-  for (const auto& text : a.points) points.push_back(parseTriple(text, "--point"));
+  for (const auto& text : a.points) {
+    const Vec3 point = parseTriple(text, "--point", "X,Y,Z");
+    // World coordinates, as a scene's: beyond them float tracing loses the millimetre.
+    if (!(point.cwiseAbs().maxCoeff() <= limits::kMaxWorldCoordinate))
+      throw InputError("--point: each coordinate must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + quote(text) + ")");
+    points.push_back(point);
+  }
   const Scene scene = loadScene(a.scene, a.load);
   RigSpec rig = scene.rig;
   if (a.size) rig = rig.resized(a.size, "--size");

@@ -95,7 +95,7 @@ void checkPose(const RobotPose& pose, const std::string& what) {
     throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + shortNumber(pose.x) +
                      ", " + shortNumber(pose.y) + ")");
   if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
-    throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + shortNumber(pose.yawDeg) + ")");
+    throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + roundTrip(pose.yawDeg) + ")");
 }
 
 void checkThreads(int threads, const std::string& what) {

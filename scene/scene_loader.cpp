@@ -72,10 +72,19 @@ void checkName(JsonFields& fields, const std::string& key, const std::string& na
   if (const std::string problem = nameProblem(name); !problem.empty()) fields.fail(key, problem);
 }
 
+// [x, y, yaw_deg]: x and y world coordinates, the yaw within ±kMaxYawDeg as --pose takes it.
 RobotPose readPose(const json& v, const std::string& file, const std::string& path) {
-  const Vec3 p = jsonVec3(v, file, path);
-  return {p.x(), p.y(), p.z()};
+  if (!v.is_array() || v.size() != 3) throw InputError(showPath(file) + ": " + path + ": must be [x, y, yaw_deg]");
+  const json place = {v[0], v[1], 0.0};
+  const Vec3 p = jsonVec3(place, file, path);
+  if (!v[2].is_number() || !(std::abs(v[2].get<double>()) <= limits::kMaxYawDeg))
+    throw InputError(showPath(file) + ": " + path + "[2]: the yaw must be a number within ±" + shortNumber(limits::kMaxYawDeg) +
+                     " degrees (got " + (v[2].is_number() ? roundTrip(v[2].get<double>()) : jsonTypeName(v[2])) + ")");
+  return {p.x(), p.y(), v[2].get<double>()};
 }
+
+// An angle about an axis, taken modulo 360°: within ±kMaxYawDeg, as a robot's yaw.
+const JsonFields::Range kYawRange{-limits::kMaxYawDeg, limits::kMaxYawDeg, false, "degrees"};
 
 // A "class" (semantic label for datasets): a name like any other, optional.
 std::string readClass(JsonFields& fields) {
@@ -170,11 +179,11 @@ double length(JsonFields& o, const std::string& key) { return o.number(key, {lim
 
 Shape readShape(const std::string& type, JsonFields& o) {
   if (type == "box") {
-    Box b{o.vec3("center"), o.vec3("size"), o.number("yaw_deg", 0.0)};
-    for (int i = 0; i < 3; ++i)
-      if (!(b.size[i] >= limits::kMinLength && b.size[i] <= limits::kMaxLength))
-        o.fail("size", "all sizes must be in [" + shortNumber(limits::kMinLength) + ", " + shortNumber(limits::kMaxLength) + "] m");
-    return b;
+    const Vec3 center = o.vec3("center");
+    if (!o.has("size")) o.vec3("size");  // its "missing required field"
+    // Lengths, not coordinates: up to the world's extent.
+    const std::vector<double> size = o.numbers("size", {0.0, 0.0, 0.0}, {limits::kMinLength, limits::kMaxLength, false, "m"});
+    return Box{center, Vec3(size[0], size[1], size[2]), o.number("yaw_deg", 0.0, kYawRange)};
   }
   if (type == "cylinder") {
     Cylinder c{o.vec3("base"), o.vec3("top"), length(o, "radius"), o.boolean("caps", true)};

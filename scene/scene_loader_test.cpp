@@ -78,7 +78,16 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
   };
   const std::string head = R"({"format": "omnicam-scene/1", "materials": {"m": {"color": 0.5}}, "objects": [)";
   EXPECT_EQ(load(head + R"({"type": "box", "material": "m", "center": [0,0,0], "size": [1,-1,1]}]})"),
-            file + ": objects[0].size: all sizes must be in [1e-06, 20000] m");
+            file + ": objects[0].size[1]: must be in [1e-06, 20000] m (got -1)");
+  // A box's sizes are lengths (up to 20 km, docs/robustness.md), not coordinates (±10 km); its yaw
+  // and a pose's are angles within ±1e6 degrees, as --pose takes them.
+  EXPECT_EQ(load(head + R"({"type": "box", "material": "m", "center": [0,0,0], "size": [19999,1,1]}], "start_pose": [0, 0, 20000]})"), "");
+  EXPECT_EQ(load(head + R"({"type": "box", "material": "m", "center": [0,0,0], "size": [1,1,1], "yaw_deg": 1e300}]})"),
+            file + ": objects[0].yaw_deg: must be in [-1e+06, 1e+06] degrees (got 1e+300)");
+  EXPECT_EQ(load(head + R"({"type": "box", "material": "m", "center": [0,0,0], "size": [1,1,1]}], "start_pose": [0, 0, 2e7]})"),
+            file + ": start_pose[2]: the yaw must be a number within ±1e+06 degrees (got 2e+07)");
+  EXPECT_EQ(load(head + R"({"type": "box", "material": "m", "center": [0,0,0], "size": [1,1,1]}], "start_pose": [2e4, 0, 0]})"),
+            file + ": start_pose[0]: must be within ±10000 (got 20000)");
   EXPECT_EQ(load(head + R"({"type": "cylinder", "material": "m", "base": [0,0,0], "top": [0,0,1], "radius": -0.1}]})"),
             file + ": objects[0].radius: must be in [1e-06, 20000] m (got -0.1)");
   EXPECT_EQ(load(head + R"({"type": "cone", "material": "m"}]})"),
