@@ -91,6 +91,29 @@ TEST_F(GltfTest, RoundTripKeepsGeometryAndMaterials) {
   }
 }
 
+// Emission goes out as glTF's emissiveFactor × KHR_materials_emissive_strength and comes back
+// as the same radiance (a lamp's surface brighter than 1, a dim grey one, none).
+TEST_F(GltfTest, EmissionSurvivesTheRoundTrip) {
+  std::ofstream(dir_ / "glow.json") << R"({"format": "omnicam-scene/1",
+    "materials": {"lamp": {"color": 1, "emission": [40, 20, 10]}, "dim": {"color": 0.5, "emission": 0.3},
+                  "plain": {"color": 0.5}},
+    "objects": [{"type": "quad", "material": "lamp", "origin": [0, 0, 2], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]},
+                {"type": "quad", "material": "dim", "origin": [2, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]},
+                {"type": "quad", "material": "plain", "origin": [-2, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]}]})";
+  const Scene scene = loadScene((dir_ / "glow.json").string());
+  GltfExportOptions options;
+  options.includeRig = false;
+  const std::string glb = (dir_ / "glow.glb").string();
+  exportGltf(scene, options, glb);
+  const GltfArena back = importGltf(glb);
+  ASSERT_EQ(back.objects.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    const Vec3f sent = scene.materials[scene.objects[i].material].emission;
+    const Vec3f got = back.materials[back.objects[i].material].emission;
+    EXPECT_LT((sent - got).norm(), 1e-5f * std::max(1.0f, sent.maxCoeff())) << i << ": " << got.transpose();
+  }
+}
+
 TEST_F(GltfTest, TexturesAndTextureCoordinatesSurviveTheRoundTrip) {
   const Scene scene = texturedScene(dir_);
   GltfExportOptions options;

@@ -224,6 +224,27 @@ float extraFactor(const tinygltf::Value& o, const char* key, float fallback, con
   return static_cast<float>(d);
 }
 
+// Emitted radiance: emissiveFactor times KHR_materials_emissive_strength, as omnicam exports it,
+// within the scene format's emission range.
+Vec3f emissionOf(const tinygltf::Material& m, const std::string& where) {
+  double strength = 1.0;
+  if (const auto ext = m.extensions.find("KHR_materials_emissive_strength"); ext != m.extensions.end()) {
+    const tinygltf::Value& v = ext->second;
+    const tinygltf::Value& s = v.IsObject() && v.Has("emissiveStrength") ? v.Get("emissiveStrength") : tinygltf::Value();
+    strength = s.IsNumber() || s.IsInt() ? s.GetNumberAsDouble() : -1.0;
+    if (!(strength >= 0.0 && strength <= 1e6))
+      throw InputError(where + ".extensions.KHR_materials_emissive_strength.emissiveStrength: must be a number in [0, 1000000]");
+  }
+  const auto& e = m.emissiveFactor;
+  Vec3f emission = Vec3f::Zero();
+  for (size_t c = 0; c < 3; ++c) {
+    const double factor = c < e.size() ? e[c] : -1.0;
+    if (e.size() != 3 || !(factor >= 0.0 && factor <= 1.0)) throw InputError(where + ".emissiveFactor: must be 3 numbers in [0, 1]");
+    emission[static_cast<int>(c)] = static_cast<float>(std::min(factor * strength, 1e6));
+  }
+  return emission;
+}
+
 Material convertMaterial(const tinygltf::Model& model, size_t i, const std::string& file) {
   const auto& m = model.materials[i];
   const std::string where = file + ": materials[" + std::to_string(i) + "]";
@@ -234,6 +255,7 @@ Material convertMaterial(const tinygltf::Model& model, size_t i, const std::stri
   for (int c = 0; c < 3; ++c)
     mat.color[c] = static_cast<float>(std::isfinite(f[c]) ? std::clamp(f[c], 0.0, 1.0) : 0.0);
   mat.texture = textureOf(model, m.pbrMetallicRoughness.baseColorTexture.index, where);
+  mat.emission = emissionOf(m, where);
   // omnicam's own exports carry the lit-shading factors in extras.
   if (m.extras.IsObject() && m.extras.Has("omnicam") && m.extras.Get("omnicam").IsObject()) {
     const auto& o = m.extras.Get("omnicam");
