@@ -72,7 +72,7 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("--to", args->to, "povray or gltf")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot (default: the scene's start_pose)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
-  addRequestFlags(*cmd, args->request, kSppFlag | kShadingFlag);  // POV-Ray renders its job n x larger
+  addRequestFlags(*cmd, args->request, kSppFlag | kShadingFlag);  // POV-Ray renders its job n x larger; no path shading
   cmd->add_option("-o,--output", args->out, "Output folder")->required();
   addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args, cmd] { runExport(*args, *cmd); });

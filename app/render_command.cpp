@@ -242,7 +242,7 @@ void addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene (single pose, or a camera path into a folder)");
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
-  addRequestFlags(*cmd, args->request, kEngineFlag | kTimeoutFlag | kSppFlag | kShadingFlag | kModeFlags);
+  addRequestFlags(*cmd, args->request, kEngineFlag | kTimeoutFlag | kSppFlag | kShadingFlag | kPathFlags | kModeFlags);
   cmd->add_option("--pose", args->pose, "X,Y,YAW (metres, metres, degrees CCW); default: the scene's start_pose");
   cmd->add_option("--velocity", args->velocity,
                   "VX,VY,YAW_RATE: the robot's body velocity while the shutter is open (m/s forward, m/s left, "

@@ -30,8 +30,9 @@ enum RequestFlagGroup : unsigned {
   kEngineFlag = 1u,   // --engine
   kModeFlags = 2u,    // --mode, --faces, --face-size, --polygons
   kSppFlag = 4u,      // --spp
-  kShadingFlag = 8u,  // --shading, --bounces, --seed, --denoise, --adaptive-spp, --target-error
-  kTimeoutFlag = 16u  // --timeout
+  kShadingFlag = 8u,  // --shading
+  kTimeoutFlag = 16u,  // --timeout
+  kPathFlags = 32u     // --bounces, --seed, --denoise, --adaptive-spp, --target-error: what path shading takes
 };
 
 // Where Python takes a setting: when the Renderer is made (the engine's part), or per render.
