@@ -238,7 +238,7 @@ void Progress::advanceTo(int done) {
   char eta[32];
   std::snprintf(eta, sizeof eta, "ETA %d:%02d", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
   // Without a terminal: a line at each tenth crossed (every step when there are fewer than ten).
-  const auto tenth = [&](int n) { return total_ >= 10 ? n / (total_ / 10) : n; };
+  const auto tenth = [&](int n) { return total_ >= 10 ? static_cast<int>(int64_t{n} * 10 / total_) : n; };
   if (tty_) {
     std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f %s/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
                  std::string(width - filled, ' ').c_str(), done_, total_, rate, unit_.c_str(), eta);

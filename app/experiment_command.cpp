@@ -299,6 +299,7 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
     return;
   }
   if (a.randomPhotos && a.photos.empty()) throw InputError("--random-photos: give photos with --photo");
+  refuseUnless(cmd, "--seed", a.randomPhotos, "arena mapping, or arena hall --random-photos (the hall draws nothing else)");
   HallOptions options;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   options.photos = a.photos;

@@ -44,7 +44,10 @@ class FrameViews {
  public:
   FrameViews(const std::vector<std::string>& kinds, const RigSpec& rig) {
     const std::shared_ptr<const Camera> camera = makeCamera(rig);
-    for (const std::string& kind : kinds) {
+    for (size_t k = 0; k < kinds.size(); ++k) {
+      const std::string& kind = kinds[k];
+      if (std::find(kinds.begin(), kinds.begin() + static_cast<std::ptrdiff_t>(k), kind) != kinds.begin() + static_cast<std::ptrdiff_t>(k))
+        throw InputError("--view: " + quote(kind) + " given twice (each view is written once)");
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
       ViewMap map = buildViewMap(spec, *camera);
@@ -230,7 +233,9 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     record(rendered, recording, 0);
     writeRendered(a.out, rendered);
     views.write(a.out, rendered);
-    std::printf("wrote %s\n", a.out.c_str());
+    std::string written = a.out;
+    for (const std::string& file : views.files(a.out)) written += ", " + file;
+    std::printf("wrote %s\n", written.c_str());
     return;
   }
   renderPath(a, request.engine, scene, *engine, settings, velocity, views, *path, recording);
@@ -254,7 +259,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--format", args->format, "With --path: png or exr frames");
   cmd->add_option("--view", args->views,
                   "Also write this view of each image (birdseye, panorama or perspective; repeatable): "
-                  "OUT.KIND.png, frame_NNNN.KIND.png");
+                  "OUT.KIND.png (.exr for an .exr OUT), frame_NNNN.KIND.png");
   cmd->add_option("--recording", args->recording,
                   "Record each image through a camera's faults: a preset (webcam, machine_vision, phone; drawn per frame "
                   "from its ranges) or a JSON file of one recording object (docs/experiments.md); the sidecar records the "

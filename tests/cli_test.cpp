@@ -213,6 +213,12 @@ TEST_F(CliTest, RenderWritesViewsThatTheViewVerbReproduces) {
   CommandResult r = run("render " + kScene + " --size 180 --view panorama --view birdseye -o " + image);
   ASSERT_EQ(r.code, 0) << r.out;
   ASSERT_TRUE(fs::exists(path("a.birdseye.exr")));
+  EXPECT_NE(r.out.find("wrote " + image + ", " + path("a.panorama.exr") + ", " + path("a.birdseye.exr")), std::string::npos) << r.out;
+  // A view given twice would be written twice over: refused before anything is rendered.
+  r = run("render " + kScene + " --size 180 --view birdseye --view birdseye -o " + path("twice.png"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--view: \"birdseye\" given twice"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(path("twice.png")));
   r = run("view " + image + " --as panorama -o " + path("p.exr"));
   ASSERT_EQ(r.code, 0) << r.out;
   const ImageRGBA fromRender = readImage(path("a.panorama.exr")), fromView = readImage(path("p.exr"));
