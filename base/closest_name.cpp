@@ -37,6 +37,13 @@ std::optional<std::string> closestName(std::string_view given, const std::vector
     const int distance = editDistance(given, name);
     if (distance < bestDistance) best = name, bestDistance = distance;
   }
+  if (best || given.size() < 3) return best;
+  // No typo: the first word of exactly one name ("colour" for "colour_class").
+  for (const std::string& name : names)
+    if (name.size() > given.size() && name.compare(0, given.size(), given) == 0 && name[given.size()] == '_') {
+      if (best) return std::nullopt;  // two names begin so: neither is the one meant
+      best = name;
+    }
   return best;
 }
 

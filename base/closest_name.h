@@ -14,7 +14,8 @@ int editDistance(std::string_view a, std::string_view b);
 
 // The name in `names` fewest edits from `given`, if that is few enough to be a typo: at most one
 // edit per three characters of `given` (at least one), and not `given` itself. On a tie, the first.
-// None for a `given` of one character (every other is one edit away) or of more than 64.
+// None for a `given` of one character (every other is one edit away) or of more than 64. Failing
+// a typo, the one name whose first word `given` is ("colour" → "colour_class"), if only one is.
 std::optional<std::string> closestName(std::string_view given, const std::vector<std::string>& names);
 
 // " (did you mean X?)" for closestName's answer, or "".

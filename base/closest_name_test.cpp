@@ -27,6 +27,10 @@ TEST(ClosestName, SuggestsOnlyWhatIsCloseEnoughToBeATypo) {
   EXPECT_EQ(didYouMean("--quux", {"--size", "--spp"}), "");
   EXPECT_EQ(closestName("q", {"h", "o"}), std::nullopt);  // one letter: every other is one edit away
   EXPECT_EQ(closestName(std::string(65, 'a'), {std::string(64, 'a')}), std::nullopt);
+  // A name's first word, when it is the first word of that name alone.
+  EXPECT_EQ(closestName("colour", {"name", "colour_class", "position"}), "colour_class");
+  EXPECT_EQ(closestName("time", {"time_samples", "time_step"}), std::nullopt);
+  EXPECT_EQ(closestName("col", {"colour_class"}), std::nullopt);  // not a whole word of it
 }
 
 }  // namespace
