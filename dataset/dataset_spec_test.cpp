@@ -180,7 +180,7 @@ TEST(DatasetSpec, TheRobotTiltsEveryCameraAndItsVibrationRocksItPerFrame) {
   }
   EXPECT_NE(vibratedRobotTilt(s.robotTiltDeg, s.vibration, 0), vibratedRobotTilt(s.robotTiltDeg, s.vibration, 1));
   EXPECT_EQ(errorOf(spec(R"("robot": {"tilt_deg": [45, 0]})")), "spec.json: robot.tilt_deg[0]: must be in [-30, 30] degrees (got 45)");
-  EXPECT_EQ(errorOf(spec(R"("robot": {"tilt": [1, 0]})")), "spec.json: robot.tilt: unknown field");
+  EXPECT_EQ(errorOf(spec(R"("robot": {"tilt": [1, 0]})")), "spec.json: robot.tilt: unknown field (did you mean tilt_deg?)");
 }
 
 // One 1 m box centred at the origin: footprint [-0.5, 0.5]², height 1 m.

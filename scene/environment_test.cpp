@@ -114,7 +114,7 @@ TEST_F(EnvironmentLoadTest, BadEnvironmentsAreRefusedWithOneLine) {
   EXPECT_EQ(errorOf(R"({"file": "negative.exr"})"), "");
   EXPECT_EQ(scene_.environment->image->rgbLinear()[0], 0.0f);
   EXPECT_EQ(errorOf(R"({"file": "sky.exr", "strength": -1})"), file + ": environment.strength: must be in [0, 1e+06] (got -1)");
-  EXPECT_EQ(errorOf(R"({"file": "sky.exr", "rotation": 3})"), file + ": environment.rotation: unknown field");
+  EXPECT_EQ(errorOf(R"({"file": "sky.exr", "rotation": 3})"), file + ": environment.rotation: unknown field (did you mean rotation_deg?)");
   EXPECT_NE(errorOf(R"({"file": "none.exr"})").find(file + ": environment.file: file not found"), std::string::npos);
   EXPECT_NE(errorOf(R"({"file": "../../sky.exr"})").find("resolves outside the scene's folder"), std::string::npos);
   EXPECT_EQ(errorOf(R"("sky.exr")"), file + ": environment: must be an object (got string)");
