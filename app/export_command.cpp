@@ -46,6 +46,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     options.placement = pose;
     options.rig = settings.rig;
     const std::string file = a.out + "/scene.glb";
+    checkOutputsSpareScene(scene, {file}, "-o");
     const std::vector<std::string> made = ensureDirectory(a.out, "-o");
     try {
       exportGltf(scene, options, file);
@@ -57,6 +58,9 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     return;
   }
   const PovrayJob job = exportPovray(scene, pose, settings);  // validates before anything is written
+  std::vector<std::string> files;
+  for (const std::string& name : povrayJobFiles(job)) files.push_back((std::filesystem::path(a.out) / name).string());
+  checkOutputsSpareScene(scene, files, "-o");
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
   std::printf("wrote %s/scene.pov and render.ini (%dx%d, render with: cd %s && povray render.ini)\n", a.out.c_str(),

@@ -136,8 +136,9 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
       checkImageOutput(frameFile(f), "-o");
       std::vector<std::string> files = views.files(frameFile(f));
       for (const std::string& file : files) checkImageOutput(file, "--view");
+      checkOutputsSpareScene(scene, files, "--view");
+      checkOutputsSpareScene(scene, {frameFile(f)}, "-o");
       files.push_back(frameFile(f));
-      checkOutputsSpareScene(scene, files, "-o");
       for (const std::string& file : files) {
         const std::string name = std::filesystem::path(file).filename().string();
         written.insert(name), written.insert(name + ".json");
@@ -203,9 +204,8 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   if (a.path.empty()) {
     checkImageOutput(a.out, "-o");
     for (const std::string& file : views.files(a.out)) checkImageOutput(file, "--view");
-    std::vector<std::string> images = views.files(a.out);
-    images.push_back(a.out);
-    checkOutputsSpareScene(scene, images, "-o");
+    checkOutputsSpareScene(scene, {a.out}, "-o");
+    checkOutputsSpareScene(scene, views.files(a.out), "--view");
   }
   const CameraPath* path = nullptr;
   if (!a.path.empty()) {

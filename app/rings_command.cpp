@@ -103,6 +103,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   checkImageOutput(a.out, "-o");
   checkOutputsSpareScene(scene, {a.out}, "-o");
   const auto engine = makeEngine(request, scene);
+  checkScene(sceneFile, [&] { checkEngineRenders(engine->kind(), settings.rig, CameraPlacement(scene.startPose)); });
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);
   rendered.sidecar["rings"] = measureAndPrint(rendered.image, settings.rig, a.out, a);
   writeRendered(a.out, rendered);

@@ -32,7 +32,9 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
   RigSpec rig;
   nlohmann::json sidecar = nlohmann::json::object();
   if (!a.scene.empty()) {
-    rig = loadScene(a.scene, a.load).rig;
+    const Scene scene = loadScene(a.scene, a.load);
+    checkOutputsSpareScene(scene, {a.out}, "-o");  // its textures and glTF files too
+    rig = scene.rig;
     sidecar["rig_from"] = {{"scene", a.scene}};
   } else if (!a.rig.empty()) {
     const nlohmann::json file = readJsonFile(a.rig);

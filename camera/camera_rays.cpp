@@ -34,8 +34,9 @@ CameraRayTable cameraRayTable(const Camera& camera, const std::function<void(int
       }
     }
   };
-  // About a hundred bands: progress often enough, each band still wide enough for every thread.
-  const int band = std::max(1, table.height / 100);
+  // About a hundred bands: progress often enough, each band (16 rows at least) still work for
+  // every thread.
+  const int band = std::max(16, table.height / 100);
   for (int first = 0; first < table.height; first += band) {
     const int end = std::min(table.height, first + band);
     tbb::parallel_for(first, end, traceRow);

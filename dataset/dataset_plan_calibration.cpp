@@ -101,11 +101,17 @@ void DatasetPlan::addCalibrationFiles() {
   for (int f = 0; f < frames; ++f) {
     const std::unique_ptr<FrameWorld> world = frameWorld(f, /*withEngine=*/false, /*withRays=*/true);
     const CalibrationTarget& moved = world->scene.calibrationTargets[static_cast<size_t>(calibration_->target)];
-    std::map<std::string, int> sights;  // over every camera: a listed pose no camera sees is told
+    // A listed pose no camera sees four corners of (what a view needs) is told, camera by camera.
+    std::string sightsByCamera;
+    bool calibrates = false;
     for (size_t c = 0; c < setups_.size(); ++c) {
       const Rigid worldFromViewpoint = placement(f, c).worldFromViewpoint(setups_[c].rig);
       const std::vector<ImagedCorner> corners = imagedCorners(*setups_[c].model, worldFromViewpoint, world->rays.get(), moved);
+      std::map<std::string, int> sights;
       for (const ImagedCorner& corner : corners) ++sights[cornerSightName(corner.sight)];
+      std::string counts;
+      for (const auto& [sight, count] : sights) counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " + sight;
+      sightsByCamera += (sightsByCamera.empty() ? "" : "; ") + setups_[c].camera->name + ": " + counts;
       cornerFrames[c].push_back(cornersFrameJson(f, worldFromViewpoint.inverse() * moved.worldFromTarget, corners));
       // The frame's image: its colour file, or its multilayer frame.
       const OutputKind imageKind = outputs_.layout == DatasetLayout::Multilayer ? OutputKind::Multilayer : kColourOutput;
@@ -116,14 +122,12 @@ void DatasetPlan::addCalibrationFiles() {
           image.view.raster.push_back(corner.raster);
         }
       // OpenCV's calibrations need four points of a view.
+      calibrates = calibrates || image.view.raster.size() >= 4;
       if (image.view.raster.size() >= 4) lists[c].push_back(std::move(image));
     }
-    if (!sights.count(cornerSightName(CornerSight::Seen)) && !spec_.calibration->random) {
-      std::string counts;
-      for (const auto& [sight, count] : sights) counts += (counts.empty() ? "" : ", ") + std::to_string(count) + " " + sight;
-      notes_.push_back(showPath(spec_.file) + ": calibration.poses.list[" + std::to_string(f) + "]: no camera sees a corner of the board (" +
-                       counts + "): the frame calibrates nothing");
-    }
+    if (!calibrates && !spec_.calibration->random)
+      notes_.push_back(showPath(spec_.file) + ": calibration.poses.list[" + std::to_string(f) +
+                       "]: no camera sees the 4 corners of the board a view needs (" + sightsByCamera + "): the frame calibrates nothing");
   }
   const std::string kalibr = kalibrTargetYaml(target.pattern);
   for (size_t c = 0; c < setups_.size(); ++c) {

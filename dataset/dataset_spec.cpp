@@ -1,5 +1,6 @@
 #include "dataset_spec.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -28,10 +29,12 @@ constexpr const char* kFormat = "omnicam-dataset/1";
 // Names the dataset folder keeps for itself: a camera's folder beside them would mix with them.
 constexpr std::array<const char*, 3> kReservedFolderNames = {"intrinsics", "shards", "slurm"};
 
+bool isReservedFolderName(const std::string& name) {
+  return std::find(kReservedFolderNames.begin(), kReservedFolderNames.end(), name) != kReservedFolderNames.end();
+}
+
 bool isCameraFolderName(const std::string& name) {
-  if (name.empty() || name.size() > 63) return false;
-  for (const char* reserved : kReservedFolderNames)
-    if (name == reserved) return false;
+  if (name.empty() || name.size() > 63 || name == "intrinsics") return false;
   for (char ch : name)
     if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-') return false;
   return true;
@@ -285,7 +288,7 @@ void readCameras(const json& cameras, DatasetSpec& spec) {
     JsonFields c(cameras[i], spec.file, "cameras[" + std::to_string(i) + "]");
     DatasetCamera camera;
     camera.name = c.string("name");
-    if (!isCameraFolderName(camera.name)) c.fail("name", cameraNameProblem(camera.name));
+    if (!isCameraFolderName(camera.name) || isReservedFolderName(camera.name)) c.fail("name", cameraNameProblem(camera.name));
     if (!names.insert(camera.name).second) c.fail("name", "duplicate camera name " + quote(camera.name));
     if (c.has("rig")) {
       camera.rig = c.raw("rig");

@@ -130,9 +130,11 @@ struct DatasetSpec {
   std::optional<CalibrationSequenceSpec> calibration;
 };
 
-// A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics", "shards" or
-// "slurm" (the dataset folder's own).
+// A camera name is a folder name: 1–63 letters, digits, '_' or '-', not "intrinsics" (what
+// manifests hold). A new spec's may also not be the dataset folder's own "shards" or "slurm"
+// (isReservedFolderName); datasets written before that rule still read.
 bool isCameraFolderName(const std::string& name);
+bool isReservedFolderName(const std::string& name);
 
 // InputError naming the spec's `field` unless `frames` frames of every camera stay within
 // limits::kMaxDatasetFrames and limits::kMaxCameraFrames.

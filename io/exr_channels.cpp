@@ -297,14 +297,14 @@ std::vector<unsigned char> encodeExrChannels(const std::string& path, int width,
     }
     for (const auto& [key, value] : options.text) check(exr_attr_set_string(context, part, key.c_str(), value.c_str()), file, "attribute");
     check(exr_write_header(context), file, "header");
-    // Chunks are packed and compressed in parallel, a batch at a time (a few tens of MB, so a
-    // large image needs little more memory than its file), and written in order: the same bytes
-    // as one at a time.
+    // Chunks are packed and compressed in parallel, a batch at a time (about 8 MB of pixels, each
+    // chunk with its packed, scratch and compressed buffers: some 32 MB, so a large image needs
+    // little more memory than its file), and written in order: the same bytes as one at a time.
     size_t lineBytes = 0;
     for (const PackedChannel& c : packedChannels) lineBytes += c.bytes() * static_cast<size_t>(width);
     const size_t chunkBytes = std::max<size_t>(1, lineBytes * static_cast<size_t>(format.lines));
     const int chunkCount = (height + format.lines - 1) / format.lines;
-    const int batch = static_cast<int>(std::clamp<size_t>((size_t{32} << 20) / chunkBytes, 1, 64));
+    const int batch = static_cast<int>(std::clamp<size_t>((size_t{8} << 20) / chunkBytes, 1, 64));
     struct ChunkBuffers {
       std::vector<unsigned char> packed, scratch, compressed;
       bool smaller = false;

@@ -2,8 +2,8 @@
 // OpenEXR images in memory whose channels each keep their own sample type (half, float32, uint32)
 // and whose header carries text attributes: what one dataset frame's colour and AOVs need in
 // one file (docs/dataset-format.md, "multilayer"), and what the single-purpose data EXRs are.
-// Written with OpenEXR's core API and compressed here (exr_chunks.h), read with OpenEXR's C++
-// API, on the calling thread (frames are encoded in parallel already).
+// Written with OpenEXR's core API and compressed here (exr_chunks.h), a batch of chunks at a time
+// on TBB's threads (a large table alone would take a minute on one); read with OpenEXR's C++ API.
 #include <cstdint>
 #include <functional>
 #include <map>

@@ -6,6 +6,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstring>
 #include <Imath/half.h>
 
@@ -72,10 +74,12 @@ TEST(ExrChannels, HalvesRoundAsImathDoesAndDataIsExact) {
 
 TEST(ExrChannels, EveryCompressionDecodesExactlyThroughOpenExr) {
   // Our chunk coders (exr_chunks.h) against OpenEXR's decoders: float noise (stored raw when it
-  // does not compress), stepped halves, sparse ids, odd widths and heights.
+  // does not compress), stepped halves, sparse ids, odd widths and heights; 4096×600 spans several
+  // of the encoder's parallel batches (8 MB of pixels each), which must still write every chunk in
+  // its place and report every line.
   std::mt19937 rng(7);
   for (const ExrCompression compression : {ExrCompression::None, ExrCompression::Rle, ExrCompression::Zips, ExrCompression::Zip}) {
-    for (const auto& [width, height] : {std::pair{1, 1}, {3, 2}, {67, 33}, {360, 20}}) {
+    for (const auto& [width, height] : {std::pair{1, 1}, {3, 2}, {67, 33}, {360, 20}, {4096, 600}}) {
       const size_t pixels = static_cast<size_t>(width) * height;
       std::vector<float> noise(pixels), steps(pixels * 3);
       std::vector<uint32_t> ids(pixels);
@@ -91,7 +95,18 @@ TEST(ExrChannels, EveryCompressionDecodesExactlyThroughOpenExr) {
       channels.push_back({"instance.I", ExrSampleType::Uint, nullptr, ids.data(), 1});
       ExrWriteOptions options;
       options.compression = compression;
+      std::vector<int> linesReported;
+      options.onLines = [&](int done, int lines) {
+        EXPECT_EQ(lines, height);
+        linesReported.push_back(done);
+      };
       const std::vector<unsigned char> bytes = encodeExrChannels("t.exr", width, height, channels, options);
+      ASSERT_FALSE(linesReported.empty());
+      EXPECT_TRUE(std::is_sorted(linesReported.begin(), linesReported.end()));
+      EXPECT_EQ(linesReported.back(), height);
+      if (width == 4096) {
+        EXPECT_GT(linesReported.size(), 3u) << "one batch: the batches are not tested";
+      }
       const ExrChannels decoded = decodeExrChannels({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, "t.exr");
       SCOPED_TRACE(std::to_string(static_cast<int>(compression)) + ": " + std::to_string(width) + "x" + std::to_string(height));
       EXPECT_EQ(decoded.floats.at("depth.Z"), noise);

@@ -225,8 +225,10 @@ float extraFactor(const tinygltf::Value& o, const char* key, float fallback, con
 }
 
 // Emitted radiance: emissiveFactor times KHR_materials_emissive_strength, as omnicam exports it,
-// within the scene format's emission range.
+// within the scene format's emission range. An emissive texture omnicam cannot represent: such a
+// material emits nothing here (its factor scales the texture, not a uniform glow).
 Vec3f emissionOf(const tinygltf::Material& m, const std::string& where) {
+  if (m.emissiveTexture.index >= 0) return Vec3f::Zero();
   double strength = 1.0;
   if (const auto ext = m.extensions.find("KHR_materials_emissive_strength"); ext != m.extensions.end()) {
     const tinygltf::Value& v = ext->second;
@@ -237,9 +239,9 @@ Vec3f emissionOf(const tinygltf::Material& m, const std::string& where) {
   }
   const auto& e = m.emissiveFactor;
   Vec3f emission = Vec3f::Zero();
-  for (size_t c = 0; c < 3; ++c) {
-    const double factor = c < e.size() ? e[c] : -1.0;
-    if (e.size() != 3 || !(factor >= 0.0 && factor <= 1.0)) throw InputError(where + ".emissiveFactor: must be 3 numbers in [0, 1]");
+  if (e.size() != 3) throw InputError(where + ".emissiveFactor: must have 3 numbers");
+  for (size_t c = 0; c < 3; ++c) {  // clamped into glTF's [0, 1], as the base colour is
+    const double factor = std::isfinite(e[c]) ? std::clamp(e[c], 0.0, 1.0) : 0.0;
     emission[static_cast<int>(c)] = static_cast<float>(std::min(factor * strength, 1e6));
   }
   return emission;

@@ -21,7 +21,7 @@ namespace omnicam {
 struct GltfArena {
   std::vector<Material> materials;
   std::vector<SceneObject> objects;  // SceneObject::material indexes `materials`
-  std::vector<std::string> filesRead;  // the glTF file (when read from disk), its buffers and images
+  std::vector<std::string> filesRead;  // the files it refers to: buffers and images (not itself)
 };
 
 struct GltfImportOptions {

@@ -73,6 +73,31 @@ TEST(Texture, AnEightBitTextureIsPalettedAndGivesTheSameFloats) {
   }
 }
 
+// An albedo texture holds [0, 1], up to a step of its file's precision: an 8-bit RGBA texel of low
+// alpha and a half texel one step above 1 load; a radiance image's 2 and a clearly negative texel
+// are refused, naming the texel.
+TEST(Texture, AlbedoTexelsAreWithinZeroToOneUpToTheirPrecision) {
+  const auto loadOf = [](const std::string& name, float r, float alpha) -> std::string {
+    ImageRGBA image(2, 1);
+    for (int i = 0; i < 2; ++i) {
+      float* p = image.at(i, 0);
+      p[0] = (i == 1 ? r : 0.5f) * alpha, p[1] = 0.25f * alpha, p[2] = 0.0f, p[3] = alpha;
+    }
+    writeImageAtomic(scratchFile(name), image);
+    try {
+      Texture::load(scratchFile(name));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(loadOf("faint.png", 1.0f, 3.0f / 255.0f), "");      // 8-bit, association undone in float
+  EXPECT_EQ(loadOf("half_step.exr", 1.0f + 1.0f / 1024.0f, 1.0f), "");  // half's next value above 1
+  EXPECT_NE(loadOf("radiance2.exr", 2.0f, 1.0f).find("radiance2.exr: texel (1, 0) is 2: an albedo texture holds values from 0 to 1"),
+            std::string::npos);
+  EXPECT_NE(loadOf("negative.exr", -0.01f, 1.0f).find("texel (1, 0) is -0.01"), std::string::npos);
+}
+
 TEST(Srgb, RoundTripsAndKnownValues) {
   EXPECT_NEAR(srgbToLinear(0.5f), 0.214041f, 1e-6);
   EXPECT_NEAR(linearToSrgb(0.214041f), 0.5f, 1e-6);

@@ -547,8 +547,8 @@ TEST_F(CliTest, CameraRaysOfAMisalignedRigAreReflectedPinholeRays) {
 }
 
 // No output may be a file the scene is read from — the scene itself (through an image's sidecar),
-// a texture, a texture named as a --path frame — by any command that renders or traces it:
-// refused, every file as it was.
+// a texture, a texture named as a --path frame, a glTF arena — by any command that renders,
+// traces, views or exports it: refused, every file as it was.
 TEST_F(CliTest, NoOutputReplacesAFileTheSceneReads) {
   fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/outside.png", dir_ / "t.png");
   fs::copy_file(dir_ / "t.png", dir_ / "frame_0000.png");
@@ -558,9 +558,21 @@ TEST_F(CliTest, NoOutputReplacesAFileTheSceneReads) {
   const auto withTexture = [&](const std::string& texture) { return std::regex_replace(scene, std::regex("TEX"), texture); };
   for (const char* name : {"shot.png.json", "rays.exr.json", "s.json"}) std::ofstream(dir_ / name) << withTexture("t.png");
   std::ofstream(dir_ / "s2.json") << withTexture("frame_0000.png");
-  std::map<std::string, std::string> before;
-  for (const auto& entry : fs::directory_iterator(dir_)) before[entry.path().filename().string()] = testing::readFile(entry.path());
+  // An omni image to view, and a glTF arena a scene brings in (sub/scene.glb, what export writes).
+  ASSERT_EQ(run("render " + path("s.json") + " --size 16 -o " + path("omni.png")).code, 0);
+  ASSERT_EQ(run("export " + path("s.json") + " --to gltf -o " + path("sub")).code, 0);
+  std::ofstream(dir_ / "g.json") << R"({"format": "omnicam-scene/1", "materials": {},
+    "objects": [{"type": "gltf", "name": "arena", "file": "sub/scene.glb"}]})";
+  const auto snapshot = [&] {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir_))
+      if (entry.is_regular_file()) files[entry.path().string()] = testing::readFile(entry.path());
+    return files;
+  };
+  const std::map<std::string, std::string> before = snapshot();
   const std::pair<std::string, std::string> cases[] = {
+      {"view " + path("omni.png") + " --scene " + path("s.json") + " -o " + path("t.png"), "-o: " + path("t.png") + " is a file the scene reads"},
+      {"export " + path("g.json") + " --to gltf -o " + path("sub"), "-o: " + path("sub/scene.glb") + " is a file the scene reads"},
       {"render " + path("shot.png.json") + " --size 16 -o " + path("shot.png"), "-o (its sidecar): " + path("shot.png.json") + " is the scene file"},
       {"render " + path("s.json") + " --size 16 -o " + path("t.png"), "-o: " + path("t.png") + " is a file the scene reads"},
       {"camera-rays " + path("rays.exr.json") + " --size 8 -o " + path("rays.exr"), "is the scene file"},
@@ -571,9 +583,7 @@ TEST_F(CliTest, NoOutputReplacesAFileTheSceneReads) {
     EXPECT_EQ(r.code, 2) << command << "\n" << r.out;
     EXPECT_NE(r.out.find(words), std::string::npos) << command << "\n" << r.out;
   }
-  std::map<std::string, std::string> after;
-  for (const auto& entry : fs::directory_iterator(dir_)) after[entry.path().filename().string()] = testing::readFile(entry.path());
-  EXPECT_EQ(after, before);
+  EXPECT_EQ(snapshot(), before);
 }
 
 // POV-Ray's moving frame is one still render per instant: the CLI shows them as they finish.
