@@ -202,12 +202,7 @@ std::shared_ptr<const Texture> textureOf(const tinygltf::Model& model, int textu
     throw InputError(where + ": image " + std::to_string(source) + " holds no decodable pixels");
   std::vector<float> rgba(pixels * 4);
   std::memcpy(rgba.data(), image.image.data(), image.image.size());
-  std::vector<float> rgb(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p) {
-    const float alpha = rgba[p * 4 + 3];
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = alpha > 0.0f ? rgba[p * 4 + c] / alpha : 0.0f;  // opaque albedo
-  }
-  return std::make_shared<Texture>(image.width, image.height, std::move(rgb));
+  return Texture::fromPremultiplied(image.width, image.height, rgba.data(), where + ": image " + std::to_string(source));
 }
 
 bool isOmnicamRig(const tinygltf::Node& node) {

@@ -12,25 +12,29 @@ namespace omnicam {
 
 std::shared_ptr<const Texture> Texture::load(const std::string& path) {
   const ImageRGBA image = readImage(path);
-  std::vector<float> rgb(static_cast<size_t>(image.width) * image.height * 3);
+  return fromPremultiplied(image.width, image.height, image.pixels.data(), showPath(path));
+}
+
+std::shared_ptr<const Texture> Texture::fromPremultiplied(int width, int height, const float* rgba, const std::string& name) {
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  std::vector<float> rgb(pixels * 3);
   // An albedo reflects at most what arrives: a texel above 1 (an HDR or EXR image of radiance) would
-  // make a surface that gains energy, which the engines would each treat their own way.
-  // A half-float or lossy texel may stray past 0 or 1 by a step of its precision (half: 2^-10 at 1),
-  // and an 8-bit one by its association undone in float: noise, read as it is. Beyond it, the image
-  // is not an albedo.
+  // make a surface that gains energy, which the engines would each treat their own way. A
+  // half-float or lossy texel may stray past 0 or 1 by a step of its precision (half: 2^-10 at 1),
+  // and an 8-bit one by its association undone in float: noise, read as it is.
   constexpr float kNoise = 1.0f / 512.0f;
-  for (size_t p = 0; p < static_cast<size_t>(image.width) * image.height; ++p) {
-    const float alpha = image.pixels[p * 4 + 3];
+  for (size_t p = 0; p < pixels; ++p) {
+    const float alpha = rgba[p * 4 + 3];
     for (int c = 0; c < 3; ++c) {  // textures are opaque albedo: undo association
-      const float albedo = alpha > 0.0f ? image.pixels[p * 4 + c] / alpha : 0.0f;
+      const float albedo = alpha > 0.0f ? rgba[p * 4 + c] / alpha : 0.0f;
       if (!(albedo >= -kNoise && albedo <= 1.0f + kNoise))
-        throw InputError(showPath(path) + ": texel (" + std::to_string(p % static_cast<size_t>(image.width)) + ", " +
-                         std::to_string(p / static_cast<size_t>(image.width)) + ") is " + shortNumber(albedo) +
+        throw InputError(name + ": texel (" + std::to_string(p % static_cast<size_t>(width)) + ", " +
+                         std::to_string(p / static_cast<size_t>(width)) + ") is " + shortNumber(albedo) +
                          ": an albedo texture holds values from 0 to 1 (an image of radiance, HDR or EXR, is not one)");
       rgb[p * 3 + c] = albedo;
     }
   }
-  return std::make_shared<Texture>(image.width, image.height, std::move(rgb));
+  return std::make_shared<Texture>(width, height, std::move(rgb));
 }
 
 namespace {

@@ -14,6 +14,9 @@ class Texture {
  public:
   // An albedo texture: InputError naming the file for a texel outside [0, 1] (or unreadable).
   static std::shared_ptr<const Texture> load(const std::string& path);
+  // The same from premultiplied RGBA (width × height × 4 floats, an image as decoded), `name`
+  // naming it in the InputError: every albedo texture, a file's or a glTF's, is read by this.
+  static std::shared_ptr<const Texture> fromPremultiplied(int width, int height, const float* rgba, const std::string& name);
   Texture(int width, int height, std::vector<float> rgbLinear);
   Vec3f sample(double u, double v) const;
   int width() const { return width_; }
