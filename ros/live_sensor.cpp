@@ -413,7 +413,7 @@ ros1::Transport& connect(std::optional<ros1::Transport>& transport, const LiveSe
 }  // namespace
 
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
-                               const std::function<void()>& ready) {
+                               const std::function<void(const std::vector<std::string>& imageTopics)>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
   checkLiveSpec(plan, options);
   // Declared before the transport: its destructor stops the callbacks before these go.
@@ -427,7 +427,11 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   std::optional<Ticker> ticker;  // after the transport: stops before it
   if (options.rateHz > 0) ticker.emplace(transport, options.rateHz, [&poses](const ros1::Stamp& tick) { poses.tick(tick); });
 
-  if (ready) ready();
+  if (ready) {
+    std::vector<std::string> imageTopics;
+    for (const CameraSetup& setup : plan.setups()) imageTopics.push_back(cameraTopic(options, setup.camera->name, "image_raw"));
+    ready(imageTopics);
+  }
   LiveSensorReport report;
   auto masterChecked = std::chrono::steady_clock::now();
   while (!interruptRequested() && (options.frames == 0 || report.rendered < options.frames)) {

@@ -101,9 +101,9 @@ std::optional<LivePose> poseAtTick(const LivePose& latest, const ros1::Stamp& ti
 
 // Runs the sensor until options.frames poses are rendered or a signal arrives (then within
 // 0.1 s of the frame being rendered). `ready`, if set, is called once the topics are announced
-// and the odometry subscribed. InputError for a spec the dataset reader refuses; ExternalError
-// if no master answers.
+// and the odometry subscribed, with each camera's image topic (as named, before any remapping).
+// InputError for a spec the dataset reader refuses; ExternalError if no master answers.
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
-                               const std::function<void()>& ready = {});
+                               const std::function<void(const std::vector<std::string>& imageTopics)>& ready = {});
 
 }  // namespace omnicam
