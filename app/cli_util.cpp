@@ -226,6 +226,8 @@ Progress::Progress(std::string label, int total, int alreadyDone, std::string un
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
       tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
 
+Progress::~Progress() { finish(); }
+
 void Progress::step() { advanceTo(done_ + 1); }
 
 void Progress::advanceTo(int done) {
@@ -242,6 +244,7 @@ void Progress::advanceTo(int done) {
   if (tty_) {
     std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f %s/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
                  std::string(width - filled, ' ').c_str(), done_, total_, rate, unit_.c_str(), eta);
+    lineOpen_ = true;
   } else if (done_ == total_ || tenth(done_) > tenth(before)) {
     std::fprintf(stderr, "%s %d/%d  %.1f %s/s  %s\n", label_.c_str(), done_, total_, rate, unit_.c_str(), eta);
   }
@@ -249,7 +252,8 @@ void Progress::advanceTo(int done) {
 }
 
 void Progress::finish() {
-  if (tty_) std::fprintf(stderr, "\n");
+  if (lineOpen_) std::fprintf(stderr, "\n");
+  lineOpen_ = false;
 }
 
 }  // namespace omnicam::cli

@@ -79,10 +79,14 @@ void removeMadeFolders(const std::vector<std::string>& made);
 
 // A one-line progress bar on stderr for long sequences: steps/s and time left, each step one of
 // `unit` (frames, renders, rows). `alreadyDone` steps (kept from an earlier run) count toward the
-// bar but not toward the rate.
+// bar but not toward the rate. A bar left unfinished (an error thrown through it) ends its line when
+// destroyed, so the error starts a line of its own.
 class Progress {
  public:
   Progress(std::string label, int total, int alreadyDone = 0, std::string unit = "frames");
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
   void step();
   // Jumps to `done` steps, printing once.
   void advanceTo(int done);
@@ -91,7 +95,7 @@ class Progress {
  private:
   std::string label_, unit_;
   int total_, done_ = 0, alreadyDone_ = 0;
-  bool tty_;
+  bool tty_, lineOpen_ = false;
   std::chrono::steady_clock::time_point start_;
 };
 
