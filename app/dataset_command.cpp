@@ -9,6 +9,7 @@
 
 #include "atomic_file.h"
 #include "cli_util.h"
+#include "number_format.h"
 #include "commands.h"
 #include "dataset_runner.h"
 #include "dataset_shards.h"
@@ -99,8 +100,8 @@ int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
 int runVerify(const std::string& dir) {
   const DatasetVerifyResult r = verifyDataset(dir);
   for (const std::string& problem : r.problems) std::printf("%s\n", problem.c_str());
-  std::printf("%s: %s: %d files checked, %zu problems\n", r.ok() ? "PASS" : "FAIL", dir.c_str(), r.files,
-              r.problems.size());
+  std::printf("%s: %s: %s checked, %s\n", r.ok() ? "PASS" : "FAIL", dir.c_str(), countOf(r.files, "file").c_str(),
+              countOf(static_cast<long long>(r.problems.size()), "problem").c_str());
   return r.ok() ? 0 : 1;
 }
 
@@ -189,8 +190,8 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
                  r.kept + r.rendered, r.frames, showPath(a.out).c_str());
     return 130;
   }
-  std::printf("wrote %s: %d frames (%d rendered, %d kept from an earlier run)\n", a.out.c_str(), r.frames, r.rendered,
-              r.kept);
+  std::printf("wrote %s: %s (%d rendered, %d kept from an earlier run)\n", a.out.c_str(), countOf(r.frames, "frame").c_str(),
+              r.rendered, r.kept);
   return 0;
 }
 

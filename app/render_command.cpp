@@ -12,6 +12,7 @@
 #include <regex>
 
 #include "cli_util.h"
+#include "number_format.h"
 #include "commands.h"
 #include "errors.h"
 #include "image.h"
@@ -172,7 +173,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
       });
   if (writing.valid()) writing.get();
   progress.finish();
-  std::printf("wrote %d frames to %s\n", total, a.out.c_str());
+  std::printf("wrote %s to %s\n", countOf(total, "frame").c_str(), a.out.c_str());
 }
 
 void runRender(const RenderArgs& a, const CLI::App& cmd) {

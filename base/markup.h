@@ -24,6 +24,22 @@ inline std::string escapeMarkup(const std::string& text) {
   return out;
 }
 
+// A relative file path as a URL path for href/src: every byte but letters, digits, "-._~" and '/'
+// percent-encoded, so that '#', '%', '?' and spaces in a user's folder name stay part of the path.
+// Pass the result through escapeMarkup too (it is then free of markup characters anyway).
+inline std::string urlPath(const std::string& path) {
+  static const char* const kHex = "0123456789ABCDEF";
+  std::string out;
+  for (char ch : path) {
+    const auto byte = static_cast<unsigned char>(ch);
+    const bool plain = (byte >= 'A' && byte <= 'Z') || (byte >= 'a' && byte <= 'z') || (byte >= '0' && byte <= '9') ||
+                       ch == '-' || ch == '.' || ch == '_' || ch == '~' || ch == '/';
+    if (plain) out += ch;
+    else (out += '%', out += kHex[byte >> 4], out += kHex[byte & 15]);
+  }
+  return out;
+}
+
 // A POSIX shell word in single quotes: nothing inside is special; a quote is closed, escaped and
 // reopened.
 inline std::string shellQuote(const std::string& text) {

@@ -43,4 +43,8 @@ std::string yamlFloat(double value) {
   return text;
 }
 
+std::string countOf(long long count, const std::string& noun) {
+  return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
+}
+
 }  // namespace omnicam

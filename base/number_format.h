@@ -15,4 +15,6 @@ std::string yamlFloat(double value);
 std::string shortNumber(double value);
 // `value` with exactly `decimals` digits after the point ("3.14"), for reports; any locale.
 std::string fixedDecimals(double value, int decimals);
+// "1 frame", "2 frames": a count and its noun, for messages.
+std::string countOf(long long count, const std::string& noun);
 }  // namespace omnicam

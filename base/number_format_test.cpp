@@ -44,3 +44,14 @@ TEST(YamlNumber, WritesWhatYamlLoadersReadAsTheSameNumber) {
 
 }  // namespace
 }  // namespace omnicam
+
+namespace omnicam {
+namespace {
+TEST(CountOf, TheNounIsSingularForOneOnly) {
+  EXPECT_EQ(countOf(1, "frame"), "1 frame");
+  EXPECT_EQ(countOf(0, "frame"), "0 frames");
+  EXPECT_EQ(countOf(2, "frame"), "2 frames");
+  EXPECT_EQ(countOf(-1, "frame"), "-1 frames");
+}
+}  // namespace
+}  // namespace omnicam

@@ -288,7 +288,7 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
     html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
     const char* captions[3] = {"A", "B", "|A − B|"};
     for (int i = 0; i < 3; ++i)
-      html << "<figure><img src=\"" << escapeMarkup(assetsName + "/" + names[i]) << "\"><figcaption>" << captions[i]
+      html << "<figure><img src=\"" << escapeMarkup(urlPath(assetsName + "/" + names[i])) << "\"><figcaption>" << captions[i]
            << "</figcaption></figure>";
   }
   html << "<h2>All frames</h2><table><tr><th>frame</th><th>camera</th><th>PSNR (dB)</th><th>SSIM</th><th>RMSE</th>"

@@ -617,6 +617,11 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   EXPECT_NE(junit.find("tests=\"2\" failures=\"0\""), std::string::npos) << junit;
   EXPECT_NE(readFile(dir_ / "report.html").find("Worst frames"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir_ / "report_files/000000_cam0_diff.png"));
+  // A report's name may hold what URLs treat specially ('#' a fragment, '%' an escape): its links are
+  // percent-encoded, so that a browser finds the images.
+  ASSERT_EQ(omnicam("compare " + path("fast") + " " + path("povray") + " --report '" + path("r#1 50%.html") + "'").code, 0);
+  EXPECT_NE(readFile(dir_ / "r#1 50%.html").find("<img src=\"r%231%2050%25_files/000000_cam0_diff.png\">"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "r#1 50%_files/000000_cam0_diff.png"));
 
   // Lit against unlit: same poses, different images — every frame fails, exit 1.
   ASSERT_EQ(omnicam("dataset " + lit + " -o " + path("lit")).code, 0);
