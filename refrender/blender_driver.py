@@ -413,15 +413,18 @@ def place_rig(scene, rig, rig_objects, frame):
     if motion is None:
         rig.matrix_world = Matrix(frame["world_from_viewpoint"])
         return
-    # One frame is one second, so the shutter (in frames) is the exposure in seconds; it opens
-    # at frame 1, the frame's pose.
-    scene.render.fps, scene.render.fps_base = 1, 1.0
-    scene.cycles.motion_blur_position = "START"
-    scene.render.motion_blur_shutter = motion["exposure_s"]
-    scene.cycles.rolling_shutter_type = "NONE"
-    rig.rotation_mode = "QUATERNION"
+    # One frame per interval between the placements: the shutter opens at frame 1 (the frame's
+    # pose) and stays open for `intervals` frames. Blender merges keys closer than 0.01 frames
+    # (BEZT_BINARYSEARCH_THRESH), so keys spaced by the exposure in seconds (0.0005 frames apart
+    # at 1/30 s) would collapse onto a few, each holding a later pose: the blur ran about 1.5x
+    # too long. Nothing in the job depends on the frame rate.
     placements = motion["world_from_viewpoint"]
     intervals = len(placements) - 1
+    scene.render.fps, scene.render.fps_base = 1, 1.0
+    scene.cycles.motion_blur_position = "START"
+    scene.render.motion_blur_shutter = intervals
+    scene.cycles.rolling_shutter_type = "NONE"
+    rig.rotation_mode = "QUATERNION"
     if intervals != 2 ** (motion["motion_steps"] - 1):
         raise RuntimeError("omnicam: a moving frame needs 2^(motion_steps - 1) + 1 placements")
     previous = None
@@ -432,10 +435,12 @@ def place_rig(scene, rig, rig_objects, frame):
             rotation.make_compatible(previous)  # q and -q are one rotation: keys must not flip between them
         rig.rotation_quaternion = rotation
         previous = rotation
-        at = 1.0 + motion["exposure_s"] * k / intervals
+        at = 1.0 + k
         rig.keyframe_insert("location", frame=at)
         rig.keyframe_insert("rotation_quaternion", frame=at)
     for fcurve in rig.animation_data.action.fcurves:
+        if len(fcurve.keyframe_points) != len(placements):
+            raise RuntimeError("omnicam: Blender kept %d of the %d motion keys" % (len(fcurve.keyframe_points), len(placements)))
         for key in fcurve.keyframe_points:
             key.interpolation = "LINEAR"
     for obj in rig_objects:

@@ -22,6 +22,7 @@
 #include "rings.h"
 #include "scene_loader.h"
 #include "scratch_folder.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
@@ -123,27 +124,65 @@ TEST(Blender, ADriverWithoutFrameTimesStillRendersAndOnlyTheTimedRenderSaysSo) {
   fs::remove_all(dir);
 }
 
-// Cycles' own motion blur: the rig (mirror and camera) keyed at the exact arc's poses over a
-// global shutter, each camera ray at a random time of the exposure (issue #23: >= 35 dB at
-// 64 spp, 1 m/s and 90 deg/s). A rolling shutter and fixed instants are refused, not rendered
-// otherwise.
-TEST(Blender, CyclesMotionBlurAgreesWithTheFastRendererUnderAGlobalShutter) {
+// Cycles' own motion blur against the fast renderer's exact arc, for the mirror rig and a lens
+// camera: the robot drives 1 m/s at 90 deg/s over a 1/30 s global shutter. The blur must be the
+// one of that velocity: the same frame rendered at 2/3 and 3/2 of it must both be further off (a
+// driver whose keys Blender merged blurred 1.5x too long and still passed a bare PSNR floor).
+struct MovingRig {
+  const char* label;
+  RigSpec rig;
+};
+
+void PrintTo(const MovingRig& c, std::ostream* os) { *os << c.label; }
+
+class CyclesMotionBlur : public ::testing::TestWithParam<MovingRig> {};
+
+TEST_P(CyclesMotionBlur, IsTheBlurOfTheGivenVelocity) {
+  static const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
+  static const FastRenderer fast(scene);
+  RenderSettings settings;
+  settings.rig = GetParam().rig;
+  settings.rig.shutter.exposureS = 1.0 / 30.0;
+  settings.spp = 64;
+  const RobotPose pose{1.0, -1.5, 137.0};
+  const BodyVelocity velocity{1.0, 0.0, 90.0};
+  const ImageRGBA truth = renderWithBlender(scene, {CameraPlacement(pose, velocity)}, settings).front();
+  const auto psnrAt = [&](double scale) {
+    const BodyVelocity scaled{velocity.vx * scale, velocity.vy * scale, velocity.yawRateDegPerS * scale};
+    return compareImages(fast.render(CameraPlacement(pose, scaled), settings), truth).psnrDb;
+  };
+  const double atVelocity = psnrAt(1.0), slower = psnrAt(2.0 / 3.0), faster = psnrAt(1.5);
+  const double fromStill = compareImages(fast.render(pose, settings), truth).psnrDb;
+  std::printf("fast vs Blender Cycles motion blur, %s, 1 m/s and 90 deg/s over 1/30 s, unlit, 64 spp: PSNR %.2f dB "
+              "(at 2/3 of the velocity %.2f dB, at 3/2 %.2f dB, the still robot %.2f dB)\n",
+              GetParam().label, atVelocity, slower, faster, fromStill);
+  EXPECT_GE(atVelocity, 40.0);  // measured 48.9 dB (mirror) and 43.9 dB (fisheye); the issue asked 35
+  EXPECT_GT(atVelocity, slower + 3.0);
+  EXPECT_GT(atVelocity, faster + 3.0);
+  EXPECT_LT(fromStill, atVelocity - 5.0);  // the blur shows: the still image is clearly further off
+}
+
+RigSpec robocupRig() { return loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json").rig; }
+
+RigSpec fisheyeRig() {
+  RigSpec rig;
+  rig.kind = LensCameraSpec{test::fTheta(FThetaLens::Kind::Equidistant, 40.0, 200.0, 104.5, 70.0), 200, 150, {10.0, 40.0, 30.0}};
+  rig.height = 0.3;
+  return rig;
+}
+
+INSTANTIATE_TEST_SUITE_P(Rigs, CyclesMotionBlur,
+                         ::testing::Values(MovingRig{"the thesis' mirror rig", robocupRig()},
+                                           MovingRig{"fisheye equidistant 200 deg", fisheyeRig()}),
+                         [](const auto& param) { return param.index == 0 ? std::string("mirror") : std::string("fisheye"); });
+
+// Cycles has no rolling shutter omnicam trusts and samples time at random: both are refused.
+TEST(Blender, ARollingShutterOrFixedInstantsAreRefused) {
   const Scene scene = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   RenderSettings settings;
   settings.rig = scene.rig;
   settings.rig.shutter.exposureS = 1.0 / 30.0;
-  settings.spp = 64;
-  const RobotPose pose{1.0, -1.5, 137.0};
-  const CameraPlacement driving(pose, {1.0, 0.0, 90.0});
-  const ImageRGBA truth = renderWithBlender(scene, {driving}, settings).front();
-  const FastRenderer fast(scene);
-  const CompareResult r = compareImages(fast.render(driving, settings), truth);
-  const double fromStill = compareImages(fast.render(pose, settings), truth).psnrDb;
-  std::printf("fast vs Blender Cycles motion blur, 1 m/s and 90 deg/s over 1/30 s, unlit, 64 spp: PSNR %.2f dB, SSIM %.5f "
-              "(the still robot's image: %.2f dB)\n", r.psnrDb, r.ssim, fromStill);
-  EXPECT_GE(r.psnrDb, 35.0);
-  EXPECT_LT(fromStill, r.psnrDb - 5.0);  // the blur shows: the still image is clearly further off
-
+  const CameraPlacement driving(RobotPose{1.0, -1.5, 137.0}, {1.0, 0.0, 90.0});
   RenderSettings rolling = settings;
   rolling.rig.shutter.rolling = RollingShutter{30.0, Readout::TopToBottom};
   EXPECT_THROW(renderWithBlender(scene, {driving}, rolling), InputError);
