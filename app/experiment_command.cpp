@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "calibration_study.h"
 #include "cli_util.h"
+#include "number_format.h"
 #include "commands.h"
 #include "data_files.h"
 #include "errors.h"
@@ -251,8 +252,9 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
       [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
   progress.finish();
   for (const ConditionOutcome& c : results.conditions)
-    std::printf("%-30s %3d frames  TP %4d  FP %5d  missed %3d  error %.2f px\n", c.key().c_str(), c.frames,
-                c.truePositives, c.falsePositives, c.missed, c.meanLocalisationErrorPx);
+    std::printf("%-30s %3d frames  TP %4d  FP %5d  missed %3d  error %s px\n", c.key().c_str(), c.frames, c.truePositives,
+                c.falsePositives, c.missed,
+                c.meanLocalisationErrorPx ? fixedDecimals(*c.meanLocalisationErrorPx, 2).c_str() : "-");
   for (const EkfOutcome& e : results.ekf)
     std::printf("EKF %-26s odometry %.1f cm  EKF %.1f cm  improvement %.1f cm\n", e.condition.c_str(),
                 e.meanErrorOdometryCm, e.meanErrorEkfCm, e.meanErrorOdometryCm - e.meanErrorEkfCm);

@@ -66,8 +66,8 @@ RecordingCameraSpec trainingRecordingMix(uint64_t seed) {
 
 namespace {
 
-double mean(const std::vector<double>& values) {
-  if (values.empty()) return 0.0;
+std::optional<double> mean(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
   double sum = 0.0;
   for (double v : values) sum += v;
   return sum / static_cast<double>(values.size());

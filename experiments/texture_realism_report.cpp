@@ -60,9 +60,9 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                                 {"false_identifications", c.falseIdentifications()},
                                 {"false_positive_blobs_of_found_beacons", c.falsePositiveBlobsOfFoundBeacons},
                                 {"missed", c.missed},
-                                {"mean_localisation_error_px", c.meanLocalisationErrorPx},
-                                {"mean_range_error_cm", c.meanRangeErrorCm},
-                                {"mean_bearing_error_deg", c.meanBearingErrorDeg},
+                                {"mean_localisation_error_px", jsonOrNull(c.meanLocalisationErrorPx)},
+                                {"mean_range_error_cm", jsonOrNull(c.meanRangeErrorCm)},
+                                {"mean_bearing_error_deg", jsonOrNull(c.meanBearingErrorDeg)},
                                 {"false_positive_sources", c.falsePositiveSources},
                                 {"visible_by_range_m", c.visibleByRange},
                                 {"true_positives_by_range_m", c.truePositivesByRange}};
@@ -104,8 +104,12 @@ void writeData(const ReportData& data, const fs::path& out) {
   for (const ConditionReport& c : data.conditions)
     for (size_t k = 0; k < c.frames.size(); ++k) {
       const FrameEvaluation& f = c.frames[k];
-      double error = 0.0;
-      for (double e : f.localisationErrorsPx) error += e / static_cast<double>(f.localisationErrorsPx.size());
+      std::string error;  // empty: no true positive in the frame
+      if (!f.localisationErrorsPx.empty()) {
+        double sum = 0.0;
+        for (double e : f.localisationErrorsPx) sum += e / static_cast<double>(f.localisationErrorsPx.size());
+        error = roundTrip(sum);
+      }
       detections << c.outcome.key() << ',' << k << ',' << k * static_cast<size_t>(data.options->testStride) << ','
                  << f.visibleBeacons << ',' << f.truePositives << ',' << f.falseIdentifications << ','
                  << f.falsePositiveBlobs << ',' << error << '\n';
@@ -176,8 +180,8 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
     html << "<tr><td>" << escapeMarkup(c.key()) << "</td><td>" << c.frames << "</td><td>" << c.truePositives
          << "</td><td>" << c.falsePositives << "</td><td>" << c.falsePositiveBlobs << "</td><td>"
          << (c.falsePositives ? fixedDecimals(static_cast<double>(c.truePositives) / c.falsePositives, 4) : "&infin;")
-         << "</td><td>" << c.missed << "</td><td>" << fixedDecimals(c.meanLocalisationErrorPx, 2) << "</td><td>"
-         << fixedDecimals(c.meanRangeErrorCm, 1) << "</td><td>" << fixedDecimals(c.meanBearingErrorDeg, 2) << "</td></tr>";
+         << "</td><td>" << c.missed << "</td><td>" << decimalsOrDash(c.meanLocalisationErrorPx, 2) << "</td><td>"
+         << decimalsOrDash(c.meanRangeErrorCm, 1) << "</td><td>" << decimalsOrDash(c.meanBearingErrorDeg, 2) << "</td></tr>";
   html << "</table><h2>EKF self-localisation</h2><table><tr><th>condition</th><th>odometry cm</th><th>EKF cm</th>"
           "<th>improvement cm</th><th>measurements used / gated</th></tr>";
   for (const EkfOutcome& e : results.ekf)
@@ -300,8 +304,8 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
        << row.falsePositives << " | " << row.errorPx << " | " << row.ratio << " | " << c->truePositives << " | "
        << c->falsePositives << " | " << c->falseIdentifications() << " | "
        << c->falsePositiveBlobsOnHall << " | " << c->missed << " | "
-       << fixedDecimals(c->meanLocalisationErrorPx, 2) << " | " << fixedDecimals(c->meanRangeErrorCm, 1) << " | "
-       << fixedDecimals(c->meanBearingErrorDeg, 2) << " | " << ratioText(trueOverFalse(*c)) << " |\n";
+       << decimalsOrDash(c->meanLocalisationErrorPx, 2) << " | " << decimalsOrDash(c->meanRangeErrorCm, 1) << " | "
+       << decimalsOrDash(c->meanBearingErrorDeg, 2) << " | " << ratioText(trueOverFalse(*c)) << " |\n";
   }
 }
 

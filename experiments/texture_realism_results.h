@@ -3,6 +3,7 @@
 // runner (texture_realism.h) and the report that writes it (texture_realism_report.h).
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,7 +84,8 @@ struct ConditionOutcome {
   int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
   int falsePositiveBlobsOfFoundBeacons = 0;  // of those, bands of beacons named rightly (FalseBlob)
   int falseIdentifications() const { return falsePositives - falsePositiveBlobs; }
-  double meanLocalisationErrorPx = 0.0, meanRangeErrorCm = 0.0, meanBearingErrorDeg = 0.0;
+  // Means over the true positives: none without one (a condition that found nothing has no error).
+  std::optional<double> meanLocalisationErrorPx, meanRangeErrorCm, meanBearingErrorDeg;
   // The objects the false-positive blobs lie on, most frequent first (at most five).
   std::vector<std::pair<std::string, int>> falsePositiveSources;
   // Visible beacons and true positives per range bucket (rangeBucket).

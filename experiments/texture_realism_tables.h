@@ -2,6 +2,8 @@
 // Lookups and number formats the texture-realism report's sections share.
 #include <cmath>
 #include <iomanip>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -31,5 +33,12 @@ inline double trueOverFalse(const ConditionOutcome& c) {
 inline std::string ratioText(double ratio) {
   return std::isnan(ratio) ? "–" : std::isinf(ratio) ? "∞" : fixedDecimals(ratio, 4);
 }
+
+// A mean over true positives, "–" where there were none.
+inline std::string decimalsOrDash(const std::optional<double>& value, int decimals) {
+  return value ? fixedDecimals(*value, decimals) : "–";
+}
+
+inline nlohmann::json jsonOrNull(const std::optional<double>& value) { return value ? nlohmann::json(*value) : nlohmann::json(); }
 
 }  // namespace omnicam
