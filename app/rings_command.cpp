@@ -72,7 +72,18 @@ nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const
 // there is one, else from the ring scene's rig at the image's size.
 void measureExisting(const RingsArgs& a) {
   const ImageRGBA image = readImage(a.measure);
-  const Scene scene = loadScene(a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene, a.load);
+  const std::string sceneFile = a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene;
+  const Scene scene = loadScene(sceneFile, a.load);
+  checkScene(sceneFile, [&] { checkRingScene(scene, defaultRingThetasDeg()); });
+  // An image whose sidecar names another scene is not of these rings (a render of the field
+  // would still yield numbers).
+  if (const auto sidecar = readSidecar(a.measure)) {
+    const nlohmann::json& from = sidecar->json.contains("scene") ? sidecar->json["scene"] : nlohmann::json();
+    if (from.is_object() && from.value("sha256", std::string()) != scene.sha256)
+      throw InputError(showPath(a.measure) + ": rendered from " + quote(from.value("path", std::string("another scene"))) +
+                       " (its sidecar), not from the ring scene " + showPath(sceneFile) +
+                       ": measure a ring image, or give the scene it was rendered from with --scene");
+  }
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   // Rings are incidence angles about a mirror's axis (docs/lens-cameras.md: rings are the mirror's alone).
   rig.mirrorRig(showPath(a.measure) + ": rings measure a mirror camera's image; its rig");
@@ -102,6 +113,7 @@ void runRings(const RingsArgs& a, const CLI::App& cmd) {
   checkRenderSettings(settings, kSettingFlags);
   checkImageOutput(a.out, "-o");
   checkOutputsSpareScene(scene, {a.out}, "-o");
+  checkScene(sceneFile, [&] { checkRingScene(scene, defaultRingThetasDeg()); });
   const auto engine = makeEngine(request, scene);
   checkScene(sceneFile, [&] { checkEngineRenders(engine->kind(), settings.rig, CameraPlacement(scene.startPose)); });
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);

@@ -8,6 +8,7 @@
 
 #include "errors.h"
 #include "number_format.h"
+#include "scene.h"
 
 namespace omnicam {
 
@@ -112,6 +113,27 @@ double fitRingRadius(const std::vector<RingPixel>& pixels, double radius0, doubl
 }
 
 }  // namespace
+
+void checkRingScene(const Scene& scene, const std::vector<double>& thetasDeg) {
+  const double viewpointZ = scene.rig.height;
+  const auto holdsRing = [&](double thetaDeg) {
+    const double z = viewpointZ - kRingRadiusM / std::tan(thetaDeg * kPi / 180.0);
+    for (const SceneObject& object : scene.objects) {
+      const auto* band = std::get_if<Cylinder>(&object.shape);
+      if (!band || band->caps || std::abs(band->radius - kRingRadiusM) > 1e-6) continue;
+      const bool vertical = std::hypot(band->base.x() - band->top.x(), band->base.y() - band->top.y()) < 1e-6;
+      const bool aboutTheRobot = std::hypot(band->base.x() - scene.startPose.x, band->base.y() - scene.startPose.y) < 1e-3;
+      if (vertical && aboutTheRobot && z >= std::min(band->base.z(), band->top.z()) && z <= std::max(band->base.z(), band->top.z()))
+        return true;
+    }
+    return false;
+  };
+  for (double theta : thetasDeg)
+    if (!holdsRing(theta))
+      throw InputError("not an incidence-ring scene: it holds no ring at θ = " + shortNumber(theta) +
+                       "° (an open cylinder band of radius " + shortNumber(kRingRadiusM) +
+                       " m about the robot's vertical, as in scenes/incidence-rings.json)");
+}
 
 std::vector<double> defaultRingThetasDeg() {
   std::vector<double> t;

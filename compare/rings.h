@@ -49,6 +49,14 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
 
 nlohmann::json ringReportToJson(const RingReport& report);
 
+// Throws InputError naming the first ring of `thetasDeg` that `scene` does not hold: an open
+// cylinder band of radius kRingRadiusM about the vertical through the robot's start position,
+// which a direction at incidence θ (0 = straight down) from the viewpoint, at the rig's height,
+// meets (scenes/incidence-rings.json holds them all). Any other scene's image would still yield
+// numbers, of whatever edges lie near the rings' expected radii.
+struct Scene;
+void checkRingScene(const Scene& scene, const std::vector<double>& thetasDeg);
+
 // For rings that need not be circles (the thesis mesh bends them; a moved or turned camera, or
 // another mirror shape, images them as other curves). Ring θ is the circle of viewpoint-frame
 // points (cos φ, sin φ, −cot θ)·kRingRadiusM (scenes/incidence-rings.json); it is expected where

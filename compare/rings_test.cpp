@@ -94,6 +94,33 @@ TEST(Rings, AMisalignedCamerasRingsAreWhereItProjectsThem) {
   EXPECT_GT(asIdeal.rmsPx, 1.0);  // the measurement sees the misalignment
 }
 
+// The ring scene holds a band at every θ; any other scene, or one whose rings the viewpoint does
+// not see at their angles, is refused by the first ring it lacks.
+TEST(Rings, OnlyAnIncidenceRingSceneIsARingScene) {
+  const Scene rings = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
+  EXPECT_NO_THROW(checkRingScene(rings, defaultRingThetasDeg()));
+  const auto refusal = [](const Scene& scene) {
+    try {
+      checkRingScene(scene, defaultRingThetasDeg());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal(loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json")).find("no ring at θ = 5°"), std::string::npos);
+  Scene without90 = rings;
+  std::erase_if(without90.objects, [](const SceneObject& o) { return o.name == "ring_090"; });
+  EXPECT_NE(refusal(without90).find("no ring at θ = 90°"), std::string::npos);
+  // A band ±0.2° wide at 1 m spans about ±3.5 mm / sin²θ: a viewpoint 1 cm higher still sees the
+  // bands up to 35° (±10.6 mm), and misses the one at 40° (±8.5 mm).
+  Scene higher = rings;
+  higher.rig.height += 0.01;
+  EXPECT_NE(refusal(higher).find("no ring at θ = 40°"), std::string::npos) << refusal(higher);
+  Scene moved = rings;
+  moved.startPose.x += 0.1;
+  EXPECT_NE(refusal(moved).find("no ring at θ = 5°"), std::string::npos);
+}
+
 TEST(Rings, WrongRingCountIsAnInputError) {
   const ImageRGBA img = drawRings({10.0, 20.0}, 0.3, 64);
   RigSpec rig;

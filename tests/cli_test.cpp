@@ -282,6 +282,14 @@ TEST_F(CliTest, RingsJsonReportsTheSummary) {
   const auto k = nlohmann::json::parse(again.out);
   EXPECT_NEAR(k["summary"]["rms_px_exact"].get<double>(), j["summary"]["rms_px_exact"].get<double>(), 0.01);
   EXPECT_EQ(run("rings --measure " + path("nothing.png")).code, 2);
+  // An image of another scene has no rings to measure: its sidecar says so, and the numbers its
+  // edges would give are refused rather than printed.
+  ASSERT_EQ(run("render " + kScene + " --size 96 --spp 1 -o " + path("field.png")).code, 0);
+  for (const char* how : {"", " --per-azimuth"}) {
+    const CommandResult field = run("rings --measure " + path("field.png") + how);
+    EXPECT_EQ(field.code, 2) << field.out;
+    EXPECT_NE(field.out.find("field.png: rendered from"), std::string::npos) << field.out;
+  }
 }
 
 TEST_F(CliTest, RingsOfAMisalignedCameraAreMeasuredPerAzimuth) {
