@@ -234,19 +234,28 @@ void Progress::advanceTo(int done) {
   const int before = done_;
   done_ = done;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double rate = seconds > 0.0 ? (done_ - alreadyDone_) / seconds : 0.0;
+  // No rate before a step was timed here: a bar made when its first step was already done would
+  // divide that step by no time at all.
+  const bool timed = done_ > alreadyDone_ && seconds > 0.0;
+  const double rate = timed ? (done_ - alreadyDone_) / seconds : 0.0;
   const int width = 30, filled = total_ > 0 ? width * done_ / total_ : width;
-  const double left = rate > 0.0 ? (total_ - done_) / rate : 0.0;
-  char eta[32];
-  std::snprintf(eta, sizeof eta, "ETA %d:%02d", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
+  const double left = timed ? (total_ - done_) / rate : 0.0;
+  char rateText[48], eta[32];
+  if (timed) {
+    std::snprintf(rateText, sizeof rateText, "%.1f", rate);
+    std::snprintf(eta, sizeof eta, "ETA %d:%02d", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
+  } else {
+    std::snprintf(rateText, sizeof rateText, "-");
+    std::snprintf(eta, sizeof eta, "ETA -");
+  }
   // Without a terminal: a line at each tenth crossed (every step when there are fewer than ten).
   const auto tenth = [&](int n) { return total_ >= 10 ? static_cast<int>(int64_t{n} * 10 / total_) : n; };
   if (tty_) {
-    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %.1f %s/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
-                 std::string(width - filled, ' ').c_str(), done_, total_, rate, unit_.c_str(), eta);
+    std::fprintf(stderr, "\r%s [%s%s] %d/%d  %s %s/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
+                 std::string(width - filled, ' ').c_str(), done_, total_, rateText, unit_.c_str(), eta);
     lineOpen_ = true;
   } else if (done_ == total_ || tenth(done_) > tenth(before)) {
-    std::fprintf(stderr, "%s %d/%d  %.1f %s/s  %s\n", label_.c_str(), done_, total_, rate, unit_.c_str(), eta);
+    std::fprintf(stderr, "%s %d/%d  %s %s/s  %s\n", label_.c_str(), done_, total_, rateText, unit_.c_str(), eta);
   }
   std::fflush(stderr);
 }

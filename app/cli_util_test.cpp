@@ -65,6 +65,16 @@ TEST(Progress, AFinishedBarEndsItsLineOnce) {
   EXPECT_NE(written[written.size() - 2], '\n') << written;
 }
 
+// A bar made when its first step is already done (an experiment's stage reports steps after
+// they finish) has timed nothing: no rate (it printed millions of steps/s) and no ETA.
+TEST(Progress, NoRateBeforeAStepWasTimed) {
+  const std::string written = stderrOnTerminal([] {
+    Progress bar("before", 15, 1, "before");
+    bar.advanceTo(1);
+  });
+  EXPECT_NE(written.find("1/15  - before/s  ETA - "), std::string::npos) << written;
+}
+
 TEST(Progress, ABarThatNeverDrewWritesNothing) {
   EXPECT_EQ(stderrOnTerminal([] { Progress bar("render path.json", 2, 0, "frames"); }), "");
 }

@@ -51,15 +51,17 @@ struct ExperimentArgs {
 struct StageProgress {
   std::string stage;
   std::unique_ptr<Progress> bar;
-  // `done` counts from the first stage on when the stages share one total (the study's renders).
-  void operator()(const std::string& s, int done, int total, bool sharedTotal) {
+  // `done` of `total`: within the stage, or from the first stage on when the stages share one total
+  // (the convergence study's renders).
+  void operator()(const std::string& s, int done, int total) {
     if (s != stage) {
       if (bar) bar->finish();
       stage = s;
       // A stage named by what it counts ("calibrations", "paths") counts those; a longer one, steps.
-      bar = std::make_unique<Progress>(s, total, sharedTotal ? done - 1 : 0, s.find(' ') == std::string::npos ? s : "steps");
+      // The bar starts when the stage's first step is reported done: that step is not timed.
+      bar = std::make_unique<Progress>(s, total, done, s.find(' ') == std::string::npos ? s : "steps");
     }
-    bar->step();
+    bar->advanceTo(done);
   }
   void finish() {
     if (bar) bar->finish();
@@ -89,7 +91,7 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   StageProgress progress;
   const ConvergenceResults r = runRealisticConvergence(
       options, a.noFigures ? "" : experimentsDir() + "/plot_convergence.py",
-      [&](const std::string& stage, int done, int total) { progress(stage, done, total, true); });
+      std::ref(progress));
   progress.finish();
   std::printf("%s", convergenceMarkdown(r, a.noFigures ? "" : "figures/convergence.svg").c_str());
   std::printf("wrote %s/convergence.json (%.0f s)\n", a.out.c_str(), r.seconds);
@@ -133,7 +135,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   ensureDirectory(a.out, "-o");
   StageProgress progress;
   const PathConvergenceResults r = runPathConvergence(
-      options, [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
+      options, std::ref(progress));
   progress.finish();
   std::string command = "omnicam experiment path-convergence -o DIR";
   if (a.quick) command += " --quick";
@@ -204,7 +206,7 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
   StageProgress progress;
   const CalibrationStudyResults r = runCalibrationStudy(
       options, a.noFigures ? "" : experimentsDir() + "/plot_calibration_study.py",
-      [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
+      std::ref(progress));
   progress.finish();
   std::string command = std::string("omnicam experiment calibration -o DIR") + (a.quick ? " --quick" : "") + (a.noFigures ? " --no-figures" : "");
   if (!a.doc.empty()) command += " --doc " + a.doc;
@@ -249,7 +251,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   StageProgress progress;
   const TextureRealismResults results = runTextureRealism(
       options, a.noFigures ? "" : experimentsDir() + "/plot_texture_realism.py",
-      [&](const std::string& stage, int done, int total) { progress(stage, done, total, false); });
+      std::ref(progress));
   progress.finish();
   for (const ConditionOutcome& c : results.conditions)
     std::printf("%-30s %3d frames  TP %4d  FP %5d  missed %3d  error %s px\n", c.key().c_str(), c.frames, c.truePositives,

@@ -162,7 +162,8 @@ std::string convergenceMarkdown(const ConvergenceResults& r, const std::string& 
      << "Measured by `omnicam experiment realistic-convergence -o DIR` (experiments/realistic_convergence.h; "
      << fixedDecimals(r.seconds / 60.0, 0) << " min): Blender renders of the textured hall at " << r.size << "×" << r.size
      << " px for pose" << (poses.size() == 1 ? " " : "s ") << poseList << " of thesis-loop, against a converged reference of " << r.referenceSpp
-     << " spp per setup (independent 1024-spp renders averaged; a filtered setup's is the unfiltered one), compared as 8-bit sRGB inside the mirror disc. "
+     << " spp per setup (" << (r.referenceSpp > 1024 ? "independent 1024-spp renders averaged; " : "")
+     << "a filtered setup's is the unfiltered one), compared as 8-bit sRGB inside the mirror disc. "
      << "Outliers: pixels further from their 3×3 median than the reference's pixel is from its own, by more than "
      << kOutlierLevels << " levels (speckle; edges the reference shares do not count).\n\n";
   for (size_t k = 0; k < r.setups.size(); ++k) md << "- `" << r.setups[k] << "`: " << r.setupDescriptions[k] << ".\n";
