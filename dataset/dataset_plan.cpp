@@ -295,12 +295,17 @@ void checkEngineRendersPlan(const DatasetPlan& plan) {
       throw InputError(file + ": camera " + quote(setup.camera->name) + ": " + e.what());
     }
   }
+  // The field the frames' motion comes from: "motion", or waypoints timed along the poses.
+  const PathTiming::Kind timed = plan.spec().timing.kind;
+  const std::string motionField = plan.spec().motion != MotionSource::Still ? "motion"
+                                  : timed == PathTiming::Kind::Timestamps ? "poses.timestamps_s"
+                                                                          : "poses.speed_m_s";
   for (size_t c = 0; c < plan.setups().size(); ++c)
     for (int frame = 0; frame < static_cast<int>(plan.poses().size()); ++frame) {
       try {
         checkEngineRenders(engine, plan.setups()[c].rig, plan.placement(frame, c));
       } catch (const InputError& e) {
-        throw InputError(file + ": motion: camera " + quote(plan.setups()[c].camera->name) + ": " + e.what());
+        throw InputError(file + ": " + motionField + ": camera " + quote(plan.setups()[c].camera->name) + ": " + e.what());
       }
       if (plan.spec().request.adaptiveSpp > 0 && moving(plan.placement(frame, c), plan.setups()[c].rig))
         throw InputError(file + ": adaptive_spp: not with moving frames (camera " + quote(plan.setups()[c].camera->name) +

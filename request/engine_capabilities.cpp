@@ -84,10 +84,14 @@ std::string listWithOr(const std::vector<std::string>& names) {
 }
 
 // "the fast engine or the povray engine": the engines that have what `has` asks.
-std::string enginesThat(const std::function<bool(const EngineCapabilities&)>& has) {
+// The engines that have what `refusing` lacks. A mode of the fast engine that refuses sends the
+// user to its exact mode, not to "the fast engine" it already is.
+std::string enginesThat(const EngineCapabilities& refusing, const std::function<bool(const EngineCapabilities&)>& has) {
+  const bool fastMode = std::string_view(refusing.engine) == "fast" && refusing.mode != OmniMode::Exact;
   std::vector<std::string> names;
   for (EngineKind e : kChoices)
-    if (has(capabilitiesOf(e))) names.push_back(capabilitiesOf(e).shownName);
+    if (has(capabilitiesOf(e)))
+      names.push_back(fastMode && e == EngineKind::FastExact ? "the fast engine's exact mode" : capabilitiesOf(e).shownName);
   return listWithOr(names);
 }
 
@@ -123,7 +127,7 @@ void checkLensCamera(const EngineCapabilities& c, const LensCameraSpec& lens) {
   const std::string model = lensModelName(lens.model);
   if (!hasLens(c, model))
     throw InputError(std::string("rig.lens.model: ") + c.shownName + " has no " + model + " camera; render it with " +
-                     enginesThat([&model](const EngineCapabilities& e) { return hasLens(e, model); }));
+                     enginesThat(c, [&model](const EngineCapabilities& e) { return hasLens(e, model); }));
   // An engine without lens distortion traces its own cameras, which are not every lens of a model.
   if (const std::string problem = c.lensDistortion ? "" : lensProblem(lens, c.centredLensesOnly, c.cyclesLensLimits); !problem.empty())
     throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
@@ -137,10 +141,10 @@ void checkMirrorCamera(const EngineCapabilities& c, const MirrorRig& rig) {
   const MirrorShape shape = rig.shapeKind();
   if (!hasShape(c, shape))
     throw InputError(std::string("rig.mirror.shape: ") + shown + " has no exact " + mirrorShapeName(shape) +
-                     " mirror; render it with " + enginesThat([shape](const EngineCapabilities& e) { return hasShape(e, shape); }));
+                     " mirror; render it with " + enginesThat(c, [shape](const EngineCapabilities& e) { return hasShape(e, shape); }));
   if (!c.lensDistortion && !rig.mount.distortion.none())
     throw InputError("rig.camera.distortion: " + shown + " has no lens distortion; render it with " +
-                     enginesThat([](const EngineCapabilities& e) { return e.lensDistortion; }));
+                     enginesThat(c, [](const EngineCapabilities& e) { return e.lensDistortion; }));
 }
 
 void checkCamera(const EngineCapabilities& c, const RigSpec& rig) {
@@ -154,14 +158,14 @@ void checkMotion(const EngineCapabilities& c, const RigSpec& rig, const CameraPl
   const std::string shown = c.shownName, why = c.why.empty() ? "" : " (" + c.why + ")";
   if (!c.motion)
     throw InputError(shown + " does not render motion: a moving robot needs an instantaneous global shutter there "
-                     "(rig.shutter); render it with " + enginesThat([](const EngineCapabilities& e) { return e.motion; }) +
+                     "(rig.shutter); render it with " + enginesThat(c, [](const EngineCapabilities& e) { return e.motion; }) +
                      " (docs/motion.md lists what each engine renders)");
   if (!c.rollingShutter && rig.shutter.rolling)
     throw InputError(shown + " renders motion blur through a global shutter only" + why + ": render a rolling shutter with " +
-                     enginesThat([](const EngineCapabilities& e) { return e.rollingShutter; }) + " (docs/motion.md)");
+                     enginesThat(c, [](const EngineCapabilities& e) { return e.rollingShutter; }) + " (docs/motion.md)");
   if (!c.timeSamples && rig.shutter.timeSamples > 0)
-    throw InputError(shown + " has no stratified time samples" + why + ": rig.shutter.time_samples needs " +
-                     enginesThat([](const EngineCapabilities& e) { return e.timeSamples; }) + " (docs/motion.md)");
+    throw InputError(shown + " has no fixed time instants" + why + ": rig.shutter.time_samples needs " +
+                     enginesThat(c, [](const EngineCapabilities& e) { return e.timeSamples; }) + " (docs/motion.md)");
 }
 
 }  // namespace
@@ -194,14 +198,14 @@ void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlace
   checkMotion(c, rig, placement);
   if (aovs && !c.aovs)
     throw InputError(std::string(c.shownName) + " renders colour only; per-pixel ground truth (depth, instances, normals) needs " +
-                     enginesThat([](const EngineCapabilities& e) { return e.aovs; }));
+                     enginesThat(c, [](const EngineCapabilities& e) { return e.aovs; }));
 }
 
 void checkEngineShading(EngineKind engine, Shading shading) {
   const EngineCapabilities& c = capabilitiesOf(engine);
   if (shading == Shading::Path && !c.pathShading)
     throw InputError(std::string("shading path: ") + c.shownName + " has no physically based light; render it with " +
-                     enginesThat([](const EngineCapabilities& e) { return e.pathShading; }));
+                     enginesThat(c, [](const EngineCapabilities& e) { return e.pathShading; }));
 }
 
 }  // namespace omnicam

@@ -124,9 +124,19 @@ TEST(EngineCapabilities, EachEngineIsCheckedByItsRowAndTheMessageNamesTheEngines
   EXPECT_NE(refusal(EngineKind::Blender, rolling, driving).find("the blender engine renders motion blur through a global "
                                                                "shutter only"),
             std::string::npos);
-  EXPECT_NE(refusal(EngineKind::FastThesisMesh, rolling, driving).find("render it with the fast engine, the povray engine or "
-                                                                      "the blender engine"),
+  // A mode of the fast engine sends the user to its exact mode, not to the fast engine it is.
+  EXPECT_NE(refusal(EngineKind::FastThesisMesh, rolling, driving).find("render it with the fast engine's exact mode, the povray "
+                                                                      "engine or the blender engine"),
             std::string::npos);
+  RigSpec fisheye;
+  fisheye.kind = LensCameraSpec{PinholeRadTan{110.0, 110.0, 79.5, 59.5, {}}, 160, 120, {0.0, 0.0, 0.0}};
+  EXPECT_NE(refusal(EngineKind::FastCubeMap, fisheye, {}).find("the fast engine's exact mode"), std::string::npos)
+      << refusal(EngineKind::FastCubeMap, fisheye, {});
+  RigSpec instants;
+  instants.shutter = {1.0 / 30.0, std::nullopt, 4};
+  EXPECT_EQ(refusal(EngineKind::Blender, instants, driving),
+            "the blender engine has no fixed time instants (Cycles samples time continuously over the exposure, and its rolling "
+            "shutter is approximate): rig.shutter.time_samples needs the fast engine or the povray engine (docs/motion.md)");
   EXPECT_EQ(refusal(EngineKind::Povray, rolling, driving), "");
   EXPECT_EQ(refusal(EngineKind::Povray, RigSpec{}, {}, true),
             "the povray engine renders colour only; per-pixel ground truth (depth, instances, normals) needs the fast engine");

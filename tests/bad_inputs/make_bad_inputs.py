@@ -321,6 +321,9 @@ def main():
     dataset_spec("speed_no_turn_rate", poses={"path": "p", "speed_m_s": 1})
     dataset_spec("euroc_exr", euroc=True, outputs={"rgb": "exr"})
     dataset_spec("motion_no_shutter", motion={"velocity": [1, 0, 90]})
+    # Waypoints driven in time give the frames their motion: a refusal of it names timestamps_s.
+    dataset_spec("timestamps_blender_rolling", engine="blender", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [0, 1]},
+                 cameras=[{"name": "c", "rig": {"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}}])
     # Calibration sequences (docs/calibration.md): the target, the still robot, the bag's images.
     still = {"list": [[0, 0, 0]]}
     board_poses = {"random": {"count": 5, "seed": 1}}
