@@ -128,8 +128,10 @@ void readTiming(JsonFields& poses, DatasetSpec& spec) {
 
 void readPoses(JsonFields poses, DatasetSpec& spec) {
   const int sources = poses.has("path") + poses.has("list") + poses.has("random");
-  if (sources != 1)
+  if (sources != 1) {
+    poses.refuseTypos();
     throw InputError(showPath(spec.file) + ": poses: give exactly one of \"path\", \"list\" or \"random\"");
+  }
   if (poses.has("path")) {
     spec.poseSource = PoseSource::Path;
     spec.pathName = poses.string("path");
@@ -184,8 +186,10 @@ void readCalibration(JsonFields c, DatasetSpec& spec) {
   CalibrationSequenceSpec cal;
   cal.target = c.string("target");
   JsonFields poses = c.object("poses");
-  if (poses.has("random") == poses.has("list"))
+  if (poses.has("random") == poses.has("list")) {
+    poses.refuseTypos();
     throw InputError(showPath(spec.file) + ": calibration.poses: give exactly one of \"random\" or \"list\"");
+  }
   if (poses.has("random")) {
     JsonFields r = poses.object("random");
     BoardPoseOptions o;
@@ -227,8 +231,10 @@ void readCalibration(JsonFields c, DatasetSpec& spec) {
 
 // "motion": {"velocity": [vx, vy, yaw_rate_deg_per_s]} or {"between_poses": true}.
 void readMotion(JsonFields motion, DatasetSpec& spec) {
-  if (motion.has("velocity") == motion.has("between_poses"))
+  if (motion.has("velocity") == motion.has("between_poses")) {
+    motion.refuseTypos();
     throw InputError(showPath(spec.file) + ": motion: give exactly one of \"velocity\" or \"between_poses\"");
+  }
   if (motion.has("velocity")) {
     const std::vector<double> v = motion.numbers("velocity", {0.0, 0.0, 0.0},
                                                  {-limits::kMaxYawRateDegPerS, limits::kMaxYawRateDegPerS, false, ""});

@@ -36,17 +36,38 @@ void JsonFields::fail(const std::string& key, const std::string& what) const {
   throw InputError(showPath(file_) + ": " + path(key) + ": " + what);
 }
 
-bool JsonFields::has(const std::string& key) const { return object_.contains(key); }
+bool JsonFields::has(const std::string& key) const {
+  asked_.insert(key);
+  return object_.contains(key);
+}
+
+std::vector<std::string> JsonFields::namesAskedFor() const {
+  std::vector<std::string> names(read_.begin(), read_.end());
+  for (const std::string& name : asked_)
+    if (!read_.count(name)) names.push_back(name);
+  return names;
+}
+
+void JsonFields::refuseTypos() const {
+  const std::vector<std::string> names = namesAskedFor();
+  for (auto it = object_.begin(); it != object_.end(); ++it)
+    if (it.key() != "comment" && !read_.count(it.key()) && !asked_.count(it.key()) && closestName(it.key(), names))
+      fail(it.key(), "unknown field" + didYouMean(it.key(), names));
+}
 
 const json* JsonFields::find(const std::string& key) {
   read_.insert(key);
+  asked_.insert(key);
   auto it = object_.find(key);
   return it == object_.end() ? nullptr : &*it;
 }
 
 const json& JsonFields::required(const std::string& key) {
   const json* v = find(key);
-  if (!v) fail(key, "missing required field");
+  if (!v) {
+    refuseTypos();  // "line_time" for "line_time_us" is the mistake to name
+    fail(key, "missing required field");
+  }
   return *v;
 }
 
@@ -214,8 +235,7 @@ void JsonFields::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
     // "comment" annotates any object (JSON has no comments); it is documentation only.
     if (it.key() == "comment" || read_.count(it.key())) continue;
-    throw InputError(showPath(file_) + ": " + path(it.key()) + ": unknown field" +
-                     didYouMean(it.key(), std::vector<std::string>(read_.begin(), read_.end())));
+    throw InputError(showPath(file_) + ": " + path(it.key()) + ": unknown field" + didYouMean(it.key(), namesAskedFor()));
   }
 }
 

@@ -56,6 +56,10 @@ class JsonFields {
   std::optional<JsonFields> optionalObject(const std::string& key);
 
   void finish() const;
+  // InputError for a field not read that is a typo of one asked for ("between_pose" when
+  // "between_poses" was looked for): for readers about to refuse a missing choice, so that the typo
+  // is named rather than the choice.
+  void refuseTypos() const;
   const std::string& file() const { return file_; }
   const std::string& where() const { return where_; }
 
@@ -65,6 +69,8 @@ class JsonFields {
   const nlohmann::json& object_;
   std::string file_, where_;
   std::set<std::string> read_;
+  mutable std::set<std::string> asked_;  // read, or asked for with has(): the names a typo may mean
+  std::vector<std::string> namesAskedFor() const;
 };
 
 // A JSON key as a segment of a field path in messages: as is when plain ("rim_elevation_deg", or

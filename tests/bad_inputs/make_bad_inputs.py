@@ -192,6 +192,8 @@ def main():
     write(os.path.join(SCENES, "shutter_rolling.json"),
           scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}))
     write(os.path.join(SCENES, "shutter_unknown_key.json"), scene([FLOOR], rig={"shutter": {"iso": 100}}))
+    write(os.path.join(SCENES, "shutter_line_time.json"),
+          scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "rolling": {"line_time": 30}}}))
     # A global shutter open while the robot moves, seen at 8 instants: POV-Ray renders each.
     write(os.path.join(SCENES, "shutter_eight_instants.json"), scene([FLOOR], rig={"shutter": {"exposure_s": 0.01, "time_samples": 8}}))
     write(os.path.join(SCENES, "tilt_too_far.json"), scene([FLOOR], rig={"tilt_deg": [40, 0]}))
@@ -321,6 +323,9 @@ def main():
     dataset_spec("speed_no_turn_rate", poses={"path": "p", "speed_m_s": 1})
     dataset_spec("euroc_exr", euroc=True, outputs={"rgb": "exr"})
     dataset_spec("motion_no_shutter", motion={"velocity": [1, 0, 90]})
+    # A typo of a field its reader looks for is named as such, before "give exactly one of".
+    dataset_spec("motion_typo", motion={"between_pose": True})
+    dataset_spec("timestamps_typo", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamp_s": [0, 1]})
     # Waypoints driven in time give the frames their motion: a refusal of it names timestamps_s.
     dataset_spec("timestamps_blender_rolling", engine="blender", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [0, 1]},
                  cameras=[{"name": "c", "rig": {"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}}])
