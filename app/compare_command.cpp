@@ -1,5 +1,5 @@
 // omnicam compare A B [--json] [--diff OUT.png] [--fail-psnr DB] [--fail-rmse X] [--fail-max X]
-//                     [--tol X] [--disc]
+//                     [--tol X] [--disc] [--box-downsample]
 // omnicam compare DIR_A DIR_B [--fail-psnr DB] [--report OUT.html] [--junit OUT.xml] [--json] [--tol X] [--disc]
 // Exit 0 pass, 1 over a threshold, 2 bad input. One verdict line: "PASS …" or "FAIL …", or
 // "NOTHRESHOLD …" when no --fail-* was given (nothing was checked, so nothing passed). With
@@ -24,7 +24,7 @@ namespace {
 
 struct CompareArgs {
   std::string a, b, diff, report, junit;
-  bool json = false, disc = false;
+  bool json = false, disc = false, boxDownsample = false;
   double failPsnr = -1.0, failRmse = -1.0, failMax = -1.0, tol = 1.0 / 255.0, diffScale = 0.05;
 };
 
@@ -34,6 +34,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   refuseUnless(cmd, "--fail-rmse", false, "two images");
   refuseUnless(cmd, "--fail-max", false, "two images");
   refuseUnless(cmd, "--diff-scale", !args.report.empty(), "--report");
+  refuseUnless(cmd, "--box-downsample", false, "two images");
   if (!args.report.empty()) {
     checkOutputFile(args.report, "--report");
     checkOutputFolder(reportAssetsFolder(args.report), "--report (its images)");
@@ -85,14 +86,37 @@ CompareResult compareStreamed(const CompareArgs& args, const CompareOptions& opt
   return compareImageRows(a, b, options);
 }
 
-// Both images whole, for the heat map (--diff), sized from the headers before either is decoded.
+// Both images whole, for the heat map (--diff) or to bring the larger to the smaller's size
+// (--box-downsample), sized from the headers before either is decoded.
 CompareResult compareWhole(const CompareArgs& args, const CompareOptions& options) {
   const int64_t bytesA = imageDecodeBytes(args.a), bytesB = imageDecodeBytes(args.b);
-  requireMemory(bytesA + bytesB + bytesA, "comparing the two images and their heat map (--diff)");
-  const ImageRGBA a = readImage(args.a), b = readImage(args.b);
+  requireMemory(bytesA + bytesB + std::min(bytesA, bytesB), args.diff.empty() ? "comparing the two images"
+                                                                               : "comparing the two images and their heat map (--diff)");
+  ImageRGBA a = readImage(args.a), b = readImage(args.b);
+  if (args.boxDownsample) {
+    if (const auto n = wholeMultiple(a.width, a.height, b.width, b.height)) b = boxDownsample(b, *n);
+    else if (const auto m = wholeMultiple(b.width, b.height, a.width, a.height)) a = boxDownsample(a, *m);
+    else
+      throw InputError("--box-downsample: neither image is a whole multiple (2x or more) of the other in both directions (" +
+                       std::to_string(a.width) + "x" + std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
+                       std::to_string(b.height) + ")");
+  }
   const CompareResult r = compareImages(a, b, options);
-  writeImageAtomic(args.diff, differenceHeatmap(a, b, args.diffScale));
+  if (!args.diff.empty()) writeImageAtomic(args.diff, differenceHeatmap(a, b, args.diffScale));
   return r;
+}
+
+// Two images whose sizes differ by a whole factor are most likely a POV-Ray job's render beside
+// omnicam's image: said so, with the flag that compares them.
+void explainSizes(const CompareArgs& args) {
+  const ImageRowReader a = ImageRowReader::openFile(args.a), b = ImageRowReader::openFile(args.b);
+  const auto n = wholeMultiple(a.width(), a.height(), b.width(), b.height()), m = wholeMultiple(b.width(), b.height(), a.width(), a.height());
+  if (!n && !m) return;
+  const std::string size = std::to_string(a.width()) + "x" + std::to_string(a.height()) + " vs " + std::to_string(b.width()) +
+                           "x" + std::to_string(b.height());
+  throw InputError("compare: image sizes differ (" + size + "): one is " + std::to_string(n ? *n : *m) +
+                   "x the other, as a POV-Ray job's render.exr is for " + std::to_string(n ? *n * *n : *m * *m) +
+                   " spp; --box-downsample averages its blocks first (docs/povray.md)");
 }
 
 int runCompare(const CompareArgs& args, const CLI::App& cmd) {
@@ -112,7 +136,8 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   CompareOptions options;
   options.tolerance = args.tol;
   options.discOnly = args.disc;
-  const CompareResult r = args.diff.empty() ? compareStreamed(args, options) : compareWhole(args, options);
+  if (!args.boxDownsample) explainSizes(args);
+  const CompareResult r = args.diff.empty() && !args.boxDownsample ? compareStreamed(args, options) : compareWhole(args, options);
   std::string failure;
   if (args.failPsnr >= 0.0 && r.psnrDb < args.failPsnr) failure += " psnr_db < " + std::to_string(args.failPsnr);
   if (args.failRmse >= 0.0 && r.rmse > args.failRmse) failure += " rmse > " + std::to_string(args.failRmse);
@@ -153,6 +178,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error")->check(numberIn(0, 1e6));
   cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(numberIn(0, 1e6));
   cmd->add_flag("--disc", args->disc, "Only pixels wholly inside the mirror disc in both images");
+  cmd->add_flag("--box-downsample", args->boxDownsample,
+                "Average the larger image's NxN blocks first, N the whole factor between the sizes (a POV-Ray job's render.exr)");
   cmd->callback([args, cmd, &exitCode] { exitCode = runCompare(*args, *cmd); });
 }
 

@@ -63,8 +63,11 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   checkOutputsSpareScene(scene, files, "-o");
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
-  std::printf("wrote %s/scene.pov and render.ini (%dx%d, render with: cd %s && povray render.ini)\n", a.out.c_str(),
-              job.width, job.height, shellWord(a.out[0] == '-' ? "./" + a.out : a.out).c_str());
+  const std::string folder = shellWord(a.out[0] == '-' ? "./" + a.out : a.out);
+  std::printf("wrote %s/scene.pov and render.ini (render with: cd %s && povray render.ini)\n", a.out.c_str(), folder.c_str());
+  if (job.samplesPerAxis > 1)
+    std::printf("its render.exr is %dx%d, %dx the image for %d spp: omnicam compare --box-downsample averages it to the image's grid\n",
+                job.width, job.height, job.samplesPerAxis, job.samplesPerAxis * job.samplesPerAxis);
 }
 
 }  // namespace

@@ -169,4 +169,31 @@ nlohmann::json compareResultToJson(const CompareResult& r) {
           {"pixels", r.pixels}};
 }
 
+ImageRGBA boxDownsample(const ImageRGBA& large, int n) {
+  if (n < 1 || large.width % n != 0 || large.height % n != 0)
+    throw InputError("box-downsampling by " + std::to_string(n) + ": the image is " + std::to_string(large.width) + "x" +
+                     std::to_string(large.height) + ", not a whole multiple");
+  ImageRGBA small(large.width / n, large.height / n);
+  const double weight = 1.0 / (static_cast<double>(n) * n);
+  for (int j = 0; j < small.height; ++j)
+    for (int i = 0; i < small.width; ++i) {
+      double sum[4] = {0.0, 0.0, 0.0, 0.0};
+      for (int b = 0; b < n; ++b)
+        for (int a = 0; a < n; ++a) {
+          const float* px = large.at(i * n + a, j * n + b);
+          for (int c = 0; c < 4; ++c) sum[c] += px[c];
+        }
+      float* out = small.at(i, j);
+      for (int c = 0; c < 4; ++c) out[c] = static_cast<float>(sum[c] * weight);
+    }
+  return small;
+}
+
+std::optional<int> wholeMultiple(int smallWidth, int smallHeight, int largeWidth, int largeHeight) {
+  if (smallWidth <= 0 || smallHeight <= 0 || largeWidth % smallWidth != 0 || largeHeight % smallHeight != 0) return std::nullopt;
+  const int n = largeWidth / smallWidth;
+  if (n < 2 || largeHeight / smallHeight != n) return std::nullopt;
+  return n;
+}
+
 }  // namespace omnicam

@@ -66,4 +66,11 @@ ImageRGBA differenceHeatmap(const ImageRGBA& a, const ImageRGBA& b, double scale
 ImageRGBA scalarHeatmap(const std::vector<float>& values, int width, int height, double scale);
 nlohmann::json compareResultToJson(const CompareResult& r);
 
+// Each n×n block of `large` averaged, every channel: a POV-Ray job's render (n× the image for
+// n² samples a pixel, one sample per grid point of docs/conventions.md §2) brought to the image's
+// size, as omnicam's POV-Ray engine reduces it. InputError unless n divides both sides.
+ImageRGBA boxDownsample(const ImageRGBA& large, int n);
+// The factor by which `large` is a whole multiple of `small` in both directions, if it is one (≥ 2).
+std::optional<int> wholeMultiple(int smallWidth, int smallHeight, int largeWidth, int largeHeight);
+
 }  // namespace omnicam

@@ -247,3 +247,38 @@ TEST(ImageCompare, StreamedFilesGiveTheWholeImageResultBitForBit) {
 
 }  // namespace
 }  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+// Each 2×2 block's mean, every channel alpha included (a rim pixel's alpha is its imaged share).
+TEST(BoxDownsample, AveragesEachBlockInEveryChannel) {
+  ImageRGBA large(4, 2);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 4; ++i) {
+      float* px = large.at(i, j);
+      px[0] = static_cast<float>(i + 4 * j), px[1] = 1.0f, px[2] = static_cast<float>(j), px[3] = i == 0 ? 0.0f : 1.0f;
+    }
+  const ImageRGBA small = boxDownsample(large, 2);
+  ASSERT_EQ(small.width, 2);
+  ASSERT_EQ(small.height, 1);
+  EXPECT_FLOAT_EQ(small.at(0, 0)[0], (0 + 1 + 4 + 5) / 4.0f);
+  EXPECT_FLOAT_EQ(small.at(1, 0)[0], (2 + 3 + 6 + 7) / 4.0f);
+  EXPECT_FLOAT_EQ(small.at(0, 0)[1], 1.0f);
+  EXPECT_FLOAT_EQ(small.at(0, 0)[2], 0.5f);
+  EXPECT_FLOAT_EQ(small.at(0, 0)[3], 0.5f);
+  EXPECT_FLOAT_EQ(small.at(1, 0)[3], 1.0f);
+  EXPECT_THROW(boxDownsample(large, 3), InputError);
+}
+
+TEST(BoxDownsample, AWholeMultipleIsTheSameFactorBothWays) {
+  EXPECT_EQ(wholeMultiple(48, 48, 96, 96), 2);
+  EXPECT_EQ(wholeMultiple(160, 120, 640, 480), 4);
+  EXPECT_EQ(wholeMultiple(48, 48, 48, 48), std::nullopt);   // the same size
+  EXPECT_EQ(wholeMultiple(48, 48, 96, 144), std::nullopt);  // 2x one way, 3x the other
+  EXPECT_EQ(wholeMultiple(48, 48, 100, 100), std::nullopt);
+  EXPECT_EQ(wholeMultiple(96, 96, 48, 48), std::nullopt);   // smaller, not a multiple
+}
+
+}  // namespace
+}  // namespace omnicam

@@ -420,6 +420,23 @@ TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
   const std::string render = "cd " + path("job") + " && HOME=" + path("job") + " povray render.ini >/dev/null 2>&1";
   ASSERT_EQ(std::system(render.c_str()), 0);
   EXPECT_EQ(readImage(path("job/render.exr")).width, 48);
+  // At 4 spp POV-Ray renders the job 2x larger, one ray per grid point: compare --box-downsample
+  // averages it to what omnicam's POV-Ray engine makes of the same job.
+  const CommandResult sampled = run("export " + kScene + " --to povray --size 48 --spp 4 -o " + path("job4"));
+  ASSERT_EQ(sampled.code, 0) << sampled.out;
+  EXPECT_NE(sampled.out.find("its render.exr is 96x96, 2x the image for 4 spp: omnicam compare --box-downsample"),
+            std::string::npos) << sampled.out;
+  const std::string render4 = "cd " + path("job4") + " && HOME=" + path("job4") + " povray render.ini >/dev/null 2>&1";
+  ASSERT_EQ(std::system(render4.c_str()), 0);
+  ASSERT_EQ(run("render " + kScene + " --engine povray --size 48 --spp 4 -o " + path("engine.exr")).code, 0);
+  const CommandResult unequal = run("compare " + path("engine.exr") + " " + path("job4/render.exr"));
+  EXPECT_EQ(unequal.code, 2);
+  EXPECT_NE(unequal.out.find("image sizes differ (48x48 vs 96x96): one is 2x the other, as a POV-Ray job's render.exr is for 4 spp; "
+                             "--box-downsample"), std::string::npos) << unequal.out;
+  const CommandResult reduced = run("compare " + path("engine.exr") + " " + path("job4/render.exr") + " --box-downsample --json", "", "/dev/null");
+  ASSERT_EQ(reduced.code, 0) << reduced.out;
+  EXPECT_LE(nlohmann::json::parse(reduced.out)["max_abs"].get<double>(), 1e-6) << reduced.out;
+  EXPECT_EQ(run("compare " + path("engine.exr") + " " + path("job/render.exr") + " --box-downsample").code, 2);  // 48 and 48
   EXPECT_EQ(run("export " + kScene + " --to blender2 -o " + path("job2")).code, 2);
   EXPECT_FALSE(fs::exists(path("job2")));
 }
