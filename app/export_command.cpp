@@ -1,7 +1,9 @@
-// omnicam export SCENE --to povray|gltf -o DIR [--pose X,Y,YAW] [--size N] [--spp N] [--shading S]
-// povray: a self-contained job — scene.pov (exact mirror + physical camera), textures,
-//         render.ini; render it with `cd DIR && povray render.ini`.
-// gltf:   DIR/scene.glb — the arena plus the rig (certified mirror mesh, camera) at the pose.
+// omnicam export SCENE --to povray|blender|gltf -o DIR [--pose X,Y,YAW] [--size N] [--spp N] [--shading S]
+// povray:  a self-contained job — scene.pov (exact mirror + physical camera), textures,
+//          render.ini; render it with `cd DIR && povray render.ini`.
+// blender: a self-contained job — scene.glb, job.json and blender_driver.py; render it with
+//          `cd DIR && blender -b … -P blender_driver.py -- job.json` (it writes render.exr).
+// gltf:    DIR/scene.glb — the arena plus the rig (certified mirror mesh, camera) at the pose.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -12,6 +14,8 @@
 #include "commands.h"
 #include "errors.h"
 #include "markup.h"
+#include "blender_renderer.h"
+#include "engine_capabilities.h"
 #include "gltf_exporter.h"
 #include "povray_exporter.h"
 #include "scene_loader.h"
@@ -27,11 +31,35 @@ struct ExportArgs {
   SceneLoadOptions load;
 };
 
+// The folder's files, each checked against the scene's own before anything is written.
+std::vector<std::string> filesIn(const std::string& folder, const std::vector<std::string>& names) {
+  std::vector<std::string> files;
+  for (const std::string& name : names) files.push_back((std::filesystem::path(folder) / name).string());
+  return files;
+}
+
+std::string pasteableFolder(const std::string& folder) { return shellWord(folder[0] == '-' ? "./" + folder : folder); }
+
+void exportBlenderJob(const ExportArgs& a, const Scene& scene, const RobotPose& pose, const RenderSettings& settings) {
+  checkScene(a.scene, [&] { checkEngineRenders(EngineKind::Blender, settings.rig, CameraPlacement(pose)); });
+  checkEngineShading(EngineKind::Blender, settings.shading);
+  checkOutputsSpareScene(scene, filesIn(a.out, blenderJobFiles(scene, settings)), "-o");
+  const std::vector<std::string> made = ensureDirectory(a.out, "-o");
+  try {
+    writeBlenderJob(scene, CameraPlacement(pose), settings, a.out);
+  } catch (...) {
+    removeMadeFolders(made);
+    throw;
+  }
+  std::printf("wrote %s/scene.glb, job.json and blender_driver.py (render with: cd %s && %s; it writes render.exr)\n",
+              a.out.c_str(), pasteableFolder(a.out).c_str(), blenderJobCommand().c_str());
+}
+
 void runExport(const ExportArgs& a, const CLI::App& cmd) {
-  if (a.to != "povray" && a.to != "gltf")
-    throw InputError("--to: " + quote(a.to) + " is not available (povray, gltf)");
-  refuseUnless(cmd, "--spp", a.to == "povray", "--to povray (glTF holds no sampling)");
-  refuseUnless(cmd, "--shading", a.to == "povray", "--to povray (glTF holds no shading mode)");
+  if (a.to != "povray" && a.to != "blender" && a.to != "gltf")
+    throw InputError("--to: " + quote(a.to) + " is not available (povray, blender, gltf)");
+  refuseUnless(cmd, "--spp", a.to != "gltf", "--to povray or blender (glTF holds no sampling)");
+  refuseUnless(cmd, "--shading", a.to != "gltf", "--to povray or blender (glTF holds no shading mode)");
   const RenderRequest request = readRequestFlags(cmd, a.request);
   std::optional<RobotPose> requested;
   if (!a.pose.empty()) requested = parsePose(a.pose, "--pose");
@@ -40,7 +68,11 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   const RobotPose pose = requested ? *requested : scene.startPose;
   RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
-  checkScene(a.scene, [&] { a.to == "gltf" ? checkGltfCamera(settings.rig) : checkPovrayCamera(settings.rig); });
+  checkScene(a.scene, [&] { a.to == "povray" ? checkPovrayCamera(settings.rig) : checkGltfCamera(settings.rig); });
+  if (a.to == "blender") {
+    exportBlenderJob(a, scene, pose, settings);
+    return;
+  }
   if (a.to == "gltf") {
     GltfExportOptions options;
     options.placement = pose;
@@ -58,12 +90,10 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     return;
   }
   const PovrayJob job = exportPovray(scene, pose, settings);  // validates before anything is written
-  std::vector<std::string> files;
-  for (const std::string& name : povrayJobFiles(job)) files.push_back((std::filesystem::path(a.out) / name).string());
-  checkOutputsSpareScene(scene, files, "-o");
+  checkOutputsSpareScene(scene, filesIn(a.out, povrayJobFiles(job)), "-o");
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
-  const std::string folder = shellWord(a.out[0] == '-' ? "./" + a.out : a.out);
+  const std::string folder = pasteableFolder(a.out);
   std::printf("wrote %s/scene.pov and render.ini (render with: cd %s && povray render.ini)\n", a.out.c_str(), folder.c_str());
   if (job.samplesPerAxis > 1)
     std::printf("its render.exr is %dx%d, %dx the image for %d spp: omnicam compare --box-downsample averages it to the image's grid\n",
@@ -76,10 +106,10 @@ void addExportCommand(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
   CLI::App* cmd = app.add_subcommand("export", "Export a scene with the exact mirror and physical camera");
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
-  cmd->add_option("--to", args->to, "povray or gltf")->required();
+  cmd->add_option("--to", args->to, "povray (a POV-Ray job), blender (a Blender job) or gltf (the scene alone)")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot (default: the scene's start_pose)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
-  addRequestFlags(*cmd, args->request, kSppFlag | kShadingFlag);  // POV-Ray renders its job n x larger; no path shading
+  addRequestFlags(*cmd, args->request, kSppFlag | kShadingFlag);  // no path-shading flags: the jobs' own defaults
   cmd->add_option("-o,--output", args->out, "Output folder")->required();
   addSceneLoadFlags(*cmd, args->load);
   cmd->callback([args, cmd] { runExport(*args, *cmd); });

@@ -16,6 +16,7 @@
 #include "atomic_file.h"
 #include "errors.h"
 #include "exr_channels.h"
+#include "file_confinement.h"
 #include "make_camera.h"
 #include "external_process.h"
 #include "gltf_exporter.h"
@@ -366,9 +367,8 @@ struct BlenderSession {
   std::string logTail;
 };
 
-BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPlacement>& placements,
-                                 const RenderSettings& settings, const BlenderOptions& options) {
-  if (placements.empty()) return {};
+// InputError for what Blender cannot render, before anything is written.
+void checkBlenderRenders(const std::vector<CameraPlacement>& placements, const RenderSettings& settings, const BlenderOptions& options) {
   checkRenderSettings(settings);
   const PathTracing& tracing = options.pathTracing;
   if (tracing.diffuseBounces < 0 || tracing.diffuseBounces > 16 || tracing.glossyBounces < 1 ||
@@ -379,6 +379,13 @@ BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPla
     checkEngineRenders(EngineKind::Blender, settings.rig, placement);
   }
   checkEngineShading(EngineKind::Blender, settings.shading);
+}
+
+BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPlacement>& placements,
+                                 const RenderSettings& settings, const BlenderOptions& options) {
+  if (placements.empty()) return {};
+  checkBlenderRenders(placements, settings, options);
+  const PathTracing& tracing = options.pathTracing;
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
   JobFolder folder("omnicam-blender", options.keepJobFolder);
@@ -403,6 +410,39 @@ BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPla
 }
 
 }  // namespace
+
+std::vector<std::string> blenderJobFiles(const Scene& scene, const RenderSettings& settings) {
+  std::vector<std::string> files{"scene.glb", "job.json", "blender_driver.py"};
+  if (settings.shading == Shading::Path && scene.environment) files.push_back("environment.exr");
+  return files;
+}
+
+std::string blenderJobCommand() {
+  return "blender -b --factory-startup -noaudio --python-exit-code 1 -P blender_driver.py -- job.json";
+}
+
+void writeBlenderJob(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings, const std::string& dir) {
+  const BlenderOptions options;
+  checkBlenderRenders({placement}, settings, options);
+  GltfExportOptions exportOptions;
+  exportOptions.placement = placement;
+  exportOptions.rig = settings.rig;
+  exportGltf(scene, exportOptions, dir + "/scene.glb");
+  // Paths relative to the job's folder, where it is run; no frame-time file (omnicam's own).
+  nlohmann::json frames = jobFrames({placement}, settings, ".", false);
+  frames[0]["output"] = "render.exr";
+  nlohmann::json job = blenderJob(scene, settings, options, "scene.glb", false, frames);
+  job.erase("timings_output");
+  if (settings.shading == Shading::Path && scene.environment) {
+    job["environment"] = writeEnvironment(*scene.environment, dir + "/environment.exr");
+    job["environment"]["image"] = "environment.exr";
+  }
+  writeTextAtomically(dir + "/job.json", job.dump(2));
+  std::string why;
+  const std::optional<std::string> driver = readWholeFile(defaultDriver(), why);
+  if (!driver) throw ExternalError("blender_driver.py: " + why);
+  writeTextAtomically(dir + "/blender_driver.py", *driver);
+}
 
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options) {

@@ -70,6 +70,15 @@ BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<Camer
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 
+// A Blender job to render by hand (omnicam export --to blender): DIR/scene.glb, job.json (paths
+// relative to DIR: run it there) and blender_driver.py, with environment.exr for path shading under
+// an environment. blenderJobCommand(), run in DIR, writes DIR/render.exr: Cycles' colour as
+// renderWithBlender has it, with Cycles' own alpha (renderWithBlender's is the rim's on the film's
+// grid). InputError for what Blender cannot render, before anything is written.
+std::vector<std::string> blenderJobFiles(const Scene& scene, const RenderSettings& settings);
+void writeBlenderJob(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings, const std::string& dir);
+std::string blenderJobCommand();
+
 // A frame blender_driver.py rendered with `direct_pass`: the multilayer OpenEXR `full` (Combined and
 // the Denoising Albedo, Normal and Depth passes of any view layer) and its direct-light twin, with
 // the indirect light filtered (indirect_filter.h). ExternalError when a file or channel is missing

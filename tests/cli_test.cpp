@@ -441,6 +441,24 @@ TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
   EXPECT_FALSE(fs::exists(path("job2")));
 }
 
+// A Blender job to render by hand: the command export prints, run in the folder, renders what
+// omnicam's Blender engine renders of the same settings (the same job, the same seed).
+TEST_F(CliTest, ExportWritesARenderableBlenderJob) {
+  const CommandResult r = run("export " + kScene + " --to blender --size 48 --spp 4 --shading lit -o " + path("job"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const std::string command = "blender -b --factory-startup -noaudio --python-exit-code 1 -P blender_driver.py -- job.json";
+  EXPECT_NE(r.out.find("render with: cd " + path("job") + " && " + command + "; it writes render.exr"), std::string::npos) << r.out;
+  const std::string render = "cd " + path("job") + " && HOME=" + path("job") + " " + command + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(render.c_str()), 0);
+  ASSERT_EQ(run("render " + kScene + " --engine blender --size 48 --spp 4 --shading lit -o " + path("engine.exr")).code, 0);
+  const CommandResult same = run("compare " + path("engine.exr") + " " + path("job/render.exr") + " --json", "", "/dev/null");
+  ASSERT_EQ(same.code, 0) << same.out;
+  EXPECT_EQ(nlohmann::json::parse(same.out)["max_abs"].get<double>(), 0.0) << same.out;
+  // glTF holds no sampling: refused, nothing written.
+  EXPECT_EQ(run("export " + kScene + " --to gltf --spp 4 -o " + path("g")).code, 2);
+  EXPECT_FALSE(fs::exists(path("g")));
+}
+
 TEST_F(CliTest, SidecarsRecordTheRealModeAndItsOptions) {
   const auto sidecar = [&](const std::string& image) {
     std::ifstream in(image + ".json");
