@@ -27,6 +27,7 @@ __all__ = [
     "Rig",
     "Scene",
     "coco_annotations",
+    "data_path",
     "load_scene",
     "mapping_arena",
     "read_exr_channels",

@@ -12,6 +12,7 @@ from ._omnicam import (
     Scene as Scene,
     __version__ as __version__,
     coco_annotations as coco_annotations,
+    data_path as data_path,
     load_scene as load_scene,
     mapping_arena as mapping_arena,
     read_exr_channels as read_exr_channels,

@@ -1,6 +1,7 @@
 """Type stubs of the compiled part of omnicam (python/src/*.cpp); docs/python.md."""
 
 import os
+import pathlib
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -58,6 +59,7 @@ class Scene:
     @property
     def paths(self) -> Dict[str, List[Pose]]: ...
 
+def data_path(relative: str = ...) -> pathlib.Path: ...
 def load_scene(path: PathLike, allow_outside_files: bool = ...) -> Scene: ...
 
 class Camera:

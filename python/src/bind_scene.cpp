@@ -7,6 +7,8 @@
 #include <memory>
 
 #include "bindings.h"
+#include "data_files.h"
+#include "errors.h"
 #include "input_limits.h"
 #include "mapping_arena.h"
 #include "scene_ids.h"
@@ -142,6 +144,19 @@ void bindScene(py::module_& m) {
   R"(The rescue maze of `omnicam arena mapping` (RoboCup Rescue's mapping arena: walls, ramps,
 debris, victims as landmarks) as a scene file's content (dict): write it with json.dump and load it.)");
 
+  m.def("data_path", [](const std::string& relative) {
+    const std::filesystem::path wanted(relative);
+    for (const auto& part : wanted)
+      if (wanted.is_absolute() || part == "..") throw InputError("data_path: " + quote(relative) + " must be a path inside omnicam's files");
+    const std::filesystem::path file = relative.empty() ? dataRoot() : dataFile(relative);
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec))
+      throw InputError("data_path: " + quote(relative) + " is not among omnicam's files (scenes/ holds the scenes it comes with)");
+    return file;
+  }, py::arg("relative") = "",
+        R"(The files omnicam comes with (scenes/, examples/, ...), in a build tree or an installed package:
+data_path() is their folder, data_path("scenes/robocup2006.json") one of them. omnicam.InputError
+for a name that is not among them.)");
   m.def("load_scene", [](const std::filesystem::path& path, bool allowOutsideFiles) {
     SceneLoadOptions options;
     options.allowOutsideFolder = allowOutsideFiles;

@@ -279,6 +279,15 @@ def test_the_installed_cli_finds_its_own_data_files(package, tmp_path, arguments
     np.testing.assert_array_equal(decoded(tmp_path / "installed.png"), decoded(tmp_path / "cli.png"))
 
 
+def test_a_script_anywhere_finds_the_scenes_the_package_comes_with(package):
+    """omnicam.data_path() is the installed package's data, from any working directory."""
+    probe = ("import omnicam; path = omnicam.data_path('scenes/robocup2006.json'); "
+             "print(omnicam.load_scene(path).name, path.is_relative_to(omnicam.data_path()), omnicam.data_path())")
+    out = run([package["python"], "-c", probe], cwd=package["empty"], env=user_environment(package["venv"])).stdout.split()
+    assert out[:2] == ["robocup2006", "True"], out
+    assert Path(out[2]) == site_package(package) / "data", out
+
+
 def test_a_typed_user_script_passes_mypy_strict_and_the_stubs_match_the_module(package):
     script = package["empty"] / "typed_user.py"
     script.write_text(TYPED_SCRIPT)

@@ -43,6 +43,15 @@ def test_files_are_named_by_str_or_pathlib_path(tmp_path):
     assert (omnicam.read_image(tmp_path / "x.exr") == frame).all()
 
 
+def test_data_path_names_the_files_omnicam_comes_with():
+    assert omnicam.load_scene(omnicam.data_path("scenes/robocup2006.json")).name == "robocup2006"
+    assert (omnicam.data_path() / "scenes" / "incidence-rings.json").is_file()
+    for wrong in ("scenes/nothing.json", "../VERSION", "/etc/passwd"):
+        with pytest.raises(omnicam.InputError) as raised:
+            omnicam.data_path(wrong)
+        assert str(raised.value).startswith("data_path: "), raised.value
+
+
 def test_a_missing_scene_file_is_an_input_error(tmp_path):
     with pytest.raises(omnicam.InputError):
         omnicam.load_scene(str(tmp_path / "nothing.json"))
