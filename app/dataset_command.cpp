@@ -74,7 +74,7 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   }
   std::printf("submitted array job %s (shards %s of %d) and merge job %s (after it)\n", s.arrayJob.c_str(),
               slurmArraySpec(s.shards, 0).c_str(), a.shards, s.mergeJob.c_str());
-  std::printf("follow: omnicam dataset --status %s; after failures submit the same command again\n", a.out.c_str());
+  std::printf("follow: omnicam dataset --status %s; after failures submit the same command again\n", shellWord(a.out).c_str());
 }
 
 // --merge DIR: the shard manifests into DIR's manifest; exit 0 complete, 1 not.

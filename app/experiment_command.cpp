@@ -325,7 +325,7 @@ void addExperimentCommands(CLI::App& app) {
                   "fast renderer's path shading against Cycles, docs/path-tracing.md), or calibration (what misalignment "
                   "does to a calibrated camera, docs/calibration-study.md)")
       ->required();
-  cmd->add_option("-o,--output", args->out, "Folder for results.json, report.html, figures/ and data/")->required();
+  cmd->add_option("-o,--output", args->out, "Folder for the results (JSON), the report, figures/ and data/ (docs/experiments.md lists each experiment's files)")->required();
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");
   cmd->add_option("--doc", args->doc, "Also write the Markdown summary here (docs/texture-realism.md)");
   cmd->add_flag("--no-figures", args->noFigures, "Skip the matplotlib figures");

@@ -41,6 +41,7 @@ std::vector<RequestFieldRow> makeRows() {
        .help = "Samples per pixel, n*n on a regular grid", .shown = [](const Request& r) { return std::to_string(r.spp); }},
       {.field = RequestField::Shading, .type = Type::Text, .cli = "--shading", .json = "shading", .python = "shading",
        .pythonPlace = PythonPlace::Render, .cliGroup = kShadingFlag, .range = "unlit, lit, path",
+       .engines = "all (path: fast exact, blender)",
        .help = "unlit, lit (the thesis' model) or path (physically based, docs/conventions.md §3)",
        .shown = [](const Request& r) { return std::string(shadingName(r.shading)); }},
       {.field = RequestField::Traced, .type = Type::Switch, .python = "traced", .pythonPlace = PythonPlace::Render,
