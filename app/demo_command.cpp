@@ -96,7 +96,7 @@ void renderOneSection(const DemoArgs& a) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ensureDirectory(a.out + "/sections", "-o");
   const std::string html = sectionHtml(a);
-  writeTextAtomically(a.out + "/sections/" + a.section + ".html", html);
+  writeTextAtomically(a.out + "/sections/" + a.section + ".fragment", html);
 }
 
 std::vector<std::string> sectionCommand(const DemoArgs& a, const std::string& section) {

@@ -50,7 +50,8 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
   run.budgetSeconds = budgetSeconds;
   run.command = "omnicam";
   for (size_t k = 1; k < argv.size(); ++k) run.command += " " + quoteArgument(argv[k]);
-  const std::string html = sectionsDir + "/" + section.name + ".html";
+  // A fragment of index.html (its links are relative to the demo folder): not a page to open.
+  const std::string html = sectionsDir + "/" + section.name + ".fragment";
   std::error_code ignored;
   fs::remove(html, ignored);  // an earlier run's: only this run's fragment may be shown
   ProcessOptions options;
