@@ -40,6 +40,15 @@ std::vector<std::string> filesIn(const std::string& folder, const std::vector<st
 
 std::string pasteableFolder(const std::string& folder) { return shellWord(folder[0] == '-' ? "./" + folder : folder); }
 
+// A render.exr already in the folder is an earlier job's (the renderer wrote it, not omnicam, so
+// omnicam leaves it): said, so that it is not taken for this job's.
+void noteEarlierRender(const std::string& folder) {
+  std::error_code ec;
+  const std::filesystem::path render = std::filesystem::path(folder) / "render.exr";
+  if (std::filesystem::exists(std::filesystem::symlink_status(render, ec)))
+    std::printf("note: %s is an earlier job's render; rendering this job replaces it\n", showPath(render.string()).c_str());
+}
+
 void exportBlenderJob(const ExportArgs& a, const Scene& scene, const RobotPose& pose, const RenderSettings& settings) {
   checkScene(a.scene, [&] { checkEngineRenders(EngineKind::Blender, settings.rig, CameraPlacement(pose)); });
   checkEngineShading(EngineKind::Blender, settings.shading);
@@ -53,6 +62,7 @@ void exportBlenderJob(const ExportArgs& a, const Scene& scene, const RobotPose& 
   }
   std::printf("wrote %s/scene.glb, job.json and blender_driver.py (render with: cd %s && %s; it writes render.exr)\n",
               a.out.c_str(), pasteableFolder(a.out).c_str(), blenderJobCommand().c_str());
+  noteEarlierRender(a.out);
 }
 
 void runExport(const ExportArgs& a, const CLI::App& cmd) {
@@ -98,6 +108,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   if (job.samplesPerAxis > 1)
     std::printf("its render.exr is %dx%d, %dx the image for %d spp: omnicam compare --box-downsample averages it to the image's grid\n",
                 job.width, job.height, job.samplesPerAxis, job.samplesPerAxis * job.samplesPerAxis);
+  noteEarlierRender(a.out);
 }
 
 }  // namespace

@@ -437,6 +437,10 @@ TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
   ASSERT_EQ(reduced.code, 0) << reduced.out;
   EXPECT_LE(nlohmann::json::parse(reduced.out)["max_abs"].get<double>(), 1e-6) << reduced.out;
   EXPECT_EQ(run("compare " + path("engine.exr") + " " + path("job/render.exr") + " --box-downsample").code, 2);  // 48 and 48
+  // Exported again over its render: the earlier render.exr is left (POV-Ray wrote it) and named.
+  const CommandResult again = run("export " + kScene + " --to povray --size 48 --spp 4 -o " + path("job"));
+  ASSERT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("note: " + path("job/render.exr") + " is an earlier job's render"), std::string::npos) << again.out;
   EXPECT_EQ(run("export " + kScene + " --to blender2 -o " + path("job2")).code, 2);
   EXPECT_FALSE(fs::exists(path("job2")));
 }
