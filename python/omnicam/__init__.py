@@ -13,7 +13,10 @@ The library's own objects, not subprocess calls (docs/python.md)::
 # The compiled part loads on first use (PEP 562): `omnicam ...` and `python -m omnicam`, which
 # only start the CLI, would otherwise load its ~280 shared libraries first, doubling what a short
 # command costs. Type checkers and editors read __init__.pyi.
+import difflib as _difflib
+import functools as _functools
 import importlib as _importlib
+import re as _re
 import typing as _typing
 
 __all__ = [
@@ -40,6 +43,46 @@ __all__ = [
 ]
 _COMPILED = frozenset(__all__) - {"Dataset"} | {"__version__"}
 _SUBMODULES = frozenset({"_omnicam", "dataset"})
+
+
+# A mistyped keyword ("shadng=") gets pybind11's TypeError: every overload's signature and the
+# call, hundreds of characters. _omnicam's functions and methods are wrapped so that it names the
+# keyword and the one meant instead, as the CLI names a mistyped flag. Other TypeErrors pass as
+# they are. _omnicam calls this when it loads (python/src/module.cpp).
+_INCOMPATIBLE = ("incompatible function arguments", "incompatible constructor arguments")
+_OVERLOAD = _re.compile(r"^\s+\d+\. [\w.]*\((.*)\)(?: -> .*)?$", _re.M)
+_PARAMETER = _re.compile(r"(?:^|, )\*?(\w+):")
+
+
+def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing.Callable[..., _typing.Any]:
+    @_functools.wraps(function)
+    def call(*args: _typing.Any, **kwargs: _typing.Any) -> _typing.Any:
+        try:
+            return function(*args, **kwargs)
+        except TypeError as error:
+            message = str(error)
+            if not kwargs or not any(words in message for words in _INCOMPATIBLE):
+                raise
+            names = {p for overload in _OVERLOAD.findall(message) for p in _PARAMETER.findall(overload)} - {"self"}
+            for key in kwargs:
+                if names and key not in names:
+                    close = _difflib.get_close_matches(key, sorted(names), n=1)
+                    hint = f" (did you mean {close[0]}?)" if close else f" (it takes {', '.join(sorted(names))})"
+                    raise TypeError(f"{name}(): unknown keyword argument {key!r}{hint}") from None
+            raise
+
+    return call
+
+
+def _check_keywords(module: _typing.Any) -> None:
+    for name, value in list(vars(module).items()):
+        if isinstance(value, type):
+            for attribute, method in list(vars(value).items()):
+                if type(method).__name__ == "instancemethod":
+                    shown = name if attribute == "__init__" else f"{name}.{attribute}"
+                    setattr(value, attribute, _checked(method, shown))
+        elif type(value).__name__ == "builtin_function_or_method" and not name.startswith("_"):
+            setattr(module, name, _checked(value, name))
 
 
 def __getattr__(name: str) -> _typing.Any:

@@ -87,4 +87,6 @@ PYBIND11_MODULE(_omnicam, m) {
   // (messages, reprs, pickles).
   for (const char* name : {"Camera", "ExternalError", "InputError", "MemoryShortage", "OutputError", "Renderer", "Rig", "Scene"})
     m.attr(name).attr("__module__") = "omnicam";
+  // A mistyped keyword names itself and the one meant (omnicam/__init__.py, _check_keywords).
+  py::module_::import("omnicam").attr("_check_keywords")(m);
 }

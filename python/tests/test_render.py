@@ -23,6 +23,27 @@ def test_the_pixels_are_the_clis_exactly(robocup, tmp_path):
     np.testing.assert_array_equal(frame["rgb"], cli)
 
 
+@pytest.mark.parametrize("call, words", [
+    (lambda s: omnicam.Renderer(s).render(POSE, shadng="lit"), "Renderer.render(): unknown keyword argument 'shadng' "
+                                                                "(did you mean shading?)"),
+    (lambda s: omnicam.Renderer(s, engin="povray"), "Renderer(): unknown keyword argument 'engin' (did you mean engine?)"),
+    (lambda s: omnicam.render(s, None, sizee=32), "render(): unknown keyword argument 'sizee' (did you mean size?)"),
+    (lambda s: omnicam.Camera(s.rig).project([[1.0, 1.0, 0.0]], poze=POSE),
+     "Camera.project(): unknown keyword argument 'poze' (did you mean pose?)"),
+], ids=["Renderer.render", "Renderer", "render", "Camera.project"])
+def test_a_mistyped_keyword_is_named_with_the_one_meant(robocup, call, words):
+    """As the CLI names a mistyped flag, in one line, instead of pybind11's list of signatures."""
+    with pytest.raises(TypeError) as raised:
+        call(robocup)
+    assert str(raised.value) == words
+
+
+def test_other_type_errors_keep_pybinds_message(robocup):
+    with pytest.raises(TypeError) as raised:
+        omnicam.Renderer(robocup).render(POSE, spp="four")
+    assert "incompatible function arguments" in str(raised.value)
+
+
 def test_depth_of_the_floor_is_the_distance_along_the_ray(robocup):
     """Every floor pixel's depth is where its pixel-centre ray meets the plane z = 0."""
     frame = omnicam.Renderer(robocup).render(POSE, outputs=["depth", "semantic", "instance"])
