@@ -65,7 +65,12 @@ const json* JsonFields::find(const std::string& key) {
 const json& JsonFields::required(const std::string& key) {
   const json* v = find(key);
   if (!v) {
-    refuseTypos();  // "line_time" for "line_time_us" is the mistake to name
+    // A field not read yet that is a typo of this one ("line_time" for "line_time_us") is most
+    // likely the mistake; it may also be a field read later (fx before a missing fy), so it is
+    // named as a question, not refused as unknown.
+    for (auto it = object_.begin(); it != object_.end(); ++it)
+      if (it.key() != "comment" && !read_.count(it.key()) && closestName(it.key(), {key}))
+        fail(key, "missing required field (the object has " + keySegment(it.key()) + ": a typo of " + keySegment(key) + "?)");
     fail(key, "missing required field");
   }
   return *v;
