@@ -1,5 +1,5 @@
-// omnicam rings [--engine fast] [--size N] [--spp N] -o OUT [--json] [--per-azimuth]
-// omnicam rings --measure IMAGE [--json] [--per-azimuth]
+// omnicam rings [SCENE] [--engine fast] [--size N] [--spp N] -o OUT [--json] [--per-azimuth]
+// omnicam rings [SCENE] --measure IMAGE [--json] [--per-azimuth]
 // Renders the incidence-ring scene (thesis Fig. 3.11), measures every ring's radius in the
 // image and scores it against the exact model and the thesis' Eq. 3.2. --per-azimuth measures
 // rings that need not be circles (e.g. a --mode thesis-mesh render) sector by sector instead.
@@ -21,7 +21,7 @@ namespace omnicam::cli {
 namespace {
 
 struct RingsArgs {
-  std::string engine = "fast", scene, out, measure;
+  std::string engine = "fast", scene, sceneArgument, out, measure;
   int size = 0, spp = 16;
   bool json = false, perAzimuth = false;
   SceneLoadOptions load;
@@ -93,7 +93,12 @@ void measureExisting(const RingsArgs& a) {
   measureAndPrint(image, rig, a.measure, a);
 }
 
-void runRings(const RingsArgs& a, const CLI::App& cmd) {
+void runRings(RingsArgs a, const CLI::App& cmd) {
+  // The scene as every other command takes it, or as --scene.
+  if (!a.sceneArgument.empty()) {
+    if (!a.scene.empty()) throw InputError("--scene: give the ring scene once (as --scene or as the first argument)");
+    a.scene = a.sceneArgument;
+  }
   for (const char* flag : {"--engine", "--size", "--spp"})
     refuseUnless(cmd, flag, a.measure.empty(), "a render (not with --measure)");
   if (!a.measure.empty()) {
@@ -127,7 +132,8 @@ void addRingsCommand(CLI::App& app) {
   auto args = std::make_shared<RingsArgs>();
   CLI::App* cmd = app.add_subcommand("rings", "Render and measure the incidence-angle rings (thesis Fig. 3.11/3.12)");
   cmd->add_option("--engine", args->engine, "fast (default), povray or blender");
-  cmd->add_option("--scene", args->scene, "Ring scene (default: scenes/incidence-rings.json)");
+  cmd->add_option("scene", args->sceneArgument, "Ring scene (default: scenes/incidence-rings.json)");
+  cmd->add_option("--scene", args->scene, "The same, as a flag");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(32, limits::kMaxImageSize));
   addSppOption(*cmd, args->spp, "Samples per pixel, n*n (default 16)");
   cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr");
