@@ -74,7 +74,7 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   }
   std::printf("submitted array job %s (shards %s of %d) and merge job %s (after it)\n", s.arrayJob.c_str(),
               slurmArraySpec(s.shards, 0).c_str(), a.shards, s.mergeJob.c_str());
-  std::printf("follow: omnicam dataset --status %s; after failures submit the same command again\n", shellWord(a.out).c_str());
+  std::printf("follow: omnicam dataset --status %s; after failures submit the same command again\n", shellPath(a.out).c_str());
 }
 
 // --merge DIR: the shard manifests into DIR's manifest; exit 0 complete, 1 not.
@@ -117,7 +117,7 @@ std::optional<int> finishedShardCount(const std::string& dir) {
 // What finishes an incomplete dataset: merging finished shards, or running again.
 std::string nextStep(const std::string& dir) {
   if (const std::optional<int> count = finishedShardCount(dir))
-    return "every shard of " + std::to_string(*count) + " is finished: merge them with omnicam dataset --merge " + shellWord(dir);
+    return "every shard of " + std::to_string(*count) + " is finished: merge them with omnicam dataset --merge " + shellPath(dir);
   if (!shardCountsIn(dir).empty()) return "run the shards not yet finished (--shard I/N), then --merge";
   return "run the same command again to resume";
 }

@@ -38,8 +38,6 @@ std::vector<std::string> filesIn(const std::string& folder, const std::vector<st
   return files;
 }
 
-std::string pasteableFolder(const std::string& folder) { return shellWord(folder[0] == '-' ? "./" + folder : folder); }
-
 // A render.exr already in the folder is an earlier job's (the renderer wrote it, not omnicam, so
 // omnicam leaves it): said, so that it is not taken for this job's.
 void noteEarlierRender(const std::string& folder) {
@@ -61,7 +59,7 @@ void exportBlenderJob(const ExportArgs& a, const Scene& scene, const RobotPose& 
     throw;
   }
   std::printf("wrote %s/scene.glb, job.json and blender_driver.py (render with: cd %s && %s; it writes render.exr)\n",
-              a.out.c_str(), pasteableFolder(a.out).c_str(), blenderJobCommand().c_str());
+              a.out.c_str(), shellPath(a.out).c_str(), blenderJobCommand().c_str());
   noteEarlierRender(a.out);
 }
 
@@ -103,7 +101,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   checkOutputsSpareScene(scene, filesIn(a.out, povrayJobFiles(job)), "-o");
   ensureDirectory(a.out, "-o");
   writePovrayJob(job, a.out);
-  const std::string folder = pasteableFolder(a.out);
+  const std::string folder = shellPath(a.out);
   std::printf("wrote %s/scene.pov and render.ini (render with: cd %s && povray render.ini)\n", a.out.c_str(), folder.c_str());
   if (job.samplesPerAxis > 1)
     std::printf("its render.exr is %dx%d, %dx the image for %d spp: omnicam compare --box-downsample averages it to the image's grid\n",

@@ -3,7 +3,9 @@
 // Renders the incidence-ring scene (thesis Fig. 3.11), measures every ring's radius in the
 // image and scores it against the exact model and the thesis' Eq. 3.2. --per-azimuth measures
 // rings that need not be circles (e.g. a --mode thesis-mesh render) sector by sector instead.
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "atomic_file.h"
@@ -11,6 +13,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "make_camera.h"
+#include "number_format.h"
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
@@ -68,6 +71,37 @@ nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const
   return j;
 }
 
+// The text of a sidecar's field, "" if it is not a string (sidecars are untrusted input).
+std::string sidecarText(const nlohmann::json& object, const char* key) {
+  return object.is_object() && object.contains(key) && object[key].is_string() ? object[key].get<std::string>() : "";
+}
+
+// An image whose sidecar says it was rendered from another scene, or from the ring scene away
+// from its start position, is not of these rings about that position (a render of the field, or
+// of the rings 2 cm off, would still yield numbers).
+void checkRenderedFromRingScene(const std::string& image, const nlohmann::json& sidecar, const Scene& scene,
+                                const std::string& sceneFile) {
+  const nlohmann::json from = sidecar.contains("scene") ? sidecar["scene"] : nlohmann::json();
+  if (from.is_object() && sidecarText(from, "sha256") != scene.sha256) {
+    const std::string path = sidecarText(from, "path");
+    std::error_code ec;
+    if (!path.empty() && std::filesystem::equivalent(path, sceneFile, ec))
+      throw InputError(showPath(image) + ": its ring scene " + showPath(sceneFile) +
+                       " changed since it was rendered (its sidecar's SHA-256 differs): render the rings again");
+    throw InputError(showPath(image) + ": rendered from " + (path.empty() ? std::string("another scene") : quote(path)) +
+                     " (its sidecar), not from the ring scene " + showPath(sceneFile) +
+                     ": measure a ring image, or give the scene it was rendered from with --scene");
+  }
+  const nlohmann::json pose = sidecar.contains("pose") ? sidecar["pose"] : nlohmann::json();
+  if (pose.is_object() && pose.contains("x") && pose.contains("y") && pose["x"].is_number() && pose["y"].is_number()) {
+    const double x = pose["x"].get<double>(), y = pose["y"].get<double>();
+    if (std::hypot(x - scene.startPose.x, y - scene.startPose.y) > 1e-6)
+      throw InputError(showPath(image) + ": rendered with the robot at (" + shortNumber(x) + ", " + shortNumber(y) +
+                       ") m (its sidecar), not at the ring scene's start position (" + shortNumber(scene.startPose.x) + ", " +
+                       shortNumber(scene.startPose.y) + ") m, about which its rings lie");
+  }
+}
+
 // Measures an existing ring image; the model it is scored against comes from its sidecar when
 // there is one, else from the ring scene's rig at the image's size.
 void measureExisting(const RingsArgs& a) {
@@ -75,15 +109,7 @@ void measureExisting(const RingsArgs& a) {
   const std::string sceneFile = a.scene.empty() ? scenesDir() + "/incidence-rings.json" : a.scene;
   const Scene scene = loadScene(sceneFile, a.load);
   checkScene(sceneFile, [&] { checkRingScene(scene, defaultRingThetasDeg()); });
-  // An image whose sidecar names another scene is not of these rings (a render of the field
-  // would still yield numbers).
-  if (const auto sidecar = readSidecar(a.measure)) {
-    const nlohmann::json& from = sidecar->json.contains("scene") ? sidecar->json["scene"] : nlohmann::json();
-    if (from.is_object() && from.value("sha256", std::string()) != scene.sha256)
-      throw InputError(showPath(a.measure) + ": rendered from " + quote(from.value("path", std::string("another scene"))) +
-                       " (its sidecar), not from the ring scene " + showPath(sceneFile) +
-                       ": measure a ring image, or give the scene it was rendered from with --scene");
-  }
+  if (const auto sidecar = readSidecar(a.measure)) checkRenderedFromRingScene(a.measure, sidecar->json, scene, sceneFile);
   RigSpec rig = rigFromSidecar(a.measure, scene.rig);
   // Rings are incidence angles about a mirror's axis (docs/lens-cameras.md: rings are the mirror's alone).
   rig.mirrorRig(showPath(a.measure) + ": rings measure a mirror camera's image; its rig");

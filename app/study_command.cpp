@@ -130,7 +130,7 @@ void measureRows(std::vector<Row>& rows, const Scene& arena, const Scene& ringSc
 // The command that writes this report again, with the flags it was given.
 std::string studyCommand(const StudyArgs& a) {
   const StudyArgs defaults;
-  std::string command = "omnicam study -o " + shellWord(a.out);
+  std::string command = "omnicam study -o " + shellPath(a.out);
   if (a.spp != defaults.spp) command += " --spp " + std::to_string(a.spp);
   if (a.timingSeconds != defaults.timingSeconds) command += " --timing-seconds " + roundTrip(a.timingSeconds);
   return command;

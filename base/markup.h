@@ -57,4 +57,8 @@ inline std::string shellWord(const std::string& text) {
   return plain ? text : shellQuote(text);
 }
 
+// A path as a shell word to paste: shellWord, with "./" before a path that starts with '-' so
+// that no command takes it for an option.
+inline std::string shellPath(const std::string& path) { return shellWord(!path.empty() && path[0] == '-' ? "./" + path : path); }
+
 }  // namespace omnicam

@@ -14,5 +14,14 @@ TEST(UrlPath, PercentEncodesEverythingButUnreservedCharactersAndSlashes) {
   EXPECT_EQ(urlPath("\xC3\xA9t\xC3\xA9~x"), "%C3%A9t%C3%A9~x");  // "été~x": UTF-8 bytes, each encoded
 }
 
+// A path pasted into a shell stays one word and is never taken for an option.
+TEST(ShellPath, QuotesWhatTheShellWouldSplitAndGuardsALeadingDash) {
+  EXPECT_EQ(shellPath("out/job"), "out/job");
+  EXPECT_EQ(shellPath("my job"), "'my job'");
+  EXPECT_EQ(shellPath("-o"), "./-o");
+  EXPECT_EQ(shellPath("-a b"), "'./-a b'");
+  EXPECT_EQ(shellPath("it's"), "'it'\\''s'");
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -290,6 +290,19 @@ TEST_F(CliTest, RingsJsonReportsTheSummary) {
     EXPECT_EQ(field.code, 2) << field.out;
     EXPECT_NE(field.out.find("field.png: rendered from"), std::string::npos) << field.out;
   }
+  // The rings rendered 2 cm from where they lie about: a pose error, not the camera's.
+  const std::string rings = OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json";
+  ASSERT_EQ(run("render " + rings + " --pose=0.02,0,0 --size 96 --spp 1 -o " + path("off.png")).code, 0);
+  const CommandResult off = run("rings --measure " + path("off.png") + " --per-azimuth");
+  EXPECT_EQ(off.code, 2) << off.out;
+  EXPECT_NE(off.out.find("rendered with the robot at (0.02, 0) m (its sidecar), not at the ring scene's start position"),
+            std::string::npos) << off.out;
+  // A sidecar is untrusted: a hash that is not text is an input error, not an internal one.
+  auto forged = nlohmann::json::parse(testing::readFile(path("rings.png.json")));
+  forged["scene"]["sha256"] = 5;
+  std::ofstream(path("rings.png.json")) << forged.dump();
+  const CommandResult forgedRun = run("rings --measure " + path("rings.png"));
+  EXPECT_EQ(forgedRun.code, 2) << forgedRun.out;
 }
 
 TEST_F(CliTest, RingsOfAMisalignedCameraAreMeasuredPerAzimuth) {

@@ -1,0 +1,53 @@
+#include "json_fields.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <functional>
+#include <string>
+
+#include "errors.h"
+
+namespace omnicam {
+namespace {
+
+std::string refusal(const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+// A missing field beside a near name asks about a typo; beside a sibling of its own (fx, fy) it
+// does not, as the sibling may be read later; an unknown field is named with the one meant.
+TEST(JsonFields, AMissingFieldAsksAboutATypoButNotAboutASibling) {
+  const auto missing = [](const char* text, const char* key) {
+    return refusal([&] { JsonFields(nlohmann::json::parse(text), "f.json", "o").number(key); });
+  };
+  EXPECT_EQ(missing(R"({"line_time": 30})", "line_time_us"),
+            "f.json: o.line_time_us: missing required field (the object has line_time: a typo of line_time_us?)");
+  EXPECT_EQ(missing(R"({"fx": 30})", "fy"), "f.json: o.fy: missing required field");
+  EXPECT_EQ(missing(R"({"edge_v": [1, 0, 0]})", "edge_u"), "f.json: o.edge_u: missing required field");
+  EXPECT_EQ(missing(R"({"other": 1})", "fy"), "f.json: o.fy: missing required field");
+}
+
+// Names a reader asked for with has() are what a typo may mean, as read ones are.
+TEST(JsonFields, ATypoOfANameAskedForIsNamedWithIt) {
+  const nlohmann::json motion = nlohmann::json::parse(R"({"between_pose": true})");
+  EXPECT_EQ(refusal([&] {
+              JsonFields fields(motion, "s.json", "motion");
+              if (fields.has("velocity") == fields.has("between_poses")) fields.refuseTypos();
+            }),
+            "s.json: motion.between_pose: unknown field (did you mean between_poses?)");
+  EXPECT_EQ(refusal([&] {
+              JsonFields fields(nlohmann::json::parse(R"({"timestamp_s": [0, 1]})"), "s.json", "poses");
+              fields.has("timestamps_s");
+              fields.finish();
+            }),
+            "s.json: poses.timestamp_s: unknown field (did you mean timestamps_s?)");
+}
+
+}  // namespace
+}  // namespace omnicam
