@@ -303,6 +303,8 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
     return;
   }
   if (a.randomPhotos && a.photos.empty()) throw InputError("--random-photos: give photos with --photo");
+  if (!a.randomPhotos && a.photos.size() > 1)
+    throw InputError("--photo: the hall's walls show one photo; give several with --random-photos (a photo per wall, drawn)");
   refuseUnless(cmd, "--seed", a.randomPhotos, "arena mapping, or arena hall --random-photos (the hall draws nothing else)");
   HallOptions options;
   options.fieldScene = scenesDir() + "/robocup2006.json";

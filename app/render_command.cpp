@@ -87,10 +87,16 @@ class FrameViews {
 };
 
 // --recording: a preset's name, or a file holding one `recording` object (docs/experiments.md).
-std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text) {
-  if (text.empty()) return std::nullopt;
+std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text, const CLI::App& cmd) {
+  if (cmd.count("--recording") == 0) return std::nullopt;
+  if (text.empty()) throw InputError("--recording: give a preset's name or a JSON file (docs/experiments.md)");
   std::error_code ec;
   if (std::filesystem::is_regular_file(text, ec)) return recordingCameraSpecFromJson(readJsonFile(text), text, "");
+  // What looks like a file is said to be missing, not taken for a preset's name.
+  const bool path = text.find('/') != std::string::npos || text.ends_with(".json") || std::filesystem::exists(text, ec);
+  if (path)
+    throw InputError("--recording: " + showPath(text) + (std::filesystem::exists(text, ec) ? ": not a file" : ": no such file") +
+                     " (a preset's name or a JSON file)");
   return recordingCameraSpecFromJson(nlohmann::json(text), "--recording", "");
 }
 
@@ -186,7 +192,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   if (a.format != "png" && a.format != "exr") throw InputError("--format: must be png or exr");
   std::optional<RobotPose> pose;
   if (!a.pose.empty()) pose = parsePose(a.pose, "--pose");
-  const std::optional<RecordingCameraSpec> recording = readRecordingFlag(a.recording);
+  const std::optional<RecordingCameraSpec> recording = readRecordingFlag(a.recording, cmd);
   RenderSettings settings = request.settings(RigSpec{});
   BodyVelocity velocity;
   if (!a.velocity.empty()) {
