@@ -75,6 +75,8 @@ class PyRenderer {
     const uint64_t frame = static_cast<uint64_t>(narrowed(frameArg, "frame", 0, INT64_MAX));
     if (!recording.is_none())
       camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "recording=", "recording").draw(frame);
+    else if (frame != 0)  // a setting that changes nothing is refused, as a flag would be
+      throw InputError("frame: only with recording= (it picks the recording camera drawn for that frame)");
     RequestFields fields = engineFields_;
     fields.setIfGiven(RequestField::Spp, wideInteger(spp, "spp"));
     fields.setIfGiven(RequestField::Shading, shading);

@@ -38,6 +38,12 @@ def test_a_mistyped_keyword_is_named_with_the_one_meant(robocup, call, words):
     assert str(raised.value) == words
 
 
+def test_a_frame_without_a_recording_camera_is_refused(robocup):
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.Renderer(robocup).render(POSE, size=16, frame=3)
+    assert str(raised.value) == "frame: only with recording= (it picks the recording camera drawn for that frame)"
+
+
 def test_other_type_errors_keep_pybinds_message(robocup):
     with pytest.raises(TypeError) as raised:
         omnicam.Renderer(robocup).render(POSE, spp="four")
