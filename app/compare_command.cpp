@@ -90,9 +90,10 @@ CompareResult compareStreamed(const CompareArgs& args, const CompareOptions& opt
 // (--box-downsample), sized from the headers before either is decoded.
 CompareResult compareWhole(const CompareArgs& args, const CompareOptions& options) {
   const int64_t bytesA = imageDecodeBytes(args.a), bytesB = imageDecodeBytes(args.b);
-  // Both images, the larger one's downsampled copy and the heat map, each at most the smaller's size.
-  requireMemory(bytesA + bytesB + 2 * std::min(bytesA, bytesB), args.diff.empty() ? "comparing the two images"
-                                                                                   : "comparing the two images and their heat map (--diff)");
+  // Both images, and at the smaller one's size the larger one's downsampled copy and the heat map.
+  const int64_t extra = std::min(bytesA, bytesB) * ((args.boxDownsample ? 1 : 0) + (args.diff.empty() ? 0 : 1));
+  requireMemory(bytesA + bytesB + extra, args.diff.empty() ? "comparing the two images"
+                                                           : "comparing the two images and their heat map (--diff)");
   ImageRGBA a = readImage(args.a), b = readImage(args.b);
   if (args.boxDownsample) {
     if (const auto n = wholeMultiple(a.width, a.height, b.width, b.height)) b = boxDownsample(b, *n);
