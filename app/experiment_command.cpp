@@ -1,6 +1,6 @@
 // omnicam experiment texture-realism -o DIR [--quick] [--doc PATH]
 // omnicam experiment calibration -o DIR [--quick] [--doc PATH]
-// omnicam arena hall [--photo IMG]... [--random-photos] [--seed S] -o SCENE.json
+// omnicam arena hall [--photo IMG] [--random-photos --photo IMG... --seed S] -o SCENE.json
 // omnicam arena mapping [--seed S] -o SCENE.json
 #include <algorithm>
 #include <cstdio>
@@ -358,7 +358,7 @@ void addExperimentCommands(CLI::App& app) {
   arenaCmd->add_option("kind", arena->kind, "hall or mapping")->required();
   arenaCmd->add_option("-o,--output", arena->out, "Scene file to write; textures go beside it")->required();
   arenaCmd->add_option("--photo", arena->photos,
-                       "360-degree photo for the walls (repeatable): an equirectangular image, or an omni image "
+                       "360-degree photo for the walls (several with --random-photos): an equirectangular image, or an omni image "
                        "unwrapped with `omnicam view IMG --as panorama` (its sidecar beside it)");
   arenaCmd->add_flag("--random-photos", arena->randomPhotos, "Each wall a photo and a turn drawn from --seed");
   arenaCmd->add_option("--seed", arena->seed, "Seed of the maze (mapping) or of --random-photos (hall)")

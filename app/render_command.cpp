@@ -92,8 +92,9 @@ std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text, co
   if (text.empty()) throw InputError("--recording: give a preset's name or a JSON file (docs/experiments.md)");
   std::error_code ec;
   if (std::filesystem::is_regular_file(text, ec)) return recordingCameraSpecFromJson(readJsonFile(text), text, "");
-  // What looks like a file is said to be missing, not taken for a preset's name.
-  const bool path = text.find('/') != std::string::npos || text.ends_with(".json") || std::filesystem::exists(text, ec);
+  // What looks like a file is said to be missing, not taken for a preset's name (a folder named
+  // webcam does not hide the preset).
+  const bool path = text.find('/') != std::string::npos || text.ends_with(".json");
   if (path)
     throw InputError("--recording: " + showPath(text) + (std::filesystem::exists(text, ec) ? ": not a file" : ": no such file") +
                      " (a preset's name or a JSON file)");

@@ -182,8 +182,6 @@ ParameterDraw drawOf(const Parameter& p, const nlohmann::json& j, const JsonFiel
     if (!bound.is_number() || !std::isfinite(bound.get<double>()) || bound.get<double>() > p.hi ||
         (p.openLow ? bound.get<double>() <= p.lo : bound.get<double>() < p.lo))
       f.fail(at + "[" + std::to_string(k) + "]", "must be a number in " + intervalText(p) + " (got " + jsonValueText(bound) + ")");
-    if (p.type == ValueType::Integer && bound.get<double>() != std::floor(bound.get<double>()))
-      f.fail(at + "[" + std::to_string(k) + "]", "must be an integer in " + intervalText(p) + " (got " + jsonValueText(bound) + ")");
   }
   d.lo = arguments[0].get<double>();
   d.hi = arguments[1].get<double>();
@@ -306,43 +304,7 @@ RecordingCamera withStageNeutral(RecordingCamera camera, const std::string& stag
   return camera;
 }
 
-namespace {
-
-// A field that a fixed choice makes do nothing is refused, never ignored (the sidecar would record
-// it as if it had been applied): gamma without the gamma tone curve, contrast without the filmic
-// one, demosaic without a Bayer pattern. A choice that is drawn, or left to a preset, may make
-// them count, so they are kept then.
-void refuseUnusedFields(const RecordingCameraSpec& spec, const JsonFields& f) {
-  // The fixed word of `selector`: the spec's, or the camera's default when neither the spec nor a
-  // preset sets it; nullopt when it is drawn or left to the preset.
-  const auto fixedWord = [&](const char* selector) -> std::optional<std::string> {
-    const Parameter& p = *findParameter(selector);
-    const auto it = spec.draws.find(selector);
-    if (it == spec.draws.end())
-      return spec.preset ? std::nullopt : std::optional<std::string>(p.words[static_cast<size_t>(p.get(RecordingCamera{}))]);
-    if (it->second.kind != ParameterDraw::Kind::Fixed) return std::nullopt;
-    return std::string(p.words[static_cast<size_t>(it->second.values.front())]);
-  };
-  const struct {
-    const char* field;
-    const char* selector;
-    std::vector<std::string> counting;  // the selector's words with which the field counts
-  } rules[] = {{"gamma", "tone_curve", {"gamma"}},
-               {"contrast", "tone_curve", {"filmic"}},
-               {"demosaic", "bayer", {"rggb", "bggr", "grbg", "gbrg"}}};
-  for (const auto& rule : rules) {
-    if (!spec.draws.count(rule.field)) continue;
-    const std::optional<std::string> word = fixedWord(rule.selector);
-    if (word && std::find(rule.counting.begin(), rule.counting.end(), *word) == rule.counting.end())
-      f.fail(rule.field, std::string("does nothing with ") + rule.selector + " " + quote(*word) + " (it counts with " +
-                             rule.selector + " " + rule.counting.front() + (rule.counting.size() > 1 ? " and the other patterns" : "") + ")");
-  }
-}
-
-// A spec, or (`drawnCamera`) one camera a manifest or sidecar records with every field, those its
-// choices make do nothing included.
-RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::string& file, const std::string& where,
-                                            bool drawnCamera) {
+RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
@@ -355,16 +317,9 @@ RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::
   JsonFields f(j, file, where);
   if (f.has("preset")) spec.preset = drawOf(presetParameter(), f.raw("preset"), f, "preset");
   readDraws(f, spec.draws);
-  if (!drawnCamera) refuseUnusedFields(spec, f);
   if (f.has("seed")) spec.seed = seedOf(f);
   f.finish();
   return spec;
-}
-
-}  // namespace
-
-RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  return readRecordingCameraSpec(j, file, where, false);
 }
 
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec) {
@@ -433,7 +388,7 @@ nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
 }
 
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  const RecordingCameraSpec spec = readRecordingCameraSpec(j, file, where, true);
+  const RecordingCameraSpec spec = recordingCameraSpecFromJson(j, file, where);
   if (spec.randomised())
     throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "a single camera is wanted here: fixed values, no distributions or preset ranges");
   return spec.draw(0);
