@@ -39,6 +39,42 @@ std::string povPlacement(const Rigid& worldFromLocal) {
   for (const Vec3& a : axes) out += num(a.x()) + ", " + num(a.z()) + ", " + num(a.y()) + ", ";
   return out + num(t.x()) + ", " + num(t.z()) + ", " + num(t.y()) + ">";
 }
+// An affine map from a pattern's frame to the world as a POV-Ray `matrix`: the images of the
+// pattern's x, y and z axes and of its origin, each given in omnicam's world (metres).
+std::string povAffine(const Vec3& xAxis, const Vec3& yAxis, const Vec3& zAxis, const Vec3& origin) {
+  std::string out = "matrix <";
+  for (const Vec3& a : {xAxis, yAxis, zAxis}) {
+    const Vec3 q = a * kPovrayUnitsPerMetre;
+    out += num(q.x()) + ", " + num(q.z()) + ", " + num(q.y()) + ", ";
+  }
+  const Vec3 t = origin * kPovrayUnitsPerMetre;
+  return out + num(t.x()) + ", " + num(t.z()) + ", " + num(t.y()) + ">";
+}
+
+// Where a texture's UV comes from on a shape. POV-Ray 3.7 gives UV to meshes and spheres only
+// (its sphere's is omnicam's: u the azimuth from +X, v from the bottom pole). A cylinder's UV is
+// its pattern wrapped by a cylindrical warp about the axis, a disc's the planar image map, each
+// placed in the shape's frame (perpendicularFrame, as the fast renderer's), so that every engine
+// reads the same texel.
+struct TexturePlacement {
+  bool uvMapping = true;
+  std::string frame;  // pattern modifiers after the UV repeats
+};
+
+TexturePlacement cylinderTexturePlacement(const Cylinder& c) {
+  const Vec3 axis = c.top - c.base;
+  const auto [e1, e2] = perpendicularFrame(axis);
+  // The warp maps pattern point (x, y, z) to (azimuth from +x toward +z over 2π, y, ·).
+  return {false, " warp { cylindrical } " + povAffine(c.radius * e1, axis, c.radius * e2, c.base)};
+}
+
+TexturePlacement discTexturePlacement(const Disc& d) {
+  const auto [e1, e2] = perpendicularFrame(d.normal);
+  // UV (0, 0)–(1, 1) is the disc's bounding square.
+  const double side = 2.0 * d.radius;
+  return {false, " " + povAffine(side * e1, side * e2, side * d.normal.normalized(), d.center - d.radius * (e1 + e2))};
+}
+
 std::string rgb(const Vec3f& c) { return "rgb <" + num(c.x()) + ", " + num(c.y()) + ", " + num(c.z()) + ">"; }
 
 std::string finish(const Material& m, Shading shading) {
@@ -64,16 +100,16 @@ class SdlWriter {
     }
   }
 
-  std::string texture(int materialIndex) const {
+  std::string texture(int materialIndex, const TexturePlacement& placement = {}) const {
     const Material& m = scene_.materials[materialIndex];
     std::string pigment;
     auto t = textureOf_.find(materialIndex);
     if (t == textureOf_.end()) {
       pigment = "pigment { " + rgb(m.color) + " }";
     } else {
-      pigment = "pigment { uv_mapping image_map { exr \"" + job_.textures[t->second].name +
-                "\" interpolate 2 } scale <" + num(1.0 / m.textureScale.x()) + ", " +
-                num(1.0 / m.textureScale.y()) + ", 1> }";
+      pigment = std::string("pigment { ") + (placement.uvMapping ? "uv_mapping " : "") + "image_map { exr \"" +
+                job_.textures[t->second].name + "\" interpolate 2 } scale <" + num(1.0 / m.textureScale.x()) +
+                ", " + num(1.0 / m.textureScale.y()) + ", 1>" + placement.frame + " }";
     }
     return "texture { " + pigment + " " + finish(m, shading_) + " }";
   }
@@ -279,23 +315,18 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
 
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
-    const std::string tex = writer.texture(o.material);
-    const bool textured = writer.textured(o.material);
     out << "// object " << i << "\n";
     if (auto s = std::get_if<Sphere>(&o.shape)) {
-      if (textured) throw InputError(showPath(scene.path) + ": objects[" + std::to_string(i) + "]: textured spheres cannot be exported to POV-Ray yet");
-      out << "sphere { " << pov(s->center) << ", " << num(s->radius * u) << " " << tex << " }\n";
+      out << "sphere { " << pov(s->center) << ", " << num(s->radius * u) << " " << writer.texture(o.material) << " }\n";
     } else if (auto cyl = std::get_if<Cylinder>(&o.shape)) {
-      if (textured) throw InputError(showPath(scene.path) + ": objects[" + std::to_string(i) + "]: textured cylinders cannot be exported to POV-Ray yet");
       out << "cylinder { " << pov(cyl->base) << ", " << pov(cyl->top) << ", " << num(cyl->radius * u)
-          << (cyl->caps ? "" : " open") << " " << tex << " }\n";
+          << (cyl->caps ? "" : " open") << " " << writer.texture(o.material, cylinderTexturePlacement(*cyl)) << " }\n";
     } else if (auto d = std::get_if<Disc>(&o.shape)) {
-      if (textured) throw InputError(showPath(scene.path) + ": objects[" + std::to_string(i) + "]: textured discs cannot be exported to POV-Ray yet");
       out << "disc { " << pov(d->center) << ", " << povDirection(d->normal) << ", " << num(d->radius * u) << ", "
-          << num(d->innerRadius * u) << " " << tex << " }\n";
+          << num(d->innerRadius * u) << " " << writer.texture(o.material, discTexturePlacement(*d)) << " }\n";
     } else {
       const TriangleMesh mesh = *triangulatePlanar(o.shape);
-      writeMesh(out, mesh, textured, tex);
+      writeMesh(out, mesh, writer.textured(o.material), writer.texture(o.material));
     }
   }
   job.sdl = out.str();

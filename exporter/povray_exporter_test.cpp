@@ -184,13 +184,5 @@ TEST(PovrayExport, UserStringsNeverReachTheSdl) {
   std::filesystem::remove_all(dir);
 }
 
-TEST(PovrayExport, TexturedCurvedPrimitivesAreRefused) {
-  Scene scene;
-  scene.path = "s.json";
-  scene.materials.push_back({"t", {1, 1, 1}, std::make_shared<Texture>(1, 1, std::vector<float>{1, 1, 1}), "t.png", {1, 1}, 0.2f, 0.8f, ""});
-  scene.objects.push_back({"ball", 0, Sphere{{0, 0, 1}, 0.5}, ""});
-  EXPECT_THROW(exportPovray(scene, {}, RenderSettings{}), InputError);
-}
-
 }  // namespace
 }  // namespace omnicam
