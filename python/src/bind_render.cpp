@@ -68,14 +68,16 @@ class PyRenderer {
                   const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
                   const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
                   const std::optional<PyInteger>& seed, bool denoise, const std::optional<PyInteger>& adaptiveSpp,
-                  const std::optional<double>& targetError, const py::object& recording, const PyInteger& frameArg) {
+                  const std::optional<double>& targetError, const py::object& recording, const std::optional<PyInteger>& frameArg) {
     const int size = optionalSize(sizeArg);
     // The recording camera (recording_camera_spec.h): read before rendering, drawn for `frame`.
     std::optional<RecordingCamera> camera;
-    const uint64_t frame = static_cast<uint64_t>(narrowed(frameArg, "frame", 0, INT64_MAX));
+    // None, not 0, by default: frame=0 without recording= changes nothing, and is refused as any
+    // other frame is.
+    const uint64_t frame = frameArg ? static_cast<uint64_t>(narrowed(*frameArg, "frame", 0, INT64_MAX)) : 0;
     if (!recording.is_none())
       camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "recording=", "recording").draw(frame);
-    else if (frame != 0)  // a setting that changes nothing is refused, as a flag would be
+    else if (frameArg)  // a setting that changes nothing is refused, as a flag would be
       throw InputError("frame: only with recording= (it picks the recording camera drawn for that frame)");
     RequestFields fields = engineFields_;
     fields.setIfGiven(RequestField::Spp, wideInteger(spp, "spp"));
@@ -178,7 +180,7 @@ datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultipli
 (Scene.ids); "normal" (H, W, 3) float32 world-frame. AOVs (all but rgb) are point-sampled at
 pixel centres, fast engine only. recording: what a real camera makes of the colour (AOVs stay
 exact): a preset's name ("webcam", "machine_vision", "phone") or a dict in a dataset's
-`recording` format (docs/experiments.md), its distributions drawn for `frame` (default 0) from
+`recording` format (docs/experiments.md), its distributions drawn for `frame` (None: frame 0; only with recording=) from
 its seed, as a dataset draws frame × cameras + camera. Returns a dict
 of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.
 Every setting's default and range: docs/render-settings.md.)";
@@ -219,7 +221,7 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
            py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
            py::arg("bounces") = py::none(), py::arg("seed") = py::none(), py::arg("denoise") = false,
            py::arg("adaptive_spp") = py::none(), py::arg("target_error") = py::none(), py::arg("recording") = py::none(),
-           py::arg("frame") = 0, renderDoc().c_str())
+           py::arg("frame") = py::none(), renderDoc().c_str())
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
       .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
@@ -248,7 +250,7 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
          const PyInteger& size, const std::optional<PyInteger>& spp, const std::optional<std::string>& shading, bool traced,
          const std::vector<std::string>& outputs, const py::object& velocity, const std::optional<PyInteger>& bounces,
          const std::optional<PyInteger>& seed, bool denoise, const std::optional<PyInteger>& adaptiveSpp,
-         const std::optional<double>& targetError, const py::object& recording, const PyInteger& frame) {
+         const std::optional<double>& targetError, const py::object& recording, const std::optional<PyInteger>& frame) {
         RequestFields fields;
         fields.setIfGiven(RequestField::Engine, engine);
         PyRenderer renderer(std::make_shared<const Scene>(*scene), fields);
@@ -259,7 +261,7 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
       py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
       py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(), py::arg("bounces") = py::none(),
       py::arg("seed") = py::none(), py::arg("denoise") = false, py::arg("adaptive_spp") = py::none(),
-      py::arg("target_error") = py::none(), py::arg("recording") = py::none(), py::arg("frame") = 0, oneRenderDoc().c_str());
+      py::arg("target_error") = py::none(), py::arg("recording") = py::none(), py::arg("frame") = py::none(), oneRenderDoc().c_str());
 }
 
 }  // namespace omnicam::python

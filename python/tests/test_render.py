@@ -42,6 +42,8 @@ def test_a_frame_without_a_recording_camera_is_refused(robocup):
     with pytest.raises(omnicam.InputError) as raised:
         omnicam.Renderer(robocup).render(POSE, size=16, frame=3)
     assert str(raised.value) == "frame: only with recording= (it picks the recording camera drawn for that frame)"
+    with pytest.raises(omnicam.InputError, match="^frame: only with recording="):  # 0 given is given, too
+        omnicam.render(robocup, POSE, size=16, frame=0)
 
 
 def test_other_type_errors_keep_pybinds_message(robocup):
