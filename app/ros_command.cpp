@@ -44,11 +44,11 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
       throw InputError("--record: " + showPath(a.options.recordBag) + ": exists already (a bag is never overwritten)");
   }
   stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
-  const LiveSensorReport report = runLiveSensor(spec, a.options, [&](const std::vector<std::string>& imageTopics) {
-    const std::string from = a.options.tfParent.empty() ? a.options.odometryTopic
+  const LiveSensorReport report = runLiveSensor(spec, a.options, [&](const LiveSensorTopics& used) {
+    const std::string from = a.options.tfParent.empty() ? used.odometry
                                                         : "tf (" + a.options.baseFrame + " in " + a.options.tfParent + ")";
     std::string topics;
-    for (const std::string& topic : imageTopics) topics += (topics.empty() ? "" : ", ") + topic;
+    for (const std::string& topic : used.images) topics += (topics.empty() ? "" : ", ") + topic;
     std::printf("ros: ready: poses from %s, images on %s\n", from.c_str(), topics.c_str());
     std::fflush(stdout);
   });

@@ -413,7 +413,7 @@ ros1::Transport& connect(std::optional<ros1::Transport>& transport, const LiveSe
 }  // namespace
 
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
-                               const std::function<void(const std::vector<std::string>& imageTopics)>& ready) {
+                               const std::function<void(const LiveSensorTopics& topics)>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
   checkLiveSpec(plan, options);
   // Declared before the transport: its destructor stops the callbacks before these go.
@@ -428,9 +428,11 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   if (options.rateHz > 0) ticker.emplace(transport, options.rateHz, [&poses](const ros1::Stamp& tick) { poses.tick(tick); });
 
   if (ready) {
-    std::vector<std::string> imageTopics;
-    for (const CameraSetup& setup : plan.setups()) imageTopics.push_back(cameraTopic(options, setup.camera->name, "image_raw"));
-    ready(imageTopics);
+    LiveSensorTopics topics;
+    if (options.tfParent.empty()) topics.odometry = transport.resolvedName(options.odometryTopic);
+    for (const CameraSetup& setup : plan.setups())
+      topics.images.push_back(transport.resolvedName(cameraTopic(options, setup.camera->name, "image_raw")));
+    ready(topics);
   }
   LiveSensorReport report;
   auto masterChecked = std::chrono::steady_clock::now();

@@ -99,11 +99,17 @@ ros1::Stamp tickAtOrBefore(const ros1::Stamp& now, int64_t periodNs);
 std::optional<LivePose> poseAtTick(const LivePose& latest, const ros1::Stamp& tick, double maxAgeSeconds,
                                    std::string& problem);
 
+// The topics a running sensor uses, as ROS resolved them (after from:=to remappings).
+struct LiveSensorTopics {
+  std::string odometry;             // empty with poses from tf
+  std::vector<std::string> images;  // each camera's image_raw, in the spec's order
+};
+
 // Runs the sensor until options.frames poses are rendered or a signal arrives (then within
 // 0.1 s of the frame being rendered). `ready`, if set, is called once the topics are announced
-// and the odometry subscribed, with each camera's image topic (as named, before any remapping).
+// and the odometry subscribed, with the topics it uses.
 // InputError for a spec the dataset reader refuses; ExternalError if no master answers.
 LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions& options,
-                               const std::function<void(const std::vector<std::string>& imageTopics)>& ready = {});
+                               const std::function<void(const LiveSensorTopics& topics)>& ready = {});
 
 }  // namespace omnicam

@@ -696,6 +696,8 @@ TEST_F(LiveRun, StartsFromItsLaunchFileAndEndsWithRoslaunch) {
   }
   stopProgram(SIGINT);
   EXPECT_EQ(waitForExit(), 0) << output();
+  // The ready line names the topics as remapped: where a user listens.
+  EXPECT_NE(output().find("ros: ready: poses from /bot/odom, images on /hall/image\n"), std::string::npos) << output();
   EXPECT_NE(output().find("ros: 2 poses rendered, 0 dropped for newer ones, 0 refused"), std::string::npos) << output();
   EXPECT_NE(::kill(node, 0), 0) << "the node " << node << " outlived roslaunch";
   const std::vector<sensor_msgs::Image> frames = images.messages();

@@ -316,6 +316,8 @@ Stamp Transport::now() const { return stampOf(ros::Time::now()); }
 
 bool Transport::simulatedTime() const { return ros::Time::isSimTime(); }
 
+std::string Transport::resolvedName(const std::string& name) const { return ros::names::resolve(name); }
+
 void Transport::advertiseImage(const std::string& topic, bool latched) {
   std::lock_guard<std::mutex> lock(impl_->mutex);
   Impl* impl = impl_.get();

@@ -50,6 +50,9 @@ class Transport {
   // ROS time: the wall clock, or /clock's when the master's /use_sim_time is set.
   Stamp now() const;
   bool simulatedTime() const;
+  // `name` as ROS resolves it, after the node's from:=to remappings: the topic a subscriber or a
+  // publisher of `name` really uses.
+  std::string resolvedName(const std::string& name) const;
   // Announces `topic` as sensor_msgs/Image; `latched` keeps the last message for late subscribers.
   void advertiseImage(const std::string& topic, bool latched = false);
   void publish(const std::string& topic, const Image& image);
