@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "errors.h"
 #include "exr_channels.h"
+#include "file_confinement.h"
 #include "image_decoder.h"
 #include "png_codec.h"
 
@@ -42,22 +45,41 @@ std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, i
 
 namespace {
 
-DataImage readExrChannels(ImageDecoder& in, const std::vector<std::string>& names) {
-  if (in.format() != "openexr") throw InputError(in.name() + ": not an OpenEXR image");
-  const ImageHeader& header = in.header();
-  std::vector<size_t> index;
-  for (const std::string& name : names) {
-    const auto at = std::find(header.channelNames.begin(), header.channelNames.end(), name);
-    if (at == header.channelNames.end()) throw InputError(in.name() + ": no channel " + quote(name));
-    index.push_back(static_cast<size_t>(at - header.channelNames.begin()));
+// Every name in `names` must be a channel of `decoded`; InputError naming those it has otherwise.
+void requireChannels(const ExrChannels& decoded, const std::vector<std::string>& names, const std::string& name) {
+  for (const std::string& wanted : names) {
+    if (decoded.types.count(wanted)) continue;
+    std::string present;
+    for (const auto& [channel, type] : decoded.types) present += (present.empty() ? "" : ", ") + channel;
+    throw InputError(name + ": no channel " + quote(wanted) + " (it has " + (present.empty() ? "none" : present) + ")");
   }
-  const std::vector<float> all = in.readAllRows();
-  const size_t channels = names.size(), pixels = static_cast<size_t>(header.width) * header.height;
-  DataImage image{static_cast<int>(header.width), static_cast<int>(header.height), static_cast<int>(channels),
-                  std::vector<float>(pixels * channels)};
-  for (size_t p = 0; p < pixels; ++p)
-    for (size_t c = 0; c < channels; ++c) image.values[p * channels + c] = all[p * header.channels + index[c]];
+}
+
+ExrChannels decodeChannels(std::string_view bytes, const std::vector<std::string>& names, const std::string& name) {
+  const std::set<std::string> wanted(names.begin(), names.end());
+  ExrChannels decoded = decodeExrChannels(bytes, name, false, &wanted);
+  requireChannels(decoded, names, name);
+  return decoded;
+}
+
+DataImage floatChannels(std::string_view bytes, const std::vector<std::string>& names, const std::string& name) {
+  const ExrChannels decoded = decodeChannels(bytes, names, name);
+  const size_t channels = names.size(), pixels = static_cast<size_t>(decoded.width) * decoded.height;
+  DataImage image{decoded.width, decoded.height, static_cast<int>(channels), std::vector<float>(pixels * channels)};
+  for (size_t c = 0; c < channels; ++c) {
+    const auto plane = decoded.floats.find(names[c]);
+    if (plane == decoded.floats.end())  // read as floats, ids would come out scaled by 2^-32
+      throw InputError(name + ": channel " + quote(names[c]) + " holds uint32 ids, not floats");
+    for (size_t p = 0; p < pixels; ++p) image.values[p * channels + c] = plane->second[p];
+  }
   return image;
+}
+
+std::string fileBytes(const std::string& path) {
+  std::string why;
+  std::optional<std::string> bytes = readWholeFile(path, why);
+  if (!bytes) throw InputError(showPath(path) + ": " + why);
+  return std::move(*bytes);
 }
 
 std::vector<uint16_t> readUint16(ImageDecoder& in, int& width, int& height) {
@@ -81,11 +103,15 @@ DataImage readDataExr(const std::string& path) {
 }
 
 DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names) {
-  return readExrChannels(*openImageDecoder(ImageSource::file(path)), names);
+  return floatChannels(fileBytes(path), names, showPath(path));
 }
 
 DataImage readDataExrChannelsFromMemory(std::string_view bytes, const std::vector<std::string>& names, const std::string& name) {
-  return readExrChannels(*openImageDecoder(ImageSource::memory(bytes, name)), names);
+  return floatChannels(bytes, names, name);
+}
+
+ExrChannels readExrChannelsExactly(const std::string& path, const std::vector<std::string>& names) {
+  return decodeChannels(fileBytes(path), names, showPath(path));
 }
 
 std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height) {

@@ -377,7 +377,7 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
       else base = reinterpret_cast<char*>(out.floats[it.name()].assign(pixels, 0.0f), out.floats[it.name()].data());
       frameBuffer.insert(it.name(), Imf::Slice(uint ? Imf::UINT : Imf::FLOAT, base, 4, 4 * static_cast<size_t>(width)));
     }
-    if (!headerOnly) {
+    if (!headerOnly && decoded > 0) {  // OpenEXR refuses to read into no channel at all
       file.setFrameBuffer(frameBuffer);
       file.readPixels(0, out.height - 1);
     }

@@ -154,6 +154,28 @@ TEST(ExrChannels, DamagedBytesAreAnInputErrorNamingTheFile) {
   }
 }
 
+// The data-image reader reads floats exactly and refuses what it cannot: uint32 ids (read as
+// floats through OpenImageIO they came out scaled by 2^-32) and a channel the file lacks, naming
+// the channels it has.
+TEST(ExrChannels, DataImagesReadFloatsExactlyAndRefuseIdsAndMissingChannels) {
+  const std::vector<float> depth{0.25f, 1.0f / 3.0f, 7.5f, 1e-30f};
+  const std::vector<uint32_t> ids{0, 29, 65535, 4000000000u};
+  const std::vector<unsigned char> bytes = encodeExrChannels(
+      "t.exr", 2, 2, {{"depth.Z", ExrSampleType::Float, depth.data(), nullptr, 1}, {"instance.I", ExrSampleType::Uint, nullptr, ids.data(), 1}}, {});
+  const std::string file(bytes.begin(), bytes.end());
+  EXPECT_EQ(readDataExrChannelsFromMemory(file, {"depth.Z"}, "f.exr").values, depth);
+  const auto message = [&](const std::vector<std::string>& names) {
+    try {
+      readDataExrChannelsFromMemory(file, names, "f.exr");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  EXPECT_EQ(message({"instance.I"}), "f.exr: channel \"instance.I\" holds uint32 ids, not floats");
+  EXPECT_EQ(message({"Z"}), "f.exr: no channel \"Z\" (it has depth.Z, instance.I)");
+}
+
 // The header's data and display windows patched to claim `width` x `height` pixels (and, for a
 // tiled file, tiles that large): a forged frame whose header claims far more than its bytes hold.
 std::string claimSize(std::string bytes, int32_t width, int32_t height) {

@@ -11,6 +11,8 @@
 
 namespace omnicam {
 
+struct ExrChannels;  // exr_channels.h
+
 struct ImageRGBA {
   int width = 0, height = 0;
   std::vector<float> pixels;  // row-major, 4 floats per pixel, v down
@@ -112,8 +114,12 @@ std::vector<unsigned char> encodeUint16Png(const std::string& path, int width, i
                                            const std::vector<uint16_t>& values);
 // Readers for the two; InputError naming the file for anything else (wrong channel count or type).
 DataImage readDataExr(const std::string& path);
-// The named channels of any OpenEXR, in the order asked for (OpenEXR stores them sorted by name).
+// The named float channels of any OpenEXR, in the order asked for (OpenEXR stores them sorted by
+// name), exactly; InputError naming the channels the file has for one it lacks, and for a uint32
+// channel (ids: readExrChannelsExactly).
 DataImage readDataExrChannels(const std::string& path, const std::vector<std::string>& names);
+// The named channels of any OpenEXR, each as its own sample type stored it (uint32 ids as uints).
+ExrChannels readExrChannelsExactly(const std::string& path, const std::vector<std::string>& names);
 std::vector<uint16_t> readUint16Png(const std::string& path, int& width, int& height);
 // The same from bytes in memory (told by their signature, never by a name); `name` is used in errors.
 DataImage readDataExrChannelsFromMemory(std::string_view bytes, const std::vector<std::string>& names, const std::string& name);

@@ -3,6 +3,7 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <functional>
 #include <set>
@@ -14,6 +15,7 @@
 #include "dataset_reader.h"
 #include "dataset_runner.h"
 #include "dataset_spec.h"
+#include "exr_channels.h"
 #include "image.h"
 #include "scene_ids.h"
 
@@ -171,6 +173,32 @@ std::set<uint16_t> chosenCocoClasses(const IdTables& tables, const py::object& c
 
 }  // namespace
 
+namespace {
+
+// read_exr_channels: the channels as their file stores them, float32 or uint32 (ids read as
+// floats would be scaled by 2^-32, as OpenImageIO reads them).
+py::array readExrChannelsToPython(const std::filesystem::path& path, const std::vector<std::string>& channels) {
+  if (channels.empty()) throw InputError("read_exr_channels: name at least one channel");
+  ExrChannels decoded = readExrChannelsExactly(path.string(), channels);
+  const size_t uints = static_cast<size_t>(std::count_if(channels.begin(), channels.end(),
+                                                          [&](const std::string& c) { return decoded.uints.count(c) > 0; }));
+  if (uints != 0 && uints != channels.size())
+    throw InputError(showPath(path.string()) + ": channels of two kinds (uint32 ids and floats): read them apart");
+  const py::ssize_t h = decoded.height, w = decoded.width, n = static_cast<py::ssize_t>(channels.size());
+  const size_t pixels = static_cast<size_t>(h) * static_cast<size_t>(w);
+  const auto interleave = [&](auto& planes, auto zero) {
+    std::vector<decltype(zero)> values(pixels * channels.size());
+    for (size_t c = 0; c < channels.size(); ++c) {
+      const auto& plane = planes.at(channels[c]);
+      for (size_t p = 0; p < pixels; ++p) values[p * channels.size() + c] = plane[p];
+    }
+    return arrayTakingOver(std::move(values), {h, w, n});
+  };
+  return uints ? py::array(interleave(decoded.uints, uint32_t{0})) : py::array(interleave(decoded.floats, 0.0f));
+}
+
+}  // namespace
+
 void bindDataset(py::module_& m) {
   bindDatasetReader(m);
   m.def("coco_annotations", [](const py::array_t<uint16_t, py::array::c_style | py::array::forcecast>& instance,
@@ -203,11 +231,11 @@ at once) are written, and is raised again. Returns {"frames", "kept", "rendered"
     const py::ssize_t h = image.height, w = image.width;
     return arrayTakingOver(std::move(image.pixels), {h, w, 4});
   }, py::arg("path"), "Any image file as linear, premultiplied RGBA float32 (H, W, 4).");
-  m.def("read_exr_channels", [](const std::filesystem::path& path, const std::vector<std::string>& channels) {
-    DataImage image = readDataExrChannels(path.string(), channels);
-    const py::ssize_t h = image.height, w = image.width, c = image.channels;
-    return arrayTakingOver(std::move(image.values), {h, w, c});
-  }, py::arg("path"), py::arg("channels"), "The named channels of an OpenEXR as float32 (H, W, len(channels)), exactly.");
+  m.def("read_exr_channels", &readExrChannelsToPython, py::arg("path"), py::arg("channels"),
+        "The named channels of an OpenEXR, exactly, (H, W, len(channels)): float32 for half and float "
+        "channels (depth, normals, rays, colour), uint32 for uint ones (instance and class ids). "
+        "InputError for a channel the file lacks (naming those it has) and for channels of both kinds "
+        "at once (read them apart).");
   m.def("srgb8", [](const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba) {
     if (rgba.ndim() != 3 || rgba.shape(2) != 4) throw InputError("srgb8: the image must be (H, W, 4) RGBA");
     ImageRGBA image(static_cast<int>(rgba.shape(1)), static_cast<int>(rgba.shape(0)));

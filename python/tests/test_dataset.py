@@ -136,5 +136,15 @@ def test_a_multilayer_dataset_reads_as_the_files_layout_reads(folder, layered):
     coco = json.loads((layered / "rear" / "coco.json").read_text())
     assert [image["file_name"] for image in coco["images"]] == [f"multilayer/00000{i}.exr" for i in range(3)]
     assert len(coco["annotations"]) == sum(len(layers[i]["coco"]["annotations"]) + 1 for i in range(3))
-    assert omnicam.read_exr_channels(str(layered / "rear" / "multilayer" / "000001.exr"), ["depth.Z"])[..., 0].tolist() == \
-        files[1]["depth"].tolist()
+    frame = layered / "rear" / "multilayer" / "000001.exr"
+    assert omnicam.read_exr_channels(str(frame), ["depth.Z"])[..., 0].tolist() == files[1]["depth"].tolist()
+    # Ids as the integers they are (read as floats they would be scaled by 2^-32).
+    ids = omnicam.read_exr_channels(frame, ["instance.I", "semantic.I"])
+    assert ids.dtype == np.uint32 and ids.shape == (*files[1]["instance"].shape, 2)
+    np.testing.assert_array_equal(ids[..., 0], files[1]["instance"])
+    np.testing.assert_array_equal(ids[..., 1], files[1]["semantic"])
+    assert ids[..., 0].max() > 1
+    with pytest.raises(omnicam.InputError, match="channels of two kinds"):
+        omnicam.read_exr_channels(frame, ["depth.Z", "instance.I"])
+    with pytest.raises(omnicam.InputError, match=r"no channel \"Y\" \(it has .*depth\.Z"):
+        omnicam.read_exr_channels(frame, ["Y"])
