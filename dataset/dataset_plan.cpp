@@ -135,6 +135,11 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
     for (auto it = notWritten.begin(); it != notWritten.end(); ++it) kinds += (kinds.empty() ? "" : ", ") + it.key();
     notes.push_back("engine " + spec.request.engine + " writes RGB only: " + kinds + " not written (see manifest outputs.not_written)");
   }
+  const bool aovs = std::any_of(plan.outputs.begin(), plan.outputs.end(), [](OutputKind kind) { return needsAovs(kind); });
+  if (aovs && engine.capabilities().mode != OmniMode::Exact)
+    notes.push_back(std::string("mode ") + omniModeName(engine.capabilities().mode) +
+                    " draws the thesis' method: its colour is approximate, its AOVs and annotations are the exact "
+                    "camera's, so they need not sit on the drawn objects (docs/render-settings.md)");
   bool instanceIds = false;
   for (OutputKind kind : plan.outputs) {
     const OutputKindRow& row = outputRow(kind);

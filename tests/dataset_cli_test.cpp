@@ -596,6 +596,22 @@ TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   EXPECT_NE(bad.out.find("FAIL: "), std::string::npos) << bad.out;
 }
 
+// The thesis' modes draw approximate colour under exact AOVs: a dataset of them says so, and an
+// exact-mode dataset does not.
+TEST_F(DatasetCliTest, AThesisModeDatasetSaysItsAnnotationsAreTheExactCameras) {
+  const std::string poses = R"("size": 48, "poses": {"list": [[0.5, 0.3, 20]]}, "outputs": {"rgb": "png", "instance": true}, )";
+  const std::string mesh = robocupSpec("mesh.json", poses + R"("mode": "thesis-mesh", "mode_options": {"polygons": 16, "face_size": 32})");
+  const std::string exact = robocupSpec("exact.json", poses + R"("mode": "exact")");
+  const auto approximate = omnicam("dataset " + mesh + " -o " + path("mesh"));
+  ASSERT_EQ(approximate.code, 0) << approximate.out;
+  EXPECT_NE(approximate.out.find("omnicam: note: mode thesis-mesh draws the thesis' method: its colour is approximate, its "
+                                 "AOVs and annotations are the exact camera's"),
+            std::string::npos) << approximate.out;
+  const auto exactRun = omnicam("dataset " + exact + " -o " + path("exact"));
+  ASSERT_EQ(exactRun.code, 0) << exactRun.out;
+  EXPECT_EQ(exactRun.out.find("note:"), std::string::npos) << exactRun.out;
+}
+
 TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   const std::string poses = R"("size": 96, "spp": 4, "poses": {"list": [[0.5, 0.3, 20], [-1.2, 0.8, 200]]})";
   const std::string fast = robocupSpec("fast.json", R"("engine": "fast", "outputs": {"rgb": "exr"}, )" + poses);
