@@ -116,9 +116,12 @@ std::optional<int> finishedShardCount(const std::string& dir) {
 
 // What finishes an incomplete dataset: merging finished shards, or running again.
 std::string nextStep(const std::string& dir) {
+  if (wholeDatasetRunWriting(dir)) return "a run is writing it now: wait for it to end";
   if (const std::optional<int> count = finishedShardCount(dir))
     return "every shard of " + std::to_string(*count) + " is finished: merge them with omnicam dataset --merge " + shellPath(dir);
-  if (!shardCountsIn(dir).empty()) return "run the shards not yet finished (--shard I/N), then --merge";
+  if (const std::vector<int> counts = shardCountsIn(dir); !counts.empty())
+    return "run the shards not yet finished (--shard I/" + (counts.size() == 1 ? std::to_string(counts.front()) : "N") +
+           "), then omnicam dataset --merge " + shellPath(dir);
   return "run the same command again to resume";
 }
 

@@ -30,6 +30,8 @@ DatasetManifest readDatasetManifest(const std::string& dir, const std::string& n
   return readDatasetManifest(SafeFolder(dir), name);
 }
 
+bool wholeDatasetRunWriting(const std::string& dir) { return !SafeFolder(dir).tryClaim(/*shared=*/true); }
+
 DatasetVerifyResult verifyDataset(const std::string& path, const std::string& manifestName) {
   const SafeFolder dir(path);
   const DatasetManifest manifest = readDatasetManifest(dir, manifestName);

@@ -22,6 +22,10 @@ struct DatasetStatus {
 };
 DatasetStatus datasetStatus(const std::string& dir);
 
+// Whether a whole-dataset run holds DIR now (its claim, dataset_runner.cpp). Probed with a shared
+// claim of an instant: shards running together hold shared claims and do not show.
+bool wholeDatasetRunWriting(const std::string& dir);
+
 struct DatasetVerifyResult {
   int files = 0;  // checked
   // One line each: missing, changed, a link or not a regular file (never followed or read),

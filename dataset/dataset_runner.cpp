@@ -11,9 +11,11 @@
 #include "atomic_file.h"
 #include "calibration_bag.h"
 #include "dataset_plan.h"
+#include "dataset_shards.h"
 #include "errors.h"
 #include "frame_scheduler.h"
 #include "manifest.h"
+#include "markup.h"
 #include "memory_budget.h"
 #include "render_settings.h"
 #include "safe_files.h"
@@ -74,9 +76,20 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
     if (!difference.empty() && !options.overwrite)
       throw OtherDatasetError(showPath(options.dir) + ": holds another dataset (" + difference + ")");
   }
+  if (!previous && dir.entry("shards") == EntryKind::Folder) {
+    // The shards of a dataset fill the folder: a shard of the same dataset and count joins them.
+    if (manifestName != kManifestName) {
+      if (const std::string conflict = shardsConflict(options.dir, header, options.shardCount); !conflict.empty())
+        throw InputError(showPath(options.dir) + ": " + conflict);
+      return std::nullopt;
+    }
+    const std::vector<int> counts = shardCountsIn(options.dir);
+    const std::string count = counts.empty() ? "N" : std::to_string(counts.front());
+    const std::string shown = shellPath(options.dir);
+    throw InputError(showPath(options.dir) + ": holds the shards of a dataset, not merged (shards/): run the shards not "
+                     "finished (--shard I/" + count + "; omnicam dataset --status " + shown + " lists them), then omnicam dataset --merge " + shown);
+  }
   if (!previous) {
-    // Other shards of a dataset fill the folder ("shards/" marks it as theirs).
-    if (manifestName != kManifestName && dir.entry("shards") == EntryKind::Folder) return std::nullopt;
     throw InputError(showPath(options.dir) + ": folder is not empty and has no " + kManifestName +
                      ": omnicam writes a dataset only into an empty folder or its own dataset's (and replaces only files a "
                      "dataset's manifest lists)");

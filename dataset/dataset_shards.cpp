@@ -86,6 +86,24 @@ std::vector<int> shardCountsIn(const std::string& dir) {
   return {counts.begin(), counts.end()};
 }
 
+std::string shardsConflict(const std::string& path, const json& header, int count) {
+  const std::vector<int> counts = shardCountsIn(path);
+  for (int other : counts)
+    if (other != count)
+      return "holds the shards of a run in " + std::to_string(other) + " (shards/shard-*-of-" + std::to_string(other) +
+             ".json): shard it the same way, or give another folder";
+  if (counts.empty()) return "";
+  const SafeFolder dir(path);
+  for (int i = 0; i < count; ++i) {
+    const std::string name = shardManifestName(i, count);
+    if (!hasShardManifest(dir, name)) continue;
+    if (const std::string difference = identityDifference(readShardManifest(dir, i, count).manifest.header, header);
+        !difference.empty())
+      return "holds the shards of another dataset (" + name + ": " + difference + "): give another folder";
+  }
+  return "";
+}
+
 MergeResult mergeDatasetShards(const std::string& path, int count) {
   checkShardCount(count);
   const SafeFolder dir(path);  // opened once: every shard's manifest read, the merged one written

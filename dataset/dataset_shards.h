@@ -26,6 +26,11 @@ std::vector<ShardState> shardStates(const std::string& dir, int count, bool chec
 // The shard counts (1 … kMaxShards) that have manifests in DIR/shards/ (normally one).
 std::vector<int> shardCountsIn(const std::string& dir);
 
+// Why a run of the dataset `header` as a shard of `count` may not write into DIR beside the
+// shards there: shards of another count, or of another dataset (naming what differs). Empty if
+// it may (no shards, or only this dataset's of this count).
+std::string shardsConflict(const std::string& dir, const nlohmann::json& header, int count);
+
 struct MergeResult {
   int frames = 0, finished = 0;
   std::vector<int> incompleteShards;

@@ -28,6 +28,7 @@
 #include "opencv_omnidir.h"
 #include "recording_camera_spec.h"
 #include "rig.h"
+#include "safe_files.h"
 #include "sha256.h"
 #include "shell_command.h"
 #include "target_detection.h"
@@ -475,7 +476,7 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   auto r = omnicam("dataset --status " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("shard 1/3: not started"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("(run the shards not yet finished (--shard I/N), then --merge)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(run the shards not yet finished (--shard I/3), then omnicam dataset --merge "), std::string::npos) << r.out;
   r = omnicam("dataset --merge " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   // Frames [10·I/3, 10·(I+1)/3): 0-2, 3-5, 6-9; shards 0 and 2 hold 3 + 4.
@@ -594,6 +595,37 @@ TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   EXPECT_NE(bad.out.find("cam0/rgb/000001.png: SHA-256"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("cam0/landmarks/000002.json: missing"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("FAIL: "), std::string::npos) << bad.out;
+}
+
+// A shard joins only the shards of its own dataset and count; a whole run does not write among
+// shards; --status does not send users to resume a folder a run holds (the test holds it).
+TEST_F(DatasetCliTest, ShardsOfAnotherDatasetOrCountAreRefusedAndStatusSeesARunAtWork) {
+  const std::string a = robocupSpec("a.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 4})");
+  const std::string b = robocupSpec("b.json", R"("size": 40, "poses": {"path": "thesis-loop", "frames": 4})");
+  ASSERT_EQ(omnicam("dataset " + a + " -o " + path("ds") + " --shard 0/2").code, 0);
+  const auto other = omnicam("dataset " + b + " -o " + path("ds") + " --shard 1/2");
+  EXPECT_EQ(other.code, 2);
+  EXPECT_NE(other.out.find("holds the shards of another dataset (shards/shard-0-of-2.json: the spec's \"size\" differs)"),
+            std::string::npos) << other.out;
+  const auto count = omnicam("dataset " + a + " -o " + path("ds") + " --shard 0/3");
+  EXPECT_EQ(count.code, 2);
+  EXPECT_NE(count.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json)"), std::string::npos) << count.out;
+  const auto whole = omnicam("dataset " + a + " -o " + path("ds"));
+  EXPECT_EQ(whole.code, 2);
+  EXPECT_NE(whole.out.find("holds the shards of a dataset, not merged (shards/): run the shards not finished (--shard I/2"),
+            std::string::npos) << whole.out;
+  EXPECT_FALSE(fs::exists(dir_ / "ds/shards/shard-1-of-2.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "ds/manifest.json"));
+  const auto idle = omnicam("dataset --status " + path("ds"));
+  EXPECT_NE(idle.out.find("(run the shards not yet finished (--shard I/2), then omnicam dataset --merge "), std::string::npos) << idle.out;
+  {
+    const SafeFolder held(path("ds"));
+    ASSERT_TRUE(held.tryClaim(/*shared=*/false));  // as a whole-dataset run holds its folder
+    const auto busy = omnicam("dataset --status " + path("ds"));
+    EXPECT_NE(busy.out.find("(a run is writing it now: wait for it to end)"), std::string::npos) << busy.out;
+  }
+  ASSERT_EQ(omnicam("dataset " + a + " -o " + path("ds") + " --shard 1/2").code, 0);
+  EXPECT_EQ(omnicam("dataset --merge " + path("ds")).code, 0);
 }
 
 // The thesis' modes draw approximate colour under exact AOVs: a dataset of them says so, and an
