@@ -114,6 +114,11 @@ std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera) 
   return out.str();
 }
 
+Rigid worldFromModelCamera(const CameraPlacement& placement, const RigSpec& rig, const Camera& camera) {
+  if (dynamic_cast<const LensCamera*>(&camera)) return placement.worldFromCamera(rig);
+  return placement.worldFromViewpoint(rig) * centralModelOf(camera).cameraFromViewpoint().inverse();
+}
+
 std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras) {
   const auto list = [](const std::vector<double>& values) {
     std::string text = "[";

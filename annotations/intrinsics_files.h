@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "camera.h"
+#include "placement.h"
 
 namespace omnicam {
 
@@ -30,6 +31,12 @@ std::vector<IntrinsicsFile> intrinsicsFiles(const std::string& name, const Camer
 // Writes intrinsicsFiles() into DIR (each atomically).
 void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const Camera& camera);
 
+// The frame the intrinsics files' model lives in, placed in the world: a mirror camera's central
+// model's (a physical rig's best fit has its own frame: opencv.yaml's camera_from_rig), a lens
+// camera's own. Every output that gives those intrinsics with a pose — EuRoC's T_BS, Kalibr's
+// T_cn_cnm1, ROS's tf — places this frame; poses.tum places the rig's camera frame.
+Rigid worldFromModelCamera(const CameraPlacement& placement, const RigSpec& rig, const Camera& camera);
+
 // Kalibr's camchain of `cameras` as a calibration bag shows their images (dataset/calibration_bag.h):
 // a mirror camera's image flipped top to bottom, so that its omni intrinsics are
 // [xi, γx, −γy, cx, H − 1 − cy] with fv > 0, as Kalibr's reader requires (same camera frame, same
@@ -39,7 +46,7 @@ void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const
 struct KalibrChainCamera {
   std::string name;
   const Camera* camera = nullptr;
-  Rigid worldFromCamera = Rigid::Identity();  // the intrinsics files' camera frame (poses.tum's)
+  Rigid worldFromCamera = Rigid::Identity();  // the intrinsics files' model's frame (worldFromModelCamera)
 };
 std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras);
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "intrinsics_files.h"
 #include "lens_intrinsics_files.h"
 #include "make_camera.h"
 #include "number_format.h"
@@ -27,7 +28,7 @@ std::string floats(const std::vector<double>& values) {
 
 // A lens camera's sensor.yaml: Kalibr's terms where Kalibr has the model, else omnicam's own.
 std::string lensSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const LensCamera& camera, double intervalS) {
-  const Rigid bodyFromSensor = CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromCamera(rig);
+  const Rigid bodyFromSensor = worldFromModelCamera(CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount), rig, camera);
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"
       << "# Body frame: the robot's (origin on the floor, x forward, y left, z up). Sensor frame: OpenCV's (X right,\n"
@@ -71,8 +72,7 @@ std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, cons
   const MeiIntrinsics& k = model.intrinsics;
   // The camera's place on a level robot standing at the origin (the body frame is the robot's), in
   // the frame of the rig's central model: its own, or its best fit's.
-  const Rigid bodyFromSensor =
-      CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount).worldFromViewpoint(rig) * model.cameraFromViewpoint().inverse();
+  const Rigid bodyFromSensor = worldFromModelCamera(CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount), rig, camera);
 
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"

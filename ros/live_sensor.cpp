@@ -20,6 +20,7 @@
 #include "frame_planes.h"
 #include "image.h"
 #include "interrupts.h"
+#include "intrinsics_files.h"
 #include "placement.h"
 #include "ros_camera_info.h"
 #include "ros_transport.h"
@@ -142,8 +143,8 @@ std::string cameraFrame(const LiveSensorOptions& options, const std::string& cam
 // Camera `camera`'s frame in the robot's: the frame chain of a robot at the origin.
 ros1::Transform baseFromCamera(const DatasetPlan& plan, size_t camera, const LiveSensorOptions& options) {
   const CameraSetup& setup = plan.setups()[camera];
-  const Rigid chain =
-      placementOf(plan, camera, LivePose{}).worldFromCamera(setup.rig);
+  // The frame of the intrinsics camera_info carries (a physical rig's: its best fit's).
+  const Rigid chain = worldFromModelCamera(placementOf(plan, camera, LivePose{}), setup.rig, *setup.model);
   const Eigen::Quaterniond q(chain.linear());
   ros1::Transform t;
   t.parent = options.baseFrame;
