@@ -44,6 +44,10 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
       throw InputError("--record: " + showPath(a.options.recordBag) + ": exists already (a bag is never overwritten)");
   }
   stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
+  a.options.onWaitingForMaster = [](const std::string& uri) {
+    std::printf("ros: waiting for a ROS master at %s (start one with `roscore`, or set ROS_MASTER_URI)\n", uri.c_str());
+    std::fflush(stdout);
+  };
   const LiveSensorReport report = runLiveSensor(spec, a.options, [&](const LiveSensorTopics& used) {
     const std::string from = a.options.tfParent.empty() ? used.odometry
                                                         : "tf (" + a.options.baseFrame + " in " + a.options.tfParent + ")";
@@ -52,6 +56,10 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
     std::printf("ros: ready: poses from %s, images on %s\n", from.c_str(), topics.c_str());
     std::fflush(stdout);
   });
+  if (report.stoppedWaitingForMaster) {
+    std::printf("ros: stopped while waiting for the ROS master: no pose rendered\n");
+    return;
+  }
   std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters\n",
               static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
               static_cast<long long>(report.refused), static_cast<long long>(report.newMasters));

@@ -400,10 +400,13 @@ struct LivePoses {
   }
 };
 
-ros1::Transport& connect(std::optional<ros1::Transport>& transport, const LiveSensorOptions& options) {
+// The transport, registered with a master; nullptr if a signal came while waiting for one.
+ros1::Transport* connect(std::optional<ros1::Transport>& transport, const LiveSensorOptions& options) {
   try {
-    return transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds,
-                             [] { return interruptRequested().load(); }, options.rosArguments);
+    return &transport.emplace("omnicam_" + options.robot, options.masterWaitSeconds,
+                              [] { return interruptRequested().load(); }, options.rosArguments, options.onWaitingForMaster);
+  } catch (const ros1::StoppedWaitingForMaster&) {
+    return nullptr;
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("ros: ") + e.what());
   } catch (const std::runtime_error& e) {
@@ -420,7 +423,13 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   // Declared before the transport: its destructor stops the callbacks before these go.
   LivePoses poses(options);
   std::optional<ros1::Transport> connection;
-  ros1::Transport& transport = connect(connection, options);
+  ros1::Transport* connected = connect(connection, options);
+  if (!connected) {
+    LiveSensorReport stopped;
+    stopped.stoppedWaitingForMaster = true;
+    return stopped;
+  }
+  ros1::Transport& transport = *connected;
   poses.transport = &transport;
   if (!options.recordBag.empty()) startRecording(transport, options.recordBag);
   const std::vector<RosCameraInfo> infos = announceCameras(transport, plan, options);

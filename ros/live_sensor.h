@@ -46,12 +46,15 @@ struct LiveSensorOptions {
   // moves the node's name only.
   std::vector<std::string> rosArguments;
   double masterWaitSeconds = 30.0;
+  // Told the master's URI once if the master does not answer at once (the node then waits).
+  std::function<void(const std::string& masterUri)> onWaitingForMaster;
   // When set: every message published also goes into this ROS bag (written under a temporary
   // name, renamed when the sensor stops). The path must be a new file (checkOutputFile).
   std::string recordBag;
 };
 
 struct LiveSensorReport {
+  bool stoppedWaitingForMaster = false;  // a signal came before any master answered
   int64_t rendered = 0, refused = 0;
   int64_t dropped = 0;  // poses a newer one replaced before they were rendered
   int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again

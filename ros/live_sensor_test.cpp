@@ -15,7 +15,10 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <tf2_msgs/TFMessage.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -887,6 +890,40 @@ TEST_P(LiveSensorStops, OnItsSignalWithExitCodeZero) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Signals, LiveSensorStops, ::testing::Values(SIGINT, SIGTERM));
+
+// With no master, the node says at once that it waits for one, and where; a signal then ends it
+// with exit code 0, as it does once connected. The port is this test's, bound and never listened
+// on: nothing answers there.
+class LiveSensorWaitingForAMaster : public ::testing::TestWithParam<int> {};
+
+TEST_P(LiveSensorWaitingForAMaster, SaysSoAndStopsOnItsSignalWithExitCodeZero) {
+  const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_nomaster_" + std::to_string(::getpid()));
+  fs::create_directories(root);
+  std::ofstream(root / "spec.json") << specText();
+  const int port = ::socket(AF_INET, SOCK_STREAM, 0);
+  ASSERT_GE(port, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof address;
+  ASSERT_EQ(::bind(port, reinterpret_cast<sockaddr*>(&address), sizeof address), 0);
+  ASSERT_EQ(::getsockname(port, reinterpret_cast<sockaddr*>(&address), &length), 0);
+  const std::string uri = "http://127.0.0.1:" + std::to_string(ntohs(address.sin_port));
+  TestDaemons node;
+  ASSERT_TRUE(node.start("omnicam ros", {OMNICAM_BINARY, "ros", (root / "spec.json").string()}, root / "node.out",
+                         {"ROS_MASTER_URI=" + uri, "ROS_HOME=" + (root / "ros_home").string(), "ROS_IP=127.0.0.1"}));
+  const std::string waiting = "ros: waiting for a ROS master at " + uri + " (start one with `roscore`";
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return readFile(root / "node.out").find(waiting) != std::string::npos; }, 120.0))
+      << readFile(root / "node.out");
+  ::kill(node.pid("omnicam ros"), GetParam());
+  EXPECT_EQ(node.waitForExit("omnicam ros", 60.0), 0) << readFile(root / "node.out");
+  EXPECT_NE(readFile(root / "node.out").find("ros: stopped while waiting for the ROS master: no pose rendered"),
+            std::string::npos) << readFile(root / "node.out");
+  ::close(port);
+  fs::remove_all(root);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, LiveSensorWaitingForAMaster, ::testing::Values(SIGINT, SIGTERM));
 
 }  // namespace
 }  // namespace omnicam

@@ -216,7 +216,7 @@ struct Transport::Impl {
 };
 
 Transport::Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested,
-                     const std::vector<std::string>& rosArguments)
+                     const std::vector<std::string>& rosArguments, const std::function<void(const std::string&)>& waiting)
     : impl_(std::make_unique<Impl>()) {
   ros::M_string remappings;
   for (const std::string& argument : rosArguments) {
@@ -230,9 +230,11 @@ Transport::Transport(const std::string& name, double masterWaitSeconds, const st
     throw std::invalid_argument(e.what());
   }
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(masterWaitSeconds);
+  bool told = false;
   while ((impl_->masterPid = masterPid()) == 0) {
     if (ros::WallTime::now() > deadline) throw std::runtime_error("no ROS master at " + ros::master::getURI());
-    if (stopRequested && stopRequested()) throw std::runtime_error("stopped while waiting for the ROS master");
+    if (stopRequested && stopRequested()) throw StoppedWaitingForMaster("stopped while waiting for the ROS master");
+    if (waiting && !told) waiting(ros::master::getURI()), told = true;
     ros::WallDuration(0.05).sleep();
   }
   impl_->node = std::make_unique<ros::NodeHandle>();

@@ -4,6 +4,7 @@
 // spinner thread; a handler must hand work off rather than render there.
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,12 @@ namespace omnicam::ros1 {
 // Why `name` is not a valid ROS graph name (a topic or a node's), "" if it is.
 std::string invalidGraphName(const std::string& name);
 
+// Thrown by Transport's constructor when its caller asked it to stop while it waited for a master.
+class StoppedWaitingForMaster : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class Transport {
  public:
   // Registers node `name` with the master of ROS_MASTER_URI (roscpp reads the environment);
@@ -21,10 +28,12 @@ class Transport {
   // `from:=to`: remappings (`/robot/front/image_raw:=/camera`), `__name:=`, `__ns:=`, `__log:=`
   // (roslaunch's); std::invalid_argument for one that is not, or a name ROS refuses. (A private
   // parameter `_name:=value` makes roscpp wait for a master without limit: callers refuse it.)
-  // Throws std::runtime_error if the master cannot be reached within `masterWaitSeconds`, or if
-  // `stopRequested` (asked while it waits) says so.
+  // Throws std::runtime_error if the master cannot be reached within `masterWaitSeconds`, and
+  // StoppedWaitingForMaster if `stopRequested` (asked while it waits) says so. `waiting`, if set,
+  // is told the master's URI once when the master does not answer at once.
   Transport(const std::string& name, double masterWaitSeconds, const std::function<bool()>& stopRequested = {},
-            const std::vector<std::string>& rosArguments = {});
+            const std::vector<std::string>& rosArguments = {},
+            const std::function<void(const std::string& masterUri)>& waiting = {});
   ~Transport();
   Transport(const Transport&) = delete;
   Transport& operator=(const Transport&) = delete;
