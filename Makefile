@@ -19,7 +19,8 @@ DEBIAN_PACKAGES := build-essential cmake pkg-config python3 \
   python3-setuptools python3-wheel python3-pip python3-venv python3-build ccache \
   libroscpp-dev libimage-transport-dev libtf2-ros-dev librosbag-dev libcamera-info-manager-dev \
   libdiagnostic-updater-dev libimage-geometry-dev libsensor-msgs-dev libnav-msgs-dev \
-  python3-rosmaster python3-rospy python3-rostopic python3-roslaunch python3-nav-msgs rosout
+  python3-rosmaster python3-rospy python3-rostopic python3-roslaunch python3-nav-msgs rosout \
+  python3-diagnostic-msgs python3-tf2-msgs
 
 .PHONY: deps build test demo bench clean fuzz-build fuzz
 

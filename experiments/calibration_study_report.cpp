@@ -191,7 +191,8 @@ void idealRigTable(std::ostringstream& md, const CalibrationStudyResults& r, con
     for (CornerSource source : {CornerSource::Exact, CornerSource::Detected, CornerSource::DetectedNoisy}) {
       const SourceSummary s = summarise(rig, source, o);
       if (s.failed == s.runs) continue;
-      const auto rel = [](double v, double truth) { return fixedDecimals(100.0 * (v - truth) / std::abs(truth), 2) + " %"; };
+      // The change relative to the closed form: γy < 0 grown in magnitude reads + as γx does.
+      const auto rel = [](double v, double truth) { return fixedDecimals(100.0 * (v - truth) / truth, 2) + " %"; };
       md << "| " << cornerSourceTitle(source) << " | " << fixedDecimals(s.xi, 6) << " (" << rel(s.xi, t.xi) << ") | " << fixedDecimals(s.gammaX, 3) << " ("
          << rel(s.gammaX, t.gammaX) << ") | " << fixedDecimals(s.gammaY, 3) << " (" << rel(s.gammaY, t.gammaY) << ") | " << fixedDecimals(s.cx, 3)
          << " | " << fixedDecimals(s.cy, 3) << " | " << fixedDecimals(s.rms, 3) << " |\n";
