@@ -12,6 +12,7 @@
 #include "errors.h"
 #include "interrupts.h"
 #include "live_sensor.h"
+#include "number_format.h"
 
 namespace omnicam::cli {
 
@@ -60,9 +61,12 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
     std::printf("ros: stopped while waiting for the ROS master: no pose rendered\n");
     return;
   }
-  std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters\n",
+  std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters",
               static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
               static_cast<long long>(report.refused), static_cast<long long>(report.newMasters));
+  if (a.options.rateHz > 0)
+    std::printf(", %s skipped (no pose within --max-pose-age)", countOf(report.skippedTicks, "tick").c_str());
+  std::printf("\n");
 }
 
 }  // namespace

@@ -350,9 +350,15 @@ struct LivePoses {
   std::optional<LivePose> latest;  // at a fixed rate from odometry: the newest pose
   ros1::Stamp lastNow;             // ROS time when the last pose or tick came
   std::atomic<int64_t> refused = 0;
+  std::atomic<int64_t> skippedTicks = 0;  // at a fixed rate: ticks with no pose near enough
 
   void refuse(const std::string& why, const ros1::Stamp& stamp) {
     transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
+  }
+  // A tick is not a pose: counted apart, so that a robot that stops sending odometry is not
+  // taken for one whose poses are wrong.
+  void skipTick(const std::string& why, const ros1::Stamp& stamp) {
+    transport->publish(diagnostic(options, "tick skipped: " + why, stamp, ++skippedTicks));
   }
   void render(const LivePose& live) {
     if (newest.put(live))
@@ -386,7 +392,7 @@ struct LivePoses {
     if (const std::optional<LivePose> live = poseAtTick(*latest, stamp, options.maxPoseAgeSeconds, problem))
       render(*live);
     else
-      refuse(problem, stamp);
+      skipTick(problem, stamp);
   }
   void subscribe() {
     if (options.tfParent.empty())
@@ -467,6 +473,7 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   if (!options.recordBag.empty()) finishRecording(transport, options.recordBag);
   report.dropped = poses.newest.dropped();
   report.refused = poses.refused;
+  report.skippedTicks = poses.skippedTicks;
   return report;
 }
 

@@ -57,6 +57,7 @@ struct LiveSensorReport {
   bool stoppedWaitingForMaster = false;  // a signal came before any master answered
   int64_t rendered = 0, refused = 0;
   int64_t dropped = 0;  // poses a newer one replaced before they were rendered
+  int64_t skippedTicks = 0;  // at a fixed rate: ticks that had no pose within maxPoseAgeSeconds
   int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again
 };
 
