@@ -1,6 +1,7 @@
 #include "dataset_plan.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <cctype>
 #include <cmath>
 #include <functional>
@@ -162,12 +163,14 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
   json header;
   header["format"] = kManifestFormat;
   header["spec"] = spec.json;
-  header["spec_file"] = spec.file;
+  // Names, not paths from the working directory: a run from another folder, or a shard on
+  // another machine, writes the same manifest and COCO info.
+  header["spec_file"] = std::filesystem::path(spec.file).filename().string();
   header["spec_sha256"] = spec.sha256;
   header["tool"] = {{"name", "omnicam"}, {"version", fastRendererVersion()}};
   header["engine"] = {{"name", engine.name()}, {"version", engine.version()}, {"mode", engine.mode()},
                       {"mode_options", engine.modeOptions()}};
-  header["scene"] = {{"path", scene.path}, {"name", scene.name}, {"sha256", scene.sha256}};
+  header["scene"] = {{"path", spec.json.value("scene", scene.path)}, {"name", scene.name}, {"sha256", scene.sha256}};
   header["settings"] = {{"spp", spec.request.spp}, {"shading", shadingName(spec.request.shading)},
                         {"frame_interval_s", spec.frameIntervalSeconds},
                         {"aov_sampling", "point-sampled at pixel centres (i + 0.5, j + 0.5)"},

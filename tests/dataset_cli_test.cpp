@@ -597,6 +597,23 @@ TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   EXPECT_NE(bad.out.find("FAIL: "), std::string::npos) << bad.out;
 }
 
+// The folder a run writes does not depend on the working directory it ran from: the manifest
+// and COCO's info name the spec by its file name and the scene as the spec gives it.
+TEST_F(DatasetCliTest, TheFolderDoesNotDependOnTheWorkingDirectory) {
+  writeFloorScene();
+  fs::create_directories(dir_ / "specs/deeper");
+  write("specs/s.json", R"({"format": "omnicam-dataset/1", "scene": "../floor.json", "size": 32,
+    "poses": {"list": [[0, 0, 0], [0.5, 0.2, 30]]}, "outputs": {"coco": true}})");
+  const std::string run = std::string(OMNICAM_BINARY) + " dataset ";
+  ASSERT_EQ(testing::runShell("cd " + path("") + " && " + run + "specs/s.json -o a 2>&1").code, 0);
+  ASSERT_EQ(testing::runShell("cd " + path("specs/deeper") + " && " + run + "../s.json -o ../../b 2>&1").code, 0);
+  EXPECT_EQ(snapshot(dir_ / "a"), snapshot(dir_ / "b"));
+  const json manifest = json::parse(readFile(dir_ / "a/manifest.json"));
+  EXPECT_EQ(manifest["spec_file"], "s.json");
+  EXPECT_EQ(manifest["scene"]["path"], "../floor.json");
+  EXPECT_EQ(json::parse(readFile(dir_ / "a/cam0/coco.json"))["info"]["description"], "omnicam dataset s.json, camera cam0");
+}
+
 // A shard joins only the shards of its own dataset and count; a whole run does not write among
 // shards; --status does not send users to resume a folder a run holds (the test holds it).
 TEST_F(DatasetCliTest, ShardsOfAnotherDatasetOrCountAreRefusedAndStatusSeesARunAtWork) {
