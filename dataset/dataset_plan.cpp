@@ -363,8 +363,25 @@ CameraPlacement DatasetPlan::placement(int frame, size_t camera) const {
   return {poses_[static_cast<size_t>(frame)], velocities_[static_cast<size_t>(frame)], setups_[camera].camera->mount, robotTilt(frame)};
 }
 
+namespace {
+
+// The spec's scene; a missing file is the spec's mistake, named by its field with where it was
+// looked for (a relative path is the spec's folder's, not the working directory's).
+Scene loadSpecScene(const DatasetSpec& spec) {
+  std::error_code ec;
+  if (!std::filesystem::exists(spec.scene, ec)) {
+    const std::string given = spec.json.value("scene", spec.scene);
+    throw InputError(showPath(spec.file) + ": scene: no such file " + showPath(spec.scene) +
+                     (std::filesystem::path(given).is_absolute() ? "" : " (" + quote(given) + " is relative to the spec's folder)") +
+                     bundledSceneHint(given));
+  }
+  return loadScene(spec.scene, {spec.allowOutsideFiles});
+}
+
+}  // namespace
+
 DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& options)
-    : spec_(spec), scene_(loadScene(spec.scene, {spec.allowOutsideFiles})) {
+    : spec_(spec), scene_(loadSpecScene(spec)) {
   setups_ = cameraSetups(spec, scene_);
   double topHeight = 0.0;
   for (const CameraSetup& setup : setups_) topHeight = std::max(topHeight, setup.rig.height);

@@ -310,6 +310,8 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
   DatasetOutputs& out = spec.outputs;
   if (spec.layout == DatasetLayout::Multilayer && o.has("rgb"))
     o.fail("rgb", "the multilayer layout keeps the colour in each frame's OpenEXR (half, linear); leave rgb out");
+  if (o.has("rgb") && !o.raw("rgb").is_string())  // the colour is always written: only its format is chosen
+    o.fail("rgb", "must be \"png\" or \"exr\" (the colour is always written; got " + jsonTypeName(o.raw("rgb")) + ")");
   out.rgb = o.string("rgb", out.rgb);
   if (out.rgb != "png" && out.rgb != "exr") o.fail("rgb", "must be \"png\" or \"exr\"");
   for (OutputKind kind : switchableOutputs()) {
@@ -328,6 +330,8 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
       }
       out.cocoClasses = classes;
       coco->finish();
+    } else if (outputRow(kind).classFilter && o.has(name) && !o.raw(name).is_boolean()) {
+      o.fail(name, "must be true, false or {\"classes\": [class names]} (got " + jsonTypeName(o.raw(name)) + ")");
     } else {
       on = o.boolean(name, on);
     }

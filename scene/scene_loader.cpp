@@ -440,24 +440,23 @@ RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const st
   return readRig(JsonFields(rig, file, where));
 }
 
+std::string bundledSceneHint(const std::string& name) {
+  std::error_code ec;
+  const std::filesystem::path given(name);
+  const bool bareName = given.has_filename() && !std::filesystem::exists(given, ec) &&
+                        (!given.has_parent_path() || given.parent_path() == "scenes");
+  try {
+    const std::filesystem::path bundled = dataFile("scenes") / given.filename();
+    if (bareName && std::filesystem::is_regular_file(bundled, ec)) return "; omnicam comes with " + showPath(bundled.string());
+  } catch (const std::runtime_error&) {  // no data root to look in: no hint
+  }
+  return "";
+}
+
 Scene loadScene(const std::string& file, const SceneLoadOptions& options) {
   std::string why;
   const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
-  if (!text) {
-    // A bundled scene's name given outside the tree it lives in (an installed package's user):
-    // where omnicam's own copy is.
-    std::error_code ec;
-    const std::filesystem::path given(file);
-    const bool bareName = given.has_filename() && !std::filesystem::exists(given, ec) &&
-                          (!given.has_parent_path() || given.parent_path() == "scenes");
-    std::string hint;
-    try {
-      const std::filesystem::path bundled = dataFile("scenes") / given.filename();
-      if (bareName && std::filesystem::is_regular_file(bundled, ec)) hint = "; omnicam comes with " + showPath(bundled.string());
-    } catch (const std::runtime_error&) {  // no data root to look in: no hint
-    }
-    throw InputError(showPath(file) + ": cannot open scene file (" + why + ")" + hint);
-  }
+  if (!text) throw InputError(showPath(file) + ": cannot open scene file (" + why + ")" + bundledSceneHint(file));
   return loadSceneFromText(*text, file, options);
 }
 

@@ -18,6 +18,10 @@ struct SceneLoadOptions {
   bool allowOutsideFolder = false;
 };
 
+// A bundled scene's name given where no such file is (an installed package's user): "; omnicam
+// comes with PATH" naming omnicam's own copy, else empty.
+std::string bundledSceneHint(const std::string& name);
+
 // Loads and validates a scene file. Anything wrong — unknown field, wrong type, out-of-range
 // value, duplicate name or key, missing texture, a file outside the scene's folder — throws
 // InputError with one line "<file>: <field>: <what is wrong>".

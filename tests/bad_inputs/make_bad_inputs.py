@@ -326,6 +326,11 @@ def main():
     # A typo of a field its reader looks for is named as such, before "give exactly one of".
     dataset_spec("motion_typo", motion={"between_pose": True})
     dataset_spec("timestamps_typo", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamp_s": [0, 1]})
+    # An output's value of the wrong type names every form it takes; the colour cannot be turned off.
+    dataset_spec("coco_yes", outputs={"coco": "yes"})
+    dataset_spec("rgb_false", outputs={"rgb": False})
+    # A bundled scene's bare name in a spec elsewhere: where the spec looked, and omnicam's copy.
+    dataset_spec("bundled_scene", scene="robocup2006.json")
     # Waypoints driven in time give the frames their motion: a refusal of it names timestamps_s.
     dataset_spec("timestamps_blender_rolling", engine="blender", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [0, 1]},
                  cameras=[{"name": "c", "rig": {"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}}])
