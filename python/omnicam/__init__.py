@@ -52,6 +52,36 @@ _SUBMODULES = frozenset({"_omnicam", "dataset"})
 _INCOMPATIBLE = ("incompatible function arguments", "incompatible constructor arguments")
 _OVERLOAD = _re.compile(r"^\s+\d+\. [\w.]*\((.*)\)(?: -> .*)?$", _re.M)
 _PARAMETER = _re.compile(r"(?:^|, )\*?(\w+):")
+_TYPED = _re.compile(r"(?:^|, )\*?(\w+): ([^=,\[]+(?:\[[^=]*?\])?)")
+
+
+def _fits(value: _typing.Any, annotation: str) -> bool:
+    """Whether `value` can be what pybind11 names `annotation` (the simple cases; else True)."""
+    annotation = annotation.strip()
+    optional = _re.fullmatch(r"Optional\[(.*)\]", annotation)
+    if optional:
+        return value is None or _fits(value, optional.group(1))
+    if annotation == "int":
+        return isinstance(value, int) and not isinstance(value, bool)
+    if annotation == "float":
+        return isinstance(value, (int, float)) and not isinstance(value, bool)
+    if annotation == "bool":
+        return isinstance(value, bool)
+    if annotation == "str":
+        return isinstance(value, str)
+    if annotation == "List[str]":
+        return isinstance(value, (list, tuple)) and all(isinstance(item, str) for item in value)
+    return True
+
+
+def _wrong_keyword(message: str, kwargs: _typing.Dict[str, _typing.Any]) -> _typing.Optional[str]:
+    """The first keyword whose value cannot be its parameter's type, in every overload, described."""
+    overloads = [dict(_TYPED.findall(overload)) for overload in _OVERLOAD.findall(message)]
+    for key, value in kwargs.items():
+        types = [typed[key] for typed in overloads if key in typed]
+        if types and not any(_fits(value, annotation) for annotation in types):
+            return f"{key} must be {' or '.join(sorted(set(t.strip() for t in types)))} (got {type(value).__name__} {value!r})"
+    return None
 
 
 def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing.Callable[..., _typing.Any]:
@@ -69,6 +99,9 @@ def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing
                     close = _difflib.get_close_matches(key, sorted(names), n=1)
                     hint = f" (did you mean {close[0]}?)" if close else f" (it takes {', '.join(sorted(names))})"
                     raise TypeError(f"{name}(): unknown keyword argument {key!r}{hint}") from None
+            wrong = _wrong_keyword(message, kwargs)
+            if wrong:
+                raise TypeError(f"{name}(): {wrong}") from None
             raise
 
     return call

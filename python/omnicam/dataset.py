@@ -5,6 +5,7 @@ read as untrusted input: the manifest strictly, files only inside the folder, li
 followed, hashes checked on request.
 """
 
+import difflib
 import operator
 import os
 
@@ -54,7 +55,9 @@ class Dataset:
         self.outputs = tuple(written if outputs is None else outputs)
         for output in self.outputs:
             if output not in written:
-                raise KeyError(f"output {output!r} is not in {self.path} (written: {', '.join(written)})")
+                close = difflib.get_close_matches(str(output), written, n=1)
+                hint = f"did you mean {close[0]}? " if close else ""
+                raise KeyError(f"output {output!r} is not in {self.path} ({hint}written: {', '.join(written)})")
 
     # The reader holds the whole manifest and open state: workers open their own.
     def __getstate__(self):

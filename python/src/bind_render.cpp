@@ -39,6 +39,7 @@ std::vector<OutputKind> imageOutputs(const std::vector<std::string>& names) {
   for (OutputKind kind : allOutputKinds())
     if (!isAnnotation(kind) && outputRow(kind).plane != OutputPlane::Frame)
       choices += (choices.empty() ? "" : ", ") + std::string(outputName(kind));
+  if (names.empty()) throw InputError("outputs: name at least one of " + choices);  // else an empty dict, silently
   std::vector<OutputKind> kinds;
   for (const std::string& name : names) {
     const auto kind = outputNamed(name);

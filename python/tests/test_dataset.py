@@ -101,6 +101,8 @@ def test_unknown_cameras_outputs_and_folders_are_refused(folder, tmp_path):
         omnicam.Dataset(folder, camera="side")
     with pytest.raises(KeyError, match="output 'flow'"):
         omnicam.Dataset(folder, outputs=["flow"])
+    with pytest.raises(KeyError, match="output 'dept' .*did you mean depth\\?"):
+        omnicam.Dataset(folder, outputs=["dept"])
     with pytest.raises(omnicam.InputError):
         omnicam.Dataset(tmp_path / "nothing")
     assert omnicam.Dataset(folder).verify()["ok"]
