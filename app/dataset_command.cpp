@@ -90,7 +90,8 @@ int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
     count = counts.front();
   }
   const MergeResult r = mergeDatasetShards(dir, count);
-  std::printf("%s: merged %d shards: %d of %d frames finished%s\n", dir.c_str(), count, r.finished, r.frames,
+  const std::string merged = r.started == count ? countOf(count, "shard") : std::to_string(r.started) + " of " + countOf(count, "shard");
+  std::printf("%s: merged %s: %d of %d frames finished%s\n", dir.c_str(), merged.c_str(), r.finished, r.frames,
               r.complete() ? " (complete)" : "");
   if (!r.complete()) printShardStates(dir, count);
   return r.complete() ? 0 : 1;

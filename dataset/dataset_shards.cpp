@@ -117,6 +117,7 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     }
     const ShardManifest read = readShardManifest(dir, i, count);
     const DatasetManifest& shard = read.manifest;
+    ++result.started;
     if (!merged) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");

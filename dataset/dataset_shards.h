@@ -33,6 +33,7 @@ std::string shardsConflict(const std::string& dir, const nlohmann::json& header,
 
 struct MergeResult {
   int frames = 0, finished = 0;
+  int started = 0;  // shards with a manifest, of the count merged
   std::vector<int> incompleteShards;
   bool complete() const { return incompleteShards.empty() && finished == frames; }
 };

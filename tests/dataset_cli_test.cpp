@@ -641,8 +641,13 @@ TEST_F(DatasetCliTest, ShardsOfAnotherDatasetOrCountAreRefusedAndStatusSeesARunA
     const auto busy = omnicam("dataset --status " + path("ds"));
     EXPECT_NE(busy.out.find("(a run is writing it now: wait for it to end)"), std::string::npos) << busy.out;
   }
+  const auto partial = omnicam("dataset --merge " + path("ds"));  // one shard of two has run
+  EXPECT_EQ(partial.code, 1);
+  EXPECT_NE(partial.out.find(": merged 1 of 2 shards: 2 of 4 frames finished\n"), std::string::npos) << partial.out;
   ASSERT_EQ(omnicam("dataset " + a + " -o " + path("ds") + " --shard 1/2").code, 0);
-  EXPECT_EQ(omnicam("dataset --merge " + path("ds")).code, 0);
+  const auto merged = omnicam("dataset --merge " + path("ds"));
+  EXPECT_EQ(merged.code, 0);
+  EXPECT_NE(merged.out.find(": merged 2 shards: 4 of 4 frames finished (complete)"), std::string::npos) << merged.out;
 }
 
 // The thesis' modes draw approximate colour under exact AOVs: a dataset of them says so, and an
