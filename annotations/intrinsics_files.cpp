@@ -114,9 +114,9 @@ std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera) 
   return out.str();
 }
 
-Rigid worldFromModelCamera(const CameraPlacement& placement, const RigSpec& rig, const Camera& camera) {
-  if (dynamic_cast<const LensCamera*>(&camera)) return placement.worldFromCamera(rig);
-  return placement.worldFromViewpoint(rig) * centralModelOf(camera).cameraFromViewpoint().inverse();
+Rigid worldFromModelCamera(const CameraPlacement& placement, const Camera& camera) {
+  if (dynamic_cast<const LensCamera*>(&camera)) return placement.worldFromCamera(camera.rig());
+  return placement.worldFromViewpoint(camera.rig()) * centralModelOf(camera).cameraFromViewpoint().inverse();
 }
 
 std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras) {

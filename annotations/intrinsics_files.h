@@ -35,7 +35,7 @@ void writeIntrinsicsFiles(const std::string& dir, const std::string& name, const
 // model's (a physical rig's best fit has its own frame: opencv.yaml's camera_from_rig), a lens
 // camera's own. Every output that gives those intrinsics with a pose — EuRoC's T_BS, Kalibr's
 // T_cn_cnm1, ROS's tf — places this frame; poses.tum places the rig's camera frame.
-Rigid worldFromModelCamera(const CameraPlacement& placement, const RigSpec& rig, const Camera& camera);
+Rigid worldFromModelCamera(const CameraPlacement& placement, const Camera& camera);
 
 // Kalibr's camchain of `cameras` as a calibration bag shows their images (dataset/calibration_bag.h):
 // a mirror camera's image flipped top to bottom, so that its omni intrinsics are

@@ -179,7 +179,7 @@ TEST(IntrinsicsFiles, APhysicalRigsModelIsPlacedInItsFittedFrame) {
       sum += (Vec2(projected[n][0] + 0.5, projected[n][1] + 0.5) - ours[n]).squaredNorm();
     return std::sqrt(sum / world.size());
   };
-  const double fitted = rmsPx(worldFromModelCamera(placement, rig, camera));
+  const double fitted = rmsPx(worldFromModelCamera(placement, camera));
   const double rigFrame = rmsPx(placement.worldFromCamera(rig));
   double statedMax = 0.0;  // the fit's stated worst residual at 1 m and beyond
   for (const auto& r : camera.centralApproximation().residuals)

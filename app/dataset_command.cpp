@@ -106,23 +106,10 @@ int runVerify(const std::string& dir) {
   return r.ok() ? 0 : 1;
 }
 
-// The shard count whose shards have all finished, if any: what --merge completes.
-std::optional<int> finishedShardCount(const std::string& dir) {
-  for (int count : shardCountsIn(dir)) {
-    const std::vector<ShardState> states = shardStates(dir, count, false);
-    if (std::all_of(states.begin(), states.end(), [](const ShardState& s) { return s.complete; })) return count;
-  }
-  return std::nullopt;
-}
-
-// What finishes an incomplete dataset: merging finished shards, or running again.
+// What finishes an incomplete dataset: waiting for the run at work, the shards, or running again.
 std::string nextStep(const std::string& dir) {
   if (wholeDatasetRunWriting(dir)) return "a run is writing it now: wait for it to end";
-  if (const std::optional<int> count = finishedShardCount(dir))
-    return "every shard of " + std::to_string(*count) + " is finished: merge them with omnicam dataset --merge " + shellPath(dir);
-  if (const std::vector<int> counts = shardCountsIn(dir); !counts.empty())
-    return "run the shards not yet finished (--shard I/" + (counts.size() == 1 ? std::to_string(counts.front()) : "N") +
-           "), then omnicam dataset --merge " + shellPath(dir);
+  if (!shardCountsIn(dir).empty()) return unmergedShardsNextStep(dir);
   return "run the same command again to resume";
 }
 

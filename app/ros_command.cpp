@@ -64,7 +64,7 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
   std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters",
               static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
               static_cast<long long>(report.refused), static_cast<long long>(report.newMasters));
-  if (a.options.rateHz > 0)
+  if (a.options.rateHz > 0 && a.options.tfParent.empty())  // --max-pose-age is odometry's
     std::printf(", %s skipped (no pose within --max-pose-age)", countOf(report.skippedTicks, "tick").c_str());
   std::printf("\n");
 }

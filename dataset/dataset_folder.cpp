@@ -1,6 +1,12 @@
 #include "dataset_folder.h"
 
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <limits>
 
 #include "errors.h"
@@ -30,7 +36,24 @@ DatasetManifest readDatasetManifest(const std::string& dir, const std::string& n
   return readDatasetManifest(SafeFolder(dir), name);
 }
 
-bool wholeDatasetRunWriting(const std::string& dir) { return !SafeFolder(dir).tryClaim(/*shared=*/true); }
+bool wholeDatasetRunWriting(const std::string& dir) {
+  // Read from the kernel's table of locks, not probed with a claim of our own: a probe would, for
+  // an instant, make a run starting then find the folder taken.
+  struct stat folder {};
+  if (::lstat(dir.c_str(), &folder) != 0 || !S_ISDIR(folder.st_mode)) return false;
+  char device[32];
+  std::snprintf(device, sizeof device, "%02x:%02x:", major(folder.st_dev), minor(folder.st_dev));
+  const std::string held = device + std::to_string(folder.st_ino);
+  std::ifstream locks("/proc/locks");
+  for (std::string line; std::getline(locks, line);) {
+    if (line.find("->") != std::string::npos) continue;  // a process waiting for the lock, not holding it
+    std::istringstream words(line);
+    std::string number, kind, mode, access, pid, where;
+    words >> number >> kind >> mode >> access >> pid >> where;
+    if (kind == "FLOCK" && access == "WRITE" && where == held) return true;
+  }
+  return false;
+}
 
 DatasetVerifyResult verifyDataset(const std::string& path, const std::string& manifestName) {
   const SafeFolder dir(path);

@@ -22,8 +22,8 @@ struct DatasetStatus {
 };
 DatasetStatus datasetStatus(const std::string& dir);
 
-// Whether a whole-dataset run holds DIR now (its claim, dataset_runner.cpp). Probed with a shared
-// claim of an instant: shards running together hold shared claims and do not show.
+// Whether a whole-dataset run holds DIR now (its exclusive claim, dataset_runner.cpp), as the
+// kernel lists it in /proc/locks; shards running together hold shared claims and do not show.
 bool wholeDatasetRunWriting(const std::string& dir);
 
 struct DatasetVerifyResult {

@@ -42,7 +42,8 @@ std::string posesTum(size_t frames, const CameraSetup& setup, double interval, c
   out << "# omnicam dataset camera \"" << setup.camera->name << "\": timestamp tx ty tz qx qy qz qw\n";
   out << std::visit(Overloaded{[](const MirrorRig&) {
                                  return "# pose of the camera frame in the world (world_from_camera): origin at the mirror's effective\n"
-                                        "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml); world +Z up, metres\n";
+                                        "# viewpoint F', X forward, Y right, Z down (the frame of intrinsics/*.yaml; a physical rig's best\n"
+                                        "# fit has its own, opencv.yaml's camera_from_rig); world +Z up, metres\n";
                                },
                                [](const LensCameraSpec&) {
                                  return "# pose of the camera frame in the world (world_from_camera): origin at the lens' centre of\n"

@@ -152,7 +152,7 @@ void DatasetPlan::addCalibrationFiles() {
     // The bag's cameras for Kalibr, as the bag shows them (calibration_bag.h).
     std::vector<KalibrChainCamera> chain;
     for (size_t c = 0; c < setups_.size(); ++c)
-      chain.push_back({setups_[c].camera->name, setups_[c].model.get(), worldFromModelCamera(placement(0, c), setups_[c].rig, *setups_[c].model)});
+      chain.push_back({setups_[c].camera->name, setups_[c].model.get(), worldFromModelCamera(placement(0, c), *setups_[c].model)});
     StaticFile camchain{"kalibr_camchain", kKalibrCamchainPath, ""};
     try {
       camchain.text = kalibrCamchainYaml(chain);

@@ -83,11 +83,8 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
         throw InputError(showPath(options.dir) + ": " + conflict);
       return std::nullopt;
     }
-    const std::vector<int> counts = shardCountsIn(options.dir);
-    const std::string count = counts.empty() ? "N" : std::to_string(counts.front());
-    const std::string shown = shellPath(options.dir);
-    throw InputError(showPath(options.dir) + ": holds the shards of a dataset, not merged (shards/): run the shards not "
-                     "finished (--shard I/" + count + "; omnicam dataset --status " + shown + " lists them), then omnicam dataset --merge " + shown);
+    throw InputError(showPath(options.dir) + ": holds the shards of a dataset, not merged (shards/): " +
+                     unmergedShardsNextStep(options.dir));
   }
   if (!previous) {
     throw InputError(showPath(options.dir) + ": folder is not empty and has no " + kManifestName +

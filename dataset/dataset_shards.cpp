@@ -1,5 +1,6 @@
 #include "dataset_shards.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <regex>
 #include <set>
@@ -10,6 +11,7 @@
 #include "dataset_folder.h"
 #include "errors.h"
 #include "manifest.h"
+#include "markup.h"
 #include "safe_files.h"
 
 namespace omnicam {
@@ -86,6 +88,17 @@ std::vector<int> shardCountsIn(const std::string& dir) {
   return {counts.begin(), counts.end()};
 }
 
+std::string unmergedShardsNextStep(const std::string& path) {
+  const std::vector<int> counts = shardCountsIn(path);
+  for (int count : counts) {
+    const std::vector<ShardState> states = shardStates(path, count, false);
+    if (std::all_of(states.begin(), states.end(), [](const ShardState& s) { return s.complete; }))
+      return "every shard of " + std::to_string(count) + " is finished: merge them with omnicam dataset --merge " + shellPath(path);
+  }
+  return "run the shards not yet finished (--shard I/" + (counts.size() == 1 ? std::to_string(counts.front()) : "N") +
+         "; omnicam dataset --status " + shellPath(path) + " lists them), then omnicam dataset --merge " + shellPath(path);
+}
+
 std::string shardsConflict(const std::string& path, const json& header, int count) {
   const std::vector<int> counts = shardCountsIn(path);
   for (int other : counts)
@@ -93,13 +106,13 @@ std::string shardsConflict(const std::string& path, const json& header, int coun
       return "holds the shards of a run in " + std::to_string(other) + " (shards/shard-*-of-" + std::to_string(other) +
              ".json): shard it the same way, or give another folder";
   if (counts.empty()) return "";
+  // Each shard there was checked against those before it when it started: one stands for all.
   const SafeFolder dir(path);
   for (int i = 0; i < count; ++i) {
     const std::string name = shardManifestName(i, count);
     if (!hasShardManifest(dir, name)) continue;
-    if (const std::string difference = identityDifference(readShardManifest(dir, i, count).manifest.header, header);
-        !difference.empty())
-      return "holds the shards of another dataset (" + name + ": " + difference + "): give another folder";
+    const std::string difference = identityDifference(readShardManifest(dir, i, count).manifest.header, header);
+    return difference.empty() ? "" : "holds the shards of another dataset (" + name + ": " + difference + "): give another folder";
   }
   return "";
 }

@@ -26,6 +26,10 @@ std::vector<ShardState> shardStates(const std::string& dir, int count, bool chec
 // The shard counts (1 … kMaxShards) that have manifests in DIR/shards/ (normally one).
 std::vector<int> shardCountsIn(const std::string& dir);
 
+// What finishes a folder of shards not merged: merging them when every shard of a count is
+// finished, else running the shards left (one line, for messages).
+std::string unmergedShardsNextStep(const std::string& dir);
+
 // Why a run of the dataset `header` as a shard of `count` may not write into DIR beside the
 // shards there: shards of another count, or of another dataset (naming what differs). Empty if
 // it may (no shards, or only this dataset's of this count).

@@ -27,8 +27,8 @@ std::string floats(const std::vector<double>& values) {
 }
 
 // A lens camera's sensor.yaml: Kalibr's terms where Kalibr has the model, else omnicam's own.
-std::string lensSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const LensCamera& camera, double intervalS) {
-  const Rigid bodyFromSensor = worldFromModelCamera(CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount), rig, camera);
+std::string lensSensorYaml(const DatasetCamera& mount, const LensCamera& camera, double intervalS) {
+  const Rigid bodyFromSensor = worldFromModelCamera(CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount), camera);
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"
       << "# Body frame: the robot's (origin on the floor, x forward, y left, z up). Sensor frame: OpenCV's (X right,\n"
@@ -67,12 +67,12 @@ std::string shutterYaml(const RigSpec& rig) {
 }  // namespace
 
 std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, const Camera& camera, double intervalS) {
-  if (const auto* lens = dynamic_cast<const LensCamera*>(&camera)) return lensSensorYaml(mount, rig, *lens, intervalS) + shutterYaml(rig);
+  if (const auto* lens = dynamic_cast<const LensCamera*>(&camera)) return lensSensorYaml(mount, *lens, intervalS) + shutterYaml(rig);
   const CentralModel model = centralModelOf(camera);
   const MeiIntrinsics& k = model.intrinsics;
   // The camera's place on a level robot standing at the origin (the body frame is the robot's), in
   // the frame of the rig's central model: its own, or its best fit's.
-  const Rigid bodyFromSensor = worldFromModelCamera(CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount), rig, camera);
+  const Rigid bodyFromSensor = worldFromModelCamera(CameraPlacement(RobotPose{}, BodyVelocity{}, mount.mount), camera);
 
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"

@@ -28,29 +28,25 @@ std::string pov(const Vec3& p) {
 }
 // A direction: same axis swap, no unit scaling.
 std::string povDirection(const Vec3& d) { return "<" + num(d.x()) + ", " + num(d.z()) + ", " + num(d.y()) + ">"; }
-// A rigid placement of an object modelled in its local frame (POV axes, mm) as a POV-Ray
-// `matrix`: row k is the image of POV's local axis k (POV x, y, z = omnicam x, z, y), then the
-// translation.
-std::string povPlacement(const Rigid& worldFromLocal) {
-  const Eigen::Matrix3d& r = worldFromLocal.linear();
-  const Vec3 axes[3] = {r.col(0), r.col(2), r.col(1)};
-  const Vec3 t = worldFromLocal.translation() * kPovrayUnitsPerMetre;
-  std::string out = "matrix <";
-  for (const Vec3& a : axes) out += num(a.x()) + ", " + num(a.z()) + ", " + num(a.y()) + ", ";
-  return out + num(t.x()) + ", " + num(t.z()) + ", " + num(t.y()) + ">";
-}
-// An affine map from a pattern's frame to the world as a POV-Ray `matrix`: the images of the
-// pattern's x, y and z axes and of its origin, each given in omnicam's world (metres).
-std::string povAffine(const Vec3& xAxis, const Vec3& yAxis, const Vec3& zAxis, const Vec3& origin) {
+// An affine map as a POV-Ray `matrix`: the images of the local x, y and z axes and of the local
+// origin in omnicam's world (the origin in metres, the axes in metres per local unit over
+// `axesPerMetre`); POV-Ray's row k is the image of its axis k.
+std::string povAffine(const Vec3& xAxis, const Vec3& yAxis, const Vec3& zAxis, const Vec3& origin,
+                      double axesPerMetre = kPovrayUnitsPerMetre) {
   std::string out = "matrix <";
   for (const Vec3& a : {xAxis, yAxis, zAxis}) {
-    const Vec3 q = a * kPovrayUnitsPerMetre;
+    const Vec3 q = a * axesPerMetre;
     out += num(q.x()) + ", " + num(q.z()) + ", " + num(q.y()) + ", ";
   }
   const Vec3 t = origin * kPovrayUnitsPerMetre;
   return out + num(t.x()) + ", " + num(t.z()) + ", " + num(t.y()) + ">";
 }
-
+// A rigid placement of an object modelled in its local frame (POV axes, mm): POV's local x, y, z
+// are omnicam's x, z, y, unscaled (a local millimetre is a world one).
+std::string povPlacement(const Rigid& worldFromLocal) {
+  const Eigen::Matrix3d& r = worldFromLocal.linear();
+  return povAffine(r.col(0), r.col(2), r.col(1), worldFromLocal.translation(), 1.0);
+}
 // Where a texture's UV comes from on a shape. POV-Ray 3.7 gives UV to meshes and spheres only
 // (its sphere's is omnicam's: u the azimuth from +X, v from the bottom pole). A cylinder's UV is
 // its pattern wrapped by a cylindrical warp about the axis, a disc's the planar image map, each

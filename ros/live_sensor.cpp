@@ -144,7 +144,7 @@ std::string cameraFrame(const LiveSensorOptions& options, const std::string& cam
 ros1::Transform baseFromCamera(const DatasetPlan& plan, size_t camera, const LiveSensorOptions& options) {
   const CameraSetup& setup = plan.setups()[camera];
   // The frame of the intrinsics camera_info carries (a physical rig's: its best fit's).
-  const Rigid chain = worldFromModelCamera(placementOf(plan, camera, LivePose{}), setup.rig, *setup.model);
+  const Rigid chain = worldFromModelCamera(placementOf(plan, camera, LivePose{}), *setup.model);
   const Eigen::Quaterniond q(chain.linear());
   ros1::Transform t;
   t.parent = options.baseFrame;

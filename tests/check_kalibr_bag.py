@@ -5,7 +5,8 @@ python3 check_kalibr_bag.py DATASET TAG_ROWS TAG_COLUMNS TAG_SIZE TAG_SPACING MA
 - kalibr_camchain.yaml passes Kalibr's ConfigReader checks (kalibr_common/ConfigReader.py:
   CameraParameters.checkIntrinsics, checkDistortion, checkResolution, checkRosTopic; omni: five
   intrinsics, xi >= 0, focal lengths and principal point floats >= 0), and every camN > 0 has
-  T_cn_cnm1, equal to the cameras' poses in poses.tum;
+  T_cn_cnm1, equal to the cameras' poses in poses.tum (ideal rigs only: a physical rig's best-fit
+  frame differs from poses.tum's by opencv.yaml's camera_from_rig);
 - kalibr.bag (Debian's rosbag) holds every camera's frames on /<camera>/image_raw, rgb8, stamped
   i x frame_interval_s, a mirror camera's image the PNG flipped top to bottom;
 - aslam_cv's omni projection (OmniProjection + RadialTangentialDistortion, written out here) with

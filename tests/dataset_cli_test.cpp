@@ -476,7 +476,7 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   auto r = omnicam("dataset --status " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("shard 1/3: not started"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("(run the shards not yet finished (--shard I/3), then omnicam dataset --merge "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(run the shards not yet finished (--shard I/3; omnicam dataset --status "), std::string::npos) << r.out;
   r = omnicam("dataset --merge " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   // Frames [10·I/3, 10·(I+1)/3): 0-2, 3-5, 6-9; shards 0 and 2 hold 3 + 4.
@@ -629,12 +629,12 @@ TEST_F(DatasetCliTest, ShardsOfAnotherDatasetOrCountAreRefusedAndStatusSeesARunA
   EXPECT_NE(count.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json)"), std::string::npos) << count.out;
   const auto whole = omnicam("dataset " + a + " -o " + path("ds"));
   EXPECT_EQ(whole.code, 2);
-  EXPECT_NE(whole.out.find("holds the shards of a dataset, not merged (shards/): run the shards not finished (--shard I/2"),
+  EXPECT_NE(whole.out.find("holds the shards of a dataset, not merged (shards/): run the shards not yet finished (--shard I/2; "),
             std::string::npos) << whole.out;
   EXPECT_FALSE(fs::exists(dir_ / "ds/shards/shard-1-of-2.json"));
   EXPECT_FALSE(fs::exists(dir_ / "ds/manifest.json"));
   const auto idle = omnicam("dataset --status " + path("ds"));
-  EXPECT_NE(idle.out.find("(run the shards not yet finished (--shard I/2), then omnicam dataset --merge "), std::string::npos) << idle.out;
+  EXPECT_NE(idle.out.find("(run the shards not yet finished (--shard I/2; omnicam dataset --status "), std::string::npos) << idle.out;
   {
     const SafeFolder held(path("ds"));
     ASSERT_TRUE(held.tryClaim(/*shared=*/false));  // as a whole-dataset run holds its folder

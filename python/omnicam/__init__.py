@@ -16,6 +16,7 @@ The library's own objects, not subprocess calls (docs/python.md)::
 import difflib as _difflib
 import functools as _functools
 import importlib as _importlib
+import numbers as _numbers
 import re as _re
 import typing as _typing
 
@@ -55,18 +56,23 @@ _PARAMETER = _re.compile(r"(?:^|, )\*?(\w+):")
 _TYPED = _re.compile(r"(?:^|, )\*?(\w+): ([^=,\[]+(?:\[[^=]*?\])?)")
 
 
+def _is_bool(value: _typing.Any) -> bool:
+    return isinstance(value, bool) or type(value).__name__ == "bool_"  # numpy.bool_
+
+
 def _fits(value: _typing.Any, annotation: str) -> bool:
     """Whether `value` can be what pybind11 names `annotation` (the simple cases; else True)."""
     annotation = annotation.strip()
     optional = _re.fullmatch(r"Optional\[(.*)\]", annotation)
     if optional:
         return value is None or _fits(value, optional.group(1))
+    # numpy's scalars are numbers too (numbers.Integral, numbers.Real), and pybind11 takes them.
     if annotation == "int":
-        return isinstance(value, int) and not isinstance(value, bool)
+        return isinstance(value, _numbers.Integral) and not _is_bool(value)
     if annotation == "float":
-        return isinstance(value, (int, float)) and not isinstance(value, bool)
+        return isinstance(value, _numbers.Real) and not _is_bool(value)
     if annotation == "bool":
-        return isinstance(value, bool)
+        return _is_bool(value)
     if annotation == "str":
         return isinstance(value, str)
     if annotation == "List[str]":

@@ -49,6 +49,10 @@ def test_an_argument_of_the_wrong_type_is_named_in_one_line(robocup):
         assert str(raised.value) == "Renderer.render(): " + words
     with pytest.raises(omnicam.InputError, match="^outputs: name at least one of rgb, depth"):
         renderer.render(POSE, size=16, outputs=[])
+    # numpy's scalars are what pybind11 takes: the argument at fault is the one named.
+    with pytest.raises(TypeError) as raised:
+        renderer.render(POSE, denoise=np.bool_(False), spp=np.int64(4), outputs="depth")
+    assert str(raised.value) == "Renderer.render(): outputs must be List[str] (got str 'depth')"
 
 
 def test_a_frame_without_a_recording_camera_is_refused(robocup):
