@@ -17,6 +17,7 @@
 #include "errors.h"
 #include "image_compare.h"
 #include "memory_budget.h"
+#include "number_format.h"
 
 namespace omnicam::cli {
 
@@ -27,6 +28,12 @@ struct CompareArgs {
   bool json = false, disc = false, boxDownsample = false;
   double failPsnr = -1.0, failRmse = -1.0, failMax = -1.0, tol = 1.0 / 255.0, diffScale = 0.05;
 };
+
+// "not finite: 3 pixels of A, 0 of B (NaN or ±inf, read as 0)".
+std::string nonFiniteText(const CompareResult& r) {
+  return "not finite: " + std::to_string(r.nonFiniteA) + " pixels of A, " + std::to_string(r.nonFiniteB) +
+         " of B (NaN or inf, read as 0)";
+}
 
 // Two dataset folders: every frame and camera, matched by manifest.
 int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
@@ -72,6 +79,9 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
                 r.frames.size(), r.meanPsnrDb, r.minPsnrDb, r.meanSsim, r.maxAbs);
     for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
       std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
+    for (const FrameComparison& f : r.frames)
+      if (!f.result.allFinite())
+        std::printf("  frame %d %s: %s\n", f.index, f.camera.c_str(), nonFiniteText(f.result).c_str());
   }
   std::fprintf(args.json ? stderr : stdout, "%s images=%zu failing=%d min_psnr_db=%.2f mean_psnr_db=%.2f%s\n", verdict,
                r.frames.size(), r.failures, r.minPsnrDb, r.meanPsnrDb,
@@ -94,7 +104,9 @@ CompareResult compareWhole(const CompareArgs& args, const CompareOptions& option
   const int64_t extra = std::min(bytesA, bytesB) * ((args.boxDownsample ? 1 : 0) + (args.diff.empty() ? 0 : 1));
   requireMemory(bytesA + bytesB + extra, args.diff.empty() ? "comparing the two images"
                                                            : "comparing the two images and their heat map (--diff)");
-  ImageRGBA a = readImage(args.a), b = readImage(args.b);
+  ImageRowReader readerA = ImageRowReader::openFile(args.a), readerB = ImageRowReader::openFile(args.b);
+  ColourImagePair pair = readColourImages(readerA, readerB);
+  ImageRGBA &a = pair.a, &b = pair.b;
   if (args.boxDownsample) {
     if (const auto n = wholeMultiple(a.width, a.height, b.width, b.height)) b = boxDownsample(b, *n);
     else if (const auto m = wholeMultiple(b.width, b.height, a.width, a.height)) a = boxDownsample(a, *m);
@@ -103,7 +115,7 @@ CompareResult compareWhole(const CompareArgs& args, const CompareOptions& option
                        std::to_string(a.width) + "x" + std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
                        std::to_string(b.height) + ")");
   }
-  const CompareResult r = compareImages(a, b, options);
+  const CompareResult r = compareImagePair(pair, options);
   if (!args.diff.empty()) writeImageAtomic(args.diff, differenceHeatmap(a, b, args.diffScale));
   return r;
 }
@@ -141,10 +153,12 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   if (!args.boxDownsample) explainSizes(args);
   const CompareResult r = args.diff.empty() && !args.boxDownsample ? compareStreamed(args, options) : compareWhole(args, options);
   std::string failure;
-  if (args.failPsnr >= 0.0 && r.psnrDb < args.failPsnr) failure += " psnr_db < " + std::to_string(args.failPsnr);
-  if (args.failRmse >= 0.0 && r.rmse > args.failRmse) failure += " rmse > " + std::to_string(args.failRmse);
-  if (args.failMax >= 0.0 && r.maxAbs > args.failMax) failure += " max_abs > " + std::to_string(args.failMax);
+  if (args.failPsnr >= 0.0 && r.psnrDb < args.failPsnr) failure += " psnr_db < " + shortNumber(args.failPsnr);
+  if (args.failRmse >= 0.0 && r.rmse > args.failRmse) failure += " rmse > " + shortNumber(args.failRmse);
+  if (args.failMax >= 0.0 && r.maxAbs > args.failMax) failure += " max_abs > " + shortNumber(args.failMax);
+  if (args.failMax >= 0.0 && r.maxAbsAlpha > args.failMax) failure += " max_abs_alpha > " + shortNumber(args.failMax);
   const bool checked = args.failPsnr >= 0.0 || args.failRmse >= 0.0 || args.failMax >= 0.0;
+  if (checked && !r.allFinite()) failure += " " + nonFiniteText(r);
   const char* verdict = !checked ? "NOTHRESHOLD" : failure.empty() ? "PASS" : "FAIL";
   if (args.json) {
     nlohmann::json j = compareResultToJson(r);
@@ -152,11 +166,12 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     if (checked) j["pass"] = failure.empty();
     std::printf("%s\n", j.dump(2).c_str());
   } else {
-    std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.6g at (%d, %d)  over tol %.6g: %.4f%%\n",
+    std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  alpha %.9g  over tol %.6g: %.4f%%\n",
                 r.pixels, args.disc ? " inside the mirror disc" : "", r.rmse, r.psnrDb, r.ssim, r.maxAbs, r.maxI, r.maxJ,
-                args.tol, 100.0 * r.fracOverTol);
+                r.maxAbsAlpha, args.tol, 100.0 * r.fracOverTol);
+    if (!r.allFinite()) std::printf("  %s\n", nonFiniteText(r).c_str());
   }
-  std::fprintf(args.json ? stderr : stdout, "%s psnr_db=%.2f rmse=%.6g max_abs=%.6g%s\n", verdict, r.psnrDb, r.rmse,
+  std::fprintf(args.json ? stderr : stdout, "%s psnr_db=%.2f rmse=%.6g max_abs=%.9g%s\n", verdict, r.psnrDb, r.rmse,
                r.maxAbs, checked ? failure.c_str() : " (no --fail-psnr, --fail-rmse or --fail-max given: nothing checked)");
   return failure.empty() ? 0 : 1;
 }

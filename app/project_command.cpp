@@ -96,7 +96,7 @@ void addCameraRaysCommand(CLI::App& app) {
 
 void addProjectCommand(CLI::App& app) {
   auto args = std::make_shared<ProjectArgs>();
-  CLI::App* cmd = app.add_subcommand("project", "Print the pixel (u v) where world points appear (nan nan: not imaged)");
+  CLI::App* cmd = app.add_subcommand("project", "Print the raster point (u v) where world points appear: nan nan if not imaged; not clipped to the image, so a point the mirror images outside the framing falls outside [0, W) x [0, H)");
   cmd->add_option("scene", args->scene, "Scene JSON file (for its rig)")->required();
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot")->required();
   cmd->add_option("--point", args->points, "X,Y,Z world point (repeatable)")->required();

@@ -52,7 +52,7 @@ class FrameViews {
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
       ViewMap map = buildViewMap(spec, *camera);
-      nlohmann::json description = viewToJson(spec, map);
+      nlohmann::json description = viewToJson(spec, map, rig.height);
       maps_.push_back({kind, std::move(map), std::move(description)});
     }
   }
@@ -69,11 +69,8 @@ class FrameViews {
   void write(const std::string& imageFile, const RenderedFile& omni) const {
     const std::vector<std::string> outputs = files(imageFile);
     for (size_t k = 0; k < maps_.size(); ++k) {
-      nlohmann::json sidecar = omni.sidecar;
-      sidecar["view"] = maps_[k].description;
-      sidecar["source_image"] = std::filesystem::path(imageFile).filename().string();
       writeImageAtomic(outputs[k], applyViewMap(maps_[k].map, omni.image));
-      writeSidecarAtomic(outputs[k], sidecar);
+      writeSidecarAtomic(outputs[k], viewSidecar(omni.sidecar, maps_[k].description, std::filesystem::path(imageFile).filename().string()));
     }
   }
 

@@ -31,6 +31,12 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
   if (!a.scene.empty() && !a.rig.empty()) throw InputError("--scene and --rig: give one, not both");
   RigSpec rig;
   nlohmann::json sidecar = nlohmann::json::object();
+  const std::optional<SidecarInfo> own = readSidecar(a.in);
+  if (own && own->json.contains("view"))
+    throw InputError(showPath(a.in) + ": is a view (its sidecar's \"view\"), not an omni image: view its source image (\"source_image\")");
+  if (own && (!a.scene.empty() || !a.rig.empty()))
+    throw InputError(std::string(a.scene.empty() ? "--rig" : "--scene") + ": " + showPath(a.in) + " has a sidecar (" +
+                     showPath(sidecarPath(a.in)) + ") that gives its camera; the flag is for images without one");
   if (!a.scene.empty()) {
     const Scene scene = loadScene(a.scene, a.load);
     checkOutputsSpareScene(scene, {a.out}, "-o");  // its textures and glTF files too
@@ -42,9 +48,9 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
       throw InputError("--rig: " + showPath(a.rig) + " is a scene file: give it as --scene (--rig takes a scene's \"rig\" object)");
     rig = rigFromJson(file, a.rig, "rig");
     sidecar["rig_from"] = {{"rig_file", a.rig}};
-  } else if (auto found = readSidecar(a.in)) {
-    rig = found->rig;
-    sidecar = found->json;
+  } else if (own) {
+    rig = own->rig;
+    sidecar = own->json;
   } else {
     throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
                      "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
@@ -74,23 +80,24 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
     if (spec.width < 1 || spec.height < 1) throw InputError("--size: width and height must be at least 1");
   }
   spec.groundDistance = a.zw, spec.yawDeg = a.yaw, spec.pitchDeg = a.pitch, spec.fovDeg = a.fov;
-  checkViewSpec(spec, {"--variant", "--size", "--zw", "--yaw/--pitch", "--fov"});
+  const ViewSpecNames flags{"--variant", "--size", "--zw", "--yaw/--pitch", "--fov"};
+  checkViewSpec(spec, flags);
   if (!isSupportedImageOutput(a.out)) throw InputError("-o: " + showPath(a.out) + ": must end in .png or .exr");
   checkImageOutput(a.out, "-o");
   checkOutputIsNotInput(a.out, "-o", a.in, "the input image");
   for (const auto& [file, what] : {std::pair{a.scene, "the --scene file"}, std::pair{a.rig, "the --rig file"}})
     if (!file.empty()) checkOutputIsNotInput(sidecarPath(a.out), "-o (its sidecar)", file, what);
-  const ImageRGBA omni = readImage(a.in);
+  ImageRowReader reader = ImageRowReader::openFile(a.in);
+  reader.requireColour();
+  const ImageRGBA omni = reader.readRemaining();
   auto [rig, sidecar] = rigOf(a, omni.width);
   // A mirror camera's image is square; a lens camera's has its own aspect, which its rig states.
   if (omni.height != rig.imageHeight())
     throw InputError(showPath(a.in) + ": is " + std::to_string(omni.width) + "x" + std::to_string(omni.height) + "; its camera images " +
                      std::to_string(rig.imageWidth()) + "x" + std::to_string(rig.imageHeight()) + " at that width");
-  const ViewMap map = buildViewMap(spec, *makeCamera(rig));
-  sidecar["view"] = viewToJson(spec, map);
-  sidecar["source_image"] = a.in;
+  const ViewMap map = buildViewMap(spec, *makeCamera(rig), flags);
   writeImageAtomic(a.out, applyViewMap(map, omni));
-  writeSidecarAtomic(a.out, sidecar);
+  writeSidecarAtomic(a.out, viewSidecar(sidecar, viewToJson(spec, map, rig.height), a.in));
   std::printf("wrote %s (%dx%d %s, %s)\n", a.out.c_str(), map.width, map.height, a.as.c_str(), a.variant.c_str());
 }
 
@@ -103,7 +110,7 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--as", args->as, "birdseye (default), panorama or perspective");
   cmd->add_option("--variant", args->variant, "exact (default) or thesis (Eq. 3.4 / Eqs. 3.6-3.7)");
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (defaults 400x400, 1080x300, 400x300)");
-  cmd->add_option("--zw", args->zw, "birdseye: ground plane, pixel units below the viewpoint (default 40)")
+  cmd->add_option("--zw", args->zw, "birdseye: ground plane, pixel units below the viewpoint (default 40): the floor at rig height / Z metres per pixel")
       ->check(numberIn(0, 1e6, true));
   cmd->add_option("--yaw", args->yaw, "perspective: view direction, degrees CCW from forward")->check(numberIn(-1e6, 1e6));
   cmd->add_option("--pitch", args->pitch, "perspective: degrees above the horizon (default -20)")->check(numberIn(-1e6, 1e6));

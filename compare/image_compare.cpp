@@ -40,7 +40,11 @@ void RowComparison::addRow(const float* a, const float* b) {
   const int j = rows_++;
   for (int i = 0; i < width_; ++i) {
     const float *pa = a + 4 * i, *pb = b + 4 * i;
-    if (!included(pa, pb, options_.discOnly)) continue;
+    const bool finiteA = std::isfinite(pa[0]) && std::isfinite(pa[1]) && std::isfinite(pa[2]) && std::isfinite(pa[3]);
+    const bool finiteB = std::isfinite(pb[0]) && std::isfinite(pb[1]) && std::isfinite(pb[2]) && std::isfinite(pb[3]);
+    r_.nonFiniteA += !finiteA, r_.nonFiniteB += !finiteB;
+    if (!finiteA || !finiteB || !included(pa, pb, options_.discOnly)) continue;
+    r_.maxAbsAlpha = std::max(r_.maxAbsAlpha, std::abs(static_cast<double>(pa[3]) - pb[3]));
     double worst = 0.0;
     for (int c = 0; c < 3; ++c) {
       const double d = static_cast<double>(pa[c]) - pb[c];
@@ -114,6 +118,8 @@ CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const Compar
 }
 
 CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const CompareOptions& options) {
+  a.requireColour();
+  b.requireColour();
   RowComparison comparison(a.width(), a.height(), b.width(), b.height(), options);
   std::vector<float> bandA(static_cast<size_t>(a.width()) * 4 * kBandRows), bandB(bandA.size());
   for (int first = 0; first < a.height(); first += kBandRows) {
@@ -122,7 +128,23 @@ CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const Compa
     b.readRows(first, count, bandB.data());
     comparison.addRows(bandA.data(), bandB.data(), count);
   }
-  return comparison.result();
+  CompareResult r = comparison.result();
+  r.nonFiniteA += a.nonFinitePixels(), r.nonFiniteB += b.nonFinitePixels();
+  return r;
+}
+
+ColourImagePair readColourImages(ImageRowReader& a, ImageRowReader& b) {
+  a.requireColour();
+  b.requireColour();
+  ColourImagePair pair{a.readRemaining(), b.readRemaining()};
+  pair.nonFiniteA = a.nonFinitePixels(), pair.nonFiniteB = b.nonFinitePixels();
+  return pair;
+}
+
+CompareResult compareImagePair(const ColourImagePair& pair, const CompareOptions& options) {
+  CompareResult r = compareImages(pair.a, pair.b, options);
+  r.nonFiniteA += pair.nonFiniteA, r.nonFiniteB += pair.nonFiniteB;
+  return r;
 }
 
 int64_t imageRowsCompareBytes(const ImageRowReader& a, const ImageRowReader& b) {
@@ -165,8 +187,10 @@ nlohmann::json compareResultToJson(const CompareResult& r) {
           {"ssim", r.ssim},
           {"max_abs", r.maxAbs},
           {"max_abs_pixel", {r.maxI, r.maxJ}},
+          {"max_abs_alpha", r.maxAbsAlpha},
           {"frac_over_tol", r.fracOverTol},
-          {"pixels", r.pixels}};
+          {"pixels", r.pixels},
+          {"non_finite_pixels", {r.nonFiniteA, r.nonFiniteB}}};
 }
 
 ImageRGBA boxDownsample(const ImageRGBA& large, int n) {

@@ -2,7 +2,9 @@
 // Pixel-by-pixel comparison of two renders (OpenImageIO idiff style): RMSE, PSNR, SSIM (mean
 // over 8×8 windows a stride of 4 apart; the compared pixels as one window if none fits),
 // max abs error and where, fraction of pixels over a tolerance; optionally only inside the
-// mirror disc. Values are linear RGB; alpha is not compared.
+// mirror disc. Values are linear RGB; alpha (the rim's coverage) has its own largest difference,
+// and pixels with a value that is not finite are counted per image: a NaN is a result to catch,
+// not a value to compare (read from a file it decodes as 0; in memory it is left out).
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -18,8 +20,11 @@ struct CompareOptions {
 
 struct CompareResult {
   double rmse = 0.0, psnrDb = 0.0, ssim = 1.0, maxAbs = 0.0, fracOverTol = 0.0;
-  int maxI = 0, maxJ = 0;
+  int maxI = 0, maxJ = 0;  // where maxAbs is: column, row
+  double maxAbsAlpha = 0.0;
   long pixels = 0;
+  long nonFiniteA = 0, nonFiniteB = 0;  // pixels with a NaN or ±∞ colour or alpha, in all of each image
+  bool allFinite() const { return nonFiniteA == 0 && nonFiniteB == 0; }
 };
 
 // A comparison fed rows top to bottom, a band at a time: the pixel statistics accumulate row by
@@ -55,8 +60,18 @@ class RowComparison {
 // Throws InputError if the sizes differ or no pixel is compared.
 CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const CompareOptions& options = {});
 // The same, reading both images a band of rows at a time (ImageRowReader): memory for a few rows
-// of each, whatever their height. Reads both to the end.
+// of each, whatever their height. Reads both to the end. InputError for a file that holds no
+// colour (ImageRowReader::requireColour).
 CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const CompareOptions& options = {});
+// Both images read whole (for a heat map, or to downsample one), with compareImageRows' checks;
+// `nonFinite` gets each image's count of pixels that were not finite.
+struct ColourImagePair {
+  ImageRGBA a, b;
+  long nonFiniteA = 0, nonFiniteB = 0;
+};
+ColourImagePair readColourImages(ImageRowReader& a, ImageRowReader& b);
+// compareImages of a pair readColourImages read, its counts of non-finite pixels included.
+CompareResult compareImagePair(const ColourImagePair& pair, const CompareOptions& options = {});
 // What compareImageRows holds at once besides the readers' own state.
 int64_t imageRowsCompareBytes(const ImageRowReader& a, const ImageRowReader& b);
 // |a − b| (max over channels) as a heat map: black 0 → red → yellow → white at `scale`.

@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <random>
 
 #include "errors.h"
@@ -242,6 +244,57 @@ TEST(ImageCompare, StreamedFilesGiveTheWholeImageResultBitForBit) {
   writeImageAtomic((dir / "small.png").string(), ImageRGBA(10, 10));
   ImageRowReader rowsA = ImageRowReader::openFile((dir / "a.png").string()), small = ImageRowReader::openFile((dir / "small.png").string());
   EXPECT_THROW(compareImageRows(rowsA, small), InputError);
+  fs::remove_all(dir);
+}
+
+// A NaN or an infinity is counted, in memory and read from a file (where it decodes as 0), and
+// alpha has its own largest difference: a render that differs only there is not identical.
+TEST(ImageCompare, NonFinitePixelsAreCountedAndAlphaIsCompared) {
+  const ImageRGBA a = noiseImage(3, 1.0f);
+  ImageRGBA b = a;
+  b.at(5, 7)[1] = std::numeric_limits<float>::quiet_NaN();
+  b.at(9, 2)[3] = std::numeric_limits<float>::infinity();
+  const CompareResult inMemory = compareImages(a, b);
+  EXPECT_EQ(inMemory.nonFiniteA, 0);
+  EXPECT_EQ(inMemory.nonFiniteB, 2);
+  EXPECT_FALSE(inMemory.allFinite());
+  EXPECT_EQ(inMemory.pixels, 64 * 48 - 2);  // left out of the statistics
+  EXPECT_EQ(inMemory.rmse, 0.0);
+  ImageRGBA c = a;
+  c.at(11, 13)[3] = 0.25f;  // alpha only: the colours are equal
+  const CompareResult alphaOnly = compareImages(a, c);
+  EXPECT_EQ(alphaOnly.maxAbs, 0.0);
+  EXPECT_DOUBLE_EQ(alphaOnly.maxAbsAlpha, 0.75);
+  EXPECT_TRUE(alphaOnly.allFinite());
+
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_compare_nan_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string pathA = (dir / "a.exr").string(), pathB = (dir / "b.exr").string(), rays = (dir / "rays.exr").string();
+  writeImageAtomic(pathA, a);
+  writeImageAtomic(pathB, b);
+  ImageRowReader rowsA = ImageRowReader::openFile(pathA), rowsB = ImageRowReader::openFile(pathB);
+  const CompareResult fromFiles = compareImageRows(rowsA, rowsB);
+  EXPECT_EQ(fromFiles.nonFiniteA, 0);
+  EXPECT_EQ(fromFiles.nonFiniteB, 2);
+  EXPECT_EQ(fromFiles.pixels, 64 * 48);  // decoded as 0, compared as 0
+  ImageRowReader wholeA = ImageRowReader::openFile(pathA), wholeB = ImageRowReader::openFile(pathB);
+  const ColourImagePair pair = readColourImages(wholeA, wholeB);
+  EXPECT_EQ(compareImagePair(pair).nonFiniteB, 2);
+  // A table of data is no colour image, though its first three channels would read as one.
+  const std::vector<float> table(64 * 48 * 6, 0.5f);
+  const std::vector<unsigned char> bytes =
+      encodeDataExr(rays, 64, 48, {"origin.X", "origin.Y", "origin.Z", "direction.X", "direction.Y", "direction.Z"}, table.data());
+  std::ofstream(rays, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  ImageRowReader table1 = ImageRowReader::openFile(rays), colour = ImageRowReader::openFile(pathA);
+  EXPECT_FALSE(table1.holdsColour());
+  EXPECT_TRUE(colour.holdsColour());
+  try {
+    compareImageRows(colour, table1);
+    ADD_FAILURE() << "a table of rays was compared as colour";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a colour image: its channels are \"direction.X\""), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
 

@@ -201,7 +201,8 @@ void compareAll(std::vector<FrameComparison>& frames, const std::string& dirA, c
     const FrameFilesComparison compared = compareFrameFiles(dirA, dirB, f, options.image);
     f.result = compared.result;
     bytes[k] = compared.bytes;
-    f.failed = options.failPsnrDb && f.result.psnrDb < *options.failPsnrDb;
+    // A frame with a NaN or an infinity is a broken render, whatever its PSNR says.
+    f.failed = options.failPsnrDb && (f.result.psnrDb < *options.failPsnrDb || !f.result.allFinite());
   };
   std::set<std::string> sized;
   std::vector<size_t> rest;
@@ -309,7 +310,10 @@ std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB
       << result.failures << "\" errors=\"0\">\n";
   for (const FrameComparison& f : result.frames) {
     xml << "  <testcase classname=\"" << escapeMarkup(f.camera) << "\" name=\"" << escapeMarkup(frameLabel(f)) << "\">";
-    if (f.failed)
+    if (f.failed && !f.result.allFinite())
+      xml << "\n    <failure message=\"pixels not finite (NaN or inf): " << f.result.nonFiniteA << " in A, " << f.result.nonFiniteB
+          << " in B\">" << escapeMarkup(f.fileA + " vs " + f.fileB) << "</failure>\n  ";
+    else if (f.failed)
       xml << "\n    <failure message=\"PSNR " << psnrText(f.result.psnrDb) << " dB below " << *options.failPsnrDb
           << " dB\">" << escapeMarkup(f.fileA + " vs " + f.fileB) << "</failure>\n  ";
     xml << "<system-out>psnr_db=" << psnrText(f.result.psnrDb) << " ssim=" << f.result.ssim << " rmse=" << f.result.rmse

@@ -126,22 +126,40 @@ struct PixelDecoding {
         transfer(transferOf(header)),
         unassociated(transfer.kind != Transfer::Linear || header.unassociatedAlpha) {}
 
-  // `count` pixels of `raw` (channels floats each) into `rgba` (4 floats each).
-  void apply(const float* raw, size_t count, float* rgba) const {
+  // `count` pixels of `raw` (channels floats each) into `rgba` (4 floats each). A value that is
+  // not finite (NaN, ±∞) becomes 0; returns how many pixels had one.
+  size_t apply(const float* raw, size_t count, float* rgba) const {
     const int colourChannels = channels >= 3 ? 3 : 1;
+    size_t nonFinite = 0;
     for (size_t p = 0; p < count; ++p) {
       const float* src = &raw[p * channels];
+      bool finite = true;
       float rgb[3];
       for (int c = 0; c < 3; ++c) {
         const float v = src[std::min(c, colourChannels - 1)];
+        finite = finite && std::isfinite(v);
         rgb[c] = std::isfinite(v) ? transfer(v) : 0.0f;
       }
       float alpha = alphaChannel >= 0 ? src[alphaChannel] : 1.0f;
-      if (!std::isfinite(alpha)) alpha = 0.0f;
+      if (!std::isfinite(alpha)) alpha = 0.0f, finite = false;
       float* dst = &rgba[p * 4];
       for (int c = 0; c < 3; ++c) dst[c] = unassociated ? rgb[c] * alpha : rgb[c];
       dst[3] = alpha;
+      nonFinite += !finite;
     }
+    return nonFinite;
+  }
+
+  // Whether the channels taken as colour are an image's (docs in image.h).
+  static bool colourNames(const ImageHeader& header) {
+    const std::vector<std::string>& names = header.channelNames;
+    if (names.empty()) return true;  // formats without channel names hold colour
+    auto suffix = [&](size_t c) {
+      const size_t dot = names[c].rfind('.');
+      return dot == std::string::npos ? names[c] : names[c].substr(dot + 1);
+    };
+    if (suffix(0) == "Y") return true;
+    return names.size() >= 3 && suffix(0) == "R" && suffix(1) == "G" && suffix(2) == "B";
   }
 };
 
@@ -161,6 +179,7 @@ struct ImageRowReader::State {
   std::unique_ptr<ImageDecoder> decoder;
   int next = 0;  // the first row not yet read
   std::vector<float> raw;
+  long nonFinitePixels = 0;
 };
 
 ImageRowReader::ImageRowReader(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -193,8 +212,29 @@ void ImageRowReader::readRows(int first, int count, float* rgba) {
   const size_t pixels = static_cast<size_t>(header.width) * count;
   state_->raw.resize(pixels * header.channels);
   state_->decoder->readRows(first, count, state_->raw.data());
-  PixelDecoding(header).apply(state_->raw.data(), pixels, rgba);
+  state_->nonFinitePixels += static_cast<long>(PixelDecoding(header).apply(state_->raw.data(), pixels, rgba));
   state_->next = first + count;
+}
+
+long ImageRowReader::nonFinitePixels() const { return state_->nonFinitePixels; }
+const std::vector<std::string>& ImageRowReader::channelNames() const { return state_->decoder->header().channelNames; }
+bool ImageRowReader::holdsColour() const { return PixelDecoding::colourNames(state_->decoder->header()); }
+
+void ImageRowReader::requireColour() const {
+  if (holdsColour()) return;
+  const std::vector<std::string>& names = channelNames();
+  std::string listed;
+  for (size_t c = 0; c < names.size() && c < 8; ++c) listed += (c ? ", " : "") + quote(names[c]);
+  if (names.size() > 8) listed += ", … (" + std::to_string(names.size()) + " in all)";
+  throw InputError(state_->decoder->name() + ": not a colour image: its channels are " + listed +
+                   ", none of them R, G, B or Y (a table of data, such as camera-rays' or a depth map)");
+}
+
+ImageRGBA ImageRowReader::readRemaining() {
+  ImageRGBA image(width(), height());
+  const int first = state_->next;
+  readRows(first, height() - first, image.pixels.data() + static_cast<size_t>(first) * width() * 4);
+  return image;
 }
 
 ImageRGBA readImage(const std::string& path) { return decode(*openImageFile(path)); }

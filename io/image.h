@@ -62,6 +62,19 @@ class ImageRowReader {
   // Rows [first, first + count) as readImage's pixels (linear premultiplied RGBA), into `rgba`
   // (width × count × 4 floats). Rows are read top to bottom: `first` is where the last read ended.
   void readRows(int first, int count, float* rgba);
+  // The rows not read yet, into an image of the whole size (rows already read stay 0).
+  ImageRGBA readRemaining();
+  // Pixels read so far with a colour or alpha value that is not finite (NaN, ±∞): readImage
+  // decodes such a value as 0, so whoever judges the pixels asks here.
+  long nonFinitePixels() const;
+  // OpenEXR's channel names in the order they are read (empty for other formats).
+  const std::vector<std::string>& channelNames() const;
+  // Whether what is read as colour is an image's colour: always for PNG, JPEG, TIFF and HDR; for
+  // OpenEXR when the channels taken as colour are named R, G, B (or Y, a grey image's), in any
+  // layer. A table of data (camera-rays' origin.X …, a depth map's Z) is not, though it reads.
+  bool holdsColour() const;
+  // InputError "<file>: not a colour image: its channels are …" unless holdsColour().
+  void requireColour() const;
 
  private:
   struct State;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <nlohmann/json.hpp>
@@ -423,6 +424,26 @@ TEST_F(CliTest, CompareGivesPassFailLinesExitCodesAndADiffImage) {
   EXPECT_NE(unchecked.out.find("nothing checked"), std::string::npos) << unchecked.out;
   EXPECT_EQ(run("compare " + a + " " + c).code, 2);
   EXPECT_EQ(run("compare " + a + " " + path("missing.exr")).code, 2);
+  // A NaN fails whatever the thresholds; alpha counts for --fail-max; the largest error is
+  // printed in full, so the line that fails on it shows why.
+  ImageRGBA image = readImage(a), nan = image, transparent = image;
+  nan.at(10, 20)[0] = std::numeric_limits<float>::quiet_NaN();
+  for (int row = 0; row < image.height; ++row) transparent.at(32, row)[3] = 0.5f * image.at(32, row)[3];  // the centre column: opaque
+  writeImageAtomic(path("nan.exr"), nan);
+  writeImageAtomic(path("alpha.exr"), transparent);
+  const CommandResult withNan = run("compare " + a + " " + path("nan.exr") + " --fail-psnr 0");
+  EXPECT_EQ(withNan.code, 1) << withNan.out;
+  EXPECT_NE(withNan.out.find("not finite: 0 pixels of A, 1 of B"), std::string::npos) << withNan.out;
+  const CommandResult nanJson = run("compare " + a + " " + path("nan.exr") + " --json", "", "/dev/null");
+  EXPECT_EQ(nlohmann::json::parse(nanJson.out)["non_finite_pixels"], nlohmann::json::array({0, 1}));
+  const CommandResult alpha = run("compare " + a + " " + path("alpha.exr") + " --fail-max 0.1");
+  EXPECT_EQ(alpha.code, 1) << alpha.out;
+  EXPECT_NE(alpha.out.find("max_abs_alpha > 0.1"), std::string::npos) << alpha.out;
+  // Rays are no colour image: refused, not compared by their first three channels.
+  ASSERT_EQ(run("camera-rays " + kScene + " --size 64 -o " + path("rays.exr")).code, 0);
+  const CommandResult rays = run("compare " + path("rays.exr") + " " + a);
+  EXPECT_EQ(rays.code, 2) << rays.out;
+  EXPECT_NE(rays.out.find("rays.exr: not a colour image"), std::string::npos) << rays.out;
 }
 
 TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
@@ -510,6 +531,26 @@ TEST_F(CliTest, ViewsGetSidecarsAndImagesWithoutOneNeedARig) {
   const auto fromView = nlohmann::json::parse(in2);
   EXPECT_EQ(fromView["view"]["kind"], "panorama");
   EXPECT_EQ(fromView["view"]["width"], 1080);
+  // The omni image's model describes it, not the view: under "source"; the rig and pose stay.
+  EXPECT_FALSE(fromView.contains("intrinsics"));
+  EXPECT_FALSE(fromView.contains("camera_from_world"));
+  EXPECT_EQ(fromView["source"]["intrinsics"]["model"], "mei_unified");
+  EXPECT_TRUE(fromView.contains("rig") && fromView.contains("pose"));
+  EXPECT_FALSE(fromRender.contains("intrinsics"));
+  // A view is no omni image, and an image with a sidecar takes no other rig.
+  const CommandResult ofView = run("view " + path("p1.png") + " --as birdseye -o " + path("vv.png"));
+  EXPECT_EQ(ofView.code, 2) << ofView.out;
+  EXPECT_NE(ofView.out.find("p1.png: is a view"), std::string::npos) << ofView.out;
+  const CommandResult overridden =
+      run("view " + path("a.png") + " --as panorama --rig " OMNICAM_SOURCE_DIR "/tests/bad_inputs/rig.json -o " + path("vr.png"));
+  EXPECT_EQ(overridden.code, 2) << overridden.out;
+  EXPECT_NE(overridden.out.find("--rig: " + path("a.png") + " has a sidecar"), std::string::npos) << overridden.out;
+  // Nor is a table of rays, though its channels would read as colour.
+  ASSERT_EQ(run("camera-rays " + kScene + " --size 32 -o " + path("rays.exr")).code, 0);
+  const CommandResult ofRays = run("view " + path("rays.exr") + " --as panorama -o " + path("vt.png"));
+  EXPECT_EQ(ofRays.code, 2) << ofRays.out;
+  EXPECT_NE(ofRays.out.find("not a colour image"), std::string::npos) << ofRays.out;
+  for (const char* written : {"vv.png", "vr.png", "vt.png"}) EXPECT_FALSE(fs::exists(path(written))) << written;
   fs::copy_file(path("a.png"), path("bare.png"));
   const CommandResult refused = run("view " + path("bare.png") + " --as panorama -o " + path("p2.png"));
   EXPECT_EQ(refused.code, 2) << refused.out;
@@ -620,6 +661,7 @@ TEST_F(CliTest, NoOutputReplacesAFileTheSceneReads) {
   std::ofstream(dir_ / "s2.json") << withTexture("frame_0000.png");
   // An omni image to view, and a glTF arena a scene brings in (sub/scene.glb, what export writes).
   ASSERT_EQ(run("render " + path("s.json") + " --size 16 -o " + path("omni.png")).code, 0);
+  fs::remove(path("omni.png") + ".json");  // an image without a sidecar takes its camera from --scene
   ASSERT_EQ(run("export " + path("s.json") + " --to gltf -o " + path("sub")).code, 0);
   std::ofstream(dir_ / "g.json") << R"({"format": "omnicam-scene/1", "materials": {},
     "objects": [{"type": "gltf", "name": "arena", "file": "sub/scene.glb"}]})";

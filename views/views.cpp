@@ -74,13 +74,17 @@ double widestIncidence(const Camera& camera) {
 }
 
 // The bilinear taps of every source position (index space: texel centres at integers), kept
-// inside so that all four taps exist.
+// inside so that all four taps exist. A position off the image (a rig framed inside its mirror
+// disc, or a lens whose image circle the sensor crops) has no source: black, like one beyond the
+// rim; within the image's outermost half pixels the edge texels are used.
 void finishViewMap(ViewMap& map, int sourceWidth, int sourceHeight) {
   map.sourceWidth = sourceWidth;
   map.sourceHeight = sourceHeight;
   map.taps.resize(map.sourceX.size());
   for (size_t k = 0; k < map.taps.size(); ++k) {
-    if (std::isnan(map.sourceX[k])) {
+    const float x = map.sourceX[k], y = map.sourceY[k];
+    if (!(x >= 0.0f && y >= 0.0f && x <= static_cast<float>(sourceWidth) && y <= static_cast<float>(sourceHeight))) {
+      map.sourceX[k] = map.sourceY[k] = kNone;
       map.taps[k] = {UINT32_MAX, 0, 0};
       continue;
     }
@@ -98,18 +102,49 @@ const char* viewKindName(ViewKind kind) {
   return kind == ViewKind::BirdsEye ? "birdseye" : kind == ViewKind::Panorama ? "panorama" : "perspective";
 }
 
-nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map) {
+nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, double viewpointHeightM) {
   nlohmann::json j = {{"kind", viewKindName(spec.kind)},
                       {"variant", spec.variant == ViewVariant::Thesis ? "thesis" : "exact"},
                       {"width", map.width},
                       {"height", map.height}};
-  if (spec.kind == ViewKind::BirdsEye) j["ground_distance_px"] = spec.groundDistance;
+  if (spec.kind == ViewKind::BirdsEye) {
+    j["ground_distance_px"] = spec.groundDistance;
+    j["ground_metres_per_pixel"] = viewpointHeightM / spec.groundDistance;
+  }
   if (spec.kind == ViewKind::Perspective) {
     j["yaw_deg"] = spec.yawDeg;
     j["pitch_deg"] = spec.pitchDeg;
     j["fov_deg"] = spec.fovDeg;
+    // perspectiveDirection: (1, −sx, −sy) with sx = (2u/W − 1) tan(fov/2), sy likewise scaled by
+    // H/W, so both focal lengths are W / (2 tan(fov/2)) and the principal point the image centre.
+    const double f = map.width / (2.0 * std::tan(radians(spec.fovDeg) / 2.0));
+    j["intrinsics"] = {{"model", "pinhole"}, {"fx", f}, {"fy", f}, {"cx", 0.5 * map.width - 0.5}, {"cy", 0.5 * map.height - 0.5},
+                       {"pixel_centre", "integer"}, {"width", map.width}, {"height", map.height}};
+    // The view frame's axes (forward, left, up) as the camera sees them: right = −left, down = −up.
+    Eigen::Matrix3d viewFromCamera;
+    viewFromCamera << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+    Eigen::Isometry3d robotFromCamera = Eigen::Isometry3d::Identity();
+    robotFromCamera.linear() = perspectiveRobotFromView(spec) * viewFromCamera;
+    robotFromCamera.translation() = Vec3(0.0, 0.0, viewpointHeightM);
+    const Eigen::Matrix4d cameraFromRobot = robotFromCamera.inverse().matrix();
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r) rows.push_back({cameraFromRobot(r, 0), cameraFromRobot(r, 1), cameraFromRobot(r, 2), cameraFromRobot(r, 3)});
+    j["camera_from_robot"] = rows;
   }
   return j;
+}
+
+nlohmann::json viewSidecar(nlohmann::json omniSidecar, nlohmann::json view, const std::string& sourceImage) {
+  nlohmann::json source = nlohmann::json::object();
+  for (const char* field : {"intrinsics", "camera_from_world"})
+    if (const auto it = omniSidecar.find(field); it != omniSidecar.end()) {
+      source[field] = std::move(*it);
+      omniSidecar.erase(it);
+    }
+  if (!source.empty()) omniSidecar["source"] = std::move(source);
+  omniSidecar["view"] = std::move(view);
+  omniSidecar["source_image"] = sourceImage;
+  return omniSidecar;
 }
 
 ViewKind parseViewKind(const std::string& name, const std::string& what) {
@@ -182,11 +217,11 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
   return map;
 }
 
-ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera) {
+ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const ViewSpecNames& names) {
+  checkViewSpec(spec, names);
   if (const auto* central = dynamic_cast<const CentralCamera*>(&camera)) return buildViewMap(spec, central->unified());
-  checkViewSpec(spec);
   if (spec.variant == ViewVariant::Thesis)
-    throw InputError("view variant: the thesis' equations are the central model's; a physical rig (rig.camera, "
+    throw InputError(names.variant + ": the thesis' equations are the central model's; a physical rig (rig.camera, "
                      "rig.mirror.shape) has exact views only");
   ViewMap map = emptyViewMap(spec);
   const double thetaMax = widestIncidence(camera);

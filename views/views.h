@@ -11,7 +11,7 @@
 //                thesis variant: radius linear in the row (Eqs. 3.6–3.7); exact variant:
 //                incidence angle linear in the row (rows are equal angle steps).
 //   perspective  a virtual pinhole at F' looking toward (yaw, pitch) in the robot frame.
-// Pixels whose source lies outside the mirror disc are black.
+// Pixels whose source lies outside the mirror disc, or off the omni image, are black (alpha 0).
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -35,7 +35,8 @@ struct ViewSpec {
 
 struct ViewMap {
   int width = 0, height = 0;
-  std::vector<float> sourceX, sourceY;  // omni raster position of each output pixel centre; NaN: none
+  // The omni raster position of each output pixel centre; NaN: none (beyond the rim or off the image).
+  std::vector<float> sourceX, sourceY;
   // The bilinear footprint, precomputed so that applying the map is four gathers per pixel.
   int sourceWidth = 0, sourceHeight = 0;
   struct Tap {
@@ -58,15 +59,27 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
 // The same for any camera: the central model's closed form above, or for a physical rig (exact
 // variant only) the points 1 km along each view direction projected by the camera
 // (docs/physical-camera.md); the panorama's top row is then the widest angle the camera sees.
-ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera);
+ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const ViewSpecNames& names = {});
 // Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
 // camera the map was built for.
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
 // The same into `out`, whose storage is reused from frame to frame (every pixel is written).
 void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 
-// What a view is, for its sidecar: kind, variant, size and the parameters that kind uses.
-nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map);
+// What a view is, for its sidecar: kind, variant, size and the parameters that kind uses, and
+// its own geometry, seen from a viewpoint `viewpointHeightM` above the floor (the rig's height):
+//   birdseye     ground_metres_per_pixel: the floor's scale (the viewpoint's height / z_w), the
+//                viewpoint above the image centre;
+//   perspective  intrinsics: the pinhole's (model pinhole, fx, fy, cx, cy with OpenCV's integer
+//                pixel centres as the omni intrinsics, width, height), and camera_from_robot: the
+//                4×4 rigid transform from the robot frame (x forward, y left, z up, origin on the
+//                floor) into the pinhole's OpenCV frame (x right, y down, z forward).
+nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, double viewpointHeightM);
+// A view's sidecar from its omni image's: the view (viewToJson) under "view", the image it was
+// made from under "source_image", and the fields that describe the omni image and not the view
+// (intrinsics, camera_from_world) moved under "source", so that no reader takes them for the
+// view's. The rest (rig, pose, engine, scene, ...) stays: it is what the view shows too.
+nlohmann::json viewSidecar(nlohmann::json omniSidecar, nlohmann::json view, const std::string& sourceImage);
 const char* viewKindName(ViewKind kind);
 
 // InputError naming `what` for a name that is none of the kinds / variants.

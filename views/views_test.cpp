@@ -157,6 +157,114 @@ TEST(Views, ApplyingAMapSamplesBilinearlyAtPixelCentres) {
   EXPECT_THROW(parseViewVariant("approx"), InputError);
 }
 
+// A rig framed inside its mirror disc (the horizon on the image border) images no direction
+// between the horizon and the rim: a view's pixels that look there are black, with alpha 0, and
+// not the image's edge pixels stretched outward.
+TEST(Views, SourcesOffTheImageAreBlackNotTheEdgeStretched) {
+  RigSpec rig;
+  rig.mirrorRig().hyperboloid().framingElevationDeg = 0.0;
+  const OmniCamera cropped = rig.camera();
+  ImageRGBA omni(cropped.width(), cropped.height());
+  std::fill(omni.pixels.begin(), omni.pixels.end(), 1.0f);  // white and opaque to its border
+  ViewSpec spec;
+  spec.kind = ViewKind::Panorama;
+  spec.width = 360;
+  spec.height = 100;
+  const ViewMap map = buildViewMap(spec, cropped);
+  const ImageRGBA view = applyViewMap(map, omni);
+  // Rows are linear in the angle from straight down, from the rim (45° above the horizon) at the
+  // top edge to straight down: the horizon, on the image's border beside the centre column,
+  // lies a third of the way down ((90° + 45° − 90°) / 135°).
+  const double rowOfHorizon = 100.0 * 45.0 / 135.0;
+  const int centre = 180;  // looking forward: +u, towards the border's midpoint
+  for (int j = 0; j < 100; ++j) {
+    const float alpha = view.at(centre, j)[3];
+    if (j + 1 < rowOfHorizon) {
+      EXPECT_EQ(alpha, 0.0f) << "row " << j << " looks above the horizon, off the image";
+      EXPECT_TRUE(std::isnan(map.sourceX[static_cast<size_t>(j) * 360 + centre]));
+    } else if (j > rowOfHorizon + 1) {
+      EXPECT_EQ(alpha, 1.0f) << "row " << j;
+    }
+  }
+  for (size_t k = 0; k < map.sourceX.size(); ++k)
+    if (!std::isnan(map.sourceX[k])) {
+      ASSERT_GE(map.sourceX[k], 0.0f);
+      ASSERT_LE(map.sourceX[k], static_cast<float>(cropped.width()));
+      ASSERT_GE(map.sourceY[k], 0.0f);
+      ASSERT_LE(map.sourceY[k], static_cast<float>(cropped.height()));
+    }
+}
+
+// The geometry a view's sidecar states, checked through the omni camera: a point the stated
+// pinhole (or floor scale) puts at a view pixel is the point the view map samples there.
+TEST(Views, TheSidecarsGeometryIsTheViews) {
+  const double height = RigSpec{}.height;
+  // Where the omni camera images a robot-frame point (the viewpoint at `height`).
+  auto omniRaster = [&](const Vec3& robotPoint) {
+    return camera().rasterFromCamera(unifiedCameraFromViewpoint().linear() * (robotPoint - Vec3(0, 0, height)));
+  };
+  auto sourceAt = [](const ViewMap& map, double u, double v) {  // u, v: a pixel centre (continuous)
+    const size_t k = static_cast<size_t>(std::floor(v)) * map.width + static_cast<size_t>(std::floor(u));
+    return Vec2(map.sourceX[k], map.sourceY[k]);
+  };
+  ViewSpec perspective;
+  perspective.kind = ViewKind::Perspective;
+  perspective.yawDeg = 30.0, perspective.pitchDeg = -35.0, perspective.fovDeg = 80.0;
+  perspective.width = 320, perspective.height = 200;
+  const ViewMap pmap = buildViewMap(perspective, camera());
+  const nlohmann::json p = viewToJson(perspective, pmap, height);
+  const nlohmann::json& k = p.at("intrinsics");
+  EXPECT_EQ(k.at("model"), "pinhole");
+  Eigen::Matrix4d cameraFromRobot;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) cameraFromRobot(r, c) = p.at("camera_from_robot").at(r).at(c).get<double>();
+  int checked = 0;
+  for (const Vec3& robotPoint : {Vec3(1.0, 0.6, 0.0), Vec3(0.8, 0.3, 0.1), Vec3(1.2, 1.0, 0.05), Vec3(0.7, 0.5, 0.0)}) {
+    const Eigen::Vector4d c = cameraFromRobot * robotPoint.homogeneous();
+    ASSERT_GT(c.z(), 0.0);
+    // OpenCV's pixel (integer centres) + 0.5: omnicam's continuous raster.
+    const double u = k.at("fx").get<double>() * c.x() / c.z() + k.at("cx").get<double>() + 0.5;
+    const double v = k.at("fy").get<double>() * c.y() / c.z() + k.at("cy").get<double>() + 0.5;
+    ASSERT_TRUE(u > 1 && v > 1 && u < perspective.width - 1 && v < perspective.height - 1) << u << " " << v;
+    // The map samples pixel centres: compare at the centre of the pixel holding (u, v), where the
+    // point's omni raster is within the omni image's scale of a view pixel's half diagonal.
+    const Vec2 sampled = sourceAt(pmap, u, v);
+    const auto expected = omniRaster(robotPoint);
+    ASSERT_TRUE(expected);
+    EXPECT_LT((sampled - *expected).norm(), 1.0) << robotPoint.transpose();
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4);
+  // Bird's-eye: a floor point (x, y) lies (x, y) / ground_metres_per_pixel from the centre,
+  // forward to the right and left upward.
+  ViewSpec birdsEye;
+  const ViewMap bmap = buildViewMap(birdsEye, camera());
+  const double mpp = viewToJson(birdsEye, bmap, height).at("ground_metres_per_pixel").get<double>();
+  EXPECT_DOUBLE_EQ(mpp, height / birdsEye.groundDistance);
+  for (const Vec2& floor : {Vec2(1.0, 0.0), Vec2(0.5, -0.7), Vec2(-1.2, 0.4)}) {
+    const double u = 0.5 * bmap.width + floor.x() / mpp, v = 0.5 * bmap.height - floor.y() / mpp;
+    const auto expected = omniRaster(Vec3(floor.x(), floor.y(), 0.0));
+    ASSERT_TRUE(expected);
+    EXPECT_LT((sourceAt(bmap, u, v) - *expected).norm(), 0.5) << floor.transpose();
+  }
+}
+
+// A view's sidecar keeps what the view shows (rig, pose, scene) and moves what describes only
+// the omni image (its intrinsics and frame) under "source".
+TEST(Views, AViewsSidecarMovesTheOmniImagesModelUnderSource) {
+  const nlohmann::json omni = {{"rig", {{"height", 0.4}}}, {"pose", {{"x", 1.0}}}, {"intrinsics", {{"model", "mei_unified"}}},
+                               {"camera_from_world", {{1, 0, 0, 0}}}};
+  const nlohmann::json view = viewSidecar(omni, {{"kind", "panorama"}}, "a.png");
+  EXPECT_EQ(view.at("rig"), omni.at("rig"));
+  EXPECT_EQ(view.at("pose"), omni.at("pose"));
+  EXPECT_FALSE(view.contains("intrinsics"));
+  EXPECT_FALSE(view.contains("camera_from_world"));
+  EXPECT_EQ(view.at("source").at("intrinsics"), omni.at("intrinsics"));
+  EXPECT_EQ(view.at("source").at("camera_from_world"), omni.at("camera_from_world"));
+  EXPECT_EQ(view.at("view").at("kind"), "panorama");
+  EXPECT_EQ(view.at("source_image"), "a.png");
+}
+
 // Through the camera interface the ideal rig's views are the closed form's, bit for bit.
 TEST(Views, TheCentralCameraGivesTheClosedFormsViews) {
   for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
