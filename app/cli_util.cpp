@@ -13,6 +13,7 @@
 #include "atomic_file.h"
 #include "data_files.h"
 #include "errors.h"
+#include "json_text.h"
 #include "number_format.h"
 #include "render_settings.h"
 #include "sidecar.h"
@@ -174,6 +175,22 @@ RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags) {
     }
   }
   return readRenderRequest(fields, RequestFieldNames::cli());
+}
+
+RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
+  const nlohmann::json file = readJsonFile(path);
+  if (file.is_object() && file.contains("format") && file["format"] == kSceneFormat)
+    throw InputError("--rig: " + showPath(path) + " is a scene file: give it as " + sceneGiven +
+                     " (--rig takes a scene's \"rig\" object)");
+  return rigFromJson(file, path, "rig");
+}
+
+RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load) {
+  if (scenePath.empty() == rigPath.empty())
+    throw InputError(scenePath.empty() ? "give a scene file or --rig RIG.json (the camera's rig)"
+                                       : "--rig: give a scene file or --rig, not both");
+  if (!rigPath.empty()) return readRigFlag(rigPath);
+  return loadScene(scenePath, load).rig;
 }
 
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {

@@ -55,6 +55,12 @@ void addRequestFlags(CLI::App& cmd, RequestFlags& flags, unsigned which);
 RenderRequest readRequestFlags(const CLI::App& cmd, const RequestFlags& flags);
 // Registers --allow-outside-files (scene files may pull in files outside the scene's folder).
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
+// The rig a --rig file holds (a scene's "rig" object, checked as a scene's is); a whole scene
+// given there is refused, naming how the verb takes a scene (`sceneGiven`).
+RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven = "the scene argument");
+// The rig of exactly one of `scenePath` (a scene file, loaded with `load`) or `rigPath` (readRigFlag):
+// for verbs that need a camera and nothing else of the scene.
+RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load);
 // InputError("<flag>: … is the scene file; writing it would destroy what is read") if an image
 // in `images`, or its sidecar, is a file the scene was read from (Scene::inputFiles: the scene,
 // its textures, environment and glTF files).

@@ -79,9 +79,11 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
                 r.frames.size(), r.meanPsnrDb, r.minPsnrDb, r.meanSsim, r.maxAbs);
     for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
       std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
+    int broken = 0;
     for (const FrameComparison& f : r.frames)
-      if (!f.result.allFinite())
+      if (!f.result.allFinite() && ++broken <= 3)
         std::printf("  frame %d %s: %s\n", f.index, f.camera.c_str(), nonFiniteText(f.result).c_str());
+    if (broken > 3) std::printf("  and %d more frames with pixels not finite\n", broken - 3);
   }
   std::fprintf(args.json ? stderr : stdout, "%s images=%zu failing=%d min_psnr_db=%.2f mean_psnr_db=%.2f%s\n", verdict,
                r.frames.size(), r.failures, r.minPsnrDb, r.meanPsnrDb,
@@ -192,7 +194,7 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--fail-psnr", args->failPsnr, "Fail below this PSNR (dB); datasets: any frame below")
       ->check(numberIn(-1e6, 1e6));
   cmd->add_option("--fail-rmse", args->failRmse, "Fail above this RMSE")->check(numberIn(0, 1e6));
-  cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error")->check(numberIn(0, 1e6));
+  cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error (colour, and alpha on its own)")->check(numberIn(0, 1e6));
   cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(numberIn(0, 1e6));
   cmd->add_flag("--disc", args->disc, "Only pixels wholly inside the mirror disc in both images");
   cmd->add_flag("--box-downsample", args->boxDownsample,

@@ -1,5 +1,5 @@
-// omnicam project SCENE --pose X,Y,YAW --point X,Y,Z [--point ...] [--size N]
-// omnicam camera-rays SCENE -o RAYS.exr [--size N]: the exact ray of every pixel centre.
+// omnicam project SCENE|--rig RIG.json --pose X,Y,YAW --point X,Y,Z [--point ...] [--size N]
+// omnicam camera-rays SCENE|--rig RIG.json -o RAYS.exr [--size N]: the exact ray of every pixel centre.
 // Prints "u v" per point: continuous pixel coordinates, pixel centres at +0.5. A point the
 // mirror does not show (beyond the rim) prints "nan nan". Any rig: a physical one's reflection
 // point is solved for (physical_camera.h).
@@ -24,13 +24,14 @@ namespace omnicam::cli {
 namespace {
 
 struct ProjectArgs {
-  std::string scene, pose;
+  std::string scene, rig, pose;
   std::vector<std::string> points;
   int size = 0;
   SceneLoadOptions load;
 };
 
-void runProject(const ProjectArgs& a) {
+void runProject(const ProjectArgs& a, const CLI::App& cmd) {
+  refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "a scene");
   const RobotPose pose = parsePose(a.pose, "--pose");
   std::vector<Vec3> points;
   for (const auto& text : a.points) {
@@ -40,8 +41,7 @@ void runProject(const ProjectArgs& a) {
       throw InputError("--point: each coordinate must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + quote(text) + ")");
     points.push_back(point);
   }
-  const Scene scene = loadScene(a.scene, a.load);
-  RigSpec rig = scene.rig;
+  RigSpec rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load);
   if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   const Rigid viewpointFromWorld = CameraPlacement(pose).worldFromViewpoint(rig).inverse();
@@ -53,17 +53,27 @@ void runProject(const ProjectArgs& a) {
 }
 
 struct CameraRaysArgs {
-  std::string scene, out;
+  std::string scene, rig, out;
   int size = 0;
   SceneLoadOptions load;
 };
 
-void runCameraRays(const CameraRaysArgs& a) {
+void runCameraRays(const CameraRaysArgs& a, const CLI::App& cmd) {
+  refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "a scene");
   checkImageOutput(a.out, "-o");
   if (std::filesystem::path(a.out).extension() != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
-  const Scene scene = loadScene(a.scene, a.load);
-  checkOutputsSpareScene(scene, {a.out}, "-o");
-  RigSpec rig = scene.rig;
+  RigSpec rig;
+  if (a.scene.empty() == a.rig.empty()) {
+    rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load);  // refuses both or neither
+  } else if (!a.rig.empty()) {
+    checkOutputIsNotInput(a.out, "-o", a.rig, "the --rig file");
+    checkOutputIsNotInput(sidecarPath(a.out), "-o (its sidecar)", a.rig, "the --rig file");
+    rig = readRigFlag(a.rig);
+  } else {
+    const Scene scene = loadScene(a.scene, a.load);
+    checkOutputsSpareScene(scene, {a.out}, "-o");
+    rig = scene.rig;
+  }
   if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   // Rows as the bars' steps: a large table takes minutes to trace (a physical camera) and to encode.
@@ -87,22 +97,24 @@ void runCameraRays(const CameraRaysArgs& a) {
 void addCameraRaysCommand(CLI::App& app) {
   auto args = std::make_shared<CameraRaysArgs>();
   CLI::App* cmd = app.add_subcommand("camera-rays", "Write the exact ray of every pixel centre (OpenEXR)");
-  cmd->add_option("scene", args->scene, "Scene JSON file (for its rig)")->required();
+  cmd->add_option("scene", args->scene, "Scene JSON file (for its rig), or give --rig");
+  cmd->add_option("--rig", args->rig, "The camera's rig from this JSON file (a scene's \"rig\" object) instead of a scene");
   cmd->add_option("-o", args->out, "Output .exr (a .json sidecar is written beside it)")->required();
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   addSceneLoadFlags(*cmd, args->load);
-  cmd->callback([args] { runCameraRays(*args); });
+  cmd->callback([args, cmd] { runCameraRays(*args, *cmd); });
 }
 
 void addProjectCommand(CLI::App& app) {
   auto args = std::make_shared<ProjectArgs>();
   CLI::App* cmd = app.add_subcommand("project", "Print the raster point (u v) where world points appear: nan nan if not imaged; not clipped to the image, so a point the mirror images outside the framing falls outside [0, W) x [0, H)");
-  cmd->add_option("scene", args->scene, "Scene JSON file (for its rig)")->required();
+  cmd->add_option("scene", args->scene, "Scene JSON file (for its rig), or give --rig");
+  cmd->add_option("--rig", args->rig, "The camera's rig from this JSON file (a scene's \"rig\" object) instead of a scene");
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot")->required();
   cmd->add_option("--point", args->points, "X,Y,Z world point (repeatable)")->required();
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   addSceneLoadFlags(*cmd, args->load);
-  cmd->callback([args] { runProject(*args); });
+  cmd->callback([args, cmd] { runProject(*args, *cmd); });
 }
 
 }  // namespace omnicam::cli

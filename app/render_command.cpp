@@ -17,6 +17,7 @@
 #include "errors.h"
 #include "image.h"
 #include "make_camera.h"
+#include "placement.h"
 #include "frame_sequence.h"
 #include "recording_camera.h"
 #include "recording_camera_spec.h"
@@ -52,7 +53,7 @@ class FrameViews {
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
       ViewMap map = buildViewMap(spec, *camera);
-      nlohmann::json description = viewToJson(spec, map, rig.height);
+      nlohmann::json description = viewToJson(spec, map, *camera, robotFromViewpoint(rig));
       maps_.push_back({kind, std::move(map), std::move(description)});
     }
   }

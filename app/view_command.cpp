@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "errors.h"
 #include "make_camera.h"
+#include "placement.h"
 #include "scene_loader.h"
 #include "sidecar.h"
 #include "views.h"
@@ -26,38 +27,47 @@ struct ViewArgs {
   SceneLoadOptions load;
 };
 
-// The rig and the sidecar the view's own sidecar starts from.
-std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a, int size) {
+// The image's sidecar if it is omnicam's (an object with a "rig"); a file of another tool, or one
+// that does not parse, is none: with --scene or --rig it is not what gives the camera.
+std::optional<nlohmann::json> omnicamSidecar(const std::string& image) {
+  try {
+    if (auto found = readSidecar(image)) return found->json;
+  } catch (const InputError&) {
+  }
+  return std::nullopt;
+}
+
+// The rig and the sidecar the view's own sidecar starts from: the image's own sidecar's, or for an
+// image without one the --scene or --rig file's. A view's output is refused, and so is a flag
+// whose rig differs from the one the image's own sidecar states (which view would be right?).
+std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a) {
   if (!a.scene.empty() && !a.rig.empty()) throw InputError("--scene and --rig: give one, not both");
+  const bool fromFlag = !a.scene.empty() || !a.rig.empty();
+  // Without a flag the sidecar must be read strictly: it is what gives the camera.
+  const std::optional<SidecarInfo> strict = fromFlag ? std::nullopt : readSidecar(a.in);
+  const std::optional<nlohmann::json> own = fromFlag ? omnicamSidecar(a.in) : strict ? std::optional(strict->json) : std::nullopt;
+  if (own && own->contains("view"))
+    throw InputError(showPath(a.in) + ": is a view (its sidecar's \"view\"), not an omni image: view its source image (\"source_image\")");
+  if (!fromFlag) {
+    if (!strict)
+      throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
+                       "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
+    return {strict->rig, strict->json};
+  }
   RigSpec rig;
   nlohmann::json sidecar = nlohmann::json::object();
-  const std::optional<SidecarInfo> own = readSidecar(a.in);
-  if (own && own->json.contains("view"))
-    throw InputError(showPath(a.in) + ": is a view (its sidecar's \"view\"), not an omni image: view its source image (\"source_image\")");
-  if (own && (!a.scene.empty() || !a.rig.empty()))
-    throw InputError(std::string(a.scene.empty() ? "--rig" : "--scene") + ": " + showPath(a.in) + " has a sidecar (" +
-                     showPath(sidecarPath(a.in)) + ") that gives its camera; the flag is for images without one");
   if (!a.scene.empty()) {
     const Scene scene = loadScene(a.scene, a.load);
     checkOutputsSpareScene(scene, {a.out}, "-o");  // its textures and glTF files too
     rig = scene.rig;
     sidecar["rig_from"] = {{"scene", a.scene}};
-  } else if (!a.rig.empty()) {
-    const nlohmann::json file = readJsonFile(a.rig);
-    if (file.is_object() && file.contains("format") && file["format"] == kSceneFormat)
-      throw InputError("--rig: " + showPath(a.rig) + " is a scene file: give it as --scene (--rig takes a scene's \"rig\" object)");
-    rig = rigFromJson(file, a.rig, "rig");
-    sidecar["rig_from"] = {{"rig_file", a.rig}};
-  } else if (own) {
-    rig = own->rig;
-    sidecar = own->json;
   } else {
-    throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
-                     "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
+    rig = readRigFlag(a.rig, "--scene");
+    sidecar["rig_from"] = {{"rig_file", a.rig}};
   }
-  checkImageSize(size, showPath(a.in) + ": its size");
-  rig = rig.resized(size);
-  sidecar["rig"] = rigToJson(rig);
+  if (own && !(sidecarFromText(own->dump(), sidecarPath(a.in)).rig.resized(rig.imageWidth()) == rig))
+    throw InputError(std::string(a.scene.empty() ? "--rig" : "--scene") + ": " + showPath(a.in) + "'s sidecar (" +
+                     showPath(sidecarPath(a.in)) + ") states another camera; leave the flag out to use it");
   return {rig, sidecar};
 }
 
@@ -87,17 +97,23 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   checkOutputIsNotInput(a.out, "-o", a.in, "the input image");
   for (const auto& [file, what] : {std::pair{a.scene, "the --scene file"}, std::pair{a.rig, "the --rig file"}})
     if (!file.empty()) checkOutputIsNotInput(sidecarPath(a.out), "-o (its sidecar)", file, what);
+  // The header and the camera's source first: an image that is no omni image is refused before
+  // it is decoded.
   ImageRowReader reader = ImageRowReader::openFile(a.in);
   reader.requireColour();
+  auto [rig, sidecar] = rigOf(a);
   const ImageRGBA omni = reader.readRemaining();
-  auto [rig, sidecar] = rigOf(a, omni.width);
+  checkImageSize(omni.width, showPath(a.in) + ": its size");
+  rig = rig.resized(omni.width);
+  sidecar["rig"] = rigToJson(rig);
   // A mirror camera's image is square; a lens camera's has its own aspect, which its rig states.
   if (omni.height != rig.imageHeight())
     throw InputError(showPath(a.in) + ": is " + std::to_string(omni.width) + "x" + std::to_string(omni.height) + "; its camera images " +
                      std::to_string(rig.imageWidth()) + "x" + std::to_string(rig.imageHeight()) + " at that width");
-  const ViewMap map = buildViewMap(spec, *makeCamera(rig), flags);
+  const std::shared_ptr<const Camera> camera = makeCamera(rig);
+  const ViewMap map = buildViewMap(spec, *camera, flags);
   writeImageAtomic(a.out, applyViewMap(map, omni));
-  writeSidecarAtomic(a.out, viewSidecar(sidecar, viewToJson(spec, map, rig.height), a.in));
+  writeSidecarAtomic(a.out, viewSidecar(sidecar, viewToJson(spec, map, *camera, robotFromViewpoint(rig)), a.in));
   std::printf("wrote %s (%dx%d %s, %s)\n", a.out.c_str(), map.width, map.height, a.as.c_str(), a.variant.c_str());
 }
 

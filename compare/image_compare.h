@@ -4,7 +4,7 @@
 // max abs error and where, fraction of pixels over a tolerance; optionally only inside the
 // mirror disc. Values are linear RGB; alpha (the rim's coverage) has its own largest difference,
 // and pixels with a value that is not finite are counted per image: a NaN is a result to catch,
-// not a value to compare (read from a file it decodes as 0; in memory it is left out).
+// not a value to compare (it counts as 0, as the image decoder reads it from a file).
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -54,6 +54,7 @@ class RowComparison {
   long over_ = 0;
   int windows_ = 0;
   std::vector<float> keptA_, keptB_;  // the last 8 rows, row y at (y mod 8)
+  std::vector<float> finiteA_, finiteB_;  // the row being added, non-finite values made 0
   LumaSums whole_;                     // of every compared pixel: SSIM when no window fits
 };
 

@@ -258,8 +258,9 @@ TEST(ImageCompare, NonFinitePixelsAreCountedAndAlphaIsCompared) {
   EXPECT_EQ(inMemory.nonFiniteA, 0);
   EXPECT_EQ(inMemory.nonFiniteB, 2);
   EXPECT_FALSE(inMemory.allFinite());
-  EXPECT_EQ(inMemory.pixels, 64 * 48 - 2);  // left out of the statistics
-  EXPECT_EQ(inMemory.rmse, 0.0);
+  EXPECT_EQ(inMemory.pixels, 64 * 48);  // compared as 0, as a file's decode
+  EXPECT_GT(inMemory.rmse, 0.0);
+  EXPECT_TRUE(std::isfinite(inMemory.ssim));
   ImageRGBA c = a;
   c.at(11, 13)[3] = 0.25f;  // alpha only: the colours are equal
   const CompareResult alphaOnly = compareImages(a, c);
@@ -278,6 +279,9 @@ TEST(ImageCompare, NonFinitePixelsAreCountedAndAlphaIsCompared) {
   EXPECT_EQ(fromFiles.nonFiniteA, 0);
   EXPECT_EQ(fromFiles.nonFiniteB, 2);
   EXPECT_EQ(fromFiles.pixels, 64 * 48);  // decoded as 0, compared as 0
+  EXPECT_EQ(fromFiles.rmse, inMemory.rmse);  // the same numbers either way
+  EXPECT_EQ(fromFiles.ssim, inMemory.ssim);
+  EXPECT_EQ(fromFiles.maxAbsAlpha, inMemory.maxAbsAlpha);
   ImageRowReader wholeA = ImageRowReader::openFile(pathA), wholeB = ImageRowReader::openFile(pathB);
   const ColourImagePair pair = readColourImages(wholeA, wholeB);
   EXPECT_EQ(compareImagePair(pair).nonFiniteB, 2);
@@ -293,7 +297,27 @@ TEST(ImageCompare, NonFinitePixelsAreCountedAndAlphaIsCompared) {
     compareImageRows(colour, table1);
     ADD_FAILURE() << "a table of rays was compared as colour";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("not a colour image: its channels are \"direction.X\""), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not a colour image: its first channels, \"direction.X\", \"direction.Y\", \"direction.Z\" (of 6)"),
+              std::string::npos)
+        << e.what();
+  }
+  // Colour channels as other tools name them are colour; a grey or a single colour channel too.
+  for (const std::vector<std::string>& names : std::vector<std::vector<std::string>>{
+           {"r", "g", "b"}, {"Red", "Green", "Blue", "Alpha"}, {"C.r", "C.g", "C.b"}, {"Y"}, {"Y", "A"}, {"R"}}) {
+    const std::string file = (dir / "named.exr").string();
+    const std::vector<float> values(16 * 16 * names.size(), 0.25f);
+    const std::vector<unsigned char> encoded = encodeDataExr(file, 16, 16, names, values.data());
+    std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
+    EXPECT_TRUE(ImageRowReader::openFile(file).holdsColour()) << names[0];
+  }
+  // Normals' X, Y, Z hold no colour, though one of them is named Y; nor does a layer of depth
+  // read before a layer of colour.
+  for (const std::vector<std::string>& names : std::vector<std::vector<std::string>>{{"X", "Y", "Z"}, {"depth.Z", "rgb.R", "rgb.G", "rgb.B"}}) {
+    const std::string file = (dir / "data.exr").string();
+    const std::vector<float> values(16 * 16 * names.size(), 0.25f);
+    const std::vector<unsigned char> encoded = encodeDataExr(file, 16, 16, names, values.data());
+    std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
+    EXPECT_FALSE(ImageRowReader::openFile(file).holdsColour()) << names[0];
   }
   fs::remove_all(dir);
 }

@@ -61,12 +61,21 @@ const FileRecord* colourFile(const CameraFrame& frame) {
 }
 
 // An image of a dataset folder: read without following links, a regular file of bounded size; a
-// multilayer frame by the dataset reader's own decoder.
-ImageRGBA readDatasetImage(const std::string& dir, const std::string& relative, bool layered) {
+// multilayer frame by the dataset reader's own decoder (which keeps a NaN as it is: the
+// comparison counts it), an image file by the image decoder (which reads it as 0 and counts it).
+struct DatasetImage {
+  ImageRGBA image;
+  long nonFinitePixels = 0;
+};
+DatasetImage readDatasetImage(const std::string& dir, const std::string& relative, bool layered) {
   const std::string bytes = readFileInside(dir, relative, kMaxDatasetFileBytes);
   const std::string name = showPath((fs::path(dir) / relative).string());
-  if (layered) return multilayerFrameColour(bytes, name);
-  return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
+  if (layered) return {multilayerFrameColour(bytes, name)};
+  ImageRowReader reader = ImageRowReader::openMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), name);
+  reader.requireColour();
+  DatasetImage read{reader.readRemaining()};
+  read.nonFinitePixels = reader.nonFinitePixels();
+  return read;
 }
 
 struct FrameFilesComparison {
@@ -80,12 +89,12 @@ struct FrameFilesComparison {
 FrameFilesComparison compareFrameFiles(const std::string& dirA, const std::string& dirB, const FrameComparison& f,
                                        const CompareOptions& options) {
   if (f.layeredA || f.layeredB) {
-    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
-    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
+    const DatasetImage a = readDatasetImage(dirA, f.fileA, f.layeredA), b = readDatasetImage(dirB, f.fileB, f.layeredB);
+    CompareResult result = compareImages(a.image, b.image, options);
+    result.nonFiniteA += a.nonFinitePixels, result.nonFiniteB += b.nonFinitePixels;
     // Both images as floats, and their decoding (the larger of the multilayer reader's planes plus
     // interleaved copy and the decoder's raw channels).
-    return {compareImages(imageA, imageB, options),
-            (static_cast<int64_t>(imageA.width) * imageA.height + static_cast<int64_t>(imageB.width) * imageB.height) * 16 * 3};
+    return {result, (static_cast<int64_t>(a.image.width) * a.image.height + static_cast<int64_t>(b.image.width) * b.image.height) * 16 * 3};
   }
   const std::string bytesA = readFileInside(dirA, f.fileA, kMaxDatasetFileBytes);
   const std::string bytesB = readFileInside(dirB, f.fileB, kMaxDatasetFileBytes);
@@ -278,8 +287,8 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
   for (size_t k = 0; k < worst; ++k) {
     const FrameComparison& f = *order[k];
-    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA);
-    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB);
+    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA).image;
+    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB).image;
     char stem[96];
     std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
     const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};

@@ -1,6 +1,7 @@
 #include "image.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -150,16 +151,24 @@ struct PixelDecoding {
     return nonFinite;
   }
 
-  // Whether the channels taken as colour are an image's (docs in image.h).
+  // How many of the file's first channels are read as colour.
+  int colourChannelCount() const { return channels >= 3 ? 3 : 1; }
+
+  // Whether the channels read as colour are named as an image's are (docs in image.h): R, G, B
+  // (or Red, Green, Blue, in any case, as the EXR decoder orders them), or one grey channel.
   static bool colourNames(const ImageHeader& header) {
     const std::vector<std::string>& names = header.channelNames;
     if (names.empty()) return true;  // formats without channel names hold colour
-    auto suffix = [&](size_t c) {
+    auto named = [&](size_t c, std::initializer_list<std::string_view> choices) {
       const size_t dot = names[c].rfind('.');
-      return dot == std::string::npos ? names[c] : names[c].substr(dot + 1);
+      const std::string_view suffix = dot == std::string::npos ? std::string_view(names[c]) : std::string_view(names[c]).substr(dot + 1);
+      return std::any_of(choices.begin(), choices.end(), [&](std::string_view choice) {
+        return suffix.size() == choice.size() && std::equal(suffix.begin(), suffix.end(), choice.begin(),
+                                                            [](char x, char y) { return std::tolower(x) == std::tolower(y); });
+      });
     };
-    if (suffix(0) == "Y") return true;
-    return names.size() >= 3 && suffix(0) == "R" && suffix(1) == "G" && suffix(2) == "B";
+    if (PixelDecoding(header).colourChannelCount() == 1) return named(0, {"Y", "R", "Red", "G", "Green", "B", "Blue"});
+    return named(0, {"R", "Red"}) && named(1, {"G", "Green"}) && named(2, {"B", "Blue"});
   }
 };
 
@@ -223,11 +232,11 @@ bool ImageRowReader::holdsColour() const { return PixelDecoding::colourNames(sta
 void ImageRowReader::requireColour() const {
   if (holdsColour()) return;
   const std::vector<std::string>& names = channelNames();
-  std::string listed;
-  for (size_t c = 0; c < names.size() && c < 8; ++c) listed += (c ? ", " : "") + quote(names[c]);
-  if (names.size() > 8) listed += ", … (" + std::to_string(names.size()) + " in all)";
-  throw InputError(state_->decoder->name() + ": not a colour image: its channels are " + listed +
-                   ", none of them R, G, B or Y (a table of data, such as camera-rays' or a depth map)");
+  const size_t read = static_cast<size_t>(PixelDecoding(state_->decoder->header()).colourChannelCount());
+  std::string readAsColour;
+  for (size_t c = 0; c < read; ++c) readAsColour += (c ? ", " : "") + quote(names[c]);
+  throw InputError(state_->decoder->name() + ": not a colour image: its first channels, " + readAsColour + " (of " +
+                   std::to_string(names.size()) + "), would be read as colour; an image's are R, G, B or one grey channel");
 }
 
 ImageRGBA ImageRowReader::readRemaining() {

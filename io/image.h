@@ -70,8 +70,10 @@ class ImageRowReader {
   // OpenEXR's channel names in the order they are read (empty for other formats).
   const std::vector<std::string>& channelNames() const;
   // Whether what is read as colour is an image's colour: always for PNG, JPEG, TIFF and HDR; for
-  // OpenEXR when the channels taken as colour are named R, G, B (or Y, a grey image's), in any
-  // layer. A table of data (camera-rays' origin.X …, a depth map's Z) is not, though it reads.
+  // OpenEXR when the channels read as colour (the first three in OpenImageIO's order, or the first
+  // of one or two) are named R, G, B (Red, Green, Blue, in any case and layer), or for one channel
+  // Y or a colour. A table of data (rays' origin.X …, normals' X, Y, Z, a depth map's Z) is not,
+  // though it reads.
   bool holdsColour() const;
   // InputError "<file>: not a colour image: its channels are …" unless holdsColour().
   void requireColour() const;

@@ -268,6 +268,29 @@ TEST_F(CliTest, ProjectPrintsPixelCentresAtHalfAndNanBeyondTheRim) {
   EXPECT_EQ(r.out, "180.000000 180.000000\nnan nan\n");
 }
 
+// The verbs that need only a camera take its rig from a file as well as from a scene, with the
+// same numbers: a misaligned rig, so that a default rig would not pass.
+TEST_F(CliTest, ProjectAndCameraRaysTakeARigFileInsteadOfAScene) {
+  std::ofstream(path("rig.json")) << R"({"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321}, "camera": {"offset_mm": [1.5, 0, 0]}})";
+  std::ofstream(path("scene.json")) << R"({"format": "omnicam-scene/1", "materials": {"m": {"color": 0.5}}, "objects": [],
+    "rig": {"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321}, "camera": {"offset_mm": [1.5, 0, 0]}}})";
+  const std::string points = " --pose=0.5,0.2,40 --point=2,1,0.3 --point=-1,0.5,0 --size 96";
+  const CommandResult fromRig = run("project --rig " + path("rig.json") + points);
+  const CommandResult fromScene = run("project " + path("scene.json") + points);
+  const CommandResult ideal = run("project " + kScene + points);
+  ASSERT_EQ(fromRig.code, 0) << fromRig.out;
+  EXPECT_EQ(fromRig.out, fromScene.out);
+  EXPECT_NE(fromRig.out, ideal.out);
+  ASSERT_EQ(run("camera-rays --rig " + path("rig.json") + " --size 24 -o " + path("r1.exr")).code, 0);
+  ASSERT_EQ(run("camera-rays " + path("scene.json") + " --size 24 -o " + path("r2.exr")).code, 0);
+  EXPECT_EQ(testing::readFile(path("r1.exr")), testing::readFile(path("r2.exr")));
+  const CommandResult neither = run("project --pose=0,0,0 --point=1,0,0");
+  EXPECT_EQ(neither.code, 2);
+  EXPECT_NE(neither.out.find("give a scene file or --rig"), std::string::npos) << neither.out;
+  EXPECT_EQ(run("camera-rays " + path("scene.json") + " --rig " + path("rig.json") + " -o " + path("r3.exr")).code, 2);
+  EXPECT_FALSE(fs::exists(path("r3.exr")));
+}
+
 TEST_F(CliTest, RingsJsonReportsTheSummary) {
   const CommandResult r = run("rings --json -o " + path("rings.png"));
   ASSERT_EQ(r.code, 0) << r.out;
@@ -541,10 +564,17 @@ TEST_F(CliTest, ViewsGetSidecarsAndImagesWithoutOneNeedARig) {
   const CommandResult ofView = run("view " + path("p1.png") + " --as birdseye -o " + path("vv.png"));
   EXPECT_EQ(ofView.code, 2) << ofView.out;
   EXPECT_NE(ofView.out.find("p1.png: is a view"), std::string::npos) << ofView.out;
-  const CommandResult overridden =
-      run("view " + path("a.png") + " --as panorama --rig " OMNICAM_SOURCE_DIR "/tests/bad_inputs/rig.json -o " + path("vr.png"));
+  std::ofstream(path("rig6.json")) << R"({"mirror": {"k": 6}})";
+  const CommandResult overridden = run("view " + path("a.png") + " --as panorama --rig " + path("rig6.json") + " -o " + path("vr.png"));
   EXPECT_EQ(overridden.code, 2) << overridden.out;
-  EXPECT_NE(overridden.out.find("--rig: " + path("a.png") + " has a sidecar"), std::string::npos) << overridden.out;
+  EXPECT_NE(overridden.out.find("--rig: " + path("a.png") + "'s sidecar (" + path("a.png.json") + ") states another camera"),
+            std::string::npos)
+      << overridden.out;
+  // The same rig as the sidecar's is no conflict, and another tool's sidecar is none of omnicam's.
+  EXPECT_EQ(run("view " + path("a.png") + " --as panorama --rig " OMNICAM_SOURCE_DIR "/tests/bad_inputs/rig.json -o " + path("vs.png")).code, 0);
+  fs::copy_file(path("a.png"), path("tagged.png"));
+  std::ofstream(path("tagged.png.json")) << R"({"labels": []})";
+  EXPECT_EQ(run("view " + path("tagged.png") + " --as panorama --rig " + path("rig6.json") + " -o " + path("vg.png")).code, 0);
   // Nor is a table of rays, though its channels would read as colour.
   ASSERT_EQ(run("camera-rays " + kScene + " --size 32 -o " + path("rays.exr")).code, 0);
   const CommandResult ofRays = run("view " + path("rays.exr") + " --as panorama -o " + path("vt.png"));
@@ -563,7 +593,6 @@ TEST_F(CliTest, ViewsGetSidecarsAndImagesWithoutOneNeedARig) {
   const ImageRGBA p1 = readImage(path("p1.png")), p2 = readImage(path("p2.png"));
   EXPECT_EQ(p1.pixels, p2.pixels);
   // A different mirror gives a different panorama: the rig is really used.
-  std::ofstream(path("rig6.json")) << R"({"mirror": {"k": 6}})";
   ASSERT_EQ(run("view " + path("bare.png") + " --as panorama --rig " + path("rig6.json") + " -o " + path("p3.png")).code, 0);
   EXPECT_NE(readImage(path("p3.png")).pixels, p1.pixels);
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/ccalib/omnidir.hpp>
@@ -803,6 +804,27 @@ std::map<std::string, std::string> listedFiles(const fs::path& dir) {
     for (const auto& [name, camera] : frame.at("cameras").items())
       for (const auto& [kind, file] : camera.at("files").items()) files[file.at("path")] = file.at("sha256");
   return files;
+}
+
+// A frame with a NaN is a broken render: comparing it fails whatever its PSNR, between two
+// layouts as between two of the same (the files side is decoded by the image decoder, which
+// reads a NaN as 0; the multilayer side by the dataset reader, which keeps it).
+TEST_F(DatasetCliTest, DatasetCompareFailsAFrameWithANaNInEitherLayout) {
+  const std::string poses = R"("size": 32, "spp": 1, "poses": {"path": "thesis-loop", "frames": 2}, )";
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("files.json", poses + everyOutput("files")) + " -o " + path("files")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("layers.json", poses + everyOutput("multilayer")) + " -o " + path("layers")).code, 0);
+  const auto same = omnicam("compare " + path("layers") + " " + path("files") + " --fail-psnr 60");
+  ASSERT_EQ(same.code, 0) << same.out;
+  ImageRGBA frame = readImage(path("files/cam0/rgb/000001.exr"));
+  frame.at(16, 16)[1] = std::numeric_limits<float>::quiet_NaN();
+  writeImageAtomic(path("files/cam0/rgb/000001.exr"), frame);
+  for (const auto& [a, b] : {std::pair{path("layers"), path("files")}, std::pair{path("files"), path("layers")}}) {
+    const auto broken = omnicam("compare " + a + " " + b + " --fail-psnr 0 --junit " + path("junit.xml"));
+    EXPECT_EQ(broken.code, 1) << broken.out;
+    EXPECT_NE(broken.out.find("FAIL images=2 failing=1"), std::string::npos) << broken.out;
+    EXPECT_NE(broken.out.find("frame 1 cam0: not finite"), std::string::npos) << broken.out;
+    EXPECT_NE(readFile(dir_ / "junit.xml").find("<failure message=\"pixels not finite (NaN or inf)"), std::string::npos);
+  }
 }
 
 TEST_F(DatasetCliTest, MultilayerFramesHoldWhatTheFilesLayoutHolds) {

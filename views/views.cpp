@@ -102,14 +102,16 @@ const char* viewKindName(ViewKind kind) {
   return kind == ViewKind::BirdsEye ? "birdseye" : kind == ViewKind::Panorama ? "panorama" : "perspective";
 }
 
-nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, double viewpointHeightM) {
+nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera& camera, const Rigid& robotFromViewpoint) {
   nlohmann::json j = {{"kind", viewKindName(spec.kind)},
                       {"variant", spec.variant == ViewVariant::Thesis ? "thesis" : "exact"},
                       {"width", map.width},
                       {"height", map.height}};
   if (spec.kind == ViewKind::BirdsEye) {
     j["ground_distance_px"] = spec.groundDistance;
-    j["ground_metres_per_pixel"] = viewpointHeightM / spec.groundDistance;
+    const bool level = robotFromViewpoint.linear().isIdentity(1e-12);
+    if (spec.variant == ViewVariant::Exact && camera.central() && level)
+      j["ground_metres_per_pixel"] = robotFromViewpoint.translation().z() / spec.groundDistance;
   }
   if (spec.kind == ViewKind::Perspective) {
     j["yaw_deg"] = spec.yawDeg;
@@ -121,12 +123,12 @@ nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, double viewp
     j["intrinsics"] = {{"model", "pinhole"}, {"fx", f}, {"fy", f}, {"cx", 0.5 * map.width - 0.5}, {"cy", 0.5 * map.height - 0.5},
                        {"pixel_centre", "integer"}, {"width", map.width}, {"height", map.height}};
     // The view frame's axes (forward, left, up) as the camera sees them: right = −left, down = −up.
+    // The view's directions are the viewpoint frame's, which the rig's tilt turns on the robot.
     Eigen::Matrix3d viewFromCamera;
     viewFromCamera << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-    Eigen::Isometry3d robotFromCamera = Eigen::Isometry3d::Identity();
-    robotFromCamera.linear() = perspectiveRobotFromView(spec) * viewFromCamera;
-    robotFromCamera.translation() = Vec3(0.0, 0.0, viewpointHeightM);
-    const Eigen::Matrix4d cameraFromRobot = robotFromCamera.inverse().matrix();
+    Rigid viewpointFromCamera = Rigid::Identity();
+    viewpointFromCamera.linear() = perspectiveRobotFromView(spec) * viewFromCamera;
+    const Eigen::Matrix4d cameraFromRobot = (robotFromViewpoint * viewpointFromCamera).inverse().matrix();
     nlohmann::json rows = nlohmann::json::array();
     for (int r = 0; r < 4; ++r) rows.push_back({cameraFromRobot(r, 0), cameraFromRobot(r, 1), cameraFromRobot(r, 2), cameraFromRobot(r, 3)});
     j["camera_from_robot"] = rows;

@@ -67,14 +67,18 @@ ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
 void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 
 // What a view is, for its sidecar: kind, variant, size and the parameters that kind uses, and
-// its own geometry, seen from a viewpoint `viewpointHeightM` above the floor (the rig's height):
-//   birdseye     ground_metres_per_pixel: the floor's scale (the viewpoint's height / z_w), the
-//                viewpoint above the image centre;
+// its own geometry, for `camera` (the one the map was built for) placed on the robot by
+// `robotFromViewpoint` (placement.h: the rig's height and tilt):
 //   perspective  intrinsics: the pinhole's (model pinhole, fx, fy, cx, cy with OpenCV's integer
 //                pixel centres as the omni intrinsics, width, height), and camera_from_robot: the
 //                4×4 rigid transform from the robot frame (x forward, y left, z up, origin on the
-//                floor) into the pinhole's OpenCV frame (x right, y down, z forward).
-nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, double viewpointHeightM);
+//                floor) into the pinhole's OpenCV frame (x right, y down, z forward). For a
+//                non-central camera the view shows each direction as seen 1 km away, so the
+//                pinhole is exact for far points only.
+//   birdseye     ground_metres_per_pixel: the floor's scale (the viewpoint's height / z_w), the
+//                viewpoint above the image centre — only where one number is the truth: the exact
+//                variant of a central camera standing level.
+nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera& camera, const Rigid& robotFromViewpoint);
 // A view's sidecar from its omni image's: the view (viewToJson) under "view", the image it was
 // made from under "source_image", and the fields that describe the omni image and not the view
 // (intrinsics, camera_from_world) moved under "source", so that no reader takes them for the

@@ -238,9 +238,10 @@ def main():
     write(os.path.join(HERE, "rig.json"), json.dumps({"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321}}) + "\n")
     write(os.path.join(HERE, "lying_sidecar.png"), tex)
     write(os.path.join(HERE, "lying_sidecar.png.json"), json.dumps({"rig": {"mirror": {"k": 1.5}}}) + "\n")
-    # An image with a sidecar of its own (which --rig must not override), and a view's output.
+    # An image whose sidecar states another camera than rig.json (which --rig must not override),
+    # and a view's output.
     write(os.path.join(HERE, "with_sidecar.png"), tex)
-    write(os.path.join(HERE, "with_sidecar.png.json"), json.dumps({"rig": {}}) + "\n")
+    write(os.path.join(HERE, "with_sidecar.png.json"), json.dumps({"rig": {"mirror": {"k": 6}}}) + "\n")
     write(os.path.join(HERE, "a_view.png"), tex)
     write(os.path.join(HERE, "a_view.png.json"), json.dumps({"rig": {}, "view": {"kind": "panorama"}}) + "\n")
     write(os.path.join(HERE, "folder.png", "README"), "A folder named like an image: -o must refuse it.\n")
