@@ -29,10 +29,15 @@ Vec3 parseTriple(const std::string& text, const std::string& flag, const std::st
     const size_t end = k < 2 ? text.find(',', start) : text.size();
     const char* first = text.data() + start;
     const char* last = text.data() + end;
+    const std::string_view written(first, static_cast<size_t>(last - first));
+    // A sign as people write it: from_chars takes "-" only.
+    const char* digits = first != last && *first == '+' && last - first > 1 && first[1] != '-' ? first + 1 : first;
     double v = 0.0;
-    auto [ptr, ec] = std::from_chars(first, last, v);
-    if (ec != std::errc() || ptr != last || !std::isfinite(v))
-      throw InputError(flag + ": " + quote(std::string_view(first, static_cast<size_t>(last - first))) + " is not a number");
+    auto [ptr, ec] = std::from_chars(digits, last, v);
+    if (ec == std::errc::result_out_of_range && ptr == last)
+      throw InputError(flag + ": " + quote(written) + " is out of a double's range (magnitudes from about 1e-308 to 1e308, or 0)");
+    if (ec != std::errc() || ptr != last) throw InputError(flag + ": " + quote(written) + " is not a number");
+    if (!std::isfinite(v)) throw InputError(flag + ": " + quote(written) + " is not a finite number");
     out[k] = v;
     start = end + 1;
   }

@@ -168,7 +168,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     if (checked) j["pass"] = failure.empty();
     std::printf("%s\n", j.dump(2).c_str());
   } else {
-    std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  alpha %.9g  over tol %.6g: %.4f%%\n",
+    std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  max abs of alpha %.9g  over tol %.6g: %.4f%%\n",
                 r.pixels, args.disc ? " inside the mirror disc" : "", r.rmse, r.psnrDb, r.ssim, r.maxAbs, r.maxI, r.maxJ,
                 r.maxAbsAlpha, args.tol, 100.0 * r.fracOverTol);
     if (!r.allFinite()) std::printf("  %s\n", nonFiniteText(r).c_str());

@@ -266,6 +266,10 @@ TEST_F(CliTest, ProjectPrintsPixelCentresAtHalfAndNanBeyondTheRim) {
   const CommandResult r = run("project " + kScene + " --pose=1,1,30 --point=1,1,0 --point=1,1.1,5");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(r.out, "180.000000 180.000000\nnan nan\n");
+  // Numbers as people write them: a plus sign, an exponent.
+  const CommandResult signs = run("project " + kScene + " --pose=+1,1e0,+30 --point=+1,+1,0 --point=1,1.1,+5");
+  EXPECT_EQ(signs.out, r.out);
+  EXPECT_EQ(run("project " + kScene + " --pose=1,1,30 --point=+-1,1,0").code, 2);
 }
 
 // The verbs that need only a camera take its rig from a file as well as from a scene, with the
