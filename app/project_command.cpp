@@ -3,6 +3,8 @@
 // Prints "u v" per point: continuous pixel coordinates, pixel centres at +0.5. A point the
 // mirror does not show (beyond the rim) prints "nan nan". Any rig: a physical one's reflection
 // point is solved for (physical_camera.h).
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -61,7 +63,9 @@ struct CameraRaysArgs {
 void runCameraRays(const CameraRaysArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "a scene");
   checkImageOutput(a.out, "-o");
-  if (std::filesystem::path(a.out).extension() != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
+  std::string extension = std::filesystem::path(a.out).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
   RigSpec rig;
   if (a.scene.empty() == a.rig.empty()) {
     rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load);  // refuses both or neither

@@ -286,6 +286,8 @@ TEST_F(CliTest, ProjectAndCameraRaysTakeARigFileInsteadOfAScene) {
   EXPECT_EQ(fromRig.out, fromScene.out);
   EXPECT_NE(fromRig.out, ideal.out);
   ASSERT_EQ(run("camera-rays --rig " + path("rig.json") + " --size 24 -o " + path("r1.exr")).code, 0);
+  ASSERT_EQ(run("camera-rays --rig " + path("rig.json") + " --size 24 -o " + path("upper.EXR")).code, 0);  // as view -o X.PNG
+  EXPECT_EQ(testing::readFile(path("r1.exr")), testing::readFile(path("upper.EXR")));
   ASSERT_EQ(run("camera-rays " + path("scene.json") + " --size 24 -o " + path("r2.exr")).code, 0);
   EXPECT_EQ(testing::readFile(path("r1.exr")), testing::readFile(path("r2.exr")));
   const CommandResult neither = run("project --pose=0,0,0 --point=1,0,0");
