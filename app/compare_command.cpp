@@ -39,23 +39,36 @@ std::string nonFiniteText(const CompareResult& r) {
 int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   refuseUnless(cmd, "--diff", false, "two images (datasets: --report shows heat maps of the worst frames)");
   refuseUnless(cmd, "--fail-rmse", false, "two images");
-  refuseUnless(cmd, "--fail-max", false, "two images");
   refuseUnless(cmd, "--diff-scale", !args.report.empty(), "--report");
   refuseUnless(cmd, "--box-downsample", false, "two images");
+  // Neither output may land in a compared folder (a --junit over A's manifest destroyed it), nor
+  // on the other output.
+  std::vector<std::pair<std::string, std::string>> outputs;
+  if (!args.report.empty()) outputs = {{args.report, "--report"}, {reportAssetsFolder(args.report), "--report (its images)"}};
+  if (!args.junit.empty()) outputs.push_back({args.junit, "--junit"});
+  for (const auto& [output, flag] : outputs) {
+    checkOutputIsOutsideFolder(output, flag, args.a, "the first dataset");
+    checkOutputIsOutsideFolder(output, flag, args.b, "the second dataset");
+  }
   if (!args.report.empty()) {
     checkOutputFile(args.report, "--report");
     checkOutputFolder(reportAssetsFolder(args.report), "--report (its images)");
   }
-  if (!args.junit.empty()) checkOutputFile(args.junit, "--junit");
+  if (!args.junit.empty()) {
+    checkOutputFile(args.junit, "--junit");
+    if (!args.report.empty() && std::filesystem::absolute(args.junit).lexically_normal() == std::filesystem::absolute(args.report).lexically_normal())
+      throw InputError("--junit: " + showPath(args.junit) + " is the --report file too: give each its own name");
+  }
   DatasetCompareOptions options;
   options.image.tolerance = args.tol;
   options.image.discOnly = args.disc;
   if (args.failPsnr >= 0.0) options.failPsnrDb = args.failPsnr;
+  if (args.failMax >= 0.0) options.failMaxAbs = args.failMax;
   options.diffScale = args.diffScale;
   const DatasetCompareResult r = compareDatasets(args.a, args.b, options);
   if (!args.report.empty()) writeDatasetCompareReport(args.report, args.a, args.b, r, options);
   if (!args.junit.empty()) writeTextAtomically(args.junit, datasetCompareJUnit(args.a, args.b, r, options));
-  const bool checked = options.failPsnrDb.has_value();
+  const bool checked = options.checked();
   const char* verdict = !checked ? "NOTHRESHOLD" : r.failures ? "FAIL" : "PASS";
   if (args.json) {
     nlohmann::json frames = nlohmann::json::array();
@@ -69,14 +82,19 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
     nlohmann::json summary = {{"images", r.frames.size()}, {"failures", r.failures}, {"verdict", verdict},
                               {"mean_psnr_db", std::isfinite(r.meanPsnrDb) ? nlohmann::json(r.meanPsnrDb) : nlohmann::json("inf")},
                               {"min_psnr_db", std::isfinite(r.minPsnrDb) ? nlohmann::json(r.minPsnrDb) : nlohmann::json("inf")},
-                              {"mean_ssim", r.meanSsim}, {"max_abs", r.maxAbs}, {"frames", frames}};
+                              {"identical_images", r.identical}, {"mean_ssim", r.meanSsim}, {"max_abs", r.maxAbs},
+                              {"max_abs_alpha", r.maxAbsAlpha}, {"frames", frames}};
     std::printf("%s\n", summary.dump(2).c_str());
   } else {
     std::vector<const FrameComparison*> worst;
     for (const FrameComparison& f : r.frames) worst.push_back(&f);
     std::sort(worst.begin(), worst.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
-    std::printf("compared %zu images (frames x cameras)\n  mean PSNR %.2f dB  worst %.2f dB  mean SSIM %.5f  max abs %.6g\n",
-                r.frames.size(), r.meanPsnrDb, r.minPsnrDb, r.meanSsim, r.maxAbs);
+    std::printf("compared %zu images (frames x cameras)%s\n  mean PSNR %.2f dB%s  worst %.2f dB  mean SSIM %.5f  max abs %.9g  max abs of alpha %.9g\n",
+                r.frames.size(), args.disc ? " inside the mirror disc" : "", r.meanPsnrDb,
+                r.identical ? (" (over the " + std::to_string(r.frames.size() - static_cast<size_t>(r.identical)) + " whose colour differs; " +
+                               std::to_string(r.identical) + " of identical colour)").c_str()
+                            : "",
+                r.minPsnrDb, r.meanSsim, r.maxAbs, r.maxAbsAlpha);
     for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
       std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
     int broken = 0;
@@ -87,7 +105,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   }
   std::fprintf(args.json ? stderr : stdout, "%s images=%zu failing=%d min_psnr_db=%.2f mean_psnr_db=%.2f%s\n", verdict,
                r.frames.size(), r.failures, r.minPsnrDb, r.meanPsnrDb,
-               checked ? "" : " (no --fail-psnr given: nothing checked)");
+               checked ? "" : " (no --fail-psnr or --fail-max given: nothing checked)");
   return r.failures ? 1 : 0;
 }
 
@@ -138,7 +156,12 @@ void explainSizes(const CompareArgs& args) {
 int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   std::error_code ec;
   const bool folderA = std::filesystem::is_directory(args.a, ec), folderB = std::filesystem::is_directory(args.b, ec);
-  if (folderA != folderB) throw InputError("compare: give two images or two dataset folders (got one of each)");
+  if (folderA != folderB) {
+    // Beside a folder, a name that is nothing is most likely a misspelt folder.
+    const std::string& other = folderA ? args.b : args.a;
+    if (!std::filesystem::exists(other, ec)) throw InputError(showPath(other) + ": no such file or folder");
+    throw InputError("compare: give two images or two dataset folders (got one of each)");
+  }
   if (folderA) return runDatasetCompare(args, cmd);
   refuseUnless(cmd, "--report", false, "two dataset folders");
   refuseUnless(cmd, "--junit", false, "two dataset folders");
@@ -194,7 +217,7 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--fail-psnr", args->failPsnr, "Fail below this PSNR (dB); datasets: any frame below")
       ->check(numberIn(-1e6, 1e6));
   cmd->add_option("--fail-rmse", args->failRmse, "Fail above this RMSE")->check(numberIn(0, 1e6));
-  cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error (colour, and alpha on its own)")->check(numberIn(0, 1e6));
+  cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error (colour, and alpha on its own); datasets: any frame above")->check(numberIn(0, 1e6));
   cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(numberIn(0, 1e6));
   cmd->add_flag("--disc", args->disc, "Only pixels wholly inside the mirror disc in both images");
   cmd->add_flag("--box-downsample", args->boxDownsample,

@@ -18,6 +18,7 @@
 #include "manifest.h"
 #include "markup.h"
 #include "memory_budget.h"
+#include "number_format.h"
 #include "output_kinds.h"
 #include "safe_files.h"
 
@@ -90,6 +91,10 @@ FrameFilesComparison compareFrameFiles(const std::string& dirA, const std::strin
                                        const CompareOptions& options) {
   if (f.layeredA || f.layeredB) {
     const DatasetImage a = readDatasetImage(dirA, f.fileA, f.layeredA), b = readDatasetImage(dirB, f.fileB, f.layeredB);
+    if (a.image.width != b.image.width || a.image.height != b.image.height)
+      throw InputError(showPath((fs::path(dirB) / f.fileB).string()) + ": frame " + std::to_string(f.index) + " of camera " +
+                       quote(f.camera) + " is " + std::to_string(b.image.width) + "x" + std::to_string(b.image.height) + ", A's is " +
+                       std::to_string(a.image.width) + "x" + std::to_string(a.image.height));
     CompareResult result = compareImages(a.image, b.image, options);
     result.nonFiniteA += a.nonFinitePixels, result.nonFiniteB += b.nonFinitePixels;
     // Both images as floats, and their decoding (the larger of the multilayer reader's planes plus
@@ -210,8 +215,7 @@ void compareAll(std::vector<FrameComparison>& frames, const std::string& dirA, c
     const FrameFilesComparison compared = compareFrameFiles(dirA, dirB, f, options.image);
     f.result = compared.result;
     bytes[k] = compared.bytes;
-    // A frame with a NaN or an infinity is a broken render, whatever its PSNR says.
-    f.failed = options.failPsnrDb && (f.result.psnrDb < *options.failPsnrDb || !f.result.allFinite());
+    f.failed = !options.failure(f.result).empty();
   };
   std::set<std::string> sized;
   std::vector<size_t> rest;
@@ -247,10 +251,29 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
     result.minPsnrDb = std::min(result.minPsnrDb, f.result.psnrDb);
     result.meanSsim += f.result.ssim / result.frames.size();
     result.maxAbs = std::max(result.maxAbs, f.result.maxAbs);
+    result.maxAbsAlpha = std::max(result.maxAbsAlpha, f.result.maxAbsAlpha);
     if (std::isfinite(f.result.psnrDb)) finiteSum += f.result.psnrDb, ++finite;
+    else ++result.identical;
   }
   result.meanPsnrDb = finite ? finiteSum / finite : std::numeric_limits<double>::infinity();
   return result;
+}
+
+std::string DatasetCompareOptions::failure(const CompareResult& r) const {
+  if (!checked()) return "";
+  // A frame with a NaN or an infinity is a broken render, whatever its numbers say.
+  if (!r.allFinite())
+    return "pixels not finite (NaN or inf): " + std::to_string(r.nonFiniteA) + " in A, " + std::to_string(r.nonFiniteB) + " in B";
+  if (failPsnrDb && r.psnrDb < *failPsnrDb) return "PSNR " + psnrText(r.psnrDb) + " dB below " + shortNumber(*failPsnrDb) + " dB";
+  const auto full = [](double v) {  // every digit a float holds: 0.100000024 is above 0.1
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return std::string(text);
+  };
+  if (failMaxAbs && r.maxAbs > *failMaxAbs) return "max abs " + full(r.maxAbs) + " above " + shortNumber(*failMaxAbs);
+  if (failMaxAbs && r.maxAbsAlpha > *failMaxAbs)
+    return "max abs of alpha " + full(r.maxAbsAlpha) + " above " + shortNumber(*failMaxAbs);
+  return "";
 }
 
 std::string reportAssetsFolder(const std::string& reportPath) {
@@ -277,11 +300,18 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
           "figure{display:inline-block;margin:4px}img{width:240px;image-rendering:pixelated}</style></head><body>"
        << "<h1>Dataset comparison</h1><p>A: <code>" << escapeMarkup(dirA) << "</code><br>B: <code>" << escapeMarkup(dirB)
        << "</code></p><p>" << result.frames.size() << " images compared; mean PSNR " << psnrText(result.meanPsnrDb)
-       << " dB, worst " << psnrText(result.minPsnrDb) << " dB, mean SSIM " << result.meanSsim << ", max abs "
-       << result.maxAbs;
-  if (options.failPsnrDb)
-    html << "; threshold " << *options.failPsnrDb << " dB: <span class=\"" << (result.failures ? "fail" : "") << "\">"
-         << result.failures << " failing</span>";
+       << " dB" << (result.identical ? " (of the " + std::to_string(result.frames.size() - static_cast<size_t>(result.identical)) + " whose colour differs)" : "")
+       << ", worst " << psnrText(result.minPsnrDb) << " dB, mean SSIM " << result.meanSsim << ", max abs " << result.maxAbs
+       << ", max abs of alpha " << result.maxAbsAlpha << "; " << (options.image.discOnly ? "inside the mirror disc" : "every pixel")
+       << ", tolerance " << options.image.tolerance;
+  if (options.checked()) {
+    html << "; thresholds:";
+    if (options.failPsnrDb) html << " PSNR " << *options.failPsnrDb << " dB";
+    if (options.failMaxAbs) html << " max abs " << *options.failMaxAbs;
+    html << ": <span class=\"" << (result.failures ? "fail" : "") << "\">" << result.failures << " failing</span>";
+  } else {
+    html << "; no threshold given: nothing checked";
+  }
   html << "</p><h2>Worst frames</h2><p>Heat map: |A − B| (max over channels), black 0 → white at " << options.diffScale
        << ".</p>";
   const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
@@ -319,14 +349,13 @@ std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB
       << result.failures << "\" errors=\"0\">\n";
   for (const FrameComparison& f : result.frames) {
     xml << "  <testcase classname=\"" << escapeMarkup(f.camera) << "\" name=\"" << escapeMarkup(frameLabel(f)) << "\">";
-    if (f.failed && !f.result.allFinite())
-      xml << "\n    <failure message=\"pixels not finite (NaN or inf): " << f.result.nonFiniteA << " in A, " << f.result.nonFiniteB
-          << " in B\">" << escapeMarkup(f.fileA + " vs " + f.fileB) << "</failure>\n  ";
+    if (!options.checked())
+      xml << "\n    <skipped message=\"no threshold given (--fail-psnr, --fail-max): nothing checked\"/>\n  ";
     else if (f.failed)
-      xml << "\n    <failure message=\"PSNR " << psnrText(f.result.psnrDb) << " dB below " << *options.failPsnrDb
-          << " dB\">" << escapeMarkup(f.fileA + " vs " + f.fileB) << "</failure>\n  ";
+      xml << "\n    <failure message=\"" << escapeMarkup(options.failure(f.result)) << "\">" << escapeMarkup(f.fileA + " vs " + f.fileB)
+          << "</failure>\n  ";
     xml << "<system-out>psnr_db=" << psnrText(f.result.psnrDb) << " ssim=" << f.result.ssim << " rmse=" << f.result.rmse
-        << " max_abs=" << f.result.maxAbs << "</system-out></testcase>\n";
+        << " max_abs=" << f.result.maxAbs << " max_abs_alpha=" << f.result.maxAbsAlpha << "</system-out></testcase>\n";
   }
   xml << "</testsuite>\n</testsuites>\n";
   return xml.str();

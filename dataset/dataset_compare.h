@@ -15,8 +15,13 @@ namespace omnicam {
 struct DatasetCompareOptions {
   CompareOptions image;
   std::optional<double> failPsnrDb;  // a frame below fails
+  std::optional<double> failMaxAbs;  // a frame whose colour or alpha differs by more fails
   int worstFrames = 6;               // shown with heat maps in the report
   double diffScale = 0.05;
+  // Whether any threshold was given: without one nothing is checked, and nothing fails.
+  bool checked() const { return failPsnrDb.has_value() || failMaxAbs.has_value(); }
+  // Why frame `r` fails the thresholds ("" if it does not): a NaN or an infinity always does.
+  std::string failure(const CompareResult& r) const;
 };
 
 struct FrameComparison {
@@ -30,7 +35,10 @@ struct FrameComparison {
 struct DatasetCompareResult {
   std::vector<FrameComparison> frames;  // in frame, then camera order
   int failures = 0;
-  double meanPsnrDb = 0.0, minPsnrDb = 0.0, meanSsim = 0.0, maxAbs = 0.0;
+  // meanPsnrDb is over the frames whose colour differs (an identical colour's PSNR is infinite;
+  // `identical` counts those frames).
+  double meanPsnrDb = 0.0, minPsnrDb = 0.0, meanSsim = 0.0, maxAbs = 0.0, maxAbsAlpha = 0.0;
+  int identical = 0;
 };
 
 DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
@@ -42,7 +50,8 @@ std::string reportAssetsFolder(const std::string& reportPath);
 // Images go to reportAssetsFolder(reportPath).
 void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
                                const DatasetCompareResult& result, const DatasetCompareOptions& options);
-// JUnit XML: one test case per frame and camera, failing below --fail-psnr.
+// JUnit XML: one test case per frame and camera, failing as options.failure says; without a
+// threshold every case is skipped (nothing was checked), not passed.
 std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB, const DatasetCompareResult& result,
                                 const DatasetCompareOptions& options);
 

@@ -1,5 +1,6 @@
 #include "atomic_file.h"
 
+#include <algorithm>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -160,6 +161,20 @@ void checkOutputIsNotInput(const std::string& path, const std::string& flag, con
   if (fs::is_symlink(path, ec)) return;
   if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
     throw InputError(flag + ": " + showPath(path) + " is " + inputName + "; writing it would destroy what is read: choose another name");
+}
+
+void checkOutputIsOutsideFolder(const std::string& path, const std::string& flag, const std::string& folder,
+                                const std::string& folderName) {
+  std::error_code ec;
+  const fs::path output = fs::weakly_canonical(fs::absolute(path), ec);
+  if (ec) return;
+  const fs::path inside = fs::weakly_canonical(fs::absolute(folder), ec);
+  if (ec) return;
+  const auto [folderEnd, outputAt] = std::mismatch(inside.begin(), inside.end(), output.begin(), output.end());
+  (void)outputAt;
+  if (folderEnd == inside.end())
+    throw InputError(flag + ": " + showPath(path) + " is inside " + folderName + " (" + showPath(folder) +
+                     "); writing there could replace what is read: choose a place outside it");
 }
 
 std::string atomicTemporaryName(const std::string& name) {

@@ -41,6 +41,12 @@ void checkOutputFolder(const std::string& path, const std::string& flag);
 void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,
                            const std::string& inputName);
 
+// InputError("<flag>: <path> is inside <folderName> ...") if `path` lies in `folder` or below it,
+// by any spelling (links in the existing part resolved): an output there could replace what a
+// command reads from the folder (a compared dataset's manifest or frames).
+void checkOutputIsOutsideFolder(const std::string& path, const std::string& flag, const std::string& folder,
+                                const std::string& folderName);
+
 // A fresh unpredictable temporary name for the file `name`: ".<stem>.tmp-XXXXXXXXXX<ext>".
 std::string atomicTemporaryName(const std::string& name);
 // Temporary siblings left behind by killed runs match this (".<stem>.tmp-XXXXXX<ext>").

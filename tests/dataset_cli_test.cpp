@@ -730,6 +730,43 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   const auto mixed = omnicam("compare " + path("fast") + " " + path("povray/cam0/rgb/000000.exr"));
   EXPECT_EQ(mixed.code, 2);
   EXPECT_NE(mixed.out.find("give two images or two dataset folders"), std::string::npos);
+  const auto misspelt = omnicam("compare " + path("fast") + " " + path("povary"));
+  EXPECT_EQ(misspelt.code, 2);
+  EXPECT_NE(misspelt.out.find(path("povary") + ": no such file or folder"), std::string::npos) << misspelt.out;
+
+  // Alpha alone differs (the rim's coverage): --fail-max fails it; without a threshold JUnit
+  // skips every case rather than passing it; the mean PSNR says it leaves identical frames out.
+  fs::create_directories(dir_ / "rim/cam0/rgb");
+  fs::copy_file(dir_ / "fast/cam0/rgb/000000.exr", dir_ / "rim/cam0/rgb/000000.exr");
+  ImageRGBA rim = readImage(path("fast/cam0/rgb/000001.exr"));
+  for (int row = 0; row < rim.height; ++row) rim.at(48, row)[3] *= 0.5f;  // the centre column: opaque
+  writeImageAtomic(path("rim/cam0/rgb/000001.exr"), rim);
+  const auto alpha = omnicam("compare " + path("fast") + " " + path("rim") + " --fail-max 0.01 --junit " + path("rim.xml"));
+  EXPECT_EQ(alpha.code, 1) << alpha.out;
+  EXPECT_NE(alpha.out.find("FAIL images=2 failing=1"), std::string::npos) << alpha.out;
+  EXPECT_NE(alpha.out.find("mean PSNR inf dB (over the 0 whose colour differs; 2 of identical colour)"), std::string::npos) << alpha.out;
+  EXPECT_NE(readFile(dir_ / "rim.xml").find("<failure message=\"max abs of alpha 0.5 above 0.01\""), std::string::npos)
+      << readFile(dir_ / "rim.xml");
+  ASSERT_EQ(omnicam("compare " + path("fast") + " " + path("rim") + " --junit " + path("none.xml")).code, 0);
+  const std::string unchecked = readFile(dir_ / "none.xml");
+  EXPECT_NE(unchecked.find("tests=\"2\""), std::string::npos) << unchecked;
+  size_t skipped = 0;
+  for (size_t at = unchecked.find("<skipped message=\"no threshold given"); at != std::string::npos; at = unchecked.find("<skipped", at + 1))
+    ++skipped;
+  EXPECT_EQ(skipped, 2u) << unchecked;
+  EXPECT_EQ(unchecked.find("<failure"), std::string::npos);
+  // No output lands in a compared folder (a --junit over A's manifest destroyed the dataset), or
+  // on the other output.
+  const std::string manifest = readFile(dir_ / "fast/manifest.json");
+  const auto over = omnicam("compare " + path("fast") + " " + path("povray") + " --fail-psnr 45 --junit " + path("fast/manifest.json"));
+  EXPECT_EQ(over.code, 2) << over.out;
+  EXPECT_NE(over.out.find("--junit: " + path("fast/manifest.json") + " is inside the first dataset"), std::string::npos) << over.out;
+  EXPECT_EQ(readFile(dir_ / "fast/manifest.json"), manifest);
+  EXPECT_EQ(omnicam("compare " + path("fast") + " " + path("povray") + " --report " + path("povray/r.html")).code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "povray/r.html"));
+  const auto same = omnicam("compare " + path("fast") + " " + path("povray") + " --report " + path("x.html") + " --junit " + path("x.html"));
+  EXPECT_EQ(same.code, 2) << same.out;
+  EXPECT_NE(same.out.find("is the --report file too"), std::string::npos) << same.out;
 }
 
 // A Blender dataset renders every frame of a camera in one Blender session (Blender starts in
