@@ -1,6 +1,6 @@
 // omnicam compare A B [--json] [--diff OUT.png] [--fail-psnr DB] [--fail-rmse X] [--fail-max X]
 //                     [--tol X] [--disc] [--box-downsample]
-// omnicam compare DIR_A DIR_B [--fail-psnr DB] [--report OUT.html] [--junit OUT.xml] [--json] [--tol X] [--disc]
+// omnicam compare DIR_A DIR_B [--fail-psnr DB] [--fail-max X] [--report OUT.html] [--junit OUT.xml] [--json] [--tol X] [--disc]
 // Exit 0 pass, 1 over a threshold, 2 bad input. One verdict line: "PASS …" or "FAIL …", or
 // "NOTHRESHOLD …" when no --fail-* was given (nothing was checked, so nothing passed). With
 // --json, stdout holds only the JSON and the verdict line goes to stderr.
@@ -56,7 +56,9 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   }
   if (!args.junit.empty()) {
     checkOutputFile(args.junit, "--junit");
-    if (!args.report.empty() && std::filesystem::absolute(args.junit).lexically_normal() == std::filesystem::absolute(args.report).lexically_normal())
+    std::error_code ec;
+    if (!args.report.empty() && std::filesystem::weakly_canonical(std::filesystem::absolute(args.junit), ec) ==
+                                    std::filesystem::weakly_canonical(std::filesystem::absolute(args.report), ec))
       throw InputError("--junit: " + showPath(args.junit) + " is the --report file too: give each its own name");
   }
   DatasetCompareOptions options;

@@ -65,9 +65,14 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a) {
     rig = readRigFlag(a.rig, "--scene");
     sidecar["rig_from"] = {{"rig_file", a.rig}};
   }
-  if (own && !(sidecarFromText(own->dump(), sidecarPath(a.in)).rig.resized(rig.imageWidth()) == rig))
-    throw InputError(std::string(a.scene.empty() ? "--rig" : "--scene") + ": " + showPath(a.in) + "'s sidecar (" +
-                     showPath(sidecarPath(a.in)) + ") states another camera; leave the flag out to use it");
+  if (own) {
+    // Compared at the sidecar's own size, as the render that wrote it resized the same rig.
+    const RigSpec stated = sidecarFromText(own->dump(), sidecarPath(a.in)).rig;
+    if (!(rig.resized(stated.imageWidth()) == stated))
+      throw InputError(std::string(a.scene.empty() ? "--rig" : "--scene") + ": " + showPath(a.in) + "'s sidecar (" +
+                       showPath(sidecarPath(a.in)) + ") states another camera; leave the flag out to use it");
+    return {stated, *own};  // the same camera: the image's own sidecar, with its pose and source
+  }
   return {rig, sidecar};
 }
 

@@ -578,6 +578,11 @@ TEST_F(CliTest, ViewsGetSidecarsAndImagesWithoutOneNeedARig) {
       << overridden.out;
   // The same rig as the sidecar's is no conflict, and another tool's sidecar is none of omnicam's.
   EXPECT_EQ(run("view " + path("a.png") + " --as panorama --rig " OMNICAM_SOURCE_DIR "/tests/bad_inputs/rig.json -o " + path("vs.png")).code, 0);
+  std::ifstream in3(path("vs.png") + ".json");
+  const auto redundant = nlohmann::json::parse(in3);  // the image's own sidecar, as without the flag
+  EXPECT_EQ(redundant["pose"], fromView["pose"]);
+  EXPECT_EQ(redundant["source"], fromView["source"]);
+  EXPECT_FALSE(redundant.contains("rig_from"));
   fs::copy_file(path("a.png"), path("tagged.png"));
   std::ofstream(path("tagged.png.json")) << R"({"labels": []})";
   EXPECT_EQ(run("view " + path("tagged.png") + " --as panorama --rig " + path("rig6.json") + " -o " + path("vg.png")).code, 0);

@@ -8,6 +8,7 @@
 #include "central_camera.h"
 #include "errors.h"
 #include "physical_camera.h"
+#include "placement.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -211,7 +212,8 @@ Vec2 sourceAt(const ViewMap& map, double u, double v) {
 // The geometry a view's sidecar states, checked through the omni camera: a point the stated
 // pinhole (or floor scale) puts at a view position is the point the view map samples there, for
 // a level rig and a tilted one (the view's directions are the viewpoint frame's, which the tilt
-// turns on the robot: rig.h's robotFromViewpoint = Rx(roll)·Ry(pitch)·T(0, 0, height), rebuilt here).
+// turns on the robot: rig.h's tilt, robotFromViewpoint = Rx(roll)·Ry(pitch)·T(0, 0, height),
+// rebuilt here and checked against placement.h's).
 TEST(Views, TheSidecarsGeometryIsTheViews) {
   const double height = RigSpec{}.height;
   const CentralCamera central{RigSpec{}};
@@ -220,6 +222,9 @@ TEST(Views, TheSidecarsGeometryIsTheViews) {
     robotFromViewpoint.rotate(Eigen::AngleAxisd(radians(tiltDeg.x()), Vec3::UnitX()));
     robotFromViewpoint.rotate(Eigen::AngleAxisd(radians(tiltDeg.y()), Vec3::UnitY()));
     robotFromViewpoint.translate(Vec3(0, 0, height));
+    RigSpec tilted;
+    tilted.tiltDeg = {tiltDeg.x(), tiltDeg.y()};
+    ASSERT_TRUE(omnicam::robotFromViewpoint(tilted).matrix().isApprox(robotFromViewpoint.matrix(), 1e-12));
     auto omniRaster = [&](const Vec3& robotPoint) {  // where the omni camera images a robot-frame point
       return camera().rasterFromCamera(unifiedCameraFromViewpoint().linear() * (robotFromViewpoint.inverse() * robotPoint));
     };
