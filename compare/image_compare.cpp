@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "errors.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -128,6 +129,21 @@ CompareResult RowComparison::result() const {
   // one window.
   r.ssim = windows_ ? ssimSum_ / windows_ : whole_.ssim(static_cast<double>(r.pixels));
   return r;
+}
+
+std::string nonFiniteText(const CompareResult& r) {
+  return "not finite: " + std::to_string(r.nonFiniteA) + " pixels of A, " + std::to_string(r.nonFiniteB) +
+         " of B (NaN or inf, read as 0)";
+}
+
+std::vector<std::string> CompareThresholds::failures(const CompareResult& r) const {
+  std::vector<std::string> failed;
+  if (minPsnrDb && r.psnrDb < *minPsnrDb) failed.push_back("psnr_db < " + shortNumber(*minPsnrDb));
+  if (maxRmse && r.rmse > *maxRmse) failed.push_back("rmse > " + shortNumber(*maxRmse));
+  if (maxAbs && r.maxAbs > *maxAbs) failed.push_back("max_abs > " + shortNumber(*maxAbs));
+  if (maxAbs && r.maxAbsAlpha > *maxAbs) failed.push_back("max_abs_alpha > " + shortNumber(*maxAbs));
+  if (any() && !r.allFinite()) failed.push_back(nonFiniteText(r));
+  return failed;
 }
 
 CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const CompareOptions& options) {

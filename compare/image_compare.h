@@ -7,6 +7,7 @@
 // not a value to compare (it counts as 0, as the image decoder reads it from a file).
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "image.h"
@@ -26,6 +27,19 @@ struct CompareResult {
   long nonFiniteA = 0, nonFiniteB = 0;  // pixels with a NaN or ±∞ colour or alpha, in all of each image
   bool allFinite() const { return nonFiniteA == 0 && nonFiniteB == 0; }
 };
+
+// What a comparison is checked against (compare's --fail-* flags); an unset one is not checked.
+struct CompareThresholds {
+  std::optional<double> minPsnrDb, maxRmse;
+  std::optional<double> maxAbs;  // colour, and alpha on its own
+  bool any() const { return minPsnrDb || maxRmse || maxAbs; }
+  // Each threshold `r` fails, in the words of compare's verdict line ("psnr_db < 45",
+  // "max_abs_alpha > 0.1"); with any threshold a pixel that is not finite fails too, whatever the
+  // numbers. Empty: passed, or nothing was checked.
+  std::vector<std::string> failures(const CompareResult& r) const;
+};
+// "not finite: 3 pixels of A, 0 of B (NaN or inf, read as 0)".
+std::string nonFiniteText(const CompareResult& r);
 
 // A comparison fed rows top to bottom, a band at a time: the pixel statistics accumulate row by
 // row and SSIM's 8-row windows are taken as their last row arrives, from the 8 rows kept. Its

@@ -14,14 +14,9 @@ namespace omnicam {
 
 struct DatasetCompareOptions {
   CompareOptions image;
-  std::optional<double> failPsnrDb;  // a frame below fails
-  std::optional<double> failMaxAbs;  // a frame whose colour or alpha differs by more fails
-  int worstFrames = 6;               // shown with heat maps in the report
+  CompareThresholds thresholds;  // each frame is checked against them; none given: nothing is checked
+  int worstFrames = 6;           // shown with heat maps in the report
   double diffScale = 0.05;
-  // Whether any threshold was given: without one nothing is checked, and nothing fails.
-  bool checked() const { return failPsnrDb.has_value() || failMaxAbs.has_value(); }
-  // Why frame `r` fails the thresholds ("" if it does not): a NaN or an infinity always does.
-  std::string failure(const CompareResult& r) const;
 };
 
 struct FrameComparison {
@@ -50,7 +45,7 @@ std::string reportAssetsFolder(const std::string& reportPath);
 // Images go to reportAssetsFolder(reportPath).
 void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
                                const DatasetCompareResult& result, const DatasetCompareOptions& options);
-// JUnit XML: one test case per frame and camera, failing as options.failure says; without a
+// JUnit XML: one test case per frame and camera, failing as options.thresholds say; without a
 // threshold every case is skipped (nothing was checked), not passed.
 std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB, const DatasetCompareResult& result,
                                 const DatasetCompareOptions& options);
