@@ -337,7 +337,7 @@ ExrChannels decodeExrChannels(std::string_view bytes, const std::string& name, b
                               const std::set<std::string>* channels) {
   ExrChannels out;
   try {
-    MemoryExrInput stream(bytes);
+    MemoryExrInput stream(bytes, name);
     Imf::InputFile file(stream, 0);
     const Imath::Box2i window = file.header().dataWindow();
     if (window.min.x != 0 || window.min.y != 0) throw InputError(name + ": OpenEXR data window does not start at pixel (0, 0)");

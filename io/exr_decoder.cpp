@@ -74,7 +74,7 @@ class ExrDecoder final : public ImageDecoder {
     checkExrChunksPresent(source.bytes, source.path, name_);
     guarded("cannot read image", [&] {
       if (source.inMemory()) {
-        stream_ = std::make_unique<MemoryExrInput>(source.bytes);
+        stream_ = std::make_unique<MemoryExrInput>(source.bytes, name_);
         file_ = std::make_unique<Imf::InputFile>(*stream_, 0);
       } else {
         file_ = std::make_unique<Imf::InputFile>(source.path.c_str(), 0);

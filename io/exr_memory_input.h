@@ -6,13 +6,15 @@
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 namespace omnicam {
 
 class MemoryExrInput : public Imf::IStream {
  public:
-  explicit MemoryExrInput(std::string_view bytes) : Imf::IStream("memory.exr"), bytes_(bytes) {}
+  // `name`: what OpenEXR's own messages call the file (the name errors show the user).
+  explicit MemoryExrInput(std::string_view bytes, const std::string& name = "memory.exr") : Imf::IStream(name.c_str()), bytes_(bytes) {}
   bool read(char c[], int n) override {
     // Written so that no sum can wrap: a forged offset may be seeked to anything up to 2⁶⁴ − 1.
     if (n < 0 || position_ > bytes_.size() || static_cast<uint64_t>(n) > bytes_.size() - position_)
