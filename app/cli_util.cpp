@@ -190,12 +190,21 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
   return rigFromJson(file, path, "rig");
 }
 
-RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load) {
+RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load,
+                            const std::vector<std::string>& images, const std::string& flag) {
   if (scenePath.empty() == rigPath.empty())
     throw InputError(scenePath.empty() ? "give a scene file or --rig RIG.json (the camera's rig)"
                                        : "--rig: give a scene file or --rig, not both");
-  if (!rigPath.empty()) return readRigFlag(rigPath);
-  return loadScene(scenePath, load).rig;
+  if (!rigPath.empty()) {
+    for (const std::string& image : images) {
+      checkOutputIsNotInput(image, flag, rigPath, "the --rig file");
+      checkOutputIsNotInput(sidecarPath(image), flag + " (its sidecar)", rigPath, "the --rig file");
+    }
+    return readRigFlag(rigPath);
+  }
+  const Scene scene = loadScene(scenePath, load);
+  checkOutputsSpareScene(scene, images, flag);
+  return scene.rig;
 }
 
 void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options) {

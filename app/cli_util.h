@@ -59,8 +59,10 @@ void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // given there is refused, naming how the verb takes a scene (`sceneGiven`).
 RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven = "the scene argument");
 // The rig of exactly one of `scenePath` (a scene file, loaded with `load`) or `rigPath` (readRigFlag):
-// for verbs that need a camera and nothing else of the scene.
-RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load);
+// for verbs that need a camera and nothing else of the scene. `images` (named by `flag`), and
+// their sidecars, must not be a file it read (checkOutputsSpareScene).
+RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load,
+                            const std::vector<std::string>& images = {}, const std::string& flag = "-o");
 // InputError("<flag>: … is the scene file; writing it would destroy what is read") if an image
 // in `images`, or its sidecar, is a file the scene was read from (Scene::inputFiles: the scene,
 // its textures, environment and glTF files).

@@ -66,18 +66,7 @@ void runCameraRays(const CameraRaysArgs& a, const CLI::App& cmd) {
   std::string extension = std::filesystem::path(a.out).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension != ".exr") throw InputError("-o: the ray table is an OpenEXR: name it .exr (got " + showPath(a.out) + ")");
-  RigSpec rig;
-  if (a.scene.empty() == a.rig.empty()) {
-    rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load);  // refuses both or neither
-  } else if (!a.rig.empty()) {
-    checkOutputIsNotInput(a.out, "-o", a.rig, "the --rig file");
-    checkOutputIsNotInput(sidecarPath(a.out), "-o (its sidecar)", a.rig, "the --rig file");
-    rig = readRigFlag(a.rig);
-  } else {
-    const Scene scene = loadScene(a.scene, a.load);
-    checkOutputsSpareScene(scene, {a.out}, "-o");
-    rig = scene.rig;
-  }
+  RigSpec rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load, {a.out}, "-o");
   if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   // Rows as the bars' steps: a large table takes minutes to trace (a physical camera) and to encode.

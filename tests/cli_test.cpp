@@ -294,6 +294,13 @@ TEST_F(CliTest, ProjectAndCameraRaysTakeARigFileInsteadOfAScene) {
   EXPECT_EQ(neither.code, 2);
   EXPECT_NE(neither.out.find("give a scene file or --rig"), std::string::npos) << neither.out;
   EXPECT_EQ(run("camera-rays " + path("scene.json") + " --rig " + path("rig.json") + " -o " + path("r3.exr")).code, 2);
+  // The rig file is not written over, as a scene is not: here it is the output's sidecar.
+  fs::copy_file(path("rig.json"), path("r4.exr.json"));
+  const CommandResult overRig = run("camera-rays --rig " + path("r4.exr.json") + " -o " + path("r4.exr"));
+  EXPECT_EQ(overRig.code, 2);
+  EXPECT_NE(overRig.out.find("is the --rig file"), std::string::npos) << overRig.out;
+  EXPECT_EQ(testing::readFile(path("r4.exr.json")), testing::readFile(path("rig.json")));
+  EXPECT_FALSE(fs::exists(path("r4.exr")));
   EXPECT_FALSE(fs::exists(path("r3.exr")));
 }
 
