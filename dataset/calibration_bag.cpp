@@ -26,7 +26,7 @@ BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::stri
   }
   image.topic = "/" + camera + "/image_raw";
   image.frameId = camera;
-  image.stampNs = eurocTimestampNs(index, intervalS);  // the frame's time, as EuRoC names its images
+  image.stampNs = frameTimestampNs(index, intervalS);  // the frame's time, as EuRoC names its images
   image.seq = static_cast<uint32_t>(index);
   const size_t row = static_cast<size_t>(image.width) * 3;
   image.rgb8.resize(row * static_cast<size_t>(image.height));

@@ -55,7 +55,7 @@ std::string posesTum(size_t frames, const CameraSetup& setup, double interval, c
     const Rigid worldFromCam = placementOfFrame(frame).worldFromCamera(rigOfFrame(frame));
     const Eigen::Quaterniond q(worldFromCam.linear());
     const Vec3 t = worldFromCam.translation();
-    out << roundTrip(static_cast<double>(i) * interval) << ' ' << roundTrip(t.x()) << ' ' << roundTrip(t.y()) << ' '
+    out << roundTrip(frameTimestampSeconds(frame, interval)) << ' ' << roundTrip(t.x()) << ' ' << roundTrip(t.y()) << ' '
         << roundTrip(t.z()) << ' ' << roundTrip(q.x()) << ' ' << roundTrip(q.y()) << ' ' << roundTrip(q.z()) << ' '
         << roundTrip(q.w()) << '\n';
   }

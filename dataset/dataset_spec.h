@@ -33,7 +33,7 @@ inline constexpr double kMaxMountYawDeg = 360.0;
 // exact in every JSON reader).
 inline constexpr double kMaxClearance = 100.0;
 inline constexpr int64_t kMaxSeed = int64_t{1} << 53;
-// Timestamp of frame i = i × interval (s).
+// Timestamp of frame i = i × interval (s): frameTimestampSeconds (output_kinds.h).
 inline constexpr double kMaxFrameIntervalSeconds = 86400.0;
 // Waypoint timestamps (poses.timestamps_s), seconds either side of 0: a year.
 inline constexpr double kMaxTimestampSeconds = 3.2e7;

@@ -13,7 +13,7 @@ namespace omnicam {
 std::string eurocDataCsv(int frames, double intervalS) {
   std::ostringstream out;
   out << "#timestamp [ns],filename\n";
-  for (int i = 0; i < frames; ++i) out << eurocTimestampNs(i, intervalS) << ',' << eurocImageName(i, intervalS) << '\n';
+  for (int i = 0; i < frames; ++i) out << frameTimestampNs(i, intervalS) << ',' << eurocImageName(i, intervalS) << '\n';
   return out.str();
 }
 

@@ -13,7 +13,7 @@
 
 namespace omnicam {
 
-// The frames' names (eurocTimestampNs, eurocImageName) are the layout's: output_kinds.h.
+// The frames' names (frameTimestampNs, eurocImageName) are the layout's: output_kinds.h.
 // The text of <camera>/data.csv for frames [0, frames).
 std::string eurocDataCsv(int frames, double intervalS);
 // The text of <camera>/sensor.yaml: T_BS maps the sensor frame (the intrinsics files' camera

@@ -42,7 +42,7 @@ FrameRecord renderFrame(const DatasetPlan& plan, const SafeFolder& dir, int inde
   Engine& engine = world ? *world->engine : plan.engine();
   const Scene& scene = world ? world->scene : plan.scene();
   const RayScene* rays = world ? world->rays.get() : plan.rays();
-  FrameRecord record{index, static_cast<double>(index) * spec.frameIntervalSeconds, plan.poses()[index], plan.velocities()[index], {},
+  FrameRecord record{index, frameTimestampSeconds(index, spec.frameIntervalSeconds), plan.poses()[index], plan.velocities()[index], {},
                      plan.robotTilt(index)};
   for (size_t c = 0; c < plan.setups().size(); ++c) {
     const CameraSetup& setup = plan.setups()[c];

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -127,11 +128,29 @@ std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kin
   return frameFolder(camera, kind) + "/" + name;
 }
 
-int64_t eurocTimestampNs(int frame, double intervalS) {
+namespace {
+
+// The interval in whole nanoseconds, when it is one to within a millionth of a nanosecond's
+// rounding (the double nearest 0.05 s is 50 000 000 ns and a tiny fraction).
+std::optional<int64_t> wholeNanoseconds(double intervalS) {
+  const double ns = intervalS * 1e9, whole = std::round(ns);
+  if (whole < 1.0 || std::abs(ns - whole) > 1e-6) return std::nullopt;
+  return static_cast<int64_t>(whole);
+}
+
+}  // namespace
+
+double frameTimestampSeconds(int frame, double intervalS) {
+  if (const std::optional<int64_t> ns = wholeNanoseconds(intervalS)) return static_cast<double>(frame * *ns) / 1e9;
+  return static_cast<double>(frame) * intervalS;
+}
+
+int64_t frameTimestampNs(int frame, double intervalS) {
+  if (const std::optional<int64_t> ns = wholeNanoseconds(intervalS)) return frame * *ns;
   return std::llround(static_cast<double>(frame) * intervalS * 1e9);
 }
 
-std::string eurocImageName(int frame, double intervalS) { return std::to_string(eurocTimestampNs(frame, intervalS)) + ".png"; }
+std::string eurocImageName(int frame, double intervalS) { return std::to_string(frameTimestampNs(frame, intervalS)) + ".png"; }
 
 std::string gatheredPath(const std::string& camera, OutputKind kind) { return camera + "/" + outputName(kind) + ".json"; }
 

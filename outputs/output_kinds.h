@@ -106,9 +106,13 @@ struct FrameOutputPlan {
   std::string frameFolder(const std::string& camera, OutputKind kind) const;
 };
 
-// The EuRoC/ASL layout's names (euroc_files.h): frame `frame`'s timestamp in nanoseconds,
-// round(frame · interval · 10⁹), and "<t_ns>.png", its image's name in <camera>/data/.
-int64_t eurocTimestampNs(int frame, double intervalS);
+// Frame `frame`'s timestamp, frame · interval, in seconds (the manifest, COCO, poses.tum) and in
+// nanoseconds (EuRoC, bags). An interval of whole nanoseconds (0.05 s, not 1/30 s) is multiplied
+// as an integer, so that the seconds are the double nearest the decimal product and print as it:
+// 0.15 for frame 3 at 0.05 s, where 3 · 0.05 in doubles is 0.15000000000000002.
+double frameTimestampSeconds(int frame, double intervalS);
+int64_t frameTimestampNs(int frame, double intervalS);
+// The EuRoC/ASL layout's image name (euroc_files.h): "<frameTimestampNs>.png" in <camera>/data/.
 std::string eurocImageName(int frame, double intervalS);
 
 // "<camera>/<kind>.json": a camera's gathered annotation file.

@@ -1216,6 +1216,32 @@ TEST_F(DatasetCliTest, TimedWaypointsGiveAFrameEveryIntervalWithTheVelocityItIsD
   EXPECT_FALSE(fs::exists(path("refused")));
 }
 
+// Frame i's timestamp is i × interval as a decimal: 0.3 at 0.1 s, where 3 · 0.1 in doubles is
+// 0.30000000000000004. The manifest, COCO and poses.tum say the same number.
+TEST_F(DatasetCliTest, TimestampsAreTheIntervalsDecimalMultiples) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 16, "frame_interval_s": 0.1, "outputs": {"depth": false, "normal": false, "coco": true},
+    "poses": {"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0], [0.3, 0, 0], [0.4, 0, 0], [0.5, 0, 0], [0.6, 0, 0], [0.7, 0, 0]]})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const std::vector<double> decimal{0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7};
+  const std::vector<std::string> text{"0", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6", "0.7"};
+  ASSERT_NE(3 * 0.1, 0.3);  // what the multiplication in doubles gives
+  const json frames = json::parse(readFile(path("ds/manifest.json"))).at("frames");
+  const json images = json::parse(readFile(path("ds/cam0/coco.json"))).at("images");
+  std::istringstream tum(readFile(path("ds/cam0/poses.tum")));
+  std::vector<std::string> tumStamps;
+  for (std::string line; std::getline(tum, line);)
+    if (!line.empty() && line[0] != '#') tumStamps.push_back(line.substr(0, line.find(' ')));
+  ASSERT_EQ(frames.size(), decimal.size());
+  ASSERT_EQ(images.size(), decimal.size());
+  ASSERT_EQ(tumStamps.size(), decimal.size());
+  for (size_t i = 0; i < decimal.size(); ++i) {
+    EXPECT_EQ(frames[i].at("timestamp").get<double>(), decimal[i]) << i;
+    EXPECT_EQ(images[i].at("timestamp").get<double>(), decimal[i]) << i;
+    EXPECT_EQ(tumStamps[i], text[i]) << i;
+  }
+}
+
 TEST_F(DatasetCliTest, BlenderReadsEveryLayerOfAMultilayerFrame) {
   const std::string spec = robocupSpec("spec.json", R"("size": 48, "poses": {"list": [[0.5, 0.3, 20]]}, )" + everyOutput("multilayer"));
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
