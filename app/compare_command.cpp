@@ -87,7 +87,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
                               {"mean_psnr_db", std::isfinite(r.meanPsnrDb) ? nlohmann::json(r.meanPsnrDb) : nlohmann::json("inf")},
                               {"min_psnr_db", std::isfinite(r.minPsnrDb) ? nlohmann::json(r.minPsnrDb) : nlohmann::json("inf")},
                               {"identical_images", r.identical}, {"mean_ssim", r.meanSsim}, {"max_abs", r.maxAbs},
-                              {"max_abs_alpha", r.maxAbsAlpha}, {"frames", frames}};
+                              {"max_abs_alpha", r.maxAbsAlpha}, {"notes", r.notes}, {"frames", frames}};
     std::printf("%s\n", summary.dump(2).c_str());
   } else {
     std::vector<const FrameComparison*> worst;
@@ -106,6 +106,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
       if (!f.result.allFinite() && ++broken <= 3)
         std::printf("  frame %d %s: %s\n", f.index, f.camera.c_str(), nonFiniteText(f.result).c_str());
     if (broken > 3) std::printf("  and %d more frames with pixels not finite\n", broken - 3);
+    for (const std::string& note : r.notes) std::printf("  note: %s\n", note.c_str());
   }
   std::fprintf(args.json ? stderr : stdout, "%s images=%zu failing=%d min_psnr_db=%.2f mean_psnr_db=%.2f%s\n", verdict,
                r.frames.size(), r.failures, r.minPsnrDb, r.meanPsnrDb,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "errors.h"
+#include "json_text.h"
 
 namespace omnicam {
 namespace {
@@ -47,6 +48,17 @@ TEST(JsonFields, ATypoOfANameAskedForIsNamedWithIt) {
               fields.finish();
             }),
             "s.json: poses.timestamp_s: unknown field (did you mean timestamps_s?)");
+}
+
+TEST(JsonDifferences, NameEachDifferingMemberByItsPath) {
+  const auto j = [](const char* text) { return nlohmann::json::parse(text); };
+  using List = std::vector<std::string>;
+  EXPECT_EQ(jsonDifferences(j(R"({"a": 1, "b": {"c": [1, 2, 3]}})"), j(R"({"a": 1, "b": {"c": [1, 2, 3]}})")), List{});
+  EXPECT_EQ(jsonDifferences(j(R"({"a": 1, "b": {"c": [1, 2, 3]}})"), j(R"({"a": 2, "b": {"c": [1, 5, 3]}})")), (List{"a", "b.c[1]"}));
+  EXPECT_EQ(jsonDifferences(j(R"({"a": 1})"), j(R"({"b": 1})")), (List{"a", "b"}));  // a member either lacks
+  EXPECT_EQ(jsonDifferences(j(R"({"c": [1, 2]})"), j(R"({"c": [1, 2, 3]})")), List{"c"});  // lengths differ
+  EXPECT_EQ(jsonDifferences(j("1"), j("\"1\"")), List{""});
+  EXPECT_EQ(jsonDifferences(j("[1, 2, 3, 4, 5]"), j("[0, 0, 0, 0, 0]"), 2), (List{"[0]", "[1]"}));
 }
 
 }  // namespace

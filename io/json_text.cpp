@@ -109,4 +109,29 @@ nlohmann::json readJsonFile(const std::string& file, int64_t maxBytes, int maxDe
   return parseJsonText(*text, file, maxDepth);
 }
 
+namespace {
+
+void collectDifferences(const json& a, const json& b, const std::string& at, size_t limit, std::vector<std::string>& out) {
+  if (out.size() >= limit || a == b) return;
+  if (a.is_object() && b.is_object()) {
+    std::set<std::string> keys;
+    for (const auto& [key, value] : a.items()) keys.insert(key);
+    for (const auto& [key, value] : b.items()) keys.insert(key);
+    for (const std::string& key : keys)
+      collectDifferences(a.value(key, json()), b.value(key, json()), at.empty() ? key : at + "." + key, limit, out);
+  } else if (a.is_array() && b.is_array() && a.size() == b.size()) {
+    for (size_t i = 0; i < a.size(); ++i) collectDifferences(a[i], b[i], at + "[" + std::to_string(i) + "]", limit, out);
+  } else {
+    out.push_back(at);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> jsonDifferences(const json& a, const json& b, size_t limit) {
+  std::vector<std::string> out;
+  collectDifferences(a, b, "", limit, out);
+  return out;
+}
+
 }  // namespace omnicam

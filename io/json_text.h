@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "input_limits.h"
 
@@ -15,5 +16,9 @@ nlohmann::json readJsonFile(const std::string& path, int64_t maxBytes = limits::
 nlohmann::json parseJsonText(const std::string& text, const std::string& path, int maxDepth = limits::kMaxJsonDepth);
 // The same checks without building the tree (for JSON another library parses: glTF).
 void checkJsonText(const std::string& text, const std::string& path, int maxDepth = limits::kMaxJsonDepth);
+
+// Where two JSON values differ, as paths to the differing members ("mirror.k", "offset_mm[1]";
+// "" when the values themselves differ in kind or length), the first `limit` in member order.
+std::vector<std::string> jsonDifferences(const nlohmann::json& a, const nlohmann::json& b, size_t limit = 4);
 
 }  // namespace omnicam

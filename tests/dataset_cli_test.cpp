@@ -685,7 +685,7 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   EXPECT_EQ(pass.code, 0) << pass.out;
   EXPECT_NE(pass.out.find("PASS images=2 failing=0"), std::string::npos) << pass.out;
   const std::string junit = readFile(dir_ / "junit.xml");
-  EXPECT_NE(junit.find("tests=\"2\" failures=\"0\""), std::string::npos) << junit;
+  EXPECT_NE(junit.find("tests=\"2\" failures=\"0\" errors=\"0\" skipped=\"0\""), std::string::npos) << junit;
   EXPECT_NE(readFile(dir_ / "report.html").find("Worst frames"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir_ / "report_files/000000_cam0_diff.png"));
   // A report's name may hold what URLs treat specially ('#' a fragment, '%' an escape): its links are
@@ -749,7 +749,7 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
       << readFile(dir_ / "rim.xml");
   ASSERT_EQ(omnicam("compare " + path("fast") + " " + path("rim") + " --junit " + path("none.xml")).code, 0);
   const std::string unchecked = readFile(dir_ / "none.xml");
-  EXPECT_NE(unchecked.find("tests=\"2\""), std::string::npos) << unchecked;
+  EXPECT_NE(unchecked.find("tests=\"2\" failures=\"0\" errors=\"0\" skipped=\"2\""), std::string::npos) << unchecked;
   size_t skipped = 0;
   for (size_t at = unchecked.find("<skipped message=\"no threshold given"); at != std::string::npos; at = unchecked.find("<skipped", at + 1))
     ++skipped;
@@ -767,6 +767,22 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   const auto same = omnicam("compare " + path("fast") + " " + path("povray") + " --report " + path("x.html") + " --junit " + path("x.html"));
   EXPECT_EQ(same.code, 2) << same.out;
   EXPECT_NE(same.out.find("is the --report file too"), std::string::npos) << same.out;
+
+  // Another camera at the same poses (the rim at 43°, not 45°): compared, and said so — in the
+  // text, the JSON and the report — where the same rig (fast against POV-Ray) says nothing.
+  EXPECT_EQ(pass.out.find("note:"), std::string::npos) << pass.out;
+  json scene = json::parse(readFile(fs::path(OMNICAM_SOURCE_DIR) / "scenes/robocup2006.json"));
+  scene["rig"]["mirror"]["rim_elevation_deg"] = 43.0;
+  write("rim43.json", scene.dump());
+  const std::string rim43 = write("rim43spec.json", R"({"format": "omnicam-dataset/1", "scene": "rim43.json", "outputs": {"rgb": "exr"}, )" + poses + "}");
+  ASSERT_EQ(omnicam("dataset " + rim43 + " -o " + path("rim43")).code, 0);
+  const std::string note = "camera \"cam0\": the datasets' rigs differ (image.framing_elevation_deg, mirror.rim_elevation_deg): A and B are images of different cameras";
+  const auto other = omnicam("compare " + path("fast") + " " + path("rim43") + " --report " + path("rim43.html"));
+  EXPECT_EQ(other.code, 0) << other.out;
+  EXPECT_NE(other.out.find("  note: " + note), std::string::npos) << other.out;
+  EXPECT_NE(readFile(dir_ / "rim43.html").find("<b>Note:</b> camera &quot;cam0&quot;: the datasets&#39; rigs differ"), std::string::npos);
+  const auto otherJson = testing::runShell(std::string(OMNICAM_BINARY) + " compare " + path("fast") + " " + path("rim43") + " --json 2>" + path("err.txt"));
+  EXPECT_EQ(json::parse(otherJson.out).at("notes"), json({note})) << otherJson.out;
 }
 
 // A Blender dataset renders every frame of a camera in one Blender session (Blender starts in
@@ -1036,6 +1052,18 @@ TEST_F(DatasetCliTest, MovingFramesCarryTheirVelocityAndRenderAsTheRenderVerbDoe
   ASSERT_EQ(again.code, 0) << again.out;
   EXPECT_NE(again.out.find("(0 rendered, 3 kept"), std::string::npos) << again.out;
   EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
+
+  // Another seed shakes the same camera otherwise: compare says its frames' rigs differ.
+  std::string reseeded = readFile(spec);
+  reseeded.replace(reseeded.find("\"seed\": 5"), 10, "\"seed\": 6");
+  ASSERT_EQ(omnicam("dataset " + write("seed6.json", reseeded) + " -o " + path("seed6")).code, 0);
+  const auto shaken = omnicam("compare " + path("ds") + " " + path("seed6"));
+  EXPECT_EQ(shaken.code, 0) << shaken.out;
+  EXPECT_NE(shaken.out.find("note: 3 of 3 frames were rendered with rigs that differ between A and B (a vibrating robot's; first: "
+                            "frame 0 camera \"cam0\": camera.offset_mm[0]"),
+            std::string::npos)
+      << shaken.out;
+  EXPECT_EQ(omnicam("compare " + path("ds") + " " + path("ds")).out.find("note:"), std::string::npos);
   // An engine that cannot render this shutter (Blender: global only) refuses before writing anything.
   const std::string blender = write("blender.json", R"({"format": "omnicam-dataset/1", "scene": "moving.json", "engine": "blender",
     "poses": {"list": )" + list + R"(}, "motion": {"velocity": [1, 0, 90]}})");
