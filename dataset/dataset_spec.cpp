@@ -72,7 +72,7 @@ void readRegion(JsonFields& r, RandomPoses& rp) {
     if (!region[i].is_number()) r.fail("region", rule);
     v[i] = region[i].get<double>();
     if (!(std::abs(v[i]) <= limits::kMaxWorldCoordinate))
-      r.fail("region", "coordinates must lie within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + shortNumber(v[i]) + ")");
+      r.fail("region", "coordinates must lie within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + roundTrip(v[i]) + ")");
   }
   if (!(v[0] < v[2] && v[1] < v[3])) r.fail("region", "needs x_min < x_max and y_min < y_max");
   rp.xMin = v[0], rp.yMin = v[1], rp.xMax = v[2], rp.yMax = v[3];

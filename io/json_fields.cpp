@@ -97,7 +97,7 @@ double JsonFields::number(const std::string& key, const Range& r) {
   const double d = number(key);
   if (!((r.openLow ? d > r.lo : d >= r.lo) && d <= r.hi))
     fail(key, "must be in " + std::string(r.openLow ? "(" : "[") + shortNumber(r.lo) + ", " + shortNumber(r.hi) + "]" +
-                  (r.unit.empty() ? "" : " " + r.unit) + " (got " + shortNumber(d) + ")");
+                  (r.unit.empty() ? "" : " " + r.unit) + " (got " + roundTrip(d) + ")");
   return d;
 }
 
@@ -107,7 +107,7 @@ double JsonFields::number(const std::string& key, double fallback, const Range& 
 
 double JsonFields::positive(const std::string& key) {
   const double d = number(key);
-  if (!(d > 0.0)) fail(key, "must be > 0 (got " + shortNumber(d) + ")");
+  if (!(d > 0.0)) fail(key, "must be > 0 (got " + roundTrip(d) + ")");
   return d;
 }
 
@@ -117,7 +117,7 @@ double JsonFields::positive(const std::string& key, double fallback) {
 
 double JsonFields::nonNegative(const std::string& key, double fallback) {
   const double d = number(key, fallback);
-  if (d < 0.0) fail(key, "must be >= 0 (got " + shortNumber(d) + ")");
+  if (d < 0.0) fail(key, "must be >= 0 (got " + roundTrip(d) + ")");
   return d;
 }
 
@@ -177,7 +177,7 @@ Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
     out[i] = v[i].get<double>();
     if (std::abs(out[i]) > limits::kMaxWorldCoordinate)
       throw InputError(showPath(file) + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
-                       shortNumber(limits::kMaxWorldCoordinate) + " (got " + shortNumber(out[i]) + ")");
+                       shortNumber(limits::kMaxWorldCoordinate) + " (got " + roundTrip(out[i]) + ")");
   }
   return out;
 }
@@ -226,7 +226,7 @@ Vec3f JsonFields::colour(const std::string& key, const Vec3f& fallback, double m
       fail(v.is_array() ? key + "[" + std::to_string(i) + "]" : key, "must be a finite number");
     c[i] = component.get<double>();
     if (!(c[i] >= 0.0 && c[i] <= max))
-      fail(key, "components must be in [0, " + shortNumber(max) + "] (got " + shortNumber(c[i]) + ")");
+      fail(key, "components must be in [0, " + shortNumber(max) + "] (got " + roundTrip(c[i]) + ")");
   }
   return c.cast<float>();
 }

@@ -186,7 +186,7 @@ ParameterDraw drawOf(const Parameter& p, const nlohmann::json& j, const JsonFiel
   d.lo = arguments[0].get<double>();
   d.hi = arguments[1].get<double>();
   if (d.lo > d.hi) f.fail(at, "lo > hi (" + shortNumber(d.lo) + " > " + shortNumber(d.hi) + ")");
-  if (d.kind == ParameterDraw::Kind::LogUniform && d.lo <= 0) f.fail(at, "log_uniform needs lo > 0 (got " + shortNumber(d.lo) + ")");
+  if (d.kind == ParameterDraw::Kind::LogUniform && d.lo <= 0) f.fail(at, "log_uniform needs lo > 0 (got " + roundTrip(d.lo) + ")");
   return d;
 }
 

@@ -157,8 +157,8 @@ void checkMotion(const EngineCapabilities& c, const RigSpec& rig, const CameraPl
   if (!moving(placement, rig)) return;
   const std::string shown = c.shownName, why = c.why.empty() ? "" : " (" + c.why + ")";
   if (!c.motion)
-    throw InputError(shown + " does not render motion: a moving robot needs an instantaneous global shutter there "
-                     "(rig.shutter); render it with " + enginesThat(c, [](const EngineCapabilities& e) { return e.motion; }) +
+    throw InputError(shown + " renders still frames only (a robot with a velocity, seen through an open rig.shutter, moves): "
+                     "leave the velocity out, or render it with " + enginesThat(c, [](const EngineCapabilities& e) { return e.motion; }) +
                      " (docs/motion.md lists what each engine renders)");
   if (!c.rollingShutter && rig.shutter.rolling)
     throw InputError(shown + " renders motion blur through a global shutter only" + why + ": render a rolling shutter with " +

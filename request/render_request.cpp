@@ -93,7 +93,7 @@ void readEngineAndMode(const RequestFields& f, const Reader& r, RenderRequest& q
 void readAdaptive(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (const auto target = f.number(F::TargetError)) {
     if (!f.has(F::AdaptiveSpp)) r.fail(F::TargetError, "only with " + r.name(F::AdaptiveSpp));
-    if (!(*target > 0.0 && *target <= 1.0)) r.fail(F::TargetError, "must be in (0, 1] (got " + shortNumber(*target) + ")");
+    if (!(*target > 0.0 && *target <= 1.0)) r.fail(F::TargetError, "must be in (0, 1] (got " + roundTrip(*target) + ")");
     q.targetError = *target;
   }
   const std::optional<int64_t> most = f.integer(F::AdaptiveSpp);
@@ -155,7 +155,7 @@ void readExternal(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (const auto timeout = f.number(F::Timeout)) {
     if (q.engine == "fast") r.fail(F::Timeout, "only with " + r.name(F::Engine) + " povray or blender");
     if (!(*timeout > 0.0 && *timeout <= limits::kMaxTimeoutSeconds))
-      r.fail(F::Timeout, "must be in (0, " + shortNumber(limits::kMaxTimeoutSeconds) + "] s (got " + shortNumber(*timeout) + ")");
+      r.fail(F::Timeout, "must be in (0, " + shortNumber(limits::kMaxTimeoutSeconds) + "] s (got " + roundTrip(*timeout) + ")");
     q.timeoutSeconds = *timeout;
   }
 }

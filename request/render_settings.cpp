@@ -52,7 +52,7 @@ void checkAdaptive(const RenderSettings& settings, const SettingNames& names) {
     throw InputError("adaptive sampling: only unfiltered path shading");
   if (settings.spp < 4) throw InputError("adaptive sampling: needs " + names.spp + " of at least 4 (its noise is measured from its samples)");
   if (!(settings.targetError > 0.0 && settings.targetError <= 1.0))
-    throw InputError("adaptive sampling: the target error must be in (0, 1] (got " + shortNumber(settings.targetError) + ")");
+    throw InputError("adaptive sampling: the target error must be in (0, 1] (got " + roundTrip(settings.targetError) + ")");
 }
 
 }  // namespace
@@ -86,13 +86,13 @@ void checkPlacement(const CameraPlacement& placement, const SettingNames& names)
   const BodyVelocity& v = placement.velocity();
   if (!(std::hypot(v.vx, v.vy) <= limits::kMaxSpeed && std::abs(v.yawRateDegPerS) <= limits::kMaxYawRateDegPerS))
     throw InputError(names.velocity + ": speed must be at most " + shortNumber(limits::kMaxSpeed) + " m/s and yaw rate at most " +
-                     shortNumber(limits::kMaxYawRateDegPerS) + " degrees/s (got " + shortNumber(std::hypot(v.vx, v.vy)) +
+                     shortNumber(limits::kMaxYawRateDegPerS) + " degrees/s (got " + roundTrip(std::hypot(v.vx, v.vy)) +
                      " m/s, " + shortNumber(v.yawRateDegPerS) + " degrees/s)");
 }
 
 void checkPose(const RobotPose& pose, const std::string& what) {
   if (!(std::abs(pose.x) <= limits::kMaxWorldCoordinate && std::abs(pose.y) <= limits::kMaxWorldCoordinate))
-    throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + shortNumber(pose.x) +
+    throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + roundTrip(pose.x) +
                      ", " + shortNumber(pose.y) + ")");
   if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
     throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + roundTrip(pose.yawDeg) + ")");

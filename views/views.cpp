@@ -172,11 +172,11 @@ void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names) {
     throw InputError(names.size + ": each side must be in [1, " + std::to_string(limits::kMaxImageDimension) +
                      "], and at most " + std::to_string(limits::kMaxImagePixels) + " pixels in all");
   if (spec.kind == ViewKind::BirdsEye && !(spec.groundDistance > 0.0 && spec.groundDistance <= 1e6))
-    throw InputError(names.groundDistance + ": must be in (0, 1e6] (got " + shortNumber(spec.groundDistance) + ")");
+    throw InputError(names.groundDistance + ": must be in (0, 1e6] (got " + roundTrip(spec.groundDistance) + ")");
   if (spec.kind == ViewKind::Perspective && !(std::isfinite(spec.yawDeg) && std::isfinite(spec.pitchDeg)))
     throw InputError(names.angles + ": must be finite");
   if (spec.kind == ViewKind::Perspective && !(spec.fovDeg > 0.0 && spec.fovDeg <= 179.0))
-    throw InputError(names.fov + ": must be in (0, 179] degrees (got " + shortNumber(spec.fovDeg) + ")");
+    throw InputError(names.fov + ": must be in (0, 179] degrees (got " + roundTrip(spec.fovDeg) + ")");
 }
 
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {

@@ -340,6 +340,8 @@ def main():
     # Waypoints driven in time give the frames their motion: a refusal of it names timestamps_s.
     dataset_spec("timestamps_blender_rolling", engine="blender", poses={"list": [[0, 0, 0], [0.1, 0, 0]], "timestamps_s": [0, 1]},
                  cameras=[{"name": "c", "rig": {"shutter": {"exposure_s": 0.01, "rolling": {"line_time_us": 30}}}}])
+    # A value just beyond its range is shown as it is, not rounded onto the limit.
+    dataset_spec("interval_just_over_a_day", frame_interval_s=86400.001)
     # Calibration sequences (docs/calibration.md): the target, the still robot, the bag's images.
     still = {"list": [[0, 0, 0]]}
     board_poses = {"random": {"count": 5, "seed": 1}}
