@@ -175,13 +175,15 @@ ParameterDraw drawOf(const Parameter& p, const nlohmann::json& j, const JsonFiel
   if (kind != "uniform" && kind != "log_uniform")
     f.fail(key, "unknown distribution " + quote(kind) + " (uniform, log_uniform, choice)");
   if (p.type == ValueType::Word) f.fail(at, "a word is drawn with {\"choice\": [...]}");
+  // An integer's draw gives each integer of [lo, hi] the same chance: a log-uniform one has none.
+  if (p.type == ValueType::Integer && kind == "log_uniform") f.fail(at, "an integer is drawn with {\"uniform\": [lo, hi]} or {\"choice\": [...]}");
   if (!arguments.is_array() || arguments.size() != 2) f.fail(at, "must be [lo, hi] (got " + jsonValueText(arguments) + ")");
   d.kind = kind == "uniform" ? ParameterDraw::Kind::Uniform : ParameterDraw::Kind::LogUniform;
   for (int k = 0; k < 2; ++k) {
     const nlohmann::json& bound = arguments[static_cast<size_t>(k)];
-    if (!bound.is_number() || !std::isfinite(bound.get<double>()) || bound.get<double>() > p.hi ||
-        (p.openLow ? bound.get<double>() <= p.lo : bound.get<double>() < p.lo))
-      f.fail(at + "[" + std::to_string(k) + "]", "must be a number in " + intervalText(p) + " (got " + jsonValueText(bound) + ")");
+    if (!bound.is_number() || !inDomain(p, bound.get<double>()))
+      f.fail(at + "[" + std::to_string(k) + "]", std::string("must be ") + (p.type == ValueType::Integer ? "an integer" : "a number") +
+                                                     " in " + intervalText(p) + " (got " + jsonValueText(bound) + ")");
   }
   d.lo = arguments[0].get<double>();
   d.hi = arguments[1].get<double>();

@@ -150,6 +150,11 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
             "spec.json: recording.preset: must be one of webcam, machine_vision, phone (got \"dslr\")");
   EXPECT_EQ(errorOf(R"("dslr")"), "spec.json: recording: unknown preset \"dslr\" (webcam, machine_vision, phone; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
   EXPECT_EQ(errorOf(R"({"jpeg_quality": 80.5})"), "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (0: no JPEG) (got 80.5)");
+  // An integer's range has integer ends ([60.2, 60.8] drew 60, outside it), and no log-uniform draw.
+  EXPECT_EQ(errorOf(R"({"jpeg_quality": {"uniform": [60.2, 60.8]}})"),
+            "spec.json: recording.jpeg_quality.uniform[0]: must be an integer in [0, 100] (got 60.2)");
+  EXPECT_EQ(errorOf(R"({"jpeg_quality": {"log_uniform": [10, 90]}})"),
+            "spec.json: recording.jpeg_quality.log_uniform: an integer is drawn with {\"uniform\": [lo, hi]} or {\"choice\": [...]}");
   EXPECT_EQ(errorOf(R"({"white_balance": [1, 0, 1]})"), "spec.json: recording.white_balance[1]: must be a number in (0, 10] (got 0)");
   EXPECT_EQ(errorOf(R"({"white_balance": 1})"),
             "spec.json: recording.white_balance: must be [r, g, b], each a gain in (0, 10] or a distribution (got 1)");
