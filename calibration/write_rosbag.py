@@ -21,6 +21,9 @@ import rosbag
 from sensor_msgs.msg import Image
 from std_msgs.msg import Header
 
+# ros::TIME_MIN: the earliest record time C++ rosbag writes or reads back.
+TIME_MIN = genpy.Time(0, 1)
+
 
 def read_exactly(f, n):
     data = f.read(n)
@@ -52,8 +55,9 @@ def main():
             message = Image(header=Header(seq=seq, stamp=stamp, frame_id=frame_id), height=height, width=width,
                             encoding="rgb8", is_bigendian=0, step=3 * width,
                             data=read_exactly(f, 3 * width * height))
-            # Kalibr reads header.stamp; the bag's record time is the same.
-            bag.write(topic, message, stamp)
+            # Kalibr reads header.stamp; the bag's record time is the same, but at least ROS's
+            # TIME_MIN (0 s 1 ns): C++ rosbag (rosbag play, rosbag::View) skips earlier messages.
+            bag.write(topic, message, max(stamp, TIME_MIN))
             del message
     with open("peak.txt", "w") as peak:
         peak.write("%d\n" % resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
