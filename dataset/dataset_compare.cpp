@@ -322,11 +322,16 @@ std::string reportAssetsFolder(const std::string& reportPath) {
 void writeDatasetCompareReport(const std::string& reportPath, const std::string& dirA, const std::string& dirB,
                                const DatasetCompareResult& result, const DatasetCompareOptions& options) {
   const fs::path report(reportPath);
-  const fs::path assets = reportAssetsFolder(reportPath);
-  const std::string assetsName = assets.filename().string();
-  std::error_code ec;
-  fs::create_directories(assets, ec);
-  if (ec) throw OutputError(showPath(assets.string()) + ": cannot create folder (" + ec.message() + ")");
+  const std::string assetsName = fs::path(reportAssetsFolder(reportPath)).filename().string();
+  // The images' folder is omnicam's, beside the report: a link there (someone's, in a shared
+  // folder) is refused, not followed.
+  const SafeFolder reportFolder(report.parent_path().empty() ? "." : report.parent_path().string());
+  reportFolder.makeFolders(assetsName);
+  const auto writePng = [&](const std::string& name, const ImageRGBA& image) {
+    const std::vector<unsigned char> bytes = encodeImage(name, image);
+    reportFolder.writeFile(assetsName + "/" + name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                           Durability::Synced);
+  };
   std::vector<const FrameComparison*> order;
   for (const FrameComparison& f : result.frames) order.push_back(&f);
   std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
@@ -363,9 +368,9 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
     char stem[96];
     std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
     const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};
-    writeImageAtomic((assets / names[0]).string(), imageA);
-    writeImageAtomic((assets / names[1]).string(), imageB);
-    writeImageAtomic((assets / names[2]).string(), differenceHeatmap(imageA, imageB, options.diffScale));
+    writePng(names[0], imageA);
+    writePng(names[1], imageB);
+    writePng(names[2], differenceHeatmap(imageA, imageB, options.diffScale));
     html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
     const char* captions[3] = {"A", "B", "|A − B|"};
     for (int i = 0; i < 3; ++i)

@@ -693,6 +693,14 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   ASSERT_EQ(omnicam("compare " + path("fast") + " " + path("povray") + " --report '" + path("r#1 50%.html") + "'").code, 0);
   EXPECT_NE(readFile(dir_ / "r#1 50%.html").find("<img src=\"r%231%2050%25_files/000000_cam0_diff.png\">"), std::string::npos);
   EXPECT_TRUE(fs::exists(dir_ / "r#1 50%_files/000000_cam0_diff.png"));
+  // The images' folder is omnicam's: a link planted there is refused, not followed.
+  fs::create_directories(dir_ / "elsewhere");
+  fs::create_symlink(dir_ / "elsewhere", dir_ / "linked_files");
+  const auto linked = omnicam("compare " + path("fast") + " " + path("povray") + " --report " + path("linked.html"));
+  EXPECT_EQ(linked.code, 2) << linked.out;
+  EXPECT_NE(linked.out.find("linked_files: is a symbolic link"), std::string::npos) << linked.out;
+  EXPECT_TRUE(fs::is_empty(dir_ / "elsewhere"));
+  EXPECT_FALSE(fs::exists(dir_ / "linked.html"));
 
   // Lit against unlit: same poses, different images — every frame fails, exit 1.
   ASSERT_EQ(omnicam("dataset " + lit + " -o " + path("lit")).code, 0);
