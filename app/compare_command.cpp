@@ -55,7 +55,13 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   }
   if (!args.report.empty()) {
     checkOutputFile(args.report, "--report");
-    checkOutputFolder(reportAssetsFolder(args.report), "--report (its images)");
+    const std::string assets = reportAssetsFolder(args.report);
+    checkOutputFolder(assets, "--report (its images)");
+    // Checked again where the images are written (SafeFolder); said here before any comparing.
+    std::error_code ec;
+    if (std::filesystem::is_symlink(assets, ec))
+      throw InputError("--report (its images): " + showPath(assets) + " is a symbolic link; omnicam writes its images into a folder "
+                       "of its own there and follows no link: remove it or give the report another name");
   }
   if (!args.junit.empty()) {
     checkOutputFile(args.junit, "--junit");

@@ -15,7 +15,7 @@ namespace omnicam {
 struct BagImage {
   std::string topic;    // "/cam0/image_raw"
   std::string frameId;  // header.frame_id
-  int64_t stampNs = 0;  // header.stamp and the record time
+  int64_t stampNs = 0;  // header.stamp, and the record time but at least ROS's TIME_MIN (1 ns)
   uint32_t seq = 0;
   int width = 0, height = 0;
   std::string rgb8;  // width·height·3 bytes, row by row from the top

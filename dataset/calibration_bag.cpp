@@ -38,8 +38,10 @@ BagImage bagImage(const SafeFolder& dir, const FileRecord& file, const std::stri
 }  // namespace
 
 void writeCalibrationBag(const SafeFolder& dir, DatasetManifest& manifest) {
-  json& calibration = manifest.header["calibration"];
-  if (!calibration.is_object() || calibration.value("rosbag", json(false)) != json(true)) return;
+  // Looked up, not made: a dataset without a calibration sequence has no "calibration" field.
+  const auto found = manifest.header.find("calibration");
+  if (found == manifest.header.end() || !found->is_object() || found->value("rosbag", json(false)) != json(true)) return;
+  json& calibration = *found;
   const json intervalField = manifest.header.value("settings", json::object()).value("frame_interval_s", json());
   if (!intervalField.is_number() || !(intervalField.get<double>() * 1e9 >= 1.0))
     throw InputError(showPath(dir.path()) + ": manifest: settings.frame_interval_s must be a number of at least 1 ns for the ROS bag");

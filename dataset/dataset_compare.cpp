@@ -206,10 +206,15 @@ std::vector<FrameComparison> pairFrames(const DatasetManifest& a, const std::opt
   return pairs;
 }
 
-std::string differenceList(const std::vector<std::string>& paths) {
+// At most kShown of the differing fields, then how many more.
+std::string differenceList(const nlohmann::json& a, const nlohmann::json& b) {
+  constexpr size_t kShown = 4;
+  const std::vector<std::string> paths = jsonDifferences(a, b, kShown + 1);
   std::string list;
-  for (const std::string& path : paths) list += (list.empty() ? "" : ", ") + (path.empty() ? std::string("the whole rig") : path);
-  return list;
+  for (size_t k = 0; k < std::min(paths.size(), kShown); ++k)
+    list += (list.empty() ? "" : ", ") + (paths[k].empty() ? std::string("the whole rig") : paths[k]);
+  if (paths.size() > kShown) list += ", and more";
+  return list.empty() ? "the whole rig" : list;
 }
 
 // Each camera's rig in a manifest's header, by name.
@@ -230,7 +235,7 @@ std::vector<std::string> rigNotes(const DatasetManifest& a, const DatasetManifes
     const auto other = rigsB.find(name);
     if (other == rigsB.end() || other->second == rig) continue;
     differing.insert(name);
-    notes.push_back("camera " + quote(name) + ": the datasets' rigs differ (" + differenceList(jsonDifferences(rig, other->second)) +
+    notes.push_back("camera " + quote(name) + ": the datasets' rigs differ (" + differenceList(rig, other->second) +
                     "): A and B are images of different cameras");
   }
   int frames = 0;
@@ -246,7 +251,7 @@ std::vector<std::string> rigNotes(const DatasetManifest& a, const DatasetManifes
       const nlohmann::json rigB = cam->second.rig ? rigToJson(*cam->second.rig) : rigsB.at(camera);
       if (rigA == rigB) continue;
       if (first.empty())
-        first = "frame " + std::to_string(index) + " camera " + quote(camera) + ": " + differenceList(jsonDifferences(rigA, rigB));
+        first = "frame " + std::to_string(index) + " camera " + quote(camera) + ": " + differenceList(rigA, rigB);
       differs = true;
     }
     frames += differs;
@@ -254,6 +259,19 @@ std::vector<std::string> rigNotes(const DatasetManifest& a, const DatasetManifes
   if (frames)
     notes.push_back(std::to_string(frames) + " of " + std::to_string(a.frames.size()) +
                     " frames were rendered with rigs that differ between A and B (a vibrating robot's; first: " + first + ")");
+  // The robot's own tilt (a rocking robot's, or its vibration's) tilts every camera it carries.
+  int tilted = 0;
+  std::string firstTilt;
+  for (const auto& [index, frame] : a.frames) {
+    const auto other = b.frames.find(index);
+    if (other == b.frames.end() || other->second.robotTiltDeg == frame.robotTiltDeg) continue;
+    if (!tilted++)
+      firstTilt = "frame " + std::to_string(index) + ": A (" + roundTrip(frame.robotTiltDeg[0]) + ", " + roundTrip(frame.robotTiltDeg[1]) +
+                  ")°, B (" + roundTrip(other->second.robotTiltDeg[0]) + ", " + roundTrip(other->second.robotTiltDeg[1]) + ")°";
+  }
+  if (tilted)
+    notes.push_back(std::to_string(tilted) + " of " + std::to_string(a.frames.size()) +
+                    " frames have the robot tilted otherwise in A and B (robot_tilt_deg, roll and pitch; first: " + firstTilt + ")");
   return notes;
 }
 

@@ -275,7 +275,7 @@ void sampleTimedWaypoints(const DatasetSpec& spec, const std::vector<RobotPose>&
   const double capped = spec.pathFrames ? std::min<double>(count, spec.pathFrames) : count;
   checkFrameCount(spec, static_cast<size_t>(std::min(capped, 1e15)), "poses (timed waypoints, one frame every frame_interval_s)");
   for (int i = 0; i < static_cast<int>(capped); ++i) {
-    const double t = trajectory.start() + i * spec.frameIntervalSeconds;
+    const double t = trajectory.start() + frameTimestampSeconds(i, spec.frameIntervalSeconds);
     poses.push_back(trajectory.poseAt(t));
     velocities.push_back(trajectory.velocityAt(t));
     SettingNames names;

@@ -123,9 +123,14 @@ double JsonFields::nonNegative(const std::string& key, double fallback) {
 
 int64_t JsonFields::integer(const std::string& key, int64_t minimum, int64_t maximum) {
   const json& v = required(key);
+  const std::string range = "[" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]";
+  // An integer beyond 64 bits reaches us as a double (the JSON reader's): it is out of range, not
+  // "not an integer".
+  const bool hugeInteger = v.is_number_float() && std::abs(v.get<double>()) >= 0x1p63 && std::isfinite(v.get<double>());
+  if (hugeInteger) fail(key, "must be in " + range + " (got " + jsonValueText(v) + ")");
   if (!v.is_number_integer()) fail(key, "must be an integer (got " + jsonValueText(v) + ")");
   const auto i = integerInRange(v, minimum, maximum);
-  if (!i) fail(key, "must be in [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "] (got " + v.dump() + ")");
+  if (!i) fail(key, "must be in " + range + " (got " + v.dump() + ")");
   return *i;
 }
 
@@ -199,7 +204,7 @@ std::vector<double> JsonFields::numbers(const std::string& key, const std::vecto
     if (!(range.openLow ? x > range.lo : x >= range.lo) || !(x <= range.hi))
       fail(element, std::string("must be in ") + (range.openLow ? "(" : "[") + shortNumber(range.lo) + ", " +
                         shortNumber(range.hi) + "]" + (range.unit.empty() ? "" : " " + range.unit) + " (got " +
-                        shortNumber(x) + ")");
+                        roundTrip(x) + ")");
     out.push_back(x);
   }
   return out;

@@ -56,6 +56,7 @@ TEST(JsonDifferences, NameEachDifferingMemberByItsPath) {
   EXPECT_EQ(jsonDifferences(j(R"({"a": 1, "b": {"c": [1, 2, 3]}})"), j(R"({"a": 1, "b": {"c": [1, 2, 3]}})")), List{});
   EXPECT_EQ(jsonDifferences(j(R"({"a": 1, "b": {"c": [1, 2, 3]}})"), j(R"({"a": 2, "b": {"c": [1, 5, 3]}})")), (List{"a", "b.c[1]"}));
   EXPECT_EQ(jsonDifferences(j(R"({"a": 1})"), j(R"({"b": 1})")), (List{"a", "b"}));  // a member either lacks
+  EXPECT_EQ(jsonDifferences(j(R"({"a": null})"), j(R"({})")), List{"a"});            // null is not missing
   EXPECT_EQ(jsonDifferences(j(R"({"c": [1, 2]})"), j(R"({"c": [1, 2, 3]})")), List{"c"});  // lengths differ
   EXPECT_EQ(jsonDifferences(j("1"), j("\"1\"")), List{""});
   EXPECT_EQ(jsonDifferences(j("[1, 2, 3, 4, 5]"), j("[0, 0, 0, 0, 0]"), 2), (List{"[0]", "[1]"}));

@@ -117,8 +117,14 @@ void collectDifferences(const json& a, const json& b, const std::string& at, siz
     std::set<std::string> keys;
     for (const auto& [key, value] : a.items()) keys.insert(key);
     for (const auto& [key, value] : b.items()) keys.insert(key);
-    for (const std::string& key : keys)
-      collectDifferences(a.value(key, json()), b.value(key, json()), at.empty() ? key : at + "." + key, limit, out);
+    for (const std::string& key : keys) {
+      const std::string member = at.empty() ? key : at + "." + key;
+      if (a.contains(key) != b.contains(key)) {
+        if (out.size() < limit) out.push_back(member);  // one has it, the other not (a null included)
+      } else {
+        collectDifferences(a.at(key), b.at(key), member, limit, out);
+      }
+    }
   } else if (a.is_array() && b.is_array() && a.size() == b.size()) {
     for (size_t i = 0; i < a.size(); ++i) collectDifferences(a[i], b[i], at + "[" + std::to_string(i) + "]", limit, out);
   } else {

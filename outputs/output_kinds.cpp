@@ -1,5 +1,6 @@
 #include "output_kinds.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -130,18 +131,29 @@ std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kin
 
 namespace {
 
-// The interval in whole nanoseconds, when it is one to within a millionth of a nanosecond's
-// rounding (the double nearest 0.05 s is 50 000 000 ns and a tiny fraction).
+// The interval in whole nanoseconds, when it is the double nearest a whole number of them (the
+// double nearest 0.05 s is 50 000 000 ns and a tiny fraction; 1/30 s is no whole number).
 std::optional<int64_t> wholeNanoseconds(double intervalS) {
-  const double ns = intervalS * 1e9, whole = std::round(ns);
-  if (whole < 1.0 || std::abs(ns - whole) > 1e-6) return std::nullopt;
+  const double whole = std::round(intervalS * 1e9);
+  if (whole < 1.0 || whole / 1e9 != intervalS) return std::nullopt;
   return static_cast<int64_t>(whole);
+}
+
+// The double nearest `ns` nanoseconds in seconds, rounded once: from the decimal text, since
+// ns / 1e9 in doubles rounds twice once ns exceeds 2^53.
+double secondsOfNanoseconds(int64_t ns) {
+  char text[40];
+  const int length = std::snprintf(text, sizeof text, "%lld.%09lld", static_cast<long long>(ns / 1000000000),
+                                   static_cast<long long>(ns % 1000000000));
+  double seconds = 0.0;
+  std::from_chars(text, text + length, seconds);
+  return seconds;
 }
 
 }  // namespace
 
 double frameTimestampSeconds(int frame, double intervalS) {
-  if (const std::optional<int64_t> ns = wholeNanoseconds(intervalS)) return static_cast<double>(frame * *ns) / 1e9;
+  if (const std::optional<int64_t> ns = wholeNanoseconds(intervalS)) return secondsOfNanoseconds(frame * *ns);
   return static_cast<double>(frame) * intervalS;
 }
 

@@ -236,10 +236,7 @@ double drawValue(const Parameter& p, const ParameterDraw& d, uint64_t seed, uint
   const double u = static_cast<double>(random() >> 11) * 0x1.0p-53;  // [0, 1)
   if (d.kind == ParameterDraw::Kind::Choice)
     return d.values[std::min(d.values.size() - 1, static_cast<size_t>(u * static_cast<double>(d.values.size())))];
-  if (p.type == ValueType::Integer) {
-    const double lo = std::ceil(d.lo), hi = std::floor(d.hi);
-    return std::min(hi, lo + std::floor((hi - lo + 1.0) * u));
-  }
+  if (p.type == ValueType::Integer) return std::min(d.hi, d.lo + std::floor((d.hi - d.lo + 1.0) * u));  // integer bounds
   const double v = d.kind == ParameterDraw::Kind::Uniform ? d.lo + (d.hi - d.lo) * u
                                                           : std::exp(std::log(d.lo) + (std::log(d.hi) - std::log(d.lo)) * u);
   return std::clamp(v, d.lo, d.hi);

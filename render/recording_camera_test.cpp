@@ -306,6 +306,32 @@ TEST(RecordingCamera, LensBlurSpreadsAPointByItsKernelsSecondMoment) {
   EXPECT_NEAR(d.x, 0.0, 1e-6);
 }
 
+// Below a pixel the kernels are what sampling them on whole pixels gives (docs/experiments.md):
+// a Gaussian's second moment is Σk²e^(−k²/2σ²) / Σe^(−k²/2σ²) over |k| ≤ ⌈3σ⌉ — σ² from about
+// 0.8 px, far less below — and a disc of radius ≤ 0.5 px covers its own cell only.
+TEST(RecordingCamera, SubPixelBlurIsTheKernelSampledOnWholePixels) {
+  const auto sampledSecondMoment = [](double sigma) {
+    const int half = static_cast<int>(std::ceil(3.0 * sigma));
+    double weights = 0.0, moment = 0.0;
+    for (int k = -half; k <= half; ++k) {
+      const double w = std::exp(-k * k / (2.0 * sigma * sigma));
+      weights += w, moment += k * k * w;
+    }
+    return moment / weights;
+  };
+  for (const auto& [sigma, documented] : {std::pair{0.3, 0.0077}, std::pair{0.5, 0.215}, std::pair{0.8, 0.640}, std::pair{1.0, 0.996}}) {
+    LinearPlanes point = pointSpread(15, 7.5, 7.5, 0.0);
+    applyLensBlur(point, sigma, BlurKernel::Gaussian);
+    const Moments m = momentsOf(point, 1, 7.5, 7.5);
+    EXPECT_NEAR(m.xx, sampledSecondMoment(sigma), 1e-5) << sigma;
+    EXPECT_NEAR(m.xx, documented, 0.0005) << sigma;
+  }
+  LinearPlanes halfPixelDisc = pointSpread(15, 7.5, 7.5, 0.0);
+  applyLensBlur(halfPixelDisc, 0.5, BlurKernel::Disc);
+  EXPECT_FLOAT_EQ(halfPixelDisc.at(1, 7, 7), pointSpread(15, 7.5, 7.5, 0.0).at(1, 7, 7));
+  EXPECT_EQ(momentsOf(halfPixelDisc, 1, 7.5, 7.5).xx, 0.0);
+}
+
 TEST(RecordingCamera, ATinyDiscKeepsThePointAndBlurAtTheRimAddsNoLight) {
   // A disc radius below every sample's distance from its cell centre is a point: the light stays.
   LinearPlanes point = pointSpread(9, 4.5, 4.5, 0.0);

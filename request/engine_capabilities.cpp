@@ -158,7 +158,7 @@ void checkMotion(const EngineCapabilities& c, const RigSpec& rig, const CameraPl
   const std::string shown = c.shownName, why = c.why.empty() ? "" : " (" + c.why + ")";
   if (!c.motion)
     throw InputError(shown + " renders still frames only (a robot with a velocity, seen through an open rig.shutter, moves): "
-                     "leave the velocity out, or render it with " + enginesThat(c, [](const EngineCapabilities& e) { return e.motion; }) +
+                     "render the robot still, or render it with " + enginesThat(c, [](const EngineCapabilities& e) { return e.motion; }) +
                      " (docs/motion.md lists what each engine renders)");
   if (!c.rollingShutter && rig.shutter.rolling)
     throw InputError(shown + " renders motion blur through a global shutter only" + why + ": render a rolling shutter with " +

@@ -87,13 +87,13 @@ void checkPlacement(const CameraPlacement& placement, const SettingNames& names)
   if (!(std::hypot(v.vx, v.vy) <= limits::kMaxSpeed && std::abs(v.yawRateDegPerS) <= limits::kMaxYawRateDegPerS))
     throw InputError(names.velocity + ": speed must be at most " + shortNumber(limits::kMaxSpeed) + " m/s and yaw rate at most " +
                      shortNumber(limits::kMaxYawRateDegPerS) + " degrees/s (got " + roundTrip(std::hypot(v.vx, v.vy)) +
-                     " m/s, " + shortNumber(v.yawRateDegPerS) + " degrees/s)");
+                     " m/s, " + roundTrip(v.yawRateDegPerS) + " degrees/s)");
 }
 
 void checkPose(const RobotPose& pose, const std::string& what) {
   if (!(std::abs(pose.x) <= limits::kMaxWorldCoordinate && std::abs(pose.y) <= limits::kMaxWorldCoordinate))
     throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + roundTrip(pose.x) +
-                     ", " + shortNumber(pose.y) + ")");
+                     ", " + roundTrip(pose.y) + ")");
   if (!(std::abs(pose.yawDeg) <= limits::kMaxYawDeg))
     throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + roundTrip(pose.yawDeg) + ")");
 }

@@ -678,6 +678,8 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   ASSERT_EQ(gt.code, 0) << gt.out;
   EXPECT_NE(gt.out.find("writes RGB only"), std::string::npos) << gt.out;
   EXPECT_EQ(json::parse(readFile(dir_ / "povray/manifest.json"))["outputs"]["written"], json({"rgb", "landmarks"}));
+  // A dataset without a calibration sequence has no "calibration" field (it had a null one).
+  EXPECT_FALSE(json::parse(readFile(dir_ / "povray/manifest.json")).contains("calibration"));
 
   // Fast against POV-Ray ground truth: every frame above 45 dB.
   const auto pass = omnicam("compare " + path("fast") + " " + path("povray") + " --fail-psnr 45 --report " +
@@ -698,7 +700,7 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   fs::create_symlink(dir_ / "elsewhere", dir_ / "linked_files");
   const auto linked = omnicam("compare " + path("fast") + " " + path("povray") + " --report " + path("linked.html"));
   EXPECT_EQ(linked.code, 2) << linked.out;
-  EXPECT_NE(linked.out.find("linked_files: is a symbolic link"), std::string::npos) << linked.out;
+  EXPECT_NE(linked.out.find("--report (its images): " + path("linked_files") + " is a symbolic link"), std::string::npos) << linked.out;
   EXPECT_TRUE(fs::is_empty(dir_ / "elsewhere"));
   EXPECT_FALSE(fs::exists(dir_ / "linked.html"));
 
@@ -1195,6 +1197,15 @@ TEST_F(DatasetCliTest, ARockingRobotTiltsEveryCameraAlikeAboutItsOrigin) {
   const auto again = omnicam("dataset " + spec + " -o " + path("ds"));
   ASSERT_EQ(again.code, 0) << again.out;
   EXPECT_NE(again.out.find("(0 rendered, 3 kept"), std::string::npos) << again.out;
+  // Another seed rocks the robot otherwise (the cameras' rigs stay the same): compare says so.
+  std::string reseeded = readFile(spec);
+  reseeded.replace(reseeded.find("\"seed\": 7"), 9, "\"seed\": 8");
+  ASSERT_EQ(omnicam("dataset " + write("seed8.json", reseeded) + " -o " + path("seed8")).code, 0);
+  const auto rocked = omnicam("compare " + path("ds") + " " + path("seed8"));
+  EXPECT_NE(rocked.out.find("note: 3 of 3 frames have the robot tilted otherwise in A and B (robot_tilt_deg, roll and pitch; first: frame 0: A ("),
+            std::string::npos)
+      << rocked.out;
+  EXPECT_EQ(rocked.out.find("rigs differ"), std::string::npos) << rocked.out;
 }
 
 TEST_F(DatasetCliTest, TimedWaypointsGiveAFrameEveryIntervalWithTheVelocityItIsDrivenAt) {

@@ -69,7 +69,7 @@ py::tuple rays(const PyCamera& self, const py::object& pixels, const py::object&
   // Times within an exposure (and as far before it): the motion model holds a velocity that long.
   if (!(std::abs(time) <= limits::kMaxExposureS))
     throw InputError("time: must be within ±" + shortNumber(limits::kMaxExposureS) + " s of the exposure start (got " +
-                     shortNumber(time) + ")");
+                     roundTrip(time) + ")");
   const Rigid outputFromViewpoint = viewpointFrom(*self.camera, pose, velocity, time).inverse();
   const auto n = static_cast<size_t>(in.shape(0));
   std::vector<double> origins(3 * n), directions(3 * n);
