@@ -178,7 +178,8 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
                         {"time", "timestamps and poses are each frame's exposure start; with a velocity, AOVs and landmark "
                                  "annotations are taken at each pixel centre's own time (global shutter: mid-exposure; rolling: "
                                  "its line's mid-exposure; docs/motion.md)"},
-                        {"depth", "metres along the viewing ray from the effective viewpoint F'; 0 = no hit or beyond the rim"},
+                        {"depth", "metres along the viewing ray from where it leaves the camera (the effective viewpoint F' of a central "
+                                  "rig, the mirror point of a physical one, a lens camera's centre of projection); 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
   if (spec.request.shading == Shading::Path)
     header["settings"]["path_tracing"] = pathTracingRecord(spec.request);

@@ -649,6 +649,13 @@ TEST_F(DatasetCliTest, ShardsOfAnotherDatasetOrCountAreRefusedAndStatusSeesARunA
   const auto merged = omnicam("dataset --merge " + path("ds"));
   EXPECT_EQ(merged.code, 0);
   EXPECT_NE(merged.out.find(": merged 2 shards: 4 of 4 frames finished (complete)"), std::string::npos) << merged.out;
+  // Merged, the folder keeps its shards/: a shard of another count is refused there too (it
+  // wrote shards/shard-0-of-3.json, which the next merge refused).
+  const auto afterMerge = omnicam("dataset " + a + " -o " + path("ds") + " --shard 0/3");
+  EXPECT_EQ(afterMerge.code, 2) << afterMerge.out;
+  EXPECT_NE(afterMerge.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json)"), std::string::npos) << afterMerge.out;
+  EXPECT_FALSE(fs::exists(dir_ / "ds/shards/shard-0-of-3.json"));
+  EXPECT_EQ(omnicam("dataset " + a + " -o " + path("ds") + " --shard 1/2").code, 0);  // its own count: kept as it is
 }
 
 // The thesis' modes draw approximate colour under exact AOVs: a dataset of them says so, and an
