@@ -93,18 +93,21 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
                               {"mean_psnr_db", std::isfinite(r.meanPsnrDb) ? nlohmann::json(r.meanPsnrDb) : nlohmann::json("inf")},
                               {"min_psnr_db", std::isfinite(r.minPsnrDb) ? nlohmann::json(r.minPsnrDb) : nlohmann::json("inf")},
                               {"identical_images", r.identical}, {"mean_ssim", r.meanSsim}, {"max_abs", r.maxAbs},
-                              {"max_abs_alpha", r.maxAbsAlpha}, {"notes", r.notes}, {"frames", frames}};
+                              {"max_abs_alpha", r.alphaCompared ? nlohmann::json(r.maxAbsAlpha) : nlohmann::json(nullptr)},
+                              {"notes", r.notes}, {"frames", frames}};
     std::printf("%s\n", summary.dump(2).c_str());
   } else {
     std::vector<const FrameComparison*> worst;
     for (const FrameComparison& f : r.frames) worst.push_back(&f);
     std::sort(worst.begin(), worst.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
-    std::printf("compared %zu images (frames x cameras)%s\n  mean PSNR %.2f dB%s  worst %.2f dB  mean SSIM %.5f  max abs %.9g  max abs of alpha %.9g\n",
+    char alpha[64] = "not compared (no pair has alpha in both)";
+    if (r.alphaCompared) std::snprintf(alpha, sizeof alpha, "%.9g", r.maxAbsAlpha);
+    std::printf("compared %zu images (frames x cameras)%s\n  mean PSNR %.2f dB%s  worst %.2f dB  mean SSIM %.5f  max abs %.9g  max abs of alpha %s\n",
                 r.frames.size(), args.disc ? " inside the mirror disc" : "", r.meanPsnrDb,
                 r.identical ? (" (over the " + std::to_string(r.frames.size() - static_cast<size_t>(r.identical)) + " whose colour differs; " +
                                std::to_string(r.identical) + " of identical colour)").c_str()
                             : "",
-                r.minPsnrDb, r.meanSsim, r.maxAbs, r.maxAbsAlpha);
+                r.minPsnrDb, r.meanSsim, r.maxAbs, alpha);
     for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
       std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
     int broken = 0;
@@ -199,9 +202,9 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     if (checked) j["pass"] = failure.empty();
     std::printf("%s\n", j.dump(2).c_str());
   } else {
-    std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  max abs of alpha %.9g  over tol %.6g: %.4f%%\n",
+    std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  max abs of alpha %s  over tol %.6g: %.4f%%\n",
                 r.pixels, args.disc ? " inside the mirror disc" : "", r.rmse, r.psnrDb, r.ssim, r.maxAbs, r.maxI, r.maxJ,
-                r.maxAbsAlpha, args.tol, 100.0 * r.fracOverTol);
+                alphaText(r).c_str(), args.tol, 100.0 * r.fracOverTol);
     if (!r.allFinite()) std::printf("  %s\n", nonFiniteText(r).c_str());
   }
   std::fprintf(args.json ? stderr : stdout, "%s psnr_db=%.2f rmse=%.6g max_abs=%.9g%s\n", verdict, r.psnrDb, r.rmse,

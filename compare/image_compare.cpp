@@ -1,6 +1,7 @@
 #include "image_compare.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <span>
 #include <stdexcept>
@@ -136,12 +137,19 @@ std::string nonFiniteText(const CompareResult& r) {
          " of B (NaN or inf, read as 0)";
 }
 
+std::string alphaText(const CompareResult& r) {
+  if (!r.alphaCompared) return "not compared (an image has no alpha channel)";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", r.maxAbsAlpha);
+  return text;
+}
+
 std::vector<std::string> CompareThresholds::failures(const CompareResult& r) const {
   std::vector<std::string> failed;
   if (minPsnrDb && r.psnrDb < *minPsnrDb) failed.push_back("psnr_db < " + shortNumber(*minPsnrDb));
   if (maxRmse && r.rmse > *maxRmse) failed.push_back("rmse > " + shortNumber(*maxRmse));
   if (maxAbs && r.maxAbs > *maxAbs) failed.push_back("max_abs > " + shortNumber(*maxAbs));
-  if (maxAbs && r.maxAbsAlpha > *maxAbs) failed.push_back("max_abs_alpha > " + shortNumber(*maxAbs));
+  if (maxAbs && r.alphaCompared && r.maxAbsAlpha > *maxAbs) failed.push_back("max_abs_alpha > " + shortNumber(*maxAbs));
   if (any() && !r.allFinite()) failed.push_back(nonFiniteText(r));
   return failed;
 }
@@ -165,6 +173,7 @@ CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const Compa
   }
   CompareResult r = comparison.result();
   r.nonFiniteA += a.nonFinitePixels(), r.nonFiniteB += b.nonFinitePixels();
+  if (!a.holdsAlpha() || !b.holdsAlpha()) r.alphaCompared = false, r.maxAbsAlpha = 0.0;
   return r;
 }
 
@@ -173,12 +182,14 @@ ColourImagePair readColourImages(ImageRowReader& a, ImageRowReader& b) {
   b.requireColour();
   ColourImagePair pair{a.readRemaining(), b.readRemaining()};
   pair.nonFiniteA = a.nonFinitePixels(), pair.nonFiniteB = b.nonFinitePixels();
+  pair.alphaInBoth = a.holdsAlpha() && b.holdsAlpha();
   return pair;
 }
 
 CompareResult compareImagePair(const ColourImagePair& pair, const CompareOptions& options) {
   CompareResult r = compareImages(pair.a, pair.b, options);
   r.nonFiniteA += pair.nonFiniteA, r.nonFiniteB += pair.nonFiniteB;
+  if (!pair.alphaInBoth) r.alphaCompared = false, r.maxAbsAlpha = 0.0;
   return r;
 }
 
@@ -222,7 +233,7 @@ nlohmann::json compareResultToJson(const CompareResult& r) {
           {"ssim", r.ssim},
           {"max_abs", r.maxAbs},
           {"max_abs_pixel", {r.maxI, r.maxJ}},
-          {"max_abs_alpha", r.maxAbsAlpha},
+          {"max_abs_alpha", r.alphaCompared ? nlohmann::json(r.maxAbsAlpha) : nlohmann::json(nullptr)},
           {"frac_over_tol", r.fracOverTol},
           {"pixels", r.pixels},
           {"non_finite_pixels", {r.nonFiniteA, r.nonFiniteB}}};

@@ -23,6 +23,9 @@ struct CompareResult {
   double rmse = 0.0, psnrDb = 0.0, ssim = 1.0, maxAbs = 0.0, fracOverTol = 0.0;
   int maxI = 0, maxJ = 0;  // where maxAbs is: column, row
   double maxAbsAlpha = 0.0;
+  // Alpha is compared when both images have it: a file without alpha (a POV-Ray or Blender job's
+  // render.exr is B, G, R) reads as 1, which is no coverage to compare. maxAbsAlpha is then 0.
+  bool alphaCompared = true;
   long pixels = 0;
   long nonFiniteA = 0, nonFiniteB = 0;  // pixels with a NaN or ±∞ colour or alpha, in all of each image
   bool allFinite() const { return nonFiniteA == 0 && nonFiniteB == 0; }
@@ -40,6 +43,8 @@ struct CompareThresholds {
 };
 // "not finite: 3 pixels of A, 0 of B (NaN or inf, read as 0)".
 std::string nonFiniteText(const CompareResult& r);
+// The largest difference of alpha as text ("0.25"), or why it was not compared.
+std::string alphaText(const CompareResult& r);
 
 // A comparison fed rows top to bottom, a band at a time: the pixel statistics accumulate row by
 // row and SSIM's 8-row windows are taken as their last row arrives, from the 8 rows kept. Its
@@ -83,6 +88,7 @@ CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const Compa
 struct ColourImagePair {
   ImageRGBA a, b;
   long nonFiniteA = 0, nonFiniteB = 0;
+  bool alphaInBoth = true;  // both files have an alpha channel
 };
 ColourImagePair readColourImages(ImageRowReader& a, ImageRowReader& b);
 // compareImages of a pair readColourImages read, its counts of non-finite pixels included.

@@ -325,6 +325,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
     result.meanSsim += f.result.ssim / result.frames.size();
     result.maxAbs = std::max(result.maxAbs, f.result.maxAbs);
     result.maxAbsAlpha = std::max(result.maxAbsAlpha, f.result.maxAbsAlpha);
+    result.alphaCompared += f.result.alphaCompared;
     if (std::isfinite(f.result.psnrDb)) finiteSum += f.result.psnrDb, ++finite;
     else ++result.identical;
   }
@@ -363,7 +364,7 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
        << "</code></p><p>" << result.frames.size() << " images compared; mean PSNR " << psnrText(result.meanPsnrDb)
        << " dB" << (result.identical ? " (of the " + std::to_string(result.frames.size() - static_cast<size_t>(result.identical)) + " whose colour differs)" : "")
        << ", worst " << psnrText(result.minPsnrDb) << " dB, mean SSIM " << result.meanSsim << ", max abs " << result.maxAbs
-       << ", max abs of alpha " << result.maxAbsAlpha << "; " << (options.image.discOnly ? "inside the mirror disc" : "every pixel")
+       << ", max abs of alpha " << (result.alphaCompared ? shortNumber(result.maxAbsAlpha) : std::string("not compared (no pair has alpha in both)")) << "; " << (options.image.discOnly ? "inside the mirror disc" : "every pixel")
        << ", tolerance " << options.image.tolerance;
   const CompareThresholds& t = options.thresholds;
   if (t.any()) {

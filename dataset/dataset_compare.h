@@ -34,6 +34,7 @@ struct DatasetCompareResult {
   // `identical` counts those frames).
   double meanPsnrDb = 0.0, minPsnrDb = 0.0, meanSsim = 0.0, maxAbs = 0.0, maxAbsAlpha = 0.0;
   int identical = 0;
+  int alphaCompared = 0;  // frames whose two images both have alpha (maxAbsAlpha is over these)
   // What the two manifests say differs beside the pixels: the cameras' rigs (the frames are then
   // images of different cameras, which a study of a rig's change means and a regression check
   // does not). One line each, for people.

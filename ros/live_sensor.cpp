@@ -227,7 +227,7 @@ LivePose livePoseOf(const ros1::Odometry& odometry) {
 namespace {
 
 // What a live sensor cannot take, before any master is looked for: names ROS refuses (a camera
-// called "front-left"), a spec that shakes its rigs.
+// called "front-left"), a spec with vibration (of its rigs or the robot's tilt).
 void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
   std::vector<std::string> names = {"/" + options.robot, options.tfParent.empty() ? options.odometryTopic : "/" + options.tfParent,
                                     "/" + options.baseFrame};
@@ -235,9 +235,10 @@ void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
   for (const std::string& name : names)
     if (const std::string why = ros1::invalidGraphName(name); !why.empty())
       throw InputError("ros: " + quote(name) + " is not a ROS name: " + why);
-  if (plan.vibrates())
+  // Any vibration, the robot's tilt alone included (a rig that does not shake still rocks).
+  if (!plan.spec().vibration.none())
     throw InputError(showPath(plan.spec().file) +
-                     ": vibration: a live sensor renders each pose as it comes; shake the rig in a dataset instead");
+                     ": vibration: a live sensor renders each pose as it comes; shake the rig or rock the robot in a dataset instead");
 }
 
 // A fixed-rate camera's clock: each tick of the grid of round(10⁹/rate) ns that ROS time passes is

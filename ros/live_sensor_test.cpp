@@ -749,7 +749,11 @@ TEST_F(LiveRun, OutlivesItsMasterAndRegistersAgainWhenItComesBack) {
   images.reset();
   odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
   images = std::make_unique<Images>(*handle_, "/bot/front/image_raw");
+  // The cameras' mounts too: a tf listener that joins after the restart must get them (the
+  // static broadcaster was made again before the old one went, and never registered).
+  Inbox<tf2_msgs::TFMessage> mounts(*handle_, "/tf_static");
   waitUntilConnected([&] { return odometry->getNumSubscribers() > 0 && images->connected(); });
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return mounts.size() > 0; }, 120.0)) << "no /tf_static from the new master\n" << output();
   odometry->publish(odometryOf(kPoses[1], ros::Time(101, 250), true));
   ASSERT_TRUE(TestDaemons::waitFor([&] { return images->size() > 0; }, 120.0)) << output();
   ASSERT_EQ(waitForExit(), 0) << output();

@@ -422,6 +422,9 @@ bool Transport::registerAgainIfTheMasterCameBack() {
   impl_->diagnostics.shutdown();
   for (const auto& make : impl_->advertise) make();
   if (impl_->staticTransforms) {
+    // The old broadcaster goes first: while its publication lives, a new one joins it and is
+    // never registered with the new master.
+    impl_->staticTransforms.reset();
     impl_->staticTransforms = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
     impl_->staticTransforms->sendTransform(impl_->staticMessages);
   }

@@ -506,6 +506,12 @@ TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
   const CommandResult reduced = run("compare " + path("engine.exr") + " " + path("job4/render.exr") + " --box-downsample --json", "", "/dev/null");
   ASSERT_EQ(reduced.code, 0) << reduced.out;
   EXPECT_LE(nlohmann::json::parse(reduced.out)["max_abs"].get<double>(), 1e-6) << reduced.out;
+  // The job's render.exr has no alpha (B, G, R): alpha is not compared, and --fail-max passes on
+  // the colour (it failed on "max_abs_alpha > 0.001", the missing alpha read as 1).
+  EXPECT_TRUE(nlohmann::json::parse(reduced.out)["max_abs_alpha"].is_null()) << reduced.out;
+  const CommandResult strict = run("compare " + path("engine.exr") + " " + path("job4/render.exr") + " --box-downsample --fail-max 0.001");
+  EXPECT_EQ(strict.code, 0) << strict.out;
+  EXPECT_NE(strict.out.find("max abs of alpha not compared (an image has no alpha channel)"), std::string::npos) << strict.out;
   EXPECT_EQ(run("compare " + path("engine.exr") + " " + path("job/render.exr") + " --box-downsample").code, 2);  // 48 and 48
   // Exported again over its render: the earlier render.exr is left (POV-Ray wrote it) and named.
   const CommandResult again = run("export " + kScene + " --to povray --size 48 --spp 4 -o " + path("job"));

@@ -320,6 +320,8 @@ def main():
     dataset_spec("files_compression", multilayer_compression="zip")
     # Time and shaking (docs/motion.md): timed waypoints, vibration, the EuRoC layout.
     dataset_spec("vibration_tilt", vibration={"seed": 1, "rig_tilt_deg": [20, 0]})
+    # A live sensor renders each pose as it comes: a rocking robot too is refused (it was ignored).
+    dataset_spec("vibration_robot_tilt", vibration={"seed": 1, "robot_tilt_deg": [1, 1]})
     dataset_spec("vibration_lens_offset", cameras=[{"name": "omni"}, {"name": "fisheye", "rig": {"lens": {
         "model": "fisheye_equidistant", "width": 32, "height": 32, "f_px": 9, "fov_deg": 190}}}],
                  vibration={"seed": 1, "camera_offset_mm": [1, 1, 1]})
