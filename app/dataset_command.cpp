@@ -126,6 +126,12 @@ int printStatus(const std::string& dir) {
     for (int count : shardCounts) printShardStates(dir, count);
     return 1;
   }
+  // Submitted to Slurm, no task started yet: the folder holds only its slurm/ scripts.
+  if (entryInside(dir, kManifestName) == EntryKind::Missing && entryInside(dir, "slurm/render.sbatch") == EntryKind::File) {
+    std::printf("%s: submitted to Slurm (slurm/render.sbatch), no shard has started yet: squeue lists the jobs, "
+                "slurm/shard-<I>.log each task's output\n", dir.c_str());
+    return 1;
+  }
   const DatasetStatus s = datasetStatus(dir);
   std::printf("%s: %d of %d frames finished%s\n", dir.c_str(), s.finished, s.frames,
               s.complete ? " (complete, by its manifest; --verify re-hashes every file)" : (" (incomplete: " + nextStep(dir) + ")").c_str());

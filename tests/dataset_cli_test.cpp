@@ -658,6 +658,23 @@ TEST_F(DatasetCliTest, ShardsOfAnotherDatasetOrCountAreRefusedAndStatusSeesARunA
   EXPECT_EQ(omnicam("dataset " + a + " -o " + path("ds") + " --shard 1/2").code, 0);  // its own count: kept as it is
 }
 
+// `--status` right after a Slurm submission, before any task has started: said so, exit 1 (it
+// was "not a dataset folder", exit 2). sbatch is a stand-in here that only answers a job id.
+TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 4})");
+  fs::create_directories(dir_ / "bin");
+  write("bin/sbatch", "#!/bin/sh\necho 42\n");
+  fs::permissions(dir_ / "bin/sbatch", fs::perms::owner_all);
+  const auto submitted = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
+                                           path("ds") + " --backend slurm --shards 2 2>&1");
+  ASSERT_EQ(submitted.code, 0) << submitted.out;
+  ASSERT_TRUE(fs::exists(dir_ / "ds/slurm/render.sbatch"));
+  const auto status = omnicam("dataset --status " + path("ds"));
+  EXPECT_EQ(status.code, 1) << status.out;
+  EXPECT_NE(status.out.find(path("ds") + ": submitted to Slurm (slurm/render.sbatch), no shard has started yet"), std::string::npos)
+      << status.out;
+}
+
 // The thesis' modes draw approximate colour under exact AOVs: a dataset of them says so, and an
 // exact-mode dataset does not.
 TEST_F(DatasetCliTest, AThesisModeDatasetSaysItsAnnotationsAreTheExactCameras) {
