@@ -100,14 +100,12 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
     std::vector<const FrameComparison*> worst;
     for (const FrameComparison& f : r.frames) worst.push_back(&f);
     std::sort(worst.begin(), worst.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
-    char alpha[64] = "not compared (no pair has alpha in both)";
-    if (r.alphaCompared) std::snprintf(alpha, sizeof alpha, "%.9g", r.maxAbsAlpha);
     std::printf("compared %zu images (frames x cameras)%s\n  mean PSNR %.2f dB%s  worst %.2f dB  mean SSIM %.5f  max abs %.9g  max abs of alpha %s\n",
                 r.frames.size(), args.disc ? " inside the mirror disc" : "", r.meanPsnrDb,
                 r.identical ? (" (over the " + std::to_string(r.frames.size() - static_cast<size_t>(r.identical)) + " whose colour differs; " +
                                std::to_string(r.identical) + " of identical colour)").c_str()
                             : "",
-                r.minPsnrDb, r.meanSsim, r.maxAbs, alpha);
+                r.minPsnrDb, r.meanSsim, r.maxAbs, datasetAlphaText(r).c_str());
     for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
       std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
     int broken = 0;

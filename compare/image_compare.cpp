@@ -160,9 +160,20 @@ CompareResult compareImages(const ImageRGBA& a, const ImageRGBA& b, const Compar
   return comparison.result();
 }
 
+namespace {
+
+// The mirror disc is where both alphas are 1: with no alpha in either image there is none.
+void checkDiscIsKnown(const CompareOptions& options, bool alphaA, bool alphaB) {
+  if (options.discOnly && !alphaA && !alphaB)
+    throw InputError("comparing inside the mirror disc: neither image has an alpha channel, which marks the disc");
+}
+
+}  // namespace
+
 CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const CompareOptions& options) {
   a.requireColour();
   b.requireColour();
+  checkDiscIsKnown(options, a.holdsAlpha(), b.holdsAlpha());
   RowComparison comparison(a.width(), a.height(), b.width(), b.height(), options);
   std::vector<float> bandA(static_cast<size_t>(a.width()) * 4 * kBandRows), bandB(bandA.size());
   for (int first = 0; first < a.height(); first += kBandRows) {
@@ -182,14 +193,15 @@ ColourImagePair readColourImages(ImageRowReader& a, ImageRowReader& b) {
   b.requireColour();
   ColourImagePair pair{a.readRemaining(), b.readRemaining()};
   pair.nonFiniteA = a.nonFinitePixels(), pair.nonFiniteB = b.nonFinitePixels();
-  pair.alphaInBoth = a.holdsAlpha() && b.holdsAlpha();
+  pair.alphaA = a.holdsAlpha(), pair.alphaB = b.holdsAlpha();
   return pair;
 }
 
 CompareResult compareImagePair(const ColourImagePair& pair, const CompareOptions& options) {
+  checkDiscIsKnown(options, pair.alphaA, pair.alphaB);
   CompareResult r = compareImages(pair.a, pair.b, options);
   r.nonFiniteA += pair.nonFiniteA, r.nonFiniteB += pair.nonFiniteB;
-  if (!pair.alphaInBoth) r.alphaCompared = false, r.maxAbsAlpha = 0.0;
+  if (!pair.alphaA || !pair.alphaB) r.alphaCompared = false, r.maxAbsAlpha = 0.0;
   return r;
 }
 

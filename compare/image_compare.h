@@ -88,7 +88,7 @@ CompareResult compareImageRows(ImageRowReader& a, ImageRowReader& b, const Compa
 struct ColourImagePair {
   ImageRGBA a, b;
   long nonFiniteA = 0, nonFiniteB = 0;
-  bool alphaInBoth = true;  // both files have an alpha channel
+  bool alphaA = true, alphaB = true;  // whether each file has an alpha channel
 };
 ColourImagePair readColourImages(ImageRowReader& a, ImageRowReader& b);
 // compareImages of a pair readColourImages read, its counts of non-finite pixels included.

@@ -34,7 +34,7 @@ struct DatasetCompareResult {
   // `identical` counts those frames).
   double meanPsnrDb = 0.0, minPsnrDb = 0.0, meanSsim = 0.0, maxAbs = 0.0, maxAbsAlpha = 0.0;
   int identical = 0;
-  int alphaCompared = 0;  // frames whose two images both have alpha (maxAbsAlpha is over these)
+  int alphaCompared = 0;  // image pairs (frame × camera) that both have alpha: maxAbsAlpha is over these
   // What the two manifests say differs beside the pixels: the cameras' rigs (the frames are then
   // images of different cameras, which a study of a rig's change means and a regression check
   // does not). One line each, for people.
@@ -43,6 +43,8 @@ struct DatasetCompareResult {
 
 DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
                                      const DatasetCompareOptions& options);
+// The largest difference of alpha over the pairs that both have it, as text, or why there is none.
+std::string datasetAlphaText(const DatasetCompareResult& result);
 
 // The folder beside an HTML report that holds its images ("<stem>_files").
 std::string reportAssetsFolder(const std::string& reportPath);

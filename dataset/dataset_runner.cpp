@@ -76,17 +76,14 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
     if (!difference.empty() && !options.overwrite)
       throw OtherDatasetError(showPath(options.dir) + ": holds another dataset (" + difference + ")");
   }
-  // A shard joins only shards of its own count, in a merged folder too (its shards/ stays).
-  if (previous && !options.overwrite && manifestName != kManifestName && dir.entry("shards") == EntryKind::Folder)
+  // The shards of a dataset fill the folder: a shard of the same dataset and count joins them,
+  // in a merged folder too (its shards/ stays).
+  const bool shard = manifestName != kManifestName;
+  if (shard && dir.entry("shards") == EntryKind::Folder)
     if (const std::string conflict = shardsConflict(options.dir, header, options.shardCount); !conflict.empty())
       throw InputError(showPath(options.dir) + ": " + conflict);
   if (!previous && dir.entry("shards") == EntryKind::Folder) {
-    // The shards of a dataset fill the folder: a shard of the same dataset and count joins them.
-    if (manifestName != kManifestName) {
-      if (const std::string conflict = shardsConflict(options.dir, header, options.shardCount); !conflict.empty())
-        throw InputError(showPath(options.dir) + ": " + conflict);
-      return std::nullopt;
-    }
+    if (shard) return std::nullopt;
     throw InputError(showPath(options.dir) + ": holds the shards of a dataset, not merged (shards/): " +
                      unmergedShardsNextStep(options.dir));
   }

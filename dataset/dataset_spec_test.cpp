@@ -97,7 +97,8 @@ TEST(DatasetSpec, IntegersOutOfRangeAreRefusedNeverWrapped) {
   EXPECT_EQ(errorOf(spec(R"("recording": {"seed": -1})")), "spec.json: recording.seed: must be an integer in [0, 2^64 - 1] (got -1)");
   EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 1, "seed": 9007199254740993, "region": [0, 0, 1, 1]}})")),
             "spec.json: poses.random.seed: must be in [0, 9007199254740992] (got 9007199254740993)");
-  // Beyond 64 bits the JSON reader holds a double: out of range, not "not an integer".
+  // Beyond 64 bits the JSON reader holds a double: out of range, not "not an integer"; so is 1e18.
+  EXPECT_EQ(errorOf(spec(R"("size": 1e18)")), "spec.json: size: must be in [8, 16384] (got 1e+18)");
   EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 1, "seed": 18446744073709551621, "region": [0, 0, 1, 1]}})")),
             "spec.json: poses.random.seed: must be in [0, 9007199254740992] (got 1.8446744073709552e+19)");
   EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 1, "seed": 1.5, "region": [0, 0, 1, 1]}})")),

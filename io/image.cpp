@@ -228,7 +228,7 @@ void ImageRowReader::readRows(int first, int count, float* rgba) {
 long ImageRowReader::nonFinitePixels() const { return state_->nonFinitePixels; }
 const std::vector<std::string>& ImageRowReader::channelNames() const { return state_->decoder->header().channelNames; }
 bool ImageRowReader::holdsColour() const { return PixelDecoding::colourNames(state_->decoder->header()); }
-bool ImageRowReader::holdsAlpha() const { return state_->decoder->header().alphaChannel >= 0; }
+bool ImageRowReader::holdsAlpha() const { return PixelDecoding(state_->decoder->header()).alphaChannel >= 0; }
 
 void ImageRowReader::requireColour() const {
   if (holdsColour()) return;

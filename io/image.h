@@ -75,7 +75,8 @@ class ImageRowReader {
   // Y or a colour. A table of data (rays' origin.X …, normals' X, Y, Z, a depth map's Z) is not,
   // though it reads.
   bool holdsColour() const;
-  // Whether the file has an alpha channel; without one, alpha reads as 1 everywhere.
+  // Whether a channel is read as alpha (one the file names so, or the last of two or four);
+  // without one, alpha reads as 1 everywhere.
   bool holdsAlpha() const;
   // InputError "<file>: not a colour image: its channels are …" unless holdsColour().
   void requireColour() const;

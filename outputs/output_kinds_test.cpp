@@ -16,7 +16,6 @@ TEST(FrameTimestamps, AreTheIntervalsDecimalMultiples) {
   EXPECT_EQ(frameTimestampNs(99999, 65537.953), int64_t{99999} * 65537953000000);
   EXPECT_EQ(frameTimestampNs(100000, 86400.0), int64_t{100000} * 86400000000000);  // the largest
   // An interval of no whole number of ns is multiplied as it is.
-  EXPECT_EQ(frameTimestampSeconds(7, 1.0 / 30.0), 7.0 * (1.0 / 30.0));
   EXPECT_EQ(frameTimestampNs(7, 1.0 / 30.0), 233333333);
   EXPECT_EQ(eurocImageName(3, 0.05), "150000000.png");
 }

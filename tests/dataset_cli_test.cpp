@@ -27,6 +27,7 @@
 #include "image_compare.h"
 #include "mirror.h"
 #include "opencv_omnidir.h"
+#include "png_codec.h"
 #include "recording_camera_spec.h"
 #include "rig.h"
 #include "safe_files.h"
@@ -673,6 +674,49 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_EQ(status.code, 1) << status.out;
   EXPECT_NE(status.out.find(path("ds") + ": submitted to Slurm (slurm/render.sbatch), no shard has started yet"), std::string::npos)
       << status.out;
+  // A folder holding another count's shards is refused before anything is submitted (every task
+  // would refuse it).
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("two") + " --shard 0/2").code, 0);
+  const auto three = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
+                                       path("two") + " --backend slurm --shards 3 2>&1");
+  EXPECT_EQ(three.code, 2) << three.out;
+  EXPECT_NE(three.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json): submit it with 2 shards"), std::string::npos)
+      << three.out;
+  EXPECT_FALSE(fs::exists(dir_ / "two/slurm"));
+}
+
+// Alpha is compared where both images have it: a folder of one's own RGB PNGs (no alpha) against a
+// dataset, files or multilayer, says so and fails no --fail-max on it (the missing alpha read as
+// 1 failed every frame); --disc needs an alpha in one of them.
+TEST_F(DatasetCliTest, AlphaIsComparedOnlyWhereBothImagesHaveIt) {
+  const std::string poses = R"("size": 32, "poses": {"list": [[0.5, 0.3, 20], [-1.2, 0.8, 200]]})";
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("files.json", poses) + " -o " + path("files")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("layers.json", R"("layout": "multilayer", )" + poses) + " -o " + path("layers")).code, 0);
+  for (const auto& [folder, layout] : {std::pair{"rgb_only", "rgb"}, std::pair{"rgb_only_layers", "multilayer"}}) {
+    fs::create_directories(dir_ / folder / "cam0" / layout);
+    for (int i = 0; i < 2; ++i) {
+      const std::string name = "00000" + std::to_string(i) + ".png";
+      const ImageRGBA frame = readImage(path("files/cam0/rgb/" + name));
+      const std::vector<unsigned char> rgba = srgb8Codes(frame);
+      std::vector<unsigned char> rgb;
+      for (size_t k = 0; k < rgba.size(); ++k)
+        if (k % 4 != 3) rgb.push_back(rgba[k]);
+      const std::vector<unsigned char> png = image_io::encodePng(name, frame.width, frame.height, 3, 8, rgb.data(), true);
+      std::ofstream(dir_ / folder / "cam0" / layout / name, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), png.size());
+    }
+  }
+  for (const auto& [a, b] : {std::pair{"files", "rgb_only"}, std::pair{"layers", "rgb_only_layers"}}) {
+    const auto run = omnicam("compare " + path(a) + " " + path(b) + " --fail-max 0.5 --junit " + path(std::string(a) + ".xml"));
+    EXPECT_EQ(run.code, 0) << run.out;
+    EXPECT_NE(run.out.find("max abs of alpha not compared (no image pair has an alpha channel in both)"), std::string::npos) << run.out;
+    EXPECT_NE(readFile(dir_ / (std::string(a) + ".xml")).find("max_abs_alpha=not compared (an image has no alpha channel)"),
+              std::string::npos);
+  }
+  const auto disc = omnicam("compare " + path("rgb_only/cam0/rgb/000000.png") + " " + path("rgb_only/cam0/rgb/000001.png") + " --disc");
+  EXPECT_EQ(disc.code, 2) << disc.out;
+  EXPECT_NE(disc.out.find("comparing inside the mirror disc: neither image has an alpha channel, which marks the disc"), std::string::npos)
+      << disc.out;
+  EXPECT_EQ(omnicam("compare " + path("files") + " " + path("rgb_only") + " --disc").code, 0);  // A's alpha marks it
 }
 
 // The thesis' modes draw approximate colour under exact AOVs: a dataset of them says so, and an
