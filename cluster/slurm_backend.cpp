@@ -145,10 +145,8 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
                      ", no shards/)");
   for (const char* folder : {"shards", "slurm"}) checkFoldersInside(dir.string(), folder);
   // Each task would refuse a folder of another count's shards: refused here, before submitting.
-  for (const int other : shardCountsIn(dir.string()))
-    if (other != o.shards)
-      throw InputError(showPath(dir.string()) + ": holds the shards of a run in " + std::to_string(other) + " (shards/shard-*-of-" +
-                       std::to_string(other) + ".json): submit it with " + std::to_string(other) + " shards, or give another folder");
+  if (const std::string conflict = shardCountConflict(dir.string(), o.shards); !conflict.empty())
+    throw InputError(showPath(dir.string()) + ": " + conflict);
 
   SlurmSubmission s;
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))

@@ -99,13 +99,17 @@ std::string unmergedShardsNextStep(const std::string& path) {
          "; omnicam dataset --status " + shellPath(path) + " lists them), then omnicam dataset --merge " + shellPath(path);
 }
 
-std::string shardsConflict(const std::string& path, const json& header, int count) {
-  const std::vector<int> counts = shardCountsIn(path);
-  for (int other : counts)
+std::string shardCountConflict(const std::string& path, int count) {
+  for (int other : shardCountsIn(path))
     if (other != count)
       return "holds the shards of a run in " + std::to_string(other) + " (shards/shard-*-of-" + std::to_string(other) +
              ".json): shard it the same way, or give another folder";
-  if (counts.empty()) return "";
+  return "";
+}
+
+std::string shardsConflict(const std::string& path, const json& header, int count) {
+  if (const std::string conflict = shardCountConflict(path, count); !conflict.empty()) return conflict;
+  if (shardCountsIn(path).empty()) return "";
   // Each shard there was checked against those before it when it started: one stands for all.
   const SafeFolder dir(path);
   for (int i = 0; i < count; ++i) {

@@ -34,6 +34,9 @@ std::string unmergedShardsNextStep(const std::string& dir);
 // shards there: shards of another count, or of another dataset (naming what differs). Empty if
 // it may (no shards, or only this dataset's of this count).
 std::string shardsConflict(const std::string& dir, const nlohmann::json& header, int count);
+// The count part of that alone (a Slurm submission knows no header yet): "" when every shard in
+// DIR is of `count`.
+std::string shardCountConflict(const std::string& dir, int count);
 
 struct MergeResult {
   int frames = 0, finished = 0;

@@ -680,7 +680,7 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   const auto three = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
                                        path("two") + " --backend slurm --shards 3 2>&1");
   EXPECT_EQ(three.code, 2) << three.out;
-  EXPECT_NE(three.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json): submit it with 2 shards"), std::string::npos)
+  EXPECT_NE(three.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json): shard it the same way"), std::string::npos)
       << three.out;
   EXPECT_FALSE(fs::exists(dir_ / "two/slurm"));
 }
