@@ -1,5 +1,6 @@
 #include "number_format.h"
 
+#include <algorithm>
 #include <charconv>
 #include <iomanip>
 #include <locale>
@@ -29,17 +30,11 @@ std::string fixedDecimals(double value, int decimals) {
   return s.str();
 }
 
-std::string yamlNumber(double value) {
+std::string yamlFloat(double value) {
   // A rotation's exact zeros come out signed (-0): the same number, written as tools write it.
   std::string text = roundTrip(value == 0.0 ? 0.0 : value);
-  const size_t e = text.find('e');
-  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
-  return text;
-}
-
-std::string yamlFloat(double value) {
-  std::string text = yamlNumber(value);
-  if (text.find_first_of(".ein") == std::string::npos) text += ".0";  // not 1e+20, nan or inf
+  if (text.find_first_of("in") != std::string::npos) return text;  // nan, inf: no digits to mend
+  if (text.find('.') == std::string::npos) text.insert(std::min(text.find('e'), text.size()), ".0");
   return text;
 }
 

@@ -5,11 +5,9 @@
 namespace omnicam {
 // Shortest text that parses back to exactly `value` ("0.1", "1e-07"); never uses the locale.
 std::string roundTrip(double value);
-// roundTrip() that YAML 1.1 loaders (PyYAML) read as a number: its exponent form needs a '.'
-// ("1.0e-05", not "1e-05", which they read as a string); -0 is written 0.
-std::string yamlNumber(double value);
-// yamlNumber() that they read as a float, integers included ("500.0"): Kalibr's reader refuses
-// an int where it wants a float.
+// roundTrip() that YAML 1.1 loaders (PyYAML) read as a float, whole numbers included ("500.0":
+// Kalibr's reader refuses an int where it wants a float); an exponent gets a '.' ("1.0e-05": they
+// read "1e-05" as a string); -0 is written 0.0.
 std::string yamlFloat(double value);
 // A number for messages: at most 6 significant digits ("0.001", "1e+06", "10000"), any locale.
 std::string shortNumber(double value);

@@ -31,15 +31,16 @@ TEST(FixedDecimals, IgnoresTheGlobalLocale) {
   std::locale::global(before);
 }
 
-// YAML 1.1 loaders read these as numbers (PyYAML: an exponent needs a '.'), and a signed zero
+// YAML 1.1 loaders read these as floats (PyYAML: an exponent needs a '.', a whole number one too), and a signed zero
 // (a rotation matrix's exact zeros) is written as the 0 it is.
-TEST(YamlNumber, WritesWhatYamlLoadersReadAsTheSameNumber) {
-  EXPECT_EQ(yamlNumber(0.1), "0.1");
-  EXPECT_EQ(yamlNumber(1e-05), "1.0e-05");
-  EXPECT_EQ(yamlNumber(-0.0), "0");
-  EXPECT_EQ(yamlNumber(-2.5), "-2.5");
+TEST(YamlFloat, WritesWhatYamlLoadersReadAsTheSameFloat) {
+  EXPECT_EQ(yamlFloat(0.1), "0.1");
+  EXPECT_EQ(yamlFloat(1e-05), "1.0e-05");
+  EXPECT_EQ(yamlFloat(1e+20), "1.0e+20");
   EXPECT_EQ(yamlFloat(-0.0), "0.0");
+  EXPECT_EQ(yamlFloat(-2.5), "-2.5");
   EXPECT_EQ(yamlFloat(500.0), "500.0");
+  EXPECT_EQ(yamlFloat(10.0), "10.0");
 }
 
 }  // namespace

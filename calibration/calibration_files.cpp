@@ -5,24 +5,11 @@
 #include <sstream>
 
 #include "errors.h"
+#include "number_format.h"
 
 namespace omnicam {
 
 namespace {
-
-// A YAML float as PyYAML reads one: the shortest digits that read back exactly, with a decimal
-// point (Kalibr checks isinstance(value, float): "1" would be an int).
-std::string yamlFloat(double value) {
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  std::string s(text, end);
-  // PyYAML's float needs a point, also before an exponent ("1e-04" is a string to it).
-  if (s.find('.') == std::string::npos) {
-    const size_t exponent = s.find_first_of("eE");
-    s.insert(exponent == std::string::npos ? s.size() : exponent, ".0");
-  }
-  return s;
-}
 
 }  // namespace
 

@@ -37,8 +37,8 @@ std::string lensSensorYaml(const DatasetCamera& mount, const LensCamera& camera,
       << "comment: omnicam " << lensModelName(camera.lens().model) << " camera " << mount.name << "\n"
       << "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out << yamlNumber(bodyFromSensor.matrix()(r, c)) << (r == 3 && c == 3 ? "]\n" : ", ");
-  out << "rate_hz: " << yamlNumber(1.0 / intervalS) << "\n"
+    for (int c = 0; c < 4; ++c) out << yamlFloat(bodyFromSensor.matrix()(r, c)) << (r == 3 && c == 3 ? "]\n" : ", ");
+  out << "rate_hz: " << yamlFloat(1.0 / intervalS) << "\n"
       << "resolution: [" << camera.width() << ", " << camera.height() << "]\n";
   if (const auto kalibr = kalibrLensOf(camera.lens().model)) {
     out << "camera_model: " << kalibr->cameraModel << "\n"
@@ -53,10 +53,10 @@ std::string lensSensorYaml(const DatasetCamera& mount, const LensCamera& camera,
 
 std::string shutterYaml(const RigSpec& rig) {
   std::ostringstream out;
-  out << "exposure_s: " << yamlNumber(rig.shutter.exposureS) << "\n";
+  out << "exposure_s: " << yamlFloat(rig.shutter.exposureS) << "\n";
   if (rig.shutter.rolling) {
     out << "shutter: rolling\n"
-        << "line_time_s: " << yamlNumber(rig.shutter.rolling->lineTimeUs / 1e6) << "\n"
+        << "line_time_s: " << yamlFloat(rig.shutter.rolling->lineTimeUs / 1e6) << "\n"
         << "readout: " << readoutName(rig.shutter.rolling->readout) << "\n";
   } else {
     out << "shutter: global\n";
@@ -87,15 +87,15 @@ std::string eurocSensorYaml(const DatasetCamera& mount, const RigSpec& rig, cons
       << "comment: omnicam catadioptric camera " << mount.name << "\n"
       << "T_BS:\n  cols: 4\n  rows: 4\n  data: [";
   for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) out << yamlNumber(bodyFromSensor.matrix()(r, c)) << (r == 3 && c == 3 ? "]\n" : ", ");
-  out << "rate_hz: " << yamlNumber(1.0 / intervalS) << "\n"
+    for (int c = 0; c < 4; ++c) out << yamlFloat(bodyFromSensor.matrix()(r, c)) << (r == 3 && c == 3 ? "]\n" : ", ");
+  out << "rate_hz: " << yamlFloat(1.0 / intervalS) << "\n"
       << "resolution: [" << camera.width() << ", " << camera.height() << "]\n"
       << "camera_model: omni\n"
-      << "intrinsics: [" << yamlNumber(k.xi) << ", " << yamlNumber(k.gammaX) << ", " << yamlNumber(k.gammaY) << ", "
-      << yamlNumber(k.cx) << ", " << yamlNumber(k.cy) << "]\n"
+      << "intrinsics: [" << yamlFloat(k.xi) << ", " << yamlFloat(k.gammaX) << ", " << yamlFloat(k.gammaY) << ", "
+      << yamlFloat(k.cx) << ", " << yamlFloat(k.cy) << "]\n"
       << "distortion_model: radial-tangential\n"
-      << "distortion_coefficients: [" << yamlNumber(k.lens.k1) << ", " << yamlNumber(k.lens.k2) << ", "
-      << yamlNumber(k.lens.p1) << ", " << yamlNumber(k.lens.p2) << "]\n";
+      << "distortion_coefficients: [" << yamlFloat(k.lens.k1) << ", " << yamlFloat(k.lens.k2) << ", "
+      << yamlFloat(k.lens.p1) << ", " << yamlFloat(k.lens.p2) << "]\n";
   return out.str() + shutterYaml(rig);
 }
 

@@ -71,6 +71,10 @@ def test_a_loader_reads_every_camera_s_frames_timestamps_and_calibration(source,
         assert "line_time_s: 2.5e-05\n" in (folder / "sensor.yaml").read_text()
         assert np.allclose(t_bs[3], [0, 0, 0, 1]) and np.allclose(t_bs[:3, :3] @ t_bs[:3, :3].T, np.eye(3), atol=1e-15)
         assert sensor["distortion_coefficients"] == [0, 0, 0, 0]
+        # Floats read as floats, whole ones included (rate_hz 20, T_BS's zeros), as typed readers expect.
+        floats = [sensor["rate_hz"], sensor["exposure_s"], sensor["line_time_s"], *sensor["T_BS"]["data"],
+                  *sensor["intrinsics"], *sensor["distortion_coefficients"]]
+        assert all(type(v) is float for v in floats), [v for v in floats if type(v) is not float]
 
         # World points seen by the camera at frame 1, projected the way a VIO front end does:
         # world → body (the robot pose in the manifest) → sensor (T_BS inverted) → omni model.
