@@ -291,6 +291,11 @@ class LiveRun : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    // roscpp initialises once per process: a second run in one process would wait for the first
+    // one's master, gone. It fails at once instead, saying so.
+    static int runsInThisProcess = 0;
+    ASSERT_EQ(++runsInThisProcess, 1) << "roscpp initialises once per process: run one test of live_sensor_test per process "
+                                      << "(ctest does), e.g. --gtest_filter=" << test->test_suite_name() << "." << test->name();
     root_ = fs::temp_directory_path() / ("omnicam_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
     fs::create_directories(root_);
   }
