@@ -61,9 +61,9 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
     std::printf("ros: stopped while waiting for the ROS master: no pose rendered\n");
     return;
   }
-  std::printf("ros: %lld poses rendered, %lld dropped for newer ones, %lld refused, %lld new masters",
-              static_cast<long long>(report.rendered), static_cast<long long>(report.dropped),
-              static_cast<long long>(report.refused), static_cast<long long>(report.newMasters));
+  std::printf("ros: %s rendered, %lld dropped for newer ones, %lld refused, %s", countOf(report.rendered, "pose").c_str(),
+              static_cast<long long>(report.dropped), static_cast<long long>(report.refused),
+              countOf(report.newMasters, "new master").c_str());
   if (a.options.rateHz > 0 && a.options.tfParent.empty())  // --max-pose-age is odometry's
     std::printf(", %s skipped (no pose within --max-pose-age)", countOf(report.skippedTicks, "tick").c_str());
   std::printf("\n");

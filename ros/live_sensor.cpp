@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "atomic_file.h"
 #include "dataset_options.h"
@@ -352,6 +353,7 @@ struct LivePoses {
   ros1::Stamp lastNow;             // ROS time when the last pose or tick came
   std::atomic<int64_t> refused = 0;
   std::atomic<int64_t> skippedTicks = 0;  // at a fixed rate: ticks with no pose near enough
+  bool saidWaitingForTf = false;          // at a fixed rate from tf: before the tree's first pose
 
   void refuse(const std::string& why, const ros1::Stamp& stamp) {
     transport->publish(diagnostic(options, "pose refused: " + why, stamp, ++refused));
@@ -371,6 +373,7 @@ struct LivePoses {
     if (now < lastNow) {
       lastAccepted.reset();
       latest.reset();
+      saidWaitingForTf = false;
       transport->publish(diagnostic(options, "ROS time went back (a simulation reset?): poses start anew", now, 0));
     }
     lastNow = now;
@@ -401,7 +404,15 @@ struct LivePoses {
     ros1::TransformHandlers handlers;
     handlers.pose = [this](const ros1::Odometry& o) { accept(o); };
     handlers.gap = [this](const ros1::Stamp& stamp, const std::string& why) {
-      refuse("no transform from " + options.tfParent + " to " + options.baseFrame + ": " + why, stamp);
+      const std::string reason = "no transform from " + options.tfParent + " to " + options.baseFrame + ": " + why;
+      // Ticks before the tree's first pose are no poses, as ticks before the first odometry: said
+      // once, not refused at the rate (a tree that comes up after the node would flood /diagnostics).
+      if (options.rateHz > 0 && !lastAccepted) {
+        if (!std::exchange(saidWaitingForTf, true))
+          transport->publish(diagnostic(options, "waiting for the tree's first pose (said once): " + reason, stamp, 0));
+        return;
+      }
+      refuse(reason, stamp);
     };
     transport->subscribeTransform(options.tfParent, options.baseFrame, /*eachMove=*/options.rateHz == 0, std::move(handlers));
   }
