@@ -27,7 +27,7 @@ struct RenderRequest : RenderSampling {
   std::string engine = "fast";  // fast, povray or blender
   std::string mode = "exact";   // exact, cubemap or thesis-mesh (fast only)
   CubeMapOptions modeOptions;   // faces, face size, polygons (omni_mode.h's defaults); its own `mode` is unused
-  int threads = 0;              // a ground truth's render threads; 0: every core
+  int threads = 0;              // render threads (a ground truth's; Python's Renderer caps the fast engine's); 0: every core
   double timeoutSeconds = kDefaultTimeoutSeconds;
 
   // The mode's options (their `mode` taken from `mode`), or nullopt for exact.

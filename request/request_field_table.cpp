@@ -76,8 +76,8 @@ std::vector<RequestFieldRow> makeRows() {
        .range = "(0, " + shortNumber(limits::kMaxTimeoutSeconds) + "] s", .engines = "povray, blender",
        .help = "Seconds allowed per external render", .shown = [](const Request& r) { return shortNumber(r.timeoutSeconds); }},
       {.field = RequestField::Threads, .type = Type::Integer, .python = "threads", .pythonPlace = PythonPlace::Renderer,
-       .range = "0–" + std::to_string(limits::kMaxThreads), .engines = "povray, blender",
-       .help = "A ground truth's render threads; 0: every core (a dataset's --threads and threads set it)",
+       .range = "0–" + std::to_string(limits::kMaxThreads), .engines = "all",
+       .help = "Render threads: the fast engine's, a ground truth's renderer's; 0: every core (a dataset's --threads and threads set it)",
        .shown = [](const Request& r) { return std::to_string(r.threads); }},
   };
 }

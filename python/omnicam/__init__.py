@@ -17,6 +17,7 @@ import difflib as _difflib
 import functools as _functools
 import importlib as _importlib
 import numbers as _numbers
+import os as _os
 import re as _re
 import typing as _typing
 
@@ -48,8 +49,9 @@ _SUBMODULES = frozenset({"_omnicam", "dataset"})
 
 # A mistyped keyword ("shadng=") gets pybind11's TypeError: every overload's signature and the
 # call, hundreds of characters. _omnicam's functions and methods are wrapped so that it names the
-# keyword and the one meant instead, as the CLI names a mistyped flag. Other TypeErrors pass as
-# they are. _omnicam calls this when it loads (python/src/module.cpp).
+# keyword and the one meant instead, as the CLI names a mistyped flag, and an argument (keyword or
+# positional) of a type it cannot be with the type it takes. Other TypeErrors pass as they are.
+# _omnicam calls this when it loads (python/src/module.cpp).
 _INCOMPATIBLE = ("incompatible function arguments", "incompatible constructor arguments")
 _OVERLOAD = _re.compile(r"^\s+\d+\. [\w.]*\((.*)\)(?: -> .*)?$", _re.M)
 _PARAMETER = _re.compile(r"(?:^|, )\*?(\w+):")
@@ -77,16 +79,23 @@ def _fits(value: _typing.Any, annotation: str) -> bool:
         return isinstance(value, str)
     if annotation == "List[str]":
         return isinstance(value, (list, tuple)) and all(isinstance(item, str) for item in value)
+    if annotation == "function" or annotation.startswith("Callable["):
+        return callable(value)
+    if annotation in ("os.PathLike", "Union[os.PathLike, str, bytes]"):
+        return isinstance(value, (str, bytes, _os.PathLike))
+    if annotation.startswith("omnicam._omnicam."):  # one of omnicam's own classes
+        return type(value).__name__ == annotation.rsplit(".", 1)[1]
     return True
 
 
-def _wrong_keyword(message: str, kwargs: _typing.Dict[str, _typing.Any]) -> _typing.Optional[str]:
-    """The first keyword whose value cannot be its parameter's type, in every overload, described."""
+def _wrong_argument(message: str, kwargs: _typing.Dict[str, _typing.Any]) -> _typing.Optional[str]:
+    """The first argument whose value cannot be its parameter's type, in every overload, described."""
     overloads = [dict(_TYPED.findall(overload)) for overload in _OVERLOAD.findall(message)]
     for key, value in kwargs.items():
         types = [typed[key] for typed in overloads if key in typed]
         if types and not any(_fits(value, annotation) for annotation in types):
-            return f"{key} must be {' or '.join(sorted(set(t.strip() for t in types)))} (got {type(value).__name__} {value!r})"
+            wanted = sorted(set(t.strip().replace("omnicam._omnicam.", "omnicam.") for t in types))
+            return f"{key} must be {' or '.join(wanted)} (got {type(value).__name__} {value!r})"
     return None
 
 
@@ -97,15 +106,24 @@ def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing
             return function(*args, **kwargs)
         except TypeError as error:
             message = str(error)
-            if not kwargs or not any(words in message for words in _INCOMPATIBLE):
+            if not any(words in message for words in _INCOMPATIBLE):
                 raise
-            names = {p for overload in _OVERLOAD.findall(message) for p in _PARAMETER.findall(overload)} - {"self"}
+            overloads = _OVERLOAD.findall(message)
+            names = {p for overload in overloads for p in _PARAMETER.findall(overload)} - {"self"}
             for key in kwargs:
                 if names and key not in names:
                     close = _difflib.get_close_matches(key, sorted(names), n=1)
                     hint = f" (did you mean {close[0]}?)" if close else f" (it takes {', '.join(sorted(names))})"
                     raise TypeError(f"{name}(): unknown keyword argument {key!r}{hint}") from None
-            wrong = _wrong_keyword(message, kwargs)
+            # Positional arguments by the first overload's order: a method's self first, but a
+            # constructor's signature has none (its self, not yet made, must not be looked at).
+            given = dict(kwargs)
+            if overloads:
+                positional = args[1:] if "constructor" in message else args
+                for parameter, value in zip((p for p, _ in _TYPED.findall(overloads[0])), positional):
+                    given.setdefault(parameter, value)
+            given.pop("self", None)
+            wrong = _wrong_argument(message, given)
             if wrong:
                 raise TypeError(f"{name}(): {wrong}") from None
             raise

@@ -25,6 +25,8 @@ class Dataset:
     - ``robot_tilt_deg``: the robot's (roll, pitch), (0, 0) for a level robot;
     - ``rig``: the omnicam.Rig the frame was rendered with (a vibrating robot's frame rig, else
       the camera's rig);
+    - ``recording``: the recording camera drawn for this frame and camera (a dict in the spec's
+      ``recording`` format, every value fixed), or None when the spec draws nothing;
     - ``camera`` and ``intrinsics`` (the manifest's entry for the camera: the model and its
       parameters);
     - one entry per output the dataset holds, or per output asked for in ``outputs``:
@@ -44,6 +46,8 @@ class Dataset:
     """
 
     def __init__(self, path, camera=None, outputs=None, check_hashes=False):
+        """Opens the folder and reads its manifest (errors here): ``camera`` default the first,
+        ``outputs`` a list of output names (default every output written)."""
         self.path = os.fspath(path)
         self.check_hashes = bool(check_hashes)
         self._reader = _DatasetReader(self.path)  # reads and checks the manifest now: errors here
@@ -52,6 +56,8 @@ class Dataset:
         if self.camera not in cameras:
             raise KeyError(f"camera {self.camera!r} is not in {self.path} (cameras: {', '.join(cameras)})")
         written = self._reader.header["outputs"]["written"]
+        if isinstance(outputs, (str, bytes)):  # would be walked letter by letter
+            raise TypeError(f"outputs must be a list of output names, such as [{outputs!r}] (got {type(outputs).__name__} {outputs!r})")
         self.outputs = tuple(written if outputs is None else outputs)
         for output in self.outputs:
             if output not in written:
@@ -70,6 +76,7 @@ class Dataset:
 
     @property
     def reader(self):
+        """The C++ reader of the folder (opened again after unpickling)."""
         if self._reader is None:
             self._reader = _DatasetReader(self.path)
         return self._reader
@@ -129,6 +136,7 @@ class Dataset:
             "velocity": frame["velocity"],
             "robot_tilt_deg": frame["robot_tilt_deg"],
             "rig": frame["cameras"][camera].get("rig") or self.rig(camera),
+            "recording": frame["cameras"][camera].get("recording"),
             "camera": camera,
             "intrinsics": self.intrinsics(camera),
         }

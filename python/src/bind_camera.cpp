@@ -119,11 +119,13 @@ robot pose (x, y, yaw_deg) is given.)")
       .def("images", &images, py::arg("pixels"), "raster points (N, 2) → bool (N,): inside the mirror's rim.")
       .def("describe", [](const PyCamera& c) { return toPython(c.camera->describe()); },
            "The camera model as sidecars and intrinsics files state it (dict).")
-      .def_property_readonly("model", [](const PyCamera& c) { return std::string(c.camera->model()); })
-      .def_property_readonly("central", [](const PyCamera& c) { return c.camera->central(); })
-      .def_property_readonly("width", [](const PyCamera& c) { return c.camera->width(); })
-      .def_property_readonly("height", [](const PyCamera& c) { return c.camera->height(); })
-      .def_property_readonly("rig", [](const PyCamera& c) { return c.camera->rig(); })
+      .def_property_readonly("model", [](const PyCamera& c) { return std::string(c.camera->model()); },
+                             "The camera model's name, as describe() states it.")
+      .def_property_readonly("central", [](const PyCamera& c) { return c.camera->central(); },
+                             "Whether every ray starts at one viewpoint (False: a misaligned or non-central rig).")
+      .def_property_readonly("width", [](const PyCamera& c) { return c.camera->width(); }, "Image width, pixels.")
+      .def_property_readonly("height", [](const PyCamera& c) { return c.camera->height(); }, "Image height, pixels.")
+      .def_property_readonly("rig", [](const PyCamera& c) { return c.camera->rig(); }, "The rig this camera images (a copy).")
       .def("__repr__", [](const PyCamera& c) {
         return "<omnicam.Camera " + std::string(c.camera->model()) + " " + std::to_string(c.camera->width()) + "x" +
                std::to_string(c.camera->height()) + ">";

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <functional>
 #include <set>
+#include <type_traits>
 
 #include "bindings.h"
 #include "input_limits.h"
@@ -17,6 +18,7 @@
 #include "dataset_spec.h"
 #include "exr_channels.h"
 #include "image.h"
+#include "recording_camera_spec.h"
 #include "scene_ids.h"
 
 namespace omnicam::python {
@@ -106,6 +108,7 @@ void bindDatasetReader(py::module_& m) {
           for (const auto& [kind, file] : camera.files) files[py::str(kind)] = file.path;
           py::dict entry(py::arg("pose") = poseTuple(camera.pose), py::arg("files") = files);
           if (camera.rig) entry["rig"] = py::cast(*camera.rig);  // a vibrating robot's frame rig
+          if (camera.recording) entry["recording"] = toPython(recordingCameraToJson(*camera.recording));  // drawn values
           cameras[py::str(name)] = entry;
         }
         const BodyVelocity& v = f.velocity;
@@ -197,21 +200,42 @@ py::array readExrChannelsToPython(const std::filesystem::path& path, const std::
   return uints ? py::array(interleave(decoded.uints, uint32_t{0})) : py::array(interleave(decoded.floats, 0.0f));
 }
 
+// An instance plane's ids as given, of any integer dtype (uint16 from a PNG, uint32 from an EXR):
+// never converted from floats or bools, nor wrapped. An id the scene does not have is another
+// scene's image: refused, not annotated as nothing.
+template <class Id>
+std::vector<uint16_t> idsOf(const py::array& instance, size_t instances) {
+  const auto values = py::array_t<Id, py::array::c_style | py::array::forcecast>::ensure(instance);
+  std::vector<uint16_t> ids(static_cast<size_t>(values.size()));
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const Id id = values.data()[k];
+    bool negative = false;
+    if constexpr (std::is_signed_v<Id>) negative = id < 0;
+    if (negative || static_cast<uint64_t>(id) >= instances)
+      throw InputError("instance: id " + std::to_string(id) + " is not an instance of the scene (its ids: 0 to " +
+                       std::to_string(instances - 1) + ")");
+    ids[k] = static_cast<uint16_t>(id);
+  }
+  return ids;
+}
+
+std::vector<uint16_t> instanceIds(const py::array& instance, size_t instances) {
+  const char kind = instance.dtype().kind();
+  if (kind == 'u') return idsOf<uint64_t>(instance, instances);
+  if (kind == 'i') return idsOf<int64_t>(instance, instances);
+  throw InputError("instance: must hold integer ids, as the instance plane does (got an array of dtype " +
+                   py::str(instance.dtype()).cast<std::string>() + ")");
+}
+
 }  // namespace
 
 void bindDataset(py::module_& m) {
   bindDatasetReader(m);
-  m.def("coco_annotations", [](const py::array_t<uint16_t, py::array::c_style | py::array::forcecast>& instance,
-                               const Scene& scene, const py::object& classes) {
+  m.def("coco_annotations", [](const py::array& instance, const Scene& scene, const py::object& classes) {
     if (instance.ndim() != 2) throw InputError("instance: must be an array of shape (H, W)");
     const int h = static_cast<int>(instance.shape(0)), w = static_cast<int>(instance.shape(1));
-    const std::vector<uint16_t> ids(instance.data(), instance.data() + instance.size());
     const IdTables tables = idTables(scene);
-    // An id the scene does not have is another scene's image: refused, not annotated as nothing.
-    for (const uint16_t id : ids)
-      if (id >= tables.classOfInstance.size())
-        throw InputError("instance: id " + std::to_string(id) + " is not an instance of the scene (its ids: 0 to " +
-                         std::to_string(tables.classOfInstance.size() - 1) + ")");
+    const std::vector<uint16_t> ids = instanceIds(instance, tables.classOfInstance.size());
     return toPython(cocoInstanceAnnotations(ids, w, h, tables.classOfInstance, chosenCocoClasses(tables, classes)));
   }, py::arg("instance"), py::arg("scene"), py::arg("classes") = py::none(),
   R"(COCO annotations of one frame's instance ids (H, W) uint16 of `scene`: one per visible instance of

@@ -5,7 +5,10 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
+
+#include <tbb/task_arena.h>
 
 #include "bindings.h"
 #include "input_limits.h"
@@ -62,7 +65,11 @@ class PyRenderer {
   // with each render.
   PyRenderer(std::shared_ptr<const Scene> scene, const RequestFields& engineFields)
       : scene_(std::move(scene)), ids_(idTables(*scene_)), engineFields_(engineFields) {
-    engine_ = makeEngine(readRenderRequest(engineFields_, {}), *scene_);
+    const RenderRequest request = readRenderRequest(engineFields_, {});
+    // threads= caps the fast engine's TBB threads too (a ground truth passes it to its renderer):
+    // its own arena, so that other renderers in the process keep theirs.
+    if (request.threads > 0) arena_.emplace(request.threads);
+    onThreads([&] { engine_ = makeEngine(request, *scene_); });
   }
 
   py::dict render(const py::object& pose, const std::optional<RigSpec>& rig, const PyInteger& sizeArg,
@@ -106,8 +113,10 @@ class PyRenderer {
       py::gil_scoped_release release;
       std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
       if (!engine_->capabilities().concurrent) turn.lock();
-      engine_->render(placement, settings, film);
-      if (camera) film.setResolvedColour(recordFrame(*camera, film.image(), frame));
+      onThreads([&] {
+        engine_->render(placement, settings, film);
+        if (camera) film.setResolvedColour(recordFrame(*camera, film.image(), frame));
+      });
     }
     return arrays(film, kinds);
   }
@@ -125,7 +134,9 @@ class PyRenderer {
     std::unique_lock<std::mutex> turn(mutex_, std::defer_lock);
     if (!engine_->capabilities().concurrent) turn.lock();
     const auto start = std::chrono::steady_clock::now();
-    for (int k = 0; k < frames; ++k) engine_->render(robot, settings);
+    onThreads([&] {
+      for (int k = 0; k < frames; ++k) engine_->render(robot, settings);
+    });
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
@@ -133,6 +144,13 @@ class PyRenderer {
   const std::shared_ptr<const Scene>& scene() const { return scene_; }
 
  private:
+  // `work` on the threads= arena, or on TBB's default threads.
+  template <class Work>
+  void onThreads(const Work& work) {
+    if (arena_) arena_->execute(work);
+    else work();
+  }
+
   // Each kind's plane as its row says (output_kinds.h): the dataset's names and channels; the
   // colour and the float AOVs hand their buffers over, ids are made as the dataset stores them.
   py::dict arrays(Film& film, const std::vector<OutputKind>& kinds) const {
@@ -159,6 +177,7 @@ class PyRenderer {
   std::shared_ptr<const Scene> scene_;
   IdTables ids_;
   RequestFields engineFields_;
+  std::optional<tbb::task_arena> arena_;  // before the engine: it outlives the engine's renders
   std::unique_ptr<Engine> engine_;
   std::mutex mutex_;
 };
@@ -216,7 +235,8 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
            }),
            py::arg("scene").none(false), py::arg("engine") = py::none(), py::arg("mode") = py::none(),
            py::arg("faces") = py::none(), py::arg("face_size") = py::none(), py::arg("polygons") = py::none(),
-           py::arg("timeout") = py::none(), py::arg("threads") = py::none())
+           py::arg("timeout") = py::none(), py::arg("threads") = py::none(),
+           "Makes the engine for the scene (a copy of it): the class's text says each setting.")
       .def("render", &PyRenderer::render, py::arg("pose") = py::none(), py::kw_only(), py::arg("rig") = py::none(),
            py::arg("size") = 0, py::arg("spp") = py::none(), py::arg("shading") = py::none(), py::arg("traced") = false,
            py::arg("outputs") = std::vector<std::string>{"rgb"}, py::arg("velocity") = py::none(),
@@ -225,7 +245,7 @@ ground-truth frame; threads: 0 for every core. Defaults and ranges: docs/render-
            py::arg("frame") = py::none(), renderDoc().c_str())
       .def("_render_repeatedly", &PyRenderer::renderRepeatedly, py::arg("pose"), py::arg("frames"), py::arg("size") = 0,
            py::arg("spp") = 1, "Benchmark reference: seconds for `frames` renders in a C++ loop, nothing returned.")
-      .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); })
+      .def_property_readonly("engine", [](const PyRenderer& r) { return r.engine().name(); }, "The engine's name: fast, povray or blender.")
       .def_property_readonly("concurrent", [](const PyRenderer& r) { return r.engine().capabilities().concurrent; },
                              "Whether renders from several threads run at once.");
 

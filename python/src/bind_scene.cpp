@@ -72,7 +72,7 @@ void bindRig(py::module_& m) {
 Rig() (or Rig(None)) is the ideal rig; Rig(dict) reads the scene format's "rig" block strictly. Every property
 set is checked the same way: a bad value raises omnicam.InputError and leaves the rig unchanged.)");
   rig.def(py::init([](const std::optional<py::dict>& d) { return d ? rigFromDict(fromPython(*d, "omnicam.Rig")) : RigSpec{}; }),
-          py::arg("rig") = py::none())
+          py::arg("rig") = py::none(), "rig: the scene format's \"rig\" block (dict), or None for the ideal rig.")
       .def("to_dict", [](const RigSpec& r) { return toPython(rigToJson(r)); }, "The rig as the scene format's \"rig\" block.")
       .def("resized", [](const RigSpec& r, const PyInteger& size) {
              return r.resized(narrowed(size, "image size", limits::kMinImageSize, limits::kMaxImageSize));
@@ -108,12 +108,13 @@ void bindScene(py::module_& m) {
   bindRig(m);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A loaded scene file (docs/scene-format.md).")
-      .def_property_readonly("path", [](const Scene& s) { return s.path; })
-      .def_property_readonly("name", [](const Scene& s) { return s.name; })
-      .def_property_readonly("sha256", [](const Scene& s) { return s.sha256; })
+      .def_property_readonly("path", [](const Scene& s) { return s.path; }, "The scene file it was loaded from.")
+      .def_property_readonly("name", [](const Scene& s) { return s.name; }, "The scene's name: its file's name without .json.")
+      .def_property_readonly("sha256", [](const Scene& s) { return s.sha256; }, "The SHA-256 of the scene file's bytes (hex), as manifests record it.")
       .def_property("rig", [](const Scene& s) { return s.rig; }, [](Scene& s, const RigSpec& r) { s.rig = r; },
                     "The scene's rig (a copy: change it and assign it back, or pass it to a render).")
-      .def_property_readonly("start_pose", [](const Scene& s) { return py::make_tuple(s.startPose.x, s.startPose.y, s.startPose.yawDeg); })
+      .def_property_readonly("start_pose", [](const Scene& s) { return py::make_tuple(s.startPose.x, s.startPose.y, s.startPose.yawDeg); },
+                             "The robot pose renders take by default: (x, y, yaw_deg).")
       .def_property_readonly("objects", [](const Scene& s) {
         std::vector<std::string> names;
         for (const SceneObject& o : s.objects) names.push_back(o.name);
@@ -154,7 +155,8 @@ debris, victims as landmarks) as a scene file's content (dict): write it with js
       throw InputError("data_path: " + quote(relative) + " is not among omnicam's files (scenes/ holds the scenes it comes with)");
     return file;
   }, py::arg("relative") = "",
-        R"(The files omnicam comes with (scenes/, examples/, ...), in a build tree or an installed package:
+        R"(The files omnicam comes with (scenes/, docs/examples/ (the docs' specs), examples/recording/ (test
+cameras), ...), in a build tree or an installed package:
 data_path() is their folder, data_path("scenes/robocup2006.json") one of them. omnicam.InputError
 for a name that is not among them.)");
   m.def("load_scene", [](const std::filesystem::path& path, bool allowOutsideFiles) {

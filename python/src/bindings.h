@@ -65,20 +65,31 @@ template <>
 struct type_caster<omnicam::python::PyInteger> {
   PYBIND11_TYPE_CASTER(omnicam::python::PyInteger, const_name("int"));
   bool load(handle source, bool) {
-    if (!source || !PyLong_Check(source.ptr()) || PyBool_Check(source.ptr())) return false;
+    // Python's ints and what stands for one (numpy's integer scalars: __index__); never a bool,
+    // Python's or numpy's, nor a float.
+    if (!source || PyBool_Check(source.ptr()) || std::string(Py_TYPE(source.ptr())->tp_name) == "numpy.bool_") return false;
+    object integer;
+    if (PyLong_Check(source.ptr())) {
+      integer = reinterpret_borrow<object>(source);
+    } else if (PyIndex_Check(source.ptr())) {
+      integer = reinterpret_steal<object>(PyNumber_Index(source.ptr()));
+      if (!integer) return PyErr_Clear(), false;
+    } else {
+      return false;
+    }
     int overflow = 0;
-    const long long v = PyLong_AsLongLongAndOverflow(source.ptr(), &overflow);
+    const long long v = PyLong_AsLongLongAndOverflow(integer.ptr(), &overflow);
     if (v == -1 && PyErr_Occurred()) return PyErr_Clear(), false;
     value.fitsInt64 = overflow == 0;
     value.value = overflow == 0 ? v : 0;
     value.fitsUint64 = overflow == 0 ? v >= 0 : overflow > 0;
     if (overflow == 0 && v >= 0) value.unsignedValue = static_cast<unsigned long long>(v);
     if (overflow > 0) {
-      const unsigned long long u = PyLong_AsUnsignedLongLong(source.ptr());
+      const unsigned long long u = PyLong_AsUnsignedLongLong(integer.ptr());
       if (PyErr_Occurred()) PyErr_Clear(), value.fitsUint64 = false;
       else value.unsignedValue = u;
     }
-    value.text = str(source).cast<std::string>();
+    value.text = str(integer).cast<std::string>();
     return true;
   }
   static handle cast(const omnicam::python::PyInteger& v, return_value_policy, handle) {

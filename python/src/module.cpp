@@ -75,10 +75,14 @@ PYBIND11_MODULE(_omnicam, m) {
   keepFreedMemoryInTheHeap();
   // The library's errors keep their one-line messages. Bad input is a ValueError, a file that
   // cannot be written an OSError, a failing external tool (POV-Ray, Blender) a RuntimeError.
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
-  py::register_exception<OutputError>(m, "OutputError", PyExc_OSError);
-  py::register_exception<MemoryShortage>(m, "MemoryShortage", PyExc_MemoryError);
-  py::register_exception<ExternalError>(m, "ExternalError", PyExc_RuntimeError);
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError).doc() =
+      "Bad input (a value, a spec, a scene, a file's contents): its message names what and where, on one line.";
+  py::register_exception<OutputError>(m, "OutputError", PyExc_OSError).doc() =
+      "A file or folder could not be written (or would be written where it must not be); nothing is left half-written.";
+  py::register_exception<MemoryShortage>(m, "MemoryShortage", PyExc_MemoryError).doc() =
+      "A render or dataset needs more memory than the machine gives.";
+  py::register_exception<ExternalError>(m, "ExternalError", PyExc_RuntimeError).doc() =
+      "An external tool (POV-Ray, Blender, Slurm) failed or is missing; the message says which and why.";
   python::bindScene(m);
   python::bindCamera(m);
   python::bindRender(m);

@@ -164,7 +164,9 @@ def test_the_wheel_holds_the_extension_the_cli_the_stubs_and_the_data(package):
     for name in ("omnicam/__init__.py", "omnicam/__main__.py", "omnicam/_omnicam.pyi", "omnicam/dataset.pyi",
                  "omnicam/py.typed", "omnicam/bin/omnicam", "omnicam/bin/omnicam-cli", "omnicam/bin/omnicam-ros",
                  "omnicam/data/refrender/blender_driver.py", "omnicam/data/calibration/write_rosbag.py",
-                 "omnicam/data/scenes/robocup2006.json", "omnicam/data/experiments/plot_convergence.py"):
+                 "omnicam/data/scenes/robocup2006.json", "omnicam/data/experiments/plot_convergence.py",
+                 "omnicam/data/docs/examples/dataset.json", "omnicam/data/docs/examples/calibration_room.json",
+                 "omnicam/data/examples/recording/cool_noisy.json"):
         assert name in names, f"{name} is not in the wheel"
     assert any(n.startswith("omnicam/_omnicam.") and n.endswith(".so") for n in names)
     entry_points = next(n for n in names if n.endswith(".dist-info/entry_points.txt"))

@@ -46,6 +46,7 @@ def test_items_hold_every_output_as_the_files_hold_them(folder):
     np.testing.assert_array_equal(item["semantic"], omnicam.read_uint16_png(files["semantic"]))
     assert item["landmarks"] == json.loads(open(files["landmarks"]).read())
     assert item["intrinsics"]["model"] == "mei_unified" and item["intrinsics"]["width"] == SIZE
+    assert item["recording"] is None  # nothing drawn
     rear = dataset[1, "rear"]
     assert rear["camera"] == "rear" and not np.array_equal(rear["depth"], item["depth"])
     assert dataset[-1]["index"] == manifest["frames"][-1]["index"]
@@ -103,6 +104,8 @@ def test_unknown_cameras_outputs_and_folders_are_refused(folder, tmp_path):
         omnicam.Dataset(folder, outputs=["flow"])
     with pytest.raises(KeyError, match="output 'dept' .*did you mean depth\\?"):
         omnicam.Dataset(folder, outputs=["dept"])
+    with pytest.raises(TypeError, match=r"^outputs must be a list of output names, such as \['depth'\] \(got str 'depth'\)$"):
+        omnicam.Dataset(folder, outputs="depth")
     with pytest.raises(omnicam.InputError):
         omnicam.Dataset(tmp_path / "nothing")
     assert omnicam.Dataset(folder).verify()["ok"]
@@ -150,3 +153,26 @@ def test_a_multilayer_dataset_reads_as_the_files_layout_reads(folder, layered):
         omnicam.read_exr_channels(frame, ["depth.Z", "instance.I"])
     with pytest.raises(omnicam.InputError, match=r"no channel \"Y\" \(it has .*depth\.Z"):
         omnicam.read_exr_channels(frame, ["Y"])
+
+
+def test_items_carry_the_recording_camera_drawn_for_them(tmp_path):
+    """A drawn recording camera's values per frame and camera, as the manifest states them, and
+    the frame is what render() records with them."""
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(SOURCE / "scenes" / "robocup2006.json"),
+        "size": 32, "poses": {"path": "thesis-loop", "frames": 2},
+        "cameras": [{"name": "front"}, {"name": "rear", "mount": {"x": -0.1, "y": 0.0, "yaw_deg": 180}}],
+        "recording": {"preset": "webcam", "seed": 7},
+        "outputs": {"rgb": "png", "depth": False, "instance": False, "semantic": False, "normal": False, "landmarks": False}}))
+    omnicam.run_dataset(str(spec), str(tmp_path / "ds"))
+    manifest = json.loads((tmp_path / "ds" / "manifest.json").read_text())
+    dataset = omnicam.Dataset(tmp_path / "ds")
+    drawn = []
+    for position, record in enumerate(manifest["frames"]):
+        for camera in ("front", "rear"):
+            item = dataset[position, camera]
+            assert item["recording"] == record["cameras"][camera]["recording"]
+            drawn.append(json.dumps(item["recording"], sort_keys=True))
+    assert len(set(drawn)) == 4  # a camera per frame and camera
+

@@ -64,8 +64,11 @@ def test_a_frame_without_a_recording_camera_is_refused(robocup):
 
 
 def test_other_type_errors_keep_pybinds_message(robocup):
-    with pytest.raises(TypeError) as raised:  # a class the wrapper does not judge: pybind11's words
+    with pytest.raises(TypeError) as raised:  # omnicam's own classes are judged by their names
         omnicam.Renderer(robocup).render(POSE, rig="front")
+    assert str(raised.value) == "Renderer.render(): rig must be Optional[omnicam.Rig] (got str 'front')"
+    with pytest.raises(TypeError) as raised:  # a type the wrapper does not judge: pybind11's words
+        omnicam.srgb8(object())
     assert "incompatible function arguments" in str(raised.value)
 
 
