@@ -157,7 +157,8 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   for (const std::string& sub : plan.folders()) folder.checkFolders(sub);
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
-  if (!plan.range().sharded) removeAtomicTemporaries(options.dir);
+  if (!plan.range().sharded)
+    removeAtomicTemporaries(options.dir, withParentFolders({plan.folders().begin(), plan.folders().end()}));
   if (previous) manifest.frames = intactFrames(folder, *previous, plan);
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.

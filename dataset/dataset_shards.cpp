@@ -166,8 +166,11 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     writeCalibrationBag(dir, *merged);
   }
   writeManifest(dir, *merged);
-  // Every shard has ended (the merge runs after them): what a killed one left behind goes.
-  removeAtomicTemporaries(path);
+  // Every shard has ended (the merge runs after them): what a killed one left behind goes, from
+  // the folders of the files the dataset lists and shards/.
+  std::set<std::string> folders{"shards"};
+  for (const FileRecord& file : manifestFiles(*merged)) folders.insert(std::filesystem::path(file.path).parent_path().generic_string());
+  removeAtomicTemporaries(path, withParentFolders(folders));
   return result;
 }
 

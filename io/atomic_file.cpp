@@ -1,10 +1,10 @@
 #include "atomic_file.h"
 
-#include <algorithm>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <random>
@@ -12,6 +12,7 @@
 #include <cstring>
 #include <climits>
 #include <filesystem>
+#include <string_view>
 
 #include "errors.h"
 #include "interrupts.h"
@@ -183,17 +184,39 @@ std::string atomicTemporaryName(const std::string& name) {
 }
 
 bool isAtomicTemporaryName(const std::string& name) {
-  const size_t at = name.find(".tmp-");
-  return !name.empty() && name[0] == '.' && at != std::string::npos && name.size() >= at + 11;
+  constexpr size_t kMarker = 5, kSuffix = 10;  // ".tmp-", randomSuffix()
+  const size_t at = name.rfind(".tmp-");
+  if (name.empty() || name[0] != '.' || at == std::string::npos || at < 2 || name.size() < at + kMarker + kSuffix) return false;
+  const std::string_view suffix(name.data() + at + kMarker, kSuffix), extension(name.data() + at + kMarker + kSuffix);
+  const bool drawn = std::all_of(suffix.begin(), suffix.end(), [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'); });
+  // What follows is the final name's extension (".png"), or nothing.
+  const bool anExtension = extension.empty() || (extension.size() > 1 && extension[0] == '.' && extension.find('.', 1) == std::string_view::npos);
+  return drawn && anExtension;
 }
 
-void removeAtomicTemporaries(const std::string& dir) {
-  std::error_code ec;
-  for (auto it = std::filesystem::recursive_directory_iterator(dir, ec);
-       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
-    if (it->symlink_status(ec).type() == std::filesystem::file_type::regular &&
-        isAtomicTemporaryName(it->path().filename().string()))
-      std::filesystem::remove(it->path(), ec);
+void removeAtomicTemporaries(const std::string& dir, const std::set<std::string>& folders) {
+  for (const std::string& relative : folders) {
+    const fs::path folder = relative.empty() ? fs::path(dir) : fs::path(dir) / relative;
+    std::error_code ec;
+    // Links are not looked into: neither the folder nor one above it, up to `dir`.
+    bool linked = false;
+    fs::path at(dir);
+    for (const fs::path& part : fs::path(relative)) {
+      at /= part;
+      linked = linked || fs::symlink_status(at, ec).type() == fs::file_type::symlink;
+    }
+    if (linked || fs::symlink_status(folder, ec).type() != fs::file_type::directory) continue;
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+      if (it->symlink_status(ec).type() == fs::file_type::regular && isAtomicTemporaryName(it->path().filename().string()))
+        fs::remove(it->path(), ec);
+  }
+}
+
+std::set<std::string> withParentFolders(const std::set<std::string>& folders) {
+  std::set<std::string> all{""};
+  for (const std::string& folder : folders)
+    for (fs::path at = folder; !at.empty() && at != at.parent_path(); at = at.parent_path()) all.insert(at.generic_string());
+  return all;
 }
 
 }  // namespace omnicam

@@ -4,6 +4,7 @@
 // renamed into place. A failure (disk full, file-size limit, permissions) removes the temporary
 // and throws OutputError; the final name is never left truncated.
 #include <functional>
+#include <set>
 #include <string>
 #include <string_view>
 
@@ -49,10 +50,15 @@ void checkOutputIsOutsideFolder(const std::string& path, const std::string& flag
 
 // A fresh unpredictable temporary name for the file `name`: ".<stem>.tmp-XXXXXXXXXX<ext>".
 std::string atomicTemporaryName(const std::string& name);
-// Temporary siblings left behind by killed runs match this (".<stem>.tmp-XXXXXX<ext>").
+// Whether `fileName` is a name atomicTemporaryName gives: ".<stem>.tmp-" and exactly its 10
+// characters (a-z, 0-9), then the extension if any.
 bool isAtomicTemporaryName(const std::string& fileName);
-// Removes every such temporary under `dir` (recursively; regular files only, links inside are
-// neither followed nor removed); errors are ignored.
-void removeAtomicTemporaries(const std::string& dir);
+// Removes the temporaries killed runs left directly in `folders` (relative to `dir`; "" is `dir`
+// itself): regular files of such names only. A folder that is a link is not looked into, and
+// nothing elsewhere is touched: a user's own files, in folders omnicam did not make or of names
+// it does not give, stay. Errors are ignored.
+void removeAtomicTemporaries(const std::string& dir, const std::set<std::string>& folders);
+// `folders` and every folder above each of them, up to "" (`dir` itself).
+std::set<std::string> withParentFolders(const std::set<std::string>& folders);
 
 }  // namespace omnicam

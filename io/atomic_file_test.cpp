@@ -37,6 +37,39 @@ TEST_F(AtomicFileTest, WritesTheBytesAndLeavesNoTemporary) {
   EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
 }
 
+// Temporaries are what atomicTemporaryName gives, nothing that merely looks like one.
+TEST(AtomicTemporaryName, IsExactlyTheNamesItGives) {
+  for (const std::string name : {"frame.png", "manifest.json", "poses.tum", "a.b.exr", "noextension"}) {
+    const std::string temporary = atomicTemporaryName(name);
+    EXPECT_TRUE(isAtomicTemporaryName(temporary)) << temporary;
+  }
+  for (const std::string name : {".thesis.tmp-draft.tex", ".x.tmp-ab.png", ".x.tmp-ABCDEFGHIJ.png", ".x.tmp-abcdefghijk.png",
+                                 "x.tmp-abcdefghij.png", ".x.tmp-abcdefghij.png.bak", ".tmp-abcdefghij.png", ".x.tmp-abcdefghij."})
+    EXPECT_FALSE(isAtomicTemporaryName(name)) << name;
+}
+
+// Only the named folders are cleaned, and only of temporaries: a user's files stay, and so does
+// everything in a folder reached through a link.
+TEST_F(AtomicFileTest, TemporariesGoOnlyFromTheFoldersNamed) {
+  const auto plant = [&](const fs::path& relative) {
+    fs::create_directories((dir_ / relative).parent_path());
+    std::ofstream(dir_ / relative) << "x";
+  };
+  const std::string leftover = ".000001.tmp-a1b2c3d4e5.png";
+  for (const fs::path& p : {fs::path("cam/rgb") / leftover, fs::path(".manifest.tmp-0123456789.json"), fs::path("cam/rgb/000000.png"),
+                           fs::path("notes") / leftover, fs::path(".thesis.tmp-draft.tex"), fs::path("cam/rgb/deeper") / leftover,
+                           fs::path("elsewhere") / leftover})
+    plant(p);
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "cam" / "linked");
+  removeAtomicTemporaries(dir_.string(), withParentFolders({"cam/rgb", "cam/linked"}));
+  EXPECT_FALSE(fs::exists(dir_ / "cam/rgb" / leftover));
+  EXPECT_FALSE(fs::exists(dir_ / ".manifest.tmp-0123456789.json"));
+  for (const fs::path& p : {fs::path("cam/rgb/000000.png"), fs::path("notes") / leftover, fs::path(".thesis.tmp-draft.tex"),
+                           fs::path("cam/rgb/deeper") / leftover, fs::path("elsewhere") / leftover})
+    EXPECT_TRUE(fs::exists(dir_ / p)) << p << " was removed";
+  EXPECT_EQ(withParentFolders({"a/b/c", "d"}), (std::set<std::string>{"", "a", "a/b", "a/b/c", "d"}));
+}
+
 TEST_F(AtomicFileTest, AFolderIsRefusedAsInputAndAMissingFolderIsAnOutputError) {
   fs::create_directories(dir_ / "out.png");
   EXPECT_THROW(writeBytesAtomically((dir_ / "out.png").string(), "x"), InputError);

@@ -357,7 +357,7 @@ TEST_F(DatasetCliTest, KillNineAndResumeGivesTheUninterruptedResult) {
   ASSERT_GE(finished, 1u);
   ASSERT_LT(finished, 20u);
   // What a killed run can leave: a temporary file, and a frame whose file was changed since.
-  std::ofstream(dir_ / "killed/cam0/rgb/.000019.tmp-AbCdEfGhIj.png") << "partial";
+  std::ofstream(dir_ / "killed/cam0/rgb/.000019.tmp-a1b2c3d4e5.png") << "partial";
   std::ofstream(dir_ / "killed/cam0/depth/000000.exr", std::ios::trunc) << "damaged";
 
   const auto resumed = omnicam("dataset " + spec + " -o " + path("killed"));
@@ -510,6 +510,36 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("holds another dataset (the spec's \"size\" differs)"), std::string::npos) << r.out;
   EXPECT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 3/3").code, 2);
+}
+
+// A resume and a merge remove what killed runs left (temporaries of omnicam's names, in its own
+// folders) and nothing of the user's: not in a folder of theirs, not of a name omnicam never gives.
+TEST_F(DatasetCliTest, AUsersFilesOutliveResumeAndMerge) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 4})");
+  const std::vector<std::string> users = {"notes/.thesis.tmp-draft.tex", "notes/.x.tmp-abcdefghij.png", ".thesis.tmp-draft.tex",
+                                          "cam0/rgb/deeper/.y.tmp-abcdefghij.png", "cam0/.calib.tmp-old.yaml"};
+  const std::string leftover = "cam0/rgb/.000003.tmp-a1b2c3d4e5.png";
+  const auto plant = [&](const fs::path& folder) {
+    for (const std::string& name : users) {
+      fs::create_directories((folder / name).parent_path());
+      std::ofstream(folder / name) << "the user's";
+    }
+    std::ofstream(folder / leftover) << "partial";
+  };
+  const auto expectOnlyTheLeftoverGone = [&](const fs::path& folder) {
+    for (const std::string& name : users) EXPECT_TRUE(fs::exists(folder / name)) << name << " was deleted";
+    EXPECT_FALSE(fs::exists(folder / leftover));
+  };
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  plant(dir_ / "ds");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  expectOnlyTheLeftoverGone(dir_ / "ds");
+
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
+  plant(dir_ / "parts");
+  ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+  expectOnlyTheLeftoverGone(dir_ / "parts");
 }
 
 // A recording camera drawn per frame (domain randomisation): each frame's drawn values are in
