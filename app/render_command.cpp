@@ -67,12 +67,11 @@ class FrameViews {
     }
     return out;
   }
-  void write(const std::string& imageFile, const RenderedFile& omni) const {
+  void stage(AtomicFileGroup& group, const std::string& imageFile, const RenderedFile& omni) const {
     const std::vector<std::string> outputs = files(imageFile);
-    for (size_t k = 0; k < maps_.size(); ++k) {
-      writeImageAtomic(outputs[k], applyViewMap(maps_[k].map, omni.image));
-      writeSidecarAtomic(outputs[k], viewSidecar(omni.sidecar, maps_[k].description, std::filesystem::path(imageFile).filename().string()));
-    }
+    for (size_t k = 0; k < maps_.size(); ++k)
+      stageImage(group, outputs[k], applyViewMap(maps_[k].map, omni.image),
+                 viewSidecar(omni.sidecar, maps_[k].description, std::filesystem::path(imageFile).filename().string()));
   }
 
  private:
@@ -83,6 +82,14 @@ class FrameViews {
   };
   std::vector<View> maps_;
 };
+
+// The image, its views and all their sidecars: together, or none of them (a full disk).
+void writeWithViews(const std::string& imageFile, const RenderedFile& rendered, const FrameViews& views) {
+  AtomicFileGroup group;
+  stageImage(group, imageFile, rendered.image, rendered.sidecar);
+  views.stage(group, imageFile, rendered);
+  group.commit();
+}
 
 // --recording: a preset's name, or a file holding one `recording` object (docs/experiments.md).
 std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text, const CLI::App& cmd) {
@@ -171,8 +178,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
         record(rendered, recording, f);
         if (writing.valid()) writing.get();
         writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
-          writeRendered(file, frame);
-          views.write(file, frame);
+          writeWithViews(file, frame, views);
         });
         progress.step();
       });
@@ -237,8 +243,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     RenderedFile rendered = renderPose(scene, *engine, at, settings);
     if (parts) parts->finish();
     record(rendered, recording, 0);
-    writeRendered(a.out, rendered);
-    views.write(a.out, rendered);
+    writeWithViews(a.out, rendered, views);
     std::string written = a.out;
     for (const std::string& file : views.files(a.out)) written += ", " + file;
     std::printf("wrote %s\n", written.c_str());

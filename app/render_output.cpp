@@ -35,9 +35,16 @@ RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacemen
   return result;
 }
 
+void stageImage(AtomicFileGroup& group, const std::string& out, const ImageRGBA& image, const nlohmann::json& sidecar) {
+  const std::vector<unsigned char> bytes = encodeImage(out, image);
+  group.stage(out, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  group.stage(sidecarPath(out), sidecarText(sidecar));
+}
+
 void writeRendered(const std::string& out, const RenderedFile& rendered) {
-  writeImageAtomic(out, rendered.image);
-  writeSidecarAtomic(out, rendered.sidecar);
+  AtomicFileGroup group;
+  stageImage(group, out, rendered.image, rendered.sidecar);
+  group.commit();
 }
 
 RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,

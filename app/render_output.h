@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "atomic_file.h"
 #include "engines.h"
 #include "image.h"
 #include "render_settings.h"
@@ -20,7 +21,10 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
 // Renders one placement with `engine`; the sidecar describes it.
 RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                         const RenderSettings& settings);
-// Writes OUT and its sidecar OUT + ".json" (out.png.json) atomically.
+// Stages the image OUT and its sidecar OUT + ".json" (out.png.json) in `group`: they appear
+// together, or neither.
+void stageImage(AtomicFileGroup& group, const std::string& out, const ImageRGBA& image, const nlohmann::json& sidecar);
+// stageImage of `rendered` alone, committed.
 void writeRendered(const std::string& out, const RenderedFile& rendered);
 // Both, with `extra` merged into the sidecar.
 RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,

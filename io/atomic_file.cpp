@@ -41,29 +41,12 @@ std::string randomSuffix() {
 
 }  // namespace
 
-void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
-  const fs::path target(path);
-  // The user's own path: links in it are followed, as the user meant.
-  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
-  const FileDescriptor folderFd(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-  if (folderFd.get() < 0) failWrite(showPath(path), AT_FDCWD, "", errno);
-  writeBytesAtomicallyAt(folderFd.get(), target.filename().string(), showPath(path), bytes, durability);
-}
+namespace {
 
-void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
-                            Durability durability) {
-  bool given = false;
-  writeStreamAtomicallyAt(folderFd, name, shownPath, [&](std::string_view& piece) {
-    if (given) return false;
-    piece = bytes;
-    return given = true;
-  }, durability);
-}
-
-void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
+// The bytes of `next` in a fresh temporary sibling of `name`, written, checked and closed; its
+// name. A failure removes it and throws OutputError.
+std::string writeTemporaryAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
                              Durability durability) {
-  // SIGTERM or SIGINT now is acted on once the temporary is renamed or removed (base/interrupts.h).
-  const DeferInterrupts deferred;
   struct stat existing {};
   if (::fstatat(folderFd, name.c_str(), &existing, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(existing.st_mode))
     throw InputError(shownPath + ": is an existing folder, not a file name");
@@ -106,9 +89,77 @@ void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::s
     failWrite(shownPath, folderFd, tmp, error);
   }
   if (::close(fd) != 0) failWrite(shownPath, folderFd, tmp, errno);
-  // rename replaces whatever entry holds the name (a planted link included) and writes nothing
-  // through it.
+  return tmp;
+}
+
+// rename replaces whatever entry holds the name (a planted link included) and writes nothing
+// through it.
+void renameIntoPlace(int folderFd, const std::string& tmp, const std::string& name, const std::string& shownPath) {
   if (::renameat(folderFd, tmp.c_str(), folderFd, name.c_str()) != 0) failWrite(shownPath, folderFd, tmp, errno);
+}
+
+// The folder of the user's own path: links in it are followed, as the user meant.
+FileDescriptor openParentFolder(const std::string& path) {
+  const fs::path target(path);
+  const std::string folder = target.parent_path().empty() ? "." : target.parent_path().string();
+  FileDescriptor folderFd(::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (folderFd.get() < 0) failWrite(showPath(path), AT_FDCWD, "", errno);
+  return folderFd;
+}
+
+}  // namespace
+
+void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
+  const FileDescriptor folderFd = openParentFolder(path);
+  writeBytesAtomicallyAt(folderFd.get(), fs::path(path).filename().string(), showPath(path), bytes, durability);
+}
+
+void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
+                            Durability durability) {
+  bool given = false;
+  writeStreamAtomicallyAt(folderFd, name, shownPath, [&](std::string_view& piece) {
+    if (given) return false;
+    piece = bytes;
+    return given = true;
+  }, durability);
+}
+
+void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
+                             Durability durability) {
+  // SIGTERM or SIGINT now is acted on once the temporary is renamed or removed (base/interrupts.h).
+  const DeferInterrupts deferred;
+  renameIntoPlace(folderFd, writeTemporaryAt(folderFd, name, shownPath, next, durability), name, shownPath);
+}
+
+struct AtomicFileGroup::Staged {
+  FileDescriptor folder;
+  std::string temporary, name, shownPath;
+};
+
+AtomicFileGroup::AtomicFileGroup() = default;
+
+AtomicFileGroup::~AtomicFileGroup() {
+  for (const Staged& file : staged_) ::unlinkat(file.folder.get(), file.temporary.c_str(), 0);
+}
+
+void AtomicFileGroup::stage(const std::string& path, std::string_view bytes) {
+  FileDescriptor folder = openParentFolder(path);
+  bool given = false;
+  const std::string name = fs::path(path).filename().string();
+  std::string temporary = writeTemporaryAt(folder.get(), name, showPath(path), [&](std::string_view& piece) {
+    if (given) return false;
+    piece = bytes;
+    return given = true;
+  }, Durability::Synced);
+  staged_.push_back({std::move(folder), std::move(temporary), name, showPath(path)});
+}
+
+void AtomicFileGroup::commit() {
+  while (!staged_.empty()) {
+    Staged file = std::move(staged_.front());
+    staged_.erase(staged_.begin());
+    renameIntoPlace(file.folder.get(), file.temporary, file.name, file.shownPath);
+  }
 }
 
 namespace {

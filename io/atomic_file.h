@@ -7,6 +7,9 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "interrupts.h"
 
 namespace omnicam {
 
@@ -29,6 +32,26 @@ void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::s
 inline void writeTextAtomically(const std::string& path, const std::string& text) {
   writeBytesAtomically(path, text);
 }
+
+// Files that appear together or not at all (an image and its sidecar): stage() writes each to
+// its temporary (where a full disk fails: OutputError, and the group's temporaries go),
+// commit() then renames them all into place. A group destroyed uncommitted removes its
+// temporaries: nothing appears. Make it once the bytes are ready (it defers interrupts).
+class AtomicFileGroup {
+ public:
+  AtomicFileGroup();
+  ~AtomicFileGroup();
+  AtomicFileGroup(const AtomicFileGroup&) = delete;
+  AtomicFileGroup& operator=(const AtomicFileGroup&) = delete;
+  void stage(const std::string& path, std::string_view bytes);
+  void commit();
+
+ private:
+  struct Staged;
+  // SIGTERM and SIGINT wait for the group: its temporaries are renamed or removed first.
+  DeferInterrupts deferred_;
+  std::vector<Staged> staged_;
+};
 
 // Checks, before any work, that `path` can become an output file: not an existing folder, in a
 // folder that exists, its name short enough for the file system with the temporary's suffix.

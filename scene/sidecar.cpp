@@ -98,8 +98,10 @@ json sidecarJson(const RenderRecord& r) {
 
 std::string sidecarPath(const std::string& imagePath) { return imagePath + ".json"; }
 
+std::string sidecarText(const json& sidecar) { return sidecar.dump(2) + "\n"; }
+
 void writeSidecarAtomic(const std::string& imagePath, const json& sidecar) {
-  writeTextAtomically(sidecarPath(imagePath), sidecar.dump(2) + "\n");
+  writeTextAtomically(sidecarPath(imagePath), sidecarText(sidecar));
 }
 
 void checkImageOutput(const std::string& imagePath, const std::string& flag) {

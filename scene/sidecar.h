@@ -27,6 +27,8 @@ nlohmann::json sidecarJson(const RenderRecord& record);
 // Sidecar path of an image: OUT + ".json".
 std::string sidecarPath(const std::string& imagePath);
 void writeSidecarAtomic(const std::string& imagePath, const nlohmann::json& sidecar);
+// The bytes of a sidecar file, as writeSidecarAtomic writes them.
+std::string sidecarText(const nlohmann::json& sidecar);
 // checkOutputFile for an image and the sidecar written beside it: both names are checked before
 // the image is written, so a refused sidecar never leaves its image behind.
 void checkImageOutput(const std::string& imagePath, const std::string& flag);

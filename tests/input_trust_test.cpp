@@ -265,6 +265,25 @@ TEST_F(InputTrustTest, OutputNamesAndOptionsAreCheckedBeforeTheFirstByte) {
   EXPECT_TRUE(snapshot(dir_) == before);
 }
 
+// An image, its views and their sidecars appear together or not at all: a sidecar that does not
+// fit (the file-size limit; a full disk alike) leaves no image without it, in a single render
+// and in a path's frames.
+TEST_F(InputTrustTest, AnImageItsViewsAndTheirSidecarsAppearTogetherOrNotAtAll) {
+  fs::create_directories(dir_ / "frames");
+  const auto before = snapshot(dir_);
+  const std::string limited = "ulimit -f 1; " + std::string(OMNICAM_BINARY) + " render " + path("box.json") + " --size 16 ";
+  const auto single = testing::runShell(limited + "--view birdseye -o " + path("x.png") + " 2>&1");
+  EXPECT_EQ(single.code, 5) << single.out;
+  EXPECT_NE(single.out.find("x.png.json: cannot write (File too large)"), std::string::npos) << single.out;
+  EXPECT_TRUE(snapshot(dir_) == before) << single.out;
+  const auto frames = testing::runShell(limited + "--path p --view birdseye -o " + path("frames") + " 2>&1");
+  EXPECT_EQ(frames.code, 5) << frames.out;
+  EXPECT_TRUE(snapshot(dir_) == before) << frames.out;
+  // Without the limit, all of them.
+  ASSERT_EQ(testing::runShell(std::string(OMNICAM_BINARY) + " render " + path("box.json") + " --size 16 --view birdseye -o " + path("x.png")).code, 0);
+  for (const char* name : {"x.png", "x.png.json", "x.birdseye.png", "x.birdseye.png.json"}) EXPECT_TRUE(fs::exists(dir_ / name)) << name;
+}
+
 // Integer flags are read as written, like the spec reader's JSON integers: never wrapped
 // (2^64 → 0, −1 → 2^64 − 1), clamped, or read as octal or hex.
 TEST_F(InputTrustTest, IntegerFlagsAreReadExactly) {
