@@ -229,7 +229,9 @@ std::vector<std::string> ensureDirectory(const std::string& dir, const std::stri
   for (fs::path at = dir; !at.empty() && !fs::exists(at, ec) && at != at.parent_path(); at = at.parent_path())
     made.push_back(at.string());
   fs::create_directories(dir, ec);
-  if (ec) throw InputError(flag + ": cannot create folder " + showPath(dir) + " (" + ec.message() + ")");
+  // The name passed checkOutputFolder: what fails now is the file system (read-only, full, no
+  // permission), an output that cannot be written (exit 5), not bad input.
+  if (ec) throw OutputError(flag + ": cannot create folder " + showPath(dir) + " (" + ec.message() + ")");
   return made;
 }
 

@@ -279,6 +279,13 @@ TEST_F(InputTrustTest, AnImageItsViewsAndTheirSidecarsAppearTogetherOrNotAtAll) 
   const auto frames = testing::runShell(limited + "--path p --view birdseye -o " + path("frames") + " 2>&1");
   EXPECT_EQ(frames.code, 5) << frames.out;
   EXPECT_TRUE(snapshot(dir_) == before) << frames.out;
+  // A folder the file system will not make (/sys takes no new folders, even from root) is an
+  // output that cannot be written: exit 5, as for a file, not bad input.
+  for (const std::string& verb : {"render " + path("box.json") + " --size 16 --path p", "export " + path("box.json") + " --to gltf"}) {
+    const auto made = testing::runShell(std::string(OMNICAM_BINARY) + " " + verb + " -o /sys/omnicam_trust_" + std::to_string(::getpid()) + " 2>&1");
+    EXPECT_EQ(made.code, 5) << verb << ": " << made.out;
+    EXPECT_NE(made.out.find("-o: cannot create folder /sys/omnicam_trust_"), std::string::npos) << made.out;
+  }
   // Without the limit, all of them.
   ASSERT_EQ(testing::runShell(std::string(OMNICAM_BINARY) + " render " + path("box.json") + " --size 16 --view birdseye -o " + path("x.png")).code, 0);
   for (const char* name : {"x.png", "x.png.json", "x.birdseye.png", "x.birdseye.png.json"}) EXPECT_TRUE(fs::exists(dir_ / name)) << name;
