@@ -81,6 +81,9 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
 int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
   refuseUnless(cmd, "-o", false, "a SPEC");
   int count = shards;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError("--merge: " + showPath(dir) + (std::filesystem::exists(dir, ec) ? ": not a folder" : ": no such folder"));
   if (count == 0) {
     const std::vector<int> counts = shardCountsIn(dir);
     if (counts.empty())
@@ -167,7 +170,9 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
     try {
       return runDataset(spec, options);
     } catch (const OtherDatasetError& e) {
-      throw InputError("-o: " + std::string(e.what()) + ": --overwrite replaces it, or give another folder");
+      // --overwrite is not for shards, which share the folder.
+      throw InputError("-o: " + std::string(e.what()) + (a.shard.empty() ? ": --overwrite replaces it, or give another folder"
+                                                                          : ": give another folder, or remove that dataset first"));
     } catch (const Interrupted& e) {
       interruption = e.what();
       DatasetRunResult stopped;
@@ -178,8 +183,13 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
   if (progress) progress->finish();
   for (const std::string& note : r.notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
   if (!interruption.empty()) {
-    std::fprintf(stderr, "omnicam: %s; the frames finished before are listed in %s: run the same command again to resume\n",
-                 interruption.c_str(), showPath(a.out).c_str());
+    // Before the folder was made (an engine checked first), there is nothing to resume.
+    std::error_code ec;
+    if (std::filesystem::is_directory(a.out, ec))
+      std::fprintf(stderr, "omnicam: %s; the frames finished before are listed in %s: run the same command again to resume\n",
+                   interruption.c_str(), showPath(a.out).c_str());
+    else
+      std::fprintf(stderr, "omnicam: %s before %s was made: nothing was written\n", interruption.c_str(), showPath(a.out).c_str());
     return 130;
   }
   if (r.stopped) {

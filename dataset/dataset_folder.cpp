@@ -28,7 +28,11 @@ DatasetStatus datasetStatus(const std::string& dir) {
 DatasetManifest readDatasetManifest(const SafeFolder& dir, const std::string& name) {
   // Missing: not a dataset folder. Otherwise read through the folder's descriptor, no link
   // followed, at most the manifest's size limit.
-  if (dir.entry(name) == EntryKind::Missing) throw InputError(showPath(dir.path()) + ": not a dataset folder (no " + name + ")");
+  if (dir.entry(name) == EntryKind::Missing) {
+    std::error_code ec;
+    if (!std::filesystem::exists(dir.path(), ec)) throw InputError(showPath(dir.path()) + ": no such folder");
+    throw InputError(showPath(dir.path()) + ": not a dataset folder (no " + name + ")");
+  }
   return manifestFromText(dir.readFile(name, kMaxManifestBytes), (std::filesystem::path(dir.path()) / name).string());
 }
 

@@ -508,8 +508,19 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   const std::string other = robocupSpec("other.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 10})");
   r = omnicam("dataset " + other + " -o " + path("parts") + " --shard 0/2");
   EXPECT_EQ(r.code, 2) << r.out;
-  EXPECT_NE(r.out.find("holds another dataset (the spec's \"size\" differs)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("holds another dataset (the spec's \"size\" differs): give another folder, or remove that dataset first"),
+            std::string::npos) << r.out;  // not --overwrite, which shards refuse
   EXPECT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 3/3").code, 2);
+  // What is no folder is said to be none.
+  std::ofstream(dir_ / "afile") << "x";
+  r = omnicam("dataset --merge " + path("afile"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--merge: " + path("afile") + ": not a folder"), std::string::npos) << r.out;
+  for (const std::string verb : {"--merge", "--status", "--verify"}) {
+    r = omnicam("dataset " + verb + " " + path("nothing"));
+    EXPECT_EQ(r.code, 2) << verb;
+    EXPECT_NE(r.out.find(path("nothing") + ": no such folder"), std::string::npos) << verb << ": " << r.out;
+  }
 }
 
 // A resume and a merge remove what killed runs left (temporaries of omnicam's names, in its own
