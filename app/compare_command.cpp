@@ -76,8 +76,10 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   options.thresholds = thresholdsOf(args);
   options.diffScale = args.diffScale;
   const DatasetCompareResult r = compareDatasets(args.a, args.b, options);
-  if (!args.report.empty()) writeDatasetCompareReport(args.report, args.a, args.b, r, options);
+  // The small file first: a report that cannot be finished removes its images, so an exit 5
+  // leaves at most a whole JUnit file.
   if (!args.junit.empty()) writeTextAtomically(args.junit, datasetCompareJUnit(args.a, args.b, r, options));
+  if (!args.report.empty()) writeDatasetCompareReport(args.report, args.a, args.b, r, options);
   const bool checked = options.thresholds.any();
   const char* verdict = !checked ? "NOTHRESHOLD" : r.failures ? "FAIL" : "PASS";
   if (args.json) {

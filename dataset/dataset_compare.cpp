@@ -355,64 +355,71 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   // folder) is refused, not followed.
   const SafeFolder reportFolder(report.parent_path().empty() ? "." : report.parent_path().string());
   reportFolder.makeFolders(assetsName);
+  std::vector<std::string> written;  // this report's images: removed again if it cannot be finished
   const auto writePng = [&](const std::string& name, const ImageRGBA& image) {
     const std::vector<unsigned char> bytes = encodeImage(name, image);
     reportFolder.writeFile(assetsName + "/" + name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
                            Durability::Synced);
+    written.push_back(assetsName + "/" + name);
   };
-  std::vector<const FrameComparison*> order;
-  for (const FrameComparison& f : result.frames) order.push_back(&f);
-  std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
+  try {
+    std::vector<const FrameComparison*> order;
+    for (const FrameComparison& f : result.frames) order.push_back(&f);
+    std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
 
-  std::ostringstream html;
-  html << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam dataset comparison</title><style>"
-          "body{font-family:sans-serif;margin:2em}td,th{padding:2px 8px;text-align:right}"
-          "td:first-child,th:first-child{text-align:left}.fail{color:#b00;font-weight:bold}"
-          "figure{display:inline-block;margin:4px}img{width:240px;image-rendering:pixelated}</style></head><body>"
-       << "<h1>Dataset comparison</h1><p>A: <code>" << escapeMarkup(dirA) << "</code><br>B: <code>" << escapeMarkup(dirB)
-       << "</code></p><p>" << result.frames.size() << " images compared; mean PSNR " << psnrText(result.meanPsnrDb)
-       << " dB" << (result.identical ? " (of the " + std::to_string(result.frames.size() - static_cast<size_t>(result.identical)) + " whose colour differs)" : "")
-       << ", worst " << psnrText(result.minPsnrDb) << " dB, mean SSIM " << result.meanSsim << ", max abs " << result.maxAbs
-       << ", max abs of alpha " << datasetAlphaText(result) << "; " << (options.image.discOnly ? "inside the mirror disc" : "every pixel")
-       << ", tolerance " << options.image.tolerance;
-  const CompareThresholds& t = options.thresholds;
-  if (t.any()) {
-    html << "; thresholds:";
-    if (t.minPsnrDb) html << " PSNR " << *t.minPsnrDb << " dB";
-    if (t.maxAbs) html << " max abs " << *t.maxAbs;
-    html << ": <span class=\"" << (result.failures ? "fail" : "") << "\">" << result.failures << " failing</span>";
-  } else {
-    html << "; no threshold given: nothing checked";
+    std::ostringstream html;
+    html << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam dataset comparison</title><style>"
+            "body{font-family:sans-serif;margin:2em}td,th{padding:2px 8px;text-align:right}"
+            "td:first-child,th:first-child{text-align:left}.fail{color:#b00;font-weight:bold}"
+            "figure{display:inline-block;margin:4px}img{width:240px;image-rendering:pixelated}</style></head><body>"
+         << "<h1>Dataset comparison</h1><p>A: <code>" << escapeMarkup(dirA) << "</code><br>B: <code>" << escapeMarkup(dirB)
+         << "</code></p><p>" << result.frames.size() << " images compared; mean PSNR " << psnrText(result.meanPsnrDb)
+         << " dB" << (result.identical ? " (of the " + std::to_string(result.frames.size() - static_cast<size_t>(result.identical)) + " whose colour differs)" : "")
+         << ", worst " << psnrText(result.minPsnrDb) << " dB, mean SSIM " << result.meanSsim << ", max abs " << result.maxAbs
+         << ", max abs of alpha " << datasetAlphaText(result) << "; " << (options.image.discOnly ? "inside the mirror disc" : "every pixel")
+         << ", tolerance " << options.image.tolerance;
+    const CompareThresholds& t = options.thresholds;
+    if (t.any()) {
+      html << "; thresholds:";
+      if (t.minPsnrDb) html << " PSNR " << *t.minPsnrDb << " dB";
+      if (t.maxAbs) html << " max abs " << *t.maxAbs;
+      html << ": <span class=\"" << (result.failures ? "fail" : "") << "\">" << result.failures << " failing</span>";
+    } else {
+      html << "; no threshold given: nothing checked";
+    }
+    html << "</p>";
+    for (const std::string& note : result.notes) html << "<p><b>Note:</b> " << escapeMarkup(note) << "</p>";
+    html << "<h2>Worst frames</h2><p>Heat map: |A − B| (max over channels), black 0 → white at " << options.diffScale
+         << ".</p>";
+    const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
+    for (size_t k = 0; k < worst; ++k) {
+      const FrameComparison& f = *order[k];
+      const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA).image;
+      const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB).image;
+      char stem[96];
+      std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
+      const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};
+      writePng(names[0], imageA);
+      writePng(names[1], imageB);
+      writePng(names[2], differenceHeatmap(imageA, imageB, options.diffScale));
+      html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
+      const char* captions[3] = {"A", "B", "|A − B|"};
+      for (int i = 0; i < 3; ++i)
+        html << "<figure><img src=\"" << escapeMarkup(urlPath(assetsName + "/" + names[i])) << "\"><figcaption>" << captions[i]
+             << "</figcaption></figure>";
+    }
+    html << "<h2>All frames</h2><table><tr><th>frame</th><th>camera</th><th>PSNR (dB)</th><th>SSIM</th><th>RMSE</th>"
+            "<th>max abs</th></tr>";
+    for (const FrameComparison& f : result.frames)
+      html << "<tr" << (f.failed ? " class=\"fail\"" : "") << "><td>" << f.index << "</td><td>" << escapeMarkup(f.camera)
+           << "</td><td>" << psnrText(f.result.psnrDb) << "</td><td>" << f.result.ssim << "</td><td>" << f.result.rmse
+           << "</td><td>" << f.result.maxAbs << "</td></tr>";
+    html << "</table></body></html>\n";
+    writeTextAtomically(reportPath, html.str());
+  } catch (...) {
+    for (const std::string& file : written) reportFolder.removeFile(file);
+    throw;
   }
-  html << "</p>";
-  for (const std::string& note : result.notes) html << "<p><b>Note:</b> " << escapeMarkup(note) << "</p>";
-  html << "<h2>Worst frames</h2><p>Heat map: |A − B| (max over channels), black 0 → white at " << options.diffScale
-       << ".</p>";
-  const size_t worst = std::min<size_t>(order.size(), static_cast<size_t>(std::max(0, options.worstFrames)));
-  for (size_t k = 0; k < worst; ++k) {
-    const FrameComparison& f = *order[k];
-    const ImageRGBA imageA = readDatasetImage(dirA, f.fileA, f.layeredA).image;
-    const ImageRGBA imageB = readDatasetImage(dirB, f.fileB, f.layeredB).image;
-    char stem[96];
-    std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
-    const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};
-    writePng(names[0], imageA);
-    writePng(names[1], imageB);
-    writePng(names[2], differenceHeatmap(imageA, imageB, options.diffScale));
-    html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
-    const char* captions[3] = {"A", "B", "|A − B|"};
-    for (int i = 0; i < 3; ++i)
-      html << "<figure><img src=\"" << escapeMarkup(urlPath(assetsName + "/" + names[i])) << "\"><figcaption>" << captions[i]
-           << "</figcaption></figure>";
-  }
-  html << "<h2>All frames</h2><table><tr><th>frame</th><th>camera</th><th>PSNR (dB)</th><th>SSIM</th><th>RMSE</th>"
-          "<th>max abs</th></tr>";
-  for (const FrameComparison& f : result.frames)
-    html << "<tr" << (f.failed ? " class=\"fail\"" : "") << "><td>" << f.index << "</td><td>" << escapeMarkup(f.camera)
-         << "</td><td>" << psnrText(f.result.psnrDb) << "</td><td>" << f.result.ssim << "</td><td>" << f.result.rmse
-         << "</td><td>" << f.result.maxAbs << "</td></tr>";
-  html << "</table></body></html>\n";
-  writeTextAtomically(reportPath, html.str());
 }
 
 std::string datasetCompareJUnit(const std::string& dirA, const std::string& dirB, const DatasetCompareResult& result,

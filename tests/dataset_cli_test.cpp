@@ -776,6 +776,25 @@ TEST_F(DatasetCliTest, AThesisModeDatasetSaysItsAnnotationsAreTheExactCameras) {
   EXPECT_EQ(exactRun.out.find("note:"), std::string::npos) << exactRun.out;
 }
 
+// A report that cannot be finished (the file-size limit, as a full disk) leaves none of its
+// images: the limit (prlimit's bytes) lets every image through, and not the page, whose table
+// of 40 frames is larger.
+TEST_F(DatasetCliTest, AReportThatCannotBeFinishedLeavesNoneOfItsImages) {
+  const std::string poses = R"("size": 16, "poses": {"path": "thesis-loop", "frames": 40})";
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("unlit.json", poses) + " -o " + path("unlit")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("lit.json", R"("shading": "lit", )" + poses) + " -o " + path("lit")).code, 0);
+  ASSERT_EQ(omnicam("compare " + path("unlit") + " " + path("lit") + " --report " + path("whole.html")).code, 0);
+  uintmax_t largestImage = 0;
+  for (const auto& image : fs::directory_iterator(dir_ / "whole_files")) largestImage = std::max(largestImage, image.file_size());
+  ASSERT_GT(fs::file_size(dir_ / "whole.html"), largestImage);
+  const auto full = testing::runShell("prlimit --fsize=" + std::to_string(largestImage) + " " + std::string(OMNICAM_BINARY) +
+                                      " compare " + path("unlit") + " " + path("lit") + " --report " + path("full.html") + " 2>&1");
+  EXPECT_EQ(full.code, 5) << full.out;
+  EXPECT_NE(full.out.find("full.html: cannot write (File too large)"), std::string::npos) << full.out;
+  EXPECT_FALSE(fs::exists(dir_ / "full.html"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "full_files")) << "the images of a report that was not written are left";
+}
+
 TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   const std::string poses = R"("size": 96, "spp": 4, "poses": {"list": [[0.5, 0.3, 20], [-1.2, 0.8, 200]]})";
   const std::string fast = robocupSpec("fast.json", R"("engine": "fast", "outputs": {"rgb": "exr"}, )" + poses);
