@@ -98,6 +98,15 @@ void renameIntoPlace(int folderFd, const std::string& tmp, const std::string& na
   if (::renameat(folderFd, tmp.c_str(), folderFd, name.c_str()) != 0) failWrite(shownPath, folderFd, tmp, errno);
 }
 
+// `bytes` as a PieceSource of one piece.
+PieceSource onePiece(std::string_view bytes) {
+  return [bytes, given = false](std::string_view& piece) mutable {
+    if (given) return false;
+    piece = bytes;
+    return given = true;
+  };
+}
+
 // The folder of the user's own path: links in it are followed, as the user meant.
 FileDescriptor openParentFolder(const std::string& path) {
   const fs::path target(path);
@@ -116,12 +125,7 @@ void writeBytesAtomically(const std::string& path, std::string_view bytes, Durab
 
 void writeBytesAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, std::string_view bytes,
                             Durability durability) {
-  bool given = false;
-  writeStreamAtomicallyAt(folderFd, name, shownPath, [&](std::string_view& piece) {
-    if (given) return false;
-    piece = bytes;
-    return given = true;
-  }, durability);
+  writeStreamAtomicallyAt(folderFd, name, shownPath, onePiece(bytes), durability);
 }
 
 void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::string& shownPath, const PieceSource& next,
@@ -144,13 +148,8 @@ AtomicFileGroup::~AtomicFileGroup() {
 
 void AtomicFileGroup::stage(const std::string& path, std::string_view bytes) {
   FileDescriptor folder = openParentFolder(path);
-  bool given = false;
   const std::string name = fs::path(path).filename().string();
-  std::string temporary = writeTemporaryAt(folder.get(), name, showPath(path), [&](std::string_view& piece) {
-    if (given) return false;
-    piece = bytes;
-    return given = true;
-  }, Durability::Synced);
+  std::string temporary = writeTemporaryAt(folder.get(), name, showPath(path), onePiece(bytes), Durability::Synced);
   staged_.push_back({std::move(folder), std::move(temporary), name, showPath(path)});
 }
 
