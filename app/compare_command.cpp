@@ -25,7 +25,7 @@ namespace {
 
 struct CompareArgs {
   std::string a, b, diff, report, junit;
-  bool json = false, disc = false, boxDownsample = false;
+  bool json = false, disc = false, boxDownsample = false, commonFrames = false;
   double failPsnr = -1.0, failRmse = -1.0, failMax = -1.0, tol = 1.0 / 255.0, diffScale = 0.05;
 };
 
@@ -75,6 +75,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   options.image.discOnly = args.disc;
   options.thresholds = thresholdsOf(args);
   options.diffScale = args.diffScale;
+  options.commonFramesOnly = args.commonFrames;
   const DatasetCompareResult r = compareDatasets(args.a, args.b, options);
   // The small file first: a report that cannot be finished removes its images, so an exit 5
   // leaves at most a whole JUnit file.
@@ -179,6 +180,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   if (folderA) return runDatasetCompare(args, cmd);
   refuseUnless(cmd, "--report", false, "two dataset folders");
   refuseUnless(cmd, "--junit", false, "two dataset folders");
+  refuseUnless(cmd, "--common-frames", false, "two dataset folders");
   refuseUnless(cmd, "--diff-scale", !args.diff.empty(), "--diff");
   if (!args.diff.empty()) {
     if (!isSupportedImageOutput(args.diff)) throw InputError("--diff: " + showPath(args.diff) + ": must end in .png or .exr");
@@ -231,6 +233,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error (colour, and alpha on its own); datasets: any frame above")->check(numberIn(0, 1e6));
   cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(numberIn(0, 1e6));
   cmd->add_flag("--disc", args->disc, "Only pixels wholly inside the mirror disc in both images");
+  cmd->add_flag("--common-frames", args->commonFrames,
+                "Datasets: compare only the frames both hold (a ground truth of fewer frames), saying how many were left out");
   cmd->add_flag("--box-downsample", args->boxDownsample,
                 "Average the larger image's NxN blocks first, N the whole factor between the sizes (a POV-Ray job's render.exr)");
   cmd->callback([args, cmd, &exitCode] { exitCode = runCompare(*args, *cmd); });

@@ -46,11 +46,17 @@ bool samePose(const RobotPose& a, const RobotPose& b) {
 
 // B's image for A's `relative` path when B has no manifest: the same path, .png or .exr (a
 // link there is not followed: it is reported when the image is read).
-std::string layoutFile(const std::string& dirB, const std::string& relative) {
+std::optional<std::string> layoutFileIfAny(const std::string& dirB, const std::string& relative) {
   for (const char* ext : {".png", ".exr"}) {
     const std::string candidate = fs::path(relative).replace_extension(ext).string();
     if (entryInside(dirB, candidate) != EntryKind::Missing) return candidate;
   }
+  return std::nullopt;
+}
+
+// layoutFileIfAny, or InputError naming both names it looked for.
+std::string layoutFile(const std::string& dirB, const std::string& relative) {
+  if (std::optional<std::string> file = layoutFileIfAny(dirB, relative)) return *file;
   const std::string stem = fs::path(relative).replace_extension("").string();
   throw InputError(showPath(dirB) + ": has neither " + showPath(stem + ".png") + " nor " + showPath(stem + ".exr") +
                    ", the image to compare with the first dataset's " + showPath(relative) +
@@ -151,9 +157,17 @@ std::string cameraList(const std::set<std::string>& names) {
   return list.empty() ? "none" : list;
 }
 
-// B's manifest lists exactly A's frames, of the same cameras: the cameras first, since datasets
-// of other rigs differ in their frames too.
-void checkSameFrames(const DatasetManifest& a, const DatasetManifest& b, const std::string& dirA, const std::string& dirB) {
+// "3 only in A (first 7), 0 only in B (first -)".
+std::string onlyInText(const std::vector<int>& onlyA, const std::vector<int>& onlyB) {
+  return std::to_string(onlyA.size()) + " only in A (first " + (onlyA.empty() ? "-" : std::to_string(onlyA[0])) + "), " +
+         std::to_string(onlyB.size()) + " only in B (first " + (onlyB.empty() ? "-" : std::to_string(onlyB[0])) + ")";
+}
+
+// B's manifest lists A's frames, of the same cameras: the cameras first, since datasets of other
+// rigs differ in their frames too. Every frame (exit 2 otherwise), or with `commonOnly` the ones
+// both hold: A's others are dropped here and said in a note.
+void matchFrames(DatasetManifest& a, const DatasetManifest& b, const std::string& dirA, const std::string& dirB, bool commonOnly,
+                 std::vector<std::string>& notes) {
   const std::set<std::string> camerasA = camerasOf(a), camerasB = camerasOf(b);
   if (camerasA != camerasB)
     throw InputError(showPath(dirB) + ": cameras do not match " + showPath(dirA) + ": A has " + cameraList(camerasA) + ", B has " +
@@ -163,10 +177,36 @@ void checkSameFrames(const DatasetManifest& a, const DatasetManifest& b, const s
     if (!b.frames.count(index)) onlyA.push_back(index);
   for (const auto& [index, frame] : b.frames)
     if (!a.frames.count(index)) onlyB.push_back(index);
-  if (!onlyA.empty() || !onlyB.empty())
-    throw InputError(showPath(dirB) + ": frames do not match " + showPath(dirA) + ": " + std::to_string(onlyA.size()) + " only in A (first " +
-                     (onlyA.empty() ? "-" : std::to_string(onlyA[0])) + "), " + std::to_string(onlyB.size()) +
-                     " only in B (first " + (onlyB.empty() ? "-" : std::to_string(onlyB[0])) + ")");
+  if (onlyA.empty() && onlyB.empty()) return;
+  if (!commonOnly)
+    throw InputError(showPath(dirB) + ": frames do not match " + showPath(dirA) + ": " + onlyInText(onlyA, onlyB) +
+                     " (--common-frames compares the frames both hold)");
+  if (onlyA.size() == a.frames.size())
+    throw InputError(showPath(dirB) + ": holds none of " + showPath(dirA) + "'s frames: " + onlyInText(onlyA, onlyB));
+  for (int index : onlyA) a.frames.erase(index);
+  notes.push_back("compared the " + countOf(static_cast<long long>(a.frames.size()), "frame") + " both hold; left out: " +
+                  onlyInText(onlyA, onlyB));
+}
+
+// With `commonOnly`, A's frames of which a folder without manifest has no image are dropped
+// (said in a note); else each must be there.
+void matchFolderFrames(DatasetManifest& a, const std::string& dirA, const std::string& dirB, bool commonOnly,
+                       std::vector<std::string>& notes) {
+  if (!commonOnly) return;
+  std::vector<int> onlyA;
+  for (const auto& [index, frame] : a.frames)
+    for (const auto& [camera, files] : frame.cameras) {
+      const FileRecord* rgb = colourFile(files);
+      if (rgb && !layoutFileIfAny(dirB, rgb->path)) {
+        onlyA.push_back(index);
+        break;
+      }
+    }
+  if (onlyA.empty()) return;
+  if (onlyA.size() == a.frames.size()) throw InputError(showPath(dirB) + ": holds no image of " + showPath(dirA) + "'s frames");
+  for (int index : onlyA) a.frames.erase(index);
+  notes.push_back("compared the " + countOf(static_cast<long long>(a.frames.size()), "frame") + " with images in both; left out: " +
+                  std::to_string(onlyA.size()) + " only in A (first " + std::to_string(onlyA[0]) + ")");
 }
 
 // Each frame's colour file of each camera in A beside B's: from B's manifest when it has one
@@ -307,15 +347,21 @@ void compareAll(std::vector<FrameComparison>& frames, const std::string& dirA, c
 
 DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
                                      const DatasetCompareOptions& options) {
-  const DatasetManifest a = readDatasetManifest(dirA);
+  DatasetManifest a = readDatasetManifest(dirA);
   std::error_code ec;
   if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
   std::optional<DatasetManifest> b;
   if (entryInside(dirB, kManifestName) != EntryKind::Missing) b = readDatasetManifest(dirB);
   DatasetCompareResult result;
-  if (b) checkSameFrames(a, *b, dirA, dirB);
+  if (b)
+    matchFrames(a, *b, dirA, dirB, options.commonFramesOnly, result.notes);
+  else
+    matchFolderFrames(a, dirA, dirB, options.commonFramesOnly, result.notes);
   result.frames = pairFrames(a, b, dirA, dirB);
-  if (b) result.notes = rigNotes(a, *b);
+  if (b) {
+    const std::vector<std::string> rigs = rigNotes(a, *b);
+    result.notes.insert(result.notes.end(), rigs.begin(), rigs.end());
+  }
   if (result.frames.empty()) throw InputError(showPath(dirA) + ": no finished frames to compare");
   compareAll(result.frames, dirA, dirB, options);
   result.minPsnrDb = std::numeric_limits<double>::infinity();

@@ -17,6 +17,9 @@ struct DatasetCompareOptions {
   CompareThresholds thresholds;  // each frame is checked against them; none given: nothing is checked
   int worstFrames = 6;           // shown with heat maps in the report
   double diffScale = 0.05;
+  // Compare only the frames both datasets hold (a ground truth of fewer frames, a run stopped
+  // early), noting how many were left out; by default the frames must be the same.
+  bool commonFramesOnly = false;
 };
 
 struct FrameComparison {

@@ -776,6 +776,47 @@ TEST_F(DatasetCliTest, AThesisModeDatasetSaysItsAnnotationsAreTheExactCameras) {
   EXPECT_EQ(exactRun.out.find("note:"), std::string::npos) << exactRun.out;
 }
 
+// --common-frames: a ground truth of fewer frames, a folder of one's own images of some poses,
+// compared on the frames both hold, saying what was left out; without it the frames must match.
+TEST_F(DatasetCliTest, CommonFramesComparesWhatBothHoldAndSaysWhatWasLeftOut) {
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("six.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 6})") + " -o " +
+                    path("six")).code, 0);
+  ASSERT_EQ(omnicam("dataset " + robocupSpec("three.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 3})") + " -o " +
+                    path("three")).code, 0);
+  auto r = omnicam("compare " + path("six") + " " + path("three") + " --fail-max 0");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("frames do not match " + path("six") + ": 3 only in A (first 3), 0 only in B (first -) (--common-frames "),
+            std::string::npos) << r.out;
+  r = omnicam("compare " + path("six") + " " + path("three") + " --fail-max 0 --common-frames --json");
+  EXPECT_EQ(r.code, 0) << r.out;
+  const json report = json::parse(r.out.substr(r.out.find('{')));
+  EXPECT_EQ(report["frames"].size(), 3u);
+  EXPECT_EQ(report["notes"], json({"compared the 3 frames both hold; left out: 3 only in A (first 3), 0 only in B (first -)"}));
+  // Either way round.
+  r = omnicam("compare " + path("three") + " " + path("six") + " --fail-max 0 --common-frames");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: compared the 3 frames both hold; left out: 0 only in A (first -), 3 only in B (first 3)"), std::string::npos)
+      << r.out;
+  // A folder of one's own images (no manifest) of frames 1 and 4.
+  fs::create_directories(dir_ / "own/cam0/rgb");
+  for (const char* frame : {"000001.png", "000004.png"})
+    fs::copy_file(dir_ / "six/cam0/rgb" / frame, dir_ / "own/cam0/rgb" / frame);
+  r = omnicam("compare " + path("six") + " " + path("own") + " --fail-max 0");
+  EXPECT_EQ(r.code, 2) << r.out;
+  r = omnicam("compare " + path("six") + " " + path("own") + " --fail-max 0 --common-frames");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("PASS images=2 failing=0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("note: compared the 2 frames with images in both; left out: 4 only in A (first 0)"), std::string::npos) << r.out;
+  // Nothing in common, and images, are refused.
+  fs::create_directories(dir_ / "empty/cam0/rgb");
+  r = omnicam("compare " + path("six") + " " + path("empty") + " --common-frames");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("holds no image of"), std::string::npos) << r.out;
+  r = omnicam("compare " + path("six/cam0/rgb/000001.png") + " " + path("own/cam0/rgb/000001.png") + " --common-frames");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--common-frames: only with two dataset folders"), std::string::npos) << r.out;
+}
+
 // A report that cannot be finished (the file-size limit, as a full disk) leaves none of its
 // images: the limit (prlimit's bytes) lets every image through, and not the page, whose table
 // of 40 frames is larger.
