@@ -76,11 +76,31 @@ void refuseTextureRealismFlags(const CLI::App& cmd) {
     refuseUnless(cmd, flag, false, "experiment texture-realism");
 }
 
+// Before any work, the files an experiment ends with: each name in an existing -o folder free to
+// take (a file or nothing: checkOutputFile), --doc too and apart from the folder, and the figures/
+// folder beside --doc a folder or nothing. A run of minutes must not be refused at its end.
+void checkFinalFiles(const ExperimentArgs& a, const std::vector<std::string>& files) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(a.out, ec))
+    for (const std::string& file : files) checkOutputFile((fs::path(a.out) / file).string(), "-o");
+  if (a.doc.empty()) return;
+  checkOutputFile(a.doc, "--doc");
+  if (fs::weakly_canonical(fs::absolute(a.doc), ec) == fs::weakly_canonical(fs::absolute(a.out), ec))
+    throw InputError("--doc: " + showPath(a.doc) + " is the -o folder: give the document a file name");
+  const fs::path docFolder = fs::path(a.doc).parent_path();
+  const EntryKind figures = entryInside(docFolder.empty() ? "." : docFolder.string(), "figures");
+  if (figures != EntryKind::Missing && figures != EntryKind::Folder)
+    throw InputError("--doc: " + showPath((docFolder / "figures").string()) +
+                     " is not a folder (a link is not followed): the document's figures go there");
+}
+
 void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   refuseTextureRealismFlags(cmd);
   refuseUnless(cmd, "--doc", false, "experiment texture-realism");
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
+  checkFinalFiles(a, {"convergence.json"});
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -121,6 +141,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.noiseScene.empty() && a.noiseScene != "plain_hall" && a.noiseScene != "textured_hall" && a.noiseScene != "tiled_room")
     throw InputError("--noise-scene: must be plain_hall, textured_hall or tiled_room (got " + quote(a.noiseScene) + ")");
   checkOutputFolder(a.out, "-o");
+  checkFinalFiles(a, {"path-convergence.json", "path-convergence.md"});
   PathConvergenceOptions options = a.quick ? PathConvergenceOptions::quick() : PathConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -196,9 +217,9 @@ void copyFigures(const std::string& folder, const std::string& doc, const std::v
 void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
   refuseTextureRealismFlags(cmd);
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
-  if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
   if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
   checkOutputFolder(a.out, "-o");
+  checkFinalFiles(a, {"results.json", "calibration-study.md"});
   CalibrationStudyOptions options = a.quick ? CalibrationStudyOptions::quick() : CalibrationStudyOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -230,8 +251,8 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   std::optional<ConvergenceResults> convergence;
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
-  if (!a.doc.empty()) checkOutputFile(a.doc, "--doc");
   checkOutputFolder(a.out, "-o");
+  checkFinalFiles(a, {"results.json", "report.html", "texture-realism.md"});
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
   options.detector.theta = a.theta;

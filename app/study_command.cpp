@@ -200,9 +200,15 @@ void runStudy(const StudyArgs& a) {
   // folder under the report's name.
   std::error_code ec;
   if (fs::is_directory(outPath.parent_path().empty() ? fs::path(".") : outPath.parent_path(), ec)) checkOutputFile(a.out, "-o");
+  std::vector<Row> rows = studyRows();
+  // Every figure's name too, before the first frame is measured: a folder under the last one's
+  // name would otherwise end the study after the others were written.
+  if (fs::is_directory(figures.folder, ec)) {
+    for (const Row& row : rows) checkOutputFile(figures.file(row.file + ".png"), "-o (its figures)");
+    checkOutputFile(figures.file("psnr.svg"), "-o (its figures)");
+  }
   ensureDirectory(figures.folder.string(), "-o");
 
-  std::vector<Row> rows = studyRows();
   measureRows(rows, arena, ringScene, a, figures);
   writePsnrPlot(rows, figures);
   writeTextAtomically(a.out, studyMarkdown(rows, a, figures));

@@ -327,7 +327,9 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
                                             const StudyProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(o.outDir);
-  for (const char* folder : {"arenas", "data", "figures"}) makeFoldersInside(o.outDir, folder);
+  const char* const folders[] = {"arenas", "data", "figures"};
+  for (const char* folder : folders) checkFoldersInside(o.outDir, folder);  // all checked, then made
+  for (const char* folder : folders) makeFoldersInside(o.outDir, folder);
   writeTextAtomically((out / "arenas/calibration-room.json").string(), roomSceneText());
   const Scene room = loadScene((out / "arenas/calibration-room.json").string());
   const Scene field = loadScene(o.fieldScene);

@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "folder_snapshot.h"
 #include "image.h"
 #include "scene_loader.h"
 #include "shell_command.h"
@@ -498,6 +499,35 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   std::ifstream secondIn(path("run/results.json"));
   const json second = json::parse(secondIn);
   EXPECT_EQ(second["conditions"], results["conditions"]);
+}
+
+// The names a run ends with are checked before its minutes of work: a folder under one of them,
+// --doc naming the -o folder, a link at --doc's figures/. One line, exit 2, nothing written.
+TEST_F(ExperimentCliTest, TheNamesARunEndsWithAreCheckedBeforeItsWork) {
+  const std::vector<std::pair<std::string, std::string>> taken = {
+      {"experiment calibration --quick -o " + path("c"), "c/calibration-study.md"},
+      {"experiment texture-realism --quick --no-ablation -o " + path("t"), "t/report.html"},
+      {"experiment realistic-convergence --quick -o " + path("v"), "v/convergence.json"},
+      {"experiment path-convergence --quick -o " + path("p"), "p/path-convergence.md"},
+      {"study --spp 1 -o " + path("s/s.md"), "s/figures/s_psnr.svg"}};
+  for (const auto& [command, folder] : taken) fs::create_directories(dir_ / folder);
+  fs::create_directories(dir_ / "elsewhere");
+  fs::create_directories(dir_ / "d");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "d/figures");
+  const auto before = test_support::folderSnapshot(dir_);
+  for (const auto& [command, folder] : taken) {
+    const auto r = omnicam(command);
+    EXPECT_EQ(r.code, 2) << command << ": " << r.out;
+    EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+    EXPECT_NE(r.out.find(path(folder) + " is an existing folder, not a file name"), std::string::npos) << r.out;
+  }
+  auto r = omnicam("experiment texture-realism --quick -o " + path("t1") + " --doc " + path("t1"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--doc: " + path("t1") + " is the -o folder: give the document a file name"), std::string::npos) << r.out;
+  r = omnicam("experiment calibration --quick -o " + path("c2") + " --doc " + path("d/study.md"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("--doc: " + path("d/figures") + " is not a folder"), std::string::npos) << r.out;
+  EXPECT_TRUE(test_support::folderSnapshot(dir_) == before);
 }
 
 TEST_F(ExperimentCliTest, ConvergenceOptionsAreCheckedBeforeAnythingRuns) {

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "folder_snapshot.h"
 #include "shell_command.h"
 
 namespace omnicam {
@@ -24,12 +25,7 @@ using testing::readFile;
 using nlohmann::json;
 
 // Every entry under `dir` (links not followed) with its bytes: what "nothing written" compares.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> entries;
-  for (const auto& entry : fs::recursive_directory_iterator(dir))
-    entries[fs::relative(entry.path(), dir).string()] = entry.is_regular_file() ? readFile(entry.path()) : "";
-  return entries;
-}
+std::map<std::string, std::string> snapshot(const fs::path& dir) { return test_support::folderSnapshot(dir); }
 
 class InputTrustTest : public ::testing::Test {
  protected:
