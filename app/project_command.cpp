@@ -75,13 +75,18 @@ void runCameraRays(const CameraRaysArgs& a, const CLI::App& cmd) {
   const CameraRayTable table = cameraRayTable(*camera, [&](int rowsDone, int) { tracing.advanceTo(rowsDone); });
   tracing.finish();
   Progress encoding("camera-rays " + size + ": writing", camera->height(), 0, "rows");
-  writeCameraRayTable(a.out, table, [&](int rowsDone, int) { encoding.advanceTo(rowsDone); });
+  const std::vector<unsigned char> exr = encodeCameraRayTable(a.out, table, [&](int rowsDone, int) { encoding.advanceTo(rowsDone); });
+  const std::string sidecar = sidecarText({{"rig", rigToJson(rig)},
+                                           {"intrinsics", camera->describe()},
+                                           {"channels", kCameraRayChannels},
+                                           {"frame", "viewpoint: origin F', robot axes (x forward, y left, z up); metres"},
+                                           {"pixels", "each pixel centre's ray; NaN where the camera images nothing"}});
+  // The table and its sidecar appear together, or neither (the table is not copied: it may be GBs).
+  AtomicFileGroup group;
+  group.stage(a.out, std::string_view(reinterpret_cast<const char*>(exr.data()), exr.size()));
+  group.stage(sidecarPath(a.out), sidecar);
+  group.commit();
   encoding.finish();
-  writeSidecarAtomic(a.out, {{"rig", rigToJson(rig)},
-                             {"intrinsics", camera->describe()},
-                             {"channels", kCameraRayChannels},
-                             {"frame", "viewpoint: origin F', robot axes (x forward, y left, z up); metres"},
-                             {"pixels", "each pixel centre's ray; NaN where the camera images nothing"}});
   std::printf("wrote %s\n", a.out.c_str());
 }
 

@@ -67,11 +67,11 @@ class FrameViews {
     }
     return out;
   }
-  void stage(AtomicFileGroup& group, const std::string& imageFile, const RenderedFile& omni) const {
+  void addFiles(std::vector<FileBytes>& out, const std::string& imageFile, const RenderedFile& omni) const {
     const std::vector<std::string> outputs = files(imageFile);
     for (size_t k = 0; k < maps_.size(); ++k)
-      stageImage(group, outputs[k], applyViewMap(maps_[k].map, omni.image),
-                 viewSidecar(omni.sidecar, maps_[k].description, std::filesystem::path(imageFile).filename().string()));
+      addImageFiles(out, outputs[k], applyViewMap(maps_[k].map, omni.image),
+                    viewSidecar(omni.sidecar, maps_[k].description, std::filesystem::path(imageFile).filename().string()));
   }
 
  private:
@@ -85,10 +85,10 @@ class FrameViews {
 
 // The image, its views and all their sidecars: together, or none of them (a full disk).
 void writeWithViews(const std::string& imageFile, const RenderedFile& rendered, const FrameViews& views) {
-  AtomicFileGroup group;
-  stageImage(group, imageFile, rendered.image, rendered.sidecar);
-  views.stage(group, imageFile, rendered);
-  group.commit();
+  std::vector<FileBytes> files;
+  addImageFiles(files, imageFile, rendered.image, rendered.sidecar);
+  views.addFiles(files, imageFile, rendered);
+  writeFilesTogether(files);
 }
 
 // --recording: a preset's name, or a file holding one `recording` object (docs/experiments.md).

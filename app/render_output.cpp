@@ -35,16 +35,16 @@ RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacemen
   return result;
 }
 
-void stageImage(AtomicFileGroup& group, const std::string& out, const ImageRGBA& image, const nlohmann::json& sidecar) {
-  const std::vector<unsigned char> bytes = encodeImage(out, image);
-  group.stage(out, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-  group.stage(sidecarPath(out), sidecarText(sidecar));
+void addImageFiles(std::vector<FileBytes>& files, const std::string& out, const ImageRGBA& image, const nlohmann::json& sidecar) {
+  files.push_back({out, encodeImage(out, image)});
+  const std::string text = sidecarText(sidecar);
+  files.push_back({sidecarPath(out), std::vector<unsigned char>(text.begin(), text.end())});
 }
 
 void writeRendered(const std::string& out, const RenderedFile& rendered) {
-  AtomicFileGroup group;
-  stageImage(group, out, rendered.image, rendered.sidecar);
-  group.commit();
+  std::vector<FileBytes> files;
+  addImageFiles(files, out, rendered.image, rendered.sidecar);
+  writeFilesTogether(files);
 }
 
 RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,

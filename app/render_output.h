@@ -21,10 +21,10 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
 // Renders one placement with `engine`; the sidecar describes it.
 RenderedFile renderPose(const Scene& scene, Engine& engine, const CameraPlacement& placement,
                         const RenderSettings& settings);
-// Stages the image OUT and its sidecar OUT + ".json" (out.png.json) in `group`: they appear
-// together, or neither.
-void stageImage(AtomicFileGroup& group, const std::string& out, const ImageRGBA& image, const nlohmann::json& sidecar);
-// stageImage of `rendered` alone, committed.
+// The image OUT and its sidecar OUT + ".json" (out.png.json), encoded, added to `files` (for
+// writeFilesTogether: they appear together, or neither).
+void addImageFiles(std::vector<FileBytes>& files, const std::string& out, const ImageRGBA& image, const nlohmann::json& sidecar);
+// `rendered` and its sidecar, together.
 void writeRendered(const std::string& out, const RenderedFile& rendered);
 // Both, with `extra` merged into the sidecar.
 RenderedFile renderToFile(const Scene& scene, Engine& engine, const CameraPlacement& placement,

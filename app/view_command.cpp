@@ -15,6 +15,7 @@
 #include "placement.h"
 #include "scene_loader.h"
 #include "sidecar.h"
+#include "render_output.h"
 #include "views.h"
 
 namespace omnicam::cli {
@@ -117,8 +118,9 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
                      std::to_string(rig.imageWidth()) + "x" + std::to_string(rig.imageHeight()) + " at that width");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   const ViewMap map = buildViewMap(spec, *camera, flags);
-  writeImageAtomic(a.out, applyViewMap(map, omni));
-  writeSidecarAtomic(a.out, viewSidecar(sidecar, viewToJson(spec, map, *camera, robotFromViewpoint(rig)), a.in));
+  std::vector<FileBytes> files;  // the view and its sidecar together, or neither
+  addImageFiles(files, a.out, applyViewMap(map, omni), viewSidecar(sidecar, viewToJson(spec, map, *camera, robotFromViewpoint(rig)), a.in));
+  writeFilesTogether(files);
   std::printf("wrote %s (%dx%d %s, %s)\n", a.out.c_str(), map.width, map.height, a.as.c_str(), a.variant.c_str());
 }
 

@@ -45,11 +45,9 @@ CameraRayTable cameraRayTable(const Camera& camera, const std::function<void(int
   return table;
 }
 
-void writeCameraRayTable(const std::string& path, const CameraRayTable& table,
-                         const std::function<void(int rowsDone, int rows)>& onRows) {
-  const std::vector<unsigned char> bytes =
-      encodeDataExr(path, table.width, table.height, kCameraRayChannels, table.values.data(), ExrPrecision::Float, onRows);
-  writeBytesAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+std::vector<unsigned char> encodeCameraRayTable(const std::string& path, const CameraRayTable& table,
+                                                const std::function<void(int rowsDone, int rows)>& onRows) {
+  return encodeDataExr(path, table.width, table.height, kCameraRayChannels, table.values.data(), ExrPrecision::Float, onRows);
 }
 
 }  // namespace omnicam

@@ -26,9 +26,9 @@ int64_t cameraRayTableBytes(int width, int height);
 // Rows are traced in parallel, a band at a time; `onRows(done, total)` is called on the calling
 // thread after each band (a physical camera's 16384² table takes minutes).
 CameraRayTable cameraRayTable(const Camera& camera, const std::function<void(int rowsDone, int rows)>& onRows = {});
-// Writes the table atomically; OutputError naming `path` if it cannot. `onRows(done, total)` as
-// rows are encoded.
-void writeCameraRayTable(const std::string& path, const CameraRayTable& table,
-                         const std::function<void(int rowsDone, int rows)>& onRows = {});
+// The table as the OpenEXR file `path` holds it (its name picks nothing but messages' words).
+// `onRows(done, total)` as rows are encoded.
+std::vector<unsigned char> encodeCameraRayTable(const std::string& path, const CameraRayTable& table,
+                                                const std::function<void(int rowsDone, int rows)>& onRows = {});
 
 }  // namespace omnicam

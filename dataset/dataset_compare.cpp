@@ -400,15 +400,13 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
   // The images' folder is omnicam's, beside the report: a link there (someone's, in a shared
   // folder) is refused, not followed.
   const SafeFolder reportFolder(report.parent_path().empty() ? "." : report.parent_path().string());
-  reportFolder.makeFolders(assetsName);
-  std::vector<std::string> written;  // this report's images: removed again if it cannot be finished
-  const auto writePng = [&](const std::string& name, const ImageRGBA& image) {
-    const std::vector<unsigned char> bytes = encodeImage(name, image);
-    reportFolder.writeFile(assetsName + "/" + name, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                           Durability::Synced);
-    written.push_back(assetsName + "/" + name);
+  // The images are encoded first, then written with the page through one group: a report that
+  // cannot be finished leaves neither its images nor its page (nor replaces an earlier one's).
+  std::vector<FileBytes> images;
+  const auto addPng = [&](const std::string& name, const ImageRGBA& image) {
+    images.push_back({assetsName + "/" + name, encodeImage(name, image)});
   };
-  try {
+  {
     std::vector<const FrameComparison*> order;
     for (const FrameComparison& f : result.frames) order.push_back(&f);
     std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
@@ -445,9 +443,9 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
       char stem[96];
       std::snprintf(stem, sizeof stem, "%06d_%s", f.index, f.camera.c_str());
       const std::string names[3] = {std::string(stem) + "_a.png", std::string(stem) + "_b.png", std::string(stem) + "_diff.png"};
-      writePng(names[0], imageA);
-      writePng(names[1], imageB);
-      writePng(names[2], differenceHeatmap(imageA, imageB, options.diffScale));
+      addPng(names[0], imageA);
+      addPng(names[1], imageB);
+      addPng(names[2], differenceHeatmap(imageA, imageB, options.diffScale));
       html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
       const char* captions[3] = {"A", "B", "|A − B|"};
       for (int i = 0; i < 3; ++i)
@@ -461,10 +459,12 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
            << "</td><td>" << psnrText(f.result.psnrDb) << "</td><td>" << f.result.ssim << "</td><td>" << f.result.rmse
            << "</td><td>" << f.result.maxAbs << "</td></tr>";
     html << "</table></body></html>\n";
-    writeTextAtomically(reportPath, html.str());
-  } catch (...) {
-    for (const std::string& file : written) reportFolder.removeFile(file);
-    throw;
+    const std::string page = html.str();
+    AtomicFileGroup group;
+    for (const FileBytes& image : images)
+      reportFolder.stageFile(group, image.path, std::string_view(reinterpret_cast<const char*>(image.bytes.data()), image.bytes.size()));
+    group.stage(reportPath, page);
+    group.commit();
   }
 }
 

@@ -98,15 +98,6 @@ void renameIntoPlace(int folderFd, const std::string& tmp, const std::string& na
   if (::renameat(folderFd, tmp.c_str(), folderFd, name.c_str()) != 0) failWrite(shownPath, folderFd, tmp, errno);
 }
 
-// `bytes` as a PieceSource of one piece.
-PieceSource onePiece(std::string_view bytes) {
-  return [bytes, given = false](std::string_view& piece) mutable {
-    if (given) return false;
-    piece = bytes;
-    return given = true;
-  };
-}
-
 // The folder of the user's own path: links in it are followed, as the user meant.
 FileDescriptor openParentFolder(const std::string& path) {
   const fs::path target(path);
@@ -117,6 +108,14 @@ FileDescriptor openParentFolder(const std::string& path) {
 }
 
 }  // namespace
+
+PieceSource onePiece(std::string_view bytes) {
+  return [bytes, given = false](std::string_view& piece) mutable {
+    if (given) return false;
+    piece = bytes;
+    return given = true;
+  };
+}
 
 void writeBytesAtomically(const std::string& path, std::string_view bytes, Durability durability) {
   const FileDescriptor folderFd = openParentFolder(path);
@@ -146,11 +145,23 @@ AtomicFileGroup::~AtomicFileGroup() {
   for (const Staged& file : staged_) ::unlinkat(file.folder.get(), file.temporary.c_str(), 0);
 }
 
-void AtomicFileGroup::stage(const std::string& path, std::string_view bytes) {
-  FileDescriptor folder = openParentFolder(path);
-  const std::string name = fs::path(path).filename().string();
-  std::string temporary = writeTemporaryAt(folder.get(), name, showPath(path), onePiece(bytes), Durability::Synced);
-  staged_.push_back({std::move(folder), std::move(temporary), name, showPath(path)});
+void AtomicFileGroup::stage(const std::string& path, std::string_view bytes) { stageStream(path, onePiece(bytes)); }
+
+void AtomicFileGroup::stageStream(const std::string& path, const PieceSource& next) {
+  stageAt(openParentFolder(path), fs::path(path).filename().string(), showPath(path), next);
+}
+
+void AtomicFileGroup::stageAt(FileDescriptor folder, const std::string& name, const std::string& shownPath, const PieceSource& next) {
+  if (!deferred_) deferred_.emplace();
+  std::string temporary = writeTemporaryAt(folder.get(), name, shownPath, next, Durability::Synced);
+  staged_.push_back({std::move(folder), std::move(temporary), name, shownPath});
+}
+
+void writeFilesTogether(const std::vector<FileBytes>& files) {
+  AtomicFileGroup group;
+  for (const FileBytes& file : files)
+    group.stage(file.path, std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()));
+  group.commit();
 }
 
 void AtomicFileGroup::commit() {

@@ -7,8 +7,10 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <optional>
 #include <vector>
 
+#include "file_descriptor.h"
 #include "interrupts.h"
 
 namespace omnicam {
@@ -36,22 +38,39 @@ inline void writeTextAtomically(const std::string& path, const std::string& text
 // Files that appear together or not at all (an image and its sidecar): stage() writes each to
 // its temporary (where a full disk fails: OutputError, and the group's temporaries go),
 // commit() then renames them all into place. A group destroyed uncommitted removes its
-// temporaries: nothing appears. Make it once the bytes are ready (it defers interrupts).
+// temporaries: nothing appears. The renames are one after another: one that fails (a folder
+// made under the name meanwhile, a file system remounted read-only) leaves the files renamed
+// before it in place. From the first stage() on, SIGTERM and SIGINT wait for the group: have
+// every file's bytes ready before.
 class AtomicFileGroup {
  public:
   AtomicFileGroup();
   ~AtomicFileGroup();
   AtomicFileGroup(const AtomicFileGroup&) = delete;
   AtomicFileGroup& operator=(const AtomicFileGroup&) = delete;
+  // The user's own path (links in its folders followed, as the user meant).
   void stage(const std::string& path, std::string_view bytes);
+  void stageStream(const std::string& path, const PieceSource& next);
+  // `name` in the open folder `folder` (SafeFolder's: reached without following links).
+  void stageAt(FileDescriptor folder, const std::string& name, const std::string& shownPath, const PieceSource& next);
   void commit();
 
  private:
   struct Staged;
-  // SIGTERM and SIGINT wait for the group: its temporaries are renamed or removed first.
-  DeferInterrupts deferred_;
+  std::optional<DeferInterrupts> deferred_;  // from the first stage(): its temporaries are renamed or removed first
   std::vector<Staged> staged_;
 };
+
+// `bytes` as a PieceSource of one piece.
+PieceSource onePiece(std::string_view bytes);
+
+// A file's path and its bytes, ready to be written.
+struct FileBytes {
+  std::string path;
+  std::vector<unsigned char> bytes;
+};
+// The files through one AtomicFileGroup: all of them, or none.
+void writeFilesTogether(const std::vector<FileBytes>& files);
 
 // Checks, before any work, that `path` can become an output file: not an existing folder, in a
 // folder that exists, its name short enough for the file system with the temporary's suffix.

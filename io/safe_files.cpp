@@ -255,12 +255,18 @@ void SafeFolder::makeFolders(const std::string& relative) const {
 }
 
 void SafeFolder::writeFile(const std::string& relative, std::string_view bytes, Durability durability) const {
-  bool given = false;
-  writeFileFrom(relative, [&](std::string_view& piece) {
-    if (given) return false;
-    piece = bytes;
-    return given = true;
-  }, durability);
+  writeFileFrom(relative, onePiece(bytes), durability);
+}
+
+void SafeFolder::stageFile(AtomicFileGroup& group, const std::string& relative, std::string_view bytes) const {
+  const std::vector<std::string> parts = partsOf(relative);
+  FileDescriptor folder;
+  try {
+    folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
+  } catch (const Problem& p) {
+    rethrow(root_, p);
+  }
+  group.stageAt(std::move(folder), parts.back(), showPath(fullPath(root_, relative)), onePiece(bytes));
 }
 
 void SafeFolder::writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const {

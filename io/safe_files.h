@@ -43,6 +43,8 @@ class SafeFolder {
   void writeFile(const std::string& relative, std::string_view bytes, Durability durability) const;
   // writeFile fed piece by piece (writeStreamAtomicallyAt): a file of any size in one piece's memory.
   void writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const;
+  // writeFileFrom into `group`: the file appears with the group's others when it commits.
+  void stageFile(AtomicFileGroup& group, const std::string& relative, std::string_view bytes) const;
   bool removeFile(const std::string& relative) const;
   bool removeEmptyFolder(const std::string& relative) const;
   // Claims the folder for this process (flock(2) on the folder itself: no lock file, and the claim

@@ -19,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "folder_snapshot.h"
 #include "hold_point.h"
 #include "calibration_files.h"
 #include "camera_rays.h"
@@ -817,23 +818,28 @@ TEST_F(DatasetCliTest, CommonFramesComparesWhatBothHoldAndSaysWhatWasLeftOut) {
   EXPECT_NE(r.out.find("--common-frames: only with two dataset folders"), std::string::npos) << r.out;
 }
 
-// A report that cannot be finished (the file-size limit, as a full disk) leaves none of its
+// A report that cannot be finished (the file-size limit, as a full disk) writes none of its
 // images: the limit (prlimit's bytes) lets every image through, and not the page, whose table
-// of 40 frames is larger.
-TEST_F(DatasetCliTest, AReportThatCannotBeFinishedLeavesNoneOfItsImages) {
+// of 40 frames is larger. A new report and one over an earlier report alike.
+TEST_F(DatasetCliTest, AReportThatCannotBeFinishedWritesNoneOfItsImages) {
   const std::string poses = R"("size": 16, "poses": {"path": "thesis-loop", "frames": 40})";
   ASSERT_EQ(omnicam("dataset " + robocupSpec("unlit.json", poses) + " -o " + path("unlit")).code, 0);
   ASSERT_EQ(omnicam("dataset " + robocupSpec("lit.json", R"("shading": "lit", )" + poses) + " -o " + path("lit")).code, 0);
-  ASSERT_EQ(omnicam("compare " + path("unlit") + " " + path("lit") + " --report " + path("whole.html")).code, 0);
+  fs::create_directories(dir_ / "out");
+  ASSERT_EQ(omnicam("compare " + path("unlit") + " " + path("lit") + " --report " + path("out/whole.html")).code, 0);
   uintmax_t largestImage = 0;
-  for (const auto& image : fs::directory_iterator(dir_ / "whole_files")) largestImage = std::max(largestImage, image.file_size());
-  ASSERT_GT(fs::file_size(dir_ / "whole.html"), largestImage);
-  const auto full = testing::runShell("prlimit --fsize=" + std::to_string(largestImage) + " " + std::string(OMNICAM_BINARY) +
-                                      " compare " + path("unlit") + " " + path("lit") + " --report " + path("full.html") + " 2>&1");
-  EXPECT_EQ(full.code, 5) << full.out;
-  EXPECT_NE(full.out.find("full.html: cannot write (File too large)"), std::string::npos) << full.out;
-  EXPECT_FALSE(fs::exists(dir_ / "full.html"));
-  EXPECT_TRUE(fs::is_empty(dir_ / "full_files")) << "the images of a report that was not written are left";
+  for (const auto& image : fs::directory_iterator(dir_ / "out/whole_files")) largestImage = std::max(largestImage, image.file_size());
+  ASSERT_GT(fs::file_size(dir_ / "out/whole.html"), largestImage);
+  const auto before = test_support::folderSnapshot(dir_ / "out");
+  for (const std::string report : {"full.html", "whole.html"}) {
+    const auto full = testing::runShell("prlimit --fsize=" + std::to_string(largestImage) + " " + std::string(OMNICAM_BINARY) +
+                                        " compare " + path("unlit") + " " + path("lit") + " --report " + path("out/" + report) + " 2>&1");
+    EXPECT_EQ(full.code, 5) << full.out;
+    EXPECT_NE(full.out.find(report + ": cannot write (File too large)"), std::string::npos) << full.out;
+    auto after = test_support::folderSnapshot(dir_ / "out");
+    after.erase("full_files");  // the images' folder, empty
+    EXPECT_TRUE(after == before) << report << ": the failed report wrote or removed files";
+  }
 }
 
 TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {

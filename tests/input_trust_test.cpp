@@ -285,6 +285,11 @@ TEST_F(InputTrustTest, AnImageItsViewsAndTheirSidecarsAppearTogetherOrNotAtAll) 
   // Without the limit, all of them.
   ASSERT_EQ(testing::runShell(std::string(OMNICAM_BINARY) + " render " + path("box.json") + " --size 16 --view birdseye -o " + path("x.png")).code, 0);
   for (const char* name : {"x.png", "x.png.json", "x.birdseye.png", "x.birdseye.png.json"}) EXPECT_TRUE(fs::exists(dir_ / name)) << name;
+  // `view` of that image: the view and its sidecar together, or neither.
+  const auto view = testing::runShell("ulimit -f 1; " + std::string(OMNICAM_BINARY) + " view " + path("x.png") +
+                                      " --as panorama --size 16x8 -o " + path("pano.png") + " 2>&1");
+  EXPECT_EQ(view.code, 5) << view.out;
+  EXPECT_FALSE(fs::exists(dir_ / "pano.png")) << view.out;
 }
 
 // Integer flags are read as written, like the spec reader's JSON integers: never wrapped
