@@ -47,10 +47,20 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
   const std::string tmpName = "slurm/" + atomicTemporaryName("sbatch.log");
   writeFileInside(dir.string(), tmpName, "", Durability::Unsynced);
   const std::string tmp = (dir / tmpName).string();
+  // The temporary goes however this ends (an interrupt while sbatch runs included).
+  struct RemoveTemporary {
+    const fs::path& dir;
+    const std::string& name;
+    ~RemoveTemporary() {
+      try {
+        removeFileInside(dir.string(), name);
+      } catch (...) {  // a destructor throws nothing: the next run's cleanup takes what is left
+      }
+    }
+  } removeTemporary{dir, tmpName};
   const ProcessResult r = runProcess(argv, slurmDir.string(), tmp, 120.0);
   const std::string output = tailOfFile(tmp, 5);
   writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
-  removeFileInside(dir.string(), tmpName);
   if (r.notFound) throw ExternalError(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.exitCode != 0) throw ExternalError("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
   std::istringstream lines(output);

@@ -157,8 +157,11 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   for (const std::string& sub : plan.folders()) folder.checkFolders(sub);
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
-  if (!plan.range().sharded)
-    removeAtomicTemporaries(options.dir, withParentFolders({plan.folders().begin(), plan.folders().end()}));
+  if (!plan.range().sharded) {
+    std::set<std::string> folders(plan.folders().begin(), plan.folders().end());
+    folders.insert("slurm");  // sbatch's log of a submission (cluster/slurm_backend.cpp)
+    removeAtomicTemporaries(options.dir, withParentFolders(folders));
+  }
   if (previous) manifest.frames = intactFrames(folder, *previous, plan);
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.

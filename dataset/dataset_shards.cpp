@@ -166,11 +166,14 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     writeCalibrationBag(dir, *merged);
   }
   writeManifest(dir, *merged);
-  // Every shard has ended (the merge runs after them): what a killed one left behind goes, from
-  // the folders of the files the dataset lists and shards/.
-  std::set<std::string> folders{"shards"};
-  for (const FileRecord& file : manifestFiles(*merged)) folders.insert(std::filesystem::path(file.path).parent_path().generic_string());
-  removeAtomicTemporaries(path, withParentFolders(folders));
+  // What killed shards left behind goes, from the folders of the files the dataset lists, shards/
+  // and slurm/ — once no shard is at work (each holds a shared claim): a running one's temporaries
+  // stay, and a later merge removes what is left then.
+  if (dir.tryClaim(/*shared=*/false)) {
+    std::set<std::string> folders{"shards", "slurm"};
+    for (const FileRecord& file : manifestFiles(*merged)) folders.insert(std::filesystem::path(file.path).parent_path().generic_string());
+    removeAtomicTemporaries(path, withParentFolders(folders));
+  }
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "atomic_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -256,20 +257,26 @@ bool isAtomicTemporaryName(const std::string& name) {
 }
 
 void removeAtomicTemporaries(const std::string& dir, const std::set<std::string>& folders) {
+  const FileDescriptor root(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (root.get() < 0) return;
   for (const std::string& relative : folders) {
-    const fs::path folder = relative.empty() ? fs::path(dir) : fs::path(dir) / relative;
-    std::error_code ec;
-    // Links are not looked into: neither the folder nor one above it, up to `dir`.
-    bool linked = false;
-    fs::path at(dir);
+    // Each folder reached from the held root one name at a time, never through a link.
+    FileDescriptor folder(::dup(root.get()));
     for (const fs::path& part : fs::path(relative)) {
-      at /= part;
-      linked = linked || fs::symlink_status(at, ec).type() == fs::file_type::symlink;
+      if (folder.get() < 0) break;
+      folder = FileDescriptor(::openat(folder.get(), part.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
     }
-    if (linked || fs::symlink_status(folder, ec).type() != fs::file_type::directory) continue;
-    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
-      if (it->symlink_status(ec).type() == fs::file_type::regular && isAtomicTemporaryName(it->path().filename().string()))
-        fs::remove(it->path(), ec);
+    if (folder.get() < 0) continue;
+    DIR* listing = ::fdopendir(folder.get());
+    if (!listing) continue;
+    folder.release();  // closedir closes it
+    while (const dirent* entry = ::readdir(listing)) {
+      struct stat st {};
+      if (isAtomicTemporaryName(entry->d_name) && ::fstatat(::dirfd(listing), entry->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+          S_ISREG(st.st_mode))
+        ::unlinkat(::dirfd(listing), entry->d_name, 0);  // one that fails stays; the others go on
+    }
+    ::closedir(listing);
   }
 }
 

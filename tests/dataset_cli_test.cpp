@@ -3,6 +3,7 @@
 // dataset's folder, --verify.
 #include <gtest/gtest.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -530,17 +531,21 @@ TEST_F(DatasetCliTest, AUsersFilesOutliveResumeAndMerge) {
   const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 4})");
   const std::vector<std::string> users = {"notes/.thesis.tmp-draft.tex", "notes/.x.tmp-abcdefghij.png", ".thesis.tmp-draft.tex",
                                           "cam0/rgb/deeper/.y.tmp-abcdefghij.png", "cam0/.calib.tmp-old.yaml"};
-  const std::string leftover = "cam0/rgb/.000003.tmp-a1b2c3d4e5.png";
+  const std::vector<std::string> leftovers = {"cam0/rgb/.000003.tmp-a1b2c3d4e5.png", "slurm/.sbatch.tmp-a1b2c3d4e5.log",
+                                              ".manifest.tmp-0123456789.json"};
   const auto plant = [&](const fs::path& folder) {
     for (const std::string& name : users) {
       fs::create_directories((folder / name).parent_path());
       std::ofstream(folder / name) << "the user's";
     }
-    std::ofstream(folder / leftover) << "partial";
+    for (const std::string& leftover : leftovers) {
+      fs::create_directories((folder / leftover).parent_path());
+      std::ofstream(folder / leftover) << "partial";
+    }
   };
   const auto expectOnlyTheLeftoverGone = [&](const fs::path& folder) {
     for (const std::string& name : users) EXPECT_TRUE(fs::exists(folder / name)) << name << " was deleted";
-    EXPECT_FALSE(fs::exists(folder / leftover));
+    for (const std::string& leftover : leftovers) EXPECT_FALSE(fs::exists(folder / leftover)) << leftover;
   };
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
   plant(dir_ / "ds");
@@ -550,6 +555,16 @@ TEST_F(DatasetCliTest, AUsersFilesOutliveResumeAndMerge) {
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2").code, 0);
   plant(dir_ / "parts");
+  {
+    // A shard at work (its shared claim on the folder, held here): its temporaries are not
+    // taken from under it; the merge still merges.
+    const int folder = ::open(path("parts").c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    ASSERT_GE(folder, 0);
+    ASSERT_EQ(::flock(folder, LOCK_SH), 0);
+    ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+    ::close(folder);
+    for (const std::string& leftover : leftovers) EXPECT_TRUE(fs::exists(dir_ / "parts" / leftover)) << leftover;
+  }
   ASSERT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
   expectOnlyTheLeftoverGone(dir_ / "parts");
 }
