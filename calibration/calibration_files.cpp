@@ -1,6 +1,5 @@
 #include "calibration_files.h"
 
-#include <charconv>
 #include <opencv2/core.hpp>
 #include <sstream>
 
@@ -8,10 +7,6 @@
 #include "number_format.h"
 
 namespace omnicam {
-
-namespace {
-
-}  // namespace
 
 std::string kalibrTargetProblem(const TargetPattern& pattern) {
   // Kalibr's ConfigReader refuses fewer than 3 rows or columns (tags, or inner corners).

@@ -805,7 +805,7 @@ TEST_F(LiveRun, OutlivesItsMasterAndRegistersAgainWhenItComesBack) {
   EXPECT_TRUE(first.data == datasetRgb8(dataset(), "front", 0));
   EXPECT_TRUE(images->messages()[0].data == datasetRgb8(dataset(), "front", 1));
   // (Its diagnostic goes out as the node registers again, before a subscriber can connect.)
-  EXPECT_NE(output().find("2 poses rendered, 0 dropped for newer ones, 0 refused, 1 new master"), std::string::npos)
+  EXPECT_NE(output().find("2 poses rendered, 0 dropped for newer ones, 0 refused, 1 new master\n"), std::string::npos)
       << output();
 }
 

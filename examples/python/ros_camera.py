@@ -71,7 +71,7 @@ def main():
         frame = renderer.render(pose, spp=4, shading="lit")
         publisher.publish(image_message(frame["rgb"], stamp, "omnicam"))
         rendered += 1
-    print(f"ros_camera: {rendered} poses rendered", flush=True)
+    print(f"ros_camera: {rendered} pose{'' if rendered == 1 else 's'} rendered", flush=True)
 
 
 if __name__ == "__main__":

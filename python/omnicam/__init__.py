@@ -59,7 +59,8 @@ _TYPED = _re.compile(r"(?:^|, )\*?(\w+): ([^=,\[]+(?:\[[^=]*?\])?)")
 
 
 def _is_bool(value: _typing.Any) -> bool:
-    return isinstance(value, bool) or type(value).__name__ == "bool_"  # numpy.bool_
+    # numpy's bool (numpy.bool_; numpy 2's numpy.bool) by its dtype's kind, not its type's name.
+    return isinstance(value, bool) or getattr(getattr(value, "dtype", None), "kind", None) == "b"
 
 
 def _fits(value: _typing.Any, annotation: str) -> bool:
@@ -115,12 +116,20 @@ def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing
                     close = _difflib.get_close_matches(key, sorted(names), n=1)
                     hint = f" (did you mean {close[0]}?)" if close else f" (it takes {', '.join(sorted(names))})"
                     raise TypeError(f"{name}(): unknown keyword argument {key!r}{hint}") from None
-            # Positional arguments by the first overload's order: a method's self first, but a
-            # constructor's signature has none (its self, not yet made, must not be looked at).
+            # Positional arguments by the first overload's order, up to its bare "*" (what follows
+            # is keyword-only): a method's self first, but a constructor's signature has none (its
+            # self, not yet made, must not be looked at).
             given = dict(kwargs)
             if overloads:
-                positional = args[1:] if "constructor" in message else args
-                for parameter, value in zip((p for p, _ in _TYPED.findall(overloads[0])), positional):
+                positional = args[1:] if "incompatible constructor arguments" in message else args
+                head = _re.split(r"(?:^|, )\*(?:, |$)", overloads[0], maxsplit=1)[0]
+                parameters = [p for p, _ in _TYPED.findall(head)]
+                if len(positional) > len(parameters):
+                    shown = [p for p in parameters if p != "self"]
+                    raise TypeError(f"{name}(): takes {len(shown)} positional argument{'s' if len(shown) != 1 else ''}"
+                                    f" ({', '.join(shown) or 'none'}), got {len(positional) - (len(parameters) - len(shown))};"
+                                    " the others by keyword") from None
+                for parameter, value in zip(parameters, positional):
                     given.setdefault(parameter, value)
             given.pop("self", None)
             wrong = _wrong_argument(message, given)

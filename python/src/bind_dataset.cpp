@@ -231,14 +231,15 @@ std::vector<uint16_t> instanceIds(const py::array& instance, size_t instances) {
 
 void bindDataset(py::module_& m) {
   bindDatasetReader(m);
-  m.def("coco_annotations", [](const py::array& instance, const Scene& scene, const py::object& classes) {
-    if (instance.ndim() != 2) throw InputError("instance: must be an array of shape (H, W)");
+  m.def("coco_annotations", [](const py::object& given, const Scene& scene, const py::object& classes) {
+    const py::array instance = py::array::ensure(given);  // any array-like: a list of lists too
+    if (!instance || instance.ndim() != 2) throw InputError("instance: must be an array of shape (H, W)");
     const int h = static_cast<int>(instance.shape(0)), w = static_cast<int>(instance.shape(1));
     const IdTables tables = idTables(scene);
     const std::vector<uint16_t> ids = instanceIds(instance, tables.classOfInstance.size());
     return toPython(cocoInstanceAnnotations(ids, w, h, tables.classOfInstance, chosenCocoClasses(tables, classes)));
   }, py::arg("instance"), py::arg("scene"), py::arg("classes") = py::none(),
-  R"(COCO annotations of one frame's instance ids (H, W) uint16 of `scene`: one per visible instance of
+  R"(COCO annotations of one frame's instance ids (H, W), of any integer dtype, of `scene`: one per visible instance of
 the chosen classes, given by name (as a spec's outputs.coco.classes) or class id (default: every
 class but floor, wall, ceiling and line) with "instance_id", "category_id", "bbox" [x, y, w, h],
 "area", "segmentation" (COCO compressed RLE) and "iscrowd". InputError for a class or instance id

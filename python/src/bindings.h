@@ -67,7 +67,7 @@ struct type_caster<omnicam::python::PyInteger> {
   bool load(handle source, bool) {
     // Python's ints and what stands for one (numpy's integer scalars: __index__); never a bool,
     // Python's or numpy's, nor a float.
-    if (!source || PyBool_Check(source.ptr()) || std::string(Py_TYPE(source.ptr())->tp_name) == "numpy.bool_") return false;
+    if (!source || PyBool_Check(source.ptr()) || isNumpyBool(source)) return false;
     object integer;
     if (PyLong_Check(source.ptr())) {
       integer = reinterpret_borrow<object>(source);
@@ -91,6 +91,17 @@ struct type_caster<omnicam::python::PyInteger> {
     }
     value.text = str(integer).cast<std::string>();
     return true;
+  }
+  // numpy's bool (numpy.bool_, numpy 2's numpy.bool), by its dtype's kind, not its type's name.
+  static bool isNumpyBool(handle source) {
+    if (!PyObject_HasAttrString(source.ptr(), "dtype")) return false;
+    try {
+      return source.attr("dtype").attr("kind").cast<std::string>() == "b";
+    } catch (const error_already_set&) {
+      return false;
+    } catch (const cast_error&) {
+      return false;
+    }
   }
   static handle cast(const omnicam::python::PyInteger& v, return_value_policy, handle) {
     return PyLong_FromLongLong(v.value);

@@ -38,6 +38,11 @@ def test_a_positional_argument_of_the_wrong_type_is_named(robocup):
         omnicam.Camera({"height": 0.4})
     with pytest.raises(TypeError, match=r"^run_dataset\(\): progress must be Optional\[function\] \(got int 3\)$"):
         omnicam.run_dataset("spec.json", "out", progress=3)
+    # Keyword-only parameters take no positional argument: said so, not blamed on one of them.
+    with pytest.raises(TypeError, match=r"^Renderer\.render\(\): takes 1 positional argument \(pose\), got 2; the others by keyword$"):
+        omnicam.Renderer(robocup).render((0, 0, 0), 64)
+    with pytest.raises(TypeError, match=r"^Camera\(\): takes 2 positional arguments \(rig, traced\), got 3; "):
+        omnicam.Camera(omnicam.Rig(), False, 3)
     # A method's self and a positional pose that fits are not blamed.
     with pytest.raises(TypeError, match=r"^Renderer\.render\(\): size must be int \(got str 'a'\)$"):
         omnicam.Renderer(robocup).render((0, 0, 0), size="a")
@@ -50,6 +55,9 @@ def test_instance_ids_of_any_integer_dtype_are_taken_as_they_are(robocup):
     assert len(expected) == 1 and expected[0]["instance_id"] == 26 and expected[0]["bbox"] == [3, 2, 4, 3]
     for dtype in (np.uint32, np.int64, np.int32, np.uint8):
         assert omnicam.coco_annotations(ids.astype(dtype), robocup) == expected
+    assert omnicam.coco_annotations(ids.tolist(), robocup) == expected  # an array-like: lists of ints
+    with pytest.raises(omnicam.InputError, match=r"^instance: must be an array of shape \(H, W\)$"):
+        omnicam.coco_annotations([1, 2, 3], robocup)
     # Never wrapped, rounded or taken from another kind of number.
     last = len(robocup.objects)
     for wrong, shown in ((65536 + 26, 65562), (-1, -1), (2**63 + 5, 2**63 + 5)):
