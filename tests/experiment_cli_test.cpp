@@ -634,6 +634,10 @@ TEST_F(ExperimentCliTest, QuickCalibrationStudyMeasuresHeldOutErrorsAndWritesThe
   fs::create_directories(path("docs"));
   const auto r = omnicam("experiment calibration --quick -o " + path("cal") + " --doc " + path("docs/calibration-study.md"));
   ASSERT_EQ(r.code, 0) << r.out;
+  // What the folder holds is the run's results: nothing the plotting left (matplotlib's .cache).
+  std::set<std::string> entries;
+  for (const auto& entry : fs::directory_iterator(path("cal"))) entries.insert(entry.path().filename().string());
+  EXPECT_EQ(entries, (std::set<std::string>{"arenas", "calibration-study.md", "data", "figures", "results.json"}));
   const json results = json::parse(testing::readFile(path("cal/results.json")));
   ASSERT_EQ(results["rigs"].size(), 3u);
   std::map<std::string, json> rigs;
