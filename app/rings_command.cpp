@@ -30,6 +30,13 @@ struct RingsArgs {
   SceneLoadOptions load;
 };
 
+// What may hide a ring: a render of few samples misses one thinner than a pixel (this rig's rings
+// are circles: it is the ideal one); an image of one's own may hold rings that are not circles.
+std::string ringHint(const RingsArgs& a) {
+  if (a.measure.empty() && a.spp < 16) return " (a ring thinner than a pixel can fall between few samples: render with --spp 16)";
+  return " (for rings that are not circles: --per-azimuth)";
+}
+
 // Measures `image` as asked, prints the result and returns it as JSON (for a sidecar). A camera
 // other than the ideal one images the rings as curves, not circles: they are measured per azimuth
 // against its own projection.
@@ -56,9 +63,9 @@ nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const
     report = measureRings(image, rig.camera(), defaultRingThetasDeg());
   } catch (const RingCountError& e) {
     if (e.tooSmall()) throw;  // the message says how large an image resolves them
-    throw InputError(std::string(e.what()) + " (for rings that are not circles: --per-azimuth)");
+    throw InputError(std::string(e.what()) + ringHint(a));
   } catch (const InputError& e) {
-    throw InputError(std::string(e.what()) + " (for rings that are not circles: --per-azimuth)");
+    throw InputError(std::string(e.what()) + ringHint(a));
   }
   const nlohmann::json j = ringReportToJson(report);
   if (a.json) {
@@ -145,6 +152,10 @@ void runRings(RingsArgs a, const CLI::App& cmd) {
   checkImageOutput(a.out, "-o");
   checkOutputsSpareScene(scene, {a.out}, "-o");
   checkScene(sceneFile, [&] { checkRingScene(scene, defaultRingThetasDeg()); });
+  // Too small an image to tell the rings apart is refused before it is rendered.
+  if (settings.rig.ideal())
+    if (const std::string note = ringSpacingNote(settings.rig.imageWidth(), settings.rig.camera(), defaultRingThetasDeg()); !note.empty())
+      throw InputError("--size" + note);
   const auto engine = makeEngine(request, scene);
   checkScene(sceneFile, [&] { checkEngineRenders(engine->kind(), settings.rig, CameraPlacement(scene.startPose)); });
   RenderedFile rendered = renderPose(scene, *engine, scene.startPose, settings);

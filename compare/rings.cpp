@@ -202,7 +202,9 @@ RingMeasurement measureRing(const std::vector<RingSample>& samples, const std::v
 // Why rings may be missing: at this size the closest two lie too near to be told apart (a dark
 // pixel between them needs about 2 px: at 210 px the closest of the default rings, 1.9 px apart, are
 // told apart, at 200 px, 1.8 px apart, not), or "" when they are far enough apart.
-std::string ringSpacingNote(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg) {
+}  // namespace
+
+std::string ringSpacingNote(int width, const OmniCamera& camera, const std::vector<double>& thetasDeg) {
   std::vector<double> radii;
   for (double theta : thetasDeg) radii.push_back(camera.radiusOfTheta(radians(theta)));
   std::sort(radii.begin(), radii.end());
@@ -210,13 +212,11 @@ std::string ringSpacingNote(const ImageRGBA& image, const OmniCamera& camera, co
   for (size_t k = 1; k < radii.size(); ++k) closest = std::min(closest, radii[k] - radii[k - 1]);
   constexpr double kApartPx = 2.0;
   if (!(closest > 0.0 && closest < kApartPx)) return "";
-  const int enough = static_cast<int>(std::ceil(image.width * kApartPx / closest));
-  return ": at " + std::to_string(image.width) + " px its closest rings are " + shortNumber(closest) +
+  const int enough = static_cast<int>(std::ceil(width * kApartPx / closest));
+  return ": at " + std::to_string(width) + " px its closest rings are " + shortNumber(closest) +
          " px apart and merge (an image of at least " + std::to_string(enough) + " px keeps them " + shortNumber(kApartPx) +
          " px apart)";
 }
-
-}  // namespace
 
 RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg) {
   const Vec2 c(0.5 * image.width, 0.5 * image.height);
@@ -237,7 +237,7 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
 
   const std::vector<std::pair<double, double>> clusters = brightClusters(samples, threshold);
   if (clusters.size() != thetasDeg.size()) {
-    const std::string note = clusters.size() < thetasDeg.size() ? ringSpacingNote(image, camera, thetasDeg) : "";
+    const std::string note = clusters.size() < thetasDeg.size() ? ringSpacingNote(image.width, camera, thetasDeg) : "";
     throw RingCountError("rings: found " + std::to_string(clusters.size()) + " rings in the image, expected " +
                              std::to_string(thetasDeg.size()) + note,
                          !note.empty());

@@ -43,6 +43,10 @@ class RingCountError : public InputError {
   bool tooSmall_;
 };
 
+// Why an image `width` px wide cannot show the rings apart (its closest two lie under 2 px apart:
+// a dark pixel between them is needed), with the width that can; "" when it can.
+std::string ringSpacingNote(int width, const OmniCamera& camera, const std::vector<double>& thetasDeg);
+
 // Throws RingCountError if the number of rings found differs from thetasDeg.size(), and
 // InputError for an image without light to measure.
 RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const std::vector<double>& thetasDeg);

@@ -319,6 +319,13 @@ TEST_F(CliTest, RingsJsonReportsTheSummary) {
   const auto k = nlohmann::json::parse(again.out);
   EXPECT_NEAR(k["summary"]["rms_px_exact"].get<double>(), j["summary"]["rms_px_exact"].get<double>(), 0.01);
   EXPECT_EQ(run("rings --measure " + path("nothing.png")).code, 2);
+  // Too small to tell the rings apart: refused before it is rendered (nothing written), saying
+  // the size that can (the closest rings 2 px apart: 224 px).
+  const CommandResult small = run("rings -o " + path("small.png") + " --size 96");
+  EXPECT_EQ(small.code, 2);
+  EXPECT_NE(small.out.find("--size: at 96 px its closest rings are 0.859952 px apart and merge (an image of at least 224 px"),
+            std::string::npos) << small.out;
+  EXPECT_FALSE(fs::exists(path("small.png")));
   // An image of another scene has no rings to measure: its sidecar says so, and the numbers its
   // edges would give are refused rather than printed.
   ASSERT_EQ(run("render " + kScene + " --size 96 --spp 1 -o " + path("field.png")).code, 0);
