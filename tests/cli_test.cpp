@@ -326,6 +326,12 @@ TEST_F(CliTest, RingsJsonReportsTheSummary) {
   EXPECT_NE(small.out.find("--size: at 96 px its closest rings are 0.859952 px apart and merge (an image of at least 224 px"),
             std::string::npos) << small.out;
   EXPECT_FALSE(fs::exists(path("small.png")));
+  // At 1 spp a ring thinner than a pixel falls between the samples: the ideal rig's rings are
+  // circles, so the hint is more samples, not --per-azimuth.
+  const CommandResult sparse = run("rings -o " + path("sparse.png") + " --size 230 --spp 1");
+  EXPECT_EQ(sparse.code, 2);
+  EXPECT_NE(sparse.out.find("(a ring thinner than a pixel can fall between few samples: render with --spp 16)"), std::string::npos)
+      << sparse.out;
   // An image of another scene has no rings to measure: its sidecar says so, and the numbers its
   // edges would give are refused rather than printed.
   ASSERT_EQ(run("render " + kScene + " --size 96 --spp 1 -o " + path("field.png")).code, 0);
