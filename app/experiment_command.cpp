@@ -187,13 +187,15 @@ ConvergenceResults readConvergence(const std::string& folder) {
   return convergenceFromJson(json, file);
 }
 
-// The study's section for the document; with a document, the study's figure is copied beside it.
-std::string convergenceSection(const ConvergenceResults& r, const std::string& folder, const std::string& doc) {
-  if (doc.empty() || entryInside(folder, "figures/convergence.svg") != EntryKind::File) return convergenceMarkdown(r, "");
+// The study's section for the documents; the study's figure is copied beside each that shows it
+// (the run's own texture-realism.md in `out`, and --doc's).
+std::string convergenceSection(const ConvergenceResults& r, const std::string& folder, const std::string& out, const std::string& doc) {
+  if (entryInside(folder, "figures/convergence.svg") != EntryKind::File) return convergenceMarkdown(r, "");
   const std::string svg = readFileInside(folder, "figures/convergence.svg", 4 << 20);
   if (svg.find("<svg") == std::string::npos)
     throw InputError(showPath(folder + "/figures/convergence.svg") + ": not the study's SVG figure");
-  writeFigureBeside(doc, "realistic_convergence.svg", svg);
+  writeFigureBeside((std::filesystem::path(out) / "texture-realism.md").string(), "realistic_convergence.svg", svg);
+  if (!doc.empty()) writeFigureBeside(doc, "realistic_convergence.svg", svg);
   return convergenceMarkdown(r, "figures/realistic_convergence.svg");
 }
 
@@ -290,7 +292,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.doc.empty()) command += " --doc " + a.doc;
   if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
   for (const std::string& file : a.testCameras) command += " --test-camera " + shellQuote(file);
-  const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.doc) : keptConvergenceSection(a.doc);
+  const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.out, a.doc) : keptConvergenceSection(a.doc);
   const std::string markdown = textureRealismMarkdown(results, options, command, section);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);
   if (!a.doc.empty()) {

@@ -447,6 +447,7 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_NE(doc.str().find("## Are the realistic frames converged?"), std::string::npos);
   EXPECT_NE(doc.str().find("](figures/realistic_convergence.svg)"), std::string::npos);
   EXPECT_TRUE(fs::exists(path("figures/realistic_convergence.svg")));
+  EXPECT_TRUE(fs::exists(path("run/figures/realistic_convergence.svg")));  // beside the run's own texture-realism.md too
   EXPECT_NE(doc.str().find("## What changed with the new realistic frames"), std::string::npos);
   // The recording section: the table per test camera, the ablation, the ranges beside the test
   // cameras' values (each file named), the strip of four 240-px panels beside the document.
