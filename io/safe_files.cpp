@@ -258,26 +258,22 @@ void SafeFolder::writeFile(const std::string& relative, std::string_view bytes, 
   writeFileFrom(relative, onePiece(bytes), durability);
 }
 
-void SafeFolder::stageFile(AtomicFileGroup& group, const std::string& relative, std::string_view bytes) const {
-  const std::vector<std::string> parts = partsOf(relative);
-  FileDescriptor folder;
+FileDescriptor SafeFolder::folderOfNewFile(const std::vector<std::string>& parts) const {
   try {
-    folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
+    return openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
   } catch (const Problem& p) {
     rethrow(root_, p);
   }
-  group.stageAt(std::move(folder), parts.back(), showPath(fullPath(root_, relative)), onePiece(bytes));
+}
+
+void SafeFolder::stageFile(AtomicFileGroup& group, const std::string& relative, std::string_view bytes) const {
+  const std::vector<std::string> parts = partsOf(relative);
+  group.stageAt(folderOfNewFile(parts), parts.back(), showPath(fullPath(root_, relative)), onePiece(bytes));
 }
 
 void SafeFolder::writeFileFrom(const std::string& relative, const PieceSource& next, Durability durability) const {
   const std::vector<std::string> parts = partsOf(relative);
-  FileDescriptor folder;
-  try {
-    folder = openFolders(root_, fd_.get(), parts, parts.size() - 1, true);
-  } catch (const Problem& p) {
-    rethrow(root_, p);
-  }
-  writeStreamAtomicallyAt(folder.get(), parts.back(), showPath(fullPath(root_, relative)), next, durability);
+  writeStreamAtomicallyAt(folderOfNewFile(parts).get(), parts.back(), showPath(fullPath(root_, relative)), next, durability);
 }
 
 bool SafeFolder::removeFile(const std::string& relative) const {

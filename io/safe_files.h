@@ -53,6 +53,9 @@ class SafeFolder {
   bool tryClaim(bool shared) const;
 
  private:
+  // The folder a new file `parts` goes into, made as needed, reached without following links.
+  FileDescriptor folderOfNewFile(const std::vector<std::string>& parts) const;
+
   std::string root_;
   FileDescriptor fd_;
 };
