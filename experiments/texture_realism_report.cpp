@@ -48,6 +48,24 @@ ImageRGBA drawDetections(const ImageRGBA& image, const FrameEvaluation& frame) {
   return out;
 }
 
+nlohmann::json textureRealismSettingsJson(const TextureRealismOptions& o) {
+  nlohmann::json testCameras = nlohmann::json::array();
+  for (const TextureRealismOptions::TestCamera& camera : o.testCameras) testCameras.push_back(camera.file);
+  return {{"size", o.size},
+          {"spp", o.spp},
+          {"path_spp", o.pathSpp},
+          {"test_stride", o.testStride},
+          {"train_frames", o.trainFrames},
+          {"bins", o.bins},
+          {"theta", o.detector.theta},
+          {"median_px", o.detector.medianPx},
+          {"min_blob_area", o.detector.minBlobArea},
+          {"recording_draws", o.recordingDraws},
+          {"ablation", o.ablation},
+          {"test_cameras", testCameras},
+          {"seed", o.seed}};
+}
+
 nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
   nlohmann::json j;
   j["conditions"] = nlohmann::json::object();
@@ -213,7 +231,9 @@ void writeTextureRealismReport(const ReportData& data, const TextureRealismResul
     writeImageAtomic((out / ("frames/" + c.outcome.key() + ".png")).string(),
                      drawDetections(c.exampleImage, c.frames[c.exampleFrame]));
   if (results.comparison.width > 0) writeImageAtomic((out / "figures" / kRecordingFigure).string(), results.comparison);
-  writeTextAtomically((out / "results.json").string(), textureRealismResultsJson(results).dump(2) + "\n");
+  nlohmann::json json = textureRealismResultsJson(results);
+  json["settings"] = textureRealismSettingsJson(*data.options);
+  writeTextAtomically((out / "results.json").string(), json.dump(2) + "\n");
   bool figures = false;
   if (!plotScript.empty()) {
     runPlotScript(plotScript, out.string());

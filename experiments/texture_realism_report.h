@@ -62,6 +62,9 @@ ImageRGBA drawDetections(const ImageRGBA& image, const FrameEvaluation& frame);
 void writeTextureRealismReport(const ReportData& data, const TextureRealismResults& results, const std::string& plotScript);
 
 nlohmann::json textureRealismResultsJson(const TextureRealismResults& results);
+// The run's operating point, for results.json's "settings": sizes, samples, the detector's Θ, bins,
+// median and blob area, the recording draws, the test cameras' files, the seed.
+nlohmann::json textureRealismSettingsJson(const TextureRealismOptions& options);
 
 // The section on training through drawn recording cameras (texture_realism_recording_report.cpp);
 // `figure`: the comparison strip's path relative to the document, or "" for none.

@@ -120,6 +120,14 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   ASSERT_EQ(r.code, 0) << r.out;
   std::ifstream in(path("run/results.json"));
   const json results = json::parse(in);
+  // The run's operating point: the quick run's sizes, the default detector, the test cameras given.
+  const json& settings = results["settings"];
+  EXPECT_EQ(settings["theta"], 1.0);
+  EXPECT_EQ(settings["bins"], 32);
+  EXPECT_EQ(settings["ablation"], true);
+  EXPECT_EQ(settings["test_cameras"], json({OMNICAM_SOURCE_DIR "/examples/recording/cool_noisy.json",
+                                            OMNICAM_SOURCE_DIR "/examples/recording/sharp_jpeg95.json"}));
+  EXPECT_EQ(settings["test_stride"], 25);  // --quick: every 25th pose
   for (const char* condition : {"plain_to_plain", "plain_to_textured", "plain_to_realistic", "random_textures_to_realistic",
                                 "path_to_realistic", "realistic_to_path"}) {
     ASSERT_TRUE(results["conditions"].contains(condition)) << condition;
