@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "data_files.h"
 #include "errors.h"
+#include "experiment_folder.h"
 #include "hall_arena.h"
 #include "json_text.h"
 #include "markup.h"
@@ -222,6 +223,7 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"results.json", "calibration-study.md"});
+  earlierExperimentResults(a.out, kCalibrationStudy);
   CalibrationStudyOptions options = a.quick ? CalibrationStudyOptions::quick() : CalibrationStudyOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -255,6 +257,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"results.json", "report.html", "texture-realism.md"});
+  earlierExperimentResults(a.out, kTextureRealismStudy);
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
   options.detector.theta = a.theta;

@@ -55,13 +55,6 @@ SettingNames settingNames(const DatasetSpec& spec) { return {showPath(spec.file)
 
 namespace {
 
-RobotPose readPose(const json& value, const std::string& file, const std::string& where) {
-  const Vec3 p = jsonVec3(value, file, where);
-  RobotPose pose{p.x(), p.y(), p.z()};
-  checkPose(pose, showPath(file) + ": " + where);
-  return pose;
-}
-
 // [x_min, y_min, x_max, y_max] within the world's bounds, not empty.
 void readRegion(JsonFields& r, RandomPoses& rp) {
   const json& region = r.raw("region");
@@ -143,7 +136,7 @@ void readPoses(JsonFields poses, DatasetSpec& spec) {
     if (!list.is_array() || list.empty()) poses.fail("list", "must be a non-empty array of [x, y, yaw_deg]");
     checkFrameCount(spec, list.size(), poses.path("list"));
     for (size_t i = 0; i < list.size(); ++i)
-      spec.poseList.push_back(readPose(list[i], spec.file, poses.path("list[" + std::to_string(i) + "]")));
+      spec.poseList.push_back(poseFromJson(list[i], spec.file, poses.path("list[" + std::to_string(i) + "]")));
   } else {
     spec.poseSource = PoseSource::Random;
     readRandomPoses(poses.object("random"), spec.random);

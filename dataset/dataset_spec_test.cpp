@@ -60,6 +60,11 @@ TEST(DatasetSpec, ErrorsNameTheField) {
               std::string::npos) << reserved;
   EXPECT_EQ(errorOf(spec("", R"({"path": "a", "list": [[0, 0, 0]]})")),
             "spec.json: poses: give exactly one of \"path\", \"list\" or \"random\"");
+  // A listed pose is read as a scene's path pose or --pose is: the yaw within ±1e6 degrees.
+  EXPECT_EQ(errorOf(spec("", R"({"list": [[0, 0, 20000]]})")), "");
+  EXPECT_EQ(errorOf(spec("", R"({"list": [[0, 0, 2e6]]})")),
+            "spec.json: poses.list[0][2]: the yaw must be a number within ±1e+06 degrees (got 2e+06)");
+  EXPECT_EQ(errorOf(spec("", R"({"list": [[0, 0]]})")), "spec.json: poses.list[0]: must be [x, y, yaw_deg]");
   EXPECT_EQ(errorOf(spec("", R"({"random": {"count": 5, "seed": 1, "region": [1, 0, 0, 1]}})")),
             "spec.json: poses.random.region: needs x_min < x_max and y_min < y_max");
   EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "engine": "povray")")),

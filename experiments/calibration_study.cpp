@@ -428,7 +428,7 @@ json calibrationStudyJson(const CalibrationStudyResults& r, const CalibrationStu
                                 {"calibrated_noisy", rig.ekf.calibratedCm}, {"calibrated_exact", rig.ekf.calibratedExactCm},
                                 {"measurements", rig.ekf.measurements}}}});
   }
-  return {{"study", "calibration"},
+  return {{"study", kCalibrationStudy},
           {"image_size", o.size},
           {"spp", o.spp},
           {"views", o.views},

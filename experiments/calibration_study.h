@@ -19,6 +19,9 @@
 
 namespace omnicam {
 
+// results.json's "study": which experiment's folder this is (experiment_folder.h).
+inline constexpr const char* kCalibrationStudy = "calibration";
+
 struct CalibrationStudyOptions {
   std::string outDir;
   std::string fieldScene;  // the RoboCup field: its beacons and thesis-loop for the EKF

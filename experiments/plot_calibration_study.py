@@ -14,6 +14,7 @@ matplotlib.use("Agg")
 matplotlib.rcParams["svg.fonttype"] = "none"  # text as text: a smaller SVG
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from plot_files import save_figure  # noqa: E402
 
 HEADLINE_DISTANCE_M = 0.5
 SOURCES = [("exact", "exact corners"), ("detected_noisy", "recorded detections")]
@@ -62,7 +63,7 @@ def error_figure(results, out):
     handles, labels = axes[0][0].get_legend_handles_labels()
     fig.legend(handles, labels, fontsize=7, loc="lower center", ncol=3)
     fig.tight_layout(rect=(0, 0.2, 1, 1))
-    fig.savefig(os.path.join(out, "figures", "calibration_study_error.svg"))
+    save_figure(fig, os.path.join(out, "figures"), "calibration_study_error.svg")
 
 
 def residual_figure(results, out):
@@ -85,7 +86,7 @@ def residual_figure(results, out):
         image = ax.imshow(np.ma.masked_invalid(data), cmap="magma", vmin=0.0, vmax=3.0)
         ax.set_title(title, fontsize=8)
     fig.colorbar(image, ax=axes.ravel().tolist(), shrink=0.8, label="px at 0.5 m")
-    fig.savefig(os.path.join(out, "figures", "calibration_study_residuals.png"), dpi=72)
+    save_figure(fig, os.path.join(out, "figures"), "calibration_study_residuals.png", dpi=72)
 
 
 def main():

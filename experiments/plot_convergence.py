@@ -10,26 +10,15 @@ mean over the poses; dots: each pose), with the 35 dB target.
 import csv
 import os
 import sys
-import tempfile
 from collections import defaultdict
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from plot_files import save_figure  # noqa: E402
 
 
-def save(fig, figures, name):
-    """Writes FIGURES/NAME through a fresh temporary file renamed over it: a link or file planted
-    under the name is replaced, never written through."""
-    fd, temporary = tempfile.mkstemp(dir=figures, prefix="." + name + ".tmp-", suffix=".svg")
-    os.close(fd)
-    try:
-        fig.savefig(temporary, format="svg")
-        os.replace(temporary, os.path.join(figures, name))
-    except BaseException:
-        os.unlink(temporary)
-        raise
 
 
 def main():
@@ -61,7 +50,7 @@ def main():
     left.legend()
     fig.suptitle("Realistic frames: Blender renders of the textured hall against their converged reference")
     fig.tight_layout()
-    save(fig, os.path.join(root, "figures"), "convergence.svg")
+    save_figure(fig, os.path.join(root, "figures"), "convergence.svg")
 
 
 if __name__ == "__main__":

@@ -15,26 +15,15 @@ import json
 import math
 import os
 import sys
-import tempfile
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+from plot_files import save_figure  # noqa: E402
 
 
-def save(fig, figures, name, dpi):
-    """Writes FIGURES/NAME through a fresh temporary file renamed over it: a link or file planted
-    under the name is replaced, never written through."""
-    fd, temporary = tempfile.mkstemp(dir=figures, prefix="." + name + ".tmp-", suffix=".png")
-    os.close(fd)
-    try:
-        fig.savefig(temporary, dpi=dpi)
-        os.replace(temporary, os.path.join(figures, name))
-    except BaseException:
-        os.unlink(temporary)
-        raise
 
 
 def read_csv(path):
@@ -64,7 +53,7 @@ def detections_per_frame(data, figures):
     axes[-1, 0].set_xlabel("thesis-loop frame")
     axes[0, 0].legend(fontsize=7, loc="upper right")
     fig.tight_layout()
-    save(fig, figures, "detections_per_frame.png", 110)
+    save_figure(fig, figures, "detections_per_frame.png", dpi=110)
     plt.close(fig)
 
 
@@ -97,7 +86,7 @@ def histograms(data, figures):
             ax.tick_params(labelsize=6)
             ax.set_title(f"{name}: {colour} (rings positive, dots negative)", fontsize=8)
     fig.tight_layout()
-    save(fig, figures, "histograms.png", 100)
+    save_figure(fig, figures, "histograms.png", dpi=100)
     plt.close(fig)
 
 
@@ -124,12 +113,12 @@ def ekf(data, figures):
         ax.set_ylabel("y (m)")
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()
-    save(fig, figures, "ekf_path.png", 110)
+    save_figure(fig, figures, "ekf_path.png", dpi=110)
     axes2.set_xlabel("frame")
     axes2.set_ylabel("position σ (cm), sqrt of mean(P_xx, P_yy)")
     axes2.legend(fontsize=7)
     fig2.tight_layout()
-    save(fig2, figures, "ekf_covariance.png", 110)
+    save_figure(fig2, figures, "ekf_covariance.png", dpi=110)
     plt.close(fig)
     plt.close(fig2)
 

@@ -40,6 +40,7 @@ TextureRealismOptions TextureRealismOptions::quick() {
   o.randomHalls = 2;
   o.pathSpp = 4;
   o.recordingDraws = 2;
+  o.reduced = true;
   return o;
 }
 

@@ -6,15 +6,18 @@
 #include <filesystem>
 #include <iomanip>
 #include <opencv2/imgproc.hpp>
+#include <set>
 #include <sstream>
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "experiment_folder.h"
 #include "external_process.h"
 #include "markdown_html.h"
 #include "markup.h"
 #include "texture_realism_tables.h"
 #include "number_format.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -68,6 +71,7 @@ nlohmann::json textureRealismSettingsJson(const TextureRealismOptions& o) {
 
 nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
   nlohmann::json j;
+  j["study"] = kTextureRealismStudy;
   j["conditions"] = nlohmann::json::object();
   for (const ConditionOutcome& c : results.conditions)
     j["conditions"][c.key()] = {{"frames", c.frames},
@@ -222,14 +226,31 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
   writeTextAtomically((out / "report.html").string(), html.str());
 }
 
+// An earlier run into the folder may have had conditions this one lacks (another set of test
+// cameras, no ablation): their example frames go, so the folder shows this run only. Only the
+// names that run wrote are removed, never a link.
+void removeFramesOfOtherConditions(const std::string& out, const nlohmann::json& earlier, const TextureRealismResults& results) {
+  if (!earlier.contains("conditions") || !earlier["conditions"].is_object()) return;
+  std::set<std::string> now;
+  for (const ConditionOutcome& c : results.conditions) now.insert(c.key());
+  for (const auto& [key, value] : earlier["conditions"].items()) {
+    const bool ours = !key.empty() && std::all_of(key.begin(), key.end(), [](char ch) {
+      return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_';
+    });
+    if (ours && !now.count(key)) removeFileInside(out, "frames/" + key + ".png");
+  }
+}
+
 }  // namespace
 
 void writeTextureRealismReport(const ReportData& data, const TextureRealismResults& results, const std::string& plotScript) {
   const fs::path out(data.options->outDir);
+  const std::optional<nlohmann::json> earlier = earlierExperimentResults(out.string(), kTextureRealismStudy);
   writeData(data, out);
   for (const ConditionReport& c : data.conditions)
     writeImageAtomic((out / ("frames/" + c.outcome.key() + ".png")).string(),
                      drawDetections(c.exampleImage, c.frames[c.exampleFrame]));
+  if (earlier) removeFramesOfOtherConditions(out.string(), *earlier, results);
   if (results.comparison.width > 0) writeImageAtomic((out / "figures" / kRecordingFigure).string(), results.comparison);
   nlohmann::json json = textureRealismResultsJson(results);
   json["settings"] = textureRealismSettingsJson(*data.options);
@@ -315,7 +336,7 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
         "px) of its projected band boundary. False positives: colour blobs lying on no band of their colour, "
         "plus identifications of a beacon that is not there.\n\n"
      << "| train → test | thesis setting | thesis TP | thesis FP | thesis px | thesis TP/FP | TP | FP | "
-        "wrong beacons | FP blobs on walls/ceiling | missed | px | range cm | bearing ° | TP/FP |\n"
+        "wrong beacons | FP blobs on the hall (walls, floor, ceiling) | missed | px | range cm | bearing ° | TP/FP |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ThesisRow& row : thesis) {
     const ConditionOutcome* c = findCondition(results, row.condition);
@@ -371,7 +392,7 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
           "82 TP, 1208 FP): "
        << verdict(pt->falsePositiveBlobsOnHall >= 10 * std::max(1, pp->falsePositiveBlobsOnHall) &&
                   pt->truePositives * 10 >= 7 * pp->truePositives)
-       << " — false-positive blobs on the walls and ceiling " << pp->falsePositiveBlobsOnHall << " → "
+       << " — false-positive blobs on the hall's walls, floor and ceiling " << pp->falsePositiveBlobsOnHall << " → "
        << pt->falsePositiveBlobsOnHall << ", " << pt->truePositives << " TP (plain: " << pp->truePositives << ").\n";
   }
   for (const EkfOutcome& e : results.ekf)
@@ -412,7 +433,13 @@ void writeFindings(std::ostringstream& md, const TextureRealismResults& results)
 }
 
 // The realistic frames' history: the numbers before and after their convergence fixes.
-void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& results) {
+void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& results, const TextureRealismOptions& o) {
+  if (o.reduced) {
+    md << "\n## What changed with the new realistic frames\n\n"
+          "The earlier runs' numbers, which this section sets beside the run's own, are of full runs; a reduced run "
+          "(`--quick`: fewer poses and samples) is not comparable with them, so they are left out here.\n";
+    return;
+  }
   const ConditionOutcome* pp = findCondition(results, "plain_to_plain");
   const ConditionOutcome* pr = findCondition(results, "plain_to_realistic");
   md << "\n## What changed with the new realistic frames\n\n"
@@ -454,13 +481,13 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
   writeSetupAndDetections(md, results, o, command);
   writeFalsePositivesAndEkf(md, results);
   writeFindings(md, results);
-  writeRealisticChanges(md, results);
+  writeRealisticChanges(md, results, o);
   md << recordingSectionMarkdown(results, o, results.comparison.width > 0 ? std::string("figures/") + kRecordingFigure : "");
   if (!convergence.empty()) md << "\n" << convergence;
   md << "\nWhere the numbers differ from the thesis: its counts come from hand labels on its own arena and ISLA's "
         "real camera; ours from projection on our hall, and our realistic frames are rendered, so only the "
         "direction of each effect is comparable, not the counts.\n\n"
-     << "Full run: " << fixedDecimals(results.seconds / 60.0, 1) << " min on this machine ("
+     << (o.reduced ? "Reduced run (`--quick`): " : "Full run: ") << fixedDecimals(results.seconds / 60.0, 1) << " min on this machine ("
      << results.cyclesFramesRendered << " Cycles frames rendered, " << results.cyclesFramesReused
      << " reused from an earlier run into the same folder). Figures and the per-frame data "
         "are in the run's folder (`report.html`, `figures/`, `data/`).\n";

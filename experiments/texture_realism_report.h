@@ -61,6 +61,8 @@ ImageRGBA drawDetections(const ImageRGBA& image, const FrameEvaluation& frame);
 
 void writeTextureRealismReport(const ReportData& data, const TextureRealismResults& results, const std::string& plotScript);
 
+// results.json's "study": which experiment's folder this is (experiment_folder.h).
+inline constexpr const char* kTextureRealismStudy = "texture-realism";
 nlohmann::json textureRealismResultsJson(const TextureRealismResults& results);
 // The run's operating point, for results.json's "settings": sizes, samples, the detector's Θ, bins,
 // median and blob area, the recording draws, the test cameras' files, the seed.

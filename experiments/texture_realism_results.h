@@ -58,6 +58,9 @@ struct TextureRealismOptions {
   uint64_t seed = 2008;
   double matchRadiusPx = 8.0;  // at 360 px; scaled with the image size
   double blenderTimeoutSeconds = 3600.0;
+  // A reduced run (quick()): fewer frames and samples than the full run whose numbers the
+  // report quotes from earlier runs, so the report leaves those comparisons out.
+  bool reduced = false;
 
   static TextureRealismOptions quick();  // a few frames, small images, low spp: for tests
 };

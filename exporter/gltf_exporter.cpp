@@ -360,10 +360,7 @@ void addLandmarks(GltfBuilder& b, const Scene& scene) {
 // pinhole as mounted (physical_camera.h), modelled once for every exporter.
 void addMirrorRig(GltfBuilder& b, const GltfExportOptions& options, const MirrorRig& mirror) {
   const Pinhole pinhole = pinholeOf(mirror);
-  const auto* sphere = std::get_if<SphereMirror>(&mirror.shape);  // checkGltfMirror: else the hyperboloid
-  const MirrorMesh mirrorMesh =
-      sphere ? buildSphereMirrorMesh(sphere->radius, sphere->capAngleDeg, options.mirrorDeviation)
-             : buildMirrorMesh(mirror.hyperboloid().mirror(), mirror.idealCamera().rimTheta(), options.mirrorDeviation);
+  const MirrorMesh mirrorMesh = buildMirrorMesh(mirror, options.mirrorDeviation);  // checkGltfMirror: a certified shape
   const int rig = addRigNode(b, options, "viewpoint: origin at the mirror's design point (the hyperboloid's F', the sphere's centre), robot axes (x forward, y left, z up)");
   const int mirrorMaterial = b.material(kGltfMirrorNode, Vec3f::Ones(), -1, 1.0, 0.0, {{"omnicam", "perfect mirror"}});
   b.addChild(rig, b.node(kGltfMirrorNode, Rigid::Identity(),

@@ -104,10 +104,10 @@ struct ThesisMesh {
   }
 };
 
-ThesisMesh buildThesisMesh(const HyperbolicMirror& m, double rimTheta, int sectors, int rings) {
-  const Vec3 rim = *m.pointAlong(Vec3(std::sin(rimTheta), 0.0, -std::cos(rimTheta)));
+ThesisMesh buildThesisMesh(const OmniCamera& camera, int sectors, int rings) {
+  const Vec3& rim = camera.rimPoint();
   ThesisMesh mesh{sectors, rings, {}};
-  auto z = [&](double r) { return m.a() * std::sqrt(1.0 + r * r / m.b2()) - m.c() / 2.0; };
+  auto z = [&camera](double r) { return camera.mirror().heightAt(r, 0.0); };
   mesh.vertices.push_back({0.0, 0.0, z(0.0)});
   for (int ring = 1; ring <= rings; ++ring) {
     const double r = rim.x() * ring / rings;
@@ -216,9 +216,8 @@ std::shared_ptr<const CubeMapRenderer::Lookup> CubeMapRenderer::lookup(const Ren
   L->padded = o.faceSize + 2;
   const OmniCamera camera = r.camera();
   const Rigid viewpointFromCamera = unifiedCameraFromViewpoint().inverse();
-  const HyperbolicMirror mirror = r.mirrorRig().hyperboloid().mirror();  // r.camera() above: the ideal hyperboloid rig
   ThesisMesh mesh;
-  if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(mirror, camera.rimTheta(), sectors, rings);
+  if (o.mode == OmniMode::ThesisMesh) mesh = buildThesisMesh(camera, sectors, rings);
   const Pinhole pinhole = pinholeOf(r.mirrorRig());  // the physical camera, modelled once (physical_camera.h)
   std::vector<char> used(static_cast<size_t>(6) * L->padded * L->padded, 0);
 

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <memory>
+#include <variant>
+
+#include "errors.h"
+#include "overloaded.h"
 
 namespace omnicam {
 
@@ -78,19 +83,24 @@ MirrorMesh buildRevolutionMesh(const Profile& profile, double maxDeviation) {
 
 }  // namespace
 
-MirrorMesh buildMirrorMesh(const HyperbolicMirror& m, double rimTheta, double maxDeviation) {
-  const Vec3 rim = *m.pointAlong(Vec3(std::sin(rimTheta), 0.0, -std::cos(rimTheta)));
-  // The profile z(r) = a·sqrt(1 + r²/b²) − c/2 is most curved at the vertex (a/b²).
-  const Profile profile{[&m](double r) { return m.a() * std::sqrt(1.0 + r * r / m.b2()) - m.c() / 2.0; },
-                        m.a() / m.b2(), rim.x(), rim.z(), [&m](const Vec3& p) { return m.normalAt(p); }};
-  return buildRevolutionMesh(profile, maxDeviation);
-}
-
-MirrorMesh buildSphereMirrorMesh(double radius, double capAngleDeg, double maxDeviation) {
-  const double cap = radians(capAngleDeg);
-  // Normals face outward, toward the camera below.
-  const Profile profile{[radius](double r) { return -std::sqrt(std::max(0.0, radius * radius - r * r)); }, 1.0 / radius,
-                        radius * std::sin(cap), -radius * std::cos(cap), [](const Vec3& p) { return Vec3(p.normalized()); }};
+MirrorMesh buildMirrorMesh(const MirrorRig& rig, double maxDeviation) {
+  // The profile is most curved at the vertex: the hyperboloid's z(r) = a·sqrt(1 + r²/b²) − c/2
+  // there by a/b², the sphere everywhere by 1/R.
+  const double maxCurvature = std::visit(
+      Overloaded{[](const HyperboloidMirror& h) {
+                   const HyperbolicMirror m = h.mirror();
+                   return m.a() / m.b2();
+                 },
+                 [](const SphereMirror& s) { return 1.0 / s.radius; },
+                 [&rig](const auto&) -> double {
+                   throw InputError(std::string("rig.mirror.shape: a mesh is certified for the hyperboloid and the sphere only (got ") +
+                                    mirrorShapeName(rig.shape) + ")");
+                 }},
+      rig.shape);
+  const std::shared_ptr<const MirrorSurface> surface = mirrorSurfaceOf(rig);
+  const MirrorSurface& s = *surface;
+  const Profile profile{[&s](double r) { return s.heightAt(r, 0.0); }, maxCurvature, s.rimRadius(), s.rimZ(),
+                        [&s](const Vec3& p) { return s.normalAt(p); }};
   return buildRevolutionMesh(profile, maxDeviation);
 }
 

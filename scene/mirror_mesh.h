@@ -12,6 +12,7 @@
 
 #include "geometry.h"
 #include "mirror.h"
+#include "mirror_surface.h"
 #include "rig.h"
 #include "triangulate.h"
 
@@ -27,10 +28,10 @@ struct MirrorMesh {
 // The shapes this file certifies a mesh of (every point within the deviation asked of the
 // surface): what the glTF export, and so Blender, can show.
 inline constexpr MirrorShape kCertifiedMeshShapes[] = {MirrorShape::Hyperboloid, MirrorShape::Sphere};
-MirrorMesh buildMirrorMesh(const HyperbolicMirror& mirror, double rimTheta, double maxDeviation);
-// The sphere's lower cap (mirror_shape.h's SphereMirror, centre at the origin) the same way; its
-// distance to a point is | |p| − R |.
-MirrorMesh buildSphereMirrorMesh(double radius, double capAngleDeg, double maxDeviation);
+// The rig's mirror up to its rim, its profile and normals those of mirror_surface.h (the one
+// definition of each shape). InputError for a shape kCertifiedMeshShapes lacks. The sphere's
+// lower cap (centre at the origin) is at distance | |p| − R | from a point.
+MirrorMesh buildMirrorMesh(const MirrorRig& rig, double maxDeviation);
 
 // Exact Euclidean distance from a point (viewpoint frame) to the mirror's upper sheet, by
 // Newton iteration on the closest point of the profile hyperbola (a surface of revolution

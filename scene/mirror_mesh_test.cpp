@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "errors.h"
 #include "rig.h"
 
 namespace omnicam {
@@ -42,7 +43,7 @@ TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
   const RigSpec rig;
   const HyperbolicMirror m = rig.mirrorRig().hyperboloid().mirror();
   const double bound = 0.5e-6;  // 0.5 µm
-  const MirrorMesh mesh = buildMirrorMesh(m, rig.camera().rimTheta(), bound);
+  const MirrorMesh mesh = buildMirrorMesh(rig.mirrorRig(), bound);
   const double worst = measuredDeviation(mesh, [&m](const Vec3& p) { return mirrorSurfaceDistance(m, p); });
   std::printf("mirror mesh: %zu triangles (%d rings x %d sectors), measured max deviation %.4f um (bound %.2f um)\n",
               mesh.mesh.triangles.size(), mesh.rings, mesh.sectors, worst * 1e6, bound * 1e6);
@@ -65,7 +66,9 @@ TEST(MirrorMesh, MeasuredDeviationIsBelowTheCertifiedBound) {
 // The sphere's cap: its exact distance is | |p| − R |, independent of the builder.
 TEST(MirrorMesh, TheSpheresCapIsCertifiedToo) {
   const double radius = 0.03, bound = 0.5e-6;
-  const MirrorMesh mesh = buildSphereMirrorMesh(radius, 60.0, bound);
+  MirrorRig sphere;
+  sphere.shape = SphereMirror{radius, 60.0, 0.2};
+  const MirrorMesh mesh = buildMirrorMesh(sphere, bound);
   const double worst = measuredDeviation(mesh, [radius](const Vec3& p) { return std::abs(p.norm() - radius); });
   std::printf("sphere mesh: %zu triangles (%d rings x %d sectors), measured max deviation %.4f um (bound %.2f um)\n",
               mesh.mesh.triangles.size(), mesh.rings, mesh.sectors, worst * 1e6, bound * 1e6);
@@ -79,6 +82,18 @@ TEST(MirrorMesh, TheSpheresCapIsCertifiedToo) {
   const Vec3 face = (mesh.mesh.vertices[t[1]] - mesh.mesh.vertices[t[0]]).cross(mesh.mesh.vertices[t[2]] - mesh.mesh.vertices[t[0]]);
   EXPECT_GT(face.dot(mesh.normals[t[0]]), 0.0);
   EXPECT_NEAR(mesh.mesh.vertices.back().z(), -radius * std::cos(radians(60.0)), 1e-15);
+}
+
+// A shape without a certified mesh is refused in the library's terms, not meshed by a wrong profile.
+TEST(MirrorMesh, OnlyTheCertifiedShapes) {
+  MirrorRig cone;
+  cone.shape = ConeMirror{45.0, 0.03, 0.12};
+  try {
+    buildMirrorMesh(cone, 0.5e-6);
+    ADD_FAILURE() << "a cone was meshed";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "rig.mirror.shape: a mesh is certified for the hyperboloid and the sphere only (got cone)");
+  }
 }
 
 }  // namespace

@@ -74,16 +74,6 @@ void checkName(JsonFields& fields, const std::string& key, const std::string& na
   if (const std::string problem = nameProblem(name); !problem.empty()) fields.fail(key, problem);
 }
 
-// [x, y, yaw_deg]: x and y world coordinates, the yaw within ±kMaxYawDeg as --pose takes it.
-RobotPose readPose(const json& v, const std::string& file, const std::string& path) {
-  if (!v.is_array() || v.size() != 3) throw InputError(showPath(file) + ": " + path + ": must be [x, y, yaw_deg]");
-  const json place = {v[0], v[1], 0.0};
-  const Vec3 p = jsonVec3(place, file, path);
-  if (!v[2].is_number() || !(std::abs(v[2].get<double>()) <= limits::kMaxYawDeg))
-    throw InputError(showPath(file) + ": " + path + "[2]: the yaw must be a number within ±" + shortNumber(limits::kMaxYawDeg) +
-                     " degrees (got " + (v[2].is_number() ? roundTrip(v[2].get<double>()) : jsonTypeName(v[2])) + ")");
-  return {p.x(), p.y(), v[2].get<double>()};
-}
 
 // An angle about an axis, taken modulo 360°: within ±kMaxYawDeg, as a robot's yaw.
 const JsonFields::Range kYawRange{-limits::kMaxYawDeg, limits::kMaxYawDeg, false, "degrees"};
@@ -246,7 +236,7 @@ CameraPath readPath(JsonFields p, const std::string& file) {
     const json& poses = p.raw("poses");
     if (!poses.is_array() || poses.empty()) p.fail("poses", "must be a non-empty array");
     for (size_t i = 0; i < poses.size(); ++i)
-      path.poses.push_back(readPose(poses[i], file, p.path(indexed("poses", i))));
+      path.poses.push_back(poseFromJson(poses[i], file, p.path(indexed("poses", i))));
   } else {
     const json& wps = p.raw("waypoints");
     if (!wps.is_array() || wps.size() < 2) p.fail("waypoints", "must list at least 2 [x, y] points");
@@ -425,6 +415,17 @@ void readPaths(JsonFields& top, const std::string& file, Scene& scene) {
 
 }  // namespace
 
+// [x, y, yaw_deg]: x and y world coordinates, the yaw within ±kMaxYawDeg as --pose takes it.
+RobotPose poseFromJson(const json& v, const std::string& file, const std::string& path) {
+  if (!v.is_array() || v.size() != 3) throw InputError(showPath(file) + ": " + path + ": must be [x, y, yaw_deg]");
+  const json place = {v[0], v[1], 0.0};
+  const Vec3 p = jsonVec3(place, file, path);
+  if (!v[2].is_number() || !(std::abs(v[2].get<double>()) <= limits::kMaxYawDeg))
+    throw InputError(showPath(file) + ": " + path + "[2]: the yaw must be a number within ±" + shortNumber(limits::kMaxYawDeg) +
+                     " degrees (got " + (v[2].is_number() ? roundTrip(v[2].get<double>()) : jsonTypeName(v[2])) + ")");
+  return {p.x(), p.y(), v[2].get<double>()};
+}
+
 const std::string& semanticClassOf(const Scene& scene, const SceneObject& object) {
   if (!object.semanticClass.empty()) return object.semanticClass;
   return scene.materials.at(static_cast<size_t>(object.material)).semanticClass;
@@ -475,7 +476,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   scene.background = top.colour("background", scene.background, 1e6);
   if (top.has("environment")) scene.environment = readEnvironment(top.object("environment"), ctx);
   scene.rig = top.has("rig") ? readRig(top.object("rig")) : RigSpec{};
-  if (top.has("start_pose")) scene.startPose = readPose(top.raw("start_pose"), file, "start_pose");
+  if (top.has("start_pose")) scene.startPose = poseFromJson(top.raw("start_pose"), file, "start_pose");
   readMaterials(top, ctx, scene);
   TakenNames names;
   for (const Material& m : scene.materials) names.materials.insert(m.name);

@@ -32,6 +32,9 @@ Scene loadSceneFromText(const std::string& text, const std::string& path, const 
 // A rig object (the scene's "rig", a sidecar's "rig", a --rig file), validated against the
 // documented ranges (input_limits.h). `where` is its field path for errors ("rig").
 RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const std::string& where);
+// A robot pose [x, y, yaw_deg] as every input file writes it (scene paths, start_pose, dataset
+// pose lists): x and y within the world's bounds, the yaw within ±kMaxYawDeg as --pose takes it.
+RobotPose poseFromJson(const nlohmann::json& pose, const std::string& file, const std::string& where);
 
 
 }  // namespace omnicam

@@ -13,6 +13,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "folder_snapshot.h"
 #include "image.h"
@@ -115,12 +116,24 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   expectQuickConvergenceStudy(path("convergence"), study.out);
   const std::string testCameras = " --test-camera " OMNICAM_SOURCE_DIR "/examples/recording/cool_noisy.json --test-camera " OMNICAM_SOURCE_DIR
                                   "/examples/recording/sharp_jpeg95.json";
+  // An earlier run into the folder, with a condition this one lacks: its frame goes; a file of the
+  // user's and a name reaching out of frames/ stay.
+  fs::create_directories(path("run/frames"));
+  std::ofstream(path("run/results.json"))
+      << R"({"study": "texture-realism", "conditions": {"an_earlier_condition": {}, "../../escape": {}, "plain_to_plain": {}}})";
+  for (const char* file : {"run/frames/an_earlier_condition.png", "run/frames/my_own.png", "escape.png"})
+    std::ofstream(path(file)) << "bytes";
   const auto r = omnicam("experiment texture-realism --quick -o " + path("run") + " --doc " + path("doc.md") +
                          " --convergence " + path("convergence") + testCameras);
   ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_FALSE(fs::exists(path("run/frames/an_earlier_condition.png")));
+  EXPECT_TRUE(fs::exists(path("run/frames/my_own.png")));
+  EXPECT_TRUE(fs::exists(path("escape.png")));
+  EXPECT_TRUE(fs::exists(path("run/frames/plain_to_plain.png")));
   std::ifstream in(path("run/results.json"));
   const json results = json::parse(in);
   // The run's operating point: the quick run's sizes, the default detector, the test cameras given.
+  EXPECT_EQ(results["study"], "texture-realism");
   const json& settings = results["settings"];
   EXPECT_EQ(settings["theta"], 1.0);
   EXPECT_EQ(settings["bins"], 32);
@@ -457,6 +470,11 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   EXPECT_TRUE(fs::exists(path("figures/realistic_convergence.svg")));
   EXPECT_TRUE(fs::exists(path("run/figures/realistic_convergence.svg")));  // beside the run's own texture-realism.md too
   EXPECT_NE(doc.str().find("## What changed with the new realistic frames"), std::string::npos);
+  // A reduced run says so, and does not set its numbers beside the full runs' of earlier issues.
+  EXPECT_NE(doc.str().find("Reduced run (`--quick`): "), std::string::npos);
+  EXPECT_EQ(doc.str().find("Full run"), std::string::npos);
+  EXPECT_EQ(doc.str().find("| TP before |"), std::string::npos);
+  EXPECT_NE(doc.str().find("| FP blobs on the hall (walls, floor, ceiling) |"), std::string::npos);
   // The recording section: the table per test camera, the ablation, the ranges beside the test
   // cameras' values (each file named), the strip of four 240-px panels beside the document.
   for (const char* part : {"## Frames that transfer: the recording camera in training", "| path + drawn recording cameras |",
@@ -537,6 +555,40 @@ TEST_F(ExperimentCliTest, TheNamesARunEndsWithAreCheckedBeforeItsWork) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("--doc: " + path("d/figures") + " is not a folder"), std::string::npos) << r.out;
   EXPECT_TRUE(test_support::folderSnapshot(dir_) == before);
+}
+
+TEST_F(ExperimentCliTest, AFolderOfAnotherExperimentOrOfForeignResultsIsRefused) {
+  // Both experiments end with results.json: one run into the other's folder would replace it and
+  // mix the two. An older texture-realism run's results (no "study" yet) are known by their conditions.
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"experiment calibration --quick -o " + path("t"), R"({"study": "texture-realism", "conditions": {}})",
+       "holds the results of experiment \"texture-realism\", not calibration: give another folder"},
+      {"experiment calibration --quick -o " + path("t"), R"({"conditions": {}})",
+       "holds the results of experiment \"texture-realism\", not calibration"},
+      {"experiment texture-realism --quick -o " + path("t"), R"({"study": "calibration"})",
+       "holds the results of experiment \"calibration\", not texture-realism"},
+      {"experiment texture-realism --quick -o " + path("t"), R"({"my": "own results"})",
+       "not written by an omnicam experiment (it names no study): give another folder"},
+      {"experiment calibration --quick -o " + path("t"), "my notes, not JSON",
+       "results.json"}};
+  fs::create_directories(path("t"));
+  for (const auto& [command, results, message] : cases) {
+    std::ofstream(path("t/results.json")) << results;
+    const auto before = test_support::folderSnapshot(dir_);
+    const auto r = omnicam(command);
+    EXPECT_EQ(r.code, 2) << command << ": " << r.out;
+    EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+    EXPECT_NE(r.out.find(path("t/results.json") + ": "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    EXPECT_TRUE(test_support::folderSnapshot(dir_) == before) << command;
+  }
+  // A link named results.json is not followed.
+  fs::remove(path("t/results.json"));
+  std::ofstream(path("elsewhere.json")) << R"({"study": "calibration"})";
+  fs::create_symlink(path("elsewhere.json"), path("t/results.json"));
+  const auto r = omnicam("experiment calibration --quick -o " + path("t"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("not a file (a link is not followed)"), std::string::npos) << r.out;
 }
 
 TEST_F(ExperimentCliTest, ConvergenceOptionsAreCheckedBeforeAnythingRuns) {
@@ -641,8 +693,14 @@ TEST_F(ExperimentCliTest, QuickPathConvergenceMeasuresNineFramesAndReusesCyclesF
 // the thesis' nominal model localises worse than the calibrated one. Figures and the document.
 TEST_F(ExperimentCliTest, QuickCalibrationStudyMeasuresHeldOutErrorsAndWritesTheReport) {
   fs::create_directories(path("docs"));
+  // A link planted under a figure's name is replaced, never written through.
+  fs::create_directories(path("cal/figures"));
+  std::ofstream(path("mine.svg")) << "mine";
+  fs::create_symlink(path("mine.svg"), path("cal/figures/calibration_study_error.svg"));
   const auto r = omnicam("experiment calibration --quick -o " + path("cal") + " --doc " + path("docs/calibration-study.md"));
   ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(testing::readFile(path("mine.svg")), "mine");
+  EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(path("cal/figures/calibration_study_error.svg"))));
   // What the folder holds is the run's results: nothing the plotting left (matplotlib's .cache).
   std::set<std::string> entries;
   for (const auto& entry : fs::directory_iterator(path("cal"))) entries.insert(entry.path().filename().string());
