@@ -87,6 +87,13 @@ void prepareProcess(char** argv) {
 // not be written (disk full, file-size limit, permissions) or the machine lacks the memory the
 // work needs (memory_budget.h).
 int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
+  // Every name and path given is recorded in JSON (sidecars, manifests, job files), which holds
+  // UTF-8 only: one that is not is refused here, before anything reads or writes it.
+  for (int k = 1; k < argc; ++k)
+    if (!isValidUtf8(argv[k]))
+      return reportError(quote(argv[k], kEchoedPathChars) +
+                             ": not UTF-8 (omnicam records names and paths in JSON, which holds UTF-8 only): rename it",
+                         2);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -65,9 +65,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   }
   if (!args.junit.empty()) {
     checkOutputFile(args.junit, "--junit");
-    std::error_code ec;
-    if (!args.report.empty() && std::filesystem::weakly_canonical(std::filesystem::absolute(args.junit), ec) ==
-                                    std::filesystem::weakly_canonical(std::filesystem::absolute(args.report), ec))
+    if (!args.report.empty() && namesSameFile(args.junit, args.report))
       throw InputError("--junit: " + showPath(args.junit) + " is the --report file too: give each its own name");
   }
   DatasetCompareOptions options;

@@ -49,7 +49,7 @@ void printShardStates(const std::string& dir, int count) {
     std::printf("  shard %d/%d: %s\n", s.index, count,
                 !s.started ? "not started"
                            : (std::to_string(s.finished) + " of " + std::to_string(s.frames) + " frames" +
-                              (s.complete ? " (complete)" : "")).c_str());
+                              (s.complete ? " (complete)" : s.running ? " (being rendered now on this machine)" : "")).c_str());
 }
 
 void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {

@@ -46,7 +46,7 @@ void writeRingPlots(const std::string& out, const OmniCamera& camera, const std:
   PlotSeries eq32{"thesis Eq. 3.2 with measured h", "#d62728", {}, {}, false};
   PlotSeries eq32Residual = eq32;
   for (int deg = 0; deg <= 135; ++deg) {
-    const double t = radians(deg), e = camera.radiusOfTheta(t), q = h * std::sin(t) / (1.0 + std::cos(t));
+    const double t = radians(deg), e = camera.radiusOfTheta(t), q = thesisEq32Radius(h, t);
     exact.x.push_back(deg), exact.y.push_back(e);
     eq32.x.push_back(deg), eq32.y.push_back(q);
     eq32Residual.x.push_back(deg), eq32Residual.y.push_back(q - e);

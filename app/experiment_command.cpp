@@ -87,7 +87,7 @@ void checkFinalFiles(const ExperimentArgs& a, const std::vector<std::string>& fi
     for (const std::string& file : files) checkOutputFile((fs::path(a.out) / file).string(), "-o");
   if (a.doc.empty()) return;
   checkOutputFile(a.doc, "--doc");
-  if (fs::weakly_canonical(fs::absolute(a.doc), ec) == fs::weakly_canonical(fs::absolute(a.out), ec))
+  if (namesSameFile(a.doc, a.out))
     throw InputError("--doc: " + showPath(a.doc) + " is the -o folder: give the document a file name");
   const fs::path docFolder = fs::path(a.doc).parent_path();
   const EntryKind figures = entryInside(docFolder.empty() ? "." : docFolder.string(), "figures");
@@ -161,7 +161,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   progress.finish();
   std::string command = "omnicam experiment path-convergence -o DIR";
   if (a.quick) command += " --quick";
-  if (!a.doc.empty()) command += " --doc " + a.doc;
+  if (!a.doc.empty()) command += " --doc " + shellPath(a.doc);
   const std::string markdown = pathConvergenceMarkdown(r, command);
   writeTextAtomically(a.out + "/path-convergence.md", markdown);
   if (!a.doc.empty()) replaceGeneratedSection(a.doc, markdown);
@@ -234,7 +234,7 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
       std::ref(progress));
   progress.finish();
   std::string command = std::string("omnicam experiment calibration -o DIR") + (a.quick ? " --quick" : "") + (a.noFigures ? " --no-figures" : "");
-  if (!a.doc.empty()) command += " --doc " + a.doc;
+  if (!a.doc.empty()) command += " --doc " + shellPath(a.doc);
   const std::string markdown = calibrationStudyMarkdown(r, options, command, !a.noFigures);
   writeTextAtomically(a.out + "/calibration-study.md", markdown);
   if (!a.doc.empty()) {
@@ -287,14 +287,14 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
     std::printf("EKF %-26s odometry %.1f cm  EKF %.1f cm  improvement %.1f cm\n", e.condition.c_str(),
                 e.meanErrorOdometryCm, e.meanErrorEkfCm, e.meanErrorOdometryCm - e.meanErrorEkfCm);
   std::string command = std::string("omnicam experiment texture-realism -o DIR") + (a.quick ? " --quick" : "");
-  if (a.theta != 1.0) command += " --theta " + std::to_string(a.theta);
+  if (a.theta != 1.0) command += " --theta " + roundTrip(a.theta);
   if (a.bins != 32) command += " --bins " + std::to_string(a.bins);
   if (a.medianPx != 1) command += " --median " + std::to_string(a.medianPx);
   if (a.minBlobArea != 2) command += " --min-blob-area " + std::to_string(a.minBlobArea);
   if (a.noAblation) command += " --no-ablation";
-  if (!a.doc.empty()) command += " --doc " + a.doc;
+  if (!a.doc.empty()) command += " --doc " + shellPath(a.doc);
   if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
-  for (const std::string& file : a.testCameras) command += " --test-camera " + shellQuote(file);
+  for (const std::string& file : a.testCameras) command += " --test-camera " + shellPath(file);
   const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.out, a.doc) : keptConvergenceSection(a.doc);
   const std::string markdown = textureRealismMarkdown(results, options, command, section);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);

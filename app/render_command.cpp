@@ -24,6 +24,7 @@
 #include "render_output.h"
 #include "atomic_file.h"
 #include "sidecar.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 #include "views.h"
 
@@ -164,6 +165,12 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
     for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
   });
   ensureDirectory(a.out, "-o");
+  // One run at a time writes a folder of frames (as a dataset's folder): two would interleave
+  // their frames and sidecars. The claim ends with the process however it ends.
+  const SafeFolder claimed(a.out);
+  if (!claimed.tryClaim(/*shared=*/false))
+    throw InputError("-o: " + showPath(a.out) +
+                     ": another omnicam run is writing there now: wait for it to end, or give another folder");
   Progress progress("render " + a.path + " (" + engineName + ")", total);
   // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
   // each file still appears atomically.

@@ -93,6 +93,19 @@ std::string quote(std::string_view text, size_t maxChars) {
   return out + "…\" (" + std::to_string(text.size()) + " bytes)";
 }
 
+bool isValidUtf8(std::string_view text) {
+  for (size_t at = 0; at < text.size();) {
+    if (static_cast<unsigned char>(text[at]) < 0x80) {
+      ++at;
+      continue;
+    }
+    const size_t length = utf8Length(text, at);
+    if (length == 0) return false;
+    at += length;
+  }
+  return true;
+}
+
 std::string showPath(std::string_view path) {
   if (path.size() <= kEchoedPathChars && !needsEscaping(path)) return std::string(path);
   return quote(path, kEchoedPathChars);

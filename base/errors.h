@@ -36,6 +36,8 @@ inline constexpr size_t kEchoedPathChars = 200;  // paths: their file name is at
 // DEL, C1 controls and bytes that are not UTF-8 (valid UTF-8 stays readable). Text longer than
 // `maxChars` (an escape counts its length) is cut between characters: "abc…" (300 bytes).
 std::string quote(std::string_view text, size_t maxChars = kEchoedTextChars);
+// Whether `text` is UTF-8 throughout: what JSON (sidecars, manifests, job files) can record.
+bool isValidUtf8(std::string_view text);
 // A path as messages show it: as is when it needs no escaping and fits in kEchoedPathChars,
 // otherwise quote(path, kEchoedPathChars) — the quotes mark that it was escaped.
 std::string showPath(std::string_view path);

@@ -31,6 +31,14 @@ TEST(Quote, KeepsValidUtf8AndEscapesTheRest) {
   EXPECT_EQ(quote("\xc2\x9b" "2J"), R"("\xC2\x9B2J")");      // C1 control (CSI) escaped too
 }
 
+// What JSON can hold, judged as Python's strict UTF-8 decoder judges it.
+TEST(IsValidUtf8, AcceptsUtf8AndNothingElse) {
+  for (const char* valid : {"", "plain/path.json", "Kühlschrank 北 🤖", "\xf4\x8f\xbf\xbf", "\xc2\x9b"})
+    EXPECT_TRUE(isValidUtf8(valid)) << quote(valid);
+  for (const char* invalid : {"a\xff" "b", "\xc3", "\xc3(x", "\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82"})
+    EXPECT_FALSE(isValidUtf8(invalid)) << quote(invalid);
+}
+
 TEST(Quote, ShortensLongTextAtACharacterBoundaryAndSaysHowLong) {
   const std::string long300(300, 'x');
   EXPECT_EQ(quote(long300), "\"" + std::string(60, 'x') + "…\" (300 bytes)");

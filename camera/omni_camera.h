@@ -9,6 +9,7 @@
 //              image of a top-down map, raster v grows with −Y, hence gamma_y = −γ.
 //   raster:    continuous pixel coordinates, u right, v down, pixel (i, j) covers
 //              [i, i+1) × [j, j+1); the image centre is (W/2, H/2).
+#include <cmath>
 #include <optional>
 
 #include "geometry.h"
@@ -23,6 +24,10 @@ Rigid unifiedCameraFromViewpoint();
 struct OpenCvIntrinsics {
   double xi, gamma_x, gamma_y, cx, cy;
 };
+
+// The thesis' radius of incidence angle θ (Eq. 3.2, radians from straight down) for a horizon
+// radius h: r = h sinθ / (1 + cosθ), the paraboloid's law it assumed for the hyperboloid.
+inline double thesisEq32Radius(double h, double theta) { return h * std::sin(theta) / (1.0 + std::cos(theta)); }
 
 class OmniCamera {
  public:

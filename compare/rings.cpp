@@ -254,7 +254,7 @@ RingReport measureRings(const ImageRGBA& image, const OmniCamera& camera, const 
   double sumExact = 0.0, sumEq32 = 0.0;
   for (auto& m : report.rings) {
     const double t = radians(m.thetaDeg);
-    m.eq32Px = report.hPx * std::sin(t) / (1.0 + std::cos(t));
+    m.eq32Px = thesisEq32Radius(report.hPx, t);
     const double e = m.measuredPx - m.exactPx;
     sumExact += e * e;
     report.maxAbsPxExact = std::max(report.maxAbsPxExact, std::abs(e));

@@ -77,7 +77,9 @@ DatasetVerifyResult verifyDataset(const std::string& path, const std::string& ma
                                        : manifest.header.value("frame_count", 0);
   if (static_cast<int>(manifest.frames.size()) != wanted || !manifest.header.value("complete", false))
     result.problems.push_back(manifestName + ": incomplete: " + std::to_string(manifest.frames.size()) + " of " +
-                              std::to_string(wanted) + " frames finished (run the same command again to resume)");
+                              std::to_string(wanted) + " frames finished (" +
+                              (wholeDatasetRunWriting(path) ? "a run is writing it now: wait for it to end"
+                                                            : "run the same command again to resume") + ")");
   return result;
 }
 

@@ -153,8 +153,22 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   // The folder: new, this dataset (resume), or something else (refused unless overwriting a
   // dataset). Everything in it is checked before anything is written: a planted link or a file
   // where a folder goes ends the run here.
-  const std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
+  std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
   for (const std::string& sub : plan.folders()) folder.checkFolders(sub);
+  // Shards share the folder (shared claims), so two could pass that check at once, each before the
+  // other's manifest is there: a shard checks again holding shards/ alone, until its manifest is
+  // in it. And one shard is one run's: the same shard twice would render the same frames and each
+  // replace the other's manifest.
+  std::optional<HeldName> shardHeld;
+  FileDescriptor shardsClaim;
+  if (plan.range().sharded) {
+    shardHeld = holdShard(options.dir, options.shardIndex, options.shardCount);
+    if (!shardHeld)
+      throw InputError(showPath(options.dir) + ": shard " + std::to_string(options.shardIndex) + "/" +
+                       std::to_string(options.shardCount) + " is being rendered there now by another run on this machine: wait for it to end");
+    shardsClaim = folder.waitToClaimAlone("shards");
+    previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
+  }
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
   if (!plan.range().sharded) {
@@ -166,6 +180,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.
   writeManifest(folder, manifest, plan.range().manifestName);
+  shardsClaim = FileDescriptor();  // the shard is in shards/ now: the next one's check sees it
   for (const std::string& sub : plan.folders()) folder.makeFolders(sub);
   for (const StaticFile& file : plan.statics()) folder.writeFile(file.relative, file.text, Durability::Unsynced);
 

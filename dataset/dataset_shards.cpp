@@ -1,5 +1,8 @@
 #include "dataset_shards.h"
 
+#include <sys/stat.h>
+
+
 #include <algorithm>
 #include <filesystem>
 #include <regex>
@@ -11,6 +14,7 @@
 #include "dataset_folder.h"
 #include "errors.h"
 #include "manifest.h"
+#include "number_format.h"
 #include "markup.h"
 #include "safe_files.h"
 
@@ -48,7 +52,28 @@ ShardManifest readShardManifest(const SafeFolder& dir, int index, int count) {
   return shard;
 }
 
+// The name a run of the shard holds: the folder by its device and inode (one folder, however it
+// is reached), the shard by index and count. "" for a folder that is not there.
+std::string shardName(const std::string& dir, int index, int count) {
+  struct stat folder {};
+  if (::stat(dir.c_str(), &folder) != 0 || !S_ISDIR(folder.st_mode)) return "";
+  return "omnicam/dataset-shard/" + std::to_string(static_cast<unsigned long long>(folder.st_dev)) + ":" +
+         std::to_string(static_cast<unsigned long long>(folder.st_ino)) + "/" + std::to_string(index) + "-of-" +
+         std::to_string(count);
+}
+
 }  // namespace
+
+std::optional<HeldName> holdShard(const std::string& dir, int index, int count) {
+  const std::string name = shardName(dir, index, count);
+  if (name.empty()) throw InputError(showPath(dir) + ": no such folder");
+  return HeldName::tryHold(name);
+}
+
+bool shardRunningHere(const std::string& dir, int index, int count) {
+  const std::string name = shardName(dir, index, count);
+  return !name.empty() && nameHeld(name);
+}
 
 std::vector<ShardState> shardStates(const std::string& path, int count, bool checkFiles) {
   checkShardCount(count);
@@ -57,6 +82,7 @@ std::vector<ShardState> shardStates(const std::string& path, int count, bool che
   for (int i = 0; i < count; ++i) {
     ShardState s;
     s.index = i;
+    s.running = shardRunningHere(path, i, count);
     const std::string name = shardManifestName(i, count);
     if (hasShardManifest(dir, name)) {
       const ShardManifest shard = readShardManifest(dir, i, count);
@@ -90,13 +116,20 @@ std::vector<int> shardCountsIn(const std::string& dir) {
 
 std::string unmergedShardsNextStep(const std::string& path) {
   const std::vector<int> counts = shardCountsIn(path);
+  int running = 0;
   for (int count : counts) {
     const std::vector<ShardState> states = shardStates(path, count, false);
     if (std::all_of(states.begin(), states.end(), [](const ShardState& s) { return s.complete; }))
       return "every shard of " + std::to_string(count) + " is finished: merge them with omnicam dataset --merge " + shellPath(path);
+    running += static_cast<int>(std::count_if(states.begin(), states.end(), [](const ShardState& s) { return s.running; }));
   }
-  return "run the shards not yet finished (--shard I/" + (counts.size() == 1 ? std::to_string(counts.front()) : "N") +
-         "; omnicam dataset --status " + shellPath(path) + " lists them), then omnicam dataset --merge " + shellPath(path);
+  const std::string rest = "run the shards not yet finished (--shard I/" +
+                           (counts.size() == 1 ? std::to_string(counts.front()) : "N") + "; omnicam dataset --status " +
+                           shellPath(path) + " lists them), then omnicam dataset --merge " + shellPath(path);
+  if (running)
+    return countOf(running, "shard") + (running == 1 ? " is" : " are") + " being rendered now on this machine: wait for " +
+           (running == 1 ? "it" : "them") + ", and " + rest;
+  return rest;
 }
 
 std::string shardCountConflict(const std::string& path, int count) {

@@ -3,9 +3,11 @@
 // job array): shard I renders frames [F·I/N, F·(I+1)/N) into the shared DIR and lists them in
 // DIR/shards/shard-I-of-N.json; merging writes DIR/manifest.json from every shard's manifest.
 // A merged dataset is the same as one rendered in one go (fast engine: byte for byte).
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "held_name.h"
 #include "manifest.h"
 
 namespace omnicam {
@@ -16,12 +18,20 @@ struct ShardState {
   int frames = 0;         // in its range
   int finished = 0;       // listed in its manifest
   bool complete = false;  // every frame finished, and (when checked) every file hashes right
+  bool running = false;   // a run on this machine renders it now (holdShard)
   std::vector<std::string> problems;  // from checking the files
 };
 
 // Every shard of `count` (1 … kMaxShards, else InputError); `checkFiles` re-hashes each finished shard's files (what a resubmission
 // needs to know: a corrupt shard is rendered again).
 std::vector<ShardState> shardStates(const std::string& dir, int count, bool checkFiles);
+
+// A run of shard `index` of `count` into DIR (an existing folder) holds this while it renders:
+// nullopt when another run on this machine holds it — the same shard is rendered there now. Two
+// runs of one shard would render the same frames and each replace the other's manifest.
+std::optional<HeldName> holdShard(const std::string& dir, int index, int count);
+// Whether a run on this machine renders shard `index` of `count` into DIR now.
+bool shardRunningHere(const std::string& dir, int index, int count);
 
 // The shard counts (1 … kMaxShards) that have manifests in DIR/shards/ (normally one).
 std::vector<int> shardCountsIn(const std::string& dir);

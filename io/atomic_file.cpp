@@ -211,9 +211,20 @@ void checkOutputFolder(const std::string& path, const std::string& flag) {
       if (at == at.parent_path()) break;
       continue;
     }
+    if (fs::is_symlink(at, ec) && !fs::exists(at, ec))
+      throw InputError(flag + ": " + showPath(at.string()) + " is a symbolic link to nothing: remove it, or give another folder");
     if (!fs::is_directory(at, ec)) throw InputError(flag + ": " + showPath(at.string()) + " exists and is not a folder");
     break;
   }
+}
+
+bool namesSameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+  const fs::path first = fs::weakly_canonical(fs::absolute(a), ec);
+  if (ec) return false;
+  const fs::path second = fs::weakly_canonical(fs::absolute(b), ec);
+  return !ec && first == second;
 }
 
 void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,

@@ -190,6 +190,18 @@ bool SafeFolder::tryClaim(bool shared) const {
   return true;
 }
 
+FileDescriptor SafeFolder::waitToClaimAlone(const std::string& relative) const {
+  const std::vector<std::string> parts = partsOf(relative);
+  try {
+    FileDescriptor folder = openFolders(root_, fd_.get(), parts, parts.size(), true);
+    while (::flock(folder.get(), LOCK_EX) != 0)
+      if (errno != EINTR) throw Problem{relative, errorText("cannot claim the folder", errno), EntryKind::Other, true};
+    return folder;
+  } catch (const Problem& p) {
+    rethrow(root_, p);
+  }
+}
+
 EntryKind SafeFolder::entry(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {

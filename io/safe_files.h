@@ -51,6 +51,10 @@ class SafeFolder {
   // ends with the process however it ends): `shared` with other shared claims, or alone. False if
   // another process holds a claim that excludes this one; true for a folder not opened.
   bool tryClaim(bool shared) const;
+  // The folder `relative` inside (made as needed, reached without following links) claimed by this
+  // process alone, waiting for another claim on it to end; the claim lasts as long as the
+  // descriptor returned. For a short step no two processes may take at once.
+  FileDescriptor waitToClaimAlone(const std::string& relative) const;
 
  private:
   // The folder a new file `parts` goes into, made as needed, reached without following links.

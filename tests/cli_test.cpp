@@ -15,6 +15,10 @@
 #include <sstream>
 #include <thread>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include "image.h"
 #include "mirror.h"
 #include "request_fields.h"
@@ -205,6 +209,36 @@ TEST_F(CliTest, PathSequenceWritesNumberedFramesWithSidecars) {
   }
   EXPECT_EQ(sha256OfFile((fs::path(folder) / "frame_0002.png").string()), first);
   EXPECT_FALSE(fs::exists(fs::path(folder) / "frame_0000.exr"));
+  // A run at work on the folder (its claim, held here as another run holds it): a second run is
+  // refused, not interleaved with it, and writes nothing.
+  const int held = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX), 0);
+  const CommandResult busy = run("render " + kScene + " --path thesis-loop --frames 3 --size 96 --spp 4 -o " + folder);
+  ::close(held);
+  EXPECT_EQ(busy.code, 2) << busy.out;
+  EXPECT_TRUE(testing::isOneLine(busy.out)) << busy.out;
+  EXPECT_NE(busy.out.find("-o: " + folder + ": another omnicam run is writing there now"), std::string::npos) << busy.out;
+  EXPECT_EQ(sha256OfFile((fs::path(folder) / "frame_0002.png").string()), first);
+}
+
+// A name that is not UTF-8 cannot be recorded in a sidecar or manifest (JSON): refused at once,
+// one line, exit 2, nothing written — not an internal error after the work.
+TEST_F(CliTest, ANameThatIsNotUtf8IsRefusedBeforeAnything) {
+  const std::string odd = path("sc\xff\xfe.json");
+  fs::copy_file(kScene, odd);
+  for (const std::string& command : {"render '" + odd + "' --size 32 -o " + path("x.png"),
+                                     "render " + kScene + " --size 32 -o '" + path("x\xff.png") + "'",
+                                     "dataset '" + odd + "' -o " + path("ds")}) {
+    const CommandResult r = run(command);
+    EXPECT_EQ(r.code, 2) << command << ": " << r.out;
+    EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+    EXPECT_NE(r.out.find("\\xFF"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(": not UTF-8 (omnicam records names and paths in JSON, which holds UTF-8 only): rename it"),
+              std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(fs::exists(path("x.png")));
+  EXPECT_FALSE(fs::exists(path("ds")));
 }
 
 TEST_F(CliTest, RenderWritesViewsThatTheViewVerbReproduces) {

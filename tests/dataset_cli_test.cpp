@@ -6,6 +6,9 @@
 #include <sys/file.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sched.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -17,6 +20,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/core.hpp>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -406,6 +410,9 @@ TEST_F(DatasetCliTest, AFolderIsOneRunsOrItsShardsAtATime) {
     int status = 0;
     ASSERT_TRUE(hold.waitUntilHeld([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, 300.0)) << readFile(dir_ / "ds.log");
     const std::string manifest = readFile(dir_ / "ds/manifest.json");
+    const auto verify = omnicam("dataset --verify " + path("ds"));
+    EXPECT_EQ(verify.code, 1) << verify.out;
+    EXPECT_NE(verify.out.find(" frames finished (a run is writing it now: wait for it to end)"), std::string::npos) << verify.out;
     for (const std::string& second : {std::string(""), std::string(" --shard 0/2")}) {
       const auto refused = omnicam("dataset " + spec + " -o " + path("ds") + second);
       EXPECT_EQ(refused.code, 2) << refused.out;
@@ -427,10 +434,66 @@ TEST_F(DatasetCliTest, AFolderIsOneRunsOrItsShardsAtATime) {
   const auto whole = omnicam("dataset " + spec + " -o " + path("parts"));
   EXPECT_EQ(whole.code, 2) << whole.out;
   EXPECT_NE(whole.out.find("another omnicam run is writing"), std::string::npos) << whole.out;
+  // The same shard again is refused (it would render the same frames and replace the other's
+  // manifest), and --status tells the shard at work from one left unfinished.
+  const std::string shardManifest = readFile(dir_ / "parts/shards/shard-0-of-2.json");
+  const auto twice = omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2");
+  EXPECT_EQ(twice.code, 2) << twice.out;
+  EXPECT_TRUE(testing::isOneLine(twice.out)) << twice.out;
+  EXPECT_NE(twice.out.find(path("parts") + ": shard 0/2 is being rendered there now by another run on this machine: wait for it to end"),
+            std::string::npos) << twice.out;
+  EXPECT_EQ(readFile(dir_ / "parts/shards/shard-0-of-2.json"), shardManifest);
+  const auto running = omnicam("dataset --status " + path("parts"));
+  EXPECT_EQ(running.code, 1) << running.out;
+  EXPECT_NE(running.out.find("(1 shard is being rendered now on this machine: wait for it, and run the shards not yet finished"),
+            std::string::npos) << running.out;
+  EXPECT_TRUE(std::regex_search(running.out, std::regex("  shard 0/2: [123] of 3 frames \\(being rendered now on this machine\\)\n")))
+      << running.out;
+  EXPECT_NE(running.out.find("  shard 1/2: 3 of 3 frames (complete)"), std::string::npos) << running.out;
   hold.release();
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << readFile(dir_ / "parts.log");
+  const auto done = omnicam("dataset --status " + path("parts"));
+  EXPECT_EQ(done.out.find("being rendered now"), std::string::npos) << done.out;
   EXPECT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
+}
+
+// Whether a process waits for a claim on `folder` (/proc/locks lists a waiter as "->").
+bool someoneWaitsToClaim(const fs::path& folder) {
+  struct stat st {};
+  if (::stat(folder.c_str(), &st) != 0) return false;
+  char device[32];
+  std::snprintf(device, sizeof device, "%02x:%02x:", major(st.st_dev), minor(st.st_dev));
+  const std::string where = std::string(device) + std::to_string(st.st_ino);
+  std::ifstream locks("/proc/locks");
+  for (std::string line; std::getline(locks, line);)
+    if (line.find("->") != std::string::npos && line.find(" " + where + " ") != std::string::npos) return true;
+  return false;
+}
+
+// Shards share the folder, so two starting together could each pass the check before the other's
+// manifest is there (the trial's race: shards of two specs, or of two counts, both accepted). A
+// shard checks again holding shards/ alone: held here while another dataset's shard manifest
+// arrives, the waiting shard then sees it and is refused.
+TEST_F(DatasetCliTest, AShardChecksAgainAloneBeforeItsFirstManifest) {
+  const std::string a = robocupSpec("a.json", R"("size": 48, "poses": {"path": "thesis-loop", "frames": 4})");
+  const std::string b = robocupSpec("b.json", R"("size": 48, "spp": 4, "poses": {"path": "thesis-loop", "frames": 4})");
+  ASSERT_EQ(omnicam("dataset " + a + " -o " + path("a") + " --shard 0/2").code, 0);
+  fs::create_directories(dir_ / "race/shards");
+  const int shards = ::open(path("race/shards").c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  ASSERT_GE(shards, 0);
+  ASSERT_EQ(::flock(shards, LOCK_EX), 0);
+  const pid_t pid = spawnOmnicam({"dataset", b, "-o", path("race"), "--shard", "1/2"}, path("race.log"), {});
+  int status = 0;
+  bool ended = false;
+  while (!someoneWaitsToClaim(dir_ / "race/shards") && !(ended = ::waitpid(pid, &status, WNOHANG) == pid)) ::sched_yield();
+  ASSERT_FALSE(ended) << "the shard did not wait to check again: " << readFile(dir_ / "race.log");
+  fs::copy_file(dir_ / "a/shards/shard-0-of-2.json", dir_ / "race/shards/shard-0-of-2.json");
+  ::close(shards);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << readFile(dir_ / "race.log");
+  EXPECT_NE(readFile(dir_ / "race.log").find("race: holds the shards of another dataset (shards/shard-0-of-2.json: the spec's \"spp\" differs)"), std::string::npos) << readFile(dir_ / "race.log");
+  EXPECT_FALSE(fs::exists(dir_ / "race/shards/shard-1-of-2.json"));
 }
 
 TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {

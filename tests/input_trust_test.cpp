@@ -252,6 +252,10 @@ TEST_F(InputTrustTest, OutputNamesAndOptionsAreCheckedBeforeTheFirstByte) {
   write("afile", "x");
   expectRefused("arena hall -o " + path("afile/sub/hall.json"), "afile exists and is not a folder");
   expectRefused("export " + path("box.json") + " --to gltf -o " + path("afile/sub"), "afile exists and is not a folder");
+  // A link to nothing where the folder goes is named as what it is.
+  fs::create_symlink(dir_ / "nowhere", dir_ / "dangling");
+  expectRefused("export " + path("box.json") + " --to gltf -o " + path("dangling"),
+                "-o: " + path("dangling") + " is a symbolic link to nothing: remove it, or give another folder");
   // A write that fails after the folders were made removes the folders it made, empty.
   const auto before = snapshot(dir_);
   const auto [code, out] = testing::runShell("ulimit -f 1; " + std::string(OMNICAM_BINARY) + " export " + path("box.json") +

@@ -25,7 +25,7 @@ bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant vari
   if (theta > camera.rimTheta()) return false;
   const double phi = std::atan2(d.y(), d.x());
   // Eq. 3.4–3.5: ρ sinθ = h sinθ / (1 + cosθ); exact: r(θ) of docs/conventions.md §1.
-  const double r = variant == ViewVariant::Thesis ? camera.horizonRadius() * std::sin(theta) / (1.0 + std::cos(theta))
+  const double r = variant == ViewVariant::Thesis ? thesisEq32Radius(camera.horizonRadius(), theta)
                                                   : camera.radiusOfTheta(theta);
   x = static_cast<float>(camera.centre().x() + r * std::cos(phi));  // u along robot +x
   y = static_cast<float>(camera.centre().y() + r * std::sin(phi));  // v along robot +y

@@ -1,0 +1,28 @@
+#pragma once
+// A name a process holds on this machine while it lives: an abstract Unix socket address, which
+// the kernel releases however the process ends, and which makes no file. Two processes never hold
+// one name; any process can see which names are held (/proc/net/unix lists them). For marks such
+// as "this shard of this dataset is being rendered" that a lock on a file cannot carry (the
+// shard's files are replaced while it runs).
+#include <optional>
+#include <string>
+
+#include "file_descriptor.h"
+
+namespace omnicam {
+
+class HeldName {
+ public:
+  // `name` held by this process, or nullopt when another process on this machine holds it.
+  // Names are at most 100 bytes of printable ASCII without spaces.
+  static std::optional<HeldName> tryHold(const std::string& name);
+
+ private:
+  explicit HeldName(FileDescriptor socket) : socket_(std::move(socket)) {}
+  FileDescriptor socket_;
+};
+
+// Whether a process on this machine (in this network namespace) holds `name` now.
+bool nameHeld(const std::string& name);
+
+}  // namespace omnicam
