@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,17 @@ std::string parseErrorMessage(const CLI::App& app, int argc, char** argv, const 
   return error.what();
 }
 
+// The refusal of a name JSON cannot hold, naming the first argument that is not UTF-8.
+std::string notUtf8Message(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k)
+    if (!isValidUtf8(argv[k]))
+      return quote(argv[k], kEchoedPathChars) +
+             ": not UTF-8: omnicam records names and paths in JSON (sidecars, manifests, job files), which holds UTF-8 "
+             "only: rename it";
+  return "a name is not UTF-8: omnicam records names and paths in JSON (sidecars, manifests, job files), which holds "
+         "UTF-8 only: rename the file or folder";
+}
+
 }  // namespace
 
 void prepareProcess(char** argv) {
@@ -87,13 +99,6 @@ void prepareProcess(char** argv) {
 // not be written (disk full, file-size limit, permissions) or the machine lacks the memory the
 // work needs (memory_budget.h).
 int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
-  // Every name and path given is recorded in JSON (sidecars, manifests, job files), which holds
-  // UTF-8 only: one that is not is refused here, before anything reads or writes it.
-  for (int k = 1; k < argc; ++k)
-    if (!isValidUtf8(argv[k]))
-      return reportError(quote(argv[k], kEchoedPathChars) +
-                             ": not UTF-8 (omnicam records names and paths in JSON, which holds UTF-8 only): rename it",
-                         2);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -118,6 +123,11 @@ int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
     return reportError(e.what(), 5);
   } catch (const MemoryShortage& e) {
     return reportError(e.what(), 5);
+  } catch (const nlohmann::json::type_error& e) {
+    // JSON holds UTF-8 only: a name given in another encoding cannot be recorded in a sidecar,
+    // manifest or job file. Reading it works; recording it is refused, before the file is written.
+    if (e.id == 316) return reportError(notUtf8Message(argc, argv), 2);
+    return reportError(std::string("internal error: ") + e.what(), 4);
   } catch (const std::bad_alloc&) {
     return reportError("internal error: out of memory (inputs within the documented limits should not get here)", 4);
   } catch (const std::exception& e) {

@@ -162,6 +162,10 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
   std::unique_ptr<Progress> progress;
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };
   options.onFrame = [&](int, int) { progress->step(); };
+  options.onWaitForShards = [&] {
+    std::fprintf(stderr, "omnicam: waiting for another shard's check of %s (it holds shards/ until its manifest is written)\n",
+                 showPath(a.out + "/shards").c_str());
+  };
   // Ctrl-C finishes the frame in progress, writes the manifest and stops: the run resumes. An
   // external renderer at work is ended at once (base/interrupts.h), its frame given up.
   stopGracefullyOnInterrupt();

@@ -144,8 +144,8 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
   };
   // An existing folder may already hold a folder under a frame's name: refused before any frame.
   std::error_code ec;
+  std::set<std::string> written;
   if (std::filesystem::is_directory(a.out, ec)) {
-    std::set<std::string> written;
     for (int f = 0; f < total; ++f) {
       checkImageOutput(frameFile(f), "-o");
       std::vector<std::string> files = views.files(frameFile(f));
@@ -171,6 +171,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
   if (!claimed.tryClaim(/*shared=*/false))
     throw InputError("-o: " + showPath(a.out) +
                      ": another omnicam run is writing there now: wait for it to end, or give another folder");
+  if (!written.empty()) checkNoOtherFrames(a.out, written);  // again: a run may have ended there since the check
   Progress progress("render " + a.path + " (" + engineName + ")", total);
   // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
   // each file still appears atomically.

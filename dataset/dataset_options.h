@@ -25,8 +25,12 @@ struct DatasetRunOptions {
   std::function<void(int kept, int total)> onStart;
   // Called after every finished frame: frames done (kept + rendered) of `total`.
   std::function<void(int done, int total)> onFrame;
-  // Checked between frames: set (e.g. by SIGINT) to stop after the frame in progress.
+  // Checked between frames: set (e.g. by SIGINT) to stop after the frame in progress; a shard
+  // waiting for shards/ stops waiting.
   const std::atomic<bool>* stopRequested = nullptr;
+  // Called once when a shard must wait for another shard's check of the folder (it holds shards/
+  // for the moment between its check and its first manifest).
+  std::function<void()> onWaitForShards;
 };
 
 }  // namespace omnicam

@@ -1,9 +1,11 @@
 #include "dataset_runner.h"
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <set>
+#include <thread>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -129,6 +131,17 @@ std::map<int, FrameRecord> intactFrames(const SafeFolder& dir, const DatasetMani
   return kept;
 }
 
+// shards/ claimed by this process alone, waiting while another shard holds it (a few milliseconds:
+// its check and first manifest); nullopt when the run is asked to stop meanwhile.
+std::optional<FileDescriptor> claimShardsFolder(const SafeFolder& folder, const DatasetRunOptions& options) {
+  for (bool told = false;; told = true) {
+    if (std::optional<FileDescriptor> claim = folder.tryClaimAlone("shards")) return claim;
+    if (!told && options.onWaitForShards) options.onWaitForShards();
+    if (options.stopRequested && options.stopRequested->load()) return std::nullopt;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
 // runDataset's work, on whatever threads the caller's arena gives it.
 DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions& options) {
   const DatasetPlan plan(spec, options);
@@ -166,8 +179,14 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
     if (!shardHeld)
       throw InputError(showPath(options.dir) + ": shard " + std::to_string(options.shardIndex) + "/" +
                        std::to_string(options.shardCount) + " is being rendered there now by another run on this machine: wait for it to end");
-    shardsClaim = folder.waitToClaimAlone("shards");
+    std::optional<FileDescriptor> claim = claimShardsFolder(folder, options);
+    if (!claim) {  // asked to stop while another shard held it: nothing written
+      result.stopped = true;
+      return result;
+    }
+    shardsClaim = std::move(*claim);
     previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
+    if (previous) shardsClaim = FileDescriptor();  // its manifest is there already: the next shard's check sees it
   }
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).

@@ -2,7 +2,6 @@
 
 #include <sys/stat.h>
 
-
 #include <algorithm>
 #include <filesystem>
 #include <regex>
@@ -52,37 +51,37 @@ ShardManifest readShardManifest(const SafeFolder& dir, int index, int count) {
   return shard;
 }
 
-// The name a run of the shard holds: the folder by its device and inode (one folder, however it
-// is reached), the shard by index and count. "" for a folder that is not there.
-std::string shardName(const std::string& dir, int index, int count) {
+// The names runs of the folder's shards hold: the folder by its device and inode (one folder,
+// however it is reached), then each shard by index and count. "" for a folder that is not there.
+std::string shardNamesPrefix(const std::string& dir) {
   struct stat folder {};
   if (::stat(dir.c_str(), &folder) != 0 || !S_ISDIR(folder.st_mode)) return "";
   return "omnicam/dataset-shard/" + std::to_string(static_cast<unsigned long long>(folder.st_dev)) + ":" +
-         std::to_string(static_cast<unsigned long long>(folder.st_ino)) + "/" + std::to_string(index) + "-of-" +
-         std::to_string(count);
+         std::to_string(static_cast<unsigned long long>(folder.st_ino)) + "/";
+}
+
+std::string shardName(const std::string& prefix, int index, int count) {
+  return prefix + std::to_string(index) + "-of-" + std::to_string(count);
 }
 
 }  // namespace
 
 std::optional<HeldName> holdShard(const std::string& dir, int index, int count) {
-  const std::string name = shardName(dir, index, count);
-  if (name.empty()) throw InputError(showPath(dir) + ": no such folder");
-  return HeldName::tryHold(name);
-}
-
-bool shardRunningHere(const std::string& dir, int index, int count) {
-  const std::string name = shardName(dir, index, count);
-  return !name.empty() && nameHeld(name);
+  const std::string prefix = shardNamesPrefix(dir);
+  if (prefix.empty()) throw InputError(showPath(dir) + ": no such folder");
+  return HeldName::tryHold(shardName(prefix, index, count));
 }
 
 std::vector<ShardState> shardStates(const std::string& path, int count, bool checkFiles) {
   checkShardCount(count);
   const SafeFolder dir(path);  // opened once for every shard's manifest
+  const std::string prefix = shardNamesPrefix(path);
+  const std::set<std::string> running = prefix.empty() ? std::set<std::string>() : heldNames(prefix);
   std::vector<ShardState> states;
   for (int i = 0; i < count; ++i) {
     ShardState s;
     s.index = i;
-    s.running = shardRunningHere(path, i, count);
+    s.running = !prefix.empty() && running.count(shardName(prefix, i, count));
     const std::string name = shardManifestName(i, count);
     if (hasShardManifest(dir, name)) {
       const ShardManifest shard = readShardManifest(dir, i, count);

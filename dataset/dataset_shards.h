@@ -30,8 +30,6 @@ std::vector<ShardState> shardStates(const std::string& dir, int count, bool chec
 // nullopt when another run on this machine holds it — the same shard is rendered there now. Two
 // runs of one shard would render the same frames and each replace the other's manifest.
 std::optional<HeldName> holdShard(const std::string& dir, int index, int count);
-// Whether a run on this machine renders shard `index` of `count` into DIR now.
-bool shardRunningHere(const std::string& dir, int index, int count);
 
 // The shard counts (1 … kMaxShards) that have manifests in DIR/shards/ (normally one).
 std::vector<int> shardCountsIn(const std::string& dir);

@@ -324,7 +324,7 @@ TriangulationError triangulationError(const Camera& camera, const CentralApproxi
 }
 
 CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, const std::string& plotScript,
-                                            const StudyProgress& progress) {
+                                            const ExperimentProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(o.outDir);
   const char* const folders[] = {"arenas", "data", "figures"};

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment_progress.h"
 #include "omnidir_fit.h"
 #include "recording_camera.h"
 #include "rig.h"
@@ -102,12 +103,11 @@ struct CalibrationStudyResults {
   double seconds = 0.0;
 };
 
-using StudyProgress = std::function<void(const std::string& stage, int done, int total)>;
 
 // Runs the sweep, writes outDir/results.json, data/ (residual maps) and, with a plot script,
 // figures/ (matplotlib).
 CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& options, const std::string& plotScript,
-                                            const StudyProgress& progress);
+                                            const ExperimentProgress& progress);
 
 nlohmann::json calibrationStudyJson(const CalibrationStudyResults& results, const CalibrationStudyOptions& options);
 // The tables and the headline (Markdown; with `figures`, the figures under figures/, relative to

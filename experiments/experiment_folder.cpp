@@ -27,7 +27,9 @@ std::optional<nlohmann::json> earlierExperimentResults(const std::string& dir, c
   const EntryKind kind = entryInside(dir, "results.json");
   if (kind == EntryKind::Missing) return std::nullopt;
   const std::string where = showPath(dir + "/results.json");
-  if (kind != EntryKind::File) throw InputError(where + ": not a file (a link is not followed): give another folder");
+  if (kind != EntryKind::File)
+    throw InputError(where + (kind == EntryKind::Link ? ": a link (omnicam follows none in its outputs)" : ": not a regular file") +
+                     ": give another folder");
   const nlohmann::json results = parseJsonText(readFileInside(dir, "results.json", limits::kMaxJsonFileBytes), where);
   const std::optional<std::string> theirs = studyOf(results);
   if (!theirs) throw InputError(where + ": not written by an omnicam experiment (it names no study): give another folder");

@@ -202,7 +202,7 @@ double secondsToReach(const std::vector<LadderPoint>& ladder, const std::string&
 }  // namespace
 
 void measureTimeToError(const Scene& scene, const std::vector<RobotPose>& poses, const ImageRGBA& converged,
-                        const PathConvergenceOptions& o, PathConvergenceResults& r, const PathConvergenceProgress& progress) {
+                        const PathConvergenceOptions& o, PathConvergenceResults& r, const ExperimentProgress& progress) {
   const FastRenderer renderer(scene);
   const std::vector<CameraPlacement> placements(poses.begin(), poses.end());
   int done = 0;
@@ -231,7 +231,7 @@ void measureTimeToError(const Scene& scene, const std::vector<RobotPose>& poses,
     r.timeToError.push_back({target, secondsToReach(r.ladder, "fast", target), secondsToReach(r.ladder, "blender", target)});
 }
 
-PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const PathConvergenceProgress& progress) {
+PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const ExperimentProgress& progress) {
   if (o.size < 16 || o.referenceSpp < 1 || o.fastConvergedSpp < 1 || o.fastConvergedSeeds < 1 || o.chosenSpp < 1 ||
       o.cyclesSpp < 1)
     throw InputError("path convergence: size >= 16 and every spp and seed count >= 1");

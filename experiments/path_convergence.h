@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment_progress.h"
 #include "image.h"
 #include "render_settings.h"
 #include "rig.h"
@@ -79,7 +80,6 @@ struct PathConvergenceResults {
   double seconds = 0.0;
 };
 
-using PathConvergenceProgress = std::function<void(const std::string& stage, int done, int total)>;
 
 // Time to error on the first of `poses`: the fast engine over `fastLadder` (unfiltered and
 // denoised) and Cycles over `cyclesLadder` (denoised), one after the other, against `converged`
@@ -88,7 +88,7 @@ using PathConvergenceProgress = std::function<void(const std::string& stage, int
 // a warm-up frame, Cycles' frames after the first of one Blender session (docs/performance.md).
 void measureTimeToError(const Scene& scene, const std::vector<RobotPose>& poses, const ImageRGBA& converged,
                         const PathConvergenceOptions& options, PathConvergenceResults& results,
-                        const PathConvergenceProgress& progress);
+                        const ExperimentProgress& progress);
 // The halls' three poses (the study's, the first the time-to-error pose).
 std::vector<RobotPose> hallPoses();
 // The mean of `seeds` unfiltered fast frames of `spp` each (seeds 1000, 1001, …).
@@ -97,7 +97,7 @@ ImageRGBA convergedFastFrame(const Scene& scene, const RobotPose& pose, int size
 // Writes outDir/path-convergence.json and frames/ (the first pose of each scene: converged fast,
 // Cycles reference, the fast dataset frame). InputError for bad options, ExternalError when
 // Blender fails.
-PathConvergenceResults runPathConvergence(const PathConvergenceOptions& options, const PathConvergenceProgress& progress);
+PathConvergenceResults runPathConvergence(const PathConvergenceOptions& options, const ExperimentProgress& progress);
 
 nlohmann::json pathConvergenceJson(const PathConvergenceResults& results);
 std::string pathConvergenceMarkdown(const PathConvergenceResults& results, const std::string& command);

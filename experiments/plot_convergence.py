@@ -19,8 +19,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 from plot_files import save_figure  # noqa: E402
 
 
-
-
 def main():
     root = sys.argv[1]
     rows = defaultdict(lambda: defaultdict(list))

@@ -24,8 +24,6 @@ import matplotlib.ticker  # noqa: E402
 from plot_files import save_figure  # noqa: E402
 
 
-
-
 def read_csv(path):
     with open(path, newline="") as f:
         return list(csv.DictReader(f))

@@ -49,7 +49,7 @@ struct Study {
   const ConvergenceOptions& options;
   const Scene& hall;
   std::vector<RobotPose> poses;
-  const ConvergenceProgress& progress;
+  const ExperimentProgress& progress;
   int done = 0, total = 0;
 
   std::vector<ImageRGBA> render(const RealisticRendering& setup, int size, int spp, int seed, const std::string& stage) {
@@ -232,7 +232,7 @@ void checkAtExperimentSize(Study& study, ConvergenceResults& r) {
 }  // namespace
 
 ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const std::string& plotScript,
-                                           const ConvergenceProgress& progress) {
+                                           const ExperimentProgress& progress) {
   const auto started = std::chrono::steady_clock::now();
   if (o.size < 16 || o.experimentSize < 16 || o.ladder.empty() || o.referenceSpp < 1 || o.diagnosisSpp < 1 ||
       o.poseIndices.empty() || o.labPhoto.empty())

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment_progress.h"
 #include "realistic_rendering.h"
 #include "render_noise.h"
 
@@ -57,12 +58,11 @@ struct ConvergenceResults {
   double seconds = 0.0;
 };
 
-using ConvergenceProgress = std::function<void(const std::string&, int, int)>;
 
 // Writes outDir/convergence.json, data/convergence.csv, frames/ (pose 0 at every rung) and
 // figures/convergence.svg (by `plotScript`; empty: none). InputError for bad options.
 ConvergenceResults runRealisticConvergence(const ConvergenceOptions& options, const std::string& plotScript,
-                                           const ConvergenceProgress& progress);
+                                           const ExperimentProgress& progress);
 
 nlohmann::json convergenceJson(const ConvergenceResults& results);
 // Reads what convergenceJson wrote; InputError naming `file` otherwise.

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "beacon_detector.h"
+#include "experiment_progress.h"
 #include "realistic_rendering.h"
 #include "recording_camera.h"
 #include "texture_realism_results.h"
@@ -37,8 +38,6 @@
 namespace omnicam {
 
 
-// stage, done, total: for a progress bar.
-using ExperimentProgress = std::function<void(const std::string&, int, int)>;
 
 // Runs everything and writes outDir/results.json, data/ (CSV and JSON for the figures),
 // arenas/, frames/ (one frame per test set with detections drawn) and report.html. Figures are

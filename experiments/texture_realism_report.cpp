@@ -437,7 +437,7 @@ void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& 
   if (o.reduced) {
     md << "\n## What changed with the new realistic frames\n\n"
           "The earlier runs' numbers, which this section sets beside the run's own, are of full runs; a reduced run "
-          "(`--quick`: fewer poses and samples) is not comparable with them, so they are left out here.\n";
+          "(fewer poses and samples) is not comparable with them, so they are left out here.\n";
     return;
   }
   const ConditionOutcome* pp = findCondition(results, "plain_to_plain");
@@ -487,7 +487,7 @@ std::string textureRealismMarkdown(const TextureRealismResults& results, const T
   md << "\nWhere the numbers differ from the thesis: its counts come from hand labels on its own arena and ISLA's "
         "real camera; ours from projection on our hall, and our realistic frames are rendered, so only the "
         "direction of each effect is comparable, not the counts.\n\n"
-     << (o.reduced ? "Reduced run (`--quick`): " : "Full run: ") << fixedDecimals(results.seconds / 60.0, 1) << " min on this machine ("
+     << (o.reduced ? "Reduced run (fewer poses and samples): " : "Full run: ") << fixedDecimals(results.seconds / 60.0, 1) << " min on this machine ("
      << results.cyclesFramesRendered << " Cycles frames rendered, " << results.cyclesFramesReused
      << " reused from an earlier run into the same folder). Figures and the per-frame data "
         "are in the run's folder (`report.html`, `figures/`, `data/`).\n";

@@ -233,7 +233,7 @@ void checkOutputIsNotInput(const std::string& path, const std::string& flag, con
   // An output that is a link is replaced, never written through (writeBytesAtomically): the file it
   // points to is safe.
   if (fs::is_symlink(path, ec)) return;
-  if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
+  if (fs::exists(path, ec) && fs::exists(input, ec) && namesSameFile(path, input))
     throw InputError(flag + ": " + showPath(path) + " is " + inputName + "; writing it would destroy what is read: choose another name");
 }
 

@@ -78,12 +78,12 @@ void writeFilesTogether(const std::vector<FileBytes>& files);
 void checkOutputFile(const std::string& path, const std::string& flag);
 // The same for an output folder: a folder already, or a name that can be created.
 void checkOutputFolder(const std::string& path, const std::string& flag);
-// InputError("<flag>: <path> is <inputName>; ...") if `path` names the same existing file as
-// `input`, by any spelling or hard link: writing it would destroy what is being read. (A `path`
-// that is a symbolic link is replaced by the write, not written through: allowed.)
 // Whether two names reach one file: the same file when both exist (hard links too), else the same
 // path once made absolute, with links and "." and ".." resolved (names of files yet to be written).
 bool namesSameFile(const std::string& a, const std::string& b);
+// InputError("<flag>: <path> is <inputName>; ...") if `path` names the same existing file as
+// `input`, by any spelling or hard link: writing it would destroy what is being read. (A `path`
+// that is a symbolic link is replaced by the write, not written through: allowed.)
 void checkOutputIsNotInput(const std::string& path, const std::string& flag, const std::string& input,
                            const std::string& inputName);
 

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace omnicam {
 
@@ -23,8 +24,9 @@ void checkName(const std::string& name) {
 
 std::optional<HeldName> HeldName::tryHold(const std::string& name) {
   checkName(name);
-  FileDescriptor socket(::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0));
-  if (socket.get() < 0) throw std::runtime_error(std::string("held name: socket: ") + std::strerror(errno));
+  // A stream socket never listening: bound, it takes the name, and nobody can send it anything.
+  FileDescriptor socket(::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0));
+  if (socket.get() < 0) return HeldName(FileDescriptor());
   sockaddr_un address{};
   address.sun_family = AF_UNIX;
   // sun_path[0] stays 0: the abstract namespace, whose names are the bytes after it.
@@ -32,21 +34,21 @@ std::optional<HeldName> HeldName::tryHold(const std::string& name) {
   const auto length = static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + 1 + name.size());
   if (::bind(socket.get(), reinterpret_cast<const sockaddr*>(&address), length) == 0) return HeldName(std::move(socket));
   if (errno == EADDRINUSE) return std::nullopt;
-  throw std::runtime_error("held name: bind " + name + ": " + std::strerror(errno));
+  return HeldName(FileDescriptor());  // the system lends no name: hold none, refuse nothing
 }
 
-bool nameHeld(const std::string& name) {
-  checkName(name);
+std::set<std::string> heldNames(const std::string& prefix) {
   // Each line: Num RefCount Protocol Flags Type St Inode [Path]; an abstract name's path is "@name".
+  std::set<std::string> names;
   std::ifstream table("/proc/net/unix");
-  const std::string wanted = "@" + name;
+  const std::string wanted = "@" + prefix;
   for (std::string line; std::getline(table, line);) {
     std::istringstream fields(line);
     std::string field, last;
     while (fields >> field) last = field;
-    if (last == wanted) return true;
+    if (last.compare(0, wanted.size(), wanted) == 0) names.insert(last.substr(1));
   }
-  return false;
+  return names;
 }
 
 }  // namespace omnicam

@@ -190,12 +190,15 @@ bool SafeFolder::tryClaim(bool shared) const {
   return true;
 }
 
-FileDescriptor SafeFolder::waitToClaimAlone(const std::string& relative) const {
+std::optional<FileDescriptor> SafeFolder::tryClaimAlone(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
     FileDescriptor folder = openFolders(root_, fd_.get(), parts, parts.size(), true);
-    while (::flock(folder.get(), LOCK_EX) != 0)
-      if (errno != EINTR) throw Problem{relative, errorText("cannot claim the folder", errno), EntryKind::Other, true};
+    while (::flock(folder.get(), LOCK_EX | LOCK_NB) != 0) {
+      if (errno == EWOULDBLOCK) return std::nullopt;
+      // A file system without flock (tryClaim's policy): no claim to take, nothing excluded.
+      if (errno != EINTR) return FileDescriptor();
+    }
     return folder;
   } catch (const Problem& p) {
     rethrow(root_, p);

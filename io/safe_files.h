@@ -9,6 +9,7 @@
 // Errors name the file (root/relative): InputError for what was found there (exit 2),
 // OutputError when the file system refuses to create or write (exit 5).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -52,9 +53,10 @@ class SafeFolder {
   // another process holds a claim that excludes this one; true for a folder not opened.
   bool tryClaim(bool shared) const;
   // The folder `relative` inside (made as needed, reached without following links) claimed by this
-  // process alone, waiting for another claim on it to end; the claim lasts as long as the
-  // descriptor returned. For a short step no two processes may take at once.
-  FileDescriptor waitToClaimAlone(const std::string& relative) const;
+  // process alone, for as long as the descriptor returned lives: for a short step no two processes
+  // may take at once. nullopt while another process holds a claim on it (the caller waits, and
+  // can stop waiting); an empty descriptor where the file system has no claims.
+  std::optional<FileDescriptor> tryClaimAlone(const std::string& relative) const;
 
  private:
   // The folder a new file `parts` goes into, made as needed, reached without following links.

@@ -222,23 +222,29 @@ TEST_F(CliTest, PathSequenceWritesNumberedFramesWithSidecars) {
   EXPECT_EQ(sha256OfFile((fs::path(folder) / "frame_0002.png").string()), first);
 }
 
-// A name that is not UTF-8 cannot be recorded in a sidecar or manifest (JSON): refused at once,
-// one line, exit 2, nothing written — not an internal error after the work.
-TEST_F(CliTest, ANameThatIsNotUtf8IsRefusedBeforeAnything) {
+// A name that is not UTF-8 cannot be recorded in a sidecar, manifest or job file (JSON): the
+// command that would record it is refused, one line, exit 2, nothing written — not an internal
+// error. Commands that only read such a name work.
+TEST_F(CliTest, ANameThatIsNotUtf8IsRefusedWhereItWouldBeRecorded) {
   const std::string odd = path("sc\xff\xfe.json");
   fs::copy_file(kScene, odd);
   for (const std::string& command : {"render '" + odd + "' --size 32 -o " + path("x.png"),
-                                     "render " + kScene + " --size 32 -o '" + path("x\xff.png") + "'",
-                                     "dataset '" + odd + "' -o " + path("ds")}) {
+                                     "render '" + odd + "' --size 32 --engine povray -o " + path("p.png")}) {
     const CommandResult r = run(command);
     EXPECT_EQ(r.code, 2) << command << ": " << r.out;
     EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
-    EXPECT_NE(r.out.find("\\xFF"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find(": not UTF-8 (omnicam records names and paths in JSON, which holds UTF-8 only): rename it"),
-              std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("sc\\xFF\\xFE.json\": not UTF-8: omnicam records names and paths in JSON"), std::string::npos)
+        << r.out;
   }
   EXPECT_FALSE(fs::exists(path("x.png")));
-  EXPECT_FALSE(fs::exists(path("ds")));
+  EXPECT_FALSE(fs::exists(path("p.png")));
+  EXPECT_FALSE(fs::exists(path("x.png.json")));
+  // Read, not recorded: --status of such a folder answers as of any other.
+  const std::string folder = path("d\xe9j\xe0");
+  fs::create_directories(folder);
+  const CommandResult status = run("dataset --status '" + folder + "'");
+  EXPECT_EQ(status.code, 2) << status.out;  // not a dataset folder: said, not an internal error
+  EXPECT_NE(status.out.find("not a dataset folder"), std::string::npos) << status.out;
 }
 
 TEST_F(CliTest, RenderWritesViewsThatTheViewVerbReproduces) {

@@ -6,9 +6,6 @@
 #include <sys/file.h>
 #include <signal.h>
 #include <spawn.h>
-#include <sched.h>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -458,19 +455,6 @@ TEST_F(DatasetCliTest, AFolderIsOneRunsOrItsShardsAtATime) {
   EXPECT_EQ(omnicam("dataset --merge " + path("parts")).code, 0);
 }
 
-// Whether a process waits for a claim on `folder` (/proc/locks lists a waiter as "->").
-bool someoneWaitsToClaim(const fs::path& folder) {
-  struct stat st {};
-  if (::stat(folder.c_str(), &st) != 0) return false;
-  char device[32];
-  std::snprintf(device, sizeof device, "%02x:%02x:", major(st.st_dev), minor(st.st_dev));
-  const std::string where = std::string(device) + std::to_string(st.st_ino);
-  std::ifstream locks("/proc/locks");
-  for (std::string line; std::getline(locks, line);)
-    if (line.find("->") != std::string::npos && line.find(" " + where + " ") != std::string::npos) return true;
-  return false;
-}
-
 // Shards share the folder, so two starting together could each pass the check before the other's
 // manifest is there (the trial's race: shards of two specs, or of two counts, both accepted). A
 // shard checks again holding shards/ alone: held here while another dataset's shard manifest
@@ -483,16 +467,33 @@ TEST_F(DatasetCliTest, AShardChecksAgainAloneBeforeItsFirstManifest) {
   const int shards = ::open(path("race/shards").c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   ASSERT_GE(shards, 0);
   ASSERT_EQ(::flock(shards, LOCK_EX), 0);
-  const pid_t pid = spawnOmnicam({"dataset", b, "-o", path("race"), "--shard", "1/2"}, path("race.log"), {});
+  // Synchronised on what the shard writes: it says once that it waits.
+  const auto waitUntilWaiting = [&](pid_t pid, const std::string& log, int& status) {
+    const std::string said = "omnicam: waiting for another shard's check of " + path("race/shards");
+    while (readFile(dir_ / log).find(said) == std::string::npos)
+      if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+    return true;
+  };
+  pid_t pid = spawnOmnicam({"dataset", b, "-o", path("race"), "--shard", "1/2"}, path("race.log"), {});
   int status = 0;
-  bool ended = false;
-  while (!someoneWaitsToClaim(dir_ / "race/shards") && !(ended = ::waitpid(pid, &status, WNOHANG) == pid)) ::sched_yield();
-  ASSERT_FALSE(ended) << "the shard did not wait to check again: " << readFile(dir_ / "race.log");
+  ASSERT_TRUE(waitUntilWaiting(pid, "race.log", status)) << "the shard did not wait to check again: " << readFile(dir_ / "race.log");
   fs::copy_file(dir_ / "a/shards/shard-0-of-2.json", dir_ / "race/shards/shard-0-of-2.json");
   ::close(shards);
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 2) << readFile(dir_ / "race.log");
   EXPECT_NE(readFile(dir_ / "race.log").find("race: holds the shards of another dataset (shards/shard-0-of-2.json: the spec's \"spp\" differs)"), std::string::npos) << readFile(dir_ / "race.log");
+  EXPECT_FALSE(fs::exists(dir_ / "race/shards/shard-1-of-2.json"));
+  // A waiting shard still stops on Ctrl-C (it does not wait out the other shard), writing nothing.
+  fs::remove(dir_ / "race/shards/shard-0-of-2.json");
+  const int held = ::open(path("race/shards").c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX), 0);
+  pid = spawnOmnicam({"dataset", b, "-o", path("race"), "--shard", "1/2"}, path("race2.log"), {});
+  ASSERT_TRUE(waitUntilWaiting(pid, "race2.log", status)) << readFile(dir_ / "race2.log");
+  ::kill(pid, SIGINT);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ::close(held);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << readFile(dir_ / "race2.log");
   EXPECT_FALSE(fs::exists(dir_ / "race/shards/shard-1-of-2.json"));
 }
 

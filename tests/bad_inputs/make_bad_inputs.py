@@ -416,6 +416,10 @@ def main():
     manifest("pose_missing", lambda d: d["frames"][0].pop("pose"))
     manifest("truncated", text=lambda body: body[:len(body) // 2])
 
+    # An experiment's folder holding another experiment's results.
+    write(os.path.join(HERE, "experiments", "texture_realism_run", "results.json"),
+          json.dumps({"study": "texture-realism", "conditions": {}}) + "\n")
+
 
 if __name__ == "__main__":
     main()

@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-namespace omnicam::cli {
+namespace omnicam {
 
 namespace {
 std::string num(double v) {
@@ -80,4 +80,4 @@ std::string svgPlot(const PlotSpec& spec) {
   return o.str();
 }
 
-}  // namespace omnicam::cli
+}  // namespace omnicam

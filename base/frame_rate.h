@@ -7,7 +7,7 @@
 #include <functional>
 #include <vector>
 
-namespace omnicam::cli {
+namespace omnicam {
 
 inline double framesPerSecond(const std::function<void()>& frame, double seconds) {
   using Clock = std::chrono::steady_clock;
@@ -26,4 +26,4 @@ inline double framesPerSecond(const std::function<void()>& frame, double seconds
   return rates[rates.size() / 2];
 }
 
-}  // namespace omnicam::cli
+}  // namespace omnicam

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace omnicam::cli {
+namespace omnicam {
 
 struct PlotSeries {
   std::string label, colour;
@@ -19,4 +19,4 @@ struct PlotSpec {
 
 std::string svgPlot(const PlotSpec& spec);
 
-}  // namespace omnicam::cli
+}  // namespace omnicam
