@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <exception>
 #include <new>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -72,15 +71,34 @@ std::string parseErrorMessage(const CLI::App& app, int argc, char** argv, const 
   return error.what();
 }
 
-// The refusal of a name JSON cannot hold, naming the first argument that is not UTF-8.
-std::string notUtf8Message(int argc, char** argv) {
+// The first argument that is not UTF-8, or null.
+const char* firstNotUtf8(int argc, char** argv) {
   for (int k = 1; k < argc; ++k)
-    if (!isValidUtf8(argv[k]))
-      return quote(argv[k], kEchoedPathChars) +
-             ": not UTF-8: omnicam records names and paths in JSON (sidecars, manifests, job files), which holds UTF-8 "
-             "only: rename it";
-  return "a name is not UTF-8: omnicam records names and paths in JSON (sidecars, manifests, job files), which holds "
-         "UTF-8 only: rename the file or folder";
+    if (!isValidUtf8(argv[k])) return argv[k];
+  return nullptr;
+}
+
+// Whether the command only reads the names it is given: dataset --status, --verify and --merge
+// (a manifest records names relative to its folder), compare without a report, JUnit file or diff
+// image. Every other command records a name it is given in JSON, HTML or XML, which hold UTF-8
+// only — some after their work, or beside files already written — so a name that is not UTF-8 is
+// refused before anything starts.
+bool onlyReadsItsNames(int argc, char** argv) {
+  const auto has = [&](const char* word) {
+    for (int k = 1; k < argc; ++k)
+      if (std::string(argv[k]) == word || std::string(argv[k]).rfind(std::string(word) + "=", 0) == 0) return true;
+    return false;
+  };
+  const std::string verb = argc > 1 ? argv[1] : "";
+  if (verb == "dataset") return has("--status") || has("--verify") || has("--merge");
+  if (verb == "compare") return !has("--report") && !has("--junit") && !has("--diff");
+  return false;
+}
+
+std::string notUtf8Message(const char* name) {
+  return quote(name, kEchoedPathChars) +
+         ": not UTF-8: omnicam records the names it is given in JSON, HTML and XML (sidecars, manifests, reports), "
+         "which hold UTF-8 only: rename it";
 }
 
 }  // namespace
@@ -99,6 +117,8 @@ void prepareProcess(char** argv) {
 // not be written (disk full, file-size limit, permissions) or the machine lacks the memory the
 // work needs (memory_budget.h).
 int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
+  if (const char* name = firstNotUtf8(argc, argv); name && !onlyReadsItsNames(argc, argv))
+    return reportError(notUtf8Message(name), 2);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -123,11 +143,6 @@ int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
     return reportError(e.what(), 5);
   } catch (const MemoryShortage& e) {
     return reportError(e.what(), 5);
-  } catch (const nlohmann::json::type_error& e) {
-    // JSON holds UTF-8 only: a name given in another encoding cannot be recorded in a sidecar,
-    // manifest or job file. Reading it works; recording it is refused, before the file is written.
-    if (e.id == 316) return reportError(notUtf8Message(argc, argv), 2);
-    return reportError(std::string("internal error: ") + e.what(), 4);
   } catch (const std::bad_alloc&) {
     return reportError("internal error: out of memory (inputs within the documented limits should not get here)", 4);
   } catch (const std::exception& e) {

@@ -144,22 +144,23 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
   };
   // An existing folder may already hold a folder under a frame's name: refused before any frame.
   std::error_code ec;
-  std::set<std::string> written;
-  if (std::filesystem::is_directory(a.out, ec)) {
-    for (int f = 0; f < total; ++f) {
+  std::set<std::string> written;  // the names this run writes (and their sidecars)
+  const bool existed = std::filesystem::is_directory(a.out, ec);
+  for (int f = 0; f < total; ++f) {
+    std::vector<std::string> files = views.files(frameFile(f));
+    if (existed) {
       checkImageOutput(frameFile(f), "-o");
-      std::vector<std::string> files = views.files(frameFile(f));
       for (const std::string& file : files) checkImageOutput(file, "--view");
       checkOutputsSpareScene(scene, files, "--view");
       checkOutputsSpareScene(scene, {frameFile(f)}, "-o");
-      files.push_back(frameFile(f));
-      for (const std::string& file : files) {
-        const std::string name = std::filesystem::path(file).filename().string();
-        written.insert(name), written.insert(name + ".json");
-      }
     }
-    checkNoOtherFrames(a.out, written);
+    files.push_back(frameFile(f));
+    for (const std::string& file : files) {
+      const std::string name = std::filesystem::path(file).filename().string();
+      written.insert(name), written.insert(name + ".json");
+    }
   }
+  if (existed) checkNoOtherFrames(a.out, written);
   // Every frame the engine cannot render is refused before the folder is made.
   checkScene(a.scene, [&] {
     for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
@@ -171,7 +172,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
   if (!claimed.tryClaim(/*shared=*/false))
     throw InputError("-o: " + showPath(a.out) +
                      ": another omnicam run is writing there now: wait for it to end, or give another folder");
-  if (!written.empty()) checkNoOtherFrames(a.out, written);  // again: a run may have ended there since the check
+  checkNoOtherFrames(a.out, written);  // again: another run may have made the folder or ended there since
   Progress progress("render " + a.path + " (" + engineName + ")", total);
   // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
   // each file still appears atomically.

@@ -1,5 +1,7 @@
 #include "central_camera.h"
 
+#include "central_fit.h"
+
 namespace omnicam {
 
 CentralCamera::CentralCamera(const RigSpec& rig) : Camera(rig), model_(rig.camera()) {}
@@ -18,21 +20,15 @@ nlohmann::json CentralCamera::describe() const { return unifiedIntrinsicsJson(mo
 
 nlohmann::json unifiedIntrinsicsJson(const OmniCamera& camera) {
   const OpenCvIntrinsics k = camera.openCvIntrinsics();
-  return {{"model", "mei_unified"},
-          {"xi", k.xi},
-          {"gamma_x", k.gamma_x},
-          {"gamma_y", k.gamma_y},
-          {"cx", k.cx},
-          {"cy", k.cy},
-          {"pixel_centre", "integer"},
-          {"distortion", {0.0, 0.0, 0.0, 0.0}},
-          {"width", camera.width()},
-          {"height", camera.height()},
-          {"rim_radius_px", camera.rimRadius()},
-          {"horizon_radius_px", camera.horizonRadius()},
-          {"note",
-           "camera frame at the effective viewpoint: X forward, Y right (-robot y), Z down; "
-           "gamma_y < 0 because the catadioptric image is a mirror image of a top-down map"}};
+  nlohmann::json j = MeiIntrinsics{k.xi, k.gamma_x, k.gamma_y, k.cx, k.cy, {}}.toJson();
+  j.update({{"width", camera.width()},
+            {"height", camera.height()},
+            {"rim_radius_px", camera.rimRadius()},
+            {"horizon_radius_px", camera.horizonRadius()},
+            {"note",
+             "camera frame at the effective viewpoint: X forward, Y right (-robot y), Z down; "
+             "gamma_y < 0 because the catadioptric image is a mirror image of a top-down map"}});
+  return j;
 }
 
 }  // namespace omnicam

@@ -21,6 +21,11 @@ std::optional<Vec2> MeiIntrinsics::raster(const Vec3& pointCamera) const {
   return Vec2(gammaX * d.x() + cx + 0.5, gammaY * d.y() + cy + 0.5);
 }
 
+nlohmann::json MeiIntrinsics::toJson() const {
+  return {{"model", "mei_unified"}, {"xi", xi}, {"gamma_x", gammaX}, {"gamma_y", gammaY}, {"cx", cx}, {"cy", cy},
+          {"pixel_centre", "integer"}, {"distortion", {lens.k1, lens.k2, lens.p1, lens.p2}}};
+}
+
 std::optional<Vec3> MeiIntrinsics::direction(const Vec2& raster) const {
   const Vec2 distorted((raster.x() - 0.5 - cx) / gammaX, (raster.y() - 0.5 - cy) / gammaY);
   const std::optional<Vec2> m = undistort(lens, distorted);
@@ -251,23 +256,17 @@ nlohmann::json toJson(const CentralApproximation& fit) {
     residuals.push_back({{"distance_m", r.distanceM == 0.0 ? nlohmann::json("infinity") : nlohmann::json(r.distanceM)},
                          {"rms_px", r.rmsPx},
                          {"max_px", r.maxPx}});
-  return {{"model", "mei_unified"},
-          {"xi", k.xi},
-          {"gamma_x", k.gammaX},
-          {"gamma_y", k.gammaY},
-          {"cx", k.cx},
-          {"cy", k.cy},
-          {"pixel_centre", "integer"},
-          {"distortion", {k.lens.k1, k.lens.k2, k.lens.p1, k.lens.p2}},
-          {"viewpoint_m", {fit.viewpoint.x(), fit.viewpoint.y(), fit.viewpoint.z()}},
-          {"rotation_vector", {fit.rotationVector.x(), fit.rotationVector.y(), fit.rotationVector.z()}},
+  nlohmann::json j = k.toJson();
+  j.update({{"viewpoint_m", {fit.viewpoint.x(), fit.viewpoint.y(), fit.viewpoint.z()}},
+            {"rotation_vector", {fit.rotationVector.x(), fit.rotationVector.y(), fit.rotationVector.z()}},
           {"rays", fit.rays},
           {"residual_px", residuals},
           {"note",
            "best-fit central model, not exact: viewpoint = the point nearest all rays (viewpoint frame); camera "
            "frame = the unified model's (X forward, Y right, Z down) turned by rotation_vector; intrinsics "
            "fitted to the rays' directions (points at infinity); residual_px: its reprojection error for "
-           "points at each distance from the viewpoint along the true rays"}};
+           "points at each distance from the viewpoint along the true rays"}});
+  return j;
 }
 
 }  // namespace omnicam

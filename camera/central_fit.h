@@ -28,6 +28,10 @@ struct MeiIntrinsics {
   // unit sphere); nullopt where the model images nothing (outside its disc when ξ > 1, or where
   // the distortion cannot be inverted).
   std::optional<Vec3> direction(const Vec2& raster) const;
+  // The model as every file omnicam writes states it ("mei_unified": ξ, γx, γy, cx, cy with
+  // pixel centres at integers as OpenCV's, the distortion [k1, k2, p1, p2]); each caller adds what
+  // its model is besides (the image's size, a fit's residuals, a note).
+  nlohmann::json toJson() const;
 };
 
 struct CentralApproximation {

@@ -291,9 +291,8 @@ nlohmann::json PhysicalCamera::describe() const {
        "pinhole axes x = image u, y = image v, z = optical axis; raster coordinates continuous (pixel "
        "centres at +0.5)"}};
   if (const auto mei = meiEquivalent()) {
-    nlohmann::json exact = {{"model", "mei_unified"},      {"xi", mei->xi},           {"gamma_x", mei->gammaX},
-                            {"gamma_y", mei->gammaY},      {"pixel_centre", "integer"}, {"width", width()},
-                            {"height", height()}};
+    nlohmann::json exact = mei->toJson();
+    exact.update({{"width", width()}, {"height", height()}});
     if (std::holds_alternative<HyperboloidMirror>(rig.shape)) exact = unifiedIntrinsicsJson(rig.idealCamera());
     if (!pinhole_.distortion.none()) {
       // The lens bends the rim and horizon circles: no radius describes them.

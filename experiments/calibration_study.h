@@ -103,7 +103,6 @@ struct CalibrationStudyResults {
   double seconds = 0.0;
 };
 
-
 // Runs the sweep, writes outDir/results.json, data/ (residual maps) and, with a plot script,
 // figures/ (matplotlib).
 CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& options, const std::string& plotScript,

@@ -80,7 +80,6 @@ struct PathConvergenceResults {
   double seconds = 0.0;
 };
 
-
 // Time to error on the first of `poses`: the fast engine over `fastLadder` (unfiltered and
 // denoised) and Cycles over `cyclesLadder` (denoised), one after the other, against `converged`
 // (that pose's); with the seconds each engine needs for 35, 38 and 40 dB. Each engine is timed

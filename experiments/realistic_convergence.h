@@ -58,7 +58,6 @@ struct ConvergenceResults {
   double seconds = 0.0;
 };
 
-
 // Writes outDir/convergence.json, data/convergence.csv, frames/ (pose 0 at every rung) and
 // figures/convergence.svg (by `plotScript`; empty: none). InputError for bad options.
 ConvergenceResults runRealisticConvergence(const ConvergenceOptions& options, const std::string& plotScript,

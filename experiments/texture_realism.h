@@ -37,8 +37,6 @@
 
 namespace omnicam {
 
-
-
 // Runs everything and writes outDir/results.json, data/ (CSV and JSON for the figures),
 // arenas/, frames/ (one frame per test set with detections drawn) and report.html. Figures are
 // drawn by `plotScript` (python3 + matplotlib) from data/ into figures/; an empty path skips
@@ -56,6 +54,5 @@ struct DetectionFrame {
 };
 DetectionFrame texturedHallDetectionFrame(const std::string& fieldScene, const std::string& labPhoto,
                                           const std::string& arenaDir, int size, int spp, int trainFrames);
-
 
 }  // namespace omnicam

@@ -222,28 +222,30 @@ TEST_F(CliTest, PathSequenceWritesNumberedFramesWithSidecars) {
   EXPECT_EQ(sha256OfFile((fs::path(folder) / "frame_0002.png").string()), first);
 }
 
-// A name that is not UTF-8 cannot be recorded in a sidecar, manifest or job file (JSON): the
-// command that would record it is refused, one line, exit 2, nothing written — not an internal
-// error. Commands that only read such a name work.
-TEST_F(CliTest, ANameThatIsNotUtf8IsRefusedWhereItWouldBeRecorded) {
+// A name that is not UTF-8 cannot be recorded in a sidecar, manifest, report or JUnit file (JSON,
+// HTML, XML hold UTF-8 only): a command that records the names it is given refuses it before any
+// work, one line, exit 2, nothing written — not an internal error after the work, nor a half-made
+// output. Commands that only read names take it.
+TEST_F(CliTest, ANameThatIsNotUtf8IsRefusedBeforeAnyWorkUnlessOnlyRead) {
   const std::string odd = path("sc\xff\xfe.json");
   fs::copy_file(kScene, odd);
+  const std::string folder = path("d\xe9j\xe0");
+  fs::create_directories(folder);
   for (const std::string& command : {"render '" + odd + "' --size 32 -o " + path("x.png"),
-                                     "render '" + odd + "' --size 32 --engine povray -o " + path("p.png")}) {
+                                     "render '" + odd + "' --size 32 --path thesis-loop --frames 2 -o " + path("frames"),
+                                     "render " + kScene + " --size 32 -o '" + folder + "/x.png'",
+                                     "compare '" + folder + "' '" + folder + "' --junit " + path("j.xml")}) {
     const CommandResult r = run(command);
     EXPECT_EQ(r.code, 2) << command << ": " << r.out;
     EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
-    EXPECT_NE(r.out.find("sc\\xFF\\xFE.json\": not UTF-8: omnicam records names and paths in JSON"), std::string::npos)
+    EXPECT_NE(r.out.find("\": not UTF-8: omnicam records the names it is given in JSON, HTML and XML"), std::string::npos)
         << r.out;
   }
-  EXPECT_FALSE(fs::exists(path("x.png")));
-  EXPECT_FALSE(fs::exists(path("p.png")));
-  EXPECT_FALSE(fs::exists(path("x.png.json")));
+  for (const char* file : {"x.png", "x.png.json", "frames", "j.xml"}) EXPECT_FALSE(fs::exists(path(file))) << file;
+  EXPECT_TRUE(fs::is_empty(folder));
   // Read, not recorded: --status of such a folder answers as of any other.
-  const std::string folder = path("d\xe9j\xe0");
-  fs::create_directories(folder);
   const CommandResult status = run("dataset --status '" + folder + "'");
-  EXPECT_EQ(status.code, 2) << status.out;  // not a dataset folder: said, not an internal error
+  EXPECT_EQ(status.code, 2) << status.out;
   EXPECT_NE(status.out.find("not a dataset folder"), std::string::npos) << status.out;
 }
 

@@ -470,8 +470,10 @@ TEST_F(DatasetCliTest, AShardChecksAgainAloneBeforeItsFirstManifest) {
   // Synchronised on what the shard writes: it says once that it waits.
   const auto waitUntilWaiting = [&](pid_t pid, const std::string& log, int& status) {
     const std::string said = "omnicam: waiting for another shard's check of " + path("race/shards");
-    while (readFile(dir_ / log).find(said) == std::string::npos)
+    while (readFile(dir_ / log).find(said) == std::string::npos) {
       if (::waitpid(pid, &status, WNOHANG) == pid) return false;
+      std::this_thread::yield();
+    }
     return true;
   };
   pid_t pid = spawnOmnicam({"dataset", b, "-o", path("race"), "--shard", "1/2"}, path("race.log"), {});
