@@ -169,6 +169,14 @@ void withRegularFile(const std::string& root, int rootFd, const std::string& rel
   use(file.get(), size);
 }
 
+// flock(2) without waiting: false only while another process holds a claim that excludes this
+// one. A file system without flock claims nothing and excludes nothing: true.
+bool tryFlock(int fd, int operation) {
+  while (::flock(fd, operation | LOCK_NB) != 0)
+    if (errno != EINTR) return errno != EWOULDBLOCK;
+  return true;
+}
+
 }  // namespace
 
 SafeFolder::SafeFolder(const std::string& root, bool create) : root_(root) {
@@ -183,22 +191,13 @@ SafeFolder::SafeFolder(const std::string& root, bool create) : root_(root) {
   }
 }
 
-bool SafeFolder::tryClaim(bool shared) const {
-  if (fd_.get() < 0) return true;
-  while (::flock(fd_.get(), (shared ? LOCK_SH : LOCK_EX) | LOCK_NB) != 0)
-    if (errno != EINTR) return errno != EWOULDBLOCK;
-  return true;
-}
+bool SafeFolder::tryClaim(bool shared) const { return fd_.get() < 0 || tryFlock(fd_.get(), shared ? LOCK_SH : LOCK_EX); }
 
 std::optional<FileDescriptor> SafeFolder::tryClaimAlone(const std::string& relative) const {
   const std::vector<std::string> parts = partsOf(relative);
   try {
     FileDescriptor folder = openFolders(root_, fd_.get(), parts, parts.size(), true);
-    while (::flock(folder.get(), LOCK_EX | LOCK_NB) != 0) {
-      if (errno == EWOULDBLOCK) return std::nullopt;
-      // A file system without flock (tryClaim's policy): no claim to take, nothing excluded.
-      if (errno != EINTR) return FileDescriptor();
-    }
+    if (!tryFlock(folder.get(), LOCK_EX)) return std::nullopt;
     return folder;
   } catch (const Problem& p) {
     rethrow(root_, p);

@@ -55,7 +55,7 @@ class SafeFolder {
   // The folder `relative` inside (made as needed, reached without following links) claimed by this
   // process alone, for as long as the descriptor returned lives: for a short step no two processes
   // may take at once. nullopt while another process holds a claim on it (the caller waits, and
-  // can stop waiting); an empty descriptor where the file system has no claims.
+  // can stop waiting). Where the file system has no claims, the folder's descriptor, claiming nothing.
   std::optional<FileDescriptor> tryClaimAlone(const std::string& relative) const;
 
  private:
