@@ -8,6 +8,7 @@
 
 #include "landmark_geometry.h"
 #include "omni_camera.h"
+#include "placement.h"
 
 namespace omnicam {
 
@@ -75,7 +76,7 @@ double footprintScore(FootprintScore score, double excess, size_t pixels) {
 
 BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon) {
   const OmniCamera camera = rig.camera();
-  const Eigen::Matrix3d cameraFromViewpoint = unifiedCameraFromViewpoint().linear();
+  const Rigid cameraFromRobot = robotFromCamera(rig).inverse();
   const int w = camera.width(), h = camera.height();
   const double boundary = beacon.boundaryHeight();  // the candidate's height, as detections report it
   const double split = beacon.lower->position.z() + 0.5 * beacon.lower->height;  // where the bands meet
@@ -118,7 +119,7 @@ BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon) {
           const double z = from + (to - from) * fraction;
           for (const double a : kAcrossSamples) {
             const Vec2 xy = axis + a * radius * across;
-            const auto raster = camera.rasterFromCamera(cameraFromViewpoint * Vec3(xy.x(), xy.y(), z - rig.height));
+            const auto raster = camera.rasterFromCamera(cameraFromRobot * Vec3(xy.x(), xy.y(), z));
             if (!raster) {
               imaged = false;  // part of the beacon beyond the rim: not this detector's case
               break;

@@ -4,16 +4,20 @@
 #include <cmath>
 #include <limits>
 
+#include "placement.h"
+
 namespace omnicam {
 
 std::optional<RangeBearing> rangeBearingFromRaster(const RigSpec& rig, const Vec2& raster, double pointHeight) {
   const OmniCamera camera = rig.camera();
-  // viewpointFromCamera: the robot's axes (x forward, y left, z up) at F'.
-  const Vec3 direction = unifiedCameraFromViewpoint().inverse().linear() * camera.cameraFromRaster(raster);
-  const double rise = pointHeight - rig.height;  // from F' to the point's height
+  // The ray from F' in the robot's frame: a tilted rig moves F' off the robot's vertical axis.
+  const Rigid robotFromCam = robotFromCamera(rig);
+  const Vec3 origin = robotFromCam.translation();
+  const Vec3 direction = robotFromCam.linear() * camera.cameraFromRaster(raster);
+  const double rise = pointHeight - origin.z();  // from F' to the point's height
   if (std::abs(direction.z()) < 1e-12 || rise / direction.z() <= 0.0) return std::nullopt;
-  const double t = rise / direction.z();
-  return RangeBearing(t * std::hypot(direction.x(), direction.y()), std::atan2(direction.y(), direction.x()));
+  const Vec3 point = origin + (rise / direction.z()) * direction;
+  return RangeBearing(std::hypot(point.x(), point.y()), std::atan2(point.y(), point.x()));
 }
 
 Interval distanceBetweenSightings(const Interval& a, double bearingA, const Interval& b, double bearingB) {

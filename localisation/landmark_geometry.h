@@ -10,10 +10,11 @@
 
 namespace omnicam {
 
-// Range (metres, horizontal from F') and bearing (radians CCW from the camera's forward axis) of
-// the point at height `pointHeight` above the floor seen at continuous raster position `raster`
-// (centres at +0.5) by a camera with `rig`. nullopt when the ray never reaches that height
-// (the point would be at or beyond the horizon).
+// Range (metres, horizontal from the robot's origin: below F' on a level rig) and bearing
+// (radians CCW from the robot's forward axis) of the point at height `pointHeight` above the floor
+// seen at continuous raster position `raster` (centres at +0.5) by a camera with `rig`, tilted as
+// the rig says (robotFromViewpoint). nullopt when the ray never reaches that height (the point
+// would be at or beyond the horizon). InputError for a rig no central model describes.
 std::optional<RangeBearing> rangeBearingFromRaster(const RigSpec& rig, const Vec2& raster, double pointHeight);
 
 // The horizontal distance between two points seen from one place at bearings `bearingA` and

@@ -11,23 +11,44 @@
 namespace omnicam {
 namespace {
 
-TEST(LandmarkGeometry, InvertingTheProjectionAtTheKnownHeightRecoversRangeAndBearing) {
-  RigSpec rig;
+void expectInversionRecoversRangeAndBearing(const RigSpec& rig) {
   const RobotPose pose{0.3, -0.4, 35.0};
   const OmniCamera camera = rig.camera();
   for (const Vec3& point : {Vec3(1.35, -1.95, 0.35), Vec3(-1.35, 1.95, 0.25), Vec3(2.0, 0.5, 0.0), Vec3(0.0, 0.4, 0.1)}) {
+    // The projection through the placement's whole frame chain (world ← robot ← viewpoint ← camera).
     const auto raster = camera.rasterFromCamera(CameraPlacement(pose).worldFromCamera(rig).inverse() * point);
     ASSERT_TRUE(raster);
     const auto rb = rangeBearingFromRaster(rig, *raster, point.z());
     ASSERT_TRUE(rb);
     const double dx = point.x() - pose.x, dy = point.y() - pose.y;
-    EXPECT_NEAR(rb->x(), std::hypot(dx, dy), 1e-9);
+    EXPECT_NEAR(rb->x(), std::hypot(dx, dy), 1e-9) << rig.tiltDeg[0] << " " << rig.tiltDeg[1];
     EXPECT_NEAR(wrapAngle(rb->y() - (std::atan2(dy, dx) - radians(pose.yawDeg))), 0.0, 1e-9);
   }
+}
+
+TEST(LandmarkGeometry, InvertingTheProjectionAtTheKnownHeightRecoversRangeAndBearing) {
+  RigSpec rig;
+  expectInversionRecoversRangeAndBearing(rig);
+  const OmniCamera camera = rig.camera();
   // A point at the viewpoint's own height lies on the horizon: no finite range.
   EXPECT_FALSE(rangeBearingFromRaster(rig, {180.0 + camera.horizonRadius(), 180.0}, rig.height));
   // Above F' (seen above the horizon), a point cannot be on a ray that goes down.
   EXPECT_FALSE(rangeBearingFromRaster(rig, {190.0, 180.0}, 1.0));
+}
+
+// A rig rocked on its mount: F' moves off the robot's vertical axis and the rays turn with it;
+// ranges and bearings stay the robot's. Level-rig inversion would be off by centimetres here.
+TEST(LandmarkGeometry, ATiltedRigsRangeAndBearingAreTheRobotsNotTheLevelRigs) {
+  RigSpec rig;
+  rig.tiltDeg = {4.0, -3.0};
+  expectInversionRecoversRangeAndBearing(rig);
+  // The same pixel read as a level rig's lies elsewhere.
+  const RigSpec level;
+  const Vec2 raster = *level.camera().rasterFromCamera(CameraPlacement(RobotPose{}).worldFromCamera(level).inverse() *
+                                                       Vec3(1.0, 0.5, 0.0));
+  const auto tilted = rangeBearingFromRaster(rig, raster, 0.0), levelRead = rangeBearingFromRaster(level, raster, 0.0);
+  ASSERT_TRUE(tilted && levelRead);
+  EXPECT_GT(std::abs((*tilted)(0) - (*levelRead)(0)), 0.02);
 }
 
 TEST(LandmarkGeometry, DistanceBetweenSightingsMatchesClosedFormsAndADenseSearch) {

@@ -64,6 +64,8 @@ Rigid CameraPlacement::worldFromViewpoint(const RigSpec& rig, double seconds) co
   return worldFromRobot(footAt(seconds)) * footFromTiltedFoot_ * robotFromViewpoint(rig);
 }
 
+Rigid robotFromCamera(const RigSpec& rig) { return robotFromViewpoint(rig) * cameraFromViewpoint(rig).inverse(); }
+
 Rigid CameraPlacement::worldFromCamera(const RigSpec& rig, double seconds) const {
   return worldFromViewpoint(rig, seconds) * cameraFromViewpoint(rig).inverse();
 }

@@ -36,6 +36,8 @@ using RobotTilt = std::array<double, 2>;
 
 // The rig-tilt link: the rig tilted on its mount about its foot, then up to F' at its height.
 Rigid robotFromViewpoint(const RigSpec& rig);
+// robot ← viewpoint ← camera: where the rig's camera frame (cameraFromViewpoint) sits on the robot.
+Rigid robotFromCamera(const RigSpec& rig);
 
 class CameraPlacement {
  public:
