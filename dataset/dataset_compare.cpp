@@ -388,6 +388,36 @@ std::string datasetAlphaText(const DatasetCompareResult& result) {
   return text;
 }
 
+namespace {
+
+// A report's image link as its page writes it (percent-encoded, then escaped for HTML).
+std::string imageLink(const std::string& assetsName, const std::string& name) {
+  return "<img src=\"" + escapeMarkup(urlPath(assetsName + "/" + name)) + "\">";
+}
+
+// The images an earlier report at the same path showed that the new one does not (frames no
+// longer among the worst): each a regular file in the images' folder that the earlier page
+// links to. Files the earlier page does not link to are someone else's and stay.
+std::vector<std::string> imagesOnlyTheEarlierReportShowed(const SafeFolder& folder, const std::string& pageName,
+                                                          const std::string& assetsName, const std::set<std::string>& shown) {
+  if (folder.entry(pageName) != EntryKind::File || folder.entry(assetsName) != EntryKind::Folder) return {};
+  std::string earlierPage;
+  try {
+    earlierPage = folder.readFile(pageName, 64 << 20);
+  } catch (const InputError&) {
+    return {};  // larger than any report, or gone: nothing of it is known to be omnicam's
+  }
+  std::vector<std::string> stale;
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(folder.path()) / assetsName, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (!shown.count(name) && earlierPage.find(imageLink(assetsName, name)) != std::string::npos) stale.push_back(name);
+  }
+  return stale;
+}
+
+}  // namespace
+
 std::string reportAssetsFolder(const std::string& reportPath) {
   const fs::path report(reportPath);
   return (report.parent_path() / (report.stem().string() + "_files")).string();
@@ -449,8 +479,7 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
       html << "<h3>" << escapeMarkup(frameLabel(f)) << ": " << psnrText(f.result.psnrDb) << " dB</h3>";
       const char* captions[3] = {"A", "B", "|A − B|"};
       for (int i = 0; i < 3; ++i)
-        html << "<figure><img src=\"" << escapeMarkup(urlPath(assetsName + "/" + names[i])) << "\"><figcaption>" << captions[i]
-             << "</figcaption></figure>";
+        html << "<figure>" << imageLink(assetsName, names[i]) << "<figcaption>" << captions[i] << "</figcaption></figure>";
     }
     html << "<h2>All frames</h2><table><tr><th>frame</th><th>camera</th><th>PSNR (dB)</th><th>SSIM</th><th>RMSE</th>"
             "<th>max abs</th></tr>";
@@ -460,11 +489,16 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
            << "</td><td>" << f.result.maxAbs << "</td></tr>";
     html << "</table></body></html>\n";
     const std::string page = html.str();
+    std::set<std::string> shown;
+    for (const FileBytes& image : images) shown.insert(fs::path(image.path).filename().string());
+    const std::vector<std::string> stale =
+        imagesOnlyTheEarlierReportShowed(reportFolder, report.filename().string(), assetsName, shown);
     AtomicFileGroup group;
     for (const FileBytes& image : images)
       reportFolder.stageFile(group, image.path, std::string_view(reinterpret_cast<const char*>(image.bytes.data()), image.bytes.size()));
     group.stage(reportPath, page);
     group.commit();
+    for (const std::string& name : stale) reportFolder.removeFile(assetsName + "/" + name);
   }
 }
 

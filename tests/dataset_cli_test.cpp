@@ -18,6 +18,7 @@
 #include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/core.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -889,6 +890,18 @@ TEST_F(DatasetCliTest, CommonFramesComparesWhatBothHoldAndSaysWhatWasLeftOut) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("PASS images=2 failing=0"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("note: compared the 2 frames with images in both; left out: 4 only in A (first 0)"), std::string::npos) << r.out;
+  // A report written again at the same path shows other frames: the earlier one's images it no
+  // longer shows go, and files its page never linked to (someone else's) stay.
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("three") + " --common-frames --report " + path("r.html")).code, 0);
+  for (const char* frame : {"000000", "000001", "000002"})
+    EXPECT_TRUE(fs::exists(dir_ / "r_files" / (std::string(frame) + "_cam0_diff.png"))) << frame;
+  fs::copy_file(dir_ / "r_files/000000_cam0_a.png", dir_ / "r_files/000007_cam0_a.png");
+  std::ofstream(dir_ / "r_files/notes.txt") << "mine";
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("own") + " --common-frames --report " + path("r.html")).code, 0);
+  std::set<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir_ / "r_files")) left.insert(entry.path().filename().string());
+  EXPECT_EQ(left, (std::set<std::string>{"000001_cam0_a.png", "000001_cam0_b.png", "000001_cam0_diff.png", "000004_cam0_a.png",
+                                         "000004_cam0_b.png", "000004_cam0_diff.png", "000007_cam0_a.png", "notes.txt"}));
   // Nothing in common, and images, are refused.
   fs::create_directories(dir_ / "empty/cam0/rgb");
   r = omnicam("compare " + path("six") + " " + path("empty") + " --common-frames");
