@@ -211,8 +211,10 @@ void addDemoCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--sections", args->only, "Run only these sections (comma-separated: glance, start-pose, light, "
                   "physical, lenses, robot); the report lists the others as not run")
       ->delimiter(',');
-  cmd->add_option("--section", args->section, "Render one section into the report folder (what the demo runs for each)")
-      ->group("");
+  cmd->add_option("--section", args->section,
+                  "Run one section alone, without a time budget, into the report folder: its images and "
+                  "sections/NAME.fragment, no index.html (what the demo runs for each; a section that falls short "
+                  "says to reproduce it so)");
   cmd->callback([args, cmd, &exitCode] {
     refuseUnless(*cmd, "--sections", args->section.empty(), "the whole demo (not with --section)");
     refuseUnless(*cmd, "--budget-scale", args->section.empty(), "the whole demo (not with --section)");

@@ -171,7 +171,10 @@ void addRingsCommand(CLI::App& app) {
   cmd->add_option("--engine", args->engine, "fast (default), povray or blender");
   cmd->add_option("scene", args->sceneArgument, "Ring scene (default: scenes/incidence-rings.json)");
   cmd->add_option("--scene", args->scene, "The same, as a flag");
-  cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(32, limits::kMaxImageSize));
+  cmd->add_option("--size", args->size,
+                  "Image size in pixels (default: the scene's); one too small to tell the rings apart is refused "
+                  "(the default ring scene's need 224 or more)")
+      ->check(integerIn(32, limits::kMaxImageSize));
   addSppOption(*cmd, args->spp, "Samples per pixel, n*n (default 16)");
   cmd->add_option("-o,--output", args->out, "Ring image OUT.png / OUT.exr");
   cmd->add_option("--measure", args->measure, "Measure an existing ring image instead of rendering one");

@@ -62,7 +62,7 @@ std::vector<RequestFieldRow> makeRows() {
        .shown = [](const Request& r) { return onOff(r.denoise); }},
       {.field = RequestField::AdaptiveSpp, .type = Type::Integer, .cli = "--adaptive-spp", .json = "adaptive_spp",
        .python = "adaptive_spp", .pythonPlace = PythonPlace::Render, .cliGroup = kPathFlags,
-       .range = "0 (off), or spp·4^k up to " + maxSpp, .engines = "fast: exact, shading path",
+       .range = "0 (off), or spp·4^k (k ≥ 1; spp ≥ 4) up to " + maxSpp, .engines = "fast: exact, shading path",
        .help = "Adaptive sampling: pixels above --target-error are traced again on finer grids, up to this many samples "
                "(unfiltered still frames)",
        .shown = [](const Request& r) { return std::to_string(r.adaptiveSpp); }},
