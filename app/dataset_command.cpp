@@ -196,6 +196,11 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
       std::fprintf(stderr, "omnicam: %s before %s was made: nothing was written\n", interruption.c_str(), showPath(a.out).c_str());
     return 130;
   }
+  if (r.stoppedWaiting) {
+    std::fprintf(stderr, "omnicam: interrupted while waiting for another shard's check of %s/shards: this run wrote nothing; "
+                 "run the same command again to go on\n", showPath(a.out).c_str());
+    return 130;
+  }
   if (r.stopped) {
     std::fprintf(stderr, "omnicam: interrupted: %d of %d frames finished in %s; run the same command again to resume\n",
                  r.kept + r.rendered, r.frames, showPath(a.out).c_str());

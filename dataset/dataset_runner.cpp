@@ -181,7 +181,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
                        std::to_string(options.shardCount) + " is being rendered there now by another run on this machine: wait for it to end");
     std::optional<FileDescriptor> claim = claimShardsFolder(folder, options);
     if (!claim) {  // asked to stop while another shard held it: nothing written
-      result.stopped = true;
+      result.stopped = result.stoppedWaiting = true;
       return result;
     }
     shardsClaim = std::move(*claim);

@@ -26,6 +26,7 @@ struct DatasetRunResult {
   int kept = 0;      // verified and kept from an earlier run
   int rendered = 0;  // rendered by this run
   bool stopped = false;
+  bool stoppedWaiting = false;  // stopped while another shard held shards/: nothing was looked at or written
   std::vector<std::string> notes;  // e.g. outputs a ground-truth engine does not write
 };
 
