@@ -52,7 +52,9 @@ std::optional<Vec3> HyperbolicMirror::firstHit(const Vec3& origin, const Vec3& d
     const double t = roots[i];
     if (!(t > 0.0) || t >= bestT) continue;
     const Vec3 p = origin + t * d;
-    if (p.z() + c_ / 2.0 < a()) continue;  // the other sheet
+    // The other sheet lies below the centre (z + c/2 ≤ −a), this one above (≥ a): the sign tells
+    // them apart where a comparison with a would drop the vertex itself to rounding.
+    if (!(p.z() + c_ / 2.0 > 0.0)) continue;
     bestT = t;
     best = p;
   }

@@ -57,6 +57,28 @@ TEST(PhysicalCamera, TheIdealPinholeTracesTheClosedFormsRays) {
   EXPECT_FALSE(makeCamera(rig, true)->central());
 }
 
+// A camera on the mirror's axis (turned about it, moved along it, or with lens distortion only)
+// sees the vertex along the axis itself: that ray is the closed form's, straight down from F',
+// and the point straight below projects onto the image centre (at an odd size, a pixel centre).
+TEST(PhysicalCamera, TheRayAlongTheAxisOfAnOnAxisCameraIsTheClosedForms) {
+  RigSpec turned, moved, distortedOnly;
+  for (RigSpec* rig : {&turned, &moved, &distortedOnly}) rig->mirrorRig().imageSize = 361;
+  turned.mirrorRig().mount.rotationDeg = {0.0, 0.0, 5.0};
+  moved.mirrorRig().mount.offsetMm = {0.0, 0.0, 3.0};
+  distortedOnly.mirrorRig().mount.distortion = {-0.05, 0.0, 0.0, 0.0, 0.0};
+  for (const RigSpec* rig : {&turned, &moved, &distortedOnly}) {
+    const PhysicalCamera camera(*rig);
+    const auto ray = camera.generateRay({Vec2(180.5, 180.5)});
+    ASSERT_TRUE(ray);
+    EXPECT_NEAR(ray->direction.x(), 0.0, 1e-12);
+    EXPECT_NEAR(ray->direction.y(), 0.0, 1e-12);
+    EXPECT_NEAR(ray->direction.z(), -1.0, 1e-12);
+    const auto below = camera.project(Vec3(0.0, 0.0, -2.0));
+    ASSERT_TRUE(below);
+    EXPECT_NEAR((*below - Vec2(180.5, 180.5)).norm(), 0.0, 1e-6);
+  }
+}
+
 TEST(PhysicalCamera, AMovedTurnedDistortedCameraObeysTheReflectionLaw) {
   const RigSpec rig = distorted(misaligned(3.0, 2.0));
   const PhysicalCamera camera(rig);
