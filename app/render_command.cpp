@@ -53,7 +53,7 @@ class FrameViews {
         throw InputError("--view: " + quote(kind) + " given twice (each view is written once)");
       ViewSpec spec;
       spec.kind = parseViewKind(kind, "--view");
-      ViewMap map = buildViewMap(spec, *camera);
+      ViewMap map = buildViewMap(spec, *camera, robotFromViewpoint(rig));
       nlohmann::json description = viewToJson(spec, map, *camera, robotFromViewpoint(rig));
       maps_.push_back({kind, std::move(map), std::move(description)});
     }

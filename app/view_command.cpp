@@ -117,7 +117,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
     throw InputError(showPath(a.in) + ": is " + std::to_string(omni.width) + "x" + std::to_string(omni.height) + "; its camera images " +
                      std::to_string(rig.imageWidth()) + "x" + std::to_string(rig.imageHeight()) + " at that width");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
-  const ViewMap map = buildViewMap(spec, *camera, flags);
+  const ViewMap map = buildViewMap(spec, *camera, robotFromViewpoint(rig), flags);
   std::vector<FileBytes> files;  // the view and its sidecar together, or neither
   addImageFiles(files, a.out, applyViewMap(map, omni), viewSidecar(sidecar, viewToJson(spec, map, *camera, robotFromViewpoint(rig)), a.in));
   writeFilesTogether(files);

@@ -61,15 +61,15 @@ Vec3 perspectiveDirection(const ViewSpec& spec, const ViewMap& map, double u, do
   return {1.0, -sx, -sy};
 }
 
-// The widest angle from straight down at which the camera sees, over a grid of its pixels: the
-// panorama's top row for a camera with no closed-form rim.
-double widestIncidence(const Camera& camera) {
+// The widest angle from the robot's straight down at which the camera sees, over a grid of its
+// pixels: the panorama's top row for a camera with no closed-form rim.
+double widestIncidence(const Camera& camera, const Eigen::Matrix3d& robotFromViewpoint) {
   double widest = 0.0;
   constexpr int kGrid = 128;
   for (int j = 0; j < kGrid; ++j)
     for (int i = 0; i < kGrid; ++i)
       if (const auto ray = camera.generateRay({Vec2((i + 0.5) * camera.width() / kGrid, (j + 0.5) * camera.height() / kGrid)}))
-        widest = std::max(widest, std::acos(std::clamp(-ray->direction.z(), -1.0, 1.0)));
+        widest = std::max(widest, std::acos(std::clamp(-(robotFromViewpoint * ray->direction).z(), -1.0, 1.0)));
   return widest;
 }
 
@@ -109,8 +109,7 @@ nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera
                       {"height", map.height}};
   if (spec.kind == ViewKind::BirdsEye) {
     j["ground_distance_px"] = spec.groundDistance;
-    const bool level = robotFromViewpoint.linear().isIdentity(1e-12);
-    if (spec.variant == ViewVariant::Exact && camera.central() && level)
+    if (spec.variant == ViewVariant::Exact && camera.central())
       j["ground_metres_per_pixel"] = robotFromViewpoint.translation().z() / spec.groundDistance;
   }
   if (spec.kind == ViewKind::Perspective) {
@@ -123,12 +122,13 @@ nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera
     j["intrinsics"] = {{"model", "pinhole"}, {"fx", f}, {"fy", f}, {"cx", 0.5 * map.width - 0.5}, {"cy", 0.5 * map.height - 0.5},
                        {"pixel_centre", "integer"}, {"width", map.width}, {"height", map.height}};
     // The view frame's axes (forward, left, up) as the camera sees them: right = −left, down = −up.
-    // The view's directions are the viewpoint frame's, which the rig's tilt turns on the robot.
+    // The view's directions are the robot's, from F' (where the rig's height and tilt put it).
     Eigen::Matrix3d viewFromCamera;
     viewFromCamera << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-    Rigid viewpointFromCamera = Rigid::Identity();
-    viewpointFromCamera.linear() = perspectiveRobotFromView(spec) * viewFromCamera;
-    const Eigen::Matrix4d cameraFromRobot = (robotFromViewpoint * viewpointFromCamera).inverse().matrix();
+    Rigid robotFromViewCamera = Rigid::Identity();
+    robotFromViewCamera.linear() = perspectiveRobotFromView(spec) * viewFromCamera;
+    robotFromViewCamera.translation() = robotFromViewpoint.translation();
+    const Eigen::Matrix4d cameraFromRobot = robotFromViewCamera.inverse().matrix();
     nlohmann::json rows = nlohmann::json::array();
     for (int r = 0; r < 4; ++r) rows.push_back({cameraFromRobot(r, 0), cameraFromRobot(r, 1), cameraFromRobot(r, 2), cameraFromRobot(r, 3)});
     j["camera_from_robot"] = rows;
@@ -179,9 +179,13 @@ void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names) {
     throw InputError(names.fov + ": must be in (0, 179] degrees (got " + roundTrip(spec.fovDeg) + ")");
 }
 
-ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
-  checkViewSpec(spec);
+namespace {
+
+// The central model's view of a rig whose viewpoint frame the rig's tilt turns on the robot:
+// view directions are the robot's (`viewpointFromRobot` takes them to the camera's).
+ViewMap buildCentralViewMap(const ViewSpec& spec, const OmniCamera& camera, const Eigen::Matrix3d& viewpointFromRobot) {
   ViewMap map = emptyViewMap(spec);
+  const bool level = viewpointFromRobot.isIdentity(0.0);
   const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
   for (int j = 0; j < map.height; ++j)
     for (int i = 0; i < map.width; ++i) {
@@ -192,12 +196,18 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
         case ViewKind::BirdsEye: {
           // Eq. 3.3 with the ground point (x_w, y_w, z_w) in pixel units, z_w below F'.
           const Vec3 d(u - 0.5 * map.width, 0.5 * map.height - v, -spec.groundDistance);
-          rasterOfDirection(camera, d, spec.variant, x, y);
+          rasterOfDirection(camera, viewpointFromRobot * d, spec.variant, x, y);
           break;
         }
         case ViewKind::Panorama: {
           const double phi = kPi - 2.0 * kPi * u / map.width;
           const double row = v / map.height;  // 0 at the top (rim), 1 at the bottom (centre)
+          if (!level) {  // the robot's azimuth and incidence, turned into the camera's
+            const double theta = camera.rimTheta() * (1.0 - row);
+            const Vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+            rasterOfDirection(camera, viewpointFromRobot * d, ViewVariant::Exact, x, y);
+            break;
+          }
           double r;
           if (spec.variant == ViewVariant::Thesis) {
             r = camera.rimRadius() * (1.0 - row);  // Eqs. 3.6–3.7: linear in the radius
@@ -209,7 +219,8 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
           break;
         }
         case ViewKind::Perspective:
-          rasterOfDirection(camera, robotFromView * perspectiveDirection(spec, map, u, v), ViewVariant::Exact, x, y);
+          rasterOfDirection(camera, viewpointFromRobot * (robotFromView * perspectiveDirection(spec, map, u, v)),
+                            ViewVariant::Exact, x, y);
           break;
       }
       map.sourceX[k] = x;
@@ -219,14 +230,25 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
   return map;
 }
 
-ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const ViewSpecNames& names) {
+}  // namespace
+
+ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera) {
+  checkViewSpec(spec);
+  return buildCentralViewMap(spec, camera, Eigen::Matrix3d::Identity());
+}
+
+ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const Rigid& robotFromViewpoint, const ViewSpecNames& names) {
   checkViewSpec(spec, names);
-  if (const auto* central = dynamic_cast<const CentralCamera*>(&camera)) return buildViewMap(spec, central->unified());
+  const Eigen::Matrix3d viewpointFromRobot = robotFromViewpoint.linear().transpose();
+  if (spec.variant == ViewVariant::Thesis && !viewpointFromRobot.isIdentity(0.0))
+    throw InputError(names.variant + ": the thesis' equations are a level rig's; a tilted rig (rig.tilt_deg) has exact views only");
+  if (const auto* central = dynamic_cast<const CentralCamera*>(&camera))
+    return buildCentralViewMap(spec, central->unified(), viewpointFromRobot);
   if (spec.variant == ViewVariant::Thesis)
     throw InputError(names.variant + ": the thesis' equations are the central model's; a physical rig (rig.camera, "
                      "rig.mirror.shape) has exact views only");
   ViewMap map = emptyViewMap(spec);
-  const double thetaMax = widestIncidence(camera);
+  const double thetaMax = widestIncidence(camera, viewpointFromRobot.transpose());
   const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
   // A non-central camera has no pixel for a direction, only for a point: each view pixel shows
   // the point 1 km along its direction from the viewpoint (parallax there: ~10⁻⁶ rad per mm of
@@ -246,7 +268,7 @@ ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const ViewSpecN
           }
           case ViewKind::Perspective: d = robotFromView * perspectiveDirection(spec, map, u, v); break;
         }
-        if (const auto raster = camera.project(kFar * d.normalized())) {
+        if (const auto raster = camera.project(kFar * (viewpointFromRobot * d).normalized())) {
           const size_t k = static_cast<size_t>(j) * map.width + i;
           map.sourceX[k] = static_cast<float>(raster->x());
           map.sourceY[k] = static_cast<float>(raster->y());

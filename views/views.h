@@ -11,6 +11,9 @@
 //                thesis variant: radius linear in the row (Eqs. 3.6–3.7); exact variant:
 //                incidence angle linear in the row (rows are equal angle steps).
 //   perspective  a virtual pinhole at F' looking toward (yaw, pitch) in the robot frame.
+// Directions are the robot's (level when the robot stands level), also for a rig tilted on its
+// mount (rig.tilt_deg): the bird's-eye view shows the floor, the panorama's rows are incidence
+// from the robot's straight down, and pitch is above the robot's horizon.
 // Pixels whose source lies outside the mirror disc, or off the omni image, are black (alpha 0).
 #include <nlohmann/json.hpp>
 #include <string>
@@ -55,11 +58,15 @@ struct ViewSpecNames {
 // InputError (naming the parameter as `names` says) unless the view is well defined and within
 // the documented size limits. buildViewMap calls it first.
 void checkViewSpec(const ViewSpec& spec, const ViewSpecNames& names = {});
+// A level rig's view through the central model's closed form.
 ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
-// The same for any camera: the central model's closed form above, or for a physical rig (exact
-// variant only) the points 1 km along each view direction projected by the camera
-// (docs/physical-camera.md); the panorama's top row is then the widest angle the camera sees.
-ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const ViewSpecNames& names = {});
+// The same for any camera placed on the robot by `robotFromViewpoint` (placement.h: the rig's
+// height and tilt): the central model's closed form above, or for a physical rig (exact variant
+// only) the points 1 km along each view direction projected by the camera
+// (docs/physical-camera.md); the panorama's top row is then the widest angle the camera sees. A
+// tilted rig's views are exact only (the thesis' equations are a level rig's).
+ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const Rigid& robotFromViewpoint,
+                     const ViewSpecNames& names = {});
 // Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
 // camera the map was built for.
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);
@@ -77,7 +84,7 @@ void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 //                pinhole is exact for far points only.
 //   birdseye     ground_metres_per_pixel: the floor's scale (the viewpoint's height / z_w), the
 //                viewpoint above the image centre — only where one number is the truth: the exact
-//                variant of a central camera standing level.
+//                variant of a central camera.
 nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera& camera, const Rigid& robotFromViewpoint);
 // A view's sidecar from its omni image's: the view (viewToJson) under "view", the image it was
 // made from under "source_image", and the fields that describe the omni image and not the view

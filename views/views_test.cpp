@@ -211,9 +211,10 @@ Vec2 sourceAt(const ViewMap& map, double u, double v) {
 
 // The geometry a view's sidecar states, checked through the omni camera: a point the stated
 // pinhole (or floor scale) puts at a view position is the point the view map samples there, for
-// a level rig and a tilted one (the view's directions are the viewpoint frame's, which the tilt
-// turns on the robot: rig.h's tilt, robotFromViewpoint = Rx(roll)·Ry(pitch)·T(0, 0, height),
-// rebuilt here and checked against placement.h's).
+// a level rig and a tilted one (the view's directions are the robot's, from F' where the tilt
+// puts it: rig.h's tilt, robotFromViewpoint = Rx(roll)·Ry(pitch)·T(0, 0, height), rebuilt here
+// and checked against placement.h's). Views built as if the tilted rig were level miss by
+// centimetres of floor.
 TEST(Views, TheSidecarsGeometryIsTheViews) {
   const double height = RigSpec{}.height;
   const CentralCamera central{RigSpec{}};
@@ -232,7 +233,7 @@ TEST(Views, TheSidecarsGeometryIsTheViews) {
     perspective.kind = ViewKind::Perspective;
     perspective.yawDeg = 30.0, perspective.pitchDeg = -35.0, perspective.fovDeg = 80.0;
     perspective.width = 320, perspective.height = 200;
-    const ViewMap pmap = buildViewMap(perspective, camera());
+    const ViewMap pmap = buildViewMap(perspective, central, robotFromViewpoint);
     const nlohmann::json p = viewToJson(perspective, pmap, central, robotFromViewpoint);
     const nlohmann::json& k = p.at("intrinsics");
     EXPECT_EQ(k.at("model"), "pinhole");
@@ -250,22 +251,39 @@ TEST(Views, TheSidecarsGeometryIsTheViews) {
       ASSERT_TRUE(expected);
       EXPECT_LT((sourceAt(pmap, u, v) - *expected).norm(), 0.01) << robotPoint.transpose() << " tilt " << tiltDeg.transpose();
     }
-    // Bird's-eye: a floor point (x, y) lies (x, y) / ground_metres_per_pixel from the centre,
-    // forward to the right and left upward — stated only for the level rig, where it holds.
+    // Bird's-eye: a floor point (x, y) lies (x, y) − F' / ground_metres_per_pixel from the centre
+    // (F' above it), forward to the right and left upward.
     ViewSpec birdsEye;
-    const ViewMap bmap = buildViewMap(birdsEye, camera());
+    const ViewMap bmap = buildViewMap(birdsEye, central, robotFromViewpoint);
     const nlohmann::json b = viewToJson(birdsEye, bmap, central, robotFromViewpoint);
-    if (tiltDeg != Vec2::Zero()) {
-      EXPECT_FALSE(b.contains("ground_metres_per_pixel"));
-      continue;
-    }
+    const Vec3 viewpoint = robotFromViewpoint.translation();
     const double mpp = b.at("ground_metres_per_pixel").get<double>();
-    EXPECT_DOUBLE_EQ(mpp, height / birdsEye.groundDistance);
+    EXPECT_DOUBLE_EQ(mpp, viewpoint.z() / birdsEye.groundDistance);
     for (const Vec2& floor : {Vec2(1.0, 0.0), Vec2(0.5, -0.7), Vec2(-1.2, 0.4)}) {
-      const double u = 0.5 * bmap.width + floor.x() / mpp, v = 0.5 * bmap.height - floor.y() / mpp;
+      const double u = 0.5 * bmap.width + (floor.x() - viewpoint.x()) / mpp, v = 0.5 * bmap.height - (floor.y() - viewpoint.y()) / mpp;
       const auto expected = omniRaster(Vec3(floor.x(), floor.y(), 0.0));
       ASSERT_TRUE(expected);
-      EXPECT_LT((sourceAt(bmap, u, v) - *expected).norm(), 0.01) << floor.transpose();
+      EXPECT_LT((sourceAt(bmap, u, v) - *expected).norm(), 0.01) << floor.transpose() << " tilt " << tiltDeg.transpose();
+    }
+    // Panorama: the robot's azimuth φ along the width (forward in the middle, turning right to the
+    // right), its incidence θ from straight down linear in the rows from the rim's θ to 0.
+    ViewSpec panorama;
+    panorama.kind = ViewKind::Panorama;
+    const ViewMap qmap = buildViewMap(panorama, central, robotFromViewpoint);
+    for (const Vec2& phiTheta : {Vec2(0.3, 1.2), Vec2(-2.0, 0.8), Vec2(2.5, 1.6)}) {
+      const double phi = phiTheta.x(), theta = phiTheta.y();
+      const double u = (kPi - phi) / (2.0 * kPi) * qmap.width, v = (1.0 - theta / camera().rimTheta()) * qmap.height;
+      const Vec3 direction(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+      const auto expected = omniRaster(viewpoint + 5.0 * direction);
+      ASSERT_TRUE(expected);
+      EXPECT_LT((sourceAt(qmap, u, v) - *expected).norm(), 0.02) << phiTheta.transpose() << " tilt " << tiltDeg.transpose();
+    }
+    if (tiltDeg != Vec2::Zero()) {
+      // The thesis' equations are a level rig's.
+      ViewSpec thesis = birdsEye;
+      thesis.variant = ViewVariant::Thesis;
+      EXPECT_THROW(buildViewMap(thesis, central, robotFromViewpoint), InputError);
+      continue;
     }
     ViewSpec thesis = birdsEye;
     thesis.variant = ViewVariant::Thesis;
@@ -294,7 +312,7 @@ TEST(Views, TheCentralCameraGivesTheClosedFormsViews) {
   for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
     ViewSpec spec;
     spec.kind = kind;
-    const ViewMap a = buildViewMap(spec, camera()), b = buildViewMap(spec, CentralCamera(RigSpec{}));
+    const ViewMap a = buildViewMap(spec, camera()), b = buildViewMap(spec, CentralCamera(RigSpec{}), robotFromViewpoint(RigSpec{}));
     for (size_t k = 0; k < a.sourceX.size(); ++k) {
       ASSERT_TRUE((std::isnan(a.sourceX[k]) && std::isnan(b.sourceX[k])) || a.sourceX[k] == b.sourceX[k]);
       ASSERT_TRUE((std::isnan(a.sourceY[k]) && std::isnan(b.sourceY[k])) || a.sourceY[k] == b.sourceY[k]);
@@ -312,7 +330,7 @@ TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
   const PhysicalCamera physical(rig);
   ViewSpec thesis;
   thesis.variant = ViewVariant::Thesis;
-  EXPECT_THROW(buildViewMap(thesis, physical), InputError);
+  EXPECT_THROW(buildViewMap(thesis, physical, robotFromViewpoint(rig)), InputError);
   // The widest angle from straight down the camera sees, over the same 128 × 128 grid views.h scans.
   double widest = 0.0;
   for (int b = 0; b < 128; ++b)
@@ -324,7 +342,7 @@ TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
     spec.kind = kind;
     spec.width = 120;
     spec.height = 90;
-    const ViewMap map = buildViewMap(spec, physical);
+    const ViewMap map = buildViewMap(spec, physical, robotFromViewpoint(rig));
     int sourced = 0;
     double worst = 0.0;
     for (int j = 0; j < map.height; ++j)
