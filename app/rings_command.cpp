@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <array>
 #include <memory>
 
 #include "atomic_file.h"
@@ -14,6 +15,7 @@
 #include "errors.h"
 #include "make_camera.h"
 #include "number_format.h"
+#include "placement.h"
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
@@ -42,10 +44,14 @@ std::string ringHint(const RingsArgs& a) {
 // against its own projection.
 nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const std::string& what,
                                const RingsArgs& a) {
-  if (a.perAzimuth || !rig.ideal()) {
+  const bool tilted = rig.tiltDeg != std::array<double, 2>{0.0, 0.0};
+  if (a.perAzimuth || !rig.ideal() || tilted) {
     if (!a.perAzimuth && !a.json)
-      std::printf("rings: the camera is not the ideal one, so its rings are not circles: measured per azimuth\n");
-    const RingProfileReport p = measureRingProfiles(image, *makeCamera(rig), defaultRingThetasDeg());
+      std::printf("rings: the camera is %s, so its rings are not circles: measured per azimuth\n",
+                  tilted ? "tilted on its mount" : "not the ideal one");
+    // The rings stand level about the robot, where a level rig's viewpoint would be.
+    const Rigid viewpointFromRings = robotFromViewpoint(rig).inverse() * Eigen::Translation3d(0.0, 0.0, rig.height);
+    const RingProfileReport p = measureRingProfiles(image, *makeCamera(rig), defaultRingThetasDeg(), 36, viewpointFromRings);
     const nlohmann::json j = {{"per_azimuth", {{"rms_px_exact", p.rmsPx},
                                                {"max_abs_px_exact", p.maxAbsPx},
                                                {"sectors_measured", p.sectorsMeasured},

@@ -271,14 +271,15 @@ namespace {
 // interpolated linearly along the camera's projection of the ring; NaN where it is not imaged.
 class RingCurves {
  public:
-  RingCurves(const Camera& camera, const Vec2& centre, const std::vector<double>& thetasDeg, int bins)
+  RingCurves(const Camera& camera, const Rigid& viewpointFromRings, const Vec2& centre, const std::vector<double>& thetasDeg,
+             int bins)
       : bins_(bins), radius_(thetasDeg.size() * bins, std::nan("")) {
     for (size_t ring = 0; ring < thetasDeg.size(); ++ring) {
       const double z = -kRingRadiusM / std::tan(radians(thetasDeg[ring]));
       std::optional<Vec2> previous;
       for (int k = 0; k <= bins; ++k) {  // one more: the curve closes
         const double phi = 2.0 * kPi * k / bins;
-        const auto q = camera.project(Vec3(kRingRadiusM * std::cos(phi), kRingRadiusM * std::sin(phi), z));
+        const auto q = camera.project(viewpointFromRings * Vec3(kRingRadiusM * std::cos(phi), kRingRadiusM * std::sin(phi), z));
         const std::optional<Vec2> polar = q ? std::optional<Vec2>(Vec2(azimuthOf(*q - centre), (*q - centre).norm())) : std::nullopt;
         if (previous && polar) fill(ring, *previous, *polar);
         previous = polar;
@@ -313,16 +314,17 @@ class RingCurves {
 }  // namespace
 
 RingProfileReport measureRingProfiles(const ImageRGBA& image, const Camera& camera,
-                                      const std::vector<double>& thetasDeg, int sectors) {
+                                      const std::vector<double>& thetasDeg, int sectors, const Rigid& viewpointFromRings) {
   if (thetasDeg.size() < 2) throw InputError("rings: need at least two rings");
   // The rings circle the image of the nadir (θ = 0): the image centre for the ideal camera, tens
-  // of pixels off it for a moved one, where rings smaller than that shift would not surround the
-  // image centre.
-  const Vec2 c = camera.project(Vec3(0.0, 0.0, -1e3 * kRingRadiusM)).value_or(Vec2(0.5 * image.width, 0.5 * image.height));
+  // of pixels off it for a moved or tilted one, where rings smaller than that shift would not
+  // surround the image centre.
+  const Vec2 c = camera.project(viewpointFromRings * Vec3(0.0, 0.0, -1e3 * kRingRadiusM))
+                     .value_or(Vec2(0.5 * image.width, 0.5 * image.height));
   const size_t rings = thetasDeg.size();
   constexpr int kBinsPerSector = 64;
   constexpr double kMinimumArcPx = 2.0;
-  const RingCurves curves(camera, c, thetasDeg, kBinsPerSector * sectors);
+  const RingCurves curves(camera, viewpointFromRings, c, thetasDeg, kBinsPerSector * sectors);
   std::vector<double> values;
   for (int j = 0; j < image.height; ++j)
     for (int i = 0; i < image.width; ++i)

@@ -9,6 +9,7 @@
 #include "errors.h"
 #include "fast_renderer.h"
 #include "physical_camera.h"
+#include "placement.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -92,6 +93,30 @@ TEST(Rings, AMisalignedCamerasRingsAreWhereItProjectsThem) {
   EXPECT_GT(own.sectorsMeasured, own.sectorsTotal * 3 / 4);
   EXPECT_LE(own.rmsPx, floor.rmsPx + 0.02);
   EXPECT_GT(asIdeal.rmsPx, 1.0);  // the measurement sees the misalignment
+}
+
+// A rig tilted on its mount sees the level rings tilted: measured per azimuth where its tilt puts
+// them (the rings' frame through placement.h's robot ← viewpoint), they sit as the level rig's do;
+// taken as level, they are pixels off.
+TEST(Rings, ATiltedRigsRingsAreWhereItsTiltPutsThem) {
+  const Scene level = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
+  Scene tilted = level;
+  tilted.rig.tiltDeg = {3.0, -2.0};
+  const auto render = [](const Scene& s) {
+    RenderSettings settings;
+    settings.rig = s.rig;
+    settings.spp = 16;
+    return FastRenderer(s).render(s.startPose, settings);
+  };
+  const ImageRGBA image = render(tilted);
+  const CentralCamera camera(tilted.rig);
+  const Rigid viewpointFromRings = robotFromViewpoint(tilted.rig).inverse() * Eigen::Translation3d(0.0, 0.0, tilted.rig.height);
+  const RingProfileReport own = measureRingProfiles(image, camera, defaultRingThetasDeg(), 36, viewpointFromRings);
+  const RingProfileReport asLevel = measureRingProfiles(image, camera, defaultRingThetasDeg());
+  const RingProfileReport floor = measureRingProfiles(render(level), CentralCamera(level.rig), defaultRingThetasDeg());
+  EXPECT_GT(own.sectorsMeasured, own.sectorsTotal * 3 / 4);
+  EXPECT_LE(own.rmsPx, floor.rmsPx + 0.02) << "tilted " << own.rmsPx << " level " << floor.rmsPx;
+  EXPECT_GT(asLevel.rmsPx, 1.0);
 }
 
 // The ring scene holds a band at every θ; any other scene, or one whose rings the viewpoint does
