@@ -79,7 +79,7 @@ void runCameraRays(const CameraRaysArgs& a, const CLI::App& cmd) {
   const std::string sidecar = sidecarText({{"rig", rigToJson(rig)},
                                            {"intrinsics", camera->describe()},
                                            {"channels", kCameraRayChannels},
-                                           {"frame", "viewpoint: origin F', robot axes (x forward, y left, z up); metres"},
+                                           {"frame", "viewpoint: origin F', robot axes (x forward, y left, z up) turned by the rig's tilt_deg; metres"},
                                            {"pixels", "each pixel centre's ray; NaN where the camera images nothing"}});
   // The table and its sidecar appear together, or neither (the table is not copied: it may be GBs).
   AtomicFileGroup group;

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <array>
 #include <memory>
 
 #include "atomic_file.h"
@@ -15,7 +14,6 @@
 #include "errors.h"
 #include "make_camera.h"
 #include "number_format.h"
-#include "placement.h"
 #include "render_output.h"
 #include "rings.h"
 #include "scene_loader.h"
@@ -44,14 +42,11 @@ std::string ringHint(const RingsArgs& a) {
 // against its own projection.
 nlohmann::json measureAndPrint(const ImageRGBA& image, const RigSpec& rig, const std::string& what,
                                const RingsArgs& a) {
-  const bool tilted = rig.tiltDeg != std::array<double, 2>{0.0, 0.0};
-  if (a.perAzimuth || !rig.ideal() || tilted) {
+  if (a.perAzimuth || !rig.ideal() || rig.tilted()) {
     if (!a.perAzimuth && !a.json)
       std::printf("rings: the camera is %s, so its rings are not circles: measured per azimuth\n",
-                  tilted ? "tilted on its mount" : "not the ideal one");
-    // The rings stand level about the robot, where a level rig's viewpoint would be.
-    const Rigid viewpointFromRings = robotFromViewpoint(rig).inverse() * Eigen::Translation3d(0.0, 0.0, rig.height);
-    const RingProfileReport p = measureRingProfiles(image, *makeCamera(rig), defaultRingThetasDeg(), 36, viewpointFromRings);
+                  rig.tilted() ? "tilted on its mount" : "not the ideal one");
+    const RingProfileReport p = measureRingProfiles(image, *makeCamera(rig), defaultRingThetasDeg(), 36, ringsFrameOf(rig));
     const nlohmann::json j = {{"per_azimuth", {{"rms_px_exact", p.rmsPx},
                                                {"max_abs_px_exact", p.maxAbsPx},
                                                {"sectors_measured", p.sectorsMeasured},

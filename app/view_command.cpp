@@ -133,7 +133,8 @@ void addViewCommand(CLI::App& app) {
   cmd->add_option("--as", args->as, "birdseye (default), panorama or perspective");
   cmd->add_option("--variant", args->variant, "exact (default) or thesis (Eq. 3.4 / Eqs. 3.6-3.7)");
   cmd->add_option("--size", args->size, "WIDTHxHEIGHT (defaults 400x400, 1080x300, 400x300)");
-  cmd->add_option("--zw", args->zw, "birdseye: ground plane, pixel units below the viewpoint (default 40): the floor at rig height / Z metres per pixel")
+  cmd->add_option("--zw", args->zw, "birdseye: ground plane, pixel units below the viewpoint (default 40): the floor at the viewpoint's height / Z "
+                  "metres per pixel")
       ->check(numberIn(0, 1e6, true));
   cmd->add_option("--yaw", args->yaw, "perspective: view direction, degrees CCW from forward")->check(numberIn(-1e6, 1e6));
   cmd->add_option("--pitch", args->pitch, "perspective: degrees above the horizon (default -20)")->check(numberIn(-1e6, 1e6));

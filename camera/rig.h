@@ -1,7 +1,8 @@
 #pragma once
 // The camera rig on the robot. Its frames (the chain world ← robot ← viewpoint ← camera is
 // composed by motion/placement.h):
-//   viewpoint: origin at F' = robot origin + (0, 0, height), robot axes.
+//   viewpoint: origin at F' = robot origin + (0, 0, height), robot axes — on a level rig; tiltDeg
+//              turns it about the floor point below (robotFromViewpoint).
 //   camera:    unified-model frame at F' (see omni_camera.h).
 //   pinhole:   the physical camera below the mirror (physical_camera.h): origin at its pinhole,
 //              x = image u, y = image v, z = optical axis; the ideal pinhole sits at F with its
@@ -83,6 +84,7 @@ struct RigSpec {
   // Level unless it says otherwise.
   std::array<double, 2> tiltDeg{0.0, 0.0};
   CameraKind kind;                 // the hyperboloid rig unless it says otherwise
+  bool tilted() const { return tiltDeg != std::array<double, 2>{0.0, 0.0}; }
 
   int imageWidth() const;
   int imageHeight() const;

@@ -8,6 +8,7 @@
 
 #include "errors.h"
 #include "number_format.h"
+#include "placement.h"
 #include "scene.h"
 
 namespace omnicam {
@@ -312,6 +313,10 @@ class RingCurves {
 };
 
 }  // namespace
+
+Rigid ringsFrameOf(const RigSpec& rig) {
+  return robotFromViewpoint(rig).inverse() * Eigen::Translation3d(0.0, 0.0, rig.height);
+}
 
 RingProfileReport measureRingProfiles(const ImageRGBA& image, const Camera& camera,
                                       const std::vector<double>& thetasDeg, int sectors, const Rigid& viewpointFromRings) {

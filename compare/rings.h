@@ -71,8 +71,8 @@ void checkRingScene(const Scene& scene, const std::vector<double>& thetasDeg);
 // its pixels' radii minus the expected radius at their own azimuths (a sector of a curve that is
 // not a circle about the centre spans many radii). The RMS is over all (ring, sector) offsets.
 // The rings stand level about the robot, centred where a level rig's viewpoint is: for a rig
-// tilted on its mount, `viewpointFromRings` (robot ← viewpoint, inverted, after a lift by the
-// rig's height) takes them into the tilted viewpoint frame.
+// tilted on its mount, `viewpointFromRings` (ringsFrameOf) takes them into the tilted viewpoint
+// frame.
 // Not measured: a sector the ring is not projected into, where its arc is under 2 px (a pixel or
 // two: the centroid would measure the pixel grid), with no light above the background, or whose
 // window leaves the image or the rim.
@@ -83,6 +83,9 @@ struct RingProfileReport {
   int sectorsMeasured = 0;
   int sectorsTotal = 0;
 };
+// Where the level rings stand in `rig`'s viewpoint frame: robot ← viewpoint, inverted, after a
+// lift by the rig's height (the identity for a level rig).
+Rigid ringsFrameOf(const RigSpec& rig);
 RingProfileReport measureRingProfiles(const ImageRGBA& image, const Camera& camera,
                                       const std::vector<double>& thetasDeg, int sectors = 36,
                                       const Rigid& viewpointFromRings = Rigid::Identity());

@@ -9,7 +9,6 @@
 #include "errors.h"
 #include "fast_renderer.h"
 #include "physical_camera.h"
-#include "placement.h"
 #include "scene_loader.h"
 
 namespace omnicam {
@@ -110,7 +109,15 @@ TEST(Rings, ATiltedRigsRingsAreWhereItsTiltPutsThem) {
   };
   const ImageRGBA image = render(tilted);
   const CentralCamera camera(tilted.rig);
-  const Rigid viewpointFromRings = robotFromViewpoint(tilted.rig).inverse() * Eigen::Translation3d(0.0, 0.0, tilted.rig.height);
+  // The rings' frame rebuilt here from rig.h's tilt: Rx(roll)·Ry(pitch)·T(0, 0, h), inverted,
+  // then lifted by h; ringsFrameOf must say the same.
+  Rigid robotFromViewpoint = Rigid::Identity();
+  robotFromViewpoint.rotate(Eigen::AngleAxisd(radians(3.0), Vec3::UnitX()));
+  robotFromViewpoint.rotate(Eigen::AngleAxisd(radians(-2.0), Vec3::UnitY()));
+  robotFromViewpoint.translate(Vec3(0.0, 0.0, tilted.rig.height));
+  const Rigid viewpointFromRings = robotFromViewpoint.inverse() * Eigen::Translation3d(0.0, 0.0, tilted.rig.height);
+  EXPECT_TRUE(ringsFrameOf(tilted.rig).matrix().isApprox(viewpointFromRings.matrix(), 1e-12));
+  EXPECT_TRUE(ringsFrameOf(level.rig).matrix().isIdentity(0.0));
   const RingProfileReport own = measureRingProfiles(image, camera, defaultRingThetasDeg(), 36, viewpointFromRings);
   const RingProfileReport asLevel = measureRingProfiles(image, camera, defaultRingThetasDeg());
   const RingProfileReport floor = measureRingProfiles(render(level), CentralCamera(level.rig), defaultRingThetasDeg());

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -395,9 +396,19 @@ std::string imageLink(const std::string& assetsName, const std::string& name) {
   return "<img src=\"" + escapeMarkup(urlPath(assetsName + "/" + name)) + "\">";
 }
 
+// What marks a page as a dataset comparison report omnicam wrote (a page saved by a browser has
+// the same NAME.html beside NAME_files/ layout).
+constexpr const char* kReportGenerator = "<meta name=\"generator\" content=\"omnicam dataset compare\">";
+
+// The name of one of a report's images: frame, camera, then a, b or diff (000012_cam0_diff.png).
+bool isReportImageName(const std::string& name) {
+  static const std::regex form(R"(\d{6}_.+_(a|b|diff)\.png)");
+  return std::regex_match(name, form);
+}
+
 // The images an earlier report at the same path showed that the new one does not (frames no
-// longer among the worst): each a regular file in the images' folder that the earlier page
-// links to. Files the earlier page does not link to are someone else's and stay.
+// longer among the worst): each a regular file in the images' folder, named as a report names
+// its images, that the earlier page — one omnicam wrote — links to. Anything else stays.
 std::vector<std::string> imagesOnlyTheEarlierReportShowed(const SafeFolder& folder, const std::string& pageName,
                                                           const std::string& assetsName, const std::set<std::string>& shown) {
   if (folder.entry(pageName) != EntryKind::File || folder.entry(assetsName) != EntryKind::Folder) return {};
@@ -407,11 +418,13 @@ std::vector<std::string> imagesOnlyTheEarlierReportShowed(const SafeFolder& fold
   } catch (const InputError&) {
     return {};  // larger than any report, or gone: nothing of it is known to be omnicam's
   }
+  if (earlierPage.find(kReportGenerator) == std::string::npos) return {};
   std::vector<std::string> stale;
   std::error_code ec;
   for (fs::directory_iterator it(fs::path(folder.path()) / assetsName, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (!shown.count(name) && earlierPage.find(imageLink(assetsName, name)) != std::string::npos) stale.push_back(name);
+    if (!shown.count(name) && isReportImageName(name) && earlierPage.find(imageLink(assetsName, name)) != std::string::npos)
+      stale.push_back(name);
   }
   return stale;
 }
@@ -442,7 +455,8 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
     std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
 
     std::ostringstream html;
-    html << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam dataset comparison</title><style>"
+    html << "<!doctype html><html><head><meta charset=\"utf-8\">" << kReportGenerator
+         << "<title>omnicam dataset comparison</title><style>"
             "body{font-family:sans-serif;margin:2em}td,th{padding:2px 8px;text-align:right}"
             "td:first-child,th:first-child{text-align:left}.fail{color:#b00;font-weight:bold}"
             "figure{display:inline-block;margin:4px}img{width:240px;image-rendering:pixelated}</style></head><body>"

@@ -39,7 +39,7 @@ struct ColourBlob {
 struct BeaconDetection {
   const Beacon* beacon = nullptr;
   Vec2 raster;                     // between the two bands' centroids: the band boundary
-  std::optional<RangeBearing> rangeBearing;  // from F' (metres, radians CCW from forward)
+  std::optional<RangeBearing> rangeBearing;  // from the robot's origin (rangeBearingFromRaster)
   int upperBlob = -1, lowerBlob = -1;         // indices into DetectionResult::blobs
 };
 

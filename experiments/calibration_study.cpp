@@ -190,16 +190,6 @@ CalibrationRun calibrate(const CalibrationStudyOptions& o, const Camera& camera,
   return run;
 }
 
-// Range and bearing of the point at height `rise` above F' along a ray from `origin` (viewpoint
-// frame): nullopt when the ray does not reach that height.
-std::optional<RangeBearing> rangeBearingAlong(const Vec3& origin, const Vec3& direction, double rise) {
-  if (std::abs(direction.z()) < 1e-12) return std::nullopt;
-  const double t = (rise - origin.z()) / direction.z();
-  if (!(t > 0.0)) return std::nullopt;
-  const Vec3 p = origin + t * direction;
-  return RangeBearing(std::hypot(p.x(), p.y()), std::atan2(p.y(), p.x()));
-}
-
 // The measurements along thesis-loop of every beacon the rig images, by each model of its rays.
 struct LoopMeasurements {
   std::vector<std::vector<Measurement>> trueRays, nominal, calibrated, calibratedExact;

@@ -8,16 +8,19 @@
 
 namespace omnicam {
 
+std::optional<RangeBearing> rangeBearingAlong(const Vec3& origin, const Vec3& direction, double height) {
+  if (std::abs(direction.z()) < 1e-12) return std::nullopt;
+  const double t = (height - origin.z()) / direction.z();
+  if (!(t > 0.0)) return std::nullopt;
+  const Vec3 p = origin + t * direction;
+  return RangeBearing(std::hypot(p.x(), p.y()), std::atan2(p.y(), p.x()));
+}
+
 std::optional<RangeBearing> rangeBearingFromRaster(const RigSpec& rig, const Vec2& raster, double pointHeight) {
   const OmniCamera camera = rig.camera();
   // The ray from F' in the robot's frame: a tilted rig moves F' off the robot's vertical axis.
   const Rigid robotFromCam = robotFromCamera(rig);
-  const Vec3 origin = robotFromCam.translation();
-  const Vec3 direction = robotFromCam.linear() * camera.cameraFromRaster(raster);
-  const double rise = pointHeight - origin.z();  // from F' to the point's height
-  if (std::abs(direction.z()) < 1e-12 || rise / direction.z() <= 0.0) return std::nullopt;
-  const Vec3 point = origin + (rise / direction.z()) * direction;
-  return RangeBearing(std::hypot(point.x(), point.y()), std::atan2(point.y(), point.x()));
+  return rangeBearingAlong(robotFromCam.translation(), robotFromCam.linear() * camera.cameraFromRaster(raster), pointHeight);
 }
 
 Interval distanceBetweenSightings(const Interval& a, double bearingA, const Interval& b, double bearingB) {

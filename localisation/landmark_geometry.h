@@ -10,12 +10,17 @@
 
 namespace omnicam {
 
-// Range (metres, horizontal from the robot's origin: below F' on a level rig) and bearing
-// (radians CCW from the robot's forward axis) of the point at height `pointHeight` above the floor
+// Range (metres, horizontal from the robot's origin — the rig's foot, its mount's place on the
+// robot not counted — below F' on a level rig) and bearing (radians CCW from the forward axis) of the point at height `pointHeight` above the floor
 // seen at continuous raster position `raster` (centres at +0.5) by a camera with `rig`, tilted as
 // the rig says (robotFromViewpoint). nullopt when the ray never reaches that height (the point
 // would be at or beyond the horizon). InputError for a rig no central model describes.
 std::optional<RangeBearing> rangeBearingFromRaster(const RigSpec& rig, const Vec2& raster, double pointHeight);
+
+// Range (horizontal from the frame's vertical axis) and bearing (CCW from its x axis) of the
+// point at height `height` on the ray from `origin` along `direction`, in a frame whose z is up;
+// nullopt when the ray never reaches that height.
+std::optional<RangeBearing> rangeBearingAlong(const Vec3& origin, const Vec3& direction, double height);
 
 // The horizontal distance between two points seen from one place at bearings `bearingA` and
 // `bearingB` (radians) with ranges anywhere in [a.lo, a.hi] and [b.lo, b.hi] (hi may be +∞): its

@@ -904,6 +904,15 @@ TEST_F(DatasetCliTest, CommonFramesComparesWhatBothHoldAndSaysWhatWasLeftOut) {
   for (const auto& entry : fs::directory_iterator(dir_ / "r_files")) left.insert(entry.path().filename().string());
   EXPECT_EQ(left, (std::set<std::string>{"000001_cam0_a.png", "000001_cam0_b.png", "000001_cam0_diff.png", "000004_cam0_a.png",
                                          "000004_cam0_b.png", "000004_cam0_diff.png", "000007_cam0_a.png", "notes.txt"}));
+  // A page omnicam did not write (a browser's "save page, complete" has the same layout) names
+  // no image of its folder as omnicam's, even one named like a report's.
+  fs::create_directories(dir_ / "saved_files");
+  std::ofstream(dir_ / "saved.html") << "<h1>My page</h1><img src=\"saved_files/photo.png\"><img src=\"saved_files/000002_cam0_a.png\">";
+  std::ofstream(dir_ / "saved_files/photo.png") << "mine";
+  std::ofstream(dir_ / "saved_files/000002_cam0_a.png") << "mine";
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("own") + " --common-frames --report " + path("saved.html")).code, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "saved_files/photo.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "saved_files/000002_cam0_a.png"));
   // Nothing in common, and images, are refused.
   fs::create_directories(dir_ / "empty/cam0/rgb");
   r = omnicam("compare " + path("six") + " " + path("empty") + " --common-frames");

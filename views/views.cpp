@@ -19,7 +19,7 @@ namespace {
 
 constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
 
-// Omni raster position of a robot-frame direction (x forward, y left, z up), or none.
+// Omni raster position of a viewpoint-frame direction (robot axes on a level rig), or none.
 bool rasterOfDirection(const OmniCamera& camera, const Vec3& d, ViewVariant variant, float& x, float& y) {
   const double theta = std::acos(std::clamp(-d.z() / d.norm(), -1.0, 1.0));  // from straight down
   if (theta > camera.rimTheta()) return false;
@@ -61,15 +61,16 @@ Vec3 perspectiveDirection(const ViewSpec& spec, const ViewMap& map, double u, do
   return {1.0, -sx, -sy};
 }
 
-// The widest angle from the robot's straight down at which the camera sees, over a grid of its
-// pixels: the panorama's top row for a camera with no closed-form rim.
-double widestIncidence(const Camera& camera, const Eigen::Matrix3d& robotFromViewpoint) {
+// The widest angle from its own straight down at which the camera sees, over a grid of its
+// pixels: the panorama's top row for a camera with no closed-form rim (as the rim's is for the
+// central model, whatever the rig's tilt).
+double widestIncidence(const Camera& camera) {
   double widest = 0.0;
   constexpr int kGrid = 128;
   for (int j = 0; j < kGrid; ++j)
     for (int i = 0; i < kGrid; ++i)
       if (const auto ray = camera.generateRay({Vec2((i + 0.5) * camera.width() / kGrid, (j + 0.5) * camera.height() / kGrid)}))
-        widest = std::max(widest, std::acos(std::clamp(-(robotFromViewpoint * ray->direction).z(), -1.0, 1.0)));
+        widest = std::max(widest, std::acos(std::clamp(-ray->direction.z(), -1.0, 1.0)));
   return widest;
 }
 
@@ -109,9 +110,14 @@ nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera
                       {"height", map.height}};
   if (spec.kind == ViewKind::BirdsEye) {
     j["ground_distance_px"] = spec.groundDistance;
-    if (spec.variant == ViewVariant::Exact && camera.central())
-      j["ground_metres_per_pixel"] = robotFromViewpoint.translation().z() / spec.groundDistance;
+    if (spec.variant == ViewVariant::Exact && camera.central()) {
+      const Vec3 viewpoint = robotFromViewpoint.translation();
+      j["ground_metres_per_pixel"] = viewpoint.z() / spec.groundDistance;
+      j["viewpoint_m"] = {viewpoint.x(), viewpoint.y(), viewpoint.z()};  // above the image centre
+    }
   }
+  if (spec.kind == ViewKind::Panorama && spec.variant == ViewVariant::Exact)
+    j["top_incidence_deg"] = degrees(map.topIncidence);
   if (spec.kind == ViewKind::Perspective) {
     j["yaw_deg"] = spec.yawDeg;
     j["pitch_deg"] = spec.pitchDeg;
@@ -185,6 +191,7 @@ namespace {
 // view directions are the robot's (`viewpointFromRobot` takes them to the camera's).
 ViewMap buildCentralViewMap(const ViewSpec& spec, const OmniCamera& camera, const Eigen::Matrix3d& viewpointFromRobot) {
   ViewMap map = emptyViewMap(spec);
+  map.topIncidence = camera.rimTheta();
   const bool level = viewpointFromRobot.isIdentity(0.0);
   const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
   for (int j = 0; j < map.height; ++j)
@@ -248,7 +255,8 @@ ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const Rigid& ro
     throw InputError(names.variant + ": the thesis' equations are the central model's; a physical rig (rig.camera, "
                      "rig.mirror.shape) has exact views only");
   ViewMap map = emptyViewMap(spec);
-  const double thetaMax = widestIncidence(camera, viewpointFromRobot.transpose());
+  const double thetaMax = widestIncidence(camera);
+  map.topIncidence = thetaMax;
   const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
   // A non-central camera has no pixel for a direction, only for a point: each view pixel shows
   // the point 1 km along its direction from the viewpoint (parallax there: ~10⁻⁶ rad per mm of

@@ -42,6 +42,9 @@ struct ViewMap {
   std::vector<float> sourceX, sourceY;
   // The bilinear footprint, precomputed so that applying the map is four gathers per pixel.
   int sourceWidth = 0, sourceHeight = 0;
+  // Panorama: the incidence (radians from straight down) of its top row, the camera's own widest
+  // (its rim's, for the central model); the rows step linearly from it to 0 (exact variant).
+  double topIncidence = 0.0;
   struct Tap {
     uint32_t texel;    // top-left source texel (UINT32_MAX: black)
     uint16_t fx, fy;   // bilinear weights of the right / lower texels, in units of 1/65536
@@ -82,9 +85,12 @@ void applyViewMap(const ViewMap& map, const ImageRGBA& omni, ImageRGBA& out);
 //                floor) into the pinhole's OpenCV frame (x right, y down, z forward). For a
 //                non-central camera the view shows each direction as seen 1 km away, so the
 //                pinhole is exact for far points only.
-//   birdseye     ground_metres_per_pixel: the floor's scale (the viewpoint's height / z_w), the
-//                viewpoint above the image centre — only where one number is the truth: the exact
-//                variant of a central camera.
+//   birdseye     ground_metres_per_pixel: the floor's scale (the viewpoint's height / z_w), and
+//                viewpoint_m: the viewpoint F' in the robot frame, above the image centre (a tilted
+//                rig moves it off the robot's origin) — only where one number is the truth: the
+//                exact variant of a central camera.
+//   panorama     top_incidence_deg (exact variant): the top row's incidence from the robot's
+//                straight down; the rows step linearly from it to 0 at the bottom.
 nlohmann::json viewToJson(const ViewSpec& spec, const ViewMap& map, const Camera& camera, const Rigid& robotFromViewpoint);
 // A view's sidecar from its omni image's: the view (viewToJson) under "view", the image it was
 // made from under "source_image", and the fields that describe the omni image and not the view

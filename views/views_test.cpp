@@ -259,6 +259,7 @@ TEST(Views, TheSidecarsGeometryIsTheViews) {
     const Vec3 viewpoint = robotFromViewpoint.translation();
     const double mpp = b.at("ground_metres_per_pixel").get<double>();
     EXPECT_DOUBLE_EQ(mpp, viewpoint.z() / birdsEye.groundDistance);
+    EXPECT_EQ(b.at("viewpoint_m"), nlohmann::json({viewpoint.x(), viewpoint.y(), viewpoint.z()}));
     for (const Vec2& floor : {Vec2(1.0, 0.0), Vec2(0.5, -0.7), Vec2(-1.2, 0.4)}) {
       const double u = 0.5 * bmap.width + (floor.x() - viewpoint.x()) / mpp, v = 0.5 * bmap.height - (floor.y() - viewpoint.y()) / mpp;
       const auto expected = omniRaster(Vec3(floor.x(), floor.y(), 0.0));
@@ -270,6 +271,8 @@ TEST(Views, TheSidecarsGeometryIsTheViews) {
     ViewSpec panorama;
     panorama.kind = ViewKind::Panorama;
     const ViewMap qmap = buildViewMap(panorama, central, robotFromViewpoint);
+    EXPECT_DOUBLE_EQ(viewToJson(panorama, qmap, central, robotFromViewpoint).at("top_incidence_deg").get<double>(),
+                     degrees(camera().rimTheta()));
     for (const Vec2& phiTheta : {Vec2(0.3, 1.2), Vec2(-2.0, 0.8), Vec2(2.5, 1.6)}) {
       const double phi = phiTheta.x(), theta = phiTheta.y();
       const double u = (kPi - phi) / (2.0 * kPi) * qmap.width, v = (1.0 - theta / camera().rimTheta()) * qmap.height;
@@ -324,54 +327,69 @@ TEST(Views, TheCentralCameraGivesTheClosedFormsViews) {
 // view's direction (to within the parallax of a point 1 km away: the ray leaves its mirror point,
 // centimetres from the viewpoint).
 TEST(Views, APhysicalRigsViewsLookAlongTheirDirections) {
-  RigSpec rig;
-  rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
-  rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
-  const PhysicalCamera physical(rig);
-  ViewSpec thesis;
-  thesis.variant = ViewVariant::Thesis;
-  EXPECT_THROW(buildViewMap(thesis, physical, robotFromViewpoint(rig)), InputError);
-  // The widest angle from straight down the camera sees, over the same 128 × 128 grid views.h scans.
-  double widest = 0.0;
-  for (int b = 0; b < 128; ++b)
-    for (int a = 0; a < 128; ++a)
-      if (const auto r = physical.generateRay({Vec2((a + 0.5) * rig.mirrorRig().imageSize / 128.0, (b + 0.5) * rig.mirrorRig().imageSize / 128.0)}))
-        widest = std::max(widest, std::acos(std::clamp(-r->direction.z(), -1.0, 1.0)));
-  for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
-    ViewSpec spec;
-    spec.kind = kind;
-    spec.width = 120;
-    spec.height = 90;
-    const ViewMap map = buildViewMap(spec, physical, robotFromViewpoint(rig));
-    int sourced = 0;
-    double worst = 0.0;
-    for (int j = 0; j < map.height; ++j)
-      for (int i = 0; i < map.width; ++i) {
-        const size_t k = static_cast<size_t>(j) * map.width + i;
-        if (std::isnan(map.sourceX[k])) continue;
-        ++sourced;
-        const auto ray = physical.generateRay({Vec2(map.sourceX[k], map.sourceY[k])});
-        ASSERT_TRUE(ray);
-        // The view's direction, rebuilt here from the definitions in views.h.
-        const double u = i + 0.5, v = j + 0.5;
-        Vec3 d = Vec3::Zero();
-        if (kind == ViewKind::BirdsEye) {
-          d = Vec3(u - 0.5 * map.width, 0.5 * map.height - v, -spec.groundDistance);
-        } else if (kind == ViewKind::Perspective) {
-          const double t = std::tan(radians(spec.fovDeg) / 2.0);
-          const Vec3 view(1.0, -(2.0 * u / map.width - 1.0) * t, -(2.0 * v / map.height - 1.0) * t * map.height / map.width);
-          d = Eigen::AngleAxisd(radians(spec.pitchDeg), -Vec3::UnitY()) * view;  // yaw 0
-        } else {
-          // Rows linear in the angle from straight down, from the widest the camera sees (top)
-          // to straight down (bottom); columns: azimuth π at the left edge.
-          const double phi = kPi - 2.0 * kPi * u / map.width, theta = widest * (1.0 - v / map.height);
-          d = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
-        }
-        EXPECT_GT(ray->direction.dot(d), 0.0);
-        worst = std::max(worst, ray->direction.cross(d.normalized()).norm());
+  for (const Vec2& tiltDeg : {Vec2(0.0, 0.0), Vec2(4.0, -3.0)}) {
+    RigSpec rig;
+    rig.mirrorRig().mount.offsetMm = {2.0, -1.0, 1.0};
+    rig.mirrorRig().mount.rotationDeg = {1.0, -0.5, 0.5};
+    rig.tiltDeg = {tiltDeg.x(), tiltDeg.y()};
+    // The view directions are the robot's; the rays the viewpoint frame's, which the tilt turns:
+    // Rx(roll)·Ry(pitch), rebuilt here.
+    const Eigen::Matrix3d viewpointFromRobot =
+        (Eigen::AngleAxisd(radians(tiltDeg.x()), Vec3::UnitX()) * Eigen::AngleAxisd(radians(tiltDeg.y()), Vec3::UnitY()))
+            .toRotationMatrix()
+            .transpose();
+    const PhysicalCamera physical(rig);
+    ViewSpec thesis;
+    thesis.variant = ViewVariant::Thesis;
+    EXPECT_THROW(buildViewMap(thesis, physical, robotFromViewpoint(rig)), InputError);
+    // The widest angle from its own straight down the camera sees, over the same 128 × 128 grid
+    // views.h scans: the panorama's top row, tilted or not.
+    double widest = 0.0;
+    for (int b = 0; b < 128; ++b)
+      for (int a = 0; a < 128; ++a)
+        if (const auto r = physical.generateRay({Vec2((a + 0.5) * rig.mirrorRig().imageSize / 128.0, (b + 0.5) * rig.mirrorRig().imageSize / 128.0)}))
+          widest = std::max(widest, std::acos(std::clamp(-r->direction.z(), -1.0, 1.0)));
+    for (ViewKind kind : {ViewKind::BirdsEye, ViewKind::Panorama, ViewKind::Perspective}) {
+      ViewSpec spec;
+      spec.kind = kind;
+      spec.width = 120;
+      spec.height = 90;
+      const ViewMap map = buildViewMap(spec, physical, robotFromViewpoint(rig));
+      if (kind == ViewKind::Panorama) {
+        EXPECT_DOUBLE_EQ(map.topIncidence, widest);
+        EXPECT_DOUBLE_EQ(viewToJson(spec, map, physical, robotFromViewpoint(rig)).at("top_incidence_deg").get<double>(), degrees(widest));
       }
-    EXPECT_GT(sourced, map.width * map.height / 4) << viewKindName(kind);
-    EXPECT_LE(worst, 1e-4) << viewKindName(kind);
+      int sourced = 0;
+      double worst = 0.0;
+      for (int j = 0; j < map.height; ++j)
+        for (int i = 0; i < map.width; ++i) {
+          const size_t k = static_cast<size_t>(j) * map.width + i;
+          if (std::isnan(map.sourceX[k])) continue;
+          ++sourced;
+          const auto ray = physical.generateRay({Vec2(map.sourceX[k], map.sourceY[k])});
+          ASSERT_TRUE(ray);
+          // The view's direction, rebuilt here from the definitions in views.h.
+          const double u = i + 0.5, v = j + 0.5;
+          Vec3 d = Vec3::Zero();
+          if (kind == ViewKind::BirdsEye) {
+            d = Vec3(u - 0.5 * map.width, 0.5 * map.height - v, -spec.groundDistance);
+          } else if (kind == ViewKind::Perspective) {
+            const double t = std::tan(radians(spec.fovDeg) / 2.0);
+            const Vec3 view(1.0, -(2.0 * u / map.width - 1.0) * t, -(2.0 * v / map.height - 1.0) * t * map.height / map.width);
+            d = Eigen::AngleAxisd(radians(spec.pitchDeg), -Vec3::UnitY()) * view;  // yaw 0
+          } else {
+            // Rows linear in the angle from straight down, from the widest the camera sees (top)
+            // to straight down (bottom); columns: azimuth π at the left edge.
+            const double phi = kPi - 2.0 * kPi * u / map.width, theta = widest * (1.0 - v / map.height);
+            d = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
+          }
+          d = viewpointFromRobot * d;
+          EXPECT_GT(ray->direction.dot(d), 0.0);
+          worst = std::max(worst, ray->direction.cross(d.normalized()).norm());
+        }
+      EXPECT_GT(sourced, map.width * map.height / 4) << viewKindName(kind);
+      EXPECT_LE(worst, 1e-4) << viewKindName(kind) << " tilt " << tiltDeg.transpose();
+    }
   }
 }
 

@@ -105,8 +105,8 @@ ideal rig, else the physical camera traced through the exact mirror.
 
 Raster coordinates are continuous: pixel (i, j) covers [i, i+1) × [j, j+1), its centre is
 (i + 0.5, j + 0.5); u right, v down. Points and rays are in the rig's viewpoint frame (origin at
-the mirror's design point, robot axes: x forward, y left, z up), or in the world frame when a
-robot pose (x, y, yaw_deg) is given.)")
+the mirror's design point, robot axes: x forward, y left, z up, turned by the rig's tilt_deg), or
+in the world frame when a robot pose (x, y, yaw_deg) is given.)")
       .def(py::init([](const RigSpec& rig, bool traced) { return PyCamera{makeCamera(rig, traced)}; }), py::arg("rig"),
            py::arg("traced") = false, "traced: the physical camera even for the ideal rig.")
       .def("project", &project, py::arg("points"), py::arg("pose") = py::none(),
