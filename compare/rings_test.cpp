@@ -67,6 +67,14 @@ TEST(Rings, ProfilesMeasureHowFarRingsBend) {
   EXPECT_GT(bent.maxAbsPx, 0.7);
 }
 
+// The scene's rings from its start pose, by the fast renderer at 16 spp.
+ImageRGBA renderRings(const Scene& s) {
+  RenderSettings settings;
+  settings.rig = s.rig;
+  settings.spp = 16;
+  return FastRenderer(s).render(s.startPose, settings);
+}
+
 // A camera moved 2 mm and turned 1° images the rings as curves tens of pixels from the ideal
 // circles; measured per azimuth against its own projection they sit where it says (the renderer
 // traces rays; project solves the reflection law backwards: two independent routes).
@@ -75,12 +83,6 @@ TEST(Rings, AMisalignedCamerasRingsAreWhereItProjectsThem) {
   Scene moved = ideal;
   moved.rig.mirrorRig().mount.offsetMm = {2.0, -1.4, 1.0};
   moved.rig.mirrorRig().mount.rotationDeg = {1.0, -0.6, 0.8};
-  const auto renderRings = [](const Scene& s) {
-    RenderSettings settings;
-    settings.rig = s.rig;
-    settings.spp = 16;
-    return FastRenderer(s).render(s.startPose, settings);
-  };
   const ImageRGBA image = renderRings(moved);
   const RingProfileReport own = measureRingProfiles(image, PhysicalCamera(moved.rig), defaultRingThetasDeg());
   const RingProfileReport asIdeal = measureRingProfiles(image, CentralCamera(ideal.rig), defaultRingThetasDeg());
@@ -101,13 +103,7 @@ TEST(Rings, ATiltedRigsRingsAreWhereItsTiltPutsThem) {
   const Scene level = loadScene(OMNICAM_SOURCE_DIR "/scenes/incidence-rings.json");
   Scene tilted = level;
   tilted.rig.tiltDeg = {3.0, -2.0};
-  const auto render = [](const Scene& s) {
-    RenderSettings settings;
-    settings.rig = s.rig;
-    settings.spp = 16;
-    return FastRenderer(s).render(s.startPose, settings);
-  };
-  const ImageRGBA image = render(tilted);
+  const ImageRGBA image = renderRings(tilted);
   const CentralCamera camera(tilted.rig);
   // The rings' frame rebuilt here from rig.h's tilt: Rx(roll)·Ry(pitch)·T(0, 0, h), inverted,
   // then lifted by h; ringsFrameOf must say the same.
@@ -120,7 +116,7 @@ TEST(Rings, ATiltedRigsRingsAreWhereItsTiltPutsThem) {
   EXPECT_TRUE(ringsFrameOf(level.rig).matrix().isIdentity(0.0));
   const RingProfileReport own = measureRingProfiles(image, camera, defaultRingThetasDeg(), 36, viewpointFromRings);
   const RingProfileReport asLevel = measureRingProfiles(image, camera, defaultRingThetasDeg());
-  const RingProfileReport floor = measureRingProfiles(render(level), CentralCamera(level.rig), defaultRingThetasDeg());
+  const RingProfileReport floor = measureRingProfiles(renderRings(level), CentralCamera(level.rig), defaultRingThetasDeg());
   EXPECT_GT(own.sectorsMeasured, own.sectorsTotal * 3 / 4);
   EXPECT_LE(own.rmsPx, floor.rmsPx + 0.02) << "tilted " << own.rmsPx << " level " << floor.rmsPx;
   EXPECT_GT(asLevel.rmsPx, 1.0);
