@@ -286,7 +286,7 @@ nlohmann::json PhysicalCamera::describe() const {
       {"note",
        "each pixel's ray leaves the mirror from its own point; positions in the viewpoint frame (origin at "
        "the mirror's design point: the hyperboloid's F', the paraboloid's focus, the sphere's centre, the "
-       "cone's apex; robot axes: x forward, y left, z up; the sidecar's camera_from_world frame is it "
+       "cone's apex; robot axes: x forward, y left, z up, turned by the rig's tilt_deg; the sidecar's camera_from_world frame is it "
        "turned by diag(1, -1, -1)); non_central: false when all reflected rays' lines meet in one point; "
        "pinhole axes x = image u, y = image v, z = optical axis; raster coordinates continuous (pixel "
        "centres at +0.5)"}};

@@ -396,9 +396,17 @@ std::string imageLink(const std::string& assetsName, const std::string& name) {
   return "<img src=\"" + escapeMarkup(urlPath(assetsName + "/" + name)) + "\">";
 }
 
-// What marks a page as a dataset comparison report omnicam wrote (a page saved by a browser has
-// the same NAME.html beside NAME_files/ layout).
+// How a dataset comparison report omnicam writes begins (a page saved by a browser has the same
+// NAME.html beside NAME_files/ layout, but not this opening); reports written before the
+// generator mark began without it.
 constexpr const char* kReportGenerator = "<meta name=\"generator\" content=\"omnicam dataset compare\">";
+const std::string kReportOpening =
+    std::string("<!doctype html><html><head><meta charset=\"utf-8\">") + kReportGenerator + "<title>omnicam dataset comparison</title>";
+const std::string kReportOpeningBeforeMark = "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam dataset comparison</title>";
+
+bool isOmnicamReport(const std::string& page) {
+  return page.rfind(kReportOpening, 0) == 0 || page.rfind(kReportOpeningBeforeMark, 0) == 0;
+}
 
 // The name of one of a report's images: frame, camera, then a, b or diff (000012_cam0_diff.png).
 bool isReportImageName(const std::string& name) {
@@ -406,24 +414,40 @@ bool isReportImageName(const std::string& name) {
   return std::regex_match(name, form);
 }
 
+// The page `name` in `folder` if it is a report omnicam wrote, else "".
+std::string omnicamReportAt(const SafeFolder& folder, const std::string& name) {
+  if (folder.entry(name) != EntryKind::File) return "";
+  try {
+    const std::string page = folder.readFile(name, 64 << 20);
+    return isOmnicamReport(page) ? page : "";
+  } catch (const InputError&) {
+    return "";  // larger than any report, or gone
+  }
+}
+
 // The images an earlier report at the same path showed that the new one does not (frames no
 // longer among the worst): each a regular file in the images' folder, named as a report names
-// its images, that the earlier page — one omnicam wrote — links to. Anything else stays.
+// its images, that the earlier page — one omnicam wrote — links to, and that no other report
+// sharing the folder (r.htm beside r.html: one stem, one r_files/) links to. Anything else stays.
 std::vector<std::string> imagesOnlyTheEarlierReportShowed(const SafeFolder& folder, const std::string& pageName,
                                                           const std::string& assetsName, const std::set<std::string>& shown) {
-  if (folder.entry(pageName) != EntryKind::File || folder.entry(assetsName) != EntryKind::Folder) return {};
-  std::string earlierPage;
-  try {
-    earlierPage = folder.readFile(pageName, 64 << 20);
-  } catch (const InputError&) {
-    return {};  // larger than any report, or gone: nothing of it is known to be omnicam's
-  }
-  if (earlierPage.find(kReportGenerator) == std::string::npos) return {};
-  std::vector<std::string> stale;
+  if (folder.entry(assetsName) != EntryKind::Folder) return {};
+  const std::string earlierPage = omnicamReportAt(folder, pageName);
+  if (earlierPage.empty()) return {};
+  std::vector<std::string> otherPages;
   std::error_code ec;
+  const std::string stem = fs::path(pageName).stem().string();
+  for (fs::directory_iterator it(folder.path(), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name != pageName && fs::path(name).stem().string() == stem)
+      if (std::string page = omnicamReportAt(folder, name); !page.empty()) otherPages.push_back(std::move(page));
+  }
+  std::vector<std::string> stale;
   for (fs::directory_iterator it(fs::path(folder.path()) / assetsName, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (!shown.count(name) && isReportImageName(name) && earlierPage.find(imageLink(assetsName, name)) != std::string::npos)
+    const std::string link = imageLink(assetsName, name);
+    if (shown.count(name) || !isReportImageName(name) || earlierPage.find(link) == std::string::npos) continue;
+    if (std::none_of(otherPages.begin(), otherPages.end(), [&](const std::string& page) { return page.find(link) != std::string::npos; }))
       stale.push_back(name);
   }
   return stale;
@@ -455,8 +479,7 @@ void writeDatasetCompareReport(const std::string& reportPath, const std::string&
     std::stable_sort(order.begin(), order.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
 
     std::ostringstream html;
-    html << "<!doctype html><html><head><meta charset=\"utf-8\">" << kReportGenerator
-         << "<title>omnicam dataset comparison</title><style>"
+    html << kReportOpening << "<style>"
             "body{font-family:sans-serif;margin:2em}td,th{padding:2px 8px;text-align:right}"
             "td:first-child,th:first-child{text-align:left}.fail{color:#b00;font-weight:bold}"
             "figure{display:inline-block;margin:4px}img{width:240px;image-rendering:pixelated}</style></head><body>"

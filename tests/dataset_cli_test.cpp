@@ -913,6 +913,20 @@ TEST_F(DatasetCliTest, CommonFramesComparesWhatBothHoldAndSaysWhatWasLeftOut) {
   ASSERT_EQ(omnicam("compare " + path("six") + " " + path("own") + " --common-frames --report " + path("saved.html")).code, 0);
   EXPECT_TRUE(fs::exists(dir_ / "saved_files/photo.png"));
   EXPECT_TRUE(fs::exists(dir_ / "saved_files/000002_cam0_a.png"));
+  // Two reports of one stem (r.htm beside r.html) share r_files/: what the other still shows stays.
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("three") + " --common-frames --report " + path("r.html")).code, 0);
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("three") + " --common-frames --report " + path("r.htm")).code, 0);
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("own") + " --common-frames --report " + path("r.htm")).code, 0);
+  for (const char* frame : {"000000", "000001", "000002", "000004"})
+    EXPECT_TRUE(fs::exists(dir_ / "r_files" / (std::string(frame) + "_cam0_a.png"))) << frame;
+  // A report written before the generator mark (its opening without it) is omnicam's too.
+  fs::create_directories(dir_ / "old_files");
+  std::ofstream(dir_ / "old.html") << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam dataset comparison</title>"
+                                      "<style></style></head><body><img src=\"old_files/000003_cam0_a.png\"></body></html>\n";
+  std::ofstream(dir_ / "old_files/000003_cam0_a.png") << "an earlier report's image";
+  ASSERT_EQ(omnicam("compare " + path("six") + " " + path("own") + " --common-frames --report " + path("old.html")).code, 0);
+  EXPECT_FALSE(fs::exists(dir_ / "old_files/000003_cam0_a.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "old_files/000004_cam0_a.png"));
   // Nothing in common, and images, are refused.
   fs::create_directories(dir_ / "empty/cam0/rgb");
   r = omnicam("compare " + path("six") + " " + path("empty") + " --common-frames");

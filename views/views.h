@@ -7,7 +7,8 @@
 //                left (+y); ground plane z_w pixel units below the viewpoint (default 40).
 //   panorama     width runs along the azimuth, height along the radius (the thesis' x_pan/y_pan
 //                swapped so that it reads like a photo): centre column = forward, moving right
-//                turns right; top row = the rim (above the horizon), bottom row = straight down.
+//                turns right; top row = the camera's own widest incidence (the rim's, above the
+//                horizon), taken from the robot's straight down; bottom row = straight down.
 //                thesis variant: radius linear in the row (Eqs. 3.6–3.7); exact variant:
 //                incidence angle linear in the row (rows are equal angle steps).
 //   perspective  a virtual pinhole at F' looking toward (yaw, pitch) in the robot frame.
@@ -66,7 +67,8 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
 // The same for any camera placed on the robot by `robotFromViewpoint` (placement.h: the rig's
 // height and tilt): the central model's closed form above, or for a physical rig (exact variant
 // only) the points 1 km along each view direction projected by the camera
-// (docs/physical-camera.md); the panorama's top row is then the widest angle the camera sees. A
+// (docs/physical-camera.md); the panorama's top row is then the widest angle from its own straight
+// down the camera sees (a 128 × 128 grid of its pixels). A
 // tilted rig's views are exact only (the thesis' equations are a level rig's).
 ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const Rigid& robotFromViewpoint,
                      const ViewSpecNames& names = {});
