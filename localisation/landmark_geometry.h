@@ -11,9 +11,9 @@
 namespace omnicam {
 
 // Range (metres, horizontal from the robot's origin — the rig's foot, its mount's place on the
-// robot not counted — below F' on a level rig) and bearing (radians CCW from the forward axis) of the point at height `pointHeight` above the floor
-// seen at continuous raster position `raster` (centres at +0.5) by a camera with `rig`, tilted as
-// the rig says (robotFromViewpoint). nullopt when the ray never reaches that height (the point
+// robot not counted — below F' on a level rig) and bearing (radians CCW from the forward axis)
+// of the point at height `pointHeight` above the floor seen at continuous raster position
+// `raster` (centres at +0.5) by a camera with `rig`, tilted as the rig says (robotFromViewpoint). nullopt when the ray never reaches that height (the point
 // would be at or beyond the horizon). InputError for a rig no central model describes.
 std::optional<RangeBearing> rangeBearingFromRaster(const RigSpec& rig, const Vec2& raster, double pointHeight);
 

@@ -193,7 +193,7 @@ ViewMap buildCentralViewMap(const ViewSpec& spec, const OmniCamera& camera, cons
   ViewMap map = emptyViewMap(spec);
   map.topIncidence = camera.rimTheta();
   const bool level = viewpointFromRobot.isIdentity(0.0);
-  const Eigen::Matrix3d robotFromView = perspectiveRobotFromView(spec);
+  const Eigen::Matrix3d viewpointFromView = viewpointFromRobot * perspectiveRobotFromView(spec);  // once, not per pixel
   for (int j = 0; j < map.height; ++j)
     for (int i = 0; i < map.width; ++i) {
       const double u = i + 0.5, v = j + 0.5;
@@ -209,7 +209,9 @@ ViewMap buildCentralViewMap(const ViewSpec& spec, const OmniCamera& camera, cons
         case ViewKind::Panorama: {
           const double phi = kPi - 2.0 * kPi * u / map.width;
           const double row = v / map.height;  // 0 at the top (rim), 1 at the bottom (centre)
-          if (!level) {  // the robot's azimuth and incidence, turned into the camera's
+          // Level, the closed form in θ and φ directly; tilted, the robot's azimuth and incidence
+          // as a direction, turned into the camera's.
+          if (!level) {
             const double theta = camera.rimTheta() * (1.0 - row);
             const Vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), -std::cos(theta));
             rasterOfDirection(camera, viewpointFromRobot * d, ViewVariant::Exact, x, y);
@@ -226,8 +228,7 @@ ViewMap buildCentralViewMap(const ViewSpec& spec, const OmniCamera& camera, cons
           break;
         }
         case ViewKind::Perspective:
-          rasterOfDirection(camera, viewpointFromRobot * (robotFromView * perspectiveDirection(spec, map, u, v)),
-                            ViewVariant::Exact, x, y);
+          rasterOfDirection(camera, viewpointFromView * perspectiveDirection(spec, map, u, v), ViewVariant::Exact, x, y);
           break;
       }
       map.sourceX[k] = x;
