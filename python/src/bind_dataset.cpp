@@ -29,12 +29,12 @@ namespace {
 // the run starts (the frames kept) and after every frame. An exception in it (Ctrl-C's KeyboardInterrupt too) stops the run once the frames
 // in progress are written (the fast engine renders a window of 8 at once, Blender a batch) and is
 // raised again once the run has stopped.
-py::dict runDatasetFromPython(const std::filesystem::path& specPath, const std::filesystem::path& out, bool overwrite, const PyInteger& threadsArg,
+py::dict runDatasetFromPython(const PyPath& specPath, const PyPath& out, bool overwrite, const PyInteger& threadsArg,
                               const std::optional<py::function>& progress) {
   const int threads = narrowed(threadsArg, "threads", 0, limits::kMaxThreads);
-  const DatasetSpec spec = loadDatasetSpec(specPath.string());
+  const DatasetSpec spec = loadDatasetSpec(specPath.value.string());
   DatasetRunOptions options;
-  options.dir = out.string();
+  options.dir = out.value.string();
   options.overwrite = overwrite;
   options.threads = threads;
   std::atomic<bool> stop{false};
@@ -96,7 +96,7 @@ void bindDatasetReader(py::module_& m) {
     if (kind != OutputKind::Multilayer) outputNames.append(outputName(kind));
   m.attr("OUTPUTS") = py::tuple(outputNames);
   py::class_<DatasetReader>(m, "_DatasetReader", "The C++ reader behind omnicam.Dataset (dataset/dataset_reader.h).")
-      .def(py::init<std::string>(), py::arg("path"))
+      .def(py::init([](const PyPath& path) { return DatasetReader(path.value.string()); }), py::arg("path"))
       .def_property_readonly("header", [](const DatasetReader& r) { return toPython(r.manifest().header); })
       .def_property_readonly("cameras", &DatasetReader::cameras)
       .def_property_readonly("frames", &DatasetReader::frames)
@@ -139,11 +139,11 @@ void bindDatasetReader(py::module_& m) {
         return py::bytes(r.fileBytes(std::nullopt, camera, kind, checkHash));
       }, py::arg("camera"), py::arg("kind"), py::arg("check_hash") = false);
 
-  m.def("verify_dataset", [](const std::filesystem::path& path) {
+  m.def("verify_dataset", [](const PyPath& path) {
     DatasetVerifyResult result;
     {
       py::gil_scoped_release release;
-      result = verifyDataset(path.string());
+      result = verifyDataset(path.value.string());
     }
     return py::dict(py::arg("files") = result.files, py::arg("problems") = result.problems, py::arg("ok") = result.ok());
   }, py::arg("path"), "Re-hashes every file the dataset's manifest lists: {\"files\", \"problems\", \"ok\"}.");
@@ -180,13 +180,13 @@ namespace {
 
 // read_exr_channels: the channels as their file stores them, float32 or uint32 (ids read as
 // floats would be scaled by 2^-32, as OpenImageIO reads them).
-py::array readExrChannelsToPython(const std::filesystem::path& path, const std::vector<std::string>& channels) {
+py::array readExrChannelsToPython(const PyPath& path, const std::vector<std::string>& channels) {
   if (channels.empty()) throw InputError("read_exr_channels: name at least one channel");
-  ExrChannels decoded = readExrChannelsExactly(path.string(), channels);
+  ExrChannels decoded = readExrChannelsExactly(path.value.string(), channels);
   const size_t uints = static_cast<size_t>(std::count_if(channels.begin(), channels.end(),
                                                           [&](const std::string& c) { return decoded.uints.count(c) > 0; }));
   if (uints != 0 && uints != channels.size())
-    throw InputError(showPath(path.string()) + ": channels of two kinds (uint32 ids and floats): read them apart");
+    throw InputError(showPath(path.value.string()) + ": channels of two kinds (uint32 ids and floats): read them apart");
   const py::ssize_t h = decoded.height, w = decoded.width, n = static_cast<py::ssize_t>(channels.size());
   const size_t pixels = static_cast<size_t>(h) * static_cast<size_t>(w);
   const auto interleave = [&](auto& planes, auto zero) {
@@ -251,8 +251,8 @@ the scene does not have.)");
 called when the run starts (done: the frames kept) and after every frame; an exception in it stops the run once the frames in progress (up to 8
 at once) are written, and is raised again. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
 
-  m.def("read_image", [](const std::filesystem::path& path) {
-    ImageRGBA image = readImage(path.string());
+  m.def("read_image", [](const PyPath& path) {
+    ImageRGBA image = readImage(path.value.string());
     const py::ssize_t h = image.height, w = image.width;
     return arrayTakingOver(std::move(image.pixels), {h, w, 4});
   }, py::arg("path"), "Any image file as linear, premultiplied RGBA float32 (H, W, 4).");
@@ -270,9 +270,9 @@ at once) are written, and is raised again. Returns {"frames", "kept", "rendered"
   }, py::arg("rgba"),
         "A frame's colour (linear, premultiplied RGBA float32, (H, W, 4)) as the 8-bit sRGB codes a PNG of it "
         "holds (straight alpha, uint8 (H, W, 4)): omnicam's own encoding, for ROS images and the like.");
-  m.def("read_uint16_png", [](const std::filesystem::path& path) {
+  m.def("read_uint16_png", [](const PyPath& path) {
     int w = 0, h = 0;
-    std::vector<uint16_t> values = readUint16Png(path.string(), w, h);
+    std::vector<uint16_t> values = readUint16Png(path.value.string(), w, h);
     return arrayTakingOver(std::move(values), {h, w});
   }, py::arg("path"), "A 16-bit single-channel PNG (instance and class ids) as uint16 (H, W).");
 }

@@ -146,6 +146,7 @@ void bindScene(py::module_& m) {
 debris, victims as landmarks) as a scene file's content (dict): write it with json.dump and load it.)");
 
   m.def("data_path", [](const std::string& relative) {
+    if (relative.find('\0') != std::string::npos) throw InputError("data_path: " + quote(relative) + ": a file name cannot hold a NUL character");
     const std::filesystem::path wanted(relative);
     for (const auto& part : wanted)
       if (wanted.is_absolute() || part == "..") throw InputError("data_path: " + quote(relative) + " must be a path inside omnicam's files");
@@ -159,10 +160,10 @@ debris, victims as landmarks) as a scene file's content (dict): write it with js
 cameras), ...), in a build tree or an installed package:
 data_path() is their folder, data_path("scenes/robocup2006.json") one of them. omnicam.InputError
 for a name that is not among them.)");
-  m.def("load_scene", [](const std::filesystem::path& path, bool allowOutsideFiles) {
+  m.def("load_scene", [](const PyPath& path, bool allowOutsideFiles) {
     SceneLoadOptions options;
     options.allowOutsideFolder = allowOutsideFiles;
-    return std::make_shared<Scene>(loadScene(path.string(), options));
+    return std::make_shared<Scene>(loadScene(path.value.string(), options));
   }, py::arg("path"), py::arg("allow_outside_files") = false,
         R"(Loads and checks a scene file. Anything wrong raises omnicam.InputError with one line
 "<file>: <field>: <what is wrong>". Files the scene pulls in must lie inside its folder unless

@@ -4,12 +4,16 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <pybind11/stl/filesystem.h>
+
+#include <filesystem>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "errors.h"
 #include "motion.h"
 #include "rig.h"
 
@@ -30,6 +34,14 @@ struct PyInteger {
 // (got …)") otherwise.
 int narrowed(const PyInteger& value, const std::string& name, int64_t lo, int64_t hi);
 uint64_t narrowedSeed(const PyInteger& value, const std::string& name);
+
+// A file or folder's name as Python gives one: str, bytes or os.PathLike. No file name holds a NUL
+// character: a name with one is refused with InputError (a ValueError, as Python's own open()
+// refuses it), not cut short at the NUL by the C library (Dataset("a\x00b") read folder "a"),
+// nor blamed on its type as pybind's own conversion does.
+struct PyPath {
+  std::filesystem::path value;
+};
 
 void bindScene(py::module_& m);
 void bindCamera(py::module_& m);
@@ -105,6 +117,34 @@ struct type_caster<omnicam::python::PyInteger> {
   }
   static handle cast(const omnicam::python::PyInteger& v, return_value_policy, handle) {
     return PyLong_FromLongLong(v.value);
+  }
+};
+
+template <>
+struct type_caster<omnicam::python::PyPath> {
+  PYBIND11_TYPE_CASTER(omnicam::python::PyPath, const_name("os.PathLike"));
+  bool load(handle source, bool convert) {
+    make_caster<std::filesystem::path> fileName;
+    if (fileName.load(source, convert)) {
+      value.value = cast_op<std::filesystem::path&&>(std::move(fileName));
+      return true;
+    }
+    // Refused: a str, bytes or os.PathLike may be refused for a NUL in it; anything else is no path.
+    object named = reinterpret_steal<object>(PyOS_FSPath(source.ptr()));
+    if (!named) return PyErr_Clear(), false;
+    std::string text;
+    if (PyBytes_Check(named.ptr())) {
+      text = named.cast<bytes>();
+    } else {
+      object encoded = reinterpret_steal<object>(PyUnicode_AsEncodedString(named.ptr(), "utf-8", "surrogateescape"));
+      if (!encoded) return PyErr_Clear(), false;
+      text = encoded.cast<bytes>();
+    }
+    if (text.find('\0') == std::string::npos) return false;
+    throw omnicam::InputError(omnicam::showPath(text) + ": a file name cannot hold a NUL character");
+  }
+  static handle cast(const omnicam::python::PyPath& path, return_value_policy policy, handle parent) {
+    return make_caster<std::filesystem::path>::cast(path.value, policy, parent);
   }
 };
 }  // namespace pybind11::detail

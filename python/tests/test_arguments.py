@@ -120,3 +120,21 @@ def test_every_public_function_class_method_property_and_error_has_a_docstring()
                 elif callable(member):
                     missing.append(_documented(name, attribute, member))
     assert [m for m in missing if m] == []
+
+
+@pytest.mark.parametrize("kind", [str, os.fsencode, lambda name: __import__("pathlib").Path(name)])
+def test_a_file_name_holding_a_nul_is_refused_not_cut_short(tmp_path, kind):
+    # The C library would read "…/a" for "…/a\0b"; Python's own open() refuses such a name, and so
+    # does every function of omnicam that takes a file or folder (docs/python.md, "Errors").
+    (tmp_path / "a").mkdir()
+    name = kind(str(tmp_path / "a") + "\0b")
+    nul = r"a\\x00b\": a file name cannot hold a NUL character$"
+    calls = [omnicam.load_scene, omnicam.read_image, omnicam.read_uint16_png, omnicam.verify_dataset,
+             omnicam.Dataset, lambda p: omnicam.read_exr_channels(p, ["R"]),
+             lambda p: omnicam.run_dataset(p, tmp_path / "out"), lambda p: omnicam.run_dataset(tmp_path / "spec", p)]
+    for call in calls:
+        with pytest.raises(omnicam.InputError, match=nul):
+            call(name)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a"]  # nothing written
+    with pytest.raises(omnicam.InputError, match=r"^data_path: \"scenes\\x00/robocup2006\.json\": a file name cannot hold a NUL"):
+        omnicam.data_path("scenes\0/robocup2006.json")
