@@ -59,14 +59,18 @@ DatasetManifest readPreviousManifest(const std::string& dir, const std::string& 
   }
 }
 
-// What the folder holds before the run: nothing (new or empty: nullopt), this dataset (resumed:
-// its manifest), or something else — refused, except another dataset when overwriting, whose
-// files are then removed. A shard reads its own manifest, and the merged one if there is one.
-std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, const json& header,
-                                              const std::string& manifestName) {
+// What the folder holds before the run: nothing (new or empty), this dataset (resumed: its
+// manifest), or something else — refused, except another dataset when overwriting (replaced: its
+// files go once every check of the run has passed, so that a run refused removes nothing). A
+// shard reads its own manifest, and the merged one if there is one.
+struct FolderTakeover {
+  std::optional<DatasetManifest> resumed;
+  std::optional<DatasetManifest> replaced;
+};
+FolderTakeover takeOverFolder(const DatasetRunOptions& options, const json& header, const std::string& manifestName) {
   // The folder is one already (runDatasetHere opened it).
   std::error_code ec;
-  if (!fs::exists(options.dir, ec) || fs::is_empty(options.dir, ec)) return std::nullopt;
+  if (!fs::exists(options.dir, ec) || fs::is_empty(options.dir, ec)) return {};
   const SafeFolder dir(options.dir);
   std::vector<std::string> names{kManifestName};
   if (manifestName != kManifestName) names.push_back(manifestName);
@@ -85,7 +89,7 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
     if (const std::string conflict = shardsConflict(options.dir, header, options.shardCount); !conflict.empty())
       throw InputError(showPath(options.dir) + ": " + conflict);
   if (!previous && dir.entry("shards") == EntryKind::Folder) {
-    if (shard) return std::nullopt;
+    if (shard) return {};
     throw InputError(showPath(options.dir) + ": holds the shards of a dataset, not merged (shards/): " +
                      unmergedShardsNextStep(options.dir));
   }
@@ -94,9 +98,8 @@ std::optional<DatasetManifest> takeOverFolder(const DatasetRunOptions& options, 
                      ": omnicam writes a dataset only into an empty folder or its own dataset's (and replaces only files a "
                      "dataset's manifest lists)");
   }
-  if (!options.overwrite) return previous;
-  removeDatasetFiles(dir, *previous);
-  return std::nullopt;
+  if (!options.overwrite) return {previous, std::nullopt};
+  return {std::nullopt, previous};
 }
 
 // The earlier run's frames in [first, end) whose robot pose is the spec's and whose files are
@@ -166,7 +169,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   // The folder: new, this dataset (resume), or something else (refused unless overwriting a
   // dataset). Everything in it is checked before anything is written: a planted link or a file
   // where a folder goes ends the run here.
-  std::optional<DatasetManifest> previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
+  FolderTakeover takeover = takeOverFolder(options, manifest.header, plan.range().manifestName);
   for (const std::string& sub : plan.folders()) folder.checkFolders(sub);
   // Shards share the folder (shared claims), so two could pass that check at once, each before the
   // other's manifest is there: a shard checks again holding shards/ alone, until its manifest is
@@ -185,9 +188,11 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
       return result;
     }
     shardsClaim = std::move(*claim);
-    previous = takeOverFolder(options, manifest.header, plan.range().manifestName);
-    if (previous) shardsClaim = FileDescriptor();  // its manifest is there already: the next shard's check sees it
+    takeover = takeOverFolder(options, manifest.header, plan.range().manifestName);
+    if (takeover.resumed) shardsClaim = FileDescriptor();  // its manifest is there already: the next shard's check sees it
   }
+  // Every check has passed: the dataset overwritten goes now.
+  if (takeover.replaced) removeDatasetFiles(folder, *takeover.replaced);
   // The folder is new, empty or a dataset now. A shard never removes temporaries (another shard
   // may be writing them; the merge does).
   if (!plan.range().sharded) {
@@ -195,7 +200,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
     folders.insert("slurm");  // sbatch's log of a submission (cluster/slurm_backend.cpp)
     removeAtomicTemporaries(options.dir, withParentFolders(folders));
   }
-  if (previous) manifest.frames = intactFrames(folder, *previous, plan);
+  if (takeover.resumed) manifest.frames = intactFrames(folder, *takeover.resumed, plan);
   result.kept = static_cast<int>(manifest.frames.size());
   // The manifest comes first: from its first file on, the folder is recognisably a dataset.
   writeManifest(folder, manifest, plan.range().manifestName);

@@ -520,6 +520,17 @@ TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   EXPECT_NE(resumed.out.find("(0 rendered, 3 kept from an earlier run)"), std::string::npos) << resumed.out;
   ASSERT_EQ(omnicam("dataset " + b + " -o " + path("ds") + " --overwrite").code, 0);
   EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 4);
+  // An overwrite refused by a later check (a file where its camera's folder goes) removes nothing:
+  // the dataset there is whole, and its manifest still true.
+  std::ofstream(dir_ / "ds/rear") << "mine";
+  const std::string rear = robocupSpec("rear.json", R"("size": 64, "cameras": [{"name": "rear"}], "poses": {"list": [[0.5, 0.3, 20]]})");
+  const auto refusedOverwrite = omnicam("dataset " + rear + " -o " + path("ds") + " --overwrite");
+  EXPECT_EQ(refusedOverwrite.code, 2) << refusedOverwrite.out;
+  EXPECT_NE(refusedOverwrite.out.find("rear: is not a folder"), std::string::npos) << refusedOverwrite.out;
+  const auto stillWhole = omnicam("dataset --verify " + path("ds"));
+  EXPECT_EQ(stillWhole.code, 0) << stillWhole.out;
+  EXPECT_EQ(json::parse(readFile(dir_ / "ds/manifest.json"))["frame_count"], 4);
+  fs::remove(dir_ / "ds/rear");
   // --overwrite removes only what a dataset owns, and never trusts a manifest's names to do so.
   fs::create_directories(dir_ / "victim");
   std::ofstream(dir_ / "victim/keep.txt") << "mine";
