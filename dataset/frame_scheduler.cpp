@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
@@ -110,24 +111,39 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
   std::vector<AovFrame> aovSlots(std::min(batch, todo.size()));
   auto lastManifest = std::chrono::steady_clock::now();
   int rendered = 0;
-  for (size_t start = 0; start < todo.size() && !stop(); start += batch) try {
+  for (size_t start = 0; start < todo.size() && !stop(); start += batch) {
     const size_t end = std::min(todo.size(), start + batch);
-    std::vector<std::vector<ImageRGBA>> rgb = batches ? renderBatch(plan, todo, start, end)
-                                                               : std::vector<std::vector<ImageRGBA>>(plan.setups().size());
-    std::vector<FrameRecord> records(end - start);
-    auto renderOne = [&](size_t k) {
-      std::vector<ImageRGBA*> given(plan.setups().size(), nullptr);
-      for (size_t c = 0; c < plan.setups().size(); ++c)
-        if (!rgb[c].empty()) given[c] = &rgb[c][k];
-      records[k] = renderFrame(plan, folder, todo[start + k], given, aovSlots[k]);
-    };
-    if (can.concurrent) {
-      tbb::parallel_for(size_t{0}, end - start, renderOne);
-    } else {
-      for (size_t k = 0; k < end - start; ++k) renderOne(k);
+    // A window's frames, each set once its files are written.
+    std::vector<std::optional<FrameRecord>> records(end - start);
+    try {
+      std::vector<std::vector<ImageRGBA>> rgb = batches ? renderBatch(plan, todo, start, end)
+                                                                 : std::vector<std::vector<ImageRGBA>>(plan.setups().size());
+      auto renderOne = [&](size_t k) {
+        std::vector<ImageRGBA*> given(plan.setups().size(), nullptr);
+        for (size_t c = 0; c < plan.setups().size(); ++c)
+          if (!rgb[c].empty()) given[c] = &rgb[c][k];
+        records[k] = renderFrame(plan, folder, todo[start + k], given, aovSlots[k]);
+      };
+      if (can.concurrent) {
+        tbb::parallel_for(size_t{0}, end - start, renderOne);
+      } else {
+        for (size_t k = 0; k < end - start; ++k) renderOne(k);
+      }
+    } catch (...) {
+      // Whatever ended the run (an external renderer ended by SIGTERM or SIGINT, a full disk, a
+      // file name taken by a folder): every frame whose files are written is listed, those of
+      // this window that finished beside the failing one too, to resume from and for --overwrite
+      // to remove. The manifest's own failure would hide the first error, which is the one to say.
+      for (std::optional<FrameRecord>& record : records)
+        if (record) manifest.frames[record->index] = std::move(*record);
+      try {
+        writeManifest(folder, manifest, plan.range().manifestName);
+      } catch (const std::exception&) {
+      }
+      throw;
     }
-    for (FrameRecord& record : records) {
-      manifest.frames[record.index] = std::move(record);
+    for (std::optional<FrameRecord>& record : records) {
+      manifest.frames[record->index] = std::move(*record);
       ++rendered;
       if (options.onFrame) options.onFrame(done + rendered, total);
     }
@@ -138,11 +154,6 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
       writeManifest(folder, manifest, plan.range().manifestName);
       lastManifest = now;
     }
-  } catch (const Interrupted&) {
-    // An external renderer was ended by SIGTERM or SIGINT: every finished frame is listed, to
-    // resume from.
-    writeManifest(folder, manifest, plan.range().manifestName);
-    throw;
   }
   return rendered;
 }

@@ -736,6 +736,45 @@ TEST_F(DatasetCliTest, VerifyFindsChangedAndMissingFiles) {
   EXPECT_NE(bad.out.find("FAIL: "), std::string::npos) << bad.out;
 }
 
+// A frame that cannot be written ends the run; the frames of its window that finished beside it
+// are listed (to resume from, and for --overwrite to remove), so that no file of a finished frame
+// is left out of the manifest.
+TEST_F(DatasetCliTest, AFrameThatCannotBeWrittenLeavesItsFinishedNeighboursListed) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 12})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  // A frame's files: NNNNNN.<ext>.
+  const auto frameOf = [](const fs::path& file) {
+    const std::string stem = file.stem().string();
+    return stem.size() == 6 && std::all_of(stem.begin(), stem.end(), ::isdigit) ? std::stoi(stem) : -1;
+  };
+  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "ds/cam0"))
+    if (entry.is_regular_file() && frameOf(entry.path()) >= 4) fs::remove(entry.path());
+  fs::create_directories(dir_ / "ds/cam0/depth/000009.exr");  // frame 9's depth cannot be written
+  const auto failed = omnicam("dataset " + spec + " -o " + path("ds"));
+  EXPECT_EQ(failed.code, 2) << failed.out;
+  EXPECT_NE(failed.out.find("cam0/depth/000009.exr: is an existing folder, not a file name"), std::string::npos) << failed.out;
+  std::set<std::string> listed;
+  std::set<int> frames;
+  const json manifest = json::parse(readFile(dir_ / "ds/manifest.json"));
+  for (const json& frame : manifest["frames"]) {
+    frames.insert(frame["index"].get<int>());
+    for (const auto& [kind, file] : frame["cameras"]["cam0"]["files"].items()) listed.insert(file["path"].get<std::string>());
+  }
+  for (int kept = 0; kept < 4; ++kept) EXPECT_EQ(frames.count(kept), 1u) << kept;
+  EXPECT_EQ(frames.count(9), 0u);
+  for (const auto& entry : fs::recursive_directory_iterator(dir_ / "ds/cam0")) {
+    const std::string name = fs::relative(entry.path(), dir_ / "ds").string();
+    if (entry.is_regular_file() && frameOf(entry.path()) >= 0 && frameOf(entry.path()) != 9) {
+      EXPECT_EQ(listed.count(name), 1u) << name << " is a finished frame's file the manifest does not list";
+    }
+  }
+  fs::remove(dir_ / "ds/cam0/depth/000009.exr");
+  const auto resumed = omnicam("dataset " + spec + " -o " + path("ds"));
+  EXPECT_EQ(resumed.code, 0) << resumed.out;
+  EXPECT_NE(resumed.out.find(std::to_string(12 - frames.size()) + " rendered, " + std::to_string(frames.size()) + " kept"),
+            std::string::npos) << resumed.out;
+}
+
 // The folder a run writes does not depend on the working directory it ran from: the manifest
 // and COCO's info name the spec by its file name and the scene as the spec gives it.
 TEST_F(DatasetCliTest, TheFolderDoesNotDependOnTheWorkingDirectory) {
