@@ -20,10 +20,14 @@ const double kFacingHeights[] = {-0.4, 0.0, 0.4};  // × the band's height, abou
 std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayScene& rays, const RigSpec& rig,
                                                   const CameraPlacement& placement) {
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
-  auto imaged = [&](const Vec3& p) { return projectAtReadout(*camera, placement, p); };
-  auto rasterOf = [&](const Vec3& p) -> std::optional<Vec2> {
-    const auto at = imaged(p);
-    return at ? std::optional<Vec2>(at->raster) : std::nullopt;
+  // Where p lands, on the image or off it (a lens camera projects beyond its rectangle), and
+  // where it is imaged: on the image.
+  auto projected = [&](const Vec3& p) { return projectAtReadout(*camera, placement, p); };
+  auto imaged = [&](const Vec3& p) -> std::optional<TimedProjection> {
+    const auto at = projected(p);
+    const bool onImage = at && at->raster.x() >= 0.0 && at->raster.x() < camera->width() && at->raster.y() >= 0.0 &&
+                         at->raster.y() < camera->height();
+    return onImage ? at : std::nullopt;
   };
   // Is world point p imaged with nothing in front of it? Seen from where its ray leaves the mirror
   // when its line sees it: F' for the central model, its own mirror point for a non-central rig.
@@ -79,13 +83,12 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
         const double angle = 2.0 * kPi * k / kOutlinePoints;
         const Vec3 p = lm.position + Vec3(radius * std::cos(angle), radius * std::sin(angle),
                                           (ring == 0 ? -0.5 : 0.5) * lm.height);
-        if (const auto raster = rasterOf(p)) box.extend(*raster);
+        if (const auto at = projected(p)) box.extend(at->raster);
       }
-    if (!box.isEmpty()) {
-      a.bbox = std::array<double, 4>{std::max(0.0, box.min().x()), std::max(0.0, box.min().y()),
-                                     std::min<double>(camera->width(), box.max().x()),
-                                     std::min<double>(camera->height(), box.max().y())};
-    }
+    // The outline's box clipped to the image; none when it lies wholly off the image.
+    box.clamp(Eigen::AlignedBox2d(Vec2(0.0, 0.0), Vec2(camera->width(), camera->height())));
+    if (!box.isEmpty() && box.volume() > 0.0)  // a box on the image's edge alone holds no pixel
+      a.bbox = std::array<double, 4>{box.min().x(), box.min().y(), box.max().x(), box.max().y()};
     result.push_back(a);
   }
   return result;

@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "make_camera.h"
 #include "scene_loader.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
@@ -98,6 +100,53 @@ TEST(LandmarkAnnotations, UnderARollingShutterEachLandmarkIsWhereItsOwnLineSeesI
   const Vec2 still = closedFormRaster(rig, start, s.landmarks[0].position);
   EXPECT_GT((*moving[0].centre - still).norm(), 5.0);
   EXPECT_TRUE(moving[1].occluded);  // still behind the wall
+}
+
+// A lens camera projects beyond its image rectangle (Camera::project is not clipped): a landmark
+// whose centre lands off the image is not in view, and its box is its outline's clipped to the
+// image, none when the outline lies wholly off it. An equidistant fisheye of 200° on a 64 × 48
+// image whose circle (50 px) overhangs the rectangle, with landmarks all around at 2 m.
+TEST(LandmarkAnnotations, ALensCamerasLandmarksOffTheImageAreNotInViewAndBoxesStayOnIt) {
+  std::string landmarks;
+  for (int k = 0; k < 72; ++k) {
+    const double a = radians(5.0 * k);
+    landmarks += std::string(k ? ", " : "") + R"({"name": "l)" + std::to_string(k) + R"(", "position": [)" +
+                 std::to_string(2.0 * std::cos(a)) + ", " + std::to_string(2.0 * std::sin(a)) +
+                 R"(, 0.3], "diameter": 0.4, "height": 0.2, "colour_class": "cyan"})";
+  }
+  const Scene s = loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+    "objects": [{"type": "quad", "name": "floor", "material": "m", "origin": [-9, -9, 0], "edge_u": [18, 0, 0], "edge_v": [0, 18, 0]}],
+    "landmarks": [)" + landmarks + "]}",
+                                    "ring.json");
+  const RayScene rays(s);
+  const RigSpec rig = test::lensRig(test::equidistant(50.0 / radians(100.0), 200.0, 64, 48), 64, 48);
+  const auto camera = makeCamera(rig);
+  const RobotPose pose{0.0, 0.0, 0.0};
+  const Rigid viewpointFromWorld = CameraPlacement(pose).worldFromViewpoint(rig).inverse();
+  const auto annotations = annotateLandmarks(s, rays, rig, pose);
+  int offImage = 0, straddling = 0, onImage = 0;
+  for (const LandmarkAnnotation& a : annotations) {
+    const auto raster = camera->project(viewpointFromWorld * a.landmark->position);
+    const bool inside = raster && raster->x() >= 0 && raster->x() < 64 && raster->y() >= 0 && raster->y() < 48;
+    EXPECT_EQ(a.inView(), inside) << a.landmark->name;
+    if (inside) {
+      ++onImage;
+      EXPECT_EQ(*a.centre, *raster) << a.landmark->name;
+    } else if (raster) {
+      ++offImage;
+      EXPECT_FALSE(a.visible()) << a.landmark->name;
+      straddling += a.bbox.has_value();
+    }
+    if (a.bbox) {
+      const auto& [uMin, vMin, uMax, vMax] = *a.bbox;
+      EXPECT_TRUE(0 <= uMin && uMin < uMax && uMax <= 64 && 0 <= vMin && vMin < vMax && vMax <= 48)
+          << a.landmark->name << ": [" << uMin << ", " << vMin << ", " << uMax << ", " << vMax << "]";
+    }
+  }
+  // Every case is exercised: seen, projected off the image, and reaching into it from there.
+  EXPECT_GT(onImage, 10);
+  EXPECT_GT(offImage - straddling, 2);
+  EXPECT_GT(straddling, 0);
 }
 
 }  // namespace
