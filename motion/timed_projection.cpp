@@ -38,23 +38,23 @@ std::optional<TimedProjection> projectAtReadout(const Camera& camera, const Came
     if (!at) return std::nullopt;
     const int next = lineAt(at->raster);
     if (next == line) return at;
-    for (size_t v = 0; v < visited.size(); ++v) {
-      if (visited[v] != next) continue;
-      // A cycle: the line of it whose projection lands nearest to itself.
-      std::optional<TimedProjection> best;
-      int bestMiss = 0;
-      for (size_t c = v; c < visited.size(); ++c) {
-        const auto candidate = projectAt(camera, placement, p, lineTime(visited[c]));
-        if (!candidate) continue;
-        const int miss = std::abs(lineAt(candidate->raster) - visited[c]);
-        if (!best || miss < bestMiss) best = candidate, bestMiss = miss;
-      }
-      return best;
-    }
+    if (std::find(visited.begin(), visited.end(), next) != visited.end()) break;
     visited.push_back(line);
     line = next;
   }
-  return projectAt(camera, placement, p, lineTime(line));
+  // The lines cycle (the robot turns so far within the readout that each line's time moves the
+  // point onto another line): every line, in readout order, is tried instead. The first whose
+  // own time images the point on itself wins; where none does, the one imaging it nearest to itself.
+  std::optional<TimedProjection> nearest;
+  int nearestMiss = 0;
+  for (int candidate = 0; candidate < lineCount(shutter, width, height); ++candidate) {
+    const auto at = projectAt(camera, placement, p, lineTime(candidate));
+    if (!at) continue;
+    const int miss = std::abs(lineAt(at->raster) - candidate);
+    if (miss == 0) return at;
+    if (!nearest || miss < nearestMiss) nearest = at, nearestMiss = miss;
+  }
+  return nearest;
 }
 
 }  // namespace omnicam

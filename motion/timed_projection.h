@@ -14,10 +14,11 @@ struct TimedProjection {
   double seconds = 0.0;  // after the exposure start: mid-exposure of the raster point's line
 };
 
-// The projection of world point `p` by `camera` (its rig's shutter) at `placement`. A global shutter images every point at mid-exposure. A rolling one
-// iterates from the middle line until the line repeats; when the motion is so fast that the lines
-// cycle instead, the one of the cycle whose own time images the point nearest to itself wins.
-// nullopt where the point is not imaged at that time.
+// The projection of world point `p` by `camera` (its rig's shutter) at `placement`. A global
+// shutter images every point at mid-exposure. A rolling one iterates from the middle line until
+// the line repeats (nullopt where the point is not imaged at a line's time). When the motion is so
+// fast that the lines cycle instead, every line is tried in readout order: the first whose own
+// time images the point on itself wins, or, where none does, the one imaging it nearest to itself.
 std::optional<TimedProjection> projectAtReadout(const Camera& camera, const CameraPlacement& placement, const Vec3& p);
 
 }  // namespace omnicam
