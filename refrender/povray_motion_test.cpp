@@ -3,7 +3,12 @@
 // fast renderer must agree with it pixel by pixel.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <utility>
 #include <vector>
 
@@ -14,6 +19,8 @@
 
 namespace omnicam {
 namespace {
+
+namespace fs = std::filesystem;
 
 const Scene& robocup() {
   static const Scene s = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
@@ -77,6 +84,46 @@ TEST(PovrayMoving, ReportsEachRenderAsItIsSummed) {
   renderWithPovray(robocup(), CameraPlacement({-0.6, 0.4, 30.0}, kDriving), settings, options);
   ASSERT_EQ(reports.size(), 17u);
   for (size_t k = 0; k < reports.size(); ++k) EXPECT_EQ(reports[k], std::make_pair(static_cast<int>(k), 16));
+}
+
+}  // namespace
+}  // namespace omnicam
+
+namespace omnicam {
+namespace {
+
+// Render threads cap a moving frame's POV-Ray processes (dataset --threads): each renders on one
+// thread, and no more run at once than threads were given. Counted by a wrapper that notes how
+// many are running as each starts; the frame is the uncapped one, pixel for pixel.
+TEST(PovrayMoving, RenderThreadsCapTheProcessesRunningAtOnce) {
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_povray_cap_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "running");
+  const fs::path wrapper = dir / "povray";
+  std::ofstream(wrapper) << "#!/bin/sh\n: > '" << (dir / "running").string() << "'/$$\nls '" << (dir / "running").string()
+                         << "' | wc -l >> '" << (dir / "counts").string() << "'\npovray \"$@\"\nstatus=$?\nrm -f '"
+                         << (dir / "running").string() << "'/$$\nexit $status\n";
+  fs::permissions(wrapper, fs::perms::owner_all);
+  RenderSettings settings;
+  settings.rig = robocup().rig.resized(8);
+  settings.rig.shutter = {0.004, RollingShutter{1000.0, Readout::TopToBottom}, 1};
+  settings.spp = 1;
+  const CameraPlacement driving({-0.6, 0.4, 30.0}, kDriving);
+  const ImageRGBA uncapped = renderWithPovray(robocup(), driving, settings);
+  for (int threads : {1, 2}) {
+    fs::remove(dir / "counts");
+    PovrayOptions options;
+    options.executable = wrapper.string();
+    options.threads = threads;
+    const ImageRGBA capped = renderWithPovray(robocup(), driving, settings, options);
+    EXPECT_EQ(capped.pixels, uncapped.pixels) << threads << " threads";
+    std::ifstream counts(dir / "counts");
+    std::vector<int> running;
+    for (int n; counts >> n;) running.push_back(n);
+    ASSERT_EQ(running.size(), 8u) << threads << " threads: a render per row";
+    EXPECT_LE(*std::max_element(running.begin(), running.end()), threads);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

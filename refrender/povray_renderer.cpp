@@ -47,7 +47,8 @@ std::string povrayVersion(const std::string& executable) {
 
 namespace {
 
-// POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting.
+// POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting. With
+// render threads given, each process has one, and at most that many run.
 constexpr int kConcurrentPovrayJobs = 8;
 // A moving frame's renders are summed in job order as they arrive; one that finishes before an
 // earlier one waits, and a job starts only within this many of the next to be summed. So at most
@@ -137,7 +138,8 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
   bool stopped = false;
   std::map<size_t, ImageRGBA> held;  // finished, waiting for an earlier job
   if (options.onRenderSummed) options.onRenderSummed(0, static_cast<int>(jobs.size()));
-  runConcurrently(jobs.size(), kConcurrentPovrayJobs, [&](size_t k) {
+  const int processes = options.threads > 0 ? std::min(options.threads, kConcurrentPovrayJobs) : kConcurrentPovrayJobs;
+  runConcurrently(jobs.size(), processes, [&](size_t k) {
     {
       std::unique_lock<std::mutex> lock(mutex);
       summed.wait(lock, [&] { return stopped || k < nextToSum + kHeldPovrayRenders; });
