@@ -32,7 +32,8 @@ std::string lensSensorYaml(const DatasetCamera& mount, const LensCamera& camera,
   std::ostringstream out;
   out << "# EuRoC/ASL camera sensor written by omnicam (docs/dataset-format.md, \"EuRoC/ASL layout\").\n"
       << "# Body frame: the robot's (origin on the floor, x forward, y left, z up). Sensor frame: OpenCV's (X right,\n"
-      << "# Y down, Z along the optical axis) at the lens' centre of projection. Pixel centres are integers.\n"
+      << "# Y down, Z along the optical axis) at the lens' centre of projection. Timestamps: exposure start.\n"
+      << "# Pixel centres are integers.\n"
       << "sensor_type: camera\n"
       << "comment: omnicam " << lensModelName(camera.lens().model) << " camera " << mount.name << "\n"
       << "T_BS:\n  cols: 4\n  rows: 4\n  data: [";

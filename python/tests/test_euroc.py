@@ -109,3 +109,19 @@ def test_the_images_are_the_manifest_s_colour_frames(source, tmp_path):
     assert dataset.reader.frame(item["index"])["cameras"]["cam1"]["files"]["rgb"] == "cam1/data/100000000.png"
     assert omnicam.verify_dataset(str(ds))["ok"]
     assert item["velocity"] == (0.8, 0.0, 20.0)
+
+
+def test_every_camera_s_sensor_file_says_its_stamps_are_the_exposure_start(source, tmp_path):
+    # data.csv's stamps are each frame's exposure start, whatever the camera: the mirror's and a
+    # lens camera's sensor.yaml both say so, where a reader looks for it.
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(source / "scenes" / "robocup2006.json"), "size": 32, "euroc": True,
+        "poses": {"list": [[0, 0, 0]]},
+        "cameras": [{"name": "mirror"},
+                    {"name": "fisheye", "rig": {"height": 0.4, "lens": {"model": "fisheye_equidistant", "width": 32, "height": 24,
+                                                                       "f_px": 8, "cx": 15.5, "cy": 11.5, "fov_deg": 180}}}]}))
+    omnicam.run_dataset(str(spec), str(tmp_path / "ds"))
+    for camera in ("mirror", "fisheye"):
+        text = (tmp_path / "ds" / camera / "sensor.yaml").read_text()
+        assert "Timestamps: exposure start." in text, (camera, text)
