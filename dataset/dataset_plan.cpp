@@ -156,6 +156,22 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
   return plan;
 }
 
+// A camera on a moving robot whose frame (exposure and readout) outlasts the frame interval, as
+// no real camera's can: each frame is still rendered whole, the robot driving on along its arc
+// past the next frame's pose. Said, not refused: a long exposure may be what is studied.
+void noteFramesLongerThanTheInterval(const DatasetSpec& spec, const std::vector<CameraSetup>& setups,
+                                     const std::vector<BodyVelocity>& velocities, std::vector<std::string>& notes) {
+  if (velocities.size() < 2 || std::all_of(velocities.begin(), velocities.end(), [](const BodyVelocity& v) { return v.still(); }))
+    return;
+  for (const CameraSetup& setup : setups) {
+    const double duration = frameDuration(setup.rig.shutter, setup.rig.imageWidth(), setup.rig.imageHeight());
+    if (duration > spec.frameIntervalSeconds)
+      notes.push_back("camera " + quote(setup.camera->name) + ": a frame's exposure and readout (" + shortNumber(duration) +
+                      " s) outlast frame_interval_s (" + shortNumber(spec.frameIntervalSeconds) +
+                      " s): each frame is rendered whole, the robot driving on past the next frame's pose (docs/motion.md)");
+  }
+}
+
 // Instance ids 1, 2, ... in scene order and class ids 1, 2, ... in name order; 0 = none.
 // The manifest's header (docs/dataset-format.md) but for its cameras.
 json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& engine, const FrameOutputPlan& plan,
@@ -409,6 +425,7 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& optio
   range_ = frameRange(options, totalFrames);
   json notWritten;
   outputs_ = outputPlan(spec, *engine_, scene_, notWritten, notes_);
+  noteFramesLongerThanTheInterval(spec, setups_, velocities_, notes_);
   ids_ = idTables(scene_);
   header_ = manifestHeader(spec, scene_, *engine_, outputs_, notWritten, ids_, totalFrames, options, range_);
   header_["cameras"] = manifestCameras(*this, statics_);
