@@ -62,6 +62,9 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
   const std::string output = tailOfFile(tmp, 5);
   writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
   if (r.notFound) throw ExternalError(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
+  if (r.timedOut)
+    throw ExternalError("sbatch did not answer for the " + what + " within 120 s; it may have been submitted all the same (squeue "
+                        "lists it): " + r.logTail);
   if (r.exitCode != 0) throw ExternalError("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
   std::istringstream lines(output);
   std::string line;
@@ -197,9 +200,17 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
                        "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
                       dir, "array job");
   // afterany: the merge also runs when a task failed, and lists what is missing.
-  s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
-                       "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
-                      dir, "merge job");
+  try {
+    s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
+                         "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
+                        dir, "merge job");
+  } catch (const ExternalError& e) {
+    // The array is queued and its shards are good work: said, with what finishes or undoes it.
+    throw ExternalError(std::string(e.what()) + "; the array job " + s.arrayJob +
+                        " is queued and renders the shards: once it has ended, merge them with `omnicam dataset --merge " +
+                        shellPath(dir.string()) + " --shards " + std::to_string(o.shards) + "`, or cancel it with `scancel " +
+                        s.arrayJob + "`");
+  }
   return s;
 }
 

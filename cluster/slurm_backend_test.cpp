@@ -3,6 +3,10 @@
 #include "slurm_backend.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "errors.h"
 
@@ -35,6 +39,39 @@ TEST(SlurmBackend, ReservedOptionsAreRefusedUnderEverySpellingSbatchAccepts) {
   for (const char* good : {"-pdebug", "-Jomnicam-data", "--partition=dev-a", "--export=ALL", "--open-mode=append",
                            "--exclusive", "-H", "-vv", "--account=array"})
     EXPECT_NO_THROW(parseSlurmArgs(good)) << good;
+}
+
+// An sbatch that takes the array job and then refuses the merge job: the array is queued and
+// renders the shards, so the message gives its id with what finishes it (the merge by hand) and
+// what undoes it (scancel), instead of leaving a job nobody was told of.
+TEST(SlurmBackend, AMergeJobRefusedNamesTheQueuedArrayJobAndWhatFinishesOrCancelsIt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_slurm_merge_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path sbatch = dir / "sbatch";
+  std::ofstream(sbatch) << "#!/bin/sh\ncase \"$*\" in *--dependency*) echo 'sbatch: error: QOSMaxSubmitJobPerUserLimit' >&2; exit 1;; esac\n"
+                           "echo 4711\n";
+  fs::permissions(sbatch, fs::perms::owner_all);
+  std::ofstream(dir / "spec.json") << "{}";
+  SlurmSubmitOptions options;
+  options.spec = (dir / "spec.json").string();
+  options.dir = (dir / "out").string();
+  options.omnicamBinary = "/usr/bin/true";
+  options.shards = 3;
+  options.sbatch = sbatch.string();
+  try {
+    submitDatasetToSlurm(options);
+    ADD_FAILURE() << "the refused merge job was not said";
+  } catch (const ExternalError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("sbatch refused the merge job (exit 1): "), std::string::npos) << message;
+    EXPECT_NE(message.find("QOSMaxSubmitJobPerUserLimit"), std::string::npos) << message;
+    EXPECT_NE(message.find("the array job 4711 is queued and renders the shards: once it has ended, merge them with "
+                           "`omnicam dataset --merge " + (dir / "out").string() + " --shards 3`, or cancel it with `scancel 4711`"),
+              std::string::npos) << message;
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
