@@ -165,34 +165,38 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
   checkScene(a.scene, [&] {
     for (const RobotPose& framePose : path.poses) checkEngineRenders(engine.kind(), settings.rig, CameraPlacement(framePose, velocity));
   });
-  ensureDirectory(a.out, "-o");
+  const std::vector<std::string> made = ensureDirectory(a.out, "-o");
   // One run at a time writes a folder of frames (as a dataset's folder): two would interleave
   // their frames and sidecars. The claim ends with the process however it ends.
   const SafeFolder claimed(a.out);
   if (!claimed.tryClaim(/*shared=*/false))
-    throw InputError("-o: " + showPath(a.out) +
-                     ": another omnicam run is writing there now: wait for it to end, or give another folder");
-  checkNoOtherFrames(a.out, written);  // again: another run may have made the folder or ended there since
-  Progress progress("render " + a.path + " (" + engineName + ")", total);
-  // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
-  // each file still appears atomically.
-  std::future<void> writing;
-  const auto placementOf = [&](size_t f) { return CameraPlacement(path.poses[f], velocity); };
-  renderSequence(
-      static_cast<size_t>(total), framesPerBatch(engine), placementOf,
-      [&](const std::vector<CameraPlacement>& placements) { return engine.renderMany(placements, settings); },
-      [&](size_t f, ImageRGBA&& image, double seconds) {
-        RenderedFile rendered{std::move(image), renderSidecar(scene, engine, placementOf(f), settings, seconds)};
-        rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
-        record(rendered, recording, f);
-        if (writing.valid()) writing.get();
-        writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
-          writeWithViews(file, frame, views);
+    throw InputError("-o: " + showPath(a.out) + ": another omnicam run is writing there now: wait for it to end, or give another folder");
+  try {
+    checkNoOtherFrames(a.out, written);  // again: another run may have made the folder or ended there since
+    Progress progress("render " + a.path + " (" + engineName + ")", total);
+    // Frame f is written while frame f + 1 renders (or its batch, for an engine that batches);
+    // each file still appears atomically.
+    std::future<void> writing;
+    const auto placementOf = [&](size_t f) { return CameraPlacement(path.poses[f], velocity); };
+    renderSequence(
+        static_cast<size_t>(total), framesPerBatch(engine), placementOf,
+        [&](const std::vector<CameraPlacement>& placements) { return engine.renderMany(placements, settings); },
+        [&](size_t f, ImageRGBA&& image, double seconds) {
+          RenderedFile rendered{std::move(image), renderSidecar(scene, engine, placementOf(f), settings, seconds)};
+          rendered.sidecar["path"] = {{"name", a.path}, {"frame", f}};
+          record(rendered, recording, f);
+          if (writing.valid()) writing.get();
+          writing = std::async(std::launch::async, [file = frameFile(static_cast<int>(f)), frame = std::move(rendered), &views] {
+            writeWithViews(file, frame, views);
+          });
+          progress.step();
         });
-        progress.step();
-      });
-  if (writing.valid()) writing.get();
-  progress.finish();
+    if (writing.valid()) writing.get();
+    progress.finish();
+  } catch (...) {
+    removeMadeFolders(made);  // the folders this run made and left empty; frames written stay
+    throw;
+  }
   std::printf("wrote %s to %s\n", countOf(total, "frame").c_str(), a.out.c_str());
 }
 

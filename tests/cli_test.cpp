@@ -439,6 +439,11 @@ TEST_F(CliTest, PovrayFailuresExitThreeWithItsOutputAndWriteNothing) {
     EXPECT_FALSE(fs::exists(out)) << env;
     EXPECT_FALSE(fs::exists(out + ".json")) << env;
   }
+  // A path's folder, and the folders above it that the run made, go with its first frame.
+  const CommandResult r = run("render " + kScene + " --engine povray --path thesis-loop --frames 1 --size 16 -o " +
+                              path("frames/sub"), "OMNICAM_POVRAY=/nonexistent/povray");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_FALSE(fs::exists(path("frames"))) << r.out;
 }
 
 TEST_F(CliTest, APovrayWhoseThreadsDidNotStartRunsAgain) {
