@@ -124,8 +124,17 @@ RayScene::RayScene(const Scene& scene) {
   }
   // Embree reports errors through a callback; without one they are silently lost.
   rtcSetDeviceErrorFunction(device_, recordEmbreeError, &errors_);
-  scene_ = rtcNewScene(device_);
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  try {
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    addObjects(scene);
+  } catch (...) {
+    releaseEmbree();  // no destructor runs for an object whose constructor threw
+    throw;
+  }
+}
+
+void RayScene::addObjects(const Scene& scene) {
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& obj = scene.objects[i];
     auto g = std::make_unique<Geometry>();
@@ -173,9 +182,13 @@ void RayScene::throwIfEmbreeFailed() const {
   if (!errors_.first.empty()) throw std::runtime_error("Embree: " + errors_.first);
 }
 
-RayScene::~RayScene() {
+RayScene::~RayScene() { releaseEmbree(); }
+
+void RayScene::releaseEmbree() {
   if (scene_) rtcReleaseScene(scene_);
   if (device_) rtcReleaseDevice(device_);
+  scene_ = nullptr;
+  device_ = nullptr;
 }
 
 Eigen::Vector2d RayScene::uvOf(unsigned geomID, unsigned primID, float u, float v) const {

@@ -130,6 +130,8 @@ class RayScene {
 
  private:
   void throwIfEmbreeFailed() const;
+  void addObjects(const Scene& scene);  // the scene's geometry into scene_, committed
+  void releaseEmbree();                 // scene_ and device_, by the destructor or a constructor that failed
   friend class HitPacket;
   // Texture coordinates of a hit on geometry geomID, primitive primID, at barycentrics (u, v) as Embree counts them.
   Eigen::Vector2d uvOf(unsigned geomID, unsigned primID, float u, float v) const;
