@@ -55,6 +55,19 @@ TEST(LivePose, HostileMessagesAreRefusedWithTheirReason) {
   o = turnedBy(0.3);
   o.linear[0] = 80.0, o.linear[1] = 61.0;
   EXPECT_EQ(problemWith(o, nullptr), "the speed is above 100 m/s");
+  // A stamp far after ROS time now (a clock set wrong, a hostile message) would hold every later
+  // pose back: refused. Up to a minute ahead is taken (clocks of two machines), and so is any
+  // stamp before /clock's first message (ROS time zero).
+  o = turnedBy(0.3);
+  o.stamp = {4294967295u, 999999999u};
+  EXPECT_EQ(problemWith(o, nullptr, {1000, 0}),
+            "its stamp 4294967295.999999999 is more than 60 s after ROS time now, 1000.000000000 (a clock that far ahead would "
+            "hold every later pose back)");
+  EXPECT_EQ(problemWith(o, nullptr, {}), "");
+  o.stamp = {1060, 0};
+  EXPECT_EQ(problemWith(o, nullptr, {1000, 0}), "");
+  o.stamp = {1060, 1};
+  EXPECT_NE(problemWith(o, nullptr, {1000, 0}), "");
 }
 
 // A slow render drops stale poses instead of queueing them: the newest wins, each replaced one

@@ -20,6 +20,7 @@
 #include "film.h"
 #include "frame_planes.h"
 #include "image.h"
+#include "number_format.h"
 #include "interrupts.h"
 #include "intrinsics_files.h"
 #include "placement.h"
@@ -157,7 +158,7 @@ ros1::Transform baseFromCamera(const DatasetPlan& plan, size_t camera, const Liv
 
 }  // namespace
 
-std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted) {
+std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted, const ros1::Stamp& now) {
   const double* numbers[] = {o.position, o.orientationXyzw, o.linear, o.angular};
   const size_t counts[] = {3, 4, 3, 3};
   for (size_t k = 0; k < 4; ++k)
@@ -172,6 +173,9 @@ std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted
   if (std::hypot(o.linear[0], o.linear[1]) > kMaxSpeed) return "the speed is above 100 m/s";
   if (lastAccepted && (o.stamp.sec < lastAccepted->sec || (o.stamp.sec == lastAccepted->sec && o.stamp.nsec <= lastAccepted->nsec)))
     return "its stamp " + stampText(o.stamp) + " is not after the last pose's, " + stampText(*lastAccepted);
+  if (!now.zero() && o.stamp.nanoseconds() - now.nanoseconds() > std::llround(kMostStampAheadSeconds * 1e9))
+    return "its stamp " + stampText(o.stamp) + " is more than " + shortNumber(kMostStampAheadSeconds) + " s after ROS time now, " +
+           stampText(now) + " (a clock that far ahead would hold every later pose back)";
   return "";
 }
 
@@ -380,7 +384,7 @@ struct LivePoses {
   }
   void accept(const ros1::Odometry& o) {
     startAnewIfTimeWentBack();
-    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr); !problem.empty())
+    if (const std::string problem = problemWith(o, lastAccepted ? &*lastAccepted : nullptr, transport->now()); !problem.empty())
       return refuse(problem, o.stamp);
     lastAccepted = o.stamp;
     if (options.rateHz > 0 && options.tfParent.empty())

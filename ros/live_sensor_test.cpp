@@ -179,13 +179,22 @@ void expectTheBagHoldsTheDataset(const fs::path& path, const fs::path& dataset) 
   std::map<std::string, std::vector<sensor_msgs::Image>> images;
   std::map<std::string, size_t> messages;
   std::vector<std::pair<std::string, ros::Time>> order;  // topic and bag time, as rosbag play sends them
+  size_t latched = 0;
   for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
     ++messages[m.getTopic()];
     order.emplace_back(m.getTopic(), m.getTime());
+    // /tf_static and the intrinsics texts are latched, as `rosbag record` marks them: `rosbag play`
+    // latches them again for the subscribers that come late. Nothing else is.
+    const boost::shared_ptr<const ros::M_string> connection = m.getConnectionHeader();
+    const bool latching = connection && connection->count("latching") && connection->at("latching") == "1";
+    const bool latchedTopic = m.getTopic() == "/tf_static" || m.getDataType() == "std_msgs/String";
+    EXPECT_EQ(latching, latchedTopic) << m.getTopic();
+    latched += latchedTopic;
     if (const sensor_msgs::Image::ConstPtr image = m.instantiate<sensor_msgs::Image>(); image && image->encoding == "rgb8")
       images[m.getTopic()].push_back(*image);
   }
   EXPECT_EQ(messages["/tf_static"], 1u);
+  EXPECT_EQ(latched, 1u);  // /tf_static (these cameras have no intrinsics text)
   // The static transforms are at the first pose's stamp, the bag's start (not the wall clock's
   // time, which rosbag play would reach decades later).
   ASSERT_FALSE(order.empty());
@@ -513,6 +522,26 @@ TEST_F(LiveRun, TakesPosesFromTfAndRefusesAGapInTheTree) {
     EXPECT_EQ(frames[k].header.stamp, ros::Time(100 + static_cast<uint32_t>(k), 0));
     EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "pose " << k;
   }
+}
+
+// A /tf stamp at the very end of ROS time makes tf2's own arithmetic throw, which on the spinner
+// thread ended the process (roscpp lets a callback's exception through to std::terminate). The
+// transform is left out, the pose refused with the reason, and the node goes on to its signal.
+TEST_F(LiveRun, OutlivesATfStampAtTheEndOfRosTime) {
+  std::ofstream(root_ / "spec.json") << specText();
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "tfbot", "--tf", "map"});
+  ros::Publisher tf = handle_->advertise<tf2_msgs::TFMessage>("/tf", 10);
+  Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
+  waitUntilConnected([&] { return tf.getNumSubscribers() > 0 && diagnostics.connected(); });
+  publishTransforms(tf, {transformAt("map", "base_link", ros::Time(4294967295u, 999999999u), 0, 0, 0, 1)});
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
+  EXPECT_NE(diagnosticMessages(diagnostics)[0].find("pose refused: no transform from map to base_link: tf cannot take the "
+                                                    "transform to base_link: "),
+            std::string::npos)
+      << diagnosticMessages(diagnostics)[0];
+  stopProgram(SIGINT);
+  ASSERT_EQ(waitForExit(), 0) << output();
+  EXPECT_NE(output().find("ros: 0 poses rendered, 0 dropped for newer ones, 1 refused"), std::string::npos) << output();
 }
 
 // A spec of one front camera with a rolling shutter (so a twist shows), poses `poses` ([x, y,

@@ -70,6 +70,17 @@ sensor_msgs::CameraInfo messageOf(const CameraInfo& info) {
   return m;
 }
 
+// Runs a callback's work on the spinner thread. roscpp lets a callback's exception through to
+// std::terminate: one is said on stderr instead, and the node goes on with the next message.
+template <typename Work>
+void guarded(const char* what, const Work& work) {
+  try {
+    work();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "omnicam: ros: %s left out: %s\n", what, e.what());
+  }
+}
+
 // The master's process id, 0 if no master answers (its getPid call).
 int masterPid() {
   XmlRpc::XmlRpcValue args, result, payload;
@@ -95,7 +106,7 @@ class TfPoses {
   void take(const tf2_msgs::TFMessage& message, bool isStatic) {
     forgetIfTimeWentBack();
     for (const geometry_msgs::TransformStamped& t : message.transforms) {
-      if (!buffer_.setTransform(t, "omnicam", isStatic)) continue;  // tf2 says why on the log
+      if (!taken(t, isStatic)) continue;
       if (isStatic) continue;
       newestData_ = std::max(newestData_, t.header.stamp);
       if (eachMove_ && t.child_frame_id == child_) pending_.push_back(t.header.stamp);
@@ -110,6 +121,17 @@ class TfPoses {
 
  private:
   static constexpr size_t kMostWaiting = 1000;
+
+  // Whether tf2 takes `t` (it says why not on the log). A stamp at the end of ROS time makes tf2's
+  // own arithmetic throw: that transform is left out, said as a gap of the base frame's poses.
+  bool taken(const geometry_msgs::TransformStamped& t, bool isStatic) {
+    try {
+      return buffer_.setTransform(t, "omnicam", isStatic);
+    } catch (const std::exception& e) {
+      handlers_.gap(stampOf(t.header.stamp), "tf cannot take the transform to " + t.child_frame_id + ": " + e.what());
+      return false;
+    }
+  }
 
   // Every request the tree reaches is handed over, oldest first. One it does not reach is
   // refused with tf's reason when a later one was handed over (poses only go forward), when tf
@@ -129,11 +151,11 @@ class TfPoses {
       handlers_.pose(odometryAt(stamp));
     }
     pending_.clear();
-    const ros::Time reference = patienceReference();
-    const ros::Duration patience(Transport::kTfPatienceSeconds);
+    // In seconds: ros::Time + Duration throws beyond ROS time's end, where a hostile stamp can be.
+    const double reference = patienceReference().toSec();
     for (size_t i = 0; i < unreached.size(); ++i) {
       const auto& [stamp, why] = unreached[i];
-      if (stamp + patience <= reference || unreached.size() - i > kMostWaiting)
+      if (reference - stamp.toSec() >= Transport::kTfPatienceSeconds || unreached.size() - i > kMostWaiting)
         handlers_.gap(stampOf(stamp), why);
       else
         pending_.push_back(stamp);
@@ -202,6 +224,14 @@ struct Transport::Impl {
       bag->write(topic, message.header.stamp, message);
     }
   }
+  // A latched topic's connection in the bag, as `rosbag record` writes it from the publisher:
+  // `rosbag play` then latches it again, for the subscribers that come late (tf listeners, RViz).
+  static boost::shared_ptr<ros::M_string> latchedConnection() {
+    auto header = boost::make_shared<ros::M_string>();
+    (*header)["callerid"] = ros::this_node::getName();
+    (*header)["latching"] = "1";
+    return header;
+  }
   void writeWaitingBagMessages(const ros::Time& stamp) {
     for (const auto& write : bagAtFirstStamp) write(stamp);
     bagAtFirstStamp.clear();
@@ -268,7 +298,7 @@ void Transport::subscribeOdometry(const std::string& topic, OdometryHandler hand
   Impl* impl = impl_.get();
   impl->subscribe.push_back([impl, topic, handler] {
     impl->subscriptions.push_back(impl->node->subscribe<nav_msgs::Odometry>(
-        topic, 10, [handler](const nav_msgs::Odometry::ConstPtr& m) { handler(odometryOf(*m)); }));
+        topic, 10, [handler](const nav_msgs::Odometry::ConstPtr& m) { guarded("an odometry message", [&] { handler(odometryOf(*m)); }); }));
   });
   impl->subscribe.back()();
 }
@@ -282,7 +312,7 @@ void Transport::subscribeTransform(const std::string& parent, const std::string&
     impl->subscribe.push_back([impl, poses, isStatic] {
       impl->subscriptions.push_back(impl->node->subscribe<tf2_msgs::TFMessage>(
           isStatic ? "/tf_static" : "/tf", 100,
-          [poses, isStatic](const tf2_msgs::TFMessage::ConstPtr& m) { poses->take(*m, isStatic); }));
+          [poses, isStatic](const tf2_msgs::TFMessage::ConstPtr& m) { guarded("a tf message", [&] { poses->take(*m, isStatic); }); }));
     });
     impl->subscribe.back()();
   }
@@ -300,7 +330,7 @@ class PostedWork : public ros::CallbackInterface {
  public:
   explicit PostedWork(std::function<void()> work) : work_(std::move(work)) {}
   CallResult call() override {
-    work_();
+    guarded("a tick", work_);
     return Success;
   }
 
@@ -385,7 +415,7 @@ void Transport::publishStaticTransforms(const std::vector<Transform>& transforms
       tf2_msgs::TFMessage all;
       all.transforms = messages;
       for (geometry_msgs::TransformStamped& t : all.transforms) t.header.stamp = stamp;
-      impl->bag->write("/tf_static", stamp, all);
+      impl->bag->write("/tf_static", stamp, all, Impl::latchedConnection());
     });
   }
 }
@@ -403,7 +433,7 @@ void Transport::publishLatchedText(const std::string& topic, const std::string& 
   if (impl->bag) impl->bagAtFirstStamp.push_back([impl, topic, text](const ros::Time& stamp) {
     std_msgs::String m;
     m.data = text;
-    impl->bag->write(topic, stamp, m);
+    impl->bag->write(topic, stamp, m, Impl::latchedConnection());
   });
   impl->advertise.back()();
 }
