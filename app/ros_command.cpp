@@ -36,8 +36,11 @@ std::vector<std::string> rosArgumentsOf(const std::vector<std::string>& extras) 
   return extras;
 }
 
-void runRos(RosArgs a, const std::vector<std::string>& extras) {
+void runRos(RosArgs a, const CLI::App& cmd, const std::vector<std::string>& extras) {
   a.options.rosArguments = rosArgumentsOf(extras);
+  // An empty value would silently mean the flag's absence (odometry, no bag).
+  if (cmd.count("--tf") && a.options.tfParent.empty()) throw InputError("--tf: give a frame (map or odom)");
+  if (cmd.count("--record") && a.options.recordBag.empty()) throw InputError("--record: give the new bag's file name");
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   if (!a.options.recordBag.empty()) {
     checkOutputFile(a.options.recordBag, "--record");
@@ -61,7 +64,10 @@ void runRos(RosArgs a, const std::vector<std::string>& extras) {
     std::printf("ros: stopped while waiting for the ROS master: no pose rendered\n");
     return;
   }
-  std::printf("ros: %s rendered, %lld dropped for newer ones, %lld refused, %s", countOf(report.rendered, "pose").c_str(),
+  // At a fixed rate a frame is a tick's (a pose carried to it), not a pose as it came.
+  const std::string rendered =
+      a.options.rateHz > 0 ? countOf(report.rendered, "frame") + " rendered at ticks" : countOf(report.rendered, "pose") + " rendered";
+  std::printf("ros: %s, %lld dropped for newer ones, %lld refused, %s", rendered.c_str(),
               static_cast<long long>(report.dropped), static_cast<long long>(report.refused),
               countOf(report.newMasters, "new master").c_str());
   if (a.options.rateHz > 0 && a.options.tfParent.empty())  // --max-pose-age is odometry's
@@ -97,7 +103,7 @@ void addRosCommand(CLI::App& app) {
   cmd->allow_extras();  // ROS's own from:=to arguments (remappings, roslaunch's __name:= and __log:=)
   cmd->footer("ROS arguments: from:=to remaps a topic by its full name (/robot/front/image_raw:=/camera/image); "
               "__name:= names the node, __log:= its log, as roslaunch passes them.");
-  cmd->callback([args, cmd] { runRos(*args, cmd->remaining()); });
+  cmd->callback([args, cmd] { runRos(*args, *cmd, cmd->remaining()); });
 }
 
 }  // namespace omnicam::cli

@@ -231,9 +231,32 @@ LivePose livePoseOf(const ros1::Odometry& odometry) {
 
 namespace {
 
+// A tf2 frame id: a ROS name, not empty, without the leading '/' that tf1 took and tf2 refuses
+// (every pose would be refused for it).
+void checkFrameId(const std::string& frame, const std::string& what) {
+  if (frame.empty()) throw InputError("ros: " + what + " is empty: give a tf frame id (such as map, odom or base_link)");
+  if (frame.front() == '/') {
+    const size_t name = frame.find_first_not_of('/');
+    throw InputError("ros: " + what + " " + quote(frame) + ": a tf2 frame id does not start with '/'" +
+                     (name == std::string::npos ? std::string() : " (give " + quote(frame.substr(name)) + ")"));
+  }
+}
+
 // What a live sensor cannot take, before any master is looked for: names ROS refuses (a camera
-// called "front-left"), a spec with vibration (of its rigs or the robot's tilt).
+// called "front-left"), frame ids tf2 refuses, the base frame as its own parent, a spec with
+// vibration (of its rigs or the robot's tilt).
 void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
+  if (options.robot.empty() || options.robot.find('/') != std::string::npos)
+    throw InputError("ros: robot name " + quote(options.robot) +
+                     ": one name, without '/' (it is the topics' namespace, the frames' prefix and the node's name omnicam_ROBOT)");
+  if (options.tfParent.empty() && options.odometryTopic.empty()) throw InputError("ros: the odometry topic is empty");
+  checkFrameId(options.baseFrame, "the robot's frame");
+  if (!options.tfParent.empty()) {
+    checkFrameId(options.tfParent, "the poses' frame");
+    if (options.tfParent == options.baseFrame)
+      throw InputError("ros: the poses' frame is the robot's frame itself (" + quote(options.baseFrame) +
+                       "): give the frame the robot moves in (map or odom)");
+  }
   std::vector<std::string> names = {"/" + options.robot, options.tfParent.empty() ? options.odometryTopic : "/" + options.tfParent,
                                     "/" + options.baseFrame};
   for (const CameraSetup& setup : plan.setups()) names.push_back(cameraTopic(options, setup.camera->name, "image_raw"));

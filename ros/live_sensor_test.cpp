@@ -626,7 +626,7 @@ TEST_F(SimulatedTimeRun, RendersAtAFixedRateTheNewestPoseCarriedToEachTick) {
             "tick skipped: the newest pose, at 100.000000000, is 1.000 s from the tick at 101.000000000 (more than 0.5 s)");
   // Ticks are not poses: counted apart from the two poses refused (each sent twice: the second's
   // stamp is not after the first's).
-  EXPECT_NE(output().find("3 poses rendered, 0 dropped for newer ones, 2 refused, 0 new masters, 1 tick skipped (no pose "
+  EXPECT_NE(output().find("3 frames rendered at ticks, 0 dropped for newer ones, 2 refused, 0 new masters, 1 tick skipped (no pose "
                           "within --max-pose-age)\n"),
             std::string::npos) << output();
 }
@@ -681,7 +681,7 @@ TEST_F(LiveRun, RendersAtAFixedRateTheTreesPoseAtEachTick) {
     EXPECT_EQ(frames[k].header.stamp, ros::Time(100, 250000000 * static_cast<uint32_t>(k + 1))) << "tick " << k;
     EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", static_cast<int>(k))) << "tick " << k;
   }
-  EXPECT_NE(output().find("3 poses rendered, 0 dropped for newer ones, 0 refused"), std::string::npos) << output();
+  EXPECT_NE(output().find("3 frames rendered at ticks, 0 dropped for newer ones, 0 refused"), std::string::npos) << output();
   rosbag::Bag bag((root_ / "ticks.bag").string(), rosbag::bagmode::Read);
   std::vector<sensor_msgs::Image> recorded;
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/bot/front/image_raw")))
@@ -724,7 +724,7 @@ TEST_F(LiveRun, TicksBeforeTheTreesFirstPoseAreSaidOnceNotRefused) {
   EXPECT_TRUE(images.messages()[0].data == datasetRgb8(dataset(), "front", 0));
   // (Ticks that waited within tf's patience and that the tree then reached are poses: the newest
   // of them rendered, the others dropped for it.)
-  EXPECT_NE(output().find("ros: 1 pose rendered, "), std::string::npos) << output();
+  EXPECT_NE(output().find("ros: 1 frame rendered at ticks, "), std::string::npos) << output();
   EXPECT_NE(output().find(" dropped for newer ones, 0 refused, 0 new masters"), std::string::npos) << output();
   for (const std::string& message : diagnosticMessages(diagnostics))
     EXPECT_EQ(message.find("pose refused"), std::string::npos) << message;
@@ -902,6 +902,24 @@ TEST(LiveSensor, RefusesNamesRosCannotTake) {
     const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + arguments + " 2>&1");
     EXPECT_EQ(run.code, 2) << run.out;
     EXPECT_NE(run.out.find("is not a ROS name"), std::string::npos) << run.out;
+    EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+  }
+  // Frame ids tf2 refuses (tf1's leading '/'), empty names and values that would silently mean
+  // the flag's absence: each would have every pose refused, or topics and frames without a robot.
+  const std::pair<const char*, const char*> cases[] = {
+      {"--tf /map", "ros: the poses' frame \"/map\": a tf2 frame id does not start with '/' (give \"map\")"},
+      {"--base-frame /base_link", "ros: the robot's frame \"/base_link\": a tf2 frame id does not start with '/' (give \"base_link\")"},
+      {"--base-frame ''", "ros: the robot's frame is empty"},
+      {"--tf base_link", "ros: the poses' frame is the robot's frame itself (\"base_link\")"},
+      {"--robot ''", "ros: robot name \"\": one name, without '/'"},
+      {"--robot bot/sub", "ros: robot name \"bot/sub\": one name, without '/'"},
+      {"--odom ''", "ros: the odometry topic is empty"},
+      {"--tf ''", "--tf: give a frame (map or odom)"},
+      {"--record ''", "--record: give the new bag's file name"}};
+  for (const auto& [arguments, expected] : cases) {
+    const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + (root / "spec.json").string() + " " + arguments + " 2>&1");
+    EXPECT_EQ(run.code, 2) << arguments << ": " << run.out;
+    EXPECT_NE(run.out.find(expected), std::string::npos) << arguments << ": " << run.out;
     EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
   }
   fs::remove_all(root);
