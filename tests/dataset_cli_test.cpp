@@ -1454,17 +1454,6 @@ TEST_F(DatasetCliTest, AVibratingRobotsFramesEachRecordTheRigTheyWereRenderedWit
     "vibration": {"seed": 5, "camera_offset_mm": [1, 1, 0.5], "camera_rotation_deg": [0.5, 0.5, 0.2], "rig_tilt_deg": [2, 2]}})");
   const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
   ASSERT_EQ(run.code, 0) << run.out;
-  EXPECT_EQ(run.out.find("outlast"), std::string::npos) << run.out;
-  // Frames every 30 ms with an exposure of 20 ms and a readout of 63 × 200 µs: each lasts 32.6 ms,
-  // which no real camera's can. Said, and rendered all the same.
-  json fasterSpec = json::parse(readFile(spec));
-  fasterSpec["frame_interval_s"] = 0.03;
-  const std::string faster = write("faster.json", fasterSpec.dump());
-  const auto longer = omnicam("dataset " + faster + " -o " + path("faster"));
-  EXPECT_EQ(longer.code, 0) << longer.out;
-  EXPECT_NE(longer.out.find("omnicam: note: camera \"cam0\": a frame's exposure and readout (0.0326 s) outlast frame_interval_s "
-                            "(0.03 s): each frame is rendered whole"),
-            std::string::npos) << longer.out;
   const json manifest = json::parse(readFile(path("ds/manifest.json")));
   const json& frames = manifest.at("frames");
   ASSERT_EQ(frames.size(), 3u);
@@ -1544,17 +1533,6 @@ TEST_F(DatasetCliTest, ARockingRobotTiltsEveryCameraAlikeAboutItsOrigin) {
                 {"name": "rear", "mount": {"x": -0.2, "y": 0, "yaw_deg": 180}}]})");
   const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
   ASSERT_EQ(run.code, 0) << run.out;
-  EXPECT_EQ(run.out.find("outlast"), std::string::npos) << run.out;
-  // Frames every 30 ms with an exposure of 20 ms and a readout of 63 × 200 µs: each lasts 32.6 ms,
-  // which no real camera's can. Said, and rendered all the same.
-  json fasterSpec = json::parse(readFile(spec));
-  fasterSpec["frame_interval_s"] = 0.03;
-  const std::string faster = write("faster.json", fasterSpec.dump());
-  const auto longer = omnicam("dataset " + faster + " -o " + path("faster"));
-  EXPECT_EQ(longer.code, 0) << longer.out;
-  EXPECT_NE(longer.out.find("omnicam: note: camera \"cam0\": a frame's exposure and readout (0.0326 s) outlast frame_interval_s "
-                            "(0.03 s): each frame is rendered whole"),
-            std::string::npos) << longer.out;
   const json manifest = json::parse(readFile(path("ds/manifest.json")));
   const json& frames = manifest.at("frames");
   ASSERT_EQ(frames.size(), 3u);
