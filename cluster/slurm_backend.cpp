@@ -205,11 +205,12 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
                          "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
                         dir, "merge job");
   } catch (const ExternalError& e) {
-    // The array is queued and its shards are good work: said, with what finishes or undoes it.
-    throw ExternalError(std::string(e.what()) + "; the array job " + s.arrayJob +
-                        " is queued and renders the shards: once it has ended, merge them with `omnicam dataset --merge " +
+    // The array is queued and its shards are good work: said first, with what finishes or undoes
+    // it, then sbatch's own words.
+    throw ExternalError("the array job " + s.arrayJob + " is queued and renders the shards, but its merge job was not submitted: " +
+                        "once the array has ended, merge them with `" + shellPath(o.omnicamBinary) + " dataset --merge " +
                         shellPath(dir.string()) + " --shards " + std::to_string(o.shards) + "`, or cancel it with `scancel " +
-                        s.arrayJob + "`");
+                        s.arrayJob + "`; " + e.what());
   }
   return s;
 }

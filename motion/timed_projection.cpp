@@ -38,13 +38,27 @@ std::optional<TimedProjection> projectAtReadout(const Camera& camera, const Came
     if (!at) return std::nullopt;
     const int next = lineAt(at->raster);
     if (next == line) return at;
-    if (std::find(visited.begin(), visited.end(), next) != visited.end()) break;
     visited.push_back(line);
+    if (const auto seen = std::find(visited.begin(), visited.end(), next); seen != visited.end()) {
+      // A cycle. Between two neighbouring lines it is a point on their boundary moving against the
+      // readout, common at any speed: the one of the two imaging it nearer to itself is its line.
+      std::optional<TimedProjection> best;
+      int bestMiss = 0;
+      for (auto c = seen; c != visited.end(); ++c) {
+        const auto candidate = projectAt(camera, placement, p, lineTime(*c));
+        if (!candidate) continue;
+        const int miss = std::abs(lineAt(candidate->raster) - *c);
+        if (!best || miss < bestMiss) best = candidate, bestMiss = miss;
+      }
+      if (best && bestMiss <= 1) return best;
+      break;
+    }
     line = next;
   }
-  // The lines cycle (the robot turns so far within the readout that each line's time moves the
-  // point onto another line): every line, in readout order, is tried instead. The first whose
-  // own time images the point on itself wins; where none does, the one imaging it nearest to itself.
+  // The lines cycle further apart (the robot turns so far within the readout that each line's
+  // time moves the point onto a distant line): every line, in readout order, is tried instead. The
+  // first whose own time images the point on itself wins; where none does, the one imaging it
+  // nearest to itself.
   std::optional<TimedProjection> nearest;
   int nearestMiss = 0;
   for (int candidate = 0; candidate < lineCount(shutter, width, height); ++candidate) {

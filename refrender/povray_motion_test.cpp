@@ -100,9 +100,11 @@ TEST(PovrayMoving, RenderThreadsCapTheProcessesRunningAtOnce) {
   fs::remove_all(dir);
   fs::create_directories(dir / "running");
   const fs::path wrapper = dir / "povray";
+  // It runs in the job's folder: its render.ini says the render threads.
   std::ofstream(wrapper) << "#!/bin/sh\n: > '" << (dir / "running").string() << "'/$$\nls '" << (dir / "running").string()
-                         << "' | wc -l >> '" << (dir / "counts").string() << "'\npovray \"$@\"\nstatus=$?\nrm -f '"
-                         << (dir / "running").string() << "'/$$\nexit $status\n";
+                         << "' | wc -l >> '" << (dir / "counts").string() << "'\ngrep -h Work_Threads render.ini >> '"
+                         << (dir / "threads").string() << "'\npovray \"$@\"\nstatus=$?\nrm -f '" << (dir / "running").string()
+                         << "'/$$\nexit $status\n";
   fs::permissions(wrapper, fs::perms::owner_all);
   RenderSettings settings;
   settings.rig = robocup().rig.resized(8);
@@ -112,6 +114,7 @@ TEST(PovrayMoving, RenderThreadsCapTheProcessesRunningAtOnce) {
   const ImageRGBA uncapped = renderWithPovray(robocup(), driving, settings);
   for (int threads : {1, 2}) {
     fs::remove(dir / "counts");
+    fs::remove(dir / "threads");
     PovrayOptions options;
     options.executable = wrapper.string();
     options.threads = threads;
@@ -122,6 +125,10 @@ TEST(PovrayMoving, RenderThreadsCapTheProcessesRunningAtOnce) {
     for (int n; counts >> n;) running.push_back(n);
     ASSERT_EQ(running.size(), 8u) << threads << " threads: a render per row";
     EXPECT_LE(*std::max_element(running.begin(), running.end()), threads);
+    std::ifstream threadLines(dir / "threads");
+    int renders = 0;
+    for (std::string line; std::getline(threadLines, line); ++renders) EXPECT_EQ(line, "Work_Threads=1") << threads << " threads";
+    EXPECT_EQ(renders, 8) << threads << " threads";
   }
   fs::remove_all(dir);
 }

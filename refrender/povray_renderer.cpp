@@ -47,8 +47,8 @@ std::string povrayVersion(const std::string& executable) {
 
 namespace {
 
-// POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting. With
-// render threads given, each process has one, and at most that many run.
+// POV-Ray processes of a moving frame run at once: a short job is mostly POV-Ray waiting. Each
+// renders on one thread; with render threads given, at most that many run.
 constexpr int kConcurrentPovrayJobs = 8;
 // A moving frame's renders are summed in job order as they arrive; one that finishes before an
 // earlier one waits, and a job starts only within this many of the next to be summed. So at most
@@ -156,8 +156,8 @@ void renderMovingWithPovray(const Scene& scene, const CameraPlacement& placement
     };
     ImageRGBA render;
     try {
-      render = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options,
-                            options.threads > 0 ? options.threads : 1, regionOfLine(shutter, job.line, width, height, n));
+      render = runPovrayJob(exportPovray(scene, placement.frozenAt(seconds), still), options, /*threads=*/1,
+                            regionOfLine(shutter, job.line, width, height, n));
     } catch (...) {
       stopOthers();
       throw;

@@ -20,7 +20,7 @@ struct PovrayOptions {
   std::string executable = "povray";
   bool keepJobFolder = false;  // for debugging: leave scene.pov etc. behind
   int threads = 0;             // render threads (Work_Threads); 0: POV-Ray's default, all cores.
-                               // A moving frame's renders: one thread each, at most `threads` at once
+                               // A moving frame's renders: one thread each, at most `threads` (or 8) at once
   // A moving frame is many still renders (one per readout line and instant): called with 0 before
   // the first starts, then after each is summed, in order, one call at a time.
   std::function<void(int rendersDone, int renders)> onRenderSummed;

@@ -173,8 +173,8 @@ std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted
   if (std::hypot(o.linear[0], o.linear[1]) > kMaxSpeed) return "the speed is above 100 m/s";
   if (lastAccepted && (o.stamp.sec < lastAccepted->sec || (o.stamp.sec == lastAccepted->sec && o.stamp.nsec <= lastAccepted->nsec)))
     return "its stamp " + stampText(o.stamp) + " is not after the last pose's, " + stampText(*lastAccepted);
-  if (!now.zero() && o.stamp.nanoseconds() - now.nanoseconds() > std::llround(kMostStampAheadSeconds * 1e9))
-    return "its stamp " + stampText(o.stamp) + " is more than " + shortNumber(kMostStampAheadSeconds) + " s after ROS time now, " +
+  if (!now.zero() && o.stamp.nanoseconds() - now.nanoseconds() > std::llround(ros1::kMostStampAheadSeconds * 1e9))
+    return "its stamp " + stampText(o.stamp) + " is more than " + shortNumber(ros1::kMostStampAheadSeconds) + " s after ROS time now, " +
            stampText(now) + " (a clock that far ahead would hold every later pose back)";
   return "";
 }

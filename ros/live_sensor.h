@@ -89,10 +89,9 @@ class NewestPose {
 
 // Why an odometry message is refused ("" if it is not): a number that is not finite, a
 // quaternion far from unit length, a pose or speed beyond a dataset's limits, a stamp not after
-// `lastAccepted`'s, or one more than kMostStampAheadSeconds after ROS time `now` (a clock that far
-// ahead would hold every later pose back; not checked while `now` is zero, before /clock's first
-// message). A refused pose is not rendered; the sensor says why on /diagnostics and goes on.
-constexpr double kMostStampAheadSeconds = 60.0;
+// `lastAccepted`'s, or one more than ros1::kMostStampAheadSeconds after ROS time `now` (not
+// checked while `now` is zero, before /clock's first message). A refused pose is not rendered; the
+// sensor says why on /diagnostics and goes on.
 std::string problemWith(const ros1::Odometry& odometry, const ros1::Stamp* lastAccepted, const ros1::Stamp& now = {});
 
 // The tick of a fixed-rate camera (LiveSensorOptions::rateHz) at or before `now`: the grid of

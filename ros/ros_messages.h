@@ -12,6 +12,11 @@
 
 namespace omnicam::ros1 {
 
+// A pose's or transform's stamp more than this after ROS time now is refused (once ROS time is not
+// zero: under simulated time, after /clock's first message). A clock that far ahead would hold
+// every later pose back (poses only go forward; tf2 drops data older than its newest by 10 s).
+constexpr double kMostStampAheadSeconds = 60.0;
+
 // A ROS time: seconds and nanoseconds since the epoch.
 struct Stamp {
   uint32_t sec = 0;

@@ -122,15 +122,30 @@ class TfPoses {
  private:
   static constexpr size_t kMostWaiting = 1000;
 
-  // Whether tf2 takes `t` (it says why not on the log). A stamp at the end of ROS time makes tf2's
-  // own arithmetic throw: that transform is left out, said as a gap of the base frame's poses.
+  // Whether tf2 takes `t` (it says why not on the log). A stamp far after ROS time now is not
+  // given to it: tf2 would keep it and then drop every later transform of that frame as older
+  // than its newest by 10 s; at the end of ROS time its own arithmetic throws, after keeping it.
+  // Refused for the base frame as a gap of its poses, for another frame on stderr.
   bool taken(const geometry_msgs::TransformStamped& t, bool isStatic) {
-    try {
-      return buffer_.setTransform(t, "omnicam", isStatic);
-    } catch (const std::exception& e) {
-      handlers_.gap(stampOf(t.header.stamp), "tf cannot take the transform to " + t.child_frame_id + ": " + e.what());
-      return false;
+    const ros::Time now = ros::Time::now();
+    std::string why;
+    if (!isStatic && !now.isZero() && t.header.stamp.toSec() - now.toSec() > kMostStampAheadSeconds) {
+      char text[160];
+      std::snprintf(text, sizeof text, "the transform's stamp %u.%09u is more than %g s after ROS time now, %u.%09u",
+                    t.header.stamp.sec, t.header.stamp.nsec, kMostStampAheadSeconds, now.sec, now.nsec);
+      why = text;
+    } else {
+      try {
+        return buffer_.setTransform(t, "omnicam", isStatic);
+      } catch (const std::exception& e) {
+        why = std::string("tf cannot take it: ") + e.what();
+      }
     }
+    if (t.child_frame_id == child_)
+      handlers_.gap(stampOf(t.header.stamp), "the transform to " + child_ + " is left out: " + why);
+    else
+      std::fprintf(stderr, "omnicam: ros: the transform to %s is left out: %s\n", t.child_frame_id.c_str(), why.c_str());
+    return false;
   }
 
   // Every request the tree reaches is handed over, oldest first. One it does not reach is
@@ -226,8 +241,15 @@ struct Transport::Impl {
   }
   // A latched topic's connection in the bag, as `rosbag record` writes it from the publisher:
   // `rosbag play` then latches it again, for the subscribers that come late (tf listeners, RViz).
-  static boost::shared_ptr<ros::M_string> latchedConnection() {
+  // A header given to rosbag is stored as it is: it carries the message's type, checksum and
+  // definition too, which rosbag fills in only for a connection it makes itself.
+  template <typename Message>
+  static boost::shared_ptr<ros::M_string> latchedConnection(const std::string& topic) {
     auto header = boost::make_shared<ros::M_string>();
+    (*header)["topic"] = topic;
+    (*header)["type"] = ros::message_traits::datatype<Message>();
+    (*header)["md5sum"] = ros::message_traits::md5sum<Message>();
+    (*header)["message_definition"] = ros::message_traits::definition<Message>();
     (*header)["callerid"] = ros::this_node::getName();
     (*header)["latching"] = "1";
     return header;
@@ -415,7 +437,7 @@ void Transport::publishStaticTransforms(const std::vector<Transform>& transforms
       tf2_msgs::TFMessage all;
       all.transforms = messages;
       for (geometry_msgs::TransformStamped& t : all.transforms) t.header.stamp = stamp;
-      impl->bag->write("/tf_static", stamp, all, Impl::latchedConnection());
+      impl->bag->write("/tf_static", stamp, all, Impl::latchedConnection<tf2_msgs::TFMessage>("/tf_static"));
     });
   }
 }
@@ -433,7 +455,7 @@ void Transport::publishLatchedText(const std::string& topic, const std::string& 
   if (impl->bag) impl->bagAtFirstStamp.push_back([impl, topic, text](const ros::Time& stamp) {
     std_msgs::String m;
     m.data = text;
-    impl->bag->write(topic, stamp, m, Impl::latchedConnection());
+    impl->bag->write(topic, stamp, m, Impl::latchedConnection<std_msgs::String>(topic));
   });
   impl->advertise.back()();
 }

@@ -150,8 +150,10 @@ TEST(RosTransport, HandsOverTfRequestsOnceTheTreeReachesThem) {
       for (const ros::Time& t : stamps) transport.requestTransform({t.sec, t.nsec});
     });
   };
-  // ROS time is the wall clock here: stamps 100 s ahead of it never expire during the test.
-  const ros::Time ahead = ros::Time::now() + ros::Duration(100.0);
+  // ROS time is the wall clock here: stamps 50 s ahead of it do not expire within the test (a
+  // request waits until ROS time is 1 s past it), and the tree's data, up to 55 s ahead, is within
+  // the 60 s that a transform may be ahead of ROS time (kMostStampAheadSeconds).
+  const ros::Time ahead = ros::Time::now() + ros::Duration(50.0);
 
   // 5 s behind ROS time, with no tf at all: refused at once, with tf's reason.
   const ros::Time behind = ros::Time::now() - ros::Duration(5.0);
