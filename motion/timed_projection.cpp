@@ -31,26 +31,31 @@ std::optional<TimedProjection> projectAtReadout(const Camera& camera, const Came
     const int j = std::clamp(static_cast<int>(std::floor(raster.y())), 0, height - 1);
     return lineOf(shutter, i, j, width, height);
   };
-  std::vector<int> visited;
-  int line = lineCount(shutter, width, height) / 2;
-  for (int k = 0; k < kMaxIterations; ++k) {
+  // A line's projection, and by how many lines it misses that line.
+  struct Tried {
+    int line = 0;
+    TimedProjection at;
+    int miss = 0;
+  };
+  const auto tryLine = [&](int line) -> std::optional<Tried> {
     const auto at = projectAt(camera, placement, p, lineTime(line));
     if (!at) return std::nullopt;
-    const int next = lineAt(at->raster);
-    if (next == line) return at;
-    visited.push_back(line);
-    if (const auto seen = std::find(visited.begin(), visited.end(), next); seen != visited.end()) {
+    return Tried{line, *at, std::abs(lineAt(at->raster) - line)};
+  };
+  std::vector<Tried> visited;
+  int line = lineCount(shutter, width, height) / 2;
+  for (int k = 0; k < kMaxIterations; ++k) {
+    const std::optional<Tried> tried = tryLine(line);
+    if (!tried) return std::nullopt;
+    if (tried->miss == 0) return tried->at;
+    visited.push_back(*tried);
+    const int next = lineAt(tried->at.raster);
+    const auto seen = std::find_if(visited.begin(), visited.end(), [&](const Tried& t) { return t.line == next; });
+    if (seen != visited.end()) {
       // A cycle. Between two neighbouring lines it is a point on their boundary moving against the
       // readout, common at any speed: the one of the two imaging it nearer to itself is its line.
-      std::optional<TimedProjection> best;
-      int bestMiss = 0;
-      for (auto c = seen; c != visited.end(); ++c) {
-        const auto candidate = projectAt(camera, placement, p, lineTime(*c));
-        if (!candidate) continue;
-        const int miss = std::abs(lineAt(candidate->raster) - *c);
-        if (!best || miss < bestMiss) best = candidate, bestMiss = miss;
-      }
-      if (best && bestMiss <= 1) return best;
+      const auto nearest = std::min_element(seen, visited.end(), [](const Tried& a, const Tried& b) { return a.miss < b.miss; });
+      if (nearest->miss <= 1) return nearest->at;
       break;
     }
     line = next;
@@ -59,16 +64,14 @@ std::optional<TimedProjection> projectAtReadout(const Camera& camera, const Came
   // time moves the point onto a distant line): every line, in readout order, is tried instead. The
   // first whose own time images the point on itself wins; where none does, the one imaging it
   // nearest to itself.
-  std::optional<TimedProjection> nearest;
-  int nearestMiss = 0;
+  std::optional<Tried> nearest;
   for (int candidate = 0; candidate < lineCount(shutter, width, height); ++candidate) {
-    const auto at = projectAt(camera, placement, p, lineTime(candidate));
-    if (!at) continue;
-    const int miss = std::abs(lineAt(at->raster) - candidate);
-    if (miss == 0) return at;
-    if (!nearest || miss < nearestMiss) nearest = at, nearestMiss = miss;
+    const std::optional<Tried> tried = tryLine(candidate);
+    if (!tried) continue;
+    if (tried->miss == 0) return tried->at;
+    if (!nearest || tried->miss < nearest->miss) nearest = tried;
   }
-  return nearest;
+  return nearest ? std::optional<TimedProjection>(nearest->at) : std::nullopt;
 }
 
 }  // namespace omnicam
