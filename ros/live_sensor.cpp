@@ -118,11 +118,7 @@ std::vector<std::pair<const char*, ros1::Image>> renderCamera(const DatasetPlan&
   return images;
 }
 
-std::string stampText(const ros1::Stamp& stamp) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%u.%09u", stamp.sec, stamp.nsec);
-  return text;
-}
+using ros1::stampText;
 
 ros1::Diagnostic diagnostic(const LiveSensorOptions& options, const std::string& message, const ros1::Stamp& stamp,
                             int64_t count) {

@@ -5,6 +5,7 @@
 // omnicam talks to ROS through these structs.
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <utility>
@@ -28,6 +29,13 @@ struct Stamp {
   bool operator==(const Stamp& o) const { return sec == o.sec && nsec == o.nsec; }
   bool operator<(const Stamp& o) const { return nanoseconds() < o.nanoseconds(); }
 };
+
+// "sec.nnnnnnnnn", as messages show a stamp.
+inline std::string stampText(const Stamp& stamp) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%u.%09u", stamp.sec, stamp.nsec);
+  return text;
+}
 
 // nav_msgs/Odometry: the pose of `childFrame` in `frame`, and its twist in `childFrame`.
 struct Odometry {

@@ -130,10 +130,8 @@ class TfPoses {
     const ros::Time now = ros::Time::now();
     std::string why;
     if (!isStatic && !now.isZero() && t.header.stamp.toSec() - now.toSec() > kMostStampAheadSeconds) {
-      char text[160];
-      std::snprintf(text, sizeof text, "the transform's stamp %u.%09u is more than %g s after ROS time now, %u.%09u",
-                    t.header.stamp.sec, t.header.stamp.nsec, kMostStampAheadSeconds, now.sec, now.nsec);
-      why = text;
+      why = "the transform's stamp " + stampText(stampOf(t.header.stamp)) + " is more than " +
+            std::to_string(static_cast<int>(kMostStampAheadSeconds)) + " s after ROS time now, " + stampText(stampOf(now));
     } else {
       try {
         return buffer_.setTransform(t, "omnicam", isStatic);
