@@ -29,6 +29,7 @@
 #include "demo_texture_realism.h"
 #include "markup.h"
 #include "scene_loader.h"
+#include "safe_files.h"
 
 namespace omnicam::cli {
 
@@ -91,10 +92,14 @@ void checkSectionNames(const std::vector<std::string>& names, const std::string&
       throw InputError(flag + ": unknown section " + quote(name) + " (the sections are " + known + ")");
 }
 
+// The demo's own folders, made without following a link planted under their names: what the
+// sections write and remove stays inside the demo's folder.
+void makeDemoFolders(const std::string& out) { makeAllFoldersInside(out, {"sections", "hall"}); }
+
 void renderOneSection(const DemoArgs& a) {
   // Line by line into the section's log: a section ended on its budget keeps what it said.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  ensureDirectory(a.out + "/sections", "-o");
+  makeDemoFolders(a.out);
   const std::string html = sectionHtml(a);
   writeTextAtomically(a.out + "/sections/" + a.section + ".fragment", html);
 }
@@ -141,7 +146,7 @@ int runDemo(const DemoArgs& a) {
     renderOneSection(a);
     return 0;
   }
-  ensureDirectory(a.out + "/sections", "-o");
+  makeDemoFolders(a.out);
   try {
     writeDemoHall(a.out, scenesDir() + "/robocup2006.json");
   } catch (const std::exception& e) {  // the sections that need the hall fail, are marked, and say why

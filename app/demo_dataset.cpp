@@ -8,6 +8,7 @@
 #include "atomic_file.h"
 #include "dataset_runner.h"
 #include "json_text.h"
+#include "safe_files.h"
 
 namespace omnicam::cli {
 
@@ -15,6 +16,7 @@ namespace omnicam::cli {
 // loop, every output; the report shows its depth, instances, classes and landmark annotations.
 std::string demoDataset(const std::string& out, const std::string& scenePath) {
   namespace fs = std::filesystem;
+  checkFoldersInside(out, "dataset");  // remade with --overwrite: never through a link planted there
   const std::string specPath = out + "/dataset_spec.json";
   const nlohmann::json spec = {
       {"format", "omnicam-dataset/1"},

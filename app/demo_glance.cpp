@@ -7,6 +7,7 @@
 #include "hall_arena.h"
 #include "render_request.h"
 #include "scene_loader.h"
+#include "safe_files.h"
 
 namespace omnicam::cli {
 
@@ -16,7 +17,7 @@ void writeDemoHall(const std::string& out, const std::string& fieldScene) {
   HallOptions hall;
   hall.fieldScene = fieldScene;
   hall.photos = {kLabPhoto};
-  std::filesystem::create_directories(out + "/hall");
+  makeFoldersInside(out, "hall");  // not through a link planted under its name
   writeHallArena(hall, hallScenePath(out));
 }
 

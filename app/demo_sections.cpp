@@ -9,6 +9,7 @@
 
 #include "external_process.h"
 #include "markup.h"
+#include "safe_files.h"
 
 namespace omnicam::cli {
 
@@ -52,8 +53,7 @@ SectionRun runDemoSection(const DemoSection& section, const std::vector<std::str
   for (size_t k = 1; k < argv.size(); ++k) run.command += " " + quoteArgument(argv[k]);
   // A fragment of index.html (its links are relative to the demo folder): not a page to open.
   const std::string html = sectionsDir + "/" + section.name + ".fragment";
-  std::error_code ignored;
-  fs::remove(html, ignored);  // an earlier run's: only this run's fragment may be shown
+  removeFileInside(sectionsDir, section.name + ".fragment");  // an earlier run's: only this run's may be shown
   ProcessOptions options;
   options.timeoutSeconds = budgetSeconds;
   options.echoOutput = true;

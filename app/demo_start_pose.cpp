@@ -17,6 +17,7 @@
 #include "scene_loader.h"
 #include "svg_plot.h"
 #include "views.h"
+#include "safe_files.h"
 
 namespace omnicam::cli {
 
@@ -175,12 +176,13 @@ MethodSection methodSection(const StartPose& a, const Scene& arena) {
   return {method.str(), viewFigures.str()};
 }
 
-std::string ringSummaryPath(const std::string& out) { return out + "/sections/start-pose-rings.json"; }
+// The rings the start-pose section measured, for the glance; in the demo's folder.
+const char* const kRingSummaryFile = "sections/start-pose-rings.json";
+std::string ringSummaryPath(const std::string& out) { return out + "/" + kRingSummaryFile; }
 
 // The open field, the rings, the thesis' method and the views, from the thesis' start pose.
 std::string startPoseHtml(const StartPose& a) {
-  std::error_code ignored;
-  std::filesystem::remove(ringSummaryPath(a.out), ignored);  // the glance cites only this run's rings
+  removeFileInside(a.out, kRingSummaryFile);  // the glance cites only this run's rings
   const std::string dir = scenesDir();
   const Scene arena = loadScene(dir + "/robocup2006.json");
   const Scene ringScene = loadScene(dir + "/incidence-rings.json");
@@ -231,8 +233,9 @@ std::string demoStartPose(const std::string& out, int spp, bool povray, bool ble
 
 std::vector<RingSummary> readRingSummary(const std::string& out) {
   std::vector<RingSummary> rings;
-  if (!std::filesystem::is_regular_file(std::filesystem::symlink_status(ringSummaryPath(out)))) return rings;
-  for (const auto& r : readJsonFile(ringSummaryPath(out))) rings.push_back({r.at("engine"), r.at("rms_px_exact")});
+  if (entryInside(out, kRingSummaryFile) != EntryKind::File) return rings;
+  for (const auto& r : nlohmann::json::parse(readFileInside(out, kRingSummaryFile, 1 << 20)))
+    rings.push_back({r.at("engine"), r.at("rms_px_exact")});
   return rings;
 }
 

@@ -99,8 +99,13 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   }
   const PovrayJob job = exportPovray(scene, pose, settings);  // validates before anything is written
   checkOutputsSpareScene(scene, filesIn(a.out, povrayJobFiles(job)), "-o");
-  ensureDirectory(a.out, "-o");
-  writePovrayJob(job, a.out);
+  const std::vector<std::string> made = ensureDirectory(a.out, "-o");
+  try {
+    writePovrayJob(job, a.out);  // all its files, or none
+  } catch (...) {
+    removeMadeFolders(made);
+    throw;
+  }
   const std::string folder = shellPath(a.out);
   std::printf("wrote %s/scene.pov and render.ini (render with: cd %s && povray render.ini)\n", a.out.c_str(), folder.c_str());
   if (job.samplesPerAxis > 1)

@@ -11,6 +11,7 @@
 #include "markup.h"
 #include "number_format.h"
 #include "polygon_study.h"
+#include "safe_files.h"
 
 namespace omnicam::cli {
 
@@ -40,11 +41,15 @@ void runStudy(const StudyArgs& a) {
   // folder under the report's name, nor figures/ under a figure's: a folder under the last one's
   // name would otherwise end the study after the others were written.
   std::error_code ec;
-  const fs::path folder = fs::path(a.out).parent_path();
-  if (fs::is_directory(folder.empty() ? fs::path(".") : folder, ec)) checkOutputFile(a.out, "-o");
+  const fs::path folder = fs::path(a.out).parent_path().empty() ? fs::path(".") : fs::path(a.out).parent_path();
+  if (fs::is_directory(folder, ec)) {
+    checkOutputFile(a.out, "-o");
+    checkFoldersInside(folder.string(), "figures");  // a link planted there is not followed
+  }
   if (fs::is_directory(figures, ec))
     for (size_t k = 1; k < files.size(); ++k) checkOutputFile(files[k], "-o (its figures)");
-  ensureDirectory(figures.string(), "-o");
+  ensureDirectory(folder.string(), "-o");
+  makeFoldersInside(folder.string(), "figures");
   const PolygonStudyOptions options{scenesDir() + "/robocup2006.json", scenesDir() + "/incidence-rings.json", a.out, a.spp,
                                     a.timingSeconds, studyCommand(a)};
   runPolygonStudy(options, [](const std::string& mode) { std::printf("study: %s\n", mode.c_str()); });

@@ -37,13 +37,15 @@ std::set<std::string> cameraNames(const DatasetManifest& manifest) {
   return names;
 }
 
-// Overwriting: removes the files `old` lists in the dataset layout (regular files only), then
-// its camera folders that this leaves empty. Nothing else: a folder named like a camera may hold
-// the user's own files, and they stay.
+// Overwriting: removes the files `old` lists in the dataset layout that still hold what it says
+// was written (regular files with its SHA-256), then its camera folders that this leaves empty.
+// Nothing else: a folder named like a camera may hold the user's own files, and a manifest is
+// anyone's to edit, so a file it lists that omnicam did not write stays.
 void removeDatasetFiles(const SafeFolder& dir, const DatasetManifest& old) {
   const std::set<std::string> cameras = cameraNames(old);
   for (const FileRecord& file : manifestFiles(old))
-    if (isLayoutFile(file.path, cameras)) dir.removeFile(file.path);
+    if (isLayoutFile(file.path, cameras) && dir.sha256(file.path, kMaxDatasetFileBytes).sha256 == file.sha256)
+      dir.removeFile(file.path);
   for (const std::string& camera : cameras) {
     for (const std::string& folder : cameraFolderNames()) dir.removeEmptyFolder(camera + "/" + folder);
     dir.removeEmptyFolder(camera);

@@ -317,9 +317,7 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
                                             const ExperimentProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(o.outDir);
-  const char* const folders[] = {"arenas", "data", "figures"};
-  for (const char* folder : folders) checkFoldersInside(o.outDir, folder);  // all checked, then made
-  for (const char* folder : folders) makeFoldersInside(o.outDir, folder);
+  makeAllFoldersInside(o.outDir, {"arenas", "data", "figures"});
   writeTextAtomically((out / "arenas/calibration-room.json").string(), roomSceneText());
   const Scene room = loadScene((out / "arenas/calibration-room.json").string());
   const Scene field = loadScene(o.fieldScene);

@@ -15,6 +15,7 @@
 #include "image.h"
 #include "render_noise.h"
 #include "render_request.h"
+#include "safe_files.h"
 #include "scene_loader.h"
 #include "number_format.h"
 
@@ -137,7 +138,6 @@ CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, co
   }
   BlenderFrames session = blenderFrames(scene, poses, settings, o, seed);
   CyclesFrames rendered{std::move(session.images), session.timings.batchedFrameSeconds(), session.timings.startupSeconds()};
-  fs::create_directories(data);
   for (size_t k = 0; k < poses.size(); ++k) writeImageAtomic(frameFile(k).string(), rendered.frames[k]);
   writeTextAtomically(keyFile.string(), nlohmann::json{{"key", key},
                                                        {"seconds_per_frame", rendered.secondsPerFrame},
@@ -148,7 +148,6 @@ CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, co
 
 std::vector<StudyScene> studyScenes(const PathConvergenceOptions& o) {
   const fs::path scenes = fs::path(o.outDir) / "scenes";
-  fs::create_directories(scenes);
   std::vector<StudyScene> out;
   HallOptions hall;
   hall.fieldScene = o.fieldScene;
@@ -162,7 +161,6 @@ std::vector<StudyScene> studyScenes(const PathConvergenceOptions& o) {
 }
 
 void saveFrame(const fs::path& folder, const std::string& name, const ImageRGBA& image) {
-  fs::create_directories(folder);
   writeImageAtomic((folder / name).string(), image);
 }
 
@@ -238,6 +236,8 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
   const auto started = Clock::now();
   PathConvergenceResults r;
   r.options = o;
+  // Its folders are made without following a link planted there: what it writes stays inside.
+  makeAllFoldersInside(o.outDir, {"data", "scenes", "frames"});
   const std::vector<StudyScene> scenes = studyScenes(o);
   const int total = static_cast<int>(scenes.size() * 3);
   int done = 0;

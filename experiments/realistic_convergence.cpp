@@ -238,9 +238,7 @@ ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const st
       o.poseIndices.empty() || o.labPhoto.empty())
     throw InputError("realistic convergence: sizes >= 16, a ladder, spp >= 1, >= 1 pose and the lab photo");
   const fs::path out(o.outDir);
-  const char* const folders[] = {"arenas", "data", "frames", "figures"};
-  for (const char* sub : folders) checkFoldersInside(o.outDir, sub);
-  for (const char* sub : folders) makeFoldersInside(o.outDir, sub);
+  makeAllFoldersInside(o.outDir, {"arenas", "data", "frames", "figures"});
   HallOptions hallOptions;
   hallOptions.fieldScene = o.fieldScene;
   hallOptions.photos = {o.labPhoto};

@@ -443,9 +443,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     throw InputError("texture-realism: 1 to " + std::to_string(kFigureDraws - 1) + " training recordings (frames × draws)");
   const fs::path out(o.outDir);
   // Its folders are made without following a link planted there: what it writes stays inside.
-  const char* const folders[] = {"arenas", "data", "frames", "figures"};
-  for (const char* sub : folders) checkFoldersInside(o.outDir, sub);  // all checked, then made
-  for (const char* sub : folders) makeFoldersInside(o.outDir, sub);
+  makeAllFoldersInside(o.outDir, {"arenas", "data", "frames", "figures"});
 
   writeArenas(o, out);
   const Scene plain = loadScene((out / "arenas/hall-plain.json").string());

@@ -341,8 +341,11 @@ void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads, c
   std::error_code ec;
   if (fs::is_directory(dir, ec))
     for (const std::string& name : povrayJobFiles(job)) checkOutputFile((fs::path(dir) / name).string(), "POV-Ray job");
-  writeTextAtomically((fs::path(dir) / "scene.pov").string(), job.sdl);
-  for (const auto& t : job.textures) writeImageAtomic((fs::path(dir) / t.name).string(), t.image);
+  std::vector<FileBytes> files{{(fs::path(dir) / "scene.pov").string(), {job.sdl.begin(), job.sdl.end()}}};
+  for (const auto& t : job.textures) {
+    const std::string path = (fs::path(dir) / t.name).string();
+    files.push_back({path, encodeImage(path, t.image)});
+  }
   std::ostringstream ini;
   ini << "; omnicam POV-Ray job (generated): regular grid, no anti-aliasing, no jitter.\n"
       << "Input_File_Name=scene.pov\nOutput_File_Name=render.exr\nOutput_File_Type=E\nOutput_Alpha=Off\n"
@@ -353,7 +356,9 @@ void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads, c
   if (region)  // POV-Ray counts rows and columns from 1, both ends included
     ini << "Start_Row=" << region->firstRow + 1 << "\nEnd_Row=" << region->endRow << "\nStart_Column=" << region->firstColumn + 1
         << "\nEnd_Column=" << region->endColumn << "\n";
-  writeTextAtomically((fs::path(dir) / "render.ini").string(), ini.str());
+  const std::string iniText = ini.str();
+  files.push_back({(fs::path(dir) / "render.ini").string(), {iniText.begin(), iniText.end()}});
+  writeFilesTogether(files);  // the whole job or none of it
 }
 
 }  // namespace omnicam

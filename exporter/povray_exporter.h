@@ -49,7 +49,7 @@ struct PovrayRegion {
 // The files writePovrayJob writes into its folder (scene.pov, render.ini, the textures).
 std::vector<std::string> povrayJobFiles(const PovrayJob& job);
 // Writes scene.pov, the textures and render.ini into `dir` (which must exist), every name checked
-// first (InputError). `threads` > 0 caps POV-Ray's render threads (Work_Threads); 0 leaves
+// first (InputError); all of them or, when one cannot be written, none. `threads` > 0 caps POV-Ray's render threads (Work_Threads); 0 leaves
 // POV-Ray's default, one per core. A region limits the render to it.
 void writePovrayJob(const PovrayJob& job, const std::string& dir, int threads = 0,
                     const std::optional<PovrayRegion>& region = std::nullopt);

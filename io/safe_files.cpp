@@ -328,6 +328,11 @@ FileDigest sha256Inside(const std::string& root, const std::string& relative, in
 }
 void checkFoldersInside(const std::string& root, const std::string& relative) { SafeFolder(root).checkFolders(relative); }
 void makeFoldersInside(const std::string& root, const std::string& relative) { SafeFolder(root).makeFolders(relative); }
+void makeAllFoldersInside(const std::string& root, const std::vector<std::string>& relatives) {
+  const SafeFolder folder(root);
+  for (const std::string& relative : relatives) folder.checkFolders(relative);
+  for (const std::string& relative : relatives) folder.makeFolders(relative);
+}
 void writeFileInside(const std::string& root, const std::string& relative, std::string_view bytes, Durability durability) {
   SafeFolder(root).writeFile(relative, bytes, durability);
 }

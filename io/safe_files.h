@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "atomic_file.h"
 #include "file_descriptor.h"
@@ -87,6 +88,9 @@ FileDigest sha256Inside(const std::string& root, const std::string& relative, in
 void checkFoldersInside(const std::string& root, const std::string& relative);
 // Creates the folder `relative` and the missing folders on the way, each checked like that.
 void makeFoldersInside(const std::string& root, const std::string& relative);
+// A run's own folders inside its output folder: every one checked first, then all made, so a
+// link planted under one of the names stops the run before anything is made or written.
+void makeAllFoldersInside(const std::string& root, const std::vector<std::string>& relatives);
 // writeBytesAtomically for root/relative: its folders walked like that (missing ones created),
 // the temporary created exclusively beside it, renamed into place.
 void writeFileInside(const std::string& root, const std::string& relative, std::string_view bytes,

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "errors.h"
 #include "gltf_import.h"
@@ -18,6 +19,11 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kBad = OMNICAM_SOURCE_DIR "/tests/bad_inputs";
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 std::string errorOf(const std::function<void()>& f) {
   try {
@@ -54,6 +60,23 @@ TEST(FileConfinement, GltfBuffersAndImagesMustStayInsideUnlessAllowed) {
   const std::string passwd = errorOf([&] { importGltf((scenes / "arena_buffer_passwd.gltf").string(), confined); });
   EXPECT_EQ(passwd.find("size"), std::string::npos) << passwd;
   EXPECT_EQ(passwd.find("root:"), std::string::npos) << passwd;
+  // Whether a file outside exists is not told: a missing one gets the same refusal.
+  const fs::path folder = fs::path(::testing::TempDir()) / ("confinement_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  const std::string text = readText(scenes / "arena_buffer_passwd.gltf");
+  std::map<std::string, std::string> refusals;
+  for (const std::string outsideFile : {"/etc/passwd", "/etc/no_such_file_omnicam"}) {
+    std::string gltf = text;
+    gltf.replace(gltf.find("/etc/passwd"), 11, outsideFile);
+    std::ofstream(folder / "arena.gltf") << gltf;
+    std::string refusal = errorOf([&] { importGltf((folder / "arena.gltf").string(), {folder}); });
+    const size_t at = refusal.find(outsideFile.substr(5));
+    ASSERT_NE(at, std::string::npos) << refusal;
+    refusals[outsideFile] = refusal.replace(at, outsideFile.size() - 5, "FILE");
+  }
+  fs::remove_all(folder);
+  EXPECT_NE(refusals["/etc/passwd"].find("resolves outside the scene's folder"), std::string::npos) << refusals["/etc/passwd"];
+  EXPECT_EQ(refusals["/etc/no_such_file_omnicam"], refusals["/etc/passwd"]);
   // The user's explicit permission lifts it (no confinement folder).
   const GltfArena outside = importGltf((scenes / "arena_image_outside.gltf").string(), {});
   ASSERT_EQ(outside.materials.size(), 1u);

@@ -32,7 +32,11 @@ struct LoadContext {
   std::vector<std::string> filesRead;
 };
 
-bool fileExists(const std::string& path, void*) {
+// A file outside the confining folder is taken to exist, so that reading it gives the one refusal
+// whether or not it does: the loader's errors do not tell what lies outside the scene's folder.
+bool fileExists(const std::string& path, void* user) {
+  const auto* ctx = static_cast<const LoadContext*>(user);
+  if (!ctx->confineTo.empty() && !isInsideFolder(ctx->confineTo, path)) return true;
   std::error_code ec;
   return fs::is_regular_file(path, ec);
 }

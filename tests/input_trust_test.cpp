@@ -263,6 +263,24 @@ TEST_F(InputTrustTest, OutputNamesAndOptionsAreCheckedBeforeTheFirstByte) {
   EXPECT_EQ(code, 5) << out;
   EXPECT_FALSE(fs::exists(dir_ / "g1")) << out;
   EXPECT_TRUE(snapshot(dir_) == before);
+
+  // A POV-Ray job is its scene, its textures and render.ini: all of them or none. Its scene.pov
+  // fits under the limit, its texture does not.
+  ASSERT_EQ(testing::runShell(std::string(OMNICAM_BINARY) + " render " + path("box.json") + " --size 128 -o " + path("tex.png")).code, 0);
+  json textured = json::parse(testing::readFile(dir_ / "box.json"));
+  textured["materials"]["grey"]["texture"] = {{"file", "tex.png"}};
+  write("textured.json", textured.dump());
+  const auto withTexture = snapshot(dir_);
+  const auto job = testing::runShell("ulimit -f 8; " + std::string(OMNICAM_BINARY) + " export " + path("textured.json") +
+                                     " --to povray --size 8 -o " + path("p1/p2") + " 2>&1");
+  EXPECT_EQ(job.code, 5) << job.out;
+  EXPECT_NE(job.out.find("tex_0.exr: cannot write (File too large)"), std::string::npos) << job.out;
+  EXPECT_FALSE(fs::exists(dir_ / "p1")) << job.out;
+  EXPECT_TRUE(snapshot(dir_) == withTexture);
+  ASSERT_EQ(testing::runShell(std::string(OMNICAM_BINARY) + " export " + path("textured.json") + " --to povray --size 8 -o " +
+                              path("p1/p2")).code, 0);
+  for (const char* name : {"scene.pov", "render.ini", "tex_0.exr"}) EXPECT_TRUE(fs::exists(dir_ / "p1/p2" / name)) << name;
+  EXPECT_LT(fs::file_size(dir_ / "p1/p2/scene.pov"), 8u << 10) << "the limit no longer separates the scene from its texture";
 }
 
 // An image, its views and their sidecars appear together or not at all: a sidecar that does not

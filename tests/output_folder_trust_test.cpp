@@ -212,6 +212,20 @@ TEST_F(OutputFolderTrust, OverwriteNeverDeletesAFolderMerelyNamedLikeACamera) {
   const Outcome forged = omnicam("dataset " + sh(a) + " -o " + sh(ds.string()) + " --overwrite");
   EXPECT_TRUE(forged.code == 0 || forged.code == 2) << forged.err;
   EXPECT_EQ(readFile(ds / "src/main.c"), "int main() {}\n");
+
+  // A file at one of the dataset's own paths that no longer holds what the manifest says was
+  // written there is not omnicam's: it stays, whether the manifest is the run's or forged.
+  const fs::path again = dataset(a, "again");
+  writeFile(again / "src/rgb/000002.png", "the user's own picture");
+  json listed = json::parse(readFile(again / "manifest.json"));
+  writeFile(again / "src/data.csv", "the user's own table\n");
+  listed["frames"][0]["cameras"]["src"]["files"]["forged"] = {{"path", "src/data.csv"}, {"sha256", std::string(64, '0')}};
+  writeFile(again / "manifest.json", listed.dump());
+  const Outcome replaced = omnicam("dataset " + sh(b) + " -o " + sh(again.string()) + " --overwrite");
+  ASSERT_EQ(replaced.code, 0) << replaced.err;
+  EXPECT_EQ(readFile(again / "src/rgb/000002.png"), "the user's own picture");
+  EXPECT_EQ(readFile(again / "src/data.csv"), "the user's own table\n");
+  EXPECT_FALSE(fs::exists(again / "Documents/rgb/000002.png")) << "the old dataset's own frame stayed";
 }
 
 TEST_F(OutputFolderTrust, PlantedLinksAreNeverFollowed) {
@@ -251,8 +265,9 @@ TEST_F(OutputFolderTrust, PlantedLinksAreNeverFollowed) {
   EXPECT_EQ(readFile(dir_ / "victim.txt"), victim);
 }
 
-// The other verbs that fill a folder: `experiment` makes its subfolders and `arena hall` its
-// texture folder without following a link planted under their names, before writing anything.
+// The other verbs that fill a folder: `experiment`, `demo` and `study` make their subfolders and
+// `arena hall` its texture folder without following a link planted under their names, before
+// writing (or removing) anything.
 TEST_F(OutputFolderTrust, ExperimentAndArenaFoldersAreNotFollowedThroughLinks) {
   fs::create_directories(dir_ / "elsewhere");
   writeFile(dir_ / "elsewhere/keep.txt", "mine");
@@ -268,6 +283,34 @@ TEST_F(OutputFolderTrust, ExperimentAndArenaFoldersAreNotFollowedThroughLinks) {
                  "hall_textures: is a symbolic link");
   EXPECT_EQ(snapshot(dir_ / "elsewhere"), untouched);
   EXPECT_FALSE(fs::exists(dir_ / "lab/hall.json"));
+
+  fs::create_directories(dir_ / "paths");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "paths/scenes");
+  EXPECT_REFUSED(omnicam("experiment path-convergence --quick -o " + sh(at("paths"))), "paths/scenes: is a symbolic link");
+  EXPECT_FALSE(fs::exists(dir_ / "paths/data")) << "a folder was made before the check";
+
+  // The demo removes its earlier files by name: a file the link's target holds under one of
+  // them stays, for the whole demo and for one section.
+  writeFile(dir_ / "elsewhere/start-pose-rings.json", "mine");
+  writeFile(dir_ / "elsewhere/glance.fragment", "mine");
+  const std::map<std::string, std::string> withNames{
+      {"keep.txt", "mine"}, {"start-pose-rings.json", "mine"}, {"glance.fragment", "mine"}};
+  for (const char* planted : {"sections", "hall"}) {
+    const fs::path demo = dir_ / (std::string("demo_") + planted);
+    fs::create_directories(demo);
+    fs::create_directory_symlink(dir_ / "elsewhere", demo / planted);
+    for (const char* section : {"", " --section start-pose"}) {
+      const Outcome run = omnicam("demo --no-povray --no-blender --spp 1" + std::string(section) + " -o " + sh(demo.string()));
+      EXPECT_REFUSED(run, std::string(planted) + ": is a symbolic link");
+      EXPECT_EQ(snapshot(dir_ / "elsewhere"), withNames) << planted << section;
+    }
+    EXPECT_EQ(snapshot(demo), (std::map<std::string, std::string>{})) << "the demo wrote before the check";
+  }
+  fs::create_directories(dir_ / "docs");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "docs/figures");
+  EXPECT_REFUSED(omnicam("study --spp 1 -o " + sh(at("docs/study.md"))), "figures: is a symbolic link");
+  EXPECT_EQ(snapshot(dir_ / "elsewhere"), withNames);
+  EXPECT_FALSE(fs::exists(dir_ / "docs/study.md"));
 }
 
 TEST_F(OutputFolderTrust, PlantedLinksInTheSlurmFolderAreReplacedOrRefused) {
