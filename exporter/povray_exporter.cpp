@@ -13,6 +13,7 @@
 #include "mirror.h"
 #include "mirror_surface.h"
 #include "physical_camera.h"
+#include "scene_translation.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -278,9 +279,12 @@ RigSdl rigSdl(const RigSpec& rig, int samplesPerAxis, const Rigid& worldFromView
 
 void checkPovrayCamera(const RigSpec& rig) { checkEngineRenders(EngineKind::Povray, rig, CameraPlacement{}); }
 
-PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings) {
+PovrayJob exportPovray(const Scene& worldScene, const CameraPlacement& worldPlacement, const RenderSettings& settings) {
   checkRenderSettings(settings);
-  checkPlacement(placement);
+  checkPlacement(worldPlacement);
+  const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
+  const Scene& scene = frame.scene;
+  const CameraPlacement& placement = frame.placements.front();
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;
   job.samplesPerAxis = *n;
@@ -295,8 +299,10 @@ PovrayJob exportPovray(const Scene& scene, const CameraPlacement& placement, con
   SdlWriter writer(scene, settings.shading, job);
 
   std::ostringstream out;
-  out << "// omnicam POV-Ray export (generated). Units: mm; axes: <X, Z, Y> of omnicam's world.\n"
-         "#version 3.7;\n"
+  out << "// omnicam POV-Ray export (generated). Units: mm; axes: <X, Z, Y> of omnicam's world, its origin at\n"
+      << "// omnicam's (" << num(frame.worldOrigin.x()) << ", " << num(frame.worldOrigin.y())
+      << ", 0) m, the whole metre nearest the robot (POV-Ray loses precision far from its origin).\n"
+      << "#version 3.7;\n"
          "global_settings { assumed_gamma 1.0 ambient_light rgb 1 max_trace_level 8 adc_bailout 0 }\n"
       << "background { " << rgb(scene.background) << " }\n\n";
   const RigSdl rig = rigSdl(settings.rig, *n, worldFromView);

@@ -12,8 +12,6 @@ namespace {
 constexpr double kDenoisedIndirectShare = 0.25;
 constexpr int kDenoisedScatteringSamples = 2;
 double denoisedIndirectShare(int spp) { return std::min(1.0, std::max(kDenoisedIndirectShare, double{kDenoisedScatteringSamples} / spp)); }
-// Shadow rays start this far off the surface (metres) to avoid self-intersection.
-constexpr double kShadowEpsilon = 1e-5;
 }  // namespace
 
 std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSettings& settings,
@@ -91,9 +89,10 @@ void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* co
       toLamp[k] = offset / distance;
       cosine[k] = faced[k].dot(toLamp[k]);
       if (cosine[k] <= 0.0) continue;
-      origins[k] = surfaces[k].point + kShadowEpsilon * faced[k];
+      const double off = surfaceOffset(surfaces[k].point);
+      origins[k] = surfaces[k].point + off * faced[k];
       tNear[k] = 0.0;
-      tFar[k] = distance - kShadowEpsilon;
+      tFar[k] = distance - off;
       facing |= 1u << k;
     }
     const uint32_t lit = facing & ~rays_.occludedPacket(origins, toLamp, tNear, tFar, facing);

@@ -79,6 +79,15 @@ CameraPlacement CameraPlacement::frozenAt(double seconds) const {
   return frozen;
 }
 
+CameraPlacement CameraPlacement::translated(double dx, double dy) const {
+  CameraPlacement moved = *this;
+  moved.robot_.x += dx;
+  moved.robot_.y += dy;
+  moved.footStart_.x += dx;
+  moved.footStart_.y += dy;
+  return moved;
+}
+
 bool moving(const CameraPlacement& placement, const RigSpec& rig) {
   return !placement.still() && !rig.shutter.instantaneous();
 }

@@ -64,6 +64,8 @@ class CameraPlacement {
   // This camera on a still robot where this one is `seconds` after its start: one instant of a
   // moving frame, for engines that render still instants. Gives exactly the same transforms.
   CameraPlacement frozenAt(double seconds) const;
+  // The same camera in a world moved by (dx, dy): every transform's translation moved alike.
+  CameraPlacement translated(double dx, double dy) const;
 
  private:
   RobotPose robot_;

@@ -26,6 +26,7 @@
 #include "job_folder.h"
 #include "motion.h"
 #include "number_format.h"
+#include "scene_translation.h"
 
 
 namespace omnicam {
@@ -381,10 +382,14 @@ void checkBlenderRenders(const std::vector<CameraPlacement>& placements, const R
   checkEngineShading(EngineKind::Blender, settings.shading);
 }
 
-BlenderSession runBlenderSession(const Scene& scene, const std::vector<CameraPlacement>& placements,
+BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<CameraPlacement>& worldPlacements,
                                  const RenderSettings& settings, const BlenderOptions& options) {
-  if (placements.empty()) return {};
-  checkBlenderRenders(placements, settings, options);
+  if (worldPlacements.empty()) return {};
+  checkBlenderRenders(worldPlacements, settings, options);
+  // glTF's 32-bit floats: the session's world has its origin near the first frame's robot.
+  const EngineFrame frame = engineFrameNear(worldScene, worldPlacements);
+  const Scene& scene = frame.scene;
+  const std::vector<CameraPlacement>& placements = frame.placements;
   const PathTracing& tracing = options.pathTracing;
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
   const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
@@ -421,9 +426,13 @@ std::string blenderJobCommand() {
   return "blender -b --factory-startup -noaudio --python-exit-code 1 -P blender_driver.py -- job.json";
 }
 
-void writeBlenderJob(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings, const std::string& dir) {
+void writeBlenderJob(const Scene& worldScene, const CameraPlacement& worldPlacement, const RenderSettings& settings,
+                     const std::string& dir) {
   const BlenderOptions options;
-  checkBlenderRenders({placement}, settings, options);
+  checkBlenderRenders({worldPlacement}, settings, options);
+  const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
+  const Scene& scene = frame.scene;
+  const CameraPlacement& placement = frame.placements.front();
   GltfExportOptions exportOptions;
   exportOptions.placement = placement;
   exportOptions.rig = settings.rig;

@@ -32,13 +32,35 @@ struct LoadContext {
   std::vector<std::string> filesRead;
 };
 
+// tinygltf looks for a URI under the glTF's folder and then under the working directory; it joins
+// even an absolute URI to the folder. What the URI names, or nothing (the working directory is
+// never searched: a scene means the same wherever omnicam runs).
+struct UriTarget {
+  std::string uri;  // as written in the glTF, for messages
+  fs::path file;
+};
+std::optional<UriTarget> targetOf(const std::string& path, const LoadContext& ctx) {
+  std::string prefix = ctx.base.string();
+  if (prefix.empty() || prefix.back() != '/') prefix += '/';
+  if (path.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  std::string uri = path.substr(prefix.size());
+  const fs::path file = !uri.empty() && uri.front() == '/' ? fs::path(uri) : fs::path(path);
+  return UriTarget{std::move(uri), file};
+}
+
+bool outsideConfinement(const UriTarget& target, const LoadContext& ctx) {
+  return !ctx.confineTo.empty() && !isInsideFolder(ctx.confineTo, target.file);
+}
+
 // A file outside the confining folder is taken to exist, so that reading it gives the one refusal
 // whether or not it does: the loader's errors do not tell what lies outside the scene's folder.
 bool fileExists(const std::string& path, void* user) {
   const auto* ctx = static_cast<const LoadContext*>(user);
-  if (!ctx->confineTo.empty() && !isInsideFolder(ctx->confineTo, path)) return true;
+  const auto target = targetOf(path, *ctx);
+  if (!target) return false;
+  if (outsideConfinement(*target, *ctx)) return true;
   std::error_code ec;
-  return fs::is_regular_file(path, ec);
+  return fs::is_regular_file(target->file, ec);
 }
 
 // tinygltf's default expands "~" and shell words; a file name is only a file name here.
@@ -47,12 +69,14 @@ std::string expandFilePath(const std::string& path, void*) { return path; }
 bool readWholeFileConfined(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   auto* ctx = static_cast<LoadContext*>(user);
   std::string why;
-  if (!ctx->confineTo.empty() && !isInsideFolder(ctx->confineTo, path)) {
-    why = quote(fs::path(path).lexically_relative(ctx->base).string()) +
-          " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
-  } else if (const auto bytes = readWholeFile(path, why)) {
+  const auto target = targetOf(path, *ctx);
+  if (!target) {
+    why = "file not found: " + showPath(path);
+  } else if (outsideConfinement(*target, *ctx)) {
+    why = quote(target->uri) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+  } else if (const auto bytes = readWholeFile(target->file.string(), why)) {
     out->assign(bytes->begin(), bytes->end());
-    ctx->filesRead.push_back(path);
+    ctx->filesRead.push_back(target->file.string());
     return true;
   }
   if (ctx->problem.empty()) ctx->problem = why;

@@ -219,7 +219,7 @@ TEST_F(OutputFolderTrust, OverwriteNeverDeletesAFolderMerelyNamedLikeACamera) {
   writeFile(again / "src/rgb/000002.png", "the user's own picture");
   json listed = json::parse(readFile(again / "manifest.json"));
   writeFile(again / "src/data.csv", "the user's own table\n");
-  listed["frames"][0]["cameras"]["src"]["files"]["forged"] = {{"path", "src/data.csv"}, {"sha256", std::string(64, '0')}};
+  listed["frames"][0]["cameras"]["src"]["files"]["depth"] = {{"path", "src/data.csv"}, {"sha256", std::string(64, '0')}};
   writeFile(again / "manifest.json", listed.dump());
   const Outcome replaced = omnicam("dataset " + sh(b) + " -o " + sh(again.string()) + " --overwrite");
   ASSERT_EQ(replaced.code, 0) << replaced.err;
