@@ -288,6 +288,7 @@ PovrayJob exportPovray(const Scene& worldScene, const CameraPlacement& worldPlac
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;
   job.samplesPerAxis = *n;
+  job.worldOrigin = frame.worldOrigin;
   // The physical camera as built (physical_camera.h) and the mirror it looks into.
   checkPovrayCamera(settings.rig);
   job.width = settings.rig.imageWidth() * *n;

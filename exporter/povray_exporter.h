@@ -31,6 +31,9 @@ struct PovrayJob {
   std::vector<PovrayTextureFile> textures;
   int width = 0, height = 0;  // POV-Ray render size: n × the image size for spp = n²
   int samplesPerAxis = 1;
+  // omnicam's world point at the SDL's origin: the whole metre nearest the robot (POV-Ray's
+  // tolerances are absolute; scene/scene_translation.h).
+  Vec3 worldOrigin = Vec3::Zero();
 };
 
 constexpr double kPovrayUnitsPerMetre = 1000.0;

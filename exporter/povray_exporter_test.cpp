@@ -47,7 +47,11 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   RenderSettings settings;
   settings.rig = scene.rig;
   const RobotPose pose{1.1, -0.4, 57.0};
-  const std::string sdl = exportPovray(scene, pose, settings).sdl;
+  const PovrayJob job = exportPovray(scene, pose, settings);
+  const std::string& sdl = job.sdl;
+  // The SDL's origin is the whole metre nearest the robot, named in its first comment.
+  EXPECT_EQ(job.worldOrigin, Vec3(1.0, 0.0, 0.0));
+  EXPECT_NE(sdl.find("its origin at\n// omnicam's (1, 0, 0) m"), std::string::npos) << sdl.substr(0, 300);
 
   // Quadric: A x² + B y² + C z² + H y + J = 0 in the mirror's local frame, then translated.
   const auto q = numbersIn(block(sdl, "quadric {", "clipped_by"));
@@ -55,7 +59,7 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   // Placed by a matrix: rows are POV's local axes in the world (POV axes), then the translation.
   const auto placement = numbersIn(block(sdl, "no_shadow\n  matrix <", ">"));
   ASSERT_EQ(placement.size(), 12u);
-  const Vec3 viewpointWorld = worldOf(placement, 9);
+  const Vec3 viewpointWorld = worldOf(placement, 9) + job.worldOrigin;
   EXPECT_NEAR((viewpointWorld - Vec3(1.1, -0.4, 0.4)).norm(), 0.0, 1e-12);
   // A level rig turns its mirror about the vertical only, by the robot's yaw.
   const double yaw = radians(57.0);
@@ -70,7 +74,7 @@ TEST(PovrayExport, ParsedMirrorAndCameraReproduceTheModel) {
   const double clipBottomZ = viewpointWorld.z() + box[1] / kPovrayUnitsPerMetre;
   const auto c = numbersIn(block(sdl, "camera { perspective", "}"));
   ASSERT_EQ(c.size(), 12u);
-  const Vec3 location = worldOf(c, 0);
+  const Vec3 location = worldOf(c, 0) + job.worldOrigin;
   const Vec3 right = worldOf(c, 3, 1.0), up = worldOf(c, 6, 1.0), direction = worldOf(c, 9, 1.0);
 
   // Trace the parsed camera through the parsed quadric; the reflected ray, reversed, must be

@@ -41,7 +41,8 @@ Scene translatedScene(const Scene& scene, const Vec3& offset) {
   return moved;
 }
 
-Vec3 wholeMetreNear(const RobotPose& pose) { return {std::round(pose.x), std::round(pose.y), 0.0}; }
+// (+ 0.0 turns round(-0.4) = -0 into 0, which prints as it reads.)
+Vec3 wholeMetreNear(const RobotPose& pose) { return {std::round(pose.x) + 0.0, std::round(pose.y) + 0.0, 0.0}; }
 
 EngineFrame engineFrameNear(const Scene& scene, const std::vector<CameraPlacement>& placements) {
   const Vec3 origin = placements.empty() ? Vec3::Zero() : wholeMetreNear(placements.front().robot());
