@@ -29,7 +29,7 @@ constexpr int kRayPacketSize = 8;
 
 // How far a ray leaving a surface at `point` starts off it (metres), so that it does not hit that
 // surface again: 10 µm, or more where Embree's 32-bit floats hold the surface less precisely than
-// that (8 ulps of the point's largest coordinate: from about 10 m out; 2 mm at 2 km).
+// that (8·2⁻²³ of the point's largest coordinate, 8–16 ulps: from about 10 m out; 2 mm at 2 km).
 inline double surfaceOffset(const Vec3& point) {
   return std::max(1e-5, 8.0 * std::numeric_limits<float>::epsilon() * point.cwiseAbs().maxCoeff());
 }

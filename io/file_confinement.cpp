@@ -18,7 +18,15 @@ bool isInsideFolder(const fs::path& folder, const fs::path& path) {
   const fs::path resolved = fs::weakly_canonical(path, ec);
   if (ec) return false;
   const fs::path rel = resolved.lexically_relative(root);
-  return !rel.empty() && *rel.begin() != ".." && rel != ".";
+  if (rel.empty() || *rel.begin() == ".." || rel == ".") return false;
+  // weakly_canonical resolves every link that leads somewhere; one left on the way is dangling,
+  // and counts as outside: whether a file outside exists is not told by "not found".
+  fs::path walked = root;
+  for (const fs::path& part : rel) {
+    walked /= part;
+    if (fs::is_symlink(fs::symlink_status(walked, ec))) return false;
+  }
+  return true;
 }
 
 std::optional<fs::path> resolveConfined(const fs::path& folder, const std::string& name, bool allowOutside,

@@ -402,6 +402,7 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
 
   const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
   nlohmann::json job = blenderJob(scene, settings, options, glb, filtered, frames);
+  job["world_origin"] = {frame.worldOrigin.x(), frame.worldOrigin.y(), frame.worldOrigin.z()};
   if (settings.shading == Shading::Path && scene.environment)
     job["environment"] = writeEnvironment(*scene.environment, folder.path() + "/environment.exr");
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
@@ -442,6 +443,7 @@ void writeBlenderJob(const Scene& worldScene, const CameraPlacement& worldPlacem
   frames[0]["output"] = "render.exr";
   nlohmann::json job = blenderJob(scene, settings, options, "scene.glb", false, frames);
   job.erase("timings_output");
+  job["world_origin"] = {frame.worldOrigin.x(), frame.worldOrigin.y(), frame.worldOrigin.z()};
   if (settings.shading == Shading::Path && scene.environment) {
     job["environment"] = writeEnvironment(*scene.environment, dir + "/environment.exr");
     job["environment"]["image"] = "environment.exr";

@@ -299,7 +299,7 @@ Scene roomAt(const std::string& dir, double x0, double y0) {
 }
 
 // POV-Ray's intersection tolerances and glTF's 32-bit floats lose the mirror far from the origin
-// (83 dB fell to 30 dB at 2 km, Blender's 45 dB to 34 dB at 1 km): both ground truths are given a
+// (83 dB fell to 30 dB at 2 km; Blender's lost 11 dB at 1 km in an earlier scene): both ground truths are given a
 // world whose origin is near the robot, and agree kilometres out as they do at the origin. (The
 // fast renderer's own 32-bit geometry holds 94 dB at 2 km; at 9 km it is 55 dB, see
 // docs/conventions.md.)

@@ -46,6 +46,20 @@ TEST(FileConfinement, InsideOutsideAndSymlinks) {
   EXPECT_FALSE(resolveConfined(scenes, "missing.png", true, why));
   EXPECT_NE(why.find("file not found"), std::string::npos);
   EXPECT_FALSE(isInsideFolder(scenes, scenes)) << "the folder itself is not a file inside it";
+  // A link planted inside that leads to nothing outside is refused as outside, as one to
+  // something is: "not found" would tell what does not exist out there.
+  const fs::path folder = fs::path(::testing::TempDir()) / ("dangling_" + std::to_string(::getpid()));
+  fs::create_directories(folder);
+  fs::create_symlink("/etc/no_such_file_omnicam", folder / "dangling.png");
+  fs::create_symlink("/etc/no_such_folder_omnicam", folder / "dangling_folder");
+  fs::create_symlink("/etc/passwd", folder / "existing.png");
+  for (const char* name : {"dangling.png", "dangling_folder/tex.png", "existing.png"}) {
+    EXPECT_FALSE(resolveConfined(folder, name, false, why)) << name;
+    EXPECT_NE(why.find("resolves outside the scene's folder"), std::string::npos) << name << ": " << why;
+  }
+  EXPECT_FALSE(resolveConfined(folder, "missing.png", false, why));
+  EXPECT_NE(why.find("file not found"), std::string::npos) << "a plain missing file inside is told so";
+  fs::remove_all(folder);
 }
 
 TEST(FileConfinement, GltfBuffersAndImagesMustStayInsideUnlessAllowed) {

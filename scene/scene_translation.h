@@ -1,7 +1,7 @@
 #pragma once
 // A scene and its cameras moved together, for the ground-truth engines: POV-Ray's intersection
 // tolerances and glTF's 32-bit floats lose the mirror's micrometres a kilometre from the origin
-// (fast vs POV-Ray fell from 83 dB to 31 dB at 2 km), while omnicam's own numbers hold across the
+// (fast vs POV-Ray fell from 83 dB to 30 dB at 2 km), while omnicam's own numbers hold across the
 // ±10 km scenes may span. Each engine is given a world whose origin is the whole metre nearest the
 // robot; moving everything alike changes no image.
 #include <vector>

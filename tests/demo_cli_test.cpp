@@ -202,7 +202,8 @@ TEST(DemoCliTest, WithoutBlenderTheSectionsThatUseItAreWrittenWithoutIt) {
   const std::string html = readText(out / "index.html");
   EXPECT_EQ(checkEverySectionIsShownOrMarked(html, r.code), 0);
   EXPECT_NE(html.find("(Cycles' frame: not rendered, <code>--no-blender</code>.)"), std::string::npos);
-  EXPECT_EQ(html.find("blender.png"), std::string::npos) << "a Blender image without Blender";
+  for (const char* blenderImage : {"blender.png", "light_cycles"})
+    EXPECT_EQ(html.find(blenderImage), std::string::npos) << "a Blender image without Blender";
   EXPECT_NE(html.find("lens_panorama_povray.png"), std::string::npos) << "POV-Ray's truth stays";
   fs::remove_all(out);
 }
