@@ -111,6 +111,10 @@ TEST(FileConfinement, GltfAccessorsAreValidatedBeforeAByteIsRead) {
       {"arena_node_cycle.gltf", "reached twice"},
       {"arena_bad_texture_index.gltf", "no texture 7"},
       {"arena_image_huge.gltf", "image is 30000x30000 pixels"},
+      {"arena_extension_required.gltf", "extensionsRequired: \"KHR_draco_mesh_compression\" is not supported"},
+      {"arena_texture_no_uv.gltf", "baseColorTexture needs TEXCOORD_0, which the primitive lacks"},
+      {"arena_texture_second_uv.gltf", "baseColorTexture.texCoord: only 0 (TEXCOORD_0) is read"},
+      {"arena_image_missing.gltf", "image 0 \"no_such_image.png\": file not found or empty"},
   };
   for (const auto& [file, message] : cases)
     EXPECT_NE(errorOf([&] { importGltf((scenes / file).string(), {scenes}); }).find(message), std::string::npos) << file;

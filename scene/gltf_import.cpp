@@ -226,8 +226,13 @@ std::shared_ptr<const Texture> textureOf(const tinygltf::Model& model, int textu
     throw InputError(where + ": texture " + std::to_string(textureIndex) + " has no image");
   const tinygltf::Image& image = model.images[source];
   const size_t pixels = static_cast<size_t>(std::max(image.width, 0)) * static_cast<size_t>(std::max(image.height, 0));
-  if (image.bits != 32 || image.component != 4 || pixels == 0 || image.image.size() != pixels * 4 * sizeof(float))
-    throw InputError(where + ": image " + std::to_string(source) + " holds no decodable pixels");
+  if (image.bits != 32 || image.component != 4 || pixels == 0 || image.image.size() != pixels * 4 * sizeof(float)) {
+    // tinygltf only warns about an image file it could not find (or found empty); a file it
+    // found but could not decode was refused by loadImage already.
+    const bool fromFile = image.bufferView < 0 && !image.uri.empty() && image.uri.rfind("data:", 0) != 0;
+    throw InputError(where + ": image " + std::to_string(source) +
+                     (fromFile ? " " + quote(image.uri) + ": file not found or empty" : " holds no decodable pixels"));
+  }
   std::vector<float> rgba(pixels * 4);
   std::memcpy(rgba.data(), image.image.data(), image.image.size());
   return Texture::fromPremultiplied(image.width, image.height, rgba.data(), where + ": image " + std::to_string(source));
@@ -279,6 +284,8 @@ Material convertMaterial(const tinygltf::Model& model, size_t i, const std::stri
   if (f.size() != 4) throw InputError(where + ".baseColorFactor: must have 4 numbers");
   for (int c = 0; c < 3; ++c)
     mat.color[c] = static_cast<float>(std::isfinite(f[c]) ? std::clamp(f[c], 0.0, 1.0) : 0.0);
+  if (m.pbrMetallicRoughness.baseColorTexture.index >= 0 && m.pbrMetallicRoughness.baseColorTexture.texCoord != 0)
+    throw InputError(where + ".pbrMetallicRoughness.baseColorTexture.texCoord: only 0 (TEXCOORD_0) is read");
   mat.texture = textureOf(model, m.pbrMetallicRoughness.baseColorTexture.index, where);
   mat.emission = emissionOf(m, where);
   // omnicam's own exports carry the lit-shading factors in extras.
@@ -389,6 +396,8 @@ class NodeWalk {
       }
       material = defaultMaterial_;
     }
+    if (arena_.materials[static_cast<size_t>(material)].texture && out.uvs.empty())
+      throw InputError(where + ": its material's baseColorTexture needs TEXCOORD_0, which the primitive lacks");
     const std::string name = !node.name.empty() ? node.name : !mesh.name.empty() ? mesh.name : "mesh_" + std::to_string(node.mesh);
     arena_.objects.push_back({name, material, std::move(out), ""});
   }
@@ -403,6 +412,11 @@ class NodeWalk {
 
 GltfArena convert(const tinygltf::Model& model, const std::string& path) {
   const std::string file = showPath(path);  // prefixes every message
+  // A required extension changes what the file means; omnicam reads only the one below.
+  for (const std::string& extension : model.extensionsRequired)
+    if (extension != "KHR_materials_emissive_strength")
+      throw InputError(file + ": extensionsRequired: " + quote(extension) +
+                       " is not supported (omnicam reads KHR_materials_emissive_strength only)");
   GltfArena arena;
   for (size_t i = 0; i < model.materials.size(); ++i) arena.materials.push_back(convertMaterial(model, i, file));
   if (model.scenes.empty()) throw InputError(file + ": no scene in the glTF file");
