@@ -1,4 +1,4 @@
-// omnicam project SCENE|--rig RIG.json --pose X,Y,YAW --point X,Y,Z [--point ...] [--size N]
+// omnicam project SCENE|--rig RIG.json [--pose X,Y,YAW] --point X,Y,Z [--point ...] [--size N]
 // omnicam camera-rays SCENE|--rig RIG.json -o RAYS.exr [--size N]: the exact ray of every pixel centre.
 // Prints "u v" per point: continuous pixel coordinates, pixel centres at +0.5. A point the
 // mirror does not show (beyond the rim) prints "nan nan". Any rig: a physical one's reflection
@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "atomic_file.h"
@@ -34,7 +35,9 @@ struct ProjectArgs {
 
 void runProject(const ProjectArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "a scene");
-  const RobotPose pose = parsePose(a.pose, "--pose");
+  std::optional<RobotPose> givenPose;
+  if (!a.pose.empty()) givenPose = parsePose(a.pose, "--pose");
+  if (!givenPose && !a.rig.empty()) throw InputError("--pose: required with --rig (a rig has no start_pose)");
   std::vector<Vec3> points;
   for (const auto& text : a.points) {
     const Vec3 point = parseTriple(text, "--point", "X,Y,Z");
@@ -43,7 +46,16 @@ void runProject(const ProjectArgs& a, const CLI::App& cmd) {
       throw InputError("--point: each coordinate must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + quote(text) + ")");
     points.push_back(point);
   }
-  RigSpec rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load);
+  RigSpec rig;
+  RobotPose pose;
+  if (givenPose) {
+    rig = rigOfSceneOrRigFlag(a.scene, a.rig, a.load);
+    pose = *givenPose;
+  } else {  // a scene without --pose: its start_pose, as render takes it
+    const Scene scene = loadScene(a.scene, a.load);
+    rig = scene.rig;
+    pose = scene.startPose;
+  }
   if (a.size) rig = rig.resized(a.size, "--size");
   const std::shared_ptr<const Camera> camera = makeCamera(rig);
   const Rigid viewpointFromWorld = CameraPlacement(pose).worldFromViewpoint(rig).inverse();
@@ -108,7 +120,7 @@ void addProjectCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("project", "Print the raster point (u v) where world points appear: nan nan if not imaged; not clipped to the image, so a point the mirror images outside the framing falls outside [0, W) x [0, H)");
   cmd->add_option("scene", args->scene, "Scene JSON file (for its rig), or give --rig");
   cmd->add_option("--rig", args->rig, "The camera's rig from this JSON file (a scene's \"rig\" object) instead of a scene");
-  cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot")->required();
+  cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot; default: the scene's start_pose (required with --rig)");
   cmd->add_option("--point", args->points, "X,Y,Z world point (repeatable)")->required();
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   addSceneLoadFlags(*cmd, args->load);

@@ -332,6 +332,16 @@ TEST_F(CliTest, ProjectAndCameraRaysTakeARigFileInsteadOfAScene) {
   EXPECT_EQ(testing::readFile(path("r1.exr")), testing::readFile(path("upper.EXR")));
   ASSERT_EQ(run("camera-rays " + path("scene.json") + " --size 24 -o " + path("r2.exr")).code, 0);
   EXPECT_EQ(testing::readFile(path("r1.exr")), testing::readFile(path("r2.exr")));
+  // Without --pose, a scene's start_pose, as render takes it; a rig file has none.
+  std::ofstream(path("started.json")) << R"({"format": "omnicam-scene/1", "materials": {"m": {"color": 0.5}}, "objects": [],
+    "start_pose": [0.5, 0.2, 40],
+    "rig": {"height": 0.4, "mirror": {"k": 11.546, "c": 0.02321}, "camera": {"offset_mm": [1.5, 0, 0]}}})";
+  const CommandResult atStart = run("project " + path("started.json") + " --point=2,1,0.3 --point=-1,0.5,0 --size 96");
+  ASSERT_EQ(atStart.code, 0) << atStart.out;
+  EXPECT_EQ(atStart.out, fromRig.out) << "the start pose is the --pose given above";
+  const CommandResult rigWithoutPose = run("project --rig " + path("rig.json") + " --point=2,1,0.3");
+  EXPECT_EQ(rigWithoutPose.code, 2);
+  EXPECT_EQ(rigWithoutPose.out, "omnicam: --pose: required with --rig (a rig has no start_pose)\n");
   const CommandResult neither = run("project --pose=0,0,0 --point=1,0,0");
   EXPECT_EQ(neither.code, 2);
   EXPECT_NE(neither.out.find("give a scene file or --rig"), std::string::npos) << neither.out;
