@@ -115,6 +115,7 @@ TEST(FileConfinement, GltfAccessorsAreValidatedBeforeAByteIsRead) {
       {"arena_texture_no_uv.gltf", "baseColorTexture needs TEXCOORD_0, which the primitive lacks"},
       {"arena_texture_second_uv.gltf", "baseColorTexture.texCoord: only 0 (TEXCOORD_0) is read"},
       {"arena_image_missing.gltf", "image 0 \"no_such_image.png\": file not found or empty"},
+      {"arena_triangle_strip.gltf", "primitives[0].mode: only TRIANGLES (mode 4) is read (got mode 5;"},
   };
   for (const auto& [file, message] : cases)
     EXPECT_NE(errorOf([&] { importGltf((scenes / file).string(), {scenes}); }).find(message), std::string::npos) << file;

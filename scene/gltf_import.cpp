@@ -340,7 +340,8 @@ void appendTriangles(const tinygltf::Model& model, const tinygltf::Primitive& pr
 Mesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& prim, const Eigen::Matrix4d& world,
                    const std::string& where) {
   if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-    throw InputError(where + ": only triangle primitives are supported");
+    throw InputError(where + ".mode: only TRIANGLES (mode 4) is read (got mode " + std::to_string(prim.mode) +
+                     "; strips, fans, lines and points are not; re-export with triangulated meshes)");
   auto position = prim.attributes.find("POSITION");
   if (position == prim.attributes.end()) throw InputError(where + ": no POSITION");
   Mesh out;
