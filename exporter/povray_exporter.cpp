@@ -283,7 +283,7 @@ PovrayJob exportPovray(const Scene& worldScene, const CameraPlacement& worldPlac
   checkRenderSettings(settings);
   checkPlacement(worldPlacement);
   const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
-  const Scene& scene = frame.scene;
+  const Scene& scene = frame.sceneOr(worldScene);
   const CameraPlacement& placement = frame.placements.front();
   const auto n = samplesPerAxis(settings.spp);
   PovrayJob job;

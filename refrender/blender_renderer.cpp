@@ -259,8 +259,9 @@ std::optional<std::vector<double>> readFrameSeconds(const std::string& path, siz
 
 // The driver's job (refrender/blender_driver.py): the glTF, the shading, the lights as lamps
 // of matching power, path tracing and the camera.
-nlohmann::json blenderJob(const Scene& scene, const RenderSettings& settings, const BlenderOptions& options,
-                          const std::string& glb, bool filtered, const nlohmann::json& frames) {
+// `worldOrigin`: omnicam's world point at the job's origin (scene_translation.h), recorded in it.
+nlohmann::json blenderJob(const Scene& scene, const Vec3& worldOrigin, const RenderSettings& settings,
+                          const BlenderOptions& options, const std::string& glb, bool filtered, const nlohmann::json& frames) {
   const PathTracing& tracing = options.pathTracing;
   const int width = settings.rig.imageWidth(), height = settings.rig.imageHeight();
   double ambient = 0.0;
@@ -287,6 +288,7 @@ nlohmann::json blenderJob(const Scene& scene, const RenderSettings& settings, co
                               {"frames", frames},
                               {"timings_output", timingsFile(glb)}};
   job.update(cyclesCamera(settings.rig));
+  job["world_origin"] = {worldOrigin.x(), worldOrigin.y(), worldOrigin.z()};
   return job;
 }
 
@@ -388,7 +390,7 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
   checkBlenderRenders(worldPlacements, settings, options);
   // glTF's 32-bit floats: the session's world has its origin near the first frame's robot.
   const EngineFrame frame = engineFrameNear(worldScene, worldPlacements);
-  const Scene& scene = frame.scene;
+  const Scene& scene = frame.sceneOr(worldScene);
   const std::vector<CameraPlacement>& placements = frame.placements;
   const PathTracing& tracing = options.pathTracing;
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
@@ -401,8 +403,7 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
   exportGltf(scene, exportOptions, glb);
 
   const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
-  nlohmann::json job = blenderJob(scene, settings, options, glb, filtered, frames);
-  job["world_origin"] = {frame.worldOrigin.x(), frame.worldOrigin.y(), frame.worldOrigin.z()};
+  nlohmann::json job = blenderJob(scene, frame.worldOrigin, settings, options, glb, filtered, frames);
   if (settings.shading == Shading::Path && scene.environment)
     job["environment"] = writeEnvironment(*scene.environment, folder.path() + "/environment.exr");
   writeTextAtomically(folder.path() + "/job.json", job.dump(2));
@@ -432,7 +433,7 @@ void writeBlenderJob(const Scene& worldScene, const CameraPlacement& worldPlacem
   const BlenderOptions options;
   checkBlenderRenders({worldPlacement}, settings, options);
   const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
-  const Scene& scene = frame.scene;
+  const Scene& scene = frame.sceneOr(worldScene);
   const CameraPlacement& placement = frame.placements.front();
   GltfExportOptions exportOptions;
   exportOptions.placement = placement;
@@ -441,9 +442,8 @@ void writeBlenderJob(const Scene& worldScene, const CameraPlacement& worldPlacem
   // Paths relative to the job's folder, where it is run; no frame-time file (omnicam's own).
   nlohmann::json frames = jobFrames({placement}, settings, ".", false);
   frames[0]["output"] = "render.exr";
-  nlohmann::json job = blenderJob(scene, settings, options, "scene.glb", false, frames);
+  nlohmann::json job = blenderJob(scene, frame.worldOrigin, settings, options, "scene.glb", false, frames);
   job.erase("timings_output");
-  job["world_origin"] = {frame.worldOrigin.x(), frame.worldOrigin.y(), frame.worldOrigin.z()};
   if (settings.shading == Shading::Path && scene.environment) {
     job["environment"] = writeEnvironment(*scene.environment, dir + "/environment.exr");
     job["environment"]["image"] = "environment.exr";

@@ -46,7 +46,8 @@ Vec3 wholeMetreNear(const RobotPose& pose) { return {std::round(pose.x) + 0.0, s
 
 EngineFrame engineFrameNear(const Scene& scene, const std::vector<CameraPlacement>& placements) {
   const Vec3 origin = placements.empty() ? Vec3::Zero() : wholeMetreNear(placements.front().robot());
-  EngineFrame frame{origin, origin.isZero() ? scene : translatedScene(scene, -origin), {}};
+  EngineFrame frame{origin, std::nullopt, {}};
+  if (!origin.isZero()) frame.movedScene = translatedScene(scene, -origin);
   for (const CameraPlacement& placement : placements) frame.placements.push_back(placement.translated(-origin.x(), -origin.y()));
   return frame;
 }

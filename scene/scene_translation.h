@@ -4,6 +4,7 @@
 // (fast vs POV-Ray fell from 83 dB to 30 dB at 2 km), while omnicam's own numbers hold across the
 // ±10 km scenes may span. Each engine is given a world whose origin is the whole metre nearest the
 // robot; moving everything alike changes no image.
+#include <optional>
 #include <vector>
 
 #include "placement.h"
@@ -22,8 +23,9 @@ Vec3 wholeMetreNear(const RobotPose& pose);
 // A world for the engines, its origin at omnicam's world point `worldOrigin`.
 struct EngineFrame {
   Vec3 worldOrigin;
-  Scene scene;
+  std::optional<Scene> movedScene;  // empty where the world's origin serves: no copy of its meshes
   std::vector<CameraPlacement> placements;
+  const Scene& sceneOr(const Scene& worldScene) const { return movedScene ? *movedScene : worldScene; }
 };
 // The engine's world near the first placement's robot (unmoved when that is the origin already).
 EngineFrame engineFrameNear(const Scene& scene, const std::vector<CameraPlacement>& placements);
