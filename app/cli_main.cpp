@@ -5,12 +5,14 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <regex>
 #include <string>
 #include <vector>
 
 #include "closest_name.h"
 #include "cpu_independent_math.h"
 #include "errors.h"
+#include "file_confinement.h"
 #include "interrupts.h"
 #include "malloc_tuning.h"
 #include "memory_budget.h"
@@ -68,7 +70,12 @@ std::string parseErrorMessage(const CLI::App& app, int argc, char** argv, const 
              optionSuggestion(name, *command) + "; " + words + " --help lists them";
     }
   }
-  return error.what();
+  // CLI11's words for an option given twice ("--pose: At Most 1 required but received 2").
+  static const std::regex givenTwice(R"(^(-[-\w]*): At Most 1 required but received (\d+)$)");
+  std::smatch twice;
+  const std::string what = error.what();
+  if (std::regex_match(what, twice, givenTwice)) return twice[1].str() + ": given " + twice[2].str() + " times; give it once";
+  return what;
 }
 
 // The first argument that is not UTF-8, or null.
@@ -134,7 +141,7 @@ int runCommandLine(CLI::App& app, int argc, char** argv, const int& exitCode) {
   } catch (const CLI::ParseError& e) {
     return reportError(parseErrorMessage(app, argc, argv, e), 2);
   } catch (const InputError& e) {
-    return reportError(e.what(), 2);
+    return reportError(withOutsideFilesHint(e.what(), "pass --allow-outside-files to permit it"), 2);
   } catch (const ExternalError& e) {
     // Not one line on purpose: the renderer's last output follows on lines of its own.
     std::fprintf(stderr, "omnicam: %s\n", e.what());

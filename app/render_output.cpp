@@ -14,6 +14,7 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
   record.engineVersion = engine.version();
   record.scenePath = scene.path;
   record.sceneSha256 = scene.sha256;
+  record.sceneInputs = scene.inputDigests;
   record.placement = placement;
   record.rig = settings.rig;
   record.spp = settings.spp;

@@ -187,7 +187,8 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
   header["tool"] = {{"name", "omnicam"}, {"version", fastRendererVersion()}};
   header["engine"] = {{"name", engine.name()}, {"version", engine.version()}, {"mode", engine.mode()},
                       {"mode_options", engine.modeOptions()}};
-  header["scene"] = {{"path", spec.json.value("scene", scene.path)}, {"name", scene.name}, {"sha256", scene.sha256}};
+  header["scene"] = {{"path", spec.json.value("scene", scene.path)}, {"name", scene.name}, {"sha256", scene.sha256},
+                     {"inputs", sceneInputsToJson(scene.inputDigests)}};
   header["settings"] = {{"spp", spec.request.spp}, {"shading", shadingName(spec.request.shading)},
                         {"frame_interval_s", spec.frameIntervalSeconds},
                         {"aov_sampling", "point-sampled at pixel centres (i + 0.5, j + 0.5)"},

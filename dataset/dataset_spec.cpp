@@ -357,6 +357,9 @@ void readRequest(JsonFields& top, DatasetSpec& spec) {
     else readRequestField(top, name, row, f);
   }
   for (const auto& [objectName, rows] : nested) {
+    for (const RequestFieldRow* row : rows)  // written one level too high ("faces" for "mode_options.faces")
+      if (const std::string leaf = std::string(row->json).substr(objectName.size() + 1); top.has(leaf))
+        top.fail(leaf, "unknown field (did you mean " + std::string(row->json) + "?)");
     auto object = top.optionalObject(objectName);
     if (!object) continue;
     for (const RequestFieldRow* row : rows) readRequestField(*object, std::string(row->json).substr(objectName.size() + 1), *row, f);

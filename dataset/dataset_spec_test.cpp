@@ -50,6 +50,8 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("engine": "mitsuba")")), "spec.json: engine: must be fast, povray or blender (got \"mitsuba\")");
   EXPECT_EQ(errorOf(spec(R"("colour": 1)")), "spec.json: colour: unknown field");
   EXPECT_EQ(errorOf(spec(R"("outputs": {"depht": true})")), "spec.json: outputs.depht: unknown field (did you mean depth?)");
+  // A mode option written beside "mode" instead of in mode_options is pointed there.
+  EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "faces": 5)")), "spec.json: faces: unknown field (did you mean mode_options.faces?)");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "a"}])")),
             "spec.json: cameras[1].name: duplicate camera name \"a\"");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "../x"}])")),

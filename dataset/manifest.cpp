@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "atomic_file.h"
@@ -82,6 +83,23 @@ void requireHash(JsonFields& f, const std::string& key) {
   if (!isSha256(f.string(key))) f.fail(key, "must be 64 lowercase hex digits");
 }
 
+// scene.inputs: the files the scene read beyond its own text, each {"path", "sha256"}. Absent in
+// manifests written before omnicam recorded them: then none are known.
+void checkSceneInputs(JsonFields& scene) {
+  if (!scene.has("inputs")) return;
+  const json& inputs = scene.raw("inputs");
+  if (!inputs.is_array()) scene.fail("inputs", "must be an array of {\"path\", \"sha256\"}");
+  std::set<std::string> paths;
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    JsonFields input(inputs[i], scene.file(), scene.where() + ".inputs[" + std::to_string(i) + "]");
+    const std::string path = input.string("path");
+    if (path.empty() || path.size() > 4096) input.fail("path", "must be 1 to 4096 bytes long");
+    if (!paths.insert(path).second) input.fail("path", "lists " + quote(path) + " twice");
+    requireHash(input, "sha256");
+    input.finish();
+  }
+}
+
 // What frames are checked against: the header's cameras and frame count.
 struct HeaderFacts {
   std::set<std::string> cameras;
@@ -120,6 +138,7 @@ HeaderFacts checkHeader(JsonFields& top) {
   requireHash(top, "spec_sha256");
   JsonFields scene = top.object("scene");
   requireHash(scene, "sha256");
+  checkSceneInputs(scene);
   const int64_t frameCount = top.integer("frame_count", 0, limits::kMaxDatasetFrames);
   if (!top.raw("complete").is_boolean()) top.fail("complete", "must be true or false");
   if (auto shard = top.optionalObject("shard")) {
@@ -231,8 +250,38 @@ json datasetIdentity(const json& header) {
   // Words for people: a new description or comment is the same dataset.
   json spec = withoutComments(header.at("spec"));
   if (spec.is_object()) spec.erase("description");
-  return {{"spec", spec}, {"scene_sha256", header.at("scene").at("sha256")}, {"engine", header.at("engine")}};
+  return {{"spec", spec},
+          {"scene_sha256", header.at("scene").at("sha256")},
+          {"scene_inputs", header.at("scene").value("inputs", json::array())},
+          {"engine", header.at("engine")}};
 }
+
+namespace {
+
+// The scene's files (beyond its own text) that one run read and the other did not, or read with
+// other bytes: "the scene's file "a.png" differs", at most three named.
+std::string sceneInputsDifference(const json& a, const json& b) {
+  std::map<std::string, std::string> x, y;
+  for (const json& input : a) x[input.at("path").get<std::string>()] = input.at("sha256").get<std::string>();
+  for (const json& input : b) y[input.at("path").get<std::string>()] = input.at("sha256").get<std::string>();
+  std::set<std::string> names;
+  for (const auto& [path, hash] : x)
+    if (!y.count(path) || y.at(path) != hash) names.insert(path);
+  for (const auto& [path, hash] : y)
+    if (!x.count(path)) names.insert(path);
+  if (names.empty()) return a == b ? "" : "the scene's files are read in another order";
+  std::string named;
+  size_t shown = 0;
+  for (const std::string& name : names) {
+    if (shown++ == 3) break;
+    named += (named.empty() ? "" : ", ") + quote(name);
+  }
+  if (names.size() > 3) named += " and " + std::to_string(names.size() - 3) + " more";
+  return "the scene's " + std::string(names.size() == 1 ? "file " : "files ") + named +
+         (names.size() == 1 ? " differs" : " differ") + " (its textures, environment or glTF files)";
+}
+
+}  // namespace
 
 std::string identityDifference(const json& a, const json& b) {
   const json x = datasetIdentity(a), y = datasetIdentity(b);
@@ -252,6 +301,8 @@ std::string identityDifference(const json& a, const json& b) {
     parts.push_back(fields.empty() ? "the spec differs" : "the spec's " + named + (fields.size() == 1 ? " differs" : " differ"));
   }
   if (x.at("scene_sha256") != y.at("scene_sha256")) parts.push_back("the scene's bytes differ");
+  if (const std::string files = sceneInputsDifference(x.at("scene_inputs"), y.at("scene_inputs")); !files.empty())
+    parts.push_back(files);
   if (x.at("engine") != y.at("engine")) parts.push_back("the engine differs");
   std::string text;
   for (const std::string& part : parts) text += (text.empty() ? "" : "; ") + part;

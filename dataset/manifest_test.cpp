@@ -128,5 +128,36 @@ TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
   EXPECT_EQ(errorOf(m), "manifest.json: frames[0].cameras.cam0.files.secret: unknown kind of frame file");
 }
 
+// scene.inputs, when present, is a list of distinct paths with hashes; a manifest written before
+// omnicam recorded them has none, and is then the same dataset only for a scene that reads no file.
+TEST(Manifest, SceneInputsAreCheckedAndTellDatasetsApart) {
+  DatasetManifest manifest{smallHeader({"cam0"}, 1), {}};
+  const json good = manifestToJson(manifest);
+  json m = good;
+  m["scene"]["inputs"] = json::parse(R"([{"path": "textures/a.png", "sha256": ")" + std::string(kHash) + R"("}])");
+  EXPECT_EQ(errorOf(m), "");
+  json bad = m;
+  bad["scene"]["inputs"] = "textures/a.png";
+  EXPECT_EQ(errorOf(bad), "manifest.json: scene.inputs: must be an array of {\"path\", \"sha256\"}");
+  bad = m;
+  bad["scene"]["inputs"][0]["sha256"] = "ABC";
+  EXPECT_EQ(errorOf(bad), "manifest.json: scene.inputs[0].sha256: must be 64 lowercase hex digits");
+  bad = m;
+  bad["scene"]["inputs"].push_back(m["scene"]["inputs"][0]);
+  EXPECT_EQ(errorOf(bad), "manifest.json: scene.inputs[1].path: lists \"textures/a.png\" twice");
+  bad = m;
+  bad["scene"]["inputs"][0]["size"] = 3;
+  EXPECT_EQ(errorOf(bad), "manifest.json: scene.inputs[0].size: unknown field");
+
+  EXPECT_EQ(identityDifference(m, m), "");
+  EXPECT_EQ(identityDifference(good, manifestToJson(manifest)), "");
+  json other = m;
+  other["scene"]["inputs"][0]["sha256"] = std::string(64, 'f');
+  EXPECT_EQ(identityDifference(m, other), "the scene's file \"textures/a.png\" differs (its textures, environment or glTF files)");
+  EXPECT_EQ(identityDifference(good, m), "the scene's file \"textures/a.png\" differs (its textures, environment or glTF files)");
+  for (const char* name : {"b", "c", "d", "e"}) other["scene"]["inputs"].push_back({{"path", name}, {"sha256", kHash}});
+  EXPECT_EQ(identityDifference(m, other), "the scene's files \"b\", \"c\", \"d\" and 2 more differ (its textures, environment or glTF files)");
+}
+
 }  // namespace
 }  // namespace omnicam

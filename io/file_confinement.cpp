@@ -11,6 +11,11 @@ namespace omnicam {
 
 namespace fs = std::filesystem;
 
+std::string withOutsideFilesHint(const std::string& message, std::string_view howToAllow) {
+  if (message.find(kOutsideFolderWords) == std::string::npos) return message;
+  return message + " (" + std::string(howToAllow) + ")";
+}
+
 bool isInsideFolder(const fs::path& folder, const fs::path& path) {
   std::error_code ec;
   const fs::path root = fs::weakly_canonical(folder, ec);
@@ -44,7 +49,7 @@ std::optional<fs::path> resolveConfined(const fs::path& folder, const std::strin
   // Confinement first: what lies outside is not even told apart (folder, file or nothing).
   if (!allowOutside && !isInsideFolder(folder, resolved)) {
     why = resolved == fs::weakly_canonical(folder, ec) ? quote(name) + " is the scene's folder, not a file"
-                                                       : quote(name) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+                                                       : quote(name) + " " + std::string(kOutsideFolderWords);
     return std::nullopt;
   }
   if (fs::is_directory(resolved, ec)) {

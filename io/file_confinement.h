@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "input_limits.h"
 
@@ -14,6 +15,12 @@ namespace omnicam {
 // lies outside `folder` (itself resolved).
 std::optional<std::filesystem::path> resolveConfined(const std::filesystem::path& folder, const std::string& name,
                                                      bool allowOutside, std::string& why);
+// Every refusal of a file outside the scene's folder says these words. The library names no flag:
+// each front (the CLI, Python) tells how it allows such files, through withOutsideFilesHint.
+inline constexpr std::string_view kOutsideFolderWords = "resolves outside the scene's folder";
+// `message`, and " (`howToAllow`)" when it refuses a file outside the scene's folder.
+std::string withOutsideFilesHint(const std::string& message, std::string_view howToAllow);
+
 // True if the resolved `path` lies inside the resolved `folder`.
 bool isInsideFolder(const std::filesystem::path& folder, const std::filesystem::path& path);
 

@@ -94,16 +94,18 @@ std::string unreadFormatOf(std::string_view head) {
   using namespace std::string_view_literals;
   if (head.empty()) return "the file is empty";
   std::string format;
+  bool povrayWrites = false;  // +FB, +FP: POV-Ray can write PNG instead
   if (head.starts_with("GIF87a"sv) || head.starts_with("GIF89a"sv)) format = "a GIF file";
-  else if (head.starts_with("BM"sv) && head.size() >= 14) format = "a BMP file";
+  else if (head.starts_with("BM"sv) && head.size() >= 14) format = "a BMP file", povrayWrites = true;
   else if (head.size() >= 3 && head[0] == 'P' && head[1] >= '1' && head[1] <= '7' && std::isspace(static_cast<unsigned char>(head[2])))
-    format = "a Netpbm (PBM, PGM, PPM or PAM) file";
+    format = "a Netpbm (PBM, PGM, PPM or PAM) file", povrayWrites = true;
   else if (head.starts_with("RIFF"sv) && head.size() >= 12 && head.substr(8, 4) == "WEBP"sv) format = "a WebP file";
   else if (head.starts_with("8BPS"sv)) format = "a Photoshop file";
   else if (head.starts_with("SDPX"sv) || head.starts_with("XPDS"sv)) format = "a DPX file";
   const std::string read = "omnicam reads PNG, JPEG, TIFF, OpenEXR and Radiance HDR";
   return format.empty() ? "not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file"
-                        : format + "; " + read + ": convert it (oiiotool, ImageMagick), or have POV-Ray write PNG (+FN)";
+                        : format + "; " + read + ": convert it (oiiotool, ImageMagick)" +
+                              (povrayWrites ? ", or have POV-Ray write PNG (+FN)" : "");
 }
 
 std::unique_ptr<ImageDecoder> openByFormat(const ImageSource& source) {

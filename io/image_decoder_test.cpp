@@ -284,13 +284,14 @@ TEST(ImageDecoders, TheFormatIsToldByTheBytesNotTheName) {
   std::ofstream(misnamed, std::ios::binary) << fileBytes(png.path);
   EXPECT_EQ(openImageDecoder({misnamed, {}, "x"})->format(), "png");
   // Formats omnicam does not read are named by their bytes, with what to do.
-  const std::string advice = "; omnicam reads PNG, JPEG, TIFF, OpenEXR and Radiance HDR: convert it (oiiotool, ImageMagick), "
-                             "or have POV-Ray write PNG (+FN))";
+  // POV-Ray's own outputs (+FB, +FP) also get the POV-Ray option that writes PNG.
+  const std::string advice = "; omnicam reads PNG, JPEG, TIFF, OpenEXR and Radiance HDR: convert it (oiiotool, ImageMagick)";
+  const std::string povray = ", or have POV-Ray write PNG (+FN)";
   const std::vector<std::pair<std::string, std::string>> refused = {
-      {"GIF89a........", "a GIF file" + advice},
-      {std::string("BM\x36\x00\x00\x00\x00\x00\x00\x00\x36\x00\x00\x00", 14), "a BMP file" + advice},
-      {"P6\n4 4\n255\n", "a Netpbm (PBM, PGM, PPM or PAM) file" + advice},
-      {std::string("RIFF\x10\x00\x00\x00WEBPVP8 ", 16), "a WebP file" + advice},
+      {"GIF89a........", "a GIF file" + advice + ")"},
+      {std::string("BM\x36\x00\x00\x00\x00\x00\x00\x00\x36\x00\x00\x00", 14), "a BMP file" + advice + povray + ")"},
+      {"P6\n4 4\n255\n", "a Netpbm (PBM, PGM, PPM or PAM) file" + advice + povray + ")"},
+      {std::string("RIFF\x10\x00\x00\x00WEBPVP8 ", 16), "a WebP file" + advice + ")"},
       {"", "the file is empty)"},
       {"hello, world", "not a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file)"}};
   for (const auto& [bytes, why] : refused) {

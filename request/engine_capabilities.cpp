@@ -129,8 +129,12 @@ void checkLensCamera(const EngineCapabilities& c, const LensCameraSpec& lens) {
     throw InputError(std::string("rig.lens.model: ") + c.shownName + " has no " + model + " camera; render it with " +
                      enginesThat(c, [&model](const EngineCapabilities& e) { return hasLens(e, model); }));
   // An engine without lens distortion traces its own cameras, which are not every lens of a model.
-  if (const std::string problem = c.lensDistortion ? "" : lensProblem(lens, c.centredLensesOnly, c.cyclesLensLimits); !problem.empty())
-    throw InputError("rig.lens." + problem + "; render this lens with the fast engine");
+  const auto rendersThisLens = [&](const EngineCapabilities& e) {
+    return hasLens(e, model) && (e.lensDistortion || lensProblem(lens, e.centredLensesOnly, e.cyclesLensLimits).empty());
+  };
+  if (!rendersThisLens(c))
+    throw InputError("rig.lens." + lensProblem(lens, c.centredLensesOnly, c.cyclesLensLimits) + " (" + c.shownName +
+                     "); render this lens with " + enginesThat(c, rendersThisLens));
 }
 
 void checkMirrorCamera(const EngineCapabilities& c, const MirrorRig& rig) {

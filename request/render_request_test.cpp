@@ -132,6 +132,19 @@ TEST(EngineCapabilities, EachEngineIsCheckedByItsRowAndTheMessageNamesTheEngines
   fisheye.kind = LensCameraSpec{PinholeRadTan{110.0, 110.0, 79.5, 59.5, {}}, 160, 120, {0.0, 0.0, 0.0}};
   EXPECT_NE(refusal(EngineKind::FastCubeMap, fisheye, {}).find("the fast engine's exact mode"), std::string::npos)
       << refusal(EngineKind::FastCubeMap, fisheye, {});
+  // A pinhole whose principal point is off the centre: POV-Ray's perspective camera centres it,
+  // Cycles' shifts it; one with distortion only the fast engine renders.
+  RigSpec offCentre;
+  offCentre.kind = LensCameraSpec{PinholeRadTan{110.0, 110.0, 20.0, 59.5, {}}, 160, 120, {0.0, 0.0, 0.0}};
+  EXPECT_EQ(refusal(EngineKind::Povray, offCentre, {}),
+            "rig.lens.cx, cy: its perspective camera centres the image ((width − 1)/2, (height − 1)/2) (the povray engine); "
+            "render this lens with the fast engine or the blender engine");
+  EXPECT_EQ(refusal(EngineKind::Blender, offCentre, {}), "");
+  RigSpec distortedPinhole = fisheye;
+  std::get<PinholeRadTan>(distortedPinhole.lensCamera().model).distortion.k1 = -0.1;
+  EXPECT_EQ(refusal(EngineKind::Blender, distortedPinhole, {}),
+            "rig.lens.distortion: its perspective camera has no lens distortion (the blender engine); render this lens with the "
+            "fast engine");
   RigSpec instants;
   instants.shutter = {1.0 / 30.0, std::nullopt, 4};
   EXPECT_EQ(refusal(EngineKind::Blender, instants, driving),

@@ -73,7 +73,7 @@ bool readWholeFileConfined(std::vector<unsigned char>* out, std::string* err, co
   if (!target) {
     why = "file not found: " + showPath(path);
   } else if (outsideConfinement(*target, *ctx)) {
-    why = quote(target->uri) + " resolves outside the scene's folder (pass --allow-outside-files to permit it)";
+    why = quote(target->uri) + " " + std::string(kOutsideFolderWords);
   } else if (const auto bytes = readWholeFile(target->file.string(), why)) {
     out->assign(bytes->begin(), bytes->end());
     ctx->filesRead.push_back(target->file.string());

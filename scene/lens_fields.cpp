@@ -72,6 +72,8 @@ FThetaLens readFTheta(JsonFields& f, FThetaLens::Kind kind, int width, int heigh
     const std::vector<double> k = f.numbers("k", {0.0, 0.0, 0.0, 0.0, 0.0}, {-1e3, 1e3});
     for (size_t i = 0; i < 5; ++i) m.k[i] = k.at(i);
   } else {
+    for (const char* key : {"fx", "fy"})  // a pinhole's names: the nearest spelling (cx, cy) would mislead
+      if (f.has(key)) f.fail(key, "unknown field (this model has one focal length: f_px)");
     m.f = f.number("f_px", {0.0, kMaxFocalPx, true, "pixels"});
   }
   m.cx = f.number("cx", (width - 1) / 2.0, {-1.0 * width, 2.0 * width, false, "pixels"});

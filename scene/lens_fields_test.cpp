@@ -61,6 +61,10 @@ TEST(LensFields, FieldsOfOtherModelsAndOutOfRangeValuesAreRefused) {
   json foreign = kb;
   foreign["f_px"] = 3;
   EXPECT_NE(problem({{"lens", foreign}}).find("rig.lens.f_px: unknown field"), std::string::npos);
+  // A pinhole's fx on a one-focal model points at f_px, not at the nearest spelling (cx).
+  const json fisheye = {{"model", "fisheye_equidistant"}, {"width", 64}, {"height", 64}, {"fx", 20}};
+  EXPECT_NE(problem({{"lens", fisheye}}).find("rig.lens.fx: unknown field (this model has one focal length: f_px)"),
+            std::string::npos) << problem({{"lens", fisheye}});
   json fy = kb;
   fy["fy"] = -1;
   EXPECT_NE(problem({{"lens", fy}}).find("rig.lens.fy: must be in (0, 1e+06]"), std::string::npos) << problem({{"lens", fy}});

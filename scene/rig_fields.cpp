@@ -186,7 +186,9 @@ RigSpec readRig(JsonFields rig) {
     if (hyperboloid) {
       hyperboloid->framingElevationDeg = image->number("framing_elevation_deg", hyperboloid->rimElevationDeg);
       if (!(hyperboloid->framingElevationDeg > -60.0 && hyperboloid->framingElevationDeg <= hyperboloid->rimElevationDeg))
-        image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees");
+        image->fail("framing_elevation_deg", "must be in (-60, rim_elevation_deg] degrees (rim_elevation_deg " +
+                                                 shortNumber(hyperboloid->rimElevationDeg) + "; got " +
+                                                 shortNumber(hyperboloid->framingElevationDeg) + ")");
     }
     image->finish();
   }

@@ -92,12 +92,24 @@ struct CameraPath {
   std::vector<RobotPose> poses;
 };
 
+// A file the scene reads beyond its own text (a texture, an environment map, a glTF file and its
+// buffers and images): its path from the scene's folder (as loaded, '/'-separated) and the SHA-256
+// of its bytes. A dataset compares them on resume and merge, a sidecar records them: a scene whose
+// texture changed is another scene although its own bytes did not.
+struct SceneInputFile {
+  std::string path;
+  std::string sha256;
+  bool operator==(const SceneInputFile&) const = default;
+};
+
 struct Scene {
   std::string path;    // file it was loaded from
   std::string sha256;  // of that file's bytes
   // Every file the scene was read from: itself, its textures, environment and glTF files and
   // theirs. An output must be none of them (writing one would destroy what is read).
   std::vector<std::string> inputFiles;
+  // The files it reads beyond its own text, each once, in the order read (SceneInputFile).
+  std::vector<SceneInputFile> inputDigests;
   std::string name;
   Vec3f background{0.0f, 0.0f, 0.0f};
   // Light from every direction for `path` shading and Blender (docs/conventions.md §3); it

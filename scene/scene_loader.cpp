@@ -232,6 +232,10 @@ Shape readShape(const std::string& type, JsonFields& o) {
 CameraPath readPath(JsonFields p, const std::string& file) {
   CameraPath path;
   path.name = p.string("name");
+  // Two forms: explicit poses, or waypoints sampled by arc length (`frames`, default 100).
+  if (p.has("poses") && (p.has("waypoints") || p.has("frames")))
+    p.fail(p.has("waypoints") ? "waypoints" : "frames",
+           "a path gives either \"poses\" or \"waypoints\" (with \"frames\"), not both");
   if (p.has("poses")) {
     const json& poses = p.raw("poses");
     if (!poses.is_array() || poses.empty()) p.fail("poses", "must be a non-empty array");
@@ -454,6 +458,27 @@ std::string bundledSceneHint(const std::string& name) {
   return "";
 }
 
+namespace {
+
+// Each file the scene read beyond its own text, once, named from the scene's folder (a file
+// outside it, where allowed, keeps its resolved path) and hashed.
+std::vector<SceneInputFile> digestInputs(const std::vector<std::string>& inputFiles, const std::string& sceneFile) {
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(fs::absolute(sceneFile).parent_path(), ec);  // where names resolve
+  std::vector<SceneInputFile> digests;
+  std::set<std::string> seen;
+  for (size_t i = 1; i < inputFiles.size(); ++i) {  // [0] is the scene file, hashed from its text
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(inputFiles[i]), ec);
+    const fs::path relative = resolved.lexically_relative(folder);
+    const std::string name = (relative.empty() || *relative.begin() == ".." ? resolved : relative).generic_string();
+    if (!seen.insert(name).second) continue;
+    digests.push_back({name, sha256OfFile(resolved.string())});
+  }
+  return digests;
+}
+
+}  // namespace
+
 Scene loadScene(const std::string& file, const SceneLoadOptions& options) {
   std::string why;
   const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
@@ -486,6 +511,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   readLandmarks(top, file, scene);
   readPaths(top, file, scene);
   top.finish();
+  scene.inputDigests = digestInputs(scene.inputFiles, file);
   return scene;
 }
 

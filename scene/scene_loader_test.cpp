@@ -60,6 +60,8 @@ TEST_F(SceneLoaderTest, ErrorsNameFileAndField) {
   EXPECT_EQ(errorOf(R"("colour": 1,)"), file + ": colour: unknown field");
   EXPECT_EQ(errorOf("", R"(, "radius2": 3)"), file + ": objects[0].radius2: unknown field (did you mean radius?)");
   EXPECT_EQ(errorOf("", "", R"({"mirror": {"k": 2}})"), file + ": rig.mirror.k: must be in (2, 100] (got 2)");
+  EXPECT_EQ(errorOf("", "", R"({"mirror": {"rim_elevation_deg": 40}, "image": {"framing_elevation_deg": 60}})"),
+            file + ": rig.image.framing_elevation_deg: must be in (-60, rim_elevation_deg] degrees (rim_elevation_deg 40; got 60)");
   EXPECT_EQ(errorOf("", "", R"({"mirror": {"c": 0}})"), file + ": rig.mirror.c: must be in [0.001, 1] m (got 0)");
   EXPECT_EQ(errorOf("", "", R"({"height": "tall"})"), file + ": rig.height: must be a number (got string)");
   EXPECT_EQ(errorOf("", "", R"({"image": {"size": 12.5}})"),
@@ -209,6 +211,14 @@ TEST_F(SceneLoaderTest, WaypointPathsAreSampled) {
   EXPECT_DOUBLE_EQ(p->poses[3].y, 1.0);
   EXPECT_DOUBLE_EQ(p->poses[3].yawDeg, 90.0);
   EXPECT_EQ(s.findPath("q"), nullptr);
+  // Without frames, 100 poses; a path of both forms is refused, naming what to drop.
+  EXPECT_EQ(loadScene(write(R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [],
+    "paths": [{"name": "p", "waypoints": [[0, 0], [2, 0]]}]})")).paths[0].poses.size(), 100u);
+  const std::string file = (dir_ / "scene.json").string();
+  EXPECT_EQ(errorOf(R"("paths": [{"name": "p", "waypoints": [[0, 0], [1, 0]], "poses": [[0, 0, 0]]}],)"),
+            file + ": paths[0].waypoints: a path gives either \"poses\" or \"waypoints\" (with \"frames\"), not both");
+  EXPECT_EQ(errorOf(R"("paths": [{"name": "p", "frames": 50, "poses": [[0, 0, 0]]}],)"),
+            file + ": paths[0].frames: a path gives either \"poses\" or \"waypoints\" (with \"frames\"), not both");
 }
 
 TEST_F(SceneLoaderTest, SemanticClassesComeFromObjectsOrTheirMaterials) {

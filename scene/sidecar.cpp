@@ -67,6 +67,11 @@ json rigToJson(const RigSpec& rig) {
   return out;
 }
 
+json sceneInputsToJson(const std::vector<SceneInputFile>& inputs) {
+  json out = json::array();
+  for (const SceneInputFile& input : inputs) out.push_back({{"path", input.path}, {"sha256", input.sha256}});
+  return out;
+}
 
 json sidecarJson(const RenderRecord& r) {
   const Rigid cfw = r.placement.worldFromCamera(r.rig).inverse();
@@ -80,7 +85,7 @@ json sidecarJson(const RenderRecord& r) {
   }
   json sidecar = {{"engine", r.engine},
           {"engine_version", r.engineVersion},
-          {"scene", {{"path", r.scenePath}, {"sha256", r.sceneSha256}}},
+          {"scene", {{"path", r.scenePath}, {"sha256", r.sceneSha256}, {"inputs", sceneInputsToJson(r.sceneInputs)}}},
           {"pose", {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}},
           {"rig", rigToJson(r.rig)},
           {"spp", r.spp},

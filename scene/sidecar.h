@@ -7,12 +7,14 @@
 
 #include "placement.h"
 #include "rig.h"
+#include "scene.h"
 
 namespace omnicam {
 
 struct RenderRecord {
   std::string engine, engineVersion;
   std::string scenePath, sceneSha256;
+  std::vector<SceneInputFile> sceneInputs;  // the files the scene reads beyond its own text
   CameraPlacement placement;  // the robot's pose at the exposure start, its velocity (docs/motion.md)
   RigSpec rig;
   int spp = 1;
@@ -23,6 +25,8 @@ struct RenderRecord {
 };
 
 nlohmann::json rigToJson(const RigSpec& rig);
+// [{"path", "sha256"}, ...]: the scene's files beyond its own text (Scene::inputDigests).
+nlohmann::json sceneInputsToJson(const std::vector<SceneInputFile>& inputs);
 nlohmann::json sidecarJson(const RenderRecord& record);
 // Sidecar path of an image: OUT + ".json".
 std::string sidecarPath(const std::string& imagePath);

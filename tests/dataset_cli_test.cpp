@@ -502,6 +502,54 @@ TEST_F(DatasetCliTest, AShardChecksAgainAloneBeforeItsFirstManifest) {
   EXPECT_FALSE(fs::exists(dir_ / "race/shards/shard-1-of-2.json"));
 }
 
+// A scene is its text and the files it reads: a texture changed between runs makes another
+// dataset (resume and merge would mix frames of both), named in the refusal; the manifest and a
+// render's sidecar record each file's SHA-256 (checked against coreutils' sha256sum).
+TEST_F(DatasetCliTest, ATextureChangedBetweenRunsIsAnotherDataset) {
+  const auto writeTexture = [&](unsigned char red) {
+    const unsigned char pixels[4 * 3] = {red, 20, 30, 200, 100, 50, 10, 250, 90, 60, 60, 60};
+    const std::vector<unsigned char> png = image_io::encodePng("tiles.png", 2, 2, 3, 8, pixels, true);
+    fs::create_directories(dir_ / "scene/textures");
+    std::ofstream(dir_ / "scene/textures/tiles.png", std::ios::binary)
+        .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  };
+  writeTexture(200);
+  fs::create_directories(dir_ / "scene");
+  write("scene/floor.json", R"({"format": "omnicam-scene/1", "rig": {"height": 0.5},
+    "materials": {"tiles": {"color": [1, 1, 1], "texture": {"file": "textures/tiles.png", "scale": [20, 20]}}},
+    "objects": [{"type": "quad", "name": "floor", "material": "tiles",
+                 "origin": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]}]})");
+  const std::string spec = write("floor_spec.json", R"({"format": "omnicam-dataset/1", "scene": ")" + path("scene/floor.json") +
+                                                        R"(", "size": 32, "outputs": {"rgb": "png"}, "poses": {"list": [[0, 0, 0], [0.5, 0, 10]]}})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);
+  const std::string texture = path("scene/textures/tiles.png");
+  const std::string firstHash = testing::runShell("sha256sum " + texture + " | cut -c1-64").out.substr(0, 64);
+  const json inputs = json::parse(readFile(dir_ / "ds/manifest.json"))["scene"]["inputs"];
+  EXPECT_EQ(inputs, json::parse(R"([{"path": "textures/tiles.png", "sha256": ")" + firstHash + R"("}])")) << inputs.dump();
+  // The same files: the run resumes, every frame kept.
+  auto r = omnicam("dataset " + spec + " -o " + path("ds"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("(0 rendered, 2 kept from an earlier run)"), std::string::npos) << r.out;
+  // Another texture under the same name: refused, naming it; nothing of the dataset changes.
+  const std::map<std::string, std::string> before = snapshot(dir_ / "ds");
+  writeTexture(10);
+  r = omnicam("dataset " + spec + " -o " + path("ds"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("holds another dataset (the scene's file \"textures/tiles.png\" differs (its textures, environment or glTF "
+                       "files)): --overwrite replaces it"), std::string::npos) << r.out;
+  EXPECT_TRUE(snapshot(dir_ / "ds") == before);
+  // A shard rendered with the new texture does not join the old one's shards.
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/2").code, 0);
+  writeTexture(200);
+  r = omnicam("dataset " + spec + " -o " + path("parts") + " --shard 1/2");
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("the scene's file \"textures/tiles.png\" differs"), std::string::npos) << r.out;
+  // A render's sidecar names the texture and its hash too.
+  ASSERT_EQ(omnicam("render " + path("scene/floor.json") + " --size 32 -o " + path("one.png")).code, 0);
+  const json sidecar = json::parse(readFile(dir_ / "one.png.json"));
+  EXPECT_EQ(sidecar["scene"]["inputs"], inputs) << sidecar["scene"].dump();
+}
+
 TEST_F(DatasetCliTest, AnotherSpecsFolderIsRefusedUnlessOverwrite) {
   const std::string a = robocupSpec("a.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 3})");
   const std::string b = robocupSpec("b.json", R"("size": 64, "poses": {"path": "thesis-loop", "frames": 4})");

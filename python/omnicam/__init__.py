@@ -100,6 +100,17 @@ def _wrong_argument(message: str, kwargs: _typing.Dict[str, _typing.Any]) -> _ty
     return None
 
 
+def _placed_elsewhere(key: str, name: str) -> _typing.Optional[str]:
+    """The hint for a render setting given where it does not go: where it goes, or None."""
+    from . import _omnicam
+
+    for row in _omnicam._request_fields():
+        if row["python"] == key and row["place"]:
+            where = "Renderer(...)" if row["place"] == "Renderer" else "Renderer.render()"
+            return f" ({key} is an argument of {where}, not of {name}(); docs/render-settings.md)"
+    return None
+
+
 def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing.Callable[..., _typing.Any]:
     @_functools.wraps(function)
     def call(*args: _typing.Any, **kwargs: _typing.Any) -> _typing.Any:
@@ -114,7 +125,8 @@ def _checked(function: _typing.Callable[..., _typing.Any], name: str) -> _typing
             for key in kwargs:
                 if names and key not in names:
                     close = _difflib.get_close_matches(key, sorted(names), n=1)
-                    hint = f" (did you mean {close[0]}?)" if close else f" (it takes {', '.join(sorted(names))})"
+                    hint = _placed_elsewhere(key, name) or (
+                        f" (did you mean {close[0]}?)" if close else f" (it takes {', '.join(sorted(names))})")
                     raise TypeError(f"{name}(): unknown keyword argument {key!r}{hint}") from None
             # Positional arguments by the first overload's order, up to its bare "*" (what follows
             # is keyword-only): a method's self first, but a constructor's signature has none (its

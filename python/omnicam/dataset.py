@@ -9,7 +9,7 @@ import difflib
 import operator
 import os
 
-from ._omnicam import OUTPUTS, Rig, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
+from ._omnicam import OUTPUTS, InputError, Rig, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
 
 
 class Dataset:
@@ -54,7 +54,7 @@ class Dataset:
         cameras = self._reader.cameras
         self.camera = cameras[0] if camera is None else camera
         if self.camera not in cameras:
-            raise KeyError(f"camera {self.camera!r} is not in {self.path} (cameras: {', '.join(cameras)})")
+            raise InputError(f"camera {self.camera!r} is not in {self.path} (cameras: {', '.join(cameras)})")
         written = self._reader.header["outputs"]["written"]
         if isinstance(outputs, (str, bytes)):  # would be walked letter by letter
             raise TypeError(f"outputs must be a list of output names, such as [{outputs!r}] (got {type(outputs).__name__} {outputs!r})")
@@ -63,7 +63,7 @@ class Dataset:
             if output not in written:
                 close = difflib.get_close_matches(str(output), written, n=1)
                 hint = f"did you mean {close[0]}? " if close else ""
-                raise KeyError(f"output {output!r} is not in {self.path} ({hint}written: {', '.join(written)})")
+                raise InputError(f"output {output!r} is not in {self.path} ({hint}written: {', '.join(written)})")
 
     # The reader holds the whole manifest and open state: workers open their own.
     def __getstate__(self):

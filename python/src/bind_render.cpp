@@ -26,7 +26,12 @@ namespace {
 // An optional integer as the request reads it (its range is the request's rule, not Python's).
 std::optional<int64_t> wideInteger(const std::optional<PyInteger>& value, const std::string& name) {
   if (!value) return std::nullopt;
-  if (!value->fitsInt64) throw InputError(name + ": must be a 64-bit integer (got " + quote(value->text) + ")");
+  if (!value->fitsInt64) {  // beyond any setting's range: say the setting's range, as for any value out of it
+    std::string range = "a 64-bit integer";
+    for (const RequestFieldRow& row : requestFieldRows())
+      if (row.python && name == row.python) range = "an integer in " + row.range;
+    throw InputError(name + ": must be " + range + " (got " + shownInteger(value->text) + ")");
+  }
   return value->value;
 }
 

@@ -111,6 +111,15 @@ void bindScene(py::module_& m) {
       .def_property_readonly("path", [](const Scene& s) { return s.path; }, "The scene file it was loaded from.")
       .def_property_readonly("name", [](const Scene& s) { return s.name; }, "The scene's name: its file's name without .json.")
       .def_property_readonly("sha256", [](const Scene& s) { return s.sha256; }, "The SHA-256 of the scene file's bytes (hex), as manifests record it.")
+      .def_property_readonly(
+          "inputs",
+          [](const Scene& s) {
+            py::list inputs;
+            for (const SceneInputFile& input : s.inputDigests) inputs.append(py::make_tuple(input.path, input.sha256));
+            return inputs;
+          },
+          "The files the scene reads beyond its own text (textures, environment map, glTF files), as (path from the "
+          "scene's folder, SHA-256) in the order read, as manifests and sidecars record them.")
       .def_property("rig", [](const Scene& s) { return s.rig; }, [](Scene& s, const RigSpec& r) { s.rig = r; },
                     "The scene's rig (a copy: change it and assign it back, or pass it to a render).")
       .def_property_readonly("start_pose", [](const Scene& s) { return py::make_tuple(s.startPose.x, s.startPose.y, s.startPose.yawDeg); },

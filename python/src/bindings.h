@@ -33,6 +33,8 @@ struct PyInteger {
 // `value` as an int when it lies in [lo, hi]; InputError("<name>: must be an integer in [lo, hi]
 // (got …)") otherwise.
 int narrowed(const PyInteger& value, const std::string& name, int64_t lo, int64_t hi);
+// An integer's digits for a message, shortened past 40 characters.
+std::string shownInteger(const std::string& text);
 uint64_t narrowedSeed(const PyInteger& value, const std::string& name);
 
 // A file or folder's name as Python gives one: str, bytes or os.PathLike. No file name holds a NUL

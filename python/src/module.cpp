@@ -4,6 +4,7 @@
 #include "bindings.h"
 
 #include "errors.h"
+#include "file_confinement.h"
 #include "malloc_tuning.h"
 #include "memory_budget.h"
 #include "render_settings.h"
@@ -25,16 +26,21 @@ nlohmann::json fromPython(const py::handle& object, const std::string& what) {
   return parsed;
 }
 
+std::string shownInteger(const std::string& text) {
+  if (text.size() <= 40) return text;  // Python's digits (and a sign): nothing to escape
+  return text.substr(0, 20) + "… (" + std::to_string(text.size() - (text[0] == '-' ? 1 : 0)) + " digits)";
+}
+
 int narrowed(const PyInteger& value, const std::string& name, int64_t lo, int64_t hi) {
   if (!value.fitsInt64 || value.value < lo || value.value > hi)
     throw InputError(name + ": must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
-                     quote(value.text) + ")");
+                     shownInteger(value.text) + ")");
   return static_cast<int>(value.value);
 }
 
 uint64_t narrowedSeed(const PyInteger& value, const std::string& name) {
   if (!value.fitsUint64)
-    throw InputError(name + ": must be an integer in [0, 18446744073709551615] (got " + quote(value.text) + ")");
+    throw InputError(name + ": must be an integer in [0, 18446744073709551615] (got " + shownInteger(value.text) + ")");
   return value.unsignedValue;
 }
 
@@ -75,8 +81,18 @@ PYBIND11_MODULE(_omnicam, m) {
   keepFreedMemoryInTheHeap();
   // The library's errors keep their one-line messages. Bad input is a ValueError, a file that
   // cannot be written an OSError, a failing external tool (POV-Ray, Blender) a RuntimeError.
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError).doc() =
-      "Bad input (a value, a spec, a scene, a file's contents): its message names what and where, on one line.";
+  static py::exception<InputError>& inputError = py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  inputError.doc() = "Bad input (a value, a spec, a scene, a file's contents): its message names what and where, on one line.";
+  // Tried before register_exception's own translator: a file outside the scene's folder is allowed
+  // by this front's keyword, not by the CLI's flag.
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const InputError& e) {
+      const std::string message = withOutsideFilesHint(e.what(), "pass allow_outside_files=True to permit it");
+      PyErr_SetString(inputError.ptr(), message.c_str());
+    }
+  });
   py::register_exception<OutputError>(m, "OutputError", PyExc_OSError).doc() =
       "A file or folder could not be written (or would be written where it must not be); nothing is left half-written.";
   py::register_exception<MemoryShortage>(m, "MemoryShortage", PyExc_MemoryError).doc() =

@@ -98,11 +98,12 @@ def test_a_changed_file_fails_its_hash_check_and_a_link_is_never_followed(folder
 
 
 def test_unknown_cameras_outputs_and_folders_are_refused(folder, tmp_path):
-    with pytest.raises(KeyError, match="camera 'side'"):
+    # Bad arguments are bad input (InputError, a ValueError), as everywhere else in omnicam.
+    with pytest.raises(omnicam.InputError, match="camera 'side'"):
         omnicam.Dataset(folder, camera="side")
-    with pytest.raises(KeyError, match="output 'flow'"):
+    with pytest.raises(omnicam.InputError, match="output 'flow'"):
         omnicam.Dataset(folder, outputs=["flow"])
-    with pytest.raises(KeyError, match="output 'dept' .*did you mean depth\\?"):
+    with pytest.raises(omnicam.InputError, match="output 'dept' .*did you mean depth\\?"):
         omnicam.Dataset(folder, outputs=["dept"])
     with pytest.raises(TypeError, match=r"^outputs must be a list of output names, such as \['depth'\] \(got str 'depth'\)$"):
         omnicam.Dataset(folder, outputs="depth")

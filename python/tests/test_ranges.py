@@ -60,6 +60,18 @@ def test_mapping_arena_counts_and_seed_are_bounded():
     assert omnicam.mapping_arena(seed=2**64 - 1)["objects"]
 
 
+def test_an_integer_out_of_range_is_shown_as_python_wrote_it(robocup):
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.render(robocup, size=7)
+    assert str(raised.value) == "size: must be an integer in [8, 16384] (got 7)"
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.Renderer(robocup, mode="cubemap", face_size=2**64)
+    assert str(raised.value) == "face_size: must be an integer in 8–8192 (got 18446744073709551616)"
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.Renderer(robocup, threads=-10**50)
+    assert str(raised.value) == "threads: must be an integer in [0, 4096] (got -1000000000000000000… (51 digits))"
+
+
 @pytest.mark.parametrize("options", [{"faces": 7}, {"face_size": -1}, {"polygons": 17}])
 def test_cube_map_options_are_checked_when_the_renderer_is_made(robocup, options):
     with pytest.raises(omnicam.InputError):

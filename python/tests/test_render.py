@@ -30,7 +30,12 @@ def test_the_pixels_are_the_clis_exactly(robocup, tmp_path):
     (lambda s: omnicam.render(s, None, sizee=32), "render(): unknown keyword argument 'sizee' (did you mean size?)"),
     (lambda s: omnicam.Camera(s.rig).project([[1.0, 1.0, 0.0]], poze=POSE),
      "Camera.project(): unknown keyword argument 'poze' (did you mean pose?)"),
-], ids=["Renderer.render", "Renderer", "render", "Camera.project"])
+    # A setting given where it does not go is sent where it does.
+    (lambda s: omnicam.Renderer(s, spp=4), "Renderer(): unknown keyword argument 'spp' (spp is an argument of "
+                                           "Renderer.render(), not of Renderer(); docs/render-settings.md)"),
+    (lambda s: omnicam.Renderer(s).render(POSE, engine="povray"), "Renderer.render(): unknown keyword argument 'engine' "
+     "(engine is an argument of Renderer(...), not of Renderer.render(); docs/render-settings.md)"),
+], ids=["Renderer.render", "Renderer", "render", "Camera.project", "spp to Renderer", "engine to render"])
 def test_a_mistyped_keyword_is_named_with_the_one_meant(robocup, call, words):
     """As the CLI names a mistyped flag, in one line, instead of pybind11's list of signatures."""
     with pytest.raises(TypeError) as raised:

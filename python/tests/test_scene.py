@@ -34,6 +34,38 @@ def test_a_bad_scene_raises_the_clis_one_line_message(tmp_path):
     assert isinstance(raised.value, ValueError)
 
 
+def test_a_file_outside_the_scenes_folder_is_allowed_by_pythons_keyword_not_the_clis_flag(tmp_path):
+    folder = tmp_path / "scene"
+    folder.mkdir()
+    (tmp_path / "sky.hdr").write_bytes(b"not read")
+    scene = json.loads((SOURCE / "scenes" / "robocup2006.json").read_text())
+    scene["environment"] = {"file": "../sky.hdr"}
+    (folder / "s.json").write_text(json.dumps(scene))
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.load_scene(folder / "s.json")
+    message = str(raised.value)
+    assert message.endswith('"../sky.hdr" resolves outside the scene\'s folder (pass allow_outside_files=True to permit it)'), message
+    _, _, stderr = run_cli("render", folder / "s.json", "-o", tmp_path / "x.png")
+    assert stderr.strip().endswith("resolves outside the scene's folder (pass --allow-outside-files to permit it)"), stderr
+
+
+def test_a_scene_names_and_hashes_the_files_it_reads(tmp_path):
+    import hashlib
+
+    (tmp_path / "textures").mkdir()
+    png = (SOURCE / "tests" / "bad_inputs" / "outside.png").read_bytes()
+    (tmp_path / "textures" / "tiles.png").write_bytes(png)
+    scene = {"format": "omnicam-scene/1",
+             "materials": {"tiles": {"texture": {"file": "textures/tiles.png"}}, "again": {"texture": {"file": "textures/tiles.png"}}},
+             "objects": [{"type": "quad", "name": "floor", "material": "tiles",
+                          "origin": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]}]}
+    (tmp_path / "s.json").write_text(json.dumps(scene))
+    loaded = omnicam.load_scene(tmp_path / "s.json")
+    # Once, however many materials read it; the scene's own text is its sha256.
+    assert loaded.inputs == [("textures/tiles.png", hashlib.sha256(png).hexdigest())]
+    assert loaded.sha256 == hashlib.sha256((tmp_path / "s.json").read_bytes()).hexdigest()
+
+
 def test_files_are_named_by_str_or_pathlib_path(tmp_path):
     from_path = omnicam.load_scene(SOURCE / "scenes" / "robocup2006.json")
     assert from_path.sha256 == omnicam.load_scene(str(SOURCE / "scenes" / "robocup2006.json")).sha256
