@@ -17,6 +17,7 @@
 #include "render_request.h"
 #include "safe_files.h"
 #include "scene_loader.h"
+#include "sidecar.h"
 #include "number_format.h"
 
 namespace omnicam {
@@ -113,6 +114,9 @@ CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, co
                         {"seed", seed}, {"denoise", settings.denoise}, {"shading", shadingName(settings.shading)},
                         {"poses", nlohmann::json::array()}};
   for (const RobotPose& p : poses) key["poses"].push_back({p.x, p.y, p.yawDeg});
+  // A scene is also the files it reads (a texture changed under its name is another scene); a
+  // scene that reads none keys as before, so frames kept by earlier runs still serve.
+  if (!scene.inputDigests.empty()) key["scene_inputs"] = sceneInputsToJson(scene.inputDigests);
   const fs::path keyFile = data / (name + ".json");
   const auto frameFile = [&](size_t k) { return data / (name + "_" + std::to_string(k) + ".exr"); };
   // Only plain files are read back: a link planted in the folder is not followed.
