@@ -102,6 +102,11 @@ int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
 
 // --verify DIR: every file re-hashed against the manifest; exit 0 all right, 1 not.
 int runVerify(const std::string& dir) {
+  if (entryInside(dir, kManifestName) == EntryKind::Missing && !shardCountsIn(dir).empty()) {
+    // Shards not merged: nothing whole to verify yet; say what makes it whole (as --status does).
+    std::printf("FAIL: %s: shards not merged yet: no manifest.json to verify (%s)\n", dir.c_str(), unmergedShardsNextStep(dir).c_str());
+    return 1;
+  }
   const DatasetVerifyResult r = verifyDataset(dir);
   for (const std::string& problem : r.problems) std::printf("%s\n", problem.c_str());
   std::printf("%s: %s: %s checked, %s\n", r.ok() ? "PASS" : "FAIL", dir.c_str(), countOf(r.files, "file").c_str(),
@@ -208,6 +213,8 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
   }
   std::printf("wrote %s: %s (%d rendered, %d kept from an earlier run)\n", a.out.c_str(), countOf(r.frames, "frame").c_str(),
               r.rendered, r.kept);
+  if (!a.shard.empty())  // a shard is part of a dataset: what makes it whole
+    std::printf("shard %s of the dataset in %s: %s\n", a.shard.c_str(), a.out.c_str(), unmergedShardsNextStep(a.out).c_str());
   return 0;
 }
 

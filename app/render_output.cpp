@@ -19,8 +19,7 @@ nlohmann::json renderSidecar(const Scene& scene, const Engine& engine, const Cam
   record.rig = settings.rig;
   record.spp = settings.spp;
   record.shading = shadingName(settings.shading);
-  if (settings.shading == Shading::Path)
-    record.pathTracing = pathTracingRecord(settings);
+  record.pathTracing = randomSamplingRecord(record.engine, settings);
   record.mode = engine.mode();
   record.modeOptions = engine.modeOptions();
   record.seconds = seconds;

@@ -198,8 +198,8 @@ json manifestHeader(const DatasetSpec& spec, const Scene& scene, const Engine& e
                         {"depth", "metres along the viewing ray from where it leaves the camera (the effective viewpoint F' of a central "
                                   "rig, the mirror point of a physical one, a lens camera's centre of projection); 0 = no hit or beyond the rim"},
                         {"normal", "world frame, unit, facing the camera; 0 = no hit"}};
-  if (spec.request.shading == Shading::Path)
-    header["settings"]["path_tracing"] = pathTracingRecord(spec.request);
+  if (const json sampling = randomSamplingRecord(engine.name(), spec.request); !sampling.is_null())
+    header["settings"]["path_tracing"] = sampling;
   json written = json::array(), channels = json::object();
   for (OutputKind kind : plan.outputList()) {
     written.push_back(outputName(kind));

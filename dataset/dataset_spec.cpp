@@ -260,8 +260,8 @@ void readVibration(JsonFields fields, DatasetSpec& spec) {
   v.cameraRotationDeg = {rotation[0], rotation[1], rotation[2]};
   v.rigTiltDeg = {tilt[0], tilt[1]};
   v.robotTiltDeg = {robotTilt[0], robotTilt[1]};
+  fields.finish();  // a misspelt amplitude is named before "no amplitude" could blame the spec
   if (v.none()) throw InputError(showPath(spec.file) + ": vibration: needs an amplitude above 0 (or leave vibration out)");
-  fields.finish();
 }
 
 // The rule a camera name broke; the name itself too when it holds characters the user cannot

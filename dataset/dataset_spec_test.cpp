@@ -306,6 +306,7 @@ TEST(DatasetMotion, TimedWaypointsVibrationAndEurocAreStrict) {
           "not random poses");
   refuses(R"("poses": {"list": [[0, 0, 0]], "timestamps_s": [0]}, "motion": {"velocity": [1, 0, 0]})", "leave motion out");
   refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 3})", "vibration: needs an amplitude above 0");
+  refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 1, "position_mm": 1})", "vibration.position_mm: unknown field");
   refuses(R"("poses": {"path": "p"}, "vibration": {"rig_tilt_deg": [1, 0]})", "vibration.seed: missing required field");
   refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 1, "rig_tilt_deg": [11, 0]})", "vibration.rig_tilt_deg");
   refuses(R"("poses": {"path": "p"}, "vibration": {"seed": 1, "camera_offset_mm": [-1, 0, 0]})", "vibration.camera_offset_mm");

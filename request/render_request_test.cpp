@@ -10,6 +10,7 @@
 
 #include "engine_capabilities.h"
 #include "errors.h"
+#include "path_tracing_record.h"
 #include "render_settings.h"
 
 namespace omnicam {
@@ -91,6 +92,24 @@ TEST(RenderRequest, AbsentFieldsTakeOneSetOfDefaults) {
   EXPECT_EQ(m.cubeMap()->mode, OmniMode::ThesisMesh);
   EXPECT_EQ(m.cubeMap()->polygons, 64);
   EXPECT_EQ(m.cubeMap()->faceSize, cube.faceSize);
+}
+
+// A frame records its random sampling where it draws any: path frames their bounces too, every
+// Cycles frame its seed; a fast or POV-Ray lit frame draws nothing, and records nothing.
+TEST(RandomSamplingRecord, EveryFrameThatDrawsRandomNumbersRecordsItsSeed) {
+  RenderSampling lit;
+  lit.shading = Shading::Lit;
+  lit.seed = 7;
+  EXPECT_EQ(randomSamplingRecord("blender", lit), nlohmann::json({{"seed", 7}, {"denoise", false}}));
+  EXPECT_TRUE(randomSamplingRecord("fast", lit).is_null());
+  EXPECT_TRUE(randomSamplingRecord("povray", lit).is_null());
+  RenderSampling path = lit;
+  path.shading = Shading::Path;
+  path.bounces = 3;
+  path.denoise = true;
+  const nlohmann::json traced = {{"bounces", 3}, {"seed", 7}, {"denoise", true}};
+  EXPECT_EQ(randomSamplingRecord("fast", path), traced);
+  EXPECT_EQ(randomSamplingRecord("blender", path), traced);
 }
 
 std::string refusal(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs = false) {

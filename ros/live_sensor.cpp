@@ -253,12 +253,20 @@ void checkLiveSpec(const DatasetPlan& plan, const LiveSensorOptions& options) {
       throw InputError("ros: the poses' frame is the robot's frame itself (" + quote(options.baseFrame) +
                        "): give the frame the robot moves in (map or odom)");
   }
-  std::vector<std::string> names = {"/" + options.robot, options.tfParent.empty() ? options.odometryTopic : "/" + options.tfParent,
-                                    "/" + options.baseFrame};
-  for (const CameraSetup& setup : plan.setups()) names.push_back(cameraTopic(options, setup.camera->name, "image_raw"));
-  for (const std::string& name : names)
+  // Each name ROS will see, with what the user gave it as.
+  std::vector<std::pair<std::string, std::string>> names = {
+      {"/" + options.robot, "the robot name"},
+      options.tfParent.empty() ? std::pair{options.odometryTopic, std::string("the odometry topic")}
+                               : std::pair{"/" + options.tfParent, std::string("the poses' frame")},
+      {"/" + options.baseFrame, "the robot's frame"}};
+  for (size_t c = 0; c < plan.setups().size(); ++c) {
+    const std::string& camera = plan.setups()[c].camera->name;
+    names.push_back({cameraTopic(options, camera, "image_raw"),
+                     "camera " + quote(camera) + " (" + showPath(plan.spec().file) + ": cameras[" + std::to_string(c) + "].name)"});
+  }
+  for (const auto& [name, given] : names)
     if (const std::string why = ros1::invalidGraphName(name); !why.empty())
-      throw InputError("ros: " + quote(name) + " is not a ROS name: " + why);
+      throw InputError("ros: " + given + ": " + quote(name) + " is not a ROS name: " + why);
   // Any vibration, the robot's tilt alone included (a rig that does not shake still rocks).
   if (!plan.spec().vibration.none())
     throw InputError(showPath(plan.spec().file) +

@@ -908,10 +908,15 @@ TEST(LiveSensor, RefusesNamesRosCannotTake) {
   text.replace(text.find("\"front\""), 7, "\"front-left\"");
   std::ofstream(root / "camera.json") << text;
   std::ofstream(root / "spec.json") << specText();
-  for (const std::string& arguments : {(root / "camera.json").string(), (root / "spec.json").string() + " --robot 'my bot'"}) {
+  // Each names what the user gave: the spec's field, or the robot name.
+  const std::pair<std::string, std::string> named[] = {
+      {(root / "camera.json").string(), "ros: camera \"front-left\" (" + (root / "camera.json").string() + ": cameras[0].name): "},
+      {(root / "spec.json").string() + " --robot 'my bot'", "ros: the robot name: \"/my bot\" is not a ROS name"}};
+  for (const auto& [arguments, words] : named) {
     const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + arguments + " 2>&1");
     EXPECT_EQ(run.code, 2) << run.out;
     EXPECT_NE(run.out.find("is not a ROS name"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find(words), std::string::npos) << run.out;
     EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
   }
   // Frame ids tf2 refuses (tf1's leading '/'), empty names and values that would silently mean

@@ -8,6 +8,7 @@
 #include "errors.h"
 #include "image.h"
 #include "scene_loader.h"
+#include "shell_command.h"
 
 namespace omnicam {
 namespace {
@@ -102,6 +103,11 @@ TEST_F(EnvironmentLoadTest, AnEquirectangularImageLoadsWithItsStrengthAndRotatio
   EXPECT_EQ(scene_.environment->file, "forest");
   EXPECT_EQ(scene_.environment->image->width(), 1024);
   EXPECT_EQ(scene_.environment->image->height(), 512);
+  // It is one of the files the scene reads, by its full path, hashed (independently: coreutils).
+  const std::string forest = "/usr/share/blender/datafiles/studiolights/world/forest.exr";
+  ASSERT_EQ(scene_.inputDigests.size(), 1u);
+  EXPECT_EQ(scene_.inputDigests[0].path, forest);
+  EXPECT_EQ(scene_.inputDigests[0].sha256, testing::runShell("sha256sum " + forest).out.substr(0, 64));
 }
 
 TEST_F(EnvironmentLoadTest, BadEnvironmentsAreRefusedWithOneLine) {

@@ -146,6 +146,8 @@ Environment readEnvironment(JsonFields e, const Context& ctx) {
   environment.rotationDeg = e.number("rotation_deg", 0.0, {-360.0, 360.0});
   e.finish();  // every field checked before the image is decoded
   const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
+  // Blender's world is read like a file of the scene's (a scene's inputs name it by its full path).
+  if (key != "file" && ctx.inputFiles) ctx.inputFiles->push_back(resolved.string());
   ImageRGBA image;
   try {
     image = readImage(resolved.string());  // non-finite values read as 0

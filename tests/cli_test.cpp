@@ -601,6 +601,9 @@ TEST_F(CliTest, ExportWritesARenderableBlenderJob) {
   const std::string render = "cd " + path("job") + " && HOME=" + path("job") + " " + command + " >/dev/null 2>&1";
   ASSERT_EQ(std::system(render.c_str()), 0);
   ASSERT_EQ(run("render " + kScene + " --engine blender --size 48 --spp 4 --shading lit -o " + path("engine.exr")).code, 0);
+  // Cycles samples every frame: its seed is part of what the frame is, and the sidecar says it.
+  std::ifstream sidecar(path("engine.exr.json"));
+  EXPECT_EQ(nlohmann::json::parse(sidecar)["path_tracing"], nlohmann::json({{"seed", 0}, {"denoise", false}}));
   const CommandResult same = run("compare " + path("engine.exr") + " " + path("job/render.exr") + " --json", "", "/dev/null");
   ASSERT_EQ(same.code, 0) << same.out;
   EXPECT_EQ(nlohmann::json::parse(same.out)["max_abs"].get<double>(), 0.0) << same.out;
@@ -616,6 +619,7 @@ TEST_F(CliTest, SidecarsRecordTheRealModeAndItsOptions) {
   };
   ASSERT_EQ(run("render " + kScene + " --size 64 -o " + path("exact.png")).code, 0);
   EXPECT_EQ(sidecar(path("exact.png"))["mode"], "exact");
+  EXPECT_FALSE(sidecar(path("exact.png")).contains("path_tracing"));  // nothing random in it
   EXPECT_TRUE(sidecar(path("exact.png"))["mode_options"].empty());
   ASSERT_EQ(run("render " + kScene + " --size 64 --mode cubemap --faces 5 --face-size 128 -o " + path("cube.png")).code, 0);
   const auto cube = sidecar(path("cube.png"));

@@ -604,8 +604,16 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("whole")).code, 0);
   // Shards in any order; the merge lists what is missing and exits 1 until all are there.
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 2/3").code, 0);
-  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/3").code, 0);
-  auto r = omnicam("dataset --status " + path("parts"));
+  auto r = omnicam("dataset " + spec + " -o " + path("parts") + " --shard 0/3");
+  ASSERT_EQ(r.code, 0) << r.out;
+  // A shard says it is part of a dataset, and what makes that whole; --verify says the same.
+  EXPECT_NE(r.out.find("shard 0/3 of the dataset in " + path("parts") + ": run the shards not yet finished (--shard I/3"),
+            std::string::npos) << r.out;
+  r = omnicam("dataset --verify " + path("parts"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("FAIL: " + path("parts") + ": shards not merged yet: no manifest.json to verify (run the shards not yet "
+                       "finished (--shard I/3"), std::string::npos) << r.out;
+  r = omnicam("dataset --status " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("shard 1/3: not started"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("(run the shards not yet finished (--shard I/3; omnicam dataset --status "), std::string::npos) << r.out;
