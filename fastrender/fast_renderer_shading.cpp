@@ -89,7 +89,7 @@ void FastRenderer::shadePacket(const HitPacket& hits, Shading shading, Vec3f* co
       toLamp[k] = offset / distance;
       cosine[k] = faced[k].dot(toLamp[k]);
       if (cosine[k] <= 0.0) continue;
-      const double off = surfaceOffset(surfaces[k].point);
+      const double off = rays_.surfaceOffset(surfaces[k].point);
       origins[k] = surfaces[k].point + off * faced[k];
       tNear[k] = 0.0;
       tFar[k] = distance - off;

@@ -211,7 +211,7 @@ Vec3f PathTracer::lightSample(const Luminaire& l, double selection, const Vec3& 
     // The BRDF strategy runs for bsdfShare of the samples: its weight counts that many (Veach's n).
     weight = powerHeuristic(lightPdf, bsdfShare * cosine / kPi) / lightPdf;
   }
-  const double off = surfaceOffset(point);  // secondary rays start off the surface (ray_scene.h)
+  const double off = rays_.surfaceOffset(point);  // secondary rays start off the surface (ray_scene.h)
   if (rays_.occluded(point + off * normal, toLight, 0.0, distance - 2.0 * off)) return Vec3f::Zero();
   return static_cast<float>(weight * cosine) * brdf.cwiseProduct(l.emitted);
 }
@@ -227,7 +227,7 @@ Vec3f PathTracer::environmentSample(double selection, const Vec3& point, const V
   if (nearestDisc(point, s.direction, std::numeric_limits<double>::infinity(), tDisc) >= 0) return Vec3f::Zero();
   const double lightPdf = selection * s.pdf;
   const double weight = powerHeuristic(lightPdf, bsdfShare * cosine / kPi) / lightPdf;
-  if (rays_.occluded(point + surfaceOffset(point) * normal, s.direction, 0.0, std::numeric_limits<double>::infinity()))
+  if (rays_.occluded(point + rays_.surfaceOffset(point) * normal, s.direction, 0.0, std::numeric_limits<double>::infinity()))
     return Vec3f::Zero();
   return static_cast<float>(weight * cosine) * brdf.cwiseProduct(s.radiance);
 }
@@ -385,7 +385,7 @@ PathSample PathTracer::cameraRay(const Vec3& cameraOrigin, const Vec3& cameraDir
     double cosine = 0.0;
     direction = cosineWeighted(normal, u, cosine);
     bsdfPdf = scatterShare * cosine / kPi;  // per sample of the pixel: for the MIS of a disc it meets
-    origin = hit->point + surfaceOffset(hit->point) * normal;
+    origin = hit->point + rays_.surfaceOffset(hit->point) * normal;
   }
   return {radiance, emitted.value_or(radiance), direct.value_or(radiance), firstAlbedo, surface};
 }

@@ -8,6 +8,7 @@
 
 #include "analytic_shapes.h"
 #include "errors.h"
+#include "scene_translation.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -30,8 +31,10 @@ void boundsCallback(const RTCBoundsFunctionArguments* args) {
   if (auto s = std::get_if<Sphere>(g->shape)) b = bounds(*s);
   else if (auto c = std::get_if<Cylinder>(g->shape)) b = bounds(*c);
   else b = bounds(std::get<Disc>(*g->shape));
+  b.first -= g->embreeOrigin;
+  b.second -= g->embreeOrigin;
   // Pad by a float ulp-scale margin so that float bounds never clip the exact surface.
-  const double pad = 1e-6 * (1.0 + b.second.cwiseAbs().maxCoeff());
+  const double pad = 1e-6 * (1.0 + std::max(b.first.cwiseAbs().maxCoeff(), b.second.cwiseAbs().maxCoeff()));
   RTCBounds* out = args->bounds_o;
   out->lower_x = static_cast<float>(b.first.x() - pad);
   out->lower_y = static_cast<float>(b.first.y() - pad);
@@ -50,7 +53,7 @@ void intersectCallback(const RTCIntersectFunctionNArguments* args) {
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
     if (!args->valid[i]) continue;
-    const Vec3 o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
+    const Vec3 o = Vec3(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i)) + g->embreeOrigin;
     const Vec3 d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
     const auto hit = intersectAnalytic(*g->shape, o, d, RTCRayN_tnear(rays, N, i), RTCRayN_tfar(rays, N, i));
     if (!hit) continue;
@@ -72,13 +75,14 @@ void occludedCallback(const RTCOccludedFunctionNArguments* args) {
   const unsigned N = args->N;
   for (unsigned i = 0; i < N; ++i) {
     if (!args->valid[i]) continue;
-    const Vec3 o(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i));
+    const Vec3 o = Vec3(RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i)) + g->embreeOrigin;
     const Vec3 d(RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i));
     if (intersectAnalytic(*g->shape, o, d, RTCRayN_tnear(rays, N, i), RTCRayN_tfar(rays, N, i)))
       RTCRayN_tfar(rays, N, i) = -std::numeric_limits<float>::infinity();
   }
 }
 
+// `o` in Embree's frame.
 RTCRay makeRay(const Vec3& o, const Vec3& d, double tNear, double tFar) {
   RTCRay ray{};
   ray.org_x = static_cast<float>(o.x());
@@ -124,6 +128,8 @@ RayScene::RayScene(const Scene& scene) {
   }
   // Embree reports errors through a callback; without one they are silently lost.
   rtcSetDeviceErrorFunction(device_, recordEmbreeError, &errors_);
+  const Vec3 nearStart = wholeMetreNear(scene.startPose);
+  if (nearStart.cwiseAbs().maxCoeff() > 64.0) embreeOrigin_ = nearStart;
   try {
     scene_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
@@ -146,6 +152,7 @@ void RayScene::addObjects(const Scene& scene) {
     if (analytic) {
       g->analytic = true;
       g->shape = &obj.shape;
+      g->embreeOrigin = embreeOrigin_;
       geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
       rtcSetGeometryUserPrimitiveCount(geom, 1);
       rtcSetGeometryUserData(geom, g.get());
@@ -158,13 +165,14 @@ void RayScene::addObjects(const Scene& scene) {
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                             3 * sizeof(float), mesh.vertices.size()));
       for (size_t k = 0; k < mesh.vertices.size(); ++k)
-        for (int c = 0; c < 3; ++c) v[3 * k + c] = static_cast<float>(mesh.vertices[k][c]);
+        for (int c = 0; c < 3; ++c) v[3 * k + c] = static_cast<float>(mesh.vertices[k][c] - embreeOrigin_[c]);
       auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(unsigned), mesh.triangles.size()));
       for (size_t k = 0; k < mesh.triangles.size(); ++k)
         for (int c = 0; c < 3; ++c) idx[3 * k + c] = static_cast<unsigned>(mesh.triangles[k][c]);
       for (const auto& uv : mesh.uvs) g->vertexUv.push_back(uv.cast<float>());
-      for (const Vec3& vertex : mesh.vertices) g->vertices.push_back(vertex.cast<float>().cast<double>());
+      for (size_t k = 0; k < mesh.vertices.size(); ++k)
+        g->vertices.push_back(Vec3(v[3 * k], v[3 * k + 1], v[3 * k + 2]));  // exactly what Embree holds
       g->triangles = mesh.triangles;
     }
     rtcCommitGeometry(geom);
@@ -211,6 +219,7 @@ struct TriangleCrossing {
 };
 
 // Empty for a ray in the triangle's plane or a triangle without area (Embree's own numbers then).
+// `origin` in Embree's frame, as the vertices.
 std::optional<TriangleCrossing> crossing(const Geometry& g, unsigned primID, const Vec3& origin, const Vec3& direction) {
   const Eigen::Vector3i& tri = g.triangles[primID];
   const Vec3& a = g.vertices[tri[0]];
@@ -239,7 +248,7 @@ void RayScene::fillHit(const Vec3& origin, const Vec3& direction, float t, unsig
     hit.uv = uvOf(geomID, primID, u, v);
     return;
   }
-  const std::optional<TriangleCrossing> c = crossing(g, primID, origin, direction);
+  const std::optional<TriangleCrossing> c = crossing(g, primID, origin - embreeOrigin_, direction);
   hit.t = c ? c->t : t;
   hit.point = origin + hit.t * direction;
   hit.normal = c ? c->normal.normalized() : ng.normalized();
@@ -252,7 +261,7 @@ Eigen::Vector2d HitPacket::uv(int k) const {
   const unsigned geomID = rayhit_.hit.geomID[k], primID = rayhit_.hit.primID[k];
   const Geometry& g = *scene_->geometries_[geomID];
   if (g.analytic) return scene_->uvOf(geomID, primID, rayhit_.hit.u[k], rayhit_.hit.v[k]);
-  const std::optional<TriangleCrossing> c = crossing(g, primID, origin(k), direction(k));
+  const std::optional<TriangleCrossing> c = crossing(g, primID, origin(k) - scene_->embreeOrigin_, direction(k));
   return c ? scene_->uvOf(geomID, primID, c->u, c->v) : scene_->uvOf(geomID, primID, rayhit_.hit.u[k], rayhit_.hit.v[k]);
 }
 
@@ -269,7 +278,7 @@ std::optional<SurfaceHit> RayScene::intersect(const Vec3& origin, const Vec3& di
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rayhit;
-  rayhit.ray = makeRay(origin, direction, 0.0, std::numeric_limits<float>::infinity());
+  rayhit.ray = makeRay(origin - embreeOrigin_, direction, 0.0, std::numeric_limits<float>::infinity());
   rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rayhit);
@@ -283,7 +292,7 @@ std::optional<SurfaceHit> RayScene::intersect(const Vec3& origin, const Vec3& di
 bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear, double tFar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray = makeRay(origin, direction, tNear, tFar);
+  RTCRay ray = makeRay(origin - embreeOrigin_, direction, tNear, tFar);
   rtcOccluded1(scene_, &context, &ray);
   return ray.tfar < 0.0f;
 }
@@ -291,6 +300,7 @@ bool RayScene::occluded(const Vec3& origin, const Vec3& direction, double tNear,
 namespace {
 static_assert(kRayPacketSize == 8, "the packet calls below are rtcIntersect8/rtcOccluded8");
 
+// `o` in Embree's frame.
 void setPacketRay(RTCRay8& rays, int k, const Vec3& o, const Vec3& d, double tNear, double tFar) {
   rays.org_x[k] = static_cast<float>(o.x());
   rays.org_y[k] = static_cast<float>(o.y());
@@ -315,6 +325,7 @@ HitPacket::HitPacket() {
     rays.mask[k] = 0xFFFFFFFFu;
     rays.id[k] = static_cast<unsigned>(k);
     rays.flags[k] = 0;
+    rays.org_x[k] = rays.org_y[k] = rays.org_z[k] = 0.0f;  // set per packet by intersectPacket
     rays.dir_x[k] = rays.dir_y[k] = 0.0f;
     rays.dir_z[k] = 1.0f;
   }
@@ -324,14 +335,10 @@ void HitPacket::begin(const Vec3& origin, int count) {
   count_ = count;
   mask_ = 0;
   RTCRay8& rays = rayhit_.ray;
-  const float x = static_cast<float>(origin.x()), y = static_cast<float>(origin.y()), z = static_cast<float>(origin.z());
   origin_ = origin;
   eachOrigin_ = false;
   for (int k = 0; k < kRayPacketSize; ++k) {
     rays.tnear[k] = 0.0f;
-    rays.org_x[k] = x;
-    rays.org_y[k] = y;
-    rays.org_z[k] = z;
     rays.tfar[k] = std::numeric_limits<float>::infinity();
     rayhit_.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     rayhit_.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
@@ -358,7 +365,8 @@ void RayScene::intersectPacket(HitPacket& packet) const {
   rtcInitIntersectContext(&context);
   if (packet.count_ == 1) {  // a lone ray: the single-ray query, its answer copied into lane 0
     RTCRayHit single;
-    single.ray = makeRay(packet.origin(0), packet.direction(0), rayhit.ray.tnear[0], std::numeric_limits<float>::infinity());
+    single.ray = makeRay(packet.origin(0) - embreeOrigin_, packet.direction(0), rayhit.ray.tnear[0],
+                         std::numeric_limits<float>::infinity());
     single.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     single.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &context, &single);
@@ -377,6 +385,13 @@ void RayScene::intersectPacket(HitPacket& packet) const {
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   alignas(64) int valid[kRayPacketSize];
   for (int k = 0; k < kRayPacketSize; ++k) valid[k] = k < packet.count_ ? -1 : 0;
+  // Each lane's origin into Embree's frame (the packet holds them in the world's).
+  for (int k = 0; k < packet.count_; ++k) {
+    const Vec3 o = packet.origin(k) - embreeOrigin_;
+    rayhit.ray.org_x[k] = static_cast<float>(o.x());
+    rayhit.ray.org_y[k] = static_cast<float>(o.y());
+    rayhit.ray.org_z[k] = static_cast<float>(o.z());
+  }
   rtcIntersect8(valid, scene_, &context, &rayhit);
   for (int k = 0; k < packet.count_; ++k)
     if (rayhit.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) packet.mask_ |= 1u << k;
@@ -397,7 +412,7 @@ uint32_t RayScene::occludedPacket(const Vec3* origins, const Vec3* directions, c
   for (int k = 0; k < kRayPacketSize; ++k) {
     const bool live = (active >> k) & 1u;
     valid[k] = live ? -1 : 0;
-    if (live) setPacketRay(packet, k, origins[k], directions[k], tNear[k], tFar[k]);
+    if (live) setPacketRay(packet, k, origins[k] - embreeOrigin_, directions[k], tNear[k], tFar[k]);
     else setPacketRay(packet, k, Vec3::Zero(), Vec3(0, 0, 1), 0.0, 0.0);
   }
   rtcOccluded8(valid, scene_, &context, &packet);

@@ -27,12 +27,6 @@ struct SurfaceHit {
 
 constexpr int kRayPacketSize = 8;
 
-// How far a ray leaving a surface at `point` starts off it (metres), so that it does not hit that
-// surface again: 10 µm, or more where Embree's 32-bit floats hold the surface less precisely than
-// that (8·2⁻²³ of the point's largest coordinate, 8–16 ulps: from about 10 m out; 2 mm at 2 km).
-inline double surfaceOffset(const Vec3& point) {
-  return std::max(1e-5, 8.0 * std::numeric_limits<float>::epsilon() * point.cwiseAbs().maxCoeff());
-}
 class RayScene;
 
 // Embree's code paths (ISAs) round differently — fused multiply-adds, approximate reciprocals,
@@ -55,16 +49,13 @@ class HitPacket {
   // The rays to trace next: `count` ≤ kRayPacketSize of them from `origin` (or each from its own,
   // given by setOrigin), each given its direction by setDirection. Lanes keep their other fields
   // between packets.
-  void begin(const Vec3& origin, int count);
+  void begin(const Vec3& origin, int count);  // (world coordinates throughout: the scene moves them into Embree's)
   // The same for rays that each get their own origin (setOrigin, every one of the `count`).
   void beginEach(int count);
   // Ray k starts at o + tStart·direction; surface(k).t is measured from there.
   void setOrigin(int k, const Vec3& o, float tStart) {
     eachOrigin_ = true;
     origins_[k] = o;
-    rayhit_.ray.org_x[k] = static_cast<float>(o.x());
-    rayhit_.ray.org_y[k] = static_cast<float>(o.y());
-    rayhit_.ray.org_z[k] = static_cast<float>(o.z());
     rayhit_.ray.tnear[k] = tStart;
   }
   void setDirection(int k, const Eigen::Vector3f& d) {
@@ -95,9 +86,14 @@ class HitPacket {
   Vec3 origins_[kRayPacketSize];
   int count_ = 0;
   uint32_t mask_ = 0;
-  RTCRayHit8 rayhit_;  // lane k: Embree's answer for ray k
+  RTCRayHit8 rayhit_;  // lane k: Embree's answer for ray k (its origin in Embree's frame: intersectPacket sets it)
 };
 
+// Embree holds the scene in 32-bit floats. Near the world's origin they hold it to micrometres;
+// a scene kilometres out (scenes may span ±10 km) would lose a millimetre at 9 km. So Embree's
+// coordinates count from `embreeOrigin()`: the whole metre nearest the scene's start pose when
+// that lies more than 64 m out (where a float's step passes 4 µm), else the world's origin (every
+// number as it was). Callers speak world coordinates; the move is this class's alone.
 class RayScene {
  public:
   explicit RayScene(const Scene& scene);
@@ -121,6 +117,15 @@ class RayScene {
   uint32_t occludedPacket(const Vec3* origins, const Vec3* directions, const double* tNear, const double* tFar,
                           uint32_t active) const;
 
+  // The world point Embree's coordinates count from (see above).
+  const Vec3& embreeOrigin() const { return embreeOrigin_; }
+  // How far a ray leaving a surface at `point` starts off it (metres), so that it does not hit that
+  // surface again: 10 µm, or more where Embree's floats hold the surface less precisely than that
+  // (8·2⁻²³ of the point's largest coordinate in Embree's frame, 8–16 ulps: from about 10 m out).
+  double surfaceOffset(const Vec3& point) const {
+    return std::max(1e-5, 8.0 * std::numeric_limits<float>::epsilon() * (point - embreeOrigin_).cwiseAbs().maxCoeff());
+  }
+
   // Errors Embree reported through its callback; the first one is kept.
   struct Errors {
     std::mutex mutex;
@@ -133,8 +138,9 @@ class RayScene {
     bool analytic = false;                     // user geometry: hit.u/v hold texture UVs
     std::vector<Eigen::Vector2f> vertexUv;     // triangles: UV per vertex
     std::vector<Eigen::Vector3i> triangles;    // triangles: vertex indices
-    std::vector<Vec3> vertices;                // triangles: the vertices Embree holds (float)
-    const Shape* shape = nullptr;              // analytic: the primitive
+    std::vector<Vec3> vertices;                // triangles: the vertices Embree holds (float, in Embree's frame)
+    const Shape* shape = nullptr;              // analytic: the primitive (world coordinates)
+    Vec3 embreeOrigin = Vec3::Zero();          // analytic: where Embree's frame is in the world
   };
 
  private:
@@ -150,6 +156,7 @@ class RayScene {
   void fillHit(const Vec3& origin, const Vec3& direction, float t, unsigned geomID, unsigned primID, float u, float v,
                const Vec3& ng, SurfaceHit& hit) const;  // std::runtime_error (an internal error) if Embree reported one
   mutable Errors errors_;
+  Vec3 embreeOrigin_ = Vec3::Zero();
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<std::unique_ptr<Geometry>> geometries_;  // indexed by Embree geomID
