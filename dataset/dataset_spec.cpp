@@ -358,7 +358,7 @@ void readRequest(JsonFields& top, DatasetSpec& spec) {
   }
   for (const auto& [objectName, rows] : nested) {
     for (const RequestFieldRow* row : rows)  // written one level too high ("faces" for "mode_options.faces")
-      if (const std::string leaf = std::string(row->json).substr(objectName.size() + 1); top.has(leaf))
+      if (const std::string leaf = std::string(row->json).substr(objectName.size() + 1); spec.json.contains(leaf))  // not top.has: that would make it a name typos are told to mean
         top.fail(leaf, "unknown field (did you mean " + std::string(row->json) + "?)");
     auto object = top.optionalObject(objectName);
     if (!object) continue;

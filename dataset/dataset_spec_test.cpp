@@ -52,6 +52,7 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("outputs": {"depht": true})")), "spec.json: outputs.depht: unknown field (did you mean depth?)");
   // A mode option written beside "mode" instead of in mode_options is pointed there.
   EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "faces": 5)")), "spec.json: faces: unknown field (did you mean mode_options.faces?)");
+  EXPECT_EQ(errorOf(spec(R"("mode": "cubemap", "facs": 5)")), "spec.json: facs: unknown field");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "a"}])")),
             "spec.json: cameras[1].name: duplicate camera name \"a\"");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "../x"}])")),

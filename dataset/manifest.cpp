@@ -250,9 +250,11 @@ json datasetIdentity(const json& header) {
   // Words for people: a new description or comment is the same dataset.
   json spec = withoutComments(header.at("spec"));
   if (spec.is_object()) spec.erase("description");
+  // A manifest written before omnicam recorded the scene's files has no "inputs": null, compared
+  // with nothing (what it rendered from cannot be told).
   return {{"spec", spec},
           {"scene_sha256", header.at("scene").at("sha256")},
-          {"scene_inputs", header.at("scene").value("inputs", json::array())},
+          {"scene_inputs", header.at("scene").value("inputs", json())},
           {"engine", header.at("engine")}};
 }
 
@@ -269,7 +271,7 @@ std::string sceneInputsDifference(const json& a, const json& b) {
     if (!y.count(path) || y.at(path) != hash) names.insert(path);
   for (const auto& [path, hash] : y)
     if (!x.count(path)) names.insert(path);
-  if (names.empty()) return a == b ? "" : "the scene's files are read in another order";
+  if (names.empty()) return "";
   std::string named;
   size_t shown = 0;
   for (const std::string& name : names) {
@@ -301,8 +303,9 @@ std::string identityDifference(const json& a, const json& b) {
     parts.push_back(fields.empty() ? "the spec differs" : "the spec's " + named + (fields.size() == 1 ? " differs" : " differ"));
   }
   if (x.at("scene_sha256") != y.at("scene_sha256")) parts.push_back("the scene's bytes differ");
-  if (const std::string files = sceneInputsDifference(x.at("scene_inputs"), y.at("scene_inputs")); !files.empty())
-    parts.push_back(files);
+  if (!x.at("scene_inputs").is_null() && !y.at("scene_inputs").is_null())
+    if (const std::string files = sceneInputsDifference(x.at("scene_inputs"), y.at("scene_inputs")); !files.empty())
+      parts.push_back(files);
   if (x.at("engine") != y.at("engine")) parts.push_back("the engine differs");
   std::string text;
   for (const std::string& part : parts) text += (text.empty() ? "" : "; ") + part;

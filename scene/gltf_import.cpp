@@ -9,6 +9,7 @@
 #include <set>
 
 #include "errors.h"
+#include "sha256.h"
 #include "file_confinement.h"
 #include "image.h"
 #include "input_limits.h"
@@ -29,7 +30,7 @@ struct LoadContext {
   fs::path confineTo;  // empty: anywhere
   std::string problem;
   int images = 0;
-  std::vector<std::string> filesRead;
+  std::vector<GltfArena::FileRead> filesRead;
 };
 
 // tinygltf looks for a URI under the glTF's folder and then under the working directory; it joins
@@ -76,7 +77,7 @@ bool readWholeFileConfined(std::vector<unsigned char>* out, std::string* err, co
     why = quote(target->uri) + " " + std::string(kOutsideFolderWords);
   } else if (const auto bytes = readWholeFile(target->file.string(), why)) {
     out->assign(bytes->begin(), bytes->end());
-    ctx->filesRead.push_back(target->file.string());
+    ctx->filesRead.push_back({target->file.string(), target->uri, sha256OfBytes(*bytes)});  // the bytes decoded
     return true;
   }
   if (ctx->problem.empty()) ctx->problem = why;

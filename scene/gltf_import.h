@@ -21,7 +21,12 @@ namespace omnicam {
 struct GltfArena {
   std::vector<Material> materials;
   std::vector<SceneObject> objects;  // SceneObject::material indexes `materials`
-  std::vector<std::string> filesRead;  // the files it refers to: buffers and images (not itself)
+  // The files it refers to (buffers and images, not itself): each as read, its URI as the glTF
+  // writes it, and the SHA-256 of the bytes read.
+  struct FileRead {
+    std::string file, uri, sha256;
+  };
+  std::vector<FileRead> filesRead;
 };
 
 struct GltfImportOptions {

@@ -93,8 +93,9 @@ struct CameraPath {
 };
 
 // A file the scene reads beyond its own text (a texture, an environment map, a glTF file and its
-// buffers and images): its path from the scene's folder (as loaded, '/'-separated) and the SHA-256
-// of its bytes. A dataset compares them on resume and merge, a sidecar records them: a scene whose
+// buffers and images): its path as the scene writes it, from the scene's folder ('/'-separated,
+// lexically normal: the same on every machine; an absolute one, or Blender's named world, by its
+// full path) and the SHA-256 of its bytes. A dataset compares them on resume and merge, a sidecar records them: a scene whose
 // texture changed is another scene although its own bytes did not.
 struct SceneInputFile {
   std::string path;
@@ -108,7 +109,7 @@ struct Scene {
   // Every file the scene was read from: itself, its textures, environment and glTF files and
   // theirs. An output must be none of them (writing one would destroy what is read).
   std::vector<std::string> inputFiles;
-  // The files it reads beyond its own text, each once, in the order read (SceneInputFile).
+  // The files it reads beyond its own text, each once, by path (SceneInputFile).
   std::vector<SceneInputFile> inputDigests;
   std::string name;
   Vec3f background{0.0f, 0.0f, 0.0f};

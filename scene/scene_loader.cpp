@@ -27,13 +27,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A file the scene read beyond its text: its name as the scene writes it (from the scene's folder,
+// lexically: the same on every machine), the file read, and the SHA-256 of the bytes read where
+// the reader had them (else hashed once loaded).
+struct InputRead {
+  std::string name, file, sha256;
+};
+
 struct Context {
   std::string file;
   fs::path folder;  // textures resolve relative to, and must stay inside, this folder
   SceneLoadOptions options;
   std::map<std::string, int> materialIndex;
   std::vector<std::string>* inputFiles = nullptr;  // the scene's, to which each file read is added
+  std::vector<InputRead>* inputsRead = nullptr;    // the same files, named for a scene's inputs
 };
+
+// `name` as a path from the scene's folder: lexically normal, '/'-separated; an absolute one as it is.
+std::string nameFromSceneFolder(const fs::path& name) { return name.lexically_normal().generic_string(); }
 
 std::string indexed(const std::string& array, size_t i) {
   return array + "[" + std::to_string(i) + "]";
@@ -57,6 +68,7 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   const auto resolved = resolveConfined(ctx.folder, name, ctx.options.allowOutsideFolder, why);
   if (!resolved) fields.fail(key, why);
   if (ctx.inputFiles) ctx.inputFiles->push_back(resolved->string());
+  if (ctx.inputsRead) ctx.inputsRead->push_back({nameFromSceneFolder(name), resolved->string(), ""});
   return *resolved;
 }
 
@@ -146,8 +158,10 @@ Environment readEnvironment(JsonFields e, const Context& ctx) {
   environment.rotationDeg = e.number("rotation_deg", 0.0, {-360.0, 360.0});
   e.finish();  // every field checked before the image is decoded
   const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
-  // Blender's world is read like a file of the scene's (a scene's inputs name it by its full path).
+  // Blender's world is read like a file of the scene's (a scene's inputs name it by its full path,
+  // the same wherever Debian's blender-data is installed).
   if (key != "file" && ctx.inputFiles) ctx.inputFiles->push_back(resolved.string());
+  if (key != "file" && ctx.inputsRead) ctx.inputsRead->push_back({resolved.string(), resolved.string(), ""});
   ImageRGBA image;
   try {
     image = readImage(resolved.string());  // non-finite values read as 0
@@ -336,7 +350,13 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
   } catch (const InputError& e) {
     o.fail("file", e.what());
   }
-  scene.inputFiles.insert(scene.inputFiles.end(), arena.filesRead.begin(), arena.filesRead.end());
+  for (const GltfArena::FileRead& read : arena.filesRead) {
+    scene.inputFiles.push_back(read.file);
+    // Named as the glTF's URI joins the glTF's own name (an absolute URI as it is).
+    const fs::path uri(read.uri);
+    const std::string shown = uri.is_absolute() ? nameFromSceneFolder(uri) : nameFromSceneFolder(fs::path(gltfFile).parent_path() / uri);
+    if (ctx.inputsRead) ctx.inputsRead->push_back({shown, read.file, read.sha256});
+  }
   const int offset = static_cast<int>(scene.materials.size());
   for (Material& m : arena.materials) {
     m.name = uniqueName(name + "/" + m.name, names.materials);
@@ -462,20 +482,18 @@ std::string bundledSceneHint(const std::string& name) {
 
 namespace {
 
-// Each file the scene read beyond its own text, once, named from the scene's folder (a file
-// outside it, where allowed, keeps its resolved path) and hashed.
-std::vector<SceneInputFile> digestInputs(const std::vector<std::string>& inputFiles, const std::string& sceneFile) {
-  std::error_code ec;
-  const fs::path folder = fs::weakly_canonical(fs::absolute(sceneFile).parent_path(), ec);  // where names resolve
+// Each file the scene read beyond its own text, once (by the file reached: two names of one file
+// are one input, named as first written), hashed, in the order of their names: a later omnicam
+// that reads them in another order describes the same scene alike.
+std::vector<SceneInputFile> digestInputs(const std::vector<InputRead>& inputsRead) {
   std::vector<SceneInputFile> digests;
-  std::set<std::string> seen;
-  for (size_t i = 1; i < inputFiles.size(); ++i) {  // [0] is the scene file, hashed from its text
-    const fs::path resolved = fs::weakly_canonical(fs::absolute(inputFiles[i]), ec);
-    const fs::path relative = resolved.lexically_relative(folder);
-    const std::string name = (relative.empty() || *relative.begin() == ".." ? resolved : relative).generic_string();
-    if (!seen.insert(name).second) continue;
-    digests.push_back({name, sha256OfFile(resolved.string())});
+  std::set<std::string> files;
+  for (const InputRead& read : inputsRead) {
+    std::error_code ec;
+    if (!files.insert(fs::weakly_canonical(fs::absolute(read.file), ec).string()).second) continue;
+    digests.push_back({read.name, read.sha256.empty() ? sha256OfFile(read.file) : read.sha256});
   }
+  std::sort(digests.begin(), digests.end(), [](const SceneInputFile& a, const SceneInputFile& b) { return a.path < b.path; });
   return digests;
 }
 
@@ -492,7 +510,8 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   const json root = parseJsonText(text, file);
   Scene scene;
   scene.inputFiles.push_back(file);
-  Context ctx{file, fs::absolute(file).parent_path(), options, {}, &scene.inputFiles};
+  std::vector<InputRead> inputsRead;
+  Context ctx{file, fs::absolute(file).parent_path(), options, {}, &scene.inputFiles, &inputsRead};
   JsonFields top(root, file, "");
   scene.path = file;
   scene.sha256 = sha256OfBytes(text);
@@ -513,7 +532,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   readLandmarks(top, file, scene);
   readPaths(top, file, scene);
   top.finish();
-  scene.inputDigests = digestInputs(scene.inputFiles, file);
+  scene.inputDigests = digestInputs(inputsRead);
   return scene;
 }
 

@@ -119,7 +119,7 @@ void bindScene(py::module_& m) {
             return inputs;
           },
           "The files the scene reads beyond its own text (textures, environment map, glTF files), as (path from the "
-          "scene's folder, SHA-256) in the order read, as manifests and sidecars record them.")
+          "scene's folder, SHA-256), by path, as manifests and sidecars record them.")
       .def_property("rig", [](const Scene& s) { return s.rig; }, [](Scene& s, const RigSpec& r) { s.rig = r; },
                     "The scene's rig (a copy: change it and assign it back, or pass it to a render).")
       .def_property_readonly("start_pose", [](const Scene& s) { return py::make_tuple(s.startPose.x, s.startPose.y, s.startPose.yawDeg); },

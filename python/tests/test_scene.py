@@ -64,6 +64,11 @@ def test_a_scene_names_and_hashes_the_files_it_reads(tmp_path):
     # Once, however many materials read it; the scene's own text is its sha256.
     assert loaded.inputs == [("textures/tiles.png", hashlib.sha256(png).hexdigest())]
     assert loaded.sha256 == hashlib.sha256((tmp_path / "s.json").read_bytes()).hexdigest()
+    # Named as the scene writes it (the same on every machine), not by where a link leads.
+    (tmp_path / "textures" / "current.png").symlink_to("tiles.png")
+    scene["materials"] = {"tiles": {"texture": {"file": "./textures/../textures/current.png"}}}
+    (tmp_path / "s.json").write_text(json.dumps(scene))
+    assert omnicam.load_scene(tmp_path / "s.json").inputs == [("textures/current.png", hashlib.sha256(png).hexdigest())]
 
 
 def test_files_are_named_by_str_or_pathlib_path(tmp_path):
