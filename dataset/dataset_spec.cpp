@@ -405,7 +405,8 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   // Confinement is the user's to lift, not a downloaded file's (docs/robustness.md, "Threat model").
   if (top.boolean("allow_outside_files", false))
     top.fail("allow_outside_files", "a spec cannot let its scene pull in files from outside the scene's folder; "
-                                    "pass --allow-outside-files to omnicam dataset if you mean it");
+                                    "whoever runs it can (omnicam dataset --allow-outside-files; Python: "
+                                    "run_dataset(..., allow_outside_files=True))");
   readRequest(top, spec);
   readSampling(top, spec);
   // Cameras before poses: the frame limit counts camera-frames.

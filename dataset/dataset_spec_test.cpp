@@ -144,7 +144,7 @@ TEST(DatasetSpec, NumbersThatSizeWorkAreBoundedAndNamed) {
 TEST(DatasetSpec, ASpecCannotLiftTheSceneFolderRule) {
   EXPECT_EQ(errorOf(spec(R"("allow_outside_files": true)")),
             "spec.json: allow_outside_files: a spec cannot let its scene pull in files from outside the scene's folder; "
-            "pass --allow-outside-files to omnicam dataset if you mean it");
+            "whoever runs it can (omnicam dataset --allow-outside-files; Python: run_dataset(..., allow_outside_files=True))");
   EXPECT_FALSE(datasetSpecFromText(spec(R"("allow_outside_files": false)"), "spec.json").allowOutsideFiles);
 }
 

@@ -105,7 +105,8 @@ TEST_F(InputTrustTest, DeeplyNestedJsonIsRefusedBeforeAnyWork) {
 TEST_F(InputTrustTest, ASpecCannotLiftConfinementOnlyTheUsersFlagCan) {
   expectSpecRefused({{"allow_outside_files", true}},
                     "spec.json: allow_outside_files: a spec cannot let its scene pull in files from outside the scene's "
-                    "folder; pass --allow-outside-files to omnicam dataset if you mean it");
+                    "folder; whoever runs it can (omnicam dataset --allow-outside-files; Python: run_dataset(..., "
+                    "allow_outside_files=True))");
   fs::create_directories(dir_ / "scene");
   fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes/texture_outside.json", dir_ / "scene" / "scene.json");
   fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/outside.png", dir_ / "outside.png");

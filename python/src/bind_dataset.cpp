@@ -30,9 +30,10 @@ namespace {
 // in progress are written (the fast engine renders a window of 8 at once, Blender a batch) and is
 // raised again once the run has stopped.
 py::dict runDatasetFromPython(const PyPath& specPath, const PyPath& out, bool overwrite, const PyInteger& threadsArg,
-                              const std::optional<py::function>& progress) {
+                              const std::optional<py::function>& progress, bool allowOutsideFiles) {
   const int threads = narrowed(threadsArg, "threads", 0, limits::kMaxThreads);
-  const DatasetSpec spec = loadDatasetSpec(specPath.value.string());
+  DatasetSpec spec = loadDatasetSpec(specPath.value.string());
+  spec.allowOutsideFiles = allowOutsideFiles;  // the caller's word, never the spec's (as the CLI's flag)
   DatasetRunOptions options;
   options.dir = out.value.string();
   options.overwrite = overwrite;
@@ -245,11 +246,12 @@ class but floor, wall, ceiling and line) with "instance_id", "category_id", "bbo
 "area", "segmentation" (COCO compressed RLE) and "iscrowd". InputError for a class or instance id
 the scene does not have.)");
   m.def("run_dataset", &runDatasetFromPython, py::arg("spec"), py::arg("out"), py::kw_only(), py::arg("overwrite") = false,
-        py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("threads") = 0, py::arg("progress") = py::none(), py::arg("allow_outside_files") = false,
         R"(Renders the dataset a spec file describes into the folder `out`, as `omnicam dataset` does
 (docs/dataset-format.md): resumes a partial run, keeps verified frames. progress(done, total) is
 called when the run starts (done: the frames kept) and after every frame; an exception in it stops the run once the frames in progress (up to 8
-at once) are written, and is raised again. Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
+at once) are written, and is raised again. allow_outside_files lets the scene read files outside its folder (the
+CLI's --allow-outside-files; a spec cannot ask for it). Returns {"frames", "kept", "rendered", "stopped", "notes"}.)");
 
   m.def("read_image", [](const PyPath& path) {
     ImageRGBA image = readImage(path.value.string());

@@ -177,3 +177,18 @@ def test_items_carry_the_recording_camera_drawn_for_them(tmp_path):
             drawn.append(json.dumps(item["recording"], sort_keys=True))
     assert len(set(drawn)) == 4  # a camera per frame and camera
 
+
+
+def test_a_scene_reads_files_outside_its_folder_only_when_the_caller_allows_it(tmp_path):
+    (tmp_path / "scene").mkdir()
+    (tmp_path / "scene" / "scene.json").write_bytes((SOURCE / "tests" / "bad_inputs" / "scenes" / "texture_outside.json").read_bytes())
+    (tmp_path / "outside.png").write_bytes((SOURCE / "tests" / "bad_inputs" / "outside.png").read_bytes())
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({"format": "omnicam-dataset/1", "scene": "scene/scene.json", "size": 16,
+                                "poses": {"list": [[0, 0, 0]]}, "outputs": {"rgb": "png"}}))
+    with pytest.raises(omnicam.InputError) as raised:
+        omnicam.run_dataset(spec, tmp_path / "ds")
+    # This front's own keyword, which run_dataset takes, as load_scene does.
+    assert str(raised.value).endswith("resolves outside the scene's folder (pass allow_outside_files=True to permit it)")
+    assert not (tmp_path / "ds").exists()
+    assert omnicam.run_dataset(spec, tmp_path / "ds", allow_outside_files=True)["rendered"] == 1
