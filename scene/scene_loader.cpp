@@ -46,6 +46,12 @@ struct Context {
 // `name` as a path from the scene's folder: lexically normal, '/'-separated; an absolute one as it is.
 std::string nameFromSceneFolder(const fs::path& name) { return name.lexically_normal().generic_string(); }
 
+// One file the scene read: among the files its outputs must spare, and named for its inputs.
+void noteFileRead(const Context& ctx, const fs::path& name, const std::string& file, const std::string& sha256 = "") {
+  if (ctx.inputFiles) ctx.inputFiles->push_back(file);
+  if (ctx.inputsRead) ctx.inputsRead->push_back({nameFromSceneFolder(name), file, sha256});
+}
+
 std::string indexed(const std::string& array, size_t i) {
   return array + "[" + std::to_string(i) + "]";
 }
@@ -67,8 +73,7 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   std::string why;
   const auto resolved = resolveConfined(ctx.folder, name, ctx.options.allowOutsideFolder, why);
   if (!resolved) fields.fail(key, why);
-  if (ctx.inputFiles) ctx.inputFiles->push_back(resolved->string());
-  if (ctx.inputsRead) ctx.inputsRead->push_back({nameFromSceneFolder(name), resolved->string(), ""});
+  noteFileRead(ctx, name, resolved->string());
   return *resolved;
 }
 
@@ -160,8 +165,7 @@ Environment readEnvironment(JsonFields e, const Context& ctx) {
   const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
   // Blender's world is read like a file of the scene's (a scene's inputs name it by its full path,
   // the same wherever Debian's blender-data is installed).
-  if (key != "file" && ctx.inputFiles) ctx.inputFiles->push_back(resolved.string());
-  if (key != "file" && ctx.inputsRead) ctx.inputsRead->push_back({resolved.string(), resolved.string(), ""});
+  if (key != "file") noteFileRead(ctx, resolved, resolved.string());
   ImageRGBA image;
   try {
     image = readImage(resolved.string());  // non-finite values read as 0
@@ -351,11 +355,9 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
     o.fail("file", e.what());
   }
   for (const GltfArena::FileRead& read : arena.filesRead) {
-    scene.inputFiles.push_back(read.file);
     // Named as the glTF's URI joins the glTF's own name (an absolute URI as it is).
     const fs::path uri(read.uri);
-    const std::string shown = uri.is_absolute() ? nameFromSceneFolder(uri) : nameFromSceneFolder(fs::path(gltfFile).parent_path() / uri);
-    if (ctx.inputsRead) ctx.inputsRead->push_back({shown, read.file, read.sha256});
+    noteFileRead(ctx, uri.is_absolute() ? uri : fs::path(gltfFile).parent_path() / uri, read.file, read.sha256);
   }
   const int offset = static_cast<int>(scene.materials.size());
   for (Material& m : arena.materials) {
