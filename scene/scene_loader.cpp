@@ -28,8 +28,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // A file the scene read beyond its text: its name as the scene writes it (from the scene's folder,
-// lexically: the same on every machine), the file read, and the SHA-256 of the bytes read where
-// the reader had them (else hashed once loaded).
+// lexically: the same on every machine), the file read, and the SHA-256 of the very bytes decoded.
 struct InputRead {
   std::string name, file, sha256;
 };
@@ -47,7 +46,7 @@ struct Context {
 std::string nameFromSceneFolder(const fs::path& name) { return name.lexically_normal().generic_string(); }
 
 // One file the scene read: among the files its outputs must spare, and named for its inputs.
-void noteFileRead(const Context& ctx, const fs::path& name, const std::string& file, const std::string& sha256 = "") {
+void noteFileRead(const Context& ctx, const fs::path& name, const std::string& file, const std::string& sha256) {
   if (ctx.inputFiles) ctx.inputFiles->push_back(file);
   if (ctx.inputsRead) ctx.inputsRead->push_back({nameFromSceneFolder(name), file, sha256});
 }
@@ -73,8 +72,30 @@ fs::path resolveInside(const Context& ctx, const JsonFields& fields, const std::
   std::string why;
   const auto resolved = resolveConfined(ctx.folder, name, ctx.options.allowOutsideFolder, why);
   if (!resolved) fields.fail(key, why);
-  noteFileRead(ctx, name, resolved->string());
   return *resolved;
+}
+
+// The bytes of a file the scene reads (`name` as the scene writes it), read once: what is decoded
+// is what its input's hash names, even if the file changes meanwhile. `doing` says what failed for
+// a file that cannot be read ("read image", "load glTF": the decoders' own words).
+std::string readNotedFile(const Context& ctx, const JsonFields& fields, const std::string& key, const fs::path& name,
+                          const fs::path& file, const std::string& doing) {
+  std::string why;
+  std::optional<std::string> bytes = readWholeFile(file.string(), why);
+  if (!bytes) fields.fail(key, showPath(file.string()) + ": cannot " + doing + " (" + why + ")");
+  noteFileRead(ctx, name, file.string(), sha256OfBytes(*bytes));
+  return std::move(*bytes);
+}
+
+// An image the scene reads (a texture, an environment), decoded from the bytes its input names.
+ImageRGBA readNotedImage(const Context& ctx, const JsonFields& fields, const std::string& key, const fs::path& name,
+                         const fs::path& file) {
+  const std::string bytes = readNotedFile(ctx, fields, key, name, file, "read image");
+  try {
+    return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), showPath(file.string()));
+  } catch (const InputError& error) {
+    fields.fail(key, error.what());
+  }
 }
 
 // Names reach glTF nodes and Blender objects: unique, printable, at most 63 bytes (Blender's
@@ -117,8 +138,9 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   if (auto tex = m.optionalObject("texture")) {
     mat.texturePath = tex->string("file");
     const fs::path resolved = resolveInside(ctx, *tex, "file", mat.texturePath);
+    const ImageRGBA image = readNotedImage(ctx, *tex, "file", mat.texturePath, resolved);
     try {
-      mat.texture = Texture::load(resolved.string());
+      mat.texture = Texture::fromPremultiplied(image.width, image.height, image.pixels.data(), showPath(resolved.string()));
     } catch (const InputError& e) {
       tex->fail("file", e.what());
     }
@@ -164,14 +186,8 @@ Environment readEnvironment(JsonFields e, const Context& ctx) {
   e.finish();  // every field checked before the image is decoded
   const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
   // Blender's world is read like a file of the scene's (a scene's inputs name it by its full path,
-  // the same wherever Debian's blender-data is installed).
-  if (key != "file") noteFileRead(ctx, resolved, resolved.string());
-  ImageRGBA image;
-  try {
-    image = readImage(resolved.string());  // non-finite values read as 0
-  } catch (const InputError& error) {
-    e.fail(key, error.what());
-  }
+  // the same wherever Debian's blender-data is installed). Non-finite values read as 0.
+  const ImageRGBA image = readNotedImage(ctx, e, key, key == "file" ? fs::path(environment.file) : resolved, resolved);
   std::vector<float> rgb(static_cast<size_t>(image.width) * image.height * 3);
   float brightest = 0.0f;
   for (size_t p = 0; p < rgb.size() / 3; ++p)
@@ -349,8 +365,9 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
   const std::string gltfClass = readClass(o);
   GltfArena arena;
   const fs::path resolved = resolveInside(ctx, o, "file", gltfFile);  // names the field itself
+  const std::string bytes = readNotedFile(ctx, o, "file", gltfFile, resolved, "load glTF");
   try {
-    arena = importGltf(resolved.string(), {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder});
+    arena = importGltfFromMemory(bytes, resolved.string(), {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder});
   } catch (const InputError& e) {
     o.fail("file", e.what());
   }
@@ -493,7 +510,7 @@ std::vector<SceneInputFile> digestInputs(const std::vector<InputRead>& inputsRea
   for (const InputRead& read : inputsRead) {
     std::error_code ec;
     if (!files.insert(fs::weakly_canonical(fs::absolute(read.file), ec).string()).second) continue;
-    digests.push_back({read.name, read.sha256.empty() ? sha256OfFile(read.file) : read.sha256});
+    digests.push_back({read.name, read.sha256});
   }
   std::sort(digests.begin(), digests.end(), [](const SceneInputFile& a, const SceneInputFile& b) { return a.path < b.path; });
   return digests;

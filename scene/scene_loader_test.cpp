@@ -3,13 +3,18 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/inotify.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "image.h"
 
 #include "errors.h"
+#include "shell_command.h"
 
 namespace omnicam {
 namespace {
@@ -233,6 +238,44 @@ TEST_F(SceneLoaderTest, SemanticClassesComeFromObjectsOrTheirMaterials) {
   EXPECT_EQ(semanticClassOf(s, s.objects[2]), "");
   EXPECT_EQ(errorOf("", R"(, "class": "")"), file + ": objects[0].class: must be 1 to 63 bytes long (got 0)");
   EXPECT_EQ(errorOf("", R"(, "class": 3)"), file + ": objects[0].class: must be a string (got number)");
+}
+
+// Each file a scene reads (texture, environment, glTF and its buffer) is opened once: what is
+// decoded is what its input's hash names, even should the file change meanwhile (a second read,
+// to hash, could see other bytes). The kernel counts the opens (inotify), not the code under test.
+TEST_F(SceneLoaderTest, EachInputFileIsOpenedOnceAndHashedAsDecoded) {
+  const fs::path bad = OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes";
+  fs::copy_file(bad / "arena_ok.gltf", dir_ / "arena.gltf");
+  fs::copy_file(bad / "triangle.bin", dir_ / "triangle.bin");
+  ImageRGBA image(4, 2);
+  for (float& v : image.pixels) v = 0.5f;
+  writeImageAtomic((dir_ / "tiles.png").string(), image);
+  writeImageAtomic((dir_ / "sky.exr").string(), image);
+  const std::string file = write(R"({"format": "omnicam-scene/1",
+    "environment": {"file": "sky.exr"},
+    "materials": {"m": {"texture": {"file": "tiles.png"}}},
+    "objects": [{"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1},
+                {"type": "gltf", "name": "arena", "file": "arena.gltf"}]})");
+  const int inotify = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+  ASSERT_GE(inotify, 0);
+  std::map<int, std::string> watched;
+  for (const char* name : {"tiles.png", "sky.exr", "arena.gltf", "triangle.bin"})
+    watched[inotify_add_watch(inotify, (dir_ / name).c_str(), IN_OPEN)] = name;
+  const Scene scene = loadScene(file);
+  std::map<std::string, int> opens;
+  alignas(inotify_event) char events[4096];
+  for (ssize_t n; (n = ::read(inotify, events, sizeof events)) > 0;)
+    for (ssize_t at = 0; at < n;) {
+      const auto* event = reinterpret_cast<const inotify_event*>(events + at);
+      ++opens[watched.at(event->wd)];
+      at += static_cast<ssize_t>(sizeof(inotify_event) + event->len);
+    }
+  ::close(inotify);
+  ASSERT_EQ(scene.inputDigests.size(), 4u);
+  for (const SceneInputFile& input : scene.inputDigests) {
+    EXPECT_EQ(opens[input.path], 1) << input.path << " opened " << opens[input.path] << " times";
+    EXPECT_EQ(input.sha256, testing::runShell("sha256sum " + (dir_ / input.path).string()).out.substr(0, 64)) << input.path;
+  }
 }
 
 std::string jsonError(const std::string& text, int maxDepth = limits::kMaxJsonDepth) {
