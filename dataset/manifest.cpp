@@ -23,7 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
 
 // Reading: every malformed piece is one InputError naming the manifest and the field.
 
@@ -217,11 +216,11 @@ json manifestToJson(const DatasetManifest& manifest) {
     for (const auto& [name, camera] : frame.cameras) {
       json files = json::object();
       for (const auto& [kind, file] : camera.files) files[kind] = {{"path", file.path}, {"sha256", file.sha256}};
-      cameras[name] = {{"pose", poseJson(camera.pose)}, {"files", files}};
+      cameras[name] = {{"pose", footPoseToJson(camera.pose)}, {"files", files}};
       if (camera.rig) cameras[name]["rig"] = rigToJson(*camera.rig);
       if (camera.recording) cameras[name]["recording"] = recordingCameraToJson(*camera.recording);
     }
-    json entry = {{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseJson(frame.robot)}, {"cameras", cameras}};
+    json entry = {{"index", index}, {"timestamp", frame.timestamp}, {"pose", poseToJson(frame.robot)}, {"cameras", cameras}};
     if (!frame.velocity.still())  // the pose is then the exposure start's (docs/motion.md)
       entry["velocity"] = {{"vx", frame.velocity.vx}, {"vy", frame.velocity.vy}, {"yaw_rate_deg_per_s", frame.velocity.yawRateDegPerS}};
     if (frame.robotTiltDeg != RobotTilt{0.0, 0.0}) entry["robot_tilt_deg"] = frame.robotTiltDeg;

@@ -128,6 +128,29 @@ TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
   EXPECT_EQ(errorOf(m), "manifest.json: frames[0].cameras.cam0.files.secret: unknown kind of frame file");
 }
 
+// A camera's heading is the robot's plus its mount's, written within ±180° (a robot at 180° with a
+// camera mounted backwards heads 0°); the robot's pose is written as given.
+TEST(Manifest, CameraHeadingsAreWrittenWithinPlusMinus180) {
+  DatasetManifest manifest{smallHeader({"cam0"}, 3), {}};
+  const RobotMount backwards{-0.1, 0.0, 180.0};
+  const std::vector<std::pair<double, double>> robotAndCameraYawDeg = {{180.0, 0.0}, {170.0, -10.0}, {-170.0, 10.0}};
+  for (int i = 0; i < 3; ++i) {
+    const RobotPose robot{1.0, 2.0, robotAndCameraYawDeg[static_cast<size_t>(i)].first};
+    FrameRecord frame{i, 0.1 * i, robot, {}, {}};
+    frame.cameras["cam0"].pose = CameraPlacement(robot, {}, backwards).footAt(0.0);
+    manifest.frames[i] = frame;
+  }
+  const json written = manifestToJson(manifest);
+  for (int i = 0; i < 3; ++i) {
+    const json& frame = written["frames"][static_cast<size_t>(i)];
+    EXPECT_EQ(frame["pose"]["yaw_deg"].get<double>(), robotAndCameraYawDeg[static_cast<size_t>(i)].first);
+    EXPECT_NEAR(frame["cameras"]["cam0"]["pose"]["yaw_deg"].get<double>(), robotAndCameraYawDeg[static_cast<size_t>(i)].second, 1e-12);
+    // The foot stands 0.1 m behind the robot's centre, along its heading.
+    const double yaw = radians(robotAndCameraYawDeg[static_cast<size_t>(i)].first);
+    EXPECT_NEAR(frame["cameras"]["cam0"]["pose"]["x"].get<double>(), 1.0 - 0.1 * std::cos(yaw), 1e-12);
+  }
+}
+
 // scene.inputs, when present, is a list of distinct paths with hashes; a manifest written before
 // omnicam recorded them has none, and is compared by the rest (its files cannot be told).
 TEST(Manifest, SceneInputsAreCheckedAndTellDatasetsApart) {

@@ -250,15 +250,13 @@ TriangleMesh rimMask(double rimHeight, double innerRadius) {
 
 namespace {
 
-nlohmann::json poseJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
-
 // The rig's root node at the viewpoint, with the rig, pose and intrinsics in its extras.
 int addRigNode(GltfBuilder& b, const GltfExportOptions& options, const char* frame) {
   const int rig = b.node(kGltfRigNode, options.placement.worldFromViewpoint(options.rig), -1,
                          {{"omnicam",
                            {{"role", "rig"},
                             {"rig", rigToJson(options.rig)},
-                            {"pose", poseJson(options.placement.footAt(0.0))},
+                            {"pose", footPoseToJson(options.placement.footAt(0.0))},
                             {"intrinsics", makeCamera(options.rig)->describe()},
                             {"frame", frame}}}});
   b.addRoot(rig);

@@ -1,5 +1,6 @@
 #include "sidecar.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -73,6 +74,12 @@ json sceneInputsToJson(const std::vector<SceneInputFile>& inputs) {
   return out;
 }
 
+json poseToJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
+
+json footPoseToJson(const RobotPose& foot) {
+  return poseToJson({foot.x, foot.y, std::remainder(foot.yawDeg, 360.0)});
+}
+
 json sidecarJson(const RenderRecord& r) {
   const Rigid cfw = r.placement.worldFromCamera(r.rig).inverse();
   const RobotPose& pose = r.placement.robot();
@@ -86,7 +93,7 @@ json sidecarJson(const RenderRecord& r) {
   json sidecar = {{"engine", r.engine},
           {"engine_version", r.engineVersion},
           {"scene", {{"path", r.scenePath}, {"sha256", r.sceneSha256}, {"inputs", sceneInputsToJson(r.sceneInputs)}}},
-          {"pose", {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}},
+          {"pose", poseToJson(pose)},
           {"rig", rigToJson(r.rig)},
           {"spp", r.spp},
           {"shading", r.shading},
