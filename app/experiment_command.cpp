@@ -102,6 +102,7 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"convergence.json"});
+  checkExperimentFolder(a.out, a.name);
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -109,6 +110,7 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!std::filesystem::exists(options.labPhoto))
     throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
   ensureDirectory(a.out, "-o");
+  markExperimentFolder(a.out, a.name);
   StageProgress progress;
   const ConvergenceResults r = runRealisticConvergence(
       options, a.noFigures ? "" : experimentsDir() + "/plot_convergence.py",
@@ -143,6 +145,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
     throw InputError("--noise-scene: must be plain_hall, textured_hall or tiled_room (got " + quote(a.noiseScene) + ")");
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"path-convergence.json", "path-convergence.md"});
+  checkExperimentFolder(a.out, a.name);
   PathConvergenceOptions options = a.quick ? PathConvergenceOptions::quick() : PathConvergenceOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
@@ -155,6 +158,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!std::filesystem::exists(options.labPhoto))
     throw InputError(showPath(options.labPhoto) + ": missing (Debian's blender-data ships it; run make deps)");
   ensureDirectory(a.out, "-o");
+  markExperimentFolder(a.out, a.name);
   StageProgress progress;
   const PathConvergenceResults r = runPathConvergence(
       options, std::ref(progress));
@@ -223,11 +227,12 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.doc.empty() && a.noFigures) throw InputError("--doc: the document shows the figures; leave out --no-figures");
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"results.json", "calibration-study.md"});
-  earlierExperimentResults(a.out, kCalibrationStudy);
+  checkExperimentFolder(a.out, a.name);
   CalibrationStudyOptions options = a.quick ? CalibrationStudyOptions::quick() : CalibrationStudyOptions();
   options.outDir = a.out;
   options.fieldScene = scenesDir() + "/robocup2006.json";
   ensureDirectory(a.out, "-o");
+  markExperimentFolder(a.out, a.name);
   StageProgress progress;
   const CalibrationStudyResults r = runCalibrationStudy(
       options, a.noFigures ? "" : experimentsDir() + "/plot_calibration_study.py",
@@ -257,7 +262,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"results.json", "report.html", "texture-realism.md"});
-  earlierExperimentResults(a.out, kTextureRealismStudy);
+  checkExperimentFolder(a.out, a.name);
   TextureRealismOptions options = a.quick ? TextureRealismOptions::quick() : TextureRealismOptions();
   options.outDir = a.out;
   options.detector.theta = a.theta;
@@ -274,6 +279,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
     if (!std::filesystem::exists(photo))
       throw InputError(showPath(photo) + ": missing (Debian's blender-data ships it; run make deps)");
   ensureDirectory(a.out, "-o");  // every option checked: only now is anything created
+  markExperimentFolder(a.out, a.name);
   StageProgress progress;
   const TextureRealismResults results = runTextureRealism(
       options, a.noFigures ? "" : experimentsDir() + "/plot_texture_realism.py",

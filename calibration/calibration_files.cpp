@@ -47,12 +47,16 @@ std::string kalibrTargetYaml(const TargetPattern& pattern) {
   return yaml.str();
 }
 
-std::string openCvCornerLists(const std::vector<CornerListImage>& images) {
+std::string openCvCornerLists(const std::vector<CornerListImage>& images, bool mirrorImage) {
   cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
   // The points are where the image shows them; a catadioptric image is a mirror image, which
   // cv::omnidir fits with gamma_y < 0 or, flipped top to bottom (y -> height - 1 - y), as usual.
-  fs.writeComment("image_points: OpenCV pixels (centres at integers) of a mirror image: flip y to height - 1 - y for cv::omnidir::calibrate");
-  fs << "mirror_image" << 1;
+  // A lens camera's image is not one: its points calibrate as they are.
+  if (mirrorImage)
+    fs.writeComment("image_points: OpenCV pixels (centres at integers) of a mirror image: flip y to height - 1 - y for cv::omnidir::calibrate");
+  else
+    fs.writeComment("image_points: OpenCV pixels (centres at integers) of a lens camera's image (not a mirror image): calibrate with them as they are");
+  fs << "mirror_image" << (mirrorImage ? 1 : 0);
   fs << "images" << "[";
   for (const CornerListImage& image : images) {
     const CalibrationView& v = image.view;

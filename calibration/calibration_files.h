@@ -21,12 +21,14 @@ std::string kalibrTargetProblem(const TargetPattern& pattern);
 
 // OpenCV's corner lists, one entry per image: the image's name, its corners in the target frame
 // (object_points, N×1 CV_64FC3) and in the image (image_points, N×1 CV_64FC2, OpenCV's pixel
-// centres at integers). Returns the file's text (cv::FileStorage YAML).
+// centres at integers), and `mirror_image`: 1 for a mirror camera's image (a mirror image, which
+// cv::omnidir fits flipped top to bottom), 0 for a lens camera's. Returns the file's text
+// (cv::FileStorage YAML).
 struct CornerListImage {
   std::string name;
   CalibrationView view;  // omnicam raster
 };
-std::string openCvCornerLists(const std::vector<CornerListImage>& images);
+std::string openCvCornerLists(const std::vector<CornerListImage>& images, bool mirrorImage);
 // Read back as OpenCV reads it (rasters converted to omnicam's); throws InputError naming `source`.
 std::vector<CornerListImage> readOpenCvCornerLists(const std::string& text, const std::string& source);
 

@@ -102,7 +102,7 @@ TEST(CalibrationFiles, OpenCvCornerListsCalibrateAsTheViewsThemselves) {
       }
     images.push_back(image);
   }
-  const std::vector<CornerListImage> back = readOpenCvCornerLists(openCvCornerLists(images), "corners.yml");
+  const std::vector<CornerListImage> back = readOpenCvCornerLists(openCvCornerLists(images, true), "corners.yml");
   ASSERT_EQ(back.size(), images.size());
   std::vector<CalibrationView> direct, read;
   for (size_t k = 0; k < images.size(); ++k) {

@@ -139,7 +139,7 @@ void DatasetPlan::addCalibrationFiles() {
                           {"frames", cornerFrames[c]}};
     for (StaticFile file : {StaticFile{"kalibr_target", name + "/calibration/target.yaml", kalibr},
                             StaticFile{"corners", name + "/calibration/corners.json", corners.dump() + "\n"},
-                            StaticFile{"opencv_corners", name + "/calibration/opencv_corners.yml", openCvCornerLists(lists[c])}}) {
+                            StaticFile{"opencv_corners", name + "/calibration/opencv_corners.yml", openCvCornerLists(lists[c], std::holds_alternative<MirrorRig>(setups_[c].rig.kind))}}) {
       files[file.key] = {{"path", file.relative}, {"sha256", sha256OfBytes(file.text)}};
       statics_.push_back(std::move(file));
     }

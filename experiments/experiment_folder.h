@@ -13,4 +13,18 @@ namespace omnicam {
 // results.json no omnicam experiment wrote (not JSON, or naming no study).
 std::optional<nlohmann::json> earlierExperimentResults(const std::string& dir, const std::string& study);
 
+// Before a run of `study` writes into `dir`: InputError unless `dir` is missing, empty, or an
+// earlier run's of the same study — told by the mark every run leaves (markExperimentFolder) or,
+// for folders written before marks, by the study's results file (results.json's "study",
+// convergence.json, path-convergence.json). A folder of other files, or of another study, is
+// refused: runs into one folder never mix, and an interrupted run's folder is taken up again.
+void checkExperimentFolder(const std::string& dir, const std::string& study);
+
+// Marks `dir` (made, and checked by checkExperimentFolder) as `study`'s, before the run writes
+// anything else into it.
+void markExperimentFolder(const std::string& dir, const std::string& study);
+
+// The file that marks an experiment's folder.
+inline constexpr const char* kExperimentMark = ".omnicam-experiment.json";
+
 }  // namespace omnicam

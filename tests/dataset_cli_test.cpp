@@ -1896,6 +1896,55 @@ TEST_F(DatasetCliTest, CalibrationSequenceOfTwoCamerasIsOneKalibrBag) {
   EXPECT_FALSE(std::filesystem::exists(out + "/front/calibration/images.bag"));
 }
 
+// A lens camera's image is not a mirror image: its corner lists say so (mirror_image 0), and
+// OpenCV's pinhole calibration (cv::calibrateCamera, distortion held at zero) fed the points as
+// they are finds the camera the spec states. A flipped image would need fy < 0, which no
+// calibration of a real camera gives.
+TEST_F(DatasetCliTest, ALensCamerasCornerListsAreNotAMirrorImageAndCalibrateAsTheyAre) {
+  const std::string spec = write("lens.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                 R"(/docs/examples/calibration_room.json", "spp": 1,
+    "cameras": [{"name": "pin", "rig": {"height": 0.3, "lens": {"model": "pinhole", "width": 320, "height": 240, "fx": 200, "fy": 210}}}],
+    "poses": {"list": [[0, 0, 0]]},
+    "calibration": {"target": "grid", "poses": {"random": {"count": 6, "seed": 2, "distance_m": [0.3, 0.6], "min_seen_corners": 12}}},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("lens")).code, 0);
+  const std::string yaml = readFile(path("lens/pin/calibration/opencv_corners.yml"));
+  EXPECT_NE(yaml.find("of a lens camera's image (not a mirror image)"), std::string::npos) << yaml.substr(0, 300);
+  cv::FileStorage fs(yaml, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
+  EXPECT_EQ(static_cast<int>(fs["mirror_image"]), 0);
+  std::vector<std::vector<cv::Point3f>> objects;
+  std::vector<std::vector<cv::Point2f>> images;
+  for (const cv::FileNode& node : fs["images"]) {
+    cv::Mat object, raster;
+    node["object_points"] >> object;
+    node["image_points"] >> raster;
+    objects.emplace_back();
+    images.emplace_back();
+    for (int k = 0; k < object.rows; ++k) {
+      const cv::Vec3d o = object.at<cv::Vec3d>(k);
+      const cv::Vec2d r = raster.at<cv::Vec2d>(k);
+      objects.back().emplace_back(static_cast<float>(o[0]), static_cast<float>(o[1]), static_cast<float>(o[2]));
+      images.back().emplace_back(static_cast<float>(r[0]), static_cast<float>(r[1]));
+    }
+  }
+  ASSERT_GE(images.size(), 3u);
+  cv::Mat k = cv::Mat::eye(3, 3, CV_64F), distortion = cv::Mat::zeros(5, 1, CV_64F);
+  k.at<double>(0, 0) = k.at<double>(1, 1) = 150.0;
+  k.at<double>(0, 2) = 160.0;
+  k.at<double>(1, 2) = 120.0;
+  std::vector<cv::Mat> rotations, translations;
+  const double rms = cv::calibrateCamera(objects, images, cv::Size(320, 240), k, distortion, rotations, translations,
+                                         cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_ZERO_TANGENT_DIST | cv::CALIB_FIX_K1 |
+                                             cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3);
+  // The spec's camera: fx 200, fy 210, the principal point at the image centre ((W − 1)/2 in
+  // OpenCV's pixels, centres at integers).
+  EXPECT_LT(rms, 1e-3);
+  EXPECT_NEAR(k.at<double>(0, 0), 200.0, 1e-2);
+  EXPECT_NEAR(k.at<double>(1, 1), 210.0, 1e-2);
+  EXPECT_NEAR(k.at<double>(0, 2), 159.5, 1e-2);
+  EXPECT_NEAR(k.at<double>(1, 2), 119.5, 1e-2);
+}
+
 // A listed board pose that no camera sees (its back to the robot) is told, with why, and the
 // sequence still runs: its frame is in the dataset, its corners say so, nothing calibrates on it.
 TEST_F(DatasetCliTest, AListedBoardPoseNoCameraSeesIsToldWithWhy) {

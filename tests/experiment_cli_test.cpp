@@ -592,6 +592,41 @@ TEST_F(ExperimentCliTest, AFolderOfAnotherExperimentOrOfForeignResultsIsRefused)
   EXPECT_NE(r.out.find("results.json: a link (omnicam follows none in its outputs): give another folder"), std::string::npos) << r.out;
 }
 
+// Every experiment marks its folder first: a folder of other files, or another study's (by its
+// mark, or by its results file when written before marks), is refused before any work — one line,
+// exit 2, nothing written. The quick runs below run twice into their own marked folders.
+TEST_F(ExperimentCliTest, AFolderOfOtherFilesOrOfAnotherStudyIsRefusedByEveryExperiment) {
+  const std::vector<std::string> experiments = {"texture-realism", "realistic-convergence", "path-convergence", "calibration"};
+  fs::create_directories(path("mine"));
+  std::ofstream(path("mine/notes.txt")) << "my notes";
+  std::ofstream(path("mine/b.txt")) << "more";
+  const std::vector<std::pair<std::string, std::string>> foreign = {
+      {"convergence.json", "realistic-convergence"}, {"path-convergence.json", "path-convergence"}};
+  for (const auto& [file, study] : foreign) {
+    fs::create_directories(path(study));
+    std::ofstream(path(study + "/" + file)) << "{}";
+  }
+  fs::create_directories(path("marked"));
+  std::ofstream(path("marked/.omnicam-experiment.json")) << R"({"study": "calibration"})";
+  std::ofstream(path("marked/results.json")) << R"({"study": "calibration"})";
+  for (const std::string& experiment : experiments) {
+    const auto before = test_support::folderSnapshot(dir_);
+    const auto refused = [&](const std::string& folder, const std::string& message) {
+      const auto r = omnicam("experiment " + experiment + " --quick -o " + path(folder));
+      EXPECT_EQ(r.code, 2) << experiment << " into " << folder << ": " << r.out;
+      EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+      EXPECT_NE(r.out.find(message), std::string::npos) << experiment << " into " << folder << ": " << r.out;
+    };
+    refused("mine", path("mine") + ": holds files no omnicam experiment wrote (\"b.txt\"): give an empty or new folder");
+    for (const auto& [file, study] : foreign)
+      if (study != experiment)
+        refused(study, path(study + "/" + file) + ": holds the results of experiment \"" + study + "\", not " + experiment);
+    if (experiment != "calibration")
+      refused("marked", path("marked/.omnicam-experiment.json") + ": holds the results of experiment \"calibration\", not " + experiment);
+    EXPECT_TRUE(test_support::folderSnapshot(dir_) == before) << experiment;
+  }
+}
+
 TEST_F(ExperimentCliTest, ConvergenceOptionsAreCheckedBeforeAnythingRuns) {
   // A folder without the study's results: one line, exit 2, nothing written.
   fs::create_directories(path("empty"));
@@ -648,6 +683,7 @@ namespace {
 TEST_F(ExperimentCliTest, QuickPathConvergenceMeasuresNineFramesAndReusesCyclesFrames) {
   const auto first = omnicam("experiment path-convergence --quick -o " + path("pc"));
   ASSERT_EQ(first.code, 0) << first.out;
+  EXPECT_EQ(json::parse(testing::readFile(path("pc/.omnicam-experiment.json"))), json({{"study", "path-convergence"}}));
   const json results = json::parse(std::ifstream(path("pc/path-convergence.json")));
   ASSERT_EQ(results["frames"].size(), 9u);
   for (const json& f : results["frames"]) {
@@ -695,8 +731,9 @@ TEST_F(ExperimentCliTest, QuickPathConvergenceMeasuresNineFramesAndReusesCyclesF
 TEST_F(ExperimentCliTest, QuickCalibrationStudyMeasuresHeldOutErrorsAndWritesTheReport) {
   fs::create_directories(path("docs"));
   const mode_t umaskBefore = ::umask(022);  // the run's, inherited: its figures are checked against it below
-  // A link planted under a figure's name is replaced, never written through.
+  // A link planted under a figure's name in an earlier run's folder is replaced, never written through.
   fs::create_directories(path("cal/figures"));
+  std::ofstream(path("cal/.omnicam-experiment.json")) << R"({"study": "calibration"})";
   std::ofstream(path("mine.svg")) << "mine";
   fs::create_symlink(path("mine.svg"), path("cal/figures/calibration_study_error.svg"));
   const auto r = omnicam("experiment calibration --quick -o " + path("cal") + " --doc " + path("docs/calibration-study.md"));
@@ -710,7 +747,8 @@ TEST_F(ExperimentCliTest, QuickCalibrationStudyMeasuresHeldOutErrorsAndWritesThe
   // What the folder holds is the run's results: nothing the plotting left (matplotlib's .cache).
   std::set<std::string> entries;
   for (const auto& entry : fs::directory_iterator(path("cal"))) entries.insert(entry.path().filename().string());
-  EXPECT_EQ(entries, (std::set<std::string>{"arenas", "calibration-study.md", "data", "figures", "results.json"}));
+  EXPECT_EQ(entries, (std::set<std::string>{".omnicam-experiment.json", "arenas", "calibration-study.md", "data", "figures",
+                                            "results.json"}));
   const json results = json::parse(testing::readFile(path("cal/results.json")));
   ASSERT_EQ(results["rigs"].size(), 3u);
   std::map<std::string, json> rigs;
