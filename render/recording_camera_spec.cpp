@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <random>
+#include <set>
 
 #include "errors.h"
 #include "json_fields.h"
@@ -272,6 +273,61 @@ uint64_t seedOf(JsonFields& f) {
   return seed.get<uint64_t>();
 }
 
+// The values `name` may take in a frame of `spec`: its own draw's, else each preset's that may be
+// drawn, else its neutral value. For a word parameter (drawn by choice), the words.
+std::set<double> possibleValues(const RecordingCameraSpec& spec, const std::string& name);
+
+// A setting that changes nothing unless another takes a value (a gamma without a gamma tone
+// curve) is refused: a spec that sets it believes it does something.
+struct DependentSetting {
+  const char* setting;
+  const char* on;
+  std::set<double> values;  // of `on`, which make `setting` act
+  const char* acts;         // when it acts, in words
+  const char* hint;
+};
+
+const std::vector<DependentSetting>& dependentSettings() {
+  static const std::vector<DependentSetting> dependent = {
+      {"gamma", "tone_curve", {1.0}, "tone_curve is gamma", "give \"tone_curve\": \"gamma\""},
+      {"contrast", "tone_curve", {2.0}, "tone_curve is filmic", "give \"tone_curve\": \"filmic\""},
+      {"demosaic", "bayer", {1.0, 2.0, 3.0, 4.0}, "bayer is a pattern", "give a bayer pattern"}};
+  return dependent;
+}
+
+// True if `name` acts in `camera` (every setting but a dependent one whose switch is off).
+bool actsIn(const RecordingCamera& camera, const std::string& name) {
+  for (const DependentSetting& d : dependentSettings())
+    if (name == d.setting) return d.values.count(findParameter(d.on)->get(camera)) > 0;
+  return true;
+}
+
+void refuseSettingsThatDoNothing(const RecordingCameraSpec& spec, const JsonFields& f) {
+  for (const DependentSetting& d : dependentSettings()) {
+    if (!spec.draws.count(d.setting)) continue;
+    const std::set<double> possible = possibleValues(spec, d.on);
+    if (std::any_of(possible.begin(), possible.end(), [&](double v) { return d.values.count(v) > 0; })) continue;
+    const Parameter& on = *findParameter(d.on);
+    std::string taken;
+    for (double v : possible) taken += (taken.empty() ? "" : " or ") + std::string(on.words[static_cast<size_t>(v)]);
+    f.fail(d.setting, std::string("does nothing unless ") + d.acts + ", and it is " + taken +
+                          (spec.draws.count(d.on) ? "" : spec.preset ? " (the preset's)" : " (its default)") + " here: " + d.hint +
+                          ", or leave " + d.setting + " out");
+  }
+}
+
+std::set<double> possibleValues(const RecordingCameraSpec& spec, const std::string& name) {
+  if (const auto own = spec.draws.find(name); own != spec.draws.end())
+    return {own->second.values.begin(), own->second.values.end()};
+  if (!spec.preset) return {findParameter(name)->neutral};
+  std::set<double> values;
+  for (double preset : spec.preset->values) {
+    const std::set<double> its = possibleValues(recordingPreset(recordingPresetNames()[static_cast<size_t>(preset)]), name);
+    values.insert(its.begin(), its.end());
+  }
+  return values;
+}
+
 }  // namespace
 
 const std::vector<std::string>& recordingPresetNames() {
@@ -303,7 +359,12 @@ RecordingCamera withStageNeutral(RecordingCamera camera, const std::string& stag
   return camera;
 }
 
-RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
+namespace {
+
+// A spec as written, each field checked on its own; `settingsMustAct` also refuses a setting that
+// would act in no frame (a user's spec: not a manifest's drawn camera, which writes every value).
+RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::string& file, const std::string& where,
+                                            bool settingsMustAct) {
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
@@ -318,7 +379,14 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
   readDraws(f, spec.draws);
   if (f.has("seed")) spec.seed = seedOf(f);
   f.finish();
+  if (settingsMustAct) refuseSettingsThatDoNothing(spec, f);
   return spec;
+}
+
+}  // namespace
+
+RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
+  return readRecordingCameraSpec(j, file, where, true);
 }
 
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec) {
@@ -379,15 +447,15 @@ RecordingCamera RecordingCameraSpec::draw(uint64_t index) const {
 
 nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
   nlohmann::json j = nlohmann::json::object();
-  for (const Parameter& p : parameters())
-    if (std::string(p.name).rfind("white_balance[", 0) != 0) j[p.name] = valueJson(p, p.get(camera));
+  for (const Parameter& p : parameters())  // a setting its stage does not use is left out: read back, it would be refused
+    if (std::string(p.name).rfind("white_balance[", 0) != 0 && actsIn(camera, p.name)) j[p.name] = valueJson(p, p.get(camera));
   j["white_balance"] = camera.whiteBalance;
   j["seed"] = camera.seed;
   return j;
 }
 
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  const RecordingCameraSpec spec = recordingCameraSpecFromJson(j, file, where);
+  const RecordingCameraSpec spec = readRecordingCameraSpec(j, file, where, false);
   if (spec.randomised())
     throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "a single camera is wanted here: fixed values, no distributions or preset ranges");
   return spec.draw(0);

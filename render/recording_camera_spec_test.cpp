@@ -162,6 +162,23 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"gamma": {"choice": []}})"), "spec.json: recording.gamma.choice: must be a list of 1 to 64 values (got array)");
   EXPECT_EQ(errorOf(R"({"seed": -1})"), "spec.json: recording.seed: must be an integer in [0, 2^64 - 1] (got -1)");
   EXPECT_EQ(errorOf(R"({"read_noise": "0.1"})"), "spec.json: recording.read_noise: must be a number in [0, 1] (got \"0.1\")");
+  // A setting that would do nothing in every frame: its stage's switch is never on, by the spec's
+  // own value, by every preset it may draw, or by default. One that acts in some frame is kept.
+  EXPECT_EQ(errorOf(R"({"preset": "phone", "gamma": 2})"),
+            "spec.json: recording.gamma: does nothing unless tone_curve is gamma, and it is filmic (the preset's) here: "
+            "give \"tone_curve\": \"gamma\", or leave gamma out");
+  EXPECT_EQ(errorOf(R"({"contrast": 1.2, "tone_curve": {"choice": ["srgb", "gamma"]}})"),
+            "spec.json: recording.contrast: does nothing unless tone_curve is filmic, and it is srgb or gamma here: "
+            "give \"tone_curve\": \"filmic\", or leave contrast out");
+  EXPECT_EQ(errorOf(R"({"demosaic": "vng"})"),
+            "spec.json: recording.demosaic: does nothing unless bayer is a pattern, and it is none (its default) here: "
+            "give a bayer pattern, or leave demosaic out");
+  EXPECT_EQ(errorOf(R"({"preset": {"choice": ["machine_vision", "webcam"]}, "contrast": 1.2})"),
+            "spec.json: recording.contrast: does nothing unless tone_curve is filmic, and it is srgb or gamma (the preset's) here: "
+            "give \"tone_curve\": \"filmic\", or leave contrast out");
+  EXPECT_EQ(errorOf(R"({"preset": "webcam", "gamma": 2})"), "(accepted)");  // the webcam draws gamma or srgb
+  EXPECT_EQ(errorOf(R"({"preset": {"choice": ["webcam", "phone"]}, "contrast": 1.2})"), "(accepted)");
+  EXPECT_EQ(errorOf(R"({"preset": "phone", "tone_curve": "gamma", "gamma": 2})"), "(accepted)");
   // A single camera (a manifest's drawn values) refuses ranges.
   EXPECT_THROW(recordingCameraFromJson(nlohmann::json::parse(R"({"exposure_ev": {"uniform": [0, 1]}})"), "m.json"), InputError);
   EXPECT_THROW(recordingCameraFromJson(nlohmann::json::parse(R"("webcam")"), "m.json"), InputError);
