@@ -181,15 +181,14 @@ void writeFigureBeside(const std::string& doc, const std::string& name, const st
 
 // The study's results, read before anything is written (an output folder is untrusted input).
 ConvergenceResults readConvergence(const std::string& folder) {
-  const std::string text = readFileInside(folder, "convergence.json", 64 << 20);
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+    throw InputError("--convergence: " + showPath(folder) + ": no such folder (give the -o folder of `omnicam experiment realistic-convergence`)");
+  if (entryInside(folder, "convergence.json") == EntryKind::Missing)
+    throw InputError("--convergence: " + showPath(folder) + ": not a realistic-convergence folder (it holds no convergence.json; give the -o "
+                     "folder of `omnicam experiment realistic-convergence`)");
   const std::string file = folder + "/convergence.json";
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(showPath(file) + ": not JSON: " + oneLine(e.what()));
-  }
-  return convergenceFromJson(json, file);
+  return convergenceFromJson(parseJsonText(readFileInside(folder, "convergence.json", 64 << 20), file), file);
 }
 
 // The study's section for the documents; the study's figure is copied beside each that shows it
@@ -249,6 +248,23 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
   std::printf("%swrote %s/results.json, %s/calibration-study.md (%.0f s)\n", markdown.c_str(), a.out.c_str(), a.out.c_str(), r.seconds);
 }
 
+// A --test-camera FILE: one camera in the recording format, its fields at the top level.
+RecordingCameraSpec readTestCamera(const std::string& file) {
+  constexpr const char* kFormat = "a test camera is a JSON file of the recording's fields, e.g. examples/recording/cool_noisy.json";
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) {
+    const std::vector<std::string>& presets = recordingPresetNames();
+    const bool preset = std::find(presets.begin(), presets.end(), file) != presets.end();
+    throw InputError("--test-camera: " + showPath(file) + ": no such file (" + kFormat +
+                     (preset ? "; a preset is a range of cameras, the training's, not one camera to test on)" : ")"));
+  }
+  const nlohmann::json j = readJsonFile(file);
+  if (j.is_object() && j.contains("recording"))  // a dataset spec, or a camera wrapped as in one
+    throw InputError(showPath(file) + ": recording: give the recording's fields at the file's top level, not inside \"recording\" (" +
+                     kFormat + ")");
+  return recordingCameraSpecFromJson(j, file, "");
+}
+
 void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (a.name != "texture-realism" && a.name != "realistic-convergence" && a.name != "path-convergence" && a.name != "calibration")
     throw InputError("experiment: unknown experiment " + quote(a.name) +
@@ -274,7 +290,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   options.labPhoto = kLabPhoto;
   for (const char* photo : kOtherPhotos) options.randomPhotos.push_back(std::string(kStudioLights) + photo);
   for (const std::string& file : a.testCameras)  // read before anything is written: a bad one writes nothing
-    options.testCameras.push_back({file, recordingCameraSpecFromJson(readJsonFile(file), file, "")});
+    options.testCameras.push_back({file, readTestCamera(file)});
   for (const std::string& photo : options.randomPhotos)
     if (!std::filesystem::exists(photo))
       throw InputError(showPath(photo) + ": missing (Debian's blender-data ships it; run make deps)");

@@ -63,6 +63,15 @@ TEST(RealisticConvergence, MarkdownShowsMeansWorstCasesAndTheTargetVerdict) {
   ConvergenceResults better = sample();
   better.experimentPsnrDb = {35.0, 40.0};
   EXPECT_NE(convergenceMarkdown(better, "").find("the 35 dB target is met"), std::string::npos);
+  EXPECT_NE(md.find("Measured by `omnicam experiment realistic-convergence -o DIR` ("), std::string::npos) << md;
+  // A quick run (64 px for the experiment's check) says so, and judges no target.
+  ConvergenceResults quick = sample();
+  quick.experimentSize = 64;
+  const std::string quickMd = convergenceMarkdown(quick, "");
+  EXPECT_NE(quickMd.find("Measured by `omnicam experiment realistic-convergence -o DIR --quick`"), std::string::npos) << quickMd;
+  EXPECT_NE(quickMd.find("At a quick run's 64 px (the experiment renders 360 px) and 36 spp"), std::string::npos) << quickMd;
+  EXPECT_NE(quickMd.find("not a measure of the 35 dB target, which a run without --quick checks"), std::string::npos) << quickMd;
+  EXPECT_EQ(quickMd.find("short of the 35 dB target"), std::string::npos) << quickMd;
   EXPECT_NE(md.find("-2.5 %"), std::string::npos);
 }
 

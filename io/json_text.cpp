@@ -15,7 +15,11 @@ namespace {
 
 // nlohmann's messages quote the token they stopped at ("last read: 'tru'", "parsing '1e400'"),
 // and a token can be a whole megabyte-long string: it is echoed like any user text.
-std::string jsonErrorText(const std::string& what) {
+std::string jsonErrorText(std::string what) {
+  // nlohmann's own names ("[json.exception.parse_error.101] parse error at line 1, ...") say
+  // nothing to a user: the place and the reason are what is kept.
+  if (what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos) what.erase(0, what.find("] ") + 2);
+  if (what.rfind("parse error at ", 0) == 0) what.erase(0, std::string_view("parse error at ").size());
   for (const std::string_view marker : {"; last read: '", "parsing '"}) {
     const size_t open = what.find(marker);
     if (open == std::string::npos) continue;

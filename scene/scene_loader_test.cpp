@@ -316,8 +316,9 @@ TEST(JsonInput, DepthIsBoundedAndDuplicateKeysRefusedAtAnyDepth) {
   EXPECT_EQ(jsonError("{\"a\": " + nested(64) + "}", 65), "");
   EXPECT_EQ(jsonError(R"({"a": [{"b": 1, "c": {"b": 2}}, {"b": 3, "b": 4}]})"), "in.json: duplicate key \"b\" in one object");
   EXPECT_EQ(jsonError(R"({"a": 1, "b": {"a": 2}, "c": [{"a": 3}]})"), "");
-  EXPECT_EQ(jsonError(R"({"a": 1e400})"), "in.json: not valid JSON ([json.exception.out_of_range.406] number overflow parsing \"1e400\")");
-  EXPECT_EQ(jsonError(R"({"a": [1, 2)").rfind("in.json: not valid JSON ([json.exception.parse_error.101]", 0), 0u);
+  EXPECT_EQ(jsonError(R"({"a": 1e400})"), "in.json: not valid JSON (number overflow parsing \"1e400\")");
+  EXPECT_EQ(jsonError(R"({"a": [1, 2)").rfind("in.json: not valid JSON (line 1, column 12: syntax error while parsing array", 0), 0u)
+      << jsonError(R"({"a": [1, 2)");
 }
 
 // nlohmann's callback parser (the old duplicate-key check) rescanned the parent at every
