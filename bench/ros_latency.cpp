@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_flags.h"
 #include "ros_master.h"
 #include "test_daemons.h"
 
@@ -104,7 +105,8 @@ void measure(const Mode& mode, const fs::path& root, ros::NodeHandle& handle, in
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  omnicam::bench::readBenchFlags(argc, argv, {}, "ros_latency (no options)");
   const fs::path root = fs::temp_directory_path() / ("omnicam_ros_latency_" + std::to_string(::getpid()));
   fs::create_directories(root);
   RosMaster master(root);
@@ -113,8 +115,8 @@ int main() {
     return 1;
   }
   for (const std::string& variable : master.environment()) ::putenv(::strdup(variable.c_str()));
-  int argc = 0;
-  ros::init(argc, nullptr, "ros_latency", ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
+  int rosArgc = 0;  // ROS remappings are not this benchmark's
+  ros::init(rosArgc, nullptr, "ros_latency", ros::init_options::NoSigintHandler | ros::init_options::NoRosout);
   ros::NodeHandle handle;
   ros::AsyncSpinner spinner(1);
   spinner.start();

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 
+#include "bench_flags.h"
 #include "fast_renderer.h"
 #include "hall_arena.h"
 #include "scene_loader.h"
@@ -93,13 +94,10 @@ double framesPerSecond(const FastRenderer& renderer, const Scene& scene) {
 
 int main(int argc, char** argv) {
   using namespace omnicam;
-  const char* csv = nullptr;
-  const char* image = nullptr;
-  for (int k = 1; k + 1 < argc; k += 2) {
-    if (std::strcmp(argv[k], "--csv") == 0) csv = argv[k + 1];
-    else if (std::strcmp(argv[k], "--image") == 0) image = argv[k + 1];
-    else return std::fprintf(stderr, "usage: scene_scaling [--csv PATH] [--image PNG]\n"), 2;
-  }
+  const bench::BenchFlags flags = bench::readBenchFlags(argc, argv, {"--csv", "--image"}, "scene_scaling [--csv PATH] [--image PNG]");
+  const std::string csvPath = flags.value("--csv", ""), imagePath = flags.value("--image", "");
+  const char* csv = csvPath.empty() ? nullptr : csvPath.c_str();
+  const char* image = imagePath.empty() ? nullptr : imagePath.c_str();
   const Scene field = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");
   const std::filesystem::path hallDir = std::filesystem::temp_directory_path() / ("omnicam_scaling_" + std::to_string(::getpid()));
   HallOptions hallOptions;

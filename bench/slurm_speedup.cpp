@@ -16,6 +16,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "bench_flags.h"
+
 #include "slurm_cluster.h"
 
 namespace fs = std::filesystem;
@@ -36,19 +38,11 @@ struct Config {
 
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines as they come, also into a pipe
-  int frames = 24, spp = 16, size = 360;
-  std::string csv;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    if (flag == "--frames") frames = std::atoi(argv[i + 1]);
-    else if (flag == "--spp") spp = std::atoi(argv[i + 1]);
-    else if (flag == "--size") size = std::atoi(argv[i + 1]);
-    else if (flag == "--csv") csv = argv[i + 1];
-    else {
-      std::fprintf(stderr, "slurm_speedup: unknown option %s\n", flag.c_str());
-      return 2;
-    }
-  }
+  const omnicam::bench::BenchFlags flags = omnicam::bench::readBenchFlags(argc, argv, {"--frames", "--spp", "--size", "--csv"},
+                                                        "slurm_speedup [--frames N] [--spp N] [--size PX] [--csv PATH]");
+  const int frames = std::atoi(flags.value("--frames", "24").c_str()), spp = std::atoi(flags.value("--spp", "16").c_str()),
+            size = std::atoi(flags.value("--size", "360").c_str());
+  const std::string csv = flags.value("--csv", "");
   if (::geteuid() != 0) {
     std::fprintf(stderr, "slurm_speedup: the cluster's daemons run as root (SlurmUser=root)\n");
     return 1;
