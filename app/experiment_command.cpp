@@ -245,7 +245,8 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
     copyFigures(a.out, a.doc, {"calibration_study_error.svg", "calibration_study_residuals.png"});
     writeTextAtomically(a.doc, markdown);
   }
-  std::printf("%swrote %s/results.json, %s/calibration-study.md (%.0f s)\n", markdown.c_str(), a.out.c_str(), a.out.c_str(), r.seconds);
+  std::printf("%swrote %s/results.json, %s/calibration-study.md%s (%.0f s)\n", markdown.c_str(), a.out.c_str(), a.out.c_str(),
+              a.doc.empty() ? "" : (", " + a.doc).c_str(), r.seconds);
 }
 
 // A --test-camera FILE: one camera in the recording format, its fields at the top level.
@@ -377,7 +378,9 @@ void addExperimentCommands(CLI::App& app) {
       ->required();
   cmd->add_option("-o,--output", args->out, "Folder for the results (JSON), the report, figures/ and data/ (docs/experiments.md lists each experiment's files)")->required();
   cmd->add_flag("--quick", args->quick, "A few frames, small images and low spp (minutes, for tests)");
-  cmd->add_option("--doc", args->doc, "Also write the Markdown summary here (docs/texture-realism.md)");
+  cmd->add_option("--doc", args->doc,
+                  "Also write the Markdown report here, its figures beside it (the repository's: docs/texture-realism.md, "
+                  "docs/calibration-study.md, docs/path-tracing.md)");
   cmd->add_flag("--no-figures", args->noFigures, "Skip the matplotlib figures");
   cmd->add_option("--theta", args->theta, "Likelihood-ratio threshold of the classifiers (Eq. 3.10; default 1)")
       ->check(numberIn(0, 1e6, true));

@@ -267,6 +267,7 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
   centralModelTable(md, r, o);
   md << "\n";
   md << "## The sweep\n\n" << figure("held-out error against misalignment", "calibration_study_error.svg")
+     << "*corners from*: the exact corners; corners detected in clean renders; or detected in recorded frames (through the recording camera: noise, JPEG; their residual files are named `_detected_noisy`). *failed*, of the seeds run: calibrations OpenCV could not start (initialisation: no first guess from the views) / that did not converge (diverged); *partial models*: converged, but the model has no ray for some pixels the camera images (at 0.5 m).\n\n"
      << "### Without lens distortion\n\n";
   sweepTable(md, r, o, false);
   if (o.distortedLens) {

@@ -5,6 +5,7 @@
 #include "errors.h"
 #include "external_process.h"
 #include "job_folder.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -20,6 +21,11 @@ void runPlotScript(const std::string& plotScript, const std::string& resultsFold
   if (plot.notFound) throw OutputError("/usr/bin/python3: not found (make deps installs python3 and python3-matplotlib)");
   if (plot.exitCode != 0)
     throw OutputError(showPath(plotScript) + ": the figures failed (exit " + std::to_string(plot.exitCode) + "): " + plot.logTail);
+  // A log that says nothing is not kept among the results (one with warnings is).
+  const SafeFolder results(root.string());
+  std::error_code ec;
+  if (results.entry("figures/plot.log") == EntryKind::File && fs::file_size(root / "figures/plot.log", ec) == 0 && !ec)
+    results.removeFile("figures/plot.log");
 }
 
 }  // namespace omnicam
