@@ -35,6 +35,7 @@ std::string studyCommand(const StudyArgs& a) {
 void runStudy(const StudyArgs& a) {
   namespace fs = std::filesystem;
   checkSpp(a.spp, "--spp");  // before any folder is made
+  if (fs::path(a.out).extension() != ".md") throw InputError("-o: " + showPath(a.out) + ": the report is Markdown: give FILE.md");
   const std::vector<std::string> files = polygonStudyFiles(a.out);
   const fs::path figures = fs::path(files[1]).parent_path();
   // The report's folder may be new (made with its figures/); an existing one must not hold a

@@ -98,6 +98,20 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
   return setups;
 }
 
+// The spec's `size` is every camera's width: a lens camera given its own size is scaled with its
+// intrinsics (lens-cameras.md), which its spec does not show; told once per camera.
+void noteLensCamerasResized(const DatasetSpec& spec, std::vector<std::string>& notes) {
+  if (!spec.size) return;
+  for (const DatasetCamera& camera : spec.cameras) {
+    if (!camera.rig) continue;
+    const RigSpec rig = rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig");
+    if (!std::holds_alternative<LensCameraSpec>(rig.kind) || rig.imageWidth() == *spec.size) continue;
+    const RigSpec resized = rig.resized(*spec.size);
+    notes.push_back(showPath(spec.file) + ": size: camera " + quote(camera.name) + ", a lens camera of " + rig.imageSizeText() +
+                    ", renders at " + resized.imageSizeText() + " with its intrinsics scaled (size is every camera's width)");
+  }
+}
+
 FrameRange frameRange(const DatasetRunOptions& options, int totalFrames) {
   FrameRange range;
   range.sharded = options.shardCount > 0;
@@ -427,6 +441,7 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& optio
   json notWritten;
   outputs_ = outputPlan(spec, *engine_, scene_, notWritten, notes_);
   noteFramesLongerThanTheInterval(spec, setups_, velocities_, notes_);
+  noteLensCamerasResized(spec, notes_);
   ids_ = idTables(scene_);
   header_ = manifestHeader(spec, scene_, *engine_, outputs_, notWritten, ids_, totalFrames, options, range_);
   header_["cameras"] = manifestCameras(*this, statics_);

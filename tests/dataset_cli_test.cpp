@@ -1945,6 +1945,25 @@ TEST_F(DatasetCliTest, ALensCamerasCornerListsAreNotAMirrorImageAndCalibrateAsTh
   EXPECT_NEAR(k.at<double>(1, 2), 119.5, 1e-2);
 }
 
+// The spec's size is every camera's width: a lens camera of its own size is scaled, intrinsics
+// with it, and the run says so (its spec does not show it); a mirror camera's is not told.
+TEST_F(DatasetCliTest, ALensCameraScaledByTheSpecsSizeIsTold) {
+  const std::string spec = write("sized.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
+                                 R"(/scenes/robocup2006.json", "spp": 1, "size": 160,
+    "cameras": [{"name": "fish", "rig": {"height": 0.3, "lens": {"model": "kannala_brandt", "width": 320, "height": 240, "fx": 95, "fy": 95}}},
+                {"name": "mirror"}],
+    "poses": {"list": [[0, 0, 0]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  const testing::CommandResult run = omnicam("dataset " + spec + " -o " + path("sized"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("omnicam: note: " + spec + ": size: camera \"fish\", a lens camera of 320x240, renders at 160x120 with its "
+                         "intrinsics scaled (size is every camera's width)"),
+            std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("camera \"mirror\""), std::string::npos) << run.out;
+  const json intrinsics = json::parse(readFile(dir_ / "sized/manifest.json")).at("cameras")[0].at("intrinsics");
+  EXPECT_DOUBLE_EQ(intrinsics.at("fx").get<double>(), 47.5) << intrinsics.dump();
+}
+
 // A listed board pose that no camera sees (its back to the robot) is told, with why, and the
 // sequence still runs: its frame is in the dataset, its corners say so, nothing calibrates on it.
 TEST_F(DatasetCliTest, AListedBoardPoseNoCameraSeesIsToldWithWhy) {
