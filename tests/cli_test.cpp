@@ -312,6 +312,11 @@ TEST_F(CliTest, ProjectPrintsPixelCentresAtHalfAndNanBeyondTheRim) {
   const CommandResult signs = run("project " + kScene + " --pose=+1,1e0,+30 --point=+1,+1,0 --point=1,1.1,+5");
   EXPECT_EQ(signs.out, r.out);
   EXPECT_EQ(run("project " + kScene + " --pose=1,1,30 --point=+-1,1,0").code, 2);
+  // A negative first value is the option's value with or without '=' (README, conventions §1).
+  const CommandResult withEquals = run("project " + kScene + " --pose=-1,1,30 --point=-1,1,0");
+  ASSERT_EQ(withEquals.code, 0) << withEquals.out;
+  EXPECT_EQ(withEquals.out, "180.000000 180.000000\n");
+  EXPECT_EQ(run("project " + kScene + " --pose -1,1,30 --point -1,1,0").out, withEquals.out);
 }
 
 // The verbs that need only a camera take its rig from a file as well as from a scene, with the
