@@ -165,6 +165,9 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
   options.threads = a.threads;
   options.stopRequested = &interruptRequested();
   std::unique_ptr<Progress> progress;
+  options.onNotes = [](const std::vector<std::string>& notes) {
+    for (const std::string& note : notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
+  };
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };
   options.onFrame = [&](int, int) { progress->step(); };
   options.onWaitForShards = [&] {
@@ -190,7 +193,6 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
     }
   }();
   if (progress) progress->finish();
-  for (const std::string& note : r.notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
   if (!interruption.empty()) {
     // Before the folder was made (an engine checked first), there is nothing to resume.
     std::error_code ec;

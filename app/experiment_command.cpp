@@ -183,7 +183,8 @@ void writeFigureBeside(const std::string& doc, const std::string& name, const st
 ConvergenceResults readConvergence(const std::string& folder) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
-    throw InputError("--convergence: " + showPath(folder) + ": no such folder (give the -o folder of `omnicam experiment realistic-convergence`)");
+    throw InputError("--convergence: " + showPath(folder) + (std::filesystem::exists(folder, ec) ? ": not a folder" : ": no such folder") +
+                     " (give the -o folder of `omnicam experiment realistic-convergence`)");
   if (entryInside(folder, "convergence.json") == EntryKind::Missing)
     throw InputError("--convergence: " + showPath(folder) + ": not a realistic-convergence folder (it holds no convergence.json; give the -o "
                      "folder of `omnicam experiment realistic-convergence`)");
@@ -257,12 +258,12 @@ RecordingCameraSpec readTestCamera(const std::string& file) {
     const std::vector<std::string>& presets = recordingPresetNames();
     const bool preset = std::find(presets.begin(), presets.end(), file) != presets.end();
     throw InputError("--test-camera: " + showPath(file) + ": no such file (" + kFormat +
-                     (preset ? "; a preset is a range of cameras, the training's, not one camera to test on)" : ")"));
+                     (preset ? "; a preset goes in such a file: {\"preset\": \"" + file + "\"})" : ")"));
   }
   const nlohmann::json j = readJsonFile(file);
   if (j.is_object() && j.contains("recording"))  // a dataset spec, or a camera wrapped as in one
-    throw InputError(showPath(file) + ": recording: give the recording's fields at the file's top level, not inside \"recording\" (" +
-                     kFormat + ")");
+    throw InputError("--test-camera: " + showPath(file) + ": recording: give the recording's fields at the file's top level, not "
+                     "inside \"recording\" (" + kFormat + ")");
   return recordingCameraSpecFromJson(j, file, "");
 }
 

@@ -100,6 +100,6 @@ int main(int argc, char** argv) {
   omnicam::keepFreedMemoryInTheHeap();  // as the CLI does
   if (const char* t = std::getenv("EXR_THREADS")) OIIO::attribute("exr_threads", std::atoi(t));
   benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;  // as the other benchmarks: a typo starts no run
   benchmark::RunSpecifiedBenchmarks();
 }

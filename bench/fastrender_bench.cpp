@@ -198,7 +198,7 @@ BENCHMARK(BM_PanoramaRobocup2006)->Apply(frameArgs);
 int main(int argc, char** argv) {
   omnicam::keepFreedMemoryInTheHeap();  // as the CLI does: frames' buffers are not faulted in anew
   benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;  // as the other benchmarks: a typo starts no run
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -52,9 +52,9 @@ ImageRGBA cachedConverged(const Scene& scene, const RobotPose& pose, int index, 
 
 int main(int argc, char** argv) {
   keepFreedMemoryInTheHeap();  // as the CLI does: frames' buffers are not faulted in anew
-  const bench::BenchFlags flags = bench::readBenchFlags(argc, argv, {}, "path_dataset_rate [CACHE_FOLDER]", 1);
-  const bool keep = !flags.positional.empty();
-  const fs::path root = keep ? fs::path(flags.positional[0])
+  const bench::BenchFlags flags(argc, argv, {}, "path_dataset_rate [CACHE_FOLDER]", 1);
+  const bool keep = !flags.positional().empty();
+  const fs::path root = keep ? fs::path(flags.positional()[0])
                              : fs::temp_directory_path() / ("omnicam_path_dataset_rate_" + std::to_string(getpid()));
   const fs::path cache = root / "converged";
   fs::create_directories(cache);

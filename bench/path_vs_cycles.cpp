@@ -17,7 +17,7 @@
 
 int main(int argc, char** argv) {
   using namespace omnicam;
-  bench::readBenchFlags(argc, argv, {}, "path_vs_cycles (no options)");
+  const bench::BenchFlags flags(argc, argv, {}, "path_vs_cycles (no options)");
   keepFreedMemoryInTheHeap();  // as the CLI does: frames' buffers are not faulted in anew
   const Scene scene = loadScene(writeLabHall(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json",
                                             (std::filesystem::temp_directory_path() / "omnicam_path_vs_cycles").string()));

@@ -106,7 +106,7 @@ void measure(const Mode& mode, const fs::path& root, ros::NodeHandle& handle, in
 }  // namespace
 
 int main(int argc, char** argv) {
-  omnicam::bench::readBenchFlags(argc, argv, {}, "ros_latency (no options)");
+  const omnicam::bench::BenchFlags flags(argc, argv, {}, "ros_latency (no options)");
   const fs::path root = fs::temp_directory_path() / ("omnicam_ros_latency_" + std::to_string(::getpid()));
   fs::create_directories(root);
   RosMaster master(root);

@@ -94,8 +94,8 @@ double framesPerSecond(const FastRenderer& renderer, const Scene& scene) {
 
 int main(int argc, char** argv) {
   using namespace omnicam;
-  const bench::BenchFlags flags = bench::readBenchFlags(argc, argv, {"--csv", "--image"}, "scene_scaling [--csv PATH] [--image PNG]");
-  const std::string csvPath = flags.value("--csv", ""), imagePath = flags.value("--image", "");
+  const bench::BenchFlags flags(argc, argv, {"--csv", "--image"}, "scene_scaling [--csv PATH] [--image PNG]");
+  const std::string csvPath = flags.text("--csv", ""), imagePath = flags.text("--image", "");
   const char* csv = csvPath.empty() ? nullptr : csvPath.c_str();
   const char* image = imagePath.empty() ? nullptr : imagePath.c_str();
   const Scene field = loadScene(OMNICAM_SOURCE_DIR "/scenes/robocup2006.json");

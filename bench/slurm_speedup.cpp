@@ -38,11 +38,11 @@ struct Config {
 
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // progress lines as they come, also into a pipe
-  const omnicam::bench::BenchFlags flags = omnicam::bench::readBenchFlags(argc, argv, {"--frames", "--spp", "--size", "--csv"},
-                                                        "slurm_speedup [--frames N] [--spp N] [--size PX] [--csv PATH]");
-  const int frames = std::atoi(flags.value("--frames", "24").c_str()), spp = std::atoi(flags.value("--spp", "16").c_str()),
-            size = std::atoi(flags.value("--size", "360").c_str());
-  const std::string csv = flags.value("--csv", "");
+  const omnicam::bench::BenchFlags flags(argc, argv, {"--frames", "--spp", "--size", "--csv"},
+                                         "slurm_speedup [--frames N] [--spp N] [--size PX] [--csv PATH]");
+  const int frames = flags.integer("--frames", 24, 1, 100000), spp = flags.integer("--spp", 16, 1, 65536),
+            size = flags.integer("--size", 360, 8, 16384);
+  const std::string csv = flags.text("--csv", "");
   if (::geteuid() != 0) {
     std::fprintf(stderr, "slurm_speedup: the cluster's daemons run as root (SlurmUser=root)\n");
     return 1;

@@ -5,6 +5,7 @@
 
 #include "atomic_file.h"
 #include "dataset_folder.h"
+#include "json_text.h"
 #include "errors.h"
 #include "exr_channels.h"
 #include "multilayer_frame.h"
@@ -158,7 +159,7 @@ void writeCameraFiles(const SafeFolder& dir, DatasetManifest& manifest, json& ca
       if (const auto part = parts.parts.find(OutputKind::Landmarks); part != parts.parts.end())
         landmarkFrames.push_back(part->second);
     } catch (const json::exception& e) {
-      throw InputError(parts.name + ": not an annotation part omnicam wrote (" + oneLine(e.what()) + ")");
+      throw InputError(parts.name + ": not an annotation part omnicam wrote (" + jsonErrorText(oneLine(e.what())) + ")");
     }
   }
   for (OutputKind kind : gathering.kinds) {

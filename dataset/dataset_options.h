@@ -4,6 +4,7 @@
 #include <atomic>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace omnicam {
 
@@ -21,7 +22,9 @@ struct DatasetRunOptions {
   // Threads for the whole run (TBB's, POV-Ray's Work_Threads, Blender's -t); 0: every core. Under
   // Slurm, the cores the task was given (docs/cluster.md).
   int threads = 0;
-  // Called once before rendering: frames kept from an earlier run, of `total`.
+  // Called once before rendering, the folder checked: what the user should know of the run
+  // (DatasetPlan::notes), then the frames kept from an earlier run, of `total`.
+  std::function<void(const std::vector<std::string>& notes)> onNotes;
   std::function<void(int kept, int total)> onStart;
   // Called after every finished frame: frames done (kept + rendered) of `total`.
   std::function<void(int done, int total)> onFrame;

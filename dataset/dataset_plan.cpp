@@ -85,31 +85,25 @@ std::vector<StaticFile> staticFiles(const CameraSetup& setup, const std::vector<
   return files;
 }
 
-// The cameras of the spec with their rigs (the spec's size applied), each checked.
-std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scene) {
+// The cameras of the spec with their rigs (the spec's size applied), each checked. The size is
+// every camera's width: a lens camera of another width is scaled with its intrinsics, which its
+// rig (the spec's or the scene's) does not show: told in `notes`.
+std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scene, std::vector<std::string>& notes) {
   std::vector<CameraSetup> setups;
   for (const DatasetCamera& camera : spec.cameras) {
     CameraSetup setup{&camera, camera.rig ? rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig") : scene.rig, {}};
-    if (spec.size) setup.rig = setup.rig.resized(*spec.size, showPath(spec.file) + ": size: camera " + quote(camera.name));
+    if (spec.size) {
+      const RigSpec given = setup.rig;
+      setup.rig = setup.rig.resized(*spec.size, showPath(spec.file) + ": size: camera " + quote(camera.name));
+      if (std::holds_alternative<LensCameraSpec>(given.kind) && given.imageWidth() != *spec.size)
+        notes.push_back(showPath(spec.file) + ": size: camera " + quote(camera.name) + ", a lens camera of " + given.imageSizeText() +
+                        ", renders at " + setup.rig.imageSizeText() + " with its intrinsics scaled (size is every camera's width)");
+    }
     checkRenderSettings(spec.request.settings(setup.rig), settingNames(spec));
     setup.model = makeCamera(setup.rig);
     setups.push_back(setup);
   }
   return setups;
-}
-
-// The spec's `size` is every camera's width: a lens camera given its own size is scaled with its
-// intrinsics (lens-cameras.md), which its spec does not show; told once per camera.
-void noteLensCamerasResized(const DatasetSpec& spec, std::vector<std::string>& notes) {
-  if (!spec.size) return;
-  for (const DatasetCamera& camera : spec.cameras) {
-    if (!camera.rig) continue;
-    const RigSpec rig = rigFromJson(*camera.rig, spec.file, "cameras." + camera.name + ".rig");
-    if (!std::holds_alternative<LensCameraSpec>(rig.kind) || rig.imageWidth() == *spec.size) continue;
-    const RigSpec resized = rig.resized(*spec.size);
-    notes.push_back(showPath(spec.file) + ": size: camera " + quote(camera.name) + ", a lens camera of " + rig.imageSizeText() +
-                    ", renders at " + resized.imageSizeText() + " with its intrinsics scaled (size is every camera's width)");
-  }
 }
 
 FrameRange frameRange(const DatasetRunOptions& options, int totalFrames) {
@@ -415,7 +409,7 @@ Scene loadSpecScene(const DatasetSpec& spec) {
 
 DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& options)
     : spec_(spec), scene_(loadSpecScene(spec)) {
-  setups_ = cameraSetups(spec, scene_);
+  setups_ = cameraSetups(spec, scene_, notes_);
   double topHeight = 0.0;
   for (const CameraSetup& setup : setups_) topHeight = std::max(topHeight, setup.rig.height);
   if (spec.timing.kind == PathTiming::Kind::None) {
@@ -441,7 +435,6 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& optio
   json notWritten;
   outputs_ = outputPlan(spec, *engine_, scene_, notWritten, notes_);
   noteFramesLongerThanTheInterval(spec, setups_, velocities_, notes_);
-  noteLensCamerasResized(spec, notes_);
   ids_ = idTables(scene_);
   header_ = manifestHeader(spec, scene_, *engine_, outputs_, notWritten, ids_, totalFrames, options, range_);
   header_["cameras"] = manifestCameras(*this, statics_);

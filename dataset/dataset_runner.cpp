@@ -213,6 +213,7 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   std::vector<int> todo;
   for (int f = plan.range().first; f < plan.range().end; ++f)
     if (!manifest.frames.count(f)) todo.push_back(f);
+  if (options.onNotes) options.onNotes(result.notes);
   if (options.onStart) options.onStart(result.kept, result.frames);
   result.rendered = renderFrames(plan, folder, options, todo, manifest, result.kept, result.frames);
   result.stopped = result.kept + result.rendered < result.frames;

@@ -128,20 +128,21 @@ TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
   EXPECT_EQ(errorOf(m), "manifest.json: frames[0].cameras.cam0.files.secret: unknown kind of frame file");
 }
 
-// A camera's heading is the robot's plus its mount's, written within ±180° (a robot at 180° with a
-// camera mounted backwards heads 0°); the robot's pose is written as given.
+// A camera's heading is the robot's plus its mount's, written within (−180°, 180°] (a robot at 180°
+// with a camera mounted backwards heads 0°; 180° is never −180°); the robot's pose as given.
 TEST(Manifest, CameraHeadingsAreWrittenWithinPlusMinus180) {
-  DatasetManifest manifest{smallHeader({"cam0"}, 3), {}};
+  DatasetManifest manifest{smallHeader({"cam0"}, 6), {}};
   const RobotMount backwards{-0.1, 0.0, 180.0};
-  const std::vector<std::pair<double, double>> robotAndCameraYawDeg = {{180.0, 0.0}, {170.0, -10.0}, {-170.0, 10.0}};
-  for (int i = 0; i < 3; ++i) {
+  const std::vector<std::pair<double, double>> robotAndCameraYawDeg = {
+      {180.0, 0.0}, {170.0, -10.0}, {-170.0, 10.0}, {0.0, 180.0}, {360.0, 180.0}, {-360.0, 180.0}};
+  for (int i = 0; i < 6; ++i) {
     const RobotPose robot{1.0, 2.0, robotAndCameraYawDeg[static_cast<size_t>(i)].first};
     FrameRecord frame{i, 0.1 * i, robot, {}, {}};
     frame.cameras["cam0"].pose = CameraPlacement(robot, {}, backwards).footAt(0.0);
     manifest.frames[i] = frame;
   }
   const json written = manifestToJson(manifest);
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 6; ++i) {
     const json& frame = written["frames"][static_cast<size_t>(i)];
     EXPECT_EQ(frame["pose"]["yaw_deg"].get<double>(), robotAndCameraYawDeg[static_cast<size_t>(i)].first);
     EXPECT_NEAR(frame["cameras"]["cam0"]["pose"]["yaw_deg"].get<double>(), robotAndCameraYawDeg[static_cast<size_t>(i)].second, 1e-12);

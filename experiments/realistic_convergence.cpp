@@ -33,6 +33,7 @@ ConvergenceOptions ConvergenceOptions::quick() {
   o.experimentReferenceSpp = 64;
   o.poseIndices = {0};
   o.everyPath = false;
+  o.quickRun = true;
   return o;
 }
 
@@ -221,6 +222,7 @@ void checkAtExperimentSize(Study& study, ConvergenceResults& r) {
   const ConvergenceOptions& o = study.options;
   const RealisticRendering today = realisticRendering();
   r.experimentSize = o.experimentSize;
+  r.quick = o.quickRun;
   r.experimentSpp = today.spp;
   r.experimentReferenceSpp = o.experimentReferenceSpp;
   const std::vector<ImageRGBA> reference =

@@ -27,6 +27,7 @@ struct ConvergenceOptions {
   std::vector<int> poseIndices = {0, 33, 66};  // of thesis-loop
   bool everyPath = true;                        // false: of the path variants only "before" and "physical"
   double blenderTimeoutSeconds = 3600.0;
+  bool quickRun = false;                        // quick(): its report judges no target
   static ConvergenceOptions quick();            // tiny images, short ladder: for tests
 };
 
@@ -56,6 +57,7 @@ struct ConvergenceResults {
   std::vector<double> experimentPsnrDb;
   int size = 0, referenceSpp = 0;
   double seconds = 0.0;
+  bool quick = false;  // a --quick run: smaller than the experiment's frames, its check judges no target
 };
 
 // Writes outDir/convergence.json, data/convergence.csv, frames/ (pose 0 at every rung) and

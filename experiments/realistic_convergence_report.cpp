@@ -6,6 +6,7 @@
 
 #include "errors.h"
 #include "indirect_filter.h"
+#include "json_text.h"
 #include "number_format.h"
 
 namespace omnicam {
@@ -28,7 +29,8 @@ nlohmann::json convergenceJson(const ConvergenceResults& r) {
           {"clamp_bias", {{"clamp_indirect", r.clampIndirect}, {"psnr_db", r.clampBiasPsnrDb}, {"luminance_percent", r.clampBiasLuminancePercent}}},
           {"experiment_check",
            {{"size", r.experimentSize}, {"spp", r.experimentSpp}, {"reference_spp", r.experimentReferenceSpp}, {"psnr_db", r.experimentPsnrDb}}},
-          {"seconds", r.seconds}};
+          {"seconds", r.seconds},
+          {"quick", r.quick}};
 }
 
 namespace {
@@ -76,8 +78,10 @@ ConvergenceResults convergenceFromJson(const nlohmann::json& j, const std::strin
     r.experimentReferenceSpp = j.at("experiment_check").at("reference_spp").get<int>();
     r.experimentPsnrDb = j.at("experiment_check").at("psnr_db").get<std::vector<double>>();
     r.seconds = j.at("seconds").get<double>();
+    // Written before runs said whether they were quick: a quick one's check was smaller than the experiment's frames.
+    r.quick = j.contains("quick") ? j.at("quick").get<bool>() : r.experimentSize != ConvergenceOptions().experimentSize;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(showPath(file) + ": not a realistic-convergence result: " + oneLine(e.what()));
+    throw InputError(showPath(file) + ": not a realistic-convergence result: " + jsonErrorText(oneLine(e.what())));
   }
   return r;
 }
@@ -140,7 +144,7 @@ std::string filterMarkdown(const ConvergenceResults& r) {
     for (double p : r.experimentPsnrDb) worst = std::min(worst, p);
     // A quick run's images are smaller than the experiment's: its check is of the pipeline, not of the target.
     const int experimentSize = ConvergenceOptions().experimentSize;
-    const bool quick = r.experimentSize != experimentSize;
+    const bool quick = r.quick;
     md << "\nAt " << (quick ? "a quick run's " : "the experiment's own ") << r.experimentSize << " px"
        << (quick ? " (the experiment renders " + std::to_string(experimentSize) + " px)" : "") << " and " << r.experimentSpp
        << " spp, the experiment's frames of the same poses against unfiltered " << r.experimentReferenceSpp
@@ -167,7 +171,7 @@ std::string convergenceMarkdown(const ConvergenceResults& r, const std::string& 
   std::ostringstream md;
   md << "## Are the realistic frames converged?\n\n"
      << "Measured by `omnicam experiment realistic-convergence -o DIR"
-     << (r.experimentSize != ConvergenceOptions().experimentSize ? " --quick" : "") << "` (experiments/realistic_convergence.h; "
+     << (r.quick ? " --quick" : "") << "` (experiments/realistic_convergence.h; "
      << fixedDecimals(r.seconds / 60.0, 0) << " min): Blender renders of the textured hall at " << r.size << "×" << r.size
      << " px for pose" << (poses.size() == 1 ? " " : "s ") << poseList << " of thesis-loop, against a converged reference of " << r.referenceSpp
      << " spp per setup (" << (r.referenceSpp > 1024 ? "independent 1024-spp renders averaged; " : "")

@@ -45,6 +45,15 @@ TEST(RealisticConvergence, ResultsRoundTripThroughJson) {
   const ConvergenceResults back = convergenceFromJson(convergenceJson(r), "c.json");
   EXPECT_EQ(convergenceJson(back), convergenceJson(r));
   EXPECT_EQ(convergenceMarkdown(back, "f.svg"), convergenceMarkdown(r, "f.svg"));
+  ConvergenceResults quick = sample();
+  quick.quick = true;
+  EXPECT_TRUE(convergenceFromJson(convergenceJson(quick), "c.json").quick);
+  // A file from before runs said whether they were quick: told by its check's size.
+  nlohmann::json old = convergenceJson(quick);
+  old.erase("quick");
+  EXPECT_FALSE(convergenceFromJson(old, "c.json").quick);  // 360 px: the experiment's own
+  old["experiment_check"]["size"] = 64;
+  EXPECT_TRUE(convergenceFromJson(old, "c.json").quick);
 }
 
 TEST(RealisticConvergence, MarkdownShowsMeansWorstCasesAndTheTargetVerdict) {
@@ -67,6 +76,7 @@ TEST(RealisticConvergence, MarkdownShowsMeansWorstCasesAndTheTargetVerdict) {
   // A quick run (64 px for the experiment's check) says so, and judges no target.
   ConvergenceResults quick = sample();
   quick.experimentSize = 64;
+  quick.quick = true;
   const std::string quickMd = convergenceMarkdown(quick, "");
   EXPECT_NE(quickMd.find("Measured by `omnicam experiment realistic-convergence -o DIR --quick`"), std::string::npos) << quickMd;
   EXPECT_NE(quickMd.find("At a quick run's 64 px (the experiment renders 360 px) and 36 spp"), std::string::npos) << quickMd;

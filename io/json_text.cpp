@@ -11,8 +11,6 @@ namespace omnicam {
 
 using nlohmann::json;
 
-namespace {
-
 // nlohmann's messages quote the token they stopped at ("last read: 'tru'", "parsing '1e400'"),
 // and a token can be a whole megabyte-long string: it is echoed like any user text.
 std::string jsonErrorText(std::string what) {
@@ -31,8 +29,6 @@ std::string jsonErrorText(std::string what) {
   }
   return what;
 }
-
-}  // namespace
 
 namespace {
 

@@ -17,6 +17,10 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& path, i
 // The same checks without building the tree (for JSON another library parses: glTF).
 void checkJsonText(const std::string& text, const std::string& path, int maxDepth = limits::kMaxJsonDepth);
 
+// A nlohmann::json exception's message as users read it: without the library's own names
+// ("[json.exception.parse_error.101] parse error at"), the token it stopped at quoted and escaped.
+std::string jsonErrorText(std::string what);
+
 // Where two JSON values differ, as paths to the differing members ("mirror.k", "offset_mm[1]";
 // "" when the values themselves differ in kind or length), the first `limit` in member order.
 std::vector<std::string> jsonDifferences(const nlohmann::json& a, const nlohmann::json& b, size_t limit = 4);

@@ -311,7 +311,11 @@ void refuseSettingsThatDoNothing(const RecordingCameraSpec& spec, const JsonFiel
     std::string taken;
     for (double v : possible) taken += (taken.empty() ? "" : " or ") + std::string(on.words[static_cast<size_t>(v)]);
     f.fail(d.setting, std::string("does nothing unless ") + d.acts + ", and it is " + taken +
-                          (spec.draws.count(d.on) ? "" : spec.preset ? " (the preset's)" : " (its default)") + " here: " + d.hint +
+                          (spec.draws.count(d.on)                   ? ""
+                           : !spec.preset                           ? " (its default)"
+                           : spec.preset->values.size() > 1 ? " (the presets')"
+                                                                    : " (the preset's)") +
+                          " here: " + d.hint +
                           ", or leave " + d.setting + " out");
   }
 }
@@ -410,7 +414,8 @@ nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec) {
 
 RecordingCameraSpec fixedRecordingCameraSpec(const RecordingCamera& camera) {
   RecordingCameraSpec spec;
-  for (const Parameter& p : parameters()) spec.draws[p.name] = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {p.get(camera)}};
+  for (const Parameter& p : parameters())  // the settings that act in the camera, as recordingCameraToJson writes them
+    if (actsIn(camera, p.name)) spec.draws[p.name] = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {p.get(camera)}};
   spec.seed = camera.seed;
   return spec;
 }

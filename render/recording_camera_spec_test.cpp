@@ -174,7 +174,7 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
             "spec.json: recording.demosaic: does nothing unless bayer is a pattern, and it is none (its default) here: "
             "give a bayer pattern, or leave demosaic out");
   EXPECT_EQ(errorOf(R"({"preset": {"choice": ["machine_vision", "webcam"]}, "contrast": 1.2})"),
-            "spec.json: recording.contrast: does nothing unless tone_curve is filmic, and it is srgb or gamma (the preset's) here: "
+            "spec.json: recording.contrast: does nothing unless tone_curve is filmic, and it is srgb or gamma (the presets') here: "
             "give \"tone_curve\": \"filmic\", or leave contrast out");
   EXPECT_EQ(errorOf(R"({"preset": "webcam", "gamma": 2})"), "(accepted)");  // the webcam draws gamma or srgb
   EXPECT_EQ(errorOf(R"({"preset": {"choice": ["webcam", "phone"]}, "contrast": 1.2})"), "(accepted)");

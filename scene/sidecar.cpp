@@ -77,7 +77,8 @@ json sceneInputsToJson(const std::vector<SceneInputFile>& inputs) {
 json poseToJson(const RobotPose& pose) { return {{"x", pose.x}, {"y", pose.y}, {"yaw_deg", pose.yawDeg}}; }
 
 json footPoseToJson(const RobotPose& foot) {
-  return poseToJson({foot.x, foot.y, std::remainder(foot.yawDeg, 360.0)});
+  const double heading = std::remainder(foot.yawDeg, 360.0);  // [−180, 180], −180 where 180 is meant too
+  return poseToJson({foot.x, foot.y, heading == -180.0 ? 180.0 : heading});
 }
 
 json sidecarJson(const RenderRecord& r) {

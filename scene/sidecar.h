@@ -28,8 +28,8 @@ nlohmann::json rigToJson(const RigSpec& rig);
 // A robot's pose as records write it: {"x", "y", "yaw_deg"}, as given.
 nlohmann::json poseToJson(const RobotPose& pose);
 // A camera's foot pose (CameraPlacement::footAt) as records write it: its heading, the robot's
-// plus its mount's, within [−180°, 180°] (a robot at 180° with a camera mounted backwards heads
-// 0°, not 360°); renders keep the sum as it is.
+// plus its mount's, within (−180°, 180°] (a robot at 180° with a camera mounted backwards heads
+// 0°, not 360°; one heading one number); renders keep the sum as it is.
 nlohmann::json footPoseToJson(const RobotPose& foot);
 // [{"path", "sha256"}, ...]: the scene's files beyond its own text (Scene::inputDigests).
 nlohmann::json sceneInputsToJson(const std::vector<SceneInputFile>& inputs);

@@ -1962,6 +1962,17 @@ TEST_F(DatasetCliTest, ALensCameraScaledByTheSpecsSizeIsTold) {
   EXPECT_EQ(run.out.find("camera \"mirror\""), std::string::npos) << run.out;
   const json intrinsics = json::parse(readFile(dir_ / "sized/manifest.json")).at("cameras")[0].at("intrinsics");
   EXPECT_DOUBLE_EQ(intrinsics.at("fx").get<double>(), 47.5) << intrinsics.dump();
+  // The note comes before the frames, and a lens camera the scene's rig gives is told too.
+  EXPECT_LT(run.out.find("omnicam: note:"), run.out.find("wrote ")) << run.out;
+  write("lens_scene.json", R"({"format": "omnicam-scene/1",
+    "rig": {"height": 0.3, "lens": {"model": "pinhole", "width": 320, "height": 240, "fx": 200, "fy": 200}},
+    "materials": {"m": {"color": [0.5, 0.5, 0.5]}}, "objects": [{"type": "sphere", "material": "m", "center": [1, 0, 0.3], "radius": 0.2}]})");
+  const std::string fromScene = write("from_scene.json", R"({"format": "omnicam-dataset/1", "scene": "lens_scene.json", "spp": 1, "size": 160,
+    "poses": {"list": [[0, 0, 0]]},
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
+  const testing::CommandResult sceneRig = omnicam("dataset " + fromScene + " -o " + path("from_scene"));
+  ASSERT_EQ(sceneRig.code, 0) << sceneRig.out;
+  EXPECT_NE(sceneRig.out.find("size: camera \"cam0\", a lens camera of 320x240, renders at 160x120"), std::string::npos) << sceneRig.out;
 }
 
 // A listed board pose that no camera sees (its back to the robot) is told, with why, and the

@@ -617,12 +617,13 @@ TEST_F(ExperimentCliTest, AFolderOfOtherFilesOrOfAnotherStudyIsRefusedByEveryExp
       EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
       EXPECT_NE(r.out.find(message), std::string::npos) << experiment << " into " << folder << ": " << r.out;
     };
-    refused("mine", path("mine") + ": holds files no omnicam experiment wrote (\"b.txt\"): give an empty or new folder");
+    refused("mine", path("mine") + ": holds files no omnicam experiment wrote (\"b.txt\" and 1 more): give an empty or new folder");
     for (const auto& [file, study] : foreign)
       if (study != experiment)
         refused(study, path(study + "/" + file) + ": holds the results of experiment \"" + study + "\", not " + experiment);
     if (experiment != "calibration")
-      refused("marked", path("marked/.omnicam-experiment.json") + ": holds the results of experiment \"calibration\", not " + experiment);
+      refused("marked", path("marked/.omnicam-experiment.json") + ": the folder is experiment \"calibration\"'s (its mark), not " +
+                            experiment + "'s: give another folder");
     EXPECT_TRUE(test_support::folderSnapshot(dir_) == before) << experiment;
   }
 }

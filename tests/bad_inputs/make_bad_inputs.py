@@ -420,6 +420,11 @@ def main():
     # An experiment's folder holding another experiment's results.
     write(os.path.join(HERE, "experiments", "texture_realism_run", "results.json"),
           json.dumps({"study": "texture-realism", "conditions": {}}) + "\n")
+    # A convergence study's results that lack their fields; an experiment folder marked by another study.
+    write(os.path.join(HERE, "experiments", "convergence_no_format", "convergence.json"), json.dumps({"seconds": 1}) + "\n")
+    write(os.path.join(HERE, "experiments", "calibration_marked", ".omnicam-experiment.json"),
+          json.dumps({"study": "calibration"}) + "\n")
+    write(os.path.join(HERE, "experiments", "mark_without_study", ".omnicam-experiment.json"), json.dumps({"by": "me"}) + "\n")
 
 
 if __name__ == "__main__":
