@@ -20,6 +20,9 @@ struct BoardPoseOptions {
   // targetBoardOutline), the whole board a dataset renders; none: the pattern's corners, as the
   // calibration study measured its boards.
   std::optional<double> boardMarginM;
+  // Every point of that board at least this far from the viewpoint (a dataset's sequence: nearer,
+  // a board reaches into the mirror); none: only its centre's distance (nearM) counts, as the study drew.
+  std::optional<double> minBoardDistanceM;
 };
 
 }  // namespace omnicam

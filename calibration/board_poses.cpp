@@ -48,6 +48,14 @@ std::vector<Vec3> floorTestPoints(const TargetPattern& pattern, const std::optio
   return {outline.begin(), outline.end()};
 }
 
+double boardDistance(const Rigid& worldFromTarget, const std::vector<Vec3>& outline, const Vec3& point) {
+  Vec3 lo = outline.front(), hi = outline.front();
+  for (const Vec3& c : outline) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  const Vec3 p = worldFromTarget.inverse() * point;
+  const Vec3 nearest(std::clamp(p.x(), lo.x(), hi.x()), std::clamp(p.y(), lo.y(), hi.y()), 0.0);
+  return (p - nearest).norm();
+}
+
 std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpoint, const TargetPattern& pattern,
                               const BoardPoseOptions& o) {
   std::mt19937_64 random(o.seed);
@@ -74,6 +82,9 @@ std::vector<Rigid> boardPoses(const Camera& camera, const Rigid& worldFromViewpo
     board.worldFromTarget.linear() = tilted * Eigen::AngleAxisd(roll, Vec3::UnitZ()).toRotationMatrix();
     board.worldFromTarget.translation() = at - board.worldFromTarget.linear() * centre;
     if (o.floorZ && !boardClearsFloor(board.worldFromTarget, floorPoints, *o.floorZ)) continue;
+    // A board centred near the viewpoint reaches past it with its edges: no part of it nearer than this.
+    if (o.minBoardDistanceM && boardDistance(board.worldFromTarget, floorPoints, worldFromViewpoint.translation()) < *o.minBoardDistanceM)
+      continue;
     const std::vector<ImagedCorner> corners = imagedCorners(camera, worldFromViewpoint, nullptr, board);
     const auto seen = std::count_if(corners.begin(), corners.end(), [](const ImagedCorner& c) { return c.sight == CornerSight::Seen; });
     if (seen >= o.minSeenCorners) poses.push_back(board.worldFromTarget);

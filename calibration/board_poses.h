@@ -17,6 +17,9 @@ inline constexpr double kBoardFloorClearanceM = 0.01;
 bool boardClearsFloor(const Rigid& worldFromTarget, const std::vector<Vec3>& points, double floorZ);
 // The points that must clear the floor by the options (BoardPoseOptions::boardMarginM).
 std::vector<Vec3> floorTestPoints(const TargetPattern& pattern, const std::optional<double>& boardMarginM);
+// The distance from `point` (world frame) to the nearest point of the flat board whose extent in
+// its own plane (z = 0) is the box of `outline` (target frame; floorTestPoints' points).
+double boardDistance(const Rigid& worldFromTarget, const std::vector<Vec3>& outline, const Vec3& point);
 
 // `count` poses (worldFromTarget for a camera at worldFromViewpoint), each with at least
 // minSeenCorners corners seen (imaged inside the rim and the image, on the printed face; no

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "errors.h"
+#include "number_format.h"
 
 namespace omnicam {
 
@@ -32,6 +33,7 @@ std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const
     BoardPoseOptions options = *spec.random;
     options.floorZ = kFloorZ;
     options.boardMarginM = target.margin;
+    options.minBoardDistanceM = limits::kMinBoardDistanceM;
     std::vector<Rigid> poses;
     try {
       poses = boardPoses(camera, worldFromViewpoint, pattern, options);
@@ -42,10 +44,15 @@ std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const
     return poses;
   }
   const std::vector<Vec3> outline = floorTestPoints(pattern, target.margin);
-  for (size_t i = 0; i < spec.listed.size(); ++i)
+  for (size_t i = 0; i < spec.listed.size(); ++i) {
     if (!boardClearsFloor(worldFromViewpoint * spec.listed[i], outline, kFloorZ))
       throw InputError("list[" + std::to_string(i) + "]: the board goes through the floor (its every corner, margin included, must be " +
                        std::to_string(static_cast<int>(kBoardFloorClearanceM * 100)) + " cm above it)");
+    if (const double nearest = boardDistance(spec.listed[i], outline, Vec3::Zero()); nearest < limits::kMinBoardDistanceM)
+      throw InputError("list[" + std::to_string(i) + "]: the board comes within " + shortNumber(nearest) +
+                       " m of the viewpoint (its nearest point, margin included; every point must be " + shortNumber(limits::kMinBoardDistanceM) +
+                       " m away: nearer, it reaches into the mirror)");
+  }
   return spec.listed;
 }
 

@@ -138,6 +138,36 @@ TEST(CalibrationTargets, AprilTagDecodesEveryPrintedTagAtItsCorners) {
   EXPECT_LT(worst, 0.1);
 }
 
+// A board's distance from a point is to its nearest point: straight across its face where the
+// point faces it, else to its edge or corner (closed forms); drawn boards with a least distance
+// keep every point of the board that far from the viewpoint, the centre's distance alone does not.
+TEST(CalibrationTargets, ABoardsDistanceIsToItsNearestPointAndDrawnBoardsKeepIt) {
+  const std::vector<Vec3> outline = {{0, 0, 0}, {0.4, 0, 0}, {0.4, 0.3, 0}, {0, 0.3, 0}};
+  Rigid worldFromTarget = Rigid::Identity();
+  worldFromTarget.translation() = Vec3(1, 2, 3);
+  EXPECT_NEAR(boardDistance(worldFromTarget, outline, Vec3(1.2, 2.1, 3.25)), 0.25, 1e-15);          // over the face
+  EXPECT_NEAR(boardDistance(worldFromTarget, outline, Vec3(1.6, 2.1, 3.0)), 0.2, 1e-15);            // beside an edge
+  EXPECT_NEAR(boardDistance(worldFromTarget, outline, Vec3(1.7, 2.7, 3.12)), std::hypot(0.3, 0.4, 0.12), 1e-15);  // past a corner
+
+  const auto camera = makeCamera(RigSpec{});
+  const Rigid worldFromViewpoint = CameraPlacement(RobotPose{}).worldFromViewpoint(camera->rig());
+  const AprilGrid grid{6, 6, 0.088, 0.3, 0};
+  BoardPoseOptions near;
+  near.count = 20;
+  near.nearM = 0.05;
+  near.farM = 0.08;
+  near.minSeenCorners = 4;
+  near.boardMarginM = 0.02;
+  const std::vector<Vec3> board = floorTestPoints(grid, near.boardMarginM);
+  double centreOnly = 1.0;
+  for (const Rigid& pose : boardPoses(*camera, worldFromViewpoint, grid, near))
+    centreOnly = std::min(centreOnly, boardDistance(pose, board, worldFromViewpoint.translation()));
+  EXPECT_LT(centreOnly, 0.05) << "tilted boards centred 5 cm away reach nearer with their edges";
+  near.minBoardDistanceM = 0.05;
+  for (const Rigid& pose : boardPoses(*camera, worldFromViewpoint, grid, near))
+    EXPECT_GE(boardDistance(pose, board, worldFromViewpoint.translation()), 0.05);
+}
+
 TEST(CalibrationTargets, HiddenCornersSayWhy) {
   // A box between the robot and the grid's left half, the checkerboard turned away.
   const Scene scene = targetScene(R"(, {"name": "pillar", "type": "box", "material": "grey", "center": [0.4, 0.25, 0.3], "size": [0.05, 0.12, 0.6]})");

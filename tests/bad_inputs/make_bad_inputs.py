@@ -370,6 +370,8 @@ def main():
     dataset_spec("calibration_bag_panorama", scene="grids.json", poses=still, cameras=[
         {"name": "omni"}, {"name": "pano", "rig": {"lens": {"model": "equirectangular", "width": 32, "height": 16}}}],
                  calibration={"target": "board", "poses": board_poses, "rosbag": True})
+    dataset_spec("calibration_into_mirror", scene="grids.json", poses=still, calibration={"target": "board", "poses": {"list": [
+        {"origin": [0.04, -0.04, 0], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]}]}})
     dataset_spec("calibration_under_floor", scene="grids.json", poses=still, calibration={"target": "board", "poses": {"list": [
         {"origin": [0.3, 0, 0.2], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]},
         {"origin": [0.3, 0, -5], "x_axis": [0, 1, 0], "y_axis": [0, 0, 1]}]}})
