@@ -331,9 +331,16 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
   results.width = o.size;
   const std::vector<Misalignment> rigs = sweep(o);
   results.rigs.resize(rigs.size());
-  const int total = static_cast<int>(rigs.size()) * o.seeds;
+  // Each rig's seeds are calibrated, then its EKF drives: both counted, so that the rate and the
+  // time left cover the study's work, not its calibrations alone.
+  const int total = static_cast<int>(rigs.size()) * (o.seeds + 1);
   std::atomic<int> done{0};
   std::mutex progressMutex;
+  const auto stepDone = [&] {
+    const int now = ++done;
+    const std::lock_guard<std::mutex> lock(progressMutex);
+    if (progress) progress("calibrations and EKF drives", now, total);
+  };
   tbb::parallel_for(size_t{0}, rigs.size(), [&](size_t r) {
     RigOutcome& outcome = results.rigs[r];
     outcome.misalignment = rigs[r];
@@ -350,12 +357,11 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
       const int seed = static_cast<int>(s) + 1;
       seeds[s] = seedViews(o, room, rig, *camera, seed);
       for (CornerSource source : kSources) runs[s].push_back(calibrate(o, *camera, rays, seeds[s], source, seed));
-      const int now = ++done;
-      const std::lock_guard<std::mutex> lock(progressMutex);
-      if (progress) progress("calibrations", now, total);
+      stepDone();
     });
     for (auto& list : runs) outcome.runs.insert(outcome.runs.end(), list.begin(), list.end());
     outcome.ekf = compareEkf(field, loopPath->poses, drive, rig, *camera, outcome.runs);
+    stepDone();
     if (mapped(rigs[r]))
       for (const CalibrationRun& run : outcome.runs)
         if (run.seed == 1 && run.model && run.source != CornerSource::Detected)
