@@ -1,12 +1,12 @@
 #include "experiment_folder.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "errors.h"
+#include "scratch_folder.h"
 
 namespace omnicam {
 namespace {
@@ -15,12 +15,6 @@ namespace fs = std::filesystem;
 
 class ExperimentFolder : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("omnicam_experiment_folder_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string errorOf(const std::string& study) const {
     try {
       checkExperimentFolder(dir_.string(), study);
@@ -29,7 +23,8 @@ class ExperimentFolder : public ::testing::Test {
     }
     return "";
   }
-  fs::path dir_;
+  const test_support::ScratchFolder scratch_{"omnicam_experiment_folder"};
+  const fs::path& dir_ = scratch_.path();
 };
 
 // A folder of the experiments' own layout and nothing else is an earlier run's that ended before
