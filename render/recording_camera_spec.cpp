@@ -274,7 +274,8 @@ uint64_t seedOf(JsonFields& f) {
 }
 
 // The values `name` may take in a frame of `spec`: its own draw's, else each preset's that may be
-// drawn, else its neutral value. For a word parameter (drawn by choice), the words.
+// drawn, else its neutral value. For a word parameter (drawn by choice), the words; for a range,
+// its ends (enough for the settings' conditions, each true on an end if on any value between).
 std::set<double> possibleValues(const RecordingCameraSpec& spec, const std::string& name);
 
 // A setting that changes nothing unless another takes a value (a gamma without a gamma tone
@@ -282,23 +283,24 @@ std::set<double> possibleValues(const RecordingCameraSpec& spec, const std::stri
 struct DependentSetting {
   const char* setting;
   const char* on;
-  std::set<double> values;  // of `on`, which make `setting` act
-  const char* acts;         // when it acts, in words
+  std::function<bool(double)> actsWhen;  // of a value of `on`: does `setting` act?
+  const char* acts;                      // when it acts, in words
   const char* hint;
 };
 
 const std::vector<DependentSetting>& dependentSettings() {
   static const std::vector<DependentSetting> dependent = {
-      {"gamma", "tone_curve", {1.0}, "tone_curve is gamma", "give \"tone_curve\": \"gamma\""},
-      {"contrast", "tone_curve", {2.0}, "tone_curve is filmic", "give \"tone_curve\": \"filmic\""},
-      {"demosaic", "bayer", {1.0, 2.0, 3.0, 4.0}, "bayer is a pattern", "give a bayer pattern"}};
+      {"blur_kernel", "blur_radius_px", [](double radius) { return radius > 0; }, "blur_radius_px > 0", "give a blur_radius_px"},
+      {"gamma", "tone_curve", [](double tone) { return tone == 1.0; }, "tone_curve is gamma", "give \"tone_curve\": \"gamma\""},
+      {"contrast", "tone_curve", [](double tone) { return tone == 2.0; }, "tone_curve is filmic", "give \"tone_curve\": \"filmic\""},
+      {"demosaic", "bayer", [](double pattern) { return pattern != 0.0; }, "bayer is a pattern", "give a bayer pattern"}};
   return dependent;
 }
 
 // True if `name` acts in `camera` (every setting but a dependent one whose switch is off).
 bool actsIn(const RecordingCamera& camera, const std::string& name) {
   for (const DependentSetting& d : dependentSettings())
-    if (name == d.setting) return d.values.count(findParameter(d.on)->get(camera)) > 0;
+    if (name == d.setting) return d.actsWhen(findParameter(d.on)->get(camera));
   return true;
 }
 
@@ -306,10 +308,11 @@ void refuseSettingsThatDoNothing(const RecordingCameraSpec& spec, const JsonFiel
   for (const DependentSetting& d : dependentSettings()) {
     if (!spec.draws.count(d.setting)) continue;
     const std::set<double> possible = possibleValues(spec, d.on);
-    if (std::any_of(possible.begin(), possible.end(), [&](double v) { return d.values.count(v) > 0; })) continue;
+    if (std::any_of(possible.begin(), possible.end(), d.actsWhen)) continue;
     const Parameter& on = *findParameter(d.on);
     std::string taken;
-    for (double v : possible) taken += (taken.empty() ? "" : " or ") + std::string(on.words[static_cast<size_t>(v)]);
+    for (double v : possible)
+      taken += (taken.empty() ? "" : " or ") + (on.type == ValueType::Word ? std::string(on.words[static_cast<size_t>(v)]) : shortNumber(v));
     f.fail(d.setting, std::string("does nothing unless ") + d.acts + ", and it is " + taken +
                           (spec.draws.count(d.on)                   ? ""
                            : !spec.preset                           ? " (its default)"
@@ -321,8 +324,11 @@ void refuseSettingsThatDoNothing(const RecordingCameraSpec& spec, const JsonFiel
 }
 
 std::set<double> possibleValues(const RecordingCameraSpec& spec, const std::string& name) {
-  if (const auto own = spec.draws.find(name); own != spec.draws.end())
-    return {own->second.values.begin(), own->second.values.end()};
+  if (const auto own = spec.draws.find(name); own != spec.draws.end()) {
+    const ParameterDraw& draw = own->second;
+    if (draw.kind == ParameterDraw::Kind::Uniform || draw.kind == ParameterDraw::Kind::LogUniform) return {draw.lo, draw.hi};
+    return {draw.values.begin(), draw.values.end()};
+  }
   if (!spec.preset) return {findParameter(name)->neutral};
   std::set<double> values;
   for (double preset : spec.preset->values) {
