@@ -317,7 +317,8 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
                                             const ExperimentProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(o.outDir);
-  makeAllFoldersInside(o.outDir, {"arenas", "data", "figures"});
+  makeAllFoldersInside(o.outDir, plotScript.empty() ? std::vector<std::string>{"arenas", "data"}  // no figures: no folder for them
+                                                    : std::vector<std::string>{"arenas", "data", "figures"});
   writeTextAtomically((out / "arenas/calibration-room.json").string(), roomSceneText());
   const Scene room = loadScene((out / "arenas/calibration-room.json").string());
   const Scene field = loadScene(o.fieldScene);

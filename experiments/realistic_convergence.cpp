@@ -240,7 +240,8 @@ ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const st
       o.poseIndices.empty() || o.labPhoto.empty())
     throw InputError("realistic convergence: sizes >= 16, a ladder, spp >= 1, >= 1 pose and the lab photo");
   const fs::path out(o.outDir);
-  makeAllFoldersInside(o.outDir, {"arenas", "data", "frames", "figures"});
+  makeAllFoldersInside(o.outDir, plotScript.empty() ? std::vector<std::string>{"arenas", "data", "frames"}  // no figures: no folder for them
+                                                    : std::vector<std::string>{"arenas", "data", "frames", "figures"});
   HallOptions hallOptions;
   hallOptions.fieldScene = o.fieldScene;
   hallOptions.photos = {o.labPhoto};
