@@ -6,14 +6,11 @@ renders in a C++ loop, and Camera.project of 10^6 points. Ratios in one run, one
 
 import argparse
 import json
-import pathlib
 import time
 
 import numpy as np
 
 import omnicam
-
-REPOSITORY = pathlib.Path(__file__).resolve().parents[1]
 
 
 def render_loop_ratio(scene, frames):
@@ -70,7 +67,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--frames", type=int, default=200)
     args = parser.parse_args()
-    scene = omnicam.load_scene(str(REPOSITORY / "scenes" / "robocup2006.json"))
+    scene = omnicam.load_scene(omnicam.data_path("scenes/robocup2006.json"))
     native, python = render_loop_ratio(scene, args.frames)
     rate = project_rate(scene, 1_000_000)
     alone, pooled = thread_pool_ratio(scene, args.frames // 4)

@@ -17,13 +17,12 @@ import numpy as np  # noqa: E402
 
 import omnicam  # noqa: E402
 
-REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 
 
 def main(out_dir):
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    scene = omnicam.load_scene(str(REPOSITORY / "scenes" / "robocup2006.json"))
+    scene = omnicam.load_scene(omnicam.data_path("scenes/robocup2006.json"))
     renderer = omnicam.Renderer(scene)  # built once, reused for every pose
     path = scene.paths["thesis-loop"]
     poses = [path[k] for k in np.linspace(0, len(path) - 1, 4).astype(int)]

@@ -1,6 +1,7 @@
 """The examples under examples/python run as a researcher runs them and write their figures."""
 
 import os
+import shutil
 import subprocess
 import sys
 
@@ -8,7 +9,12 @@ from conftest import SOURCE
 
 
 def run_example(name, out):
-    done = subprocess.run([sys.executable, str(SOURCE / "examples" / "python" / name), str(out)],
+    # A copy, run from elsewhere, as a user copies an example to start from: it finds omnicam's
+    # files through omnicam.data_path, not beside itself.
+    copy = out / "my_copy" / name
+    copy.parent.mkdir(parents=True)
+    shutil.copyfile(SOURCE / "examples" / "python" / name, copy)
+    done = subprocess.run([sys.executable, str(copy), str(out)], cwd=str(copy.parent),
                           capture_output=True, text=True, env=dict(os.environ))
     assert done.returncode == 0, done.stdout + done.stderr
     return done.stdout
