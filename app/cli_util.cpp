@@ -29,6 +29,9 @@ Vec3 parseTriple(const std::string& text, const std::string& flag, const std::st
     const size_t end = k < 2 ? text.find(',', start) : text.size();
     const char* first = text.data() + start;
     const char* last = text.data() + end;
+    // Spaces around a number, as JSON's "[1, 0, 90]" copied in: "1, 0, 90" reads as "1,0,90".
+    while (first != last && *first == ' ') ++first;
+    while (last != first && last[-1] == ' ') --last;
     const std::string_view written(first, static_cast<size_t>(last - first));
     // A sign as people write it: from_chars takes "-" only.
     const char* digits = first != last && *first == '+' && last - first > 1 && first[1] != '-' ? first + 1 : first;
@@ -187,6 +190,8 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
   if (file.is_object() && file.contains("format") && file["format"] == kSceneFormat)
     throw InputError("--rig: " + showPath(path) + " is a scene file: give it as " + sceneGiven +
                      " (--rig takes a scene's \"rig\" object)");
+  if (file.is_object() && file.contains("rig"))
+    throw InputError("--rig: " + showPath(path) + ": the file is the rig object itself, its fields at the top level, not {\"rig\": ...}");
   return rigFromJson(file, path, "rig");
 }
 
@@ -255,9 +260,10 @@ void checkScene(const std::string& sceneFile, const std::function<void()>& check
   }
 }
 
-Progress::Progress(std::string label, int total, int alreadyDone, std::string unit)
+Progress::Progress(std::string label, int total, int alreadyDone, std::string unit, Clock now)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
-      tty_(::isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+      tty_(::isatty(STDERR_FILENO)), now_(now ? std::move(now) : Clock(&std::chrono::steady_clock::now)), start_(now_()),
+      lastLine_(start_) {}
 
 Progress::~Progress() { finish(); }
 
@@ -266,7 +272,8 @@ void Progress::step() { advanceTo(done_ + 1); }
 void Progress::advanceTo(int done) {
   const int before = done_;
   done_ = done;
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const auto at = now_();
+  const double seconds = std::chrono::duration<double>(at - start_).count();
   // No rate before a step was timed here: a bar made when its first step was already done would
   // divide that step by no time at all.
   const bool timed = done_ > alreadyDone_ && seconds > 0.0;
@@ -281,13 +288,15 @@ void Progress::advanceTo(int done) {
     std::snprintf(rateText, sizeof rateText, "-");
     std::snprintf(eta, sizeof eta, "ETA -");
   }
-  // Without a terminal: a line at each tenth crossed (every step when there are fewer than ten).
+  // Without a terminal (a log): a line at each tenth crossed (every step when there are fewer than
+  // ten), and at the first step 30 s or more after the last line, so a long run's log moves.
   const auto tenth = [&](int n) { return total_ >= 10 ? static_cast<int>(int64_t{n} * 10 / total_) : n; };
   if (tty_) {
     std::fprintf(stderr, "\r%s [%s%s] %d/%d  %s %s/s  %s ", label_.c_str(), std::string(filled, '#').c_str(),
                  std::string(width - filled, ' ').c_str(), done_, total_, rateText, unit_.c_str(), eta);
     lineOpen_ = true;
-  } else if (done_ == total_ || tenth(done_) > tenth(before)) {
+  } else if (done_ == total_ || tenth(done_) > tenth(before) || at - lastLine_ >= std::chrono::seconds(30)) {
+    lastLine_ = at;
     std::fprintf(stderr, "%s %d/%d  %s %s/s  %s\n", label_.c_str(), done_, total_, rateText, unit_.c_str(), eta);
   }
   std::fflush(stderr);

@@ -91,7 +91,9 @@ void removeMadeFolders(const std::vector<std::string>& made);
 // destroyed, so the error starts a line of its own.
 class Progress {
  public:
-  Progress(std::string label, int total, int alreadyDone = 0, std::string unit = "frames");
+  using Clock = std::function<std::chrono::steady_clock::time_point()>;
+  // `now` is the clock rates and the log's pace are read from (a test's own; default the steady clock).
+  Progress(std::string label, int total, int alreadyDone = 0, std::string unit = "frames", Clock now = {});
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -104,7 +106,8 @@ class Progress {
   std::string label_, unit_;
   int total_, done_ = 0, alreadyDone_ = 0;
   bool tty_, lineOpen_ = false;
-  std::chrono::steady_clock::time_point start_;
+  Clock now_;
+  std::chrono::steady_clock::time_point start_, lastLine_;
 };
 
 }  // namespace omnicam::cli

@@ -5,11 +5,14 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "errors.h"
 
 namespace omnicam::cli {
 namespace {
@@ -75,8 +78,66 @@ TEST(Progress, NoRateBeforeAStepWasTimed) {
   EXPECT_NE(written.find("1/15  - before/s  ETA - "), std::string::npos) << written;
 }
 
+// What `draw` writes to stderr while stderr is a file (a log, no terminal).
+std::string stderrInLog(const std::function<void()>& draw) {
+  std::FILE* log = std::tmpfile();
+  if (!log) throw std::runtime_error("tmpfile failed");
+  std::fflush(stderr);
+  const int saved = ::dup(STDERR_FILENO);
+  ::dup2(::fileno(log), STDERR_FILENO);
+  draw();
+  std::fflush(stderr);
+  ::dup2(saved, STDERR_FILENO);
+  ::close(saved);
+  std::rewind(log);
+  std::string written;
+  char chunk[4096];
+  for (size_t n; (n = std::fread(chunk, 1, sizeof chunk, log)) > 0;) written.append(chunk, n);
+  std::fclose(log);
+  return written;
+}
+
+// In a log, a line per tenth of the work, and one at the first step 30 s after the last line: a
+// long run's log shows it moving before its first tenth. The clock is the test's: a step a second.
+TEST(Progress, ALogGetsALineEachTenthAndEvery30Seconds) {
+  const std::string log = stderrInLog([] {
+    auto now = std::chrono::steady_clock::time_point{};
+    Progress bar("render rolling.json", 1000, 0, "renders", [&now] { return now; });
+    for (int step = 1; step <= 120; ++step) {
+      now += std::chrono::seconds(1);
+      bar.step();
+    }
+  });
+  EXPECT_EQ(log,
+            "render rolling.json 30/1000  1.0 renders/s  ETA 16:10\n"
+            "render rolling.json 60/1000  1.0 renders/s  ETA 15:40\n"
+            "render rolling.json 90/1000  1.0 renders/s  ETA 15:10\n"
+            "render rolling.json 100/1000  1.0 renders/s  ETA 15:00\n");
+}
+
 TEST(Progress, ABarThatNeverDrewWritesNothing) {
   EXPECT_EQ(stderrOnTerminal([] { Progress bar("render path.json", 2, 0, "frames"); }), "");
+}
+
+// Three numbers as people write them: spaces around each (copied from JSON) are no part of them.
+TEST(ParseTriple, SpacesAroundTheNumbersAreIgnoredAndAnythingElseIsRefused) {
+  const Vec3 v = parseTriple("1, 0, 90", "--velocity", "VX,VY,YAW_RATE");
+  EXPECT_EQ(v.x(), 1.0);
+  EXPECT_EQ(v.y(), 0.0);
+  EXPECT_EQ(v.z(), 90.0);
+  EXPECT_EQ(parseTriple(" -2.5 ,+3,  1e2 ", "--pose", "X,Y,YAW").x(), -2.5);
+  const auto message = [](const std::string& text) {
+    try {
+      parseTriple(text, "--pose", "X,Y,YAW");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  EXPECT_EQ(message("1,2,3,4"), "--pose: expected three comma-separated numbers X,Y,YAW (got \"1,2,3,4\")");
+  EXPECT_EQ(message("1,2 3,4"), "--pose: \"2 3\" is not a number");
+  EXPECT_EQ(message("1, 2 3, 4"), "--pose: \"2 3\" is not a number");
+  EXPECT_EQ(message("1, ,4"), "--pose: \"\" is not a number");
 }
 
 }  // namespace
