@@ -12,6 +12,23 @@ import os
 from ._omnicam import OUTPUTS, InputError, Rig, _DatasetReader, verify_dataset  # OUTPUTS: the outputs a frame may hold
 
 
+class _Item(dict):
+    """A dataset item: a dict whose missing key says why it is missing."""
+
+    written = ()  # the outputs the dataset holds, and those the Dataset reads
+    read = ()
+
+    def __missing__(self, key):
+        if key in OUTPUTS and key not in self.written:
+            raise KeyError(f"{key!r}: the dataset holds no {key} (its spec's outputs wrote: {', '.join(self.written)})")
+        if key in OUTPUTS:
+            raise KeyError(f"{key!r}: not read: this Dataset reads outputs {', '.join(self.read)} "
+                           f"(give outputs=[..., {key!r}] to read it too)")
+        close = difflib.get_close_matches(str(key), list(self), n=1)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        raise KeyError(f"{key!r}: no such key ({hint}keys: {', '.join(self)})")
+
+
 class Dataset:
     """The frames of one camera of a dataset folder.
 
@@ -128,7 +145,7 @@ class Dataset:
         frame = self.reader.frame(index)
         if camera not in frame["cameras"]:
             raise KeyError(f"camera {camera!r} is not in frame {index}")
-        item = {
+        item = _Item({
             "index": index,
             "timestamp": frame["timestamp"],
             "robot_pose": frame["robot_pose"],
@@ -139,7 +156,8 @@ class Dataset:
             "recording": frame["cameras"][camera].get("recording"),
             "camera": camera,
             "intrinsics": self.intrinsics(camera),
-        }
+        })
+        item.written, item.read = tuple(self.header["outputs"]["written"]), self.outputs
         item.update(self.reader.read(index, camera, list(self.outputs), self.check_hashes))
         return item
 

@@ -63,6 +63,8 @@ def test_a_frame_is_what_the_renderer_draws_at_its_pose(folder, robocup):
     np.testing.assert_array_equal(item["depth"], fresh["depth"])
     np.testing.assert_array_equal(item["instance"], fresh["instance"])
     assert set(item) >= {"depth", "instance"} and "rgb" not in item
+    with pytest.raises(KeyError, match=r"'rgb': not read: this Dataset reads outputs depth, instance .give outputs="):
+        item["rgb"]
 
 
 def _first_depth_sum(dataset):
@@ -176,6 +178,12 @@ def test_items_carry_the_recording_camera_drawn_for_them(tmp_path):
             assert item["recording"] == record["cameras"][camera]["recording"]
             drawn.append(json.dumps(item["recording"], sort_keys=True))
     assert len(set(drawn)) == 4  # a camera per frame and camera
+    # A key the item lacks says why: an output the dataset never wrote, one not read, a typo.
+    with pytest.raises(KeyError, match="the dataset holds no landmarks .its spec's outputs wrote: rgb"):
+        dataset[0]["landmarks"]
+    with pytest.raises(KeyError, match=r"did you mean 'recording'\?"):
+        dataset[0]["recordng"]
+    assert isinstance(dataset[0], dict) and "landmarks" not in dataset[0]
 
 
 
