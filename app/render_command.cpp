@@ -235,7 +235,7 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
   const CameraPath* path = nullptr;
   if (!a.path.empty()) {
     path = scene.findPath(a.path);
-    if (!path) throw InputError("--path: scene " + showPath(a.scene) + " has no path " + quote(a.path));
+    if (!path) throw InputError("--path: scene " + showPath(a.scene) + " " + scene.noPathText(a.path));
     if (a.frames > static_cast<int>(path->poses.size()))
       throw InputError("--frames: path " + quote(a.path) + " has only " + std::to_string(path->poses.size()) + " poses");
     if (isSupportedImageOutput(a.out))

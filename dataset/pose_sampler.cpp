@@ -24,7 +24,7 @@ std::vector<RobotPose> datasetPoses(const DatasetSpec& spec, const Scene& scene,
     case PoseSource::Path: {
       const CameraPath* path = scene.findPath(spec.pathName);
       if (!path)
-        throw InputError(showPath(spec.file) + ": poses.path: scene " + showPath(scene.path) + " has no path " + quote(spec.pathName));
+        throw InputError(showPath(spec.file) + ": poses.path: scene " + showPath(scene.path) + " " + scene.noPathText(spec.pathName));
       // Timed waypoints are all kept: "frames" then caps the frames taken along them.
       if (spec.timing.kind != PathTiming::Kind::None) return path->poses;
       if (spec.pathFrames > static_cast<int>(path->poses.size()))

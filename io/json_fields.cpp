@@ -18,8 +18,17 @@ std::string jsonValueText(const json& v) { return v.is_number() ? v.dump() : jso
 JsonFields::JsonFields(const json& object, std::string file, std::string where)
     : object_(object), file_(std::move(file)), where_(std::move(where)) {
   if (!object_.is_object())
-    throw InputError(showPath(file_) + ": " + (where_.empty() ? "(root)" : where_) +
-                     ": must be an object (got " + jsonTypeName(object_) + ")");
+    throw InputError(fieldLocation(file_, where_.empty() ? "(root)" : where_) + ": must be an object (got " +
+                     jsonTypeName(object_) + ")");
+}
+
+// What an array of the wrong length, or another value, is (for "must be an array of N").
+static std::string shapeText(const json& v) {
+  return v.is_array() ? "an array of " + std::to_string(v.size()) : jsonValueText(v);
+}
+
+std::string fieldLocation(const std::string& file, const std::string& path) {
+  return file.empty() ? path : showPath(file) + ": " + path;
 }
 
 std::string keySegment(const std::string& key) {
@@ -33,7 +42,7 @@ std::string JsonFields::path(const std::string& key) const {
 }
 
 void JsonFields::fail(const std::string& key, const std::string& what) const {
-  throw InputError(showPath(file_) + ": " + path(key) + ": " + what);
+  throw InputError(fieldLocation(file_, path(key)) + ": " + what);
 }
 
 bool JsonFields::has(const std::string& key) const {
@@ -175,11 +184,11 @@ std::string JsonFields::string(const std::string& key, const std::string& fallba
 
 Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
   if (!v.is_array() || v.size() != 3)
-    throw InputError(showPath(file) + ": " + path + ": must be an array of 3 numbers");
+    throw InputError(fieldLocation(file, path) + ": must be an array of 3 numbers (got " + shapeText(v) + ")");
   Vec3 out;
   for (int i = 0; i < 3; ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
-      throw InputError(showPath(file) + ": " + path + "[" + std::to_string(i) + "]: must be a finite number");
+      throw InputError(fieldLocation(file, path + "[" + std::to_string(i) + "]") + ": must be a finite number");
     out[i] = v[i].get<double>();
     if (std::abs(out[i]) > limits::kMaxWorldCoordinate)
       throw InputError(showPath(file) + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
@@ -196,7 +205,7 @@ std::vector<double> JsonFields::numbers(const std::string& key, const std::vecto
   }
   const json& v = required(key);
   if (!v.is_array() || v.size() != fallback.size())
-    fail(key, "must be an array of " + std::to_string(fallback.size()) + " numbers");
+    fail(key, "must be an array of " + std::to_string(fallback.size()) + " numbers (got " + shapeText(v) + ")");
   std::vector<double> out;
   for (size_t i = 0; i < v.size(); ++i) {
     const std::string element = key + "[" + std::to_string(i) + "]";
@@ -249,7 +258,7 @@ void JsonFields::finish() const {
   for (auto it = object_.begin(); it != object_.end(); ++it) {
     // "comment" annotates any object (JSON has no comments); it is documentation only.
     if (it.key() == "comment" || read_.count(it.key())) continue;
-    throw InputError(showPath(file_) + ": " + path(it.key()) + ": unknown field" + didYouMean(it.key(), namesAskedFor()));
+    throw InputError(fieldLocation(file_, path(it.key())) + ": unknown field" + didYouMean(it.key(), namesAskedFor()));
   }
 }
 

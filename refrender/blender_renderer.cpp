@@ -314,7 +314,9 @@ std::string runBlenderJob(const BlenderOptions& options, const std::string& dir)
   if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
   argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", dir + "/job.json"});
   const ProcessResult r = runRenderer(argv, dir, log, options.timeoutSeconds);
-  if (r.notFound) throw ExternalError("blender: not found (install it with `make deps`): " + showPath(options.executable));
+  if (r.notFound)
+    throw ExternalError("blender: not found: " + showPath(options.executable) +
+                        (std::getenv("OMNICAM_BLENDER") ? " (as OMNICAM_BLENDER names it)" : " (install it with `make deps`)"));
   if (r.timedOut)
     throw ExternalError("blender: timed out after " + shortNumber(options.timeoutSeconds) +
                         " s; last output:\n" + r.logTail);

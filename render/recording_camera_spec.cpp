@@ -378,7 +378,7 @@ RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
-      throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "unknown preset " + quote(j.get<std::string>()) +
+      throw InputError((where.empty() ? showPath(file) : fieldLocation(file, where)) + ": unknown preset " + quote(j.get<std::string>()) +
                        " (" + wordList(kPresets) + "; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
@@ -468,7 +468,7 @@ nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
   const RecordingCameraSpec spec = readRecordingCameraSpec(j, file, where, false);
   if (spec.randomised())
-    throw InputError(showPath(file) + ": " + (where.empty() ? "" : where + ": ") + "a single camera is wanted here: fixed values, no distributions or preset ranges");
+    throw InputError((where.empty() ? showPath(file) : fieldLocation(file, where)) + ": a single camera is wanted here: fixed values, no distributions or preset ranges");
   return spec.draw(0);
 }
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 
 #include "engine_capabilities.h"
 #include "errors.h"
@@ -198,6 +199,9 @@ TEST(RenderSettings, PlacementLimitsSeeTheCameraNotOnlyTheRobot) {
   EXPECT_NE(problem({9990, 0, 180}, {-20, 0, 0}).find("puts it at (10010, "), std::string::npos) << problem({9990, 0, 180}, {-20, 0, 0});
   // The robot itself past the bounds is the robot's message, as before.
   EXPECT_NE(problem({10001, 0, 0}, {}).find("pose: x and y must be within ±10000 m"), std::string::npos);
+  // A NaN is no coordinate at all: said so, not that it lies out of bounds.
+  EXPECT_NE(problem({std::nan(""), 1.8, 35}, {}).find("pose: x, y and yaw must be finite numbers (got nan, 1.8, 35)"), std::string::npos)
+      << problem({std::nan(""), 1.8, 35}, {});
 }
 
 }  // namespace

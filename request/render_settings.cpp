@@ -91,6 +91,9 @@ void checkPlacement(const CameraPlacement& placement, const SettingNames& names)
 }
 
 void checkPose(const RobotPose& pose, const std::string& what) {
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yawDeg))
+    throw InputError(what + ": x, y and yaw must be finite numbers (got " + roundTrip(pose.x) + ", " + roundTrip(pose.y) + ", " +
+                     roundTrip(pose.yawDeg) + ")");
   if (!(std::abs(pose.x) <= limits::kMaxWorldCoordinate && std::abs(pose.y) <= limits::kMaxWorldCoordinate))
     throw InputError(what + ": x and y must be within ±" + shortNumber(limits::kMaxWorldCoordinate) + " m (got " + roundTrip(pose.x) +
                      ", " + roundTrip(pose.y) + ")");

@@ -127,6 +127,8 @@ struct Scene {
   std::vector<CalibrationTarget> calibrationTargets;
 
   const CameraPath* findPath(const std::string& pathName) const;
+  // For a name findPath does not know: "has no path "x"", then the paths it has or a likely typo.
+  std::string noPathText(const std::string& pathName) const;
 };
 
 // An object's semantic class: its own, else its material's, else empty (none).

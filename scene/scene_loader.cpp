@@ -9,6 +9,7 @@
 #include <set>
 
 #include "camera_path.h"
+#include "closest_name.h"
 #include "errors.h"
 #include "number_format.h"
 #include "file_confinement.h"
@@ -409,7 +410,11 @@ void readObjects(JsonFields& top, const Context& ctx, Scene& scene, TakenNames& 
     }
     const std::string materialName = o.string("material");
     auto m = ctx.materialIndex.find(materialName);
-    if (m == ctx.materialIndex.end()) o.fail("material", "no material named " + quote(materialName));
+    if (m == ctx.materialIndex.end()) {
+      std::vector<std::string> materialNames;
+      for (const auto& [name, index] : ctx.materialIndex) materialNames.push_back(name);
+      o.fail("material", "no material named " + quote(materialName) + didYouMean(materialName, materialNames));
+    }
     obj.material = m->second;
     obj.semanticClass = readClass(o);
     obj.shape = readShape(o.string("type"), o);
@@ -480,6 +485,17 @@ const CameraPath* Scene::findPath(const std::string& pathName) const {
   for (const auto& p : paths)
     if (p.name == pathName) return &p;
   return nullptr;
+}
+
+std::string Scene::noPathText(const std::string& pathName) const {
+  std::vector<std::string> names;
+  for (const CameraPath& p : paths) names.push_back(p.name);
+  std::string text = "has no path " + quote(pathName);
+  if (names.empty()) return text + " (it has no paths)";
+  if (const std::string guess = didYouMean(pathName, names); !guess.empty()) return text + guess;
+  std::string list;
+  for (const std::string& pathOfScene : names) list += (list.empty() ? "" : ", ") + quote(pathOfScene);
+  return text + " (its paths: " + list + ")";
 }
 
 RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const std::string& where) {

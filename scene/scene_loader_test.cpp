@@ -101,8 +101,10 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
             file + ": objects[0].type: unknown object type \"cone\" (box, cylinder, sphere, quad, disc, mesh, gltf, calibration_target)");
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "x", "center": [0,0,0], "radius": 1}]})"),
             file + ": objects[0].material: no material named \"x\"");
+  EXPECT_EQ(load(head + R"({"type": "sphere", "material": "mm", "center": [0,0,0], "radius": 1}]})"),
+            file + ": objects[0].material: no material named \"mm\" (did you mean m?)");
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "m", "center": [0,0], "radius": 1}]})"),
-            file + ": objects[0].center: must be an array of 3 numbers");
+            file + ": objects[0].center: must be an array of 3 numbers (got an array of 2)");
   const std::string missingTexture =
       R"({"format": "omnicam-scene/1", "materials": {"m": {"texture": {"file": "nope.png"}}}, "objects": []})";
   EXPECT_NE(load(missingTexture).find(file + ": materials.m.texture.file: file not found"),
@@ -328,6 +330,15 @@ TEST(JsonInput, AMillionSiblingObjectsParse) {
   std::string text = "[";
   for (int i = 0; i < 1000000; ++i) text += i ? ",{}" : "{}";
   EXPECT_EQ(parseJsonText(text + "]", "in.json").size(), 1000000u);
+}
+
+// A path the scene lacks: a likely typo named, else the paths it has, else that it has none.
+TEST(ScenePaths, AnUnknownPathNamesATypoOrThePathsThere) {
+  Scene scene;
+  EXPECT_EQ(scene.noPathText("loop"), "has no path \"loop\" (it has no paths)");
+  scene.paths = {{"thesis-loop", {}}, {"corner", {}}};
+  EXPECT_EQ(scene.noPathText("thesis-lop"), "has no path \"thesis-lop\" (did you mean thesis-loop?)");
+  EXPECT_EQ(scene.noPathText("diagonal"), "has no path \"diagonal\" (its paths: \"thesis-loop\", \"corner\")");
 }
 
 }  // namespace

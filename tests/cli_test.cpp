@@ -494,7 +494,7 @@ TEST_F(CliTest, BlenderFailuresExitThreeWithItsOutputAndWriteNothing) {
   std::ofstream(script) << "#!/bin/sh\necho 'Error: Python: Traceback (most recent call last)' >&2\nexit 1\n";
   fs::permissions(script, fs::perms::owner_all);
   for (const auto& [env, message] : std::vector<std::pair<std::string, std::string>>{
-           {"OMNICAM_BLENDER=/nonexistent/blender", "blender: not found"},
+           {"OMNICAM_BLENDER=/nonexistent/blender", "blender: not found: /nonexistent/blender (as OMNICAM_BLENDER names it)"},
            {"OMNICAM_BLENDER=" + script, "Error: Python: Traceback"}}) {
     const CommandResult r = run("render " + kScene + " --engine blender --size 32 -o " + out, env);
     EXPECT_EQ(r.code, 3) << env << "\n" << r.out;

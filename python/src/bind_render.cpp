@@ -89,7 +89,7 @@ class PyRenderer {
     // other frame is.
     const uint64_t frame = frameArg ? static_cast<uint64_t>(narrowed(*frameArg, "frame", 0, INT64_MAX)) : 0;
     if (!recording.is_none())
-      camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "recording=", "recording").draw(frame);
+      camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "", "recording").draw(frame);
     else if (frameArg)  // a setting that changes nothing is refused, as a flag would be
       throw InputError("frame: only with recording= (it picks the recording camera drawn for that frame)");
     RequestFields fields = engineFields_;
