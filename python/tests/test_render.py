@@ -257,7 +257,10 @@ def test_recording_is_the_datasets_camera_drawn_for_the_frame(robocup, tmp_path)
     assert not np.array_equal(clean["rgb"], out["rgb"])
     # A preset by name; bad input is one line naming the field.
     assert renderer.render(pose, size=32, recording="phone")["rgb"].shape == (32, 32, 4)
-    with pytest.raises(omnicam.InputError, match=r"recording\.bayer: must be one of none, rggb"):
+    # The keyword is the field, named once (as every keyword's message starts).
+    with pytest.raises(omnicam.InputError, match=r'^recording: unknown preset "webcm"'):
+        renderer.render(pose, size=32, recording="webcm")
+    with pytest.raises(omnicam.InputError, match=r"^recording\.bayer: must be one of none, rggb"):
         renderer.render(pose, size=32, recording={"bayer": "rgbg"})
     with pytest.raises(omnicam.InputError, match=r"recording\.exposure_ev\.uniform: lo > hi"):
         renderer.render(pose, size=32, recording={"exposure_ev": {"uniform": [1, 0]}})
