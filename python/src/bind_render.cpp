@@ -112,7 +112,15 @@ class PyRenderer {
     const std::vector<OutputKind> kinds = imageOutputs(outputs);
     bool aovs = false;
     for (OutputKind kind : kinds) aovs = aovs || needsAovs(kind);
-    checkEngineRenders(engine_->kind(), settings.rig, placement, aovs);
+    checkEngineRenders(engine_->kind(), settings.rig, placement);
+    // Asked for by `outputs`: its message names the keyword, as every keyword's does.
+    if (aovs && !engine_->capabilities().aovs) {
+      try {
+        checkEngineRenders(engine_->kind(), settings.rig, placement, true);
+      } catch (const InputError& e) {
+        throw InputError(std::string("outputs: ") + e.what());
+      }
+    }
     Film film = filmFor(settings, aovs);
     {
       py::gil_scoped_release release;

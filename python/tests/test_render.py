@@ -151,7 +151,7 @@ def test_bad_render_arguments_raise_one_line(robocup):
         renderer.render(shading="glossy")
     with pytest.raises(omnicam.InputError, match="engine"):
         omnicam.Renderer(robocup, engine="mitsuba")
-    with pytest.raises(omnicam.InputError, match="the povray engine renders colour only"):
+    with pytest.raises(omnicam.InputError, match="^outputs: the povray engine renders colour only"):
         omnicam.Renderer(robocup, engine="povray").render(outputs=["depth"])
 
 
