@@ -22,6 +22,7 @@
 #include "multilayer_frame.h"
 #include "number_format.h"
 #include "pose_sampler.h"
+#include "scene_bounds.h"
 #include "scene_loader.h"
 #include "sha256.h"
 #include "path_tracing_record.h"
@@ -162,6 +163,27 @@ FrameOutputPlan outputPlan(const DatasetSpec& spec, const Engine& engine, const 
     throw InputError(showPath(spec.file) + ": outputs.instance: scene has " + std::to_string(scene.objects.size()) +
                      " objects; instance ids are 16-bit (at most " + std::to_string(kMaxInstances) + ")");
   return plan;
+}
+
+// Poses where the robot stands outside everything the scene holds (a random region or a list
+// beyond the arena): frames that see the scene from outside, if at all. Said, not refused: a view
+// from outside may be what is wanted.
+void notePosesOutsideTheScene(const DatasetSpec& spec, const Scene& scene, const std::vector<RobotPose>& poses,
+                              std::vector<std::string>& notes) {
+  const std::optional<FloorRect> extent = sceneFloorExtent(scene);
+  if (!extent) return;
+  int outside = 0, first = -1;
+  for (size_t frame = 0; frame < poses.size(); ++frame)
+    if (!extent->contains(poses[frame].x, poses[frame].y)) {
+      if (outside++ == 0) first = static_cast<int>(frame);
+    }
+  if (outside == 0) return;
+  const RobotPose& p = poses[static_cast<size_t>(first)];
+  notes.push_back(showPath(spec.file) + ": poses: " + std::to_string(outside) + " of " + std::to_string(poses.size()) +
+                  " frames stand outside the scene's objects (x " + shortNumber(extent->xMin) + " to " + shortNumber(extent->xMax) +
+                  " m, y " + shortNumber(extent->yMin) + " to " + shortNumber(extent->yMax) + " m; the first, frame " +
+                  std::to_string(first) + ", at (" + shortNumber(p.x) + ", " + shortNumber(p.y) +
+                  ")): they see the scene from outside, if at all");
 }
 
 // A camera on a moving robot whose frame (exposure and readout) outlasts the frame interval, as
@@ -418,6 +440,7 @@ DatasetPlan::DatasetPlan(const DatasetSpec& spec, const DatasetRunOptions& optio
   } else {
     sampleTimedWaypoints(spec, datasetPoses(spec, scene_, topHeight), poses_, velocities_);
   }
+  notePosesOutsideTheScene(spec, scene_, poses_, notes_);
   if (spec.calibration) startCalibrationSequence();
   SettingNames names;
   for (int frame = 0; frame < static_cast<int>(poses_.size()); ++frame)

@@ -190,6 +190,25 @@ bool interruptAfterFirstFrames(const std::string& spec, const fs::path& dir, int
   return held;
 }
 
+// Poses beyond everything the scene holds (the floor spans ±50 m) are said at the start, and
+// rendered all the same; poses inside it are not mentioned.
+TEST_F(DatasetCliTest, PosesOutsideTheScenesObjectsAreSaid) {
+  writeFloorScene();
+  const std::string outside = write("outside.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 16,
+    "outputs": {"rgb": "png"}, "poses": {"list": [[0.3, -0.2, 40], [60, 0, 0], [0, -70.5, 0]]}})");
+  const auto run = omnicam("dataset " + outside + " -o " + path("out"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  EXPECT_NE(run.out.find("outside.json: poses: 2 of 3 frames stand outside the scene's objects (x -50 to 50 m, y -50 to 50 m; "
+                         "the first, frame 1, at (60, 0)): they see the scene from outside, if at all"),
+            std::string::npos) << run.out;
+  EXPECT_EQ(json::parse(readFile(dir_ / "out/manifest.json"))["frames"].size(), 3u);
+  const std::string inside = write("inside.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 16,
+    "outputs": {"rgb": "png"}, "poses": {"list": [[0.3, -0.2, 40], [50, -50, 0]]}})");
+  const auto quiet = omnicam("dataset " + inside + " -o " + path("in"));
+  ASSERT_EQ(quiet.code, 0) << quiet.out;
+  EXPECT_EQ(quiet.out.find("stand outside"), std::string::npos) << quiet.out;
+}
+
 TEST_F(DatasetCliTest, DepthNormalsAndIdsMatchTheClosedFormOnAFloor) {
   writeFloorScene();
   const std::string spec = write("spec.json", R"({"format": "omnicam-dataset/1", "scene": "floor.json", "size": 96,
