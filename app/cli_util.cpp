@@ -191,7 +191,7 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
     throw InputError("--rig: " + showPath(path) + " is a scene file: give it as " + sceneGiven +
                      " (--rig takes a scene's \"rig\" object)");
   if (file.is_object() && file.contains("rig"))
-    throw InputError("--rig: " + showPath(path) + ": the file is the rig object itself, its fields at the top level, not {\"rig\": ...}");
+    throw InputError("--rig: " + showPath(path) + ": holds {\"rig\": ...}; --rig takes the rig object itself, its fields at the top level");
   return rigFromJson(file, path, "rig");
 }
 
@@ -262,7 +262,7 @@ void checkScene(const std::string& sceneFile, const std::function<void()>& check
 
 Progress::Progress(std::string label, int total, int alreadyDone, std::string unit, Clock now)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), done_(alreadyDone), alreadyDone_(alreadyDone),
-      tty_(::isatty(STDERR_FILENO)), now_(now ? std::move(now) : Clock(&std::chrono::steady_clock::now)), start_(now_()),
+      tty_(::isatty(STDERR_FILENO)), now_(now ? std::move(now) : Clock([] { return std::chrono::steady_clock::now(); })), start_(now_()),
       lastLine_(start_) {}
 
 Progress::~Progress() { finish(); }

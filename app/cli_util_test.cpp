@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -125,7 +126,10 @@ TEST(ParseTriple, SpacesAroundTheNumbersAreIgnoredAndAnythingElseIsRefused) {
   EXPECT_EQ(v.x(), 1.0);
   EXPECT_EQ(v.y(), 0.0);
   EXPECT_EQ(v.z(), 90.0);
-  EXPECT_EQ(parseTriple(" -2.5 ,+3,  1e2 ", "--pose", "X,Y,YAW").x(), -2.5);
+  const Vec3 spaced = parseTriple(" -2.5 ,+3,  1e2 ", "--pose", "X,Y,YAW");
+  EXPECT_EQ(spaced.x(), -2.5);
+  EXPECT_EQ(spaced.y(), 3.0);
+  EXPECT_EQ(spaced.z(), 100.0);
   const auto message = [](const std::string& text) {
     try {
       parseTriple(text, "--pose", "X,Y,YAW");

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "errors.h"
+
 namespace omnicam {
 
 int editDistance(std::string_view a, std::string_view b) {
@@ -50,6 +52,11 @@ std::optional<std::string> closestName(std::string_view given, const std::vector
 std::string didYouMean(std::string_view given, const std::vector<std::string>& names) {
   const auto best = closestName(given, names);
   return best ? " (did you mean " + *best + "?)" : "";
+}
+
+std::string didYouMeanQuoted(std::string_view given, const std::vector<std::string>& names) {
+  const auto best = closestName(given, names);
+  return best ? " (did you mean " + quote(*best) + "?)" : "";
 }
 
 }  // namespace omnicam

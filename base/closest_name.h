@@ -18,7 +18,10 @@ int editDistance(std::string_view a, std::string_view b);
 // a typo, the one name whose first word `given` is ("colour" → "colour_class"), if only one is.
 std::optional<std::string> closestName(std::string_view given, const std::vector<std::string>& names);
 
-// " (did you mean X?)" for closestName's answer, or "".
+// " (did you mean X?)" for closestName's answer, or "": for names omnicam defines (fields, flags).
 std::string didYouMean(std::string_view given, const std::vector<std::string>& names);
+// The same with the name quoted and escaped (" (did you mean "x"?)"): for names a user wrote
+// (a scene's paths and materials), which may hold anything.
+std::string didYouMeanQuoted(std::string_view given, const std::vector<std::string>& names);
 
 }  // namespace omnicam

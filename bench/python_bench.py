@@ -68,7 +68,7 @@ def main():
     parser.add_argument("--frames", type=int, default=200)
     args = parser.parse_args()
     if args.frames < 4:
-        parser.error("--frames: at least 4 (a quarter of them time the thread pool)")
+        parser.error(f"--frames: at least 4, a quarter of them timing the thread pool (got {args.frames})")
     scene = omnicam.load_scene(omnicam.data_path("scenes/robocup2006.json"))
     native, python = render_loop_ratio(scene, args.frames)
     rate = project_rate(scene, 1_000_000)

@@ -16,6 +16,7 @@
 #include "calibration_sequence.h"
 #include "ekf_drive.h"
 #include "errors.h"
+#include "experiment_folder.h"
 #include "fast_renderer.h"
 #include "imaged_corners.h"
 #include "landmark_geometry.h"
@@ -317,8 +318,7 @@ CalibrationStudyResults runCalibrationStudy(const CalibrationStudyOptions& o, co
                                             const ExperimentProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   const fs::path out(o.outDir);
-  makeAllFoldersInside(o.outDir, plotScript.empty() ? std::vector<std::string>{"arenas", "data"}  // no figures: no folder for them
-                                                    : std::vector<std::string>{"arenas", "data", "figures"});
+  makeRunFolders(o.outDir, {"arenas", "data"}, !plotScript.empty());
   writeTextAtomically((out / "arenas/calibration-room.json").string(), roomSceneText());
   const Scene room = loadScene((out / "arenas/calibration-room.json").string());
   const Scene field = loadScene(o.fieldScene);

@@ -112,4 +112,9 @@ std::optional<nlohmann::json> earlierExperimentResults(const std::string& dir, c
   return results;
 }
 
+void makeRunFolders(const std::string& dir, std::vector<std::string> folders, bool plotsFigures) {
+  if (plotsFigures) folders.push_back("figures");
+  makeAllFoldersInside(dir, folders);
+}
+
 }  // namespace omnicam

@@ -3,6 +3,7 @@
 // run never mixes its files into another experiment's folder or into files it did not write.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +24,10 @@ void checkExperimentFolder(const std::string& dir, const std::string& study);
 // Marks `dir` (made, and checked by checkExperimentFolder) as `study`'s, before the run writes
 // anything else into it.
 void markExperimentFolder(const std::string& dir, const std::string& study);
+
+// Makes a run's `folders` inside `dir` (no link followed), and figures/ when the run plots its
+// figures: a run with --no-figures leaves no empty figures/ behind.
+void makeRunFolders(const std::string& dir, std::vector<std::string> folders, bool plotsFigures);
 
 // The file that marks an experiment's folder.
 inline constexpr const char* kExperimentMark = ".omnicam-experiment.json";

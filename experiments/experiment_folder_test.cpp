@@ -58,5 +58,14 @@ TEST_F(ExperimentFolder, AMarkTellsWhoseFolderItIs) {
   EXPECT_EQ(errorOf("calibration"), (dir_ / kExperimentMark).string() + ": a link (omnicam follows none in its outputs): give another folder");
 }
 
+// A run without figures makes no figures/ (it would stay empty); one with them does.
+TEST_F(ExperimentFolder, ARunMakesFiguresOnlyWhenItPlotsThem) {
+  makeRunFolders(dir_.string(), {"arenas", "data"}, false);
+  EXPECT_TRUE(fs::is_directory(dir_ / "arenas") && fs::is_directory(dir_ / "data"));
+  EXPECT_FALSE(fs::exists(dir_ / "figures"));
+  makeRunFolders(dir_.string(), {"arenas", "data"}, true);
+  EXPECT_TRUE(fs::is_directory(dir_ / "figures"));
+}
+
 }  // namespace
 }  // namespace omnicam

@@ -12,6 +12,7 @@
 
 #include "atomic_file.h"
 #include "errors.h"
+#include "experiment_folder.h"
 #include "external_process.h"
 #include "hall_arena.h"
 #include "indirect_filter.h"
@@ -240,8 +241,7 @@ ConvergenceResults runRealisticConvergence(const ConvergenceOptions& o, const st
       o.poseIndices.empty() || o.labPhoto.empty())
     throw InputError("realistic convergence: sizes >= 16, a ladder, spp >= 1, >= 1 pose and the lab photo");
   const fs::path out(o.outDir);
-  makeAllFoldersInside(o.outDir, plotScript.empty() ? std::vector<std::string>{"arenas", "data", "frames"}  // no figures: no folder for them
-                                                    : std::vector<std::string>{"arenas", "data", "frames", "figures"});
+  makeRunFolders(o.outDir, {"arenas", "data", "frames"}, !plotScript.empty());
   HallOptions hallOptions;
   hallOptions.fieldScene = o.fieldScene;
   hallOptions.photos = {o.labPhoto};

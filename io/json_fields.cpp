@@ -28,6 +28,7 @@ static std::string shapeText(const json& v) {
 }
 
 std::string fieldLocation(const std::string& file, const std::string& path) {
+  if (path.empty()) return showPath(file);
   return file.empty() ? path : showPath(file) + ": " + path;
 }
 
@@ -191,7 +192,7 @@ Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
       throw InputError(fieldLocation(file, path + "[" + std::to_string(i) + "]") + ": must be a finite number");
     out[i] = v[i].get<double>();
     if (std::abs(out[i]) > limits::kMaxWorldCoordinate)
-      throw InputError(showPath(file) + ": " + path + "[" + std::to_string(i) + "]: must be within ±" +
+      throw InputError(fieldLocation(file, path + "[" + std::to_string(i) + "]") + ": must be within ±" +
                        shortNumber(limits::kMaxWorldCoordinate) + " (got " + roundTrip(out[i]) + ")");
   }
   return out;

@@ -73,8 +73,8 @@ class JsonFields {
   std::vector<std::string> namesAskedFor() const;
 };
 
-// Where a message points: "file: field.path", or "field.path" alone for JSON that came from no
-// file (a Python keyword's value, named by `path`).
+// Where a message points: "file: field.path"; "field.path" alone for JSON that came from no file
+// (a Python keyword's value, named by `path`); "file" alone for the file's whole content.
 std::string fieldLocation(const std::string& file, const std::string& path);
 // A JSON key as a segment of a field path in messages: as is when plain ("rim_elevation_deg", or
 // an element such as "poses[3]" that callers pass), quoted otherwise (a material named "x\ny").

@@ -114,10 +114,12 @@ ImageRGBA readFilteredBlenderFrame(const std::string& full, const std::string& d
   return filterIndirectLight(in);
 }
 
-std::string blenderExecutable() {
+static bool blenderChosenByEnvironment() {
   const char* exe = std::getenv("OMNICAM_BLENDER");
-  return exe ? exe : "blender";
+  return exe && *exe;
 }
+
+std::string blenderExecutable() { return blenderChosenByEnvironment() ? std::getenv("OMNICAM_BLENDER") : "blender"; }
 
 nlohmann::json PathTracing::toJson() const {
   return {{"diffuse_bounces", diffuseBounces},
@@ -316,7 +318,7 @@ std::string runBlenderJob(const BlenderOptions& options, const std::string& dir)
   const ProcessResult r = runRenderer(argv, dir, log, options.timeoutSeconds);
   if (r.notFound)
     throw ExternalError("blender: not found: " + showPath(options.executable) +
-                        (std::getenv("OMNICAM_BLENDER") ? " (as OMNICAM_BLENDER names it)" : " (install it with `make deps`)"));
+                        (blenderChosenByEnvironment() ? " (as OMNICAM_BLENDER names it)" : " (install it with `make deps`)"));
   if (r.timedOut)
     throw ExternalError("blender: timed out after " + shortNumber(options.timeoutSeconds) +
                         " s; last output:\n" + r.logTail);

@@ -286,11 +286,15 @@ struct DependentSetting {
   std::function<bool(double)> actsWhen;  // of a value of `on`: does `setting` act?
   const char* acts;                      // when it acts, in words
   const char* hint;
+  // Its default, given where it does nothing, is kept: drawn cameras written before the setting
+  // was refused so held it, and given back they read as they were.
+  bool keepsItsDefault = false;
 };
 
 const std::vector<DependentSetting>& dependentSettings() {
   static const std::vector<DependentSetting> dependent = {
-      {"blur_kernel", "blur_radius_px", [](double radius) { return radius > 0; }, "blur_radius_px > 0", "give a blur_radius_px"},
+      {"blur_kernel", "blur_radius_px", [](double radius) { return radius > 0; }, "blur_radius_px > 0", "give a blur_radius_px",
+       true},
       {"gamma", "tone_curve", [](double tone) { return tone == 1.0; }, "tone_curve is gamma", "give \"tone_curve\": \"gamma\""},
       {"contrast", "tone_curve", [](double tone) { return tone == 2.0; }, "tone_curve is filmic", "give \"tone_curve\": \"filmic\""},
       {"demosaic", "bayer", [](double pattern) { return pattern != 0.0; }, "bayer is a pattern", "give a bayer pattern"}};
@@ -306,7 +310,11 @@ bool actsIn(const RecordingCamera& camera, const std::string& name) {
 
 void refuseSettingsThatDoNothing(const RecordingCameraSpec& spec, const JsonFields& f) {
   for (const DependentSetting& d : dependentSettings()) {
-    if (!spec.draws.count(d.setting)) continue;
+    const auto given = spec.draws.find(d.setting);
+    if (given == spec.draws.end()) continue;
+    if (d.keepsItsDefault && given->second.kind == ParameterDraw::Kind::Fixed &&
+        given->second.values.front() == findParameter(d.setting)->neutral)
+      continue;
     const std::set<double> possible = possibleValues(spec, d.on);
     if (std::any_of(possible.begin(), possible.end(), d.actsWhen)) continue;
     const Parameter& on = *findParameter(d.on);
@@ -378,7 +386,7 @@ RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
-      throw InputError((where.empty() ? showPath(file) : fieldLocation(file, where)) + ": unknown preset " + quote(j.get<std::string>()) +
+      throw InputError(fieldLocation(file, where) + ": unknown preset " + quote(j.get<std::string>()) +
                        " (" + wordList(kPresets) + "; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
@@ -468,7 +476,7 @@ nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
 RecordingCamera recordingCameraFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
   const RecordingCameraSpec spec = readRecordingCameraSpec(j, file, where, false);
   if (spec.randomised())
-    throw InputError((where.empty() ? showPath(file) : fieldLocation(file, where)) + ": a single camera is wanted here: fixed values, no distributions or preset ranges");
+    throw InputError(fieldLocation(file, where) + ": a single camera is wanted here: fixed values, no distributions or preset ranges");
   return spec.draw(0);
 }
 

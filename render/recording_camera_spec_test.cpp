@@ -176,7 +176,8 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"preset": {"choice": ["machine_vision", "webcam"]}, "contrast": 1.2})"),
             "spec.json: recording.contrast: does nothing unless tone_curve is filmic, and it is srgb or gamma (the presets') here: "
             "give \"tone_curve\": \"filmic\", or leave contrast out");
-  // A kernel without a blur, told by the radius's range: its ends (a range [0, r] blurs in some frame).
+  // A kernel without a blur, told by the radius's range: its ends (a range [0, r] blurs in some
+  // frame). Its default, gaussian, is kept: drawn cameras written before 2026-12-02 held it.
   EXPECT_EQ(errorOf(R"({"blur_kernel": "disc"})"),
             "spec.json: recording.blur_kernel: does nothing unless blur_radius_px > 0, and it is 0 (its default) here: "
             "give a blur_radius_px, or leave blur_kernel out");
@@ -186,7 +187,8 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"blur_kernel": "disc", "blur_radius_px": {"uniform": [0, 0]}})"),
             "spec.json: recording.blur_kernel: does nothing unless blur_radius_px > 0, and it is 0 here: "
             "give a blur_radius_px, or leave blur_kernel out");
-  EXPECT_EQ(errorOf(R"({"blur_kernel": "disc", "blur_radius_px": {"uniform": [0, 0.5]}})"), "(accepted)");
+  EXPECT_EQ(errorOf(R"({"blur_kernel": "disc", "blur_radius_px": {"uniform": [0, 2]}})"), "(accepted)");
+  EXPECT_EQ(errorOf(R"({"blur_kernel": "gaussian", "blur_radius_px": 0, "exposure_ev": 0.3})"), "(accepted)");
   EXPECT_EQ(errorOf(R"({"blur_kernel": "disc", "blur_radius_px": {"choice": [0, 2]}})"), "(accepted)");
   EXPECT_EQ(errorOf(R"({"preset": "webcam", "blur_kernel": "disc"})"), "(accepted)");  // the webcam blurs up to 1.2 px
   EXPECT_EQ(errorOf(R"({"preset": "webcam", "gamma": 2})"), "(accepted)");  // the webcam draws gamma or srgb

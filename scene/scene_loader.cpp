@@ -413,7 +413,7 @@ void readObjects(JsonFields& top, const Context& ctx, Scene& scene, TakenNames& 
     if (m == ctx.materialIndex.end()) {
       std::vector<std::string> materialNames;
       for (const auto& [name, index] : ctx.materialIndex) materialNames.push_back(name);
-      o.fail("material", "no material named " + quote(materialName) + didYouMean(materialName, materialNames));
+      o.fail("material", "no material named " + quote(materialName) + didYouMeanQuoted(materialName, materialNames));
     }
     obj.material = m->second;
     obj.semanticClass = readClass(o);
@@ -492,7 +492,7 @@ std::string Scene::noPathText(const std::string& pathName) const {
   for (const CameraPath& p : paths) names.push_back(p.name);
   std::string text = "has no path " + quote(pathName);
   if (names.empty()) return text + " (it has no paths)";
-  if (const std::string guess = didYouMean(pathName, names); !guess.empty()) return text + guess;
+  if (const std::string guess = didYouMeanQuoted(pathName, names); !guess.empty()) return text + guess;
   std::string list;
   for (const std::string& pathOfScene : names) list += (list.empty() ? "" : ", ") + quote(pathOfScene);
   return text + " (its paths: " + list + ")";

@@ -102,7 +102,7 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "x", "center": [0,0,0], "radius": 1}]})"),
             file + ": objects[0].material: no material named \"x\"");
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "mm", "center": [0,0,0], "radius": 1}]})"),
-            file + ": objects[0].material: no material named \"mm\" (did you mean m?)");
+            file + ": objects[0].material: no material named \"mm\" (did you mean \"m\"?)");
   EXPECT_EQ(load(head + R"({"type": "sphere", "material": "m", "center": [0,0], "radius": 1}]})"),
             file + ": objects[0].center: must be an array of 3 numbers (got an array of 2)");
   const std::string missingTexture =
@@ -337,8 +337,11 @@ TEST(ScenePaths, AnUnknownPathNamesATypoOrThePathsThere) {
   Scene scene;
   EXPECT_EQ(scene.noPathText("loop"), "has no path \"loop\" (it has no paths)");
   scene.paths = {{"thesis-loop", {}}, {"corner", {}}};
-  EXPECT_EQ(scene.noPathText("thesis-lop"), "has no path \"thesis-lop\" (did you mean thesis-loop?)");
+  EXPECT_EQ(scene.noPathText("thesis-lop"), "has no path \"thesis-lop\" (did you mean \"thesis-loop\"?)");
   EXPECT_EQ(scene.noPathText("diagonal"), "has no path \"diagonal\" (its paths: \"thesis-loop\", \"corner\")");
+  // A scene's names are the user's: the one suggested is escaped as the one asked for is.
+  scene.paths.push_back({"loop\n\x1b[31mRED", {}});
+  EXPECT_EQ(scene.noPathText("loop\n\x1b[31mRDE"), "has no path \"loop\\n\\x1B[31mRDE\" (did you mean \"loop\\n\\x1B[31mRED\"?)");
 }
 
 }  // namespace

@@ -18,7 +18,6 @@ import numpy as np  # noqa: E402
 import omnicam  # noqa: E402
 
 
-
 def main(out_dir):
     out = pathlib.Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

@@ -15,14 +15,14 @@ from ._omnicam import OUTPUTS, InputError, Rig, _DatasetReader, verify_dataset  
 class _Item(dict):
     """A dataset item: a dict whose missing key says why it is missing."""
 
-    written = ()  # the outputs the dataset holds, and those the Dataset reads
-    read = ()
+    _written = ()  # the outputs the dataset holds, and those the Dataset reads
+    _read = ()
 
     def __missing__(self, key):
-        if key in OUTPUTS and key not in self.written:
-            raise KeyError(f"{key!r}: the dataset holds no {key} (its spec's outputs wrote: {', '.join(self.written)})")
+        if key in OUTPUTS and key not in self._written:
+            raise KeyError(f"{key!r}: the dataset holds no {key} (its spec's outputs wrote: {', '.join(self._written)})")
         if key in OUTPUTS:
-            raise KeyError(f"{key!r}: not read: this Dataset reads outputs {', '.join(self.read)} "
+            raise KeyError(f"{key!r}: not read: this Dataset reads outputs {', '.join(self._read)} "
                            f"(give outputs=[..., {key!r}] to read it too)")
         close = difflib.get_close_matches(str(key), list(self), n=1)
         hint = f"did you mean {close[0]!r}? " if close else ""
@@ -157,7 +157,7 @@ class Dataset:
             "camera": camera,
             "intrinsics": self.intrinsics(camera),
         })
-        item.written, item.read = tuple(self.header["outputs"]["written"]), self.outputs
+        item._written, item._read = tuple(self.header["outputs"]["written"]), self.outputs
         item.update(self.reader.read(index, camera, list(self.outputs), self.check_hashes))
         return item
 
