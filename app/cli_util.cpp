@@ -190,8 +190,6 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
   if (file.is_object() && file.contains("format") && file["format"] == kSceneFormat)
     throw InputError("--rig: " + showPath(path) + " is a scene file: give it as " + sceneGiven +
                      " (--rig takes a scene's \"rig\" object)");
-  if (file.is_object() && file.contains("rig"))
-    throw InputError("--rig: " + showPath(path) + ": holds {\"rig\": ...}; --rig takes the rig object itself, its fields at the top level");
   return rigFromJson(file, path, "rig");
 }
 

@@ -499,6 +499,10 @@ std::string Scene::noPathText(const std::string& pathName) const {
 }
 
 RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const std::string& where) {
+  // A rig given as a scene or a sidecar holds it ({"rig": {...}}): said, not "unknown field".
+  if (rig.is_object() && rig.contains("rig"))
+    throw InputError(fieldLocation(file, where.empty() ? "rig" : where + ".rig") +
+                     ": a rig inside the rig: give the rig's own fields (height, mirror, camera, ...), not {\"rig\": ...}");
   return readRig(JsonFields(rig, file, where));
 }
 

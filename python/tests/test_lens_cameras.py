@@ -49,6 +49,9 @@ def test_a_lens_rig_reads_back_from_its_dict_and_renders_its_own_size(robocup):
     assert frame["rgb"].shape == (72, 96, 4) and frame["depth"].shape == (72, 96)
     with pytest.raises(omnicam.InputError, match=r"rig\.lens\.xi: unknown field"):
         omnicam.Rig({"lens": dict(LENSES["fisheye"], xi=0.5)})
+    # A scene's or sidecar's {"rig": ...} given whole is told apart from a typo.
+    with pytest.raises(omnicam.InputError, match=r"rig\.rig: a rig inside the rig: give the rig's own fields"):
+        omnicam.Rig({"rig": rig.to_dict()})
 
 
 @pytest.fixture(scope="module")
