@@ -89,6 +89,10 @@ set is checked the same way: a bad value raises omnicam.InputError and leaves th
                                r.kind);
            }, "A lens camera's \"lens\" block (docs/lens-cameras.md), or None for a mirror rig.")
       .def(py::self == py::self)
+      // Pickled as its "rig" block, read back strictly: a Dataset item (which holds its frame's rig)
+      // travels from a DataLoader worker to the main process.
+      .def(py::pickle([](const RigSpec& r) { return py::dict(toPython(rigToJson(r))); },
+                      [](const py::dict& state) { return rigFromDict(fromPython(state, "omnicam.Rig")); }))
       .def("__repr__", [](const RigSpec& r) { return "omnicam.Rig(" + rigToJson(r).dump() + ")"; });
   rigProperty(rig, "height", {"height"}, "The design point's height above the floor, metres.");
   rigProperty(rig, "image_size", {"image", "size"}, "Image width and height, pixels (None for a lens camera: see lens).");

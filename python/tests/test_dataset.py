@@ -71,13 +71,25 @@ def _first_depth_sum(dataset):
     return float(dataset[0]["depth"].sum())
 
 
+def _first_item(dataset):
+    return dataset[0]
+
+
 def test_it_pickles_into_worker_processes(folder):
     dataset = omnicam.Dataset(folder, outputs=["depth"])
     again = pickle.loads(pickle.dumps(dataset))
     np.testing.assert_array_equal(again[0]["depth"], dataset[0]["depth"])
     with multiprocessing.get_context("spawn").Pool(2) as pool:
         sums = pool.map(_first_depth_sum, [dataset, dataset])
+        # Whole items come back from the workers, as a DataLoader's do: their rig included.
+        returned = pool.map(_first_item, [dataset])[0]
     assert sums == [float(dataset[0]["depth"].sum())] * 2
+    item = dataset[0]
+    assert returned["rig"] == item["rig"] and returned["pose"] == item["pose"]
+    np.testing.assert_array_equal(returned["depth"], item["depth"])
+    with pytest.raises(KeyError, match="not read"):
+        returned["rgb"]  # its missing keys still say why
+    assert pickle.loads(pickle.dumps(omnicam.Rig({"height": 0.3}))) == omnicam.Rig({"height": 0.3})
 
 
 def test_a_changed_file_fails_its_hash_check_and_a_link_is_never_followed(folder, tmp_path):
