@@ -67,6 +67,14 @@ bool plainInteger(std::string_view text) {
   return true;
 }
 
+// "04": digits a leading zero makes ambiguous (CLI11 would read octal), which the rule's words
+// alone would not explain.
+bool leadingZero(std::string_view text) {
+  const size_t digits = !text.empty() && text[0] == '-' ? 1 : 0;
+  if (text.size() <= digits + 1 || text[digits] != '0') return false;
+  return text.find_first_not_of("0123456789", digits) == std::string_view::npos;
+}
+
 std::string rangeText(const std::string& lo, const std::string& hi, bool openLow) {
   return std::string(openLow ? "(" : "[") + lo + ", " + hi + "]";
 }
@@ -101,7 +109,9 @@ CLI::Validator integerIn(int64_t lo, uint64_t hi) {
   const std::string range = rangeText(std::to_string(lo), std::to_string(hi), false);
   return CLI::Validator(
       [lo, hi, range](std::string& text) -> std::string {
-        return integerTextIn(text, lo, hi) ? std::string() : "must be an integer in " + range + " (got " + quote(text) + ")";
+        if (integerTextIn(text, lo, hi)) return std::string();
+        if (leadingZero(text)) return "must be written without a leading zero (got " + quote(text) + ")";
+        return "must be an integer in " + range + " (got " + quote(text) + ")";
       },
       "INT in " + range);
 }
@@ -109,8 +119,9 @@ CLI::Validator integerIn(int64_t lo, uint64_t hi) {
 CLI::Validator integerRuled(const std::string& rule, int64_t lo, int64_t hi) {
   return CLI::Validator(
       [rule, lo, hi](std::string& text) -> std::string {
-        return integerTextIn(text, lo, static_cast<uint64_t>(hi)) ? std::string()
-                                                                   : "must be an integer, " + rule + " (got " + quote(text) + ")";
+        if (integerTextIn(text, lo, static_cast<uint64_t>(hi))) return std::string();
+        if (leadingZero(text)) return "must be written without a leading zero (got " + quote(text) + ")";
+        return "must be an integer, " + rule + " (got " + quote(text) + ")";
       },
       "");
 }

@@ -58,7 +58,6 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--allow-outside-files", false, "the local backend");
   if (a.shards < 1) throw InputError("--shards: give the number of shards (array tasks) for --backend slurm");
   checkOutputFolder(a.out, "-o");
-  loadDatasetSpec(a.spec);  // a bad spec fails here, not in every task
   SlurmSubmitOptions options;
   options.spec = a.spec;
   options.dir = a.out;
@@ -213,7 +212,7 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
                  r.kept + r.rendered, r.frames, showPath(a.out).c_str());
     return 130;
   }
-  std::printf("wrote %s: %s (%d rendered, %d kept from an earlier run)\n", a.out.c_str(), countOf(r.frames, "frame").c_str(),
+  std::printf("wrote %s: %s (%d rendered, %d kept from an earlier run)\n", showPath(a.out).c_str(), countOf(r.frames, "frame").c_str(),
               r.rendered, r.kept);
   if (!a.shard.empty())  // a shard is part of a dataset: what makes it whole
     std::printf("shard %s of the dataset in %s: %s\n", a.shard.c_str(), a.out.c_str(), unmergedShardsNextStep(a.out).c_str());

@@ -117,7 +117,7 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
       std::ref(progress));
   progress.finish();
   std::printf("%s", convergenceMarkdown(r, a.noFigures ? "" : "figures/convergence.svg").c_str());
-  std::printf("wrote %s/convergence.json (%.0f s)\n", a.out.c_str(), r.seconds);
+  std::printf("wrote %s (%.0f s)\n", showPath(a.out + "/convergence.json").c_str(), r.seconds);
 }
 
 // Replaces the generated section of `doc` (from "## Measured" to the next "## " heading) with
@@ -326,7 +326,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
     if (!results.comparison.pixels.empty()) copyFigures(a.out, a.doc, {kRecordingFigure});
     writeTextAtomically(a.doc, markdown);
   }
-  std::printf("wrote %s/results.json, %s/report.html (%.0f s)\n", a.out.c_str(), a.out.c_str(), results.seconds);
+  std::printf("wrote %s, %s (%.0f s)\n", showPath(a.out + "/results.json").c_str(), showPath(a.out + "/report.html").c_str(), results.seconds);
 }
 
 struct ArenaArgs {
@@ -348,7 +348,7 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
     const std::filesystem::path parent = std::filesystem::path(a.out).parent_path();
     if (!parent.empty()) ensureDirectory(parent.string(), "-o");
     writeTextAtomically(a.out, arena.scene.dump(1) + "\n");
-    std::printf("wrote %s (mapping maze %dx%d cells, seed %llu: %zu objects, %d victims)\n", a.out.c_str(), options.cellsX,
+    std::printf("wrote %s (mapping maze %dx%d cells, seed %llu: %zu objects, %d victims)\n", showPath(a.out).c_str(), options.cellsX,
                 options.cellsY, static_cast<unsigned long long>(a.seed), arena.scene["objects"].size(), options.victims);
     return;
   }
@@ -364,7 +364,7 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
   const std::filesystem::path parent = std::filesystem::path(a.out).parent_path();
   if (!parent.empty()) checkOutputFolder(parent.string(), "-o");  // created once the photos have been read
   const std::vector<std::string> textures = writeHallArena(options, a.out);
-  std::printf("wrote %s (%s walls, %zu textures)\n", a.out.c_str(), a.photos.empty() ? "plain" : "textured", textures.size());
+  std::printf("wrote %s (%s walls, %zu textures)\n", showPath(a.out).c_str(), a.photos.empty() ? "plain" : "textured", textures.size());
 }
 
 }  // namespace

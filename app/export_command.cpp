@@ -58,8 +58,8 @@ void exportBlenderJob(const ExportArgs& a, const Scene& scene, const RobotPose& 
     removeMadeFolders(made);
     throw;
   }
-  std::printf("wrote %s/scene.glb, job.json and blender_driver.py (render with: cd %s && %s; it writes render.exr)\n",
-              a.out.c_str(), shellPath(a.out).c_str(), blenderJobCommand().c_str());
+  std::printf("wrote %s, job.json and blender_driver.py (render with: cd %s && %s; it writes render.exr)\n",
+              showPath(a.out + "/scene.glb").c_str(), shellPath(a.out).c_str(), blenderJobCommand().c_str());
   noteEarlierRender(a.out);
 }
 
@@ -94,7 +94,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
       removeMadeFolders(made);  // the folders it made, empty: nothing written
       throw;
     }
-    std::printf("wrote %s\n", file.c_str());
+    std::printf("wrote %s\n", showPath(file).c_str());
     return;
   }
   const PovrayJob job = exportPovray(scene, pose, settings);  // validates before anything is written
@@ -107,7 +107,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     throw;
   }
   const std::string folder = shellPath(a.out);
-  std::printf("wrote %s/scene.pov and render.ini (render with: cd %s && povray render.ini)\n", a.out.c_str(), folder.c_str());
+  std::printf("wrote %s and render.ini (render with: cd %s && povray render.ini)\n", showPath(a.out + "/scene.pov").c_str(), folder.c_str());
   if (job.samplesPerAxis > 1)
     std::printf("its render.exr is %dx%d, %dx the image for %d spp: omnicam compare --box-downsample averages it to the image's grid\n",
                 job.width, job.height, job.samplesPerAxis, job.samplesPerAxis * job.samplesPerAxis);

@@ -99,7 +99,7 @@ void runCameraRays(const CameraRaysArgs& a, const CLI::App& cmd) {
   group.stage(sidecarPath(a.out), sidecar);
   group.commit();
   encoding.finish();
-  std::printf("wrote %s\n", a.out.c_str());
+  std::printf("wrote %s\n", showPath(a.out).c_str());
 }
 
 }  // namespace

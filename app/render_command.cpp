@@ -197,7 +197,7 @@ void renderPath(const RenderArgs& a, const std::string& engineName, const Scene&
     removeMadeFolders(made);  // the folders this run made and left empty; frames written stay
     throw;
   }
-  std::printf("wrote %s to %s\n", countOf(total, "frame").c_str(), a.out.c_str());
+  std::printf("wrote %s to %s\n", countOf(total, "frame").c_str(), showPath(a.out).c_str());
 }
 
 void runRender(const RenderArgs& a, const CLI::App& cmd) {
@@ -257,8 +257,8 @@ void runRender(const RenderArgs& a, const CLI::App& cmd) {
     if (parts) parts->finish();
     record(rendered, recording, 0);
     writeWithViews(a.out, rendered, views);
-    std::string written = a.out;
-    for (const std::string& file : views.files(a.out)) written += ", " + file;
+    std::string written = showPath(a.out);
+    for (const std::string& file : views.files(a.out)) written += ", " + showPath(file);
     std::printf("wrote %s\n", written.c_str());
     return;
   }

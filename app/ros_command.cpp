@@ -41,10 +41,16 @@ void runRos(RosArgs a, const CLI::App& cmd, const std::vector<std::string>& extr
   // An empty value would silently mean the flag's absence (odometry, no bag).
   if (cmd.count("--tf") && a.options.tfParent.empty()) throw InputError("--tf: give a frame (map or odom)");
   if (cmd.count("--record") && a.options.recordBag.empty()) throw InputError("--record: give the new bag's file name");
+  if (cmd.count("--max-pose-age") && a.options.rateHz == 0)
+    throw InputError("--max-pose-age: does nothing with --rate 0 (each pose is rendered as it comes): give a rate above 0, or "
+                     "leave --max-pose-age out");
   const DatasetSpec spec = loadDatasetSpec(a.spec);
   if (!a.options.recordBag.empty()) {
     checkOutputFile(a.options.recordBag, "--record");
-    if (std::filesystem::exists(std::filesystem::symlink_status(a.options.recordBag)))
+    const auto status = std::filesystem::symlink_status(a.options.recordBag);
+    if (std::filesystem::is_symlink(status))
+      throw InputError("--record: " + showPath(a.options.recordBag) + ": is a symbolic link (a bag is written as a new file, never through one)");
+    if (std::filesystem::exists(status))
       throw InputError("--record: " + showPath(a.options.recordBag) + ": exists already (a bag is never overwritten)");
   }
   stopGracefullyOnInterrupt();  // SIGINT/SIGTERM end the loop between frames
@@ -73,6 +79,9 @@ void runRos(RosArgs a, const CLI::App& cmd, const std::vector<std::string>& extr
   if (a.options.rateHz > 0 && a.options.tfParent.empty())  // --max-pose-age is odometry's
     std::printf(", %s skipped (no pose within --max-pose-age)", countOf(report.skippedTicks, "tick").c_str());
   std::printf("\n");
+  if (report.shutDownByRos)
+    throw ExternalError("ros: the ROS master shut this node down: another node registered under its name (give each node its own "
+                        "with __name:=), or rosnode kill");
 }
 
 }  // namespace

@@ -121,7 +121,7 @@ void runView(const ViewArgs& a, const CLI::App& cmd) {
   std::vector<FileBytes> files;  // the view and its sidecar together, or neither
   addImageFiles(files, a.out, applyViewMap(map, omni), viewSidecar(sidecar, viewToJson(spec, map, *camera, robotFromViewpoint(rig)), a.in));
   writeFilesTogether(files);
-  std::printf("wrote %s (%dx%d %s, %s)\n", a.out.c_str(), map.width, map.height, a.as.c_str(), a.variant.c_str());
+  std::printf("wrote %s (%dx%d %s, %s)\n", showPath(a.out).c_str(), map.width, map.height, a.as.c_str(), a.variant.c_str());
 }
 
 }  // namespace

@@ -5,7 +5,10 @@
 #include <sstream>
 
 #include "atomic_file.h"
+#include "dataset_plan.h"
+#include "dataset_runner.h"
 #include "dataset_shards.h"
+#include "dataset_spec.h"
 #include "errors.h"
 #include "external_process.h"
 #include "manifest.h"
@@ -76,6 +79,19 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
   throw ExternalError("sbatch gave no job id for the " + what + ": " + r.logTail);
 }
 
+// After sbatch refused the array: the scripts and log this submission wrote, and the folders it
+// made (each only when empty).
+void removeUnsubmitted(const fs::path& dir, bool shardsExisted, bool slurmExisted, bool dirExisted) {
+  for (const char* file : {"slurm/render.sbatch", "slurm/merge.sbatch"}) removeFileInside(dir.string(), file);
+  if (!slurmExisted) {
+    removeFileInside(dir.string(), "slurm/sbatch.log");
+    removeEmptyFolderInside(dir.string(), "slurm");
+  }
+  if (!shardsExisted) removeEmptyFolderInside(dir.string(), "shards");
+  std::error_code ec;
+  if (!dirExisted && fs::is_directory(fs::symlink_status(dir, ec)) && fs::is_empty(dir, ec)) fs::remove(dir, ec);
+}
+
 }  // namespace
 
 namespace {
@@ -117,9 +133,14 @@ std::vector<std::string> parseSlurmArgs(const std::string& text) {
   std::string word;
   while (words >> word) {
     if (word.size() < 2 || word[0] != '-' || word == "--" || word.rfind("--=", 0) == 0 ||
-        word.find_first_of("'\"\\\n\r`$") != std::string::npos)
+        word.find_first_of("'\"\\\n\r`$") != std::string::npos) {
+      // "--partition debug": the value of the option before, as its own word (a #SBATCH line each).
+      const bool valueOfPrevious = !word.empty() && word[0] != '-' && !args.empty() && args.back().find('=') == std::string::npos;
+      const std::string joined = valueOfPrevious ? args.back() + (args.back().rfind("--", 0) == 0 ? "=" : "") + word : "";
       throw InputError("--slurm-args: " + quote(word) + ": each word must be an sbatch option (starting with '-', "
-                       "without quotes, backslashes, '$' or '`')");
+                       "without quotes, backslashes, '$' or '`')" +
+                       (valueOfPrevious ? "; write an option and its value as one word: " + quote(joined) : ""));
+    }
     if (const std::string reserved = reservedSbatchOption(word); !reserved.empty())
       throw InputError("--slurm-args: " + quote(word) + ": sbatch reads it as --" + reserved +
                        "; omnicam sets --array (use --max-parallel for %K), --output and --dependency itself, and "
@@ -151,15 +172,23 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   checkScriptPath(dir.string(), true);
   checkScriptPath(spec.string(), false);
   checkScriptPath(o.omnicamBinary, false);
+  // The spec, its scene, poses and engine as each task will read them: a mistake, or more shards
+  // than frames, is refused here before anything is queued, not by every task of the array.
+  const DatasetSpec datasetSpec = loadDatasetSpec(o.spec);
+  DatasetRunOptions shardRun;
+  shardRun.dir = o.dir;
+  shardRun.shardCount = o.shards;
+  const DatasetPlan plan(datasetSpec, shardRun);
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_empty(dir, ec) && entryInside(dir.string(), kManifestName) != EntryKind::File &&
+  const bool dirExisted = fs::exists(dir, ec);
+  for (const char* folder : {"shards", "slurm"}) checkFoldersInside(dir.string(), folder);  // a link there is named
+  if (dirExisted && !fs::is_empty(dir, ec) && entryInside(dir.string(), kManifestName) != EntryKind::File &&
       entryInside(dir.string(), "shards") != EntryKind::Folder)
     throw InputError(showPath(dir.string()) + ": folder is not empty and holds no dataset (no " + std::string(kManifestName) +
                      ", no shards/)");
-  for (const char* folder : {"shards", "slurm"}) checkFoldersInside(dir.string(), folder);
-  // Each task would refuse a folder of another count's shards: refused here, before submitting.
-  if (const std::string conflict = shardCountConflict(dir.string(), o.shards); !conflict.empty())
-    throw InputError(showPath(dir.string()) + ": " + conflict);
+  // Each task would refuse another dataset's manifest, or another spec's or count's shards:
+  // refused here, before anything is queued.
+  checkShardsMayJoin(dir.string(), plan.header(), o.shards);
 
   SlurmSubmission s;
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))
@@ -170,6 +199,8 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   }
   for (const int shard : s.shards) checkLogName(dir, "slurm/shard-" + std::to_string(shard) + ".log");
   checkLogName(dir, "slurm/merge.log");
+  const bool shardsExisted = entryInside(dir.string(), "shards") == EntryKind::Folder;
+  const bool slurmExisted = entryInside(dir.string(), "slurm") == EntryKind::Folder;
   for (const char* folder : {"shards", "slurm"}) makeFoldersInside(dir.string(), folder);
   const fs::path slurmDir = dir / "slurm";
 
@@ -196,9 +227,16 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   writeFileInside(dir.string(), "slurm/render.sbatch", render.str(), Durability::Synced);
   writeFileInside(dir.string(), "slurm/merge.sbatch", merge.str(), Durability::Synced);
 
-  s.arrayJob = submit({o.sbatch, "--parsable", "--array=" + slurmArraySpec(s.shards, o.maxParallel),
-                       "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
-                      dir, "array job");
+  try {
+    s.arrayJob = submit({o.sbatch, "--parsable", "--array=" + slurmArraySpec(s.shards, o.maxParallel),
+                         "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
+                        dir, "array job");
+  } catch (const ExternalError&) {
+    // Nothing was queued: what this submission wrote goes, so that the folder does not look
+    // submitted (--status reads the scripts). sbatch's words are in the message.
+    removeUnsubmitted(dir, shardsExisted, slurmExisted, dirExisted);
+    throw;
+  }
   // afterany: the merge also runs when a task failed, and lists what is missing.
   try {
     s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,

@@ -28,6 +28,19 @@ TEST(SlurmBackend, SbatchOptionsAreWordsStartingWithADashAndNothingToExpand) {
   for (const char* bad : {"-A proj1", "--comment='x'", "--chdir=$HOME", "--job-name=`id`", "--array=0-3",
                           "--output=x.log", "--dependency=afterok:1", "--export=A\\nB"})
     EXPECT_THROW(parseSlurmArgs(bad), InputError) << bad;
+  // A value given as its own word is shown joined to its option, as sbatch takes it in one word.
+  const auto refusal = [](const std::string& text) {
+    try {
+      parseSlurmArgs(text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(refusal("--partition debug"), "--slurm-args: \"debug\": each word must be an sbatch option (starting with '-', without quotes, "
+                                          "backslashes, '$' or '`'); write an option and its value as one word: \"--partition=debug\"");
+  EXPECT_NE(refusal("-p debug").find("; write an option and its value as one word: \"-pdebug\""), std::string::npos);
+  EXPECT_EQ(refusal("--time=1:00 debug").find("one word"), std::string::npos);  // its option has its value
 }
 
 TEST(SlurmBackend, ReservedOptionsAreRefusedUnderEverySpellingSbatchAccepts) {
@@ -39,6 +52,53 @@ TEST(SlurmBackend, ReservedOptionsAreRefusedUnderEverySpellingSbatchAccepts) {
   for (const char* good : {"-pdebug", "-Jomnicam-data", "--partition=dev-a", "--export=ALL", "--open-mode=append",
                            "--exclusive", "-H", "-vv", "--account=array"})
     EXPECT_NO_THROW(parseSlurmArgs(good)) << good;
+}
+
+// A dataset of three frames (a submission reads its spec and scene as each task would).
+void writeThreeFrameSpec(const std::filesystem::path& dir) {
+  std::ofstream(dir / "scene.json") << R"({"format": "omnicam-scene/1", "materials": {"m": {"color": [0.5, 0.5, 0.5]}},
+    "objects": [{"type": "sphere", "material": "m", "center": [1, 0, 0.3], "radius": 0.2}]})";
+  std::ofstream(dir / "spec.json") << R"({"format": "omnicam-dataset/1", "scene": "scene.json", "size": 32,
+    "poses": {"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0]]}})";
+}
+
+// An sbatch that refuses the array job: nothing is queued, so nothing the submission wrote stays
+// (the scripts would make --status say "submitted"); sbatch's words are in the message.
+TEST(SlurmBackend, AnArrayJobRefusedLeavesNothingBehind) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_slurm_array_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path sbatch = dir / "sbatch";
+  std::ofstream(sbatch) << "#!/bin/sh\necho 'sbatch: error: invalid partition specified: nosuch' >&2\nexit 1\n";
+  fs::permissions(sbatch, fs::perms::owner_all);
+  writeThreeFrameSpec(dir);
+  SlurmSubmitOptions options;
+  options.spec = (dir / "spec.json").string();
+  options.omnicamBinary = "/usr/bin/true";
+  options.shards = 3;
+  options.sbatch = sbatch.string();
+  // A new folder goes whole; in one submitted to before (its shards/ and slurm/ there, with a
+  // file of the user's), only this submission's scripts go.
+  fs::create_directories(dir / "mine" / "shards");
+  fs::create_directories(dir / "mine" / "slurm");
+  std::ofstream(dir / "mine" / "slurm" / "notes.txt") << "mine";
+  for (const char* out : {"new", "mine"}) {
+    options.dir = (dir / out).string();
+    try {
+      submitDatasetToSlurm(options);
+      ADD_FAILURE() << "the refused array job was not said";
+    } catch (const ExternalError& e) {
+      EXPECT_NE(std::string(e.what()).find("sbatch refused the array job (exit 1): "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("invalid partition specified: nosuch"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir / "new"));
+  EXPECT_TRUE(fs::exists(dir / "mine" / "shards"));
+  EXPECT_FALSE(fs::exists(dir / "mine" / "slurm" / "render.sbatch"));
+  EXPECT_FALSE(fs::exists(dir / "mine" / "slurm" / "merge.sbatch"));
+  EXPECT_TRUE(fs::exists(dir / "mine" / "slurm" / "notes.txt"));
+  fs::remove_all(dir);
 }
 
 // An sbatch that takes the array job and then refuses the merge job: the array is queued and
@@ -53,7 +113,7 @@ TEST(SlurmBackend, AMergeJobRefusedNamesTheQueuedArrayJobAndWhatFinishesOrCancel
   std::ofstream(sbatch) << "#!/bin/sh\ncase \"$*\" in *--dependency*) echo 'sbatch: error: QOSMaxSubmitJobPerUserLimit' >&2; exit 1;; esac\n"
                            "echo 4711\n";
   fs::permissions(sbatch, fs::perms::owner_all);
-  std::ofstream(dir / "spec.json") << "{}";
+  writeThreeFrameSpec(dir);
   SlurmSubmitOptions options;
   options.spec = (dir / "spec.json").string();
   options.dir = (dir / "out").string();

@@ -96,6 +96,13 @@ std::vector<CameraSetup> cameraSetups(const DatasetSpec& spec, const Scene& scen
     if (spec.size) {
       const RigSpec given = setup.rig;
       setup.rig = setup.rig.resized(*spec.size, showPath(spec.file) + ": size: camera " + quote(camera.name));
+      // A size the camera's own rig gives, overridden: said (the scene's rig's size is what
+      // `size` is there to set).
+      const bool ownSize = camera.rig && !std::holds_alternative<LensCameraSpec>(given.kind) && camera.rig->contains("image") &&
+                           (*camera.rig)["image"].is_object() && (*camera.rig)["image"].contains("size");
+      if (ownSize && given.imageWidth() != *spec.size)
+        notes.push_back(showPath(spec.file) + ": size: camera " + quote(camera.name) + ", whose rig gives " + std::to_string(given.imageWidth()) +
+                        " px, renders at " + std::to_string(setup.rig.imageWidth()) + " px (size is every camera's width)");
       if (std::holds_alternative<LensCameraSpec>(given.kind) && given.imageWidth() != *spec.size)
         notes.push_back(showPath(spec.file) + ": size: camera " + quote(camera.name) + ", a lens camera of " + given.imageSizeText() +
                         ", renders at " + setup.rig.imageSizeText() + " with its intrinsics scaled (size is every camera's width)");
@@ -115,6 +122,10 @@ FrameRange frameRange(const DatasetRunOptions& options, int totalFrames) {
     throw InputError("shard " + std::to_string(options.shardIndex) + " of " + std::to_string(options.shardCount) +
                      ": must be shard I of N with 0 <= I < N <= " + std::to_string(kMaxShards));
   if (range.sharded && options.overwrite) throw InputError(showPath(options.dir) + ": a shard never overwrites (shards share the folder)");
+  // A shard without a frame would hold a task (a Slurm array's, a machine's) for nothing.
+  if (range.sharded && shardCount > totalFrames)
+    throw InputError("shard count " + std::to_string(shardCount) + ": more than the dataset's " + std::to_string(totalFrames) + " frame" +
+                     (totalFrames == 1 ? "" : "s") + " (a shard would render none): give at most " + std::to_string(totalFrames));
   range.first = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
   range.end = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
   range.manifestName = range.sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
@@ -424,6 +435,8 @@ Scene loadSpecScene(const DatasetSpec& spec) {
                      (std::filesystem::path(given).is_absolute() ? "" : " (" + quote(given) + " is relative to the spec's folder)") +
                      bundledSceneHint(given));
   }
+  if (std::filesystem::is_directory(spec.scene, ec))
+    throw InputError(showPath(spec.file) + ": scene: " + showPath(spec.scene) + " is a folder, not a scene file");
   return loadScene(spec.scene, {spec.allowOutsideFiles});
 }
 

@@ -242,4 +242,11 @@ DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& op
   return result;
 }
 
+void checkShardsMayJoin(const std::string& dir, const json& header, int count) {
+  DatasetRunOptions options;
+  options.dir = dir;
+  options.shardCount = count;
+  (void)takeOverFolder(options, header, shardManifestName(0, count));
+}
+
 }  // namespace omnicam

@@ -36,4 +36,10 @@ struct DatasetRunResult {
 // ground-truth engine; OutputError if a file cannot be written.
 DatasetRunResult runDataset(const DatasetSpec& spec, const DatasetRunOptions& options);
 
+// What every shard of `count` of the dataset `header` (DatasetPlan::header) would check of DIR
+// before rendering, checked once: InputError (OtherDatasetError for another dataset's manifest,
+// another spec's or count's shards). For a Slurm submission, which would otherwise queue tasks
+// that all refuse the folder. DIR may not exist yet.
+void checkShardsMayJoin(const std::string& dir, const nlohmann::json& header, int count);
+
 }  // namespace omnicam

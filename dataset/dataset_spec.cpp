@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -264,11 +265,10 @@ void readVibration(JsonFields fields, DatasetSpec& spec) {
   if (v.none()) throw InputError(showPath(spec.file) + ": vibration: needs an amplitude above 0 (or leave vibration out)");
 }
 
-// The rule a camera name broke; the name itself too when it holds characters the user cannot
-// see in it (control characters, bytes that are not UTF-8), shown escaped.
+// The rule a camera name broke, and the name, quoted and escaped (a letter outside ASCII, "réar",
+// breaks it as a control character does).
 std::string cameraNameProblem(const std::string& name) {
-  const std::string rule = "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\", \"shards\" or \"slurm\"";
-  return rule + (oneLine(name) != name ? "; got " + quote(name) : "") + ")";
+  return "must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\", \"shards\" or \"slurm\"; got " + quote(name) + ")";
 }
 
 void readMount(JsonFields mount, DatasetCamera& camera) {
@@ -337,11 +337,21 @@ void readOutputs(JsonFields o, DatasetSpec& spec) {
 // The render request's settings (request_fields.h's rows with a JSON name; a dotted name lies in
 // an object of its own), typed as JSON; their rules and messages are readRenderRequest's.
 void readRequestField(JsonFields& object, const std::string& key, const RequestFieldRow& row, RequestFields& f) {
-  constexpr int64_t kAny = int64_t{1} << 53;  // exact in every JSON reader; the request checks the range
   if (!object.has(key)) return;
   switch (row.type) {
     case RequestFieldType::Text: f.set(row.field, object.string(key)); break;
-    case RequestFieldType::Integer: f.set(row.field, object.integer(key, -kAny, kAny)); break;
+    case RequestFieldType::Integer: {
+      // Any 64-bit integer reaches the request, whose rule speaks (as for the CLI's flag); a whole
+      // number beyond 64 bits is told that rule too, not a range of the reader's own.
+      const json& value = object.raw(key);
+      constexpr double kBeyond = 9223372036854775808.0;  // 2^63
+      const bool beyond = (value.is_number_unsigned() && value.get<uint64_t>() > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) ||
+                          (value.is_number_float() && std::isfinite(value.get<double>()) && value.get<double>() == std::floor(value.get<double>()) &&
+                           std::abs(value.get<double>()) >= kBeyond);
+      if (beyond) object.fail(key, "must be " + row.range + " (got " + jsonValueText(value) + ")");
+      f.set(row.field, object.integer(key, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max()));
+      break;
+    }
     case RequestFieldType::Number: f.set(row.field, object.number(key)); break;
     case RequestFieldType::Switch: f.set(row.field, object.boolean(key, false)); break;
   }

@@ -56,7 +56,8 @@ TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "a"}, {"name": "a"}])")),
             "spec.json: cameras[1].name: duplicate camera name \"a\"");
   EXPECT_EQ(errorOf(spec(R"("cameras": [{"name": "../x"}])")),
-            "spec.json: cameras[0].name: must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\", \"shards\" or \"slurm\")");
+            "spec.json: cameras[0].name: must be 1 to 63 letters, digits, '_' or '-' (a folder name; not \"intrinsics\", \"shards\" or \"slurm\"; got "
+            "\"../x\")");
   // The dataset folder's own folders: a camera named so would share shards/ with the shard manifests.
   for (const char* reserved : {"intrinsics", "shards", "slurm"})
     EXPECT_NE(errorOf(spec(std::string(R"("cameras": [{"name": ")") + reserved + R"("}])")).find("cameras[0].name: must be"),

@@ -66,7 +66,7 @@ std::optional<fs::path> resolveConfined(const fs::path& folder, const std::strin
 std::optional<std::string> readWholeFile(const std::string& path, std::string& why, int64_t maxBytes) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
-    why = fs::exists(path, ec) ? "not a regular file" : "no such file";
+    why = fs::is_directory(path, ec) ? "a folder, not a file" : fs::exists(path, ec) ? "not a regular file" : "no such file";
     return std::nullopt;
   }
   const auto size = fs::file_size(path, ec);

@@ -316,7 +316,7 @@ TEST(ImageDecoders, TheFormatIsToldByTheBytesNotTheName) {
 
 TEST(ImageDecoders, DamagedFilesOfEveryFormatAreInputErrorsNamingThem) {
   // Each file cut after its header, then with its pixel data overwritten: an error, never a crash
-  // or a partly decoded image.
+  // or a partly decoded image (libjpeg would fill a cut JPEG's missing rows with grey).
   const std::vector<Written> files = {writeWithOiio("cut.png", specOf(64, 64, 3, OIIO::TypeDesc::UINT8)),
                                       writeWithOiio("cut.jpg", specOf(64, 64, 3, OIIO::TypeDesc::UINT8)),
                                       writeWithOiio("cut.tif", specOf(64, 64, 3, OIIO::TypeDesc::UINT16)),
@@ -329,8 +329,7 @@ TEST(ImageDecoders, DamagedFilesOfEveryFormatAreInputErrorsNamingThem) {
         auto decoder = openImageDecoder({"", damaged, "damaged"});
         std::vector<float> values(static_cast<size_t>(decoder->header().width) * decoder->header().height * decoder->header().channels);
         decoder->readRows(0, decoder->header().height, values.data());
-        // libjpeg fills a truncated scan with grey and warns: that is all a JPEG reader can do.
-        EXPECT_EQ(decoder->format(), "jpeg") << file.note << " decoded damaged bytes without an error";
+        ADD_FAILURE() << file.note << " decoded damaged bytes without an error";
       } catch (const InputError& e) {
         EXPECT_EQ(std::string(e.what()).rfind("damaged: ", 0), 0u) << e.what();
         EXPECT_EQ(std::string(e.what()).find("memory.exr"), std::string::npos) << e.what();  // no internal name

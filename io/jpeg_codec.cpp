@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <jpeglib.h>
+#include <jerror.h>
 
 #include <algorithm>
 #include <csetjmp>
@@ -37,10 +38,18 @@ struct JpegErrors {
   std::longjmp(errors->back, 1);
 }
 
-void onJpegMessage(j_common_ptr, int) {}
+// Warnings stay quiet (stderr is the user's), and most are not failures: real cameras write
+// extraneous bytes before a marker. A file that ends early is: libjpeg would fill the rest of the
+// image with grey, which a texture would carry into every frame as if it were the picture.
+void onJpegMessage(j_common_ptr cinfo, int level) {
+  if (level != -1 || cinfo->err->msg_code != JWRN_JPEG_EOF) return;
+  auto* errors = reinterpret_cast<JpegErrors*>(cinfo->err);
+  std::snprintf(errors->message, sizeof errors->message, "the file ends before its image does: it is cut short");
+  std::longjmp(errors->back, 1);
+}
 
 // libjpeg-turbo's advice for untrusted files (its tjbench's limit): real progressive files have ten.
-constexpr int kMaxJpegScans = 500;  // warnings (a truncated file) are not failures; stderr stays quiet
+constexpr int kMaxJpegScans = 500;
 
 void installErrors(JpegErrors& errors) {
   jpeg_std_error(&errors.manager);

@@ -79,8 +79,13 @@ const json& JsonFields::required(const std::string& key) {
     // likely the mistake; it may also be a field read later (fx before a missing fy), so it is
     // named as a question, not refused as unknown.
     // A sibling of the same length one letter apart (fx and fy, edge_u and edge_v, x_axis and
-    // y_axis) is a field of its own, not asked about.
-    const auto sibling = [&](const std::string& other) { return other.size() == key.size() && editDistance(other, key) == 1; };
+    // y_axis) is a field of its own, not asked about; two letters swapped ("materail") is a typo.
+    const auto sibling = [&](const std::string& other) {
+      if (other.size() != key.size()) return false;
+      size_t differing = 0;
+      for (size_t k = 0; k < key.size(); ++k) differing += other[k] != key[k];
+      return differing == 1;
+    };
     for (auto it = object_.begin(); it != object_.end(); ++it)
       if (it.key() != "comment" && !read_.count(it.key()) && !sibling(it.key()) && closestName(it.key(), {key}))
         fail(key, "missing required field (the object has " + keySegment(it.key()) + ": a typo of " + keySegment(key) + "?)");

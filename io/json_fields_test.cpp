@@ -32,6 +32,9 @@ TEST(JsonFields, AMissingFieldAsksAboutATypoButNotAboutASibling) {
   EXPECT_EQ(missing(R"({"fx": 30})", "fy"), "f.json: o.fy: missing required field");
   EXPECT_EQ(missing(R"({"edge_v": [1, 0, 0]})", "edge_u"), "f.json: o.edge_u: missing required field");
   EXPECT_EQ(missing(R"({"other": 1})", "fy"), "f.json: o.fy: missing required field");
+  // Two letters swapped is a typo, though of the same length one edit away.
+  EXPECT_EQ(missing(R"({"materail": "red"})", "material"),
+            "f.json: o.material: missing required field (the object has materail: a typo of material?)");
 }
 
 // Names a reader asked for with has() are what a typo may mean, as read ones are.

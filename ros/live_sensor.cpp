@@ -496,6 +496,10 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
   LiveSensorReport report;
   auto masterChecked = std::chrono::steady_clock::now();
   while (!interruptRequested() && (options.frames == 0 || report.rendered < options.frames)) {
+    if (transport.shutDownByRos()) {  // deaf from now on: no pose would come
+      report.shutDownByRos = true;
+      break;
+    }
     // Once a second: a master that went away and came back gets every topic again.
     if (std::chrono::steady_clock::now() - masterChecked > std::chrono::seconds(1)) {
       masterChecked = std::chrono::steady_clock::now();

@@ -59,6 +59,7 @@ struct LiveSensorReport {
   int64_t dropped = 0;  // poses a newer one replaced before they were rendered
   int64_t skippedTicks = 0;  // at a fixed rate: ticks that had no pose within maxPoseAgeSeconds
   int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again
+  bool shutDownByRos = false;  // the master ended the node (its name taken by another, rosnode kill)
 };
 
 // An odometry message as the robot's pose (x, y, yaw about +Z from the quaternion) and velocity

@@ -458,6 +458,8 @@ void Transport::publishLatchedText(const std::string& topic, const std::string& 
   impl->advertise.back()();
 }
 
+bool Transport::shutDownByRos() const { return !ros::ok(); }
+
 bool Transport::registerAgainIfTheMasterCameBack() {
   const int pid = masterPid();
   if (pid == 0 || pid == impl_->masterPid) return false;  // away, or the same master

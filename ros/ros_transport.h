@@ -91,6 +91,10 @@ class Transport {
   // transform is registered again (roscpp registers once, and a new master knows none). Call it
   // now and then from the owner's thread.
   bool registerAgainIfTheMasterCameBack();
+  // Whether ROS itself has ended the node: the master's shutdown call, made when another node
+  // registers under its name, or by `rosnode kill`. roscpp then unregisters every topic; the
+  // node hears and publishes nothing more.
+  bool shutDownByRos() const;
   // Subscribers of `topic` connected now.
   uint32_t subscribers(const std::string& topic) const;
 

@@ -75,7 +75,7 @@ void refuseOtherShapesFields(JsonFields& mirror, const std::string& shape) {
 
 double rimElevation(JsonFields& mirror, double fallback) {
   const double deg = mirror.number("rim_elevation_deg", fallback);
-  if (!(deg > -60.0 && deg < 80.0)) mirror.fail("rim_elevation_deg", "must be in (-60, 80) degrees");
+  if (!(deg > -60.0 && deg < 80.0)) mirror.fail("rim_elevation_deg", "must be in (-60, 80) degrees (got " + shortNumber(deg) + ")");
   return deg;
 }
 
@@ -105,7 +105,7 @@ MirrorShapeSpec readShape(JsonFields& mirror, const std::string& shape, double h
     ParaboloidMirror p;
     p.h = mirror.number("h", size);
     p.rimElevationDeg = rimElevation(mirror, p.rimElevationDeg);
-    if (!(p.rimElevationDeg < 60.0)) mirror.fail("rim_elevation_deg", "must be below 60 degrees for a paraboloid");
+    if (!(p.rimElevationDeg < 60.0)) mirror.fail("rim_elevation_deg", "must be below 60 degrees for a paraboloid (got " + shortNumber(p.rimElevationDeg) + ")");
     p.cameraDistance = cameraDistance(mirror, 0.0, 0.5 * p.h, height);
     return p;
   }

@@ -934,6 +934,23 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_NE(three.out.find("holds the shards of a run in 2 (shards/shard-*-of-2.json): shard it the same way"), std::string::npos)
       << three.out;
   EXPECT_FALSE(fs::exists(dir_ / "two/slurm"));
+  // More shards than the spec's 4 frames: refused before anything is queued (a task would render
+  // nothing); the stand-in sbatch records whether it was called.
+  write("bin/sbatch", "#!/bin/sh\ntouch " + path("sbatch_called") + "\necho 42\n");
+  const auto five = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
+                                      path("five") + " --backend slurm --shards 5 2>&1");
+  EXPECT_EQ(five.code, 2) << five.out;
+  EXPECT_EQ(five.out, "omnicam: shard count 5: more than the dataset's 4 frames (a shard would render none): give at most 4\n");
+  EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
+  EXPECT_FALSE(fs::exists(dir_ / "five"));
+  // A bad scene is refused at submission too, not by every task.
+  const std::string noScene = robocupSpec("no_scene.json", R"("size": 32, "poses": {"path": "thesis-lop", "frames": 4})");
+  const auto badPath = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + noScene + " -o " +
+                                         path("bad") + " --backend slurm --shards 2 2>&1");
+  EXPECT_EQ(badPath.code, 2) << badPath.out;
+  EXPECT_NE(badPath.out.find("thesis-lop"), std::string::npos) << badPath.out;
+  EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
 // Alpha is compared where both images have it: a folder of one's own RGB PNGs (no alpha) against a
@@ -1965,12 +1982,13 @@ TEST_F(DatasetCliTest, ALensCamerasCornerListsAreNotAMirrorImageAndCalibrateAsTh
 }
 
 // The spec's size is every camera's width: a lens camera of its own size is scaled, intrinsics
-// with it, and the run says so (its spec does not show it); a mirror camera's is not told.
+// with it, and the run says so (its spec does not show it); so is a mirror camera whose own rig
+// gives a size, but not the scene's rig, whose size `size` is there to set.
 TEST_F(DatasetCliTest, ALensCameraScaledByTheSpecsSizeIsTold) {
   const std::string spec = write("sized.json", R"({"format": "omnicam-dataset/1", "scene": ")" OMNICAM_SOURCE_DIR
                                  R"(/scenes/robocup2006.json", "spp": 1, "size": 160,
     "cameras": [{"name": "fish", "rig": {"height": 0.3, "lens": {"model": "kannala_brandt", "width": 320, "height": 240, "fx": 95, "fy": 95}}},
-                {"name": "mirror"}],
+                {"name": "mirror"}, {"name": "small", "rig": {"image": {"size": 64}}}],
     "poses": {"list": [[0, 0, 0]]},
     "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})");
   const testing::CommandResult run = omnicam("dataset " + spec + " -o " + path("sized"));
@@ -1978,7 +1996,11 @@ TEST_F(DatasetCliTest, ALensCameraScaledByTheSpecsSizeIsTold) {
   EXPECT_NE(run.out.find("omnicam: note: " + spec + ": size: camera \"fish\", a lens camera of 320x240, renders at 160x120 with its "
                          "intrinsics scaled (size is every camera's width)"),
             std::string::npos) << run.out;
-  EXPECT_EQ(run.out.find("camera \"mirror\""), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("camera \"mirror\""), std::string::npos) << run.out;  // the scene's rig: size is there to set it
+  // A mirror camera whose own rig gives a size is told too.
+  EXPECT_NE(run.out.find("omnicam: note: " + spec + ": size: camera \"small\", whose rig gives 64 px, renders at 160 px (size is every "
+                         "camera's width)"),
+            std::string::npos) << run.out;
   const json intrinsics = json::parse(readFile(dir_ / "sized/manifest.json")).at("cameras")[0].at("intrinsics");
   EXPECT_DOUBLE_EQ(intrinsics.at("fx").get<double>(), 47.5) << intrinsics.dump();
   // The note comes before the frames, and a lens camera the scene's rig gives is told too.

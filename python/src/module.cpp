@@ -1,10 +1,15 @@
 // `import omnicam`: the library's own objects in Python (docs/python.md).
 #include <pybind11/stl.h>
 
+#include <cmath>
+#include <optional>
+#include <utility>
+
 #include "bindings.h"
 
 #include "errors.h"
 #include "file_confinement.h"
+#include "json_fields.h"
 #include "malloc_tuning.h"
 #include "memory_budget.h"
 #include "render_settings.h"
@@ -12,6 +17,31 @@
 namespace omnicam::python {
 
 py::object toPython(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+namespace {
+
+// Where in `object` a float is NaN or infinite ("mirror.k", "poses[2]"; "" for `object` itself),
+// with its repr: JSON has no such number, and the message should name the field, as the library's
+// own readers do.
+std::optional<std::pair<std::string, std::string>> firstNonFinite(const py::handle& object, const std::string& path) {
+  if (PyFloat_Check(object.ptr())) {
+    if (std::isfinite(PyFloat_AsDouble(object.ptr()))) return std::nullopt;
+    return std::make_pair(path, py::repr(object).cast<std::string>());
+  }
+  if (PyDict_Check(object.ptr())) {
+    for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(object)) {
+      const std::string name = keySegment(py::isinstance<py::str>(key) ? key.cast<std::string>() : py::repr(key).cast<std::string>());
+      if (auto found = firstNonFinite(value, path.empty() ? name : path + "." + name)) return found;
+    }
+  } else if (PyList_Check(object.ptr()) || PyTuple_Check(object.ptr())) {
+    size_t index = 0;
+    for (const py::handle item : py::reinterpret_borrow<py::sequence>(object))
+      if (auto found = firstNonFinite(item, path + "[" + std::to_string(index++) + "]")) return found;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 nlohmann::json fromPython(const py::handle& object, const std::string& what) {
   std::string text;
@@ -22,7 +52,12 @@ nlohmann::json fromPython(const py::handle& object, const std::string& what) {
   }
   // Python's json writes NaN and Infinity, which JSON (and the scene format) has not.
   const nlohmann::json parsed = nlohmann::json::parse(text, nullptr, false);
-  if (parsed.is_discarded()) throw InputError(what + ": not a finite number, or not JSON-like");
+  if (parsed.is_discarded()) {
+    if (const auto found = firstNonFinite(object, ""))
+      throw InputError(what + ": " + (found->first.empty() ? "" : found->first + ": ") + "must be a finite number (got " +
+                       found->second + ")");
+    throw InputError(what + ": not a finite number, or not JSON-like");
+  }
   return parsed;
 }
 

@@ -121,6 +121,12 @@ def test_a_rig_round_trips_through_its_dict():
     with pytest.raises(omnicam.InputError) as raised:
         omnicam.Rig({"mirror": {"shape": "sphere", "radius": 0.03, "k": 11}})
     assert "belongs to the hyperboloid shape" in str(raised.value)
+    # A NaN or infinity (which JSON has not) is named by its field, as the setters name theirs.
+    for given, field, shown in [({"height": float("nan")}, "height", "nan"), ({"mirror": {"k": float("inf")}}, "mirror.k", "inf"),
+                                ({"camera": {"offset_mm": [0, float("-inf"), 0]}}, "camera.offset_mm[1]", "-inf")]:
+        with pytest.raises(omnicam.InputError) as raised:
+            omnicam.Rig(given)
+        assert str(raised.value) == f"omnicam.Rig: {field}: must be a finite number (got {shown})"
     assert omnicam.Rig().resized(180).image_size == 180
     assert omnicam.Rig(None) == omnicam.Rig() and omnicam.Rig().ideal  # as the stub's default says
     # A lens camera has no mirror and no square image size: None, as the stub types them.
