@@ -951,6 +951,25 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_NE(badPath.out.find("thesis-lop"), std::string::npos) << badPath.out;
   EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
   EXPECT_FALSE(fs::exists(dir_ / "bad"));
+  // A folder holding another dataset (here rendered at another size) is refused as each task
+  // would refuse it; it had said "every shard is complete" and kept the old frames.
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("done")).code, 0);
+  const std::string resized = robocupSpec("resized.json", R"("size": 48, "poses": {"path": "thesis-loop", "frames": 4})");
+  const auto other = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + resized + " -o " +
+                                       path("done") + " --backend slurm --shards 2 2>&1");
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_NE(other.out.find(path("done") + ": holds another dataset (the spec's \"size\" differs)"), std::string::npos) << other.out;
+  EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
+  // A link where shards/ goes is named as one (it was "holds no dataset (no shards/)").
+  fs::create_directories(dir_ / "linked");
+  fs::create_directories(dir_ / "elsewhere");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "linked" / "shards");
+  const auto linked = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
+                                        path("linked") + " --backend slurm --shards 2 2>&1");
+  EXPECT_EQ(linked.code, 2) << linked.out;
+  EXPECT_NE(linked.out.find("shards: is a symbolic link"), std::string::npos) << linked.out;
+  EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
+  EXPECT_TRUE(fs::is_empty(dir_ / "elsewhere"));
 }
 
 // Alpha is compared where both images have it: a folder of one's own RGB PNGs (no alpha) against a

@@ -315,6 +315,8 @@ def main():
     dataset_spec("recording_gamma_unused", recording={"preset": "phone", "gamma": 2.0})
     dataset_spec("recording_kernel_unblurred", recording={"blur_kernel": "disc", "blur_radius_px": 0})
     dataset_spec("one_frame")  # a good spec of one frame (box.json's path)
+    dataset_spec("scene_folder", scene="../datasets")
+    dataset_spec("seed_past_64_bits", shading="path", seed=18446744073709551617)
     write(os.path.join(datasets, "test_camera_bayer.json"), json.dumps({"bayer": {"choice": ["rggb", "rgbb"]}}) + "\n")
     dataset_spec("coco_unknown_class", outputs={"coco": {"classes": ["victim"]}})
     dataset_spec("coco_classes_text", outputs={"coco": {"classes": "victim"}})
