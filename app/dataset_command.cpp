@@ -67,8 +67,9 @@ void runSlurm(const DatasetArgs& a, const CLI::App& cmd) {
   options.sbatchArgs = parseSlurmArgs(a.slurmArgs);
   options.omnicamBinary = std::filesystem::canonical("/proc/self/exe").string();
   const SlurmSubmission s = submitDatasetToSlurm(options);
+  for (const std::string& note : s.notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
   if (s.shards.empty()) {
-    std::printf("%s: every shard of %d is complete; merged the manifest (nothing submitted)\n", a.out.c_str(), a.shards);
+    std::printf("%s: every shard of %d is complete; merged the manifest (nothing submitted)\n", showPath(a.out).c_str(), a.shards);
     return;
   }
   std::printf("submitted array job %s (shards %s of %d) and merge job %s (after it)\n", s.arrayJob.c_str(),
@@ -215,7 +216,7 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
   std::printf("wrote %s: %s (%d rendered, %d kept from an earlier run)\n", showPath(a.out).c_str(), countOf(r.frames, "frame").c_str(),
               r.rendered, r.kept);
   if (!a.shard.empty())  // a shard is part of a dataset: what makes it whole
-    std::printf("shard %s of the dataset in %s: %s\n", a.shard.c_str(), a.out.c_str(), unmergedShardsNextStep(a.out).c_str());
+    std::printf("shard %s of the dataset in %s: %s\n", a.shard.c_str(), showPath(a.out).c_str(), unmergedShardsNextStep(a.out).c_str());
   return 0;
 }
 

@@ -169,7 +169,7 @@ void runPathStudy(const ExperimentArgs& a, const CLI::App& cmd) {
   const std::string markdown = pathConvergenceMarkdown(r, command);
   writeTextAtomically(a.out + "/path-convergence.md", markdown);
   if (!a.doc.empty()) replaceGeneratedSection(a.doc, markdown);
-  std::printf("%swrote %s/path-convergence.json (%.0f s)\n", markdown.c_str(), a.out.c_str(), r.seconds);
+  std::printf("%swrote %s (%.0f s)\n", markdown.c_str(), showPath(a.out + "/path-convergence.json").c_str(), r.seconds);
 }
 
 // A figure's bytes into figures/ beside the document `doc`.
@@ -246,8 +246,8 @@ void runCalibration(const ExperimentArgs& a, const CLI::App& cmd) {
     copyFigures(a.out, a.doc, {"calibration_study_error.svg", "calibration_study_residuals.png"});
     writeTextAtomically(a.doc, markdown);
   }
-  std::printf("%swrote %s/results.json, %s/calibration-study.md%s (%.0f s)\n", markdown.c_str(), a.out.c_str(), a.out.c_str(),
-              a.doc.empty() ? "" : (", " + a.doc).c_str(), r.seconds);
+  std::printf("%swrote %s, %s%s (%.0f s)\n", markdown.c_str(), showPath(a.out + "/results.json").c_str(),
+              showPath(a.out + "/calibration-study.md").c_str(), a.doc.empty() ? "" : (", " + showPath(a.doc)).c_str(), r.seconds);
 }
 
 // A --test-camera FILE: one camera in the recording format, its fields at the top level.

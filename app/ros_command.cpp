@@ -12,6 +12,7 @@
 #include "errors.h"
 #include "interrupts.h"
 #include "live_sensor.h"
+#include "ros_transport.h"
 #include "number_format.h"
 
 namespace omnicam::cli {
@@ -32,6 +33,14 @@ std::vector<std::string> rosArgumentsOf(const std::vector<std::string>& extras) 
       throw InputError("ros: unexpected argument " + quote(extra) + " (ROS arguments are from:=to)");
     if (extra.rfind('_', 0) == 0 && extra.rfind("__", 0) != 0)
       throw InputError("ros: " + quote(extra) + ": the node takes no private parameters (its settings are flags and the spec)");
+    // The node's name and namespace: an empty one would be roscpp's default, a bad one refused by
+    // roscpp in its own words that do not say which argument.
+    for (const std::string own : {"__name:=", "__ns:="}) {
+      if (extra.rfind(own, 0) != 0) continue;
+      const std::string value = extra.substr(own.size());
+      if (value.empty()) throw InputError("ros: " + quote(extra) + ": give a name, or leave " + own + " out");
+      if (const std::string why = ros1::invalidGraphName(value); !why.empty()) throw InputError("ros: " + quote(extra) + ": " + why);
+    }
   }
   return extras;
 }

@@ -54,7 +54,7 @@ void runStudy(const StudyArgs& a) {
   const PolygonStudyOptions options{scenesDir() + "/robocup2006.json", scenesDir() + "/incidence-rings.json", a.out, a.spp,
                                     a.timingSeconds, studyCommand(a)};
   runPolygonStudy(options, [](const std::string& mode) { std::printf("study: %s\n", mode.c_str()); });
-  std::printf("study: wrote %s and its figures %s\n", a.out.c_str(), (figures / (fs::path(a.out).stem().string() + "_*")).c_str());
+  std::printf("study: wrote %s and its figures %s\n", showPath(a.out).c_str(), showPath((figures / (fs::path(a.out).stem().string() + "_*")).string()).c_str());
 }
 
 }  // namespace

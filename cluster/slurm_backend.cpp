@@ -42,6 +42,13 @@ void checkLogName(const fs::path& dir, const std::string& relative) {
                      "; Slurm would write its log through it");
 }
 
+// sbatch missing, or exiting non-zero: nothing was queued (a timeout or an answer without a job
+// id may have queued the job all the same, and are plain ExternalErrors).
+class SbatchRefused : public ExternalError {
+ public:
+  using ExternalError::ExternalError;
+};
+
 // sbatch --parsable prints "<jobid>" or "<jobid>;<cluster>". Its output goes to a temporary
 // created exclusively in DIR/slurm, then becomes sbatch.log by an atomic write: whatever was
 // planted as sbatch.log is replaced, never written through.
@@ -64,11 +71,11 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
   const ProcessResult r = runProcess(argv, slurmDir.string(), tmp, 120.0);
   const std::string output = tailOfFile(tmp, 5);
   writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
-  if (r.notFound) throw ExternalError(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
+  if (r.notFound) throw SbatchRefused(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.timedOut)
     throw ExternalError("sbatch did not answer for the " + what + " within 120 s; it may have been submitted all the same (squeue "
                         "lists it): " + r.logTail);
-  if (r.exitCode != 0) throw ExternalError("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
+  if (r.exitCode != 0) throw SbatchRefused("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
   std::istringstream lines(output);
   std::string line;
   const std::regex jobId(R"((\d+)(;.*)?)");
@@ -79,22 +86,44 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
   throw ExternalError("sbatch gave no job id for the " + what + ": " + r.logTail);
 }
 
-// After sbatch refused the array: the scripts and log this submission wrote, and the folders it
-// made (each only when empty).
-void removeUnsubmitted(const fs::path& dir, bool shardsExisted, bool slurmExisted, bool dirExisted) {
-  for (const char* file : {"slurm/render.sbatch", "slurm/merge.sbatch"}) removeFileInside(dir.string(), file);
-  if (!slurmExisted) {
-    removeFileInside(dir.string(), "slurm/sbatch.log");
-    removeEmptyFolderInside(dir.string(), "slurm");
+// What a submission changes in DIR before sbatch takes the array, as it was: when nothing was
+// queued (sbatch refused it, or a script could not be written), it is put back, so that the
+// folder does not look submitted (--status reads the scripts) nor loses an earlier submission's.
+class SubmissionUndo {
+ public:
+  explicit SubmissionUndo(const fs::path& dir) : dir_(dir.string()) {
+    std::error_code ec;
+    dirExisted_ = fs::exists(dir, ec);
+    shardsExisted_ = entryInside(dir_, "shards") == EntryKind::Folder;
+    slurmExisted_ = entryInside(dir_, "slurm") == EntryKind::Folder;
+    for (const char* file : kFiles)
+      if (entryInside(dir_, file) == EntryKind::File) before_[file] = readFileInside(dir_, file, int64_t{1} << 20);
   }
-  if (!shardsExisted) removeEmptyFolderInside(dir.string(), "shards");
-  std::error_code ec;
-  if (!dirExisted && fs::is_directory(fs::symlink_status(dir, ec)) && fs::is_empty(dir, ec)) fs::remove(dir, ec);
-}
+  void undo() const {
+    for (const char* file : kFiles) {
+      const auto old = before_.find(file);
+      if (old != before_.end()) writeFileInside(dir_, file, old->second, Durability::Unsynced);
+      else removeFileInside(dir_, file);
+    }
+    if (!slurmExisted_) removeEmptyFolderInside(dir_, "slurm");
+    if (!shardsExisted_) removeEmptyFolderInside(dir_, "shards");
+    std::error_code ec;
+    if (!dirExisted_ && fs::is_directory(fs::symlink_status(dir_, ec)) && fs::is_empty(dir_, ec)) fs::remove(dir_, ec);
+  }
+
+ private:
+  static constexpr const char* kFiles[] = {"slurm/render.sbatch", "slurm/merge.sbatch", "slurm/sbatch.log"};
+  std::string dir_;
+  bool dirExisted_ = false, shardsExisted_ = false, slurmExisted_ = false;
+  std::map<std::string, std::string> before_;
+};
 
 }  // namespace
 
 namespace {
+
+// sbatch's short options that take a value (getopt's "x:"), besides the reserved a, o, d and e.
+constexpr const char* kShortOptionsWithValue = "AbBcCDFGiJkLmMnNpqStwx";
 
 // The sbatch options omnicam sets itself (--array, --output, --dependency) or that would take the
 // job's log or script away from it (--error, --wrap).
@@ -111,7 +140,7 @@ std::string reservedSbatchOption(const std::string& word) {
     return "";
   }
   // sbatch's short options that take a value: the rest of the word is that value.
-  const std::string withValue = "AbBcCDFGiJkLmMnNpqStwx";
+  const std::string withValue = kShortOptionsWithValue;
   for (size_t k = 1; k < word.size(); ++k) {
     switch (word[k]) {
       case 'a': return "array";
@@ -134,9 +163,16 @@ std::vector<std::string> parseSlurmArgs(const std::string& text) {
   while (words >> word) {
     if (word.size() < 2 || word[0] != '-' || word == "--" || word.rfind("--=", 0) == 0 ||
         word.find_first_of("'\"\\\n\r`$") != std::string::npos) {
-      // "--partition debug": the value of the option before, as its own word (a #SBATCH line each).
-      const bool valueOfPrevious = !word.empty() && word[0] != '-' && !args.empty() && args.back().find('=') == std::string::npos;
-      const std::string joined = valueOfPrevious ? args.back() + (args.back().rfind("--", 0) == 0 ? "=" : "") + word : "";
+      // "--partition debug", "-p debug": the value of the option before, as its own word (each
+      // word is a #SBATCH line). Said when the word would do as a value and the option before
+      // is one that takes one, alone: a long option without "=", or a short one of sbatch's that
+      // takes a value.
+      const std::string previous = args.empty() ? "" : args.back();
+      const bool plainValue = word[0] != '-' && word.find_first_of("'\"\\\n\r`$") == std::string::npos;
+      const bool longAlone = previous.rfind("--", 0) == 0 && previous.find('=') == std::string::npos;
+      const bool shortAlone = previous.size() == 2 && previous[0] == '-' && std::string(kShortOptionsWithValue).find(previous[1]) != std::string::npos;
+      const bool valueOfPrevious = plainValue && (longAlone || shortAlone);
+      const std::string joined = previous + (longAlone ? "=" : "") + word;
       throw InputError("--slurm-args: " + quote(word) + ": each word must be an sbatch option (starting with '-', "
                        "without quotes, backslashes, '$' or '`')" +
                        (valueOfPrevious ? "; write an option and its value as one word: " + quote(joined) : ""));
@@ -163,6 +199,40 @@ std::string slurmArraySpec(const std::vector<int>& indices, int maxParallel) {
   return spec.str();
 }
 
+namespace {
+
+// The array's job script: each task renders its shard (SLURM_ARRAY_TASK_ID) on the cores Slurm
+// gave it.
+std::string renderScriptText(const SlurmSubmitOptions& o, const fs::path& spec, const fs::path& dir, const std::vector<int>& shards) {
+  const fs::path slurmDir = dir / "slurm";
+  std::ostringstream render;
+  render << "#!/bin/bash\n"
+         << "# Written by `omnicam dataset --backend slurm`: one array task per dataset shard (docs/cluster.md).\n"
+         << "# Submitted as: sbatch --array=" << slurmArraySpec(shards, o.maxParallel)
+         << " --output=" << shellQuote((slurmDir / "shard-%a.log").string()) << " render.sbatch\n"
+         << "#SBATCH --job-name=omnicam-dataset\n";
+  for (const std::string& arg : o.sbatchArgs) render << "#SBATCH " << arg << "\n";
+  render << "exec " << shellQuote(o.omnicamBinary) << " dataset " << shellQuote(spec.string()) << " -o "
+         << shellQuote(dir.string()) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.shards << "\" --threads ";
+  if (o.threads > 0) render << o.threads << "\n";
+  else render << "\"${SLURM_CPUS_PER_TASK:-${SLURM_CPUS_ON_NODE:-0}}\"\n";
+  return render.str();
+}
+
+// The merge job's script, run once the array has ended.
+std::string mergeScriptText(const SlurmSubmitOptions& o, const fs::path& dir) {
+  std::ostringstream merge;
+  merge << "#!/bin/bash\n"
+        << "# Written by `omnicam dataset --backend slurm`: merges the shards' manifests once the array has ended.\n"
+        << "#SBATCH --job-name=omnicam-dataset-merge\n";
+  for (const std::string& arg : o.sbatchArgs) merge << "#SBATCH " << arg << "\n";
+  merge << "exec " << shellQuote(o.omnicamBinary) << " dataset --merge " << shellQuote(dir.string()) << " --shards "
+        << o.shards << "\n";
+  return merge.str();
+}
+
+}  // namespace
+
 SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   if (o.shards < 1 || o.shards > kMaxShards)
     throw InputError("shard count " + std::to_string(o.shards) + ": must be in [1, " + std::to_string(kMaxShards) + "]");
@@ -187,10 +257,14 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
     throw InputError(showPath(dir.string()) + ": folder is not empty and holds no dataset (no " + std::string(kManifestName) +
                      ", no shards/)");
   // Each task would refuse another dataset's manifest, or another spec's or count's shards:
-  // refused here, before anything is queued.
-  checkShardsMayJoin(dir.string(), plan.header(), o.shards);
+  // refused here, before anything is queued. A ground truth's identity holds its renderer's
+  // version, which is the nodes' (this machine's may differ, or have none): its tasks check that.
+  if (datasetSpec.request.engine == "fast") checkShardsMayJoin(dir.string(), plan.header(), o.shards);
+  else if (const std::string conflict = shardCountConflict(dir.string(), o.shards); !conflict.empty())
+    throw InputError(showPath(dir.string()) + ": " + conflict);
 
   SlurmSubmission s;
+  s.notes = plan.notes();
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))
     if (!state.complete) s.shards.push_back(state.index);
   if (s.shards.empty()) {
@@ -199,42 +273,22 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   }
   for (const int shard : s.shards) checkLogName(dir, "slurm/shard-" + std::to_string(shard) + ".log");
   checkLogName(dir, "slurm/merge.log");
-  const bool shardsExisted = entryInside(dir.string(), "shards") == EntryKind::Folder;
-  const bool slurmExisted = entryInside(dir.string(), "slurm") == EntryKind::Folder;
-  for (const char* folder : {"shards", "slurm"}) makeFoldersInside(dir.string(), folder);
   const fs::path slurmDir = dir / "slurm";
-
-  std::ostringstream render;
-  render << "#!/bin/bash\n"
-         << "# Written by `omnicam dataset --backend slurm`: one array task per dataset shard (docs/cluster.md).\n"
-         << "# Submitted as: sbatch --array=" << slurmArraySpec(s.shards, o.maxParallel)
-         << " --output=" << shellQuote((slurmDir / "shard-%a.log").string()) << " render.sbatch\n"
-         << "#SBATCH --job-name=omnicam-dataset\n";
-  for (const std::string& arg : o.sbatchArgs) render << "#SBATCH " << arg << "\n";
-  render << "exec " << shellQuote(o.omnicamBinary) << " dataset " << shellQuote(spec.string()) << " -o "
-         << shellQuote(dir.string()) << " --shard \"${SLURM_ARRAY_TASK_ID}/" << o.shards << "\" --threads ";
-  if (o.threads > 0) render << o.threads << "\n";
-  else render << "\"${SLURM_CPUS_PER_TASK:-${SLURM_CPUS_ON_NODE:-0}}\"\n";
-  std::ostringstream merge;
-  merge << "#!/bin/bash\n"
-        << "# Written by `omnicam dataset --backend slurm`: merges the shards' manifests once the array has ended.\n"
-        << "#SBATCH --job-name=omnicam-dataset-merge\n";
-  for (const std::string& arg : o.sbatchArgs) merge << "#SBATCH " << arg << "\n";
-  merge << "exec " << shellQuote(o.omnicamBinary) << " dataset --merge " << shellQuote(dir.string()) << " --shards "
-        << o.shards << "\n";
   s.renderScript = (slurmDir / "render.sbatch").string();
   s.mergeScript = (slurmDir / "merge.sbatch").string();
-  writeFileInside(dir.string(), "slurm/render.sbatch", render.str(), Durability::Synced);
-  writeFileInside(dir.string(), "slurm/merge.sbatch", merge.str(), Durability::Synced);
-
+  const SubmissionUndo before(dir);
   try {
+    for (const char* folder : {"shards", "slurm"}) makeFoldersInside(dir.string(), folder);
+    writeFileInside(dir.string(), "slurm/render.sbatch", renderScriptText(o, spec, dir, s.shards), Durability::Synced);
+    writeFileInside(dir.string(), "slurm/merge.sbatch", mergeScriptText(o, dir), Durability::Synced);
     s.arrayJob = submit({o.sbatch, "--parsable", "--array=" + slurmArraySpec(s.shards, o.maxParallel),
                          "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
                         dir, "array job");
-  } catch (const ExternalError&) {
-    // Nothing was queued: what this submission wrote goes, so that the folder does not look
-    // submitted (--status reads the scripts). sbatch's words are in the message.
-    removeUnsubmitted(dir, shardsExisted, slurmExisted, dirExisted);
+  } catch (const SbatchRefused&) {  // sbatch's words are in the message
+    before.undo();
+    throw;
+  } catch (const OutputError&) {
+    before.undo();
     throw;
   }
   // afterany: the merge also runs when a task failed, and lists what is missing.

@@ -26,6 +26,7 @@ struct SlurmSubmission {
   std::vector<int> shards;       // submitted (empty: all were done; then merged here)
   std::string arrayJob, mergeJob;
   std::string renderScript, mergeScript;
+  std::vector<std::string> notes;  // what the user should know of the run (DatasetPlan::notes), as a local run says
 };
 
 // Splits --slurm-args on whitespace; each word must start with '-' and hold no quote, newline or
@@ -35,8 +36,10 @@ std::vector<std::string> parseSlurmArgs(const std::string& text);
 // A Slurm array spec for `indices`, compressed to ranges ("0-3,5,7-9"), with "%K" when K > 0.
 std::string slurmArraySpec(const std::vector<int>& indices, int maxParallel);
 
-// Writes the scripts and submits them. InputError for a folder holding something else;
-// ExternalError if sbatch is missing or refuses (with its message).
+// Reads the spec, its scene and poses, and checks DIR, as each task will (InputError for a
+// mistake, more shards than frames, a folder holding something else); then writes the scripts
+// and submits them. ExternalError if sbatch is missing or refuses (with its message): then
+// what this submission wrote is put back as it was.
 SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& options);
 
 }  // namespace omnicam

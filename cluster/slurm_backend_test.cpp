@@ -40,7 +40,9 @@ TEST(SlurmBackend, SbatchOptionsAreWordsStartingWithADashAndNothingToExpand) {
   EXPECT_EQ(refusal("--partition debug"), "--slurm-args: \"debug\": each word must be an sbatch option (starting with '-', without quotes, "
                                           "backslashes, '$' or '`'); write an option and its value as one word: \"--partition=debug\"");
   EXPECT_NE(refusal("-p debug").find("; write an option and its value as one word: \"-pdebug\""), std::string::npos);
-  EXPECT_EQ(refusal("--time=1:00 debug").find("one word"), std::string::npos);  // its option has its value
+  // Not where joining would be wrong: an option with its value, or one that takes none.
+  for (const char* notAValue : {"--time=1:00 debug", "-pdebug gpu", "-v debug", "--partition 'debug'"})
+    EXPECT_EQ(refusal(notAValue).find("one word"), std::string::npos) << notAValue;
 }
 
 TEST(SlurmBackend, ReservedOptionsAreRefusedUnderEverySpellingSbatchAccepts) {
@@ -62,8 +64,9 @@ void writeThreeFrameSpec(const std::filesystem::path& dir) {
     "poses": {"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0]]}})";
 }
 
-// An sbatch that refuses the array job: nothing is queued, so nothing the submission wrote stays
-// (the scripts would make --status say "submitted"); sbatch's words are in the message.
+// An sbatch that refuses the array job: nothing is queued, so what the submission wrote is put
+// back as it was (its scripts would make --status say "submitted"); sbatch's words are in the
+// message.
 TEST(SlurmBackend, AnArrayJobRefusedLeavesNothingBehind) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("omnicam_slurm_array_" + std::to_string(::getpid()));
@@ -78,11 +81,12 @@ TEST(SlurmBackend, AnArrayJobRefusedLeavesNothingBehind) {
   options.omnicamBinary = "/usr/bin/true";
   options.shards = 3;
   options.sbatch = sbatch.string();
-  // A new folder goes whole; in one submitted to before (its shards/ and slurm/ there, with a
-  // file of the user's), only this submission's scripts go.
+  // A new folder goes whole; in one submitted to before (its shards/ and slurm/ there, with the
+  // earlier submission's scripts and a file of the user's), the earlier scripts are put back.
   fs::create_directories(dir / "mine" / "shards");
   fs::create_directories(dir / "mine" / "slurm");
   std::ofstream(dir / "mine" / "slurm" / "notes.txt") << "mine";
+  for (const char* script : {"render.sbatch", "merge.sbatch", "sbatch.log"}) std::ofstream(dir / "mine" / "slurm" / script) << "earlier";
   for (const char* out : {"new", "mine"}) {
     options.dir = (dir / out).string();
     try {
@@ -95,9 +99,23 @@ TEST(SlurmBackend, AnArrayJobRefusedLeavesNothingBehind) {
   }
   EXPECT_FALSE(fs::exists(dir / "new"));
   EXPECT_TRUE(fs::exists(dir / "mine" / "shards"));
-  EXPECT_FALSE(fs::exists(dir / "mine" / "slurm" / "render.sbatch"));
-  EXPECT_FALSE(fs::exists(dir / "mine" / "slurm" / "merge.sbatch"));
+  for (const char* script : {"render.sbatch", "merge.sbatch", "sbatch.log"}) {
+    std::ifstream in(dir / "mine" / "slurm" / script);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "earlier") << script;
+  }
   EXPECT_TRUE(fs::exists(dir / "mine" / "slurm" / "notes.txt"));
+  // An sbatch that exits 0 without a job id may have queued the array all the same: what the
+  // tasks need (the scripts, the log folders) stays.
+  std::ofstream(sbatch) << "#!/bin/sh\nexit 0\n";
+  options.dir = (dir / "unsure").string();
+  try {
+    submitDatasetToSlurm(options);
+    ADD_FAILURE() << "an answer without a job id was not said";
+  } catch (const ExternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("sbatch gave no job id for the array job"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::exists(dir / "unsure" / "slurm" / "render.sbatch"));
+  EXPECT_TRUE(fs::exists(dir / "unsure" / "shards"));
   fs::remove_all(dir);
 }
 

@@ -115,16 +115,24 @@ std::vector<int> shardCountsIn(const std::string& dir) {
 
 std::string unmergedShardsNextStep(const std::string& path) {
   const std::vector<int> counts = shardCountsIn(path);
+  // Submitted to Slurm (docs/cluster.md): its merge job merges, and a resubmission renders what
+  // is left; the by-hand steps are the fallback.
+  const bool submitted = entryInside(path, "slurm/render.sbatch") == EntryKind::File;
   int running = 0;
   for (int count : counts) {
     const std::vector<ShardState> states = shardStates(path, count, false);
     if (std::all_of(states.begin(), states.end(), [](const ShardState& s) { return s.complete; }))
-      return "every shard of " + std::to_string(count) + " is finished: merge them with omnicam dataset --merge " + shellPath(path);
+      return "every shard of " + std::to_string(count) + " is finished: " +
+             (submitted ? "the Slurm merge job merges them once the array has ended (by hand: " : "merge them with ") +
+             "omnicam dataset --merge " + shellPath(path) + (submitted ? ")" : "");
     running += static_cast<int>(std::count_if(states.begin(), states.end(), [](const ShardState& s) { return s.running; }));
   }
-  const std::string rest = "run the shards not yet finished (--shard I/" +
-                           (counts.size() == 1 ? std::to_string(counts.front()) : "N") + "; omnicam dataset --status " +
-                           shellPath(path) + " lists them), then omnicam dataset --merge " + shellPath(path);
+  const std::string status = "omnicam dataset --status " + shellPath(path) + " lists them";
+  const std::string rest =
+      submitted ? "once the Slurm array has ended, submit the same command again to render the shards not yet finished (" + status +
+                      "; slurm/render.sbatch says how it was submitted)"
+                : "run the shards not yet finished (--shard I/" + (counts.size() == 1 ? std::to_string(counts.front()) : "N") + "; " +
+                      status + "), then omnicam dataset --merge " + shellPath(path);
   if (running)
     return countOf(running, "shard") + (running == 1 ? " is" : " are") + " being rendered now on this machine: wait for " +
            (running == 1 ? "it" : "them") + ", and " + rest;

@@ -339,6 +339,34 @@ TEST(ImageDecoders, DamagedFilesOfEveryFormatAreInputErrorsNamingThem) {
   }
 }
 
+// A JPEG whose image data is cut short is refused (libjpeg would finish it with grey rows); one
+// that lacks only its final EOI marker, as some cameras write them, decodes to the same pixels
+// as the whole file, baseline and progressive alike.
+TEST(ImageDecoders, AJpegCutShortIsRefusedButOneWithoutItsEndMarkerReads) {
+  for (const bool progressive : {false, true}) {
+    OIIO::ImageSpec spec = specOf(64, 64, 3, OIIO::TypeDesc::UINT8);
+    if (progressive) spec.attribute("jpeg:progressive", 1);
+    const Written file = writeWithOiio(progressive ? "progressive.jpg" : "baseline.jpg", spec);
+    const std::string bytes = fileBytes(file.path);
+    ASSERT_EQ(bytes.substr(bytes.size() - 2), "\xff\xd9") << file.note;
+    const auto decode = [](const std::string& data) {
+      auto decoder = openImageDecoder({"", data, "cut.jpg"});
+      std::vector<float> values(static_cast<size_t>(decoder->header().width) * decoder->header().height * decoder->header().channels);
+      decoder->readRows(0, decoder->header().height, values.data());
+      return values;
+    };
+    EXPECT_EQ(decode(bytes.substr(0, bytes.size() - 2)), decode(bytes)) << file.note << " without its EOI marker";
+    // Cut inside the image data (its last fifth), not the header.
+    try {
+      (void)decode(bytes.substr(0, bytes.size() * 4 / 5));
+      ADD_FAILURE() << file.note << ": a cut file decoded";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "cut.jpg: cannot decode image (JPEG read error: the file ends before its image does: it is cut short)")
+          << file.note;
+    }
+  }
+}
+
 // The process's peak resident memory, MiB (each test runs in a process of its own).
 double peakMiB() {
   rusage usage{};

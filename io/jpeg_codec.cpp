@@ -30,6 +30,7 @@ struct JpegErrors {
   jpeg_error_mgr manager{};
   std::jmp_buf back{};
   char message[JMSG_LENGTH_MAX] = "no details";
+  bool endOfFile = false;  // libjpeg's JWRN_JPEG_EOF: the source ran out (it then feeds an EOI marker)
 };
 
 [[noreturn]] void onJpegError(j_common_ptr cinfo) {
@@ -39,11 +40,15 @@ struct JpegErrors {
 }
 
 // Warnings stay quiet (stderr is the user's), and most are not failures: real cameras write
-// extraneous bytes before a marker. A file that ends early is: libjpeg would fill the rest of the
-// image with grey, which a texture would carry into every frame as if it were the picture.
+// extraneous bytes before a marker, and some leave out the final EOI marker (libjpeg's end-of-file
+// warning then, with every pixel there). A file whose image data ends early is: libjpeg would
+// fill the rest of the image with grey, which a texture would carry into every frame as if it
+// were the picture. That is the end of the file followed by data the decoder still needed.
 void onJpegMessage(j_common_ptr cinfo, int level) {
-  if (level != -1 || cinfo->err->msg_code != JWRN_JPEG_EOF) return;
+  if (level != -1) return;
   auto* errors = reinterpret_cast<JpegErrors*>(cinfo->err);
+  if (cinfo->err->msg_code == JWRN_JPEG_EOF) errors->endOfFile = true;
+  if (cinfo->err->msg_code != JWRN_HIT_MARKER || !errors->endOfFile) return;
   std::snprintf(errors->message, sizeof errors->message, "the file ends before its image does: it is cut short");
   std::longjmp(errors->back, 1);
 }

@@ -948,7 +948,9 @@ TEST(LiveSensor, RefusesArgumentsThatAreNotRosOnes) {
   std::ofstream(root / "spec.json") << specText();
   const std::pair<const char*, const char*> cases[] = {{"stray", "unexpected argument \"stray\""},
                                                        {":=x", "unexpected argument \":=x\""},
-                                                       {"__name:=front-left", "front-left"},
+                                                       {"__name:=front-left", "ros: \"__name:=front-left\": Character [-] at element [5]"},
+                                                       {"__name:=", "ros: \"__name:=\": give a name, or leave __name:= out"},
+                                                       {"__ns:=", "ros: \"__ns:=\": give a name, or leave __ns:= out"},
                                                        {"_rate:=30", "the node takes no private parameters"}};
   for (const auto& [argument, expected] : cases) {
     const CommandResult run = runShell(std::string(OMNICAM_BINARY) + " ros " + (root / "spec.json").string() + " '" + argument +

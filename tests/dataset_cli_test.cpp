@@ -943,7 +943,7 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_EQ(five.out, "omnicam: shard count 5: more than the dataset's 4 frames (a shard would render none): give at most 4\n");
   EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
   EXPECT_FALSE(fs::exists(dir_ / "five"));
-  // A bad scene is refused at submission too, not by every task.
+  // A path the scene does not have is refused at submission too, not by every task.
   const std::string noScene = robocupSpec("no_scene.json", R"("size": 32, "poses": {"path": "thesis-lop", "frames": 4})");
   const auto badPath = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + noScene + " -o " +
                                          path("bad") + " --backend slurm --shards 2 2>&1");

@@ -76,6 +76,9 @@ TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOn
   EXPECT_NE(readFile(out / "slurm/merge.log").find("shard 1/3:"), std::string::npos) << readFile(out / "slurm/merge.log");
   r = testing::runShell(std::string(OMNICAM_BINARY) + " dataset --status " + out.string() + " 2>&1");
   EXPECT_EQ(r.code, 1) << r.out;
+  // What finishes it is the Slurm way: a resubmission (not shards by hand), whose merge job merges.
+  EXPECT_NE(r.out.find("once the Slurm array has ended, submit the same command again to render the shards not yet finished"),
+            std::string::npos) << r.out;
 
   // Resubmitting renders only the killed shard.
   r = cluster.shell(submit);
