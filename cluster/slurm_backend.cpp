@@ -1,7 +1,10 @@
 #include "slurm_backend.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <regex>
+
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -49,15 +52,19 @@ class SbatchRefused : public ExternalError {
   using ExternalError::ExternalError;
 };
 
-// sbatch --parsable prints "<jobid>" or "<jobid>;<cluster>". Its output goes to a temporary
-// created exclusively in DIR/slurm, then becomes sbatch.log by an atomic write: whatever was
-// planted as sbatch.log is replaced, never written through.
-std::string submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
+// A Slurm command run in DIR/slurm, its output (stdout and stderr, the last `lines` lines) read
+// back from a temporary created exclusively there, which goes however this ends (an interrupt
+// while the command runs included). With `keepAs`, the output also becomes that file, by an
+// atomic write: whatever was planted there is replaced, never written through.
+struct SlurmCommandResult {
+  ProcessResult process;
+  std::string output;
+};
+SlurmCommandResult runSlurmCommand(const std::vector<std::string>& argv, const fs::path& dir, int lines, const std::string& keepAs = "") {
   const fs::path slurmDir = dir / "slurm";
-  const std::string tmpName = "slurm/" + atomicTemporaryName("sbatch.log");
+  const std::string tmpName = "slurm/" + atomicTemporaryName("slurm-command.log");
   writeFileInside(dir.string(), tmpName, "", Durability::Unsynced);
   const std::string tmp = (dir / tmpName).string();
-  // The temporary goes however this ends (an interrupt while sbatch runs included).
   struct RemoveTemporary {
     const fs::path& dir;
     const std::string& name;
@@ -68,15 +75,22 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
       }
     }
   } removeTemporary{dir, tmpName};
-  const ProcessResult r = runProcess(argv, slurmDir.string(), tmp, 120.0);
-  const std::string output = tailOfFile(tmp, 5);
-  writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
+  SlurmCommandResult r{runProcess(argv, slurmDir.string(), tmp, 120.0), tailOfFile(tmp, lines)};
+  if (!keepAs.empty())
+    writeFileInside(dir.string(), keepAs, readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
+  return r;
+}
+
+// sbatch --parsable prints "<jobid>" or "<jobid>;<cluster>"; its output is kept as sbatch.log.
+std::string submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
+  const SlurmCommandResult run = runSlurmCommand(argv, dir, 5, "slurm/sbatch.log");
+  const ProcessResult& r = run.process;
   if (r.notFound) throw SbatchRefused(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.timedOut)
     throw ExternalError("sbatch did not answer for the " + what + " within 120 s; it may have been submitted all the same (squeue "
                         "lists it): " + r.logTail);
   if (r.exitCode != 0) throw SbatchRefused("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
-  std::istringstream lines(output);
+  std::istringstream lines(run.output);
   std::string line;
   const std::regex jobId(R"((\d+)(;.*)?)");
   while (std::getline(lines, line)) {
@@ -84,6 +98,47 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
     if (std::regex_match(line, m, jobId)) return m[1];
   }
   throw ExternalError("sbatch gave no job id for the " + what + ": " + r.logTail);
+}
+
+// The jobs of the last submission into DIR, as sbatch numbered them (slurm/jobs.json), so that
+// a second submission does not queue the same shards while the first's are still queued: two
+// tasks of one shard would fight over it, and the merge would run twice.
+constexpr const char* kJobsFile = "slurm/jobs.json";
+
+void recordJobs(const fs::path& dir, const std::string& arrayJob, const std::string& mergeJob) {
+  nlohmann::json jobs = {{"array_job", arrayJob}};
+  if (!mergeJob.empty()) jobs["merge_job"] = mergeJob;
+  writeFileInside(dir.string(), kJobsFile, jobs.dump(2) + "\n", Durability::Synced);
+}
+
+// The earlier submission's jobs that Slurm still lists as pending, running or completing. The
+// file is the folder's, which others may write: only job numbers are taken from it.
+std::vector<std::string> earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
+  if (entryInside(dir.string(), kJobsFile) != EntryKind::File) return {};
+  const std::string where = showPath((dir / kJobsFile).string());
+  nlohmann::json jobs;
+  try {
+    jobs = nlohmann::json::parse(readFileInside(dir.string(), kJobsFile, int64_t{1} << 16));
+  } catch (const nlohmann::json::exception&) {
+    throw InputError(where + ": not the job list omnicam writes (not valid JSON)");
+  }
+  std::vector<std::string> notEnded;
+  for (const char* field : {"array_job", "merge_job"}) {
+    if (!jobs.is_object() || !jobs.contains(field)) continue;
+    const nlohmann::json& id = jobs.at(field);
+    if (!id.is_string() || !std::regex_match(id.get<std::string>(), std::regex(R"(\d{1,18})")))
+      throw InputError(where + ": " + field + ": not a Slurm job number");
+    const SlurmCommandResult r = runSlurmCommand({squeue, "--noheader", "--format=%i", "--jobs=" + id.get<std::string>()}, dir, 3);
+    // A job Slurm has forgotten (MinJobAge after it ended) is an invalid id to squeue.
+    if (r.process.exitCode != 0 && r.output.find("Invalid job id") != std::string::npos) continue;
+    if (r.process.notFound || r.process.exitCode != 0)
+      throw ExternalError(std::string("squeue could not tell whether the earlier submission's ") + (field == std::string("array_job") ? "array" : "merge") +
+                          " job " + id.get<std::string>() + " (" + kJobsFile + ") has ended" +
+                          (r.process.notFound ? ": " + showPath(squeue) + " not found" : ": " + r.process.logTail));
+    const bool named = std::find(notEnded.begin(), notEnded.end(), id.get<std::string>()) != notEnded.end();
+    if (!named && r.output.find_first_not_of(" \n") != std::string::npos) notEnded.push_back(id.get<std::string>());
+  }
+  return notEnded;
 }
 
 // What a submission changes in DIR before sbatch takes the array, as it was: when nothing was
@@ -263,6 +318,18 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   else if (const std::string conflict = shardCountConflict(dir.string(), o.shards); !conflict.empty())
     throw InputError(showPath(dir.string()) + ": " + conflict);
 
+  if (const std::vector<std::string> queued = earlierJobsNotEnded(dir, o.squeue); !queued.empty()) {
+    std::string list, words;
+    for (const std::string& job : queued) {
+      list += (list.empty() ? "" : ",") + job;
+      words += " " + job;
+    }
+    throw InputError(showPath(dir.string()) + ": the earlier submission's " + (queued.size() == 1 ? "job " : "jobs ") + list +
+                     (queued.size() == 1 ? " is" : " are") + " still queued or running (squeue --jobs=" + list +
+                     "): submit again once " + (queued.size() == 1 ? "it has" : "they have") + " ended, or cancel with `scancel" +
+                     words + "` first");
+  }
+
   SlurmSubmission s;
   s.notes = plan.notes();
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))
@@ -291,6 +358,7 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
     before.undo();
     throw;
   }
+  recordJobs(dir, s.arrayJob, "");
   // afterany: the merge also runs when a task failed, and lists what is missing.
   try {
     s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
@@ -304,6 +372,7 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
                         shellPath(dir.string()) + " --shards " + std::to_string(o.shards) + "`, or cancel it with `scancel " +
                         s.arrayJob + "`; " + e.what());
   }
+  recordJobs(dir, s.arrayJob, s.mergeJob);
   return s;
 }
 

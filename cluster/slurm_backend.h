@@ -4,7 +4,8 @@
 // array merges the manifest. Slurm does the scheduling; a retry is a resubmission, which renders
 // only the shards that are missing, unfinished or whose files no longer hash right.
 //
-// Files (in DIR/slurm/): render.sbatch, merge.sbatch, shard-<I>.log, merge.log, sbatch.log.
+// Files (in DIR/slurm/): render.sbatch, merge.sbatch, shard-<I>.log, merge.log, sbatch.log, and
+// jobs.json (the last submission's job numbers: a submission while they are queued is refused).
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct SlurmSubmitOptions {
   int threads = 0;
   std::vector<std::string> sbatchArgs;  // extra #SBATCH options, each one "--name[=value]"
   std::string sbatch = "sbatch";        // the submit command (PATH lookup)
+  std::string squeue = "squeue";        // asks whether the last submission's jobs have ended (PATH lookup)
 };
 
 struct SlurmSubmission {
@@ -37,7 +39,8 @@ std::vector<std::string> parseSlurmArgs(const std::string& text);
 std::string slurmArraySpec(const std::vector<int>& indices, int maxParallel);
 
 // Reads the spec, its scene and poses, and checks DIR, as each task will (InputError for a
-// mistake, more shards than frames, a folder holding something else); then writes the scripts
+// mistake, more shards than frames, a folder holding something else, the last submission's jobs
+// still queued or running); then writes the scripts
 // and submits them. ExternalError if sbatch is missing or refuses (with its message): then
 // what this submission wrote is put back as it was.
 SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& options);

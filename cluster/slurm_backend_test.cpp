@@ -5,8 +5,12 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
 
 #include "errors.h"
 
@@ -149,6 +153,85 @@ TEST(SlurmBackend, AMergeJobRefusedNamesTheQueuedArrayJobAndWhatFinishesOrCancel
               0u) << message;
     EXPECT_NE(message.find("QOSMaxSubmitJobPerUserLimit"), std::string::npos) << message;
   }
+  fs::remove_all(dir);
+}
+
+// A second submission while the first's jobs are still queued or running (slurm/jobs.json, asked
+// of squeue) is refused before anything is written or queued: its tasks would render the same
+// shards beside the first's. Jobs squeue no longer lists, or has forgotten, are ended.
+TEST(SlurmBackend, ASubmissionWhileTheLastOnesJobsAreQueuedIsRefused) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_slurm_queued_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto script = [&](const char* name, const std::string& body) {
+    std::ofstream(dir / name) << "#!/bin/sh\n" << body;
+    fs::permissions(dir / name, fs::perms::owner_all);
+  };
+  // The stand-in sbatch counts its calls; the array is job 4711, its merge 4712.
+  script("sbatch", "echo x >> " + (dir / "sbatch_calls").string() + "\ncase \"$*\" in *--dependency*) echo 4712;; *) echo 4711;; esac\n");
+  writeThreeFrameSpec(dir);
+  SlurmSubmitOptions options;
+  options.spec = (dir / "spec.json").string();
+  options.dir = (dir / "out").string();
+  options.omnicamBinary = "/usr/bin/true";
+  options.shards = 3;
+  options.sbatch = (dir / "sbatch").string();
+  options.squeue = (dir / "squeue").string();
+  const auto sbatchCalls = [&] {
+    std::ifstream in(dir / "sbatch_calls");
+    return static_cast<int>(std::count(std::istreambuf_iterator<char>(in), {}, '\n'));
+  };
+  const SlurmSubmission first = submitDatasetToSlurm(options);
+  EXPECT_EQ(first.arrayJob, "4711");
+  EXPECT_EQ(first.mergeJob, "4712");
+  std::ifstream jobsFile(dir / "out/slurm/jobs.json");
+  EXPECT_EQ(nlohmann::json::parse(jobsFile), nlohmann::json({{"array_job", "4711"}, {"merge_job", "4712"}}));
+  ASSERT_EQ(sbatchCalls(), 2);
+
+  // The array's tasks still listed (squeue -h -o %i -j 4711 prints them): refused, nothing queued.
+  script("squeue", "case \"$*\" in *--jobs=4711*) echo '4711_[1-2]'; echo 4711_0;; esac\n");
+  try {
+    submitDatasetToSlurm(options);
+    ADD_FAILURE() << "a submission beside a queued one was not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "out").string() + ": the earlier submission's job 4711 is still queued or running "
+                                     "(squeue --jobs=4711): submit again once it has ended, or cancel with `scancel 4711` first");
+  }
+  // Both listed (the merge waits for the array): both named.
+  script("squeue", "echo 1\n");
+  try {
+    submitDatasetToSlurm(options);
+    ADD_FAILURE() << "a submission beside a queued one was not refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("jobs 4711,4712 are still queued or running (squeue --jobs=4711,4712)"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("`scancel 4711 4712`"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(sbatchCalls(), 2);
+  // squeue unable to answer: said, with its words; nothing queued.
+  script("squeue", "echo 'squeue: error: Unable to contact slurm controller' >&2\nexit 1\n");
+  try {
+    submitDatasetToSlurm(options);
+    ADD_FAILURE() << "squeue's failure was not said";
+  } catch (const ExternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("squeue could not tell whether the earlier submission's array job 4711 (slurm/jobs.json) "
+                                         "has ended: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("Unable to contact slurm controller"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(sbatchCalls(), 2);
+  // A job number that is not one, in a file others may write, never reaches squeue.
+  std::ofstream(dir / "out/slurm/jobs.json") << R"({"array_job": "4711; touch pwned"})";
+  EXPECT_THROW(submitDatasetToSlurm(options), InputError);
+  EXPECT_FALSE(fs::exists(dir / "out/slurm/pwned"));
+  std::ofstream(dir / "out/slurm/jobs.json") << R"({"array_job": "4711", "merge_job": "4712"})";
+  // Forgotten by Slurm (an invalid id to squeue), or no longer listed: ended, so submitted.
+  script("squeue", "echo 'slurm_load_jobs error: Invalid job id specified' >&2\nexit 1\n");
+  EXPECT_EQ(submitDatasetToSlurm(options).arrayJob, "4711");
+  EXPECT_EQ(sbatchCalls(), 4);
+  script("squeue", "exit 0\n");
+  EXPECT_EQ(submitDatasetToSlurm(options).arrayJob, "4711");
+  EXPECT_EQ(sbatchCalls(), 6);
   fs::remove_all(dir);
 }
 

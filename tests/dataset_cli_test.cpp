@@ -925,6 +925,19 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_EQ(status.code, 1) << status.out;
   EXPECT_NE(status.out.find(path("ds") + ": submitted to Slurm (slurm/render.sbatch), no shard has started yet"), std::string::npos)
       << status.out;
+  // Submitted again while Slurm still lists the jobs (a stand-in squeue): refused, one line, as
+  // its tasks would render the same shards beside the first's; once they have ended, taken.
+  write("bin/squeue", "#!/bin/sh\necho 42\n");
+  fs::permissions(dir_ / "bin/squeue", fs::perms::owner_all);
+  const std::string again = "PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
+                            path("ds") + " --backend slurm --shards 2 2>&1";
+  const auto queued = testing::runShell(again);
+  EXPECT_EQ(queued.code, 2) << queued.out;
+  EXPECT_EQ(queued.out, "omnicam: " + path("ds") + ": the earlier submission's job 42 is still queued or running (squeue --jobs=42): "
+                        "submit again once it has ended, or cancel with `scancel 42` first\n");
+  write("bin/squeue", "#!/bin/sh\nexit 0\n");
+  const auto ended = testing::runShell(again);
+  EXPECT_EQ(ended.code, 0) << ended.out;
   // A folder holding another count's shards is refused before anything is submitted (every task
   // would refuse it).
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("two") + " --shard 0/2").code, 0);

@@ -68,6 +68,14 @@ TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOn
   const json midRun = json::parse(readFile(shard1));
   ASSERT_EQ(midRun.at("frames").size(), 8u) << "the first window of frames is listed at once";
   ASSERT_FALSE(midRun.at("complete").get<bool>());
+  // Submitted again while shard 1 is held: the array runs and its merge waits, so nothing is
+  // queued beside them (its tasks would render the same shards) and nothing in DIR changes.
+  const std::string scriptBefore = readFile(out / "slurm/render.sbatch");
+  const auto twice = cluster.shell(submit);
+  EXPECT_EQ(twice.code, 2) << twice.out;
+  EXPECT_NE(twice.out.find("the earlier submission's jobs " + arrayJob + "," + mergeJob + " are still queued or running"),
+            std::string::npos) << twice.out;
+  EXPECT_EQ(readFile(out / "slurm/render.sbatch"), scriptBefore);
   ASSERT_EQ(cluster.shell("/usr/bin/scancel --batch --signal=KILL " + arrayJob + "_1").code, 0);
   // Still held until it is gone: the hold is released only when the test ends.
   ASSERT_TRUE(cluster.waitUntilDone({arrayJob, mergeJob}, 300.0)) << cluster.shell("/usr/bin/squeue").out << cluster.logs();
