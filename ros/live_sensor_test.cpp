@@ -1019,12 +1019,14 @@ TEST(LiveSensor, EndsWhenAnotherNodeTakesItsName) {
   ASSERT_EQ(master.problem(), "");
   TestDaemons nodes;
   const auto ready = [&](const char* out) { return readFile(root / out).find("ros: ready") != std::string::npos; };
-  ASSERT_TRUE(nodes.start("first", {OMNICAM_BINARY, "ros", (root / "spec.json").string()}, root / "first.out", master.environment()));
+  ASSERT_TRUE(nodes.start("first", {OMNICAM_BINARY, "ros", (root / "spec.json").string(), "--record", (root / "first.bag").string()},
+                          root / "first.out", master.environment()));
   ASSERT_TRUE(TestDaemons::waitFor([&] { return ready("first.out"); }, 120.0)) << readFile(root / "first.out");
   ASSERT_TRUE(nodes.start("second", {OMNICAM_BINARY, "ros", (root / "spec.json").string()}, root / "second.out", master.environment()));
   EXPECT_EQ(nodes.waitForExit("first", 120.0), 3) << readFile(root / "first.out");
   EXPECT_NE(readFile(root / "first.out").find("omnicam: ros: the ROS master shut this node down: another node registered under its name"),
             std::string::npos) << readFile(root / "first.out");
+  EXPECT_TRUE(fs::exists(root / "first.bag")) << "the bag it recorded is kept: " << readFile(root / "first.out");
   ASSERT_TRUE(TestDaemons::waitFor([&] { return ready("second.out"); }, 120.0)) << readFile(root / "second.out");
   ::kill(nodes.pid("second"), SIGINT);
   EXPECT_EQ(nodes.waitForExit("second", 60.0), 0) << readFile(root / "second.out");
