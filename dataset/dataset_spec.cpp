@@ -340,18 +340,11 @@ void readRequestField(JsonFields& object, const std::string& key, const RequestF
   if (!object.has(key)) return;
   switch (row.type) {
     case RequestFieldType::Text: f.set(row.field, object.string(key)); break;
-    case RequestFieldType::Integer: {
+    case RequestFieldType::Integer:
       // Any 64-bit integer reaches the request, whose rule speaks (as for the CLI's flag); a whole
       // number beyond 64 bits is told that rule too, not a range of the reader's own.
-      const json& value = object.raw(key);
-      constexpr double kBeyond = 9223372036854775808.0;  // 2^63
-      const bool beyond = (value.is_number_unsigned() && value.get<uint64_t>() > static_cast<uint64_t>(std::numeric_limits<int64_t>::max())) ||
-                          (value.is_number_float() && std::isfinite(value.get<double>()) && value.get<double>() == std::floor(value.get<double>()) &&
-                           std::abs(value.get<double>()) >= kBeyond);
-      if (beyond) object.fail(key, "must be " + row.range + " (got " + jsonValueText(value) + ")");
-      f.set(row.field, object.integer(key, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max()));
+      f.set(row.field, object.integer(key, std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max(), row.range));
       break;
-    }
     case RequestFieldType::Number: f.set(row.field, object.number(key)); break;
     case RequestFieldType::Switch: f.set(row.field, object.boolean(key, false)); break;
   }

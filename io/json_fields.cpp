@@ -137,16 +137,19 @@ double JsonFields::nonNegative(const std::string& key, double fallback) {
 }
 
 int64_t JsonFields::integer(const std::string& key, int64_t minimum, int64_t maximum) {
+  return integer(key, minimum, maximum, "in [" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]");
+}
+
+int64_t JsonFields::integer(const std::string& key, int64_t minimum, int64_t maximum, const std::string& rule) {
   const json& v = required(key);
-  const std::string range = "[" + std::to_string(minimum) + ", " + std::to_string(maximum) + "]";
   // A whole number out of range is out of range, whether written 1e19 or as digits beyond 64 bits
   // (which the JSON reader holds as a double); a whole double in range (4.0) is no integer.
   const bool wholeOutOfRange = v.is_number_float() && std::isfinite(v.get<double>()) && v.get<double>() == std::floor(v.get<double>()) &&
                                !(v.get<double>() >= static_cast<double>(minimum) && v.get<double>() <= static_cast<double>(maximum));
-  if (wholeOutOfRange) fail(key, "must be in " + range + " (got " + jsonValueText(v) + ")");
+  if (wholeOutOfRange) fail(key, "must be " + rule + " (got " + jsonValueText(v) + ")");
   if (!v.is_number_integer()) fail(key, "must be an integer (got " + jsonValueText(v) + ")");
   const auto i = integerInRange(v, minimum, maximum);
-  if (!i) fail(key, "must be in " + range + " (got " + v.dump() + ")");
+  if (!i) fail(key, "must be " + rule + " (got " + v.dump() + ")");
   return *i;
 }
 

@@ -42,6 +42,9 @@ class JsonFields {
   // An integer (a JSON number without fraction or exponent) in [minimum, maximum]: required
   // (first), or `fallback` when absent. Out of range is an error, never wrapped.
   int64_t integer(const std::string& key, int64_t minimum, int64_t maximum);
+  // The same, out of range told as `rule` says ("must be " + rule): for a field whose own rule is
+  // narrower than the 64 bits read here and checked later (a request's, as the CLI's flag says it).
+  int64_t integer(const std::string& key, int64_t minimum, int64_t maximum, const std::string& rule);
   int integer(const std::string& key, int fallback, int minimum, int maximum);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key);
