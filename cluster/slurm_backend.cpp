@@ -14,6 +14,7 @@
 #include "dataset_spec.h"
 #include "errors.h"
 #include "external_process.h"
+#include "job_folder.h"
 #include "manifest.h"
 #include "markup.h"
 #include "safe_files.h"
@@ -81,8 +82,16 @@ SlurmCommandResult runSlurmCommand(const std::vector<std::string>& argv, const f
   return r;
 }
 
-// sbatch --parsable prints "<jobid>" or "<jobid>;<cluster>"; its output is kept as sbatch.log.
-std::string submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
+// A job as sbatch --parsable names it: "<jobid>" or "<jobid>;<cluster>" (a job sent to another
+// cluster of a federation, whose squeue must be asked with --clusters).
+struct SubmittedJob {
+  std::string id, cluster;
+};
+const std::regex kJobNumber(R"(\d{1,18})");
+const std::regex kClusterName(R"([A-Za-z0-9][A-Za-z0-9_.-]{0,63})");
+
+// sbatch's output is kept as sbatch.log.
+SubmittedJob submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
   const SlurmCommandResult run = runSlurmCommand(argv, dir, 5, "slurm/sbatch.log");
   const ProcessResult& r = run.process;
   if (r.notFound) throw SbatchRefused(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
@@ -92,10 +101,10 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
   if (r.exitCode != 0) throw SbatchRefused("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
   std::istringstream lines(run.output);
   std::string line;
-  const std::regex jobId(R"((\d+)(;.*)?)");
+  const std::regex jobId(R"((\d{1,18})(;([A-Za-z0-9][A-Za-z0-9_.-]{0,63}))?)");
   while (std::getline(lines, line)) {
     std::smatch m;
-    if (std::regex_match(line, m, jobId)) return m[1];
+    if (std::regex_match(line, m, jobId)) return {m[1], m[3]};
   }
   throw ExternalError("sbatch gave no job id for the " + what + ": " + r.logTail);
 }
@@ -105,38 +114,79 @@ std::string submit(const std::vector<std::string>& argv, const fs::path& dir, co
 // tasks of one shard would fight over it, and the merge would run twice.
 constexpr const char* kJobsFile = "slurm/jobs.json";
 
-void recordJobs(const fs::path& dir, const std::string& arrayJob, const std::string& mergeJob) {
-  nlohmann::json jobs = {{"array_job", arrayJob}};
+void recordJobs(const fs::path& dir, const SubmittedJob& array, const std::string& mergeJob) {
+  nlohmann::json jobs = {{"array_job", array.id}};
   if (!mergeJob.empty()) jobs["merge_job"] = mergeJob;
+  if (!array.cluster.empty()) jobs["cluster"] = array.cluster;
   writeFileInside(dir.string(), kJobsFile, jobs.dump(2) + "\n", Durability::Synced);
 }
 
-// The earlier submission's jobs that Slurm still lists as pending, running or completing. The
-// file is the folder's, which others may write: only job numbers are taken from it.
-std::vector<std::string> earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
-  if (entryInside(dir.string(), kJobsFile) != EntryKind::File) return {};
+// Whether Slurm still lists job `id` (its tasks, for an array) as pending, running, suspended or
+// completing. squeue runs in a private folder (its output there, out of others' reach) without
+// its SQUEUE_* defaults, which could widen (SQUEUE_STATES=all) or narrow (SQUEUE_USERS) the list.
+bool stillListed(const std::string& squeue, const std::string& id, const std::string& cluster, const std::string& what) {
+  const JobFolder folder("omnicam-squeue", false);
+  const std::string log = folder.path() + "/squeue.log";
+  std::vector<std::string> argv = {squeue, "--noheader", "--format=%i", "--states=PENDING,CONFIGURING,RUNNING,SUSPENDED,COMPLETING",
+                                   "--jobs=" + id};
+  if (!cluster.empty()) argv.push_back("--clusters=" + cluster);
+  ProcessOptions options;
+  options.timeoutSeconds = 120.0;
+  options.withoutVariables = {"SQUEUE_"};
+  const ProcessResult r = runProcess(argv, folder.path(), log, options);
+  const std::string output = tailOfFile(log, 20);
+  // A job Slurm has forgotten (MinJobAge after it ended) is an invalid id to squeue.
+  if (r.exitCode > 0 && output.find("Invalid job id specified") != std::string::npos) return false;
+  if (r.notFound || r.timedOut || r.exitCode != 0)
+    throw ExternalError("squeue could not tell whether " + what + " has ended: " +
+                        (r.notFound ? showPath(squeue) + ": not found"
+                                    : r.timedOut ? "it did not answer within 120 s" : "exit " + std::to_string(r.exitCode) + ": " + r.logTail));
+  // Its lines are the job's ("123", or an array's tasks "123_4", "123_[5-9]"); anything else
+  // (a warning) says nothing of it.
+  std::istringstream lines(output);
+  std::string line;
+  const std::regex listed(id + R"((_\S+)?\s*)");
+  while (std::getline(lines, line))
+    if (std::regex_match(line, listed)) return true;
+  return false;
+}
+
+// The earlier submission's jobs that Slurm still lists. The file is the folder's, which others
+// may write: only job numbers and a cluster's name are taken from it, each checked.
+struct QueuedJobs {
+  std::vector<std::string> ids;
+  std::string cluster;
+};
+QueuedJobs earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
   const std::string where = showPath((dir / kJobsFile).string());
+  const EntryKind kind = entryInside(dir.string(), kJobsFile);
+  if (kind == EntryKind::Missing) return {};
+  if (kind != EntryKind::File)
+    throw InputError(where + ": " + (kind == EntryKind::Link ? "is a symbolic link" : "is not a regular file") +
+                     "; omnicam keeps the last submission's job numbers there");
   nlohmann::json jobs;
   try {
     jobs = nlohmann::json::parse(readFileInside(dir.string(), kJobsFile, int64_t{1} << 16));
   } catch (const nlohmann::json::exception&) {
     throw InputError(where + ": not the job list omnicam writes (not valid JSON)");
   }
-  std::vector<std::string> notEnded;
+  if (!jobs.is_object() || !jobs.contains("array_job")) throw InputError(where + ": not the job list omnicam writes (no array_job)");
+  std::string cluster;
+  if (jobs.contains("cluster")) {
+    if (!jobs["cluster"].is_string() || !std::regex_match(jobs["cluster"].get<std::string>(), kClusterName))
+      throw InputError(where + ": cluster: not a Slurm cluster's name");
+    cluster = jobs["cluster"].get<std::string>();
+  }
+  QueuedJobs notEnded{{}, cluster};
   for (const char* field : {"array_job", "merge_job"}) {
-    if (!jobs.is_object() || !jobs.contains(field)) continue;
+    if (!jobs.contains(field)) continue;
     const nlohmann::json& id = jobs.at(field);
-    if (!id.is_string() || !std::regex_match(id.get<std::string>(), std::regex(R"(\d{1,18})")))
-      throw InputError(where + ": " + field + ": not a Slurm job number");
-    const SlurmCommandResult r = runSlurmCommand({squeue, "--noheader", "--format=%i", "--jobs=" + id.get<std::string>()}, dir, 3);
-    // A job Slurm has forgotten (MinJobAge after it ended) is an invalid id to squeue.
-    if (r.process.exitCode != 0 && r.output.find("Invalid job id") != std::string::npos) continue;
-    if (r.process.notFound || r.process.exitCode != 0)
-      throw ExternalError(std::string("squeue could not tell whether the earlier submission's ") + (field == std::string("array_job") ? "array" : "merge") +
-                          " job " + id.get<std::string>() + " (" + kJobsFile + ") has ended" +
-                          (r.process.notFound ? ": " + showPath(squeue) + " not found" : ": " + r.process.logTail));
-    const bool named = std::find(notEnded.begin(), notEnded.end(), id.get<std::string>()) != notEnded.end();
-    if (!named && r.output.find_first_not_of(" \n") != std::string::npos) notEnded.push_back(id.get<std::string>());
+    if (!id.is_string() || !std::regex_match(id.get<std::string>(), kJobNumber)) throw InputError(where + ": " + field + ": not a Slurm job number");
+    const std::string job = id.get<std::string>();
+    const std::string what = std::string("the earlier submission's ") + (field == std::string("array_job") ? "array" : "merge") +
+                             " job " + job + " (" + where + ")";
+    if (std::find(notEnded.ids.begin(), notEnded.ids.end(), job) == notEnded.ids.end() && stillListed(squeue, job, cluster, what))
+      notEnded.ids.push_back(job);
   }
   return notEnded;
 }
@@ -318,16 +368,17 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   else if (const std::string conflict = shardCountConflict(dir.string(), o.shards); !conflict.empty())
     throw InputError(showPath(dir.string()) + ": " + conflict);
 
-  if (const std::vector<std::string> queued = earlierJobsNotEnded(dir, o.squeue); !queued.empty()) {
+  if (const QueuedJobs queued = earlierJobsNotEnded(dir, o.squeue); !queued.ids.empty()) {
     std::string list, words;
-    for (const std::string& job : queued) {
+    for (const std::string& job : queued.ids) {
       list += (list.empty() ? "" : ",") + job;
       words += " " + job;
     }
-    throw InputError(showPath(dir.string()) + ": the earlier submission's " + (queued.size() == 1 ? "job " : "jobs ") + list +
-                     (queued.size() == 1 ? " is" : " are") + " still queued or running (squeue --jobs=" + list +
-                     "): submit again once " + (queued.size() == 1 ? "it has" : "they have") + " ended, or cancel with `scancel" +
-                     words + "` first");
+    const std::string onCluster = queued.cluster.empty() ? "" : " --clusters=" + queued.cluster;
+    const bool one = queued.ids.size() == 1;
+    throw InputError(showPath(dir.string()) + ": the earlier submission's " + (one ? "job " : "jobs ") + list +
+                     (one ? " is" : " are") + " still queued or running (squeue --jobs=" + list + onCluster + "): submit again once " +
+                     (one ? "it has" : "they have") + " ended, or cancel with `scancel" + onCluster + words + "` first");
   }
 
   SlurmSubmission s;
@@ -344,13 +395,15 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   s.renderScript = (slurmDir / "render.sbatch").string();
   s.mergeScript = (slurmDir / "merge.sbatch").string();
   const SubmissionUndo before(dir);
+  SubmittedJob array;
   try {
     for (const char* folder : {"shards", "slurm"}) makeFoldersInside(dir.string(), folder);
     writeFileInside(dir.string(), "slurm/render.sbatch", renderScriptText(o, spec, dir, s.shards), Durability::Synced);
     writeFileInside(dir.string(), "slurm/merge.sbatch", mergeScriptText(o, dir), Durability::Synced);
-    s.arrayJob = submit({o.sbatch, "--parsable", "--array=" + slurmArraySpec(s.shards, o.maxParallel),
-                         "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
-                        dir, "array job");
+    array = submit({o.sbatch, "--parsable", "--array=" + slurmArraySpec(s.shards, o.maxParallel),
+                    "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
+                   dir, "array job");
+    s.arrayJob = array.id;
   } catch (const SbatchRefused&) {  // sbatch's words are in the message
     before.undo();
     throw;
@@ -358,21 +411,27 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
     before.undo();
     throw;
   }
-  recordJobs(dir, s.arrayJob, "");
+  const std::string cancel = "`scancel" + (array.cluster.empty() ? "" : " --clusters=" + array.cluster) + " " + s.arrayJob + "`";
   // afterany: the merge also runs when a task failed, and lists what is missing.
   try {
+    recordJobs(dir, array, "");
     s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
                          "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
-                        dir, "merge job");
-  } catch (const ExternalError& e) {
+                        dir, "merge job").id;
+  } catch (const std::runtime_error& e) {
     // The array is queued and its shards are good work: said first, with what finishes or undoes
-    // it, then sbatch's own words.
+    // it, then what failed.
     throw ExternalError("the array job " + s.arrayJob + " is queued and renders the shards, but its merge job was not submitted: " +
                         "once the array has ended, merge them with `" + shellPath(o.omnicamBinary) + " dataset --merge " +
-                        shellPath(dir.string()) + " --shards " + std::to_string(o.shards) + "`, or cancel it with `scancel " +
-                        s.arrayJob + "`; " + e.what());
+                        shellPath(dir.string()) + " --shards " + std::to_string(o.shards) + "`, or cancel it with " + cancel + "; " +
+                        e.what());
   }
-  recordJobs(dir, s.arrayJob, s.mergeJob);
+  try {
+    recordJobs(dir, array, s.mergeJob);
+  } catch (const OutputError& e) {
+    throw OutputError("the array job " + s.arrayJob + " and its merge job " + s.mergeJob + " are queued, but their numbers were not " +
+                      "recorded, so a submission into this folder cannot see them: " + e.what());
+  }
   return s;
 }
 

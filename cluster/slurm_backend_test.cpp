@@ -168,8 +168,17 @@ TEST(SlurmBackend, ASubmissionWhileTheLastOnesJobsAreQueuedIsRefused) {
     std::ofstream(dir / name) << "#!/bin/sh\n" << body;
     fs::permissions(dir / name, fs::perms::owner_all);
   };
+  const auto readText = [](const fs::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
   // The stand-in sbatch counts its calls; the array is job 4711, its merge 4712.
   script("sbatch", "echo x >> " + (dir / "sbatch_calls").string() + "\ncase \"$*\" in *--dependency*) echo 4712;; *) echo 4711;; esac\n");
+  // The stand-in squeue logs its arguments and the SQUEUE_STATES it got, then answers as `answer`
+  // (a script's body, given the arguments) says.
+  const auto squeueAnswers = [&](const std::string& answer) {
+    script("squeue", "echo \"$* SQUEUE_STATES=$SQUEUE_STATES\" >> " + (dir / "squeue_calls").string() + "\n" + answer);
+  };
   writeThreeFrameSpec(dir);
   SlurmSubmitOptions options;
   options.spec = (dir / "spec.json").string();
@@ -179,59 +188,91 @@ TEST(SlurmBackend, ASubmissionWhileTheLastOnesJobsAreQueuedIsRefused) {
   options.sbatch = (dir / "sbatch").string();
   options.squeue = (dir / "squeue").string();
   const auto sbatchCalls = [&] {
-    std::ifstream in(dir / "sbatch_calls");
-    return static_cast<int>(std::count(std::istreambuf_iterator<char>(in), {}, '\n'));
+    const std::string calls = readText(dir / "sbatch_calls");
+    return static_cast<int>(std::count(calls.begin(), calls.end(), '\n'));
+  };
+  const auto refusal = [&]() -> std::string {
+    try {
+      submitDatasetToSlurm(options);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(submitted)";
   };
   const SlurmSubmission first = submitDatasetToSlurm(options);
   EXPECT_EQ(first.arrayJob, "4711");
   EXPECT_EQ(first.mergeJob, "4712");
-  std::ifstream jobsFile(dir / "out/slurm/jobs.json");
-  EXPECT_EQ(nlohmann::json::parse(jobsFile), nlohmann::json({{"array_job", "4711"}, {"merge_job", "4712"}}));
+  const fs::path jobsFile = dir / "out/slurm/jobs.json";
+  EXPECT_EQ(nlohmann::json::parse(readText(jobsFile)), nlohmann::json({{"array_job", "4711"}, {"merge_job", "4712"}}));
   ASSERT_EQ(sbatchCalls(), 2);
 
-  // The array's tasks still listed (squeue -h -o %i -j 4711 prints them): refused, nothing queued.
-  script("squeue", "case \"$*\" in *--jobs=4711*) echo '4711_[1-2]'; echo 4711_0;; esac\n");
-  try {
-    submitDatasetToSlurm(options);
-    ADD_FAILURE() << "a submission beside a queued one was not refused";
-  } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), (dir / "out").string() + ": the earlier submission's job 4711 is still queued or running "
-                                     "(squeue --jobs=4711): submit again once it has ended, or cancel with `scancel 4711` first");
-  }
+  // The array's tasks still listed, as squeue prints them: refused, nothing queued. squeue is
+  // asked for the listed states itself, without the user's SQUEUE_STATES (=all would list ended
+  // jobs too).
+  ::setenv("SQUEUE_STATES", "all", 1);
+  squeueAnswers("case \"$*\" in *--jobs=4711*) echo '4711_[1-2]'; echo 4711_0;; esac\n");
+  EXPECT_EQ(refusal(), (dir / "out").string() + ": the earlier submission's job 4711 is still queued or running "
+                       "(squeue --jobs=4711): submit again once it has ended, or cancel with `scancel 4711` first");
+  ::unsetenv("SQUEUE_STATES");
+  EXPECT_EQ(readText(dir / "squeue_calls"),
+            "--noheader --format=%i --states=PENDING,CONFIGURING,RUNNING,SUSPENDED,COMPLETING --jobs=4711 SQUEUE_STATES=\n"
+            "--noheader --format=%i --states=PENDING,CONFIGURING,RUNNING,SUSPENDED,COMPLETING --jobs=4712 SQUEUE_STATES=\n");
   // Both listed (the merge waits for the array): both named.
-  script("squeue", "echo 1\n");
-  try {
-    submitDatasetToSlurm(options);
-    ADD_FAILURE() << "a submission beside a queued one was not refused";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("jobs 4711,4712 are still queued or running (squeue --jobs=4711,4712)"), std::string::npos)
-        << e.what();
-    EXPECT_NE(std::string(e.what()).find("`scancel 4711 4712`"), std::string::npos) << e.what();
-  }
-  EXPECT_EQ(sbatchCalls(), 2);
+  squeueAnswers("echo \"${4#--jobs=}\"\n");
+  EXPECT_EQ(refusal(), (dir / "out").string() + ": the earlier submission's jobs 4711,4712 are still queued or running "
+                       "(squeue --jobs=4711,4712): submit again once they have ended, or cancel with `scancel 4711 4712` first");
+  // A warning squeue prints says nothing of the jobs.
+  squeueAnswers("echo 'squeue: warning: Could not find a valid sackd'\n");
+  EXPECT_EQ(submitDatasetToSlurm(options).arrayJob, "4711");
+  EXPECT_EQ(sbatchCalls(), 4);
   // squeue unable to answer: said, with its words; nothing queued.
-  script("squeue", "echo 'squeue: error: Unable to contact slurm controller' >&2\nexit 1\n");
+  squeueAnswers("echo 'squeue: error: Unable to contact slurm controller' >&2\nexit 1\n");
   try {
     submitDatasetToSlurm(options);
     ADD_FAILURE() << "squeue's failure was not said";
   } catch (const ExternalError& e) {
-    EXPECT_NE(std::string(e.what()).find("squeue could not tell whether the earlier submission's array job 4711 (slurm/jobs.json) "
-                                         "has ended: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("squeue could not tell whether the earlier submission's array job 4711 (" + jobsFile.string() +
+                                         ") has ended: exit 1: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("Unable to contact slurm controller"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(sbatchCalls(), 2);
-  // A job number that is not one, in a file others may write, never reaches squeue.
-  std::ofstream(dir / "out/slurm/jobs.json") << R"({"array_job": "4711; touch pwned"})";
-  EXPECT_THROW(submitDatasetToSlurm(options), InputError);
-  EXPECT_FALSE(fs::exists(dir / "out/slurm/pwned"));
-  std::ofstream(dir / "out/slurm/jobs.json") << R"({"array_job": "4711", "merge_job": "4712"})";
-  // Forgotten by Slurm (an invalid id to squeue), or no longer listed: ended, so submitted.
-  script("squeue", "echo 'slurm_load_jobs error: Invalid job id specified' >&2\nexit 1\n");
-  EXPECT_EQ(submitDatasetToSlurm(options).arrayJob, "4711");
   EXPECT_EQ(sbatchCalls(), 4);
-  script("squeue", "exit 0\n");
+  // Forgotten by Slurm (an invalid id to squeue): ended, so submitted.
+  squeueAnswers("echo 'slurm_load_jobs error: Invalid job id specified' >&2\nexit 1\n");
   EXPECT_EQ(submitDatasetToSlurm(options).arrayJob, "4711");
   EXPECT_EQ(sbatchCalls(), 6);
+
+  // What the folder holds there is untrusted: anything but omnicam's job list is refused before
+  // squeue or sbatch is called.
+  fs::remove(dir / "squeue_calls");
+  for (const auto& [text, why] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"array_job": "4711; touch pwned"})", "array_job: not a Slurm job number"},
+           {R"({"array_job": "4711", "cluster": "--all"})", "cluster: not a Slurm cluster's name"},
+           {R"({"merge_job": "4712"})", "not the job list omnicam writes (no array_job)"},
+           {"[]", "not the job list omnicam writes (no array_job)"},
+           {"{", "not the job list omnicam writes (not valid JSON)"}}) {
+    std::ofstream(jobsFile) << text;
+    EXPECT_EQ(refusal(), jobsFile.string() + ": " + why) << text;
+  }
+  fs::remove(jobsFile);
+  fs::create_symlink(dir / "spec.json", jobsFile);
+  EXPECT_EQ(refusal(), jobsFile.string() + ": is a symbolic link; omnicam keeps the last submission's job numbers there");
+  fs::remove(jobsFile);
+  fs::create_directory(jobsFile);
+  EXPECT_EQ(refusal(), jobsFile.string() + ": is not a regular file; omnicam keeps the last submission's job numbers there");
+  fs::remove(jobsFile);
+  EXPECT_FALSE(fs::exists(dir / "squeue_calls"));
+  EXPECT_EQ(sbatchCalls(), 6);
+
+  // A job sbatch sent to another cluster ("id;cluster") is asked of that cluster's squeue.
+  script("sbatch", "case \"$*\" in *--dependency*) echo '4714;west';; *) echo '4713;west';; esac\n");
+  EXPECT_EQ(submitDatasetToSlurm(options).arrayJob, "4713");
+  EXPECT_EQ(nlohmann::json::parse(readText(jobsFile)),
+            nlohmann::json({{"array_job", "4713"}, {"merge_job", "4714"}, {"cluster", "west"}}));
+  squeueAnswers("echo 4713\n");
+  EXPECT_EQ(refusal(), (dir / "out").string() + ": the earlier submission's job 4713 is still queued or running "
+                       "(squeue --jobs=4713 --clusters=west): submit again once it has ended, or cancel with "
+                       "`scancel --clusters=west 4713` first");
+  EXPECT_NE(readText(dir / "squeue_calls").find("--jobs=4713 --clusters=west"), std::string::npos) << readText(dir / "squeue_calls");
   fs::remove_all(dir);
 }
 

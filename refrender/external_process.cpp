@@ -97,9 +97,13 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   std::vector<std::string> environment;
+  const auto withheld = [&](const char* variable) {
+    for (const std::string& prefix : options.withoutVariables)
+      if (std::strncmp(variable, prefix.c_str(), prefix.size()) == 0) return true;
+    return std::strncmp(variable, "HOME=", 5) == 0 || (options.temporaryFilesInWorkDir && std::strncmp(variable, "TMPDIR=", 7) == 0);
+  };
   for (char** e = environ; *e; ++e)
-    if (std::strncmp(*e, "HOME=", 5) != 0 && (!options.temporaryFilesInWorkDir || std::strncmp(*e, "TMPDIR=", 7) != 0))
-      environment.emplace_back(*e);
+    if (!withheld(*e)) environment.emplace_back(*e);
   environment.push_back("HOME=" + workDir);
   if (options.temporaryFilesInWorkDir) environment.push_back("TMPDIR=" + workDir);
   std::vector<char*> envp;

@@ -25,6 +25,9 @@ struct ProcessOptions {
   // TMPDIR is the working folder too (a renderer's job folder): what the program leaves in its
   // temporary folder when it is ended goes with the job folder.
   bool temporaryFilesInWorkDir = false;
+  // Variables of omnicam's environment the program does not get, by prefix ("SQUEUE_": squeue's
+  // own defaults, which would change what it lists).
+  std::vector<std::string> withoutVariables;
 };
 
 // SIGTERM or SIGINT while it waits (base/interrupts.h) ends the program's whole process group and
