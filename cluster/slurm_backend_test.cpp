@@ -68,6 +68,18 @@ void writeThreeFrameSpec(const std::filesystem::path& dir) {
     "poses": {"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0]]}})";
 }
 
+// A submission of the three-frame spec in `dir` as 3 shards into dir/out, by the given sbatch.
+SlurmSubmitOptions threeShardSubmission(const std::filesystem::path& dir, const std::filesystem::path& sbatch) {
+  writeThreeFrameSpec(dir);
+  SlurmSubmitOptions options;
+  options.spec = (dir / "spec.json").string();
+  options.dir = (dir / "out").string();
+  options.omnicamBinary = "/usr/bin/true";
+  options.shards = 3;
+  options.sbatch = sbatch.string();
+  return options;
+}
+
 // An sbatch that refuses the array job: nothing is queued, so what the submission wrote is put
 // back as it was (its scripts would make --status say "submitted"); sbatch's words are in the
 // message.
@@ -79,12 +91,7 @@ TEST(SlurmBackend, AnArrayJobRefusedLeavesNothingBehind) {
   const fs::path sbatch = dir / "sbatch";
   std::ofstream(sbatch) << "#!/bin/sh\necho 'sbatch: error: invalid partition specified: nosuch' >&2\nexit 1\n";
   fs::permissions(sbatch, fs::perms::owner_all);
-  writeThreeFrameSpec(dir);
-  SlurmSubmitOptions options;
-  options.spec = (dir / "spec.json").string();
-  options.omnicamBinary = "/usr/bin/true";
-  options.shards = 3;
-  options.sbatch = sbatch.string();
+  SlurmSubmitOptions options = threeShardSubmission(dir, sbatch);
   // A new folder goes whole; in one submitted to before (its shards/ and slurm/ there, with the
   // earlier submission's scripts and a file of the user's), the earlier scripts are put back.
   fs::create_directories(dir / "mine" / "shards");
@@ -135,13 +142,7 @@ TEST(SlurmBackend, AMergeJobRefusedNamesTheQueuedArrayJobAndWhatFinishesOrCancel
   std::ofstream(sbatch) << "#!/bin/sh\ncase \"$*\" in *--dependency*) echo 'sbatch: error: QOSMaxSubmitJobPerUserLimit' >&2; exit 1;; esac\n"
                            "echo 4711\n";
   fs::permissions(sbatch, fs::perms::owner_all);
-  writeThreeFrameSpec(dir);
-  SlurmSubmitOptions options;
-  options.spec = (dir / "spec.json").string();
-  options.dir = (dir / "out").string();
-  options.omnicamBinary = "/usr/bin/true";
-  options.shards = 3;
-  options.sbatch = sbatch.string();
+  const SlurmSubmitOptions options = threeShardSubmission(dir, sbatch);
   try {
     submitDatasetToSlurm(options);
     ADD_FAILURE() << "the refused merge job was not said";
@@ -179,13 +180,7 @@ TEST(SlurmBackend, ASubmissionWhileTheLastOnesJobsAreQueuedIsRefused) {
   const auto squeueAnswers = [&](const std::string& answer) {
     script("squeue", "echo \"$* SQUEUE_STATES=$SQUEUE_STATES\" >> " + (dir / "squeue_calls").string() + "\n" + answer);
   };
-  writeThreeFrameSpec(dir);
-  SlurmSubmitOptions options;
-  options.spec = (dir / "spec.json").string();
-  options.dir = (dir / "out").string();
-  options.omnicamBinary = "/usr/bin/true";
-  options.shards = 3;
-  options.sbatch = (dir / "sbatch").string();
+  SlurmSubmitOptions options = threeShardSubmission(dir, dir / "sbatch");
   options.squeue = (dir / "squeue").string();
   const auto sbatchCalls = [&] {
     const std::string calls = readText(dir / "sbatch_calls");
