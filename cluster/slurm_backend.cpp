@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <regex>
-
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 
 #include "atomic_file.h"
@@ -53,19 +52,23 @@ class SbatchRefused : public ExternalError {
   using ExternalError::ExternalError;
 };
 
-// A Slurm command run in DIR/slurm, its output (stdout and stderr, the last `lines` lines) read
-// back from a temporary created exclusively there, which goes however this ends (an interrupt
-// while the command runs included). With `keepAs`, the output also becomes that file, by an
-// atomic write: whatever was planted there is replaced, never written through.
-struct SlurmCommandResult {
-  ProcessResult process;
-  std::string output;
+// A job as sbatch --parsable names it: "<jobid>" or "<jobid>;<cluster>" (a job sent to another
+// cluster of a federation, whose squeue must be asked with --clusters). The same patterns check
+// what slurm/jobs.json holds.
+struct SubmittedJob {
+  std::string id, cluster;
 };
-SlurmCommandResult runSlurmCommand(const std::vector<std::string>& argv, const fs::path& dir, int lines, const std::string& keepAs = "") {
+constexpr const char* kJobNumberPattern = R"(\d{1,18})";
+constexpr const char* kClusterNamePattern = R"([A-Za-z0-9][A-Za-z0-9_.-]{0,63})";
+
+// sbatch's output goes to a temporary created exclusively in DIR/slurm, then becomes sbatch.log
+// by an atomic write: whatever was planted as sbatch.log is replaced, never written through.
+SubmittedJob submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
   const fs::path slurmDir = dir / "slurm";
-  const std::string tmpName = "slurm/" + atomicTemporaryName("slurm-command.log");
+  const std::string tmpName = "slurm/" + atomicTemporaryName("sbatch.log");
   writeFileInside(dir.string(), tmpName, "", Durability::Unsynced);
   const std::string tmp = (dir / tmpName).string();
+  // The temporary goes however this ends (an interrupt while sbatch runs included).
   struct RemoveTemporary {
     const fs::path& dir;
     const std::string& name;
@@ -76,32 +79,17 @@ SlurmCommandResult runSlurmCommand(const std::vector<std::string>& argv, const f
       }
     }
   } removeTemporary{dir, tmpName};
-  SlurmCommandResult r{runProcess(argv, slurmDir.string(), tmp, 120.0), tailOfFile(tmp, lines)};
-  if (!keepAs.empty())
-    writeFileInside(dir.string(), keepAs, readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
-  return r;
-}
-
-// A job as sbatch --parsable names it: "<jobid>" or "<jobid>;<cluster>" (a job sent to another
-// cluster of a federation, whose squeue must be asked with --clusters).
-struct SubmittedJob {
-  std::string id, cluster;
-};
-const std::regex kJobNumber(R"(\d{1,18})");
-const std::regex kClusterName(R"([A-Za-z0-9][A-Za-z0-9_.-]{0,63})");
-
-// sbatch's output is kept as sbatch.log.
-SubmittedJob submit(const std::vector<std::string>& argv, const fs::path& dir, const std::string& what) {
-  const SlurmCommandResult run = runSlurmCommand(argv, dir, 5, "slurm/sbatch.log");
-  const ProcessResult& r = run.process;
+  const ProcessResult r = runProcess(argv, slurmDir.string(), tmp, 120.0);
+  const std::string output = tailOfFile(tmp, 5);
+  writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
   if (r.notFound) throw SbatchRefused(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.timedOut)
     throw ExternalError("sbatch did not answer for the " + what + " within 120 s; it may have been submitted all the same (squeue "
                         "lists it): " + r.logTail);
   if (r.exitCode != 0) throw SbatchRefused("sbatch refused the " + what + " (exit " + std::to_string(r.exitCode) + "): " + r.logTail);
-  std::istringstream lines(run.output);
+  std::istringstream lines(output);
   std::string line;
-  const std::regex jobId(R"((\d{1,18})(;([A-Za-z0-9][A-Za-z0-9_.-]{0,63}))?)");
+  const std::regex jobId("(" + std::string(kJobNumberPattern) + ")(;(" + kClusterNamePattern + "))?");
   while (std::getline(lines, line)) {
     std::smatch m;
     if (std::regex_match(line, m, jobId)) return {m[1], m[3]};
@@ -173,15 +161,16 @@ QueuedJobs earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
   if (!jobs.is_object() || !jobs.contains("array_job")) throw InputError(where + ": not the job list omnicam writes (no array_job)");
   std::string cluster;
   if (jobs.contains("cluster")) {
-    if (!jobs["cluster"].is_string() || !std::regex_match(jobs["cluster"].get<std::string>(), kClusterName))
+    const nlohmann::json& name = jobs.at("cluster");
+    if (!name.is_string() || !std::regex_match(name.get<std::string>(), std::regex(kClusterNamePattern)))
       throw InputError(where + ": cluster: not a Slurm cluster's name");
-    cluster = jobs["cluster"].get<std::string>();
+    cluster = name.get<std::string>();
   }
   QueuedJobs notEnded{{}, cluster};
   for (const char* field : {"array_job", "merge_job"}) {
     if (!jobs.contains(field)) continue;
     const nlohmann::json& id = jobs.at(field);
-    if (!id.is_string() || !std::regex_match(id.get<std::string>(), kJobNumber)) throw InputError(where + ": " + field + ": not a Slurm job number");
+    if (!id.is_string() || !std::regex_match(id.get<std::string>(), std::regex(kJobNumberPattern))) throw InputError(where + ": " + field + ": not a Slurm job number");
     const std::string job = id.get<std::string>();
     const std::string what = std::string("the earlier submission's ") + (field == std::string("array_job") ? "array" : "merge") +
                              " job " + job + " (" + where + ")";
