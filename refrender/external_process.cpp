@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <exception>
@@ -84,6 +85,38 @@ void echoNewOutput(const std::string& path, std::streamoff& offset) {
 
 }  // namespace
 
+std::string findExecutable(const std::string& command) {
+  namespace fs = std::filesystem;
+  if (command.empty()) return "";
+  const auto executable = [](const fs::path& path) {
+    std::error_code error;
+    return fs::is_regular_file(path, error) && ::access(path.c_str(), X_OK) == 0;
+  };
+  if (command.find('/') != std::string::npos) {
+    const fs::path path = fs::absolute(command).lexically_normal();
+    return executable(path) ? path.string() : "";
+  }
+  // As execvp: PATH's entries in order, an empty one meaning the current folder, and the
+  // system's default search path when PATH is unset.
+  std::string searchPath;
+  if (const char* path = std::getenv("PATH")) {
+    searchPath = path;
+  } else {
+    searchPath.resize(::confstr(_CS_PATH, nullptr, 0));
+    ::confstr(_CS_PATH, searchPath.data(), searchPath.size());
+    searchPath.resize(std::strlen(searchPath.c_str()));
+  }
+  size_t begin = 0;
+  while (true) {
+    const size_t end = searchPath.find(':', begin);
+    const std::string entry = searchPath.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    const fs::path candidate = fs::absolute(fs::path(entry.empty() ? "." : entry) / command);
+    if (executable(candidate)) return candidate.lexically_normal().string();
+    if (end == std::string::npos) return "";
+    begin = end + 1;
+  }
+}
+
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
                          const std::string& logPath, const ProcessOptions& options) {
   const DeferInterrupts deferred;
@@ -93,6 +126,16 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   // and setenv/open are not while TBB's threads exist. Everything the child needs — its own
   // process group (a timeout or an interrupt ends helpers too), working folder, HOME, log,
   // stdin — is prepared here and applied by the spawn itself.
+  // Found here, in omnicam's own folder, as the user's shell would find it: the spawn changes
+  // into workDir first, where a relative PATH entry or program path would find something else
+  // (a program planted in an output folder).
+  const std::string program = findExecutable(argv.at(0));
+  if (program.empty()) {
+    result.notFound = true;
+    result.logTail = "cannot start: " + argv[0] + ": no such program" +
+                     (argv[0].find('/') == std::string::npos ? " in PATH" : "");
+    return result;
+  }
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -129,7 +172,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
   pid_t pid = -1;
-  const int spawned = ::posix_spawnp(&pid, args[0], &actions, &attributes, args.data(), envp.data());
+  const int spawned = ::posix_spawn(&pid, program.c_str(), &actions, &attributes, args.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   if (spawned != 0) {
@@ -159,7 +202,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   if (options.echoOutput) echoNewOutput(logPath, echoed);
   if (!result.timedOut && WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
   if (!result.timedOut && WIFSIGNALED(status)) result.endedBySignal = WTERMSIG(status);
-  result.notFound = result.exitCode == 127;  // glibc's posix_spawnp reports a missing binary so
+  result.notFound = result.exitCode == 127;  // a shell's or env's "command not found" (a script's interpreter)
   result.logTail = tailOfFile(logPath, 15);
   return result;
 }

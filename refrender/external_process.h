@@ -30,6 +30,11 @@ struct ProcessOptions {
   std::vector<std::string> withoutVariables;
 };
 
+// The absolute path of the program `command` names, as execvp would find it from the current
+// folder: a path with a slash as it is, a bare name in PATH. "" when there is none.
+std::string findExecutable(const std::string& command);
+
+// argv[0] is found by findExecutable before the program is started in workDir.
 // SIGTERM or SIGINT while it waits (base/interrupts.h) ends the program's whole process group and
 // throws Interrupted; a timeout ends it the same way and reports timedOut.
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
