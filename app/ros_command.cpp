@@ -1,4 +1,5 @@
 // `omnicam ros SPEC`: the live ROS 1 sensor (ros/live_sensor.h, docs/ros.md).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -45,8 +46,24 @@ std::vector<std::string> rosArgumentsOf(const std::vector<std::string>& extras) 
   return extras;
 }
 
+// roslaunch starts its nodes in ROS_HOME (~/.ros), not in the folder it was started from: a
+// relative path there would read a spec or write a bag somewhere the user did not mean.
+void refuseRelativePathsUnderRoslaunch(const RosArgs& a, const std::vector<std::string>& extras) {
+  const bool roslaunched = std::any_of(extras.begin(), extras.end(), [](const std::string& e) { return e.rfind("__log:=", 0) == 0; });
+  if (!roslaunched) return;
+  const auto refuse = [](const std::string& what, const std::string& path, const std::string& launchArgument) {
+    if (std::filesystem::path(path).is_absolute()) return;
+    throw InputError("ros: " + what + showPath(path) + " is a relative path, but roslaunch starts its nodes in " +
+                     showPath(std::filesystem::current_path().string()) + ", not where it was started: give an absolute path (" +
+                     launchArgument + ":=$PWD/" + showPath(path) + ")");
+  };
+  refuse("", a.spec, "spec");
+  if (!a.options.recordBag.empty()) refuse("--record ", a.options.recordBag, "record");
+}
+
 void runRos(RosArgs a, const CLI::App& cmd, const std::vector<std::string>& extras) {
   a.options.rosArguments = rosArgumentsOf(extras);
+  refuseRelativePathsUnderRoslaunch(a, extras);
   // An empty value would silently mean the flag's absence (odometry, no bag).
   if (cmd.count("--tf") && a.options.tfParent.empty()) throw InputError("--tf: give a frame (map or odom)");
   if (cmd.count("--record") && a.options.recordBag.empty()) throw InputError("--record: give the new bag's file name");

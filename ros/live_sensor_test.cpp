@@ -795,6 +795,24 @@ TEST_F(LiveRun, StartsFromItsLaunchFileAndEndsWithRoslaunch) {
   for (int k = 0; k < 2; ++k) EXPECT_TRUE(frames[k].data == datasetRgb8(dataset(), "front", k)) << "pose " << k;
 }
 
+// roslaunch starts the node in ROS_HOME: a relative spec:= would be looked for there, not where
+// roslaunch was started. The node (knowing roslaunch by its __log:=) refuses it on one line that
+// says where it runs and how to give the path.
+TEST_F(LiveRun, ARelativeSpecUnderRoslaunchIsRefusedSayingWhereTheNodeRuns) {
+  renderDataset(specText());
+  start({"/usr/bin/roslaunch", "omnicam", "live_camera.launch", "spec:=spec.json", "robot:=bot"},
+        {"ROS_PACKAGE_PATH=" OMNICAM_ROS_PACKAGE_PATH});
+  EXPECT_NE(waitForExit(), -1) << "roslaunch ends with its required node: " << output();
+  std::string home;
+  for (const std::string& variable : master_->environment())
+    if (variable.rfind("ROS_HOME=", 0) == 0) home = fs::canonical(variable.substr(std::string("ROS_HOME=").size())).string();
+  EXPECT_NE(output().find("omnicam: ros: spec.json is a relative path, but roslaunch starts its nodes in " + home +
+                          ", not where it was started: give an absolute path (spec:=$PWD/spec.json)\n"),
+            std::string::npos)
+      << output();
+  EXPECT_EQ(output().find("ros: ready"), std::string::npos) << output();
+}
+
 // A spec the dataset reader refuses is refused the same way, before any master is looked for.
 TEST(LiveSensor, RefusesASpecAsTheDatasetReaderDoes) {
   const fs::path root = fs::temp_directory_path() / ("omnicam_live_sensor_spec_" + std::to_string(::getpid()));
