@@ -121,6 +121,23 @@ std::string nextStep(const std::string& dir) {
   return "run the same command again to resume";
 }
 
+// The last Slurm submission's jobs as --status names them (slurm/jobs.json): "array job 4711 and
+// merge job 4712", and the squeue command that lists them. Empty when none are recorded.
+struct SubmittedJobsText {
+  std::string jobs, squeue;
+};
+SubmittedJobsText submittedJobsText(const std::string& dir) {
+  const SubmittedSlurmJobs submitted = readSubmittedSlurmJobs(dir);
+  if (submitted.arrayJob.empty()) return {};
+  SubmittedJobsText text{"array job " + submitted.arrayJob, "squeue --jobs=" + submitted.arrayJob};
+  if (!submitted.mergeJob.empty() && submitted.mergeJob != submitted.arrayJob) {
+    text.jobs += " and merge job " + submitted.mergeJob;
+    text.squeue += "," + submitted.mergeJob;
+  }
+  if (!submitted.cluster.empty()) text.squeue += " --clusters=" + submitted.cluster;
+  return text;
+}
+
 // --status DIR: how many frames are finished, shard by shard before a merge; exit 0 complete, 1 not.
 int printStatus(const std::string& dir) {
   const std::vector<int> shardCounts = shardCountsIn(dir);
@@ -131,13 +148,21 @@ int printStatus(const std::string& dir) {
       for (const ShardState& state : shardStates(dir, count, false)) finished += state.finished;
     std::printf("%s: shards not merged yet: %d frames finished in the shards that have started (%s)\n", dir.c_str(), finished,
                 nextStep(dir).c_str());
+    if (const SubmittedJobsText submitted = submittedJobsText(dir); !submitted.jobs.empty())
+      std::printf("  submitted to Slurm as %s: `%s` lists them while they are queued or running\n", submitted.jobs.c_str(),
+                  submitted.squeue.c_str());
     for (int count : shardCounts) printShardStates(dir, count);
     return 1;
   }
   // Submitted to Slurm, no task started yet: the folder holds only its slurm/ scripts.
   if (entryInside(dir, kManifestName) == EntryKind::Missing && entryInside(dir, "slurm/render.sbatch") == EntryKind::File) {
-    std::printf("%s: submitted to Slurm (slurm/render.sbatch), no shard has started yet: squeue lists the jobs, "
-                "slurm/shard-<I>.log each task's output\n", dir.c_str());
+    const SubmittedJobsText submitted = submittedJobsText(dir);
+    if (submitted.jobs.empty())
+      std::printf("%s: submitted to Slurm (slurm/render.sbatch), no shard has started yet: squeue lists the jobs, "
+                  "slurm/shard-<I>.log each task's output\n", dir.c_str());
+    else
+      std::printf("%s: submitted to Slurm as %s (slurm/render.sbatch), no shard has started yet: `%s` lists them, "
+                  "slurm/shard-<I>.log each task's output\n", dir.c_str(), submitted.jobs.c_str(), submitted.squeue.c_str());
     return 1;
   }
   const DatasetStatus s = datasetStatus(dir);

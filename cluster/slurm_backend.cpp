@@ -139,13 +139,10 @@ bool stillListed(const std::string& squeue, const std::string& id, const std::st
   return false;
 }
 
-// The earlier submission's jobs that Slurm still lists. The file is the folder's, which others
-// may write: only job numbers and a cluster's name are taken from it, each checked.
-struct QueuedJobs {
-  std::vector<std::string> ids;
-  std::string cluster;
-};
-QueuedJobs earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
+}  // namespace
+
+SubmittedSlurmJobs readSubmittedSlurmJobs(const std::string& folder) {
+  const fs::path dir(folder);
   const std::string where = showPath((dir / kJobsFile).string());
   const EntryKind kind = entryInside(dir.string(), kJobsFile);
   if (kind == EntryKind::Missing) return {};
@@ -159,22 +156,40 @@ QueuedJobs earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
     throw InputError(where + ": not the job list omnicam writes (not valid JSON)");
   }
   if (!jobs.is_object() || !jobs.contains("array_job")) throw InputError(where + ": not the job list omnicam writes (no array_job)");
-  std::string cluster;
+  SubmittedSlurmJobs submitted;
   if (jobs.contains("cluster")) {
     const nlohmann::json& name = jobs.at("cluster");
     if (!name.is_string() || !std::regex_match(name.get<std::string>(), std::regex(kClusterNamePattern)))
       throw InputError(where + ": cluster: not a Slurm cluster's name");
-    cluster = name.get<std::string>();
+    submitted.cluster = name.get<std::string>();
   }
-  QueuedJobs notEnded{{}, cluster};
-  for (const char* field : {"array_job", "merge_job"}) {
+  for (const auto& [field, job] : {std::pair<const char*, std::string*>{"array_job", &submitted.arrayJob}, {"merge_job", &submitted.mergeJob}}) {
     if (!jobs.contains(field)) continue;
     const nlohmann::json& id = jobs.at(field);
-    if (!id.is_string() || !std::regex_match(id.get<std::string>(), std::regex(kJobNumberPattern))) throw InputError(where + ": " + field + ": not a Slurm job number");
-    const std::string job = id.get<std::string>();
-    const std::string what = std::string("the earlier submission's ") + (field == std::string("array_job") ? "array" : "merge") +
-                             " job " + job + " (" + where + ")";
-    if (std::find(notEnded.ids.begin(), notEnded.ids.end(), job) == notEnded.ids.end() && stillListed(squeue, job, cluster, what))
+    if (!id.is_string() || !std::regex_match(id.get<std::string>(), std::regex(kJobNumberPattern)))
+      throw InputError(where + ": " + field + ": not a Slurm job number");
+    *job = id.get<std::string>();
+  }
+  return submitted;
+}
+
+namespace {
+
+// The earlier submission's jobs that Slurm still lists. The file is the folder's, which others
+// may write: only job numbers and a cluster's name are taken from it, each checked.
+struct QueuedJobs {
+  std::vector<std::string> ids;
+  std::string cluster;
+};
+QueuedJobs earlierJobsNotEnded(const fs::path& dir, const std::string& squeue) {
+  const SubmittedSlurmJobs submitted = readSubmittedSlurmJobs(dir.string());
+  const std::string where = showPath((dir / kJobsFile).string());
+  QueuedJobs notEnded{{}, submitted.cluster};
+  for (const auto& [kind, job] : {std::pair<const char*, std::string>{"array", submitted.arrayJob}, {"merge", submitted.mergeJob}}) {
+    if (job.empty()) continue;
+    const std::string what = std::string("the earlier submission's ") + kind + " job " + job + " (" + where + ")";
+    if (std::find(notEnded.ids.begin(), notEnded.ids.end(), job) == notEnded.ids.end() &&
+        stillListed(squeue, job, submitted.cluster, what))
       notEnded.ids.push_back(job);
   }
   return notEnded;

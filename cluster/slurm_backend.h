@@ -31,6 +31,15 @@ struct SlurmSubmission {
   std::vector<std::string> notes;  // what the user should know of the run (DatasetPlan::notes), as a local run says
 };
 
+// The job numbers the last submission into a dataset folder recorded (slurm/jobs.json): empty
+// when it has none. The folder is untrusted: a link or special file there, other JSON, a job
+// number that is not digits or a cluster name that is not one is an InputError.
+struct SubmittedSlurmJobs {
+  std::string arrayJob, mergeJob;  // digits; mergeJob empty when none was queued
+  std::string cluster;             // when sbatch answered "id;cluster"
+};
+SubmittedSlurmJobs readSubmittedSlurmJobs(const std::string& dir);
+
 // Splits --slurm-args on whitespace; each word must start with '-' and hold no quote, newline or
 // backslash (they become #SBATCH lines). InputError otherwise.
 std::vector<std::string> parseSlurmArgs(const std::string& text);

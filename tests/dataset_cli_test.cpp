@@ -923,8 +923,8 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   ASSERT_TRUE(fs::exists(dir_ / "ds/slurm/render.sbatch"));
   const auto status = omnicam("dataset --status " + path("ds"));
   EXPECT_EQ(status.code, 1) << status.out;
-  EXPECT_NE(status.out.find(path("ds") + ": submitted to Slurm (slurm/render.sbatch), no shard has started yet"), std::string::npos)
-      << status.out;
+  EXPECT_EQ(status.out, path("ds") + ": submitted to Slurm as array job 42 (slurm/render.sbatch), no shard has started yet: "
+                        "`squeue --jobs=42` lists them, slurm/shard-<I>.log each task's output\n");
   // Submitted again while Slurm still lists the jobs (a stand-in squeue): refused, one line, as
   // its tasks would render the same shards beside the first's; once they have ended, taken.
   write("bin/squeue", "#!/bin/sh\necho 42\n");
@@ -983,6 +983,15 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_NE(linked.out.find("shards: is a symbolic link"), std::string::npos) << linked.out;
   EXPECT_FALSE(fs::exists(dir_ / "sbatch_called"));
   EXPECT_TRUE(fs::is_empty(dir_ / "elsewhere"));
+  // Jobs sent to another cluster (sbatch's "id;cluster"): --status's squeue asks that cluster.
+  write("bin/sbatch", "#!/bin/sh\necho '7;north'\n");
+  const auto north = testing::runShell("PATH=" + path("bin") + ":$PATH " + std::string(OMNICAM_BINARY) + " dataset " + spec + " -o " +
+                                       path("north") + " --backend slurm --shards 2 2>&1");
+  ASSERT_EQ(north.code, 0) << north.out;
+  const auto northStatus = omnicam("dataset --status " + path("north"));
+  EXPECT_NE(northStatus.out.find(": submitted to Slurm as array job 7 (slurm/render.sbatch), no shard has started yet: "
+                                 "`squeue --jobs=7 --clusters=north` lists them"),
+            std::string::npos) << northStatus.out;
 }
 
 // Alpha is compared where both images have it: a folder of one's own RGB PNGs (no alpha) against a

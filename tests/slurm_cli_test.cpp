@@ -76,6 +76,12 @@ TEST_F(SlurmCliTest, AJobArrayRendersTheShardsAResubmissionRedoesOnlyTheKilledOn
   EXPECT_NE(twice.out.find("the earlier submission's jobs " + arrayJob + "," + mergeJob + " are still queued or running"),
             std::string::npos) << twice.out;
   EXPECT_EQ(readFile(out / "slurm/render.sbatch"), scriptBefore);
+  // --status names the jobs to look for.
+  const auto whileHeld = testing::runShell(std::string(OMNICAM_BINARY) + " dataset --status " + out.string() + " 2>&1");
+  EXPECT_EQ(whileHeld.code, 1) << whileHeld.out;
+  EXPECT_NE(whileHeld.out.find("\n  submitted to Slurm as array job " + arrayJob + " and merge job " + mergeJob + ": `squeue --jobs=" +
+                               arrayJob + "," + mergeJob + "` lists them while they are queued or running\n"),
+            std::string::npos) << whileHeld.out;
   ASSERT_EQ(cluster.shell("/usr/bin/scancel --batch --signal=KILL " + arrayJob + "_1").code, 0);
   // Still held until it is gone: the hold is released only when the test ends.
   ASSERT_TRUE(cluster.waitUntilDone({arrayJob, mergeJob}, 300.0)) << cluster.shell("/usr/bin/squeue").out << cluster.logs();
