@@ -1753,10 +1753,11 @@ TEST_F(DatasetCliTest, TimedWaypointsGiveAFrameEveryIntervalWithTheVelocityItIsD
 }
 
 // Frame i's timestamp is i × interval as a decimal: 0.3 at 0.1 s, where 3 · 0.1 in doubles is
-// 0.30000000000000004. The manifest, COCO and poses.tum say the same number.
+// 0.30000000000000004. The manifest, COCO and poses.tum say the same number; poses.tum's
+// rotations are written without rounding residue.
 TEST_F(DatasetCliTest, TimestampsAreTheIntervalsDecimalMultiples) {
   const std::string spec = robocupSpec("spec.json", R"("size": 16, "frame_interval_s": 0.1, "outputs": {"depth": false, "normal": false, "coco": true},
-    "poses": {"list": [[0, 0, 0], [0.1, 0, 0], [0.2, 0, 0], [0.3, 0, 0], [0.4, 0, 0], [0.5, 0, 0], [0.6, 0, 0], [0.7, 0, 0]]})");
+    "poses": {"list": [[0, 0, 180], [0.1, 0, 180], [0.2, 0, 180], [0.3, 0, 180], [0.4, 0, 180], [0.5, 0, 180], [0.6, 0, 180], [0.7, 0, 180]]})");
   const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
   ASSERT_EQ(run.code, 0) << run.out;
   const std::vector<double> decimal{0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7};
@@ -1766,8 +1767,13 @@ TEST_F(DatasetCliTest, TimestampsAreTheIntervalsDecimalMultiples) {
   const json images = json::parse(readFile(path("ds/cam0/coco.json"))).at("images");
   std::istringstream tum(readFile(path("ds/cam0/poses.tum")));
   std::vector<std::string> tumStamps;
-  for (std::string line; std::getline(tum, line);)
-    if (!line.empty() && line[0] != '#') tumStamps.push_back(line.substr(0, line.find(' ')));
+  for (std::string line; std::getline(tum, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    tumStamps.push_back(line.substr(0, line.find(' ')));
+    // Facing -X: the camera frame (Z down) is a half turn about Y, written exactly (not
+    // "6.123233995736766e-17 1 0 -0", a right angle's cosine and a negative zero).
+    EXPECT_EQ(line.substr(line.size() - 8), " 0 1 0 0") << line;
+  }
   ASSERT_EQ(frames.size(), decimal.size());
   ASSERT_EQ(images.size(), decimal.size());
   ASSERT_EQ(tumStamps.size(), decimal.size());
