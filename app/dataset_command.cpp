@@ -194,7 +194,7 @@ int runLocal(const DatasetArgs& a, const CLI::App& cmd) {
     for (const std::string& note : notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
   };
   options.onStart = [&](int kept, int total) { progress = std::make_unique<Progress>("dataset " + a.out, total, kept); };
-  options.onFrame = [&](int, int) { progress->step(); };
+  options.onFrame = [&](int done, int) { progress->advanceTo(done); };
   options.onWaitForShards = [&] {
     std::fprintf(stderr, "omnicam: waiting for another shard's check of %s (it holds shards/ until its manifest is written)\n",
                  showPath(a.out + "/shards").c_str());

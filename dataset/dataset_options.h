@@ -26,7 +26,8 @@ struct DatasetRunOptions {
   // (DatasetPlan::notes), then the frames kept from an earlier run, of `total`.
   std::function<void(const std::vector<std::string>& notes)> onNotes;
   std::function<void(int kept, int total)> onStart;
-  // Called after every finished frame: frames done (kept + rendered) of `total`.
+  // Called as frames finish: frames done (kept + rendered) of `total`. A window's frames (8 with
+  // the fast engine, a batch with Blender) finish together, so `done` grows by up to that many.
   std::function<void(int done, int total)> onFrame;
   // Checked between frames: set (e.g. by SIGINT) to stop after the frame in progress; a shard
   // waiting for shards/ stops waiting.

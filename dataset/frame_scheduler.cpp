@@ -145,8 +145,10 @@ int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const Datase
     for (std::optional<FrameRecord>& record : records) {
       manifest.frames[record->index] = std::move(*record);
       ++rendered;
-      if (options.onFrame) options.onFrame(done + rendered, total);
     }
+    // Once per window: its frames finish together, and a count told frame by frame would show
+    // rates that grow within the window at one instant.
+    if (options.onFrame) options.onFrame(done + rendered, total);
     // The first finished window is listed at once, so that a run stopped early, however fast
     // the machine, leaves frames to resume from and a --status that shows them.
     const auto now = std::chrono::steady_clock::now();

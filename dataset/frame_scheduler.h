@@ -14,7 +14,7 @@ namespace omnicam {
 // Renders the frames `todo` of `plan` into `folder` (the dataset folder, opened once) window by window, listing each window's
 // frames in `manifest` (written as `plan.range().manifestName`: the first window at once, then at
 // most once a second) until done or options.stopRequested. options.onFrame counts from `done`
-// of `total`. Returns the number of frames rendered.
+// of `total`, once per window. Returns the number of frames rendered.
 int renderFrames(const DatasetPlan& plan, const SafeFolder& folder, const DatasetRunOptions& options,
                  const std::vector<int>& todo, DatasetManifest& manifest, int done, int total);
 

@@ -1784,6 +1784,21 @@ TEST_F(DatasetCliTest, TimestampsAreTheIntervalsDecimalMultiples) {
   }
 }
 
+// The fast engine finishes a window of 8 frames at once: the log's progress lines count whole
+// windows. Told frame by frame, one instant printed 4/40 at 1.0 frames/s and 8/40 at 2.0.
+TEST_F(DatasetCliTest, ProgressCountsTheFramesAWindowFinishesTogether) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 16, "outputs": {"depth": false, "normal": false},
+    "poses": {"path": "thesis-loop", "frames": 20})");
+  const auto run = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const std::regex progressLine("dataset " + path("ds") + R"( (\d+)/20  [0-9.]+ frames/s  ETA \d+:\d\d)");
+  std::vector<int> counts;
+  std::istringstream lines(run.out);
+  for (std::string line; std::getline(lines, line);)
+    if (std::smatch m; std::regex_match(line, m, progressLine)) counts.push_back(std::stoi(m[1]));
+  EXPECT_EQ(counts, (std::vector<int>{8, 16, 20})) << run.out;
+}
+
 TEST_F(DatasetCliTest, BlenderReadsEveryLayerOfAMultilayerFrame) {
   const std::string spec = robocupSpec("spec.json", R"("size": 48, "poses": {"list": [[0.5, 0.3, 20]]}, )" + everyOutput("multilayer"));
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds")).code, 0);

@@ -52,8 +52,12 @@ py::dict runDatasetFromPython(const PyPath& specPath, const PyPath& out, bool ov
       stop = true;
     }
   };
-  options.onStart = [&](int kept, int total) { report(kept, total); };
-  options.onFrame = report;
+  int reported = 0;
+  options.onStart = [&](int kept, int total) { report(reported = kept, total); };
+  // Python's progress is called for every frame, a window's one after another as they are listed.
+  options.onFrame = [&](int done, int total) {
+    while (reported < done) report(++reported, total);
+  };
   DatasetRunResult result;
   try {
     py::gil_scoped_release release;
