@@ -201,6 +201,11 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
   if (file.is_object() && file.contains("format") && file["format"] == kSceneFormat)
     throw InputError("--rig: " + showPath(path) + " is a scene file: give it as " + sceneGiven +
                      " (--rig takes a scene's \"rig\" object)");
+  // A rig has no "format": another of omnicam's files (a dataset's manifest, a spec) is named as such.
+  if (file.is_object() && file.contains("format") && file["format"].is_string())
+    throw InputError("--rig: " + showPath(path) + " is not a rig but a file of format " + quote(file["format"].get<std::string>()) +
+                     " (--rig takes a scene's \"rig\" object; a dataset's frames need none: their manifest gives "
+                     "each camera's)");
   return rigFromJson(file, path, "rig");
 }
 

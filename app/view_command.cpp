@@ -1,8 +1,8 @@
 // omnicam view IN --as birdseye|panorama|perspective [--variant thesis|exact] [--size WxH]
 //              [--zw Z] [--yaw DEG] [--pitch DEG] [--fov DEG] [--scene SCENE | --rig RIG.json] -o OUT
-// Works on any omni image: the camera model comes from IN's sidecar; an image without one (a
-// real camera's, say) needs its mirror from --scene or --rig — assuming a default would give a
-// wrong view without a word.
+// Works on any omni image: the camera model comes from IN's sidecar, or for a dataset's frame from
+// its manifest; any other image (a real camera's, say) needs its mirror from --scene or --rig —
+// assuming a default would give a wrong view without a word.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -10,6 +10,7 @@
 #include "atomic_file.h"
 #include "cli_util.h"
 #include "commands.h"
+#include "dataset_reader.h"
 #include "errors.h"
 #include "make_camera.h"
 #include "placement.h"
@@ -49,11 +50,19 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a) {
   const std::optional<nlohmann::json> own = fromFlag ? omnicamSidecar(a.in) : strict ? std::optional(strict->json) : std::nullopt;
   if (own && own->contains("view"))
     throw InputError(showPath(a.in) + ": is a view (its sidecar's \"view\"), not an omni image: view its source image (\"source_image\")");
+  if (!fromFlag && strict) return {strict->rig, strict->json};
+  // A dataset's frame has no sidecar: its manifest gives the camera (the frame's own rig, when
+  // the robot vibrates).
+  const std::optional<DatasetImageLocation> inDataset = own ? std::nullopt : locateInDataset(a.in);
+  std::optional<std::pair<RigSpec, nlohmann::json>> datasetCamera;
+  if (inDataset)
+    datasetCamera = {DatasetReader(inDataset->dir).cameraRig(inDataset->frame, inDataset->camera),
+                     {{"rig_from", {{"dataset", inDataset->dir}, {"camera", inDataset->camera}, {"frame", inDataset->frame}}}}};
   if (!fromFlag) {
-    if (!strict)
+    if (!datasetCamera)
       throw InputError(showPath(a.in) + ": has no sidecar (" + showPath(sidecarPath(a.in)) +
-                       "), so its mirror is unknown: give --scene SCENE or --rig RIG.json");
-    return {strict->rig, strict->json};
+                       ") and is no frame a dataset's manifest lists, so its mirror is unknown: give --scene SCENE or --rig RIG.json");
+    return *datasetCamera;
   }
   RigSpec rig;
   nlohmann::json sidecar = nlohmann::json::object();
@@ -66,13 +75,21 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a) {
     rig = readRigFlag(a.rig, "--scene");
     sidecar["rig_from"] = {{"rig_file", a.rig}};
   }
+  const std::string flag = a.scene.empty() ? "--rig" : "--scene";
   if (own) {
     // Compared at the sidecar's own size, as the render that wrote it resized the same rig.
     const RigSpec stated = sidecarFromText(own->dump(), sidecarPath(a.in)).rig;
     if (!(rig.resized(stated.imageWidth()) == stated))
-      throw InputError(std::string(a.scene.empty() ? "--rig" : "--scene") + ": " + showPath(a.in) + "'s sidecar (" +
-                       showPath(sidecarPath(a.in)) + ") states another camera; leave the flag out to use it");
+      throw InputError(flag + ": " + showPath(a.in) + "'s sidecar (" + showPath(sidecarPath(a.in)) +
+                       ") states another camera; leave the flag out to use it");
     return {stated, *own};  // the same camera: the image's own sidecar, with its pose and source
+  }
+  if (datasetCamera) {
+    if (!(rig.resized(datasetCamera->first.imageWidth()) == datasetCamera->first))
+      throw InputError(flag + ": " + showPath(a.in) + " is frame " + std::to_string(inDataset->frame) + " of camera " +
+                       quote(inDataset->camera) + " of the dataset " + showPath(inDataset->dir) +
+                       ", whose manifest states another camera; leave the flag out to use it");
+    return *datasetCamera;
   }
   return {rig, sidecar};
 }

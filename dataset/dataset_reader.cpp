@@ -1,5 +1,7 @@
 #include "dataset_reader.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <set>
 
 #include "dataset_folder.h"
@@ -47,6 +49,42 @@ FileRecord DatasetReader::record(std::optional<int> index, const std::string& ca
     return {files.at(kind).at("path").get<std::string>(), files.at(kind).at("sha256").get<std::string>()};
   }
   throw InputError(where + ": not in the manifest");
+}
+
+RigSpec DatasetReader::cameraRig(int index, const std::string& camera) const {
+  const FrameRecord& f = frame(index);
+  const auto c = f.cameras.find(camera);
+  if (c == f.cameras.end()) throw InputError(showPath(dir_) + ": camera " + quote(camera) + ": not in frame " + std::to_string(index));
+  if (c->second.rig) return *c->second.rig;
+  const nlohmann::json& cameras = manifest_.header.at("cameras");
+  for (size_t k = 0; k < cameras.size(); ++k) {
+    if (cameras[k].at("name") != camera) continue;
+    const std::string where = "cameras[" + std::to_string(k) + "].rig";
+    if (!cameras[k].contains("rig")) throw InputError(showPath(dir_ + "/" + kManifestName) + ": " + where + ": missing");
+    return rigFromJson(cameras[k].at("rig"), dir_ + "/" + kManifestName, where);
+  }
+  throw InputError(showPath(dir_) + ": camera " + quote(camera) + ": not in the manifest");
+}
+
+std::optional<DatasetImageLocation> locateInDataset(const std::string& image) {
+  namespace fs = std::filesystem;
+  const fs::path path = fs::absolute(image).lexically_normal();
+  const fs::path kindFolder = path.parent_path(), cameraFolder = kindFolder.parent_path(), dir = cameraFolder.parent_path();
+  const std::string stem = path.stem().string();
+  if (stem.size() != 6 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }) || dir == cameraFolder ||
+      entryInside(dir.string(), kManifestName) != EntryKind::File)
+    return std::nullopt;
+  const DatasetReader reader(dir.string());
+  const int index = std::stoi(stem);
+  const std::string camera = cameraFolder.filename().string();
+  const std::string listed = camera + "/" + kindFolder.filename().string() + "/" + path.filename().string();
+  const auto frame = reader.manifest().frames.find(index);
+  if (frame == reader.manifest().frames.end()) return std::nullopt;
+  const auto cameraFrame = frame->second.cameras.find(camera);
+  if (cameraFrame == frame->second.cameras.end()) return std::nullopt;
+  for (const auto& [kind, file] : cameraFrame->second.files)
+    if (file.path == listed) return DatasetImageLocation{dir.string(), camera, index};
+  return std::nullopt;
 }
 
 std::string DatasetReader::fileBytes(std::optional<int> index, const std::string& camera, const std::string& kind,

@@ -50,6 +50,9 @@ class DatasetReader {
   std::map<OutputKind, DecodedOutput> readOutputs(int index, const std::string& camera, const std::vector<OutputKind>& kinds,
                                                   bool checkHash) const;
   DecodedOutput readOutput(int index, const std::string& camera, OutputKind kind, bool checkHash) const;
+  // The rig `camera` rendered frame `index` with: the frame's own (a vibrating robot's), else the
+  // camera's of the header. InputError naming the manifest's field when it is not a rig.
+  RigSpec cameraRig(int index, const std::string& camera) const;
 
  private:
   FileRecord record(std::optional<int> index, const std::string& camera, const std::string& kind) const;
@@ -58,5 +61,15 @@ class DatasetReader {
   DatasetManifest manifest_;
   std::vector<int> frames_;
 };
+
+// Where an image file lies in a dataset: `frame` of `camera` in the dataset folder `dir`, when
+// the file is DIR/<camera>/<kind>/NNNNNN.<ext> and DIR's manifest lists it there (a frame copied
+// elsewhere, or a folder that only looks like a dataset's, is none). InputError for a manifest
+// that is there but cannot be read.
+struct DatasetImageLocation {
+  std::string dir, camera;
+  int frame = 0;
+};
+std::optional<DatasetImageLocation> locateInDataset(const std::string& image);
 
 }  // namespace omnicam

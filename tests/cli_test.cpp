@@ -700,6 +700,55 @@ TEST_F(CliTest, ViewsGetSidecarsAndImagesWithoutOneNeedARig) {
   EXPECT_NE(readImage(path("p3.png")).pixels, p1.pixels);
 }
 
+// A dataset's frame has no sidecar: view takes its camera from the dataset's manifest — each
+// camera's own rig, the frame's own when the robot vibrates — and refuses a --scene or --rig that
+// states another camera (it used the scene's rig without a word).
+TEST_F(CliTest, ViewTakesADatasetFramesCameraFromItsManifest) {
+  const std::string rearRig = R"({"height": 0.30, "mirror": {"k": 6}})";
+  std::ofstream(path("rear_rig.json")) << rearRig;
+  std::ofstream(path("two.json")) << R"({"format": "omnicam-dataset/1", "scene": ")" << kScene << R"(", "size": 96,
+    "outputs": {"depth": false, "normal": false}, "poses": {"path": "thesis-loop", "frames": 2},
+    "cameras": [{"name": "front"}, {"name": "rear", "mount": {"x": -0.1, "yaw_deg": 180}, "rig": )" << rearRig << "}]}";
+  ASSERT_EQ(run("dataset " + path("two.json") + " -o " + path("ds")).code, 0);
+  const CommandResult rear = run("view " + path("ds/rear/rgb/000001.png") + " --as panorama -o " + path("rear.png"));
+  ASSERT_EQ(rear.code, 0) << rear.out;
+  std::ifstream sidecar(path("rear.png.json"));
+  EXPECT_EQ(nlohmann::json::parse(sidecar).at("rig_from"),
+            nlohmann::json({{"dataset", path("ds")}, {"camera", "rear"}, {"frame", 1}}));
+  // The same image elsewhere, with the rear camera's rig given: the same panorama; with the
+  // scene's (another mirror): another.
+  fs::copy_file(path("ds/rear/rgb/000001.png"), path("copy.png"));
+  ASSERT_EQ(run("view " + path("copy.png") + " --as panorama --rig " + path("rear_rig.json") + " -o " + path("given.png")).code, 0);
+  EXPECT_EQ(readImage(path("rear.png")).pixels, readImage(path("given.png")).pixels);
+  ASSERT_EQ(run("view " + path("copy.png") + " --as panorama --scene " + kScene + " -o " + path("scene.png")).code, 0);
+  EXPECT_NE(readImage(path("rear.png")).pixels, readImage(path("scene.png")).pixels);
+  // A flag stating another camera than the manifest's is refused; the same camera is none.
+  const CommandResult other = run("view " + path("ds/rear/rgb/000001.png") + " --as panorama --scene " + kScene + " -o " + path("x.png"));
+  EXPECT_EQ(other.code, 2) << other.out;
+  EXPECT_EQ(other.out, "omnicam: --scene: " + path("ds/rear/rgb/000001.png") + " is frame 1 of camera \"rear\" of the dataset " +
+                           path("ds") + ", whose manifest states another camera; leave the flag out to use it\n");
+  EXPECT_FALSE(fs::exists(path("x.png")));
+  EXPECT_EQ(run("view " + path("ds/front/rgb/000001.png") + " --as panorama --scene " + kScene + " -o " + path("front.png")).code, 0);
+  const CommandResult manifest = run("view " + path("copy.png") + " --as panorama --rig " + path("ds/manifest.json") + " -o " + path("x.png"));
+  EXPECT_EQ(manifest.code, 2) << manifest.out;
+  EXPECT_NE(manifest.out.find("is not a rig but a file of format \"omnicam-dataset-manifest/1\""), std::string::npos) << manifest.out;
+
+  // A vibrating robot: each frame's own rig, as the manifest records it.
+  std::ofstream(path("shaken.json")) << R"({"format": "omnicam-dataset/1", "scene": ")" << kScene << R"(", "size": 96,
+    "outputs": {"depth": false, "normal": false}, "poses": {"path": "thesis-loop", "frames": 2},
+    "vibration": {"seed": 3, "camera_rotation_deg": [2, 2, 2]}})";
+  ASSERT_EQ(run("dataset " + path("shaken.json") + " -o " + path("shaken")).code, 0);
+  std::ifstream shakenManifest(path("shaken/manifest.json"));
+  const nlohmann::json frameRig = nlohmann::json::parse(shakenManifest).at("frames").at(1).at("cameras").at("cam0").at("rig");
+  std::ofstream(path("frame_rig.json")) << frameRig.dump();
+  ASSERT_EQ(run("view " + path("shaken/cam0/rgb/000001.png") + " --as panorama -o " + path("shaken.png")).code, 0);
+  fs::copy_file(path("shaken/cam0/rgb/000001.png"), path("shaken_copy.png"));
+  ASSERT_EQ(run("view " + path("shaken_copy.png") + " --as panorama --rig " + path("frame_rig.json") + " -o " + path("shaken_given.png")).code, 0);
+  EXPECT_EQ(readImage(path("shaken.png")).pixels, readImage(path("shaken_given.png")).pixels);
+  ASSERT_EQ(run("view " + path("shaken_copy.png") + " --as panorama --scene " + kScene + " -o " + path("unshaken.png")).code, 0);
+  EXPECT_NE(readImage(path("shaken.png")).pixels, readImage(path("unshaken.png")).pixels);
+}
+
 TEST_F(CliTest, OutputsAreByteIdenticalAcrossRunsSoSha256ProvesDeterminism) {
   for (const char* ext : {"exr", "png"}) {
     const std::string a = path(std::string("a.") + ext), b = path(std::string("b.") + ext);
