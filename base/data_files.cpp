@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "errors.h"
+
 namespace omnicam {
 
 namespace fs = std::filesystem;
@@ -44,5 +46,17 @@ fs::path dataRoot() { return OMNICAM_SOURCE_ROOT; }
 #endif
 
 fs::path dataFile(std::string_view relative) { return dataRoot() / fs::path(relative); }
+
+std::string bundledFileHint(const std::string& name, std::string_view folder) {
+  std::error_code ec;
+  const fs::path given(name);
+  if (!given.has_filename() || given.is_absolute() || *given.lexically_normal().begin() == ".." || fs::exists(given, ec)) return "";
+  try {
+    const fs::path bundled = given.has_parent_path() ? dataFile(given.lexically_normal().string()) : dataFile(folder) / given;
+    if (fs::is_regular_file(bundled, ec)) return "; omnicam comes with " + showPath(bundled.string());
+  } catch (const std::runtime_error&) {  // no data root to look in: no hint
+  }
+  return "";
+}
 
 }  // namespace omnicam

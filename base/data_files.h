@@ -6,6 +6,7 @@
 // - an installed Python package (pyproject.toml) carries them in `omnicam/data/` and finds them
 //   beside its own binaries, wherever it was installed, never in a source or build tree.
 #include <filesystem>
+#include <string>
 #include <string_view>
 
 namespace omnicam {
@@ -16,5 +17,10 @@ std::filesystem::path dataRoot();
 
 // dataRoot() / relative, e.g. dataFile("refrender/blender_driver.py").
 std::filesystem::path dataFile(std::string_view relative);
+
+// For an input `name` that does not exist here: "; omnicam comes with PATH" when omnicam's own
+// files have it — a bare name in `folder` ("robocup2006.json" in scenes), or the path as the
+// docs write it from the repository ("docs/examples/dataset.json") — else "".
+std::string bundledFileHint(const std::string& name, std::string_view folder);
 
 }  // namespace omnicam

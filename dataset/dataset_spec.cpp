@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "data_files.h"
 #include "errors.h"
 #include "file_confinement.h"
 #include "input_limits.h"
@@ -23,7 +24,6 @@ using nlohmann::json;
 
 namespace {
 
-constexpr const char* kFormat = "omnicam-dataset/1";
 
 }  // namespace
 
@@ -385,7 +385,7 @@ void readSampling(JsonFields& top, DatasetSpec& spec) {
 DatasetSpec loadDatasetSpec(const std::string& file) {
   std::string why;
   const auto text = readWholeFile(file, why, limits::kMaxJsonFileBytes);
-  if (!text) throw InputError(showPath(file) + ": cannot open dataset spec (" + why + ")");
+  if (!text) throw InputError(showPath(file) + ": cannot open dataset spec (" + why + ")" + bundledFileHint(file, "docs/examples"));
   return datasetSpecFromText(*text, file);
 }
 
@@ -395,9 +395,9 @@ DatasetSpec datasetSpecFromText(const std::string& text, const std::string& file
   spec.sha256 = sha256OfBytes(text);
   spec.json = parseJsonText(text, file);
   JsonFields top(spec.json, file, "");
-  if (const std::string format = top.string("format"); format != kFormat)
-    top.fail("format", "must be \"" + std::string(kFormat) + "\"" +
-                           (format == kSceneFormat ? std::string(": this is a scene file; a dataset spec names one in \"scene\"") : ""));
+  if (const std::string format = top.string("format"); format != kDatasetSpecFormat)
+    top.fail("format", "must be \"" + std::string(kDatasetSpecFormat) + "\"" + formatMismatchHint(format, kDatasetSpecFormat) +
+                           (format == kSceneFormat ? "; a dataset spec names one in \"scene\"" : ""));
   top.string("description", "");
   if (top.has("comment")) top.raw("comment");
   const std::string scene = top.string("scene");

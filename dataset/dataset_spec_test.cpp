@@ -46,6 +46,8 @@ TEST(DatasetSpec, TheDocumentedExampleLoadsAndItsPosesResolve) {
 
 TEST(DatasetSpec, ErrorsNameTheField) {
   EXPECT_EQ(errorOf(spec("")), "");
+  EXPECT_EQ(errorOf(R"({"format": "omnicam-scene/1", "objects": []})"),
+            "spec.json: format: must be \"omnicam-dataset/1\"; this is a scene file; a dataset spec names one in \"scene\"");
   EXPECT_EQ(errorOf(spec(R"("spp": 3)")), "spec.json: spp: must be a perfect square n*n from 1 to 1024 (got 3)");
   EXPECT_EQ(errorOf(spec(R"("engine": "mitsuba")")), "spec.json: engine: must be fast, povray or blender (got \"mitsuba\")");
   EXPECT_EQ(errorOf(spec(R"("colour": 1)")), "spec.json: colour: unknown field");

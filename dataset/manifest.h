@@ -12,11 +12,11 @@
 #include "dataset_spec.h"
 #include "output_kinds.h"
 #include "rig.h"
+#include "file_formats.h"
 #include "safe_files.h"
 
 namespace omnicam {
 
-inline constexpr const char* kManifestFormat = "omnicam-dataset-manifest/1";
 inline constexpr const char* kManifestName = "manifest.json";
 // A calibration sequence's Kalibr files beside the manifest (calibration_bag.h), listed in the
 // header's calibration.files: the only files outside the cameras' folders.

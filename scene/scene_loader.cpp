@@ -506,18 +506,7 @@ RigSpec rigFromJson(const nlohmann::json& rig, const std::string& file, const st
   return readRig(JsonFields(rig, file, where));
 }
 
-std::string bundledSceneHint(const std::string& name) {
-  std::error_code ec;
-  const std::filesystem::path given(name);
-  const bool bareName = given.has_filename() && !std::filesystem::exists(given, ec) &&
-                        (!given.has_parent_path() || given.parent_path() == "scenes");
-  try {
-    const std::filesystem::path bundled = dataFile("scenes") / given.filename();
-    if (bareName && std::filesystem::is_regular_file(bundled, ec)) return "; omnicam comes with " + showPath(bundled.string());
-  } catch (const std::runtime_error&) {  // no data root to look in: no hint
-  }
-  return "";
-}
+std::string bundledSceneHint(const std::string& name) { return bundledFileHint(name, "scenes"); }
 
 namespace {
 
@@ -555,7 +544,9 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   scene.path = file;
   scene.sha256 = sha256OfBytes(text);
   const std::string format = top.string("format");
-  if (format != kSceneFormat) top.fail("format", "must be \"" + std::string(kSceneFormat) + "\"");
+  if (format != kSceneFormat)
+    top.fail("format", "must be \"" + std::string(kSceneFormat) + "\"" + formatMismatchHint(format, kSceneFormat) +
+                           (format == kDatasetSpecFormat ? ", which names its scene in \"scene\"" : ""));
   scene.name = top.string("name", fs::path(file).stem().string());
   top.string("description", "");
   scene.background = top.colour("background", scene.background, 1e6);

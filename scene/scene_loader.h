@@ -2,14 +2,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "file_formats.h"
 #include "input_limits.h"
 #include "json_text.h"
 #include "scene.h"
 
 namespace omnicam {
-
-// The "format" a scene file states (docs/scene-format.md).
-inline constexpr const char* kSceneFormat = "omnicam-scene/1";
 
 struct SceneLoadOptions {
   // Files a scene pulls in (textures, glTF and the glTF's buffers and images) must resolve,

@@ -115,6 +115,11 @@ TEST_F(SceneLoaderTest, RejectsNegativeSizesWrongTypesAndMissingTextures) {
   EXPECT_NE(load("{not json").find(file + ": not valid JSON"), std::string::npos);
   EXPECT_EQ(load(R"({"format": "other", "materials": {}, "objects": []})"),
             file + ": format: must be \"omnicam-scene/1\"");
+  // Another of omnicam's files is named as what it is.
+  EXPECT_EQ(load(R"({"format": "omnicam-dataset/1", "scene": "hall.json"})"),
+            file + ": format: must be \"omnicam-scene/1\"; this is a dataset spec, which names its scene in \"scene\"");
+  EXPECT_EQ(load(R"({"format": "omnicam-dataset-manifest/1", "frames": []})"),
+            file + ": format: must be \"omnicam-scene/1\"; this is a dataset folder's manifest");
 }
 
 // Issue #45: emission's documented range is [0, 1e6] (a light's), one number or three; an array
