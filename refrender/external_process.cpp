@@ -204,6 +204,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   if (!result.timedOut && WIFSIGNALED(status)) result.endedBySignal = WTERMSIG(status);
   result.notFound = result.exitCode == 127;  // a shell's or env's "command not found" (a script's interpreter)
   result.logTail = tailOfFile(logPath, 15);
+  // A failure's message quotes the tail: a blank there reads as a lost message.
+  if (result.logTail.empty() && (result.timedOut || result.exitCode != 0)) result.logTail = "(no output)\n";
   return result;
 }
 

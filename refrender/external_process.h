@@ -12,7 +12,7 @@ struct ProcessResult {
   int endedBySignal = 0;  // the signal that ended it, if one did (not by omnicam's timeout)
   bool timedOut = false;
   bool notFound = false;
-  std::string logTail;  // last lines of stdout + stderr
+  std::string logTail;  // last lines of stdout + stderr; "(no output)" when a failed or timed-out program wrote none
 };
 
 struct ProcessOptions {

@@ -115,3 +115,16 @@ TEST(RunProcess, AProgramThatIsNowhereIsReportedNotFoundWithoutStartingAnything)
   EXPECT_TRUE(path.notFound);
   EXPECT_EQ(path.logTail, "cannot start: " + scratch.file("absent/tool") + ": no such program");
 }
+
+TEST(RunProcess, AFailureThatWroteNothingSaysSo) {
+  const ScratchFolder scratch("run_process_silent");
+  const fs::path log = scratch.path() / "silent.log";
+  const ProcessResult failed = runProcess({"/bin/sh", "-c", "exit 3"}, scratch.path().string(), log.string(), 60.0);
+  EXPECT_EQ(failed.exitCode, 3);
+  EXPECT_EQ(failed.logTail, "(no output)\n");
+  const ProcessResult passed = runProcess({"/bin/sh", "-c", "exit 0"}, scratch.path().string(), log.string(), 60.0);
+  EXPECT_EQ(passed.exitCode, 0);
+  EXPECT_EQ(passed.logTail, "") << "a program that succeeds silently has nothing to say";
+  const ProcessResult said = runProcess({"/bin/sh", "-c", "echo why; exit 3"}, scratch.path().string(), log.string(), 60.0);
+  EXPECT_EQ(said.logTail, "why\n");
+}

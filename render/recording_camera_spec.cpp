@@ -6,6 +6,7 @@
 #include <random>
 #include <set>
 
+#include "closest_name.h"
 #include "errors.h"
 #include "json_fields.h"
 #include "json_text.h"
@@ -387,7 +388,7 @@ RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
       throw InputError(fieldLocation(file, where) + ": unknown preset " + quote(j.get<std::string>()) +
-                       " (" + wordList(kPresets) + "; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
+                       didYouMean(j.get<std::string>(), recordingPresetNames()) + " (" + wordList(kPresets) + "; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
     return spec;

@@ -149,6 +149,7 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"preset": "dslr"})"),
             "spec.json: recording.preset: must be one of webcam, machine_vision, phone (got \"dslr\")");
   EXPECT_EQ(errorOf(R"("dslr")"), "spec.json: recording: unknown preset \"dslr\" (webcam, machine_vision, phone; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
+  EXPECT_EQ(errorOf(R"("webcm")"), "spec.json: recording: unknown preset \"webcm\" (did you mean webcam?) (webcam, machine_vision, phone; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
   EXPECT_EQ(errorOf(R"({"jpeg_quality": 80.5})"), "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (0: no JPEG) (got 80.5)");
   // An integer's range has integer ends ([60.2, 60.8] drew 60, outside it), and no log-uniform draw.
   EXPECT_EQ(errorOf(R"({"jpeg_quality": {"uniform": [60.2, 60.8]}})"),

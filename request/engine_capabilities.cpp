@@ -205,10 +205,10 @@ void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlace
                      enginesThat(c, [](const EngineCapabilities& e) { return e.aovs; }));
 }
 
-void checkEngineShading(EngineKind engine, Shading shading) {
+void checkEngineShading(EngineKind engine, Shading shading, const std::string& shadingField) {
   const EngineCapabilities& c = capabilitiesOf(engine);
   if (shading == Shading::Path && !c.pathShading)
-    throw InputError(std::string("shading path: ") + c.shownName + " has no physically based light; render it with " +
+    throw InputError(shadingField + " path: " + c.shownName + " has no physically based light; render it with " +
                      enginesThat(c, [](const EngineCapabilities& e) { return e.pathShading; }));
 }
 

@@ -61,7 +61,8 @@ std::string engineChoices();
 // InputError naming what `engine` cannot render of this rig at this placement (and its AOVs when
 // `aovs`), and which engines can; nothing when it can.
 void checkEngineRenders(EngineKind engine, const RigSpec& rig, const CameraPlacement& placement, bool aovs = false);
-// InputError naming the engines that shade this way, unless `engine` does.
-void checkEngineShading(EngineKind engine, Shading shading);
+// InputError naming the engines that shade this way, unless `engine` does; the message starts
+// with `shadingField` as the user's front names the setting ("--shading path: …").
+void checkEngineShading(EngineKind engine, Shading shading, const std::string& shadingField = "shading");
 
 }  // namespace omnicam

@@ -123,6 +123,10 @@ void readSampling(const RequestFields& f, const Reader& r, RenderRequest& q) {
   const auto parsed = parseShading(shading);
   if (!parsed) r.fail(F::Shading, "must be unlit, lit or path (got " + quote(shading) + ")");
   q.shading = *parsed;
+  // Said here in the front's words (--shading); makeEngine checks it again for other callers.
+  const std::optional<CubeMapOptions> cube = q.cubeMap();
+  if (const auto kind = engineKindNamed(q.engine, cube ? cube->mode : OmniMode::Exact))
+    checkEngineShading(*kind, q.shading, r.qualified(F::Shading));
   q.traced = f.isOn(F::Traced).value_or(q.traced);
   if (q.traced && (q.engine != "fast" || q.mode != "exact"))
     r.fail(F::Traced, "only with the fast engine in exact mode (the other engines always trace)");
