@@ -155,17 +155,20 @@ int runDemo(const DemoArgs& a) {
   const DemoBudgetInputs budget{a.spp, a.povray, a.blender, a.budgetScale};
   const std::vector<DemoSection>& sections = demoSections();
   std::vector<SectionRun> runs(sections.size());
+  const auto chosen = [&](const std::string& name) { return a.only.empty() || std::find(a.only.begin(), a.only.end(), name) != a.only.end(); };
+  const size_t toRun = static_cast<size_t>(std::count_if(kRunOrder.begin(), kRunOrder.end(), [&](const auto& name) { return chosen(name); }));
+  size_t started = 0;  // the progress lines count the sections that run (--sections)
   for (size_t n = 0; n < kRunOrder.size(); ++n) {
     const size_t k = static_cast<size_t>(
         std::find_if(sections.begin(), sections.end(), [&](const DemoSection& s) { return s.name == kRunOrder[n]; }) -
         sections.begin());
-    if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), sections[k].name) == a.only.end()) {
+    if (!chosen(sections[k].name)) {
       runs[k].outcome = SectionOutcome::NotRun;
       runs[k].reason = "not run (--sections)";
       continue;
     }
     const double seconds = sectionBudgetSeconds(sections[k], budget);
-    std::printf("demo: section %zu/%zu, %s (budget %.3g s)\n", n + 1, kRunOrder.size(), sections[k].name.c_str(), seconds);
+    std::printf("demo: section %zu/%zu, %s (budget %.3g s)\n", ++started, toRun, sections[k].name.c_str(), seconds);
     std::fflush(stdout);
     runs[k] = runDemoSection(sections[k], sectionCommand(a, sections[k].name),
                              (fs::absolute(a.out) / "sections").string(), seconds);

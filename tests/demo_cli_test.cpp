@@ -199,6 +199,9 @@ TEST(DemoCliTest, WithoutBlenderTheSectionsThatUseItAreWrittenWithoutIt) {
                           out.string() + " 2>&1");
   }
   ASSERT_EQ(r.code, 0) << r.out;
+  // The progress lines count the sections that run.
+  EXPECT_NE(r.out.find("demo: section 1/2, light (budget"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("demo: section 2/2, lenses (budget"), std::string::npos) << r.out;
   const std::string html = readText(out / "index.html");
   EXPECT_EQ(checkEverySectionIsShownOrMarked(html, r.code), 0);
   EXPECT_NE(html.find("(Cycles' frame: not rendered, <code>--no-blender</code>.)"), std::string::npos);
