@@ -259,18 +259,8 @@ json datasetIdentity(const json& header) {
 
 namespace {
 
-// The scene's files (beyond its own text) that one run read and the other did not, or read with
-// other bytes: "the scene's file "a.png" differs", at most three named.
-std::string sceneInputsDifference(const json& a, const json& b) {
-  std::map<std::string, std::string> x, y;
-  for (const json& input : a) x[input.at("path").get<std::string>()] = input.at("sha256").get<std::string>();
-  for (const json& input : b) y[input.at("path").get<std::string>()] = input.at("sha256").get<std::string>();
-  std::set<std::string> names;
-  for (const auto& [path, hash] : x)
-    if (!y.count(path) || y.at(path) != hash) names.insert(path);
-  for (const auto& [path, hash] : y)
-    if (!x.count(path)) names.insert(path);
-  if (names.empty()) return "";
+// "\"a.png\"", "\"a.png\", \"b.png\"", "\"b\", \"c\", \"d\" and 2 more": at most three named.
+std::string someNames(const std::set<std::string>& names) {
   std::string named;
   size_t shown = 0;
   for (const std::string& name : names) {
@@ -278,8 +268,32 @@ std::string sceneInputsDifference(const json& a, const json& b) {
     named += (named.empty() ? "" : ", ") + quote(name);
   }
   if (names.size() > 3) named += " and " + std::to_string(names.size() - 3) + " more";
-  return "the scene's " + std::string(names.size() == 1 ? "file " : "files ") + named +
-         (names.size() == 1 ? " differs" : " differ") + " (its textures, environment or glTF files)";
+  return named;
+}
+
+// The scene's files (beyond its own text) that `earlier`'s run and `later`'s both read with other
+// bytes ("the scene's file "a.png" differs"), that only the later run reads ("the scene now reads
+// "b.png""), and that only the earlier one read ("no longer reads").
+std::string sceneInputsDifference(const json& earlier, const json& later) {
+  std::map<std::string, std::string> x, y;
+  for (const json& input : earlier) x[input.at("path").get<std::string>()] = input.at("sha256").get<std::string>();
+  for (const json& input : later) y[input.at("path").get<std::string>()] = input.at("sha256").get<std::string>();
+  std::set<std::string> changed, added, dropped;
+  for (const auto& [path, hash] : x)
+    if (!y.count(path)) dropped.insert(path);
+    else if (y.at(path) != hash) changed.insert(path);
+  for (const auto& [path, hash] : y)
+    if (!x.count(path)) added.insert(path);
+  if (changed.empty() && added.empty() && dropped.empty()) return "";
+  std::vector<std::string> parts;
+  if (!changed.empty())
+    parts.push_back("the scene's " + std::string(changed.size() == 1 ? "file " : "files ") + someNames(changed) +
+                    (changed.size() == 1 ? " differs" : " differ"));
+  if (!added.empty()) parts.push_back("the scene now reads " + someNames(added));
+  if (!dropped.empty()) parts.push_back("the scene no longer reads " + someNames(dropped));
+  std::string text;
+  for (const std::string& part : parts) text += (text.empty() ? "" : "; ") + part;
+  return text + " (its textures, environment or glTF files)";
 }
 
 }  // namespace

@@ -86,7 +86,8 @@ void writeManifest(const std::string& dir, const DatasetManifest& manifest, cons
 // Its spec's "description" and any object's "comment" are words for people, not part of it.
 nlohmann::json datasetIdentity(const nlohmann::json& header);
 // What makes two headers' datasets differ, in words ("the spec's "spp", "size" differ; the
-// scene's bytes differ"; one field "differs"), or "" when they are the same dataset.
+// scene's bytes differ"; one field "differs"), or "" when they are the same dataset. `a` is the
+// earlier run's (the folder's), `b` the later's: a file only `b`'s scene reads is one it "now reads".
 std::string identityDifference(const nlohmann::json& a, const nlohmann::json& b);
 
 // At most this many shards (Slurm array tasks) per dataset: a count sizes work (a file and a

@@ -181,9 +181,14 @@ TEST(Manifest, SceneInputsAreCheckedAndTellDatasetsApart) {
   EXPECT_EQ(identityDifference(good, m), "");  // good: from before inputs were recorded
   json none = m;  // a scene that reads no file beyond its text
   none["scene"]["inputs"] = json::array();
-  EXPECT_EQ(identityDifference(none, m), "the scene's file \"textures/a.png\" differs (its textures, environment or glTF files)");
+  EXPECT_EQ(identityDifference(none, m), "the scene now reads \"textures/a.png\" (its textures, environment or glTF files)");
+  EXPECT_EQ(identityDifference(m, none), "the scene no longer reads \"textures/a.png\" (its textures, environment or glTF files)");
   for (const char* name : {"b", "c", "d", "e"}) other["scene"]["inputs"].push_back({{"path", name}, {"sha256", kHash}});
-  EXPECT_EQ(identityDifference(m, other), "the scene's files \"b\", \"c\", \"d\" and 2 more differ (its textures, environment or glTF files)");
+  EXPECT_EQ(identityDifference(m, other), "the scene's file \"textures/a.png\" differs; the scene now reads \"b\", \"c\", \"d\" and 1 more "
+                                          "(its textures, environment or glTF files)");
+  json changedFiles = other;
+  for (json& input : changedFiles["scene"]["inputs"]) input["sha256"] = std::string(64, 'e');
+  EXPECT_EQ(identityDifference(other, changedFiles), "the scene's files \"b\", \"c\", \"d\" and 2 more differ (its textures, environment or glTF files)");
 }
 
 }  // namespace
