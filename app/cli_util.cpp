@@ -13,6 +13,7 @@
 #include "atomic_file.h"
 #include "data_files.h"
 #include "errors.h"
+#include "file_formats.h"
 #include "json_text.h"
 #include "number_format.h"
 #include "render_settings.h"
@@ -204,8 +205,8 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
   // A rig has no "format": another of omnicam's files (a dataset's manifest, a spec) is named as such.
   if (file.is_object() && file.contains("format") && file["format"].is_string())
     throw InputError("--rig: " + showPath(path) + " is not a rig but a file of format " + quote(file["format"].get<std::string>()) +
-                     " (--rig takes a scene's \"rig\" object; a dataset's frames need none: their manifest gives "
-                     "each camera's)");
+                     " (--rig takes a scene's \"rig\" object" +
+                     (file["format"] == kManifestFormat ? "; a dataset's frames need none: their manifest gives each camera's" : "") + ")");
   return rigFromJson(file, path, "rig");
 }
 

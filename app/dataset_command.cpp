@@ -127,7 +127,13 @@ struct SubmittedJobsText {
   std::string jobs, squeue;
 };
 SubmittedJobsText submittedJobsText(const std::string& dir) {
-  const SubmittedSlurmJobs submitted = readSubmittedSlurmJobs(dir);
+  SubmittedSlurmJobs submitted;
+  try {
+    submitted = readSubmittedSlurmJobs(dir);
+  } catch (const InputError& e) {  // the status stands without the job numbers; a submission refuses the file
+    std::fprintf(stderr, "omnicam: note: the jobs are not named: %s\n", oneLine(e.what()).c_str());
+    return {};
+  }
   if (submitted.arrayJob.empty()) return {};
   SubmittedJobsText text{"array job " + submitted.arrayJob, "squeue --jobs=" + submitted.arrayJob};
   if (!submitted.mergeJob.empty() && submitted.mergeJob != submitted.arrayJob) {

@@ -12,7 +12,6 @@
 #include <regex>
 
 #include "cli_util.h"
-#include "closest_name.h"
 #include "number_format.h"
 #include "commands.h"
 #include "errors.h"
@@ -105,15 +104,7 @@ std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text, co
   if (path)
     throw InputError("--recording: " + showPath(text) + (std::filesystem::exists(text, ec) ? ": not a file" : ": no such file") +
                      " (a preset's name or a JSON file)");
-  // On the command line a camera of its own is a file, not an object.
-  const std::vector<std::string>& presets = recordingPresetNames();
-  if (std::find(presets.begin(), presets.end(), text) == presets.end()) {
-    std::string names;
-    for (size_t k = 0; k < presets.size(); ++k) names += (k == 0 ? "" : k + 1 == presets.size() ? " or " : ", ") + presets[k];
-    throw InputError("--recording: unknown preset " + quote(text) + didYouMean(text, presets) + ": give " + names +
-                     ", or a JSON file of a camera of its own (docs/experiments.md)");
-  }
-  return recordingCameraSpecFromJson(nlohmann::json(text), "--recording", "");
+  return recordingCameraSpecFromJson(nlohmann::json(text), "--recording", "", "a JSON file of the stages' fields");
 }
 
 // Frame `frame` (0 for a single image) through the recording camera drawn for it, which its

@@ -53,7 +53,14 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a) {
   if (!fromFlag && strict) return {strict->rig, strict->json};
   // A dataset's frame has no sidecar: its manifest gives the camera (the frame's own rig, when
   // the robot vibrates).
-  const std::optional<DatasetImageLocation> inDataset = own ? std::nullopt : locateInDataset(a.in);
+  std::optional<DatasetImageLocation> inDataset;
+  try {
+    if (!own) inDataset = locateInDataset(a.in);
+  } catch (const InputError& e) {
+    // A flag gives the camera all the same; without one, the manifest was the last place to ask.
+    if (!fromFlag)
+      throw InputError(showPath(a.in) + ": has no sidecar, and the manifest of the dataset it lies in cannot be read: " + e.what());
+  }
   std::optional<std::pair<RigSpec, nlohmann::json>> datasetCamera;
   if (inDataset)
     datasetCamera = {DatasetReader(inDataset->dir).cameraRig(inDataset->frame, inDataset->camera),

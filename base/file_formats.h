@@ -10,7 +10,7 @@ inline constexpr const char* kSceneFormat = "omnicam-scene/1";               // 
 inline constexpr const char* kDatasetSpecFormat = "omnicam-dataset/1";       // docs/dataset-format.md
 inline constexpr const char* kManifestFormat = "omnicam-dataset-manifest/1";  // a dataset folder's manifest.json
 
-// "; this is a scene file", "; this is a dataset spec", "; this is a dataset's manifest" for a
+// "; this is a scene file", "; this is a dataset spec", "; this is a dataset folder's manifest" for a
 // file of one of these formats given where one of `expected` goes; "" for any other format.
 inline std::string formatMismatchHint(std::string_view found, std::string_view expected) {
   if (found == expected) return "";

@@ -1,6 +1,5 @@
 #include "dataset_reader.h"
 
-#include <algorithm>
 #include <filesystem>
 #include <set>
 
@@ -66,24 +65,44 @@ RigSpec DatasetReader::cameraRig(int index, const std::string& camera) const {
   throw InputError(showPath(dir_) + ": camera " + quote(camera) + ": not in the manifest");
 }
 
+namespace {
+
+// Whether DIR/manifest.json states omnicam's manifest format, however broken the rest: a file of
+// that name from another tool is no dataset's.
+bool statesManifestFormat(const std::string& dir) {
+  try {
+    const nlohmann::json top = nlohmann::json::parse(readFileInside(dir, kManifestName, kMaxManifestBytes), nullptr, false);
+    return top.is_object() && top.contains("format") && top["format"] == kManifestFormat;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace
+
 std::optional<DatasetImageLocation> locateInDataset(const std::string& image) {
   namespace fs = std::filesystem;
   const fs::path path = fs::absolute(image).lexically_normal();
   const fs::path kindFolder = path.parent_path(), cameraFolder = kindFolder.parent_path(), dir = cameraFolder.parent_path();
-  const std::string stem = path.stem().string();
-  if (stem.size() != 6 || !std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; }) || dir == cameraFolder ||
-      entryInside(dir.string(), kManifestName) != EntryKind::File)
+  if (!path.has_filename() || kindFolder == cameraFolder || cameraFolder == dir || entryInside(dir.string(), kManifestName) != EntryKind::File)
     return std::nullopt;
-  const DatasetReader reader(dir.string());
-  const int index = std::stoi(stem);
+  std::optional<DatasetReader> reader;
+  try {
+    reader.emplace(dir.string());
+  } catch (const InputError&) {
+    if (!statesManifestFormat(dir.string())) return std::nullopt;
+    throw;
+  }
+  // By the path the manifest lists (<camera>/rgb/000001.png, <camera>/data/<t_ns>.png, …), not
+  // by a number read from the name.
   const std::string camera = cameraFolder.filename().string();
   const std::string listed = camera + "/" + kindFolder.filename().string() + "/" + path.filename().string();
-  const auto frame = reader.manifest().frames.find(index);
-  if (frame == reader.manifest().frames.end()) return std::nullopt;
-  const auto cameraFrame = frame->second.cameras.find(camera);
-  if (cameraFrame == frame->second.cameras.end()) return std::nullopt;
-  for (const auto& [kind, file] : cameraFrame->second.files)
-    if (file.path == listed) return DatasetImageLocation{dir.string(), camera, index};
+  for (const auto& [index, frame] : reader->manifest().frames) {
+    const auto cameraFrame = frame.cameras.find(camera);
+    if (cameraFrame == frame.cameras.end()) continue;
+    for (const auto& [kind, file] : cameraFrame->second.files)
+      if (file.path == listed) return DatasetImageLocation{dir.string(), camera, index};
+  }
   return std::nullopt;
 }
 

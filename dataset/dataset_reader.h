@@ -63,9 +63,9 @@ class DatasetReader {
 };
 
 // Where an image file lies in a dataset: `frame` of `camera` in the dataset folder `dir`, when
-// the file is DIR/<camera>/<kind>/NNNNNN.<ext> and DIR's manifest lists it there (a frame copied
-// elsewhere, or a folder that only looks like a dataset's, is none). InputError for a manifest
-// that is there but cannot be read.
+// the file is DIR/<camera>/<folder>/<name> and DIR's manifest lists it there (a frame copied
+// elsewhere, a folder that only looks like a dataset's, or another tool's manifest.json is
+// none). InputError for omnicam's manifest that cannot be read.
 struct DatasetImageLocation {
   std::string dir, camera;
   int frame = 0;

@@ -178,7 +178,8 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     if (!merged) {
       merged = DatasetManifest{shard.header, {}};
       merged->header.erase("shard");
-    } else if (const std::string difference = identityDifference(shard.header, merged->header); !difference.empty()) {
+    } else if (const std::string difference = identityDifference(merged->header, shard.header); !difference.empty()) {
+      // Said of this shard (identityDifference's later one): "the scene now reads" what it read.
       throw InputError(showPath(path + "/" + name) + ": from another dataset than the other shards (" + difference + ")");
     }
     const int first = read.first, end = read.end;

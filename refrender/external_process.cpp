@@ -19,6 +19,7 @@
 #include <mutex>
 #include <thread>
 
+#include "errors.h"
 #include "interrupts.h"
 
 extern char** environ;
@@ -83,6 +84,28 @@ void echoNewOutput(const std::string& path, std::streamoff& offset) {
   std::fflush(stdout);
 }
 
+// A search path's entries made absolute from omnicam's folder (an empty one is that folder).
+std::vector<std::filesystem::path> searchFolders(const std::string& path) {
+  std::vector<std::filesystem::path> folders;
+  size_t begin = 0;
+  while (true) {
+    const size_t end = path.find(':', begin);
+    const std::string entry = path.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    folders.push_back(entry.empty() ? std::filesystem::current_path() : std::filesystem::absolute(entry));
+    if (end == std::string::npos) return folders;
+    begin = end + 1;
+  }
+}
+
+// PATH as the program gets it: its relative and empty entries made absolute, so that what the
+// program itself starts (a script's interpreter through env, a wrapper's renderer) is found where
+// findExecutable found the program, not in the folder it runs in.
+std::string pathFromHere(const std::string& path) {
+  std::string absolute;
+  for (const std::filesystem::path& folder : searchFolders(path)) absolute += (absolute.empty() ? "" : ":") + folder.string();
+  return absolute;
+}
+
 }  // namespace
 
 std::string findExecutable(const std::string& command) {
@@ -93,7 +116,7 @@ std::string findExecutable(const std::string& command) {
     return fs::is_regular_file(path, error) && ::access(path.c_str(), X_OK) == 0;
   };
   if (command.find('/') != std::string::npos) {
-    const fs::path path = fs::absolute(command).lexically_normal();
+    const fs::path path = fs::absolute(command);  // not normalised: "link/../x" is the kernel's to resolve
     return executable(path) ? path.string() : "";
   }
   // As execvp: PATH's entries in order, an empty one meaning the current folder, and the
@@ -106,15 +129,9 @@ std::string findExecutable(const std::string& command) {
     ::confstr(_CS_PATH, searchPath.data(), searchPath.size());
     searchPath.resize(std::strlen(searchPath.c_str()));
   }
-  size_t begin = 0;
-  while (true) {
-    const size_t end = searchPath.find(':', begin);
-    const std::string entry = searchPath.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-    const fs::path candidate = fs::absolute(fs::path(entry.empty() ? "." : entry) / command);
-    if (executable(candidate)) return candidate.lexically_normal().string();
-    if (end == std::string::npos) return "";
-    begin = end + 1;
-  }
+  for (const fs::path& folder : searchFolders(searchPath))
+    if (executable(folder / command)) return (folder / command).string();
+  return "";
 }
 
 ProcessResult runProcess(const std::vector<std::string>& argv, const std::string& workDir,
@@ -132,7 +149,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   const std::string program = findExecutable(argv.at(0));
   if (program.empty()) {
     result.notFound = true;
-    result.logTail = "cannot start: " + argv[0] + ": no such program" +
+    result.logTail = "cannot start: " + showPath(argv[0]) + ": no such program" +
                      (argv[0].find('/') == std::string::npos ? " in PATH" : "");
     return result;
   }
@@ -146,7 +163,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
     return std::strncmp(variable, "HOME=", 5) == 0 || (options.temporaryFilesInWorkDir && std::strncmp(variable, "TMPDIR=", 7) == 0);
   };
   for (char** e = environ; *e; ++e)
-    if (!withheld(*e)) environment.emplace_back(*e);
+    if (!withheld(*e)) environment.emplace_back(std::strncmp(*e, "PATH=", 5) == 0 ? "PATH=" + pathFromHere(*e + 5) : std::string(*e));
   environment.push_back("HOME=" + workDir);
   if (options.temporaryFilesInWorkDir) environment.push_back("TMPDIR=" + workDir);
   std::vector<char*> envp;

@@ -383,12 +383,13 @@ namespace {
 // A spec as written, each field checked on its own; `settingsMustAct` also refuses a setting that
 // would act in no frame (a user's spec: not a manifest's drawn camera, which writes every value).
 RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::string& file, const std::string& where,
-                                            bool settingsMustAct) {
+                                            bool settingsMustAct, const std::string& ownCamera = "an object of the stages' fields") {
   RecordingCameraSpec spec;
   if (j.is_string()) {
     if (!presetText(j.get<std::string>()))
       throw InputError(fieldLocation(file, where) + ": unknown preset " + quote(j.get<std::string>()) +
-                       didYouMean(j.get<std::string>(), recordingPresetNames()) + " (" + wordList(kPresets) + "; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
+                       didYouMean(j.get<std::string>(), recordingPresetNames()) + " (" + wordList(kPresets) +
+                       "; or a camera of its own: " + ownCamera + ", docs/experiments.md)");
     spec.preset = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {static_cast<double>(
         std::find(recordingPresetNames().begin(), recordingPresetNames().end(), j.get<std::string>()) - recordingPresetNames().begin())}};
     return spec;
@@ -404,8 +405,9 @@ RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::
 
 }  // namespace
 
-RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
-  return readRecordingCameraSpec(j, file, where, true);
+RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file, const std::string& where,
+                                                const std::string& ownCamera) {
+  return readRecordingCameraSpec(j, file, where, true, ownCamera);
 }
 
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec) {

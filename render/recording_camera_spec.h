@@ -45,8 +45,11 @@ struct RecordingCameraSpec {
 
 // Throws InputError naming `file` and the field path (`where`.field) for an unknown field,
 // preset, distribution or word, a wrong type, lo > hi, or a value outside the parameter's domain.
+// An unknown preset's message says how a camera of its own is given there (`ownCamera`: in a
+// spec an object, on a command line a JSON file).
 RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file,
-                                                const std::string& where = "recording");
+                                                const std::string& where = "recording",
+                                                const std::string& ownCamera = "an object of the stages' fields");
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec);
 // A spec that always gives `camera`.
 RecordingCameraSpec fixedRecordingCameraSpec(const RecordingCamera& camera);

@@ -733,6 +733,38 @@ TEST_F(CliTest, ViewTakesADatasetFramesCameraFromItsManifest) {
   EXPECT_EQ(manifest.code, 2) << manifest.out;
   EXPECT_NE(manifest.out.find("is not a rig but a file of format \"omnicam-dataset-manifest/1\""), std::string::npos) << manifest.out;
 
+  // An image in a dataset's layout that its manifest does not list, or under another tool's
+  // manifest.json: no dataset's frame (a flag gives its camera, as for any image).
+  fs::copy_file(path("ds/rear/rgb/000001.png"), path("ds/rear/rgb/000005.png"));
+  const CommandResult unlisted = run("view " + path("ds/rear/rgb/000005.png") + " --as panorama -o " + path("x.png"));
+  EXPECT_EQ(unlisted.code, 2) << unlisted.out;
+  EXPECT_NE(unlisted.out.find("has no sidecar (" + path("ds/rear/rgb/000005.png.json") + ") and is no frame a dataset's manifest lists"),
+            std::string::npos) << unlisted.out;
+  fs::create_directories(dir_ / "photos/cam/rgb");
+  fs::copy_file(path("ds/rear/rgb/000001.png"), path("photos/cam/rgb/000001.png"));
+  std::ofstream(path("photos/manifest.json")) << R"({"photos": ["cam/rgb/000001.png"]})";
+  EXPECT_EQ(run("view " + path("photos/cam/rgb/000001.png") + " --as panorama --rig " + path("rear_rig.json") + " -o " + path("photo.png")).code, 0);
+  EXPECT_EQ(readImage(path("photo.png")).pixels, readImage(path("rear.png")).pixels);
+  // omnicam's manifest that cannot be read: with a flag the flag's camera; without, said.
+  fs::create_directories(dir_ / "broken/cam/rgb");
+  fs::copy_file(path("ds/rear/rgb/000001.png"), path("broken/cam/rgb/000001.png"));
+  std::ofstream(path("broken/manifest.json")) << R"({"format": "omnicam-dataset-manifest/1"})";
+  EXPECT_EQ(run("view " + path("broken/cam/rgb/000001.png") + " --as panorama --rig " + path("rear_rig.json") + " -o " + path("b1.png")).code, 0);
+  const CommandResult broken = run("view " + path("broken/cam/rgb/000001.png") + " --as panorama -o " + path("b2.png"));
+  EXPECT_EQ(broken.code, 2) << broken.out;
+  EXPECT_NE(broken.out.find("000001.png: has no sidecar, and the manifest of the dataset it lies in cannot be read: " + path("broken/manifest.json")),
+            std::string::npos) << broken.out;
+  // The EuRoC layout's frames, named by their time stamps, are found by the path the manifest lists.
+  std::ofstream(path("euroc.json")) << R"({"format": "omnicam-dataset/1", "scene": ")" << kScene << R"(", "size": 96, "euroc": true,
+    "outputs": {"depth": false, "normal": false}, "poses": {"path": "thesis-loop", "frames": 2},
+    "cameras": [{"name": "rear", "rig": )" << rearRig << "}]}";
+  ASSERT_EQ(run("dataset " + path("euroc.json") + " -o " + path("eu")).code, 0);
+  std::vector<fs::path> stamped;
+  for (const auto& entry : fs::directory_iterator(dir_ / "eu/rear/data")) stamped.push_back(entry.path());
+  ASSERT_EQ(stamped.size(), 2u);
+  const CommandResult euroc = run("view " + stamped[0].string() + " --as panorama -o " + path("eu.png"));
+  EXPECT_EQ(euroc.code, 0) << euroc.out;
+
   // A vibrating robot: each frame's own rig, as the manifest records it.
   std::ofstream(path("shaken.json")) << R"({"format": "omnicam-dataset/1", "scene": ")" << kScene << R"(", "size": 96,
     "outputs": {"depth": false, "normal": false}, "poses": {"path": "thesis-loop", "frames": 2},

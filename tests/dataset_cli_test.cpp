@@ -992,6 +992,14 @@ TEST_F(DatasetCliTest, StatusOfASubmittedDatasetBeforeItsTasksStartSaysSo) {
   EXPECT_NE(northStatus.out.find(": submitted to Slurm as array job 7 (slurm/render.sbatch), no shard has started yet: "
                                  "`squeue --jobs=7 --clusters=north` lists them"),
             std::string::npos) << northStatus.out;
+  // A jobs.json that is not omnicam's: the status stands without the job numbers, and says why.
+  write("north/slurm/jobs.json", R"({"array_job": "7; rm -rf ~"})");
+  const auto foreign = omnicam("dataset --status " + path("north"));
+  EXPECT_EQ(foreign.code, 1) << foreign.out;
+  EXPECT_NE(foreign.out.find("omnicam: note: the jobs are not named: " + path("north/slurm/jobs.json") + ": array_job: not a Slurm job number\n"),
+            std::string::npos) << foreign.out;
+  EXPECT_NE(foreign.out.find(": submitted to Slurm (slurm/render.sbatch), no shard has started yet: squeue lists the jobs"),
+            std::string::npos) << foreign.out;
 }
 
 // Alpha is compared where both images have it: a folder of one's own RGB PNGs (no alpha) against a
