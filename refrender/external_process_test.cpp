@@ -88,12 +88,21 @@ TEST(FindExecutable, IsWhatExecvpWouldStartFromTheCurrentFolder) {
   }
 }
 
+// omnicam's folder `home` and the folder the program runs in, `work`, each with its bin/tool,
+// which says which it is.
+struct HomeAndWork {
+  explicit HomeAndWork(const ScratchFolder& scratch) {
+    writeTool(scratch.path() / "home/bin/tool", "home");
+    writeTool(scratch.path() / "work/bin/tool", "planted");
+    home = fs::canonical(scratch.path() / "home");
+    work = fs::canonical(scratch.path() / "work");
+  }
+  fs::path home, work;
+};
+
 TEST(RunProcess, FindsTheProgramFromOmnicamsFolderNotFromTheOneItRunsIn) {
   const ScratchFolder scratch("run_process_path");
-  writeTool(scratch.path() / "home/bin/tool", "home");
-  writeTool(scratch.path() / "work/bin/tool", "planted");
-  const fs::path home = fs::canonical(scratch.path() / "home");
-  const fs::path work = fs::canonical(scratch.path() / "work");
+  const auto [home, work] = HomeAndWork(scratch);
   const CurrentFolderAndPath here(home, "bin:/usr/bin:/bin");
   for (const std::string& command : {std::string("tool"), std::string("bin/tool"), std::string("./bin/tool")}) {
     const fs::path log = scratch.path() / "tool.log";
@@ -107,10 +116,7 @@ TEST(RunProcess, FindsTheProgramFromOmnicamsFolderNotFromTheOneItRunsIn) {
 // renderer) is found from omnicam's folder too: PATH's relative entries reach it made absolute.
 TEST(RunProcess, WhatTheProgramStartsThroughPathIsFoundFromOmnicamsFolderToo) {
   const ScratchFolder scratch("run_process_child_path");
-  writeTool(scratch.path() / "home/bin/tool", "home");
-  writeTool(scratch.path() / "work/bin/tool", "planted");
-  const fs::path home = fs::canonical(scratch.path() / "home");
-  const fs::path work = fs::canonical(scratch.path() / "work");
+  const auto [home, work] = HomeAndWork(scratch);
   const CurrentFolderAndPath here(home, "bin::/usr/bin:/bin");
   const fs::path log = scratch.path() / "env.log";
   const ProcessResult result = runProcess({"/usr/bin/env", "tool"}, work.string(), log.string(), 60.0);
