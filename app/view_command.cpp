@@ -63,7 +63,7 @@ std::pair<RigSpec, nlohmann::json> rigOf(const ViewArgs& a) {
   }
   std::optional<std::pair<RigSpec, nlohmann::json>> datasetCamera;
   if (inDataset)
-    datasetCamera = {DatasetReader(inDataset->dir).cameraRig(inDataset->frame, inDataset->camera),
+    datasetCamera = {inDataset->rig,
                      {{"rig_from", {{"dataset", inDataset->dir}, {"camera", inDataset->camera}, {"frame", inDataset->frame}}}}};
   if (!fromFlag) {
     if (!datasetCamera)

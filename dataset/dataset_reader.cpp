@@ -101,7 +101,7 @@ std::optional<DatasetImageLocation> locateInDataset(const std::string& image) {
     const auto cameraFrame = frame.cameras.find(camera);
     if (cameraFrame == frame.cameras.end()) continue;
     for (const auto& [kind, file] : cameraFrame->second.files)
-      if (file.path == listed) return DatasetImageLocation{dir.string(), camera, index};
+      if (file.path == listed) return DatasetImageLocation{dir.string(), camera, index, reader->cameraRig(index, camera)};
   }
   return std::nullopt;
 }

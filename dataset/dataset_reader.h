@@ -65,10 +65,12 @@ class DatasetReader {
 // Where an image file lies in a dataset: `frame` of `camera` in the dataset folder `dir`, when
 // the file is DIR/<camera>/<folder>/<name> and DIR's manifest lists it there (a frame copied
 // elsewhere, a folder that only looks like a dataset's, or another tool's manifest.json is
-// none). InputError for omnicam's manifest that cannot be read.
+// none). InputError for omnicam's manifest that cannot be read. `rig` is the camera's for that
+// frame (DatasetReader::cameraRig), from the same read of the manifest.
 struct DatasetImageLocation {
   std::string dir, camera;
   int frame = 0;
+  RigSpec rig;
 };
 std::optional<DatasetImageLocation> locateInDataset(const std::string& image);
 
