@@ -109,7 +109,7 @@ class BlenderEngine : public Engine {
 
 std::unique_ptr<Engine> makeEngineOf(const RenderRequest& request, const Scene& scene) {
   const std::optional<CubeMapOptions> cube = request.cubeMap();
-  const std::optional<EngineKind> kind = engineKindNamed(request.engine, cube ? cube->mode : OmniMode::Exact);
+  const std::optional<EngineKind> kind = request.engineKind();
   if (!kind) throw std::invalid_argument("makeEngine: no engine " + request.engine + " in mode " + request.mode + " (readRenderRequest checks both)");
   switch (*kind) {
     case EngineKind::FastExact:

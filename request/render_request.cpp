@@ -54,6 +54,11 @@ void checkModeOption(RequestField field, int64_t value, const Reader& r) {
 
 }  // namespace
 
+std::optional<EngineKind> RenderRequest::engineKind() const {
+  const std::optional<CubeMapOptions> cube = cubeMap();
+  return engineKindNamed(engine, cube ? cube->mode : OmniMode::Exact);
+}
+
 void checkModeOptions(const CubeMapOptions& o, const RequestFieldNames& names) {
   const Reader r(names);
   checkModeOption(RequestField::Faces, o.faces, r);
@@ -124,8 +129,7 @@ void readSampling(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (!parsed) r.fail(F::Shading, "must be unlit, lit or path (got " + quote(shading) + ")");
   q.shading = *parsed;
   // Said here in the front's words (--shading); makeEngine checks it again for other callers.
-  const std::optional<CubeMapOptions> cube = q.cubeMap();
-  if (const auto kind = engineKindNamed(q.engine, cube ? cube->mode : OmniMode::Exact))
+  if (const auto kind = q.engineKind())
     checkEngineShading(*kind, q.shading, r.qualified(F::Shading));
   q.traced = f.isOn(F::Traced).value_or(q.traced);
   if (q.traced && (q.engine != "fast" || q.mode != "exact"))

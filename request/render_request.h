@@ -15,6 +15,8 @@
 
 namespace omnicam {
 
+enum class EngineKind;  // engine_capabilities.h
+
 // Seconds an external render (POV-Ray, Blender) may take before it is stopped.
 inline constexpr double kDefaultTimeoutSeconds = 600.0;
 
@@ -37,6 +39,8 @@ struct RenderRequest : RenderSampling {
     options.mode = omniModeNamed(mode).value_or(OmniMode::CubeMap);
     return options;
   }
+  // The engine and mode this request names, or nullopt for a pair no engine has (readRenderRequest refuses those).
+  std::optional<EngineKind> engineKind() const;
   // The settings of a render of `rig` with this request: the only way settings are made.
   RenderSettings settings(const RigSpec& rig) const {
     RenderSettings out;
