@@ -196,9 +196,16 @@ std::string lensCameraSdl(const LensCameraSpec& lens, const Rigid& worldFromView
   return out.str();
 }
 
+// `clipped_by` the box from `low` to `high`, which also bounds the object.
+std::string clipBoxSdl(const Vec3& low, const Vec3& high) {
+  return "  clipped_by { box { <" + num(low.x()) + ", " + num(low.y()) + ", " + num(low.z()) + ">, <" + num(high.x()) + ", " +
+         num(high.y()) + ", " + num(high.z()) + "> } }\n  bounded_by { clipped_by }\n";
+}
+
 // The exact mirror in its local frame (mm, POV axes: POV y = omnicam z, origin at the design
-// point), an open object the caller clips at the rim and closes.
-std::string mirrorSurfaceSdl(const MirrorRig& rig) {
+// point), clipped to the box from `low` to `high` of that frame: an open object the caller
+// closes.
+std::string mirrorSurfaceSdl(const MirrorRig& rig, const Vec3& low, const Vec3& high) {
   const double u = kPovrayUnitsPerMetre;
   std::ostringstream out;
   std::visit(Overloaded{
@@ -209,22 +216,30 @@ std::string mirrorSurfaceSdl(const MirrorRig& rig) {
                    out << "// Mirror: exact hyperboloid (k = " << num(mirror.k()) << ", c = " << num(mirror.c())
                        << " m), upper sheet from its vertex to the rim.\n"
                        << "quadric { <" << num(-a2 / b2) << ", 1, " << num(-a2 / b2) << ">, <0, 0, 0>, <0, " << num(c)
-                       << ", 0>, " << num(c * c / 4.0 - a2) << "\n";
+                       << ", 0>, " << num(c * c / 4.0 - a2) << "\n"
+                       << clipBoxSdl(low, high);
                  },
                  [&](const ParaboloidMirror& paraboloid) {
-                   // x² + z² − 2h·y − h² = 0 about the focus.
+                   // x² + z² − 2h·y = 0 about its vertex, moved h/2 down to put the focus at the
+                   // origin (x² + z² − 2h·y − h² = 0). Written about the focus, POV-Ray 3.7's
+                   // automatic bounds of a paraboloid forget that shift and cut the mirror off short
+                   // of its rim (at r = √(2h·rim height) instead of √(2h·rim height + h²)).
                    const double h = paraboloid.h * u;
-                   out << "// Mirror: exact paraboloid (h = " << num(paraboloid.h) << " m) about its focus.\n"
-                       << "quadric { <1, 0, 1>, <0, 0, 0>, <0, " << num(-2.0 * h) << ", 0>, " << num(-h * h) << "\n";
+                   const Vec3 up(0.0, 0.5 * h, 0.0);
+                   out << "// Mirror: exact paraboloid (h = " << num(paraboloid.h) << " m), about its vertex, then moved to its focus.\n"
+                       << "quadric { <1, 0, 1>, <0, 0, 0>, <0, " << num(-2.0 * h) << ", 0>, 0\n"
+                       << clipBoxSdl(low + up, high + up) << "  translate <0, " << num(-0.5 * h) << ", 0>\n";
                  },
                  [&](const SphereMirror& sphere) {
                    out << "// Mirror: sphere (radius " << num(sphere.radius) << " m) about its centre, its lower cap.\n"
-                       << "sphere { <0, 0, 0>, " << num(sphere.radius * u) << "\n";
+                       << "sphere { <0, 0, 0>, " << num(sphere.radius * u) << "\n"
+                       << clipBoxSdl(low, high);
                  },
                  [&](const ConeMirror& cone) {
                    const double rimR = cone.rimRadius * u, rimY = rimR / std::tan(radians(cone.halfAngleDeg));
                    out << "// Mirror: cone (half-angle " << num(cone.halfAngleDeg) << " deg), apex down at the origin.\n"
-                       << "cone { <0, 0, 0>, 0, <0, " << num(rimY) << ", 0>, " << num(rimR) << " open\n";
+                       << "cone { <0, 0, 0>, 0, <0, " << num(rimY) << ", 0>, " << num(rimR) << " open\n"
+                       << clipBoxSdl(low, high);
                  }},
              rig.shape);
   return out.str();
@@ -247,10 +262,7 @@ std::string mirrorSdl(const MirrorRig& rig, const Rigid& worldFromView) {
   std::ostringstream out;
   const double rimY = surface->rimZ() * u, rimR = surface->rimRadius() * u;
   const double bottomY = surface->heightAt(0.0, 0.0) * u - 0.5;
-  out << mirrorSurfaceSdl(rig)
-      << "  clipped_by { box { <" << num(-rimR - 1.0) << ", " << num(bottomY) << ", " << num(-rimR - 1.0)
-      << ">, <" << num(rimR + 1.0) << ", " << num(rimY) << ", " << num(rimR + 1.0) << "> } }\n"
-      << "  bounded_by { clipped_by }\n"
+  out << mirrorSurfaceSdl(rig, Vec3(-rimR - 1.0, bottomY, -rimR - 1.0), Vec3(rimR + 1.0, rimY, rimR + 1.0))
       << "  texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 specular 0 phong 0 reflection { 1 } } }\n"
       << "  no_shadow\n  " << povPlacement(worldFromView) << "\n}\n"
       << "// Beyond the rim the camera sees black (docs/conventions.md §2); invisible to everything else.\n"
