@@ -54,6 +54,23 @@ TEST(CubeMap, RasterisedFacesMatchRayCastFaces) {
   }
 }
 
+// A floor 2 km wide: its triangles, clipped at the faces' near plane, reach ~1e9 texels out,
+// past int; rasterised they must still cover what one ray per texel sees (the faces lost them).
+TEST(CubeMap, RasterisedFacesKeepAFloorAKilometreWide) {
+  const Scene floor = loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"grey": {"color": 0.6}},
+    "objects": [{"type": "quad", "material": "grey", "origin": [-1000, -1000, 0], "edge_u": [2000, 0, 0], "edge_v": [0, 2000, 0]}]})",
+                                        "floor.json");
+  const FastRenderer fast(floor);
+  const CubeMapRenderer cube(fast);
+  const RenderSettings settings = settingsFor(floor, 1);
+  CubeMapOptions raster, rays;
+  rays.rasterize = false;
+  const CompareResult r = compareImages(cube.render(RobotPose{0.3, -0.2, 20.0}, settings, rays),
+                                        cube.render(RobotPose{0.3, -0.2, 20.0}, settings, raster));
+  std::printf("2 km floor, rasterised vs ray-cast faces: PSNR %.2f dB, max abs %.3g\n", r.psnrDb, r.maxAbs);
+  EXPECT_LT(r.maxAbs, 1e-6);
+}
+
 // A small room with textured floor and wall, plain walls and a box, and a grey background
 // (the room is open at the top).
 Scene texturedRoom() {

@@ -153,8 +153,10 @@ std::vector<ScreenTriangle> setUpFace(const Triangles& triangles, const Vec3& or
         s.slope[j] = s.A[j] != 0.0 ? -s.B[j] / s.A[j] : 0.0;
         s.offset[j] = s.A[j] != 0.0 ? -s.C[j] / s.A[j] : 0.0;
       }
-      s.y0 = std::max(0, static_cast<int>(std::floor(std::min({Y[0], Y[1], Y[2]}) - 0.5)));
-      s.y1 = std::min(padded - 1, static_cast<int>(std::ceil(std::max({Y[0], Y[1], Y[2]}) - 0.5)));
+      // Clamped before the cast: a vertex clipped at the near plane lies ~1e4 faces out, which a
+      // surface a kilometre wide carries past int (the triangle was then lost).
+      s.y0 = ceilClamped(std::floor(std::min({Y[0], Y[1], Y[2]}) - 0.5), 0, padded);
+      s.y1 = floorClamped(std::ceil(std::max({Y[0], Y[1], Y[2]}) - 0.5), -1, padded - 1);
       s.xLo = std::min({X[0], X[1], X[2]}) - 0.5;
       s.xHi = std::max({X[0], X[1], X[2]}) - 0.5;
       s.material = tri.material;

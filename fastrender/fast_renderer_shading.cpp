@@ -20,15 +20,20 @@ std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSetti
   PathTracingOptions options;
   options.diffuseBounces = settings.bounces;
   if (settings.denoise) options.indirectShare = denoisedIndirectShare(settings.spp);
-  // Frames of other poses get other noise; the same pose, seed and settings the same frame.
+  // Frames of other poses get other noise; the same pose, seed and settings the same frame. The
+  // cameras of one robot, mounted apart, draw apart too (a stereo pair's noise would otherwise
+  // be the same in both); an unmounted camera's key is as it always was.
   const RobotPose& pose = camera.robot();
   const BodyVelocity& velocity = camera.velocity();
   uint64_t key = settings.seed;
-  for (double v : {pose.x, pose.y, pose.yawDeg, velocity.vx, velocity.vy, velocity.yawRateDegPerS}) {
+  const auto mix = [&key](double v) {
     uint64_t bits = 0;
     std::memcpy(&bits, &v, sizeof bits);
     key = mixKey(key, bits);
-  }
+  };
+  for (double v : {pose.x, pose.y, pose.yawDeg, velocity.vx, velocity.vy, velocity.yawRateDegPerS}) mix(v);
+  if (const RobotMount& mount = camera.mount(); mount != RobotMount{})
+    for (double v : {mount.x, mount.y, mount.yawDeg}) mix(v);
   return PathFrame{PathTracer(scene_, rays_, options, environmentLight()), key};
 }
 
