@@ -53,15 +53,18 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
     // Range and bearing when the centre is imaged (mid-exposure of the middle line if it is not).
     const double seconds =
         centre ? centre->seconds : pixelTime(rig.shutter, rig.imageWidth() / 2, rig.imageHeight() / 2, rig.imageWidth(), rig.imageHeight());
-    const RobotPose pose = placement.footAt(seconds);  // bearings from the camera's heading
+    // From the camera's foot and along its heading, as the detector's inversion and the EKF have
+    // it: a tilted rig's F' stands off the foot.
+    const RobotPose foot = placement.footAt(seconds);
+    const Vec2 rangeBearing = rangeBearingOnFloor(Vec2(foot.x, foot.y), radians(foot.yawDeg), lm.position.head<2>());
+    a.rangeM = rangeBearing(0);
+    a.bearingDeg = degrees(rangeBearing(1));
+    if (centre) a.centre = centre->raster;
+    // The side facing F', where the camera looks from.
     const Vec3 viewpoint = placement.worldFromViewpoint(rig, seconds).translation();
     const double radius = 0.5 * lm.diameter;
     Vec2 toCamera = (viewpoint - lm.position).head<2>();
-    a.rangeM = toCamera.norm();
-    toCamera = a.rangeM > 1e-9 ? Vec2(toCamera / a.rangeM) : Vec2(1.0, 0.0);
-    const double bearingWorld = std::atan2(lm.position.y() - viewpoint.y(), lm.position.x() - viewpoint.x());
-    a.bearingDeg = std::remainder(degrees(bearingWorld) - pose.yawDeg, 360.0);
-    if (centre) a.centre = centre->raster;
+    toCamera = toCamera.norm() > 1e-9 ? Vec2(toCamera.normalized()) : Vec2(1.0, 0.0);
 
     int seenCount = 0, total = 0;
     for (double angleDeg : kFacingAnglesDeg)
@@ -73,7 +76,9 @@ std::vector<LandmarkAnnotation> annotateLandmarks(const Scene& scene, const RayS
         ++total;
         const bool pointSeen = seen(p);
         seenCount += pointSeen;
-        if (angleDeg == 0.0 && height == 0.0 && a.centre && !pointSeen) a.occluded = true;
+        // Hidden, not merely beyond the rim or the image's edge (near them, the facing point may
+        // fall outside while the centre is imaged): only another object occludes.
+        if (angleDeg == 0.0 && height == 0.0 && a.centre && !pointSeen && imaged(p)) a.occluded = true;
       }
     a.visibleFraction = static_cast<double>(seenCount) / total;
 

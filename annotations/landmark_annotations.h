@@ -24,13 +24,15 @@ struct LandmarkAnnotation {
   // Of 15 points on the side facing the camera (5 around × 3 heights): the fraction imaged
   // inside the rim with nothing in between.
   double visibleFraction = 0.0;
-  // In view, and the facing point at the centre's height is hidden by another object.
+  // In view, and the facing point at the centre's height is imaged but hidden by another object
+  // (a facing point beyond the rim or the image's edge is not occluded).
   bool occluded = false;
   // Bounds [u_min, v_min, u_max, v_max] of the imaged part of the band's outline, clipped to the
   // image; nullopt when none of it is imaged.
   std::optional<std::array<double, 4>> bbox;
-  // From F' to the landmark's axis, horizontally: metres, and degrees CCW from the camera's
-  // forward axis (what the thesis' EKF measures).
+  // From the camera's foot (the robot's origin below its mount; below F' on a level rig) to the
+  // landmark's axis, horizontally: metres, and degrees CCW from the camera's forward axis, in
+  // (−180, 180] (what the thesis' EKF measures, rangeBearingOnFloor).
   double rangeM = 0.0, bearingDeg = 0.0;
 
   bool inView() const { return centre.has_value(); }

@@ -102,6 +102,50 @@ TEST(LandmarkAnnotations, UnderARollingShutterEachLandmarkIsWhereItsOwnLineSeesI
   EXPECT_TRUE(moving[1].occluded);  // still behind the wall
 }
 
+// Near the mirror's rim the side facing the camera may lie beyond it while the centre is imaged:
+// that side is not seen, but nothing hides it, so the landmark is visible, not occluded. A floor
+// and one band, its centre 1° below the rim (45° up) seen from F' 0.4 m up, 1 m away.
+TEST(LandmarkAnnotations, ALandmarkWhoseFacingSideIsBeyondTheRimIsNotOccluded) {
+  const Scene s = loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+    "objects": [{"type": "quad", "name": "floor", "material": "m", "origin": [-9, -9, 0], "edge_u": [18, 0, 0], "edge_v": [0, 18, 0]}],
+    "landmarks": [{"name": "near_rim", "position": [1, 0, 1.3825], "diameter": 0.1, "height": 0.1, "colour_class": "cyan"}]})",
+                                    "rim.json");
+  const RayScene rays(s);
+  const RobotPose pose{0.0, 0.0, 0.0};
+  const double rimPx = 0.5 * s.rig.mirrorRig().imageSize;
+  const Vec2 middle(rimPx, rimPx);
+  // The premise, from the closed form: the centre inside the rim's circle, the facing point (5 cm
+  // nearer) outside it.
+  ASSERT_LT((closedFormRaster(s.rig, pose, Vec3(1.0, 0, 1.3825)) - middle).norm(), rimPx);
+  ASSERT_GT((closedFormRaster(s.rig, pose, Vec3(0.95, 0, 1.3825)) - middle).norm(), rimPx);
+  const auto a = annotateLandmarks(s, rays, s.rig, pose);
+  ASSERT_TRUE(a[0].inView());
+  EXPECT_FALSE(a[0].occluded);
+  EXPECT_TRUE(a[0].visible());
+  EXPECT_GT(a[0].visibleFraction, 0.0);  // its far-side points are seen
+  EXPECT_LT(a[0].visibleFraction, 1.0);  // and the facing ones beyond the rim are not
+}
+
+// A tilted rig's F' stands off its foot (h sin 10° = 7 cm here); range and bearing are the foot's,
+// as the detector's inversion (landmark_geometry.h) and the EKF measure them.
+TEST(LandmarkAnnotations, RangeAndBearingAreFromTheFootOfATiltedRig) {
+  const Scene s = loadSceneFromText(R"({"format": "omnicam-scene/1", "materials": {"m": {}},
+    "rig": {"tilt_deg": [10, 0]},
+    "objects": [{"type": "quad", "name": "floor", "material": "m", "origin": [-9, -9, 0], "edge_u": [18, 0, 0], "edge_v": [0, 18, 0]}],
+    "landmarks": [{"name": "left", "position": [0, 2, 0.3], "diameter": 0.1, "height": 0.1, "colour_class": "cyan"},
+                  {"name": "behind", "position": [-1.75, -0.25, 0.3], "diameter": 0.1, "height": 0.1, "colour_class": "cyan"}]})",
+                                    "tilted.json");
+  const RayScene rays(s);
+  const RobotPose pose{0.5, -0.25, 0.0};
+  const Vec3 viewpoint = CameraPlacement(pose).worldFromViewpoint(s.rig).translation();
+  ASSERT_GT((viewpoint.head<2>() - Vec2(0.5, -0.25)).norm(), 0.06);
+  const auto a = annotateLandmarks(s, rays, s.rig, pose);
+  EXPECT_NEAR(a[0].rangeM, std::hypot(-0.5, 2.25), 1e-12);
+  EXPECT_NEAR(a[0].bearingDeg, degrees(std::atan2(2.25, -0.5)), 1e-9);
+  EXPECT_NEAR(a[1].rangeM, 2.25, 1e-12);
+  EXPECT_NEAR(a[1].bearingDeg, 180.0, 1e-9);  // straight behind: +180, never −180
+}
+
 // A lens camera projects beyond its image rectangle (Camera::project is not clipped): a landmark
 // whose centre lands off the image is not in view, and its box is its outline's clipped to the
 // image, none when the outline lies wholly off it. An equidistant fisheye of 200° on a 64 × 48

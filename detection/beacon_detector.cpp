@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <stdexcept>
 
 #include "errors.h"
 #include "landmark_geometry.h"
@@ -61,8 +62,20 @@ struct Candidate {
 
 }  // namespace
 
+void checkDetectorOptions(const DetectorOptions& options) {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("beacon detector: " + what); };
+  if (!(std::isfinite(options.theta) && options.theta > 0.0)) fail("theta must be finite and > 0");
+  if (options.minBlobArea < 1) fail("minBlobArea must be ≥ 1 pixel");
+  if (options.medianPx < 1 || options.medianPx > 255 || options.medianPx % 2 == 0)
+    fail("medianPx must be odd, in [1, 255]");
+  if (!(std::isfinite(options.rangeAgreement) && options.rangeAgreement >= 0.0)) fail("rangeAgreement must be finite and ≥ 0");
+  if (!(std::isfinite(options.maxBearingGapDeg) && options.maxBearingGapDeg > 0.0))
+    fail("maxBearingGapDeg must be finite and > 0");
+}
+
 ImageRGBA detectorInput(const ImageRGBA& image, const DetectorOptions& options) {
-  if (options.medianPx <= 1) return image;
+  checkDetectorOptions(options);
+  if (options.medianPx == 1) return image;
   cv::Mat codes(image.height, image.width, CV_8UC3);
   for (int j = 0; j < image.height; ++j)
     for (int i = 0; i < image.width; ++i) {
@@ -84,6 +97,8 @@ ImageRGBA detectorInput(const ImageRGBA& image, const DetectorOptions& options) 
 
 DetectionResult detectBeacons(const ImageRGBA& frame, const std::map<std::string, ColourHistogramClassifier>& classifiers,
                               const std::vector<Beacon>& beacons, const RigSpec& rig, const DetectorOptions& options) {
+  if (frame.width != rig.imageWidth() || frame.height != rig.imageHeight())
+    throw std::invalid_argument("beacon detector: the frame is not the rig's image size");
   const ImageRGBA image = detectorInput(frame, options);
   DetectionResult result;
   const int w = image.width, h = image.height;
@@ -106,7 +121,7 @@ DetectionResult detectBeacons(const ImageRGBA& frame, const std::map<std::string
         if (!lower) continue;
         const double meanRange = 0.5 * ((*upper)(0) + (*lower)(0));
         const double rangeGap = std::abs((*upper)(0) - (*lower)(0));
-        const double bearingGap = std::abs(wrapAngle((*upper)(1) - (*lower)(1))) * 180.0 / 3.14159265358979323846;
+        const double bearingGap = degrees(std::abs(wrapAngle((*upper)(1) - (*lower)(1))));
         if (rangeGap > options.rangeAgreement * meanRange + 0.05 || bearingGap > options.maxBearingGapDeg) continue;
         const double score = rangeGap / (meanRange + 0.05) + bearingGap / options.maxBearingGapDeg;
         candidates.push_back({score, &beacon, static_cast<int>(u), static_cast<int>(l)});

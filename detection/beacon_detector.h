@@ -58,12 +58,17 @@ struct DetectorOptions {
   double maxBearingGapDeg = 6.0;
 };
 
+// Throws std::invalid_argument naming the field when `options` cannot be used: theta finite and
+// > 0, minBlobArea ≥ 1, medianPx odd in [1, 255], rangeAgreement finite and ≥ 0,
+// maxBearingGapDeg finite and > 0 (it divides the pairs' scores).
+void checkDetectorOptions(const DetectorOptions& options);
+
 // What the classifiers see of `image` (and are trained on): its 8-bit codes through the median
 // filter, linear again, alpha kept; `image` itself when options.medianPx is 1.
 ImageRGBA detectorInput(const ImageRGBA& image, const DetectorOptions& options);
 
 // `classifiers` by colour name (e.g. "cyan"). Pixels with alpha < 0.5 (beyond the rim) are never
-// classified.
+// classified. `image` must be the rig's image size; `options` pass checkDetectorOptions.
 DetectionResult detectBeacons(const ImageRGBA& image, const std::map<std::string, ColourHistogramClassifier>& classifiers,
                               const std::vector<Beacon>& beacons, const RigSpec& rig, const DetectorOptions& options);
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "detector_testing.h"
 #include "errors.h"
@@ -68,15 +69,67 @@ TEST(BeaconDetector, BandsFarApartOrOfOneColourAreNoBeacon) {
   // Magenta and yellow, but on opposite sides of the image: their inversions disagree.
   disc(image, {100, 180}, 2.6, kColours.at("magenta"));
   disc(image, {260, 180}, 2.6, kColours.at("yellow"));
-  // A lone cyan blob, and one too small to count.
+  // A lone cyan blob, and one of a single pixel (its centre's), too small to count.
   disc(image, {180, 100}, 2.6, kColours.at("cyan"));
-  disc(image, {180, 260}, 0.6, kColours.at("cyan"));
+  disc(image, {180.5, 260.5}, 0.6, kColours.at("cyan"));
   const DetectionResult r = detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{});
   EXPECT_EQ(r.blobs.size(), 3u);
   EXPECT_TRUE(r.beacons.empty());
+  DetectorOptions everyPixel;
+  everyPixel.minBlobArea = 1;
+  EXPECT_EQ(detectBeacons(image, exactClassifiers(), beacons, rig, everyPixel).blobs.size(), 4u);
   // Beyond the rim (alpha 0) nothing is classified.
   for (size_t p = 3; p < image.pixels.size(); p += 4) image.pixels[p] = 0.0f;
   EXPECT_TRUE(detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{}).blobs.empty());
+}
+
+TEST(BeaconDetector, TwoPairsForOneBeaconNameItOnceByTheBetterPair) {
+  RigSpec rig = field().rig;
+  rig.mirrorRig().imageSize = 720;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const RobotPose pose{0.4, -0.2, 30.0};
+  const Beacon& beacon = beacons[0];
+  const Vec2 upper = projected(rig, pose, beacon.upper->position), lower = projected(rig, pose, beacon.lower->position);
+  const double radius = 0.45 * (upper - lower).norm();
+  // A second lower band beside the true one, along the image's circle through it: its pair with
+  // the upper band is a worse but valid candidate for the same beacon.
+  const Vec2 centre(0.5 * rig.imageWidth(), 0.5 * rig.imageHeight());
+  const Vec2 radial = (lower - centre).normalized();
+  const Vec2 decoy = lower + 2.5 * radius * Vec2(-radial.y(), radial.x());
+  ImageRGBA decoyOnly = greyImage(rig.mirrorRig().imageSize);
+  disc(decoyOnly, upper, radius, kColours.at(beacon.upper->colourClass));
+  disc(decoyOnly, decoy, radius, kColours.at(beacon.lower->colourClass));
+  const DetectionResult alone = detectBeacons(decoyOnly, exactClassifiers(), beacons, rig, DetectorOptions{});
+  ASSERT_EQ(alone.beacons.size(), 1u) << "the decoy pair must be a candidate for the test to mean anything";
+
+  ImageRGBA both = decoyOnly;
+  disc(both, lower, radius, kColours.at(beacon.lower->colourClass));
+  const DetectionResult r = detectBeacons(both, exactClassifiers(), beacons, rig, DetectorOptions{});
+  ASSERT_EQ(r.blobs.size(), 3u);
+  ASSERT_EQ(r.beacons.size(), 1u);
+  EXPECT_EQ(r.beacons[0].beacon->name, beacon.name);
+  EXPECT_LT((r.blobs[r.beacons[0].lowerBlob].centroid - lower).norm(), 0.25);  // the true band, not the decoy
+  expectRangeBearingOf(r.beacons[0], beacon, pose);
+}
+
+TEST(BeaconDetector, OptionsItCannotUseAndAFrameOfAnotherSizeAreRefused) {
+  const RigSpec rig = field().rig;
+  const std::vector<Beacon> beacons = beaconsOf(field());
+  const ImageRGBA image = greyImage(rig.mirrorRig().imageSize);
+  auto refused = [&](DetectorOptions o) {
+    EXPECT_THROW(detectBeacons(image, exactClassifiers(), beacons, rig, o), std::invalid_argument);
+  };
+  DetectorOptions o;
+  o.maxBearingGapDeg = 0.0;  // would divide every pair's score by zero
+  refused(o);
+  o = {}, o.medianPx = 2, refused(o);
+  o = {}, o.medianPx = 0, refused(o);
+  o = {}, o.theta = std::nan(""), refused(o);
+  o = {}, o.minBlobArea = 0, refused(o);
+  o = {}, o.rangeAgreement = -0.1, refused(o);
+  EXPECT_NO_THROW(detectBeacons(image, exactClassifiers(), beacons, rig, DetectorOptions{}));
+  EXPECT_THROW(detectBeacons(greyImage(rig.mirrorRig().imageSize / 2), exactClassifiers(), beacons, rig, DetectorOptions{}),
+               std::invalid_argument);
 }
 
 TEST(BeaconDetector, TheMedianInputRemovesASpeckAndKeepsAThreePixelBand) {

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "memory_budget.h"
+
 namespace omnicam {
 
 Rgb8 rgb8FromPixel(const float* rgba) {
@@ -27,6 +29,10 @@ std::vector<int> resolutionAndHalvings(int bins, int smallest) {
 ColourHistogramClassifier::ColourHistogramClassifier(int binsPerChannel) : bins_(binsPerChannel) {
   if (bins_ < 1 || bins_ > 256) throw std::invalid_argument("bins per channel must be in [1, 256]");
   const size_t cells = static_cast<size_t>(bins_) * bins_ * bins_;
+  // 256 bins a channel are 268 MB of counts a classifier, and an experiment holds several (the
+  // usual 32 bins, 0.5 MB, are not worth reading /proc for).
+  const auto bytes = static_cast<int64_t>(2 * cells * sizeof(uint64_t));
+  if (bytes > (int64_t{64} << 20)) requireMemory(bytes, "a colour histogram classifier of " + std::to_string(bins_) + "³ bins");
   positive_.assign(cells, 0);
   negative_.assign(cells, 0);
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "camera.h"
 #include "landmark_geometry.h"
 #include "omni_camera.h"
 #include "placement.h"
@@ -87,7 +88,7 @@ BeaconFootprints footprintsOf(const RigSpec& rig, const Beacon& beacon) {
   std::vector<double> rangeAt(static_cast<size_t>(w) * h, beyondHorizon), bearingAt(rangeAt.size(), 0.0);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
-      if (const auto rangeBearing = rangeBearingFromRaster(rig, Vec2(i + 0.5, j + 0.5), boundary)) {
+      if (const auto rangeBearing = rangeBearingFromRaster(rig, pixelCentre(i, j), boundary)) {
         rangeAt[static_cast<size_t>(j) * w + i] = (*rangeBearing)(0);
         bearingAt[static_cast<size_t>(j) * w + i] = (*rangeBearing)(1);
       }
@@ -155,22 +156,20 @@ FootprintDetector::FootprintDetector(const RigSpec& rig, const std::vector<Beaco
                  b.lower->diameter};
   };
   std::vector<Geometry> shapes;
-  std::vector<size_t> shapeIndex;
   for (const Beacon& beacon : beacons_) {
     const auto found = std::find(shapes.begin(), shapes.end(), shapeOf(beacon));
-    shapeIndex.push_back(static_cast<size_t>(found - shapes.begin()));
+    shapeOfBeacon_.push_back(static_cast<size_t>(found - shapes.begin()));
     if (found == shapes.end()) {
       shapes.push_back(shapeOf(beacon));
       shapes_.push_back(footprintsOf(rig_, beacon));
     }
   }
-  for (const size_t k : shapeIndex) footprintOfBeacon_.push_back(&shapes_[k]);
 }
 
 namespace {
 
-// The raster centre of pixel index p (pixel (i, j) covers [i, i+1) × [j, j+1)).
-Vec2 pixelCentre(int p, int width) { return Vec2(p % width + 0.5, p / width + 0.5); }
+// The raster centre of pixel index p = j·width + i (camera.h's pixelCentre).
+Vec2 pixelCentreOfIndex(int p, int width) { return pixelCentre(p % width, p / width); }
 
 struct Found {
   double score;
@@ -324,7 +323,7 @@ ColourBlob blobOf(const std::string& colour, const int* begin, const int* end, i
   blob.pixels.assign(begin, end);
   blob.area = static_cast<int>(blob.pixels.size());
   Vec2 sum(0.0, 0.0);
-  for (const int p : blob.pixels) sum += pixelCentre(p, width);
+  for (const int p : blob.pixels) sum += pixelCentreOfIndex(p, width);
   blob.centroid = sum / static_cast<double>(blob.area);
   return blob;
 }
@@ -353,7 +352,7 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
   while (!stack.empty()) {
     const int p = stack.back();
     stack.pop_back();
-    sum += pixelCentre(p, width), ++count;
+    sum += pixelCentreOfIndex(p, width), ++count;
     for (int dj = -1; dj <= 1; ++dj)
       for (int di = -1; di <= 1; ++di) {
         const int i = p % width + di, j = p / width + dj;
@@ -365,7 +364,7 @@ Vec2 observedCentroid(const std::vector<float>& evidence, const int* begin, cons
       }
   }
   if (count > 0) return sum / count;
-  for (const int* p = begin; p != end; ++p) sum += pixelCentre(*p, width);
+  for (const int* p = begin; p != end; ++p) sum += pixelCentreOfIndex(*p, width);
   return sum / static_cast<double>(end - begin);
 }
 
@@ -426,11 +425,11 @@ DetectionResult FootprintDetector::detect(const BandEvidence& evidence, double t
   const double minMean = std::log(theta);
   std::vector<std::vector<Hypothesis>> hypotheses(beacons_.size());
   for (size_t b = 0; b < beacons_.size(); ++b)
-    hypotheses[b] = bestFootprints(beacons_[b], *footprintOfBeacon_[b], mapOf(beacons_[b].upper->colourClass),
+    hypotheses[b] = bestFootprints(beacons_[b], footprints(b), mapOf(beacons_[b].upper->colourClass),
                                    mapOf(beacons_[b].lower->colourClass), minMean, rule);
   DetectionResult result;
   for (const Found& f : agreeingChoice(beacons_, hypotheses)) {
-    const BeaconFootprints& fp = *footprintOfBeacon_[f.beacon];
+    const BeaconFootprints& fp = footprints(f.beacon);
     const int* first = fp.pixels.data() + fp.upperBegin[f.candidate];
     const int* last = fp.pixels.data() + fp.upperBegin[f.candidate + 1];
     const Beacon& beacon = beacons_[f.beacon];

@@ -100,13 +100,13 @@ class FootprintDetector {
                         const DetectorOptions& options) const;
   DetectionResult detect(const BandEvidence& evidence, double theta, const FootprintRule& rule = {}) const;
 
-  const BeaconFootprints& footprints(size_t beacon) const { return *footprintOfBeacon_[beacon]; }
+  const BeaconFootprints& footprints(size_t beacon) const { return shapes_[shapeOfBeacon_[beacon]]; }
 
  private:
   RigSpec rig_;
   const std::vector<Beacon>& beacons_;
   std::vector<BeaconFootprints> shapes_;                  // one per distinct beacon geometry
-  std::vector<const BeaconFootprints*> footprintOfBeacon_;
+  std::vector<size_t> shapeOfBeacon_;                    // index into shapes_ (a copy stays whole)
 };
 
 constexpr int kHypothesesPerBeacon = 8;

@@ -115,9 +115,9 @@ std::vector<GroundTruthBeacon> groundTruth(const Scene& scene, const RayScene& r
   for (const Beacon& beacon : beacons) {
     const Vec3 boundary(beacon.position().x(), beacon.position().y(), beacon.boundaryHeight());
     const auto raster = camera.rasterFromCamera(cameraFromWorldT * boundary);
-    const double dx = boundary.x() - pose.x, dy = boundary.y() - pose.y;
+    const Vec2 rangeBearing = rangeBearingOnFloor(Vec2(pose.x, pose.y), radians(pose.yawDeg), boundary.head<2>());
     truth.push_back({&beacon, raster && visible(beacon.upper) && visible(beacon.lower), raster.value_or(Vec2(-1, -1)),
-                     std::hypot(dx, dy), wrapAngle(std::atan2(dy, dx) - pose.yawDeg * kPi / 180.0)});
+                     rangeBearing(0), rangeBearing(1)});
   }
   return truth;
 }

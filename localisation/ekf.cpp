@@ -4,11 +4,6 @@
 
 namespace omnicam {
 
-double wrapAngle(double radians) {
-  const double wrapped = std::remainder(radians, 2.0 * kPi);  // [−π, π]
-  return wrapped <= -kPi ? wrapped + 2.0 * kPi : wrapped;
-}
-
 Vec3 motionModel(const Vec3& s, const Odometry& u) {
   const double heading = s.z() + u.omega;
   return {s.x() + u.v * std::cos(heading), s.y() + u.v * std::sin(heading), wrapAngle(heading)};
@@ -31,10 +26,7 @@ Matrix32 motionJacobianControl(const Vec3& s, const Odometry& u) {
   return v;
 }
 
-RangeBearing measurementModel(const Vec3& s, const Vec2& l) {
-  const double dx = l.x() - s.x(), dy = l.y() - s.y();
-  return {std::hypot(dx, dy), wrapAngle(std::atan2(dy, dx) - s.z())};
-}
+RangeBearing measurementModel(const Vec3& s, const Vec2& l) { return rangeBearingOnFloor(s.head<2>(), s.z(), l); }
 
 Matrix23 measurementJacobian(const Vec3& s, const Vec2& l) {
   const double dx = l.x() - s.x(), dy = l.y() - s.y();

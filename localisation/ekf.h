@@ -26,8 +26,6 @@ Matrix32 motionJacobianControl(const Vec3& state, const Odometry& u);
 // h (Eq. 3.12) and H = ∂h/∂x (3.18, the standard form).
 RangeBearing measurementModel(const Vec3& state, const Vec2& landmark);
 Matrix23 measurementJacobian(const Vec3& state, const Vec2& landmark);
-// An angle wrapped to (−π, π].
-double wrapAngle(double radians);
 
 class LandmarkEkf {
  public:

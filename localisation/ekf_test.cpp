@@ -61,9 +61,9 @@ TEST(Ekf, OneUpdateIsTheClosedFormKalmanPosterior) {
   EXPECT_NEAR(ekf.covariance()(2, 2), st2 - st2 * st2 / s, 1e-12);
 }
 
-// The thesis' gate (3.21) multiplies by S; the correct Mahalanobis distance divides by it. A
-// measurement 3σ off in range with a large S passes with S⁻¹ (ρ = 9 · σr²/S < 9.21) and would
-// fail with S; one 10σ off fails.
+// The thesis' gate (3.21) multiplies by S; the correct Mahalanobis distance divides by it. With
+// S ≈ 4 (σr = 2 m), a measurement 1.4σ off in range (2.8 m) passes with S⁻¹ (ρ = 2.8²/4 = 1.96 <
+// 9.21) and would fail with S (ρ = 2.8² · 4 ≈ 31); one 10σ off fails.
 TEST(Ekf, TheGateUsesTheInverseCovariance) {
   const double sr2 = 4.0;  // a 2 m range standard deviation: S ≈ 4
   LandmarkEkf ekf({0, 0, 0}, Eigen::Matrix3d::Identity() * 1e-6, Eigen::Matrix2d::Zero(),
