@@ -14,6 +14,7 @@
 #include "errors.h"
 #include "external_process.h"
 #include "job_folder.h"
+#include "json_text.h"
 #include "manifest.h"
 #include "markup.h"
 #include "safe_files.h"
@@ -25,14 +26,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // Paths go into the scripts single-quoted (shellQuote) and into sbatch's log options, where
-// Slurm expands '%'. A line break would end a comment or the quoted word's line, so every path
-// must be one printable line: control characters are refused, and '%' in the dataset folder.
+// Slurm expands '%' — and a backslash anywhere turns that off (sbatch(1), "filename pattern"): every
+// task would log into one file named shard-%a.log. A line break would end a comment or the quoted
+// word's line, so every path must be one printable line: control characters are refused, and
+// '%' and '\' in the dataset folder.
 void checkScriptPath(const std::string& path, bool holdsLogs) {
   for (const unsigned char ch : path)
     if (ch < 0x20 || ch == 0x7f)
       throw InputError(showPath(path) + ": contains a control character; a path in a Slurm script must be one printable line");
-  if (holdsLogs && path.find('%') != std::string::npos)
-    throw InputError(showPath(path) + ": a dataset folder for Slurm must not contain '%' (Slurm expands it in log names)");
+  if (holdsLogs && path.find_first_of("%\\") != std::string::npos)
+    throw InputError(showPath(path) + ": a dataset folder for Slurm must not contain '%' or '\\' (Slurm reads them in log names)");
 }
 
 // Slurm opens the logs itself when the jobs start, following links: a link or a special file
@@ -57,6 +60,7 @@ class SbatchRefused : public ExternalError {
 // what slurm/jobs.json holds.
 struct SubmittedJob {
   std::string id, cluster;
+  std::string logProblem;  // why slurm/sbatch.log could not be kept ("" when it was)
 };
 constexpr const char* kJobNumberPattern = R"(\d{1,18})";
 constexpr const char* kClusterNamePattern = R"([A-Za-z0-9][A-Za-z0-9_.-]{0,63})";
@@ -81,7 +85,16 @@ SubmittedJob submit(const std::vector<std::string>& argv, const fs::path& dir, c
   } removeTemporary{dir, tmpName};
   const ProcessResult r = runProcess(argv, slurmDir.string(), tmp, 120.0);
   const std::string output = tailOfFile(tmp, 5);
-  writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
+  // sbatch.log is a copy for people to read: failing to keep it (a folder planted there, a full
+  // disk) must not lose the number of a job Slurm has queued, so it is said, not thrown.
+  std::string logProblem;
+  try {
+    writeFileInside(dir.string(), "slurm/sbatch.log", readFileInside(dir.string(), tmpName, int64_t{1} << 20), Durability::Unsynced);
+  } catch (const InputError& e) {
+    logProblem = e.what();
+  } catch (const OutputError& e) {
+    logProblem = e.what();
+  }
   if (r.notFound) throw SbatchRefused(showPath(argv[0]) + ": not found (make deps installs slurm-client; on a cluster, load its module)");
   if (r.timedOut)
     throw ExternalError("sbatch did not answer for the " + what + " within 120 s; it may have been submitted all the same (squeue "
@@ -92,7 +105,7 @@ SubmittedJob submit(const std::vector<std::string>& argv, const fs::path& dir, c
   const std::regex jobId("(" + std::string(kJobNumberPattern) + ")(;(" + kClusterNamePattern + "))?");
   while (std::getline(lines, line)) {
     std::smatch m;
-    if (std::regex_match(line, m, jobId)) return {m[1], m[3]};
+    if (std::regex_match(line, m, jobId)) return {m[1], m[3], logProblem};
   }
   throw ExternalError("sbatch gave no job id for the " + what + ": " + r.logTail);
 }
@@ -150,10 +163,12 @@ SubmittedSlurmJobs readSubmittedSlurmJobs(const std::string& folder) {
     throw InputError(where + ": " + (kind == EntryKind::Link ? "is a symbolic link" : "is not a regular file") +
                      "; omnicam keeps the last submission's job numbers there");
   nlohmann::json jobs;
-  try {
-    jobs = nlohmann::json::parse(readFileInside(dir.string(), kJobsFile, int64_t{1} << 16));
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(where + ": not the job list omnicam writes (not valid JSON)");
+  try {  // as every JSON omnicam reads: no key twice (which would pick one job), bounded depth
+    jobs = parseJsonText(readFileInside(dir.string(), kJobsFile, int64_t{1} << 16), (dir / kJobsFile).string());
+  } catch (const InputError& e) {  // "<file>: what is wrong": said of the file once
+    std::string what = e.what();
+    if (what.rfind(where + ": ", 0) == 0) what.erase(0, where.size() + 2);
+    throw InputError(where + ": not the job list omnicam writes (" + what + ")");
   }
   if (!jobs.is_object() || !jobs.contains("array_job")) throw InputError(where + ": not the job list omnicam writes (no array_job)");
   SubmittedSlurmJobs submitted;
@@ -390,7 +405,9 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   for (const ShardState& state : shardStates(dir.string(), o.shards, true))
     if (!state.complete) s.shards.push_back(state.index);
   if (s.shards.empty()) {
-    mergeDatasetShards(dir.string(), o.shards);
+    if (const MergeResult merged = mergeDatasetShards(dir.string(), o.shards); !merged.complete())
+      throw InputError(showPath(dir.string()) + ": every shard of " + std::to_string(o.shards) + " is complete, yet their merge lists " +
+                       std::to_string(merged.finished) + " of " + std::to_string(merged.frames) + " frames");
     return s;
   }
   for (const int shard : s.shards) checkLogName(dir, "slurm/shard-" + std::to_string(shard) + ".log");
@@ -408,6 +425,7 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
                     "--output=" + (slurmDir / "shard-%a.log").string(), s.renderScript},
                    dir, "array job");
     s.arrayJob = array.id;
+    if (!array.logProblem.empty()) s.notes.push_back("sbatch's answer was not kept as slurm/sbatch.log: " + array.logProblem);
   } catch (const SbatchRefused&) {  // sbatch's words are in the message
     before.undo();
     throw;
@@ -419,9 +437,11 @@ SlurmSubmission submitDatasetToSlurm(const SlurmSubmitOptions& o) {
   // afterany: the merge also runs when a task failed, and lists what is missing.
   try {
     recordJobs(dir, array, "");
-    s.mergeJob = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
-                         "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
-                        dir, "merge job").id;
+    const SubmittedJob merge = submit({o.sbatch, "--parsable", "--dependency=afterany:" + s.arrayJob,
+                                       "--output=" + (slurmDir / "merge.log").string(), s.mergeScript},
+                                      dir, "merge job");
+    s.mergeJob = merge.id;
+    if (!merge.logProblem.empty()) s.notes.push_back("sbatch's answer was not kept as slurm/sbatch.log: " + merge.logProblem);
   } catch (const std::runtime_error& e) {
     // The array is queued and its shards are good work: said first, with what finishes or undoes
     // it, then what failed.

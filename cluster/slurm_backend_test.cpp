@@ -157,6 +157,32 @@ TEST(SlurmBackend, AMergeJobRefusedNamesTheQueuedArrayJobAndWhatFinishesOrCancel
   fs::remove_all(dir);
 }
 
+// sbatch.log is a copy of sbatch's answer for people: when it cannot be kept (a folder planted
+// under its name), the jobs Slurm queued are still recorded (slurm/jobs.json) and returned, with a
+// note — never an error that loses the number of a queued array.
+TEST(SlurmBackend, AnSbatchLogThatCannotBeKeptLosesNoQueuedJob) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("omnicam_slurm_log_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path sbatch = dir / "sbatch";
+  std::ofstream(sbatch) << "#!/bin/sh\ncase \"$*\" in *--dependency*) echo 4712;; *) echo 4711;; esac\n";
+  fs::permissions(sbatch, fs::perms::owner_all);
+  const SlurmSubmitOptions options = threeShardSubmission(dir, sbatch);
+  fs::create_directories(fs::path(options.dir) / "shards");  // a folder submitted to before
+  fs::create_directories(fs::path(options.dir) / "slurm" / "sbatch.log");
+  const SlurmSubmission s = submitDatasetToSlurm(options);
+  EXPECT_EQ(s.arrayJob, "4711");
+  EXPECT_EQ(s.mergeJob, "4712");
+  const SubmittedSlurmJobs recorded = readSubmittedSlurmJobs(options.dir);
+  EXPECT_EQ(recorded.arrayJob, "4711");
+  EXPECT_EQ(recorded.mergeJob, "4712");
+  EXPECT_TRUE(std::any_of(s.notes.begin(), s.notes.end(), [](const std::string& note) {
+    return note.find("sbatch's answer was not kept as slurm/sbatch.log: ") == 0;
+  })) << "no note of the log";
+  fs::remove_all(dir);
+}
+
 // A second submission while the first's jobs are still queued or running (slurm/jobs.json, asked
 // of squeue) is refused before anything is written or queued: its tasks would render the same
 // shards beside the first's. Jobs squeue no longer lists, or has forgotten, are ended.
@@ -244,9 +270,11 @@ TEST(SlurmBackend, ASubmissionWhileTheLastOnesJobsAreQueuedIsRefused) {
            {R"({"array_job": "4711", "cluster": "--all"})", "cluster: not a Slurm cluster's name"},
            {R"({"merge_job": "4712"})", "not the job list omnicam writes (no array_job)"},
            {"[]", "not the job list omnicam writes (no array_job)"},
-           {"{", "not the job list omnicam writes (not valid JSON)"}}) {
-    std::ofstream(jobsFile) << text;
-    EXPECT_EQ(refusal(), jobsFile.string() + ": " + why) << text;
+           {"{", "not the job list omnicam writes (not valid JSON ("},
+           {R"({"array_job": "4711", "array_job": "4712"})", "not the job list omnicam writes (duplicate key \"array_job\" in one object)"}}) {
+    std::ofstream(jobsFile, std::ios::trunc) << text;
+    const std::string said = refusal(), expected = jobsFile.string() + ": " + why;
+    EXPECT_EQ(said.substr(0, expected.size()), expected) << text;
   }
   fs::remove(jobsFile);
   fs::create_symlink(dir / "spec.json", jobsFile);

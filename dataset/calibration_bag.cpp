@@ -4,8 +4,10 @@
 #include <cstring>
 
 #include "annotation_files.h"
+#include "dataset_spec.h"
 #include "errors.h"
 #include "image.h"
+#include "number_format.h"
 #include "output_kinds.h"
 #include "rosbag_file.h"
 #include "sha256.h"
@@ -43,8 +45,12 @@ void writeCalibrationBag(const SafeFolder& dir, DatasetManifest& manifest) {
   if (found == manifest.header.end() || !found->is_object() || found->value("rosbag", json(false)) != json(true)) return;
   json& calibration = *found;
   const json intervalField = manifest.header.value("settings", json::object()).value("frame_interval_s", json());
-  if (!intervalField.is_number() || !(intervalField.get<double>() * 1e9 >= 1.0))
-    throw InputError(showPath(dir.path()) + ": manifest: settings.frame_interval_s must be a number of at least 1 ns for the ROS bag");
+  // A manifest is untrusted (a merge reads a shard's): the spec's bounds, so that every stamp
+  // (frame × interval, in ns) fits in 64 bits.
+  if (!intervalField.is_number() || !(intervalField.get<double>() * 1e9 >= 1.0) ||
+      !(intervalField.get<double>() <= limits::kMaxFrameIntervalSeconds))
+    throw InputError(showPath(dir.path()) + ": manifest: settings.frame_interval_s must be a number from 1 ns to " +
+                     shortNumber(limits::kMaxFrameIntervalSeconds) + " s for the ROS bag");
   const double interval = intervalField.get<double>();
   struct BagCamera {
     std::string name;

@@ -129,8 +129,9 @@ FrameRange frameRange(const DatasetRunOptions& options, int totalFrames) {
   if (range.sharded && shardCount > totalFrames)
     throw InputError("shard count " + std::to_string(shardCount) + ": more than the dataset's " + std::to_string(totalFrames) + " frame" +
                      (totalFrames == 1 ? "" : "s") + " (a shard would render none): give at most " + std::to_string(totalFrames));
-  range.first = static_cast<int>(static_cast<int64_t>(totalFrames) * options.shardIndex / shardCount);
-  range.end = static_cast<int>(static_cast<int64_t>(totalFrames) * (options.shardIndex + 1) / shardCount);
+  const ShardFrames frames = shardFrames(totalFrames, options.shardIndex, shardCount);
+  range.first = frames.first;
+  range.end = frames.end;
   range.manifestName = range.sharded ? shardManifestName(options.shardIndex, options.shardCount) : kManifestName;
   return range;
 }

@@ -50,6 +50,7 @@ void removeDatasetFiles(const SafeFolder& dir, const DatasetManifest& old) {
     for (const std::string& folder : cameraFolderNames()) dir.removeEmptyFolder(camera + "/" + folder);
     dir.removeEmptyFolder(camera);
   }
+  removeShardManifestsOf(dir, old.header);
 }
 
 DatasetManifest readPreviousManifest(const std::string& dir, const std::string& name) {
@@ -167,7 +168,8 @@ DatasetRunResult runDatasetHere(const DatasetSpec& spec, const DatasetRunOptions
   const SafeFolder folder(options.dir, true);
   if (!folder.tryClaim(plan.range().sharded))
     throw InputError(showPath(options.dir) + ": another omnicam run is writing " +
-                     (plan.range().sharded ? "a whole dataset" : "a dataset") + " there now: wait for it to end, or give another folder");
+                     (plan.range().sharded ? "a whole dataset (or merging its shards)" : "a dataset") +
+                     " there now: wait for it to end, or give another folder");
   // The folder: new, this dataset (resume), or something else (refused unless overwriting a
   // dataset). Everything in it is checked before anything is written: a planted link or a file
   // where a folder goes ends the run here.

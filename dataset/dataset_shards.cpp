@@ -48,6 +48,13 @@ ShardManifest readShardManifest(const SafeFolder& dir, int index, int count) {
                      std::to_string(count) + " (the file is not that shard's manifest)");
   shard.first = range.at("first_frame").get<int>();
   shard.end = range.at("end_frame").get<int>();
+  // The range is the formula's, not the file's to choose: a forged one would hand a shard's
+  // frames to another, or call an empty shard complete.
+  const ShardFrames frames = shardFrames(shard.manifest.header.value("frame_count", 0), index, count);
+  if (shard.first != frames.first || shard.end != frames.end)
+    throw InputError(showPath(dir.path() + "/" + name) + ": shard: frames [" + std::to_string(shard.first) + ", " +
+                     std::to_string(shard.end) + ") are not shard " + std::to_string(index) + " of " + std::to_string(count) +
+                     "'s, [" + std::to_string(frames.first) + ", " + std::to_string(frames.end) + ")");
   return shard;
 }
 
@@ -113,6 +120,22 @@ std::vector<int> shardCountsIn(const std::string& dir) {
   return {counts.begin(), counts.end()};
 }
 
+void removeShardManifestsOf(const SafeFolder& dir, const json& header) {
+  if (dir.entry("shards") != EntryKind::Folder) return;  // never listed through a link
+  const std::regex name(R"(shard-\d+-of-[1-9]\d{0,5}\.json)");
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (auto it = fs::directory_iterator(fs::path(dir.path()) / "shards", ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+    if (const std::string file = it->path().filename().string(); std::regex_match(file, name)) names.push_back("shards/" + file);
+  for (const std::string& shard : names) {
+    try {
+      if (identityDifference(readDatasetManifest(dir, shard).header, header).empty()) dir.removeFile(shard);
+    } catch (const InputError&) {  // not one of its manifests: not omnicam's to remove
+    }
+  }
+  dir.removeEmptyFolder("shards");
+}
+
 std::string unmergedShardsNextStep(const std::string& path) {
   const std::vector<int> counts = shardCountsIn(path);
   // Submitted to Slurm (docs/cluster.md): its merge job merges, and a resubmission renders what
@@ -166,6 +189,7 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
   const SafeFolder dir(path);  // opened once: every shard's manifest read, the merged one written
   std::optional<DatasetManifest> merged;
   MergeResult result;
+  std::vector<ShardFrames> startedRanges;
   for (int i = 0; i < count; ++i) {
     const std::string name = shardManifestName(i, count);
     if (!hasShardManifest(dir, name)) {
@@ -183,6 +207,7 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
       throw InputError(showPath(path + "/" + name) + ": from another dataset than the other shards (" + difference + ")");
     }
     const int first = read.first, end = read.end;
+    startedRanges.push_back({first, end});
     int finished = 0;
     for (const auto& [index, frame] : shard.frames)
       if (index >= first && index < end) merged->frames[index] = frame, ++finished;
@@ -195,8 +220,14 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     if (const std::string difference = identityDifference(existing.header, merged->header); !difference.empty())
       throw InputError(showPath(path) + ": its " + std::string(kManifestName) + " is from another dataset than the shards (" +
                        difference + ")");
-    // Frames an earlier merge (or an unsharded run) finished stay listed.
-    for (const auto& [index, frame] : existing.frames) merged->frames.emplace(index, frame);
+    // Frames an earlier merge (or an unsharded run) finished stay listed — but only those of shards
+    // not started: a started shard's own manifest says which of its frames are finished now (a
+    // rerun drops a frame whose file it found damaged, until it renders it again).
+    const auto inStartedShard = [&](int index) {
+      return std::any_of(startedRanges.begin(), startedRanges.end(), [index](const ShardFrames& r) { return index >= r.first && index < r.end; });
+    };
+    for (const auto& [index, frame] : existing.frames)
+      if (!inStartedShard(index)) merged->frames.emplace(index, frame);
   }
   result.frames = merged->header.value("frame_count", 0);
   result.finished = static_cast<int>(merged->frames.size());

@@ -9,6 +9,7 @@
 
 #include "held_name.h"
 #include "manifest.h"
+#include "safe_files.h"
 
 namespace omnicam {
 
@@ -33,6 +34,11 @@ std::optional<HeldName> holdShard(const std::string& dir, int index, int count);
 
 // The shard counts (1 … kMaxShards) that have manifests in DIR/shards/ (normally one).
 std::vector<int> shardCountsIn(const std::string& dir);
+
+// Removes DIR/shards/shard-I-of-N.json of the dataset `header` (each that reads as one of its
+// manifests; anything else stays), then shards/ if it is left empty: a dataset replaced by a run
+// in one go leaves no shards that would make its folder look half sharded.
+void removeShardManifestsOf(const SafeFolder& dir, const nlohmann::json& header);
 
 // What finishes a folder of shards not merged: merging them when every shard of a count is
 // finished, else running the shards left (one line, for messages).

@@ -329,6 +329,11 @@ std::string shardManifestName(int index, int count) {
   return "shards/shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".json";
 }
 
+ShardFrames shardFrames(int totalFrames, int index, int count) {
+  return {static_cast<int>(static_cast<int64_t>(totalFrames) * index / count),
+          static_cast<int>(static_cast<int64_t>(totalFrames) * (index + 1) / count)};
+}
+
 DatasetManifest manifestFromText(const std::string& text, const std::string& file) {
   // A manifest holds its spec one level down.
   json root = parseJsonText(text, file, limits::kMaxJsonDepth + 1);

@@ -28,7 +28,7 @@ inline constexpr const char* kKalibrCamchainPath = "kalibr_camchain.yaml";
 // kMaxManifestHeaderBytes, checked before a run starts, and limits::kMaxCameraFrames entries of
 // at most kMaxManifestBytesPerCameraFrame each (longest names and numbers: tested).
 inline constexpr int64_t kMaxManifestHeaderBytes = int64_t{128} << 20;
-inline constexpr int64_t kMaxManifestBytesPerCameraFrame = 4096;
+inline constexpr int64_t kMaxManifestBytesPerCameraFrame = 5120;
 inline constexpr int64_t kMaxManifestBytes =
     kMaxManifestHeaderBytes + limits::kMaxCameraFrames * kMaxManifestBytesPerCameraFrame;
 
@@ -95,6 +95,11 @@ std::string identityDifference(const nlohmann::json& a, const nlohmann::json& b)
 inline constexpr int kMaxShards = 100000;
 // A shard's manifest, relative to the dataset folder: shards/shard-I-of-N.json.
 std::string shardManifestName(int index, int count);
+// The frames shard `index` of `count` renders of `totalFrames`: [F·I/N, F·(I+1)/N).
+struct ShardFrames {
+  int first = 0, end = 0;
+};
+ShardFrames shardFrames(int totalFrames, int index, int count);
 
 // Every file the manifest lists (static files of each camera, then the frames'), for verifying.
 std::vector<FileRecord> manifestFiles(const DatasetManifest& manifest);

@@ -7,8 +7,10 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "errors.h"
 
@@ -49,12 +51,31 @@ FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
                {negativeTiny, negativeTiny}};
   rig.shutter = {tiny, RollingShutter{tiny, Readout::BottomToTop}, 256};
   rig.tiltDeg = {negativeTiny, negativeTiny};
+  // A randomised recording camera, every value drawn (17 digits, an exponent where the range
+  // allows one), the seed as long as it gets.
+  RecordingCamera recording;
+  for (double* value : {&recording.blurRadiusPx, &recording.vignetting, &recording.readNoise, &recording.rowNoise})
+    *value = tiny;
+  for (double* value : {&recording.chromaticAberration, &recording.exposureEv}) *value = negativeTiny;
+  for (double* value : {&recording.whiteBalance[0], &recording.whiteBalance[1], &recording.whiteBalance[2]})
+    *value = 1.2345678901234567;
+  recording.fullWellElectrons = 1234567.8901234567;
+  recording.gamma = recording.contrast = 1.2345678901234567;
+  recording.bayer = BayerPattern::RGGB;
+  recording.demosaic = DemosaicMethod::EdgeAware;
+  recording.tone = ToneCurve::Filmic;
+  recording.jpegQuality = 100;
+  recording.seed = std::numeric_limits<uint64_t>::max();
+  frame.robotTiltDeg = {negativeTiny, negativeTiny};
   for (const std::string& name : cameras) {
     CameraFrame& camera = frame.cameras[name];
     camera.pose = frame.robot;
     camera.rig = rig;
+    camera.recording = recording;
     for (const char* kind : {"rgb", "depth", "instance", "semantic", "normal", "landmarks"})
       camera.files[kind] = {name + "/" + kind + "/" + std::to_string(index) + ".json", kHash};
+    // The longest file name: EuRoC's, a 19-digit timestamp in ns.
+    camera.files["multilayer"] = {name + "/multilayer/8640000000000000000.exr", kHash};
   }
   return frame;
 }
@@ -68,6 +89,8 @@ TEST(Manifest, EveryCameraFrameTakesAtMostTheBytesItsSizeLimitAllows) {
     const int frames = 20;
     for (int i = 999999; i > 999999 - frames; --i) manifest.frames[i] = longestFrame(i, cameras);
     const size_t perCameraFrame = (manifestToJson(manifest).dump(1).size() - headerOnly) / (frames * cameraCount);
+    std::printf("%d camera(s): %zu bytes per camera-frame at most (bound %lld)\n", cameraCount, perCameraFrame,
+                static_cast<long long>(kMaxManifestBytesPerCameraFrame));
     EXPECT_LE(perCameraFrame, static_cast<size_t>(kMaxManifestBytesPerCameraFrame)) << cameraCount << " cameras";
   }
 }

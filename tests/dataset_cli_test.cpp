@@ -680,6 +680,66 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   }
 }
 
+// A merge takes a started shard's frames from that shard's own manifest, never from an earlier
+// merge's: a rerun shard that dropped a frame (its file found damaged) and was killed before
+// rendering it again leaves the dataset incomplete, not "complete" with the old frame's record.
+// And a shard's frame range is the formula's: a forged one is refused, not taken as complete.
+TEST_F(DatasetCliTest, AMergeTakesAStartedShardsFramesFromItsOwnManifestAndItsRangeFromTheFormula) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 4})");
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds") + " --shard 0/2").code, 0);
+  ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds") + " --shard 1/2").code, 0);
+  ASSERT_EQ(omnicam("dataset --merge " + path("ds")).code, 0);
+  const fs::path shard0 = dir_ / "ds/shards/shard-0-of-2.json";
+  json rerun = json::parse(readFile(shard0));
+  json kept = json::array();
+  for (const json& frame : rerun["frames"])
+    if (frame["index"] != 1) kept.push_back(frame);
+  ASSERT_EQ(kept.size(), 1u);
+  rerun["frames"] = kept;
+  rerun["complete"] = false;
+  std::ofstream(shard0, std::ios::trunc) << rerun.dump();
+  auto r = omnicam("dataset --merge " + path("ds"));
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("3 of 4 frames finished"), std::string::npos) << r.out;
+  EXPECT_FALSE(json::parse(readFile(dir_ / "ds/manifest.json"))["complete"].get<bool>());
+  EXPECT_EQ(omnicam("dataset --status " + path("ds")).code, 1);
+
+  const fs::path shard1 = dir_ / "ds/shards/shard-1-of-2.json";
+  json forged = json::parse(readFile(shard1));
+  forged["shard"]["first_frame"] = 4;
+  forged["shard"]["end_frame"] = 4;
+  forged["frames"] = json::array();
+  std::ofstream(shard1, std::ios::trunc) << forged.dump();
+  r = omnicam("dataset --merge " + path("ds"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("shard-1-of-2.json: shard: frames [4, 4) are not shard 1 of 2's, [2, 4)"), std::string::npos) << r.out;
+}
+
+// A run in one go that overwrites a merged sharded dataset takes its shards' manifests with it
+// (they would make the folder look half sharded, and refuse every later submission as "the shards
+// of another dataset"); a file of the user's in shards/ stays, and with it the folder.
+TEST_F(DatasetCliTest, OverwritingAShardedDatasetRemovesItsShardManifestsAndNothingElse) {
+  const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 2})");
+  const std::string other = robocupSpec("other.json", R"("size": 24, "poses": {"path": "thesis-loop", "frames": 2})");
+  for (const char* folder : {"ds", "kept"}) {
+    ASSERT_EQ(omnicam("dataset " + spec + " -o " + path(folder) + " --shard 0/2").code, 0);
+    ASSERT_EQ(omnicam("dataset " + spec + " -o " + path(folder) + " --shard 1/2").code, 0);
+    ASSERT_EQ(omnicam("dataset --merge " + path(folder)).code, 0);
+  }
+  std::ofstream(dir_ / "kept/shards/notes.txt") << "mine";
+  for (const char* folder : {"ds", "kept"}) {
+    const auto r = omnicam("dataset " + other + " -o " + path(folder) + " --overwrite");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_FALSE(fs::exists(dir_ / folder / "shards/shard-0-of-2.json")) << folder;
+    EXPECT_FALSE(fs::exists(dir_ / folder / "shards/shard-1-of-2.json")) << folder;
+    EXPECT_EQ(omnicam("dataset --verify " + path(folder)).code, 0) << folder;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "ds/shards"));
+  EXPECT_EQ(readFile(dir_ / "kept/shards/notes.txt"), "mine");
+  // The folder now holds one dataset, which a sharded run of it may join.
+  EXPECT_EQ(omnicam("dataset " + other + " -o " + path("ds") + " --shard 0/2").code, 0);
+}
+
 // A resume and a merge remove what killed runs left (temporaries of omnicam's names, in its own
 // folders) and nothing of the user's: not in a folder of theirs, not of a name omnicam never gives.
 TEST_F(DatasetCliTest, AUsersFilesOutliveResumeAndMerge) {

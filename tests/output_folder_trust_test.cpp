@@ -136,8 +136,12 @@ TEST_F(OutputFolderTrust, APathThatCannotBeOneQuotedScriptLineIsRefusedBeforeAny
   EXPECT_FALSE(fs::exists(at("sbatch-calls.txt"))) << "sbatch was called";
   // Slurm expands '%' in log names; a spec path with a line break is refused too.
   EXPECT_REFUSED(omnicam("dataset " + sh(specPath) + " -o " + sh(at("ds%j")) + " --backend slurm --shards 2"),
-                 "must not contain '%'");
+                 "must not contain '%' or '\\'");
   EXPECT_FALSE(fs::exists(at("ds%j")));
+  // A backslash turns Slurm's '%' expansion off: every task would log into one "shard-%a.log".
+  EXPECT_REFUSED(omnicam("dataset " + sh(specPath) + " -o " + sh(at("ds\\x")) + " --backend slurm --shards 2"),
+                 "must not contain '%' or '\\'");
+  EXPECT_FALSE(fs::exists(at("ds\\x")));
   fs::copy_file(specPath, at("spec\r\nx.json"));
   EXPECT_REFUSED(omnicam("dataset " + sh(at("spec\r\nx.json")) + " -o " + sh(at("ds")) + " --backend slurm --shards 2"),
                  "contains a control character");
@@ -146,9 +150,11 @@ TEST_F(OutputFolderTrust, APathThatCannotBeOneQuotedScriptLineIsRefusedBeforeAny
 }
 
 TEST_F(OutputFolderTrust, SlurmScriptsRunAsWrittenWithEveryOptionAndNothingInjected) {
-  const std::string specPath = spec("spec.json", 2);
-  // Quotes, command substitutions, a backslash, a semicolon: all legal in a path, all inert.
-  const fs::path out = dir_ / "it's \"a\" $(touch PWNED1) `touch PWNED2` ;touch PWNED3; \\ x" / "ds";
+  // Quotes, command substitutions, a backslash, a semicolon: all legal in a path, all inert (the
+  // backslash in the spec's: the dataset folder may hold none, as Slurm reads it in log names).
+  fs::create_directories(dir_ / "it's a \\ spec");
+  const std::string specPath = spec("it's a \\ spec/spec.json", 2);
+  const fs::path out = dir_ / "it's \"a\" $(touch PWNED1) `touch PWNED2` ;touch PWNED3; x" / "ds";
   const std::vector<std::string> options{"--partition=debug", "--time=1:00", "--comment=trust"};
   const Outcome submitted = omnicam("dataset " + sh(specPath) + " -o " + sh(out.string()) +
                                 " --backend slurm --shards 2 --max-parallel 1 --slurm-args " +
