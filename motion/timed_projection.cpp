@@ -25,11 +25,11 @@ std::optional<TimedProjection> projectAtReadout(const Camera& camera, const Came
   const int width = camera.width(), height = camera.height();
   const auto lineTime = [&](int line) { return lineStart(shutter, line) + 0.5 * shutter.exposureS; };
   if (!shutter.rolling) return projectAt(camera, placement, p, lineTime(0));
-  // The line a raster point lies on (points off the image: the nearest line).
+  // The line a raster point lies on (points off the image: the nearest line). Clamped before the
+  // cast: an unclipped projection may lie ~1e11 px out (a pinhole's point near its image plane).
+  const auto pixelAt = [](double v, int size) { return static_cast<int>(std::floor(std::clamp(v, 0.0, size - 1.0))); };
   const auto lineAt = [&](const Vec2& raster) {
-    const int i = std::clamp(static_cast<int>(std::floor(raster.x())), 0, width - 1);
-    const int j = std::clamp(static_cast<int>(std::floor(raster.y())), 0, height - 1);
-    return lineOf(shutter, i, j, width, height);
+    return lineOf(shutter, pixelAt(raster.x(), width), pixelAt(raster.y(), height), width, height);
   };
   // A line's projection, and by how many lines it misses that line.
   struct Tried {

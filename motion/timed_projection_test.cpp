@@ -8,6 +8,7 @@
 
 #include "make_camera.h"
 #include "placement.h"
+#include "test_lenses.h"
 
 namespace omnicam {
 namespace {
@@ -21,11 +22,10 @@ RigSpec rigWith(const Shutter& shutter) {
   return rig;
 }
 
-// The line of a raster point, clamped to the image as projectAtReadout's is.
+// The line of a raster point: the pixel it lies in, or for a point off the image the nearest.
 int lineAt(const Shutter& shutter, const Vec2& raster, int size) {
-  const int i = std::clamp(static_cast<int>(std::floor(raster.x())), 0, size - 1);
-  const int j = std::clamp(static_cast<int>(std::floor(raster.y())), 0, size - 1);
-  return lineOf(shutter, i, j, size, size);
+  const auto pixel = [size](double v) { return v < 0.0 ? 0 : v >= size ? size - 1 : static_cast<int>(v); };
+  return lineOf(shutter, pixel(raster.x()), pixel(raster.y()), size, size);
 }
 
 std::optional<Vec2> projectFrom(const Camera& camera, const RobotPose& pose, const Vec3& p) {
@@ -110,6 +110,27 @@ TEST(TimedProjection, AStillRobotIsProjectedAsTheStaticCameraProjects) {
       EXPECT_EQ(timed->raster, *direct);
     }
   }
+}
+
+// A pinhole images a point almost in its image plane ~1e11 px off the image (project is not
+// clipped): such a point is timed by the nearest line, the last column read left to right — not
+// by whatever a cast of 1e11 to int gives.
+TEST(TimedProjection, APointProjectedFarOffTheImageIsTimedByTheNearestLine) {
+  PinholeRadTan pinhole;
+  pinhole.fx = pinhole.fy = 100.0, pinhole.cx = pinhole.cy = 31.5;
+  RigSpec rig = test::lensRig(pinhole, 64, 64);
+  rig.shutter = {0.001, RollingShutter{300.0, Readout::LeftToRight}, 0};
+  const auto camera = makeCamera(rig);
+  // In the viewpoint frame: the optical axis and the image's right, from the camera's own rays.
+  const Vec3 axis = camera->generateRay({Vec2(32.0, 32.0)})->direction.normalized();
+  const Vec3 towardRight = camera->generateRay({Vec2(63.0, 32.0)})->direction.normalized();
+  const Vec3 right = (towardRight - towardRight.dot(axis) * axis).normalized();
+  const CameraPlacement still(kStart, BodyVelocity{});
+  const Vec3 world = still.worldFromViewpoint(rig) * (right + 1e-9 * axis);
+  const auto timed = projectAtReadout(*camera, still, world);
+  ASSERT_TRUE(timed.has_value());
+  EXPECT_GT(timed->raster.x(), 1e9);
+  EXPECT_DOUBLE_EQ(timed->seconds, lineStart(rig.shutter, 63) + 0.0005);
 }
 
 }  // namespace

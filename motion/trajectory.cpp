@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace omnicam {
 
@@ -12,6 +13,7 @@ Trajectory::Trajectory(std::vector<RobotPose> waypoints, std::vector<double> tim
 }
 
 Trajectory Trajectory::atSpeed(const std::vector<RobotPose>& waypoints, double speed, double yawRateDegPerS) {
+  if (waypoints.empty()) throw std::invalid_argument("trajectory: needs at least one waypoint");
   std::vector<RobotPose> kept{waypoints.front()};
   std::vector<double> times{0.0};
   for (size_t k = 1; k < waypoints.size(); ++k) {

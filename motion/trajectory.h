@@ -16,7 +16,8 @@ class Trajectory {
   // `times` strictly increasing, one per waypoint (the caller checks; at least one waypoint).
   Trajectory(std::vector<RobotPose> waypoints, std::vector<double> times);
   // Waypoints driven at `speed` m/s and turned at `yawRateDegPerS`, both > 0, from time 0. A
-  // waypoint equal to the one before it (no distance, no turn) adds nothing.
+  // waypoint equal to the one before it (no distance, no turn) adds nothing. At least one waypoint
+  // (std::invalid_argument).
   static Trajectory atSpeed(const std::vector<RobotPose>& waypoints, double speed, double yawRateDegPerS);
 
   double start() const { return times_.front(); }
