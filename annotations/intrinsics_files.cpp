@@ -11,6 +11,7 @@
 #include "lens_intrinsics_files.h"
 #include "make_camera.h"
 #include "number_format.h"
+#include "opencv_yaml.h"
 
 namespace omnicam {
 
@@ -20,13 +21,6 @@ constexpr const char* kSignNote =
     "gamma_y (fv) is negative on purpose: the catadioptric image is a mirror image of the world; with "
     "the camera frame X forward, Y right, Z down at the mirror's effective viewpoint F' (right-handed), "
     "v grows along -Y. Pixel centres are integers (cx = W/2 - 0.5).";
-
-// cv::FileStorage writes in memory; every number it writes round-trips (%.17g).
-std::string fileStorageText(const std::function<void(cv::FileStorage&)>& write) {
-  cv::FileStorage fs("intrinsics.yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-  write(fs);
-  return fs.releaseAndGetString();
-}
 
 // What the files say of a model that is not exact (one line; empty for an exact model).
 std::string approximationNote(const CentralModel& model) {
@@ -42,7 +36,7 @@ std::string approximationNote(const CentralModel& model) {
 }
 
 std::string distortionText(const LensDistortion& l) {
-  return "[" + yamlFloat(l.k1) + ", " + yamlFloat(l.k2) + ", " + yamlFloat(l.p1) + ", " + yamlFloat(l.p2) + "]";
+  return yamlFloatList({l.k1, l.k2, l.p1, l.p2});
 }
 
 }  // namespace
@@ -105,8 +99,7 @@ std::string kalibrIntrinsicsYaml(const std::string& name, const Camera& camera) 
   if (model.approximation) out << "# " << approximationNote(model) << "\n";
   out << "cam0:\n"
       << "  camera_model: omni\n"
-      << "  intrinsics: [" << yamlFloat(k.xi) << ", " << yamlFloat(k.gammaX) << ", " << yamlFloat(k.gammaY) << ", "
-      << yamlFloat(k.cx) << ", " << yamlFloat(k.cy) << "]\n"
+      << "  intrinsics: " << yamlFloatList({k.xi, k.gammaX, k.gammaY, k.cx, k.cy}) << "\n"
       << "  distortion_model: radtan\n"
       << "  distortion_coeffs: " << distortionText(k.lens) << "\n"
       << "  resolution: [" << camera.width() << ", " << camera.height() << "]\n"
@@ -120,11 +113,6 @@ Rigid worldFromModelCamera(const CameraPlacement& placement, const Camera& camer
 }
 
 std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras) {
-  const auto list = [](const std::vector<double>& values) {
-    std::string text = "[";
-    for (size_t k = 0; k < values.size(); ++k) text += (k ? ", " : "") + yamlFloat(values[k]);
-    return text + "]";
-  };
   std::ostringstream out;
   out << "# Kalibr camchain written by omnicam for its calibration bag (kalibr.bag), every camera's images on its rostopic.\n"
       << "# A mirror camera's images are flipped top to bottom in the bag (a catadioptric image is a mirror image):\n"
@@ -145,15 +133,15 @@ std::string kalibrCamchainYaml(const std::vector<KalibrChainCamera>& cameras) {
     }
     out << "cam" << n << ":\n"
         << "  camera_model: " << model.cameraModel << "\n"
-        << "  intrinsics: " << list(model.intrinsics) << "\n"
+        << "  intrinsics: " << yamlFloatList(model.intrinsics) << "\n"
         << "  distortion_model: " << model.distortionModel << "\n"
-        << "  distortion_coeffs: " << list(model.coefficients) << "\n"
+        << "  distortion_coeffs: " << yamlFloatList(model.coefficients) << "\n"
         << "  resolution: [" << c.camera->width() << ", " << c.camera->height() << "]\n"
         << "  rostopic: /" << c.name << "/image_raw\n";
     if (n > 0) {
       const Eigen::Matrix4d t = (c.worldFromCamera.inverse() * cameras[n - 1].worldFromCamera).matrix();
       out << "  T_cn_cnm1:\n";
-      for (int row = 0; row < 4; ++row) out << "  - " << list({t(row, 0), t(row, 1), t(row, 2), t(row, 3)}) << "\n";
+      for (int row = 0; row < 4; ++row) out << "  - " << yamlFloatList({t(row, 0), t(row, 1), t(row, 2), t(row, 3)}) << "\n";
     }
   }
   return out.str();

@@ -5,17 +5,11 @@
 #include <sstream>
 
 #include "number_format.h"
+#include "opencv_yaml.h"
 
 namespace omnicam {
 
 namespace {
-
-// cv::FileStorage writes in memory; every number it writes round-trips (%.17g).
-std::string fileStorageText(const std::function<void(cv::FileStorage&)>& write) {
-  cv::FileStorage fs("intrinsics.yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-  write(fs);
-  return fs.releaseAndGetString();
-}
 
 constexpr const char* kFrameNote =
     "Camera frame: X right, Y down, Z along the optical axis, at the lens' centre of projection; pixel centres "
@@ -23,12 +17,6 @@ constexpr const char* kFrameNote =
 
 cv::Mat cameraMatrix(double fx, double fy, double cx, double cy) {
   return (cv::Mat_<double>(3, 3) << fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0);
-}
-
-std::string floats(const std::vector<double>& values) {
-  std::string out = "[";
-  for (const double v : values) out += (out.size() > 1 ? ", " : "") + yamlFloat(v);
-  return out + "]";
 }
 
 }  // namespace
@@ -97,9 +85,9 @@ std::optional<std::string> kalibrLensYaml(const std::string& name, const LensCam
       << "# " << kFrameNote << "\n"
       << "cam0:\n"
       << "  camera_model: " << kalibr->cameraModel << "\n"
-      << "  intrinsics: " << floats(kalibr->intrinsics) << "\n"
+      << "  intrinsics: " << yamlFloatList(kalibr->intrinsics) << "\n"
       << "  distortion_model: " << kalibr->distortionModel << "\n"
-      << "  distortion_coeffs: " << floats(kalibr->coefficients) << "\n"
+      << "  distortion_coeffs: " << yamlFloatList(kalibr->coefficients) << "\n"
       << "  resolution: [" << camera.width() << ", " << camera.height() << "]\n"
       << "  rostopic: /" << name << "/image_raw\n";
   return out.str();

@@ -210,11 +210,15 @@ RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven) {
   return rigFromJson(file, path, "rig");
 }
 
-RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load,
-                            const std::vector<std::string>& images, const std::string& flag) {
+void checkSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath) {
   if (scenePath.empty() == rigPath.empty())
     throw InputError(scenePath.empty() ? "give a scene file or --rig RIG.json (the camera's rig)"
                                        : "--rig: give a scene file or --rig, not both");
+}
+
+RigSpec rigOfSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath, const SceneLoadOptions& load,
+                            const std::vector<std::string>& images, const std::string& flag) {
+  checkSceneOrRigFlag(scenePath, rigPath);
   if (!rigPath.empty()) {
     for (const std::string& image : images) {
       checkOutputIsNotInput(image, flag, rigPath, "the --rig file");

@@ -58,6 +58,8 @@ void addSceneLoadFlags(CLI::App& cmd, SceneLoadOptions& options);
 // The rig a --rig file holds (a scene's "rig" object, checked as a scene's is); a whole scene
 // given there is refused, naming how the verb takes a scene (`sceneGiven`).
 RigSpec readRigFlag(const std::string& path, const std::string& sceneGiven = "the scene argument");
+// InputError unless exactly one of a scene file and --rig is given.
+void checkSceneOrRigFlag(const std::string& scenePath, const std::string& rigPath);
 // The rig of exactly one of `scenePath` (a scene file, loaded with `load`) or `rigPath` (readRigFlag):
 // for verbs that need a camera and nothing else of the scene. `images` (named by `flag`), and
 // their sidecars, must not be a file it read (checkOutputsSpareScene).

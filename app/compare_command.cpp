@@ -102,12 +102,13 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
     for (const FrameComparison& f : r.frames) worst.push_back(&f);
     std::sort(worst.begin(), worst.end(), [](auto* x, auto* y) { return x->result.psnrDb < y->result.psnrDb; });
     std::printf("compared %zu images (frames x cameras)%s\n  mean PSNR %.2f dB%s  worst %.2f dB  mean SSIM %.5f  max abs %.9g  max abs of alpha %s\n",
-                r.frames.size(), args.disc ? " inside the mirror disc" : "", r.meanPsnrDb,
+                r.frames.size(), args.disc ? " wholly imaged in both (alpha 1)" : "", r.meanPsnrDb,
                 r.identical ? (" (over the " + std::to_string(r.frames.size() - static_cast<size_t>(r.identical)) + " whose colour differs; " +
                                std::to_string(r.identical) + " of identical colour)").c_str()
                             : "",
                 r.minPsnrDb, r.meanSsim, r.maxAbs, datasetAlphaText(r).c_str());
-    for (size_t k = 0; k < std::min<size_t>(3, worst.size()); ++k)
+    // Only images that differ: among identical ones (∞ dB) none is worst.
+    for (size_t k = 0; k < std::min<size_t>(3, worst.size()) && std::isfinite(worst[k]->result.psnrDb); ++k)
       std::printf("  worst: frame %d %s  %.2f dB\n", worst[k]->index, worst[k]->camera.c_str(), worst[k]->result.psnrDb);
     int broken = 0;
     for (const FrameComparison& f : r.frames)
@@ -176,6 +177,10 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     throw InputError("compare: give two images or two dataset folders (got one of each)");
   }
   if (folderA) return runDatasetCompare(args, cmd);
+  // Neither a folder: a name that is nothing may be a misspelt image or dataset folder.
+  for (const std::string& path : {args.a, args.b})
+    if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+      throw InputError(showPath(path) + ": no such file or folder (compare takes two images or two dataset folders)");
   refuseUnless(cmd, "--report", false, "two dataset folders");
   refuseUnless(cmd, "--junit", false, "two dataset folders");
   refuseUnless(cmd, "--common-frames", false, "two dataset folders");
@@ -203,7 +208,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  max abs of alpha %s  over tol %.6g: %.4f%%\n",
-                r.pixels, args.disc ? " inside the mirror disc" : "", r.rmse, r.psnrDb, r.ssim, r.maxAbs, r.maxI, r.maxJ,
+                r.pixels, args.disc ? " wholly imaged in both (alpha 1)" : "", r.rmse, r.psnrDb, r.ssim, r.maxAbs, r.maxI, r.maxJ,
                 alphaText(r).c_str(), args.tol, 100.0 * r.fracOverTol);
     if (!r.allFinite()) std::printf("  %s\n", nonFiniteText(r).c_str());
   }
@@ -230,7 +235,7 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--fail-rmse", args->failRmse, "Fail above this RMSE")->check(numberIn(0, 1e6));
   cmd->add_option("--fail-max", args->failMax, "Fail above this max abs error (colour, and alpha on its own); datasets: any frame above")->check(numberIn(0, 1e6));
   cmd->add_option("--tol", args->tol, "Per-channel tolerance for frac_over_tol (default 1/255)")->check(numberIn(0, 1e6));
-  cmd->add_flag("--disc", args->disc, "Only pixels wholly inside the mirror disc in both images");
+  cmd->add_flag("--disc", args->disc, "Only pixels wholly imaged in both images (alpha 1: inside the mirror's disc, a fisheye's circle)");
   cmd->add_flag("--common-frames", args->commonFrames,
                 "Datasets: compare only the frames both hold (a ground truth of fewer frames), saying how many were left out");
   cmd->add_flag("--box-downsample", args->boxDownsample,

@@ -94,7 +94,7 @@ int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
   }
   const MergeResult r = mergeDatasetShards(dir, count);
   const std::string merged = r.started == count ? countOf(count, "shard") : std::to_string(r.started) + " of " + countOf(count, "shard");
-  std::printf("%s: merged %s: %d of %d frames finished%s\n", dir.c_str(), merged.c_str(), r.finished, r.frames,
+  std::printf("%s: merged %s: %d of %d frames finished%s\n", showPath(dir).c_str(), merged.c_str(), r.finished, r.frames,
               r.complete() ? " (complete)" : "");
   if (!r.complete()) printShardStates(dir, count);
   return r.complete() ? 0 : 1;
@@ -104,12 +104,12 @@ int runMerge(const std::string& dir, int shards, const CLI::App& cmd) {
 int runVerify(const std::string& dir) {
   if (entryInside(dir, kManifestName) == EntryKind::Missing && !shardCountsIn(dir).empty()) {
     // Shards not merged: nothing whole to verify yet; say what makes it whole (as --status does).
-    std::printf("FAIL: %s: shards not merged yet: no manifest.json to verify (%s)\n", dir.c_str(), unmergedShardsNextStep(dir).c_str());
+    std::printf("FAIL: %s: shards not merged yet: no manifest.json to verify (%s)\n", showPath(dir).c_str(), unmergedShardsNextStep(dir).c_str());
     return 1;
   }
   const DatasetVerifyResult r = verifyDataset(dir);
   for (const std::string& problem : r.problems) std::printf("%s\n", problem.c_str());
-  std::printf("%s: %s: %s checked, %s\n", r.ok() ? "PASS" : "FAIL", dir.c_str(), countOf(r.files, "file").c_str(),
+  std::printf("%s: %s: %s checked, %s\n", r.ok() ? "PASS" : "FAIL", showPath(dir).c_str(), countOf(r.files, "file").c_str(),
               countOf(static_cast<long long>(r.problems.size()), "problem").c_str());
   return r.ok() ? 0 : 1;
 }
@@ -152,7 +152,7 @@ int printStatus(const std::string& dir) {
     int finished = 0;
     for (int count : shardCounts)
       for (const ShardState& state : shardStates(dir, count, false)) finished += state.finished;
-    std::printf("%s: shards not merged yet: %d frames finished in the shards that have started (%s)\n", dir.c_str(), finished,
+    std::printf("%s: shards not merged yet: %d frames finished in the shards that have started (%s)\n", showPath(dir).c_str(), finished,
                 nextStep(dir).c_str());
     if (const SubmittedJobsText submitted = submittedJobsText(dir); !submitted.jobs.empty())
       std::printf("  submitted to Slurm as %s: `%s` lists them while they are queued or running\n", submitted.jobs.c_str(),
@@ -165,14 +165,14 @@ int printStatus(const std::string& dir) {
     const SubmittedJobsText submitted = submittedJobsText(dir);
     if (submitted.jobs.empty())
       std::printf("%s: submitted to Slurm (slurm/render.sbatch), no shard has started yet: squeue lists the jobs, "
-                  "slurm/shard-<I>.log each task's output\n", dir.c_str());
+                  "slurm/shard-<I>.log each task's output\n", showPath(dir).c_str());
     else
       std::printf("%s: submitted to Slurm as %s (slurm/render.sbatch), no shard has started yet: `%s` lists them, "
-                  "slurm/shard-<I>.log each task's output\n", dir.c_str(), submitted.jobs.c_str(), submitted.squeue.c_str());
+                  "slurm/shard-<I>.log each task's output\n", showPath(dir).c_str(), submitted.jobs.c_str(), submitted.squeue.c_str());
     return 1;
   }
   const DatasetStatus s = datasetStatus(dir);
-  std::printf("%s: %d of %d frames finished%s\n", dir.c_str(), s.finished, s.frames,
+  std::printf("%s: %d of %d frames finished%s\n", showPath(dir).c_str(), s.finished, s.frames,
               s.complete ? " (complete, by its manifest; --verify re-hashes every file)" : (" (incomplete: " + nextStep(dir) + ")").c_str());
   if (!s.complete)
     for (int count : shardCountsIn(dir)) printShardStates(dir, count);
@@ -288,7 +288,7 @@ void addDatasetCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", args->out, "Dataset folder (created; an interrupted run resumes in it)");
   cmd->add_flag("--overwrite", args->overwrite, "Replace a dataset made from a different spec in the folder");
   addSceneLoadFlags(*cmd, args->load);
-  cmd->add_option("--verify", args->verify, "Re-hash every file of dataset DIR against its manifest (exit 0 / 1)");
+  cmd->add_option("--verify", args->verify, "Re-hash every file of dataset DIR against its manifest (exit 0 PASS / 1 FAIL; 2 if the manifest cannot be read)");
   cmd->add_option("--status", args->status, "Say how many frames of dataset DIR are finished (exit 0 complete / 1)");
   cmd->add_option("--shard", args->shard, "Render only shard I of N (I/N) into the shared folder (docs/cluster.md)");
   cmd->add_option("--backend", args->backend, "local (default) or slurm: submit the shards as a Slurm job array");

@@ -3,7 +3,8 @@
 //          render.ini; render it with `cd DIR && povray render.ini`.
 // blender: a self-contained job — scene.glb, job.json and blender_driver.py; render it with
 //          `cd DIR && blender -b … -P blender_driver.py -- job.json` (it writes render.exr).
-// gltf:    DIR/scene.glb — the arena plus the rig (certified mirror mesh, camera) at the pose.
+// gltf:    DIR/scene.glb — the arena plus the rig (certified mirror mesh, camera) at the pose;
+//          with --no-rig the arena alone (for a camera glTF cannot hold).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -27,6 +28,7 @@ namespace {
 struct ExportArgs {
   std::string scene, to, out, pose;
   int size = 0;
+  bool noRig = false;
   RequestFlags request;  // --spp and --shading, for POV-Ray's job
   SceneLoadOptions load;
 };
@@ -68,6 +70,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     throw InputError("--to: " + quote(a.to) + " is not available (povray, blender, gltf)");
   refuseUnless(cmd, "--spp", a.to != "gltf", "--to povray or blender (glTF holds no sampling)");
   refuseUnless(cmd, "--shading", a.to != "gltf", "--to povray or blender (glTF holds no shading mode)");
+  refuseUnless(cmd, "--no-rig", a.to == "gltf", "--to gltf (a POV-Ray or Blender job renders through the rig)");
   const RenderRequest request = readRequestFlags(cmd, a.request);
   std::optional<RobotPose> requested;
   if (!a.pose.empty()) requested = parsePose(a.pose, "--pose");
@@ -76,7 +79,17 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
   const RobotPose pose = requested ? *requested : scene.startPose;
   RenderSettings settings = request.settings(a.size ? scene.rig.resized(a.size, "--size") : scene.rig);
   checkRenderSettings(settings, kSettingFlags);
-  checkScene(a.scene, [&] { a.to == "povray" ? checkPovrayCamera(settings.rig) : checkGltfCamera(settings.rig); });
+  checkScene(a.scene, [&] {
+    if (a.to == "povray") checkPovrayCamera(settings.rig);
+    else if (a.to == "blender" || !a.noRig) {
+      try {
+        checkGltfCamera(settings.rig);
+      } catch (const InputError& e) {
+        if (a.to != "gltf") throw;
+        throw InputError(std::string(e.what()) + " (glTF holds the cameras Blender renders; --no-rig exports the arena alone)");
+      }
+    }
+  });
   if (a.to == "blender") {
     exportBlenderJob(a, scene, pose, settings);
     return;
@@ -85,6 +98,7 @@ void runExport(const ExportArgs& a, const CLI::App& cmd) {
     GltfExportOptions options;
     options.placement = pose;
     options.rig = settings.rig;
+    options.includeRig = !a.noRig;
     const std::string file = a.out + "/scene.glb";
     checkOutputsSpareScene(scene, {file}, "-o");
     const std::vector<std::string> made = ensureDirectory(a.out, "-o");
@@ -120,7 +134,8 @@ void addExportCommand(CLI::App& app) {
   auto args = std::make_shared<ExportArgs>();
   CLI::App* cmd = app.add_subcommand("export", "Export a scene with the exact mirror and physical camera");
   cmd->add_option("scene", args->scene, "Scene JSON file")->required();
-  cmd->add_option("--to", args->to, "povray (a POV-Ray job), blender (a Blender job) or gltf (the scene alone)")->required();
+  cmd->add_option("--to", args->to, "povray (a POV-Ray job), blender (a Blender job) or gltf (the scene and its rig at the pose)")->required();
+  cmd->add_flag("--no-rig", args->noRig, "gltf: the arena alone, without the camera rig (for a camera glTF cannot hold)");
   cmd->add_option("--pose", args->pose, "X,Y,YAW of the robot (default: the scene's start_pose)");
   cmd->add_option("--size", args->size, "Image size in pixels")->check(integerIn(limits::kMinImageSize, limits::kMaxImageSize));
   addRequestFlags(*cmd, args->request, kSppFlag | kShadingFlag);  // no path-shading flags: the jobs' own defaults

@@ -35,6 +35,7 @@ struct ProjectArgs {
 
 void runProject(const ProjectArgs& a, const CLI::App& cmd) {
   refuseUnless(cmd, "--allow-outside-files", !a.scene.empty(), "a scene");
+  checkSceneOrRigFlag(a.scene, a.rig);
   std::optional<RobotPose> givenPose;
   if (!a.pose.empty()) givenPose = parsePose(a.pose, "--pose");
   if (!givenPose && !a.rig.empty()) throw InputError("--pose: required with --rig (a rig has no start_pose)");

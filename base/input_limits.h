@@ -12,6 +12,9 @@ inline constexpr double kMaxWorldCoordinate = 1e4;
 // Lengths (radii, sizes) of scene primitives (metres) — at least a micrometre, at most 20 km.
 inline constexpr double kMinLength = 1e-6;
 inline constexpr double kMaxLength = 2e4;
+// A texture's repeats across its surface (scale): beyond, float texture coordinates lose the
+// texel, and the engines round them each their own way.
+inline constexpr double kMaxTextureScale = 1e4;
 // Robot yaw (degrees); any value in range is taken modulo 360.
 inline constexpr double kMaxYawDeg = 1e6;
 

@@ -38,6 +38,12 @@ std::string yamlFloat(double value) {
   return text;
 }
 
+std::string yamlFloatList(const std::vector<double>& values) {
+  std::string text = "[";
+  for (size_t k = 0; k < values.size(); ++k) text += (k ? ", " : "") + yamlFloat(values[k]);
+  return text + "]";
+}
+
 std::string countOf(long long count, const std::string& noun) {
   return std::to_string(count) + " " + noun + (count == 1 ? "" : "s");
 }

@@ -46,7 +46,9 @@ std::optional<Vec2> project(const KannalaBrandt& m, const Vec3& p) {
   if (!(p.norm() > 0.0)) return std::nullopt;
   const double theta = std::atan2(r, p.z());
   if (theta > m.maxThetaRad) return std::nullopt;
-  if (r == 0.0) return Vec2(m.cx, m.cy);
+  // On the axis: straight ahead is the centre; straight behind (a lens of 360°) is every point of
+  // the θ = π circle, given at azimuth 0, never the centre.
+  if (r == 0.0) return p.z() > 0.0 ? Vec2(m.cx, m.cy) : Vec2(m.cx + m.fx * kbDistort(m, theta), m.cy);
   const double scale = kbDistort(m, theta) / r;
   return Vec2(m.fx * scale * p.x() + m.cx, m.fy * scale * p.y() + m.cy);
 }
@@ -153,7 +155,7 @@ std::optional<Vec2> project(const FThetaLens& m, const Vec3& p) {
   if (theta > m.maxThetaRad) return std::nullopt;
   const std::optional<double> r = radiusAt(m, theta);
   if (!r) return std::nullopt;
-  if (rho == 0.0) return Vec2(m.cx, m.cy);
+  if (rho == 0.0) return p.z() > 0.0 ? Vec2(m.cx, m.cy) : Vec2(m.cx + *r, m.cy);  // behind: as Kannala–Brandt
   return Vec2(m.cx + *r * p.x() / rho, m.cy + *r * p.y() / rho);
 }
 

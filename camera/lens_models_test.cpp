@@ -125,6 +125,28 @@ TEST(LensModels, FThetaLensesAndThePanoramaAtKnownAngles) {
   EXPECT_NEAR(lensProject(pano, Vec3(0, -1, 1e-300))->y(), -0.5, 1e-9);
 }
 
+// A lens of 360° sees straight behind on its θ = π circle (every point of it is that direction),
+// never at the centre, which is straight ahead.
+TEST(LensModels, StraightBehindALensOf360DegreesIsOnItsOuterCircle) {
+  const double f = 10.0, cx = 32.0, cy = 32.0;
+  const Vec3 behind(0.0, 0.0, -5.0), ahead(0.0, 0.0, 5.0);
+  const KannalaBrandt kb{f, f, cx, cy, {0.0, 0.0, 0.0, 0.0}, kPi};
+  const FThetaLens equidistant{FThetaLens::Kind::Equidistant, f, {}, cx, cy, kPi};
+  const FThetaLens equisolid{FThetaLens::Kind::Equisolid, f, {}, cx, cy, kPi};
+  for (const auto& [name, model] : std::vector<std::pair<const char*, LensModel>>{
+           {"kannala_brandt", kb}, {"equidistant", equidistant}, {"equisolid", equisolid}}) {
+    EXPECT_NEAR((*lensProject(model, ahead) - Vec2(cx, cy)).norm(), 0.0, 1e-12) << name;
+    const Vec2 p = *lensProject(model, behind);
+    // Beside the axis the limit is the same circle: a point a hair off straight behind.
+    const Vec2 nearBehind = *lensProject(model, Vec3(1e-9, 0.0, -5.0));
+    EXPECT_NEAR((p - Vec2(cx, cy)).norm(), (nearBehind - Vec2(cx, cy)).norm(), 1e-6) << name;
+    EXPECT_GT((p - Vec2(cx, cy)).norm(), 0.9 * f * 2.0) << name;  // f·π for equidistant, 2f for equisolid
+    // And its ray points straight behind.
+    const Vec3 ray = *lensDirection(model, p);
+    EXPECT_LT(ray.normalized().z(), -1.0 + 1e-9) << name;
+  }
+}
+
 // Every model's unprojection inverts its projection: image points → rays → image points.
 TEST(LensModels, UnprojectionRoundTripsToTheSamePixel) {
   const std::vector<std::pair<const char*, LensModel>> models = {

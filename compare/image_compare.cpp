@@ -21,8 +21,6 @@ constexpr int kBandRows = 32;
 
 bool included(const float* a, const float* b, bool discOnly) { return !discOnly || (a[3] >= 0.999f && b[3] >= 0.999f); }
 
-double luma(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
-
 }  // namespace
 
 RowComparison::RowComparison(int widthA, int heightA, int widthB, int heightB, const CompareOptions& options)
@@ -75,7 +73,7 @@ void RowComparison::addRow(const float* rowA, const float* rowB) {
     if (worst > r_.maxAbs) r_.maxAbs = worst, r_.maxI = i, r_.maxJ = j;
     over_ += worst > options_.tolerance;
     ++r_.pixels;
-    const double la = luma(pa), lb = luma(pb);
+    const double la = luminance<double>(pa), lb = luminance<double>(pb);
     whole_.a += la, whole_.b += lb, whole_.aa += la * la, whole_.bb += lb * lb, whole_.ab += la * lb;
   }
   const size_t row = static_cast<size_t>(width_) * 4, slot = static_cast<size_t>(j % kSsimWindow) * row;
@@ -108,7 +106,7 @@ void RowComparison::addSsimWindows(int top) {
           all = false;
           break;
         }
-        const double va = luma(pa), vb = luma(pb);
+        const double va = luminance<double>(pa), vb = luminance<double>(pb);
         sums.a += va, sums.b += vb, sums.aa += va * va, sums.bb += vb * vb, sums.ab += va * vb;
       }
     }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "image.h"
+
 namespace omnicam {
 
 // x^exponent for x in [0, 1]: by squaring for whole exponents (a normal's agreement, most of a
@@ -24,8 +26,7 @@ class Power {
   bool whole_;
 };
 
-// Rec. 709 luminance of linear RGB: what the filters compare neighbours' light by.
-inline float luminance(const float* rgb) { return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2]; }
+// The filters compare neighbours' light by its luminance (image.h).
 
 // A NaN anywhere would spread over a filter's whole window: such a pixel is kept as traced.
 inline bool allFinite(const float* values, size_t count) {

@@ -166,7 +166,9 @@ Signal demodulate(const std::vector<float>& light, const std::vector<float>& var
 // fraction (through 2^0 and 2^−1, least squares between). The weights are heuristics, and
 // std::exp was much of the filter's time.
 float expNegative(float x) {
-  const float y = std::min(x, 80.0f) * 1.44269504f;  // exp(−x) = 2^−y, y < 116
+  // exp(−x) = 2^−y, y < 116; a NaN (the weights' inputs are finite, but a cast of NaN to int is
+  // undefined) counts as far.
+  const float y = (x < 80.0f ? x : 80.0f) * 1.44269504f;
   const int whole = static_cast<int>(y);
   const float f = y - static_cast<float>(whole);
   const float fraction = 1.0f + f * (-0.69159837f + f * (0.23116098f + f * -0.03956261f));

@@ -31,8 +31,6 @@ std::vector<Wall> hallWalls(const HallOptions& o) {
 
 nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
-float luminance(const float* p) { return 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]; }
-
 }  // namespace
 
 PanoramaPhoto PanoramaPhoto::load(const std::string& path) {

@@ -87,7 +87,7 @@ double meanLuminance(const ImageRGBA& image, const ImageRGBA& mask) {
     for (int i = 0; i < image.width; ++i) {
       if (mask.at(i, j)[3] < 0.999f) continue;
       const float* p = image.at(i, j);
-      sum += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+      sum += luminance<double>(p);
       ++n;
     }
   return n ? sum / static_cast<double>(n) : 0.0;

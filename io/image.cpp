@@ -172,13 +172,15 @@ struct PixelDecoding {
   }
 };
 
-ImageRGBA decode(ImageDecoder& decoder) {
+// The whole image; `nonFinite`, if given, counts the pixels with a value that is not finite.
+ImageRGBA decode(ImageDecoder& decoder, size_t* nonFinite = nullptr) {
   const ImageHeader& header = decoder.header();
   requireMemory(decodeBytes(header), decoder.name() + ": decoding " + std::to_string(header.width) + "x" +
                                          std::to_string(header.height) + " pixels");
   const std::vector<float> raw = decoder.readAllRows();
   ImageRGBA image(static_cast<int>(header.width), static_cast<int>(header.height));
-  PixelDecoding(header).apply(raw.data(), static_cast<size_t>(header.width) * header.height, image.pixels.data());
+  const size_t count = PixelDecoding(header).apply(raw.data(), static_cast<size_t>(header.width) * header.height, image.pixels.data());
+  if (nonFinite) *nonFinite = count;
   return image;
 }
 
@@ -256,6 +258,15 @@ int64_t imageDecodeBytes(const std::string& path) {
 
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
   return decode(*openImageMemory(data, size, name));
+}
+
+ImageRGBA readFiniteImageFromMemory(const unsigned char* data, size_t size, const std::string& name) {
+  size_t nonFinite = 0;
+  ImageRGBA image = decode(*openImageMemory(data, size, name), &nonFinite);
+  if (nonFinite > 0)
+    throw InputError(name + ": " + std::to_string(nonFinite) + (nonFinite == 1 ? " pixel holds" : " pixels hold") +
+                     " a value that is not finite (NaN or ±∞)");
+  return image;
 }
 
 std::vector<unsigned char> srgb8Codes(const ImageRGBA& image) {

@@ -26,6 +26,13 @@ struct ImageRGBA {
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);
 
+// Rec. 709 luminance of linear RGB, in T's arithmetic: float for the filters' per-pixel weights,
+// double for statistics over a frame.
+template <class T = float>
+T luminance(const float* rgb) {
+  return T(0.2126) * rgb[0] + T(0.7152) * rgb[1] + T(0.0722) * rgb[2];
+}
+
 // Reads a PNG, JPEG, TIFF, OpenEXR or Radiance HDR file (told by its first bytes, not its name) as
 // linear premultiplied RGBA; missing alpha becomes 1.
 // Integer images are decoded by the colour space they declare (sRGB unless tagged linear or
@@ -38,6 +45,10 @@ int64_t imageDecodeBytes(const std::string& path);
 // The same for an image held in memory (any of the formats readImage reads, told by its
 // signature); `name` is used in errors.
 ImageRGBA readImageFromMemory(const unsigned char* data, size_t size, const std::string& name);
+// readImageFromMemory for an image whose values are data (a scene's texture, its environment's
+// light), where a NaN or ±∞ read as 0 would pass unnoticed: InputError "<name>: N pixels hold a
+// value that is not finite (NaN or ±∞)" instead.
+ImageRGBA readFiniteImageFromMemory(const unsigned char* data, size_t size, const std::string& name);
 
 // An image read a band of rows at a time, decoded as readImage decodes it whole (the same colour
 // space and alpha, the same floats): for work that needs only a few rows at once, in memory that

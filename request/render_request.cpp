@@ -157,7 +157,7 @@ void readSampling(const RequestFields& f, const Reader& r, RenderRequest& q) {
 // threads and timeout: a ground truth's.
 void readExternal(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (const auto threads = f.integer(F::Threads)) {
-    checkThreads(static_cast<int>(std::clamp<int64_t>(*threads, -1, limits::kMaxThreads + 1)), r.qualified(F::Threads));
+    checkThreads(*threads, r.qualified(F::Threads));
     q.threads = static_cast<int>(*threads);
   }
   if (const auto timeout = f.number(F::Timeout)) {

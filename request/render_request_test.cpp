@@ -56,6 +56,9 @@ TEST(RenderRequest, EveryFrontEndStatesARuleInTheSameWords) {
       {{{F::Denoise, true}}, "--denoise", "denoise", "only for path-traced frames: SHADING path, or the blender engine lit"},
       {{{F::Timeout, 5.0}}, "--timeout", "timeout_s", "only with ENGINE povray or blender"},
       {{{F::Engine, "povray"}, {F::Timeout, 0.0}}, "--timeout", "timeout_s", "must be in (0, 604800] s (got 0)"},
+      // The number given, not a clamped one.
+      {{{F::Threads, int64_t{100000}}}, "threads", "threads", "must be an integer in [0, 4096] (0: every core; got 100000)"},
+      {{{F::Threads, int64_t{-7}}}, "threads", "threads", "must be an integer in [0, 4096] (0: every core; got -7)"},
       // Neither the CLI nor a spec has `traced` (Python's render does): every front names it so.
       {{{F::Engine, "povray"}, {F::Traced, true}}, "traced", "traced",
        "only with the fast engine in exact mode (the other engines always trace)"},

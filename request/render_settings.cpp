@@ -101,7 +101,7 @@ void checkPose(const RobotPose& pose, const std::string& what) {
     throw InputError(what + ": yaw must be within ±" + shortNumber(limits::kMaxYawDeg) + " degrees (got " + roundTrip(pose.yawDeg) + ")");
 }
 
-void checkThreads(int threads, const std::string& what) {
+void checkThreads(int64_t threads, const std::string& what) {
   if (threads < 0 || threads > limits::kMaxThreads)
     throw InputError(what + ": must be an integer in [0, " + std::to_string(limits::kMaxThreads) + "] (0: every core; got " +
                      std::to_string(threads) + ")");

@@ -72,7 +72,7 @@ void checkPlacement(const CameraPlacement& placement, const SettingNames& names 
 // Checks spp alone (a perfect square n*n from 1 to limits::kMaxSpp); InputError naming `what`.
 void checkSpp(int64_t spp, const std::string& what);
 // Checks a thread count: 0 (every core) to limits::kMaxThreads; InputError naming `what`.
-void checkThreads(int threads, const std::string& what);
+void checkThreads(int64_t threads, const std::string& what);
 // Checks a robot pose against limits::kMaxWorldCoordinate / kMaxYawDeg; InputError naming `what`.
 void checkPose(const RobotPose& pose, const std::string& what);
 

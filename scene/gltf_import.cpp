@@ -2,6 +2,8 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -97,7 +99,7 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
   auto* ctx = static_cast<LoadContext*>(user);
   try {
     if (++ctx->images > 4096) throw InputError("more than 4096 images");
-    const ImageRGBA decoded = readImageFromMemory(bytes, static_cast<size_t>(std::max(size, 0)),
+    const ImageRGBA decoded = readFiniteImageFromMemory(bytes, static_cast<size_t>(std::max(size, 0)),
                                                   "images[" + std::to_string(index) + "]");
     image->width = decoded.width;
     image->height = decoded.height;
@@ -460,6 +462,11 @@ GltfArena load(const std::string& path, const std::string* bytes, const GltfImpo
     bytes = &owned;
   }
   const bool binary = bytes->size() >= 4 && bytes->compare(0, 4, "glTF") == 0;
+  // A .glb is binary glTF: one without its header is not a glTF at all, not JSON gone wrong.
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (!binary && extension == ".glb")
+    throw InputError(showPath(path) + ": cannot load glTF (a .glb file starts with \"glTF\"; this one does not)");
   // Like every JSON input: bounded depth (tinygltf reads extras recursively), no duplicate keys.
   if (const auto json = gltfJson(*bytes, binary)) checkJsonText(*json, path);
   const auto* data = reinterpret_cast<const unsigned char*>(bytes->data());

@@ -46,6 +46,17 @@ M withFocal(M m, const Focal& f) {
   return m;
 }
 
+// Where `positive` stops holding between `lo` (it holds) and `hi` (it does not), to a
+// billionth of the interval: the messages name the fold, not the grid step past it.
+template <class Predicate>
+double whereItStops(const Predicate& positive, double lo, double hi) {
+  for (int i = 0; i < 30; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (positive(mid) ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 double readHalfFov(JsonFields& f, double maxDeg) {
   return radians(f.number("fov_deg", {0.0, maxDeg, true, "degrees"}) / 2.0);
 }
@@ -56,10 +67,12 @@ KannalaBrandt readKannalaBrandt(JsonFields& f, int width, int height) {
   for (size_t i = 0; i < 4; ++i) m.k[i] = k.at(i);
   m.maxThetaRad = radians(f.number("max_theta_deg", 90.0, {0.0, 180.0, true, "degrees"}));
   // θd must grow with θ up to the largest θ, else two directions share a pixel.
+  const auto grows = [&m](double t) { return kbSlope(m, t) > 0.0; };
   for (int step = 1; step <= 1000; ++step) {
     const double t = m.maxThetaRad * step / 1000.0;
-    if (!(kbSlope(m, t) > 0.0))
-      f.fail("k", "the distorted angle θd stops growing at θ = " + shortNumber(degrees(t)) +
+    if (!grows(t))
+      f.fail("k", "the distorted angle θd stops growing at θ = " +
+                      shortNumber(degrees(whereItStops(grows, m.maxThetaRad * (step - 1) / 1000.0, t))) +
                       "° (below max_theta_deg): lower max_theta_deg or the coefficients");
   }
   return m;
@@ -92,8 +105,10 @@ FThetaLens readFTheta(JsonFields& f, FThetaLens::Kind kind, int width, int heigh
       if (beyondFov && !beyond)
         f.fail("k", "θ(r) comes back inside the field of view at r = " + shortNumber(r) + " px, imaging its directions twice");
       beyondFov = beyondFov || beyond;
-      if (!beyondFov && !(polynomialSlope(m, r) > 0.0))
-        f.fail("k", "θ(r) stops growing at r = " + shortNumber(r) + " px, inside the image and the field of view");
+      const auto grows = [&m](double at) { return polynomialSlope(m, at) > 0.0; };
+      if (!beyondFov && !grows(r))
+        f.fail("k", "θ(r) stops growing at r = " + shortNumber(step == 0 ? 0.0 : whereItStops(grows, corner * (step - 1) / 1000.0, r)) +
+                        " px, inside the image and the field of view");
     }
   }
   return m;

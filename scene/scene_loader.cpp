@@ -88,12 +88,13 @@ std::string readNotedFile(const Context& ctx, const JsonFields& fields, const st
   return std::move(*bytes);
 }
 
-// An image the scene reads (a texture, an environment), decoded from the bytes its input names.
+// An image the scene reads (a texture, an environment), decoded from the bytes its input names;
+// every value finite.
 ImageRGBA readNotedImage(const Context& ctx, const JsonFields& fields, const std::string& key, const fs::path& name,
                          const fs::path& file) {
   const std::string bytes = readNotedFile(ctx, fields, key, name, file, "read image");
   try {
-    return readImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), showPath(file.string()));
+    return readFiniteImageFromMemory(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), showPath(file.string()));
   } catch (const InputError& error) {
     fields.fail(key, error.what());
   }
@@ -147,9 +148,11 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
     }
     if (tex->has("scale")) {
       const json& s = tex->raw("scale");
-      if (!s.is_array() || s.size() != 2 || !s[0].is_number() || !s[1].is_number() ||
-          !(s[0].get<double>() > 0.0) || !(s[1].get<double>() > 0.0))
-        tex->fail("scale", "must be [su, sv] with both > 0");
+      auto repeats = [](const json& v) {
+        return v.is_number() && v.get<double>() > 0.0 && v.get<double>() <= limits::kMaxTextureScale;
+      };
+      if (!s.is_array() || s.size() != 2 || !repeats(s[0]) || !repeats(s[1]))
+        tex->fail("scale", "must be [su, sv] with both in (0, " + shortNumber(limits::kMaxTextureScale) + "]");
       mat.textureScale = {s[0].get<double>(), s[1].get<double>()};
     }
     tex->finish();
@@ -187,7 +190,7 @@ Environment readEnvironment(JsonFields e, const Context& ctx) {
   e.finish();  // every field checked before the image is decoded
   const fs::path resolved = key == "file" ? resolveInside(ctx, e, key, environment.file) : blenderWorld(e, environment.file);
   // Blender's world is read like a file of the scene's (a scene's inputs name it by its full path,
-  // the same wherever Debian's blender-data is installed). Non-finite values read as 0.
+  // the same wherever Debian's blender-data is installed). A NaN or ±∞ is refused, as in a texture.
   const ImageRGBA image = readNotedImage(ctx, e, key, key == "file" ? fs::path(environment.file) : resolved, resolved);
   std::vector<float> rgb(static_cast<size_t>(image.width) * image.height * 3);
   float brightest = 0.0f;
@@ -346,8 +349,10 @@ struct TakenNames {
   std::set<std::string> nodes, materials;
 };
 
-// The named materials, in file order; ctx.materialIndex finds them by name.
+// The named materials, in file order; ctx.materialIndex finds them by name. Optional: a scene of
+// glTF arenas alone brings its own.
 void readMaterials(JsonFields& top, Context& ctx, Scene& scene) {
+  if (!top.has("materials")) return;
   JsonFields materials = top.object("materials");
   const json& materialsJson = top.raw("materials");
   for (auto it = materialsJson.begin(); it != materialsJson.end(); ++it) {
@@ -391,6 +396,15 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
   o.finish();
 }
 
+// Objects and lights share one namespace. One left unnamed is called `<kind>_<index>`, which a
+// named one may already have.
+void takeNodeName(const JsonFields& fields, std::set<std::string>& taken, const std::string& name) {
+  if (taken.insert(name).second) return;
+  fields.fail("name", fields.has("name")
+                          ? "duplicate name " + quote(name) + " (objects and lights share one namespace)"
+                          : "not given, and its default " + quote(name) + " is another's (objects and lights share one namespace): give it a name");
+}
+
 void readObjects(JsonFields& top, const Context& ctx, Scene& scene, TakenNames& names) {
   const json& objects = requireArray(top, "objects", false);
   for (size_t i = 0; i < objects.size(); ++i) {
@@ -398,7 +412,7 @@ void readObjects(JsonFields& top, const Context& ctx, Scene& scene, TakenNames& 
     SceneObject obj;
     obj.name = o.string("name", "object_" + std::to_string(i));
     checkName(o, "name", obj.name);
-    if (!names.nodes.insert(obj.name).second) o.fail("name", "duplicate name " + quote(obj.name) + " (objects and lights share one namespace)");
+    takeNodeName(o, names.nodes, obj.name);
     if (o.has("type") && o.raw("type") == "gltf") {
       addGltfArena(o, obj.name, ctx, scene, names);
       continue;
@@ -431,8 +445,7 @@ void readLights(JsonFields& top, const std::string& file, Scene& scene, std::set
                      l.colour("intensity", Vec3f::Ones(), 1e6),
                      l.number("diameter", 0.0, JsonFields::Range(0.0, 100.0, false, "m"))};
     checkName(l, "name", light.name);
-    if (!nodeNames.insert(light.name).second)
-      l.fail("name", "duplicate name " + quote(light.name) + " (objects and lights share one namespace)");
+    takeNodeName(l, nodeNames, light.name);
     l.finish();
     scene.lights.push_back(std::move(light));
   }
@@ -557,7 +570,6 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   TakenNames names;
   for (const Material& m : scene.materials) names.materials.insert(m.name);
   readObjects(top, ctx, scene, names);
-  if (scene.materials.empty()) top.fail("materials", "must define at least one material");
   readLights(top, file, scene, names.nodes);
   readLandmarks(top, file, scene);
   readPaths(top, file, scene);

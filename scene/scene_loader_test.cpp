@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -42,6 +43,15 @@ class SceneLoaderTest : public ::testing::Test {
                              R"("materials": {"m": {"color": [0.5, 0.5, 0.5]}},
         "objects": [{"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1)" +
                              objectExtra + "}]}";
+    try {
+      loadScene(write(text));
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  // What loading the scene `text` says, "" if it loads.
+  std::string loadError(const std::string& text) {
     try {
       loadScene(write(text));
     } catch (const InputError& e) {
@@ -245,6 +255,60 @@ TEST_F(SceneLoaderTest, SemanticClassesComeFromObjectsOrTheirMaterials) {
   EXPECT_EQ(semanticClassOf(s, s.objects[2]), "");
   EXPECT_EQ(errorOf("", R"(, "class": "")"), file + ": objects[0].class: must be 1 to 63 bytes long (got 0)");
   EXPECT_EQ(errorOf("", R"(, "class": 3)"), file + ": objects[0].class: must be a string (got number)");
+}
+
+// Materials are optional: a scene of a glTF arena alone brings its own, and an empty scene has
+// none; an object that names one still needs it.
+TEST_F(SceneLoaderTest, AGltfArenaNeedsNoMaterialsOfTheScenes) {
+  const fs::path bad = OMNICAM_SOURCE_DIR "/tests/bad_inputs/scenes";
+  fs::copy_file(bad / "arena_ok.gltf", dir_ / "arena.gltf");
+  fs::copy_file(bad / "triangle.bin", dir_ / "triangle.bin");
+  const Scene arena = loadScene(write(R"({"format": "omnicam-scene/1", "objects": [{"type": "gltf", "file": "arena.gltf"}]})"));
+  EXPECT_FALSE(arena.materials.empty());
+  EXPECT_FALSE(arena.objects.empty());
+  EXPECT_TRUE(loadScene(write(R"({"format": "omnicam-scene/1", "materials": {}, "objects": []})")).materials.empty());
+  EXPECT_EQ(loadError(R"({"format": "omnicam-scene/1", "objects": [{"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1}]})"),
+            (dir_ / "scene.json").string() + ": objects[0].material: no material named \"m\"");
+}
+
+// An unnamed object or light is called object_<i> / light_<i>; when a named one already has that
+// name, the message says the name is the default one, not a name the file gives.
+TEST_F(SceneLoaderTest, ADefaultNameAnotherNodeTookIsSaidToBeTheDefault) {
+  const std::string file = (dir_ / "scene.json").string();
+  const std::string ball = R"({"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1)";
+  EXPECT_EQ(loadError(R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [)" + ball + R"(, "name": "object_1"}, )" +
+                      ball + "}]}"),
+            file + ": objects[1].name: not given, and its default \"object_1\" is another's (objects and lights share one "
+                   "namespace): give it a name");
+  EXPECT_EQ(loadError(R"({"format": "omnicam-scene/1", "materials": {"m": {}}, "objects": [)" + ball +
+                      R"(, "name": "light_0"}], "lights": [{"position": [0, 0, 3]}]})"),
+            file + ": lights[0].name: not given, and its default \"light_0\" is another's (objects and lights share one "
+                   "namespace): give it a name");
+}
+
+// A texture or an environment holding a NaN or ±∞ is refused, naming the file and how many
+// pixels hold one (a decoder that reads them as 0 would render them black unnoticed); a texture's
+// repeats are bounded where float coordinates still resolve its texels.
+TEST_F(SceneLoaderTest, ImagesWithValuesThatAreNotFiniteAndHugeTextureScalesAreRefused) {
+  ImageRGBA image(4, 2);
+  for (float& v : image.pixels) v = 0.5f;
+  image.at(1, 0)[0] = std::numeric_limits<float>::quiet_NaN();
+  image.at(3, 1)[2] = std::numeric_limits<float>::infinity();
+  writeImageAtomic((dir_ / "broken.exr").string(), image);
+  const std::string file = (dir_ / "scene.json").string(), broken = (dir_ / "broken.exr").string();
+  auto sceneWith = [](const std::string& environment, const std::string& texture) {
+    return R"({"format": "omnicam-scene/1", )" + environment + R"("materials": {"m": {"texture": {)" + texture +
+           R"(}}}, "objects": [{"type": "sphere", "material": "m", "center": [0, 0, 0], "radius": 1}]})";
+  };
+  EXPECT_EQ(loadError(sceneWith("", R"("file": "broken.exr")")),
+            file + ": materials.m.texture.file: " + broken + ": 2 pixels hold a value that is not finite (NaN or ±∞)");
+  image.at(1, 0)[0] = image.at(3, 1)[2] = 0.5f;
+  writeImageAtomic((dir_ / "fine.exr").string(), image);
+  EXPECT_EQ(loadError(sceneWith(R"("environment": {"file": "broken.exr"}, )", R"("file": "fine.exr")")),
+            file + ": environment.file: " + broken + ": 2 pixels hold a value that is not finite (NaN or ±∞)");
+  EXPECT_NO_THROW(loadScene(write(sceneWith(R"("environment": {"file": "fine.exr"}, )", R"("file": "fine.exr", "scale": [1e4, 0.5])"))));
+  EXPECT_EQ(loadError(sceneWith("", R"("file": "fine.exr", "scale": [1e12, 1])")),
+            file + ": materials.m.texture.scale: must be [su, sv] with both in (0, 10000]");
 }
 
 // Each file a scene reads (texture, environment, glTF and its buffer) is opened once: what is

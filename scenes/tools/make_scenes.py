@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes scenes/robocup2006.json and scenes/incidence-rings.json.
+"""Writes scenes/robocup2006.json, scenes/incidence-rings.json and scenes/tiled-room.json.
 
 The JSON files are the source of truth (and committed); this script documents how their numbers
 were chosen and regenerates them: python3 scenes/tools/make_scenes.py

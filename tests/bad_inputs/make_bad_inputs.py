@@ -136,6 +136,10 @@ def main():
         write(os.path.join(SCENES, "arena_" + name + ".gltf"), text)
         write(os.path.join(SCENES, "gltf_" + name + ".json"),
               scene([FLOOR, {"type": "gltf", "name": "arena", "file": "arena_" + name + ".gltf"}]))
+    # A .glb that is a .gltf's JSON: not binary glTF.
+    write(os.path.join(SCENES, "arena_json.glb"), gltf())
+    write(os.path.join(SCENES, "gltf_not_binary.json"),
+          scene([FLOOR, {"type": "gltf", "name": "arena", "file": "arena_json.glb"}]))
 
     def textured(file):
         return scene([FLOOR], {"grey": {"color": 0.5, "texture": {"file": file}}})
@@ -150,6 +154,9 @@ def main():
     write(os.path.join(SCENES, "radiance_2.hdr"),
           b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 8\n" + bytes([128, 128, 128, 130]) * 32)
     write(os.path.join(SCENES, "texture_radiance.json"), textured("radiance_2.hdr"))
+    # Repeats beyond float texture coordinates' reach (the engines would round them apart).
+    write(os.path.join(SCENES, "texture_scale_huge.json"),
+          scene([FLOOR], {"grey": {"color": 0.5, "texture": {"file": "tex.png", "scale": [1e12, 1]}}}))
 
     ball = {"type": "sphere", "material": "grey", "center": [1, 0, 0.2], "radius": 0.1}
     write(os.path.join(SCENES, "radius_1e400.json"),
