@@ -179,7 +179,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   if (folderA) return runDatasetCompare(args, cmd);
   // Neither a folder: a name that is nothing may be a misspelt image or dataset folder.
   for (const std::string& path : {args.a, args.b})
-    if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+    if (std::filesystem::symlink_status(path, ec).type() == std::filesystem::file_type::not_found)  // not EACCES
       throw InputError(showPath(path) + ": no such file or folder (compare takes two images or two dataset folders)");
   refuseUnless(cmd, "--report", false, "two dataset folders");
   refuseUnless(cmd, "--junit", false, "two dataset folders");

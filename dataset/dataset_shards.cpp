@@ -205,6 +205,11 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     } else if (const std::string difference = identityDifference(merged->header, shard.header); !difference.empty()) {
       // Said of this shard (identityDifference's later one): "the scene now reads" what it read.
       throw InputError(showPath(path + "/" + name) + ": from another dataset than the other shards (" + difference + ")");
+    } else if (shard.header.value("frame_count", 0) != merged->header.value("frame_count", 0)) {
+      // Each shard's range follows from its frame count: one count for all, or a forged one
+      // would shrink a shard's range to what it holds.
+      throw InputError(showPath(path + "/" + name) + ": frame_count: " + std::to_string(shard.header.value("frame_count", 0)) +
+                       ", where the other shards say " + std::to_string(merged->header.value("frame_count", 0)));
     }
     const int first = read.first, end = read.end;
     startedRanges.push_back({first, end});
@@ -220,14 +225,26 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     if (const std::string difference = identityDifference(existing.header, merged->header); !difference.empty())
       throw InputError(showPath(path) + ": its " + std::string(kManifestName) + " is from another dataset than the shards (" +
                        difference + ")");
-    // Frames an earlier merge (or an unsharded run) finished stay listed — but only those of shards
-    // not started: a started shard's own manifest says which of its frames are finished now (a
-    // rerun drops a frame whose file it found damaged, until it renders it again).
+    if (existing.header.value("frame_count", 0) != merged->header.value("frame_count", 0))
+      throw InputError(showPath(path) + ": its " + std::string(kManifestName) + " counts " +
+                       std::to_string(existing.header.value("frame_count", 0)) + " frames, the shards " +
+                       std::to_string(merged->header.value("frame_count", 0)));
+    // Frames an earlier merge (or an unsharded run, which resumes a merged folder) finished stay
+    // listed. In a started shard's range, a frame its manifest does not list stays only while its
+    // files still hash to the record: a rerun shard drops a frame whose file it found damaged (or
+    // a ground truth renders it again, other bytes), and the old record must not vouch for it.
     const auto inStartedShard = [&](int index) {
       return std::any_of(startedRanges.begin(), startedRanges.end(), [index](const ShardFrames& r) { return index >= r.first && index < r.end; });
     };
+    const auto filesIntact = [&](const FrameRecord& frame) {
+      for (const auto& [camera, cameraFrame] : frame.cameras)
+        for (const auto& [kind, file] : cameraFrame.files)
+          if (const FileDigest digest = dir.sha256(file.path, kMaxDatasetFileBytes); !digest.ok() || digest.sha256 != file.sha256)
+            return false;
+      return true;
+    };
     for (const auto& [index, frame] : existing.frames)
-      if (!inStartedShard(index)) merged->frames.emplace(index, frame);
+      if (!merged->frames.count(index) && (!inStartedShard(index) || filesIntact(frame))) merged->frames.emplace(index, frame);
   }
   result.frames = merged->header.value("frame_count", 0);
   result.finished = static_cast<int>(merged->frames.size());

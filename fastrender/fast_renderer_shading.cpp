@@ -21,8 +21,9 @@ std::optional<FastRenderer::PathFrame> FastRenderer::pathFrame(const RenderSetti
   options.diffuseBounces = settings.bounces;
   if (settings.denoise) options.indirectShare = denoisedIndirectShare(settings.spp);
   // Frames of other poses get other noise; the same pose, seed and settings the same frame. The
-  // cameras of one robot, mounted apart, draw apart too (a stereo pair's noise would otherwise
-  // be the same in both); an unmounted camera's key is as it always was.
+  // cameras of one robot mounted apart draw apart too (a stereo pair's noise would otherwise be
+  // the same in both); an unmounted camera's key is as it always was. (Cameras on one mount that
+  // differ only in their rig, stacked, still share it.)
   const RobotPose& pose = camera.robot();
   const BodyVelocity& velocity = camera.velocity();
   uint64_t key = settings.seed;

@@ -680,15 +680,18 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   }
 }
 
-// A merge takes a started shard's frames from that shard's own manifest, never from an earlier
-// merge's: a rerun shard that dropped a frame (its file found damaged) and was killed before
-// rendering it again leaves the dataset incomplete, not "complete" with the old frame's record.
-// And a shard's frame range is the formula's: a forged one is refused, not taken as complete.
+// A merge takes a started shard's frames from that shard's own manifest; an earlier merge's record
+// of a frame the shard does not list stays only while its files hash to it. A rerun shard that
+// found a frame's file damaged, dropped it and was killed before rendering it again leaves the
+// dataset incomplete, not "complete" on the old record; a run in one go that then finishes the
+// folder stays complete through any later merge. And a shard's frame range is the formula's: a
+// forged one is refused, not taken as complete.
 TEST_F(DatasetCliTest, AMergeTakesAStartedShardsFramesFromItsOwnManifestAndItsRangeFromTheFormula) {
   const std::string spec = robocupSpec("spec.json", R"("size": 32, "poses": {"path": "thesis-loop", "frames": 4})");
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds") + " --shard 0/2").code, 0);
   ASSERT_EQ(omnicam("dataset " + spec + " -o " + path("ds") + " --shard 1/2").code, 0);
   ASSERT_EQ(omnicam("dataset --merge " + path("ds")).code, 0);
+  std::ofstream(dir_ / "ds/cam0/rgb/000001.png", std::ios::app) << "damaged";
   const fs::path shard0 = dir_ / "ds/shards/shard-0-of-2.json";
   json rerun = json::parse(readFile(shard0));
   json kept = json::array();
@@ -703,6 +706,14 @@ TEST_F(DatasetCliTest, AMergeTakesAStartedShardsFramesFromItsOwnManifestAndItsRa
   EXPECT_NE(r.out.find("3 of 4 frames finished"), std::string::npos) << r.out;
   EXPECT_FALSE(json::parse(readFile(dir_ / "ds/manifest.json"))["complete"].get<bool>());
   EXPECT_EQ(omnicam("dataset --status " + path("ds")).code, 1);
+  // Finished in one go (it resumes the merged manifest and renders frame 1 again): complete, and
+  // merging once more keeps it so.
+  r = omnicam("dataset " + spec + " -o " + path("ds"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  r = omnicam("dataset --merge " + path("ds"));
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("4 of 4 frames finished (complete)"), std::string::npos) << r.out;
+  EXPECT_EQ(omnicam("dataset --verify " + path("ds")).code, 0);
 
   const fs::path shard1 = dir_ / "ds/shards/shard-1-of-2.json";
   json forged = json::parse(readFile(shard1));
@@ -713,6 +724,14 @@ TEST_F(DatasetCliTest, AMergeTakesAStartedShardsFramesFromItsOwnManifestAndItsRa
   r = omnicam("dataset --merge " + path("ds"));
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("shard-1-of-2.json: shard: frames [4, 4) are not shard 1 of 2's, [2, 4)"), std::string::npos) << r.out;
+  // Nor does a frame count of its own make a short range the formula's.
+  forged["frame_count"] = 3;
+  forged["shard"]["first_frame"] = 1;
+  forged["shard"]["end_frame"] = 3;
+  std::ofstream(shard1, std::ios::trunc) << forged.dump();
+  r = omnicam("dataset --merge " + path("ds"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find("shard-1-of-2.json: frame_count: 3, where the other shards say 4"), std::string::npos) << r.out;
 }
 
 // A run in one go that overwrites a merged sharded dataset takes its shards' manifests with it
