@@ -59,6 +59,11 @@ bool wholeDatasetRunWriting(const std::string& dir) {
   return false;
 }
 
+bool stillAsRecorded(const SafeFolder& dir, const FileRecord& file) {
+  const FileDigest digest = dir.sha256(file.path, kMaxDatasetFileBytes);
+  return digest.ok() && digest.sha256 == file.sha256;
+}
+
 DatasetVerifyResult verifyDataset(const std::string& path, const std::string& manifestName) {
   const SafeFolder dir(path);
   const DatasetManifest manifest = readDatasetManifest(dir, manifestName);

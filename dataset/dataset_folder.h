@@ -14,6 +14,9 @@ namespace omnicam {
 // writes (a 16384² RGBA float EXR, 4 GiB uncompressed), so a planted multi-gigabyte file is
 // refused by its size instead of read.
 inline constexpr int64_t kMaxDatasetFileBytes = int64_t{5} << 30;
+// Whether `file` is still in `dir` as its record says: a regular file (no link followed) whose
+// SHA-256 is the record's.
+bool stillAsRecorded(const SafeFolder& dir, const FileRecord& file);
 
 // Frames planned by the spec and how many the folder's manifest has finished (`dataset --status`).
 struct DatasetStatus {

@@ -44,7 +44,7 @@ std::set<std::string> cameraNames(const DatasetManifest& manifest) {
 void removeDatasetFiles(const SafeFolder& dir, const DatasetManifest& old) {
   const std::set<std::string> cameras = cameraNames(old);
   for (const FileRecord& file : manifestFiles(old))
-    if (isLayoutFile(file.path, cameras) && dir.sha256(file.path, kMaxDatasetFileBytes).sha256 == file.sha256)
+    if (isLayoutFile(file.path, cameras) && stillAsRecorded(dir, file))
       dir.removeFile(file.path);
   for (const std::string& camera : cameras) {
     for (const std::string& folder : cameraFolderNames()) dir.removeEmptyFolder(camera + "/" + folder);
@@ -128,8 +128,7 @@ std::map<int, FrameRecord> intactFrames(const SafeFolder& dir, const DatasetMani
                camera->second.rig == (plan.vibrates() ? std::optional<RigSpec>(plan.frameRig(index, c)) : std::nullopt);
       for (size_t k = 0; intact && k < kinds.size(); ++k) {
         const FileRecord* file = camera->second.file(kinds[k]);
-        intact = file && file->path == plan.outputs().framePath(setup.camera->name, kinds[k], index) &&
-                 dir.sha256(file->path, kMaxDatasetFileBytes).sha256 == file->sha256;
+        intact = file && file->path == plan.outputs().framePath(setup.camera->name, kinds[k], index) && stillAsRecorded(dir, *file);
       }
     }
     if (intact) kept[index] = frame;

@@ -239,8 +239,7 @@ MergeResult mergeDatasetShards(const std::string& path, int count) {
     const auto filesIntact = [&](const FrameRecord& frame) {
       for (const auto& [camera, cameraFrame] : frame.cameras)
         for (const auto& [kind, file] : cameraFrame.files)
-          if (const FileDigest digest = dir.sha256(file.path, kMaxDatasetFileBytes); !digest.ok() || digest.sha256 != file.sha256)
-            return false;
+          if (!stillAsRecorded(dir, file)) return false;
       return true;
     };
     for (const auto& [index, frame] : existing.frames)
