@@ -271,7 +271,7 @@ TEST(SlurmBackend, ASubmissionWhileTheLastOnesJobsAreQueuedIsRefused) {
            {R"({"merge_job": "4712"})", "not the job list omnicam writes (no array_job)"},
            {"[]", "not the job list omnicam writes (no array_job)"},
            {"{", "not the job list omnicam writes (not valid JSON ("},
-           {R"({"array_job": "4711", "array_job": "4712"})", "not the job list omnicam writes (duplicate key \"array_job\" in one object)"}}) {
+           {R"({"array_job": "4711", "array_job": "4712"})", "not the job list omnicam writes (duplicate key \"array_job\")"}}) {
     std::ofstream(jobsFile, std::ios::trunc) << text;
     const std::string said = refusal(), expected = jobsFile.string() + ": " + why;
     EXPECT_EQ(said.substr(0, expected.size()), expected) << text;

@@ -36,8 +36,8 @@ struct DatasetVerifyResult {
   std::vector<std::string> problems;
   bool ok() const { return problems.empty(); }
 };
-// readManifest (manifest.h), after checking that DIR/`name` is a regular file reached without
-// following a link.
+// DIR/manifest.json (or DIR/`name`: a shard's manifest), read strictly (manifestFromText) as a
+// regular file reached without following a link, at most kMaxManifestBytes.
 DatasetManifest readDatasetManifest(const SafeFolder& dir, const std::string& name = kManifestName);
 DatasetManifest readDatasetManifest(const std::string& dir, const std::string& name = kManifestName);
 

@@ -44,7 +44,7 @@ FileRecord DatasetReader::record(std::optional<int> index, const std::string& ca
     if (entry.at("name") != camera) continue;
     const auto& files = entry.at("files");
     if (!files.contains(kind)) throw InputError(where + ": has no file " + quote(kind));
-    // readManifest checked every record of the header.
+    // readDatasetManifest checked every record of the header.
     return {files.at(kind).at("path").get<std::string>(), files.at(kind).at("sha256").get<std::string>()};
   }
   throw InputError(where + ": not in the manifest");

@@ -354,16 +354,6 @@ DatasetManifest manifestFromText(const std::string& text, const std::string& fil
   return manifest;
 }
 
-DatasetManifest readManifest(const std::string& dir, const std::string& name) {
-  const std::string file = (fs::path(dir) / name).string();
-  std::error_code ec;
-  if (!fs::exists(file, ec)) throw InputError(showPath(dir) + ": not a dataset folder (no " + name + ")");
-  std::string why;
-  const auto text = readWholeFile(file, why, kMaxManifestBytes);
-  if (!text) throw InputError(showPath(file) + ": " + why);
-  return manifestFromText(*text, file);
-}
-
 void checkManifestHeaderSize(const nlohmann::json& header, const std::string& specFile) {
   const size_t bytes = header.dump(1).size();
   if (bytes > static_cast<size_t>(kMaxManifestHeaderBytes))

@@ -69,11 +69,9 @@ struct DatasetManifest {
 };
 
 nlohmann::json manifestToJson(const DatasetManifest& manifest);
-// Reads DIR/manifest.json (or DIR/`name`: a shard's manifest) strictly; InputError naming the
-// file and field.
-DatasetManifest readManifest(const std::string& dir, const std::string& name = kManifestName);
-// The same from a manifest's text; `file` names it in messages. Every file record must name a
-// file inside its camera's folder, every number lie in its range (forged manifests: exit 2).
+// A manifest from its text, strictly; `file` names it in messages (InputError naming the file and
+// field). Every file record must name a file inside its camera's folder, every number lie in its
+// range (forged manifests: exit 2). Reading one from a folder: readDatasetManifest (dataset_folder.h).
 DatasetManifest manifestFromText(const std::string& text, const std::string& file);
 // InputError naming the spec unless a manifest with this header stays within
 // kMaxManifestHeaderBytes: called before a run writes anything.

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 
+#include "dataset_folder.h"
 #include "errors.h"
 
 namespace omnicam {
@@ -114,10 +115,10 @@ TEST_F(ManifestFileTest, ManifestsLargerThanOtherJsonInputsAreRead) {
   std::string text = manifestToJson(manifest).dump(1);
   text.insert(text.size() - 1, std::string(size_t{80} << 20, ' '));  // 80 MiB: over the JSON files' 64 MiB
   std::ofstream(dir_ / kManifestName, std::ios::binary) << text;
-  EXPECT_EQ(readManifest(dir_.string()).frames.size(), 1u);
+  EXPECT_EQ(readDatasetManifest(dir_.string()).frames.size(), 1u);
   // Past the manifest's own bound: refused by its size, before a byte is read (a sparse file).
   fs::resize_file(dir_ / kManifestName, static_cast<uintmax_t>(kMaxManifestBytes) + 1);
-  EXPECT_THROW(readManifest(dir_.string()), InputError);
+  EXPECT_THROW(readDatasetManifest(dir_.string()), InputError);
 }
 
 std::string errorOf(const json& manifest) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "dataset_folder.h"
 #include "dataset_shards.h"
 #include "dataset_spec.h"
 #include "errors.h"
@@ -151,7 +152,7 @@ void shardManifest(const uint8_t* data, size_t size) {
   }
   // The merge wrote DIR/manifest.json: omnicam must read it back.
   try {
-    (void)readManifest(dir);
+    (void)readDatasetManifest(dir);
   } catch (const InputError& e) {
     finding(std::string("a merged manifest does not read back: ") + e.what());
   }

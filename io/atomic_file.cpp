@@ -99,6 +99,13 @@ void renameIntoPlace(int folderFd, const std::string& tmp, const std::string& na
   if (::renameat(folderFd, tmp.c_str(), folderFd, name.c_str()) != 0) failWrite(shownPath, folderFd, tmp, errno);
 }
 
+// A rename lives in its folder: without flushing the folder too, a power cut can lose the new name
+// although the file's bytes are on disk. (A file system that cannot flush folders says EINVAL.)
+void flushFolder(int folderFd, const std::string& shownPath) {
+  if (::fsync(folderFd) != 0 && errno != EINVAL)
+    throw OutputError(shownPath + ": written, but its folder could not be flushed to disk (" + std::strerror(errno) + ")");
+}
+
 // The folder of the user's own path: links in it are followed, as the user meant.
 FileDescriptor openParentFolder(const std::string& path) {
   const fs::path target(path);
@@ -133,6 +140,7 @@ void writeStreamAtomicallyAt(int folderFd, const std::string& name, const std::s
   // SIGTERM or SIGINT now is acted on once the temporary is renamed or removed (base/interrupts.h).
   const DeferInterrupts deferred;
   renameIntoPlace(folderFd, writeTemporaryAt(folderFd, name, shownPath, next, durability), name, shownPath);
+  if (durability == Durability::Synced) flushFolder(folderFd, shownPath);
 }
 
 struct AtomicFileGroup::Staged {
@@ -166,11 +174,14 @@ void writeFilesTogether(const std::vector<FileBytes>& files) {
 }
 
 void AtomicFileGroup::commit() {
+  std::vector<Staged> renamed;
   while (!staged_.empty()) {
-    Staged file = std::move(staged_.front());
+    renamed.push_back(std::move(staged_.front()));
     staged_.erase(staged_.begin());
+    const Staged& file = renamed.back();
     renameIntoPlace(file.folder.get(), file.temporary, file.name, file.shownPath);
   }
+  for (const Staged& file : renamed) flushFolder(file.folder.get(), file.shownPath);
 }
 
 namespace {

@@ -15,7 +15,7 @@
 
 namespace omnicam {
 
-// Synced: fsync before the rename, so the file survives a power cut, not only a killed process.
+// Synced: fsync'd before the rename, its folder after, so it survives a power cut, not only a kill.
 // Unsynced: the rename alone (a killed process still never leaves a partial file); for files
 // whose hash is recorded elsewhere and checked on resume, like dataset frames.
 enum class Durability { Synced, Unsynced };

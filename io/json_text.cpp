@@ -1,5 +1,6 @@
 #include "json_text.h"
 
+#include <algorithm>
 #include <set>
 #include <string_view>
 #include <vector>
@@ -35,37 +36,39 @@ namespace {
 // The checking pass over a JSON text (SAX: no tree is built, no work per sibling): syntax, no
 // key twice in one object, nesting at most `maxDepth`. nlohmann's own callback parser would do
 // the key check too, but it rescans the parent at every object's end: quadratic in siblings.
+// A key given twice is named with the place of its object (`cameras[1].rig: duplicate key "x"`).
 class StrictJsonCheck : public json::json_sax_t {
  public:
   StrictJsonCheck(const std::string& file, int maxDepth) : file_(file), maxDepth_(maxDepth) {}
-  bool null() override { return true; }
-  bool boolean(bool) override { return true; }
-  bool number_integer(number_integer_t) override { return true; }
-  bool number_unsigned(number_unsigned_t) override { return true; }
-  bool number_float(number_float_t, const string_t&) override { return true; }
-  bool string(string_t&) override { return true; }
-  bool binary(binary_t&) override { return true; }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
   bool start_object(std::size_t) override {
-    enter();
-    keysOfOpenObjects_.emplace_back();
+    enter(false);
     return true;
   }
   bool key(string_t& key) override {
-    if (!keysOfOpenObjects_.back().insert(key).second)
-      throw InputError(showPath(file_) + ": duplicate key " + quote(key) + " in one object");
+    if (!open_.back().keys.insert(key).second) {
+      const std::string place = placeOfInnermost();
+      throw InputError(showPath(file_) + ": " + (place.empty() ? "" : place + ": ") + "duplicate key " + quote(key));
+    }
+    open_.back().key = key;
     return true;
   }
   bool end_object() override {
-    keysOfOpenObjects_.pop_back();
-    --depth_;
+    open_.pop_back();
     return true;
   }
   bool start_array(std::size_t) override {
-    enter();
+    enter(true);
     return true;
   }
   bool end_array() override {
-    --depth_;
+    open_.pop_back();
     return true;
   }
   bool parse_error(std::size_t, const std::string&, const json::exception& e) override {
@@ -74,15 +77,45 @@ class StrictJsonCheck : public json::json_sax_t {
   }
 
  private:
-  void enter() {
-    if (++depth_ > maxDepth_)
+  // An object or array being read: an array counts its elements, an object holds its keys so far
+  // and the last one (whose value is being read).
+  struct Open {
+    bool array = false;
+    size_t elements = 0;
+    std::set<std::string> keys;
+    std::string key;
+  };
+  bool value() {
+    if (!open_.empty() && open_.back().array) ++open_.back().elements;
+    return true;
+  }
+  void enter(bool array) {
+    value();
+    if (static_cast<int>(open_.size()) + 1 > maxDepth_)
       throw InputError(showPath(file_) + ": JSON nested deeper than " + std::to_string(maxDepth_) +
                        " levels of objects and arrays");
+    open_.push_back(Open{array, 0, {}, {}});
+  }
+  // Where the innermost open container sits: "cameras[1].rig" ("" at the top level). Keys that
+  // are not plain names are quoted, as user text.
+  std::string placeOfInnermost() const {
+    std::string place;
+    for (size_t i = 0; i + 1 < open_.size(); ++i) {
+      if (open_[i].array) {
+        place += "[" + std::to_string(open_[i].elements - 1) + "]";
+        continue;
+      }
+      const std::string& key = open_[i].key;
+      const bool plain = !key.empty() && std::all_of(key.begin(), key.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+      });
+      place += (place.empty() ? "" : ".") + (plain ? key : quote(key));
+    }
+    return place;
   }
   const std::string& file_;
   const int maxDepth_;
-  int depth_ = 0;
-  std::vector<std::set<std::string>> keysOfOpenObjects_;
+  std::vector<Open> open_;
 };
 
 }  // namespace

@@ -385,7 +385,11 @@ TEST(JsonInput, DepthIsBoundedAndDuplicateKeysRefusedAtAnyDepth) {
   EXPECT_EQ(jsonError(nested(1000000)), "in.json: JSON nested deeper than 64 levels of objects and arrays");
   EXPECT_EQ(jsonError("{\"a\": " + nested(64) + "}"), "in.json: JSON nested deeper than 64 levels of objects and arrays");
   EXPECT_EQ(jsonError("{\"a\": " + nested(64) + "}", 65), "");
-  EXPECT_EQ(jsonError(R"({"a": [{"b": 1, "c": {"b": 2}}, {"b": 3, "b": 4}]})"), "in.json: duplicate key \"b\" in one object");
+  // A key given twice is named with its object's place: an array's element by its index, odd keys quoted.
+  EXPECT_EQ(jsonError(R"({"a": [{"b": 1, "c": {"b": 2}}, {"b": 3, "b": 4}]})"), "in.json: a[1]: duplicate key \"b\"");
+  EXPECT_EQ(jsonError(R"({"a": 1, "a": 2})"), "in.json: duplicate key \"a\"");
+  EXPECT_EQ(jsonError(R"({"x": [[0, {}], [1, 2, {"m n": {"k": 1, "k": 2}}]]})"), "in.json: x[1][2].\"m n\": duplicate key \"k\"");
+  EXPECT_EQ(jsonError(R"([{"a": 1}, {"b": {"c": [true, null, {"d": 0, "d": 0}]}}])"), "in.json: [1].b.c[2]: duplicate key \"d\"");
   EXPECT_EQ(jsonError(R"({"a": 1, "b": {"a": 2}, "c": [{"a": 3}]})"), "");
   EXPECT_EQ(jsonError(R"({"a": 1e400})"), "in.json: not valid JSON (number overflow parsing \"1e400\")");
   EXPECT_EQ(jsonError(R"({"a": [1, 2)").rfind("in.json: not valid JSON (line 1, column 12: syntax error while parsing array", 0), 0u)
