@@ -300,10 +300,12 @@ void addLensRig(GltfBuilder& b, const GltfExportOptions& options, const LensCame
 // The scene's materials, and its objects tessellated under one "arena" node.
 void addArena(GltfBuilder& b, const Scene& scene, double chordTolerance) {
   std::vector<int> materials;
-  for (const Material& m : scene.materials) {
+  for (size_t index = 0; index < scene.materials.size(); ++index) {
+    const Material& m = scene.materials[index];
     const int texture = m.texture ? b.texture(m.name, pngBytes(*m.texture)) : -1;
+    // The material's index in the scene: Blender's job names its linear texture by it.
     materials.push_back(b.material(m.name, m.color, texture, 0.0, 1.0,
-                                   {{"omnicam", {{"ambient", m.ambient}, {"diffuse", m.diffuse}}}}));
+                                   {{"omnicam", {{"ambient", m.ambient}, {"diffuse", m.diffuse}, {"material_index", index}}}}));
     b.setEmission(materials.back(), m.emission);
   }
   const int arena = b.node("arena", Rigid::Identity(), -1, {{"omnicam", {{"scene", scene.name}}}});
@@ -410,7 +412,7 @@ void checkGltfCamera(const RigSpec& rig) {
              rig.kind);
 }
 
-void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
+std::string gltfBytes(const Scene& scene, const GltfExportOptions& options) {
   GltfBuilder b;
   addArena(b, scene, options.chordTolerance);
   addLights(b, scene);
@@ -423,8 +425,12 @@ void exportGltf(const Scene& scene, const GltfExportOptions& options, const std:
   }
   std::ostringstream glb;
   tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToStream(&b.model(), glb, false, true)) throw OutputError(showPath(path) + ": cannot encode glTF");
-  writeBytesAtomically(path, glb.str());
+  if (!writer.WriteGltfSceneToStream(&b.model(), glb, false, true)) throw OutputError("cannot encode the scene as glTF");
+  return glb.str();
+}
+
+void exportGltf(const Scene& scene, const GltfExportOptions& options, const std::string& path) {
+  writeBytesAtomically(path, gltfBytes(scene, options));
 }
 
 }  // namespace omnicam

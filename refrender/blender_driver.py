@@ -12,6 +12,8 @@ job.json: {"glb": path, "shading": "unlit"|"lit"|"path", "samples": int, "seed":
            "lens_camera": true for a lens camera's job (no mirror in the glTF),
            "ambient": float (lit), "background": [r, g, b] (path: light from every direction; unlit and lit:
                            what camera and mirror rays that hit nothing see),
+           "textures": {"<material index>": path.exr} (each textured material's texture in linear floats,
+                        replacing the glTF's 8-bit sRGB PNG: the material found by extras.omnicam.material_index),
            "environment": {"image": path.exr, "strength": float, "rotation_deg": float} (path; replaces
                            the background: an equirectangular image around the world, Cycles' mapping),
            "lights": [{"watts": float, "diameter": float}] (in the order of the glTF's light_index;
@@ -152,6 +154,30 @@ def make_lambertian(material):
     tree.links.new(shader, output.inputs["Surface"])
 
 
+def use_linear_textures(textures):
+    """The glTF's textures are 8-bit sRGB PNGs, which Cycles interpolates before it linearises them: a
+    magnified texture would be averaged in the wrong space. The job's own float EXRs of them (linear,
+    the numbers omnicam samples) replace them, found by the material's index in the scene
+    (extras.omnicam.material_index)."""
+    for material in bpy.data.materials:
+        props = omnicam_props(material)
+        index = props.get("material_index") if props is not None else None
+        if index is None or not material.use_nodes:
+            continue
+        if str(index) not in textures:
+            continue
+        image = bpy.data.images.load(textures[str(index)])
+        image.colorspace_settings.name = "Linear"
+        swapped = 0
+        for node in material.node_tree.nodes:
+            if node.type == "TEX_IMAGE":
+                node.image = image
+                node.interpolation = "Linear"
+                swapped += 1
+        if swapped != 1:
+            raise RuntimeError("omnicam: material %d has %d image textures, not one" % (index, swapped))
+
+
 def background_world(colour):
     """path (docs/conventions.md §3): the background is light of constant radiance from every direction,
     for every ray (seen directly, in the mirror and by bounces)."""
@@ -274,6 +300,7 @@ def main():
     unlit = job["shading"] == "unlit"
     tracing = path_tracing(job)
 
+    use_linear_textures(job.get("textures", {}))
     # The rig's own materials are replaced below.
     for material in bpy.data.materials:
         if material.use_nodes:

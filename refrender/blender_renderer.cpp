@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <numeric>
 #include <optional>
@@ -17,6 +18,7 @@
 #include "errors.h"
 #include "exr_channels.h"
 #include "file_confinement.h"
+#include "image.h"
 #include "make_camera.h"
 #include "external_process.h"
 #include "gltf_exporter.h"
@@ -294,18 +296,56 @@ nlohmann::json blenderJob(const Scene& scene, const Vec3& worldOrigin, const Ren
   return job;
 }
 
-// The environment for the driver: the image omnicam lights with, as a float EXR in the job
-// folder (whatever the scene's file was, Cycles reads the same radiance), its strength and turn.
-nlohmann::json writeEnvironment(const Environment& environment, const std::string& file) {
-  const Texture& image = *environment.image;
+// An image omnicam holds in linear floats, as an opaque float OpenEXR's bytes: Cycles reads the
+// same numbers, whatever the scene's file was.
+std::vector<unsigned char> linearExrBytes(const Texture& image) {
   ImageRGBA exr(image.width(), image.height());
   const std::vector<float>& rgb = image.rgbLinear();
   for (size_t p = 0; p < rgb.size() / 3; ++p) {
     for (int c = 0; c < 3; ++c) exr.pixels[4 * p + c] = rgb[3 * p + c];
     exr.pixels[4 * p + 3] = 1.0f;
   }
-  writeImageAtomic(file, exr);
-  return {{"image", file}, {"strength", environment.strength}, {"rotation_deg", environment.rotationDeg}};
+  return encodeImage("linear.exr", exr);
+}
+
+std::string textureFileName(size_t material) { return "texture_" + std::to_string(material) + ".exr"; }
+
+bool writesEnvironment(const Scene& scene, const RenderSettings& settings) {
+  return settings.shading == Shading::Path && scene.environment;
+}
+
+// Every file of a job in memory, ready to be written together (nothing half-written): scene.glb,
+// each material's texture as a linear float EXR, the environment when path traced, the driver
+// when `driver` is given, and job.json last. The glTF embeds its textures as 8-bit sRGB PNGs, as
+// glTF must; Cycles would interpolate those before linearising them, averaging a magnified
+// texture in the wrong space, so the driver swaps in the EXRs (job "textures": material index →
+// file). `place` names a file of the job folder as job.json gives it.
+std::vector<FileBytes> blenderJobBytes(const Scene& scene, const RenderSettings& settings,
+                                       const GltfExportOptions& exportOptions, nlohmann::json job,
+                                       const std::string& folder, const std::function<std::string(const std::string&)>& place,
+                                       const std::optional<std::string>& driver) {
+  std::vector<FileBytes> files;
+  const auto add = [&](const std::string& name, auto&& bytes) {
+    files.push_back({folder + "/" + name, std::vector<unsigned char>(bytes.begin(), bytes.end())});
+  };
+  add("scene.glb", gltfBytes(scene, exportOptions));
+  job["glb"] = place("scene.glb");
+  nlohmann::json textures = nlohmann::json::object();
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    if (!scene.materials[m].texture) continue;
+    add(textureFileName(m), linearExrBytes(*scene.materials[m].texture));
+    textures[std::to_string(m)] = place(textureFileName(m));
+  }
+  job["textures"] = textures;
+  if (writesEnvironment(scene, settings)) {
+    const Environment& environment = *scene.environment;
+    add("environment.exr", linearExrBytes(*environment.image));
+    job["environment"] = {{"image", place("environment.exr")}, {"strength", environment.strength},
+                          {"rotation_deg", environment.rotationDeg}};
+  }
+  if (driver) add("blender_driver.py", *driver);
+  add("job.json", job.dump(2));
+  return files;
 }
 
 // Runs Blender on the job in `dir`; its output's last lines (for the messages of later failures).
@@ -404,13 +444,11 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
   GltfExportOptions exportOptions;
   exportOptions.placement = placements.front();
   exportOptions.rig = settings.rig;
-  exportGltf(scene, exportOptions, glb);
-
   const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
-  nlohmann::json job = blenderJob(scene, frame.worldOrigin, settings, options, glb, filtered, frames);
-  if (settings.shading == Shading::Path && scene.environment)
-    job["environment"] = writeEnvironment(*scene.environment, folder.path() + "/environment.exr");
-  writeTextAtomically(folder.path() + "/job.json", job.dump(2));
+  writeFilesTogether(blenderJobBytes(scene, settings, exportOptions,
+                                     blenderJob(scene, frame.worldOrigin, settings, options, glb, filtered, frames),
+                                     folder.path(), [&](const std::string& name) { return folder.path() + "/" + name; },
+                                     std::nullopt));
   const auto started = std::chrono::steady_clock::now();
   BlenderSession session;
   session.logTail = runBlenderJob(options, folder.path());
@@ -424,7 +462,9 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
 
 std::vector<std::string> blenderJobFiles(const Scene& scene, const RenderSettings& settings) {
   std::vector<std::string> files{"scene.glb", "job.json", "blender_driver.py"};
-  if (settings.shading == Shading::Path && scene.environment) files.push_back("environment.exr");
+  for (size_t m = 0; m < scene.materials.size(); ++m)
+    if (scene.materials[m].texture) files.push_back(textureFileName(m));
+  if (writesEnvironment(scene, settings)) files.push_back("environment.exr");
   return files;
 }
 
@@ -439,24 +479,18 @@ void writeBlenderJob(const Scene& worldScene, const CameraPlacement& worldPlacem
   const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
   const Scene& scene = frame.sceneOr(worldScene);
   const CameraPlacement& placement = frame.placements.front();
+  std::string why;
+  const std::optional<std::string> driver = readWholeFile(defaultDriver(), why);
+  if (!driver) throw ExternalError(showPath(defaultDriver()) + ": " + why);
   GltfExportOptions exportOptions;
   exportOptions.placement = placement;
   exportOptions.rig = settings.rig;
-  exportGltf(scene, exportOptions, dir + "/scene.glb");
   // Paths relative to the job's folder, where it is run; no frame-time file (omnicam's own).
   nlohmann::json frames = jobFrames({placement}, settings, ".", false);
   frames[0]["output"] = "render.exr";
   nlohmann::json job = blenderJob(scene, frame.worldOrigin, settings, options, "scene.glb", false, frames);
   job.erase("timings_output");
-  if (settings.shading == Shading::Path && scene.environment) {
-    job["environment"] = writeEnvironment(*scene.environment, dir + "/environment.exr");
-    job["environment"]["image"] = "environment.exr";
-  }
-  writeTextAtomically(dir + "/job.json", job.dump(2));
-  std::string why;
-  const std::optional<std::string> driver = readWholeFile(defaultDriver(), why);
-  if (!driver) throw ExternalError("blender_driver.py: " + why);
-  writeTextAtomically(dir + "/blender_driver.py", *driver);
+  writeFilesTogether(blenderJobBytes(scene, settings, exportOptions, job, dir, [](const std::string& name) { return name; }, driver));
 }
 
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,

@@ -617,6 +617,34 @@ TEST_F(CliTest, ExportWritesARenderableBlenderJob) {
   EXPECT_FALSE(fs::exists(path("g")));
 }
 
+// A Blender job appears whole or not at all: its files (the glTF, each texture as a linear EXR, the
+// driver, job.json) are written together, after the driver is read. Before, a folder planted at
+// job.json, or a driver that could not be read, left scene.glb (and job.json) behind.
+TEST_F(CliTest, ABlenderJobIsWrittenWholeOrNotAtAll) {
+  fs::create_directories(path("planted/job.json"));
+  const CommandResult planted = run("export " + kScene + " --to blender --size 48 -o " + path("planted"));
+  EXPECT_EQ(planted.code, 2) << planted.out;
+  EXPECT_NE(planted.out.find(path("planted/job.json") + ": is an existing folder"), std::string::npos) << planted.out;
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(path("planted"))) left.push_back(entry.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"job.json"});
+  const CommandResult noDriver = run("export " + kScene + " --to blender --size 48 -o " + path("nodriver"),
+                                     "OMNICAM_BLENDER_DRIVER=" + path("missing_driver.py"));
+  EXPECT_EQ(noDriver.code, 3) << noDriver.out;
+  EXPECT_NE(noDriver.out.find(path("missing_driver.py") + ": "), std::string::npos) << noDriver.out;
+  EXPECT_FALSE(fs::exists(path("nodriver"))) << "the folder export made is removed";
+  // A whole job holds each textured material's texture beside the glTF, named in job.json.
+  fs::copy_file(OMNICAM_SOURCE_DIR "/tests/bad_inputs/a_view.png", path("texture.png"));
+  std::ofstream(path("textured.json")) << R"({"format": "omnicam-scene/1", "materials": {"a_plain": {},
+    "photo": {"texture": {"file": "texture.png", "scale": [1, 1]}}},
+    "objects": [{"type": "quad", "material": "photo", "origin": [-2, -2, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]}]})";
+  ASSERT_EQ(run("export " + path("textured.json") + " --to blender --size 48 -o " + path("whole")).code, 0);
+  std::ifstream jobFile(path("whole/job.json"));
+  const nlohmann::json job = nlohmann::json::parse(jobFile);
+  EXPECT_EQ(job["textures"], nlohmann::json({{"1", "texture_1.exr"}})) << job.dump();
+  EXPECT_TRUE(fs::is_regular_file(path("whole/texture_1.exr")));
+}
+
 TEST_F(CliTest, SidecarsRecordTheRealModeAndItsOptions) {
   const auto sidecar = [&](const std::string& image) {
     std::ifstream in(image + ".json");
