@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "blender_renderer.h"
 #include "engines.h"
 #include "errors.h"
 #include "realistic_rendering.h"
@@ -24,6 +25,7 @@ class CyclesFrameCache {
     key.update("omnicam texture-realism cycles frame v1\n");
     key.update(readFileInside(o.outDir, "arenas/hall-textured.json", limits::kMaxJsonFileBytes));
     key.update(sha256OfFile(o.labPhoto));
+    key.update(sha256OfFile(blenderDriverFile()));  // how Blender is driven: a changed driver renders anew
     key.update(o.realistic.describe() + "\n" + o.realistic.tracing.toJson().dump() + "\n" +
                std::to_string(o.realistic.lampDiameter) + " " + std::to_string(o.realistic.spp) + " " + std::to_string(o.size));
     base_ = key.hex();

@@ -35,12 +35,15 @@ namespace omnicam {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string defaultDriver() {
+std::string blenderDriverFile(const BlenderOptions& options) {
+  if (!options.driver.empty()) return options.driver;
   if (const char* env = std::getenv("OMNICAM_BLENDER_DRIVER")) return env;
   return dataFile("refrender/blender_driver.py").string();
 }
+
+namespace {
+
+std::string defaultDriver() { return blenderDriverFile({}); }
 
 // docs/conventions.md §2's lights have no fall-off; Blender's are physical. A point light of P watts gives a
 // Lambertian surface at distance d the radiance ρ·P/(4π²d²): match I at a typical distance.
@@ -351,7 +354,7 @@ std::vector<FileBytes> blenderJobBytes(const Scene& scene, const RenderSettings&
 // Runs Blender on the job in `dir`; its output's last lines (for the messages of later failures).
 std::string runBlenderJob(const BlenderOptions& options, const std::string& dir) {
   const std::string log = dir + "/blender.log";
-  const std::string driver = options.driver.empty() ? defaultDriver() : options.driver;
+  const std::string driver = blenderDriverFile(options);
   std::vector<std::string> argv{options.executable, "-b", "--factory-startup", "-noaudio"};
   if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
   argv.insert(argv.end(), {"--python-exit-code", "1", "-P", driver, "--", dir + "/job.json"});

@@ -43,6 +43,9 @@ struct BlenderOptions {
   PathTracing pathTracing;
 };
 
+// The driver a session runs: options.driver, else OMNICAM_BLENDER_DRIVER, else omnicam's own.
+std::string blenderDriverFile(const BlenderOptions& options = {});
+
 // How one Blender session spent its time. A dataset renders many frames per session, so a frame
 // costs its own render, not the session's start-up (docs/performance.md, "Timing Cycles").
 struct BlenderTimings {
