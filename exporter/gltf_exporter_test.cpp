@@ -9,6 +9,7 @@
 
 #include "gltf_import.h"
 #include "image.h"
+#include "input_limits.h"
 #include "scene_loader.h"
 #include "triangulate.h"
 #include "errors.h"
@@ -63,6 +64,27 @@ TEST_F(GltfTest, ObjectsNamedLikeTheRigSurviveARoundTrip) {
   const Scene wrapped = loadScene((dir_ / "wrap.json").string());
   ASSERT_EQ(wrapped.objects.size(), scene.objects.size());
   EXPECT_EQ(wrapped.objects[1].name, "arena/omnicam_redbox");
+}
+
+// The triangle bound is the scene's, not each file's: a scene naming one large glTF many times
+// (or beside large inline meshes) is refused once all of them together pass it.
+TEST_F(GltfTest, TheTriangleBoundCountsWhatTheSceneHoldsBeforeTheFile) {
+  GltfExportOptions options;
+  options.includeRig = false;
+  const std::string glb = (dir_ / "arena.glb").string();
+  exportGltf(texturedScene(dir_), options, glb);
+  int64_t triangles = 0;
+  for (const SceneObject& o : importGltf(glb).objects) triangles += static_cast<int64_t>(std::get<Mesh>(o.shape).triangles.size());
+  ASSERT_GT(triangles, 2);
+  EXPECT_NO_THROW(importGltf(glb, {fs::path(), limits::kMaxTriangles - triangles}));
+  try {
+    importGltf(glb, {fs::path(), limits::kMaxTriangles - triangles + 1});
+    ADD_FAILURE() << "one triangle over the scene's bound was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("arena.glb: more than 33554432 triangles with the " +
+                                         std::to_string(limits::kMaxTriangles - triangles + 1) + " the scene holds before it"),
+              std::string::npos) << e.what();
+  }
 }
 
 TEST_F(GltfTest, RoundTripKeepsGeometryAndMaterials) {

@@ -16,6 +16,7 @@
 #include "image.h"
 #include "input_limits.h"
 #include "json_text.h"
+#include "scene_limits.h"
 
 namespace omnicam {
 
@@ -251,7 +252,8 @@ float extraFactor(const tinygltf::Value& o, const char* key, float fallback, con
   if (!o.Has(key)) return fallback;
   const tinygltf::Value& v = o.Get(key);
   const double d = v.IsNumber() || v.IsInt() ? v.GetNumberAsDouble() : -1.0;
-  if (!(d >= 0.0 && d <= 1e3)) throw InputError(where + ".extras.omnicam." + key + ": must be a number in [0, 1000]");
+  if (!(d >= 0.0 && d <= scene_limits::kMaxShadingFactor))
+    throw InputError(where + ".extras.omnicam." + key + ": must be a number in [0, 1000]");
   return static_cast<float>(d);
 }
 
@@ -311,7 +313,8 @@ void appendTexCoords(const tinygltf::Model& model, const tinygltf::Primitive& pr
                      std::to_string(vertexCount) + " vertices");
   for (size_t k = 0; k < t.count(); ++k) {
     const Eigen::Vector2d st(t.get(k, 0), 1.0 - t.get(k, 1));
-    if (!st.allFinite() || st.cwiseAbs().maxCoeff() > 1e6) throw InputError(where + ": TEXCOORD_0 must be finite");
+    if (!(st.cwiseAbs().maxCoeff() <= scene_limits::kMaxTexCoord))
+      throw InputError(where + ": TEXCOORD_0 must be finite and within ±1e6");
     out.uvs.push_back(st);
   }
 }
@@ -365,8 +368,8 @@ Mesh primitiveMesh(const tinygltf::Model& model, const tinygltf::Primitive& prim
 // The walk down the default scene's node trees, each mesh primitive becoming an arena object.
 class NodeWalk {
  public:
-  NodeWalk(const tinygltf::Model& model, const std::string& file, GltfArena& arena)
-      : model_(model), file_(file), arena_(arena) {}
+  NodeWalk(const tinygltf::Model& model, const std::string& file, GltfArena& arena, int64_t trianglesBefore)
+      : model_(model), file_(file), arena_(arena), trianglesBefore_(trianglesBefore), triangles_(trianglesBefore) {}
 
   void visit(int nodeIndex, const Eigen::Matrix4d& parent, int depth) {
     const std::string nodeWhere = file_ + ": nodes[" + std::to_string(nodeIndex) + "]";
@@ -390,7 +393,8 @@ class NodeWalk {
     Mesh out = primitiveMesh(model_, prim, world, where);
     triangles_ += static_cast<int64_t>(out.triangles.size());
     if (triangles_ > limits::kMaxTriangles)
-      throw InputError(file_ + ": more than " + std::to_string(limits::kMaxTriangles) + " triangles");
+      throw InputError(file_ + ": more than " + std::to_string(limits::kMaxTriangles) + " triangles" +
+                       (trianglesBefore_ > 0 ? " with the " + std::to_string(trianglesBefore_) + " the scene holds before it" : ""));
     int material = prim.material;
     if (material >= static_cast<int>(model_.materials.size())) throw InputError(where + ".material: out of range");
     if (material < 0) {
@@ -410,11 +414,12 @@ class NodeWalk {
   const std::string& file_;
   GltfArena& arena_;
   int defaultMaterial_ = -1;
-  int64_t triangles_ = 0;
+  const int64_t trianglesBefore_;
+  int64_t triangles_;
   std::set<int> visited_;  // glTF node graphs are trees: a node reached twice is invalid
 };
 
-GltfArena convert(const tinygltf::Model& model, const std::string& path) {
+GltfArena convert(const tinygltf::Model& model, const std::string& path, int64_t trianglesBefore) {
   const std::string file = showPath(path);  // prefixes every message
   // A required extension changes what the file means; omnicam reads only the one below.
   for (const std::string& extension : model.extensionsRequired)
@@ -426,7 +431,7 @@ GltfArena convert(const tinygltf::Model& model, const std::string& path) {
   if (model.scenes.empty()) throw InputError(file + ": no scene in the glTF file");
   const int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (sceneIndex >= static_cast<int>(model.scenes.size())) throw InputError(file + ": scene: out of range");
-  NodeWalk walk(model, file, arena);
+  NodeWalk walk(model, file, arena, trianglesBefore);
   for (int root : model.scenes[sceneIndex].nodes) walk.visit(root, Eigen::Matrix4d::Identity(), 0);
   return arena;
 }
@@ -483,7 +488,7 @@ GltfArena load(const std::string& path, const std::string* bytes, const GltfImpo
     std::string line = error.substr(0, error.find('\n'));
     throw InputError(showPath(path) + ": cannot load glTF (" + (line.empty() ? "invalid file" : line) + ")");
   }
-  GltfArena arena = convert(model, path);
+  GltfArena arena = convert(model, path, options.trianglesBefore);
   arena.filesRead = std::move(ctx.filesRead);
   return arena;
 }

@@ -10,6 +10,7 @@
 // `confineTo` (symlinks resolved; `data:` URIs are fine); accessors are validated in full
 // (bufferView present, type and component type per attribute, normalized flags, bounds, UV count
 // = vertex count) before a byte is read; node graphs must be trees; sizes are bounded.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -31,6 +32,8 @@ struct GltfArena {
 
 struct GltfImportOptions {
   std::filesystem::path confineTo;  // empty: no confinement (the user allowed outside files)
+  // Triangles the scene holds already: limits::kMaxTriangles bounds the scene, this file included.
+  int64_t trianglesBefore = 0;
 };
 
 // Throws InputError("<file>: <what>") for unreadable files and unsupported or invalid content.

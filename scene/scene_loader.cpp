@@ -18,6 +18,7 @@
 #include "input_limits.h"
 #include "json_fields.h"
 #include "rig_fields.h"
+#include "scene_limits.h"
 #include "sha256.h"
 #include "target_fields.h"
 
@@ -134,8 +135,9 @@ Material readMaterial(const std::string& name, JsonFields m, const Context& ctx)
   mat.name = name;
   mat.color = m.colour("color", mat.color, 1.0);
   mat.emission = m.colour("emission", mat.emission, 1e6);  // as a light's intensity
-  mat.ambient = static_cast<float>(m.nonNegative("ambient", mat.ambient));
-  mat.diffuse = static_cast<float>(m.nonNegative("diffuse", mat.diffuse));
+  const JsonFields::Range factor{0.0, scene_limits::kMaxShadingFactor};
+  mat.ambient = static_cast<float>(m.number("ambient", mat.ambient, factor));
+  mat.diffuse = static_cast<float>(m.number("diffuse", mat.diffuse, factor));
   mat.semanticClass = readClass(m);
   if (auto tex = m.optionalObject("texture")) {
     mat.texturePath = tex->string("file");
@@ -260,7 +262,10 @@ Shape readShape(const std::string& type, JsonFields& o) {
       const json& uv = uvs[i];
       if (!uv.is_array() || uv.size() != 2 || !uv[0].is_number() || !uv[1].is_number())
         o.fail(indexed("uvs", i), "must be [u, v]");
-      m.uvs.emplace_back(uv[0].get<double>(), uv[1].get<double>());
+      const Eigen::Vector2d st(uv[0].get<double>(), uv[1].get<double>());
+      if (!(st.cwiseAbs().maxCoeff() <= scene_limits::kMaxTexCoord))
+        o.fail(indexed("uvs", i), "numbers must be finite and within ±1e6");
+      m.uvs.push_back(st);
     }
     if (!m.uvs.empty() && m.uvs.size() != m.vertices.size())
       o.fail("uvs", "must have one entry per vertex");
@@ -345,8 +350,12 @@ void addCalibrationTarget(JsonFields& o, const std::string& name, Scene& scene, 
 
 // The names taken so far. Objects and lights become named nodes (glTF, Blender): one namespace;
 // the materials' names are another.
-struct TakenNames {
+// What the objects read so far hold: the names they took, and their mesh triangles (inline and
+// glTF), bounded per scene, not per file: a small scene naming one large glTF many times would
+// otherwise ask for memory without end.
+struct SceneSoFar {
   std::set<std::string> nodes, materials;
+  int64_t meshTriangles = 0;
 };
 
 // The named materials, in file order; ctx.materialIndex finds them by name. Optional: a scene of
@@ -365,7 +374,7 @@ void readMaterials(JsonFields& top, Context& ctx, Scene& scene) {
 
 // An arena authored elsewhere: its meshes and materials join the scene, their names made
 // unique (glTF does not require that) and kept within Blender's 63 bytes.
-void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Scene& scene, TakenNames& names) {
+void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Scene& scene, SceneSoFar& names) {
   o.string("type");
   const std::string gltfFile = o.string("file");
   const std::string gltfClass = readClass(o);
@@ -373,7 +382,8 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
   const fs::path resolved = resolveInside(ctx, o, "file", gltfFile);  // names the field itself
   const std::string bytes = readNotedFile(ctx, o, "file", gltfFile, resolved, "load glTF");
   try {
-    arena = importGltfFromMemory(bytes, resolved.string(), {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder});
+    arena = importGltfFromMemory(bytes, resolved.string(),
+                                 {ctx.options.allowOutsideFolder ? fs::path() : ctx.folder, names.meshTriangles});
   } catch (const InputError& e) {
     o.fail("file", e.what());
   }
@@ -388,6 +398,7 @@ void addGltfArena(JsonFields& o, const std::string& name, const Context& ctx, Sc
     scene.materials.push_back(std::move(m));
   }
   for (SceneObject& imported : arena.objects) {
+    if (const Mesh* mesh = std::get_if<Mesh>(&imported.shape)) names.meshTriangles += static_cast<int64_t>(mesh->triangles.size());
     imported.name = uniqueName(name + "/" + imported.name, names.nodes);
     imported.material += offset;
     imported.semanticClass = gltfClass;
@@ -405,7 +416,7 @@ void takeNodeName(const JsonFields& fields, std::set<std::string>& taken, const 
                           : "not given, and its default " + quote(name) + " is another's (objects and lights share one namespace): give it a name");
 }
 
-void readObjects(JsonFields& top, const Context& ctx, Scene& scene, TakenNames& names) {
+void readObjects(JsonFields& top, const Context& ctx, Scene& scene, SceneSoFar& names) {
   const json& objects = requireArray(top, "objects", false);
   for (size_t i = 0; i < objects.size(); ++i) {
     JsonFields o(objects[i], ctx.file, indexed("objects", i));
@@ -432,6 +443,11 @@ void readObjects(JsonFields& top, const Context& ctx, Scene& scene, TakenNames& 
     obj.material = m->second;
     obj.semanticClass = readClass(o);
     obj.shape = readShape(o.string("type"), o);
+    if (const Mesh* mesh = std::get_if<Mesh>(&obj.shape)) {
+      names.meshTriangles += static_cast<int64_t>(mesh->triangles.size());
+      if (names.meshTriangles > limits::kMaxTriangles)
+        o.fail("triangles", "the scene's meshes would hold more than " + std::to_string(limits::kMaxTriangles) + " triangles");
+    }
     o.finish();
     scene.objects.push_back(std::move(obj));
   }
@@ -567,7 +583,7 @@ Scene loadSceneFromText(const std::string& text, const std::string& file, const 
   scene.rig = top.has("rig") ? readRig(top.object("rig")) : RigSpec{};
   if (top.has("start_pose")) scene.startPose = poseFromJson(top.raw("start_pose"), file, "start_pose");
   readMaterials(top, ctx, scene);
-  TakenNames names;
+  SceneSoFar names;
   for (const Material& m : scene.materials) names.materials.insert(m.name);
   readObjects(top, ctx, scene, names);
   readLights(top, file, scene, names.nodes);

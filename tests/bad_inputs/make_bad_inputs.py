@@ -158,6 +158,12 @@ def main():
     write(os.path.join(SCENES, "texture_scale_huge.json"),
           scene([FLOOR], {"grey": {"color": 0.5, "texture": {"file": "tex.png", "scale": [1e12, 1]}}}))
 
+    # Lit-shading factors and mesh texture coordinates beyond what a float product or a float UV holds.
+    write(os.path.join(SCENES, "ambient_huge.json"), scene([FLOOR], {"grey": {"color": 0.5, "ambient": 1e39}}))
+    write(os.path.join(SCENES, "mesh_uv_huge.json"),
+          scene([{"type": "mesh", "material": "grey", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]],
+                  "triangles": [[0, 1, 2]], "uvs": [[0, 0], [1e300, 0], [0, 1]]}]))
+
     ball = {"type": "sphere", "material": "grey", "center": [1, 0, 0.2], "radius": 0.1}
     write(os.path.join(SCENES, "radius_1e400.json"),
           scene([FLOOR, dict(ball, radius=0.1)]).replace('"radius": 0.1', '"radius": 1e400'))
