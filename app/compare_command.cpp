@@ -26,15 +26,16 @@ namespace {
 struct CompareArgs {
   std::string a, b, diff, report, junit;
   bool json = false, disc = false, boxDownsample = false, commonFrames = false;
-  double failPsnr = -1.0, failRmse = -1.0, failMax = -1.0, tol = 1.0 / 255.0, diffScale = 0.05;
+  double failPsnr = 0.0, failRmse = 0.0, failMax = 0.0, tol = 1.0 / 255.0, diffScale = 0.05;
 };
 
-// The --fail-* flags given (each is -1 when not).
-CompareThresholds thresholdsOf(const CompareArgs& args) {
+// The --fail-* flags given, whatever their value: a PSNR may be below 0 (an HDR image's errors
+// beyond its peak of 1), and --fail-psnr -5 is a threshold like any other.
+CompareThresholds thresholdsOf(const CompareArgs& args, const CLI::App& cmd) {
   CompareThresholds t;
-  if (args.failPsnr >= 0.0) t.minPsnrDb = args.failPsnr;
-  if (args.failRmse >= 0.0) t.maxRmse = args.failRmse;
-  if (args.failMax >= 0.0) t.maxAbs = args.failMax;
+  if (cmd.count("--fail-psnr")) t.minPsnrDb = args.failPsnr;
+  if (cmd.count("--fail-rmse")) t.maxRmse = args.failRmse;
+  if (cmd.count("--fail-max")) t.maxAbs = args.failMax;
   return t;
 }
 
@@ -71,7 +72,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   DatasetCompareOptions options;
   options.image.tolerance = args.tol;
   options.image.discOnly = args.disc;
-  options.thresholds = thresholdsOf(args);
+  options.thresholds = thresholdsOf(args, cmd);
   options.diffScale = args.diffScale;
   options.commonFramesOnly = args.commonFrames;
   const DatasetCompareResult r = compareDatasets(args.a, args.b, options);
@@ -196,7 +197,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   options.discOnly = args.disc;
   if (!args.boxDownsample) explainSizes(args);
   const CompareResult r = args.diff.empty() && !args.boxDownsample ? compareStreamed(args, options) : compareWhole(args, options);
-  const CompareThresholds thresholds = thresholdsOf(args);
+  const CompareThresholds thresholds = thresholdsOf(args, cmd);
   std::string failure;
   for (const std::string& failed : thresholds.failures(r)) failure += " " + failed;
   const bool checked = thresholds.any();

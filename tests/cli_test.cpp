@@ -503,6 +503,25 @@ TEST_F(CliTest, BlenderFailuresExitThreeWithItsOutputAndWriteNothing) {
   }
 }
 
+// HDR images can be apart by more than their peak of 1: a PSNR below 0 dB. A threshold below 0 is
+// checked like any other (it was taken for "not given", and nothing was checked).
+TEST_F(CliTest, ANegativePsnrThresholdIsChecked) {
+  ImageRGBA dark(8, 8), bright(8, 8);
+  for (size_t p = 0; p < bright.pixels.size(); p += 4) {
+    for (int c = 0; c < 3; ++c) bright.pixels[p + c] = 10.0f;
+    dark.pixels[p + 3] = bright.pixels[p + 3] = 1.0f;
+  }
+  writeImageAtomic(path("dark.exr"), dark);
+  writeImageAtomic(path("bright.exr"), bright);
+  // RMSE 10: PSNR = 20·log10(1/10) = −20 dB.
+  const CommandResult fails = run("compare " + path("dark.exr") + " " + path("bright.exr") + " --fail-psnr -5");
+  EXPECT_EQ(fails.code, 1) << fails.out;
+  EXPECT_NE(fails.out.find("FAIL psnr_db=-20"), std::string::npos) << fails.out;
+  const CommandResult passes = run("compare " + path("dark.exr") + " " + path("bright.exr") + " --fail-psnr -25");
+  EXPECT_EQ(passes.code, 0) << passes.out;
+  EXPECT_NE(passes.out.find("PASS psnr_db=-20"), std::string::npos) << passes.out;
+}
+
 TEST_F(CliTest, CompareGivesPassFailLinesExitCodesAndADiffImage) {
   const std::string a = path("a.exr"), b = path("b.exr"), c = path("c.png");
   ASSERT_EQ(run("render " + kScene + " --size 64 -o " + a).code, 0);
