@@ -55,6 +55,11 @@ TEST(LivePose, HostileMessagesAreRefusedWithTheirReason) {
   o = turnedBy(0.3);
   o.linear[0] = 80.0, o.linear[1] = 61.0;
   EXPECT_EQ(problemWith(o, nullptr), "the speed is above 100 m/s");
+  o = turnedBy(0.3);
+  o.angular[2] = 628.0;  // 35982 degrees/s: within 100 turns a second
+  EXPECT_EQ(problemWith(o, nullptr), "");
+  o.angular[2] = -629.0;
+  EXPECT_EQ(problemWith(o, nullptr), "the yaw rate is above 36000 degrees/s (628.319 rad/s)");
   // A stamp far after ROS time now (a clock set wrong, a hostile message) would hold every later
   // pose back: refused. Up to a minute ahead is taken (clocks of two machines), and so is any
   // stamp before /clock's first message (ROS time zero).

@@ -23,7 +23,9 @@
 #include "number_format.h"
 #include "interrupts.h"
 #include "intrinsics_files.h"
+#include "input_limits.h"
 #include "placement.h"
+#include "render_settings.h"
 #include "ros_camera_info.h"
 #include "ros_transport.h"
 
@@ -52,6 +54,10 @@ CameraPlacement placementOf(const DatasetPlan& plan, size_t camera, const LivePo
 void checkLiveRender(const DatasetPlan& plan, size_t camera, const LivePose& live) {
   const CameraSetup& setup = plan.setups()[camera];
   const CameraPlacement placement = placementOf(plan, camera, live);
+  // As a dataset's frame: the camera within the world (a mount can put it outside where the robot
+  // is not, and a fixed rate carries a pose forward), the motion within its limits.
+  checkPlacement(placement, {"spp", "image size", "the twist (camera " + quote(setup.camera->name) + ")",
+                             "the pose (camera " + quote(setup.camera->name) + ")"});
   checkEngineRenders(plan.engine().kind(), setup.rig, placement);
   if (plan.spec().request.adaptiveSpp > 0 && moving(placement, setup.rig))
     throw InputError("adaptive_spp: not while the robot moves during an exposure (camera " + quote(setup.camera->name) + ")");
@@ -131,9 +137,6 @@ ros1::Diagnostic diagnostic(const LiveSensorOptions& options, const std::string&
   return d;
 }
 
-// Dataset limits (docs/dataset-format.md): poses within ±10 km, speeds up to 100 m/s.
-constexpr double kMaxCoordinate = 10000.0, kMaxSpeed = 100.0;
-
 std::string cameraFrame(const LiveSensorOptions& options, const std::string& camera) {
   return options.robot + "/" + camera;
 }
@@ -164,9 +167,14 @@ std::string problemWith(const ros1::Odometry& o, const ros1::Stamp* lastAccepted
   if (std::abs(std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) - 1.0) > 1e-3)
     return "the orientation is not a unit quaternion";
   if (o.stamp.sec == 0 && o.stamp.nsec == 0) return "its stamp is zero (set header.stamp, e.g. rostopic pub -s with stamp: now)";
-  if (std::abs(o.position[0]) > kMaxCoordinate || std::abs(o.position[1]) > kMaxCoordinate)
-    return "the position is beyond ±10 km";
-  if (std::hypot(o.linear[0], o.linear[1]) > kMaxSpeed) return "the speed is above 100 m/s";
+  // The limits of every pose and velocity (base/input_limits.h, as a dataset's).
+  if (std::abs(o.position[0]) > limits::kMaxWorldCoordinate || std::abs(o.position[1]) > limits::kMaxWorldCoordinate)
+    return "the position is beyond ±" + shortNumber(limits::kMaxWorldCoordinate / 1000.0) + " km";
+  if (std::hypot(o.linear[0], o.linear[1]) > limits::kMaxSpeed)
+    return "the speed is above " + shortNumber(limits::kMaxSpeed) + " m/s";
+  if (std::abs(o.angular[2]) * kDegreesPerRadian > limits::kMaxYawRateDegPerS)
+    return "the yaw rate is above " + shortNumber(limits::kMaxYawRateDegPerS) + " degrees/s (" +
+           shortNumber(limits::kMaxYawRateDegPerS / kDegreesPerRadian) + " rad/s)";
   if (lastAccepted && (o.stamp.sec < lastAccepted->sec || (o.stamp.sec == lastAccepted->sec && o.stamp.nsec <= lastAccepted->nsec)))
     return "its stamp " + stampText(o.stamp) + " is not after the last pose's, " + stampText(*lastAccepted);
   if (!now.zero() && o.stamp.nanoseconds() - now.nanoseconds() > std::llround(ros1::kMostStampAheadSeconds * 1e9))

@@ -866,8 +866,9 @@ TEST_F(LiveRun, OutlivesItsMasterAndRegistersAgainWhenItComesBack) {
       << output();
 }
 
-// A pose the engine cannot render as a dataset frame (here adaptive sampling while a rolling
-// shutter moves) is refused with its reason; the next, still one renders as the dataset does.
+// A pose the engine cannot render as a dataset frame (here a robot whose mount puts the camera
+// beyond the world's ±10 km, then adaptive sampling while a rolling shutter moves) is refused with
+// its reason; the next, still one renders as the dataset does.
 TEST_F(LiveRun, RefusesAPoseItsEngineCannotRenderAndGoesOn) {
   renderDataset(std::string(R"({"format": "omnicam-dataset/1", "scene": ")") + OMNICAM_SOURCE_DIR +
                 R"(/scenes/robocup2006.json", "size": 96, "spp": 4, "shading": "path", "adaptive_spp": 16, )" + poseList(1) +
@@ -878,15 +879,24 @@ TEST_F(LiveRun, RefusesAPoseItsEngineCannotRenderAndGoesOn) {
   Images images(*handle_, "/bot/front/image_raw");
   Inbox<diagnostic_msgs::DiagnosticArray> diagnostics(*handle_, "/diagnostics");
   waitUntilConnected([&] { return odometry.getNumSubscribers() > 0 && images.connected() && diagnostics.connected(); });
-  odometry.publish(odometryOf(kPoses[0], ros::Time(100, 0), /*moving=*/true));
+  SentPose atTheEdge = kPoses[0];
+  atTheEdge.x = 9999.95, atTheEdge.qz = 0.0, atTheEdge.qw = 1.0, atTheEdge.yawDeg = 0.0;  // within the world; its camera 0.1 m ahead is not
+  odometry.publish(odometryOf(atTheEdge, ros::Time(99, 0), /*moving=*/false));
   ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 0; }, 120.0)) << output();
-  EXPECT_EQ(diagnosticMessages(diagnostics)[0],
+  EXPECT_EQ(diagnosticMessages(diagnostics)[0].rfind("pose refused: the pose (camera \"front\"): the camera must stand within ±10000 m; "
+                                                     "the robot at (9999.95, ",
+                                                     0),
+            0u)
+      << diagnosticMessages(diagnostics)[0];
+  odometry.publish(odometryOf(kPoses[0], ros::Time(100, 0), /*moving=*/true));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return diagnostics.size() > 1; }, 120.0)) << output();
+  EXPECT_EQ(diagnosticMessages(diagnostics)[1],
             "pose refused: adaptive_spp: not while the robot moves during an exposure (camera \"front\")");
   odometry.publish(odometryOf(kPoses[0], ros::Time(101, 0), /*moving=*/false));
   ASSERT_EQ(waitForExit(), 0) << output();
   ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > 0; }, 120.0)) << output();
   EXPECT_TRUE(images.messages()[0].data == datasetRgb8(dataset(), "front", 0));
-  EXPECT_NE(output().find("1 pose rendered, 0 dropped for newer ones, 1 refused"), std::string::npos) << output();
+  EXPECT_NE(output().find("1 pose rendered, 0 dropped for newer ones, 2 refused"), std::string::npos) << output();
 }
 
 // examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to
