@@ -84,6 +84,9 @@ void runRos(RosArgs a, const CLI::App& cmd, const std::vector<std::string>& extr
     std::printf("ros: waiting for a ROS master at %s (start one with `roscore`, or set ROS_MASTER_URI)\n", uri.c_str());
     std::fflush(stdout);
   };
+  a.options.onNotes = [](const std::vector<std::string>& notes) {
+    for (const std::string& note : notes) std::fprintf(stderr, "omnicam: note: %s\n", note.c_str());
+  };
   const LiveSensorReport report = runLiveSensor(spec, a.options, [&](const LiveSensorTopics& used) {
     const std::string from = a.options.tfParent.empty() ? used.odometry
                                                         : "tf (" + a.options.baseFrame + " in " + a.options.tfParent + ")";

@@ -477,6 +477,14 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
                                const std::function<void(const LiveSensorTopics& topics)>& ready) {
   const DatasetPlan plan(spec, DatasetRunOptions{});
   checkLiveSpec(plan, options);
+  if (options.onNotes) {
+    std::vector<std::string> notes = plan.notes();
+    if (spec.calibration)
+      notes.push_back(showPath(spec.file) + ": calibration: does nothing live (the robot's poses come from ROS, and each "
+                                            "calibration target stays where the scene puts it)");
+    if (spec.euroc) notes.push_back(showPath(spec.file) + ": euroc: does nothing live (images go out as ROS messages)");
+    if (!notes.empty()) options.onNotes(notes);
+  }
   // Declared before the transport: its destructor stops the callbacks before these go.
   LivePoses poses(options);
   std::optional<ros1::Transport> connection;

@@ -48,6 +48,10 @@ struct LiveSensorOptions {
   double masterWaitSeconds = 30.0;
   // Told the master's URI once if the master does not answer at once (the node then waits).
   std::function<void(const std::string& masterUri)> onWaitingForMaster;
+  // Told, before anything is rendered, what the user should know of the spec as a live sensor
+  // renders it: the dataset's notes (a lens camera's size scaled, outputs the engine does not
+  // write) and the spec's fields that do nothing live (a calibration sequence, the EuRoC layout).
+  std::function<void(const std::vector<std::string>& notes)> onNotes;
   // When set: every message published also goes into this ROS bag (written under a temporary
   // name, renamed when the sensor stops). The path must be a new file (checkOutputFile).
   std::string recordBag;

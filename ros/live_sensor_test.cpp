@@ -1085,6 +1085,10 @@ TEST_P(LiveSensorWaitingForAMaster, SaysSoAndStopsOnItsSignalWithExitCodeZero) {
   const std::string waiting = "ros: waiting for a ROS master at " + uri + " (start one with `roscore`";
   ASSERT_TRUE(TestDaemons::waitFor([&] { return readFile(root / "node.out").find(waiting) != std::string::npos; }, 120.0))
       << readFile(root / "node.out");
+  // What the dataset would say of the spec, the live node says too, before it looks for a master.
+  const std::string note = "omnicam: note: " + (root / "spec.json").string() +
+                           ": size: camera \"fisheye\", a lens camera of 320x240, renders at 96x72 with its intrinsics scaled";
+  EXPECT_LT(readFile(root / "node.out").find(note), readFile(root / "node.out").find(waiting)) << readFile(root / "node.out");
   ::kill(node.pid("omnicam ros"), GetParam());
   EXPECT_EQ(node.waitForExit("omnicam ros", 60.0), 0) << readFile(root / "node.out");
   EXPECT_NE(readFile(root / "node.out").find("ros: stopped while waiting for the ROS master: no pose rendered"),
