@@ -125,8 +125,9 @@ def score(dataset, coco, model, frames, categories):
             shown = (item, truth, found)
     for t in tally.values():
         t["ground_truth"] = t["tp"] + t["fn"]
-        t["precision"] = t["tp"] / max(1, t["tp"] + t["fp"])
-        t["recall"] = t["tp"] / max(1, t["ground_truth"])
+        # None (null, "n/a"): a class never detected, or never present, has no precision or recall.
+        t["precision"] = t["tp"] / (t["tp"] + t["fp"]) if t["tp"] + t["fp"] else None
+        t["recall"] = t["tp"] / t["ground_truth"] if t["ground_truth"] else None
     return tally, shown
 
 
@@ -159,7 +160,8 @@ def main(out_dir):
     (out / "scores.json").write_text(json.dumps(tally, indent=1))
     print(f"{'class':8} {'truth':>5} {'TP':>4} {'FP':>4} {'precision':>9} {'recall':>6}")
     for name, t in tally.items():
-        print(f"{name:8} {t['ground_truth']:5d} {t['tp']:4d} {t['fp']:4d} {t['precision']:9.2f} {t['recall']:6.2f}")
+        shown_ratio = {key: "n/a" if t[key] is None else f"{t[key]:.2f}" for key in ("precision", "recall")}
+        print(f"{name:8} {t['ground_truth']:5d} {t['tp']:4d} {t['fp']:4d} {shown_ratio['precision']:>9} {shown_ratio['recall']:>6}")
     if shown:
         draw(shown, categories, out / "detections.png")
     print("wrote", out / "scores.json")

@@ -3,7 +3,7 @@
 The library's own objects, not subprocess calls (docs/python.md)::
 
     import omnicam
-    scene = omnicam.load_scene("scenes/robocup2006.json")
+    scene = omnicam.load_scene(omnicam.data_path("scenes/robocup2006.json"))
     renderer = omnicam.Renderer(scene)
     frame = renderer.render((1.0, 2.0, 90.0), outputs=["rgb", "depth", "instance"])
     camera = omnicam.Camera(scene.rig)
@@ -89,6 +89,14 @@ def _fits(value: _typing.Any, annotation: str) -> bool:
     return True
 
 
+def _shown(value: _typing.Any) -> str:
+    """A value in an error message: its type and a repr of one short line (an array by its shape)."""
+    if hasattr(value, "shape") and hasattr(value, "dtype"):
+        return f"{type(value).__name__} of shape {tuple(value.shape)} and dtype {value.dtype}"
+    text = " ".join(repr(value).split())
+    return f"{type(value).__name__} {text if len(text) <= 80 else text[:77] + '...'}"
+
+
 def _wrong_argument(message: str, kwargs: _typing.Dict[str, _typing.Any]) -> _typing.Optional[str]:
     """The first argument whose value cannot be its parameter's type, in every overload, described."""
     overloads = [dict(_TYPED.findall(overload)) for overload in _OVERLOAD.findall(message)]
@@ -96,7 +104,7 @@ def _wrong_argument(message: str, kwargs: _typing.Dict[str, _typing.Any]) -> _ty
         types = [typed[key] for typed in overloads if key in typed]
         if types and not any(_fits(value, annotation) for annotation in types):
             wanted = sorted(set(t.strip().replace("omnicam._omnicam.", "omnicam.") for t in types))
-            return f"{key} must be {' or '.join(wanted)} (got {type(value).__name__} {value!r})"
+            return f"{key} must be {' or '.join(wanted)} (got {_shown(value)})"
     return None
 
 

@@ -118,15 +118,23 @@ class Dataset:
         """[{"id", "name", "class", "class_id"}]: the instance ids (0: none)."""
         return self.header["instances"]
 
+    def _camera_entry(self, camera):
+        """The manifest's entry of a camera (default this dataset's camera); InputError naming the
+        cameras if there is none of that name (a bare StopIteration would end a caller's generator)."""
+        camera = self.camera if camera is None else camera
+        for entry in self.header["cameras"]:
+            if entry["name"] == camera:
+                return entry
+        cameras = [entry["name"] for entry in self.header["cameras"]]
+        raise InputError(f"camera {camera!r} is not in {self.path} (cameras: {', '.join(cameras)})")
+
     def intrinsics(self, camera=None):
         """The manifest's intrinsics of a camera (default this dataset's camera)."""
-        camera = self.camera if camera is None else camera
-        return next(c["intrinsics"] for c in self.header["cameras"] if c["name"] == camera)
+        return self._camera_entry(camera)["intrinsics"]
 
     def rig(self, camera=None):
         """The camera's rig as the manifest states it (default this dataset's camera): an omnicam.Rig."""
-        camera = self.camera if camera is None else camera
-        return Rig(next(c["rig"] for c in self.header["cameras"] if c["name"] == camera))
+        return Rig(self._camera_entry(camera)["rig"])
 
     def __len__(self):
         return len(self.reader.frames)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "bindings.h"
 #include "errors.h"
@@ -12,6 +14,8 @@
 #include "make_camera.h"
 #include "placement.h"
 #include "render_settings.h"
+#include "shutter.h"
+#include "timed_projection.h"
 
 namespace omnicam::python {
 
@@ -26,6 +30,15 @@ struct PyCamera {
 // An (N, k) array-like's rows (a numpy array of any number type, nested lists, …) as float64;
 // InputError naming `what` for anything else.
 py::array_t<double, py::array::c_style | py::array::forcecast> rowsOf(const py::object& a, int k, const std::string& what) {
+  // Real numbers only: a complex array would lose its imaginary part with only numpy's warning.
+  if (const py::array given = py::array::ensure(a)) {
+    const char kind = given.dtype().kind();
+    if (kind != 'i' && kind != 'u' && kind != 'f')
+      throw InputError(what + ": must be an array of real numbers of shape (N, " + std::to_string(k) + ") (got dtype " +
+                       py::str(given.dtype()).cast<std::string>() + ")");
+  } else {
+    PyErr_Clear();
+  }
   auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!rows) PyErr_Clear();
   if (!rows || rows.ndim() != 2 || rows.shape(1) != k)
@@ -33,30 +46,64 @@ py::array_t<double, py::array::c_style | py::array::forcecast> rowsOf(const py::
   return rows;
 }
 
-// Viewpoint frame from world frame at `pose` (the exposure start), `seconds` later with the robot
-// driving at `velocity`; the identity without a pose.
-Rigid viewpointFrom(const Camera& camera, const py::object& pose, const py::object& velocity = py::none(),
-                    double seconds = 0.0) {
+// The robot's placement at `pose` (the exposure start) driving at `velocity`; nullopt without a
+// pose (points and rays in the viewpoint frame).
+std::optional<CameraPlacement> placementFrom(const py::object& pose, const py::object& velocity) {
   if (pose.is_none()) {
     if (!velocity.is_none()) throw InputError("velocity: needs a pose (the robot's at the exposure start)");
-    if (seconds != 0.0) throw InputError("time: needs a pose (rays without one are in the viewpoint frame, at no time)");
-    return Rigid::Identity();
+    return std::nullopt;
   }
   const CameraPlacement placement(poseFrom(pose, "pose"), velocity.is_none() ? BodyVelocity{} : velocityFrom(velocity, "velocity"));
   checkPlacement(placement);
-  return placement.worldFromViewpoint(camera.rig(), seconds).inverse();
+  return placement;
 }
 
-py::array_t<double> project(const PyCamera& self, const py::object& points, const py::object& pose) {
+// `time` as one number or one per row of `n`: seconds after the exposure start, within the
+// exposure bound either side (the motion model holds a velocity that long). A time other than 0
+// needs a velocity: a still robot is where its pose is at every time.
+std::vector<double> timesOf(const py::object& time, size_t n, bool moving) {
+  std::vector<double> times;
+  if (py::isinstance<py::float_>(time) || py::isinstance<py::int_>(time)) {
+    if (py::isinstance<py::bool_>(time)) throw InputError("time: must be seconds (a number or an array of one per pixel), not a bool");
+    times.assign(n, time.cast<double>());
+  } else {
+    const auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(time);
+    if (!rows) PyErr_Clear();
+    if (!rows || rows.ndim() != 1 || static_cast<size_t>(rows.shape(0)) != n)
+      throw InputError("time: must be a number or an array of one time per pixel, shape (" + std::to_string(n) + ",)");
+    times.assign(rows.data(), rows.data() + n);
+  }
+  for (double t : times) {
+    if (!(std::abs(t) <= limits::kMaxExposureS))
+      throw InputError("time: must be within ±" + shortNumber(limits::kMaxExposureS) + " s of the exposure start (got " +
+                       roundTrip(t) + ")");
+    if (t != 0.0 && !moving)
+      throw InputError("time: does nothing without a pose and a velocity (a still robot is where its pose puts it at every "
+                       "time): give both, or leave time out");
+  }
+  return times;
+}
+
+py::array_t<double> project(const PyCamera& self, const py::object& points, const py::object& pose, const py::object& velocity) {
   const auto in = rowsOf(points, 3, "points");
-  const Rigid viewpointFromInput = viewpointFrom(*self.camera, pose);
+  const std::optional<CameraPlacement> placement = placementFrom(pose, velocity);
+  const Rigid viewpointFromInput = placement ? placement->worldFromViewpoint(self.camera->rig(), 0.0).inverse() : Rigid::Identity();
+  const bool timed = placement && !velocity.is_none();
   const auto n = static_cast<size_t>(in.shape(0));
   std::vector<double> out(2 * n);
   const double* p = in.data();
   {
     py::gil_scoped_release release;
     tbb::parallel_for(size_t{0}, n, [&](size_t i) {
-      const auto q = self.camera->project(viewpointFromInput * Vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+      const Vec3 point(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+      // Moving: each point where the line that sees it sees it, at that line's time (as the
+      // frame's landmarks are projected).
+      std::optional<Vec2> q;
+      if (timed) {
+        if (const auto at = projectAtReadout(*self.camera, *placement, point)) q = at->raster;
+      } else {
+        q = self.camera->project(viewpointFromInput * point);
+      }
       out[2 * i] = q ? q->x() : kNaN;
       out[2 * i + 1] = q ? q->y() : kNaN;
     });
@@ -64,19 +111,18 @@ py::array_t<double> project(const PyCamera& self, const py::object& points, cons
   return arrayTakingOver(std::move(out), {static_cast<py::ssize_t>(n), 2});
 }
 
-py::tuple rays(const PyCamera& self, const py::object& pixels, const py::object& pose, const py::object& velocity, double time) {
+py::tuple rays(const PyCamera& self, const py::object& pixels, const py::object& pose, const py::object& velocity,
+               const py::object& time) {
   const auto in = rowsOf(pixels, 2, "pixels");
-  // Times within an exposure (and as far before it): the motion model holds a velocity that long.
-  if (!(std::abs(time) <= limits::kMaxExposureS))
-    throw InputError("time: must be within ±" + shortNumber(limits::kMaxExposureS) + " s of the exposure start (got " +
-                     roundTrip(time) + ")");
-  const Rigid outputFromViewpoint = viewpointFrom(*self.camera, pose, velocity, time).inverse();
   const auto n = static_cast<size_t>(in.shape(0));
+  const std::optional<CameraPlacement> placement = placementFrom(pose, velocity);
+  const std::vector<double> times = timesOf(time, n, placement && !velocity.is_none());
   std::vector<double> origins(3 * n), directions(3 * n);
   const double* p = in.data();
   {
     py::gil_scoped_release release;
     tbb::parallel_for(size_t{0}, n, [&](size_t i) {
+      const Rigid outputFromViewpoint = placement ? placement->worldFromViewpoint(self.camera->rig(), times[i]) : Rigid::Identity();
       const auto ray = self.camera->generateRay({Vec2(p[2 * i], p[2 * i + 1])});
       const Vec3 o = ray ? Vec3(outputFromViewpoint * ray->origin) : Vec3::Constant(kNaN);
       const Vec3 d = ray ? Vec3(outputFromViewpoint.linear() * ray->direction) : Vec3::Constant(kNaN);
@@ -85,6 +131,23 @@ py::tuple rays(const PyCamera& self, const py::object& pixels, const py::object&
   }
   const auto shape = std::vector<py::ssize_t>{static_cast<py::ssize_t>(n), 3};
   return py::make_tuple(arrayTakingOver(std::move(origins), shape), arrayTakingOver(std::move(directions), shape));
+}
+
+// Each raster point's time: mid-exposure of its pixel's readout line (shutter.h's pixelTime, the
+// instant the frame's AOVs and annotations are taken at there); NaN off the image.
+py::array_t<double> pixelTimes(const PyCamera& self, const py::object& pixels) {
+  const auto in = rowsOf(pixels, 2, "pixels");
+  const auto n = static_cast<size_t>(in.shape(0));
+  const int width = self.camera->width(), height = self.camera->height();
+  const Shutter& shutter = self.camera->rig().shutter;
+  std::vector<double> out(n);
+  const double* p = in.data();
+  for (size_t k = 0; k < n; ++k) {
+    const double u = p[2 * k], v = p[2 * k + 1];
+    const bool inside = u >= 0.0 && u < width && v >= 0.0 && v < height;  // NaN is outside
+    out[k] = inside ? pixelTime(shutter, static_cast<int>(u), static_cast<int>(v), width, height) : kNaN;
+  }
+  return arrayTakingOver(std::move(out), {static_cast<py::ssize_t>(n)});
 }
 
 py::array_t<bool> images(const PyCamera& self, const py::object& pixels) {
@@ -109,13 +172,19 @@ the mirror's design point, robot axes: x forward, y left, z up, turned by the ri
 in the world frame when a robot pose (x, y, yaw_deg) is given.)")
       .def(py::init([](const RigSpec& rig, bool traced) { return PyCamera{makeCamera(rig, traced)}; }), py::arg("rig"),
            py::arg("traced") = false, "traced: the physical camera even for the ideal rig.")
-      .def("project", &project, py::arg("points"), py::arg("pose") = py::none(),
-           "points (N, 3) → raster points (N, 2) float64, NaN where not imaged. The GIL is released.")
+      .def("project", &project, py::arg("points"), py::arg("pose") = py::none(), py::arg("velocity") = py::none(),
+           "points (N, 3) → raster points (N, 2) float64, NaN where not imaged. With a pose, world points; with a "
+           "velocity too, each point where the frame images it: at the time of the readout line that sees it "
+           "(docs/motion.md), as the frame's landmarks are projected. The GIL is released.")
       .def("rays", &rays, py::arg("pixels"), py::arg("pose") = py::none(), py::arg("velocity") = py::none(),
            py::arg("time") = 0.0,
            "raster points (N, 2) → (origins (N, 3), unit directions (N, 3)), NaN where nothing is imaged. With a "
-           "pose, in the world: `time` seconds after the exposure start, the robot driving from `pose` at `velocity` "
-           "(vx, vy, yaw_rate_deg_per_s; docs/motion.md), still without one.")
+           "pose, in the world; with a velocity (vx, vy, yaw_rate_deg_per_s; docs/motion.md) too, `time` seconds "
+           "after the exposure start: one number, or one per pixel (pixel_times(pixels): the instants a rolling "
+           "shutter's AOVs are taken at).")
+      .def("pixel_times", &pixelTimes, py::arg("pixels"),
+           "raster points (N, 2) → seconds (N,) after the exposure start: mid-exposure of each pixel's readout line, "
+           "the instant the frame's depth, instance, normal and landmarks are taken at there; NaN off the image.")
       .def("images", &images, py::arg("pixels"), "raster points (N, 2) → bool (N,): inside the mirror's rim.")
       .def("describe", [](const PyCamera& c) { return toPython(c.camera->describe()); },
            "The camera model as sidecars and intrinsics files state it (dict).")

@@ -79,27 +79,52 @@ uint64_t narrowedSeed(const PyInteger& value, const std::string& name) {
   return value.unsignedValue;
 }
 
-RobotPose poseFrom(const py::handle& pose, const std::string& what) {
+namespace {
+
+// Whether `item` is a number that means a real quantity: not a bool (Python's or numpy's), not a
+// complex number (numpy would drop its imaginary part with only a warning).
+bool realNumber(const py::handle& item) {
+  if (PyBool_Check(item.ptr()) || PyComplex_Check(item.ptr())) return false;
+  if (PyObject_HasAttrString(item.ptr(), "dtype")) {
+    try {
+      const std::string kind = item.attr("dtype").attr("kind").cast<std::string>();
+      return kind == "i" || kind == "u" || kind == "f";
+    } catch (const py::error_already_set&) {
+      return false;
+    }
+  }
+  return PyNumber_Check(item.ptr());
+}
+
+// `count` real numbers from a sequence (a tuple, list or numpy array); InputError saying `form`.
+std::vector<double> realNumbers(const py::handle& given, size_t count, const std::string& what, const std::string& form) {
+  if (py::isinstance<py::str>(given) || py::isinstance<py::bytes>(given) ||
+      (!py::isinstance<py::sequence>(given) && !py::isinstance<py::array>(given)))
+    throw InputError(what + ": must be " + form);
   std::vector<double> v;
   try {
-    v = pose.cast<std::vector<double>>();
+    for (const py::handle item : given) {
+      if (!realNumber(item)) throw InputError(what + ": must be " + form + ", real numbers (not bools or complex numbers)");
+      v.push_back(item.cast<double>());
+    }
   } catch (const py::cast_error&) {
-    throw InputError(what + ": must be (x, y, yaw_deg)");
+    throw InputError(what + ": must be " + form);
   }
-  if (v.size() != 3) throw InputError(what + ": must be (x, y, yaw_deg), 3 numbers");
+  if (v.size() != count) throw InputError(what + ": must be " + form + ", " + std::to_string(count) + " numbers");
+  return v;
+}
+
+}  // namespace
+
+RobotPose poseFrom(const py::handle& pose, const std::string& what) {
+  const std::vector<double> v = realNumbers(pose, 3, what, "(x, y, yaw_deg)");
   const RobotPose p{v[0], v[1], v[2]};
   checkPose(p, what);
   return p;
 }
 
 BodyVelocity velocityFrom(const py::handle& velocity, const std::string& what) {
-  std::vector<double> v;
-  try {
-    v = velocity.cast<std::vector<double>>();
-  } catch (const py::cast_error&) {
-    throw InputError(what + ": must be (vx, vy, yaw_rate_deg_per_s)");
-  }
-  if (v.size() != 3) throw InputError(what + ": must be (vx, vy, yaw_rate_deg_per_s), 3 numbers");
+  const std::vector<double> v = realNumbers(velocity, 3, what, "(vx, vy, yaw_rate_deg_per_s)");
   return {v[0], v[1], v[2]};  // ranges: checkRenderSettings, with the CLI's message
 }
 

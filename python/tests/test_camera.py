@@ -73,10 +73,19 @@ def test_rays_at_a_time_are_the_rays_from_where_the_motion_model_puts_the_robot(
         placed = camera.rays(pixels, pose=then)
         for got, want in zip(moving, placed):
             np.testing.assert_allclose(got, want, atol=1e-12)
-    # A still robot's rays do not depend on the time; at time 0 a moving one's are its start's.
-    np.testing.assert_array_equal(camera.rays(pixels, pose=start, time=0.7)[1], camera.rays(pixels, pose=start)[1])
+    # A time without a velocity would do nothing: refused. At time 0 a moving robot's rays are its start's.
+    with pytest.raises(omnicam.InputError, match="time: does nothing without a pose and a velocity"):
+        camera.rays(pixels, pose=start, time=0.7)
     np.testing.assert_array_equal(camera.rays(pixels, pose=start, velocity=(1.0, 0.5, 40.0))[0],
                                   camera.rays(pixels, pose=start)[0])
+    # One time per pixel: each pixel's ray as if asked alone at its time.
+    times = np.array([0.0, 0.2, 0.5])
+    each = [camera.rays(pixels[k:k + 1], pose=start, velocity=(1.5, 0.0, 90.0), time=float(times[k])) for k in range(3)]
+    together = camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=times)
+    for part in range(2):
+        np.testing.assert_array_equal(together[part], np.concatenate([e[part] for e in each]))
+    with pytest.raises(omnicam.InputError, match=r"time: must be a number or an array of one time per pixel, shape \(3,\)"):
+        camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=np.zeros(2))
     with pytest.raises(omnicam.InputError, match="velocity: needs a pose"):
         camera.rays(pixels, velocity=(1.0, 0.0, 0.0), time=0.1)
     with pytest.raises(omnicam.InputError, match="time: must be within"):
@@ -91,8 +100,21 @@ def test_bad_arrays_are_input_errors(robocup):
         camera.project(np.zeros((1, 3)), pose=(1.0, 2.0))
     with pytest.raises(omnicam.InputError):
         camera.rays(np.zeros(5))
-    with pytest.raises(omnicam.InputError, match=r"points: must be an array of shape \(N, 3\)"):
+    with pytest.raises(omnicam.InputError, match=r"points: must be an array of real numbers of shape \(N, 3\)"):
         camera.project([["a", "b", "c"]])
+    # numpy would drop an imaginary part with only a warning; bools are no coordinates.
+    with pytest.raises(omnicam.InputError, match=r"points: must be an array of real numbers .*complex128"):
+        camera.project(np.zeros((2, 3), dtype=complex))
+    with pytest.raises(omnicam.InputError, match=r"pixels: must be an array of real numbers .*bool"):
+        camera.rays(np.zeros((2, 2), dtype=bool))
+    for pose in [(True, 0.0, 0.0), (np.bool_(True), 0, 0), (1.0, 2.0, 3.0 + 1j), (1.0, 2.0, np.complex128(3.0)), "1,2,3"]:
+        with pytest.raises(omnicam.InputError, match=r"pose: must be \(x, y, yaw_deg\)"):
+            camera.project(np.zeros((1, 3)), pose=pose)
+    with pytest.raises(omnicam.InputError, match=r"velocity: must be \(vx, vy, yaw_rate_deg_per_s\)"):
+        camera.rays(np.zeros((1, 2)), pose=(0, 0, 0), velocity=(False, 0, 0), time=0.1)
+    # numpy's own number types are numbers.
+    np.testing.assert_array_equal(camera.project(np.zeros((1, 3)), pose=(np.float32(1.0), np.int64(0), 0)),
+                                  camera.project(np.zeros((1, 3)), pose=(1.0, 0.0, 0.0)))
 
 
 def test_plain_lists_are_arrays_too(robocup):

@@ -43,7 +43,10 @@ def test_the_victim_detector_scores_against_the_coco_file(tmp_path):
     for name, tally in scores.items():
         truth = sum(1 for a in coco["annotations"] if a["image_id"] in test_images and names[a["category_id"]] == name)
         assert tally["ground_truth"] == truth  # every COCO box of the test frames is counted once
-        assert 0 <= tally["precision"] <= 1 and 0 <= tally["recall"] <= 1
+        # n/a (null) exactly where nothing was detected, or nothing was there to find
+        assert (tally["precision"] is None) == (tally["tp"] + tally["fp"] == 0)
+        assert (tally["recall"] is None) == (tally["ground_truth"] == 0)
+        assert all(0 <= tally[key] <= 1 for key in ("precision", "recall") if tally[key] is not None)
     # Victims' clothes and skin stand out of the maze's colours (measured: precision 0.92, recall 0.38).
     assert scores["victim"]["ground_truth"] > 20 and scores["victim"]["precision"] >= 0.5 and scores["victim"]["recall"] > 0.1
     assert (tmp_path / "detections.png").read_bytes()[:4] == b"\x89PNG"

@@ -96,3 +96,33 @@ def test_a_dataset_item_carries_its_robot_tilt(source, tmp_path):
     for roll, pitch in tilts:
         assert abs(roll - 1.0) <= 0.5 and abs(pitch + 2.0) <= 0.5
     assert dataset[0]["rig"] == dataset.rig()  # the robot rocks; the rig itself is not shaken
+
+
+def test_a_moving_frame_s_depth_lies_along_the_rays_at_its_pixels_times(robocup):
+    """A rolling shutter's depth is taken at each pixel's line time (docs/motion.md, "AOVs"):
+    pixel_times gives those instants; rays at them put every floor pixel's depth on z = 0, at
+    points that project (with the velocity) back onto their pixels. Rays at the frame's start put
+    them centimetres away."""
+    rig = robocup.rig.resized(96)
+    rig.shutter = ROLLING
+    camera = omnicam.Camera(rig)
+    pose, velocity = (0.3, -0.2, 40.0), (2.0, 0.5, 120.0)
+    frame = omnicam.Renderer(robocup).render(pose, rig=rig, velocity=velocity, outputs=["depth", "semantic"])
+    floor_id = next(c["id"] for c in robocup.ids["classes"] if c["name"] == "floor")
+    rows, cols = np.nonzero(frame["semantic"] == floor_id)
+    assert rows.size > 400
+    centres = np.column_stack([cols + 0.5, rows + 0.5])
+    times = camera.pixel_times(centres)
+    # Closed form (shutter.h): left-to-right, each column a line of 150 µs, mid-exposure of 0.02 s.
+    np.testing.assert_allclose(times, cols * 150e-6 + 0.01, rtol=0, atol=1e-15)
+    origins, directions = camera.rays(centres, pose=pose, velocity=velocity, time=times)
+    floor = origins + frame["depth"][rows, cols, None] * directions
+    assert np.abs(floor[:, 2]).max() < 1e-5
+    # The other way round: project with the velocity puts each floor point back on its pixel.
+    np.testing.assert_allclose(camera.project(floor, pose=pose, velocity=velocity), centres, atol=1e-4)
+    # Rays at the frame's start place the same depths elsewhere on the floor, off their pixels.
+    origins, directions = camera.rays(centres, pose=pose, velocity=velocity)
+    early = origins + frame["depth"][rows, cols, None] * directions
+    assert np.linalg.norm(early - floor, axis=1).max() > 0.01
+    assert np.abs(camera.project(early, pose=pose, velocity=velocity) - centres).max() > 0.5
+    assert np.isnan(camera.pixel_times(np.array([[-0.5, 3.0], [96.0, 3.0], [np.nan, 1.0]]))).all()
