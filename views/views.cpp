@@ -74,14 +74,20 @@ double widestIncidence(const Camera& camera) {
   return widest;
 }
 
-// The bilinear taps of every source position (index space: texel centres at integers), kept
-// inside so that all four taps exist. A position off the image (a rig framed inside its mirror
-// disc, or a lens whose image circle the sensor crops) has no source: black, like one beyond the
-// rim; within the image's outermost half pixels the edge texels are used.
+}  // namespace
+
 void finishViewMap(ViewMap& map, int sourceWidth, int sourceHeight) {
   map.sourceWidth = sourceWidth;
   map.sourceHeight = sourceHeight;
   map.taps.resize(map.sourceX.size());
+  // Index space: texel centres at integers. The top-left tap stays one texel from the right and
+  // bottom edges so that all four taps exist, its weight reaching 1 there: a source at the last
+  // texel's centre takes that texel alone.
+  const auto tap = [](float position, int size, int& first) {
+    const float s = std::clamp(position - 0.5f, 0.0f, static_cast<float>(size - 1));
+    first = std::clamp(static_cast<int>(s), 0, std::max(0, size - 2));
+    return static_cast<uint16_t>(std::lround(std::clamp(s - static_cast<float>(first), 0.0f, 1.0f) * 65535.0f));
+  };
   for (size_t k = 0; k < map.taps.size(); ++k) {
     const float x = map.sourceX[k], y = map.sourceY[k];
     if (!(x >= 0.0f && y >= 0.0f && x <= static_cast<float>(sourceWidth) && y <= static_cast<float>(sourceHeight))) {
@@ -89,15 +95,11 @@ void finishViewMap(ViewMap& map, int sourceWidth, int sourceHeight) {
       map.taps[k] = {UINT32_MAX, 0, 0};
       continue;
     }
-    const float sx = std::clamp(map.sourceX[k] - 0.5f, 0.0f, map.sourceWidth - 1.001f);
-    const float sy = std::clamp(map.sourceY[k] - 0.5f, 0.0f, map.sourceHeight - 1.001f);
-    const int x0 = static_cast<int>(sx), y0 = static_cast<int>(sy);
-    auto fixedPoint = [](float f) { return static_cast<uint16_t>(std::lround(std::clamp(f, 0.0f, 1.0f) * 65535.0f)); };
-    map.taps[k] = {static_cast<uint32_t>(y0 * map.sourceWidth + x0), fixedPoint(sx - x0), fixedPoint(sy - y0)};
+    int x0 = 0, y0 = 0;
+    const uint16_t fx = tap(x, sourceWidth, x0), fy = tap(y, sourceHeight, y0);
+    map.taps[k] = {static_cast<uint32_t>(y0 * sourceWidth + x0), fx, fy};
   }
 }
-
-}  // namespace
 
 const char* viewKindName(ViewKind kind) {
   return kind == ViewKind::BirdsEye ? "birdseye" : kind == ViewKind::Panorama ? "panorama" : "perspective";

@@ -48,7 +48,7 @@ struct ViewMap {
   double topIncidence = 0.0;
   struct Tap {
     uint32_t texel;    // top-left source texel (UINT32_MAX: black)
-    uint16_t fx, fy;   // bilinear weights of the right / lower texels, in units of 1/65536
+    uint16_t fx, fy;   // bilinear weights of the right / lower texels, in units of 1/65535
   };
   std::vector<Tap> taps;
 };
@@ -72,6 +72,10 @@ ViewMap buildViewMap(const ViewSpec& spec, const OmniCamera& camera);
 // tilted rig's views are exact only (the thesis' equations are a level rig's).
 ViewMap buildViewMap(const ViewSpec& spec, const Camera& camera, const Rigid& robotFromViewpoint,
                      const ViewSpecNames& names = {});
+// The map's bilinear taps from its source positions, for a source image of that size: a position
+// off the image is black; one at the image's outermost texel centre or beyond (within its last
+// half pixel) takes that texel alone. buildViewMap calls it last.
+void finishViewMap(ViewMap& map, int sourceWidth, int sourceHeight);
 // Bilinear lookup (pixel centres at +0.5). Throws InputError if `omni`'s size differs from the
 // camera the map was built for.
 ImageRGBA applyViewMap(const ViewMap& map, const ImageRGBA& omni);

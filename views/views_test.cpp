@@ -196,6 +196,27 @@ TEST(Views, SourcesOffTheImageAreBlackNotTheEdgeStretched) {
     }
 }
 
+// At the image's last texel centres (and within the half pixel beyond) the lookup is that texel
+// alone: it leaked 0.1 % of its neighbour, the top-left tap kept 1.001 texels inside. Between
+// centres it is the exact blend, at the first texel too.
+TEST(Views, TheOutermostTexelsAreTakenAlone) {
+  ImageRGBA omni(5, 4);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 5; ++i) {
+      float* p = omni.at(i, j);
+      p[0] = static_cast<float>(i), p[1] = static_cast<float>(j), p[2] = static_cast<float>(10 * j + i), p[3] = 1.0f;
+    }
+  ViewMap map;
+  map.width = 6, map.height = 1;
+  map.sourceX = {4.5f, 5.0f, 4.0f, 0.5f, 0.0f, 2.25f};
+  map.sourceY = {3.5f, 4.0f, 3.5f, 0.5f, 0.0f, 1.75f};
+  finishViewMap(map, omni.width, omni.height);
+  const ImageRGBA view = applyViewMap(map, omni);
+  const float expected[6][3] = {{4, 3, 34}, {4, 3, 34}, {3.5f, 3, 33.5f}, {0, 0, 0}, {0, 0, 0}, {1.75f, 1.25f, 14.25f}};
+  for (int k = 0; k < 6; ++k)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(view.at(k, 0)[c], expected[k][c], 1e-4f) << "pixel " << k << " channel " << c;
+}
+
 // The map's source position at a continuous view position (u, v): bilinear between the four
 // pixel centres around it (the map is smooth; its curvature over a pixel is far below 0.01 px).
 Vec2 sourceAt(const ViewMap& map, double u, double v) {
