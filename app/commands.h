@@ -8,6 +8,8 @@ namespace omnicam::cli {
 void addRenderCommand(CLI::App& app);
 void addRingsCommand(CLI::App& app);
 void addProjectCommand(CLI::App& app);
+// Exit 3 when the calibration fails (too few views, OpenCV's initialisation).
+void addCalibrateCommand(CLI::App& app);
 void addCameraRaysCommand(CLI::App& app);
 // Sets exitCode: 64 + a bit per section that fell short (demo_sections.h).
 void addDemoCommand(CLI::App& app, int& exitCode);

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   omnicam::cli::addRenderCommand(app);
   omnicam::cli::addRingsCommand(app);
   omnicam::cli::addProjectCommand(app);
+  omnicam::cli::addCalibrateCommand(app);
   omnicam::cli::addCameraRaysCommand(app);
   omnicam::cli::addExportCommand(app);
   omnicam::cli::addStudyCommand(app);

@@ -1,6 +1,11 @@
 #include "calibration_files.h"
 
 #include <opencv2/core.hpp>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "errors.h"
@@ -45,6 +50,78 @@ std::string kalibrTargetYaml(const TargetPattern& pattern) {
        << "rowSpacingMeters: " << yamlFloat(b.square) << "\n"
        << "colSpacingMeters: " << yamlFloat(b.square) << "\n";
   return yaml.str();
+}
+
+namespace {
+
+// The `key: value` lines of a Kalibr target file, each key once; InputError naming `source`.
+std::map<std::string, std::string> kalibrFields(const std::string& text, const std::string& source) {
+  std::map<std::string, std::string> fields;
+  std::istringstream lines(text);
+  int number = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++number;
+    if (line.empty()) continue;
+    const size_t colon = line.find(": ");
+    if (colon == std::string::npos || colon == 0)
+      throw InputError(showPath(source) + ": line " + std::to_string(number) + ": not `key: value` as omnicam writes it");
+    const std::string key = line.substr(0, colon);
+    if (!fields.emplace(key, line.substr(colon + 2)).second)
+      throw InputError(showPath(source) + ": " + quote(key) + " given twice");
+  }
+  return fields;
+}
+
+// A number as yamlFloat writes it; nullopt for anything else.
+std::optional<double> finiteNumber(const std::string& text) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+TargetPattern targetPatternFromKalibrYaml(const std::string& text, const std::string& source) {
+  const std::map<std::string, std::string> fields = kalibrFields(text, source);
+  const auto field = [&](const std::string& key) -> const std::string& {
+    const auto it = fields.find(key);
+    if (it == fields.end()) throw InputError(showPath(source) + ": " + key + ": missing");
+    return it->second;
+  };
+  // Counts of 3 to 1000 and lengths of (0, 100] m: what a board can be.
+  const auto count = [&](const std::string& key) {
+    const std::string& value = field(key);
+    const bool digits = !value.empty() && value.size() <= 4 && value.find_first_not_of("0123456789") == std::string::npos;
+    const int n = digits ? std::stoi(value) : 0;
+    if (n < 3 || n > 1000) throw InputError(showPath(source) + ": " + key + ": must be an integer from 3 to 1000 (got " + quote(value) + ")");
+    return n;
+  };
+  const auto length = [&](const std::string& key, double most) {
+    const std::string& value = field(key);
+    const std::optional<double> v = finiteNumber(value);
+    if (!v || !(*v > 0.0 && *v <= most))
+      throw InputError(showPath(source) + ": " + key + ": must be a number in (0, " + shortNumber(most) + "] (got " + quote(value) + ")");
+    return *v;
+  };
+  const std::string& type = field("target_type");
+  TargetPattern pattern;
+  std::set<std::string> keys{"target_type"};
+  if (type == "'aprilgrid'") {
+    pattern = AprilGrid{count("tagRows"), count("tagCols"), length("tagSize", 100.0), length("tagSpacing", 10.0), 0};
+    keys.insert({"tagCols", "tagRows", "tagSize", "tagSpacing"});
+  } else if (type == "'checkerboard'") {
+    const double square = length("rowSpacingMeters", 100.0);
+    if (length("colSpacingMeters", 100.0) != square)
+      throw InputError(showPath(source) + ": colSpacingMeters: must equal rowSpacingMeters (omnicam's squares are square)");
+    pattern = Checkerboard{count("targetRows") + 1, count("targetCols") + 1, square};
+    keys.insert({"targetCols", "targetRows", "rowSpacingMeters", "colSpacingMeters"});
+  } else {
+    throw InputError(showPath(source) + ": target_type: must be 'aprilgrid' or 'checkerboard' (got " + quote(type) + ")");
+  }
+  for (const auto& [key, value] : fields)
+    if (!keys.count(key)) throw InputError(showPath(source) + ": " + quote(key) + ": not a field of this target type");
+  return pattern;
 }
 
 std::string openCvCornerLists(const std::vector<CornerListImage>& images, bool mirrorImage) {
@@ -101,6 +178,19 @@ std::vector<CornerListImage> readOpenCvCornerLists(const std::string& text, cons
     throw InputError(showPath(source) + ": not an OpenCV corner list (" + e.msg + ")");
   }
   return out;
+}
+
+std::string omnidirCalibrationYaml(const OmnidirCalibration& fit, const std::string& camera, int width, int height, bool mirrorImage) {
+  cv::FileStorage fs(".yml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  fs.writeComment(mirrorImage ? "cv::omnidir::calibrate (Mei's unified model), OpenCV's pixel centres at integers; a mirror image, fitted "
+                                "flipped top to bottom and flipped back (gamma_y < 0)"
+                              : "cv::omnidir::calibrate (Mei's unified model), OpenCV's pixel centres at integers");
+  fs << "camera" << camera << "image_width" << width << "image_height" << height << "mirror_image" << (mirrorImage ? 1 : 0);
+  fs << "rms" << fit.rms << "views" << static_cast<int>(fit.usedViews.size());
+  fs << "camera_matrix" << cv::Mat(cv::Matx33d(fit.gammaX, fit.skew, fit.cx, 0.0, fit.gammaY, fit.cy, 0.0, 0.0, 1.0)) << "xi" << fit.xi;
+  fs << "distortion_coefficients"
+     << cv::Mat(cv::Matx14d(fit.distortion[0], fit.distortion[1], fit.distortion[2], fit.distortion[3]));
+  return fs.releaseAndGetString();
 }
 
 }  // namespace omnicam

@@ -15,6 +15,9 @@ namespace omnicam {
 // Targets Kalibr would misread or refuse (an AprilGrid whose first id is not 0; fewer than 3 tag
 // or inner-corner rows or columns) throw InputError with kalibrTargetProblem's words.
 std::string kalibrTargetYaml(const TargetPattern& pattern);
+// The target of a Kalibr target file as kalibrTargetYaml writes it (one `key: value` a line, every
+// key once, nothing else): read strictly, InputError naming `source` and the key otherwise.
+TargetPattern targetPatternFromKalibrYaml(const std::string& text, const std::string& source);
 // Why Kalibr cannot read this target ("" when it can), led by the scene's field of the pattern
 // ("pattern.first_id: ...").
 std::string kalibrTargetProblem(const TargetPattern& pattern);
@@ -31,5 +34,11 @@ struct CornerListImage {
 std::string openCvCornerLists(const std::vector<CornerListImage>& images, bool mirrorImage);
 // Read back as OpenCV reads it (rasters converted to omnicam's); throws InputError naming `source`.
 std::vector<CornerListImage> readOpenCvCornerLists(const std::string& text, const std::string& source);
+
+// A cv::omnidir calibration of camera `camera` (width × height images) as cv::FileStorage YAML:
+// camera_matrix K (gamma_x, skew, cx; 0, gamma_y, cy; OpenCV's pixel centres at integers), xi,
+// distortion_coefficients (k1, k2, p1, p2), the RMS and the views used, and `mirror_image`: 1 for
+// a mirror camera's fit (gamma_y < 0: fitted flipped top to bottom and flipped back).
+std::string omnidirCalibrationYaml(const OmnidirCalibration& fit, const std::string& camera, int width, int height, bool mirrorImage);
 
 }  // namespace omnicam

@@ -78,6 +78,36 @@ TEST(CalibrationFiles, KalibrReadsTheTargetYaml) {
   EXPECT_EQ(kalibrTargetProblem(AprilGrid{3, 3, 0.088, 0.3, 0}), "");
 }
 
+// omnicam calibrate reads a dataset's target back from the Kalibr file it wrote: the same pattern,
+// corner for corner; anything else in the file is refused with its key.
+TEST(CalibrationFiles, AKalibrTargetReadsBackAsThePatternItWasWrittenFrom) {
+  for (const TargetPattern& pattern : {TargetPattern{AprilGrid{6, 5, 0.088, 0.3, 0}}, TargetPattern{Checkerboard{7, 10, 0.05}}}) {
+    const TargetPattern back = targetPatternFromKalibrYaml(kalibrTargetYaml(pattern), "target.yaml");
+    ASSERT_EQ(back.index(), pattern.index());
+    const std::vector<Vec3> corners = targetCorners(pattern), again = targetCorners(back);
+    ASSERT_EQ(again.size(), corners.size());
+    for (size_t k = 0; k < corners.size(); ++k) EXPECT_EQ(again[k], corners[k]) << k;
+  }
+  const auto refusal = [](const std::string& text) {
+    try {
+      (void)targetPatternFromKalibrYaml(text, "target.yaml");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string grid = kalibrTargetYaml(AprilGrid{6, 5, 0.088, 0.3, 0});
+  EXPECT_EQ(refusal(grid + "tagSize: 0.1\n"), "target.yaml: \"tagSize\" given twice");
+  EXPECT_EQ(refusal(grid + "codeOffset: 0\n"), "target.yaml: \"codeOffset\": not a field of this target type");
+  EXPECT_EQ(refusal("target_type: 'aprilgrid'\ntagCols: 6\n"), "target.yaml: tagRows: missing");
+  EXPECT_EQ(refusal("target_type: 'circlegrid'\n"), "target.yaml: target_type: must be 'aprilgrid' or 'checkerboard' (got \"'circlegrid'\")");
+  EXPECT_EQ(refusal("target_type: 'checkerboard'\ntargetCols: 9\ntargetRows: 99999\nrowSpacingMeters: 0.05\ncolSpacingMeters: 0.05\n"),
+            "target.yaml: targetRows: must be an integer from 3 to 1000 (got \"99999\")");
+  EXPECT_EQ(refusal("target_type: 'checkerboard'\ntargetCols: 9\ntargetRows: 6\nrowSpacingMeters: nan\ncolSpacingMeters: 0.05\n"),
+            "target.yaml: rowSpacingMeters: must be a number in (0, 100] (got \"nan\")");
+  EXPECT_EQ(refusal("tagCols 6\n"), "target.yaml: line 1: not `key: value` as omnicam writes it");
+}
+
 TEST(CalibrationFiles, OpenCvCornerListsCalibrateAsTheViewsThemselves) {
   RigSpec rig;
   rig.mirrorRig().imageSize = 360;

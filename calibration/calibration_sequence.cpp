@@ -1,8 +1,11 @@
 #include "calibration_sequence.h"
 
 #include <cmath>
+#include <limits>
 
 #include "errors.h"
+#include "input_limits.h"
+#include "json_text.h"
 #include "number_format.h"
 
 namespace omnicam {
@@ -79,6 +82,59 @@ nlohmann::json cornersFrameJson(int frame, const Rigid& viewpointFromTarget, con
     list.push_back(std::move(entry));
   }
   return {{"frame", frame}, {"viewpoint_from_target", rigidJson(viewpointFromTarget)}, {"seen", seen}, {"corners", list}};
+}
+
+std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const std::string& source, int corners) {
+  const nlohmann::json root = parseJsonText(text, source);
+  const auto fail = [&](const std::string& field, const std::string& what) -> void {
+    throw InputError(showPath(source) + ": " + field + ": " + what);
+  };
+  const auto number = [&](const nlohmann::json& v, const std::string& field, double most) {
+    if (!v.is_number() || !(std::abs(v.get<double>()) <= most)) fail(field, "must be a finite number within ±" + shortNumber(most));
+    return v.get<double>();
+  };
+  if (!root.is_object() || !root.contains("frames") || !root["frames"].is_array()) fail("frames", "must be an array");
+  std::vector<CornersFrame> frames;
+  for (size_t f = 0; f < root["frames"].size(); ++f) {
+    const nlohmann::json& entry = root["frames"][f];
+    const std::string where = "frames[" + std::to_string(f) + "]";
+    if (!entry.is_object()) fail(where, "must be an object");
+    CornersFrame frame;
+    if (!entry.contains("frame") || !entry["frame"].is_number_integer() || entry["frame"].get<int64_t>() < 0 ||
+        entry["frame"].get<int64_t>() > std::numeric_limits<int>::max())
+      fail(where + ".frame", "must be a frame index");
+    frame.frame = entry["frame"].get<int>();
+    const nlohmann::json& pose = entry.contains("viewpoint_from_target") ? entry["viewpoint_from_target"] : nlohmann::json();
+    if (!pose.is_array() || pose.size() != 3) fail(where + ".viewpoint_from_target", "must be 3 rows of 4 numbers");
+    for (int i = 0; i < 3; ++i) {
+      if (!pose[i].is_array() || pose[i].size() != 4) fail(where + ".viewpoint_from_target", "must be 3 rows of 4 numbers");
+      for (int j = 0; j < 4; ++j) {
+        const double v = number(pose[i][j], where + ".viewpoint_from_target", j < 3 ? 1.0 + 1e-9 : limits::kMaxWorldCoordinate);
+        if (j < 3) frame.viewpointFromTarget.linear()(i, j) = v;
+        else frame.viewpointFromTarget.translation()(i) = v;
+      }
+    }
+    const Eigen::Matrix3d& r = frame.viewpointFromTarget.linear();
+    if (!(r * r.transpose()).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || r.determinant() < 0.0)
+      fail(where + ".viewpoint_from_target", "its 3 × 3 part must be a rotation");
+    if (!entry.contains("corners") || !entry["corners"].is_array()) fail(where + ".corners", "must be an array");
+    for (size_t k = 0; k < entry["corners"].size(); ++k) {
+      const nlohmann::json& c = entry["corners"][k];
+      const std::string at = where + ".corners[" + std::to_string(k) + "]";
+      if (!c.is_object() || !c.contains("index") || !c["index"].is_number_integer() || c["index"].get<int64_t>() < 0 ||
+          c["index"].get<int64_t>() >= corners)
+        fail(at + ".index", "must be a corner of the target (0 to " + std::to_string(corners - 1) + ")");
+      if (!c.contains("sight") || c["sight"] != cornerSightName(CornerSight::Seen)) continue;
+      if (!c.contains("raster") || !c["raster"].is_array() || c["raster"].size() != 2) fail(at + ".raster", "must be [x, y]");
+      ImagedCorner corner;
+      corner.index = c["index"].get<int>();
+      corner.sight = CornerSight::Seen;
+      corner.raster = {number(c["raster"][0], at + ".raster", 1e6), number(c["raster"][1], at + ".raster", 1e6)};
+      frame.seen.push_back(corner);
+    }
+    frames.push_back(std::move(frame));
+  }
+  return frames;
 }
 
 }  // namespace omnicam

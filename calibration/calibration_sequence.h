@@ -31,4 +31,15 @@ std::vector<Rigid> sequenceBoardPoses(const CalibrationSequenceSpec& spec, const
 // One frame of one camera in <camera>/calibration/corners.json.
 nlohmann::json cornersFrameJson(int frame, const Rigid& viewpointFromTarget, const std::vector<ImagedCorner>& corners);
 
+// A frame of corners.json read back: the board's pose and its seen corners (exact raster points).
+struct CornersFrame {
+  int frame = 0;
+  Rigid viewpointFromTarget = Rigid::Identity();
+  std::vector<ImagedCorner> seen;
+};
+// Every frame of a corners.json's text, strictly (a file of a dataset someone else may have
+// written): InputError naming `source` and the field. Corner indices must lie below `corners`, the
+// target's count.
+std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const std::string& source, int corners);
+
 }  // namespace omnicam

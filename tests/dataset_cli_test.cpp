@@ -2048,6 +2048,39 @@ TEST_F(DatasetCliTest, CalibrationSequenceCornersBagAndCornerListsAreWhatToolsRe
   EXPECT_NEAR(fit.cx, intrinsics.at("cx").get<double>(), 0.05);
   EXPECT_NEAR(fit.cy, intrinsics.at("cy").get<double>(), 0.05);
 
+  // omnicam calibrate does the same from the folder. The exact corners with the distortion held at
+  // zero give the closed form back (the manifest's intrinsics, the camera's describe()), and a model
+  // that errs by nothing on points it never saw.
+  const testing::CommandResult exact = testing::runShell(std::string(OMNICAM_BINARY) + " calibrate " + out +
+                                                         " --exact-corners --fix-distortion --json -o " + path("cal.yml") + " 2>/dev/null");
+  ASSERT_EQ(exact.code, 0) << exact.out;
+  const json e = json::parse(exact.out);
+  EXPECT_EQ(e.at("views"), 20);
+  EXPECT_EQ(e.at("truth"), intrinsics);
+  for (const char* key : {"xi", "gamma_x", "gamma_y", "cx", "cy"})
+    EXPECT_NEAR(e.at("fit").at(key).get<double>(), intrinsics.at(key).get<double>(), 1e-7 * (1.0 + std::abs(intrinsics.at(key).get<double>())))
+        << key;
+  ASSERT_EQ(e.at("held_out").size(), 3u);
+  for (const json& h : e.at("held_out")) EXPECT_LT(h.at("max_px").get<double>(), 1e-6) << h;
+  // The YAML a user loads with cv::FileStorage: K with OpenCV's pixel centres, xi, the mirror flag.
+  const std::string yaml = readFile(path("cal.yml"));
+  EXPECT_NE(yaml.find("mirror_image: 1"), std::string::npos) << yaml;
+  EXPECT_NEAR(std::stod(yaml.substr(yaml.find("\nxi: ") + 5)), intrinsics.at("xi").get<double>(), 1e-7);
+  // The detected corners, as a user's calibration has them: the detections above, the same
+  // numbers; a fit with its distortion free, held-out errors of a fraction of a pixel (measured
+  // 0.15-0.19 px median at 0.5, 1 and 5 m; xi 1.027 against 0.9955, the distortion making up).
+  const testing::CommandResult detected =
+      testing::runShell(std::string(OMNICAM_BINARY) + " calibrate " + out + " --camera cam0 --json 2>/dev/null");
+  ASSERT_EQ(detected.code, 0) << detected.out;
+  const json d = json::parse(detected.out);
+  EXPECT_EQ(d.at("detection").at("corners").get<size_t>(), errors.size());
+  EXPECT_DOUBLE_EQ(d.at("detection").at("median_px").get<double>(), median);
+  EXPECT_EQ(d.at("detection").at("max_px").get<double>(), errors.back());
+  EXPECT_GE(d.at("views").get<int>(), 15);
+  EXPECT_LT(d.at("fit").at("rms_px").get<double>(), 0.3);
+  for (const json& h : d.at("held_out")) EXPECT_LT(h.at("median_px").get<double>(), 0.4) << h;
+  EXPECT_EQ(omnicam("calibrate " + out + " --camera nope").code, 2);
+
   // Two shards and a merge: the same calibration files, the same bag.
   const std::string sharded = path("cal_shards");
   for (int i = 0; i < 2; ++i)
