@@ -14,6 +14,15 @@
 
 namespace omnicam {
 
+CalibrationView calibrationView(const std::vector<Vec3>& targetPoints, const std::vector<DetectedCorner>& corners) {
+  CalibrationView view;
+  for (const DetectedCorner& c : corners) {
+    view.targetPoints.push_back(targetPoints[static_cast<size_t>(c.index)]);
+    view.raster.push_back(c.raster);
+  }
+  return view;
+}
+
 namespace {
 
 // cv::omnidir::calibrate's own type (decltype: the header only, no link to its library).

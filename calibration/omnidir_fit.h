@@ -23,6 +23,10 @@ struct CalibrationView {
   std::vector<Vec2> raster;
 };
 
+// The view of corners found by index (a detector's, or the exact ones) on a target whose corners
+// are `targetPoints` (targetCorners' order).
+CalibrationView calibrationView(const std::vector<Vec3>& targetPoints, const std::vector<DetectedCorner>& corners);
+
 struct OmnidirOptions {
   bool fixDistortion = false;  // k1, k2, p1, p2 held at zero
   bool fixSkew = true;

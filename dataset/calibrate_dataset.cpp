@@ -33,15 +33,6 @@ const nlohmann::json& headerCamera(const DatasetReader& reader, const std::strin
   throw InputError(showPath(reader.dir()) + ": no camera " + quote(camera));
 }
 
-CalibrationView viewOf(const std::vector<Vec3>& targetPoints, const std::vector<DetectedCorner>& corners) {
-  CalibrationView view;
-  for (const DetectedCorner& c : corners) {
-    view.targetPoints.push_back(targetPoints[static_cast<size_t>(c.index)]);
-    view.raster.push_back(c.raster);
-  }
-  return view;
-}
-
 // How far each detected corner lies from the exact one of its index (those the frame sees).
 void addDetectionErrors(const std::vector<DetectedCorner>& detected, const std::vector<ImagedCorner>& exact,
                         std::vector<double>& errors) {
@@ -95,7 +86,7 @@ DatasetCalibration calibrateDatasetCamera(const std::string& dir, const DatasetC
       addDetectionErrors(corners, frame.seen, detectionErrors);
     }
     if (corners.size() >= 4) {
-      views.push_back(viewOf(targetPoints, corners));
+      views.push_back(calibrationView(targetPoints, corners));
       viewpointFromTarget.push_back(frame.viewpointFromTarget);
       out.corners += static_cast<int>(corners.size());
     }

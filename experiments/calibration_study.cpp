@@ -118,15 +118,6 @@ struct SeedViews {
   std::vector<std::vector<CalibrationView>> bySource;  // [source][view]; a view may be empty
 };
 
-CalibrationView viewOf(const std::vector<Vec3>& targetPoints, const std::vector<DetectedCorner>& corners) {
-  CalibrationView view;
-  for (const DetectedCorner& c : corners) {
-    view.targetPoints.push_back(targetPoints[static_cast<size_t>(c.index)]);
-    view.raster.push_back(c.raster);
-  }
-  return view;
-}
-
 SeedViews seedViews(const CalibrationStudyOptions& o, const Scene& room, const RigSpec& rig, const Camera& camera, int seed) {
   BoardPoseOptions poses;
   poses.count = o.views;
@@ -147,11 +138,11 @@ SeedViews seedViews(const CalibrationStudyOptions& o, const Scene& room, const R
     std::vector<DetectedCorner> exact;
     for (const ImagedCorner& c : imagedCorners(camera, worldFromViewpoint, &renderer.rays(), scene.calibrationTargets[0]))
       if (c.sight == CornerSight::Seen) exact.push_back({c.index, c.raster});
-    out.bySource[0][v] = viewOf(points, exact);
+    out.bySource[0][v] = calibrationView(points, exact);
     const ImageRGBA image = renderer.render(RobotPose{}, settings);
-    out.bySource[1][v] = viewOf(points, detectAprilGrid(image, kGrid, ImageHandedness::Mirrored));
+    out.bySource[1][v] = calibrationView(points, detectAprilGrid(image, kGrid, ImageHandedness::Mirrored));
     const ImageRGBA recorded = recordFrame(o.recording, image, static_cast<uint64_t>(seed) * 1000 + v);
-    out.bySource[2][v] = viewOf(points, detectAprilGrid(recorded, kGrid, ImageHandedness::Mirrored));
+    out.bySource[2][v] = calibrationView(points, detectAprilGrid(recorded, kGrid, ImageHandedness::Mirrored));
   }
   return out;
 }
