@@ -23,9 +23,14 @@ struct CalibrateArgs {
   bool exactCorners = false, fixDistortion = false, json = false;
 };
 
-nlohmann::json resultJson(const DatasetCalibration& c) {
-  nlohmann::json j = {{"camera", c.camera},     {"target", c.target}, {"frames", c.frames},
-                      {"views", c.views},       {"corners", c.corners}, {"converged", c.fit.converged},
+nlohmann::json resultJson(const DatasetCalibration& c, bool exactCorners) {
+  nlohmann::json j = {{"camera", c.camera},
+                      {"target", c.target},
+                      {"frames", c.frames},
+                      {"views", c.views},
+                      {"corners", c.corners},
+                      {"corners_from", exactCorners ? "exact" : "detected"},
+                      {"converged", c.fit.converged},
                       {"truth", c.truth}};
   if (c.cornersDetected > 0)
     j["detection"] = {{"corners", c.cornersDetected}, {"median_px", c.detectionMedianPx}, {"max_px", c.detectionMaxPx}};
@@ -89,14 +94,15 @@ void runCalibrate(const CalibrateArgs& a) {
   options.exactCorners = a.exactCorners;
   options.fixDistortion = a.fixDistortion;
   std::optional<Progress> progress;
-  options.progress = [&](int done, int total) {
-    if (!progress) progress.emplace("finding corners", total, 0, "frames");
-    progress->advanceTo(done);
-  };
+  if (!a.exactCorners)  // the exact corners are read, not found
+    options.progress = [&](int done, int total) {
+      if (!progress) progress.emplace("finding corners", total, 0, "frames");
+      progress->advanceTo(done);
+    };
   const DatasetCalibration c = calibrateDatasetCamera(a.dir, options);
   if (progress) progress->finish();
   if (a.json)
-    std::printf("%s\n", resultJson(c).dump(1).c_str());
+    std::printf("%s\n", resultJson(c, a.exactCorners).dump(1).c_str());
   else
     printResult(c, a);
   if (!c.fit.converged) throw ExternalError("calibrate: no calibration (" + c.fit.failure + ")");
@@ -113,7 +119,7 @@ void addCalibrateCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "calibrate", "Calibrate a calibration sequence's mirror camera with cv::omnidir and measure it against the true rays");
   cmd->add_option("dataset", args->dir, "A calibration sequence's dataset folder (docs/calibration.md)")->required();
-  cmd->add_option("--camera", args->camera, "The camera to calibrate (default: the first)");
+  cmd->add_option("--camera", args->camera, "The camera to calibrate (default: the first mirror camera)");
   cmd->add_flag("--exact-corners", args->exactCorners,
                 "Fit the exact corners the dataset records (corners.json) instead of the detectors' (OpenCV, AprilTag)");
   cmd->add_flag("--fix-distortion", args->fixDistortion, "Hold k1, k2, p1, p2 at zero (the ideal rig's model has none)");

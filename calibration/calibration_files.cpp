@@ -89,38 +89,48 @@ TargetPattern targetPatternFromKalibrYaml(const std::string& text, const std::st
     if (it == fields.end()) throw InputError(showPath(source) + ": " + key + ": missing");
     return it->second;
   };
-  // Counts of 3 to 1000 and lengths of (0, 100] m: what a board can be.
-  const auto count = [&](const std::string& key) {
+  // The scene format's bounds of a target (scene/target_fields.cpp), Kalibr's at least 3 a side.
+  const auto count = [&](const std::string& key, int most) {
     const std::string& value = field(key);
     const bool digits = !value.empty() && value.size() <= 4 && value.find_first_not_of("0123456789") == std::string::npos;
     const int n = digits ? std::stoi(value) : 0;
-    if (n < 3 || n > 1000) throw InputError(showPath(source) + ": " + key + ": must be an integer from 3 to 1000 (got " + quote(value) + ")");
+    if (n < 3 || n > most)
+      throw InputError(showPath(source) + ": " + key + ": must be an integer from 3 to " + std::to_string(most) + " (got " + quote(value) + ")");
     return n;
   };
-  const auto length = [&](const std::string& key, double most) {
+  const auto length = [&](const std::string& key, double least, double most) {
     const std::string& value = field(key);
     const std::optional<double> v = finiteNumber(value);
-    if (!v || !(*v > 0.0 && *v <= most))
-      throw InputError(showPath(source) + ": " + key + ": must be a number in (0, " + shortNumber(most) + "] (got " + quote(value) + ")");
+    if (!v || !(*v >= least && *v <= most))
+      throw InputError(showPath(source) + ": " + key + ": must be a number in [" + shortNumber(least) + ", " + shortNumber(most) +
+                       "] (got " + quote(value) + ")");
     return *v;
   };
   const std::string& type = field("target_type");
   TargetPattern pattern;
   std::set<std::string> keys{"target_type"};
   if (type == "'aprilgrid'") {
-    pattern = AprilGrid{count("tagRows"), count("tagCols"), length("tagSize", 100.0), length("tagSpacing", 10.0), 0};
+    pattern = AprilGrid{count("tagRows", 100), count("tagCols", 100), length("tagSize", 1e-3, 10.0), length("tagSpacing", 1e-9, 1.0), 0};
     keys.insert({"tagCols", "tagRows", "tagSize", "tagSpacing"});
   } else if (type == "'checkerboard'") {
-    const double square = length("rowSpacingMeters", 100.0);
-    if (length("colSpacingMeters", 100.0) != square)
+    const double square = length("rowSpacingMeters", 1e-4, 10.0);
+    if (length("colSpacingMeters", 1e-4, 10.0) != square)
       throw InputError(showPath(source) + ": colSpacingMeters: must equal rowSpacingMeters (omnicam's squares are square)");
-    pattern = Checkerboard{count("targetRows") + 1, count("targetCols") + 1, square};
+    const Checkerboard board{count("targetRows", 999) + 1, count("targetCols", 999) + 1, square};
+    if ((board.rows + board.columns) % 2 == 0)
+      throw InputError(showPath(source) + ": targetCols: one of targetRows, targetCols must be even, the other odd (a board "
+                                          "without them has no first corner a detector can tell)");
+    pattern = board;
     keys.insert({"targetCols", "targetRows", "rowSpacingMeters", "colSpacingMeters"});
   } else {
     throw InputError(showPath(source) + ": target_type: must be 'aprilgrid' or 'checkerboard' (got " + quote(type) + ")");
   }
   for (const auto& [key, value] : fields)
     if (!keys.count(key)) throw InputError(showPath(source) + ": " + quote(key) + ": not a field of this target type");
+  // A target the scene format would refuse (ids past the tag family, a spacing off the texel grid,
+  // a checkerboard whose orientation cannot be told) is no target omnicam wrote.
+  if (const std::string problem = targetPatternProblem(pattern, 0.0); !problem.empty())
+    throw InputError(showPath(source) + ": not a target omnicam writes: " + problem);
   return pattern;
 }
 

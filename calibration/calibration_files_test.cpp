@@ -102,9 +102,14 @@ TEST(CalibrationFiles, AKalibrTargetReadsBackAsThePatternItWasWrittenFrom) {
   EXPECT_EQ(refusal("target_type: 'aprilgrid'\ntagCols: 6\n"), "target.yaml: tagRows: missing");
   EXPECT_EQ(refusal("target_type: 'circlegrid'\n"), "target.yaml: target_type: must be 'aprilgrid' or 'checkerboard' (got \"'circlegrid'\")");
   EXPECT_EQ(refusal("target_type: 'checkerboard'\ntargetCols: 9\ntargetRows: 99999\nrowSpacingMeters: 0.05\ncolSpacingMeters: 0.05\n"),
-            "target.yaml: targetRows: must be an integer from 3 to 1000 (got \"99999\")");
+            "target.yaml: targetRows: must be an integer from 3 to 999 (got \"99999\")");
+  EXPECT_EQ(refusal("target_type: 'checkerboard'\ntargetCols: 8\ntargetRows: 6\nrowSpacingMeters: 0.05\ncolSpacingMeters: 0.05\n")
+                .rfind("target.yaml: targetCols: one of targetRows, targetCols must be even", 0),
+            0u);
+  EXPECT_EQ(refusal("target_type: 'aprilgrid'\ntagCols: 40\ntagRows: 40\ntagSize: 0.05\ntagSpacing: 0.3\n"),
+            "target.yaml: not a target omnicam writes: ids 0 to 1599 exceed tag family 36h11's 587 codes");
   EXPECT_EQ(refusal("target_type: 'checkerboard'\ntargetCols: 9\ntargetRows: 6\nrowSpacingMeters: nan\ncolSpacingMeters: 0.05\n"),
-            "target.yaml: rowSpacingMeters: must be a number in (0, 100] (got \"nan\")");
+            "target.yaml: rowSpacingMeters: must be a number in [0.0001, 10] (got \"nan\")");
   EXPECT_EQ(refusal("tagCols 6\n"), "target.yaml: line 1: not `key: value` as omnicam writes it");
 }
 

@@ -84,7 +84,8 @@ nlohmann::json cornersFrameJson(int frame, const Rigid& viewpointFromTarget, con
   return {{"frame", frame}, {"viewpoint_from_target", rigidJson(viewpointFromTarget)}, {"seen", seen}, {"corners", list}};
 }
 
-std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const std::string& source, int corners) {
+std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const std::string& source, int corners, int width,
+                                                int height) {
   const nlohmann::json root = parseJsonText(text, source);
   const auto fail = [&](const std::string& field, const std::string& what) -> void {
     throw InputError(showPath(source) + ": " + field + ": " + what);
@@ -118,18 +119,28 @@ std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const s
     if (!(r * r.transpose()).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || r.determinant() < 0.0)
       fail(where + ".viewpoint_from_target", "its 3 × 3 part must be a rotation");
     if (!entry.contains("corners") || !entry["corners"].is_array()) fail(where + ".corners", "must be an array");
+    std::vector<bool> listed(static_cast<size_t>(corners), false);
     for (size_t k = 0; k < entry["corners"].size(); ++k) {
       const nlohmann::json& c = entry["corners"][k];
       const std::string at = where + ".corners[" + std::to_string(k) + "]";
       if (!c.is_object() || !c.contains("index") || !c["index"].is_number_integer() || c["index"].get<int64_t>() < 0 ||
           c["index"].get<int64_t>() >= corners)
         fail(at + ".index", "must be a corner of the target (0 to " + std::to_string(corners - 1) + ")");
-      if (!c.contains("sight") || c["sight"] != cornerSightName(CornerSight::Seen)) continue;
+      const int index = c["index"].get<int>();
+      if (listed[static_cast<size_t>(index)]) fail(at + ".index", "corner " + std::to_string(index) + " listed twice");
+      listed[static_cast<size_t>(index)] = true;
+      const auto named = [&c](CornerSight sight) { return c.contains("sight") && c["sight"] == cornerSightName(sight); };
+      if (!named(CornerSight::Seen) && !named(CornerSight::BeyondRim) && !named(CornerSight::OutsideImage) &&
+          !named(CornerSight::BackFacing) && !named(CornerSight::Occluded))
+        fail(at + ".sight", "must be seen, beyond_rim, outside_image, back_facing or occluded");
+      if (!named(CornerSight::Seen)) continue;
       if (!c.contains("raster") || !c["raster"].is_array() || c["raster"].size() != 2) fail(at + ".raster", "must be [x, y]");
       ImagedCorner corner;
-      corner.index = c["index"].get<int>();
+      corner.index = index;
       corner.sight = CornerSight::Seen;
       corner.raster = {number(c["raster"][0], at + ".raster", 1e6), number(c["raster"][1], at + ".raster", 1e6)};
+      if (!(corner.raster.x() >= 0.0 && corner.raster.x() <= width && corner.raster.y() >= 0.0 && corner.raster.y() <= height))
+        fail(at + ".raster", "a seen corner must lie in the " + std::to_string(width) + " x " + std::to_string(height) + " image");
       frame.seen.push_back(corner);
     }
     frames.push_back(std::move(frame));

@@ -39,7 +39,8 @@ struct CornersFrame {
 };
 // Every frame of a corners.json's text, strictly (a file of a dataset someone else may have
 // written): InputError naming `source` and the field. Corner indices must lie below `corners`, the
-// target's count.
-std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const std::string& source, int corners);
+// target's count, each once a frame; a seen corner's raster point inside the width × height image.
+std::vector<CornersFrame> cornersFramesFromJson(const std::string& text, const std::string& source, int corners, int width,
+                                                int height);
 
 }  // namespace omnicam

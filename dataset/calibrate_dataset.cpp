@@ -17,10 +17,16 @@ namespace omnicam {
 
 namespace {
 
-// The camera asked for, or the first; InputError naming the dataset's cameras otherwise.
+// The camera asked for, or the first mirror camera (the first camera when there is none: refused
+// below, saying why); InputError naming the dataset's cameras otherwise.
 std::string cameraOf(const DatasetReader& reader, const std::string& asked) {
   const std::vector<std::string> cameras = reader.cameras();
-  if (asked.empty()) return cameras.front();
+  if (asked.empty()) {
+    for (const std::string& camera : cameras)
+      if (!reader.frames().empty() && std::holds_alternative<MirrorRig>(reader.cameraRig(reader.frames().front(), camera).kind))
+        return camera;
+    return cameras.front();
+  }
   if (std::find(cameras.begin(), cameras.end(), asked) != cameras.end()) return asked;
   std::string names;
   for (const std::string& name : cameras) names += (names.empty() ? "" : ", ") + quote(name);
@@ -65,10 +71,12 @@ DatasetCalibration calibrateDatasetCamera(const std::string& dir, const DatasetC
   const std::vector<Vec3> targetPoints = targetCorners(pattern);
   const std::vector<CornersFrame> frames =
       cornersFramesFromJson(reader.fileBytes(std::nullopt, out.camera, "corners", options.checkHashes), calibrationFolder + "/corners.json",
-                            static_cast<int>(targetPoints.size()));
+                            static_cast<int>(targetPoints.size()), rig.imageWidth(), rig.imageHeight());
   out.target = header.at("calibration").value("target", "");
   out.frames = static_cast<int>(frames.size());
   out.truth = headerCamera(reader, out.camera).value("intrinsics", nlohmann::json());
+  if (!out.truth.is_object() || !out.truth.contains("model"))
+    throw InputError(showPath(reader.dir()) + "/manifest.json: camera " + quote(out.camera) + ": intrinsics: must be the camera's model (an object)");
   out.width = rig.imageWidth(), out.height = rig.imageHeight();
 
   std::vector<CalibrationView> views;

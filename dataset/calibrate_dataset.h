@@ -14,7 +14,7 @@
 namespace omnicam {
 
 struct DatasetCalibrationOptions {
-  std::string camera;          // empty: the dataset's first camera
+  std::string camera;          // empty: the dataset's first mirror camera
   bool exactCorners = false;   // the recorded exact corners instead of the detectors'
   bool fixDistortion = false;  // k1, k2, p1, p2 held at zero
   bool checkHashes = true;     // each file read must hash to the manifest's SHA-256

@@ -43,7 +43,6 @@ std::string blenderDriverFile(const BlenderOptions& options) {
 
 namespace {
 
-std::string defaultDriver() { return blenderDriverFile({}); }
 
 // docs/conventions.md §2's lights have no fall-off; Blender's are physical. A point light of P watts gives a
 // Lambertian surface at distance d the radiance ρ·P/(4π²d²): match I at a typical distance.
@@ -483,8 +482,8 @@ void writeBlenderJob(const Scene& worldScene, const CameraPlacement& worldPlacem
   const Scene& scene = frame.sceneOr(worldScene);
   const CameraPlacement& placement = frame.placements.front();
   std::string why;
-  const std::optional<std::string> driver = readWholeFile(defaultDriver(), why);
-  if (!driver) throw ExternalError(showPath(defaultDriver()) + ": " + why);
+  const std::optional<std::string> driver = readWholeFile(blenderDriverFile(), why);
+  if (!driver) throw ExternalError(showPath(blenderDriverFile()) + ": " + why);
   GltfExportOptions exportOptions;
   exportOptions.placement = placement;
   exportOptions.rig = settings.rig;

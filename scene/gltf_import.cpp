@@ -313,7 +313,7 @@ void appendTexCoords(const tinygltf::Model& model, const tinygltf::Primitive& pr
                      std::to_string(vertexCount) + " vertices");
   for (size_t k = 0; k < t.count(); ++k) {
     const Eigen::Vector2d st(t.get(k, 0), 1.0 - t.get(k, 1));
-    if (!(st.cwiseAbs().maxCoeff() <= scene_limits::kMaxTexCoord))
+    if (!scene_limits::texCoordInRange(st))
       throw InputError(where + ": TEXCOORD_0 must be finite and within ±1e6");
     out.uvs.push_back(st);
   }

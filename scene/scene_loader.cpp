@@ -263,7 +263,7 @@ Shape readShape(const std::string& type, JsonFields& o) {
       if (!uv.is_array() || uv.size() != 2 || !uv[0].is_number() || !uv[1].is_number())
         o.fail(indexed("uvs", i), "must be [u, v]");
       const Eigen::Vector2d st(uv[0].get<double>(), uv[1].get<double>());
-      if (!(st.cwiseAbs().maxCoeff() <= scene_limits::kMaxTexCoord))
+      if (!scene_limits::texCoordInRange(st))
         o.fail(indexed("uvs", i), "numbers must be finite and within ±1e6");
       m.uvs.push_back(st);
     }

@@ -30,15 +30,10 @@ struct PyCamera {
 // An (N, k) array-like's rows (a numpy array of any number type, nested lists, …) as float64;
 // InputError naming `what` for anything else.
 py::array_t<double, py::array::c_style | py::array::forcecast> rowsOf(const py::object& a, int k, const std::string& what) {
-  // Real numbers only: a complex array would lose its imaginary part with only numpy's warning.
-  if (const py::array given = py::array::ensure(a)) {
-    const char kind = given.dtype().kind();
-    if (kind != 'i' && kind != 'u' && kind != 'f')
-      throw InputError(what + ": must be an array of real numbers of shape (N, " + std::to_string(k) + ") (got dtype " +
-                       py::str(given.dtype()).cast<std::string>() + ")");
-  } else {
+  if (const py::array given = py::array::ensure(a))
+    checkRealArray(given, what, "an array of shape (N, " + std::to_string(k) + ")");
+  else
     PyErr_Clear();
-  }
   auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
   if (!rows) PyErr_Clear();
   if (!rows || rows.ndim() != 2 || rows.shape(1) != k)
@@ -60,20 +55,29 @@ std::optional<CameraPlacement> placementFrom(const py::object& pose, const py::o
 
 // `time` as one number or one per row of `n`: seconds after the exposure start, within the
 // exposure bound either side (the motion model holds a velocity that long). A time other than 0
-// needs a velocity: a still robot is where its pose is at every time.
+// needs a velocity: a still robot is where its pose is at every time. In an array, NaN is a pixel
+// without a time (pixel_times' off the image): its ray is NaN.
 std::vector<double> timesOf(const py::object& time, size_t n, bool moving) {
+  const std::string form = "a number or an array of one time per pixel, shape (" + std::to_string(n) + ",)";
   std::vector<double> times;
-  if (py::isinstance<py::float_>(time) || py::isinstance<py::int_>(time)) {
-    if (py::isinstance<py::bool_>(time)) throw InputError("time: must be seconds (a number or an array of one per pixel), not a bool");
-    times.assign(n, time.cast<double>());
+  bool perPixel = false;
+  if (isRealNumber(time)) {
+    try {
+      times.assign(n, time.cast<double>());
+    } catch (const std::exception&) {  // an int too large for a double (pybind11's cast_error or Python's OverflowError)
+      throw InputError("time: must be " + form + " (got " + py::repr(time).cast<std::string>().substr(0, 40) + ")");
+    }
   } else {
-    const auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(time);
-    if (!rows) PyErr_Clear();
-    if (!rows || rows.ndim() != 1 || static_cast<size_t>(rows.shape(0)) != n)
-      throw InputError("time: must be a number or an array of one time per pixel, shape (" + std::to_string(n) + ",)");
+    const py::array given = py::array::ensure(time);
+    if (!given) PyErr_Clear();
+    if (!given || given.ndim() != 1 || static_cast<size_t>(given.shape(0)) != n) throw InputError("time: must be " + form);
+    checkRealArray(given, "time", form);
+    const auto rows = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(given);
     times.assign(rows.data(), rows.data() + n);
+    perPixel = true;
   }
   for (double t : times) {
+    if (perPixel && std::isnan(t)) continue;
     if (!(std::abs(t) <= limits::kMaxExposureS))
       throw InputError("time: must be within ±" + shortNumber(limits::kMaxExposureS) + " s of the exposure start (got " +
                        roundTrip(t) + ")");
@@ -122,8 +126,9 @@ py::tuple rays(const PyCamera& self, const py::object& pixels, const py::object&
   {
     py::gil_scoped_release release;
     tbb::parallel_for(size_t{0}, n, [&](size_t i) {
-      const Rigid outputFromViewpoint = placement ? placement->worldFromViewpoint(self.camera->rig(), times[i]) : Rigid::Identity();
-      const auto ray = self.camera->generateRay({Vec2(p[2 * i], p[2 * i + 1])});
+      const Rigid outputFromViewpoint =
+          placement && !std::isnan(times[i]) ? placement->worldFromViewpoint(self.camera->rig(), times[i]) : Rigid::Identity();
+      const auto ray = std::isnan(times[i]) ? std::nullopt : self.camera->generateRay({Vec2(p[2 * i], p[2 * i + 1])});
       const Vec3 o = ray ? Vec3(outputFromViewpoint * ray->origin) : Vec3::Constant(kNaN);
       const Vec3 d = ray ? Vec3(outputFromViewpoint.linear() * ray->direction) : Vec3::Constant(kNaN);
       for (int k = 0; k < 3; ++k) origins[3 * i + k] = o[k], directions[3 * i + k] = d[k];

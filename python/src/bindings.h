@@ -67,6 +67,12 @@ py::array_t<T> arrayTakingOver(std::vector<T>&& values, std::vector<py::ssize_t>
 py::object toPython(const nlohmann::json& j);
 nlohmann::json fromPython(const py::handle& object, const std::string& what);
 
+// Whether `item` is one number meaning a real quantity: a Python int or float, or a numpy scalar of
+// an integer or float dtype; not a bool (Python's or numpy's), a complex number or a 0-d array.
+bool isRealNumber(const py::handle& item);
+// InputError naming `what` unless the array holds real numbers (integer or float dtype): numpy
+// would drop a complex array's imaginary part with only a warning, and bools are no quantities.
+void checkRealArray(const py::array& given, const std::string& what, const std::string& form);
 // A pose given as (x, y, yaw_deg); InputError naming `what` otherwise or out of range.
 RobotPose poseFrom(const py::handle& pose, const std::string& what);
 // (vx, vy, yaw_rate_deg_per_s) from a sequence of 3 numbers; InputError naming `what`.

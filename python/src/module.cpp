@@ -81,11 +81,33 @@ uint64_t narrowedSeed(const PyInteger& value, const std::string& name) {
 
 namespace {
 
-// Whether `item` is a number that means a real quantity: not a bool (Python's or numpy's), not a
-// complex number (numpy would drop its imaginary part with only a warning).
-bool realNumber(const py::handle& item) {
+// `count` real numbers from a sequence (a tuple, list or numpy array); InputError saying `form`.
+std::vector<double> realNumbers(const py::handle& given, size_t count, const std::string& what, const std::string& form) {
+  if (py::isinstance<py::str>(given) || py::isinstance<py::bytes>(given) ||
+      (py::isinstance<py::array>(given) && py::array::ensure(given).ndim() != 1) ||
+      (!py::isinstance<py::sequence>(given) && !py::isinstance<py::array>(given)))
+    throw InputError(what + ": must be " + form);
+  std::vector<double> v;
+  try {
+    for (const py::handle item : given) {
+      if (!isRealNumber(item)) throw InputError(what + ": must be " + form + ", real numbers (not bools or complex numbers)");
+      v.push_back(item.cast<double>());
+    }
+  } catch (const py::cast_error&) {
+    throw InputError(what + ": must be " + form);
+  } catch (const py::error_already_set&) {  // a number's own conversion failed (an int too large for a double)
+    throw InputError(what + ": must be " + form + ", numbers a double holds");
+  }
+  if (v.size() != count) throw InputError(what + ": must be " + form + ", " + std::to_string(count) + " numbers");
+  return v;
+}
+
+}  // namespace
+
+bool isRealNumber(const py::handle& item) {
   if (PyBool_Check(item.ptr()) || PyComplex_Check(item.ptr())) return false;
-  if (PyObject_HasAttrString(item.ptr(), "dtype")) {
+  if (py::isinstance<py::array>(item)) return false;  // an array, 0-d ones included: not one number
+  if (PyObject_HasAttrString(item.ptr(), "dtype")) {  // a numpy scalar
     try {
       const std::string kind = item.attr("dtype").attr("kind").cast<std::string>();
       return kind == "i" || kind == "u" || kind == "f";
@@ -93,28 +115,14 @@ bool realNumber(const py::handle& item) {
       return false;
     }
   }
-  return PyNumber_Check(item.ptr());
+  return PyNumber_Check(item.ptr()) != 0;  // int, float, and numbers that convert to one (Fraction, Decimal)
 }
 
-// `count` real numbers from a sequence (a tuple, list or numpy array); InputError saying `form`.
-std::vector<double> realNumbers(const py::handle& given, size_t count, const std::string& what, const std::string& form) {
-  if (py::isinstance<py::str>(given) || py::isinstance<py::bytes>(given) ||
-      (!py::isinstance<py::sequence>(given) && !py::isinstance<py::array>(given)))
-    throw InputError(what + ": must be " + form);
-  std::vector<double> v;
-  try {
-    for (const py::handle item : given) {
-      if (!realNumber(item)) throw InputError(what + ": must be " + form + ", real numbers (not bools or complex numbers)");
-      v.push_back(item.cast<double>());
-    }
-  } catch (const py::cast_error&) {
-    throw InputError(what + ": must be " + form);
-  }
-  if (v.size() != count) throw InputError(what + ": must be " + form + ", " + std::to_string(count) + " numbers");
-  return v;
+void checkRealArray(const py::array& given, const std::string& what, const std::string& form) {
+  const char kind = given.dtype().kind();
+  if (kind != 'i' && kind != 'u' && kind != 'f')
+    throw InputError(what + ": must be " + form + " of real numbers (got dtype " + py::str(given.dtype()).cast<std::string>() + ")");
 }
-
-}  // namespace
 
 RobotPose poseFrom(const py::handle& pose, const std::string& what) {
   const std::vector<double> v = realNumbers(pose, 3, what, "(x, y, yaw_deg)");

@@ -86,6 +86,15 @@ def test_rays_at_a_time_are_the_rays_from_where_the_motion_model_puts_the_robot(
         np.testing.assert_array_equal(together[part], np.concatenate([e[part] for e in each]))
     with pytest.raises(omnicam.InputError, match=r"time: must be a number or an array of one time per pixel, shape \(3,\)"):
         camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=np.zeros(2))
+    for wrong in [np.array([True, False, True]), [True, False, True], np.zeros(3, dtype=complex), 10**400, "0.1"]:
+        with pytest.raises(omnicam.InputError, match="time: must be"):
+            camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=wrong)
+    # numpy's scalars are numbers; a NaN in an array is a pixel without a time: its ray is NaN.
+    np.testing.assert_array_equal(camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=np.float32(0.25))[1],
+                                  camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=0.25)[1])
+    partial = camera.rays(pixels, pose=start, velocity=(1.5, 0.0, 90.0), time=np.array([0.0, np.nan, 0.5]))
+    assert np.isnan(partial[0][1]).all() and np.isnan(partial[1][1]).all()
+    np.testing.assert_array_equal(partial[1][[0, 2]], together[1][[0, 2]])
     with pytest.raises(omnicam.InputError, match="velocity: needs a pose"):
         camera.rays(pixels, velocity=(1.0, 0.0, 0.0), time=0.1)
     with pytest.raises(omnicam.InputError, match="time: must be within"):
@@ -100,14 +109,15 @@ def test_bad_arrays_are_input_errors(robocup):
         camera.project(np.zeros((1, 3)), pose=(1.0, 2.0))
     with pytest.raises(omnicam.InputError):
         camera.rays(np.zeros(5))
-    with pytest.raises(omnicam.InputError, match=r"points: must be an array of real numbers of shape \(N, 3\)"):
+    with pytest.raises(omnicam.InputError, match=r"points: must be an array of shape \(N, 3\) of real numbers"):
         camera.project([["a", "b", "c"]])
     # numpy would drop an imaginary part with only a warning; bools are no coordinates.
-    with pytest.raises(omnicam.InputError, match=r"points: must be an array of real numbers .*complex128"):
+    with pytest.raises(omnicam.InputError, match=r"points: must be an array of shape \(N, 3\) of real numbers .*complex128"):
         camera.project(np.zeros((2, 3), dtype=complex))
-    with pytest.raises(omnicam.InputError, match=r"pixels: must be an array of real numbers .*bool"):
+    with pytest.raises(omnicam.InputError, match=r"pixels: must be an array of shape \(N, 2\) of real numbers .*bool"):
         camera.rays(np.zeros((2, 2), dtype=bool))
-    for pose in [(True, 0.0, 0.0), (np.bool_(True), 0, 0), (1.0, 2.0, 3.0 + 1j), (1.0, 2.0, np.complex128(3.0)), "1,2,3"]:
+    for pose in [(True, 0.0, 0.0), (np.bool_(True), 0, 0), (1.0, 2.0, 3.0 + 1j), (1.0, 2.0, np.complex128(3.0)), "1,2,3",
+                 np.array(1.0), np.zeros((1, 3)), (1.0, 2.0, 10**400)]:
         with pytest.raises(omnicam.InputError, match=r"pose: must be \(x, y, yaw_deg\)"):
             camera.project(np.zeros((1, 3)), pose=pose)
     with pytest.raises(omnicam.InputError, match=r"velocity: must be \(vx, vy, yaw_rate_deg_per_s\)"):

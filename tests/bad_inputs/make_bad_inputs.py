@@ -131,6 +131,8 @@ def main():
         # Every JSON input: bounded depth (tinygltf walks extras recursively), no key twice.
         "deep_extras": gltf().rstrip()[:-1] + ', "extras": ' + "[" * 1000 + "]" * 1000 + "}\n",
         "duplicate_key": gltf().replace('"asset": {', '"asset": {"version": "2.0"}, "asset": {', 1),
+        # A NaN in the second coordinate of a UV (a check by the largest of |u|, |v| let it pass).
+        "uv_nan_v": gltf(buffer=TRIANGLE + struct.pack("<6f", 0, 0, 1, float("nan"), 0, 1)),
     }
     for name, text in cases.items():
         write(os.path.join(SCENES, "arena_" + name + ".gltf"), text)
