@@ -181,7 +181,13 @@ void AtomicFileGroup::commit() {
     const Staged& file = renamed.back();
     renameIntoPlace(file.folder.get(), file.temporary, file.name, file.shownPath);
   }
-  for (const Staged& file : renamed) flushFolder(file.folder.get(), file.shownPath);
+  // Each folder once (a frame and its sidecar share theirs).
+  std::set<std::pair<dev_t, ino_t>> flushed;
+  for (const Staged& file : renamed) {
+    struct stat folder {};
+    if (::fstat(file.folder.get(), &folder) == 0 && !flushed.insert({folder.st_dev, folder.st_ino}).second) continue;
+    flushFolder(file.folder.get(), file.shownPath);
+  }
 }
 
 namespace {
