@@ -2,6 +2,7 @@
 // and measured against its true rays (dataset/calibrate_dataset.h).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,8 +57,8 @@ nlohmann::json resultJson(const DatasetCalibration& c, bool exactCorners) {
 }
 
 void printResult(const DatasetCalibration& c, const CalibrateArgs& a) {
-  std::printf("camera %s: %d of %d frames show the %s's 4 corners a view needs (%d corners, %s)\n", c.camera.c_str(), c.views,
-              c.frames, c.target.c_str(), c.corners, a.exactCorners ? "exact" : "detected");
+  std::printf("camera %s: %d views of target %s from %d frames (a view: a frame with 4 corners or more; %d corners, %s)\n",
+              c.camera.c_str(), c.views, c.target.c_str(), c.frames, c.corners, a.exactCorners ? "exact" : "detected");
   if (c.cornersDetected > 0)
     std::printf("detected corners from the exact ones: median %s px, max %s px\n", shortNumber(c.detectionMedianPx).c_str(),
                 shortNumber(c.detectionMaxPx).c_str());
@@ -66,17 +67,20 @@ void printResult(const DatasetCalibration& c, const CalibrateArgs& a) {
     return;
   }
   const auto d = c.fit.distortion;
-  std::printf("cv::omnidir::calibrate (%zu views used): RMS %s px\n", c.fit.usedViews.size(), shortNumber(c.fit.rms).c_str());
+  std::printf("cv::omnidir::calibrate: RMS %s px over %zu of the %d views (its initialisation keeps the views it can start "
+              "from)\n",
+              shortNumber(c.fit.rms).c_str(), c.fit.usedViews.size(), c.views);
   std::printf("  xi %.6f  gamma %.4f %.4f  centre (%.4f, %.4f)  k1 %.3g k2 %.3g p1 %.3g p2 %.3g\n", c.fit.xi, c.fit.gammaX,
               c.fit.gammaY, c.fit.cx, c.fit.cy, d[0], d[1], d[2], d[3]);
   const nlohmann::json& t = c.truth;
-  // The manifest's intrinsics: the ideal rig's closed form, a physical rig's best central fit.
-  const auto number = [&t](const char* key) { return t.contains(key) && t[key].is_number() ? t[key].get<double>() : std::nan(""); };
-  if (t.value("model", "") == "mei_unified")
-    std::printf("  the manifest's intrinsics: xi %.6f  gamma %.4f %.4f  centre (%.4f, %.4f)\n", number("xi"), number("gamma_x"),
-                number("gamma_y"), number("cx"), number("cy"));
-  else
-    std::printf("  the manifest's intrinsics: %s\n", t.dump().c_str());
+  // The manifest's unified model: the ideal rig's closed form, a physical rig's best central fit.
+  const bool physical = t.contains("central_approximation") && t["central_approximation"].is_object();
+  const nlohmann::json& mei = physical ? t["central_approximation"] : t;
+  const auto number = [&mei](const char* key) { return mei.contains(key) && mei[key].is_number() ? mei[key].get<double>() : std::nan(""); };
+  if (mei.value("model", "") == "mei_unified")
+    std::printf("  %s: xi %.6f  gamma %.4f %.4f  centre (%.4f, %.4f)\n",
+                physical ? "the manifest's best central fit of the physical rig" : "the manifest's intrinsics (exact)", number("xi"),
+                number("gamma_x"), number("gamma_y"), number("cx"), number("cy"));
   std::printf("error on points it never saw, along the camera's true rays:\n");
   for (const HeldOutError& e : c.heldOut)
     std::printf("  at %s m: median %s px, RMS %s px, max %s px%s\n", shortNumber(e.distanceM).c_str(), shortNumber(e.medianPx).c_str(),
@@ -86,6 +90,9 @@ void printResult(const DatasetCalibration& c, const CalibrateArgs& a) {
 
 void runCalibrate(const CalibrateArgs& a) {
   if (!a.out.empty()) {
+    const std::string extension = std::filesystem::path(a.out).extension().string();
+    if (extension != ".yml" && extension != ".yaml")
+      throw InputError("-o: " + showPath(a.out) + ": must end in .yml or .yaml (the calibration is OpenCV YAML)");
     checkOutputFile(a.out, "-o");
     checkOutputIsOutsideFolder(a.out, "-o", a.dir, "the dataset");
   }
