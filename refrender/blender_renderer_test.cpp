@@ -381,7 +381,9 @@ TEST(Blender, AGltfArenaIsRenderedAlikeByAllThreeEngines) {
   const CompareResult blender = compareImages(fast, renderWithBlender(scene, {pose}, settings).front());
   std::printf("glTF arena: fast vs POV-Ray %.2f dB, fast vs Blender (16 spp) %.2f dB\n", povray.psnrDb, blender.psnrDb);
   EXPECT_GE(povray.psnrDb, 87.0);   // measured 90.8 dB (target 45 dB)
-  EXPECT_GE(blender.psnrDb, 31.5);  // measured 34.7 dB: 16 spp of random samples in the pixel
+  // Measured 49.1 dB (34.7 dB while Cycles blended the checker's texels in sRGB, before the job gave
+  // it linear EXRs).
+  EXPECT_GE(blender.psnrDb, 46.0);
   fs::remove_all(dir);
 }
 
@@ -435,7 +437,7 @@ TEST(Blender, CalibrationTargetsAreRenderedAlikeByAllThreeEngines) {
   const CompareResult blender = compareImages(fast, renderWithBlender(scene, {pose}, settings).front());
   std::printf("calibration targets: fast vs POV-Ray %.2f dB, fast vs Blender (16 spp) %.2f dB\n", povray.psnrDb, blender.psnrDb);
   EXPECT_GE(povray.psnrDb, 88.0);   // measured 93.2 dB
-  EXPECT_GE(blender.psnrDb, 34.0);  // measured 37.6 dB: 16 spp of random samples in the pixel
+  EXPECT_GE(blender.psnrDb, 35.0);  // measured 38.2 dB: 16 spp of random samples in the pixel (37.6 with sRGB texels)
   fs::remove_all(dir);
 }
 
