@@ -77,7 +77,7 @@ void printResult(const DatasetCalibration& c, const CalibrateArgs& a) {
   const bool physical = t.contains("central_approximation") && t["central_approximation"].is_object();
   const nlohmann::json& mei = physical ? t["central_approximation"] : t;
   const auto number = [&mei](const char* key) { return mei.contains(key) && mei[key].is_number() ? mei[key].get<double>() : std::nan(""); };
-  if (mei.value("model", "") == "mei_unified")
+  if (mei.contains("model") && mei["model"] == "mei_unified")
     std::printf("  %s: xi %.6f  gamma %.4f %.4f  centre (%.4f, %.4f)\n",
                 physical ? "the manifest's best central fit of the physical rig" : "the manifest's intrinsics (exact)", number("xi"),
                 number("gamma_x"), number("gamma_y"), number("cx"), number("cy"));

@@ -52,7 +52,7 @@ void addDetectionErrors(const std::vector<DetectedCorner>& detected, const std::
 DatasetCalibration calibrateDatasetCamera(const std::string& dir, const DatasetCalibrationOptions& options) {
   const DatasetReader reader(dir);
   const nlohmann::json& header = reader.manifest().header;
-  if (!header.contains("calibration"))
+  if (!header.contains("calibration") || !header["calibration"].is_object())
     throw InputError(showPath(dir) + ": not a calibration sequence (its spec has no \"calibration\"; docs/calibration.md)");
   DatasetCalibration out;
   out.camera = cameraOf(reader, options.camera);
@@ -72,7 +72,8 @@ DatasetCalibration calibrateDatasetCamera(const std::string& dir, const DatasetC
   const std::vector<CornersFrame> frames =
       cornersFramesFromJson(reader.fileBytes(std::nullopt, out.camera, "corners", options.checkHashes), calibrationFolder + "/corners.json",
                             static_cast<int>(targetPoints.size()), rig.imageWidth(), rig.imageHeight());
-  out.target = header.at("calibration").value("target", "");
+  const nlohmann::json& target = header["calibration"].contains("target") ? header["calibration"]["target"] : nlohmann::json();
+  out.target = target.is_string() ? target.get<std::string>() : "";
   out.frames = static_cast<int>(frames.size());
   out.truth = headerCamera(reader, out.camera).value("intrinsics", nlohmann::json());
   if (!out.truth.is_object() || !out.truth.contains("model"))

@@ -43,7 +43,6 @@ std::string blenderDriverFile(const BlenderOptions& options) {
 
 namespace {
 
-
 // docs/conventions.md §2's lights have no fall-off; Blender's are physical. A point light of P watts gives a
 // Lambertian surface at distance d the radiance ρ·P/(4π²d²): match I at a typical distance.
 constexpr double kLightMatchDistance = 3.0;
