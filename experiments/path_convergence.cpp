@@ -17,6 +17,7 @@
 #include "render_request.h"
 #include "safe_files.h"
 #include "scene_loader.h"
+#include "sha256.h"
 #include "sidecar.h"
 #include "number_format.h"
 
@@ -105,18 +106,29 @@ struct CyclesFrames {
   double secondsPerFrame = 0.0, startupSeconds = 0.0;
 };
 
+}  // namespace
+
+nlohmann::json cyclesFramesKey(const Scene& scene, const std::vector<RobotPose>& poses, const RenderSettings& settings,
+                               int seed) {
+  nlohmann::json key = {{"scene_sha256", scene.sha256}, {"size", settings.rig.imageWidth()}, {"spp", settings.spp},
+                        {"seed", seed}, {"denoise", settings.denoise}, {"shading", shadingName(settings.shading)},
+                        {"poses", nlohmann::json::array()}};
+  for (const RobotPose& p : poses) key["poses"].push_back({p.x, p.y, p.yawDeg});
+  // A scene is also the files it reads (a texture changed under its name is another scene).
+  if (!scene.inputDigests.empty()) key["scene_inputs"] = sceneInputsToJson(scene.inputDigests);
+  // How Blender is driven: a changed driver (the linear textures of 2026-12) renders anew.
+  key["blender_driver_sha256"] = sha256OfFile(blenderDriverFile());
+  return key;
+}
+
+namespace {
+
 CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, const std::vector<RobotPose>& poses,
                                  const RenderSettings& settings, const PathConvergenceOptions& o, int seed) {
   const fs::path data = fs::path(o.outDir) / "data";
   const std::string name = stem + "_cycles_" + std::to_string(settings.spp) + "spp" + (settings.denoise ? "_denoised" : "") +
                            "_seed" + std::to_string(seed);
-  nlohmann::json key = {{"scene_sha256", scene.sha256}, {"size", settings.rig.imageWidth()}, {"spp", settings.spp},
-                        {"seed", seed}, {"denoise", settings.denoise}, {"shading", shadingName(settings.shading)},
-                        {"poses", nlohmann::json::array()}};
-  for (const RobotPose& p : poses) key["poses"].push_back({p.x, p.y, p.yawDeg});
-  // A scene is also the files it reads (a texture changed under its name is another scene); a
-  // scene that reads none keys as before, so frames kept by earlier runs still serve.
-  if (!scene.inputDigests.empty()) key["scene_inputs"] = sceneInputsToJson(scene.inputDigests);
+  const nlohmann::json key = cyclesFramesKey(scene, poses, settings, seed);
   const fs::path keyFile = data / (name + ".json");
   const auto frameFile = [&](size_t k) { return data / (name + "_" + std::to_string(k) + ".exr"); };
   // Only plain files are read back: a link planted in the folder is not followed.

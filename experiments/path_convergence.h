@@ -88,6 +88,11 @@ struct PathConvergenceResults {
 void measureTimeToError(const Scene& scene, const std::vector<RobotPose>& poses, const ImageRGBA& converged,
                         const PathConvergenceOptions& options, PathConvergenceResults& results,
                         const ExperimentProgress& progress);
+// What Cycles' kept frames of `scene` at `poses` were rendered from (outDir/data/): the scene and
+// the files it reads, size, spp, seed, denoising, shading and the Blender driver's bytes. A kept
+// frame whose key differs is rendered again.
+nlohmann::json cyclesFramesKey(const Scene& scene, const std::vector<RobotPose>& poses, const RenderSettings& settings,
+                               int seed);
 // The halls' three poses (the study's, the first the time-to-error pose).
 std::vector<RobotPose> hallPoses();
 // The mean of `seeds` unfiltered fast frames of `spp` each (seeds 1000, 1001, …).
