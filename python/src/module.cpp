@@ -88,8 +88,13 @@ std::vector<double> realNumbers(const py::handle& given, size_t count, const std
       (!py::isinstance<py::sequence>(given) && !py::isinstance<py::array>(given)))
     throw InputError(what + ": must be " + form);
   std::vector<double> v;
+  bool tooMany = false;
   try {
     for (const py::handle item : given) {
+      if (v.size() == count) {  // one more is already too many: the rest is not read
+        tooMany = true;
+        break;
+      }
       if (!isRealNumber(item)) throw InputError(what + ": must be " + form + ", real numbers (not bools or complex numbers)");
       v.push_back(item.cast<double>());
     }
@@ -98,7 +103,7 @@ std::vector<double> realNumbers(const py::handle& given, size_t count, const std
   } catch (const py::error_already_set&) {  // a number's own conversion failed (an int too large for a double)
     throw InputError(what + ": must be " + form + ", numbers a double holds");
   }
-  if (v.size() != count) throw InputError(what + ": must be " + form + ", " + std::to_string(count) + " numbers");
+  if (tooMany || v.size() != count) throw InputError(what + ": must be " + form + ", " + std::to_string(count) + " numbers");
   return v;
 }
 

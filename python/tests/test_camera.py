@@ -1,5 +1,6 @@
 """The camera interface, vectorised: closed-form cases, round trips and the CLI's `project`."""
 
+import collections.abc
 import numpy as np
 import pytest
 
@@ -122,6 +123,23 @@ def test_bad_arrays_are_input_errors(robocup):
             camera.project(np.zeros((1, 3)), pose=pose)
     with pytest.raises(omnicam.InputError, match=r"velocity: must be \(vx, vy, yaw_rate_deg_per_s\)"):
         camera.rays(np.zeros((1, 2)), pose=(0, 0, 0), velocity=(False, 0, 0), time=0.1)
+    # A pose of too many numbers is refused at the fourth: the rest is never read.
+    class Counted(collections.abc.Sequence):
+        def __init__(self):
+            self.read = 0
+
+        def __len__(self):
+            return 10**6
+
+        def __getitem__(self, k):
+            if k >= len(self):
+                raise IndexError(k)
+            self.read += 1
+            return 0.0
+    long_pose = Counted()
+    with pytest.raises(omnicam.InputError, match=r"pose: must be \(x, y, yaw_deg\), 3 numbers"):
+        camera.project(np.zeros((1, 3)), pose=long_pose)
+    assert long_pose.read == 4
     # numpy's own number types are numbers.
     np.testing.assert_array_equal(camera.project(np.zeros((1, 3)), pose=(np.float32(1.0), np.int64(0), 0)),
                                   camera.project(np.zeros((1, 3)), pose=(1.0, 0.0, 0.0)))
