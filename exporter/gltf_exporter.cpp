@@ -20,6 +20,7 @@
 #include "physical_camera.h"
 #include "placement.h"
 #include "sidecar.h"
+#include "texture_image.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -231,15 +232,7 @@ class GltfBuilder {
 };
 
 // Encoded in memory: no temporary file another user could predict or read.
-std::vector<unsigned char> pngBytes(const Texture& t) {
-  ImageRGBA image(t.width(), t.height());
-  const auto& rgb = t.rgbLinear();
-  for (size_t p = 0; p < rgb.size() / 3; ++p) {
-    for (int c = 0; c < 3; ++c) image.pixels[p * 4 + c] = rgb[p * 3 + c];
-    image.pixels[p * 4 + 3] = 1.0f;
-  }
-  return encodeImage("texture.png", image);
-}
+std::vector<unsigned char> pngBytes(const Texture& t) { return encodeImage("texture.png", opaqueImage(t)); }
 
 // An annulus in the viewpoint frame at the rim height: what the camera sees beyond the rim.
 TriangleMesh rimMask(double rimHeight, double innerRadius) {

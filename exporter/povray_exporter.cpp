@@ -14,6 +14,7 @@
 #include "mirror_surface.h"
 #include "physical_camera.h"
 #include "scene_translation.h"
+#include "texture_image.h"
 #include "triangulate.h"
 
 namespace omnicam {
@@ -86,14 +87,8 @@ class SdlWriter {
     for (size_t i = 0; i < scene.materials.size(); ++i) {
       const Material& m = scene.materials[i];
       if (!m.texture) continue;
-      PovrayTextureFile file{"tex_" + std::to_string(i) + ".exr", ImageRGBA(m.texture->width(), m.texture->height())};
-      const auto& src = m.texture->rgbLinear();
-      for (size_t p = 0; p < src.size() / 3; ++p) {
-        for (int c = 0; c < 3; ++c) file.image.pixels[p * 4 + c] = src[p * 3 + c] * m.color[c];
-        file.image.pixels[p * 4 + 3] = 1.0f;
-      }
       textureOf_[i] = job.textures.size();
-      job.textures.push_back(std::move(file));
+      job.textures.push_back({"tex_" + std::to_string(i) + ".exr", opaqueImage(*m.texture, m.color)});
     }
   }
 

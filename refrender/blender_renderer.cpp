@@ -29,6 +29,7 @@
 #include "motion.h"
 #include "number_format.h"
 #include "scene_translation.h"
+#include "texture_image.h"
 
 
 namespace omnicam {
@@ -299,15 +300,7 @@ nlohmann::json blenderJob(const Scene& scene, const Vec3& worldOrigin, const Ren
 
 // An image omnicam holds in linear floats, as an opaque float OpenEXR's bytes: Cycles reads the
 // same numbers, whatever the scene's file was.
-std::vector<unsigned char> linearExrBytes(const Texture& image) {
-  ImageRGBA exr(image.width(), image.height());
-  const std::vector<float>& rgb = image.rgbLinear();
-  for (size_t p = 0; p < rgb.size() / 3; ++p) {
-    for (int c = 0; c < 3; ++c) exr.pixels[4 * p + c] = rgb[3 * p + c];
-    exr.pixels[4 * p + 3] = 1.0f;
-  }
-  return encodeImage("linear.exr", exr);
-}
+std::vector<unsigned char> linearExrBytes(const Texture& image) { return encodeImage("linear.exr", opaqueImage(image)); }
 
 std::string textureFileName(size_t material) { return "texture_" + std::to_string(material) + ".exr"; }
 

@@ -7,6 +7,7 @@
 #include "errors.h"
 #include "image.h"
 #include "scratch_folder.h"
+#include "texture_image.h"
 
 #include <chrono>
 #include <ctime>
@@ -33,6 +34,17 @@ TEST(Texture, BilinearWithTexelCentresAtHalf) {
   // Repeat wrapping: u = 0 is halfway between the last and the first texel.
   EXPECT_FLOAT_EQ(t.sample(0.0, 0.5).x(), 0.5f);
   EXPECT_FLOAT_EQ(t.sample(1.25, 0.5).x(), 0.0f);
+}
+
+// What the exporters hand other engines: each texel's linear RGB times the tint, in the texture's
+// own row order, opaque.
+TEST(Texture, AnOpaqueImageIsTheTexelsTimesTheTint) {
+  const Texture t(2, 1, {0.1f, 0.2f, 0.3f, 0.5f, 0.75f, 1.0f});
+  const ImageRGBA image = opaqueImage(t, Vec3f(1.0f, 0.5f, 2.0f));
+  ASSERT_EQ(image.width, 2);
+  ASSERT_EQ(image.height, 1);
+  EXPECT_EQ(image.pixels, (std::vector<float>{0.1f, 0.1f, 0.6f, 1.0f, 0.5f, 0.375f, 2.0f, 1.0f}));
+  EXPECT_EQ(opaqueImage(t).pixels, (std::vector<float>{0.1f, 0.2f, 0.3f, 1.0f, 0.5f, 0.75f, 1.0f, 1.0f}));
 }
 
 TEST(Texture, AnyFiniteUvWrapsWithoutLeavingIntRange) {
