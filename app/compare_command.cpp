@@ -18,6 +18,7 @@
 #include "image_compare.h"
 #include "memory_budget.h"
 #include "number_format.h"
+#include "render_records.h"
 
 namespace omnicam::cli {
 
@@ -196,6 +197,7 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   options.tolerance = args.tol;
   options.discOnly = args.disc;
   if (!args.boxDownsample) explainSizes(args);
+  const std::vector<std::string> notes = sidecarNotes(args.a, args.b);
   const CompareResult r = args.diff.empty() && !args.boxDownsample ? compareStreamed(args, options) : compareWhole(args, options);
   const CompareThresholds thresholds = thresholdsOf(args, cmd);
   std::string failure;
@@ -206,12 +208,14 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
     nlohmann::json j = compareResultToJson(r);
     j["verdict"] = verdict;
     if (checked) j["pass"] = failure.empty();
+    j["notes"] = notes;
     std::printf("%s\n", j.dump(2).c_str());
   } else {
     std::printf("compared %ld pixels%s\n  RMSE %.6g  PSNR %.2f dB  SSIM %.5f\n  max abs %.9g at (%d, %d)  max abs of alpha %s  over tol %.6g: %.4f%%\n",
                 r.pixels, args.disc ? " wholly imaged in both (alpha 1)" : "", r.rmse, r.psnrDb, r.ssim, r.maxAbs, r.maxI, r.maxJ,
                 alphaText(r).c_str(), args.tol, 100.0 * r.fracOverTol);
     if (!r.allFinite()) std::printf("  %s\n", nonFiniteText(r).c_str());
+    for (const std::string& note : notes) std::printf("  note: %s\n", note.c_str());
   }
   std::fprintf(args.json ? stderr : stdout, "%s psnr_db=%.2f rmse=%.6g max_abs=%.9g%s\n", verdict, r.psnrDb, r.rmse,
                r.maxAbs, checked ? failure.c_str() : " (no --fail-psnr, --fail-rmse or --fail-max given: nothing checked)");

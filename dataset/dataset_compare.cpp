@@ -23,6 +23,7 @@
 #include "memory_budget.h"
 #include "number_format.h"
 #include "output_kinds.h"
+#include "render_records.h"
 #include "safe_files.h"
 #include "sidecar.h"
 
@@ -31,19 +32,6 @@ namespace omnicam {
 namespace fs = std::filesystem;
 
 namespace {
-
-constexpr double kPoseTolerance = 1e-9;
-
-std::string poseText(const RobotPose& p) {
-  char text[96];
-  std::snprintf(text, sizeof text, "(%.6g, %.6g, %.6g°)", p.x, p.y, p.yawDeg);
-  return text;
-}
-
-bool samePose(const RobotPose& a, const RobotPose& b) {
-  return std::abs(a.x - b.x) <= kPoseTolerance && std::abs(a.y - b.y) <= kPoseTolerance &&
-         std::abs(a.yawDeg - b.yawDeg) <= kPoseTolerance;
-}
 
 // B's image for A's `relative` path when B has no manifest: the same path, .png or .exr (a
 // link there is not followed: it is reported when the image is read).
@@ -360,6 +348,8 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
     matchFolderFrames(a, dirA, dirB, options.commonFramesOnly, result.notes);
   result.frames = pairFrames(a, b, dirA, dirB);
   if (b) {
+    for (const std::string& note : recordedSettingNotes(a.header, b->header, manifestSettings()))
+      result.notes.push_back("the datasets' " + note);
     const std::vector<std::string> rigs = rigNotes(a, *b);
     result.notes.insert(result.notes.end(), rigs.begin(), rigs.end());
   }

@@ -576,6 +576,34 @@ TEST_F(CliTest, CompareGivesPassFailLinesExitCodesAndADiffImage) {
   EXPECT_NE(rays.out.find("rays.exr: not a colour image"), std::string::npos) << rays.out;
 }
 
+// A regression check of a fast render against a ground truth rendered elsewhere: images of
+// another pose are refused (the trial's 5 cm off passed at 31.5 dB), other settings their
+// sidecars record differently are said beside the verdict.
+TEST_F(CliTest, CompareChecksWhatTheImagesSidecarsSayTheyShow) {
+  const std::string fast = path("fast.exr"), moved = path("moved.exr"), lit = path("lit.exr");
+  ASSERT_EQ(run("render " + kScene + " --size 48 --pose=0.3,-0.2,30 -o " + fast).code, 0);
+  ASSERT_EQ(run("render " + kScene + " --size 48 --pose=0.35,-0.2,30 -o " + moved).code, 0);
+  ASSERT_EQ(run("render " + kScene + " --size 48 --pose=0.3,-0.2,30 --shading lit -o " + lit).code, 0);
+  const CommandResult otherPose = run("compare " + fast + " " + moved + " --fail-psnr 10");
+  EXPECT_EQ(otherPose.code, 2) << otherPose.out;
+  EXPECT_EQ(otherPose.out, "omnicam: " + moved + ": rendered at pose (0.35, -0.2, 30°), " + fast +
+                               " at (0.3, -0.2, 30°) (their sidecars): images of different poses are not compared\n");
+  const CommandResult otherShading = run("compare " + fast + " " + lit + " --fail-psnr 10");
+  EXPECT_EQ(otherShading.code, 0) << otherShading.out;
+  EXPECT_NE(otherShading.out.find("\n  note: shading differs: A \"unlit\", B \"lit\"\n"), std::string::npos) << otherShading.out;
+  const CommandResult json = run("compare " + fast + " " + lit + " --json", "", "/dev/null");
+  EXPECT_EQ(nlohmann::json::parse(json.out)["notes"], nlohmann::json::array({"shading differs: A \"unlit\", B \"lit\""}));
+  // Without a sidecar (a photo, an image from elsewhere) nothing is checked.
+  fs::copy_file(moved, path("bare.exr"));
+  EXPECT_EQ(run("compare " + fast + " " + path("bare.exr") + " --fail-psnr 10").code, 0);
+  // A sidecar that cannot be read is said, and the images compared all the same.
+  fs::copy_file(fast, path("broken.exr"));
+  std::ofstream(path("broken.exr.json")) << "{";
+  const CommandResult broken = run("compare " + fast + " " + path("broken.exr") + " --fail-psnr 10");
+  EXPECT_EQ(broken.code, 0) << broken.out;
+  EXPECT_NE(broken.out.find("broken.exr.json"), std::string::npos) << broken.out;
+}
+
 TEST_F(CliTest, ExportWritesARenderablePovrayJob) {
   const CommandResult r = run("export " + kScene + " --to povray --size 48 -o " + path("job"));
   ASSERT_EQ(r.code, 0) << r.out;

@@ -1356,7 +1356,12 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   EXPECT_NE(other.out.find("  note: " + note), std::string::npos) << other.out;
   EXPECT_NE(readFile(dir_ / "rim43.html").find("<b>Note:</b> camera &quot;cam0&quot;: the datasets&#39; rigs differ"), std::string::npos);
   const auto otherJson = testing::runShell(std::string(OMNICAM_BINARY) + " compare " + path("fast") + " " + path("rim43") + " --json 2>" + path("err.txt"));
-  EXPECT_EQ(json::parse(otherJson.out).at("notes"), json({note})) << otherJson.out;
+  // Its scene is another file too (the rim is the scene's rig): said first, by its SHA-256.
+  const auto sceneSha = [&](const char* dataset) {
+    return json::parse(readFile(dir_ / dataset / "manifest.json")).at("scene").at("sha256").get<std::string>();
+  };
+  const std::string sceneNote = "the datasets' scene (its SHA-256) differs: A \"" + sceneSha("fast") + "\", B \"" + sceneSha("rim43") + "\"";
+  EXPECT_EQ(json::parse(otherJson.out).at("notes"), json({sceneNote, note})) << otherJson.out;
 }
 
 // A Blender dataset renders every frame of a camera in one Blender session (Blender starts in
