@@ -19,13 +19,15 @@ namespace {
 // outDir/cycles/, its frames named by the hash of what makes them (the header says what).
 class CyclesFrameCache {
  public:
-  explicit CyclesFrameCache(const TextureRealismOptions& o) : folder_(o.outDir) {
+  CyclesFrameCache(const TextureRealismOptions& o, const Scene& textured) : folder_(o.outDir) {
     folder_.makeFolders("cycles");
     Sha256 key;
-    key.update("omnicam texture-realism cycles frame v1\n");
+    key.update("omnicam texture-realism cycles frame v2\n");
     key.update(readFileInside(o.outDir, "arenas/hall-textured.json", limits::kMaxJsonFileBytes));
     key.update(sha256OfFile(o.labPhoto));
-    key.update(sha256OfFile(blenderDriverFile()));  // how Blender is driven: a changed driver renders anew
+    // What Cycles is given (the job's files at the hall's origin, the driver): a changed exporter,
+    // texture or driver renders anew.
+    key.update(realisticJobDigest(textured, RobotPose{}, o.realistic, o.size, o.realistic.spp, 0));
     key.update(o.realistic.describe() + "\n" + o.realistic.tracing.toJson().dump() + "\n" +
                std::to_string(o.realistic.lampDiameter) + " " + std::to_string(o.realistic.spp) + " " + std::to_string(o.size));
     base_ = key.hex();
@@ -57,7 +59,7 @@ class CyclesFrameCache {
 
 std::vector<ImageRGBA> cyclesFrames(const TextureRealismOptions& o, const Scene& textured, const std::vector<RobotPose>& poses,
                                     const std::function<void()>& step, CyclesCount& count) {
-  const CyclesFrameCache cache(o);
+  const CyclesFrameCache cache(o, textured);
   std::vector<ImageRGBA> frames(poses.size());
   std::vector<size_t> missing;
   for (size_t k = 0; k < poses.size(); ++k) {

@@ -1,8 +1,9 @@
 #pragma once
 // The texture-realism experiment's Cycles frames, kept between runs: outDir/cycles/ holds one
 // linear EXR per frame, named by the hash of what the experiment chooses (the hall's file, the lab
-// photo's bytes, the setup, size, spp, pose, the driver script's bytes; not Blender's version:
-// after changing that, delete the folder). A run that only adds test cameras or conditions renders
+// photo's bytes, the setup, size, spp, pose, and what Cycles is given — the Blender job's files and
+// the driver's bytes, realisticJobDigest; not Blender's version: after changing that, delete the
+// folder). A run that only adds test cameras or conditions renders
 // none.
 #include <functional>
 #include <vector>

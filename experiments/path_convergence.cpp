@@ -89,12 +89,17 @@ double meanInside(const ImageRGBA& image, const ImageRGBA& mask) {
   return sum;
 }
 
+BlenderOptions blenderOptions(double timeoutSeconds, int seed) {
+  BlenderOptions options;
+  options.timeoutSeconds = timeoutSeconds;
+  options.seed = seed;
+  return options;
+}
+
 BlenderFrames blenderFrames(const Scene& scene, const std::vector<RobotPose>& poses, const RenderSettings& settings,
                             const PathConvergenceOptions& o, int seed) {
-  BlenderOptions options;
-  options.timeoutSeconds = o.blenderTimeoutSeconds;
-  options.seed = seed;
-  return renderWithBlenderTimed(scene, std::vector<CameraPlacement>(poses.begin(), poses.end()), settings, options);
+  return renderWithBlenderTimed(scene, std::vector<CameraPlacement>(poses.begin(), poses.end()), settings,
+                                blenderOptions(o.blenderTimeoutSeconds, seed));
 }
 
 // Cycles' frames of one scene cost minutes each: they are kept in outDir/data/ with what they
@@ -116,8 +121,9 @@ nlohmann::json cyclesFramesKey(const Scene& scene, const std::vector<RobotPose>&
   for (const RobotPose& p : poses) key["poses"].push_back({p.x, p.y, p.yawDeg});
   // A scene is also the files it reads (a texture changed under its name is another scene).
   if (!scene.inputDigests.empty()) key["scene_inputs"] = sceneInputsToJson(scene.inputDigests);
-  // How Blender is driven: a changed driver (the linear textures of 2026-12) renders anew.
-  key["blender_driver_sha256"] = sha256OfFile(blenderDriverFile());
+  // What Cycles is given (the job's files for a robot at the origin, the driver's bytes): a changed
+  // exporter or driver (the linear textures of 2026-12) renders anew.
+  key["blender_job_sha256"] = blenderJobDigest(scene, CameraPlacement(RobotPose{}), settings, blenderOptions(0.0, seed));
   return key;
 }
 
@@ -152,6 +158,10 @@ CyclesFrames cachedBlenderFrames(const Scene& scene, const std::string& stem, co
       // Unreadable or another run's: rendered again below.
     }
   }
+  // The key goes before the frames are replaced, and comes back after them: a run stopped between
+  // leaves no key over frames of another.
+  std::error_code ec;
+  fs::remove(keyFile, ec);
   BlenderFrames session = blenderFrames(scene, poses, settings, o, seed);
   CyclesFrames rendered{std::move(session.images), session.timings.batchedFrameSeconds(), session.timings.startupSeconds()};
   for (size_t k = 0; k < poses.size(); ++k) writeImageAtomic(frameFile(k).string(), rendered.frames[k]);

@@ -62,21 +62,50 @@ RealisticRendering convergedReferenceOf(RealisticRendering setup) {
   return setup;
 }
 
+namespace {
+
+// What renderRealistic gives Blender: the hall with the setup's lamps, the settings of one session
+// and the options; `sessions` sessions of settings.spp each.
+struct RealisticJob {
+  Scene scene;
+  RenderSettings settings;
+  BlenderOptions options;
+  int sessions = 1;
+};
+
+RealisticJob realisticJob(const Scene& hall, const RealisticRendering& setup, int size, int spp, int seed, double timeoutSeconds) {
+  if (spp < 1) throw InputError("realistic rendering: spp must be at least 1");
+  RealisticJob job;
+  job.scene = hall;
+  for (PointLight& lamp : job.scene.lights) lamp.diameter = setup.lampDiameter;
+  job.options.timeoutSeconds = timeoutSeconds;
+  job.options.pathTracing = setup.tracing;
+  job.options.seed = seed;
+  job.sessions = std::max(1, (spp + kSamplesPerSession - 1) / kSamplesPerSession);
+  if (job.sessions > 1 && spp % kSamplesPerSession != 0)
+    throw InputError("realistic rendering: above " + std::to_string(kSamplesPerSession) + " spp, a multiple of it");
+  const int sessionSpp = job.sessions > 1 ? kSamplesPerSession : spp;
+  job.settings =
+      requestedSettings(job.scene.rig.resized(size), {{RequestField::Shading, "lit"}, {RequestField::Spp, int64_t{sessionSpp}}});
+  return job;
+}
+
+}  // namespace
+
+std::string realisticJobDigest(const Scene& hall, const RobotPose& pose, const RealisticRendering& setup, int size, int spp,
+                               int seed) {
+  const RealisticJob job = realisticJob(hall, setup, size, spp, seed, 0.0);
+  return blenderJobDigest(job.scene, CameraPlacement(pose), job.settings, job.options) + " sessions " + std::to_string(job.sessions);
+}
+
 std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<RobotPose>& poses,
                                        const RealisticRendering& setup, int size, int spp, int seed,
                                        double timeoutSeconds) {
-  if (spp < 1) throw InputError("realistic rendering: spp must be at least 1");
-  Scene scene = hall;
-  for (PointLight& lamp : scene.lights) lamp.diameter = setup.lampDiameter;
-  BlenderOptions options;
-  options.timeoutSeconds = timeoutSeconds;
-  options.pathTracing = setup.tracing;
-  const int sessions = std::max(1, (spp + kSamplesPerSession - 1) / kSamplesPerSession);
-  if (sessions > 1 && spp % kSamplesPerSession != 0)
-    throw InputError("realistic rendering: above " + std::to_string(kSamplesPerSession) + " spp, a multiple of it");
-  const int sessionSpp = sessions > 1 ? kSamplesPerSession : spp;
-  const RenderSettings settings =
-      requestedSettings(scene.rig.resized(size), {{RequestField::Shading, "lit"}, {RequestField::Spp, int64_t{sessionSpp}}});
+  RealisticJob job = realisticJob(hall, setup, size, spp, seed, timeoutSeconds);
+  const Scene& scene = job.scene;
+  const RenderSettings& settings = job.settings;
+  BlenderOptions& options = job.options;
+  const int sessions = job.sessions;
   std::vector<ImageRGBA> sum;
   for (int k = 0; k < sessions; ++k) {
     options.seed = seed + k;

@@ -32,4 +32,9 @@ std::vector<ImageRGBA> renderRealistic(const Scene& hall, const std::vector<Robo
                                        const RealisticRendering& setup, int size, int spp, int seed,
                                        double timeoutSeconds);
 
+// What Cycles is given for the frame of `pose` (blenderJobDigest), and how many sessions of it:
+// renderRealistic's frames are kept under it.
+std::string realisticJobDigest(const Scene& hall, const RobotPose& pose, const RealisticRendering& setup, int size, int spp,
+                               int seed);
+
 }  // namespace omnicam

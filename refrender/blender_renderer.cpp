@@ -29,6 +29,7 @@
 #include "motion.h"
 #include "number_format.h"
 #include "scene_translation.h"
+#include "sha256.h"
 #include "texture_image.h"
 
 
@@ -422,6 +423,11 @@ void checkBlenderRenders(const std::vector<CameraPlacement>& placements, const R
   checkEngineShading(EngineKind::Blender, settings.shading);
 }
 
+// Cycles renders a direct-light twin of each frame, and omnicam filters the indirect light.
+bool filtersIndirect(const RenderSettings& settings, const BlenderOptions& options) {
+  return (options.pathTracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
+}
+
 BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<CameraPlacement>& worldPlacements,
                                  const RenderSettings& settings, const BlenderOptions& options) {
   if (worldPlacements.empty()) return {};
@@ -430,9 +436,8 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
   const EngineFrame frame = engineFrameNear(worldScene, worldPlacements);
   const Scene& scene = frame.sceneOr(worldScene);
   const std::vector<CameraPlacement>& placements = frame.placements;
-  const PathTracing& tracing = options.pathTracing;
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
-  const bool filtered = (tracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
+  const bool filtered = filtersIndirect(settings, options);
   JobFolder folder("omnicam-blender", options.keepJobFolder);
   const std::string glb = folder.path() + "/scene.glb";
   GltfExportOptions exportOptions;
@@ -453,6 +458,26 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
 }
 
 }  // namespace
+
+std::string blenderJobDigest(const Scene& worldScene, const CameraPlacement& worldPlacement, const RenderSettings& settings,
+                             const BlenderOptions& options) {
+  const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
+  const Scene& scene = frame.sceneOr(worldScene);
+  const bool filtered = filtersIndirect(settings, options);
+  GltfExportOptions exportOptions;
+  exportOptions.placement = frame.placements.front();
+  exportOptions.rig = settings.rig;
+  const nlohmann::json frames = jobFrames(frame.placements, settings, ".", filtered);
+  const nlohmann::json job = blenderJob(scene, frame.worldOrigin, settings, options, "scene.glb", filtered, frames);
+  Sha256 digest;
+  for (const FileBytes& file : blenderJobBytes(scene, settings, exportOptions, job, ".", [](const std::string& name) { return name; },
+                                               std::nullopt)) {
+    digest.update(file.path + "\n" + std::to_string(file.bytes.size()) + "\n");
+    digest.update(std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()));
+  }
+  digest.update(sha256OfFile(blenderDriverFile(options)));
+  return digest.hex();
+}
 
 std::vector<std::string> blenderJobFiles(const Scene& scene, const RenderSettings& settings) {
   std::vector<std::string> files{"scene.glb", "job.json", "blender_driver.py"};

@@ -73,6 +73,12 @@ BlenderFrames renderWithBlenderTimed(const Scene& scene, const std::vector<Camer
 std::vector<ImageRGBA> renderWithBlender(const Scene& scene, const std::vector<CameraPlacement>& placements,
                                          const RenderSettings& settings, const BlenderOptions& options = {});
 
+// SHA-256 of what Cycles is given to render `scene` from `placement`: every file of the job
+// (glTF, textures, environment, job.json) and the driver's bytes. Kept Cycles frames are keyed by
+// it: a changed exporter, texture, setting or driver renders them anew.
+std::string blenderJobDigest(const Scene& scene, const CameraPlacement& placement, const RenderSettings& settings,
+                             const BlenderOptions& options = {});
+
 // A Blender job to render by hand (omnicam export --to blender): DIR/scene.glb, job.json (paths
 // relative to DIR: run it there) and blender_driver.py, with environment.exr for path shading under
 // an environment. blenderJobCommand(), run in DIR, writes DIR/render.exr: Cycles' colour as
