@@ -63,6 +63,12 @@ TEST(JsonDifferences, NameEachDifferingMemberByItsPath) {
   EXPECT_EQ(jsonDifferences(j(R"({"c": [1, 2]})"), j(R"({"c": [1, 2, 3]})")), List{"c"});  // lengths differ
   EXPECT_EQ(jsonDifferences(j("1"), j("\"1\"")), List{""});
   EXPECT_EQ(jsonDifferences(j("[1, 2, 3, 4, 5]"), j("[0, 0, 0, 0, 0]"), 2), (List{"[0]", "[1]"}));
+  // A key is shown as messages show keys: escaped and cut, never a terminal's control sequence or a
+  // forged line of output.
+  const std::vector<std::string> forged = jsonDifferences(j(R"({"m": {"\u001b[2Jevil\nPASS fake": 1}})"), j(R"({"m": {}})"));
+  ASSERT_EQ(forged.size(), 1u);
+  EXPECT_EQ(forged[0], "m." + quote("\x1b[2Jevil\nPASS fake"));
+  EXPECT_EQ(forged[0].find_first_of("\x1b\n"), std::string::npos) << forged[0];
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "json_text.h"
 
+#include "json_fields.h"
+
 #include <algorithm>
 #include <set>
 #include <string_view>
@@ -151,7 +153,8 @@ void collectDifferences(const json& a, const json& b, const std::string& at, siz
     for (const auto& [key, value] : a.items()) keys.insert(key);
     for (const auto& [key, value] : b.items()) keys.insert(key);
     for (const std::string& key : keys) {
-      const std::string member = at.empty() ? key : at + "." + key;
+      // A key is whatever a file holds (a forged one may clear a terminal): as messages show keys.
+      const std::string member = at.empty() ? keySegment(key) : at + "." + keySegment(key);
       if (a.contains(key) != b.contains(key)) {
         if (out.size() < limit) out.push_back(member);  // one has it, the other not (a null included)
       } else {
