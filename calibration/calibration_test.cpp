@@ -20,6 +20,7 @@
 #include "imaged_corners.h"
 #include "omnidir_fit.h"
 #include "make_camera.h"
+#include "memory_budget.h"
 #include "placement.h"
 #include "scene_loader.h"
 #include "target_detection.h"
@@ -247,6 +248,18 @@ ExactViews exactViews(const Camera& camera) {
 // is the one of the function this test links against.
 TEST(CalibrationTargets, TheOmnidirCalibrateOpenedAtRunTimeIsOpenCvsOwn) {
   EXPECT_EQ(::dlsym(RTLD_DEFAULT, kOmnidirCalibrateSymbol), reinterpret_cast<void*>(&cv::omnidir::calibrate));
+}
+
+// cv::omnidir's dense Jacobian grows with corners × views: 20,000 views of 4 corners would take
+// about 300 GB (8 bytes × 2 × 160,000 rows × 120,010 columns, twice). Said before OpenCV allocates
+// any of it, as every other memory shortage is.
+TEST(CalibrationTargets, AFitBeyondMemoryIsAShortageNotAnAllocationFailure) {
+  CalibrationView view;
+  view.targetPoints = {{0, 0, 0}, {0.1, 0, 0}, {0, 0.1, 0}, {0.1, 0.1, 0}};
+  view.raster = {{10, 10}, {20, 10}, {10, 20}, {20, 20}};
+  const std::vector<CalibrationView> views(20000, view);
+  EXPECT_GT(omnidirFitBytes(views), int64_t{300} * 1000 * 1000 * 1000);
+  EXPECT_THROW(calibrateOmnidir(views, 720, 720, OmnidirOptions{}), MemoryShortage);
 }
 
 // The ideal rig's intrinsics are known in closed form (its describe()); OpenCV's omnidir

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "errors.h"
+#include "memory_budget.h"
 
 namespace omnicam {
 
@@ -44,6 +45,15 @@ OmnidirCalibrate omnidirCalibrate() {
 
 }  // namespace
 
+int64_t omnidirFitBytes(const std::vector<CalibrationView>& views) {
+  int64_t points = 0;
+  for (const CalibrationView& v : views) points += static_cast<int64_t>(v.raster.size());
+  const int64_t parameters = 6 * static_cast<int64_t>(views.size()) + 10;
+  // A dense Jacobian (2 rows a corner, 6 columns a view and 10 for the camera) and its transpose,
+  // JᵀJ and its inverse, in doubles.
+  return 8 * (2 * (2 * points) * parameters + 2 * parameters * parameters);
+}
+
 OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, int width, int height,
                                     const OmnidirOptions& o) {
   const bool mirrored = o.handedness == ImageHandedness::Mirrored;
@@ -62,6 +72,7 @@ OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, i
     objectPoints.push_back(object);
     imagePoints.push_back(image);
   }
+  requireMemory(omnidirFitBytes(views), "fitting cv::omnidir to " + std::to_string(views.size()) + " views");
   int flags = 0;
   if (o.fixSkew) flags |= cv::omnidir::CALIB_FIX_SKEW;
   if (o.fixDistortion)

@@ -2,6 +2,7 @@
 // A calibration as a user runs one: OpenCV's cv::omnidir::calibrate (Mei's unified model with
 // radial-tangential distortion, opencv_contrib) from corner observations.
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,11 @@ struct OmnidirCalibration {
   std::vector<int> usedViews;          // the views OpenCV's initialisation kept
   std::vector<Rigid> cameraFromTarget;  // per used view: the target in the fitted camera frame
 };
+
+// The memory cv::omnidir::calibrate takes for `views` (its Gauss-Newton steps hold a dense
+// Jacobian of every corner by every view's pose): calibrateOmnidir requires it first
+// (MemoryShortage, not an allocation failure deep in OpenCV).
+int64_t omnidirFitBytes(const std::vector<CalibrationView>& views);
 
 OmnidirCalibration calibrateOmnidir(const std::vector<CalibrationView>& views, int width, int height,
                                     const OmnidirOptions& options);

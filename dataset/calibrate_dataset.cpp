@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <variant>
 
 #include "calibration_files.h"
@@ -72,6 +73,17 @@ DatasetCalibration calibrateDatasetCamera(const std::string& dir, const DatasetC
   const std::vector<CornersFrame> frames =
       cornersFramesFromJson(reader.fileBytes(std::nullopt, out.camera, "corners", options.checkHashes), calibrationFolder + "/corners.json",
                             static_cast<int>(targetPoints.size()), rig.imageWidth(), rig.imageHeight());
+  // One view per frame of the sequence: a corners.json of more (forged, or another sequence's) would
+  // weigh frames twice and cost the fit memory by the square of its views.
+  const int64_t frameCount = header.value("frame_count", int64_t{0});
+  std::set<int> listed;
+  for (const CornersFrame& frame : frames) {
+    if (frame.frame >= frameCount)
+      throw InputError(showPath(calibrationFolder + "/corners.json") + ": frame " + std::to_string(frame.frame) +
+                       " is beyond the sequence's " + std::to_string(frameCount) + " frames");
+    if (!listed.insert(frame.frame).second)
+      throw InputError(showPath(calibrationFolder + "/corners.json") + ": frame " + std::to_string(frame.frame) + " is listed twice");
+  }
   const nlohmann::json& target = header["calibration"].contains("target") ? header["calibration"]["target"] : nlohmann::json();
   out.target = target.is_string() ? target.get<std::string>() : "";
   out.frames = static_cast<int>(frames.size());

@@ -2085,6 +2085,21 @@ TEST_F(DatasetCliTest, CalibrationSequenceCornersBagAndCornerListsAreWhatToolsRe
   EXPECT_LT(d.at("fit").at("rms_px").get<double>(), 0.3);
   for (const json& h : d.at("held_out")) EXPECT_LT(h.at("median_px").get<double>(), 0.4) << h;
   EXPECT_EQ(omnicam("calibrate " + out + " --camera nope").code, 2);
+  // A corners.json of more views than the sequence has frames (a frame listed twice: forged, with
+  // the manifest's hash made to match) is refused before any fit: it would weigh a frame twice,
+  // and a fit's memory grows with the square of its views.
+  const std::string forged = path("cal_forged");
+  fs::copy(out, forged, fs::copy_options::recursive);
+  json twiceListed = json::parse(readFile(forged + "/cam0/calibration/corners.json"));
+  twiceListed["frames"].push_back(twiceListed["frames"][0]);
+  const std::string cornersText = twiceListed.dump();
+  std::ofstream(forged + "/cam0/calibration/corners.json", std::ios::trunc) << cornersText;
+  json manifest = json::parse(readFile(forged + "/manifest.json"));
+  manifest["cameras"][0]["files"]["corners"]["sha256"] = sha256OfBytes(cornersText);
+  std::ofstream(forged + "/manifest.json", std::ios::trunc) << manifest.dump();
+  const testing::CommandResult twice = omnicam("calibrate " + forged + " --exact-corners");
+  EXPECT_EQ(twice.code, 2) << twice.out;
+  EXPECT_EQ(twice.out, "omnicam: " + forged + "/cam0/calibration/corners.json: frame 0 is listed twice\n");
 
   // Two shards and a merge: the same calibration files, the same bag.
   const std::string sharded = path("cal_shards");
