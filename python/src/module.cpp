@@ -24,6 +24,8 @@ namespace {
 // with its repr: JSON has no such number, and the message should name the field, as the library's
 // own readers do.
 std::optional<std::pair<std::string, std::string>> firstNonFinite(const py::handle& object, const std::string& path) {
+  if (!PyFloat_Check(object.ptr()) && py::hasattr(object, "dtype") && py::hasattr(object, "tolist"))  // numpy's, as fromPython reads them
+    return firstNonFinite(object.attr("tolist")(), path);
   if (PyFloat_Check(object.ptr())) {
     if (std::isfinite(PyFloat_AsDouble(object.ptr()))) return std::nullopt;
     return std::make_pair(path, py::repr(object).cast<std::string>());
@@ -44,11 +46,19 @@ std::optional<std::pair<std::string, std::string>> firstNonFinite(const py::hand
 }  // namespace
 
 nlohmann::json fromPython(const py::handle& object, const std::string& what) {
-  std::string text;
+  std::string text, refused;
+  // numpy's scalars and arrays are numbers and lists (as everywhere else a number is taken); any
+  // other type is named in the message.
+  const py::cpp_function plain([&refused](const py::handle& value) -> py::object {
+    if (py::hasattr(value, "dtype") && py::hasattr(value, "tolist")) return value.attr("tolist")();
+    refused = py::str(py::type::of(value).attr("__name__")).cast<std::string>();
+    throw py::type_error("not JSON-like");
+  });
   try {
-    text = py::module_::import("json").attr("dumps")(object).cast<std::string>();
+    text = py::module_::import("json").attr("dumps")(object, py::arg("default") = plain).cast<std::string>();
   } catch (const py::error_already_set&) {
-    throw InputError(what + ": not JSON-like (dicts, lists, numbers, strings, booleans, None)");
+    throw InputError(what + ": not JSON-like (dicts, lists, numbers, strings, booleans, None" +
+                     (refused.empty() ? std::string(")") : std::string("; got a ") + quote(refused) + ")"));
   }
   // Python's json writes NaN and Infinity, which JSON (and the scene format) has not.
   const nlohmann::json parsed = nlohmann::json::parse(text, nullptr, false);

@@ -264,6 +264,16 @@ def test_recording_is_the_datasets_camera_drawn_for_the_frame(robocup, tmp_path)
         renderer.render(pose, size=32, recording={"bayer": "rgbg"})
     with pytest.raises(omnicam.InputError, match=r"recording\.exposure_ev\.uniform: lo > hi"):
         renderer.render(pose, size=32, recording={"exposure_ev": {"uniform": [1, 0]}})
+    # numpy's numbers are numbers here too (as everywhere a number is taken): the same frame.
+    by_numpy = {"preset": "webcam", "seed": np.int64(7), "exposure_ev": np.float32(0.5), "jpeg_quality": np.int64(90),
+                "white_balance": np.array([1.1, 1.0, 0.9])}
+    by_python = {"preset": "webcam", "seed": 7, "exposure_ev": 0.5, "jpeg_quality": 90, "white_balance": [1.1, 1.0, 0.9]}
+    np.testing.assert_array_equal(renderer.render(pose, size=32, recording=by_numpy)["rgb"],
+                                  renderer.render(pose, size=32, recording=by_python)["rgb"])
+    with pytest.raises(omnicam.InputError, match=r'^recording: not JSON-like \(.*; got a "PosixPath"\)$'):
+        renderer.render(pose, size=32, recording={"preset": tmp_path})
+    with pytest.raises(omnicam.InputError, match=r"^recording: exposure_ev: must be a finite number \(got nan\)"):
+        renderer.render(pose, size=32, recording={"exposure_ev": np.float32("nan")})
 
 
 def test_srgb8_gives_the_codes_of_the_clis_png(robocup, tmp_path):
