@@ -147,7 +147,7 @@ void readSampling(const RequestFields& f, const Reader& r, RenderRequest& q) {
   if (const auto seed = f.integer(F::Seed)) {
     // Only path-traced frames draw random numbers: anywhere else a seed would change nothing.
     if (q.shading != Shading::Path && q.engine != "blender")
-      r.fail(F::Seed, "only with " + r.name(F::Shading) + " path or " + r.name(F::Engine) + " blender (nothing else is random)");
+      r.fail(F::Seed, "only with " + r.name(F::Shading) + " path or " + r.name(F::Engine) + " blender (nothing else is random; a recording camera's draws take the \"seed\" of the recording)");
     constexpr int64_t kMaxSeed = int64_t{1} << 53;  // exact in every JSON reader and in Python
     if (*seed < 0 || *seed > kMaxSeed) r.fail(F::Seed, "must be in [0, 2^53] (got " + std::to_string(*seed) + ")");
     q.seed = static_cast<uint64_t>(*seed);

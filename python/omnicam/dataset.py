@@ -42,8 +42,9 @@ class Dataset:
     - ``robot_tilt_deg``: the robot's (roll, pitch), (0, 0) for a level robot;
     - ``rig``: the omnicam.Rig the frame was rendered with (a vibrating robot's frame rig, else
       the camera's rig);
-    - ``recording``: the recording camera drawn for this frame and camera (a dict in the spec's
-      ``recording`` format, every value fixed), or None when the spec draws nothing;
+    - ``recording``: the recording camera of this frame and camera (a dict in the spec's
+      ``recording`` format, every value fixed): the values drawn for it, or the spec's own when it
+      draws nothing; None without a recording camera;
     - ``camera`` and ``intrinsics`` (the manifest's entry for the camera: the model and its
       parameters);
     - one entry per output the dataset holds, or per output asked for in ``outputs``:

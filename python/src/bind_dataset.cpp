@@ -107,6 +107,14 @@ void bindDatasetReader(py::module_& m) {
       .def_property_readonly("frames", &DatasetReader::frames)
       .def("frame", [](const DatasetReader& r, int index) {
         const FrameRecord& f = r.frame(index);
+        // A recording camera that draws nothing is the spec's in every frame: its values, as a drawn
+        // one's are (the manifest records per frame only what was drawn).
+        std::optional<nlohmann::json> fixedRecording;
+        const nlohmann::json& header = r.manifest().header;
+        if (header.contains("spec") && header["spec"].is_object() && header["spec"].contains("recording")) {
+          const RecordingCameraSpec spec = recordingCameraSpecFromJson(header["spec"]["recording"], r.dir() + "/manifest.json", "spec.recording");
+          if (!spec.randomised()) fixedRecording = recordingCameraToJson(spec.draw(0));
+        }
         py::dict cameras;
         for (const auto& [name, camera] : f.cameras) {
           py::dict files;
@@ -114,6 +122,7 @@ void bindDatasetReader(py::module_& m) {
           py::dict entry(py::arg("pose") = poseTuple(camera.pose), py::arg("files") = files);
           if (camera.rig) entry["rig"] = py::cast(*camera.rig);  // a vibrating robot's frame rig
           if (camera.recording) entry["recording"] = toPython(recordingCameraToJson(*camera.recording));  // drawn values
+          else if (fixedRecording) entry["recording"] = toPython(*fixedRecording);
           cameras[py::str(name)] = entry;
         }
         const BodyVelocity& v = f.velocity;

@@ -199,6 +199,26 @@ def test_items_carry_the_recording_camera_drawn_for_them(tmp_path):
 
 
 
+def test_a_fixed_recording_camera_is_each_items_recording_too(tmp_path, robocup):
+    """A recording camera that draws nothing is no "None": each item carries its values (the
+    spec's, every setting that acts), and render() records the frame with them."""
+    recording = {"exposure_ev": 0.3, "jpeg_quality": 80, "white_balance": [1.12, 1.0, 0.84]}
+    spec = tmp_path / "spec.json"
+    spec.write_text(json.dumps({
+        "format": "omnicam-dataset/1", "scene": str(SOURCE / "scenes" / "robocup2006.json"),
+        "size": 32, "poses": {"path": "thesis-loop", "frames": 2}, "recording": recording,
+        "outputs": {"rgb": "png", "depth": False, "instance": False, "semantic": False, "normal": False, "landmarks": False}}))
+    omnicam.run_dataset(str(spec), str(tmp_path / "ds"))
+    dataset = omnicam.Dataset(tmp_path / "ds")
+    item = dataset[1]
+    assert item["recording"] is not None
+    for key, value in recording.items():
+        assert item["recording"][key] == value, key
+    assert dataset[0]["recording"] == item["recording"]
+    again = omnicam.Renderer(robocup).render(item["robot_pose"], size=32, recording=item["recording"], frame=1)
+    np.testing.assert_allclose(again["rgb"], item["rgb"], atol=1e-6)
+
+
 def test_a_scene_reads_files_outside_its_folder_only_when_the_caller_allows_it(tmp_path):
     (tmp_path / "scene").mkdir()
     (tmp_path / "scene" / "scene.json").write_bytes((SOURCE / "tests" / "bad_inputs" / "scenes" / "texture_outside.json").read_bytes())
