@@ -95,16 +95,7 @@ void writeWithViews(const std::string& imageFile, const RenderedFile& rendered, 
 // --recording: a preset's name, or a file holding one `recording` object (docs/experiments.md).
 std::optional<RecordingCameraSpec> readRecordingFlag(const std::string& text, const CLI::App& cmd) {
   if (cmd.count("--recording") == 0) return std::nullopt;
-  if (text.empty()) throw InputError("--recording: give a preset's name or a JSON file (docs/experiments.md)");
-  std::error_code ec;
-  if (std::filesystem::is_regular_file(text, ec)) return recordingCameraSpecFromJson(readJsonFile(text), text, "");
-  // What looks like a file is said to be missing, not taken for a preset's name (a folder named
-  // webcam does not hide the preset).
-  const bool path = text.find('/') != std::string::npos || text.ends_with(".json");
-  if (path)
-    throw InputError("--recording: " + showPath(text) + (std::filesystem::exists(text, ec) ? ": not a file" : ": no such file") +
-                     " (a preset's name or a JSON file)");
-  return recordingCameraSpecFromJson(nlohmann::json(text), "--recording", "", "a JSON file of the stages' fields");
+  return recordingCameraSpecFromNameOrFile(text, "--recording");
 }
 
 // Frame `frame` (0 for a single image) through the recording camera drawn for it, which its

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <set>
@@ -512,6 +513,18 @@ std::vector<std::pair<std::string, std::string>> describeValues(const RecordingC
   for (const Parameter& p : parameters())
     values.emplace_back(p.name, drawText(p, ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {p.get(camera)}}));
   return values;
+}
+
+RecordingCameraSpec recordingCameraSpecFromNameOrFile(const std::string& text, const std::string& field) {
+  if (text.empty()) throw InputError(field + ": give a preset's name or a JSON file (docs/experiments.md)");
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(text, ec)) return recordingCameraSpecFromJson(readJsonFile(text), text, "");
+  // A folder named webcam does not hide the preset.
+  const bool path = text.find('/') != std::string::npos || text.ends_with(".json");
+  if (path)
+    throw InputError(field + ": " + showPath(text) + (std::filesystem::exists(text, ec) ? ": not a file" : ": no such file") +
+                     " (a preset's name or a JSON file)");
+  return recordingCameraSpecFromJson(nlohmann::json(text), field, "", "a JSON file of the stages' fields");
 }
 
 }  // namespace omnicam

@@ -50,6 +50,10 @@ struct RecordingCameraSpec {
 RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const std::string& file,
                                                 const std::string& where = "recording",
                                                 const std::string& ownCamera = "an object of the stages' fields");
+// A preset's name, or a file holding one recording object, as a command line or a keyword gives
+// it (`field`: "--recording", "recording"): what looks like a file (a '/', a .json name) and is
+// none is said to be missing, not taken for a preset's name.
+RecordingCameraSpec recordingCameraSpecFromNameOrFile(const std::string& text, const std::string& field);
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec);
 // A spec that always gives `camera`.
 RecordingCameraSpec fixedRecordingCameraSpec(const RecordingCamera& camera);

@@ -8,7 +8,7 @@ import numpy as np
 import numpy.typing as npt
 
 # A file or folder: a str or an os.PathLike such as pathlib.Path.
-PathLike = Union[str, "os.PathLike[str]"]
+PathLike = Union[str, os.PathLike[str]]
 
 __version__: str
 
@@ -100,7 +100,7 @@ class Renderer:
                velocity: Optional[Tuple[float, float, float]] = ..., bounces: Optional[int] = ...,
                seed: Optional[int] = ..., denoise: bool = ..., adaptive_spp: Optional[int] = ...,
                target_error: Optional[float] = ...,
-               recording: Optional[Union[str, Dict[str, Any]]] = ..., frame: Optional[int] = ...) -> Dict[str, np.ndarray]: ...
+               recording: Optional[Union[PathLike, Dict[str, Any]]] = ..., frame: Optional[int] = ...) -> Dict[str, np.ndarray]: ...
     @property
     def engine(self) -> str: ...
     @property
@@ -111,7 +111,7 @@ def render(scene: Scene, pose: Optional[Pose] = ..., *, engine: Optional[str] = 
            velocity: Optional[Tuple[float, float, float]] = ..., bounces: Optional[int] = ...,
            seed: Optional[int] = ..., denoise: bool = ..., adaptive_spp: Optional[int] = ...,
            target_error: Optional[float] = ...,
-           recording: Optional[Union[str, Dict[str, Any]]] = ..., frame: Optional[int] = ...) -> Dict[str, np.ndarray]: ...
+           recording: Optional[Union[PathLike, Dict[str, Any]]] = ..., frame: Optional[int] = ...) -> Dict[str, np.ndarray]: ...
 
 def run_dataset(spec: PathLike, out: PathLike, *, overwrite: bool = ..., threads: int = ...,
                 progress: Optional[Callable[[int, int], None]] = ..., allow_outside_files: bool = ...) -> Dict[str, Any]: ...

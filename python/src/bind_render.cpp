@@ -88,7 +88,10 @@ class PyRenderer {
     // None, not 0, by default: frame=0 without recording= changes nothing, and is refused as any
     // other frame is.
     const uint64_t frame = frameArg ? static_cast<uint64_t>(narrowed(*frameArg, "frame", 0, INT64_MAX)) : 0;
-    if (!recording.is_none())
+    if (py::isinstance<py::str>(recording) || py::hasattr(recording, "__fspath__"))  // a preset's name or a file, as --recording
+      camera = recordingCameraSpecFromNameOrFile(py::module_::import("os").attr("fspath")(recording).cast<std::string>(), "recording")
+                   .draw(frame);
+    else if (!recording.is_none())
       camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "", "recording").draw(frame);
     else if (frameArg)  // a setting that changes nothing is refused, as a flag would be
       throw InputError("frame: only with recording= (it picks the recording camera drawn for that frame)");
@@ -212,8 +215,8 @@ datasets name and store them: any of "rgb" (H, W, 4) float32 linear, premultipli
 "depth" (H, W) float32 metres along the viewing ray; "instance" and "semantic" (H, W) uint16 ids
 (Scene.ids); "normal" (H, W, 3) float32 world-frame. AOVs (all but rgb) are point-sampled at
 pixel centres, fast engine only. recording: what a real camera makes of the colour (AOVs stay
-exact): a preset's name ("webcam", "machine_vision", "phone") or a dict in a dataset's
-`recording` format (docs/experiments.md), its distributions drawn for `frame` (None: frame 0; only with recording=) from
+exact): a preset's name ("webcam", "machine_vision", "phone"), a dict in a dataset's
+`recording` format (docs/experiments.md) or a JSON file of one (a path, as --recording takes), its distributions drawn for `frame` (None: frame 0; only with recording=) from
 its seed, as a dataset draws frame × cameras + camera. Returns a dict
 of numpy arrays that own the rendered buffers (no copy). The GIL is released while rendering.
 Every setting's default and range: docs/render-settings.md.)";

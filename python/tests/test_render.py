@@ -272,6 +272,14 @@ def test_recording_is_the_datasets_camera_drawn_for_the_frame(robocup, tmp_path)
                                   renderer.render(pose, size=32, recording=by_python)["rgb"])
     with pytest.raises(omnicam.InputError, match=r'^recording: not JSON-like \(.*; got a "PosixPath"\)$'):
         renderer.render(pose, size=32, recording={"preset": tmp_path})
+    # A file of one recording object, as --recording takes it: a path or its text.
+    camera_file = tmp_path / "camera.json"
+    camera_file.write_text(json.dumps(by_python))
+    for given in (camera_file, str(camera_file)):
+        np.testing.assert_array_equal(renderer.render(pose, size=32, recording=given)["rgb"],
+                                      renderer.render(pose, size=32, recording=by_python)["rgb"])
+    with pytest.raises(omnicam.InputError, match=r"^recording: .*nope\.json: no such file \(a preset's name or a JSON file\)$"):
+        renderer.render(pose, size=32, recording=tmp_path / "nope.json")
     with pytest.raises(omnicam.InputError, match=r"^recording: exposure_ev: must be a finite number \(got nan\)"):
         renderer.render(pose, size=32, recording={"exposure_ev": np.float32("nan")})
 
