@@ -98,10 +98,10 @@ void checkFinalFiles(const ExperimentArgs& a, const std::vector<std::string>& fi
 
 void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
   refuseTextureRealismFlags(cmd);
-  refuseUnless(cmd, "--doc", false, "experiment texture-realism");
+  refuseUnless(cmd, "--doc", false, "experiment texture-realism, calibration or path-convergence");
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
   checkOutputFolder(a.out, "-o");
-  checkFinalFiles(a, {"convergence.json"});
+  checkFinalFiles(a, {"convergence.json", "convergence.md"});
   checkExperimentFolder(a.out, a.name);
   ConvergenceOptions options = a.quick ? ConvergenceOptions::quick() : ConvergenceOptions();
   options.outDir = a.out;
@@ -116,8 +116,11 @@ void runConvergence(const ExperimentArgs& a, const CLI::App& cmd) {
       options, a.noFigures ? "" : experimentsDir() + "/plot_convergence.py",
       std::ref(progress));
   progress.finish();
-  std::printf("%s", convergenceMarkdown(r, a.noFigures ? "" : "figures/convergence.svg").c_str());
-  std::printf("wrote %s (%.0f s)\n", showPath(a.out + "/convergence.json").c_str(), r.seconds);
+  const std::string markdown = convergenceMarkdown(r, a.noFigures ? "" : "figures/convergence.svg");
+  writeTextAtomically(a.out + "/convergence.md", markdown);
+  std::printf("%s", markdown.c_str());
+  std::printf("wrote %s and %s (%.0f s)\n", showPath(a.out + "/convergence.json").c_str(), showPath(a.out + "/convergence.md").c_str(),
+              r.seconds);
 }
 
 // Replaces the generated section of `doc` (from "## Measured" to the next "## " heading) with
@@ -371,7 +374,7 @@ void runArena(const ArenaArgs& a, const CLI::App& cmd) {
 
 void addExperimentCommands(CLI::App& app) {
   auto args = std::make_shared<ExperimentArgs>();
-  CLI::App* cmd = app.add_subcommand("experiment", "Run one of the thesis' experiments (docs/texture-realism.md)");
+  CLI::App* cmd = app.add_subcommand("experiment", "Run one of the thesis' experiments (docs/experiments.md)");
   cmd->add_option("name", args->name,
                   "texture-realism, realistic-convergence (how converged its Blender frames are), path-convergence (the "
                   "fast renderer's path shading against Cycles, docs/path-tracing.md), or calibration (what misalignment "

@@ -41,6 +41,7 @@ CalibrationStudyOptions CalibrationStudyOptions::quick() {
   o.tiltsDeg = {};
   o.distortedLens = false;
   o.seeds = 1;
+  o.reduced = true;
   return o;
 }
 

@@ -38,6 +38,7 @@ struct CalibrationStudyOptions {
   RecordingCamera recording = RecordingCamera::webcam();
   // The sweep at its smallest: the ideal rig and 2 mm across and along the axis, one seed of
   // twelve views (720 px: AprilTag finds too few corners at 360 px).
+  bool reduced = false;  // quick(): too few rigs and seeds for the study's numbers (the report says so)
   static CalibrationStudyOptions quick();
 };
 

@@ -254,6 +254,9 @@ std::string calibrationStudyMarkdown(const CalibrationStudyResults& r, const Cal
   md << "## Headline\n\nWhere a calibration looks fine (training RMS < " << fixedDecimals(kGoodRmsPx, 1) << " px) while it errs by more than "
      << fixedDecimals(kBadHeldOutPx, 0) << " px on held-out points 0.5 m away (amounts interpolated between the swept ones, medians over "
      << "seeds, no lens):\n\n"
+     << (o.reduced ? "*A quick run (`--quick`: one offset each way, one seed): the amounts are interpolated between too few "
+                     "rigs to be the study's; docs/calibration-study.md holds the full run's.*\n\n"
+                   : "")
      << headline(r, o) << "\n";
   md << "## The ideal rig: recovered against the closed form\n\n| corners from | ξ | γx | γy | cx | cy | RMS px |\n|---|---:|---:|---:|---:|---:|---:|\n";
   idealRigTable(md, r, o);

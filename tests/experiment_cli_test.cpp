@@ -109,6 +109,8 @@ void expectQuickConvergenceStudy(const std::string& folder, const std::string& p
   EXPECT_GT(readImage(folder + "/frames/today_16spp.png").width, 0);
   EXPECT_TRUE(fs::exists(folder + "/figures/convergence.svg"));
   EXPECT_NE(printed.find("## Are the realistic frames converged?"), std::string::npos) << printed;
+  // The report is kept in the folder too, as every other experiment's is.
+  EXPECT_NE(printed.find(testing::readFile(folder + "/convergence.md")), std::string::npos) << printed;
 }
 
 TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
@@ -645,6 +647,7 @@ TEST_F(ExperimentCliTest, ConvergenceOptionsAreCheckedBeforeAnythingRuns) {
   r = omnicam("experiment realistic-convergence --quick -o " + path("conv") + " --doc " + path("doc.md"));
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_TRUE(testing::isOneLine(r.out)) << r.out;
+  EXPECT_NE(r.out.find("--doc: only with experiment texture-realism, calibration or path-convergence"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(path("doc.md")));
 }
 
