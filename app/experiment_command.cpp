@@ -3,6 +3,7 @@
 // omnicam arena hall [--photo IMG] [--random-photos --photo IMG... --seed S] -o SCENE.json
 // omnicam arena mapping [--seed S] -o SCENE.json
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -182,8 +183,31 @@ void writeFigureBeside(const std::string& doc, const std::string& name, const st
   writeTextAtomically((docFolder / "figures" / name).string(), bytes);
 }
 
-// The study's results, read before anything is written (an output folder is untrusted input).
-ConvergenceResults readConvergence(const std::string& folder) {
+// The study's folder as read: its results, and its figure when it has one.
+struct ConvergenceFolder {
+  ConvergenceResults results;
+  std::optional<std::string> svg;
+};
+
+// The study's figure, checked: it goes into documents others open, so what matplotlib never
+// writes — scripts, event handlers, links out, embedded HTML — is refused, not copied.
+std::optional<std::string> readConvergenceFigure(const std::string& folder) {
+  if (entryInside(folder, "figures/convergence.svg") != EntryKind::File) return std::nullopt;
+  const std::string svg = readFileInside(folder, "figures/convergence.svg", 4 << 20);
+  if (svg.find("<svg") == std::string::npos)
+    throw InputError(showPath(folder + "/figures/convergence.svg") + ": not the study's SVG figure");
+  std::string lower(svg.size(), ' ');
+  std::transform(svg.begin(), svg.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* active : {"<script", "javascript:", "<foreignobject", "<iframe", " onload", " onclick", " onerror", " onmouse",
+                             "xlink:href=\"http", "href=\"http"})
+    if (lower.find(active) != std::string::npos)
+      throw InputError(showPath(folder + "/figures/convergence.svg") + ": holds " + quote(active) +
+                       ", which the study's figure never does: not copied into the documents");
+  return svg;
+}
+
+// The study's results and figure, read before anything is written (an output folder is untrusted input).
+ConvergenceFolder readConvergence(const std::string& folder) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
     throw InputError("--convergence: " + showPath(folder) + (std::filesystem::exists(folder, ec) ? ": not a folder" : ": no such folder") +
@@ -192,19 +216,17 @@ ConvergenceResults readConvergence(const std::string& folder) {
     throw InputError("--convergence: " + showPath(folder) + ": not a realistic-convergence folder (it holds no convergence.json; give the -o "
                      "folder of `omnicam experiment realistic-convergence`)");
   const std::string file = folder + "/convergence.json";
-  return convergenceFromJson(parseJsonText(readFileInside(folder, "convergence.json", 64 << 20), file), file);
+  return {convergenceFromJson(parseJsonText(readFileInside(folder, "convergence.json", 64 << 20), file), file),
+          readConvergenceFigure(folder)};
 }
 
 // The study's section for the documents; the study's figure is copied beside each that shows it
 // (the run's own texture-realism.md in `out`, and --doc's).
-std::string convergenceSection(const ConvergenceResults& r, const std::string& folder, const std::string& out, const std::string& doc) {
-  if (entryInside(folder, "figures/convergence.svg") != EntryKind::File) return convergenceMarkdown(r, "");
-  const std::string svg = readFileInside(folder, "figures/convergence.svg", 4 << 20);
-  if (svg.find("<svg") == std::string::npos)
-    throw InputError(showPath(folder + "/figures/convergence.svg") + ": not the study's SVG figure");
-  writeFigureBeside((std::filesystem::path(out) / "texture-realism.md").string(), "realistic_convergence.svg", svg);
-  if (!doc.empty()) writeFigureBeside(doc, "realistic_convergence.svg", svg);
-  return convergenceMarkdown(r, "figures/realistic_convergence.svg");
+std::string convergenceSection(const ConvergenceFolder& study, const std::string& out, const std::string& doc) {
+  if (!study.svg) return convergenceMarkdown(study.results, "");
+  writeFigureBeside((std::filesystem::path(out) / "texture-realism.md").string(), "realistic_convergence.svg", *study.svg);
+  if (!doc.empty()) writeFigureBeside(doc, "realistic_convergence.svg", *study.svg);
+  return convergenceMarkdown(study.results, "figures/realistic_convergence.svg");
 }
 
 // Without --convergence, the study's section an earlier run wrote into the document (its figure
@@ -279,7 +301,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (a.name == "path-convergence") return runPathStudy(a, cmd);
   if (a.name == "calibration") return runCalibration(a, cmd);
   refuseUnless(cmd, "--noise-scene", false, "experiment path-convergence");
-  std::optional<ConvergenceResults> convergence;
+  std::optional<ConvergenceFolder> convergence;
   if (!a.convergence.empty()) convergence = readConvergence(a.convergence);
   checkOutputFolder(a.out, "-o");
   checkFinalFiles(a, {"results.json", "report.html", "texture-realism.md"});
@@ -322,7 +344,7 @@ void runExperiment(const ExperimentArgs& a, const CLI::App& cmd) {
   if (!a.doc.empty()) command += " --doc " + shellPath(a.doc);
   if (!a.convergence.empty()) command += " --convergence CONVERGENCE_DIR";
   for (const std::string& file : a.testCameras) command += " --test-camera " + shellPath(file);
-  const std::string section = convergence ? convergenceSection(*convergence, a.convergence, a.out, a.doc) : keptConvergenceSection(a.doc);
+  const std::string section = convergence ? convergenceSection(*convergence, a.out, a.doc) : keptConvergenceSection(a.doc);
   const std::string markdown = textureRealismMarkdown(results, options, command, section);
   writeTextAtomically(a.out + "/texture-realism.md", markdown);
   if (!a.doc.empty()) {

@@ -1,6 +1,7 @@
 #include "manifest.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -334,6 +335,31 @@ ShardFrames shardFrames(int totalFrames, int index, int count) {
           static_cast<int>(static_cast<int64_t>(totalFrames) * (index + 1) / count)};
 }
 
+// Each frame file where omnicam names it — <camera>/<kind>/<index as 6 digits>.<ext>, or a EuRoC
+// colour frame's <camera>/data/<ns>.png — and no file two records': a forged manifest that points
+// every frame at one image would otherwise verify, and compare one frame as many.
+void checkFramePaths(const DatasetManifest& manifest, const std::string& file) {
+  std::map<std::string, std::string> owners;  // path → the record that names it
+  for (const auto& [index, frame] : manifest.frames)
+    for (const auto& [camera, files] : frame.cameras)
+      for (const auto& [kind, record] : files.files) {
+        const std::string where = "frame " + std::to_string(index) + " camera " + quote(camera) + " " + quote(kind);
+        char digits[16];
+        std::snprintf(digits, sizeof digits, "%06d.", index);
+        const std::string own = camera + "/" + kind + "/", euroc = camera + "/data/", stem = digits;
+        const bool named = record.path.starts_with(own) ? record.path.compare(own.size(), stem.size(), stem) == 0
+                           : kind == outputName(kColourOutput) && record.path.starts_with(euroc)
+                               ? record.path.size() > euroc.size() + 4 && record.path.ends_with(".png") &&
+                                     record.path.find_first_not_of("0123456789", euroc.size()) == record.path.size() - 4
+                               : false;
+        if (!named)
+          throw InputError(showPath(file) + ": " + where + ": " + quote(record.path) + " is not where omnicam names that file (" +
+                           own + stem + "…)");
+        const auto [owner, fresh] = owners.emplace(record.path, where);
+        if (!fresh) throw InputError(showPath(file) + ": " + where + ": " + quote(record.path) + " is " + owner->second + "'s file too");
+      }
+}
+
 DatasetManifest manifestFromText(const std::string& text, const std::string& file) {
   // A manifest holds its spec one level down.
   json root = parseJsonText(text, file, limits::kMaxJsonDepth + 1);
@@ -349,6 +375,7 @@ DatasetManifest manifestFromText(const std::string& text, const std::string& fil
     if (!manifest.frames.emplace(index, std::move(frame)).second)
       throw InputError(showPath(file) + ": " + where + ".index: frame " + std::to_string(index) + " listed twice");
   }
+  checkFramePaths(manifest, file);
   root.erase("frames");
   manifest.header = std::move(root);
   return manifest;

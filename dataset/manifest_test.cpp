@@ -73,10 +73,12 @@ FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
     camera.pose = frame.robot;
     camera.rig = rig;
     camera.recording = recording;
-    for (const char* kind : {"rgb", "depth", "instance", "semantic", "normal", "landmarks"})
-      camera.files[kind] = {name + "/" + kind + "/" + std::to_string(index) + ".json", kHash};
-    // The longest file name: EuRoC's, a 19-digit timestamp in ns.
-    camera.files["multilayer"] = {name + "/multilayer/8640000000000000000.exr", kHash};
+    char stem[16];
+    std::snprintf(stem, sizeof stem, "%06d", index);
+    for (const char* kind : {"depth", "instance", "semantic", "normal", "landmarks", "multilayer"})
+      camera.files[kind] = {name + "/" + kind + "/" + stem + ".json", kHash};
+    // The longest file name: EuRoC's colour frame, a 19-digit timestamp in ns.
+    camera.files["rgb"] = {name + "/data/" + std::to_string(8640000000000000000ull - static_cast<uint64_t>(index)) + ".png", kHash};
   }
   return frame;
 }
@@ -131,7 +133,7 @@ std::string errorOf(const json& manifest) {
 }
 
 TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
-  DatasetManifest manifest{smallHeader({"cam0", "cam1"}, 1), {}};
+  DatasetManifest manifest{smallHeader({"cam0", "cam1"}, 2), {}};
   manifest.frames[0] = longestFrame(0, {"cam0", "cam1"});
   const json good = manifestToJson(manifest);
   EXPECT_EQ(errorOf(good), "");
@@ -144,6 +146,26 @@ TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
               0u)
         << bad << ": " << errorOf(m);
   }
+  // A frame file where omnicam does not name it (another frame's, another kind's), or one file named
+  // by two records: refused, or a forged manifest pointing every frame at one image verifies.
+  manifest.frames[1] = longestFrame(1, {"cam0", "cam1"});
+  const json two = manifestToJson(manifest);
+  ASSERT_EQ(errorOf(two), "");
+  const std::string frame1Depth = two["frames"][1]["cameras"]["cam0"]["files"]["depth"]["path"];
+  for (const auto& [path, error] : std::vector<std::pair<std::string, std::string>>{
+           {"cam0/depth/000000.json", "\"cam0/depth/000000.json\" is not where omnicam names that file (cam0/depth/000001.…)"},
+           {"cam0/normal/000001.json", "\"cam0/normal/000001.json\" is not where omnicam names that file (cam0/depth/000001.…)"},
+           {"cam0/data/1.png", "\"cam0/data/1.png\" is not where omnicam names that file (cam0/depth/000001.…)"}}) {
+    json m = two;
+    m["frames"][1]["cameras"]["cam0"]["files"]["depth"]["path"] = path;
+    EXPECT_EQ(errorOf(m), "manifest.json: frame 1 camera \"cam0\" \"depth\": " + error) << path;
+  }
+  json same = two;
+  same["frames"][1]["cameras"]["cam0"]["files"]["rgb"] = two["frames"][0]["cameras"]["cam0"]["files"]["rgb"];
+  EXPECT_EQ(errorOf(same), "manifest.json: frame 1 camera \"cam0\" \"rgb\": \"" +
+                               two["frames"][0]["cameras"]["cam0"]["files"]["rgb"]["path"].get<std::string>() +
+                               "\" is frame 0 camera \"cam0\" \"rgb\"'s file too");
+  EXPECT_EQ(frame1Depth, "cam0/depth/000001.json");
   json m = good;
   m["cameras"][1]["name"] = "cam0";
   EXPECT_EQ(errorOf(m), "manifest.json: cameras[1].name: duplicate camera name \"cam0\"");

@@ -301,7 +301,9 @@ PathConvergenceResults runPathConvergence(const PathConvergenceOptions& o, const
           seeds.size() < 2 ? 0.0 : squaredLevels(measureRenderNoise(seeds[0], seeds[1]).psnrDb) / 2.0 / seeds.size();
       if (referenceNoise > 0.0) f.referenceNoiseDb = psnrOf(referenceNoise);
       if (fastNoise > 0.0) f.fastNoiseDb = psnrOf(fastNoise);
-      f.disagreementDb = psnrOf(std::max(0.0, squaredLevels(f.convergedPsnrDb) - referenceNoise - fastNoise));
+      // Only where both noises were measured: otherwise what is left still holds the other's noise.
+      if (referenceNoise > 0.0 && fastNoise > 0.0)
+        f.disagreementDb = psnrOf(std::max(0.0, squaredLevels(f.convergedPsnrDb) - referenceNoise - fastNoise));
       f.filterBiasPsnrDb = measureRenderNoise(filtered, converged).psnrDb;
       f.chosenPsnrDb = measureRenderNoise(chosen, references[k]).psnrDb;
       f.cyclesPsnrDb = measureRenderNoise(cycles[k], references[k]).psnrDb;
@@ -374,7 +376,7 @@ std::string pathConvergenceMarkdown(const PathConvergenceResults& r, const std::
   for (const PathFrameResult& f : r.frames)
     md << "| " << f.scene << " | (" << fixedDecimals(f.pose.x, 1) << ", " << fixedDecimals(f.pose.y, 1) << ", " << fixedDecimals(f.pose.yawDeg, 0)
        << "°) | " << fixedDecimals(f.convergedPsnrDb, 2) << " | " << orDash(f.referenceNoiseDb) << " | " << orDash(f.fastNoiseDb)
-       << " | " << (f.disagreementDb >= 99.0 ? std::string("within the noise") : fixedDecimals(f.disagreementDb, 2))
+       << " | " << (f.disagreementDb >= 99.0 ? std::string("within the noise") : orDash(f.disagreementDb))
        << " | " << fixedDecimals(f.meanRatio, 4) << " | " << fixedDecimals(f.filterBiasPsnrDb, 2) << " | " << fixedDecimals(f.chosenPsnrDb, 2)
        << " | " << fixedDecimals(f.chosenSeconds, 3) << " | " << fixedDecimals(f.cyclesPsnrDb, 2) << " | " << orDash(f.cyclesSeconds) << " | " << orDash(f.cyclesStartupSeconds)
        << " |\n";

@@ -48,7 +48,7 @@ struct PathFrameResult {
   double fastNoiseDb = 0.0;         // the converged fast frame's own noise, likewise
   // What is left of the difference once both frames' own noise is taken out: the two engines'
   // disagreement (infinite within the noise).
-  double disagreementDb = 0.0;
+  double disagreementDb = 0.0;     // 0: not known (a noise not measured)
   double filterBiasPsnrDb = 0.0;    // filtered fast vs unfiltered fast, both converged
   double chosenPsnrDb = 0.0, chosenSeconds = 0.0;  // fast, filtered, chosenSpp
   // Cycles, filtered, cyclesSpp: a frame's seconds in a session of the scene's poses, and the

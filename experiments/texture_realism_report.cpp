@@ -443,6 +443,15 @@ void writeRealisticChanges(std::ostringstream& md, const TextureRealismResults& 
           "(fewer poses and samples) is not comparable with them, so they are left out here.\n";
     return;
   }
+  // The earlier runs detected with the default detector: another one is not comparable either.
+  const TextureRealismOptions defaults;
+  if (o.bins != defaults.bins || o.detector.theta != defaults.detector.theta ||
+      o.detector.minBlobArea != defaults.detector.minBlobArea || o.detector.medianPx != defaults.detector.medianPx) {
+    md << "\n## What changed with the new realistic frames\n\n"
+          "The earlier runs' numbers, which this section sets beside the run's own, were detected with the default detector "
+          "(32 bins, Θ 1, blobs of 2 pixels, no median); this run's detector differs, so they are left out here.\n";
+    return;
+  }
   const ConditionOutcome* pp = findCondition(results, "plain_to_plain");
   const ConditionOutcome* pr = findCondition(results, "plain_to_realistic");
   md << "\n## What changed with the new realistic frames\n\n"

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "atomic_file.h"
 #include "errors.h"
@@ -20,13 +21,27 @@ namespace {
 
 constexpr const char* kOwnerFile = "owner.pid";
 
-// The folder's owner process, if the folder is one of ours (same user, an owner.pid inside).
+// Where a process id means something: this machine (a TMPDIR may be shared scratch) and its pid
+// namespace (containers may share one /tmp). A folder of another place is never judged from here.
+std::string processPlace() {
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+  std::error_code ec;
+  const std::string pidNamespace = fs::read_symlink("/proc/self/ns/pid", ec).string();
+  return std::string(host) + " " + pidNamespace;
+}
+
+// The folder's owner process, if the folder is one of ours (same user, an owner.pid inside) and
+// its owner ran here: "<pid>\n<host> <pid namespace>\n" (a pid alone: written before the place was).
 std::optional<pid_t> ownerOf(const fs::path& folder) {
   struct stat info {};
   if (::lstat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode) || info.st_uid != ::getuid()) return std::nullopt;
   std::ifstream in(folder / kOwnerFile);
   long pid = 0;
   if (!(in >> pid) || pid <= 0) return std::nullopt;
+  std::string place;
+  in >> std::ws;
+  if (std::getline(in, place) && place != processPlace()) return std::nullopt;
   return static_cast<pid_t>(pid);
 }
 
@@ -54,7 +69,7 @@ JobFolder::JobFolder(const std::string& prefix, bool keep) : keep_(keep) {
     throw ExternalError(prefix + ": cannot create a job folder in " + showPath(fs::temp_directory_path().string()));
   path_ = pattern;
   try {
-    writeTextAtomically((fs::path(path_) / kOwnerFile).string(), std::to_string(::getpid()) + "\n");
+    writeTextAtomically((fs::path(path_) / kOwnerFile).string(), std::to_string(::getpid()) + "\n" + processPlace() + "\n");
   } catch (const std::exception& e) {
     std::error_code ignored;
     fs::remove_all(path_, ignored);

@@ -74,7 +74,10 @@ ImageRGBA runPovrayJob(const PovrayJob& job, const PovrayOptions& options, int t
         r.logTail.find(kWorkerStartupTimeout) == std::string::npos)
       break;
   }
-  if (r.notFound) throw ExternalError("povray: not found (install it with `make deps`): " + showPath(options.executable));
+  // Another executable than Debian's was asked for (OMNICAM_POVRAY): installing POV-Ray would not help.
+  if (r.notFound)
+    throw ExternalError("povray: not found: " + showPath(options.executable) +
+                        (options.executable == PovrayOptions{}.executable ? " (install it with `make deps`)" : " (as OMNICAM_POVRAY names it)"));
   if (r.timedOut)
     throw ExternalError("povray: timed out after " + shortNumber(options.timeoutSeconds) +
                         " s; last output:\n" + r.logTail);

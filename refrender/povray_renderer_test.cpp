@@ -414,18 +414,30 @@ TEST(JobFolders, StaleFoldersOfDeadProcessesAreRemoved) {
   const fs::path alive = make("omnicam-testjob-alive1", "1");           // init: alive
   const fs::path unknown = make("omnicam-testjob-nopid1", "");          // not ours to judge
   const fs::path other = make("omnicam-otherjob-stale", std::to_string(dead));  // another prefix
-  EXPECT_EQ(removeStaleJobFolders("omnicam-testjob"), 1);
+  // A pid means something on its own machine and pid namespace only (a TMPDIR on shared scratch, containers
+  // sharing /tmp): another's folder is never judged here; this one's is.
+  char host[256] = {};
+  ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
+  const std::string here = std::string(host) + " " + fs::read_symlink("/proc/self/ns/pid").string();
+  const fs::path elsewhere = make("omnicam-testjob-host01", std::to_string(dead) + "\nanother-host pid:[4026531836]");
+  const fs::path staleHere = make("omnicam-testjob-here01", std::to_string(dead) + "\n" + here);
+  EXPECT_EQ(removeStaleJobFolders("omnicam-testjob"), 2);
   EXPECT_FALSE(fs::exists(stale));
+  EXPECT_FALSE(fs::exists(staleHere));
   EXPECT_TRUE(fs::exists(alive));
   EXPECT_TRUE(fs::exists(unknown));
   EXPECT_TRUE(fs::exists(other));
-  for (const auto& f : {alive, unknown, other}) fs::remove_all(f);
+  EXPECT_TRUE(fs::exists(elsewhere));
+  for (const auto& f : {alive, unknown, other, elsewhere}) fs::remove_all(f);
   {
     const JobFolder job("omnicam-testjob", false);
     std::ifstream in(fs::path(job.path()) / "owner.pid");
     long pid = 0;
-    in >> pid;
+    std::string place;
+    in >> pid >> std::ws;
+    std::getline(in, place);
     EXPECT_EQ(pid, ::getpid());
+    EXPECT_EQ(place, here);
   }
 }
 

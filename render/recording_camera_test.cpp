@@ -14,12 +14,13 @@
 namespace omnicam {
 namespace {
 
-ImageRGBA uniform(int size, float value) {
-  ImageRGBA image(size, size);
+ImageRGBA uniform(int width, int height, float value) {
+  ImageRGBA image(width, height);
   for (size_t p = 0; p < image.pixels.size(); p += 4)
     image.pixels[p] = image.pixels[p + 1] = image.pixels[p + 2] = value, image.pixels[p + 3] = 1.0f;
   return image;
 }
+ImageRGBA uniform(int size, float value) { return uniform(size, size, value); }
 
 // The value an 8-bit sRGB code round trip gives.
 float quantised(float linear) { return srgbToLinear(std::round(linearToSrgb(linear) * 255.0f) / 255.0f); }
@@ -33,11 +34,12 @@ TEST(RecordingCamera, DefaultsOnlyQuantiseToEightBitSrgb) {
 TEST(RecordingCamera, VignettingFallsOffWithTheSquaredRadius) {
   RecordingCamera camera;
   camera.vignetting = 0.5;
-  const int n = 101;
-  const ImageRGBA out = recordFrame(camera, uniform(n, 0.6f), 0);
-  const double halfDiagonalSquared = 0.5 * n * n;
-  for (const auto& [i, j] : {std::pair{50, 50}, std::pair{0, 0}, std::pair{100, 50}, std::pair{20, 70}}) {
-    const double dx = i + 0.5 - 0.5 * n, dy = j + 0.5 - 0.5 * n;
+  // Not square: R is half the diagonal, x and y are told apart.
+  const int width = 121, height = 61;
+  const ImageRGBA out = recordFrame(camera, uniform(width, height, 0.6f), 0);
+  const double halfDiagonalSquared = 0.25 * (width * width + height * height);
+  for (const auto& [i, j] : {std::pair{60, 30}, std::pair{0, 0}, std::pair{120, 30}, std::pair{60, 0}, std::pair{20, 50}}) {
+    const double dx = i + 0.5 - 0.5 * width, dy = j + 0.5 - 0.5 * height;
     const double expected = 0.6 * (1.0 - 0.5 * (dx * dx + dy * dy) / halfDiagonalSquared);
     EXPECT_NEAR(out.at(i, j)[1], quantised(static_cast<float>(expected)), 1e-6) << i << "," << j;
   }
@@ -203,6 +205,7 @@ TEST(RecordingCamera, RowNoiseIsOneOffsetPerRow) {
   for (int j = 0; j < n; ++j) {
     for (int i = 1; i < n; ++i)
       for (int c = 0; c < 3; ++c) ASSERT_EQ(out.at(i, j)[c], out.at(0, j)[c]) << "row " << j << " is not one value";
+    for (int c = 1; c < 3; ++c) ASSERT_EQ(out.at(0, j)[c], out.at(0, j)[0]) << "row " << j << ": one offset in R, G and B";
     const double x = sensorValue(out, 0, j, 0);
     sum += x, squares += x * x;
   }

@@ -443,7 +443,7 @@ TEST_F(CliTest, PovrayFailuresExitThreeWithItsOutputAndWriteNothing) {
   std::ofstream(slow) << "#!/bin/sh\necho rendering\nsleep 30\n";
   fs::permissions(slow, fs::perms::owner_all);
   const std::vector<std::pair<std::string, std::string>> cases{
-      {"OMNICAM_POVRAY=/nonexistent/povray", "povray: not found"},
+      {"OMNICAM_POVRAY=/nonexistent/povray", "povray: not found: /nonexistent/povray (as OMNICAM_POVRAY names it)"},
       {"OMNICAM_POVRAY=" + script, "Parse Error: something broke"},
       {"OMNICAM_POVRAY=" + slow, "povray: timed out after 1 s"},
   };

@@ -126,6 +126,19 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
       << R"({"study": "texture-realism", "conditions": {"an_earlier_condition": {}, "../../escape": {}, "plain_to_plain": {}}})";
   for (const char* file : {"run/frames/an_earlier_condition.png", "run/frames/my_own.png", "escape.png"})
     std::ofstream(path(file)) << "bytes";
+  // A study folder whose figure holds a script (someone else's folder): refused before the run,
+  // never copied into the documents.
+  fs::copy(path("convergence"), path("scripted"), fs::copy_options::recursive);
+  std::string svg = testing::readFile(path("scripted/figures/convergence.svg"));
+  svg.insert(svg.rfind("</svg>"), "<script>alert(1)</script>");
+  std::ofstream(path("scripted/figures/convergence.svg"), std::ios::trunc) << svg;
+  const auto scripted = omnicam("experiment texture-realism --quick -o " + path("refused") + " --doc " + path("refused.md") +
+                                " --convergence " + path("scripted"));
+  EXPECT_EQ(scripted.code, 2) << scripted.out;
+  EXPECT_EQ(scripted.out, "omnicam: " + path("scripted/figures/convergence.svg") +
+                              ": holds \"<script\", which the study's figure never does: not copied into the documents\n");
+  EXPECT_FALSE(fs::exists(path("refused")));
+  EXPECT_FALSE(fs::exists(path("refused.md")));
   const auto r = omnicam("experiment texture-realism --quick -o " + path("run") + " --doc " + path("doc.md") +
                          " --convergence " + path("convergence") + testCameras);
   ASSERT_EQ(r.code, 0) << r.out;

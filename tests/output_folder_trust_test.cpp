@@ -223,10 +223,19 @@ TEST_F(OutputFolderTrust, OverwriteNeverDeletesAFolderMerelyNamedLikeACamera) {
   // written there is not omnicam's: it stays, whether the manifest is the run's or forged.
   const fs::path again = dataset(a, "again");
   writeFile(again / "src/rgb/000002.png", "the user's own picture");
-  json listed = json::parse(readFile(again / "manifest.json"));
+  const std::string asWritten = readFile(again / "manifest.json");
+  json listed = json::parse(asWritten);
   writeFile(again / "src/data.csv", "the user's own table\n");
+  // A record where omnicam names no file (the user's table as a frame's depth): the manifest is
+  // refused as a whole, and nothing is replaced.
   listed["frames"][0]["cameras"]["src"]["files"]["depth"] = {{"path", "src/data.csv"}, {"sha256", std::string(64, '0')}};
   writeFile(again / "manifest.json", listed.dump());
+  const Outcome refused = omnicam("dataset " + sh(b) + " -o " + sh(again.string()) + " --overwrite");
+  EXPECT_EQ(refused.code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("\"src/data.csv\" is not where omnicam names that file"), std::string::npos) << refused.err;
+  EXPECT_EQ(readFile(again / "src/data.csv"), "the user's own table\n");
+  EXPECT_TRUE(fs::exists(again / "Documents/rgb/000002.png"));
+  writeFile(again / "manifest.json", asWritten);
   const Outcome replaced = omnicam("dataset " + sh(b) + " -o " + sh(again.string()) + " --overwrite");
   ASSERT_EQ(replaced.code, 0) << replaced.err;
   EXPECT_EQ(readFile(again / "src/rgb/000002.png"), "the user's own picture");
