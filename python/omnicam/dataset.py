@@ -138,9 +138,12 @@ class Dataset:
         return Rig(self._camera_entry(camera)["rig"])
 
     def __len__(self):
+        """The number of finished frames (a dataset still being rendered has fewer than its spec asks)."""
         return len(self.reader.frames)
 
     def __getitem__(self, key):
+        """``dataset[i]``: the i-th finished frame of this dataset's camera, as the class describes;
+        ``dataset[i, "rear"]``: another camera's of the same frame."""
         position, camera = key if isinstance(key, tuple) else (key, self.camera)
         try:
             position = operator.index(position)
@@ -153,7 +156,7 @@ class Dataset:
         index = frames[position]
         frame = self.reader.frame(index)
         if camera not in frame["cameras"]:
-            raise KeyError(f"camera {camera!r} is not in frame {index}")
+            raise KeyError(f"camera {camera!r} is not in frame {index} (its cameras: {', '.join(sorted(frame['cameras']))})")
         item = _Item({
             "index": index,
             "timestamp": frame["timestamp"],

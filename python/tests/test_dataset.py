@@ -123,6 +123,8 @@ def test_unknown_cameras_outputs_and_folders_are_refused(folder, tmp_path):
         omnicam.Dataset(folder, outputs="depth")
     with pytest.raises(omnicam.InputError):
         omnicam.Dataset(tmp_path / "nothing")
+    with pytest.raises(KeyError, match=r"camera 'side' is not in frame 0 \(its cameras: front, rear\)"):
+        omnicam.Dataset(folder)[0, "side"]
     assert omnicam.Dataset(folder).verify()["ok"]
 
 
