@@ -26,7 +26,7 @@ namespace {
 
 struct CompareArgs {
   std::string a, b, diff, report, junit;
-  bool json = false, disc = false, boxDownsample = false, commonFrames = false;
+  bool json = false, disc = false, boxDownsample = false, commonFrames = false, anyPose = false;
   double failPsnr = 0.0, failRmse = 0.0, failMax = 0.0, tol = 1.0 / 255.0, diffScale = 0.05;
 };
 
@@ -46,6 +46,7 @@ int runDatasetCompare(const CompareArgs& args, const CLI::App& cmd) {
   refuseUnless(cmd, "--fail-rmse", false, "two images");
   refuseUnless(cmd, "--diff-scale", !args.report.empty(), "--report");
   refuseUnless(cmd, "--box-downsample", false, "two images");
+  refuseUnless(cmd, "--any-pose", false, "two images (datasets are matched frame by frame)");
   // Neither output may land in a compared folder (a --junit over A's manifest destroyed it), nor
   // on the other output.
   std::vector<std::pair<std::string, std::string>> outputs;
@@ -197,7 +198,14 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   options.tolerance = args.tol;
   options.discOnly = args.disc;
   if (!args.boxDownsample) explainSizes(args);
-  const std::vector<std::string> notes = sidecarNotes(args.a, args.b);
+  // What the sidecars say: images of another place are refused unless asked for (a PASS between
+  // them would pass nothing); a pose apart by what typing it loses, or asked for, is a note.
+  const SidecarComparison sidecars = compareSidecars(args.a, args.b);
+  if (sidecars.posesApart && !args.anyPose)
+    throw InputError("compare: " + showPath(args.b) + " is of another pose than " + showPath(args.a) + " (their sidecars: " +
+                     sidecars.poseNote.substr(sidecars.poseNote.find(": ") + 2) + "); --any-pose compares them all the same");
+  std::vector<std::string> notes = sidecars.notes;
+  if (!sidecars.poseNote.empty()) notes.insert(notes.begin(), sidecars.poseNote);
   const CompareResult r = args.diff.empty() && !args.boxDownsample ? compareStreamed(args, options) : compareWhole(args, options);
   const CompareThresholds thresholds = thresholdsOf(args, cmd);
   std::string failure;
@@ -243,6 +251,8 @@ void addCompareCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--disc", args->disc, "Only pixels wholly imaged in both images (alpha 1: inside the mirror's disc, a fisheye's circle)");
   cmd->add_flag("--common-frames", args->commonFrames,
                 "Datasets: compare only the frames both hold (a ground truth of fewer frames), saying how many were left out");
+  cmd->add_flag("--any-pose", args->anyPose,
+                "Two images whose sidecars say they were rendered at other poses: compare them all the same (a note says how far apart)");
   cmd->add_flag("--box-downsample", args->boxDownsample,
                 "Average the larger image's NxN blocks first, N the whole factor between the sizes (a POV-Ray job's render.exr)");
   cmd->callback([args, cmd, &exitCode] { exitCode = runCompare(*args, *cmd); });

@@ -189,8 +189,36 @@ struct ConvergenceFolder {
   std::optional<std::string> svg;
 };
 
-// The study's figure, checked: it goes into documents others open, so what matplotlib never
-// writes — scripts, event handlers, links out, embedded HTML — is refused, not copied.
+// What in an SVG could act when a document shows it — a script, an event handler (on…=), a link
+// out of the figure (an href not to one of its own #ids or an embedded data:image) — or "" when
+// nothing does. `lower` is the SVG's text in lower case. matplotlib writes none of these.
+std::string activeSvgContent(const std::string& lower) {
+  for (const char* element : {"<script", "javascript:", "<foreignobject", "<iframe", "<embed", "<object"})
+    if (lower.find(element) != std::string::npos) return element;
+  const auto isName = [](char c) { return c >= 'a' && c <= 'z'; };
+  const auto skipSpaces = [&](size_t at) {
+    while (at < lower.size() && std::isspace(static_cast<unsigned char>(lower[at]))) ++at;
+    return at;
+  };
+  for (size_t at = lower.find("on"); at != std::string::npos; at = lower.find("on", at + 1)) {
+    const char before = at ? lower[at - 1] : ' ';
+    if (!(std::isspace(static_cast<unsigned char>(before)) || before == '/' || before == '"' || before == '\'')) continue;
+    size_t end = at + 2;
+    while (end < lower.size() && isName(lower[end])) ++end;
+    if (end > at + 2 && skipSpaces(end) < lower.size() && lower[skipSpaces(end)] == '=') return lower.substr(at, end - at) + "=";
+  }
+  for (size_t at = lower.find("href"); at != std::string::npos; at = lower.find("href", at + 1)) {
+    size_t value = skipSpaces(at + 4);
+    if (value >= lower.size() || lower[value] != '=') continue;
+    value = skipSpaces(value + 1);
+    if (value < lower.size() && (lower[value] == '"' || lower[value] == '\'')) value = skipSpaces(value + 1);
+    if (lower.compare(value, 1, "#") != 0 && lower.compare(value, 11, "data:image/") != 0) return lower.substr(at, value + 24 - at);
+  }
+  return "";
+}
+
+// The study's figure, checked: it goes into documents others open, so what could act there is
+// refused, not copied.
 std::optional<std::string> readConvergenceFigure(const std::string& folder) {
   if (entryInside(folder, "figures/convergence.svg") != EntryKind::File) return std::nullopt;
   const std::string svg = readFileInside(folder, "figures/convergence.svg", 4 << 20);
@@ -198,11 +226,9 @@ std::optional<std::string> readConvergenceFigure(const std::string& folder) {
     throw InputError(showPath(folder + "/figures/convergence.svg") + ": not the study's SVG figure");
   std::string lower(svg.size(), ' ');
   std::transform(svg.begin(), svg.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  for (const char* active : {"<script", "javascript:", "<foreignobject", "<iframe", " onload", " onclick", " onerror", " onmouse",
-                             "xlink:href=\"http", "href=\"http"})
-    if (lower.find(active) != std::string::npos)
-      throw InputError(showPath(folder + "/figures/convergence.svg") + ": holds " + quote(active) +
-                       ", which the study's figure never does: not copied into the documents");
+  if (const std::string active = activeSvgContent(lower); !active.empty())
+    throw InputError(showPath(folder + "/figures/convergence.svg") + ": holds " + quote(active) +
+                     ", which the study's figure never does: not copied into the documents");
   return svg;
 }
 

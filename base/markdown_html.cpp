@@ -52,8 +52,15 @@ bool isImageLine(const std::string& line) {
 }
 
 // Whether a line begins a block of its own (and so ends a paragraph).
+// "3. text": where an ordered list item's text starts, or 0 when the line is none.
+size_t orderedItemText(const std::string& line) {
+  const size_t digits = line.find_first_not_of("0123456789");
+  if (digits == 0 || digits == std::string::npos || digits > 9 || line.compare(digits, 2, ". ") != 0) return 0;
+  return digits + 2;
+}
+
 bool startsBlock(const std::string& line) {
-  return line.empty() || line[0] == '#' || line[0] == '|' || line.starts_with("- ") || isImageLine(line);
+  return line.empty() || line[0] == '#' || line[0] == '|' || line.starts_with("- ") || orderedItemText(line) || isImageLine(line);
 }
 
 }  // namespace
@@ -91,6 +98,10 @@ std::string htmlFromMarkdown(const std::string& markdown) {
       html += "<p><img src=\"" + escapeMarkup(line.substr(middle + 2, line.size() - middle - 3)) + "\" alt=\"" +
               escapeMarkup(line.substr(2, middle - 2)) + "\" style=\"max-width:100%\"></p>\n";
       ++k;
+    } else if (orderedItemText(line)) {
+      html += "<ol>\n";
+      for (; k < lines.size() && orderedItemText(lines[k]); ++k) html += "<li>" + inlineHtml(lines[k].substr(orderedItemText(lines[k]))) + "</li>\n";
+      html += "</ol>\n";
     } else if (line.starts_with("- ")) {
       html += "<ul>\n";
       for (; k < lines.size() && lines[k].starts_with("- "); ++k) html += "<li>" + inlineHtml(lines[k].substr(2)) + "</li>\n";

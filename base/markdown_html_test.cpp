@@ -21,6 +21,10 @@ TEST(HtmlFromMarkdown, ListsAndImagesAndEscapedUserText) {
   EXPECT_EQ(htmlFromMarkdown("- one\n- two & \"three\"\n\n![a \"strip\"](figures/x.png)\n"),
             "<ul>\n<li>one</li>\n<li>two &amp; &quot;three&quot;</li>\n</ul>\n"
             "<p><img src=\"figures/x.png\" alt=\"a &quot;strip&quot;\" style=\"max-width:100%\"></p>\n");
+  // Numbered items, each a line (the report's findings), numbered by the list; a number without
+  // ". " after it is text.
+  EXPECT_EQ(htmlFromMarkdown("1. In the **plain** hall\n2. Classifiers\n\n2008 was the year.\n"),
+            "<ol>\n<li>In the <strong>plain</strong> hall</li>\n<li>Classifiers</li>\n</ol>\n<p>2008 was the year.</p>\n");
   // Markup in the text is shown, never interpreted.
   EXPECT_EQ(htmlFromMarkdown("<script>alert(1)</script>"), "<p>&lt;script&gt;alert(1)&lt;/script&gt;</p>\n");
 }

@@ -38,9 +38,13 @@ std::string differenceText(const nlohmann::json& a, const nlohmann::json& b) {
 
 }  // namespace
 
+PoseDifference poseDifference(const RobotPose& a, const RobotPose& b) {
+  return {std::hypot(a.x - b.x, a.y - b.y), std::abs(std::remainder(a.yawDeg - b.yawDeg, 360.0))};  // 0° and 360° one heading
+}
+
 bool samePose(const RobotPose& a, const RobotPose& b) {
-  return std::abs(a.x - b.x) <= kPoseTolerance && std::abs(a.y - b.y) <= kPoseTolerance &&
-         std::abs(a.yawDeg - b.yawDeg) <= kPoseTolerance;
+  const PoseDifference d = poseDifference(a, b);
+  return d.metres <= kPoseTolerance && d.degrees <= kPoseTolerance;
 }
 
 std::string poseText(const RobotPose& p) {
@@ -49,43 +53,52 @@ std::string poseText(const RobotPose& p) {
   return text;
 }
 
+std::string poseDifferenceText(const PoseDifference& d) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%.3g mm and %.3g° apart", d.metres * 1000.0, d.degrees);
+  return text;
+}
+
 const std::vector<RecordedSetting>& sidecarSettings() {
   static const std::vector<RecordedSetting> settings = {
-      {"scene (its SHA-256)", "/scene/sha256"}, {"the scene's files", "/scene/inputs"}, {"rig", "/rig"},
+      {"scene (its SHA-256)", "/scene/sha256"}, {"scene files", "/scene/inputs", nlohmann::json::array()}, {"rig", "/rig"},
       {"velocity", "/velocity"}, {"shading", "/shading"}, {"spp", "/spp"}, {"mode", "/mode"},
-      {"mode options", "/mode_options"}, {"path tracing", "/path_tracing"}, {"recording camera", "/recording"}};
+      {"mode options", "/mode_options"}, {"path tracing", "/path_tracing"}, {"recording camera", "/recording"}, {"view", "/view"}};
   return settings;
 }
 
 const std::vector<RecordedSetting>& manifestSettings() {
   static const std::vector<RecordedSetting> settings = {
-      {"scene (its SHA-256)", "/scene/sha256"}, {"the scene's files", "/scene/inputs"}, {"shading", "/settings/shading"},
-      {"spp", "/settings/spp"}, {"mode", "/engine/mode"}, {"mode options", "/engine/mode_options"},
-      {"frame interval", "/settings/frame_interval_s"}, {"recording camera", "/spec/recording"}};
+      {"scene (its SHA-256)", "/scene/sha256"}, {"scene files", "/scene/inputs", nlohmann::json::array()},
+      {"shading", "/settings/shading"}, {"spp", "/settings/spp"}, {"mode", "/engine/mode"},
+      {"mode options", "/engine/mode_options"}, {"frame interval", "/settings/frame_interval_s"},
+      {"recording camera", "/spec/recording"}};
   return settings;
 }
 
 std::vector<std::string> recordedSettingNotes(const nlohmann::json& a, const nlohmann::json& b,
                                               const std::vector<RecordedSetting>& settings) {
   std::vector<std::string> notes;
-  const auto at = [](const nlohmann::json& record, const nlohmann::json::json_pointer& pointer) {
-    return record.is_object() && record.contains(pointer) ? record.at(pointer) : nlohmann::json();
-  };
   for (const RecordedSetting& setting : settings) {
     const nlohmann::json::json_pointer pointer(setting.pointer);
-    const nlohmann::json valueA = at(a, pointer), valueB = at(b, pointer);
+    // A record written before the setting was recorded holds its value when absent (no scene files: []).
+    const auto at = [&](const nlohmann::json& record) {
+      return record.is_object() && record.contains(pointer) ? record.at(pointer) : setting.absent;
+    };
+    const nlohmann::json valueA = at(a), valueB = at(b);
     if (valueA != valueB) notes.push_back(std::string(setting.name) + " differs" + differenceText(valueA, valueB));
   }
   return notes;
 }
 
-std::vector<std::string> sidecarNotes(const std::string& imageA, const std::string& imageB) {
+SidecarComparison compareSidecars(const std::string& imageA, const std::string& imageB) {
   std::optional<SidecarInfo> a, b;
   std::optional<RobotPose> poseA, poseB;
+  SidecarComparison out;
   try {
     a = readSidecar(imageA);
     b = readSidecar(imageB);
-    if (!a || !b) return {};
+    if (!a || !b) return out;
     const auto poseOf = [](const SidecarInfo& sidecar, const std::string& image) -> std::optional<RobotPose> {
       if (!sidecar.json.contains("pose")) return std::nullopt;
       JsonFields pose(sidecar.json["pose"], sidecarPath(image), "pose");
@@ -94,12 +107,16 @@ std::vector<std::string> sidecarNotes(const std::string& imageA, const std::stri
     poseA = poseOf(*a, imageA);
     poseB = poseOf(*b, imageB);
   } catch (const InputError& e) {
-    return {std::string(e.what()) + ": the images' records are not compared"};
+    out.notes.push_back(std::string(e.what()) + ": the images' records are not compared");
+    return out;
   }
-  if (poseA && poseB && !samePose(*poseA, *poseB))
-    throw InputError(showPath(imageB) + ": rendered at pose " + poseText(*poseB) + ", " + showPath(imageA) + " at " +
-                     poseText(*poseA) + " (their sidecars): images of different poses are not compared");
-  return recordedSettingNotes(a->json, b->json, sidecarSettings());
+  if (poseA && poseB && !samePose(*poseA, *poseB)) {
+    const PoseDifference d = poseDifference(*poseA, *poseB);
+    out.poseNote = "pose differs: A " + poseText(*poseA) + ", B " + poseText(*poseB) + " (" + poseDifferenceText(d) + ")";
+    out.posesApart = d.metres > kSamePoseToTheEyeMetres || d.degrees > kSamePoseToTheEyeDegrees;
+  }
+  out.notes = recordedSettingNotes(a->json, b->json, sidecarSettings());
+  return out;
 }
 
 }  // namespace omnicam

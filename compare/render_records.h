@@ -10,15 +10,26 @@
 
 namespace omnicam {
 
-// Poses equal to within 1e-9 (m, m, degrees): records round-trip their doubles exactly, so
-// anything more is another pose.
+// How far apart two poses are: on the floor, and in heading (0° and 360° one heading).
+struct PoseDifference {
+  double metres = 0.0, degrees = 0.0;
+};
+PoseDifference poseDifference(const RobotPose& a, const RobotPose& b);
+// Poses equal to within 1e-9 (m, degrees): records round-trip their doubles exactly, so anything
+// more is another pose.
 bool samePose(const RobotPose& a, const RobotPose& b);
 std::string poseText(const RobotPose& pose);
+std::string poseDifferenceText(const PoseDifference& difference);  // "3.4e-03 mm and 0° apart"
 
-// A setting a record holds: its name in notes, and where the record holds it (a JSON pointer).
+// Poses a pose typed from a printed one (6 digits) can differ by: no image tells them apart.
+inline constexpr double kSamePoseToTheEyeMetres = 1e-4, kSamePoseToTheEyeDegrees = 1e-3;
+
+// A setting a record holds: its name in notes, where the record holds it (a JSON pointer), and
+// what a record without it holds (one written before the setting was recorded).
 struct RecordedSetting {
   const char* name;
   const char* pointer;
+  nlohmann::json absent = nullptr;
 };
 // What an image's sidecar and a dataset's manifest hold of how they were rendered, beyond the pose
 // (and, for datasets, the rigs, which are compared camera by camera): the scene's bytes and the
@@ -33,9 +44,14 @@ const std::vector<RecordedSetting>& manifestSettings();
 std::vector<std::string> recordedSettingNotes(const nlohmann::json& a, const nlohmann::json& b,
                                               const std::vector<RecordedSetting>& settings);
 
-// Two images' sidecars, where both have one: InputError when they were rendered at different poses
-// (a comparison of them would compare nothing), else recordedSettingNotes. A sidecar that cannot
-// be read is a note: the images are still compared.
-std::vector<std::string> sidecarNotes(const std::string& imageA, const std::string& imageB);
+// What two images' sidecars say, where both have one: the pose each was rendered at, and the
+// other settings they record differently (recordedSettingNotes). A sidecar that cannot be read is
+// a note: the images are still compared.
+struct SidecarComparison {
+  std::vector<std::string> notes;
+  std::string poseNote;     // "pose differs: …" when the poses are not the same; else empty
+  bool posesApart = false;  // beyond what a typed pose differs by: images of another place
+};
+SidecarComparison compareSidecars(const std::string& imageA, const std::string& imageB);
 
 }  // namespace omnicam

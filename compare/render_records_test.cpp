@@ -56,7 +56,22 @@ TEST(RenderRecords, PosesAreTheSameToWithinRoundTripping) {
   EXPECT_TRUE(samePose({1.0, 2.0, 30.0}, {1.0 + 1e-12, 2.0, 30.0}));
   EXPECT_FALSE(samePose({1.0, 2.0, 30.0}, {1.0, 2.05, 30.0}));
   EXPECT_FALSE(samePose({1.0, 2.0, 30.0}, {1.0, 2.0, 30.001}));
+  // One heading, however written: 0° and 360°, 180° and −180°.
+  EXPECT_TRUE(samePose({1.0, 2.0, 0.0}, {1.0, 2.0, 360.0}));
+  EXPECT_TRUE(samePose({1.0, 2.0, 180.0}, {1.0, 2.0, -180.0}));
+  EXPECT_NEAR(poseDifference({1.0, 2.0, 179.0}, {1.0, 2.0, -179.0}).degrees, 2.0, 1e-12);
+  EXPECT_NEAR(poseDifference({0.0, 0.0, 0.0}, {0.03, 0.04, 0.0}).metres, 0.05, 1e-15);  // a 3-4-5 triangle
   EXPECT_EQ(poseText({0.35, -0.2, 30.0}), "(0.35, -0.2, 30°)");
+  EXPECT_EQ(poseDifferenceText({0.05, 2.0}), "50 mm and 2° apart");
+}
+
+TEST(RenderRecords, ARecordWithoutASettingHoldsWhatItWasBeforeItWasRecorded) {
+  json old = sidecar();
+  old["scene"].erase("inputs");  // written before scenes' files were recorded: none
+  EXPECT_TRUE(recordedSettingNotes(old, sidecar(), sidecarSettings()).empty());
+  json withFile = sidecar();
+  withFile["scene"]["inputs"] = json::array({{{"path", "wall.png"}, {"sha256", "ab"}}});
+  EXPECT_EQ(recordedSettingNotes(old, withFile, sidecarSettings()), std::vector<std::string>{"scene files differs in the whole value"});
 }
 
 }  // namespace

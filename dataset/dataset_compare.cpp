@@ -348,8 +348,8 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
     matchFolderFrames(a, dirA, dirB, options.commonFramesOnly, result.notes);
   result.frames = pairFrames(a, b, dirA, dirB);
   if (b) {
-    for (const std::string& note : recordedSettingNotes(a.header, b->header, manifestSettings()))
-      result.notes.push_back("the datasets' " + note);
+    const std::vector<std::string> settings = recordedSettingNotes(a.header, b->header, manifestSettings());
+    result.notes.insert(result.notes.end(), settings.begin(), settings.end());
     const std::vector<std::string> rigs = rigNotes(a, *b);
     result.notes.insert(result.notes.end(), rigs.begin(), rigs.end());
   }

@@ -1,9 +1,9 @@
 #include "manifest.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "atomic_file.h"
@@ -335,26 +335,21 @@ ShardFrames shardFrames(int totalFrames, int index, int count) {
           static_cast<int>(static_cast<int64_t>(totalFrames) * (index + 1) / count)};
 }
 
-// Each frame file where omnicam names it — <camera>/<kind>/<index as 6 digits>.<ext>, or a EuRoC
-// colour frame's <camera>/data/<ns>.png — and no file two records': a forged manifest that points
-// every frame at one image would otherwise verify, and compare one frame as many.
+// Each frame file where omnicam names it (isFramePath), and no file two records': a forged
+// manifest that points every frame at one image would otherwise verify, and compare one frame as
+// many.
 void checkFramePaths(const DatasetManifest& manifest, const std::string& file) {
   std::map<std::string, std::string> owners;  // path → the record that names it
   for (const auto& [index, frame] : manifest.frames)
     for (const auto& [camera, files] : frame.cameras)
       for (const auto& [kind, record] : files.files) {
         const std::string where = "frame " + std::to_string(index) + " camera " + quote(camera) + " " + quote(kind);
-        char digits[16];
-        std::snprintf(digits, sizeof digits, "%06d.", index);
-        const std::string own = camera + "/" + kind + "/", euroc = camera + "/data/", stem = digits;
-        const bool named = record.path.starts_with(own) ? record.path.compare(own.size(), stem.size(), stem) == 0
-                           : kind == outputName(kColourOutput) && record.path.starts_with(euroc)
-                               ? record.path.size() > euroc.size() + 4 && record.path.ends_with(".png") &&
-                                     record.path.find_first_not_of("0123456789", euroc.size()) == record.path.size() - 4
-                               : false;
-        if (!named)
+        const std::optional<OutputKind> outputKind = outputNamed(kind);  // readFileRecords checked the name
+        if (!outputKind || !isFramePath(record.path, camera, *outputKind, index)) {
+          FrameOutputPlan plan;
           throw InputError(showPath(file) + ": " + where + ": " + quote(record.path) + " is not where omnicam names that file (" +
-                           own + stem + "…)");
+                           (outputKind ? plan.framePath(camera, *outputKind, index) : camera + "/" + kind + "/…") + ")");
+        }
         const auto [owner, fresh] = owners.emplace(record.path, where);
         if (!fresh) throw InputError(showPath(file) + ": " + where + ": " + quote(record.path) + " is " + owner->second + "'s file too");
       }

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 
+#include "output_kinds.h"
 #include "dataset_folder.h"
 #include "errors.h"
 
@@ -73,10 +74,8 @@ FrameRecord longestFrame(int index, const std::vector<std::string>& cameras) {
     camera.pose = frame.robot;
     camera.rig = rig;
     camera.recording = recording;
-    char stem[16];
-    std::snprintf(stem, sizeof stem, "%06d", index);
     for (const char* kind : {"depth", "instance", "semantic", "normal", "landmarks", "multilayer"})
-      camera.files[kind] = {name + "/" + kind + "/" + stem + ".json", kHash};
+      camera.files[kind] = {FrameOutputPlan{}.framePath(name, *outputNamed(kind), index), kHash};
     // The longest file name: EuRoC's colour frame, a 19-digit timestamp in ns.
     camera.files["rgb"] = {name + "/data/" + std::to_string(8640000000000000000ull - static_cast<uint64_t>(index)) + ".png", kHash};
   }
@@ -153,9 +152,10 @@ TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
   ASSERT_EQ(errorOf(two), "");
   const std::string frame1Depth = two["frames"][1]["cameras"]["cam0"]["files"]["depth"]["path"];
   for (const auto& [path, error] : std::vector<std::pair<std::string, std::string>>{
-           {"cam0/depth/000000.json", "\"cam0/depth/000000.json\" is not where omnicam names that file (cam0/depth/000001.…)"},
-           {"cam0/normal/000001.json", "\"cam0/normal/000001.json\" is not where omnicam names that file (cam0/depth/000001.…)"},
-           {"cam0/data/1.png", "\"cam0/data/1.png\" is not where omnicam names that file (cam0/depth/000001.…)"}}) {
+           {"cam0/depth/000000.exr", "\"cam0/depth/000000.exr\" is not where omnicam names that file (cam0/depth/000001.exr)"},
+           {"cam0/normal/000001.exr", "\"cam0/normal/000001.exr\" is not where omnicam names that file (cam0/depth/000001.exr)"},
+           {"cam0/depth/000001.png", "\"cam0/depth/000001.png\" is not where omnicam names that file (cam0/depth/000001.exr)"},
+           {"cam0/data/1.png", "\"cam0/data/1.png\" is not where omnicam names that file (cam0/depth/000001.exr)"}}) {
     json m = two;
     m["frames"][1]["cameras"]["cam0"]["files"]["depth"]["path"] = path;
     EXPECT_EQ(errorOf(m), "manifest.json: frame 1 camera \"cam0\" \"depth\": " + error) << path;
@@ -165,7 +165,7 @@ TEST(Manifest, FileRecordsStayInsideTheirCamerasFolder) {
   EXPECT_EQ(errorOf(same), "manifest.json: frame 1 camera \"cam0\" \"rgb\": \"" +
                                two["frames"][0]["cameras"]["cam0"]["files"]["rgb"]["path"].get<std::string>() +
                                "\" is frame 0 camera \"cam0\" \"rgb\"'s file too");
-  EXPECT_EQ(frame1Depth, "cam0/depth/000001.json");
+  EXPECT_EQ(frame1Depth, "cam0/depth/000001.exr");
   json m = good;
   m["cameras"][1]["name"] = "cam0";
   EXPECT_EQ(errorOf(m), "manifest.json: cameras[1].name: duplicate camera name \"cam0\"");

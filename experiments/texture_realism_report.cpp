@@ -185,6 +185,8 @@ void writeData(const ReportData& data, const fs::path& out) {
   writeTextAtomically((out / "data/histograms.json").string(), histograms.dump() + "\n");
 }
 
+void writeFindings(std::ostringstream& md, const TextureRealismResults& results, bool reduced);
+
 void writeHtml(const ReportData& data, const TextureRealismResults& results, const fs::path& out, bool figures) {
   std::ostringstream html;
   html << "<!doctype html><html><head><meta charset=\"utf-8\"><title>omnicam texture-realism</title>"
@@ -210,8 +212,10 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
     html << "<tr><td>" << escapeMarkup(e.condition) << "</td><td>" << fixedDecimals(e.meanErrorOdometryCm, 1) << "</td><td>"
          << fixedDecimals(e.meanErrorEkfCm, 1) << "</td><td>" << fixedDecimals(e.meanErrorOdometryCm - e.meanErrorEkfCm, 1)
          << "</td><td>" << e.measurementsUsed << " / " << e.measurementsGated << "</td></tr>";
-  // The transfer tables, the validation's choice, the ablation and the strip of one pose, as in the .md.
-  html << "</table>"
+  // The verdicts, the transfer tables, the validation's choice, the ablation and the strip of one pose, as in the .md.
+  std::ostringstream findings;
+  writeFindings(findings, results, data.options->reduced);
+  html << "</table>" << htmlFromMarkdown(findings.str())
        << htmlFromMarkdown(recordingSectionMarkdown(results, *data.options,
                                                     results.comparison.width > 0 ? std::string("figures/") + kRecordingFigure : ""));
   html << "<h2>Frames with detections</h2><p>Green crosses: visible beacons (projected). Yellow circles: "

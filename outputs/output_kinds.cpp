@@ -129,6 +129,17 @@ std::string FrameOutputPlan::framePath(const std::string& camera, OutputKind kin
   return frameFolder(camera, kind) + "/" + name;
 }
 
+bool isFramePath(const std::string& path, const std::string& camera, OutputKind kind, int index) {
+  FrameOutputPlan plan;  // the files layout; a multilayer frame's file is its kind's
+  for (const char* format : {"png", "exr"}) {
+    plan.rgbFormat = format;
+    if (path == plan.framePath(camera, kind, index)) return true;
+  }
+  const std::string euroc = camera + "/data/";
+  return kind == kColourOutput && path.starts_with(euroc) && path.ends_with(".png") && path.size() > euroc.size() + 4 &&
+         path.size() <= euroc.size() + 19 + 4 && path.find_first_not_of("0123456789", euroc.size()) == path.size() - 4;
+}
+
 namespace {
 
 // The interval in whole nanoseconds, when it is the double nearest a whole number of them (the

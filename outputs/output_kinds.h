@@ -115,6 +115,11 @@ int64_t frameTimestampNs(int frame, double intervalS);
 // The EuRoC/ASL layout's image name (euroc_files.h): "<frameTimestampNs>.png" in <camera>/data/.
 std::string eurocImageName(int frame, double intervalS);
 
+// Whether `path` is where some dataset of omnicam's names frame `index`'s file of `kind` for
+// `camera` (framePath, with colour in PNG or EXR; a EuRoC colour frame's "<camera>/data/<ns>.png",
+// its interval unknown here, by its digits): what a manifest's frame records must be.
+bool isFramePath(const std::string& path, const std::string& camera, OutputKind kind, int index);
+
 // "<camera>/<kind>.json": a camera's gathered annotation file.
 std::string gatheredPath(const std::string& camera, OutputKind kind);
 

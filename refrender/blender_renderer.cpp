@@ -428,32 +428,44 @@ bool filtersIndirect(const RenderSettings& settings, const BlenderOptions& optio
   return (options.pathTracing.filterIndirect || settings.denoise) && settings.shading != Shading::Unlit;
 }
 
+// A session's job in `folder`: every file (nothing written yet) and the frames it renders there.
+struct SessionJob {
+  std::vector<FileBytes> files;
+  nlohmann::json frames;
+  bool filtered = false;
+};
+
+SessionJob sessionJob(const Scene& worldScene, const std::vector<CameraPlacement>& worldPlacements, const RenderSettings& settings,
+                      const BlenderOptions& options, const std::string& folder) {
+  // glTF's 32-bit floats: the session's world has its origin near the first frame's robot.
+  const EngineFrame frame = engineFrameNear(worldScene, worldPlacements);
+  const Scene& scene = frame.sceneOr(worldScene);
+  SessionJob job;
+  job.filtered = filtersIndirect(settings, options);
+  GltfExportOptions exportOptions;
+  exportOptions.placement = frame.placements.front();
+  exportOptions.rig = settings.rig;
+  job.frames = jobFrames(frame.placements, settings, folder, job.filtered);
+  job.files = blenderJobBytes(scene, settings, exportOptions,
+                              blenderJob(scene, frame.worldOrigin, settings, options, folder + "/scene.glb", job.filtered, job.frames),
+                              folder, [&](const std::string& name) { return folder + "/" + name; }, std::nullopt);
+  return job;
+}
+
 BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<CameraPlacement>& worldPlacements,
                                  const RenderSettings& settings, const BlenderOptions& options) {
   if (worldPlacements.empty()) return {};
   checkBlenderRenders(worldPlacements, settings, options);
-  // glTF's 32-bit floats: the session's world has its origin near the first frame's robot.
-  const EngineFrame frame = engineFrameNear(worldScene, worldPlacements);
-  const Scene& scene = frame.sceneOr(worldScene);
-  const std::vector<CameraPlacement>& placements = frame.placements;
   const std::shared_ptr<const Camera> imaging = makeCamera(settings.rig);
-  const bool filtered = filtersIndirect(settings, options);
   JobFolder folder("omnicam-blender", options.keepJobFolder);
-  const std::string glb = folder.path() + "/scene.glb";
-  GltfExportOptions exportOptions;
-  exportOptions.placement = placements.front();
-  exportOptions.rig = settings.rig;
-  const nlohmann::json frames = jobFrames(placements, settings, folder.path(), filtered);
-  writeFilesTogether(blenderJobBytes(scene, settings, exportOptions,
-                                     blenderJob(scene, frame.worldOrigin, settings, options, glb, filtered, frames),
-                                     folder.path(), [&](const std::string& name) { return folder.path() + "/" + name; },
-                                     std::nullopt));
+  const SessionJob job = sessionJob(worldScene, worldPlacements, settings, options, folder.path());
+  writeFilesTogether(job.files);
   const auto started = std::chrono::steady_clock::now();
   BlenderSession session;
   session.logTail = runBlenderJob(options, folder.path());
   session.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  session.images = readBlenderFrames(frames, settings, filtered, *imaging, session.logTail);
-  session.frameSeconds = readFrameSeconds(timingsFile(glb), frames.size());
+  session.images = readBlenderFrames(job.frames, settings, job.filtered, *imaging, session.logTail);
+  session.frameSeconds = readFrameSeconds(timingsFile(folder.path() + "/scene.glb"), job.frames.size());
   return session;
 }
 
@@ -461,17 +473,8 @@ BlenderSession runBlenderSession(const Scene& worldScene, const std::vector<Came
 
 std::string blenderJobDigest(const Scene& worldScene, const CameraPlacement& worldPlacement, const RenderSettings& settings,
                              const BlenderOptions& options) {
-  const EngineFrame frame = engineFrameNear(worldScene, {worldPlacement});
-  const Scene& scene = frame.sceneOr(worldScene);
-  const bool filtered = filtersIndirect(settings, options);
-  GltfExportOptions exportOptions;
-  exportOptions.placement = frame.placements.front();
-  exportOptions.rig = settings.rig;
-  const nlohmann::json frames = jobFrames(frame.placements, settings, ".", filtered);
-  const nlohmann::json job = blenderJob(scene, frame.worldOrigin, settings, options, "scene.glb", filtered, frames);
   Sha256 digest;
-  for (const FileBytes& file : blenderJobBytes(scene, settings, exportOptions, job, ".", [](const std::string& name) { return name; },
-                                               std::nullopt)) {
+  for (const FileBytes& file : sessionJob(worldScene, {worldPlacement}, settings, options, ".").files) {
     digest.update(file.path + "\n" + std::to_string(file.bytes.size()) + "\n");
     digest.update(std::string_view(reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()));
   }

@@ -515,15 +515,19 @@ std::vector<std::pair<std::string, std::string>> describeValues(const RecordingC
   return values;
 }
 
+RecordingCameraSpec recordingCameraSpecFromFile(const std::string& path, const std::string& field) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec)) return recordingCameraSpecFromJson(readJsonFile(path), path, "");
+  throw InputError(field + ": " + showPath(path) + (std::filesystem::exists(path, ec) ? ": not a file" : ": no such file") +
+                   " (a preset's name or a JSON file)");
+}
+
 RecordingCameraSpec recordingCameraSpecFromNameOrFile(const std::string& text, const std::string& field) {
   if (text.empty()) throw InputError(field + ": give a preset's name or a JSON file (docs/experiments.md)");
   std::error_code ec;
-  if (std::filesystem::is_regular_file(text, ec)) return recordingCameraSpecFromJson(readJsonFile(text), text, "");
-  // A folder named webcam does not hide the preset.
-  const bool path = text.find('/') != std::string::npos || text.ends_with(".json");
-  if (path)
-    throw InputError(field + ": " + showPath(text) + (std::filesystem::exists(text, ec) ? ": not a file" : ": no such file") +
-                     " (a preset's name or a JSON file)");
+  // What looks like a file (a '/', a .json name) is one: a folder named webcam does not hide the preset.
+  if (std::filesystem::is_regular_file(text, ec) || text.find('/') != std::string::npos || text.ends_with(".json"))
+    return recordingCameraSpecFromFile(text, field);
   return recordingCameraSpecFromJson(nlohmann::json(text), field, "", "a JSON file of the stages' fields");
 }
 

@@ -54,6 +54,8 @@ RecordingCameraSpec recordingCameraSpecFromJson(const nlohmann::json& j, const s
 // it (`field`: "--recording", "recording"): what looks like a file (a '/', a .json name) and is
 // none is said to be missing, not taken for a preset's name.
 RecordingCameraSpec recordingCameraSpecFromNameOrFile(const std::string& text, const std::string& field);
+// The same for what is a file whatever its name (a path object): missing or not a file is said so.
+RecordingCameraSpec recordingCameraSpecFromFile(const std::string& path, const std::string& field);
 nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec);
 // A spec that always gives `camera`.
 RecordingCameraSpec fixedRecordingCameraSpec(const RecordingCamera& camera);

@@ -7,7 +7,6 @@
 #include "errors.h"
 #include "image.h"
 #include "number_format.h"
-#include "texture_image.h"
 
 namespace omnicam {
 
@@ -104,16 +103,6 @@ Vec3f Texture::sample(double u, double v) const {
   const Vec3f top = (1.0f - fx) * at(left, above) + fx * at(right, above);
   const Vec3f bottom = (1.0f - fx) * at(left, below) + fx * at(right, below);
   return (1.0f - fy) * top + fy * bottom;
-}
-
-ImageRGBA opaqueImage(const Texture& texture, const Vec3f& tint) {
-  ImageRGBA image(texture.width(), texture.height());
-  const std::vector<float>& rgb = texture.rgbLinear();
-  for (size_t p = 0; p < rgb.size() / 3; ++p) {
-    for (int c = 0; c < 3; ++c) image.pixels[4 * p + c] = rgb[3 * p + c] * tint[c];
-    image.pixels[4 * p + 3] = 1.0f;
-  }
-  return image;
 }
 
 }  // namespace omnicam

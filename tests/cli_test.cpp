@@ -586,8 +586,25 @@ TEST_F(CliTest, CompareChecksWhatTheImagesSidecarsSayTheyShow) {
   ASSERT_EQ(run("render " + kScene + " --size 48 --pose=0.3,-0.2,30 --shading lit -o " + lit).code, 0);
   const CommandResult otherPose = run("compare " + fast + " " + moved + " --fail-psnr 10");
   EXPECT_EQ(otherPose.code, 2) << otherPose.out;
-  EXPECT_EQ(otherPose.out, "omnicam: " + moved + ": rendered at pose (0.35, -0.2, 30°), " + fast +
-                               " at (0.3, -0.2, 30°) (their sidecars): images of different poses are not compared\n");
+  EXPECT_EQ(otherPose.out, "omnicam: compare: " + moved + " is of another pose than " + fast +
+                               " (their sidecars: A (0.3, -0.2, 30°), B (0.35, -0.2, 30°) (50 mm and 0° apart)); --any-pose "
+                               "compares them all the same\n");
+  // Asked for (a study of a pose's error): compared, the difference said.
+  const CommandResult anyPose = run("compare " + fast + " " + moved + " --any-pose");
+  EXPECT_EQ(anyPose.code, 0) << anyPose.out;
+  EXPECT_NE(anyPose.out.find("\n  note: pose differs: A (0.3, -0.2, 30°), B (0.35, -0.2, 30°) (50 mm and 0° apart)\n"),
+            std::string::npos) << anyPose.out;
+  // The same pose written otherwise (−330° is 30°), or typed from a printed one: the same place.
+  const std::string turned = path("turned.exr"), typed = path("typed.exr"), start = path("start.exr");
+  ASSERT_EQ(run("render " + kScene + " --size 48 --pose=0.3,-0.2,-330 -o " + turned).code, 0);
+  const CommandResult sameHeading = run("compare " + fast + " " + turned + " --fail-psnr 60");
+  EXPECT_EQ(sameHeading.code, 0) << sameHeading.out;
+  EXPECT_EQ(sameHeading.out.find("note:"), std::string::npos) << sameHeading.out;
+  ASSERT_EQ(run("render " + kScene + " --size 48 --pose=0.30000349,-0.2,30 -o " + typed).code, 0);
+  const CommandResult typedPose = run("compare " + fast + " " + typed);
+  EXPECT_EQ(typedPose.code, 0) << typedPose.out;
+  EXPECT_NE(typedPose.out.find("note: pose differs: A (0.3, -0.2, 30°), B (0.300003, -0.2, 30°) (0.00349 mm and 0° apart)"),
+            std::string::npos) << typedPose.out;
   const CommandResult otherShading = run("compare " + fast + " " + lit + " --fail-psnr 10");
   EXPECT_EQ(otherShading.code, 0) << otherShading.out;
   EXPECT_NE(otherShading.out.find("\n  note: shading differs: A \"unlit\", B \"lit\"\n"), std::string::npos) << otherShading.out;

@@ -1360,7 +1360,7 @@ TEST_F(DatasetCliTest, DatasetCompareMatchesFramesAndSetsExitCodes) {
   const auto sceneSha = [&](const char* dataset) {
     return json::parse(readFile(dir_ / dataset / "manifest.json")).at("scene").at("sha256").get<std::string>();
   };
-  const std::string sceneNote = "the datasets' scene (its SHA-256) differs: A \"" + sceneSha("fast") + "\", B \"" + sceneSha("rim43") + "\"";
+  const std::string sceneNote = "scene (its SHA-256) differs: A \"" + sceneSha("fast") + "\", B \"" + sceneSha("rim43") + "\"";
   EXPECT_EQ(json::parse(otherJson.out).at("notes"), json({sceneNote, note})) << otherJson.out;
 }
 

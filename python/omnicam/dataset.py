@@ -44,7 +44,8 @@ class Dataset:
       the camera's rig);
     - ``recording``: the recording camera of this frame and camera (a dict in the spec's
       ``recording`` format, every value fixed): the values drawn for it, or the spec's own when it
-      draws nothing; None without a recording camera;
+      draws nothing; None without a recording camera. ``render(..., recording=item["recording"],
+      frame=index * cameras + camera_position)`` records the frame again;
     - ``camera`` and ``intrinsics`` (the manifest's entry for the camera: the model and its
       parameters);
     - one entry per output the dataset holds, or per output asked for in ``outputs``:

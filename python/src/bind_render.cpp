@@ -88,8 +88,10 @@ class PyRenderer {
     // None, not 0, by default: frame=0 without recording= changes nothing, and is refused as any
     // other frame is.
     const uint64_t frame = frameArg ? static_cast<uint64_t>(narrowed(*frameArg, "frame", 0, INT64_MAX)) : 0;
-    if (py::isinstance<py::str>(recording) || py::hasattr(recording, "__fspath__"))  // a preset's name or a file, as --recording
-      camera = recordingCameraSpecFromNameOrFile(py::module_::import("os").attr("fspath")(recording).cast<std::string>(), "recording")
+    if (py::isinstance<py::str>(recording))  // a preset's name or a file, as --recording
+      camera = recordingCameraSpecFromNameOrFile(recording.cast<std::string>(), "recording").draw(frame);
+    else if (py::hasattr(recording, "__fspath__"))  // a path is a file, whatever its name
+      camera = recordingCameraSpecFromFile(py::module_::import("os").attr("fspath")(recording).cast<std::string>(), "recording")
                    .draw(frame);
     else if (!recording.is_none())
       camera = recordingCameraSpecFromJson(fromPython(recording, "recording"), "", "recording").draw(frame);

@@ -3,6 +3,7 @@ the rendered buffers, one renderer across threads, and datasets with progress.""
 
 import concurrent.futures
 import json
+import pathlib
 
 import numpy as np
 import pytest
@@ -280,6 +281,9 @@ def test_recording_is_the_datasets_camera_drawn_for_the_frame(robocup, tmp_path)
                                       renderer.render(pose, size=32, recording=by_python)["rgb"])
     with pytest.raises(omnicam.InputError, match=r"^recording: .*nope\.json: no such file \(a preset's name or a JSON file\)$"):
         renderer.render(pose, size=32, recording=tmp_path / "nope.json")
+    # A path is a file whatever its name: a missing one named like a preset is not the preset.
+    with pytest.raises(omnicam.InputError, match=r"^recording: webcam: no such file"):
+        renderer.render(pose, size=32, recording=pathlib.Path("webcam"))
     with pytest.raises(omnicam.InputError, match=r"^recording: exposure_ev: must be a finite number \(got nan\)"):
         renderer.render(pose, size=32, recording={"exposure_ev": np.float32("nan")})
 
