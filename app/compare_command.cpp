@@ -203,9 +203,9 @@ int runCompare(const CompareArgs& args, const CLI::App& cmd) {
   const SidecarComparison sidecars = compareSidecars(args.a, args.b);
   if (sidecars.posesApart && !args.anyPose)
     throw InputError("compare: " + showPath(args.b) + " is of another pose than " + showPath(args.a) + " (their sidecars: " +
-                     sidecars.poseNote.substr(sidecars.poseNote.find(": ") + 2) + "); --any-pose compares them all the same");
+                     sidecars.poses + "); --any-pose compares them all the same");
   std::vector<std::string> notes = sidecars.notes;
-  if (!sidecars.poseNote.empty()) notes.insert(notes.begin(), sidecars.poseNote);
+  if (!sidecars.poses.empty()) notes.insert(notes.begin(), "pose differs: " + sidecars.poses);
   const CompareResult r = args.diff.empty() && !args.boxDownsample ? compareStreamed(args, options) : compareWhole(args, options);
   const CompareThresholds thresholds = thresholdsOf(args, cmd);
   std::string failure;

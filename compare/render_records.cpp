@@ -28,12 +28,7 @@ std::string scalarText(const nlohmann::json& value) {
 std::string differenceText(const nlohmann::json& a, const nlohmann::json& b) {
   if (!a.is_structured() && !b.is_structured()) return ": A " + scalarText(a) + ", B " + scalarText(b);
   if (a.is_null() || b.is_null()) return std::string(": A ") + (a.is_null() ? "none" : "has one") + ", B " + (b.is_null() ? "none" : "has one");
-  constexpr size_t kShown = 4;
-  const std::vector<std::string> paths = jsonDifferences(a, b, kShown + 1);
-  std::string list;
-  for (size_t k = 0; k < std::min(paths.size(), kShown); ++k) list += (k ? ", " : "") + (paths[k].empty() ? "the whole value" : paths[k]);
-  if (paths.size() > kShown) list += ", and more";
-  return " in " + list;
+  return " in " + jsonDifferenceList(a, b, "the whole value");
 }
 
 }  // namespace
@@ -112,7 +107,7 @@ SidecarComparison compareSidecars(const std::string& imageA, const std::string& 
   }
   if (poseA && poseB && !samePose(*poseA, *poseB)) {
     const PoseDifference d = poseDifference(*poseA, *poseB);
-    out.poseNote = "pose differs: A " + poseText(*poseA) + ", B " + poseText(*poseB) + " (" + poseDifferenceText(d) + ")";
+    out.poses = "A " + poseText(*poseA) + ", B " + poseText(*poseB) + " (" + poseDifferenceText(d) + ")";
     out.posesApart = d.metres > kSamePoseToTheEyeMetres || d.degrees > kSamePoseToTheEyeDegrees;
   }
   out.notes = recordedSettingNotes(a->json, b->json, sidecarSettings());

@@ -49,7 +49,7 @@ std::vector<std::string> recordedSettingNotes(const nlohmann::json& a, const nlo
 // a note: the images are still compared.
 struct SidecarComparison {
   std::vector<std::string> notes;
-  std::string poseNote;     // "pose differs: …" when the poses are not the same; else empty
+  std::string poses;        // "A (x, y, yaw°), B (…) (… apart)" when the poses are not the same; else empty
   bool posesApart = false;  // beyond what a typed pose differs by: images of another place
 };
 SidecarComparison compareSidecars(const std::string& imageA, const std::string& imageB);

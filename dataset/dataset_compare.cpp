@@ -237,17 +237,6 @@ std::vector<FrameComparison> pairFrames(const DatasetManifest& a, const std::opt
   return pairs;
 }
 
-// At most kShown of the differing fields, then how many more.
-std::string differenceList(const nlohmann::json& a, const nlohmann::json& b) {
-  constexpr size_t kShown = 4;
-  const std::vector<std::string> paths = jsonDifferences(a, b, kShown + 1);
-  std::string list;
-  for (size_t k = 0; k < std::min(paths.size(), kShown); ++k)
-    list += (list.empty() ? "" : ", ") + (paths[k].empty() ? std::string("the whole rig") : paths[k]);
-  if (paths.size() > kShown) list += ", and more";
-  return list.empty() ? "the whole rig" : list;
-}
-
 // Each camera's rig in a manifest's header, by name.
 std::map<std::string, nlohmann::json> headerRigs(const DatasetManifest& m) {
   std::map<std::string, nlohmann::json> rigs;
@@ -266,7 +255,7 @@ std::vector<std::string> rigNotes(const DatasetManifest& a, const DatasetManifes
     const auto other = rigsB.find(name);
     if (other == rigsB.end() || other->second == rig) continue;
     differing.insert(name);
-    notes.push_back("camera " + quote(name) + ": the datasets' rigs differ (" + differenceList(rig, other->second) +
+    notes.push_back("camera " + quote(name) + ": the datasets' rigs differ (" + jsonDifferenceList(rig, other->second, "the whole rig") +
                     "): A and B are images of different cameras");
   }
   int frames = 0;
@@ -282,7 +271,7 @@ std::vector<std::string> rigNotes(const DatasetManifest& a, const DatasetManifes
       const nlohmann::json rigB = cam->second.rig ? rigToJson(*cam->second.rig) : rigsB.at(camera);
       if (rigA == rigB) continue;
       if (first.empty())
-        first = "frame " + std::to_string(index) + " camera " + quote(camera) + ": " + differenceList(rigA, rigB);
+        first = "frame " + std::to_string(index) + " camera " + quote(camera) + ": " + jsonDifferenceList(rigA, rigB, "the whole rig");
       differs = true;
     }
     frames += differs;

@@ -71,5 +71,12 @@ TEST(JsonDifferences, NameEachDifferingMemberByItsPath) {
   EXPECT_EQ(forged[0].find_first_of("\x1b\n"), std::string::npos) << forged[0];
 }
 
+TEST(JsonDifferences, AsMessagesListThem) {
+  const auto j = [](const char* text) { return nlohmann::json::parse(text); };
+  EXPECT_EQ(jsonDifferenceList(j(R"({"a": 1, "b": 2})"), j(R"({"a": 0, "b": 0})"), "the whole rig"), "a, b");
+  EXPECT_EQ(jsonDifferenceList(j("[1, 2, 3]"), j("[0, 0, 0]"), "the whole rig", 2), "[0], [1], and more");
+  EXPECT_EQ(jsonDifferenceList(j("1"), j("[1]"), "the whole rig"), "the whole rig");
+}
+
 }  // namespace
 }  // namespace omnicam

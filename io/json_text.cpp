@@ -176,4 +176,12 @@ std::vector<std::string> jsonDifferences(const json& a, const json& b, size_t li
   return out;
 }
 
+std::string jsonDifferenceList(const json& a, const json& b, const std::string& whole, size_t shown) {
+  const std::vector<std::string> paths = jsonDifferences(a, b, shown + 1);
+  std::string list;
+  for (size_t k = 0; k < std::min(paths.size(), shown); ++k) list += (list.empty() ? "" : ", ") + (paths[k].empty() ? whole : paths[k]);
+  if (paths.size() > shown) list += ", and more";
+  return list.empty() ? whole : list;
+}
+
 }  // namespace omnicam

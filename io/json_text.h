@@ -24,5 +24,8 @@ std::string jsonErrorText(std::string what);
 // Where two JSON values differ, as paths to the differing members ("mirror.k", "offset_mm[1]";
 // "" when the values themselves differ in kind or length), the first `limit` in member order.
 std::vector<std::string> jsonDifferences(const nlohmann::json& a, const nlohmann::json& b, size_t limit = 4);
+// The same as messages list them: the first `shown` paths, ", and more" after them; `whole` for
+// values that differ as a whole ("the whole rig").
+std::string jsonDifferenceList(const nlohmann::json& a, const nlohmann::json& b, const std::string& whole, size_t shown = 4);
 
 }  // namespace omnicam
