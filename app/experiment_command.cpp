@@ -439,7 +439,8 @@ void addExperimentCommands(CLI::App& app) {
   cmd->add_option("--bins", args->bins, "Histogram bins per RGB channel (default 32)")->check(integerIn(2, 256));
   cmd->add_option("--median", args->medianPx,
                   "texture-realism: median filter of N×N pixels on the frames before classifying, in training and "
-                  "detection (odd, 1 = none; default 1)")
+                  "detection, for the thesis' pixel detector (odd, 1 = none; default 1); the footprint detector's is "
+                  "chosen by validation among none, 3×3 and this")
       ->check(CLI::IsMember({1, 3, 5, 7}));
   cmd->add_option("--min-blob-area", args->minBlobArea, "texture-realism: smallest colour blob kept, in pixels (default 2)")
       ->check(integerIn(1, 10000));

@@ -120,17 +120,17 @@ uint64_t drawIndex(uint64_t first, size_t frame, int draw, int draws) {
 }
 
 // Trains `classifiers` on `frames`, each recorded o.recordingDraws times through a camera drawn
-// from `recording` (draw index frame × draws + d), with `neutralStage` (if any) held neutral: one
-// recorded frame in memory at a time.
+// from `recording` (draw index frame × draws + d), with `neutralStage` (if any) held neutral, the
+// detector's input filtered as `detector` says: one recorded frame in memory at a time.
 void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifiers, const std::vector<Frame>& frames,
                      const RecordingCameraSpec& recording, const TextureRealismOptions& o, const std::string& neutralStage,
-                     const std::vector<std::string>& bandColour) {
+                     const std::vector<std::string>& bandColour, const DetectorOptions& detector) {
   for (size_t k = 0; k < frames.size(); ++k)
     for (int d = 0; d < o.recordingDraws; ++d) {
       const uint64_t index = drawIndex(0, k, d, o.recordingDraws);
       RecordingCamera camera = recording.draw(index);
       if (!neutralStage.empty()) camera = withStageNeutral(camera, neutralStage);
-      trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour, o.detector);
+      trainOn(classifiers, {Frame{frames[k].pose, recordFrame(camera, frames[k].image, index), frames[k].instance}}, bandColour, detector);
     }
 }
 
@@ -139,62 +139,103 @@ void trainOnRecorded(std::map<std::string, ColourHistogramClassifier>& classifie
 std::string recordedSet(const std::string& frames) { return frames + "_recorded"; }
 std::string ablationSet(const std::string& stage) { return "path_recorded_without_" + stage; }
 
-// One fold of leave-one-preset-out validation: the path frames' classifiers through its training
-// cameras, beside the cameras its validation frames are recorded through.
-struct ValidationFold {
-  std::map<std::string, ColourHistogramClassifier> classifiers;
-  RecordingCameraSpec validation;
+// The frames every training set is trained on, rendered once: the pixel detector's sets and the
+// footprint detector's (whose input filter validation may choose otherwise) train on the same.
+struct TrainingFrames {
+  std::vector<Frame> plain;
+  std::vector<std::vector<Frame>> randomHalls;  // one share of the random poses per random hall
+  std::vector<Frame> path;
+  std::vector<Frame> realistic;  // Cycles' frames at the path frames' poses, through the webcam
 };
 
-struct TrainedSets {
-  Classifiers sets;  // by training set's name
-  std::vector<ValidationFold> folds;  // one per presetFolds' fold, in its order
-};
-
-TrainedSets trainClassifiers(const TextureRealismOptions& o, const fs::path& out, const Scene& plain, const Scene& textured,
-                             const std::vector<PresetFold>& folds, const std::vector<std::string>& bandColour,
-                             const std::function<void()>& step, CyclesCount& cycles) {
-  TrainedSets result;
-  Classifiers& trained = result.sets;
-  auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
-    return freshClassifiers(trained, set, o.bins);
-  };
+TrainingFrames renderTrainingFrames(const TextureRealismOptions& o, const fs::path& out, const Scene& plain,
+                                    const Scene& textured, const std::function<void()>& step, CyclesCount& cycles) {
+  TrainingFrames frames;
   // plain and random_textures keep the poses they always had; path and realistic share theirs.
-  const std::vector<Frame> plainFrames = renderFast(plain, randomFieldPoses(o.trainFrames, o.seed + 1), o.size, o.spp, step);
-  trainOn(fresh("plain"), plainFrames, bandColour, o.detector);
+  frames.plain = renderFast(plain, randomFieldPoses(o.trainFrames, o.seed + 1), o.size, o.spp, step);
   const std::vector<RobotPose> randomPoses = randomFieldPoses(o.trainFrames, o.seed + 2);
-  auto& randomTextures = fresh("random_textures");
   for (int k = 0; k < o.randomHalls; ++k) {
     std::vector<RobotPose> share;
     for (size_t p = static_cast<size_t>(k); p < randomPoses.size(); p += static_cast<size_t>(o.randomHalls)) share.push_back(randomPoses[p]);
     const Scene scene = loadScene((out / ("arenas/hall-random-" + std::to_string(k) + ".json")).string());
-    trainOn(randomTextures, renderFast(scene, share, o.size, o.spp, step), bandColour, o.detector);
+    frames.randomHalls.push_back(renderFast(scene, share, o.size, o.spp, step));
   }
   const std::vector<RobotPose> sharedPoses = randomFieldPoses(o.trainFrames, o.seed + 3);
-  const std::vector<Frame> pathFrames = renderFast(textured, sharedPoses, o.size, o.pathSpp, step, Shading::Path);
-  trainOn(fresh("path"), pathFrames, bandColour, o.detector);
+  frames.path = renderFast(textured, sharedPoses, o.size, o.pathSpp, step, Shading::Path);
   const std::vector<Frame> masks = renderFast(textured, sharedPoses, o.size, 1, [] {});
   std::vector<RobotPose> poses;
   for (const Frame& mask : masks) poses.push_back(mask.pose);
-  trainOn(fresh("realistic"), recordedFrames(masks, cyclesFrames(o, textured, poses, step, cycles), fixedRecordingCameraSpec(o.recording)),
-          bandColour, o.detector);
+  frames.realistic = recordedFrames(masks, cyclesFrames(o, textured, poses, step, cycles), fixedRecordingCameraSpec(o.recording));
+  return frames;
+}
+
+// Every training set, its classifiers trained with the detector's input filtered as `detector`
+// says; `step` after the recorded sets and after each ablation set.
+Classifiers trainSets(const TrainingFrames& frames, const TextureRealismOptions& o, const DetectorOptions& detector,
+                      const std::vector<std::string>& bandColour, const std::function<void()>& step) {
+  Classifiers trained;
+  auto fresh = [&](const std::string& set) -> std::map<std::string, ColourHistogramClassifier>& {
+    return freshClassifiers(trained, set, o.bins);
+  };
+  trainOn(fresh("plain"), frames.plain, bandColour, detector);
+  auto& randomTextures = fresh("random_textures");
+  for (const std::vector<Frame>& hall : frames.randomHalls) trainOn(randomTextures, hall, bandColour, detector);
+  trainOn(fresh("path"), frames.path, bandColour, detector);
+  trainOn(fresh("realistic"), frames.realistic, bandColour, detector);
   // Domain randomisation of the camera: path and plain frames through drawn cameras, and the ablation.
-  trainOnRecorded(fresh(recordedSet("path")), pathFrames, o.trainingRecording, o, "", bandColour);
-  trainOnRecorded(fresh(recordedSet("plain")), plainFrames, o.trainingRecording, o, "", bandColour);
+  trainOnRecorded(fresh(recordedSet("path")), frames.path, o.trainingRecording, o, "", bandColour, detector);
+  trainOnRecorded(fresh(recordedSet("plain")), frames.plain, o.trainingRecording, o, "", bandColour, detector);
   step();
   if (o.ablation)
     for (const std::string& stage : recordingStages()) {
-      trainOnRecorded(fresh(ablationSet(stage)), pathFrames, o.trainingRecording, o, stage, bandColour);
+      trainOnRecorded(fresh(ablationSet(stage)), frames.path, o.trainingRecording, o, stage, bandColour, detector);
       step();
     }
+  return trained;
+}
+
+// The detector's options with its input filtered by a median of `medianPx` pixels a side.
+DetectorOptions withMedian(DetectorOptions detector, int medianPx) {
+  detector.medianPx = medianPx;
+  return detector;
+}
+
+// The median filters validation tries for the footprint detector (pixels a side; 1: none), fewest
+// first: none, 3 × 3 — which takes most of a pixel's noise off its colour and keeps a band two
+// pixels tall — and the one the pixel detector was given. A camera noisier than any in training
+// scatters unfiltered colours beyond what the histograms saw; whether filtering pays for the
+// thin bands it blurs is for validation to tell.
+std::vector<int> footprintMedians(const DetectorOptions& detector) {
+  std::vector<int> medians = {1, 3, detector.medianPx};
+  std::sort(medians.begin(), medians.end());
+  medians.erase(std::unique(medians.begin(), medians.end()), medians.end());
+  return medians;
+}
+
+// One fold of leave-one-preset-out validation: the path frames' classifiers through its training
+// cameras, one set per median filter tried, beside the cameras its validation frames are recorded
+// through.
+struct ValidationFold {
+  std::map<int, std::map<std::string, ColourHistogramClassifier>> classifiersByMedian;
+  RecordingCameraSpec validation;
+};
+
+std::vector<ValidationFold> trainFolds(const TextureRealismOptions& o, const std::vector<Frame>& pathFrames,
+                                       const std::vector<PresetFold>& folds, const std::vector<std::string>& bandColour,
+                                       const std::function<void()>& step) {
+  std::vector<ValidationFold> trained;
   for (const PresetFold& fold : folds) {
-    Classifiers unnamed;
-    auto& classifiers = freshClassifiers(unnamed, "", o.bins);
-    trainOnRecorded(classifiers, pathFrames, fold.training, o, "", bandColour);
-    result.folds.push_back({std::move(classifiers), fold.validation});
+    ValidationFold v{{}, fold.validation};
+    for (const int median : footprintMedians(o.detector)) {
+      Classifiers unnamed;
+      auto& classifiers = freshClassifiers(unnamed, "", o.bins);
+      trainOnRecorded(classifiers, pathFrames, fold.training, o, "", bandColour, withMedian(o.detector, median));
+      v.classifiersByMedian.emplace(median, std::move(classifiers));
+    }
+    trained.push_back(std::move(v));
     step();
   }
-  return result;
+  return trained;
 }
 
 // Test sets along thesis-loop: plain and textured by the fast renderer, realistic by Blender (one
@@ -284,60 +325,67 @@ struct Scoring {
   double matchRadiusPx;
 };
 
-// Every setting validation tries: each colour resolution from the trained one down, finest first;
-// within it each score, then each band tolerance.
-std::vector<FootprintTrial> footprintSettings(int bins) {
+// Every setting validation tries: each median filter, fewest pixels first; within it each colour
+// resolution from the trained one down, finest first; within that each score, then each band
+// tolerance.
+std::vector<FootprintTrial> footprintSettings(int bins, const std::vector<int>& medians) {
   std::vector<FootprintTrial> trials;
-  for (const int b : resolutionAndHalvings(bins, kSmallestFootprintBins))
-    for (const FootprintScore score : footprintScores())
-      for (const double tolerance : kBandTolerances) {
-        trials.push_back({});
-        trials.back().bins = b;
-        trials.back().rule = {score, tolerance};
-      }
+  for (const int median : medians)
+    for (const int b : resolutionAndHalvings(bins, kSmallestFootprintBins))
+      for (const FootprintScore score : footprintScores())
+        for (const double tolerance : kBandTolerances) {
+          trials.push_back({});
+          trials.back().medianPx = median;
+          trials.back().bins = b;
+          trials.back().rule = {score, tolerance};
+        }
   return trials;
 }
 
 // The footprint detector's setting, by leave-one-preset-out validation (presetFolds): in each fold
 // every validation frame is recorded o.recordingDraws times through the fold's validation cameras
-// and detected by every setting with the fold's classifiers, one recorded frame in memory at a
-// time (its evidence computed once per colour resolution). Each trial sums over the folds.
+// and detected by every setting with the fold's classifiers (trained through the same median
+// filter), one recorded frame in memory at a time (its evidence computed once per filter and
+// colour resolution). Each trial sums over the folds.
 std::vector<FootprintTrial> tryFootprintSettings(const TextureRealismOptions& o, const std::vector<ValidationFold>& folds,
                                                  const std::vector<Frame>& validation,
                                                  const std::vector<std::vector<GroundTruthBeacon>>& truth,
                                                  const FootprintDetector& detector, const Scoring& s,
                                                  const ExperimentProgress& progress) {
-  std::vector<FootprintTrial> trials = footprintSettings(o.bins);
-  std::vector<std::map<int, std::map<std::string, ColourHistogramClassifier>>> classifiers(folds.size());  // by fold, bins
+  std::vector<FootprintTrial> trials = footprintSettings(o.bins, footprintMedians(o.detector));
+  using ByBins = std::map<int, std::map<std::string, ColourHistogramClassifier>>;
+  std::vector<std::map<int, ByBins>> classifiers(folds.size());  // by fold, median, bins
   for (size_t fold = 0; fold < folds.size(); ++fold)
-    for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins))
-      classifiers[fold][bins] = coarsenedSet(folds[fold].classifiers, bins);
+    for (const auto& [median, trained] : folds[fold].classifiersByMedian)
+      for (const int bins : resolutionAndHalvings(o.bins, kSmallestFootprintBins))
+        classifiers[fold][median][bins] = coarsenedSet(trained, bins);
   for (size_t k = 0; k < validation.size(); ++k) {
     for (size_t fold = 0; fold < folds.size(); ++fold)
       for (int d = 0; d < o.recordingDraws; ++d) {
         const uint64_t index = drawIndex(kValidationDraws, k, d, o.recordingDraws);
         const Frame recorded{validation[k].pose, recordFrame(folds[fold].validation.draw(index), validation[k].image, index),
                              validation[k].instance};
-        for (const auto& [bins, classifiersAtBins] : classifiers[fold]) {
-          const BandEvidence evidence = detector.evidence(recorded.image, classifiersAtBins, o.detector);
-          for (FootprintTrial& t : trials) {
-            if (t.bins != bins) continue;
-            const DetectionResult detected = detector.detect(evidence, o.detector.theta, t.rule);
-            const FrameEvaluation e = evaluateFrame(recorded, detected, truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
-            t.visibleBeacons += e.visibleBeacons;
-            t.truePositives += e.truePositives;
-            t.falsePositives += e.falsePositives();
+        for (const auto& [median, byBins] : classifiers[fold])
+          for (const auto& [bins, classifiersAtBins] : byBins) {
+            const BandEvidence evidence = detector.evidence(recorded.image, classifiersAtBins, withMedian(o.detector, median));
+            for (FootprintTrial& t : trials) {
+              if (t.medianPx != median || t.bins != bins) continue;
+              const DetectionResult detected = detector.detect(evidence, o.detector.theta, t.rule);
+              const FrameEvaluation e = evaluateFrame(recorded, detected, truth[k], s.bandColour, s.objectNames, s.matchRadiusPx);
+              t.visibleBeacons += e.visibleBeacons;
+              t.truePositives += e.truePositives;
+              t.falsePositives += e.falsePositives();
+            }
           }
-        }
       }
-    progress("choosing the footprint detector's colour resolution, score and band tolerance", static_cast<int>(k + 1),
+    progress("choosing the footprint detector's filter, colour resolution, score and band tolerance", static_cast<int>(k + 1),
              static_cast<int>(validation.size()));
   }
   return trials;
 }
 
-// The best TP − FP; trials run finest first, so a tie keeps the finer (then the score listed first,
-// then the smaller tolerance).
+// The best TP − FP; on a tie the first tried: the smaller filter, the finer resolution, the score
+// listed first, the smaller tolerance.
 const FootprintTrial& chosenSetting(const std::vector<FootprintTrial>& trials) {
   const FootprintTrial* best = &trials.front();
   for (const FootprintTrial& t : trials)
@@ -381,11 +429,15 @@ std::vector<ConditionToRun> conditionsOf(const TextureRealismOptions& o) {
 // The cameras the report shows: the training ranges, the webcam and each test camera's values.
 void describeCameras(const TextureRealismOptions& o, TextureRealismResults& results) {
   results.trainingRanges = describeRanges(o.trainingRecording);
-  results.testCameras.push_back({"realistic", "webcam (fixed; the realistic frames)", describeValues(o.recording)});
-  for (size_t k = 0; k < o.testCameras.size(); ++k)
+  results.testCameras.push_back({"realistic", "webcam (fixed; the realistic frames)", describeValues(o.recording),
+                                 parametersBeyond(o.trainingRecording, o.recording)});
+  for (size_t k = 0; k < o.testCameras.size(); ++k) {
+    const RecordingCameraSpec& camera = o.testCameras[k].recording;
+    // A drawn test camera is shown by its ranges; only a fixed one's values can be beyond training's.
     results.testCameras.push_back({testCameraSet(k), "camera " + std::to_string(k + 1) + ": " + fs::path(o.testCameras[k].file).filename().string(),
-                                   o.testCameras[k].recording.randomised() ? describeRanges(o.testCameras[k].recording)
-                                                                          : describeValues(o.testCameras[k].recording.draw(0))});
+                                   camera.randomised() ? describeRanges(camera) : describeValues(camera.draw(0)),
+                                   camera.randomised() ? std::nullopt : std::optional(parametersBeyond(o.trainingRecording, camera.draw(0)))});
+  }
   if (o.ablation) results.ablatedStages = recordingStages();
 }
 
@@ -458,13 +510,14 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
 
   const std::vector<PresetFold> folds = presetFolds(o.trainingRecording);
   const int trainTotal = 5 * o.trainFrames + 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0) +
-                         static_cast<int>(folds.size());
+                         static_cast<int>(folds.size());  // the footprint detector's own sets, if any, counted apart
   const int testTotal = 4 * static_cast<int>(testPoses.size());
   int done = 0;
   const std::function<void()> step = [&] { progress("rendering and training", ++done, trainTotal + testTotal); };
   CyclesCount cycles;
-  TrainedSets trainedSets = trainClassifiers(o, out, plain, textured, folds, bandColour, step, cycles);
-  Classifiers& trained = trainedSets.sets;
+  const TrainingFrames trainingFrames = renderTrainingFrames(o, out, plain, textured, step, cycles);
+  Classifiers trained = trainSets(trainingFrames, o, o.detector, bandColour, step);
+  const std::vector<ValidationFold> validationFolds = trainFolds(o, trainingFrames.path, folds, bandColour, step);
   const std::map<std::string, std::vector<Frame>> tests = renderTestSets(o, plain, textured, testPoses, step, cycles);
   // The oracle: classifiers trained on the realistic test frames themselves. What no training set
   // can beat with these classifiers: whether the bands' colours survive the test camera at all.
@@ -481,15 +534,28 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   const FootprintDetector footprints(rig, beacons);
   std::vector<std::vector<GroundTruthBeacon>> validationTruth;
   for (const Frame& frame : validation) validationTruth.push_back(groundTruth(plain, geometry.rays(), rig, frame.pose, beacons));
-  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, trainedSets.folds, validation, validationTruth,
+  const std::vector<FootprintTrial> trials = tryFootprintSettings(o, validationFolds, validation, validationTruth,
                                                                   footprints, {bandColour, objectNames, matchRadius}, progress);
   const FootprintTrial& chosen = chosenSetting(trials);
   const int footprintBins = chosen.bins;
   const FootprintRule footprintRule = chosen.rule;
+  const DetectorOptions footprintOptions = withMedian(o.detector, chosen.medianPx);
+  // The footprint detector's sets: the pixel detector's when their input filters agree, otherwise
+  // every set trained again on the same frames through the chosen filter; at footprintBins.
+  Classifiers filtered;
+  if (footprintOptions.medianPx != o.detector.medianPx) {
+    int trainedSoFar = 0;
+    const int setsToTrain = 1 + (o.ablation ? static_cast<int>(recordingStages().size()) : 0);
+    filtered = trainSets(trainingFrames, o, footprintOptions, bandColour, [&] {
+      progress("training the footprint detector's classifiers through its median filter", ++trainedSoFar, setsToTrain);
+    });
+    trainOn(freshClassifiers(filtered, kOracleSet, o.bins), tests.at("realistic"), bandColour, footprintOptions);
+  }
+  const Classifiers& footprintSets = footprintOptions.medianPx != o.detector.medianPx ? filtered : trained;
   Classifiers coarsened;  // every set at footprintBins, when that is not the trained resolution
   if (footprintBins != o.bins)
-    for (const auto& [set, classifiers] : trained) coarsened[set] = coarsenedSet(classifiers, footprintBins);
-  const Classifiers& forFootprints = footprintBins != o.bins ? coarsened : trained;
+    for (const auto& [set, classifiers] : footprintSets) coarsened[set] = coarsenedSet(classifiers, footprintBins);
+  const Classifiers& forFootprints = footprintBins != o.bins ? coarsened : footprintSets;
   const Drive drive = makeDrive(loop->poses, o.seed + 7);
   ReportData report;
   report.options = &o;
@@ -503,7 +569,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     const auto& classifiers = (run.detector == DetectorKind::Footprints ? forFootprints : trained).at(run.train);
     for (size_t k = 0; k < frames.size(); ++k) {
       const DetectionResult detected = run.detector == DetectorKind::Footprints
-                                           ? footprints.detect(frames[k].image, classifiers, o.detector, footprintRule)
+                                           ? footprints.detect(frames[k].image, classifiers, footprintOptions, footprintRule)
                                            : detectBeacons(frames[k].image, classifiers, beacons, rig, o.detector);
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
@@ -518,6 +584,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   results.footprintTrials = trials;
   results.footprintBins = footprintBins;
   results.footprintRule = footprintRule;
+  results.footprintMedianPx = footprintOptions.medianPx;
   results.cyclesFramesRendered = cycles.rendered;
   results.cyclesFramesReused = cycles.reused;
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);

@@ -170,29 +170,59 @@ void writeRanges(std::ostringstream& md, const TextureRealismResults& r) {
   md << "\n### Training ranges beside the test cameras\n\n"
         "The training ranges are the three presets' (`webcam`, `machine_vision`, `phone`; docs/experiments.md), "
         "fixed from camera families before any result was seen. **They are never tuned to a test camera**: the test "
-        "cameras' values are shown here only to tell which lie inside the ranges and which outside.\n\n"
+        "cameras' values are shown here only to tell which lie inside the ranges and which outside (**bold**, "
+        "\"beyond\": a value no training camera has).\n\n"
      << "| parameter | training ranges (per preset) ";
   for (const TestCameraSummary& t : r.testCameras) md << "| " << cell(t.label) << " ";
   md << "|\n|---|---";
   for (size_t k = 0; k < r.testCameras.size(); ++k) md << "|---";
   md << "|\n";
+  auto isBeyond = [](const TestCameraSummary& t, const std::string& parameter) {
+    return t.beyondTraining && std::find(t.beyondTraining->begin(), t.beyondTraining->end(), parameter) != t.beyondTraining->end();
+  };
   for (size_t p = 0; p < r.trainingRanges.size(); ++p) {
     // Ranges and values are omnicam's own words and numbers: no user text.
-    md << "| " << r.trainingRanges[p].first << " | " << r.trainingRanges[p].second << " ";
-    for (const TestCameraSummary& t : r.testCameras) md << "| " << (p < t.values.size() ? t.values[p].second : "") << " ";
+    const std::string& parameter = r.trainingRanges[p].first;
+    md << "| " << parameter << " | " << r.trainingRanges[p].second << " ";
+    for (const TestCameraSummary& t : r.testCameras) {
+      const std::string value = p < t.values.size() ? t.values[p].second : "";
+      md << "| " << (isBeyond(t, parameter) ? "**" + value + "** beyond" : value) << " ";
+    }
     md << "|\n";
   }
+  md << "\nBeyond every training camera:";
+  for (const TestCameraSummary& t : r.testCameras) {
+    md << "\n- " << cell(t.label) << ": ";
+    if (!t.beyondTraining) md << "not told (its values are drawn)";
+    else if (t.beyondTraining->empty()) md << "nothing";
+    else
+      for (size_t k = 0; k < t.beyondTraining->size(); ++k) md << (k ? ", " : "") << "`" << (*t.beyondTraining)[k] << "`";
+  }
+  md << "\n";
+}
+
+// The webcam's (the realistic frames') parameters of `stage` that no training camera has.
+std::vector<std::string> webcamBeyondTrainingIn(const TextureRealismResults& r, const std::string& stage) {
+  std::vector<std::string> parameters;
+  for (const TestCameraSummary& t : r.testCameras)
+    if (t.set == "realistic" && t.beyondTraining)
+      for (const std::string& p : *t.beyondTraining)
+        if (recordingStageOf(p) == stage) parameters.push_back(p);
+  return parameters;
 }
 
 // The finding in words, from the numbers: what transfers, and what the ablation says holds it back.
-// Which stage's absence from training loses the most true positives, and which gains the most.
+// Which stage's absence from training loses the most true positives, which gains the most, and
+// which removes the most false positives — and whether the webcam's own value of that stage is one
+// no training camera has (a fault training teaches that the test camera does not make).
 void writeAblationFinding(std::ostringstream& md, const TextureRealismResults& r, const ConditionOutcome& full, DetectorKind d) {
-  std::string needed, harmful;
-  int loss = 0, gain = 0;
+  std::string needed, harmful, noisy;
+  int loss = 0, gain = 0, fewerFalse = 0;
   for (const std::string& stage : r.ablatedStages)
     if (const ConditionOutcome* c = findCondition(r, conditionKey("path_recorded_without_" + stage, "realistic", d))) {
       if (full.truePositives - c->truePositives > loss) loss = full.truePositives - c->truePositives, needed = stage;
       if (c->truePositives - full.truePositives > gain) gain = c->truePositives - full.truePositives, harmful = stage;
+      if (full.falsePositives - c->falsePositives > fewerFalse) fewerFalse = full.falsePositives - c->falsePositives, noisy = stage;
     }
   md << "\nThe ablation, by true positives: ";
   if (needed.empty()) md << "no single stage held neutral loses any";
@@ -200,7 +230,16 @@ void writeAblationFinding(std::ostringstream& md, const TextureRealismResults& r
   if (!harmful.empty())
     md << "; without `" << harmful << "` " << gain << " more are found: drawn over the presets' ranges, that fault costs "
           "true positives on these frames (its false positives: the table)";
-  md << ".\n";
+  md << ".";
+  if (!noisy.empty()) {
+    md << " By false positives: without `" << noisy << "` in training " << fewerFalse << " fewer";
+    const std::vector<std::string> beyond = webcamBeyondTrainingIn(r, noisy);
+    for (size_t k = 0; k < beyond.size(); ++k) md << (k ? ", `" : " — the webcam's `") << beyond[k] << "`";
+    if (!beyond.empty())
+      md << " lies beyond every training camera's (below): training teaches the detector a fault these test frames do not have";
+    md << ".";
+  }
+  md << "\n";
 }
 
 void writeFinding(std::ostringstream& md, const TextureRealismResults& r) {
@@ -239,47 +278,66 @@ std::string toleranceText(double tolerance) {
   return text.str();
 }
 
+// A median filter as the report names it: "none", "3 × 3".
+std::string medianText(int medianPx) {
+  return medianPx == 1 ? "none" : std::to_string(medianPx) + " × " + std::to_string(medianPx);
+}
+
 // How the footprint detector's setting was chosen: leave one preset out on validation frames,
-// never a test camera. One row per resolution and score, one column per band tolerance, in the
-// order tried.
+// never a test camera. One row per filter, resolution and score, one column per band tolerance,
+// in the order tried.
 void writeFootprintSettingChoice(std::ostringstream& md, const TextureRealismResults& r, const TextureRealismOptions& o) {
   if (r.footprintTrials.empty()) return;
-  std::vector<std::pair<int, FootprintScore>> rows;
+  struct Row {
+    int medianPx, bins;
+    FootprintScore score;
+    bool operator==(const Row&) const = default;
+  };
+  std::vector<Row> rows;
   std::vector<double> tolerances;
   for (const FootprintTrial& t : r.footprintTrials) {
-    if (std::find(rows.begin(), rows.end(), std::make_pair(t.bins, t.rule.score)) == rows.end()) rows.emplace_back(t.bins, t.rule.score);
+    const Row row{t.medianPx, t.bins, t.rule.score};
+    if (std::find(rows.begin(), rows.end(), row) == rows.end()) rows.push_back(row);
     if (std::find(tolerances.begin(), tolerances.end(), t.rule.bandTolerance) == tolerances.end()) tolerances.push_back(t.rule.bandTolerance);
   }
+  std::string medians;
+  for (const Row& row : rows)
+    if (medians.find(medianText(row.medianPx)) == std::string::npos) medians += (medians.empty() ? "" : ", ") + medianText(row.medianPx);
   md << "Its setting is chosen before any test frame is seen, leaving one training preset out at a time: in each "
         "fold every validation frame (a path frame at a pose no training frame has) is recorded through the held-out "
         "preset at draws no training frame used, and detected with histograms trained on the path frames through the "
-        "other presets only — a camera of a kind training never saw, as a test camera is. Tried: the trained resolution and each "
+        "other presets only — a camera of a kind training never saw, as a test camera is. Tried: a median filter on "
+        "the frames before their colours are classified, in training and detection ("
+     << medians
+     << "; a camera noisier than any in training scatters unfiltered colours beyond what the histograms saw, and the "
+        "filter blurs thin bands), the trained resolution and each "
         "exact halving of it down to 8 bins (a coarse bin holds exactly its fine bins' counts), each score, and each "
         "band tolerance (how far below log Θ one band's mean evidence may fall while the footprint's reaches it). The "
-        "best TP − FP over all folds wins (on a tie the finer resolution, then the score in the order total, "
-        "standardised, mean, then the smaller tolerance), and every footprint condition below, its bar plain → plain "
-        "included, uses it: **"
-     << r.footprintBins << "³ bins, the " << footprintScoreName(r.footprintRule.score) << " score, band tolerance "
-     << toleranceText(r.footprintRule.bandTolerance) << "**. The thesis' pixel detector keeps its " << o.bins
-     << "³ bins.\n\nEach cell: TP / FP (TP − FP) on the validation frames, of "
-     << r.footprintTrials.front().visibleBeacons
+        "best TP − FP over all folds wins (on a tie the smaller filter, the finer resolution, then the score in the "
+        "order total, standardised, mean, then the smaller tolerance), and every footprint condition below, its bar "
+        "plain → plain included, uses it: **median filter "
+     << medianText(r.footprintMedianPx) << ", " << r.footprintBins << "³ bins, the " << footprintScoreName(r.footprintRule.score)
+     << " score, band tolerance " << toleranceText(r.footprintRule.bandTolerance) << "**. The thesis' pixel detector keeps its "
+     << o.bins << "³ bins and median filter " << medianText(o.detector.medianPx)
+     << ".\n\nEach cell: TP / FP (TP − FP) on the validation frames, of " << r.footprintTrials.front().visibleBeacons
      << " sightings of visible beacons (each validation frame counted once per fold and drawn camera).\n\n"
-        "| bins per channel | score |";
+        "| median filter | bins per channel | score |";
   for (const double tolerance : tolerances) md << " tolerance " << toleranceText(tolerance) << " |";
-  md << "\n|---|---|";
+  md << "\n|---|---|---|";
   for (size_t k = 0; k < tolerances.size(); ++k) md << "---|";
   md << "\n";
-  for (const auto& [bins, score] : rows) {
-    md << "| " << bins << " | " << footprintScoreName(score) << " |";
+  for (const Row& row : rows) {
+    md << "| " << medianText(row.medianPx) << " | " << row.bins << " | " << footprintScoreName(row.score) << " |";
     for (const double tolerance : tolerances) {
       const auto t = std::find_if(r.footprintTrials.begin(), r.footprintTrials.end(), [&](const FootprintTrial& x) {
-        return x.bins == bins && x.rule.score == score && x.rule.bandTolerance == tolerance;
+        return x.medianPx == row.medianPx && x.bins == row.bins && x.rule.score == row.score && x.rule.bandTolerance == tolerance;
       });
       if (t == r.footprintTrials.end()) {
         md << " – |";
         continue;
       }
-      const bool chosen = bins == r.footprintBins && score == r.footprintRule.score && tolerance == r.footprintRule.bandTolerance;
+      const bool chosen = row.medianPx == r.footprintMedianPx && row.bins == r.footprintBins && row.score == r.footprintRule.score &&
+                          tolerance == r.footprintRule.bandTolerance;
       md << " " << (chosen ? "**" : "") << t->truePositives << " / " << t->falsePositives << " (" << t->validationScore() << ")"
          << (chosen ? ", chosen**" : "") << " |";
     }

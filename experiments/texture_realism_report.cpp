@@ -95,12 +95,17 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                              {"mean_improvement_cm", e.meanErrorOdometryCm - e.meanErrorEkfCm},
                              {"measurements_used", e.measurementsUsed},
                              {"measurements_gated", e.measurementsGated}};
+  j["beyond_training"] = nlohmann::json::object();  // per fixed test camera: its parameters no training camera has
+  for (const TestCameraSummary& t : results.testCameras)
+    if (t.beyondTraining) j["beyond_training"][t.set] = *t.beyondTraining;
+  j["footprint_median_px"] = results.footprintMedianPx;
   j["footprint_bins"] = results.footprintBins;
   j["footprint_score"] = footprintScoreName(results.footprintRule.score);
   j["footprint_band_tolerance"] = results.footprintRule.bandTolerance;
   j["footprint_trials"] = nlohmann::json::array();
   for (const FootprintTrial& t : results.footprintTrials)
-    j["footprint_trials"].push_back({{"bins_per_channel", t.bins},
+    j["footprint_trials"].push_back({{"median_px", t.medianPx},
+                                     {"bins_per_channel", t.bins},
                                      {"score", footprintScoreName(t.rule.score)},
                                      {"band_tolerance", t.rule.bandTolerance},
                                      {"visible_beacons", t.visibleBeacons},

@@ -108,6 +108,8 @@ struct TestCameraSummary {
   std::string set;    // "realistic", "realistic_camera_1", …
   std::string label;  // "webcam (fixed)", a file name
   std::vector<std::pair<std::string, std::string>> values;
+  // Its parameters no training camera has (parametersBeyond); none for a drawn test camera.
+  std::optional<std::vector<std::string>> beyondTraining;
 };
 
 // One setting tried for the footprint detector on the validation frames (path frames at poses no
@@ -117,6 +119,7 @@ struct TestCameraSummary {
 // and a FootprintRule: how a footprint's score weighs its size, and how far one band's evidence
 // may fall short.
 struct FootprintTrial {
+  int medianPx = 1;  // the median filter on the frames, in training and detection (1: none)
   int bins = 0;
   FootprintRule rule;
   int visibleBeacons = 0, truePositives = 0, falsePositives = 0;
@@ -130,9 +133,11 @@ struct TextureRealismResults {
   std::vector<std::string> ablatedStages;
   ImageRGBA comparison;  // one pose: plain, path, path + one drawn recording, realistic
   std::vector<EkfOutcome> ekf;
-  // The footprint detector's conditions use classifiers coarsened to `footprintBins` and
-  // `footprintRule`: the tried setting with the best validation score (the first tried on a tie).
+  // The footprint detector's conditions use classifiers trained through a median filter of
+  // `footprintMedianPx`, coarsened to `footprintBins`, and `footprintRule`: the tried setting with
+  // the best validation score (the first tried on a tie).
   std::vector<FootprintTrial> footprintTrials;
+  int footprintMedianPx = 1;
   int footprintBins = 0;
   FootprintRule footprintRule;
   double seconds = 0.0;

@@ -373,6 +373,11 @@ const std::vector<std::string>& recordingStages() {
   return stages;
 }
 
+std::string recordingStageOf(const std::string& parameter) {
+  const Parameter* p = findParameter(parameter);
+  return p ? p->stage : "";
+}
+
 RecordingCamera withStageNeutral(RecordingCamera camera, const std::string& stage) {
   for (const Parameter& p : parameters())
     if (stage == p.stage) p.set(camera, p.neutral);
@@ -513,6 +518,45 @@ std::vector<std::pair<std::string, std::string>> describeValues(const RecordingC
   for (const Parameter& p : parameters())
     values.emplace_back(p.name, drawText(p, ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {p.get(camera)}}));
   return values;
+}
+
+namespace {
+
+// Whether `d` can give `value`: a fixed value or a choice's candidate equal to it (to 1e-9 of its
+// size: a value typed from a printed one), a range holding it.
+bool canGive(const ParameterDraw& d, double value) {
+  const double slack = 1e-9 * std::max(1.0, std::abs(value));
+  switch (d.kind) {
+    case ParameterDraw::Kind::Fixed:
+    case ParameterDraw::Kind::Choice:
+      return std::any_of(d.values.begin(), d.values.end(), [&](double v) { return std::abs(v - value) <= slack; });
+    case ParameterDraw::Kind::Uniform:
+    case ParameterDraw::Kind::LogUniform: return value >= d.lo - slack && value <= d.hi + slack;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> parametersBeyond(const RecordingCameraSpec& spec, const RecordingCamera& camera) {
+  std::vector<RecordingCameraSpec> families;
+  if (spec.preset)
+    for (double which : spec.preset->values) families.push_back(recordingPreset(recordingPresetNames()[static_cast<size_t>(which)]));
+  std::vector<std::string> beyond;
+  for (const Parameter& p : parameters()) {
+    if (!actsIn(camera, p.name)) continue;
+    const double value = p.get(camera);
+    auto drawOf = [&](const RecordingCameraSpec& s) {
+      const auto own = s.draws.find(p.name);
+      return own != s.draws.end() ? own->second : ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {p.neutral}};
+    };
+    bool given = false;
+    if (spec.draws.count(p.name) || families.empty()) given = canGive(drawOf(spec), value);
+    else
+      for (const RecordingCameraSpec& family : families) given = given || canGive(drawOf(family), value);
+    if (!given) beyond.push_back(p.name);
+  }
+  return beyond;
 }
 
 RecordingCameraSpec recordingCameraSpecFromFile(const std::string& path, const std::string& field) {

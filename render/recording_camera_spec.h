@@ -69,6 +69,8 @@ const std::vector<std::string>& recordingPresetNames();  // webcam, machine_visi
 RecordingCameraSpec recordingPreset(const std::string& name);
 // The stages in the camera's order, as parameters name them (blur, chromatic_aberration, …).
 const std::vector<std::string>& recordingStages();
+// The stage a parameter belongs to ("white_balance[0]" → "white_balance"); "" for no parameter.
+std::string recordingStageOf(const std::string& parameter);
 // `camera` with every parameter of `stage` at its neutral value (the stage does nothing).
 RecordingCamera withStageNeutral(RecordingCamera camera, const std::string& stage);
 // What a spec lets a parameter take, in words ("uniform [0.8, 1.25]", "rggb", …), by parameter,
@@ -76,5 +78,10 @@ RecordingCamera withStageNeutral(RecordingCamera camera, const std::string& stag
 std::vector<std::pair<std::string, std::string>> describeRanges(const RecordingCameraSpec& spec);
 // A drawn camera's values in words, by parameter, in the same order.
 std::vector<std::pair<std::string, std::string>> describeValues(const RecordingCamera& camera);
+// The parameters of `camera` that no camera `spec` draws has: each unlike every value `spec` can
+// give it (a range's ends included; for a preset mix, any preset's draw, else the parameter's
+// neutral value), by name, in describeValues' order. A setting its stage does not use (a demosaic
+// without a mosaic) is none of them. What tells a report which test camera lies beyond training.
+std::vector<std::string> parametersBeyond(const RecordingCameraSpec& spec, const RecordingCamera& camera);
 
 }  // namespace omnicam

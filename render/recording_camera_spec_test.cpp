@@ -122,6 +122,42 @@ TEST(RecordingCameraSpec, AStageHeldNeutralDoesNothing) {
   EXPECT_EQ(noBlur.jpegQuality, everything.jpegQuality);
 }
 
+// Which of a camera's values no camera of a spec has: beyond every preset's range, unlike its
+// fixed values and choices, the spec's own draws winning over its presets'.
+TEST(RecordingCameraSpec, TheParametersBeyondASpecAreThoseNoDrawCanGive) {
+  const RecordingCameraSpec mix = specOf(R"({"preset": {"choice": ["webcam", "machine_vision", "phone"]}})");
+  for (uint64_t k = 0; k < 100; ++k) EXPECT_EQ(parametersBeyond(mix, mix.draw(k)), std::vector<std::string>{}) << k;
+  // The examples' noisy test camera: less full well, more read and row noise than any preset's.
+  const RecordingCamera noisy = specOf(R"({"exposure_ev": -0.5, "white_balance": [0.85, 1, 1.2], "vignetting": 0.25,
+      "bayer": "grbg", "demosaic": "bilinear", "full_well_electrons": 700, "read_noise": 0.015, "row_noise": 0.004,
+      "jpeg_quality": 75})").draw(0);
+  EXPECT_EQ(parametersBeyond(mix, noisy), (std::vector<std::string>{"full_well_electrons", "read_noise", "row_noise"}));
+  // At a range's ends (webcam's read noise 0.012, machine vision's full well 30000) it is within.
+  RecordingCamera atEnds = noisy;
+  atEnds.fullWellElectrons = 30000, atEnds.readNoise = 0.012, atEnds.rowNoise = 0.003;
+  EXPECT_EQ(parametersBeyond(mix, atEnds), std::vector<std::string>{});
+  // Every preset mosaics: a camera without a mosaic is beyond them (and its demosaic, unused, is not).
+  RecordingCamera noMosaic = atEnds;
+  noMosaic.bayer = BayerPattern::None;
+  EXPECT_EQ(parametersBeyond(mix, noMosaic), std::vector<std::string>{"bayer"});
+  // The spec's own draw wins: exposure held to ±0.1 EV puts −0.5 EV beyond it; without machine
+  // vision a full well of 30000 e⁻ is beyond too.
+  const RecordingCameraSpec narrow = specOf(R"({"preset": {"choice": ["webcam", "phone"]}, "exposure_ev": {"uniform": [-0.1, 0.1]}})");
+  EXPECT_EQ(parametersBeyond(narrow, atEnds), (std::vector<std::string>{"exposure_ev", "full_well_electrons"}));
+  // Without a preset each parameter not given is its neutral value.
+  const RecordingCameraSpec plain = specOf(R"({"jpeg_quality": {"choice": [80, 90]}})");
+  RecordingCamera jpeg;
+  jpeg.jpegQuality = 90;
+  EXPECT_EQ(parametersBeyond(plain, jpeg), std::vector<std::string>{});
+  jpeg.jpegQuality = 85, jpeg.vignetting = 0.1;
+  EXPECT_EQ(parametersBeyond(plain, jpeg), (std::vector<std::string>{"vignetting", "jpeg_quality"}));
+  // What the report names beside the ablation: the stage of each such parameter.
+  EXPECT_EQ(recordingStageOf("full_well_electrons"), "noise");
+  EXPECT_EQ(recordingStageOf("white_balance[2]"), "white_balance");
+  EXPECT_EQ(recordingStageOf("demosaic"), "bayer");
+  EXPECT_EQ(recordingStageOf("no_such_parameter"), "");
+}
+
 // A drawn camera (a sidecar's or a manifest's, every field given, those its choices leave unused
 // included) reads back as the same camera.
 TEST(RecordingCameraSpec, ADrawnCameraReadsBackAsItself) {

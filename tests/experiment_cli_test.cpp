@@ -202,16 +202,21 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
   const json& plainFootprints = results["conditions"]["plain_to_plain_footprints"];
   EXPECT_GE(plainFootprints["true_positives"].get<int>(), 4);
   EXPECT_LT(plainFootprints["false_positives"].get<int>(), plain["false_positives"].get<int>());
-  // Its setting: 32 bins and its halvings, each with the three scores and the three band
-  // tolerances, tried on the validation frames (6 poses, each through 2 cameras of its fold's
-  // held-out preset); the chosen one scores best.
+  // The fixed test cameras' values no training camera has: the webcam records without a mosaic,
+  // which every preset draws; cool_noisy's noise lies beyond every preset's; sharp_jpeg95 inside.
+  EXPECT_EQ(results["beyond_training"], json::parse(R"({"realistic": ["bayer"],
+      "realistic_camera_1": ["full_well_electrons", "read_noise", "row_noise"], "realistic_camera_2": []})"));
+  // Its setting: no filter and a 3 × 3 median, each with 32 bins and its halvings, each with the
+  // three scores and the three band tolerances, tried on the validation frames (6 poses, each
+  // through 2 cameras of its fold's held-out preset); the chosen one scores best.
   const json& trials = results["footprint_trials"];
   const std::vector<std::string> scores = {"total", "standardised", "mean"};
   const std::vector<double> tolerances = {0.0, 1.0, 2.0};
-  ASSERT_EQ(trials.size(), 27u);
+  ASSERT_EQ(trials.size(), 54u);
   int bestScore = std::numeric_limits<int>::min();
   for (size_t k = 0; k < trials.size(); ++k) {
-    EXPECT_EQ(trials[k]["bins_per_channel"], 32 >> (k / 9));
+    EXPECT_EQ(trials[k]["median_px"], k < 27 ? 1 : 3);
+    EXPECT_EQ(trials[k]["bins_per_channel"], 32 >> (k % 27 / 9));
     EXPECT_EQ(trials[k]["score"], scores[k / 3 % 3]);
     EXPECT_EQ(trials[k]["band_tolerance"].get<double>(), tolerances[k % 3]);
     EXPECT_LE(trials[k]["visible_beacons"].get<int>(), 144);  // 6 poses × 3 folds × 2 cameras, at most 4 beacons each
@@ -220,10 +225,11 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
     EXPECT_GT(trials[k]["visible_beacons"].get<int>(), 0);
     bestScore = std::max(bestScore, trials[k]["true_positives"].get<int>() - trials[k]["false_positives"].get<int>());
   }
-  // The first trial with the best score: the finer resolution on a tie, then total, standardised,
-  // mean, then the smaller tolerance.
+  // The first trial with the best score: the smaller filter on a tie, then the finer resolution,
+  // then total, standardised, mean, then the smaller tolerance.
   for (const json& t : trials)
     if (t["true_positives"].get<int>() - t["false_positives"].get<int>() == bestScore) {
+      EXPECT_EQ(t["median_px"], results["footprint_median_px"]);
       EXPECT_EQ(t["bins_per_channel"], results["footprint_bins"]);
       EXPECT_EQ(t["score"], results["footprint_score"]);
       EXPECT_EQ(t["band_tolerance"], results["footprint_band_tolerance"]);
@@ -506,7 +512,13 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                            "| plain → plain (the bar) |", "| path + drawn cameras → camera 2: sharp_jpeg95.json |",
                            "| ceiling: the webcam's own frames → realistic |",
                            "| train → test | FP | beacons named where they are not | off-band blobs | of those, bands of beacons named rightly |",
-                           "| oracle: the test frames → realistic |"})
+                           "| oracle: the test frames → realistic |",
+                           // The values no training camera has, marked in the table and listed.
+                           "| full_well_electrons | webcam: log-uniform [1000, 8000]; machine_vision: log-uniform [5000, 30000]; "
+                           "phone: log-uniform [1500, 8000] | 2500 | **700** beyond | 20000 |",
+                           "Beyond every training camera:\n- webcam (fixed; the realistic frames): `bayer`\n"
+                           "- camera 1: cool_noisy.json: `full_well_electrons`, `read_noise`, `row_noise`\n"
+                           "- camera 2: sharp_jpeg95.json: nothing\n"})
     EXPECT_NE(doc.str().find(part), std::string::npos) << part;
   // What each detector's plain → plain false positives are, from results.json.
   for (const char* key : {"plain_to_plain", "plain_to_plain_footprints"}) {
@@ -517,17 +529,19 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
                                std::to_string(c["false_positive_blobs_of_found_beacons"].get<int>()) + " |\n";
     EXPECT_NE(doc.str().find(makeup), std::string::npos) << key << ": " << makeup;
   }
-  // The chosen setting's cell, bold, in its resolution's and score's row.
-  const std::string chosenRow = "| " + std::to_string(results["footprint_bins"].get<int>()) + " | " +
+  // The chosen setting's cell, bold, in its filter's, resolution's and score's row.
+  const int chosenMedian = results["footprint_median_px"].get<int>();
+  const std::string chosenRow = "| " + (chosenMedian == 1 ? std::string("none") : "3 × 3") + " | " +
+                                std::to_string(results["footprint_bins"].get<int>()) + " | " +
                                 results["footprint_score"].get<std::string>() + " |";
   const size_t row = doc.str().find(chosenRow);
   ASSERT_NE(row, std::string::npos) << chosenRow;
   const std::string rowText = doc.str().substr(row, doc.str().find('\n', row) - row);
   ASSERT_NE(rowText.find(", chosen**"), std::string::npos) << rowText;
-  // Its column: the cells before it are the resolution, the score and the smaller tolerances.
+  // Its column: the cells before it are the filter, the resolution, the score and the smaller tolerances.
   const auto barsBefore = std::count(rowText.begin(), rowText.begin() + static_cast<std::ptrdiff_t>(rowText.find(", chosen**")), '|');
-  ASSERT_GE(barsBefore, 3);
-  EXPECT_EQ(tolerances.at(static_cast<size_t>(barsBefore - 3)), results["footprint_band_tolerance"].get<double>()) << rowText;
+  ASSERT_GE(barsBefore, 4);
+  EXPECT_EQ(tolerances.at(static_cast<size_t>(barsBefore - 4)), results["footprint_band_tolerance"].get<double>()) << rowText;
   EXPECT_EQ(doc.str().find(", chosen**"), row + rowText.find(", chosen**"));  // chosen once
   EXPECT_EQ(doc.str().find(", chosen**", row + rowText.size()), std::string::npos);
   const ImageRGBA strip = readImage(path("figures/texture_realism_recording.png"));
