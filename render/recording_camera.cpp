@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "float_environment.h"
 #include "image.h"
 #include "seed_mixing.h"
 
@@ -249,6 +250,10 @@ cv::Mat recordedCodes(const RecordingCamera& camera, const ImageRGBA& linear, co
 }  // namespace
 
 ImageRGBA recordFrame(const RecordingCamera& camera, const ImageRGBA& linear, uint64_t frameIndex) {
+  // The same frame from any thread: one denormal more or less (a blur's tail weights below
+  // 0.1 px) would reshuffle every later draw of the noise's stream. Flushed, as the frames of a
+  // run without a thread count have always been recorded.
+  const FlushDenormals mode;
   const uint64_t seed = noiseSeed(camera.seed, frameIndex);
   const cv::Mat codes = recordedCodes(camera, linear, sensedColour(camera, linear, sensorLight(camera, linear), seed));
   // Linear again: the 8-bit codes decoded as sRGB, alpha kept (beyond the rim: black).

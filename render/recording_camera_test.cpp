@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "errors.h"
+#include "float_environment.h"
 #include "recording_camera_spec.h"
 
 namespace omnicam {
@@ -374,6 +375,33 @@ TEST(RecordingCamera, ToneCurvesFollowTheirClosedForms) {
   EXPECT_NEAR((toneCurveValue(camera, std::pow(0.5 + h, 2.2)) - toneCurveValue(camera, std::pow(0.5 - h, 2.2))) / (2 * h), 1.8, 1e-6);
   EXPECT_EQ(toneCurveValue(camera, 0.0), 0.0);
   EXPECT_EQ(toneCurveValue(camera, 1.0), 1.0);
+}
+
+// A frame records the same whatever the calling thread's floating-point mode. Embree leaves
+// flush-to-zero and denormals-are-zero set on the threads that built a scene, others keep IEEE
+// denormals; a blur of 0.07 px has weights of e^−102 ≈ 5e−45, denormal as floats, and one
+// differing value reshuffles every later draw of the noise's stream.
+TEST(RecordingCamera, AFrameRecordsTheSameWhateverTheCallersDenormalMode) {
+  ImageRGBA in(48, 40);
+  for (int j = 0; j < in.height; ++j)
+    for (int i = 0; i < in.width; ++i) {
+      float* p = in.at(i, j);
+      p[0] = 0.02f * (i % 7), p[1] = 0.5f * (j % 3 == 0), p[2] = 0.9f - 0.01f * i, p[3] = 1.0f;
+    }
+  RecordingCamera camera;
+  camera.blurRadiusPx = 0.07;
+  camera.fullWellElectrons = 2000.0;
+  camera.readNoise = 0.01;
+  const unsigned int callers = _mm_getcsr();
+  constexpr unsigned int kFlushToZero = FlushDenormals::kFlushToZero, kDenormalsAreZero = FlushDenormals::kDenormalsAreZero;
+  _mm_setcsr(callers & ~(kFlushToZero | kDenormalsAreZero));
+  const ImageRGBA ieee = recordFrame(camera, in, 5);
+  const unsigned int after = _mm_getcsr();
+  _mm_setcsr(callers | kFlushToZero | kDenormalsAreZero);
+  const ImageRGBA flushed = recordFrame(camera, in, 5);
+  _mm_setcsr(callers);
+  EXPECT_EQ(after & (kFlushToZero | kDenormalsAreZero), 0u) << "the caller's mode is restored";
+  EXPECT_EQ(ieee.pixels, flushed.pixels);
 }
 
 }  // namespace
