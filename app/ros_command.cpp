@@ -99,6 +99,9 @@ void runRos(RosArgs a, const CLI::App& cmd, const std::vector<std::string>& extr
     std::printf("ros: stopped while waiting for the ROS master: no pose rendered\n");
     return;
   }
+  if (!report.frameGivenUp.empty())
+    std::printf("ros: %s: the frame in progress was given up%s\n", report.frameGivenUp.c_str(),
+                a.options.recordBag.empty() ? "" : "; the bag holds the frames before it");
   // At a fixed rate a frame is a tick's (a pose carried to it), not a pose as it came.
   const std::string rendered =
       a.options.rateHz > 0 ? countOf(report.rendered, "frame") + " rendered at ticks" : countOf(report.rendered, "pose") + " rendered";

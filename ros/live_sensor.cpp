@@ -530,6 +530,11 @@ LiveSensorReport runLiveSensor(const DatasetSpec& spec, const LiveSensorOptions&
       ++report.rendered;
     } catch (const InputError& e) {
       poses.refuse(e.what(), live->stamp);  // (the render loop's refusals race no callback: refused is atomic)
+    } catch (const Interrupted& e) {
+      // The external renderer was ended with the process group (base/interrupts.h): the frame is
+      // lost, the frames before it are not — the bag is finished below.
+      report.frameGivenUp = e.what();
+      break;
     }
   }
   ticker.reset();

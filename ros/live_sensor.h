@@ -64,6 +64,10 @@ struct LiveSensorReport {
   int64_t skippedTicks = 0;  // at a fixed rate: ticks that had no pose within maxPoseAgeSeconds
   int64_t newMasters = 0;  // masters that restarted, with which every topic was registered again
   bool shutDownByRos = false;  // the master ended the node (its name taken by another, rosnode kill)
+  // A signal ended the external renderer (POV-Ray, Blender) of the frame in progress: that frame
+  // was given up, the node stopped, and the bag holds every frame before it. What ended, as
+  // Interrupted says it; empty if no frame was given up.
+  std::string frameGivenUp;
 };
 
 // An odometry message as the robot's pose (x, y, yaw about +Z from the quaternion) and velocity

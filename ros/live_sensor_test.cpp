@@ -899,6 +899,47 @@ TEST_F(LiveRun, RefusesAPoseItsEngineCannotRenderAndGoesOn) {
   EXPECT_NE(output().find("1 pose rendered, 0 dropped for newer ones, 2 refused"), std::string::npos) << output();
 }
 
+// A signal while POV-Ray renders a frame ends POV-Ray with its process group (base/interrupts.h):
+// that frame is given up, and the node ends with exit code 0 and a finished bag of the frames
+// before it (the bag was deleted with the frame). POV-Ray is a script that renders the first
+// frame and holds the second until the signal: the test sends it once the script says it holds.
+TEST_F(LiveRun, ASignalDuringAPovrayFrameGivesItUpAndKeepsTheBagOfTheFramesBefore) {
+  std::ofstream(root_ / "spec.json") << std::string(R"({"format": "omnicam-dataset/1", "scene": ")") + OMNICAM_SOURCE_DIR +
+                                            R"(/scenes/robocup2006.json", "engine": "povray", "size": 48, "spp": 1, "shading": "lit", )" +
+                                            poseList(2) + R"(, "cameras": [{"name": "front", "mount": {"x": 0.1, "y": 0, "yaw_deg": 0}}],
+    "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
+  const fs::path povray = root_ / "povray", holding = root_ / "holding", hold = root_ / "hold";
+  std::ofstream(povray) << "#!/bin/sh\nif [ -e '" << hold.string() << "' ]; then : > '" << holding.string()
+                        << "'; exec sleep 600; fi\nexec povray \"$@\"\n";
+  fs::permissions(povray, fs::perms::owner_all);
+  const fs::path bag = root_ / "run.bag";
+  start({OMNICAM_BINARY, "ros", (root_ / "spec.json").string(), "--robot", "bot", "--odom", "/bot/odom", "--record", bag.string()},
+        {"OMNICAM_POVRAY=" + povray.string()});
+  ros::Publisher odometry = handle_->advertise<nav_msgs::Odometry>("/bot/odom", 10);
+  Images images(*handle_, "/bot/front/image_raw");
+  waitUntilConnected([&] { return odometry.getNumSubscribers() > 0 && images.connected(); });
+  odometry.publish(odometryOf(kPoses[0], ros::Time(100, 0), /*moving=*/false));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return images.size() > 0; }, 120.0)) << output();
+  std::ofstream(hold) << "";
+  odometry.publish(odometryOf(kPoses[1], ros::Time(101, 0), /*moving=*/false));
+  ASSERT_TRUE(TestDaemons::waitFor([&] { return fs::exists(holding); }, 120.0)) << output();
+  stopProgram(SIGTERM);
+  ASSERT_EQ(waitForExit(), 0) << output();
+  EXPECT_NE(output().find("ros: interrupted by SIGTERM (povray ended): the frame in progress was given up; the bag holds the "
+                          "frames before it\nros: 1 pose rendered, 0 dropped for newer ones, 0 refused"),
+            std::string::npos)
+      << output();
+  ASSERT_TRUE(fs::exists(bag)) << output();
+  rosbag::Bag recorded(bag.string(), rosbag::bagmode::Read);
+  std::vector<sensor_msgs::Image> frames;
+  for (const rosbag::MessageInstance& m : rosbag::View(recorded, rosbag::TopicQuery("/bot/front/image_raw")))
+    if (const sensor_msgs::Image::ConstPtr image = m.instantiate<sensor_msgs::Image>()) frames.push_back(*image);
+  ASSERT_EQ(frames.size(), 1u);
+  EXPECT_TRUE(frames[0].data == images.messages()[0].data);
+  for (const fs::directory_entry& entry : fs::directory_iterator(root_))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
 // examples/python/ros_camera.py: omnicam.Renderer behind a rospy callback, each image equal to
 // the dataset's frame of the pose; SIGTERM ends it cleanly.
 TEST_F(LiveRun, PythonExamplePublishesTheRenderersFramesForOdometryPoses) {
