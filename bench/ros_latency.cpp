@@ -19,6 +19,7 @@
 
 #include "bench_flags.h"
 #include "ros_master.h"
+#include "statistics.h"
 #include "test_daemons.h"
 
 namespace fs = std::filesystem;
@@ -41,10 +42,7 @@ std::string specText(const Mode& mode) {
   "outputs": {"rgb": "png", "depth": false, "instance": false, "semantic": false, "normal": false, "landmarks": false}})";
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+double median(std::vector<double> values) { return omnicam::medianOf(std::move(values)).value_or(0.0); }
 
 // Latencies (ms) of kPoses poses sent one at a time, and the whole run's rate.
 void measure(const Mode& mode, const fs::path& root, ros::NodeHandle& handle, int index) {

@@ -8,6 +8,7 @@
 
 #include "calibration_study.h"
 #include "number_format.h"
+#include "statistics.h"
 
 namespace omnicam {
 
@@ -26,12 +27,7 @@ struct SourceSummary {
   double triangulationMm = 0.0, triangulationP90Mm = 0.0;
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return medianOf(std::move(v)).value_or(0.0); }
 
 SourceSummary summarise(const RigOutcome& rig, CornerSource source, const CalibrationStudyOptions& o) {
   SourceSummary s;

@@ -22,6 +22,7 @@
 #include "landmark_annotations.h"
 #include "safe_files.h"
 #include "scene_loader.h"
+#include "statistics.h"
 #include "texture_realism_frames.h"
 #include "texture_realism_report.h"
 
@@ -66,13 +67,6 @@ RecordingCameraSpec trainingRecordingMix(uint64_t seed) {
 }
 
 namespace {
-
-std::optional<double> mean(const std::vector<double>& values) {
-  if (values.empty()) return std::nullopt;
-  double sum = 0.0;
-  for (double v : values) sum += v;
-  return sum / static_cast<double>(values.size());
-}
 
 // The plain, textured and random-photo halls of the run, in its arenas/ folder.
 void writeArenas(const TextureRealismOptions& o, const fs::path& out) {
@@ -263,6 +257,7 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   for (const FrameEvaluation& f : condition.frames) {
     c.truePositives += f.truePositives;
     c.falsePositiveBlobs += f.falsePositiveBlobs;
+    c.offBandBandsOfFoundBeacons += f.offBandBandsOfFoundBeacons;
     c.falsePositives += f.falsePositives();
     c.missed += f.visibleBeacons - f.truePositives;
     for (const double range : f.visibleRangesM) ++c.visibleByRange[static_cast<size_t>(rangeBucket(range))];
@@ -276,16 +271,16 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
     for (const FalseBlob& b : f.falseBlobs) {
       ++sources[b.object.empty() ? "(nothing)" : b.object];
       c.falsePositiveBlobsOnHall += b.object.starts_with("hall_");
-      c.falsePositiveBlobsOfFoundBeacons += b.ofFoundBeacon;
     }
   c.falsePositiveSources.assign(sources.begin(), sources.end());
   std::sort(c.falsePositiveSources.begin(), c.falsePositiveSources.end(),
             [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
   if (c.falsePositiveSources.size() > 5) c.falsePositiveSources.resize(5);
   c.frames = static_cast<int>(frames.size());
-  c.meanLocalisationErrorPx = mean(pixels);
-  c.meanRangeErrorCm = mean(ranges);
-  c.meanBearingErrorDeg = mean(bearings);
+  c.meanLocalisationErrorPx = meanOf(pixels);
+  c.meanRangeErrorCm = meanOf(ranges);
+  c.medianRangeErrorCm = medianOf(ranges);
+  c.meanBearingErrorDeg = meanOf(bearings);
   const size_t stride = static_cast<size_t>(testStride);
   condition.ekf = runEkf(drive, [&](size_t k) -> const std::vector<Measurement>* {
     return k % stride == 0 && k / stride < condition.frames.size() ? &condition.frames[k / stride].measurements : nullptr;

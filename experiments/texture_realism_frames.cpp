@@ -163,10 +163,15 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
       ++shown[id];
     }
     if (2 * onBand >= blob.area) continue;
+    // A band of a right answer is no false positive ("colour blobs lying on no band of their
+    // colour"): the detection within the match radius is the verdict, not its pixels' rounding.
+    if (ofFoundBeacon[k]) {
+      ++e.offBandBandsOfFoundBeacons;
+      continue;
+    }
     ++e.falsePositiveBlobs;
     const auto most = std::max_element(shown.begin(), shown.end(), [](auto& a, auto& b) { return a.second < b.second; });
-    e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area,
-                            most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1], ofFoundBeacon[k]});
+    e.falseBlobs.push_back({blob.colour, blob.centroid, blob.area, most == shown.end() || most->first == 0 ? "" : objectNames[most->first - 1]});
   }
   for (const GroundTruthBeacon& t : truth)
     if (t.visible) {

@@ -80,10 +80,11 @@ nlohmann::json textureRealismResultsJson(const TextureRealismResults& results) {
                                 {"false_positive_blobs", c.falsePositiveBlobs},
                                 {"false_positive_blobs_on_hall", c.falsePositiveBlobsOnHall},
                                 {"false_identifications", c.falseIdentifications()},
-                                {"false_positive_blobs_of_found_beacons", c.falsePositiveBlobsOfFoundBeacons},
+                                {"off_band_bands_of_found_beacons", c.offBandBandsOfFoundBeacons},
                                 {"missed", c.missed},
                                 {"mean_localisation_error_px", jsonOrNull(c.meanLocalisationErrorPx)},
                                 {"mean_range_error_cm", jsonOrNull(c.meanRangeErrorCm)},
+                                {"median_range_error_cm", jsonOrNull(c.medianRangeErrorCm)},
                                 {"mean_bearing_error_deg", jsonOrNull(c.meanBearingErrorDeg)},
                                 {"false_positive_sources", c.falsePositiveSources},
                                 {"visible_by_range_m", c.visibleByRange},
@@ -145,12 +146,12 @@ void writeData(const ReportData& data, const fs::path& out) {
 
   // What the false-positive blobs lie on: which textures fool the classifiers.
   std::ostringstream blobs;
-  blobs << "condition,frame,colour,area_px,u,v,object,of_found_beacon\n";
+  blobs << "condition,frame,colour,area_px,u,v,object\n";
   for (const ConditionReport& c : data.conditions)
     for (size_t k = 0; k < c.frames.size(); ++k)
       for (const FalseBlob& b : c.frames[k].falseBlobs)
         blobs << c.outcome.key() << ',' << k << ',' << b.colour << ',' << b.area << ',' << b.centroid.x() << ','
-              << b.centroid.y() << ',' << csvField(b.object.empty() ? "(nothing)" : b.object) << ',' << b.ofFoundBeacon << '\n';
+              << b.centroid.y() << ',' << csvField(b.object.empty() ? "(nothing)" : b.object) << '\n';
   writeTextAtomically((out / "data/false_positive_blobs.csv").string(), blobs.str());
 
   for (const ConditionReport& c : data.conditions) {
@@ -345,7 +346,7 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
         "px) of its projected band boundary. False positives: colour blobs lying on no band of their colour, "
         "plus identifications of a beacon that is not there.\n\n"
      << "| train → test | thesis setting | thesis TP | thesis FP | thesis px | thesis TP/FP | TP | FP | "
-        "wrong beacons | FP blobs on the hall (walls, floor, ceiling) | missed | px | range cm | bearing ° | TP/FP |\n"
+        "wrong beacons | FP blobs on the hall (walls, floor, ceiling) | missed | px | range cm (median) | bearing ° | TP/FP |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const ThesisRow& row : thesis) {
     const ConditionOutcome* c = findCondition(results, row.condition);
@@ -354,7 +355,7 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
        << row.falsePositives << " | " << row.errorPx << " | " << row.ratio << " | " << c->truePositives << " | "
        << c->falsePositives << " | " << c->falseIdentifications() << " | "
        << c->falsePositiveBlobsOnHall << " | " << c->missed << " | "
-       << decimalsOrDash(c->meanLocalisationErrorPx, 2) << " | " << decimalsOrDash(c->meanRangeErrorCm, 1) << " | "
+       << decimalsOrDash(c->meanLocalisationErrorPx, 2) << " | " << decimalsOrDash(c->medianRangeErrorCm, 1) << " | "
        << decimalsOrDash(c->meanBearingErrorDeg, 2) << " | " << ratioText(trueOverFalse(*c)) << " |\n";
   }
 }

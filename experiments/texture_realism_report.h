@@ -16,16 +16,13 @@ struct DrawnDetection {
   bool correct;
 };
 
-// A colour blob that lies mostly off the bands of its colour (by the instance mask), and what it
-// lies on.
+// A colour blob that lies mostly off the bands of its colour (by the instance mask) and is no band
+// of a beacon named rightly, and what it lies on.
 struct FalseBlob {
   std::string colour;
   Vec2 centroid;
   int area = 0;
   std::string object;  // the scene object most of its pixels show ("" = nothing: beyond the hall)
-  // Whether it is a band of a beacon named rightly (a true positive): its footprint, or its
-  // pixels, show more of something else than of the band.
-  bool ofFoundBeacon = false;
 };
 
 struct FrameEvaluation {
@@ -36,7 +33,12 @@ struct FrameEvaluation {
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
   std::vector<double> visibleRangesM, foundRangesM;  // the true ranges of visible beacons, and of those found
   std::vector<FalseBlob> falseBlobs;
-  // False positives: blobs mostly off the bands of their colour plus beacons named where they are not.
+  // Bands of beacons named rightly whose pixels lie mostly off the band (a far band's footprint
+  // rounded to whole pixels, or a blob that spills onto the wall): part of a right answer, so no
+  // false positive, and counted apart.
+  int offBandBandsOfFoundBeacons = 0;
+  // False positives: blobs mostly off the bands of their colour that are no band of a beacon named
+  // rightly, plus beacons named where they are not.
   int falsePositives() const { return falsePositiveBlobs + falseIdentifications; }
 };
 

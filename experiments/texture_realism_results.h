@@ -85,10 +85,13 @@ struct ConditionOutcome {
   DetectorKind detector = DetectorKind::Pixels;
   int frames = 0, truePositives = 0, falsePositives = 0, missed = 0, falsePositiveBlobs = 0;
   int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
-  int falsePositiveBlobsOfFoundBeacons = 0;  // of those, bands of beacons named rightly (FalseBlob)
+  int offBandBandsOfFoundBeacons = 0;  // not false positives: bands of right answers lying mostly off their band
   int falseIdentifications() const { return falsePositives - falsePositiveBlobs; }
   // Means over the true positives: none without one (a condition that found nothing has no error).
   std::optional<double> meanLocalisationErrorPx, meanRangeErrorCm, meanBearingErrorDeg;
+  // A far beacon's range from a pixel off near the horizon errs by metres: the mean of the range
+  // errors follows a few of them, the median the typical sighting.
+  std::optional<double> medianRangeErrorCm;
   // The objects the false-positive blobs lie on, most frequent first (at most five).
   std::vector<std::pair<std::string, int>> falsePositiveSources;
   // Visible beacons and true positives per range bucket (rangeBucket).
