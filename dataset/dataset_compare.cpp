@@ -16,6 +16,7 @@
 #include "atomic_file.h"
 #include "dataset_reader.h"
 #include "dataset_runner.h"
+#include "dataset_shards.h"
 #include "errors.h"
 #include "json_text.h"
 #include "manifest.h"
@@ -325,11 +326,13 @@ void compareAll(std::vector<FrameComparison>& frames, const std::string& dirA, c
 
 DatasetCompareResult compareDatasets(const std::string& dirA, const std::string& dirB,
                                      const DatasetCompareOptions& options) {
-  DatasetManifest a = readDatasetManifest(dirA);
+  DatasetManifest a = readMergedDatasetManifest(SafeFolder(dirA));
   std::error_code ec;
   if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
   std::optional<DatasetManifest> b;
-  if (entryInside(dirB, kManifestName) != EntryKind::Missing) b = readDatasetManifest(dirB);
+  // A folder of unmerged shards is a dataset in the making, not a folder of images.
+  if (entryInside(dirB, kManifestName) != EntryKind::Missing || entryInside(dirB, "shards") == EntryKind::Folder)
+    b = readMergedDatasetManifest(SafeFolder(dirB));
   DatasetCompareResult result;
   if (b)
     matchFrames(a, *b, dirA, dirB, options.commonFramesOnly, result.notes);

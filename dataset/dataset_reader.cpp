@@ -4,6 +4,7 @@
 #include <set>
 
 #include "dataset_folder.h"
+#include "dataset_shards.h"
 #include "errors.h"
 #include "exr_channels.h"
 #include "memory_budget.h"
@@ -14,7 +15,7 @@
 
 namespace omnicam {
 
-DatasetReader::DatasetReader(std::string dir) : dir_(std::move(dir)), folder_(dir_), manifest_(readDatasetManifest(folder_)) {
+DatasetReader::DatasetReader(std::string dir) : dir_(std::move(dir)), folder_(dir_), manifest_(readMergedDatasetManifest(folder_)) {
   for (const auto& [index, frame] : manifest_.frames) frames_.push_back(index);
 }
 

@@ -136,6 +136,12 @@ void removeShardManifestsOf(const SafeFolder& dir, const json& header) {
   dir.removeEmptyFolder("shards");
 }
 
+DatasetManifest readMergedDatasetManifest(const SafeFolder& dir) {
+  if (dir.entry(kManifestName) == EntryKind::Missing && dir.entry("shards") == EntryKind::Folder)
+    throw InputError(showPath(dir.path()) + ": shards not merged yet: no " + kManifestName + " (" + unmergedShardsNextStep(dir.path()) + ")");
+  return readDatasetManifest(dir);
+}
+
 std::string unmergedShardsNextStep(const std::string& path) {
   const std::vector<int> counts = shardCountsIn(path);
   // Submitted to Slurm (docs/cluster.md): its merge job merges, and a resubmission renders what

@@ -44,6 +44,10 @@ void removeShardManifestsOf(const SafeFolder& dir, const nlohmann::json& header)
 // finished, else running the shards left (one line, for messages).
 std::string unmergedShardsNextStep(const std::string& dir);
 
+// A dataset's manifest.json, for reading the dataset: in a folder of shards not merged yet, the
+// message says what finishes it (unmergedShardsNextStep), not only that the manifest is missing.
+DatasetManifest readMergedDatasetManifest(const SafeFolder& dir);
+
 // Why a run of the dataset `header` as a shard of `count` may not write into DIR beside the
 // shards there: shards of another count, or of another dataset (naming what differs). Empty if
 // it may (no shards, or only this dataset's of this count).

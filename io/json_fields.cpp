@@ -22,10 +22,7 @@ JsonFields::JsonFields(const json& object, std::string file, std::string where)
                      jsonTypeName(object_) + ")");
 }
 
-// What an array of the wrong length, or another value, is (for "must be an array of N").
-static std::string shapeText(const json& v) {
-  return v.is_array() ? "an array of " + std::to_string(v.size()) : jsonValueText(v);
-}
+std::string jsonShapeText(const json& v) { return v.is_array() ? "an array of " + std::to_string(v.size()) : jsonValueText(v); }
 
 std::string fieldLocation(const std::string& file, const std::string& path) {
   if (path.empty()) return showPath(file);
@@ -193,7 +190,7 @@ std::string JsonFields::string(const std::string& key, const std::string& fallba
 
 Vec3 jsonVec3(const json& v, const std::string& file, const std::string& path) {
   if (!v.is_array() || v.size() != 3)
-    throw InputError(fieldLocation(file, path) + ": must be an array of 3 numbers (got " + shapeText(v) + ")");
+    throw InputError(fieldLocation(file, path) + ": must be an array of 3 numbers (got " + jsonShapeText(v) + ")");
   Vec3 out;
   for (int i = 0; i < 3; ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()))
@@ -214,7 +211,7 @@ std::vector<double> JsonFields::numbers(const std::string& key, const std::vecto
   }
   const json& v = required(key);
   if (!v.is_array() || v.size() != fallback.size())
-    fail(key, "must be an array of " + std::to_string(fallback.size()) + " numbers (got " + shapeText(v) + ")");
+    fail(key, "must be an array of " + std::to_string(fallback.size()) + " numbers (got " + jsonShapeText(v) + ")");
   std::vector<double> out;
   for (size_t i = 0; i < v.size(); ++i) {
     const std::string element = key + "[" + std::to_string(i) + "]";

@@ -87,6 +87,8 @@ Vec3 jsonVec3(const nlohmann::json& value, const std::string& file, const std::s
 std::string jsonTypeName(const nlohmann::json& value);
 // A value as messages echo it: a number as JSON writes it, anything else by its type.
 std::string jsonValueText(const nlohmann::json& value);
+// The same, but an array as its length ("an array of 3"): for "must be an array of N".
+std::string jsonShapeText(const nlohmann::json& value);
 // The value of an integer JSON number in [minimum, maximum]; nullopt for anything else (not a
 // number, a fraction, out of range: 4294967346 is never 50, 2^64 - 1 never -1).
 std::optional<int64_t> integerInRange(const nlohmann::json& value, int64_t minimum, int64_t maximum);

@@ -149,7 +149,8 @@ double valueOf(const Parameter& p, const nlohmann::json& j, const JsonFields& f,
     if (j.is_string())
       for (size_t k = 0; k < p.words.size(); ++k)
         if (j.get<std::string>() == p.words[k]) return static_cast<double>(k);
-    f.fail(key, "must be " + domainText(p) + " (got " + shown(j) + ")");
+    f.fail(key, "must be " + domainText(p) + " (got " + shown(j) + ")" +
+                    (j.is_string() ? didYouMean(j.get<std::string>(), std::vector<std::string>(p.words.begin(), p.words.end())) : ""));
   }
   if (!j.is_number() || !inDomain(p, j.get<double>())) f.fail(key, "must be " + domainText(p) + " (got " + shown(j) + ")");
   return j.get<double>();
@@ -170,7 +171,7 @@ ParameterDraw drawOf(const Parameter& p, const nlohmann::json& j, const JsonFiel
   const std::string at = key + "." + keySegment(kind);
   if (kind == "choice") {
     if (!arguments.is_array() || arguments.empty() || arguments.size() > 64)
-      f.fail(at, "must be a list of 1 to 64 values (got " + jsonValueText(arguments) + ")");
+      f.fail(at, "must be a list of 1 to 64 values (got " + jsonShapeText(arguments) + ")");
     d.kind = ParameterDraw::Kind::Choice;
     for (size_t k = 0; k < arguments.size(); ++k) d.values.push_back(valueOf(p, arguments[k], f, at + "[" + std::to_string(k) + "]"));
     return d;
@@ -180,7 +181,7 @@ ParameterDraw drawOf(const Parameter& p, const nlohmann::json& j, const JsonFiel
   if (p.type == ValueType::Word) f.fail(at, "a word is drawn with {\"choice\": [...]}");
   // An integer's draw gives each integer of [lo, hi] the same chance: a log-uniform one has none.
   if (p.type == ValueType::Integer && kind == "log_uniform") f.fail(at, "an integer is drawn with {\"uniform\": [lo, hi]} or {\"choice\": [...]}");
-  if (!arguments.is_array() || arguments.size() != 2) f.fail(at, "must be [lo, hi] (got " + jsonValueText(arguments) + ")");
+  if (!arguments.is_array() || arguments.size() != 2) f.fail(at, "must be [lo, hi] (got " + jsonShapeText(arguments) + ")");
   d.kind = kind == "uniform" ? ParameterDraw::Kind::Uniform : ParameterDraw::Kind::LogUniform;
   for (int k = 0; k < 2; ++k) {
     const nlohmann::json& bound = arguments[static_cast<size_t>(k)];
@@ -255,7 +256,7 @@ void readDraws(JsonFields& f, std::map<std::string, ParameterDraw>& draws) {
   if (f.has("white_balance")) {
     const nlohmann::json& gains = f.raw("white_balance");
     if (!gains.is_array() || gains.size() != 3)
-      f.fail("white_balance", "must be [r, g, b], each a gain in (0, 10] or a distribution (got " + jsonValueText(gains) + ")");
+      f.fail("white_balance", "must be [r, g, b], each a gain in (0, 10] or a distribution (got " + jsonShapeText(gains) + ")");
     for (int c = 0; c < 3; ++c) {
       const Parameter& p = *findParameter("white_balance[" + std::to_string(c) + "]");
       draws[p.name] = drawOf(p, gains[static_cast<size_t>(c)], f, "white_balance[" + std::to_string(c) + "]");

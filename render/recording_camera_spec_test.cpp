@@ -178,12 +178,15 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
             "spec.json: recording.vignetting.uniform[1]: must be a number in [0, 1] (got 1.5)");
   EXPECT_EQ(errorOf(R"({"full_well_electrons": {"log_uniform": [0, 100]}})"),
             "spec.json: recording.full_well_electrons.log_uniform: log_uniform needs lo > 0 (got 0)");
-  EXPECT_EQ(errorOf(R"({"bayer": "rgbg"})"), "spec.json: recording.bayer: must be one of none, rggb, bggr, grbg, gbrg (got \"rgbg\")");
+  EXPECT_EQ(errorOf(R"({"bayer": "rgbg"})"), "spec.json: recording.bayer: must be one of none, rggb, bggr, grbg, gbrg (got \"rgbg\") (did you mean rggb?)");
   EXPECT_EQ(errorOf(R"({"bayer": {"choice": ["rggb", "xyz"]}})"),
             "spec.json: recording.bayer.choice[1]: must be one of none, rggb, bggr, grbg, gbrg (got \"xyz\")");
   EXPECT_EQ(errorOf(R"({"bayer": {"uniform": [0, 1]}})"), "spec.json: recording.bayer.uniform: a word is drawn with {\"choice\": [...]}");
   EXPECT_EQ(errorOf(R"({"preset": "dslr"})"),
             "spec.json: recording.preset: must be one of webcam, machine_vision, phone (got \"dslr\")");
+  EXPECT_EQ(errorOf(R"({"preset": "webcm"})"),
+            "spec.json: recording.preset: must be one of webcam, machine_vision, phone (got \"webcm\") (did you mean webcam?)");
+  EXPECT_EQ(errorOf(R"({"exposure_ev": {"uniform": [-1, 1, 2]}})"), "spec.json: recording.exposure_ev.uniform: must be [lo, hi] (got an array of 3)");
   EXPECT_EQ(errorOf(R"("dslr")"), "spec.json: recording: unknown preset \"dslr\" (webcam, machine_vision, phone; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
   EXPECT_EQ(errorOf(R"("webcm")"), "spec.json: recording: unknown preset \"webcm\" (did you mean webcam?) (webcam, machine_vision, phone; or a camera of its own: an object of the stages' fields, docs/experiments.md)");
   EXPECT_EQ(errorOf(R"({"jpeg_quality": 80.5})"), "spec.json: recording.jpeg_quality: must be an integer in [0, 100] (0: no JPEG) (got 80.5)");
@@ -196,7 +199,7 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"white_balance": 1})"),
             "spec.json: recording.white_balance: must be [r, g, b], each a gain in (0, 10] or a distribution (got 1)");
   EXPECT_EQ(errorOf(R"({"exposure_ev": {"uniform": [0, 1], "choice": [1]}})").rfind("spec.json: recording.exposure_ev: a distribution is one of", 0), 0u);
-  EXPECT_EQ(errorOf(R"({"gamma": {"choice": []}})"), "spec.json: recording.gamma.choice: must be a list of 1 to 64 values (got array)");
+  EXPECT_EQ(errorOf(R"({"gamma": {"choice": []}})"), "spec.json: recording.gamma.choice: must be a list of 1 to 64 values (got an array of 0)");
   EXPECT_EQ(errorOf(R"({"seed": -1})"), "spec.json: recording.seed: must be an integer in [0, 2^64 - 1] (got -1)");
   EXPECT_EQ(errorOf(R"({"read_noise": "0.1"})"), "spec.json: recording.read_noise: must be a number in [0, 1] (got \"0.1\")");
   // A setting that would do nothing in every frame: its stage's switch is never on, by the spec's

@@ -632,6 +632,11 @@ TEST_F(DatasetCliTest, ShardsRenderedByHandMergeIntoTheOneGoDataset) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("FAIL: " + path("parts") + ": shards not merged yet: no manifest.json to verify (run the shards not yet "
                        "finished (--shard I/3"), std::string::npos) << r.out;
+  // A verb that reads the dataset (and Python's omnicam.Dataset) says the same, not only what is missing.
+  r = omnicam("compare " + path("whole") + " " + path("parts"));
+  EXPECT_EQ(r.code, 2) << r.out;
+  EXPECT_NE(r.out.find(path("parts") + ": shards not merged yet: no manifest.json (run the shards not yet finished (--shard I/3"),
+            std::string::npos) << r.out;
   r = omnicam("dataset --status " + path("parts"));
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("shard 1/3: not started"), std::string::npos) << r.out;
