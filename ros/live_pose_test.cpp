@@ -96,6 +96,13 @@ TEST(NewestPose, KeepsOnlyTheNewestAndCountsTheDropped) {
 }
 
 // A fixed-rate camera's ticks lie on the grid of its period from the epoch.
+TEST(LiveDiagnostics, ARepeatingEventIsSaidAtPowersOfTwoThenEvery1024th) {
+  std::vector<int64_t> said;
+  for (int64_t count = 0; count <= 5000; ++count)
+    if (saysRepeat(count)) said.push_back(count);
+  EXPECT_EQ(said, (std::vector<int64_t>{1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 3072, 4096}));
+}
+
 TEST(LiveTick, IsTheGridPointAtOrBeforeNow) {
   const ros1::Stamp quarter = tickAtOrBefore({100, 300000000}, 250000000);
   EXPECT_EQ(quarter.sec, 100u);

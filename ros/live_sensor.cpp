@@ -201,6 +201,8 @@ std::optional<LivePose> NewestPose::take(std::chrono::milliseconds wait) {
   return std::exchange(pending_, std::nullopt);
 }
 
+bool saysRepeat(int64_t count) { return count > 0 && ((count & (count - 1)) == 0 || count % 1024 == 0); }
+
 int64_t NewestPose::dropped() const {
   std::lock_guard lock(mutex_);
   return dropped_;
@@ -400,11 +402,13 @@ struct LivePoses {
   // A tick is not a pose: counted apart, so that a robot that stops sending odometry is not
   // taken for one whose poses are wrong.
   void skipTick(const std::string& why, const ros1::Stamp& stamp) {
-    transport->publish(diagnostic(options, "tick skipped: " + why, stamp, ++skippedTicks));
+    if (const int64_t count = ++skippedTicks; saysRepeat(count))
+      transport->publish(diagnostic(options, "tick skipped: " + why, stamp, count));
   }
   void render(const LivePose& live) {
     if (newest.put(live))
-      transport->publish(diagnostic(options, "pose dropped: a newer one came before it was rendered", live.stamp, newest.dropped()));
+      if (const int64_t count = newest.dropped(); saysRepeat(count))
+        transport->publish(diagnostic(options, "pose dropped: a newer one came before it was rendered", live.stamp, count));
   }
   // A simulation reset sends ROS time back: the stamps of the new run start anew.
   void startAnewIfTimeWentBack() {

@@ -79,6 +79,13 @@ struct LivePose {
 };
 LivePose livePoseOf(const ros1::Odometry& odometry);
 
+// Whether the `count`th of a repeating event (a pose dropped, a tick skipped) is said on
+// /diagnostics: the 1st, 2nd, 4th, 8th … and then every 1024th, each with its count. A robot
+// sending odometry at 1 kHz to a 10 Hz camera drops about 990 poses a second; one message each
+// would flood every aggregator, and the counts say as much. Refusals, whose reasons differ, are
+// each said.
+bool saysRepeat(int64_t count);
+
 // The newest pose not yet rendered: the ROS thread puts, the render loop takes. A pose put while
 // another waits replaces it; the replaced one is dropped and counted.
 class NewestPose {
