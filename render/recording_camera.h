@@ -53,6 +53,9 @@ struct RecordingCamera {
   double contrast = 1.5;  // the filmic curve's slope at mid-grey
   int jpegQuality = 0;    // 0 or 1..100
   uint64_t seed = 1;      // the noise's
+  // The preset this camera was drawn from, if any ("" if none): provenance for manifests and
+  // sidecars, which no stage reads.
+  std::string drawnFromPreset;
 
   // The experiment's realistic frames: a webcam with fixed settings (exposure +0.3 EV, warm
   // white balance, vignetting 0.35, shot and read noise, JPEG 80).

@@ -405,6 +405,10 @@ RecordingCameraSpec readRecordingCameraSpec(const nlohmann::json& j, const std::
   if (f.has("preset")) spec.preset = drawOf(presetParameter(), f.raw("preset"), f, "preset");
   readDraws(f, spec.draws);
   if (f.has("seed")) spec.seed = seedOf(f);
+  if (f.has("drawn_from_preset")) {
+    if (spec.preset) f.fail("drawn_from_preset", "says which preset a drawn camera came from: not beside preset, which draws one");
+    spec.drawnFromPreset = recordingPresetNames()[static_cast<size_t>(valueOf(presetParameter(), f.raw("drawn_from_preset"), f, "drawn_from_preset"))];
+  }
   f.finish();
   if (settingsMustAct) refuseSettingsThatDoNothing(spec, f);
   return spec;
@@ -433,6 +437,7 @@ nlohmann::json recordingCameraSpecToJson(const RecordingCameraSpec& spec) {
   }
   if (anyGain) j["white_balance"] = gains;
   j["seed"] = spec.seed;
+  if (!spec.drawnFromPreset.empty()) j["drawn_from_preset"] = spec.drawnFromPreset;
   return j;
 }
 
@@ -441,6 +446,7 @@ RecordingCameraSpec fixedRecordingCameraSpec(const RecordingCamera& camera) {
   for (const Parameter& p : parameters())  // the settings that act in the camera, as recordingCameraToJson writes them
     if (actsIn(camera, p.name)) spec.draws[p.name] = ParameterDraw{ParameterDraw::Kind::Fixed, 0, 0, {p.get(camera)}};
   spec.seed = camera.seed;
+  spec.drawnFromPreset = camera.drawnFromPreset;
   return spec;
 }
 
@@ -459,9 +465,11 @@ bool RecordingCameraSpec::randomised() const {
 RecordingCamera RecordingCameraSpec::draw(uint64_t index) const {
   RecordingCamera camera;
   std::optional<RecordingCameraSpec> family;
+  camera.drawnFromPreset = drawnFromPreset;
   if (preset) {
     const double which = drawValue(presetParameter(), *preset, seed, index);
-    family = recordingPreset(recordingPresetNames()[static_cast<size_t>(which)]);
+    camera.drawnFromPreset = recordingPresetNames()[static_cast<size_t>(which)];
+    family = recordingPreset(camera.drawnFromPreset);
   }
   for (const Parameter& p : parameters()) {
     const ParameterDraw* d = nullptr;
@@ -480,6 +488,7 @@ nlohmann::json recordingCameraToJson(const RecordingCamera& camera) {
     if (std::string(p.name).rfind("white_balance[", 0) != 0 && actsIn(camera, p.name)) j[p.name] = valueJson(p, p.get(camera));
   j["white_balance"] = camera.whiteBalance;
   j["seed"] = camera.seed;
+  if (!camera.drawnFromPreset.empty()) j["drawn_from_preset"] = camera.drawnFromPreset;
   return j;
 }
 

@@ -33,6 +33,9 @@ struct RecordingCameraSpec {
   std::optional<ParameterDraw> preset;         // index into recordingPresetNames()
   std::map<std::string, ParameterDraw> draws;  // by parameter name; white balance as white_balance[0..2]
   uint64_t seed = 1;
+  // A drawn camera given back (its "drawn_from_preset"): the preset it came from, carried into
+  // the camera it draws. Never beside `preset`.
+  std::string drawnFromPreset;
   bool operator==(const RecordingCameraSpec&) const = default;
 
   // True if any value is drawn (then a dataset's manifest carries each frame's values).

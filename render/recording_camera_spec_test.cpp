@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "errors.h"
 
@@ -166,7 +167,21 @@ TEST(RecordingCameraSpec, ADrawnCameraReadsBackAsItself) {
     EXPECT_EQ(recordingCameraToJson(recordingCameraFromJson(recordingCameraToJson(drawn), "manifest.json")), recordingCameraToJson(drawn))
         << preset;
     EXPECT_EQ(errorOf(recordingCameraToJson(drawn).dump()), "(accepted)") << preset;  // as --recording FILE, recording=
+    // It says which preset it came from, and keeps saying so when given back.
+    EXPECT_EQ(recordingCameraToJson(drawn).at("drawn_from_preset"), preset);
+    EXPECT_EQ(specOf(recordingCameraToJson(drawn).dump()).draw(7).drawnFromPreset, preset);
   }
+  // Of a mix, each frame's own preset: the one whose ranges its values were drawn from.
+  const RecordingCameraSpec mix = specOf(R"({"preset": {"choice": ["webcam", "machine_vision", "phone"]}, "seed": 4})");
+  std::set<std::string> seen;
+  for (uint64_t frame = 0; frame < 40; ++frame) {
+    const RecordingCamera camera = mix.draw(frame);
+    seen.insert(camera.drawnFromPreset);
+    EXPECT_EQ(camera.tone == ToneCurve::Filmic, camera.drawnFromPreset == "phone") << frame;  // only the phone's curve is filmic
+  }
+  EXPECT_EQ(seen, (std::set<std::string>{"webcam", "machine_vision", "phone"}));
+  EXPECT_EQ(RecordingCameraSpec{}.draw(0).drawnFromPreset, "");
+  EXPECT_EQ(recordingCameraToJson(RecordingCamera::webcam()).count("drawn_from_preset"), 0u);
 }
 
 TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
@@ -234,6 +249,10 @@ TEST(RecordingCameraSpec, BadInputGetsOneLineNamingTheField) {
   EXPECT_EQ(errorOf(R"({"preset": "webcam", "gamma": 2})"), "(accepted)");  // the webcam draws gamma or srgb
   EXPECT_EQ(errorOf(R"({"preset": {"choice": ["webcam", "phone"]}, "contrast": 1.2})"), "(accepted)");
   EXPECT_EQ(errorOf(R"({"preset": "phone", "tone_curve": "gamma", "gamma": 2})"), "(accepted)");
+  EXPECT_EQ(errorOf(R"({"preset": "webcam", "drawn_from_preset": "webcam"})"),
+            "spec.json: recording.drawn_from_preset: says which preset a drawn camera came from: not beside preset, which draws one");
+  EXPECT_EQ(errorOf(R"({"exposure_ev": 0.1, "drawn_from_preset": "phnoe"})"),
+            "spec.json: recording.drawn_from_preset: must be one of webcam, machine_vision, phone (got \"phnoe\") (did you mean phone?)");
   // A single camera (a manifest's drawn values) refuses ranges.
   EXPECT_THROW(recordingCameraFromJson(nlohmann::json::parse(R"({"exposure_ev": {"uniform": [0, 1]}})"), "m.json"), InputError);
   EXPECT_THROW(recordingCameraFromJson(nlohmann::json::parse(R"("webcam")"), "m.json"), InputError);
