@@ -219,6 +219,11 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   if (options.echoOutput) echoNewOutput(logPath, echoed);
   if (!result.timedOut && WIFEXITED(status)) result.exitCode = WEXITSTATUS(status);
   if (!result.timedOut && WIFSIGNALED(status)) result.endedBySignal = WTERMSIG(status);
+  // The same signal reached the program too (a terminal's Ctrl-C, a service manager stopping the
+  // whole group) and it ended before the loop saw ours: an interruption, not the program's failure.
+  if (const int signal = pendingInterrupt(); signal && !result.timedOut && (result.exitCode != 0 || result.endedBySignal))
+    throw Interrupted(signal, "interrupted by " + signalName(signal) + " (" + std::filesystem::path(argv[0]).filename().string() +
+                                  " ended)");
   result.notFound = result.exitCode == 127;  // a shell's or env's "command not found" (a script's interpreter)
   result.logTail = tailOfFile(logPath, 15);
   // A failure's message quotes the tail: a blank there reads as a lost message.

@@ -37,9 +37,11 @@ class InterruptTest : public ::testing::Test {
 
   // Runs `args` with `variable` naming a shim of `renderer`, signals it once the renderer has
   // started and checks what every verb must leave: no process of the renderer's group, no job
-  // folder (TMPDIR is the test's), and nothing but `allowed` in the output folder.
+  // folder (TMPDIR is the test's), and nothing but `allowed` in the output folder. With
+  // `renderersGroupFirst`, the renderer's group gets the signal first (and is continued, so that
+  // it ends), as a terminal's Ctrl-C or a service manager's stop sends it to every process.
   int interruptAtFirstLine(const std::vector<std::string>& args, const std::string& variable, const std::string& renderer,
-                           int signal) {
+                           int signal, bool renderersGroupFirst = false) {
     const RendererShim shim(dir_ / "shim", renderer);
     std::vector<std::string> argv{OMNICAM_BINARY};
     argv.insert(argv.end(), args.begin(), args.end());
@@ -48,6 +50,10 @@ class InterruptTest : public ::testing::Test {
     EXPECT_TRUE(start.has_value()) << "the renderer never started:\n" << testing::readFile(dir_ / "log");
     if (!start) return -1;
     EXPECT_FALSE(liveGroupMembers(start->shell).empty());  // the stand-in and its renderer, stopped
+    if (renderersGroupFirst) {
+      ::kill(-start->shell, signal);
+      ::kill(-start->shell, SIGCONT);
+    }
     ::kill(run.pid(), signal);
     const int status = run.waitForEnd();
     EXPECT_EQ(liveGroupMembers(start->shell), std::vector<pid_t>{}) << "the renderer's group outlived omnicam";
@@ -100,6 +106,24 @@ TEST_F(InterruptTest, SigtermToAPovrayDatasetEndsPovrayAndLeavesAResumableFolder
   const auto status2 = testing::runShell(std::string(OMNICAM_BINARY) + " dataset --status " + out.string() + " 2>&1");
   EXPECT_EQ(status2.code, 1) << status2.out;  // incomplete, and readable
   EXPECT_NE(status2.out.find("0 of 3 frames finished"), std::string::npos) << status2.out;
+}
+
+// The signal to every process, the renderer's group first: POV-Ray ends by it before omnicam's
+// loop sees its own, which is still an interruption (exit 130, resumable), not "povray: failed".
+TEST_F(InterruptTest, SigtermToTheRendererTooIsAnInterruptionNotARendererFailure) {
+  const fs::path spec = dir_ / "spec.json";
+  std::ofstream(spec) << nlohmann::json{{"format", "omnicam-dataset/1"},
+                                        {"scene", std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json"},
+                                        {"engine", "povray"},
+                                        {"size", 48},
+                                        {"poses", {{"path", "thesis-loop"}, {"frames", 3}}}}
+                             .dump();
+  const int status = interruptAtFirstLine({"dataset", spec.string(), "-o", (dir_ / "out" / "ds").string()}, "OMNICAM_POVRAY", "povray",
+                                          SIGTERM, /*renderersGroupFirst=*/true);
+  ASSERT_TRUE(WIFEXITED(status)) << log();
+  EXPECT_EQ(WEXITSTATUS(status), 130) << log();
+  EXPECT_NE(log().find("interrupted by SIGTERM (povray"), std::string::npos) << log();
+  EXPECT_EQ(log().find("failed"), std::string::npos) << log();
 }
 
 // The demo's sections are omnicam processes of their own: the signal reaches the section, which
