@@ -331,7 +331,7 @@ DatasetCompareResult compareDatasets(const std::string& dirA, const std::string&
   if (!fs::is_directory(dirB, ec)) throw InputError(showPath(dirB) + ": not a folder");
   std::optional<DatasetManifest> b;
   // A folder of unmerged shards is a dataset in the making, not a folder of images.
-  if (entryInside(dirB, kManifestName) != EntryKind::Missing || entryInside(dirB, "shards") == EntryKind::Folder)
+  if (entryInside(dirB, kManifestName) != EntryKind::Missing || !shardCountsIn(dirB).empty())
     b = readMergedDatasetManifest(SafeFolder(dirB));
   DatasetCompareResult result;
   if (b)

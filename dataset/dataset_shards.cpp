@@ -137,7 +137,7 @@ void removeShardManifestsOf(const SafeFolder& dir, const json& header) {
 }
 
 DatasetManifest readMergedDatasetManifest(const SafeFolder& dir) {
-  if (dir.entry(kManifestName) == EntryKind::Missing && dir.entry("shards") == EntryKind::Folder)
+  if (dir.entry(kManifestName) == EntryKind::Missing && !shardCountsIn(dir.path()).empty())
     throw InputError(showPath(dir.path()) + ": shards not merged yet: no " + kManifestName + " (" + unmergedShardsNextStep(dir.path()) + ")");
   return readDatasetManifest(dir);
 }

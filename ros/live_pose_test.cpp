@@ -95,7 +95,7 @@ TEST(NewestPose, KeepsOnlyTheNewestAndCountsTheDropped) {
   EXPECT_EQ(newest.dropped(), 2);
 }
 
-// A fixed-rate camera's ticks lie on the grid of its period from the epoch.
+// A repeating event thins out on /diagnostics: logarithmically, then at a fixed stride.
 TEST(LiveDiagnostics, ARepeatingEventIsSaidAtPowersOfTwoThenEvery1024th) {
   std::vector<int64_t> said;
   for (int64_t count = 0; count <= 5000; ++count)
@@ -103,6 +103,7 @@ TEST(LiveDiagnostics, ARepeatingEventIsSaidAtPowersOfTwoThenEvery1024th) {
   EXPECT_EQ(said, (std::vector<int64_t>{1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048, 3072, 4096}));
 }
 
+// A fixed-rate camera's ticks lie on the grid of its period from the epoch.
 TEST(LiveTick, IsTheGridPointAtOrBeforeNow) {
   const ros1::Stamp quarter = tickAtOrBefore({100, 300000000}, 250000000);
   EXPECT_EQ(quarter.sec, 100u);

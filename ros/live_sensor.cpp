@@ -394,6 +394,7 @@ struct LivePoses {
   ros1::Stamp lastNow;             // ROS time when the last pose or tick came
   std::atomic<int64_t> refused = 0;
   std::atomic<int64_t> skippedTicks = 0;  // at a fixed rate: ticks with no pose near enough
+  int64_t skippedSinceAFrame = 0;         // of those, since the last tick that rendered: an outage's
   bool saidWaitingForTf = false;          // at a fixed rate from tf: before the tree's first pose
 
   void refuse(const std::string& why, const ros1::Stamp& stamp) {
@@ -401,9 +402,10 @@ struct LivePoses {
   }
   // A tick is not a pose: counted apart, so that a robot that stops sending odometry is not
   // taken for one whose poses are wrong.
+  // Each outage is said from its first tick on (saysRepeat of its own count), with the total.
   void skipTick(const std::string& why, const ros1::Stamp& stamp) {
-    if (const int64_t count = ++skippedTicks; saysRepeat(count))
-      transport->publish(diagnostic(options, "tick skipped: " + why, stamp, count));
+    const int64_t total = ++skippedTicks;
+    if (saysRepeat(++skippedSinceAFrame)) transport->publish(diagnostic(options, "tick skipped: " + why, stamp, total));
   }
   void render(const LivePose& live) {
     if (newest.put(live))
@@ -417,6 +419,7 @@ struct LivePoses {
       lastAccepted.reset();
       latest.reset();
       saidWaitingForTf = false;
+      skippedSinceAFrame = 0;
       transport->publish(diagnostic(options, "ROS time went back (a simulation reset?): poses start anew", now, 0));
     }
     lastNow = now;
@@ -436,9 +439,10 @@ struct LivePoses {
     if (!options.tfParent.empty()) return transport->requestTransform(stamp);
     if (!latest) return;  // no odometry yet
     std::string problem;
-    if (const std::optional<LivePose> live = poseAtTick(*latest, stamp, options.maxPoseAgeSeconds, problem))
+    if (const std::optional<LivePose> live = poseAtTick(*latest, stamp, options.maxPoseAgeSeconds, problem)) {
+      skippedSinceAFrame = 0;
       render(*live);
-    else
+    } else
       skipTick(problem, stamp);
   }
   void subscribe() {

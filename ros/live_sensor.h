@@ -79,8 +79,9 @@ struct LivePose {
 };
 LivePose livePoseOf(const ros1::Odometry& odometry);
 
-// Whether the `count`th of a repeating event (a pose dropped, a tick skipped) is said on
-// /diagnostics: the 1st, 2nd, 4th, 8th … and then every 1024th, each with its count. A robot
+// Whether the `count`th of a repeating event (a pose dropped; a tick skipped, counted from the
+// outage's first) is said on /diagnostics: the 1st, 2nd, 4th, 8th … and then every 1024th, each
+// with the total count. A robot
 // sending odometry at 1 kHz to a 10 Hz camera drops about 990 poses a second; one message each
 // would flood every aggregator, and the counts say as much. Refusals, whose reasons differ, are
 // each said.
