@@ -46,6 +46,9 @@ struct BeaconDetection {
 struct DetectionResult {
   std::vector<ColourBlob> blobs;
   std::vector<BeaconDetection> beacons;
+  // Whether the blobs are where the detector's model puts each beacon's bands (the footprint
+  // detector's, each sample rounded to the pixel it falls in), not pixels it classified.
+  bool blobsAreModelFootprints = false;
 };
 
 struct DetectorOptions {

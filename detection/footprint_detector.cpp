@@ -428,6 +428,7 @@ DetectionResult FootprintDetector::detect(const BandEvidence& evidence, double t
     hypotheses[b] = bestFootprints(beacons_[b], footprints(b), mapOf(beacons_[b].upper->colourClass),
                                    mapOf(beacons_[b].lower->colourClass), minMean, rule);
   DetectionResult result;
+  result.blobsAreModelFootprints = true;
   for (const Found& f : agreeingChoice(beacons_, hypotheses)) {
     const BeaconFootprints& fp = footprints(f.beacon);
     const int* first = fp.pixels.data() + fp.upperBegin[f.candidate];

@@ -163,9 +163,11 @@ FrameEvaluation evaluateFrame(const Frame& frame, const DetectionResult& detecte
       ++shown[id];
     }
     if (2 * onBand >= blob.area) continue;
-    // A band of a right answer is no false positive ("colour blobs lying on no band of their
-    // colour"): the detection within the match radius is the verdict, not its pixels' rounding.
-    if (ofFoundBeacon[k]) {
+    // A footprint detector's band is where its model puts the band, rounded to whole pixels, not
+    // pixels it classified: for a beacon named rightly (within the match radius) that rounding is
+    // no false positive. A classified blob that lies mostly off its band is one, even in a right
+    // answer: the classifier took those pixels for the band's colour.
+    if (ofFoundBeacon[k] && detected.blobsAreModelFootprints) {
       ++e.offBandBandsOfFoundBeacons;
       continue;
     }

@@ -100,9 +100,11 @@ void writeFalsePositiveMakeup(std::ostringstream& md, const TextureRealismResult
   if (const ConditionOutcome* oracle = findCondition(r, conditionKey("realistic_test_frames", "realistic", d)))
     rows.emplace_back("oracle: the test frames → realistic", oracle);
   md << "\nWhat the false positives are: beacons named where they are not, and blobs lying mostly off the bands of "
-        "their colour (by the instance mask, which samples each pixel's centre). A band of a beacon named rightly is part "
-        "of a right answer and no false positive, even where its pixels show more of something else than of the band (a "
-        "far band's footprint rounded to whole pixels, a blob spilling onto the wall); the last column counts those apart.\n\n"
+        "their colour (by the instance mask, which samples each pixel's centre). The footprint detector's blobs are where "
+        "its model puts a beacon's bands, each sample rounded to the pixel it falls in: for a beacon named rightly, a band "
+        "that shows more of its neighbour than of itself (a far band one or two pixels tall) is that rounding, part of a "
+        "right answer and no false positive; the last column counts those apart. The pixel detector's blobs are pixels it "
+        "classified: one lying mostly off its band counts, right answer or not.\n\n"
         "| train → test | FP | beacons named where they are not | off-band blobs | not counted: bands of beacons named rightly, mostly off their band |\n"
         "|---|---:|---:|---:|---:|\n";
   for (const auto& [label, c] : rows)

@@ -205,13 +205,13 @@ void writeHtml(const ReportData& data, const TextureRealismResults& results, con
        << "for the thesis' real ISLA images). Run time " << fixedDecimals(results.seconds, 1) << " s.</p>"
        << "<h2>Detection</h2><table><tr><th>train &rarr; test</th><th>frames</th><th>true positives</th>"
           "<th>false positives</th><th>(blobs)</th><th>true/false</th><th>missed</th><th>error px</th>"
-          "<th>range error cm</th><th>bearing error &deg;</th></tr>";
+          "<th>range error cm (median)</th><th>bearing error &deg;</th></tr>";
   for (const ConditionOutcome& c : results.conditions)
     html << "<tr><td>" << escapeMarkup(c.key()) << "</td><td>" << c.frames << "</td><td>" << c.truePositives
          << "</td><td>" << c.falsePositives << "</td><td>" << c.falsePositiveBlobs << "</td><td>"
          << (c.falsePositives ? fixedDecimals(static_cast<double>(c.truePositives) / c.falsePositives, 4) : "&infin;")
          << "</td><td>" << c.missed << "</td><td>" << decimalsOrDash(c.meanLocalisationErrorPx, 2) << "</td><td>"
-         << decimalsOrDash(c.meanRangeErrorCm, 1) << "</td><td>" << decimalsOrDash(c.meanBearingErrorDeg, 2) << "</td></tr>";
+         << decimalsOrDash(c.medianRangeErrorCm, 1) << "</td><td>" << decimalsOrDash(c.meanBearingErrorDeg, 2) << "</td></tr>";
   html << "</table><h2>EKF self-localisation</h2><table><tr><th>condition</th><th>odometry cm</th><th>EKF cm</th>"
           "<th>improvement cm</th><th>measurements used / gated</th></tr>";
   for (const EkfOutcome& e : results.ekf)
@@ -343,8 +343,9 @@ void writeSetupAndDetections(std::ostringstream& md, const TextureRealismResults
         "frames at a fraction of Cycles' time. The path training set and the realistic training set share their "
         "random poses.\n"
      << "- A true positive is a beacon identified by its two bands within " << o.matchRadiusPx << " px (at 360 "
-        "px) of its projected band boundary. False positives: colour blobs lying on no band of their colour, "
-        "plus identifications of a beacon that is not there.\n\n"
+        "px) of its projected band boundary. False positives: colour blobs lying on no band of their colour (most "
+        "of their pixels, by the instance mask), plus identifications of a beacon that is not there; the footprint "
+        "detector's bands of a beacon it names rightly, where its model puts them, are none.\n\n"
      << "| train → test | thesis setting | thesis TP | thesis FP | thesis px | thesis TP/FP | TP | FP | "
         "wrong beacons | FP blobs on the hall (walls, floor, ceiling) | missed | px | range cm (median) | bearing ° | TP/FP |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";

@@ -43,11 +43,11 @@ TEST(PresetFolds, NeedTrainingCamerasThatDrawOneOfSeveralPresets) {
 
 // A 10 × 10 frame whose mask holds, row 2, a cyan band (object 1) over, row 3, a magenta band
 // (object 2) of beacon A, and a wall (object 3) everywhere else. A is named rightly (its boundary
-// 1 px off): its upper blob on cyan counts for nothing, and its lower blob of 3 pixels with 1 on
-// magenta, mostly off its band, is still part of a right answer: no false positive, counted apart.
-// B is named where it is not visible: one false identification, and its two blobs on the wall two
-// false-positive blobs.
-TEST(EvaluateFrame, CountsFalseIdentificationsAndOffBandBlobsButNoBandOfABeaconNamedRightly) {
+// 1 px off): its upper blob on cyan counts for nothing; its lower blob of 3 pixels with 1 on
+// magenta lies mostly off its band: classified pixels, a false positive; a model's footprint, the
+// rounding of a right answer, counted apart. B is named where it is not visible: one false
+// identification, and its two blobs on the wall two false-positive blobs.
+TEST(EvaluateFrame, CountsFalseIdentificationsAndOffBandBlobsButNoFootprintOfABeaconNamedRightly) {
   const int w = 10;
   Frame frame{RobotPose{}, ImageRGBA(w, w), std::vector<uint16_t>(static_cast<size_t>(w) * w, 3)};
   for (int i = 2; i < 8; ++i) frame.instance[static_cast<size_t>(2 * w + i)] = 1, frame.instance[static_cast<size_t>(3 * w + i)] = 2;
@@ -67,13 +67,23 @@ TEST(EvaluateFrame, CountsFalseIdentificationsAndOffBandBlobsButNoBandOfABeaconN
   EXPECT_EQ(e.visibleBeacons, 1);
   EXPECT_EQ(e.truePositives, 1);
   EXPECT_EQ(e.falseIdentifications, 1);
-  EXPECT_EQ(e.falsePositiveBlobs, 2);
-  EXPECT_EQ(e.falsePositives(), 3);
-  EXPECT_EQ(e.offBandBandsOfFoundBeacons, 1);  // A's lower blob: 2 of its 3 pixels on the wall
-  ASSERT_EQ(e.falseBlobs.size(), 2u);          // in the blobs' order: B's upper, B's lower
-  EXPECT_EQ(e.falseBlobs[0].object, "hall_wall");
-  EXPECT_EQ(e.falseBlobs[0].colour, "cyan");
-  EXPECT_EQ(e.falseBlobs[1].colour, "magenta");
+  EXPECT_EQ(e.falsePositiveBlobs, 3);
+  EXPECT_EQ(e.falsePositives(), 4);
+  EXPECT_EQ(e.offBandBandsOfFoundBeacons, 0);
+  ASSERT_EQ(e.falseBlobs.size(), 3u);  // in the blobs' order: A's lower, B's upper, B's lower
+  EXPECT_EQ(e.falseBlobs[0].object, "hall_wall");  // A's lower blob: 2 of its 3 pixels on the wall
+  EXPECT_EQ(e.falseBlobs[1].colour, "cyan");
+  // The same blobs as a footprint detector's model bands: A's lower band is counted apart.
+  DetectionResult footprints = detected;
+  footprints.blobsAreModelFootprints = true;
+  const FrameEvaluation f = evaluateFrame(frame, footprints, truth, bandColour, objectNames, 8.0);
+  EXPECT_EQ(f.truePositives, 1);
+  EXPECT_EQ(f.falsePositiveBlobs, 2);
+  EXPECT_EQ(f.falsePositives(), 3);
+  EXPECT_EQ(f.offBandBandsOfFoundBeacons, 1);
+  ASSERT_EQ(f.falseBlobs.size(), 2u);  // B's upper, B's lower
+  EXPECT_EQ(f.falseBlobs[0].colour, "cyan");
+  EXPECT_EQ(f.falseBlobs[1].colour, "magenta");
   // A blob index that is not one of the frame's blobs is the detector's mistake, not a count.
   DetectionResult broken = detected;
   broken.beacons[0].lowerBlob = 4;
