@@ -62,6 +62,17 @@ class InterruptTest : public ::testing::Test {
   }
 
   std::string log() const { return testing::readFile(dir_ / "log"); }
+  // A POV-Ray dataset of three small frames.
+  fs::path povrayDatasetSpec() const {
+    const fs::path spec = dir_ / "spec.json";
+    std::ofstream(spec) << nlohmann::json{{"format", "omnicam-dataset/1"},
+                                          {"scene", std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json"},
+                                          {"engine", "povray"},
+                                          {"size", 48},
+                                          {"poses", {{"path", "thesis-loop"}, {"frames", 3}}}}
+                               .dump();
+    return spec;
+  }
 
   fs::path dir_;
 };
@@ -88,13 +99,7 @@ TEST_F(InterruptTest, SigintToABlenderRenderEndsBlenderAndLeavesNothing) {
 // A dataset stops resumably: its manifest lists what finished, no frame is half-written, and the
 // run says how to resume (exit 130, as for Ctrl-C between frames).
 TEST_F(InterruptTest, SigtermToAPovrayDatasetEndsPovrayAndLeavesAResumableFolder) {
-  const fs::path spec = dir_ / "spec.json";
-  std::ofstream(spec) << nlohmann::json{{"format", "omnicam-dataset/1"},
-                                        {"scene", std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json"},
-                                        {"engine", "povray"},
-                                        {"size", 48},
-                                        {"poses", {{"path", "thesis-loop"}, {"frames", 3}}}}
-                             .dump();
+  const fs::path spec = povrayDatasetSpec();
   const fs::path out = dir_ / "out" / "ds";
   const int status = interruptAtFirstLine({"dataset", spec.string(), "-o", out.string()}, "OMNICAM_POVRAY", "povray", SIGTERM);
   ASSERT_TRUE(WIFEXITED(status)) << log();
@@ -111,13 +116,7 @@ TEST_F(InterruptTest, SigtermToAPovrayDatasetEndsPovrayAndLeavesAResumableFolder
 // The signal to every process, the renderer's group first: POV-Ray ends by it before omnicam's
 // loop sees its own, which is still an interruption (exit 130, resumable), not "povray: failed".
 TEST_F(InterruptTest, SigtermToTheRendererTooIsAnInterruptionNotARendererFailure) {
-  const fs::path spec = dir_ / "spec.json";
-  std::ofstream(spec) << nlohmann::json{{"format", "omnicam-dataset/1"},
-                                        {"scene", std::string(OMNICAM_SOURCE_DIR) + "/scenes/robocup2006.json"},
-                                        {"engine", "povray"},
-                                        {"size", 48},
-                                        {"poses", {{"path", "thesis-loop"}, {"frames", 3}}}}
-                             .dump();
+  const fs::path spec = povrayDatasetSpec();
   const int status = interruptAtFirstLine({"dataset", spec.string(), "-o", (dir_ / "out" / "ds").string()}, "OMNICAM_POVRAY", "povray",
                                           SIGTERM, /*renderersGroupFirst=*/true);
   ASSERT_TRUE(WIFEXITED(status)) << log();
