@@ -16,8 +16,8 @@ struct DrawnDetection {
   bool correct;
 };
 
-// A colour blob that lies mostly off the bands of its colour (by the instance mask) and is no band
-// of a beacon named rightly, and what it lies on.
+// A colour blob that lies mostly off the bands of its colour (by the instance mask), unless it is
+// a footprint detector's band of a beacon named rightly, and what it lies on.
 struct FalseBlob {
   std::string colour;
   Vec2 centroid;
@@ -33,12 +33,11 @@ struct FrameEvaluation {
   std::vector<Vec2> truth;  // visible beacons' projected band boundaries
   std::vector<double> visibleRangesM, foundRangesM;  // the true ranges of visible beacons, and of those found
   std::vector<FalseBlob> falseBlobs;
-  // Bands of beacons named rightly whose pixels lie mostly off the band (a far band's footprint
-  // rounded to whole pixels, or a blob that spills onto the wall): part of a right answer, so no
-  // false positive, and counted apart.
+  // A footprint detector's bands of beacons named rightly that lie mostly off their band (a far
+  // band's footprint rounded to whole pixels): part of a right answer, so no false positive, and
+  // counted apart. A classified blob in that place is a false positive.
   int offBandBandsOfFoundBeacons = 0;
-  // False positives: blobs mostly off the bands of their colour that are no band of a beacon named
-  // rightly, plus beacons named where they are not.
+  // False positives: the off-band blobs above (falseBlobs) plus beacons named where they are not.
   int falsePositives() const { return falsePositiveBlobs + falseIdentifications; }
 };
 

@@ -85,7 +85,7 @@ struct ConditionOutcome {
   DetectorKind detector = DetectorKind::Pixels;
   int frames = 0, truePositives = 0, falsePositives = 0, missed = 0, falsePositiveBlobs = 0;
   int falsePositiveBlobsOnHall = 0;  // of those, on the hall's walls, ceiling and floor: the textures' share
-  int offBandBandsOfFoundBeacons = 0;  // not false positives: bands of right answers lying mostly off their band
+  int offBandBandsOfFoundBeacons = 0;  // not false positives: footprint bands of right answers lying mostly off their band
   int falseIdentifications() const { return falsePositives - falsePositiveBlobs; }
   // Means over the true positives: none without one (a condition that found nothing has no error).
   std::optional<double> meanLocalisationErrorPx, meanRangeErrorCm, meanBearingErrorDeg;

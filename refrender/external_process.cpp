@@ -197,6 +197,9 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
     result.logTail = std::string("cannot start: ") + std::strerror(spawned);
     return result;
   }
+  const auto interruption = [&](int signal) {
+    return Interrupted(signal, "interrupted by " + signalName(signal) + " (" + std::filesystem::path(argv[0]).filename().string() + " ended)");
+  };
   const auto deadline = Clock::now() + std::chrono::duration<double>(options.timeoutSeconds);
   std::streamoff echoed = 0;
   int status = 0;
@@ -205,8 +208,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
     if (options.echoOutput) echoNewOutput(logPath, echoed);
     if (const int signal = pendingInterrupt()) {
       endProcessGroup(pid, options.terminationGraceSeconds);
-      throw Interrupted(signal, "interrupted by " + signalName(signal) + " (" +
-                                    std::filesystem::path(argv[0]).filename().string() + " ended)");
+      throw interruption(signal);
     }
     if (Clock::now() > deadline) {
       status = endProcessGroup(pid, options.terminationGraceSeconds);
@@ -222,8 +224,7 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const std::string
   // The same signal reached the program too (a terminal's Ctrl-C, a service manager stopping the
   // whole group) and it ended before the loop saw ours: an interruption, not the program's failure.
   if (const int signal = pendingInterrupt(); signal && !result.timedOut && (result.exitCode != 0 || result.endedBySignal))
-    throw Interrupted(signal, "interrupted by " + signalName(signal) + " (" + std::filesystem::path(argv[0]).filename().string() +
-                                  " ended)");
+    throw interruption(signal);
   result.notFound = result.exitCode == 127;  // a shell's or env's "command not found" (a script's interpreter)
   result.logTail = tailOfFile(logPath, 15);
   // A failure's message quotes the tail: a blank there reads as a lost message.
