@@ -20,30 +20,45 @@ double meanAfterStart(const std::vector<EkfRow>& rows, Vec3 EkfRow::*estimate) {
 double EkfTrace::meanErrorCm() const { return meanAfterStart(rows, &EkfRow::estimate); }
 double EkfTrace::meanOdometryErrorCm() const { return meanAfterStart(rows, &EkfRow::odometry); }
 
+Eigen::Matrix2d measurementNoiseAt(double range) {
+  Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
+  q(0, 0) = std::pow(0.05 + 0.1 * range, 2);  // range from an elevation angle worsens with distance
+  q(1, 1) = std::pow(3.0 * kPi / 180.0, 2);
+  return q;
+}
+
 Eigen::Matrix2d Drive::motionNoiseFor(const Odometry& u) const {
   Eigen::Matrix2d m = Eigen::Matrix2d::Zero();
-  m(0, 0) = std::pow(kOdometryRangeFraction * std::abs(u.v) + 0.01, 2);
-  m(1, 1) = std::pow(kOdometryTurnSigmaRad, 2);
+  m(0, 0) = std::pow(noise.rangeFraction * std::abs(u.v) + 0.01, 2);
+  m(1, 1) = std::pow(noise.turnSigmaRad, 2);
   return m;
 }
 
-Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed) {
+std::vector<Odometry> odometryBetween(const Vec3& from, const Vec3& to) {
+  const Vec2 chord = to.head<2>() - from.head<2>();
+  const double distance = chord.norm();
+  if (distance == 0.0) return {{0.0, wrapAngle(to.z() - from.z())}};
+  const double turnToChord = wrapAngle(std::atan2(chord.y(), chord.x()) - from.z());
+  const bool forward = std::cos(turnToChord) >= 0.0;
+  const Odometry drive{forward ? distance : -distance, forward ? turnToChord : wrapAngle(turnToChord + kPi)};
+  const double turnAfter = wrapAngle(to.z() - motionModel(from, drive).z());
+  if (std::abs(turnAfter) < 1e-12) return {drive};
+  return {drive, {0.0, turnAfter}};
+}
+
+Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed, const OdometryNoise& noise) {
   Drive drive;
+  drive.noise = noise;
   for (const RobotPose& p : poses) drive.truth.emplace_back(p.x, p.y, wrapAngle(p.yawDeg * kPi / 180.0));
   std::mt19937_64 random(seed);
   std::normal_distribution<double> gaussian(0.0, 1.0);
   drive.noisyOdometry.resize(poses.size());
-  for (size_t k = 1; k < poses.size(); ++k) {
-    const Vec3& a = drive.truth[k - 1];
-    const Vec3& b = drive.truth[k];
-    const double omega = wrapAngle(b.z() - a.z());
-    const double distance = std::hypot(b.x() - a.x(), b.y() - a.y());
-    const double forward = std::cos(std::atan2(b.y() - a.y(), b.x() - a.x()) - b.z()) >= 0 ? 1.0 : -1.0;
-    Odometry noisy;
-    noisy.v = forward * distance * (1.0 + Drive::kOdometryRangeFraction * gaussian(random));
-    noisy.omega = omega + Drive::kOdometryTurnSigmaRad * gaussian(random);
-    drive.noisyOdometry[k] = noisy;
-  }
+  for (size_t k = 1; k < poses.size(); ++k)
+    for (Odometry step : odometryBetween(drive.truth[k - 1], drive.truth[k])) {
+      step.v *= 1.0 + noise.rangeFraction * gaussian(random);
+      step.omega += noise.turnSigmaRad * gaussian(random);
+      drive.noisyOdometry[k].push_back(step);
+    }
   return drive;
 }
 
@@ -53,18 +68,14 @@ EkfTrace runEkf(const Drive& drive, const std::function<const std::vector<Measur
   LandmarkEkf ekf(drive.truth[0], initialCovariance, Eigen::Matrix2d::Identity() * 1e-4, Eigen::Matrix2d::Identity());
   Vec3 odometry = drive.truth[0];
   for (size_t k = 0; k < drive.truth.size(); ++k) {
-    if (k > 0) {
-      const Odometry& u = drive.noisyOdometry[k];
+    for (const Odometry& u : drive.noisyOdometry[k]) {
       odometry = motionModel(odometry, u);
       ekf.setMotionNoise(drive.motionNoiseFor(u));
       ekf.predict(u);
     }
     if (const std::vector<Measurement>* measurements = measurementsAt(k))
       for (const Measurement& m : *measurements) {
-        Eigen::Matrix2d q = Eigen::Matrix2d::Zero();
-        q(0, 0) = std::pow(0.05 + 0.1 * m.z(0), 2);  // range from an elevation angle worsens with distance
-        q(1, 1) = std::pow(3.0 * kPi / 180.0, 2);
-        ekf.setMeasurementNoise(q);
+        ekf.setMeasurementNoise(measurementNoiseAt(measurementModel(ekf.mean(), m.landmark)(0)));
         if (ekf.update(m.z, m.landmark)) ++trace.used;
         else ++trace.gated;
       }

@@ -28,16 +28,32 @@ struct EkfTrace {
   double meanOdometryErrorCm() const;
 };
 
+// The odometry that moves `from` exactly to `to` under motionModel: turn toward the chord and
+// drive along it (backward when it points behind), then, where the path bends between them,
+// turn on the spot to the heading at `to` — a path's poses face along its tangent, which at a
+// bend is not the chord's direction, and one (v, ω) step could not reach them.
+std::vector<Odometry> odometryBetween(const Vec3& from, const Vec3& to);
+
+// Odometry's noise: σ of each step's distance as a fraction of it, σ of each turn.
+struct OdometryNoise {
+  double rangeFraction = 0.08;
+  double turnSigmaRad = 1.5 * kPi / 180.0;
+};
+
 // Odometry between consecutive true poses, then noise drawn once for every condition.
 struct Drive {
   std::vector<Vec3> truth;
-  std::vector<Odometry> noisyOdometry;  // [k] moves truth[k-1] → truth[k]; [0] unused
+  std::vector<std::vector<Odometry>> noisyOdometry;  // [k]: steps moving truth[k-1] → truth[k]; [0] none
+  OdometryNoise noise;
   Eigen::Matrix2d motionNoiseFor(const Odometry& u) const;
-  static constexpr double kOdometryRangeFraction = 0.08;
-  static constexpr double kOdometryTurnSigmaRad = 1.5 * kPi / 180.0;
 };
 
-Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed);
+Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed, const OdometryNoise& noise = {});
+
+// Q of a range-bearing measurement of a landmark at `range` metres: σ_r = 5 cm + 10 % of it,
+// σ_b = 3°. runEkf takes the range the estimate predicts, not the measured one: a wrong range
+// read far too long must not loosen its own gate.
+Eigen::Matrix2d measurementNoiseAt(double range);
 
 // Drives every pose; pose k brings the measurements measurementsAt(k) returns (null: none).
 EkfTrace runEkf(const Drive& drive, const std::function<const std::vector<Measurement>*(size_t)>& measurementsAt);
