@@ -62,7 +62,7 @@ Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed, const Odomet
   return drive;
 }
 
-EkfTrace runEkf(const Drive& drive, const std::function<const std::vector<Measurement>*(size_t)>& measurementsAt) {
+EkfTrace runEkf(const Drive& drive, const MeasurementsAt& measurementsAt) {
   EkfTrace trace;
   const Eigen::Matrix3d initialCovariance = Eigen::Vector3d(1e-4, 1e-4, std::pow(kPi / 180.0, 2)).asDiagonal();
   LandmarkEkf ekf(drive.truth[0], initialCovariance, Eigen::Matrix2d::Identity() * 1e-4, Eigen::Matrix2d::Identity());
@@ -82,6 +82,17 @@ EkfTrace runEkf(const Drive& drive, const std::function<const std::vector<Measur
     trace.rows.push_back({drive.truth[k], odometry, ekf.mean(), ekf.covariance()});
   }
   return trace;
+}
+
+EkfDrives runEkfOnDrives(const std::vector<Drive>& drives, const MeasurementsAt& measurementsAt) {
+  EkfDrives result;
+  for (size_t d = 0; d < drives.size(); ++d) {
+    EkfTrace trace = runEkf(drives[d], measurementsAt);
+    result.odometryErrorCm.push_back(trace.meanOdometryErrorCm());
+    result.ekfErrorCm.push_back(trace.meanErrorCm());
+    if (d == 0) result.first = std::move(trace);
+  }
+  return result;
 }
 
 }  // namespace omnicam

@@ -55,7 +55,17 @@ Drive makeDrive(const std::vector<RobotPose>& poses, uint64_t seed, const Odomet
 // read far too long must not loosen its own gate.
 Eigen::Matrix2d measurementNoiseAt(double range);
 
+using MeasurementsAt = std::function<const std::vector<Measurement>*(size_t)>;
+
 // Drives every pose; pose k brings the measurements measurementsAt(k) returns (null: none).
-EkfTrace runEkf(const Drive& drive, const std::function<const std::vector<Measurement>*(size_t)>& measurementsAt);
+EkfTrace runEkf(const Drive& drive, const MeasurementsAt& measurementsAt);
+
+// The same measurements on several drives, each with its own odometry noise: one drive's error
+// is a draw. Each drive's mean errors (cm), and the first drive's whole trace.
+struct EkfDrives {
+  EkfTrace first;
+  std::vector<double> odometryErrorCm, ekfErrorCm;
+};
+EkfDrives runEkfOnDrives(const std::vector<Drive>& drives, const MeasurementsAt& measurementsAt);
 
 }  // namespace omnicam

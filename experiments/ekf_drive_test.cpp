@@ -103,6 +103,32 @@ TEST_F(ThesisLoopDrive, OdometryWithoutNoiseLandsOnEveryTruePose) {
   EXPECT_LT(trace.meanErrorCm(), 1e-8);
 }
 
+TEST_F(ThesisLoopDrive, DrivesAreRunOneByOneWithTheSameMeasurements) {
+  std::vector<Drive> drives;
+  for (uint64_t seed = 3; seed < 6; ++seed) drives.push_back(makeDrive(poses_, seed));
+  // One landmark 1 m ahead of every fifth true pose, measured exactly.
+  std::vector<std::vector<Measurement>> sightings(poses_.size());
+  for (size_t k = 0; k < poses_.size(); k += 5) {
+    const Vec3& p = drives[0].truth[k];
+    const Vec2 landmark = p.head<2>() + Vec2(std::cos(p.z()), std::sin(p.z()));
+    sightings[k].push_back({landmark, RangeBearing(1.0, 0.0)});
+  }
+  const MeasurementsAt at = [&](size_t k) { return &sightings[k]; };
+  const EkfDrives all = runEkfOnDrives(drives, at);
+  ASSERT_EQ(all.ekfErrorCm.size(), 3u);
+  ASSERT_EQ(all.odometryErrorCm.size(), 3u);
+  for (size_t d = 0; d < drives.size(); ++d) {
+    const EkfTrace alone = runEkf(drives[d], at);
+    EXPECT_EQ(all.ekfErrorCm[d], alone.meanErrorCm());
+    EXPECT_EQ(all.odometryErrorCm[d], alone.meanOdometryErrorCm());
+  }
+  EXPECT_NE(all.odometryErrorCm[0], all.odometryErrorCm[1]);  // each drive its own noise
+  const EkfTrace first = runEkf(drives[0], at);
+  EXPECT_EQ(all.first.used, first.used);
+  ASSERT_EQ(all.first.rows.size(), first.rows.size());
+  EXPECT_EQ(all.first.rows.back().estimate, first.rows.back().estimate);
+}
+
 TEST_F(ThesisLoopDrive, NoiseHasTheDeclaredSpread) {
   // Each step's relative distance error and turn error, over the loop drawn with many seeds.
   const OdometryNoise noise;

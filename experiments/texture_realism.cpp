@@ -249,9 +249,10 @@ std::map<std::string, std::vector<Frame>> renderTestSets(const TextureRealismOpt
   return tests;
 }
 
-// A condition's totals, its most frequent false-positive sources, its EKF run and its example
+// A condition's totals, its most frequent false-positive sources, its EKF runs (one per drive) and its example
 // frame (the one with the most visible beacons, first of them), from its frames' evaluations.
-void summariseCondition(ConditionReport& condition, const std::vector<Frame>& frames, const Drive& drive, int testStride) {
+void summariseCondition(ConditionReport& condition, const std::vector<Frame>& frames, const std::vector<Drive>& drives,
+                        int testStride) {
   ConditionOutcome& c = condition.outcome;
   std::vector<double> pixels, ranges, bearings;
   for (const FrameEvaluation& f : condition.frames) {
@@ -282,7 +283,7 @@ void summariseCondition(ConditionReport& condition, const std::vector<Frame>& fr
   c.medianRangeErrorCm = medianOf(ranges);
   c.meanBearingErrorDeg = meanOf(bearings);
   const size_t stride = static_cast<size_t>(testStride);
-  condition.ekf = runEkf(drive, [&](size_t k) -> const std::vector<Measurement>* {
+  condition.ekf = runEkfOnDrives(drives, [&](size_t k) -> const std::vector<Measurement>* {
     return k % stride == 0 && k / stride < condition.frames.size() ? &condition.frames[k / stride].measurements : nullptr;
   });
   size_t example = 0;
@@ -468,14 +469,29 @@ ImageRGBA recordingComparison(const TextureRealismOptions& o, const std::map<std
 }
 
 // The EKF's mean position errors along the loop, odometry alone and filtered (cm).
-EkfOutcome ekfOutcome(const ConditionReport& c) {
+EkfOutcome ekfOutcome(const std::string& name, const EkfDrives& drives) {
   EkfOutcome e;
-  e.condition = c.outcome.key();
-  e.meanErrorOdometryCm = c.ekf.meanOdometryErrorCm();
-  e.meanErrorEkfCm = c.ekf.meanErrorCm();
-  e.measurementsUsed = c.ekf.used;
-  e.measurementsGated = c.ekf.gated;
+  e.condition = name;
+  e.odometryErrorCmPerDrive = drives.odometryErrorCm;
+  e.ekfErrorCmPerDrive = drives.ekfErrorCm;
+  e.meanErrorOdometryCm = meanOf(drives.odometryErrorCm).value();
+  e.meanErrorEkfCm = meanOf(drives.ekfErrorCm).value();
+  e.measurementsUsed = drives.first.used;
+  e.measurementsGated = drives.first.gated;
   return e;
+}
+
+// The EKF's floor: every beacon visible from a test pose measured at its true range and bearing.
+EkfOutcome exactMeasurementsEkf(const std::vector<std::vector<GroundTruthBeacon>>& truth, const std::vector<Drive>& drives,
+                                int testStride) {
+  std::vector<std::vector<Measurement>> exact(truth.size());
+  for (size_t k = 0; k < truth.size(); ++k)
+    for (const GroundTruthBeacon& b : truth[k])
+      if (b.visible) exact[k].push_back({b.beacon->position(), RangeBearing(b.rangeM, b.bearingRad)});
+  const size_t stride = static_cast<size_t>(testStride);
+  return ekfOutcome(kExactMeasurements, runEkfOnDrives(drives, [&](size_t k) -> const std::vector<Measurement>* {
+                      return k % stride == 0 && k / stride < exact.size() ? &exact[k / stride] : nullptr;
+                    }));
 }
 
 }  // namespace
@@ -488,6 +504,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
     throw InputError("texture-realism: size ≥ 64, spp ≥ 1, stride ≥ 1, ≥ 1 training frame and hall, and photos");
   if (o.recordingDraws < 1 || static_cast<uint64_t>(o.trainFrames) * static_cast<uint64_t>(o.recordingDraws) >= kFigureDraws)
     throw InputError("texture-realism: 1 to " + std::to_string(kFigureDraws - 1) + " training recordings (frames × draws)");
+  if (o.ekfDrives < 1) throw InputError("texture-realism: at least one EKF drive");
   const fs::path out(o.outDir);
   // Its folders are made without following a link planted there: what it writes stays inside.
   makeAllFoldersInside(o.outDir, {"arenas", "data", "frames", "figures"});
@@ -551,7 +568,8 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   if (footprintBins != o.bins)
     for (const auto& [set, classifiers] : footprintSets) coarsened[set] = coarsenedSet(classifiers, footprintBins);
   const Classifiers& forFootprints = footprintBins != o.bins ? coarsened : footprintSets;
-  const Drive drive = makeDrive(loop->poses, o.seed + 7);
+  std::vector<Drive> drives;  // the same noise for every condition; the first drive's seed as ever
+  for (int d = 0; d < o.ekfDrives; ++d) drives.push_back(makeDrive(loop->poses, o.seed + 7 + static_cast<uint64_t>(d)));
   ReportData report;
   report.options = &o;
   report.testPoses = testPoses;
@@ -569,7 +587,7 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
       condition.frames.push_back(evaluateFrame(frames[k], detected, truth[k], bandColour, objectNames, matchRadius));
       progress("detecting " + condition.outcome.key(), static_cast<int>(k + 1), static_cast<int>(frames.size()));
     }
-    summariseCondition(condition, frames, drive, o.testStride);
+    summariseCondition(condition, frames, drives, o.testStride);
     report.conditions.push_back(std::move(condition));
   }
   for (const auto& [set, classifiers] : trained) report.classifiers[set] = &classifiers;
@@ -585,8 +603,9 @@ TextureRealismResults runTextureRealism(const TextureRealismOptions& o, const st
   results.comparison = recordingComparison(o, tests, report.conditions.front().exampleFrame);
   for (const ConditionReport& c : report.conditions) {
     results.conditions.push_back(c.outcome);
-    results.ekf.push_back(ekfOutcome(c));
+    results.ekf.push_back(ekfOutcome(c.outcome.key(), c.ekf));
   }
+  results.ekf.push_back(exactMeasurementsEkf(truth, drives, o.testStride));
   results.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   writeTextureRealismReport(report, results, plotScript);
   return results;

@@ -44,7 +44,7 @@ struct FrameEvaluation {
 struct ConditionReport {
   ConditionOutcome outcome;
   std::vector<FrameEvaluation> frames;
-  EkfTrace ekf;
+  EkfDrives ekf;
   size_t exampleFrame = 0;
   ImageRGBA exampleImage;
 };

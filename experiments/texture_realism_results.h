@@ -56,6 +56,9 @@ struct TextureRealismOptions {
   };
   std::vector<TestCamera> testCameras;
   uint64_t seed = 2008;
+  // The EKF drives thesis-loop this many times, each with its own odometry noise, and reports
+  // the mean error: one drive's error is a draw, and bars compare conditions by their ratio.
+  int ekfDrives = 16;
   double matchRadiusPx = 8.0;  // at 360 px; scaled with the image size
   double blenderTimeoutSeconds = 3600.0;
   // A reduced run (quick()): fewer frames and samples than the full run whose numbers the
@@ -99,9 +102,16 @@ struct ConditionOutcome {
   std::string key() const { return conditionKey(train, test, detector); }
 };
 
+// The EKF along thesis-loop fed by a condition's detections, over every drive (options.ekfDrives):
+// the means over drives, and each drive's mean error. Measurements used and gated are the first
+// drive's, whose per-pose trace data/ekf_<condition>.csv holds.
+// Not a condition: the EKF fed every visible beacon's true range and bearing, its floor.
+inline constexpr const char* kExactMeasurements = "exact_measurements";
+
 struct EkfOutcome {
   std::string condition;
   double meanErrorOdometryCm = 0.0, meanErrorEkfCm = 0.0;
+  std::vector<double> odometryErrorCmPerDrive, ekfErrorCmPerDrive;
   int measurementsUsed = 0, measurementsGated = 0;
 };
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -196,7 +197,16 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
     ASSERT_TRUE(results["ekf"].contains(condition)) << condition;
   }
   ASSERT_EQ(results["conditions"].size(), 51u);
-  ASSERT_EQ(results["ekf"].size(), 51u);
+  ASSERT_EQ(results["ekf"].size(), 52u);
+  // The EKF's floor: every beacon visible from a test pose measured exactly (used, or gated where
+  // odometry drifted further than its covariance says), on the same drives as every condition.
+  const json& exact = results["ekf"]["exact_measurements"];
+  const json& plainCondition = results["conditions"]["plain_to_plain"];
+  EXPECT_EQ(exact["measurements_used"].get<int>() + exact["measurements_gated"].get<int>(),
+            plainCondition["true_positives"].get<int>() + plainCondition["missed"].get<int>());
+  EXPECT_GT(exact["measurements_used"].get<int>(), 3 * exact["measurements_gated"].get<int>());
+  EXPECT_EQ(exact["odometry_error_cm_per_drive"], results["ekf"]["plain_to_plain"]["odometry_error_cm_per_drive"]);
+  EXPECT_LT(exact["mean_error_ekf_cm"].get<double>(), exact["mean_error_odometry_cm"].get<double>());
   // On the plain hall the footprint detector finds beacons too; its false positives are its own
   // bands placed off a band, so the goals' yellow and blue blobs the pixel detector counts are not.
   const json& plainFootprints = results["conditions"]["plain_to_plain_footprints"];
@@ -357,7 +367,8 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
 
     // The EKF trace (data/ekf_<condition>.csv): every one of the 100 poses driven, the truth
     // is thesis-loop's, the odometry the same noisy drive in every condition, the covariance a
-    // covariance, and results.json's mean errors are the trace's.
+    // covariance, and results.json's errors of the first drive are the trace's; its means are
+    // those over every drive.
     const auto ekf = readCsv(path("run/data/ekf_" + key + ".csv"),
                              {"frame", "true_x", "true_y", "true_theta", "odometry_x", "odometry_y", "ekf_x", "ekf_y",
                               "ekf_theta", "p_xx", "p_xy", "p_yy", "p_thth"});
@@ -383,16 +394,26 @@ TEST_F(ExperimentCliTest, QuickTextureRealismWritesResultsFiguresAndReport) {
       ekfError += 100.0 * std::hypot(number(row, "ekf_x") - loop[k].x, number(row, "ekf_y") - loop[k].y);
     }
     const json& e = results["ekf"][key];
-    EXPECT_NEAR(e["mean_error_odometry_cm"].get<double>(), odometryError / 99.0, 1e-4);
-    EXPECT_NEAR(e["mean_error_ekf_cm"].get<double>(), ekfError / 99.0, 1e-4);
-    EXPECT_EQ(e["mean_error_odometry_cm"], results["ekf"]["plain_to_plain"]["mean_error_odometry_cm"]);
+    const auto perDrive = [&](const char* name) { return e[name].get<std::vector<double>>(); };
+    ASSERT_EQ(e["drives"], 16);
+    ASSERT_EQ(perDrive("odometry_error_cm_per_drive").size(), 16u);
+    ASSERT_EQ(perDrive("ekf_error_cm_per_drive").size(), 16u);
+    EXPECT_NEAR(perDrive("odometry_error_cm_per_drive")[0], odometryError / 99.0, 1e-4);
+    EXPECT_NEAR(perDrive("ekf_error_cm_per_drive")[0], ekfError / 99.0, 1e-4);
+    const auto meanOfDrives = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / v.size(); };
+    EXPECT_NEAR(e["mean_error_odometry_cm"].get<double>(), meanOfDrives(perDrive("odometry_error_cm_per_drive")), 1e-9);
+    EXPECT_NEAR(e["mean_error_ekf_cm"].get<double>(), meanOfDrives(perDrive("ekf_error_cm_per_drive")), 1e-9);
+    // Each drive's odometry noise is its own (no two drives alike), and the same in every condition.
+    const std::vector<double> odometryPerDrive = perDrive("odometry_error_cm_per_drive");
+    EXPECT_EQ(std::set<double>(odometryPerDrive.begin(), odometryPerDrive.end()).size(), 16u);
+    EXPECT_EQ(e["odometry_error_cm_per_drive"], results["ekf"]["plain_to_plain"]["odometry_error_cm_per_drive"]);
     // A measurement is a detection with range and bearing: at most one per identification.
     const int used = e["measurements_used"].get<int>(), gated = e["measurements_gated"].get<int>();
     EXPECT_GE(used, 0);
     EXPECT_GE(gated, 0);
     EXPECT_LE(used + gated, tp + identifications);
     if (used == 0) {
-      EXPECT_EQ(e["mean_error_ekf_cm"], e["mean_error_odometry_cm"]);  // nothing but odometry
+      EXPECT_EQ(perDrive("ekf_error_cm_per_drive")[0], perDrive("odometry_error_cm_per_drive")[0]);  // nothing but odometry
     }
 
     // The report's tables hold these numbers.
